@@ -1,0 +1,314 @@
+//! Model parameters (MODEL.md), in CGS units, with the paper's defaults and allowed ranges.
+//!
+//! The structs mirror the sections of a preset file (PRESETS.md), so the preset layer
+//! deserialises straight into them; every struct denies unknown keys and fills missing ones
+//! with the paper's defaults.
+
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+/// A numeric parameter's identity: its dotted preset key, its unit and its allowed range.
+///
+/// Every range check, error message and UI label reads from these, so a field's limits are
+/// stated once.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Limits {
+    /// Dotted preset / `--set` key, e.g. `ground.stiffness`.
+    pub key: &'static str,
+    /// Unit as shown to users (`""` for dimensionless).
+    pub unit: &'static str,
+    pub min: f64,
+    pub max: f64,
+}
+
+impl Limits {
+    /// Checks `value` (NaN and infinities are outside every range).
+    pub fn check(&self, value: f64) -> Result<(), ParamError> {
+        if value >= self.min && value <= self.max {
+            Ok(())
+        } else {
+            Err(ParamError {
+                key: self.key.to_string(),
+                value,
+                limits: *self,
+            })
+        }
+    }
+
+    /// Checks every component of a vector-valued field, naming the component in the error.
+    pub fn check_vector(&self, values: &[f64; 3]) -> Result<(), ParamError> {
+        for (axis, &value) in ["x", "y", "z"].iter().zip(values) {
+            if let Err(mut e) = self.check(value) {
+                e.key = format!("{}.{axis}", self.key);
+                return Err(e);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A value outside its allowed range: names the field, the value and the range.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParamError {
+    pub key: String,
+    pub value: f64,
+    pub limits: Limits,
+}
+
+impl fmt::Display for ParamError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let unit = if self.limits.unit.is_empty() {
+            String::new()
+        } else {
+            format!(" {}", self.limits.unit)
+        };
+        write!(
+            f,
+            "`{}` = {} is outside the allowed range {} to {}{unit}",
+            self.key, self.value, self.limits.min, self.limits.max
+        )
+    }
+}
+
+impl std::error::Error for ParamError {}
+
+pub const HALF_SIZE: Limits = Limits { key: "die.half_size", unit: "cm", min: 0.1, max: 10.0 };
+pub const CORNER_MASS: Limits = Limits { key: "die.corner_mass", unit: "g", min: 0.01, max: 1000.0 };
+pub const STIFFNESS: Limits = Limits { key: "ground.stiffness", unit: "dyn/cm", min: 100.0, max: 1e8 };
+pub const DAMPING: Limits = Limits { key: "ground.damping", unit: "s/cm", min: 0.0, max: 0.1 };
+pub const FRICTION: Limits = Limits { key: "ground.friction", unit: "", min: 0.0, max: 5.0 };
+pub const GRAVITY: Limits = Limits { key: "world.gravity", unit: "cm/s²", min: 10.0, max: 10000.0 };
+pub const DT: Limits = Limits { key: "integrator.dt", unit: "s", min: 1e-5, max: 1e-2 };
+pub const STOP_ENERGY_FRACTION: Limits =
+    Limits { key: "integrator.stop_energy_fraction", unit: "", min: 0.01, max: 1.0 };
+pub const MAX_TIME: Limits = Limits { key: "integrator.max_time", unit: "s", min: 0.01, max: 120.0 };
+
+/// The die: a cube of 8 corner point masses.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Die {
+    /// cm; the paper's "radius" (side = 2 × half_size).
+    pub half_size: f64,
+    /// g, each of the 8 corners.
+    pub corner_mass: f64,
+}
+
+impl Default for Die {
+    fn default() -> Self {
+        Die { half_size: 1.0, corner_mass: 1.0 }
+    }
+}
+
+/// How the horizontal friction force on a touching corner is scaled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FrictionLaw {
+    /// The paper's eq. 15: `−μ·|P|·û` with each corner's own slip direction.
+    #[default]
+    PerCorner,
+    /// The authors' original program: each corner's slip divided by the largest singular
+    /// value of the 8×2 matrix of all corners' horizontal slips, times the signed `P`.
+    WholeDieNorm,
+}
+
+impl FrictionLaw {
+    pub fn name(self) -> &'static str {
+        match self {
+            FrictionLaw::PerCorner => "per-corner",
+            FrictionLaw::WholeDieNorm => "whole-die-norm",
+        }
+    }
+}
+
+/// The ground: a stiff damped spring under every corner, with kinetic friction.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Ground {
+    /// dyn/cm per corner (k).
+    pub stiffness: f64,
+    /// s/cm (γ): the vertical force is `k·d·(1 − γ·u_z)`.
+    pub damping: f64,
+    /// Kinetic friction coefficient (μ).
+    pub friction: f64,
+    pub friction_law: FrictionLaw,
+}
+
+impl Default for Ground {
+    fn default() -> Self {
+        Ground {
+            stiffness: 500_000.0,
+            damping: 0.005,
+            friction: 1.2,
+            friction_law: FrictionLaw::PerCorner,
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct World {
+    /// cm/s², pointing down.
+    pub gravity: f64,
+}
+
+impl Default for World {
+    fn default() -> Self {
+        World { gravity: 980.0 }
+    }
+}
+
+/// Which energy the stopping rule compares with the threshold.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum StopEnergy {
+    /// MODEL.md: translational + rotational (with the cube's inertia) + gravitational + elastic.
+    #[default]
+    RigidBody,
+    /// The authors' program: the 8 corners as point masses (½·m·Σ|u_k|²), gravity, and the
+    /// ground term ½·Σ d_k·P_k with the damped vertical force.
+    PointMasses,
+}
+
+impl StopEnergy {
+    pub fn name(self) -> &'static str {
+        match self {
+            StopEnergy::RigidBody => "rigid-body",
+            StopEnergy::PointMasses => "point-masses",
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Integrator {
+    /// s, the time step Δt.
+    pub dt: f64,
+    /// A roll ends below this share of the edge-tipping energy.
+    pub stop_energy_fraction: f64,
+    /// s of simulated time; past it the roll "did not settle".
+    pub max_time: f64,
+    pub stop_energy: StopEnergy,
+}
+
+impl Default for Integrator {
+    fn default() -> Self {
+        Integrator {
+            dt: 0.001,
+            stop_energy_fraction: 0.8,
+            max_time: 30.0,
+            stop_energy: StopEnergy::RigidBody,
+        }
+    }
+}
+
+/// Every model parameter, grouped as in a preset file.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Params {
+    pub die: Die,
+    pub ground: Ground,
+    pub world: World,
+    pub integrator: Integrator,
+}
+
+impl Params {
+    /// Checks every field against its allowed range; the first failure is returned.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        HALF_SIZE.check(self.die.half_size)?;
+        CORNER_MASS.check(self.die.corner_mass)?;
+        STIFFNESS.check(self.ground.stiffness)?;
+        DAMPING.check(self.ground.damping)?;
+        FRICTION.check(self.ground.friction)?;
+        GRAVITY.check(self.world.gravity)?;
+        DT.check(self.integrator.dt)?;
+        STOP_ENERGY_FRACTION.check(self.integrator.stop_energy_fraction)?;
+        MAX_TIME.check(self.integrator.max_time)?;
+        Ok(())
+    }
+
+    /// g, the whole die (8 corners).
+    pub fn total_mass(&self) -> f64 {
+        8.0 * self.die.corner_mass
+    }
+
+    /// g·cm², the isotropic moment of inertia of a uniform solid cube, `(2a)²/6·M`.
+    ///
+    /// Written in the authors' order of operations so the default is bitwise 16/3.
+    pub fn inertia(&self) -> f64 {
+        let side = 2.0 * self.die.half_size;
+        side * side / 6.0 * self.total_mass()
+    }
+
+    /// erg, the energy to tip over an edge from lying flat: `M·g·a·(√2 − 1)`.
+    pub fn edge_energy(&self) -> f64 {
+        self.total_mass() * self.world.gravity * self.die.half_size * (std::f64::consts::SQRT_2 - 1.0)
+    }
+
+    /// erg, the stopping threshold: a roll ends once its energy is at or below this.
+    pub fn stop_threshold(&self) -> f64 {
+        // (fraction · M·g·a) · (√2 − 1): the authors' grouping, bitwise 2597.9474632040528.
+        self.integrator.stop_energy_fraction
+            * (self.total_mass() * self.world.gravity * self.die.half_size)
+            * (std::f64::consts::SQRT_2 - 1.0)
+    }
+
+    /// rad/s, the fastest contact mode: a die lying flat rocking on its face, `√(6k/M)`.
+    pub fn rocking_frequency(&self) -> f64 {
+        (6.0 * self.ground.stiffness / self.total_mass()).sqrt()
+    }
+
+    /// `ω_rock·Δt`: semi-implicit Euler is stable only below 2 (MODEL.md, "Stability").
+    pub fn stability_number(&self) -> f64 {
+        self.rocking_frequency() * self.integrator.dt
+    }
+
+    /// cm, how far each corner sinks when the die rests flat: `M·g/(4k)`.
+    pub fn resting_depth(&self) -> f64 {
+        self.total_mass() * self.world.gravity / (4.0 * self.ground.stiffness)
+    }
+
+    /// The step count at which a roll is declared "did not settle".
+    pub fn max_steps(&self) -> u64 {
+        let steps = (self.integrator.max_time / self.integrator.dt).ceil();
+        // Validated parameters give at most 1.2·10⁷; the clamp keeps unvalidated ones finite.
+        if steps.is_finite() && steps >= 1.0 {
+            steps.min(1e9) as u64
+        } else {
+            1
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_the_papers() {
+        let p = Params::default();
+        assert_eq!(p.inertia(), 16.0 / 3.0);
+        assert_eq!(p.stop_threshold(), 2597.9474632040528);
+        assert!((p.edge_energy() - 3247.4).abs() < 0.05);
+        assert!((p.rocking_frequency() - 612.37).abs() < 0.01);
+        assert!((p.resting_depth() - 3.92e-3).abs() < 1e-5);
+        assert_eq!(p.max_steps(), 30_000);
+        p.validate().unwrap();
+    }
+
+    #[test]
+    fn out_of_range_names_field_value_and_range() {
+        let mut p = Params::default();
+        p.ground.friction = 7.5;
+        let e = p.validate().unwrap_err();
+        assert_eq!(e.key, "ground.friction");
+        assert_eq!(e.to_string(), "`ground.friction` = 7.5 is outside the allowed range 0 to 5");
+        p.ground.friction = f64::NAN;
+        assert!(p.validate().unwrap_err().to_string().contains("NaN"));
+        let mut p = Params::default();
+        p.integrator.dt = 0.5;
+        assert_eq!(
+            p.validate().unwrap_err().to_string(),
+            "`integrator.dt` = 0.5 is outside the allowed range 0.00001 to 0.01 s"
+        );
+    }
+}
