@@ -1,1 +1,4 @@
+pub mod cli;
+pub mod experiment;
 pub mod physics;
+pub mod preset;

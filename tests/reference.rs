@@ -85,8 +85,19 @@ fn paper_law_faces_match_reference() {
 #[test]
 fn original_law_faces_and_end_steps_match_reference() {
     let a = compare_outcomes("original");
-    assert!(a.matched * 100 >= 98 * a.total, "faces {}/{}: {:#?}", a.matched, a.total, a.mismatches);
-    assert!(a.same_steps * 100 >= 90 * a.total, "same end step only {}/{}", a.same_steps, a.total);
+    assert!(
+        a.matched * 100 >= 98 * a.total,
+        "faces {}/{}: {:#?}",
+        a.matched,
+        a.total,
+        a.mismatches
+    );
+    assert!(
+        a.same_steps * 100 >= 90 * a.total,
+        "same end step only {}/{}",
+        a.same_steps,
+        a.total
+    );
 }
 
 /// Replays every traced IC and returns the largest centre-of-mass and corner-offset
@@ -118,7 +129,10 @@ fn compare_trajectories(variant: &str, up_to: u64) -> (f64, f64, Vec<String>) {
             }
         }
         if table.get(row, "roll_ended") == 1.0 && sim.outcome().map(|o| o.steps) != Some(step) {
-            end_mismatch.push(format!("id {id}: reference ends at {step}, ours {:?}", sim.outcome()));
+            end_mismatch.push(format!(
+                "id {id}: reference ends at {step}, ours {:?}",
+                sim.outcome()
+            ));
         }
         let _ = ended_at;
         if step > up_to {
@@ -135,7 +149,9 @@ fn compare_trajectories(variant: &str, up_to: u64) -> (f64, f64, Vec<String>) {
             }
         }
     }
-    println!("{variant}: largest deviation up to step {up_to}: cm {worst_cm:.3e} cm, corners {worst_corner:.3e} cm");
+    println!(
+        "{variant}: largest deviation up to step {up_to}: cm {worst_cm:.3e} cm, corners {worst_corner:.3e} cm"
+    );
     (worst_cm, worst_corner, end_mismatch)
 }
 

@@ -53,10 +53,7 @@ pub fn face_of_highest_corners(corner_heights: &[f64; 8]) -> Option<u8> {
     });
     let mut top = [order[0], order[1], order[2], order[3]];
     top.sort_unstable();
-    FACE_CORNERS
-        .iter()
-        .position(|f| *f == top)
-        .map(|i| i as u8 + 1)
+    FACE_CORNERS.iter().position(|f| *f == top).map(|i| i as u8 + 1)
 }
 
 /// The face whose outward normal points most nearly up, from the world corner offsets.

@@ -4,13 +4,36 @@ use super::params::{Limits, ParamError};
 use nalgebra::{Rotation3, Vector3};
 use serde::{Deserialize, Serialize};
 
-pub const HEIGHT: Limits = Limits { key: "initial.height", unit: "cm", min: 0.0, max: 1000.0 };
-pub const VELOCITY: Limits = Limits { key: "initial.velocity", unit: "cm/s", min: -10_000.0, max: 10_000.0 };
-pub const ANGULAR_VELOCITY: Limits =
-    Limits { key: "initial.angular_velocity", unit: "rad/s", min: -10_000.0, max: 10_000.0 };
-pub const ANGULAR_MOMENTUM: Limits =
-    Limits { key: "initial.angular_momentum", unit: "g·cm²/s", min: -1e6, max: 1e6 };
-pub const ORIENTATION: Limits = Limits { key: "initial.orientation", unit: "°", min: -360.0, max: 360.0 };
+pub const HEIGHT: Limits = Limits {
+    key: "initial.height",
+    unit: "cm",
+    min: 0.0,
+    max: 1000.0,
+};
+pub const VELOCITY: Limits = Limits {
+    key: "initial.velocity",
+    unit: "cm/s",
+    min: -10_000.0,
+    max: 10_000.0,
+};
+pub const ANGULAR_VELOCITY: Limits = Limits {
+    key: "initial.angular_velocity",
+    unit: "rad/s",
+    min: -10_000.0,
+    max: 10_000.0,
+};
+pub const ANGULAR_MOMENTUM: Limits = Limits {
+    key: "initial.angular_momentum",
+    unit: "g·cm²/s",
+    min: -1e6,
+    max: 1e6,
+};
+pub const ORIENTATION: Limits = Limits {
+    key: "initial.orientation",
+    unit: "°",
+    min: -360.0,
+    max: 360.0,
+};
 
 /// Where the die starts and how it moves at `t = 0`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

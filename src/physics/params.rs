@@ -72,16 +72,60 @@ impl fmt::Display for ParamError {
 
 impl std::error::Error for ParamError {}
 
-pub const HALF_SIZE: Limits = Limits { key: "die.half_size", unit: "cm", min: 0.1, max: 10.0 };
-pub const CORNER_MASS: Limits = Limits { key: "die.corner_mass", unit: "g", min: 0.01, max: 1000.0 };
-pub const STIFFNESS: Limits = Limits { key: "ground.stiffness", unit: "dyn/cm", min: 100.0, max: 1e8 };
-pub const DAMPING: Limits = Limits { key: "ground.damping", unit: "s/cm", min: 0.0, max: 0.1 };
-pub const FRICTION: Limits = Limits { key: "ground.friction", unit: "", min: 0.0, max: 5.0 };
-pub const GRAVITY: Limits = Limits { key: "world.gravity", unit: "cm/s²", min: 10.0, max: 10000.0 };
-pub const DT: Limits = Limits { key: "integrator.dt", unit: "s", min: 1e-5, max: 1e-2 };
-pub const STOP_ENERGY_FRACTION: Limits =
-    Limits { key: "integrator.stop_energy_fraction", unit: "", min: 0.01, max: 1.0 };
-pub const MAX_TIME: Limits = Limits { key: "integrator.max_time", unit: "s", min: 0.01, max: 120.0 };
+pub const HALF_SIZE: Limits = Limits {
+    key: "die.half_size",
+    unit: "cm",
+    min: 0.1,
+    max: 10.0,
+};
+pub const CORNER_MASS: Limits = Limits {
+    key: "die.corner_mass",
+    unit: "g",
+    min: 0.01,
+    max: 1000.0,
+};
+pub const STIFFNESS: Limits = Limits {
+    key: "ground.stiffness",
+    unit: "dyn/cm",
+    min: 100.0,
+    max: 1e8,
+};
+pub const DAMPING: Limits = Limits {
+    key: "ground.damping",
+    unit: "s/cm",
+    min: 0.0,
+    max: 0.1,
+};
+pub const FRICTION: Limits = Limits {
+    key: "ground.friction",
+    unit: "",
+    min: 0.0,
+    max: 5.0,
+};
+pub const GRAVITY: Limits = Limits {
+    key: "world.gravity",
+    unit: "cm/s²",
+    min: 10.0,
+    max: 10000.0,
+};
+pub const DT: Limits = Limits {
+    key: "integrator.dt",
+    unit: "s",
+    min: 1e-5,
+    max: 1e-2,
+};
+pub const STOP_ENERGY_FRACTION: Limits = Limits {
+    key: "integrator.stop_energy_fraction",
+    unit: "",
+    min: 0.01,
+    max: 1.0,
+};
+pub const MAX_TIME: Limits = Limits {
+    key: "integrator.max_time",
+    unit: "s",
+    min: 0.01,
+    max: 120.0,
+};
 
 /// The die: a cube of 8 corner point masses.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -95,7 +139,10 @@ pub struct Die {
 
 impl Default for Die {
     fn default() -> Self {
-        Die { half_size: 1.0, corner_mass: 1.0 }
+        Die {
+            half_size: 1.0,
+            corner_mass: 1.0,
+        }
     }
 }
 
@@ -301,7 +348,10 @@ mod tests {
         p.ground.friction = 7.5;
         let e = p.validate().unwrap_err();
         assert_eq!(e.key, "ground.friction");
-        assert_eq!(e.to_string(), "`ground.friction` = 7.5 is outside the allowed range 0 to 5");
+        assert_eq!(
+            e.to_string(),
+            "`ground.friction` = 7.5 is outside the allowed range 0 to 5"
+        );
         p.ground.friction = f64::NAN;
         assert!(p.validate().unwrap_err().to_string().contains("NaN"));
         let mut p = Params::default();

@@ -513,7 +513,10 @@ impl Simulation {
                     self.state.corner_forces[k] = if depth > 0.0 {
                         let vertical = (depth * c.stiffness) * (1.0 - c.damping * u[k].z);
                         let (fx, fy) = if norm != 0.0 {
-                            (-((u[k].x / norm) * vertical) * c.friction, -((u[k].y / norm) * vertical) * c.friction)
+                            (
+                                -((u[k].x / norm) * vertical) * c.friction,
+                                -((u[k].y / norm) * vertical) * c.friction,
+                            )
                         } else {
                             (0.0, 0.0)
                         };
@@ -563,7 +566,12 @@ mod tests {
 
     #[test]
     fn scaled_norm_matches_plain_norm_closely() {
-        for w in [[3.0, 4.0, 0.0], [0.0, 0.0, 0.0], [1e-3, -2.0, 7.5], [0.0, 5.0, 0.0]] {
+        for w in [
+            [3.0, 4.0, 0.0],
+            [0.0, 0.0, 0.0],
+            [1e-3, -2.0, 7.5],
+            [0.0, 5.0, 0.0],
+        ] {
             let v = Vector3::from(w);
             assert!((scaled_norm(&v) - v.norm()).abs() <= 1e-15 * v.norm().max(1.0));
         }

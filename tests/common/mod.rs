@@ -14,7 +14,9 @@ pub struct Table {
 
 impl Table {
     pub fn load(name: &str) -> Table {
-        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/reference").join(name);
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/data/reference")
+            .join(name);
         let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         let mut lines = text.lines();
         let header: Vec<String> = lines.next().unwrap().split(',').map(str::to_string).collect();

@@ -1,0 +1,86 @@
+//! Headless commands: the model usable and checkable without a terminal UI.
+
+mod roll;
+mod trace;
+
+use crate::preset::Preset;
+use clap::{Args, Parser, Subcommand};
+use std::process::ExitCode;
+
+/// A die rolling on a table as a rigid body (Chin & Li, 2019).
+#[derive(Debug, Parser)]
+#[command(name = "dicesim", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Roll once from the initial condition and print the outcome.
+    Roll(roll::RollArgs),
+    /// Print a roll's trajectory and energies as CSV.
+    Trace(trace::TraceArgs),
+}
+
+/// The setup every simulating command starts from.
+#[derive(Debug, Clone, Default, Args)]
+pub struct SetupArgs {
+    /// Override one preset value, e.g. `ground.stiffness=600000` or
+    /// `initial.angular_velocity=[10,0,3]` (repeatable, applied in order).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+}
+
+impl SetupArgs {
+    /// The preset with every override applied and validated.
+    pub fn resolve(&self) -> Result<Preset, CliError> {
+        Ok(Preset::default().with_overrides(&self.set)?)
+    }
+}
+
+/// A command's failure: bad input (exit status 2) or a failure while running (status 1).
+#[derive(Debug, thiserror::Error)]
+pub enum CliError {
+    #[error("{0}")]
+    Input(String),
+    #[error("{0}")]
+    Run(String),
+}
+
+impl From<crate::preset::PresetError> for CliError {
+    fn from(e: crate::preset::PresetError) -> Self {
+        CliError::Input(e.to_string())
+    }
+}
+
+impl From<std::io::Error> for CliError {
+    fn from(e: std::io::Error) -> Self {
+        CliError::Run(e.to_string())
+    }
+}
+
+/// Parses the command line, runs the command and turns its result into an exit status.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Some(Command::Roll(args)) => roll::run(&args),
+        Some(Command::Trace(args)) => trace::run(&args),
+        None => {
+            use clap::CommandFactory;
+            Cli::command().print_help().map_err(CliError::from)
+        }
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(CliError::Run(msg)) if msg.contains("Broken pipe") => ExitCode::SUCCESS,
+        Err(e @ CliError::Input(_)) => {
+            eprintln!("dicesim: {e}");
+            ExitCode::from(2)
+        }
+        Err(e) => {
+            eprintln!("dicesim: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

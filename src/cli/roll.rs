@@ -1,0 +1,74 @@
+//! `dicesim roll`: one roll from the initial condition.
+
+use super::{CliError, SetupArgs};
+use crate::physics::{Simulation, Status};
+use clap::Args;
+use serde_json::json;
+use std::io::Write;
+
+#[derive(Debug, Args)]
+pub struct RollArgs {
+    #[command(flatten)]
+    pub setup: SetupArgs,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+pub fn run(args: &RollArgs) -> Result<(), CliError> {
+    let preset = args.setup.resolve()?;
+    let params = preset.params();
+    let mut sim = Simulation::new(&params, &preset.initial).map_err(|e| CliError::Input(e.to_string()))?;
+    let outcome = sim.run_to_end();
+    let s = sim.state();
+    let energy = sim.energy();
+    let mut out = std::io::stdout().lock();
+    if args.json {
+        let v = json!({
+            "preset": preset.name,
+            "face": outcome.face,
+            "status": outcome.status,
+            "steps": outcome.steps,
+            "time_s": outcome.time_s,
+            "energy_threshold": sim.stop_threshold(),
+            "stop_energy": sim.stop_energy(),
+            "stability_number": params.stability_number(),
+            "final": {
+                "position": s.position.as_slice(),
+                "velocity": s.velocity.as_slice(),
+                "angular_momentum": s.angular_momentum.as_slice(),
+                "angular_velocity": sim.angular_velocity().as_slice(),
+                "energy": energy,
+                "corner_offsets": s.corner_offsets.iter().map(|r| [r.x, r.y, r.z]).collect::<Vec<_>>(),
+            },
+            "params": params,
+            "initial": preset.initial,
+        });
+        writeln!(out, "{v}")?;
+    } else {
+        let verdict = match (outcome.status, outcome.face) {
+            (Status::Settled, Some(f)) => format!("face {f} (settled)"),
+            (Status::Settled, None) => "settled, but the 4 highest corners form no face".to_string(),
+            (Status::Timeout, _) => format!("did not settle within {} s", params.integrator.max_time),
+            (Status::Unstable, _) => format!(
+                "unstable: the integrator gains energy with these parameters (ω_rock·Δt = {:.3}, stable below 2)",
+                params.stability_number()
+            ),
+        };
+        let v3 = |v: &nalgebra::Vector3<f64>| format!("({:.6}, {:.6}, {:.6})", v.x, v.y, v.z);
+        writeln!(out, "{verdict}")?;
+        writeln!(out, "steps             {}", outcome.steps)?;
+        writeln!(out, "simulated time    {:.3} s", outcome.time_s)?;
+        writeln!(
+            out,
+            "stop energy       {:.1} erg (threshold {:.1} erg, {})",
+            sim.stop_energy(),
+            sim.stop_threshold(),
+            params.integrator.stop_energy.name()
+        )?;
+        writeln!(out, "position          {} cm", v3(&s.position))?;
+        writeln!(out, "velocity          {} cm/s", v3(&s.velocity))?;
+        writeln!(out, "angular momentum  {} g·cm²/s", v3(&s.angular_momentum))?;
+    }
+    Ok(())
+}
