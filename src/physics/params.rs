@@ -127,6 +127,9 @@ pub const MAX_TIME: Limits = Limits {
     max: 120.0,
 };
 
+/// No roll runs longer than this many steps, whatever its parameters (under a second).
+pub const MAX_STEPS_CAP: u64 = 12_000_000;
+
 /// The die: a cube of 8 corner point masses.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -317,9 +320,9 @@ impl Params {
     /// The step count at which a roll is declared "did not settle".
     pub fn max_steps(&self) -> u64 {
         let steps = (self.integrator.max_time / self.integrator.dt).ceil();
-        // Validated parameters give at most 1.2·10⁷; the clamp keeps unvalidated ones finite.
-        if steps.is_finite() && steps >= 1.0 {
-            steps.min(1e9) as u64
+        // Validated parameters give at most 1.2·10⁷; the clamp bounds unvalidated ones.
+        if steps >= 1.0 {
+            steps.min(MAX_STEPS_CAP as f64) as u64
         } else {
             1
         }
@@ -331,6 +334,7 @@ mod tests {
     use super::*;
 
     #[test]
+    #[allow(clippy::excessive_precision)] // the reference's threshold, digit for digit
     fn defaults_are_the_papers() {
         let p = Params::default();
         assert_eq!(p.inertia(), 16.0 / 3.0);

@@ -407,11 +407,10 @@ impl Simulation {
     /// Whether the current state ends the roll, and how.
     fn check_end(&self) -> Option<Outcome> {
         let rigid = self.energy().total();
-        let status = if !rigid.is_finite() || !self.state_is_finite() {
+        let runaway = rigid > RUNAWAY_ENERGY_FACTOR * self.initial_energy.max(self.params.edge_energy());
+        let status = if !rigid.is_finite() || !self.state_is_finite() || runaway {
             Some(Status::Unstable)
-        } else if rigid > RUNAWAY_ENERGY_FACTOR * self.initial_energy.max(self.params.edge_energy()) {
-            Some(Status::Unstable)
-        } else if !(self.stop_energy_from(rigid) > self.c.threshold) {
+        } else if self.stop_energy_from(rigid) <= self.c.threshold {
             Some(Status::Settled)
         } else if self.state.step >= self.c.max_steps {
             Some(Status::Timeout)
@@ -508,14 +507,14 @@ impl Simulation {
             FrictionLaw::WholeDieNorm => {
                 let u = self.corner_velocities();
                 let norm = horizontal_matrix_norm(&u);
-                for k in 0..8 {
-                    let depth = self.state.corner_depths[k];
-                    self.state.corner_forces[k] = if depth > 0.0 {
-                        let vertical = (depth * c.stiffness) * (1.0 - c.damping * u[k].z);
+                let s = &mut self.state;
+                for ((force, &depth), uk) in s.corner_forces.iter_mut().zip(&s.corner_depths).zip(&u) {
+                    *force = if depth > 0.0 {
+                        let vertical = (depth * c.stiffness) * (1.0 - c.damping * uk.z);
                         let (fx, fy) = if norm != 0.0 {
                             (
-                                -((u[k].x / norm) * vertical) * c.friction,
-                                -((u[k].y / norm) * vertical) * c.friction,
+                                -((uk.x / norm) * vertical) * c.friction,
+                                -((uk.y / norm) * vertical) * c.friction,
                             )
                         } else {
                             (0.0, 0.0)

@@ -1,0 +1,129 @@
+//! The headless commands, run as a user runs them.
+
+use std::process::{Command, Output};
+
+fn dicesim(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_dicesim"))
+        .args(args)
+        .env(
+            "DICESIM_PRESETS",
+            std::env::temp_dir().join("dicesim-cli-tests-no-user-presets"),
+        )
+        .output()
+        .expect("the binary runs")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8(o.stdout.clone()).unwrap()
+}
+
+#[test]
+fn roll_json_reports_a_settled_roll() {
+    let o = dicesim(&["roll", "--json", "--set", "initial.angular_velocity=[20,-35,10]"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(v["status"], "settled");
+    let face = v["face"].as_u64().unwrap();
+    assert!((1..=6).contains(&face));
+    assert!(v["steps"].as_u64().unwrap() > 169, "the die must at least land");
+    assert!((v["energy_threshold"].as_f64().unwrap() - 2597.9474632040528).abs() < 1e-9);
+    let time = v["time_s"].as_f64().unwrap();
+    assert!((time - v["steps"].as_f64().unwrap() * 0.001).abs() < 1e-9);
+    for key in ["position", "velocity", "angular_momentum"] {
+        assert_eq!(v["final"][key].as_array().unwrap().len(), 3, "{key}");
+    }
+    // At the end the die rests near the ground: its centre is about half a side up.
+    let z = v["final"]["position"][2].as_f64().unwrap();
+    assert!((0.9..1.2).contains(&z), "final height {z}");
+}
+
+#[test]
+fn roll_reports_instability_as_a_status() {
+    let o = dicesim(&[
+        "roll",
+        "--json",
+        "--set",
+        "ground.stiffness=2e7",
+        "--set",
+        "ground.friction=0",
+    ]);
+    assert!(o.status.success());
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(v["status"], "unstable");
+    assert!(v["face"].is_null());
+}
+
+#[test]
+fn bad_set_exits_2_with_one_line_naming_the_key() {
+    for (arg, needle) in [
+        ("ground.stifness=1", "ground.stifness"),
+        ("ground.friction=high", "ground.friction"),
+        (
+            "ground.friction=9",
+            "`ground.friction` = 9 is outside the allowed range 0 to 5",
+        ),
+        ("initial.angular_velocity=[1,2]", "initial.angular_velocity"),
+        ("nonsense", "nonsense"),
+    ] {
+        let o = dicesim(&["roll", "--set", arg]);
+        assert_eq!(o.status.code(), Some(2), "{arg}");
+        let err = String::from_utf8(o.stderr).unwrap();
+        assert_eq!(err.trim_end().lines().count(), 1, "{arg}: {err}");
+        assert!(err.contains(needle), "{arg}: {err}");
+        assert!(o.stdout.is_empty(), "nothing is simulated for {arg}");
+    }
+}
+
+#[test]
+fn trace_header_and_rows() {
+    let o = dicesim(&["trace", "--steps", "5", "--every", "2"]);
+    assert!(o.status.success());
+    let text = stdout(&o);
+    let mut lines = text.lines();
+    let mut want =
+        "step,t,x,y,z,vx,vy,vz,Lx,Ly,Lz,wx,wy,wz,e_trans,e_rot,e_grav,e_elastic,e_total".to_string();
+    for k in 1..=8 {
+        want += &format!(",c{k}x,c{k}y,c{k}z");
+    }
+    assert_eq!(lines.next().unwrap(), want);
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.iter().map(|r| r[0] as u64).collect::<Vec<_>>(), [0, 2, 4, 5]);
+    assert!(rows.iter().all(|r| r.len() == 19 + 24));
+    // Free fall, kick then drift: z_n = 15 − g·Δt²·n(n+1)/2, v_n = −g·Δt·n.
+    let r4 = &rows[2];
+    assert!((r4[4] - (15.0 - 980e-6 * 10.0)).abs() < 1e-12);
+    assert!((r4[7] + 980e-3 * 4.0).abs() < 1e-12);
+    // Corner 2 (−,−,+) sits one half size above and beside the centre.
+    assert_eq!((r4[19 + 3], r4[19 + 4]), (-1.0, -1.0));
+    assert!((r4[19 + 5] - (r4[4] + 1.0)).abs() < 1e-12);
+    // Energy columns add up.
+    assert!((r4[14] + r4[15] + r4[16] + r4[17] - r4[18]).abs() < 1e-6);
+}
+
+#[test]
+fn trace_without_steps_ends_with_the_roll() {
+    let roll = dicesim(&["roll", "--json", "--set", "initial.angular_velocity=[5,8,0]"]);
+    let v: serde_json::Value = serde_json::from_str(&stdout(&roll)).unwrap();
+    let steps = v["steps"].as_u64().unwrap();
+    let o = dicesim(&[
+        "trace",
+        "--every",
+        "100",
+        "--set",
+        "initial.angular_velocity=[5,8,0]",
+    ]);
+    let text = stdout(&o);
+    let last = text.lines().last().unwrap();
+    assert_eq!(last.split(',').next().unwrap().parse::<u64>().unwrap(), steps);
+    // Past the end of the roll with --steps.
+    let o = dicesim(&["trace", "--every", "1000", "--steps", &(steps + 10).to_string()]);
+    let text = stdout(&o);
+    assert!(
+        text.lines()
+            .last()
+            .unwrap()
+            .starts_with(&format!("{},", steps + 10))
+    );
+}
