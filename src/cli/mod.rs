@@ -1,9 +1,10 @@
 //! Headless commands: the model usable and checkable without a terminal UI.
 
+mod presets;
 mod roll;
 mod trace;
 
-use crate::preset::Preset;
+use crate::preset::{Preset, Store};
 use clap::{Args, Parser, Subcommand};
 use std::process::ExitCode;
 
@@ -21,11 +22,17 @@ pub enum Command {
     Roll(roll::RollArgs),
     /// Print a roll's trajectory and energies as CSV.
     Trace(trace::TraceArgs),
+    /// List, show and save presets (TOML setups; see `presets path`).
+    Presets(presets::PresetsArgs),
 }
 
 /// The setup every simulating command starts from.
 #[derive(Debug, Clone, Default, Args)]
 pub struct SetupArgs {
+    /// Start from this preset: a name (the user's folder, then the shipped set) or a path
+    /// to a `.toml` file. Without it, the shipped `paper` preset.
+    #[arg(long, value_name = "NAME|PATH")]
+    pub preset: Option<String>,
     /// Override one preset value, e.g. `ground.stiffness=600000` or
     /// `initial.angular_velocity=[10,0,3]` (repeatable, applied in order).
     #[arg(long = "set", value_name = "KEY=VALUE")]
@@ -35,7 +42,8 @@ pub struct SetupArgs {
 impl SetupArgs {
     /// The preset with every override applied and validated.
     pub fn resolve(&self) -> Result<Preset, CliError> {
-        Ok(Preset::default().with_overrides(&self.set)?)
+        let (preset, _) = Store::from_env().load_or_default(self.preset.as_deref())?;
+        Ok(preset.with_overrides(&self.set)?)
     }
 }
 
@@ -66,6 +74,7 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Some(Command::Roll(args)) => roll::run(&args),
         Some(Command::Trace(args)) => trace::run(&args),
+        Some(Command::Presets(args)) => presets::run(&args),
         None => {
             use clap::CommandFactory;
             Cli::command().print_help().map_err(CliError::from)

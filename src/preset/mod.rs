@@ -1,53 +1,75 @@
 //! Presets: named TOML files that capture a whole setup (`../shared/design/PRESETS.md`).
+//!
+//! - [`Preset`] is one setup; [`Preset::from_toml_str`] and [`Preset::to_toml`] read and write
+//!   the file format, [`Preset::with_overrides`] applies `--set KEY=VALUE`.
+//! - [`Store`] finds presets (a path, the user's folder, the shipped set), lists them and saves
+//!   into the user's folder atomically.
+//! - [`Preset::default`] is the shipped `paper` preset: what runs when no preset is named.
+
+mod error;
+mod file;
+mod overrides;
+mod shipped;
+mod store;
+
+pub use error::{Location, PresetError};
+pub use shipped::{DEFAULT_NAME, SHIPPED, shipped_text};
+pub use store::{Entry, PRESETS_ENV, Source, Store, check_name, load_file};
 
 use crate::experiment::RandomRanges;
-use crate::physics::{Die, Ground, InitialCondition, Integrator, ParamError, Params, World};
+use crate::physics::{Die, Ground, InitialCondition, Integrator, Limits, ParamError, Params, World};
 use serde::{Deserialize, Serialize};
 
 /// The newest preset file format this program reads and writes.
 pub const FORMAT: u32 = 1;
 
+/// The `format` key's allowed values: a file from a newer program is refused.
+pub const FORMAT_LIMITS: Limits = Limits {
+    key: "format",
+    unit: "",
+    min: 1.0,
+    max: FORMAT as f64,
+};
+
 /// One experiment's complete setup. Every key is optional in a file; missing keys take the
-/// paper's defaults.
+/// paper's defaults (the model's, not the `paper` preset's initial spin).
+///
+/// The defaults are per field rather than `#[serde(default)]` on the struct, because the
+/// struct's `Default` is itself loaded from a file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+#[serde(deny_unknown_fields)]
 pub struct Preset {
+    #[serde(default = "current_format")]
     pub format: u32,
+    /// Shown in the TUI header; a saved preset's file stem.
+    #[serde(default)]
     pub name: String,
+    /// Read aloud by a teacher, shown in the TUI and by `presets list`.
+    #[serde(default)]
     pub description: String,
+    #[serde(default)]
     pub die: Die,
+    #[serde(default)]
     pub ground: Ground,
+    #[serde(default)]
     pub world: World,
+    #[serde(default)]
     pub integrator: Integrator,
+    #[serde(default)]
     pub initial: InitialCondition,
+    #[serde(default)]
     pub random: RandomRanges,
 }
 
-impl Default for Preset {
-    fn default() -> Self {
-        Preset {
-            format: FORMAT,
-            name: "paper".to_string(),
-            description: "The constants of Chin & Li (2019).".to_string(),
-            die: Die::default(),
-            ground: Ground::default(),
-            world: World::default(),
-            integrator: Integrator::default(),
-            initial: InitialCondition::default(),
-            random: RandomRanges::default(),
-        }
-    }
+fn current_format() -> u32 {
+    FORMAT
 }
 
-/// What can be wrong with a preset or an override.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum PresetError {
-    /// `--set KEY=VALUE` that names no key or gives a value of the wrong kind.
-    #[error("--set {key}: {message}")]
-    Override { key: String, message: String },
-    /// A value outside its allowed range.
-    #[error("{0}")]
-    OutOfRange(#[from] ParamError),
+impl Default for Preset {
+    /// The shipped `paper` preset (the paper's constants and a lively first roll).
+    fn default() -> Self {
+        shipped::default_preset().clone()
+    }
 }
 
 impl Preset {
@@ -63,133 +85,9 @@ impl Preset {
 
     /// Checks every value against its allowed range.
     pub fn validate(&self) -> Result<(), ParamError> {
+        FORMAT_LIMITS.check(f64::from(self.format))?;
         self.params().validate()?;
         self.initial.validate()?;
         self.random.validate()
-    }
-
-    /// Applies one `--set KEY=VALUE` (dotted key as in a file; the value is read as a TOML
-    /// value, a bare word as a string). On error `self` is unchanged.
-    pub fn apply_override(&mut self, key: &str, value: &str) -> Result<(), PresetError> {
-        let err = |message: String| PresetError::Override {
-            key: key.to_string(),
-            message,
-        };
-        let parsed = parse_override_value(value);
-        let mut table = toml::Table::try_from(&*self).map_err(|e| err(e.to_string()))?;
-        let path: Vec<&str> = key.split('.').collect();
-        if path.iter().any(|p| p.is_empty()) {
-            return Err(err("empty key segment".to_string()));
-        }
-        let (last, parents) = path.split_last().expect("split on '.' yields at least one part");
-        let mut node = &mut table;
-        for (depth, part) in parents.iter().enumerate() {
-            let entry = node
-                .entry(part.to_string())
-                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-            node = match entry {
-                toml::Value::Table(t) => t,
-                _ => return Err(err(format!("`{}` is not a table", parents[..=depth].join(".")))),
-            };
-        }
-        // Spin is given one way: setting one form replaces the other.
-        if parents == ["initial"] {
-            match *last {
-                "angular_momentum" => drop(node.remove("angular_velocity")),
-                "angular_velocity" => drop(node.remove("angular_momentum")),
-                _ => {}
-            }
-        }
-        node.insert(last.to_string(), parsed);
-        let updated: Preset = serde_path_to_error::deserialize(toml::Value::Table(table)).map_err(|e| {
-            // toml appends the table path on a second line; the key is already named.
-            let inner = e.inner().to_string();
-            let first = inner.lines().next().unwrap_or_default();
-            err(first.split(" in `").next().unwrap_or(first).trim().to_string())
-        })?;
-        updated.validate()?;
-        *self = updated;
-        Ok(())
-    }
-
-    /// Applies `KEY=VALUE` overrides in order; on any error nothing is changed.
-    pub fn with_overrides<S: AsRef<str>>(&self, overrides: &[S]) -> Result<Preset, PresetError> {
-        let mut p = self.clone();
-        for o in overrides {
-            let o = o.as_ref();
-            let (key, value) = o.split_once('=').ok_or_else(|| PresetError::Override {
-                key: o.to_string(),
-                message: "expected KEY=VALUE".to_string(),
-            })?;
-            p.apply_override(key.trim(), value.trim())?;
-        }
-        Ok(p)
-    }
-}
-
-/// A `--set` value as TOML (`600000`, `[10,0,3]`, `true`, `"x"`); anything that does not
-/// parse (a bare word such as `whole-die-norm`) is taken as a string.
-fn parse_override_value(value: &str) -> toml::Value {
-    let doc = format!("v = {value}");
-    match doc.parse::<toml::Table>() {
-        Ok(mut t) => t
-            .remove("v")
-            .unwrap_or_else(|| toml::Value::String(value.to_string())),
-        Err(_) => toml::Value::String(value.to_string()),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::physics::FrictionLaw;
-
-    #[test]
-    fn overrides_set_nested_values() {
-        let p = Preset::default()
-            .with_overrides(&[
-                "ground.stiffness=600000",
-                "initial.angular_velocity=[10,0,3]",
-                "ground.friction_law=whole-die-norm",
-                "integrator.stop_energy=\"point-masses\"",
-            ])
-            .unwrap();
-        assert_eq!(p.ground.stiffness, 600000.0);
-        assert_eq!(p.initial.angular_velocity, [10.0, 0.0, 3.0]);
-        assert_eq!(p.ground.friction_law, FrictionLaw::WholeDieNorm);
-    }
-
-    #[test]
-    fn angular_momentum_replaces_angular_velocity_and_back() {
-        let p = Preset::default()
-            .with_overrides(&["initial.angular_momentum=[0,-100,0]"])
-            .unwrap();
-        assert_eq!(p.initial.angular_momentum, Some([0.0, -100.0, 0.0]));
-        let q = p.with_overrides(&["initial.angular_velocity=[1,2,3]"]).unwrap();
-        assert_eq!(q.initial.angular_momentum, None);
-        assert_eq!(q.initial.angular_velocity, [1.0, 2.0, 3.0]);
-    }
-
-    #[test]
-    fn bad_overrides_name_the_key_and_change_nothing() {
-        let p = Preset::default();
-        let e = p.with_overrides(&["ground.stifness=1"]).unwrap_err();
-        assert!(
-            e.to_string()
-                .starts_with("--set ground.stifness: unknown field `stifness`"),
-            "{e}"
-        );
-        let e = p.with_overrides(&["ground.friction=high"]).unwrap_err();
-        assert!(e.to_string().contains("invalid type: string \"high\""), "{e}");
-        let e = p.with_overrides(&["ground.friction=9"]).unwrap_err();
-        assert_eq!(
-            e.to_string(),
-            "`ground.friction` = 9 is outside the allowed range 0 to 5"
-        );
-        let e = p.with_overrides(&["format.x=1"]).unwrap_err();
-        assert!(e.to_string().contains("`format` is not a table"), "{e}");
-        let e = p.with_overrides(&["initial.velocity=[1,2]"]).unwrap_err();
-        assert!(e.to_string().contains("invalid length 2"), "{e}");
-        assert!(p.with_overrides(&["nonsense"]).is_err());
     }
 }

@@ -1,0 +1,78 @@
+//! `dicesim presets`: list, show and save presets, and tell where the user's folder is.
+
+use super::{CliError, SetupArgs};
+use crate::preset::{PresetError, Store, check_name};
+use clap::{Args, Subcommand};
+use std::io::Write;
+
+#[derive(Debug, Args)]
+pub struct PresetsArgs {
+    #[command(subcommand)]
+    pub command: PresetsCommand,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum PresetsCommand {
+    /// List every preset loadable by name: name, where it lives (user/shipped), description.
+    List,
+    /// Print a preset as a whole TOML file (every key, with units), after any `--set`.
+    Show {
+        /// A preset name or a path to a `.toml` file.
+        #[arg(value_name = "NAME|PATH")]
+        name: String,
+        /// Override one value before showing it (repeatable, applied in order).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+    },
+    /// Save a setup into the user's preset folder as NAME.toml.
+    Save {
+        /// Letters, digits, `-` and `_` only.
+        name: String,
+        #[command(flatten)]
+        setup: SetupArgs,
+        /// Replace an existing preset of that name.
+        #[arg(long)]
+        force: bool,
+    },
+    /// Print the user's preset folder (set `DICESIM_PRESETS` to use another).
+    Path,
+}
+
+pub fn run(args: &PresetsArgs) -> Result<(), CliError> {
+    let store = Store::from_env();
+    let mut out = std::io::stdout().lock();
+    match &args.command {
+        PresetsCommand::List => {
+            let entries = store.list();
+            let width = entries.iter().map(|e| e.name.len()).max().unwrap_or(0);
+            for e in entries {
+                let about = match &e.preset {
+                    Ok(p) => p.description.split_whitespace().collect::<Vec<_>>().join(" "),
+                    Err(err) => format!("does not load: {err}"),
+                };
+                writeln!(out, "{:<width$}  {:<7}  {about}", e.name, e.source.kind())?;
+            }
+        }
+        PresetsCommand::Show { name, set } => {
+            let setup = SetupArgs {
+                preset: Some(name.clone()),
+                set: set.clone(),
+            };
+            write!(out, "{}", setup.resolve()?.to_toml())?;
+        }
+        PresetsCommand::Save { name, setup, force } => {
+            check_name(name)?;
+            let mut preset = setup.resolve()?;
+            preset.name = name.clone();
+            let path = store.save(&preset, *force).map_err(|e| match e {
+                PresetError::Exists { .. } => CliError::Input(format!("{e} (--force replaces it)")),
+                e => CliError::from(e),
+            })?;
+            writeln!(out, "saved {}", path.display())?;
+        }
+        PresetsCommand::Path => {
+            writeln!(out, "{}", store.user_dir()?.display())?;
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,130 @@
+//! `--set KEY=VALUE` overrides, applied after a preset is loaded and checked like a file.
+
+use super::{Preset, PresetError};
+
+impl Preset {
+    /// Applies one `--set KEY=VALUE` (dotted key as in a file; the value is read as a TOML
+    /// value, a bare word as a string). On error `self` is unchanged.
+    pub fn apply_override(&mut self, key: &str, value: &str) -> Result<(), PresetError> {
+        let err = |message: String| PresetError::Override {
+            key: key.to_string(),
+            message,
+        };
+        let parsed = parse_override_value(value);
+        let mut table = toml::Table::try_from(&*self).map_err(|e| err(e.to_string()))?;
+        let path: Vec<&str> = key.split('.').collect();
+        if path.iter().any(|p| p.is_empty()) {
+            return Err(err("empty key segment".to_string()));
+        }
+        let (last, parents) = path.split_last().expect("split on '.' yields at least one part");
+        let mut node = &mut table;
+        for (depth, part) in parents.iter().enumerate() {
+            let entry = node
+                .entry(part.to_string())
+                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+            node = match entry {
+                toml::Value::Table(t) => t,
+                _ => return Err(err(format!("`{}` is not a table", parents[..=depth].join(".")))),
+            };
+        }
+        // Spin is given one way: setting one form replaces the other.
+        if parents == ["initial"] {
+            match *last {
+                "angular_momentum" => drop(node.remove("angular_velocity")),
+                "angular_velocity" => drop(node.remove("angular_momentum")),
+                _ => {}
+            }
+        }
+        node.insert(last.to_string(), parsed);
+        let updated: Preset = serde_path_to_error::deserialize(toml::Value::Table(table)).map_err(|e| {
+            // toml appends the table path on a second line; the key is already named.
+            let inner = e.inner().to_string();
+            let first = inner.lines().next().unwrap_or_default();
+            err(first.split(" in `").next().unwrap_or(first).trim().to_string())
+        })?;
+        updated.validate()?;
+        *self = updated;
+        Ok(())
+    }
+
+    /// Applies `KEY=VALUE` overrides in order; on any error nothing is changed.
+    pub fn with_overrides<S: AsRef<str>>(&self, overrides: &[S]) -> Result<Preset, PresetError> {
+        let mut p = self.clone();
+        for o in overrides {
+            let o = o.as_ref();
+            let (key, value) = o.split_once('=').ok_or_else(|| PresetError::Override {
+                key: o.to_string(),
+                message: "expected KEY=VALUE".to_string(),
+            })?;
+            p.apply_override(key.trim(), value.trim())?;
+        }
+        Ok(p)
+    }
+}
+
+/// A `--set` value as TOML (`600000`, `[10,0,3]`, `true`, `"x"`); anything that does not
+/// parse (a bare word such as `whole-die-norm`) is taken as a string.
+fn parse_override_value(value: &str) -> toml::Value {
+    let doc = format!("v = {value}");
+    match doc.parse::<toml::Table>() {
+        Ok(mut t) => t
+            .remove("v")
+            .unwrap_or_else(|| toml::Value::String(value.to_string())),
+        Err(_) => toml::Value::String(value.to_string()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::FrictionLaw;
+
+    #[test]
+    fn overrides_set_nested_values() {
+        let p = Preset::default()
+            .with_overrides(&[
+                "ground.stiffness=600000",
+                "initial.angular_velocity=[10,0,3]",
+                "ground.friction_law=whole-die-norm",
+                "integrator.stop_energy=\"point-masses\"",
+            ])
+            .unwrap();
+        assert_eq!(p.ground.stiffness, 600000.0);
+        assert_eq!(p.initial.angular_velocity, [10.0, 0.0, 3.0]);
+        assert_eq!(p.ground.friction_law, FrictionLaw::WholeDieNorm);
+    }
+
+    #[test]
+    fn angular_momentum_replaces_angular_velocity_and_back() {
+        let p = Preset::default()
+            .with_overrides(&["initial.angular_momentum=[0,-100,0]"])
+            .unwrap();
+        assert_eq!(p.initial.angular_momentum, Some([0.0, -100.0, 0.0]));
+        let q = p.with_overrides(&["initial.angular_velocity=[1,2,3]"]).unwrap();
+        assert_eq!(q.initial.angular_momentum, None);
+        assert_eq!(q.initial.angular_velocity, [1.0, 2.0, 3.0]);
+    }
+
+    #[test]
+    fn bad_overrides_name_the_key_and_change_nothing() {
+        let p = Preset::default();
+        let e = p.with_overrides(&["ground.stifness=1"]).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("--set ground.stifness: unknown field `stifness`"),
+            "{e}"
+        );
+        let e = p.with_overrides(&["ground.friction=high"]).unwrap_err();
+        assert!(e.to_string().contains("invalid type: string \"high\""), "{e}");
+        let e = p.with_overrides(&["ground.friction=9"]).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "`ground.friction` = 9 is outside the allowed range 0 to 5"
+        );
+        let e = p.with_overrides(&["format.x=1"]).unwrap_err();
+        assert!(e.to_string().contains("`format` is not a table"), "{e}");
+        let e = p.with_overrides(&["initial.velocity=[1,2]"]).unwrap_err();
+        assert!(e.to_string().contains("invalid length 2"), "{e}");
+        assert!(p.with_overrides(&["nonsense"]).is_err());
+    }
+}
