@@ -1,9 +1,50 @@
 //! Experiments on the model: random initial conditions, batches, basin maps, statistics.
+//!
+//! Everything here takes [`Params`](crate::physics::Params) and
+//! [`InitialCondition`](crate::physics::InitialCondition) values as arguments; resolving a
+//! preset is the caller's job.
 
+pub mod basin;
+pub mod batch;
+pub mod ics;
+pub mod keys;
+pub mod plot;
 pub mod random;
 pub mod record;
 pub mod stats;
 
+pub use basin::{Axis, BasinMap, Cell, Layer, MapSpec, Method, run_map};
+pub use batch::{Batch, BatchSummary, Rolls, run_batch};
+pub use keys::ScanKey;
 pub use random::RandomRanges;
 pub use record::{RollRecord, roll_record};
 pub use stats::FaceTally;
+
+use crate::physics::ParamError;
+
+/// Why an experiment could not run.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Error {
+    /// A value outside its allowed range.
+    #[error("{0}")]
+    OutOfRange(#[from] ParamError),
+    /// A scan key that names no numeric setup value.
+    #[error("`{key}` is not a numeric setup key{hint}; known keys: {known}")]
+    UnknownKey {
+        key: String,
+        hint: String,
+        known: String,
+    },
+    /// A malformed map axis (`KEY:MIN:MAX`).
+    #[error("`{spec}`: {message}")]
+    Axis { spec: String, message: String },
+    /// A malformed row of an initial-condition file (1-based line).
+    #[error("line {line}: {message}")]
+    Ics { line: usize, message: String },
+    /// The worker threads could not be started.
+    #[error("cannot start worker threads: {0}")]
+    Threads(String),
+    /// An image could not be drawn or written.
+    #[error("cannot draw the map: {0}")]
+    Plot(String),
+}

@@ -20,5 +20,10 @@ pub fn roll_record(params: &Params, initial: &InitialCondition, id: u64) -> Roll
     let mut sim = Simulation::new_unchecked(params, initial);
     let start_face = face_most_nearly_up(&sim.state().corner_offsets);
     let outcome = sim.run_to_end();
-    RollRecord { id, initial: *initial, outcome, start_face }
+    RollRecord {
+        id,
+        initial: *initial,
+        outcome,
+        start_face,
+    }
 }

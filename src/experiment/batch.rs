@@ -1,0 +1,356 @@
+//! Batches of rolls in parallel, reproducible for any thread count and cancellable.
+//!
+//! Each roll depends on its own initial condition alone (random ones on (seed, roll index),
+//! see [`RandomRanges::draw`]), and results are collected in roll order, so the records are
+//! bit-identical for any number of jobs. Rolls run in chunks; the cancel flag is checked
+//! between chunks, so a cancelled batch holds an exact prefix of the full one.
+
+use super::Error;
+use super::random::RandomRanges;
+use super::record::{RollRecord, roll_record};
+use super::stats::FaceTally;
+use crate::physics::{InitialCondition, Params, Status, opposite_face};
+use rayon::prelude::*;
+use serde::Serialize;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+/// Rolls per chunk and thread: long enough that the barrier at the end of a chunk costs
+/// little (a roll takes ~0.1 ms), short enough that cancelling answers within ~0.1 s.
+const CHUNK_PER_JOB: usize = 512;
+
+/// Where a batch's initial conditions come from.
+#[derive(Debug, Clone, Copy)]
+pub enum Rolls<'a> {
+    /// `count` rolls around `base`, roll `i` drawn by `ranges` from the stream (`seed`, `i`);
+    /// its id is `i`.
+    Random {
+        ranges: &'a RandomRanges,
+        base: &'a InitialCondition,
+        seed: u64,
+        count: u64,
+    },
+    /// Given initial conditions with their ids, e.g. from an `--ics` file.
+    Given(&'a [(u64, InitialCondition)]),
+}
+
+impl Rolls<'_> {
+    /// How many rolls the batch has.
+    pub fn len(&self) -> u64 {
+        match self {
+            Rolls::Random { count, .. } => *count,
+            Rolls::Given(ics) => ics.len() as u64,
+        }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The id and initial condition of roll `index` (0-based, `< len()`).
+    pub fn get(&self, index: u64) -> (u64, InitialCondition) {
+        match self {
+            Rolls::Random {
+                ranges, base, seed, ..
+            } => (index, ranges.draw(base, *seed, index)),
+            Rolls::Given(ics) => ics[index as usize],
+        }
+    }
+}
+
+/// A finished (or cancelled) batch.
+#[derive(Debug, Clone)]
+pub struct Batch {
+    /// The completed rolls in roll order: all of them, or an exact prefix if cancelled.
+    pub records: Vec<RollRecord>,
+    /// How many rolls were asked for.
+    pub requested: u64,
+    /// Whether the cancel flag stopped the batch before the end.
+    pub cancelled: bool,
+    /// Wall-clock time the rolls took.
+    pub elapsed: Duration,
+    /// Threads used.
+    pub jobs: usize,
+}
+
+impl Batch {
+    pub fn summary(&self) -> BatchSummary {
+        BatchSummary::new(&self.records, self.elapsed)
+    }
+}
+
+/// The number of threads for `jobs` (0 means one per available core).
+pub fn thread_count(jobs: usize) -> usize {
+    if jobs > 0 {
+        jobs
+    } else {
+        std::thread::available_parallelism().map_or(1, |n| n.get())
+    }
+}
+
+/// A local thread pool of `jobs` threads (0: one per core), so a batch never competes
+/// with, or depends on, rayon's global pool.
+pub(crate) fn thread_pool(jobs: usize) -> Result<rayon::ThreadPool, Error> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(thread_count(jobs))
+        .thread_name(|i| format!("dicesim-roll-{i}"))
+        .build()
+        .map_err(|e| Error::Threads(e.to_string()))
+}
+
+/// Runs every roll of `rolls` with `params` on `jobs` threads (0: one per core).
+///
+/// `progress` is called on the calling thread after each chunk with every record so far (in
+/// roll order), so a UI can draw a gauge or a live tally. Setting `cancel` stops the batch
+/// at the end of the running chunk; the records then are an exact prefix of the full batch.
+/// The parameters are validated first; initial conditions are the caller's to check (an
+/// out-of-range one still ends in a status, never a panic).
+pub fn run_batch(
+    params: &Params,
+    rolls: &Rolls,
+    jobs: usize,
+    cancel: &AtomicBool,
+    progress: &mut dyn FnMut(&[RollRecord]),
+) -> Result<Batch, Error> {
+    params.validate()?;
+    if let Rolls::Random { ranges, .. } = rolls {
+        ranges.validate()?;
+    }
+    let pool = thread_pool(jobs)?;
+    let jobs = pool.current_num_threads();
+    let chunk = (CHUNK_PER_JOB * jobs) as u64;
+    let requested = rolls.len();
+    let mut records = Vec::with_capacity(requested.min(1 << 24) as usize);
+    let start = Instant::now();
+    let mut next = 0;
+    while next < requested && !cancel.load(Ordering::Relaxed) {
+        let end = (next + chunk).min(requested);
+        let done: Vec<RollRecord> = pool.install(|| {
+            (next..end)
+                .into_par_iter()
+                .map(|i| {
+                    let (id, ic) = rolls.get(i);
+                    roll_record(params, &ic, id)
+                })
+                .collect()
+        });
+        records.extend(done);
+        next = end;
+        progress(&records);
+    }
+    Ok(Batch {
+        cancelled: (records.len() as u64) < requested,
+        records,
+        requested,
+        elapsed: start.elapsed(),
+        jobs,
+    })
+}
+
+/// How a roll's final face relates to the face that started up.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct StartFaceCounts {
+    /// Ended on the face that started up.
+    pub same: u64,
+    /// Ended on one of the 4 faces next to it.
+    pub adjacent: u64,
+    /// Ended on the opposite face.
+    pub opposite: u64,
+}
+
+impl StartFaceCounts {
+    pub fn add(&mut self, start_face: u8, face: u8) {
+        if face == start_face {
+            self.same += 1;
+        } else if face == opposite_face(start_face) {
+            self.opposite += 1;
+        } else {
+            self.adjacent += 1;
+        }
+    }
+
+    pub fn total(&self) -> u64 {
+        self.same + self.adjacent + self.opposite
+    }
+
+    /// Shares of (same, adjacent, opposite); zeros with no rolls.
+    pub fn shares(&self) -> [f64; 3] {
+        let n = self.total().max(1) as f64;
+        [self.same, self.adjacent, self.opposite].map(|c| c as f64 / n)
+    }
+}
+
+/// How the rolls of a batch ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct StatusCounts {
+    /// Settled with a face up.
+    pub settled: u64,
+    /// Settled, but the 4 highest corners formed no face.
+    pub settled_without_face: u64,
+    /// Did not settle within `integrator.max_time`.
+    pub timeout: u64,
+    /// The integrator gained energy.
+    pub unstable: u64,
+}
+
+/// The statistics of a batch: what a summary prints and `--json` carries.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BatchSummary {
+    pub rolls: u64,
+    /// Settled rolls per face 1..6.
+    pub faces: FaceTally,
+    /// Share of each face 1..6 among rolls that ended with a face.
+    pub face_shares: [f64; 6],
+    /// Pearson's χ² of the face counts against a fair die (`None` without faces).
+    pub chi_square: Option<f64>,
+    /// Probability of at least this χ² from a fair die (5 degrees of freedom).
+    pub p_value: Option<f64>,
+    pub start_face: StartFaceCounts,
+    /// Shares of `start_face` (same, adjacent, opposite) among rolls that ended with a face.
+    pub start_face_shares: [f64; 3],
+    pub status: StatusCounts,
+    /// Steps over all rolls.
+    pub steps: u64,
+    /// s of simulated time over all rolls.
+    pub simulated_s: f64,
+    /// s of wall-clock time.
+    pub elapsed_s: f64,
+    pub rolls_per_s: f64,
+    pub steps_per_s: f64,
+}
+
+impl BatchSummary {
+    /// Tallies `records` that took `elapsed` of wall-clock time.
+    pub fn new(records: &[RollRecord], elapsed: Duration) -> BatchSummary {
+        let mut faces = FaceTally::default();
+        let mut start_face = StartFaceCounts::default();
+        let mut status = StatusCounts::default();
+        let (mut steps, mut simulated_s) = (0, 0.0);
+        // Sequential sums in roll order: float totals stay identical for any job count.
+        for r in records {
+            steps += r.outcome.steps;
+            simulated_s += r.outcome.time_s;
+            match (r.outcome.status, r.outcome.face) {
+                (Status::Settled, Some(face)) => {
+                    status.settled += 1;
+                    faces.add(face);
+                    start_face.add(r.start_face, face);
+                }
+                (Status::Settled, None) => status.settled_without_face += 1,
+                (Status::Timeout, _) => status.timeout += 1,
+                (Status::Unstable, _) => status.unstable += 1,
+            }
+        }
+        let elapsed_s = elapsed.as_secs_f64();
+        let rate = |n: f64| if elapsed_s > 0.0 { n / elapsed_s } else { 0.0 };
+        BatchSummary {
+            rolls: records.len() as u64,
+            face_shares: std::array::from_fn(|i| faces.share(i as u8 + 1)),
+            chi_square: faces.chi_square(),
+            p_value: faces.p_value(),
+            faces,
+            start_face_shares: start_face.shares(),
+            start_face,
+            status,
+            steps,
+            simulated_s,
+            elapsed_s,
+            rolls_per_s: rate(records.len() as f64),
+            steps_per_s: rate(steps as f64),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::Outcome;
+
+    fn record(start_face: u8, status: Status, face: Option<u8>, steps: u64) -> RollRecord {
+        RollRecord {
+            id: 0,
+            initial: InitialCondition::default(),
+            outcome: Outcome {
+                status,
+                face,
+                steps,
+                time_s: steps as f64 * 1e-3,
+            },
+            start_face,
+        }
+    }
+
+    #[test]
+    fn summary_by_hand() {
+        let mut rs = vec![
+            record(1, Status::Settled, Some(1), 100), // same
+            record(6, Status::Settled, Some(1), 100), // opposite
+            record(5, Status::Settled, Some(2), 100), // opposite
+            record(1, Status::Settled, Some(6), 100), // opposite
+            record(3, Status::Settled, Some(4), 100), // opposite
+            record(4, Status::Settled, Some(4), 100), // same
+            record(2, Status::Settled, Some(3), 100), // adjacent
+            record(2, Status::Settled, None, 100),
+            record(2, Status::Timeout, None, 30_000),
+            record(2, Status::Unstable, None, 5),
+        ];
+        rs.extend((0..2).map(|_| record(5, Status::Settled, Some(5), 200)));
+        let s = BatchSummary::new(&rs, Duration::from_millis(500));
+        assert_eq!(s.rolls, 12);
+        assert_eq!(s.faces.counts, [2, 1, 1, 2, 2, 1]);
+        // n = 9 faces, expected 1.5 each: χ² = 6·0.5²/1.5 = 1.
+        assert!((s.chi_square.unwrap() - 1.0).abs() < 1e-12);
+        // 5-dof closed form at x = 1: erfc(√0.5) + √(2/π)·e^(−0.5)·(1 + 1/3) = 0.9625657.
+        assert!((s.p_value.unwrap() - 0.9625657).abs() < 1e-6);
+        assert_eq!(
+            s.start_face,
+            StartFaceCounts {
+                same: 4,
+                adjacent: 1,
+                opposite: 4
+            }
+        );
+        assert_eq!(s.start_face_shares, [4.0 / 9.0, 1.0 / 9.0, 4.0 / 9.0]);
+        assert_eq!(
+            s.status,
+            StatusCounts {
+                settled: 9,
+                settled_without_face: 1,
+                timeout: 1,
+                unstable: 1
+            }
+        );
+        assert_eq!(s.steps, 8 * 100 + 30_000 + 5 + 2 * 200);
+        assert_eq!(s.face_shares[0], 2.0 / 9.0);
+        assert_eq!(s.rolls_per_s, 24.0);
+        assert_eq!(s.steps_per_s, 2.0 * 31_205.0);
+    }
+
+    #[test]
+    fn cancelled_batch_is_an_exact_prefix() {
+        let params = Params::default();
+        let ranges = RandomRanges::default();
+        let base = InitialCondition::default();
+        let rolls = Rolls::Random {
+            ranges: &ranges,
+            base: &base,
+            seed: 3,
+            count: 3 * CHUNK_PER_JOB as u64,
+        };
+        let cancel = AtomicBool::new(false);
+        let mut calls = 0;
+        let part = run_batch(&params, &rolls, 1, &cancel, &mut |done| {
+            calls += 1;
+            assert_eq!(done.len(), calls * CHUNK_PER_JOB);
+            cancel.store(true, Ordering::Relaxed);
+        })
+        .unwrap();
+        assert!(part.cancelled);
+        assert_eq!(part.records.len(), CHUNK_PER_JOB);
+        let full = run_batch(&params, &rolls, 2, &AtomicBool::new(false), &mut |_| {}).unwrap();
+        assert!(!full.cancelled);
+        assert_eq!(full.records.len(), 3 * CHUNK_PER_JOB);
+        assert_eq!(part.records[..], full.records[..CHUNK_PER_JOB]);
+        assert!(full.records.iter().enumerate().all(|(i, r)| r.id == i as u64));
+    }
+}

@@ -1,0 +1,268 @@
+//! Initial conditions and roll records as CSV: one column layout for reading `--ics` files
+//! and writing per-roll results, so a batch's output can be fed back as its input.
+
+use super::Error;
+use super::record::RollRecord;
+use crate::physics::InitialCondition;
+use std::fmt::Write as _;
+
+/// The initial-condition columns, in output order (`id` first, then these).
+pub const INITIAL_COLUMNS: [&str; COLUMNS] = [
+    "height",
+    "velocity_x",
+    "velocity_y",
+    "velocity_z",
+    "angular_velocity_x",
+    "angular_velocity_y",
+    "angular_velocity_z",
+    "angular_momentum_x",
+    "angular_momentum_y",
+    "angular_momentum_z",
+    "yaw",
+    "pitch",
+    "roll",
+];
+
+/// The result columns of a per-roll file; an `--ics` file may carry them (they are ignored).
+pub const RESULT_COLUMNS: [&str; 5] = ["start_face", "face", "status", "steps", "time_s"];
+
+const COLUMNS: usize = 13;
+
+/// The values of the initial-condition columns; `None` for an unset angular momentum.
+fn initial_values(ic: &InitialCondition) -> [Option<f64>; COLUMNS] {
+    let l = ic.angular_momentum;
+    [
+        Some(ic.height),
+        Some(ic.velocity[0]),
+        Some(ic.velocity[1]),
+        Some(ic.velocity[2]),
+        Some(ic.angular_velocity[0]),
+        Some(ic.angular_velocity[1]),
+        Some(ic.angular_velocity[2]),
+        l.map(|l| l[0]),
+        l.map(|l| l[1]),
+        l.map(|l| l[2]),
+        Some(ic.orientation[0]),
+        Some(ic.orientation[1]),
+        Some(ic.orientation[2]),
+    ]
+}
+
+/// The header of a per-roll CSV file.
+pub fn records_csv_header() -> String {
+    let mut h = String::from("id");
+    for c in INITIAL_COLUMNS.iter().chain(&RESULT_COLUMNS) {
+        h.push(',');
+        h.push_str(c);
+    }
+    h
+}
+
+/// One roll as a CSV row (floats in shortest round-trip form, so reading back is exact; an
+/// unset angular momentum and a missing face are empty cells).
+pub fn record_csv_row(r: &RollRecord) -> String {
+    let mut row = r.id.to_string();
+    for v in initial_values(&r.initial) {
+        row.push(',');
+        if let Some(v) = v {
+            let _ = write!(row, "{v}");
+        }
+    }
+    let face = r.outcome.face.map(|f| f.to_string()).unwrap_or_default();
+    let _ = write!(
+        row,
+        ",{},{face},{},{},{}",
+        r.start_face,
+        r.outcome.status.name(),
+        r.outcome.steps,
+        r.outcome.time_s
+    );
+    row
+}
+
+/// Reads an `--ics` file: a header with `id` and any of [`INITIAL_COLUMNS`] (result columns
+/// are allowed and ignored). Missing columns and empty cells take `base`'s values; rows
+/// that give spin as angular velocity only drop `base`'s angular momentum (as `--set` does);
+/// `inertia` (g·cm²) restates `base`'s spin when only some angular-momentum components are
+/// given. Every row is checked against the allowed ranges; the first bad row is an error
+/// naming its line (1-based), and nothing is returned.
+pub fn parse_initial_conditions(
+    text: &str,
+    base: &InitialCondition,
+    inertia: f64,
+) -> Result<Vec<(u64, InitialCondition)>, Error> {
+    let bad = |line: usize, message: String| Error::Ics { line, message };
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l.trim()))
+        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+    let (header_line, header) = lines
+        .next()
+        .ok_or_else(|| bad(1, "empty file: expected a header with `id`".to_string()))?;
+    // For each column: Some(index into INITIAL_COLUMNS), or None for `id` / result columns.
+    let mut columns: Vec<Option<usize>> = Vec::new();
+    let mut id_column = None;
+    for (i, name) in header.split(',').map(str::trim).enumerate() {
+        if name == "id" {
+            id_column = Some(i);
+            columns.push(None);
+        } else if let Some(k) = INITIAL_COLUMNS.iter().position(|c| *c == name) {
+            if columns.contains(&Some(k)) {
+                return Err(bad(header_line, format!("column `{name}` appears twice")));
+            }
+            columns.push(Some(k));
+        } else if RESULT_COLUMNS.contains(&name) {
+            columns.push(None);
+        } else {
+            return Err(bad(
+                header_line,
+                format!(
+                    "unknown column `{name}`; expected `id` and any of {}",
+                    INITIAL_COLUMNS.join(", ")
+                ),
+            ));
+        }
+    }
+    let id_column = id_column.ok_or_else(|| bad(header_line, "the header has no `id` column".to_string()))?;
+    let base_momentum: [f64; 3] = base.angular_momentum_for(inertia).into();
+    let mut out = Vec::new();
+    for (line, text) in lines {
+        let cells: Vec<&str> = text.split(',').map(str::trim).collect();
+        if cells.len() != columns.len() {
+            return Err(bad(
+                line,
+                format!(
+                    "{} cells, but the header has {} columns",
+                    cells.len(),
+                    columns.len()
+                ),
+            ));
+        }
+        let id: u64 = cells[id_column].parse().map_err(|_| {
+            bad(
+                line,
+                format!("id `{}` is not a whole number ≥ 0", cells[id_column]),
+            )
+        })?;
+        let mut given: [Option<f64>; COLUMNS] = [None; COLUMNS];
+        for (cell, column) in cells.iter().zip(&columns) {
+            if let (Some(k), false) = (column, cell.is_empty()) {
+                let v: f64 = cell.parse().map_err(|_| {
+                    bad(
+                        line,
+                        format!("`{}` = `{cell}` is not a number", INITIAL_COLUMNS[*k]),
+                    )
+                })?;
+                given[*k] = Some(v);
+            }
+        }
+        let pick = |k: usize, default: f64| given[k].unwrap_or(default);
+        let mut ic = *base;
+        ic.height = pick(0, base.height);
+        ic.velocity = std::array::from_fn(|i| pick(1 + i, base.velocity[i]));
+        ic.angular_velocity = std::array::from_fn(|i| pick(4 + i, base.angular_velocity[i]));
+        if given[7..10].iter().any(Option::is_some) {
+            ic.angular_momentum = Some(std::array::from_fn(|i| pick(7 + i, base_momentum[i])));
+        } else if given[4..7].iter().any(Option::is_some) {
+            ic.angular_momentum = None;
+        }
+        ic.orientation = std::array::from_fn(|i| pick(10 + i, base.orientation[i]));
+        ic.validate().map_err(|e| {
+            bad(
+                line,
+                format!("{} (id {id})", e.to_string().replace("initial.", "")),
+            )
+        })?;
+        out.push((id, ic));
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::Params;
+
+    const INERTIA: f64 = 16.0 / 3.0;
+
+    #[test]
+    fn missing_columns_and_cells_take_the_base() {
+        let base = InitialCondition {
+            velocity: [1.0, 2.0, 3.0],
+            ..Default::default()
+        };
+        let text = "id,height,velocity_y,yaw\n7,4.5,,30\n\n# a comment\n8,2,-5,0\n";
+        let ics = parse_initial_conditions(text, &base, INERTIA).unwrap();
+        assert_eq!(ics.len(), 2);
+        assert_eq!(ics[0].0, 7);
+        assert_eq!(ics[0].1.height, 4.5);
+        assert_eq!(ics[0].1.velocity, [1.0, 2.0, 3.0]);
+        assert_eq!(ics[0].1.orientation, [30.0, 0.0, 0.0]);
+        assert_eq!(ics[1].1.velocity, [1.0, -5.0, 3.0]);
+    }
+
+    #[test]
+    fn spin_forms() {
+        let base = InitialCondition {
+            angular_momentum: Some([INERTIA, 0.0, 0.0]),
+            ..Default::default()
+        };
+        let ics = parse_initial_conditions("id,angular_velocity_z\n1,4", &base, INERTIA).unwrap();
+        assert_eq!(ics[0].1.angular_momentum, None);
+        let ics = parse_initial_conditions("id,angular_momentum_y\n1,4", &base, INERTIA).unwrap();
+        assert_eq!(ics[0].1.angular_momentum, Some([INERTIA, 4.0, 0.0]));
+        let ics = parse_initial_conditions("id,height\n1,4", &base, INERTIA).unwrap();
+        assert_eq!(ics[0].1.angular_momentum, base.angular_momentum);
+    }
+
+    #[test]
+    fn bad_rows_name_their_line() {
+        let base = InitialCondition::default();
+        let e = |t: &str| {
+            parse_initial_conditions(t, &base, INERTIA)
+                .unwrap_err()
+                .to_string()
+        };
+        assert_eq!(
+            e("id,height\n1,2\n\n2,abc\n"),
+            "line 4: `height` = `abc` is not a number"
+        );
+        assert_eq!(
+            e("id,height\n1,2,3\n"),
+            "line 2: 3 cells, but the header has 2 columns"
+        );
+        assert_eq!(
+            e("id,height\n1,-3\n"),
+            "line 2: `height` = -3 is outside the allowed range 0 to 1000 cm (id 1)"
+        );
+        assert!(e("id,heigth\n").starts_with("line 1: unknown column `heigth`"));
+        assert_eq!(e("height\n2\n"), "line 1: the header has no `id` column");
+        assert_eq!(e("id,height\nx,2\n"), "line 2: id `x` is not a whole number ≥ 0");
+    }
+
+    #[test]
+    fn records_read_back_exactly() {
+        let p = Params::default();
+        let ics = [
+            InitialCondition {
+                height: 3.1,
+                velocity: [0.1, -7.3, 0.0],
+                angular_velocity: [1.0 / 3.0, 2.0, -5.5],
+                orientation: [10.0, 20.0, 30.0],
+                ..Default::default()
+            },
+            InitialCondition {
+                angular_momentum: Some([0.7, 0.0, -1.0]),
+                ..Default::default()
+            },
+        ];
+        let mut text = records_csv_header();
+        for (i, ic) in ics.iter().enumerate() {
+            text.push('\n');
+            text.push_str(&record_csv_row(&super::super::roll_record(&p, ic, i as u64)));
+        }
+        let back = parse_initial_conditions(&text, &InitialCondition::default(), INERTIA).unwrap();
+        assert_eq!(back, vec![(0, ics[0]), (1, ics[1])]);
+    }
+}
