@@ -1,5 +1,7 @@
 //! Headless commands: the model usable and checkable without a terminal UI.
 
+mod basin;
+mod batch;
 mod presets;
 mod roll;
 mod trace;
@@ -24,6 +26,10 @@ pub enum Command {
     Trace(trace::TraceArgs),
     /// List, show and save presets (TOML setups; see `presets path`).
     Presets(presets::PresetsArgs),
+    /// Roll many dice in parallel: per-roll results and face statistics.
+    Batch(batch::BatchArgs),
+    /// Map the outcome over a grid of two setup values (CSV, PNG or SVG).
+    Basin(basin::BasinArgs),
 }
 
 /// The setup every simulating command starts from.
@@ -75,6 +81,8 @@ pub fn main() -> ExitCode {
         Some(Command::Roll(args)) => roll::run(&args),
         Some(Command::Trace(args)) => trace::run(&args),
         Some(Command::Presets(args)) => presets::run(&args),
+        Some(Command::Batch(args)) => batch::run(&args),
+        Some(Command::Basin(args)) => basin::run(&args),
         None => {
             use clap::CommandFactory;
             Cli::command().print_help().map_err(CliError::from)

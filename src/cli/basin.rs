@@ -1,0 +1,170 @@
+//! `dicesim basin`: the outcome over a grid of two setup values, as CSV or an image.
+
+use super::{CliError, SetupArgs};
+use crate::experiment::batch::thread_count;
+use crate::experiment::plot::write_image;
+use crate::experiment::{Axis, BasinMap, FaceTally, Layer, MapSpec, Method, run_map};
+use clap::{Args, ValueEnum};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::{IsTerminal, Write};
+use std::path::PathBuf;
+use std::sync::atomic::AtomicBool;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum LayerArg {
+    /// The face up at the end.
+    Face,
+    /// Simulated seconds until the roll ended.
+    SettleTime,
+}
+
+#[derive(Debug, Args)]
+pub struct BasinArgs {
+    #[command(flatten)]
+    pub setup: SetupArgs,
+    /// The horizontal axis: any numeric preset key, vector components included, with its
+    /// range, e.g. `initial.angular_velocity.x:-60:60`.
+    #[arg(long = "x", value_name = "KEY:MIN:MAX", allow_hyphen_values = true)]
+    pub x: String,
+    /// The vertical axis, as --x (with `--res Wx1`, one scan at the middle of its range).
+    #[arg(long = "y", value_name = "KEY:MIN:MAX", allow_hyphen_values = true)]
+    pub y: String,
+    /// Grid nodes along x and y, both ends of each range included; `Wx1` is a 1-D scan.
+    #[arg(long, value_name = "WxH", default_value = "200x100", value_parser = parse_resolution)]
+    pub res: (usize, usize),
+    /// What each cell shows.
+    #[arg(long, value_enum, default_value_t = LayerArg::Face)]
+    pub layer: LayerArg,
+    /// Roll a coarse grid, then only where neighbouring cells differ (default for the face
+    /// layer; may miss islands smaller than the coarse spacing).
+    #[arg(long, conflicts_with = "uniform")]
+    pub adaptive: bool,
+    /// Roll every cell (default for the settle-time layer).
+    #[arg(long)]
+    pub uniform: bool,
+    /// Worker threads (default: one per core); the map does not depend on it.
+    #[arg(long, value_name = "J", value_parser = clap::value_parser!(u64).range(1..))]
+    pub jobs: Option<u64>,
+    /// Write the map to a .csv, .png or .svg file.
+    #[arg(long, value_name = "map.csv|map.png|map.svg")]
+    pub out: Option<PathBuf>,
+}
+
+fn parse_resolution(s: &str) -> Result<(usize, usize), String> {
+    let bad = || format!("`{s}`: expected WxH with whole numbers from 1 to 10000, e.g. 200x100");
+    let (w, h) = s.split_once(['x', 'X', '×']).ok_or_else(bad)?;
+    let w: usize = w.trim().parse().map_err(|_| bad())?;
+    let h: usize = h.trim().parse().map_err(|_| bad())?;
+    if !(1..=10_000).contains(&w) || !(1..=10_000).contains(&h) {
+        return Err(bad());
+    }
+    Ok((w, h))
+}
+
+pub fn run(args: &BasinArgs) -> Result<(), CliError> {
+    let preset = args.setup.resolve()?;
+    let params = preset.params();
+    let (w, h) = args.res;
+    let x = Axis::parse(&args.x, w).map_err(|e| CliError::Input(format!("--x {e}")))?;
+    let y = Axis::parse(&args.y, h).map_err(|e| CliError::Input(format!("--y {e}")))?;
+    let layer = match args.layer {
+        LayerArg::Face => Layer::Face,
+        LayerArg::SettleTime => Layer::SettleTime,
+    };
+    // Filled cells copy a corner's settle time, which says little about the cells between:
+    // the settle-time layer rolls every cell unless asked otherwise.
+    let method = match (args.adaptive, args.uniform, layer) {
+        (true, _, _) => Method::Adaptive,
+        (_, true, _) | (false, false, Layer::SettleTime) => Method::Uniform,
+        (false, false, Layer::Face) => Method::Adaptive,
+    };
+    let out_kind = args
+        .out
+        .as_ref()
+        .map(|p| match p.extension().and_then(|e| e.to_str()) {
+            Some(e @ ("csv" | "png" | "svg")) => Ok(e.to_string()),
+            _ => Err(CliError::Input(format!(
+                "--out {}: expected a .csv, .png or .svg file",
+                p.display()
+            ))),
+        })
+        .transpose()?;
+
+    let total = (w * h) as u64;
+    let bar = if std::io::stderr().is_terminal() {
+        ProgressBar::new(total)
+    } else {
+        ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden())
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} cells rolled, {elapsed}")
+            .expect("the progress template is valid"),
+    );
+    let jobs = thread_count(args.jobs.unwrap_or(0) as usize);
+    let start = std::time::Instant::now();
+    let never = AtomicBool::new(false);
+    let spec = MapSpec { x, y, method };
+    let map = run_map(
+        &params,
+        &preset.initial,
+        &spec,
+        jobs,
+        &never,
+        &mut |m: &BasinMap| bar.set_position(m.sampled as u64),
+    )
+    .map_err(|e| CliError::Input(e.to_string()))?;
+    bar.finish_and_clear();
+    let elapsed = start.elapsed().as_secs_f64();
+
+    if let (Some(path), Some(kind)) = (&args.out, out_kind) {
+        let failed = |e: String| CliError::Run(format!("{}: {e}", path.display()));
+        if kind == "csv" {
+            let mut file = std::io::BufWriter::new(std::fs::File::create(path)?);
+            map.write_csv(&mut file).map_err(|e| failed(e.to_string()))?;
+            file.flush().map_err(|e| failed(e.to_string()))?;
+        } else {
+            write_image(&map, layer, path).map_err(|e| failed(e.to_string()))?;
+        }
+    }
+    let (x, y) = (&spec.x, &spec.y);
+    let mut out = std::io::stdout().lock();
+    let how = match method {
+        Method::Uniform => "uniform grid: every cell rolled".to_string(),
+        Method::Adaptive => format!(
+            "adaptive: {} of {} cells rolled ({:.1}%), the rest filled from agreeing neighbours",
+            map.sampled,
+            total,
+            100.0 * map.sampled as f64 / total as f64
+        ),
+    };
+    writeln!(out, "{w}×{h} {} map, {how}", layer.name())?;
+    writeln!(out, "x  {} from {} to {}", x.key.label(), x.min, x.max)?;
+    if h == 1 {
+        writeln!(out, "y  {} = {}", y.key.label(), y.value(0))?;
+    } else {
+        writeln!(out, "y  {} from {} to {}", y.key.label(), y.min, y.max)?;
+    }
+    let faces: FaceTally = map
+        .cells
+        .iter()
+        .flatten()
+        .filter_map(|c| c.outcome.face)
+        .collect();
+    let shares: Vec<String> = (1..=6)
+        .map(|f| format!("{f}: {:.1}%", 100.0 * faces.share(f)))
+        .collect();
+    writeln!(out, "faces over the map  {}", shares.join(", "))?;
+    let unsettled = w * h - faces.total() as usize;
+    if unsettled > 0 {
+        writeln!(out, "cells without a face {unsettled}")?;
+    }
+    writeln!(
+        out,
+        "time                {elapsed:.2} s on {jobs} thread{}",
+        if jobs == 1 { "" } else { "s" }
+    )?;
+    if let Some(path) = &args.out {
+        writeln!(out, "wrote               {}", path.display())?;
+    }
+    Ok(())
+}

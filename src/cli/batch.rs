@@ -1,0 +1,226 @@
+//! `dicesim batch`: many rolls in parallel, per-roll results and their statistics.
+
+use super::{CliError, SetupArgs};
+use crate::experiment::batch::thread_count;
+use crate::experiment::ics::{parse_initial_conditions, record_csv_row, records_csv_header};
+use crate::experiment::{Batch, BatchSummary, RollRecord, Rolls, run_batch};
+use clap::Args;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use serde_json::json;
+use std::io::{IsTerminal, Write};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Exit status after Ctrl-C, as a shell reports a SIGINT (128 + 2).
+const INTERRUPTED: i32 = 130;
+
+#[derive(Debug, Args)]
+pub struct BatchArgs {
+    #[command(flatten)]
+    pub setup: SetupArgs,
+    /// Roll N dice with initial conditions drawn from the preset's `[random]` ranges.
+    #[arg(
+        long,
+        value_name = "N",
+        required_unless_present = "ics",
+        conflicts_with = "ics"
+    )]
+    pub rolls: Option<u64>,
+    /// Roll the initial conditions of a CSV file: a header with `id` and any of height,
+    /// velocity_x|y|z, angular_velocity_x|y|z, angular_momentum_x|y|z, yaw, pitch, roll
+    /// (missing columns take the preset's initial values).
+    #[arg(long, value_name = "FILE.csv")]
+    pub ics: Option<PathBuf>,
+    /// Seed of the random draws (default: the preset's `random.seed`); roll i's draw depends
+    /// on (seed, i) alone.
+    #[arg(long, value_name = "S", conflicts_with = "ics")]
+    pub seed: Option<u64>,
+    /// Worker threads (default: one per core); the results do not depend on it.
+    #[arg(long, value_name = "J", value_parser = clap::value_parser!(u64).range(1..))]
+    pub jobs: Option<u64>,
+    /// Write every roll (id, initial condition, start face, face, status, steps, simulated
+    /// seconds) to a .csv or .json file.
+    #[arg(long, value_name = "FILE.csv|FILE.json")]
+    pub out: Option<PathBuf>,
+    /// Print the summary as one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// The per-roll file's format, from its extension.
+enum OutFormat {
+    Csv,
+    Json,
+}
+
+fn out_format(path: &Path) -> Result<OutFormat, CliError> {
+    match path.extension().and_then(|e| e.to_str()) {
+        Some("csv") => Ok(OutFormat::Csv),
+        Some("json") => Ok(OutFormat::Json),
+        _ => Err(CliError::Input(format!(
+            "--out {}: expected a .csv or .json file",
+            path.display()
+        ))),
+    }
+}
+
+pub fn run(args: &BatchArgs) -> Result<(), CliError> {
+    let preset = args.setup.resolve()?;
+    let params = preset.params();
+    params.validate().map_err(|e| CliError::Input(e.to_string()))?;
+    let format = args.out.as_deref().map(out_format).transpose()?;
+    let seed = args.seed.unwrap_or(preset.random.seed);
+    let given = match &args.ics {
+        Some(path) => {
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| CliError::Input(format!("--ics {}: {e}", path.display())))?;
+            let ics = parse_initial_conditions(&text, &preset.initial, params.inertia())
+                .map_err(|e| CliError::Input(format!("--ics {}: {e}", path.display())))?;
+            Some(ics)
+        }
+        None => None,
+    };
+    let rolls = match &given {
+        Some(ics) => Rolls::Given(ics),
+        None => Rolls::Random {
+            ranges: &preset.random,
+            base: &preset.initial,
+            seed,
+            count: args.rolls.unwrap_or(0),
+        },
+    };
+    let jobs = thread_count(args.jobs.unwrap_or(0) as usize);
+
+    let stop = Arc::new(AtomicBool::new(false));
+    let handler_stop = stop.clone();
+    // The first Ctrl-C finishes the running chunk and keeps everything done; a second one
+    // quits at once.
+    ctrlc::set_handler(move || {
+        if handler_stop.swap(true, Ordering::SeqCst) {
+            std::process::exit(INTERRUPTED);
+        }
+    })
+    .map_err(|e| CliError::Run(format!("cannot catch Ctrl-C: {e}")))?;
+
+    let bar = if std::io::stderr().is_terminal() {
+        ProgressBar::new(rolls.len())
+    } else {
+        ProgressBar::with_draw_target(Some(rolls.len()), ProgressDrawTarget::hidden())
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} rolls, {per_sec}, {eta} left")
+            .expect("the progress template is valid"),
+    );
+    let batch = run_batch(&params, &rolls, jobs, &stop, &mut |done: &[RollRecord]| {
+        bar.set_position(done.len() as u64)
+    })
+    .map_err(|e| CliError::Input(e.to_string()))?;
+    bar.finish_and_clear();
+
+    let summary = batch.summary();
+    if let (Some(path), Some(format)) = (&args.out, format) {
+        write_records(path, format, &batch, &summary, seed, given.is_some())
+            .map_err(|e| CliError::Run(format!("{}: {e}", path.display())))?;
+    }
+    let mut out = std::io::stdout().lock();
+    if args.json {
+        let v = json!({
+            "preset": preset.name,
+            "seed": if given.is_some() { None } else { Some(seed) },
+            "requested": batch.requested,
+            "completed": batch.records.len(),
+            "interrupted": batch.cancelled,
+            "jobs": batch.jobs,
+            "summary": summary,
+        });
+        writeln!(out, "{v}")?;
+    } else {
+        print_summary(&mut out, &batch, &summary)?;
+    }
+    out.flush()?;
+    if batch.cancelled {
+        eprintln!(
+            "dicesim: interrupted: kept the {} of {} rolls completed",
+            batch.records.len(),
+            batch.requested
+        );
+        std::process::exit(INTERRUPTED);
+    }
+    Ok(())
+}
+
+fn write_records(
+    path: &Path,
+    format: OutFormat,
+    batch: &Batch,
+    summary: &BatchSummary,
+    seed: u64,
+    given: bool,
+) -> std::io::Result<()> {
+    let mut w = std::io::BufWriter::new(std::fs::File::create(path)?);
+    match format {
+        OutFormat::Csv => {
+            writeln!(w, "{}", records_csv_header())?;
+            for r in &batch.records {
+                writeln!(w, "{}", record_csv_row(r))?;
+            }
+        }
+        OutFormat::Json => {
+            let v = json!({
+                "seed": if given { None } else { Some(seed) },
+                "requested": batch.requested,
+                "interrupted": batch.cancelled,
+                "summary": summary,
+                "rolls": batch.records,
+            });
+            serde_json::to_writer(&mut w, &v)?;
+            writeln!(w)?;
+        }
+    }
+    w.flush()
+}
+
+fn print_summary(out: &mut impl Write, batch: &Batch, s: &BatchSummary) -> std::io::Result<()> {
+    writeln!(
+        out,
+        "{} rolls on {} thread{}",
+        s.rolls,
+        batch.jobs,
+        if batch.jobs == 1 { "" } else { "s" }
+    )?;
+    writeln!(out, "face   count   share")?;
+    for f in 0..6 {
+        writeln!(
+            out,
+            "{:>4} {:>7}  {:>5.1}%",
+            f + 1,
+            s.faces.counts[f],
+            100.0 * s.face_shares[f]
+        )?;
+    }
+    match (s.chi_square, s.p_value) {
+        (Some(chi2), Some(p)) => writeln!(out, "χ² against a fair die  {chi2:.3} (5 dof), p = {p:.4}")?,
+        _ => writeln!(out, "χ² against a fair die  n/a (no faces)")?,
+    }
+    let [same, adjacent, opposite] = s.start_face_shares.map(|x| 100.0 * x);
+    writeln!(
+        out,
+        "from the start face    same {same:.1}%, adjacent {adjacent:.1}%, opposite {opposite:.1}%"
+    )?;
+    let st = &s.status;
+    writeln!(
+        out,
+        "status                 settled {}, settled without a face {}, did not settle {}, unstable {}",
+        st.settled, st.settled_without_face, st.timeout, st.unstable
+    )?;
+    writeln!(
+        out,
+        "speed                  {:.0} rolls/s, {:.1} M steps/s ({} steps in {:.2} s)",
+        s.rolls_per_s,
+        s.steps_per_s / 1e6,
+        s.steps,
+        s.elapsed_s
+    )?;
+    Ok(())
+}
