@@ -352,3 +352,32 @@ fn same_input_gives_bit_identical_results() {
     let from_thread = std::thread::spawn(run).join().unwrap();
     assert_eq!(from_thread, first);
 }
+
+#[test]
+fn energy_ledger_closes_and_its_remainder_is_the_integrators() {
+    let p = Params::default();
+    let initial = InitialCondition {
+        velocity: [40.0, 10.0, 0.0],
+        angular_velocity: [20.0, -35.0, 10.0],
+        ..Default::default()
+    };
+    let mut s = sim(&p, initial);
+    // Free flight: the only loss is semi-implicit Euler's ½·M·g²·Δt² per step.
+    let per_step = 0.5 * p.total_mass() * p.world.gravity.powi(2) * p.integrator.dt.powi(2);
+    for _ in 0..150 {
+        s.step();
+    }
+    let l = s.energy_ledger();
+    assert_eq!((l.damping_loss, l.friction_loss), (0.0, 0.0));
+    assert!((l.integrator_loss - 150.0 * per_step).abs() < 1e-6, "{l:?}");
+    // Through the impacts: damping and friction take out energy, the books still balance,
+    // and the integrator's share stays a small part of what the ground dissipated.
+    s.run_to_end();
+    let l = s.energy_ledger();
+    assert!(l.damping_loss > 0.0 && l.friction_loss > 0.0, "{l:?}");
+    let sum = l.current + l.damping_loss + l.friction_loss + l.integrator_loss;
+    assert!((sum - l.initial).abs() < 1e-6 * l.initial);
+    eprintln!("{l:?}");
+    let dissipated = l.damping_loss + l.friction_loss;
+    assert!(l.integrator_loss.abs() < 0.1 * dissipated, "{l:?}");
+}

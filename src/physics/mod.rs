@@ -12,7 +12,7 @@ pub use body::{face_most_nearly_up, face_of_highest_corners, opposite_face};
 pub use energy::Energy;
 pub use initial::InitialCondition;
 pub use params::{Die, FrictionLaw, Ground, Integrator, Limits, ParamError, Params, StopEnergy, World};
-pub use sim::{ContactForce, Outcome, Simulation, State, Status};
+pub use sim::{ContactForce, EnergyLedger, Outcome, Simulation, State, Status};
 
 /// Rolls one die from `initial` to the end; the parameters must already be valid.
 pub fn roll(params: &Params, initial: &InitialCondition) -> Result<(Outcome, Simulation), ParamError> {

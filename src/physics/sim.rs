@@ -50,6 +50,32 @@ pub struct ContactForce {
     pub friction: [f64; 2],
 }
 
+/// Work done on the die since t = 0 by the ground's damping and by friction, erg.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct ContactWork {
+    damping: f64,
+    friction: f64,
+}
+
+/// Where the energy went since t = 0, erg (the energy ledger).
+///
+/// `initial = current + damping_loss + friction_loss + integrator_loss`: the first three are
+/// measured, the last is the remainder, the energy semi-implicit Euler itself gains or loses
+/// (½·M·g²·Δt² per step in free flight, MODEL.md).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct EnergyLedger {
+    /// Rigid-body energy at t = 0.
+    pub initial: f64,
+    /// Rigid-body energy now.
+    pub current: f64,
+    /// Energy taken out by the ground's damping (the work it did, negated).
+    pub damping_loss: f64,
+    /// Energy taken out by kinetic friction.
+    pub friction_loss: f64,
+    /// The remainder: energy lost (positive) or gained by the integrator.
+    pub integrator_loss: f64,
+}
+
 /// How a roll ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
@@ -141,6 +167,8 @@ pub struct Simulation {
     step_rotation: Option<Matrix3<f64>>,
     /// Whether any corner is below the ground at the current state.
     in_contact: bool,
+    /// erg, work done on the die by damping and by friction since t = 0 (negative: lost).
+    work: ContactWork,
     /// erg, rigid-body energy at t = 0.
     initial_energy: f64,
     outcome: Option<Outcome>,
@@ -181,6 +209,7 @@ impl Simulation {
             angular_velocity: Vector3::zeros(),
             step_rotation: None,
             in_contact: false,
+            work: ContactWork::default(),
             initial_energy: 0.0,
             outcome: None,
         };
@@ -211,6 +240,19 @@ impl Simulation {
     /// erg, rigid-body energy at t = 0.
     pub fn initial_energy(&self) -> f64 {
         self.initial_energy
+    }
+
+    /// Where the energy has gone since t = 0.
+    pub fn energy_ledger(&self) -> EnergyLedger {
+        let current = self.energy().total();
+        let (damping_loss, friction_loss) = (-self.work.damping, -self.work.friction);
+        EnergyLedger {
+            initial: self.initial_energy,
+            current,
+            damping_loss,
+            friction_loss,
+            integrator_loss: self.initial_energy - current - damping_loss - friction_loss,
+        }
     }
 
     /// Whether any corner is below the ground now.
@@ -336,6 +378,12 @@ impl Simulation {
     #[inline]
     pub fn step(&mut self) {
         let c = self.c;
+        // Corner velocities before the kick, for the energy ledger.
+        let before = if self.in_contact {
+            Some(self.corner_velocities())
+        } else {
+            None
+        };
         let s = &mut self.state;
         // 1. kick: v ← v + ((ΣF + M·g)/M)·Δt, forces summed in corner order.
         let force = if self.in_contact {
@@ -361,6 +409,9 @@ impl Simulation {
             s.angular_momentum += torque * c.dt;
             // 4. ω = I⁻¹·L (and the rotation it implies).
             self.update_spin();
+        }
+        if let Some(before) = before {
+            self.record_contact_work(&before);
         }
         // 5. rotate every corner offset by |ω|·Δt about ω.
         if let Some(m) = &self.step_rotation {
@@ -484,46 +535,56 @@ impl Simulation {
             self.state.corner_forces = [Vector3::zeros(); 8];
             return;
         }
-        match c.friction_law {
-            FrictionLaw::PerCorner => {
-                for k in 0..8 {
-                    let depth = self.state.corner_depths[k];
-                    self.state.corner_forces[k] = if depth > 0.0 {
-                        let u = self.corner_velocity(&self.state.corner_offsets[k]);
-                        let vertical = (depth * c.stiffness) * (1.0 - c.damping * u.z);
-                        let slip = (u.x * u.x + u.y * u.y).sqrt();
-                        let (fx, fy) = if slip > 0.0 {
-                            let scale = -(c.friction * vertical.abs());
-                            (scale * (u.x / slip), scale * (u.y / slip))
-                        } else {
-                            (0.0, 0.0)
-                        };
-                        Vector3::new(fx, fy, vertical)
-                    } else {
-                        Vector3::zeros()
-                    };
-                }
+        let u = self.corner_velocities();
+        // The authors' law scales every corner's slip by one whole-die matrix norm.
+        let whole_die_norm = match c.friction_law {
+            FrictionLaw::PerCorner => None,
+            FrictionLaw::WholeDieNorm => Some(horizontal_matrix_norm(&u)),
+        };
+        let s = &mut self.state;
+        for ((force, &depth), uk) in s.corner_forces.iter_mut().zip(&s.corner_depths).zip(&u) {
+            if depth <= 0.0 {
+                *force = Vector3::zeros();
+                continue;
             }
-            FrictionLaw::WholeDieNorm => {
-                let u = self.corner_velocities();
-                let norm = horizontal_matrix_norm(&u);
-                let s = &mut self.state;
-                for ((force, &depth), uk) in s.corner_forces.iter_mut().zip(&s.corner_depths).zip(&u) {
-                    *force = if depth > 0.0 {
-                        let vertical = (depth * c.stiffness) * (1.0 - c.damping * uk.z);
-                        let (fx, fy) = if norm != 0.0 {
-                            (
-                                -((uk.x / norm) * vertical) * c.friction,
-                                -((uk.y / norm) * vertical) * c.friction,
-                            )
-                        } else {
-                            (0.0, 0.0)
-                        };
-                        Vector3::new(fx, fy, vertical)
+            let normal = depth * c.stiffness;
+            let vertical = normal * (1.0 - c.damping * uk.z);
+            let (fx, fy) = match whole_die_norm {
+                None => {
+                    let slip = (uk.x * uk.x + uk.y * uk.y).sqrt();
+                    if slip > 0.0 {
+                        let scale = -(c.friction * vertical.abs());
+                        (scale * (uk.x / slip), scale * (uk.y / slip))
                     } else {
-                        Vector3::zeros()
-                    };
+                        (0.0, 0.0)
+                    }
                 }
+                Some(norm) if norm != 0.0 => (
+                    -((uk.x / norm) * vertical) * c.friction,
+                    -((uk.y / norm) * vertical) * c.friction,
+                ),
+                Some(_) => (0.0, 0.0),
+            };
+            *force = Vector3::new(fx, fy, vertical);
+        }
+    }
+
+    /// Adds this step's work of damping and friction to the ledger.
+    ///
+    /// Over the kick, the kinetic energy changes by exactly `Σ F_k·Δt·ū_k`, where `ū_k` is
+    /// the mean of corner k's velocity before and after the kick (at the unrotated offsets):
+    /// `½M|v|²` and `½|L|²/I` are quadratic. So this is the work each force really does in
+    /// the discrete step, chatter included, not a sampled power.
+    fn record_contact_work(&mut self, before: &[Vector3<f64>; 8]) {
+        let after = self.corner_velocities();
+        let s = &self.state;
+        for k in 0..8 {
+            if s.corner_depths[k] > 0.0 {
+                let mean = (before[k] + after[k]) * 0.5;
+                let f = &s.corner_forces[k];
+                let damping = f.z - s.corner_depths[k] * self.c.stiffness;
+                self.work.damping += damping * mean.z * self.c.dt;
+                self.work.friction += (f.x * mean.x + f.y * mean.y) * self.c.dt;
             }
         }
     }
