@@ -2,3 +2,5 @@ pub mod cli;
 pub mod experiment;
 pub mod physics;
 pub mod preset;
+pub mod tui;
+pub mod worker;

@@ -5,6 +5,7 @@ mod batch;
 mod presets;
 mod roll;
 mod trace;
+mod tui;
 
 use crate::preset::{Preset, Store};
 use clap::{Args, Parser, Subcommand};
@@ -30,6 +31,8 @@ pub enum Command {
     Batch(batch::BatchArgs),
     /// Map the outcome over a grid of two setup values (CSV, PNG or SVG).
     Basin(basin::BasinArgs),
+    /// The terminal explorer: a live die, energy plots, parameters and outcomes (the default).
+    Tui(tui::TuiArgs),
 }
 
 /// The setup every simulating command starts from.
@@ -83,10 +86,8 @@ pub fn main() -> ExitCode {
         Some(Command::Presets(args)) => presets::run(&args),
         Some(Command::Batch(args)) => batch::run(&args),
         Some(Command::Basin(args)) => basin::run(&args),
-        None => {
-            use clap::CommandFactory;
-            Cli::command().print_help().map_err(CliError::from)
-        }
+        Some(Command::Tui(args)) => tui::run(&args),
+        None => tui::run(&tui::TuiArgs::default()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

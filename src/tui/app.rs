@@ -1,0 +1,341 @@
+//! The explorer's state and its pure key and mouse handling: `update(&mut App, Msg)`
+//! returns the commands for the worker; nothing here draws, sleeps or reads a clock.
+
+use super::camera::Camera;
+use super::render::{Areas, param_row_at, screen_layout};
+use super::theme::Theme;
+use crate::physics::{InitialCondition, Params};
+use crate::worker::param::{ALL, Param};
+use crate::worker::{BatchProgress, Command, EnergySample, OutcomeTable, Snapshot, Speed};
+use ratatui::crossterm::event::{
+    Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEventKind,
+};
+use ratatui::layout::{Position, Rect};
+
+/// Rolls in one batch (`b`).
+pub const BATCH_ROLLS: u64 = 10_000;
+
+/// What the event loop hands to [`update`]: terminal input or a worker snapshot.
+#[derive(Debug, Clone)]
+pub enum Msg {
+    Input(Event),
+    Worker(Box<Snapshot>),
+}
+
+impl From<Snapshot> for Msg {
+    fn from(s: Snapshot) -> Msg {
+        Msg::Worker(Box::new(s))
+    }
+}
+
+/// A value being typed in (Enter on a parameter).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Editor {
+    pub text: String,
+    /// Why the last Enter was refused.
+    pub error: Option<String>,
+}
+
+/// How the die is drawn: Braille dots, or plain ASCII for fonts without Braille.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Drawing {
+    #[default]
+    Braille,
+    Ascii,
+}
+
+#[derive(Debug, Clone)]
+pub struct App {
+    /// The newest worker snapshot (its history already moved into `history`).
+    pub live: Snapshot,
+    /// The setup as the user last set it (ahead of `live` until the worker catches up).
+    pub params: Params,
+    pub initial: InitialCondition,
+    pub speed: Speed,
+    /// Energy samples of the roll on screen.
+    pub history: Vec<EnergySample>,
+    pub table: OutcomeTable,
+    pub batch: Option<BatchProgress>,
+    pub batch_rolls: u64,
+    pub notice: Option<String>,
+    /// Index into [`ALL`].
+    pub selected: usize,
+    pub editing: Option<Editor>,
+    pub help: bool,
+    pub help_scroll: u16,
+    pub log_scale: bool,
+    pub drawing: Drawing,
+    pub camera: Camera,
+    pub theme: Theme,
+    /// Frames drawn per second, measured by the event loop.
+    pub fps: Option<f64>,
+    /// The terminal's size, for mouse hit tests.
+    pub screen: Rect,
+    pub quit: bool,
+    commands_sent: u64,
+    /// Last mouse position while dragging the die.
+    drag: Option<(u16, u16)>,
+}
+
+impl App {
+    /// The explorer showing `first`, typically the engine's snapshot before the worker starts.
+    pub fn new(mut first: Snapshot, theme: Theme) -> App {
+        let history = std::mem::take(&mut first.history);
+        App {
+            params: first.params,
+            initial: first.initial,
+            speed: first.speed,
+            table: first.table.take().unwrap_or_default(),
+            batch: first.batch,
+            notice: first.notice.take(),
+            live: first,
+            history,
+            batch_rolls: BATCH_ROLLS,
+            selected: 0,
+            editing: None,
+            help: false,
+            help_scroll: 0,
+            log_scale: false,
+            drawing: Drawing::default(),
+            camera: Camera::default(),
+            theme,
+            fps: None,
+            screen: Rect::new(0, 0, 120, 36),
+            quit: false,
+            commands_sent: 0,
+            drag: None,
+        }
+    }
+
+    pub fn selected_param(&self) -> Param {
+        ALL[self.selected.min(ALL.len() - 1)]
+    }
+
+    /// Whether frames should keep coming without input (a moving roll or a running batch).
+    pub fn animating(&self) -> bool {
+        self.live.playing || self.batch.is_some()
+    }
+
+    fn absorb(&mut self, mut s: Snapshot) {
+        if s.history_reset {
+            self.history.clear();
+        }
+        self.history.append(&mut s.history);
+        if let Some(t) = s.table.take() {
+            self.table = t;
+        }
+        if let Some(n) = s.notice.take() {
+            self.notice = Some(n);
+        }
+        // Until the worker has seen every command, the user's own values are newer.
+        if s.commands_handled >= self.commands_sent {
+            self.params = s.params;
+            self.initial = s.initial;
+            self.speed = s.speed;
+        }
+        self.batch = s.batch;
+        self.live = s;
+    }
+
+    fn send(&mut self, out: &mut Vec<Command>, c: Command) {
+        self.commands_sent += 1;
+        out.push(c);
+    }
+
+    fn set_param(&mut self, out: &mut Vec<Command>, p: Param, value: f64) -> Result<(), String> {
+        p.set(&mut self.params, &mut self.initial, value)
+            .map_err(|e| e.to_string())?;
+        self.send(out, Command::SetParam(p, value));
+        Ok(())
+    }
+
+    fn nudge(&mut self, out: &mut Vec<Command>, steps: i32, coarse: bool) {
+        let p = self.selected_param();
+        let now = p.get(&self.params, &self.initial);
+        let next = p.nudged(now, steps, coarse);
+        if next != now {
+            let _ = self.set_param(out, p, next);
+        }
+    }
+
+    fn select(&mut self, delta: isize) {
+        self.selected = (self.selected as isize + delta).clamp(0, ALL.len() as isize - 1) as usize;
+    }
+
+    fn set_speed(&mut self, out: &mut Vec<Command>, speed: Speed) {
+        if speed != self.speed {
+            self.speed = speed;
+            self.send(out, Command::SetSpeed(speed));
+        }
+    }
+
+    fn quit(&mut self, out: &mut Vec<Command>) {
+        self.quit = true;
+        self.send(out, Command::Quit);
+    }
+
+    fn areas(&self) -> Option<Areas> {
+        screen_layout(self.screen)
+    }
+}
+
+/// Applies one message; returns the commands to send to the worker, in order.
+pub fn update(app: &mut App, msg: Msg) -> Vec<Command> {
+    let mut out = Vec::new();
+    match msg {
+        Msg::Worker(s) => app.absorb(*s),
+        Msg::Input(Event::Resize(w, h)) => app.screen = Rect::new(0, 0, w, h),
+        Msg::Input(Event::Key(key)) if key.kind != KeyEventKind::Release => on_key(app, key, &mut out),
+        Msg::Input(Event::Mouse(m)) => on_mouse(app, m.kind, m.column, m.row, &mut out),
+        Msg::Input(_) => {}
+    }
+    out
+}
+
+fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
+    let ctrl = key.modifiers.contains(KeyModifiers::CONTROL);
+    if ctrl && matches!(key.code, KeyCode::Char('c') | KeyCode::Char('C')) {
+        app.quit(out);
+        return;
+    }
+    app.notice = None;
+    if app.editing.is_some() {
+        on_edit_key(app, key, out);
+        return;
+    }
+    if app.help {
+        match key.code {
+            KeyCode::Char('q') => app.quit(out),
+            KeyCode::Up | KeyCode::Char('k') => app.help_scroll = app.help_scroll.saturating_sub(1),
+            KeyCode::Down | KeyCode::Char('j') => app.help_scroll = app.help_scroll.saturating_add(1),
+            KeyCode::Char('?') | KeyCode::Esc | KeyCode::Enter => app.help = false,
+            _ => {}
+        }
+        return;
+    }
+    let coarse = key
+        .modifiers
+        .intersects(KeyModifiers::SHIFT | KeyModifiers::CONTROL | KeyModifiers::ALT);
+    match key.code {
+        KeyCode::Char('q') | KeyCode::Esc => app.quit(out),
+        KeyCode::Char(' ') => app.send(out, Command::TogglePlay),
+        KeyCode::Char('n') => app.send(out, Command::Step(1)),
+        KeyCode::Char('r') => app.send(out, Command::Replay),
+        KeyCode::Char('R') => app.send(out, Command::RandomRoll),
+        KeyCode::Char('b') => {
+            let c = if app.batch.is_some() {
+                Command::BatchCancel
+            } else {
+                Command::BatchStart(app.batch_rolls)
+            };
+            app.send(out, c);
+        }
+        KeyCode::Char('c') => app.send(out, Command::ClearTable),
+        KeyCode::Char('[') | KeyCode::Char('-') => app.set_speed(out, app.speed.slower()),
+        KeyCode::Char(']') | KeyCode::Char('+') | KeyCode::Char('=') => {
+            app.set_speed(out, app.speed.faster())
+        }
+        KeyCode::Up | KeyCode::Char('k') => app.select(-1),
+        KeyCode::Down | KeyCode::Char('j') => app.select(1),
+        KeyCode::Home | KeyCode::Char('g') => app.selected = 0,
+        KeyCode::End | KeyCode::Char('G') => app.selected = ALL.len() - 1,
+        KeyCode::Left | KeyCode::Char('h') => app.nudge(out, -1, coarse),
+        KeyCode::Right | KeyCode::Char('l') => app.nudge(out, 1, coarse),
+        KeyCode::Char('H') => app.nudge(out, -1, true),
+        KeyCode::Char('L') => app.nudge(out, 1, true),
+        KeyCode::Enter => app.editing = Some(Editor::default()),
+        KeyCode::Char('?') => {
+            app.help = true;
+            app.help_scroll = 0;
+        }
+        KeyCode::Char('e') => app.log_scale = !app.log_scale,
+        KeyCode::Char('m') => {
+            app.drawing = match app.drawing {
+                Drawing::Braille => Drawing::Ascii,
+                Drawing::Ascii => Drawing::Braille,
+            }
+        }
+        KeyCode::Char('a') => app.camera.orbit(-15.0, 0.0),
+        KeyCode::Char('d') => app.camera.orbit(15.0, 0.0),
+        KeyCode::Char('w') => app.camera.orbit(0.0, 10.0),
+        KeyCode::Char('s') => app.camera.orbit(0.0, -10.0),
+        KeyCode::Char('z') => app.camera.zoom_by(1),
+        KeyCode::Char('x') => app.camera.zoom_by(-1),
+        KeyCode::Char('0') => app.camera = Camera::default(),
+        _ => {}
+    }
+}
+
+fn on_edit_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
+    let Some(editor) = app.editing.as_mut() else {
+        return;
+    };
+    match key.code {
+        KeyCode::Esc => app.editing = None,
+        KeyCode::Backspace => {
+            editor.text.pop();
+            editor.error = None;
+        }
+        KeyCode::Char(c) if c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E') => {
+            if editor.text.len() < 24 {
+                editor.text.push(c);
+            }
+            editor.error = None;
+        }
+        KeyCode::Enter => {
+            let text = editor.text.trim().to_string();
+            let p = app.selected_param();
+            let result = match text.parse::<f64>() {
+                Ok(v) => app.set_param(out, p, v),
+                Err(_) if text.is_empty() => Err("type a number, or Esc to cancel".to_string()),
+                Err(_) => Err(format!("`{text}` is not a number")),
+            };
+            match result {
+                Ok(()) => app.editing = None,
+                Err(e) => {
+                    if let Some(editor) = app.editing.as_mut() {
+                        editor.error = Some(e);
+                    }
+                }
+            }
+        }
+        _ => {}
+    }
+}
+
+fn on_mouse(app: &mut App, kind: MouseEventKind, column: u16, row: u16, out: &mut Vec<Command>) {
+    if app.help || app.editing.is_some() {
+        return;
+    }
+    let Some(areas) = app.areas() else { return };
+    let at = Position::new(column, row);
+    match kind {
+        MouseEventKind::Down(MouseButton::Left) => {
+            if let Some(i) = param_row_at(app, &areas, at) {
+                app.selected = i;
+            } else if areas.die.contains(at) {
+                app.drag = Some((column, row));
+            }
+        }
+        MouseEventKind::Drag(MouseButton::Left) => {
+            if let Some((x, y)) = app.drag {
+                app.camera
+                    .orbit(5.0 * (column as f64 - x as f64), 5.0 * (row as f64 - y as f64));
+                app.drag = Some((column, row));
+            }
+        }
+        MouseEventKind::Up(_) => app.drag = None,
+        MouseEventKind::ScrollUp | MouseEventKind::ScrollDown => {
+            let up = kind == MouseEventKind::ScrollUp;
+            if areas.params.contains(at) {
+                if let Some(i) = param_row_at(app, &areas, at) {
+                    app.selected = i;
+                }
+                app.nudge(out, if up { 1 } else { -1 }, false);
+            } else if areas.die.contains(at) {
+                app.camera.zoom_by(if up { 1 } else { -1 });
+            }
+        }
+        _ => {}
+    }
+}

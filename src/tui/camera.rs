@@ -1,0 +1,149 @@
+//! The die's view: an orbiting, zooming orthographic camera and the cube's geometry.
+
+use nalgebra::Vector3;
+
+/// Corner indices (0-based) of faces 1..6 (MODEL.md, "Faces").
+pub const FACE_CORNERS: [[usize; 4]; 6] = [
+    [0, 1, 2, 3],
+    [0, 1, 4, 5],
+    [0, 2, 4, 6],
+    [1, 3, 5, 7],
+    [2, 3, 6, 7],
+    [4, 5, 6, 7],
+];
+
+/// The 12 edges: corners whose (x, y, z) signs differ in one place (corner k−1 has bits x y z).
+pub const EDGES: [(usize, usize); 12] = [
+    (0, 1),
+    (2, 3),
+    (4, 5),
+    (6, 7),
+    (0, 2),
+    (1, 3),
+    (4, 6),
+    (5, 7),
+    (0, 4),
+    (1, 5),
+    (2, 6),
+    (3, 7),
+];
+
+/// An orthographic camera circling the die: yaw about the vertical, pitch looking down.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Camera {
+    /// °, turn about the vertical axis.
+    pub yaw_deg: f64,
+    /// °, elevation: 0 looks level, 90 straight down.
+    pub pitch_deg: f64,
+    /// Zoom steps; each makes the view 1.25 times closer.
+    pub zoom: i32,
+}
+
+impl Default for Camera {
+    fn default() -> Self {
+        Camera {
+            yaw_deg: 30.0,
+            pitch_deg: 25.0,
+            zoom: 0,
+        }
+    }
+}
+
+/// A point on the screen plane, cm, with its distance from the viewer (larger is farther).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Projected {
+    pub x: f64,
+    pub y: f64,
+    pub depth: f64,
+}
+
+impl Camera {
+    pub const MIN_PITCH: f64 = -10.0;
+    pub const MAX_PITCH: f64 = 89.0;
+    pub const MIN_ZOOM: i32 = -8;
+    pub const MAX_ZOOM: i32 = 8;
+
+    pub fn orbit(&mut self, d_yaw: f64, d_pitch: f64) {
+        self.yaw_deg = (self.yaw_deg + d_yaw).rem_euclid(360.0);
+        self.pitch_deg = (self.pitch_deg + d_pitch).clamp(Self::MIN_PITCH, Self::MAX_PITCH);
+    }
+
+    pub fn zoom_by(&mut self, steps: i32) {
+        self.zoom = (self.zoom + steps).clamp(Self::MIN_ZOOM, Self::MAX_ZOOM);
+    }
+
+    /// cm of world shown across the view for a die of half size `a` cm.
+    pub fn width_cm(&self, half_size: f64) -> f64 {
+        12.0 * half_size * 1.25f64.powi(-self.zoom)
+    }
+
+    /// Projects `p` with the view's horizontal origin at `focus` (the camera follows the die
+    /// across the table; heights stay absolute so the ground is z = 0 on screen too).
+    pub fn project(&self, p: &Vector3<f64>, focus: &Vector3<f64>) -> Projected {
+        let (sy, cy) = self.yaw_deg.to_radians().sin_cos();
+        let (sp, cp) = self.pitch_deg.to_radians().sin_cos();
+        let (dx, dy, z) = (p.x - focus.x, p.y - focus.y, p.z);
+        let across = cy * dx + sy * dy;
+        let away = -sy * dx + cy * dy;
+        Projected {
+            x: across,
+            y: z * cp + away * sp,
+            depth: away * cp - z * sp,
+        }
+    }
+
+    /// How directly a world direction faces the viewer (1 straight at them, < 0 away).
+    pub fn facing(&self, direction: &Vector3<f64>) -> f64 {
+        let n = direction.normalize();
+        if !n.iter().all(|c| c.is_finite()) {
+            return -1.0;
+        }
+        -self.project(&n, &Vector3::zeros()).depth
+    }
+}
+
+/// Outward normal of face `f` (0-based) of a cube with these corners.
+pub fn face_normal(corners: &[Vector3<f64>; 8], centre: &Vector3<f64>, f: usize) -> Vector3<f64> {
+    face_centre(corners, f) - centre
+}
+
+pub fn face_centre(corners: &[Vector3<f64>; 8], f: usize) -> Vector3<f64> {
+    FACE_CORNERS[f].iter().map(|&k| corners[k]).sum::<Vector3<f64>>() / 4.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::body::body_corner_offsets;
+
+    #[test]
+    fn faces_and_edges_follow_the_papers_numbering() {
+        let c = body_corner_offsets(1.0);
+        // face 4 is z = +a, face 1 is x = −a (MODEL.md).
+        assert!(FACE_CORNERS[3].iter().all(|&k| c[k].z > 0.0));
+        assert!(FACE_CORNERS[0].iter().all(|&k| c[k].x < 0.0));
+        for (a, b) in EDGES {
+            assert!(
+                ((c[a] - c[b]).norm() - 2.0).abs() < 1e-12,
+                "edge {a}-{b} has the side's length"
+            );
+        }
+    }
+
+    #[test]
+    fn the_top_faces_the_viewer_from_above_and_the_bottom_does_not() {
+        let cam = Camera::default();
+        assert!(cam.facing(&Vector3::z()) > 0.0);
+        assert!(cam.facing(&-Vector3::z()) < 0.0);
+        let level = Camera {
+            pitch_deg: 0.0,
+            ..cam
+        };
+        assert!(level.facing(&Vector3::z()).abs() < 1e-12);
+        let p = cam.project(&Vector3::new(3.0, 4.0, 0.0), &Vector3::new(3.0, 4.0, 9.0));
+        assert!(
+            p.x.abs() < 1e-12 && p.y.abs() < 1e-12,
+            "the focus' foot is the screen origin"
+        );
+    }
+}

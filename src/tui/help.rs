@@ -1,0 +1,70 @@
+//! The `?` overlay: every key, and the model explained for a classroom.
+
+use super::app::BATCH_ROLLS;
+use super::theme::Theme;
+use ratatui::text::{Line, Span};
+
+const KEYS: &[(&str, &str)] = &[
+    ("space", "play / pause (at the end of a roll: watch it again)"),
+    ("n", "one step of Δt, then pause"),
+    ("r", "replay the same start: the same face, every time"),
+    (
+        "R",
+        "a random roll from the preset's ranges (counted in the table)",
+    ),
+    ("b", "a batch of random rolls into the table; b again cancels"),
+    ("c", "clear the outcome table"),
+    ("[ -  ] +", "slower / faster: 1/100× … 100×, then instant"),
+    ("↑↓ j k", "select a value (g G: first, last)"),
+    ("←→ h l", "change it; Shift, H or L for big steps"),
+    ("Enter", "type an exact value (Esc cancels)"),
+    ("e", "energy plot: linear / log scale"),
+    ("m", "draw the die with Braille dots / plain ASCII"),
+    ("a d  w s", "orbit / tilt the camera"),
+    ("z x  0", "zoom in / out, reset the view"),
+    (
+        "mouse",
+        "click a value to select it, scroll to change it; drag the die to orbit, scroll on it to zoom",
+    ),
+    ("?", "this help"),
+    ("q Esc Ctrl-C", "quit"),
+];
+
+const MODEL: &[&str] = &[
+    "The die is a cube of 8 point masses, its corners, moving as one rigid body (Chin & Li, 2019). \
+     Gravity pulls every corner down.",
+    "The table is a stiff trampoline. A corner that sinks a depth d into it is pushed up by a spring, k·d, \
+     minus damping, k·d·γ·u (u: how fast the corner moves down), which takes energy out. Friction drags the \
+     corner sideways against its sliding with μ times that push.",
+    "One step of Δt: the forces change the velocity, the new velocity moves the die (semi-implicit Euler); \
+     the torques change the spin, and the cube turns by |ω|·Δt. Then the forces are worked out again.",
+    "Energy: translational (moving), rotational (turning), gravitational (height) and elastic (the squashed \
+     spring). At an impact a corner sinks a fraction of a millimetre into a very stiff spring: for a \
+     millisecond the elastic term spikes above all the others, then is handed back as motion, less what \
+     damping and friction took. The log scale (e) shows the spikes and the small terms together.",
+    "A roll ends once the energy drops below 80% of what it takes to tip the die over an edge (the dotted \
+     stop line): from then on the face up cannot change.",
+    "Same start, same face: the model is deterministic (r). A die looks random because a tiny change in the \
+     start changes the face (R, b).",
+    "The step is stable only while ω_rock·Δt < 2, where ω_rock = √(6k/M) is how fast a die lying flat rocks \
+     on its face. The number beside k and Δt turns amber from 1 and red from 1.4: raise k or Δt and watch \
+     the energy grow instead of fall.",
+];
+
+pub fn help_lines(t: &Theme) -> Vec<Line<'static>> {
+    let mut lines = vec![Line::styled("Keys", t.heading())];
+    for (k, what) in KEYS {
+        let what = what.replace("a batch of", &format!("a batch of {BATCH_ROLLS}"));
+        lines.push(Line::from(vec![
+            Span::styled(format!("  {k:<14}"), t.key()),
+            Span::raw(what),
+        ]));
+    }
+    lines.push(Line::raw(""));
+    lines.push(Line::styled("The model", t.heading()));
+    for paragraph in MODEL {
+        lines.push(Line::raw(format!("  {paragraph}")));
+        lines.push(Line::raw(""));
+    }
+    lines
+}

@@ -1,0 +1,14 @@
+//! The terminal explorer: [`App`] state, pure [`update`] and [`render`], and [`run`], the
+//! event loop that owns the terminal.
+
+pub mod app;
+pub mod camera;
+mod help;
+pub mod render;
+mod run;
+pub mod theme;
+
+pub use app::{App, Msg, update};
+pub use render::render;
+pub use run::run;
+pub use theme::Theme;

@@ -1,0 +1,473 @@
+//! The worker's state machine: one live roll, the outcome table and a batch, driven by
+//! commands and by "advance to simulated time t". No thread and no clock live here, so tests
+//! (and the thread in `mod.rs`) drive it step for step.
+
+use super::param::Param;
+use super::speed::Speed;
+use super::{BatchProgress, Command, DieState, EnergySample, OutcomeTable, Phase, RollKind, Snapshot};
+use crate::experiment::{RandomRanges, RollRecord, Rolls, run_batch};
+use crate::physics::{Energy, InitialCondition, ParamError, Params, Simulation, face_most_nearly_up};
+use crate::preset::Preset;
+use std::sync::atomic::AtomicBool;
+
+/// At most this many energy samples per roll: longer rolls keep each term's peak over a
+/// stride of steps, so impact spikes survive the thinning.
+const HISTORY_SAMPLES: u64 = 40_000;
+
+/// The batch whose rolls the table is receiving.
+#[derive(Debug, Clone, Copy)]
+struct BatchState {
+    id: u64,
+    done: u64,
+    total: u64,
+}
+
+/// A batch to start: its rolls are random rolls numbered on from the live ones, so no
+/// initial condition enters the table twice.
+#[derive(Debug, Clone)]
+pub struct BatchRequest {
+    pub id: u64,
+    pub params: Params,
+    pub rolls: Vec<(u64, InitialCondition)>,
+}
+
+/// Output gathered since the last snapshot.
+#[derive(Debug, Default)]
+struct Pending {
+    history: Vec<EnergySample>,
+    history_reset: bool,
+    table_changed: bool,
+    notice: Option<String>,
+}
+
+pub struct Engine {
+    preset_name: String,
+    /// The preset's initial condition: random draws take their orientation from it.
+    base_initial: InitialCondition,
+    random: RandomRanges,
+    params: Params,
+    initial: InitialCondition,
+    sim: Simulation,
+    roll: RollKind,
+    start_face: u8,
+    /// Whether the live random roll has already entered the table (a replay must not count twice).
+    counted: bool,
+    playing: bool,
+    speed: Speed,
+    /// Whether a corner has touched the ground since the roll started.
+    touched: bool,
+    next_random: u64,
+    table: OutcomeTable,
+    batch: Option<BatchState>,
+    batch_request: Option<BatchRequest>,
+    batches_started: u64,
+    stride: u64,
+    peak: Option<EnergySample>,
+    peak_steps: u64,
+    pending: Pending,
+    commands_handled: u64,
+    /// Changes whenever the mapping from wall time to simulated time must restart.
+    pacing_epoch: u64,
+}
+
+impl Engine {
+    /// A paused engine at the start of the preset's roll.
+    pub fn new(preset: &Preset) -> Result<Engine, ParamError> {
+        preset.validate()?;
+        let params = preset.params();
+        let sim = Simulation::new(&params, &preset.initial)?;
+        let mut engine = Engine {
+            preset_name: preset.name.clone(),
+            base_initial: preset.initial,
+            random: preset.random,
+            params,
+            initial: preset.initial,
+            sim,
+            roll: RollKind::Preset,
+            start_face: 0,
+            counted: false,
+            playing: false,
+            speed: Speed::default(),
+            touched: false,
+            next_random: 0,
+            table: OutcomeTable::default(),
+            batch: None,
+            batch_request: None,
+            batches_started: 0,
+            stride: 1,
+            peak: None,
+            peak_steps: 0,
+            pending: Pending::default(),
+            commands_handled: 0,
+            pacing_epoch: 0,
+        };
+        engine.restart(RollKind::Preset);
+        Ok(engine)
+    }
+
+    pub fn preset_name(&self) -> &str {
+        &self.preset_name
+    }
+
+    pub fn params(&self) -> &Params {
+        &self.params
+    }
+
+    pub fn initial(&self) -> &InitialCondition {
+        &self.initial
+    }
+
+    pub fn simulation(&self) -> &Simulation {
+        &self.sim
+    }
+
+    pub fn is_playing(&self) -> bool {
+        self.playing
+    }
+
+    pub fn speed(&self) -> Speed {
+        self.speed
+    }
+
+    pub fn batch_running(&self) -> bool {
+        self.batch.is_some()
+    }
+
+    /// Whether time should keep moving without a command (a playing roll or a batch).
+    pub fn busy(&self) -> bool {
+        self.playing || self.batch.is_some()
+    }
+
+    pub fn pacing_epoch(&self) -> u64 {
+        self.pacing_epoch
+    }
+
+    pub fn table(&self) -> &OutcomeTable {
+        &self.table
+    }
+
+    /// Applies one command; returns false for [`Command::Quit`].
+    pub fn handle(&mut self, command: Command) -> bool {
+        self.commands_handled += 1;
+        match command {
+            Command::TogglePlay => {
+                let play = !self.playing;
+                self.set_playing(play);
+            }
+            Command::SetPlaying(play) => self.set_playing(play),
+            Command::Step(n) => {
+                self.playing = false;
+                self.pacing_epoch += 1;
+                if self.sim.outcome().is_some() {
+                    self.pending.notice = Some("the roll has ended: r replays it".to_string());
+                } else {
+                    self.advance_steps(n);
+                }
+            }
+            Command::Replay => {
+                self.restart(self.roll);
+                self.playing = true;
+            }
+            Command::RandomRoll => {
+                let index = self.next_random;
+                self.next_random += 1;
+                self.initial = self.random.draw(&self.base_initial, self.random.seed, index);
+                self.counted = false;
+                self.restart(RollKind::Random(index));
+                self.playing = true;
+            }
+            Command::SetParam(param, value) => self.set_param(param, value),
+            Command::SetSpeed(speed) => {
+                self.speed = speed;
+                self.pacing_epoch += 1;
+            }
+            Command::BatchStart(rolls) => {
+                if self.batch.is_none() && rolls > 0 {
+                    let id = self.batches_started;
+                    self.batches_started += 1;
+                    let first = self.next_random;
+                    self.next_random += rolls;
+                    let rolls_list = (first..first + rolls)
+                        .map(|i| (i, self.random.draw(&self.base_initial, self.random.seed, i)))
+                        .collect();
+                    self.batch = Some(BatchState {
+                        id,
+                        done: 0,
+                        total: rolls,
+                    });
+                    self.batch_request = Some(BatchRequest {
+                        id,
+                        params: self.params,
+                        rolls: rolls_list,
+                    });
+                }
+            }
+            Command::BatchCancel => {
+                self.batch_request = None;
+                if let Some(b) = self.batch.take() {
+                    self.pending.notice =
+                        Some(format!("batch cancelled after {} of {} rolls", b.done, b.total));
+                }
+            }
+            Command::ClearTable => {
+                self.table = OutcomeTable::default();
+                self.pending.table_changed = true;
+            }
+            Command::Quit => return false,
+        }
+        true
+    }
+
+    fn set_playing(&mut self, play: bool) {
+        if play && self.sim.outcome().is_some() {
+            // Resuming a finished roll means watching it again.
+            self.restart(self.roll);
+        }
+        self.playing = play;
+        self.pacing_epoch += 1;
+    }
+
+    fn set_param(&mut self, param: Param, value: f64) {
+        let (mut params, mut initial) = (self.params, self.initial);
+        if let Err(e) = param.set(&mut params, &mut initial, value) {
+            self.pending.notice = Some(e.to_string());
+            return;
+        }
+        self.params = params;
+        self.initial = initial;
+        if param.acts_mid_roll() && self.sim.outcome().is_none() {
+            if let Err(e) = self.sim.set_ground(params.ground) {
+                self.pending.notice = Some(e.to_string());
+            }
+        } else {
+            // A new initial condition is a roll of its own; other values re-run the same one.
+            let kind = if is_initial(param) {
+                RollKind::Edited
+            } else {
+                self.roll
+            };
+            self.restart(kind);
+        }
+    }
+
+    /// Places the die at the current initial condition; the history starts again.
+    fn restart(&mut self, kind: RollKind) {
+        self.roll = kind;
+        self.sim = Simulation::new_unchecked(&self.params, &self.initial);
+        self.start_face = face_most_nearly_up(&self.sim.state().corner_offsets);
+        self.touched = self.sim.in_contact();
+        self.stride = self.params.max_steps().div_ceil(HISTORY_SAMPLES).max(1);
+        self.peak = None;
+        self.peak_steps = 0;
+        self.pending.history.clear();
+        self.pending.history_reset = true;
+        self.pending.history.push(self.sample());
+        self.pacing_epoch += 1;
+    }
+
+    fn sample(&self) -> EnergySample {
+        let energy = self.sim.energy();
+        EnergySample {
+            time_s: self.sim.state().time_s,
+            energy,
+            total: energy.total(),
+        }
+    }
+
+    /// One step with its bookkeeping; returns whether the roll can go on.
+    fn step(&mut self) -> bool {
+        let ended = self.sim.advance();
+        self.touched |= self.sim.in_contact();
+        let s = self.sample();
+        let peak = match self.peak {
+            None => s,
+            Some(p) => EnergySample {
+                time_s: s.time_s,
+                energy: peak_of(p.energy, s.energy),
+                total: p.total.max(s.total),
+            },
+        };
+        self.peak_steps += 1;
+        if self.peak_steps >= self.stride || ended.is_some() {
+            self.pending.history.push(peak);
+            self.peak = None;
+            self.peak_steps = 0;
+        } else {
+            self.peak = Some(peak);
+        }
+        if let Some(outcome) = ended {
+            self.playing = false;
+            if let RollKind::Random(id) = self.roll
+                && !self.counted
+            {
+                self.counted = true;
+                self.table.add(RollRecord {
+                    id,
+                    initial: self.initial,
+                    outcome,
+                    start_face: self.start_face,
+                });
+                self.pending.table_changed = true;
+            }
+            return false;
+        }
+        true
+    }
+
+    /// Up to `n` steps; stops at the end of the roll. Returns the steps taken.
+    pub fn advance_steps(&mut self, n: u64) -> u64 {
+        let mut taken = 0;
+        while taken < n && self.sim.outcome().is_none() {
+            taken += 1;
+            if !self.step() {
+                break;
+            }
+        }
+        taken
+    }
+
+    /// Steps while playing until simulated time reaches `time_s` s, at most `max_steps` steps.
+    pub fn advance_until(&mut self, time_s: f64, max_steps: u64) -> u64 {
+        let half_dt = 0.5 * self.params.integrator.dt;
+        let mut taken = 0;
+        while self.playing && taken < max_steps && self.sim.state().time_s + half_dt <= time_s {
+            taken += 1;
+            if !self.step() {
+                break;
+            }
+        }
+        taken
+    }
+
+    /// Plays the roll to its end at once (what "instant" shows).
+    pub fn run_to_end(&mut self) {
+        self.playing = true;
+        while self.sim.outcome().is_none() && self.step() {}
+        self.playing = false;
+    }
+
+    /// The batch to start, once: whoever runs it reports back with [`Engine::add_batch_records`]
+    /// and [`Engine::finish_batch`].
+    pub fn take_batch_request(&mut self) -> Option<BatchRequest> {
+        self.batch_request.take()
+    }
+
+    /// The batch the table is receiving, if any.
+    pub fn batch_id(&self) -> Option<u64> {
+        self.batch.map(|b| b.id)
+    }
+
+    /// Enters finished rolls of batch `id`; rolls of a cancelled batch are dropped.
+    pub fn add_batch_records(&mut self, id: u64, records: &[RollRecord]) {
+        let Some(b) = &mut self.batch else { return };
+        if b.id != id || records.is_empty() {
+            return;
+        }
+        b.done += records.len() as u64;
+        for r in records {
+            self.table.add(*r);
+        }
+        self.pending.table_changed = true;
+    }
+
+    /// Batch `id` has stopped (finished, cancelled or failed to start).
+    pub fn finish_batch(&mut self, id: u64, result: Result<(), String>) {
+        let Some(b) = self.batch else { return };
+        if b.id != id {
+            return;
+        }
+        self.batch = None;
+        self.pending.notice = Some(match result {
+            Ok(()) => format!("batch of {} rolls done", b.total),
+            Err(e) => format!("batch stopped: {e}"),
+        });
+    }
+
+    /// Runs the requested batch on this thread to its end (tests and anything else that
+    /// wants the table filled deterministically).
+    pub fn run_batch_here(&mut self) {
+        let Some(request) = self.take_batch_request() else {
+            return;
+        };
+        let rolls = Rolls::Given(&request.rolls);
+        let never = AtomicBool::new(false);
+        let mut seen = 0;
+        let result = run_batch(&request.params, &rolls, 0, &never, &mut |records| {
+            self.add_batch_records(request.id, &records[seen..]);
+            seen = records.len();
+        });
+        self.finish_batch(request.id, result.map(|_| ()).map_err(|e| e.to_string()));
+    }
+
+    pub fn phase(&self) -> Phase {
+        if let Some(o) = self.sim.outcome() {
+            return Phase::Ended(o);
+        }
+        if !self.sim.in_contact() {
+            return if self.touched {
+                Phase::Rolling
+            } else {
+                Phase::Falling
+            };
+        }
+        let push: f64 = self.sim.state().corner_forces.iter().map(|f| f.z).sum();
+        let weight = self.params.total_mass() * self.params.world.gravity;
+        // An impact: the ground pushes far harder than it takes to carry the die.
+        if push > 2.0 * weight {
+            Phase::InContact
+        } else {
+            Phase::Rolling
+        }
+    }
+
+    /// Everything the UI draws, plus what happened since the last snapshot.
+    pub fn snapshot(&mut self) -> Snapshot {
+        let pending = std::mem::take(&mut self.pending);
+        let s = self.sim.state();
+        Snapshot {
+            commands_handled: self.commands_handled,
+            preset_name: self.preset_name.clone(),
+            params: self.params,
+            initial: self.initial,
+            roll: self.roll,
+            playing: self.playing,
+            speed: self.speed,
+            die: DieState {
+                corners: self.sim.corner_positions(),
+                forces: self.sim.contact_forces(),
+                centre: s.position,
+                face_up: self.sim.face_up(),
+                start_face: self.start_face,
+            },
+            energy: self.sim.energy(),
+            stop_threshold: self.sim.stop_threshold(),
+            time_s: s.time_s,
+            step: s.step,
+            phase: self.phase(),
+            history: pending.history,
+            history_reset: pending.history_reset,
+            batch: self.batch.map(|b| BatchProgress {
+                done: b.done,
+                total: b.total,
+            }),
+            table: pending.table_changed.then(|| self.table.clone()),
+            notice: pending.notice,
+        }
+    }
+}
+
+fn is_initial(p: Param) -> bool {
+    matches!(
+        p,
+        Param::Height | Param::Spin(_) | Param::Velocity(_) | Param::Orientation(_)
+    )
+}
+
+fn peak_of(a: Energy, b: Energy) -> Energy {
+    Energy {
+        translational: a.translational.max(b.translational),
+        rotational: a.rotational.max(b.rotational),
+        gravitational: a.gravitational.max(b.gravitational),
+        elastic: a.elastic.max(b.elastic),
+    }
+}

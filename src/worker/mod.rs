@@ -1,0 +1,397 @@
+//! The simulation thread: commands in, snapshots out.
+//!
+//! The worker owns the physics. It paces simulated time against wall time at the requested
+//! playback speed, runs batches between commands, and blocks on its command channel while
+//! nothing moves, so a paused explorer costs no CPU. It never touches the terminal.
+
+mod engine;
+pub mod param;
+mod speed;
+
+pub use engine::{BatchRequest, Engine};
+pub use param::Param;
+pub use speed::Speed;
+
+use crate::experiment::{FaceTally, RollRecord};
+use crate::experiment::{Rolls, run_batch};
+use crate::physics::{ContactForce, Energy, InitialCondition, Outcome, Params, Status};
+use nalgebra::Vector3;
+use std::collections::VecDeque;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender, channel};
+use std::sync::{Arc, Mutex};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+/// What the UI asks of the worker. Commands are applied in the order sent, none dropped.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Command {
+    TogglePlay,
+    SetPlaying(bool),
+    /// Pause, then take this many steps of Δt.
+    Step(u64),
+    /// The same initial condition again, from t = 0 (the same face every time).
+    Replay,
+    /// The next random initial condition from the preset's ranges.
+    RandomRoll,
+    /// A new value; ground values act on the running roll, others restart it.
+    SetParam(Param, f64),
+    SetSpeed(Speed),
+    /// Random rolls computed into the outcome table.
+    BatchStart(u64),
+    BatchCancel,
+    ClearTable,
+    Quit,
+}
+
+/// Which roll is on screen.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RollKind {
+    /// The preset's own initial condition.
+    Preset,
+    /// Random roll number `n` (counted in the outcome table once).
+    Random(u64),
+    /// An initial condition the user edited.
+    Edited,
+}
+
+/// Where the roll is, in the words of the model.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Phase {
+    /// No corner has touched the ground yet.
+    Falling,
+    /// An impact: the ground pushes with more than twice the die's weight.
+    InContact,
+    /// After the first impact: tumbling, sliding, or briefly in the air.
+    Rolling,
+    Ended(Outcome),
+}
+
+impl Phase {
+    pub fn label(&self) -> String {
+        match self {
+            Phase::Falling => "falling".to_string(),
+            Phase::InContact => "in contact".to_string(),
+            Phase::Rolling => "rolling".to_string(),
+            Phase::Ended(o) => match (o.status, o.face) {
+                (Status::Settled, Some(f)) => format!("settled: face {f}"),
+                (Status::Settled, None) => "settled: no face up".to_string(),
+                (Status::Timeout, _) => "did not settle".to_string(),
+                (Status::Unstable, _) => "unstable".to_string(),
+            },
+        }
+    }
+}
+
+/// One energy sample of the live roll, erg (each term's peak when samples are thinned).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EnergySample {
+    /// s, simulated.
+    pub time_s: f64,
+    pub energy: Energy,
+    pub total: f64,
+}
+
+/// The die as drawn.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DieState {
+    /// cm, world positions of corners 1..8.
+    pub corners: [Vector3<f64>; 8],
+    /// Each corner's contact force (depth > 0 means it touches the ground).
+    pub forces: [ContactForce; 8],
+    /// cm, centre of mass.
+    pub centre: Vector3<f64>,
+    /// The face most nearly up now.
+    pub face_up: u8,
+    /// The face most nearly up at t = 0.
+    pub start_face: u8,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BatchProgress {
+    pub done: u64,
+    pub total: u64,
+}
+
+/// How many finished rolls the table lists.
+pub const LAST_ROLLS: usize = 12;
+
+/// The outcome table: face counts of random rolls and the last few rolls.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct OutcomeTable {
+    /// Settled rolls with a face up.
+    pub tally: FaceTally,
+    /// Rolls that reached the time cap, or settled without a face up.
+    pub did_not_settle: u64,
+    pub unstable: u64,
+    /// Newest first.
+    pub last: VecDeque<RollRecord>,
+}
+
+impl OutcomeTable {
+    pub fn add(&mut self, r: RollRecord) {
+        match (r.outcome.status, r.outcome.face) {
+            (Status::Settled, Some(f)) => self.tally.add(f),
+            (Status::Unstable, _) => self.unstable += 1,
+            _ => self.did_not_settle += 1,
+        }
+        self.last.push_front(r);
+        self.last.truncate(LAST_ROLLS);
+    }
+
+    /// Every roll entered, settled or not.
+    pub fn rolls(&self) -> u64 {
+        self.tally.total() + self.did_not_settle + self.unstable
+    }
+}
+
+/// The worker's report after each batch of commands and each tick.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Snapshot {
+    /// Commands applied so far: the UI knows its own edits have arrived when this catches up.
+    pub commands_handled: u64,
+    pub preset_name: String,
+    pub params: Params,
+    pub initial: InitialCondition,
+    pub roll: RollKind,
+    pub playing: bool,
+    pub speed: Speed,
+    pub die: DieState,
+    pub energy: Energy,
+    /// erg, the stopping threshold.
+    pub stop_threshold: f64,
+    /// s, simulated.
+    pub time_s: f64,
+    pub step: u64,
+    pub phase: Phase,
+    /// Energy samples since the previous snapshot (after clearing, if `history_reset`).
+    pub history: Vec<EnergySample>,
+    /// A new roll started: earlier samples belong to another roll.
+    pub history_reset: bool,
+    pub batch: Option<BatchProgress>,
+    /// The whole table, when it changed.
+    pub table: Option<OutcomeTable>,
+    /// A one-line message for the user (a refused value, a finished batch).
+    pub notice: Option<String>,
+}
+
+/// s of wall time between snapshots while something moves.
+pub const TICK: Duration = Duration::from_micros(16_667);
+
+/// Steps per tick at "instant": a roll of the default 30 s cap finishes in one tick, and
+/// the longest allowed (120 s at 10 µs) in a second or two without blocking commands.
+const INSTANT_STEPS_PER_TICK: u64 = 200_000;
+
+/// The running worker thread; dropping it stops the thread.
+pub struct Worker {
+    commands: Sender<Command>,
+    thread: Option<JoinHandle<()>>,
+}
+
+impl Worker {
+    /// Starts the thread. Every snapshot goes to `out` (converted, so the UI can merge it
+    /// with its input events in one channel); the first is sent at once.
+    pub fn spawn<T: From<Snapshot> + Send + 'static>(engine: Engine, out: Sender<T>) -> Worker {
+        let (commands, rx) = channel();
+        let thread = std::thread::Builder::new()
+            .name("dicesim-worker".to_string())
+            .spawn(move || run(engine, rx, out))
+            .expect("the OS can start a thread");
+        Worker {
+            commands,
+            thread: Some(thread),
+        }
+    }
+
+    /// Queues a command; false once the worker has stopped.
+    pub fn send(&self, command: Command) -> bool {
+        self.commands.send(command).is_ok()
+    }
+
+    /// Asks the worker to stop and waits for it.
+    pub fn shutdown(mut self) {
+        self.stop();
+    }
+
+    fn stop(&mut self) {
+        let _ = self.commands.send(Command::Quit);
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
+}
+
+impl Drop for Worker {
+    fn drop(&mut self) {
+        self.stop();
+    }
+}
+
+/// Maps wall time to simulated time at the current speed.
+struct Pacer {
+    epoch: u64,
+    wall: Instant,
+    sim_s: f64,
+}
+
+fn run<T: From<Snapshot>>(mut engine: Engine, rx: Receiver<Command>, out: Sender<T>) {
+    if out.send(engine.snapshot().into()).is_err() {
+        return;
+    }
+    let mut pacer = Pacer {
+        epoch: u64::MAX,
+        wall: Instant::now(),
+        sim_s: 0.0,
+    };
+    let mut next_tick = Instant::now();
+    let mut batch = BatchRunner::default();
+    loop {
+        // Block while idle; while busy, wait for a command at most until the next tick.
+        let first = if engine.busy() || batch.running() {
+            match rx.recv_timeout(next_tick.saturating_duration_since(Instant::now())) {
+                Ok(c) => Some(c),
+                Err(RecvTimeoutError::Timeout) => None,
+                Err(RecvTimeoutError::Disconnected) => break,
+            }
+        } else {
+            match rx.recv() {
+                Ok(c) => Some(c),
+                Err(_) => break,
+            }
+        };
+        let mut handled = false;
+        for command in first.into_iter().chain(std::iter::from_fn(|| rx.try_recv().ok())) {
+            handled = true;
+            if !engine.handle(command) {
+                batch.stop();
+                return;
+            }
+        }
+        let now = Instant::now();
+        if !handled && now < next_tick {
+            continue;
+        }
+        if engine.is_playing() {
+            if pacer.epoch != engine.pacing_epoch() {
+                pacer = Pacer {
+                    epoch: engine.pacing_epoch(),
+                    wall: now,
+                    sim_s: engine.simulation().state().time_s,
+                };
+            }
+            match engine.speed().factor() {
+                None => {
+                    engine.advance_until(f64::INFINITY, INSTANT_STEPS_PER_TICK);
+                }
+                Some(factor) => {
+                    let target = pacer.sim_s + now.duration_since(pacer.wall).as_secs_f64() * factor;
+                    let dt = engine.params().integrator.dt;
+                    // Bound one tick's work; if the physics cannot keep up, let the clock slip.
+                    let budget = ((TICK.as_secs_f64() * factor / dt).ceil() as u64)
+                        .saturating_mul(2)
+                        .max(1);
+                    engine.advance_until(target, budget.min(INSTANT_STEPS_PER_TICK));
+                    let behind = target - engine.simulation().state().time_s;
+                    if engine.is_playing() && behind > TICK.as_secs_f64() * factor {
+                        pacer = Pacer {
+                            epoch: engine.pacing_epoch(),
+                            wall: now,
+                            sim_s: engine.simulation().state().time_s,
+                        };
+                    }
+                }
+            }
+        }
+        batch.sync(&mut engine);
+        if out.send(engine.snapshot().into()).is_err() {
+            break;
+        }
+        next_tick = now + TICK;
+    }
+    batch.stop();
+}
+
+/// The batch thread: `experiment::run_batch` with a cancel flag, its progress passed on
+/// to the engine on every tick.
+#[derive(Default)]
+struct BatchRunner {
+    run: Option<BatchRun>,
+}
+
+struct BatchRun {
+    id: u64,
+    cancel: Arc<AtomicBool>,
+    /// Rolls finished since the engine last took them.
+    fresh: Arc<Mutex<Vec<RollRecord>>>,
+    thread: JoinHandle<Result<(), String>>,
+}
+
+impl BatchRunner {
+    fn running(&self) -> bool {
+        self.run.is_some()
+    }
+
+    /// Starts, cancels and collects so the batch thread follows the engine.
+    fn sync(&mut self, engine: &mut Engine) {
+        if self.run.as_ref().is_some_and(|r| engine.batch_id() != Some(r.id)) {
+            self.stop();
+        }
+        if let Some(request) = engine.take_batch_request() {
+            self.stop();
+            self.start(request, engine);
+        }
+        let Some(run) = &self.run else { return };
+        let fresh = std::mem::take(&mut *run.fresh.lock().unwrap_or_else(|e| e.into_inner()));
+        engine.add_batch_records(run.id, &fresh);
+        if run.thread.is_finished() {
+            let run = self.run.take().expect("checked above");
+            let rest = std::mem::take(&mut *run.fresh.lock().unwrap_or_else(|e| e.into_inner()));
+            engine.add_batch_records(run.id, &rest);
+            let result = run
+                .thread
+                .join()
+                .unwrap_or_else(|_| Err("a roll panicked".to_string()));
+            engine.finish_batch(run.id, result);
+        }
+    }
+
+    fn start(&mut self, request: BatchRequest, engine: &mut Engine) {
+        let cancel = Arc::new(AtomicBool::new(false));
+        let fresh = Arc::new(Mutex::new(Vec::new()));
+        let (flag, sink) = (cancel.clone(), fresh.clone());
+        let id = request.id;
+        let thread = std::thread::Builder::new()
+            .name("dicesim-batch".to_string())
+            .spawn(move || {
+                let rolls = Rolls::Given(&request.rolls);
+                let mut seen = 0;
+                run_batch(&request.params, &rolls, 0, &flag, &mut |records| {
+                    sink.lock()
+                        .unwrap_or_else(|e| e.into_inner())
+                        .extend_from_slice(&records[seen..]);
+                    seen = records.len();
+                })
+                .map(|_| ())
+                .map_err(|e| e.to_string())
+            });
+        match thread {
+            Ok(thread) => {
+                self.run = Some(BatchRun {
+                    id,
+                    cancel,
+                    fresh,
+                    thread,
+                })
+            }
+            Err(e) => engine.finish_batch(id, Err(e.to_string())),
+        }
+    }
+
+    /// Cancels the running batch and waits for its chunk to end.
+    fn stop(&mut self) {
+        if let Some(run) = self.run.take() {
+            run.cancel.store(true, Ordering::Relaxed);
+            let _ = run.thread.join();
+        }
+    }
+}

@@ -1,0 +1,67 @@
+//! Playback speed: how much simulated time passes per second of wall time.
+
+/// Simulated seconds per wall-clock second, from 1/100× to 100×; the step Δt never changes.
+const FACTORS: [f64; 13] = [
+    0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0,
+];
+const LABELS: [&str; 13] = [
+    "1/100×", "1/50×", "1/20×", "1/10×", "1/5×", "1/2×", "1×", "2×", "5×", "10×", "20×", "50×", "100×",
+];
+const INSTANT: u8 = FACTORS.len() as u8;
+const REAL_TIME: u8 = 6;
+
+/// A playback speed on the ladder 1/100× … 100×, then "instant" (compute to the end, then show).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Speed(u8);
+
+impl Default for Speed {
+    fn default() -> Self {
+        Speed(REAL_TIME)
+    }
+}
+
+impl Speed {
+    pub const REAL_TIME: Speed = Speed(REAL_TIME);
+    pub const SLOWEST: Speed = Speed(0);
+    pub const FASTEST: Speed = Speed(FACTORS.len() as u8 - 1);
+    pub const INSTANT: Speed = Speed(INSTANT);
+
+    /// Simulated seconds per wall second; `None` for instant.
+    pub fn factor(self) -> Option<f64> {
+        FACTORS.get(self.0 as usize).copied()
+    }
+
+    pub fn is_instant(self) -> bool {
+        self.0 == INSTANT
+    }
+
+    pub fn slower(self) -> Speed {
+        Speed(self.0.saturating_sub(1))
+    }
+
+    pub fn faster(self) -> Speed {
+        Speed((self.0 + 1).min(INSTANT))
+    }
+
+    pub fn label(self) -> &'static str {
+        LABELS.get(self.0 as usize).copied().unwrap_or("instant")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ladder_runs_from_a_hundredth_to_instant_and_stops_at_the_ends() {
+        assert_eq!(Speed::default().factor(), Some(1.0));
+        assert_eq!(Speed::SLOWEST.slower(), Speed::SLOWEST);
+        assert_eq!(Speed::SLOWEST.factor(), Some(0.01));
+        assert_eq!(Speed::FASTEST.factor(), Some(100.0));
+        assert_eq!(Speed::FASTEST.faster(), Speed::INSTANT);
+        assert_eq!(Speed::INSTANT.faster(), Speed::INSTANT);
+        assert_eq!(Speed::INSTANT.factor(), None);
+        assert_eq!(Speed::INSTANT.slower(), Speed::FASTEST);
+        assert_eq!(Speed::default().slower().label(), "1/2×");
+    }
+}
