@@ -19,7 +19,15 @@ fn stdout(o: &Output) -> String {
 
 #[test]
 fn roll_json_reports_a_settled_roll() {
-    let o = dicesim(&["roll", "--json", "--set", "initial.angular_velocity=[20,-35,10]"]);
+    // The default preset throws sideways; this roll starts with no sideways motion.
+    let o = dicesim(&[
+        "roll",
+        "--json",
+        "--set",
+        "initial.angular_velocity=[20,-35,10]",
+        "--set",
+        "initial.velocity=[0,0,0]",
+    ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
     assert_eq!(v["status"], "settled");
@@ -76,7 +84,18 @@ fn bad_set_exits_2_with_one_line_naming_the_key() {
 
 #[test]
 fn trace_header_and_rows() {
-    let o = dicesim(&["trace", "--steps", "5", "--every", "2"]);
+    // A plain drop: the default preset's throw and spin set to zero.
+    let o = dicesim(&[
+        "trace",
+        "--steps",
+        "5",
+        "--every",
+        "2",
+        "--set",
+        "initial.velocity=[0,0,0]",
+        "--set",
+        "initial.angular_velocity=[0,0,0]",
+    ]);
     assert!(o.status.success());
     let text = stdout(&o);
     let mut lines = text.lines();
