@@ -94,7 +94,7 @@ impl Preset {
         line(
             "friction_law",
             string(g.friction_law.name()),
-            "\"per-corner\" (the paper, eq. 15) or \"whole-die-norm\" (the authors' original program)",
+            "\"per-corner\" (paper, eq. 15) or \"whole-die-norm\" (authors' program)",
         );
 
         line("\n[world]", String::new(), "");
