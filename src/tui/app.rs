@@ -2,7 +2,7 @@
 //! returns the commands for the worker; nothing here draws, sleeps or reads a clock.
 
 use super::camera::Camera;
-use super::render::{Areas, param_row_at, screen_layout};
+use super::render::{Areas, fmt_num, fmt_range, param_row_at, screen_layout};
 use super::theme::Theme;
 use crate::physics::{InitialCondition, Params};
 use crate::worker::param::{ALL, Param};
@@ -143,8 +143,14 @@ impl App {
     }
 
     fn set_param(&mut self, out: &mut Vec<Command>, p: Param, value: f64) -> Result<(), String> {
-        p.set(&mut self.params, &mut self.initial, value)
-            .map_err(|e| e.to_string())?;
+        p.set(&mut self.params, &mut self.initial, value).map_err(|_| {
+            format!(
+                "{} is outside {} {}",
+                fmt_num(value),
+                fmt_range(p),
+                p.limits().unit
+            )
+        })?;
         self.send(out, Command::SetParam(p, value));
         Ok(())
     }

@@ -74,7 +74,7 @@ impl Camera {
 
     /// cm of world shown across the view for a die of half size `a` cm.
     pub fn width_cm(&self, half_size: f64) -> f64 {
-        12.0 * half_size * 1.25f64.powi(-self.zoom)
+        9.0 * half_size * 1.25f64.powi(-self.zoom)
     }
 
     /// Projects `p` with the view's horizontal origin at `focus` (the camera follows the die

@@ -12,3 +12,6 @@ pub use app::{App, Msg, update};
 pub use render::render;
 pub use run::run;
 pub use theme::Theme;
+
+#[cfg(test)]
+mod tests;

@@ -14,9 +14,7 @@ use ratatui::style::{Modifier, Style};
 use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::canvas::{Canvas, Context, Line as CanvasLine};
-use ratatui::widgets::{
-    Axis, Block, Chart, Clear, Dataset, GraphType, LegendPosition, LineGauge, Paragraph, Wrap,
-};
+use ratatui::widgets::{Axis, Block, Chart, Clear, Dataset, GraphType, LineGauge, Paragraph, Wrap};
 
 /// The smallest terminal the explorer draws its panels in.
 pub const MIN_WIDTH: u16 = 80;
@@ -129,7 +127,8 @@ pub fn fmt_num(v: f64) -> String {
     }
 }
 
-fn fmt_range(p: Param) -> String {
+/// A value's allowed range as the list shows it, `min…max`.
+pub fn fmt_range(p: Param) -> String {
     let l = p.limits();
     format!("{}…{}", fmt_num(l.min), fmt_num(l.max))
 }
@@ -155,7 +154,7 @@ fn stability_style(app: &App, number: f64) -> Style {
     }
 }
 
-fn render_header(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render_header(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let live = &app.live;
     let sep = Span::raw(" │ ");
@@ -214,7 +213,7 @@ pub fn param_row_at(app: &App, areas: &Areas, at: Position) -> Option<usize> {
     (row < visible).then_some(first + row).filter(|&i| i < ALL.len())
 }
 
-fn render_params(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let block = Block::bordered().title(Line::styled(" parameters ", t.heading()));
     let body = block.inner(area);
@@ -296,7 +295,7 @@ fn render_params(app: &App, area: Rect, frame: &mut Frame) {
     }
 }
 
-fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let table = &app.table;
     let mut title = vec![Span::styled(" outcomes of random rolls ", t.heading())];
@@ -417,7 +416,7 @@ fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
     }
 }
 
-fn render_die(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let die = &app.live.die;
     let half = app.live.params.die.half_size;
@@ -526,7 +525,7 @@ fn line3(
 /// against it; small enough that the die stays the thing to look at.
 fn draw_ground(ctx: &mut Context, app: &App, focus: &Vector3<f64>, view_width: f64, half: f64) {
     let side = 2.0 * half;
-    let spacing = side * (view_width / 4.0 / side).round().max(1.0);
+    let spacing = 2.0 * side * (view_width / (6.0 * side)).round().max(1.0);
     let reach = 0.45 * view_width;
     let colour = app.theme.ground();
     let cells = |c: f64| {
@@ -597,20 +596,30 @@ fn thinned(
     out
 }
 
+/// Short names of the energy terms: total, translational, rotational, gravitational, elastic
+/// (the order of [`super::theme::Theme::energy_series`]).
+const LEGEND: [&str; 5] = ["total", "transl", "rot", "grav", "elastic"];
+
 /// One energy term of a sample, erg.
 type Term = fn(&EnergySample) -> f64;
 
 /// erg: the floor of the log plot (energies below, including negative gravity, sit on it).
 const LOG_FLOOR: f64 = 1.0;
 
-fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let scale = if app.log_scale { "log" } else { "linear" };
-    let title = Line::from(vec![
+    let colours = t.energy_series();
+    // The legend rides in the title, so it never hides an impact spike.
+    let mut title = vec![
         Span::styled(" energy ", t.heading()),
         Span::raw(format!("erg · {scale} (e) ")),
-    ]);
-    let block = Block::bordered().title(title);
+    ];
+    for (name, colour) in LEGEND.iter().zip(colours) {
+        title.push(Span::styled(format!("━{name} "), Style::new().fg(colour)));
+    }
+    title.push(Span::raw("••stop "));
+    let block = Block::bordered().title(Line::from(title));
     let body = block.inner(area);
     if body.width < 12 || body.height < 4 {
         frame.render_widget(block, area);
@@ -619,16 +628,16 @@ fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
     let log = app.log_scale;
     let y_of = |v: f64| if log { v.max(LOG_FLOOR).log10() } else { v };
     let buckets = (body.width as usize).saturating_mul(2);
-    let terms: [(&str, Term); 5] = [
-        ("total", |s| s.total),
-        ("translational", |s| s.energy.translational),
-        ("rotational", |s| s.energy.rotational),
-        ("gravitational", |s| s.energy.gravitational),
-        ("elastic", |s| s.energy.elastic),
+    let terms: [Term; 5] = [
+        |s| s.total,
+        |s| s.energy.translational,
+        |s| s.energy.rotational,
+        |s| s.energy.gravitational,
+        |s| s.energy.elastic,
     ];
     let series: Vec<Vec<(f64, f64)>> = terms
         .iter()
-        .map(|(_, f)| thinned(&app.history, buckets, |s| y_of(f(s))))
+        .map(|f| thinned(&app.history, buckets, |s| y_of(f(s))))
         .collect();
     let t_end = app.history.last().map_or(0.0, |s| s.time_s).max(app.live.time_s);
     let x_hi = nice_ceiling(t_end.max(0.1));
@@ -653,14 +662,13 @@ fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
         Drawing::Braille => Marker::Braille,
         Drawing::Ascii => Marker::Custom('.'),
     };
-    let colours = t.energy_series();
     let mut datasets: Vec<Dataset> = series
         .iter()
-        .zip(terms.iter())
+        .zip(LEGEND)
         .zip(colours)
-        .map(|((data, (name, _)), colour)| {
+        .map(|((data, name), colour)| {
             Dataset::default()
-                .name(*name)
+                .name(name)
                 .marker(marker)
                 .graph_type(GraphType::Line)
                 .style(Style::new().fg(colour))
@@ -692,8 +700,7 @@ fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
             label((y_lo + y_hi) / 2.0),
             label(y_hi),
         ]))
-        .legend_position(Some(LegendPosition::TopRight))
-        .hidden_legend_constraints((Constraint::Percentage(40), Constraint::Percentage(60)));
+        .legend_position(None);
     frame.render_widget(chart, area);
 }
 
@@ -710,7 +717,7 @@ fn nice_ceiling(v: f64) -> f64 {
         .unwrap_or(10.0 * p)
 }
 
-fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let keys: &[(&str, &str)] = if app.editing.is_some() {
         &[
@@ -757,7 +764,7 @@ fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
     frame.render_widget(Paragraph::new(Line::from(spans)), area);
 }
 
-fn render_help(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render_help(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let popup = area.centered(Constraint::Max(100), Constraint::Percentage(90));
     frame.render_widget(Clear, popup);

@@ -1,0 +1,782 @@
+//! Screens and panels from deterministic states: a fixed preset, exact step counts, keys
+//! fed through `update` into the worker's engine, no thread and no clock.
+
+use super::app::{App, Msg, update};
+use super::render::{
+    STABILITY_CAUTION, STABILITY_DANGER, render, render_die, render_energy, render_footer, render_header,
+    render_outcomes, render_params, screen_layout,
+};
+use super::theme::Theme;
+use crate::physics::Status;
+use crate::preset::Preset;
+use crate::worker::param::{ALL, Param};
+use crate::worker::{Command, Engine, Phase};
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use ratatui::buffer::Buffer;
+use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
+use ratatui::layout::Rect;
+use ratatui::style::{Color, Modifier};
+
+/// The paper's constants with a spin and a push, so the die tumbles and lands on an edge.
+pub(crate) fn spun_preset() -> Preset {
+    Preset::default()
+        .with_overrides(&["initial.angular_velocity=[12,-20,6]", "initial.velocity=[30,0,0]"])
+        .expect("valid overrides")
+}
+
+/// The engine and the app wired together as the event loop wires them, minus the thread.
+pub(crate) struct Scene {
+    pub engine: Engine,
+    pub app: App,
+}
+
+impl Scene {
+    pub fn new(preset: &Preset, theme: Theme) -> Scene {
+        let mut engine = Engine::new(preset).expect("valid preset");
+        let app = App::new(engine.snapshot(), theme);
+        Scene { engine, app }
+    }
+
+    pub fn sync(&mut self) {
+        let s = self.engine.snapshot();
+        update(&mut self.app, Msg::from(s));
+    }
+
+    pub fn command(&mut self, c: Command) {
+        self.engine.handle(c);
+        self.sync();
+    }
+
+    pub fn key_with(&mut self, code: KeyCode, modifiers: KeyModifiers) {
+        for c in update(
+            &mut self.app,
+            Msg::Input(Event::Key(KeyEvent::new(code, modifiers))),
+        ) {
+            self.engine.handle(c);
+        }
+        self.sync();
+    }
+
+    pub fn key(&mut self, code: KeyCode) {
+        self.key_with(code, KeyModifiers::NONE);
+    }
+
+    pub fn select(&mut self, p: Param) {
+        let target = ALL.iter().position(|&q| q == p).expect("listed");
+        while self.app.selected != target {
+            self.key(if self.app.selected < target {
+                KeyCode::Down
+            } else {
+                KeyCode::Up
+            });
+        }
+    }
+
+    pub fn run_to_end(&mut self) {
+        self.engine.run_to_end();
+        self.sync();
+    }
+}
+
+pub(crate) fn start() -> Scene {
+    Scene::new(&spun_preset(), Theme::default())
+}
+
+/// The first impact, at the step where the ground's spring is squeezed most.
+pub(crate) fn mid_impact_with(theme: Theme) -> Scene {
+    let mut s = Scene::new(&spun_preset(), theme);
+    while s.engine.phase() != Phase::InContact {
+        assert!(s.engine.advance_steps(1) == 1, "the die reaches the ground");
+    }
+    loop {
+        let before = s.engine.simulation().energy().elastic;
+        s.engine.advance_steps(1);
+        if s.engine.simulation().energy().elastic < before {
+            break;
+        }
+    }
+    s.sync();
+    s
+}
+
+pub(crate) fn mid_impact() -> Scene {
+    mid_impact_with(Theme::default())
+}
+
+pub(crate) fn settled() -> Scene {
+    let mut s = start();
+    s.run_to_end();
+    s
+}
+
+fn unstable() -> Scene {
+    let mut s = start();
+    s.select(Param::Stiffness);
+    s.key(KeyCode::Enter);
+    for c in "2e7".chars() {
+        s.key(KeyCode::Char(c));
+    }
+    s.key(KeyCode::Enter);
+    s.run_to_end();
+    s
+}
+
+fn help() -> Scene {
+    let mut s = mid_impact();
+    s.key(KeyCode::Char('?'));
+    s
+}
+
+fn editing() -> Scene {
+    let mut s = start();
+    s.select(Param::Friction);
+    s.key(KeyCode::Enter);
+    for c in "0.8".chars() {
+        s.key(KeyCode::Char(c));
+    }
+    s
+}
+
+pub(crate) fn filled_table() -> Scene {
+    let mut s = start();
+    s.key(KeyCode::Char('b'));
+    // A smaller batch than `b` asks for keeps the test quick; the path is the same.
+    s.engine.handle(Command::BatchCancel);
+    s.command(Command::BatchStart(600));
+    s.engine.run_batch_here();
+    s.key(KeyCode::Char('R'));
+    s.run_to_end();
+    s
+}
+
+fn draw(app: &App, width: u16, height: u16) -> Terminal<TestBackend> {
+    let mut t = Terminal::new(TestBackend::new(width, height)).expect("test backend");
+    t.draw(|f| render(app, f)).expect("draw");
+    t
+}
+
+fn screen(app: &App, width: u16, height: u16) -> String {
+    draw(app, width, height).backend().to_string()
+}
+
+fn lines_of(buffer: &Buffer) -> Vec<String> {
+    let area = buffer.area;
+    (area.top()..area.bottom())
+        .map(|y| {
+            (area.left()..area.right())
+                .map(|x| buffer[(x, y)].symbol())
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn start_screen() {
+    let s = start();
+    assert_eq!(s.app.live.step, 0);
+    insta::assert_snapshot!("start_120x36", screen(&s.app, 120, 36));
+    insta::assert_snapshot!("start_80x24", screen(&s.app, 80, 24));
+}
+
+#[test]
+fn mid_impact_screen() {
+    let s = mid_impact();
+    assert_eq!(s.app.live.phase, Phase::InContact);
+    insta::assert_snapshot!("mid_impact_120x36", screen(&s.app, 120, 36));
+    insta::assert_snapshot!("mid_impact_80x24", screen(&s.app, 80, 24));
+}
+
+#[test]
+fn settled_screen() {
+    let s = settled();
+    assert!(matches!(s.app.live.phase, Phase::Ended(o) if o.status == Status::Settled));
+    insta::assert_snapshot!("settled_120x36", screen(&s.app, 120, 36));
+    insta::assert_snapshot!("settled_80x24", screen(&s.app, 80, 24));
+}
+
+#[test]
+fn unstable_screen() {
+    let s = unstable();
+    assert!(matches!(s.app.live.phase, Phase::Ended(o) if o.status == Status::Unstable));
+    assert_eq!(s.app.params.ground.stiffness, 2e7);
+    insta::assert_snapshot!("unstable_120x36", screen(&s.app, 120, 36));
+    insta::assert_snapshot!("unstable_80x24", screen(&s.app, 80, 24));
+}
+
+#[test]
+fn help_overlay() {
+    let s = help();
+    insta::assert_snapshot!("help_120x36", screen(&s.app, 120, 36));
+    insta::assert_snapshot!("help_80x24", screen(&s.app, 80, 24));
+}
+
+#[test]
+fn editing_a_value() {
+    let mut s = editing();
+    insta::assert_snapshot!("editing_120x36", screen(&s.app, 120, 36));
+    insta::assert_snapshot!("editing_80x24", screen(&s.app, 80, 24));
+    for _ in 0..3 {
+        s.key(KeyCode::Backspace);
+    }
+    s.key(KeyCode::Char('9'));
+    s.key(KeyCode::Enter);
+    assert!(
+        s.app.editing.as_ref().is_some_and(|e| e.error.is_some()),
+        "9 is outside 0…5"
+    );
+    assert_eq!(
+        s.app.params.ground.friction,
+        spun_preset().ground.friction,
+        "a refused value changes nothing"
+    );
+    insta::assert_snapshot!("editing_refused_120x36", screen(&s.app, 120, 36));
+}
+
+#[test]
+fn filled_outcome_table() {
+    let s = filled_table();
+    assert_eq!(s.app.table.rolls(), 601);
+    insta::assert_snapshot!("table_120x36", screen(&s.app, 120, 36));
+    insta::assert_snapshot!("table_80x24", screen(&s.app, 80, 24));
+}
+
+#[test]
+fn too_small_says_how_large() {
+    let s = start();
+    let text = screen(&s.app, 70, 20);
+    assert!(text.contains("at least 80×24"), "{text}");
+    insta::assert_snapshot!("too_small_70x20", text);
+}
+
+#[test]
+fn each_panel() {
+    let table = filled_table();
+    let impact = mid_impact();
+    let areas = screen_layout(Rect::new(0, 0, 120, 36)).expect("full size");
+    type Panel = fn(&App, Rect, &mut ratatui::Frame);
+    let panels: [(&str, &App, Rect, Panel); 6] = [
+        ("panel_header", &impact.app, areas.header, render_header),
+        ("panel_params", &impact.app, areas.params, render_params),
+        ("panel_outcomes", &table.app, areas.outcomes, render_outcomes),
+        ("panel_die", &impact.app, areas.die, render_die),
+        ("panel_energy", &impact.app, areas.energy, render_energy),
+        ("panel_footer", &impact.app, areas.footer, render_footer),
+    ];
+    for (name, app, area, panel) in panels {
+        let mut t = Terminal::new(TestBackend::new(area.width, area.height)).expect("test backend");
+        t.draw(|f| panel(app, f.area(), f)).expect("draw");
+        insta::assert_snapshot!(name, t.backend());
+    }
+}
+
+#[test]
+fn energy_log_scale_and_ascii_die() {
+    let mut s = mid_impact();
+    s.key(KeyCode::Char('e'));
+    s.key(KeyCode::Char('m'));
+    assert!(s.app.log_scale);
+    let areas = screen_layout(Rect::new(0, 0, 120, 36)).expect("full size");
+    let t = draw(&s.app, 120, 36);
+    let text = t.backend().to_string();
+    assert!(text.contains("log (e)"));
+    let die = lines_of(t.backend().buffer())[areas.die.y as usize..areas.die.bottom() as usize].join("\n");
+    assert!(
+        die.contains('*') && !die.chars().any(|c| ('\u{2800}'..='\u{28ff}').contains(&c)),
+        "ASCII only:\n{die}"
+    );
+    insta::assert_snapshot!("log_ascii_120x36", text);
+}
+
+/// Cells of the die panel that mark a touching corner.
+fn contact_cells(buffer: &Buffer, area: Rect, mark: &str) -> Vec<(u16, u16)> {
+    let mut cells = Vec::new();
+    for y in area.top()..area.bottom() {
+        for x in area.left()..area.right() {
+            if buffer[(x, y)].symbol() == mark {
+                cells.push((x, y));
+            }
+        }
+    }
+    cells
+}
+
+#[test]
+fn touching_corners_are_red_and_bold_or_reversed_without_colour() {
+    let areas = screen_layout(Rect::new(0, 0, 120, 36)).expect("full size");
+    let s = mid_impact();
+    let touching = s.app.live.die.forces.iter().filter(|f| f.depth > 0.0).count();
+    assert!(touching > 0);
+    let t = draw(&s.app, 120, 36);
+    let cells = contact_cells(t.backend().buffer(), areas.die, "●");
+    assert!(!cells.is_empty() && cells.len() <= touching);
+    for (x, y) in cells {
+        let c = &t.backend().buffer()[(x, y)];
+        assert_eq!(c.fg, Color::Red);
+        assert!(c.modifier.contains(Modifier::BOLD));
+    }
+    // Edges at a touching corner are drawn in the contact colour too.
+    let red_lines = (areas.die.top()..areas.die.bottom())
+        .flat_map(|y| (areas.die.left()..areas.die.right()).map(move |x| (x, y)))
+        .filter(|&p| t.backend().buffer()[p].fg == Color::Red && t.backend().buffer()[p].symbol() != "●")
+        .count();
+    assert!(red_lines > 0);
+
+    let mono = mid_impact_with(Theme::monochrome());
+    let t = draw(&mono.app, 120, 36);
+    let cells = contact_cells(t.backend().buffer(), areas.die, "●");
+    assert!(!cells.is_empty());
+    for (x, y) in cells {
+        assert!(
+            t.backend().buffer()[(x, y)]
+                .modifier
+                .contains(Modifier::BOLD | Modifier::REVERSED)
+        );
+    }
+}
+
+#[test]
+fn no_color_sends_no_colour_at_all() {
+    for mut s in [mid_impact_with(Theme::monochrome()), {
+        let mut s = Scene::new(&spun_preset(), Theme::monochrome());
+        s.command(Command::SetParam(Param::Stiffness, 4e6));
+        s
+    }] {
+        s.key(KeyCode::Char('?'));
+        s.key(KeyCode::Char('?'));
+        let t = draw(&s.app, 120, 36);
+        let buffer = t.backend().buffer();
+        for y in 0..36 {
+            for x in 0..120 {
+                let c = &buffer[(x, y)];
+                assert_eq!(
+                    (c.fg, c.bg),
+                    (Color::Reset, Color::Reset),
+                    "cell {x},{y} `{}`",
+                    c.symbol()
+                );
+            }
+        }
+    }
+}
+
+/// The style of the stability number on the stiffness row.
+fn stability_cell(app: &App) -> ratatui::buffer::Cell {
+    let t = draw(app, 120, 36);
+    let buffer = t.backend().buffer().clone();
+    let number = format!("{:.2}", app.params.stability_number());
+    let lines = lines_of(&buffer);
+    let y = lines
+        .iter()
+        .position(|l| l.contains("stiffness k"))
+        .expect("stiffness row");
+    let x = lines[y].split("stiffness k").next().expect("row").chars().count()
+        + lines[y]
+            .split("stiffness k")
+            .nth(1)
+            .expect("row")
+            .find(&number)
+            .map(|b| {
+                lines[y].split("stiffness k").nth(1).expect("row")[..b]
+                    .chars()
+                    .count()
+            })
+            .expect("number on the row")
+        + "stiffness k".chars().count();
+    buffer[(x as u16, y as u16)].clone()
+}
+
+#[test]
+fn stability_number_warns_as_it_nears_two() {
+    let mut s = start();
+    let calm = stability_cell(&s.app);
+    assert!(s.app.params.stability_number() < STABILITY_CAUTION);
+    assert_eq!(calm.bg, Color::Reset);
+    // k for a given ω_rock·Δt: (number / Δt)² · M / 6.
+    let k_for =
+        |number: f64, app: &App| (number / app.params.integrator.dt).powi(2) * app.params.total_mass() / 6.0;
+    let k = k_for((STABILITY_CAUTION + STABILITY_DANGER) / 2.0, &s.app);
+    s.command(Command::SetParam(Param::Stiffness, k));
+    assert_eq!(stability_cell(&s.app).bg, Color::Yellow);
+    let k = k_for(STABILITY_DANGER + 0.3, &s.app);
+    s.command(Command::SetParam(Param::Stiffness, k));
+    let danger = stability_cell(&s.app);
+    assert_eq!(danger.bg, Color::Red);
+    assert!(danger.modifier.contains(Modifier::BOLD));
+}
+
+/// Pure key handling: an app, a key, the commands it sends; no worker involved.
+mod keys {
+    use super::*;
+    use crate::worker::Speed;
+    use ratatui::crossterm::event::{KeyEventKind, MouseButton, MouseEvent, MouseEventKind};
+
+    fn app() -> App {
+        start().app
+    }
+
+    fn press(app: &mut App, code: KeyCode) -> Vec<Command> {
+        press_with(app, code, KeyModifiers::NONE)
+    }
+
+    fn press_with(app: &mut App, code: KeyCode, modifiers: KeyModifiers) -> Vec<Command> {
+        update(app, Msg::Input(Event::Key(KeyEvent::new(code, modifiers))))
+    }
+
+    fn mouse(app: &mut App, kind: MouseEventKind, column: u16, row: u16) -> Vec<Command> {
+        let m = MouseEvent {
+            kind,
+            column,
+            row,
+            modifiers: KeyModifiers::NONE,
+        };
+        update(app, Msg::Input(Event::Mouse(m)))
+    }
+
+    #[test]
+    fn playback_keys_send_their_commands() {
+        let mut a = app();
+        assert_eq!(press(&mut a, KeyCode::Char(' ')), [Command::TogglePlay]);
+        assert_eq!(press(&mut a, KeyCode::Char('n')), [Command::Step(1)]);
+        assert_eq!(press(&mut a, KeyCode::Char('r')), [Command::Replay]);
+        assert_eq!(press(&mut a, KeyCode::Char('R')), [Command::RandomRoll]);
+        assert_eq!(press(&mut a, KeyCode::Char('c')), [Command::ClearTable]);
+        assert_eq!(
+            press(&mut a, KeyCode::Char('b')),
+            [Command::BatchStart(super::super::app::BATCH_ROLLS)]
+        );
+        assert!(!a.quit);
+    }
+
+    #[test]
+    fn b_cancels_a_running_batch() {
+        let mut s = start();
+        s.key(KeyCode::Char('b'));
+        assert!(s.app.batch.is_some());
+        assert_eq!(press(&mut s.app, KeyCode::Char('b')), [Command::BatchCancel]);
+    }
+
+    #[test]
+    fn speed_walks_the_ladder_and_stops_at_its_ends() {
+        let mut a = app();
+        let start = a.speed;
+        assert_eq!(
+            press(&mut a, KeyCode::Char('[')),
+            [Command::SetSpeed(start.slower())]
+        );
+        assert_eq!(press(&mut a, KeyCode::Char(']')), [Command::SetSpeed(start)]);
+        assert_eq!(
+            press(&mut a, KeyCode::Char('+')),
+            [Command::SetSpeed(start.faster())]
+        );
+        assert_eq!(press(&mut a, KeyCode::Char('-')), [Command::SetSpeed(start)]);
+        for _ in 0..30 {
+            press(&mut a, KeyCode::Char(']'));
+        }
+        assert_eq!(a.speed, Speed::INSTANT);
+        assert!(
+            press(&mut a, KeyCode::Char(']')).is_empty(),
+            "nothing faster than instant"
+        );
+        for _ in 0..30 {
+            press(&mut a, KeyCode::Char('-'));
+        }
+        assert_eq!(a.speed, Speed::SLOWEST);
+    }
+
+    #[test]
+    fn arrows_and_vim_keys_select_and_change_values() {
+        let mut a = app();
+        assert_eq!(a.selected_param(), Param::Stiffness);
+        assert!(
+            press(&mut a, KeyCode::Up).is_empty(),
+            "the first row stays selected"
+        );
+        press(&mut a, KeyCode::Down);
+        press(&mut a, KeyCode::Char('j'));
+        assert_eq!(a.selected_param(), Param::Friction);
+        let mu = a.params.ground.friction;
+        let fine = Param::Friction.nudged(mu, 1, false);
+        assert_eq!(
+            press(&mut a, KeyCode::Right),
+            [Command::SetParam(Param::Friction, fine)]
+        );
+        assert_eq!(
+            a.params.ground.friction, fine,
+            "the list shows the new value at once"
+        );
+        let coarse = Param::Friction.nudged(fine, -1, true);
+        assert_eq!(
+            press_with(&mut a, KeyCode::Left, KeyModifiers::SHIFT),
+            [Command::SetParam(Param::Friction, coarse)]
+        );
+        let back = Param::Friction.nudged(coarse, 1, true);
+        assert_eq!(
+            press(&mut a, KeyCode::Char('L')),
+            [Command::SetParam(Param::Friction, back)]
+        );
+        let down = Param::Friction.nudged(back, -1, false);
+        assert_eq!(
+            press(&mut a, KeyCode::Char('h')),
+            [Command::SetParam(Param::Friction, down)]
+        );
+        press(&mut a, KeyCode::Char('k'));
+        assert_eq!(a.selected_param(), Param::Damping);
+        press(&mut a, KeyCode::Char('G'));
+        assert_eq!(a.selected_param(), *ALL.last().expect("rows"));
+    }
+
+    #[test]
+    fn a_value_at_its_limit_sends_nothing() {
+        let mut a = app();
+        a.selected = ALL.iter().position(|&p| p == Param::Friction).expect("listed");
+        assert_eq!(press(&mut a, KeyCode::Enter), []);
+        for c in "0".chars() {
+            press(&mut a, KeyCode::Char(c));
+        }
+        assert_eq!(
+            press(&mut a, KeyCode::Enter),
+            [Command::SetParam(Param::Friction, 0.0)]
+        );
+        assert!(press(&mut a, KeyCode::Left).is_empty());
+    }
+
+    #[test]
+    fn typing_a_value_validates_it_and_esc_cancels() {
+        let mut a = app();
+        a.selected = ALL.iter().position(|&p| p == Param::Height).expect("listed");
+        press(&mut a, KeyCode::Enter);
+        assert!(a.editing.is_some());
+        for c in "2x5q".chars() {
+            // Letters other than an exponent are not part of a number, and q does not quit here.
+            press(&mut a, KeyCode::Char(c));
+        }
+        assert!(!a.quit);
+        assert_eq!(a.editing.as_ref().map(|e| e.text.as_str()), Some("25"));
+        for c in "e9".chars() {
+            press(&mut a, KeyCode::Char(c));
+        }
+        assert!(
+            press(&mut a, KeyCode::Enter).is_empty(),
+            "25e9 cm is out of range"
+        );
+        assert!(a.editing.as_ref().is_some_and(|e| {
+            e.error
+                .as_deref()
+                .is_some_and(|m| m.contains("outside 0…1000 cm"))
+        }));
+        press(&mut a, KeyCode::Backspace);
+        press(&mut a, KeyCode::Backspace);
+        assert_eq!(
+            press(&mut a, KeyCode::Enter),
+            [Command::SetParam(Param::Height, 25.0)]
+        );
+        assert!(a.editing.is_none());
+        press(&mut a, KeyCode::Enter);
+        press(&mut a, KeyCode::Char('7'));
+        assert!(press(&mut a, KeyCode::Esc).is_empty());
+        assert!(
+            a.editing.is_none() && !a.quit,
+            "Esc leaves the editor, not the program"
+        );
+        assert_eq!(a.initial.height, 25.0);
+    }
+
+    #[test]
+    fn quitting_keys() {
+        for (code, modifiers) in [
+            (KeyCode::Char('q'), KeyModifiers::NONE),
+            (KeyCode::Esc, KeyModifiers::NONE),
+            (KeyCode::Char('c'), KeyModifiers::CONTROL),
+        ] {
+            let mut a = app();
+            assert_eq!(press_with(&mut a, code, modifiers), [Command::Quit]);
+            assert!(a.quit);
+        }
+        let mut a = app();
+        press(&mut a, KeyCode::Enter);
+        assert_eq!(
+            press_with(&mut a, KeyCode::Char('c'), KeyModifiers::CONTROL),
+            [Command::Quit],
+            "also while typing"
+        );
+    }
+
+    #[test]
+    fn help_opens_scrolls_and_closes_without_quitting() {
+        let mut a = app();
+        press(&mut a, KeyCode::Char('?'));
+        assert!(a.help);
+        assert!(
+            press(&mut a, KeyCode::Char(' ')).is_empty(),
+            "keys do not reach the die under the help"
+        );
+        press(&mut a, KeyCode::Down);
+        assert_eq!(a.help_scroll, 1);
+        press(&mut a, KeyCode::Esc);
+        assert!(!a.help && !a.quit);
+        press(&mut a, KeyCode::Char('?'));
+        assert_eq!(a.help_scroll, 0);
+        press(&mut a, KeyCode::Char('?'));
+        assert!(!a.help);
+    }
+
+    #[test]
+    fn view_keys_change_only_the_view() {
+        let mut a = app();
+        let camera = a.camera;
+        for c in ['a', 'w', 'z', 'e', 'm'] {
+            assert!(press(&mut a, KeyCode::Char(c)).is_empty());
+        }
+        assert!(a.camera.yaw_deg != camera.yaw_deg && a.camera.pitch_deg > camera.pitch_deg);
+        assert!(a.camera.zoom > camera.zoom && a.log_scale);
+        press(&mut a, KeyCode::Char('0'));
+        assert_eq!(a.camera, camera);
+    }
+
+    #[test]
+    fn key_releases_are_ignored() {
+        let mut a = app();
+        let mut release = KeyEvent::new(KeyCode::Char('q'), KeyModifiers::NONE);
+        release.kind = KeyEventKind::Release;
+        assert!(update(&mut a, Msg::Input(Event::Key(release))).is_empty());
+        assert!(!a.quit);
+    }
+
+    #[test]
+    fn click_selects_a_parameter_and_scroll_changes_it() {
+        let mut a = app();
+        update(&mut a, Msg::Input(Event::Resize(120, 36)));
+        let areas = screen_layout(a.screen).expect("full size");
+        // Row 0 of the list is the heading; the rows follow in list order.
+        let friction_row =
+            areas.params.y + 2 + ALL.iter().position(|&p| p == Param::Friction).expect("listed") as u16;
+        assert!(
+            mouse(
+                &mut a,
+                MouseEventKind::Down(MouseButton::Left),
+                areas.params.x + 3,
+                friction_row
+            )
+            .is_empty()
+        );
+        assert_eq!(a.selected_param(), Param::Friction);
+        let up = Param::Friction.nudged(a.params.ground.friction, 1, false);
+        assert_eq!(
+            mouse(&mut a, MouseEventKind::ScrollUp, areas.params.x + 3, friction_row),
+            [Command::SetParam(Param::Friction, up)]
+        );
+        let zoom = a.camera.zoom;
+        mouse(&mut a, MouseEventKind::ScrollUp, areas.die.x + 5, areas.die.y + 5);
+        assert_eq!(a.camera.zoom, zoom + 1);
+        let yaw = a.camera.yaw_deg;
+        mouse(
+            &mut a,
+            MouseEventKind::Down(MouseButton::Left),
+            areas.die.x + 5,
+            areas.die.y + 5,
+        );
+        mouse(
+            &mut a,
+            MouseEventKind::Drag(MouseButton::Left),
+            areas.die.x + 8,
+            areas.die.y + 5,
+        );
+        assert!(a.camera.yaw_deg != yaw, "dragging the die orbits the camera");
+    }
+
+    #[test]
+    fn own_edits_win_until_the_worker_has_seen_them() {
+        let mut s = start();
+        let stale = s.engine.snapshot();
+        press(&mut s.app, KeyCode::Down);
+        press(&mut s.app, KeyCode::Down);
+        let cmds = press(&mut s.app, KeyCode::Right);
+        let mine = s.app.params.ground.friction;
+        update(&mut s.app, Msg::from(stale));
+        assert_eq!(
+            s.app.params.ground.friction, mine,
+            "an older snapshot does not undo the edit"
+        );
+        for c in cmds {
+            s.engine.handle(c);
+        }
+        s.sync();
+        assert_eq!(s.app.params.ground.friction, mine);
+        assert_eq!(s.app.live.params.ground.friction, mine);
+    }
+}
+
+/// Rendering never panics, whatever the size and the state.
+mod sizes {
+    use super::*;
+    use proptest::prelude::*;
+    use std::sync::OnceLock;
+
+    /// A spread of states, built once: each render below is cheap, the physics is not.
+    fn states() -> &'static Vec<App> {
+        static STATES: OnceLock<Vec<App>> = OnceLock::new();
+        STATES.get_or_init(|| {
+            let mut help_scrolled = help();
+            for _ in 0..40 {
+                help_scrolled.key(KeyCode::Down);
+            }
+            let mut refused = editing();
+            refused.key(KeyCode::Char('9'));
+            refused.key(KeyCode::Enter);
+            vec![
+                start().app,
+                mid_impact().app,
+                settled().app,
+                unstable().app,
+                help_scrolled.app,
+                refused.app,
+                filled_table().app,
+                mid_impact_with(Theme::monochrome()).app,
+            ]
+        })
+    }
+
+    fn draw_into(app: &App, width: u16, height: u16) {
+        let mut t = Terminal::new(TestBackend::new(width, height)).expect("test backend");
+        t.draw(|f| render(app, f)).expect("draw");
+    }
+
+    #[test]
+    fn every_size_up_to_200x60_draws() {
+        let app = &states()[1];
+        for width in 1..=200 {
+            for height in 1..=60 {
+                draw_into(app, width, height);
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        #[test]
+        fn random_states_at_random_sizes_draw(
+            which in 0usize..8,
+            width in 1u16..=200,
+            height in 1u16..=60,
+            yaw in -720.0f64..720.0,
+            pitch in -90.0f64..90.0,
+            zoom in -20i32..20,
+            selected in 0usize..ALL.len(),
+            log in any::<bool>(),
+            ascii in any::<bool>(),
+            help_scroll in 0u16..200,
+        ) {
+            let mut app = states()[which].clone();
+            app.camera.orbit(yaw, pitch);
+            app.camera.zoom_by(zoom);
+            app.selected = selected;
+            app.log_scale = log;
+            app.help_scroll = help_scroll;
+            app.drawing = if ascii { super::super::app::Drawing::Ascii } else { super::super::app::Drawing::Braille };
+            app.screen = Rect::new(0, 0, width, height);
+            draw_into(&app, width, height);
+        }
+    }
+}
