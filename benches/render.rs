@@ -1,0 +1,33 @@
+//! Drawing speed: one full 120×36 frame of the explorer into a `TestBackend`.
+//!
+//! `cargo bench --bench render`; the target is at most 1 ms per frame.
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use dicesim::preset::Preset;
+use dicesim::tui::{App, Theme, render};
+use dicesim::worker::Engine;
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+
+/// A tumbling roll 600 steps in: the die in contact, an energy history with impacts.
+fn mid_roll() -> App {
+    let preset = Preset::default()
+        .with_overrides(&["initial.angular_velocity=[12,-20,6]", "initial.velocity=[30,0,0]"])
+        .expect("valid overrides");
+    let mut engine = Engine::new(&preset).expect("valid preset");
+    engine.advance_steps(600);
+    App::new(engine.snapshot(), Theme::default())
+}
+
+fn bench_render(c: &mut Criterion) {
+    let app = mid_roll();
+    let mut terminal = Terminal::new(TestBackend::new(120, 36)).expect("test backend");
+    c.bench_function("render/120x36/mid-roll", |b| {
+        b.iter(|| {
+            terminal.draw(|f| render(&app, f)).expect("draw");
+        })
+    });
+}
+
+criterion_group!(benches, bench_render);
+criterion_main!(benches);
