@@ -35,11 +35,11 @@ pub struct BasinArgs {
     /// What each cell shows.
     #[arg(long, value_enum, default_value_t = LayerArg::Face)]
     pub layer: LayerArg,
-    /// Roll a coarse grid, then only where neighbouring cells differ (default for the face
-    /// layer; may miss islands smaller than the coarse spacing).
+    /// Roll a coarse grid, then only where neighbouring cells differ (default for 2-D face
+    /// maps; may miss islands smaller than the coarse spacing).
     #[arg(long, conflicts_with = "uniform")]
     pub adaptive: bool,
-    /// Roll every cell (default for the settle-time layer).
+    /// Roll every cell (default for the settle-time layer and 1-D scans).
     #[arg(long)]
     pub uniform: bool,
     /// Worker threads (default: one per core); the map does not depend on it.
@@ -71,12 +71,13 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
         LayerArg::Face => Layer::Face,
         LayerArg::SettleTime => Layer::SettleTime,
     };
-    // Filled cells copy a corner's settle time, which says little about the cells between:
-    // the settle-time layer rolls every cell unless asked otherwise.
-    let method = match (args.adaptive, args.uniform, layer) {
-        (true, _, _) => Method::Adaptive,
-        (_, true, _) | (false, false, Layer::SettleTime) => Method::Uniform,
-        (false, false, Layer::Face) => Method::Adaptive,
+    // Filled cells copy a corner's settle time, which says little about the cells between,
+    // and a 1-D scan is plotted as settle time: these roll every cell unless asked otherwise.
+    let method = match (args.adaptive, args.uniform) {
+        (true, _) => Method::Adaptive,
+        (_, true) => Method::Uniform,
+        _ if layer == Layer::SettleTime || h == 1 => Method::Uniform,
+        _ => Method::Adaptive,
     };
     let out_kind = args
         .out
