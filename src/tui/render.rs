@@ -117,7 +117,7 @@ pub fn fmt_num(v: f64) -> String {
         let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
         format!("{mantissa}e{exp}")
     } else {
-        let decimals = (4 - a.log10().floor() as i32).clamp(0, 6) as usize;
+        let decimals = (3 - a.log10().floor() as i32).clamp(0, 6) as usize;
         let s = format!("{v:.decimals$}");
         if s.contains('.') {
             s.trim_end_matches('0').trim_end_matches('.').to_string()
@@ -165,7 +165,8 @@ pub(crate) fn render_header(app: &App, area: Rect, frame: &mut Frame) {
     };
     let state = if live.playing { "▶ playing" } else { "⏸ paused" };
     let fps = app.fps.map_or("– fps".to_string(), |f| format!("{f:.0} fps"));
-    let line = Line::from(vec![
+    let phase = Span::styled(live.phase.label(), phase_style(app, &live.phase));
+    let full = Line::from(vec![
         Span::styled(" dicesim ", t.selected().add_modifier(Modifier::BOLD)),
         Span::raw(" "),
         Span::styled(live.preset_name.clone(), t.heading()),
@@ -179,10 +180,31 @@ pub(crate) fn render_header(app: &App, area: Rect, frame: &mut Frame) {
         sep.clone(),
         Span::raw(state),
         sep.clone(),
-        Span::styled(live.phase.label(), phase_style(app, &live.phase)),
+        phase.clone(),
         sep,
-        Span::raw(fps),
+        Span::raw(fps.clone()),
     ]);
+    // Narrow terminals get the same facts in fewer words, the phase never cut off.
+    let line = if full.width() <= area.width as usize {
+        full
+    } else {
+        let sep = Span::raw("│");
+        Line::from(vec![
+            Span::styled(format!("{} ", live.preset_name), t.heading()),
+            sep.clone(),
+            Span::raw(format!("t {:.3} s", live.time_s)),
+            sep.clone(),
+            Span::raw(format!("step {}", live.step)),
+            sep.clone(),
+            Span::raw(app.speed.label()),
+            sep.clone(),
+            Span::raw(if live.playing { "▶" } else { "⏸" }),
+            sep.clone(),
+            phase,
+            sep,
+            Span::raw(fps),
+        ])
+    };
     frame.render_widget(Paragraph::new(line), area);
 }
 
