@@ -159,8 +159,8 @@ fn compare_trajectories(variant: &str, up_to: u64) -> (f64, f64, Vec<String>) {
         }
         let cm = table.vec3(row, "cm");
         let s = sim.state();
-        for a in 0..3 {
-            worst_cm = worst_cm.max((s.position[a] - cm[a]).abs());
+        for (ours, theirs) in s.position.iter().zip(cm) {
+            worst_cm = worst_cm.max((ours - theirs).abs());
         }
         for (k, r) in s.corner_offsets.iter().enumerate() {
             for a in 0..3 {
@@ -168,9 +168,12 @@ fn compare_trajectories(variant: &str, up_to: u64) -> (f64, f64, Vec<String>) {
             }
         }
     }
-    println!(
-        "{variant}: largest deviation up to step {up_to}: cm {worst_cm:.3e} cm, corners {worst_corner:.3e} cm"
-    );
+    let span = if up_to == u64::MAX {
+        "over whole rolls".to_string()
+    } else {
+        format!("up to step {up_to}")
+    };
+    println!("{variant}: largest deviation {span}: centre {worst_cm:.3e} cm, corners {worst_corner:.3e} cm");
     (worst_cm, worst_corner, end_mismatch)
 }
 
