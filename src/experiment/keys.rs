@@ -89,7 +89,12 @@ const VECTORS: [VectorField; 4] = [
 
 impl ScanKey {
     /// Every scannable key, in preset order (for help texts and pickers).
-    pub fn all() -> Vec<ScanKey> {
+    pub fn all() -> &'static [ScanKey] {
+        static ALL: std::sync::LazyLock<Vec<ScanKey>> = std::sync::LazyLock::new(ScanKey::build_all);
+        &ALL
+    }
+
+    fn build_all() -> Vec<ScanKey> {
         let mut keys: Vec<ScanKey> = SCALARS
             .iter()
             .map(|&(limits, field)| ScanKey {
@@ -124,7 +129,7 @@ impl ScanKey {
         Err(Error::UnknownKey {
             key: key.to_string(),
             hint,
-            known: all.into_iter().map(|k| k.key).collect::<Vec<_>>().join(", "),
+            known: all.iter().map(|k| k.key.as_str()).collect::<Vec<_>>().join(", "),
         })
     }
 
@@ -148,6 +153,27 @@ impl ScanKey {
             e.key = self.key.clone();
             e
         })
+    }
+
+    /// The field's current value. A spin stated in the other form is converted (with the
+    /// die's inertia), so `initial.angular_velocity.x` always reads ω_x.
+    pub fn get(&self, params: &Params, initial: &InitialCondition) -> f64 {
+        match self.field {
+            Field::HalfSize => params.die.half_size,
+            Field::CornerMass => params.die.corner_mass,
+            Field::Stiffness => params.ground.stiffness,
+            Field::Damping => params.ground.damping,
+            Field::Friction => params.ground.friction,
+            Field::Gravity => params.world.gravity,
+            Field::Dt => params.integrator.dt,
+            Field::StopEnergyFraction => params.integrator.stop_energy_fraction,
+            Field::MaxTime => params.integrator.max_time,
+            Field::Height => initial.height,
+            Field::Velocity(i) => initial.velocity[i],
+            Field::AngularVelocity(i) => initial.angular_velocity_for(params.inertia())[i],
+            Field::AngularMomentum(i) => initial.angular_momentum_for(params.inertia())[i],
+            Field::Orientation(i) => initial.orientation[i],
+        }
     }
 
     /// Sets the field to `value` (not range-checked: see [`ScanKey::check`]).
@@ -194,6 +220,7 @@ mod tests {
             let (mut p, mut ic) = (Params::default(), InitialCondition::default());
             let value = 0.25 * key.limits.min + 0.75 * key.limits.max;
             key.set(&mut p, &mut ic, value);
+            assert_eq!(key.get(&p, &ic), value, "{}", key.key);
             let (p0, ic0) = (Params::default(), InitialCondition::default());
             assert!(p != p0 || ic != ic0, "{} changed nothing", key.key);
             // Read the value back through the preset-shaped JSON, by the key's own path.

@@ -3,6 +3,7 @@
 //! Each value reads its unit and allowed range from the physics [`Limits`], so the range a
 //! user sees is the range the model checks.
 
+use crate::experiment::ScanKey;
 use crate::physics::initial::{ANGULAR_VELOCITY, HEIGHT, ORIENTATION, VELOCITY};
 use crate::physics::params::{CORNER_MASS, DAMPING, DT, FRICTION, GRAVITY, HALF_SIZE, STIFFNESS};
 use crate::physics::{InitialCondition, Limits, ParamError, Params};
@@ -129,21 +130,17 @@ impl Param {
         matches!(self, Param::Stiffness | Param::Dt)
     }
 
+    /// The scan key that reads and writes this value: fields are mapped in one place.
+    pub fn scan_key(self) -> &'static ScanKey {
+        let key = self.key();
+        ScanKey::all()
+            .iter()
+            .find(|k| k.key == key)
+            .expect("every tunable value is a numeric setup key")
+    }
+
     pub fn get(self, params: &Params, initial: &InitialCondition) -> f64 {
-        match self {
-            Param::Stiffness => params.ground.stiffness,
-            Param::Damping => params.ground.damping,
-            Param::Friction => params.ground.friction,
-            Param::Height => initial.height,
-            // A spin given as angular momentum is shown as the angular velocity it means.
-            Param::Spin(i) => initial.angular_velocity_for(params.inertia())[i as usize % 3],
-            Param::Velocity(i) => initial.velocity[i as usize % 3],
-            Param::Orientation(i) => initial.orientation[i as usize % 3],
-            Param::Dt => params.integrator.dt,
-            Param::Gravity => params.world.gravity,
-            Param::HalfSize => params.die.half_size,
-            Param::CornerMass => params.die.corner_mass,
-        }
+        self.scan_key().get(params, initial)
     }
 
     /// Sets the value after checking it against its range; on error nothing changes.
@@ -153,30 +150,9 @@ impl Param {
         initial: &mut InitialCondition,
         value: f64,
     ) -> Result<(), ParamError> {
-        let limits = self.limits();
-        limits.check(value).map_err(|mut e| {
-            e.key = self.key();
-            e
-        })?;
-        match self {
-            Param::Stiffness => params.ground.stiffness = value,
-            Param::Damping => params.ground.damping = value,
-            Param::Friction => params.ground.friction = value,
-            Param::Height => initial.height = value,
-            Param::Spin(i) => {
-                // Editing one component states the spin as ω from now on, keeping the others.
-                let mut w: [f64; 3] = initial.angular_velocity_for(params.inertia()).into();
-                w[i as usize % 3] = value;
-                initial.angular_velocity = w;
-                initial.angular_momentum = None;
-            }
-            Param::Velocity(i) => initial.velocity[i as usize % 3] = value,
-            Param::Orientation(i) => initial.orientation[i as usize % 3] = value,
-            Param::Dt => params.integrator.dt = value,
-            Param::Gravity => params.world.gravity = value,
-            Param::HalfSize => params.die.half_size = value,
-            Param::CornerMass => params.die.corner_mass = value,
-        }
+        let key = self.scan_key();
+        key.check(value)?;
+        key.set(params, initial, value);
         Ok(())
     }
 
