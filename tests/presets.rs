@@ -767,11 +767,30 @@ fn cli_saves_a_preset_and_rolls_it() {
     let saved = load_file(&path).unwrap();
     let expected = Preset {
         name: "mine".into(),
+        // It says what it is rather than repeating the base's description.
+        description: "The `paper` preset with ground.friction=0.3.".into(),
         ..Preset::default()
             .with_overrides(&["ground.friction=0.3"])
             .unwrap()
     };
     assert_eq!(saved, expected);
+    let o = dicesim(
+        dir.path(),
+        &[
+            "presets",
+            "save",
+            "told",
+            "--description",
+            "Low friction for the lab.",
+            "--preset",
+            "mine",
+        ],
+    );
+    assert!(o.status.success(), "{}", err(&o));
+    assert_eq!(
+        load_file(&dir.path().join("told.toml")).unwrap().description,
+        "Low friction for the lab."
+    );
 
     // `--set` applies after the preset, validated the same way.
     let v = json(&dicesim(

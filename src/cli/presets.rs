@@ -30,6 +30,9 @@ pub enum PresetsCommand {
         name: String,
         #[command(flatten)]
         setup: SetupArgs,
+        /// What the preset shows (default: which preset it is based on, and the overrides).
+        #[arg(long, value_name = "TEXT")]
+        description: Option<String>,
         /// Replace an existing preset of that name.
         #[arg(long)]
         force: bool,
@@ -60,9 +63,20 @@ pub fn run(args: &PresetsArgs) -> Result<(), CliError> {
             };
             write!(out, "{}", setup.resolve()?.to_toml())?;
         }
-        PresetsCommand::Save { name, setup, force } => {
+        PresetsCommand::Save {
+            name,
+            setup,
+            description,
+            force,
+        } => {
             check_name(name)?;
             let mut preset = setup.resolve()?;
+            // The base's description describes the base; a saved variant says what it is.
+            preset.description = match description {
+                Some(text) => text.clone(),
+                None if setup.set.is_empty() => format!("A copy of the `{}` preset.", preset.name),
+                None => format!("The `{}` preset with {}.", preset.name, setup.set.join(", ")),
+            };
             preset.name = name.clone();
             let path = store.save(&preset, *force).map_err(|e| match e {
                 PresetError::Exists { .. } => CliError::Input(format!("{e} (--force replaces it)")),
