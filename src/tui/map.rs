@@ -30,7 +30,7 @@ const FALLBACK_CELLS: (usize, usize) = (64, 48);
 /// Each zoom shows a quarter of the range on each axis.
 pub const ZOOM_FACTOR: f64 = 4.0;
 /// Characters for the y-axis labels.
-const Y_LABELS: u16 = 7;
+const Y_LABELS: u16 = 8;
 /// Cells one Shift-arrow moves the cursor.
 const BIG_STEP: usize = 8;
 
@@ -845,7 +845,7 @@ fn legend_lines(app: &App) -> Vec<Line<'static>> {
     let t = &app.theme;
     let m = &app.map;
     let mut lines = vec![Line::styled(
-        format!(" legend: {} (v switches)", layer_name(m.layer)),
+        format!(" legend: {} (v)", layer_name(m.layer)),
         t.heading(),
     )];
     let swatch = |cell: Option<Cell>, times| {
