@@ -80,7 +80,7 @@ pub fn write_image(map: &BasinMap, layer: Layer, path: &Path) -> Result<(), Erro
 }
 
 /// The settle-time scale: s, over settled cells (`None` if none settled).
-fn time_range(map: &BasinMap) -> Option<(f64, f64)> {
+pub fn time_range(map: &BasinMap) -> Option<(f64, f64)> {
     let times = map
         .cells
         .iter()
@@ -93,7 +93,8 @@ fn time_range(map: &BasinMap) -> Option<(f64, f64)> {
     })
 }
 
-fn cell_colour(cell: Option<&Cell>, layer: Layer, times: Option<(f64, f64)>) -> RGBColor {
+/// A cell's colour in the image; the explorer draws its map in the same colours.
+pub fn cell_colour(cell: Option<&Cell>, layer: Layer, times: Option<(f64, f64)>) -> RGBColor {
     let Some(c) = cell else { return UNKNOWN };
     match (c.outcome.status, c.outcome.face, layer) {
         (Status::Timeout, ..) => TIMEOUT,

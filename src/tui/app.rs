@@ -2,11 +2,12 @@
 //! returns the commands for the worker; nothing here draws, sleeps or reads a clock.
 
 use super::camera::Camera;
+use super::map::{self, MapView, View};
 use super::render::{Areas, fmt_num, fmt_range, param_row_at, screen_layout};
 use super::theme::Theme;
 use crate::physics::{InitialCondition, Params};
 use crate::worker::param::{ALL, Param};
-use crate::worker::{BatchProgress, Command, EnergySample, OutcomeTable, Snapshot, Speed};
+use crate::worker::{BatchProgress, Command, EnergySample, MapUpdate, OutcomeTable, Snapshot, Speed};
 use ratatui::crossterm::event::{
     Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEventKind,
 };
@@ -20,11 +21,19 @@ pub const BATCH_ROLLS: u64 = 10_000;
 pub enum Msg {
     Input(Event),
     Worker(Box<Snapshot>),
+    /// A basin map from the worker's map thread.
+    Map(Box<MapUpdate>),
 }
 
 impl From<Snapshot> for Msg {
     fn from(s: Snapshot) -> Msg {
         Msg::Worker(Box::new(s))
+    }
+}
+
+impl From<MapUpdate> for Msg {
+    fn from(m: MapUpdate) -> Msg {
+        Msg::Map(Box::new(m))
     }
 }
 
@@ -72,6 +81,8 @@ pub struct App {
     /// The terminal's size, for mouse hit tests.
     pub screen: Rect,
     pub quit: bool,
+    pub view: View,
+    pub map: MapView,
     commands_sent: u64,
     /// Last mouse position while dragging the die.
     drag: Option<(u16, u16)>,
@@ -81,6 +92,7 @@ impl App {
     /// The explorer showing `first`, typically the engine's snapshot before the worker starts.
     pub fn new(mut first: Snapshot, theme: Theme) -> App {
         let history = std::mem::take(&mut first.history);
+        let map = MapView::new(&first.params, &first.initial);
         App {
             params: first.params,
             initial: first.initial,
@@ -102,6 +114,8 @@ impl App {
             fps: None,
             screen: Rect::new(0, 0, 120, 36),
             quit: false,
+            view: View::Die,
+            map,
             commands_sent: 0,
             drag: None,
         }
@@ -137,7 +151,7 @@ impl App {
         self.live = s;
     }
 
-    fn send(&mut self, out: &mut Vec<Command>, c: Command) {
+    pub(super) fn send(&mut self, out: &mut Vec<Command>, c: Command) {
         self.commands_sent += 1;
         out.push(c);
     }
@@ -190,7 +204,11 @@ pub fn update(app: &mut App, msg: Msg) -> Vec<Command> {
     let mut out = Vec::new();
     match msg {
         Msg::Worker(s) => app.absorb(*s),
-        Msg::Input(Event::Resize(w, h)) => app.screen = Rect::new(0, 0, w, h),
+        Msg::Map(m) => map::absorb(app, *m),
+        Msg::Input(Event::Resize(w, h)) => {
+            app.screen = Rect::new(0, 0, w, h);
+            map::resized(app, &mut out);
+        }
         Msg::Input(Event::Key(key)) if key.kind != KeyEventKind::Release => on_key(app, key, &mut out),
         Msg::Input(Event::Mouse(m)) => on_mouse(app, m.kind, m.column, m.row, &mut out),
         Msg::Input(_) => {}
@@ -217,6 +235,9 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
             KeyCode::Char('?') | KeyCode::Esc | KeyCode::Enter => app.help = false,
             _ => {}
         }
+        return;
+    }
+    if app.view == View::Map && map::on_key(app, key, out) {
         return;
     }
     let coarse = key
@@ -268,6 +289,7 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
         KeyCode::Char('z') => app.camera.zoom_by(1),
         KeyCode::Char('x') => app.camera.zoom_by(-1),
         KeyCode::Char('0') => app.camera = Camera::default(),
+        KeyCode::Tab | KeyCode::BackTab | KeyCode::Char('2') => map::open(app, out),
         _ => {}
     }
 }
@@ -310,7 +332,7 @@ fn on_edit_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
 }
 
 fn on_mouse(app: &mut App, kind: MouseEventKind, column: u16, row: u16, out: &mut Vec<Command>) {
-    if app.help || app.editing.is_some() {
+    if app.help || app.editing.is_some() || app.view == View::Map {
         return;
     }
     let Some(areas) = app.areas() else { return };

@@ -61,6 +61,14 @@ pub fn help_lines(t: &Theme) -> Vec<Line<'static>> {
         ]));
     }
     lines.push(Line::raw(""));
+    lines.push(Line::styled("Basin-map screen (Tab)", t.heading()));
+    for (k, what) in super::map::MAP_KEYS {
+        lines.push(Line::from(vec![
+            Span::styled(format!("  {k:<14}"), t.key()),
+            Span::raw(*what),
+        ]));
+    }
+    lines.push(Line::raw(""));
     lines.push(Line::styled("The model", t.heading()));
     for paragraph in MODEL {
         lines.push(Line::raw(format!("  {paragraph}")));

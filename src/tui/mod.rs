@@ -4,6 +4,7 @@
 pub mod app;
 pub mod camera;
 mod help;
+pub mod map;
 pub mod render;
 mod run;
 pub mod theme;
@@ -15,3 +16,6 @@ pub use theme::Theme;
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod map_tests;

@@ -73,6 +73,10 @@ pub fn screen_layout(area: Rect) -> Option<Areas> {
 
 /// Draws the whole screen.
 pub fn render(app: &App, frame: &mut Frame) {
+    if app.view == super::map::View::Map {
+        super::map::render_map_screen(app, frame);
+        return;
+    }
     let area = frame.area();
     let Some(areas) = screen_layout(area) else {
         render_too_small(area, frame);
@@ -770,6 +774,7 @@ pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
             ("←→", "change"),
             ("Enter", "type"),
             ("e", "log"),
+            ("Tab", "map"),
             ("?", "help"),
             ("q", "quit"),
         ]

@@ -43,7 +43,8 @@ fn event_loop(terminal: &mut DefaultTerminal, mut engine: Engine, theme: Theme) 
     let mut app = App::new(engine.snapshot(), theme);
     let size = terminal.size()?;
     app.screen = Rect::new(0, 0, size.width, size.height);
-    let worker = Worker::spawn(engine, tx.clone());
+    let maps = tx.clone();
+    let worker = Worker::spawn_with_maps(engine, tx.clone(), move |m| maps.send(Msg::from(m)).is_ok());
     // The input thread blocks in `event::read` for the life of the process; it ends with it.
     std::thread::Builder::new()
         .name("dicesim-input".to_string())
@@ -85,6 +86,9 @@ fn event_loop(terminal: &mut DefaultTerminal, mut engine: Engine, theme: Theme) 
             if app.quit {
                 break 'frames;
             }
+        }
+        if let Ok(dir) = std::env::current_dir() {
+            super::map::export_if_asked(&mut app, &dir);
         }
         app.fps = app.animating().then_some(drawn.len() as f64);
     }

@@ -2,6 +2,7 @@
 //! commands and by "advance to simulated time t". No thread and no clock live here, so tests
 //! (and the thread in `mod.rs`) drive it step for step.
 
+use super::map::{MapJob, MapOrder};
 use super::param::Param;
 use super::speed::Speed;
 use super::{BatchProgress, Command, DieState, EnergySample, OutcomeTable, Phase, RollKind, Snapshot};
@@ -61,6 +62,8 @@ pub struct Engine {
     batch: Option<BatchState>,
     batch_request: Option<BatchRequest>,
     batches_started: u64,
+    /// The newest map order not yet taken by the map thread.
+    map_order: Option<MapOrder>,
     stride: u64,
     peak: Option<EnergySample>,
     peak_steps: u64,
@@ -94,6 +97,7 @@ impl Engine {
             batch: None,
             batch_request: None,
             batches_started: 0,
+            map_order: None,
             stride: 1,
             peak: None,
             peak_steps: 0,
@@ -212,6 +216,23 @@ impl Engine {
             Command::ClearTable => {
                 self.table = OutcomeTable::default();
                 self.pending.table_changed = true;
+            }
+            Command::MapStart(request) => {
+                self.map_order = Some(MapOrder::Start(Box::new(MapJob {
+                    request,
+                    params: self.params,
+                    initial: self.initial,
+                })))
+            }
+            Command::MapCancel => self.map_order = Some(MapOrder::Cancel),
+            Command::PlaySetup(params, initial) => {
+                if let Err(e) = params.validate().and_then(|_| initial.validate()) {
+                    self.pending.notice = Some(e.to_string());
+                } else {
+                    (self.params, self.initial) = (params, initial);
+                    self.restart(RollKind::Edited);
+                    self.playing = true;
+                }
             }
             Command::Quit => return false,
         }
@@ -350,6 +371,11 @@ impl Engine {
     /// and [`Engine::finish_batch`].
     pub fn take_batch_request(&mut self) -> Option<BatchRequest> {
         self.batch_request.take()
+    }
+
+    /// The newest map order, once: the worker's map thread follows it.
+    pub fn take_map_order(&mut self) -> Option<MapOrder> {
+        self.map_order.take()
     }
 
     /// The batch the table is receiving, if any.

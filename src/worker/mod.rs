@@ -5,10 +5,12 @@
 //! nothing moves, so a paused explorer costs no CPU. It never touches the terminal.
 
 mod engine;
+pub mod map;
 pub mod param;
 mod speed;
 
 pub use engine::{BatchRequest, Engine};
+pub use map::{MapAxis, MapRequest, MapUpdate};
 pub use param::Param;
 pub use speed::Speed;
 
@@ -41,6 +43,11 @@ pub enum Command {
     BatchStart(u64),
     BatchCancel,
     ClearTable,
+    /// Compute a basin map around the current setup (cancelling the running one).
+    MapStart(MapRequest),
+    MapCancel,
+    /// Play this exact setup from t = 0 (a cell of a basin map, replayed).
+    PlaySetup(Params, InitialCondition),
     Quit,
 }
 
@@ -192,10 +199,20 @@ impl Worker {
     /// Starts the thread. Every snapshot goes to `out` (converted, so the UI can merge it
     /// with its input events in one channel); the first is sent at once.
     pub fn spawn<T: From<Snapshot> + Send + 'static>(engine: Engine, out: Sender<T>) -> Worker {
+        Worker::spawn_with_maps(engine, out, |_: MapUpdate| true)
+    }
+
+    /// Like [`Worker::spawn`], with basin maps (partial, then complete) sent to `maps`.
+    pub fn spawn_with_maps<T, F>(engine: Engine, out: Sender<T>, maps: F) -> Worker
+    where
+        T: From<Snapshot> + Send + 'static,
+        F: Fn(MapUpdate) -> bool + Send + Sync + 'static,
+    {
         let (commands, rx) = channel();
+        let maps = map::MapRunner::new(Arc::new(maps));
         let thread = std::thread::Builder::new()
             .name("dicesim-worker".to_string())
-            .spawn(move || run(engine, rx, out))
+            .spawn(move || run(engine, rx, out, maps))
             .expect("the OS can start a thread");
         Worker {
             commands,
@@ -234,7 +251,12 @@ struct Pacer {
     sim_s: f64,
 }
 
-fn run<T: From<Snapshot>>(mut engine: Engine, rx: Receiver<Command>, out: Sender<T>) {
+fn run<T: From<Snapshot>>(
+    mut engine: Engine,
+    rx: Receiver<Command>,
+    out: Sender<T>,
+    mut maps: map::MapRunner,
+) {
     if out.send(engine.snapshot().into()).is_err() {
         return;
     }
@@ -303,6 +325,7 @@ fn run<T: From<Snapshot>>(mut engine: Engine, rx: Receiver<Command>, out: Sender
             }
         }
         batch.sync(&mut engine);
+        maps.sync(engine.take_map_order());
         if out.send(engine.snapshot().into()).is_err() {
             break;
         }

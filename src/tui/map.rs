@@ -1,0 +1,961 @@
+//! The basin-map screen: which face each start in a plane of two setup values ends on,
+//! drawn while the worker computes it, with a cursor to read and replay single cells and a
+//! zoom stack for the authors' tour through the borders.
+//!
+//! State and key handling are pure like the rest of `update`; the map itself is computed
+//! by the worker's map thread and arrives as [`MapUpdate`]s tagged with a generation, so a
+//! map the user has moved away from can never overwrite the current one.
+
+use super::app::{App, Editor};
+use super::render::{fmt_num, render_header, render_help, render_too_small};
+use crate::experiment::basin::node_setup;
+use crate::experiment::plot::{cell_colour, time_range, write_image};
+use crate::experiment::{Axis, BasinMap, Cell, Layer};
+use crate::physics::{InitialCondition, Params, Status};
+use crate::worker::param::{ALL, Param};
+use crate::worker::{Command, MapAxis, MapRequest, MapUpdate};
+use ratatui::Frame;
+use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Paragraph, Wrap};
+use std::path::{Path, PathBuf};
+
+/// Most cells along each axis: a 200×100 map takes about half a second on two cores, so
+/// a full panel stays near a second even where borders are long.
+pub const MAX_CELLS: (usize, usize) = (200, 100);
+/// Grid nodes while the terminal is too small to show the map.
+const FALLBACK_CELLS: (usize, usize) = (64, 48);
+/// Each zoom shows a quarter of the range on each axis.
+pub const ZOOM_FACTOR: f64 = 4.0;
+/// Characters for the y-axis labels.
+const Y_LABELS: u16 = 8;
+/// Cells one Shift-arrow moves the cursor.
+const BIG_STEP: usize = 8;
+
+/// Which screen is on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum View {
+    #[default]
+    Die,
+    Map,
+}
+
+/// The map's x or y axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Side {
+    X,
+    Y,
+}
+
+/// The ranges before a zoom, to go back out to.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ZoomStep {
+    pub x: (f64, f64),
+    pub y: (f64, f64),
+    pub cursor: (usize, usize),
+}
+
+/// A range being typed in for one axis.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RangeEditor {
+    pub side: Side,
+    pub editor: Editor,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct MapView {
+    /// The axes the user chose (their `cells` are set when a map is requested).
+    pub x: MapAxis,
+    pub y: MapAxis,
+    /// Ranges before each zoom, innermost last.
+    pub zooms: Vec<ZoomStep>,
+    /// The generation of the current request; updates of any other are stale.
+    pub generation: u64,
+    /// The setup and grid of the current request.
+    pub requested: Option<(MapRequest, Params, InitialCondition)>,
+    /// Whether the worker is still computing the current request.
+    pub running: bool,
+    /// The newest map of the current generation.
+    pub shown: Option<MapUpdate>,
+    /// Cell under the cursor: x node, y node (0 = bottom row).
+    pub cursor: (usize, usize),
+    pub layer: Layer,
+    pub editing: Option<RangeEditor>,
+    /// The user asked for an image of the map (written by the event loop, not by `update`).
+    pub export_asked: bool,
+}
+
+impl MapView {
+    /// Spin about x against spin about y, each over the preset's default random range
+    /// around its current value.
+    pub fn new(params: &Params, initial: &InitialCondition) -> MapView {
+        let axis = |param| {
+            let (min, max) = default_range(param, params, initial);
+            MapAxis {
+                param,
+                min,
+                max,
+                cells: 0,
+            }
+        };
+        MapView {
+            x: axis(Param::Spin(0)),
+            y: axis(Param::Spin(1)),
+            zooms: Vec::new(),
+            generation: 0,
+            requested: None,
+            running: false,
+            shown: None,
+            cursor: (0, 0),
+            layer: Layer::Face,
+            editing: None,
+            export_asked: false,
+        }
+    }
+
+    /// The map on screen, if one has arrived for the current request.
+    pub fn map(&self) -> Option<&BasinMap> {
+        self.shown.as_ref().and_then(|u| u.map.as_ref().ok())
+    }
+
+    fn axis_mut(&mut self, side: Side) -> &mut MapAxis {
+        match side {
+            Side::X => &mut self.x,
+            Side::Y => &mut self.y,
+        }
+    }
+
+    fn clamp_cursor(&mut self) {
+        let (w, h) = match (self.map(), &self.requested) {
+            (Some(m), _) => (m.width(), m.height()),
+            (None, Some((r, ..))) => (r.x.cells, r.y.cells),
+            (None, None) => return,
+        };
+        self.cursor = (
+            self.cursor.0.min(w.saturating_sub(1)),
+            self.cursor.1.min(h.saturating_sub(1)),
+        );
+    }
+}
+
+/// A range around the current value: the default random range for spin (±60 rad/s) and
+/// velocity (±50 cm/s), a few coarse steps for the rest, inside the allowed range.
+pub fn default_range(p: Param, params: &Params, initial: &InitialCondition) -> (f64, f64) {
+    let steps = match p {
+        Param::Spin(_) => 6,
+        Param::Height => 2,
+        _ => 1,
+    };
+    let now = p.get(params, initial);
+    let (lo, hi) = (p.nudged(now, -steps, true), p.nudged(now, steps, true));
+    if lo < hi {
+        (lo, hi)
+    } else {
+        let l = p.limits();
+        (l.min, l.max)
+    }
+}
+
+/// Panels of the map screen.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MapAreas {
+    pub header: Rect,
+    pub side: Rect,
+    pub panel: Rect,
+    /// Where the cells go: each character holds two cells, one above the other.
+    pub grid: Rect,
+    pub footer: Rect,
+}
+
+/// The map screen's layout; `None` below the explorer's minimum size.
+pub fn map_layout(area: Rect) -> Option<MapAreas> {
+    super::render::screen_layout(area)?;
+    let [header, body, footer] = area.layout(&Layout::vertical([
+        Constraint::Length(1),
+        Constraint::Min(0),
+        Constraint::Length(1),
+    ]));
+    let side_width = if area.width >= 120 { 46 } else { 34 };
+    let [side, panel] = body.layout(&Layout::horizontal([
+        Constraint::Length(side_width),
+        Constraint::Min(0),
+    ]));
+    let inner = Block::bordered().inner(panel);
+    let grid = Rect {
+        x: inner.x + Y_LABELS,
+        width: inner.width.saturating_sub(Y_LABELS),
+        height: inner.height.saturating_sub(1),
+        ..inner
+    };
+    Some(MapAreas {
+        header,
+        side,
+        panel,
+        grid,
+        footer,
+    })
+}
+
+/// Grid nodes that fill the map panel of a terminal this size, two per character row.
+pub fn fitted_cells(screen: Rect) -> (usize, usize) {
+    match map_layout(screen) {
+        Some(a) if a.grid.width >= 2 && a.grid.height >= 1 => (
+            (a.grid.width as usize).min(MAX_CELLS.0),
+            (2 * a.grid.height as usize).min(MAX_CELLS.1),
+        ),
+        _ => FALLBACK_CELLS,
+    }
+}
+
+/// Asks the worker for the map of the chosen axes at the resolution that fits the screen.
+pub fn start(app: &mut App, out: &mut Vec<Command>) {
+    let (nx, ny) = fitted_cells(app.screen);
+    let m = &mut app.map;
+    if m.requested.is_none() {
+        // The first map opens with the cursor in the middle.
+        m.cursor = (nx / 2, ny / 2);
+    }
+    m.generation += 1;
+    m.x.cells = nx;
+    m.y.cells = ny;
+    let request = MapRequest {
+        generation: m.generation,
+        x: m.x,
+        y: m.y,
+    };
+    m.requested = Some((request, app.params, app.initial));
+    m.running = true;
+    m.shown = None;
+    m.clamp_cursor();
+    app.send(out, Command::MapStart(request));
+}
+
+/// Switches to the map screen; computes the map unless the one there still fits the setup
+/// and the terminal.
+pub fn open(app: &mut App, out: &mut Vec<Command>) {
+    app.view = View::Map;
+    let fits = app.map.requested.as_ref().is_some_and(|(r, p, ic)| {
+        (r.x.cells, r.y.cells) == fitted_cells(app.screen) && *p == app.params && *ic == app.initial
+    });
+    let finished = app.map.running || app.map.map().is_some_and(|m| m.complete);
+    if !fits || !finished {
+        start(app, out);
+    }
+}
+
+/// Back to the die. A map still being computed is cancelled so the live roll gets the cores;
+/// coming back computes it again.
+pub fn close(app: &mut App, out: &mut Vec<Command>) {
+    app.view = View::Die;
+    app.map.editing = None;
+    if app.map.running {
+        app.map.running = false;
+        app.send(out, Command::MapCancel);
+    }
+}
+
+/// Takes a map from the worker, unless it belongs to a request the user has moved away from.
+pub fn absorb(app: &mut App, update: MapUpdate) {
+    let m = &mut app.map;
+    if update.generation != m.generation || !m.running {
+        return;
+    }
+    match &update.map {
+        Ok(map) => {
+            m.running = !map.complete;
+            m.shown = Some(update);
+            m.clamp_cursor();
+        }
+        Err(e) => {
+            m.running = false;
+            app.notice = Some(format!("the map cannot be computed: {e}"));
+        }
+    }
+}
+
+/// The terminal was resized: a map on screen is recomputed to fill the new panel.
+pub fn resized(app: &mut App, out: &mut Vec<Command>) {
+    let fitted = fitted_cells(app.screen);
+    let stale = app
+        .map
+        .requested
+        .as_ref()
+        .is_some_and(|(r, ..)| (r.x.cells, r.y.cells) != fitted);
+    if app.view == View::Map && stale {
+        start(app, out);
+    }
+}
+
+/// Keys of the map screen; false for the keys the explorer handles the same on every
+/// screen (quit and help).
+pub fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) -> bool {
+    if app.map.editing.is_some() {
+        on_range_key(app, key, out);
+        return true;
+    }
+    let big = key.modifiers.contains(KeyModifiers::SHIFT);
+    let step = if big { BIG_STEP } else { 1 };
+    match key.code {
+        KeyCode::Char('q') | KeyCode::Esc | KeyCode::Char('?') => return false,
+        KeyCode::Tab | KeyCode::BackTab | KeyCode::Char('1') => close(app, out),
+        KeyCode::Left | KeyCode::Char('h') => move_cursor(app, -(step as isize), 0),
+        KeyCode::Right | KeyCode::Char('l') => move_cursor(app, step as isize, 0),
+        KeyCode::Up | KeyCode::Char('k') => move_cursor(app, 0, step as isize),
+        KeyCode::Down | KeyCode::Char('j') => move_cursor(app, 0, -(step as isize)),
+        KeyCode::Char('H') => move_cursor(app, -(BIG_STEP as isize), 0),
+        KeyCode::Char('L') => move_cursor(app, BIG_STEP as isize, 0),
+        KeyCode::Char('K') => move_cursor(app, 0, BIG_STEP as isize),
+        KeyCode::Char('J') => move_cursor(app, 0, -(BIG_STEP as isize)),
+        KeyCode::Enter => replay(app, out),
+        KeyCode::Char('z') => zoom_in(app, out),
+        KeyCode::Char('Z') | KeyCode::Backspace => zoom_out(app, out),
+        KeyCode::Char('x') => next_axis(app, Side::X, out),
+        KeyCode::Char('y') => next_axis(app, Side::Y, out),
+        KeyCode::Char('X') => edit_range(app, Side::X),
+        KeyCode::Char('Y') => edit_range(app, Side::Y),
+        KeyCode::Char('v') => {
+            app.map.layer = match app.map.layer {
+                Layer::Face => Layer::SettleTime,
+                Layer::SettleTime => Layer::Face,
+            }
+        }
+        KeyCode::Char('e') => app.map.export_asked = true,
+        _ => {}
+    }
+    true
+}
+
+fn move_cursor(app: &mut App, dx: isize, dy: isize) {
+    let m = &mut app.map;
+    let (i, j) = m.cursor;
+    m.cursor = (i.saturating_add_signed(dx), j.saturating_add_signed(dy));
+    m.clamp_cursor();
+}
+
+/// Plays the cell under the cursor in the die view: exactly the setup the map rolled there.
+fn replay(app: &mut App, out: &mut Vec<Command>) {
+    let Some(update) = &app.map.shown else {
+        app.notice = Some("no map yet: wait for the first cells".to_string());
+        return;
+    };
+    let Ok(map) = &update.map else { return };
+    let (i, j) = app.map.cursor;
+    let (params, initial) = node_setup(&update.params, &update.initial, &map.x, &map.y, i, j);
+    let notice = format!(
+        "replaying map cell ({i}, {j}): {} {}, {} {}",
+        app.map.x.param.label(),
+        fmt_num(map.x.value(i)),
+        app.map.y.param.label(),
+        fmt_num(map.y.value(j)),
+    );
+    app.params = params;
+    app.initial = initial;
+    app.send(out, Command::PlaySetup(params, initial));
+    close(app, out);
+    app.notice = Some(notice);
+}
+
+/// Shrinks both ranges by [`ZOOM_FACTOR`] around the cursor (kept inside the old ranges).
+fn zoom_in(app: &mut App, out: &mut Vec<Command>) {
+    let Some(map) = app.map.map() else { return };
+    let (i, j) = app.map.cursor;
+    let inside = |a: &Axis, at: f64| {
+        let half = (a.max - a.min) / ZOOM_FACTOR / 2.0;
+        let centre = at.clamp(a.min + half, a.max - half);
+        (centre - half, centre + half)
+    };
+    let (x, y) = (inside(&map.x, map.x.value(i)), inside(&map.y, map.y.value(j)));
+    let m = &mut app.map;
+    m.zooms.push(ZoomStep {
+        x: (m.x.min, m.x.max),
+        y: (m.y.min, m.y.max),
+        cursor: m.cursor,
+    });
+    (m.x.min, m.x.max) = x;
+    (m.y.min, m.y.max) = y;
+    start(app, out);
+    let r = &app.map.requested.as_ref().expect("just requested").0;
+    app.map.cursor = (r.x.cells / 2, r.y.cells / 2);
+}
+
+fn zoom_out(app: &mut App, out: &mut Vec<Command>) {
+    let Some(z) = app.map.zooms.pop() else {
+        app.notice = Some("already at the full range".to_string());
+        return;
+    };
+    let m = &mut app.map;
+    (m.x.min, m.x.max) = z.x;
+    (m.y.min, m.y.max) = z.y;
+    m.cursor = z.cursor;
+    start(app, out);
+}
+
+/// The next value of the parameter list on this axis (never the other axis's), over its
+/// default range.
+fn next_axis(app: &mut App, side: Side, out: &mut Vec<Command>) {
+    let other = match side {
+        Side::X => app.map.y.param,
+        Side::Y => app.map.x.param,
+    };
+    let now = app.map.axis_mut(side).param;
+    let at = ALL.iter().position(|&p| p == now).unwrap_or(0);
+    let next = (1..ALL.len())
+        .map(|k| ALL[(at + k) % ALL.len()])
+        .find(|&p| p != other)
+        .unwrap_or(now);
+    let (min, max) = default_range(next, &app.params, &app.initial);
+    *app.map.axis_mut(side) = MapAxis {
+        param: next,
+        min,
+        max,
+        cells: 0,
+    };
+    app.map.zooms.clear();
+    start(app, out);
+}
+
+fn edit_range(app: &mut App, side: Side) {
+    let a = *app.map.axis_mut(side);
+    app.map.editing = Some(RangeEditor {
+        side,
+        editor: Editor {
+            text: format!("{} {}", fmt_num(a.min), fmt_num(a.max)),
+            error: None,
+        },
+    });
+}
+
+fn on_range_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
+    let Some(r) = app.map.editing.as_mut() else {
+        return;
+    };
+    match key.code {
+        KeyCode::Esc => app.map.editing = None,
+        KeyCode::Backspace => {
+            r.editor.text.pop();
+            r.editor.error = None;
+        }
+        KeyCode::Char(c) if c.is_ascii_digit() || ".-+eE :,".contains(c) => {
+            if r.editor.text.len() < 40 {
+                r.editor.text.push(c);
+            }
+            r.editor.error = None;
+        }
+        KeyCode::Enter => {
+            let side = r.side;
+            let param = match side {
+                Side::X => app.map.x.param,
+                Side::Y => app.map.y.param,
+            };
+            match parse_range(param, &r.editor.text) {
+                Ok((min, max)) => {
+                    let a = app.map.axis_mut(side);
+                    (a.min, a.max) = (min, max);
+                    app.map.editing = None;
+                    app.map.zooms.clear();
+                    start(app, out);
+                }
+                Err(e) => r.editor.error = Some(e),
+            }
+        }
+        _ => {}
+    }
+}
+
+/// `MIN MAX` (or `MIN:MAX`, `MIN,MAX`), checked as a map axis is: both inside the value's
+/// allowed range, MIN below MAX.
+pub fn parse_range(param: Param, text: &str) -> Result<(f64, f64), String> {
+    let parts: Vec<&str> = text
+        .split(|c: char| c.is_whitespace() || c == ':' || c == ',')
+        .filter(|s| !s.is_empty())
+        .collect();
+    let [min, max] = parts[..] else {
+        return Err("type MIN MAX, e.g. -60 60".to_string());
+    };
+    let number = |s: &str| s.parse::<f64>().map_err(|_| format!("`{s}` is not a number"));
+    let (min, max) = (number(min)?, number(max)?);
+    Axis::new(param.scan_key().clone(), min, max, 2)
+        .map(|a| (a.min, a.max))
+        .map_err(|e| match e {
+            crate::experiment::Error::Axis { message, .. } => message,
+            e => e.to_string(),
+        })
+}
+
+/// Writes the map on screen as a PNG into `dir` if the user asked (`e`); the status line
+/// says where. The event loop calls this after `update`, so `update` itself writes nothing.
+pub fn export_if_asked(app: &mut App, dir: &Path) {
+    if !std::mem::take(&mut app.map.export_asked) {
+        return;
+    }
+    let Some(map) = app.map.map() else {
+        app.notice = Some("no map to export yet".to_string());
+        return;
+    };
+    let path = free_path(dir);
+    app.notice = Some(match write_image(map, app.map.layer, &path) {
+        Ok(()) if map.complete => format!("basin map saved to {}", path.display()),
+        Ok(()) => format!("partial basin map saved to {}", path.display()),
+        Err(e) => format!("export failed: {e}"),
+    });
+}
+
+/// `basin-map.png`, or the first of `basin-map-2.png`, `-3`, … not taken yet.
+fn free_path(dir: &Path) -> PathBuf {
+    (1..)
+        .map(|n| match n {
+            1 => dir.join("basin-map.png"),
+            n => dir.join(format!("basin-map-{n}.png")),
+        })
+        .find(|p| !p.exists())
+        .expect("some name is free")
+}
+
+/// The terminal colour of a cell: the exported image's colour, or nothing without colour.
+pub fn terminal_colour(app: &App, cell: Option<&Cell>, times: Option<(f64, f64)>) -> Color {
+    match cell {
+        Some(_) if app.theme.colour => {
+            let c = cell_colour(cell, app.map.layer, times);
+            Color::Rgb(c.0, c.1, c.2)
+        }
+        _ => Color::Reset,
+    }
+}
+
+/// Without colour a character shows its upper cell: the face digit, or a shade of settle time.
+fn monochrome_symbol(layer: Layer, cell: Option<&Cell>, times: Option<(f64, f64)>) -> char {
+    let Some(c) = cell else { return ' ' };
+    match (c.outcome.status, c.outcome.face, layer) {
+        (Status::Timeout, ..) => '?',
+        (Status::Unstable, ..) => '!',
+        (Status::Settled, None, _) => '·',
+        (Status::Settled, Some(f), Layer::Face) => char::from(b'0' + f),
+        (Status::Settled, Some(_), Layer::SettleTime) => {
+            let (lo, hi) = times.unwrap_or((0.0, 1.0));
+            let t = ((c.outcome.time_s - lo) / (hi - lo).max(1e-12)).clamp(0.0, 1.0);
+            [' ', '░', '▒', '▓', '█'][(t * 4.0).round() as usize]
+        }
+    }
+}
+
+/// Draws the map screen.
+pub fn render_map_screen(app: &App, frame: &mut Frame) {
+    let area = frame.area();
+    let Some(areas) = map_layout(area) else {
+        render_too_small(area, frame);
+        return;
+    };
+    render_header(app, areas.header, frame);
+    render_side(app, areas.side, frame);
+    render_panel(app, &areas, frame);
+    render_footer(app, areas.footer, frame);
+    if app.help {
+        render_help(app, area, frame);
+    }
+}
+
+fn layer_name(layer: Layer) -> &'static str {
+    match layer {
+        Layer::Face => "face up",
+        Layer::SettleTime => "settle time",
+    }
+}
+
+fn render_panel(app: &App, areas: &MapAreas, frame: &mut Frame) {
+    let t = &app.theme;
+    let m = &app.map;
+    let y_title = format!(
+        " ↑ y: {} ({}) ",
+        m.y.param.scan_key().key,
+        m.y.param.limits().unit
+    );
+    let x_title = format!(
+        " x: {} ({}) → ",
+        m.x.param.scan_key().key,
+        m.x.param.limits().unit
+    );
+    let layer = Span::styled(format!(" {} ", layer_name(m.layer)), t.heading());
+    // Narrow panels drop the layer's name (the legend says it) before the axis key.
+    let fits = layer.width() + y_title.chars().count() + 2 <= areas.panel.width as usize;
+    let title = if fits {
+        Line::from(vec![layer, Span::raw(y_title)])
+    } else {
+        Line::from(y_title)
+    };
+    let block = Block::bordered()
+        .title(title)
+        .title_bottom(Line::from(x_title).right_aligned());
+    let inner = block.inner(areas.panel);
+    frame.render_widget(block, areas.panel);
+    let grid = areas.grid;
+    let Some(map) = m.map() else {
+        let text = if m.running {
+            "computing the first cells…"
+        } else {
+            "no map: Tab back to the die, or x / y to choose axes"
+        };
+        frame.render_widget(Paragraph::new(text).wrap(Wrap { trim: true }), grid);
+        return;
+    };
+    if grid.width == 0 || grid.height == 0 {
+        return;
+    }
+    let times = time_range(map);
+    let (w, h) = (map.width(), map.height());
+    let cols = (w as u16).min(grid.width);
+    let rows = (h.div_ceil(2) as u16).min(grid.height);
+    // Character row r (from the top) holds cells j = h-1-2r (upper half) and h-2-2r (lower).
+    let cell_at = |i: usize, j: isize| (j >= 0).then(|| map.cell(i, j as usize)).flatten();
+    let buf = frame.buffer_mut();
+    for r in 0..rows {
+        let upper = h as isize - 1 - 2 * r as isize;
+        for c in 0..cols {
+            let i = c as usize;
+            let (top, bottom) = (cell_at(i, upper), cell_at(i, upper - 1));
+            let cursor_here =
+                m.cursor.0 == i && (m.cursor.1 as isize == upper || m.cursor.1 as isize == upper - 1);
+            let cell = &mut buf[(grid.x + c, grid.y + r)];
+            if app.theme.colour {
+                cell.set_symbol("▀")
+                    .set_fg(terminal_colour(app, top, times))
+                    .set_bg(terminal_colour(app, bottom, times));
+            } else {
+                let mut s = [0u8; 4];
+                cell.set_symbol(monochrome_symbol(m.layer, top, times).encode_utf8(&mut s));
+            }
+            if cursor_here {
+                let on_upper = m.cursor.1 as isize == upper;
+                let under = if on_upper { top } else { bottom };
+                if app.theme.colour {
+                    // The cursor's half keeps its colour, the other half shows the terminal's
+                    // background: a notch that reads on any face.
+                    cell.set_symbol(if on_upper { "▀" } else { "▄" })
+                        .set_fg(terminal_colour(app, under, times))
+                        .set_bg(Color::Reset);
+                } else {
+                    let mut s = [0u8; 4];
+                    cell.set_symbol(monochrome_symbol(m.layer, under, times).encode_utf8(&mut s))
+                        .set_style(Style::new().add_modifier(Modifier::REVERSED));
+                }
+            }
+        }
+    }
+    // Axis labels: y max at the top row, min at the bottom row; x min left, max right.
+    let labels = Rect {
+        x: inner.x,
+        width: Y_LABELS.min(inner.width),
+        ..grid
+    };
+    let y_label = |row: u16, v: f64| {
+        (
+            Rect {
+                y: grid.y + row,
+                height: 1,
+                ..labels
+            },
+            Line::from(format!("{} ", fmt_num(v))).right_aligned(),
+        )
+    };
+    let mut y_labels = vec![y_label(0, map.y.max), y_label(rows - 1, map.y.min)];
+    if rows >= 5 {
+        let j = (h - 1).saturating_sub(2 * (rows as usize / 2));
+        y_labels.push(y_label(rows / 2, map.y.value(j)));
+    }
+    for (rect, line) in y_labels {
+        frame.render_widget(Paragraph::new(line), rect);
+    }
+    let x_row = grid.y + rows;
+    if x_row < inner.bottom() {
+        let row = Rect {
+            x: grid.x,
+            y: x_row,
+            width: cols,
+            height: 1,
+        };
+        let lo = fmt_num(map.x.min);
+        let hi = fmt_num(map.x.max);
+        frame.render_widget(Paragraph::new(lo.clone()), row);
+        frame.render_widget(Paragraph::new(Line::from(hi.clone()).right_aligned()), row);
+        // The cursor's column, unless that would cover an end label.
+        let tick = m.cursor.0 as u16;
+        if tick > lo.chars().count() as u16 && tick + (hi.chars().count() as u16) + 1 < cols {
+            frame.render_widget(
+                Paragraph::new(Span::styled("▲", t.key())),
+                Rect {
+                    x: grid.x + tick,
+                    width: 1,
+                    ..row
+                },
+            );
+        }
+    }
+    let cursor_row = (h as isize - 1 - m.cursor.1 as isize) / 2;
+    if cursor_row >= 0 && (cursor_row as u16) < rows && labels.width > 0 {
+        frame.render_widget(
+            Paragraph::new(Span::styled("▶", t.key())),
+            Rect {
+                x: labels.right() - 1,
+                y: grid.y + cursor_row as u16,
+                width: 1,
+                height: 1,
+            },
+        );
+    }
+}
+
+fn range_line(a: &MapAxis) -> String {
+    format!(
+        "{} … {} {}",
+        fmt_num(a.min),
+        fmt_num(a.max),
+        a.param.limits().unit
+    )
+}
+
+fn render_side(app: &App, area: Rect, frame: &mut Frame) {
+    let t = &app.theme;
+    let m = &app.map;
+    let block = Block::bordered().title(Line::styled(" basin map of the current setup ", t.heading()));
+    let mut lines = Vec::new();
+    for (side, a, keys) in [(Side::X, &m.x, "x · X"), (Side::Y, &m.y, "y · Y")] {
+        let name = if side == Side::X { "x" } else { "y" };
+        lines.push(Line::from(vec![
+            Span::styled(format!(" {name} "), t.heading()),
+            Span::raw(format!("{:<14}", a.param.label())),
+            Span::styled(format!(" {keys}"), t.key()),
+        ]));
+        match &m.editing {
+            Some(r) if r.side == side => {
+                lines.push(Line::from(vec![
+                    Span::raw("   range "),
+                    Span::styled(format!("{}▏", r.editor.text), t.selected()),
+                ]));
+                if let Some(e) = &r.editor.error {
+                    lines.push(Line::styled(format!("   {e}"), t.danger()));
+                }
+            }
+            _ => lines.push(Line::raw(format!("   {}", range_line(a)))),
+        }
+    }
+    let zoom = ZOOM_FACTOR.powi(m.zooms.len() as i32);
+    let progress = match (m.map(), m.running) {
+        (Some(map), running) => {
+            let state = if running {
+                "computing"
+            } else if map.complete {
+                "complete"
+            } else {
+                "stopped"
+            };
+            Line::from(vec![
+                Span::styled(format!(" {state} "), if running { t.caution() } else { t.good() }),
+                Span::raw(format!(
+                    " {}×{} · {} rolled",
+                    map.width(),
+                    map.height(),
+                    map.sampled
+                )),
+            ])
+        }
+        (None, true) => Line::styled(" computing… ", t.caution()),
+        (None, false) => Line::raw(" not computed"),
+    };
+    lines.push(progress);
+    lines.push(Line::raw(format!(" zoom ×{} (z in, Z out)", fmt_num(zoom))));
+    lines.push(Line::raw(""));
+    lines.extend(cursor_lines(app));
+    lines.extend(legend_lines(app));
+    frame.render_widget(
+        Paragraph::new(lines).block(block).wrap(Wrap { trim: false }),
+        area,
+    );
+}
+
+fn cursor_lines(app: &App) -> Vec<Line<'static>> {
+    let t = &app.theme;
+    let m = &app.map;
+    let (i, j) = m.cursor;
+    let rolled = match m.map().and_then(|map| map.cell(i, j)) {
+        Some(c) if c.sampled => " · rolled",
+        Some(_) => " · filled in",
+        None => "",
+    };
+    let mut lines = vec![Line::styled(
+        format!(" cursor cell ({i}, {j}){rolled}"),
+        t.heading(),
+    )];
+    let (Some(update), Some(map)) = (&m.shown, m.map()) else {
+        lines.push(Line::raw("   waiting for the map"));
+        return lines;
+    };
+    let (params, ic) = node_setup(&update.params, &update.initial, &map.x, &map.y, i, j);
+    let w = ic.angular_velocity_for(params.inertia());
+    let v = ic.velocity;
+    let o = ic.orientation;
+    let n = |x: f64| fmt_num(x);
+    lines.push(Line::raw(format!(
+        "   {} {} · {} {}",
+        m.x.param.label(),
+        n(map.x.value(i)),
+        m.y.param.label(),
+        n(map.y.value(j))
+    )));
+    match map.cell(i, j) {
+        Some(c) => {
+            let o_ = c.outcome;
+            let (end, style) = match (o_.status, o_.face) {
+                (Status::Settled, Some(f)) => (format!("face {f}"), t.good()),
+                (Status::Settled, None) => ("no face up".to_string(), t.caution()),
+                (Status::Timeout, _) => ("did not settle".to_string(), t.caution()),
+                (Status::Unstable, _) => ("unstable".to_string(), t.danger()),
+            };
+            lines.push(Line::from(vec![
+                Span::raw("   "),
+                Span::styled(end, style),
+                Span::raw(format!(" after {:.3} s (from {})", o_.time_s, c.start_face)),
+            ]));
+        }
+        None => lines.push(Line::raw("   not computed yet")),
+    }
+    lines.push(Line::raw(format!(
+        "   h {} cm · v ({}, {}, {}) cm/s",
+        n(ic.height),
+        n(v[0]),
+        n(v[1]),
+        n(v[2])
+    )));
+    lines.push(Line::raw(format!(
+        "   ω ({}, {}, {}) rad/s",
+        n(w[0]),
+        n(w[1]),
+        n(w[2])
+    )));
+    lines.push(Line::raw(format!(
+        "   yaw pitch roll ({}, {}, {})°",
+        n(o[0]),
+        n(o[1]),
+        n(o[2])
+    )));
+    lines
+}
+
+fn legend_lines(app: &App) -> Vec<Line<'static>> {
+    let t = &app.theme;
+    let m = &app.map;
+    let mut lines = vec![Line::styled(
+        format!(" legend: {} (v)", layer_name(m.layer)),
+        t.heading(),
+    )];
+    let swatch = |cell: Option<Cell>, times| {
+        Span::styled("██", Style::new().fg(terminal_colour(app, cell.as_ref(), times)))
+    };
+    let cell = |status, face, time_s| Cell {
+        outcome: crate::physics::Outcome {
+            status,
+            face,
+            steps: 0,
+            time_s,
+        },
+        start_face: 1,
+        sampled: true,
+    };
+    if !app.theme.colour {
+        lines.push(Line::raw(match m.layer {
+            Layer::Face => "   no colour: digits 1-6 show the face up",
+            Layer::SettleTime => "   no colour: ░▒▓█ longer settle times",
+        }));
+        lines.push(Line::raw("   · no face  ? did not settle  ! unstable"));
+        return lines;
+    }
+    match m.layer {
+        Layer::Face => {
+            let mut faces = vec![Span::raw("  ")];
+            for f in 1..=6 {
+                faces.push(swatch(Some(cell(Status::Settled, Some(f), 0.0)), None));
+                faces.push(Span::raw(format!("{f} ")));
+            }
+            lines.push(Line::from(faces));
+        }
+        Layer::SettleTime => {
+            let (lo, hi) = m.map().and_then(time_range).unwrap_or((0.0, 0.0));
+            let mut bar = vec![Span::raw(format!("   {:.2} s ", lo))];
+            for k in 0..8 {
+                let time = lo + (hi - lo) * k as f64 / 7.0;
+                bar.push(Span::styled(
+                    "█",
+                    Style::new().fg(terminal_colour(
+                        app,
+                        Some(&cell(Status::Settled, Some(1), time)),
+                        Some((lo, hi)),
+                    )),
+                ));
+            }
+            bar.push(Span::raw(format!(" {:.2} s", hi)));
+            lines.push(Line::from(bar));
+        }
+    }
+    lines.push(Line::from(vec![
+        Span::raw("  "),
+        swatch(Some(cell(Status::Settled, None, 0.0)), None),
+        Span::raw("no face "),
+        swatch(Some(cell(Status::Timeout, None, 0.0)), None),
+        Span::raw("not settled "),
+        swatch(Some(cell(Status::Unstable, None, 0.0)), None),
+        Span::raw("unstable"),
+    ]));
+    lines
+}
+
+fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
+    let t = &app.theme;
+    let keys: &[(&str, &str)] = if app.map.editing.is_some() {
+        &[
+            ("MIN MAX", "type"),
+            ("Enter", "apply"),
+            ("Esc", "cancel"),
+            ("Ctrl-C", "quit"),
+        ]
+    } else if app.help {
+        &[("↑↓", "scroll"), ("? Esc", "close help"), ("q", "quit")]
+    } else {
+        &[
+            ("Tab", "die"),
+            ("←↓↑→", "cursor"),
+            ("Enter", "replay"),
+            ("z Z", "zoom in/out"),
+            ("x y", "axis"),
+            ("X Y", "range"),
+            ("v", "face/time"),
+            ("e", "export PNG"),
+            ("?", "help"),
+            ("q", "quit"),
+        ]
+    };
+    let mut spans = Vec::new();
+    if let Some(n) = &app.notice {
+        spans.push(Span::styled(format!(" {n} "), t.caution()));
+    }
+    for (k, what) in keys {
+        spans.push(Span::raw(" "));
+        spans.push(Span::styled(*k, t.key()));
+        spans.push(Span::raw(format!(" {what}")));
+    }
+    frame.render_widget(Paragraph::new(Line::from(spans)), area);
+}
+
+/// The map screen's keys, for the `?` overlay.
+pub const MAP_KEYS: &[(&str, &str)] = &[
+    ("Tab 2 / Tab 1", "basin-map screen / back to the die"),
+    (
+        "←↓↑→ h j k l",
+        "move the cursor over the map (Shift or H J K L: 8 cells)",
+    ),
+    ("Enter", "replay the cell under the cursor in the die view"),
+    ("z  Z", "zoom in ×4 around the cursor / back out"),
+    ("x  y", "next value of the list on the x / y axis"),
+    ("X  Y", "type the x / y range as MIN MAX"),
+    ("v", "colour by face up / by settle time (borders light up)"),
+    ("e", "save the map as a PNG in the current folder"),
+];
