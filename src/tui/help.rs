@@ -42,6 +42,10 @@ const MODEL: &[&str] = &[
      spring). At an impact a corner sinks a fraction of a millimetre into a very stiff spring: for a \
      millisecond the elastic term spikes above all the others, then is handed back as motion, less what \
      damping and friction took. The log scale (e) shows the spikes and the small terms together.",
+    "The energy panel: a bar of the energy now, stacked by form and scaled to the energy at the start \
+     (◀ marks the total), and the ledger of where the rest went: work done by the ground's damping and by \
+     friction, measured step by step, and the remainder, the integrator's own error (semi-implicit Euler \
+     loses ½·M·g²·Δt² per step even in free flight). Damping + friction + integrator + now = start.",
     "A roll ends once the energy drops below 80% of what it takes to tip the die over an edge (the dotted \
      stop line): from then on the face up cannot change.",
     "Same start, same face: the model is deterministic (r). A die looks random because a tiny change in the \

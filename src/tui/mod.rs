@@ -4,6 +4,7 @@
 pub mod app;
 pub mod camera;
 mod help;
+mod ledger;
 pub mod render;
 mod run;
 pub mod theme;
@@ -13,5 +14,7 @@ pub use render::render;
 pub use run::run;
 pub use theme::Theme;
 
+#[cfg(test)]
+mod class_tests;
 #[cfg(test)]
 mod tests;

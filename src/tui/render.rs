@@ -33,6 +33,8 @@ pub struct Areas {
     pub outcomes: Rect,
     pub die: Rect,
     pub energy: Rect,
+    /// The energy bar and ledger, beside the energy plot.
+    pub ledger: Rect,
     pub footer: Rect,
 }
 
@@ -57,9 +59,13 @@ pub fn screen_layout(area: Rect) -> Option<Areas> {
         Constraint::Length(params_height),
         Constraint::Min(0),
     ]));
-    let [die, energy] = right.layout(&Layout::vertical([
+    let [die, energy_row] = right.layout(&Layout::vertical([
         Constraint::Percentage(50),
         Constraint::Percentage(50),
+    ]));
+    let [energy, ledger] = energy_row.layout(&Layout::horizontal([
+        Constraint::Min(0),
+        Constraint::Length(super::ledger::panel_width(area.width)),
     ]));
     Some(Areas {
         header,
@@ -67,6 +73,7 @@ pub fn screen_layout(area: Rect) -> Option<Areas> {
         outcomes,
         die,
         energy,
+        ledger,
         footer,
     })
 }
@@ -83,6 +90,7 @@ pub fn render(app: &App, frame: &mut Frame) {
     render_outcomes(app, areas.outcomes, frame);
     render_die(app, areas.die, frame);
     render_energy(app, areas.energy, frame);
+    super::ledger::render_ledger(app, areas.ledger, frame);
     render_footer(app, areas.footer, frame);
     if app.help {
         render_help(app, area, frame);

@@ -440,6 +440,7 @@ impl Engine {
                 start_face: self.start_face,
             },
             energy: self.sim.energy(),
+            ledger: self.sim.energy_ledger(),
             stop_threshold: self.sim.stop_threshold(),
             time_s: s.time_s,
             step: s.step,

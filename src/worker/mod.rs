@@ -14,7 +14,7 @@ pub use speed::Speed;
 
 use crate::experiment::{FaceTally, RollRecord};
 use crate::experiment::{Rolls, run_batch};
-use crate::physics::{ContactForce, Energy, InitialCondition, Outcome, Params, Status};
+use crate::physics::{ContactForce, Energy, EnergyLedger, InitialCondition, Outcome, Params, Status};
 use nalgebra::Vector3;
 use std::collections::VecDeque;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -158,6 +158,8 @@ pub struct Snapshot {
     pub speed: Speed,
     pub die: DieState,
     pub energy: Energy,
+    /// Where the energy went since t = 0 (measured in the physics, step by step).
+    pub ledger: EnergyLedger,
     /// erg, the stopping threshold.
     pub stop_threshold: f64,
     /// s, simulated.
