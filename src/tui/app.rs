@@ -64,6 +64,8 @@ pub struct App {
     pub help: bool,
     pub help_scroll: u16,
     pub log_scale: bool,
+    /// Arrows for ω, L, v and the contact forces on the die (`v`).
+    pub vectors: bool,
     pub drawing: Drawing,
     pub camera: Camera,
     pub theme: Theme,
@@ -96,6 +98,7 @@ impl App {
             help: false,
             help_scroll: 0,
             log_scale: false,
+            vectors: false,
             drawing: Drawing::default(),
             camera: Camera::default(),
             theme,
@@ -255,6 +258,7 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
             app.help_scroll = 0;
         }
         KeyCode::Char('e') => app.log_scale = !app.log_scale,
+        KeyCode::Char('v') => app.vectors = !app.vectors,
         KeyCode::Char('m') => {
             app.drawing = match app.drawing {
                 Drawing::Braille => Drawing::Ascii,

@@ -83,3 +83,78 @@ mod ledger {
         assert_eq!(series[3], Color::Green);
     }
 }
+
+mod vectors {
+    use super::super::render::render_die;
+    use super::super::vectors::{ARROWS, Arrow, arrow_length};
+    use super::*;
+    use crate::tui::app::{Msg, update};
+    use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
+
+    fn with_vectors() -> App {
+        let mut app = mid_impact().app;
+        let sent = update(
+            &mut app,
+            Msg::Input(Event::Key(KeyEvent::new(KeyCode::Char('v'), KeyModifiers::NONE))),
+        );
+        assert!(sent.is_empty(), "a view toggle asks nothing of the worker");
+        assert!(app.vectors);
+        app
+    }
+
+    #[test]
+    fn v_toggles_the_arrows() {
+        let mut app = with_vectors();
+        update(
+            &mut app,
+            Msg::Input(Event::Key(KeyEvent::new(KeyCode::Char('v'), KeyModifiers::NONE))),
+        );
+        assert!(!app.vectors);
+    }
+
+    #[test]
+    fn lengths_are_log_compressed() {
+        assert_eq!(arrow_length(0.0, 1.0, 1.0), 0.0);
+        assert!((arrow_length(9.0, 1.0, 1.0) - 1.0).abs() < 1e-12);
+        assert!((arrow_length(99.0, 1.0, 2.0) - 4.0).abs() < 1e-12);
+        // A hundredfold force is drawn only about three times as long.
+        let (small, big) = (
+            arrow_length(980.0, 980.0, 1.0),
+            arrow_length(98_000.0, 980.0, 1.0),
+        );
+        assert!(big / small > 2.0 && big / small < 7.0);
+        assert_eq!(arrow_length(f64::NAN, 1.0, 1.0), 0.0);
+    }
+
+    #[test]
+    fn die_with_vectors_mid_impact() {
+        let app = with_vectors();
+        let area = full().die;
+        let t = panel(&app, area, render_die);
+        insta::assert_snapshot!("die_vectors_mid_impact", t.backend());
+        let b = t.backend().buffer();
+        let text: String = (0..area.height)
+            .flat_map(|y| (0..area.width).map(move |x| (x, y)))
+            .map(|p| b[p].symbol().to_string())
+            .collect();
+        assert!(text.contains("length a·log₁₀(1+|x|/x₀)"), "{text}");
+        // Every arrow is drawn in its own colour somewhere in the panel.
+        for kind in ARROWS {
+            let colour = kind.colour(&app);
+            let cells = (0..area.height)
+                .flat_map(|y| (0..area.width).map(move |x| (x, y)))
+                .filter(|&p| b[p].fg == colour)
+                .count();
+            assert!(cells > 2, "{kind:?} in {colour:?}: {cells} cells");
+        }
+        assert_eq!(Arrow::AngularVelocity.colour(&app), Color::Cyan);
+        // Without the toggle none of the arrow colours but the contact red appears.
+        let plain = panel(&mid_impact().app, area, render_die);
+        let pb = plain.backend().buffer();
+        let cyan = (0..area.height)
+            .flat_map(|y| (0..area.width).map(move |x| (x, y)))
+            .filter(|&p| pb[p].fg == Color::Cyan)
+            .count();
+        assert_eq!(cyan, 0);
+    }
+}

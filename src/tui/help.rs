@@ -19,6 +19,10 @@ const KEYS: &[(&str, &str)] = &[
     ("←→ h l", "change it; Shift, H or L for big steps"),
     ("Enter", "type an exact value (Esc cancels)"),
     ("e", "energy plot: linear / log scale"),
+    (
+        "v",
+        "arrows: spin ω, angular momentum L, velocity v, contact forces F",
+    ),
     ("m", "draw the die with Braille dots / plain ASCII"),
     ("a d  w s", "orbit / tilt the camera"),
     ("z x  0", "zoom in / out, reset the view"),

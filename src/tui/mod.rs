@@ -8,6 +8,7 @@ mod ledger;
 pub mod render;
 mod run;
 pub mod theme;
+mod vectors;
 
 pub use app::{App, Msg, update};
 pub use render::render;

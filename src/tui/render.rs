@@ -532,9 +532,20 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
                 let c = cam.project(&die.corners[k], &focus);
                 ctx.print(c.x, c.y, Span::styled(dot, t.contact()));
             }
+            if app.vectors {
+                super::vectors::draw(ctx, app, &cam, &focus, die);
+            }
             ctx.print(x_lo, y_hi, Span::raw(format!("centre {:.2} cm up", die.centre.z)));
         });
     frame.render_widget(canvas, body);
+    if app.vectors && body.height >= 6 {
+        let legend = Rect {
+            y: body.bottom() - 2,
+            height: 2,
+            ..body
+        };
+        frame.render_widget(Paragraph::new(super::vectors::legend(app, body.width)), legend);
+    }
 }
 
 fn line3(

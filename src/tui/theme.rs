@@ -117,6 +117,11 @@ impl Theme {
         .map(|c| self.ink(c))
     }
 
+    /// Arrow colours of ω, L, the centre-of-mass velocity and the contact forces.
+    pub fn vector_colours(&self) -> [Color; 4] {
+        [Color::Cyan, Color::Magenta, Color::Blue, Color::Red].map(|c| self.ink(c))
+    }
+
     /// The stopping threshold: the terminal's own colour, drawn dotted to set it apart.
     pub fn threshold(&self) -> Color {
         Color::Reset

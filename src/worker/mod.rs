@@ -101,6 +101,12 @@ pub struct DieState {
     pub forces: [ContactForce; 8],
     /// cm, centre of mass.
     pub centre: Vector3<f64>,
+    /// cm/s, centre-of-mass velocity.
+    pub velocity: Vector3<f64>,
+    /// rad/s, ω (world frame).
+    pub angular_velocity: Vector3<f64>,
+    /// g·cm²/s, L about the centre of mass.
+    pub angular_momentum: Vector3<f64>,
     /// The face most nearly up now.
     pub face_up: u8,
     /// The face most nearly up at t = 0.
