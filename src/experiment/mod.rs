@@ -12,6 +12,7 @@ pub mod plot;
 pub mod random;
 pub mod record;
 pub mod stats;
+pub mod twin;
 
 pub use basin::{Axis, BasinMap, Cell, Layer, MapSpec, Method, run_map};
 pub use batch::{Batch, BatchSummary, Rolls, run_batch};

@@ -6,7 +6,7 @@ use super::render::{Areas, fmt_num, fmt_range, param_row_at, screen_layout};
 use super::theme::Theme;
 use crate::physics::{InitialCondition, Params};
 use crate::worker::param::{ALL, Param};
-use crate::worker::{BatchProgress, Command, EnergySample, OutcomeTable, Snapshot, Speed};
+use crate::worker::{BatchProgress, Command, EnergySample, OutcomeTable, SeparationSample, Snapshot, Speed};
 use ratatui::crossterm::event::{
     Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEventKind,
 };
@@ -66,6 +66,13 @@ pub struct App {
     pub log_scale: bool,
     /// Arrows for ω, L, v and the contact forces on the die (`v`).
     pub vectors: bool,
+    /// Whether a chaos twin rolls beside the die (`T`), and its ε.
+    pub twin: bool,
+    pub epsilon: f64,
+    /// ε being typed in (`E`).
+    pub epsilon_editor: Option<Editor>,
+    /// The twin's separation samples of the roll on screen.
+    pub twin_history: Vec<SeparationSample>,
     pub drawing: Drawing,
     pub camera: Camera,
     pub theme: Theme,
@@ -99,6 +106,10 @@ impl App {
             help_scroll: 0,
             log_scale: false,
             vectors: false,
+            twin: false,
+            epsilon: super::twin::DEFAULT_EPSILON,
+            epsilon_editor: None,
+            twin_history: Vec::new(),
             drawing: Drawing::default(),
             camera: Camera::default(),
             theme,
@@ -122,6 +133,10 @@ impl App {
     fn absorb(&mut self, mut s: Snapshot) {
         if s.history_reset {
             self.history.clear();
+            self.twin_history.clear();
+        }
+        if let Some(twin) = &mut s.twin {
+            self.twin_history.append(&mut twin.history);
         }
         self.history.append(&mut s.history);
         if let Some(t) = s.table.take() {
@@ -140,7 +155,7 @@ impl App {
         self.live = s;
     }
 
-    fn send(&mut self, out: &mut Vec<Command>, c: Command) {
+    pub(crate) fn send(&mut self, out: &mut Vec<Command>, c: Command) {
         self.commands_sent += 1;
         out.push(c);
     }
@@ -212,6 +227,10 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
         on_edit_key(app, key, out);
         return;
     }
+    if app.epsilon_editor.is_some() {
+        super::twin::on_editor_key(app, key, out);
+        return;
+    }
     if app.help {
         match key.code {
             KeyCode::Char('q') => app.quit(out),
@@ -220,6 +239,9 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
             KeyCode::Char('?') | KeyCode::Esc | KeyCode::Enter => app.help = false,
             _ => {}
         }
+        return;
+    }
+    if super::twin::on_key(app, key, out) {
         return;
     }
     let coarse = key
@@ -314,7 +336,7 @@ fn on_edit_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
 }
 
 fn on_mouse(app: &mut App, kind: MouseEventKind, column: u16, row: u16, out: &mut Vec<Command>) {
-    if app.help || app.editing.is_some() {
+    if app.help || app.editing.is_some() || app.epsilon_editor.is_some() {
         return;
     }
     let Some(areas) = app.areas() else { return };

@@ -23,6 +23,14 @@ const KEYS: &[(&str, &str)] = &[
         "v",
         "arrows: spin ω, angular momentum L, velocity v, contact forces F",
     ),
+    (
+        "T",
+        "chaos twin: a second die (the ghost) whose height, velocity and spin are × (1 + ε)",
+    ),
+    (
+        "< >  E",
+        "twin: ε ÷10 / ×10 (1e-15 … 0.1), or type it; both dice roll again",
+    ),
     ("m", "draw the die with Braille dots / plain ASCII"),
     ("a d  w s", "orbit / tilt the camera"),
     ("z x  0", "zoom in / out, reset the view"),
@@ -53,7 +61,9 @@ const MODEL: &[&str] = &[
     "A roll ends once the energy drops below 80% of what it takes to tip the die over an edge (the dotted \
      stop line): from then on the face up cannot change.",
     "Same start, same face: the model is deterministic (r). A die looks random because a tiny change in the \
-     start changes the face (R, b).",
+     start changes the face (R, b). The chaos twin (T) shows it: two dice a relative ε = 1e-9 apart drift \
+     apart, the gap growing by orders of magnitude at the impacts, until it is as big as the die; from a \
+     gentle drop they land the same way.",
     "The step is stable only while ω_rock·Δt < 2, where ω_rock = √(6k/M) is how fast a die lying flat rocks \
      on its face. The number beside k and Δt turns amber from 1 and red from 1.4: raise k or Δt and watch \
      the energy grow instead of fall.",

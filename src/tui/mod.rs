@@ -8,6 +8,7 @@ mod ledger;
 pub mod render;
 mod run;
 pub mod theme;
+mod twin;
 mod vectors;
 
 pub use app::{App, Msg, update};

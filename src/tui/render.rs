@@ -89,7 +89,11 @@ pub fn render(app: &App, frame: &mut Frame) {
     render_params(app, areas.params, frame);
     render_outcomes(app, areas.outcomes, frame);
     render_die(app, areas.die, frame);
-    render_energy(app, areas.energy, frame);
+    if app.live.twin.is_some() {
+        super::twin::render_separation(app, areas.energy, frame);
+    } else {
+        render_energy(app, areas.energy, frame);
+    }
     super::ledger::render_ledger(app, areas.ledger, frame);
     render_footer(app, areas.footer, frame);
     if app.help {
@@ -451,13 +455,20 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
     let die = &app.live.die;
     let half = app.live.params.die.half_size;
     let lowest = die.corners.iter().map(|c| c.z).fold(f64::INFINITY, f64::min);
-    let title = Line::from(vec![
+    let mut title = vec![
         Span::styled(" die ", t.heading()),
         Span::raw(format!(
             "· face up {} · lowest corner {:.2} cm ",
             die.face_up, lowest
         )),
-    ]);
+    ];
+    if let Some(twin) = &app.live.twin {
+        title.push(Span::styled(
+            format!("· twin face up {} ", twin.die.face_up),
+            Style::new().fg(t.ghost()),
+        ));
+    }
+    let title = Line::from(title);
     let block = Block::bordered().title(title);
     let body = block.inner(area);
     frame.render_widget(block, area);
@@ -482,6 +493,9 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
         .y_bounds([y_lo, y_hi])
         .paint(|ctx| {
             draw_ground(ctx, app, &focus, width, half);
+            if let Some(twin) = &app.live.twin {
+                super::twin::draw_ghost(ctx, app, &cam, &focus, &twin.die);
+            }
             ctx.layer();
             let foot = |p: &Vector3<f64>| Vector3::new(p.x, p.y, 0.0);
             for (a, b) in EDGES {
@@ -548,7 +562,7 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
     }
 }
 
-fn line3(
+pub(crate) fn line3(
     ctx: &mut Context,
     cam: &super::camera::Camera,
     focus: &Vector3<f64>,
@@ -760,7 +774,7 @@ fn nice_ceiling(v: f64) -> f64 {
 
 pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
-    let keys: &[(&str, &str)] = if app.editing.is_some() {
+    let keys: &[(&str, &str)] = if app.editing.is_some() || app.epsilon_editor.is_some() {
         &[
             ("0-9 . - e", "type"),
             ("Enter", "apply"),

@@ -122,6 +122,16 @@ impl Theme {
         [Color::Cyan, Color::Magenta, Color::Blue, Color::Red].map(|c| self.ink(c))
     }
 
+    /// The chaos twin's die, drawn as a ghost behind the first.
+    pub fn ghost(&self) -> Color {
+        self.ink(Color::DarkGray)
+    }
+
+    /// Line colours of the twin's separation: centre distance, orientation angle.
+    pub fn separation_colours(&self) -> [Color; 2] {
+        [Color::Blue, Color::Magenta].map(|c| self.ink(c))
+    }
+
     /// The stopping threshold: the terminal's own colour, drawn dotted to set it apart.
     pub fn threshold(&self) -> Color {
         Color::Reset

@@ -4,6 +4,7 @@
 
 use super::param::Param;
 use super::speed::Speed;
+use super::twin::Twin;
 use super::{BatchProgress, Command, DieState, EnergySample, OutcomeTable, Phase, RollKind, Snapshot};
 use crate::experiment::{RandomRanges, RollRecord, Rolls, run_batch};
 use crate::physics::{Energy, InitialCondition, ParamError, Params, Simulation, face_most_nearly_up};
@@ -68,6 +69,8 @@ pub struct Engine {
     commands_handled: u64,
     /// Changes whenever the mapping from wall time to simulated time must restart.
     pacing_epoch: u64,
+    /// The chaos twin, if one rolls beside the die.
+    twin: Option<Twin>,
 }
 
 impl Engine {
@@ -100,6 +103,7 @@ impl Engine {
             pending: Pending::default(),
             commands_handled: 0,
             pacing_epoch: 0,
+            twin: None,
         };
         engine.restart(RollKind::Preset);
         Ok(engine)
@@ -119,6 +123,18 @@ impl Engine {
 
     pub fn simulation(&self) -> &Simulation {
         &self.sim
+    }
+
+    /// s, simulated: how far the roll has got (the later of the die and its twin, since
+    /// the one still rolling keeps the clock going).
+    pub fn time_s(&self) -> f64 {
+        let die = self.sim.state().time_s;
+        self.twin.as_ref().map_or(die, |t| die.max(t.sim.state().time_s))
+    }
+
+    /// Whether the roll on screen has ended: the die's, and its twin's if there is one.
+    pub fn roll_over(&self) -> bool {
+        self.sim.outcome().is_some() && self.twin.as_ref().is_none_or(Twin::ended)
     }
 
     pub fn is_playing(&self) -> bool {
@@ -158,7 +174,7 @@ impl Engine {
             Command::Step(n) => {
                 self.playing = false;
                 self.pacing_epoch += 1;
-                if self.sim.outcome().is_some() {
+                if self.roll_over() {
                     self.pending.notice = Some("the roll has ended: r replays it".to_string());
                 } else {
                     self.advance_steps(n);
@@ -213,13 +229,23 @@ impl Engine {
                 self.table = OutcomeTable::default();
                 self.pending.table_changed = true;
             }
+            Command::SetTwin(None) => self.twin = None,
+            Command::SetTwin(Some(epsilon)) => match Twin::new(&self.params, &self.initial, epsilon) {
+                Ok(twin) => {
+                    self.twin = Some(twin);
+                    // Both dice start again from t = 0, side by side.
+                    self.restart(self.roll);
+                    self.playing = true;
+                }
+                Err(e) => self.pending.notice = Some(e.to_string()),
+            },
             Command::Quit => return false,
         }
         true
     }
 
     fn set_playing(&mut self, play: bool) {
-        if play && self.sim.outcome().is_some() {
+        if play && self.roll_over() {
             // Resuming a finished roll means watching it again.
             self.restart(self.roll);
         }
@@ -238,6 +264,10 @@ impl Engine {
         if param.acts_mid_roll() && self.sim.outcome().is_none() {
             if let Err(e) = self.sim.set_ground(params.ground) {
                 self.pending.notice = Some(e.to_string());
+            }
+            // The twin feels the same table, so only ε tells the two apart.
+            if let Some(twin) = &mut self.twin {
+                let _ = twin.sim.set_ground(params.ground);
             }
         } else {
             // A new initial condition is a roll of its own; other values re-run the same one.
@@ -262,6 +292,13 @@ impl Engine {
         self.pending.history.clear();
         self.pending.history_reset = true;
         self.pending.history.push(self.sample());
+        if let Some(epsilon) = self.twin.as_ref().map(|t| t.epsilon) {
+            // ε was checked when the twin was made.
+            self.twin = Twin::new(&self.params, &self.initial, epsilon).ok();
+            if let Some(twin) = &mut self.twin {
+                twin.sample(&self.sim);
+            }
+        }
         self.pacing_epoch += 1;
     }
 
@@ -274,8 +311,29 @@ impl Engine {
         }
     }
 
-    /// One step with its bookkeeping; returns whether the roll can go on.
+    /// One step with its bookkeeping, the die and its twin in lock-step; returns whether
+    /// the roll can go on (a die whose roll has ended waits for the other).
     fn step(&mut self) -> bool {
+        let die_rolling = self.sim.outcome().is_none();
+        if let Some(twin) = &mut self.twin {
+            twin.step();
+        }
+        if die_rolling {
+            self.step_die();
+        }
+        let done = self.roll_over();
+        if let Some(twin) = &mut self.twin {
+            twin.stepped(&self.sim, self.stride, done);
+        }
+        if done {
+            self.playing = false;
+            return false;
+        }
+        true
+    }
+
+    /// One step of the die: its energy sample and, at its end, the outcome table.
+    fn step_die(&mut self) {
         let ended = self.sim.advance();
         self.touched |= self.sim.in_contact();
         let s = self.sample();
@@ -295,29 +353,25 @@ impl Engine {
         } else {
             self.peak = Some(peak);
         }
-        if let Some(outcome) = ended {
-            self.playing = false;
-            if let RollKind::Random(id) = self.roll
-                && !self.counted
-            {
-                self.counted = true;
-                self.table.add(RollRecord {
-                    id,
-                    initial: self.initial,
-                    outcome,
-                    start_face: self.start_face,
-                });
-                self.pending.table_changed = true;
-            }
-            return false;
+        if let Some(outcome) = ended
+            && let RollKind::Random(id) = self.roll
+            && !self.counted
+        {
+            self.counted = true;
+            self.table.add(RollRecord {
+                id,
+                initial: self.initial,
+                outcome,
+                start_face: self.start_face,
+            });
+            self.pending.table_changed = true;
         }
-        true
     }
 
     /// Up to `n` steps; stops at the end of the roll. Returns the steps taken.
     pub fn advance_steps(&mut self, n: u64) -> u64 {
         let mut taken = 0;
-        while taken < n && self.sim.outcome().is_none() {
+        while taken < n && !self.roll_over() {
             taken += 1;
             if !self.step() {
                 break;
@@ -342,7 +396,7 @@ impl Engine {
     /// Plays the roll to its end at once (what "instant" shows).
     pub fn run_to_end(&mut self) {
         self.playing = true;
-        while self.sim.outcome().is_none() && self.step() {}
+        while !self.roll_over() && self.step() {}
         self.playing = false;
     }
 
@@ -436,8 +490,11 @@ impl Engine {
             energy: self.sim.energy(),
             ledger: self.sim.energy_ledger(),
             stop_threshold: self.sim.stop_threshold(),
-            time_s: s.time_s,
-            step: s.step,
+            time_s: self.time_s(),
+            step: self
+                .twin
+                .as_ref()
+                .map_or(s.step, |t| s.step.max(t.sim.state().step)),
             phase: self.phase(),
             history: pending.history,
             history_reset: pending.history_reset,
@@ -447,6 +504,10 @@ impl Engine {
             }),
             table: pending.table_changed.then(|| self.table.clone()),
             notice: pending.notice,
+            twin: match &mut self.twin {
+                Some(t) => Some(t.snapshot(&self.sim)),
+                None => None,
+            },
         }
     }
 }

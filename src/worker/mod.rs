@@ -7,11 +7,13 @@
 mod engine;
 pub mod param;
 mod speed;
+mod twin;
 
 pub use engine::{BatchRequest, Engine};
 pub use param::Param;
 pub use speed::Speed;
 
+use crate::experiment::twin::Separation;
 use crate::experiment::{FaceTally, RollRecord};
 use crate::experiment::{Rolls, run_batch};
 use crate::physics::{ContactForce, Energy, EnergyLedger, InitialCondition, Outcome, Params, Status};
@@ -41,6 +43,9 @@ pub enum Command {
     BatchStart(u64),
     BatchCancel,
     ClearTable,
+    /// Roll a chaos twin beside the die, its start perturbed by this relative ε
+    /// ([`crate::experiment::twin::perturbed`]), from t = 0; `None` removes it.
+    SetTwin(Option<f64>),
     Quit,
 }
 
@@ -90,6 +95,26 @@ pub struct EnergySample {
     pub time_s: f64,
     pub energy: Energy,
     pub total: f64,
+}
+
+/// How far the twin has drifted from the die at one instant (each term's newest value).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SeparationSample {
+    /// s, simulated.
+    pub time_s: f64,
+    pub separation: Separation,
+}
+
+/// The chaos twin as drawn: its die, how its roll went, and its drift from the first die.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TwinSnapshot {
+    pub epsilon: f64,
+    pub die: DieState,
+    pub phase: Phase,
+    pub separation: Separation,
+    /// Samples since the previous snapshot (after clearing, if the snapshot's
+    /// `history_reset`).
+    pub history: Vec<SeparationSample>,
 }
 
 /// The die as drawn.
@@ -181,6 +206,8 @@ pub struct Snapshot {
     pub table: Option<OutcomeTable>,
     /// A one-line message for the user (a refused value, a finished batch).
     pub notice: Option<String>,
+    /// The chaos twin, stepped in lock-step with the die.
+    pub twin: Option<TwinSnapshot>,
 }
 
 /// s of wall time between snapshots while something moves.
@@ -284,7 +311,7 @@ fn run<T: From<Snapshot>>(mut engine: Engine, rx: Receiver<Command>, out: Sender
                 pacer = Pacer {
                     epoch: engine.pacing_epoch(),
                     wall: now,
-                    sim_s: engine.simulation().state().time_s,
+                    sim_s: engine.time_s(),
                 };
             }
             match engine.speed().factor() {
@@ -299,12 +326,12 @@ fn run<T: From<Snapshot>>(mut engine: Engine, rx: Receiver<Command>, out: Sender
                         .saturating_mul(2)
                         .max(1);
                     engine.advance_until(target, budget.min(INSTANT_STEPS_PER_TICK));
-                    let behind = target - engine.simulation().state().time_s;
+                    let behind = target - engine.time_s();
                     if engine.is_playing() && behind > TICK.as_secs_f64() * factor {
                         pacer = Pacer {
                             epoch: engine.pacing_epoch(),
                             wall: now,
-                            sim_s: engine.simulation().state().time_s,
+                            sim_s: engine.time_s(),
                         };
                     }
                 }
