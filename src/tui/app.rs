@@ -2,9 +2,11 @@
 //! returns the commands for the worker; nothing here draws, sleeps or reads a clock.
 
 use super::camera::Camera;
+use super::dialogs::Dialog;
 use super::render::{Areas, fmt_num, fmt_range, param_row_at, screen_layout};
 use super::theme::Theme;
 use crate::physics::{InitialCondition, Params};
+use crate::preset::{Preset, Store};
 use crate::worker::param::{ALL, Param};
 use crate::worker::{BatchProgress, Command, EnergySample, OutcomeTable, SeparationSample, Snapshot, Speed};
 use ratatui::crossterm::event::{
@@ -73,6 +75,12 @@ pub struct App {
     pub epsilon_editor: Option<Editor>,
     /// The twin's separation samples of the roll on screen.
     pub twin_history: Vec<SeparationSample>,
+    /// The preset the setup was loaded from (or last saved as).
+    pub preset: Preset,
+    /// Where presets are listed from and saved to.
+    pub store: Store,
+    /// The preset picker or the save dialog, when open.
+    pub dialog: Option<Dialog>,
     pub drawing: Drawing,
     pub camera: Camera,
     pub theme: Theme,
@@ -90,6 +98,7 @@ impl App {
     /// The explorer showing `first`, typically the engine's snapshot before the worker starts.
     pub fn new(mut first: Snapshot, theme: Theme) -> App {
         let history = std::mem::take(&mut first.history);
+        let preset = first.preset.take().map_or_else(Preset::default, |p| *p);
         App {
             params: first.params,
             initial: first.initial,
@@ -110,6 +119,9 @@ impl App {
             epsilon: super::twin::DEFAULT_EPSILON,
             epsilon_editor: None,
             twin_history: Vec::new(),
+            preset,
+            store: Store::new(None),
+            dialog: None,
             drawing: Drawing::default(),
             camera: Camera::default(),
             theme,
@@ -144,6 +156,9 @@ impl App {
         }
         if let Some(n) = s.notice.take() {
             self.notice = Some(n);
+        }
+        if let Some(p) = s.preset.take() {
+            self.preset = *p;
         }
         // Until the worker has seen every command, the user's own values are newer.
         if s.commands_handled >= self.commands_sent {
@@ -227,6 +242,10 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
         on_edit_key(app, key, out);
         return;
     }
+    if app.dialog.is_some() {
+        super::dialogs::on_key(app, key, out);
+        return;
+    }
     if app.epsilon_editor.is_some() {
         super::twin::on_editor_key(app, key, out);
         return;
@@ -289,8 +308,10 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
         }
         KeyCode::Char('a') => app.camera.orbit(-15.0, 0.0),
         KeyCode::Char('d') => app.camera.orbit(15.0, 0.0),
-        KeyCode::Char('w') => app.camera.orbit(0.0, 10.0),
-        KeyCode::Char('s') => app.camera.orbit(0.0, -10.0),
+        KeyCode::Char('W') => app.camera.orbit(0.0, 10.0),
+        KeyCode::Char('S') => app.camera.orbit(0.0, -10.0),
+        KeyCode::Char('o') => super::dialogs::open_picker(app),
+        KeyCode::Char('s') => super::dialogs::open_save(app),
         KeyCode::Char('z') => app.camera.zoom_by(1),
         KeyCode::Char('x') => app.camera.zoom_by(-1),
         KeyCode::Char('0') => app.camera = Camera::default(),
@@ -336,7 +357,7 @@ fn on_edit_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
 }
 
 fn on_mouse(app: &mut App, kind: MouseEventKind, column: u16, row: u16, out: &mut Vec<Command>) {
-    if app.help || app.editing.is_some() || app.epsilon_editor.is_some() {
+    if app.help || app.editing.is_some() || app.epsilon_editor.is_some() || app.dialog.is_some() {
         return;
     }
     let Some(areas) = app.areas() else { return };

@@ -32,12 +32,17 @@ const KEYS: &[(&str, &str)] = &[
         "twin: ε ÷10 / ×10 (1e-15 … 0.1), or type it; both dice roll again",
     ),
     ("m", "draw the die with Braille dots / plain ASCII"),
-    ("a d  w s", "orbit / tilt the camera"),
+    ("a d  W S", "orbit / tilt the camera"),
     ("z x  0", "zoom in / out, reset the view"),
     (
         "mouse",
         "click a value to select it, scroll to change it; drag the die to orbit, scroll on it to zoom",
     ),
+    (
+        "o",
+        "open a preset (shipped ones and yours, ★); the header marks a changed setup *",
+    ),
+    ("s", "save the setup as a preset (asks before replacing one)"),
     ("?", "this help"),
     ("q Esc Ctrl-C", "quit"),
 ];

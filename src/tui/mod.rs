@@ -3,6 +3,7 @@
 
 pub mod app;
 pub mod camera;
+mod dialogs;
 mod help;
 mod ledger;
 pub mod render;

@@ -99,6 +99,7 @@ pub fn render(app: &App, frame: &mut Frame) {
     if app.help {
         render_help(app, area, frame);
     }
+    super::dialogs::render(app, area, frame);
 }
 
 pub fn render_too_small(area: Rect, frame: &mut Frame) {
@@ -178,10 +179,14 @@ pub(crate) fn render_header(app: &App, area: Rect, frame: &mut Frame) {
     let state = if live.playing { "▶ playing" } else { "⏸ paused" };
     let fps = app.fps.map_or("– fps".to_string(), |f| format!("{f:.0} fps"));
     let phase = Span::styled(live.phase.label(), phase_style(app, &live.phase));
+    // The setup differs from the preset it came from: saving (s) would keep it.
+    let changed = super::dialogs::modified(app);
+    let modified = Span::styled(if changed { "*" } else { "" }, t.caution());
     let full = Line::from(vec![
         Span::styled(" dicesim ", t.selected().add_modifier(Modifier::BOLD)),
         Span::raw(" "),
-        Span::styled(live.preset_name.clone(), t.heading()),
+        Span::styled(app.preset.name.clone(), t.heading()),
+        Span::styled(if changed { " (changed)" } else { "" }, t.caution()),
         Span::raw(format!(" · {roll}")),
         sep.clone(),
         Span::raw(format!("t = {:.3} s", live.time_s)),
@@ -202,7 +207,9 @@ pub(crate) fn render_header(app: &App, area: Rect, frame: &mut Frame) {
     } else {
         let sep = Span::raw("│");
         Line::from(vec![
-            Span::styled(format!("{} ", live.preset_name), t.heading()),
+            Span::styled(app.preset.name.clone(), t.heading()),
+            modified,
+            Span::raw(" "),
             sep.clone(),
             Span::raw(format!("t {:.3} s", live.time_s)),
             sep.clone(),

@@ -625,7 +625,7 @@ mod keys {
     fn view_keys_change_only_the_view() {
         let mut a = app();
         let camera = a.camera;
-        for c in ['a', 'w', 'z', 'e', 'm'] {
+        for c in ['a', 'W', 'z', 'e', 'm'] {
             assert!(press(&mut a, KeyCode::Char(c)).is_empty());
         }
         assert!(a.camera.yaw_deg != camera.yaw_deg && a.camera.pitch_deg > camera.pitch_deg);

@@ -39,10 +39,13 @@ struct Pending {
     history_reset: bool,
     table_changed: bool,
     notice: Option<String>,
+    /// A preset was loaded (or the engine just started): the UI gets it whole.
+    preset: Option<Box<Preset>>,
 }
 
 pub struct Engine {
-    preset_name: String,
+    /// The preset as loaded (the UI compares the setup with it and saves from it).
+    preset: Preset,
     /// The preset's initial condition: random draws take their orientation from it.
     base_initial: InitialCondition,
     random: RandomRanges,
@@ -80,7 +83,7 @@ impl Engine {
         let params = preset.params();
         let sim = Simulation::new(&params, &preset.initial)?;
         let mut engine = Engine {
-            preset_name: preset.name.clone(),
+            preset: preset.clone(),
             base_initial: preset.initial,
             random: preset.random,
             params,
@@ -106,11 +109,12 @@ impl Engine {
             twin: None,
         };
         engine.restart(RollKind::Preset);
+        engine.pending.preset = Some(Box::new(preset.clone()));
         Ok(engine)
     }
 
     pub fn preset_name(&self) -> &str {
-        &self.preset_name
+        &self.preset.name
     }
 
     pub fn params(&self) -> &Params {
@@ -239,9 +243,38 @@ impl Engine {
                 }
                 Err(e) => self.pending.notice = Some(e.to_string()),
             },
+            Command::LoadPreset(preset) => self.load_preset(*preset),
             Command::Quit => return false,
         }
         true
+    }
+
+    /// Switches to `preset`: its setup, its roll from t = 0 (paused), a fresh table (the
+    /// counts belonged to another setup); a running batch is cancelled.
+    fn load_preset(&mut self, preset: Preset) {
+        if let Err(e) = preset.validate() {
+            self.pending.notice = Some(format!("{}: {e}", preset.name));
+            return;
+        }
+        self.batch_request = None;
+        self.batch = None;
+        self.base_initial = preset.initial;
+        self.random = preset.random;
+        self.params = preset.params();
+        self.initial = preset.initial;
+        self.next_random = 0;
+        self.table = OutcomeTable::default();
+        self.pending.table_changed = true;
+        self.playing = false;
+        self.restart(RollKind::Preset);
+        self.pending.notice = Some(format!("loaded {}", preset.name));
+        self.pending.preset = Some(Box::new(preset.clone()));
+        self.preset = preset;
+    }
+
+    /// The preset as loaded.
+    pub fn preset(&self) -> &Preset {
+        &self.preset
     }
 
     fn set_playing(&mut self, play: bool) {
@@ -480,7 +513,7 @@ impl Engine {
         let s = self.sim.state();
         Snapshot {
             commands_handled: self.commands_handled,
-            preset_name: self.preset_name.clone(),
+            preset_name: self.preset.name.clone(),
             params: self.params,
             initial: self.initial,
             roll: self.roll,
@@ -504,6 +537,7 @@ impl Engine {
             }),
             table: pending.table_changed.then(|| self.table.clone()),
             notice: pending.notice,
+            preset: pending.preset,
             twin: match &mut self.twin {
                 Some(t) => Some(t.snapshot(&self.sim)),
                 None => None,

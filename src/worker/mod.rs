@@ -17,6 +17,7 @@ use crate::experiment::twin::Separation;
 use crate::experiment::{FaceTally, RollRecord};
 use crate::experiment::{Rolls, run_batch};
 use crate::physics::{ContactForce, Energy, EnergyLedger, InitialCondition, Outcome, Params, Status};
+use crate::preset::Preset;
 use nalgebra::Vector3;
 use std::collections::VecDeque;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -26,7 +27,7 @@ use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 /// What the UI asks of the worker. Commands are applied in the order sent, none dropped.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Command {
     TogglePlay,
     SetPlaying(bool),
@@ -46,6 +47,8 @@ pub enum Command {
     /// Roll a chaos twin beside the die, its start perturbed by this relative ε
     /// ([`crate::experiment::twin::perturbed`]), from t = 0; `None` removes it.
     SetTwin(Option<f64>),
+    /// Another preset: its setup and its roll, a fresh outcome table.
+    LoadPreset(Box<Preset>),
     Quit,
 }
 
@@ -208,6 +211,8 @@ pub struct Snapshot {
     pub notice: Option<String>,
     /// The chaos twin, stepped in lock-step with the die.
     pub twin: Option<TwinSnapshot>,
+    /// The preset loaded, in the first snapshot and whenever another is loaded.
+    pub preset: Option<Box<Preset>>,
 }
 
 /// s of wall time between snapshots while something moves.
