@@ -298,7 +298,8 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
             app.help = true;
             app.help_scroll = 0;
         }
-        KeyCode::Char('e') => app.log_scale = !app.log_scale,
+        KeyCode::Char('y') => app.log_scale = !app.log_scale,
+        KeyCode::Char('e') => app.send(out, Command::Export(".".into())),
         KeyCode::Char('v') => app.vectors = !app.vectors,
         KeyCode::Char('m') => {
             app.drawing = match app.drawing {

@@ -493,3 +493,67 @@ mod presets {
         assert_eq!(s.app.notice.as_deref(), Some("loaded gentle-drop"));
     }
 }
+
+mod export {
+    use super::*;
+    use crate::experiment::trace::{header, row};
+    use crate::physics::Simulation;
+    use crate::tui::app::{Msg, update};
+    use crate::worker::Command;
+    use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
+
+    fn press(app: &mut App, code: KeyCode) -> Vec<Command> {
+        update(
+            app,
+            Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))),
+        )
+    }
+
+    #[test]
+    fn e_exports_into_the_current_folder_and_y_switches_the_log_scale() {
+        let mut a = start().app;
+        assert_eq!(press(&mut a, KeyCode::Char('e')), [Command::Export(".".into())]);
+        assert!(!a.log_scale);
+        assert!(press(&mut a, KeyCode::Char('y')).is_empty());
+        assert!(a.log_scale);
+    }
+
+    #[test]
+    fn export_writes_the_whole_roll_as_csv_and_its_energy_plot_as_png() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let mut s = mid_impact();
+        s.command(Command::Export(dir.path().to_path_buf()));
+        let csv = dir.path().join("dicesim-paper-preset-roll.csv");
+        let png = dir.path().join("dicesim-paper-preset-roll.png");
+        let notice = s.app.notice.clone().expect("the status line says where");
+        assert!(notice.contains(&csv.display().to_string()), "{notice}");
+        // The roll again from t = 0 to its end, every step, in `dicesim trace`'s format.
+        let text = std::fs::read_to_string(&csv).expect("csv written");
+        let lines: Vec<&str> = text.lines().collect();
+        let mut sim = Simulation::new(&s.app.params, &s.app.initial).expect("valid");
+        let first = row(&sim);
+        let outcome = sim.run_to_end();
+        assert_eq!(lines[0], header());
+        assert_eq!(lines[1], first);
+        assert_eq!(lines.len() as u64, outcome.steps + 2);
+        assert_eq!(*lines.last().expect("rows"), row(&sim));
+        let image = std::fs::read(&png).expect("png written");
+        assert!(image.starts_with(b"\x89PNG\r\n\x1a\n") && image.len() > 10_000);
+        // A second export replaces nothing.
+        s.command(Command::Export(dir.path().to_path_buf()));
+        assert!(dir.path().join("dicesim-paper-preset-roll-2.csv").is_file());
+        assert!(dir.path().join("dicesim-paper-preset-roll-2.png").is_file());
+        assert_eq!(std::fs::read_to_string(&csv).expect("kept"), text);
+    }
+
+    #[test]
+    fn export_into_a_missing_folder_says_why() {
+        let mut s = start();
+        s.command(Command::Export("/nonexistent/dicesim-export".into()));
+        let notice = s.app.notice.clone().expect("a notice");
+        assert!(
+            notice.starts_with("cannot export the roll: /nonexistent/dicesim-export/"),
+            "{notice}"
+        );
+    }
+}

@@ -18,7 +18,11 @@ const KEYS: &[(&str, &str)] = &[
     ("↑↓ j k", "select a value (g G: first, last)"),
     ("←→ h l", "change it; Shift, H or L for big steps"),
     ("Enter", "type an exact value (Esc cancels)"),
-    ("e", "energy plot: linear / log scale"),
+    ("y", "energy plot: linear / log scale"),
+    (
+        "e",
+        "export the roll into the current folder: its trace (CSV) and energy plot (PNG)",
+    ),
     (
         "v",
         "arrows: spin ω, angular momentum L, velocity v, contact forces F",
@@ -58,7 +62,7 @@ const MODEL: &[&str] = &[
     "Energy: translational (moving), rotational (turning), gravitational (height) and elastic (the squashed \
      spring). At an impact a corner sinks a fraction of a millimetre into a very stiff spring: for a \
      millisecond the elastic term spikes above all the others, then is handed back as motion, less what \
-     damping and friction took. The log scale (e) shows the spikes and the small terms together.",
+     damping and friction took. The log scale (y) shows the spikes and the small terms together.",
     "The energy panel: a bar of the energy now, stacked by form and scaled to the energy at the start \
      (◀ marks the total), and the ledger of where the rest went: work done by the ground's damping and by \
      friction, measured step by step, and the remainder, the integrator's own error (semi-implicit Euler \

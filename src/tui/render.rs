@@ -675,7 +675,7 @@ pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
     // The legend rides in the title, so it never hides an impact spike.
     let mut title = vec![
         Span::styled(" energy ", t.heading()),
-        Span::raw(format!("erg · {scale} (e) ")),
+        Span::raw(format!("erg · {scale} (y) ")),
     ];
     for (name, colour) in LEGEND.iter().zip(colours) {
         title.push(Span::styled(format!("━{name} "), Style::new().fg(colour)));
@@ -804,12 +804,16 @@ pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
                     "batch"
                 },
             ),
-            ("c", "clear"),
             ("[ ]", "speed"),
-            ("↑↓", "select"),
-            ("←→", "change"),
-            ("Enter", "type"),
-            ("e", "log"),
+            ("↑↓←→", "values"),
+            ("v", "arrows"),
+            if app.twin {
+                ("T < > E", "twin, ε")
+            } else {
+                ("T", "twin")
+            },
+            ("o s", "presets"),
+            ("e", "export"),
             ("?", "help"),
             ("q", "quit"),
         ]

@@ -6,6 +6,7 @@ use super::param::Param;
 use super::speed::Speed;
 use super::twin::Twin;
 use super::{BatchProgress, Command, DieState, EnergySample, OutcomeTable, Phase, RollKind, Snapshot};
+use crate::experiment::trace::{export_roll, free_stem};
 use crate::experiment::{RandomRanges, RollRecord, Rolls, run_batch};
 use crate::physics::{Energy, InitialCondition, ParamError, Params, Simulation, face_most_nearly_up};
 use crate::preset::Preset;
@@ -244,6 +245,7 @@ impl Engine {
                 Err(e) => self.pending.notice = Some(e.to_string()),
             },
             Command::LoadPreset(preset) => self.load_preset(*preset),
+            Command::Export(dir) => self.export(&dir),
             Command::Quit => return false,
         }
         true
@@ -270,6 +272,28 @@ impl Engine {
         self.pending.notice = Some(format!("loaded {}", preset.name));
         self.pending.preset = Some(Box::new(preset.clone()));
         self.preset = preset;
+    }
+
+    /// Writes the roll on screen into `dir` (see [`Command::Export`]); the notice says where.
+    fn export(&mut self, dir: &std::path::Path) {
+        let roll = match self.roll {
+            RollKind::Preset => "preset-roll".to_string(),
+            RollKind::Random(n) => format!("random-roll-{n}"),
+            RollKind::Edited => "edited-roll".to_string(),
+        };
+        let dir = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
+        let stem = free_stem(&dir, &format!("dicesim-{}-{roll}", self.preset.name));
+        let title = format!(
+            "{} · {} — energy against time",
+            self.preset.name,
+            roll.replace('-', " ")
+        );
+        self.pending.notice = Some(
+            match export_roll(&self.params, &self.initial, &title, &dir, &stem) {
+                Ok(done) => format!("exported {} and .png", done.trace.display()),
+                Err(e) => e.to_string(),
+            },
+        );
     }
 
     /// The preset as loaded.

@@ -49,6 +49,9 @@ pub enum Command {
     SetTwin(Option<f64>),
     /// Another preset: its setup and its roll, a fresh outcome table.
     LoadPreset(Box<Preset>),
+    /// Write the roll on screen, rolled again from t = 0, into this folder: its trace as
+    /// CSV and its energy plot as PNG.
+    Export(std::path::PathBuf),
     Quit,
 }
 
