@@ -301,6 +301,18 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
         KeyCode::Char('y') => app.log_scale = !app.log_scale,
         KeyCode::Char('e') => app.send(out, Command::Export(".".into())),
         KeyCode::Char('v') => app.vectors = !app.vectors,
+        KeyCode::Char('t') => {
+            app.theme = app.theme.next();
+            app.notice = Some(format!(
+                "theme: {}{} (t cycles dark, light, projector)",
+                app.theme.palette.name(),
+                if app.theme.colour {
+                    ""
+                } else {
+                    ", but NO_COLOR is set"
+                }
+            ));
+        }
         KeyCode::Char('m') => {
             app.drawing = match app.drawing {
                 Drawing::Braille => Drawing::Ascii,

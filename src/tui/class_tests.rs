@@ -557,3 +557,182 @@ mod export {
         );
     }
 }
+
+mod themes {
+    use super::*;
+    use crate::tui::Theme;
+    use crate::tui::app::{Msg, update};
+    use crate::tui::tests::mid_impact_with;
+    use crate::tui::theme::Palette;
+    use ratatui::buffer::Buffer;
+    use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
+    use ratatui::style::Modifier;
+
+    fn press(app: &mut App, code: KeyCode) {
+        let sent = update(
+            app,
+            Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))),
+        );
+        assert!(sent.is_empty(), "a theme asks nothing of the worker");
+    }
+
+    fn buffer(app: &App) -> Buffer {
+        let mut t = Terminal::new(TestBackend::new(120, 36)).expect("test backend");
+        t.draw(|f| crate::tui::render(app, f)).expect("draw");
+        t.backend().buffer().clone()
+    }
+
+    /// Cells of `area` showing `symbol`.
+    fn cells_with(b: &Buffer, area: Rect, symbol: &str) -> Vec<(u16, u16)> {
+        (area.top()..area.bottom())
+            .flat_map(|y| (area.left()..area.right()).map(move |x| (x, y)))
+            .filter(|&p| b[p].symbol() == symbol)
+            .collect()
+    }
+
+    #[test]
+    fn t_cycles_dark_light_projector() {
+        let mut a = start().app;
+        assert_eq!(a.theme.palette, Palette::Dark);
+        press(&mut a, KeyCode::Char('t'));
+        assert_eq!(a.theme.palette, Palette::Light);
+        assert_eq!(
+            a.notice.as_deref(),
+            Some("theme: light (t cycles dark, light, projector)")
+        );
+        press(&mut a, KeyCode::Char('t'));
+        assert_eq!(a.theme.palette, Palette::Projector);
+        press(&mut a, KeyCode::Char('t'));
+        assert_eq!(a.theme.palette, Palette::Dark);
+    }
+
+    #[test]
+    fn dark_keeps_the_terminal_background() {
+        let b = buffer(&mid_impact().app);
+        let areas = full();
+        let (x, y) = (areas.params.x + 3, areas.params.y + 2);
+        assert_eq!((b[(x, y)].fg, b[(x, y)].bg), (Color::Reset, Color::Reset));
+    }
+
+    #[test]
+    fn light_paints_white_with_dark_inks() {
+        let mut s = mid_impact_with(Theme::default().next());
+        s.app.vectors = true;
+        let b = buffer(&s.app);
+        let areas = full();
+        // Plain text: black on white, not bold.
+        let (x, y) = (areas.params.x + 3, areas.params.y + 2);
+        assert_eq!((b[(x, y)].fg, b[(x, y)].bg), (Color::Black, Color::White));
+        assert!(!b[(x, y)].modifier.contains(Modifier::BOLD));
+        // Every cell has a painted background (warnings keep their own).
+        for y in 0..36 {
+            for x in 0..120 {
+                assert_ne!(b[(x, y)].bg, Color::Reset, "cell {x},{y}");
+            }
+        }
+        // A touching corner in the light red (drawn without the arrows' legend over it);
+        // at the impact the die is low, so the bar's bottom is rotational, light magenta.
+        s.app.vectors = false;
+        let plain = buffer(&s.app);
+        let dots = cells_with(&plain, areas.die, "●");
+        assert!(!dots.is_empty());
+        for p in dots {
+            assert_eq!(plain[p].fg, Color::Rgb(200, 0, 0));
+        }
+        let bar = (areas.ledger.x + 1, areas.ledger.bottom() - 2);
+        assert_eq!(b[bar].symbol(), "█");
+        assert_eq!(b[bar].fg, Color::Rgb(160, 0, 160));
+        // ω's arrow in the darkened cyan.
+        let omega = cells_with(&b, areas.die, "ω");
+        assert!(omega.iter().any(|&p| b[p].fg == Color::Rgb(0, 120, 140)));
+    }
+
+    #[test]
+    fn projector_is_bold_black_on_white_with_strong_inks() {
+        let s = mid_impact_with(Theme::default().next().next());
+        assert_eq!(s.app.theme.palette, Palette::Projector);
+        let b = buffer(&s.app);
+        for y in 0..36 {
+            for x in 0..120 {
+                assert!(b[(x, y)].modifier.contains(Modifier::BOLD), "cell {x},{y}");
+            }
+        }
+        let areas = full();
+        let (x, y) = (areas.params.x + 3, areas.params.y + 2);
+        assert_eq!((b[(x, y)].fg, b[(x, y)].bg), (Color::Black, Color::White));
+        let dots = cells_with(&b, areas.die, "●");
+        assert!(!dots.is_empty());
+        for p in dots {
+            assert_eq!(b[p].fg, Color::Rgb(230, 0, 0));
+        }
+    }
+
+    #[test]
+    fn no_color_stays_colourless_in_every_theme() {
+        let mut s = mid_impact_with(Theme::monochrome());
+        s.app.vectors = true;
+        for _ in 0..3 {
+            press(&mut s.app, KeyCode::Char('t'));
+            assert!(s.app.notice.as_deref().is_some_and(|n| n.contains("NO_COLOR")));
+            let b = buffer(&s.app);
+            for y in 0..36 {
+                for x in 0..120 {
+                    assert_eq!(
+                        (b[(x, y)].fg, b[(x, y)].bg),
+                        (Color::Reset, Color::Reset),
+                        "cell {x},{y}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// The classroom views draw at any terminal size without panicking.
+mod sizes {
+    use super::*;
+    use crate::tui::Theme;
+    use crate::tui::app::{Msg, update};
+    use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
+
+    fn with_keys(mut app: App, keys: &[KeyCode]) -> App {
+        for &k in keys {
+            update(
+                &mut app,
+                Msg::Input(Event::Key(KeyEvent::new(k, KeyModifiers::NONE))),
+            );
+        }
+        app
+    }
+
+    #[test]
+    fn every_classroom_view_draws_at_every_size() {
+        let twin = super::twin::twin_after(500).app;
+        let mut editing = with_keys(twin.clone(), &[KeyCode::Char('E'), KeyCode::Char('1')]);
+        editing.vectors = true;
+        let states = [
+            with_keys(mid_impact().app, &[KeyCode::Char('v'), KeyCode::Char('t')]),
+            twin,
+            editing,
+            with_keys(start().app, &[KeyCode::Char('o'), KeyCode::Down]),
+            with_keys(
+                start().app,
+                &[KeyCode::Char('s'), KeyCode::Char('!'), KeyCode::Enter],
+            ),
+            {
+                let mut a = settled().app;
+                a.theme = Theme::default().next().next();
+                a.vectors = true;
+                a
+            },
+        ];
+        for app in &states {
+            for width in (1..=200).step_by(3) {
+                for height in (1..=60).step_by(2) {
+                    let mut t = Terminal::new(TestBackend::new(width, height)).expect("test backend");
+                    t.draw(|f| crate::tui::render(app, f)).expect("draw");
+                }
+            }
+        }
+    }
+}

@@ -35,6 +35,10 @@ const KEYS: &[(&str, &str)] = &[
         "< >  E",
         "twin: ε ÷10 / ×10 (1e-15 … 0.1), or type it; both dice roll again",
     ),
+    (
+        "t",
+        "theme: dark / light / projector (high contrast, bold); NO_COLOR turns colour off",
+    ),
     ("m", "draw the die with Braille dots / plain ASCII"),
     ("a d  W S", "orbit / tilt the camera"),
     ("z x  0", "zoom in / out, reset the view"),

@@ -83,6 +83,7 @@ pub fn render(app: &App, frame: &mut Frame) {
     let area = frame.area();
     let Some(areas) = screen_layout(area) else {
         render_too_small(area, frame);
+        app.theme.paint(frame.buffer_mut());
         return;
     };
     render_header(app, areas.header, frame);
@@ -100,6 +101,7 @@ pub fn render(app: &App, frame: &mut Frame) {
         render_help(app, area, frame);
     }
     super::dialogs::render(app, area, frame);
+    app.theme.paint(frame.buffer_mut());
 }
 
 pub fn render_too_small(area: Rect, frame: &mut Frame) {
