@@ -622,7 +622,10 @@ mod themes {
         let areas = full();
         // Plain text: black on white, not bold.
         let (x, y) = (areas.params.x + 3, areas.params.y + 2);
-        assert_eq!((b[(x, y)].fg, b[(x, y)].bg), (Color::Black, Color::White));
+        assert_eq!(
+            (b[(x, y)].fg, b[(x, y)].bg),
+            (Color::Rgb(0, 0, 0), Color::Rgb(255, 255, 255))
+        );
         assert!(!b[(x, y)].modifier.contains(Modifier::BOLD));
         // Every cell has a painted background (warnings keep their own).
         for y in 0..36 {
@@ -659,7 +662,10 @@ mod themes {
         }
         let areas = full();
         let (x, y) = (areas.params.x + 3, areas.params.y + 2);
-        assert_eq!((b[(x, y)].fg, b[(x, y)].bg), (Color::Black, Color::White));
+        assert_eq!(
+            (b[(x, y)].fg, b[(x, y)].bg),
+            (Color::Rgb(0, 0, 0), Color::Rgb(255, 255, 255))
+        );
         let dots = cells_with(&b, areas.die, "●");
         assert!(!dots.is_empty());
         for p in dots {

@@ -12,6 +12,11 @@
 
 use ratatui::style::{Color, Modifier, Style};
 
+/// The light palettes' background and text, as exact RGB: terminals remap the 16 ANSI
+/// colours (a "white" may be grey), which would cost contrast.
+const PAPER: Color = Color::Rgb(255, 255, 255);
+const INK: Color = Color::Rgb(0, 0, 0);
+
 /// Which palette (`t` cycles them).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Palette {
@@ -80,7 +85,7 @@ impl Theme {
         }
         match (self.palette, c) {
             (Palette::Dark, c) => c,
-            (_, Color::Reset) => Color::Black,
+            (_, Color::Reset) => INK,
             (Palette::Light, Color::Blue) => Color::Rgb(0, 80, 200),
             (Palette::Light, Color::Magenta) => Color::Rgb(160, 0, 160),
             (Palette::Light, Color::Green) => Color::Rgb(0, 120, 0),
@@ -102,11 +107,8 @@ impl Theme {
     pub fn base(&self) -> Style {
         match (self.colour, self.palette) {
             (false, _) | (true, Palette::Dark) => Style::new(),
-            (true, Palette::Light) => Style::new().fg(Color::Black).bg(Color::White),
-            (true, Palette::Projector) => Style::new()
-                .fg(Color::Black)
-                .bg(Color::White)
-                .add_modifier(Modifier::BOLD),
+            (true, Palette::Light) => Style::new().fg(INK).bg(PAPER),
+            (true, Palette::Projector) => Style::new().fg(INK).bg(PAPER).add_modifier(Modifier::BOLD),
         }
     }
 
