@@ -381,3 +381,28 @@ fn energy_ledger_closes_and_its_remainder_is_the_integrators() {
     let dissipated = l.damping_loss + l.friction_loss;
     assert!(l.integrator_loss.abs() < 0.1 * dissipated, "{l:?}");
 }
+
+#[test]
+fn friction_loss_of_a_flat_slide_is_mu_m_g_times_distance() {
+    let mut p = Params::default();
+    p.ground.friction = 0.5;
+    let initial = InitialCondition {
+        height: resting_height(&p),
+        velocity: [100.0, 0.0, 0.0],
+        ..Default::default()
+    };
+    let mut s = sim(&p, initial);
+    // 0.15 s of sliding: the die slows from 100 to ~26 cm/s and never stops slipping.
+    for _ in 0..150 {
+        s.step();
+    }
+    let slid = s.state().position.x;
+    let l = s.energy_ledger();
+    let expected = p.ground.friction * p.total_mass() * p.world.gravity * slid;
+    assert!(
+        (l.friction_loss - expected).abs() < 0.02 * expected,
+        "{l:?}, μ·M·g·Δx = {expected}"
+    );
+    // The kinetic energy the slide lost went to friction, not to the integrator.
+    assert!(l.integrator_loss.abs() < 0.02 * l.friction_loss, "{l:?}");
+}

@@ -1,9 +1,9 @@
 //! `dicesim trace`: a roll's trajectory and energies as CSV.
 
 use super::{CliError, SetupArgs};
+use crate::experiment::trace::{header, row};
 use crate::physics::Simulation;
 use clap::Args;
-use std::fmt::Write as _;
 use std::io::Write;
 
 #[derive(Debug, Args)]
@@ -16,43 +16,6 @@ pub struct TraceArgs {
     /// Print one row every K steps (the last step is always printed).
     #[arg(long, value_name = "K", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
     pub every: u64,
-}
-
-/// The CSV header; the corner columns follow MODEL.md's corner order.
-pub fn header() -> String {
-    let mut h =
-        String::from("step,t,x,y,z,vx,vy,vz,Lx,Ly,Lz,wx,wy,wz,e_trans,e_rot,e_grav,e_elastic,e_total");
-    for k in 1..=8 {
-        let _ = write!(h, ",c{k}x,c{k}y,c{k}z");
-    }
-    h
-}
-
-/// One CSV row for the simulation's current state.
-pub fn row(sim: &Simulation) -> String {
-    let s = sim.state();
-    let e = sim.energy();
-    let w = sim.angular_velocity();
-    let mut line = format!("{},{}", s.step, s.time_s);
-    let values = s
-        .position
-        .iter()
-        .chain(s.velocity.iter())
-        .chain(s.angular_momentum.iter())
-        .chain(w.iter());
-    for v in values.copied().chain([
-        e.translational,
-        e.rotational,
-        e.gravitational,
-        e.elastic,
-        e.total(),
-    ]) {
-        let _ = write!(line, ",{v}");
-    }
-    for p in sim.corner_positions() {
-        let _ = write!(line, ",{},{},{}", p.x, p.y, p.z);
-    }
-    line
 }
 
 pub fn run(args: &TraceArgs) -> Result<(), CliError> {

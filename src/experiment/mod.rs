@@ -6,12 +6,15 @@
 
 pub mod basin;
 pub mod batch;
+pub mod energy_plot;
 pub mod ics;
 pub mod keys;
 pub mod plot;
 pub mod random;
 pub mod record;
 pub mod stats;
+pub mod trace;
+pub mod twin;
 
 pub use basin::{Axis, BasinMap, Cell, Layer, MapSpec, Method, run_map};
 pub use batch::{Batch, BatchSummary, Rolls, run_batch};
@@ -47,4 +50,7 @@ pub enum Error {
     /// An image could not be drawn or written.
     #[error("cannot draw the map: {0}")]
     Plot(String),
+    /// A roll's trace or plot could not be written.
+    #[error("cannot export the roll: {0}")]
+    Export(String),
 }

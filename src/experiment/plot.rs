@@ -50,7 +50,7 @@ fn viridis(t: f64) -> RGBColor {
     RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
 }
 
-fn register_fonts() -> Result<(), Error> {
+pub(crate) fn register_fonts() -> Result<(), Error> {
     static REGISTERED: OnceLock<Result<(), String>> = OnceLock::new();
     REGISTERED
         .get_or_init(|| {
@@ -62,7 +62,7 @@ fn register_fonts() -> Result<(), Error> {
         .map_err(Error::Plot)
 }
 
-fn plot_error(e: impl std::fmt::Display) -> Error {
+pub(crate) fn plot_error(e: impl std::fmt::Display) -> Error {
     Error::Plot(e.to_string())
 }
 

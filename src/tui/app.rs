@@ -2,12 +2,16 @@
 //! returns the commands for the worker; nothing here draws, sleeps or reads a clock.
 
 use super::camera::Camera;
+use super::dialogs::Dialog;
 use super::map::{self, MapView, View};
 use super::render::{Areas, fmt_num, fmt_range, param_row_at, screen_layout};
 use super::theme::Theme;
 use crate::physics::{InitialCondition, Params};
+use crate::preset::{Preset, Store};
 use crate::worker::param::{ALL, Param};
-use crate::worker::{BatchProgress, Command, EnergySample, MapUpdate, OutcomeTable, Snapshot, Speed};
+use crate::worker::{
+    BatchProgress, Command, EnergySample, MapUpdate, OutcomeTable, SeparationSample, Snapshot, Speed,
+};
 use ratatui::crossterm::event::{
     Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEventKind,
 };
@@ -73,6 +77,21 @@ pub struct App {
     pub help: bool,
     pub help_scroll: u16,
     pub log_scale: bool,
+    /// Arrows for ω, L, v and the contact forces on the die (`v`).
+    pub vectors: bool,
+    /// Whether a chaos twin rolls beside the die (`T`), and its ε.
+    pub twin: bool,
+    pub epsilon: f64,
+    /// ε being typed in (`E`).
+    pub epsilon_editor: Option<Editor>,
+    /// The twin's separation samples of the roll on screen.
+    pub twin_history: Vec<SeparationSample>,
+    /// The preset the setup was loaded from (or last saved as).
+    pub preset: Preset,
+    /// Where presets are listed from and saved to.
+    pub store: Store,
+    /// The preset picker or the save dialog, when open.
+    pub dialog: Option<Dialog>,
     pub drawing: Drawing,
     pub camera: Camera,
     pub theme: Theme,
@@ -93,6 +112,7 @@ impl App {
     pub fn new(mut first: Snapshot, theme: Theme) -> App {
         let history = std::mem::take(&mut first.history);
         let map = MapView::new(&first.params, &first.initial);
+        let preset = first.preset.take().map_or_else(Preset::default, |p| *p);
         App {
             params: first.params,
             initial: first.initial,
@@ -108,6 +128,14 @@ impl App {
             help: false,
             help_scroll: 0,
             log_scale: false,
+            vectors: false,
+            twin: false,
+            epsilon: super::twin::DEFAULT_EPSILON,
+            epsilon_editor: None,
+            twin_history: Vec::new(),
+            preset,
+            store: Store::new(None),
+            dialog: None,
             drawing: Drawing::default(),
             camera: Camera::default(),
             theme,
@@ -133,6 +161,10 @@ impl App {
     fn absorb(&mut self, mut s: Snapshot) {
         if s.history_reset {
             self.history.clear();
+            self.twin_history.clear();
+        }
+        if let Some(twin) = &mut s.twin {
+            self.twin_history.append(&mut twin.history);
         }
         self.history.append(&mut s.history);
         if let Some(t) = s.table.take() {
@@ -140,6 +172,9 @@ impl App {
         }
         if let Some(n) = s.notice.take() {
             self.notice = Some(n);
+        }
+        if let Some(p) = s.preset.take() {
+            self.preset = *p;
         }
         // Until the worker has seen every command, the user's own values are newer.
         if s.commands_handled >= self.commands_sent {
@@ -151,7 +186,7 @@ impl App {
         self.live = s;
     }
 
-    pub(super) fn send(&mut self, out: &mut Vec<Command>, c: Command) {
+    pub(crate) fn send(&mut self, out: &mut Vec<Command>, c: Command) {
         self.commands_sent += 1;
         out.push(c);
     }
@@ -227,6 +262,14 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
         on_edit_key(app, key, out);
         return;
     }
+    if app.dialog.is_some() {
+        super::dialogs::on_key(app, key, out);
+        return;
+    }
+    if app.epsilon_editor.is_some() {
+        super::twin::on_editor_key(app, key, out);
+        return;
+    }
     if app.help {
         match key.code {
             KeyCode::Char('q') => app.quit(out),
@@ -238,6 +281,9 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
         return;
     }
     if app.view == View::Map && map::on_key(app, key, out) {
+        return;
+    }
+    if super::twin::on_key(app, key, out) {
         return;
     }
     let coarse = key
@@ -275,7 +321,21 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
             app.help = true;
             app.help_scroll = 0;
         }
-        KeyCode::Char('e') => app.log_scale = !app.log_scale,
+        KeyCode::Char('y') => app.log_scale = !app.log_scale,
+        KeyCode::Char('e') => app.send(out, Command::Export(".".into())),
+        KeyCode::Char('v') => app.vectors = !app.vectors,
+        KeyCode::Char('t') => {
+            app.theme = app.theme.next();
+            app.notice = Some(format!(
+                "theme: {}{} (t cycles dark, light, projector)",
+                app.theme.palette.name(),
+                if app.theme.colour {
+                    ""
+                } else {
+                    ", but NO_COLOR is set"
+                }
+            ));
+        }
         KeyCode::Char('m') => {
             app.drawing = match app.drawing {
                 Drawing::Braille => Drawing::Ascii,
@@ -284,8 +344,10 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
         }
         KeyCode::Char('a') => app.camera.orbit(-15.0, 0.0),
         KeyCode::Char('d') => app.camera.orbit(15.0, 0.0),
-        KeyCode::Char('w') => app.camera.orbit(0.0, 10.0),
-        KeyCode::Char('s') => app.camera.orbit(0.0, -10.0),
+        KeyCode::Char('W') => app.camera.orbit(0.0, 10.0),
+        KeyCode::Char('S') => app.camera.orbit(0.0, -10.0),
+        KeyCode::Char('o') => super::dialogs::open_picker(app),
+        KeyCode::Char('s') => super::dialogs::open_save(app),
         KeyCode::Char('z') => app.camera.zoom_by(1),
         KeyCode::Char('x') => app.camera.zoom_by(-1),
         KeyCode::Char('0') => app.camera = Camera::default(),
@@ -332,7 +394,12 @@ fn on_edit_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
 }
 
 fn on_mouse(app: &mut App, kind: MouseEventKind, column: u16, row: u16, out: &mut Vec<Command>) {
-    if app.help || app.editing.is_some() || app.view == View::Map {
+    if app.help
+        || app.editing.is_some()
+        || app.epsilon_editor.is_some()
+        || app.dialog.is_some()
+        || app.view == View::Map
+    {
         return;
     }
     let Some(areas) = app.areas() else { return };

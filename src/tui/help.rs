@@ -18,14 +18,39 @@ const KEYS: &[(&str, &str)] = &[
     ("↑↓ j k", "select a value (g G: first, last)"),
     ("←→ h l", "change it; Shift, H or L for big steps"),
     ("Enter", "type an exact value (Esc cancels)"),
-    ("e", "energy plot: linear / log scale"),
+    ("y", "energy plot: linear / log scale"),
+    (
+        "e",
+        "export the roll into the current folder: its trace (CSV) and energy plot (PNG)",
+    ),
+    (
+        "v",
+        "arrows: spin ω, angular momentum L, velocity v, contact forces F",
+    ),
+    (
+        "T",
+        "chaos twin: a second die (the ghost) whose height, velocity and spin are × (1 + ε)",
+    ),
+    (
+        "< >  E",
+        "twin: ε ÷10 / ×10 (1e-15 … 0.1), or type it; both dice roll again",
+    ),
+    (
+        "t",
+        "theme: dark / light / projector (high contrast, bold); NO_COLOR turns colour off",
+    ),
     ("m", "draw the die with Braille dots / plain ASCII"),
-    ("a d  w s", "orbit / tilt the camera"),
+    ("a d  W S", "orbit / tilt the camera"),
     ("z x  0", "zoom in / out, reset the view"),
     (
         "mouse",
         "click a value to select it, scroll to change it; drag the die to orbit, scroll on it to zoom",
     ),
+    (
+        "o",
+        "open a preset (shipped ones and yours, ★); the header marks a changed setup *",
+    ),
+    ("s", "save the setup as a preset (asks before replacing one)"),
     ("?", "this help"),
     ("q Esc Ctrl-C", "quit"),
 ];
@@ -41,11 +66,17 @@ const MODEL: &[&str] = &[
     "Energy: translational (moving), rotational (turning), gravitational (height) and elastic (the squashed \
      spring). At an impact a corner sinks a fraction of a millimetre into a very stiff spring: for a \
      millisecond the elastic term spikes above all the others, then is handed back as motion, less what \
-     damping and friction took. The log scale (e) shows the spikes and the small terms together.",
+     damping and friction took. The log scale (y) shows the spikes and the small terms together.",
+    "The energy panel: a bar of the energy now, stacked by form and scaled to the energy at the start \
+     (◀ marks the total), and the ledger of where the rest went: work done by the ground's damping and by \
+     friction, measured step by step, and the remainder, the integrator's own error (semi-implicit Euler \
+     loses ½·M·g²·Δt² per step even in free flight). Damping + friction + integrator + now = start.",
     "A roll ends once the energy drops below 80% of what it takes to tip the die over an edge (the dotted \
      stop line): from then on the face up cannot change.",
     "Same start, same face: the model is deterministic (r). A die looks random because a tiny change in the \
-     start changes the face (R, b).",
+     start changes the face (R, b). The chaos twin (T) shows it: two dice a relative ε = 1e-9 apart drift \
+     apart, the gap growing by orders of magnitude at the impacts, until it is as big as the die; from a \
+     gentle drop they land the same way.",
     "The step is stable only while ω_rock·Δt < 2, where ω_rock = √(6k/M) is how fast a die lying flat rocks \
      on its face. The number beside k and Δt turns amber from 1 and red from 1.4: raise k or Δt and watch \
      the energy grow instead of fall.",

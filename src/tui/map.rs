@@ -909,40 +909,30 @@ fn legend_lines(app: &App) -> Vec<Line<'static>> {
 }
 
 fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
-    let t = &app.theme;
-    let keys: &[(&str, &str)] = if app.map.editing.is_some() {
-        &[
-            ("MIN MAX", "type"),
-            ("Enter", "apply"),
-            ("Esc", "cancel"),
-            ("Ctrl-C", "quit"),
+    let keys = if app.map.editing.is_some() {
+        vec![
+            ("MIN MAX", "type", 0),
+            ("Enter", "apply", 0),
+            ("Esc", "cancel", 0),
+            ("Ctrl-C", "quit", 0),
         ]
     } else if app.help {
-        &[("↑↓", "scroll"), ("? Esc", "close help"), ("q", "quit")]
+        vec![("↑↓", "scroll", 0), ("? Esc", "close help", 0), ("q", "quit", 0)]
     } else {
-        &[
-            ("Tab", "die"),
-            ("←↓↑→", "cursor"),
-            ("Enter", "replay"),
-            ("z Z", "zoom in/out"),
-            ("x y", "axis"),
-            ("X Y", "range"),
-            ("v", "face/time"),
-            ("e", "export PNG"),
-            ("?", "help"),
-            ("q", "quit"),
+        vec![
+            ("Tab", "die", 0),
+            ("←↓↑→", "cursor", 1),
+            ("Enter", "replay", 1),
+            ("z Z", "zoom in/out", 1),
+            ("x y", "axis", 2),
+            ("X Y", "range", 2),
+            ("v", "face/time", 3),
+            ("e", "export PNG", 3),
+            ("?", "help", 0),
+            ("q", "quit", 0),
         ]
     };
-    let mut spans = Vec::new();
-    if let Some(n) = &app.notice {
-        spans.push(Span::styled(format!(" {n} "), t.caution()));
-    }
-    for (k, what) in keys {
-        spans.push(Span::raw(" "));
-        spans.push(Span::styled(*k, t.key()));
-        spans.push(Span::raw(format!(" {what}")));
-    }
-    frame.render_widget(Paragraph::new(Line::from(spans)), area);
+    super::render::render_key_hints(app, keys, area, frame);
 }
 
 /// The map screen's keys, for the `?` overlay.

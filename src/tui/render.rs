@@ -33,6 +33,8 @@ pub struct Areas {
     pub outcomes: Rect,
     pub die: Rect,
     pub energy: Rect,
+    /// The energy bar and ledger, beside the energy plot.
+    pub ledger: Rect,
     pub footer: Rect,
 }
 
@@ -57,9 +59,13 @@ pub fn screen_layout(area: Rect) -> Option<Areas> {
         Constraint::Length(params_height),
         Constraint::Min(0),
     ]));
-    let [die, energy] = right.layout(&Layout::vertical([
+    let [die, energy_row] = right.layout(&Layout::vertical([
         Constraint::Percentage(50),
         Constraint::Percentage(50),
+    ]));
+    let [energy, ledger] = energy_row.layout(&Layout::horizontal([
+        Constraint::Min(0),
+        Constraint::Length(super::ledger::panel_width(area.width)),
     ]));
     Some(Areas {
         header,
@@ -67,6 +73,7 @@ pub fn screen_layout(area: Rect) -> Option<Areas> {
         outcomes,
         die,
         energy,
+        ledger,
         footer,
     })
 }
@@ -80,17 +87,25 @@ pub fn render(app: &App, frame: &mut Frame) {
     let area = frame.area();
     let Some(areas) = screen_layout(area) else {
         render_too_small(area, frame);
+        app.theme.paint(frame.buffer_mut());
         return;
     };
     render_header(app, areas.header, frame);
     render_params(app, areas.params, frame);
     render_outcomes(app, areas.outcomes, frame);
     render_die(app, areas.die, frame);
-    render_energy(app, areas.energy, frame);
+    if app.live.twin.is_some() {
+        super::twin::render_separation(app, areas.energy, frame);
+    } else {
+        render_energy(app, areas.energy, frame);
+    }
+    super::ledger::render_ledger(app, areas.ledger, frame);
     render_footer(app, areas.footer, frame);
     if app.help {
         render_help(app, area, frame);
     }
+    super::dialogs::render(app, area, frame);
+    app.theme.paint(frame.buffer_mut());
 }
 
 pub fn render_too_small(area: Rect, frame: &mut Frame) {
@@ -170,10 +185,14 @@ pub(crate) fn render_header(app: &App, area: Rect, frame: &mut Frame) {
     let state = if live.playing { "▶ playing" } else { "⏸ paused" };
     let fps = app.fps.map_or("– fps".to_string(), |f| format!("{f:.0} fps"));
     let phase = Span::styled(live.phase.label(), phase_style(app, &live.phase));
+    // The setup differs from the preset it came from: saving (s) would keep it.
+    let changed = super::dialogs::modified(app);
+    let modified = Span::styled(if changed { "*" } else { "" }, t.caution());
     let full = Line::from(vec![
         Span::styled(" dicesim ", t.selected().add_modifier(Modifier::BOLD)),
         Span::raw(" "),
-        Span::styled(live.preset_name.clone(), t.heading()),
+        Span::styled(app.preset.name.clone(), t.heading()),
+        Span::styled(if changed { " (changed)" } else { "" }, t.caution()),
         Span::raw(format!(" · {roll}")),
         sep.clone(),
         Span::raw(format!("t = {:.3} s", live.time_s)),
@@ -194,7 +213,9 @@ pub(crate) fn render_header(app: &App, area: Rect, frame: &mut Frame) {
     } else {
         let sep = Span::raw("│");
         Line::from(vec![
-            Span::styled(format!("{} ", live.preset_name), t.heading()),
+            Span::styled(app.preset.name.clone(), t.heading()),
+            modified,
+            Span::raw(" "),
             sep.clone(),
             Span::raw(format!("t {:.3} s", live.time_s)),
             sep.clone(),
@@ -447,13 +468,20 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
     let die = &app.live.die;
     let half = app.live.params.die.half_size;
     let lowest = die.corners.iter().map(|c| c.z).fold(f64::INFINITY, f64::min);
-    let title = Line::from(vec![
+    let mut title = vec![
         Span::styled(" die ", t.heading()),
         Span::raw(format!(
             "· face up {} · lowest corner {:.2} cm ",
             die.face_up, lowest
         )),
-    ]);
+    ];
+    if let Some(twin) = &app.live.twin {
+        title.push(Span::styled(
+            format!("· twin face up {} ", twin.die.face_up),
+            Style::new().fg(t.ghost()),
+        ));
+    }
+    let title = Line::from(title);
     let block = Block::bordered().title(title);
     let body = block.inner(area);
     frame.render_widget(block, area);
@@ -478,6 +506,9 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
         .y_bounds([y_lo, y_hi])
         .paint(|ctx| {
             draw_ground(ctx, app, &focus, width, half);
+            if let Some(twin) = &app.live.twin {
+                super::twin::draw_ghost(ctx, app, &cam, &focus, &twin.die);
+            }
             ctx.layer();
             let foot = |p: &Vector3<f64>| Vector3::new(p.x, p.y, 0.0);
             for (a, b) in EDGES {
@@ -528,12 +559,23 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
                 let c = cam.project(&die.corners[k], &focus);
                 ctx.print(c.x, c.y, Span::styled(dot, t.contact()));
             }
+            if app.vectors {
+                super::vectors::draw(ctx, app, &cam, &focus, die);
+            }
             ctx.print(x_lo, y_hi, Span::raw(format!("centre {:.2} cm up", die.centre.z)));
         });
     frame.render_widget(canvas, body);
+    if app.vectors && body.height >= 6 {
+        let legend = Rect {
+            y: body.bottom() - 2,
+            height: 2,
+            ..body
+        };
+        frame.render_widget(Paragraph::new(super::vectors::legend(app, body.width)), legend);
+    }
 }
 
-fn line3(
+pub(crate) fn line3(
     ctx: &mut Context,
     cam: &super::camera::Camera,
     focus: &Vector3<f64>,
@@ -639,7 +681,7 @@ pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
     // The legend rides in the title, so it never hides an impact spike.
     let mut title = vec![
         Span::styled(" energy ", t.heading()),
-        Span::raw(format!("erg · {scale} (e) ")),
+        Span::raw(format!("erg · {scale} (y) ")),
     ];
     for (name, colour) in LEGEND.iter().zip(colours) {
         title.push(Span::styled(format!("━{name} "), Style::new().fg(colour)));
@@ -744,22 +786,23 @@ fn nice_ceiling(v: f64) -> f64 {
 }
 
 pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
-    let t = &app.theme;
-    let keys: &[(&str, &str)] = if app.editing.is_some() {
-        &[
-            ("0-9 . - e", "type"),
-            ("Enter", "apply"),
-            ("Esc", "cancel"),
-            ("Ctrl-C", "quit"),
+    // (key, what it does, priority): on a narrow terminal the highest numbers go first, so
+    // the keys that matter most, help and quit among them, always stay in view.
+    let keys: Vec<(&str, &str, u8)> = if app.editing.is_some() || app.epsilon_editor.is_some() {
+        vec![
+            ("0-9 . - e", "type", 0),
+            ("Enter", "apply", 0),
+            ("Esc", "cancel", 0),
+            ("Ctrl-C", "quit", 0),
         ]
     } else if app.help {
-        &[("↑↓", "scroll"), ("? Esc", "close help"), ("q", "quit")]
+        vec![("↑↓", "scroll", 0), ("? Esc", "close help", 0), ("q", "quit", 0)]
     } else {
-        &[
-            ("space", if app.live.playing { "pause" } else { "play" }),
-            ("n", "step"),
-            ("r", "replay"),
-            ("R", "random"),
+        vec![
+            ("space", if app.live.playing { "pause" } else { "play" }, 0),
+            ("n", "step", 1),
+            ("r", "replay", 1),
+            ("R", "random", 2),
             (
                 "b",
                 if app.batch.is_some() {
@@ -767,25 +810,52 @@ pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
                 } else {
                     "batch"
                 },
+                2,
             ),
-            ("c", "clear"),
-            ("[ ]", "speed"),
-            ("↑↓", "select"),
-            ("←→", "change"),
-            ("Enter", "type"),
-            ("e", "log"),
-            ("Tab", "map"),
-            ("?", "help"),
-            ("q", "quit"),
+            ("[ ]", "speed", 1),
+            ("↑↓←→", "values", 2),
+            ("v", "arrows", 3),
+            if app.twin {
+                ("T < > E", "twin, ε", 3)
+            } else {
+                ("T", "twin", 3)
+            },
+            ("Tab", "map", 3),
+            ("o s", "presets", 4),
+            ("e", "export", 4),
+            ("?", "help", 0),
+            ("q", "quit", 0),
         ]
     };
-    let mut spans = Vec::new();
-    if let Some(n) = &app.notice {
-        spans.push(Span::styled(format!(" {n} "), t.caution()));
+    render_key_hints(app, keys, area, frame);
+}
+
+/// A footer line of `(key, what it does, priority)` hints after any notice. On a narrow
+/// terminal the highest priority numbers are dropped first; priority 0 always stays.
+pub(crate) fn render_key_hints(app: &App, keys: Vec<(&str, &str, u8)>, area: Rect, frame: &mut Frame) {
+    let t = &app.theme;
+    let notice = app.notice.as_ref().map(|n| format!(" {n} "));
+    let width = |ks: &[(&str, &str, u8)]| -> usize {
+        ks.iter()
+            .map(|(k, w, _)| 2 + k.chars().count() + w.chars().count())
+            .sum::<usize>()
+            + notice.as_ref().map_or(0, |n| n.chars().count())
+    };
+    let mut shown = keys;
+    while width(&shown) > area.width as usize {
+        let droppable = shown.iter().enumerate().filter(|(_, e)| e.2 > 0);
+        let Some((i, _)) = droppable.max_by_key(|(i, e)| (e.2, *i)) else {
+            break;
+        };
+        shown.remove(i);
     }
-    for (k, what) in keys {
+    let mut spans = Vec::new();
+    if let Some(n) = notice {
+        spans.push(Span::styled(n, t.caution()));
+    }
+    for (k, what, _) in shown {
         spans.push(Span::raw(" "));
-        spans.push(Span::styled(*k, t.key()));
+        spans.push(Span::styled(k, t.key()));
         spans.push(Span::raw(format!(" {what}")));
     }
     frame.render_widget(Paragraph::new(Line::from(spans)), area);

@@ -41,6 +41,7 @@ pub fn run(preset: &Preset, theme: Theme) -> Result<()> {
 fn event_loop(terminal: &mut DefaultTerminal, mut engine: Engine, theme: Theme) -> Result<()> {
     let (tx, rx) = channel::<Msg>();
     let mut app = App::new(engine.snapshot(), theme);
+    app.store = crate::preset::Store::from_env();
     let size = terminal.size()?;
     app.screen = Rect::new(0, 0, size.width, size.height);
     let maps = tx.clone();

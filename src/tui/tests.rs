@@ -273,13 +273,13 @@ fn each_panel() {
 #[test]
 fn energy_log_scale_and_ascii_die() {
     let mut s = mid_impact();
-    s.key(KeyCode::Char('e'));
+    s.key(KeyCode::Char('y'));
     s.key(KeyCode::Char('m'));
     assert!(s.app.log_scale);
     let areas = screen_layout(Rect::new(0, 0, 120, 36)).expect("full size");
     let t = draw(&s.app, 120, 36);
     let text = t.backend().to_string();
-    assert!(text.contains("log (e)"));
+    assert!(text.contains("log (y)"));
     let die = lines_of(t.backend().buffer())[areas.die.y as usize..areas.die.bottom() as usize].join("\n");
     assert!(
         die.contains('*') && !die.chars().any(|c| ('\u{2800}'..='\u{28ff}').contains(&c)),
@@ -625,7 +625,7 @@ mod keys {
     fn view_keys_change_only_the_view() {
         let mut a = app();
         let camera = a.camera;
-        for c in ['a', 'w', 'z', 'e', 'm'] {
+        for c in ['a', 'W', 'z', 'y', 'm'] {
             assert!(press(&mut a, KeyCode::Char(c)).is_empty());
         }
         assert!(a.camera.yaw_deg != camera.yaw_deg && a.camera.pitch_deg > camera.pitch_deg);

@@ -1,20 +1,53 @@
 //! Styles that carry meaning, for colour terminals (dark, light, projector) and for
 //! `NO_COLOR`, where bold, reverse and underline carry the same meaning.
 //!
+//! The dark theme draws on the terminal's own background. The light and projector themes
+//! paint their own (white) background, so they read the same on any terminal: light with
+//! darker inks, projector with the strongest inks and every character bold, for a washed-out
+//! beamer at the back of a classroom.
+//!
 //! Only the standard ANSI colours whose hue the terminal's own theme keeps readable on both
 //! dark and light backgrounds are used (no white, grey or yellow text); warnings use a
 //! background, which reads on any theme and on a projector.
 
 use ratatui::style::{Color, Modifier, Style};
 
+/// The light palettes' background and text, as exact RGB: terminals remap the 16 ANSI
+/// colours (a "white" may be grey), which would cost contrast.
+const PAPER: Color = Color::Rgb(255, 255, 255);
+const INK: Color = Color::Rgb(0, 0, 0);
+
+/// Which palette (`t` cycles them).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Palette {
+    #[default]
+    Dark,
+    Light,
+    Projector,
+}
+
+impl Palette {
+    pub fn name(self) -> &'static str {
+        match self {
+            Palette::Dark => "dark",
+            Palette::Light => "light",
+            Palette::Projector => "projector",
+        }
+    }
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Theme {
     pub colour: bool,
+    pub palette: Palette,
 }
 
 impl Default for Theme {
     fn default() -> Self {
-        Theme { colour: true }
+        Theme {
+            colour: true,
+            palette: Palette::Dark,
+        }
     }
 }
 
@@ -23,16 +56,87 @@ impl Theme {
     pub fn from_env() -> Theme {
         Theme {
             colour: std::env::var_os("NO_COLOR").is_none_or(|v| v.is_empty()),
+            ..Theme::default()
         }
     }
 
     pub fn monochrome() -> Theme {
-        Theme { colour: false }
+        Theme {
+            colour: false,
+            ..Theme::default()
+        }
     }
 
-    /// A colour for lines and text, or the terminal's own foreground without colour.
+    /// The next palette: dark → light → projector → dark.
+    pub fn next(self) -> Theme {
+        let palette = match self.palette {
+            Palette::Dark => Palette::Light,
+            Palette::Light => Palette::Projector,
+            Palette::Projector => Palette::Dark,
+        };
+        Theme { palette, ..self }
+    }
+
+    /// A colour for lines and text in this palette, or the terminal's own foreground
+    /// without colour. The light palettes darken the hues that wash out on white.
     pub fn ink(&self, c: Color) -> Color {
-        if self.colour { c } else { Color::Reset }
+        if !self.colour {
+            return Color::Reset;
+        }
+        match (self.palette, c) {
+            (Palette::Dark, c) => c,
+            (_, Color::Reset) => INK,
+            (Palette::Light, Color::Blue) => Color::Rgb(0, 80, 200),
+            (Palette::Light, Color::Magenta) => Color::Rgb(160, 0, 160),
+            (Palette::Light, Color::Green) => Color::Rgb(0, 120, 0),
+            (Palette::Light, Color::Red) => Color::Rgb(200, 0, 0),
+            (Palette::Light, Color::Cyan) => Color::Rgb(0, 120, 140),
+            (Palette::Light, Color::DarkGray) => Color::Rgb(130, 130, 130),
+            (Palette::Projector, Color::Blue) => Color::Rgb(0, 0, 230),
+            (Palette::Projector, Color::Magenta) => Color::Rgb(190, 0, 190),
+            (Palette::Projector, Color::Green) => Color::Rgb(0, 140, 0),
+            (Palette::Projector, Color::Red) => Color::Rgb(230, 0, 0),
+            (Palette::Projector, Color::Cyan) => Color::Rgb(0, 130, 190),
+            (Palette::Projector, Color::DarkGray) => Color::Rgb(100, 100, 100),
+            (_, c) => c,
+        }
+    }
+
+    /// What every cell starts from: the terminal's own colours (dark, or no colour), or
+    /// the palette's ink on its painted background.
+    pub fn base(&self) -> Style {
+        match (self.colour, self.palette) {
+            (false, _) | (true, Palette::Dark) => Style::new(),
+            (true, Palette::Light) => Style::new().fg(INK).bg(PAPER),
+            (true, Palette::Projector) => Style::new().fg(INK).bg(PAPER).add_modifier(Modifier::BOLD),
+        }
+    }
+
+    /// Gives every cell the palette's background and ink where a widget left the
+    /// terminal's own (`Reset`), and the projector's bold everywhere. Run once, after
+    /// everything is drawn, so no widget needs to know the palette.
+    pub fn paint(&self, buf: &mut ratatui::buffer::Buffer) {
+        let base = self.base();
+        if base == Style::new() {
+            return;
+        }
+        let area = buf.area;
+        for y in area.top()..area.bottom() {
+            for x in area.left()..area.right() {
+                let cell = &mut buf[(x, y)];
+                if cell.bg == Color::Reset
+                    && let Some(bg) = base.bg
+                {
+                    cell.bg = bg;
+                }
+                if cell.fg == Color::Reset
+                    && let Some(fg) = base.fg
+                {
+                    cell.fg = fg;
+                }
+                cell.modifier |= base.add_modifier;
+            }
+        }
     }
 
     fn fg(&self, c: Color) -> Style {
@@ -54,7 +158,7 @@ impl Theme {
     /// A corner touching the ground (the authors drew those edges red).
     pub fn contact(&self) -> Style {
         if self.colour {
-            Style::new().fg(Color::Red).add_modifier(Modifier::BOLD)
+            Style::new().fg(self.ink(Color::Red)).add_modifier(Modifier::BOLD)
         } else {
             Style::new().add_modifier(Modifier::BOLD | Modifier::REVERSED)
         }
@@ -115,6 +219,21 @@ impl Theme {
             Color::Red,
         ]
         .map(|c| self.ink(c))
+    }
+
+    /// Arrow colours of ω, L, the centre-of-mass velocity and the contact forces.
+    pub fn vector_colours(&self) -> [Color; 4] {
+        [Color::Cyan, Color::Magenta, Color::Blue, Color::Red].map(|c| self.ink(c))
+    }
+
+    /// The chaos twin's die, drawn as a ghost behind the first.
+    pub fn ghost(&self) -> Color {
+        self.ink(Color::DarkGray)
+    }
+
+    /// Line colours of the twin's separation: centre distance, orientation angle.
+    pub fn separation_colours(&self) -> [Color; 2] {
+        [Color::Blue, Color::Magenta].map(|c| self.ink(c))
     }
 
     /// The stopping threshold: the terminal's own colour, drawn dotted to set it apart.

@@ -5,7 +5,9 @@
 use super::map::{MapJob, MapOrder};
 use super::param::Param;
 use super::speed::Speed;
+use super::twin::Twin;
 use super::{BatchProgress, Command, DieState, EnergySample, OutcomeTable, Phase, RollKind, Snapshot};
+use crate::experiment::trace::{export_roll, free_stem};
 use crate::experiment::{RandomRanges, RollRecord, Rolls, run_batch};
 use crate::physics::{Energy, InitialCondition, ParamError, Params, Simulation, face_most_nearly_up};
 use crate::preset::Preset;
@@ -39,10 +41,13 @@ struct Pending {
     history_reset: bool,
     table_changed: bool,
     notice: Option<String>,
+    /// A preset was loaded (or the engine just started): the UI gets it whole.
+    preset: Option<Box<Preset>>,
 }
 
 pub struct Engine {
-    preset_name: String,
+    /// The preset as loaded (the UI compares the setup with it and saves from it).
+    preset: Preset,
     /// The preset's initial condition: random draws take their orientation from it.
     base_initial: InitialCondition,
     random: RandomRanges,
@@ -71,6 +76,8 @@ pub struct Engine {
     commands_handled: u64,
     /// Changes whenever the mapping from wall time to simulated time must restart.
     pacing_epoch: u64,
+    /// The chaos twin, if one rolls beside the die.
+    twin: Option<Twin>,
 }
 
 impl Engine {
@@ -80,7 +87,7 @@ impl Engine {
         let params = preset.params();
         let sim = Simulation::new(&params, &preset.initial)?;
         let mut engine = Engine {
-            preset_name: preset.name.clone(),
+            preset: preset.clone(),
             base_initial: preset.initial,
             random: preset.random,
             params,
@@ -104,13 +111,15 @@ impl Engine {
             pending: Pending::default(),
             commands_handled: 0,
             pacing_epoch: 0,
+            twin: None,
         };
         engine.restart(RollKind::Preset);
+        engine.pending.preset = Some(Box::new(preset.clone()));
         Ok(engine)
     }
 
     pub fn preset_name(&self) -> &str {
-        &self.preset_name
+        &self.preset.name
     }
 
     pub fn params(&self) -> &Params {
@@ -123,6 +132,18 @@ impl Engine {
 
     pub fn simulation(&self) -> &Simulation {
         &self.sim
+    }
+
+    /// s, simulated: how far the roll has got (the later of the die and its twin, since
+    /// the one still rolling keeps the clock going).
+    pub fn time_s(&self) -> f64 {
+        let die = self.sim.state().time_s;
+        self.twin.as_ref().map_or(die, |t| die.max(t.sim.state().time_s))
+    }
+
+    /// Whether the roll on screen has ended: the die's, and its twin's if there is one.
+    pub fn roll_over(&self) -> bool {
+        self.sim.outcome().is_some() && self.twin.as_ref().is_none_or(Twin::ended)
     }
 
     pub fn is_playing(&self) -> bool {
@@ -162,7 +183,7 @@ impl Engine {
             Command::Step(n) => {
                 self.playing = false;
                 self.pacing_epoch += 1;
-                if self.sim.outcome().is_some() {
+                if self.roll_over() {
                     self.pending.notice = Some("the roll has ended: r replays it".to_string());
                 } else {
                     self.advance_steps(n);
@@ -234,13 +255,75 @@ impl Engine {
                     self.playing = true;
                 }
             }
+            Command::SetTwin(None) => self.twin = None,
+            Command::SetTwin(Some(epsilon)) => match Twin::new(&self.params, &self.initial, epsilon) {
+                Ok(twin) => {
+                    self.twin = Some(twin);
+                    // Both dice start again from t = 0, side by side.
+                    self.restart(self.roll);
+                    self.playing = true;
+                }
+                Err(e) => self.pending.notice = Some(e.to_string()),
+            },
+            Command::LoadPreset(preset) => self.load_preset(*preset),
+            Command::Export(dir) => self.export(&dir),
             Command::Quit => return false,
         }
         true
     }
 
+    /// Switches to `preset`: its setup, its roll from t = 0 (paused), a fresh table (the
+    /// counts belonged to another setup); a running batch is cancelled.
+    fn load_preset(&mut self, preset: Preset) {
+        if let Err(e) = preset.validate() {
+            self.pending.notice = Some(format!("{}: {e}", preset.name));
+            return;
+        }
+        self.batch_request = None;
+        self.batch = None;
+        self.base_initial = preset.initial;
+        self.random = preset.random;
+        self.params = preset.params();
+        self.initial = preset.initial;
+        self.next_random = 0;
+        self.table = OutcomeTable::default();
+        self.pending.table_changed = true;
+        self.playing = false;
+        self.restart(RollKind::Preset);
+        self.pending.notice = Some(format!("loaded {}", preset.name));
+        self.pending.preset = Some(Box::new(preset.clone()));
+        self.preset = preset;
+    }
+
+    /// Writes the roll on screen into `dir` (see [`Command::Export`]); the notice says where.
+    fn export(&mut self, dir: &std::path::Path) {
+        let roll = match self.roll {
+            RollKind::Preset => "preset-roll".to_string(),
+            RollKind::Random(n) => format!("random-roll-{n}"),
+            RollKind::Edited => "edited-roll".to_string(),
+        };
+        let dir = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
+        let stem = free_stem(&dir, &format!("dicesim-{}-{roll}", self.preset.name));
+        let title = format!(
+            "{} · {} — energy against time",
+            self.preset.name,
+            roll.replace('-', " ")
+        );
+        self.pending.notice = Some(
+            match export_roll(&self.params, &self.initial, &title, &dir, &stem) {
+                Ok(done) => format!("exported {} and .png", done.trace.display()),
+                Err(e) => e.to_string(),
+            },
+        );
+    }
+
+    /// The preset as loaded.
+    pub fn preset(&self) -> &Preset {
+        &self.preset
+    }
+
     fn set_playing(&mut self, play: bool) {
-        if play && self.sim.outcome().is_some() {
+        if play && self.roll_over() {
             // Resuming a finished roll means watching it again.
             self.restart(self.roll);
         }
@@ -259,6 +342,10 @@ impl Engine {
         if param.acts_mid_roll() && self.sim.outcome().is_none() {
             if let Err(e) = self.sim.set_ground(params.ground) {
                 self.pending.notice = Some(e.to_string());
+            }
+            // The twin feels the same table, so only ε tells the two apart.
+            if let Some(twin) = &mut self.twin {
+                let _ = twin.sim.set_ground(params.ground);
             }
         } else {
             // A new initial condition is a roll of its own; other values re-run the same one.
@@ -283,6 +370,13 @@ impl Engine {
         self.pending.history.clear();
         self.pending.history_reset = true;
         self.pending.history.push(self.sample());
+        if let Some(epsilon) = self.twin.as_ref().map(|t| t.epsilon) {
+            // ε was checked when the twin was made.
+            self.twin = Twin::new(&self.params, &self.initial, epsilon).ok();
+            if let Some(twin) = &mut self.twin {
+                twin.sample(&self.sim);
+            }
+        }
         self.pacing_epoch += 1;
     }
 
@@ -295,8 +389,29 @@ impl Engine {
         }
     }
 
-    /// One step with its bookkeeping; returns whether the roll can go on.
+    /// One step with its bookkeeping, the die and its twin in lock-step; returns whether
+    /// the roll can go on (a die whose roll has ended waits for the other).
     fn step(&mut self) -> bool {
+        let die_rolling = self.sim.outcome().is_none();
+        if let Some(twin) = &mut self.twin {
+            twin.step();
+        }
+        if die_rolling {
+            self.step_die();
+        }
+        let done = self.roll_over();
+        if let Some(twin) = &mut self.twin {
+            twin.stepped(&self.sim, self.stride, done);
+        }
+        if done {
+            self.playing = false;
+            return false;
+        }
+        true
+    }
+
+    /// One step of the die: its energy sample and, at its end, the outcome table.
+    fn step_die(&mut self) {
         let ended = self.sim.advance();
         self.touched |= self.sim.in_contact();
         let s = self.sample();
@@ -316,29 +431,25 @@ impl Engine {
         } else {
             self.peak = Some(peak);
         }
-        if let Some(outcome) = ended {
-            self.playing = false;
-            if let RollKind::Random(id) = self.roll
-                && !self.counted
-            {
-                self.counted = true;
-                self.table.add(RollRecord {
-                    id,
-                    initial: self.initial,
-                    outcome,
-                    start_face: self.start_face,
-                });
-                self.pending.table_changed = true;
-            }
-            return false;
+        if let Some(outcome) = ended
+            && let RollKind::Random(id) = self.roll
+            && !self.counted
+        {
+            self.counted = true;
+            self.table.add(RollRecord {
+                id,
+                initial: self.initial,
+                outcome,
+                start_face: self.start_face,
+            });
+            self.pending.table_changed = true;
         }
-        true
     }
 
     /// Up to `n` steps; stops at the end of the roll. Returns the steps taken.
     pub fn advance_steps(&mut self, n: u64) -> u64 {
         let mut taken = 0;
-        while taken < n && self.sim.outcome().is_none() {
+        while taken < n && !self.roll_over() {
             taken += 1;
             if !self.step() {
                 break;
@@ -363,7 +474,7 @@ impl Engine {
     /// Plays the roll to its end at once (what "instant" shows).
     pub fn run_to_end(&mut self) {
         self.playing = true;
-        while self.sim.outcome().is_none() && self.step() {}
+        while !self.roll_over() && self.step() {}
         self.playing = false;
     }
 
@@ -452,23 +563,21 @@ impl Engine {
         let s = self.sim.state();
         Snapshot {
             commands_handled: self.commands_handled,
-            preset_name: self.preset_name.clone(),
+            preset_name: self.preset.name.clone(),
             params: self.params,
             initial: self.initial,
             roll: self.roll,
             playing: self.playing,
             speed: self.speed,
-            die: DieState {
-                corners: self.sim.corner_positions(),
-                forces: self.sim.contact_forces(),
-                centre: s.position,
-                face_up: self.sim.face_up(),
-                start_face: self.start_face,
-            },
+            die: die_state(&self.sim, self.start_face),
             energy: self.sim.energy(),
+            ledger: self.sim.energy_ledger(),
             stop_threshold: self.sim.stop_threshold(),
-            time_s: s.time_s,
-            step: s.step,
+            time_s: self.time_s(),
+            step: self
+                .twin
+                .as_ref()
+                .map_or(s.step, |t| s.step.max(t.sim.state().step)),
             phase: self.phase(),
             history: pending.history,
             history_reset: pending.history_reset,
@@ -478,7 +587,27 @@ impl Engine {
             }),
             table: pending.table_changed.then(|| self.table.clone()),
             notice: pending.notice,
+            preset: pending.preset,
+            twin: match &mut self.twin {
+                Some(t) => Some(t.snapshot(&self.sim)),
+                None => None,
+            },
         }
+    }
+}
+
+/// The die as drawn, from a simulation's current state.
+pub(crate) fn die_state(sim: &Simulation, start_face: u8) -> DieState {
+    let s = sim.state();
+    DieState {
+        corners: sim.corner_positions(),
+        forces: sim.contact_forces(),
+        centre: s.position,
+        velocity: s.velocity,
+        angular_velocity: sim.angular_velocity(),
+        angular_momentum: s.angular_momentum,
+        face_up: sim.face_up(),
+        start_face,
     }
 }
 

@@ -8,15 +8,18 @@ mod engine;
 pub mod map;
 pub mod param;
 mod speed;
+mod twin;
 
 pub use engine::{BatchRequest, Engine};
 pub use map::{MapAxis, MapRequest, MapUpdate};
 pub use param::Param;
 pub use speed::Speed;
 
+use crate::experiment::twin::Separation;
 use crate::experiment::{FaceTally, RollRecord};
 use crate::experiment::{Rolls, run_batch};
-use crate::physics::{ContactForce, Energy, InitialCondition, Outcome, Params, Status};
+use crate::physics::{ContactForce, Energy, EnergyLedger, InitialCondition, Outcome, Params, Status};
+use crate::preset::Preset;
 use nalgebra::Vector3;
 use std::collections::VecDeque;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -26,7 +29,7 @@ use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 /// What the UI asks of the worker. Commands are applied in the order sent, none dropped.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Command {
     TogglePlay,
     SetPlaying(bool),
@@ -48,6 +51,14 @@ pub enum Command {
     MapCancel,
     /// Play this exact setup from t = 0 (a cell of a basin map, replayed).
     PlaySetup(Params, InitialCondition),
+    /// Roll a chaos twin beside the die, its start perturbed by this relative ε
+    /// ([`crate::experiment::twin::perturbed`]), from t = 0; `None` removes it.
+    SetTwin(Option<f64>),
+    /// Another preset: its setup and its roll, a fresh outcome table.
+    LoadPreset(Box<Preset>),
+    /// Write the roll on screen, rolled again from t = 0, into this folder: its trace as
+    /// CSV and its energy plot as PNG.
+    Export(std::path::PathBuf),
     Quit,
 }
 
@@ -99,6 +110,26 @@ pub struct EnergySample {
     pub total: f64,
 }
 
+/// How far the twin has drifted from the die at one instant (each term's newest value).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SeparationSample {
+    /// s, simulated.
+    pub time_s: f64,
+    pub separation: Separation,
+}
+
+/// The chaos twin as drawn: its die, how its roll went, and its drift from the first die.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TwinSnapshot {
+    pub epsilon: f64,
+    pub die: DieState,
+    pub phase: Phase,
+    pub separation: Separation,
+    /// Samples since the previous snapshot (after clearing, if the snapshot's
+    /// `history_reset`).
+    pub history: Vec<SeparationSample>,
+}
+
 /// The die as drawn.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DieState {
@@ -108,6 +139,12 @@ pub struct DieState {
     pub forces: [ContactForce; 8],
     /// cm, centre of mass.
     pub centre: Vector3<f64>,
+    /// cm/s, centre-of-mass velocity.
+    pub velocity: Vector3<f64>,
+    /// rad/s, ω (world frame).
+    pub angular_velocity: Vector3<f64>,
+    /// g·cm²/s, L about the centre of mass.
+    pub angular_momentum: Vector3<f64>,
     /// The face most nearly up now.
     pub face_up: u8,
     /// The face most nearly up at t = 0.
@@ -165,6 +202,8 @@ pub struct Snapshot {
     pub speed: Speed,
     pub die: DieState,
     pub energy: Energy,
+    /// Where the energy went since t = 0 (measured in the physics, step by step).
+    pub ledger: EnergyLedger,
     /// erg, the stopping threshold.
     pub stop_threshold: f64,
     /// s, simulated.
@@ -180,6 +219,10 @@ pub struct Snapshot {
     pub table: Option<OutcomeTable>,
     /// A one-line message for the user (a refused value, a finished batch).
     pub notice: Option<String>,
+    /// The chaos twin, stepped in lock-step with the die.
+    pub twin: Option<TwinSnapshot>,
+    /// The preset loaded, in the first snapshot and whenever another is loaded.
+    pub preset: Option<Box<Preset>>,
 }
 
 /// s of wall time between snapshots while something moves.
@@ -298,7 +341,7 @@ fn run<T: From<Snapshot>>(
                 pacer = Pacer {
                     epoch: engine.pacing_epoch(),
                     wall: now,
-                    sim_s: engine.simulation().state().time_s,
+                    sim_s: engine.time_s(),
                 };
             }
             match engine.speed().factor() {
@@ -313,12 +356,12 @@ fn run<T: From<Snapshot>>(
                         .saturating_mul(2)
                         .max(1);
                     engine.advance_until(target, budget.min(INSTANT_STEPS_PER_TICK));
-                    let behind = target - engine.simulation().state().time_s;
+                    let behind = target - engine.time_s();
                     if engine.is_playing() && behind > TICK.as_secs_f64() * factor {
                         pacer = Pacer {
                             epoch: engine.pacing_epoch(),
                             wall: now,
-                            sim_s: engine.simulation().state().time_s,
+                            sim_s: engine.time_s(),
                         };
                     }
                 }

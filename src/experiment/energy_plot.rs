@@ -1,0 +1,95 @@
+//! A roll's energy against time as a PNG image, the explorer's energy plot on paper: the
+//! four forms and their total, with the stopping threshold dotted.
+
+use super::Error;
+use super::plot::{plot_error, register_fonts};
+use crate::physics::Energy;
+use plotters::prelude::*;
+use std::path::Path;
+
+/// Image size in pixels.
+pub const SIZE: (u32, u32) = (1200, 700);
+
+/// Names and colours of the series, in the explorer's order: total, translational,
+/// rotational, gravitational, elastic.
+const SERIES: [(&str, RGBColor); 5] = [
+    ("total", RGBColor(0, 0, 0)),
+    ("translational", RGBColor(0, 114, 178)),
+    ("rotational", RGBColor(204, 121, 167)),
+    ("gravitational", RGBColor(0, 158, 115)),
+    ("elastic", RGBColor(213, 94, 0)),
+];
+
+fn value(e: &Energy, series: usize) -> f64 {
+    match series {
+        0 => e.total(),
+        1 => e.translational,
+        2 => e.rotational,
+        3 => e.gravitational,
+        _ => e.elastic,
+    }
+}
+
+/// Writes `samples` (s, energy) as a PNG at `path`, with the stop threshold (erg) dotted.
+pub fn write_energy_plot(
+    samples: &[(f64, Energy)],
+    threshold: f64,
+    title: &str,
+    path: &Path,
+) -> Result<(), Error> {
+    register_fonts()?;
+    let root = BitMapBackend::new(path, SIZE).into_drawing_area();
+    root.fill(&WHITE).map_err(plot_error)?;
+    let t_end = samples.last().map_or(1.0, |s| s.0).max(1e-3);
+    let (mut lo, mut hi) = (0.0f64, threshold);
+    for (_, e) in samples {
+        for k in 0..SERIES.len() {
+            let v = value(e, k);
+            if v.is_finite() {
+                lo = lo.min(v);
+                hi = hi.max(v);
+            }
+        }
+    }
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 26))
+        .margin(20)
+        .x_label_area_size(60)
+        .y_label_area_size(100)
+        .build_cartesian_2d(0.0..t_end, lo..hi * 1.05)
+        .map_err(plot_error)?;
+    chart
+        .configure_mesh()
+        .x_desc("time (s)")
+        .y_desc("energy (erg)")
+        .label_style(("sans-serif", 16))
+        .axis_desc_style(("sans-serif", 19))
+        .draw()
+        .map_err(plot_error)?;
+    for (k, (name, colour)) in SERIES.iter().enumerate() {
+        let width = if k == 0 { 3 } else { 2 };
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                samples.iter().map(|(t, e)| (*t, value(e, k))).collect::<Vec<_>>(),
+                colour.stroke_width(width),
+            )))
+            .map_err(plot_error)?
+            .label(*name)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], colour.stroke_width(3)));
+    }
+    let dots = (0..200).map(|i| (t_end * i as f64 / 199.0, threshold));
+    chart
+        .draw_series(dots.map(|p| Circle::new(p, 1, BLACK.filled())))
+        .map_err(plot_error)?
+        .label("stop threshold")
+        .legend(|(x, y)| Circle::new((x + 12, y), 2, BLACK.filled()));
+    chart
+        .configure_series_labels()
+        .label_font(("sans-serif", 17))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(plot_error)?;
+    root.present().map_err(plot_error)
+}

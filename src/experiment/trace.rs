@@ -1,0 +1,101 @@
+//! A roll's trajectory and energies as CSV rows (`dicesim trace`, and the explorer's export),
+//! and the export of one roll: its trace and its energy plot, written side by side.
+
+use super::Error;
+use super::energy_plot::write_energy_plot;
+use crate::physics::{InitialCondition, Params, Simulation};
+use std::fmt::Write as _;
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+
+/// The CSV header; the corner columns follow MODEL.md's corner order.
+pub fn header() -> String {
+    let mut h =
+        String::from("step,t,x,y,z,vx,vy,vz,Lx,Ly,Lz,wx,wy,wz,e_trans,e_rot,e_grav,e_elastic,e_total");
+    for k in 1..=8 {
+        let _ = write!(h, ",c{k}x,c{k}y,c{k}z");
+    }
+    h
+}
+
+/// One CSV row for the simulation's current state.
+pub fn row(sim: &Simulation) -> String {
+    let s = sim.state();
+    let e = sim.energy();
+    let w = sim.angular_velocity();
+    let mut line = format!("{},{}", s.step, s.time_s);
+    let values = s
+        .position
+        .iter()
+        .chain(s.velocity.iter())
+        .chain(s.angular_momentum.iter())
+        .chain(w.iter());
+    for v in values.copied().chain([
+        e.translational,
+        e.rotational,
+        e.gravitational,
+        e.elastic,
+        e.total(),
+    ]) {
+        let _ = write!(line, ",{v}");
+    }
+    for p in sim.corner_positions() {
+        let _ = write!(line, ",{},{},{}", p.x, p.y, p.z);
+    }
+    line
+}
+
+/// What [`export_roll`] wrote.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Exported {
+    pub trace: PathBuf,
+    pub plot: PathBuf,
+}
+
+/// The first `<stem>.csv` / `<stem>.png` pair in `dir` that replaces no file: `stem`, then
+/// `stem-2`, `stem-3`, …
+pub fn free_stem(dir: &Path, stem: &str) -> String {
+    (1..)
+        .map(|n| {
+            if n == 1 {
+                stem.to_string()
+            } else {
+                format!("{stem}-{n}")
+            }
+        })
+        .find(|s| !dir.join(format!("{s}.csv")).exists() && !dir.join(format!("{s}.png")).exists())
+        .unwrap_or_else(|| stem.to_string())
+}
+
+/// Rolls `initial` again from t = 0 to its end, writing every step's row to
+/// `<dir>/<stem>.csv` and the energy against time to `<dir>/<stem>.png`.
+pub fn export_roll(
+    params: &Params,
+    initial: &InitialCondition,
+    title: &str,
+    dir: &Path,
+    stem: &str,
+) -> Result<Exported, Error> {
+    let io = |path: &Path, e: std::io::Error| Error::Export(format!("{}: {e}", path.display()));
+    let trace = dir.join(format!("{stem}.csv"));
+    let plot = dir.join(format!("{stem}.png"));
+    let mut sim = Simulation::new_unchecked(params, initial);
+    let file = std::fs::File::create(&trace).map_err(|e| io(&trace, e))?;
+    let mut out = std::io::BufWriter::new(file);
+    let mut samples = Vec::new();
+    writeln!(out, "{}", header()).map_err(|e| io(&trace, e))?;
+    loop {
+        writeln!(out, "{}", row(&sim)).map_err(|e| io(&trace, e))?;
+        samples.push((sim.state().time_s, sim.energy()));
+        if sim.outcome().is_some() {
+            break;
+        }
+        sim.advance();
+    }
+    out.flush().map_err(|e| io(&trace, e))?;
+    write_energy_plot(&samples, sim.stop_threshold(), title, &plot).map_err(|e| match e {
+        Error::Plot(m) => Error::Export(format!("{}: {m}", plot.display())),
+        e => e,
+    })?;
+    Ok(Exported { trace, plot })
+}

@@ -1,0 +1,293 @@
+//! The preset dialogs: `o` picks a preset to load (shipped and the user's, with their
+//! descriptions), `s` saves the current setup under a name, asking before it replaces one.
+//!
+//! These are the only keys whose handling touches the disk: listing the preset folder when
+//! the picker opens, writing a file when a save is confirmed.
+
+use super::app::App;
+use crate::preset::{Preset, Source, check_name};
+use crate::worker::Command;
+use ratatui::Frame;
+use ratatui::crossterm::event::{KeyCode, KeyEvent};
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Clear, Paragraph, Wrap};
+
+/// One preset the picker offers.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Choice {
+    pub name: String,
+    /// The user's own (saved from here or by hand), rather than shipped.
+    pub user: bool,
+    /// The preset, or why its file does not load.
+    pub preset: Result<Box<Preset>, String>,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Dialog {
+    Picker {
+        choices: Vec<Choice>,
+        selected: usize,
+        error: Option<String>,
+    },
+    Save {
+        name: String,
+        error: Option<String>,
+        /// The name exists and Enter was pressed once: the next Enter replaces it.
+        confirm_replace: bool,
+    },
+}
+
+/// Whether the setup on screen differs from the preset it was loaded from.
+pub fn modified(app: &App) -> bool {
+    app.params != app.preset.params() || app.initial != app.preset.initial
+}
+
+/// Opens the picker on every preset the store lists, the loaded one selected.
+pub fn open_picker(app: &mut App) {
+    let choices: Vec<Choice> = app
+        .store
+        .list()
+        .into_iter()
+        .map(|e| Choice {
+            user: matches!(e.source, Source::User(_)),
+            preset: e.preset.map(Box::new).map_err(|err| err.to_string()),
+            name: e.name,
+        })
+        .collect();
+    let selected = choices
+        .iter()
+        .position(|c| c.name == app.preset.name)
+        .unwrap_or(0);
+    app.dialog = Some(Dialog::Picker {
+        choices,
+        selected,
+        error: None,
+    });
+}
+
+pub fn open_save(app: &mut App) {
+    app.dialog = Some(Dialog::Save {
+        name: String::new(),
+        error: None,
+        confirm_replace: false,
+    });
+}
+
+/// The setup on screen as a preset named `name`: the loaded preset's random ranges, the
+/// current model values and start.
+pub fn current_setup(app: &App, name: &str) -> Preset {
+    let p = &app.params;
+    Preset {
+        name: name.to_string(),
+        description: format!(
+            "Saved from the explorer, starting from the {} preset. {}",
+            app.preset.name, app.preset.description
+        ),
+        die: p.die,
+        ground: p.ground,
+        world: p.world,
+        integrator: p.integrator,
+        initial: app.initial,
+        ..app.preset.clone()
+    }
+}
+
+/// Keys while a dialog is open.
+pub fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
+    let Some(dialog) = app.dialog.take() else {
+        return;
+    };
+    app.dialog = match dialog {
+        Dialog::Picker {
+            choices,
+            selected,
+            error,
+        } => picker_key(app, key, out, choices, selected, error),
+        Dialog::Save {
+            name,
+            error,
+            confirm_replace,
+        } => save_key(app, key, name, error, confirm_replace),
+    };
+}
+
+fn picker_key(
+    app: &mut App,
+    key: KeyEvent,
+    out: &mut Vec<Command>,
+    choices: Vec<Choice>,
+    selected: usize,
+    error: Option<String>,
+) -> Option<Dialog> {
+    let last = choices.len().saturating_sub(1);
+    let selected = match key.code {
+        KeyCode::Esc | KeyCode::Char('o') | KeyCode::Char('q') => return None,
+        KeyCode::Up | KeyCode::Char('k') => selected.saturating_sub(1),
+        KeyCode::Down | KeyCode::Char('j') => (selected + 1).min(last),
+        KeyCode::Home | KeyCode::Char('g') => 0,
+        KeyCode::End | KeyCode::Char('G') => last,
+        KeyCode::Enter => match choices.get(selected).map(|c| c.preset.clone()) {
+            Some(Ok(preset)) => {
+                app.send(out, Command::LoadPreset(preset));
+                return None;
+            }
+            Some(Err(e)) => {
+                return Some(Dialog::Picker {
+                    choices,
+                    selected,
+                    error: Some(e),
+                });
+            }
+            None => return None,
+        },
+        _ => selected,
+    };
+    // Moving on clears the error of the file that did not load.
+    let error = if key.code == KeyCode::Enter { error } else { None };
+    Some(Dialog::Picker {
+        choices,
+        selected,
+        error,
+    })
+}
+
+fn save_key(
+    app: &mut App,
+    key: KeyEvent,
+    mut name: String,
+    error: Option<String>,
+    confirm_replace: bool,
+) -> Option<Dialog> {
+    match key.code {
+        KeyCode::Esc => None,
+        KeyCode::Backspace => {
+            name.pop();
+            Some(Dialog::Save {
+                name,
+                error: None,
+                confirm_replace: false,
+            })
+        }
+        KeyCode::Char(c) if !c.is_control() => {
+            if name.chars().count() < 64 {
+                name.push(c);
+            }
+            Some(Dialog::Save {
+                name,
+                error: None,
+                confirm_replace: false,
+            })
+        }
+        KeyCode::Enter => {
+            let refuse = |error: String, confirm_replace: bool| {
+                Some(Dialog::Save {
+                    name: name.clone(),
+                    error: Some(error),
+                    confirm_replace,
+                })
+            };
+            if let Err(e) = check_name(&name) {
+                return refuse(e.to_string(), false);
+            }
+            if app.store.exists(&name) && !confirm_replace {
+                return refuse(
+                    format!("`{name}` exists: Enter again replaces it, Esc keeps it"),
+                    true,
+                );
+            }
+            let preset = current_setup(app, &name);
+            match app.store.save(&preset, confirm_replace) {
+                Ok(path) => {
+                    app.notice = Some(format!("saved {}", path.display()));
+                    // The saved file is now what the setup is compared with.
+                    app.preset = preset;
+                    None
+                }
+                Err(e) => refuse(e.to_string(), false),
+            }
+        }
+        _ => Some(Dialog::Save {
+            name,
+            error,
+            confirm_replace,
+        }),
+    }
+}
+
+/// Draws the open dialog, centred over the screen.
+pub fn render(app: &App, area: Rect, frame: &mut Frame) {
+    let Some(dialog) = &app.dialog else { return };
+    let t = &app.theme;
+    match dialog {
+        Dialog::Picker {
+            choices,
+            selected,
+            error,
+        } => {
+            let popup = area.centered(Constraint::Max(90), Constraint::Percentage(80));
+            frame.render_widget(Clear, popup);
+            let block = Block::bordered()
+                .title(Line::styled(" open a preset ", t.heading()))
+                .title_bottom(Line::from(" ↑↓ choose · Enter loads · Esc closes · ★ yours ").right_aligned());
+            let body = block.inner(popup);
+            frame.render_widget(block, popup);
+            let mut lines = Vec::new();
+            for (i, c) in choices.iter().enumerate() {
+                let mark = if c.user { "★" } else { " " };
+                let pointer = if i == *selected { "▶" } else { " " };
+                let mut line = Line::from(format!("{pointer}{mark} {}", c.name));
+                if i == *selected {
+                    line = line.style(t.selected());
+                }
+                lines.push(line);
+            }
+            let about = match (error, choices.get(*selected).map(|c| &c.preset)) {
+                (Some(e), _) => Line::styled(e.clone(), t.danger()),
+                (None, Some(Ok(p))) => Line::raw(p.description.clone()),
+                (None, Some(Err(_))) => Line::styled("this file does not load: Enter shows why", t.caution()),
+                (None, None) => Line::raw("no presets found"),
+            };
+            // The list on top (scrolled to keep the selection in view), the description below.
+            let list_height = (lines.len() as u16).min(body.height.saturating_sub(3) / 2).max(1);
+            let [list, _, description] = body.layout(&Layout::vertical([
+                Constraint::Length(list_height),
+                Constraint::Length(1),
+                Constraint::Min(0),
+            ]));
+            let scroll = (*selected as u16).saturating_sub(list_height.saturating_sub(1));
+            frame.render_widget(Paragraph::new(lines).scroll((scroll, 0)), list);
+            frame.render_widget(Paragraph::new(about).wrap(Wrap { trim: true }), description);
+        }
+        Dialog::Save {
+            name,
+            error,
+            confirm_replace,
+        } => {
+            let popup = area.centered(Constraint::Max(72), Constraint::Length(7));
+            frame.render_widget(Clear, popup);
+            let block = Block::bordered()
+                .title(Line::styled(" save the setup as a preset ", t.heading()))
+                .title_bottom(Line::from(" Enter saves · Esc cancels ").right_aligned());
+            let folder = match app.store.user_dir() {
+                Ok(dir) => format!("into {}", dir.display()),
+                Err(e) => e.to_string(),
+            };
+            let mut lines = vec![
+                Line::from(vec![
+                    Span::styled("name: ", t.heading()),
+                    Span::styled(format!("{name}▏"), t.selected()),
+                ]),
+                Line::raw(folder),
+            ];
+            if let Some(e) = error {
+                let style = if *confirm_replace { t.caution() } else { t.danger() };
+                lines.push(Line::styled(e.clone(), style));
+            }
+            frame.render_widget(
+                Paragraph::new(lines).wrap(Wrap { trim: true }).block(block),
+                popup,
+            );
+        }
+    }
+}

@@ -1,0 +1,153 @@
+//! The energy bar and the energy ledger beside the time plot: the rigid-body energy now,
+//! stacked by form, and where the rest went since t = 0 (damping, friction, and the
+//! integrator's own error), as the physics measured it step by step.
+
+use super::app::App;
+use super::render::fmt_num;
+use ratatui::Frame;
+use ratatui::layout::Rect;
+use ratatui::style::Style;
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Paragraph};
+
+/// Outer width of the panel: wide terminals get room for the unit.
+pub fn panel_width(screen_width: u16) -> u16 {
+    if screen_width >= 120 { 24 } else { 20 }
+}
+
+/// Columns the bar (and its total mark) take on the left of the panel.
+const BAR_COLUMNS: u16 = 3;
+
+/// The four stacked forms, bottom to top: name, index into `energy_series`, value.
+fn forms(app: &App) -> [(&'static str, usize, f64); 4] {
+    let e = &app.live.energy;
+    [
+        ("grav", 3, e.gravitational),
+        ("transl", 1, e.translational),
+        ("rot", 2, e.rotational),
+        ("elastic", 4, e.elastic),
+    ]
+}
+
+/// The glyph of each stacked form: one solid block in colour; without colour the forms are
+/// told apart by shading alone.
+fn glyph(app: &App, index: usize) -> char {
+    if app.theme.colour {
+        '█'
+    } else {
+        ['█', '▓', '▒', '░'][index]
+    }
+}
+
+/// Which form fills the bar at each row, bottom row first (`None` above the stack), and the
+/// row of the total (counted from the bottom; the total is the sum with gravity as it is,
+/// while the stack shows a negative gravitational term, a die pressed into the ground, as 0).
+pub fn bar_rows(app: &App, rows: u16) -> (Vec<Option<usize>>, Option<u16>) {
+    let forms = forms(app);
+    let stacked: f64 = forms.iter().map(|f| f.2.max(0.0)).sum();
+    let total = app.live.energy.total();
+    let top = app.live.ledger.initial.max(stacked).max(total);
+    if rows == 0 || !(top.is_finite() && top > 0.0) {
+        return (vec![None; rows as usize], None);
+    }
+    let per_row = top / rows as f64;
+    let cells = (0..rows)
+        .map(|r| {
+            let middle = (r as f64 + 0.5) * per_row;
+            let mut below = 0.0;
+            for (i, f) in forms.iter().enumerate() {
+                below += f.2.max(0.0);
+                if middle < below {
+                    return Some(i);
+                }
+            }
+            None
+        })
+        .collect();
+    let total_row = (total / per_row).floor().clamp(0.0, rows as f64 - 1.0) as u16;
+    (cells, Some(total_row))
+}
+
+pub fn render_ledger(app: &App, area: Rect, frame: &mut Frame) {
+    let t = &app.theme;
+    let block = Block::bordered().title(Line::styled(" energy ", t.heading()));
+    let body = block.inner(area);
+    frame.render_widget(block, area);
+    if body.width < BAR_COLUMNS + 8 || body.height < 2 {
+        return;
+    }
+    let colours = t.energy_series();
+    let forms = forms(app);
+    let (cells, total_row) = bar_rows(app, body.height);
+    let bar: Vec<Line> = (0..body.height)
+        .rev()
+        .map(|r| {
+            let fill = match cells[r as usize] {
+                Some(i) => Span::styled(
+                    glyph(app, i).to_string().repeat(2),
+                    Style::new().fg(colours[forms[i].1]),
+                ),
+                None => Span::raw("  "),
+            };
+            let mark = if total_row == Some(r) { "◀" } else { " " };
+            Line::from(vec![fill, Span::styled(mark, t.heading())])
+        })
+        .collect();
+    frame.render_widget(
+        Paragraph::new(bar),
+        Rect {
+            width: BAR_COLUMNS,
+            ..body
+        },
+    );
+    let text_width = (body.width - BAR_COLUMNS) as usize;
+    let row = |label: Span<'static>, value: f64| {
+        let number = fmt_num(value);
+        let pad = text_width.saturating_sub(label.width() + number.chars().count());
+        Line::from(vec![label, Span::raw(" ".repeat(pad)), Span::raw(number)])
+    };
+    let l = &app.live.ledger;
+    let mut now: Vec<Line> = forms
+        .iter()
+        .enumerate()
+        .rev()
+        .map(|(i, (name, colour, value))| {
+            row(
+                Span::styled(
+                    format!("{} {name}", glyph(app, i)),
+                    Style::new().fg(colours[*colour]),
+                ),
+                *value,
+            )
+        })
+        .collect();
+    now.push(row(Span::styled("◀ total", t.heading()), app.live.energy.total()));
+    let heading = if text_width >= 20 {
+        "lost since 0 s, erg"
+    } else {
+        "lost since 0 s"
+    };
+    // Indented under their heading where the numbers leave room.
+    let indent = if text_width >= 17 { "  " } else { "" };
+    let mut gone = vec![
+        row(Span::raw(format!("{indent}damping")), l.damping_loss),
+        row(Span::raw(format!("{indent}friction")), l.friction_loss),
+        // The remainder: what semi-implicit Euler itself took (negative: gave).
+        row(Span::raw(format!("{indent}integr.")), l.integrator_loss),
+        row(Span::styled("= start", t.heading()), l.initial),
+    ];
+    let mut lines = now;
+    // Short panels drop the heading before any number.
+    if (lines.len() + gone.len()) < body.height as usize {
+        lines.push(Line::styled(heading, t.heading()));
+    }
+    lines.append(&mut gone);
+    frame.render_widget(
+        Paragraph::new(lines),
+        Rect {
+            x: body.x + BAR_COLUMNS,
+            width: body.width - BAR_COLUMNS,
+            ..body
+        },
+    );
+}

@@ -1,0 +1,239 @@
+//! The chaos twin in the explorer (`T`): a ghost die rolled from a start a relative ε away,
+//! the separation of the two on a log scale, and both outcomes. The worker steps both.
+
+use super::app::{App, Editor};
+use super::camera::{Camera, EDGES};
+use super::render::{fmt_num, line3};
+use crate::experiment::twin::EPSILON;
+use crate::physics::Status;
+use crate::worker::{Command, DieState, Phase};
+use nalgebra::Vector3;
+use ratatui::Frame;
+use ratatui::crossterm::event::{KeyCode, KeyEvent};
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::style::Style;
+use ratatui::symbols::Marker;
+use ratatui::text::{Line, Span};
+use ratatui::widgets::canvas::Context;
+use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph};
+
+/// The ε a twin starts with: small enough to look like "the same throw", large enough that
+/// on the paper's setup the face often changes.
+pub const DEFAULT_EPSILON: f64 = 1e-9;
+
+/// What ε does, in the words shown on screen.
+pub const DEFINITION: &str = "twin: height, velocity and spin × (1 + ε)";
+
+/// The twin's keys; returns whether `key` was one of them.
+pub fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) -> bool {
+    match key.code {
+        KeyCode::Char('T') => {
+            app.twin = !app.twin;
+            let c = Command::SetTwin(app.twin.then_some(app.epsilon));
+            app.send(out, c);
+            if app.twin {
+                app.notice = Some(format!("{DEFINITION}, ε = {}", fmt_num(app.epsilon)));
+            }
+        }
+        KeyCode::Char('<') if app.twin => set_epsilon(app, out, app.epsilon / 10.0),
+        KeyCode::Char('>') if app.twin => set_epsilon(app, out, app.epsilon * 10.0),
+        KeyCode::Char('E') if app.twin => app.epsilon_editor = Some(Editor::default()),
+        _ => return false,
+    }
+    true
+}
+
+/// Sets ε (clamped to its range) and rolls both dice again from t = 0.
+fn set_epsilon(app: &mut App, out: &mut Vec<Command>, epsilon: f64) {
+    // Decade steps land exactly on powers of ten, not on 9.999…e-10.
+    let epsilon = 10f64
+        .powi(epsilon.log10().round() as i32)
+        .clamp(EPSILON.min, EPSILON.max);
+    if epsilon != app.epsilon {
+        app.epsilon = epsilon;
+        app.send(out, Command::SetTwin(Some(epsilon)));
+    }
+}
+
+/// Typing ε (after `E`): digits, `e`, `-`, `.`; Enter applies, Esc cancels.
+pub fn on_editor_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
+    let Some(editor) = app.epsilon_editor.as_mut() else {
+        return;
+    };
+    match key.code {
+        KeyCode::Esc => app.epsilon_editor = None,
+        KeyCode::Backspace => {
+            editor.text.pop();
+            editor.error = None;
+        }
+        KeyCode::Char(c) if c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E') => {
+            if editor.text.len() < 24 {
+                editor.text.push(c);
+            }
+            editor.error = None;
+        }
+        KeyCode::Enter => {
+            let text = editor.text.trim().to_string();
+            match text.parse::<f64>() {
+                Ok(v) if EPSILON.check(v).is_ok() => {
+                    app.epsilon_editor = None;
+                    app.epsilon = v;
+                    app.send(out, Command::SetTwin(Some(v)));
+                }
+                Ok(v) => {
+                    editor.error = Some(format!(
+                        "ε = {} is outside {}…{}",
+                        fmt_num(v),
+                        fmt_num(EPSILON.min),
+                        fmt_num(EPSILON.max)
+                    ))
+                }
+                Err(_) => editor.error = Some(format!("`{text}` is not a number")),
+            }
+        }
+        _ => {}
+    }
+}
+
+/// The twin's die drawn as a ghost: its visible edges in the ghost colour, behind the die.
+pub fn draw_ghost(ctx: &mut Context, app: &App, cam: &Camera, focus: &Vector3<f64>, die: &DieState) {
+    let colour = app.theme.ghost();
+    for (a, b) in EDGES {
+        line3(ctx, cam, focus, &die.corners[a], &die.corners[b], colour);
+    }
+    let c = cam.project(&die.centre, focus);
+    ctx.print(c.x, c.y, Span::styled("twin", Style::new().fg(colour)));
+}
+
+/// log₁₀ of the smallest separation the plot shows (below it: rounding of doubles).
+const FLOOR: f64 = -16.0;
+
+/// The separation plot with ε's meaning above and both outcomes below.
+pub fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
+    let t = &app.theme;
+    let Some(twin) = &app.live.twin else { return };
+    let colours = t.separation_colours();
+    let title = Line::from(vec![
+        Span::styled(" chaos twin ", t.heading()),
+        Span::raw(format!("ε = {} ", fmt_num(twin.epsilon))),
+        Span::styled("━centre cm ", Style::new().fg(colours[0])),
+        Span::styled("━angle rad ", Style::new().fg(colours[1])),
+    ]);
+    let block = Block::bordered().title(title);
+    let body = block.inner(area);
+    frame.render_widget(block, area);
+    if body.height < 4 || body.width < 16 {
+        return;
+    }
+    let [definition, plot, outcomes] = body.layout(&Layout::vertical([
+        Constraint::Length(1),
+        Constraint::Min(0),
+        Constraint::Length(1),
+    ]));
+    let definition_text = match &app.epsilon_editor {
+        Some(editor) => match &editor.error {
+            Some(e) => Line::styled(e.clone(), t.danger()),
+            None => Line::from(vec![
+                Span::styled("ε = ", t.heading()),
+                Span::styled(format!("{}▏", editor.text), t.selected()),
+                Span::raw(format!("  {}…{}", fmt_num(EPSILON.min), fmt_num(EPSILON.max))),
+            ]),
+        },
+        None if definition.width as usize >= DEFINITION.chars().count() => Line::raw(DEFINITION),
+        None => Line::raw("h, v, ω × (1+ε)"),
+    };
+    frame.render_widget(Paragraph::new(definition_text), definition);
+    let y_of = |v: f64| if v > 0.0 { v.log10().max(FLOOR) } else { FLOOR };
+    let centre: Vec<(f64, f64)> = app
+        .twin_history
+        .iter()
+        .map(|s| (s.time_s, y_of(s.separation.centre)))
+        .collect();
+    let angle: Vec<(f64, f64)> = app
+        .twin_history
+        .iter()
+        .map(|s| (s.time_s, y_of(s.separation.angle)))
+        .collect();
+    let t_end = app
+        .twin_history
+        .last()
+        .map_or(0.0, |s| s.time_s)
+        .max(app.live.time_s);
+    let x_hi = nice_seconds(t_end);
+    let marker = match app.drawing {
+        super::app::Drawing::Braille => Marker::Braille,
+        super::app::Drawing::Ascii => Marker::Custom('.'),
+    };
+    let datasets = vec![
+        Dataset::default()
+            .marker(marker)
+            .graph_type(GraphType::Line)
+            .style(Style::new().fg(colours[0]))
+            .data(&centre),
+        Dataset::default()
+            .marker(marker)
+            .graph_type(GraphType::Line)
+            .style(Style::new().fg(colours[1]))
+            .data(&angle),
+    ];
+    let chart = Chart::new(datasets)
+        .x_axis(
+            Axis::default()
+                .bounds([0.0, x_hi])
+                .labels(["0 s".to_string(), format!("{} s", fmt_num(x_hi))]),
+        )
+        .y_axis(
+            Axis::default()
+                .bounds([FLOOR, 1.0])
+                .labels(["1e-16", "1e-8", "10"]),
+        )
+        .legend_position(None);
+    frame.render_widget(chart, plot);
+    frame.render_widget(Paragraph::new(outcome_line(app, outcomes.width)), outcomes);
+}
+
+/// The plot's time axis end: whole seconds past one, tenths below.
+fn nice_seconds(t: f64) -> f64 {
+    if t > 1.0 {
+        t.ceil()
+    } else {
+        ((t * 10.0).ceil() / 10.0).max(0.1)
+    }
+}
+
+fn face_of(phase: &Phase) -> Option<u8> {
+    match phase {
+        Phase::Ended(o) if o.status == Status::Settled => o.face,
+        _ => None,
+    }
+}
+
+/// "die settled: face 3 · twin settled: face 5 · faces differ"; narrow: "3 · 5 differ".
+pub fn outcome_line(app: &App, width: u16) -> Line<'static> {
+    let t = &app.theme;
+    let Some(twin) = &app.live.twin else {
+        return Line::default();
+    };
+    let faces = (face_of(&app.live.phase), face_of(&twin.phase));
+    let verdict = match faces {
+        (Some(a), Some(b)) if a == b => Some(Span::styled("same face", t.good())),
+        (Some(_), Some(_)) => Some(Span::styled("faces differ", t.caution())),
+        _ => None,
+    };
+    let full = format!("die {} · twin {}", app.live.phase.label(), twin.phase.label());
+    let mut spans = if full.chars().count() + 14 <= width as usize {
+        vec![Span::raw(full)]
+    } else {
+        let short = |f: Option<u8>| f.map_or("…".to_string(), |f| f.to_string());
+        vec![Span::raw(format!(
+            "die {} · twin {}",
+            short(faces.0),
+            short(faces.1)
+        ))]
+    };
+    if let Some(v) = verdict {
+        spans.push(Span::raw(" · "));
+        spans.push(v);
+    }
+    Line::from(spans)
+}
