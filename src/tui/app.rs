@@ -49,6 +49,43 @@ pub struct Editor {
     pub error: Option<String>,
 }
 
+/// What a key did to a number being typed.
+pub(crate) enum Typed {
+    Cancelled,
+    /// Enter: the trimmed text, parsed (or why it is not a number).
+    Submitted(Result<f64, String>),
+    Editing,
+}
+
+impl Editor {
+    /// Digits, `.`, `-`, `+` and exponents are typed; Backspace deletes; Enter submits the
+    /// number; Esc cancels. Typing clears the last error.
+    pub(crate) fn key(&mut self, code: KeyCode) -> Typed {
+        match code {
+            KeyCode::Esc => return Typed::Cancelled,
+            KeyCode::Backspace => {
+                self.text.pop();
+            }
+            KeyCode::Char(c) if c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E') => {
+                if self.text.len() < 24 {
+                    self.text.push(c);
+                }
+            }
+            KeyCode::Enter => {
+                let text = self.text.trim();
+                return Typed::Submitted(match text.parse::<f64>() {
+                    Ok(v) => Ok(v),
+                    Err(_) if text.is_empty() => Err("type a number, or Esc to cancel".to_string()),
+                    Err(_) => Err(format!("`{text}` is not a number")),
+                });
+            }
+            _ => return Typed::Editing,
+        }
+        self.error = None;
+        Typed::Editing
+    }
+}
+
 /// How the die is drawn: Braille dots, or plain ASCII for fonts without Braille.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Drawing {
@@ -360,27 +397,12 @@ fn on_edit_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
     let Some(editor) = app.editing.as_mut() else {
         return;
     };
-    match key.code {
-        KeyCode::Esc => app.editing = None,
-        KeyCode::Backspace => {
-            editor.text.pop();
-            editor.error = None;
-        }
-        KeyCode::Char(c) if c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E') => {
-            if editor.text.len() < 24 {
-                editor.text.push(c);
-            }
-            editor.error = None;
-        }
-        KeyCode::Enter => {
-            let text = editor.text.trim().to_string();
+    match editor.key(key.code) {
+        Typed::Cancelled => app.editing = None,
+        Typed::Editing => {}
+        Typed::Submitted(number) => {
             let p = app.selected_param();
-            let result = match text.parse::<f64>() {
-                Ok(v) => app.set_param(out, p, v),
-                Err(_) if text.is_empty() => Err("type a number, or Esc to cancel".to_string()),
-                Err(_) => Err(format!("`{text}` is not a number")),
-            };
-            match result {
+            match number.and_then(|v| app.set_param(out, p, v)) {
                 Ok(()) => app.editing = None,
                 Err(e) => {
                     if let Some(editor) = app.editing.as_mut() {
@@ -389,7 +411,6 @@ fn on_edit_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
                 }
             }
         }
-        _ => {}
     }
 }
 

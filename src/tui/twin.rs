@@ -1,7 +1,7 @@
 //! The chaos twin in the explorer (`T`): a ghost die rolled from a start a relative ε away,
 //! the separation of the two on a log scale, and both outcomes. The worker steps both.
 
-use super::app::{App, Editor};
+use super::app::{App, Editor, Typed};
 use super::camera::{Camera, EDGES};
 use super::render::{fmt_num, line3};
 use crate::experiment::twin::EPSILON;
@@ -60,38 +60,25 @@ pub fn on_editor_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
     let Some(editor) = app.epsilon_editor.as_mut() else {
         return;
     };
-    match key.code {
-        KeyCode::Esc => app.epsilon_editor = None,
-        KeyCode::Backspace => {
-            editor.text.pop();
-            editor.error = None;
-        }
-        KeyCode::Char(c) if c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E') => {
-            if editor.text.len() < 24 {
-                editor.text.push(c);
+    match editor.key(key.code) {
+        Typed::Cancelled => app.epsilon_editor = None,
+        Typed::Editing => {}
+        Typed::Submitted(number) => match number {
+            Ok(v) if EPSILON.check(v).is_ok() => {
+                app.epsilon_editor = None;
+                app.epsilon = v;
+                app.send(out, Command::SetTwin(Some(v)));
             }
-            editor.error = None;
-        }
-        KeyCode::Enter => {
-            let text = editor.text.trim().to_string();
-            match text.parse::<f64>() {
-                Ok(v) if EPSILON.check(v).is_ok() => {
-                    app.epsilon_editor = None;
-                    app.epsilon = v;
-                    app.send(out, Command::SetTwin(Some(v)));
-                }
-                Ok(v) => {
-                    editor.error = Some(format!(
-                        "ε = {} is outside {}…{}",
-                        fmt_num(v),
-                        fmt_num(EPSILON.min),
-                        fmt_num(EPSILON.max)
-                    ))
-                }
-                Err(_) => editor.error = Some(format!("`{text}` is not a number")),
+            Ok(v) => {
+                editor.error = Some(format!(
+                    "ε = {} is outside {}…{}",
+                    fmt_num(v),
+                    fmt_num(EPSILON.min),
+                    fmt_num(EPSILON.max)
+                ))
             }
-        }
-        _ => {}
+            Err(e) => editor.error = Some(e),
+        },
     }
 }
 
