@@ -910,14 +910,9 @@ fn legend_lines(app: &App) -> Vec<Line<'static>> {
 
 fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
     let keys = if app.map.editing.is_some() {
-        vec![
-            ("MIN MAX", "type", 0),
-            ("Enter", "apply", 0),
-            ("Esc", "cancel", 0),
-            ("Ctrl-C", "quit", 0),
-        ]
+        super::render::typing_hints("MIN MAX")
     } else if app.help {
-        vec![("↑↓", "scroll", 0), ("? Esc", "close help", 0), ("q", "quit", 0)]
+        super::render::help_hints()
     } else {
         vec![
             ("Tab", "die", 0),

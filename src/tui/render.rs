@@ -789,14 +789,9 @@ pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
     // (key, what it does, priority): on a narrow terminal the highest numbers go first, so
     // the keys that matter most, help and quit among them, always stay in view.
     let keys: Vec<(&str, &str, u8)> = if app.editing.is_some() || app.epsilon_editor.is_some() {
-        vec![
-            ("0-9 . - e", "type", 0),
-            ("Enter", "apply", 0),
-            ("Esc", "cancel", 0),
-            ("Ctrl-C", "quit", 0),
-        ]
+        typing_hints("0-9 . - e")
     } else if app.help {
-        vec![("↑↓", "scroll", 0), ("? Esc", "close help", 0), ("q", "quit", 0)]
+        help_hints()
     } else {
         vec![
             ("space", if app.live.playing { "pause" } else { "play" }, 0),
@@ -828,6 +823,21 @@ pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
         ]
     };
     render_key_hints(app, keys, area, frame);
+}
+
+/// The footer while a value is typed: `typing` says what may be typed.
+pub(crate) fn typing_hints(typing: &'static str) -> Vec<(&'static str, &'static str, u8)> {
+    vec![
+        (typing, "type", 0),
+        ("Enter", "apply", 0),
+        ("Esc", "cancel", 0),
+        ("Ctrl-C", "quit", 0),
+    ]
+}
+
+/// The footer while the help overlay is open.
+pub(crate) fn help_hints() -> Vec<(&'static str, &'static str, u8)> {
+    vec![("↑↓", "scroll", 0), ("? Esc", "close help", 0), ("q", "quit", 0)]
 }
 
 /// A footer line of `(key, what it does, priority)` hints after any notice. On a narrow
