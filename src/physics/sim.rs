@@ -167,6 +167,9 @@ pub struct Simulation {
     step_rotation: Option<Matrix3<f64>>,
     /// Whether any corner is below the ground at the current state.
     in_contact: bool,
+    /// cm/s, the corner velocities the current contact forces were computed from (kept
+    /// while in contact): the ledger's velocities before the next kick.
+    contact_velocities: [Vector3<f64>; 8],
     /// erg, work done on the die by damping and by friction since t = 0 (negative: lost).
     work: ContactWork,
     /// erg, rigid-body energy at t = 0.
@@ -209,6 +212,7 @@ impl Simulation {
             angular_velocity: Vector3::zeros(),
             step_rotation: None,
             in_contact: false,
+            contact_velocities: [Vector3::zeros(); 8],
             work: ContactWork::default(),
             initial_energy: 0.0,
             outcome: None,
@@ -351,10 +355,7 @@ impl Simulation {
 
     /// erg, the energy the stopping rule uses (`integrator.stop_energy`).
     pub fn stop_energy(&self) -> f64 {
-        match self.c.stop_energy {
-            StopEnergy::RigidBody => self.energy().total(),
-            StopEnergy::PointMasses => self.point_mass_energy(),
-        }
+        self.stop_energy_from(self.energy().total())
     }
 
     /// erg, the stopping threshold.
@@ -379,11 +380,7 @@ impl Simulation {
     pub fn step(&mut self) {
         let c = self.c;
         // Corner velocities before the kick, for the energy ledger.
-        let before = if self.in_contact {
-            Some(self.corner_velocities())
-        } else {
-            None
-        };
+        let before = self.in_contact.then_some(self.contact_velocities);
         let s = &mut self.state;
         // 1. kick: v ← v + ((ΣF + M·g)/M)·Δt, forces summed in corner order.
         let force = if self.in_contact {
@@ -479,6 +476,7 @@ impl Simulation {
         })
     }
 
+    /// The stop energy, given the rigid-body energy already computed for this state.
     fn stop_energy_from(&self, rigid: f64) -> f64 {
         match self.c.stop_energy {
             StopEnergy::RigidBody => rigid,
@@ -541,6 +539,7 @@ impl Simulation {
             FrictionLaw::PerCorner => None,
             FrictionLaw::WholeDieNorm => Some(horizontal_matrix_norm(&u)),
         };
+        self.contact_velocities = u;
         let s = &mut self.state;
         for ((force, &depth), uk) in s.corner_forces.iter_mut().zip(&s.corner_depths).zip(&u) {
             if depth <= 0.0 {
