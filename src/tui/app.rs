@@ -16,6 +16,7 @@ use ratatui::crossterm::event::{
     Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEventKind,
 };
 use ratatui::layout::{Position, Rect};
+use ratatui::symbols::Marker;
 
 /// Rolls in one batch (`b`).
 pub const BATCH_ROLLS: u64 = 10_000;
@@ -92,6 +93,16 @@ pub enum Drawing {
     #[default]
     Braille,
     Ascii,
+}
+
+impl Drawing {
+    /// The marker that draws the plots' lines.
+    pub fn line_marker(self) -> Marker {
+        match self {
+            Drawing::Braille => Marker::Braille,
+            Drawing::Ascii => Marker::Custom('.'),
+        }
+    }
 }
 
 #[derive(Debug, Clone)]

@@ -726,10 +726,7 @@ pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
         let floor = if lo < 0.0 { -nice_ceiling(-lo) } else { 0.0 };
         (floor, nice_ceiling(hi.max(1.0) * 1.05))
     };
-    let marker = match app.drawing {
-        Drawing::Braille => Marker::Braille,
-        Drawing::Ascii => Marker::Custom('.'),
-    };
+    let marker = app.drawing.line_marker();
     let mut datasets: Vec<Dataset> = series
         .iter()
         .zip(LEGEND)

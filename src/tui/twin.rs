@@ -12,7 +12,6 @@ use ratatui::Frame;
 use ratatui::crossterm::event::{KeyCode, KeyEvent};
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
-use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::canvas::Context;
 use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph};
@@ -147,10 +146,7 @@ pub fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
         .map_or(0.0, |s| s.time_s)
         .max(app.live.time_s);
     let x_hi = nice_seconds(t_end);
-    let marker = match app.drawing {
-        super::app::Drawing::Braille => Marker::Braille,
-        super::app::Drawing::Ascii => Marker::Custom('.'),
-    };
+    let marker = app.drawing.line_marker();
     let datasets = vec![
         Dataset::default()
             .marker(marker)

@@ -349,7 +349,7 @@ impl Engine {
             }
         } else {
             // A new initial condition is a roll of its own; other values re-run the same one.
-            let kind = if is_initial(param) {
+            let kind = if param.is_initial_condition() {
                 RollKind::Edited
             } else {
                 self.roll
@@ -609,13 +609,6 @@ pub(crate) fn die_state(sim: &Simulation, start_face: u8) -> DieState {
         face_up: sim.face_up(),
         start_face,
     }
-}
-
-fn is_initial(p: Param) -> bool {
-    matches!(
-        p,
-        Param::Height | Param::Spin(_) | Param::Velocity(_) | Param::Orientation(_)
-    )
 }
 
 fn peak_of(a: Energy, b: Energy) -> Energy {

@@ -125,6 +125,14 @@ impl Param {
         matches!(self, Param::Stiffness | Param::Damping | Param::Friction)
     }
 
+    /// Part of the initial condition: changing it makes a roll of its own.
+    pub fn is_initial_condition(self) -> bool {
+        matches!(
+            self,
+            Param::Height | Param::Spin(_) | Param::Velocity(_) | Param::Orientation(_)
+        )
+    }
+
     /// Whether `ω_rock·Δt` depends on this value (shown beside it).
     pub fn sets_stability(self) -> bool {
         matches!(self, Param::Stiffness | Param::Dt)
