@@ -52,9 +52,9 @@ pub struct Exported {
     pub plot: PathBuf,
 }
 
-/// The first `<stem>.csv` / `<stem>.png` pair in `dir` that replaces no file: `stem`, then
-/// `stem-2`, `stem-3`, …
-pub fn free_stem(dir: &Path, stem: &str) -> String {
+/// The first stem for files `<stem>.<ext>` (one per extension) in `dir` that replaces no
+/// file: `stem`, then `stem-2`, `stem-3`, …
+pub fn free_stem(dir: &Path, stem: &str, extensions: &[&str]) -> String {
     (1..)
         .map(|n| {
             if n == 1 {
@@ -63,7 +63,11 @@ pub fn free_stem(dir: &Path, stem: &str) -> String {
                 format!("{stem}-{n}")
             }
         })
-        .find(|s| !dir.join(format!("{s}.csv")).exists() && !dir.join(format!("{s}.png")).exists())
+        .find(|s| {
+            extensions
+                .iter()
+                .all(|ext| !dir.join(format!("{s}.{ext}")).exists())
+        })
         .unwrap_or_else(|| stem.to_string())
 }
 

@@ -10,6 +10,7 @@ use super::app::{App, Editor};
 use super::render::{fmt_num, render_header, render_help, render_too_small};
 use crate::experiment::basin::node_setup;
 use crate::experiment::plot::{cell_colour, time_range, write_image};
+use crate::experiment::trace::free_stem;
 use crate::experiment::{Axis, BasinMap, Cell, Layer};
 use crate::physics::{InitialCondition, Params, Status};
 use crate::worker::param::{ALL, Param};
@@ -20,7 +21,7 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Wrap};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Most cells along each axis: a 200×100 map takes about half a second on two cores, so
 /// a full panel stays near a second even where borders are long.
@@ -494,23 +495,12 @@ pub fn export_if_asked(app: &mut App, dir: &Path) {
         app.notice = Some("no map to export yet".to_string());
         return;
     };
-    let path = free_path(dir);
+    let path = dir.join(format!("{}.png", free_stem(dir, "basin-map", &["png"])));
     app.notice = Some(match write_image(map, app.map.layer, &path) {
         Ok(()) if map.complete => format!("basin map saved to {}", path.display()),
         Ok(()) => format!("partial basin map saved to {}", path.display()),
         Err(e) => format!("export failed: {e}"),
     });
-}
-
-/// `basin-map.png`, or the first of `basin-map-2.png`, `-3`, … not taken yet.
-fn free_path(dir: &Path) -> PathBuf {
-    (1..)
-        .map(|n| match n {
-            1 => dir.join("basin-map.png"),
-            n => dir.join(format!("basin-map-{n}.png")),
-        })
-        .find(|p| !p.exists())
-        .expect("some name is free")
 }
 
 /// The terminal colour of a cell: the exported image's colour, or nothing without colour.

@@ -303,7 +303,11 @@ impl Engine {
             RollKind::Edited => "edited-roll".to_string(),
         };
         let dir = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
-        let stem = free_stem(&dir, &format!("dicesim-{}-{roll}", self.preset.name));
+        let stem = free_stem(
+            &dir,
+            &format!("dicesim-{}-{roll}", self.preset.name),
+            &["csv", "png"],
+        );
         let title = format!(
             "{} · {} — energy against time",
             self.preset.name,
