@@ -17,7 +17,7 @@ pub struct RollRecord {
 /// Rolls `initial` to its end. The parameters must be valid (an out-of-range initial
 /// condition still ends in a status, never a panic).
 pub fn roll_record(params: &Params, initial: &InitialCondition, id: u64) -> RollRecord {
-    let mut sim = Simulation::new_unchecked(params, initial);
+    let mut sim = Simulation::for_outcome(params, initial);
     let start_face = face_most_nearly_up(&sim.state().corner_offsets);
     let outcome = sim.run_to_end();
     RollRecord {

@@ -5,6 +5,7 @@
 pub mod body;
 pub mod energy;
 pub mod initial;
+pub mod lanes;
 pub mod params;
 pub mod sim;
 
