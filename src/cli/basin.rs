@@ -1,14 +1,13 @@
 //! `dicesim basin`: the outcome over a grid of two setup values, as CSV or an image.
 
-use super::{CliError, SetupArgs};
+use super::{CliError, EngineArg, INTERRUPTED, SetupArgs, cancel_on_ctrl_c, persist, temp_file_beside};
 use crate::experiment::batch::thread_count;
 use crate::experiment::plot::write_image;
-use crate::experiment::{Axis, BasinMap, FaceTally, Layer, MapSpec, Method, run_map};
+use crate::experiment::{Axis, BasinMap, FaceTally, Layer, MapSpec, Method, RunOptions, run_map_with};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::{IsTerminal, Write};
-use std::path::PathBuf;
-use std::sync::atomic::AtomicBool;
+use std::path::{Path, PathBuf};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum LayerArg {
@@ -48,6 +47,9 @@ pub struct BasinArgs {
     /// Write the map to a .csv, .png or .svg file.
     #[arg(long, value_name = "map.csv|map.png|map.svg")]
     pub out: Option<PathBuf>,
+    /// The engine that steps the rolls; the map is bit for bit the same with each.
+    #[arg(long, value_enum, default_value_t = EngineArg::Auto)]
+    pub engine: EngineArg,
 }
 
 fn parse_resolution(s: &str) -> Result<(usize, usize), String> {
@@ -102,15 +104,19 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
             .expect("the progress template is valid"),
     );
     let jobs = thread_count(args.jobs.unwrap_or(0) as usize);
+    let options = RunOptions {
+        jobs,
+        engine: args.engine.engine(),
+    };
+    let stop = cancel_on_ctrl_c()?;
     let start = std::time::Instant::now();
-    let never = AtomicBool::new(false);
     let spec = MapSpec { x, y, method };
-    let map = run_map(
+    let map = run_map_with(
         &params,
         &preset.initial,
         &spec,
-        jobs,
-        &never,
+        &options,
+        &stop,
         &mut |m: &BasinMap| bar.set_position(m.sampled as u64),
     )
     .map_err(|e| CliError::Input(e.to_string()))?;
@@ -120,25 +126,14 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
     if let (Some(path), Some(kind)) = (&args.out, out_kind) {
         let failed = |e: String| CliError::Run(format!("{}: {e}", path.display()));
         if kind == "csv" {
-            let mut file = std::io::BufWriter::new(std::fs::File::create(path)?);
-            map.write_csv(&mut file).map_err(|e| failed(e.to_string()))?;
-            file.flush().map_err(|e| failed(e.to_string()))?;
+            write_csv_whole(&map, path).map_err(|e| failed(e.to_string()))?;
         } else {
             write_image(&map, layer, path).map_err(|e| failed(e.to_string()))?;
         }
     }
     let (x, y) = (&spec.x, &spec.y);
     let mut out = std::io::stdout().lock();
-    let how = match method {
-        Method::Uniform => "uniform grid: every cell rolled".to_string(),
-        Method::Adaptive => format!(
-            "adaptive: {} of {} cells rolled ({:.1}%), the rest filled from agreeing neighbours",
-            map.sampled,
-            total,
-            100.0 * map.sampled as f64 / total as f64
-        ),
-    };
-    writeln!(out, "{w}×{h} {} map, {how}", layer.name())?;
+    writeln!(out, "{w}×{h} {} map, {}", layer.name(), map.method_report())?;
     writeln!(out, "x  {} from {} to {}", x.key.label(), x.min, x.max)?;
     if h == 1 {
         writeln!(out, "y  {} = {}", y.key.label(), y.value(0))?;
@@ -155,17 +150,40 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
         .map(|f| format!("{f}: {:.1}%", 100.0 * faces.share(f)))
         .collect();
     writeln!(out, "faces over the map  {}", shares.join(", "))?;
-    let unsettled = w * h - faces.total() as usize;
+    let unsettled = map.cells.iter().flatten().count() - faces.total() as usize;
     if unsettled > 0 {
         writeln!(out, "cells without a face {unsettled}")?;
     }
     writeln!(
         out,
-        "time                {elapsed:.2} s on {jobs} thread{}",
-        if jobs == 1 { "" } else { "s" }
+        "time                {elapsed:.2} s on {jobs} thread{}, {} engine",
+        if jobs == 1 { "" } else { "s" },
+        options.engine.resolve().name()
     )?;
     if let Some(path) = &args.out {
         writeln!(out, "wrote               {}", path.display())?;
     }
+    out.flush()?;
+    if !map.complete {
+        let known = map.cells.iter().flatten().count();
+        eprintln!(
+            "dicesim: interrupted: kept the {known} of {total} cells known ({} rolled){}",
+            map.sampled,
+            match (&args.out, method) {
+                (Some(path), Method::Uniform) =>
+                    format!(", the first {known} in row order in {}", path.display()),
+                (Some(path), Method::Adaptive) => format!(", in {}", path.display()),
+                (None, _) => String::new(),
+            }
+        );
+        std::process::exit(INTERRUPTED);
+    }
     Ok(())
+}
+
+/// Writes the map's CSV whole under `path` (through a temporary file beside it).
+fn write_csv_whole(map: &BasinMap, path: &Path) -> std::io::Result<()> {
+    let mut file = temp_file_beside(path)?;
+    map.write_csv(&mut file)?;
+    persist(file, path)
 }

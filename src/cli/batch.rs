@@ -1,19 +1,14 @@
 //! `dicesim batch`: many rolls in parallel, per-roll results and their statistics.
 
-use super::{CliError, SetupArgs};
+use super::{CliError, EngineArg, INTERRUPTED, SetupArgs, cancel_on_ctrl_c, persist, temp_file_beside};
 use crate::experiment::batch::thread_count;
 use crate::experiment::ics::{parse_initial_conditions, record_csv_row, records_csv_header};
-use crate::experiment::{Batch, BatchSummary, RollRecord, Rolls, run_batch};
+use crate::experiment::{BatchRun, BatchSummary, RollRecord, Rolls, RunOptions, stream_batch};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::json;
-use std::io::{IsTerminal, Write};
+use std::io::{BufWriter, IsTerminal, Write};
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
-
-/// Exit status after Ctrl-C, as a shell reports a SIGINT (128 + 2).
-const INTERRUPTED: i32 = 130;
 
 #[derive(Debug, Args)]
 pub struct BatchArgs {
@@ -46,6 +41,9 @@ pub struct BatchArgs {
     /// Print the summary as one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
+    /// The engine that steps the rolls; results are bit for bit the same with each.
+    #[arg(long, value_enum, default_value_t = EngineArg::Auto)]
+    pub engine: EngineArg,
 }
 
 /// The per-roll file's format, from its extension.
@@ -91,17 +89,11 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
         },
     };
     let jobs = thread_count(args.jobs.unwrap_or(0) as usize);
-
-    let stop = Arc::new(AtomicBool::new(false));
-    let handler_stop = stop.clone();
-    // The first Ctrl-C finishes the running chunk and keeps everything done; a second one
-    // quits at once.
-    ctrlc::set_handler(move || {
-        if handler_stop.swap(true, Ordering::SeqCst) {
-            std::process::exit(INTERRUPTED);
-        }
-    })
-    .map_err(|e| CliError::Run(format!("cannot catch Ctrl-C: {e}")))?;
+    let options = RunOptions {
+        jobs,
+        engine: args.engine.engine(),
+    };
+    let stop = cancel_on_ctrl_c()?;
 
     let bar = if std::io::stderr().is_terminal() {
         ProgressBar::new(rolls.len())
@@ -112,82 +104,141 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
         ProgressStyle::with_template("{bar:40} {pos}/{len} rolls, {per_sec}, {eta} left")
             .expect("the progress template is valid"),
     );
-    let batch = run_batch(&params, &rolls, jobs, &stop, &mut |done: &[RollRecord]| {
-        bar.set_position(done.len() as u64)
+    let seed_field = if given.is_some() { None } else { Some(seed) };
+    // Records go to the file as they arrive, so memory stays flat in the number of rolls;
+    // the file appears under its name only once it is whole (or an interrupted prefix).
+    let mut writer = match (&args.out, &format) {
+        (Some(path), Some(format)) => Some(
+            RecordWriter::create(path, format, seed_field, rolls.len())
+                .map_err(|e| CliError::Run(format!("{}: {e}", path.display())))?,
+        ),
+        _ => None,
+    };
+    let run = stream_batch(&params, &rolls, &options, &stop, &mut |chunk: &[RollRecord]| {
+        bar.inc(chunk.len() as u64);
+        match &mut writer {
+            Some(w) => w.write(chunk).map_err(|e| e.to_string()),
+            None => Ok(()),
+        }
     })
-    .map_err(|e| CliError::Input(e.to_string()))?;
+    .map_err(|e| match e {
+        crate::experiment::Error::Output(msg) => CliError::Run(format!(
+            "{}: {msg}",
+            args.out.as_deref().unwrap_or(Path::new("")).display()
+        )),
+        e => CliError::Input(e.to_string()),
+    })?;
     bar.finish_and_clear();
 
-    let summary = batch.summary();
-    if let (Some(path), Some(format)) = (&args.out, format) {
-        write_records(path, format, &batch, &summary, seed, given.is_some())
+    let summary = &run.summary;
+    if let (Some(w), Some(path)) = (writer, &args.out) {
+        w.finish(&run)
             .map_err(|e| CliError::Run(format!("{}: {e}", path.display())))?;
     }
     let mut out = std::io::stdout().lock();
     if args.json {
         let v = json!({
             "preset": preset.name,
-            "seed": if given.is_some() { None } else { Some(seed) },
-            "requested": batch.requested,
-            "completed": batch.records.len(),
-            "interrupted": batch.cancelled,
-            "jobs": batch.jobs,
+            "seed": seed_field,
+            "requested": run.requested,
+            "completed": run.completed,
+            "interrupted": run.cancelled,
+            "jobs": run.jobs,
+            "engine": run.engine,
             "summary": summary,
         });
         writeln!(out, "{v}")?;
     } else {
-        print_summary(&mut out, &batch, &summary)?;
+        print_summary(&mut out, &run, summary)?;
     }
     out.flush()?;
-    if batch.cancelled {
+    if run.cancelled {
         eprintln!(
-            "dicesim: interrupted: kept the {} of {} rolls completed",
-            batch.records.len(),
-            batch.requested
+            "dicesim: interrupted: kept the {} of {} rolls completed{}",
+            run.completed,
+            run.requested,
+            match &args.out {
+                Some(path) => format!(" (the first {} in {})", run.completed, path.display()),
+                None => String::new(),
+            }
         );
         std::process::exit(INTERRUPTED);
     }
     Ok(())
 }
 
-fn write_records(
-    path: &Path,
+/// A per-roll file written as the records arrive: into a temporary file beside the target,
+/// renamed onto it once complete, so a failed run leaves no partial file under the name.
+struct RecordWriter {
+    file: BufWriter<tempfile::NamedTempFile>,
+    path: PathBuf,
     format: OutFormat,
-    batch: &Batch,
-    summary: &BatchSummary,
-    seed: u64,
-    given: bool,
-) -> std::io::Result<()> {
-    let mut w = std::io::BufWriter::new(std::fs::File::create(path)?);
-    match format {
-        OutFormat::Csv => {
-            writeln!(w, "{}", records_csv_header())?;
-            for r in &batch.records {
-                writeln!(w, "{}", record_csv_row(r))?;
-            }
-        }
-        OutFormat::Json => {
-            let v = json!({
-                "seed": if given { None } else { Some(seed) },
-                "requested": batch.requested,
-                "interrupted": batch.cancelled,
-                "summary": summary,
-                "rolls": batch.records,
-            });
-            serde_json::to_writer(&mut w, &v)?;
-            writeln!(w)?;
-        }
-    }
-    w.flush()
+    first: bool,
 }
 
-fn print_summary(out: &mut impl Write, batch: &Batch, s: &BatchSummary) -> std::io::Result<()> {
+impl RecordWriter {
+    fn create(path: &Path, format: &OutFormat, seed: Option<u64>, requested: u64) -> std::io::Result<Self> {
+        let mut file = temp_file_beside(path)?;
+        let format = match format {
+            OutFormat::Csv => {
+                writeln!(file, "{}", records_csv_header())?;
+                OutFormat::Csv
+            }
+            OutFormat::Json => {
+                // The rolls first, then what is known only at the end.
+                write!(
+                    file,
+                    "{{\"seed\":{},\"requested\":{requested},\"rolls\":[",
+                    json!(seed)
+                )?;
+                OutFormat::Json
+            }
+        };
+        Ok(RecordWriter {
+            file,
+            path: path.to_path_buf(),
+            format,
+            first: true,
+        })
+    }
+
+    fn write(&mut self, records: &[RollRecord]) -> std::io::Result<()> {
+        for r in records {
+            match self.format {
+                OutFormat::Csv => writeln!(self.file, "{}", record_csv_row(r))?,
+                OutFormat::Json => {
+                    if !self.first {
+                        self.file.write_all(b",")?;
+                    }
+                    serde_json::to_writer(&mut self.file, r)?;
+                }
+            }
+            self.first = false;
+        }
+        Ok(())
+    }
+
+    fn finish(mut self, run: &BatchRun) -> std::io::Result<()> {
+        if let OutFormat::Json = self.format {
+            writeln!(
+                self.file,
+                "],\"interrupted\":{},\"summary\":{}}}",
+                run.cancelled,
+                json!(run.summary)
+            )?;
+        }
+        persist(self.file, &self.path)
+    }
+}
+
+fn print_summary(out: &mut impl Write, run: &BatchRun, s: &BatchSummary) -> std::io::Result<()> {
     writeln!(
         out,
-        "{} rolls on {} thread{}",
+        "{} rolls on {} thread{}, {} engine",
         s.rolls,
-        batch.jobs,
-        if batch.jobs == 1 { "" } else { "s" }
+        run.jobs,
+        if run.jobs == 1 { "" } else { "s" },
+        run.engine.name()
     )?;
     writeln!(out, "face   count   share")?;
     for f in 0..6 {

@@ -2,14 +2,76 @@
 
 mod basin;
 mod batch;
+mod bench;
 mod presets;
 mod roll;
 mod trace;
 mod tui;
 
+use crate::experiment::Engine;
 use crate::preset::{Preset, Store};
-use clap::{Args, Parser, Subcommand};
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use std::io::BufWriter;
+use std::path::Path;
 use std::process::ExitCode;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Exit status after Ctrl-C, as a shell reports a SIGINT (128 + 2).
+pub(crate) const INTERRUPTED: i32 = 130;
+
+/// `--engine` of `batch` and `basin`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum EngineArg {
+    /// The lane engine where the CPU has AVX2, else the scalar one.
+    Auto,
+    /// One roll after another.
+    Scalar,
+    /// Four rolls per AVX2 vector (the scalar engine on CPUs without AVX2).
+    Lanes,
+}
+
+impl EngineArg {
+    pub fn engine(self) -> Engine {
+        match self {
+            EngineArg::Auto => Engine::Auto,
+            EngineArg::Scalar => Engine::Scalar,
+            EngineArg::Lanes => Engine::Lanes,
+        }
+    }
+}
+
+/// A buffered temporary file beside `path` (same folder, so renaming it onto `path` is
+/// atomic): written in full, then [`persist`]ed; dropped unpersisted, it leaves nothing.
+pub(crate) fn temp_file_beside(path: &Path) -> std::io::Result<BufWriter<tempfile::NamedTempFile>> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    Ok(BufWriter::new(tempfile::NamedTempFile::new_in(dir)?))
+}
+
+/// Flushes `file`, syncs it and renames it onto `path`.
+pub(crate) fn persist(file: BufWriter<tempfile::NamedTempFile>, path: &Path) -> std::io::Result<()> {
+    let file = file.into_inner().map_err(|e| e.into_error())?;
+    file.as_file().sync_all()?;
+    file.persist(path).map_err(|e| e.error)?;
+    Ok(())
+}
+
+/// A flag the first Ctrl-C sets (the running rolls notice it within a few thousand steps
+/// and the command keeps what is complete); a second Ctrl-C quits at once.
+pub(crate) fn cancel_on_ctrl_c() -> Result<Arc<AtomicBool>, CliError> {
+    let stop = Arc::new(AtomicBool::new(false));
+    let handler_stop = stop.clone();
+    ctrlc::set_handler(move || {
+        if handler_stop.swap(true, Ordering::SeqCst) {
+            std::process::exit(INTERRUPTED);
+        }
+    })
+    .map_err(|e| CliError::Run(format!("cannot catch Ctrl-C: {e}")))?;
+    Ok(stop)
+}
 
 /// A die rolling on a table as a rigid body (Chin & Li, 2019).
 #[derive(Debug, Parser)]
@@ -31,6 +93,8 @@ pub enum Command {
     Batch(batch::BatchArgs),
     /// Map the outcome over a grid of two setup values (CSV, PNG or SVG).
     Basin(basin::BasinArgs),
+    /// Time both engines on the same rolls and maps in this process and print the ratios.
+    Bench(bench::BenchArgs),
     /// The terminal explorer: a live die, energy plots, parameters and outcomes (the default).
     Tui(tui::TuiArgs),
 }
@@ -86,6 +150,7 @@ pub fn main() -> ExitCode {
         Some(Command::Presets(args)) => presets::run(&args),
         Some(Command::Batch(args)) => batch::run(&args),
         Some(Command::Basin(args)) => basin::run(&args),
+        Some(Command::Bench(args)) => bench::run(&args),
         Some(Command::Tui(args)) => tui::run(&args),
         None => tui::run(&tui::TuiArgs::default()),
     };

@@ -4,15 +4,31 @@
 //! one. The adaptive method samples a coarse grid, then splits only blocks whose corners
 //! differ (in face or status) and fills agreeing blocks from their corners; like the
 //! authors' refinement it can miss an island smaller than a coarse block, which the uniform
-//! method (every node rolled) cannot.
+//! method (every node rolled) cannot. Where the basins are finely interleaved (a 15 cm drop)
+//! nearly every block splits down to single cells, and refining level by level costs more
+//! than rolling every cell at once. A smooth boundary line leaves about half of a split
+//! block's four parts differing; so once more than [`UNIFORM_SWITCH_SHARE`] of the parts of
+//! the blocks split at a refinement still differ, the adaptive method rolls every remaining
+//! cell, and the map says so ([`BasinMap::switched_to_uniform`]).
 
 use super::Error;
-use super::batch::thread_pool;
+use super::batch::{RunOptions, thread_pool};
+use super::engine::roll_setups;
 use super::keys::ScanKey;
 use super::record::{RollRecord, roll_record};
 use crate::physics::{InitialCondition, Outcome, Params, Status};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
+
+/// The adaptive method rolls every remaining cell once more than this share of the parts
+/// of the blocks split at a refinement still differ: the map is nearly all boundary, its
+/// cells would be rolled nearly all anyway, and one pass keeps every thread and lane busy
+/// where level after level would not.
+pub const UNIFORM_SWITCH_SHARE: f64 = 0.75;
+
+/// Nodes per task: enough to keep four lanes full most of the time, few enough that two
+/// threads share a block of rows evenly.
+const NODES_PER_TASK: usize = 128;
 
 /// One axis of a map: a key scanned from `min` to `max` (both included) over `cells` nodes.
 #[derive(Debug, Clone, PartialEq)]
@@ -161,6 +177,10 @@ pub struct BasinMap {
     pub sampled: usize,
     /// False for a partial map (delivered while running, or after a cancel).
     pub complete: bool,
+    /// For an adaptive map that rolled every remaining cell: after how many refinement
+    /// passes, and the share of the parts of the blocks split at the last one that still
+    /// differed.
+    pub switched_to_uniform: Option<(usize, f64)>,
 }
 
 impl BasinMap {
@@ -174,6 +194,28 @@ impl BasinMap {
 
     pub fn cell(&self, i: usize, j: usize) -> Option<&Cell> {
         self.cells[j * self.width() + i].as_ref()
+    }
+
+    /// How the map was computed, in words.
+    pub fn method_report(&self) -> String {
+        let total = self.cells.len();
+        let rolled = format!(
+            "{} of {} cells rolled ({:.1}%)",
+            self.sampled,
+            total,
+            100.0 * self.sampled as f64 / total.max(1) as f64
+        );
+        match (self.method, self.switched_to_uniform) {
+            (Method::Uniform, _) => "uniform grid: every cell rolled".to_string(),
+            (Method::Adaptive, None) => {
+                format!("adaptive: {rolled}, the rest filled from agreeing neighbours")
+            }
+            (Method::Adaptive, Some((passes, share))) => format!(
+                "adaptive: {rolled}; after {passes} refinement{} {:.0}% of the split blocks' parts still differed, so every remaining cell was rolled",
+                if passes == 1 { "" } else { "s" },
+                100.0 * share
+            ),
+        }
     }
 }
 
@@ -237,12 +279,12 @@ pub fn roll_node(
     roll_record(&p, &ic, (j * x.cells + i) as u64)
 }
 
-/// Computes the map `spec` around `params` and `base` on `jobs` threads (0: one per core).
+/// Computes the map `spec` around `params` and `base` on `jobs` threads (0: one per core),
+/// with the engine of [`RunOptions::default`] (the lane engine where the CPU has AVX2).
 ///
 /// `on_partial` is called on the calling thread with the map so far: after each block of
 /// rows (uniform) or each refinement level (adaptive, every cell then filled from the
-/// nearest rolled corner of its block). Setting `cancel` stops at the next such point and
-/// returns that partial map (`complete == false`). The result is the same for any `jobs`.
+/// nearest rolled corner of its block). The result is the same for any `jobs` and engine.
 pub fn run_map(
     params: &Params,
     base: &InitialCondition,
@@ -251,9 +293,30 @@ pub fn run_map(
     cancel: &AtomicBool,
     on_partial: &mut dyn FnMut(&BasinMap),
 ) -> Result<BasinMap, Error> {
+    let options = RunOptions {
+        jobs,
+        ..RunOptions::default()
+    };
+    run_map_with(params, base, spec, &options, cancel, on_partial)
+}
+
+/// [`run_map`] with a choice of threads and engine.
+///
+/// Setting `cancel` stops the running rolls within a few thousand steps and returns a
+/// partial map (`complete == false`) of the cells rolled: for a uniform map an exact prefix
+/// of the cells in row order, for an adaptive one the rolled nodes without any filling.
+pub fn run_map_with(
+    params: &Params,
+    base: &InitialCondition,
+    spec: &MapSpec,
+    options: &RunOptions,
+    cancel: &AtomicBool,
+    on_partial: &mut dyn FnMut(&BasinMap),
+) -> Result<BasinMap, Error> {
     params.validate()?;
     base.validate()?;
-    let pool = thread_pool(jobs)?;
+    let pool = thread_pool(options.jobs)?;
+    let engine = options.engine.resolve();
     let MapSpec { x, y, method } = spec;
     let method = *method;
     let mut map = BasinMap {
@@ -263,31 +326,61 @@ pub fn run_map(
         cells: vec![None; x.cells * y.cells],
         sampled: 0,
         complete: false,
+        switched_to_uniform: None,
     };
-    let roll = |map: &mut BasinMap, nodes: &[(usize, usize)]| {
-        let done: Vec<RollRecord> = pool.install(|| {
+    let stopped = || cancel.load(Ordering::Relaxed);
+    // Rolls `nodes`; false if a cancel cut it short (then some of them are left unknown).
+    let roll = |map: &mut BasinMap, nodes: &[(usize, usize)]| -> bool {
+        let done: Vec<(usize, Vec<RollRecord>)> = pool.install(|| {
             nodes
-                .par_iter()
-                .map(|&(i, j)| roll_node(params, base, x, y, i, j))
+                .par_chunks(NODES_PER_TASK)
+                .map(|chunk| {
+                    let setups: Vec<_> = chunk
+                        .iter()
+                        .map(|&(i, j)| {
+                            let (p, ic) = node_setup(params, base, x, y, i, j);
+                            ((j * x.cells + i) as u64, p, ic)
+                        })
+                        .collect();
+                    (chunk.len(), roll_setups(engine, &setups, &stopped))
+                })
                 .collect()
         });
-        for r in done {
-            map.cells[r.id as usize] = Some(Cell {
-                outcome: r.outcome,
-                start_face: r.start_face,
-                sampled: true,
-            });
+        let mut whole = true;
+        for (asked, records) in done {
+            whole &= records.len() == asked;
+            map.sampled += records.len();
+            for r in records {
+                map.cells[r.id as usize] = Some(Cell {
+                    outcome: r.outcome,
+                    start_face: r.start_face,
+                    sampled: true,
+                });
+            }
         }
-        map.sampled += nodes.len();
+        whole
+    };
+    // A cancelled map keeps what was rolled; a uniform one only its prefix in row order.
+    let cancelled = |mut map: BasinMap, on_partial: &mut dyn FnMut(&BasinMap)| {
+        if method == Method::Uniform {
+            let known = map.cells.iter().take_while(|c| c.is_some()).count();
+            map.cells[known..].iter_mut().for_each(|c| *c = None);
+            map.sampled = known;
+        }
+        map.complete = false;
+        on_partial(&map);
+        Ok(map)
     };
     match method {
         Method::Uniform => {
-            let rows_per_block = (pool.current_num_threads() * 256 / x.cells).max(1);
+            let rows_per_block = (pool.current_num_threads() * 4 * NODES_PER_TASK / x.cells).max(1);
             let mut j0 = 0;
-            while j0 < y.cells && !cancel.load(Ordering::Relaxed) {
+            while j0 < y.cells {
                 let j1 = (j0 + rows_per_block).min(y.cells);
                 let nodes: Vec<_> = (j0..j1).flat_map(|j| (0..x.cells).map(move |i| (i, j))).collect();
-                roll(&mut map, &nodes);
+                if !roll(&mut map, &nodes) || stopped() {
+                    return cancelled(map, on_partial);
+                }
                 j0 = j1;
                 map.complete = j0 == y.cells;
                 on_partial(&map);
@@ -298,7 +391,9 @@ pub fn run_map(
             let xs = coarse_nodes(x.cells);
             let ys = coarse_nodes(y.cells);
             let nodes: Vec<_> = ys.iter().flat_map(|&j| xs.iter().map(move |&i| (i, j))).collect();
-            roll(&mut map, &nodes);
+            if !roll(&mut map, &nodes) {
+                return cancelled(map, on_partial);
+            }
             let mut pending: Vec<Block> = Vec::new();
             for w in ys.windows(2.min(ys.len())) {
                 for v in xs.windows(2.min(xs.len())) {
@@ -311,26 +406,50 @@ pub fn run_map(
                 }
             }
             let mut settled: Vec<Block> = Vec::new();
-            loop {
+            let mut split = 0;
+            for passes in 0.. {
                 let (done, refine): (Vec<Block>, Vec<Block>) = pending
                     .drain(..)
                     .partition(|b| b.is_single() || b.corners_agree(&map));
                 settled.extend(done);
+                // Of the blocks the last pass split, the share whose parts still differ.
+                let still_differ = refine.len() as f64 / (4 * split).max(1) as f64;
+                if passes > 0 && still_differ > UNIFORM_SWITCH_SHARE {
+                    map.switched_to_uniform = Some((passes, still_differ));
+                    let rest: Vec<_> = (0..map.cells.len())
+                        .filter(|&n| map.cells[n].is_none())
+                        .map(|n| (n % x.cells, n / x.cells))
+                        .collect();
+                    if !roll(&mut map, &rest) {
+                        return cancelled(map, on_partial);
+                    }
+                    map.complete = true;
+                    on_partial(&map);
+                    return Ok(map);
+                }
                 let mut shown = map.clone();
                 fill(&mut shown, settled.iter().chain(&refine));
                 shown.complete = refine.is_empty();
-                on_partial(&shown);
-                if refine.is_empty() || cancel.load(Ordering::Relaxed) {
+                if refine.is_empty() {
+                    on_partial(&shown);
                     return Ok(shown);
                 }
+                if stopped() {
+                    return cancelled(map, on_partial);
+                }
+                on_partial(&shown);
+                split = refine.len();
                 let next: Vec<Block> = refine.into_iter().flat_map(Block::split).collect();
                 let mut nodes: Vec<_> = next.iter().flat_map(Block::corners).collect();
                 nodes.sort_unstable_by_key(|&(i, j)| (j, i));
                 nodes.dedup();
                 nodes.retain(|&(i, j)| map.cell(i, j).is_none());
-                roll(&mut map, &nodes);
+                if !roll(&mut map, &nodes) {
+                    return cancelled(map, on_partial);
+                }
                 pending = next;
             }
+            unreachable!("the refinement loop returns")
         }
     }
 }

@@ -1,23 +1,36 @@
-//! Batches of rolls in parallel, reproducible for any thread count and cancellable.
+//! Batches of rolls in parallel, streamed in roll order, reproducible for any thread count
+//! and engine, and cancellable.
 //!
 //! Each roll depends on its own initial condition alone (random ones on (seed, roll index),
-//! see [`RandomRanges::draw`]), and results are collected in roll order, so the records are
-//! bit-identical for any number of jobs. Rolls run in chunks; the cancel flag is checked
-//! between chunks, so a cancelled batch holds an exact prefix of the full one.
+//! see [`RandomRanges::draw`]). Worker threads take chunks of consecutive rolls from a
+//! queue; finished chunks are put back in roll order on the calling thread and handed on at
+//! once, so records leave the engine in id order as they complete and memory stays flat in
+//! the number of rolls (at most [`CHUNKS_IN_FLIGHT_PER_JOB`] chunks per thread wait). The
+//! summary is accumulated record by record in roll order, so its float totals are the same
+//! for any job count. A cancel is noticed inside rolls (every few thousand steps); the
+//! records handed on are then an exact prefix of the full batch.
 
 use super::Error;
+use super::engine::{Engine, roll_setups};
 use super::random::RandomRanges;
-use super::record::{RollRecord, roll_record};
+use super::record::RollRecord;
 use super::stats::FaceTally;
 use crate::physics::{InitialCondition, Params, Status, opposite_face};
-use rayon::prelude::*;
 use serde::Serialize;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::collections::BTreeMap;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Condvar, Mutex, mpsc};
 use std::time::{Duration, Instant};
 
-/// Rolls per chunk and thread: long enough that the barrier at the end of a chunk costs
-/// little (a roll takes ~0.1 ms), short enough that cancelling answers within ~0.1 s.
-const CHUNK_PER_JOB: usize = 512;
+/// Rolls per chunk: long enough that a chunk's ragged end (lanes idle while its last rolls
+/// finish) and the hand-over cost little, short enough that records flow steadily.
+pub const CHUNK: u64 = 512;
+
+/// Chunks a thread may run ahead of the oldest unfinished one.
+pub const CHUNKS_IN_FLIGHT_PER_JOB: u64 = 4;
+
+/// How often the calling thread looks at the cancel flag while it waits for chunks.
+const POLL: Duration = Duration::from_millis(20);
 
 /// Where a batch's initial conditions come from.
 #[derive(Debug, Clone, Copy)]
@@ -58,7 +71,32 @@ impl Rolls<'_> {
     }
 }
 
-/// A finished (or cancelled) batch.
+/// How to run a batch or a map.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct RunOptions {
+    /// Worker threads; 0: one per available core.
+    pub jobs: usize,
+    pub engine: Engine,
+}
+
+/// A finished (or cancelled) batch whose records were streamed.
+#[derive(Debug, Clone)]
+pub struct BatchRun {
+    /// How many rolls were asked for.
+    pub requested: u64,
+    /// How many were handed on: all, or an exact prefix if cancelled.
+    pub completed: u64,
+    /// Whether the cancel flag stopped the batch before the end.
+    pub cancelled: bool,
+    /// Threads used.
+    pub jobs: usize,
+    /// The engine that ran (`Scalar` or `Lanes`).
+    pub engine: Engine,
+    /// The statistics of the completed rolls.
+    pub summary: BatchSummary,
+}
+
+/// A finished (or cancelled) batch with every record kept.
 #[derive(Debug, Clone)]
 pub struct Batch {
     /// The completed rolls in roll order: all of them, or an exact prefix if cancelled.
@@ -88,7 +126,7 @@ pub fn thread_count(jobs: usize) -> usize {
     }
 }
 
-/// A local thread pool of `jobs` threads (0: one per core), so a batch never competes
+/// A local thread pool of `jobs` threads (0: one per core), so a map never competes
 /// with, or depends on, rayon's global pool.
 pub(crate) fn thread_pool(jobs: usize) -> Result<rayon::ThreadPool, Error> {
     rayon::ThreadPoolBuilder::new()
@@ -98,13 +136,13 @@ pub(crate) fn thread_pool(jobs: usize) -> Result<rayon::ThreadPool, Error> {
         .map_err(|e| Error::Threads(e.to_string()))
 }
 
-/// Runs every roll of `rolls` with `params` on `jobs` threads (0: one per core).
+/// Runs every roll of `rolls` with `params` and keeps the records (the explorer's batches
+/// and tests; [`stream_batch`] is the same without keeping them).
 ///
 /// `progress` is called on the calling thread after each chunk with every record so far (in
 /// roll order), so a UI can draw a gauge or a live tally. Setting `cancel` stops the batch
-/// at the end of the running chunk; the records then are an exact prefix of the full batch.
-/// The parameters are validated first; initial conditions are the caller's to check (an
-/// out-of-range one still ends in a status, never a panic).
+/// within a few thousand steps of every running roll; the records then are an exact prefix
+/// of the full batch.
 pub fn run_batch(
     params: &Params,
     rolls: &Rolls,
@@ -112,38 +150,147 @@ pub fn run_batch(
     cancel: &AtomicBool,
     progress: &mut dyn FnMut(&[RollRecord]),
 ) -> Result<Batch, Error> {
+    let mut records = Vec::with_capacity(rolls.len().min(1 << 24) as usize);
+    let start = Instant::now();
+    let options = RunOptions {
+        jobs,
+        engine: Engine::Auto,
+    };
+    let run = stream_batch(params, rolls, &options, cancel, &mut |chunk| {
+        records.extend_from_slice(chunk);
+        progress(&records);
+        Ok(())
+    })?;
+    Ok(Batch {
+        records,
+        requested: run.requested,
+        cancelled: run.cancelled,
+        elapsed: start.elapsed(),
+        jobs: run.jobs,
+    })
+}
+
+/// What a worker thread hands back: chunk number, its records (a prefix of the chunk's
+/// rolls if the batch was cancelled), and whether it is whole.
+type Finished = (u64, Vec<RollRecord>, bool);
+
+/// Runs every roll of `rolls` with `params` and hands the records to `sink` on the calling
+/// thread, in roll order, a chunk at a time, as they complete.
+///
+/// Setting `cancel` stops the batch within a few thousand steps of every running roll; the
+/// records handed on are then an exact prefix of the full batch. A sink error stops the
+/// batch and is returned as [`Error::Output`]. The parameters are validated first; initial
+/// conditions are the caller's to check (an out-of-range one still ends in a status, never
+/// a panic).
+pub fn stream_batch(
+    params: &Params,
+    rolls: &Rolls,
+    options: &RunOptions,
+    cancel: &AtomicBool,
+    sink: &mut dyn FnMut(&[RollRecord]) -> Result<(), String>,
+) -> Result<BatchRun, Error> {
     params.validate()?;
     if let Rolls::Random { ranges, .. } = rolls {
         ranges.validate()?;
     }
-    let pool = thread_pool(jobs)?;
-    let jobs = pool.current_num_threads();
-    let chunk = (CHUNK_PER_JOB * jobs) as u64;
+    let jobs = thread_count(options.jobs);
+    let engine = options.engine.resolve();
     let requested = rolls.len();
-    let mut records = Vec::with_capacity(requested.min(1 << 24) as usize);
+    let chunks = requested.div_ceil(CHUNK);
     let start = Instant::now();
-    let mut next = 0;
-    while next < requested && !cancel.load(Ordering::Relaxed) {
-        let end = (next + chunk).min(requested);
-        let done: Vec<RollRecord> = pool.install(|| {
-            (next..end)
-                .into_par_iter()
-                .map(|i| {
-                    let (id, ic) = rolls.get(i);
-                    roll_record(params, &ic, id)
+    // Set when the calling thread stops the workers: a cancel, or a sink that failed.
+    let halt = AtomicBool::new(false);
+    let stopped = || cancel.load(Ordering::Relaxed) || halt.load(Ordering::Relaxed);
+    let next_chunk = AtomicU64::new(0);
+    // The oldest chunk not yet handed on; workers stay within the window after it.
+    let oldest = (Mutex::new(0u64), Condvar::new());
+    let window = CHUNKS_IN_FLIGHT_PER_JOB * jobs as u64;
+    let (send, receive) = mpsc::channel::<Finished>();
+    let mut tally = SummaryTally::default();
+    let mut completed = 0u64;
+    let mut sink_error = None;
+    std::thread::scope(|scope| -> Result<(), Error> {
+        for j in 0..jobs {
+            let send = send.clone();
+            let (next_chunk, oldest, stopped) = (&next_chunk, &oldest, &stopped);
+            std::thread::Builder::new()
+                .name(format!("dicesim-roll-{j}"))
+                .spawn_scoped(scope, move || {
+                    loop {
+                        let c = next_chunk.fetch_add(1, Ordering::Relaxed);
+                        if c >= chunks {
+                            return;
+                        }
+                        let (lock, wake) = oldest;
+                        let mut first = lock.lock().expect("no worker panics holding it");
+                        while c >= *first + window && !stopped() {
+                            first = wake.wait_timeout(first, POLL).expect("no worker panics").0;
+                        }
+                        drop(first);
+                        if stopped() {
+                            return;
+                        }
+                        let setups: Vec<_> = (c * CHUNK..((c + 1) * CHUNK).min(requested))
+                            .map(|i| {
+                                let (id, ic) = rolls.get(i);
+                                (id, *params, ic)
+                            })
+                            .collect();
+                        let records = roll_setups(engine, &setups, stopped);
+                        let whole = records.len() == setups.len();
+                        if send.send((c, records, whole)).is_err() || !whole {
+                            return;
+                        }
+                    }
                 })
-                .collect()
-        });
-        records.extend(done);
-        next = end;
-        progress(&records);
+                .map_err(|e| Error::Threads(e.to_string()))?;
+        }
+        drop(send);
+        let mut waiting: BTreeMap<u64, (Vec<RollRecord>, bool)> = BTreeMap::new();
+        let mut next_out = 0u64;
+        let mut open = true;
+        loop {
+            match receive.recv_timeout(POLL) {
+                Ok((c, records, whole)) => {
+                    waiting.insert(c, (records, whole));
+                }
+                Err(mpsc::RecvTimeoutError::Timeout) => {}
+                Err(mpsc::RecvTimeoutError::Disconnected) => break,
+            }
+            if cancel.load(Ordering::Relaxed) {
+                halt.store(true, Ordering::Relaxed);
+            }
+            while open {
+                let Some((records, whole)) = waiting.remove(&next_out) else {
+                    break;
+                };
+                if let Err(e) = sink(&records) {
+                    sink_error = Some(e);
+                    halt.store(true, Ordering::Relaxed);
+                    open = false;
+                    break;
+                }
+                records.iter().for_each(|r| tally.add(r));
+                completed += records.len() as u64;
+                next_out += 1;
+                open = whole;
+                let (lock, wake) = &oldest;
+                *lock.lock().expect("no worker panics holding it") = next_out;
+                wake.notify_all();
+            }
+        }
+        Ok(())
+    })?;
+    if let Some(e) = sink_error {
+        return Err(Error::Output(e));
     }
-    Ok(Batch {
-        cancelled: (records.len() as u64) < requested,
-        records,
+    Ok(BatchRun {
         requested,
-        elapsed: start.elapsed(),
+        completed,
+        cancelled: completed < requested,
         jobs,
+        engine,
+        summary: tally.finish(start.elapsed()),
     })
 }
 
@@ -222,29 +369,55 @@ pub struct BatchSummary {
 impl BatchSummary {
     /// Tallies `records` that took `elapsed` of wall-clock time.
     pub fn new(records: &[RollRecord], elapsed: Duration) -> BatchSummary {
-        let mut faces = FaceTally::default();
-        let mut start_face = StartFaceCounts::default();
-        let mut status = StatusCounts::default();
-        let (mut steps, mut simulated_s) = (0, 0.0);
-        // Sequential sums in roll order: float totals stay identical for any job count.
-        for r in records {
-            steps += r.outcome.steps;
-            simulated_s += r.outcome.time_s;
-            match (r.outcome.status, r.outcome.face) {
-                (Status::Settled, Some(face)) => {
-                    status.settled += 1;
-                    faces.add(face);
-                    start_face.add(r.start_face, face);
-                }
-                (Status::Settled, None) => status.settled_without_face += 1,
-                (Status::Timeout, _) => status.timeout += 1,
-                (Status::Unstable, _) => status.unstable += 1,
+        let mut tally = SummaryTally::default();
+        records.iter().for_each(|r| tally.add(r));
+        tally.finish(elapsed)
+    }
+}
+
+/// A batch's statistics accumulated one record at a time, in roll order (sequential sums:
+/// float totals stay identical for any job count and engine).
+#[derive(Debug, Clone, Default)]
+pub struct SummaryTally {
+    rolls: u64,
+    faces: FaceTally,
+    start_face: StartFaceCounts,
+    status: StatusCounts,
+    steps: u64,
+    simulated_s: f64,
+}
+
+impl SummaryTally {
+    pub fn add(&mut self, r: &RollRecord) {
+        self.rolls += 1;
+        self.steps += r.outcome.steps;
+        self.simulated_s += r.outcome.time_s;
+        match (r.outcome.status, r.outcome.face) {
+            (Status::Settled, Some(face)) => {
+                self.status.settled += 1;
+                self.faces.add(face);
+                self.start_face.add(r.start_face, face);
             }
+            (Status::Settled, None) => self.status.settled_without_face += 1,
+            (Status::Timeout, _) => self.status.timeout += 1,
+            (Status::Unstable, _) => self.status.unstable += 1,
         }
+    }
+
+    /// The summary of the records added, which took `elapsed` of wall-clock time.
+    pub fn finish(&self, elapsed: Duration) -> BatchSummary {
+        let SummaryTally {
+            rolls,
+            faces,
+            start_face,
+            status,
+            steps,
+            simulated_s,
+        } = self.clone();
         let elapsed_s = elapsed.as_secs_f64();
         let rate = |n: f64| if elapsed_s > 0.0 { n / elapsed_s } else { 0.0 };
         BatchSummary {
-            rolls: records.len() as u64,
+            rolls,
             face_shares: std::array::from_fn(|i| faces.share(i as u8 + 1)),
             chi_square: faces.chi_square(),
             p_value: faces.p_value(),
@@ -255,7 +428,7 @@ impl BatchSummary {
             steps,
             simulated_s,
             elapsed_s,
-            rolls_per_s: rate(records.len() as f64),
+            rolls_per_s: rate(rolls as f64),
             steps_per_s: rate(steps as f64),
         }
     }
@@ -335,22 +508,25 @@ mod tests {
             ranges: &ranges,
             base: &base,
             seed: 3,
-            count: 3 * CHUNK_PER_JOB as u64,
+            count: 3 * CHUNK,
         };
         let cancel = AtomicBool::new(false);
         let mut calls = 0;
         let part = run_batch(&params, &rolls, 1, &cancel, &mut |done| {
             calls += 1;
-            assert_eq!(done.len(), calls * CHUNK_PER_JOB);
+            if calls == 1 {
+                assert_eq!(done.len() as u64, CHUNK);
+            }
             cancel.store(true, Ordering::Relaxed);
         })
         .unwrap();
         assert!(part.cancelled);
-        assert_eq!(part.records.len(), CHUNK_PER_JOB);
+        // The running chunk stops inside its rolls and gives its finished prefix.
+        assert!(part.records.len() as u64 >= CHUNK && (part.records.len() as u64) < 3 * CHUNK);
         let full = run_batch(&params, &rolls, 2, &AtomicBool::new(false), &mut |_| {}).unwrap();
         assert!(!full.cancelled);
-        assert_eq!(full.records.len(), 3 * CHUNK_PER_JOB);
-        assert_eq!(part.records[..], full.records[..CHUNK_PER_JOB]);
+        assert_eq!(full.records.len() as u64, 3 * CHUNK);
+        assert_eq!(part.records[..], full.records[..part.records.len()]);
         assert!(full.records.iter().enumerate().all(|(i, r)| r.id == i as u64));
     }
 }

@@ -7,6 +7,7 @@
 pub mod basin;
 pub mod batch;
 pub mod energy_plot;
+pub mod engine;
 pub mod ics;
 pub mod keys;
 pub mod plot;
@@ -16,8 +17,9 @@ pub mod stats;
 pub mod trace;
 pub mod twin;
 
-pub use basin::{Axis, BasinMap, Cell, Layer, MapSpec, Method, run_map};
-pub use batch::{Batch, BatchSummary, Rolls, run_batch};
+pub use basin::{Axis, BasinMap, Cell, Layer, MapSpec, Method, run_map, run_map_with};
+pub use batch::{Batch, BatchRun, BatchSummary, Rolls, RunOptions, SummaryTally, run_batch, stream_batch};
+pub use engine::Engine;
 pub use keys::ScanKey;
 pub use random::RandomRanges;
 pub use record::{RollRecord, roll_record};
@@ -50,6 +52,9 @@ pub enum Error {
     /// An image could not be drawn or written.
     #[error("cannot draw the map: {0}")]
     Plot(String),
+    /// A batch's records could not be written.
+    #[error("cannot write the rolls: {0}")]
+    Output(String),
     /// A roll's trace or plot could not be written.
     #[error("cannot export the roll: {0}")]
     Export(String),

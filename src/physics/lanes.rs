@@ -177,9 +177,27 @@ mod avx2 {
             a[l] = x;
             *self = F4::from_array(a);
         }
+        /// The mask whose lane `l` is set where bit `l` of `bits` is, from a table (no
+        /// stores to reload).
         #[inline(always)]
-        fn mask(lanes: [bool; 4]) -> F4 {
-            F4::from_array(lanes.map(|b| if b { f64::from_bits(u64::MAX) } else { 0.0 }))
+        fn from_bits(bits: u32) -> F4 {
+            static MASKS: [[u64; 4]; 16] = {
+                let mut t = [[0; 4]; 16];
+                let mut b = 0;
+                while b < 16 {
+                    let mut l = 0;
+                    while l < 4 {
+                        if b & (1 << l) != 0 {
+                            t[b][l] = u64::MAX;
+                        }
+                        l += 1;
+                    }
+                    b += 1;
+                }
+                t
+            };
+            // SAFETY: as above; the table row is 4 u64, read unaligned.
+            F4(unsafe { _mm256_loadu_pd(MASKS[bits as usize & 15].as_ptr().cast()) })
         }
         #[inline(always)]
         fn xor(self, other: F4) -> F4 {
@@ -357,6 +375,9 @@ mod avx2 {
         offsets: [V3; 8],
         forces: [V3; 8],
         depths: [F4; 8],
+        /// Bit k: corner k is below the ground in some lane. A corner outside it has +0.0
+        /// depth and force in every lane, and the sums below skip it (see [`Lanes::step`]).
+        touching_corners: u8,
         in_contact: F4,
         time_s: F4,
         /// Steps taken, as exact whole numbers.
@@ -386,6 +407,7 @@ mod avx2 {
                 offsets: [V3::zero(); 8],
                 forces: [V3::zero(); 8],
                 depths: [z; 8],
+                touching_corners: 0,
                 in_contact: z,
                 time_s: z,
                 step: z,
@@ -432,6 +454,9 @@ mod avx2 {
                 self.depths[k].set_lane(l, s.corner_depths[k]);
             }
             set_mask(&mut self.in_contact, l, sim.in_contact);
+            self.touching_corners = (0..8)
+                .filter(|&k| self.depths[k].gt(F4::zero()).bits() != 0)
+                .fold(0, |bits, k| bits | 1 << k);
             self.time_s.set_lane(l, s.time_s);
             self.step.set_lane(l, s.step as f64);
             let (mass, gravity) = (params.total_mass(), params.world.gravity);
@@ -465,16 +490,17 @@ mod avx2 {
         }
 
         /// Empties lane `l` for good: a still die high above the ground without gravity, so
-        /// it neither touches nor turns and costs the other lanes nothing.
+        /// it never touches and costs the other lanes nothing (it turns by the identity).
         fn park(&mut self, l: usize) {
             set_mask(&mut self.live, l, false);
             set_mask(&mut self.in_contact, l, false);
-            set_mask(&mut self.rotating, l, false);
+            self.set_rotation(l, Some(&Matrix3::identity()));
             self.position.set(l, &Vector3::new(0.0, 0.0, 1e9));
             self.velocity.set(l, &Vector3::zeros());
             self.c.weight_z.set_lane(l, 0.0);
             for k in 0..8 {
                 self.forces[k].set(l, &Vector3::zeros());
+                self.depths[k].set_lane(l, 0.0);
             }
         }
 
@@ -516,13 +542,18 @@ mod avx2 {
         fn step(&mut self) {
             let c = self.c;
             let contact_bits = self.in_contact.bits();
+            let touching = self.touching_corners;
             // 1. kick. Out of contact every force is +0.0 and the sum is the scalar's zero.
+            // Skipping corners whose force is +0.0 in every lane keeps the scalar's sum bit
+            // for bit: adding +0.0 only turns a −0.0 into +0.0, and doing that once at the
+            // end gives the same as anywhere in between.
             let force = if contact_bits != 0 {
-                let mut f = self.forces[0];
-                for fk in &self.forces[1..] {
-                    f = f.add(*fk);
+                let mut f: Option<V3> = None;
+                for k in (0..8).filter(|k| touching & (1 << k) != 0) {
+                    f = Some(f.map_or(self.forces[k], |f| f.add(self.forces[k])));
                 }
-                f
+                let f = f.unwrap_or_else(V3::zero);
+                if touching != 0xff { f.add(V3::zero()) } else { f }
             } else {
                 V3::zero()
             };
@@ -534,22 +565,26 @@ mod avx2 {
             self.position = self.position.add(self.velocity.scale(c.dt));
             // 3. torque and L, then 4. the spin, in lanes that touched the ground.
             if contact_bits != 0 {
+                // The scalar sum starts from +0.0, so a skipped corner's ±0.0 term changes
+                // nothing (the offsets are finite: a lane ends as soon as they are not).
                 let mut torque = V3::zero();
-                for k in 0..8 {
+                for k in (0..8).filter(|k| touching & (1 << k) != 0) {
                     torque = torque.add(self.offsets[k].cross(self.forces[k]));
                 }
                 let l_new = self.angular_momentum.add(torque.scale(c.dt));
-                self.angular_momentum = V3::select(self.in_contact, l_new, self.angular_momentum);
-                for l in 0..LANES {
-                    if contact_bits & (1 << l) != 0 {
-                        let (w, m) = spin(&self.angular_momentum.get(l), self.inertia[l], self.dt[l]);
-                        self.angular_velocity.set(l, &w);
-                        self.set_rotation(l, m.as_ref());
-                    }
-                }
+                self.angular_momentum = if contact_bits == 0b1111 {
+                    l_new
+                } else {
+                    V3::select(self.in_contact, l_new, self.angular_momentum)
+                };
+                self.respin(contact_bits);
             }
             // 5. rotate the corner rows, each entry (a₁b₁ + a₂b₂) + a₃b₃.
-            if self.rotating.bits() != 0 {
+            // Parked lanes turn too (by the identity), so the usual case is all four lanes
+            // turning and the rows are stored whole: a per-lane select against memory
+            // compiles to masked stores, which are slow.
+            let rotating = self.rotating.bits();
+            if rotating != 0 {
                 let m = &self.rotation;
                 for r in &mut self.offsets {
                     let turned = V3 {
@@ -557,7 +592,11 @@ mod avx2 {
                         y: (r.x * m[1] + r.y * m[4]) + r.z * m[7],
                         z: (r.x * m[2] + r.y * m[5]) + r.z * m[8],
                     };
-                    *r = V3::select(self.rotating, turned, *r);
+                    *r = if rotating == 0b1111 {
+                        turned
+                    } else {
+                        V3::select(self.rotating, turned, *r)
+                    };
                 }
             }
             // 6. forces at the new state.
@@ -565,6 +604,44 @@ mod avx2 {
             // 7. the clock.
             self.time_s = self.time_s + c.dt;
             self.step = self.step + F4::splat(1.0);
+        }
+
+        /// ω and the step rotation rebuilt by [`spin`] in the lanes of `lanes`. The lanes
+        /// are gathered into plain arrays and each vector is loaded once at the end: writing
+        /// one lane at a time into a vector would stall on every write.
+        #[inline(always)]
+        fn respin(&mut self, lanes: u32) {
+            let w = &self.angular_velocity;
+            let mut omega = [w.x.to_array(), w.y.to_array(), w.z.to_array()];
+            let mut m: [[f64; 4]; 9] = std::array::from_fn(|e| self.rotation[e].to_array());
+            let l = &self.angular_momentum;
+            let momentum = [l.x.to_array(), l.y.to_array(), l.z.to_array()];
+            let mut rotating = self.rotating.bits();
+            for lane in (0..LANES).filter(|lane| lanes & (1 << lane) != 0) {
+                let l = Vector3::new(momentum[0][lane], momentum[1][lane], momentum[2][lane]);
+                let (w, rotation) = spin(&l, self.inertia[lane], self.dt[lane]);
+                for i in 0..3 {
+                    omega[i][lane] = w[i];
+                }
+                match rotation {
+                    Some(r) => {
+                        rotating |= 1 << lane;
+                        for i in 0..3 {
+                            for j in 0..3 {
+                                m[3 * i + j][lane] = r[(i, j)];
+                            }
+                        }
+                    }
+                    None => rotating &= !(1 << lane),
+                }
+            }
+            self.angular_velocity = V3 {
+                x: F4::from_array(omega[0]),
+                y: F4::from_array(omega[1]),
+                z: F4::from_array(omega[2]),
+            };
+            self.rotation = m.map(F4::from_array);
+            self.rotating = F4::from_bits(rotating);
         }
 
         #[inline(always)]
@@ -596,13 +673,25 @@ mod avx2 {
                 return;
             }
             self.in_contact = any;
-            let u: [V3; 8] = std::array::from_fn(|k| self.corner_velocity(&self.offsets[k]));
             let laws = c.whole_die_norm.bits();
             let per_corner_lanes = laws != 0b1111;
             let whole_lanes = laws != 0;
+            let mut touching_corners = 0u8;
+            for (k, t) in touching.iter().enumerate() {
+                if t.bits() != 0 {
+                    touching_corners |= 1 << k;
+                }
+            }
+            let previous = std::mem::replace(&mut self.touching_corners, touching_corners);
+            for k in (0..8).filter(|k| (previous & !touching_corners) & (1 << k) != 0) {
+                self.forces[k] = V3::zero();
+            }
+            // The whole-die norm needs every corner's velocity, the per-corner law only
+            // those of corners that touch.
             let norm = if whole_lanes {
                 let (mut a, mut b, mut cc) = (zero, zero, zero);
-                for uk in &u {
+                for r in &self.offsets {
+                    let uk = self.corner_velocity(r);
                     a = a + uk.x * uk.x;
                     b = b + uk.x * uk.y;
                     cc = cc + uk.y * uk.y;
@@ -613,8 +702,8 @@ mod avx2 {
                 zero
             };
             let norm_nonzero = norm.ne(zero);
-            for k in 0..8 {
-                let uk = &u[k];
+            for k in (0..8).filter(|k| touching_corners & (1 << k) != 0) {
+                let uk = self.corner_velocity(&self.offsets[k]);
                 let normal = self.depths[k] * c.stiffness;
                 let vertical = normal * (F4::splat(1.0) - c.damping * uk.z);
                 let (mut fx, mut fy) = (zero, zero);
@@ -651,9 +740,11 @@ mod avx2 {
             let rotational = F4::splat(0.5) * ((w.x * l.x + w.y * l.y) + w.z * l.z);
             let gravitational = c.mass_gravity * (self.position.z - c.half_size);
             let mut elastic = zero;
+            // Terms are ≥ +0.0, so leaving out the +0.0 of corners that touch nowhere is exact.
             if self.in_contact.bits() != 0 {
-                for d in &self.depths {
-                    elastic = elastic + (c.half_stiffness * *d) * *d;
+                for k in (0..8).filter(|k| self.touching_corners & (1 << k) != 0) {
+                    let d = self.depths[k];
+                    elastic = elastic + (c.half_stiffness * d) * d;
                 }
             }
             let rigid = ((translational + rotational) + gravitational) + elastic.or_zero(self.in_contact);
@@ -708,7 +799,7 @@ mod avx2 {
         } else {
             bits &= !(1 << l);
         }
-        *mask = F4::mask(std::array::from_fn(|i| bits & (1 << i) != 0));
+        *mask = F4::from_bits(bits);
     }
 
     /// [`roll_in_lanes`] with AVX2.
