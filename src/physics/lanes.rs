@@ -245,15 +245,10 @@ mod avx2 {
             // SAFETY: as above.
             F4(unsafe { _mm256_cmp_pd::<_CMP_NEQ_UQ>(self.0, other.0) })
         }
-        /// Lanes where `self` is finite (`x − x` is 0 for finite x, NaN otherwise).
+        /// Lanes where `self` is finite (|x| < ∞ is false for ±∞ and NaN).
         #[inline(always)]
         fn finite(self) -> F4 {
-            (self - self).eq_zero()
-        }
-        #[inline(always)]
-        fn eq_zero(self) -> F4 {
-            // SAFETY: as above.
-            F4(unsafe { _mm256_cmp_pd::<_CMP_EQ_OQ>(self.0, _mm256_setzero_pd()) })
+            self.abs().lt(F4::splat(f64::INFINITY))
         }
         /// `if mask { self } else { other }` per lane.
         #[inline(always)]
@@ -661,11 +656,11 @@ mod avx2 {
             let zero = F4::zero();
             let mut touching = [zero; 8];
             let mut any = zero;
-            for k in 0..8 {
+            for (k, t) in touching.iter_mut().enumerate() {
                 let z = self.offsets[k].z + z0;
-                touching[k] = z.lt(zero);
-                self.depths[k] = (-z).or_zero(touching[k]);
-                any = any | touching[k];
+                *t = z.lt(zero);
+                self.depths[k] = (-z).or_zero(*t);
+                any = any | *t;
             }
             // Lanes that neither touch now nor did before keep their +0.0 forces; a lane that
             // just left the ground gets +0.0 from the masks below.
