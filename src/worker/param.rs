@@ -151,7 +151,8 @@ impl Param {
         self.scan_key().get(params, initial)
     }
 
-    /// Sets the value after checking it against its range; on error nothing changes.
+    /// Sets the value after checking it against its range, and the start it gives against
+    /// the table (no corner inside it); on error nothing changes.
     pub fn set(
         self,
         params: &mut Params,
@@ -160,7 +161,10 @@ impl Param {
     ) -> Result<(), ParamError> {
         let key = self.scan_key();
         key.check(value)?;
-        key.set(params, initial, value);
+        let (mut p, mut ic) = (*params, *initial);
+        key.set(&mut p, &mut ic, value);
+        ic.check_clear_of_table(p.die.half_size)?;
+        (*params, *initial) = (p, ic);
         Ok(())
     }
 
