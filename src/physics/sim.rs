@@ -359,7 +359,8 @@ impl Simulation {
             ground += s.corner_depths[k] * s.corner_forces[k].z;
         }
         let kinetic = 0.5 * c.corner_mass * kinetic;
-        let total = kinetic + c.corner_mass * c.gravity * heights + 0.5 * ground - c.mass * c.gravity * c.half_size;
+        let total =
+            kinetic + c.corner_mass * c.gravity * heights + 0.5 * ground - c.mass * c.gravity * c.half_size;
         (kinetic, total)
     }
 
@@ -501,10 +502,10 @@ impl Simulation {
     #[inline]
     fn settled(&self, energy: &Energy, rigid: f64) -> bool {
         match self.c.stop_energy {
-            StopEnergy::RigidBody => settles(rigid, energy.kinetic(), &self.c.stop_rule),
+            StopEnergy::RigidBody => settles(rigid, energy.kinetic(), energy.potential(), &self.c.stop_rule),
             StopEnergy::PointMasses => {
                 let (kinetic, total) = self.point_mass_parts();
-                settles(total, kinetic, &self.c.stop_rule)
+                settles(total, kinetic, energy.potential(), &self.c.stop_rule)
             }
         }
     }

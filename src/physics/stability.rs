@@ -10,11 +10,16 @@ use std::fmt;
 /// contact switching on and off between steps pumps energy in well below it.
 pub const CONTACT_MODE_LIMIT: f64 = 1.4;
 
-/// A corner may move at most this share of the die's half size in one step: faster, the
-/// step jumps it deep into the table (or through it) before any force acts.
-pub const CORNER_TRAVEL_LIMIT: f64 = 0.5;
+/// A corner may move at most this many half sizes in one step: faster, the step jumps it
+/// deep into the table (or through it) before any force acts, and a spin turns the die
+/// by so much per step that its contacts are sampled at random.
+pub const CORNER_TRAVEL_LIMIT: f64 = 1.0;
 
-/// `γ·u_z` above this turns the press force `k·d·(1 − γ·u_z)` into a pull.
+/// `γ·u_z` above this turns the press force `k·d·(1 − γ·u_z)` into a pull on a corner
+/// leaving the table, and multiplies the push on one striking it. On a finely resolved
+/// contact that only kills the bounce; it feeds energy in once one step of that force
+/// changes the corner's speed by about its own speed, `γ·u_z·√(k/m)·Δt ≳ 1`. So the
+/// allowed `γ·u_z` is `max(1, 1/(√(k/m)·Δt))`.
 pub const DAMPING_LIMIT: f64 = 1.0;
 
 /// One step's friction impulse `μ·|P|·Δt`, per corner mass and per unit of the corner's
@@ -31,7 +36,7 @@ pub enum Limit {
     ContactMode,
     /// How far the fastest corner moves in one step at the first impact, cm.
     CornerTravel,
-    /// `γ·u_z` of the fastest corner at the first impact.
+    /// `γ·u_z` of the fastest corner at the first impact, against `max(1, 1/(√(k/m)·Δt))`.
     Damping,
     /// `μ·√(k/m)·Δt`: one step's friction against a corner's slip.
     FrictionChatter,
@@ -102,7 +107,7 @@ impl fmt::Display for Reading {
             Limit::Damping => write!(
                 f,
                 "damping too strong for a corner at {:.0} cm/s: γ·u_z = {v:.2} turns the table's \
-                 push into a pull on a buried corner (stable below {allowed:.0})",
+                 push into a pull on a buried corner (stable below {allowed:.2} at this Δt)",
                 self.corner_speed
             ),
             Limit::FrictionChatter => write!(
@@ -125,7 +130,8 @@ impl Stability {
     pub fn predict(p: &Params, initial: &InitialCondition) -> Stability {
         let dt = p.integrator.dt;
         let a = p.die.half_size;
-        let corner_mass = p.die.corner_mass;
+        // rad/s, one corner on its spring.
+        let corner_frequency = (p.ground.stiffness / p.die.corner_mass).sqrt();
         // The centre's speed when the lowest corner first reaches the table.
         let drop = (initial.height + initial.lowest_corner_offset(a)).max(0.0);
         let v = initial.velocity;
@@ -145,10 +151,14 @@ impl Stability {
             readings: [
                 reading(Limit::ContactMode, p.stability_number(), CONTACT_MODE_LIMIT),
                 reading(Limit::CornerTravel, corner_speed * dt, CORNER_TRAVEL_LIMIT * a),
-                reading(Limit::Damping, p.ground.damping * (vz_impact + spin), DAMPING_LIMIT),
+                reading(
+                    Limit::Damping,
+                    p.ground.damping * (vz_impact + spin),
+                    DAMPING_LIMIT.max(1.0 / (corner_frequency * dt)),
+                ),
                 reading(
                     Limit::FrictionChatter,
-                    p.ground.friction * (p.ground.stiffness / corner_mass).sqrt() * dt,
+                    p.ground.friction * corner_frequency * dt,
                     FRICTION_CHATTER_LIMIT,
                 ),
             ],

@@ -4,9 +4,9 @@
 //! The paper ends a roll once its energy is below `f·E_edge`, with the potential measured
 //! from a die lying flat on a rigid table. On a table of finite stiffness the die rests
 //! `δ = M·g/(4k)` deep, so its resting energy `V_rest` is below zero and an edge-balanced
-//! die sits lower too (`V_edge`). The rule below keeps the paper's test and adds two that
-//! only bind on soft tables: the energy must stay clear of `V_edge`, and the kinetic energy
-//! must be below what the energy test allows above rest.
+//! die sits lower too (`V_edge`). The rule below keeps the paper's test and adds what only
+//! binds on soft tables: the energy must stay clear of `V_edge`, and the kinetic and the
+//! potential energy must each be within what the energy test allows above rest.
 
 use super::params::Params;
 
@@ -49,16 +49,27 @@ impl StopRule {
     }
 }
 
-/// Whether a state has settled: `stop_energy ≤ energy_threshold && kinetic ≤
-/// kinetic_threshold`, in that order, both comparisons inclusive.
+/// Whether a state has settled:
 ///
-/// `stop_energy` is the energy named by `integrator.stop_energy` (rigid-body: translational
-/// + rotational + `M·g·(z − a)` + `Σ ½·k·d²`; point masses: the authors' sum) and `kinetic`
-/// its kinetic part (rigid-body: `½·M·|v|² + ½·ω·L`; point masses: `½·m·Σ|u_k|²`), both
-/// already computed by the step's end-of-roll check. NaN in either input never settles.
+/// `stop_energy ≤ energy_threshold && kinetic ≤ kinetic_threshold && potential ≤
+/// energy_threshold`, evaluated in that order, every comparison inclusive.
+///
+/// - `stop_energy`: the energy named by `integrator.stop_energy`. Rigid body:
+///   `((½·M·|v|² + ½·ω·L) + M·g·(z − a)) + Σ ½·k·d_k²`; point masses: the authors' sum
+///   `((½·m·Σ|u_k|² + m·g·Σ(z + r_k,z)) + ½·Σ d_k·P_k) − M·g·a`.
+/// - `kinetic`: its kinetic part, `½·M·|v|² + ½·ω·L` or `½·m·Σ|u_k|²`.
+/// - `potential`: the rigid-body potential `M·g·(z − a) + Σ ½·k·d_k²`, whatever the stop
+///   energy. The point-mass sum counts the damped press force `P_k`, which can make a die
+///   buried deep and rising look low in energy; the real potential cannot. (With the
+///   rigid-body stop energy this test follows from the first two.)
+///
+/// All three are the energies the step's end-of-roll check has already computed; NaN in
+/// any of them never settles.
 #[inline(always)]
-pub fn settles(stop_energy: f64, kinetic: f64, rule: &StopRule) -> bool {
-    stop_energy <= rule.energy_threshold && kinetic <= rule.kinetic_threshold
+pub fn settles(stop_energy: f64, kinetic: f64, potential: f64, rule: &StopRule) -> bool {
+    stop_energy <= rule.energy_threshold
+        && kinetic <= rule.kinetic_threshold
+        && potential <= rule.energy_threshold
 }
 
 /// cm, how deep the lower corners sink when the die rests on a face, with as many corners
@@ -90,7 +101,12 @@ pub fn edge_balanced_energy(p: &Params) -> f64 {
 /// The potential is convex in `z`, so the minimum is where the weight balances the springs
 /// of the corners in contact: with the `j` lowest corners touching, `z = −(M·g/k + Σ o)/j`.
 fn lowest_potential(p: &Params, offsets: &[f64; 8]) -> (f64, f64) {
-    let (mass, g, k, a) = (p.total_mass(), p.world.gravity, p.ground.stiffness, p.die.half_size);
+    let (mass, g, k, a) = (
+        p.total_mass(),
+        p.world.gravity,
+        p.ground.stiffness,
+        p.die.half_size,
+    );
     let weight = mass * g;
     let mut sum = 0.0;
     let mut centre = f64::NAN;
@@ -164,15 +180,18 @@ mod tests {
     }
 
     #[test]
-    fn settles_needs_both_energies_and_refuses_nan() {
+    fn settles_needs_all_three_energies_and_refuses_nan() {
         let rule = StopRule {
             energy_threshold: 10.0,
             kinetic_threshold: 20.0,
         };
-        assert!(settles(10.0, 20.0, &rule));
-        assert!(!settles(10.5, 0.0, &rule));
-        assert!(!settles(-100.0, 21.0, &rule));
-        assert!(!settles(f64::NAN, 0.0, &rule));
-        assert!(!settles(0.0, f64::NAN, &rule));
+        assert!(settles(10.0, 20.0, -10.0, &rule));
+        assert!(settles(10.0, 20.0, 10.0, &rule));
+        assert!(!settles(10.5, 0.0, 0.0, &rule));
+        assert!(!settles(-100.0, 21.0, 0.0, &rule));
+        assert!(!settles(-100.0, 0.0, 11.0, &rule));
+        assert!(!settles(f64::NAN, 0.0, 0.0, &rule));
+        assert!(!settles(0.0, f64::NAN, 0.0, &rule));
+        assert!(!settles(0.0, 0.0, f64::NAN, &rule));
     }
 }
