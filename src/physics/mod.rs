@@ -15,7 +15,7 @@ pub use energy::Energy;
 pub use initial::InitialCondition;
 pub use params::{Die, FrictionLaw, Ground, Integrator, Limits, ParamError, Params, StopEnergy, World};
 pub use sim::{ContactForce, EnergyLedger, Outcome, Simulation, State, Status};
-pub use stability::{Limit, Reading, Stability};
+pub use stability::{Limit, Reading, Stability, UnstableReason};
 pub use stopping::{StopRule, settles};
 
 /// Rolls one die from `initial` to the end; the parameters must already be valid.

@@ -18,8 +18,8 @@ pub const CORNER_TRAVEL_LIMIT: f64 = 1.0;
 /// `γ·u_z` above this turns the press force `k·d·(1 − γ·u_z)` into a pull on a corner
 /// leaving the table, and multiplies the push on one striking it. On a finely resolved
 /// contact that only kills the bounce; it feeds energy in once one step of that force
-/// changes the corner's speed by about its own speed, `γ·u_z·√(k/m)·Δt ≳ 1`. So the
-/// allowed `γ·u_z` is `max(1, 1/(√(k/m)·Δt))`.
+/// changes the corner's speed by about twice its own speed, `γ·u_z·√(k/m)·Δt ≳ 2`. So the
+/// allowed `γ·u_z` is `max(1, 2/(√(k/m)·Δt))`.
 pub const DAMPING_LIMIT: f64 = 1.0;
 
 /// One step's friction impulse `μ·|P|·Δt`, per corner mass and per unit of the corner's
@@ -36,7 +36,7 @@ pub enum Limit {
     ContactMode,
     /// How far the fastest corner moves in one step at the first impact, cm.
     CornerTravel,
-    /// `γ·u_z` of the fastest corner at the first impact, against `max(1, 1/(√(k/m)·Δt))`.
+    /// `γ·u_z` of the fastest corner at the first impact, against `max(1, 2/(√(k/m)·Δt))`.
     Damping,
     /// `μ·√(k/m)·Δt`: one step's friction against a corner's slip.
     FrictionChatter,
@@ -154,7 +154,7 @@ impl Stability {
                 reading(
                     Limit::Damping,
                     p.ground.damping * (vz_impact + spin),
-                    DAMPING_LIMIT.max(1.0 / (corner_frequency * dt)),
+                    DAMPING_LIMIT.max(2.0 / (corner_frequency * dt)),
                 ),
                 reading(
                     Limit::FrictionChatter,
@@ -165,19 +165,51 @@ impl Stability {
         }
     }
 
-    /// The reading closest to (or furthest past) its limit.
-    pub fn worst(&self) -> Reading {
-        let mut worst = self.readings[0];
+    /// The reading to report: the first past its limit in the order contact mode, corner
+    /// travel, damping, friction chatter (a cause before its symptoms: a corner moving too
+    /// far per step also strikes too fast for the damping); when none is past, the one
+    /// with the largest `value / allowed`.
+    pub fn verdict(&self) -> Reading {
+        if let Some(r) = self.readings.iter().find(|r| r.exceeded()) {
+            return *r;
+        }
+        let mut closest = self.readings[0];
         for r in &self.readings[1..] {
-            if r.load() > worst.load() || r.load().is_nan() {
-                worst = *r;
+            if r.load() > closest.load() {
+                closest = *r;
             }
         }
-        worst
+        closest
     }
 
     /// Whether every reading is within its limit.
     pub fn is_stable(&self) -> bool {
-        !self.worst().exceeded()
+        !self.verdict().exceeded()
+    }
+}
+
+/// Why a roll ended unstable: [`Stability::verdict`] of its parameters and start. When
+/// no reading is past its limit the words say so and name the closest.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UnstableReason(pub Reading);
+
+impl UnstableReason {
+    pub fn new(p: &Params, initial: &InitialCondition) -> UnstableReason {
+        UnstableReason(Stability::predict(p, initial).verdict())
+    }
+}
+
+/// E.g. "spin too fast for Δt: a corner moves 17.321 cm per step (stable below 1.000 cm)".
+impl fmt::Display for UnstableReason {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.0.exceeded() {
+            write!(f, "{}", self.0)
+        } else {
+            write!(
+                f,
+                "the energy ran away although no known limit was passed; closest: {}",
+                self.0
+            )
+        }
     }
 }

@@ -49,6 +49,28 @@ impl StopRule {
     }
 }
 
+/// Why no roll can settle on this table, in words; `None` when one can.
+pub fn why_it_cannot_settle(p: &Params) -> Option<String> {
+    if StopRule::new(p).can_settle() {
+        return None;
+    }
+    let depth = resting_depth_on_face(p);
+    let a = p.die.half_size;
+    Some(if depth >= a {
+        format!(
+            "the table is too soft to hold the die: at rest it would sink {depth:.3} cm, its centre \
+             {:.3} cm below the table top",
+            depth - a
+        )
+    } else {
+        format!(
+            "the table is too soft to keep a face: at rest the die sinks {depth:.3} cm, and tipping \
+             it over an edge takes only {:.1} erg, too little to tell a settled die from a rocking one",
+            edge_balanced_energy(p) - resting_energy(p)
+        )
+    })
+}
+
 /// Whether a state has settled:
 ///
 /// `stop_energy ≤ energy_threshold && kinetic ≤ kinetic_threshold && potential ≤

@@ -251,7 +251,7 @@ impl App {
             } else {
                 // The value is in range, but the die would start inside the table.
                 format!(
-                    "{} puts a corner inside the table: the height must be at least {} cm",
+                    "{}: corner in the table; ≥ {} cm",
                     fmt_num(value),
                     fmt_num(e.limits.min)
                 )

@@ -133,11 +133,6 @@ impl Param {
         )
     }
 
-    /// Whether `ω_rock·Δt` depends on this value (shown beside it).
-    pub fn sets_stability(self) -> bool {
-        matches!(self, Param::Stiffness | Param::Dt)
-    }
-
     /// The scan key that reads and writes this value: fields are mapped in one place.
     pub fn scan_key(self) -> &'static ScanKey {
         let key = self.key();
