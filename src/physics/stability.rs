@@ -77,7 +77,8 @@ impl Reading {
     }
 
     pub fn exceeded(&self) -> bool {
-        !(self.load() <= 1.0)
+        let load = self.load();
+        load > 1.0 || load.is_nan()
     }
 }
 

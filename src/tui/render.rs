@@ -165,7 +165,7 @@ fn phase_style(app: &App, phase: &Phase) -> Style {
 }
 
 fn stability_style(app: &App, load: f64) -> Style {
-    if !(load <= STABILITY_DANGER) {
+    if load > STABILITY_DANGER || load.is_nan() {
         app.theme.danger()
     } else if load >= STABILITY_CAUTION {
         app.theme.caution()
