@@ -1,7 +1,7 @@
 //! The initial condition of a roll (the `[initial]` section of a preset).
 
 use super::body::body_corner_offsets;
-use super::params::{Limits, ParamError};
+use super::params::{Limits, ParamError, Params};
 use nalgebra::{Rotation3, Vector3};
 use serde::{Deserialize, Serialize};
 
@@ -80,18 +80,19 @@ impl InitialCondition {
         Ok(())
     }
 
-    /// Refuses a start with any corner inside the table: the error names the lowest height
-    /// allowed at this orientation for a die of half size `half_size` (cm).
-    pub fn check_clear_of_table(&self, half_size: f64) -> Result<(), ParamError> {
-        let offset = self.lowest_corner_offset(half_size);
-        if self.height + offset >= 0.0 {
+    /// Refuses a start with any corner inside the table deeper than the die's resting depth
+    /// `M·g/(4k)` (a die may be placed resting on the table, not pushed into it): the error
+    /// names the lowest height allowed at this orientation.
+    pub fn check_clear_of_table(&self, params: &Params) -> Result<(), ParamError> {
+        let lowest = -self.lowest_corner_offset(params.die.half_size) - params.resting_depth();
+        if self.height >= lowest {
             Ok(())
         } else {
             Err(ParamError {
                 key: HEIGHT.key.to_string(),
                 value: self.height,
                 limits: Limits {
-                    min: -offset,
+                    min: lowest,
                     unit: "cm at this orientation (lower, a corner starts inside the table)",
                     ..HEIGHT
                 },

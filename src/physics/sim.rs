@@ -185,7 +185,7 @@ impl Simulation {
     pub fn new(params: &Params, initial: &InitialCondition) -> Result<Self, ParamError> {
         params.validate()?;
         initial.validate()?;
-        initial.check_clear_of_table(params.die.half_size)?;
+        initial.check_clear_of_table(params)?;
         Ok(Self::new_unchecked(params, initial))
     }
 

@@ -451,7 +451,7 @@ fn a_start_inside_the_table_is_refused() {
     s.key(KeyCode::Enter);
     assert_eq!(s.app.initial.height, 15.0);
     let text = screen(&s.app, 120, 36);
-    assert!(text.contains("0: corner in the table; ≥ 1 cm"), "{text}");
+    assert!(text.contains("0: corner in the table; ≥ 0.9961 cm"), "{text}");
     insta::assert_snapshot!("start_inside_table_refused_80x24", screen(&s.app, 80, 24));
 }
 

@@ -158,7 +158,7 @@ impl Param {
         key.check(value)?;
         let (mut p, mut ic) = (*params, *initial);
         key.set(&mut p, &mut ic, value);
-        ic.check_clear_of_table(p.die.half_size)?;
+        ic.check_clear_of_table(&p)?;
         (*params, *initial) = (p, ic);
         Ok(())
     }
