@@ -7,10 +7,11 @@
 //! run in corner order, and where the scalar path leaves a value at +0.0 (a corner above the
 //! ground, a roll out of contact) the lane selects +0.0 rather than computing a product that
 //! might be −0.0. The spin rebuild (libm's sin and cos) is the one scalar function
-//! [`spin`], called per lane whose angular momentum changed. The end-of-step decision is made
-//! by [`Simulation::check_end`] itself on the lane's state stored back into the roll's
+//! `sim::spin`, called per lane whose angular momentum changed. The end-of-step decision is
+//! made by `Simulation::check_end` itself on the lane's state stored back into the roll's
 //! `Simulation`; the vector code only screens out lanes that surely go on (one place,
-//! [`Lanes::may_end`]). A lane whose roll ended takes the next roll at once.
+//! `Lanes::may_end`, which replicates the stopping rule's comparisons). A lane whose roll
+//! ended takes the next roll at once.
 
 use super::body::face_most_nearly_up;
 use super::initial::InitialCondition;
@@ -350,7 +351,9 @@ mod avx2 {
         half_corner_mass: F4,
         corner_mass_gravity: F4,
         mass_gravity_half_size: F4,
-        threshold: F4,
+        /// The stopping rule's thresholds (`stopping::StopRule`).
+        energy_threshold: F4,
+        kinetic_threshold: F4,
         runaway: F4,
         max_steps: F4,
         /// Lanes on the whole-die-norm friction law / on the point-mass stop energy.
@@ -420,7 +423,8 @@ mod avx2 {
                     half_corner_mass: z,
                     corner_mass_gravity: z,
                     mass_gravity_half_size: z,
-                    threshold: z,
+                    energy_threshold: z,
+                    kinetic_threshold: z,
                     runaway: z,
                     max_steps: z,
                     whole_die_norm: z,
@@ -470,7 +474,9 @@ mod avx2 {
             c.half_corner_mass.set_lane(l, 0.5 * m);
             c.corner_mass_gravity.set_lane(l, m * gravity);
             c.mass_gravity_half_size.set_lane(l, mass * gravity * a);
-            c.threshold.set_lane(l, params.stop_threshold());
+            let rule = sim.stop_rule();
+            c.energy_threshold.set_lane(l, rule.energy_threshold);
+            c.kinetic_threshold.set_lane(l, rule.kinetic_threshold);
             c.runaway.set_lane(l, sim.runaway_energy);
             c.max_steps.set_lane(l, params.max_steps() as f64);
             let whole = params.ground.friction_law == FrictionLaw::WholeDieNorm;
@@ -742,7 +748,10 @@ mod avx2 {
                     elastic = elastic + (c.half_stiffness * d) * d;
                 }
             }
-            let rigid = ((translational + rotational) + gravitational) + elastic.or_zero(self.in_contact);
+            let elastic = elastic.or_zero(self.in_contact);
+            let kinetic = translational + rotational;
+            let potential = gravitational + elastic;
+            let rigid = (kinetic + gravitational) + elastic;
             let mut finite = rigid.finite();
             let p = &self.position;
             let v = &self.velocity;
@@ -753,18 +762,26 @@ mod avx2 {
             // A sum of finite values can overflow to ±∞, which only flags a lane for the
             // exact check; a NaN or ∞ term always makes the sum non-finite.
             finite = finite & sum.finite();
-            let stop = if c.point_masses.bits() != 0 {
-                F4::select(c.point_masses, self.point_mass_energy(), rigid)
+            let (stop, stop_kinetic) = if c.point_masses.bits() != 0 {
+                let (point_kinetic, point_total) = self.point_mass_parts();
+                (
+                    F4::select(c.point_masses, point_total, rigid),
+                    F4::select(c.point_masses, point_kinetic, kinetic),
+                )
             } else {
-                rigid
+                (rigid, kinetic)
             };
-            let ends = !finite | rigid.gt(c.runaway) | stop.le(c.threshold) | self.step.ge(c.max_steps);
+            // `stopping::settles`, comparison for comparison.
+            let settles = stop.le(c.energy_threshold)
+                & stop_kinetic.le(c.kinetic_threshold)
+                & potential.le(c.energy_threshold);
+            let ends = !finite | rigid.gt(c.runaway) | settles | self.step.ge(c.max_steps);
             (ends & self.live).bits()
         }
 
-        /// [`Simulation::point_mass_energy`] in vector form.
+        /// The authors' point-mass energy as `(kinetic, total)`, in vector form.
         #[inline(always)]
-        fn point_mass_energy(&self) -> F4 {
+        fn point_mass_parts(&self) -> (F4, F4) {
             let c = &self.c;
             let u: [V3; 8] = std::array::from_fn(|k| self.corner_velocity(&self.offsets[k]));
             let mut kinetic = F4::zero();
@@ -782,8 +799,10 @@ mod avx2 {
                 heights = heights + (self.offsets[k].z + self.position.z);
                 ground = ground + self.depths[k] * self.forces[k].z;
             }
-            c.half_corner_mass * kinetic + c.corner_mass_gravity * heights + F4::splat(0.5) * ground
-                - c.mass_gravity_half_size
+            let kinetic = c.half_corner_mass * kinetic;
+            let total = kinetic + c.corner_mass_gravity * heights + F4::splat(0.5) * ground
+                - c.mass_gravity_half_size;
+            (kinetic, total)
         }
     }
 
