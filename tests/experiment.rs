@@ -22,6 +22,7 @@ fn batch(params: &Params, ranges: &RandomRanges, seed: u64, count: u64, jobs: us
         ranges,
         base: &base,
         seed,
+        first: 0,
         count,
     };
     let b = run_batch(params, &rolls, jobs, &AtomicBool::new(false), &mut |_| {}).unwrap();

@@ -1,9 +1,11 @@
 //! `dicesim basin`: the outcome over a grid of two setup values, as CSV or an image.
 
+use super::shard::{ShardArgs, map_fingerprint, new_part, write_part};
 use super::{CliError, SetupArgs};
 use crate::experiment::batch::thread_count;
 use crate::experiment::plot::write_image;
-use crate::experiment::{Axis, BasinMap, FaceTally, Layer, MapSpec, Method, run_map};
+use crate::experiment::shard::Sweep;
+use crate::experiment::{Axis, BasinMap, FaceTally, Layer, MapSpec, Method, run_map_rows};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::{IsTerminal, Write};
@@ -48,6 +50,8 @@ pub struct BasinArgs {
     /// Write the map to a .csv, .png or .svg file.
     #[arg(long, value_name = "map.csv|map.png|map.svg")]
     pub out: Option<PathBuf>,
+    #[command(flatten)]
+    pub shard: ShardArgs,
 }
 
 fn parse_resolution(s: &str) -> Result<(usize, usize), String> {
@@ -73,7 +77,15 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
     };
     // Filled cells copy a corner's settle time, which says little about the cells between,
     // and a 1-D scan is plotted as settle time: these roll every cell unless asked otherwise.
+    let sharding = args.shard.resolve(args.out.as_deref())?;
+    if sharding.is_some() && args.adaptive {
+        return Err(CliError::Input(
+            "--shard rolls every cell of its rows: adaptive refinement compares cells across shards"
+                .to_string(),
+        ));
+    }
     let method = match (args.adaptive, args.uniform) {
+        _ if sharding.is_some() => Method::Uniform,
         (true, _) => Method::Adaptive,
         (_, true) => Method::Uniform,
         _ if layer == Layer::SettleTime || h == 1 => Method::Uniform,
@@ -90,8 +102,16 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
             ))),
         })
         .transpose()?;
+    if sharding.is_some() && out_kind.as_deref().is_some_and(|k| k != "csv") {
+        return Err(CliError::Input(
+            "--shard writes its rows as .csv; `dicesim merge` draws the image of the whole map".to_string(),
+        ));
+    }
+    let rows = sharding
+        .as_ref()
+        .map_or(0..h as u64, |(shard, _)| shard.range(h as u64));
 
-    let total = (w * h) as u64;
+    let total = (w * (rows.end - rows.start) as usize) as u64;
     let bar = if std::io::stderr().is_terminal() {
         ProgressBar::new(total)
     } else {
@@ -105,10 +125,11 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
     let start = std::time::Instant::now();
     let never = AtomicBool::new(false);
     let spec = MapSpec { x, y, method };
-    let map = run_map(
+    let map = run_map_rows(
         &params,
         &preset.initial,
         &spec,
+        rows.start as usize..rows.end as usize,
         jobs,
         &never,
         &mut |m: &BasinMap| bar.set_position(m.sampled as u64),
@@ -116,6 +137,12 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
     .map_err(|e| CliError::Input(e.to_string()))?;
     bar.finish_and_clear();
     let elapsed = start.elapsed().as_secs_f64();
+    let faces: FaceTally = map
+        .cells
+        .iter()
+        .flatten()
+        .filter_map(|c| c.outcome.face)
+        .collect();
 
     if let (Some(path), Some(kind)) = (&args.out, out_kind) {
         let failed = |e: String| CliError::Run(format!("{}: {e}", path.display()));
@@ -127,9 +154,57 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
             write_image(&map, layer, path).map_err(|e| failed(e.to_string()))?;
         }
     }
-    let (x, y) = (&spec.x, &spec.y);
+    if let Some((shard, part)) = &sharding {
+        let sweep = Sweep::Map {
+            preset: preset.name.clone(),
+            fingerprint: map_fingerprint(&preset),
+            x: args.x.clone(),
+            y: args.y.clone(),
+            width: w,
+            height: h,
+            layer: layer.name().to_string(),
+        };
+        let mut summary = new_part(sweep, *shard, rows.clone(), part, args.out.as_deref());
+        summary.complete = map.complete;
+        summary.map_faces = Some(faces);
+        summary.elapsed_s = elapsed;
+        summary.jobs = jobs;
+        write_part(part, &summary)?;
+    }
     let mut out = std::io::stdout().lock();
-    let how = match method {
+    print_map_summary(&mut out, &map, layer, &faces, total)?;
+    if let Some((shard, _)) = &sharding {
+        writeln!(
+            out,
+            "shard               {shard}: rows {} to {}",
+            rows.start,
+            rows.end.saturating_sub(1)
+        )?;
+    }
+    writeln!(
+        out,
+        "time                {elapsed:.2} s on {jobs} thread{}",
+        if jobs == 1 { "" } else { "s" }
+    )?;
+    if let Some(path) = &args.out {
+        writeln!(out, "wrote               {}", path.display())?;
+    }
+    Ok(())
+}
+
+/// What `basin` and `merge` print about a map: its grid, method, axes and the face shares
+/// over `cells` cells.
+pub(super) fn print_map_summary(
+    out: &mut impl Write,
+    map: &BasinMap,
+    layer: Layer,
+    faces: &FaceTally,
+    cells: u64,
+) -> std::io::Result<()> {
+    let (x, y) = (&map.x, &map.y);
+    let (w, h) = (map.width(), map.height());
+    let total = w * h;
+    let how = match map.method {
         Method::Uniform => "uniform grid: every cell rolled".to_string(),
         Method::Adaptive => format!(
             "adaptive: {} of {} cells rolled ({:.1}%), the rest filled from agreeing neighbours",
@@ -145,27 +220,13 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
     } else {
         writeln!(out, "y  {} from {} to {}", y.key.label(), y.min, y.max)?;
     }
-    let faces: FaceTally = map
-        .cells
-        .iter()
-        .flatten()
-        .filter_map(|c| c.outcome.face)
-        .collect();
     let shares: Vec<String> = (1..=6)
         .map(|f| format!("{f}: {:.1}%", 100.0 * faces.share(f)))
         .collect();
     writeln!(out, "faces over the map  {}", shares.join(", "))?;
-    let unsettled = w * h - faces.total() as usize;
+    let unsettled = cells - faces.total();
     if unsettled > 0 {
         writeln!(out, "cells without a face {unsettled}")?;
-    }
-    writeln!(
-        out,
-        "time                {elapsed:.2} s on {jobs} thread{}",
-        if jobs == 1 { "" } else { "s" }
-    )?;
-    if let Some(path) = &args.out {
-        writeln!(out, "wrote               {}", path.display())?;
     }
     Ok(())
 }

@@ -1,8 +1,10 @@
 //! `dicesim batch`: many rolls in parallel, per-roll results and their statistics.
 
+use super::shard::{ShardArgs, batch_fingerprint, write_batch_part};
 use super::{CliError, SetupArgs};
 use crate::experiment::batch::thread_count;
 use crate::experiment::ics::{parse_initial_conditions, record_csv_row, records_csv_header};
+use crate::experiment::shard::Sweep;
 use crate::experiment::{Batch, BatchSummary, RollRecord, Rolls, run_batch};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -46,6 +48,8 @@ pub struct BatchArgs {
     /// Print the summary as one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub shard: ShardArgs,
 }
 
 /// The per-roll file's format, from its extension.
@@ -70,6 +74,12 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     let params = preset.params();
     params.validate().map_err(|e| CliError::Input(e.to_string()))?;
     let format = args.out.as_deref().map(out_format).transpose()?;
+    let sharding = args.shard.resolve(args.out.as_deref())?;
+    if sharding.is_some() && matches!(format, Some(OutFormat::Json)) {
+        return Err(CliError::Input(
+            "--shard writes its records as .csv (a JSON file cannot be merged as it streams)".to_string(),
+        ));
+    }
     let seed = args.seed.unwrap_or(preset.random.seed);
     let given = match &args.ics {
         Some(path) => {
@@ -81,13 +91,20 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
         }
         None => None,
     };
+    let total = given
+        .as_ref()
+        .map_or(args.rolls.unwrap_or(0), |ics| ics.len() as u64);
+    let range = sharding
+        .as_ref()
+        .map_or(0..total, |(shard, _)| shard.range(total));
     let rolls = match &given {
-        Some(ics) => Rolls::Given(ics),
+        Some(ics) => Rolls::Given(&ics[range.start as usize..range.end as usize]),
         None => Rolls::Random {
             ranges: &preset.random,
             base: &preset.initial,
             seed,
-            count: args.rolls.unwrap_or(0),
+            first: range.start,
+            count: range.end - range.start,
         },
     };
     let jobs = thread_count(args.jobs.unwrap_or(0) as usize);
@@ -122,6 +139,15 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     if let (Some(path), Some(format)) = (&args.out, format) {
         write_records(path, format, &batch, &summary, seed, given.is_some())
             .map_err(|e| CliError::Run(format!("{}: {e}", path.display())))?;
+    }
+    if let Some((shard, part)) = &sharding {
+        let sweep = Sweep::Batch {
+            preset: preset.name.clone(),
+            fingerprint: batch_fingerprint(&preset, given.as_deref()),
+            seed: given.is_none().then_some(seed),
+            rolls: total,
+        };
+        write_batch_part(part, sweep, *shard, range, args.out.as_deref(), &batch)?;
     }
     let mut out = std::io::stdout().lock();
     if args.json {
@@ -189,6 +215,21 @@ fn print_summary(out: &mut impl Write, batch: &Batch, s: &BatchSummary) -> std::
         batch.jobs,
         if batch.jobs == 1 { "" } else { "s" }
     )?;
+    print_counts(out, s)?;
+    writeln!(
+        out,
+        "speed                  {:.0} rolls/s, {:.1} M steps/s ({} steps in {:.2} s)",
+        s.rolls_per_s,
+        s.steps_per_s / 1e6,
+        s.steps,
+        s.elapsed_s
+    )?;
+    Ok(())
+}
+
+/// The summary's lines that depend on the rolls alone (not on threads or time), as `batch`
+/// and `merge` print them.
+pub(super) fn print_counts(out: &mut impl Write, s: &BatchSummary) -> std::io::Result<()> {
     writeln!(out, "face   count   share")?;
     for f in 0..6 {
         writeln!(
@@ -213,14 +254,6 @@ fn print_summary(out: &mut impl Write, batch: &Batch, s: &BatchSummary) -> std::
         out,
         "status                 settled {}, settled without a face {}, did not settle {}, unstable {}",
         st.settled, st.settled_without_face, st.timeout, st.unstable
-    )?;
-    writeln!(
-        out,
-        "speed                  {:.0} rolls/s, {:.1} M steps/s ({} steps in {:.2} s)",
-        s.rolls_per_s,
-        s.steps_per_s / 1e6,
-        s.steps,
-        s.elapsed_s
     )?;
     Ok(())
 }

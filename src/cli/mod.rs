@@ -2,8 +2,10 @@
 
 mod basin;
 mod batch;
+mod merge;
 mod presets;
 mod roll;
+mod shard;
 mod trace;
 mod tui;
 
@@ -31,6 +33,8 @@ pub enum Command {
     Batch(batch::BatchArgs),
     /// Map the outcome over a grid of two setup values (CSV, PNG or SVG).
     Basin(basin::BasinArgs),
+    /// Put the shards of a sweep (`batch --shard`, `basin --shard`) back together.
+    Merge(merge::MergeArgs),
     /// The terminal explorer: a live die, energy plots, parameters and outcomes (the default).
     Tui(tui::TuiArgs),
 }
@@ -86,6 +90,7 @@ pub fn main() -> ExitCode {
         Some(Command::Presets(args)) => presets::run(&args),
         Some(Command::Batch(args)) => batch::run(&args),
         Some(Command::Basin(args)) => basin::run(&args),
+        Some(Command::Merge(args)) => merge::run(&args),
         Some(Command::Tui(args)) => tui::run(&args),
         None => tui::run(&tui::TuiArgs::default()),
     };

@@ -12,6 +12,7 @@ use super::keys::ScanKey;
 use super::record::{RollRecord, roll_record};
 use crate::physics::{InitialCondition, Outcome, Params, Status};
 use rayon::prelude::*;
+use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 /// One axis of a map: a key scanned from `min` to `max` (both included) over `cells` nodes.
@@ -251,8 +252,32 @@ pub fn run_map(
     cancel: &AtomicBool,
     on_partial: &mut dyn FnMut(&BasinMap),
 ) -> Result<BasinMap, Error> {
+    run_map_rows(params, base, spec, 0..spec.y.cells, jobs, cancel, on_partial)
+}
+
+/// [`run_map`] over the rows `rows` of the map only (a shard of it): the other rows stay
+/// unknown, and the map is complete when these are. Only the uniform method can split rows,
+/// since adaptive refinement compares cells across row boundaries.
+pub fn run_map_rows(
+    params: &Params,
+    base: &InitialCondition,
+    spec: &MapSpec,
+    rows: Range<usize>,
+    jobs: usize,
+    cancel: &AtomicBool,
+    on_partial: &mut dyn FnMut(&BasinMap),
+) -> Result<BasinMap, Error> {
     params.validate()?;
     base.validate()?;
+    if rows.end > spec.y.cells || (spec.method == Method::Adaptive && rows != (0..spec.y.cells)) {
+        return Err(Error::Shard(format!(
+            "rows {}..{} of a {}-row {} map: only a uniform map splits into rows",
+            rows.start,
+            rows.end,
+            spec.y.cells,
+            spec.method.name()
+        )));
+    }
     let pool = thread_pool(jobs)?;
     let MapSpec { x, y, method } = spec;
     let method = *method;
@@ -283,13 +308,14 @@ pub fn run_map(
     match method {
         Method::Uniform => {
             let rows_per_block = (pool.current_num_threads() * 256 / x.cells).max(1);
-            let mut j0 = 0;
-            while j0 < y.cells && !cancel.load(Ordering::Relaxed) {
-                let j1 = (j0 + rows_per_block).min(y.cells);
+            let mut j0 = rows.start;
+            map.complete = rows.is_empty();
+            while j0 < rows.end && !cancel.load(Ordering::Relaxed) {
+                let j1 = (j0 + rows_per_block).min(rows.end);
                 let nodes: Vec<_> = (j0..j1).flat_map(|j| (0..x.cells).map(move |i| (i, j))).collect();
                 roll(&mut map, &nodes);
                 j0 = j1;
-                map.complete = j0 == y.cells;
+                map.complete = j0 == rows.end;
                 on_partial(&map);
             }
             Ok(map)

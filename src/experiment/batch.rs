@@ -9,9 +9,10 @@ use super::Error;
 use super::random::RandomRanges;
 use super::record::{RollRecord, roll_record};
 use super::stats::FaceTally;
-use crate::physics::{InitialCondition, Params, Status, opposite_face};
+use super::tally::Tally;
+use crate::physics::{InitialCondition, Params, opposite_face};
 use rayon::prelude::*;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
@@ -22,12 +23,13 @@ const CHUNK_PER_JOB: usize = 512;
 /// Where a batch's initial conditions come from.
 #[derive(Debug, Clone, Copy)]
 pub enum Rolls<'a> {
-    /// `count` rolls around `base`, roll `i` drawn by `ranges` from the stream (`seed`, `i`);
-    /// its id is `i`.
+    /// `count` rolls around `base` with ids from `first` on (0 unless a shard), roll `id`
+    /// drawn by `ranges` from the stream (`seed`, `id`).
     Random {
         ranges: &'a RandomRanges,
         base: &'a InitialCondition,
         seed: u64,
+        first: u64,
         count: u64,
     },
     /// Given initial conditions with their ids, e.g. from an `--ics` file.
@@ -51,8 +53,12 @@ impl Rolls<'_> {
     pub fn get(&self, index: u64) -> (u64, InitialCondition) {
         match self {
             Rolls::Random {
-                ranges, base, seed, ..
-            } => (index, ranges.draw(base, *seed, index)),
+                ranges,
+                base,
+                seed,
+                first,
+                ..
+            } => (first + index, ranges.draw(base, *seed, first + index)),
             Rolls::Given(ics) => ics[index as usize],
         }
     }
@@ -148,7 +154,8 @@ pub fn run_batch(
 }
 
 /// How a roll's final face relates to the face that started up.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct StartFaceCounts {
     /// Ended on the face that started up.
     pub same: u64,
@@ -181,7 +188,8 @@ impl StartFaceCounts {
 }
 
 /// How the rolls of a batch ended.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct StatusCounts {
     /// Settled with a face up.
     pub settled: u64,
@@ -222,49 +230,14 @@ pub struct BatchSummary {
 impl BatchSummary {
     /// Tallies `records` that took `elapsed` of wall-clock time.
     pub fn new(records: &[RollRecord], elapsed: Duration) -> BatchSummary {
-        let mut faces = FaceTally::default();
-        let mut start_face = StartFaceCounts::default();
-        let mut status = StatusCounts::default();
-        let (mut steps, mut simulated_s) = (0, 0.0);
-        // Sequential sums in roll order: float totals stay identical for any job count.
-        for r in records {
-            steps += r.outcome.steps;
-            simulated_s += r.outcome.time_s;
-            match (r.outcome.status, r.outcome.face) {
-                (Status::Settled, Some(face)) => {
-                    status.settled += 1;
-                    faces.add(face);
-                    start_face.add(r.start_face, face);
-                }
-                (Status::Settled, None) => status.settled_without_face += 1,
-                (Status::Timeout, _) => status.timeout += 1,
-                (Status::Unstable, _) => status.unstable += 1,
-            }
-        }
-        let elapsed_s = elapsed.as_secs_f64();
-        let rate = |n: f64| if elapsed_s > 0.0 { n / elapsed_s } else { 0.0 };
-        BatchSummary {
-            rolls: records.len() as u64,
-            face_shares: std::array::from_fn(|i| faces.share(i as u8 + 1)),
-            chi_square: faces.chi_square(),
-            p_value: faces.p_value(),
-            faces,
-            start_face_shares: start_face.shares(),
-            start_face,
-            status,
-            steps,
-            simulated_s,
-            elapsed_s,
-            rolls_per_s: rate(records.len() as f64),
-            steps_per_s: rate(steps as f64),
-        }
+        records.iter().collect::<Tally>().summary(elapsed)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::Outcome;
+    use crate::physics::{Outcome, Status};
 
     fn record(start_face: u8, status: Status, face: Option<u8>, steps: u64) -> RollRecord {
         RollRecord {
@@ -335,6 +308,7 @@ mod tests {
             ranges: &ranges,
             base: &base,
             seed: 3,
+            first: 0,
             count: 3 * CHUNK_PER_JOB as u64,
         };
         let cancel = AtomicBool::new(false);

@@ -9,14 +9,17 @@ pub mod batch;
 pub mod energy_plot;
 pub mod ics;
 pub mod keys;
+pub mod merge;
 pub mod plot;
 pub mod random;
 pub mod record;
+pub mod shard;
 pub mod stats;
+pub mod tally;
 pub mod trace;
 pub mod twin;
 
-pub use basin::{Axis, BasinMap, Cell, Layer, MapSpec, Method, run_map};
+pub use basin::{Axis, BasinMap, Cell, Layer, MapSpec, Method, run_map, run_map_rows};
 pub use batch::{Batch, BatchSummary, Rolls, run_batch};
 pub use keys::ScanKey;
 pub use random::RandomRanges;
@@ -44,6 +47,9 @@ pub enum Error {
     /// A malformed row of an initial-condition file (1-based line).
     #[error("line {line}: {message}")]
     Ics { line: usize, message: String },
+    /// A shard that cannot be rolled on its own.
+    #[error("cannot shard {0}")]
+    Shard(String),
     /// The worker threads could not be started.
     #[error("cannot start worker threads: {0}")]
     Threads(String),

@@ -1,10 +1,10 @@
 //! Outcome statistics: face counts, shares and the χ² test against a fair die.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 
 /// Counts of faces 1..6 over a set of settled rolls.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 pub struct FaceTally {
     pub counts: [u64; 6],
 }

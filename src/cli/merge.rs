@@ -1,0 +1,302 @@
+//! `dicesim merge`: the shards of a sweep put back together, byte for byte the one-machine
+//! result, after checking that they are all the shards of one sweep.
+
+use super::CliError;
+use super::basin::print_map_summary;
+use super::batch::print_counts;
+use super::shard::{PART_EXTENSION, finish_atomically, read_part, records_path, temp_beside};
+use crate::experiment::ics::records_csv_header;
+use crate::experiment::merge::{MergeError, check_roll_id, copy_rows, parse_map_row};
+use crate::experiment::plot::write_image;
+use crate::experiment::shard::{Part, Sweep, check_parts};
+use crate::experiment::tally::Tally;
+use crate::experiment::{Axis, BasinMap, FaceTally, Layer, Method};
+use clap::Args;
+use serde_json::json;
+use std::io::{BufReader, Write};
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+#[derive(Debug, Args)]
+pub struct MergeArgs {
+    /// The part summaries (`*.part.json`) that `batch --shard` or `basin --shard` wrote, or
+    /// folders holding them; in any order.
+    #[arg(required = true, value_name = "PARTS")]
+    pub parts: Vec<PathBuf>,
+    /// Write the merged result: a batch's .csv; a map's .csv, .png or .svg (repeatable).
+    /// Without it, only the summary is printed.
+    #[arg(long, value_name = "FILE")]
+    pub out: Vec<PathBuf>,
+    /// Print the summary as one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+pub fn run(args: &MergeArgs) -> Result<(), CliError> {
+    let paths = part_files(&args.parts)?;
+    let parts: Vec<(String, Part)> = paths
+        .iter()
+        .map(|p| Ok((p.display().to_string(), read_part(p)?)))
+        .collect::<Result<_, CliError>>()?;
+    let order = check_parts(&parts).map_err(CliError::Input)?;
+    let ordered: Vec<(&Path, &Part)> = order.iter().map(|&i| (paths[i].as_path(), &parts[i].1)).collect();
+    let first = ordered[0].1;
+    if !args.out.is_empty() && first.records.is_none() {
+        return Err(CliError::Input(format!(
+            "the parts hold only summaries (their shards ran without --out): nothing to write to {}",
+            args.out[0].display()
+        )));
+    }
+    match &first.sweep {
+        Sweep::Batch { .. } => merge_batch(args, &ordered),
+        Sweep::Map { .. } => merge_map(args, &ordered),
+    }
+}
+
+/// The part files named: files as given, folders as the `*.part.json` files inside.
+fn part_files(given: &[PathBuf]) -> Result<Vec<PathBuf>, CliError> {
+    let mut files = Vec::new();
+    for path in given {
+        if path.is_dir() {
+            let suffix = format!(".{PART_EXTENSION}");
+            let mut inside: Vec<PathBuf> = std::fs::read_dir(path)
+                .map_err(|e| CliError::Input(format!("{}: {e}", path.display())))?
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| p.to_string_lossy().ends_with(&suffix))
+                .collect();
+            if inside.is_empty() {
+                return Err(CliError::Input(format!(
+                    "{}: no *{suffix} files in this folder",
+                    path.display()
+                )));
+            }
+            inside.sort();
+            files.extend(inside);
+        } else {
+            files.push(path.clone());
+        }
+    }
+    Ok(files)
+}
+
+/// The kind of an output file, from its extension, checked against what this sweep writes.
+fn out_kind<'a>(path: &Path, allowed: &[&'a str]) -> Result<&'a str, CliError> {
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or_default();
+    allowed.iter().find(|&&a| a == ext).copied().ok_or_else(|| {
+        CliError::Input(format!(
+            "--out {}: expected a {} file",
+            path.display(),
+            allowed
+                .iter()
+                .map(|a| format!(".{a}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ))
+    })
+}
+
+/// Opens a part's records file for reading.
+fn open_records(part_path: &Path, part: &Part) -> Result<(PathBuf, BufReader<std::fs::File>), CliError> {
+    let path = records_path(part_path, part).expect("checked: every part has records");
+    let file = std::fs::File::open(&path).map_err(|e| {
+        CliError::Input(format!(
+            "{} (records of {}): {e}",
+            path.display(),
+            part_path.display()
+        ))
+    })?;
+    Ok((path, BufReader::with_capacity(1 << 20, file)))
+}
+
+/// Names the part file whose rows failed.
+fn row_error(path: &Path, e: MergeError) -> CliError {
+    match e {
+        MergeError::Io(e) => CliError::Run(format!("{}: {e}", path.display())),
+        e => CliError::Input(format!("{}: {e}", path.display())),
+    }
+}
+
+/// The s of wall-clock time of all shards added up, and of the longest.
+fn shard_times(parts: &[(&Path, &Part)]) -> (f64, f64) {
+    let times = parts.iter().map(|(_, p)| p.elapsed_s);
+    (times.clone().sum(), times.fold(0.0, f64::max))
+}
+
+fn merge_batch(args: &MergeArgs, parts: &[(&Path, &Part)]) -> Result<(), CliError> {
+    let Sweep::Batch {
+        preset, seed, rolls, ..
+    } = &parts[0].1.sweep
+    else {
+        unreachable!("merge_batch is called for batches")
+    };
+    let mut tally = Tally::default();
+    for (path, p) in parts {
+        let t = p.tally.as_ref().ok_or_else(|| {
+            CliError::Input(format!(
+                "{}: a batch part without its counts (`tally`)",
+                path.display()
+            ))
+        })?;
+        if t.rolls != p.len() {
+            return Err(CliError::Input(format!(
+                "{}: counts {} rolls, but its shard has {}",
+                path.display(),
+                t.rolls,
+                p.len()
+            )));
+        }
+        tally.merge(t);
+    }
+    for out in &args.out {
+        out_kind(out, &["csv"])?;
+        let header = records_csv_header();
+        let tmp = temp_beside(out, "")?;
+        let mut w = std::io::BufWriter::with_capacity(1 << 20, tmp.as_file());
+        writeln!(w, "{header}")?;
+        for (path, p) in parts {
+            let (records, reader) = open_records(path, p)?;
+            let first = p.range[0];
+            copy_rows(reader, &mut w, &header, p.len(), &mut |n, row| {
+                check_roll_id(row, first + n)
+            })
+            .map_err(|e| row_error(&records, e))?;
+        }
+        w.flush()?;
+        drop(w);
+        finish_atomically(tmp, out).map_err(|e| CliError::Run(format!("{}: {e}", out.display())))?;
+    }
+    let (shard_s, longest_s) = shard_times(parts);
+    let summary = tally.summary(Duration::from_secs_f64(shard_s));
+    let mut stdout = std::io::stdout().lock();
+    if args.json {
+        let v = json!({
+            "preset": preset,
+            "seed": seed,
+            "requested": rolls,
+            "completed": tally.rolls,
+            "interrupted": false,
+            "shards": parts.len(),
+            "longest_shard_s": longest_s,
+            "summary": summary,
+        });
+        writeln!(stdout, "{v}")?;
+    } else {
+        writeln!(stdout, "{} rolls in {} shards", summary.rolls, parts.len())?;
+        print_counts(&mut stdout, &summary)?;
+        writeln!(
+            stdout,
+            "speed                  {:.0} rolls per shard-second ({} steps; the shards took {shard_s:.2} s together, the longest {longest_s:.2} s)",
+            summary.rolls_per_s, summary.steps
+        )?;
+        for out in &args.out {
+            writeln!(stdout, "wrote                  {}", out.display())?;
+        }
+    }
+    Ok(())
+}
+
+fn merge_map(args: &MergeArgs, parts: &[(&Path, &Part)]) -> Result<(), CliError> {
+    let Sweep::Map {
+        x,
+        y,
+        width,
+        height,
+        layer,
+        ..
+    } = &parts[0].1.sweep
+    else {
+        unreachable!("merge_map is called for maps")
+    };
+    if args.json {
+        return Err(CliError::Input(
+            "--json: a map's summary is text (its cells are the --out .csv)".to_string(),
+        ));
+    }
+    let bad_sweep = |e: String| CliError::Input(format!("{}: {e}", parts[0].0.display()));
+    let x = Axis::parse(x, *width).map_err(|e| bad_sweep(e.to_string()))?;
+    let y = Axis::parse(y, *height).map_err(|e| bad_sweep(e.to_string()))?;
+    let layer = [Layer::Face, Layer::SettleTime]
+        .into_iter()
+        .find(|l| l.name() == layer)
+        .ok_or_else(|| bad_sweep(format!("unknown layer `{layer}`")))?;
+    let mut faces = FaceTally::default();
+    for (path, p) in parts {
+        let f = p.map_faces.as_ref().ok_or_else(|| {
+            CliError::Input(format!(
+                "{}: a map part without its face counts (`map_faces`)",
+                path.display()
+            ))
+        })?;
+        for (c, n) in faces.counts.iter_mut().zip(f.counts) {
+            *c += n;
+        }
+    }
+    let mut map = BasinMap {
+        x,
+        y,
+        method: Method::Uniform,
+        cells: vec![None; width * height],
+        sampled: 0,
+        complete: true,
+    };
+    let kinds: Vec<&str> = args
+        .out
+        .iter()
+        .map(|o| out_kind(o, &["csv", "png", "svg"]))
+        .collect::<Result<_, _>>()?;
+    if !args.out.is_empty() {
+        // One pass over the parts: the merged CSV as it is read, and every cell for images.
+        let mut header = Vec::new();
+        map.write_csv(&mut header)?;
+        let header = String::from_utf8(header).expect("the CSV header is UTF-8");
+        let header = header.trim_end();
+        let csv_out = args
+            .out
+            .iter()
+            .zip(&kinds)
+            .find(|(_, k)| **k == "csv")
+            .map(|(o, _)| o);
+        let tmp = csv_out.map(|o| temp_beside(o, "")).transpose()?;
+        let mut sink: Box<dyn Write> = match &tmp {
+            Some(t) => Box::new(std::io::BufWriter::with_capacity(1 << 20, t.as_file())),
+            None => Box::new(std::io::sink()),
+        };
+        writeln!(sink, "{header}")?;
+        let w = *width;
+        for (path, p) in parts {
+            let (records, reader) = open_records(path, p)?;
+            let first_cell = p.range[0] as usize * w;
+            let cells = &mut map.cells;
+            copy_rows(reader, &mut sink, header, p.len() * w as u64, &mut |n, row| {
+                let index = first_cell + n as usize;
+                cells[index] = Some(parse_map_row(row, index % w, index / w)?);
+                Ok(())
+            })
+            .map_err(|e| row_error(&records, e))?;
+        }
+        sink.flush()?;
+        drop(sink);
+        map.sampled = map.cells.iter().flatten().filter(|c| c.sampled).count();
+        if let (Some(t), Some(o)) = (tmp, csv_out) {
+            finish_atomically(t, o).map_err(|e| CliError::Run(format!("{}: {e}", o.display())))?;
+        }
+        for (out, kind) in args.out.iter().zip(&kinds).filter(|(_, k)| **k != "csv") {
+            let failed = |e: String| CliError::Run(format!("{}: {e}", out.display()));
+            let t = temp_beside(out, &format!(".{kind}"))?;
+            write_image(&map, layer, t.path()).map_err(|e| failed(e.to_string()))?;
+            finish_atomically(t, out).map_err(|e| failed(e.to_string()))?;
+        }
+    }
+    let (shard_s, longest_s) = shard_times(parts);
+    let mut stdout = std::io::stdout().lock();
+    print_map_summary(&mut stdout, &map, layer, &faces, (width * height) as u64)?;
+    writeln!(
+        stdout,
+        "time                {shard_s:.2} s over {} shards (the longest {longest_s:.2} s)",
+        parts.len()
+    )?;
+    for out in &args.out {
+        writeln!(stdout, "wrote               {}", out.display())?;
+    }
+    Ok(())
+}
