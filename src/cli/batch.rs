@@ -4,6 +4,7 @@ use super::shard::{ShardArgs, batch_fingerprint, write_batch_part};
 use super::{CliError, SetupArgs};
 use crate::experiment::batch::thread_count;
 use crate::experiment::ics::{parse_initial_conditions, record_csv_row, records_csv_header};
+use crate::experiment::parquet::RecordsWriter;
 use crate::experiment::shard::Sweep;
 use crate::experiment::{Batch, BatchSummary, RollRecord, Rolls, run_batch};
 use clap::Args;
@@ -42,8 +43,9 @@ pub struct BatchArgs {
     #[arg(long, value_name = "J", value_parser = clap::value_parser!(u64).range(1..))]
     pub jobs: Option<u64>,
     /// Write every roll (id, initial condition, start face, face, status, steps, simulated
-    /// seconds) to a .csv or .json file.
-    #[arg(long, value_name = "FILE.csv|FILE.json")]
+    /// seconds) to a .csv, .json or .parquet file (Parquet: the same columns in about a
+    /// third of the bytes, for pandas, polars or DuckDB).
+    #[arg(long, value_name = "FILE.csv|FILE.json|FILE.parquet")]
     pub out: Option<PathBuf>,
     /// Print the summary as one JSON object instead of text.
     #[arg(long)]
@@ -56,14 +58,17 @@ pub struct BatchArgs {
 enum OutFormat {
     Csv,
     Json,
+    /// The compact columns for huge sweeps.
+    Parquet,
 }
 
 fn out_format(path: &Path) -> Result<OutFormat, CliError> {
     match path.extension().and_then(|e| e.to_str()) {
         Some("csv") => Ok(OutFormat::Csv),
         Some("json") => Ok(OutFormat::Json),
+        Some("parquet") => Ok(OutFormat::Parquet),
         _ => Err(CliError::Input(format!(
-            "--out {}: expected a .csv or .json file",
+            "--out {}: expected a .csv, .json or .parquet file",
             path.display()
         ))),
     }
@@ -77,7 +82,8 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     let sharding = args.shard.resolve(args.out.as_deref())?;
     if sharding.is_some() && matches!(format, Some(OutFormat::Json)) {
         return Err(CliError::Input(
-            "--shard writes its records as .csv (a JSON file cannot be merged as it streams)".to_string(),
+            "--shard writes its records as .csv or .parquet (a JSON file cannot be merged as it streams)"
+                .to_string(),
         ));
     }
     let seed = args.seed.unwrap_or(preset.random.seed);
@@ -202,6 +208,13 @@ fn write_records(
             });
             serde_json::to_writer(&mut w, &v)?;
             writeln!(w)?;
+        }
+        OutFormat::Parquet => {
+            let mut parquet = RecordsWriter::new(w).map_err(std::io::Error::other)?;
+            for r in &batch.records {
+                parquet.write(r).map_err(std::io::Error::other)?;
+            }
+            w = parquet.finish().map_err(std::io::Error::other)?;
         }
     }
     w.flush()

@@ -5,13 +5,16 @@ use super::CliError;
 use super::basin::print_map_summary;
 use super::batch::print_counts;
 use super::shard::{PART_EXTENSION, finish_atomically, read_part, records_path, temp_beside};
-use crate::experiment::ics::records_csv_header;
+use crate::experiment::RollRecord;
+use crate::experiment::ics::{record_csv_row, records_csv_header};
 use crate::experiment::merge::{MergeError, check_roll_id, copy_rows, parse_map_row};
+use crate::experiment::parquet::{RecordsWriter, read_records};
 use crate::experiment::plot::write_image;
 use crate::experiment::shard::{Part, Sweep, check_parts};
 use crate::experiment::tally::Tally;
 use crate::experiment::{Axis, BasinMap, FaceTally, Layer, Method};
 use clap::Args;
+use parquet::errors::ParquetError;
 use serde_json::json;
 use std::io::{BufReader, Write};
 use std::path::{Path, PathBuf};
@@ -23,7 +26,8 @@ pub struct MergeArgs {
     /// folders holding them; in any order.
     #[arg(required = true, value_name = "PARTS")]
     pub parts: Vec<PathBuf>,
-    /// Write the merged result: a batch's .csv; a map's .csv, .png or .svg (repeatable).
+    /// Write the merged result: a batch's .csv or .parquet; a map's .csv, .png or .svg
+    /// (repeatable).
     /// Without it, only the summary is printed.
     #[arg(long, value_name = "FILE")]
     pub out: Vec<PathBuf>,
@@ -108,6 +112,58 @@ fn open_records(part_path: &Path, part: &Part) -> Result<(PathBuf, BufReader<std
     Ok((path, BufReader::with_capacity(1 << 20, file)))
 }
 
+/// The format of a part's records, from its file name.
+fn records_kind(part_path: &Path, part: &Part) -> Result<&'static str, CliError> {
+    let path = records_path(part_path, part).expect("checked: every part has records");
+    match path.extension().and_then(|e| e.to_str()) {
+        Some("csv") => Ok("csv"),
+        Some("parquet") => Ok("parquet"),
+        _ => Err(CliError::Input(format!(
+            "{}: records in {}, neither .csv nor .parquet",
+            part_path.display(),
+            path.display()
+        ))),
+    }
+}
+
+/// Calls `each` with every record of a Parquet part, checking they are its ids in order.
+fn for_each_record(
+    part_path: &Path,
+    part: &Part,
+    each: &mut dyn FnMut(RollRecord) -> Result<(), String>,
+) -> Result<(), CliError> {
+    let path = records_path(part_path, part).expect("checked: every part has records");
+    let file = std::fs::File::open(&path).map_err(|e| {
+        CliError::Input(format!(
+            "{} (records of {}): {e}",
+            path.display(),
+            part_path.display()
+        ))
+    })?;
+    let mut next = part.range[0];
+    read_records(file, &mut |r| {
+        if r.id != next {
+            return Err(format!(
+                "row {}: roll id {}, expected {next}",
+                next - part.range[0],
+                r.id
+            ));
+        }
+        next += 1;
+        each(r)
+    })
+    .map_err(|e| CliError::Input(format!("{}: {e}", path.display())))?;
+    if next != part.range[1] {
+        return Err(CliError::Input(format!(
+            "{}: holds {} of the {} rolls the part summary counts",
+            path.display(),
+            next - part.range[0],
+            part.len()
+        )));
+    }
+    Ok(())
+}
+
 /// Names the part file whose rows failed.
 fn row_error(path: &Path, e: MergeError) -> CliError {
     match e {
@@ -148,21 +204,45 @@ fn merge_batch(args: &MergeArgs, parts: &[(&Path, &Part)]) -> Result<(), CliErro
         tally.merge(t);
     }
     for out in &args.out {
-        out_kind(out, &["csv"])?;
-        let header = records_csv_header();
+        let kind = out_kind(out, &["csv", "parquet"])?;
         let tmp = temp_beside(out, "")?;
         let mut w = std::io::BufWriter::with_capacity(1 << 20, tmp.as_file());
-        writeln!(w, "{header}")?;
-        for (path, p) in parts {
-            let (records, reader) = open_records(path, p)?;
-            let first = p.range[0];
-            copy_rows(reader, &mut w, &header, p.len(), &mut |n, row| {
-                check_roll_id(row, first + n)
-            })
-            .map_err(|e| row_error(&records, e))?;
+        match kind {
+            "csv" => {
+                let header = records_csv_header();
+                writeln!(w, "{header}")?;
+                for (path, p) in parts {
+                    if records_kind(path, p)? == "parquet" {
+                        for_each_record(path, p, &mut |r| {
+                            writeln!(w, "{}", record_csv_row(&r)).map_err(|e| e.to_string())
+                        })?;
+                        continue;
+                    }
+                    let (records, reader) = open_records(path, p)?;
+                    let first = p.range[0];
+                    copy_rows(reader, &mut w, &header, p.len(), &mut |n, row| {
+                        check_roll_id(row, first + n)
+                    })
+                    .map_err(|e| row_error(&records, e))?;
+                }
+                w.flush()?;
+                drop(w);
+            }
+            _ => {
+                let failed = |e: ParquetError| CliError::Run(format!("{}: {e}", out.display()));
+                let mut parquet = RecordsWriter::new(w).map_err(failed)?;
+                for (path, p) in parts {
+                    if records_kind(path, p)? != "parquet" {
+                        return Err(CliError::Input(format!(
+                            "{}: its records are CSV; a merged .parquet needs .parquet parts (or merge to .csv)",
+                            path.display()
+                        )));
+                    }
+                    for_each_record(path, p, &mut |r| parquet.write(&r).map_err(|e| e.to_string()))?;
+                }
+                parquet.finish().map_err(failed)?.flush()?;
+            }
         }
-        w.flush()?;
-        drop(w);
         finish_atomically(tmp, out).map_err(|e| CliError::Run(format!("{}: {e}", out.display())))?;
     }
     let (shard_s, longest_s) = shard_times(parts);

@@ -6,6 +6,7 @@ mod merge;
 mod presets;
 mod roll;
 mod shard;
+mod slurm;
 mod trace;
 mod tui;
 
@@ -35,6 +36,8 @@ pub enum Command {
     Basin(basin::BasinArgs),
     /// Put the shards of a sweep (`batch --shard`, `basin --shard`) back together.
     Merge(merge::MergeArgs),
+    /// Write (and submit) a Slurm job array for a sweep, one task per shard, and its merge.
+    Slurm(slurm::SlurmArgs),
     /// The terminal explorer: a live die, energy plots, parameters and outcomes (the default).
     Tui(tui::TuiArgs),
 }
@@ -91,6 +94,7 @@ pub fn main() -> ExitCode {
         Some(Command::Batch(args)) => batch::run(&args),
         Some(Command::Basin(args)) => basin::run(&args),
         Some(Command::Merge(args)) => merge::run(&args),
+        Some(Command::Slurm(args)) => slurm::run(&args),
         Some(Command::Tui(args)) => tui::run(&args),
         None => tui::run(&tui::TuiArgs::default()),
     };

@@ -10,6 +10,7 @@ pub mod energy_plot;
 pub mod ics;
 pub mod keys;
 pub mod merge;
+pub mod parquet;
 pub mod plot;
 pub mod random;
 pub mod record;
