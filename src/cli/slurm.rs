@@ -12,6 +12,9 @@ pub enum PartFormat {
     /// Each shard writes its records as CSV; the merge writes the one-machine CSV (and, for
     /// a map, its PNG).
     Csv,
+    /// Each shard writes its records as Parquet; the merge writes the one-machine .parquet
+    /// (batches only).
+    Parquet,
     /// Shards keep only their counts; the merge prints the sweep's summary.
     Summary,
 }
@@ -67,6 +70,11 @@ enum Kind {
 
 pub fn run(args: &SlurmArgs) -> Result<(), CliError> {
     let kind = check_command(&args.command)?;
+    if kind == Kind::Map && args.format == PartFormat::Parquet {
+        return Err(CliError::Input(
+            "--format parquet holds roll records: a map's shards write .csv".to_string(),
+        ));
+    }
     let dicesim = match &args.dicesim {
         Some(p) => std::path::absolute(p)?,
         None => std::env::current_exe()
@@ -235,6 +243,7 @@ impl Scripts {
         let part_stem = format!("{}/part-\"$k\"", q(&parts));
         let keep = match args.format {
             PartFormat::Csv => format!("--out {part_stem}.csv"),
+            PartFormat::Parquet => format!("--out {part_stem}.parquet"),
             PartFormat::Summary => format!("--part {part_stem}.{PART_EXTENSION}"),
         };
         let throttle = args.max_running.map(|m| format!("%{m}")).unwrap_or_default();
@@ -261,7 +270,11 @@ impl Scripts {
                 let csv = dir.join("batch.csv");
                 (csv.clone(), format!(" --out {}", q(&csv)))
             }
-            (Kind::Map, PartFormat::Csv) => {
+            (Kind::Batch, PartFormat::Parquet) => {
+                let file = dir.join("batch.parquet");
+                (file.clone(), format!(" --out {}", q(&file)))
+            }
+            (Kind::Map, _) => {
                 let csv = dir.join("map.csv");
                 (
                     csv.clone(),

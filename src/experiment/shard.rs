@@ -312,9 +312,13 @@ pub fn check_parts(parts: &[(String, Part)]) -> Result<Vec<usize>, String> {
             0 => String::new(),
             m => format!(" and {m} more"),
         };
+        let (noun, verb) = if missing_count == 1 {
+            ("shard", "is")
+        } else {
+            ("shards", "are")
+        };
         return Err(format!(
-            "shard{} {}{more} missing: a merge needs all {n}",
-            if missing_count == 1 { " is" } else { "s are" },
+            "{noun} {}{more} {verb} missing: a merge needs all {n}",
             named.join(", ")
         ));
     }
@@ -404,7 +408,7 @@ mod tests {
         assert_eq!(err(vec![]), "no parts given");
         assert_eq!(
             err(vec![part(0, 4), part(2, 4)]),
-            "shards are 1/4, 3/4 missing: a merge needs all 4"
+            "shards 1/4, 3/4 are missing: a merge needs all 4"
         );
         assert_eq!(
             err(vec![part(0, 2), part(0, 2)]),
@@ -454,7 +458,7 @@ mod tests {
         let many: Vec<_> = (0..1).map(|k| part(k, 1000)).collect();
         assert_eq!(
             err(many),
-            "shards are 1/1000, 2/1000, 3/1000, 4/1000, 5/1000, 6/1000, 7/1000, 8/1000 and 991 more missing: a merge needs all 1000"
+            "shards 1/1000, 2/1000, 3/1000, 4/1000, 5/1000, 6/1000, 7/1000, 8/1000 and 991 more are missing: a merge needs all 1000"
         );
     }
 }
