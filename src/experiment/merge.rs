@@ -86,10 +86,7 @@ pub fn parse_map_row(row: &str, i: usize, j: usize) -> Result<Cell, String> {
                 .ok_or_else(|| number("face", f))?,
         ),
     };
-    let status = [Status::Settled, Status::Timeout, Status::Unstable]
-        .into_iter()
-        .find(|s| s.name() == status)
-        .ok_or_else(|| number("status", status))?;
+    let status = Status::from_name(status).ok_or_else(|| number("status", status))?;
     Ok(Cell {
         outcome: Outcome {
             status,

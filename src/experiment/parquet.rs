@@ -243,10 +243,7 @@ fn record_from(f: &[&Field]) -> Result<RollRecord, String> {
         orientation: [required(11)?, required(12)?, required(13)?],
     };
     let status = match f[16] {
-        Field::Str(s) => [Status::Settled, Status::Timeout, Status::Unstable]
-            .into_iter()
-            .find(|st| st.name() == s)
-            .ok_or_else(|| bad(16))?,
+        Field::Str(s) => Status::from_name(s).ok_or_else(|| bad(16))?,
         _ => return Err(bad(16)),
     };
     Ok(RollRecord {

@@ -97,6 +97,13 @@ impl Status {
             Status::Unstable => "unstable",
         }
     }
+
+    /// The status of a [`name`](Status::name), as result files write it.
+    pub fn from_name(name: &str) -> Option<Status> {
+        [Status::Settled, Status::Timeout, Status::Unstable]
+            .into_iter()
+            .find(|s| s.name() == name)
+    }
 }
 
 /// The end of a roll.
