@@ -133,11 +133,6 @@ impl Param {
         )
     }
 
-    /// Whether `ω_rock·Δt` depends on this value (shown beside it).
-    pub fn sets_stability(self) -> bool {
-        matches!(self, Param::Stiffness | Param::Dt)
-    }
-
     /// The scan key that reads and writes this value: fields are mapped in one place.
     pub fn scan_key(self) -> &'static ScanKey {
         let key = self.key();
@@ -151,7 +146,8 @@ impl Param {
         self.scan_key().get(params, initial)
     }
 
-    /// Sets the value after checking it against its range; on error nothing changes.
+    /// Sets the value after checking it against its range, and the start it gives against
+    /// the table (no corner inside it); on error nothing changes.
     pub fn set(
         self,
         params: &mut Params,
@@ -160,7 +156,10 @@ impl Param {
     ) -> Result<(), ParamError> {
         let key = self.scan_key();
         key.check(value)?;
-        key.set(params, initial, value);
+        let (mut p, mut ic) = (*params, *initial);
+        key.set(&mut p, &mut ic, value);
+        ic.check_clear_of_table(&p)?;
+        (*params, *initial) = (p, ic);
         Ok(())
     }
 
