@@ -65,9 +65,29 @@ pub enum CliError {
     Run(String),
 }
 
+impl CliError {
+    /// The same error, its message led by `prefix` (e.g. the option it came from).
+    pub fn prefixed(self, prefix: &str) -> CliError {
+        match self {
+            CliError::Input(m) => CliError::Input(format!("{prefix}{m}")),
+            CliError::Run(m) => CliError::Run(format!("{prefix}{m}")),
+        }
+    }
+}
+
 impl From<crate::preset::PresetError> for CliError {
     fn from(e: crate::preset::PresetError) -> Self {
         CliError::Input(e.to_string())
+    }
+}
+
+impl From<crate::output::OutputError> for CliError {
+    fn from(e: crate::output::OutputError) -> Self {
+        if e.is_refusal() {
+            CliError::Input(e.to_string())
+        } else {
+            CliError::Run(e.to_string())
+        }
     }
 }
 

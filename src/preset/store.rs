@@ -2,7 +2,7 @@
 //! preset folder; else the shipped set. The user's folder wins on a name clash.
 
 use super::{Preset, PresetError, shipped};
-use std::io::Write;
+use crate::output::{Output, OutputError};
 use std::path::{Path, PathBuf};
 
 /// Overrides the user's preset folder (otherwise the platform's data directory + `presets/`).
@@ -170,13 +170,22 @@ impl Store {
         }
         let dir = self.user_dir()?;
         std::fs::create_dir_all(dir).map_err(|e| PresetError::io(dir, &e))?;
-        write_atomic(&path, &text, replace).map_err(|e| match e.kind() {
-            std::io::ErrorKind::AlreadyExists => PresetError::Exists {
-                name: preset.name.clone(),
-                path: path.clone(),
-            },
-            _ => PresetError::io(&path, &e),
-        })?;
+        Output::check(&path, &["toml"], replace)
+            .and_then(|out| out.write_bytes(text.as_bytes()))
+            .map_err(|e| match e {
+                OutputError::Exists { .. } => PresetError::Exists {
+                    name: preset.name.clone(),
+                    path: path.clone(),
+                },
+                OutputError::Write { message, .. } => PresetError::Io {
+                    path: path.clone(),
+                    message,
+                },
+                e => PresetError::Io {
+                    path: path.clone(),
+                    message: e.to_string(),
+                },
+            })?;
         Ok(path)
     }
 
@@ -229,29 +238,6 @@ pub fn load_file(path: &Path) -> Result<Preset, PresetError> {
             .unwrap_or_default();
     }
     Ok(preset)
-}
-
-/// A temporary file in the target's folder, synced, then renamed over (or, without
-/// `replace`, beside) the target, so a crash leaves the old file or the new one, never half.
-fn write_atomic(path: &Path, text: &str, replace: bool) -> std::io::Result<()> {
-    let dir = path.parent().unwrap_or(Path::new("."));
-    let mut tmp = tempfile::NamedTempFile::new_in(dir)?;
-    tmp.write_all(text.as_bytes())?;
-    tmp.as_file().sync_all()?;
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        // Temp files are created 0600; a preset is meant to be shared.
-        tmp.as_file()
-            .set_permissions(std::fs::Permissions::from_mode(0o644))?;
-    }
-    let persisted = if replace {
-        tmp.persist(path)
-    } else {
-        tmp.persist_noclobber(path)
-    };
-    // On failure the error holds the temp file; dropping it deletes it.
-    persisted.map(drop).map_err(|e| e.error)
 }
 
 #[cfg(test)]
