@@ -29,6 +29,8 @@ pub enum Msg {
     Worker(Box<Snapshot>),
     /// A basin map from the worker's map thread.
     Map(Box<MapUpdate>),
+    /// A signal that ends the explorer (the event loop handles it before `update`).
+    Signal(i32),
 }
 
 impl From<Snapshot> for Msg {
@@ -320,6 +322,7 @@ pub fn update(app: &mut App, msg: Msg) -> Vec<Command> {
         Msg::Input(Event::Key(key)) if key.kind != KeyEventKind::Release => on_key(app, key, &mut out),
         Msg::Input(Event::Mouse(m)) => on_mouse(app, m.kind, m.column, m.row, &mut out),
         Msg::Input(_) => {}
+        Msg::Signal(_) => app.quit(&mut out),
     }
     out
 }

@@ -68,6 +68,7 @@ pub struct MapUpdate {
 /// Computes `job` on this thread (one roll thread per core), handing every partial map and
 /// the complete one to `send`; stops early when `cancel` is set or `send` returns false.
 pub fn compute(job: &MapJob, cancel: &AtomicBool, send: &mut dyn FnMut(MapUpdate) -> bool) {
+    crate::fault::inject("map");
     let update = |map| MapUpdate {
         generation: job.request.generation,
         params: job.params,

@@ -308,6 +308,7 @@ fn run<T: From<Snapshot>>(
     if out.send(engine.snapshot().into()).is_err() {
         return;
     }
+    crate::fault::inject("worker");
     let mut pacer = Pacer {
         epoch: u64::MAX,
         wall: Instant::now(),
