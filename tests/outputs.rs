@@ -114,3 +114,45 @@ fn a_write_that_fails_reports_the_os_error_and_exits_1() {
         assert!(!String::from_utf8_lossy(&o.stdout).contains("wrote"));
     }
 }
+
+#[cfg(unix)]
+#[test]
+fn the_first_ctrl_c_of_a_slow_batch_keeps_every_completed_roll() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut args = vec!["batch", "--rolls", "5000", "--out", "slow.csv"];
+    args.extend(SLOW);
+    let child = Command::new(env!("CARGO_BIN_EXE_dicesim"))
+        .args(&args)
+        .current_dir(dir.path())
+        .env("DICESIM_PRESETS", dir.path().join("none"))
+        .stderr(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    nix::sys::signal::kill(
+        nix::unistd::Pid::from_raw(child.id() as i32),
+        nix::sys::signal::Signal::SIGINT,
+    )
+    .unwrap();
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(130), "{}", stderr(&o));
+    let message = stderr(&o);
+    let kept: usize = message
+        .split("kept the ")
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("says how many: {message}"));
+    let text = std::fs::read_to_string(dir.path().join("slow.csv")).expect("the file is written");
+    let ids: Vec<&str> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').next().unwrap())
+        .collect();
+    assert_eq!(ids.len(), kept, "{message}");
+    assert!(
+        ids.iter().enumerate().all(|(i, id)| *id == i.to_string()),
+        "an exact prefix"
+    );
+}

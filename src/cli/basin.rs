@@ -1,7 +1,6 @@
 //! `dicesim basin`: the outcome over a grid of two setup values, as CSV or an image.
 
 use super::{CliError, SetupArgs};
-use crate::experiment::batch::thread_count;
 use crate::experiment::plot::write_image;
 use crate::experiment::{Axis, BasinMap, FaceTally, Layer, MapSpec, Method, run_map};
 use crate::output::Output;
@@ -65,10 +64,23 @@ fn parse_resolution(s: &str) -> Result<(usize, usize), String> {
     Ok((w, h))
 }
 
+/// The most cells a map takes (e.g. 2048×2048): the map and its partial copy stay in memory.
+pub const MAX_CELLS: usize = 2048 * 2048;
+
 pub fn run(args: &BasinArgs) -> Result<(), CliError> {
+    let jobs = super::checked_jobs(args.jobs)?;
+    let (w, h) = args.res;
+    if w * h > MAX_CELLS {
+        // The map, the copy shown while refining, and the image or CSV drawn from it.
+        let needed = 2 * w * h * std::mem::size_of::<Option<crate::experiment::Cell>>();
+        return Err(CliError::Input(format!(
+            "--res {w}x{h}: {} cells would need about {} of memory; at most {MAX_CELLS} cells (e.g. 2048x2048)",
+            w * h,
+            crate::experiment::trace::human_bytes(needed as u64)
+        )));
+    }
     let preset = args.setup.resolve()?;
     let params = preset.params();
-    let (w, h) = args.res;
     let x = Axis::parse(&args.x, w).map_err(|e| CliError::Input(format!("--x {e}")))?;
     let y = Axis::parse(&args.y, h).map_err(|e| CliError::Input(format!("--y {e}")))?;
     let layer = match args.layer {
@@ -100,7 +112,6 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
         ProgressStyle::with_template("{bar:40} {pos}/{len} cells rolled, {elapsed}")
             .expect("the progress template is valid"),
     );
-    let jobs = thread_count(args.jobs.unwrap_or(0) as usize);
     let start = std::time::Instant::now();
     let never = AtomicBool::new(false);
     let spec = MapSpec { x, y, method };

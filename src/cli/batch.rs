@@ -1,7 +1,6 @@
 //! `dicesim batch`: many rolls in parallel, per-roll results and their statistics.
 
 use super::{CliError, SetupArgs};
-use crate::experiment::batch::thread_count;
 use crate::experiment::ics::{parse_initial_conditions, record_csv_row, records_csv_header};
 use crate::experiment::{Batch, BatchSummary, RollRecord, Rolls, run_batch};
 use crate::output::Output;
@@ -12,6 +11,12 @@ use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
+
+/// The most rolls one batch takes: their records stay in memory (~1.5 GB at the limit).
+pub const MAX_ROLLS: u64 = 10_000_000;
+
+/// The largest `--ics` file read, bytes (about a million rows).
+const MAX_ICS_BYTES: u64 = 256 * 1024 * 1024;
 
 /// Exit status after Ctrl-C, as a shell reports a SIGINT (128 + 2).
 const INTERRUPTED: i32 = 130;
@@ -53,6 +58,16 @@ pub struct BatchArgs {
 }
 
 pub fn run(args: &BatchArgs) -> Result<(), CliError> {
+    let jobs = super::checked_jobs(args.jobs)?;
+    if let Some(n) = args.rolls
+        && n > MAX_ROLLS
+    {
+        return Err(CliError::Input(format!(
+            "--rolls {n}: at most {MAX_ROLLS} per batch (every roll's record is kept for the summary and --out, \
+             about {} bytes each); split it with --seed",
+            std::mem::size_of::<RollRecord>()
+        )));
+    }
     let preset = args.setup.resolve()?;
     let params = preset.params();
     params.validate().map_err(|e| CliError::Input(e.to_string()))?;
@@ -65,7 +80,7 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     let seed = args.seed.unwrap_or(preset.random.seed);
     let given = match &args.ics {
         Some(path) => {
-            let text = std::fs::read_to_string(path)
+            let text = crate::preset::read_regular_file(path, MAX_ICS_BYTES)
                 .map_err(|e| CliError::Input(format!("--ics {}: {e}", path.display())))?;
             let ics = parse_initial_conditions(&text, &preset.initial, params.inertia())
                 .map_err(|e| CliError::Input(format!("--ics {}: {e}", path.display())))?;
@@ -82,7 +97,6 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
             count: args.rolls.unwrap_or(0),
         },
     };
-    let jobs = thread_count(args.jobs.unwrap_or(0) as usize);
 
     let stop = Arc::new(AtomicBool::new(false));
     let handler_stop = stop.clone();

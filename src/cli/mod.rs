@@ -97,6 +97,38 @@ impl From<std::io::Error> for CliError {
     }
 }
 
+/// `text` safe to print on a terminal: control characters (an escape sequence could retitle
+/// the window or hide what follows) are shown escaped, `\u{1b}`, instead of sent.
+pub fn printable(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_control() && c != '\n' {
+                c.escape_default().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
+}
+
+/// The most threads `--jobs` takes: more than a few per core only adds switching.
+pub fn max_jobs() -> usize {
+    4 * crate::experiment::batch::thread_count(0)
+}
+
+/// `--jobs J` checked against [`max_jobs`]; no value means one thread per core.
+pub fn checked_jobs(jobs: Option<u64>) -> Result<usize, CliError> {
+    match jobs {
+        None => Ok(crate::experiment::batch::thread_count(0)),
+        Some(j) if j as usize <= max_jobs() && j > 0 => Ok(j as usize),
+        Some(j) => Err(CliError::Input(format!(
+            "--jobs {j}: at most {} (4 × the {} cores here)",
+            max_jobs(),
+            crate::experiment::batch::thread_count(0)
+        ))),
+    }
+}
+
 /// Parses the command line, runs the command and turns its result into an exit status.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
@@ -113,11 +145,11 @@ pub fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(CliError::Run(msg)) if msg.contains("Broken pipe") => ExitCode::SUCCESS,
         Err(e @ CliError::Input(_)) => {
-            eprintln!("dicesim: {e}");
+            eprintln!("dicesim: {}", printable(&e.to_string()));
             ExitCode::from(2)
         }
         Err(e) => {
-            eprintln!("dicesim: {e}");
+            eprintln!("dicesim: {}", printable(&e.to_string()));
             ExitCode::FAILURE
         }
     }

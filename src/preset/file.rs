@@ -36,6 +36,22 @@ impl Preset {
             }
         })?;
 
+        // The streaming deserializer ignores extra array elements (`velocity = [1,2,3,"junk"]`);
+        // a second pass through a TOML value refuses them as `--set` does.
+        let table: toml::Table = toml::from_str(text).map_err(|e| syntax_error(origin, text, &e))?;
+        if let Err(e) = serde_path_to_error::deserialize::<_, Preset>(toml::Value::Table(table)) {
+            let key = e.path().to_string();
+            let at = match find(doc, &key) {
+                Some(offset) => Location::at(origin, text, offset),
+                None => Location::file(origin),
+            };
+            return Err(PresetError::Key {
+                at,
+                key,
+                message: e.into_inner().message().trim().to_string(),
+            });
+        }
+
         if let (Some(_), Some(l)) = (
             find(doc, "initial.angular_velocity"),
             find(doc, "initial.angular_momentum"),

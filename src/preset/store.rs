@@ -227,9 +227,38 @@ pub fn check_name(name: &str) -> Result<(), PresetError> {
     Ok(())
 }
 
+/// The largest preset file read, bytes: a whole setup takes a few kB.
+pub const MAX_PRESET_BYTES: u64 = 1024 * 1024;
+
+/// The text of the regular file at `path`, at most `max_bytes` long. Devices, pipes and
+/// folders are refused without being opened, so nothing blocks (a FIFO) or reads forever
+/// (`/dev/zero`).
+pub fn read_regular_file(path: &Path, max_bytes: u64) -> Result<String, String> {
+    use std::io::Read;
+    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    if !meta.is_file() {
+        return Err("not a regular file (a folder, device or pipe): skipped".to_string());
+    }
+    let too_big = || format!("larger than the {} bytes allowed", max_bytes);
+    if meta.len() > max_bytes {
+        return Err(too_big());
+    }
+    let mut text = String::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(max_bytes + 1).read_to_string(&mut text))
+        .map_err(|e| e.to_string())?;
+    if text.len() as u64 > max_bytes {
+        return Err(too_big());
+    }
+    Ok(text)
+}
+
 /// Reads a preset file; errors name the path. A preset without a `name` takes its file stem.
 pub fn load_file(path: &Path) -> Result<Preset, PresetError> {
-    let text = std::fs::read_to_string(path).map_err(|e| PresetError::io(path, &e))?;
+    let text = read_regular_file(path, MAX_PRESET_BYTES).map_err(|message| PresetError::Io {
+        path: path.to_path_buf(),
+        message,
+    })?;
     let mut preset = Preset::from_toml_str(&text, &path.display().to_string())?;
     if preset.name.is_empty() {
         preset.name = path
