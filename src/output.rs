@@ -98,7 +98,7 @@ impl Output {
             return Err(OutputError::Folder {
                 path: output.path.clone(),
                 dir: dir.to_path_buf(),
-                message: e.to_string(),
+                message: os_reason(&e),
             });
         }
         Ok(output)
@@ -142,7 +142,7 @@ impl Output {
     pub fn write(&self, body: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> Result<(), OutputError> {
         let failed = |e: std::io::Error| OutputError::Write {
             path: self.path.clone(),
-            message: e.to_string(),
+            message: os_reason(&e),
         };
         if std::fs::metadata(&self.path).is_ok_and(|m| !m.is_file() && !m.is_dir()) {
             let file = std::fs::OpenOptions::new()
@@ -179,6 +179,16 @@ impl Output {
     }
 }
 
+/// The OS's reason alone: the temporary file's own name (which `tempfile` adds) means
+/// nothing to the person who asked for `path`.
+fn os_reason(e: &std::io::Error) -> String {
+    let inner = e
+        .get_ref()
+        .and_then(|i| i.source())
+        .and_then(|s| s.downcast_ref::<std::io::Error>());
+    inner.unwrap_or(e).to_string()
+}
+
 /// The first stem for files `<stem>.<ext>` (one per extension) in `dir` that replaces no
 /// file: `stem`, then `stem-2`, `stem-3`, … (the explorer's exports never ask to replace).
 pub fn free_stem(dir: &Path, stem: &str, extensions: &[&str]) -> String {
@@ -213,6 +223,20 @@ pub fn safe_file_stem(text: &str) -> String {
         })
         .collect();
     if stem.is_empty() { "_".to_string() } else { stem }
+}
+
+/// `text` safe to print on a terminal: control characters (an escape sequence could retitle
+/// the window or hide what follows) are shown escaped, `\u{1b}`, instead of sent.
+pub fn printable(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_control() && c != '\n' {
+                c.escape_default().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -97,19 +97,7 @@ impl From<std::io::Error> for CliError {
     }
 }
 
-/// `text` safe to print on a terminal: control characters (an escape sequence could retitle
-/// the window or hide what follows) are shown escaped, `\u{1b}`, instead of sent.
-pub fn printable(text: &str) -> String {
-    text.chars()
-        .map(|c| {
-            if c.is_control() && c != '\n' {
-                c.escape_default().to_string()
-            } else {
-                c.to_string()
-            }
-        })
-        .collect()
-}
+pub use crate::output::printable;
 
 /// The most threads `--jobs` takes: more than a few per core only adds switching.
 pub fn max_jobs() -> usize {

@@ -169,6 +169,15 @@ impl Store {
             });
         }
         let dir = self.user_dir()?;
+        if dir.exists() && !dir.is_dir() {
+            return Err(PresetError::Io {
+                path: dir.to_path_buf(),
+                message: format!(
+                    "is a file, but the user's presets are saved in a folder there; move it, or set {PRESETS_ENV} \
+                     to another folder"
+                ),
+            });
+        }
         std::fs::create_dir_all(dir).map_err(|e| PresetError::io(dir, &e))?;
         Output::check(&path, &["toml"], replace)
             .and_then(|out| out.write_bytes(text.as_bytes()))
@@ -294,6 +303,30 @@ mod tests {
         assert!(is_path("x.toml"));
         assert!(!is_path("gentle-drop"));
         assert!(!is_path(".."));
+    }
+
+    #[test]
+    fn a_file_where_the_folder_should_be_is_named() {
+        let root = tempfile::tempdir().unwrap();
+        let dir = root.path().join("presets");
+        std::fs::write(&dir, "not a folder").unwrap();
+        let mut preset = Preset::default();
+        preset.name = "mine".to_string();
+        let e = Store::new(Some(dir.clone())).save(&preset, false).unwrap_err();
+        assert!(
+            e.to_string().starts_with(&format!(
+                "{}: is a file, but the user's presets are saved in a folder",
+                dir.display()
+            )),
+            "{e}"
+        );
+        let huge = root.path().join("huge.toml");
+        std::fs::write(&huge, format!("description = \"{}\"\n", "x".repeat(2 << 20))).unwrap();
+        let e = load_file(&huge).unwrap_err();
+        assert!(
+            e.to_string().ends_with("larger than the 1048576 bytes allowed"),
+            "{e}"
+        );
     }
 
     #[test]
