@@ -18,7 +18,7 @@ fn stderr(o: &Output) -> String {
 }
 
 fn refused(o: &Output, says: &str) {
-    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(o));
     assert_eq!(stderr(o).lines().count(), 1, "{}", stderr(o));
     assert!(stderr(o).contains(says), "{}", stderr(o));
 }

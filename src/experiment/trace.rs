@@ -117,7 +117,7 @@ pub fn export_roll(
     while sim.outcome().is_none() {
         sim.advance();
         let step = sim.state().step;
-        if step % REPORT_EVERY == 0 {
+        if step.is_multiple_of(REPORT_EVERY) {
             if cancelled() {
                 return Err(Error::Cancelled);
             }
@@ -167,13 +167,13 @@ pub fn export_roll(
                 });
                 let step = sim.state().step;
                 let ended = sim.outcome().is_some();
-                if step % stride == 0 || ended {
+                if step.is_multiple_of(stride) || ended {
                     samples.extend(peak.take());
                 }
                 if ended {
                     return Ok(());
                 }
-                if step % REPORT_EVERY == 0 && step > 0 {
+                if step.is_multiple_of(REPORT_EVERY) && step > 0 {
                     if cancelled() {
                         return Err(std::io::Error::other(CANCELLED));
                     }

@@ -310,8 +310,10 @@ mod tests {
         let root = tempfile::tempdir().unwrap();
         let dir = root.path().join("presets");
         std::fs::write(&dir, "not a folder").unwrap();
-        let mut preset = Preset::default();
-        preset.name = "mine".to_string();
+        let preset = Preset {
+            name: "mine".to_string(),
+            ..Preset::default()
+        };
         let e = Store::new(Some(dir.clone())).save(&preset, false).unwrap_err();
         assert!(
             e.to_string().starts_with(&format!(
