@@ -163,7 +163,10 @@ impl Explorer {
             ("\x1b[?1000h", "\x1b[?1000l", "mouse reporting", true),
         ] {
             assert!(!always || last(on).is_some(), "{what}: {name} was never entered");
-            assert!(last(off).is_some() && last(off) > last(on), "{what}: {name} was not undone");
+            assert!(
+                last(off).is_some() && last(off) > last(on),
+                "{what}: {name} was not undone"
+            );
         }
     }
 }

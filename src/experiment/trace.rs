@@ -132,9 +132,9 @@ pub fn export_roll(
     let estimate = (header().len() as u64 + 1) + sampled_len / samples_taken * rows;
     if estimate > EXPORT_LIMIT_BYTES {
         let every = estimate.div_ceil(EXPORT_LIMIT_BYTES);
+        // Short enough for the explorer's status line, with the way out in it.
         return Err(Error::Export(format!(
-            "this roll's trace would be about {} ({rows} rows), above the explorer's limit of {}: \
-             `dicesim trace --every {every}` (with this setup as --preset/--set) writes every {every}th step",
+            "{} ({rows} rows) is over the {} limit: `dicesim trace --every {every}` thins it",
             human_bytes(estimate),
             human_bytes(EXPORT_LIMIT_BYTES)
         )));

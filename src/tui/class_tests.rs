@@ -603,10 +603,7 @@ mod export {
         s.engine.run_export_here();
         s.sync();
         let notice = s.app.notice.clone().expect("a notice");
-        assert!(
-            notice.contains("above the explorer's limit of 268.4 MB"),
-            "{notice}"
-        );
+        assert!(notice.contains("rows) is over the 268.4 MB limit"), "{notice}");
         assert!(notice.contains("`dicesim trace --every "), "{notice}");
         assert_eq!(
             std::fs::read_dir(dir.path()).unwrap().count(),
