@@ -76,7 +76,7 @@ impl InitialCondition {
         if let Some(l) = &self.angular_momentum {
             ANGULAR_MOMENTUM.check_vector(l)?;
         }
-        ORIENTATION.check_vector(&self.orientation)?;
+        ORIENTATION.check_components(&self.orientation, ["yaw", "pitch", "roll"])?;
         Ok(())
     }
 
