@@ -2,10 +2,10 @@
 
 use super::shard::{ShardArgs, map_fingerprint, new_part, write_part};
 use super::{CliError, SetupArgs};
-use crate::experiment::batch::thread_count;
 use crate::experiment::plot::write_image;
 use crate::experiment::shard::Sweep;
 use crate::experiment::{Axis, BasinMap, FaceTally, Layer, MapSpec, Method, run_map_rows};
+use crate::output::Output;
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::{IsTerminal, Write};
@@ -50,6 +50,9 @@ pub struct BasinArgs {
     /// Write the map to a .csv, .png or .svg file.
     #[arg(long, value_name = "map.csv|map.png|map.svg")]
     pub out: Option<PathBuf>,
+    /// Replace an existing --out file.
+    #[arg(long, requires = "out")]
+    pub force: bool,
     #[command(flatten)]
     pub shard: ShardArgs,
 }
@@ -65,10 +68,23 @@ fn parse_resolution(s: &str) -> Result<(usize, usize), String> {
     Ok((w, h))
 }
 
+/// The most cells a map takes (e.g. 2048×2048): the map and its partial copy stay in memory.
+pub const MAX_CELLS: usize = 2048 * 2048;
+
 pub fn run(args: &BasinArgs) -> Result<(), CliError> {
+    let jobs = super::checked_jobs(args.jobs)?;
+    let (w, h) = args.res;
+    if w * h > MAX_CELLS {
+        // The map, the copy shown while refining, and the image or CSV drawn from it.
+        let needed = 2 * w * h * std::mem::size_of::<Option<crate::experiment::Cell>>();
+        return Err(CliError::Input(format!(
+            "--res {w}x{h}: {} cells would need about {} of memory; at most {MAX_CELLS} cells (e.g. 2048x2048)",
+            w * h,
+            crate::experiment::trace::human_bytes(needed as u64)
+        )));
+    }
     let preset = args.setup.resolve()?;
     let params = preset.params();
-    let (w, h) = args.res;
     let x = Axis::parse(&args.x, w).map_err(|e| CliError::Input(format!("--x {e}")))?;
     let y = Axis::parse(&args.y, h).map_err(|e| CliError::Input(format!("--y {e}")))?;
     let layer = match args.layer {
@@ -91,18 +107,13 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
         _ if layer == Layer::SettleTime || h == 1 => Method::Uniform,
         _ => Method::Adaptive,
     };
-    let out_kind = args
+    let output = args
         .out
-        .as_ref()
-        .map(|p| match p.extension().and_then(|e| e.to_str()) {
-            Some(e @ ("csv" | "png" | "svg")) => Ok(e.to_string()),
-            _ => Err(CliError::Input(format!(
-                "--out {}: expected a .csv, .png or .svg file",
-                p.display()
-            ))),
-        })
-        .transpose()?;
-    if sharding.is_some() && out_kind.as_deref().is_some_and(|k| k != "csv") {
+        .as_deref()
+        .map(|p| Output::check(p, &["csv", "png", "svg"], args.force))
+        .transpose()
+        .map_err(|e| CliError::from(e).prefixed("--out "))?;
+    if sharding.is_some() && output.as_ref().is_some_and(|o| o.extension() != "csv") {
         return Err(CliError::Input(
             "--shard writes its rows as .csv; `dicesim merge` draws the image of the whole map".to_string(),
         ));
@@ -121,7 +132,6 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
         ProgressStyle::with_template("{bar:40} {pos}/{len} cells rolled, {elapsed}")
             .expect("the progress template is valid"),
     );
-    let jobs = thread_count(args.jobs.unwrap_or(0) as usize);
     let start = std::time::Instant::now();
     let never = AtomicBool::new(false);
     let spec = MapSpec { x, y, method };
@@ -144,14 +154,13 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
         .filter_map(|c| c.outcome.face)
         .collect();
 
-    if let (Some(path), Some(kind)) = (&args.out, out_kind) {
-        let failed = |e: String| CliError::Run(format!("{}: {e}", path.display()));
-        if kind == "csv" {
-            let mut file = std::io::BufWriter::new(std::fs::File::create(path)?);
-            map.write_csv(&mut file).map_err(|e| failed(e.to_string()))?;
-            file.flush().map_err(|e| failed(e.to_string()))?;
-        } else {
-            write_image(&map, layer, path).map_err(|e| failed(e.to_string()))?;
+    if let Some(output) = &output {
+        match output.extension() {
+            "csv" => output.write(|w| map.write_csv(w))?,
+            _ => write_image(&map, layer, output).map_err(|e| match e {
+                crate::experiment::Error::Output(e) => CliError::from(e),
+                e => CliError::Run(format!("{}: {e}", output.path().display())),
+            })?,
         }
     }
     if let Some((shard, part)) = &sharding {

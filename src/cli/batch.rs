@@ -2,18 +2,24 @@
 
 use super::shard::{ShardArgs, batch_fingerprint, write_batch_part};
 use super::{CliError, SetupArgs};
-use crate::experiment::batch::thread_count;
 use crate::experiment::ics::{parse_initial_conditions, record_csv_row, records_csv_header};
 use crate::experiment::parquet::RecordsWriter;
 use crate::experiment::shard::Sweep;
 use crate::experiment::{Batch, BatchSummary, RollRecord, Rolls, run_batch};
+use crate::output::Output;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::json;
 use std::io::{IsTerminal, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
+
+/// The most rolls one batch takes: their records stay in memory (~1.5 GB at the limit).
+pub const MAX_ROLLS: u64 = 10_000_000;
+
+/// The largest `--ics` file read, bytes (about a million rows).
+const MAX_ICS_BYTES: u64 = 256 * 1024 * 1024;
 
 /// Exit status after Ctrl-C, as a shell reports a SIGINT (128 + 2).
 const INTERRUPTED: i32 = 130;
@@ -47,6 +53,9 @@ pub struct BatchArgs {
     /// third of the bytes, for pandas, polars or DuckDB).
     #[arg(long, value_name = "FILE.csv|FILE.json|FILE.parquet")]
     pub out: Option<PathBuf>,
+    /// Replace an existing --out file.
+    #[arg(long, requires = "out")]
+    pub force: bool,
     /// Print the summary as one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
@@ -54,33 +63,34 @@ pub struct BatchArgs {
     pub shard: ShardArgs,
 }
 
-/// The per-roll file's format, from its extension.
-enum OutFormat {
-    Csv,
-    Json,
-    /// The compact columns for huge sweeps.
-    Parquet,
-}
-
-fn out_format(path: &Path) -> Result<OutFormat, CliError> {
-    match path.extension().and_then(|e| e.to_str()) {
-        Some("csv") => Ok(OutFormat::Csv),
-        Some("json") => Ok(OutFormat::Json),
-        Some("parquet") => Ok(OutFormat::Parquet),
-        _ => Err(CliError::Input(format!(
-            "--out {}: expected a .csv, .json or .parquet file",
-            path.display()
-        ))),
-    }
-}
-
 pub fn run(args: &BatchArgs) -> Result<(), CliError> {
+    let jobs = super::checked_jobs(args.jobs)?;
+    let sharding = args.shard.resolve(args.out.as_deref())?;
+    // A shard keeps only its own rolls' records.
+    let kept = args.rolls.map(|n| {
+        sharding
+            .as_ref()
+            .map_or(n, |(s, _)| s.range(n).end - s.range(n).start)
+    });
+    if let Some(n) = kept
+        && n > MAX_ROLLS
+    {
+        return Err(CliError::Input(format!(
+            "--rolls {n}: at most {MAX_ROLLS} per batch (every roll's record is kept for the summary and --out, \
+             about {} bytes each); split it with --shard K/N",
+            std::mem::size_of::<RollRecord>()
+        )));
+    }
     let preset = args.setup.resolve()?;
     let params = preset.params();
     params.validate().map_err(|e| CliError::Input(e.to_string()))?;
-    let format = args.out.as_deref().map(out_format).transpose()?;
-    let sharding = args.shard.resolve(args.out.as_deref())?;
-    if sharding.is_some() && matches!(format, Some(OutFormat::Json)) {
+    let output = args
+        .out
+        .as_deref()
+        .map(|p| Output::check(p, &["csv", "json", "parquet"], args.force))
+        .transpose()
+        .map_err(|e| CliError::from(e).prefixed("--out "))?;
+    if sharding.is_some() && output.as_ref().is_some_and(|o| o.extension() == "json") {
         return Err(CliError::Input(
             "--shard writes its records as .csv or .parquet (a JSON file cannot be merged as it streams)"
                 .to_string(),
@@ -89,7 +99,7 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     let seed = args.seed.unwrap_or(preset.random.seed);
     let given = match &args.ics {
         Some(path) => {
-            let text = std::fs::read_to_string(path)
+            let text = crate::preset::read_regular_file(path, MAX_ICS_BYTES)
                 .map_err(|e| CliError::Input(format!("--ics {}: {e}", path.display())))?;
             let ics = parse_initial_conditions(&text, &preset.initial, params.inertia())
                 .map_err(|e| CliError::Input(format!("--ics {}: {e}", path.display())))?;
@@ -113,7 +123,6 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
             count: range.end - range.start,
         },
     };
-    let jobs = thread_count(args.jobs.unwrap_or(0) as usize);
 
     let stop = Arc::new(AtomicBool::new(false));
     let handler_stop = stop.clone();
@@ -142,9 +151,8 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     bar.finish_and_clear();
 
     let summary = batch.summary();
-    if let (Some(path), Some(format)) = (&args.out, format) {
-        write_records(path, format, &batch, &summary, seed, given.is_some())
-            .map_err(|e| CliError::Run(format!("{}: {e}", path.display())))?;
+    if let Some(output) = &output {
+        output.write(|w| write_records(w, output.extension(), &batch, &summary, seed, given.is_some()))?;
     }
     if let Some((shard, part)) = &sharding {
         let sweep = Sweep::Batch {
@@ -182,23 +190,23 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// The per-roll file, as CSV or JSON by `extension`.
 fn write_records(
-    path: &Path,
-    format: OutFormat,
+    w: &mut (dyn Write + Send),
+    extension: &str,
     batch: &Batch,
     summary: &BatchSummary,
     seed: u64,
     given: bool,
 ) -> std::io::Result<()> {
-    let mut w = std::io::BufWriter::new(std::fs::File::create(path)?);
-    match format {
-        OutFormat::Csv => {
+    match extension {
+        "csv" => {
             writeln!(w, "{}", records_csv_header())?;
             for r in &batch.records {
                 writeln!(w, "{}", record_csv_row(r))?;
             }
         }
-        OutFormat::Json => {
+        "json" => {
             let v = json!({
                 "seed": if given { None } else { Some(seed) },
                 "requested": batch.requested,
@@ -206,18 +214,18 @@ fn write_records(
                 "summary": summary,
                 "rolls": batch.records,
             });
-            serde_json::to_writer(&mut w, &v)?;
+            serde_json::to_writer(&mut *w, &v)?;
             writeln!(w)?;
         }
-        OutFormat::Parquet => {
+        _ => {
             let mut parquet = RecordsWriter::new(w).map_err(std::io::Error::other)?;
             for r in &batch.records {
                 parquet.write(r).map_err(std::io::Error::other)?;
             }
-            w = parquet.finish().map_err(std::io::Error::other)?;
+            parquet.finish().map_err(std::io::Error::other)?;
         }
     }
-    w.flush()
+    Ok(())
 }
 
 fn print_summary(out: &mut impl Write, batch: &Batch, s: &BatchSummary) -> std::io::Result<()> {

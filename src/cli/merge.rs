@@ -13,6 +13,7 @@ use crate::experiment::plot::write_image;
 use crate::experiment::shard::{Part, Sweep, check_parts};
 use crate::experiment::tally::Tally;
 use crate::experiment::{Axis, BasinMap, FaceTally, Layer, Method};
+use crate::output::Output;
 use clap::Args;
 use parquet::errors::ParquetError;
 use serde_json::json;
@@ -31,12 +32,22 @@ pub struct MergeArgs {
     /// Without it, only the summary is printed.
     #[arg(long, value_name = "FILE")]
     pub out: Vec<PathBuf>,
+    /// Replace existing --out files.
+    #[arg(long, requires = "out")]
+    pub force: bool,
     /// Print the summary as one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
 }
 
 pub fn run(args: &MergeArgs) -> Result<(), CliError> {
+    // Existing files are refused before any work, unless replacing them was asked for.
+    let outputs: Vec<Output> = args
+        .out
+        .iter()
+        .map(|o| Output::check(o, &["csv", "parquet", "png", "svg"], args.force))
+        .collect::<Result<_, _>>()
+        .map_err(|e| CliError::from(e).prefixed("--out "))?;
     let paths = part_files(&args.parts)?;
     let parts: Vec<(String, Part)> = paths
         .iter()
@@ -53,7 +64,7 @@ pub fn run(args: &MergeArgs) -> Result<(), CliError> {
     }
     match &first.sweep {
         Sweep::Batch { .. } => merge_batch(args, &ordered),
-        Sweep::Map { .. } => merge_map(args, &ordered),
+        Sweep::Map { .. } => merge_map(args, &outputs, &ordered),
     }
 }
 
@@ -275,7 +286,7 @@ fn merge_batch(args: &MergeArgs, parts: &[(&Path, &Part)]) -> Result<(), CliErro
     Ok(())
 }
 
-fn merge_map(args: &MergeArgs, parts: &[(&Path, &Part)]) -> Result<(), CliError> {
+fn merge_map(args: &MergeArgs, outputs: &[Output], parts: &[(&Path, &Part)]) -> Result<(), CliError> {
     let Sweep::Map {
         x,
         y,
@@ -360,11 +371,11 @@ fn merge_map(args: &MergeArgs, parts: &[(&Path, &Part)]) -> Result<(), CliError>
         if let (Some(t), Some(o)) = (tmp, csv_out) {
             finish_atomically(t, o).map_err(|e| CliError::Run(format!("{}: {e}", o.display())))?;
         }
-        for (out, kind) in args.out.iter().zip(&kinds).filter(|(_, k)| **k != "csv") {
-            let failed = |e: String| CliError::Run(format!("{}: {e}", out.display()));
-            let t = temp_beside(out, &format!(".{kind}"))?;
-            write_image(&map, layer, t.path()).map_err(|e| failed(e.to_string()))?;
-            finish_atomically(t, out).map_err(|e| failed(e.to_string()))?;
+        for (output, _) in outputs.iter().zip(&kinds).filter(|(_, k)| **k != "csv") {
+            write_image(&map, layer, output).map_err(|e| match e {
+                crate::experiment::Error::Output(e) => CliError::from(e),
+                e => CliError::Run(format!("{}: {e}", output.path().display())),
+            })?;
         }
     }
     let (shard_s, longest_s) = shard_times(parts);

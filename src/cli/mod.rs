@@ -72,15 +72,55 @@ pub enum CliError {
     Run(String),
 }
 
+impl CliError {
+    /// The same error, its message led by `prefix` (e.g. the option it came from).
+    pub fn prefixed(self, prefix: &str) -> CliError {
+        match self {
+            CliError::Input(m) => CliError::Input(format!("{prefix}{m}")),
+            CliError::Run(m) => CliError::Run(format!("{prefix}{m}")),
+        }
+    }
+}
+
 impl From<crate::preset::PresetError> for CliError {
     fn from(e: crate::preset::PresetError) -> Self {
         CliError::Input(e.to_string())
     }
 }
 
+impl From<crate::output::OutputError> for CliError {
+    fn from(e: crate::output::OutputError) -> Self {
+        if e.is_refusal() {
+            CliError::Input(e.to_string())
+        } else {
+            CliError::Run(e.to_string())
+        }
+    }
+}
+
 impl From<std::io::Error> for CliError {
     fn from(e: std::io::Error) -> Self {
         CliError::Run(e.to_string())
+    }
+}
+
+pub use crate::output::printable;
+
+/// The most threads `--jobs` takes: more than a few per core only adds switching.
+pub fn max_jobs() -> usize {
+    4 * crate::experiment::batch::thread_count(0)
+}
+
+/// `--jobs J` checked against [`max_jobs`]; no value means one thread per core.
+pub fn checked_jobs(jobs: Option<u64>) -> Result<usize, CliError> {
+    match jobs {
+        None => Ok(crate::experiment::batch::thread_count(0)),
+        Some(j) if j as usize <= max_jobs() && j > 0 => Ok(j as usize),
+        Some(j) => Err(CliError::Input(format!(
+            "--jobs {j}: at most {} (4 × the {} cores here)",
+            max_jobs(),
+            crate::experiment::batch::thread_count(0)
+        ))),
     }
 }
 
@@ -102,11 +142,11 @@ pub fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(CliError::Run(msg)) if msg.contains("Broken pipe") => ExitCode::SUCCESS,
         Err(e @ CliError::Input(_)) => {
-            eprintln!("dicesim: {e}");
+            eprintln!("dicesim: {}", printable(&e.to_string()));
             ExitCode::from(2)
         }
         Err(e) => {
-            eprintln!("dicesim: {e}");
+            eprintln!("dicesim: {}", printable(&e.to_string()));
             ExitCode::FAILURE
         }
     }

@@ -92,6 +92,8 @@ pub fn parse_initial_conditions(
     inertia: f64,
 ) -> Result<Vec<(u64, InitialCondition)>, Error> {
     let bad = |line: usize, message: String| Error::Ics { line, message };
+    // Spreadsheets save UTF-8 with a byte-order mark and may quote the header's names.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut lines = text
         .lines()
         .enumerate()
@@ -103,7 +105,16 @@ pub fn parse_initial_conditions(
     // For each column: Some(index into INITIAL_COLUMNS), or None for `id` / result columns.
     let mut columns: Vec<Option<usize>> = Vec::new();
     let mut id_column = None;
-    for (i, name) in header.split(',').map(str::trim).enumerate() {
+    let unquoted = |name: &str| {
+        let name = name.trim();
+        name.strip_prefix('"')
+            .and_then(|n| n.strip_suffix('"'))
+            .unwrap_or(name)
+            .trim()
+            .to_string()
+    };
+    for (i, name) in header.split(',').map(unquoted).enumerate() {
+        let name = name.as_str();
         if name == "id" {
             id_column = Some(i);
             columns.push(None);
@@ -125,6 +136,7 @@ pub fn parse_initial_conditions(
         }
     }
     let id_column = id_column.ok_or_else(|| bad(header_line, "the header has no `id` column".to_string()))?;
+    let mut seen_ids = std::collections::HashMap::new();
     let base_momentum: [f64; 3] = base.angular_momentum_for(inertia).into();
     let mut out = Vec::new();
     for (line, text) in lines {
@@ -145,6 +157,9 @@ pub fn parse_initial_conditions(
                 format!("id `{}` is not a whole number ≥ 0", cells[id_column]),
             )
         })?;
+        if let Some(first) = seen_ids.insert(id, line) {
+            return Err(bad(line, format!("id {id} was already given on line {first}")));
+        }
         let mut given: [Option<f64>; COLUMNS] = [None; COLUMNS];
         for (cell, column) in cells.iter().zip(&columns) {
             if let (Some(k), false) = (column, cell.is_empty()) {
@@ -183,6 +198,15 @@ pub fn parse_initial_conditions(
 mod tests {
     use super::*;
     use crate::physics::Params;
+
+    #[test]
+    fn spreadsheet_headers_are_read_and_repeated_ids_refused() {
+        let base = InitialCondition::default();
+        let ics = parse_initial_conditions("\u{feff}\"id\",\"height\"\n3,2.5\n", &base, INERTIA).unwrap();
+        assert_eq!((ics[0].0, ics[0].1.height), (3, 2.5));
+        let e = parse_initial_conditions("id,height\n1,2\n1,3\n", &base, INERTIA).unwrap_err();
+        assert_eq!(e.to_string(), "line 3: id 1 was already given on line 2");
+    }
 
     const INERTIA: f64 = 16.0 / 3.0;
 

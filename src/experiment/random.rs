@@ -42,14 +42,11 @@ fn check_range(limits: Limits, key: &str, range: &[f64; 2]) -> Result<(), ParamE
         })?;
     }
     if range[0] > range[1] {
-        // The low end must not exceed the high end: report it against that bound.
         return Err(ParamError {
-            key: format!("{key}[0]"),
+            key: key.to_string(),
             value: range[0],
-            limits: Limits {
-                max: range[1],
-                ..limits
-            },
+            limits,
+            high_end: Some(range[1]),
         });
     }
     Ok(())
@@ -161,6 +158,11 @@ mod tests {
             velocity: [10.0, -10.0],
             ..Default::default()
         };
-        assert_eq!(r.validate().unwrap_err().key, "random.velocity[0]");
+        let e = r.validate().unwrap_err();
+        assert_eq!(e.key, "random.velocity");
+        assert_eq!(
+            e.to_string(),
+            "`random.velocity` = [10, -10]: the low end is above the high end"
+        );
     }
 }

@@ -76,7 +76,7 @@ impl InitialCondition {
         if let Some(l) = &self.angular_momentum {
             ANGULAR_MOMENTUM.check_vector(l)?;
         }
-        ORIENTATION.check_vector(&self.orientation)?;
+        ORIENTATION.check_components(&self.orientation, ["yaw", "pitch", "roll"])?;
         Ok(())
     }
 
@@ -96,6 +96,7 @@ impl InitialCondition {
                     unit: "cm at this orientation (lower, a corner starts inside the table)",
                     ..HEIGHT
                 },
+                high_end: None,
             })
         }
     }

@@ -14,7 +14,9 @@ mod store;
 
 pub use error::{Location, PresetError};
 pub use shipped::{DEFAULT_NAME, SHIPPED, shipped_text};
-pub use store::{Entry, PRESETS_ENV, Source, Store, check_name, load_file};
+pub use store::{
+    Entry, MAX_PRESET_BYTES, PRESETS_ENV, Source, Store, check_name, load_file, read_regular_file,
+};
 
 use crate::experiment::RandomRanges;
 use crate::physics::{Die, Ground, InitialCondition, Integrator, Limits, ParamError, Params, World};
