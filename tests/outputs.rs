@@ -79,7 +79,7 @@ fn a_bad_output_path_is_refused_before_any_roll() {
     slow.extend(SLOW);
     for (out, why) in [
         ("/nonexistent/x.csv", "the folder /nonexistent does not exist"),
-        ("x.txt", "expected a .csv or .json file"),
+        ("x.txt", "expected a .csv, .json or .parquet file"),
     ] {
         let mut args = slow.clone();
         args.extend(["--out", out]);
