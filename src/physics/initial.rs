@@ -96,6 +96,7 @@ impl InitialCondition {
                     unit: "cm at this orientation (lower, a corner starts inside the table)",
                     ..HEIGHT
                 },
+                high_end: None,
             })
         }
     }
