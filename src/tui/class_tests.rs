@@ -711,12 +711,11 @@ mod sizes {
         app
     }
 
-    #[test]
-    fn every_classroom_view_draws_at_every_size() {
-        let twin = super::twin::twin_after(500).app;
+    fn classroom_views() -> [App; 6] {
+        let twin = twin::twin_after(500).app;
         let mut editing = with_keys(twin.clone(), &[KeyCode::Char('E'), KeyCode::Char('1')]);
         editing.vectors = true;
-        let states = [
+        [
             with_keys(mid_impact().app, &[KeyCode::Char('v'), KeyCode::Char('t')]),
             twin,
             editing,
@@ -731,14 +730,30 @@ mod sizes {
                 a.vectors = true;
                 a
             },
-        ];
-        for app in &states {
-            for width in (1..=200).step_by(3) {
-                for height in (1..=60).step_by(2) {
-                    let mut t = Terminal::new(TestBackend::new(width, height)).expect("test backend");
-                    t.draw(|f| crate::tui::render(app, f)).expect("draw");
-                }
+        ]
+    }
+
+    fn draw_at(app: &App, width: u16, height: u16) {
+        let mut t = Terminal::new(TestBackend::new(width, height)).expect("test backend");
+        t.draw(|f| crate::tui::render(app, f)).expect("draw");
+    }
+
+    #[test]
+    fn every_classroom_view_draws_at_every_boundary_size() {
+        for app in &classroom_views() {
+            for (width, height) in super::super::tests::boundary_sizes() {
+                draw_at(app, width, height);
             }
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200))]
+
+        #[test]
+        fn classroom_views_draw_at_random_sizes(which in 0usize..6, width in 1u16..=200, height in 1u16..=60) {
+            static VIEWS: std::sync::OnceLock<[App; 6]> = std::sync::OnceLock::new();
+            draw_at(&VIEWS.get_or_init(classroom_views)[which], width, height);
         }
     }
 }

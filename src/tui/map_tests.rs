@@ -4,7 +4,7 @@
 use super::app::{App, Msg, update};
 use super::map::{MapView, View, ZOOM_FACTOR, export_if_asked, map_layout};
 use super::render::render;
-use super::tests::{Scene, spun_preset, start};
+use super::tests::{Scene, boundary_sizes, spun_preset, start};
 use super::theme::Theme;
 use crate::experiment::basin::node_setup;
 use crate::experiment::plot::{FACE_COLOURS, cell_colour, time_range};
@@ -413,19 +413,33 @@ mod keys {
     }
 }
 
-#[test]
-fn every_size_up_to_200x60_draws_the_map_screen() {
+/// The map screen in its three looks: computed with the cursor moved, monochrome with the
+/// other layer, and waiting for its first map.
+fn map_screens() -> [App; 3] {
     let mut s = map_scene(Theme::default());
     let mut mono = map_scene(Theme::monochrome());
     press(&mut mono.app, KeyCode::Char('v'));
     press(&mut s.app, KeyCode::Char('X'));
     let mut waiting = start().app;
     press(&mut waiting, KeyCode::Tab);
-    for app in [&s.app, &mono.app, &waiting] {
-        for width in 1..=200 {
-            for height in 1..=60 {
-                draw(app, width, height);
-            }
+    [s.app, mono.app, waiting]
+}
+
+#[test]
+fn every_boundary_size_draws_the_map_screen() {
+    for app in &map_screens() {
+        for (width, height) in boundary_sizes() {
+            draw(app, width, height);
         }
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200))]
+
+    #[test]
+    fn random_sizes_draw_the_map_screen(which in 0usize..3, width in 1u16..=200, height in 1u16..=60) {
+        static SCREENS: std::sync::OnceLock<[App; 3]> = std::sync::OnceLock::new();
+        draw(&SCREENS.get_or_init(map_screens)[which], width, height);
     }
 }

@@ -707,6 +707,17 @@ mod keys {
     }
 }
 
+/// The terminal sizes where a layout changes, and either side of each: the tiny sizes where
+/// every panel collapses, the minimum screen (80×24), the wide layout (120 columns) and the
+/// widest tested. Random sizes between them are left to the proptests.
+pub(super) fn boundary_sizes() -> impl Iterator<Item = (u16, u16)> {
+    const WIDTHS: [u16; 10] = [1, 2, 3, 79, 80, 81, 119, 120, 121, 200];
+    const HEIGHTS: [u16; 9] = [1, 2, 3, 23, 24, 25, 35, 36, 60];
+    WIDTHS
+        .into_iter()
+        .flat_map(|w| HEIGHTS.into_iter().map(move |h| (w, h)))
+}
+
 /// Rendering never panics, whatever the size and the state.
 mod sizes {
     use super::*;
@@ -743,10 +754,9 @@ mod sizes {
     }
 
     #[test]
-    fn every_size_up_to_200x60_draws() {
-        let app = &states()[1];
-        for width in 1..=200 {
-            for height in 1..=60 {
+    fn every_boundary_size_draws() {
+        for app in states() {
+            for (width, height) in boundary_sizes() {
                 draw_into(app, width, height);
             }
         }
