@@ -55,7 +55,7 @@ fn drop_ranges(height: f64) -> RandomRanges {
 
 #[test]
 fn a_gentle_drop_keeps_the_start_face_and_a_high_one_does_not() {
-    // MODEL.md: from 1.8 cm the start face stays up in 99.8% of rolls; from 8 cm up each
+    // docs/model.md: from 1.8 cm the start face stays up in 99.8% of rolls; from 8 cm up each
     // face comes up about 1/6 of the time. 400 rolls put 95% far outside chance for the
     // first, and 40% about 6 standard errors above 1/6 for the second.
     let p = Params::default();

@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
-/// The CSV header; the corner columns follow MODEL.md's corner order.
+/// The CSV header; the corner columns follow docs/model.md's corner order.
 pub fn header() -> String {
     let mut h =
         String::from("step,t,x,y,z,vx,vy,vz,Lx,Ly,Lz,wx,wy,wz,e_trans,e_rot,e_grav,e_elastic,e_total");

@@ -1,4 +1,4 @@
-//! The die's geometry: corner numbering and faces (MODEL.md, "Faces").
+//! The die's geometry: corner numbering and faces (docs/model.md, "Faces").
 
 use nalgebra::Vector3;
 

@@ -1,4 +1,4 @@
-//! The energy terms a plot shows (MODEL.md, "Energy"), erg.
+//! The energy terms a plot shows (docs/model.md, "Energy"), erg.
 
 use serde::Serialize;
 

@@ -1,4 +1,4 @@
-//! The paper's dice model (`../shared/design/MODEL.md`): pure, no I/O, no threads.
+//! The paper's dice model (docs/model.md): pure, no I/O, no threads.
 //!
 //! Units are CGS throughout: cm, g, s; forces in dyn, energies in erg.
 
@@ -6,11 +6,12 @@ pub mod body;
 pub mod energy;
 pub mod initial;
 pub mod params;
+pub mod registry;
 pub mod sim;
 
 pub use body::{face_most_nearly_up, face_of_highest_corners, opposite_face};
 pub use energy::Energy;
-pub use initial::InitialCondition;
+pub use initial::{InitialCondition, RandomRanges};
 pub use params::{Die, FrictionLaw, Ground, Integrator, Limits, ParamError, Params, StopEnergy, World};
 pub use sim::{ContactForce, EnergyLedger, Outcome, Simulation, State, Status};
 

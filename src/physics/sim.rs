@@ -1,6 +1,6 @@
-//! The state of a rolling die and the paper's semi-implicit Euler step (MODEL.md).
+//! The state of a rolling die and the paper's semi-implicit Euler step (docs/model.md).
 //!
-//! The arithmetic follows the authors' program operation by operation (reference/README.md §2
+//! The arithmetic follows the authors' program operation by operation (tests/data/reference/README.md §2
 //! and §9: sums in corner order, divisions where they divided, Octave's scaled 2-norm and
 //! `pow(x, 2)`), so the reference trajectories are reproduced to rounding, not merely in law.
 
@@ -12,7 +12,7 @@ use nalgebra::{Matrix3, Vector3};
 use serde::Serialize;
 
 /// A rigid-body energy above this multiple of `max(initial energy, edge energy)` means the
-/// integrator is feeding energy in (MODEL.md, "Stability"): a stable roll stays within a
+/// integrator is feeding energy in (docs/model.md, "Stability"): a stable roll stays within a
 /// few percent of its start.
 pub const RUNAWAY_ENERGY_FACTOR: f64 = 10.0;
 
@@ -61,7 +61,7 @@ struct ContactWork {
 ///
 /// `initial = current + damping_loss + friction_loss + integrator_loss`: the first three are
 /// measured, the last is the remainder, the energy semi-implicit Euler itself gains or loses
-/// (½·M·g²·Δt² per step in free flight, MODEL.md).
+/// (½·M·g²·Δt² per step in free flight, docs/model.md).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct EnergyLedger {
     /// Rigid-body energy at t = 0.
@@ -85,7 +85,7 @@ pub enum Status {
     /// Simulated time passed `integrator.max_time` first: the die did not settle.
     Timeout,
     /// The state stopped being finite or the energy ran away: the integrator is unstable
-    /// for these parameters (MODEL.md, "Stability").
+    /// for these parameters (docs/model.md, "Stability").
     Unstable,
 }
 
@@ -313,7 +313,7 @@ impl Simulation {
         })
     }
 
-    /// The energy terms at the current state (MODEL.md, "Energy"), erg.
+    /// The energy terms at the current state (docs/model.md, "Energy"), erg.
     pub fn energy(&self) -> Energy {
         let s = &self.state;
         let c = &self.c;
@@ -373,7 +373,7 @@ impl Simulation {
         face_of_highest_corners(&self.state.corner_offsets.map(|r| r.z))
     }
 
-    /// One step of Δt: kick → drift → L → rotate → forces (MODEL.md, "One time step").
+    /// One step of Δt: kick → drift → L → rotate → forces (docs/model.md, "One time step").
     ///
     /// Steps on past the end of a roll if asked; the recorded outcome stays the first end.
     #[inline]

@@ -1,4 +1,4 @@
-//! Presets: named TOML files that capture a whole setup (`../shared/design/PRESETS.md`).
+//! Presets: named TOML files that capture a whole setup (docs/presets.md).
 //!
 //! - [`Preset`] is one setup; [`Preset::from_toml_str`] and [`Preset::to_toml`] read and write
 //!   the file format, [`Preset::with_overrides`] applies `--set KEY=VALUE`.
@@ -81,6 +81,17 @@ impl Preset {
             world: self.world,
             integrator: self.integrator,
         }
+    }
+
+    /// Takes the model parameters of `params` into this setup.
+    pub fn set_params(&mut self, params: Params) {
+        let Params {
+            die,
+            ground,
+            world,
+            integrator,
+        } = params;
+        (self.die, self.ground, self.world, self.integrator) = (die, ground, world, integrator);
     }
 
     /// Checks every value against its allowed range.

@@ -1,4 +1,4 @@
-//! Where presets are found and saved (PRESETS.md): a path given directly; else the user's
+//! Where presets are found and saved (docs/presets.md): a path given directly; else the user's
 //! preset folder; else the shipped set. The user's folder wins on a name clash.
 
 use super::{Preset, PresetError, shipped};
@@ -185,7 +185,7 @@ impl Store {
     }
 }
 
-/// PRESETS.md: a `/`, a `.toml` ending, or an existing file mean a path, not a name.
+/// A `/`, a `.toml` ending, or an existing file mean a path, not a name.
 fn is_path(spec: &str) -> bool {
     spec.contains('/')
         || spec.contains(std::path::MAIN_SEPARATOR)

@@ -4,11 +4,11 @@
 use super::camera::Camera;
 use super::dialogs::Dialog;
 use super::map::{self, MapView, View};
+use super::param::{Param, all};
 use super::render::{Areas, fmt_num, fmt_range, param_row_at, screen_layout};
 use super::theme::Theme;
 use crate::physics::{InitialCondition, Params};
 use crate::preset::{Preset, Store};
-use crate::worker::param::{ALL, Param};
 use crate::worker::{
     BatchProgress, Command, EnergySample, MapUpdate, OutcomeTable, SeparationSample, Snapshot, Speed,
 };
@@ -119,7 +119,7 @@ pub struct App {
     pub batch: Option<BatchProgress>,
     pub batch_rolls: u64,
     pub notice: Option<String>,
-    /// Index into [`ALL`].
+    /// Index into [`all`](super::param::all).
     pub selected: usize,
     pub editing: Option<Editor>,
     pub help: bool,
@@ -198,7 +198,7 @@ impl App {
     }
 
     pub fn selected_param(&self) -> Param {
-        ALL[self.selected.min(ALL.len() - 1)]
+        all()[self.selected.min(all().len() - 1)]
     }
 
     /// Whether frames should keep coming without input (a moving roll or a running batch).
@@ -248,7 +248,7 @@ impl App {
                 p.limits().unit
             )
         })?;
-        self.send(out, Command::SetParam(p, value));
+        self.send(out, Command::SetParam(p.scan_key(), value));
         Ok(())
     }
 
@@ -262,7 +262,7 @@ impl App {
     }
 
     fn select(&mut self, delta: isize) {
-        self.selected = (self.selected as isize + delta).clamp(0, ALL.len() as isize - 1) as usize;
+        self.selected = (self.selected as isize + delta).clamp(0, all().len() as isize - 1) as usize;
     }
 
     fn set_speed(&mut self, out: &mut Vec<Command>, speed: Speed) {
@@ -359,7 +359,7 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
         KeyCode::Up | KeyCode::Char('k') => app.select(-1),
         KeyCode::Down | KeyCode::Char('j') => app.select(1),
         KeyCode::Home | KeyCode::Char('g') => app.selected = 0,
-        KeyCode::End | KeyCode::Char('G') => app.selected = ALL.len() - 1,
+        KeyCode::End | KeyCode::Char('G') => app.selected = all().len() - 1,
         KeyCode::Left | KeyCode::Char('h') => app.nudge(out, -1, coarse),
         KeyCode::Right | KeyCode::Char('l') => app.nudge(out, 1, coarse),
         KeyCode::Char('H') => app.nudge(out, -1, true),

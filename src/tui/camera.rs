@@ -2,7 +2,7 @@
 
 use nalgebra::Vector3;
 
-/// Corner indices (0-based) of faces 1..6 (MODEL.md, "Faces").
+/// Corner indices (0-based) of faces 1..6 (docs/model.md, "Faces").
 pub const FACE_CORNERS: [[usize; 4]; 6] = [
     [0, 1, 2, 3],
     [0, 1, 4, 5],
@@ -119,7 +119,7 @@ mod tests {
     #[test]
     fn faces_and_edges_follow_the_papers_numbering() {
         let c = body_corner_offsets(1.0);
-        // face 4 is z = +a, face 1 is x = −a (MODEL.md).
+        // face 4 is z = +a, face 1 is x = −a (docs/model.md).
         assert!(FACE_CORNERS[3].iter().all(|&k| c[k].z > 0.0));
         assert!(FACE_CORNERS[0].iter().all(|&k| c[k].x < 0.0));
         for (a, b) in EDGES {

@@ -318,9 +318,9 @@ mod presets {
     use crate::preset::{Preset, Store};
     use crate::tui::app::{Msg, update};
     use crate::tui::dialogs::{Dialog, modified};
+    use crate::tui::param::Param;
     use crate::tui::tests::Scene;
     use crate::worker::Command;
-    use crate::worker::param::Param;
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 
     fn press(app: &mut App, code: KeyCode) -> Vec<Command> {
@@ -416,11 +416,11 @@ mod presets {
     fn header_marks_a_setup_that_differs_from_its_preset() {
         let mut s = start();
         assert!(!screen(&s.app, 120, 36).contains("(changed)"));
-        s.command(Command::SetParam(Param::Friction, 0.5));
+        s.command(Command::SetParam(Param::named("ground.friction").scan_key(), 0.5));
         assert!(modified(&s.app));
         assert!(screen(&s.app, 120, 36).starts_with("\" dicesim  paper (changed) ·"));
         assert!(screen(&s.app, 80, 24).starts_with("\"paper* │"));
-        s.command(Command::SetParam(Param::Friction, 1.2));
+        s.command(Command::SetParam(Param::named("ground.friction").scan_key(), 1.2));
         assert!(!modified(&s.app), "back at the preset's value");
     }
 
@@ -445,7 +445,7 @@ mod presets {
         let (dir, store) = folder();
         let mut s = start();
         s.app.store = store.clone();
-        s.command(Command::SetParam(Param::Friction, 0.4));
+        s.command(Command::SetParam(Param::named("ground.friction").scan_key(), 0.4));
         s.key(KeyCode::Char('s'));
         type_text(&mut s.app, "lab-2");
         press(&mut s.app, KeyCode::Enter);

@@ -7,13 +7,13 @@
 //! map the user has moved away from can never overwrite the current one.
 
 use super::app::{App, Editor};
+use super::param::{Param, all};
 use super::render::{fmt_num, render_header, render_help, render_too_small};
 use crate::experiment::basin::node_setup;
 use crate::experiment::plot::{cell_colour, time_range, write_image};
 use crate::experiment::trace::free_stem;
 use crate::experiment::{Axis, BasinMap, Cell, Layer};
-use crate::physics::{InitialCondition, Params, Status};
-use crate::worker::param::{ALL, Param};
+use crate::physics::{InitialCondition, Params, Status, registry};
 use crate::worker::{Command, MapAxis, MapRequest, MapUpdate};
 use ratatui::Frame;
 use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
@@ -95,15 +95,15 @@ impl MapView {
         let axis = |param| {
             let (min, max) = default_range(param, params, initial);
             MapAxis {
-                param,
+                key: param.scan_key(),
                 min,
                 max,
                 cells: 0,
             }
         };
         MapView {
-            x: axis(Param::Spin(0)),
-            y: axis(Param::Spin(1)),
+            x: axis(Param::named("initial.angular_velocity.x")),
+            y: axis(Param::named("initial.angular_velocity.y")),
             zooms: Vec::new(),
             generation: 0,
             requested: None,
@@ -144,10 +144,13 @@ impl MapView {
 /// A range around the current value: the default random range for spin (±60 rad/s) and
 /// velocity (±50 cm/s), a few coarse steps for the rest, inside the allowed range.
 pub fn default_range(p: Param, params: &Params, initial: &InitialCondition) -> (f64, f64) {
-    let steps = match p {
-        Param::Spin(_) => 6,
-        Param::Height => 2,
-        _ => 1,
+    let row = p.scan_key().spec;
+    let steps = if *row == registry::ANGULAR_VELOCITY {
+        6
+    } else if *row == registry::HEIGHT {
+        2
+    } else {
+        1
     };
     let now = p.get(params, initial);
     let (lo, hi) = (p.nudged(now, -steps, true), p.nudged(now, steps, true));
@@ -346,9 +349,9 @@ fn replay(app: &mut App, out: &mut Vec<Command>) {
     let (params, initial) = node_setup(&update.params, &update.initial, &map.x, &map.y, i, j);
     let notice = format!(
         "replaying map cell ({i}, {j}): {} {}, {} {}",
-        app.map.x.param.label(),
+        Param::of(app.map.x.key).label(),
         fmt_num(map.x.value(i)),
-        app.map.y.param.label(),
+        Param::of(app.map.y.key).label(),
         fmt_num(map.y.value(j)),
     );
     app.params = params;
@@ -397,18 +400,18 @@ fn zoom_out(app: &mut App, out: &mut Vec<Command>) {
 /// default range.
 fn next_axis(app: &mut App, side: Side, out: &mut Vec<Command>) {
     let other = match side {
-        Side::X => app.map.y.param,
-        Side::Y => app.map.x.param,
+        Side::X => Param::of(app.map.y.key),
+        Side::Y => Param::of(app.map.x.key),
     };
-    let now = app.map.axis_mut(side).param;
-    let at = ALL.iter().position(|&p| p == now).unwrap_or(0);
-    let next = (1..ALL.len())
-        .map(|k| ALL[(at + k) % ALL.len()])
+    let now = Param::of(app.map.axis_mut(side).key);
+    let at = all().iter().position(|&p| p == now).unwrap_or(0);
+    let next = (1..all().len())
+        .map(|k| all()[(at + k) % all().len()])
         .find(|&p| p != other)
         .unwrap_or(now);
     let (min, max) = default_range(next, &app.params, &app.initial);
     *app.map.axis_mut(side) = MapAxis {
-        param: next,
+        key: next.scan_key(),
         min,
         max,
         cells: 0,
@@ -447,8 +450,8 @@ fn on_range_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
         KeyCode::Enter => {
             let side = r.side;
             let param = match side {
-                Side::X => app.map.x.param,
-                Side::Y => app.map.y.param,
+                Side::X => Param::of(app.map.x.key),
+                Side::Y => Param::of(app.map.y.key),
             };
             match parse_range(param, &r.editor.text) {
                 Ok((min, max)) => {
@@ -558,13 +561,13 @@ fn render_panel(app: &App, areas: &MapAreas, frame: &mut Frame) {
     let m = &app.map;
     let y_title = format!(
         " ↑ y: {} ({}) ",
-        m.y.param.scan_key().key,
-        m.y.param.limits().unit
+        Param::of(m.y.key).scan_key().key,
+        Param::of(m.y.key).limits().unit
     );
     let x_title = format!(
         " x: {} ({}) → ",
-        m.x.param.scan_key().key,
-        m.x.param.limits().unit
+        Param::of(m.x.key).scan_key().key,
+        Param::of(m.x.key).limits().unit
     );
     let layer = Span::styled(format!(" {} ", layer_name(m.layer)), t.heading());
     // Narrow panels drop the layer's name (the legend says it) before the axis key.
@@ -700,7 +703,7 @@ fn range_line(a: &MapAxis) -> String {
         "{} … {} {}",
         fmt_num(a.min),
         fmt_num(a.max),
-        a.param.limits().unit
+        Param::of(a.key).limits().unit
     )
 }
 
@@ -713,7 +716,7 @@ fn render_side(app: &App, area: Rect, frame: &mut Frame) {
         let name = if side == Side::X { "x" } else { "y" };
         lines.push(Line::from(vec![
             Span::styled(format!(" {name} "), t.heading()),
-            Span::raw(format!("{:<14}", a.param.label())),
+            Span::raw(format!("{:<14}", Param::of(a.key).label())),
             Span::styled(format!(" {keys}"), t.key()),
         ]));
         match &m.editing {
@@ -787,9 +790,9 @@ fn cursor_lines(app: &App) -> Vec<Line<'static>> {
     let n = |x: f64| fmt_num(x);
     lines.push(Line::raw(format!(
         "   {} {} · {} {}",
-        m.x.param.label(),
+        Param::of(m.x.key).label(),
         n(map.x.value(i)),
-        m.y.param.label(),
+        Param::of(m.y.key).label(),
         n(map.y.value(j))
     )));
     match map.cell(i, j) {

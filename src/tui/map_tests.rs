@@ -3,6 +3,7 @@
 
 use super::app::{App, Msg, update};
 use super::map::{MapView, View, ZOOM_FACTOR, export_if_asked, map_layout};
+use super::param::Param;
 use super::render::render;
 use super::tests::{Scene, boundary_sizes, spun_preset, start};
 use super::theme::Theme;
@@ -279,8 +280,8 @@ mod keys {
         };
         assert_eq!(r.generation, generation + 1);
         assert_eq!(
-            r.x.param,
-            crate::worker::Param::Spin(2),
+            Param::of(r.x.key),
+            Param::named("initial.angular_velocity.z"),
             "the next value that is not y's"
         );
         // A late partial map of the old axes arrives: it must not be drawn.
@@ -347,7 +348,7 @@ mod keys {
             panic!("{sent:?}")
         };
         assert_eq!((r.y.min, r.y.max), (-10.0, 10.0));
-        assert_eq!(r.y.param, crate::worker::Param::Spin(1));
+        assert_eq!(Param::of(r.y.key), Param::named("initial.angular_velocity.y"));
     }
 
     #[test]
@@ -401,8 +402,11 @@ mod keys {
         let m = MapView::new(&preset.params(), &preset.initial);
         let w = preset.initial.angular_velocity;
         assert_eq!(
-            (m.x.param, m.y.param),
-            (crate::worker::Param::Spin(0), crate::worker::Param::Spin(1))
+            (Param::of(m.x.key), Param::of(m.y.key)),
+            (
+                Param::named("initial.angular_velocity.x"),
+                Param::named("initial.angular_velocity.y")
+            )
         );
         // The width of the default random range, on round numbers, around the current spin.
         for (a, now) in [(&m.x, w[0]), (&m.y, w[1])] {

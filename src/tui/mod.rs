@@ -7,6 +7,7 @@ mod dialogs;
 mod help;
 mod ledger;
 pub mod map;
+pub mod param;
 pub mod render;
 mod run;
 pub mod theme;

@@ -4,8 +4,8 @@
 use super::app::{App, Drawing};
 use super::camera::{EDGES, FACE_CORNERS, face_centre, face_normal};
 use super::help::help_lines;
+use super::param::{Param, all};
 use crate::physics::Status;
-use crate::worker::param::{ALL, Param};
 use crate::worker::{EnergySample, Phase, RollKind};
 use nalgebra::Vector3;
 use ratatui::Frame;
@@ -21,7 +21,7 @@ pub const MIN_WIDTH: u16 = 80;
 pub const MIN_HEIGHT: u16 = 24;
 
 /// Stability number from which the step is worth watching, and from which it is in danger
-/// (MODEL.md: energy already creeps in from about 1.4 with the paper's friction).
+/// (docs/model.md, "Stability": energy already creeps in from about 1.4 with the paper's friction).
 pub const STABILITY_CAUTION: f64 = 1.0;
 pub const STABILITY_DANGER: f64 = 1.4;
 
@@ -54,7 +54,7 @@ pub fn screen_layout(area: Rect) -> Option<Areas> {
         Constraint::Min(0),
     ]));
     // Every parameter row when there is room, and at least 10 rows for the table.
-    let params_height = (ALL.len() as u16 + 4).min(body.height.saturating_sub(10));
+    let params_height = (all().len() as u16 + 4).min(body.height.saturating_sub(10));
     let [params, outcomes] = left.layout(&Layout::vertical([
         Constraint::Length(params_height),
         Constraint::Min(0),
@@ -257,7 +257,9 @@ pub fn param_row_at(app: &App, areas: &Areas, at: Position) -> Option<usize> {
     }
     let (first, visible) = param_window(app, areas.params);
     let row = (at.y - body.y - 1) as usize;
-    (row < visible).then_some(first + row).filter(|&i| i < ALL.len())
+    (row < visible)
+        .then_some(first + row)
+        .filter(|&i| i < all().len())
 }
 
 pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
@@ -278,7 +280,7 @@ pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
     head.push_str(" ω·Δt");
     lines.push(Line::styled(head, t.heading()));
     let (first, visible) = param_window(app, area);
-    for (i, &p) in ALL.iter().enumerate().skip(first).take(visible) {
+    for (i, &p) in all().iter().enumerate().skip(first).take(visible) {
         let value = fmt_num(p.get(&app.params, &app.initial));
         let mut spans = vec![Span::raw(format!(
             "{}{:<13} {:>8} {:<6}",

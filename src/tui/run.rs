@@ -1,4 +1,4 @@
-//! The terminal's lifecycle and the event loop (CRATES.md §9): report hooks first, then
+//! The terminal's lifecycle and the event loop: report hooks first, then
 //! the terminal, mouse capture undone on every exit path, panic included.
 
 use super::app::{App, Msg, update};

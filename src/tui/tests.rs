@@ -2,6 +2,7 @@
 //! fed through `update` into the worker's engine, no thread and no clock.
 
 use super::app::{App, Msg, update};
+use super::param::{Param, all};
 use super::render::{
     STABILITY_CAUTION, STABILITY_DANGER, render, render_die, render_energy, render_footer, render_header,
     render_outcomes, render_params, screen_layout,
@@ -9,7 +10,6 @@ use super::render::{
 use super::theme::Theme;
 use crate::physics::Status;
 use crate::preset::Preset;
-use crate::worker::param::{ALL, Param};
 use crate::worker::{Command, Engine, Phase};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
@@ -63,7 +63,7 @@ impl Scene {
     }
 
     pub fn select(&mut self, p: Param) {
-        let target = ALL.iter().position(|&q| q == p).expect("listed");
+        let target = all().iter().position(|&q| q == p).expect("listed");
         while self.app.selected != target {
             self.key(if self.app.selected < target {
                 KeyCode::Down
@@ -112,7 +112,7 @@ pub(crate) fn settled() -> Scene {
 
 fn unstable() -> Scene {
     let mut s = start();
-    s.select(Param::Stiffness);
+    s.select(Param::named("ground.stiffness"));
     s.key(KeyCode::Enter);
     for c in "2e7".chars() {
         s.key(KeyCode::Char(c));
@@ -130,7 +130,7 @@ fn help() -> Scene {
 
 fn editing() -> Scene {
     let mut s = start();
-    s.select(Param::Friction);
+    s.select(Param::named("ground.friction"));
     s.key(KeyCode::Enter);
     for c in "0.8".chars() {
         s.key(KeyCode::Char(c));
@@ -339,7 +339,10 @@ fn touching_corners_are_red_and_bold_or_reversed_without_colour() {
 fn no_color_sends_no_colour_at_all() {
     for mut s in [mid_impact_with(Theme::monochrome()), {
         let mut s = Scene::new(&spun_preset(), Theme::monochrome());
-        s.command(Command::SetParam(Param::Stiffness, 4e6));
+        s.command(Command::SetParam(
+            Param::named("ground.stiffness").scan_key(),
+            4e6,
+        ));
         s
     }] {
         s.key(KeyCode::Char('?'));
@@ -396,10 +399,10 @@ fn stability_number_warns_as_it_nears_two() {
     let k_for =
         |number: f64, app: &App| (number / app.params.integrator.dt).powi(2) * app.params.total_mass() / 6.0;
     let k = k_for((STABILITY_CAUTION + STABILITY_DANGER) / 2.0, &s.app);
-    s.command(Command::SetParam(Param::Stiffness, k));
+    s.command(Command::SetParam(Param::named("ground.stiffness").scan_key(), k));
     assert_eq!(stability_cell(&s.app).bg, Color::Yellow);
     let k = k_for(STABILITY_DANGER + 0.3, &s.app);
-    s.command(Command::SetParam(Param::Stiffness, k));
+    s.command(Command::SetParam(Param::named("ground.stiffness").scan_key(), k));
     let danger = stability_cell(&s.app);
     assert_eq!(danger.bg, Color::Red);
     assert!(danger.modifier.contains(Modifier::BOLD));
@@ -487,56 +490,71 @@ mod keys {
     #[test]
     fn arrows_and_vim_keys_select_and_change_values() {
         let mut a = app();
-        assert_eq!(a.selected_param(), Param::Stiffness);
+        assert_eq!(a.selected_param(), Param::named("ground.stiffness"));
         assert!(
             press(&mut a, KeyCode::Up).is_empty(),
             "the first row stays selected"
         );
         press(&mut a, KeyCode::Down);
         press(&mut a, KeyCode::Char('j'));
-        assert_eq!(a.selected_param(), Param::Friction);
+        assert_eq!(a.selected_param(), Param::named("ground.friction"));
         let mu = a.params.ground.friction;
-        let fine = Param::Friction.nudged(mu, 1, false);
+        let fine = Param::named("ground.friction").nudged(mu, 1, false);
         assert_eq!(
             press(&mut a, KeyCode::Right),
-            [Command::SetParam(Param::Friction, fine)]
+            [Command::SetParam(
+                Param::named("ground.friction").scan_key(),
+                fine
+            )]
         );
         assert_eq!(
             a.params.ground.friction, fine,
             "the list shows the new value at once"
         );
-        let coarse = Param::Friction.nudged(fine, -1, true);
+        let coarse = Param::named("ground.friction").nudged(fine, -1, true);
         assert_eq!(
             press_with(&mut a, KeyCode::Left, KeyModifiers::SHIFT),
-            [Command::SetParam(Param::Friction, coarse)]
+            [Command::SetParam(
+                Param::named("ground.friction").scan_key(),
+                coarse
+            )]
         );
-        let back = Param::Friction.nudged(coarse, 1, true);
+        let back = Param::named("ground.friction").nudged(coarse, 1, true);
         assert_eq!(
             press(&mut a, KeyCode::Char('L')),
-            [Command::SetParam(Param::Friction, back)]
+            [Command::SetParam(
+                Param::named("ground.friction").scan_key(),
+                back
+            )]
         );
-        let down = Param::Friction.nudged(back, -1, false);
+        let down = Param::named("ground.friction").nudged(back, -1, false);
         assert_eq!(
             press(&mut a, KeyCode::Char('h')),
-            [Command::SetParam(Param::Friction, down)]
+            [Command::SetParam(
+                Param::named("ground.friction").scan_key(),
+                down
+            )]
         );
         press(&mut a, KeyCode::Char('k'));
-        assert_eq!(a.selected_param(), Param::Damping);
+        assert_eq!(a.selected_param(), Param::named("ground.damping"));
         press(&mut a, KeyCode::Char('G'));
-        assert_eq!(a.selected_param(), *ALL.last().expect("rows"));
+        assert_eq!(a.selected_param(), *all().last().expect("rows"));
     }
 
     #[test]
     fn a_value_at_its_limit_sends_nothing() {
         let mut a = app();
-        a.selected = ALL.iter().position(|&p| p == Param::Friction).expect("listed");
+        a.selected = all()
+            .iter()
+            .position(|&p| p == Param::named("ground.friction"))
+            .expect("listed");
         assert_eq!(press(&mut a, KeyCode::Enter), []);
         for c in "0".chars() {
             press(&mut a, KeyCode::Char(c));
         }
         assert_eq!(
             press(&mut a, KeyCode::Enter),
-            [Command::SetParam(Param::Friction, 0.0)]
+            [Command::SetParam(Param::named("ground.friction").scan_key(), 0.0)]
         );
         assert!(press(&mut a, KeyCode::Left).is_empty());
     }
@@ -544,7 +562,10 @@ mod keys {
     #[test]
     fn typing_a_value_validates_it_and_esc_cancels() {
         let mut a = app();
-        a.selected = ALL.iter().position(|&p| p == Param::Height).expect("listed");
+        a.selected = all()
+            .iter()
+            .position(|&p| p == Param::named("initial.height"))
+            .expect("listed");
         press(&mut a, KeyCode::Enter);
         assert!(a.editing.is_some());
         for c in "2x5q".chars() {
@@ -569,7 +590,7 @@ mod keys {
         press(&mut a, KeyCode::Backspace);
         assert_eq!(
             press(&mut a, KeyCode::Enter),
-            [Command::SetParam(Param::Height, 25.0)]
+            [Command::SetParam(Param::named("initial.height").scan_key(), 25.0)]
         );
         assert!(a.editing.is_none());
         press(&mut a, KeyCode::Enter);
@@ -649,8 +670,12 @@ mod keys {
         update(&mut a, Msg::Input(Event::Resize(120, 36)));
         let areas = screen_layout(a.screen).expect("full size");
         // Row 0 of the list is the heading; the rows follow in list order.
-        let friction_row =
-            areas.params.y + 2 + ALL.iter().position(|&p| p == Param::Friction).expect("listed") as u16;
+        let friction_row = areas.params.y
+            + 2
+            + all()
+                .iter()
+                .position(|&p| p == Param::named("ground.friction"))
+                .expect("listed") as u16;
         assert!(
             mouse(
                 &mut a,
@@ -660,11 +685,11 @@ mod keys {
             )
             .is_empty()
         );
-        assert_eq!(a.selected_param(), Param::Friction);
-        let up = Param::Friction.nudged(a.params.ground.friction, 1, false);
+        assert_eq!(a.selected_param(), Param::named("ground.friction"));
+        let up = Param::named("ground.friction").nudged(a.params.ground.friction, 1, false);
         assert_eq!(
             mouse(&mut a, MouseEventKind::ScrollUp, areas.params.x + 3, friction_row),
-            [Command::SetParam(Param::Friction, up)]
+            [Command::SetParam(Param::named("ground.friction").scan_key(), up)]
         );
         let zoom = a.camera.zoom;
         mouse(&mut a, MouseEventKind::ScrollUp, areas.die.x + 5, areas.die.y + 5);
@@ -773,7 +798,7 @@ mod sizes {
             yaw in -720.0f64..720.0,
             pitch in -90.0f64..90.0,
             zoom in -20i32..20,
-            selected in 0usize..ALL.len(),
+            selected in 0usize..all().len(),
             log in any::<bool>(),
             ascii in any::<bool>(),
             help_scroll in 0u16..200,

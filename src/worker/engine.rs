@@ -3,12 +3,12 @@
 //! (and the thread in `mod.rs`) drive it step for step.
 
 use super::map::{MapJob, MapOrder};
-use super::param::Param;
 use super::speed::Speed;
 use super::twin::Twin;
 use super::{BatchProgress, Command, DieState, EnergySample, OutcomeTable, Phase, RollKind, Snapshot};
 use crate::experiment::trace::{export_roll, free_stem};
-use crate::experiment::{RandomRanges, RollRecord, Rolls, run_batch};
+use crate::experiment::{RandomRanges, RollRecord, Rolls, ScanKey, run_batch};
+use crate::physics::registry::Role;
 use crate::physics::{Energy, InitialCondition, ParamError, Params, Simulation, face_most_nearly_up};
 use crate::preset::Preset;
 use std::sync::atomic::AtomicBool;
@@ -335,15 +335,15 @@ impl Engine {
         self.pacing_epoch += 1;
     }
 
-    fn set_param(&mut self, param: Param, value: f64) {
+    fn set_param(&mut self, key: &ScanKey, value: f64) {
         let (mut params, mut initial) = (self.params, self.initial);
-        if let Err(e) = param.set(&mut params, &mut initial, value) {
+        if let Err(e) = key.set_checked(&mut params, &mut initial, value) {
             self.pending.notice = Some(e.to_string());
             return;
         }
         self.params = params;
         self.initial = initial;
-        if param.acts_mid_roll() && self.sim.outcome().is_none() {
+        if key.spec.acts_mid_roll && self.sim.outcome().is_none() {
             if let Err(e) = self.sim.set_ground(params.ground) {
                 self.pending.notice = Some(e.to_string());
             }
@@ -353,7 +353,7 @@ impl Engine {
             }
         } else {
             // A new initial condition is a roll of its own; other values re-run the same one.
-            let kind = if param.is_initial_condition() {
+            let kind = if key.spec.role == Role::Initial {
                 RollKind::Edited
             } else {
                 self.roll

@@ -6,17 +6,16 @@
 //! at the end of its refinement level), so the worker never waits for it; whatever that
 //! thread still sends carries the old generation and the UI drops it.
 
-use crate::experiment::{Axis, BasinMap, Error, MapSpec, Method, run_map};
+use crate::experiment::{Axis, BasinMap, Error, MapSpec, Method, ScanKey, run_map};
 use crate::physics::{InitialCondition, Params};
-use crate::worker::param::Param;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::thread::JoinHandle;
 
-/// One axis of a requested map: a value from the parameter list, its range and grid nodes.
+/// One axis of a requested map: a numeric setup value, its range and grid nodes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MapAxis {
-    pub param: Param,
+    pub key: &'static ScanKey,
     /// In the value's unit.
     pub min: f64,
     /// In the value's unit.
@@ -27,7 +26,7 @@ pub struct MapAxis {
 impl MapAxis {
     /// The experiment's axis, checked against the value's allowed range.
     pub fn axis(&self) -> Result<Axis, Error> {
-        Axis::new(self.param.scan_key().clone(), self.min, self.max, self.cells)
+        Axis::new(self.key.clone(), self.min, self.max, self.cells)
     }
 }
 

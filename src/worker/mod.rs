@@ -6,18 +6,16 @@
 
 mod engine;
 pub mod map;
-pub mod param;
 mod speed;
 mod twin;
 
 pub use engine::{BatchRequest, Engine};
 pub use map::{MapAxis, MapRequest, MapUpdate};
-pub use param::Param;
 pub use speed::Speed;
 
 use crate::experiment::twin::Separation;
 use crate::experiment::{FaceTally, RollRecord};
-use crate::experiment::{Rolls, run_batch};
+use crate::experiment::{Rolls, ScanKey, run_batch};
 use crate::physics::{ContactForce, Energy, EnergyLedger, InitialCondition, Outcome, Params, Status};
 use crate::preset::Preset;
 use nalgebra::Vector3;
@@ -39,8 +37,9 @@ pub enum Command {
     Replay,
     /// The next random initial condition from the preset's ranges.
     RandomRoll,
-    /// A new value; ground values act on the running roll, others restart it.
-    SetParam(Param, f64),
+    /// A new value; values that act mid-roll (the ground's) change the running roll, others
+    /// restart it.
+    SetParam(&'static ScanKey, f64),
     SetSpeed(Speed),
     /// Random rolls computed into the outcome table.
     BatchStart(u64),
