@@ -65,8 +65,8 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
     let preset = args.setup.resolve()?;
     let params = preset.params();
     let (w, h) = args.res;
-    let x = Axis::parse(&args.x, w).map_err(|e| CliError::Input(format!("--x {e}")))?;
-    let y = Axis::parse(&args.y, h).map_err(|e| CliError::Input(format!("--y {e}")))?;
+    let x = Axis::parse(&args.x, w).map_err(CliError::experiment("--x "))?;
+    let y = Axis::parse(&args.y, h).map_err(CliError::experiment("--y "))?;
     let layer = match args.layer {
         LayerArg::Face => Layer::Face,
         LayerArg::SettleTime => Layer::SettleTime,
@@ -84,7 +84,7 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
         .as_ref()
         .map(|p| match p.extension().and_then(|e| e.to_str()) {
             Some(e @ ("csv" | "png" | "svg")) => Ok(e.to_string()),
-            _ => Err(CliError::Input(format!(
+            _ => Err(CliError::Usage(format!(
                 "--out {}: expected a .csv, .png or .svg file",
                 p.display()
             ))),
@@ -113,18 +113,21 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
         &never,
         &mut |m: &BasinMap| bar.set_position(m.sampled as u64),
     )
-    .map_err(|e| CliError::Input(e.to_string()))?;
+    .map_err(CliError::experiment(""))?;
     bar.finish_and_clear();
     let elapsed = start.elapsed().as_secs_f64();
 
     if let (Some(path), Some(kind)) = (&args.out, out_kind) {
-        let failed = |e: String| CliError::Run(format!("{}: {e}", path.display()));
+        let failed = |source| CliError::Write {
+            path: path.clone(),
+            source,
+        };
         if kind == "csv" {
-            let mut file = std::io::BufWriter::new(std::fs::File::create(path)?);
-            map.write_csv(&mut file).map_err(|e| failed(e.to_string()))?;
-            file.flush().map_err(|e| failed(e.to_string()))?;
+            let mut file = std::io::BufWriter::new(std::fs::File::create(path).map_err(failed)?);
+            map.write_csv(&mut file).map_err(failed)?;
+            file.flush().map_err(failed)?;
         } else {
-            write_image(&map, layer, path).map_err(|e| failed(e.to_string()))?;
+            write_image(&map, layer, path).map_err(CliError::experiment(&format!("{}: ", path.display())))?;
         }
     }
     let (x, y) = (&spec.x, &spec.y);

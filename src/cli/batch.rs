@@ -2,7 +2,7 @@
 
 use super::{CliError, SetupArgs};
 use crate::experiment::batch::thread_count;
-use crate::experiment::ics::{parse_initial_conditions, record_csv_row, records_csv_header};
+use crate::experiment::ics::{parse_initial_conditions, write_records_csv};
 use crate::experiment::{Batch, BatchSummary, RollRecord, Rolls, run_batch};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -12,8 +12,9 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-/// Exit status after Ctrl-C, as a shell reports a SIGINT (128 + 2).
-const INTERRUPTED: i32 = 130;
+/// Exit status of a second Ctrl-C, which cannot wait for the error to reach `main`: as a
+/// shell reports a SIGINT (128 + 2), the status `main` gives an interrupted batch.
+const INTERRUPTED_AT_ONCE: i32 = 130;
 
 #[derive(Debug, Args)]
 pub struct BatchArgs {
@@ -58,7 +59,7 @@ fn out_format(path: &Path) -> Result<OutFormat, CliError> {
     match path.extension().and_then(|e| e.to_str()) {
         Some("csv") => Ok(OutFormat::Csv),
         Some("json") => Ok(OutFormat::Json),
-        _ => Err(CliError::Input(format!(
+        _ => Err(CliError::Usage(format!(
             "--out {}: expected a .csv or .json file",
             path.display()
         ))),
@@ -68,15 +69,18 @@ fn out_format(path: &Path) -> Result<OutFormat, CliError> {
 pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     let preset = args.setup.resolve()?;
     let params = preset.params();
-    params.validate().map_err(|e| CliError::Input(e.to_string()))?;
+    params.validate()?;
     let format = args.out.as_deref().map(out_format).transpose()?;
     let seed = args.seed.unwrap_or(preset.random.seed);
     let given = match &args.ics {
         Some(path) => {
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| CliError::Input(format!("--ics {}: {e}", path.display())))?;
+            let text = std::fs::read_to_string(path).map_err(|source| CliError::Read {
+                flag: "--ics",
+                path: path.clone(),
+                source,
+            })?;
             let ics = parse_initial_conditions(&text, &preset.initial, params.inertia())
-                .map_err(|e| CliError::Input(format!("--ics {}: {e}", path.display())))?;
+                .map_err(CliError::experiment(&format!("--ics {}: ", path.display())))?;
             Some(ics)
         }
         None => None,
@@ -98,10 +102,10 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     // quits at once.
     ctrlc::set_handler(move || {
         if handler_stop.swap(true, Ordering::SeqCst) {
-            std::process::exit(INTERRUPTED);
+            std::process::exit(INTERRUPTED_AT_ONCE);
         }
     })
-    .map_err(|e| CliError::Run(format!("cannot catch Ctrl-C: {e}")))?;
+    .map_err(|e| CliError::Io(std::io::Error::other(format!("cannot catch Ctrl-C: {e}"))))?;
 
     let bar = if std::io::stderr().is_terminal() {
         ProgressBar::new(rolls.len())
@@ -115,13 +119,17 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     let batch = run_batch(&params, &rolls, jobs, &stop, &mut |done: &[RollRecord]| {
         bar.set_position(done.len() as u64)
     })
-    .map_err(|e| CliError::Input(e.to_string()))?;
+    .map_err(CliError::experiment(""))?;
     bar.finish_and_clear();
 
     let summary = batch.summary();
     if let (Some(path), Some(format)) = (&args.out, format) {
-        write_records(path, format, &batch, &summary, seed, given.is_some())
-            .map_err(|e| CliError::Run(format!("{}: {e}", path.display())))?;
+        write_records(path, format, &batch, &summary, seed, given.is_some()).map_err(|source| {
+            CliError::Write {
+                path: path.clone(),
+                source,
+            }
+        })?;
     }
     let mut out = std::io::stdout().lock();
     if args.json {
@@ -140,12 +148,10 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     }
     out.flush()?;
     if batch.cancelled {
-        eprintln!(
-            "dicesim: interrupted: kept the {} of {} rolls completed",
-            batch.records.len(),
-            batch.requested
-        );
-        std::process::exit(INTERRUPTED);
+        return Err(CliError::Interrupted {
+            completed: batch.records.len(),
+            requested: batch.requested,
+        });
     }
     Ok(())
 }
@@ -160,12 +166,7 @@ fn write_records(
 ) -> std::io::Result<()> {
     let mut w = std::io::BufWriter::new(std::fs::File::create(path)?);
     match format {
-        OutFormat::Csv => {
-            writeln!(w, "{}", records_csv_header())?;
-            for r in &batch.records {
-                writeln!(w, "{}", record_csv_row(r))?;
-            }
-        }
+        OutFormat::Csv => write_records_csv(&mut w, &batch.records)?,
         OutFormat::Json => {
             let v = json!({
                 "seed": if given { None } else { Some(seed) },

@@ -7,32 +7,87 @@ mod roll;
 mod trace;
 mod tui;
 
-use crate::preset::{Preset, Store};
-use clap::{Args, Parser, Subcommand};
-use std::process::ExitCode;
+use crate::experiment;
+use crate::physics::ParamError;
+use crate::preset::{Preset, PresetError, Store};
+use clap::{Args, CommandFactory, Parser, Subcommand};
+use std::path::PathBuf;
 
 /// A die rolling on a table as a rigid body (Chin & Li, 2019).
 #[derive(Debug, Parser)]
-#[command(name = "dicesim", version, about, long_about = None)]
+#[command(
+    name = "dicesim",
+    version,
+    about,
+    long_about = None,
+    after_help = "Examples:
+  dicesim                                   the explorer on the paper's setup
+  dicesim roll --set ground.friction=0.3    one roll on a slipperier table
+  dicesim batch --rolls 10000               face statistics of random rolls
+  dicesim presets list                      the shipped presets and yours
+
+Exit status: 0 success, 1 a failure while running, 2 bad input (nothing was run or written),
+130 interrupted (what was done is kept)."
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
+    /// Never colour the output (the explorer carries meaning by bold and reverse); the
+    /// NO_COLOR environment variable does the same.
+    #[arg(long, global = true)]
+    pub no_color: bool,
 }
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Roll once from the initial condition and print the outcome.
+    #[command(after_help = "Examples:
+  dicesim roll
+  dicesim roll --preset gentle-drop --json
+  dicesim roll --set initial.height=2.5 --set 'initial.angular_velocity=[10,0,3]'")]
     Roll(roll::RollArgs),
     /// Print a roll's trajectory and energies as CSV.
+    #[command(after_help = "Examples:
+  dicesim trace > roll.csv
+  dicesim trace --every 10 --steps 3000 --preset icy-table > icy.csv")]
     Trace(trace::TraceArgs),
     /// List, show and save presets (TOML setups; see `presets path`).
+    #[command(after_help = "Examples:
+  dicesim presets list
+  dicesim presets show paper
+  dicesim presets save mine --preset gentle-drop --set initial.height=2.5
+  dicesim presets save mine --set ground.friction=0.3 --force")]
     Presets(presets::PresetsArgs),
     /// Roll many dice in parallel: per-roll results and face statistics.
+    #[command(after_help = "Examples:
+  dicesim batch --rolls 10000
+  dicesim batch --rolls 2000 --seed 7 --out rolls.csv
+  dicesim batch --ics starts.csv --json")]
     Batch(batch::BatchArgs),
     /// Map the outcome over a grid of two setup values (CSV, PNG or SVG).
+    #[command(after_help = "Examples:
+  dicesim basin --x initial.angular_velocity.x:-40:40 --y initial.angular_velocity.y:-40:40 --out map.png
+  dicesim basin --x ground.friction:0:2 --y initial.height:2:20 --res 100x50 --out map.csv
+  dicesim basin --x initial.height:1:15 --y initial.angular_velocity.x:-60:60 --res 300x1 --layer settle-time")]
     Basin(basin::BasinArgs),
     /// The terminal explorer: a live die, energy plots, parameters and outcomes (the default).
+    #[command(after_help = "Examples:
+  dicesim tui
+  dicesim tui --preset slow-motion-classroom --no-color")]
     Tui(tui::TuiArgs),
+    /// Print a shell completion script to standard output.
+    #[command(after_help = "Examples:
+  dicesim completions bash > ~/.local/share/bash-completion/completions/dicesim
+  dicesim completions zsh > ~/.zfunc/_dicesim
+  dicesim completions fish > ~/.config/fish/completions/dicesim.fish")]
+    Completions {
+        #[arg(value_enum)]
+        shell: clap_complete::Shell,
+    },
+    /// Print the manual page (roff) to standard output.
+    #[command(after_help = "Examples:
+  dicesim man > dicesim.1 && man ./dicesim.1")]
+    Man,
 }
 
 /// The setup every simulating command starts from.
@@ -42,8 +97,9 @@ pub struct SetupArgs {
     /// to a `.toml` file. Without it, the shipped `paper` preset.
     #[arg(long, value_name = "NAME|PATH")]
     pub preset: Option<String>,
-    /// Override one preset value, e.g. `ground.stiffness=600000` or
-    /// `initial.angular_velocity=[10,0,3]` (repeatable, applied in order).
+    /// Override one preset value, e.g. `ground.stiffness=600000`,
+    /// `initial.angular_velocity=[10,0,3]` or `initial.velocity.y=25` (repeatable, applied
+    /// in order).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
 }
@@ -56,49 +112,134 @@ impl SetupArgs {
     }
 }
 
-/// A command's failure: bad input (exit status 2) or a failure while running (status 1).
+/// Why a command failed. [`CliError::kind`] sorts it for the exit status.
 #[derive(Debug, thiserror::Error)]
 pub enum CliError {
+    /// A preset, an override or a preset name is wrong.
+    #[error(transparent)]
+    Preset(#[from] PresetError),
+    /// A preset of that name exists and `--force` was not given.
+    #[error("{0} (--force replaces it)")]
+    Exists(#[source] PresetError),
+    /// A setup value outside its range.
+    #[error(transparent)]
+    Param(#[from] ParamError),
+    /// An experiment refused its input (an axis, an initial-condition file) or could not run.
+    #[error("{context}{source}")]
+    Experiment {
+        /// What the error is about, e.g. `--x ` (empty when the message says it).
+        context: String,
+        #[source]
+        source: experiment::Error,
+    },
+    /// An argument that clap's parser cannot judge (a file's extension, the need for a
+    /// terminal).
     #[error("{0}")]
-    Input(String),
-    #[error("{0}")]
-    Run(String),
+    Usage(String),
+    /// A named input file could not be read.
+    #[error("{flag} {}: {source}", path.display())]
+    Read {
+        flag: &'static str,
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// An output file could not be written.
+    #[error("{}: {source}", path.display())]
+    Write {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// Standard output (or another stream) failed; a closed pipe is not a failure.
+    #[error(transparent)]
+    Io(#[from] std::io::Error),
+    /// The explorer stopped with an error (its report, with the chain of causes).
+    #[error("{0:#}")]
+    Explorer(color_eyre::Report),
+    /// Ctrl-C stopped a batch; the rolls completed were reported and kept.
+    #[error("interrupted: kept the {completed} of {requested} rolls completed")]
+    Interrupted { completed: usize, requested: u64 },
 }
 
-impl From<crate::preset::PresetError> for CliError {
-    fn from(e: crate::preset::PresetError) -> Self {
-        CliError::Input(e.to_string())
+/// What kind of failure an error is: the exit status follows from it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ErrorKind {
+    /// Bad input: nothing was run or written.
+    Input,
+    /// Something failed while running.
+    Failure,
+    /// The reader of standard output went away (`dicesim trace | head`): not an error.
+    BrokenPipe,
+    /// Interrupted by the user.
+    Interrupted,
+}
+
+impl CliError {
+    pub fn kind(&self) -> ErrorKind {
+        match self {
+            CliError::Preset(_) | CliError::Exists(_) | CliError::Param(_) | CliError::Usage(_) => {
+                ErrorKind::Input
+            }
+            CliError::Read { .. } => ErrorKind::Input,
+            CliError::Experiment { source, .. } => match source {
+                experiment::Error::Threads(_) | experiment::Error::Plot(_) | experiment::Error::Export(_) => {
+                    ErrorKind::Failure
+                }
+                _ => ErrorKind::Input,
+            },
+            CliError::Io(e) | CliError::Write { source: e, .. }
+                if e.kind() == std::io::ErrorKind::BrokenPipe =>
+            {
+                ErrorKind::BrokenPipe
+            }
+            CliError::Io(_) | CliError::Write { .. } | CliError::Explorer(_) => ErrorKind::Failure,
+            CliError::Interrupted { .. } => ErrorKind::Interrupted,
+        }
+    }
+
+    /// An experiment's error, prefixed with what it is about (`"--x "`, or `""`).
+    pub fn experiment(context: &str) -> impl FnOnce(experiment::Error) -> CliError + '_ {
+        move |source| CliError::Experiment {
+            context: context.to_string(),
+            source,
+        }
     }
 }
 
-impl From<std::io::Error> for CliError {
-    fn from(e: std::io::Error) -> Self {
-        CliError::Run(e.to_string())
-    }
+/// Whether colour is off: `--no-color` anywhere on the command line, or NO_COLOR set to
+/// anything but the empty string (<https://no-color.org>).
+pub fn color_off(no_color_flag: bool) -> bool {
+    no_color_flag || std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty())
 }
 
-/// Parses the command line, runs the command and turns its result into an exit status.
-pub fn main() -> ExitCode {
-    let cli = Cli::parse();
-    let result = match cli.command {
+/// Parses the command line and runs the command.
+pub fn main() -> Result<(), CliError> {
+    let flag = std::env::args_os().any(|a| a == "--no-color");
+    let color = if color_off(flag) {
+        clap::ColorChoice::Never
+    } else {
+        clap::ColorChoice::Auto
+    };
+    let matches = Cli::command().color(color).get_matches();
+    let cli = <Cli as clap::FromArgMatches>::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
+    let no_color = color_off(cli.no_color);
+    match cli.command {
         Some(Command::Roll(args)) => roll::run(&args),
         Some(Command::Trace(args)) => trace::run(&args),
         Some(Command::Presets(args)) => presets::run(&args),
         Some(Command::Batch(args)) => batch::run(&args),
         Some(Command::Basin(args)) => basin::run(&args),
-        Some(Command::Tui(args)) => tui::run(&args),
-        None => tui::run(&tui::TuiArgs::default()),
-    };
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(CliError::Run(msg)) if msg.contains("Broken pipe") => ExitCode::SUCCESS,
-        Err(e @ CliError::Input(_)) => {
-            eprintln!("dicesim: {e}");
-            ExitCode::from(2)
+        Some(Command::Tui(args)) => tui::run(&args, no_color),
+        Some(Command::Completions { shell }) => {
+            let mut out = std::io::stdout().lock();
+            clap_complete::generate(shell, &mut Cli::command(), "dicesim", &mut out);
+            Ok(())
         }
-        Err(e) => {
-            eprintln!("dicesim: {e}");
-            ExitCode::FAILURE
+        Some(Command::Man) => {
+            clap_mangen::Man::new(Cli::command()).render(&mut std::io::stdout().lock())?;
+            Ok(())
         }
+        None => tui::run(&tui::TuiArgs::default(), no_color),
     }
 }

@@ -79,7 +79,7 @@ pub fn run(args: &PresetsArgs) -> Result<(), CliError> {
             };
             preset.name = name.clone();
             let path = store.save(&preset, *force).map_err(|e| match e {
-                PresetError::Exists { .. } => CliError::Input(format!("{e} (--force replaces it)")),
+                PresetError::Exists { .. } => CliError::Exists(e),
                 e => CliError::from(e),
             })?;
             writeln!(out, "saved {}", path.display())?;

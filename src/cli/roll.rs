@@ -18,7 +18,7 @@ pub struct RollArgs {
 pub fn run(args: &RollArgs) -> Result<(), CliError> {
     let preset = args.setup.resolve()?;
     let params = preset.params();
-    let mut sim = Simulation::new(&params, &preset.initial).map_err(|e| CliError::Input(e.to_string()))?;
+    let mut sim = Simulation::new(&params, &preset.initial)?;
     let outcome = sim.run_to_end();
     let s = sim.state();
     let energy = sim.energy();

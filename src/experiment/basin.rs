@@ -182,30 +182,40 @@ impl BasinMap {
     /// `sampled` = 1 for rolled cells and 0 for cells filled by the adaptive method. Unknown
     /// cells of a partial map are left out.
     pub fn write_csv(&self, w: &mut impl std::io::Write) -> std::io::Result<()> {
-        writeln!(
-            w,
-            "i,j,{},{},start_face,face,status,steps,time_s,sampled",
-            self.x.key.key, self.y.key.key
-        )?;
+        let mut csv = csv::Writer::from_writer(w);
+        csv.write_record([
+            "i",
+            "j",
+            &self.x.key.key,
+            &self.y.key.key,
+            "start_face",
+            "face",
+            "status",
+            "steps",
+            "time_s",
+            "sampled",
+        ])
+        .map_err(super::csv_io)?;
         for j in 0..self.height() {
             for i in 0..self.width() {
                 let Some(c) = self.cell(i, j) else { continue };
                 let o = &c.outcome;
-                writeln!(
-                    w,
-                    "{i},{j},{},{},{},{},{},{},{},{}",
-                    self.x.value(i),
-                    self.y.value(j),
-                    c.start_face,
+                csv.write_record([
+                    i.to_string(),
+                    j.to_string(),
+                    self.x.value(i).to_string(),
+                    self.y.value(j).to_string(),
+                    c.start_face.to_string(),
                     o.face.map(|f| f.to_string()).unwrap_or_default(),
-                    o.status.name(),
-                    o.steps,
-                    o.time_s,
-                    u8::from(c.sampled)
-                )?;
+                    o.status.name().to_string(),
+                    o.steps.to_string(),
+                    o.time_s.to_string(),
+                    u8::from(c.sampled).to_string(),
+                ])
+                .map_err(super::csv_io)?;
             }
         }
-        Ok(())
+        csv.flush()
     }
 }
 

@@ -4,7 +4,6 @@
 use super::Error;
 use super::record::RollRecord;
 use crate::physics::InitialCondition;
-use std::fmt::Write as _;
 
 /// The initial-condition columns, in output order (`id` first, then these).
 pub const INITIAL_COLUMNS: [&str; COLUMNS] = [
@@ -49,35 +48,37 @@ fn initial_values(ic: &InitialCondition) -> [Option<f64>; COLUMNS] {
 }
 
 /// The header of a per-roll CSV file.
-pub fn records_csv_header() -> String {
-    let mut h = String::from("id");
-    for c in INITIAL_COLUMNS.iter().chain(&RESULT_COLUMNS) {
-        h.push(',');
-        h.push_str(c);
-    }
-    h
+pub fn records_csv_header() -> Vec<&'static str> {
+    std::iter::once("id")
+        .chain(INITIAL_COLUMNS)
+        .chain(RESULT_COLUMNS)
+        .collect()
 }
 
-/// One roll as a CSV row (floats in shortest round-trip form, so reading back is exact; an
-/// unset angular momentum and a missing face are empty cells).
-pub fn record_csv_row(r: &RollRecord) -> String {
-    let mut row = r.id.to_string();
-    for v in initial_values(&r.initial) {
-        row.push(',');
-        if let Some(v) = v {
-            let _ = write!(row, "{v}");
-        }
-    }
-    let face = r.outcome.face.map(|f| f.to_string()).unwrap_or_default();
-    let _ = write!(
-        row,
-        ",{},{face},{},{},{}",
-        r.start_face,
-        r.outcome.status.name(),
-        r.outcome.steps,
-        r.outcome.time_s
-    );
+/// One roll as a CSV record (floats in shortest round-trip form, so reading back is exact;
+/// an unset angular momentum and a missing face are empty cells).
+pub fn record_csv_row(r: &RollRecord) -> Vec<String> {
+    let cell = |v: Option<f64>| v.map(|v| v.to_string()).unwrap_or_default();
+    let mut row = vec![r.id.to_string()];
+    row.extend(initial_values(&r.initial).map(cell));
+    row.extend([
+        r.start_face.to_string(),
+        r.outcome.face.map(|f| f.to_string()).unwrap_or_default(),
+        r.outcome.status.name().to_string(),
+        r.outcome.steps.to_string(),
+        r.outcome.time_s.to_string(),
+    ]);
     row
+}
+
+/// Writes the header and one record per roll: what `--ics` reads back.
+pub fn write_records_csv(out: impl std::io::Write, records: &[RollRecord]) -> std::io::Result<()> {
+    let mut csv = csv::Writer::from_writer(out);
+    csv.write_record(records_csv_header()).map_err(super::csv_io)?;
+    for r in records {
+        csv.write_record(record_csv_row(r)).map_err(super::csv_io)?;
+    }
+    csv.flush()
 }
 
 /// Reads an `--ics` file: a header with `id` and any of [`INITIAL_COLUMNS`] (result columns
@@ -92,18 +93,25 @@ pub fn parse_initial_conditions(
     inertia: f64,
 ) -> Result<Vec<(u64, InitialCondition)>, Error> {
     let bad = |line: usize, message: String| Error::Ics { line, message };
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.trim()))
-        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
-    let (header_line, header) = lines
-        .next()
-        .ok_or_else(|| bad(1, "empty file: expected a header with `id`".to_string()))?;
+    // Quoted cells, a byte-order mark, blank lines and `#` comment lines are the reader's.
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .from_reader(text.as_bytes());
+    let line_of = |e: &csv::Error| e.position().map_or(1, |p| p.line() as usize);
+    let mut records = reader.records();
+    let header = match records.next() {
+        None => return Err(bad(1, "empty file: expected a header with `id`".to_string())),
+        Some(Err(e)) => return Err(bad(line_of(&e), e.to_string())),
+        Some(Ok(h)) => h,
+    };
+    let header_line = header.position().map_or(1, |p| p.line() as usize);
     // For each column: Some(index into INITIAL_COLUMNS), or None for `id` / result columns.
     let mut columns: Vec<Option<usize>> = Vec::new();
     let mut id_column = None;
-    for (i, name) in header.split(',').map(str::trim).enumerate() {
+    for (i, name) in header.iter().enumerate() {
         if name == "id" {
             id_column = Some(i);
             columns.push(None);
@@ -127,8 +135,10 @@ pub fn parse_initial_conditions(
     let id_column = id_column.ok_or_else(|| bad(header_line, "the header has no `id` column".to_string()))?;
     let base_momentum: [f64; 3] = base.angular_momentum_for(inertia).into();
     let mut out = Vec::new();
-    for (line, text) in lines {
-        let cells: Vec<&str> = text.split(',').map(str::trim).collect();
+    for record in records {
+        let record = record.map_err(|e| bad(line_of(&e), e.to_string()))?;
+        let line = record.position().map_or(1, |p| p.line() as usize);
+        let cells: Vec<&str> = record.iter().collect();
         if cells.len() != columns.len() {
             return Err(bad(
                 line,
@@ -242,6 +252,24 @@ mod tests {
     }
 
     #[test]
+    fn quoted_cells_and_a_byte_order_mark_are_read() {
+        let base = InitialCondition::default();
+        let text = "\u{feff}id,\"height\",yaw\r\n\"3\", 2.5 ,\"-45\"\r\n";
+        let ics = parse_initial_conditions(text, &base, INERTIA).unwrap();
+        assert_eq!(
+            ics,
+            vec![(
+                3,
+                InitialCondition {
+                    height: 2.5,
+                    orientation: [-45.0, 0.0, 0.0],
+                    ..base
+                }
+            )]
+        );
+    }
+
+    #[test]
     fn records_read_back_exactly() {
         let p = Params::default();
         let ics = [
@@ -257,11 +285,14 @@ mod tests {
                 ..Default::default()
             },
         ];
-        let mut text = records_csv_header();
-        for (i, ic) in ics.iter().enumerate() {
-            text.push('\n');
-            text.push_str(&record_csv_row(&super::super::roll_record(&p, ic, i as u64)));
-        }
+        let records: Vec<RollRecord> = ics
+            .iter()
+            .enumerate()
+            .map(|(i, ic)| super::super::roll_record(&p, ic, i as u64))
+            .collect();
+        let mut bytes = Vec::new();
+        write_records_csv(&mut bytes, &records).unwrap();
+        let text = String::from_utf8(bytes).unwrap();
         let back = parse_initial_conditions(&text, &InitialCondition::default(), INERTIA).unwrap();
         assert_eq!(back, vec![(0, ics[0]), (1, ics[1])]);
     }

@@ -25,6 +25,16 @@ pub use stats::FaceTally;
 
 use crate::physics::ParamError;
 
+/// A CSV writer's error as the I/O error it wraps, so a closed pipe stays a closed pipe
+/// (`csv` turns every error into `ErrorKind::Other`). Records of a fixed width serialise
+/// nothing else.
+pub(crate) fn csv_io(e: csv::Error) -> std::io::Error {
+    match e.into_kind() {
+        csv::ErrorKind::Io(e) => e,
+        other => std::io::Error::other(format!("CSV: {other:?}")),
+    }
+}
+
 /// Why an experiment could not run.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum Error {

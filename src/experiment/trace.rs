@@ -4,45 +4,72 @@
 use super::Error;
 use super::energy_plot::write_energy_plot;
 use crate::physics::{InitialCondition, Params, Simulation};
-use std::fmt::Write as _;
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
-/// The CSV header; the corner columns follow docs/model.md's corner order.
-pub fn header() -> String {
-    let mut h =
-        String::from("step,t,x,y,z,vx,vy,vz,Lx,Ly,Lz,wx,wy,wz,e_trans,e_rot,e_grav,e_elastic,e_total");
+/// The CSV columns; the corner columns follow docs/model.md's corner order.
+pub fn header() -> Vec<String> {
+    let mut h: Vec<String> = "step,t,x,y,z,vx,vy,vz,Lx,Ly,Lz,wx,wy,wz,e_trans,e_rot,e_grav,e_elastic,e_total"
+        .split(',')
+        .map(str::to_string)
+        .collect();
     for k in 1..=8 {
-        let _ = write!(h, ",c{k}x,c{k}y,c{k}z");
+        h.extend(["x", "y", "z"].map(|a| format!("c{k}{a}")));
     }
     h
 }
 
-/// One CSV row for the simulation's current state.
-pub fn row(sim: &Simulation) -> String {
+/// One CSV record for the simulation's current state; numbers in Rust's shortest
+/// round-trip form, so reading them back gives the same bits.
+pub fn row(sim: &Simulation) -> Vec<String> {
     let s = sim.state();
     let e = sim.energy();
     let w = sim.angular_velocity();
-    let mut line = format!("{},{}", s.step, s.time_s);
+    let mut record = vec![s.step.to_string(), s.time_s.to_string()];
     let values = s
         .position
         .iter()
         .chain(s.velocity.iter())
         .chain(s.angular_momentum.iter())
         .chain(w.iter());
-    for v in values.copied().chain([
-        e.translational,
-        e.rotational,
-        e.gravitational,
-        e.elastic,
-        e.total(),
-    ]) {
-        let _ = write!(line, ",{v}");
-    }
+    record.extend(
+        values
+            .copied()
+            .chain([
+                e.translational,
+                e.rotational,
+                e.gravitational,
+                e.elastic,
+                e.total(),
+            ])
+            .map(|v| v.to_string()),
+    );
     for p in sim.corner_positions() {
-        let _ = write!(line, ",{},{},{}", p.x, p.y, p.z);
+        record.extend([p.x, p.y, p.z].map(|v| v.to_string()));
     }
-    line
+    record
+}
+
+/// A trace as CSV: the header, then one record per [`TraceWriter::write`].
+pub struct TraceWriter<W: std::io::Write> {
+    csv: csv::Writer<W>,
+}
+
+impl<W: std::io::Write> TraceWriter<W> {
+    /// Writes the header into `out`.
+    pub fn new(out: W) -> std::io::Result<Self> {
+        let mut csv = csv::Writer::from_writer(out);
+        csv.write_record(header()).map_err(super::csv_io)?;
+        Ok(TraceWriter { csv })
+    }
+
+    /// One record for the simulation's current state.
+    pub fn write(&mut self, sim: &Simulation) -> std::io::Result<()> {
+        self.csv.write_record(row(sim)).map_err(super::csv_io)
+    }
+
+    pub fn flush(&mut self) -> std::io::Result<()> {
+        self.csv.flush()
+    }
 }
 
 /// What [`export_roll`] wrote.
@@ -85,11 +112,10 @@ pub fn export_roll(
     let plot = dir.join(format!("{stem}.png"));
     let mut sim = Simulation::new_unchecked(params, initial);
     let file = std::fs::File::create(&trace).map_err(|e| io(&trace, e))?;
-    let mut out = std::io::BufWriter::new(file);
+    let mut out = TraceWriter::new(file).map_err(|e| io(&trace, e))?;
     let mut samples = Vec::new();
-    writeln!(out, "{}", header()).map_err(|e| io(&trace, e))?;
     loop {
-        writeln!(out, "{}", row(&sim)).map_err(|e| io(&trace, e))?;
+        out.write(&sim).map_err(|e| io(&trace, e))?;
         samples.push((sim.state().time_s, sim.energy()));
         if sim.outcome().is_some() {
             break;

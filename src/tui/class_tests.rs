@@ -533,10 +533,10 @@ mod export {
         let mut sim = Simulation::new(&s.app.params, &s.app.initial).expect("valid");
         let first = row(&sim);
         let outcome = sim.run_to_end();
-        assert_eq!(lines[0], header());
-        assert_eq!(lines[1], first);
+        assert_eq!(lines[0], header().join(","));
+        assert_eq!(lines[1], first.join(","));
         assert_eq!(lines.len() as u64, outcome.steps + 2);
-        assert_eq!(*lines.last().expect("rows"), row(&sim));
+        assert_eq!(*lines.last().expect("rows"), row(&sim).join(","));
         let image = std::fs::read(&png).expect("png written");
         assert!(image.starts_with(b"\x89PNG\r\n\x1a\n") && image.len() > 10_000);
         // A second export replaces nothing.
