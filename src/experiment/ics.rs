@@ -100,14 +100,33 @@ pub fn parse_initial_conditions(
         .trim(csv::Trim::All)
         .comment(Some(b'#'))
         .from_reader(text.as_bytes());
-    let line_of = |e: &csv::Error| e.position().map_or(1, |p| p.line() as usize);
+    // The reader's line count leaves out blank lines, and a record's byte offset is where
+    // the reader began looking for it: step over the blank and comment lines from there.
+    let bytes = text.as_bytes();
+    let line_at = |p: Option<&csv::Position>| {
+        let mut at = p.map_or(0, |p| p.byte() as usize).min(bytes.len());
+        loop {
+            match bytes.get(at) {
+                Some(b'\n' | b'\r') => at += 1,
+                Some(b'#') => {
+                    at += bytes[at..]
+                        .iter()
+                        .position(|&b| b == b'\n')
+                        .unwrap_or(bytes.len() - at)
+                }
+                _ => break,
+            }
+        }
+        bytes[..at].iter().filter(|&&b| b == b'\n').count() + 1
+    };
+    let line_of = |e: &csv::Error| line_at(e.position());
     let mut records = reader.records();
     let header = match records.next() {
         None => return Err(bad(1, "empty file: expected a header with `id`".to_string())),
         Some(Err(e)) => return Err(bad(line_of(&e), e.to_string())),
         Some(Ok(h)) => h,
     };
-    let header_line = header.position().map_or(1, |p| p.line() as usize);
+    let header_line = line_at(header.position());
     // For each column: Some(index into INITIAL_COLUMNS), or None for `id` / result columns.
     let mut columns: Vec<Option<usize>> = Vec::new();
     let mut id_column = None;
@@ -137,7 +156,7 @@ pub fn parse_initial_conditions(
     let mut out = Vec::new();
     for record in records {
         let record = record.map_err(|e| bad(line_of(&e), e.to_string()))?;
-        let line = record.position().map_or(1, |p| p.line() as usize);
+        let line = line_at(record.position());
         let cells: Vec<&str> = record.iter().collect();
         if cells.len() != columns.len() {
             return Err(bad(
