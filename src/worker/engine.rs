@@ -118,10 +118,6 @@ impl Engine {
         Ok(engine)
     }
 
-    pub fn preset_name(&self) -> &str {
-        &self.preset.name
-    }
-
     pub fn params(&self) -> &Params {
         &self.params
     }
@@ -152,10 +148,6 @@ impl Engine {
 
     pub fn speed(&self) -> Speed {
         self.speed
-    }
-
-    pub fn batch_running(&self) -> bool {
-        self.batch.is_some()
     }
 
     /// Whether time should keep moving without a command (a playing roll or a batch).
@@ -567,7 +559,6 @@ impl Engine {
         let s = self.sim.state();
         Snapshot {
             commands_handled: self.commands_handled,
-            preset_name: self.preset.name.clone(),
             params: self.params,
             initial: self.initial,
             roll: self.roll,

@@ -193,7 +193,6 @@ impl OutcomeTable {
 pub struct Snapshot {
     /// Commands applied so far: the UI knows its own edits have arrived when this catches up.
     pub commands_handled: u64,
-    pub preset_name: String,
     pub params: Params,
     pub initial: InitialCondition,
     pub roll: RollKind,

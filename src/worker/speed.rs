@@ -31,10 +31,6 @@ impl Speed {
         FACTORS.get(self.0 as usize).copied()
     }
 
-    pub fn is_instant(self) -> bool {
-        self.0 == INSTANT
-    }
-
     pub fn slower(self) -> Speed {
         Speed(self.0.saturating_sub(1))
     }
