@@ -114,7 +114,10 @@ fn version(text: &str) -> (u64, u64, u64) {
 fn no_locked_dependency_needs_a_newer_rust_than_declared() {
     // This platform's dependencies: those of other platforms need not be downloaded.
     let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".to_string());
-    let about = std::process::Command::new(rustc).arg("-vV").output().expect("rustc runs");
+    let about = std::process::Command::new(rustc)
+        .arg("-vV")
+        .output()
+        .expect("rustc runs");
     let about = String::from_utf8_lossy(&about.stdout);
     let host = about
         .lines()

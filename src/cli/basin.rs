@@ -11,7 +11,7 @@ use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum LayerArg {
+pub(crate) enum LayerArg {
     /// The face up at the end.
     Face,
     /// Simulated seconds until the roll ended.
@@ -19,35 +19,35 @@ pub enum LayerArg {
 }
 
 #[derive(Debug, Args)]
-pub struct BasinArgs {
+pub(crate) struct BasinArgs {
     #[command(flatten)]
-    pub setup: SetupArgs,
+    pub(crate) setup: SetupArgs,
     /// The horizontal axis: any numeric preset key, vector components included, with its
     /// range, e.g. `initial.angular_velocity.x:-60:60`.
     #[arg(long = "x", value_name = "KEY:MIN:MAX", allow_hyphen_values = true)]
-    pub x: String,
+    pub(crate) x: String,
     /// The vertical axis, as --x (with `--res Wx1`, one scan at the middle of its range).
     #[arg(long = "y", value_name = "KEY:MIN:MAX", allow_hyphen_values = true)]
-    pub y: String,
+    pub(crate) y: String,
     /// Grid nodes along x and y, both ends of each range included; `Wx1` is a 1-D scan.
     #[arg(long, value_name = "WxH", default_value = "200x100", value_parser = parse_resolution)]
-    pub res: (usize, usize),
+    pub(crate) res: (usize, usize),
     /// What each cell shows.
     #[arg(long, value_enum, default_value_t = LayerArg::Face)]
-    pub layer: LayerArg,
+    pub(crate) layer: LayerArg,
     /// Roll a coarse grid, then only where neighbouring cells differ (default for 2-D face
     /// maps; may miss islands smaller than the coarse spacing).
     #[arg(long, conflicts_with = "uniform")]
-    pub adaptive: bool,
+    pub(crate) adaptive: bool,
     /// Roll every cell (default for the settle-time layer and 1-D scans).
     #[arg(long)]
-    pub uniform: bool,
+    pub(crate) uniform: bool,
     /// Worker threads (default: one per core); the map does not depend on it.
     #[arg(long, value_name = "J", value_parser = clap::value_parser!(u64).range(1..))]
-    pub jobs: Option<u64>,
+    pub(crate) jobs: Option<u64>,
     /// Write the map to a .csv, .png or .svg file.
     #[arg(long, value_name = "map.csv|map.png|map.svg")]
-    pub out: Option<PathBuf>,
+    pub(crate) out: Option<PathBuf>,
 }
 
 fn parse_resolution(s: &str) -> Result<(usize, usize), String> {
@@ -61,7 +61,7 @@ fn parse_resolution(s: &str) -> Result<(usize, usize), String> {
     Ok((w, h))
 }
 
-pub fn run(args: &BasinArgs) -> Result<(), CliError> {
+pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
     let preset = args.setup.resolve()?;
     let params = preset.params();
     let (w, h) = args.res;

@@ -17,9 +17,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 const INTERRUPTED_AT_ONCE: i32 = 130;
 
 #[derive(Debug, Args)]
-pub struct BatchArgs {
+pub(crate) struct BatchArgs {
     #[command(flatten)]
-    pub setup: SetupArgs,
+    pub(crate) setup: SetupArgs,
     /// Roll N dice with initial conditions drawn from the preset's `[random]` ranges.
     #[arg(
         long,
@@ -27,26 +27,26 @@ pub struct BatchArgs {
         required_unless_present = "ics",
         conflicts_with = "ics"
     )]
-    pub rolls: Option<u64>,
+    pub(crate) rolls: Option<u64>,
     /// Roll the initial conditions of a CSV file: a header with `id` and any of height,
     /// velocity_x|y|z, angular_velocity_x|y|z, angular_momentum_x|y|z, yaw, pitch, roll
     /// (missing columns take the preset's initial values).
     #[arg(long, value_name = "FILE.csv")]
-    pub ics: Option<PathBuf>,
+    pub(crate) ics: Option<PathBuf>,
     /// Seed of the random draws (default: the preset's `random.seed`); roll i's draw depends
     /// on (seed, i) alone.
     #[arg(long, value_name = "S", conflicts_with = "ics")]
-    pub seed: Option<u64>,
+    pub(crate) seed: Option<u64>,
     /// Worker threads (default: one per core); the results do not depend on it.
     #[arg(long, value_name = "J", value_parser = clap::value_parser!(u64).range(1..))]
-    pub jobs: Option<u64>,
+    pub(crate) jobs: Option<u64>,
     /// Write every roll (id, initial condition, start face, face, status, steps, simulated
     /// seconds) to a .csv or .json file.
     #[arg(long, value_name = "FILE.csv|FILE.json")]
-    pub out: Option<PathBuf>,
+    pub(crate) out: Option<PathBuf>,
     /// Print the summary as one JSON object instead of text.
     #[arg(long)]
-    pub json: bool,
+    pub(crate) json: bool,
 }
 
 /// The per-roll file's format, from its extension.
@@ -66,7 +66,7 @@ fn out_format(path: &Path) -> Result<OutFormat, CliError> {
     }
 }
 
-pub fn run(args: &BatchArgs) -> Result<(), CliError> {
+pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
     let preset = args.setup.resolve()?;
     let params = preset.params();
     params.validate()?;

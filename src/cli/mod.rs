@@ -29,17 +29,17 @@ use std::path::PathBuf;
 Exit status: 0 success, 1 a failure while running, 2 bad input (nothing was run or written),
 130 interrupted (what was done is kept)."
 )]
-pub struct Cli {
+pub(crate) struct Cli {
     #[command(subcommand)]
-    pub command: Option<Command>,
+    pub(crate) command: Option<Command>,
     /// Never colour the output (the explorer carries meaning by bold and reverse); the
     /// NO_COLOR environment variable does the same.
     #[arg(long, global = true)]
-    pub no_color: bool,
+    pub(crate) no_color: bool,
 }
 
 #[derive(Debug, Subcommand)]
-pub enum Command {
+pub(crate) enum Command {
     /// Roll once from the initial condition and print the outcome.
     #[command(after_help = "Examples:
   dicesim roll
@@ -92,21 +92,21 @@ pub enum Command {
 
 /// The setup every simulating command starts from.
 #[derive(Debug, Clone, Default, Args)]
-pub struct SetupArgs {
+pub(crate) struct SetupArgs {
     /// Start from this preset: a name (the user's folder, then the shipped set) or a path
     /// to a `.toml` file. Without it, the shipped `paper` preset.
     #[arg(long, value_name = "NAME|PATH")]
-    pub preset: Option<String>,
+    pub(crate) preset: Option<String>,
     /// Override one preset value, e.g. `ground.stiffness=600000`,
     /// `initial.angular_velocity=[10,0,3]` or `initial.velocity.y=25` (repeatable, applied
     /// in order).
     #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub set: Vec<String>,
+    pub(crate) set: Vec<String>,
 }
 
 impl SetupArgs {
     /// The preset with every override applied and validated.
-    pub fn resolve(&self) -> Result<Preset, CliError> {
+    pub(crate) fn resolve(&self) -> Result<Preset, CliError> {
         let (preset, _) = Store::from_env().load_or_default(self.preset.as_deref())?;
         Ok(preset.with_overrides(&self.set)?)
     }
@@ -199,7 +199,7 @@ impl CliError {
     }
 
     /// An experiment's error, prefixed with what it is about (`"--x "`, or `""`).
-    pub fn experiment(context: &str) -> impl FnOnce(experiment::Error) -> CliError + '_ {
+    pub(crate) fn experiment(context: &str) -> impl FnOnce(experiment::Error) -> CliError + '_ {
         move |source| CliError::Experiment {
             context: context.to_string(),
             source,
@@ -209,7 +209,7 @@ impl CliError {
 
 /// Whether colour is off: `--no-color` anywhere on the command line, or NO_COLOR set to
 /// anything but the empty string (<https://no-color.org>).
-pub fn color_off(no_color_flag: bool) -> bool {
+pub(crate) fn color_off(no_color_flag: bool) -> bool {
     no_color_flag || std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty())
 }
 

@@ -6,18 +6,18 @@ use crate::physics::Simulation;
 use clap::Args;
 
 #[derive(Debug, Args)]
-pub struct TraceArgs {
+pub(crate) struct TraceArgs {
     #[command(flatten)]
-    pub setup: SetupArgs,
+    pub(crate) setup: SetupArgs,
     /// Run exactly N steps, even past the end of the roll (default: until the roll ends).
     #[arg(long, value_name = "N")]
-    pub steps: Option<u64>,
+    pub(crate) steps: Option<u64>,
     /// Print one row every K steps (the last step is always printed).
     #[arg(long, value_name = "K", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
-    pub every: u64,
+    pub(crate) every: u64,
 }
 
-pub fn run(args: &TraceArgs) -> Result<(), CliError> {
+pub(crate) fn run(args: &TraceArgs) -> Result<(), CliError> {
     let preset = args.setup.resolve()?;
     let mut sim = Simulation::new(&preset.params(), &preset.initial)?;
     let mut out = TraceWriter::new(std::io::stdout().lock())?;

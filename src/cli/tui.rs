@@ -6,13 +6,13 @@ use clap::Args;
 use std::io::IsTerminal;
 
 #[derive(Debug, Clone, Default, Args)]
-pub struct TuiArgs {
+pub(crate) struct TuiArgs {
     #[command(flatten)]
-    pub setup: SetupArgs,
+    pub(crate) setup: SetupArgs,
 }
 
 /// Opens the explorer; `no_color` is the global `--no-color` (or NO_COLOR).
-pub fn run(args: &TuiArgs, no_color: bool) -> Result<(), CliError> {
+pub(crate) fn run(args: &TuiArgs, no_color: bool) -> Result<(), CliError> {
     let preset = args.setup.resolve()?;
     if !std::io::stdout().is_terminal() || !std::io::stdin().is_terminal() {
         return Err(CliError::Usage(

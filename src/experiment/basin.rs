@@ -17,13 +17,13 @@ use std::sync::atomic::{AtomicBool, Ordering};
 /// One axis of a map: a key scanned from `min` to `max` (both included) over `cells` nodes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Axis {
-    pub key: ScanKey,
+    pub(crate) key: ScanKey,
     /// In the key's unit.
-    pub min: f64,
+    pub(crate) min: f64,
     /// In the key's unit.
-    pub max: f64,
+    pub(crate) max: f64,
     /// Grid nodes along this axis (≥ 1); one node sits at the middle of the range.
-    pub cells: usize,
+    pub(crate) cells: usize,
 }
 
 impl Axis {
@@ -51,7 +51,7 @@ impl Axis {
 
     /// Checks both ends against the key's allowed range and that `min < max` (or `min <= max`
     /// for a single node).
-    pub fn new(key: ScanKey, min: f64, max: f64, cells: usize) -> Result<Axis, Error> {
+    pub(crate) fn new(key: ScanKey, min: f64, max: f64, cells: usize) -> Result<Axis, Error> {
         let bad = |message: String| Error::Axis {
             spec: format!("{}:{min}:{max}", key.key),
             message,
@@ -68,7 +68,7 @@ impl Axis {
     }
 
     /// The value at node `i` (0-based), exact at both ends.
-    pub fn value(&self, i: usize) -> f64 {
+    pub(crate) fn value(&self, i: usize) -> f64 {
         let n = self.cells;
         if n == 1 {
             0.5 * (self.min + self.max)
@@ -82,7 +82,7 @@ impl Axis {
     }
 
     /// The distance between neighbouring nodes (the whole range for a single node).
-    pub fn spacing(&self) -> f64 {
+    pub(crate) fn spacing(&self) -> f64 {
         (self.max - self.min) / (self.cells.max(2) - 1) as f64
     }
 }
@@ -123,7 +123,7 @@ pub enum Layer {
 }
 
 impl Layer {
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             Layer::Face => "face",
             Layer::SettleTime => "settle-time",
@@ -152,9 +152,9 @@ impl Cell {
 /// from `y.min` (j = 0) up.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BasinMap {
-    pub x: Axis,
-    pub y: Axis,
-    pub method: Method,
+    pub(crate) x: Axis,
+    pub(crate) y: Axis,
+    pub(crate) method: Method,
     /// Row-major, `j * width + i`; `None` where nothing is known yet (a partial map).
     pub cells: Vec<Option<Cell>>,
     /// How many cells were rolled.
@@ -181,7 +181,7 @@ impl BasinMap {
     /// The map as CSV: a header naming both keys, then one row per cell in row order, with
     /// `sampled` = 1 for rolled cells and 0 for cells filled by the adaptive method. Unknown
     /// cells of a partial map are left out.
-    pub fn write_csv(&self, w: &mut impl std::io::Write) -> std::io::Result<()> {
+    pub(crate) fn write_csv(&self, w: &mut impl std::io::Write) -> std::io::Result<()> {
         let mut csv = csv::Writer::from_writer(w);
         csv.write_record([
             "i",
@@ -220,7 +220,7 @@ impl BasinMap {
 }
 
 /// The setup of node `(i, j)`: `base` with the two keys set to the nodes' values.
-pub fn node_setup(
+pub(crate) fn node_setup(
     params: &Params,
     base: &InitialCondition,
     x: &Axis,
@@ -235,7 +235,7 @@ pub fn node_setup(
 }
 
 /// Rolls node `(i, j)`; its record id is the cell index `j * width + i`.
-pub fn roll_node(
+pub(crate) fn roll_node(
     params: &Params,
     base: &InitialCondition,
     x: &Axis,

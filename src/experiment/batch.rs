@@ -36,19 +36,15 @@ pub enum Rolls<'a> {
 
 impl Rolls<'_> {
     /// How many rolls the batch has.
-    pub fn len(&self) -> u64 {
+    pub(crate) fn len(&self) -> u64 {
         match self {
             Rolls::Random { count, .. } => *count,
             Rolls::Given(ics) => ics.len() as u64,
         }
     }
 
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
     /// The id and initial condition of roll `index` (0-based, `< len()`).
-    pub fn get(&self, index: u64) -> (u64, InitialCondition) {
+    pub(crate) fn get(&self, index: u64) -> (u64, InitialCondition) {
         match self {
             Rolls::Random {
                 ranges, base, seed, ..
@@ -64,13 +60,13 @@ pub struct Batch {
     /// The completed rolls in roll order: all of them, or an exact prefix if cancelled.
     pub records: Vec<RollRecord>,
     /// How many rolls were asked for.
-    pub requested: u64,
+    pub(crate) requested: u64,
     /// Whether the cancel flag stopped the batch before the end.
     pub cancelled: bool,
     /// Wall-clock time the rolls took.
-    pub elapsed: Duration,
+    pub(crate) elapsed: Duration,
     /// Threads used.
-    pub jobs: usize,
+    pub(crate) jobs: usize,
 }
 
 impl Batch {
@@ -80,7 +76,7 @@ impl Batch {
 }
 
 /// The number of threads for `jobs` (0 means one per available core).
-pub fn thread_count(jobs: usize) -> usize {
+pub(crate) fn thread_count(jobs: usize) -> usize {
     if jobs > 0 {
         jobs
     } else {
@@ -149,17 +145,17 @@ pub fn run_batch(
 
 /// How a roll's final face relates to the face that started up.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
-pub struct StartFaceCounts {
+pub(crate) struct StartFaceCounts {
     /// Ended on the face that started up.
-    pub same: u64,
+    pub(crate) same: u64,
     /// Ended on one of the 4 faces next to it.
-    pub adjacent: u64,
+    pub(crate) adjacent: u64,
     /// Ended on the opposite face.
-    pub opposite: u64,
+    pub(crate) opposite: u64,
 }
 
 impl StartFaceCounts {
-    pub fn add(&mut self, start_face: u8, face: u8) {
+    pub(crate) fn add(&mut self, start_face: u8, face: u8) {
         if face == start_face {
             self.same += 1;
         } else if face == opposite_face(start_face) {
@@ -169,12 +165,12 @@ impl StartFaceCounts {
         }
     }
 
-    pub fn total(&self) -> u64 {
+    pub(crate) fn total(&self) -> u64 {
         self.same + self.adjacent + self.opposite
     }
 
     /// Shares of (same, adjacent, opposite); zeros with no rolls.
-    pub fn shares(&self) -> [f64; 3] {
+    pub(crate) fn shares(&self) -> [f64; 3] {
         let n = self.total().max(1) as f64;
         [self.same, self.adjacent, self.opposite].map(|c| c as f64 / n)
     }
@@ -186,37 +182,37 @@ pub struct StatusCounts {
     /// Settled with a face up.
     pub settled: u64,
     /// Settled, but the 4 highest corners formed no face.
-    pub settled_without_face: u64,
+    pub(crate) settled_without_face: u64,
     /// Did not settle within `integrator.max_time`.
-    pub timeout: u64,
+    pub(crate) timeout: u64,
     /// The integrator gained energy.
-    pub unstable: u64,
+    pub(crate) unstable: u64,
 }
 
 /// The statistics of a batch: what a summary prints and `--json` carries.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct BatchSummary {
-    pub rolls: u64,
+    pub(crate) rolls: u64,
     /// Settled rolls per face 1..6.
-    pub faces: FaceTally,
+    pub(crate) faces: FaceTally,
     /// Share of each face 1..6 among rolls that ended with a face.
-    pub face_shares: [f64; 6],
+    pub(crate) face_shares: [f64; 6],
     /// Pearson's χ² of the face counts against a fair die (`None` without faces).
-    pub chi_square: Option<f64>,
+    pub(crate) chi_square: Option<f64>,
     /// Probability of at least this χ² from a fair die (5 degrees of freedom).
-    pub p_value: Option<f64>,
-    pub start_face: StartFaceCounts,
+    pub(crate) p_value: Option<f64>,
+    pub(crate) start_face: StartFaceCounts,
     /// Shares of `start_face` (same, adjacent, opposite) among rolls that ended with a face.
     pub start_face_shares: [f64; 3],
     pub status: StatusCounts,
     /// Steps over all rolls.
     pub steps: u64,
     /// s of simulated time over all rolls.
-    pub simulated_s: f64,
+    pub(crate) simulated_s: f64,
     /// s of wall-clock time.
-    pub elapsed_s: f64,
-    pub rolls_per_s: f64,
-    pub steps_per_s: f64,
+    pub(crate) elapsed_s: f64,
+    pub(crate) rolls_per_s: f64,
+    pub(crate) steps_per_s: f64,
 }
 
 impl BatchSummary {

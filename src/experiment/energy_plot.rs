@@ -8,7 +8,7 @@ use plotters::prelude::*;
 use std::path::Path;
 
 /// Image size in pixels.
-pub const SIZE: (u32, u32) = (1200, 700);
+pub(crate) const SIZE: (u32, u32) = (1200, 700);
 
 /// Names and colours of the series, in the explorer's order: total, translational,
 /// rotational, gravitational, elastic.
@@ -31,7 +31,7 @@ fn value(e: &Energy, series: usize) -> f64 {
 }
 
 /// Writes `samples` (s, energy) as a PNG at `path`, with the stop threshold (erg) dotted.
-pub fn write_energy_plot(
+pub(crate) fn write_energy_plot(
     samples: &[(f64, Energy)],
     threshold: f64,
     title: &str,

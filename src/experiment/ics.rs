@@ -6,7 +6,7 @@ use super::record::RollRecord;
 use crate::physics::InitialCondition;
 
 /// The initial-condition columns, in output order (`id` first, then these).
-pub const INITIAL_COLUMNS: [&str; COLUMNS] = [
+pub(crate) const INITIAL_COLUMNS: [&str; COLUMNS] = [
     "height",
     "velocity_x",
     "velocity_y",
@@ -23,7 +23,7 @@ pub const INITIAL_COLUMNS: [&str; COLUMNS] = [
 ];
 
 /// The result columns of a per-roll file; an `--ics` file may carry them (they are ignored).
-pub const RESULT_COLUMNS: [&str; 5] = ["start_face", "face", "status", "steps", "time_s"];
+pub(crate) const RESULT_COLUMNS: [&str; 5] = ["start_face", "face", "status", "steps", "time_s"];
 
 const COLUMNS: usize = 13;
 
@@ -48,7 +48,7 @@ fn initial_values(ic: &InitialCondition) -> [Option<f64>; COLUMNS] {
 }
 
 /// The header of a per-roll CSV file.
-pub fn records_csv_header() -> Vec<&'static str> {
+pub(crate) fn records_csv_header() -> Vec<&'static str> {
     std::iter::once("id")
         .chain(INITIAL_COLUMNS)
         .chain(RESULT_COLUMNS)
@@ -57,7 +57,7 @@ pub fn records_csv_header() -> Vec<&'static str> {
 
 /// One roll as a CSV record (floats in shortest round-trip form, so reading back is exact;
 /// an unset angular momentum and a missing face are empty cells).
-pub fn record_csv_row(r: &RollRecord) -> Vec<String> {
+pub(crate) fn record_csv_row(r: &RollRecord) -> Vec<String> {
     let cell = |v: Option<f64>| v.map(|v| v.to_string()).unwrap_or_default();
     let mut row = vec![r.id.to_string()];
     row.extend(initial_values(&r.initial).map(cell));
@@ -72,7 +72,7 @@ pub fn record_csv_row(r: &RollRecord) -> Vec<String> {
 }
 
 /// Writes the header and one record per roll: what `--ics` reads back.
-pub fn write_records_csv(out: impl std::io::Write, records: &[RollRecord]) -> std::io::Result<()> {
+pub(crate) fn write_records_csv(out: impl std::io::Write, records: &[RollRecord]) -> std::io::Result<()> {
     let mut csv = csv::Writer::from_writer(out);
     csv.write_record(records_csv_header()).map_err(super::csv_io)?;
     for r in records {

@@ -12,16 +12,16 @@ use crate::physics::{InitialCondition, Limits, ParamError, Params};
 #[derive(Debug, Clone, PartialEq)]
 pub struct ScanKey {
     /// The full dotted key, e.g. `initial.angular_velocity.x`.
-    pub key: String,
+    pub(crate) key: String,
     /// The row it belongs to (a vector's row for each of its components).
-    pub spec: &'static Spec,
+    pub(crate) spec: &'static Spec,
     /// 0 for a scalar; the component's index for a vector.
-    pub component: usize,
+    pub(crate) component: usize,
 }
 
 impl ScanKey {
     /// Every scannable key, in preset order (for help texts and pickers).
-    pub fn all() -> &'static [ScanKey] {
+    pub(crate) fn all() -> &'static [ScanKey] {
         static ALL: std::sync::LazyLock<Vec<ScanKey>> = std::sync::LazyLock::new(ScanKey::build_all);
         &ALL
     }
@@ -46,7 +46,7 @@ impl ScanKey {
     }
 
     /// The key named `key`; an unknown or non-numeric key is an error listing the valid ones.
-    pub fn parse(key: &str) -> Result<ScanKey, Error> {
+    pub(crate) fn parse(key: &str) -> Result<ScanKey, Error> {
         Self::named(key).cloned()
     }
 
@@ -70,17 +70,17 @@ impl ScanKey {
     }
 
     /// The row's limits (`limits.key` names the whole vector for components).
-    pub fn limits(&self) -> Limits {
+    pub(crate) fn limits(&self) -> Limits {
         self.spec.limits
     }
 
     /// Unit as shown to users (`""` for dimensionless).
-    pub fn unit(&self) -> &'static str {
+    pub(crate) fn unit(&self) -> &'static str {
         self.spec.limits.unit
     }
 
     /// `key (unit)`, or the key alone for dimensionless values: an axis title.
-    pub fn label(&self) -> String {
+    pub(crate) fn label(&self) -> String {
         if self.unit().is_empty() {
             self.key.clone()
         } else {
@@ -89,7 +89,7 @@ impl ScanKey {
     }
 
     /// Checks `value` against the field's allowed range, naming this key in the error.
-    pub fn check(&self, value: f64) -> Result<(), ParamError> {
+    pub(crate) fn check(&self, value: f64) -> Result<(), ParamError> {
         self.spec.check_number(&self.key, value)
     }
 
@@ -99,17 +99,17 @@ impl ScanKey {
 
     /// The field's current value. A spin stated in the other form is converted (with the
     /// die's inertia), so `initial.angular_velocity.x` always reads ω_x.
-    pub fn get(&self, params: &Params, initial: &InitialCondition) -> f64 {
+    pub(crate) fn get(&self, params: &Params, initial: &InitialCondition) -> f64 {
         (self.scan().get)(params, initial, self.component)
     }
 
     /// Sets the field to `value` (not range-checked: see [`ScanKey::check`]).
-    pub fn set(&self, params: &mut Params, initial: &mut InitialCondition, value: f64) {
+    pub(crate) fn set(&self, params: &mut Params, initial: &mut InitialCondition, value: f64) {
         (self.scan().set)(params, initial, self.component, value)
     }
 
     /// Checks `value`, then sets it; on error nothing changes.
-    pub fn set_checked(
+    pub(crate) fn set_checked(
         &self,
         params: &mut Params,
         initial: &mut InitialCondition,

@@ -4,16 +4,16 @@
 //! [`InitialCondition`](crate::physics::InitialCondition) values as arguments; resolving a
 //! preset is the caller's job.
 
-pub mod basin;
-pub mod batch;
-pub mod energy_plot;
+pub(crate) mod basin;
+pub(crate) mod batch;
+pub(crate) mod energy_plot;
 pub mod ics;
-pub mod keys;
-pub mod plot;
-pub mod random;
-pub mod record;
-pub mod stats;
-pub mod trace;
+pub(crate) mod keys;
+pub(crate) mod plot;
+pub(crate) mod random;
+pub(crate) mod record;
+pub(crate) mod stats;
+pub(crate) mod trace;
 pub mod twin;
 
 pub use basin::{Axis, BasinMap, Cell, Layer, MapSpec, Method, run_map};

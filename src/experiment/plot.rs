@@ -13,12 +13,12 @@ use std::path::Path;
 use std::sync::OnceLock;
 
 /// Image size in pixels (SVG user units).
-pub const SIZE: (u32, u32) = (1200, 800);
+pub(crate) const SIZE: (u32, u32) = (1200, 800);
 /// Width of the legend strip on the right.
 const LEGEND_WIDTH: u32 = 200;
 
 /// Okabe–Ito colours for faces 1..6: distinguishable with the common colour-vision deficiencies.
-pub const FACE_COLOURS: [RGBColor; 6] = [
+pub(crate) const FACE_COLOURS: [RGBColor; 6] = [
     RGBColor(230, 159, 0),
     RGBColor(86, 180, 233),
     RGBColor(0, 158, 115),
@@ -67,7 +67,7 @@ pub(crate) fn plot_error(e: impl std::fmt::Display) -> Error {
 }
 
 /// Writes `map` as a PNG or SVG image, chosen by the extension of `path`.
-pub fn write_image(map: &BasinMap, layer: Layer, path: &Path) -> Result<(), Error> {
+pub(crate) fn write_image(map: &BasinMap, layer: Layer, path: &Path) -> Result<(), Error> {
     register_fonts()?;
     match path.extension().and_then(|e| e.to_str()) {
         Some("png") => draw(BitMapBackend::new(path, SIZE).into_drawing_area(), map, layer),
@@ -80,7 +80,7 @@ pub fn write_image(map: &BasinMap, layer: Layer, path: &Path) -> Result<(), Erro
 }
 
 /// The settle-time scale: s, over settled cells (`None` if none settled).
-pub fn time_range(map: &BasinMap) -> Option<(f64, f64)> {
+pub(crate) fn time_range(map: &BasinMap) -> Option<(f64, f64)> {
     let times = map
         .cells
         .iter()
@@ -94,7 +94,7 @@ pub fn time_range(map: &BasinMap) -> Option<(f64, f64)> {
 }
 
 /// A cell's colour in the image; the explorer draws its map in the same colours.
-pub fn cell_colour(cell: Option<&Cell>, layer: Layer, times: Option<(f64, f64)>) -> RGBColor {
+pub(crate) fn cell_colour(cell: Option<&Cell>, layer: Layer, times: Option<(f64, f64)>) -> RGBColor {
     let Some(c) = cell else { return UNKNOWN };
     match (c.outcome.status, c.outcome.face, layer) {
         (Status::Timeout, ..) => TIMEOUT,

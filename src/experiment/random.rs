@@ -40,7 +40,7 @@ impl RandomRanges {
 }
 
 /// The random stream of one roll: key = seed, ChaCha stream = roll index.
-pub fn roll_rng(seed: u64, index: u64) -> ChaCha8Rng {
+pub(crate) fn roll_rng(seed: u64, index: u64) -> ChaCha8Rng {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(index);
     rng

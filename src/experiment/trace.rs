@@ -7,7 +7,7 @@ use crate::physics::{InitialCondition, Params, Simulation};
 use std::path::{Path, PathBuf};
 
 /// The CSV columns; the corner columns follow docs/model.md's corner order.
-pub fn header() -> Vec<String> {
+pub(crate) fn header() -> Vec<String> {
     let mut h: Vec<String> = "step,t,x,y,z,vx,vy,vz,Lx,Ly,Lz,wx,wy,wz,e_trans,e_rot,e_grav,e_elastic,e_total"
         .split(',')
         .map(str::to_string)
@@ -20,7 +20,7 @@ pub fn header() -> Vec<String> {
 
 /// One CSV record for the simulation's current state; numbers in Rust's shortest
 /// round-trip form, so reading them back gives the same bits.
-pub fn row(sim: &Simulation) -> Vec<String> {
+pub(crate) fn row(sim: &Simulation) -> Vec<String> {
     let s = sim.state();
     let e = sim.energy();
     let w = sim.angular_velocity();
@@ -50,38 +50,38 @@ pub fn row(sim: &Simulation) -> Vec<String> {
 }
 
 /// A trace as CSV: the header, then one record per [`TraceWriter::write`].
-pub struct TraceWriter<W: std::io::Write> {
+pub(crate) struct TraceWriter<W: std::io::Write> {
     csv: csv::Writer<W>,
 }
 
 impl<W: std::io::Write> TraceWriter<W> {
     /// Writes the header into `out`.
-    pub fn new(out: W) -> std::io::Result<Self> {
+    pub(crate) fn new(out: W) -> std::io::Result<Self> {
         let mut csv = csv::Writer::from_writer(out);
         csv.write_record(header()).map_err(super::csv_io)?;
         Ok(TraceWriter { csv })
     }
 
     /// One record for the simulation's current state.
-    pub fn write(&mut self, sim: &Simulation) -> std::io::Result<()> {
+    pub(crate) fn write(&mut self, sim: &Simulation) -> std::io::Result<()> {
         self.csv.write_record(row(sim)).map_err(super::csv_io)
     }
 
-    pub fn flush(&mut self) -> std::io::Result<()> {
+    pub(crate) fn flush(&mut self) -> std::io::Result<()> {
         self.csv.flush()
     }
 }
 
 /// What [`export_roll`] wrote.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Exported {
-    pub trace: PathBuf,
-    pub plot: PathBuf,
+pub(crate) struct Exported {
+    pub(crate) trace: PathBuf,
+    pub(crate) plot: PathBuf,
 }
 
 /// The first stem for files `<stem>.<ext>` (one per extension) in `dir` that replaces no
 /// file: `stem`, then `stem-2`, `stem-3`, …
-pub fn free_stem(dir: &Path, stem: &str, extensions: &[&str]) -> String {
+pub(crate) fn free_stem(dir: &Path, stem: &str, extensions: &[&str]) -> String {
     (1..)
         .map(|n| {
             if n == 1 {
@@ -100,7 +100,7 @@ pub fn free_stem(dir: &Path, stem: &str, extensions: &[&str]) -> String {
 
 /// Rolls `initial` again from t = 0 to its end, writing every step's row to
 /// `<dir>/<stem>.csv` and the energy against time to `<dir>/<stem>.png`.
-pub fn export_roll(
+pub(crate) fn export_roll(
     params: &Params,
     initial: &InitialCondition,
     title: &str,

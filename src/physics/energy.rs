@@ -6,20 +6,16 @@ use serde::Serialize;
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct Energy {
     /// `½·M·|v|²`
-    pub translational: f64,
+    pub(crate) translational: f64,
     /// `½·ω·L`, with the cube's inertia.
     pub rotational: f64,
     /// `M·g·(z − a)`, zero when the cube lies flat.
-    pub gravitational: f64,
+    pub(crate) gravitational: f64,
     /// `Σ ½·k·d_k²` over corners below the ground.
-    pub elastic: f64,
+    pub(crate) elastic: f64,
 }
 
 impl Energy {
-    pub fn kinetic(&self) -> f64 {
-        self.translational + self.rotational
-    }
-
     pub fn total(&self) -> f64 {
         self.translational + self.rotational + self.gravitational + self.elastic
     }

@@ -39,7 +39,7 @@ impl Default for InitialCondition {
 
 impl InitialCondition {
     /// Checks every value against its allowed range; the first failure is returned.
-    pub fn validate(&self) -> Result<(), ParamError> {
+    pub(crate) fn validate(&self) -> Result<(), ParamError> {
         let setup = Setup {
             initial: *self,
             ..Setup::default()
@@ -48,7 +48,7 @@ impl InitialCondition {
     }
 
     /// g·cm²/s, the initial angular momentum for a body of moment of inertia `inertia`.
-    pub fn angular_momentum_for(&self, inertia: f64) -> Vector3<f64> {
+    pub(crate) fn angular_momentum_for(&self, inertia: f64) -> Vector3<f64> {
         match self.angular_momentum {
             Some(l) => Vector3::from(l),
             None => Vector3::from(self.angular_velocity) * inertia,
@@ -56,7 +56,7 @@ impl InitialCondition {
     }
 
     /// rad/s, the initial angular velocity for a body of moment of inertia `inertia`.
-    pub fn angular_velocity_for(&self, inertia: f64) -> Vector3<f64> {
+    pub(crate) fn angular_velocity_for(&self, inertia: f64) -> Vector3<f64> {
         match self.angular_momentum {
             Some(l) => Vector3::from(l) / inertia,
             None => Vector3::from(self.angular_velocity),
@@ -64,7 +64,7 @@ impl InitialCondition {
     }
 
     /// The body-to-world rotation at `t = 0`.
-    pub fn rotation(&self) -> Rotation3<f64> {
+    pub(crate) fn rotation(&self) -> Rotation3<f64> {
         let [yaw, pitch, roll] = self.orientation.map(f64::to_radians);
         // from_euler_angles(roll, pitch, yaw) = Rz(yaw)·Ry(pitch)·Rx(roll); all zeros give the
         // exact identity, so the reference's unrotated start is reproduced bit for bit.
@@ -102,7 +102,7 @@ impl Default for RandomRanges {
 
 impl RandomRanges {
     /// Each bound within the matching initial-condition range, and `low <= high`.
-    pub fn validate(&self) -> Result<(), ParamError> {
+    pub(crate) fn validate(&self) -> Result<(), ParamError> {
         let setup = Setup {
             random: *self,
             ..Setup::default()

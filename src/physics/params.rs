@@ -16,9 +16,9 @@ use std::fmt;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Limits {
     /// Dotted preset / `--set` key, e.g. `ground.stiffness`.
-    pub key: &'static str,
+    pub(crate) key: &'static str,
     /// Unit as shown to users (`""` for dimensionless).
-    pub unit: &'static str,
+    pub(crate) unit: &'static str,
     pub min: f64,
     pub max: f64,
 }
@@ -98,7 +98,7 @@ pub enum FrictionLaw {
 }
 
 impl FrictionLaw {
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             FrictionLaw::PerCorner => "per-corner",
             FrictionLaw::WholeDieNorm => "whole-die-norm",
@@ -201,7 +201,7 @@ pub struct Params {
 
 impl Params {
     /// Checks every field against its allowed range; the first failure is returned.
-    pub fn validate(&self) -> Result<(), ParamError> {
+    pub(crate) fn validate(&self) -> Result<(), ParamError> {
         let setup = Setup {
             params: *self,
             ..Setup::default()
@@ -217,7 +217,7 @@ impl Params {
     /// g·cm², the isotropic moment of inertia of a uniform solid cube, `(2a)²/6·M`.
     ///
     /// Written in the authors' order of operations so the default is bitwise 16/3.
-    pub fn inertia(&self) -> f64 {
+    pub(crate) fn inertia(&self) -> f64 {
         let side = 2.0 * self.die.half_size;
         side * side / 6.0 * self.total_mass()
     }
@@ -228,7 +228,7 @@ impl Params {
     }
 
     /// erg, the stopping threshold: a roll ends once its energy is at or below this.
-    pub fn stop_threshold(&self) -> f64 {
+    pub(crate) fn stop_threshold(&self) -> f64 {
         // (fraction · M·g·a) · (√2 − 1): the authors' grouping, bitwise 2597.9474632040528.
         self.integrator.stop_energy_fraction
             * (self.total_mass() * self.world.gravity * self.die.half_size)
@@ -236,7 +236,7 @@ impl Params {
     }
 
     /// rad/s, the fastest contact mode: a die lying flat rocking on its face, `√(6k/M)`.
-    pub fn rocking_frequency(&self) -> f64 {
+    pub(crate) fn rocking_frequency(&self) -> f64 {
         (6.0 * self.ground.stiffness / self.total_mass()).sqrt()
     }
 

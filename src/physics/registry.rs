@@ -12,7 +12,7 @@ use super::params::{Limits, ParamError, Params};
 
 /// The section of a preset a value belongs to, which is also what changing it means.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Role {
+pub(crate) enum Role {
     Die,
     Ground,
     World,
@@ -25,7 +25,7 @@ pub enum Role {
 
 impl Role {
     /// Every section, in the order a preset file lists them.
-    pub const ALL: [Role; 6] = [
+    pub(crate) const ALL: [Role; 6] = [
         Role::Die,
         Role::Ground,
         Role::World,
@@ -35,7 +35,7 @@ impl Role {
     ];
 
     /// The preset file's table name.
-    pub fn section(self) -> &'static str {
+    pub(crate) fn section(self) -> &'static str {
         match self {
             Role::Die => "die",
             Role::Ground => "ground",
@@ -47,7 +47,7 @@ impl Role {
     }
 
     /// The comment on the section's header line in a written preset.
-    pub fn comment(self) -> &'static str {
+    pub(crate) fn comment(self) -> &'static str {
         match self {
             Role::Initial => "the initial condition of \"the\" roll",
             Role::Random => "how random rolls are drawn (batch runs, \"random roll\")",
@@ -58,7 +58,7 @@ impl Role {
 
 /// What kind of value a key holds, with its default.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Shape {
+pub(crate) enum Shape {
     /// One number.
     Number(f64),
     /// Three numbers, named by these components in `--set` and scan keys.
@@ -81,14 +81,14 @@ pub enum Shape {
 /// How the explorer steps a value under ←/→: by a fixed amount, or by a factor for values
 /// that span decades (stiffness, Δt, mass), where equal ratios are the natural steps.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Nudge {
+pub(crate) enum Nudge {
     Add { fine: f64, coarse: f64 },
     Times { fine: f64, coarse: f64 },
 }
 
 /// A value as a setup stores it.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Value {
+pub(crate) enum Value {
     Number(f64),
     Vector([f64; 3]),
     Range([f64; 2]),
@@ -101,19 +101,19 @@ pub enum Value {
 
 /// Everything a setup holds, for reading any value by its row.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Setup {
-    pub params: Params,
-    pub initial: InitialCondition,
-    pub random: RandomRanges,
+pub(crate) struct Setup {
+    pub(crate) params: Params,
+    pub(crate) initial: InitialCondition,
+    pub(crate) random: RandomRanges,
 }
 
 /// How a numeric value is read and changed by component (0 for a scalar): what `--set` on a
 /// component, a basin-map axis and the explorer use.
 #[derive(Debug, Clone, Copy)]
-pub struct Scan {
-    pub get: fn(&Params, &InitialCondition, usize) -> f64,
+pub(crate) struct Scan {
+    pub(crate) get: fn(&Params, &InitialCondition, usize) -> f64,
     /// Not range-checked: see [`Spec::check_number`].
-    pub set: fn(&mut Params, &mut InitialCondition, usize, f64),
+    pub(crate) set: fn(&mut Params, &mut InitialCondition, usize, f64),
 }
 
 /// One row of the registry.
@@ -121,23 +121,23 @@ pub struct Scan {
 pub struct Spec {
     /// Dotted preset key, unit (`""` for dimensionless) and allowed range.
     pub limits: Limits,
-    pub shape: Shape,
-    pub role: Role,
+    pub(crate) shape: Shape,
+    pub(crate) role: Role,
     /// Its meaning, as the comment beside it in a written preset and in the README.
-    pub comment: &'static str,
+    pub(crate) comment: &'static str,
     /// The explorer's short labels, one per component; empty: not in the explorer's list.
-    pub labels: &'static [&'static str],
+    pub(crate) labels: &'static [&'static str],
     /// Where the explorer lists it (lower first).
-    pub list_position: u8,
-    pub nudge: Option<Nudge>,
+    pub(crate) list_position: u8,
+    pub(crate) nudge: Option<Nudge>,
     /// Acts on the running roll at once (the explorer does not restart the roll).
-    pub acts_mid_roll: bool,
+    pub(crate) acts_mid_roll: bool,
     /// `ω_rock·Δt`, the integrator's stability number, is shown beside it.
-    pub sets_stability: bool,
+    pub(crate) sets_stability: bool,
     /// The value as stored (no conversion: a spin given as momentum reads as given).
-    pub read: fn(&Setup) -> Value,
+    pub(crate) read: fn(&Setup) -> Value,
     /// Numeric values a scan or the explorer can change; `None` for the rest.
-    pub scan: Option<Scan>,
+    pub(crate) scan: Option<Scan>,
 }
 
 /// Rows are equal when they name the same key.
@@ -149,12 +149,12 @@ impl PartialEq for Spec {
 
 impl Spec {
     /// The dotted preset key.
-    pub fn key(&self) -> &'static str {
+    pub(crate) fn key(&self) -> &'static str {
         self.limits.key
     }
 
     /// The default of a [`Shape::Number`] row (for the section structs' `Default`).
-    pub const fn number(&self) -> f64 {
+    pub(crate) const fn number(&self) -> f64 {
         match self.shape {
             Shape::Number(x) => x,
             _ => panic!("not a number row"),
@@ -162,7 +162,7 @@ impl Spec {
     }
 
     /// The default of a [`Shape::Vector`] row.
-    pub const fn vector(&self) -> [f64; 3] {
+    pub(crate) const fn vector(&self) -> [f64; 3] {
         match self.shape {
             Shape::Vector { default, .. } => default,
             _ => panic!("not a vector row"),
@@ -170,7 +170,7 @@ impl Spec {
     }
 
     /// The default of a [`Shape::Range`] row.
-    pub const fn range(&self) -> [f64; 2] {
+    pub(crate) const fn range(&self) -> [f64; 2] {
         match self.shape {
             Shape::Range(r) => r,
             _ => panic!("not a range row"),
@@ -178,7 +178,7 @@ impl Spec {
     }
 
     /// The default of a [`Shape::Seed`] row.
-    pub const fn seed(&self) -> u64 {
+    pub(crate) const fn seed(&self) -> u64 {
         match self.shape {
             Shape::Seed(s) => s,
             _ => panic!("not a seed row"),
@@ -186,7 +186,7 @@ impl Spec {
     }
 
     /// The default of a [`Shape::Flag`] row.
-    pub const fn flag(&self) -> bool {
+    pub(crate) const fn flag(&self) -> bool {
         match self.shape {
             Shape::Flag(b) => b,
             _ => panic!("not a flag row"),
@@ -194,7 +194,7 @@ impl Spec {
     }
 
     /// The names of a vector's components; none for other shapes.
-    pub fn components(&self) -> &'static [&'static str] {
+    pub(crate) fn components(&self) -> &'static [&'static str] {
         match self.shape {
             Shape::Vector { components, .. } => components,
             _ => &[],
@@ -202,7 +202,8 @@ impl Spec {
     }
 
     /// The default as a [`Value`].
-    pub fn default_value(&self) -> Value {
+    #[cfg(test)]
+    pub(crate) fn default_value(&self) -> Value {
         match self.shape {
             Shape::Number(x) => Value::Number(x),
             Shape::Vector { default, .. } => Value::Vector(default),
@@ -215,7 +216,7 @@ impl Spec {
 
     /// Checks one number against the range, naming `key` in the error (NaN and infinities
     /// are outside every range).
-    pub fn check_number(&self, key: &str, value: f64) -> Result<(), ParamError> {
+    pub(crate) fn check_number(&self, key: &str, value: f64) -> Result<(), ParamError> {
         self.limits.check(value).map_err(|mut e| {
             e.key = key.to_string();
             e
@@ -224,7 +225,7 @@ impl Spec {
 
     /// Checks a stored value: every component in range, a range's low end not above its high
     /// end. Errors name the component (`initial.velocity.y`, `random.height[1]`).
-    pub fn check(&self, value: Value) -> Result<(), ParamError> {
+    pub(crate) fn check(&self, value: Value) -> Result<(), ParamError> {
         let key = self.key();
         match value {
             Value::Number(x) => self.check_number(key, x),
@@ -257,14 +258,14 @@ impl Spec {
 }
 
 /// Checks every row of `roles` in `setup`, in registry order; the first failure is returned.
-pub fn validate(setup: &Setup, roles: &[Role]) -> Result<(), ParamError> {
+pub(crate) fn validate(setup: &Setup, roles: &[Role]) -> Result<(), ParamError> {
     ALL.iter()
         .filter(|spec| roles.contains(&spec.role))
         .try_for_each(|spec| spec.check((spec.read)(setup)))
 }
 
 /// The row of a dotted preset key.
-pub fn find(key: &str) -> Option<&'static Spec> {
+pub(crate) fn find(key: &str) -> Option<&'static Spec> {
     ALL.iter().copied().find(|s| s.key() == key)
 }
 
@@ -391,7 +392,7 @@ pub const FRICTION: Spec = Spec {
     scan: params_field!(ground.friction),
 };
 
-pub const FRICTION_LAW: Spec = Spec {
+pub(crate) const FRICTION_LAW: Spec = Spec {
     limits: Limits {
         key: "ground.friction_law",
         unit: "",
@@ -495,7 +496,7 @@ pub const MAX_TIME: Spec = Spec {
     scan: params_field!(integrator.max_time),
 };
 
-pub const STOP_ENERGY: Spec = Spec {
+pub(crate) const STOP_ENERGY: Spec = Spec {
     limits: Limits {
         key: "integrator.stop_energy",
         unit: "",
@@ -663,7 +664,7 @@ pub const ORIENTATION: Spec = Spec {
     }),
 };
 
-pub const SEED: Spec = Spec {
+pub(crate) const SEED: Spec = Spec {
     limits: Limits {
         key: "random.seed",
         unit: "",
@@ -699,7 +700,7 @@ const fn random_range(of: &Spec, key: &'static str, default: [f64; 2], comment: 
     }
 }
 
-pub const RANDOM_HEIGHT: Spec = Spec {
+pub(crate) const RANDOM_HEIGHT: Spec = Spec {
     read: |s| Value::Range(s.random.height),
     ..random_range(
         &HEIGHT,
@@ -709,7 +710,7 @@ pub const RANDOM_HEIGHT: Spec = Spec {
     )
 };
 
-pub const RANDOM_VELOCITY: Spec = Spec {
+pub(crate) const RANDOM_VELOCITY: Spec = Spec {
     read: |s| Value::Range(s.random.velocity),
     ..random_range(
         &VELOCITY,
@@ -719,7 +720,7 @@ pub const RANDOM_VELOCITY: Spec = Spec {
     )
 };
 
-pub const RANDOM_ANGULAR_VELOCITY: Spec = Spec {
+pub(crate) const RANDOM_ANGULAR_VELOCITY: Spec = Spec {
     read: |s| Value::Range(s.random.angular_velocity),
     ..random_range(
         &ANGULAR_VELOCITY,
@@ -729,7 +730,7 @@ pub const RANDOM_ANGULAR_VELOCITY: Spec = Spec {
     )
 };
 
-pub const RANDOM_ORIENTATION: Spec = Spec {
+pub(crate) const RANDOM_ORIENTATION: Spec = Spec {
     limits: Limits {
         key: "random.random_orientation",
         unit: "",
@@ -749,7 +750,7 @@ pub const RANDOM_ORIENTATION: Spec = Spec {
 };
 
 /// Every value of a setup, in the order a preset file lists them.
-pub static ALL: [&Spec; 21] = [
+pub(crate) static ALL: [&Spec; 21] = [
     &HALF_SIZE,
     &CORNER_MASS,
     &STIFFNESS,
@@ -774,13 +775,15 @@ pub static ALL: [&Spec; 21] = [
 ];
 
 /// A number in a text table: as written in a preset, without a trailing `.0`.
+#[cfg(test)]
 fn number_text(x: f64) -> String {
     format!("{x}")
 }
 
 /// The README's table of preset keys, one line per row: key, unit, allowed range, default
 /// and meaning. A test keeps the README's copy equal to this.
-pub fn markdown_table() -> String {
+#[cfg(test)]
+pub(crate) fn markdown_table() -> String {
     let mut out = String::from("| key | unit | allowed | default | meaning |\n|---|---|---|---|---|\n");
     for spec in ALL {
         let (allowed, default) = match spec.shape {
@@ -823,10 +826,12 @@ pub fn markdown_table() -> String {
     out
 }
 
+#[cfg(test)]
 fn range_text(l: &Limits) -> String {
     format!("{} to {}", number_text(l.min), number_text(l.max))
 }
 
+#[cfg(test)]
 fn list_text(values: &[f64]) -> String {
     let items: Vec<String> = values.iter().map(|&x| number_text(x)).collect();
     format!("[{}]", items.join(", "))

@@ -14,7 +14,7 @@ use serde::Serialize;
 /// A rigid-body energy above this multiple of `max(initial energy, edge energy)` means the
 /// integrator is feeding energy in (docs/model.md, "Stability"): a stable roll stays within a
 /// few percent of its start.
-pub const RUNAWAY_ENERGY_FACTOR: f64 = 10.0;
+pub(crate) const RUNAWAY_ENERGY_FACTOR: f64 = 10.0;
 
 /// The dynamic state of the die at one instant.
 #[derive(Debug, Clone, PartialEq)]
@@ -28,11 +28,11 @@ pub struct State {
     /// cm, corners 1..8 relative to the centre of mass, world frame.
     pub corner_offsets: [Vector3<f64>; 8],
     /// dyn, the contact force on each corner at this state `(friction x, friction y, P)`.
-    pub corner_forces: [Vector3<f64>; 8],
+    pub(crate) corner_forces: [Vector3<f64>; 8],
     /// cm, how far each corner is below the ground (0 above it).
     pub corner_depths: [f64; 8],
     /// s, simulated time.
-    pub time_s: f64,
+    pub(crate) time_s: f64,
     /// Steps taken since the initial condition.
     pub step: u64,
 }
@@ -41,13 +41,13 @@ pub struct State {
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct ContactForce {
     /// cm below the ground (0 when not touching).
-    pub depth: f64,
+    pub(crate) depth: f64,
     /// Spring force `k·d`, up.
-    pub normal: f64,
+    pub(crate) normal: f64,
     /// Damping force `−k·d·γ·u_z` (the vertical force is normal + damping).
-    pub damping: f64,
+    pub(crate) damping: f64,
     /// Horizontal kinetic friction `(x, y)`.
-    pub friction: [f64; 2],
+    pub(crate) friction: [f64; 2],
 }
 
 /// Work done on the die since t = 0 by the ground's damping and by friction, erg.
@@ -223,7 +223,7 @@ impl Simulation {
         sim
     }
 
-    pub fn params(&self) -> &Params {
+    pub(crate) fn params(&self) -> &Params {
         &self.params
     }
 
@@ -239,11 +239,6 @@ impl Simulation {
     /// The end of the roll, once it has ended (later steps do not change it).
     pub fn outcome(&self) -> Option<Outcome> {
         self.outcome
-    }
-
-    /// erg, rigid-body energy at t = 0.
-    pub fn initial_energy(&self) -> f64 {
-        self.initial_energy
     }
 
     /// Where the energy has gone since t = 0.
@@ -265,7 +260,7 @@ impl Simulation {
     }
 
     /// Changes the ground mid-roll; the new law acts from the next step on.
-    pub fn set_ground(&mut self, ground: Ground) -> Result<(), ParamError> {
+    pub(crate) fn set_ground(&mut self, ground: Ground) -> Result<(), ParamError> {
         let mut params = self.params;
         params.ground = ground;
         params.validate()?;
@@ -276,7 +271,7 @@ impl Simulation {
     }
 
     /// World positions of corners 1..8, cm.
-    pub fn corner_positions(&self) -> [Vector3<f64>; 8] {
+    pub(crate) fn corner_positions(&self) -> [Vector3<f64>; 8] {
         self.state.corner_offsets.map(|r| self.state.position + r)
     }
 
@@ -293,13 +288,13 @@ impl Simulation {
     }
 
     /// Velocities of corners 1..8, cm/s.
-    pub fn corner_velocities(&self) -> [Vector3<f64>; 8] {
+    pub(crate) fn corner_velocities(&self) -> [Vector3<f64>; 8] {
         self.state.corner_offsets.map(|r| self.corner_velocity(&r))
     }
 
     /// Each corner's contact force split into normal, damping and friction, at the current
     /// state (the forces the next step will apply).
-    pub fn contact_forces(&self) -> [ContactForce; 8] {
+    pub(crate) fn contact_forces(&self) -> [ContactForce; 8] {
         let s = &self.state;
         std::array::from_fn(|k| {
             let depth = s.corner_depths[k];
@@ -354,12 +349,12 @@ impl Simulation {
     }
 
     /// erg, the energy the stopping rule uses (`integrator.stop_energy`).
-    pub fn stop_energy(&self) -> f64 {
+    pub(crate) fn stop_energy(&self) -> f64 {
         self.stop_energy_from(self.energy().total())
     }
 
     /// erg, the stopping threshold.
-    pub fn stop_threshold(&self) -> f64 {
+    pub(crate) fn stop_threshold(&self) -> f64 {
         self.c.threshold
     }
 
@@ -369,7 +364,7 @@ impl Simulation {
     }
 
     /// The face whose 4 corners are highest (the outcome rule).
-    pub fn face_of_highest_corners(&self) -> Option<u8> {
+    pub(crate) fn face_of_highest_corners(&self) -> Option<u8> {
         face_of_highest_corners(&self.state.corner_offsets.map(|r| r.z))
     }
 

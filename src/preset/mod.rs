@@ -24,7 +24,7 @@ use serde::{Deserialize, Serialize};
 pub const FORMAT: u32 = 1;
 
 /// The `format` key's allowed values: a file from a newer program is refused.
-pub const FORMAT_LIMITS: Limits = Limits {
+pub(crate) const FORMAT_LIMITS: Limits = Limits {
     key: "format",
     unit: "",
     min: 1.0,
@@ -84,7 +84,7 @@ impl Preset {
     }
 
     /// Takes the model parameters of `params` into this setup.
-    pub fn set_params(&mut self, params: Params) {
+    pub(crate) fn set_params(&mut self, params: Params) {
         let Params {
             die,
             ground,

@@ -6,7 +6,7 @@ use crate::experiment::ScanKey;
 impl Preset {
     /// Applies one `--set KEY=VALUE` (dotted key as in a file; the value is read as a TOML
     /// value, a bare word as a string). On error `self` is unchanged.
-    pub fn apply_override(&mut self, key: &str, value: &str) -> Result<(), PresetError> {
+    pub(crate) fn apply_override(&mut self, key: &str, value: &str) -> Result<(), PresetError> {
         let err = |message: String| PresetError::Override {
             key: key.to_string(),
             message,

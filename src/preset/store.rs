@@ -21,7 +21,7 @@ pub enum Source {
 
 impl Source {
     /// `path`, `user` or `shipped`, as `presets list` shows it.
-    pub fn kind(&self) -> &'static str {
+    pub(crate) fn kind(&self) -> &'static str {
         match self {
             Source::Path(_) => "path",
             Source::User(_) => "user",
@@ -53,7 +53,7 @@ impl Store {
 
     /// The user folder from `DICESIM_PRESETS`, else the platform's data directory +
     /// `presets/` (e.g. `~/.local/share/dicesim/presets/`).
-    pub fn from_env() -> Store {
+    pub(crate) fn from_env() -> Store {
         let user_dir = match std::env::var_os(PRESETS_ENV) {
             Some(dir) if !dir.is_empty() => Some(PathBuf::from(dir)),
             _ => directories::ProjectDirs::from("", "", "dicesim").map(|d| d.data_dir().join("presets")),
@@ -62,7 +62,7 @@ impl Store {
     }
 
     /// The user's preset folder (it may not exist yet: saving creates it).
-    pub fn user_dir(&self) -> Result<&Path, PresetError> {
+    pub(crate) fn user_dir(&self) -> Result<&Path, PresetError> {
         self.user_dir.as_deref().ok_or(PresetError::NoUserFolder)
     }
 
@@ -136,7 +136,7 @@ impl Store {
     }
 
     /// Where the user preset `name` is (or would be) saved.
-    pub fn path_of(&self, name: &str) -> Result<PathBuf, PresetError> {
+    pub(crate) fn path_of(&self, name: &str) -> Result<PathBuf, PresetError> {
         check_name(name)?;
         Ok(self.user_dir()?.join(format!("{name}.toml")))
     }

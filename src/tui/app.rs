@@ -19,7 +19,7 @@ use ratatui::layout::{Position, Rect};
 use ratatui::symbols::Marker;
 
 /// Rolls in one batch (`b`).
-pub const BATCH_ROLLS: u64 = 10_000;
+pub(crate) const BATCH_ROLLS: u64 = 10_000;
 
 /// What the event loop hands to [`update`]: terminal input or a worker snapshot.
 #[derive(Debug, Clone)]
@@ -44,10 +44,10 @@ impl From<MapUpdate> for Msg {
 
 /// A value being typed in (Enter on a parameter).
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct Editor {
-    pub text: String,
+pub(crate) struct Editor {
+    pub(crate) text: String,
     /// Why the last Enter was refused.
-    pub error: Option<String>,
+    pub(crate) error: Option<String>,
 }
 
 /// What a key did to a number being typed.
@@ -89,7 +89,7 @@ impl Editor {
 
 /// How the die is drawn: Braille dots, or plain ASCII for fonts without Braille.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Drawing {
+pub(crate) enum Drawing {
     #[default]
     Braille,
     Ascii,
@@ -97,7 +97,7 @@ pub enum Drawing {
 
 impl Drawing {
     /// The marker that draws the plots' lines.
-    pub fn line_marker(self) -> Marker {
+    pub(crate) fn line_marker(self) -> Marker {
         match self {
             Drawing::Braille => Marker::Braille,
             Drawing::Ascii => Marker::Custom('.'),
@@ -108,48 +108,48 @@ impl Drawing {
 #[derive(Debug, Clone)]
 pub struct App {
     /// The newest worker snapshot (its history already moved into `history`).
-    pub live: Snapshot,
+    pub(crate) live: Snapshot,
     /// The setup as the user last set it (ahead of `live` until the worker catches up).
-    pub params: Params,
-    pub initial: InitialCondition,
-    pub speed: Speed,
+    pub(crate) params: Params,
+    pub(crate) initial: InitialCondition,
+    pub(crate) speed: Speed,
     /// Energy samples of the roll on screen.
-    pub history: Vec<EnergySample>,
-    pub table: OutcomeTable,
-    pub batch: Option<BatchProgress>,
-    pub batch_rolls: u64,
-    pub notice: Option<String>,
+    pub(crate) history: Vec<EnergySample>,
+    pub(crate) table: OutcomeTable,
+    pub(crate) batch: Option<BatchProgress>,
+    pub(crate) batch_rolls: u64,
+    pub(crate) notice: Option<String>,
     /// Index into [`all`](super::param::all).
-    pub selected: usize,
-    pub editing: Option<Editor>,
-    pub help: bool,
-    pub help_scroll: u16,
-    pub log_scale: bool,
+    pub(crate) selected: usize,
+    pub(crate) editing: Option<Editor>,
+    pub(crate) help: bool,
+    pub(crate) help_scroll: u16,
+    pub(crate) log_scale: bool,
     /// Arrows for ω, L, v and the contact forces on the die (`v`).
-    pub vectors: bool,
+    pub(crate) vectors: bool,
     /// Whether a chaos twin rolls beside the die (`T`), and its ε.
-    pub twin: bool,
-    pub epsilon: f64,
+    pub(crate) twin: bool,
+    pub(crate) epsilon: f64,
     /// ε being typed in (`E`).
-    pub epsilon_editor: Option<Editor>,
+    pub(crate) epsilon_editor: Option<Editor>,
     /// The twin's separation samples of the roll on screen.
-    pub twin_history: Vec<SeparationSample>,
+    pub(crate) twin_history: Vec<SeparationSample>,
     /// The preset the setup was loaded from (or last saved as).
-    pub preset: Preset,
+    pub(crate) preset: Preset,
     /// Where presets are listed from and saved to.
-    pub store: Store,
+    pub(crate) store: Store,
     /// The preset picker or the save dialog, when open.
-    pub dialog: Option<Dialog>,
-    pub drawing: Drawing,
-    pub camera: Camera,
-    pub theme: Theme,
+    pub(crate) dialog: Option<Dialog>,
+    pub(crate) drawing: Drawing,
+    pub(crate) camera: Camera,
+    pub(crate) theme: Theme,
     /// Frames drawn per second, measured by the event loop.
-    pub fps: Option<f64>,
+    pub(crate) fps: Option<f64>,
     /// The terminal's size, for mouse hit tests.
-    pub screen: Rect,
-    pub quit: bool,
-    pub view: View,
-    pub map: MapView,
+    pub(crate) screen: Rect,
+    pub(crate) quit: bool,
+    pub(crate) view: View,
+    pub(crate) map: MapView,
     commands_sent: u64,
     /// Last mouse position while dragging the die.
     drag: Option<(u16, u16)>,
@@ -197,12 +197,12 @@ impl App {
         }
     }
 
-    pub fn selected_param(&self) -> Param {
+    pub(crate) fn selected_param(&self) -> Param {
         all()[self.selected.min(all().len() - 1)]
     }
 
     /// Whether frames should keep coming without input (a moving roll or a running batch).
-    pub fn animating(&self) -> bool {
+    pub(crate) fn animating(&self) -> bool {
         self.live.playing || self.batch.is_some()
     }
 

@@ -15,16 +15,16 @@ use ratatui::widgets::{Block, Clear, Paragraph, Wrap};
 
 /// One preset the picker offers.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Choice {
-    pub name: String,
+pub(crate) struct Choice {
+    pub(crate) name: String,
     /// The user's own (saved from here or by hand), rather than shipped.
-    pub user: bool,
+    pub(crate) user: bool,
     /// The preset, or why its file does not load.
-    pub preset: Result<Box<Preset>, String>,
+    pub(crate) preset: Result<Box<Preset>, String>,
 }
 
 #[derive(Debug, Clone, PartialEq)]
-pub enum Dialog {
+pub(crate) enum Dialog {
     Picker {
         choices: Vec<Choice>,
         selected: usize,
@@ -39,12 +39,12 @@ pub enum Dialog {
 }
 
 /// Whether the setup on screen differs from the preset it was loaded from.
-pub fn modified(app: &App) -> bool {
+pub(crate) fn modified(app: &App) -> bool {
     app.params != app.preset.params() || app.initial != app.preset.initial
 }
 
 /// Opens the picker on every preset the store lists, the loaded one selected.
-pub fn open_picker(app: &mut App) {
+pub(crate) fn open_picker(app: &mut App) {
     let choices: Vec<Choice> = app
         .store
         .list()
@@ -66,7 +66,7 @@ pub fn open_picker(app: &mut App) {
     });
 }
 
-pub fn open_save(app: &mut App) {
+pub(crate) fn open_save(app: &mut App) {
     app.dialog = Some(Dialog::Save {
         name: String::new(),
         error: None,
@@ -76,7 +76,7 @@ pub fn open_save(app: &mut App) {
 
 /// The setup on screen as a preset named `name`: the loaded preset's random ranges, the
 /// current model values and start.
-pub fn current_setup(app: &App, name: &str) -> Preset {
+pub(crate) fn current_setup(app: &App, name: &str) -> Preset {
     let p = &app.params;
     Preset {
         name: name.to_string(),
@@ -94,7 +94,7 @@ pub fn current_setup(app: &App, name: &str) -> Preset {
 }
 
 /// Keys while a dialog is open.
-pub fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
+pub(crate) fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
     let Some(dialog) = app.dialog.take() else {
         return;
     };
@@ -216,7 +216,7 @@ fn save_key(
 }
 
 /// Draws the open dialog, centred over the screen.
-pub fn render(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let Some(dialog) = &app.dialog else { return };
     let t = &app.theme;
     match dialog {

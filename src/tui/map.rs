@@ -25,11 +25,11 @@ use std::path::Path;
 
 /// Most cells along each axis: a 200×100 map takes about half a second on two cores, so
 /// a full panel stays near a second even where borders are long.
-pub const MAX_CELLS: (usize, usize) = (200, 100);
+pub(crate) const MAX_CELLS: (usize, usize) = (200, 100);
 /// Grid nodes while the terminal is too small to show the map.
 const FALLBACK_CELLS: (usize, usize) = (64, 48);
 /// Each zoom shows a quarter of the range on each axis.
-pub const ZOOM_FACTOR: f64 = 4.0;
+pub(crate) const ZOOM_FACTOR: f64 = 4.0;
 /// Characters for the y-axis labels.
 const Y_LABELS: u16 = 8;
 /// Cells one Shift-arrow moves the cursor.
@@ -37,7 +37,7 @@ const BIG_STEP: usize = 8;
 
 /// Which screen is on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum View {
+pub(crate) enum View {
     #[default]
     Die,
     Map,
@@ -45,53 +45,53 @@ pub enum View {
 
 /// The map's x or y axis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Side {
+pub(crate) enum Side {
     X,
     Y,
 }
 
 /// The ranges before a zoom, to go back out to.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ZoomStep {
-    pub x: (f64, f64),
-    pub y: (f64, f64),
-    pub cursor: (usize, usize),
+pub(crate) struct ZoomStep {
+    pub(crate) x: (f64, f64),
+    pub(crate) y: (f64, f64),
+    pub(crate) cursor: (usize, usize),
 }
 
 /// A range being typed in for one axis.
 #[derive(Debug, Clone, PartialEq)]
-pub struct RangeEditor {
-    pub side: Side,
-    pub editor: Editor,
+pub(crate) struct RangeEditor {
+    pub(crate) side: Side,
+    pub(crate) editor: Editor,
 }
 
 #[derive(Debug, Clone, PartialEq)]
-pub struct MapView {
+pub(crate) struct MapView {
     /// The axes the user chose (their `cells` are set when a map is requested).
-    pub x: MapAxis,
-    pub y: MapAxis,
+    pub(crate) x: MapAxis,
+    pub(crate) y: MapAxis,
     /// Ranges before each zoom, innermost last.
-    pub zooms: Vec<ZoomStep>,
+    pub(crate) zooms: Vec<ZoomStep>,
     /// The generation of the current request; updates of any other are stale.
-    pub generation: u64,
+    pub(crate) generation: u64,
     /// The setup and grid of the current request.
-    pub requested: Option<(MapRequest, Params, InitialCondition)>,
+    pub(crate) requested: Option<(MapRequest, Params, InitialCondition)>,
     /// Whether the worker is still computing the current request.
-    pub running: bool,
+    pub(crate) running: bool,
     /// The newest map of the current generation.
-    pub shown: Option<MapUpdate>,
+    pub(crate) shown: Option<MapUpdate>,
     /// Cell under the cursor: x node, y node (0 = bottom row).
-    pub cursor: (usize, usize),
-    pub layer: Layer,
-    pub editing: Option<RangeEditor>,
+    pub(crate) cursor: (usize, usize),
+    pub(crate) layer: Layer,
+    pub(crate) editing: Option<RangeEditor>,
     /// The user asked for an image of the map (written by the event loop, not by `update`).
-    pub export_asked: bool,
+    pub(crate) export_asked: bool,
 }
 
 impl MapView {
     /// Spin about x against spin about y, each over the preset's default random range
     /// around its current value.
-    pub fn new(params: &Params, initial: &InitialCondition) -> MapView {
+    pub(crate) fn new(params: &Params, initial: &InitialCondition) -> MapView {
         let axis = |param| {
             let (min, max) = default_range(param, params, initial);
             MapAxis {
@@ -117,7 +117,7 @@ impl MapView {
     }
 
     /// The map on screen, if one has arrived for the current request.
-    pub fn map(&self) -> Option<&BasinMap> {
+    pub(crate) fn map(&self) -> Option<&BasinMap> {
         self.shown.as_ref().and_then(|u| u.map.as_ref().ok())
     }
 
@@ -143,7 +143,7 @@ impl MapView {
 
 /// A range around the current value: the default random range for spin (±60 rad/s) and
 /// velocity (±50 cm/s), a few coarse steps for the rest, inside the allowed range.
-pub fn default_range(p: Param, params: &Params, initial: &InitialCondition) -> (f64, f64) {
+pub(crate) fn default_range(p: Param, params: &Params, initial: &InitialCondition) -> (f64, f64) {
     let row = p.scan_key().spec;
     let steps = if *row == registry::ANGULAR_VELOCITY {
         6
@@ -164,17 +164,17 @@ pub fn default_range(p: Param, params: &Params, initial: &InitialCondition) -> (
 
 /// Panels of the map screen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct MapAreas {
-    pub header: Rect,
-    pub side: Rect,
-    pub panel: Rect,
+pub(crate) struct MapAreas {
+    pub(crate) header: Rect,
+    pub(crate) side: Rect,
+    pub(crate) panel: Rect,
     /// Where the cells go: each character holds two cells, one above the other.
-    pub grid: Rect,
-    pub footer: Rect,
+    pub(crate) grid: Rect,
+    pub(crate) footer: Rect,
 }
 
 /// The map screen's layout; `None` below the explorer's minimum size.
-pub fn map_layout(area: Rect) -> Option<MapAreas> {
+pub(crate) fn map_layout(area: Rect) -> Option<MapAreas> {
     super::render::screen_layout(area)?;
     let [header, body, footer] = area.layout(&Layout::vertical([
         Constraint::Length(1),
@@ -203,7 +203,7 @@ pub fn map_layout(area: Rect) -> Option<MapAreas> {
 }
 
 /// Grid nodes that fill the map panel of a terminal this size, two per character row.
-pub fn fitted_cells(screen: Rect) -> (usize, usize) {
+pub(crate) fn fitted_cells(screen: Rect) -> (usize, usize) {
     match map_layout(screen) {
         Some(a) if a.grid.width >= 2 && a.grid.height >= 1 => (
             (a.grid.width as usize).min(MAX_CELLS.0),
@@ -214,7 +214,7 @@ pub fn fitted_cells(screen: Rect) -> (usize, usize) {
 }
 
 /// Asks the worker for the map of the chosen axes at the resolution that fits the screen.
-pub fn start(app: &mut App, out: &mut Vec<Command>) {
+pub(crate) fn start(app: &mut App, out: &mut Vec<Command>) {
     let (nx, ny) = fitted_cells(app.screen);
     let m = &mut app.map;
     if m.requested.is_none() {
@@ -238,7 +238,7 @@ pub fn start(app: &mut App, out: &mut Vec<Command>) {
 
 /// Switches to the map screen; computes the map unless the one there still fits the setup
 /// and the terminal.
-pub fn open(app: &mut App, out: &mut Vec<Command>) {
+pub(crate) fn open(app: &mut App, out: &mut Vec<Command>) {
     app.view = View::Map;
     let fits = app.map.requested.as_ref().is_some_and(|(r, p, ic)| {
         (r.x.cells, r.y.cells) == fitted_cells(app.screen) && *p == app.params && *ic == app.initial
@@ -251,7 +251,7 @@ pub fn open(app: &mut App, out: &mut Vec<Command>) {
 
 /// Back to the die. A map still being computed is cancelled so the live roll gets the cores;
 /// coming back computes it again.
-pub fn close(app: &mut App, out: &mut Vec<Command>) {
+pub(crate) fn close(app: &mut App, out: &mut Vec<Command>) {
     app.view = View::Die;
     app.map.editing = None;
     if app.map.running {
@@ -261,7 +261,7 @@ pub fn close(app: &mut App, out: &mut Vec<Command>) {
 }
 
 /// Takes a map from the worker, unless it belongs to a request the user has moved away from.
-pub fn absorb(app: &mut App, update: MapUpdate) {
+pub(crate) fn absorb(app: &mut App, update: MapUpdate) {
     let m = &mut app.map;
     if update.generation != m.generation || !m.running {
         return;
@@ -280,7 +280,7 @@ pub fn absorb(app: &mut App, update: MapUpdate) {
 }
 
 /// The terminal was resized: a map on screen is recomputed to fill the new panel.
-pub fn resized(app: &mut App, out: &mut Vec<Command>) {
+pub(crate) fn resized(app: &mut App, out: &mut Vec<Command>) {
     let fitted = fitted_cells(app.screen);
     let stale = app
         .map
@@ -294,7 +294,7 @@ pub fn resized(app: &mut App, out: &mut Vec<Command>) {
 
 /// Keys of the map screen; false for the keys the explorer handles the same on every
 /// screen (quit and help).
-pub fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) -> bool {
+pub(crate) fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) -> bool {
     if app.map.editing.is_some() {
         on_range_key(app, key, out);
         return true;
@@ -470,7 +470,7 @@ fn on_range_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
 
 /// `MIN MAX` (or `MIN:MAX`, `MIN,MAX`), checked as a map axis is: both inside the value's
 /// allowed range, MIN below MAX.
-pub fn parse_range(param: Param, text: &str) -> Result<(f64, f64), String> {
+pub(crate) fn parse_range(param: Param, text: &str) -> Result<(f64, f64), String> {
     let parts: Vec<&str> = text
         .split(|c: char| c.is_whitespace() || c == ':' || c == ',')
         .filter(|s| !s.is_empty())
@@ -490,7 +490,7 @@ pub fn parse_range(param: Param, text: &str) -> Result<(f64, f64), String> {
 
 /// Writes the map on screen as a PNG into `dir` if the user asked (`e`); the status line
 /// says where. The event loop calls this after `update`, so `update` itself writes nothing.
-pub fn export_if_asked(app: &mut App, dir: &Path) {
+pub(crate) fn export_if_asked(app: &mut App, dir: &Path) {
     if !std::mem::take(&mut app.map.export_asked) {
         return;
     }
@@ -507,7 +507,7 @@ pub fn export_if_asked(app: &mut App, dir: &Path) {
 }
 
 /// The terminal colour of a cell: the exported image's colour, or nothing without colour.
-pub fn terminal_colour(app: &App, cell: Option<&Cell>, times: Option<(f64, f64)>) -> Color {
+pub(crate) fn terminal_colour(app: &App, cell: Option<&Cell>, times: Option<(f64, f64)>) -> Color {
     match cell {
         Some(_) if app.theme.colour => {
             let c = cell_colour(cell, app.map.layer, times);
@@ -534,7 +534,7 @@ fn monochrome_symbol(layer: Layer, cell: Option<&Cell>, times: Option<(f64, f64)
 }
 
 /// Draws the map screen.
-pub fn render_map_screen(app: &App, frame: &mut Frame) {
+pub(crate) fn render_map_screen(app: &App, frame: &mut Frame) {
     let area = frame.area();
     let Some(areas) = map_layout(area) else {
         render_too_small(area, frame);
@@ -924,7 +924,7 @@ fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
 }
 
 /// The map screen's keys, for the `?` overlay.
-pub const MAP_KEYS: &[(&str, &str)] = &[
+pub(crate) const MAP_KEYS: &[(&str, &str)] = &[
     ("Tab 2 / Tab 1", "basin-map screen / back to the die"),
     (
         "←↓↑→ h j k l",

@@ -8,7 +8,7 @@ use std::sync::LazyLock;
 
 /// One tunable value in the explorer's list (a vector's component for vector rows).
 #[derive(Debug, Clone, Copy)]
-pub struct Param {
+pub(crate) struct Param {
     key: &'static ScanKey,
 }
 
@@ -22,7 +22,7 @@ impl PartialEq for Param {
 impl Eq for Param {}
 
 /// Every tunable value, in the order the parameter list shows them.
-pub fn all() -> &'static [Param] {
+pub(crate) fn all() -> &'static [Param] {
     static ALL: LazyLock<Vec<Param>> = LazyLock::new(|| {
         let mut list: Vec<Param> = ScanKey::all()
             .iter()
@@ -40,7 +40,7 @@ impl Param {
     ///
     /// # Panics
     /// If the key is not in the explorer's list: callers name fixed keys.
-    pub fn named(key: &str) -> Param {
+    pub(crate) fn named(key: &str) -> Param {
         *all()
             .iter()
             .find(|p| p.key.key == key)
@@ -48,45 +48,45 @@ impl Param {
     }
 
     /// The entry of a key from the list (a map axis names its value by scan key).
-    pub fn of(key: &'static ScanKey) -> Param {
+    pub(crate) fn of(key: &'static ScanKey) -> Param {
         Param { key }
     }
 
     /// Short label for the list, in the model's words.
-    pub fn label(self) -> &'static str {
+    pub(crate) fn label(self) -> &'static str {
         self.key.spec.labels[self.key.component]
     }
 
     /// The scan key that reads and writes this value.
-    pub fn scan_key(self) -> &'static ScanKey {
+    pub(crate) fn scan_key(self) -> &'static ScanKey {
         self.key
     }
 
     /// The preset key of this value, as `--set` takes it (`initial.velocity.x` names a component).
-    pub fn key(self) -> &'static str {
+    pub(crate) fn key(self) -> &'static str {
         &self.key.key
     }
 
-    pub fn limits(self) -> Limits {
+    pub(crate) fn limits(self) -> Limits {
         self.key.limits()
     }
 
     /// Ground values act on the running roll at once; every other value defines a new roll.
-    pub fn acts_mid_roll(self) -> bool {
+    pub(crate) fn acts_mid_roll(self) -> bool {
         self.key.spec.acts_mid_roll
     }
 
     /// Whether `ω_rock·Δt` depends on this value (shown beside it).
-    pub fn sets_stability(self) -> bool {
+    pub(crate) fn sets_stability(self) -> bool {
         self.key.spec.sets_stability
     }
 
-    pub fn get(self, params: &Params, initial: &InitialCondition) -> f64 {
+    pub(crate) fn get(self, params: &Params, initial: &InitialCondition) -> f64 {
         self.key.get(params, initial)
     }
 
     /// Sets the value after checking it against its range; on error nothing changes.
-    pub fn set(
+    pub(crate) fn set(
         self,
         params: &mut Params,
         initial: &mut InitialCondition,
@@ -98,7 +98,7 @@ impl Param {
     /// The value one step up (`steps > 0`) or down from `value`, kept inside the range.
     ///
     /// Additive steps land on multiples of the step, so repeated presses give round numbers.
-    pub fn nudged(self, value: f64, steps: i32, coarse: bool) -> f64 {
+    pub(crate) fn nudged(self, value: f64, steps: i32, coarse: bool) -> f64 {
         let nudge = self.key.spec.nudge.expect("listed values have a step");
         let next = match nudge {
             Nudge::Add { fine, coarse: big } => {

@@ -17,29 +17,29 @@ use ratatui::widgets::canvas::{Canvas, Context, Line as CanvasLine};
 use ratatui::widgets::{Axis, Block, Chart, Clear, Dataset, GraphType, LineGauge, Paragraph, Wrap};
 
 /// The smallest terminal the explorer draws its panels in.
-pub const MIN_WIDTH: u16 = 80;
-pub const MIN_HEIGHT: u16 = 24;
+pub(crate) const MIN_WIDTH: u16 = 80;
+pub(crate) const MIN_HEIGHT: u16 = 24;
 
 /// Stability number from which the step is worth watching, and from which it is in danger
 /// (docs/model.md, "Stability": energy already creeps in from about 1.4 with the paper's friction).
-pub const STABILITY_CAUTION: f64 = 1.0;
-pub const STABILITY_DANGER: f64 = 1.4;
+pub(crate) const STABILITY_CAUTION: f64 = 1.0;
+pub(crate) const STABILITY_DANGER: f64 = 1.4;
 
 /// Where each panel goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Areas {
-    pub header: Rect,
-    pub params: Rect,
-    pub outcomes: Rect,
-    pub die: Rect,
-    pub energy: Rect,
+pub(crate) struct Areas {
+    pub(crate) header: Rect,
+    pub(crate) params: Rect,
+    pub(crate) outcomes: Rect,
+    pub(crate) die: Rect,
+    pub(crate) energy: Rect,
     /// The energy bar and ledger, beside the energy plot.
-    pub ledger: Rect,
-    pub footer: Rect,
+    pub(crate) ledger: Rect,
+    pub(crate) footer: Rect,
 }
 
 /// The panel layout for a terminal of this size; `None` below [`MIN_WIDTH`]×[`MIN_HEIGHT`].
-pub fn screen_layout(area: Rect) -> Option<Areas> {
+pub(crate) fn screen_layout(area: Rect) -> Option<Areas> {
     if area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
         return None;
     }
@@ -108,7 +108,7 @@ pub fn render(app: &App, frame: &mut Frame) {
     app.theme.paint(frame.buffer_mut());
 }
 
-pub fn render_too_small(area: Rect, frame: &mut Frame) {
+pub(crate) fn render_too_small(area: Rect, frame: &mut Frame) {
     let text = vec![
         Line::styled(
             format!("Enlarge the terminal to at least {MIN_WIDTH}×{MIN_HEIGHT}"),
@@ -122,7 +122,7 @@ pub fn render_too_small(area: Rect, frame: &mut Frame) {
 }
 
 /// A number in at most `width` characters: plain when it reads well, else in e-notation.
-pub fn fmt_num(v: f64) -> String {
+pub(crate) fn fmt_num(v: f64) -> String {
     if !v.is_finite() {
         return format!("{v}");
     }
@@ -147,7 +147,7 @@ pub fn fmt_num(v: f64) -> String {
 }
 
 /// A value's allowed range as the list shows it, `min…max`.
-pub fn fmt_range(p: Param) -> String {
+pub(crate) fn fmt_range(p: Param) -> String {
     let l = p.limits();
     format!("{}…{}", fmt_num(l.min), fmt_num(l.max))
 }
@@ -250,7 +250,7 @@ fn param_window(app: &App, params_area: Rect) -> (usize, usize) {
 }
 
 /// The parameter under a screen position, for mouse clicks and scrolls.
-pub fn param_row_at(app: &App, areas: &Areas, at: Position) -> Option<usize> {
+pub(crate) fn param_row_at(app: &App, areas: &Areas, at: Position) -> Option<usize> {
     let body = inner(areas.params);
     if !body.contains(at) || at.y < body.y + 1 {
         return None;

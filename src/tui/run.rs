@@ -20,7 +20,7 @@ use std::time::{Duration, Instant};
 const FRAME: Duration = Duration::from_millis(33);
 
 /// Opens the explorer on `preset` and runs it until the user quits.
-pub fn run(preset: &Preset, theme: Theme) -> Result<()> {
+pub(crate) fn run(preset: &Preset, theme: Theme) -> Result<()> {
     let engine = Engine::new(preset).wrap_err("the preset cannot be simulated")?;
     // A second install (a caller already did) is harmless: keep the first.
     let _ = color_eyre::install();

@@ -27,28 +27,28 @@ pub(crate) fn spun_preset() -> Preset {
 
 /// The engine and the app wired together as the event loop wires them, minus the thread.
 pub(crate) struct Scene {
-    pub engine: Engine,
-    pub app: App,
+    pub(crate) engine: Engine,
+    pub(crate) app: App,
 }
 
 impl Scene {
-    pub fn new(preset: &Preset, theme: Theme) -> Scene {
+    pub(crate) fn new(preset: &Preset, theme: Theme) -> Scene {
         let mut engine = Engine::new(preset).expect("valid preset");
         let app = App::new(engine.snapshot(), theme);
         Scene { engine, app }
     }
 
-    pub fn sync(&mut self) {
+    pub(crate) fn sync(&mut self) {
         let s = self.engine.snapshot();
         update(&mut self.app, Msg::from(s));
     }
 
-    pub fn command(&mut self, c: Command) {
+    pub(crate) fn command(&mut self, c: Command) {
         self.engine.handle(c);
         self.sync();
     }
 
-    pub fn key_with(&mut self, code: KeyCode, modifiers: KeyModifiers) {
+    pub(crate) fn key_with(&mut self, code: KeyCode, modifiers: KeyModifiers) {
         for c in update(
             &mut self.app,
             Msg::Input(Event::Key(KeyEvent::new(code, modifiers))),
@@ -58,11 +58,11 @@ impl Scene {
         self.sync();
     }
 
-    pub fn key(&mut self, code: KeyCode) {
+    pub(crate) fn key(&mut self, code: KeyCode) {
         self.key_with(code, KeyModifiers::NONE);
     }
 
-    pub fn select(&mut self, p: Param) {
+    pub(crate) fn select(&mut self, p: Param) {
         let target = all().iter().position(|&q| q == p).expect("listed");
         while self.app.selected != target {
             self.key(if self.app.selected < target {
@@ -73,7 +73,7 @@ impl Scene {
         }
     }
 
-    pub fn run_to_end(&mut self) {
+    pub(crate) fn run_to_end(&mut self) {
         self.engine.run_to_end();
         self.sync();
     }

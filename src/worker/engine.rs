@@ -7,11 +7,10 @@ use super::speed::Speed;
 use super::twin::Twin;
 use super::{BatchProgress, Command, DieState, EnergySample, OutcomeTable, Phase, RollKind, Snapshot};
 use crate::experiment::trace::{export_roll, free_stem};
-use crate::experiment::{RandomRanges, RollRecord, Rolls, ScanKey, run_batch};
+use crate::experiment::{RandomRanges, RollRecord, ScanKey};
 use crate::physics::registry::Role;
 use crate::physics::{Energy, InitialCondition, ParamError, Params, Simulation, face_most_nearly_up};
 use crate::preset::Preset;
-use std::sync::atomic::AtomicBool;
 
 /// At most this many energy samples per roll: longer rolls keep each term's peak over a
 /// stride of steps, so impact spikes survive the thinning.
@@ -29,9 +28,9 @@ struct BatchState {
 /// initial condition enters the table twice.
 #[derive(Debug, Clone)]
 pub struct BatchRequest {
-    pub id: u64,
-    pub params: Params,
-    pub rolls: Vec<(u64, InitialCondition)>,
+    pub(crate) id: u64,
+    pub(crate) params: Params,
+    pub(crate) rolls: Vec<(u64, InitialCondition)>,
 }
 
 /// Output gathered since the last snapshot.
@@ -118,53 +117,46 @@ impl Engine {
         Ok(engine)
     }
 
-    pub fn params(&self) -> &Params {
+    pub(crate) fn params(&self) -> &Params {
         &self.params
     }
 
-    pub fn initial(&self) -> &InitialCondition {
-        &self.initial
-    }
-
-    pub fn simulation(&self) -> &Simulation {
+    #[cfg(test)]
+    pub(crate) fn simulation(&self) -> &Simulation {
         &self.sim
     }
 
     /// s, simulated: how far the roll has got (the later of the die and its twin, since
     /// the one still rolling keeps the clock going).
-    pub fn time_s(&self) -> f64 {
+    pub(crate) fn time_s(&self) -> f64 {
         let die = self.sim.state().time_s;
         self.twin.as_ref().map_or(die, |t| die.max(t.sim.state().time_s))
     }
 
     /// Whether the roll on screen has ended: the die's, and its twin's if there is one.
-    pub fn roll_over(&self) -> bool {
+    pub(crate) fn roll_over(&self) -> bool {
         self.sim.outcome().is_some() && self.twin.as_ref().is_none_or(Twin::ended)
     }
 
-    pub fn is_playing(&self) -> bool {
+    pub(crate) fn is_playing(&self) -> bool {
         self.playing
     }
 
-    pub fn speed(&self) -> Speed {
+    pub(crate) fn speed(&self) -> Speed {
         self.speed
     }
 
     /// Whether time should keep moving without a command (a playing roll or a batch).
-    pub fn busy(&self) -> bool {
+    pub(crate) fn busy(&self) -> bool {
         self.playing || self.batch.is_some()
     }
 
-    pub fn pacing_epoch(&self) -> u64 {
+    pub(crate) fn pacing_epoch(&self) -> u64 {
         self.pacing_epoch
     }
 
-    pub fn table(&self) -> &OutcomeTable {
-        &self.table
-    }
-
     /// Applies one command; returns false for [`Command::Quit`].
-    pub fn handle(&mut self, command: Command) -> bool {
+    pub(crate) fn handle(&mut self, command: Command) -> bool {
         self.commands_handled += 1;
         match command {
             Command::TogglePlay => {
@@ -314,7 +306,8 @@ impl Engine {
     }
 
     /// The preset as loaded.
-    pub fn preset(&self) -> &Preset {
+    #[cfg(test)]
+    pub(crate) fn preset(&self) -> &Preset {
         &self.preset
     }
 
@@ -455,7 +448,7 @@ impl Engine {
     }
 
     /// Steps while playing until simulated time reaches `time_s` s, at most `max_steps` steps.
-    pub fn advance_until(&mut self, time_s: f64, max_steps: u64) -> u64 {
+    pub(crate) fn advance_until(&mut self, time_s: f64, max_steps: u64) -> u64 {
         let half_dt = 0.5 * self.params.integrator.dt;
         let mut taken = 0;
         while self.playing && taken < max_steps && self.sim.state().time_s + half_dt <= time_s {
@@ -468,7 +461,8 @@ impl Engine {
     }
 
     /// Plays the roll to its end at once (what "instant" shows).
-    pub fn run_to_end(&mut self) {
+    #[cfg(test)]
+    pub(crate) fn run_to_end(&mut self) {
         self.playing = true;
         while !self.roll_over() && self.step() {}
         self.playing = false;
@@ -476,22 +470,22 @@ impl Engine {
 
     /// The batch to start, once: whoever runs it reports back with [`Engine::add_batch_records`]
     /// and [`Engine::finish_batch`].
-    pub fn take_batch_request(&mut self) -> Option<BatchRequest> {
+    pub(crate) fn take_batch_request(&mut self) -> Option<BatchRequest> {
         self.batch_request.take()
     }
 
     /// The newest map order, once: the worker's map thread follows it.
-    pub fn take_map_order(&mut self) -> Option<MapOrder> {
+    pub(crate) fn take_map_order(&mut self) -> Option<MapOrder> {
         self.map_order.take()
     }
 
     /// The batch the table is receiving, if any.
-    pub fn batch_id(&self) -> Option<u64> {
+    pub(crate) fn batch_id(&self) -> Option<u64> {
         self.batch.map(|b| b.id)
     }
 
     /// Enters finished rolls of batch `id`; rolls of a cancelled batch are dropped.
-    pub fn add_batch_records(&mut self, id: u64, records: &[RollRecord]) {
+    pub(crate) fn add_batch_records(&mut self, id: u64, records: &[RollRecord]) {
         let Some(b) = &mut self.batch else { return };
         if b.id != id || records.is_empty() {
             return;
@@ -504,7 +498,7 @@ impl Engine {
     }
 
     /// Batch `id` has stopped (finished, cancelled or failed to start).
-    pub fn finish_batch(&mut self, id: u64, result: Result<(), String>) {
+    pub(crate) fn finish_batch(&mut self, id: u64, result: Result<(), String>) {
         let Some(b) = self.batch else { return };
         if b.id != id {
             return;
@@ -518,7 +512,10 @@ impl Engine {
 
     /// Runs the requested batch on this thread to its end (tests and anything else that
     /// wants the table filled deterministically).
-    pub fn run_batch_here(&mut self) {
+    #[cfg(test)]
+    pub(crate) fn run_batch_here(&mut self) {
+        use crate::experiment::{Rolls, run_batch};
+        use std::sync::atomic::AtomicBool;
         let Some(request) = self.take_batch_request() else {
             return;
         };
@@ -532,7 +529,7 @@ impl Engine {
         self.finish_batch(request.id, result.map(|_| ()).map_err(|e| e.to_string()));
     }
 
-    pub fn phase(&self) -> Phase {
+    pub(crate) fn phase(&self) -> Phase {
         if let Some(o) = self.sim.outcome() {
             return Phase::Ended(o);
         }

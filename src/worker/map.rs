@@ -41,15 +41,15 @@ pub struct MapRequest {
 
 /// A request with the setup it maps around, as the worker had it when the request came.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MapJob {
-    pub request: MapRequest,
-    pub params: Params,
-    pub initial: InitialCondition,
+pub(crate) struct MapJob {
+    pub(crate) request: MapRequest,
+    pub(crate) params: Params,
+    pub(crate) initial: InitialCondition,
 }
 
 /// What the worker's engine asks its map thread to do next.
 #[derive(Debug, Clone, PartialEq)]
-pub enum MapOrder {
+pub(crate) enum MapOrder {
     Start(Box<MapJob>),
     Cancel,
 }
@@ -66,7 +66,7 @@ pub struct MapUpdate {
 
 /// Computes `job` on this thread (one roll thread per core), handing every partial map and
 /// the complete one to `send`; stops early when `cancel` is set or `send` returns false.
-pub fn compute(job: &MapJob, cancel: &AtomicBool, send: &mut dyn FnMut(MapUpdate) -> bool) {
+pub(crate) fn compute(job: &MapJob, cancel: &AtomicBool, send: &mut dyn FnMut(MapUpdate) -> bool) {
     let update = |map| MapUpdate {
         generation: job.request.generation,
         params: job.params,
@@ -111,7 +111,7 @@ pub(super) struct MapRunner {
 }
 
 impl MapRunner {
-    pub fn new(sink: MapSink) -> MapRunner {
+    pub(crate) fn new(sink: MapSink) -> MapRunner {
         MapRunner {
             sink,
             current: None,
@@ -120,7 +120,7 @@ impl MapRunner {
     }
 
     /// Follows the engine's newest order, and forgets threads that have ended.
-    pub fn sync(&mut self, order: Option<MapOrder>) {
+    pub(crate) fn sync(&mut self, order: Option<MapOrder>) {
         if let Some(order) = order {
             if let Some(run) = self.current.take() {
                 run.cancel.store(true, Ordering::Relaxed);

@@ -5,7 +5,7 @@
 //! nothing moves, so a paused explorer costs no CPU. It never touches the terminal.
 
 mod engine;
-pub mod map;
+pub(crate) mod map;
 mod speed;
 mod twin;
 
@@ -63,7 +63,7 @@ pub enum Command {
 
 /// Which roll is on screen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum RollKind {
+pub(crate) enum RollKind {
     /// The preset's own initial condition.
     Preset,
     /// Random roll number `n` (counted in the outcome table once).
@@ -85,7 +85,7 @@ pub enum Phase {
 }
 
 impl Phase {
-    pub fn label(&self) -> String {
+    pub(crate) fn label(&self) -> String {
         match self {
             Phase::Falling => "falling".to_string(),
             Phase::InContact => "in contact".to_string(),
@@ -104,60 +104,60 @@ impl Phase {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EnergySample {
     /// s, simulated.
-    pub time_s: f64,
-    pub energy: Energy,
-    pub total: f64,
+    pub(crate) time_s: f64,
+    pub(crate) energy: Energy,
+    pub(crate) total: f64,
 }
 
 /// How far the twin has drifted from the die at one instant (each term's newest value).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SeparationSample {
+pub(crate) struct SeparationSample {
     /// s, simulated.
-    pub time_s: f64,
-    pub separation: Separation,
+    pub(crate) time_s: f64,
+    pub(crate) separation: Separation,
 }
 
 /// The chaos twin as drawn: its die, how its roll went, and its drift from the first die.
 #[derive(Debug, Clone, PartialEq)]
-pub struct TwinSnapshot {
-    pub epsilon: f64,
-    pub die: DieState,
-    pub phase: Phase,
-    pub separation: Separation,
+pub(crate) struct TwinSnapshot {
+    pub(crate) epsilon: f64,
+    pub(crate) die: DieState,
+    pub(crate) phase: Phase,
+    pub(crate) separation: Separation,
     /// Samples since the previous snapshot (after clearing, if the snapshot's
     /// `history_reset`).
-    pub history: Vec<SeparationSample>,
+    pub(crate) history: Vec<SeparationSample>,
 }
 
 /// The die as drawn.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct DieState {
+pub(crate) struct DieState {
     /// cm, world positions of corners 1..8.
-    pub corners: [Vector3<f64>; 8],
+    pub(crate) corners: [Vector3<f64>; 8],
     /// Each corner's contact force (depth > 0 means it touches the ground).
-    pub forces: [ContactForce; 8],
+    pub(crate) forces: [ContactForce; 8],
     /// cm, centre of mass.
-    pub centre: Vector3<f64>,
+    pub(crate) centre: Vector3<f64>,
     /// cm/s, centre-of-mass velocity.
-    pub velocity: Vector3<f64>,
+    pub(crate) velocity: Vector3<f64>,
     /// rad/s, ω (world frame).
-    pub angular_velocity: Vector3<f64>,
+    pub(crate) angular_velocity: Vector3<f64>,
     /// g·cm²/s, L about the centre of mass.
-    pub angular_momentum: Vector3<f64>,
+    pub(crate) angular_momentum: Vector3<f64>,
     /// The face most nearly up now.
-    pub face_up: u8,
+    pub(crate) face_up: u8,
     /// The face most nearly up at t = 0.
-    pub start_face: u8,
+    pub(crate) start_face: u8,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct BatchProgress {
     pub done: u64,
-    pub total: u64,
+    pub(crate) total: u64,
 }
 
 /// How many finished rolls the table lists.
-pub const LAST_ROLLS: usize = 12;
+pub(crate) const LAST_ROLLS: usize = 12;
 
 /// The outcome table: face counts of random rolls and the last few rolls.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -165,14 +165,14 @@ pub struct OutcomeTable {
     /// Settled rolls with a face up.
     pub tally: FaceTally,
     /// Rolls that reached the time cap, or settled without a face up.
-    pub did_not_settle: u64,
-    pub unstable: u64,
+    pub(crate) did_not_settle: u64,
+    pub(crate) unstable: u64,
     /// Newest first.
     pub last: VecDeque<RollRecord>,
 }
 
 impl OutcomeTable {
-    pub fn add(&mut self, r: RollRecord) {
+    pub(crate) fn add(&mut self, r: RollRecord) {
         match (r.outcome.status, r.outcome.face) {
             (Status::Settled, Some(f)) => self.tally.add(f),
             (Status::Unstable, _) => self.unstable += 1,
@@ -195,15 +195,15 @@ pub struct Snapshot {
     pub commands_handled: u64,
     pub params: Params,
     pub initial: InitialCondition,
-    pub roll: RollKind,
+    pub(crate) roll: RollKind,
     pub playing: bool,
-    pub speed: Speed,
-    pub die: DieState,
-    pub energy: Energy,
+    pub(crate) speed: Speed,
+    pub(crate) die: DieState,
+    pub(crate) energy: Energy,
     /// Where the energy went since t = 0 (measured in the physics, step by step).
-    pub ledger: EnergyLedger,
+    pub(crate) ledger: EnergyLedger,
     /// erg, the stopping threshold.
-    pub stop_threshold: f64,
+    pub(crate) stop_threshold: f64,
     /// s, simulated.
     pub time_s: f64,
     pub step: u64,
@@ -218,13 +218,13 @@ pub struct Snapshot {
     /// A one-line message for the user (a refused value, a finished batch).
     pub notice: Option<String>,
     /// The chaos twin, stepped in lock-step with the die.
-    pub twin: Option<TwinSnapshot>,
+    pub(crate) twin: Option<TwinSnapshot>,
     /// The preset loaded, in the first snapshot and whenever another is loaded.
-    pub preset: Option<Box<Preset>>,
+    pub(crate) preset: Option<Box<Preset>>,
 }
 
 /// s of wall time between snapshots while something moves.
-pub const TICK: Duration = Duration::from_micros(16_667);
+pub(crate) const TICK: Duration = Duration::from_micros(16_667);
 
 /// Steps per tick at "instant": a roll of the default 30 s cap finishes in one tick, and
 /// the longest allowed (120 s at 10 µs) in a second or two without blocking commands.
