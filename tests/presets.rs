@@ -679,6 +679,9 @@ prop_compose! {
             angular_momentum: spin.1,
             orientation,
         };
+        // A start inside the table is refused: lift it clear, as a valid preset must be.
+        let lowest = -p.initial.lowest_corner_offset(p.die.half_size) - p.params().resting_depth();
+        p.initial.height = p.initial.height.max(lowest);
         p.random.seed = random.0;
         (p.random.height, p.random.velocity, p.random.angular_velocity) = (random.1, random.2, random.3);
         p.random.random_orientation = random.4;

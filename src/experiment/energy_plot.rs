@@ -41,7 +41,9 @@ pub(crate) fn write_energy_plot(
     let root = BitMapBackend::new(path, SIZE).into_drawing_area();
     root.fill(&WHITE).map_err(plot_error)?;
     let t_end = samples.last().map_or(1.0, |s| s.0).max(1e-3);
-    let (mut lo, mut hi) = (0.0f64, threshold);
+    // A table too soft to hold a face has no threshold (−∞): nothing to draw.
+    let shown = threshold.is_finite().then_some(threshold);
+    let (mut lo, mut hi) = (0.0f64, shown.unwrap_or(1.0));
     for (_, e) in samples {
         for k in 0..SERIES.len() {
             let v = value(e, k);
@@ -77,12 +79,14 @@ pub(crate) fn write_energy_plot(
             .label(*name)
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], colour.stroke_width(3)));
     }
-    let dots = (0..200).map(|i| (t_end * i as f64 / 199.0, threshold));
-    chart
-        .draw_series(dots.map(|p| Circle::new(p, 1, BLACK.filled())))
-        .map_err(plot_error)?
-        .label("stop threshold")
-        .legend(|(x, y)| Circle::new((x + 12, y), 2, BLACK.filled()));
+    if let Some(threshold) = shown {
+        let dots = (0..200).map(|i| (t_end * i as f64 / 199.0, threshold));
+        chart
+            .draw_series(dots.map(|p| Circle::new(p, 1, BLACK.filled())))
+            .map_err(plot_error)?
+            .label("stop threshold")
+            .legend(|(x, y)| Circle::new((x + 12, y), 2, BLACK.filled()));
+    }
     chart
         .configure_series_labels()
         .label_font(("sans-serif", 17))

@@ -108,7 +108,8 @@ impl ScanKey {
         (self.scan().set)(params, initial, self.component, value)
     }
 
-    /// Checks `value`, then sets it; on error nothing changes.
+    /// Checks `value` against its range and the start it gives against the table (no corner
+    /// inside it), then sets it; on error nothing changes.
     pub(crate) fn set_checked(
         &self,
         params: &mut Params,
@@ -116,7 +117,10 @@ impl ScanKey {
         value: f64,
     ) -> Result<(), ParamError> {
         self.check(value)?;
-        self.set(params, initial, value);
+        let (mut p, mut ic) = (*params, *initial);
+        self.set(&mut p, &mut ic, value);
+        ic.check_clear_of_table(&p)?;
+        (*params, *initial) = (p, ic);
         Ok(())
     }
 }

@@ -16,6 +16,15 @@ pub struct Energy {
 }
 
 impl Energy {
+    pub fn kinetic(&self) -> f64 {
+        self.translational + self.rotational
+    }
+
+    /// `M·g·(z − a) + Σ ½·k·d_k²`.
+    pub fn potential(&self) -> f64 {
+        self.gravitational + self.elastic
+    }
+
     pub fn total(&self) -> f64 {
         self.translational + self.rotational + self.gravitational + self.elastic
     }

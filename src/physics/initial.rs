@@ -1,6 +1,7 @@
 //! The initial condition of a roll (the `[initial]` section of a preset).
 
-use super::params::ParamError;
+use super::body::body_corner_offsets;
+use super::params::{Limits, ParamError, Params};
 use super::registry::{self, Role, Setup};
 use nalgebra::{Rotation3, Vector3};
 use serde::{Deserialize, Serialize};
@@ -45,6 +46,43 @@ impl InitialCondition {
             ..Setup::default()
         };
         registry::validate(&setup, &[Role::Initial])
+    }
+
+    /// Refuses a start with any corner inside the table deeper than the die's resting depth
+    /// `M·g/(4k)` (a die may be placed resting on the table, not pushed into it): the error
+    /// names the lowest height allowed at this orientation.
+    pub fn check_clear_of_table(&self, params: &Params) -> Result<(), ParamError> {
+        let lowest = -self.lowest_corner_offset(params.die.half_size) - params.resting_depth();
+        if self.height >= lowest {
+            Ok(())
+        } else {
+            Err(ParamError {
+                key: registry::HEIGHT.key().to_string(),
+                value: self.height,
+                limits: Limits {
+                    min: lowest,
+                    unit: "cm at this orientation (lower, a corner starts inside the table)",
+                    ..registry::HEIGHT.limits
+                },
+            })
+        }
+    }
+
+    /// cm, the lowest corner's height relative to the centre at `t = 0` (negative), with
+    /// the corners placed exactly as the simulation places them.
+    pub fn lowest_corner_offset(&self, half_size: f64) -> f64 {
+        let corners = body_corner_offsets(half_size);
+        let rotation = self.rotation();
+        corners
+            .iter()
+            .map(|r| {
+                if self.orientation == [0.0; 3] {
+                    r.z
+                } else {
+                    (rotation * r).z
+                }
+            })
+            .fold(f64::INFINITY, f64::min)
     }
 
     /// g·cm²/s, the initial angular momentum for a body of moment of inertia `inertia`.

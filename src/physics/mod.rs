@@ -8,12 +8,16 @@ pub(crate) mod initial;
 pub mod params;
 pub mod registry;
 pub(crate) mod sim;
+pub mod stability;
+pub mod stopping;
 
 pub(crate) use body::{face_most_nearly_up, opposite_face};
 pub(crate) use energy::Energy;
 pub use initial::{InitialCondition, RandomRanges};
 pub use params::{Die, FrictionLaw, Ground, Integrator, Limits, ParamError, Params, StopEnergy, World};
 pub use sim::{ContactForce, EnergyLedger, Outcome, Simulation, State, Status};
+pub use stability::{Limit, Reading, Stability, UnstableReason};
+pub use stopping::{StopRule, settles};
 
 /// Rolls one die from `initial` to the end; the parameters must already be valid.
 pub fn roll(params: &Params, initial: &InitialCondition) -> Result<(Outcome, Simulation), ParamError> {

@@ -132,8 +132,6 @@ pub struct Spec {
     pub(crate) nudge: Option<Nudge>,
     /// Acts on the running roll at once (the explorer does not restart the roll).
     pub(crate) acts_mid_roll: bool,
-    /// `ω_rock·Δt`, the integrator's stability number, is shown beside it.
-    pub(crate) sets_stability: bool,
     /// The value as stored (no conversion: a spin given as momentum reads as given).
     pub(crate) read: fn(&Setup) -> Value,
     /// Numeric values a scan or the explorer can change; `None` for the rest.
@@ -299,7 +297,6 @@ pub const HALF_SIZE: Spec = Spec {
         coarse: 0.5,
     }),
     acts_mid_roll: false,
-    sets_stability: false,
     read: |s| Value::Number(s.params.die.half_size),
     scan: params_field!(die.half_size),
 };
@@ -321,7 +318,6 @@ pub const CORNER_MASS: Spec = Spec {
         coarse: 2.0,
     }),
     acts_mid_roll: false,
-    sets_stability: false,
     read: |s| Value::Number(s.params.die.corner_mass),
     scan: params_field!(die.corner_mass),
 };
@@ -343,7 +339,6 @@ pub const STIFFNESS: Spec = Spec {
         coarse: 2.0,
     }),
     acts_mid_roll: true,
-    sets_stability: true,
     read: |s| Value::Number(s.params.ground.stiffness),
     scan: params_field!(ground.stiffness),
 };
@@ -365,7 +360,6 @@ pub const DAMPING: Spec = Spec {
         coarse: 0.005,
     }),
     acts_mid_roll: true,
-    sets_stability: false,
     read: |s| Value::Number(s.params.ground.damping),
     scan: params_field!(ground.damping),
 };
@@ -387,7 +381,6 @@ pub const FRICTION: Spec = Spec {
         coarse: 0.5,
     }),
     acts_mid_roll: true,
-    sets_stability: false,
     read: |s| Value::Number(s.params.ground.friction),
     scan: params_field!(ground.friction),
 };
@@ -409,7 +402,6 @@ pub(crate) const FRICTION_LAW: Spec = Spec {
     list_position: u8::MAX,
     nudge: None,
     acts_mid_roll: true,
-    sets_stability: false,
     read: |s| Value::Name(s.params.ground.friction_law.name()),
     scan: None,
 };
@@ -431,7 +423,6 @@ pub const GRAVITY: Spec = Spec {
         coarse: 100.0,
     }),
     acts_mid_roll: false,
-    sets_stability: false,
     read: |s| Value::Number(s.params.world.gravity),
     scan: params_field!(world.gravity),
 };
@@ -453,7 +444,6 @@ pub const DT: Spec = Spec {
         coarse: 2.0,
     }),
     acts_mid_roll: false,
-    sets_stability: true,
     read: |s| Value::Number(s.params.integrator.dt),
     scan: params_field!(integrator.dt),
 };
@@ -472,7 +462,6 @@ pub const STOP_ENERGY_FRACTION: Spec = Spec {
     list_position: u8::MAX,
     nudge: None,
     acts_mid_roll: false,
-    sets_stability: false,
     read: |s| Value::Number(s.params.integrator.stop_energy_fraction),
     scan: params_field!(integrator.stop_energy_fraction),
 };
@@ -491,7 +480,6 @@ pub const MAX_TIME: Spec = Spec {
     list_position: u8::MAX,
     nudge: None,
     acts_mid_roll: false,
-    sets_stability: false,
     read: |s| Value::Number(s.params.integrator.max_time),
     scan: params_field!(integrator.max_time),
 };
@@ -513,7 +501,6 @@ pub(crate) const STOP_ENERGY: Spec = Spec {
     list_position: u8::MAX,
     nudge: None,
     acts_mid_roll: false,
-    sets_stability: false,
     read: |s| Value::Name(s.params.integrator.stop_energy.name()),
     scan: None,
 };
@@ -535,7 +522,6 @@ pub const HEIGHT: Spec = Spec {
         coarse: 5.0,
     }),
     acts_mid_roll: false,
-    sets_stability: false,
     read: |s| Value::Number(s.initial.height),
     scan: Some(Scan {
         get: |_, ic, _| ic.height,
@@ -563,7 +549,6 @@ pub const VELOCITY: Spec = Spec {
         coarse: 50.0,
     }),
     acts_mid_roll: false,
-    sets_stability: false,
     read: |s| Value::Vector(s.initial.velocity),
     scan: Some(Scan {
         get: |_, ic, i| ic.velocity[i],
@@ -594,7 +579,6 @@ pub const ANGULAR_VELOCITY: Spec = Spec {
         coarse: 10.0,
     }),
     acts_mid_roll: false,
-    sets_stability: false,
     read: |s| Value::Vector(s.initial.angular_velocity),
     scan: Some(Scan {
         get: |p, ic, i| ic.angular_velocity_for(p.inertia())[i],
@@ -624,7 +608,6 @@ pub const ANGULAR_MOMENTUM: Spec = Spec {
     list_position: u8::MAX,
     nudge: None,
     acts_mid_roll: false,
-    sets_stability: false,
     read: |s| s.initial.angular_momentum.map_or(Value::Absent, Value::Vector),
     scan: Some(Scan {
         get: |p, ic, i| ic.angular_momentum_for(p.inertia())[i],
@@ -656,7 +639,6 @@ pub const ORIENTATION: Spec = Spec {
         coarse: 45.0,
     }),
     acts_mid_roll: false,
-    sets_stability: false,
     read: |s| Value::Vector(s.initial.orientation),
     scan: Some(Scan {
         get: |_, ic, i| ic.orientation[i],
@@ -678,7 +660,6 @@ pub(crate) const SEED: Spec = Spec {
     list_position: u8::MAX,
     nudge: None,
     acts_mid_roll: false,
-    sets_stability: false,
     read: |s| Value::Seed(s.random.seed),
     scan: None,
 };
@@ -694,7 +675,6 @@ const fn random_range(of: &Spec, key: &'static str, default: [f64; 2], comment: 
         list_position: u8::MAX,
         nudge: None,
         acts_mid_roll: false,
-        sets_stability: false,
         read: |_| Value::Absent,
         scan: None,
     }
@@ -744,7 +724,6 @@ pub(crate) const RANDOM_ORIENTATION: Spec = Spec {
     list_position: u8::MAX,
     nudge: None,
     acts_mid_roll: false,
-    sets_stability: false,
     read: |s| Value::Flag(s.random.random_orientation),
     scan: None,
 };

@@ -8,6 +8,7 @@ use super::body::{body_corner_offsets, face_most_nearly_up, face_of_highest_corn
 use super::energy::Energy;
 use super::initial::InitialCondition;
 use super::params::{FrictionLaw, Ground, ParamError, Params, StopEnergy};
+use super::stopping::{StopRule, settles};
 use nalgebra::{Matrix3, Vector3};
 use serde::Serialize;
 
@@ -80,7 +81,8 @@ pub struct EnergyLedger {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Status {
-    /// Energy fell below the stopping threshold: the face can no longer change.
+    /// The stopping rule held (docs/model.md, "Stopping rule"): the energy is too low to
+    /// pass over an edge and the die is close to rest, so the face can no longer change.
     Settled,
     /// Simulated time passed `integrator.max_time` first: the die did not settle.
     Timeout,
@@ -128,7 +130,7 @@ struct Constants {
     friction: f64,
     friction_law: FrictionLaw,
     stop_energy: StopEnergy,
-    threshold: f64,
+    stop_rule: StopRule,
     max_steps: u64,
 }
 
@@ -148,7 +150,7 @@ impl Constants {
             friction: p.ground.friction,
             friction_law: p.ground.friction_law,
             stop_energy: p.integrator.stop_energy,
-            threshold: p.stop_threshold(),
+            stop_rule: StopRule::new(p),
             max_steps: p.max_steps(),
         }
     }
@@ -178,10 +180,12 @@ pub struct Simulation {
 }
 
 impl Simulation {
-    /// Validates the parameters and the initial condition, then places the die.
+    /// Validates the parameters and the initial condition (no corner may start inside the
+    /// table), then places the die.
     pub fn new(params: &Params, initial: &InitialCondition) -> Result<Self, ParamError> {
         params.validate()?;
         initial.validate()?;
+        initial.check_clear_of_table(params)?;
         Ok(Self::new_unchecked(params, initial))
     }
 
@@ -271,7 +275,7 @@ impl Simulation {
     }
 
     /// World positions of corners 1..8, cm.
-    pub(crate) fn corner_positions(&self) -> [Vector3<f64>; 8] {
+    pub fn corner_positions(&self) -> [Vector3<f64>; 8] {
         self.state.corner_offsets.map(|r| self.state.position + r)
     }
 
@@ -328,6 +332,11 @@ impl Simulation {
     /// erg, the energy the authors' program compared with the threshold: the corners as 8
     /// point masses and the ground term `½·Σ d_k·P_k` with the damped force (reference §2).
     pub fn point_mass_energy(&self) -> f64 {
+        self.point_mass_parts().1
+    }
+
+    /// erg, the authors' point-mass energy as `(kinetic ½·m·Σ|u_k|², total)`.
+    fn point_mass_parts(&self) -> (f64, f64) {
         let s = &self.state;
         let c = &self.c;
         let u = self.corner_velocities();
@@ -344,18 +353,30 @@ impl Simulation {
             heights += s.corner_offsets[k].z + s.position.z;
             ground += s.corner_depths[k] * s.corner_forces[k].z;
         }
-        0.5 * c.corner_mass * kinetic + c.corner_mass * c.gravity * heights + 0.5 * ground
-            - c.mass * c.gravity * c.half_size
+        let kinetic = 0.5 * c.corner_mass * kinetic;
+        let total =
+            kinetic + c.corner_mass * c.gravity * heights + 0.5 * ground - c.mass * c.gravity * c.half_size;
+        (kinetic, total)
     }
 
     /// erg, the energy the stopping rule uses (`integrator.stop_energy`).
-    pub(crate) fn stop_energy(&self) -> f64 {
-        self.stop_energy_from(self.energy().total())
+    pub fn stop_energy(&self) -> f64 {
+        self.stop_energy_from(&self.energy()).1
     }
 
-    /// erg, the stopping threshold.
-    pub(crate) fn stop_threshold(&self) -> f64 {
-        self.c.threshold
+    /// erg, the kinetic part of the stop energy.
+    pub fn stop_kinetic_energy(&self) -> f64 {
+        self.stop_energy_from(&self.energy()).0
+    }
+
+    /// erg, the stop energy's threshold (docs/model.md, "Stopping rule").
+    pub fn stop_threshold(&self) -> f64 {
+        self.c.stop_rule.energy_threshold
+    }
+
+    /// The stopping rule's thresholds for these parameters.
+    pub fn stop_rule(&self) -> StopRule {
+        self.c.stop_rule
     }
 
     /// The face whose outward normal points most nearly up (the live display's face).
@@ -449,11 +470,12 @@ impl Simulation {
 
     /// Whether the current state ends the roll, and how.
     fn check_end(&self) -> Option<Outcome> {
-        let rigid = self.energy().total();
+        let energy = self.energy();
+        let rigid = energy.total();
         let runaway = rigid > RUNAWAY_ENERGY_FACTOR * self.initial_energy.max(self.params.edge_energy());
         let status = if !rigid.is_finite() || !self.state_is_finite() || runaway {
             Some(Status::Unstable)
-        } else if self.stop_energy_from(rigid) <= self.c.threshold {
+        } else if self.settled(&energy, rigid) {
             Some(Status::Settled)
         } else if self.state.step >= self.c.max_steps {
             Some(Status::Timeout)
@@ -471,11 +493,23 @@ impl Simulation {
         })
     }
 
-    /// The stop energy, given the rigid-body energy already computed for this state.
-    fn stop_energy_from(&self, rigid: f64) -> f64 {
+    /// The stopping rule on this state, given its rigid-body energy and that energy's total.
+    #[inline]
+    fn settled(&self, energy: &Energy, rigid: f64) -> bool {
         match self.c.stop_energy {
-            StopEnergy::RigidBody => rigid,
-            StopEnergy::PointMasses => self.point_mass_energy(),
+            StopEnergy::RigidBody => settles(rigid, energy.kinetic(), energy.potential(), &self.c.stop_rule),
+            StopEnergy::PointMasses => {
+                let (kinetic, total) = self.point_mass_parts();
+                settles(total, kinetic, energy.potential(), &self.c.stop_rule)
+            }
+        }
+    }
+
+    /// `(kinetic, total)` of the stop energy, given the rigid-body energy of this state.
+    fn stop_energy_from(&self, energy: &Energy) -> (f64, f64) {
+        match self.c.stop_energy {
+            StopEnergy::RigidBody => (energy.kinetic(), energy.total()),
+            StopEnergy::PointMasses => self.point_mass_parts(),
         }
     }
 

@@ -99,6 +99,7 @@ impl Preset {
         FORMAT_LIMITS.check(f64::from(self.format))?;
         self.params().validate()?;
         self.initial.validate()?;
+        self.initial.check_clear_of_table(&self.params())?;
         self.random.validate()
     }
 }

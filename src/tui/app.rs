@@ -240,13 +240,22 @@ impl App {
     }
 
     fn set_param(&mut self, out: &mut Vec<Command>, p: Param, value: f64) -> Result<(), String> {
-        p.set(&mut self.params, &mut self.initial, value).map_err(|_| {
-            format!(
-                "{} is outside {} {}",
-                fmt_num(value),
-                fmt_range(p),
-                p.limits().unit
-            )
+        p.set(&mut self.params, &mut self.initial, value).map_err(|e| {
+            if e.limits == p.limits() {
+                format!(
+                    "{} is outside {} {}",
+                    fmt_num(value),
+                    fmt_range(p),
+                    p.limits().unit
+                )
+            } else {
+                // The value is in range, but the die would start inside the table.
+                format!(
+                    "{}: corner in the table; ≥ {} cm",
+                    fmt_num(value),
+                    fmt_num(e.limits.min)
+                )
+            }
         })?;
         self.send(out, Command::SetParam(p.scan_key(), value));
         Ok(())

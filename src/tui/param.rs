@@ -76,11 +76,6 @@ impl Param {
         self.key.spec.acts_mid_roll
     }
 
-    /// Whether `ω_rock·Δt` depends on this value (shown beside it).
-    pub(crate) fn sets_stability(self) -> bool {
-        self.key.spec.sets_stability
-    }
-
     pub(crate) fn get(self, params: &Params, initial: &InitialCondition) -> f64 {
         self.key.get(params, initial)
     }

@@ -5,7 +5,8 @@ use super::app::{App, Drawing};
 use super::camera::{EDGES, FACE_CORNERS, face_centre, face_normal};
 use super::help::help_lines;
 use super::param::{Param, all};
-use crate::physics::Status;
+use crate::physics::stopping::why_it_cannot_settle;
+use crate::physics::{Stability, Status, UnstableReason};
 use crate::worker::{EnergySample, Phase, RollKind};
 use nalgebra::Vector3;
 use ratatui::Frame;
@@ -20,10 +21,10 @@ use ratatui::widgets::{Axis, Block, Chart, Clear, Dataset, GraphType, LineGauge,
 pub(crate) const MIN_WIDTH: u16 = 80;
 pub(crate) const MIN_HEIGHT: u16 = 24;
 
-/// Stability number from which the step is worth watching, and from which it is in danger
-/// (docs/model.md, "Stability": energy already creeps in from about 1.4 with the paper's friction).
-pub(crate) const STABILITY_CAUTION: f64 = 1.0;
-pub(crate) const STABILITY_DANGER: f64 = 1.4;
+/// Share of the tightest stability limit from which the step is worth watching; past the
+/// limit itself (1) a roll is predicted unstable (docs/model.md, "Stability").
+pub const STABILITY_CAUTION: f64 = 0.8;
+pub const STABILITY_DANGER: f64 = 1.0;
 
 /// Where each panel goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -163,13 +164,72 @@ fn phase_style(app: &App, phase: &Phase) -> Style {
     }
 }
 
-fn stability_style(app: &App, number: f64) -> Style {
-    if number >= STABILITY_DANGER || number.is_nan() {
+fn stability_style(app: &App, load: f64) -> Style {
+    if load > STABILITY_DANGER || load.is_nan() {
         app.theme.danger()
-    } else if number >= STABILITY_CAUTION {
+    } else if load >= STABILITY_CAUTION {
         app.theme.caution()
     } else {
         Style::new()
+    }
+}
+
+/// The one stability readout: the tightest of the predictor's limits for the setup on the
+/// list, as a share of that limit, e.g. "Δt stability: table stiffness at 44 % of limit".
+pub(crate) fn stability_readout(app: &App, width: u16) -> Line<'static> {
+    let reading = Stability::predict(&app.params, &app.initial).verdict();
+    let load = reading.load();
+    let percent = if load.is_finite() {
+        format!("{:.0} %", 100.0 * load)
+    } else {
+        "∞".to_string()
+    };
+    let name = reading.limit.name();
+    let text = [
+        format!(" Δt stability: {name} at {percent} of limit "),
+        format!(" Δt: {name} at {percent} of limit "),
+        format!(" Δt: {name} {percent} of limit "),
+    ]
+    .into_iter()
+    .find(|t| t.chars().count() <= width as usize)
+    .unwrap_or_else(|| format!(" Δt: {name} {percent} "));
+    Line::styled(text, stability_style(app, load))
+}
+
+/// `text` broken at spaces into lines of at most `width` characters (a longer word gets a
+/// line of its own).
+fn wrap_words(text: &str, width: usize) -> Vec<String> {
+    let mut lines = Vec::new();
+    let mut line = String::new();
+    for word in text.split_whitespace() {
+        let needed = line.chars().count() + usize::from(!line.is_empty()) + word.chars().count();
+        if !line.is_empty() && needed > width {
+            lines.push(std::mem::take(&mut line));
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(word);
+    }
+    if !line.is_empty() {
+        lines.push(line);
+    }
+    lines
+}
+
+/// Why the roll on screen ended unstable, or could not settle on its table, when it did.
+fn end_reason(app: &App) -> Option<(String, Style)> {
+    match app.live.phase {
+        Phase::Ended(o) if o.status == Status::Unstable => Some((
+            format!(
+                "unstable: {}",
+                UnstableReason::new(&app.live.params, &app.live.initial)
+            ),
+            app.theme.danger(),
+        )),
+        Phase::Ended(o) if o.status == Status::Timeout => why_it_cannot_settle(&app.live.params)
+            .map(|why| (format!("did not settle: {why}"), app.theme.caution())),
+        _ => None,
     }
 }
 
@@ -264,20 +324,20 @@ pub(crate) fn param_row_at(app: &App, areas: &Areas, at: Position) -> Option<usi
 
 pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
-    let block = Block::bordered().title(Line::styled(" parameters ", t.heading()));
+    let block = Block::bordered()
+        .title(Line::styled(" parameters ", t.heading()))
+        .title_bottom(stability_readout(app, area.width.saturating_sub(2)));
     let body = block.inner(area);
     frame.render_widget(block, area);
     if body.height == 0 {
         return;
     }
     let wide = body.width >= 49;
-    let stability = app.params.stability_number();
     let mut lines = Vec::with_capacity(body.height as usize);
     let mut head = format!(" {:<13} {:>8} {:<6}", "parameter", "value", "unit");
     if wide {
         head.push_str(&format!(" {:<11}", "range"));
     }
-    head.push_str(" ω·Δt");
     lines.push(Line::styled(head, t.heading()));
     let (first, visible) = param_window(app, area);
     for (i, &p) in all().iter().enumerate().skip(first).take(visible) {
@@ -291,13 +351,6 @@ pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
         ))];
         if wide {
             spans.push(Span::raw(format!(" {:<11}", fmt_range(p))));
-        }
-        if p.sets_stability() {
-            spans.push(Span::raw(" "));
-            spans.push(Span::styled(
-                format!("{stability:.2}"),
-                stability_style(app, stability),
-            ));
         }
         let mut line = Line::from(spans);
         if i == app.selected {
@@ -567,6 +620,18 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
             ctx.print(x_lo, y_hi, Span::raw(format!("centre {:.2} cm up", die.centre.z)));
         });
     frame.render_widget(canvas, body);
+    if let Some((reason, style)) = end_reason(app) {
+        let lines: Vec<Line> = wrap_words(&reason, body.width as usize)
+            .into_iter()
+            .map(|l| Line::styled(l, style))
+            .collect();
+        let top = Rect {
+            height: (lines.len() as u16).min(body.height),
+            ..body
+        };
+        frame.render_widget(Clear, top);
+        frame.render_widget(Paragraph::new(lines), top);
+    }
     if app.vectors && body.height >= 6 {
         let legend = Rect {
             y: body.bottom() - 2,

@@ -9,6 +9,7 @@ use super::render::{
 };
 use super::theme::Theme;
 use crate::physics::Status;
+use crate::physics::stability::CONTACT_MODE_LIMIT;
 use crate::preset::Preset;
 use crate::worker::{Command, Engine, Phase};
 use ratatui::Terminal;
@@ -363,49 +364,98 @@ fn no_color_sends_no_colour_at_all() {
     }
 }
 
-/// The style of the stability number on the stiffness row.
-fn stability_cell(app: &App) -> ratatui::buffer::Cell {
+/// The stability readout on the parameters panel's bottom border: its text and the style
+/// of its first letter.
+fn stability_readout_cell(app: &App) -> (String, ratatui::buffer::Cell) {
     let t = draw(app, 120, 36);
     let buffer = t.backend().buffer().clone();
-    let number = format!("{:.2}", app.params.stability_number());
     let lines = lines_of(&buffer);
     let y = lines
         .iter()
-        .position(|l| l.contains("stiffness k"))
-        .expect("stiffness row");
-    let x = lines[y].split("stiffness k").next().expect("row").chars().count()
-        + lines[y]
-            .split("stiffness k")
-            .nth(1)
-            .expect("row")
-            .find(&number)
-            .map(|b| {
-                lines[y].split("stiffness k").nth(1).expect("row")[..b]
-                    .chars()
-                    .count()
-            })
-            .expect("number on the row")
-        + "stiffness k".chars().count();
-    buffer[(x as u16, y as u16)].clone()
+        .position(|l| l.contains("└ Δt"))
+        .expect("the readout is on screen");
+    let x = lines[y].split("└ Δt").next().expect("row").chars().count() + 2;
+    let text = lines[y].split('┘').next().expect("row").to_string();
+    (text, buffer[(x as u16, y as u16)].clone())
 }
 
 #[test]
-fn stability_number_warns_as_it_nears_two() {
+fn stability_readout_warns_as_the_tightest_limit_nears() {
     let mut s = start();
-    let calm = stability_cell(&s.app);
-    assert!(s.app.params.stability_number() < STABILITY_CAUTION);
+    let (text, calm) = stability_readout_cell(&s.app);
+    assert!(text.contains("of limit"), "{text}");
     assert_eq!(calm.bg, Color::Reset);
-    // k for a given ω_rock·Δt: (number / Δt)² · M / 6.
-    let k_for =
-        |number: f64, app: &App| (number / app.params.integrator.dt).powi(2) * app.params.total_mass() / 6.0;
+    // k for a given share of the contact-mode limit: (share·limit / Δt)² · M / 6.
+    let k_for = |share: f64, app: &App| {
+        (share * CONTACT_MODE_LIMIT / app.params.integrator.dt).powi(2) * app.params.total_mass() / 6.0
+    };
     let k = k_for((STABILITY_CAUTION + STABILITY_DANGER) / 2.0, &s.app);
     s.command(Command::SetParam(Param::named("ground.stiffness").scan_key(), k));
-    assert_eq!(stability_cell(&s.app).bg, Color::Yellow);
+    let (text, caution) = stability_readout_cell(&s.app);
+    assert!(text.contains("table stiffness at 90 % of limit"), "{text}");
+    assert_eq!(caution.bg, Color::Yellow);
     let k = k_for(STABILITY_DANGER + 0.3, &s.app);
     s.command(Command::SetParam(Param::named("ground.stiffness").scan_key(), k));
-    let danger = stability_cell(&s.app);
+    let (text, danger) = stability_readout_cell(&s.app);
+    assert!(text.contains("table stiffness at 130 % of limit"), "{text}");
     assert_eq!(danger.bg, Color::Red);
     assert!(danger.modifier.contains(Modifier::BOLD));
+}
+
+/// Spin of 10 000 rad/s: the readout and the roll's end both say a corner moves too far
+/// per step, and by how much.
+#[test]
+fn fast_spin_is_called_unstable_with_its_reason() {
+    let preset = Preset::default()
+        .with_overrides(&["initial.angular_velocity=[10000,0,0]"])
+        .expect("in range");
+    let mut s = Scene::new(&preset, Theme::default());
+    let (text, _) = stability_readout_cell(&s.app);
+    assert!(text.contains("corner speed at 1749 % of limit"), "{text}");
+    s.run_to_end();
+    assert!(matches!(s.app.live.phase, Phase::Ended(o) if o.status == Status::Unstable));
+    let wide = screen(&s.app, 120, 36);
+    // ω·a·√3 + the fall from 15 cm, times Δt: 17.3 + 0.17 cm.
+    assert!(
+        wide.contains("unstable: spin too fast for Δt: a corner moves 17.489 cm per step"),
+        "{wide}"
+    );
+    insta::assert_snapshot!("fast_spin_unstable_120x36", wide);
+    insta::assert_snapshot!("fast_spin_unstable_80x24", screen(&s.app, 80, 24));
+}
+
+/// k = 100: the table cannot hold the die, so the roll runs to its time limit instead of
+/// "settling" with the die sinking through the table.
+#[test]
+fn a_table_too_soft_ends_as_did_not_settle() {
+    let preset = Preset::default()
+        .with_overrides(&["ground.stiffness=100"])
+        .expect("in range");
+    let mut s = Scene::new(&preset, Theme::default());
+    s.run_to_end();
+    assert!(matches!(s.app.live.phase, Phase::Ended(o) if o.status == Status::Timeout));
+    let text = screen(&s.app, 120, 36);
+    assert!(
+        text.contains("did not settle: the table is too soft to hold the die"),
+        "{text}"
+    );
+    insta::assert_snapshot!("soft_table_120x36", text);
+}
+
+#[test]
+fn a_start_inside_the_table_is_refused() {
+    let mut s = start();
+    s.select(Param::named("initial.height"));
+    s.key(KeyCode::Enter);
+    for _ in 0..4 {
+        s.key(KeyCode::Backspace);
+    }
+    s.key(KeyCode::Char('0'));
+    s.key(KeyCode::Enter);
+    assert_eq!(s.app.initial.height, 15.0);
+    let text = screen(&s.app, 120, 36);
+    assert!(text.contains("0: corner in the table; ≥ 0.9961 cm"), "{text}");
+    insta::assert_snapshot!("start_inside_table_refused_80x24", screen(&s.app, 80, 24));
 }
 
 /// Pure key handling: an app, a key, the commands it sends; no worker involved.
