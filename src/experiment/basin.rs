@@ -152,9 +152,9 @@ impl Cell {
 /// from `y.min` (j = 0) up.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BasinMap {
-    pub(crate) x: Axis,
-    pub(crate) y: Axis,
-    pub(crate) method: Method,
+    pub x: Axis,
+    pub y: Axis,
+    pub method: Method,
     /// Row-major, `j * width + i`; `None` where nothing is known yet (a partial map).
     pub cells: Vec<Option<Cell>>,
     /// How many cells were rolled.

@@ -60,13 +60,13 @@ pub struct Batch {
     /// The completed rolls in roll order: all of them, or an exact prefix if cancelled.
     pub records: Vec<RollRecord>,
     /// How many rolls were asked for.
-    pub(crate) requested: u64,
+    pub requested: u64,
     /// Whether the cancel flag stopped the batch before the end.
     pub cancelled: bool,
     /// Wall-clock time the rolls took.
-    pub(crate) elapsed: Duration,
+    pub elapsed: Duration,
     /// Threads used.
-    pub(crate) jobs: usize,
+    pub jobs: usize,
 }
 
 impl Batch {
@@ -145,7 +145,7 @@ pub fn run_batch(
 
 /// How a roll's final face relates to the face that started up.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
-pub(crate) struct StartFaceCounts {
+pub struct StartFaceCounts {
     /// Ended on the face that started up.
     pub(crate) same: u64,
     /// Ended on one of the 4 faces next to it.
@@ -192,27 +192,27 @@ pub struct StatusCounts {
 /// The statistics of a batch: what a summary prints and `--json` carries.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct BatchSummary {
-    pub(crate) rolls: u64,
+    pub rolls: u64,
     /// Settled rolls per face 1..6.
-    pub(crate) faces: FaceTally,
+    pub faces: FaceTally,
     /// Share of each face 1..6 among rolls that ended with a face.
-    pub(crate) face_shares: [f64; 6],
+    pub face_shares: [f64; 6],
     /// Pearson's χ² of the face counts against a fair die (`None` without faces).
-    pub(crate) chi_square: Option<f64>,
+    pub chi_square: Option<f64>,
     /// Probability of at least this χ² from a fair die (5 degrees of freedom).
-    pub(crate) p_value: Option<f64>,
-    pub(crate) start_face: StartFaceCounts,
+    pub p_value: Option<f64>,
+    pub start_face: StartFaceCounts,
     /// Shares of `start_face` (same, adjacent, opposite) among rolls that ended with a face.
     pub start_face_shares: [f64; 3],
     pub status: StatusCounts,
     /// Steps over all rolls.
     pub steps: u64,
     /// s of simulated time over all rolls.
-    pub(crate) simulated_s: f64,
+    pub simulated_s: f64,
     /// s of wall-clock time.
-    pub(crate) elapsed_s: f64,
-    pub(crate) rolls_per_s: f64,
-    pub(crate) steps_per_s: f64,
+    pub elapsed_s: f64,
+    pub rolls_per_s: f64,
+    pub steps_per_s: f64,
 }
 
 impl BatchSummary {

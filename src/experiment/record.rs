@@ -8,7 +8,7 @@ use serde::Serialize;
 pub struct RollRecord {
     /// Roll index within its batch (or cell index within a map).
     pub id: u64,
-    pub(crate) initial: InitialCondition,
+    pub initial: InitialCondition,
     pub outcome: Outcome,
     /// The face most nearly up at t = 0.
     pub start_face: u8,

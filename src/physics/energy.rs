@@ -6,13 +6,13 @@ use serde::Serialize;
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct Energy {
     /// `½·M·|v|²`
-    pub(crate) translational: f64,
+    pub translational: f64,
     /// `½·ω·L`, with the cube's inertia.
     pub rotational: f64,
     /// `M·g·(z − a)`, zero when the cube lies flat.
-    pub(crate) gravitational: f64,
+    pub gravitational: f64,
     /// `Σ ½·k·d_k²` over corners below the ground.
-    pub(crate) elastic: f64,
+    pub elastic: f64,
 }
 
 impl Energy {
@@ -21,7 +21,7 @@ impl Energy {
     }
 
     /// `M·g·(z − a) + Σ ½·k·d_k²`.
-    pub fn potential(&self) -> f64 {
+    pub(crate) fn potential(&self) -> f64 {
         self.gravitational + self.elastic
     }
 

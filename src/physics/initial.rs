@@ -51,7 +51,7 @@ impl InitialCondition {
     /// Refuses a start with any corner inside the table deeper than the die's resting depth
     /// `M·g/(4k)` (a die may be placed resting on the table, not pushed into it): the error
     /// names the lowest height allowed at this orientation.
-    pub fn check_clear_of_table(&self, params: &Params) -> Result<(), ParamError> {
+    pub(crate) fn check_clear_of_table(&self, params: &Params) -> Result<(), ParamError> {
         let lowest = -self.lowest_corner_offset(params.die.half_size) - params.resting_depth();
         if self.height >= lowest {
             Ok(())

@@ -8,7 +8,7 @@ pub(crate) mod initial;
 pub mod params;
 pub mod registry;
 pub(crate) mod sim;
-pub mod stability;
+pub(crate) mod stability;
 pub mod stopping;
 
 pub(crate) use body::{face_most_nearly_up, opposite_face};

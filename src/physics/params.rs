@@ -16,9 +16,9 @@ use std::fmt;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Limits {
     /// Dotted preset / `--set` key, e.g. `ground.stiffness`.
-    pub(crate) key: &'static str,
+    pub key: &'static str,
     /// Unit as shown to users (`""` for dimensionless).
-    pub(crate) unit: &'static str,
+    pub unit: &'static str,
     pub min: f64,
     pub max: f64,
 }

@@ -12,7 +12,7 @@ use super::params::{Limits, ParamError, Params};
 
 /// The section of a preset a value belongs to, which is also what changing it means.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Role {
+pub enum Role {
     Die,
     Ground,
     World,
@@ -58,7 +58,7 @@ impl Role {
 
 /// What kind of value a key holds, with its default.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum Shape {
+pub enum Shape {
     /// One number.
     Number(f64),
     /// Three numbers, named by these components in `--set` and scan keys.
@@ -81,14 +81,14 @@ pub(crate) enum Shape {
 /// How the explorer steps a value under ←/→: by a fixed amount, or by a factor for values
 /// that span decades (stiffness, Δt, mass), where equal ratios are the natural steps.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum Nudge {
+pub enum Nudge {
     Add { fine: f64, coarse: f64 },
     Times { fine: f64, coarse: f64 },
 }
 
 /// A value as a setup stores it.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum Value {
+pub enum Value {
     Number(f64),
     Vector([f64; 3]),
     Range([f64; 2]),
@@ -101,7 +101,7 @@ pub(crate) enum Value {
 
 /// Everything a setup holds, for reading any value by its row.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub(crate) struct Setup {
+pub struct Setup {
     pub(crate) params: Params,
     pub(crate) initial: InitialCondition,
     pub(crate) random: RandomRanges,
@@ -110,7 +110,7 @@ pub(crate) struct Setup {
 /// How a numeric value is read and changed by component (0 for a scalar): what `--set` on a
 /// component, a basin-map axis and the explorer use.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Scan {
+pub struct Scan {
     pub(crate) get: fn(&Params, &InitialCondition, usize) -> f64,
     /// Not range-checked: see [`Spec::check_number`].
     pub(crate) set: fn(&mut Params, &mut InitialCondition, usize, f64),
@@ -121,21 +121,21 @@ pub(crate) struct Scan {
 pub struct Spec {
     /// Dotted preset key, unit (`""` for dimensionless) and allowed range.
     pub limits: Limits,
-    pub(crate) shape: Shape,
-    pub(crate) role: Role,
+    pub shape: Shape,
+    pub role: Role,
     /// Its meaning, as the comment beside it in a written preset and in the README.
-    pub(crate) comment: &'static str,
+    pub comment: &'static str,
     /// The explorer's short labels, one per component; empty: not in the explorer's list.
-    pub(crate) labels: &'static [&'static str],
+    pub labels: &'static [&'static str],
     /// Where the explorer lists it (lower first).
-    pub(crate) list_position: u8,
-    pub(crate) nudge: Option<Nudge>,
+    pub list_position: u8,
+    pub nudge: Option<Nudge>,
     /// Acts on the running roll at once (the explorer does not restart the roll).
-    pub(crate) acts_mid_roll: bool,
+    pub acts_mid_roll: bool,
     /// The value as stored (no conversion: a spin given as momentum reads as given).
-    pub(crate) read: fn(&Setup) -> Value,
+    pub read: fn(&Setup) -> Value,
     /// Numeric values a scan or the explorer can change; `None` for the rest.
-    pub(crate) scan: Option<Scan>,
+    pub scan: Option<Scan>,
 }
 
 /// Rows are equal when they name the same key.

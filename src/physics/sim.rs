@@ -29,11 +29,11 @@ pub struct State {
     /// cm, corners 1..8 relative to the centre of mass, world frame.
     pub corner_offsets: [Vector3<f64>; 8],
     /// dyn, the contact force on each corner at this state `(friction x, friction y, P)`.
-    pub(crate) corner_forces: [Vector3<f64>; 8],
+    pub corner_forces: [Vector3<f64>; 8],
     /// cm, how far each corner is below the ground (0 above it).
     pub corner_depths: [f64; 8],
     /// s, simulated time.
-    pub(crate) time_s: f64,
+    pub time_s: f64,
     /// Steps taken since the initial condition.
     pub step: u64,
 }
@@ -360,7 +360,7 @@ impl Simulation {
     }
 
     /// erg, the energy the stopping rule uses (`integrator.stop_energy`).
-    pub fn stop_energy(&self) -> f64 {
+    pub(crate) fn stop_energy(&self) -> f64 {
         self.stop_energy_from(&self.energy()).1
     }
 
@@ -370,7 +370,7 @@ impl Simulation {
     }
 
     /// erg, the stop energy's threshold (docs/model.md, "Stopping rule").
-    pub fn stop_threshold(&self) -> f64 {
+    pub(crate) fn stop_threshold(&self) -> f64 {
         self.c.stop_rule.energy_threshold
     }
 

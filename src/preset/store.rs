@@ -53,7 +53,7 @@ impl Store {
 
     /// The user folder from `DICESIM_PRESETS`, else the platform's data directory +
     /// `presets/` (e.g. `~/.local/share/dicesim/presets/`).
-    pub(crate) fn from_env() -> Store {
+    pub fn from_env() -> Store {
         let user_dir = match std::env::var_os(PRESETS_ENV) {
             Some(dir) if !dir.is_empty() => Some(PathBuf::from(dir)),
             _ => directories::ProjectDirs::from("", "", "dicesim").map(|d| d.data_dir().join("presets")),

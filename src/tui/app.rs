@@ -202,7 +202,7 @@ impl App {
     }
 
     /// Whether frames should keep coming without input (a moving roll or a running batch).
-    pub(crate) fn animating(&self) -> bool {
+    pub fn animating(&self) -> bool {
         self.live.playing || self.batch.is_some()
     }
 

@@ -216,7 +216,7 @@ fn save_key(
 }
 
 /// Draws the open dialog, centred over the screen.
-pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
+pub fn render(app: &App, area: Rect, frame: &mut Frame) {
     let Some(dialog) = &app.dialog else { return };
     let t = &app.theme;
     match dialog {

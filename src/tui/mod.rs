@@ -8,7 +8,7 @@ mod help;
 mod ledger;
 pub(crate) mod map;
 pub(crate) mod param;
-pub(crate) mod render;
+pub mod render;
 mod run;
 pub(crate) mod theme;
 mod twin;

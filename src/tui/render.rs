@@ -23,8 +23,8 @@ pub(crate) const MIN_HEIGHT: u16 = 24;
 
 /// Share of the tightest stability limit from which the step is worth watching; past the
 /// limit itself (1) a roll is predicted unstable (docs/model.md, "Stability").
-pub const STABILITY_CAUTION: f64 = 0.8;
-pub const STABILITY_DANGER: f64 = 1.0;
+pub(crate) const STABILITY_CAUTION: f64 = 0.8;
+pub(crate) const STABILITY_DANGER: f64 = 1.0;
 
 /// Where each panel goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -53,7 +53,7 @@ impl Default for Theme {
 
 impl Theme {
     /// Colour unless `NO_COLOR` is set to a non-empty value (no-color.org).
-    pub(crate) fn from_env() -> Theme {
+    pub fn from_env() -> Theme {
         Theme {
             colour: std::env::var_os("NO_COLOR").is_none_or(|v| v.is_empty()),
             ..Theme::default()

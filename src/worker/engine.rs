@@ -117,7 +117,7 @@ impl Engine {
         Ok(engine)
     }
 
-    pub(crate) fn params(&self) -> &Params {
+    pub fn params(&self) -> &Params {
         &self.params
     }
 

@@ -63,7 +63,7 @@ pub enum Command {
 
 /// Which roll is on screen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum RollKind {
+pub enum RollKind {
     /// The preset's own initial condition.
     Preset,
     /// Random roll number `n` (counted in the outcome table once).
@@ -119,7 +119,7 @@ pub(crate) struct SeparationSample {
 
 /// The chaos twin as drawn: its die, how its roll went, and its drift from the first die.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct TwinSnapshot {
+pub struct TwinSnapshot {
     pub(crate) epsilon: f64,
     pub(crate) die: DieState,
     pub(crate) phase: Phase,
@@ -131,7 +131,7 @@ pub(crate) struct TwinSnapshot {
 
 /// The die as drawn.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct DieState {
+pub struct DieState {
     /// cm, world positions of corners 1..8.
     pub(crate) corners: [Vector3<f64>; 8],
     /// Each corner's contact force (depth > 0 means it touches the ground).
@@ -195,15 +195,15 @@ pub struct Snapshot {
     pub commands_handled: u64,
     pub params: Params,
     pub initial: InitialCondition,
-    pub(crate) roll: RollKind,
+    pub roll: RollKind,
     pub playing: bool,
-    pub(crate) speed: Speed,
-    pub(crate) die: DieState,
-    pub(crate) energy: Energy,
+    pub speed: Speed,
+    pub die: DieState,
+    pub energy: Energy,
     /// Where the energy went since t = 0 (measured in the physics, step by step).
-    pub(crate) ledger: EnergyLedger,
+    pub ledger: EnergyLedger,
     /// erg, the stopping threshold.
-    pub(crate) stop_threshold: f64,
+    pub stop_threshold: f64,
     /// s, simulated.
     pub time_s: f64,
     pub step: u64,
@@ -218,9 +218,9 @@ pub struct Snapshot {
     /// A one-line message for the user (a refused value, a finished batch).
     pub notice: Option<String>,
     /// The chaos twin, stepped in lock-step with the die.
-    pub(crate) twin: Option<TwinSnapshot>,
+    pub twin: Option<TwinSnapshot>,
     /// The preset loaded, in the first snapshot and whenever another is loaded.
-    pub(crate) preset: Option<Box<Preset>>,
+    pub preset: Option<Box<Preset>>,
 }
 
 /// s of wall time between snapshots while something moves.
