@@ -1,4 +1,5 @@
 use dicesim::cli::{self, ErrorKind};
+use dicesim::output::printable;
 use std::process::ExitCode;
 
 /// The exit status of each kind of failure; `dicesim --help` and the README list them.
@@ -19,7 +20,8 @@ fn main() -> ExitCode {
         Err(e) => {
             let kind = e.kind();
             if kind != ErrorKind::BrokenPipe {
-                eprintln!("dicesim: {e}");
+                // Messages quote file content: control characters are shown, never sent.
+                eprintln!("dicesim: {}", printable(&e.to_string()));
             }
             status(kind)
         }

@@ -272,9 +272,18 @@ fn exit_statuses_follow_the_kind_of_failure() {
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.starts_with("dicesim: --ics /nonexistent/ics.csv: "), "{err}");
-    // A failure while running (an output folder that does not exist): 1.
+    // An output folder that does not exist is found before any roll: bad input, 2.
     let o = dicesim(&["batch", "--rolls", "2", "--out", "/nonexistent/dir/rolls.csv"]);
-    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    // A failure while running (a write to a full device): 1.
+    #[cfg(target_os = "linux")]
+    {
+        let dir = tempfile::tempdir().unwrap();
+        let full = dir.path().join("rolls.csv");
+        std::os::unix::fs::symlink("/dev/full", &full).unwrap();
+        let o = dicesim(&["batch", "--rolls", "2", "--out", full.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    }
     // A reader that stops early is no failure: the exit status is 0 and nothing is printed.
     let mut child = Command::new(env!("CARGO_BIN_EXE_dicesim"))
         .args(["trace", "--steps", "200000"])

@@ -1,9 +1,9 @@
 //! `dicesim basin`: the outcome over a grid of two setup values, as CSV or an image.
 
 use super::{CliError, SetupArgs};
-use crate::experiment::batch::thread_count;
 use crate::experiment::plot::write_image;
 use crate::experiment::{Axis, BasinMap, FaceTally, Layer, MapSpec, Method, run_map};
+use crate::output::Output;
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::{IsTerminal, Write};
@@ -48,6 +48,9 @@ pub(crate) struct BasinArgs {
     /// Write the map to a .csv, .png or .svg file.
     #[arg(long, value_name = "map.csv|map.png|map.svg")]
     pub(crate) out: Option<PathBuf>,
+    /// Replace an existing --out file.
+    #[arg(long, requires = "out")]
+    pub(crate) force: bool,
 }
 
 fn parse_resolution(s: &str) -> Result<(usize, usize), String> {
@@ -61,10 +64,23 @@ fn parse_resolution(s: &str) -> Result<(usize, usize), String> {
     Ok((w, h))
 }
 
+/// The most cells a map takes (e.g. 2048×2048): the map and its partial copy stay in memory.
+pub(crate) const MAX_CELLS: usize = 2048 * 2048;
+
 pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
+    let jobs = super::checked_jobs(args.jobs)?;
+    let (w, h) = args.res;
+    if w * h > MAX_CELLS {
+        // The map, the copy shown while refining, and the image or CSV drawn from it.
+        let needed = 2 * w * h * size_of::<Option<crate::experiment::Cell>>();
+        return Err(CliError::Usage(format!(
+            "--res {w}x{h}: {} cells would need about {} of memory; at most {MAX_CELLS} cells (e.g. 2048x2048)",
+            w * h,
+            crate::experiment::trace::human_bytes(needed as u64)
+        )));
+    }
     let preset = args.setup.resolve()?;
     let params = preset.params();
-    let (w, h) = args.res;
     let x = Axis::parse(&args.x, w).map_err(CliError::experiment("--x "))?;
     let y = Axis::parse(&args.y, h).map_err(CliError::experiment("--y "))?;
     let layer = match args.layer {
@@ -79,17 +95,12 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
         _ if layer == Layer::SettleTime || h == 1 => Method::Uniform,
         _ => Method::Adaptive,
     };
-    let out_kind = args
+    let output = args
         .out
-        .as_ref()
-        .map(|p| match p.extension().and_then(|e| e.to_str()) {
-            Some(e @ ("csv" | "png" | "svg")) => Ok(e.to_string()),
-            _ => Err(CliError::Usage(format!(
-                "--out {}: expected a .csv, .png or .svg file",
-                p.display()
-            ))),
-        })
-        .transpose()?;
+        .as_deref()
+        .map(|p| Output::check(p, &["csv", "png", "svg"], args.force))
+        .transpose()
+        .map_err(CliError::output("--out "))?;
 
     let total = (w * h) as u64;
     let bar = if std::io::stderr().is_terminal() {
@@ -101,7 +112,6 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
         ProgressStyle::with_template("{bar:40} {pos}/{len} cells rolled, {elapsed}")
             .expect("the progress template is valid"),
     );
-    let jobs = thread_count(args.jobs.unwrap_or(0) as usize);
     let start = std::time::Instant::now();
     let never = AtomicBool::new(false);
     let spec = MapSpec { x, y, method };
@@ -117,17 +127,13 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
     bar.finish_and_clear();
     let elapsed = start.elapsed().as_secs_f64();
 
-    if let (Some(path), Some(kind)) = (&args.out, out_kind) {
-        let failed = |source| CliError::Write {
-            path: path.clone(),
-            source,
-        };
-        if kind == "csv" {
-            let mut file = std::io::BufWriter::new(std::fs::File::create(path).map_err(failed)?);
-            map.write_csv(&mut file).map_err(failed)?;
-            file.flush().map_err(failed)?;
-        } else {
-            write_image(&map, layer, path).map_err(CliError::experiment(&format!("{}: ", path.display())))?;
+    if let Some(output) = &output {
+        match output.extension() {
+            "csv" => output.write(|w| map.write_csv(w)).map_err(CliError::output(""))?,
+            _ => write_image(&map, layer, output).map_err(|e| match e {
+                crate::experiment::Error::Output(e) => CliError::output("")(e),
+                e => CliError::experiment(&format!("{}: ", output.path().display()))(e),
+            })?,
         }
     }
     let (x, y) = (&spec.x, &spec.y);

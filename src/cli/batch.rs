@@ -1,16 +1,22 @@
 //! `dicesim batch`: many rolls in parallel, per-roll results and their statistics.
 
 use super::{CliError, SetupArgs};
-use crate::experiment::batch::thread_count;
 use crate::experiment::ics::{parse_initial_conditions, write_records_csv};
 use crate::experiment::{Batch, BatchSummary, RollRecord, Rolls, run_batch};
+use crate::output::Output;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::json;
 use std::io::{IsTerminal, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
+
+/// The most rolls one batch takes: their records stay in memory (~1.5 GB at the limit).
+pub(crate) const MAX_ROLLS: u64 = 10_000_000;
+
+/// The largest `--ics` file read, bytes (about a million rows).
+const MAX_ICS_BYTES: u64 = 256 * 1024 * 1024;
 
 /// Exit status of a second Ctrl-C, which cannot wait for the error to reach `main`: as a
 /// shell reports a SIGINT (128 + 2), the status `main` gives an interrupted batch.
@@ -44,41 +50,43 @@ pub(crate) struct BatchArgs {
     /// seconds) to a .csv or .json file.
     #[arg(long, value_name = "FILE.csv|FILE.json")]
     pub(crate) out: Option<PathBuf>,
+    /// Replace an existing --out file.
+    #[arg(long, requires = "out")]
+    pub(crate) force: bool,
     /// Print the summary as one JSON object instead of text.
     #[arg(long)]
     pub(crate) json: bool,
 }
 
-/// The per-roll file's format, from its extension.
-enum OutFormat {
-    Csv,
-    Json,
-}
-
-fn out_format(path: &Path) -> Result<OutFormat, CliError> {
-    match path.extension().and_then(|e| e.to_str()) {
-        Some("csv") => Ok(OutFormat::Csv),
-        Some("json") => Ok(OutFormat::Json),
-        _ => Err(CliError::Usage(format!(
-            "--out {}: expected a .csv or .json file",
-            path.display()
-        ))),
-    }
-}
-
 pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
+    let jobs = super::checked_jobs(args.jobs)?;
+    if let Some(n) = args.rolls
+        && n > MAX_ROLLS
+    {
+        return Err(CliError::Usage(format!(
+            "--rolls {n}: at most {MAX_ROLLS} per batch (every roll's record is kept for the summary and --out, \
+             about {} bytes each); split it with --seed",
+            size_of::<RollRecord>()
+        )));
+    }
     let preset = args.setup.resolve()?;
     let params = preset.params();
     params.validate()?;
-    let format = args.out.as_deref().map(out_format).transpose()?;
+    let output = args
+        .out
+        .as_deref()
+        .map(|p| Output::check(p, &["csv", "json"], args.force))
+        .transpose()
+        .map_err(CliError::output("--out "))?;
     let seed = args.seed.unwrap_or(preset.random.seed);
     let given = match &args.ics {
         Some(path) => {
-            let text = std::fs::read_to_string(path).map_err(|source| CliError::Read {
-                flag: "--ics",
-                path: path.clone(),
-                source,
-            })?;
+            let text =
+                crate::preset::read_regular_file(path, MAX_ICS_BYTES).map_err(|message| CliError::Read {
+                    flag: "--ics",
+                    path: path.clone(),
+                    source: std::io::Error::other(message),
+                })?;
             let ics = parse_initial_conditions(&text, &preset.initial, params.inertia())
                 .map_err(CliError::experiment(&format!("--ics {}: ", path.display())))?;
             Some(ics)
@@ -94,7 +102,6 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
             count: args.rolls.unwrap_or(0),
         },
     };
-    let jobs = thread_count(args.jobs.unwrap_or(0) as usize);
 
     let stop = Arc::new(AtomicBool::new(false));
     let handler_stop = stop.clone();
@@ -123,13 +130,10 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
     bar.finish_and_clear();
 
     let summary = batch.summary();
-    if let (Some(path), Some(format)) = (&args.out, format) {
-        write_records(path, format, &batch, &summary, seed, given.is_some()).map_err(|source| {
-            CliError::Write {
-                path: path.clone(),
-                source,
-            }
-        })?;
+    if let Some(output) = &output {
+        output
+            .write(|w| write_records(w, output.extension(), &batch, &summary, seed, given.is_some()))
+            .map_err(CliError::output(""))?;
     }
     let mut out = std::io::stdout().lock();
     if args.json {
@@ -156,18 +160,18 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// The per-roll file, as CSV or JSON by `extension`.
 fn write_records(
-    path: &Path,
-    format: OutFormat,
+    w: &mut dyn Write,
+    extension: &str,
     batch: &Batch,
     summary: &BatchSummary,
     seed: u64,
     given: bool,
 ) -> std::io::Result<()> {
-    let mut w = std::io::BufWriter::new(std::fs::File::create(path)?);
-    match format {
-        OutFormat::Csv => write_records_csv(&mut w, &batch.records)?,
-        OutFormat::Json => {
+    match extension {
+        "csv" => write_records_csv(&mut *w, &batch.records)?,
+        _ => {
             let v = json!({
                 "seed": if given { None } else { Some(seed) },
                 "requested": batch.requested,
@@ -175,11 +179,11 @@ fn write_records(
                 "summary": summary,
                 "rolls": batch.records,
             });
-            serde_json::to_writer(&mut w, &v)?;
+            serde_json::to_writer(&mut *w, &v)?;
             writeln!(w)?;
         }
     }
-    w.flush()
+    Ok(())
 }
 
 fn print_summary(out: &mut impl Write, batch: &Batch, s: &BatchSummary) -> std::io::Result<()> {

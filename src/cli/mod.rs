@@ -27,7 +27,7 @@ use std::path::PathBuf;
   dicesim presets list                      the shipped presets and yours
 
 Exit status: 0 success, 1 a failure while running, 2 bad input (nothing was run or written),
-130 interrupted (what was done is kept)."
+130 interrupted (what was done is kept), 128 + N stopped by signal N, 101 an internal error."
 )]
 pub(crate) struct Cli {
     #[command(subcommand)]
@@ -154,6 +154,15 @@ pub enum CliError {
     /// Standard output (or another stream) failed; a closed pipe is not a failure.
     #[error(transparent)]
     Io(#[from] std::io::Error),
+    /// An output file refused before any work (it exists, its folder is missing), or a
+    /// write that failed and left nothing behind.
+    #[error("{context}{source}")]
+    Output {
+        /// The option the path came from, e.g. `--out ` (empty when the message says it).
+        context: String,
+        #[source]
+        source: crate::output::OutputError,
+    },
     /// The explorer stopped with an error (its report, with the chain of causes).
     #[error("{0:#}")]
     Explorer(color_eyre::Report),
@@ -193,8 +202,19 @@ impl CliError {
             {
                 ErrorKind::BrokenPipe
             }
-            CliError::Io(_) | CliError::Write { .. } | CliError::Explorer(_) => ErrorKind::Failure,
+            CliError::Output { source, .. } if source.is_refusal() => ErrorKind::Input,
+            CliError::Io(_) | CliError::Write { .. } | CliError::Output { .. } | CliError::Explorer(_) => {
+                ErrorKind::Failure
+            }
             CliError::Interrupted { .. } => ErrorKind::Interrupted,
+        }
+    }
+
+    /// An output path's error, prefixed with the option it came from (`"--out "`, or `""`).
+    pub(crate) fn output(context: &str) -> impl FnOnce(crate::output::OutputError) -> CliError + '_ {
+        move |source| CliError::Output {
+            context: context.to_string(),
+            source,
         }
     }
 
@@ -204,6 +224,24 @@ impl CliError {
             context: context.to_string(),
             source,
         }
+    }
+}
+
+/// The most threads `--jobs` takes: more than a few per core only adds switching.
+pub(crate) fn max_jobs() -> usize {
+    4 * experiment::batch::thread_count(0)
+}
+
+/// `--jobs J` checked against [`max_jobs`]; no value means one thread per core.
+pub(crate) fn checked_jobs(jobs: Option<u64>) -> Result<usize, CliError> {
+    match jobs {
+        None => Ok(experiment::batch::thread_count(0)),
+        Some(j) if j as usize <= max_jobs() && j > 0 => Ok(j as usize),
+        Some(j) => Err(CliError::Usage(format!(
+            "--jobs {j}: at most {} (4 × the {} cores here)",
+            max_jobs(),
+            experiment::batch::thread_count(0)
+        ))),
     }
 }
 

@@ -53,7 +53,13 @@ pub(crate) fn run(args: &PresetsArgs) -> Result<(), CliError> {
                     Ok(p) => p.description.split_whitespace().collect::<Vec<_>>().join(" "),
                     Err(err) => format!("does not load: {err}"),
                 };
-                writeln!(out, "{:<width$}  {:<7}  {about}", e.name, e.source.kind())?;
+                writeln!(
+                    out,
+                    "{:<width$}  {:<7}  {}",
+                    e.name,
+                    e.source.kind(),
+                    crate::output::printable(&about)
+                )?;
             }
         }
         PresetsCommand::Show { name, set } => {

@@ -9,7 +9,7 @@
 use super::Error;
 use super::batch::thread_pool;
 use super::keys::ScanKey;
-use super::record::{RollRecord, roll_record};
+use super::record::{RollRecord, roll_record_or_cancel};
 use crate::physics::{InitialCondition, Outcome, Params, Status};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -181,7 +181,7 @@ impl BasinMap {
     /// The map as CSV: a header naming both keys, then one row per cell in row order, with
     /// `sampled` = 1 for rolled cells and 0 for cells filled by the adaptive method. Unknown
     /// cells of a partial map are left out.
-    pub(crate) fn write_csv(&self, w: &mut impl std::io::Write) -> std::io::Result<()> {
+    pub(crate) fn write_csv(&self, w: &mut (impl std::io::Write + ?Sized)) -> std::io::Result<()> {
         let mut csv = csv::Writer::from_writer(w);
         csv.write_record([
             "i",
@@ -234,25 +234,29 @@ pub(crate) fn node_setup(
     (p, ic)
 }
 
-/// Rolls node `(i, j)`; its record id is the cell index `j * width + i`.
-pub(crate) fn roll_node(
+/// Rolls node `(i, j)`, its record id the cell index `j * width + i`; `None` once `cancel`
+/// is set (looked at inside the roll).
+fn roll_node_or_cancel(
     params: &Params,
     base: &InitialCondition,
     x: &Axis,
     y: &Axis,
     i: usize,
     j: usize,
-) -> RollRecord {
+    cancel: &AtomicBool,
+) -> Option<RollRecord> {
     let (p, ic) = node_setup(params, base, x, y, i, j);
-    roll_record(&p, &ic, (j * x.cells + i) as u64)
+    roll_record_or_cancel(&p, &ic, (j * x.cells + i) as u64, cancel)
 }
 
 /// Computes the map `spec` around `params` and `base` on `jobs` threads (0: one per core).
 ///
 /// `on_partial` is called on the calling thread with the map so far: after each block of
 /// rows (uniform) or each refinement level (adaptive, every cell then filled from the
-/// nearest rolled corner of its block). Setting `cancel` stops at the next such point and
-/// returns that partial map (`complete == false`). The result is the same for any `jobs`.
+/// nearest rolled corner of its block). Setting `cancel` stops the running rolls within a
+/// few thousand steps and returns the map as far as it got (`complete == false`): the last
+/// whole level (adaptive), or every cell rolled so far (uniform). The result is the same
+/// for any `jobs`.
 pub fn run_map(
     params: &Params,
     base: &InitialCondition,
@@ -274,21 +278,24 @@ pub fn run_map(
         sampled: 0,
         complete: false,
     };
+    // Rolls `nodes` into the map; false if a cancel stopped some of them (those stay unknown).
     let roll = |map: &mut BasinMap, nodes: &[(usize, usize)]| {
-        let done: Vec<RollRecord> = pool.install(|| {
+        let done: Vec<Option<RollRecord>> = pool.install(|| {
             nodes
                 .par_iter()
-                .map(|&(i, j)| roll_node(params, base, x, y, i, j))
+                .map(|&(i, j)| roll_node_or_cancel(params, base, x, y, i, j, cancel))
                 .collect()
         });
-        for r in done {
+        let finished = done.iter().all(Option::is_some);
+        for r in done.into_iter().flatten() {
             map.cells[r.id as usize] = Some(Cell {
                 outcome: r.outcome,
                 start_face: r.start_face,
                 sampled: true,
             });
+            map.sampled += 1;
         }
-        map.sampled += nodes.len();
+        finished
     };
     match method {
         Method::Uniform => {
@@ -297,9 +304,9 @@ pub fn run_map(
             while j0 < y.cells && !cancel.load(Ordering::Relaxed) {
                 let j1 = (j0 + rows_per_block).min(y.cells);
                 let nodes: Vec<_> = (j0..j1).flat_map(|j| (0..x.cells).map(move |i| (i, j))).collect();
-                roll(&mut map, &nodes);
+                let finished = roll(&mut map, &nodes);
                 j0 = j1;
-                map.complete = j0 == y.cells;
+                map.complete = finished && j0 == y.cells;
                 on_partial(&map);
             }
             Ok(map)
@@ -308,7 +315,10 @@ pub fn run_map(
             let xs = coarse_nodes(x.cells);
             let ys = coarse_nodes(y.cells);
             let nodes: Vec<_> = ys.iter().flat_map(|&j| xs.iter().map(move |&i| (i, j))).collect();
-            roll(&mut map, &nodes);
+            if !roll(&mut map, &nodes) {
+                on_partial(&map);
+                return Ok(map);
+            }
             let mut pending: Vec<Block> = Vec::new();
             for w in ys.windows(2.min(ys.len())) {
                 for v in xs.windows(2.min(xs.len())) {
@@ -338,7 +348,10 @@ pub fn run_map(
                 nodes.sort_unstable_by_key(|&(i, j)| (j, i));
                 nodes.dedup();
                 nodes.retain(|&(i, j)| map.cell(i, j).is_none());
-                roll(&mut map, &nodes);
+                if !roll(&mut map, &nodes) {
+                    // Half a level would show blocks filled from corners not yet rolled.
+                    return Ok(shown);
+                }
                 pending = next;
             }
         }

@@ -3,11 +3,12 @@
 //! Each roll depends on its own initial condition alone (random ones on (seed, roll index),
 //! see [`RandomRanges::draw`]), and results are collected in roll order, so the records are
 //! bit-identical for any number of jobs. Rolls run in chunks; the cancel flag is checked
-//! between chunks, so a cancelled batch holds an exact prefix of the full one.
+//! inside every roll (every few thousand steps), and a cancelled batch keeps the rolls
+//! before the first unfinished one: an exact prefix of the full batch.
 
 use super::Error;
 use super::random::RandomRanges;
-use super::record::{RollRecord, roll_record};
+use super::record::{RollRecord, roll_record_or_cancel};
 use super::stats::FaceTally;
 use crate::physics::{InitialCondition, Params, Status, opposite_face};
 use rayon::prelude::*;
@@ -97,8 +98,9 @@ pub(crate) fn thread_pool(jobs: usize) -> Result<rayon::ThreadPool, Error> {
 /// Runs every roll of `rolls` with `params` on `jobs` threads (0: one per core).
 ///
 /// `progress` is called on the calling thread after each chunk with every record so far (in
-/// roll order), so a UI can draw a gauge or a live tally. Setting `cancel` stops the batch
-/// at the end of the running chunk; the records then are an exact prefix of the full batch.
+/// roll order), so a UI can draw a gauge or a live tally. Setting `cancel` stops every
+/// running roll within a few thousand steps; the records then are an exact prefix of the
+/// full batch.
 /// The parameters are validated first; initial conditions are the caller's to check (an
 /// out-of-range one still ends in a status, never a panic).
 pub fn run_batch(
@@ -121,16 +123,17 @@ pub fn run_batch(
     let mut next = 0;
     while next < requested && !cancel.load(Ordering::Relaxed) {
         let end = (next + chunk).min(requested);
-        let done: Vec<RollRecord> = pool.install(|| {
+        let done: Vec<Option<RollRecord>> = pool.install(|| {
             (next..end)
                 .into_par_iter()
                 .map(|i| {
                     let (id, ic) = rolls.get(i);
-                    roll_record(params, &ic, id)
+                    roll_record_or_cancel(params, &ic, id, cancel)
                 })
                 .collect()
         });
-        records.extend(done);
+        // A cancel mid-chunk keeps the rolls before the first unfinished one: still a prefix.
+        records.extend(done.into_iter().map_while(|r| r));
         next = end;
         progress(&records);
     }

@@ -152,6 +152,7 @@ pub fn parse_initial_conditions(
         }
     }
     let id_column = id_column.ok_or_else(|| bad(header_line, "the header has no `id` column".to_string()))?;
+    let mut seen_ids = std::collections::HashMap::new();
     let base_momentum: [f64; 3] = base.angular_momentum_for(inertia).into();
     let mut out = Vec::new();
     for record in records {
@@ -174,6 +175,9 @@ pub fn parse_initial_conditions(
                 format!("id `{}` is not a whole number ≥ 0", cells[id_column]),
             )
         })?;
+        if let Some(first) = seen_ids.insert(id, line) {
+            return Err(bad(line, format!("id {id} was already given on line {first}")));
+        }
         let mut given: [Option<f64>; COLUMNS] = [None; COLUMNS];
         for (cell, column) in cells.iter().zip(&columns) {
             if let (Some(k), false) = (column, cell.is_empty()) {
@@ -212,6 +216,15 @@ pub fn parse_initial_conditions(
 mod tests {
     use super::*;
     use crate::physics::Params;
+
+    #[test]
+    fn spreadsheet_headers_are_read_and_repeated_ids_refused() {
+        let base = InitialCondition::default();
+        let ics = parse_initial_conditions("\u{feff}\"id\",\"height\"\n3,2.5\n", &base, INERTIA).unwrap();
+        assert_eq!((ics[0].0, ics[0].1.height), (3, 2.5));
+        let e = parse_initial_conditions("id,height\n1,2\n1,3\n", &base, INERTIA).unwrap_err();
+        assert_eq!(e.to_string(), "line 3: id 1 was already given on line 2");
+    }
 
     const INERTIA: f64 = 16.0 / 3.0;
 

@@ -63,4 +63,10 @@ pub enum Error {
     /// A roll's trace or plot could not be written.
     #[error("cannot export the roll: {0}")]
     Export(String),
+    /// A file could not be written (or its path was refused).
+    #[error("{0}")]
+    Output(#[from] crate::output::OutputError),
+    /// The cancel flag stopped the work.
+    #[error("cancelled")]
+    Cancelled,
 }

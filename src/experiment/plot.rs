@@ -5,11 +5,11 @@
 
 use super::Error;
 use super::basin::{BasinMap, Cell, Layer};
+use crate::output::Output;
 use crate::physics::Status;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::register_font;
-use std::path::Path;
 use std::sync::OnceLock;
 
 /// Image size in pixels (SVG user units).
@@ -66,16 +66,63 @@ pub(crate) fn plot_error(e: impl std::fmt::Display) -> Error {
     Error::Plot(e.to_string())
 }
 
-/// Writes `map` as a PNG or SVG image, chosen by the extension of `path`.
-pub(crate) fn write_image(map: &BasinMap, layer: Layer, path: &Path) -> Result<(), Error> {
+/// An image file format the plots are drawn in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum ImageFormat {
+    Png,
+    Svg,
+}
+
+impl ImageFormat {
+    /// The format for a file extension (`png` or `svg`, any case).
+    pub(crate) fn from_extension(extension: &str) -> Option<ImageFormat> {
+        match extension.to_ascii_lowercase().as_str() {
+            "png" => Some(ImageFormat::Png),
+            "svg" => Some(ImageFormat::Svg),
+            _ => None,
+        }
+    }
+}
+
+/// Draws with `draw` on a PNG canvas of `size` pixels and returns the encoded file. Drawing
+/// into memory keeps every write error with the one place that writes files.
+pub(crate) fn png_bytes(
+    size: (u32, u32),
+    draw: impl FnOnce(DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), Error>,
+) -> Result<Vec<u8>, Error> {
+    use image::ImageEncoder;
+    let mut pixels = vec![0u8; size.0 as usize * size.1 as usize * 3];
+    draw(BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area())?;
+    let mut png = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut png)
+        .write_image(&pixels, size.0, size.1, image::ColorType::Rgb8)
+        .map_err(plot_error)?;
+    Ok(png)
+}
+
+/// Writes `map` to `out` as a PNG or SVG image, by its extension; nothing is written if
+/// drawing fails.
+pub(crate) fn write_image(map: &BasinMap, layer: Layer, out: &Output) -> Result<(), Error> {
+    let format = ImageFormat::from_extension(out.extension())
+        .ok_or_else(|| Error::Plot(format!("{}: expected a .png or .svg file", out.path().display())))?;
+    out.write_bytes(&image_bytes(map, layer, format)?)?;
+    Ok(())
+}
+
+/// `map` as the bytes of a PNG or SVG file.
+pub(crate) fn image_bytes(map: &BasinMap, layer: Layer, format: ImageFormat) -> Result<Vec<u8>, Error> {
     register_fonts()?;
-    match path.extension().and_then(|e| e.to_str()) {
-        Some("png") => draw(BitMapBackend::new(path, SIZE).into_drawing_area(), map, layer),
-        Some("svg") => draw(SVGBackend::new(path, SIZE).into_drawing_area(), map, layer),
-        _ => Err(Error::Plot(format!(
-            "{}: expected a .png or .svg file",
-            path.display()
-        ))),
+    match format {
+        ImageFormat::Png => png_bytes(SIZE, |area| draw(area, map, layer)),
+        ImageFormat::Svg => {
+            let mut svg = String::new();
+            draw(
+                SVGBackend::with_string(&mut svg, SIZE).into_drawing_area(),
+                map,
+                layer,
+            )?;
+            Ok(svg.into_bytes())
+        }
     }
 }
 

@@ -101,6 +101,11 @@ mod tests {
             velocity: [10.0, -10.0],
             ..Default::default()
         };
-        assert_eq!(r.validate().unwrap_err().key, "random.velocity[0]");
+        let e = r.validate().unwrap_err();
+        assert_eq!(e.key, "random.velocity");
+        assert_eq!(
+            e.to_string(),
+            "`random.velocity` = [10, -10]: the low end is above the high end"
+        );
     }
 }

@@ -28,4 +28,15 @@ impl Energy {
     pub fn total(&self) -> f64 {
         self.translational + self.rotational + self.gravitational + self.elastic
     }
+
+    /// Each term's larger value of the two: what a thinned plot keeps over a stride, so
+    /// impact spikes survive.
+    pub(crate) fn max_each(&self, other: &Energy) -> Energy {
+        Energy {
+            translational: self.translational.max(other.translational),
+            rotational: self.rotational.max(other.rotational),
+            gravitational: self.gravitational.max(other.gravitational),
+            elastic: self.elastic.max(other.elastic),
+        }
+    }
 }

@@ -64,6 +64,7 @@ impl InitialCondition {
                     unit: "cm at this orientation (lower, a corner starts inside the table)",
                     ..registry::HEIGHT.limits
                 },
+                high_end: None,
             })
         }
     }

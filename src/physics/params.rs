@@ -33,6 +33,7 @@ impl Limits {
                 key: self.key.to_string(),
                 value,
                 limits: *self,
+                high_end: None,
             })
         }
     }
@@ -44,6 +45,19 @@ pub struct ParamError {
     pub key: String,
     pub value: f64,
     pub limits: Limits,
+    /// For a range `[low, high]` given the wrong way round: `value` is the low end, this
+    /// the high end below it.
+    pub high_end: Option<f64>,
+}
+
+/// A number as a person reads it: 1e308 rather than its 309 digits.
+fn fmt_number(value: f64) -> String {
+    let magnitude = value.abs();
+    if value.is_finite() && (magnitude >= 1e15 || (magnitude > 0.0 && magnitude < 1e-6)) {
+        format!("{value:e}")
+    } else {
+        format!("{value}")
+    }
 }
 
 impl fmt::Display for ParamError {
@@ -53,10 +67,22 @@ impl fmt::Display for ParamError {
         } else {
             format!(" {}", self.limits.unit)
         };
+        if let Some(high) = self.high_end {
+            return write!(
+                f,
+                "`{}` = [{}, {}]: the low end is above the high end",
+                self.key,
+                fmt_number(self.value),
+                fmt_number(high)
+            );
+        }
         write!(
             f,
             "`{}` = {} is outside the allowed range {} to {}{unit}",
-            self.key, self.value, self.limits.min, self.limits.max
+            self.key,
+            fmt_number(self.value),
+            fmt_number(self.limits.min),
+            fmt_number(self.limits.max)
         )
     }
 }

@@ -238,14 +238,11 @@ impl Spec {
                     self.check_number(&format!("{key}[{i}]"), x)?;
                 }
                 if r[0] > r[1] {
-                    // Reported against the bound the low end must not exceed.
                     return Err(ParamError {
-                        key: format!("{key}[0]"),
+                        key: key.to_string(),
                         value: r[0],
-                        limits: Limits {
-                            max: r[1],
-                            ..self.limits
-                        },
+                        limits: self.limits,
+                        high_end: Some(r[1]),
                     });
                 }
                 Ok(())

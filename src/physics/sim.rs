@@ -468,6 +468,21 @@ impl Simulation {
         }
     }
 
+    /// Up to `max_steps` steps, stopping at the end of the roll; its outcome once it has
+    /// ended. A caller that must stay responsive rolls in such slices (the same steps as
+    /// [`Simulation::run_to_end`], so the same outcome, bit for bit).
+    pub(crate) fn run_for(&mut self, max_steps: u64) -> Option<Outcome> {
+        if self.outcome.is_some() {
+            return self.outcome;
+        }
+        for _ in 0..max_steps {
+            if let Some(o) = self.advance() {
+                return Some(o);
+            }
+        }
+        None
+    }
+
     /// Whether the current state ends the roll, and how.
     fn check_end(&self) -> Option<Outcome> {
         let energy = self.energy();

@@ -11,8 +11,8 @@ use std::path::PathBuf;
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Location {
     pub(crate) origin: String,
-    pub(crate) line: Option<usize>,
-    pub(crate) column: Option<usize>,
+    pub line: Option<usize>,
+    pub column: Option<usize>,
 }
 
 impl Location {

@@ -14,6 +14,7 @@ mod store;
 
 pub use error::{Location, PresetError};
 pub use shipped::{DEFAULT_NAME, SHIPPED, shipped_text};
+pub(crate) use store::read_regular_file;
 pub use store::{Entry, PRESETS_ENV, Source, Store, check_name, load_file};
 
 use crate::experiment::RandomRanges;

@@ -7,6 +7,7 @@ use super::map::{self, MapView, View};
 use super::param::{Param, all};
 use super::render::{Areas, fmt_num, fmt_range, param_row_at, screen_layout};
 use super::theme::Theme;
+use crate::experiment::trace::{ExportProgress, human_bytes};
 use crate::physics::{InitialCondition, Params};
 use crate::preset::{Preset, Store};
 use crate::worker::{
@@ -28,6 +29,8 @@ pub enum Msg {
     Worker(Box<Snapshot>),
     /// A basin map from the worker's map thread.
     Map(Box<MapUpdate>),
+    /// A signal that ends the explorer (the event loop handles it before `update`).
+    Signal(i32),
 }
 
 impl From<Snapshot> for Msg {
@@ -117,6 +120,8 @@ pub struct App {
     pub(crate) history: Vec<EnergySample>,
     pub(crate) table: OutcomeTable,
     pub(crate) batch: Option<BatchProgress>,
+    /// The roll's export, while it runs.
+    pub(crate) export: Option<ExportProgress>,
     pub(crate) batch_rolls: u64,
     pub(crate) notice: Option<String>,
     /// Index into [`all`](super::param::all).
@@ -167,6 +172,7 @@ impl App {
             speed: first.speed,
             table: first.table.take().unwrap_or_default(),
             batch: first.batch,
+            export: first.export,
             notice: first.notice.take(),
             live: first,
             history,
@@ -203,7 +209,7 @@ impl App {
 
     /// Whether frames should keep coming without input (a moving roll or a running batch).
     pub fn animating(&self) -> bool {
-        self.live.playing || self.batch.is_some()
+        self.live.playing || self.batch.is_some() || self.export.is_some()
     }
 
     fn absorb(&mut self, mut s: Snapshot) {
@@ -231,7 +237,28 @@ impl App {
             self.speed = s.speed;
         }
         self.batch = s.batch;
+        self.export = s.export;
         self.live = s;
+    }
+
+    /// What the status line says while the roll is exported: its size first, then how far.
+    pub(crate) fn export_status(&self) -> Option<String> {
+        let p = self.export?;
+        let share = 100.0 * p.steps_done as f64 / p.steps_total.max(1) as f64;
+        Some(if p.writing {
+            format!(
+                "exporting the roll: {share:.0}% of {} rows, {} · e cancels",
+                p.steps_total + 1,
+                human_bytes(p.bytes)
+            )
+        } else if p.bytes == 0 {
+            "exporting the roll: measuring its length · e cancels".to_string()
+        } else {
+            format!(
+                "exporting the roll: measuring its length, {share:.0}% of the time cap (at most {}) · e cancels",
+                human_bytes(p.bytes)
+            )
+        })
     }
 
     pub(crate) fn send(&mut self, out: &mut Vec<Command>, c: Command) {
@@ -304,6 +331,7 @@ pub fn update(app: &mut App, msg: Msg) -> Vec<Command> {
         Msg::Input(Event::Key(key)) if key.kind != KeyEventKind::Release => on_key(app, key, &mut out),
         Msg::Input(Event::Mouse(m)) => on_mouse(app, m.kind, m.column, m.row, &mut out),
         Msg::Input(_) => {}
+        Msg::Signal(_) => app.quit(&mut out),
     }
     out
 }
@@ -379,7 +407,14 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
             app.help_scroll = 0;
         }
         KeyCode::Char('y') => app.log_scale = !app.log_scale,
-        KeyCode::Char('e') => app.send(out, Command::Export(".".into())),
+        KeyCode::Char('e') => {
+            let c = if app.export.is_some() {
+                Command::ExportCancel
+            } else {
+                Command::Export(".".into())
+            };
+            app.send(out, c);
+        }
         KeyCode::Char('v') => app.vectors = !app.vectors,
         KeyCode::Char('t') => {
             app.theme = app.theme.next();

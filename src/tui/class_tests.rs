@@ -523,6 +523,9 @@ mod export {
         let dir = tempfile::tempdir().expect("temp dir");
         let mut s = mid_impact();
         s.command(Command::Export(dir.path().to_path_buf()));
+        assert!(s.app.export.is_some(), "the export runs off the worker's thread");
+        s.engine.run_export_here();
+        s.sync();
         let csv = dir.path().join("dicesim-paper-preset-roll.csv");
         let png = dir.path().join("dicesim-paper-preset-roll.png");
         let notice = s.app.notice.clone().expect("the status line says where");
@@ -541,6 +544,7 @@ mod export {
         assert!(image.starts_with(b"\x89PNG\r\n\x1a\n") && image.len() > 10_000);
         // A second export replaces nothing.
         s.command(Command::Export(dir.path().to_path_buf()));
+        s.engine.run_export_here();
         assert!(dir.path().join("dicesim-paper-preset-roll-2.csv").is_file());
         assert!(dir.path().join("dicesim-paper-preset-roll-2.png").is_file());
         assert_eq!(std::fs::read_to_string(&csv).expect("kept"), text);
@@ -554,6 +558,63 @@ mod export {
         assert!(
             notice.starts_with("cannot export the roll: /nonexistent/dicesim-export/"),
             "{notice}"
+        );
+        assert!(notice.ends_with("does not exist"), "{notice}");
+        assert!(s.app.export.is_none(), "nothing starts");
+    }
+
+    #[test]
+    fn a_preset_name_never_leads_the_export_out_of_its_folder() {
+        let root = tempfile::tempdir().expect("temp dir");
+        let dir = root.path().join("a").join("b");
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut s = start();
+        let mut preset = s.engine.preset().clone();
+        preset.name = "x/../../escaped".to_string();
+        s.command(Command::LoadPreset(Box::new(preset)));
+        s.command(Command::Export(dir.clone()));
+        s.engine.run_export_here();
+        s.sync();
+        let written: Vec<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        assert_eq!(written.len(), 2, "{written:?}");
+        assert!(
+            written.contains(&"dicesim-x_______escaped-preset-roll.csv".to_string()),
+            "{written:?}"
+        );
+        assert!(!root.path().join("escaped-preset-roll.csv").exists());
+        assert_eq!(
+            std::fs::read_dir(root.path()).unwrap().count(),
+            1,
+            "only a/ in the root"
+        );
+    }
+
+    #[test]
+    fn a_trace_above_the_limit_is_refused_with_the_trace_every_alternative() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let mut s = start();
+        // Δt = 1e-5 with no friction: millions of rows, gigabytes of trace.
+        s.command(Command::SetParam(
+            crate::tui::param::Param::named("ground.friction").scan_key(),
+            0.0,
+        ));
+        s.command(Command::SetParam(
+            crate::tui::param::Param::named("integrator.dt").scan_key(),
+            1e-5,
+        ));
+        s.command(Command::Export(dir.path().to_path_buf()));
+        s.engine.run_export_here();
+        s.sync();
+        let notice = s.app.notice.clone().expect("a notice");
+        assert!(notice.contains("rows) is over the 268.4 MB limit"), "{notice}");
+        assert!(notice.contains("`dicesim trace --every "), "{notice}");
+        assert_eq!(
+            std::fs::read_dir(dir.path()).unwrap().count(),
+            0,
+            "nothing written"
         );
     }
 }

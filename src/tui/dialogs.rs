@@ -5,6 +5,7 @@
 //! the picker opens, writing a file when a save is confirmed.
 
 use super::app::App;
+use crate::output::printable;
 use crate::preset::{Preset, Source, check_name};
 use crate::worker::Command;
 use ratatui::Frame;
@@ -12,6 +13,9 @@ use ratatui::crossterm::event::{KeyCode, KeyEvent};
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph, Wrap};
+
+/// Characters of a preset's description the picker shows: more than any screen holds.
+const DESCRIPTION_SHOWN: usize = 4000;
 
 /// One preset the picker offers.
 #[derive(Debug, Clone, PartialEq)]
@@ -236,15 +240,18 @@ pub fn render(app: &App, area: Rect, frame: &mut Frame) {
             for (i, c) in choices.iter().enumerate() {
                 let mark = if c.user { "★" } else { " " };
                 let pointer = if i == *selected { "▶" } else { " " };
-                let mut line = Line::from(format!("{pointer}{mark} {}", c.name));
+                let mut line = Line::from(format!("{pointer}{mark} {}", printable(&c.name)));
                 if i == *selected {
                     line = line.style(t.selected());
                 }
                 lines.push(line);
             }
             let about = match (error, choices.get(*selected).map(|c| &c.preset)) {
-                (Some(e), _) => Line::styled(e.clone(), t.danger()),
-                (None, Some(Ok(p))) => Line::raw(p.description.clone()),
+                (Some(e), _) => Line::styled(printable(e), t.danger()),
+                // Only what the box can show is wrapped: a long description stays cheap.
+                (None, Some(Ok(p))) => Line::raw(printable(
+                    &p.description.chars().take(DESCRIPTION_SHOWN).collect::<String>(),
+                )),
                 (None, Some(Err(_))) => Line::styled("this file does not load: Enter shows why", t.caution()),
                 (None, None) => Line::raw("no presets found"),
             };

@@ -11,8 +11,8 @@ use super::param::{Param, all};
 use super::render::{fmt_num, render_header, render_help, render_too_small};
 use crate::experiment::basin::node_setup;
 use crate::experiment::plot::{cell_colour, time_range, write_image};
-use crate::experiment::trace::free_stem;
 use crate::experiment::{Axis, BasinMap, Cell, Layer};
+use crate::output::{Output, free_stem};
 use crate::physics::{InitialCondition, Params, Status, registry};
 use crate::worker::{Command, MapAxis, MapRequest, MapUpdate};
 use ratatui::Frame;
@@ -499,7 +499,10 @@ pub(crate) fn export_if_asked(app: &mut App, dir: &Path) {
         return;
     };
     let path = dir.join(format!("{}.png", free_stem(dir, "basin-map", &["png"])));
-    app.notice = Some(match write_image(map, app.map.layer, &path) {
+    let written = Output::check(&path, &["png"], false)
+        .map_err(crate::experiment::Error::from)
+        .and_then(|out| write_image(map, app.map.layer, &out));
+    app.notice = Some(match written {
         Ok(()) if map.complete => format!("basin map saved to {}", path.display()),
         Ok(()) => format!("partial basin map saved to {}", path.display()),
         Err(e) => format!("export failed: {e}"),

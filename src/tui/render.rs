@@ -908,7 +908,10 @@ pub(crate) fn help_hints() -> Vec<(&'static str, &'static str, u8)> {
 /// terminal the highest priority numbers are dropped first; priority 0 always stays.
 pub(crate) fn render_key_hints(app: &App, keys: Vec<(&str, &str, u8)>, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
-    let notice = app.notice.as_ref().map(|n| format!(" {n} "));
+    let notice = app
+        .export_status()
+        .or_else(|| app.notice.clone())
+        .map(|n| format!(" {n} "));
     let width = |ks: &[(&str, &str, u8)]| -> usize {
         ks.iter()
             .map(|(k, w, _)| 2 + k.chars().count() + w.chars().count())

@@ -6,11 +6,13 @@ use super::map::{MapJob, MapOrder};
 use super::speed::Speed;
 use super::twin::Twin;
 use super::{BatchProgress, Command, DieState, EnergySample, OutcomeTable, Phase, RollKind, Snapshot};
-use crate::experiment::trace::{export_roll, free_stem};
+use crate::experiment::trace::{ExportProgress, Exported, export_roll, human_bytes};
 use crate::experiment::{RandomRanges, RollRecord, ScanKey};
+use crate::output::{Output, free_stem, safe_file_stem};
 use crate::physics::registry::Role;
-use crate::physics::{Energy, InitialCondition, ParamError, Params, Simulation, face_most_nearly_up};
+use crate::physics::{InitialCondition, ParamError, Params, Simulation, face_most_nearly_up};
 use crate::preset::Preset;
+use std::sync::atomic::AtomicBool;
 
 /// At most this many energy samples per roll: longer rolls keep each term's peak over a
 /// stride of steps, so impact spikes survive the thinning.
@@ -31,6 +33,43 @@ pub struct BatchRequest {
     pub(crate) id: u64,
     pub(crate) params: Params,
     pub(crate) rolls: Vec<(u64, InitialCondition)>,
+}
+
+/// An export to run off the worker's thread: the roll's setup and the two checked files.
+#[derive(Debug, Clone)]
+pub(crate) struct ExportJob {
+    pub(crate) id: u64,
+    pub(crate) params: Params,
+    pub(crate) initial: InitialCondition,
+    pub(crate) title: String,
+    pub(crate) trace: Output,
+    pub(crate) plot: Output,
+}
+
+impl ExportJob {
+    /// Runs the export on this thread (see [`export_roll`]).
+    pub(crate) fn run(
+        &self,
+        cancel: &AtomicBool,
+        progress: &mut dyn FnMut(ExportProgress),
+    ) -> Result<Exported, crate::experiment::Error> {
+        export_roll(
+            &self.params,
+            &self.initial,
+            &self.title,
+            &self.trace,
+            &self.plot,
+            cancel,
+            progress,
+        )
+    }
+}
+
+/// The export the UI is waiting for.
+#[derive(Debug, Clone, Copy)]
+struct ExportState {
+    id: u64,
+    progress: ExportProgress,
 }
 
 /// Output gathered since the last snapshot.
@@ -77,6 +116,9 @@ pub struct Engine {
     pacing_epoch: u64,
     /// The chaos twin, if one rolls beside the die.
     twin: Option<Twin>,
+    export: Option<ExportState>,
+    export_request: Option<ExportJob>,
+    exports_started: u64,
 }
 
 impl Engine {
@@ -111,6 +153,9 @@ impl Engine {
             commands_handled: 0,
             pacing_epoch: 0,
             twin: None,
+            export: None,
+            export_request: None,
+            exports_started: 0,
         };
         engine.restart(RollKind::Preset);
         engine.pending.preset = Some(Box::new(preset.clone()));
@@ -148,7 +193,7 @@ impl Engine {
 
     /// Whether time should keep moving without a command (a playing roll or a batch).
     pub(crate) fn busy(&self) -> bool {
-        self.playing || self.batch.is_some()
+        self.playing || self.batch.is_some() || self.export.is_some()
     }
 
     pub(crate) fn pacing_epoch(&self) -> u64 {
@@ -251,6 +296,12 @@ impl Engine {
             },
             Command::LoadPreset(preset) => self.load_preset(*preset),
             Command::Export(dir) => self.export(&dir),
+            Command::ExportCancel => {
+                self.export_request = None;
+                if self.export.take().is_some() {
+                    self.pending.notice = Some("export cancelled: nothing was written".to_string());
+                }
+            }
             Command::Quit => return false,
         }
         true
@@ -279,17 +330,23 @@ impl Engine {
         self.preset = preset;
     }
 
-    /// Writes the roll on screen into `dir` (see [`Command::Export`]); the notice says where.
+    /// Asks for the roll on screen to be written into `dir` (see [`Command::Export`]): the
+    /// files are chosen and checked here, the writing happens on the export thread.
     fn export(&mut self, dir: &std::path::Path) {
+        if self.export.is_some() {
+            self.pending.notice = Some("an export is running: e cancels it".to_string());
+            return;
+        }
         let roll = match self.roll {
             RollKind::Preset => "preset-roll".to_string(),
             RollKind::Random(n) => format!("random-roll-{n}"),
             RollKind::Edited => "edited-roll".to_string(),
         };
         let dir = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
+        // The preset's name comes from a file: it names the export, it never leads elsewhere.
         let stem = free_stem(
             &dir,
-            &format!("dicesim-{}-{roll}", self.preset.name),
+            &format!("dicesim-{}-{roll}", safe_file_stem(&self.preset.name)),
             &["csv", "png"],
         );
         let title = format!(
@@ -297,12 +354,84 @@ impl Engine {
             self.preset.name,
             roll.replace('-', " ")
         );
-        self.pending.notice = Some(
-            match export_roll(&self.params, &self.initial, &title, &dir, &stem) {
-                Ok(done) => format!("exported {} and .png", done.trace.display()),
-                Err(e) => e.to_string(),
+        let checked = Output::check(&dir.join(format!("{stem}.csv")), &["csv"], false).and_then(|trace| {
+            Ok((
+                trace,
+                Output::check(&dir.join(format!("{stem}.png")), &["png"], false)?,
+            ))
+        });
+        let (trace, plot) = match checked {
+            Ok(files) => files,
+            Err(e) => {
+                self.pending.notice = Some(format!("cannot export the roll: {e}"));
+                return;
+            }
+        };
+        let id = self.exports_started;
+        self.exports_started += 1;
+        self.export = Some(ExportState {
+            id,
+            progress: ExportProgress {
+                writing: false,
+                steps_done: 0,
+                steps_total: self.params.max_steps(),
+                bytes: 0,
             },
-        );
+        });
+        self.export_request = Some(ExportJob {
+            id,
+            params: self.params,
+            initial: self.initial,
+            title,
+            trace,
+            plot,
+        });
+    }
+
+    /// The export to start, once: whoever runs it reports back with
+    /// [`Engine::export_progress`] and [`Engine::finish_export`].
+    pub(crate) fn take_export_request(&mut self) -> Option<ExportJob> {
+        self.export_request.take()
+    }
+
+    /// The export the UI waits for, if any.
+    pub(crate) fn export_id(&self) -> Option<u64> {
+        self.export.map(|e| e.id)
+    }
+
+    pub(crate) fn export_progress(&mut self, id: u64, progress: ExportProgress) {
+        if let Some(e) = &mut self.export
+            && e.id == id
+        {
+            e.progress = progress;
+        }
+    }
+
+    /// Export `id` has stopped: the notice says what was written, or why nothing was.
+    pub(crate) fn finish_export(&mut self, id: u64, result: Result<Exported, crate::experiment::Error>) {
+        if self.export_id() != Some(id) {
+            return;
+        }
+        self.export = None;
+        self.pending.notice = Some(match result {
+            Ok(done) => format!(
+                "exported {} ({}, {} rows) and .png",
+                done.trace.display(),
+                human_bytes(done.bytes),
+                done.rows
+            ),
+            Err(crate::experiment::Error::Cancelled) => "export cancelled: nothing was written".to_string(),
+            Err(e) => e.to_string(),
+        });
+    }
+
+    /// Runs the requested export on this thread to its end (tests).
+    #[cfg(test)]
+    pub(crate) fn run_export_here(&mut self) {
+        if let Some(job) = self.take_export_request() {
+            let result = job.run(&AtomicBool::new(false), &mut |_| {});
+            self.finish_export(job.id, result);
+        }
     }
 
     /// The preset as loaded.
@@ -408,7 +537,7 @@ impl Engine {
             None => s,
             Some(p) => EnergySample {
                 time_s: s.time_s,
-                energy: peak_of(p.energy, s.energy),
+                energy: p.energy.max_each(&s.energy),
                 total: p.total.max(s.total),
             },
         };
@@ -515,7 +644,6 @@ impl Engine {
     #[cfg(test)]
     pub(crate) fn run_batch_here(&mut self) {
         use crate::experiment::{Rolls, run_batch};
-        use std::sync::atomic::AtomicBool;
         let Some(request) = self.take_batch_request() else {
             return;
         };
@@ -580,6 +708,7 @@ impl Engine {
             table: pending.table_changed.then(|| self.table.clone()),
             notice: pending.notice,
             preset: pending.preset,
+            export: self.export.map(|e| e.progress),
             twin: match &mut self.twin {
                 Some(t) => Some(t.snapshot(&self.sim)),
                 None => None,
@@ -600,14 +729,5 @@ pub(crate) fn die_state(sim: &Simulation, start_face: u8) -> DieState {
         angular_momentum: s.angular_momentum,
         face_up: sim.face_up(),
         start_face,
-    }
-}
-
-fn peak_of(a: Energy, b: Energy) -> Energy {
-    Energy {
-        translational: a.translational.max(b.translational),
-        rotational: a.rotational.max(b.rotational),
-        gravitational: a.gravitational.max(b.gravitational),
-        elastic: a.elastic.max(b.elastic),
     }
 }
