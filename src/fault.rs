@@ -6,7 +6,7 @@
 //! compile it away.
 
 /// Panics here if `DICESIM_FAULT` names `place` (debug builds only).
-pub fn inject(place: &str) {
+pub(crate) fn inject(place: &str) {
     #[cfg(debug_assertions)]
     if std::env::var("DICESIM_FAULT").is_ok_and(|v| v == place) {
         panic!("a fault injected in the {place} thread (DICESIM_FAULT={place})");

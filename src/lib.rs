@@ -1,6 +1,6 @@
 pub mod cli;
 pub mod experiment;
-pub mod fault;
+pub(crate) mod fault;
 pub mod output;
 pub mod physics;
 pub mod preset;

@@ -35,14 +35,14 @@ pub enum OutputError {
 
 impl OutputError {
     /// Whether the path itself was refused (bad input), rather than the writing failing.
-    pub fn is_refusal(&self) -> bool {
+    pub(crate) fn is_refusal(&self) -> bool {
         !matches!(self, OutputError::Write { .. })
     }
 }
 
 /// A checked output path: where to write, in which format, whether it may replace a file.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Output {
+pub(crate) struct Output {
     path: PathBuf,
     extension: String,
     replace: bool,
@@ -52,7 +52,7 @@ impl Output {
     /// Checks `path` before any work: its extension is one of `extensions` (lower case,
     /// without the dot), its folder exists and takes new files, and it names no existing
     /// regular file unless `replace`.
-    pub fn check(path: &Path, extensions: &[&str], replace: bool) -> Result<Output, OutputError> {
+    pub(crate) fn check(path: &Path, extensions: &[&str], replace: bool) -> Result<Output, OutputError> {
         let extension = path
             .extension()
             .and_then(|e| e.to_str())
@@ -104,12 +104,12 @@ impl Output {
         Ok(output)
     }
 
-    pub fn path(&self) -> &Path {
+    pub(crate) fn path(&self) -> &Path {
         &self.path
     }
 
     /// The extension that was recognised, lower case.
-    pub fn extension(&self) -> &str {
+    pub(crate) fn extension(&self) -> &str {
         &self.extension
     }
 
@@ -140,7 +140,7 @@ impl Output {
 
     /// Writes the file with `body`, all or nothing (see the module comment). The writer is
     /// `Send`, so an encoder that needs one (Parquet's) can own it.
-    pub fn write(
+    pub(crate) fn write(
         &self,
         body: impl FnOnce(&mut (dyn Write + Send)) -> std::io::Result<()>,
     ) -> Result<(), OutputError> {
@@ -178,7 +178,7 @@ impl Output {
     }
 
     /// Writes `bytes` as the whole file.
-    pub fn write_bytes(&self, bytes: &[u8]) -> Result<(), OutputError> {
+    pub(crate) fn write_bytes(&self, bytes: &[u8]) -> Result<(), OutputError> {
         self.write(|w| w.write_all(bytes))
     }
 }
@@ -195,7 +195,7 @@ fn os_reason(e: &std::io::Error) -> String {
 
 /// The first stem for files `<stem>.<ext>` (one per extension) in `dir` that replaces no
 /// file: `stem`, then `stem-2`, `stem-3`, … (the explorer's exports never ask to replace).
-pub fn free_stem(dir: &Path, stem: &str, extensions: &[&str]) -> String {
+pub(crate) fn free_stem(dir: &Path, stem: &str, extensions: &[&str]) -> String {
     (1..)
         .map(|n| {
             if n == 1 {
@@ -214,7 +214,7 @@ pub fn free_stem(dir: &Path, stem: &str, extensions: &[&str]) -> String {
 
 /// `text` as a file name part: letters, digits, `-` and `_` kept, anything else (a `/`, a
 /// dot, a space, a control character) becomes `_`, so it can never add a path component.
-pub fn safe_file_stem(text: &str) -> String {
+pub(crate) fn safe_file_stem(text: &str) -> String {
     let stem: String = text
         .chars()
         .take(64)

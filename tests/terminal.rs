@@ -3,6 +3,8 @@
 //! and mouse reporting off; and `q` answers at once even while rolls millions of steps long
 //! are being computed.
 #![cfg(unix)]
+// Giving the child the pseudo-terminal as its controlling terminal takes a pre_exec hook.
+#![allow(unsafe_code)]
 
 use nix::pty::{Winsize, openpty};
 use nix::sys::signal::{Signal, kill};

@@ -13,7 +13,7 @@ use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum LayerArg {
+pub(crate) enum LayerArg {
     /// The face up at the end.
     Face,
     /// Simulated seconds until the roll ended.
@@ -21,40 +21,40 @@ pub enum LayerArg {
 }
 
 #[derive(Debug, Args)]
-pub struct BasinArgs {
+pub(crate) struct BasinArgs {
     #[command(flatten)]
-    pub setup: SetupArgs,
+    pub(crate) setup: SetupArgs,
     /// The horizontal axis: any numeric preset key, vector components included, with its
     /// range, e.g. `initial.angular_velocity.x:-60:60`.
     #[arg(long = "x", value_name = "KEY:MIN:MAX", allow_hyphen_values = true)]
-    pub x: String,
+    pub(crate) x: String,
     /// The vertical axis, as --x (with `--res Wx1`, one scan at the middle of its range).
     #[arg(long = "y", value_name = "KEY:MIN:MAX", allow_hyphen_values = true)]
-    pub y: String,
+    pub(crate) y: String,
     /// Grid nodes along x and y, both ends of each range included; `Wx1` is a 1-D scan.
     #[arg(long, value_name = "WxH", default_value = "200x100", value_parser = parse_resolution)]
-    pub res: (usize, usize),
+    pub(crate) res: (usize, usize),
     /// What each cell shows.
     #[arg(long, value_enum, default_value_t = LayerArg::Face)]
-    pub layer: LayerArg,
+    pub(crate) layer: LayerArg,
     /// Roll a coarse grid, then only where neighbouring cells differ (default for 2-D face
     /// maps; may miss islands smaller than the coarse spacing).
     #[arg(long, conflicts_with = "uniform")]
-    pub adaptive: bool,
+    pub(crate) adaptive: bool,
     /// Roll every cell (default for the settle-time layer and 1-D scans).
     #[arg(long)]
-    pub uniform: bool,
+    pub(crate) uniform: bool,
     /// Worker threads (default: one per core); the map does not depend on it.
     #[arg(long, value_name = "J", value_parser = clap::value_parser!(u64).range(1..))]
-    pub jobs: Option<u64>,
+    pub(crate) jobs: Option<u64>,
     /// Write the map to a .csv, .png or .svg file.
     #[arg(long, value_name = "map.csv|map.png|map.svg")]
-    pub out: Option<PathBuf>,
+    pub(crate) out: Option<PathBuf>,
     /// Replace an existing --out file.
     #[arg(long, requires = "out")]
-    pub force: bool,
+    pub(crate) force: bool,
     #[command(flatten)]
-    pub shard: ShardArgs,
+    pub(crate) shard: ShardArgs,
 }
 
 fn parse_resolution(s: &str) -> Result<(usize, usize), String> {
@@ -69,15 +69,15 @@ fn parse_resolution(s: &str) -> Result<(usize, usize), String> {
 }
 
 /// The most cells a map takes (e.g. 2048×2048): the map and its partial copy stay in memory.
-pub const MAX_CELLS: usize = 2048 * 2048;
+pub(crate) const MAX_CELLS: usize = 2048 * 2048;
 
-pub fn run(args: &BasinArgs) -> Result<(), CliError> {
+pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
     let jobs = super::checked_jobs(args.jobs)?;
     let (w, h) = args.res;
     if w * h > MAX_CELLS {
         // The map, the copy shown while refining, and the image or CSV drawn from it.
-        let needed = 2 * w * h * std::mem::size_of::<Option<crate::experiment::Cell>>();
-        return Err(CliError::Input(format!(
+        let needed = 2 * w * h * size_of::<Option<crate::experiment::Cell>>();
+        return Err(CliError::Usage(format!(
             "--res {w}x{h}: {} cells would need about {} of memory; at most {MAX_CELLS} cells (e.g. 2048x2048)",
             w * h,
             crate::experiment::trace::human_bytes(needed as u64)
@@ -85,8 +85,8 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
     }
     let preset = args.setup.resolve()?;
     let params = preset.params();
-    let x = Axis::parse(&args.x, w).map_err(|e| CliError::Input(format!("--x {e}")))?;
-    let y = Axis::parse(&args.y, h).map_err(|e| CliError::Input(format!("--y {e}")))?;
+    let x = Axis::parse(&args.x, w).map_err(CliError::experiment("--x "))?;
+    let y = Axis::parse(&args.y, h).map_err(CliError::experiment("--y "))?;
     let layer = match args.layer {
         LayerArg::Face => Layer::Face,
         LayerArg::SettleTime => Layer::SettleTime,
@@ -95,7 +95,7 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
     // and a 1-D scan is plotted as settle time: these roll every cell unless asked otherwise.
     let sharding = args.shard.resolve(args.out.as_deref())?;
     if sharding.is_some() && args.adaptive {
-        return Err(CliError::Input(
+        return Err(CliError::Usage(
             "--shard rolls every cell of its rows: adaptive refinement compares cells across shards"
                 .to_string(),
         ));
@@ -112,9 +112,9 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
         .as_deref()
         .map(|p| Output::check(p, &["csv", "png", "svg"], args.force))
         .transpose()
-        .map_err(|e| CliError::from(e).prefixed("--out "))?;
+        .map_err(CliError::output("--out "))?;
     if sharding.is_some() && output.as_ref().is_some_and(|o| o.extension() != "csv") {
-        return Err(CliError::Input(
+        return Err(CliError::Usage(
             "--shard writes its rows as .csv; `dicesim merge` draws the image of the whole map".to_string(),
         ));
     }
@@ -144,7 +144,7 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
         &never,
         &mut |m: &BasinMap| bar.set_position(m.sampled as u64),
     )
-    .map_err(|e| CliError::Input(e.to_string()))?;
+    .map_err(CliError::experiment(""))?;
     bar.finish_and_clear();
     let elapsed = start.elapsed().as_secs_f64();
     let faces: FaceTally = map
@@ -156,10 +156,10 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
 
     if let Some(output) = &output {
         match output.extension() {
-            "csv" => output.write(|w| map.write_csv(w))?,
+            "csv" => output.write(|w| map.write_csv(w)).map_err(CliError::output(""))?,
             _ => write_image(&map, layer, output).map_err(|e| match e {
-                crate::experiment::Error::Output(e) => CliError::from(e),
-                e => CliError::Run(format!("{}: {e}", output.path().display())),
+                crate::experiment::Error::Output(e) => CliError::output("")(e),
+                e => CliError::experiment(&format!("{}: ", output.path().display()))(e),
             })?,
         }
     }

@@ -2,7 +2,7 @@
 
 use super::shard::{ShardArgs, batch_fingerprint, write_batch_part};
 use super::{CliError, SetupArgs};
-use crate::experiment::ics::{parse_initial_conditions, record_csv_row, records_csv_header};
+use crate::experiment::ics::{parse_initial_conditions, write_records_csv};
 use crate::experiment::parquet::RecordsWriter;
 use crate::experiment::shard::Sweep;
 use crate::experiment::{Batch, BatchSummary, RollRecord, Rolls, run_batch};
@@ -16,18 +16,19 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The most rolls one batch takes: their records stay in memory (~1.5 GB at the limit).
-pub const MAX_ROLLS: u64 = 10_000_000;
+pub(crate) const MAX_ROLLS: u64 = 10_000_000;
 
 /// The largest `--ics` file read, bytes (about a million rows).
 const MAX_ICS_BYTES: u64 = 256 * 1024 * 1024;
 
-/// Exit status after Ctrl-C, as a shell reports a SIGINT (128 + 2).
-const INTERRUPTED: i32 = 130;
+/// Exit status of a second Ctrl-C, which cannot wait for the error to reach `main`: as a
+/// shell reports a SIGINT (128 + 2), the status `main` gives an interrupted batch.
+const INTERRUPTED_AT_ONCE: i32 = 130;
 
 #[derive(Debug, Args)]
-pub struct BatchArgs {
+pub(crate) struct BatchArgs {
     #[command(flatten)]
-    pub setup: SetupArgs,
+    pub(crate) setup: SetupArgs,
     /// Roll N dice with initial conditions drawn from the preset's `[random]` ranges.
     #[arg(
         long,
@@ -35,35 +36,35 @@ pub struct BatchArgs {
         required_unless_present = "ics",
         conflicts_with = "ics"
     )]
-    pub rolls: Option<u64>,
+    pub(crate) rolls: Option<u64>,
     /// Roll the initial conditions of a CSV file: a header with `id` and any of height,
     /// velocity_x|y|z, angular_velocity_x|y|z, angular_momentum_x|y|z, yaw, pitch, roll
     /// (missing columns take the preset's initial values).
     #[arg(long, value_name = "FILE.csv")]
-    pub ics: Option<PathBuf>,
+    pub(crate) ics: Option<PathBuf>,
     /// Seed of the random draws (default: the preset's `random.seed`); roll i's draw depends
     /// on (seed, i) alone.
     #[arg(long, value_name = "S", conflicts_with = "ics")]
-    pub seed: Option<u64>,
+    pub(crate) seed: Option<u64>,
     /// Worker threads (default: one per core); the results do not depend on it.
     #[arg(long, value_name = "J", value_parser = clap::value_parser!(u64).range(1..))]
-    pub jobs: Option<u64>,
+    pub(crate) jobs: Option<u64>,
     /// Write every roll (id, initial condition, start face, face, status, steps, simulated
     /// seconds) to a .csv, .json or .parquet file (Parquet: the same columns in about a
     /// third of the bytes, for pandas, polars or DuckDB).
     #[arg(long, value_name = "FILE.csv|FILE.json|FILE.parquet")]
-    pub out: Option<PathBuf>,
+    pub(crate) out: Option<PathBuf>,
     /// Replace an existing --out file.
     #[arg(long, requires = "out")]
-    pub force: bool,
+    pub(crate) force: bool,
     /// Print the summary as one JSON object instead of text.
     #[arg(long)]
-    pub json: bool,
+    pub(crate) json: bool,
     #[command(flatten)]
-    pub shard: ShardArgs,
+    pub(crate) shard: ShardArgs,
 }
 
-pub fn run(args: &BatchArgs) -> Result<(), CliError> {
+pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
     let jobs = super::checked_jobs(args.jobs)?;
     let sharding = args.shard.resolve(args.out.as_deref())?;
     // A shard keeps only its own rolls' records.
@@ -75,23 +76,23 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     if let Some(n) = kept
         && n > MAX_ROLLS
     {
-        return Err(CliError::Input(format!(
+        return Err(CliError::Usage(format!(
             "--rolls {n}: at most {MAX_ROLLS} per batch (every roll's record is kept for the summary and --out, \
              about {} bytes each); split it with --shard K/N",
-            std::mem::size_of::<RollRecord>()
+            size_of::<RollRecord>()
         )));
     }
     let preset = args.setup.resolve()?;
     let params = preset.params();
-    params.validate().map_err(|e| CliError::Input(e.to_string()))?;
+    params.validate()?;
     let output = args
         .out
         .as_deref()
         .map(|p| Output::check(p, &["csv", "json", "parquet"], args.force))
         .transpose()
-        .map_err(|e| CliError::from(e).prefixed("--out "))?;
+        .map_err(CliError::output("--out "))?;
     if sharding.is_some() && output.as_ref().is_some_and(|o| o.extension() == "json") {
-        return Err(CliError::Input(
+        return Err(CliError::Usage(
             "--shard writes its records as .csv or .parquet (a JSON file cannot be merged as it streams)"
                 .to_string(),
         ));
@@ -99,10 +100,14 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     let seed = args.seed.unwrap_or(preset.random.seed);
     let given = match &args.ics {
         Some(path) => {
-            let text = crate::preset::read_regular_file(path, MAX_ICS_BYTES)
-                .map_err(|e| CliError::Input(format!("--ics {}: {e}", path.display())))?;
+            let text =
+                crate::preset::read_regular_file(path, MAX_ICS_BYTES).map_err(|message| CliError::Read {
+                    flag: "--ics",
+                    path: path.clone(),
+                    source: std::io::Error::other(message),
+                })?;
             let ics = parse_initial_conditions(&text, &preset.initial, params.inertia())
-                .map_err(|e| CliError::Input(format!("--ics {}: {e}", path.display())))?;
+                .map_err(CliError::experiment(&format!("--ics {}: ", path.display())))?;
             Some(ics)
         }
         None => None,
@@ -130,10 +135,10 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     // quits at once.
     ctrlc::set_handler(move || {
         if handler_stop.swap(true, Ordering::SeqCst) {
-            std::process::exit(INTERRUPTED);
+            std::process::exit(INTERRUPTED_AT_ONCE);
         }
     })
-    .map_err(|e| CliError::Run(format!("cannot catch Ctrl-C: {e}")))?;
+    .map_err(|e| CliError::Io(std::io::Error::other(format!("cannot catch Ctrl-C: {e}"))))?;
 
     let bar = if std::io::stderr().is_terminal() {
         ProgressBar::new(rolls.len())
@@ -147,12 +152,14 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     let batch = run_batch(&params, &rolls, jobs, &stop, &mut |done: &[RollRecord]| {
         bar.set_position(done.len() as u64)
     })
-    .map_err(|e| CliError::Input(e.to_string()))?;
+    .map_err(CliError::experiment(""))?;
     bar.finish_and_clear();
 
     let summary = batch.summary();
     if let Some(output) = &output {
-        output.write(|w| write_records(w, output.extension(), &batch, &summary, seed, given.is_some()))?;
+        output
+            .write(|w| write_records(w, output.extension(), &batch, &summary, seed, given.is_some()))
+            .map_err(CliError::output(""))?;
     }
     if let Some((shard, part)) = &sharding {
         let sweep = Sweep::Batch {
@@ -180,12 +187,10 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     }
     out.flush()?;
     if batch.cancelled {
-        eprintln!(
-            "dicesim: interrupted: kept the {} of {} rolls completed",
-            batch.records.len(),
-            batch.requested
-        );
-        std::process::exit(INTERRUPTED);
+        return Err(CliError::Interrupted {
+            completed: batch.records.len(),
+            requested: batch.requested,
+        });
     }
     Ok(())
 }
@@ -200,12 +205,7 @@ fn write_records(
     given: bool,
 ) -> std::io::Result<()> {
     match extension {
-        "csv" => {
-            writeln!(w, "{}", records_csv_header())?;
-            for r in &batch.records {
-                writeln!(w, "{}", record_csv_row(r))?;
-            }
-        }
+        "csv" => write_records_csv(&mut *w, &batch.records)?,
         "json" => {
             let v = json!({
                 "seed": if given { None } else { Some(seed) },

@@ -22,42 +22,42 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 #[derive(Debug, Args)]
-pub struct MergeArgs {
+pub(crate) struct MergeArgs {
     /// The part summaries (`*.part.json`) that `batch --shard` or `basin --shard` wrote, or
     /// folders holding them; in any order.
     #[arg(required = true, value_name = "PARTS")]
-    pub parts: Vec<PathBuf>,
+    pub(crate) parts: Vec<PathBuf>,
     /// Write the merged result: a batch's .csv or .parquet; a map's .csv, .png or .svg
     /// (repeatable).
     /// Without it, only the summary is printed.
     #[arg(long, value_name = "FILE")]
-    pub out: Vec<PathBuf>,
+    pub(crate) out: Vec<PathBuf>,
     /// Replace existing --out files.
     #[arg(long, requires = "out")]
-    pub force: bool,
+    pub(crate) force: bool,
     /// Print the summary as one JSON object instead of text.
     #[arg(long)]
-    pub json: bool,
+    pub(crate) json: bool,
 }
 
-pub fn run(args: &MergeArgs) -> Result<(), CliError> {
+pub(crate) fn run(args: &MergeArgs) -> Result<(), CliError> {
     // Existing files are refused before any work, unless replacing them was asked for.
     let outputs: Vec<Output> = args
         .out
         .iter()
         .map(|o| Output::check(o, &["csv", "parquet", "png", "svg"], args.force))
         .collect::<Result<_, _>>()
-        .map_err(|e| CliError::from(e).prefixed("--out "))?;
+        .map_err(CliError::output("--out "))?;
     let paths = part_files(&args.parts)?;
     let parts: Vec<(String, Part)> = paths
         .iter()
         .map(|p| Ok((p.display().to_string(), read_part(p)?)))
         .collect::<Result<_, CliError>>()?;
-    let order = check_parts(&parts).map_err(CliError::Input)?;
+    let order = check_parts(&parts).map_err(CliError::Parts)?;
     let ordered: Vec<(&Path, &Part)> = order.iter().map(|&i| (paths[i].as_path(), &parts[i].1)).collect();
     let first = ordered[0].1;
     if !args.out.is_empty() && first.records.is_none() {
-        return Err(CliError::Input(format!(
+        return Err(CliError::Parts(format!(
             "the parts hold only summaries (their shards ran without --out): nothing to write to {}",
             args.out[0].display()
         )));
@@ -75,12 +75,12 @@ fn part_files(given: &[PathBuf]) -> Result<Vec<PathBuf>, CliError> {
         if path.is_dir() {
             let suffix = format!(".{PART_EXTENSION}");
             let mut inside: Vec<PathBuf> = std::fs::read_dir(path)
-                .map_err(|e| CliError::Input(format!("{}: {e}", path.display())))?
+                .map_err(|e| CliError::Parts(format!("{}: {e}", path.display())))?
                 .filter_map(|e| e.ok().map(|e| e.path()))
                 .filter(|p| p.to_string_lossy().ends_with(&suffix))
                 .collect();
             if inside.is_empty() {
-                return Err(CliError::Input(format!(
+                return Err(CliError::Parts(format!(
                     "{}: no *{suffix} files in this folder",
                     path.display()
                 )));
@@ -98,7 +98,7 @@ fn part_files(given: &[PathBuf]) -> Result<Vec<PathBuf>, CliError> {
 fn out_kind<'a>(path: &Path, allowed: &[&'a str]) -> Result<&'a str, CliError> {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or_default();
     allowed.iter().find(|&&a| a == ext).copied().ok_or_else(|| {
-        CliError::Input(format!(
+        CliError::Parts(format!(
             "--out {}: expected a {} file",
             path.display(),
             allowed
@@ -114,7 +114,7 @@ fn out_kind<'a>(path: &Path, allowed: &[&'a str]) -> Result<&'a str, CliError> {
 fn open_records(part_path: &Path, part: &Part) -> Result<(PathBuf, BufReader<std::fs::File>), CliError> {
     let path = records_path(part_path, part).expect("checked: every part has records");
     let file = std::fs::File::open(&path).map_err(|e| {
-        CliError::Input(format!(
+        CliError::Parts(format!(
             "{} (records of {}): {e}",
             path.display(),
             part_path.display()
@@ -129,7 +129,7 @@ fn records_kind(part_path: &Path, part: &Part) -> Result<&'static str, CliError>
     match path.extension().and_then(|e| e.to_str()) {
         Some("csv") => Ok("csv"),
         Some("parquet") => Ok("parquet"),
-        _ => Err(CliError::Input(format!(
+        _ => Err(CliError::Parts(format!(
             "{}: records in {}, neither .csv nor .parquet",
             part_path.display(),
             path.display()
@@ -145,7 +145,7 @@ fn for_each_record(
 ) -> Result<(), CliError> {
     let path = records_path(part_path, part).expect("checked: every part has records");
     let file = std::fs::File::open(&path).map_err(|e| {
-        CliError::Input(format!(
+        CliError::Parts(format!(
             "{} (records of {}): {e}",
             path.display(),
             part_path.display()
@@ -163,9 +163,9 @@ fn for_each_record(
         next += 1;
         each(r)
     })
-    .map_err(|e| CliError::Input(format!("{}: {e}", path.display())))?;
+    .map_err(|e| CliError::Parts(format!("{}: {e}", path.display())))?;
     if next != part.range[1] {
-        return Err(CliError::Input(format!(
+        return Err(CliError::Parts(format!(
             "{}: holds {} of the {} rolls the part summary counts",
             path.display(),
             next - part.range[0],
@@ -178,8 +178,8 @@ fn for_each_record(
 /// Names the part file whose rows failed.
 fn row_error(path: &Path, e: MergeError) -> CliError {
     match e {
-        MergeError::Io(e) => CliError::Run(format!("{}: {e}", path.display())),
-        e => CliError::Input(format!("{}: {e}", path.display())),
+        MergeError::Io(e) => CliError::Sweep(format!("{}: {e}", path.display())),
+        e => CliError::Parts(format!("{}: {e}", path.display())),
     }
 }
 
@@ -199,13 +199,13 @@ fn merge_batch(args: &MergeArgs, parts: &[(&Path, &Part)]) -> Result<(), CliErro
     let mut tally = Tally::default();
     for (path, p) in parts {
         let t = p.tally.as_ref().ok_or_else(|| {
-            CliError::Input(format!(
+            CliError::Parts(format!(
                 "{}: a batch part without its counts (`tally`)",
                 path.display()
             ))
         })?;
         if t.rolls != p.len() {
-            return Err(CliError::Input(format!(
+            return Err(CliError::Parts(format!(
                 "{}: counts {} rolls, but its shard has {}",
                 path.display(),
                 t.rolls,
@@ -220,13 +220,16 @@ fn merge_batch(args: &MergeArgs, parts: &[(&Path, &Part)]) -> Result<(), CliErro
         let mut w = std::io::BufWriter::with_capacity(1 << 20, tmp.as_file());
         match kind {
             "csv" => {
-                let header = records_csv_header();
+                // Part files are copied line by line: no cell of a record needs quoting.
+                let header = records_csv_header().join(",");
                 writeln!(w, "{header}")?;
                 for (path, p) in parts {
                     if records_kind(path, p)? == "parquet" {
+                        let mut csv = csv::Writer::from_writer(&mut w);
                         for_each_record(path, p, &mut |r| {
-                            writeln!(w, "{}", record_csv_row(&r)).map_err(|e| e.to_string())
+                            csv.write_record(record_csv_row(&r)).map_err(|e| e.to_string())
                         })?;
+                        csv.flush()?;
                         continue;
                     }
                     let (records, reader) = open_records(path, p)?;
@@ -240,11 +243,11 @@ fn merge_batch(args: &MergeArgs, parts: &[(&Path, &Part)]) -> Result<(), CliErro
                 drop(w);
             }
             _ => {
-                let failed = |e: ParquetError| CliError::Run(format!("{}: {e}", out.display()));
+                let failed = |e: ParquetError| CliError::Sweep(format!("{}: {e}", out.display()));
                 let mut parquet = RecordsWriter::new(w).map_err(failed)?;
                 for (path, p) in parts {
                     if records_kind(path, p)? != "parquet" {
-                        return Err(CliError::Input(format!(
+                        return Err(CliError::Parts(format!(
                             "{}: its records are CSV; a merged .parquet needs .parquet parts (or merge to .csv)",
                             path.display()
                         )));
@@ -254,7 +257,7 @@ fn merge_batch(args: &MergeArgs, parts: &[(&Path, &Part)]) -> Result<(), CliErro
                 parquet.finish().map_err(failed)?.flush()?;
             }
         }
-        finish_atomically(tmp, out).map_err(|e| CliError::Run(format!("{}: {e}", out.display())))?;
+        finish_atomically(tmp, out).map_err(|e| CliError::Sweep(format!("{}: {e}", out.display())))?;
     }
     let (shard_s, longest_s) = shard_times(parts);
     let summary = tally.summary(Duration::from_secs_f64(shard_s));
@@ -299,11 +302,11 @@ fn merge_map(args: &MergeArgs, outputs: &[Output], parts: &[(&Path, &Part)]) -> 
         unreachable!("merge_map is called for maps")
     };
     if args.json {
-        return Err(CliError::Input(
+        return Err(CliError::Parts(
             "--json: a map's summary is text (its cells are the --out .csv)".to_string(),
         ));
     }
-    let bad_sweep = |e: String| CliError::Input(format!("{}: {e}", parts[0].0.display()));
+    let bad_sweep = |e: String| CliError::Parts(format!("{}: {e}", parts[0].0.display()));
     let x = Axis::parse(x, *width).map_err(|e| bad_sweep(e.to_string()))?;
     let y = Axis::parse(y, *height).map_err(|e| bad_sweep(e.to_string()))?;
     let layer = [Layer::Face, Layer::SettleTime]
@@ -313,7 +316,7 @@ fn merge_map(args: &MergeArgs, outputs: &[Output], parts: &[(&Path, &Part)]) -> 
     let mut faces = FaceTally::default();
     for (path, p) in parts {
         let f = p.map_faces.as_ref().ok_or_else(|| {
-            CliError::Input(format!(
+            CliError::Parts(format!(
                 "{}: a map part without its face counts (`map_faces`)",
                 path.display()
             ))
@@ -369,12 +372,12 @@ fn merge_map(args: &MergeArgs, outputs: &[Output], parts: &[(&Path, &Part)]) -> 
         drop(sink);
         map.sampled = map.cells.iter().flatten().filter(|c| c.sampled).count();
         if let (Some(t), Some(o)) = (tmp, csv_out) {
-            finish_atomically(t, o).map_err(|e| CliError::Run(format!("{}: {e}", o.display())))?;
+            finish_atomically(t, o).map_err(|e| CliError::Sweep(format!("{}: {e}", o.display())))?;
         }
         for (output, _) in outputs.iter().zip(&kinds).filter(|(_, k)| **k != "csv") {
             write_image(&map, layer, output).map_err(|e| match e {
-                crate::experiment::Error::Output(e) => CliError::from(e),
-                e => CliError::Run(format!("{}: {e}", output.path().display())),
+                crate::experiment::Error::Output(e) => CliError::output("")(e),
+                e => CliError::experiment(&format!("{}: ", output.path().display()))(e),
             })?;
         }
     }

@@ -12,23 +12,23 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// The extension of a part summary, replacing the records file's.
-pub const PART_EXTENSION: &str = "part.json";
+pub(crate) const PART_EXTENSION: &str = "part.json";
 
 #[derive(Debug, Clone, Default, Args)]
-pub struct ShardArgs {
+pub(crate) struct ShardArgs {
     /// Roll only shard K of N (K from 0): ids ⌊K·R/N⌋ up to ⌊(K+1)·R/N⌋ of the same R rolls
     /// (rows of a map); `dicesim merge` puts the N parts back into the one-machine result.
     #[arg(long, value_name = "K/N", value_parser = Shard::parse)]
-    pub shard: Option<Shard>,
+    pub(crate) shard: Option<Shard>,
     /// Where the shard's summary for `dicesim merge` goes (default: --out with the extension
     /// `.part.json`). Without --out the shard keeps only this summary: its counts.
     #[arg(long, value_name = "FILE.part.json", requires = "shard")]
-    pub part: Option<PathBuf>,
+    pub(crate) part: Option<PathBuf>,
 }
 
 impl ShardArgs {
     /// The shard to roll and where its summary goes, or `None` for a whole run.
-    pub fn resolve(&self, out: Option<&Path>) -> Result<Option<(Shard, PathBuf)>, CliError> {
+    pub(crate) fn resolve(&self, out: Option<&Path>) -> Result<Option<(Shard, PathBuf)>, CliError> {
         let Some(shard) = self.shard else {
             return Ok(None);
         };
@@ -36,13 +36,13 @@ impl ShardArgs {
             (Some(part), _) => part.clone(),
             (None, Some(out)) => out.with_extension(PART_EXTENSION),
             (None, None) => {
-                return Err(CliError::Input(
+                return Err(CliError::Usage(
                     "--shard needs --out (the shard's records) or --part (only its summary)".to_string(),
                 ));
             }
         };
         if out == Some(part.as_path()) {
-            return Err(CliError::Input(format!(
+            return Err(CliError::Usage(format!(
                 "--part {} would overwrite the records of --out",
                 part.display()
             )));
@@ -52,7 +52,7 @@ impl ShardArgs {
 }
 
 /// The part's fields every shard fills the same way.
-pub fn new_part(
+pub(crate) fn new_part(
     sweep: Sweep,
     shard: Shard,
     range: std::ops::Range<u64>,
@@ -88,7 +88,7 @@ fn records_reference(part: &Path, records: &Path) -> String {
 }
 
 /// The records file a part names, as a path (relative names are relative to the part).
-pub fn records_path(part_path: &Path, part: &Part) -> Option<PathBuf> {
+pub(crate) fn records_path(part_path: &Path, part: &Part) -> Option<PathBuf> {
     let name = Path::new(part.records.as_deref()?);
     Some(if name.is_absolute() {
         name.to_path_buf()
@@ -99,7 +99,7 @@ pub fn records_path(part_path: &Path, part: &Part) -> Option<PathBuf> {
 
 /// The fingerprint of a batch's setup: every value of the preset but its name, description
 /// and seed (a merge names a different seed as such), and the given initial conditions.
-pub fn batch_fingerprint(preset: &Preset, given: Option<&[(u64, InitialCondition)]>) -> String {
+pub(crate) fn batch_fingerprint(preset: &Preset, given: Option<&[(u64, InitialCondition)]>) -> String {
     let mut values = preset.clone();
     values.name.clear();
     values.description.clear();
@@ -108,28 +108,28 @@ pub fn batch_fingerprint(preset: &Preset, given: Option<&[(u64, InitialCondition
 }
 
 /// The fingerprint of a map's setup: the preset's values (the axes are compared apart).
-pub fn map_fingerprint(preset: &Preset) -> String {
+pub(crate) fn map_fingerprint(preset: &Preset) -> String {
     batch_fingerprint(preset, None)
 }
 
 /// Writes `part` as JSON, atomically.
-pub fn write_part(path: &Path, part: &Part) -> Result<(), CliError> {
+pub(crate) fn write_part(path: &Path, part: &Part) -> Result<(), CliError> {
     write_atomically(path, |w| {
         serde_json::to_writer_pretty(&mut *w, part)?;
         writeln!(w)
     })
-    .map_err(|e| CliError::Run(format!("{}: {e}", path.display())))
+    .map_err(|e| CliError::Sweep(format!("{}: {e}", path.display())))
 }
 
 /// Reads a part summary, naming the file and the JSON problem when it is not one.
-pub fn read_part(path: &Path) -> Result<Part, CliError> {
+pub(crate) fn read_part(path: &Path) -> Result<Part, CliError> {
     let text =
-        std::fs::read_to_string(path).map_err(|e| CliError::Input(format!("{}: {e}", path.display())))?;
+        std::fs::read_to_string(path).map_err(|e| CliError::Parts(format!("{}: {e}", path.display())))?;
     let de = &mut serde_json::Deserializer::from_str(&text);
     serde_path_to_error::deserialize(de).map_err(|e| {
         let at = e.path().to_string();
         let inner = e.into_inner();
-        CliError::Input(format!(
+        CliError::Parts(format!(
             "{}: not a dicesim part summary: {}{inner}",
             path.display(),
             if at == "." {
@@ -143,7 +143,7 @@ pub fn read_part(path: &Path) -> Result<Part, CliError> {
 
 /// Writes a file through `write` into a temporary file beside `path`, then renames it
 /// over `path`: a failure or a crash leaves the old file or the new one, never half of one.
-pub fn write_atomically(
+pub(crate) fn write_atomically(
     path: &Path,
     write: impl FnOnce(&mut std::io::BufWriter<&std::fs::File>) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
@@ -158,7 +158,7 @@ pub fn write_atomically(
 
 /// Syncs a finished temporary file, makes it readable like any other output, and renames it
 /// to `path` (replacing it; on failure the temporary file is deleted).
-pub fn finish_atomically(tmp: tempfile::NamedTempFile, path: &Path) -> std::io::Result<()> {
+pub(crate) fn finish_atomically(tmp: tempfile::NamedTempFile, path: &Path) -> std::io::Result<()> {
     tmp.as_file().sync_all()?;
     #[cfg(unix)]
     {
@@ -171,7 +171,7 @@ pub fn finish_atomically(tmp: tempfile::NamedTempFile, path: &Path) -> std::io::
 
 /// Writes the part summary of a batch shard that rolled `batch` (ids `range` of `sweep`),
 /// its records in `records` if any.
-pub fn write_batch_part(
+pub(crate) fn write_batch_part(
     path: &Path,
     sweep: Sweep,
     shard: Shard,
@@ -189,7 +189,7 @@ pub fn write_batch_part(
 
 /// A temporary file in `path`'s folder (so renaming it to `path` is atomic), hidden, with
 /// `suffix` (an image backend picks its format from it).
-pub fn temp_beside(path: &Path, suffix: &str) -> std::io::Result<tempfile::NamedTempFile> {
+pub(crate) fn temp_beside(path: &Path, suffix: &str) -> std::io::Result<tempfile::NamedTempFile> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),

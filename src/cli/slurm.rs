@@ -8,7 +8,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum PartFormat {
+pub(crate) enum PartFormat {
     /// Each shard writes its records as CSV; the merge writes the one-machine CSV (and, for
     /// a map, its PNG).
     Csv,
@@ -20,45 +20,45 @@ pub enum PartFormat {
 }
 
 #[derive(Debug, Args)]
-pub struct SlurmArgs {
+pub(crate) struct SlurmArgs {
     /// How many shards (array tasks) to split the sweep into.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=100_000))]
-    pub shards: u64,
+    pub(crate) shards: u64,
     /// The folder for the scripts, the parts (`parts/`), the logs (`logs/`) and the merged
     /// result; created if missing. It must be on a file system the compute nodes share.
     #[arg(long, value_name = "DIR")]
-    pub dir: PathBuf,
+    pub(crate) dir: PathBuf,
     /// CPUs per array task; each shard runs that many threads.
     #[arg(long, value_name = "C", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..=4096))]
-    pub cpus_per_task: u64,
+    pub(crate) cpus_per_task: u64,
     /// Wall-clock limit per job, in Slurm's notation (e.g. `30`, `2:00:00`, `1-00:00:00`).
     #[arg(long, value_name = "TIME")]
-    pub time: Option<String>,
+    pub(crate) time: Option<String>,
     /// Memory per job, in Slurm's notation (e.g. `500M`).
     #[arg(long, value_name = "MEM")]
-    pub mem: Option<String>,
+    pub(crate) mem: Option<String>,
     /// The partition to run in.
     #[arg(long, value_name = "NAME")]
-    pub partition: Option<String>,
+    pub(crate) partition: Option<String>,
     /// The account to charge.
     #[arg(long, value_name = "NAME")]
-    pub account: Option<String>,
+    pub(crate) account: Option<String>,
     /// Run at most M shards at once (Slurm's `--array=…%M`).
     #[arg(long, value_name = "M", value_parser = clap::value_parser!(u64).range(1..))]
-    pub max_running: Option<u64>,
+    pub(crate) max_running: Option<u64>,
     /// What the shards keep.
     #[arg(long, value_enum, default_value_t = PartFormat::Csv)]
-    pub format: PartFormat,
+    pub(crate) format: PartFormat,
     /// The dicesim program the jobs run (default: this one).
     #[arg(long, value_name = "PATH")]
-    pub dicesim: Option<PathBuf>,
+    pub(crate) dicesim: Option<PathBuf>,
     /// Submit both jobs with `sbatch` (the merge with `--dependency=afterok` on the array).
     #[arg(long)]
-    pub submit: bool,
+    pub(crate) submit: bool,
     /// The sweep, after `--`: a `batch` or `basin` command line without --shard, --out,
     /// --part or --jobs, e.g. `-- batch --rolls 1000000 --seed 7`.
     #[arg(last = true, required = true, value_name = "COMMAND")]
-    pub command: Vec<String>,
+    pub(crate) command: Vec<String>,
 }
 
 /// The sweep's kind, as it decides file names.
@@ -68,30 +68,30 @@ enum Kind {
     Map,
 }
 
-pub fn run(args: &SlurmArgs) -> Result<(), CliError> {
+pub(crate) fn run(args: &SlurmArgs) -> Result<(), CliError> {
     let kind = check_command(&args.command)?;
     if kind == Kind::Map && args.format == PartFormat::Parquet {
-        return Err(CliError::Input(
+        return Err(CliError::Usage(
             "--format parquet holds roll records: a map's shards write .csv".to_string(),
         ));
     }
     let dicesim = match &args.dicesim {
         Some(p) => std::path::absolute(p)?,
         None => std::env::current_exe()
-            .map_err(|e| CliError::Run(format!("cannot find this program's path (give --dicesim): {e}")))?,
+            .map_err(|e| CliError::Sweep(format!("cannot find this program's path (give --dicesim): {e}")))?,
     };
     let dir = std::path::absolute(&args.dir)?;
     let parts = dir.join("parts");
     let logs = dir.join("logs");
     for d in [&dir, &parts, &logs] {
-        std::fs::create_dir_all(d).map_err(|e| CliError::Run(format!("{}: {e}", d.display())))?;
+        std::fs::create_dir_all(d).map_err(|e| CliError::Sweep(format!("{}: {e}", d.display())))?;
     }
     let suffix = format!(".{PART_EXTENSION}");
     let stale = std::fs::read_dir(&parts)?
         .filter_map(|e| e.ok())
         .any(|e| e.file_name().to_string_lossy().ends_with(&suffix));
     if stale {
-        return Err(CliError::Input(format!(
+        return Err(CliError::Usage(format!(
             "{} already holds the parts of a sweep: choose another --dir, or remove them first",
             parts.display()
         )));
@@ -99,7 +99,7 @@ pub fn run(args: &SlurmArgs) -> Result<(), CliError> {
     let workdir = std::env::current_dir()?;
     for (what, path) in [("--dir", &dir), ("the current folder", &workdir)] {
         if !directive_safe(&path.to_string_lossy()) {
-            return Err(CliError::Input(format!(
+            return Err(CliError::Usage(format!(
                 "{what} {}: a path in an #SBATCH line may not hold spaces, quotes, backslashes or %",
                 path.display()
             )));
@@ -110,7 +110,7 @@ pub fn run(args: &SlurmArgs) -> Result<(), CliError> {
     let merge_path = dir.join("merge.sbatch");
     for (path, text) in [(&shards_path, &scripts.shards), (&merge_path, &scripts.merge)] {
         write_atomically(path, |w| w.write_all(text.as_bytes()))
-            .map_err(|e| CliError::Run(format!("{}: {e}", path.display())))?;
+            .map_err(|e| CliError::Sweep(format!("{}: {e}", path.display())))?;
     }
     let mut out = std::io::stdout().lock();
     let cpus = args.cpus_per_task;
@@ -149,7 +149,7 @@ pub fn run(args: &SlurmArgs) -> Result<(), CliError> {
 fn check_command(command: &[String]) -> Result<Kind, CliError> {
     let cli = Cli::try_parse_from(std::iter::once("dicesim").chain(command.iter().map(String::as_str)))
         .map_err(|e| {
-            CliError::Input(format!(
+            CliError::Usage(format!(
                 "the sweep's command line: {}",
                 e.render().to_string().trim_end()
             ))
@@ -164,14 +164,14 @@ fn check_command(command: &[String]) -> Result<Kind, CliError> {
             b.out.is_some() || b.jobs.is_some() || b.shard.shard.is_some() || b.shard.part.is_some(),
         ),
         _ => {
-            return Err(CliError::Input(
+            return Err(CliError::Usage(
                 "dicesim slurm runs a `batch` or a `basin` sweep: put its command line after `--`"
                     .to_string(),
             ));
         }
     };
     if owned {
-        return Err(CliError::Input(
+        return Err(CliError::Usage(
             "the sweep's command line must leave --shard, --part, --out and --jobs to the script".to_string(),
         ));
     }
@@ -185,10 +185,10 @@ fn sbatch(options: &[String], script: &Path) -> Result<String, CliError> {
         .args(options)
         .arg(script)
         .output()
-        .map_err(|e| CliError::Run(format!("cannot run sbatch (is Slurm installed here?): {e}")))?;
+        .map_err(|e| CliError::Sweep(format!("cannot run sbatch (is Slurm installed here?): {e}")))?;
     let stdout = String::from_utf8_lossy(&output.stdout);
     if !output.status.success() {
-        return Err(CliError::Run(format!(
+        return Err(CliError::Sweep(format!(
             "sbatch {} failed: {}",
             script.display(),
             String::from_utf8_lossy(&output.stderr).trim()
@@ -197,7 +197,7 @@ fn sbatch(options: &[String], script: &Path) -> Result<String, CliError> {
     // `--parsable` prints `id` or `id;cluster`.
     let id = stdout.trim().split(';').next().unwrap_or_default();
     if id.is_empty() || !id.bytes().all(|b| b.is_ascii_digit()) {
-        return Err(CliError::Run(format!(
+        return Err(CliError::Sweep(format!(
             "sbatch printed `{}`, not a job id",
             stdout.trim()
         )));

@@ -18,13 +18,13 @@ use std::sync::atomic::{AtomicBool, Ordering};
 /// One axis of a map: a key scanned from `min` to `max` (both included) over `cells` nodes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Axis {
-    pub key: ScanKey,
+    pub(crate) key: ScanKey,
     /// In the key's unit.
-    pub min: f64,
+    pub(crate) min: f64,
     /// In the key's unit.
-    pub max: f64,
+    pub(crate) max: f64,
     /// Grid nodes along this axis (≥ 1); one node sits at the middle of the range.
-    pub cells: usize,
+    pub(crate) cells: usize,
 }
 
 impl Axis {
@@ -52,7 +52,7 @@ impl Axis {
 
     /// Checks both ends against the key's allowed range and that `min < max` (or `min <= max`
     /// for a single node).
-    pub fn new(key: ScanKey, min: f64, max: f64, cells: usize) -> Result<Axis, Error> {
+    pub(crate) fn new(key: ScanKey, min: f64, max: f64, cells: usize) -> Result<Axis, Error> {
         let bad = |message: String| Error::Axis {
             spec: format!("{}:{min}:{max}", key.key),
             message,
@@ -69,7 +69,7 @@ impl Axis {
     }
 
     /// The value at node `i` (0-based), exact at both ends.
-    pub fn value(&self, i: usize) -> f64 {
+    pub(crate) fn value(&self, i: usize) -> f64 {
         let n = self.cells;
         if n == 1 {
             0.5 * (self.min + self.max)
@@ -83,7 +83,7 @@ impl Axis {
     }
 
     /// The distance between neighbouring nodes (the whole range for a single node).
-    pub fn spacing(&self) -> f64 {
+    pub(crate) fn spacing(&self) -> f64 {
         (self.max - self.min) / (self.cells.max(2) - 1) as f64
     }
 }
@@ -124,7 +124,7 @@ pub enum Layer {
 }
 
 impl Layer {
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             Layer::Face => "face",
             Layer::SettleTime => "settle-time",
@@ -182,36 +182,46 @@ impl BasinMap {
     /// The map as CSV: a header naming both keys, then one row per cell in row order, with
     /// `sampled` = 1 for rolled cells and 0 for cells filled by the adaptive method. Unknown
     /// cells of a partial map are left out.
-    pub fn write_csv(&self, w: &mut (impl std::io::Write + ?Sized)) -> std::io::Result<()> {
-        writeln!(
-            w,
-            "i,j,{},{},start_face,face,status,steps,time_s,sampled",
-            self.x.key.key, self.y.key.key
-        )?;
+    pub(crate) fn write_csv(&self, w: &mut (impl std::io::Write + ?Sized)) -> std::io::Result<()> {
+        let mut csv = csv::Writer::from_writer(w);
+        csv.write_record([
+            "i",
+            "j",
+            &self.x.key.key,
+            &self.y.key.key,
+            "start_face",
+            "face",
+            "status",
+            "steps",
+            "time_s",
+            "sampled",
+        ])
+        .map_err(super::csv_io)?;
         for j in 0..self.height() {
             for i in 0..self.width() {
                 let Some(c) = self.cell(i, j) else { continue };
                 let o = &c.outcome;
-                writeln!(
-                    w,
-                    "{i},{j},{},{},{},{},{},{},{},{}",
-                    self.x.value(i),
-                    self.y.value(j),
-                    c.start_face,
+                csv.write_record([
+                    i.to_string(),
+                    j.to_string(),
+                    self.x.value(i).to_string(),
+                    self.y.value(j).to_string(),
+                    c.start_face.to_string(),
                     o.face.map(|f| f.to_string()).unwrap_or_default(),
-                    o.status.name(),
-                    o.steps,
-                    o.time_s,
-                    u8::from(c.sampled)
-                )?;
+                    o.status.name().to_string(),
+                    o.steps.to_string(),
+                    o.time_s.to_string(),
+                    u8::from(c.sampled).to_string(),
+                ])
+                .map_err(super::csv_io)?;
             }
         }
-        Ok(())
+        csv.flush()
     }
 }
 
 /// The setup of node `(i, j)`: `base` with the two keys set to the nodes' values.
-pub fn node_setup(
+pub(crate) fn node_setup(
     params: &Params,
     base: &InitialCondition,
     x: &Axis,
@@ -225,19 +235,8 @@ pub fn node_setup(
     (p, ic)
 }
 
-/// Rolls node `(i, j)`; its record id is the cell index `j * width + i`.
-pub fn roll_node(
-    params: &Params,
-    base: &InitialCondition,
-    x: &Axis,
-    y: &Axis,
-    i: usize,
-    j: usize,
-) -> RollRecord {
-    roll_node_or_cancel(params, base, x, y, i, j, &AtomicBool::new(false)).expect("never cancelled")
-}
-
-/// [`roll_node`], or `None` once `cancel` is set (looked at inside the roll).
+/// Rolls node `(i, j)`, its record id the cell index `j * width + i`; `None` once `cancel`
+/// is set (looked at inside the roll).
 fn roll_node_or_cancel(
     params: &Params,
     base: &InitialCondition,
@@ -273,7 +272,7 @@ pub fn run_map(
 /// [`run_map`] over the rows `rows` of the map only (a shard of it): the other rows stay
 /// unknown, and the map is complete when these are. Only the uniform method can split rows,
 /// since adaptive refinement compares cells across row boundaries.
-pub fn run_map_rows(
+pub(crate) fn run_map_rows(
     params: &Params,
     base: &InitialCondition,
     spec: &MapSpec,

@@ -39,19 +39,15 @@ pub enum Rolls<'a> {
 
 impl Rolls<'_> {
     /// How many rolls the batch has.
-    pub fn len(&self) -> u64 {
+    pub(crate) fn len(&self) -> u64 {
         match self {
             Rolls::Random { count, .. } => *count,
             Rolls::Given(ics) => ics.len() as u64,
         }
     }
 
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
     /// The id and initial condition of roll `index` (0-based, `< len()`).
-    pub fn get(&self, index: u64) -> (u64, InitialCondition) {
+    pub(crate) fn get(&self, index: u64) -> (u64, InitialCondition) {
         match self {
             Rolls::Random {
                 ranges,
@@ -87,7 +83,7 @@ impl Batch {
 }
 
 /// The number of threads for `jobs` (0 means one per available core).
-pub fn thread_count(jobs: usize) -> usize {
+pub(crate) fn thread_count(jobs: usize) -> usize {
     if jobs > 0 {
         jobs
     } else {
@@ -161,15 +157,15 @@ pub fn run_batch(
 #[serde(deny_unknown_fields)]
 pub struct StartFaceCounts {
     /// Ended on the face that started up.
-    pub same: u64,
+    pub(crate) same: u64,
     /// Ended on one of the 4 faces next to it.
-    pub adjacent: u64,
+    pub(crate) adjacent: u64,
     /// Ended on the opposite face.
-    pub opposite: u64,
+    pub(crate) opposite: u64,
 }
 
 impl StartFaceCounts {
-    pub fn add(&mut self, start_face: u8, face: u8) {
+    pub(crate) fn add(&mut self, start_face: u8, face: u8) {
         if face == start_face {
             self.same += 1;
         } else if face == opposite_face(start_face) {
@@ -179,12 +175,12 @@ impl StartFaceCounts {
         }
     }
 
-    pub fn total(&self) -> u64 {
+    pub(crate) fn total(&self) -> u64 {
         self.same + self.adjacent + self.opposite
     }
 
     /// Shares of (same, adjacent, opposite); zeros with no rolls.
-    pub fn shares(&self) -> [f64; 3] {
+    pub(crate) fn shares(&self) -> [f64; 3] {
         let n = self.total().max(1) as f64;
         [self.same, self.adjacent, self.opposite].map(|c| c as f64 / n)
     }
@@ -197,11 +193,11 @@ pub struct StatusCounts {
     /// Settled with a face up.
     pub settled: u64,
     /// Settled, but the 4 highest corners formed no face.
-    pub settled_without_face: u64,
+    pub(crate) settled_without_face: u64,
     /// Did not settle within `integrator.max_time`.
-    pub timeout: u64,
+    pub(crate) timeout: u64,
     /// The integrator gained energy.
-    pub unstable: u64,
+    pub(crate) unstable: u64,
 }
 
 /// The statistics of a batch: what a summary prints and `--json` carries.

@@ -8,7 +8,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 /// Image size in pixels.
-pub const SIZE: (u32, u32) = (1200, 700);
+pub(crate) const SIZE: (u32, u32) = (1200, 700);
 
 /// Names and colours of the series, in the explorer's order: total, translational,
 /// rotational, gravitational, elastic.
@@ -31,7 +31,11 @@ fn value(e: &Energy, series: usize) -> f64 {
 }
 
 /// `samples` (s, energy) as the bytes of a PNG file, with the stop threshold (erg) dotted.
-pub fn energy_plot_png(samples: &[(f64, Energy)], threshold: f64, title: &str) -> Result<Vec<u8>, Error> {
+pub(crate) fn energy_plot_png(
+    samples: &[(f64, Energy)],
+    threshold: f64,
+    title: &str,
+) -> Result<Vec<u8>, Error> {
     register_fonts()?;
     png_bytes(SIZE, |root| draw(&root, samples, threshold, title))
 }

@@ -8,7 +8,7 @@ use std::io::{BufRead, Write};
 
 /// Why a part's rows cannot be merged.
 #[derive(Debug, thiserror::Error)]
-pub enum MergeError {
+pub(crate) enum MergeError {
     #[error("{0}")]
     Io(#[from] std::io::Error),
     /// The part's content disagrees with its summary (1-based line).
@@ -19,7 +19,7 @@ pub enum MergeError {
 /// Copies the rows of one CSV part from `reader` to `out`, after checking that its header
 /// is `header` and that row `n` (0-based, after the header) passes `check(n, row)`; the
 /// part must hold exactly `rows` rows. The header itself is not copied.
-pub fn copy_rows(
+pub(crate) fn copy_rows(
     reader: impl BufRead,
     out: &mut impl Write,
     header: &str,
@@ -56,7 +56,7 @@ pub fn copy_rows(
 }
 
 /// Checks that a batch row is roll `id` (its first column).
-pub fn check_roll_id(row: &str, id: u64) -> Result<(), String> {
+pub(crate) fn check_roll_id(row: &str, id: u64) -> Result<(), String> {
     let first = row.split(',').next().unwrap_or_default();
     if first.parse() == Ok(id) {
         Ok(())
@@ -68,7 +68,7 @@ pub fn check_roll_id(row: &str, id: u64) -> Result<(), String> {
 /// Reads a map row (`i,j,x,y,start_face,face,status,steps,time_s,sampled`, as
 /// [`BasinMap::write_csv`](super::BasinMap::write_csv) writes it) that must be node
 /// `(i, j)`; its floats are in shortest round-trip form, so the cell comes back exactly.
-pub fn parse_map_row(row: &str, i: usize, j: usize) -> Result<Cell, String> {
+pub(crate) fn parse_map_row(row: &str, i: usize, j: usize) -> Result<Cell, String> {
     let cells: Vec<&str> = row.split(',').collect();
     let [ri, rj, _, _, start_face, face, status, steps, time_s, sampled] = cells[..] else {
         return Err(format!("{} cells, expected 10", cells.len()));

@@ -4,23 +4,24 @@
 //! [`InitialCondition`](crate::physics::InitialCondition) values as arguments; resolving a
 //! preset is the caller's job.
 
-pub mod basin;
-pub mod batch;
-pub mod energy_plot;
+pub(crate) mod basin;
+pub(crate) mod batch;
+pub(crate) mod energy_plot;
 pub mod ics;
-pub mod keys;
-pub mod merge;
-pub mod parquet;
-pub mod plot;
-pub mod random;
-pub mod record;
-pub mod shard;
-pub mod stats;
-pub mod tally;
-pub mod trace;
+pub(crate) mod keys;
+pub(crate) mod merge;
+pub(crate) mod parquet;
+pub(crate) mod plot;
+pub(crate) mod random;
+pub(crate) mod record;
+pub(crate) mod shard;
+pub(crate) mod stats;
+pub(crate) mod tally;
+pub(crate) mod trace;
 pub mod twin;
 
-pub use basin::{Axis, BasinMap, Cell, Layer, MapSpec, Method, run_map, run_map_rows};
+pub(crate) use basin::run_map_rows;
+pub use basin::{Axis, BasinMap, Cell, Layer, MapSpec, Method, run_map};
 pub use batch::{Batch, BatchSummary, Rolls, run_batch};
 pub use keys::ScanKey;
 pub use random::RandomRanges;
@@ -28,6 +29,16 @@ pub use record::{RollRecord, roll_record};
 pub use stats::FaceTally;
 
 use crate::physics::ParamError;
+
+/// A CSV writer's error as the I/O error it wraps, so a closed pipe stays a closed pipe
+/// (`csv` turns every error into `ErrorKind::Other`). Records of a fixed width serialise
+/// nothing else.
+pub(crate) fn csv_io(e: csv::Error) -> std::io::Error {
+    match e.into_kind() {
+        csv::ErrorKind::Io(e) => e,
+        other => std::io::Error::other(format!("CSV: {other:?}")),
+    }
+}
 
 /// Why an experiment could not run.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

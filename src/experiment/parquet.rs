@@ -28,7 +28,7 @@ use std::sync::Arc;
 
 /// Rolls per row group: readers load a group at a time, and the writer buffers one
 /// (~10 MB of records).
-pub const ROW_GROUP: usize = 65_536;
+pub(crate) const ROW_GROUP: usize = 65_536;
 
 /// The Parquet schema: the CSV's columns (an unset angular momentum and a missing face
 /// are nulls).
@@ -60,13 +60,13 @@ fn schema() -> String {
 }
 
 /// Writes roll records as they come, a row group at a time.
-pub struct RecordsWriter<W: Write + Send> {
+pub(crate) struct RecordsWriter<W: Write + Send> {
     file: SerializedFileWriter<W>,
     group: Vec<RollRecord>,
 }
 
 impl<W: Write + Send> RecordsWriter<W> {
-    pub fn new(sink: W) -> Result<Self, ParquetError> {
+    pub(crate) fn new(sink: W) -> Result<Self, ParquetError> {
         let schema = Arc::new(parse_message_type(&schema())?);
         let props = WriterProperties::builder()
             .set_compression(Compression::UNCOMPRESSED)
@@ -80,7 +80,7 @@ impl<W: Write + Send> RecordsWriter<W> {
         })
     }
 
-    pub fn write(&mut self, r: &RollRecord) -> Result<(), ParquetError> {
+    pub(crate) fn write(&mut self, r: &RollRecord) -> Result<(), ParquetError> {
         self.group.push(*r);
         if self.group.len() == ROW_GROUP {
             self.flush_group()?;
@@ -89,7 +89,7 @@ impl<W: Write + Send> RecordsWriter<W> {
     }
 
     /// Writes the last row group and the footer.
-    pub fn finish(mut self) -> Result<W, ParquetError> {
+    pub(crate) fn finish(mut self) -> Result<W, ParquetError> {
         self.flush_group()?;
         self.file.into_inner()
     }
@@ -187,7 +187,7 @@ fn write_column(
 
 /// Reads back every record of a file [`RecordsWriter`] wrote, in order, and checks its
 /// schema is the one this program writes.
-pub fn read_records(
+pub(crate) fn read_records(
     file: std::fs::File,
     each: &mut dyn FnMut(RollRecord) -> Result<(), String>,
 ) -> Result<(), String> {

@@ -13,12 +13,12 @@ use plotters::style::register_font;
 use std::sync::OnceLock;
 
 /// Image size in pixels (SVG user units).
-pub const SIZE: (u32, u32) = (1200, 800);
+pub(crate) const SIZE: (u32, u32) = (1200, 800);
 /// Width of the legend strip on the right.
 const LEGEND_WIDTH: u32 = 200;
 
 /// Okabe–Ito colours for faces 1..6: distinguishable with the common colour-vision deficiencies.
-pub const FACE_COLOURS: [RGBColor; 6] = [
+pub(crate) const FACE_COLOURS: [RGBColor; 6] = [
     RGBColor(230, 159, 0),
     RGBColor(86, 180, 233),
     RGBColor(0, 158, 115),
@@ -68,14 +68,14 @@ pub(crate) fn plot_error(e: impl std::fmt::Display) -> Error {
 
 /// An image file format the plots are drawn in.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ImageFormat {
+pub(crate) enum ImageFormat {
     Png,
     Svg,
 }
 
 impl ImageFormat {
     /// The format for a file extension (`png` or `svg`, any case).
-    pub fn from_extension(extension: &str) -> Option<ImageFormat> {
+    pub(crate) fn from_extension(extension: &str) -> Option<ImageFormat> {
         match extension.to_ascii_lowercase().as_str() {
             "png" => Some(ImageFormat::Png),
             "svg" => Some(ImageFormat::Svg),
@@ -102,7 +102,7 @@ pub(crate) fn png_bytes(
 
 /// Writes `map` to `out` as a PNG or SVG image, by its extension; nothing is written if
 /// drawing fails.
-pub fn write_image(map: &BasinMap, layer: Layer, out: &Output) -> Result<(), Error> {
+pub(crate) fn write_image(map: &BasinMap, layer: Layer, out: &Output) -> Result<(), Error> {
     let format = ImageFormat::from_extension(out.extension())
         .ok_or_else(|| Error::Plot(format!("{}: expected a .png or .svg file", out.path().display())))?;
     out.write_bytes(&image_bytes(map, layer, format)?)?;
@@ -110,7 +110,7 @@ pub fn write_image(map: &BasinMap, layer: Layer, out: &Output) -> Result<(), Err
 }
 
 /// `map` as the bytes of a PNG or SVG file.
-pub fn image_bytes(map: &BasinMap, layer: Layer, format: ImageFormat) -> Result<Vec<u8>, Error> {
+pub(crate) fn image_bytes(map: &BasinMap, layer: Layer, format: ImageFormat) -> Result<Vec<u8>, Error> {
     register_fonts()?;
     match format {
         ImageFormat::Png => png_bytes(SIZE, |area| draw(area, map, layer)),
@@ -127,7 +127,7 @@ pub fn image_bytes(map: &BasinMap, layer: Layer, format: ImageFormat) -> Result<
 }
 
 /// The settle-time scale: s, over settled cells (`None` if none settled).
-pub fn time_range(map: &BasinMap) -> Option<(f64, f64)> {
+pub(crate) fn time_range(map: &BasinMap) -> Option<(f64, f64)> {
     let times = map
         .cells
         .iter()
@@ -141,7 +141,7 @@ pub fn time_range(map: &BasinMap) -> Option<(f64, f64)> {
 }
 
 /// A cell's colour in the image; the explorer draws its map in the same colours.
-pub fn cell_colour(cell: Option<&Cell>, layer: Layer, times: Option<(f64, f64)>) -> RGBColor {
+pub(crate) fn cell_colour(cell: Option<&Cell>, layer: Layer, times: Option<(f64, f64)>) -> RGBColor {
     let Some(c) = cell else { return UNKNOWN };
     match (c.outcome.status, c.outcome.face, layer) {
         (Status::Timeout, ..) => TIMEOUT,

@@ -6,7 +6,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Steps between looks at a cancel flag inside one roll: ~0.5 ms of physics, so a cancel
 /// answers at once even when one roll is millions of steps long.
-pub const CANCEL_CHECK_STEPS: u64 = 4096;
+pub(crate) const CANCEL_CHECK_STEPS: u64 = 4096;
 
 /// A finished roll as batches, basin maps and the outcome table record it.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -27,7 +27,7 @@ pub fn roll_record(params: &Params, initial: &InitialCondition, id: u64) -> Roll
 
 /// [`roll_record`], or `None` once `cancel` is set (looked at every
 /// [`CANCEL_CHECK_STEPS`] steps, and before the first).
-pub fn roll_record_or_cancel(
+pub(crate) fn roll_record_or_cancel(
     params: &Params,
     initial: &InitialCondition,
     id: u64,

@@ -14,22 +14,19 @@ use std::fmt;
 use std::ops::Range;
 
 /// The part-summary format this program writes; newer ones are refused.
-pub const PART_FORMAT: u32 = 1;
+pub(crate) const PART_FORMAT: u32 = 1;
 
 /// Shard `index` of `count` (0-based): an equal slice of a sweep's rolls or map rows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Shard {
-    pub index: u64,
-    pub count: u64,
+pub(crate) struct Shard {
+    pub(crate) index: u64,
+    pub(crate) count: u64,
 }
 
 impl Shard {
-    /// The whole sweep as one shard.
-    pub const WHOLE: Shard = Shard { index: 0, count: 1 };
-
     /// A shard from `K/N` with `0 ≤ K < N`, e.g. `3/8` (the fourth of eight).
-    pub fn parse(s: &str) -> Result<Shard, String> {
+    pub(crate) fn parse(s: &str) -> Result<Shard, String> {
         let bad = |why: &str| format!("`{s}`: {why}");
         let (k, n) = s
             .split_once('/')
@@ -51,7 +48,7 @@ impl Shard {
 
     /// The ids (or rows) `[⌊K·total/N⌋, ⌊(K+1)·total/N⌋)` of this shard; the shards of one
     /// `count` cover `0..total` without gaps or overlaps, in order.
-    pub fn range(&self, total: u64) -> Range<u64> {
+    pub(crate) fn range(&self, total: u64) -> Range<u64> {
         let at = |k: u64| (k as u128 * total as u128 / self.count as u128) as u64;
         at(self.index)..at(self.index + 1)
     }
@@ -66,7 +63,7 @@ impl fmt::Display for Shard {
 /// A short, stable fingerprint of a setup: FNV-1a (64 bit) of its JSON form, whose floats
 /// are written in shortest round-trip form, so equal setups give equal fingerprints on any
 /// machine and any run.
-pub fn fingerprint(setup: &impl Serialize) -> String {
+pub(crate) fn fingerprint(setup: &impl Serialize) -> String {
     let json = serde_json::to_vec(setup).expect("a setup always serialises to JSON");
     let hash = json.iter().fold(0xcbf2_9ce4_8422_2325_u64, |h, &b| {
         (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
@@ -77,7 +74,7 @@ pub fn fingerprint(setup: &impl Serialize) -> String {
 /// What a sweep is; every shard of one sweep carries the same.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
-pub enum Sweep {
+pub(crate) enum Sweep {
     /// A batch of rolls; shards split the roll ids.
     Batch {
         /// The preset's name (shown, not compared: the fingerprint covers its values).
@@ -104,7 +101,7 @@ pub enum Sweep {
 
 impl Sweep {
     /// How many ids (rolls) or rows the shards split.
-    pub fn total(&self) -> u64 {
+    pub(crate) fn total(&self) -> u64 {
         match self {
             Sweep::Batch { rolls, .. } => *rolls,
             Sweep::Map { height, .. } => *height as u64,
@@ -190,44 +187,40 @@ impl Sweep {
 /// What a shard tells a merge: which slice of which sweep it rolled, and its counts.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Part {
+pub(crate) struct Part {
     /// This file's format ([`PART_FORMAT`]).
-    pub part_format: u32,
+    pub(crate) part_format: u32,
     /// The program version that rolled it: another version may roll differently.
-    pub version: String,
-    pub sweep: Sweep,
-    pub shard: Shard,
+    pub(crate) version: String,
+    pub(crate) sweep: Sweep,
+    pub(crate) shard: Shard,
     /// The ids (batch) or rows (map) `[first, end)` this shard covers.
-    pub range: [u64; 2],
+    pub(crate) range: [u64; 2],
     /// False if the shard was interrupted: its counts then cover only a prefix.
-    pub complete: bool,
+    pub(crate) complete: bool,
     /// The records' file, relative to the part file's folder; `None` for a summary-only part.
-    pub records: Option<String>,
+    pub(crate) records: Option<String>,
     /// A batch's counts (`None` for a map).
-    pub tally: Option<Tally>,
+    pub(crate) tally: Option<Tally>,
     /// A map's faces over its cells and how many cells were rolled (`None` for a batch).
-    pub map_faces: Option<FaceTally>,
+    pub(crate) map_faces: Option<FaceTally>,
     /// s of wall-clock time the shard took.
-    pub elapsed_s: f64,
+    pub(crate) elapsed_s: f64,
     /// Threads the shard ran on.
-    pub jobs: usize,
+    pub(crate) jobs: usize,
 }
 
 impl Part {
     /// How many ids or rows the part covers.
-    pub fn len(&self) -> u64 {
+    pub(crate) fn len(&self) -> u64 {
         self.range[1] - self.range[0]
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
     }
 }
 
 /// Checks that `parts` (each with a name for messages, e.g. its path) are every shard of
 /// one sweep, each exactly once, all complete, all with records or all without; returns
 /// their indices in shard order. The first problem found is the error, naming the parts.
-pub fn check_parts(parts: &[(String, Part)]) -> Result<Vec<usize>, String> {
+pub(crate) fn check_parts(parts: &[(String, Part)]) -> Result<Vec<usize>, String> {
     let Some((first_name, first)) = parts.first() else {
         return Err("no parts given".to_string());
     };

@@ -20,7 +20,7 @@ const WORDS: usize = 34;
 /// The exact sum of non-negative finite doubles, rounded to the nearest double (ties to
 /// even) only when read: independent of the order and grouping of the additions.
 #[derive(Clone, PartialEq, Eq)]
-pub struct ExactSum {
+pub(crate) struct ExactSum {
     /// Little-endian words of the fixed-point integer.
     words: [u64; WORDS],
 }
@@ -40,7 +40,7 @@ impl std::fmt::Debug for ExactSum {
 impl ExactSum {
     /// Adds `x`; simulated times are never negative, and a negative or non-finite `x` (which
     /// no roll produces) is ignored rather than corrupting the sum.
-    pub fn add(&mut self, x: f64) {
+    pub(crate) fn add(&mut self, x: f64) {
         if !(x.is_finite() && x > 0.0) {
             return;
         }
@@ -59,7 +59,7 @@ impl ExactSum {
     }
 
     /// Adds every word of `other`.
-    pub fn merge(&mut self, other: &ExactSum) {
+    pub(crate) fn merge(&mut self, other: &ExactSum) {
         for (i, &w) in other.words.iter().enumerate() {
             self.add_at(i, w);
         }
@@ -75,7 +75,7 @@ impl ExactSum {
     }
 
     /// The sum rounded to the nearest double, ties to even (infinity past the largest).
-    pub fn value(&self) -> f64 {
+    pub(crate) fn value(&self) -> f64 {
         let Some(top_word) = self.words.iter().rposition(|&w| w != 0) else {
             return 0.0;
         };
@@ -160,21 +160,21 @@ impl<'de> Deserialize<'de> for ExactSum {
 /// Everything a batch summary is computed from, as sums that merge exactly.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Tally {
-    pub rolls: u64,
+pub(crate) struct Tally {
+    pub(crate) rolls: u64,
     /// Settled rolls per face 1..6.
-    pub faces: FaceTally,
-    pub start_face: StartFaceCounts,
-    pub status: StatusCounts,
+    pub(crate) faces: FaceTally,
+    pub(crate) start_face: StartFaceCounts,
+    pub(crate) status: StatusCounts,
     /// Steps over all rolls.
-    pub steps: u64,
+    pub(crate) steps: u64,
     /// s of simulated time over all rolls, as the exact sum of every roll's time.
-    pub simulated_s: ExactSum,
+    pub(crate) simulated_s: ExactSum,
 }
 
 impl Tally {
     /// Counts one roll.
-    pub fn add(&mut self, r: &RollRecord) {
+    pub(crate) fn add(&mut self, r: &RollRecord) {
         self.rolls += 1;
         self.steps += r.outcome.steps;
         self.simulated_s.add(r.outcome.time_s);
@@ -191,7 +191,7 @@ impl Tally {
     }
 
     /// Adds another tally's rolls (of disjoint rolls: a shard's).
-    pub fn merge(&mut self, other: &Tally) {
+    pub(crate) fn merge(&mut self, other: &Tally) {
         self.rolls += other.rolls;
         for (c, o) in self.faces.counts.iter_mut().zip(other.faces.counts) {
             *c += o;
@@ -209,7 +209,7 @@ impl Tally {
     }
 
     /// The summary of these rolls, which took `elapsed` of wall-clock time.
-    pub fn summary(&self, elapsed: Duration) -> BatchSummary {
+    pub(crate) fn summary(&self, elapsed: Duration) -> BatchSummary {
         let elapsed_s = elapsed.as_secs_f64();
         let rate = |n: f64| if elapsed_s > 0.0 { n / elapsed_s } else { 0.0 };
         BatchSummary {

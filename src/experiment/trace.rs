@@ -5,50 +5,86 @@ use super::Error;
 use super::energy_plot::energy_plot_png;
 use crate::output::Output;
 use crate::physics::{Energy, InitialCondition, Params, Simulation};
-use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-/// The CSV header; the corner columns follow MODEL.md's corner order.
-pub fn header() -> String {
-    let mut h =
-        String::from("step,t,x,y,z,vx,vy,vz,Lx,Ly,Lz,wx,wy,wz,e_trans,e_rot,e_grav,e_elastic,e_total");
+/// The CSV columns; the corner columns follow docs/model.md's corner order.
+pub(crate) fn header() -> Vec<String> {
+    let mut h: Vec<String> = "step,t,x,y,z,vx,vy,vz,Lx,Ly,Lz,wx,wy,wz,e_trans,e_rot,e_grav,e_elastic,e_total"
+        .split(',')
+        .map(str::to_string)
+        .collect();
     for k in 1..=8 {
-        let _ = write!(h, ",c{k}x,c{k}y,c{k}z");
+        h.extend(["x", "y", "z"].map(|a| format!("c{k}{a}")));
     }
     h
 }
 
-/// One CSV row for the simulation's current state.
-pub fn row(sim: &Simulation) -> String {
+/// One CSV record for the simulation's current state; numbers in Rust's shortest
+/// round-trip form, so reading them back gives the same bits.
+pub(crate) fn row(sim: &Simulation) -> Vec<String> {
     let s = sim.state();
     let e = sim.energy();
     let w = sim.angular_velocity();
-    let mut line = format!("{},{}", s.step, s.time_s);
+    let mut record = vec![s.step.to_string(), s.time_s.to_string()];
     let values = s
         .position
         .iter()
         .chain(s.velocity.iter())
         .chain(s.angular_momentum.iter())
         .chain(w.iter());
-    for v in values.copied().chain([
-        e.translational,
-        e.rotational,
-        e.gravitational,
-        e.elastic,
-        e.total(),
-    ]) {
-        let _ = write!(line, ",{v}");
-    }
+    record.extend(
+        values
+            .copied()
+            .chain([
+                e.translational,
+                e.rotational,
+                e.gravitational,
+                e.elastic,
+                e.total(),
+            ])
+            .map(|v| v.to_string()),
+    );
     for p in sim.corner_positions() {
-        let _ = write!(line, ",{},{},{}", p.x, p.y, p.z);
+        record.extend([p.x, p.y, p.z].map(|v| v.to_string()));
     }
-    line
+    record
+}
+
+/// Bytes a record takes in the CSV: its fields, each followed by a comma or the newline
+/// (numbers are never quoted).
+fn record_len(record: &[String]) -> u64 {
+    record.iter().map(|f| f.len() as u64 + 1).sum()
+}
+
+/// A trace as CSV: the header, then one record per [`TraceWriter::write`].
+pub(crate) struct TraceWriter<W: std::io::Write> {
+    csv: csv::Writer<W>,
+}
+
+impl<W: std::io::Write> TraceWriter<W> {
+    /// Writes the header into `out`.
+    pub(crate) fn new(out: W) -> std::io::Result<Self> {
+        let mut csv = csv::Writer::from_writer(out);
+        csv.write_record(header()).map_err(super::csv_io)?;
+        Ok(TraceWriter { csv })
+    }
+
+    /// One record for the simulation's current state; returns its length in bytes.
+    pub(crate) fn write(&mut self, sim: &Simulation) -> std::io::Result<u64> {
+        let record = row(sim);
+        self.csv.write_record(&record).map_err(super::csv_io)?;
+        Ok(record_len(&record))
+    }
+
+    pub(crate) fn flush(&mut self) -> std::io::Result<()> {
+        self.csv.flush()
+    }
 }
 
 /// The largest trace the explorer writes, bytes: beyond it a roll is better thinned with
 /// `dicesim trace --every K` than written step by step.
-pub const EXPORT_LIMIT_BYTES: u64 = 256 * 1024 * 1024;
+pub(crate) const EXPORT_LIMIT_BYTES: u64 = 256 * 1024 * 1024;
 
 /// Most points of the exported energy plot (each term's peak is kept over a stride).
 const PLOT_SAMPLES: u64 = 20_000;
@@ -58,28 +94,28 @@ const REPORT_EVERY: u64 = 4096;
 
 /// What [`export_roll`] wrote.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Exported {
-    pub trace: PathBuf,
-    pub plot: PathBuf,
+pub(crate) struct Exported {
+    pub(crate) trace: PathBuf,
+    pub(crate) plot: PathBuf,
     /// Rows of the trace, header excluded.
-    pub rows: u64,
-    pub bytes: u64,
+    pub(crate) rows: u64,
+    pub(crate) bytes: u64,
 }
 
 /// How far an export has got: first rolling to learn its length, then writing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ExportProgress {
     /// False while the roll is measured, true once rows are written.
-    pub writing: bool,
-    pub steps_done: u64,
+    pub(crate) writing: bool,
+    pub(crate) steps_done: u64,
     /// The roll's steps, once measured (the cap `integrator.max_time / dt` before).
-    pub steps_total: u64,
+    pub(crate) steps_total: u64,
     /// The trace's size, bytes: estimated while measuring, exact from the row lengths after.
-    pub bytes: u64,
+    pub(crate) bytes: u64,
 }
 
 /// `bytes` in the unit a person reads (kB, MB, GB; decimal).
-pub fn human_bytes(bytes: u64) -> String {
+pub(crate) fn human_bytes(bytes: u64) -> String {
     let b = bytes as f64;
     match bytes {
         0..1_000 => format!("{bytes} B"),
@@ -95,7 +131,7 @@ pub fn human_bytes(bytes: u64) -> String {
 /// The roll is first run without writing, to learn its length and the trace's size: a trace
 /// above [`EXPORT_LIMIT_BYTES`] is refused, naming the `dicesim trace --every K` that fits.
 /// `cancel` is looked at every few thousand steps; `progress` hears about it as often.
-pub fn export_roll(
+pub(crate) fn export_roll(
     params: &Params,
     initial: &InitialCondition,
     title: &str,
@@ -113,7 +149,7 @@ pub fn export_roll(
         bytes: 0,
     };
     // Measure: the steps, and the row length sampled along the roll.
-    let (mut sampled_len, mut samples_taken) = (row(&sim).len() as u64 + 1, 1u64);
+    let (mut sampled_len, mut samples_taken) = (record_len(&row(&sim)), 1u64);
     while sim.outcome().is_none() {
         sim.advance();
         let step = sim.state().step;
@@ -121,7 +157,7 @@ pub fn export_roll(
             if cancelled() {
                 return Err(Error::Cancelled);
             }
-            sampled_len += row(&sim).len() as u64 + 1;
+            sampled_len += record_len(&row(&sim));
             samples_taken += 1;
             status.steps_done = step;
             status.bytes = sampled_len / samples_taken * (status.steps_total + 1);
@@ -129,7 +165,7 @@ pub fn export_roll(
         }
     }
     let rows = sim.state().step + 1;
-    let estimate = (header().len() as u64 + 1) + sampled_len / samples_taken * rows;
+    let estimate = record_len(&header()) + sampled_len / samples_taken * rows;
     if estimate > EXPORT_LIMIT_BYTES {
         let every = estimate.div_ceil(EXPORT_LIMIT_BYTES);
         // Short enough for the explorer's status line, with the way out in it.
@@ -153,13 +189,10 @@ pub fn export_roll(
     let mut sim = Simulation::new_unchecked(params, initial);
     trace
         .write(|out| {
-            let mut line = header();
-            writeln!(out, "{line}")?;
-            written += line.len() as u64 + 1;
+            let mut csv = TraceWriter::new(out)?;
+            written += record_len(&header());
             loop {
-                line = row(&sim);
-                writeln!(out, "{line}")?;
-                written += line.len() as u64 + 1;
+                written += csv.write(&sim)?;
                 let (t, e) = (sim.state().time_s, sim.energy());
                 peak = Some(match peak {
                     None => (t, e),
@@ -171,7 +204,7 @@ pub fn export_roll(
                     samples.extend(peak.take());
                 }
                 if ended {
-                    return Ok(());
+                    return csv.flush();
                 }
                 if step.is_multiple_of(REPORT_EVERY) && step > 0 {
                     if cancelled() {

@@ -1,11 +1,12 @@
 //! `--set KEY=VALUE` overrides, applied after a preset is loaded and checked like a file.
 
 use super::{Preset, PresetError};
+use crate::experiment::ScanKey;
 
 impl Preset {
     /// Applies one `--set KEY=VALUE` (dotted key as in a file; the value is read as a TOML
     /// value, a bare word as a string). On error `self` is unchanged.
-    pub fn apply_override(&mut self, key: &str, value: &str) -> Result<(), PresetError> {
+    pub(crate) fn apply_override(&mut self, key: &str, value: &str) -> Result<(), PresetError> {
         let err = |message: String| PresetError::Override {
             key: key.to_string(),
             message,
@@ -16,6 +17,23 @@ impl Preset {
             return Err(err(format!("`{value}` is not a finite number")));
         }
         let parsed = parse_override_value(value);
+        // One component of a vector (`initial.velocity.y=5`) is set through its registry row.
+        if let Ok(scan) = ScanKey::named(key)
+            && !scan.spec.components().is_empty()
+        {
+            let number = match parsed {
+                toml::Value::Float(x) => x,
+                toml::Value::Integer(i) => i as f64,
+                _ => return Err(err(format!("expected a number, found `{value}`"))),
+            };
+            let mut updated = self.clone();
+            let mut params = updated.params();
+            scan.set(&mut params, &mut updated.initial, number);
+            updated.set_params(params);
+            updated.validate()?;
+            *self = updated;
+            return Ok(());
+        }
         let mut table = toml::Table::try_from(&*self).map_err(|e| err(e.to_string()))?;
         let path: Vec<&str> = key.split('.').collect();
         if path.iter().any(|p| p.is_empty()) {
@@ -149,6 +167,29 @@ mod tests {
         assert_eq!(p.ground.stiffness, 600000.0);
         assert_eq!(p.initial.angular_velocity, [10.0, 0.0, 3.0]);
         assert_eq!(p.ground.friction_law, FrictionLaw::WholeDieNorm);
+    }
+
+    #[test]
+    fn a_component_is_set_alone() {
+        let p = Preset::default();
+        let q = p
+            .with_overrides(&["initial.velocity.y=7", "initial.orientation.pitch=-30"])
+            .unwrap();
+        assert_eq!(
+            q.initial.velocity,
+            [p.initial.velocity[0], 7.0, p.initial.velocity[2]]
+        );
+        assert_eq!(q.initial.orientation[1], -30.0);
+        let e = p.with_overrides(&["initial.velocity.z=20000"]).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "`initial.velocity.z` = 20000 is outside the allowed range -10000 to 10000 cm/s"
+        );
+        let e = p.with_overrides(&["initial.velocity.x=fast"]).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "--set initial.velocity.x: expected a number, found `fast`"
+        );
     }
 
     #[test]

@@ -1,4 +1,4 @@
-//! Where presets are found and saved (PRESETS.md): a path given directly; else the user's
+//! Where presets are found and saved (docs/presets.md): a path given directly; else the user's
 //! preset folder; else the shipped set. The user's folder wins on a name clash.
 
 use super::{Preset, PresetError, shipped};
@@ -21,7 +21,7 @@ pub enum Source {
 
 impl Source {
     /// `path`, `user` or `shipped`, as `presets list` shows it.
-    pub fn kind(&self) -> &'static str {
+    pub(crate) fn kind(&self) -> &'static str {
         match self {
             Source::Path(_) => "path",
             Source::User(_) => "user",
@@ -62,7 +62,7 @@ impl Store {
     }
 
     /// The user's preset folder (it may not exist yet: saving creates it).
-    pub fn user_dir(&self) -> Result<&Path, PresetError> {
+    pub(crate) fn user_dir(&self) -> Result<&Path, PresetError> {
         self.user_dir.as_deref().ok_or(PresetError::NoUserFolder)
     }
 
@@ -136,7 +136,7 @@ impl Store {
     }
 
     /// Where the user preset `name` is (or would be) saved.
-    pub fn path_of(&self, name: &str) -> Result<PathBuf, PresetError> {
+    pub(crate) fn path_of(&self, name: &str) -> Result<PathBuf, PresetError> {
         check_name(name)?;
         Ok(self.user_dir()?.join(format!("{name}.toml")))
     }
@@ -203,7 +203,7 @@ impl Store {
     }
 }
 
-/// PRESETS.md: a `/`, a `.toml` ending, or an existing file mean a path, not a name.
+/// A `/`, a `.toml` ending, or an existing file mean a path, not a name.
 fn is_path(spec: &str) -> bool {
     spec.contains('/')
         || spec.contains(std::path::MAIN_SEPARATOR)
@@ -237,12 +237,12 @@ pub fn check_name(name: &str) -> Result<(), PresetError> {
 }
 
 /// The largest preset file read, bytes: a whole setup takes a few kB.
-pub const MAX_PRESET_BYTES: u64 = 1024 * 1024;
+pub(crate) const MAX_PRESET_BYTES: u64 = 1024 * 1024;
 
 /// The text of the regular file at `path`, at most `max_bytes` long. Devices, pipes and
 /// folders are refused without being opened, so nothing blocks (a FIFO) or reads forever
 /// (`/dev/zero`).
-pub fn read_regular_file(path: &Path, max_bytes: u64) -> Result<String, String> {
+pub(crate) fn read_regular_file(path: &Path, max_bytes: u64) -> Result<String, String> {
     use std::io::Read;
     let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
     if !meta.is_file() {

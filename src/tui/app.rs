@@ -4,12 +4,12 @@
 use super::camera::Camera;
 use super::dialogs::Dialog;
 use super::map::{self, MapView, View};
+use super::param::{Param, all};
 use super::render::{Areas, fmt_num, fmt_range, param_row_at, screen_layout};
 use super::theme::Theme;
 use crate::experiment::trace::{ExportProgress, human_bytes};
 use crate::physics::{InitialCondition, Params};
 use crate::preset::{Preset, Store};
-use crate::worker::param::{ALL, Param};
 use crate::worker::{
     BatchProgress, Command, EnergySample, MapUpdate, OutcomeTable, SeparationSample, Snapshot, Speed,
 };
@@ -20,7 +20,7 @@ use ratatui::layout::{Position, Rect};
 use ratatui::symbols::Marker;
 
 /// Rolls in one batch (`b`).
-pub const BATCH_ROLLS: u64 = 10_000;
+pub(crate) const BATCH_ROLLS: u64 = 10_000;
 
 /// What the event loop hands to [`update`]: terminal input or a worker snapshot.
 #[derive(Debug, Clone)]
@@ -47,10 +47,10 @@ impl From<MapUpdate> for Msg {
 
 /// A value being typed in (Enter on a parameter).
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct Editor {
-    pub text: String,
+pub(crate) struct Editor {
+    pub(crate) text: String,
     /// Why the last Enter was refused.
-    pub error: Option<String>,
+    pub(crate) error: Option<String>,
 }
 
 /// What a key did to a number being typed.
@@ -92,7 +92,7 @@ impl Editor {
 
 /// How the die is drawn: Braille dots, or plain ASCII for fonts without Braille.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Drawing {
+pub(crate) enum Drawing {
     #[default]
     Braille,
     Ascii,
@@ -100,7 +100,7 @@ pub enum Drawing {
 
 impl Drawing {
     /// The marker that draws the plots' lines.
-    pub fn line_marker(self) -> Marker {
+    pub(crate) fn line_marker(self) -> Marker {
         match self {
             Drawing::Braille => Marker::Braille,
             Drawing::Ascii => Marker::Custom('.'),
@@ -111,50 +111,50 @@ impl Drawing {
 #[derive(Debug, Clone)]
 pub struct App {
     /// The newest worker snapshot (its history already moved into `history`).
-    pub live: Snapshot,
+    pub(crate) live: Snapshot,
     /// The setup as the user last set it (ahead of `live` until the worker catches up).
-    pub params: Params,
-    pub initial: InitialCondition,
-    pub speed: Speed,
+    pub(crate) params: Params,
+    pub(crate) initial: InitialCondition,
+    pub(crate) speed: Speed,
     /// Energy samples of the roll on screen.
-    pub history: Vec<EnergySample>,
-    pub table: OutcomeTable,
-    pub batch: Option<BatchProgress>,
+    pub(crate) history: Vec<EnergySample>,
+    pub(crate) table: OutcomeTable,
+    pub(crate) batch: Option<BatchProgress>,
     /// The roll's export, while it runs.
-    pub export: Option<ExportProgress>,
-    pub batch_rolls: u64,
-    pub notice: Option<String>,
-    /// Index into [`ALL`].
-    pub selected: usize,
-    pub editing: Option<Editor>,
-    pub help: bool,
-    pub help_scroll: u16,
-    pub log_scale: bool,
+    pub(crate) export: Option<ExportProgress>,
+    pub(crate) batch_rolls: u64,
+    pub(crate) notice: Option<String>,
+    /// Index into [`all`](super::param::all).
+    pub(crate) selected: usize,
+    pub(crate) editing: Option<Editor>,
+    pub(crate) help: bool,
+    pub(crate) help_scroll: u16,
+    pub(crate) log_scale: bool,
     /// Arrows for ω, L, v and the contact forces on the die (`v`).
-    pub vectors: bool,
+    pub(crate) vectors: bool,
     /// Whether a chaos twin rolls beside the die (`T`), and its ε.
-    pub twin: bool,
-    pub epsilon: f64,
+    pub(crate) twin: bool,
+    pub(crate) epsilon: f64,
     /// ε being typed in (`E`).
-    pub epsilon_editor: Option<Editor>,
+    pub(crate) epsilon_editor: Option<Editor>,
     /// The twin's separation samples of the roll on screen.
-    pub twin_history: Vec<SeparationSample>,
+    pub(crate) twin_history: Vec<SeparationSample>,
     /// The preset the setup was loaded from (or last saved as).
-    pub preset: Preset,
+    pub(crate) preset: Preset,
     /// Where presets are listed from and saved to.
-    pub store: Store,
+    pub(crate) store: Store,
     /// The preset picker or the save dialog, when open.
-    pub dialog: Option<Dialog>,
-    pub drawing: Drawing,
-    pub camera: Camera,
-    pub theme: Theme,
+    pub(crate) dialog: Option<Dialog>,
+    pub(crate) drawing: Drawing,
+    pub(crate) camera: Camera,
+    pub(crate) theme: Theme,
     /// Frames drawn per second, measured by the event loop.
-    pub fps: Option<f64>,
+    pub(crate) fps: Option<f64>,
     /// The terminal's size, for mouse hit tests.
-    pub screen: Rect,
-    pub quit: bool,
-    pub view: View,
-    pub map: MapView,
+    pub(crate) screen: Rect,
+    pub(crate) quit: bool,
+    pub(crate) view: View,
+    pub(crate) map: MapView,
     commands_sent: u64,
     /// Last mouse position while dragging the die.
     drag: Option<(u16, u16)>,
@@ -203,8 +203,8 @@ impl App {
         }
     }
 
-    pub fn selected_param(&self) -> Param {
-        ALL[self.selected.min(ALL.len() - 1)]
+    pub(crate) fn selected_param(&self) -> Param {
+        all()[self.selected.min(all().len() - 1)]
     }
 
     /// Whether frames should keep coming without input (a moving roll or a running batch).
@@ -242,7 +242,7 @@ impl App {
     }
 
     /// What the status line says while the roll is exported: its size first, then how far.
-    pub fn export_status(&self) -> Option<String> {
+    pub(crate) fn export_status(&self) -> Option<String> {
         let p = self.export?;
         let share = 100.0 * p.steps_done as f64 / p.steps_total.max(1) as f64;
         Some(if p.writing {
@@ -284,7 +284,7 @@ impl App {
                 )
             }
         })?;
-        self.send(out, Command::SetParam(p, value));
+        self.send(out, Command::SetParam(p.scan_key(), value));
         Ok(())
     }
 
@@ -298,7 +298,7 @@ impl App {
     }
 
     fn select(&mut self, delta: isize) {
-        self.selected = (self.selected as isize + delta).clamp(0, ALL.len() as isize - 1) as usize;
+        self.selected = (self.selected as isize + delta).clamp(0, all().len() as isize - 1) as usize;
     }
 
     fn set_speed(&mut self, out: &mut Vec<Command>, speed: Speed) {
@@ -396,7 +396,7 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
         KeyCode::Up | KeyCode::Char('k') => app.select(-1),
         KeyCode::Down | KeyCode::Char('j') => app.select(1),
         KeyCode::Home | KeyCode::Char('g') => app.selected = 0,
-        KeyCode::End | KeyCode::Char('G') => app.selected = ALL.len() - 1,
+        KeyCode::End | KeyCode::Char('G') => app.selected = all().len() - 1,
         KeyCode::Left | KeyCode::Char('h') => app.nudge(out, -1, coarse),
         KeyCode::Right | KeyCode::Char('l') => app.nudge(out, 1, coarse),
         KeyCode::Char('H') => app.nudge(out, -1, true),

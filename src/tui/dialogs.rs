@@ -19,16 +19,16 @@ const DESCRIPTION_SHOWN: usize = 4000;
 
 /// One preset the picker offers.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Choice {
-    pub name: String,
+pub(crate) struct Choice {
+    pub(crate) name: String,
     /// The user's own (saved from here or by hand), rather than shipped.
-    pub user: bool,
+    pub(crate) user: bool,
     /// The preset, or why its file does not load.
-    pub preset: Result<Box<Preset>, String>,
+    pub(crate) preset: Result<Box<Preset>, String>,
 }
 
 #[derive(Debug, Clone, PartialEq)]
-pub enum Dialog {
+pub(crate) enum Dialog {
     Picker {
         choices: Vec<Choice>,
         selected: usize,
@@ -43,12 +43,12 @@ pub enum Dialog {
 }
 
 /// Whether the setup on screen differs from the preset it was loaded from.
-pub fn modified(app: &App) -> bool {
+pub(crate) fn modified(app: &App) -> bool {
     app.params != app.preset.params() || app.initial != app.preset.initial
 }
 
 /// Opens the picker on every preset the store lists, the loaded one selected.
-pub fn open_picker(app: &mut App) {
+pub(crate) fn open_picker(app: &mut App) {
     let choices: Vec<Choice> = app
         .store
         .list()
@@ -70,7 +70,7 @@ pub fn open_picker(app: &mut App) {
     });
 }
 
-pub fn open_save(app: &mut App) {
+pub(crate) fn open_save(app: &mut App) {
     app.dialog = Some(Dialog::Save {
         name: String::new(),
         error: None,
@@ -80,7 +80,7 @@ pub fn open_save(app: &mut App) {
 
 /// The setup on screen as a preset named `name`: the loaded preset's random ranges, the
 /// current model values and start.
-pub fn current_setup(app: &App, name: &str) -> Preset {
+pub(crate) fn current_setup(app: &App, name: &str) -> Preset {
     let p = &app.params;
     Preset {
         name: name.to_string(),
@@ -98,7 +98,7 @@ pub fn current_setup(app: &App, name: &str) -> Preset {
 }
 
 /// Keys while a dialog is open.
-pub fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
+pub(crate) fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
     let Some(dialog) = app.dialog.take() else {
         return;
     };

@@ -82,7 +82,7 @@ const MODEL: &[&str] = &[
      the energy grow instead of fall.",
 ];
 
-pub fn help_lines(t: &Theme) -> Vec<Line<'static>> {
+pub(crate) fn help_lines(t: &Theme) -> Vec<Line<'static>> {
     let mut lines = vec![Line::styled("Keys", t.heading())];
     for (k, what) in KEYS {
         let what = what.replace("a batch of", &format!("a batch of {BATCH_ROLLS}"));

@@ -4,9 +4,9 @@
 use super::app::{App, Drawing};
 use super::camera::{EDGES, FACE_CORNERS, face_centre, face_normal};
 use super::help::help_lines;
+use super::param::{Param, all};
 use crate::physics::stopping::why_it_cannot_settle;
 use crate::physics::{Stability, Status, UnstableReason};
-use crate::worker::param::{ALL, Param};
 use crate::worker::{EnergySample, Phase, RollKind};
 use nalgebra::Vector3;
 use ratatui::Frame;
@@ -18,29 +18,29 @@ use ratatui::widgets::canvas::{Canvas, Context, Line as CanvasLine};
 use ratatui::widgets::{Axis, Block, Chart, Clear, Dataset, GraphType, LineGauge, Paragraph, Wrap};
 
 /// The smallest terminal the explorer draws its panels in.
-pub const MIN_WIDTH: u16 = 80;
-pub const MIN_HEIGHT: u16 = 24;
+pub(crate) const MIN_WIDTH: u16 = 80;
+pub(crate) const MIN_HEIGHT: u16 = 24;
 
 /// Share of the tightest stability limit from which the step is worth watching; past the
 /// limit itself (1) a roll is predicted unstable (docs/model.md, "Stability").
-pub const STABILITY_CAUTION: f64 = 0.8;
-pub const STABILITY_DANGER: f64 = 1.0;
+pub(crate) const STABILITY_CAUTION: f64 = 0.8;
+pub(crate) const STABILITY_DANGER: f64 = 1.0;
 
 /// Where each panel goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Areas {
-    pub header: Rect,
-    pub params: Rect,
-    pub outcomes: Rect,
-    pub die: Rect,
-    pub energy: Rect,
+pub(crate) struct Areas {
+    pub(crate) header: Rect,
+    pub(crate) params: Rect,
+    pub(crate) outcomes: Rect,
+    pub(crate) die: Rect,
+    pub(crate) energy: Rect,
     /// The energy bar and ledger, beside the energy plot.
-    pub ledger: Rect,
-    pub footer: Rect,
+    pub(crate) ledger: Rect,
+    pub(crate) footer: Rect,
 }
 
 /// The panel layout for a terminal of this size; `None` below [`MIN_WIDTH`]×[`MIN_HEIGHT`].
-pub fn screen_layout(area: Rect) -> Option<Areas> {
+pub(crate) fn screen_layout(area: Rect) -> Option<Areas> {
     if area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
         return None;
     }
@@ -55,7 +55,7 @@ pub fn screen_layout(area: Rect) -> Option<Areas> {
         Constraint::Min(0),
     ]));
     // Every parameter row when there is room, and at least 10 rows for the table.
-    let params_height = (ALL.len() as u16 + 4).min(body.height.saturating_sub(10));
+    let params_height = (all().len() as u16 + 4).min(body.height.saturating_sub(10));
     let [params, outcomes] = left.layout(&Layout::vertical([
         Constraint::Length(params_height),
         Constraint::Min(0),
@@ -109,7 +109,7 @@ pub fn render(app: &App, frame: &mut Frame) {
     app.theme.paint(frame.buffer_mut());
 }
 
-pub fn render_too_small(area: Rect, frame: &mut Frame) {
+pub(crate) fn render_too_small(area: Rect, frame: &mut Frame) {
     let text = vec![
         Line::styled(
             format!("Enlarge the terminal to at least {MIN_WIDTH}×{MIN_HEIGHT}"),
@@ -123,7 +123,7 @@ pub fn render_too_small(area: Rect, frame: &mut Frame) {
 }
 
 /// A number in at most `width` characters: plain when it reads well, else in e-notation.
-pub fn fmt_num(v: f64) -> String {
+pub(crate) fn fmt_num(v: f64) -> String {
     if !v.is_finite() {
         return format!("{v}");
     }
@@ -148,7 +148,7 @@ pub fn fmt_num(v: f64) -> String {
 }
 
 /// A value's allowed range as the list shows it, `min…max`.
-pub fn fmt_range(p: Param) -> String {
+pub(crate) fn fmt_range(p: Param) -> String {
     let l = p.limits();
     format!("{}…{}", fmt_num(l.min), fmt_num(l.max))
 }
@@ -310,14 +310,16 @@ fn param_window(app: &App, params_area: Rect) -> (usize, usize) {
 }
 
 /// The parameter under a screen position, for mouse clicks and scrolls.
-pub fn param_row_at(app: &App, areas: &Areas, at: Position) -> Option<usize> {
+pub(crate) fn param_row_at(app: &App, areas: &Areas, at: Position) -> Option<usize> {
     let body = inner(areas.params);
     if !body.contains(at) || at.y < body.y + 1 {
         return None;
     }
     let (first, visible) = param_window(app, areas.params);
     let row = (at.y - body.y - 1) as usize;
-    (row < visible).then_some(first + row).filter(|&i| i < ALL.len())
+    (row < visible)
+        .then_some(first + row)
+        .filter(|&i| i < all().len())
 }
 
 pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
@@ -338,7 +340,7 @@ pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
     }
     lines.push(Line::styled(head, t.heading()));
     let (first, visible) = param_window(app, area);
-    for (i, &p) in ALL.iter().enumerate().skip(first).take(visible) {
+    for (i, &p) in all().iter().enumerate().skip(first).take(visible) {
         let value = fmt_num(p.get(&app.params, &app.initial));
         let mut spans = vec![Span::raw(format!(
             "{}{:<13} {:>8} {:<6}",

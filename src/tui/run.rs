@@ -64,7 +64,7 @@ const ENDING_SIGNALS: [i32; 4] = [SIGTERM, SIGHUP, SIGINT, SIGQUIT];
 
 /// Opens the explorer on `preset` and runs it until the user quits; a signal ends the
 /// process from here with 128 + the signal, after restoring the terminal.
-pub fn run(preset: &Preset, theme: Theme) -> Result<()> {
+pub(crate) fn run(preset: &Preset, theme: Theme) -> Result<()> {
     let engine = Engine::new(preset).wrap_err("the preset cannot be simulated")?;
     let mut signals = Signals::new(ENDING_SIGNALS).wrap_err("cannot catch signals")?;
     let signal_handle = signals.handle();

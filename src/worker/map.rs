@@ -7,16 +7,15 @@
 //! time. Whatever the old map sent last carries the old generation and the UI drops it.
 
 use super::job::Job;
-use crate::experiment::{Axis, BasinMap, Error, MapSpec, Method, run_map};
+use crate::experiment::{Axis, BasinMap, Error, MapSpec, Method, ScanKey, run_map};
 use crate::physics::{InitialCondition, Params};
-use crate::worker::param::Param;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-/// One axis of a requested map: a value from the parameter list, its range and grid nodes.
+/// One axis of a requested map: a numeric setup value, its range and grid nodes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MapAxis {
-    pub param: Param,
+    pub key: &'static ScanKey,
     /// In the value's unit.
     pub min: f64,
     /// In the value's unit.
@@ -27,7 +26,7 @@ pub struct MapAxis {
 impl MapAxis {
     /// The experiment's axis, checked against the value's allowed range.
     pub fn axis(&self) -> Result<Axis, Error> {
-        Axis::new(self.param.scan_key().clone(), self.min, self.max, self.cells)
+        Axis::new(self.key.clone(), self.min, self.max, self.cells)
     }
 }
 
@@ -42,15 +41,15 @@ pub struct MapRequest {
 
 /// A request with the setup it maps around, as the worker had it when the request came.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MapJob {
-    pub request: MapRequest,
-    pub params: Params,
-    pub initial: InitialCondition,
+pub(crate) struct MapJob {
+    pub(crate) request: MapRequest,
+    pub(crate) params: Params,
+    pub(crate) initial: InitialCondition,
 }
 
 /// What the worker's engine asks its map thread to do next.
 #[derive(Debug, Clone, PartialEq)]
-pub enum MapOrder {
+pub(crate) enum MapOrder {
     Start(Box<MapJob>),
     Cancel,
 }
@@ -67,7 +66,7 @@ pub struct MapUpdate {
 
 /// Computes `job` on this thread (one roll thread per core), handing every partial map and
 /// the complete one to `send`; stops early when `cancel` is set or `send` returns false.
-pub fn compute(job: &MapJob, cancel: &AtomicBool, send: &mut dyn FnMut(MapUpdate) -> bool) {
+pub(crate) fn compute(job: &MapJob, cancel: &AtomicBool, send: &mut dyn FnMut(MapUpdate) -> bool) {
     crate::fault::inject("map");
     let update = |map| MapUpdate {
         generation: job.request.generation,
@@ -107,12 +106,12 @@ pub(super) struct MapRunner {
 }
 
 impl MapRunner {
-    pub fn new(sink: MapSink) -> MapRunner {
+    pub(crate) fn new(sink: MapSink) -> MapRunner {
         MapRunner { sink, current: None }
     }
 
     /// Follows the engine's newest order, and forgets a map that has ended.
-    pub fn sync(&mut self, order: Option<MapOrder>) {
+    pub(crate) fn sync(&mut self, order: Option<MapOrder>) {
         if let Some(order) = order {
             self.stop();
             if let MapOrder::Start(job) = order {
@@ -125,7 +124,7 @@ impl MapRunner {
     }
 
     /// Whether a map is computing.
-    pub fn running(&self) -> bool {
+    pub(crate) fn running(&self) -> bool {
         self.current.is_some()
     }
 

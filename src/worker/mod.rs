@@ -6,20 +6,18 @@
 
 mod engine;
 mod job;
-pub mod map;
-pub mod param;
+pub(crate) mod map;
 mod speed;
 mod twin;
 
-pub use engine::{BatchRequest, Engine, ExportJob};
+pub use engine::{BatchRequest, Engine};
 pub use map::{MapAxis, MapRequest, MapUpdate};
-pub use param::Param;
 pub use speed::Speed;
 
 use crate::experiment::trace::ExportProgress;
 use crate::experiment::twin::Separation;
 use crate::experiment::{FaceTally, RollRecord};
-use crate::experiment::{Rolls, run_batch};
+use crate::experiment::{Rolls, ScanKey, run_batch};
 use crate::physics::{ContactForce, Energy, EnergyLedger, InitialCondition, Outcome, Params, Status};
 use crate::preset::Preset;
 use job::Job;
@@ -41,8 +39,9 @@ pub enum Command {
     Replay,
     /// The next random initial condition from the preset's ranges.
     RandomRoll,
-    /// A new value; ground values act on the running roll, others restart it.
-    SetParam(Param, f64),
+    /// A new value; values that act mid-roll (the ground's) change the running roll, others
+    /// restart it.
+    SetParam(&'static ScanKey, f64),
     SetSpeed(Speed),
     /// Random rolls computed into the outcome table.
     BatchStart(u64),
@@ -89,7 +88,7 @@ pub enum Phase {
 }
 
 impl Phase {
-    pub fn label(&self) -> String {
+    pub(crate) fn label(&self) -> String {
         match self {
             Phase::Falling => "falling".to_string(),
             Phase::InContact => "in contact".to_string(),
@@ -108,60 +107,60 @@ impl Phase {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EnergySample {
     /// s, simulated.
-    pub time_s: f64,
-    pub energy: Energy,
-    pub total: f64,
+    pub(crate) time_s: f64,
+    pub(crate) energy: Energy,
+    pub(crate) total: f64,
 }
 
 /// How far the twin has drifted from the die at one instant (each term's newest value).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SeparationSample {
+pub(crate) struct SeparationSample {
     /// s, simulated.
-    pub time_s: f64,
-    pub separation: Separation,
+    pub(crate) time_s: f64,
+    pub(crate) separation: Separation,
 }
 
 /// The chaos twin as drawn: its die, how its roll went, and its drift from the first die.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TwinSnapshot {
-    pub epsilon: f64,
-    pub die: DieState,
-    pub phase: Phase,
-    pub separation: Separation,
+    pub(crate) epsilon: f64,
+    pub(crate) die: DieState,
+    pub(crate) phase: Phase,
+    pub(crate) separation: Separation,
     /// Samples since the previous snapshot (after clearing, if the snapshot's
     /// `history_reset`).
-    pub history: Vec<SeparationSample>,
+    pub(crate) history: Vec<SeparationSample>,
 }
 
 /// The die as drawn.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DieState {
     /// cm, world positions of corners 1..8.
-    pub corners: [Vector3<f64>; 8],
+    pub(crate) corners: [Vector3<f64>; 8],
     /// Each corner's contact force (depth > 0 means it touches the ground).
-    pub forces: [ContactForce; 8],
+    pub(crate) forces: [ContactForce; 8],
     /// cm, centre of mass.
-    pub centre: Vector3<f64>,
+    pub(crate) centre: Vector3<f64>,
     /// cm/s, centre-of-mass velocity.
-    pub velocity: Vector3<f64>,
+    pub(crate) velocity: Vector3<f64>,
     /// rad/s, ω (world frame).
-    pub angular_velocity: Vector3<f64>,
+    pub(crate) angular_velocity: Vector3<f64>,
     /// g·cm²/s, L about the centre of mass.
-    pub angular_momentum: Vector3<f64>,
+    pub(crate) angular_momentum: Vector3<f64>,
     /// The face most nearly up now.
-    pub face_up: u8,
+    pub(crate) face_up: u8,
     /// The face most nearly up at t = 0.
-    pub start_face: u8,
+    pub(crate) start_face: u8,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct BatchProgress {
     pub done: u64,
-    pub total: u64,
+    pub(crate) total: u64,
 }
 
 /// How many finished rolls the table lists.
-pub const LAST_ROLLS: usize = 12;
+pub(crate) const LAST_ROLLS: usize = 12;
 
 /// The outcome table: face counts of random rolls and the last few rolls.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -169,14 +168,14 @@ pub struct OutcomeTable {
     /// Settled rolls with a face up.
     pub tally: FaceTally,
     /// Rolls that reached the time cap, or settled without a face up.
-    pub did_not_settle: u64,
-    pub unstable: u64,
+    pub(crate) did_not_settle: u64,
+    pub(crate) unstable: u64,
     /// Newest first.
     pub last: VecDeque<RollRecord>,
 }
 
 impl OutcomeTable {
-    pub fn add(&mut self, r: RollRecord) {
+    pub(crate) fn add(&mut self, r: RollRecord) {
         match (r.outcome.status, r.outcome.face) {
             (Status::Settled, Some(f)) => self.tally.add(f),
             (Status::Unstable, _) => self.unstable += 1,
@@ -197,7 +196,6 @@ impl OutcomeTable {
 pub struct Snapshot {
     /// Commands applied so far: the UI knows its own edits have arrived when this catches up.
     pub commands_handled: u64,
-    pub preset_name: String,
     pub params: Params,
     pub initial: InitialCondition,
     pub roll: RollKind,
@@ -231,7 +229,7 @@ pub struct Snapshot {
 }
 
 /// s of wall time between snapshots while something moves.
-pub const TICK: Duration = Duration::from_micros(16_667);
+pub(crate) const TICK: Duration = Duration::from_micros(16_667);
 
 /// Steps per tick at "instant": a roll of the default 30 s cap finishes in one tick, and
 /// the longest allowed (120 s at 10 µs) in a second or two without blocking commands.
