@@ -1,17 +1,10 @@
 //! Files written from the command line: never clobbered, checked before any work, written
 //! whole or not at all.
 
-use std::path::Path;
-use std::process::{Command, Output};
+mod common;
 
-fn dicesim_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dicesim"))
-        .args(args)
-        .current_dir(dir)
-        .env("DICESIM_PRESETS", dir.join("no-user-presets"))
-        .output()
-        .expect("the binary runs")
-}
+use common::dicesim_in;
+use std::process::{Command, Output};
 
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()

@@ -3,16 +3,10 @@
 //! sweep must be refused without writing anything.
 
 use std::path::Path;
-use std::process::{Command, Output};
+mod common;
 
-fn dicesim_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dicesim"))
-        .args(args)
-        .current_dir(dir)
-        .env("DICESIM_PRESETS", dir.join("no-user-presets"))
-        .output()
-        .expect("the binary runs")
-}
+use common::dicesim_in;
+use std::process::Command;
 
 /// Runs and asserts success; returns stdout.
 fn ok(dir: &Path, args: &[&str]) -> String {

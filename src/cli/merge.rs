@@ -110,8 +110,8 @@ fn out_kind<'a>(path: &Path, allowed: &[&'a str]) -> Result<&'a str, CliError> {
     })
 }
 
-/// Opens a part's records file for reading.
-fn open_records(part_path: &Path, part: &Part) -> Result<(PathBuf, BufReader<std::fs::File>), CliError> {
+/// Opens a part's records file, naming both files if it cannot.
+fn open_records_file(part_path: &Path, part: &Part) -> Result<(PathBuf, std::fs::File), CliError> {
     let path = records_path(part_path, part).expect("checked: every part has records");
     let file = std::fs::File::open(&path).map_err(|e| {
         CliError::Parts(format!(
@@ -120,6 +120,12 @@ fn open_records(part_path: &Path, part: &Part) -> Result<(PathBuf, BufReader<std
             part_path.display()
         ))
     })?;
+    Ok((path, file))
+}
+
+/// Opens a part's records file for buffered reading.
+fn open_records(part_path: &Path, part: &Part) -> Result<(PathBuf, BufReader<std::fs::File>), CliError> {
+    let (path, file) = open_records_file(part_path, part)?;
     Ok((path, BufReader::with_capacity(1 << 20, file)))
 }
 
@@ -143,14 +149,7 @@ fn for_each_record(
     part: &Part,
     each: &mut dyn FnMut(RollRecord) -> Result<(), String>,
 ) -> Result<(), CliError> {
-    let path = records_path(part_path, part).expect("checked: every part has records");
-    let file = std::fs::File::open(&path).map_err(|e| {
-        CliError::Parts(format!(
-            "{} (records of {}): {e}",
-            path.display(),
-            part_path.display()
-        ))
-    })?;
+    let (path, file) = open_records_file(part_path, part)?;
     let mut next = part.range[0];
     read_records(file, &mut |r| {
         if r.id != next {

@@ -1,4 +1,4 @@
-//! Helpers shared by the integration tests: reading the reference CSVs.
+//! Helpers shared by the integration tests: reading the reference CSVs, running the binary.
 #![allow(dead_code)]
 
 use dicesim::physics::{FrictionLaw, InitialCondition, Params, StopEnergy};
@@ -68,4 +68,15 @@ pub fn reference_params(variant: &str) -> Params {
     };
     p.integrator.stop_energy = StopEnergy::PointMasses;
     p
+}
+
+/// Runs the `dicesim` binary in `dir`, with a user preset folder that does not exist, so
+/// that only the shipped presets are found.
+pub fn dicesim_in(dir: &std::path::Path, args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_dicesim"))
+        .args(args)
+        .current_dir(dir)
+        .env("DICESIM_PRESETS", dir.join("no-user-presets"))
+        .output()
+        .expect("the binary runs")
 }
