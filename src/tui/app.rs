@@ -3,9 +3,10 @@
 
 use super::camera::Camera;
 use super::dialogs::Dialog;
+use super::format::{fmt_num, fmt_range};
+use super::layout::{Areas, param_row_at, screen_layout};
 use super::map::{self, MapView, View};
 use super::param::{Param, all};
-use super::render::{Areas, fmt_num, fmt_range, param_row_at, screen_layout};
 use super::theme::Theme;
 use crate::experiment::trace::{ExportProgress, human_bytes};
 use crate::physics::{InitialCondition, Params};
@@ -365,7 +366,7 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
         }
         return;
     }
-    if app.view == View::Map && map::on_key(app, key, out) {
+    if app.view == View::Map && super::map_keys::on_key(app, key, out) {
         return;
     }
     if super::twin::on_key(app, key, out) {

@@ -2,8 +2,8 @@
 //! themes) from deterministic states, built with the helpers of `tests.rs`.
 
 use super::app::App;
+use super::layout::screen_layout;
 use super::ledger::{bar_rows, render_ledger};
-use super::render::screen_layout;
 use super::tests::{mid_impact, settled, start};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
@@ -17,7 +17,7 @@ fn panel(app: &App, area: Rect, draw: fn(&App, Rect, &mut ratatui::Frame)) -> Te
     t
 }
 
-fn full() -> super::render::Areas {
+fn full() -> super::layout::Areas {
     screen_layout(Rect::new(0, 0, 120, 36)).expect("full size")
 }
 

@@ -93,7 +93,7 @@ pub(crate) fn help_lines(t: &Theme) -> Vec<Line<'static>> {
     }
     lines.push(Line::raw(""));
     lines.push(Line::styled("Basin-map screen (Tab)", t.heading()));
-    for (k, what) in super::map::MAP_KEYS {
+    for (k, what) in super::map_keys::MAP_KEYS {
         lines.push(Line::from(vec![
             Span::styled(format!("  {k:<14}"), t.key()),
             Span::raw(*what),

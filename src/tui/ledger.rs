@@ -3,7 +3,7 @@
 //! integrator's own error), as the physics measured it step by step.
 
 use super::app::App;
-use super::render::fmt_num;
+use super::format::fmt_num;
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::style::Style;

@@ -4,9 +4,13 @@
 pub(crate) mod app;
 pub(crate) mod camera;
 mod dialogs;
+mod footer;
+pub(crate) mod format;
 mod help;
+pub(crate) mod layout;
 mod ledger;
 pub(crate) mod map;
+mod map_keys;
 pub(crate) mod param;
 pub mod render;
 mod run;

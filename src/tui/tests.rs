@@ -2,10 +2,12 @@
 //! fed through `update` into the worker's engine, no thread and no clock.
 
 use super::app::{App, Msg, update};
+use super::footer::render_footer;
+use super::layout::screen_layout;
 use super::param::{Param, all};
 use super::render::{
-    STABILITY_CAUTION, STABILITY_DANGER, render, render_die, render_energy, render_footer, render_header,
-    render_outcomes, render_params, screen_layout,
+    STABILITY_CAUTION, STABILITY_DANGER, render, render_die, render_energy, render_header, render_outcomes,
+    render_params,
 };
 use super::theme::Theme;
 use crate::physics::Status;

@@ -3,7 +3,8 @@
 
 use super::app::{App, Editor, Typed};
 use super::camera::{Camera, EDGES};
-use super::render::{fmt_num, line3};
+use super::format::fmt_num;
+use super::render::line3;
 use crate::experiment::twin::EPSILON;
 use crate::physics::Status;
 use crate::worker::{Command, DieState, Phase};

@@ -7,7 +7,7 @@
 
 use super::app::App;
 use super::camera::Camera;
-use super::render::fmt_num;
+use super::format::fmt_num;
 use crate::worker::DieState;
 use nalgebra::Vector3;
 use ratatui::style::{Color, Style};
