@@ -22,6 +22,7 @@ fn bench_batch(c: &mut Criterion) {
         ranges: &ranges,
         base: &base,
         seed: 1,
+        first: 0,
         count: ROLLS,
     };
     let never = AtomicBool::new(false);

@@ -316,3 +316,178 @@ fn ctrl_c_inside_long_rolls_keeps_an_exact_prefix() {
         );
     }
 }
+
+#[test]
+fn completions_name_every_command_for_each_shell() {
+    let bash = dicesim(&["completions", "bash"]);
+    assert!(bash.status.success());
+    let script = stdout(&bash);
+    assert!(script.contains("complete -F _dicesim"), "{script}");
+    for word in [
+        "roll",
+        "trace",
+        "batch",
+        "basin",
+        "merge",
+        "slurm",
+        "presets",
+        "completions",
+        "--no-color",
+        "--set",
+    ] {
+        assert!(script.contains(word), "bash completion lacks `{word}`");
+    }
+    for shell in ["zsh", "fish", "elvish", "powershell"] {
+        let o = dicesim(&["completions", shell]);
+        assert!(o.status.success(), "{shell}");
+        assert!(stdout(&o).contains("basin"), "{shell} completion lacks `basin`");
+    }
+    let o = dicesim(&["completions", "tcsh"]);
+    assert_eq!(o.status.code(), Some(2), "an unknown shell is a usage error");
+}
+
+#[test]
+fn the_man_page_is_roff_with_every_command() {
+    let o = dicesim(&["man"]);
+    assert!(o.status.success());
+    let page = stdout(&o);
+    assert!(page.contains(".TH dicesim 1"), "{}", &page[..page.len().min(300)]);
+    for section in [".SH NAME", ".SH SYNOPSIS", ".SH DESCRIPTION", ".SH SUBCOMMANDS"] {
+        assert!(page.contains(section), "no {section}");
+    }
+    for command in [
+        "roll",
+        "trace",
+        "batch",
+        "basin",
+        "merge",
+        "slurm",
+        "presets",
+        "tui",
+        "completions",
+    ] {
+        assert!(page.contains(&format!("dicesim\\-{command}")), "no {command}");
+    }
+}
+
+#[test]
+fn help_shows_examples_and_exit_statuses() {
+    let o = dicesim(&["--help"]);
+    let text = stdout(&o);
+    assert!(
+        text.contains("Examples:") && text.contains("130 interrupted"),
+        "{text}"
+    );
+    for command in [
+        "roll",
+        "trace",
+        "batch",
+        "basin",
+        "merge",
+        "slurm",
+        "presets",
+        "tui",
+        "completions",
+        "man",
+    ] {
+        let o = dicesim(&[command, "--help"]);
+        assert!(o.status.success(), "{command}");
+        assert!(
+            stdout(&o).contains("Examples:\n  dicesim"),
+            "{command} --help has no examples"
+        );
+    }
+}
+
+#[test]
+fn no_color_is_global_and_agrees_with_no_color_env() {
+    // Accepted before and after any command, and by commands that print no colour.
+    for args in [
+        &["--no-color", "roll"][..],
+        &["roll", "--no-color"],
+        &["presets", "--no-color", "path"],
+    ] {
+        let o = dicesim(args);
+        assert!(
+            o.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+    // An error under NO_COLOR or --no-color carries no escape codes.
+    let plain = Command::new(env!("CARGO_BIN_EXE_dicesim"))
+        .args(["roll", "--bogus"])
+        .env("NO_COLOR", "1")
+        .env("CLICOLOR_FORCE", "1")
+        .output()
+        .unwrap();
+    assert!(
+        !plain.stderr.contains(&0x1b),
+        "{}",
+        String::from_utf8_lossy(&plain.stderr)
+    );
+    let flagged = Command::new(env!("CARGO_BIN_EXE_dicesim"))
+        .args(["--no-color", "roll", "--bogus"])
+        .env_remove("NO_COLOR")
+        .env("CLICOLOR_FORCE", "1")
+        .output()
+        .unwrap();
+    assert!(
+        !flagged.stderr.contains(&0x1b),
+        "{}",
+        String::from_utf8_lossy(&flagged.stderr)
+    );
+    let coloured = Command::new(env!("CARGO_BIN_EXE_dicesim"))
+        .args(["roll", "--bogus"])
+        .env_remove("NO_COLOR")
+        .env("CLICOLOR_FORCE", "1")
+        .output()
+        .unwrap();
+    assert!(
+        coloured.stderr.contains(&0x1b),
+        "the check above can fail: forced colour shows"
+    );
+}
+
+#[test]
+fn exit_statuses_follow_the_kind_of_failure() {
+    // Bad input: 2, with one line naming it.
+    let o = dicesim(&["batch", "--ics", "/nonexistent/ics.csv"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.starts_with("dicesim: --ics /nonexistent/ics.csv: "), "{err}");
+    // An output folder that does not exist is found before any roll: bad input, 2.
+    let o = dicesim(&["batch", "--rolls", "2", "--out", "/nonexistent/dir/rolls.csv"]);
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    // A failure while running (a write to a full device): 1.
+    #[cfg(target_os = "linux")]
+    {
+        let dir = tempfile::tempdir().unwrap();
+        let full = dir.path().join("rolls.csv");
+        std::os::unix::fs::symlink("/dev/full", &full).unwrap();
+        let o = dicesim(&["batch", "--rolls", "2", "--out", full.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    // A reader that stops early is no failure: the exit status is 0 and nothing is printed.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_dicesim"))
+        .args(["trace", "--steps", "200000"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.stderr.is_empty(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+#[test]
+fn set_takes_one_component_of_a_vector() {
+    let o = dicesim(&["presets", "show", "paper", "--set", "initial.velocity.y=25"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        stdout(&o).contains("velocity = [30.0, 25.0, 0.0]"),
+        "{}",
+        stdout(&o)
+    );
+}

@@ -150,7 +150,7 @@ fn law_and_stop(law: FrictionLaw, stop: StopEnergy, seed: u64) {
     let mut params = reference_params("paper");
     params.ground.friction_law = law;
     params.integrator.stop_energy = stop;
-    let what = format!("{} friction, {} stop energy", law.name(), stop.name());
+    let what = format!("{law:?} friction, {} stop energy", stop.name());
     let cut = Params {
         integrator: dicesim::physics::Integrator {
             max_time: CUT_TIME_S,

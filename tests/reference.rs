@@ -107,7 +107,7 @@ fn original_law_faces_and_end_steps_match_reference() {
     );
 }
 
-/// MODEL.md's own stopping rule (rigid-body energy) ends rolls at other steps than the
+/// docs/model.md's own stopping rule (rigid-body energy) ends rolls at other steps than the
 /// authors' point-mass energy, but below 80 % of the edge energy the face can no longer
 /// change, so the robust faces must still agree.
 #[test]

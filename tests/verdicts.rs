@@ -5,9 +5,9 @@
 //! predictor must rarely call an unstable set stable, and an unstable roll's stated reason
 //! must name a limit the set really passes. The figures are printed (`--nocapture`).
 
-use dicesim::physics::initial::{ANGULAR_VELOCITY, HEIGHT, ORIENTATION, VELOCITY};
-use dicesim::physics::params::{
-    CORNER_MASS, DAMPING, DT, FRICTION, GRAVITY, HALF_SIZE, STIFFNESS, STOP_ENERGY_FRACTION,
+use dicesim::physics::registry::{
+    ANGULAR_VELOCITY, CORNER_MASS, DAMPING, DT, FRICTION, GRAVITY, HALF_SIZE, HEIGHT, ORIENTATION, STIFFNESS,
+    STOP_ENERGY_FRACTION, VELOCITY,
 };
 use dicesim::physics::stopping::resting_depth_on_face;
 use dicesim::physics::{
@@ -42,19 +42,19 @@ fn signed_log(l: Limits, sign: f64, u: f64) -> f64 {
 /// One parameter set and start from 24 uniform numbers in [0, 1).
 fn draw(u: &[f64; 24]) -> (Params, InitialCondition) {
     let mut p = Params::default();
-    p.die.half_size = log_uniform(HALF_SIZE, u[0]);
-    p.die.corner_mass = log_uniform(CORNER_MASS, u[1]);
-    p.ground.stiffness = log_uniform(STIFFNESS, u[2]);
-    p.ground.damping = uniform(DAMPING, u[3]);
-    p.ground.friction = uniform(FRICTION, u[4]);
+    p.die.half_size = log_uniform(HALF_SIZE.limits, u[0]);
+    p.die.corner_mass = log_uniform(CORNER_MASS.limits, u[1]);
+    p.ground.stiffness = log_uniform(STIFFNESS.limits, u[2]);
+    p.ground.damping = uniform(DAMPING.limits, u[3]);
+    p.ground.friction = uniform(FRICTION.limits, u[4]);
     p.ground.friction_law = if u[5] < 0.5 {
         FrictionLaw::PerCorner
     } else {
         FrictionLaw::WholeDieNorm
     };
-    p.world.gravity = log_uniform(GRAVITY, u[6]);
-    p.integrator.dt = log_uniform(DT, u[7]);
-    p.integrator.stop_energy_fraction = uniform(STOP_ENERGY_FRACTION, u[8]);
+    p.world.gravity = log_uniform(GRAVITY.limits, u[6]);
+    p.integrator.dt = log_uniform(DT.limits, u[7]);
+    p.integrator.stop_energy_fraction = uniform(STOP_ENERGY_FRACTION.limits, u[8]);
     p.integrator.stop_energy = if u[9] < 0.5 {
         StopEnergy::RigidBody
     } else {
@@ -62,20 +62,26 @@ fn draw(u: &[f64; 24]) -> (Params, InitialCondition) {
     };
     p.integrator.max_time = (MAX_STEPS * p.integrator.dt).min(120.0);
     let mut ic = InitialCondition {
-        orientation: [0, 1, 2].map(|i| uniform(ORIENTATION, u[10 + i]) / 2.0),
-        velocity: [0, 1, 2].map(|i| signed_log(VELOCITY, u[13 + i], u[16 + i])),
+        orientation: [0, 1, 2].map(|i| uniform(ORIENTATION.limits, u[10 + i]) / 2.0),
+        velocity: [0, 1, 2].map(|i| signed_log(VELOCITY.limits, u[13 + i], u[16 + i])),
         ..InitialCondition::default()
     };
     // Spin on a third of the starts is left at rest, so gentle drops are in the sample too.
     ic.angular_velocity = if u[19] < 1.0 / 3.0 {
         [0.0; 3]
     } else {
-        [0, 1, 2].map(|i| signed_log(ANGULAR_VELOCITY, u[20 + i], (u[19] + 0.37 * i as f64) % 1.0))
+        [0, 1, 2].map(|i| {
+            signed_log(
+                ANGULAR_VELOCITY.limits,
+                u[20 + i],
+                (u[19] + 0.37 * i as f64) % 1.0,
+            )
+        })
     };
     // From just clear of the table to a hundred half sizes above it.
     let clearance = -ic.lowest_corner_offset(p.die.half_size);
     let lift = p.die.half_size * (10f64.ln() * (-2.0 + 4.0 * u[23])).exp();
-    ic.height = (clearance + lift).min(HEIGHT.max);
+    ic.height = (clearance + lift).min(HEIGHT.limits.max);
     (p, ic)
 }
 

@@ -1,9 +1,10 @@
 //! Basin maps through the worker: partial maps first, then the complete one, equal to what
 //! the experiment layer computes; a cancelled map stops sending.
 
+use dicesim::experiment::ScanKey;
 use dicesim::experiment::{MapSpec, Method, run_map};
 use dicesim::preset::Preset;
-use dicesim::worker::{Command, Engine, MapAxis, MapRequest, MapUpdate, Param, Snapshot, Worker};
+use dicesim::worker::{Command, Engine, MapAxis, MapRequest, MapUpdate, Snapshot, Worker};
 use std::sync::atomic::AtomicBool;
 use std::sync::mpsc::{Receiver, channel};
 use std::time::Duration;
@@ -20,16 +21,16 @@ fn spawn() -> (Worker, Receiver<Snapshot>, Receiver<MapUpdate>) {
 }
 
 fn request(generation: u64, cells: (usize, usize)) -> MapRequest {
-    let axis = |param, cells| MapAxis {
-        param,
+    let axis = |key: &str, cells| MapAxis {
+        key: ScanKey::named(key).unwrap(),
         min: -60.0,
         max: 60.0,
         cells,
     };
     MapRequest {
         generation,
-        x: axis(Param::Spin(0), cells.0),
-        y: axis(Param::Spin(1), cells.1),
+        x: axis("initial.angular_velocity.x", cells.0),
+        y: axis("initial.angular_velocity.y", cells.1),
     }
 }
 

@@ -1,10 +1,10 @@
 //! The worker thread's protocol: commands in, snapshots out, in order, none lost, and a
 //! clean stop when the UI goes.
 
-use dicesim::experiment::{FaceTally, RandomRanges, roll_record};
+use dicesim::experiment::{FaceTally, RandomRanges, ScanKey, roll_record};
 use dicesim::physics::{Simulation, Status};
 use dicesim::preset::Preset;
-use dicesim::worker::{Command, Engine, Param, Phase, Snapshot, Speed, Worker};
+use dicesim::worker::{Command, Engine, Phase, Snapshot, Speed, Worker};
 use std::sync::mpsc::{Receiver, RecvTimeoutError, channel};
 use std::time::Duration;
 
@@ -45,7 +45,7 @@ fn every_command_arrives_in_order() {
     }
     let frictions: Vec<f64> = (1..=40).map(|i| i as f64 * 0.1).collect();
     for &mu in &frictions {
-        worker.send(Command::SetParam(Param::Friction, mu));
+        worker.send(Command::SetParam(ScanKey::named("ground.friction").unwrap(), mu));
     }
     let s = wait_for(&rx, |s| s.commands_handled == 90);
     assert_eq!(s.step, 50, "fifty single steps, none lost");
@@ -100,14 +100,17 @@ fn instant_playback_shows_the_end_the_physics_computes() {
 fn a_ground_change_mid_roll_keeps_the_roll_and_others_restart_it() {
     let (worker, rx) = spawn();
     worker.send(Command::Step(100));
-    worker.send(Command::SetParam(Param::Damping, 0.01));
+    worker.send(Command::SetParam(ScanKey::named("ground.damping").unwrap(), 0.01));
     let s = wait_for(&rx, |s| s.commands_handled == 2);
     assert_eq!((s.step, s.params.ground.damping), (100, 0.01));
-    worker.send(Command::SetParam(Param::Height, 5.0));
+    worker.send(Command::SetParam(ScanKey::named("initial.height").unwrap(), 5.0));
     let s = wait_for(&rx, |s| s.commands_handled == 3);
     assert_eq!((s.step, s.initial.height), (0, 5.0));
     assert!(s.history_reset);
-    worker.send(Command::SetParam(Param::Friction, 99.0));
+    worker.send(Command::SetParam(
+        ScanKey::named("ground.friction").unwrap(),
+        99.0,
+    ));
     let s = wait_for(&rx, |s| s.commands_handled == 4);
     assert!(
         s.notice.is_some_and(|n| n.contains("ground.friction")),

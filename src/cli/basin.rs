@@ -1,16 +1,18 @@
 //! `dicesim basin`: the outcome over a grid of two setup values, as CSV or an image.
 
-use super::{CliError, EngineArg, INTERRUPTED, SetupArgs, cancel_on_ctrl_c, persist, temp_file_beside};
-use crate::experiment::batch::thread_count;
+use super::shard::{ShardArgs, map_fingerprint, new_part, write_part};
+use super::{CliError, EngineArg, SetupArgs, cancel_on_ctrl_c};
 use crate::experiment::plot::write_image;
-use crate::experiment::{Axis, BasinMap, FaceTally, Layer, MapSpec, Method, RunOptions, run_map_with};
+use crate::experiment::shard::Sweep;
+use crate::experiment::{Axis, BasinMap, FaceTally, Layer, MapSpec, Method, RunOptions, run_map_rows};
+use crate::output::Output;
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::{IsTerminal, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum LayerArg {
+pub(crate) enum LayerArg {
     /// The face up at the end.
     Face,
     /// Simulated seconds until the roll ended.
@@ -18,38 +20,43 @@ pub enum LayerArg {
 }
 
 #[derive(Debug, Args)]
-pub struct BasinArgs {
+pub(crate) struct BasinArgs {
     #[command(flatten)]
-    pub setup: SetupArgs,
+    pub(crate) setup: SetupArgs,
     /// The horizontal axis: any numeric preset key, vector components included, with its
     /// range, e.g. `initial.angular_velocity.x:-60:60`.
     #[arg(long = "x", value_name = "KEY:MIN:MAX", allow_hyphen_values = true)]
-    pub x: String,
+    pub(crate) x: String,
     /// The vertical axis, as --x (with `--res Wx1`, one scan at the middle of its range).
     #[arg(long = "y", value_name = "KEY:MIN:MAX", allow_hyphen_values = true)]
-    pub y: String,
+    pub(crate) y: String,
     /// Grid nodes along x and y, both ends of each range included; `Wx1` is a 1-D scan.
     #[arg(long, value_name = "WxH", default_value = "200x100", value_parser = parse_resolution)]
-    pub res: (usize, usize),
+    pub(crate) res: (usize, usize),
     /// What each cell shows.
     #[arg(long, value_enum, default_value_t = LayerArg::Face)]
-    pub layer: LayerArg,
+    pub(crate) layer: LayerArg,
     /// Roll a coarse grid, then only where neighbouring cells differ (default for 2-D face
     /// maps; may miss islands smaller than the coarse spacing).
     #[arg(long, conflicts_with = "uniform")]
-    pub adaptive: bool,
+    pub(crate) adaptive: bool,
     /// Roll every cell (default for the settle-time layer and 1-D scans).
     #[arg(long)]
-    pub uniform: bool,
+    pub(crate) uniform: bool,
     /// Worker threads (default: one per core); the map does not depend on it.
     #[arg(long, value_name = "J", value_parser = clap::value_parser!(u64).range(1..))]
-    pub jobs: Option<u64>,
+    pub(crate) jobs: Option<u64>,
     /// Write the map to a .csv, .png or .svg file.
     #[arg(long, value_name = "map.csv|map.png|map.svg")]
-    pub out: Option<PathBuf>,
-    /// The engine that steps the rolls; the map is bit for bit the same with each.
+    pub(crate) out: Option<PathBuf>,
+    /// Replace an existing --out file.
+    #[arg(long, requires = "out")]
+    pub(crate) force: bool,
+    #[command(flatten)]
+    pub(crate) shard: ShardArgs,
+    /// The engine that steps the rolls; the map is bit for bit the same with either.
     #[arg(long, value_enum, default_value_t = EngineArg::Auto)]
-    pub engine: EngineArg,
+    pub(crate) engine: EngineArg,
 }
 
 fn parse_resolution(s: &str) -> Result<(usize, usize), String> {
@@ -63,37 +70,61 @@ fn parse_resolution(s: &str) -> Result<(usize, usize), String> {
     Ok((w, h))
 }
 
-pub fn run(args: &BasinArgs) -> Result<(), CliError> {
+/// The most cells a map takes (e.g. 2048×2048): the map and its partial copy stay in memory.
+pub(crate) const MAX_CELLS: usize = 2048 * 2048;
+
+pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
+    let jobs = super::checked_jobs(args.jobs)?;
+    let (w, h) = args.res;
+    if w * h > MAX_CELLS {
+        // The map, the copy shown while refining, and the image or CSV drawn from it.
+        let needed = 2 * w * h * size_of::<Option<crate::experiment::Cell>>();
+        return Err(CliError::Usage(format!(
+            "--res {w}x{h}: {} cells would need about {} of memory; at most {MAX_CELLS} cells (e.g. 2048x2048)",
+            w * h,
+            crate::experiment::trace::human_bytes(needed as u64)
+        )));
+    }
     let preset = args.setup.resolve()?;
     let params = preset.params();
-    let (w, h) = args.res;
-    let x = Axis::parse(&args.x, w).map_err(|e| CliError::Input(format!("--x {e}")))?;
-    let y = Axis::parse(&args.y, h).map_err(|e| CliError::Input(format!("--y {e}")))?;
+    let x = Axis::parse(&args.x, w).map_err(CliError::experiment("--x "))?;
+    let y = Axis::parse(&args.y, h).map_err(CliError::experiment("--y "))?;
     let layer = match args.layer {
         LayerArg::Face => Layer::Face,
         LayerArg::SettleTime => Layer::SettleTime,
     };
     // Filled cells copy a corner's settle time, which says little about the cells between,
     // and a 1-D scan is plotted as settle time: these roll every cell unless asked otherwise.
+    let sharding = args.shard.resolve(args.out.as_deref())?;
+    if sharding.is_some() && args.adaptive {
+        return Err(CliError::Usage(
+            "--shard rolls every cell of its rows: adaptive refinement compares cells across shards"
+                .to_string(),
+        ));
+    }
     let method = match (args.adaptive, args.uniform) {
+        _ if sharding.is_some() => Method::Uniform,
         (true, _) => Method::Adaptive,
         (_, true) => Method::Uniform,
         _ if layer == Layer::SettleTime || h == 1 => Method::Uniform,
         _ => Method::Adaptive,
     };
-    let out_kind = args
+    let output = args
         .out
+        .as_deref()
+        .map(|p| Output::check(p, &["csv", "png", "svg"], args.force))
+        .transpose()
+        .map_err(CliError::output("--out "))?;
+    if sharding.is_some() && output.as_ref().is_some_and(|o| o.extension() != "csv") {
+        return Err(CliError::Usage(
+            "--shard writes its rows as .csv; `dicesim merge` draws the image of the whole map".to_string(),
+        ));
+    }
+    let rows = sharding
         .as_ref()
-        .map(|p| match p.extension().and_then(|e| e.to_str()) {
-            Some(e @ ("csv" | "png" | "svg")) => Ok(e.to_string()),
-            _ => Err(CliError::Input(format!(
-                "--out {}: expected a .csv, .png or .svg file",
-                p.display()
-            ))),
-        })
-        .transpose()?;
+        .map_or(0..h as u64, |(shard, _)| shard.range(h as u64));
 
-    let total = (w * h) as u64;
+    let total = (w * (rows.end - rows.start) as usize) as u64;
     let bar = if std::io::stderr().is_terminal() {
         ProgressBar::new(total)
     } else {
@@ -103,7 +134,6 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
         ProgressStyle::with_template("{bar:40} {pos}/{len} cells rolled, {elapsed}")
             .expect("the progress template is valid"),
     );
-    let jobs = thread_count(args.jobs.unwrap_or(0) as usize);
     let options = RunOptions {
         jobs,
         engine: args.engine.engine(),
@@ -111,48 +141,60 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
     let stop = cancel_on_ctrl_c()?;
     let start = std::time::Instant::now();
     let spec = MapSpec { x, y, method };
-    let map = run_map_with(
+    let map = run_map_rows(
         &params,
         &preset.initial,
         &spec,
+        rows.start as usize..rows.end as usize,
         &options,
         &stop,
         &mut |m: &BasinMap| bar.set_position(m.sampled as u64),
     )
-    .map_err(|e| CliError::Input(e.to_string()))?;
+    .map_err(CliError::experiment(""))?;
     bar.finish_and_clear();
     let elapsed = start.elapsed().as_secs_f64();
-
-    if let (Some(path), Some(kind)) = (&args.out, out_kind) {
-        let failed = |e: String| CliError::Run(format!("{}: {e}", path.display()));
-        if kind == "csv" {
-            write_csv_whole(&map, path).map_err(|e| failed(e.to_string()))?;
-        } else {
-            write_image(&map, layer, path).map_err(|e| failed(e.to_string()))?;
-        }
-    }
-    let (x, y) = (&spec.x, &spec.y);
-    let mut out = std::io::stdout().lock();
-    writeln!(out, "{w}×{h} {} map, {}", layer.name(), map.method_report())?;
-    writeln!(out, "x  {} from {} to {}", x.key.label(), x.min, x.max)?;
-    if h == 1 {
-        writeln!(out, "y  {} = {}", y.key.label(), y.value(0))?;
-    } else {
-        writeln!(out, "y  {} from {} to {}", y.key.label(), y.min, y.max)?;
-    }
     let faces: FaceTally = map
         .cells
         .iter()
         .flatten()
         .filter_map(|c| c.outcome.face)
         .collect();
-    let shares: Vec<String> = (1..=6)
-        .map(|f| format!("{f}: {:.1}%", 100.0 * faces.share(f)))
-        .collect();
-    writeln!(out, "faces over the map  {}", shares.join(", "))?;
-    let unsettled = map.cells.iter().flatten().count() - faces.total() as usize;
-    if unsettled > 0 {
-        writeln!(out, "cells without a face {unsettled}")?;
+
+    if let Some(output) = &output {
+        match output.extension() {
+            "csv" => output.write(|w| map.write_csv(w)).map_err(CliError::output(""))?,
+            _ => write_image(&map, layer, output).map_err(|e| match e {
+                crate::experiment::Error::Output(e) => CliError::output("")(e),
+                e => CliError::experiment(&format!("{}: ", output.path().display()))(e),
+            })?,
+        }
+    }
+    if let Some((shard, part)) = &sharding {
+        let sweep = Sweep::Map {
+            preset: preset.name.clone(),
+            fingerprint: map_fingerprint(&preset),
+            x: args.x.clone(),
+            y: args.y.clone(),
+            width: w,
+            height: h,
+            layer: layer.name().to_string(),
+        };
+        let mut summary = new_part(sweep, *shard, rows.clone(), part, args.out.as_deref());
+        summary.complete = map.complete;
+        summary.map_faces = Some(faces);
+        summary.elapsed_s = elapsed;
+        summary.jobs = jobs;
+        write_part(part, &summary)?;
+    }
+    let mut out = std::io::stdout().lock();
+    print_map_summary(&mut out, &map, layer, &faces)?;
+    if let Some((shard, _)) = &sharding {
+        writeln!(
+            out,
+            "shard               {shard}: rows {} to {}",
+            rows.start,
+            rows.end.saturating_sub(1)
+        )?;
     }
     writeln!(
         out,
@@ -165,25 +207,41 @@ pub fn run(args: &BasinArgs) -> Result<(), CliError> {
     }
     out.flush()?;
     if !map.complete {
-        let known = map.cells.iter().flatten().count();
-        eprintln!(
-            "dicesim: interrupted: kept the {known} of {total} cells known ({} rolled){}",
-            map.sampled,
-            match (&args.out, method) {
-                (Some(path), Method::Uniform) =>
-                    format!(", the first {known} in row order in {}", path.display()),
-                (Some(path), Method::Adaptive) => format!(", in {}", path.display()),
-                (None, _) => String::new(),
-            }
-        );
-        std::process::exit(INTERRUPTED);
+        // A cancelled uniform map keeps an exact prefix of its cells in row order (what a
+        // longer run agrees with); an adaptive one its last whole refinement level.
+        return Err(CliError::Interrupted {
+            completed: map.cells.iter().flatten().count() as u64,
+            requested: total,
+            what: "cells",
+        });
     }
     Ok(())
 }
 
-/// Writes the map's CSV whole under `path` (through a temporary file beside it).
-fn write_csv_whole(map: &BasinMap, path: &Path) -> std::io::Result<()> {
-    let mut file = temp_file_beside(path)?;
-    map.write_csv(&mut file)?;
-    persist(file, path)
+/// What `basin` and `merge` print about a map: its grid, method, axes and the face shares
+/// over its known cells.
+pub(super) fn print_map_summary(
+    out: &mut impl Write,
+    map: &BasinMap,
+    layer: Layer,
+    faces: &FaceTally,
+) -> std::io::Result<()> {
+    let (x, y) = (&map.x, &map.y);
+    let (w, h) = (map.width(), map.height());
+    writeln!(out, "{w}×{h} {} map, {}", layer.name(), map.method_report())?;
+    writeln!(out, "x  {} from {} to {}", x.key.label(), x.min, x.max)?;
+    if h == 1 {
+        writeln!(out, "y  {} = {}", y.key.label(), y.value(0))?;
+    } else {
+        writeln!(out, "y  {} from {} to {}", y.key.label(), y.min, y.max)?;
+    }
+    let shares: Vec<String> = (1..=6)
+        .map(|f| format!("{f}: {:.1}%", 100.0 * faces.share(f)))
+        .collect();
+    writeln!(out, "faces over the map  {}", shares.join(", "))?;
+    let unsettled = map.cells.iter().flatten().count() as u64 - faces.total();
+    if unsettled > 0 {
+        writeln!(out, "cells without a face {unsettled}")?;
+    }
+    Ok(())
 }

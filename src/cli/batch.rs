@@ -1,19 +1,31 @@
 //! `dicesim batch`: many rolls in parallel, per-roll results and their statistics.
 
-use super::{CliError, EngineArg, INTERRUPTED, SetupArgs, cancel_on_ctrl_c, persist, temp_file_beside};
-use crate::experiment::batch::thread_count;
+use super::shard::{ShardArgs, batch_fingerprint, write_batch_part};
+use super::{CliError, EngineArg, SetupArgs, cancel_on_ctrl_c};
+use crate::experiment::csv_io;
 use crate::experiment::ics::{parse_initial_conditions, record_csv_row, records_csv_header};
+use crate::experiment::parquet::RecordsWriter;
+use crate::experiment::shard::Sweep;
 use crate::experiment::{BatchRun, BatchSummary, RollRecord, Rolls, RunOptions, stream_batch};
+use crate::output::Output;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::json;
-use std::io::{BufWriter, IsTerminal, Write};
-use std::path::{Path, PathBuf};
+use std::io::{IsTerminal, Write};
+use std::path::PathBuf;
+
+/// The most rolls one batch takes. Records stream to `--out` as they complete, so memory
+/// does not grow with the batch; past this a batch is years of core time, a typo more
+/// likely than a plan, and a sweep that size belongs on many machines (`--shard`).
+pub(crate) const MAX_ROLLS: u64 = 100_000_000_000;
+
+/// The largest `--ics` file read, bytes (about a million rows).
+const MAX_ICS_BYTES: u64 = 256 * 1024 * 1024;
 
 #[derive(Debug, Args)]
-pub struct BatchArgs {
+pub(crate) struct BatchArgs {
     #[command(flatten)]
-    pub setup: SetupArgs,
+    pub(crate) setup: SetupArgs,
     /// Roll N dice with initial conditions drawn from the preset's `[random]` ranges.
     #[arg(
         long,
@@ -21,80 +33,106 @@ pub struct BatchArgs {
         required_unless_present = "ics",
         conflicts_with = "ics"
     )]
-    pub rolls: Option<u64>,
+    pub(crate) rolls: Option<u64>,
     /// Roll the initial conditions of a CSV file: a header with `id` and any of height,
     /// velocity_x|y|z, angular_velocity_x|y|z, angular_momentum_x|y|z, yaw, pitch, roll
     /// (missing columns take the preset's initial values).
     #[arg(long, value_name = "FILE.csv")]
-    pub ics: Option<PathBuf>,
+    pub(crate) ics: Option<PathBuf>,
     /// Seed of the random draws (default: the preset's `random.seed`); roll i's draw depends
     /// on (seed, i) alone.
     #[arg(long, value_name = "S", conflicts_with = "ics")]
-    pub seed: Option<u64>,
+    pub(crate) seed: Option<u64>,
     /// Worker threads (default: one per core); the results do not depend on it.
     #[arg(long, value_name = "J", value_parser = clap::value_parser!(u64).range(1..))]
-    pub jobs: Option<u64>,
+    pub(crate) jobs: Option<u64>,
     /// Write every roll (id, initial condition, start face, face, status, steps, simulated
-    /// seconds) to a .csv or .json file.
-    #[arg(long, value_name = "FILE.csv|FILE.json")]
-    pub out: Option<PathBuf>,
+    /// seconds) to a .csv, .json or .parquet file (Parquet: the same columns in about a
+    /// third of the bytes, for pandas, polars or DuckDB).
+    #[arg(long, value_name = "FILE.csv|FILE.json|FILE.parquet")]
+    pub(crate) out: Option<PathBuf>,
+    /// Replace an existing --out file.
+    #[arg(long, requires = "out")]
+    pub(crate) force: bool,
     /// Print the summary as one JSON object instead of text.
     #[arg(long)]
-    pub json: bool,
-    /// The engine that steps the rolls; results are bit for bit the same with each.
+    pub(crate) json: bool,
+    #[command(flatten)]
+    pub(crate) shard: ShardArgs,
+    /// The engine that steps the rolls; every roll's result is bit for bit the same with
+    /// either, so this changes speed only.
     #[arg(long, value_enum, default_value_t = EngineArg::Auto)]
-    pub engine: EngineArg,
+    pub(crate) engine: EngineArg,
 }
 
-/// The per-roll file's format, from its extension.
-enum OutFormat {
-    Csv,
-    Json,
-}
-
-fn out_format(path: &Path) -> Result<OutFormat, CliError> {
-    match path.extension().and_then(|e| e.to_str()) {
-        Some("csv") => Ok(OutFormat::Csv),
-        Some("json") => Ok(OutFormat::Json),
-        _ => Err(CliError::Input(format!(
-            "--out {}: expected a .csv or .json file",
-            path.display()
-        ))),
+pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
+    let jobs = super::checked_jobs(args.jobs)?;
+    let sharding = args.shard.resolve(args.out.as_deref())?;
+    // A shard keeps only its own rolls' records.
+    let kept = args.rolls.map(|n| {
+        sharding
+            .as_ref()
+            .map_or(n, |(s, _)| s.range(n).end - s.range(n).start)
+    });
+    if let Some(n) = kept
+        && n > MAX_ROLLS
+    {
+        return Err(CliError::Usage(format!(
+            "--rolls {n}: at most {MAX_ROLLS} per batch; split a sweep this large over machines with --shard K/N"
+        )));
     }
-}
-
-pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     let preset = args.setup.resolve()?;
     let params = preset.params();
-    params.validate().map_err(|e| CliError::Input(e.to_string()))?;
-    let format = args.out.as_deref().map(out_format).transpose()?;
+    params.validate()?;
+    let output = args
+        .out
+        .as_deref()
+        .map(|p| Output::check(p, &["csv", "json", "parquet"], args.force))
+        .transpose()
+        .map_err(CliError::output("--out "))?;
+    if sharding.is_some() && output.as_ref().is_some_and(|o| o.extension() == "json") {
+        return Err(CliError::Usage(
+            "--shard writes its records as .csv or .parquet (a JSON file cannot be merged as it streams)"
+                .to_string(),
+        ));
+    }
     let seed = args.seed.unwrap_or(preset.random.seed);
     let given = match &args.ics {
         Some(path) => {
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| CliError::Input(format!("--ics {}: {e}", path.display())))?;
+            let text =
+                crate::preset::read_regular_file(path, MAX_ICS_BYTES).map_err(|message| CliError::Read {
+                    flag: "--ics",
+                    path: path.clone(),
+                    source: std::io::Error::other(message),
+                })?;
             let ics = parse_initial_conditions(&text, &preset.initial, params.inertia())
-                .map_err(|e| CliError::Input(format!("--ics {}: {e}", path.display())))?;
+                .map_err(CliError::experiment(&format!("--ics {}: ", path.display())))?;
             Some(ics)
         }
         None => None,
     };
+    let total = given
+        .as_ref()
+        .map_or(args.rolls.unwrap_or(0), |ics| ics.len() as u64);
+    let range = sharding
+        .as_ref()
+        .map_or(0..total, |(shard, _)| shard.range(total));
     let rolls = match &given {
-        Some(ics) => Rolls::Given(ics),
+        Some(ics) => Rolls::Given(&ics[range.start as usize..range.end as usize]),
         None => Rolls::Random {
             ranges: &preset.random,
             base: &preset.initial,
             seed,
-            count: args.rolls.unwrap_or(0),
+            first: range.start,
+            count: range.end - range.start,
         },
     };
-    let jobs = thread_count(args.jobs.unwrap_or(0) as usize);
+
+    let stop = cancel_on_ctrl_c()?;
     let options = RunOptions {
         jobs,
         engine: args.engine.engine(),
     };
-    let stop = cancel_on_ctrl_c()?;
-
     let bar = if std::io::stderr().is_terminal() {
         ProgressBar::new(rolls.len())
     } else {
@@ -104,142 +142,175 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
         ProgressStyle::with_template("{bar:40} {pos}/{len} rolls, {per_sec}, {eta} left")
             .expect("the progress template is valid"),
     );
-    let seed_field = if given.is_some() { None } else { Some(seed) };
+    let seed_field = given.is_none().then_some(seed);
+    let mut run = None;
+    // The sink's own I/O error, kept whole (the engine only carries its words).
+    let write_error = std::cell::RefCell::new(None);
+    let roll = |sink: &mut dyn FnMut(&[RollRecord]) -> std::io::Result<()>| {
+        stream_batch(&params, &rolls, &options, &stop, &mut |chunk: &[RollRecord]| {
+            bar.inc(chunk.len() as u64);
+            sink(chunk).map_err(|e| {
+                let words = e.to_string();
+                *write_error.borrow_mut() = Some(e);
+                words
+            })
+        })
+    };
     // Records go to the file as they arrive, so memory stays flat in the number of rolls;
     // the file appears under its name only once it is whole (or an interrupted prefix).
-    let mut writer = match (&args.out, &format) {
-        (Some(path), Some(format)) => Some(
-            RecordWriter::create(path, format, seed_field, rolls.len())
-                .map_err(|e| CliError::Run(format!("{}: {e}", path.display())))?,
-        ),
-        _ => None,
-    };
-    let run = stream_batch(&params, &rolls, &options, &stop, &mut |chunk: &[RollRecord]| {
-        bar.inc(chunk.len() as u64);
-        match &mut writer {
-            Some(w) => w.write(chunk).map_err(|e| e.to_string()),
-            None => Ok(()),
-        }
-    })
-    .map_err(|e| match e {
-        crate::experiment::Error::Output(msg) => CliError::Run(format!(
-            "{}: {msg}",
-            args.out.as_deref().unwrap_or(Path::new("")).display()
-        )),
-        e => CliError::Input(e.to_string()),
-    })?;
+    match &output {
+        Some(output) => output
+            .write(|w| {
+                let mut records = RecordsFile::start(w, output.extension(), seed_field, rolls.len())?;
+                let done = roll(&mut |chunk| records.write(chunk));
+                let batch = done.map_err(|e| match write_error.borrow_mut().take() {
+                    Some(io) => io,
+                    None => std::io::Error::other(e.to_string()),
+                })?;
+                records.finish(&batch)?;
+                run = Some(batch);
+                Ok(())
+            })
+            .map_err(CliError::output(""))?,
+        None => run = Some(roll(&mut |_| Ok(())).map_err(CliError::experiment(""))?),
+    }
+    let batch = run.expect("the batch ran");
     bar.finish_and_clear();
-
-    let summary = &run.summary;
-    if let (Some(w), Some(path)) = (writer, &args.out) {
-        w.finish(&run)
-            .map_err(|e| CliError::Run(format!("{}: {e}", path.display())))?;
+    let summary = &batch.summary;
+    if let Some((shard, part)) = &sharding {
+        let sweep = Sweep::Batch {
+            preset: preset.name.clone(),
+            fingerprint: batch_fingerprint(&preset, given.as_deref()),
+            seed: seed_field,
+            rolls: total,
+        };
+        write_batch_part(part, sweep, *shard, range, args.out.as_deref(), &batch)?;
     }
     let mut out = std::io::stdout().lock();
     if args.json {
         let v = json!({
             "preset": preset.name,
             "seed": seed_field,
-            "requested": run.requested,
-            "completed": run.completed,
-            "interrupted": run.cancelled,
-            "jobs": run.jobs,
-            "engine": run.engine,
+            "requested": batch.requested,
+            "completed": batch.completed,
+            "interrupted": batch.cancelled,
+            "jobs": batch.jobs,
+            "engine": batch.engine,
             "summary": summary,
         });
         writeln!(out, "{v}")?;
     } else {
-        print_summary(&mut out, &run, summary)?;
+        print_summary(&mut out, &batch, summary)?;
     }
     out.flush()?;
-    if run.cancelled {
-        eprintln!(
-            "dicesim: interrupted: kept the {} of {} rolls completed{}",
-            run.completed,
-            run.requested,
-            match &args.out {
-                Some(path) => format!(" (the first {} in {})", run.completed, path.display()),
-                None => String::new(),
-            }
-        );
-        std::process::exit(INTERRUPTED);
+    if batch.cancelled {
+        return Err(CliError::Interrupted {
+            completed: batch.completed,
+            requested: batch.requested,
+            what: "rolls",
+        });
     }
     Ok(())
 }
 
-/// A per-roll file written as the records arrive: into a temporary file beside the target,
-/// renamed onto it once complete, so a failed run leaves no partial file under the name.
-struct RecordWriter {
-    file: BufWriter<tempfile::NamedTempFile>,
-    path: PathBuf,
-    format: OutFormat,
-    first: bool,
+/// The per-roll file as the records arrive: CSV, JSON or Parquet by extension. JSON puts
+/// the rolls first and what is known only at the end (interrupted, summary) after them.
+enum RecordsFile<'w> {
+    Csv(csv::Writer<&'w mut (dyn Write + Send)>),
+    Json {
+        w: &'w mut (dyn Write + Send),
+        first: bool,
+    },
+    Parquet(RecordsWriter<&'w mut (dyn Write + Send)>),
 }
 
-impl RecordWriter {
-    fn create(path: &Path, format: &OutFormat, seed: Option<u64>, requested: u64) -> std::io::Result<Self> {
-        let mut file = temp_file_beside(path)?;
-        let format = match format {
-            OutFormat::Csv => {
-                writeln!(file, "{}", records_csv_header())?;
-                OutFormat::Csv
+impl<'w> RecordsFile<'w> {
+    fn start(
+        w: &'w mut (dyn Write + Send),
+        extension: &str,
+        seed: Option<u64>,
+        requested: u64,
+    ) -> std::io::Result<Self> {
+        Ok(match extension {
+            "csv" => {
+                let mut csv = csv::Writer::from_writer(w);
+                csv.write_record(records_csv_header()).map_err(csv_io)?;
+                RecordsFile::Csv(csv)
             }
-            OutFormat::Json => {
-                // The rolls first, then what is known only at the end.
+            "json" => {
                 write!(
-                    file,
+                    w,
                     "{{\"seed\":{},\"requested\":{requested},\"rolls\":[",
                     json!(seed)
                 )?;
-                OutFormat::Json
+                RecordsFile::Json { w, first: true }
             }
-        };
-        Ok(RecordWriter {
-            file,
-            path: path.to_path_buf(),
-            format,
-            first: true,
+            _ => RecordsFile::Parquet(RecordsWriter::new(w).map_err(std::io::Error::other)?),
         })
     }
 
     fn write(&mut self, records: &[RollRecord]) -> std::io::Result<()> {
-        for r in records {
-            match self.format {
-                OutFormat::Csv => writeln!(self.file, "{}", record_csv_row(r))?,
-                OutFormat::Json => {
-                    if !self.first {
-                        self.file.write_all(b",")?;
-                    }
-                    serde_json::to_writer(&mut self.file, r)?;
+        match self {
+            RecordsFile::Csv(csv) => {
+                for r in records {
+                    csv.write_record(record_csv_row(r)).map_err(csv_io)?;
                 }
             }
-            self.first = false;
+            RecordsFile::Json { w, first } => {
+                for r in records {
+                    if !std::mem::take(first) {
+                        w.write_all(b",")?;
+                    }
+                    serde_json::to_writer(&mut **w, r)?;
+                }
+            }
+            RecordsFile::Parquet(parquet) => {
+                for r in records {
+                    parquet.write(r).map_err(std::io::Error::other)?;
+                }
+            }
         }
         Ok(())
     }
 
-    fn finish(mut self, run: &BatchRun) -> std::io::Result<()> {
-        if let OutFormat::Json = self.format {
-            writeln!(
-                self.file,
+    fn finish(self, batch: &BatchRun) -> std::io::Result<()> {
+        match self {
+            RecordsFile::Csv(mut csv) => csv.flush(),
+            RecordsFile::Json { w, .. } => writeln!(
+                w,
                 "],\"interrupted\":{},\"summary\":{}}}",
-                run.cancelled,
-                json!(run.summary)
-            )?;
+                batch.cancelled,
+                json!(batch.summary)
+            ),
+            RecordsFile::Parquet(parquet) => parquet.finish().map(drop).map_err(std::io::Error::other),
         }
-        persist(self.file, &self.path)
     }
 }
 
-fn print_summary(out: &mut impl Write, run: &BatchRun, s: &BatchSummary) -> std::io::Result<()> {
+fn print_summary(out: &mut impl Write, batch: &BatchRun, s: &BatchSummary) -> std::io::Result<()> {
     writeln!(
         out,
         "{} rolls on {} thread{}, {} engine",
         s.rolls,
-        run.jobs,
-        if run.jobs == 1 { "" } else { "s" },
-        run.engine.name()
+        batch.jobs,
+        if batch.jobs == 1 { "" } else { "s" },
+        batch.engine.name()
     )?;
+    print_counts(out, s)?;
+    writeln!(
+        out,
+        "speed                  {:.0} rolls/s, {:.1} M steps/s ({} steps in {:.2} s)",
+        s.rolls_per_s,
+        s.steps_per_s / 1e6,
+        s.steps,
+        s.elapsed_s
+    )?;
+    Ok(())
+}
+
+/// The summary's lines that depend on the rolls alone (not on threads or time), as `batch`
+/// and `merge` print them.
+pub(super) fn print_counts(out: &mut impl Write, s: &BatchSummary) -> std::io::Result<()> {
     writeln!(out, "face   count   share")?;
     for f in 0..6 {
         writeln!(
@@ -264,14 +335,6 @@ fn print_summary(out: &mut impl Write, run: &BatchRun, s: &BatchSummary) -> std:
         out,
         "status                 settled {}, settled without a face {}, did not settle {}, unstable {}",
         st.settled, st.settled_without_face, st.timeout, st.unstable
-    )?;
-    writeln!(
-        out,
-        "speed                  {:.0} rolls/s, {:.1} M steps/s ({} steps in {:.2} s)",
-        s.rolls_per_s,
-        s.steps_per_s / 1e6,
-        s.steps,
-        s.elapsed_s
     )?;
     Ok(())
 }

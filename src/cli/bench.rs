@@ -64,11 +64,12 @@ fn compare(rounds: u64, a: &mut dyn FnMut(), b: &mut dyn FnMut()) -> (f64, f64, 
 pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     let preset = args.setup.resolve()?;
     let params = preset.params();
-    params.validate().map_err(|e| CliError::Input(e.to_string()))?;
+    params.validate()?;
     let rolls = Rolls::Random {
         ranges: &preset.random,
         base: &preset.initial,
         seed: preset.random.seed,
+        first: 0,
         count: args.rolls,
     };
     let never = AtomicBool::new(false);

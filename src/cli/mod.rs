@@ -3,26 +3,26 @@
 mod basin;
 mod batch;
 mod bench;
+mod merge;
 mod presets;
 mod roll;
+mod shard;
+mod slurm;
 mod trace;
 mod tui;
 
+use crate::experiment;
 use crate::experiment::Engine;
-use crate::preset::{Preset, Store};
-use clap::{Args, Parser, Subcommand, ValueEnum};
-use std::io::BufWriter;
-use std::path::Path;
-use std::process::ExitCode;
+use crate::physics::ParamError;
+use crate::preset::{Preset, PresetError, Store};
+use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-/// Exit status after Ctrl-C, as a shell reports a SIGINT (128 + 2).
-pub(crate) const INTERRUPTED: i32 = 130;
-
 /// `--engine` of `batch` and `basin`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum EngineArg {
+pub(crate) enum EngineArg {
     /// The lane engine where the CPU has AVX2, else the scalar one.
     Auto,
     /// One roll after another.
@@ -32,7 +32,7 @@ pub enum EngineArg {
 }
 
 impl EngineArg {
-    pub fn engine(self) -> Engine {
+    pub(crate) fn engine(self) -> Engine {
         match self {
             EngineArg::Auto => Engine::Auto,
             EngineArg::Scalar => Engine::Scalar,
@@ -41,23 +41,9 @@ impl EngineArg {
     }
 }
 
-/// A buffered temporary file beside `path` (same folder, so renaming it onto `path` is
-/// atomic): written in full, then [`persist`]ed; dropped unpersisted, it leaves nothing.
-pub(crate) fn temp_file_beside(path: &Path) -> std::io::Result<BufWriter<tempfile::NamedTempFile>> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    Ok(BufWriter::new(tempfile::NamedTempFile::new_in(dir)?))
-}
-
-/// Flushes `file`, syncs it and renames it onto `path`.
-pub(crate) fn persist(file: BufWriter<tempfile::NamedTempFile>, path: &Path) -> std::io::Result<()> {
-    let file = file.into_inner().map_err(|e| e.into_error())?;
-    file.as_file().sync_all()?;
-    file.persist(path).map_err(|e| e.error)?;
-    Ok(())
-}
+/// Exit status of a second Ctrl-C, which cannot wait for the error to reach `main`: as a
+/// shell reports a SIGINT (128 + 2), the status `main` gives an interrupted command.
+const INTERRUPTED_AT_ONCE: i32 = 130;
 
 /// A flag the first Ctrl-C sets (the running rolls notice it within a few thousand steps
 /// and the command keeps what is complete); a second Ctrl-C quits at once.
@@ -66,104 +52,312 @@ pub(crate) fn cancel_on_ctrl_c() -> Result<Arc<AtomicBool>, CliError> {
     let handler_stop = stop.clone();
     ctrlc::set_handler(move || {
         if handler_stop.swap(true, Ordering::SeqCst) {
-            std::process::exit(INTERRUPTED);
+            std::process::exit(INTERRUPTED_AT_ONCE);
         }
     })
-    .map_err(|e| CliError::Run(format!("cannot catch Ctrl-C: {e}")))?;
+    .map_err(|e| CliError::Io(std::io::Error::other(format!("cannot catch Ctrl-C: {e}"))))?;
     Ok(stop)
 }
 
 /// A die rolling on a table as a rigid body (Chin & Li, 2019).
 #[derive(Debug, Parser)]
-#[command(name = "dicesim", version, about, long_about = None)]
-pub struct Cli {
+#[command(
+    name = "dicesim",
+    version,
+    about,
+    long_about = None,
+    after_help = "Examples:
+  dicesim                                   the explorer on the paper's setup
+  dicesim roll --set ground.friction=0.3    one roll on a slipperier table
+  dicesim batch --rolls 10000               face statistics of random rolls
+  dicesim presets list                      the shipped presets and yours
+
+Exit status: 0 success, 1 a failure while running, 2 bad input (nothing was run or written),
+130 interrupted (what was done is kept), 128 + N stopped by signal N, 101 an internal error."
+)]
+pub(crate) struct Cli {
     #[command(subcommand)]
-    pub command: Option<Command>,
+    pub(crate) command: Option<Command>,
+    /// Never colour the output (the explorer carries meaning by bold and reverse); the
+    /// NO_COLOR environment variable does the same.
+    #[arg(long, global = true)]
+    pub(crate) no_color: bool,
 }
 
 #[derive(Debug, Subcommand)]
-pub enum Command {
+pub(crate) enum Command {
     /// Roll once from the initial condition and print the outcome.
+    #[command(after_help = "Examples:
+  dicesim roll
+  dicesim roll --preset gentle-drop --json
+  dicesim roll --set initial.height=2.5 --set 'initial.angular_velocity=[10,0,3]'")]
     Roll(roll::RollArgs),
     /// Print a roll's trajectory and energies as CSV.
+    #[command(after_help = "Examples:
+  dicesim trace > roll.csv
+  dicesim trace --every 10 --steps 3000 --preset icy-table > icy.csv")]
     Trace(trace::TraceArgs),
     /// List, show and save presets (TOML setups; see `presets path`).
+    #[command(after_help = "Examples:
+  dicesim presets list
+  dicesim presets show paper
+  dicesim presets save mine --preset gentle-drop --set initial.height=2.5
+  dicesim presets save mine --set ground.friction=0.3 --force")]
     Presets(presets::PresetsArgs),
     /// Roll many dice in parallel: per-roll results and face statistics.
+    #[command(after_help = "Examples:
+  dicesim batch --rolls 10000
+  dicesim batch --rolls 2000 --seed 7 --out rolls.csv
+  dicesim batch --ics starts.csv --json")]
     Batch(batch::BatchArgs),
     /// Map the outcome over a grid of two setup values (CSV, PNG or SVG).
+    #[command(after_help = "Examples:
+  dicesim basin --x initial.angular_velocity.x:-40:40 --y initial.angular_velocity.y:-40:40 --out map.png
+  dicesim basin --x ground.friction:0:2 --y initial.height:2:20 --res 100x50 --out map.csv
+  dicesim basin --x initial.height:1:15 --y initial.angular_velocity.x:-60:60 --res 300x1 --layer settle-time")]
     Basin(basin::BasinArgs),
+    /// Put the shards of a sweep (`batch --shard`, `basin --shard`) back together.
+    #[command(after_help = "Examples:
+  dicesim merge parts --out rolls.csv
+  dicesim merge parts/*.part.json --out rolls.parquet --json
+  dicesim merge rows-*.part.json --out map.csv --out map.png")]
+    Merge(merge::MergeArgs),
+    /// Write (and submit) a Slurm job array for a sweep, one task per shard, and its merge.
+    #[command(after_help = "Examples:
+  dicesim slurm --shards 8 --dir sweep -- batch --rolls 40000 --seed 7
+  dicesim slurm --shards 64 --cpus-per-task 4 --time 1:00:00 --dir /scratch/$USER/sweep \\
+                --format parquet --submit -- batch --rolls 1000000000 --seed 7")]
+    Slurm(slurm::SlurmArgs),
     /// Time both engines on the same rolls and maps in this process and print the ratios.
     Bench(bench::BenchArgs),
     /// The terminal explorer: a live die, energy plots, parameters and outcomes (the default).
+    #[command(after_help = "Examples:
+  dicesim tui
+  dicesim tui --preset slow-motion-classroom --no-color")]
     Tui(tui::TuiArgs),
+    /// Print a shell completion script to standard output.
+    #[command(after_help = "Examples:
+  dicesim completions bash > ~/.local/share/bash-completion/completions/dicesim
+  dicesim completions zsh > ~/.zfunc/_dicesim
+  dicesim completions fish > ~/.config/fish/completions/dicesim.fish")]
+    Completions {
+        #[arg(value_enum)]
+        shell: clap_complete::Shell,
+    },
+    /// Print the manual page (roff) to standard output.
+    #[command(after_help = "Examples:
+  dicesim man > dicesim.1 && man ./dicesim.1")]
+    Man,
 }
 
 /// The setup every simulating command starts from.
 #[derive(Debug, Clone, Default, Args)]
-pub struct SetupArgs {
+pub(crate) struct SetupArgs {
     /// Start from this preset: a name (the user's folder, then the shipped set) or a path
     /// to a `.toml` file. Without it, the shipped `paper` preset.
     #[arg(long, value_name = "NAME|PATH")]
-    pub preset: Option<String>,
-    /// Override one preset value, e.g. `ground.stiffness=600000` or
-    /// `initial.angular_velocity=[10,0,3]` (repeatable, applied in order).
+    pub(crate) preset: Option<String>,
+    /// Override one preset value, e.g. `ground.stiffness=600000`,
+    /// `initial.angular_velocity=[10,0,3]` or `initial.velocity.y=25` (repeatable, applied
+    /// in order).
     #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub set: Vec<String>,
+    pub(crate) set: Vec<String>,
 }
 
 impl SetupArgs {
     /// The preset with every override applied and validated.
-    pub fn resolve(&self) -> Result<Preset, CliError> {
+    pub(crate) fn resolve(&self) -> Result<Preset, CliError> {
         let (preset, _) = Store::from_env().load_or_default(self.preset.as_deref())?;
         Ok(preset.with_overrides(&self.set)?)
     }
 }
 
-/// A command's failure: bad input (exit status 2) or a failure while running (status 1).
+/// Why a command failed. [`CliError::kind`] sorts it for the exit status.
 #[derive(Debug, thiserror::Error)]
 pub enum CliError {
+    /// A preset, an override or a preset name is wrong.
+    #[error(transparent)]
+    Preset(#[from] PresetError),
+    /// A preset of that name exists and `--force` was not given.
+    #[error("{0} (--force replaces it)")]
+    Exists(#[source] PresetError),
+    /// A setup value outside its range.
+    #[error(transparent)]
+    Param(#[from] ParamError),
+    /// An experiment refused its input (an axis, an initial-condition file) or could not run.
+    #[error("{context}{source}")]
+    Experiment {
+        /// What the error is about, e.g. `--x ` (empty when the message says it).
+        context: String,
+        #[source]
+        source: experiment::Error,
+    },
+    /// An argument that clap's parser cannot judge (a file's extension, the need for a
+    /// terminal).
     #[error("{0}")]
-    Input(String),
+    Usage(String),
+    /// The parts given to `merge` are not the shards of one sweep, or one of them is not
+    /// what its shard wrote (the message names the file and the problem).
     #[error("{0}")]
-    Run(String),
+    Parts(String),
+    /// A sweep's own step failed while running: a part summary or a merged file not
+    /// written, `sbatch` missing or refusing the job.
+    #[error("{0}")]
+    Sweep(String),
+    /// A named input file could not be read.
+    #[error("{flag} {}: {source}", path.display())]
+    Read {
+        flag: &'static str,
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// An output file could not be written.
+    #[error("{}: {source}", path.display())]
+    Write {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// Standard output (or another stream) failed; a closed pipe is not a failure.
+    #[error(transparent)]
+    Io(#[from] std::io::Error),
+    /// An output file refused before any work (it exists, its folder is missing), or a
+    /// write that failed and left nothing behind.
+    #[error("{context}{source}")]
+    Output {
+        /// The option the path came from, e.g. `--out ` (empty when the message says it).
+        context: String,
+        #[source]
+        source: crate::output::OutputError,
+    },
+    /// The explorer stopped with an error (its report, with the chain of causes).
+    #[error("{0:#}")]
+    Explorer(color_eyre::Report),
+    /// Ctrl-C stopped a batch or a map; what was completed was reported and kept.
+    #[error("interrupted: kept the {completed} of {requested} {what} completed")]
+    Interrupted {
+        completed: u64,
+        requested: u64,
+        /// What was counted: `rolls`, `cells`.
+        what: &'static str,
+    },
 }
 
-impl From<crate::preset::PresetError> for CliError {
-    fn from(e: crate::preset::PresetError) -> Self {
-        CliError::Input(e.to_string())
+/// What kind of failure an error is: the exit status follows from it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ErrorKind {
+    /// Bad input: nothing was run or written.
+    Input,
+    /// Something failed while running.
+    Failure,
+    /// The reader of standard output went away (`dicesim trace | head`): not an error.
+    BrokenPipe,
+    /// Interrupted by the user.
+    Interrupted,
+}
+
+impl CliError {
+    pub fn kind(&self) -> ErrorKind {
+        match self {
+            CliError::Preset(_)
+            | CliError::Exists(_)
+            | CliError::Param(_)
+            | CliError::Usage(_)
+            | CliError::Parts(_) => ErrorKind::Input,
+            CliError::Read { .. } => ErrorKind::Input,
+            CliError::Experiment { source, .. } => match source {
+                experiment::Error::Threads(_) | experiment::Error::Plot(_) | experiment::Error::Export(_) => {
+                    ErrorKind::Failure
+                }
+                _ => ErrorKind::Input,
+            },
+            CliError::Io(e) | CliError::Write { source: e, .. }
+                if e.kind() == std::io::ErrorKind::BrokenPipe =>
+            {
+                ErrorKind::BrokenPipe
+            }
+            CliError::Output { source, .. } if source.is_refusal() => ErrorKind::Input,
+            CliError::Io(_)
+            | CliError::Write { .. }
+            | CliError::Output { .. }
+            | CliError::Explorer(_)
+            | CliError::Sweep(_) => ErrorKind::Failure,
+            CliError::Interrupted { .. } => ErrorKind::Interrupted,
+        }
+    }
+
+    /// An output path's error, prefixed with the option it came from (`"--out "`, or `""`).
+    pub(crate) fn output(context: &str) -> impl FnOnce(crate::output::OutputError) -> CliError + '_ {
+        move |source| CliError::Output {
+            context: context.to_string(),
+            source,
+        }
+    }
+
+    /// An experiment's error, prefixed with what it is about (`"--x "`, or `""`).
+    pub(crate) fn experiment(context: &str) -> impl FnOnce(experiment::Error) -> CliError + '_ {
+        move |source| CliError::Experiment {
+            context: context.to_string(),
+            source,
+        }
     }
 }
 
-impl From<std::io::Error> for CliError {
-    fn from(e: std::io::Error) -> Self {
-        CliError::Run(e.to_string())
+/// The most threads `--jobs` takes: more than a few per core only adds switching.
+pub(crate) fn max_jobs() -> usize {
+    4 * experiment::batch::thread_count(0)
+}
+
+/// `--jobs J` checked against [`max_jobs`]; no value means one thread per core.
+pub(crate) fn checked_jobs(jobs: Option<u64>) -> Result<usize, CliError> {
+    match jobs {
+        None => Ok(experiment::batch::thread_count(0)),
+        Some(j) if j as usize <= max_jobs() && j > 0 => Ok(j as usize),
+        Some(j) => Err(CliError::Usage(format!(
+            "--jobs {j}: at most {} (4 × the {} cores here)",
+            max_jobs(),
+            experiment::batch::thread_count(0)
+        ))),
     }
 }
 
-/// Parses the command line, runs the command and turns its result into an exit status.
-pub fn main() -> ExitCode {
-    let cli = Cli::parse();
-    let result = match cli.command {
+/// Whether colour is off: `--no-color` anywhere on the command line, or NO_COLOR set to
+/// anything but the empty string (<https://no-color.org>).
+pub(crate) fn color_off(no_color_flag: bool) -> bool {
+    no_color_flag || std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty())
+}
+
+/// Parses the command line and runs the command.
+pub fn main() -> Result<(), CliError> {
+    let flag = std::env::args_os().any(|a| a == "--no-color");
+    let color = if color_off(flag) {
+        clap::ColorChoice::Never
+    } else {
+        clap::ColorChoice::Auto
+    };
+    let matches = Cli::command().color(color).get_matches();
+    let cli = <Cli as clap::FromArgMatches>::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
+    let no_color = color_off(cli.no_color);
+    match cli.command {
         Some(Command::Roll(args)) => roll::run(&args),
         Some(Command::Trace(args)) => trace::run(&args),
         Some(Command::Presets(args)) => presets::run(&args),
         Some(Command::Batch(args)) => batch::run(&args),
         Some(Command::Basin(args)) => basin::run(&args),
         Some(Command::Bench(args)) => bench::run(&args),
-        Some(Command::Tui(args)) => tui::run(&args),
-        None => tui::run(&tui::TuiArgs::default()),
-    };
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(CliError::Run(msg)) if msg.contains("Broken pipe") => ExitCode::SUCCESS,
-        Err(e @ CliError::Input(_)) => {
-            eprintln!("dicesim: {e}");
-            ExitCode::from(2)
+        Some(Command::Merge(args)) => merge::run(&args),
+        Some(Command::Slurm(args)) => slurm::run(&args),
+        Some(Command::Tui(args)) => tui::run(&args, no_color),
+        Some(Command::Completions { shell }) => {
+            let mut out = std::io::stdout().lock();
+            clap_complete::generate(shell, &mut Cli::command(), "dicesim", &mut out);
+            Ok(())
         }
-        Err(e) => {
-            eprintln!("dicesim: {e}");
-            ExitCode::FAILURE
+        Some(Command::Man) => {
+            clap_mangen::Man::new(Cli::command()).render(&mut std::io::stdout().lock())?;
+            Ok(())
         }
+        None => tui::run(&tui::TuiArgs::default(), no_color),
     }
 }

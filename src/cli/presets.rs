@@ -6,13 +6,13 @@ use clap::{Args, Subcommand};
 use std::io::Write;
 
 #[derive(Debug, Args)]
-pub struct PresetsArgs {
+pub(crate) struct PresetsArgs {
     #[command(subcommand)]
-    pub command: PresetsCommand,
+    pub(crate) command: PresetsCommand,
 }
 
 #[derive(Debug, Subcommand)]
-pub enum PresetsCommand {
+pub(crate) enum PresetsCommand {
     /// List every preset loadable by name: name, where it lives (user/shipped), description.
     List,
     /// Print a preset as a whole TOML file (every key, with units), after any `--set`.
@@ -41,7 +41,7 @@ pub enum PresetsCommand {
     Path,
 }
 
-pub fn run(args: &PresetsArgs) -> Result<(), CliError> {
+pub(crate) fn run(args: &PresetsArgs) -> Result<(), CliError> {
     let store = Store::from_env();
     let mut out = std::io::stdout().lock();
     match &args.command {
@@ -53,7 +53,13 @@ pub fn run(args: &PresetsArgs) -> Result<(), CliError> {
                     Ok(p) => p.description.split_whitespace().collect::<Vec<_>>().join(" "),
                     Err(err) => format!("does not load: {err}"),
                 };
-                writeln!(out, "{:<width$}  {:<7}  {about}", e.name, e.source.kind())?;
+                writeln!(
+                    out,
+                    "{:<width$}  {:<7}  {}",
+                    e.name,
+                    e.source.kind(),
+                    crate::output::printable(&about)
+                )?;
             }
         }
         PresetsCommand::Show { name, set } => {
@@ -79,7 +85,7 @@ pub fn run(args: &PresetsArgs) -> Result<(), CliError> {
             };
             preset.name = name.clone();
             let path = store.save(&preset, *force).map_err(|e| match e {
-                PresetError::Exists { .. } => CliError::Input(format!("{e} (--force replaces it)")),
+                PresetError::Exists { .. } => CliError::Exists(e),
                 e => CliError::from(e),
             })?;
             writeln!(out, "saved {}", path.display())?;

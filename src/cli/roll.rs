@@ -8,18 +8,18 @@ use serde_json::json;
 use std::io::Write;
 
 #[derive(Debug, Args)]
-pub struct RollArgs {
+pub(crate) struct RollArgs {
     #[command(flatten)]
-    pub setup: SetupArgs,
+    pub(crate) setup: SetupArgs,
     /// Print one JSON object instead of text.
     #[arg(long)]
-    pub json: bool,
+    pub(crate) json: bool,
 }
 
-pub fn run(args: &RollArgs) -> Result<(), CliError> {
+pub(crate) fn run(args: &RollArgs) -> Result<(), CliError> {
     let preset = args.setup.resolve()?;
     let params = preset.params();
-    let mut sim = Simulation::new(&params, &preset.initial).map_err(|e| CliError::Input(e.to_string()))?;
+    let mut sim = Simulation::new(&params, &preset.initial)?;
     let outcome = sim.run_to_end();
     let s = sim.state();
     let energy = sim.energy();

@@ -1,30 +1,27 @@
 //! `dicesim trace`: a roll's trajectory and energies as CSV.
 
 use super::{CliError, SetupArgs};
-use crate::experiment::trace::{header, row};
+use crate::experiment::trace::TraceWriter;
 use crate::physics::Simulation;
 use clap::Args;
-use std::io::Write;
 
 #[derive(Debug, Args)]
-pub struct TraceArgs {
+pub(crate) struct TraceArgs {
     #[command(flatten)]
-    pub setup: SetupArgs,
+    pub(crate) setup: SetupArgs,
     /// Run exactly N steps, even past the end of the roll (default: until the roll ends).
     #[arg(long, value_name = "N")]
-    pub steps: Option<u64>,
+    pub(crate) steps: Option<u64>,
     /// Print one row every K steps (the last step is always printed).
     #[arg(long, value_name = "K", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
-    pub every: u64,
+    pub(crate) every: u64,
 }
 
-pub fn run(args: &TraceArgs) -> Result<(), CliError> {
+pub(crate) fn run(args: &TraceArgs) -> Result<(), CliError> {
     let preset = args.setup.resolve()?;
-    let mut sim =
-        Simulation::new(&preset.params(), &preset.initial).map_err(|e| CliError::Input(e.to_string()))?;
-    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    writeln!(out, "{}", header())?;
-    writeln!(out, "{}", row(&sim))?;
+    let mut sim = Simulation::new(&preset.params(), &preset.initial)?;
+    let mut out = TraceWriter::new(std::io::stdout().lock())?;
+    out.write(&sim)?;
     loop {
         let ended = sim.advance().is_some();
         let step = sim.state().step;
@@ -33,7 +30,7 @@ pub fn run(args: &TraceArgs) -> Result<(), CliError> {
             None => ended,
         };
         if step % args.every == 0 || last {
-            writeln!(out, "{}", row(&sim))?;
+            out.write(&sim)?;
         }
         if last || (args.steps.is_none() && sim.outcome().is_some()) {
             break;

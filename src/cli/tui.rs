@@ -6,27 +6,25 @@ use clap::Args;
 use std::io::IsTerminal;
 
 #[derive(Debug, Clone, Default, Args)]
-pub struct TuiArgs {
+pub(crate) struct TuiArgs {
     #[command(flatten)]
-    pub setup: SetupArgs,
-    /// Draw without colour; meaning is carried by bold and reverse (also with NO_COLOR set).
-    #[arg(long)]
-    pub no_color: bool,
+    pub(crate) setup: SetupArgs,
 }
 
-pub fn run(args: &TuiArgs) -> Result<(), CliError> {
+/// Opens the explorer; `no_color` is the global `--no-color` (or NO_COLOR).
+pub(crate) fn run(args: &TuiArgs, no_color: bool) -> Result<(), CliError> {
     let preset = args.setup.resolve()?;
     if !std::io::stdout().is_terminal() || !std::io::stdin().is_terminal() {
-        return Err(CliError::Input(
+        return Err(CliError::Usage(
             "the explorer needs a terminal; for output to a pipe or file use `dicesim roll`, `trace` or `batch` \
              (`dicesim --help` lists them)"
                 .to_string(),
         ));
     }
-    let theme = if args.no_color {
+    let theme = if no_color {
         Theme::monochrome()
     } else {
         Theme::from_env()
     };
-    crate::tui::run(&preset, theme).map_err(|e| CliError::Run(format!("{e:#}")))
+    crate::tui::run(&preset, theme).map_err(CliError::Explorer)
 }

@@ -15,9 +15,10 @@ use super::Error;
 use super::batch::{RunOptions, thread_pool};
 use super::engine::roll_setups;
 use super::keys::ScanKey;
-use super::record::{RollRecord, roll_record};
+use super::record::RollRecord;
 use crate::physics::{InitialCondition, Outcome, Params, Status};
 use rayon::prelude::*;
+use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The adaptive method rolls every remaining cell once more than this share of the parts
@@ -33,13 +34,13 @@ const NODES_PER_TASK: usize = 128;
 /// One axis of a map: a key scanned from `min` to `max` (both included) over `cells` nodes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Axis {
-    pub key: ScanKey,
+    pub(crate) key: ScanKey,
     /// In the key's unit.
-    pub min: f64,
+    pub(crate) min: f64,
     /// In the key's unit.
-    pub max: f64,
+    pub(crate) max: f64,
     /// Grid nodes along this axis (≥ 1); one node sits at the middle of the range.
-    pub cells: usize,
+    pub(crate) cells: usize,
 }
 
 impl Axis {
@@ -67,7 +68,7 @@ impl Axis {
 
     /// Checks both ends against the key's allowed range and that `min < max` (or `min <= max`
     /// for a single node).
-    pub fn new(key: ScanKey, min: f64, max: f64, cells: usize) -> Result<Axis, Error> {
+    pub(crate) fn new(key: ScanKey, min: f64, max: f64, cells: usize) -> Result<Axis, Error> {
         let bad = |message: String| Error::Axis {
             spec: format!("{}:{min}:{max}", key.key),
             message,
@@ -84,7 +85,7 @@ impl Axis {
     }
 
     /// The value at node `i` (0-based), exact at both ends.
-    pub fn value(&self, i: usize) -> f64 {
+    pub(crate) fn value(&self, i: usize) -> f64 {
         let n = self.cells;
         if n == 1 {
             0.5 * (self.min + self.max)
@@ -98,7 +99,7 @@ impl Axis {
     }
 
     /// The distance between neighbouring nodes (the whole range for a single node).
-    pub fn spacing(&self) -> f64 {
+    pub(crate) fn spacing(&self) -> f64 {
         (self.max - self.min) / (self.cells.max(2) - 1) as f64
     }
 }
@@ -139,7 +140,7 @@ pub enum Layer {
 }
 
 impl Layer {
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             Layer::Face => "face",
             Layer::SettleTime => "settle-time",
@@ -223,36 +224,46 @@ impl BasinMap {
     /// The map as CSV: a header naming both keys, then one row per cell in row order, with
     /// `sampled` = 1 for rolled cells and 0 for cells filled by the adaptive method. Unknown
     /// cells of a partial map are left out.
-    pub fn write_csv(&self, w: &mut impl std::io::Write) -> std::io::Result<()> {
-        writeln!(
-            w,
-            "i,j,{},{},start_face,face,status,steps,time_s,sampled",
-            self.x.key.key, self.y.key.key
-        )?;
+    pub(crate) fn write_csv(&self, w: &mut (impl std::io::Write + ?Sized)) -> std::io::Result<()> {
+        let mut csv = csv::Writer::from_writer(w);
+        csv.write_record([
+            "i",
+            "j",
+            &self.x.key.key,
+            &self.y.key.key,
+            "start_face",
+            "face",
+            "status",
+            "steps",
+            "time_s",
+            "sampled",
+        ])
+        .map_err(super::csv_io)?;
         for j in 0..self.height() {
             for i in 0..self.width() {
                 let Some(c) = self.cell(i, j) else { continue };
                 let o = &c.outcome;
-                writeln!(
-                    w,
-                    "{i},{j},{},{},{},{},{},{},{},{}",
-                    self.x.value(i),
-                    self.y.value(j),
-                    c.start_face,
+                csv.write_record([
+                    i.to_string(),
+                    j.to_string(),
+                    self.x.value(i).to_string(),
+                    self.y.value(j).to_string(),
+                    c.start_face.to_string(),
                     o.face.map(|f| f.to_string()).unwrap_or_default(),
-                    o.status.name(),
-                    o.steps,
-                    o.time_s,
-                    u8::from(c.sampled)
-                )?;
+                    o.status.name().to_string(),
+                    o.steps.to_string(),
+                    o.time_s.to_string(),
+                    u8::from(c.sampled).to_string(),
+                ])
+                .map_err(super::csv_io)?;
             }
         }
-        Ok(())
+        csv.flush()
     }
 }
 
 /// The setup of node `(i, j)`: `base` with the two keys set to the nodes' values.
-pub fn node_setup(
+pub(crate) fn node_setup(
     params: &Params,
     base: &InitialCondition,
     x: &Axis,
@@ -264,19 +275,6 @@ pub fn node_setup(
     x.key.set(&mut p, &mut ic, x.value(i));
     y.key.set(&mut p, &mut ic, y.value(j));
     (p, ic)
-}
-
-/// Rolls node `(i, j)`; its record id is the cell index `j * width + i`.
-pub fn roll_node(
-    params: &Params,
-    base: &InitialCondition,
-    x: &Axis,
-    y: &Axis,
-    i: usize,
-    j: usize,
-) -> RollRecord {
-    let (p, ic) = node_setup(params, base, x, y, i, j);
-    roll_record(&p, &ic, (j * x.cells + i) as u64)
 }
 
 /// Computes the map `spec` around `params` and `base` on `jobs` threads (0: one per core),
@@ -302,9 +300,9 @@ pub fn run_map(
 
 /// [`run_map`] with a choice of threads and engine.
 ///
-/// Setting `cancel` stops the running rolls within a few thousand steps and returns a
-/// partial map (`complete == false`) of the cells rolled: for a uniform map an exact prefix
-/// of the cells in row order, for an adaptive one the rolled nodes without any filling.
+/// Setting `cancel` stops the running rolls within a few thousand steps and returns the map
+/// as far as it got (`complete == false`): for a uniform map an exact prefix of its cells in
+/// row order, for an adaptive one the last whole level.
 pub fn run_map_with(
     params: &Params,
     base: &InitialCondition,
@@ -313,8 +311,32 @@ pub fn run_map_with(
     cancel: &AtomicBool,
     on_partial: &mut dyn FnMut(&BasinMap),
 ) -> Result<BasinMap, Error> {
+    run_map_rows(params, base, spec, 0..spec.y.cells, options, cancel, on_partial)
+}
+
+/// [`run_map_with`] over the rows `rows` of the map only (a shard of it): the other rows
+/// stay unknown, and the map is complete when these are. Only the uniform method can split
+/// rows, since adaptive refinement compares cells across row boundaries.
+pub(crate) fn run_map_rows(
+    params: &Params,
+    base: &InitialCondition,
+    spec: &MapSpec,
+    rows: Range<usize>,
+    options: &RunOptions,
+    cancel: &AtomicBool,
+    on_partial: &mut dyn FnMut(&BasinMap),
+) -> Result<BasinMap, Error> {
     params.validate()?;
     base.validate()?;
+    if rows.end > spec.y.cells || (spec.method == Method::Adaptive && rows != (0..spec.y.cells)) {
+        return Err(Error::Shard(format!(
+            "rows {}..{} of a {}-row {} map: only a uniform map splits into rows",
+            rows.start,
+            rows.end,
+            spec.y.cells,
+            spec.method.name()
+        )));
+    }
     let pool = thread_pool(options.jobs)?;
     let engine = options.engine.resolve();
     let MapSpec { x, y, method } = spec;
@@ -360,29 +382,27 @@ pub fn run_map_with(
         }
         whole
     };
-    // A cancelled map keeps what was rolled; a uniform one only its prefix in row order.
-    let cancelled = |mut map: BasinMap, on_partial: &mut dyn FnMut(&BasinMap)| {
-        if method == Method::Uniform {
-            let known = map.cells.iter().take_while(|c| c.is_some()).count();
-            map.cells[known..].iter_mut().for_each(|c| *c = None);
-            map.sampled = known;
-        }
-        map.complete = false;
-        on_partial(&map);
-        Ok(map)
-    };
     match method {
         Method::Uniform => {
             let rows_per_block = (pool.current_num_threads() * 4 * NODES_PER_TASK / x.cells).max(1);
-            let mut j0 = 0;
-            while j0 < y.cells {
-                let j1 = (j0 + rows_per_block).min(y.cells);
+            let mut j0 = rows.start;
+            map.complete = rows.is_empty();
+            while j0 < rows.end {
+                let j1 = (j0 + rows_per_block).min(rows.end);
                 let nodes: Vec<_> = (j0..j1).flat_map(|j| (0..x.cells).map(move |i| (i, j))).collect();
                 if !roll(&mut map, &nodes) || stopped() {
-                    return cancelled(map, on_partial);
+                    // Keep only the exact prefix of the rows' cells in row order, so that
+                    // what a cancelled map shows or writes is what a longer run agrees with.
+                    let first = rows.start * x.cells;
+                    let known = map.cells[first..].iter().take_while(|c| c.is_some()).count();
+                    map.cells[first + known..].iter_mut().for_each(|c| *c = None);
+                    map.sampled = known;
+                    map.complete = false;
+                    on_partial(&map);
+                    return Ok(map);
                 }
                 j0 = j1;
-                map.complete = j0 == y.cells;
+                map.complete = j0 == rows.end;
                 on_partial(&map);
             }
             Ok(map)
@@ -392,7 +412,8 @@ pub fn run_map_with(
             let ys = coarse_nodes(y.cells);
             let nodes: Vec<_> = ys.iter().flat_map(|&j| xs.iter().map(move |&i| (i, j))).collect();
             if !roll(&mut map, &nodes) {
-                return cancelled(map, on_partial);
+                on_partial(&map);
+                return Ok(map);
             }
             let mut pending: Vec<Block> = Vec::new();
             for w in ys.windows(2.min(ys.len())) {
@@ -420,8 +441,12 @@ pub fn run_map_with(
                         .filter(|&n| map.cells[n].is_none())
                         .map(|n| (n % x.cells, n / x.cells))
                         .collect();
+                    let mut shown = map.clone();
+                    fill(&mut shown, settled.iter().chain(&refine));
                     if !roll(&mut map, &rest) {
-                        return cancelled(map, on_partial);
+                        // Half the remaining cells would mix rolled and filled ones unmarked.
+                        on_partial(&shown);
+                        return Ok(shown);
                     }
                     map.complete = true;
                     on_partial(&map);
@@ -430,14 +455,10 @@ pub fn run_map_with(
                 let mut shown = map.clone();
                 fill(&mut shown, settled.iter().chain(&refine));
                 shown.complete = refine.is_empty();
-                if refine.is_empty() {
-                    on_partial(&shown);
+                on_partial(&shown);
+                if refine.is_empty() || stopped() {
                     return Ok(shown);
                 }
-                if stopped() {
-                    return cancelled(map, on_partial);
-                }
-                on_partial(&shown);
                 split = refine.len();
                 let next: Vec<Block> = refine.into_iter().flat_map(Block::split).collect();
                 let mut nodes: Vec<_> = next.iter().flat_map(Block::corners).collect();
@@ -445,7 +466,8 @@ pub fn run_map_with(
                 nodes.dedup();
                 nodes.retain(|&(i, j)| map.cell(i, j).is_none());
                 if !roll(&mut map, &nodes) {
-                    return cancelled(map, on_partial);
+                    // Half a level would show blocks filled from corners not yet rolled.
+                    return Ok(shown);
                 }
                 pending = next;
             }

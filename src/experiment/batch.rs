@@ -15,8 +15,9 @@ use super::engine::{Engine, roll_setups};
 use super::random::RandomRanges;
 use super::record::RollRecord;
 use super::stats::FaceTally;
-use crate::physics::{InitialCondition, Params, Status, opposite_face};
-use serde::Serialize;
+use super::tally::Tally;
+use crate::physics::{InitialCondition, Params, opposite_face};
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Condvar, Mutex, mpsc};
@@ -24,10 +25,10 @@ use std::time::{Duration, Instant};
 
 /// Rolls per chunk: long enough that a chunk's ragged end (lanes idle while its last rolls
 /// finish) and the hand-over cost little, short enough that records flow steadily.
-pub const CHUNK: u64 = 512;
+pub(crate) const CHUNK: u64 = 512;
 
 /// Chunks a thread may run ahead of the oldest unfinished one.
-pub const CHUNKS_IN_FLIGHT_PER_JOB: u64 = 4;
+pub(crate) const CHUNKS_IN_FLIGHT_PER_JOB: u64 = 4;
 
 /// How often the calling thread looks at the cancel flag while it waits for chunks.
 const POLL: Duration = Duration::from_millis(20);
@@ -35,12 +36,13 @@ const POLL: Duration = Duration::from_millis(20);
 /// Where a batch's initial conditions come from.
 #[derive(Debug, Clone, Copy)]
 pub enum Rolls<'a> {
-    /// `count` rolls around `base`, roll `i` drawn by `ranges` from the stream (`seed`, `i`);
-    /// its id is `i`.
+    /// `count` rolls around `base` with ids from `first` on (0 unless a shard), roll `id`
+    /// drawn by `ranges` from the stream (`seed`, `id`).
     Random {
         ranges: &'a RandomRanges,
         base: &'a InitialCondition,
         seed: u64,
+        first: u64,
         count: u64,
     },
     /// Given initial conditions with their ids, e.g. from an `--ics` file.
@@ -49,23 +51,23 @@ pub enum Rolls<'a> {
 
 impl Rolls<'_> {
     /// How many rolls the batch has.
-    pub fn len(&self) -> u64 {
+    pub(crate) fn len(&self) -> u64 {
         match self {
             Rolls::Random { count, .. } => *count,
             Rolls::Given(ics) => ics.len() as u64,
         }
     }
 
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
     /// The id and initial condition of roll `index` (0-based, `< len()`).
-    pub fn get(&self, index: u64) -> (u64, InitialCondition) {
+    pub(crate) fn get(&self, index: u64) -> (u64, InitialCondition) {
         match self {
             Rolls::Random {
-                ranges, base, seed, ..
-            } => (index, ranges.draw(base, *seed, index)),
+                ranges,
+                base,
+                seed,
+                first,
+                ..
+            } => (first + index, ranges.draw(base, *seed, first + index)),
             Rolls::Given(ics) => ics[index as usize],
         }
     }
@@ -94,6 +96,8 @@ pub struct BatchRun {
     pub engine: Engine,
     /// The statistics of the completed rolls.
     pub summary: BatchSummary,
+    /// Their counts in the exact form a merge of shards adds up.
+    pub(crate) tally: Tally,
 }
 
 /// A finished (or cancelled) batch with every record kept.
@@ -118,7 +122,7 @@ impl Batch {
 }
 
 /// The number of threads for `jobs` (0 means one per available core).
-pub fn thread_count(jobs: usize) -> usize {
+pub(crate) fn thread_count(jobs: usize) -> usize {
     if jobs > 0 {
         jobs
     } else {
@@ -179,7 +183,7 @@ type Finished = (u64, Vec<RollRecord>, bool);
 ///
 /// Setting `cancel` stops the batch within a few thousand steps of every running roll; the
 /// records handed on are then an exact prefix of the full batch. A sink error stops the
-/// batch and is returned as [`Error::Output`]. The parameters are validated first; initial
+/// batch and is returned as [`Error::Records`]. The parameters are validated first; initial
 /// conditions are the caller's to check (an out-of-range one still ends in a status, never
 /// a panic).
 pub fn stream_batch(
@@ -206,7 +210,7 @@ pub fn stream_batch(
     let oldest = (Mutex::new(0u64), Condvar::new());
     let window = CHUNKS_IN_FLIGHT_PER_JOB * jobs as u64;
     let (send, receive) = mpsc::channel::<Finished>();
-    let mut tally = SummaryTally::default();
+    let mut tally = Tally::default();
     let mut completed = 0u64;
     let mut sink_error = None;
     std::thread::scope(|scope| -> Result<(), Error> {
@@ -282,7 +286,7 @@ pub fn stream_batch(
         Ok(())
     })?;
     if let Some(e) = sink_error {
-        return Err(Error::Output(e));
+        return Err(Error::Records(e));
     }
     Ok(BatchRun {
         requested,
@@ -290,23 +294,25 @@ pub fn stream_batch(
         cancelled: completed < requested,
         jobs,
         engine,
-        summary: tally.finish(start.elapsed()),
+        summary: tally.summary(start.elapsed()),
+        tally,
     })
 }
 
 /// How a roll's final face relates to the face that started up.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct StartFaceCounts {
     /// Ended on the face that started up.
-    pub same: u64,
+    pub(crate) same: u64,
     /// Ended on one of the 4 faces next to it.
-    pub adjacent: u64,
+    pub(crate) adjacent: u64,
     /// Ended on the opposite face.
-    pub opposite: u64,
+    pub(crate) opposite: u64,
 }
 
 impl StartFaceCounts {
-    pub fn add(&mut self, start_face: u8, face: u8) {
+    pub(crate) fn add(&mut self, start_face: u8, face: u8) {
         if face == start_face {
             self.same += 1;
         } else if face == opposite_face(start_face) {
@@ -316,28 +322,29 @@ impl StartFaceCounts {
         }
     }
 
-    pub fn total(&self) -> u64 {
+    pub(crate) fn total(&self) -> u64 {
         self.same + self.adjacent + self.opposite
     }
 
     /// Shares of (same, adjacent, opposite); zeros with no rolls.
-    pub fn shares(&self) -> [f64; 3] {
+    pub(crate) fn shares(&self) -> [f64; 3] {
         let n = self.total().max(1) as f64;
         [self.same, self.adjacent, self.opposite].map(|c| c as f64 / n)
     }
 }
 
 /// How the rolls of a batch ended.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct StatusCounts {
     /// Settled with a face up.
     pub settled: u64,
     /// Settled, but the 4 highest corners formed no face.
-    pub settled_without_face: u64,
+    pub(crate) settled_without_face: u64,
     /// Did not settle within `integrator.max_time`.
-    pub timeout: u64,
+    pub(crate) timeout: u64,
     /// The integrator gained energy.
-    pub unstable: u64,
+    pub(crate) unstable: u64,
 }
 
 /// The statistics of a batch: what a summary prints and `--json` carries.
@@ -369,75 +376,14 @@ pub struct BatchSummary {
 impl BatchSummary {
     /// Tallies `records` that took `elapsed` of wall-clock time.
     pub fn new(records: &[RollRecord], elapsed: Duration) -> BatchSummary {
-        let mut tally = SummaryTally::default();
-        records.iter().for_each(|r| tally.add(r));
-        tally.finish(elapsed)
-    }
-}
-
-/// A batch's statistics accumulated one record at a time, in roll order (sequential sums:
-/// float totals stay identical for any job count and engine).
-#[derive(Debug, Clone, Default)]
-pub struct SummaryTally {
-    rolls: u64,
-    faces: FaceTally,
-    start_face: StartFaceCounts,
-    status: StatusCounts,
-    steps: u64,
-    simulated_s: f64,
-}
-
-impl SummaryTally {
-    pub fn add(&mut self, r: &RollRecord) {
-        self.rolls += 1;
-        self.steps += r.outcome.steps;
-        self.simulated_s += r.outcome.time_s;
-        match (r.outcome.status, r.outcome.face) {
-            (Status::Settled, Some(face)) => {
-                self.status.settled += 1;
-                self.faces.add(face);
-                self.start_face.add(r.start_face, face);
-            }
-            (Status::Settled, None) => self.status.settled_without_face += 1,
-            (Status::Timeout, _) => self.status.timeout += 1,
-            (Status::Unstable, _) => self.status.unstable += 1,
-        }
-    }
-
-    /// The summary of the records added, which took `elapsed` of wall-clock time.
-    pub fn finish(&self, elapsed: Duration) -> BatchSummary {
-        let SummaryTally {
-            rolls,
-            faces,
-            start_face,
-            status,
-            steps,
-            simulated_s,
-        } = self.clone();
-        let elapsed_s = elapsed.as_secs_f64();
-        let rate = |n: f64| if elapsed_s > 0.0 { n / elapsed_s } else { 0.0 };
-        BatchSummary {
-            rolls,
-            face_shares: std::array::from_fn(|i| faces.share(i as u8 + 1)),
-            chi_square: faces.chi_square(),
-            p_value: faces.p_value(),
-            faces,
-            start_face_shares: start_face.shares(),
-            start_face,
-            status,
-            steps,
-            simulated_s,
-            elapsed_s,
-            rolls_per_s: rate(rolls as f64),
-            steps_per_s: rate(steps as f64),
-        }
+        records.iter().collect::<Tally>().summary(elapsed)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::Outcome;
+    use crate::physics::{Outcome, Status};
 
     fn record(start_face: u8, status: Status, face: Option<u8>, steps: u64) -> RollRecord {
         RollRecord {
@@ -508,6 +454,7 @@ mod tests {
             ranges: &ranges,
             base: &base,
             seed: 3,
+            first: 0,
             count: 3 * CHUNK,
         };
         let cancel = AtomicBool::new(false);

@@ -2,13 +2,13 @@
 //! four forms and their total, with the stopping threshold dotted.
 
 use super::Error;
-use super::plot::{plot_error, register_fonts};
+use super::plot::{plot_error, png_bytes, register_fonts};
 use crate::physics::Energy;
+use plotters::coord::Shift;
 use plotters::prelude::*;
-use std::path::Path;
 
 /// Image size in pixels.
-pub const SIZE: (u32, u32) = (1200, 700);
+pub(crate) const SIZE: (u32, u32) = (1200, 700);
 
 /// Names and colours of the series, in the explorer's order: total, translational,
 /// rotational, gravitational, elastic.
@@ -30,15 +30,22 @@ fn value(e: &Energy, series: usize) -> f64 {
     }
 }
 
-/// Writes `samples` (s, energy) as a PNG at `path`, with the stop threshold (erg) dotted.
-pub fn write_energy_plot(
+/// `samples` (s, energy) as the bytes of a PNG file, with the stop threshold (erg) dotted.
+pub(crate) fn energy_plot_png(
     samples: &[(f64, Energy)],
     threshold: f64,
     title: &str,
-    path: &Path,
-) -> Result<(), Error> {
+) -> Result<Vec<u8>, Error> {
     register_fonts()?;
-    let root = BitMapBackend::new(path, SIZE).into_drawing_area();
+    png_bytes(SIZE, |root| draw(&root, samples, threshold, title))
+}
+
+fn draw(
+    root: &DrawingArea<BitMapBackend<'_>, Shift>,
+    samples: &[(f64, Energy)],
+    threshold: f64,
+    title: &str,
+) -> Result<(), Error> {
     root.fill(&WHITE).map_err(plot_error)?;
     let t_end = samples.last().map_or(1.0, |s| s.0).max(1e-3);
     // A table too soft to hold a face has no threshold (−∞): nothing to draw.
@@ -53,7 +60,7 @@ pub fn write_energy_plot(
             }
         }
     }
-    let mut chart = ChartBuilder::on(&root)
+    let mut chart = ChartBuilder::on(root)
         .caption(title, ("sans-serif", 26))
         .margin(20)
         .x_label_area_size(60)

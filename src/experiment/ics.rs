@@ -4,10 +4,9 @@
 use super::Error;
 use super::record::RollRecord;
 use crate::physics::InitialCondition;
-use std::fmt::Write as _;
 
 /// The initial-condition columns, in output order (`id` first, then these).
-pub const INITIAL_COLUMNS: [&str; COLUMNS] = [
+pub(crate) const INITIAL_COLUMNS: [&str; COLUMNS] = [
     "height",
     "velocity_x",
     "velocity_y",
@@ -24,7 +23,7 @@ pub const INITIAL_COLUMNS: [&str; COLUMNS] = [
 ];
 
 /// The result columns of a per-roll file; an `--ics` file may carry them (they are ignored).
-pub const RESULT_COLUMNS: [&str; 5] = ["start_face", "face", "status", "steps", "time_s"];
+pub(crate) const RESULT_COLUMNS: [&str; 5] = ["start_face", "face", "status", "steps", "time_s"];
 
 const COLUMNS: usize = 13;
 
@@ -49,35 +48,39 @@ fn initial_values(ic: &InitialCondition) -> [Option<f64>; COLUMNS] {
 }
 
 /// The header of a per-roll CSV file.
-pub fn records_csv_header() -> String {
-    let mut h = String::from("id");
-    for c in INITIAL_COLUMNS.iter().chain(&RESULT_COLUMNS) {
-        h.push(',');
-        h.push_str(c);
-    }
-    h
+pub(crate) fn records_csv_header() -> Vec<&'static str> {
+    std::iter::once("id")
+        .chain(INITIAL_COLUMNS)
+        .chain(RESULT_COLUMNS)
+        .collect()
 }
 
-/// One roll as a CSV row (floats in shortest round-trip form, so reading back is exact; an
-/// unset angular momentum and a missing face are empty cells).
-pub fn record_csv_row(r: &RollRecord) -> String {
-    let mut row = r.id.to_string();
-    for v in initial_values(&r.initial) {
-        row.push(',');
-        if let Some(v) = v {
-            let _ = write!(row, "{v}");
-        }
-    }
-    let face = r.outcome.face.map(|f| f.to_string()).unwrap_or_default();
-    let _ = write!(
-        row,
-        ",{},{face},{},{},{}",
-        r.start_face,
-        r.outcome.status.name(),
-        r.outcome.steps,
-        r.outcome.time_s
-    );
+/// One roll as a CSV record (floats in shortest round-trip form, so reading back is exact;
+/// an unset angular momentum and a missing face are empty cells).
+pub(crate) fn record_csv_row(r: &RollRecord) -> Vec<String> {
+    let cell = |v: Option<f64>| v.map(|v| v.to_string()).unwrap_or_default();
+    let mut row = vec![r.id.to_string()];
+    row.extend(initial_values(&r.initial).map(cell));
+    row.extend([
+        r.start_face.to_string(),
+        r.outcome.face.map(|f| f.to_string()).unwrap_or_default(),
+        r.outcome.status.name().to_string(),
+        r.outcome.steps.to_string(),
+        r.outcome.time_s.to_string(),
+    ]);
     row
+}
+
+/// Writes the header and one record per roll: what `--ics` reads back (the tests' way to
+/// make such a file; `batch` streams the same rows).
+#[cfg(test)]
+pub(crate) fn write_records_csv(out: impl std::io::Write, records: &[RollRecord]) -> std::io::Result<()> {
+    let mut csv = csv::Writer::from_writer(out);
+    csv.write_record(records_csv_header()).map_err(super::csv_io)?;
+    for r in records {
+        csv.write_record(record_csv_row(r)).map_err(super::csv_io)?;
+    }
+    csv.flush()
 }
 
 /// Reads an `--ics` file: a header with `id` and any of [`INITIAL_COLUMNS`] (result columns
@@ -92,18 +95,44 @@ pub fn parse_initial_conditions(
     inertia: f64,
 ) -> Result<Vec<(u64, InitialCondition)>, Error> {
     let bad = |line: usize, message: String| Error::Ics { line, message };
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.trim()))
-        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
-    let (header_line, header) = lines
-        .next()
-        .ok_or_else(|| bad(1, "empty file: expected a header with `id`".to_string()))?;
+    // Quoted cells, a byte-order mark, blank lines and `#` comment lines are the reader's.
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .from_reader(text.as_bytes());
+    // The reader's line count leaves out blank lines, and a record's byte offset is where
+    // the reader began looking for it: step over the blank and comment lines from there.
+    let bytes = text.as_bytes();
+    let line_at = |p: Option<&csv::Position>| {
+        let mut at = p.map_or(0, |p| p.byte() as usize).min(bytes.len());
+        loop {
+            match bytes.get(at) {
+                Some(b'\n' | b'\r') => at += 1,
+                Some(b'#') => {
+                    at += bytes[at..]
+                        .iter()
+                        .position(|&b| b == b'\n')
+                        .unwrap_or(bytes.len() - at)
+                }
+                _ => break,
+            }
+        }
+        bytes[..at].iter().filter(|&&b| b == b'\n').count() + 1
+    };
+    let line_of = |e: &csv::Error| line_at(e.position());
+    let mut records = reader.records();
+    let header = match records.next() {
+        None => return Err(bad(1, "empty file: expected a header with `id`".to_string())),
+        Some(Err(e)) => return Err(bad(line_of(&e), e.to_string())),
+        Some(Ok(h)) => h,
+    };
+    let header_line = line_at(header.position());
     // For each column: Some(index into INITIAL_COLUMNS), or None for `id` / result columns.
     let mut columns: Vec<Option<usize>> = Vec::new();
     let mut id_column = None;
-    for (i, name) in header.split(',').map(str::trim).enumerate() {
+    for (i, name) in header.iter().enumerate() {
         if name == "id" {
             id_column = Some(i);
             columns.push(None);
@@ -125,10 +154,13 @@ pub fn parse_initial_conditions(
         }
     }
     let id_column = id_column.ok_or_else(|| bad(header_line, "the header has no `id` column".to_string()))?;
+    let mut seen_ids = std::collections::HashMap::new();
     let base_momentum: [f64; 3] = base.angular_momentum_for(inertia).into();
     let mut out = Vec::new();
-    for (line, text) in lines {
-        let cells: Vec<&str> = text.split(',').map(str::trim).collect();
+    for record in records {
+        let record = record.map_err(|e| bad(line_of(&e), e.to_string()))?;
+        let line = line_at(record.position());
+        let cells: Vec<&str> = record.iter().collect();
         if cells.len() != columns.len() {
             return Err(bad(
                 line,
@@ -145,6 +177,9 @@ pub fn parse_initial_conditions(
                 format!("id `{}` is not a whole number ≥ 0", cells[id_column]),
             )
         })?;
+        if let Some(first) = seen_ids.insert(id, line) {
+            return Err(bad(line, format!("id {id} was already given on line {first}")));
+        }
         let mut given: [Option<f64>; COLUMNS] = [None; COLUMNS];
         for (cell, column) in cells.iter().zip(&columns) {
             if let (Some(k), false) = (column, cell.is_empty()) {
@@ -183,6 +218,15 @@ pub fn parse_initial_conditions(
 mod tests {
     use super::*;
     use crate::physics::Params;
+
+    #[test]
+    fn spreadsheet_headers_are_read_and_repeated_ids_refused() {
+        let base = InitialCondition::default();
+        let ics = parse_initial_conditions("\u{feff}\"id\",\"height\"\n3,2.5\n", &base, INERTIA).unwrap();
+        assert_eq!((ics[0].0, ics[0].1.height), (3, 2.5));
+        let e = parse_initial_conditions("id,height\n1,2\n1,3\n", &base, INERTIA).unwrap_err();
+        assert_eq!(e.to_string(), "line 3: id 1 was already given on line 2");
+    }
 
     const INERTIA: f64 = 16.0 / 3.0;
 
@@ -242,6 +286,24 @@ mod tests {
     }
 
     #[test]
+    fn quoted_cells_and_a_byte_order_mark_are_read() {
+        let base = InitialCondition::default();
+        let text = "\u{feff}id,\"height\",yaw\r\n\"3\", 2.5 ,\"-45\"\r\n";
+        let ics = parse_initial_conditions(text, &base, INERTIA).unwrap();
+        assert_eq!(
+            ics,
+            vec![(
+                3,
+                InitialCondition {
+                    height: 2.5,
+                    orientation: [-45.0, 0.0, 0.0],
+                    ..base
+                }
+            )]
+        );
+    }
+
+    #[test]
     fn records_read_back_exactly() {
         let p = Params::default();
         let ics = [
@@ -257,11 +319,14 @@ mod tests {
                 ..Default::default()
             },
         ];
-        let mut text = records_csv_header();
-        for (i, ic) in ics.iter().enumerate() {
-            text.push('\n');
-            text.push_str(&record_csv_row(&super::super::roll_record(&p, ic, i as u64)));
-        }
+        let records: Vec<RollRecord> = ics
+            .iter()
+            .enumerate()
+            .map(|(i, ic)| super::super::roll_record(&p, ic, i as u64))
+            .collect();
+        let mut bytes = Vec::new();
+        write_records_csv(&mut bytes, &records).unwrap();
+        let text = String::from_utf8(bytes).unwrap();
         let back = parse_initial_conditions(&text, &InitialCondition::default(), INERTIA).unwrap();
         assert_eq!(back, vec![(0, ics[0]), (1, ics[1])]);
     }

@@ -1,130 +1,66 @@
 //! The numeric setup values an experiment can scan, by their dotted preset key.
 //!
-//! This is the one place that maps a key such as `initial.angular_velocity.x` or
-//! `ground.friction` to the field it sets; ranges and units come from the physics layer's
-//! [`Limits`], so a scan is checked exactly as a preset is.
+//! Each key is a numeric row of the physics [registry](crate::physics::registry) (a vector
+//! by component): its range, unit and how it is read and set come from that row, so a scan
+//! is checked exactly as a preset is.
 
 use super::Error;
-use crate::physics::initial::{ANGULAR_MOMENTUM, ANGULAR_VELOCITY, HEIGHT, ORIENTATION, VELOCITY};
-use crate::physics::params::{
-    CORNER_MASS, DAMPING, DT, FRICTION, GRAVITY, HALF_SIZE, MAX_TIME, STIFFNESS, STOP_ENERGY_FRACTION,
-};
+use crate::physics::registry::{self, Scan, Spec};
 use crate::physics::{InitialCondition, Limits, ParamError, Params};
 
-/// Which field a key sets.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Field {
-    HalfSize,
-    CornerMass,
-    Stiffness,
-    Damping,
-    Friction,
-    Gravity,
-    Dt,
-    StopEnergyFraction,
-    MaxTime,
-    Height,
-    Velocity(usize),
-    AngularVelocity(usize),
-    AngularMomentum(usize),
-    /// 0 = yaw, 1 = pitch, 2 = roll.
-    Orientation(usize),
-}
-
-/// A scannable value: its full key (components included), unit, allowed range and setter.
+/// A scannable value: its full key (components included), its registry row and component.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ScanKey {
     /// The full dotted key, e.g. `initial.angular_velocity.x`.
-    pub key: String,
-    /// The field's limits (`limits.key` names the whole vector for components).
-    pub limits: Limits,
-    field: Field,
+    pub(crate) key: String,
+    /// The row it belongs to (a vector's row for each of its components).
+    pub(crate) spec: &'static Spec,
+    /// 0 for a scalar; the component's index for a vector.
+    pub(crate) component: usize,
 }
-
-const SCALARS: [(Limits, Field); 10] = [
-    (HALF_SIZE, Field::HalfSize),
-    (CORNER_MASS, Field::CornerMass),
-    (STIFFNESS, Field::Stiffness),
-    (DAMPING, Field::Damping),
-    (FRICTION, Field::Friction),
-    (GRAVITY, Field::Gravity),
-    (DT, Field::Dt),
-    (STOP_ENERGY_FRACTION, Field::StopEnergyFraction),
-    (MAX_TIME, Field::MaxTime),
-    (HEIGHT, Field::Height),
-];
-
-const XYZ: [&str; 3] = ["x", "y", "z"];
-const YAW_PITCH_ROLL: [&str; 3] = ["yaw", "pitch", "roll"];
-
-/// A vector-valued field: one key per component.
-struct VectorField {
-    limits: Limits,
-    components: [&'static str; 3],
-    field: fn(usize) -> Field,
-}
-
-const VECTORS: [VectorField; 4] = [
-    VectorField {
-        limits: VELOCITY,
-        components: XYZ,
-        field: Field::Velocity,
-    },
-    VectorField {
-        limits: ANGULAR_VELOCITY,
-        components: XYZ,
-        field: Field::AngularVelocity,
-    },
-    VectorField {
-        limits: ANGULAR_MOMENTUM,
-        components: XYZ,
-        field: Field::AngularMomentum,
-    },
-    VectorField {
-        limits: ORIENTATION,
-        components: YAW_PITCH_ROLL,
-        field: Field::Orientation,
-    },
-];
 
 impl ScanKey {
     /// Every scannable key, in preset order (for help texts and pickers).
-    pub fn all() -> &'static [ScanKey] {
+    pub(crate) fn all() -> &'static [ScanKey] {
         static ALL: std::sync::LazyLock<Vec<ScanKey>> = std::sync::LazyLock::new(ScanKey::build_all);
         &ALL
     }
 
     fn build_all() -> Vec<ScanKey> {
-        let mut keys: Vec<ScanKey> = SCALARS
-            .iter()
-            .map(|&(limits, field)| ScanKey {
-                key: limits.key.to_string(),
-                limits,
-                field,
-            })
-            .collect();
-        for v in &VECTORS {
-            for (i, name) in v.components.iter().enumerate() {
-                keys.push(ScanKey {
-                    key: format!("{}.{name}", v.limits.key),
-                    limits: v.limits,
-                    field: (v.field)(i),
-                });
+        let mut keys = Vec::new();
+        for &spec in registry::ALL.iter().filter(|s| s.scan.is_some()) {
+            match spec.components() {
+                [] => keys.push(ScanKey {
+                    key: spec.key().to_string(),
+                    spec,
+                    component: 0,
+                }),
+                names => keys.extend(names.iter().enumerate().map(|(component, name)| ScanKey {
+                    key: format!("{}.{name}", spec.key()),
+                    spec,
+                    component,
+                })),
             }
         }
         keys
     }
 
     /// The key named `key`; an unknown or non-numeric key is an error listing the valid ones.
-    pub fn parse(key: &str) -> Result<ScanKey, Error> {
+    pub(crate) fn parse(key: &str) -> Result<ScanKey, Error> {
+        Self::named(key).cloned()
+    }
+
+    /// The key named `key`, as [`ScanKey::parse`] but borrowed from [`ScanKey::all`].
+    pub fn named(key: &str) -> Result<&'static ScanKey, Error> {
         let all = Self::all();
         if let Some(k) = all.iter().find(|k| k.key == key) {
-            return Ok(k.clone());
+            return Ok(k);
         }
-        let hint = if VECTORS.iter().any(|v| v.limits.key == key) {
-            format!(" (name one component, e.g. `{key}.x`)")
-        } else {
-            String::new()
+        let hint = match registry::find(key) {
+            Some(spec) if !spec.components().is_empty() => {
+                format!(" (name one component, e.g. `{key}.{}`)", spec.components()[0])
+            }
+            _ => String::new(),
         };
         Err(Error::UnknownKey {
             key: key.to_string(),
@@ -133,13 +69,18 @@ impl ScanKey {
         })
     }
 
+    /// The row's limits (`limits.key` names the whole vector for components).
+    pub(crate) fn limits(&self) -> Limits {
+        self.spec.limits
+    }
+
     /// Unit as shown to users (`""` for dimensionless).
-    pub fn unit(&self) -> &'static str {
-        self.limits.unit
+    pub(crate) fn unit(&self) -> &'static str {
+        self.spec.limits.unit
     }
 
     /// `key (unit)`, or the key alone for dimensionless values: an axis title.
-    pub fn label(&self) -> String {
+    pub(crate) fn label(&self) -> String {
         if self.unit().is_empty() {
             self.key.clone()
         } else {
@@ -148,65 +89,39 @@ impl ScanKey {
     }
 
     /// Checks `value` against the field's allowed range, naming this key in the error.
-    pub fn check(&self, value: f64) -> Result<(), ParamError> {
-        self.limits.check(value).map_err(|mut e| {
-            e.key = self.key.clone();
-            e
-        })
+    pub(crate) fn check(&self, value: f64) -> Result<(), ParamError> {
+        self.spec.check_number(&self.key, value)
+    }
+
+    fn scan(&self) -> Scan {
+        self.spec.scan.expect("scan keys are built from rows that scan")
     }
 
     /// The field's current value. A spin stated in the other form is converted (with the
     /// die's inertia), so `initial.angular_velocity.x` always reads ω_x.
-    pub fn get(&self, params: &Params, initial: &InitialCondition) -> f64 {
-        match self.field {
-            Field::HalfSize => params.die.half_size,
-            Field::CornerMass => params.die.corner_mass,
-            Field::Stiffness => params.ground.stiffness,
-            Field::Damping => params.ground.damping,
-            Field::Friction => params.ground.friction,
-            Field::Gravity => params.world.gravity,
-            Field::Dt => params.integrator.dt,
-            Field::StopEnergyFraction => params.integrator.stop_energy_fraction,
-            Field::MaxTime => params.integrator.max_time,
-            Field::Height => initial.height,
-            Field::Velocity(i) => initial.velocity[i],
-            Field::AngularVelocity(i) => initial.angular_velocity_for(params.inertia())[i],
-            Field::AngularMomentum(i) => initial.angular_momentum_for(params.inertia())[i],
-            Field::Orientation(i) => initial.orientation[i],
-        }
+    pub(crate) fn get(&self, params: &Params, initial: &InitialCondition) -> f64 {
+        (self.scan().get)(params, initial, self.component)
     }
 
     /// Sets the field to `value` (not range-checked: see [`ScanKey::check`]).
-    ///
-    /// Spin is stated one way in an initial condition: setting a component of one form first
-    /// restates the other form's spin in this one (with the die's inertia), so the other two
-    /// components keep their physical value.
-    pub fn set(&self, params: &mut Params, initial: &mut InitialCondition, value: f64) {
-        match self.field {
-            Field::HalfSize => params.die.half_size = value,
-            Field::CornerMass => params.die.corner_mass = value,
-            Field::Stiffness => params.ground.stiffness = value,
-            Field::Damping => params.ground.damping = value,
-            Field::Friction => params.ground.friction = value,
-            Field::Gravity => params.world.gravity = value,
-            Field::Dt => params.integrator.dt = value,
-            Field::StopEnergyFraction => params.integrator.stop_energy_fraction = value,
-            Field::MaxTime => params.integrator.max_time = value,
-            Field::Height => initial.height = value,
-            Field::Velocity(i) => initial.velocity[i] = value,
-            Field::AngularVelocity(i) => {
-                let mut w: [f64; 3] = initial.angular_velocity_for(params.inertia()).into();
-                w[i] = value;
-                initial.angular_velocity = w;
-                initial.angular_momentum = None;
-            }
-            Field::AngularMomentum(i) => {
-                let mut l: [f64; 3] = initial.angular_momentum_for(params.inertia()).into();
-                l[i] = value;
-                initial.angular_momentum = Some(l);
-            }
-            Field::Orientation(i) => initial.orientation[i] = value,
-        }
+    pub(crate) fn set(&self, params: &mut Params, initial: &mut InitialCondition, value: f64) {
+        (self.scan().set)(params, initial, self.component, value)
+    }
+
+    /// Checks `value` against its range and the start it gives against the table (no corner
+    /// inside it), then sets it; on error nothing changes.
+    pub(crate) fn set_checked(
+        &self,
+        params: &mut Params,
+        initial: &mut InitialCondition,
+        value: f64,
+    ) -> Result<(), ParamError> {
+        self.check(value)?;
+        let (mut p, mut ic) = (*params, *initial);
+        self.set(&mut p, &mut ic, value);
+        ic.check_clear_of_table(&p)?;
+        (*params, *initial) = (p, ic);
+        Ok(())
     }
 }
 
@@ -218,7 +133,7 @@ mod tests {
     fn every_key_sets_its_own_field() {
         for key in ScanKey::all() {
             let (mut p, mut ic) = (Params::default(), InitialCondition::default());
-            let value = 0.25 * key.limits.min + 0.75 * key.limits.max;
+            let value = 0.25 * key.limits().min + 0.75 * key.limits().max;
             key.set(&mut p, &mut ic, value);
             assert_eq!(key.get(&p, &ic), value, "{}", key.key);
             let (p0, ic0) = (Params::default(), InitialCondition::default());
@@ -231,13 +146,14 @@ mod tests {
             let mut node = &json;
             let mut parts = key.key.split('.').peekable();
             while let Some(part) = parts.next() {
-                let index = YAW_PITCH_ROLL
+                let index = key
+                    .spec
+                    .components()
                     .iter()
-                    .chain(XYZ.iter())
                     .position(|n| *n == part)
                     .filter(|_| parts.peek().is_none() && node.is_array());
                 node = match index {
-                    Some(i) => &node[i % 3],
+                    Some(i) => &node[i],
                     None => &node[part],
                 };
             }

@@ -4,21 +4,26 @@
 //! [`InitialCondition`](crate::physics::InitialCondition) values as arguments; resolving a
 //! preset is the caller's job.
 
-pub mod basin;
-pub mod batch;
-pub mod energy_plot;
-pub mod engine;
+pub(crate) mod basin;
+pub(crate) mod batch;
+pub(crate) mod energy_plot;
+pub(crate) mod engine;
 pub mod ics;
-pub mod keys;
-pub mod plot;
-pub mod random;
-pub mod record;
-pub mod stats;
-pub mod trace;
+pub(crate) mod keys;
+pub(crate) mod merge;
+pub(crate) mod parquet;
+pub(crate) mod plot;
+pub(crate) mod random;
+pub(crate) mod record;
+pub(crate) mod shard;
+pub(crate) mod stats;
+pub(crate) mod tally;
+pub(crate) mod trace;
 pub mod twin;
 
-pub use basin::{Axis, BasinMap, Cell, Layer, MapSpec, Method, run_map, run_map_with};
-pub use batch::{Batch, BatchRun, BatchSummary, Rolls, RunOptions, SummaryTally, run_batch, stream_batch};
+pub(crate) use basin::run_map_rows;
+pub use basin::{Axis, BasinMap, Cell, Layer, MapSpec, Method, UNIFORM_SWITCH_SHARE, run_map, run_map_with};
+pub use batch::{Batch, BatchRun, BatchSummary, Rolls, RunOptions, run_batch, stream_batch};
 pub use engine::Engine;
 pub use keys::ScanKey;
 pub use random::RandomRanges;
@@ -26,6 +31,16 @@ pub use record::{RollRecord, roll_record};
 pub use stats::FaceTally;
 
 use crate::physics::ParamError;
+
+/// A CSV writer's error as the I/O error it wraps, so a closed pipe stays a closed pipe
+/// (`csv` turns every error into `ErrorKind::Other`). Records of a fixed width serialise
+/// nothing else.
+pub(crate) fn csv_io(e: csv::Error) -> std::io::Error {
+    match e.into_kind() {
+        csv::ErrorKind::Io(e) => e,
+        other => std::io::Error::other(format!("CSV: {other:?}")),
+    }
+}
 
 /// Why an experiment could not run.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -46,16 +61,25 @@ pub enum Error {
     /// A malformed row of an initial-condition file (1-based line).
     #[error("line {line}: {message}")]
     Ics { line: usize, message: String },
+    /// A shard that cannot be rolled on its own.
+    #[error("cannot shard {0}")]
+    Shard(String),
     /// The worker threads could not be started.
     #[error("cannot start worker threads: {0}")]
     Threads(String),
     /// An image could not be drawn or written.
     #[error("cannot draw the map: {0}")]
     Plot(String),
-    /// A batch's records could not be written.
+    /// The sink of a streamed batch refused its records (e.g. the disk is full).
     #[error("cannot write the rolls: {0}")]
-    Output(String),
+    Records(String),
     /// A roll's trace or plot could not be written.
     #[error("cannot export the roll: {0}")]
     Export(String),
+    /// A file could not be written (or its path was refused).
+    #[error("{0}")]
+    Output(#[from] crate::output::OutputError),
+    /// The cancel flag stopped the work.
+    #[error("cancelled")]
+    Cancelled,
 }

@@ -5,20 +5,20 @@
 
 use super::Error;
 use super::basin::{BasinMap, Cell, Layer};
+use crate::output::Output;
 use crate::physics::Status;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::register_font;
-use std::path::Path;
 use std::sync::OnceLock;
 
 /// Image size in pixels (SVG user units).
-pub const SIZE: (u32, u32) = (1200, 800);
+pub(crate) const SIZE: (u32, u32) = (1200, 800);
 /// Width of the legend strip on the right.
 const LEGEND_WIDTH: u32 = 200;
 
 /// Okabe–Ito colours for faces 1..6: distinguishable with the common colour-vision deficiencies.
-pub const FACE_COLOURS: [RGBColor; 6] = [
+pub(crate) const FACE_COLOURS: [RGBColor; 6] = [
     RGBColor(230, 159, 0),
     RGBColor(86, 180, 233),
     RGBColor(0, 158, 115),
@@ -66,21 +66,68 @@ pub(crate) fn plot_error(e: impl std::fmt::Display) -> Error {
     Error::Plot(e.to_string())
 }
 
-/// Writes `map` as a PNG or SVG image, chosen by the extension of `path`.
-pub fn write_image(map: &BasinMap, layer: Layer, path: &Path) -> Result<(), Error> {
+/// An image file format the plots are drawn in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum ImageFormat {
+    Png,
+    Svg,
+}
+
+impl ImageFormat {
+    /// The format for a file extension (`png` or `svg`, any case).
+    pub(crate) fn from_extension(extension: &str) -> Option<ImageFormat> {
+        match extension.to_ascii_lowercase().as_str() {
+            "png" => Some(ImageFormat::Png),
+            "svg" => Some(ImageFormat::Svg),
+            _ => None,
+        }
+    }
+}
+
+/// Draws with `draw` on a PNG canvas of `size` pixels and returns the encoded file. Drawing
+/// into memory keeps every write error with the one place that writes files.
+pub(crate) fn png_bytes(
+    size: (u32, u32),
+    draw: impl FnOnce(DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), Error>,
+) -> Result<Vec<u8>, Error> {
+    use image::ImageEncoder;
+    let mut pixels = vec![0u8; size.0 as usize * size.1 as usize * 3];
+    draw(BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area())?;
+    let mut png = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut png)
+        .write_image(&pixels, size.0, size.1, image::ColorType::Rgb8)
+        .map_err(plot_error)?;
+    Ok(png)
+}
+
+/// Writes `map` to `out` as a PNG or SVG image, by its extension; nothing is written if
+/// drawing fails.
+pub(crate) fn write_image(map: &BasinMap, layer: Layer, out: &Output) -> Result<(), Error> {
+    let format = ImageFormat::from_extension(out.extension())
+        .ok_or_else(|| Error::Plot(format!("{}: expected a .png or .svg file", out.path().display())))?;
+    out.write_bytes(&image_bytes(map, layer, format)?)?;
+    Ok(())
+}
+
+/// `map` as the bytes of a PNG or SVG file.
+pub(crate) fn image_bytes(map: &BasinMap, layer: Layer, format: ImageFormat) -> Result<Vec<u8>, Error> {
     register_fonts()?;
-    match path.extension().and_then(|e| e.to_str()) {
-        Some("png") => draw(BitMapBackend::new(path, SIZE).into_drawing_area(), map, layer),
-        Some("svg") => draw(SVGBackend::new(path, SIZE).into_drawing_area(), map, layer),
-        _ => Err(Error::Plot(format!(
-            "{}: expected a .png or .svg file",
-            path.display()
-        ))),
+    match format {
+        ImageFormat::Png => png_bytes(SIZE, |area| draw(area, map, layer)),
+        ImageFormat::Svg => {
+            let mut svg = String::new();
+            draw(
+                SVGBackend::with_string(&mut svg, SIZE).into_drawing_area(),
+                map,
+                layer,
+            )?;
+            Ok(svg.into_bytes())
+        }
     }
 }
 
 /// The settle-time scale: s, over settled cells (`None` if none settled).
-pub fn time_range(map: &BasinMap) -> Option<(f64, f64)> {
+pub(crate) fn time_range(map: &BasinMap) -> Option<(f64, f64)> {
     let times = map
         .cells
         .iter()
@@ -94,7 +141,7 @@ pub fn time_range(map: &BasinMap) -> Option<(f64, f64)> {
 }
 
 /// A cell's colour in the image; the explorer draws its map in the same colours.
-pub fn cell_colour(cell: Option<&Cell>, layer: Layer, times: Option<(f64, f64)>) -> RGBColor {
+pub(crate) fn cell_colour(cell: Option<&Cell>, layer: Layer, times: Option<(f64, f64)>) -> RGBColor {
     let Some(c) = cell else { return UNKNOWN };
     match (c.outcome.status, c.outcome.face, layer) {
         (Status::Timeout, ..) => TIMEOUT,

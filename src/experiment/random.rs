@@ -1,73 +1,13 @@
 //! Random initial conditions drawn reproducibly: one ChaCha stream per (seed, roll index),
 //! so a roll's draw depends on nothing else (not the thread, not the order of completion).
 
-use crate::physics::{InitialCondition, Limits, ParamError, initial};
+use crate::physics::InitialCondition;
+pub use crate::physics::RandomRanges;
 use nalgebra::{Quaternion, Rotation3, UnitQuaternion};
 use rand::rngs::ChaCha8Rng;
 use rand::{RngExt, SeedableRng};
-use serde::{Deserialize, Serialize};
-
-/// How random rolls are drawn (the `[random]` section of a preset).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct RandomRanges {
-    pub seed: u64,
-    /// cm, centre of mass, uniform in `[low, high]`.
-    pub height: [f64; 2],
-    /// cm/s, each component uniform in `[low, high]`.
-    pub velocity: [f64; 2],
-    /// rad/s, each component uniform in `[low, high]`.
-    pub angular_velocity: [f64; 2],
-    /// true: orientation uniform over all rotations; false: the initial condition's.
-    pub random_orientation: bool,
-}
-
-impl Default for RandomRanges {
-    fn default() -> Self {
-        RandomRanges {
-            seed: 1,
-            height: [15.0, 15.0],
-            velocity: [-50.0, 50.0],
-            angular_velocity: [-60.0, 60.0],
-            random_orientation: false,
-        }
-    }
-}
-
-fn check_range(limits: Limits, key: &str, range: &[f64; 2]) -> Result<(), ParamError> {
-    for (i, &value) in range.iter().enumerate() {
-        limits.check(value).map_err(|mut e| {
-            e.key = format!("{key}[{i}]");
-            e
-        })?;
-    }
-    if range[0] > range[1] {
-        // The low end must not exceed the high end: report it against that bound.
-        return Err(ParamError {
-            key: format!("{key}[0]"),
-            value: range[0],
-            limits: Limits {
-                max: range[1],
-                ..limits
-            },
-        });
-    }
-    Ok(())
-}
 
 impl RandomRanges {
-    /// Each bound within the matching initial-condition range, and `low <= high`.
-    pub fn validate(&self) -> Result<(), ParamError> {
-        check_range(initial::HEIGHT, "random.height", &self.height)?;
-        check_range(initial::VELOCITY, "random.velocity", &self.velocity)?;
-        check_range(
-            initial::ANGULAR_VELOCITY,
-            "random.angular_velocity",
-            &self.angular_velocity,
-        )?;
-        Ok(())
-    }
-
     /// The initial condition of roll `index` of a batch seeded with `seed`: `base` with
     /// height, velocity, spin (and, if asked, orientation) drawn from these ranges.
     pub fn draw(&self, base: &InitialCondition, seed: u64, index: u64) -> InitialCondition {
@@ -100,7 +40,7 @@ impl RandomRanges {
 }
 
 /// The random stream of one roll: key = seed, ChaCha stream = roll index.
-pub fn roll_rng(seed: u64, index: u64) -> ChaCha8Rng {
+pub(crate) fn roll_rng(seed: u64, index: u64) -> ChaCha8Rng {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(index);
     rng
@@ -161,6 +101,11 @@ mod tests {
             velocity: [10.0, -10.0],
             ..Default::default()
         };
-        assert_eq!(r.validate().unwrap_err().key, "random.velocity[0]");
+        let e = r.validate().unwrap_err();
+        assert_eq!(e.key, "random.velocity");
+        assert_eq!(
+            e.to_string(),
+            "`random.velocity` = [10, -10]: the low end is above the high end"
+        );
     }
 }

@@ -1,27 +1,27 @@
 //! Outcome statistics: face counts, shares and the χ² test against a fair die.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 
 /// Counts of faces 1..6 over a set of settled rolls.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 pub struct FaceTally {
-    pub counts: [u64; 6],
+    pub(crate) counts: [u64; 6],
 }
 
 impl FaceTally {
-    pub fn add(&mut self, face: u8) {
+    pub(crate) fn add(&mut self, face: u8) {
         if (1..=6).contains(&face) {
             self.counts[face as usize - 1] += 1;
         }
     }
 
-    pub fn total(&self) -> u64 {
+    pub(crate) fn total(&self) -> u64 {
         self.counts.iter().sum()
     }
 
     /// Share of rolls showing `face` (1..6); 0 with no rolls.
-    pub fn share(&self, face: u8) -> f64 {
+    pub(crate) fn share(&self, face: u8) -> f64 {
         let n = self.total();
         if n == 0 {
             0.0
@@ -31,7 +31,7 @@ impl FaceTally {
     }
 
     /// Pearson's χ² against a fair die: `Σ (c − n/6)² / (n/6)`; `None` with no rolls.
-    pub fn chi_square(&self) -> Option<f64> {
+    pub(crate) fn chi_square(&self) -> Option<f64> {
         let n = self.total();
         if n == 0 {
             return None;
@@ -46,7 +46,7 @@ impl FaceTally {
     }
 
     /// The probability of a χ² at least this large from a fair die (5 degrees of freedom).
-    pub fn p_value(&self) -> Option<f64> {
+    pub(crate) fn p_value(&self) -> Option<f64> {
         let chi2 = self.chi_square()?;
         let dist = ChiSquared::new(5.0).expect("5 degrees of freedom is a valid χ² distribution");
         Some(dist.sf(chi2))

@@ -2,104 +2,234 @@
 //! and the export of one roll: its trace and its energy plot, written side by side.
 
 use super::Error;
-use super::energy_plot::write_energy_plot;
-use crate::physics::{InitialCondition, Params, Simulation};
-use std::fmt::Write as _;
-use std::io::Write as _;
-use std::path::{Path, PathBuf};
+use super::energy_plot::energy_plot_png;
+use crate::output::Output;
+use crate::physics::{Energy, InitialCondition, Params, Simulation};
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
 
-/// The CSV header; the corner columns follow MODEL.md's corner order.
-pub fn header() -> String {
-    let mut h =
-        String::from("step,t,x,y,z,vx,vy,vz,Lx,Ly,Lz,wx,wy,wz,e_trans,e_rot,e_grav,e_elastic,e_total");
+/// The CSV columns; the corner columns follow docs/model.md's corner order.
+pub(crate) fn header() -> Vec<String> {
+    let mut h: Vec<String> = "step,t,x,y,z,vx,vy,vz,Lx,Ly,Lz,wx,wy,wz,e_trans,e_rot,e_grav,e_elastic,e_total"
+        .split(',')
+        .map(str::to_string)
+        .collect();
     for k in 1..=8 {
-        let _ = write!(h, ",c{k}x,c{k}y,c{k}z");
+        h.extend(["x", "y", "z"].map(|a| format!("c{k}{a}")));
     }
     h
 }
 
-/// One CSV row for the simulation's current state.
-pub fn row(sim: &Simulation) -> String {
+/// One CSV record for the simulation's current state; numbers in Rust's shortest
+/// round-trip form, so reading them back gives the same bits.
+pub(crate) fn row(sim: &Simulation) -> Vec<String> {
     let s = sim.state();
     let e = sim.energy();
     let w = sim.angular_velocity();
-    let mut line = format!("{},{}", s.step, s.time_s);
+    let mut record = vec![s.step.to_string(), s.time_s.to_string()];
     let values = s
         .position
         .iter()
         .chain(s.velocity.iter())
         .chain(s.angular_momentum.iter())
         .chain(w.iter());
-    for v in values.copied().chain([
-        e.translational,
-        e.rotational,
-        e.gravitational,
-        e.elastic,
-        e.total(),
-    ]) {
-        let _ = write!(line, ",{v}");
-    }
+    record.extend(
+        values
+            .copied()
+            .chain([
+                e.translational,
+                e.rotational,
+                e.gravitational,
+                e.elastic,
+                e.total(),
+            ])
+            .map(|v| v.to_string()),
+    );
     for p in sim.corner_positions() {
-        let _ = write!(line, ",{},{},{}", p.x, p.y, p.z);
+        record.extend([p.x, p.y, p.z].map(|v| v.to_string()));
     }
-    line
+    record
 }
+
+/// Bytes a record takes in the CSV: its fields, each followed by a comma or the newline
+/// (numbers are never quoted).
+fn record_len(record: &[String]) -> u64 {
+    record.iter().map(|f| f.len() as u64 + 1).sum()
+}
+
+/// A trace as CSV: the header, then one record per [`TraceWriter::write`].
+pub(crate) struct TraceWriter<W: std::io::Write> {
+    csv: csv::Writer<W>,
+}
+
+impl<W: std::io::Write> TraceWriter<W> {
+    /// Writes the header into `out`.
+    pub(crate) fn new(out: W) -> std::io::Result<Self> {
+        let mut csv = csv::Writer::from_writer(out);
+        csv.write_record(header()).map_err(super::csv_io)?;
+        Ok(TraceWriter { csv })
+    }
+
+    /// One record for the simulation's current state; returns its length in bytes.
+    pub(crate) fn write(&mut self, sim: &Simulation) -> std::io::Result<u64> {
+        let record = row(sim);
+        self.csv.write_record(&record).map_err(super::csv_io)?;
+        Ok(record_len(&record))
+    }
+
+    pub(crate) fn flush(&mut self) -> std::io::Result<()> {
+        self.csv.flush()
+    }
+}
+
+/// The largest trace the explorer writes, bytes: beyond it a roll is better thinned with
+/// `dicesim trace --every K` than written step by step.
+pub(crate) const EXPORT_LIMIT_BYTES: u64 = 256 * 1024 * 1024;
+
+/// Most points of the exported energy plot (each term's peak is kept over a stride).
+const PLOT_SAMPLES: u64 = 20_000;
+
+/// Steps between looks at the cancel flag and progress reports.
+const REPORT_EVERY: u64 = 4096;
 
 /// What [`export_roll`] wrote.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Exported {
-    pub trace: PathBuf,
-    pub plot: PathBuf,
+pub(crate) struct Exported {
+    pub(crate) trace: PathBuf,
+    pub(crate) plot: PathBuf,
+    /// Rows of the trace, header excluded.
+    pub(crate) rows: u64,
+    pub(crate) bytes: u64,
 }
 
-/// The first stem for files `<stem>.<ext>` (one per extension) in `dir` that replaces no
-/// file: `stem`, then `stem-2`, `stem-3`, …
-pub fn free_stem(dir: &Path, stem: &str, extensions: &[&str]) -> String {
-    (1..)
-        .map(|n| {
-            if n == 1 {
-                stem.to_string()
-            } else {
-                format!("{stem}-{n}")
-            }
-        })
-        .find(|s| {
-            extensions
-                .iter()
-                .all(|ext| !dir.join(format!("{s}.{ext}")).exists())
-        })
-        .unwrap_or_else(|| stem.to_string())
+/// How far an export has got: first rolling to learn its length, then writing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ExportProgress {
+    /// False while the roll is measured, true once rows are written.
+    pub(crate) writing: bool,
+    pub(crate) steps_done: u64,
+    /// The roll's steps, once measured (the cap `integrator.max_time / dt` before).
+    pub(crate) steps_total: u64,
+    /// The trace's size, bytes: estimated while measuring, exact from the row lengths after.
+    pub(crate) bytes: u64,
 }
 
-/// Rolls `initial` again from t = 0 to its end, writing every step's row to
-/// `<dir>/<stem>.csv` and the energy against time to `<dir>/<stem>.png`.
-pub fn export_roll(
+/// `bytes` in the unit a person reads (kB, MB, GB; decimal).
+pub(crate) fn human_bytes(bytes: u64) -> String {
+    let b = bytes as f64;
+    match bytes {
+        0..1_000 => format!("{bytes} B"),
+        1_000..1_000_000 => format!("{:.1} kB", b / 1e3),
+        1_000_000..1_000_000_000 => format!("{:.1} MB", b / 1e6),
+        _ => format!("{:.1} GB", b / 1e9),
+    }
+}
+
+/// Rolls `initial` again from t = 0 to its end, writing every step's row to `trace` and
+/// the energy against time to `plot` (a PNG).
+///
+/// The roll is first run without writing, to learn its length and the trace's size: a trace
+/// above [`EXPORT_LIMIT_BYTES`] is refused, naming the `dicesim trace --every K` that fits.
+/// `cancel` is looked at every few thousand steps; `progress` hears about it as often.
+pub(crate) fn export_roll(
     params: &Params,
     initial: &InitialCondition,
     title: &str,
-    dir: &Path,
-    stem: &str,
+    trace: &Output,
+    plot: &Output,
+    cancel: &AtomicBool,
+    progress: &mut dyn FnMut(ExportProgress),
 ) -> Result<Exported, Error> {
-    let io = |path: &Path, e: std::io::Error| Error::Export(format!("{}: {e}", path.display()));
-    let trace = dir.join(format!("{stem}.csv"));
-    let plot = dir.join(format!("{stem}.png"));
+    let cancelled = || cancel.load(Ordering::Relaxed);
     let mut sim = Simulation::new_unchecked(params, initial);
-    let file = std::fs::File::create(&trace).map_err(|e| io(&trace, e))?;
-    let mut out = std::io::BufWriter::new(file);
-    let mut samples = Vec::new();
-    writeln!(out, "{}", header()).map_err(|e| io(&trace, e))?;
-    loop {
-        writeln!(out, "{}", row(&sim)).map_err(|e| io(&trace, e))?;
-        samples.push((sim.state().time_s, sim.energy()));
-        if sim.outcome().is_some() {
-            break;
-        }
+    let mut status = ExportProgress {
+        writing: false,
+        steps_done: 0,
+        steps_total: params.max_steps(),
+        bytes: 0,
+    };
+    // Measure: the steps, and the row length sampled along the roll.
+    let (mut sampled_len, mut samples_taken) = (record_len(&row(&sim)), 1u64);
+    while sim.outcome().is_none() {
         sim.advance();
+        let step = sim.state().step;
+        if step.is_multiple_of(REPORT_EVERY) {
+            if cancelled() {
+                return Err(Error::Cancelled);
+            }
+            sampled_len += record_len(&row(&sim));
+            samples_taken += 1;
+            status.steps_done = step;
+            status.bytes = sampled_len / samples_taken * (status.steps_total + 1);
+            progress(status);
+        }
     }
-    out.flush().map_err(|e| io(&trace, e))?;
-    write_energy_plot(&samples, sim.stop_threshold(), title, &plot).map_err(|e| match e {
-        Error::Plot(m) => Error::Export(format!("{}: {m}", plot.display())),
-        e => e,
-    })?;
-    Ok(Exported { trace, plot })
+    let rows = sim.state().step + 1;
+    let estimate = record_len(&header()) + sampled_len / samples_taken * rows;
+    if estimate > EXPORT_LIMIT_BYTES {
+        let every = estimate.div_ceil(EXPORT_LIMIT_BYTES);
+        // Short enough for the explorer's status line, with the way out in it.
+        return Err(Error::Export(format!(
+            "{} ({rows} rows) is over the {} limit: `dicesim trace --every {every}` thins it",
+            human_bytes(estimate),
+            human_bytes(EXPORT_LIMIT_BYTES)
+        )));
+    }
+    status = ExportProgress {
+        writing: true,
+        steps_done: 0,
+        steps_total: rows - 1,
+        bytes: estimate,
+    };
+    progress(status);
+    let stride = rows.div_ceil(PLOT_SAMPLES).max(1);
+    let mut samples: Vec<(f64, Energy)> = Vec::with_capacity((rows / stride + 2) as usize);
+    let mut peak: Option<(f64, Energy)> = None;
+    let mut written = 0u64;
+    let mut sim = Simulation::new_unchecked(params, initial);
+    trace
+        .write(|out| {
+            let mut csv = TraceWriter::new(out)?;
+            written += record_len(&header());
+            loop {
+                written += csv.write(&sim)?;
+                let (t, e) = (sim.state().time_s, sim.energy());
+                peak = Some(match peak {
+                    None => (t, e),
+                    Some((_, p)) => (t, e.max_each(&p)),
+                });
+                let step = sim.state().step;
+                let ended = sim.outcome().is_some();
+                if step.is_multiple_of(stride) || ended {
+                    samples.extend(peak.take());
+                }
+                if ended {
+                    return csv.flush();
+                }
+                if step.is_multiple_of(REPORT_EVERY) && step > 0 {
+                    if cancelled() {
+                        return Err(std::io::Error::other(CANCELLED));
+                    }
+                    status.steps_done = step;
+                    progress(status);
+                }
+                sim.advance();
+            }
+        })
+        .map_err(|e| match e {
+            crate::output::OutputError::Write { message, .. } if message == CANCELLED => Error::Cancelled,
+            e => Error::Export(e.to_string()),
+        })?;
+    let png = energy_plot_png(&samples, sim.stop_threshold(), title)
+        .map_err(|e| Error::Export(format!("{}: {e}", plot.path().display())))?;
+    plot.write_bytes(&png).map_err(|e| Error::Export(e.to_string()))?;
+    Ok(Exported {
+        trace: trace.path().to_path_buf(),
+        plot: plot.path().to_path_buf(),
+        rows,
+        bytes: written,
+    })
 }
+
+/// The reason a cancelled export's write stops with (it never reaches a person).
+const CANCELLED: &str = "export cancelled";

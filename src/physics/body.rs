@@ -1,9 +1,9 @@
-//! The die's geometry: corner numbering and faces (MODEL.md, "Faces").
+//! The die's geometry: corner numbering and faces (docs/model.md, "Faces").
 
 use nalgebra::Vector3;
 
 /// Signs of corners 1..8 in the body frame, `(x, y, z)/a`, in the authors' order.
-pub const CORNER_SIGNS: [[f64; 3]; 8] = [
+pub(crate) const CORNER_SIGNS: [[f64; 3]; 8] = [
     [-1.0, -1.0, -1.0],
     [-1.0, -1.0, 1.0],
     [-1.0, 1.0, -1.0],
@@ -15,7 +15,7 @@ pub const CORNER_SIGNS: [[f64; 3]; 8] = [
 ];
 
 /// The four corners (0-based) of faces 1..6; opposite faces sum to 7.
-pub const FACE_CORNERS: [[usize; 4]; 6] = [
+pub(crate) const FACE_CORNERS: [[usize; 4]; 6] = [
     [0, 1, 2, 3], // 1: x = −a
     [0, 1, 4, 5], // 2: y = −a
     [0, 2, 4, 6], // 3: z = −a
@@ -25,7 +25,8 @@ pub const FACE_CORNERS: [[usize; 4]; 6] = [
 ];
 
 /// Outward normals of faces 1..6 in the body frame.
-pub const FACE_NORMALS: [[f64; 3]; 6] = [
+#[cfg(test)]
+pub(crate) const FACE_NORMALS: [[f64; 3]; 6] = [
     [-1.0, 0.0, 0.0],
     [0.0, -1.0, 0.0],
     [0.0, 0.0, -1.0],
@@ -35,7 +36,7 @@ pub const FACE_NORMALS: [[f64; 3]; 6] = [
 ];
 
 /// Corner offsets from the centre of mass at identity orientation, cm.
-pub fn body_corner_offsets(half_size: f64) -> [Vector3<f64>; 8] {
+pub(crate) fn body_corner_offsets(half_size: f64) -> [Vector3<f64>; 8] {
     CORNER_SIGNS.map(|s| Vector3::new(s[0] * half_size, s[1] * half_size, s[2] * half_size))
 }
 
@@ -43,7 +44,7 @@ pub fn body_corner_offsets(half_size: f64) -> [Vector3<f64>; 8] {
 ///
 /// Ties keep the lower corner index first (the authors' stable sort). `None` when the 4 highest
 /// corners do not form a face, which needs a die standing almost on a corner.
-pub fn face_of_highest_corners(corner_heights: &[f64; 8]) -> Option<u8> {
+pub(crate) fn face_of_highest_corners(corner_heights: &[f64; 8]) -> Option<u8> {
     let mut order: [usize; 8] = [0, 1, 2, 3, 4, 5, 6, 7];
     // Stable, descending; NaN sorts last so a broken state never panics here.
     order.sort_by(|&a, &b| {
@@ -60,7 +61,7 @@ pub fn face_of_highest_corners(corner_heights: &[f64; 8]) -> Option<u8> {
 ///
 /// Mid-flight the 4 highest corners often do not form a face; this rule always answers, and
 /// agrees with [`face_of_highest_corners`] at rest.
-pub fn face_most_nearly_up(corner_offsets: &[Vector3<f64>; 8]) -> u8 {
+pub(crate) fn face_most_nearly_up(corner_offsets: &[Vector3<f64>; 8]) -> u8 {
     let up = face_normal_heights(corner_offsets);
     let mut best = 0;
     for (i, h) in up.iter().enumerate() {
@@ -72,7 +73,7 @@ pub fn face_most_nearly_up(corner_offsets: &[Vector3<f64>; 8]) -> u8 {
 }
 
 /// The z-component of each face's outward unit normal in the world frame (faces 1..6).
-pub fn face_normal_heights(corner_offsets: &[Vector3<f64>; 8]) -> [f64; 6] {
+pub(crate) fn face_normal_heights(corner_offsets: &[Vector3<f64>; 8]) -> [f64; 6] {
     // Body axes in the world frame from corner differences: x from corner 1 to 5,
     // y from 1 to 3, z from 1 to 2 (each spans one side, 2a).
     let ex = corner_offsets[4] - corner_offsets[0];
@@ -83,7 +84,7 @@ pub fn face_normal_heights(corner_offsets: &[Vector3<f64>; 8]) -> [f64; 6] {
 }
 
 /// The face opposite `face` (they sum to 7).
-pub fn opposite_face(face: u8) -> u8 {
+pub(crate) fn opposite_face(face: u8) -> u8 {
     7 - face
 }
 

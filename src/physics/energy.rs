@@ -1,4 +1,4 @@
-//! The energy terms a plot shows (MODEL.md, "Energy"), erg.
+//! The energy terms a plot shows (docs/model.md, "Energy"), erg.
 
 use serde::Serialize;
 
@@ -21,11 +21,22 @@ impl Energy {
     }
 
     /// `M·g·(z − a) + Σ ½·k·d_k²`.
-    pub fn potential(&self) -> f64 {
+    pub(crate) fn potential(&self) -> f64 {
         self.gravitational + self.elastic
     }
 
     pub fn total(&self) -> f64 {
         self.translational + self.rotational + self.gravitational + self.elastic
+    }
+
+    /// Each term's larger value of the two: what a thinned plot keeps over a stride, so
+    /// impact spikes survive.
+    pub(crate) fn max_each(&self, other: &Energy) -> Energy {
+        Energy {
+            translational: self.translational.max(other.translational),
+            rotational: self.rotational.max(other.rotational),
+            gravitational: self.gravitational.max(other.gravitational),
+            elastic: self.elastic.max(other.elastic),
+        }
     }
 }

@@ -2,39 +2,9 @@
 
 use super::body::body_corner_offsets;
 use super::params::{Limits, ParamError, Params};
+use super::registry::{self, Role, Setup};
 use nalgebra::{Rotation3, Vector3};
 use serde::{Deserialize, Serialize};
-
-pub const HEIGHT: Limits = Limits {
-    key: "initial.height",
-    unit: "cm",
-    min: 0.0,
-    max: 1000.0,
-};
-pub const VELOCITY: Limits = Limits {
-    key: "initial.velocity",
-    unit: "cm/s",
-    min: -10_000.0,
-    max: 10_000.0,
-};
-pub const ANGULAR_VELOCITY: Limits = Limits {
-    key: "initial.angular_velocity",
-    unit: "rad/s",
-    min: -10_000.0,
-    max: 10_000.0,
-};
-pub const ANGULAR_MOMENTUM: Limits = Limits {
-    key: "initial.angular_momentum",
-    unit: "g·cm²/s",
-    min: -1e6,
-    max: 1e6,
-};
-pub const ORIENTATION: Limits = Limits {
-    key: "initial.orientation",
-    unit: "°",
-    min: -360.0,
-    max: 360.0,
-};
 
 /// Where the die starts and how it moves at `t = 0`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -59,43 +29,42 @@ pub struct InitialCondition {
 impl Default for InitialCondition {
     fn default() -> Self {
         InitialCondition {
-            height: 15.0,
-            velocity: [0.0; 3],
-            angular_velocity: [0.0; 3],
+            height: registry::HEIGHT.number(),
+            velocity: registry::VELOCITY.vector(),
+            angular_velocity: registry::ANGULAR_VELOCITY.vector(),
             angular_momentum: None,
-            orientation: [0.0; 3],
+            orientation: registry::ORIENTATION.vector(),
         }
     }
 }
 
 impl InitialCondition {
-    pub fn validate(&self) -> Result<(), ParamError> {
-        HEIGHT.check(self.height)?;
-        VELOCITY.check_vector(&self.velocity)?;
-        ANGULAR_VELOCITY.check_vector(&self.angular_velocity)?;
-        if let Some(l) = &self.angular_momentum {
-            ANGULAR_MOMENTUM.check_vector(l)?;
-        }
-        ORIENTATION.check_vector(&self.orientation)?;
-        Ok(())
+    /// Checks every value against its allowed range; the first failure is returned.
+    pub(crate) fn validate(&self) -> Result<(), ParamError> {
+        let setup = Setup {
+            initial: *self,
+            ..Setup::default()
+        };
+        registry::validate(&setup, &[Role::Initial])
     }
 
     /// Refuses a start with any corner inside the table deeper than the die's resting depth
     /// `M·g/(4k)` (a die may be placed resting on the table, not pushed into it): the error
     /// names the lowest height allowed at this orientation.
-    pub fn check_clear_of_table(&self, params: &Params) -> Result<(), ParamError> {
+    pub(crate) fn check_clear_of_table(&self, params: &Params) -> Result<(), ParamError> {
         let lowest = -self.lowest_corner_offset(params.die.half_size) - params.resting_depth();
         if self.height >= lowest {
             Ok(())
         } else {
             Err(ParamError {
-                key: HEIGHT.key.to_string(),
+                key: registry::HEIGHT.key().to_string(),
                 value: self.height,
                 limits: Limits {
                     min: lowest,
                     unit: "cm at this orientation (lower, a corner starts inside the table)",
-                    ..HEIGHT
+                    ..registry::HEIGHT.limits
                 },
+                high_end: None,
             })
         }
     }
@@ -118,7 +87,7 @@ impl InitialCondition {
     }
 
     /// g·cm²/s, the initial angular momentum for a body of moment of inertia `inertia`.
-    pub fn angular_momentum_for(&self, inertia: f64) -> Vector3<f64> {
+    pub(crate) fn angular_momentum_for(&self, inertia: f64) -> Vector3<f64> {
         match self.angular_momentum {
             Some(l) => Vector3::from(l),
             None => Vector3::from(self.angular_velocity) * inertia,
@@ -126,7 +95,7 @@ impl InitialCondition {
     }
 
     /// rad/s, the initial angular velocity for a body of moment of inertia `inertia`.
-    pub fn angular_velocity_for(&self, inertia: f64) -> Vector3<f64> {
+    pub(crate) fn angular_velocity_for(&self, inertia: f64) -> Vector3<f64> {
         match self.angular_momentum {
             Some(l) => Vector3::from(l) / inertia,
             None => Vector3::from(self.angular_velocity),
@@ -134,10 +103,49 @@ impl InitialCondition {
     }
 
     /// The body-to-world rotation at `t = 0`.
-    pub fn rotation(&self) -> Rotation3<f64> {
+    pub(crate) fn rotation(&self) -> Rotation3<f64> {
         let [yaw, pitch, roll] = self.orientation.map(f64::to_radians);
         // from_euler_angles(roll, pitch, yaw) = Rz(yaw)·Ry(pitch)·Rx(roll); all zeros give the
         // exact identity, so the reference's unrotated start is reproduced bit for bit.
         Rotation3::from_euler_angles(roll, pitch, yaw)
+    }
+}
+
+/// How random rolls are drawn (the `[random]` section of a preset); the drawing itself is
+/// the experiment layer's.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RandomRanges {
+    pub seed: u64,
+    /// cm, centre of mass, uniform in `[low, high]`.
+    pub height: [f64; 2],
+    /// cm/s, each component uniform in `[low, high]`.
+    pub velocity: [f64; 2],
+    /// rad/s, each component uniform in `[low, high]`.
+    pub angular_velocity: [f64; 2],
+    /// true: orientation uniform over all rotations; false: the initial condition's.
+    pub random_orientation: bool,
+}
+
+impl Default for RandomRanges {
+    fn default() -> Self {
+        RandomRanges {
+            seed: registry::SEED.seed(),
+            height: registry::RANDOM_HEIGHT.range(),
+            velocity: registry::RANDOM_VELOCITY.range(),
+            angular_velocity: registry::RANDOM_ANGULAR_VELOCITY.range(),
+            random_orientation: registry::RANDOM_ORIENTATION.flag(),
+        }
+    }
+}
+
+impl RandomRanges {
+    /// Each bound within the matching initial-condition range, and `low <= high`.
+    pub(crate) fn validate(&self) -> Result<(), ParamError> {
+        let setup = Setup {
+            random: *self,
+            ..Setup::default()
+        };
+        registry::validate(&setup, &[Role::Random])
     }
 }

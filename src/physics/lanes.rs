@@ -12,6 +12,11 @@
 //! `Simulation`; the vector code only screens out lanes that surely go on (one place,
 //! `Lanes::may_end`, which replicates the stopping rule's comparisons). A lane whose roll
 //! ended takes the next roll at once.
+//!
+//! The one module that uses `unsafe`: the AVX2 intrinsics are `unsafe` to call, and each
+//! call is reached only through `roll_in_lanes`, after `is_x86_feature_detected!` said the
+//! CPU has AVX2 (the loads and stores are of arrays of exactly four lanes).
+#![allow(unsafe_code)]
 
 use super::body::face_most_nearly_up;
 use super::initial::InitialCondition;

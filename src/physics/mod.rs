@@ -2,18 +2,19 @@
 //!
 //! Units are CGS throughout: cm, g, s; forces in dyn, energies in erg.
 
-pub mod body;
-pub mod energy;
-pub mod initial;
+pub(crate) mod body;
+pub(crate) mod energy;
+pub(crate) mod initial;
 pub mod lanes;
 pub mod params;
-pub mod sim;
-pub mod stability;
+pub mod registry;
+pub(crate) mod sim;
+pub(crate) mod stability;
 pub mod stopping;
 
-pub use body::{face_most_nearly_up, face_of_highest_corners, opposite_face};
-pub use energy::Energy;
-pub use initial::InitialCondition;
+pub(crate) use body::{face_most_nearly_up, opposite_face};
+pub(crate) use energy::Energy;
+pub use initial::{InitialCondition, RandomRanges};
 pub use params::{Die, FrictionLaw, Ground, Integrator, Limits, ParamError, Params, StopEnergy, World};
 pub use sim::{ContactForce, EnergyLedger, Outcome, Simulation, State, Status};
 pub use stability::{Limit, Reading, Stability, UnstableReason};

@@ -1,9 +1,11 @@
-//! Model parameters (MODEL.md), in CGS units, with the paper's defaults and allowed ranges.
+//! Model parameters (docs/model.md), in CGS units. Their defaults, allowed ranges and units
+//! are rows of the [registry](super::registry).
 //!
-//! The structs mirror the sections of a preset file (PRESETS.md), so the preset layer
+//! The structs mirror the sections of a preset file (docs/presets.md), so the preset layer
 //! deserialises straight into them; every struct denies unknown keys and fills missing ones
 //! with the paper's defaults.
 
+use super::registry::{self, Role, Setup};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -31,19 +33,9 @@ impl Limits {
                 key: self.key.to_string(),
                 value,
                 limits: *self,
+                high_end: None,
             })
         }
-    }
-
-    /// Checks every component of a vector-valued field, naming the component in the error.
-    pub fn check_vector(&self, values: &[f64; 3]) -> Result<(), ParamError> {
-        for (axis, &value) in ["x", "y", "z"].iter().zip(values) {
-            if let Err(mut e) = self.check(value) {
-                e.key = format!("{}.{axis}", self.key);
-                return Err(e);
-            }
-        }
-        Ok(())
     }
 }
 
@@ -53,6 +45,19 @@ pub struct ParamError {
     pub key: String,
     pub value: f64,
     pub limits: Limits,
+    /// For a range `[low, high]` given the wrong way round: `value` is the low end, this
+    /// the high end below it.
+    pub high_end: Option<f64>,
+}
+
+/// A number as a person reads it: 1e308 rather than its 309 digits.
+fn fmt_number(value: f64) -> String {
+    let magnitude = value.abs();
+    if value.is_finite() && (magnitude >= 1e15 || (magnitude > 0.0 && magnitude < 1e-6)) {
+        format!("{value:e}")
+    } else {
+        format!("{value}")
+    }
 }
 
 impl fmt::Display for ParamError {
@@ -62,70 +67,27 @@ impl fmt::Display for ParamError {
         } else {
             format!(" {}", self.limits.unit)
         };
+        if let Some(high) = self.high_end {
+            return write!(
+                f,
+                "`{}` = [{}, {}]: the low end is above the high end",
+                self.key,
+                fmt_number(self.value),
+                fmt_number(high)
+            );
+        }
         write!(
             f,
             "`{}` = {} is outside the allowed range {} to {}{unit}",
-            self.key, self.value, self.limits.min, self.limits.max
+            self.key,
+            fmt_number(self.value),
+            fmt_number(self.limits.min),
+            fmt_number(self.limits.max)
         )
     }
 }
 
 impl std::error::Error for ParamError {}
-
-pub const HALF_SIZE: Limits = Limits {
-    key: "die.half_size",
-    unit: "cm",
-    min: 0.1,
-    max: 10.0,
-};
-pub const CORNER_MASS: Limits = Limits {
-    key: "die.corner_mass",
-    unit: "g",
-    min: 0.01,
-    max: 1000.0,
-};
-pub const STIFFNESS: Limits = Limits {
-    key: "ground.stiffness",
-    unit: "dyn/cm",
-    min: 100.0,
-    max: 1e8,
-};
-pub const DAMPING: Limits = Limits {
-    key: "ground.damping",
-    unit: "s/cm",
-    min: 0.0,
-    max: 0.1,
-};
-pub const FRICTION: Limits = Limits {
-    key: "ground.friction",
-    unit: "",
-    min: 0.0,
-    max: 5.0,
-};
-pub const GRAVITY: Limits = Limits {
-    key: "world.gravity",
-    unit: "cm/s²",
-    min: 10.0,
-    max: 10000.0,
-};
-pub const DT: Limits = Limits {
-    key: "integrator.dt",
-    unit: "s",
-    min: 1e-5,
-    max: 1e-2,
-};
-pub const STOP_ENERGY_FRACTION: Limits = Limits {
-    key: "integrator.stop_energy_fraction",
-    unit: "",
-    min: 0.01,
-    max: 1.0,
-};
-pub const MAX_TIME: Limits = Limits {
-    key: "integrator.max_time",
-    unit: "s",
-    min: 0.01,
-    max: 120.0,
-};
 
 /// No roll runs longer than this many steps, whatever its parameters (under a second).
 pub const MAX_STEPS_CAP: u64 = 12_000_000;
@@ -143,8 +105,8 @@ pub struct Die {
 impl Default for Die {
     fn default() -> Self {
         Die {
-            half_size: 1.0,
-            corner_mass: 1.0,
+            half_size: registry::HALF_SIZE.number(),
+            corner_mass: registry::CORNER_MASS.number(),
         }
     }
 }
@@ -162,7 +124,7 @@ pub enum FrictionLaw {
 }
 
 impl FrictionLaw {
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             FrictionLaw::PerCorner => "per-corner",
             FrictionLaw::WholeDieNorm => "whole-die-norm",
@@ -186,9 +148,9 @@ pub struct Ground {
 impl Default for Ground {
     fn default() -> Self {
         Ground {
-            stiffness: 500_000.0,
-            damping: 0.005,
-            friction: 1.2,
+            stiffness: registry::STIFFNESS.number(),
+            damping: registry::DAMPING.number(),
+            friction: registry::FRICTION.number(),
             friction_law: FrictionLaw::PerCorner,
         }
     }
@@ -203,7 +165,9 @@ pub struct World {
 
 impl Default for World {
     fn default() -> Self {
-        World { gravity: 980.0 }
+        World {
+            gravity: registry::GRAVITY.number(),
+        }
     }
 }
 
@@ -211,7 +175,7 @@ impl Default for World {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum StopEnergy {
-    /// MODEL.md: translational + rotational (with the cube's inertia) + gravitational + elastic.
+    /// docs/model.md: translational + rotational (with the cube's inertia) + gravitational + elastic.
     #[default]
     RigidBody,
     /// The authors' program: the 8 corners as point masses (½·m·Σ|u_k|²), gravity, and the
@@ -243,9 +207,9 @@ pub struct Integrator {
 impl Default for Integrator {
     fn default() -> Self {
         Integrator {
-            dt: 0.001,
-            stop_energy_fraction: 0.8,
-            max_time: 30.0,
+            dt: registry::DT.number(),
+            stop_energy_fraction: registry::STOP_ENERGY_FRACTION.number(),
+            max_time: registry::MAX_TIME.number(),
             stop_energy: StopEnergy::RigidBody,
         }
     }
@@ -263,17 +227,12 @@ pub struct Params {
 
 impl Params {
     /// Checks every field against its allowed range; the first failure is returned.
-    pub fn validate(&self) -> Result<(), ParamError> {
-        HALF_SIZE.check(self.die.half_size)?;
-        CORNER_MASS.check(self.die.corner_mass)?;
-        STIFFNESS.check(self.ground.stiffness)?;
-        DAMPING.check(self.ground.damping)?;
-        FRICTION.check(self.ground.friction)?;
-        GRAVITY.check(self.world.gravity)?;
-        DT.check(self.integrator.dt)?;
-        STOP_ENERGY_FRACTION.check(self.integrator.stop_energy_fraction)?;
-        MAX_TIME.check(self.integrator.max_time)?;
-        Ok(())
+    pub(crate) fn validate(&self) -> Result<(), ParamError> {
+        let setup = Setup {
+            params: *self,
+            ..Setup::default()
+        };
+        registry::validate(&setup, &[Role::Die, Role::Ground, Role::World, Role::Integrator])
     }
 
     /// g, the whole die (8 corners).
@@ -284,7 +243,7 @@ impl Params {
     /// g·cm², the isotropic moment of inertia of a uniform solid cube, `(2a)²/6·M`.
     ///
     /// Written in the authors' order of operations so the default is bitwise 16/3.
-    pub fn inertia(&self) -> f64 {
+    pub(crate) fn inertia(&self) -> f64 {
         let side = 2.0 * self.die.half_size;
         side * side / 6.0 * self.total_mass()
     }
@@ -295,7 +254,7 @@ impl Params {
     }
 
     /// erg, the stopping threshold: a roll ends once its energy is at or below this.
-    pub fn stop_threshold(&self) -> f64 {
+    pub(crate) fn stop_threshold(&self) -> f64 {
         // (fraction · M·g·a) · (√2 − 1): the authors' grouping, bitwise 2597.9474632040528.
         self.integrator.stop_energy_fraction
             * (self.total_mass() * self.world.gravity * self.die.half_size)
@@ -303,11 +262,11 @@ impl Params {
     }
 
     /// rad/s, the fastest contact mode: a die lying flat rocking on its face, `√(6k/M)`.
-    pub fn rocking_frequency(&self) -> f64 {
+    pub(crate) fn rocking_frequency(&self) -> f64 {
         (6.0 * self.ground.stiffness / self.total_mass()).sqrt()
     }
 
-    /// `ω_rock·Δt`: semi-implicit Euler is stable only below 2 (MODEL.md, "Stability").
+    /// `ω_rock·Δt`: semi-implicit Euler is stable only below 2 (docs/model.md, "Stability").
     pub fn stability_number(&self) -> f64 {
         self.rocking_frequency() * self.integrator.dt
     }

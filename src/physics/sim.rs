@@ -1,6 +1,6 @@
-//! The state of a rolling die and the paper's semi-implicit Euler step (MODEL.md).
+//! The state of a rolling die and the paper's semi-implicit Euler step (docs/model.md).
 //!
-//! The arithmetic follows the authors' program operation by operation (reference/README.md §2
+//! The arithmetic follows the authors' program operation by operation (tests/data/reference/README.md §2
 //! and §9: sums in corner order, divisions where they divided, Octave's scaled 2-norm and
 //! `pow(x, 2)`), so the reference trajectories are reproduced to rounding, not merely in law.
 
@@ -13,9 +13,9 @@ use nalgebra::{Matrix3, Vector3};
 use serde::Serialize;
 
 /// A rigid-body energy above this multiple of `max(initial energy, edge energy)` means the
-/// integrator is feeding energy in (MODEL.md, "Stability"): a stable roll stays within a
+/// integrator is feeding energy in (docs/model.md, "Stability"): a stable roll stays within a
 /// few percent of its start.
-pub const RUNAWAY_ENERGY_FACTOR: f64 = 10.0;
+pub(crate) const RUNAWAY_ENERGY_FACTOR: f64 = 10.0;
 
 /// The dynamic state of the die at one instant.
 #[derive(Debug, Clone, PartialEq)]
@@ -42,13 +42,13 @@ pub struct State {
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct ContactForce {
     /// cm below the ground (0 when not touching).
-    pub depth: f64,
+    pub(crate) depth: f64,
     /// Spring force `k·d`, up.
-    pub normal: f64,
+    pub(crate) normal: f64,
     /// Damping force `−k·d·γ·u_z` (the vertical force is normal + damping).
-    pub damping: f64,
+    pub(crate) damping: f64,
     /// Horizontal kinetic friction `(x, y)`.
-    pub friction: [f64; 2],
+    pub(crate) friction: [f64; 2],
 }
 
 /// Work done on the die since t = 0 by the ground's damping and by friction, erg.
@@ -62,7 +62,7 @@ struct ContactWork {
 ///
 /// `initial = current + damping_loss + friction_loss + integrator_loss`: the first three are
 /// measured, the last is the remainder, the energy semi-implicit Euler itself gains or loses
-/// (½·M·g²·Δt² per step in free flight, MODEL.md).
+/// (½·M·g²·Δt² per step in free flight, docs/model.md).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct EnergyLedger {
     /// Rigid-body energy at t = 0.
@@ -87,7 +87,7 @@ pub enum Status {
     /// Simulated time passed `integrator.max_time` first: the die did not settle.
     Timeout,
     /// The state stopped being finite or the energy ran away: the integrator is unstable
-    /// for these parameters (MODEL.md, "Stability").
+    /// for these parameters (docs/model.md, "Stability").
     Unstable,
 }
 
@@ -98,6 +98,13 @@ impl Status {
             Status::Timeout => "timeout",
             Status::Unstable => "unstable",
         }
+    }
+
+    /// The status of a [`name`](Status::name), as result files write it.
+    pub fn from_name(name: &str) -> Option<Status> {
+        [Status::Settled, Status::Timeout, Status::Unstable]
+            .into_iter()
+            .find(|s| s.name() == name)
     }
 }
 
@@ -252,7 +259,7 @@ impl Simulation {
         sim
     }
 
-    pub fn params(&self) -> &Params {
+    pub(crate) fn params(&self) -> &Params {
         &self.params
     }
 
@@ -268,11 +275,6 @@ impl Simulation {
     /// The end of the roll, once it has ended (later steps do not change it).
     pub fn outcome(&self) -> Option<Outcome> {
         self.outcome
-    }
-
-    /// erg, rigid-body energy at t = 0.
-    pub fn initial_energy(&self) -> f64 {
-        self.initial_energy
     }
 
     /// Where the energy has gone since t = 0.
@@ -295,7 +297,7 @@ impl Simulation {
     }
 
     /// Changes the ground mid-roll; the new law acts from the next step on.
-    pub fn set_ground(&mut self, ground: Ground) -> Result<(), ParamError> {
+    pub(crate) fn set_ground(&mut self, ground: Ground) -> Result<(), ParamError> {
         let mut params = self.params;
         params.ground = ground;
         params.validate()?;
@@ -323,13 +325,13 @@ impl Simulation {
     }
 
     /// Velocities of corners 1..8, cm/s.
-    pub fn corner_velocities(&self) -> [Vector3<f64>; 8] {
+    pub(crate) fn corner_velocities(&self) -> [Vector3<f64>; 8] {
         self.state.corner_offsets.map(|r| self.corner_velocity(&r))
     }
 
     /// Each corner's contact force split into normal, damping and friction, at the current
     /// state (the forces the next step will apply).
-    pub fn contact_forces(&self) -> [ContactForce; 8] {
+    pub(crate) fn contact_forces(&self) -> [ContactForce; 8] {
         let s = &self.state;
         std::array::from_fn(|k| {
             let depth = s.corner_depths[k];
@@ -343,7 +345,7 @@ impl Simulation {
         })
     }
 
-    /// The energy terms at the current state (MODEL.md, "Energy"), erg.
+    /// The energy terms at the current state (docs/model.md, "Energy"), erg.
     pub fn energy(&self) -> Energy {
         let s = &self.state;
         let c = &self.c;
@@ -391,7 +393,7 @@ impl Simulation {
     }
 
     /// erg, the energy the stopping rule uses (`integrator.stop_energy`).
-    pub fn stop_energy(&self) -> f64 {
+    pub(crate) fn stop_energy(&self) -> f64 {
         self.stop_energy_from(&self.energy()).1
     }
 
@@ -401,7 +403,7 @@ impl Simulation {
     }
 
     /// erg, the stop energy's threshold (docs/model.md, "Stopping rule").
-    pub fn stop_threshold(&self) -> f64 {
+    pub(crate) fn stop_threshold(&self) -> f64 {
         self.c.stop_rule.energy_threshold
     }
 
@@ -416,11 +418,11 @@ impl Simulation {
     }
 
     /// The face whose 4 corners are highest (the outcome rule).
-    pub fn face_of_highest_corners(&self) -> Option<u8> {
+    pub(crate) fn face_of_highest_corners(&self) -> Option<u8> {
         face_of_highest_corners(&self.state.corner_offsets.map(|r| r.z))
     }
 
-    /// One step of Δt: kick → drift → L → rotate → forces (MODEL.md, "One time step").
+    /// One step of Δt: kick → drift → L → rotate → forces (docs/model.md, "One time step").
     ///
     /// Steps on past the end of a roll if asked; the recorded outcome stays the first end.
     #[inline]

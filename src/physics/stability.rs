@@ -8,25 +8,25 @@ use std::fmt;
 
 /// ω_rock·Δt above this lets the rocking mode gain energy. A lone undamped spring allows 2;
 /// contact switching on and off between steps pumps energy in well below it.
-pub const CONTACT_MODE_LIMIT: f64 = 1.4;
+pub(crate) const CONTACT_MODE_LIMIT: f64 = 1.4;
 
 /// A corner may move at most this many half sizes in one step: faster, the step jumps it
 /// deep into the table (or through it) before any force acts, and a spin turns the die
 /// by so much per step that its contacts are sampled at random.
-pub const CORNER_TRAVEL_LIMIT: f64 = 1.0;
+pub(crate) const CORNER_TRAVEL_LIMIT: f64 = 1.0;
 
 /// `γ·u_z` above this turns the press force `k·d·(1 − γ·u_z)` into a pull on a corner
 /// leaving the table, and multiplies the push on one striking it. On a finely resolved
 /// contact that only kills the bounce; it feeds energy in once one step of that force
 /// changes the corner's speed by about twice its own speed, `γ·u_z·√(k/m)·Δt ≳ 2`. So the
 /// allowed `γ·u_z` is `max(1, 2/(√(k/m)·Δt))`.
-pub const DAMPING_LIMIT: f64 = 1.0;
+pub(crate) const DAMPING_LIMIT: f64 = 1.0;
 
 /// One step's friction impulse `μ·|P|·Δt`, per corner mass and per unit of the corner's
 /// slip speed, above this reverses the slip faster than it was: friction then feeds energy
 /// in. The press force of a corner striking at speed `u` peaks at `u·√(k·m)`, so the
 /// number is `μ·√(k/m)·Δt`, whatever the speed.
-pub const FRICTION_CHATTER_LIMIT: f64 = 2.0;
+pub(crate) const FRICTION_CHATTER_LIMIT: f64 = 2.0;
 
 /// A cause of instability.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -44,7 +44,7 @@ pub enum Limit {
 
 impl Limit {
     /// A short name for the readout.
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             Limit::ContactMode => "table stiffness",
             Limit::CornerTravel => "corner speed",
@@ -57,10 +57,10 @@ impl Limit {
 /// One cause: its value for a roll and the largest value that still steps stably.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Reading {
-    pub limit: Limit,
-    pub value: f64,
+    pub(crate) limit: Limit,
+    pub(crate) value: f64,
     /// The value above which the roll is predicted unstable.
-    pub allowed: f64,
+    pub(crate) allowed: f64,
     /// For [`Limit::CornerTravel`] and [`Limit::Damping`]: whether spin, rather than the
     /// die's speed, gives the corner most of its speed.
     #[serde(skip)]
@@ -72,7 +72,7 @@ pub struct Reading {
 
 impl Reading {
     /// `value / allowed`: below 1 the roll is predicted to step stably.
-    pub fn load(&self) -> f64 {
+    pub(crate) fn load(&self) -> f64 {
         self.value / self.allowed
     }
 
@@ -170,7 +170,7 @@ impl Stability {
     /// travel, damping, friction chatter (a cause before its symptoms: a corner moving too
     /// far per step also strikes too fast for the damping); when none is past, the one
     /// with the largest `value / allowed`.
-    pub fn verdict(&self) -> Reading {
+    pub(crate) fn verdict(&self) -> Reading {
         if let Some(r) = self.readings.iter().find(|r| r.exceeded()) {
             return *r;
         }

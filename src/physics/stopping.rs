@@ -24,7 +24,7 @@ impl StopRule {
     /// `kinetic_threshold = energy_threshold − V_rest`; both are −∞ (the roll can only end
     /// as a timeout) when the table cannot hold the die on a face: its resting centre would
     /// be below the table top, or the threshold would not lie above the resting energy.
-    pub fn new(p: &Params) -> StopRule {
+    pub(crate) fn new(p: &Params) -> StopRule {
         let paper = p.stop_threshold();
         let rest = resting_energy(p);
         let margin = 0.5 * (1.0 - p.integrator.stop_energy_fraction) * p.edge_energy();
@@ -50,7 +50,7 @@ impl StopRule {
 }
 
 /// Why no roll can settle on this table, in words; `None` when one can.
-pub fn why_it_cannot_settle(p: &Params) -> Option<String> {
+pub(crate) fn why_it_cannot_settle(p: &Params) -> Option<String> {
     if StopRule::new(p).can_settle() {
         return None;
     }
@@ -104,14 +104,14 @@ pub fn resting_depth_on_face(p: &Params) -> f64 {
 
 /// erg, the potential energy of the die at rest on a face (`−½·M·g·δ` while only the four
 /// lower corners touch), measured like the rigid-body energy from the flat height `z = a`.
-pub fn resting_energy(p: &Params) -> f64 {
+pub(crate) fn resting_energy(p: &Params) -> f64 {
     let a = p.die.half_size;
     lowest_potential(p, &[-a, -a, -a, -a, a, a, a, a]).1
 }
 
 /// erg, the potential energy of the die at rest balanced on an edge (`E_edge − M·g·δ` while
 /// only the edge's two corners touch): the lowest pass between two faces.
-pub fn edge_balanced_energy(p: &Params) -> f64 {
+pub(crate) fn edge_balanced_energy(p: &Params) -> f64 {
     let e = p.die.half_size * std::f64::consts::SQRT_2;
     lowest_potential(p, &[-e, -e, 0.0, 0.0, 0.0, 0.0, e, e]).1
 }

@@ -10,14 +10,14 @@ use std::path::PathBuf;
 /// there.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Location {
-    pub origin: String,
+    pub(crate) origin: String,
     pub line: Option<usize>,
     pub column: Option<usize>,
 }
 
 impl Location {
     /// The whole file, no position.
-    pub fn file(origin: &str) -> Location {
+    pub(crate) fn file(origin: &str) -> Location {
         Location {
             origin: origin.to_string(),
             line: None,
@@ -26,7 +26,7 @@ impl Location {
     }
 
     /// The position of byte `offset` of `text`.
-    pub fn at(origin: &str, text: &str, offset: usize) -> Location {
+    pub(crate) fn at(origin: &str, text: &str, offset: usize) -> Location {
         let offset = offset.min(text.len());
         let before = text.get(..offset).unwrap_or(text);
         let line_start = before.rfind('\n').map_or(0, |i| i + 1);

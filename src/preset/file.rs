@@ -2,10 +2,11 @@
 //! its unit comments.
 
 use super::{FORMAT, Location, Preset, PresetError};
+use crate::physics::registry::{self, ANGULAR_MOMENTUM, ANGULAR_VELOCITY, Role, Setup, Value};
 use crate::physics::{InitialCondition, ParamError};
 use toml::de::{DeTable, DeValue};
 
-/// Up to this column the values stand, then the comments start (as in PRESETS.md).
+/// Up to this column the values stand, then the comments start (as in the shipped presets).
 const COMMENT_COLUMN: usize = 34;
 /// Longer lines put their comment above them.
 const MAX_LINE: usize = 110;
@@ -35,6 +36,22 @@ impl Preset {
                 message: inner.message().trim().to_string(),
             }
         })?;
+
+        // The streaming deserializer ignores extra array elements (`velocity = [1,2,3,"junk"]`);
+        // a second pass through a TOML value refuses them as `--set` does.
+        let table: toml::Table = toml::from_str(text).map_err(|e| syntax_error(origin, text, &e))?;
+        if let Err(e) = serde_path_to_error::deserialize::<_, Preset>(toml::Value::Table(table)) {
+            let key = e.path().to_string();
+            let at = match find(doc, &key) {
+                Some(offset) => Location::at(origin, text, offset),
+                None => Location::file(origin),
+            };
+            return Err(PresetError::Key {
+                at,
+                key,
+                message: e.into_inner().message().trim().to_string(),
+            });
+        }
 
         if let (Some(_), Some(l)) = (
             find(doc, "initial.angular_velocity"),
@@ -77,59 +94,43 @@ impl Preset {
             "shown in the TUI and by `presets list`",
         );
 
-        let d = &self.die;
-        line("\n[die]", String::new(), "");
-        line(
-            "half_size",
-            float(d.half_size),
-            "cm, the paper's \"radius\" (side = 2 × half_size)",
-        );
-        line("corner_mass", float(d.corner_mass), "g, each of the 8 corners");
+        let setup = Setup {
+            params: self.params(),
+            initial: self.initial,
+            random: self.random,
+        };
+        for role in Role::ALL {
+            line(&format!("\n[{}]", role.section()), String::new(), role.comment());
+            for spec in registry::ALL.iter().filter(|s| s.role == role) {
+                // The two ways of stating the spin are written together, as one choice.
+                if **spec == ANGULAR_VELOCITY {
+                    self.spin_lines(&mut line, &vector);
+                    continue;
+                }
+                if **spec == ANGULAR_MOMENTUM {
+                    continue;
+                }
+                let name = spec.key().rsplit('.').next().unwrap_or_default();
+                let value = match (spec.read)(&setup) {
+                    Value::Number(x) => float(x),
+                    Value::Vector(v) => vector(&v),
+                    Value::Range(r) => vector(&r),
+                    Value::Name(n) => string(n),
+                    Value::Seed(n) => n.to_string(),
+                    Value::Flag(b) => b.to_string(),
+                    Value::Absent => continue,
+                };
+                line(name, value, spec.comment);
+            }
+        }
+        out
+    }
 
-        let g = &self.ground;
-        line("\n[ground]", String::new(), "");
-        line("stiffness", float(g.stiffness), "dyn/cm per corner (k)");
-        line("damping", float(g.damping), "s/cm (γ)");
-        line("friction", float(g.friction), "kinetic coefficient (μ)");
-        line(
-            "friction_law",
-            string(g.friction_law.name()),
-            "\"per-corner\" (paper, eq. 15) or \"whole-die-norm\" (authors' program)",
-        );
-
-        line("\n[world]", String::new(), "");
-        line("gravity", float(self.world.gravity), "cm/s², downwards");
-
-        let i = &self.integrator;
-        line("\n[integrator]", String::new(), "");
-        line("dt", float(i.dt), "s");
-        line(
-            "stop_energy_fraction",
-            float(i.stop_energy_fraction),
-            "a roll ends below this share of the edge-tipping energy",
-        );
-        line(
-            "max_time",
-            float(i.max_time),
-            "s of simulated time; past it the roll \"did not settle\"",
-        );
-        line(
-            "stop_energy",
-            string(i.stop_energy.name()),
-            "\"rigid-body\" (MODEL.md) or \"point-masses\" (the authors' program)",
-        );
-
+    /// The spin, stated once; the other form is shown commented out, converted, so a reader
+    /// sees both and can switch by moving the `#`.
+    fn spin_lines(&self, line: &mut impl FnMut(&str, String, &str), vector: &dyn Fn(&[f64]) -> String) {
         let ic = &self.initial;
         let inertia = self.params().inertia();
-        line(
-            "\n[initial]",
-            String::new(),
-            "the initial condition of \"the\" roll",
-        );
-        line("height", float(ic.height), "cm, centre of mass above the ground");
-        line("velocity", vector(&ic.velocity), "cm/s, centre of mass");
-        // The spin is stated once; the other form is shown commented out, converted, so a
-        // reader sees both and can switch by moving the `#`.
         let omega = ic.angular_velocity_for(inertia);
         let momentum = ic.angular_momentum_for(inertia);
         let (w, l) = (vector(omega.as_slice()), vector(momentum.as_slice()));
@@ -141,43 +142,13 @@ impl Preset {
             );
             line("angular_momentum", l, "g·cm²/s, world frame (L = I·ω)");
         } else {
-            line("angular_velocity", w, "rad/s, world frame");
+            line("angular_velocity", w, ANGULAR_VELOCITY.comment);
             line(
                 "# angular_momentum",
                 l,
                 "g·cm²/s: the same spin stated as L = I·ω (give one of the two)",
             );
         }
-        line(
-            "orientation",
-            vector(&ic.orientation),
-            "degrees: yaw (z), pitch (y), roll (x), applied in that order",
-        );
-
-        let r = &self.random;
-        line(
-            "\n[random]",
-            String::new(),
-            "how random rolls are drawn (batch runs, \"random roll\")",
-        );
-        line("seed", r.seed.to_string(), "");
-        line("height", vector(&r.height), "cm, uniform in [low, high]");
-        line(
-            "velocity",
-            vector(&r.velocity),
-            "cm/s, each component uniform in [low, high]",
-        );
-        line(
-            "angular_velocity",
-            vector(&r.angular_velocity),
-            "rad/s, each component uniform in [low, high]",
-        );
-        line(
-            "random_orientation",
-            r.random_orientation.to_string(),
-            "true: orientation uniform over all rotations",
-        );
-        out
     }
 
     /// This preset as [`Preset::to_toml`] writes it: a spin given as angular momentum makes
@@ -253,10 +224,14 @@ fn syntax_error(origin: &str, text: &str, e: &toml::de::Error) -> PresetError {
         Some(span) => Location::at(origin, text, span.start),
         None => Location::file(origin),
     };
-    PresetError::Syntax {
-        at,
-        message: e.message().trim().to_string(),
+    let mut message = e.message().trim().to_string();
+    // toml says "duplicate key" and points at it: name it, the way every other error does.
+    if message == "duplicate key"
+        && let Some(key) = e.span().and_then(|span| text.get(span))
+    {
+        message = format!("duplicate key `{}`", key.trim());
     }
+    PresetError::Syntax { at, message }
 }
 
 /// A newer format is refused before anything else is read: its keys may mean other things.
@@ -406,11 +381,14 @@ mod tests {
             "dir/p.toml:3:3: `initial.velocity.y` = 20000 is outside the allowed range -10000 to 10000 cm/s"
         );
         let e = err("[random]\nheight = [5.0, 2.0]\n");
-        assert!(
-            e.to_string()
-                .starts_with("dir/p.toml:2:11: `random.height[0]` = 5"),
-            "{e}"
+        assert_eq!(
+            e.to_string(),
+            "dir/p.toml:2:1: `random.height` = [5, 2]: the low end is above the high end"
         );
+        let e = err("[ground]\nfriction = 0.5\nfriction = 0.6\n");
+        assert_eq!(e.to_string(), "dir/p.toml:3:1: duplicate key `friction`");
+        let e = err("[initial]\norientation = [400.0, 0.0, 0.0]\n");
+        assert!(e.to_string().contains("`initial.orientation.yaw` = 400"), "{e}");
         let e = err("format = 0\n");
         assert_eq!(
             e.to_string(),

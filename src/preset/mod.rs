@@ -1,4 +1,4 @@
-//! Presets: named TOML files that capture a whole setup (`../shared/design/PRESETS.md`).
+//! Presets: named TOML files that capture a whole setup (docs/presets.md).
 //!
 //! - [`Preset`] is one setup; [`Preset::from_toml_str`] and [`Preset::to_toml`] read and write
 //!   the file format, [`Preset::with_overrides`] applies `--set KEY=VALUE`.
@@ -14,6 +14,7 @@ mod store;
 
 pub use error::{Location, PresetError};
 pub use shipped::{DEFAULT_NAME, SHIPPED, shipped_text};
+pub(crate) use store::read_regular_file;
 pub use store::{Entry, PRESETS_ENV, Source, Store, check_name, load_file};
 
 use crate::experiment::RandomRanges;
@@ -24,7 +25,7 @@ use serde::{Deserialize, Serialize};
 pub const FORMAT: u32 = 1;
 
 /// The `format` key's allowed values: a file from a newer program is refused.
-pub const FORMAT_LIMITS: Limits = Limits {
+pub(crate) const FORMAT_LIMITS: Limits = Limits {
     key: "format",
     unit: "",
     min: 1.0,
@@ -81,6 +82,17 @@ impl Preset {
             world: self.world,
             integrator: self.integrator,
         }
+    }
+
+    /// Takes the model parameters of `params` into this setup.
+    pub(crate) fn set_params(&mut self, params: Params) {
+        let Params {
+            die,
+            ground,
+            world,
+            integrator,
+        } = params;
+        (self.die, self.ground, self.world, self.integrator) = (die, ground, world, integrator);
     }
 
     /// Checks every value against its allowed range.

@@ -1,8 +1,8 @@
-//! Where presets are found and saved (PRESETS.md): a path given directly; else the user's
+//! Where presets are found and saved (docs/presets.md): a path given directly; else the user's
 //! preset folder; else the shipped set. The user's folder wins on a name clash.
 
 use super::{Preset, PresetError, shipped};
-use std::io::Write;
+use crate::output::{Output, OutputError};
 use std::path::{Path, PathBuf};
 
 /// Overrides the user's preset folder (otherwise the platform's data directory + `presets/`).
@@ -21,7 +21,7 @@ pub enum Source {
 
 impl Source {
     /// `path`, `user` or `shipped`, as `presets list` shows it.
-    pub fn kind(&self) -> &'static str {
+    pub(crate) fn kind(&self) -> &'static str {
         match self {
             Source::Path(_) => "path",
             Source::User(_) => "user",
@@ -62,7 +62,7 @@ impl Store {
     }
 
     /// The user's preset folder (it may not exist yet: saving creates it).
-    pub fn user_dir(&self) -> Result<&Path, PresetError> {
+    pub(crate) fn user_dir(&self) -> Result<&Path, PresetError> {
         self.user_dir.as_deref().ok_or(PresetError::NoUserFolder)
     }
 
@@ -136,7 +136,7 @@ impl Store {
     }
 
     /// Where the user preset `name` is (or would be) saved.
-    pub fn path_of(&self, name: &str) -> Result<PathBuf, PresetError> {
+    pub(crate) fn path_of(&self, name: &str) -> Result<PathBuf, PresetError> {
         check_name(name)?;
         Ok(self.user_dir()?.join(format!("{name}.toml")))
     }
@@ -169,14 +169,32 @@ impl Store {
             });
         }
         let dir = self.user_dir()?;
+        if dir.exists() && !dir.is_dir() {
+            return Err(PresetError::Io {
+                path: dir.to_path_buf(),
+                message: format!(
+                    "is a file, but the user's presets are saved in a folder there; move it, or set {PRESETS_ENV} \
+                     to another folder"
+                ),
+            });
+        }
         std::fs::create_dir_all(dir).map_err(|e| PresetError::io(dir, &e))?;
-        write_atomic(&path, &text, replace).map_err(|e| match e.kind() {
-            std::io::ErrorKind::AlreadyExists => PresetError::Exists {
-                name: preset.name.clone(),
-                path: path.clone(),
-            },
-            _ => PresetError::io(&path, &e),
-        })?;
+        Output::check(&path, &["toml"], replace)
+            .and_then(|out| out.write_bytes(text.as_bytes()))
+            .map_err(|e| match e {
+                OutputError::Exists { .. } => PresetError::Exists {
+                    name: preset.name.clone(),
+                    path: path.clone(),
+                },
+                OutputError::Write { message, .. } => PresetError::Io {
+                    path: path.clone(),
+                    message,
+                },
+                e => PresetError::Io {
+                    path: path.clone(),
+                    message: e.to_string(),
+                },
+            })?;
         Ok(path)
     }
 
@@ -185,7 +203,7 @@ impl Store {
     }
 }
 
-/// PRESETS.md: a `/`, a `.toml` ending, or an existing file mean a path, not a name.
+/// A `/`, a `.toml` ending, or an existing file mean a path, not a name.
 fn is_path(spec: &str) -> bool {
     spec.contains('/')
         || spec.contains(std::path::MAIN_SEPARATOR)
@@ -218,9 +236,38 @@ pub fn check_name(name: &str) -> Result<(), PresetError> {
     Ok(())
 }
 
+/// The largest preset file read, bytes: a whole setup takes a few kB.
+pub(crate) const MAX_PRESET_BYTES: u64 = 1024 * 1024;
+
+/// The text of the regular file at `path`, at most `max_bytes` long. Devices, pipes and
+/// folders are refused without being opened, so nothing blocks (a FIFO) or reads forever
+/// (`/dev/zero`).
+pub(crate) fn read_regular_file(path: &Path, max_bytes: u64) -> Result<String, String> {
+    use std::io::Read;
+    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    if !meta.is_file() {
+        return Err("not a regular file (a folder, device or pipe): skipped".to_string());
+    }
+    let too_big = || format!("larger than the {} bytes allowed", max_bytes);
+    if meta.len() > max_bytes {
+        return Err(too_big());
+    }
+    let mut text = String::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(max_bytes + 1).read_to_string(&mut text))
+        .map_err(|e| e.to_string())?;
+    if text.len() as u64 > max_bytes {
+        return Err(too_big());
+    }
+    Ok(text)
+}
+
 /// Reads a preset file; errors name the path. A preset without a `name` takes its file stem.
 pub fn load_file(path: &Path) -> Result<Preset, PresetError> {
-    let text = std::fs::read_to_string(path).map_err(|e| PresetError::io(path, &e))?;
+    let text = read_regular_file(path, MAX_PRESET_BYTES).map_err(|message| PresetError::Io {
+        path: path.to_path_buf(),
+        message,
+    })?;
     let mut preset = Preset::from_toml_str(&text, &path.display().to_string())?;
     if preset.name.is_empty() {
         preset.name = path
@@ -229,29 +276,6 @@ pub fn load_file(path: &Path) -> Result<Preset, PresetError> {
             .unwrap_or_default();
     }
     Ok(preset)
-}
-
-/// A temporary file in the target's folder, synced, then renamed over (or, without
-/// `replace`, beside) the target, so a crash leaves the old file or the new one, never half.
-fn write_atomic(path: &Path, text: &str, replace: bool) -> std::io::Result<()> {
-    let dir = path.parent().unwrap_or(Path::new("."));
-    let mut tmp = tempfile::NamedTempFile::new_in(dir)?;
-    tmp.write_all(text.as_bytes())?;
-    tmp.as_file().sync_all()?;
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        // Temp files are created 0600; a preset is meant to be shared.
-        tmp.as_file()
-            .set_permissions(std::fs::Permissions::from_mode(0o644))?;
-    }
-    let persisted = if replace {
-        tmp.persist(path)
-    } else {
-        tmp.persist_noclobber(path)
-    };
-    // On failure the error holds the temp file; dropping it deletes it.
-    persisted.map(drop).map_err(|e| e.error)
 }
 
 #[cfg(test)]
@@ -279,6 +303,32 @@ mod tests {
         assert!(is_path("x.toml"));
         assert!(!is_path("gentle-drop"));
         assert!(!is_path(".."));
+    }
+
+    #[test]
+    fn a_file_where_the_folder_should_be_is_named() {
+        let root = tempfile::tempdir().unwrap();
+        let dir = root.path().join("presets");
+        std::fs::write(&dir, "not a folder").unwrap();
+        let preset = Preset {
+            name: "mine".to_string(),
+            ..Preset::default()
+        };
+        let e = Store::new(Some(dir.clone())).save(&preset, false).unwrap_err();
+        assert!(
+            e.to_string().starts_with(&format!(
+                "{}: is a file, but the user's presets are saved in a folder",
+                dir.display()
+            )),
+            "{e}"
+        );
+        let huge = root.path().join("huge.toml");
+        std::fs::write(&huge, format!("description = \"{}\"\n", "x".repeat(2 << 20))).unwrap();
+        let e = load_file(&huge).unwrap_err();
+        assert!(
+            e.to_string().ends_with("larger than the 1048576 bytes allowed"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -3,12 +3,14 @@
 
 use super::camera::Camera;
 use super::dialogs::Dialog;
+use super::format::{fmt_num, fmt_range};
+use super::layout::{Areas, param_row_at, screen_layout};
 use super::map::{self, MapView, View};
-use super::render::{Areas, fmt_num, fmt_range, param_row_at, screen_layout};
+use super::param::{Param, all};
 use super::theme::Theme;
+use crate::experiment::trace::{ExportProgress, human_bytes};
 use crate::physics::{InitialCondition, Params};
 use crate::preset::{Preset, Store};
-use crate::worker::param::{ALL, Param};
 use crate::worker::{
     BatchProgress, Command, EnergySample, MapUpdate, OutcomeTable, SeparationSample, Snapshot, Speed,
 };
@@ -19,7 +21,7 @@ use ratatui::layout::{Position, Rect};
 use ratatui::symbols::Marker;
 
 /// Rolls in one batch (`b`).
-pub const BATCH_ROLLS: u64 = 10_000;
+pub(crate) const BATCH_ROLLS: u64 = 10_000;
 
 /// What the event loop hands to [`update`]: terminal input or a worker snapshot.
 #[derive(Debug, Clone)]
@@ -28,6 +30,8 @@ pub enum Msg {
     Worker(Box<Snapshot>),
     /// A basin map from the worker's map thread.
     Map(Box<MapUpdate>),
+    /// A signal that ends the explorer (the event loop handles it before `update`).
+    Signal(i32),
 }
 
 impl From<Snapshot> for Msg {
@@ -44,10 +48,10 @@ impl From<MapUpdate> for Msg {
 
 /// A value being typed in (Enter on a parameter).
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct Editor {
-    pub text: String,
+pub(crate) struct Editor {
+    pub(crate) text: String,
     /// Why the last Enter was refused.
-    pub error: Option<String>,
+    pub(crate) error: Option<String>,
 }
 
 /// What a key did to a number being typed.
@@ -89,7 +93,7 @@ impl Editor {
 
 /// How the die is drawn: Braille dots, or plain ASCII for fonts without Braille.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Drawing {
+pub(crate) enum Drawing {
     #[default]
     Braille,
     Ascii,
@@ -97,7 +101,7 @@ pub enum Drawing {
 
 impl Drawing {
     /// The marker that draws the plots' lines.
-    pub fn line_marker(self) -> Marker {
+    pub(crate) fn line_marker(self) -> Marker {
         match self {
             Drawing::Braille => Marker::Braille,
             Drawing::Ascii => Marker::Custom('.'),
@@ -108,48 +112,50 @@ impl Drawing {
 #[derive(Debug, Clone)]
 pub struct App {
     /// The newest worker snapshot (its history already moved into `history`).
-    pub live: Snapshot,
+    pub(crate) live: Snapshot,
     /// The setup as the user last set it (ahead of `live` until the worker catches up).
-    pub params: Params,
-    pub initial: InitialCondition,
-    pub speed: Speed,
+    pub(crate) params: Params,
+    pub(crate) initial: InitialCondition,
+    pub(crate) speed: Speed,
     /// Energy samples of the roll on screen.
-    pub history: Vec<EnergySample>,
-    pub table: OutcomeTable,
-    pub batch: Option<BatchProgress>,
-    pub batch_rolls: u64,
-    pub notice: Option<String>,
-    /// Index into [`ALL`].
-    pub selected: usize,
-    pub editing: Option<Editor>,
-    pub help: bool,
-    pub help_scroll: u16,
-    pub log_scale: bool,
+    pub(crate) history: Vec<EnergySample>,
+    pub(crate) table: OutcomeTable,
+    pub(crate) batch: Option<BatchProgress>,
+    /// The roll's export, while it runs.
+    pub(crate) export: Option<ExportProgress>,
+    pub(crate) batch_rolls: u64,
+    pub(crate) notice: Option<String>,
+    /// Index into [`all`](super::param::all).
+    pub(crate) selected: usize,
+    pub(crate) editing: Option<Editor>,
+    pub(crate) help: bool,
+    pub(crate) help_scroll: u16,
+    pub(crate) log_scale: bool,
     /// Arrows for ω, L, v and the contact forces on the die (`v`).
-    pub vectors: bool,
+    pub(crate) vectors: bool,
     /// Whether a chaos twin rolls beside the die (`T`), and its ε.
-    pub twin: bool,
-    pub epsilon: f64,
+    pub(crate) twin: bool,
+    pub(crate) epsilon: f64,
     /// ε being typed in (`E`).
-    pub epsilon_editor: Option<Editor>,
+    pub(crate) epsilon_editor: Option<Editor>,
     /// The twin's separation samples of the roll on screen.
-    pub twin_history: Vec<SeparationSample>,
+    pub(crate) twin_history: Vec<SeparationSample>,
     /// The preset the setup was loaded from (or last saved as).
-    pub preset: Preset,
+    pub(crate) preset: Preset,
     /// Where presets are listed from and saved to.
-    pub store: Store,
+    pub(crate) store: Store,
     /// The preset picker or the save dialog, when open.
-    pub dialog: Option<Dialog>,
-    pub drawing: Drawing,
-    pub camera: Camera,
-    pub theme: Theme,
+    pub(crate) dialog: Option<Dialog>,
+    pub(crate) drawing: Drawing,
+    pub(crate) camera: Camera,
+    pub(crate) theme: Theme,
     /// Frames drawn per second, measured by the event loop.
-    pub fps: Option<f64>,
+    pub(crate) fps: Option<f64>,
     /// The terminal's size, for mouse hit tests.
-    pub screen: Rect,
-    pub quit: bool,
-    pub view: View,
-    pub map: MapView,
+    pub(crate) screen: Rect,
+    pub(crate) quit: bool,
+    pub(crate) view: View,
+    pub(crate) map: MapView,
     commands_sent: u64,
     /// Last mouse position while dragging the die.
     drag: Option<(u16, u16)>,
@@ -167,6 +173,7 @@ impl App {
             speed: first.speed,
             table: first.table.take().unwrap_or_default(),
             batch: first.batch,
+            export: first.export,
             notice: first.notice.take(),
             live: first,
             history,
@@ -197,13 +204,13 @@ impl App {
         }
     }
 
-    pub fn selected_param(&self) -> Param {
-        ALL[self.selected.min(ALL.len() - 1)]
+    pub(crate) fn selected_param(&self) -> Param {
+        all()[self.selected.min(all().len() - 1)]
     }
 
     /// Whether frames should keep coming without input (a moving roll or a running batch).
     pub fn animating(&self) -> bool {
-        self.live.playing || self.batch.is_some()
+        self.live.playing || self.batch.is_some() || self.export.is_some()
     }
 
     fn absorb(&mut self, mut s: Snapshot) {
@@ -231,7 +238,28 @@ impl App {
             self.speed = s.speed;
         }
         self.batch = s.batch;
+        self.export = s.export;
         self.live = s;
+    }
+
+    /// What the status line says while the roll is exported: its size first, then how far.
+    pub(crate) fn export_status(&self) -> Option<String> {
+        let p = self.export?;
+        let share = 100.0 * p.steps_done as f64 / p.steps_total.max(1) as f64;
+        Some(if p.writing {
+            format!(
+                "exporting the roll: {share:.0}% of {} rows, {} · e cancels",
+                p.steps_total + 1,
+                human_bytes(p.bytes)
+            )
+        } else if p.bytes == 0 {
+            "exporting the roll: measuring its length · e cancels".to_string()
+        } else {
+            format!(
+                "exporting the roll: measuring its length, {share:.0}% of the time cap (at most {}) · e cancels",
+                human_bytes(p.bytes)
+            )
+        })
     }
 
     pub(crate) fn send(&mut self, out: &mut Vec<Command>, c: Command) {
@@ -257,7 +285,7 @@ impl App {
                 )
             }
         })?;
-        self.send(out, Command::SetParam(p, value));
+        self.send(out, Command::SetParam(p.scan_key(), value));
         Ok(())
     }
 
@@ -271,7 +299,7 @@ impl App {
     }
 
     fn select(&mut self, delta: isize) {
-        self.selected = (self.selected as isize + delta).clamp(0, ALL.len() as isize - 1) as usize;
+        self.selected = (self.selected as isize + delta).clamp(0, all().len() as isize - 1) as usize;
     }
 
     fn set_speed(&mut self, out: &mut Vec<Command>, speed: Speed) {
@@ -304,6 +332,7 @@ pub fn update(app: &mut App, msg: Msg) -> Vec<Command> {
         Msg::Input(Event::Key(key)) if key.kind != KeyEventKind::Release => on_key(app, key, &mut out),
         Msg::Input(Event::Mouse(m)) => on_mouse(app, m.kind, m.column, m.row, &mut out),
         Msg::Input(_) => {}
+        Msg::Signal(_) => app.quit(&mut out),
     }
     out
 }
@@ -337,7 +366,7 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
         }
         return;
     }
-    if app.view == View::Map && map::on_key(app, key, out) {
+    if app.view == View::Map && super::map_keys::on_key(app, key, out) {
         return;
     }
     if super::twin::on_key(app, key, out) {
@@ -368,7 +397,7 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
         KeyCode::Up | KeyCode::Char('k') => app.select(-1),
         KeyCode::Down | KeyCode::Char('j') => app.select(1),
         KeyCode::Home | KeyCode::Char('g') => app.selected = 0,
-        KeyCode::End | KeyCode::Char('G') => app.selected = ALL.len() - 1,
+        KeyCode::End | KeyCode::Char('G') => app.selected = all().len() - 1,
         KeyCode::Left | KeyCode::Char('h') => app.nudge(out, -1, coarse),
         KeyCode::Right | KeyCode::Char('l') => app.nudge(out, 1, coarse),
         KeyCode::Char('H') => app.nudge(out, -1, true),
@@ -379,7 +408,14 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
             app.help_scroll = 0;
         }
         KeyCode::Char('y') => app.log_scale = !app.log_scale,
-        KeyCode::Char('e') => app.send(out, Command::Export(".".into())),
+        KeyCode::Char('e') => {
+            let c = if app.export.is_some() {
+                Command::ExportCancel
+            } else {
+                Command::Export(".".into())
+            };
+            app.send(out, c);
+        }
         KeyCode::Char('v') => app.vectors = !app.vectors,
         KeyCode::Char('t') => {
             app.theme = app.theme.next();

@@ -2,8 +2,8 @@
 
 use nalgebra::Vector3;
 
-/// Corner indices (0-based) of faces 1..6 (MODEL.md, "Faces").
-pub const FACE_CORNERS: [[usize; 4]; 6] = [
+/// Corner indices (0-based) of faces 1..6 (docs/model.md, "Faces").
+pub(crate) const FACE_CORNERS: [[usize; 4]; 6] = [
     [0, 1, 2, 3],
     [0, 1, 4, 5],
     [0, 2, 4, 6],
@@ -13,7 +13,7 @@ pub const FACE_CORNERS: [[usize; 4]; 6] = [
 ];
 
 /// The 12 edges: corners whose (x, y, z) signs differ in one place (corner k−1 has bits x y z).
-pub const EDGES: [(usize, usize); 12] = [
+pub(crate) const EDGES: [(usize, usize); 12] = [
     (0, 1),
     (2, 3),
     (4, 5),
@@ -30,13 +30,13 @@ pub const EDGES: [(usize, usize); 12] = [
 
 /// An orthographic camera circling the die: yaw about the vertical, pitch looking down.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Camera {
+pub(crate) struct Camera {
     /// °, turn about the vertical axis.
-    pub yaw_deg: f64,
+    pub(crate) yaw_deg: f64,
     /// °, elevation: 0 looks level, 90 straight down.
-    pub pitch_deg: f64,
+    pub(crate) pitch_deg: f64,
     /// Zoom steps; each makes the view 1.25 times closer.
-    pub zoom: i32,
+    pub(crate) zoom: i32,
 }
 
 impl Default for Camera {
@@ -51,35 +51,35 @@ impl Default for Camera {
 
 /// A point on the screen plane, cm, with its distance from the viewer (larger is farther).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Projected {
-    pub x: f64,
-    pub y: f64,
-    pub depth: f64,
+pub(crate) struct Projected {
+    pub(crate) x: f64,
+    pub(crate) y: f64,
+    pub(crate) depth: f64,
 }
 
 impl Camera {
-    pub const MIN_PITCH: f64 = -10.0;
-    pub const MAX_PITCH: f64 = 89.0;
-    pub const MIN_ZOOM: i32 = -8;
-    pub const MAX_ZOOM: i32 = 8;
+    pub(crate) const MIN_PITCH: f64 = -10.0;
+    pub(crate) const MAX_PITCH: f64 = 89.0;
+    pub(crate) const MIN_ZOOM: i32 = -8;
+    pub(crate) const MAX_ZOOM: i32 = 8;
 
-    pub fn orbit(&mut self, d_yaw: f64, d_pitch: f64) {
+    pub(crate) fn orbit(&mut self, d_yaw: f64, d_pitch: f64) {
         self.yaw_deg = (self.yaw_deg + d_yaw).rem_euclid(360.0);
         self.pitch_deg = (self.pitch_deg + d_pitch).clamp(Self::MIN_PITCH, Self::MAX_PITCH);
     }
 
-    pub fn zoom_by(&mut self, steps: i32) {
+    pub(crate) fn zoom_by(&mut self, steps: i32) {
         self.zoom = (self.zoom + steps).clamp(Self::MIN_ZOOM, Self::MAX_ZOOM);
     }
 
     /// cm of world shown across the view for a die of half size `a` cm.
-    pub fn width_cm(&self, half_size: f64) -> f64 {
+    pub(crate) fn width_cm(&self, half_size: f64) -> f64 {
         9.0 * half_size * 1.25f64.powi(-self.zoom)
     }
 
     /// Projects `p` with the view's horizontal origin at `focus` (the camera follows the die
     /// across the table; heights stay absolute so the ground is z = 0 on screen too).
-    pub fn project(&self, p: &Vector3<f64>, focus: &Vector3<f64>) -> Projected {
+    pub(crate) fn project(&self, p: &Vector3<f64>, focus: &Vector3<f64>) -> Projected {
         let (sy, cy) = self.yaw_deg.to_radians().sin_cos();
         let (sp, cp) = self.pitch_deg.to_radians().sin_cos();
         let (dx, dy, z) = (p.x - focus.x, p.y - focus.y, p.z);
@@ -93,7 +93,7 @@ impl Camera {
     }
 
     /// How directly a world direction faces the viewer (1 straight at them, < 0 away).
-    pub fn facing(&self, direction: &Vector3<f64>) -> f64 {
+    pub(crate) fn facing(&self, direction: &Vector3<f64>) -> f64 {
         let n = direction.normalize();
         if !n.iter().all(|c| c.is_finite()) {
             return -1.0;
@@ -103,11 +103,11 @@ impl Camera {
 }
 
 /// Outward normal of face `f` (0-based) of a cube with these corners.
-pub fn face_normal(corners: &[Vector3<f64>; 8], centre: &Vector3<f64>, f: usize) -> Vector3<f64> {
+pub(crate) fn face_normal(corners: &[Vector3<f64>; 8], centre: &Vector3<f64>, f: usize) -> Vector3<f64> {
     face_centre(corners, f) - centre
 }
 
-pub fn face_centre(corners: &[Vector3<f64>; 8], f: usize) -> Vector3<f64> {
+pub(crate) fn face_centre(corners: &[Vector3<f64>; 8], f: usize) -> Vector3<f64> {
     FACE_CORNERS[f].iter().map(|&k| corners[k]).sum::<Vector3<f64>>() / 4.0
 }
 
@@ -119,7 +119,7 @@ mod tests {
     #[test]
     fn faces_and_edges_follow_the_papers_numbering() {
         let c = body_corner_offsets(1.0);
-        // face 4 is z = +a, face 1 is x = −a (MODEL.md).
+        // face 4 is z = +a, face 1 is x = −a (docs/model.md).
         assert!(FACE_CORNERS[3].iter().all(|&k| c[k].z > 0.0));
         assert!(FACE_CORNERS[0].iter().all(|&k| c[k].x < 0.0));
         for (a, b) in EDGES {

@@ -2,8 +2,8 @@
 //! themes) from deterministic states, built with the helpers of `tests.rs`.
 
 use super::app::App;
+use super::layout::screen_layout;
 use super::ledger::{bar_rows, render_ledger};
-use super::render::screen_layout;
 use super::tests::{mid_impact, settled, start};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
@@ -17,7 +17,7 @@ fn panel(app: &App, area: Rect, draw: fn(&App, Rect, &mut ratatui::Frame)) -> Te
     t
 }
 
-fn full() -> super::render::Areas {
+fn full() -> super::layout::Areas {
     screen_layout(Rect::new(0, 0, 120, 36)).expect("full size")
 }
 
@@ -318,9 +318,9 @@ mod presets {
     use crate::preset::{Preset, Store};
     use crate::tui::app::{Msg, update};
     use crate::tui::dialogs::{Dialog, modified};
+    use crate::tui::param::Param;
     use crate::tui::tests::Scene;
     use crate::worker::Command;
-    use crate::worker::param::Param;
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 
     fn press(app: &mut App, code: KeyCode) -> Vec<Command> {
@@ -416,11 +416,11 @@ mod presets {
     fn header_marks_a_setup_that_differs_from_its_preset() {
         let mut s = start();
         assert!(!screen(&s.app, 120, 36).contains("(changed)"));
-        s.command(Command::SetParam(Param::Friction, 0.5));
+        s.command(Command::SetParam(Param::named("ground.friction").scan_key(), 0.5));
         assert!(modified(&s.app));
         assert!(screen(&s.app, 120, 36).starts_with("\" dicesim  paper (changed) ·"));
         assert!(screen(&s.app, 80, 24).starts_with("\"paper* │"));
-        s.command(Command::SetParam(Param::Friction, 1.2));
+        s.command(Command::SetParam(Param::named("ground.friction").scan_key(), 1.2));
         assert!(!modified(&s.app), "back at the preset's value");
     }
 
@@ -445,7 +445,7 @@ mod presets {
         let (dir, store) = folder();
         let mut s = start();
         s.app.store = store.clone();
-        s.command(Command::SetParam(Param::Friction, 0.4));
+        s.command(Command::SetParam(Param::named("ground.friction").scan_key(), 0.4));
         s.key(KeyCode::Char('s'));
         type_text(&mut s.app, "lab-2");
         press(&mut s.app, KeyCode::Enter);
@@ -523,6 +523,9 @@ mod export {
         let dir = tempfile::tempdir().expect("temp dir");
         let mut s = mid_impact();
         s.command(Command::Export(dir.path().to_path_buf()));
+        assert!(s.app.export.is_some(), "the export runs off the worker's thread");
+        s.engine.run_export_here();
+        s.sync();
         let csv = dir.path().join("dicesim-paper-preset-roll.csv");
         let png = dir.path().join("dicesim-paper-preset-roll.png");
         let notice = s.app.notice.clone().expect("the status line says where");
@@ -533,14 +536,15 @@ mod export {
         let mut sim = Simulation::new(&s.app.params, &s.app.initial).expect("valid");
         let first = row(&sim);
         let outcome = sim.run_to_end();
-        assert_eq!(lines[0], header());
-        assert_eq!(lines[1], first);
+        assert_eq!(lines[0], header().join(","));
+        assert_eq!(lines[1], first.join(","));
         assert_eq!(lines.len() as u64, outcome.steps + 2);
-        assert_eq!(*lines.last().expect("rows"), row(&sim));
+        assert_eq!(*lines.last().expect("rows"), row(&sim).join(","));
         let image = std::fs::read(&png).expect("png written");
         assert!(image.starts_with(b"\x89PNG\r\n\x1a\n") && image.len() > 10_000);
         // A second export replaces nothing.
         s.command(Command::Export(dir.path().to_path_buf()));
+        s.engine.run_export_here();
         assert!(dir.path().join("dicesim-paper-preset-roll-2.csv").is_file());
         assert!(dir.path().join("dicesim-paper-preset-roll-2.png").is_file());
         assert_eq!(std::fs::read_to_string(&csv).expect("kept"), text);
@@ -554,6 +558,63 @@ mod export {
         assert!(
             notice.starts_with("cannot export the roll: /nonexistent/dicesim-export/"),
             "{notice}"
+        );
+        assert!(notice.ends_with("does not exist"), "{notice}");
+        assert!(s.app.export.is_none(), "nothing starts");
+    }
+
+    #[test]
+    fn a_preset_name_never_leads_the_export_out_of_its_folder() {
+        let root = tempfile::tempdir().expect("temp dir");
+        let dir = root.path().join("a").join("b");
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut s = start();
+        let mut preset = s.engine.preset().clone();
+        preset.name = "x/../../escaped".to_string();
+        s.command(Command::LoadPreset(Box::new(preset)));
+        s.command(Command::Export(dir.clone()));
+        s.engine.run_export_here();
+        s.sync();
+        let written: Vec<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        assert_eq!(written.len(), 2, "{written:?}");
+        assert!(
+            written.contains(&"dicesim-x_______escaped-preset-roll.csv".to_string()),
+            "{written:?}"
+        );
+        assert!(!root.path().join("escaped-preset-roll.csv").exists());
+        assert_eq!(
+            std::fs::read_dir(root.path()).unwrap().count(),
+            1,
+            "only a/ in the root"
+        );
+    }
+
+    #[test]
+    fn a_trace_above_the_limit_is_refused_with_the_trace_every_alternative() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let mut s = start();
+        // Δt = 1e-5 with no friction: millions of rows, gigabytes of trace.
+        s.command(Command::SetParam(
+            crate::tui::param::Param::named("ground.friction").scan_key(),
+            0.0,
+        ));
+        s.command(Command::SetParam(
+            crate::tui::param::Param::named("integrator.dt").scan_key(),
+            1e-5,
+        ));
+        s.command(Command::Export(dir.path().to_path_buf()));
+        s.engine.run_export_here();
+        s.sync();
+        let notice = s.app.notice.clone().expect("a notice");
+        assert!(notice.contains("rows) is over the 268.4 MB limit"), "{notice}");
+        assert!(notice.contains("`dicesim trace --every "), "{notice}");
+        assert_eq!(
+            std::fs::read_dir(dir.path()).unwrap().count(),
+            0,
+            "nothing written"
         );
     }
 }
@@ -711,12 +772,11 @@ mod sizes {
         app
     }
 
-    #[test]
-    fn every_classroom_view_draws_at_every_size() {
-        let twin = super::twin::twin_after(500).app;
+    fn classroom_views() -> [App; 6] {
+        let twin = twin::twin_after(500).app;
         let mut editing = with_keys(twin.clone(), &[KeyCode::Char('E'), KeyCode::Char('1')]);
         editing.vectors = true;
-        let states = [
+        [
             with_keys(mid_impact().app, &[KeyCode::Char('v'), KeyCode::Char('t')]),
             twin,
             editing,
@@ -731,14 +791,30 @@ mod sizes {
                 a.vectors = true;
                 a
             },
-        ];
-        for app in &states {
-            for width in (1..=200).step_by(3) {
-                for height in (1..=60).step_by(2) {
-                    let mut t = Terminal::new(TestBackend::new(width, height)).expect("test backend");
-                    t.draw(|f| crate::tui::render(app, f)).expect("draw");
-                }
+        ]
+    }
+
+    fn draw_at(app: &App, width: u16, height: u16) {
+        let mut t = Terminal::new(TestBackend::new(width, height)).expect("test backend");
+        t.draw(|f| crate::tui::render(app, f)).expect("draw");
+    }
+
+    #[test]
+    fn every_classroom_view_draws_at_every_boundary_size() {
+        for app in &classroom_views() {
+            for (width, height) in super::super::tests::boundary_sizes() {
+                draw_at(app, width, height);
             }
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200))]
+
+        #[test]
+        fn classroom_views_draw_at_random_sizes(which in 0usize..6, width in 1u16..=200, height in 1u16..=60) {
+            static VIEWS: std::sync::OnceLock<[App; 6]> = std::sync::OnceLock::new();
+            draw_at(&VIEWS.get_or_init(classroom_views)[which], width, height);
         }
     }
 }

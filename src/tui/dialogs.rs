@@ -5,6 +5,7 @@
 //! the picker opens, writing a file when a save is confirmed.
 
 use super::app::App;
+use crate::output::printable;
 use crate::preset::{Preset, Source, check_name};
 use crate::worker::Command;
 use ratatui::Frame;
@@ -13,18 +14,21 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph, Wrap};
 
+/// Characters of a preset's description the picker shows: more than any screen holds.
+const DESCRIPTION_SHOWN: usize = 4000;
+
 /// One preset the picker offers.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Choice {
-    pub name: String,
+pub(crate) struct Choice {
+    pub(crate) name: String,
     /// The user's own (saved from here or by hand), rather than shipped.
-    pub user: bool,
+    pub(crate) user: bool,
     /// The preset, or why its file does not load.
-    pub preset: Result<Box<Preset>, String>,
+    pub(crate) preset: Result<Box<Preset>, String>,
 }
 
 #[derive(Debug, Clone, PartialEq)]
-pub enum Dialog {
+pub(crate) enum Dialog {
     Picker {
         choices: Vec<Choice>,
         selected: usize,
@@ -39,12 +43,12 @@ pub enum Dialog {
 }
 
 /// Whether the setup on screen differs from the preset it was loaded from.
-pub fn modified(app: &App) -> bool {
+pub(crate) fn modified(app: &App) -> bool {
     app.params != app.preset.params() || app.initial != app.preset.initial
 }
 
 /// Opens the picker on every preset the store lists, the loaded one selected.
-pub fn open_picker(app: &mut App) {
+pub(crate) fn open_picker(app: &mut App) {
     let choices: Vec<Choice> = app
         .store
         .list()
@@ -66,7 +70,7 @@ pub fn open_picker(app: &mut App) {
     });
 }
 
-pub fn open_save(app: &mut App) {
+pub(crate) fn open_save(app: &mut App) {
     app.dialog = Some(Dialog::Save {
         name: String::new(),
         error: None,
@@ -76,7 +80,7 @@ pub fn open_save(app: &mut App) {
 
 /// The setup on screen as a preset named `name`: the loaded preset's random ranges, the
 /// current model values and start.
-pub fn current_setup(app: &App, name: &str) -> Preset {
+pub(crate) fn current_setup(app: &App, name: &str) -> Preset {
     let p = &app.params;
     Preset {
         name: name.to_string(),
@@ -94,7 +98,7 @@ pub fn current_setup(app: &App, name: &str) -> Preset {
 }
 
 /// Keys while a dialog is open.
-pub fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
+pub(crate) fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
     let Some(dialog) = app.dialog.take() else {
         return;
     };
@@ -236,15 +240,18 @@ pub fn render(app: &App, area: Rect, frame: &mut Frame) {
             for (i, c) in choices.iter().enumerate() {
                 let mark = if c.user { "★" } else { " " };
                 let pointer = if i == *selected { "▶" } else { " " };
-                let mut line = Line::from(format!("{pointer}{mark} {}", c.name));
+                let mut line = Line::from(format!("{pointer}{mark} {}", printable(&c.name)));
                 if i == *selected {
                     line = line.style(t.selected());
                 }
                 lines.push(line);
             }
             let about = match (error, choices.get(*selected).map(|c| &c.preset)) {
-                (Some(e), _) => Line::styled(e.clone(), t.danger()),
-                (None, Some(Ok(p))) => Line::raw(p.description.clone()),
+                (Some(e), _) => Line::styled(printable(e), t.danger()),
+                // Only what the box can show is wrapped: a long description stays cheap.
+                (None, Some(Ok(p))) => Line::raw(printable(
+                    &p.description.chars().take(DESCRIPTION_SHOWN).collect::<String>(),
+                )),
                 (None, Some(Err(_))) => Line::styled("this file does not load: Enter shows why", t.caution()),
                 (None, None) => Line::raw("no presets found"),
             };

@@ -82,7 +82,7 @@ const MODEL: &[&str] = &[
      the energy grow instead of fall.",
 ];
 
-pub fn help_lines(t: &Theme) -> Vec<Line<'static>> {
+pub(crate) fn help_lines(t: &Theme) -> Vec<Line<'static>> {
     let mut lines = vec![Line::styled("Keys", t.heading())];
     for (k, what) in KEYS {
         let what = what.replace("a batch of", &format!("a batch of {BATCH_ROLLS}"));
@@ -93,7 +93,7 @@ pub fn help_lines(t: &Theme) -> Vec<Line<'static>> {
     }
     lines.push(Line::raw(""));
     lines.push(Line::styled("Basin-map screen (Tab)", t.heading()));
-    for (k, what) in super::map::MAP_KEYS {
+    for (k, what) in super::map_keys::MAP_KEYS {
         lines.push(Line::from(vec![
             Span::styled(format!("  {k:<14}"), t.key()),
             Span::raw(*what),

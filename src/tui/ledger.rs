@@ -3,7 +3,7 @@
 //! integrator's own error), as the physics measured it step by step.
 
 use super::app::App;
-use super::render::fmt_num;
+use super::format::fmt_num;
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::style::Style;
@@ -11,7 +11,7 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph};
 
 /// Outer width of the panel: wide terminals get room for the unit.
-pub fn panel_width(screen_width: u16) -> u16 {
+pub(crate) fn panel_width(screen_width: u16) -> u16 {
     if screen_width >= 120 { 24 } else { 20 }
 }
 
@@ -42,7 +42,7 @@ fn glyph(app: &App, index: usize) -> char {
 /// Which form fills the bar at each row, bottom row first (`None` above the stack), and the
 /// row of the total (counted from the bottom; the total is the sum with gravity as it is,
 /// while the stack shows a negative gravitational term, a die pressed into the ground, as 0).
-pub fn bar_rows(app: &App, rows: u16) -> (Vec<Option<usize>>, Option<u16>) {
+pub(crate) fn bar_rows(app: &App, rows: u16) -> (Vec<Option<usize>>, Option<u16>) {
     let forms = forms(app);
     let stacked: f64 = forms.iter().map(|f| f.2.max(0.0)).sum();
     let total = app.live.energy.total();
@@ -68,7 +68,7 @@ pub fn bar_rows(app: &App, rows: u16) -> (Vec<Option<usize>>, Option<u16>) {
     (cells, Some(total_row))
 }
 
-pub fn render_ledger(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render_ledger(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let block = Block::bordered().title(Line::styled(" energy ", t.heading()));
     let body = block.inner(area);

@@ -7,16 +7,17 @@
 //! map the user has moved away from can never overwrite the current one.
 
 use super::app::{App, Editor};
-use super::render::{fmt_num, render_header, render_help, render_too_small};
+use super::footer::render_help;
+use super::format::fmt_num;
+use super::param::Param;
+use super::render::{render_header, render_too_small};
 use crate::experiment::basin::node_setup;
 use crate::experiment::plot::{cell_colour, time_range, write_image};
-use crate::experiment::trace::free_stem;
-use crate::experiment::{Axis, BasinMap, Cell, Layer};
-use crate::physics::{InitialCondition, Params, Status};
-use crate::worker::param::{ALL, Param};
+use crate::experiment::{BasinMap, Cell, Layer};
+use crate::output::{Output, free_stem};
+use crate::physics::{InitialCondition, Params, Status, registry};
 use crate::worker::{Command, MapAxis, MapRequest, MapUpdate};
 use ratatui::Frame;
-use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
@@ -25,19 +26,17 @@ use std::path::Path;
 
 /// Most cells along each axis: a 200×100 map takes about half a second on two cores, so
 /// a full panel stays near a second even where borders are long.
-pub const MAX_CELLS: (usize, usize) = (200, 100);
+pub(crate) const MAX_CELLS: (usize, usize) = (200, 100);
 /// Grid nodes while the terminal is too small to show the map.
 const FALLBACK_CELLS: (usize, usize) = (64, 48);
 /// Each zoom shows a quarter of the range on each axis.
-pub const ZOOM_FACTOR: f64 = 4.0;
+pub(crate) const ZOOM_FACTOR: f64 = 4.0;
 /// Characters for the y-axis labels.
 const Y_LABELS: u16 = 8;
-/// Cells one Shift-arrow moves the cursor.
-const BIG_STEP: usize = 8;
 
 /// Which screen is on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum View {
+pub(crate) enum View {
     #[default]
     Die,
     Map,
@@ -45,65 +44,65 @@ pub enum View {
 
 /// The map's x or y axis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Side {
+pub(crate) enum Side {
     X,
     Y,
 }
 
 /// The ranges before a zoom, to go back out to.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ZoomStep {
-    pub x: (f64, f64),
-    pub y: (f64, f64),
-    pub cursor: (usize, usize),
+pub(crate) struct ZoomStep {
+    pub(crate) x: (f64, f64),
+    pub(crate) y: (f64, f64),
+    pub(crate) cursor: (usize, usize),
 }
 
 /// A range being typed in for one axis.
 #[derive(Debug, Clone, PartialEq)]
-pub struct RangeEditor {
-    pub side: Side,
-    pub editor: Editor,
+pub(crate) struct RangeEditor {
+    pub(crate) side: Side,
+    pub(crate) editor: Editor,
 }
 
 #[derive(Debug, Clone, PartialEq)]
-pub struct MapView {
+pub(crate) struct MapView {
     /// The axes the user chose (their `cells` are set when a map is requested).
-    pub x: MapAxis,
-    pub y: MapAxis,
+    pub(crate) x: MapAxis,
+    pub(crate) y: MapAxis,
     /// Ranges before each zoom, innermost last.
-    pub zooms: Vec<ZoomStep>,
+    pub(crate) zooms: Vec<ZoomStep>,
     /// The generation of the current request; updates of any other are stale.
-    pub generation: u64,
+    pub(crate) generation: u64,
     /// The setup and grid of the current request.
-    pub requested: Option<(MapRequest, Params, InitialCondition)>,
+    pub(crate) requested: Option<(MapRequest, Params, InitialCondition)>,
     /// Whether the worker is still computing the current request.
-    pub running: bool,
+    pub(crate) running: bool,
     /// The newest map of the current generation.
-    pub shown: Option<MapUpdate>,
+    pub(crate) shown: Option<MapUpdate>,
     /// Cell under the cursor: x node, y node (0 = bottom row).
-    pub cursor: (usize, usize),
-    pub layer: Layer,
-    pub editing: Option<RangeEditor>,
+    pub(crate) cursor: (usize, usize),
+    pub(crate) layer: Layer,
+    pub(crate) editing: Option<RangeEditor>,
     /// The user asked for an image of the map (written by the event loop, not by `update`).
-    pub export_asked: bool,
+    pub(crate) export_asked: bool,
 }
 
 impl MapView {
     /// Spin about x against spin about y, each over the preset's default random range
     /// around its current value.
-    pub fn new(params: &Params, initial: &InitialCondition) -> MapView {
+    pub(crate) fn new(params: &Params, initial: &InitialCondition) -> MapView {
         let axis = |param| {
             let (min, max) = default_range(param, params, initial);
             MapAxis {
-                param,
+                key: param.scan_key(),
                 min,
                 max,
                 cells: 0,
             }
         };
         MapView {
-            x: axis(Param::Spin(0)),
-            y: axis(Param::Spin(1)),
+            x: axis(Param::named("initial.angular_velocity.x")),
+            y: axis(Param::named("initial.angular_velocity.y")),
             zooms: Vec::new(),
             generation: 0,
             requested: None,
@@ -117,18 +116,18 @@ impl MapView {
     }
 
     /// The map on screen, if one has arrived for the current request.
-    pub fn map(&self) -> Option<&BasinMap> {
+    pub(crate) fn map(&self) -> Option<&BasinMap> {
         self.shown.as_ref().and_then(|u| u.map.as_ref().ok())
     }
 
-    fn axis_mut(&mut self, side: Side) -> &mut MapAxis {
+    pub(super) fn axis_mut(&mut self, side: Side) -> &mut MapAxis {
         match side {
             Side::X => &mut self.x,
             Side::Y => &mut self.y,
         }
     }
 
-    fn clamp_cursor(&mut self) {
+    pub(super) fn clamp_cursor(&mut self) {
         let (w, h) = match (self.map(), &self.requested) {
             (Some(m), _) => (m.width(), m.height()),
             (None, Some((r, ..))) => (r.x.cells, r.y.cells),
@@ -143,11 +142,14 @@ impl MapView {
 
 /// A range around the current value: the default random range for spin (±60 rad/s) and
 /// velocity (±50 cm/s), a few coarse steps for the rest, inside the allowed range.
-pub fn default_range(p: Param, params: &Params, initial: &InitialCondition) -> (f64, f64) {
-    let steps = match p {
-        Param::Spin(_) => 6,
-        Param::Height => 2,
-        _ => 1,
+pub(crate) fn default_range(p: Param, params: &Params, initial: &InitialCondition) -> (f64, f64) {
+    let row = p.scan_key().spec;
+    let steps = if *row == registry::ANGULAR_VELOCITY {
+        6
+    } else if *row == registry::HEIGHT {
+        2
+    } else {
+        1
     };
     let now = p.get(params, initial);
     let (lo, hi) = (p.nudged(now, -steps, true), p.nudged(now, steps, true));
@@ -161,18 +163,18 @@ pub fn default_range(p: Param, params: &Params, initial: &InitialCondition) -> (
 
 /// Panels of the map screen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct MapAreas {
-    pub header: Rect,
-    pub side: Rect,
-    pub panel: Rect,
+pub(crate) struct MapAreas {
+    pub(crate) header: Rect,
+    pub(crate) side: Rect,
+    pub(crate) panel: Rect,
     /// Where the cells go: each character holds two cells, one above the other.
-    pub grid: Rect,
-    pub footer: Rect,
+    pub(crate) grid: Rect,
+    pub(crate) footer: Rect,
 }
 
 /// The map screen's layout; `None` below the explorer's minimum size.
-pub fn map_layout(area: Rect) -> Option<MapAreas> {
-    super::render::screen_layout(area)?;
+pub(crate) fn map_layout(area: Rect) -> Option<MapAreas> {
+    super::layout::screen_layout(area)?;
     let [header, body, footer] = area.layout(&Layout::vertical([
         Constraint::Length(1),
         Constraint::Min(0),
@@ -200,7 +202,7 @@ pub fn map_layout(area: Rect) -> Option<MapAreas> {
 }
 
 /// Grid nodes that fill the map panel of a terminal this size, two per character row.
-pub fn fitted_cells(screen: Rect) -> (usize, usize) {
+pub(crate) fn fitted_cells(screen: Rect) -> (usize, usize) {
     match map_layout(screen) {
         Some(a) if a.grid.width >= 2 && a.grid.height >= 1 => (
             (a.grid.width as usize).min(MAX_CELLS.0),
@@ -211,7 +213,7 @@ pub fn fitted_cells(screen: Rect) -> (usize, usize) {
 }
 
 /// Asks the worker for the map of the chosen axes at the resolution that fits the screen.
-pub fn start(app: &mut App, out: &mut Vec<Command>) {
+pub(crate) fn start(app: &mut App, out: &mut Vec<Command>) {
     let (nx, ny) = fitted_cells(app.screen);
     let m = &mut app.map;
     if m.requested.is_none() {
@@ -235,7 +237,7 @@ pub fn start(app: &mut App, out: &mut Vec<Command>) {
 
 /// Switches to the map screen; computes the map unless the one there still fits the setup
 /// and the terminal.
-pub fn open(app: &mut App, out: &mut Vec<Command>) {
+pub(crate) fn open(app: &mut App, out: &mut Vec<Command>) {
     app.view = View::Map;
     let fits = app.map.requested.as_ref().is_some_and(|(r, p, ic)| {
         (r.x.cells, r.y.cells) == fitted_cells(app.screen) && *p == app.params && *ic == app.initial
@@ -248,7 +250,7 @@ pub fn open(app: &mut App, out: &mut Vec<Command>) {
 
 /// Back to the die. A map still being computed is cancelled so the live roll gets the cores;
 /// coming back computes it again.
-pub fn close(app: &mut App, out: &mut Vec<Command>) {
+pub(crate) fn close(app: &mut App, out: &mut Vec<Command>) {
     app.view = View::Die;
     app.map.editing = None;
     if app.map.running {
@@ -258,7 +260,7 @@ pub fn close(app: &mut App, out: &mut Vec<Command>) {
 }
 
 /// Takes a map from the worker, unless it belongs to a request the user has moved away from.
-pub fn absorb(app: &mut App, update: MapUpdate) {
+pub(crate) fn absorb(app: &mut App, update: MapUpdate) {
     let m = &mut app.map;
     if update.generation != m.generation || !m.running {
         return;
@@ -277,7 +279,7 @@ pub fn absorb(app: &mut App, update: MapUpdate) {
 }
 
 /// The terminal was resized: a map on screen is recomputed to fill the new panel.
-pub fn resized(app: &mut App, out: &mut Vec<Command>) {
+pub(crate) fn resized(app: &mut App, out: &mut Vec<Command>) {
     let fitted = fitted_cells(app.screen);
     let stale = app
         .map
@@ -289,205 +291,9 @@ pub fn resized(app: &mut App, out: &mut Vec<Command>) {
     }
 }
 
-/// Keys of the map screen; false for the keys the explorer handles the same on every
-/// screen (quit and help).
-pub fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) -> bool {
-    if app.map.editing.is_some() {
-        on_range_key(app, key, out);
-        return true;
-    }
-    let big = key.modifiers.contains(KeyModifiers::SHIFT);
-    let step = if big { BIG_STEP } else { 1 };
-    match key.code {
-        KeyCode::Char('q') | KeyCode::Esc | KeyCode::Char('?') => return false,
-        KeyCode::Tab | KeyCode::BackTab | KeyCode::Char('1') => close(app, out),
-        KeyCode::Left | KeyCode::Char('h') => move_cursor(app, -(step as isize), 0),
-        KeyCode::Right | KeyCode::Char('l') => move_cursor(app, step as isize, 0),
-        KeyCode::Up | KeyCode::Char('k') => move_cursor(app, 0, step as isize),
-        KeyCode::Down | KeyCode::Char('j') => move_cursor(app, 0, -(step as isize)),
-        KeyCode::Char('H') => move_cursor(app, -(BIG_STEP as isize), 0),
-        KeyCode::Char('L') => move_cursor(app, BIG_STEP as isize, 0),
-        KeyCode::Char('K') => move_cursor(app, 0, BIG_STEP as isize),
-        KeyCode::Char('J') => move_cursor(app, 0, -(BIG_STEP as isize)),
-        KeyCode::Enter => replay(app, out),
-        KeyCode::Char('z') => zoom_in(app, out),
-        KeyCode::Char('Z') | KeyCode::Backspace => zoom_out(app, out),
-        KeyCode::Char('x') => next_axis(app, Side::X, out),
-        KeyCode::Char('y') => next_axis(app, Side::Y, out),
-        KeyCode::Char('X') => edit_range(app, Side::X),
-        KeyCode::Char('Y') => edit_range(app, Side::Y),
-        KeyCode::Char('v') => {
-            app.map.layer = match app.map.layer {
-                Layer::Face => Layer::SettleTime,
-                Layer::SettleTime => Layer::Face,
-            }
-        }
-        KeyCode::Char('e') => app.map.export_asked = true,
-        _ => {}
-    }
-    true
-}
-
-fn move_cursor(app: &mut App, dx: isize, dy: isize) {
-    let m = &mut app.map;
-    let (i, j) = m.cursor;
-    m.cursor = (i.saturating_add_signed(dx), j.saturating_add_signed(dy));
-    m.clamp_cursor();
-}
-
-/// Plays the cell under the cursor in the die view: exactly the setup the map rolled there.
-fn replay(app: &mut App, out: &mut Vec<Command>) {
-    let Some(update) = &app.map.shown else {
-        app.notice = Some("no map yet: wait for the first cells".to_string());
-        return;
-    };
-    let Ok(map) = &update.map else { return };
-    let (i, j) = app.map.cursor;
-    let (params, initial) = node_setup(&update.params, &update.initial, &map.x, &map.y, i, j);
-    let notice = format!(
-        "replaying map cell ({i}, {j}): {} {}, {} {}",
-        app.map.x.param.label(),
-        fmt_num(map.x.value(i)),
-        app.map.y.param.label(),
-        fmt_num(map.y.value(j)),
-    );
-    app.params = params;
-    app.initial = initial;
-    app.send(out, Command::PlaySetup(params, initial));
-    close(app, out);
-    app.notice = Some(notice);
-}
-
-/// Shrinks both ranges by [`ZOOM_FACTOR`] around the cursor (kept inside the old ranges).
-fn zoom_in(app: &mut App, out: &mut Vec<Command>) {
-    let Some(map) = app.map.map() else { return };
-    let (i, j) = app.map.cursor;
-    let inside = |a: &Axis, at: f64| {
-        let half = (a.max - a.min) / ZOOM_FACTOR / 2.0;
-        let centre = at.clamp(a.min + half, a.max - half);
-        (centre - half, centre + half)
-    };
-    let (x, y) = (inside(&map.x, map.x.value(i)), inside(&map.y, map.y.value(j)));
-    let m = &mut app.map;
-    m.zooms.push(ZoomStep {
-        x: (m.x.min, m.x.max),
-        y: (m.y.min, m.y.max),
-        cursor: m.cursor,
-    });
-    (m.x.min, m.x.max) = x;
-    (m.y.min, m.y.max) = y;
-    start(app, out);
-    let r = &app.map.requested.as_ref().expect("just requested").0;
-    app.map.cursor = (r.x.cells / 2, r.y.cells / 2);
-}
-
-fn zoom_out(app: &mut App, out: &mut Vec<Command>) {
-    let Some(z) = app.map.zooms.pop() else {
-        app.notice = Some("already at the full range".to_string());
-        return;
-    };
-    let m = &mut app.map;
-    (m.x.min, m.x.max) = z.x;
-    (m.y.min, m.y.max) = z.y;
-    m.cursor = z.cursor;
-    start(app, out);
-}
-
-/// The next value of the parameter list on this axis (never the other axis's), over its
-/// default range.
-fn next_axis(app: &mut App, side: Side, out: &mut Vec<Command>) {
-    let other = match side {
-        Side::X => app.map.y.param,
-        Side::Y => app.map.x.param,
-    };
-    let now = app.map.axis_mut(side).param;
-    let at = ALL.iter().position(|&p| p == now).unwrap_or(0);
-    let next = (1..ALL.len())
-        .map(|k| ALL[(at + k) % ALL.len()])
-        .find(|&p| p != other)
-        .unwrap_or(now);
-    let (min, max) = default_range(next, &app.params, &app.initial);
-    *app.map.axis_mut(side) = MapAxis {
-        param: next,
-        min,
-        max,
-        cells: 0,
-    };
-    app.map.zooms.clear();
-    start(app, out);
-}
-
-fn edit_range(app: &mut App, side: Side) {
-    let a = *app.map.axis_mut(side);
-    app.map.editing = Some(RangeEditor {
-        side,
-        editor: Editor {
-            text: format!("{} {}", fmt_num(a.min), fmt_num(a.max)),
-            error: None,
-        },
-    });
-}
-
-fn on_range_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
-    let Some(r) = app.map.editing.as_mut() else {
-        return;
-    };
-    match key.code {
-        KeyCode::Esc => app.map.editing = None,
-        KeyCode::Backspace => {
-            r.editor.text.pop();
-            r.editor.error = None;
-        }
-        KeyCode::Char(c) if c.is_ascii_digit() || ".-+eE :,".contains(c) => {
-            if r.editor.text.len() < 40 {
-                r.editor.text.push(c);
-            }
-            r.editor.error = None;
-        }
-        KeyCode::Enter => {
-            let side = r.side;
-            let param = match side {
-                Side::X => app.map.x.param,
-                Side::Y => app.map.y.param,
-            };
-            match parse_range(param, &r.editor.text) {
-                Ok((min, max)) => {
-                    let a = app.map.axis_mut(side);
-                    (a.min, a.max) = (min, max);
-                    app.map.editing = None;
-                    app.map.zooms.clear();
-                    start(app, out);
-                }
-                Err(e) => r.editor.error = Some(e),
-            }
-        }
-        _ => {}
-    }
-}
-
-/// `MIN MAX` (or `MIN:MAX`, `MIN,MAX`), checked as a map axis is: both inside the value's
-/// allowed range, MIN below MAX.
-pub fn parse_range(param: Param, text: &str) -> Result<(f64, f64), String> {
-    let parts: Vec<&str> = text
-        .split(|c: char| c.is_whitespace() || c == ':' || c == ',')
-        .filter(|s| !s.is_empty())
-        .collect();
-    let [min, max] = parts[..] else {
-        return Err("type MIN MAX, e.g. -60 60".to_string());
-    };
-    let number = |s: &str| s.parse::<f64>().map_err(|_| format!("`{s}` is not a number"));
-    let (min, max) = (number(min)?, number(max)?);
-    Axis::new(param.scan_key().clone(), min, max, 2)
-        .map(|a| (a.min, a.max))
-        .map_err(|e| match e {
-            crate::experiment::Error::Axis { message, .. } => message,
-            e => e.to_string(),
-        })
-}
-
 /// Writes the map on screen as a PNG into `dir` if the user asked (`e`); the status line
 /// says where. The event loop calls this after `update`, so `update` itself writes nothing.
-pub fn export_if_asked(app: &mut App, dir: &Path) {
+pub(crate) fn export_if_asked(app: &mut App, dir: &Path) {
     if !std::mem::take(&mut app.map.export_asked) {
         return;
     }
@@ -496,7 +302,10 @@ pub fn export_if_asked(app: &mut App, dir: &Path) {
         return;
     };
     let path = dir.join(format!("{}.png", free_stem(dir, "basin-map", &["png"])));
-    app.notice = Some(match write_image(map, app.map.layer, &path) {
+    let written = Output::check(&path, &["png"], false)
+        .map_err(crate::experiment::Error::from)
+        .and_then(|out| write_image(map, app.map.layer, &out));
+    app.notice = Some(match written {
         Ok(()) if map.complete => format!("basin map saved to {}", path.display()),
         Ok(()) => format!("partial basin map saved to {}", path.display()),
         Err(e) => format!("export failed: {e}"),
@@ -504,7 +313,7 @@ pub fn export_if_asked(app: &mut App, dir: &Path) {
 }
 
 /// The terminal colour of a cell: the exported image's colour, or nothing without colour.
-pub fn terminal_colour(app: &App, cell: Option<&Cell>, times: Option<(f64, f64)>) -> Color {
+pub(crate) fn terminal_colour(app: &App, cell: Option<&Cell>, times: Option<(f64, f64)>) -> Color {
     match cell {
         Some(_) if app.theme.colour => {
             let c = cell_colour(cell, app.map.layer, times);
@@ -531,7 +340,7 @@ fn monochrome_symbol(layer: Layer, cell: Option<&Cell>, times: Option<(f64, f64)
 }
 
 /// Draws the map screen.
-pub fn render_map_screen(app: &App, frame: &mut Frame) {
+pub(crate) fn render_map_screen(app: &App, frame: &mut Frame) {
     let area = frame.area();
     let Some(areas) = map_layout(area) else {
         render_too_small(area, frame);
@@ -540,7 +349,7 @@ pub fn render_map_screen(app: &App, frame: &mut Frame) {
     render_header(app, areas.header, frame);
     render_side(app, areas.side, frame);
     render_panel(app, &areas, frame);
-    render_footer(app, areas.footer, frame);
+    super::map_keys::render_footer(app, areas.footer, frame);
     if app.help {
         render_help(app, area, frame);
     }
@@ -558,13 +367,13 @@ fn render_panel(app: &App, areas: &MapAreas, frame: &mut Frame) {
     let m = &app.map;
     let y_title = format!(
         " ↑ y: {} ({}) ",
-        m.y.param.scan_key().key,
-        m.y.param.limits().unit
+        Param::of(m.y.key).scan_key().key,
+        Param::of(m.y.key).limits().unit
     );
     let x_title = format!(
         " x: {} ({}) → ",
-        m.x.param.scan_key().key,
-        m.x.param.limits().unit
+        Param::of(m.x.key).scan_key().key,
+        Param::of(m.x.key).limits().unit
     );
     let layer = Span::styled(format!(" {} ", layer_name(m.layer)), t.heading());
     // Narrow panels drop the layer's name (the legend says it) before the axis key.
@@ -700,7 +509,7 @@ fn range_line(a: &MapAxis) -> String {
         "{} … {} {}",
         fmt_num(a.min),
         fmt_num(a.max),
-        a.param.limits().unit
+        Param::of(a.key).limits().unit
     )
 }
 
@@ -713,7 +522,7 @@ fn render_side(app: &App, area: Rect, frame: &mut Frame) {
         let name = if side == Side::X { "x" } else { "y" };
         lines.push(Line::from(vec![
             Span::styled(format!(" {name} "), t.heading()),
-            Span::raw(format!("{:<14}", a.param.label())),
+            Span::raw(format!("{:<14}", Param::of(a.key).label())),
             Span::styled(format!(" {keys}"), t.key()),
         ]));
         match &m.editing {
@@ -787,9 +596,9 @@ fn cursor_lines(app: &App) -> Vec<Line<'static>> {
     let n = |x: f64| fmt_num(x);
     lines.push(Line::raw(format!(
         "   {} {} · {} {}",
-        m.x.param.label(),
+        Param::of(m.x.key).label(),
         n(map.x.value(i)),
-        m.y.param.label(),
+        Param::of(m.y.key).label(),
         n(map.y.value(j))
     )));
     match map.cell(i, j) {
@@ -897,40 +706,3 @@ fn legend_lines(app: &App) -> Vec<Line<'static>> {
     ]));
     lines
 }
-
-fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
-    let keys = if app.map.editing.is_some() {
-        super::render::typing_hints("MIN MAX")
-    } else if app.help {
-        super::render::help_hints()
-    } else {
-        vec![
-            ("Tab", "die", 0),
-            ("←↓↑→", "cursor", 1),
-            ("Enter", "replay", 1),
-            ("z Z", "zoom in/out", 1),
-            ("x y", "axis", 2),
-            ("X Y", "range", 2),
-            ("v", "face/time", 3),
-            ("e", "export PNG", 3),
-            ("?", "help", 0),
-            ("q", "quit", 0),
-        ]
-    };
-    super::render::render_key_hints(app, keys, area, frame);
-}
-
-/// The map screen's keys, for the `?` overlay.
-pub const MAP_KEYS: &[(&str, &str)] = &[
-    ("Tab 2 / Tab 1", "basin-map screen / back to the die"),
-    (
-        "←↓↑→ h j k l",
-        "move the cursor over the map (Shift or H J K L: 8 cells)",
-    ),
-    ("Enter", "replay the cell under the cursor in the die view"),
-    ("z  Z", "zoom in ×4 around the cursor / back out"),
-    ("x  y", "next value of the list on the x / y axis"),
-    ("X  Y", "type the x / y range as MIN MAX"),
-    ("v", "colour by face up / by settle time (borders light up)"),
-    ("e", "save the map as a PNG in the current folder"),
-];

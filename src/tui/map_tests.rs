@@ -3,8 +3,9 @@
 
 use super::app::{App, Msg, update};
 use super::map::{MapView, View, ZOOM_FACTOR, export_if_asked, map_layout};
+use super::param::Param;
 use super::render::render;
-use super::tests::{Scene, spun_preset, start};
+use super::tests::{Scene, boundary_sizes, spun_preset, start};
 use super::theme::Theme;
 use crate::experiment::basin::node_setup;
 use crate::experiment::plot::{FACE_COLOURS, cell_colour, time_range};
@@ -279,8 +280,8 @@ mod keys {
         };
         assert_eq!(r.generation, generation + 1);
         assert_eq!(
-            r.x.param,
-            crate::worker::Param::Spin(2),
+            Param::of(r.x.key),
+            Param::named("initial.angular_velocity.z"),
             "the next value that is not y's"
         );
         // A late partial map of the old axes arrives: it must not be drawn.
@@ -347,7 +348,7 @@ mod keys {
             panic!("{sent:?}")
         };
         assert_eq!((r.y.min, r.y.max), (-10.0, 10.0));
-        assert_eq!(r.y.param, crate::worker::Param::Spin(1));
+        assert_eq!(Param::of(r.y.key), Param::named("initial.angular_velocity.y"));
     }
 
     #[test]
@@ -401,8 +402,11 @@ mod keys {
         let m = MapView::new(&preset.params(), &preset.initial);
         let w = preset.initial.angular_velocity;
         assert_eq!(
-            (m.x.param, m.y.param),
-            (crate::worker::Param::Spin(0), crate::worker::Param::Spin(1))
+            (Param::of(m.x.key), Param::of(m.y.key)),
+            (
+                Param::named("initial.angular_velocity.x"),
+                Param::named("initial.angular_velocity.y")
+            )
         );
         // The width of the default random range, on round numbers, around the current spin.
         for (a, now) in [(&m.x, w[0]), (&m.y, w[1])] {
@@ -413,19 +417,33 @@ mod keys {
     }
 }
 
-#[test]
-fn every_size_up_to_200x60_draws_the_map_screen() {
+/// The map screen in its three looks: computed with the cursor moved, monochrome with the
+/// other layer, and waiting for its first map.
+fn map_screens() -> [App; 3] {
     let mut s = map_scene(Theme::default());
     let mut mono = map_scene(Theme::monochrome());
     press(&mut mono.app, KeyCode::Char('v'));
     press(&mut s.app, KeyCode::Char('X'));
     let mut waiting = start().app;
     press(&mut waiting, KeyCode::Tab);
-    for app in [&s.app, &mono.app, &waiting] {
-        for width in 1..=200 {
-            for height in 1..=60 {
-                draw(app, width, height);
-            }
+    [s.app, mono.app, waiting]
+}
+
+#[test]
+fn every_boundary_size_draws_the_map_screen() {
+    for app in &map_screens() {
+        for (width, height) in boundary_sizes() {
+            draw(app, width, height);
         }
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200))]
+
+    #[test]
+    fn random_sizes_draw_the_map_screen(which in 0usize..3, width in 1u16..=200, height in 1u16..=60) {
+        static SCREENS: std::sync::OnceLock<[App; 3]> = std::sync::OnceLock::new();
+        draw(&SCREENS.get_or_init(map_screens)[which], width, height);
     }
 }

@@ -1,21 +1,26 @@
 //! The terminal explorer: [`App`] state, pure [`update`] and [`render`], and [`run`], the
 //! event loop that owns the terminal.
 
-pub mod app;
-pub mod camera;
+pub(crate) mod app;
+pub(crate) mod camera;
 mod dialogs;
+mod footer;
+pub(crate) mod format;
 mod help;
+pub(crate) mod layout;
 mod ledger;
-pub mod map;
+pub(crate) mod map;
+mod map_keys;
+pub(crate) mod param;
 pub mod render;
 mod run;
-pub mod theme;
+pub(crate) mod theme;
 mod twin;
 mod vectors;
 
 pub use app::{App, Msg, update};
 pub use render::render;
-pub use run::run;
+pub(crate) use run::run;
 pub use theme::Theme;
 
 #[cfg(test)]

@@ -3,81 +3,26 @@
 
 use super::app::{App, Drawing};
 use super::camera::{EDGES, FACE_CORNERS, face_centre, face_normal};
-use super::help::help_lines;
+use super::footer::{render_footer, render_help};
+use super::format::{fmt_num, fmt_range};
+use super::layout::{MIN_HEIGHT, MIN_WIDTH, param_window, screen_layout};
+use super::param::all;
 use crate::physics::stopping::why_it_cannot_settle;
 use crate::physics::{Stability, Status, UnstableReason};
-use crate::worker::param::{ALL, Param};
 use crate::worker::{EnergySample, Phase, RollKind};
 use nalgebra::Vector3;
 use ratatui::Frame;
-use ratatui::layout::{Constraint, Layout, Position, Rect};
+use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Modifier, Style};
 use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::canvas::{Canvas, Context, Line as CanvasLine};
 use ratatui::widgets::{Axis, Block, Chart, Clear, Dataset, GraphType, LineGauge, Paragraph, Wrap};
 
-/// The smallest terminal the explorer draws its panels in.
-pub const MIN_WIDTH: u16 = 80;
-pub const MIN_HEIGHT: u16 = 24;
-
 /// Share of the tightest stability limit from which the step is worth watching; past the
 /// limit itself (1) a roll is predicted unstable (docs/model.md, "Stability").
-pub const STABILITY_CAUTION: f64 = 0.8;
-pub const STABILITY_DANGER: f64 = 1.0;
-
-/// Where each panel goes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Areas {
-    pub header: Rect,
-    pub params: Rect,
-    pub outcomes: Rect,
-    pub die: Rect,
-    pub energy: Rect,
-    /// The energy bar and ledger, beside the energy plot.
-    pub ledger: Rect,
-    pub footer: Rect,
-}
-
-/// The panel layout for a terminal of this size; `None` below [`MIN_WIDTH`]×[`MIN_HEIGHT`].
-pub fn screen_layout(area: Rect) -> Option<Areas> {
-    if area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
-        return None;
-    }
-    let [header, body, footer] = area.layout(&Layout::vertical([
-        Constraint::Length(1),
-        Constraint::Min(0),
-        Constraint::Length(1),
-    ]));
-    let left_width = if area.width >= 120 { 52 } else { 38 };
-    let [left, right] = body.layout(&Layout::horizontal([
-        Constraint::Length(left_width),
-        Constraint::Min(0),
-    ]));
-    // Every parameter row when there is room, and at least 10 rows for the table.
-    let params_height = (ALL.len() as u16 + 4).min(body.height.saturating_sub(10));
-    let [params, outcomes] = left.layout(&Layout::vertical([
-        Constraint::Length(params_height),
-        Constraint::Min(0),
-    ]));
-    let [die, energy_row] = right.layout(&Layout::vertical([
-        Constraint::Percentage(50),
-        Constraint::Percentage(50),
-    ]));
-    let [energy, ledger] = energy_row.layout(&Layout::horizontal([
-        Constraint::Min(0),
-        Constraint::Length(super::ledger::panel_width(area.width)),
-    ]));
-    Some(Areas {
-        header,
-        params,
-        outcomes,
-        die,
-        energy,
-        ledger,
-        footer,
-    })
-}
+pub(crate) const STABILITY_CAUTION: f64 = 0.8;
+pub(crate) const STABILITY_DANGER: f64 = 1.0;
 
 /// Draws the whole screen.
 pub fn render(app: &App, frame: &mut Frame) {
@@ -109,7 +54,7 @@ pub fn render(app: &App, frame: &mut Frame) {
     app.theme.paint(frame.buffer_mut());
 }
 
-pub fn render_too_small(area: Rect, frame: &mut Frame) {
+pub(crate) fn render_too_small(area: Rect, frame: &mut Frame) {
     let text = vec![
         Line::styled(
             format!("Enlarge the terminal to at least {MIN_WIDTH}×{MIN_HEIGHT}"),
@@ -120,37 +65,6 @@ pub fn render_too_small(area: Rect, frame: &mut Frame) {
     let top = area.height.saturating_sub(2) / 2;
     let [_, middle] = area.layout(&Layout::vertical([Constraint::Length(top), Constraint::Min(0)]));
     frame.render_widget(Paragraph::new(text).centered().wrap(Wrap { trim: true }), middle);
-}
-
-/// A number in at most `width` characters: plain when it reads well, else in e-notation.
-pub fn fmt_num(v: f64) -> String {
-    if !v.is_finite() {
-        return format!("{v}");
-    }
-    let a = v.abs();
-    if a == 0.0 {
-        "0".to_string()
-    } else if !(1e-3..1e6).contains(&a) {
-        let s = format!("{v:.2e}");
-        // 5.00e5 → 5e5, 1.20e-3 → 1.2e-3
-        let (mantissa, exp) = s.split_once('e').unwrap_or((&s, "0"));
-        let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
-        format!("{mantissa}e{exp}")
-    } else {
-        let decimals = (3 - a.log10().floor() as i32).clamp(0, 6) as usize;
-        let s = format!("{v:.decimals$}");
-        if s.contains('.') {
-            s.trim_end_matches('0').trim_end_matches('.').to_string()
-        } else {
-            s
-        }
-    }
-}
-
-/// A value's allowed range as the list shows it, `min…max`.
-pub fn fmt_range(p: Param) -> String {
-    let l = p.limits();
-    format!("{}…{}", fmt_num(l.min), fmt_num(l.max))
 }
 
 fn phase_style(app: &App, phase: &Phase) -> Style {
@@ -293,33 +207,6 @@ pub(crate) fn render_header(app: &App, area: Rect, frame: &mut Frame) {
     frame.render_widget(Paragraph::new(line), area);
 }
 
-/// Inner area of a bordered panel.
-fn inner(area: Rect) -> Rect {
-    Block::bordered().inner(area)
-}
-
-/// How many parameter rows fit, and the first one shown (the selection stays in view).
-fn param_window(app: &App, params_area: Rect) -> (usize, usize) {
-    let visible = inner(params_area).height.saturating_sub(2) as usize;
-    let first = if visible > 0 && app.selected >= visible {
-        app.selected + 1 - visible
-    } else {
-        0
-    };
-    (first, visible)
-}
-
-/// The parameter under a screen position, for mouse clicks and scrolls.
-pub fn param_row_at(app: &App, areas: &Areas, at: Position) -> Option<usize> {
-    let body = inner(areas.params);
-    if !body.contains(at) || at.y < body.y + 1 {
-        return None;
-    }
-    let (first, visible) = param_window(app, areas.params);
-    let row = (at.y - body.y - 1) as usize;
-    (row < visible).then_some(first + row).filter(|&i| i < ALL.len())
-}
-
 pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let block = Block::bordered()
@@ -338,7 +225,7 @@ pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
     }
     lines.push(Line::styled(head, t.heading()));
     let (first, visible) = param_window(app, area);
-    for (i, &p) in ALL.iter().enumerate().skip(first).take(visible) {
+    for (i, &p) in all().iter().enumerate().skip(first).take(visible) {
         let value = fmt_num(p.get(&app.params, &app.initial));
         let mut spans = vec![Span::raw(format!(
             "{}{:<13} {:>8} {:<6}",
@@ -845,104 +732,4 @@ fn nice_ceiling(v: f64) -> f64 {
         .map(|m| m * p)
         .find(|&c| c >= v * (1.0 - 1e-12))
         .unwrap_or(10.0 * p)
-}
-
-pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
-    // (key, what it does, priority): on a narrow terminal the highest numbers go first, so
-    // the keys that matter most, help and quit among them, always stay in view.
-    let keys: Vec<(&str, &str, u8)> = if app.editing.is_some() || app.epsilon_editor.is_some() {
-        typing_hints("0-9 . - e")
-    } else if app.help {
-        help_hints()
-    } else {
-        vec![
-            ("space", if app.live.playing { "pause" } else { "play" }, 0),
-            ("n", "step", 1),
-            ("r", "replay", 1),
-            ("R", "random", 2),
-            (
-                "b",
-                if app.batch.is_some() {
-                    "cancel batch"
-                } else {
-                    "batch"
-                },
-                2,
-            ),
-            ("[ ]", "speed", 1),
-            ("↑↓←→", "values", 2),
-            ("v", "arrows", 3),
-            if app.twin {
-                ("T < > E", "twin, ε", 3)
-            } else {
-                ("T", "twin", 3)
-            },
-            ("Tab", "map", 3),
-            ("o s", "presets", 4),
-            ("e", "export", 4),
-            ("?", "help", 0),
-            ("q", "quit", 0),
-        ]
-    };
-    render_key_hints(app, keys, area, frame);
-}
-
-/// The footer while a value is typed: `typing` says what may be typed.
-pub(crate) fn typing_hints(typing: &'static str) -> Vec<(&'static str, &'static str, u8)> {
-    vec![
-        (typing, "type", 0),
-        ("Enter", "apply", 0),
-        ("Esc", "cancel", 0),
-        ("Ctrl-C", "quit", 0),
-    ]
-}
-
-/// The footer while the help overlay is open.
-pub(crate) fn help_hints() -> Vec<(&'static str, &'static str, u8)> {
-    vec![("↑↓", "scroll", 0), ("? Esc", "close help", 0), ("q", "quit", 0)]
-}
-
-/// A footer line of `(key, what it does, priority)` hints after any notice. On a narrow
-/// terminal the highest priority numbers are dropped first; priority 0 always stays.
-pub(crate) fn render_key_hints(app: &App, keys: Vec<(&str, &str, u8)>, area: Rect, frame: &mut Frame) {
-    let t = &app.theme;
-    let notice = app.notice.as_ref().map(|n| format!(" {n} "));
-    let width = |ks: &[(&str, &str, u8)]| -> usize {
-        ks.iter()
-            .map(|(k, w, _)| 2 + k.chars().count() + w.chars().count())
-            .sum::<usize>()
-            + notice.as_ref().map_or(0, |n| n.chars().count())
-    };
-    let mut shown = keys;
-    while width(&shown) > area.width as usize {
-        let droppable = shown.iter().enumerate().filter(|(_, e)| e.2 > 0);
-        let Some((i, _)) = droppable.max_by_key(|(i, e)| (e.2, *i)) else {
-            break;
-        };
-        shown.remove(i);
-    }
-    let mut spans = Vec::new();
-    if let Some(n) = notice {
-        spans.push(Span::styled(n, t.caution()));
-    }
-    for (k, what, _) in shown {
-        spans.push(Span::raw(" "));
-        spans.push(Span::styled(k, t.key()));
-        spans.push(Span::raw(format!(" {what}")));
-    }
-    frame.render_widget(Paragraph::new(Line::from(spans)), area);
-}
-
-pub(crate) fn render_help(app: &App, area: Rect, frame: &mut Frame) {
-    let t = &app.theme;
-    let popup = area.centered(Constraint::Max(100), Constraint::Percentage(90));
-    frame.render_widget(Clear, popup);
-    let block = Block::bordered()
-        .title(Line::styled(" help · the model in a nutshell ", t.heading()))
-        .title_bottom(Line::from(" ↑↓ scroll · ? or Esc closes ").right_aligned());
-    let para = Paragraph::new(help_lines(t))
-        .block(block)
-        .wrap(Wrap { trim: false })
-        .scroll((app.help_scroll, 0));
-    frame.render_widget(para, popup);
 }

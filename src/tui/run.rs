@@ -1,5 +1,17 @@
-//! The terminal's lifecycle and the event loop (CRATES.md §9): report hooks first, then
-//! the terminal, mouse capture undone on every exit path, panic included.
+//! The terminal's lifecycle and the event loop: report hooks first, then the terminal,
+//! restored on every way out.
+//!
+//! - Quitting (`q`, Ctrl-C as a key) leaves the loop and restores it.
+//! - SIGTERM, SIGHUP, SIGINT and SIGQUIT reach a thread of their own (signal-hook), which
+//!   asks the loop to stop, so the terminal is restored and the process exits with 128 +
+//!   the signal; should the loop not answer within half a second, that thread restores the
+//!   terminal and exits itself.
+//! - A panic on any thread restores the terminal first, then prints its message once, then
+//!   ends the whole process (exit status 101): a half-alive explorer drawing over the
+//!   message helps nobody.
+//!
+//! Drawing holds [`SCREEN`], and whoever restores takes it first and never gives it back,
+//! so no frame lands after the terminal was given back to the shell.
 
 use super::app::{App, Msg, update};
 use super::render::render;
@@ -8,38 +20,94 @@ use crate::preset::Preset;
 use crate::worker::{Engine, Worker};
 use color_eyre::eyre::{Result, WrapErr};
 use ratatui::DefaultTerminal;
+use ratatui::crossterm::cursor::Show;
 use ratatui::crossterm::event::{self, DisableMouseCapture, EnableMouseCapture};
 use ratatui::crossterm::execute;
 use ratatui::layout::Rect;
+use signal_hook::consts::{SIGHUP, SIGINT, SIGQUIT, SIGTERM};
+use signal_hook::iterator::Signals;
 use std::collections::VecDeque;
 use std::io::stdout;
-use std::sync::mpsc::{RecvTimeoutError, channel};
+use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender, channel};
+use std::sync::{Mutex, TryLockError};
 use std::time::{Duration, Instant};
 
 /// Longest wait between frames while something moves (the worker's ticks usually come first).
 const FRAME: Duration = Duration::from_millis(33);
 
-/// Opens the explorer on `preset` and runs it until the user quits.
-pub fn run(preset: &Preset, theme: Theme) -> Result<()> {
+/// Held while a frame is drawn, and for good once the terminal has been restored.
+static SCREEN: Mutex<()> = Mutex::new(());
+
+/// Mouse reporting off, the cursor shown, raw mode off, the normal screen back. Waits
+/// (briefly: a panic mid-frame holds it on this very thread) for any frame being drawn.
+fn restore_for_good() {
+    let deadline = Instant::now() + Duration::from_millis(200);
+    let guard = loop {
+        match SCREEN.try_lock() {
+            Ok(g) => break Some(g),
+            Err(TryLockError::Poisoned(p)) => break Some(p.into_inner()),
+            Err(TryLockError::WouldBlock) if Instant::now() < deadline => {
+                std::thread::sleep(Duration::from_millis(5))
+            }
+            Err(TryLockError::WouldBlock) => break None,
+        }
+    };
+    // ratatui's restore turns neither mouse reporting off nor the cursor back on.
+    let _ = execute!(stdout(), DisableMouseCapture, Show);
+    ratatui::restore();
+    std::mem::forget(guard);
+}
+
+/// The signals that end the explorer: a terminal closing, `kill`, Ctrl-C or Ctrl-\ sent
+/// from outside (inside, raw mode turns those keys into key presses).
+const ENDING_SIGNALS: [i32; 4] = [SIGTERM, SIGHUP, SIGINT, SIGQUIT];
+
+/// Opens the explorer on `preset` and runs it until the user quits; a signal ends the
+/// process from here with 128 + the signal, after restoring the terminal.
+pub(crate) fn run(preset: &Preset, theme: Theme) -> Result<()> {
     let engine = Engine::new(preset).wrap_err("the preset cannot be simulated")?;
+    let mut signals = Signals::new(ENDING_SIGNALS).wrap_err("cannot catch signals")?;
+    let signal_handle = signals.handle();
     // A second install (a caller already did) is harmless: keep the first.
     let _ = color_eyre::install();
     let mut terminal = ratatui::init();
     let _ = execute!(stdout(), EnableMouseCapture);
     let previous = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
-        // ratatui's restore does not turn mouse reporting off.
-        let _ = execute!(stdout(), DisableMouseCapture);
+        restore_for_good();
         previous(info);
+        std::process::exit(101);
     }));
-    let result = event_loop(&mut terminal, engine, theme);
-    let _ = execute!(stdout(), DisableMouseCapture);
-    ratatui::restore();
-    result
+    let (tx, rx) = channel::<Msg>();
+    let to_loop = tx.clone();
+    std::thread::Builder::new()
+        .name("dicesim-signals".to_string())
+        .spawn(move || {
+            if let Some(signal) = signals.forever().next() {
+                let _ = to_loop.send(Msg::Signal(signal));
+                std::thread::sleep(Duration::from_millis(500));
+                restore_for_good();
+                std::process::exit(128 + signal);
+            }
+        })?;
+    let result = event_loop(&mut terminal, engine, theme, tx, rx);
+    restore_for_good();
+    signal_handle.close();
+    match result {
+        Ok(Some(signal)) => std::process::exit(128 + signal),
+        Ok(None) => Ok(()),
+        Err(e) => Err(e),
+    }
 }
 
-fn event_loop(terminal: &mut DefaultTerminal, mut engine: Engine, theme: Theme) -> Result<()> {
-    let (tx, rx) = channel::<Msg>();
+/// Runs until the user quits (`None`) or a signal arrives (`Some(signal)`).
+fn event_loop(
+    terminal: &mut DefaultTerminal,
+    mut engine: Engine,
+    theme: Theme,
+    tx: Sender<Msg>,
+    rx: Receiver<Msg>,
+) -> Result<Option<i32>> {
     let mut app = App::new(engine.snapshot(), theme);
     app.store = crate::preset::Store::from_env();
     let size = terminal.size()?;
@@ -58,7 +126,11 @@ fn event_loop(terminal: &mut DefaultTerminal, mut engine: Engine, theme: Theme) 
         })?;
     let mut drawn: VecDeque<Instant> = VecDeque::new();
     'frames: loop {
-        terminal.draw(|f| render(&app, f))?;
+        {
+            let _drawing = SCREEN.lock().unwrap_or_else(|p| p.into_inner());
+            terminal.draw(|f| render(&app, f))?;
+        }
+        crate::fault::inject("ui");
         let now = Instant::now();
         drawn.push_back(now);
         while drawn
@@ -81,6 +153,10 @@ fn event_loop(terminal: &mut DefaultTerminal, mut engine: Engine, theme: Theme) 
             }
         };
         for msg in first.into_iter().chain(std::iter::from_fn(|| rx.try_recv().ok())) {
+            if let Msg::Signal(signal) = msg {
+                worker.shutdown();
+                return Ok(Some(signal));
+            }
             for command in update(&mut app, msg) {
                 worker.send(command);
             }
@@ -94,5 +170,5 @@ fn event_loop(terminal: &mut DefaultTerminal, mut engine: Engine, theme: Theme) 
         app.fps = app.animating().then_some(drawn.len() as f64);
     }
     worker.shutdown();
-    Ok(())
+    Ok(None)
 }

@@ -2,15 +2,17 @@
 //! fed through `update` into the worker's engine, no thread and no clock.
 
 use super::app::{App, Msg, update};
+use super::footer::render_footer;
+use super::layout::screen_layout;
+use super::param::{Param, all};
 use super::render::{
-    STABILITY_CAUTION, STABILITY_DANGER, render, render_die, render_energy, render_footer, render_header,
-    render_outcomes, render_params, screen_layout,
+    STABILITY_CAUTION, STABILITY_DANGER, render, render_die, render_energy, render_header, render_outcomes,
+    render_params,
 };
 use super::theme::Theme;
 use crate::physics::Status;
 use crate::physics::stability::CONTACT_MODE_LIMIT;
 use crate::preset::Preset;
-use crate::worker::param::{ALL, Param};
 use crate::worker::{Command, Engine, Phase};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
@@ -28,28 +30,28 @@ pub(crate) fn spun_preset() -> Preset {
 
 /// The engine and the app wired together as the event loop wires them, minus the thread.
 pub(crate) struct Scene {
-    pub engine: Engine,
-    pub app: App,
+    pub(crate) engine: Engine,
+    pub(crate) app: App,
 }
 
 impl Scene {
-    pub fn new(preset: &Preset, theme: Theme) -> Scene {
+    pub(crate) fn new(preset: &Preset, theme: Theme) -> Scene {
         let mut engine = Engine::new(preset).expect("valid preset");
         let app = App::new(engine.snapshot(), theme);
         Scene { engine, app }
     }
 
-    pub fn sync(&mut self) {
+    pub(crate) fn sync(&mut self) {
         let s = self.engine.snapshot();
         update(&mut self.app, Msg::from(s));
     }
 
-    pub fn command(&mut self, c: Command) {
+    pub(crate) fn command(&mut self, c: Command) {
         self.engine.handle(c);
         self.sync();
     }
 
-    pub fn key_with(&mut self, code: KeyCode, modifiers: KeyModifiers) {
+    pub(crate) fn key_with(&mut self, code: KeyCode, modifiers: KeyModifiers) {
         for c in update(
             &mut self.app,
             Msg::Input(Event::Key(KeyEvent::new(code, modifiers))),
@@ -59,12 +61,12 @@ impl Scene {
         self.sync();
     }
 
-    pub fn key(&mut self, code: KeyCode) {
+    pub(crate) fn key(&mut self, code: KeyCode) {
         self.key_with(code, KeyModifiers::NONE);
     }
 
-    pub fn select(&mut self, p: Param) {
-        let target = ALL.iter().position(|&q| q == p).expect("listed");
+    pub(crate) fn select(&mut self, p: Param) {
+        let target = all().iter().position(|&q| q == p).expect("listed");
         while self.app.selected != target {
             self.key(if self.app.selected < target {
                 KeyCode::Down
@@ -74,7 +76,7 @@ impl Scene {
         }
     }
 
-    pub fn run_to_end(&mut self) {
+    pub(crate) fn run_to_end(&mut self) {
         self.engine.run_to_end();
         self.sync();
     }
@@ -113,7 +115,7 @@ pub(crate) fn settled() -> Scene {
 
 fn unstable() -> Scene {
     let mut s = start();
-    s.select(Param::Stiffness);
+    s.select(Param::named("ground.stiffness"));
     s.key(KeyCode::Enter);
     for c in "2e7".chars() {
         s.key(KeyCode::Char(c));
@@ -131,7 +133,7 @@ fn help() -> Scene {
 
 fn editing() -> Scene {
     let mut s = start();
-    s.select(Param::Friction);
+    s.select(Param::named("ground.friction"));
     s.key(KeyCode::Enter);
     for c in "0.8".chars() {
         s.key(KeyCode::Char(c));
@@ -340,7 +342,10 @@ fn touching_corners_are_red_and_bold_or_reversed_without_colour() {
 fn no_color_sends_no_colour_at_all() {
     for mut s in [mid_impact_with(Theme::monochrome()), {
         let mut s = Scene::new(&spun_preset(), Theme::monochrome());
-        s.command(Command::SetParam(Param::Stiffness, 4e6));
+        s.command(Command::SetParam(
+            Param::named("ground.stiffness").scan_key(),
+            4e6,
+        ));
         s
     }] {
         s.key(KeyCode::Char('?'));
@@ -387,12 +392,12 @@ fn stability_readout_warns_as_the_tightest_limit_nears() {
         (share * CONTACT_MODE_LIMIT / app.params.integrator.dt).powi(2) * app.params.total_mass() / 6.0
     };
     let k = k_for((STABILITY_CAUTION + STABILITY_DANGER) / 2.0, &s.app);
-    s.command(Command::SetParam(Param::Stiffness, k));
+    s.command(Command::SetParam(Param::named("ground.stiffness").scan_key(), k));
     let (text, caution) = stability_readout_cell(&s.app);
     assert!(text.contains("table stiffness at 90 % of limit"), "{text}");
     assert_eq!(caution.bg, Color::Yellow);
     let k = k_for(STABILITY_DANGER + 0.3, &s.app);
-    s.command(Command::SetParam(Param::Stiffness, k));
+    s.command(Command::SetParam(Param::named("ground.stiffness").scan_key(), k));
     let (text, danger) = stability_readout_cell(&s.app);
     assert!(text.contains("table stiffness at 130 % of limit"), "{text}");
     assert_eq!(danger.bg, Color::Red);
@@ -442,7 +447,7 @@ fn a_table_too_soft_ends_as_did_not_settle() {
 #[test]
 fn a_start_inside_the_table_is_refused() {
     let mut s = start();
-    s.select(Param::Height);
+    s.select(Param::named("initial.height"));
     s.key(KeyCode::Enter);
     for _ in 0..4 {
         s.key(KeyCode::Backspace);
@@ -537,56 +542,71 @@ mod keys {
     #[test]
     fn arrows_and_vim_keys_select_and_change_values() {
         let mut a = app();
-        assert_eq!(a.selected_param(), Param::Stiffness);
+        assert_eq!(a.selected_param(), Param::named("ground.stiffness"));
         assert!(
             press(&mut a, KeyCode::Up).is_empty(),
             "the first row stays selected"
         );
         press(&mut a, KeyCode::Down);
         press(&mut a, KeyCode::Char('j'));
-        assert_eq!(a.selected_param(), Param::Friction);
+        assert_eq!(a.selected_param(), Param::named("ground.friction"));
         let mu = a.params.ground.friction;
-        let fine = Param::Friction.nudged(mu, 1, false);
+        let fine = Param::named("ground.friction").nudged(mu, 1, false);
         assert_eq!(
             press(&mut a, KeyCode::Right),
-            [Command::SetParam(Param::Friction, fine)]
+            [Command::SetParam(
+                Param::named("ground.friction").scan_key(),
+                fine
+            )]
         );
         assert_eq!(
             a.params.ground.friction, fine,
             "the list shows the new value at once"
         );
-        let coarse = Param::Friction.nudged(fine, -1, true);
+        let coarse = Param::named("ground.friction").nudged(fine, -1, true);
         assert_eq!(
             press_with(&mut a, KeyCode::Left, KeyModifiers::SHIFT),
-            [Command::SetParam(Param::Friction, coarse)]
+            [Command::SetParam(
+                Param::named("ground.friction").scan_key(),
+                coarse
+            )]
         );
-        let back = Param::Friction.nudged(coarse, 1, true);
+        let back = Param::named("ground.friction").nudged(coarse, 1, true);
         assert_eq!(
             press(&mut a, KeyCode::Char('L')),
-            [Command::SetParam(Param::Friction, back)]
+            [Command::SetParam(
+                Param::named("ground.friction").scan_key(),
+                back
+            )]
         );
-        let down = Param::Friction.nudged(back, -1, false);
+        let down = Param::named("ground.friction").nudged(back, -1, false);
         assert_eq!(
             press(&mut a, KeyCode::Char('h')),
-            [Command::SetParam(Param::Friction, down)]
+            [Command::SetParam(
+                Param::named("ground.friction").scan_key(),
+                down
+            )]
         );
         press(&mut a, KeyCode::Char('k'));
-        assert_eq!(a.selected_param(), Param::Damping);
+        assert_eq!(a.selected_param(), Param::named("ground.damping"));
         press(&mut a, KeyCode::Char('G'));
-        assert_eq!(a.selected_param(), *ALL.last().expect("rows"));
+        assert_eq!(a.selected_param(), *all().last().expect("rows"));
     }
 
     #[test]
     fn a_value_at_its_limit_sends_nothing() {
         let mut a = app();
-        a.selected = ALL.iter().position(|&p| p == Param::Friction).expect("listed");
+        a.selected = all()
+            .iter()
+            .position(|&p| p == Param::named("ground.friction"))
+            .expect("listed");
         assert_eq!(press(&mut a, KeyCode::Enter), []);
         for c in "0".chars() {
             press(&mut a, KeyCode::Char(c));
         }
         assert_eq!(
             press(&mut a, KeyCode::Enter),
-            [Command::SetParam(Param::Friction, 0.0)]
+            [Command::SetParam(Param::named("ground.friction").scan_key(), 0.0)]
         );
         assert!(press(&mut a, KeyCode::Left).is_empty());
     }
@@ -594,7 +614,10 @@ mod keys {
     #[test]
     fn typing_a_value_validates_it_and_esc_cancels() {
         let mut a = app();
-        a.selected = ALL.iter().position(|&p| p == Param::Height).expect("listed");
+        a.selected = all()
+            .iter()
+            .position(|&p| p == Param::named("initial.height"))
+            .expect("listed");
         press(&mut a, KeyCode::Enter);
         assert!(a.editing.is_some());
         for c in "2x5q".chars() {
@@ -619,7 +642,7 @@ mod keys {
         press(&mut a, KeyCode::Backspace);
         assert_eq!(
             press(&mut a, KeyCode::Enter),
-            [Command::SetParam(Param::Height, 25.0)]
+            [Command::SetParam(Param::named("initial.height").scan_key(), 25.0)]
         );
         assert!(a.editing.is_none());
         press(&mut a, KeyCode::Enter);
@@ -699,8 +722,12 @@ mod keys {
         update(&mut a, Msg::Input(Event::Resize(120, 36)));
         let areas = screen_layout(a.screen).expect("full size");
         // Row 0 of the list is the heading; the rows follow in list order.
-        let friction_row =
-            areas.params.y + 2 + ALL.iter().position(|&p| p == Param::Friction).expect("listed") as u16;
+        let friction_row = areas.params.y
+            + 2
+            + all()
+                .iter()
+                .position(|&p| p == Param::named("ground.friction"))
+                .expect("listed") as u16;
         assert!(
             mouse(
                 &mut a,
@@ -710,11 +737,11 @@ mod keys {
             )
             .is_empty()
         );
-        assert_eq!(a.selected_param(), Param::Friction);
-        let up = Param::Friction.nudged(a.params.ground.friction, 1, false);
+        assert_eq!(a.selected_param(), Param::named("ground.friction"));
+        let up = Param::named("ground.friction").nudged(a.params.ground.friction, 1, false);
         assert_eq!(
             mouse(&mut a, MouseEventKind::ScrollUp, areas.params.x + 3, friction_row),
-            [Command::SetParam(Param::Friction, up)]
+            [Command::SetParam(Param::named("ground.friction").scan_key(), up)]
         );
         let zoom = a.camera.zoom;
         mouse(&mut a, MouseEventKind::ScrollUp, areas.die.x + 5, areas.die.y + 5);
@@ -757,6 +784,17 @@ mod keys {
     }
 }
 
+/// The terminal sizes where a layout changes, and either side of each: the tiny sizes where
+/// every panel collapses, the minimum screen (80×24), the wide layout (120 columns) and the
+/// widest tested. Random sizes between them are left to the proptests.
+pub(super) fn boundary_sizes() -> impl Iterator<Item = (u16, u16)> {
+    const WIDTHS: [u16; 10] = [1, 2, 3, 79, 80, 81, 119, 120, 121, 200];
+    const HEIGHTS: [u16; 9] = [1, 2, 3, 23, 24, 25, 35, 36, 60];
+    WIDTHS
+        .into_iter()
+        .flat_map(|w| HEIGHTS.into_iter().map(move |h| (w, h)))
+}
+
 /// Rendering never panics, whatever the size and the state.
 mod sizes {
     use super::*;
@@ -793,10 +831,9 @@ mod sizes {
     }
 
     #[test]
-    fn every_size_up_to_200x60_draws() {
-        let app = &states()[1];
-        for width in 1..=200 {
-            for height in 1..=60 {
+    fn every_boundary_size_draws() {
+        for app in states() {
+            for (width, height) in boundary_sizes() {
                 draw_into(app, width, height);
             }
         }
@@ -813,7 +850,7 @@ mod sizes {
             yaw in -720.0f64..720.0,
             pitch in -90.0f64..90.0,
             zoom in -20i32..20,
-            selected in 0usize..ALL.len(),
+            selected in 0usize..all().len(),
             log in any::<bool>(),
             ascii in any::<bool>(),
             help_scroll in 0u16..200,

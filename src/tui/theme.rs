@@ -19,7 +19,7 @@ const INK: Color = Color::Rgb(0, 0, 0);
 
 /// Which palette (`t` cycles them).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Palette {
+pub(crate) enum Palette {
     #[default]
     Dark,
     Light,
@@ -27,7 +27,7 @@ pub enum Palette {
 }
 
 impl Palette {
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             Palette::Dark => "dark",
             Palette::Light => "light",
@@ -38,8 +38,8 @@ impl Palette {
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Theme {
-    pub colour: bool,
-    pub palette: Palette,
+    pub(crate) colour: bool,
+    pub(crate) palette: Palette,
 }
 
 impl Default for Theme {
@@ -60,7 +60,7 @@ impl Theme {
         }
     }
 
-    pub fn monochrome() -> Theme {
+    pub(crate) fn monochrome() -> Theme {
         Theme {
             colour: false,
             ..Theme::default()
@@ -68,7 +68,7 @@ impl Theme {
     }
 
     /// The next palette: dark → light → projector → dark.
-    pub fn next(self) -> Theme {
+    pub(crate) fn next(self) -> Theme {
         let palette = match self.palette {
             Palette::Dark => Palette::Light,
             Palette::Light => Palette::Projector,
@@ -79,7 +79,7 @@ impl Theme {
 
     /// A colour for lines and text in this palette, or the terminal's own foreground
     /// without colour. The light palettes darken the hues that wash out on white.
-    pub fn ink(&self, c: Color) -> Color {
+    pub(crate) fn ink(&self, c: Color) -> Color {
         if !self.colour {
             return Color::Reset;
         }
@@ -104,7 +104,7 @@ impl Theme {
 
     /// What every cell starts from: the terminal's own colours (dark, or no colour), or
     /// the palette's ink on its painted background.
-    pub fn base(&self) -> Style {
+    pub(crate) fn base(&self) -> Style {
         match (self.colour, self.palette) {
             (false, _) | (true, Palette::Dark) => Style::new(),
             (true, Palette::Light) => Style::new().fg(INK).bg(PAPER),
@@ -115,7 +115,7 @@ impl Theme {
     /// Gives every cell the palette's background and ink where a widget left the
     /// terminal's own (`Reset`), and the projector's bold everywhere. Run once, after
     /// everything is drawn, so no widget needs to know the palette.
-    pub fn paint(&self, buf: &mut ratatui::buffer::Buffer) {
+    pub(crate) fn paint(&self, buf: &mut ratatui::buffer::Buffer) {
         let base = self.base();
         if base == Style::new() {
             return;
@@ -143,20 +143,20 @@ impl Theme {
         Style::new().fg(self.ink(c))
     }
 
-    pub fn heading(&self) -> Style {
+    pub(crate) fn heading(&self) -> Style {
         Style::new().add_modifier(Modifier::BOLD)
     }
 
-    pub fn key(&self) -> Style {
+    pub(crate) fn key(&self) -> Style {
         self.fg(Color::Blue).add_modifier(Modifier::BOLD)
     }
 
-    pub fn selected(&self) -> Style {
+    pub(crate) fn selected(&self) -> Style {
         Style::new().add_modifier(Modifier::REVERSED)
     }
 
     /// A corner touching the ground (the authors drew those edges red).
-    pub fn contact(&self) -> Style {
+    pub(crate) fn contact(&self) -> Style {
         if self.colour {
             Style::new().fg(self.ink(Color::Red)).add_modifier(Modifier::BOLD)
         } else {
@@ -164,12 +164,12 @@ impl Theme {
         }
     }
 
-    pub fn contact_colour(&self) -> Color {
+    pub(crate) fn contact_colour(&self) -> Color {
         self.ink(Color::Red)
     }
 
     /// Worth a look: the stability number past 1, a p-value that doubts fairness.
-    pub fn caution(&self) -> Style {
+    pub(crate) fn caution(&self) -> Style {
         if self.colour {
             Style::new().fg(Color::Black).bg(Color::Yellow)
         } else {
@@ -178,7 +178,7 @@ impl Theme {
     }
 
     /// Trouble: the stability number near 2, an unstable roll, a refused value.
-    pub fn danger(&self) -> Style {
+    pub(crate) fn danger(&self) -> Style {
         if self.colour {
             Style::new()
                 .fg(Color::White)
@@ -189,28 +189,28 @@ impl Theme {
         }
     }
 
-    pub fn good(&self) -> Style {
+    pub(crate) fn good(&self) -> Style {
         self.fg(Color::Green).add_modifier(Modifier::BOLD)
     }
 
-    pub fn bar(&self) -> Style {
+    pub(crate) fn bar(&self) -> Style {
         self.fg(Color::Blue)
     }
 
-    pub fn ground(&self) -> Color {
+    pub(crate) fn ground(&self) -> Color {
         self.ink(Color::Green)
     }
 
-    pub fn shadow(&self) -> Color {
+    pub(crate) fn shadow(&self) -> Color {
         self.ink(Color::DarkGray)
     }
 
-    pub fn die(&self) -> Color {
+    pub(crate) fn die(&self) -> Color {
         Color::Reset
     }
 
     /// Line colours of total, translational, rotational, gravitational and elastic energy.
-    pub fn energy_series(&self) -> [Color; 5] {
+    pub(crate) fn energy_series(&self) -> [Color; 5] {
         [
             Color::Reset,
             Color::Blue,
@@ -222,22 +222,22 @@ impl Theme {
     }
 
     /// Arrow colours of ω, L, the centre-of-mass velocity and the contact forces.
-    pub fn vector_colours(&self) -> [Color; 4] {
+    pub(crate) fn vector_colours(&self) -> [Color; 4] {
         [Color::Cyan, Color::Magenta, Color::Blue, Color::Red].map(|c| self.ink(c))
     }
 
     /// The chaos twin's die, drawn as a ghost behind the first.
-    pub fn ghost(&self) -> Color {
+    pub(crate) fn ghost(&self) -> Color {
         self.ink(Color::DarkGray)
     }
 
     /// Line colours of the twin's separation: centre distance, orientation angle.
-    pub fn separation_colours(&self) -> [Color; 2] {
+    pub(crate) fn separation_colours(&self) -> [Color; 2] {
         [Color::Blue, Color::Magenta].map(|c| self.ink(c))
     }
 
     /// The stopping threshold: the terminal's own colour, drawn dotted to set it apart.
-    pub fn threshold(&self) -> Color {
+    pub(crate) fn threshold(&self) -> Color {
         Color::Reset
     }
 }

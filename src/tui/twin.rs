@@ -3,7 +3,8 @@
 
 use super::app::{App, Editor, Typed};
 use super::camera::{Camera, EDGES};
-use super::render::{fmt_num, line3};
+use super::format::fmt_num;
+use super::render::line3;
 use crate::experiment::twin::EPSILON;
 use crate::physics::Status;
 use crate::worker::{Command, DieState, Phase};
@@ -18,13 +19,13 @@ use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph};
 
 /// The ε a twin starts with: small enough to look like "the same throw", large enough that
 /// on the paper's setup the face often changes.
-pub const DEFAULT_EPSILON: f64 = 1e-9;
+pub(crate) const DEFAULT_EPSILON: f64 = 1e-9;
 
 /// What ε does, in the words shown on screen.
-pub const DEFINITION: &str = "twin: height, velocity and spin × (1 + ε)";
+pub(crate) const DEFINITION: &str = "twin: height, velocity and spin × (1 + ε)";
 
 /// The twin's keys; returns whether `key` was one of them.
-pub fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) -> bool {
+pub(crate) fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) -> bool {
     match key.code {
         KeyCode::Char('T') => {
             app.twin = !app.twin;
@@ -55,7 +56,7 @@ fn set_epsilon(app: &mut App, out: &mut Vec<Command>, epsilon: f64) {
 }
 
 /// Typing ε (after `E`): digits, `e`, `-`, `.`; Enter applies, Esc cancels.
-pub fn on_editor_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
+pub(crate) fn on_editor_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
     let Some(editor) = app.epsilon_editor.as_mut() else {
         return;
     };
@@ -82,7 +83,7 @@ pub fn on_editor_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
 }
 
 /// The twin's die drawn as a ghost: its visible edges in the ghost colour, behind the die.
-pub fn draw_ghost(ctx: &mut Context, app: &App, cam: &Camera, focus: &Vector3<f64>, die: &DieState) {
+pub(crate) fn draw_ghost(ctx: &mut Context, app: &App, cam: &Camera, focus: &Vector3<f64>, die: &DieState) {
     let colour = app.theme.ghost();
     for (a, b) in EDGES {
         line3(ctx, cam, focus, &die.corners[a], &die.corners[b], colour);
@@ -95,7 +96,7 @@ pub fn draw_ghost(ctx: &mut Context, app: &App, cam: &Camera, focus: &Vector3<f6
 const FLOOR: f64 = -16.0;
 
 /// The separation plot with ε's meaning above and both outcomes below.
-pub fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let Some(twin) = &app.live.twin else { return };
     let colours = t.separation_colours();
@@ -192,7 +193,7 @@ fn face_of(phase: &Phase) -> Option<u8> {
 }
 
 /// "die settled: face 3 · twin settled: face 5 · faces differ"; narrow: "3 · 5 differ".
-pub fn outcome_line(app: &App, width: u16) -> Line<'static> {
+pub(crate) fn outcome_line(app: &App, width: u16) -> Line<'static> {
     let t = &app.theme;
     let Some(twin) = &app.live.twin else {
         return Line::default();

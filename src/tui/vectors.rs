@@ -7,7 +7,7 @@
 
 use super::app::App;
 use super::camera::Camera;
-use super::render::fmt_num;
+use super::format::fmt_num;
 use crate::worker::DieState;
 use nalgebra::Vector3;
 use ratatui::style::{Color, Style};
@@ -16,14 +16,14 @@ use ratatui::widgets::canvas::{Context, Line as CanvasLine};
 
 /// What an arrow shows, in the legend's order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Arrow {
+pub(crate) enum Arrow {
     AngularVelocity,
     AngularMomentum,
     Velocity,
     ContactForce,
 }
 
-pub const ARROWS: [Arrow; 4] = [
+pub(crate) const ARROWS: [Arrow; 4] = [
     Arrow::AngularVelocity,
     Arrow::AngularMomentum,
     Arrow::Velocity,
@@ -31,7 +31,7 @@ pub const ARROWS: [Arrow; 4] = [
 ];
 
 impl Arrow {
-    pub fn symbol(self) -> &'static str {
+    pub(crate) fn symbol(self) -> &'static str {
         match self {
             Arrow::AngularVelocity => "ω",
             Arrow::AngularMomentum => "L",
@@ -40,7 +40,7 @@ impl Arrow {
         }
     }
 
-    pub fn unit(self) -> &'static str {
+    pub(crate) fn unit(self) -> &'static str {
         match self {
             Arrow::AngularVelocity => "rad/s",
             Arrow::AngularMomentum => "g·cm²/s",
@@ -53,7 +53,7 @@ impl Arrow {
     /// die's weight, M·g/8, so a die at rest shows short arrows and an impact long ones.
     /// L is parallel to ω (the cube's inertia is isotropic); its larger x₀ keeps the two
     /// arrows, and their labels, apart.
-    pub fn reference(self, app: &App) -> f64 {
+    pub(crate) fn reference(self, app: &App) -> f64 {
         let p = &app.live.params;
         match self {
             Arrow::AngularVelocity => 1.0,
@@ -63,13 +63,13 @@ impl Arrow {
         }
     }
 
-    pub fn colour(self, app: &App) -> Color {
+    pub(crate) fn colour(self, app: &App) -> Color {
         app.theme.vector_colours()[self as usize]
     }
 }
 
 /// cm: the drawn length of a vector of size `magnitude`.
-pub fn arrow_length(magnitude: f64, reference: f64, half_size: f64) -> f64 {
+pub(crate) fn arrow_length(magnitude: f64, reference: f64, half_size: f64) -> f64 {
     if magnitude.is_finite() && magnitude > 0.0 && reference > 0.0 {
         half_size * (1.0 + magnitude / reference).log10()
     } else {
@@ -88,7 +88,7 @@ fn total_force(die: &DieState) -> Vector3<f64> {
 }
 
 /// Draws every arrow of `die` on the canvas.
-pub fn draw(ctx: &mut Context, app: &App, cam: &Camera, focus: &Vector3<f64>, die: &DieState) {
+pub(crate) fn draw(ctx: &mut Context, app: &App, cam: &Camera, focus: &Vector3<f64>, die: &DieState) {
     let half = app.live.params.die.half_size;
     let mut arrow = |kind: Arrow, from: Vector3<f64>, v: Vector3<f64>, label: bool| {
         let length = arrow_length(v.norm(), kind.reference(app), half);
@@ -147,7 +147,7 @@ fn draw_arrow(
 }
 
 /// The legend under the die: each arrow's colour and size, then how lengths are scaled.
-pub fn legend(app: &App, width: u16) -> Vec<Line<'static>> {
+pub(crate) fn legend(app: &App, width: u16) -> Vec<Line<'static>> {
     let die = &app.live.die;
     let sizes = [
         die.angular_velocity.norm(),

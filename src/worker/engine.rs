@@ -3,13 +3,14 @@
 //! (and the thread in `mod.rs`) drive it step for step.
 
 use super::map::{MapJob, MapOrder};
-use super::param::Param;
 use super::speed::Speed;
 use super::twin::Twin;
 use super::{BatchProgress, Command, DieState, EnergySample, OutcomeTable, Phase, RollKind, Snapshot};
-use crate::experiment::trace::{export_roll, free_stem};
-use crate::experiment::{RandomRanges, RollRecord, Rolls, run_batch};
-use crate::physics::{Energy, InitialCondition, ParamError, Params, Simulation, face_most_nearly_up};
+use crate::experiment::trace::{ExportProgress, Exported, export_roll, human_bytes};
+use crate::experiment::{RandomRanges, RollRecord, ScanKey};
+use crate::output::{Output, free_stem, safe_file_stem};
+use crate::physics::registry::Role;
+use crate::physics::{InitialCondition, ParamError, Params, Simulation, face_most_nearly_up};
 use crate::preset::Preset;
 use std::sync::atomic::AtomicBool;
 
@@ -29,9 +30,46 @@ struct BatchState {
 /// initial condition enters the table twice.
 #[derive(Debug, Clone)]
 pub struct BatchRequest {
-    pub id: u64,
-    pub params: Params,
-    pub rolls: Vec<(u64, InitialCondition)>,
+    pub(crate) id: u64,
+    pub(crate) params: Params,
+    pub(crate) rolls: Vec<(u64, InitialCondition)>,
+}
+
+/// An export to run off the worker's thread: the roll's setup and the two checked files.
+#[derive(Debug, Clone)]
+pub(crate) struct ExportJob {
+    pub(crate) id: u64,
+    pub(crate) params: Params,
+    pub(crate) initial: InitialCondition,
+    pub(crate) title: String,
+    pub(crate) trace: Output,
+    pub(crate) plot: Output,
+}
+
+impl ExportJob {
+    /// Runs the export on this thread (see [`export_roll`]).
+    pub(crate) fn run(
+        &self,
+        cancel: &AtomicBool,
+        progress: &mut dyn FnMut(ExportProgress),
+    ) -> Result<Exported, crate::experiment::Error> {
+        export_roll(
+            &self.params,
+            &self.initial,
+            &self.title,
+            &self.trace,
+            &self.plot,
+            cancel,
+            progress,
+        )
+    }
+}
+
+/// The export the UI is waiting for.
+#[derive(Debug, Clone, Copy)]
+struct ExportState {
+    id: u64,
+    progress: ExportProgress,
 }
 
 /// Output gathered since the last snapshot.
@@ -78,6 +116,9 @@ pub struct Engine {
     pacing_epoch: u64,
     /// The chaos twin, if one rolls beside the die.
     twin: Option<Twin>,
+    export: Option<ExportState>,
+    export_request: Option<ExportJob>,
+    exports_started: u64,
 }
 
 impl Engine {
@@ -112,67 +153,55 @@ impl Engine {
             commands_handled: 0,
             pacing_epoch: 0,
             twin: None,
+            export: None,
+            export_request: None,
+            exports_started: 0,
         };
         engine.restart(RollKind::Preset);
         engine.pending.preset = Some(Box::new(preset.clone()));
         Ok(engine)
     }
 
-    pub fn preset_name(&self) -> &str {
-        &self.preset.name
-    }
-
     pub fn params(&self) -> &Params {
         &self.params
     }
 
-    pub fn initial(&self) -> &InitialCondition {
-        &self.initial
-    }
-
-    pub fn simulation(&self) -> &Simulation {
+    #[cfg(test)]
+    pub(crate) fn simulation(&self) -> &Simulation {
         &self.sim
     }
 
     /// s, simulated: how far the roll has got (the later of the die and its twin, since
     /// the one still rolling keeps the clock going).
-    pub fn time_s(&self) -> f64 {
+    pub(crate) fn time_s(&self) -> f64 {
         let die = self.sim.state().time_s;
         self.twin.as_ref().map_or(die, |t| die.max(t.sim.state().time_s))
     }
 
     /// Whether the roll on screen has ended: the die's, and its twin's if there is one.
-    pub fn roll_over(&self) -> bool {
+    pub(crate) fn roll_over(&self) -> bool {
         self.sim.outcome().is_some() && self.twin.as_ref().is_none_or(Twin::ended)
     }
 
-    pub fn is_playing(&self) -> bool {
+    pub(crate) fn is_playing(&self) -> bool {
         self.playing
     }
 
-    pub fn speed(&self) -> Speed {
+    pub(crate) fn speed(&self) -> Speed {
         self.speed
     }
 
-    pub fn batch_running(&self) -> bool {
-        self.batch.is_some()
-    }
-
     /// Whether time should keep moving without a command (a playing roll or a batch).
-    pub fn busy(&self) -> bool {
-        self.playing || self.batch.is_some()
+    pub(crate) fn busy(&self) -> bool {
+        self.playing || self.batch.is_some() || self.export.is_some()
     }
 
-    pub fn pacing_epoch(&self) -> u64 {
+    pub(crate) fn pacing_epoch(&self) -> u64 {
         self.pacing_epoch
     }
 
-    pub fn table(&self) -> &OutcomeTable {
-        &self.table
-    }
-
     /// Applies one command; returns false for [`Command::Quit`].
-    pub fn handle(&mut self, command: Command) -> bool {
+    pub(crate) fn handle(&mut self, command: Command) -> bool {
         self.commands_handled += 1;
         match command {
             Command::TogglePlay => {
@@ -267,6 +296,12 @@ impl Engine {
             },
             Command::LoadPreset(preset) => self.load_preset(*preset),
             Command::Export(dir) => self.export(&dir),
+            Command::ExportCancel => {
+                self.export_request = None;
+                if self.export.take().is_some() {
+                    self.pending.notice = Some("export cancelled: nothing was written".to_string());
+                }
+            }
             Command::Quit => return false,
         }
         true
@@ -295,17 +330,23 @@ impl Engine {
         self.preset = preset;
     }
 
-    /// Writes the roll on screen into `dir` (see [`Command::Export`]); the notice says where.
+    /// Asks for the roll on screen to be written into `dir` (see [`Command::Export`]): the
+    /// files are chosen and checked here, the writing happens on the export thread.
     fn export(&mut self, dir: &std::path::Path) {
+        if self.export.is_some() {
+            self.pending.notice = Some("an export is running: e cancels it".to_string());
+            return;
+        }
         let roll = match self.roll {
             RollKind::Preset => "preset-roll".to_string(),
             RollKind::Random(n) => format!("random-roll-{n}"),
             RollKind::Edited => "edited-roll".to_string(),
         };
         let dir = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
+        // The preset's name comes from a file: it names the export, it never leads elsewhere.
         let stem = free_stem(
             &dir,
-            &format!("dicesim-{}-{roll}", self.preset.name),
+            &format!("dicesim-{}-{roll}", safe_file_stem(&self.preset.name)),
             &["csv", "png"],
         );
         let title = format!(
@@ -313,16 +354,89 @@ impl Engine {
             self.preset.name,
             roll.replace('-', " ")
         );
-        self.pending.notice = Some(
-            match export_roll(&self.params, &self.initial, &title, &dir, &stem) {
-                Ok(done) => format!("exported {} and .png", done.trace.display()),
-                Err(e) => e.to_string(),
+        let checked = Output::check(&dir.join(format!("{stem}.csv")), &["csv"], false).and_then(|trace| {
+            Ok((
+                trace,
+                Output::check(&dir.join(format!("{stem}.png")), &["png"], false)?,
+            ))
+        });
+        let (trace, plot) = match checked {
+            Ok(files) => files,
+            Err(e) => {
+                self.pending.notice = Some(format!("cannot export the roll: {e}"));
+                return;
+            }
+        };
+        let id = self.exports_started;
+        self.exports_started += 1;
+        self.export = Some(ExportState {
+            id,
+            progress: ExportProgress {
+                writing: false,
+                steps_done: 0,
+                steps_total: self.params.max_steps(),
+                bytes: 0,
             },
-        );
+        });
+        self.export_request = Some(ExportJob {
+            id,
+            params: self.params,
+            initial: self.initial,
+            title,
+            trace,
+            plot,
+        });
+    }
+
+    /// The export to start, once: whoever runs it reports back with
+    /// [`Engine::export_progress`] and [`Engine::finish_export`].
+    pub(crate) fn take_export_request(&mut self) -> Option<ExportJob> {
+        self.export_request.take()
+    }
+
+    /// The export the UI waits for, if any.
+    pub(crate) fn export_id(&self) -> Option<u64> {
+        self.export.map(|e| e.id)
+    }
+
+    pub(crate) fn export_progress(&mut self, id: u64, progress: ExportProgress) {
+        if let Some(e) = &mut self.export
+            && e.id == id
+        {
+            e.progress = progress;
+        }
+    }
+
+    /// Export `id` has stopped: the notice says what was written, or why nothing was.
+    pub(crate) fn finish_export(&mut self, id: u64, result: Result<Exported, crate::experiment::Error>) {
+        if self.export_id() != Some(id) {
+            return;
+        }
+        self.export = None;
+        self.pending.notice = Some(match result {
+            Ok(done) => format!(
+                "exported {} ({}, {} rows) and .png",
+                done.trace.display(),
+                human_bytes(done.bytes),
+                done.rows
+            ),
+            Err(crate::experiment::Error::Cancelled) => "export cancelled: nothing was written".to_string(),
+            Err(e) => e.to_string(),
+        });
+    }
+
+    /// Runs the requested export on this thread to its end (tests).
+    #[cfg(test)]
+    pub(crate) fn run_export_here(&mut self) {
+        if let Some(job) = self.take_export_request() {
+            let result = job.run(&AtomicBool::new(false), &mut |_| {});
+            self.finish_export(job.id, result);
+        }
     }
 
     /// The preset as loaded.
-    pub fn preset(&self) -> &Preset {
+    #[cfg(test)]
+    pub(crate) fn preset(&self) -> &Preset {
         &self.preset
     }
 
@@ -335,15 +449,15 @@ impl Engine {
         self.pacing_epoch += 1;
     }
 
-    fn set_param(&mut self, param: Param, value: f64) {
+    fn set_param(&mut self, key: &ScanKey, value: f64) {
         let (mut params, mut initial) = (self.params, self.initial);
-        if let Err(e) = param.set(&mut params, &mut initial, value) {
+        if let Err(e) = key.set_checked(&mut params, &mut initial, value) {
             self.pending.notice = Some(e.to_string());
             return;
         }
         self.params = params;
         self.initial = initial;
-        if param.acts_mid_roll() && self.sim.outcome().is_none() {
+        if key.spec.acts_mid_roll && self.sim.outcome().is_none() {
             if let Err(e) = self.sim.set_ground(params.ground) {
                 self.pending.notice = Some(e.to_string());
             }
@@ -353,7 +467,7 @@ impl Engine {
             }
         } else {
             // A new initial condition is a roll of its own; other values re-run the same one.
-            let kind = if param.is_initial_condition() {
+            let kind = if key.spec.role == Role::Initial {
                 RollKind::Edited
             } else {
                 self.roll
@@ -423,7 +537,7 @@ impl Engine {
             None => s,
             Some(p) => EnergySample {
                 time_s: s.time_s,
-                energy: peak_of(p.energy, s.energy),
+                energy: p.energy.max_each(&s.energy),
                 total: p.total.max(s.total),
             },
         };
@@ -463,7 +577,7 @@ impl Engine {
     }
 
     /// Steps while playing until simulated time reaches `time_s` s, at most `max_steps` steps.
-    pub fn advance_until(&mut self, time_s: f64, max_steps: u64) -> u64 {
+    pub(crate) fn advance_until(&mut self, time_s: f64, max_steps: u64) -> u64 {
         let half_dt = 0.5 * self.params.integrator.dt;
         let mut taken = 0;
         while self.playing && taken < max_steps && self.sim.state().time_s + half_dt <= time_s {
@@ -476,7 +590,8 @@ impl Engine {
     }
 
     /// Plays the roll to its end at once (what "instant" shows).
-    pub fn run_to_end(&mut self) {
+    #[cfg(test)]
+    pub(crate) fn run_to_end(&mut self) {
         self.playing = true;
         while !self.roll_over() && self.step() {}
         self.playing = false;
@@ -484,22 +599,22 @@ impl Engine {
 
     /// The batch to start, once: whoever runs it reports back with [`Engine::add_batch_records`]
     /// and [`Engine::finish_batch`].
-    pub fn take_batch_request(&mut self) -> Option<BatchRequest> {
+    pub(crate) fn take_batch_request(&mut self) -> Option<BatchRequest> {
         self.batch_request.take()
     }
 
     /// The newest map order, once: the worker's map thread follows it.
-    pub fn take_map_order(&mut self) -> Option<MapOrder> {
+    pub(crate) fn take_map_order(&mut self) -> Option<MapOrder> {
         self.map_order.take()
     }
 
     /// The batch the table is receiving, if any.
-    pub fn batch_id(&self) -> Option<u64> {
+    pub(crate) fn batch_id(&self) -> Option<u64> {
         self.batch.map(|b| b.id)
     }
 
     /// Enters finished rolls of batch `id`; rolls of a cancelled batch are dropped.
-    pub fn add_batch_records(&mut self, id: u64, records: &[RollRecord]) {
+    pub(crate) fn add_batch_records(&mut self, id: u64, records: &[RollRecord]) {
         let Some(b) = &mut self.batch else { return };
         if b.id != id || records.is_empty() {
             return;
@@ -512,7 +627,7 @@ impl Engine {
     }
 
     /// Batch `id` has stopped (finished, cancelled or failed to start).
-    pub fn finish_batch(&mut self, id: u64, result: Result<(), String>) {
+    pub(crate) fn finish_batch(&mut self, id: u64, result: Result<(), String>) {
         let Some(b) = self.batch else { return };
         if b.id != id {
             return;
@@ -526,7 +641,9 @@ impl Engine {
 
     /// Runs the requested batch on this thread to its end (tests and anything else that
     /// wants the table filled deterministically).
-    pub fn run_batch_here(&mut self) {
+    #[cfg(test)]
+    pub(crate) fn run_batch_here(&mut self) {
+        use crate::experiment::{Rolls, run_batch};
         let Some(request) = self.take_batch_request() else {
             return;
         };
@@ -540,7 +657,7 @@ impl Engine {
         self.finish_batch(request.id, result.map(|_| ()).map_err(|e| e.to_string()));
     }
 
-    pub fn phase(&self) -> Phase {
+    pub(crate) fn phase(&self) -> Phase {
         if let Some(o) = self.sim.outcome() {
             return Phase::Ended(o);
         }
@@ -567,7 +684,6 @@ impl Engine {
         let s = self.sim.state();
         Snapshot {
             commands_handled: self.commands_handled,
-            preset_name: self.preset.name.clone(),
             params: self.params,
             initial: self.initial,
             roll: self.roll,
@@ -592,6 +708,7 @@ impl Engine {
             table: pending.table_changed.then(|| self.table.clone()),
             notice: pending.notice,
             preset: pending.preset,
+            export: self.export.map(|e| e.progress),
             twin: match &mut self.twin {
                 Some(t) => Some(t.snapshot(&self.sim)),
                 None => None,
@@ -612,14 +729,5 @@ pub(crate) fn die_state(sim: &Simulation, start_face: u8) -> DieState {
         angular_momentum: s.angular_momentum,
         face_up: sim.face_up(),
         start_face,
-    }
-}
-
-fn peak_of(a: Energy, b: Energy) -> Energy {
-    Energy {
-        translational: a.translational.max(b.translational),
-        rotational: a.rotational.max(b.rotational),
-        gravitational: a.gravitational.max(b.gravitational),
-        elastic: a.elastic.max(b.elastic),
     }
 }

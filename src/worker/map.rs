@@ -2,21 +2,20 @@
 //! maps sent straight to the UI as they come, coarse first.
 //!
 //! Every map is tagged with the generation the UI gave its request. A new request or a
-//! cancel sets the old map's cancel flag and lets its thread wind down on its own (it stops
-//! at the end of its refinement level), so the worker never waits for it; whatever that
-//! thread still sends carries the old generation and the UI drops it.
+//! cancel stops the old map and waits for its thread, which takes milliseconds since every
+//! roll looks at the cancel flag every few thousand steps: at most one map computes at a
+//! time. Whatever the old map sent last carries the old generation and the UI drops it.
 
-use crate::experiment::{Axis, BasinMap, Error, MapSpec, Method, run_map};
+use super::job::Job;
+use crate::experiment::{Axis, BasinMap, Error, MapSpec, Method, ScanKey, run_map};
 use crate::physics::{InitialCondition, Params};
-use crate::worker::param::Param;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::thread::JoinHandle;
 
-/// One axis of a requested map: a value from the parameter list, its range and grid nodes.
+/// One axis of a requested map: a numeric setup value, its range and grid nodes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MapAxis {
-    pub param: Param,
+    pub key: &'static ScanKey,
     /// In the value's unit.
     pub min: f64,
     /// In the value's unit.
@@ -27,7 +26,7 @@ pub struct MapAxis {
 impl MapAxis {
     /// The experiment's axis, checked against the value's allowed range.
     pub fn axis(&self) -> Result<Axis, Error> {
-        Axis::new(self.param.scan_key().clone(), self.min, self.max, self.cells)
+        Axis::new(self.key.clone(), self.min, self.max, self.cells)
     }
 }
 
@@ -42,15 +41,15 @@ pub struct MapRequest {
 
 /// A request with the setup it maps around, as the worker had it when the request came.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MapJob {
-    pub request: MapRequest,
-    pub params: Params,
-    pub initial: InitialCondition,
+pub(crate) struct MapJob {
+    pub(crate) request: MapRequest,
+    pub(crate) params: Params,
+    pub(crate) initial: InitialCondition,
 }
 
 /// What the worker's engine asks its map thread to do next.
 #[derive(Debug, Clone, PartialEq)]
-pub enum MapOrder {
+pub(crate) enum MapOrder {
     Start(Box<MapJob>),
     Cancel,
 }
@@ -67,7 +66,8 @@ pub struct MapUpdate {
 
 /// Computes `job` on this thread (one roll thread per core), handing every partial map and
 /// the complete one to `send`; stops early when `cancel` is set or `send` returns false.
-pub fn compute(job: &MapJob, cancel: &AtomicBool, send: &mut dyn FnMut(MapUpdate) -> bool) {
+pub(crate) fn compute(job: &MapJob, cancel: &AtomicBool, send: &mut dyn FnMut(MapUpdate) -> bool) {
+    crate::fault::inject("map");
     let update = |map| MapUpdate {
         generation: job.request.generation,
         params: job.params,
@@ -87,7 +87,7 @@ pub fn compute(job: &MapJob, cancel: &AtomicBool, send: &mut dyn FnMut(MapUpdate
     };
     let result = run_map(&job.params, &job.initial, &spec, 0, cancel, &mut |partial| {
         if !cancel.load(Ordering::Relaxed) && !send(update(Ok(partial.clone()))) {
-            // Nobody listens any more: stop at the end of this level.
+            // Nobody listens any more: stop.
             cancel.store(true, Ordering::Relaxed);
         }
     });
@@ -99,54 +99,41 @@ pub fn compute(job: &MapJob, cancel: &AtomicBool, send: &mut dyn FnMut(MapUpdate
 /// Where map threads send their updates; false once the UI has gone.
 pub(super) type MapSink = Arc<dyn Fn(MapUpdate) -> bool + Send + Sync>;
 
-struct MapRun {
-    cancel: Arc<AtomicBool>,
-    thread: JoinHandle<()>,
-}
-
-/// The map threads of one worker: at most one current, cancelled ones winding down.
+/// The map thread of one worker: at most one at a time.
 pub(super) struct MapRunner {
     sink: MapSink,
-    current: Option<MapRun>,
-    retired: Vec<MapRun>,
+    current: Option<Job<()>>,
 }
 
 impl MapRunner {
-    pub fn new(sink: MapSink) -> MapRunner {
-        MapRunner {
-            sink,
-            current: None,
-            retired: Vec::new(),
-        }
+    pub(crate) fn new(sink: MapSink) -> MapRunner {
+        MapRunner { sink, current: None }
     }
 
-    /// Follows the engine's newest order, and forgets threads that have ended.
-    pub fn sync(&mut self, order: Option<MapOrder>) {
+    /// Follows the engine's newest order, and forgets a map that has ended.
+    pub(crate) fn sync(&mut self, order: Option<MapOrder>) {
         if let Some(order) = order {
-            if let Some(run) = self.current.take() {
-                run.cancel.store(true, Ordering::Relaxed);
-                self.retired.push(run);
-            }
+            self.stop();
             if let MapOrder::Start(job) = order {
                 self.start(*job);
             }
         }
-        let (ended, running): (Vec<MapRun>, Vec<MapRun>) =
-            self.retired.drain(..).partition(|r| r.thread.is_finished());
-        self.retired = running;
-        for run in ended {
-            let _ = run.thread.join();
+        if self.current.as_ref().is_some_and(Job::is_finished) {
+            self.stop();
         }
     }
 
+    /// Whether a map is computing.
+    pub(crate) fn running(&self) -> bool {
+        self.current.is_some()
+    }
+
     fn start(&mut self, job: MapJob) {
-        let cancel = Arc::new(AtomicBool::new(false));
-        let (flag, sink) = (cancel.clone(), self.sink.clone());
-        let thread = std::thread::Builder::new()
-            .name("dicesim-map".to_string())
-            .spawn(move || compute(&job, &flag, &mut |u| sink(u)));
-        match thread {
-            Ok(thread) => self.current = Some(MapRun { cancel, thread }),
+        let sink = self.sink.clone();
+        match Job::spawn("dicesim-map", move |cancel| {
+            compute(&job, cancel, &mut |u| sink(u))
+        }) {
+            Ok(run) => self.current = Some(run),
             Err(e) => {
                 (self.sink)(MapUpdate {
                     generation: job.request.generation,
@@ -157,22 +144,16 @@ impl MapRunner {
             }
         }
     }
+
+    fn stop(&mut self) {
+        if let Some(run) = self.current.take() {
+            run.stop();
+        }
+    }
 }
 
 impl Drop for MapRunner {
-    /// Cancels every map and waits for each to reach the end of its level.
     fn drop(&mut self) {
-        let runs: Vec<MapRun> = self
-            .current
-            .take()
-            .into_iter()
-            .chain(self.retired.drain(..))
-            .collect();
-        for run in &runs {
-            run.cancel.store(true, Ordering::Relaxed);
-        }
-        for run in runs {
-            let _ = run.thread.join();
-        }
+        self.stop();
     }
 }

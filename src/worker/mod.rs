@@ -5,24 +5,24 @@
 //! nothing moves, so a paused explorer costs no CPU. It never touches the terminal.
 
 mod engine;
-pub mod map;
-pub mod param;
+mod job;
+pub(crate) mod map;
 mod speed;
 mod twin;
 
 pub use engine::{BatchRequest, Engine};
 pub use map::{MapAxis, MapRequest, MapUpdate};
-pub use param::Param;
 pub use speed::Speed;
 
+use crate::experiment::trace::ExportProgress;
 use crate::experiment::twin::Separation;
 use crate::experiment::{FaceTally, RollRecord};
-use crate::experiment::{Rolls, run_batch};
+use crate::experiment::{Rolls, ScanKey, run_batch};
 use crate::physics::{ContactForce, Energy, EnergyLedger, InitialCondition, Outcome, Params, Status};
 use crate::preset::Preset;
+use job::Job;
 use nalgebra::Vector3;
 use std::collections::VecDeque;
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender, channel};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
@@ -39,8 +39,9 @@ pub enum Command {
     Replay,
     /// The next random initial condition from the preset's ranges.
     RandomRoll,
-    /// A new value; ground values act on the running roll, others restart it.
-    SetParam(Param, f64),
+    /// A new value; values that act mid-roll (the ground's) change the running roll, others
+    /// restart it.
+    SetParam(&'static ScanKey, f64),
     SetSpeed(Speed),
     /// Random rolls computed into the outcome table.
     BatchStart(u64),
@@ -57,8 +58,9 @@ pub enum Command {
     /// Another preset: its setup and its roll, a fresh outcome table.
     LoadPreset(Box<Preset>),
     /// Write the roll on screen, rolled again from t = 0, into this folder: its trace as
-    /// CSV and its energy plot as PNG.
+    /// CSV and its energy plot as PNG (on a thread of its own, with progress).
     Export(std::path::PathBuf),
+    ExportCancel,
     Quit,
 }
 
@@ -86,7 +88,7 @@ pub enum Phase {
 }
 
 impl Phase {
-    pub fn label(&self) -> String {
+    pub(crate) fn label(&self) -> String {
         match self {
             Phase::Falling => "falling".to_string(),
             Phase::InContact => "in contact".to_string(),
@@ -105,60 +107,60 @@ impl Phase {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EnergySample {
     /// s, simulated.
-    pub time_s: f64,
-    pub energy: Energy,
-    pub total: f64,
+    pub(crate) time_s: f64,
+    pub(crate) energy: Energy,
+    pub(crate) total: f64,
 }
 
 /// How far the twin has drifted from the die at one instant (each term's newest value).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SeparationSample {
+pub(crate) struct SeparationSample {
     /// s, simulated.
-    pub time_s: f64,
-    pub separation: Separation,
+    pub(crate) time_s: f64,
+    pub(crate) separation: Separation,
 }
 
 /// The chaos twin as drawn: its die, how its roll went, and its drift from the first die.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TwinSnapshot {
-    pub epsilon: f64,
-    pub die: DieState,
-    pub phase: Phase,
-    pub separation: Separation,
+    pub(crate) epsilon: f64,
+    pub(crate) die: DieState,
+    pub(crate) phase: Phase,
+    pub(crate) separation: Separation,
     /// Samples since the previous snapshot (after clearing, if the snapshot's
     /// `history_reset`).
-    pub history: Vec<SeparationSample>,
+    pub(crate) history: Vec<SeparationSample>,
 }
 
 /// The die as drawn.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DieState {
     /// cm, world positions of corners 1..8.
-    pub corners: [Vector3<f64>; 8],
+    pub(crate) corners: [Vector3<f64>; 8],
     /// Each corner's contact force (depth > 0 means it touches the ground).
-    pub forces: [ContactForce; 8],
+    pub(crate) forces: [ContactForce; 8],
     /// cm, centre of mass.
-    pub centre: Vector3<f64>,
+    pub(crate) centre: Vector3<f64>,
     /// cm/s, centre-of-mass velocity.
-    pub velocity: Vector3<f64>,
+    pub(crate) velocity: Vector3<f64>,
     /// rad/s, ω (world frame).
-    pub angular_velocity: Vector3<f64>,
+    pub(crate) angular_velocity: Vector3<f64>,
     /// g·cm²/s, L about the centre of mass.
-    pub angular_momentum: Vector3<f64>,
+    pub(crate) angular_momentum: Vector3<f64>,
     /// The face most nearly up now.
-    pub face_up: u8,
+    pub(crate) face_up: u8,
     /// The face most nearly up at t = 0.
-    pub start_face: u8,
+    pub(crate) start_face: u8,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct BatchProgress {
     pub done: u64,
-    pub total: u64,
+    pub(crate) total: u64,
 }
 
 /// How many finished rolls the table lists.
-pub const LAST_ROLLS: usize = 12;
+pub(crate) const LAST_ROLLS: usize = 12;
 
 /// The outcome table: face counts of random rolls and the last few rolls.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -166,14 +168,14 @@ pub struct OutcomeTable {
     /// Settled rolls with a face up.
     pub tally: FaceTally,
     /// Rolls that reached the time cap, or settled without a face up.
-    pub did_not_settle: u64,
-    pub unstable: u64,
+    pub(crate) did_not_settle: u64,
+    pub(crate) unstable: u64,
     /// Newest first.
     pub last: VecDeque<RollRecord>,
 }
 
 impl OutcomeTable {
-    pub fn add(&mut self, r: RollRecord) {
+    pub(crate) fn add(&mut self, r: RollRecord) {
         match (r.outcome.status, r.outcome.face) {
             (Status::Settled, Some(f)) => self.tally.add(f),
             (Status::Unstable, _) => self.unstable += 1,
@@ -194,7 +196,6 @@ impl OutcomeTable {
 pub struct Snapshot {
     /// Commands applied so far: the UI knows its own edits have arrived when this catches up.
     pub commands_handled: u64,
-    pub preset_name: String,
     pub params: Params,
     pub initial: InitialCondition,
     pub roll: RollKind,
@@ -223,10 +224,12 @@ pub struct Snapshot {
     pub twin: Option<TwinSnapshot>,
     /// The preset loaded, in the first snapshot and whenever another is loaded.
     pub preset: Option<Box<Preset>>,
+    /// The running export, how far it has got.
+    pub export: Option<ExportProgress>,
 }
 
 /// s of wall time between snapshots while something moves.
-pub const TICK: Duration = Duration::from_micros(16_667);
+pub(crate) const TICK: Duration = Duration::from_micros(16_667);
 
 /// Steps per tick at "instant": a roll of the default 30 s cap finishes in one tick, and
 /// the longest allowed (120 s at 10 µs) in a second or two without blocking commands.
@@ -303,6 +306,7 @@ fn run<T: From<Snapshot>>(
     if out.send(engine.snapshot().into()).is_err() {
         return;
     }
+    crate::fault::inject("worker");
     let mut pacer = Pacer {
         epoch: u64::MAX,
         wall: Instant::now(),
@@ -310,9 +314,10 @@ fn run<T: From<Snapshot>>(
     };
     let mut next_tick = Instant::now();
     let mut batch = BatchRunner::default();
+    let mut export = ExportRunner::default();
     loop {
         // Block while idle; while busy, wait for a command at most until the next tick.
-        let first = if engine.busy() || batch.running() {
+        let first = if engine.busy() || batch.running() || export.running() || maps.running() {
             match rx.recv_timeout(next_tick.saturating_duration_since(Instant::now())) {
                 Ok(c) => Some(c),
                 Err(RecvTimeoutError::Timeout) => None,
@@ -329,6 +334,7 @@ fn run<T: From<Snapshot>>(
             handled = true;
             if !engine.handle(command) {
                 batch.stop();
+                export.stop();
                 return;
             }
         }
@@ -368,6 +374,7 @@ fn run<T: From<Snapshot>>(
             }
         }
         batch.sync(&mut engine);
+        export.sync(&mut engine);
         maps.sync(engine.take_map_order());
         if out.send(engine.snapshot().into()).is_err() {
             break;
@@ -375,6 +382,7 @@ fn run<T: From<Snapshot>>(
         next_tick = now + TICK;
     }
     batch.stop();
+    export.stop();
 }
 
 /// The batch thread: `experiment::run_batch` with a cancel flag, its progress passed on
@@ -386,10 +394,9 @@ struct BatchRunner {
 
 struct BatchRun {
     id: u64,
-    cancel: Arc<AtomicBool>,
     /// Rolls finished since the engine last took them.
     fresh: Arc<Mutex<Vec<RollRecord>>>,
-    thread: JoinHandle<Result<(), String>>,
+    job: Job<Result<(), String>>,
 }
 
 impl BatchRunner {
@@ -409,55 +416,110 @@ impl BatchRunner {
         let Some(run) = &self.run else { return };
         let fresh = std::mem::take(&mut *run.fresh.lock().unwrap_or_else(|e| e.into_inner()));
         engine.add_batch_records(run.id, &fresh);
-        if run.thread.is_finished() {
+        if run.job.is_finished() {
             let run = self.run.take().expect("checked above");
             let rest = std::mem::take(&mut *run.fresh.lock().unwrap_or_else(|e| e.into_inner()));
             engine.add_batch_records(run.id, &rest);
             let result = run
-                .thread
+                .job
                 .join()
-                .unwrap_or_else(|_| Err("a roll panicked".to_string()));
+                .unwrap_or_else(|| Err("a roll panicked".to_string()));
             engine.finish_batch(run.id, result);
         }
     }
 
     fn start(&mut self, request: BatchRequest, engine: &mut Engine) {
-        let cancel = Arc::new(AtomicBool::new(false));
         let fresh = Arc::new(Mutex::new(Vec::new()));
-        let (flag, sink) = (cancel.clone(), fresh.clone());
+        let sink = fresh.clone();
         let id = request.id;
-        let thread = std::thread::Builder::new()
-            .name("dicesim-batch".to_string())
-            .spawn(move || {
-                let rolls = Rolls::Given(&request.rolls);
-                let mut seen = 0;
-                run_batch(&request.params, &rolls, 0, &flag, &mut |records| {
-                    sink.lock()
-                        .unwrap_or_else(|e| e.into_inner())
-                        .extend_from_slice(&records[seen..]);
-                    seen = records.len();
-                })
-                .map(|_| ())
-                .map_err(|e| e.to_string())
-            });
-        match thread {
-            Ok(thread) => {
-                self.run = Some(BatchRun {
-                    id,
-                    cancel,
-                    fresh,
-                    thread,
-                })
-            }
+        let job = Job::spawn("dicesim-batch", move |cancel| {
+            let rolls = Rolls::Given(&request.rolls);
+            let mut seen = 0;
+            run_batch(&request.params, &rolls, 0, cancel, &mut |records| {
+                sink.lock()
+                    .unwrap_or_else(|e| e.into_inner())
+                    .extend_from_slice(&records[seen..]);
+                seen = records.len();
+            })
+            .map(|_| ())
+            .map_err(|e| e.to_string())
+        });
+        match job {
+            Ok(job) => self.run = Some(BatchRun { id, fresh, job }),
             Err(e) => engine.finish_batch(id, Err(e.to_string())),
         }
     }
 
-    /// Cancels the running batch and waits for its chunk to end.
+    /// Cancels the running batch and waits for its threads (milliseconds: rolls look at
+    /// the flag every few thousand steps).
     fn stop(&mut self) {
         if let Some(run) = self.run.take() {
-            run.cancel.store(true, Ordering::Relaxed);
-            let _ = run.thread.join();
+            run.job.stop();
+        }
+    }
+}
+
+/// The export thread: `experiment::trace::export_roll`, its progress passed on to the
+/// engine on every tick.
+#[derive(Default)]
+struct ExportRunner {
+    run: Option<ExportRun>,
+}
+
+type ExportResult = Result<crate::experiment::trace::Exported, crate::experiment::Error>;
+
+struct ExportRun {
+    id: u64,
+    progress: Arc<Mutex<Option<ExportProgress>>>,
+    job: Job<ExportResult>,
+}
+
+impl ExportRunner {
+    fn running(&self) -> bool {
+        self.run.is_some()
+    }
+
+    fn sync(&mut self, engine: &mut Engine) {
+        if self
+            .run
+            .as_ref()
+            .is_some_and(|r| engine.export_id() != Some(r.id))
+        {
+            self.stop();
+        }
+        if let Some(request) = engine.take_export_request() {
+            self.stop();
+            let progress = Arc::new(Mutex::new(None));
+            let sink = progress.clone();
+            let id = request.id;
+            let job = Job::spawn("dicesim-export", move |cancel| {
+                request.run(cancel, &mut |p| {
+                    *sink.lock().unwrap_or_else(|e| e.into_inner()) = Some(p);
+                })
+            });
+            match job {
+                Ok(job) => self.run = Some(ExportRun { id, progress, job }),
+                Err(e) => engine.finish_export(id, Err(crate::experiment::Error::Export(e.to_string()))),
+            }
+        }
+        let Some(run) = &self.run else { return };
+        if let Some(p) = run.progress.lock().unwrap_or_else(|e| e.into_inner()).take() {
+            engine.export_progress(run.id, p);
+        }
+        if run.job.is_finished() {
+            let run = self.run.take().expect("checked above");
+            let result = run.job.join().unwrap_or_else(|| {
+                Err(crate::experiment::Error::Export(
+                    "the export panicked".to_string(),
+                ))
+            });
+            engine.finish_export(run.id, result);
+        }
+    }
+
+    fn stop(&mut self) {
+        if let Some(run) = self.run.take() {
+            run.job.stop();
         }
     }
 }

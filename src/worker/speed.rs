@@ -21,29 +21,25 @@ impl Default for Speed {
 }
 
 impl Speed {
-    pub const REAL_TIME: Speed = Speed(REAL_TIME);
     pub const SLOWEST: Speed = Speed(0);
-    pub const FASTEST: Speed = Speed(FACTORS.len() as u8 - 1);
+    #[cfg(test)]
+    pub(crate) const FASTEST: Speed = Speed(FACTORS.len() as u8 - 1);
     pub const INSTANT: Speed = Speed(INSTANT);
 
     /// Simulated seconds per wall second; `None` for instant.
-    pub fn factor(self) -> Option<f64> {
+    pub(crate) fn factor(self) -> Option<f64> {
         FACTORS.get(self.0 as usize).copied()
     }
 
-    pub fn is_instant(self) -> bool {
-        self.0 == INSTANT
-    }
-
-    pub fn slower(self) -> Speed {
+    pub(crate) fn slower(self) -> Speed {
         Speed(self.0.saturating_sub(1))
     }
 
-    pub fn faster(self) -> Speed {
+    pub(crate) fn faster(self) -> Speed {
         Speed((self.0 + 1).min(INSTANT))
     }
 
-    pub fn label(self) -> &'static str {
+    pub(crate) fn label(self) -> &'static str {
         LABELS.get(self.0 as usize).copied().unwrap_or("instant")
     }
 }

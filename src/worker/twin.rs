@@ -7,8 +7,8 @@ use crate::experiment::twin::{EPSILON, perturbed, separation};
 use crate::physics::{InitialCondition, ParamError, Params, Simulation, face_most_nearly_up};
 
 pub(crate) struct Twin {
-    pub epsilon: f64,
-    pub sim: Simulation,
+    pub(crate) epsilon: f64,
+    pub(crate) sim: Simulation,
     start_face: u8,
     /// Samples since the last snapshot.
     history: Vec<SeparationSample>,
@@ -18,7 +18,7 @@ pub(crate) struct Twin {
 
 impl Twin {
     /// A twin of the roll from `initial`, at t = 0; ε outside its range is refused.
-    pub fn new(params: &Params, initial: &InitialCondition, epsilon: f64) -> Result<Twin, ParamError> {
+    pub(crate) fn new(params: &Params, initial: &InitialCondition, epsilon: f64) -> Result<Twin, ParamError> {
         EPSILON.check(epsilon)?;
         let sim = Simulation::new_unchecked(params, &perturbed(initial, epsilon));
         let start_face = face_most_nearly_up(&sim.state().corner_offsets);
@@ -32,18 +32,18 @@ impl Twin {
     }
 
     /// One step, unless its roll has ended.
-    pub fn step(&mut self) {
+    pub(crate) fn step(&mut self) {
         if self.sim.outcome().is_none() {
             self.sim.advance();
         }
     }
 
-    pub fn ended(&self) -> bool {
+    pub(crate) fn ended(&self) -> bool {
         self.sim.outcome().is_some()
     }
 
     /// After a step: records the separation every `stride` steps, and at the end.
-    pub fn stepped(&mut self, die: &Simulation, stride: u64, last: bool) {
+    pub(crate) fn stepped(&mut self, die: &Simulation, stride: u64, last: bool) {
         self.unsampled += 1;
         if self.unsampled >= stride || last {
             self.sample(die);
@@ -51,7 +51,7 @@ impl Twin {
     }
 
     /// Records the separation from `die` now.
-    pub fn sample(&mut self, die: &Simulation) {
+    pub(crate) fn sample(&mut self, die: &Simulation) {
         self.unsampled = 0;
         let time_s = die.state().time_s.max(self.sim.state().time_s);
         self.history.push(SeparationSample {
@@ -60,7 +60,7 @@ impl Twin {
         });
     }
 
-    pub fn snapshot(&mut self, die: &Simulation) -> TwinSnapshot {
+    pub(crate) fn snapshot(&mut self, die: &Simulation) -> TwinSnapshot {
         TwinSnapshot {
             epsilon: self.epsilon,
             die: die_state(&self.sim, self.start_face),

@@ -1,4 +1,4 @@
-//! Helpers shared by the integration tests: reading the reference CSVs.
+//! Helpers shared by the integration tests: reading the reference CSVs, running the binary.
 #![allow(dead_code)]
 
 use dicesim::physics::{FrictionLaw, InitialCondition, Params, StopEnergy};
@@ -17,13 +17,19 @@ impl Table {
         let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
             .join("tests/data/reference")
             .join(name);
-        let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-        let mut lines = text.lines();
-        let header: Vec<String> = lines.next().unwrap().split(',').map(str::to_string).collect();
+        let fail = |e: &dyn std::fmt::Display| -> ! { panic!("{}: {e}", path.display()) };
+        let mut reader = csv::Reader::from_path(&path).unwrap_or_else(|e| fail(&e));
+        let header: Vec<String> = reader
+            .headers()
+            .unwrap_or_else(|e| fail(&e))
+            .iter()
+            .map(str::to_string)
+            .collect();
         let index = header.iter().enumerate().map(|(i, h)| (h.clone(), i)).collect();
-        let rows = lines
-            .filter(|l| !l.is_empty())
-            .map(|l| l.split(',').map(|v| v.parse::<f64>().unwrap()).collect())
+        // Every cell is a number written with %.17g, so each parses to the bits written.
+        let rows = reader
+            .deserialize::<Vec<f64>>()
+            .map(|row| row.unwrap_or_else(|e| fail(&e)))
             .collect();
         Table { header, rows, index }
     }
@@ -62,4 +68,15 @@ pub fn reference_params(variant: &str) -> Params {
     };
     p.integrator.stop_energy = StopEnergy::PointMasses;
     p
+}
+
+/// Runs the `dicesim` binary in `dir`, with a user preset folder that does not exist, so
+/// that only the shipped presets are found.
+pub fn dicesim_in(dir: &std::path::Path, args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_dicesim"))
+        .args(args)
+        .current_dir(dir)
+        .env("DICESIM_PRESETS", dir.join("no-user-presets"))
+        .output()
+        .expect("the binary runs")
 }

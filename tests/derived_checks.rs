@@ -1,4 +1,4 @@
-//! The derived checks of MODEL.md's last section: facts any correct implementation passes.
+//! The derived checks of docs/model.md's last section: facts any correct implementation passes.
 
 use dicesim::physics::{InitialCondition, Params, Simulation, Status};
 use nalgebra::{Matrix3, Vector3};
@@ -193,7 +193,7 @@ fn rebound_speed(v_in: f64) -> f64 {
     panic!("the die never left the ground");
 }
 
-/// `q` solving `ln(1−q) + q = ln(1+p) − p` for `0 < q < 1` (MODEL.md restitution law).
+/// `q` solving `ln(1−q) + q = ln(1+p) − p` for `0 < q < 1` (docs/model.md, "Derived checks").
 fn restitution_q(p: f64) -> f64 {
     let target = (1.0 + p).ln() - p;
     let f = |q: f64| (1.0 - q).ln() + q - target;

@@ -22,6 +22,7 @@ fn batch(params: &Params, ranges: &RandomRanges, seed: u64, count: u64, jobs: us
         ranges,
         base: &base,
         seed,
+        first: 0,
         count,
     };
     let b = run_batch(params, &rolls, jobs, &AtomicBool::new(false), &mut |_| {}).unwrap();
@@ -55,7 +56,7 @@ fn drop_ranges(height: f64) -> RandomRanges {
 
 #[test]
 fn a_gentle_drop_keeps_the_start_face_and_a_high_one_does_not() {
-    // MODEL.md: from 1.8 cm the start face stays up in 99.8% of rolls; from 8 cm up each
+    // docs/model.md: from 1.8 cm the start face stays up in 99.8% of rolls; from 8 cm up each
     // face comes up about 1/6 of the time. 400 rolls put 95% far outside chance for the
     // first, and 40% about 6 standard errors above 1/6 for the second.
     let p = Params::default();
@@ -150,7 +151,7 @@ fn an_interleaved_map_switches_to_uniform_and_equals_it() {
     let uniform = run(Method::Uniform);
     let (passes, share) = adaptive.switched_to_uniform.expect("the map switches");
     assert_eq!(passes, 1);
-    assert!(share > dicesim::experiment::basin::UNIFORM_SWITCH_SHARE);
+    assert!(share > dicesim::experiment::UNIFORM_SWITCH_SHARE);
     assert!(adaptive.complete);
     assert_eq!(adaptive.sampled, 65 * 33);
     assert_eq!(adaptive.cells, uniform.cells);
@@ -203,11 +204,11 @@ fn run_ok(args: &[&str]) -> String {
 }
 
 fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
-    let text = std::fs::read_to_string(path).unwrap();
-    let mut lines = text.lines();
-    let header = lines.next().unwrap().split(',').map(str::to_string).collect();
-    let rows = lines
-        .map(|l| l.split(',').map(str::to_string).collect())
+    let mut reader = csv::Reader::from_path(path).unwrap();
+    let header = reader.headers().unwrap().iter().map(str::to_string).collect();
+    let rows = reader
+        .records()
+        .map(|r| r.unwrap().iter().map(str::to_string).collect())
         .collect();
     (header, rows)
 }

@@ -1,7 +1,8 @@
 //! Whatever the parameters, a roll ends in a status (or is refused by validation), never a
 //! panic or an endless loop.
 
-use dicesim::physics::params::{self, Limits, MAX_STEPS_CAP};
+use dicesim::physics::params::{Limits, MAX_STEPS_CAP};
+use dicesim::physics::registry;
 use dicesim::physics::{FrictionLaw, InitialCondition, Params, Simulation, StopEnergy};
 use proptest::prelude::*;
 
@@ -21,17 +22,17 @@ fn across_and_beyond(l: Limits) -> impl Strategy<Value = f64> {
 fn any_params() -> impl Strategy<Value = Params> {
     (
         (
-            across_and_beyond(params::HALF_SIZE),
-            across_and_beyond(params::CORNER_MASS),
+            across_and_beyond(registry::HALF_SIZE.limits),
+            across_and_beyond(registry::CORNER_MASS.limits),
         ),
         (
-            across_and_beyond(params::STIFFNESS),
-            across_and_beyond(params::DAMPING),
-            across_and_beyond(params::FRICTION),
+            across_and_beyond(registry::STIFFNESS.limits),
+            across_and_beyond(registry::DAMPING.limits),
+            across_and_beyond(registry::FRICTION.limits),
         ),
-        across_and_beyond(params::GRAVITY),
+        across_and_beyond(registry::GRAVITY.limits),
         // Short time caps keep each case fast; the dt range is covered in full.
-        (across_and_beyond(params::DT), 0.01f64..2.0),
+        (across_and_beyond(registry::DT.limits), 0.01f64..2.0),
         (any::<bool>(), any::<bool>()),
     )
         .prop_map(|((a, m), (k, gamma, mu), g, (dt, max_time), (law, stop))| {

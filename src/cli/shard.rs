@@ -1,0 +1,200 @@
+//! `--shard K/N` of `batch` and `basin`: the option, the part summary a shard leaves for
+//! `dicesim merge`, and the setup fingerprints that tell sweeps apart.
+
+use super::CliError;
+use crate::experiment::BatchRun;
+use crate::experiment::shard::{PART_FORMAT, Part, Shard, Sweep, fingerprint};
+use crate::physics::InitialCondition;
+use crate::preset::Preset;
+use clap::Args;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// The extension of a part summary, replacing the records file's.
+pub(crate) const PART_EXTENSION: &str = "part.json";
+
+#[derive(Debug, Clone, Default, Args)]
+pub(crate) struct ShardArgs {
+    /// Roll only shard K of N (K from 0): ids ⌊K·R/N⌋ up to ⌊(K+1)·R/N⌋ of the same R rolls
+    /// (rows of a map); `dicesim merge` puts the N parts back into the one-machine result.
+    #[arg(long, value_name = "K/N", value_parser = Shard::parse)]
+    pub(crate) shard: Option<Shard>,
+    /// Where the shard's summary for `dicesim merge` goes (default: --out with the extension
+    /// `.part.json`). Without --out the shard keeps only this summary: its counts.
+    #[arg(long, value_name = "FILE.part.json", requires = "shard")]
+    pub(crate) part: Option<PathBuf>,
+}
+
+impl ShardArgs {
+    /// The shard to roll and where its summary goes, or `None` for a whole run.
+    pub(crate) fn resolve(&self, out: Option<&Path>) -> Result<Option<(Shard, PathBuf)>, CliError> {
+        let Some(shard) = self.shard else {
+            return Ok(None);
+        };
+        let part = match (&self.part, out) {
+            (Some(part), _) => part.clone(),
+            (None, Some(out)) => out.with_extension(PART_EXTENSION),
+            (None, None) => {
+                return Err(CliError::Usage(
+                    "--shard needs --out (the shard's records) or --part (only its summary)".to_string(),
+                ));
+            }
+        };
+        if out == Some(part.as_path()) {
+            return Err(CliError::Usage(format!(
+                "--part {} would overwrite the records of --out",
+                part.display()
+            )));
+        }
+        Ok(Some((shard, part)))
+    }
+}
+
+/// The part's fields every shard fills the same way.
+pub(crate) fn new_part(
+    sweep: Sweep,
+    shard: Shard,
+    range: std::ops::Range<u64>,
+    part_path: &Path,
+    records: Option<&Path>,
+) -> Part {
+    Part {
+        part_format: PART_FORMAT,
+        version: env!("CARGO_PKG_VERSION").to_string(),
+        sweep,
+        shard,
+        range: [range.start, range.end],
+        complete: false,
+        records: records.map(|r| records_reference(part_path, r)),
+        tally: None,
+        map_faces: None,
+        elapsed_s: 0.0,
+        jobs: 0,
+    }
+}
+
+/// How a part names its records file: by file name when both sit in one folder (so a
+/// folder of parts can be moved or copied as a whole), else by absolute path.
+fn records_reference(part: &Path, records: &Path) -> String {
+    let folder = |p: &Path| p.parent().map(Path::to_path_buf).unwrap_or_default();
+    match records.file_name() {
+        Some(name) if folder(part) == folder(records) => name.to_string_lossy().into_owned(),
+        _ => std::path::absolute(records)
+            .unwrap_or_else(|_| records.to_path_buf())
+            .to_string_lossy()
+            .into_owned(),
+    }
+}
+
+/// The records file a part names, as a path (relative names are relative to the part).
+pub(crate) fn records_path(part_path: &Path, part: &Part) -> Option<PathBuf> {
+    let name = Path::new(part.records.as_deref()?);
+    Some(if name.is_absolute() {
+        name.to_path_buf()
+    } else {
+        part_path.parent().unwrap_or(Path::new("")).join(name)
+    })
+}
+
+/// The fingerprint of a batch's setup: every value of the preset but its name, description
+/// and seed (a merge names a different seed as such), and the given initial conditions.
+pub(crate) fn batch_fingerprint(preset: &Preset, given: Option<&[(u64, InitialCondition)]>) -> String {
+    let mut values = preset.clone();
+    values.name.clear();
+    values.description.clear();
+    values.random.seed = 0;
+    fingerprint(&(values, given))
+}
+
+/// The fingerprint of a map's setup: the preset's values (the axes are compared apart).
+pub(crate) fn map_fingerprint(preset: &Preset) -> String {
+    batch_fingerprint(preset, None)
+}
+
+/// Writes `part` as JSON, atomically.
+pub(crate) fn write_part(path: &Path, part: &Part) -> Result<(), CliError> {
+    write_atomically(path, |w| {
+        serde_json::to_writer_pretty(&mut *w, part)?;
+        writeln!(w)
+    })
+    .map_err(|e| CliError::Sweep(format!("{}: {e}", path.display())))
+}
+
+/// Reads a part summary, naming the file and the JSON problem when it is not one.
+pub(crate) fn read_part(path: &Path) -> Result<Part, CliError> {
+    let text =
+        std::fs::read_to_string(path).map_err(|e| CliError::Parts(format!("{}: {e}", path.display())))?;
+    let de = &mut serde_json::Deserializer::from_str(&text);
+    serde_path_to_error::deserialize(de).map_err(|e| {
+        let at = e.path().to_string();
+        let inner = e.into_inner();
+        CliError::Parts(format!(
+            "{}: not a dicesim part summary: {}{inner}",
+            path.display(),
+            if at == "." {
+                String::new()
+            } else {
+                format!("at `{at}`: ")
+            }
+        ))
+    })
+}
+
+/// Writes a file through `write` into a temporary file beside `path`, then renames it
+/// over `path`: a failure or a crash leaves the old file or the new one, never half of one.
+pub(crate) fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&mut std::io::BufWriter<&std::fs::File>) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    let tmp = temp_beside(path, "")?;
+    {
+        let mut w = std::io::BufWriter::new(tmp.as_file());
+        write(&mut w)?;
+        w.flush()?;
+    }
+    finish_atomically(tmp, path)
+}
+
+/// Syncs a finished temporary file, makes it readable like any other output, and renames it
+/// to `path` (replacing it; on failure the temporary file is deleted).
+pub(crate) fn finish_atomically(tmp: tempfile::NamedTempFile, path: &Path) -> std::io::Result<()> {
+    tmp.as_file().sync_all()?;
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        tmp.as_file()
+            .set_permissions(std::fs::Permissions::from_mode(0o644))?;
+    }
+    tmp.persist(path).map(drop).map_err(|e| e.error)
+}
+
+/// Writes the part summary of a batch shard that rolled `batch` (ids `range` of `sweep`),
+/// its records in `records` if any.
+pub(crate) fn write_batch_part(
+    path: &Path,
+    sweep: Sweep,
+    shard: Shard,
+    range: std::ops::Range<u64>,
+    records: Option<&Path>,
+    batch: &BatchRun,
+) -> Result<(), CliError> {
+    let mut part = new_part(sweep, shard, range, path, records);
+    part.complete = !batch.cancelled;
+    part.tally = Some(batch.tally.clone());
+    part.elapsed_s = batch.summary.elapsed_s;
+    part.jobs = batch.jobs;
+    write_part(path, &part)
+}
+
+/// A temporary file in `path`'s folder (so renaming it to `path` is atomic), hidden, with
+/// `suffix` (an image backend picks its format from it).
+pub(crate) fn temp_beside(path: &Path, suffix: &str) -> std::io::Result<tempfile::NamedTempFile> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    tempfile::Builder::new()
+        .prefix(".dicesim-")
+        .suffix(suffix)
+        .tempfile_in(dir)
+}

@@ -1,0 +1,93 @@
+//! Where each panel of the main screen goes, and which parameter row a screen position is:
+//! shared by rendering and by the mouse handling in `update`, so neither imports the other.
+
+use super::app::App;
+use super::param::all;
+use ratatui::layout::{Constraint, Layout, Position, Rect};
+use ratatui::widgets::Block;
+
+/// The smallest terminal the explorer draws its panels in.
+pub(crate) const MIN_WIDTH: u16 = 80;
+pub(crate) const MIN_HEIGHT: u16 = 24;
+
+/// Where each panel goes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Areas {
+    pub(crate) header: Rect,
+    pub(crate) params: Rect,
+    pub(crate) outcomes: Rect,
+    pub(crate) die: Rect,
+    pub(crate) energy: Rect,
+    /// The energy bar and ledger, beside the energy plot.
+    pub(crate) ledger: Rect,
+    pub(crate) footer: Rect,
+}
+
+/// The panel layout for a terminal of this size; `None` below [`MIN_WIDTH`]×[`MIN_HEIGHT`].
+pub(crate) fn screen_layout(area: Rect) -> Option<Areas> {
+    if area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
+        return None;
+    }
+    let [header, body, footer] = area.layout(&Layout::vertical([
+        Constraint::Length(1),
+        Constraint::Min(0),
+        Constraint::Length(1),
+    ]));
+    let left_width = if area.width >= 120 { 52 } else { 38 };
+    let [left, right] = body.layout(&Layout::horizontal([
+        Constraint::Length(left_width),
+        Constraint::Min(0),
+    ]));
+    // Every parameter row when there is room, and at least 10 rows for the table.
+    let params_height = (all().len() as u16 + 4).min(body.height.saturating_sub(10));
+    let [params, outcomes] = left.layout(&Layout::vertical([
+        Constraint::Length(params_height),
+        Constraint::Min(0),
+    ]));
+    let [die, energy_row] = right.layout(&Layout::vertical([
+        Constraint::Percentage(50),
+        Constraint::Percentage(50),
+    ]));
+    let [energy, ledger] = energy_row.layout(&Layout::horizontal([
+        Constraint::Min(0),
+        Constraint::Length(super::ledger::panel_width(area.width)),
+    ]));
+    Some(Areas {
+        header,
+        params,
+        outcomes,
+        die,
+        energy,
+        ledger,
+        footer,
+    })
+}
+
+/// Inner area of a bordered panel.
+pub(crate) fn inner(area: Rect) -> Rect {
+    Block::bordered().inner(area)
+}
+
+/// How many parameter rows fit, and the first one shown (the selection stays in view).
+pub(crate) fn param_window(app: &App, params_area: Rect) -> (usize, usize) {
+    let visible = inner(params_area).height.saturating_sub(2) as usize;
+    let first = if visible > 0 && app.selected >= visible {
+        app.selected + 1 - visible
+    } else {
+        0
+    };
+    (first, visible)
+}
+
+/// The parameter under a screen position, for mouse clicks and scrolls.
+pub(crate) fn param_row_at(app: &App, areas: &Areas, at: Position) -> Option<usize> {
+    let body = inner(areas.params);
+    if !body.contains(at) || at.y < body.y + 1 {
+        return None;
+    }
+    let (first, visible) = param_window(app, areas.params);
+    let row = (at.y - body.y - 1) as usize;
+    (row < visible)
+        .then_some(first + row)
+        .filter(|&i| i < all().len())
+}
