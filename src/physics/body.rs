@@ -25,7 +25,6 @@ pub(crate) const FACE_CORNERS: [[usize; 4]; 6] = [
 ];
 
 /// Outward normals of faces 1..6 in the body frame.
-#[cfg(test)]
 pub(crate) const FACE_NORMALS: [[f64; 3]; 6] = [
     [-1.0, 0.0, 0.0],
     [0.0, -1.0, 0.0],

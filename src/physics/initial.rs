@@ -1,6 +1,7 @@
 //! The initial condition of a roll (the `[initial]` section of a preset).
 
 use super::body::body_corner_offsets;
+use super::mass::LoadedMass;
 use super::params::{Limits, ParamError, Params};
 use super::registry::{self, Role, Setup};
 use nalgebra::{Rotation3, Vector3};
@@ -52,7 +53,15 @@ impl InitialCondition {
     /// `M·g/(4k)` (a die may be placed resting on the table, not pushed into it): the error
     /// names the lowest height allowed at this orientation.
     pub(crate) fn check_clear_of_table(&self, params: &Params) -> Result<(), ParamError> {
-        let lowest = -self.lowest_corner_offset(params.die.half_size) - params.resting_depth();
+        let lowest_offset = match LoadedMass::new(params) {
+            Some(m) => m
+                .initial_corner_offsets(params.die.half_size, self)
+                .iter()
+                .map(|r| r.z)
+                .fold(f64::INFINITY, f64::min),
+            None => self.lowest_corner_offset(params.die.half_size),
+        };
+        let lowest = -lowest_offset - params.resting_depth();
         if self.height >= lowest {
             Ok(())
         } else {

@@ -100,6 +100,16 @@ pub struct Die {
     pub half_size: f64,
     /// g, each of the 8 corners.
     pub corner_mass: f64,
+    /// g, point masses added at corners 1..8 (a loaded die, docs/model.md "Loaded dice");
+    /// all zero is the paper's fair die.
+    pub extra_corner_mass: [f64; 8],
+}
+
+impl Die {
+    /// Whether any corner carries extra mass: such a die steps on its own code path.
+    pub fn is_loaded(&self) -> bool {
+        self.extra_corner_mass.iter().any(|&m| m != 0.0)
+    }
 }
 
 impl Default for Die {
@@ -107,6 +117,7 @@ impl Default for Die {
         Die {
             half_size: registry::HALF_SIZE.number(),
             corner_mass: registry::CORNER_MASS.number(),
+            extra_corner_mass: registry::EXTRA_CORNER_MASS.per_corner(),
         }
     }
 }
@@ -235,17 +246,24 @@ impl Params {
         registry::validate(&setup, &[Role::Die, Role::Ground, Role::World, Role::Integrator])
     }
 
-    /// g, the whole die (8 corners).
+    /// g, the whole die: 8 corners and any extra corner masses (adding their zeros leaves
+    /// the fair die's `8·m` bit for bit).
     pub fn total_mass(&self) -> f64 {
+        self.uniform_mass() + self.die.extra_corner_mass.iter().sum::<f64>()
+    }
+
+    /// g, the uniform cube alone (8 corners of `die.corner_mass`).
+    pub(crate) fn uniform_mass(&self) -> f64 {
         8.0 * self.die.corner_mass
     }
 
-    /// g·cm², the isotropic moment of inertia of a uniform solid cube, `(2a)²/6·M`.
+    /// g·cm², the isotropic moment of inertia of the uniform solid cube about its centre,
+    /// `(2a)²/6·M` (a loaded die adds its extra masses to it, [`super::mass`]).
     ///
     /// Written in the authors' order of operations so the default is bitwise 16/3.
     pub(crate) fn inertia(&self) -> f64 {
         let side = 2.0 * self.die.half_size;
-        side * side / 6.0 * self.total_mass()
+        side * side / 6.0 * self.uniform_mass()
     }
 
     /// erg, the energy to tip over an edge from lying flat: `M·g·a·(√2 − 1)`.

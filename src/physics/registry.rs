@@ -76,6 +76,8 @@ pub enum Shape {
     /// A non-negative integer.
     Seed(u64),
     Flag(bool),
+    /// One number per corner 1..8, named `1` … `8` in `--set` and scan keys.
+    PerCorner([f64; 8]),
 }
 
 /// How the explorer steps a value under ←/→: by a fixed amount, or by a factor for values
@@ -95,6 +97,7 @@ pub enum Value {
     Name(&'static str),
     Seed(u64),
     Flag(bool),
+    PerCorner([f64; 8]),
     /// An optional value that is not given.
     Absent,
 }
@@ -191,10 +194,19 @@ impl Spec {
         }
     }
 
-    /// The names of a vector's components; none for other shapes.
+    /// The default of a [`Shape::PerCorner`] row.
+    pub(crate) const fn per_corner(&self) -> [f64; 8] {
+        match self.shape {
+            Shape::PerCorner(v) => v,
+            _ => panic!("not a per-corner row"),
+        }
+    }
+
+    /// The names of a vector's or per-corner row's components; none for other shapes.
     pub(crate) fn components(&self) -> &'static [&'static str] {
         match self.shape {
             Shape::Vector { components, .. } => components,
+            Shape::PerCorner(_) => CORNERS,
             _ => &[],
         }
     }
@@ -209,6 +221,7 @@ impl Spec {
             Shape::Choice { default, .. } => Value::Name(default),
             Shape::Seed(s) => Value::Seed(s),
             Shape::Flag(b) => Value::Flag(b),
+            Shape::PerCorner(v) => Value::PerCorner(v),
         }
     }
 
@@ -227,12 +240,8 @@ impl Spec {
         let key = self.key();
         match value {
             Value::Number(x) => self.check_number(key, x),
-            Value::Vector(v) => {
-                for (name, x) in self.components().iter().zip(v) {
-                    self.check_number(&format!("{key}.{name}"), x)?;
-                }
-                Ok(())
-            }
+            Value::Vector(v) => self.check_components(&v),
+            Value::PerCorner(v) => self.check_components(&v),
             Value::Range(r) => {
                 for (i, x) in r.into_iter().enumerate() {
                     self.check_number(&format!("{key}[{i}]"), x)?;
@@ -252,6 +261,16 @@ impl Spec {
     }
 }
 
+impl Spec {
+    /// Checks each component, naming it (`initial.velocity.y`, `die.extra_corner_mass.8`).
+    fn check_components(&self, values: &[f64]) -> Result<(), ParamError> {
+        for (name, &x) in self.components().iter().zip(values) {
+            self.check_number(&format!("{}.{name}", self.key()), x)?;
+        }
+        Ok(())
+    }
+}
+
 /// Checks every row of `roles` in `setup`, in registry order; the first failure is returned.
 pub(crate) fn validate(setup: &Setup, roles: &[Role]) -> Result<(), ParamError> {
     ALL.iter()
@@ -266,6 +285,7 @@ pub(crate) fn find(key: &str) -> Option<&'static Spec> {
 
 const XYZ: &[&str; 3] = &["x", "y", "z"];
 const YAW_PITCH_ROLL: &[&str; 3] = &["yaw", "pitch", "roll"];
+const CORNERS: &[&str] = &["1", "2", "3", "4", "5", "6", "7", "8"];
 
 /// Reads and sets a number field of `Params` by component (scalars ignore the component).
 macro_rules! params_field {
@@ -317,6 +337,27 @@ pub const CORNER_MASS: Spec = Spec {
     acts_mid_roll: false,
     read: |s| Value::Number(s.params.die.corner_mass),
     scan: params_field!(die.corner_mass),
+};
+
+pub const EXTRA_CORNER_MASS: Spec = Spec {
+    limits: Limits {
+        key: "die.extra_corner_mass",
+        unit: "g",
+        min: 0.0,
+        max: 1000.0,
+    },
+    shape: Shape::PerCorner([0.0; 8]),
+    role: Role::Die,
+    comment: "g, extra point mass at corners 1..8: a loaded die (all zero: fair)",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: false,
+    read: |s| Value::PerCorner(s.params.die.extra_corner_mass),
+    scan: Some(Scan {
+        get: |p, _, i| p.die.extra_corner_mass[i],
+        set: |p, _, i, v| p.die.extra_corner_mass[i] = v,
+    }),
 };
 
 pub const STIFFNESS: Spec = Spec {
@@ -726,9 +767,10 @@ pub(crate) const RANDOM_ORIENTATION: Spec = Spec {
 };
 
 /// Every value of a setup, in the order a preset file lists them.
-pub(crate) static ALL: [&Spec; 21] = [
+pub(crate) static ALL: [&Spec; 22] = [
     &HALF_SIZE,
     &CORNER_MASS,
+    &EXTRA_CORNER_MASS,
     &STIFFNESS,
     &DAMPING,
     &FRICTION,
@@ -782,6 +824,10 @@ pub(crate) fn markdown_table() -> String {
             ),
             Shape::Seed(s) => ("0 to 2⁶³ − 1".to_string(), s.to_string()),
             Shape::Flag(b) => ("`true`, `false`".to_string(), format!("`{b}`")),
+            Shape::PerCorner(v) => (
+                format!("{} (each of corners 1 to 8)", range_text(&spec.limits)),
+                list_text(&v),
+            ),
         };
         let default = if spec.key() == ANGULAR_MOMENTUM.key() {
             "not given".to_string()

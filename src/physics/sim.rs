@@ -7,6 +7,7 @@
 use super::body::{body_corner_offsets, face_most_nearly_up, face_of_highest_corners};
 use super::energy::Energy;
 use super::initial::InitialCondition;
+use super::mass::LoadedMass;
 use super::params::{FrictionLaw, Ground, ParamError, Params, StopEnergy};
 use super::stopping::{StopRule, settles};
 use nalgebra::{Matrix3, Vector3};
@@ -197,6 +198,8 @@ pub struct Simulation {
     /// max(initial energy, edge energy)`, fixed at t = 0.
     pub(super) runaway_energy: f64,
     outcome: Option<Outcome>,
+    /// A loaded die's mass model; `None` for the fair die, whose path it never touches.
+    loaded: Option<LoadedMass>,
 }
 
 impl Simulation {
@@ -213,16 +216,23 @@ impl Simulation {
     /// non-finite or absurd values end the first step as [`Status::Unstable`].
     pub fn new_unchecked(params: &Params, initial: &InitialCondition) -> Self {
         let c = Constants::new(params);
+        let loaded = LoadedMass::new(params);
         let rotation = initial.rotation();
-        let corner_offsets = if initial.orientation == [0.0; 3] {
+        let corner_offsets = if let Some(m) = &loaded {
+            m.initial_corner_offsets(c.half_size, initial)
+        } else if initial.orientation == [0.0; 3] {
             body_corner_offsets(c.half_size)
         } else {
             body_corner_offsets(c.half_size).map(|r| rotation * r)
         };
+        let angular_momentum = match &loaded {
+            Some(m) => m.initial_angular_momentum(initial, &corner_offsets),
+            None => initial.angular_momentum_for(c.inertia),
+        };
         let state = State {
             position: Vector3::new(0.0, 0.0, initial.height),
             velocity: Vector3::from(initial.velocity),
-            angular_momentum: initial.angular_momentum_for(c.inertia),
+            angular_momentum,
             corner_offsets,
             corner_forces: [Vector3::zeros(); 8],
             corner_depths: [0.0; 8],
@@ -242,6 +252,7 @@ impl Simulation {
             initial_energy: 0.0,
             runaway_energy: 0.0,
             outcome: None,
+            loaded,
         };
         sim.update_spin();
         sim.update_forces();
@@ -373,6 +384,11 @@ impl Simulation {
         let s = &self.state;
         let c = &self.c;
         let u = self.corner_velocities();
+        if let Some(m) = &self.loaded {
+            let heights = s.corner_offsets.map(|r| r.z + s.position.z);
+            let ground = (0..8).map(|k| s.corner_depths[k] * s.corner_forces[k].z).sum();
+            return m.point_mass_parts(&u, &heights, ground, c.gravity, c.half_size);
+        }
         // Column-major, as the authors summed: every x component, then y, then z.
         let mut kinetic = 0.0;
         for axis in 0..3 {
@@ -454,6 +470,9 @@ impl Simulation {
             }
             s.angular_momentum += torque * c.dt;
             // 4. ω = I⁻¹·L (and the rotation it implies).
+            self.update_spin();
+        } else if self.loaded.is_some() {
+            // A loaded die's inertia turns with it: ω changes in flight too.
             self.update_spin();
         }
         if let Some(before) = before {
@@ -554,10 +573,10 @@ impl Simulation {
     #[inline]
     fn settled(&self, energy: &Energy, rigid: f64) -> bool {
         match self.c.stop_energy {
-            StopEnergy::RigidBody => settles(rigid, energy.kinetic(), energy.potential(), &self.c.stop_rule),
+            StopEnergy::RigidBody => settles(rigid, energy.kinetic(), energy.potential(), &self.stop_rule_now()),
             StopEnergy::PointMasses => {
                 let (kinetic, total) = self.point_mass_parts();
-                settles(total, kinetic, energy.potential(), &self.c.stop_rule)
+                settles(total, kinetic, energy.potential(), &self.stop_rule_now())
             }
         }
     }
@@ -570,6 +589,15 @@ impl Simulation {
         }
     }
 
+    /// The stopping rule for the current state: a loaded die's depends on the face down.
+    #[inline(always)]
+    fn stop_rule_now(&self) -> StopRule {
+        match &self.loaded {
+            None => self.c.stop_rule,
+            Some(m) => m.stop_rule(&self.state.corner_offsets),
+        }
+    }
+
     fn state_is_finite(&self) -> bool {
         let s = &self.state;
         s.position.iter().chain(s.velocity.iter()).all(|x| x.is_finite())
@@ -579,7 +607,10 @@ impl Simulation {
     /// ω from L, and the step rotation from ω (reference §2 step 5, built as the authors
     /// built it from their `w = −ω` and applied to row vectors).
     fn update_spin(&mut self) {
-        let (w, rotation) = spin(&self.state.angular_momentum, self.c.inertia, self.c.dt);
+        let (w, rotation) = match &self.loaded {
+            None => spin(&self.state.angular_momentum, self.c.inertia, self.c.dt),
+            Some(m) => m.spin(&self.state.angular_momentum, &self.state.corner_offsets, self.c.dt),
+        };
         self.angular_velocity = w;
         self.step_rotation = rotation;
     }

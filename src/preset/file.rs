@@ -115,6 +115,7 @@ impl Preset {
                     Value::Number(x) => float(x),
                     Value::Vector(v) => vector(&v),
                     Value::Range(r) => vector(&r),
+                    Value::PerCorner(v) => vector(&v),
                     Value::Name(n) => string(n),
                     Value::Seed(n) => n.to_string(),
                     Value::Flag(b) => b.to_string(),

@@ -1,0 +1,253 @@
+//! The mass model of a loaded die (docs/model.md, "Loaded dice"): the paper's uniform cube
+//! plus extra point masses at its corners.
+//!
+//! A fair die never reaches this module: its isotropic inertia and its centre of mass at the
+//! cube's centre keep the paper's arithmetic, and the reference trajectories, untouched.
+//! A loaded die's centre of mass moves off the geometric centre, its inertia about the centre
+//! of mass is a full tensor that turns with the body, so `ω = I(t)⁻¹·L` is recomputed every
+//! step, in flight too, from the current corner offsets (the paper's eq. 8–9).
+
+use super::body::{CORNER_SIGNS, FACE_NORMALS, body_corner_offsets, face_most_nearly_up, opposite_face};
+use super::initial::InitialCondition;
+use super::params::Params;
+use super::sim::spin;
+use super::stopping::StopRule;
+use nalgebra::{Matrix3, Vector3};
+
+/// Everything a loaded die's step needs beyond the fair die's constants.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct LoadedMass {
+    /// g, the uniform cube (8 corners of `die.corner_mass`).
+    uniform_mass: f64,
+    /// g, the uniform corner mass `m`.
+    corner_mass: f64,
+    /// g, the extra point mass at each corner.
+    extra: [f64; 8],
+    /// g·cm², the uniform cube's isotropic inertia about its own centre, `(2a)²/6·8m`.
+    uniform_inertia: f64,
+    /// cm, body frame: the centre of mass relative to the cube's geometric centre.
+    centre_of_mass: Vector3<f64>,
+    /// The stopping rule for a die lying on each face 1..6 (index: the face down).
+    face_rules: [StopRule; 6],
+}
+
+impl LoadedMass {
+    /// The mass model of `p`'s die; `None` for a fair die (no extra mass anywhere).
+    pub(crate) fn new(p: &Params) -> Option<LoadedMass> {
+        if !p.die.is_loaded() {
+            return None;
+        }
+        let a = p.die.half_size;
+        let total = p.total_mass();
+        let mut moment = Vector3::zeros();
+        for (s, &dm) in CORNER_SIGNS.iter().zip(&p.die.extra_corner_mass) {
+            moment += Vector3::from(*s) * (a * dm);
+        }
+        let centre_of_mass = moment / total;
+        Some(LoadedMass {
+            uniform_mass: p.uniform_mass(),
+            corner_mass: p.die.corner_mass,
+            extra: p.die.extra_corner_mass,
+            uniform_inertia: p.inertia(),
+            centre_of_mass,
+            face_rules: face_rules(p, &centre_of_mass),
+        })
+    }
+
+    /// cm, body frame: the centre of mass relative to the cube's geometric centre.
+    #[cfg(test)]
+    pub(crate) fn centre_of_mass(&self) -> Vector3<f64> {
+        self.centre_of_mass
+    }
+
+    /// cm, corners 1..8 relative to the centre of mass at the start, world frame.
+    pub(crate) fn initial_corner_offsets(&self, half_size: f64, initial: &InitialCondition) -> [Vector3<f64>; 8] {
+        let rotation = initial.rotation();
+        body_corner_offsets(half_size).map(|r| rotation * (r - self.centre_of_mass))
+    }
+
+    /// g·cm²/s: `L` as given, or `I(0)·ω` for a start stated as an angular velocity.
+    pub(crate) fn initial_angular_momentum(
+        &self,
+        initial: &InitialCondition,
+        corner_offsets: &[Vector3<f64>; 8],
+    ) -> Vector3<f64> {
+        match initial.angular_momentum {
+            Some(l) => Vector3::from(l),
+            None => self.inertia(corner_offsets) * Vector3::from(initial.angular_velocity),
+        }
+    }
+
+    /// g·cm², the inertia tensor about the centre of mass, world frame, from the current
+    /// corner offsets `r_k`: the uniform cube's `I_u·E` about its geometric centre `g`
+    /// (the mean of the offsets), moved to the centre of mass by the parallel-axis term
+    /// `M_u·(|g|²·E − g·gᵀ)`, plus each extra mass's `Δm_k·(|r_k|²·E − r_k·r_kᵀ)`.
+    pub(crate) fn inertia(&self, corner_offsets: &[Vector3<f64>; 8]) -> Matrix3<f64> {
+        let point = |m: f64, r: &Vector3<f64>| (Matrix3::identity() * r.norm_squared() - r * r.transpose()) * m;
+        let centre = corner_offsets.iter().sum::<Vector3<f64>>() / 8.0;
+        let mut inertia = Matrix3::identity() * self.uniform_inertia + point(self.uniform_mass, &centre);
+        for (r, &dm) in corner_offsets.iter().zip(&self.extra) {
+            inertia += point(dm, r);
+        }
+        inertia
+    }
+
+    /// `ω = I(t)⁻¹·L` and the step rotation it implies (the fair die's rotation, built by
+    /// the same function from ω).
+    pub(crate) fn spin(
+        &self,
+        angular_momentum: &Vector3<f64>,
+        corner_offsets: &[Vector3<f64>; 8],
+        dt: f64,
+    ) -> (Vector3<f64>, Option<Matrix3<f64>>) {
+        // The tensor is symmetric positive definite (every mass is positive), so it inverts.
+        let inverse = self
+            .inertia(corner_offsets)
+            .try_inverse()
+            .unwrap_or_else(|| Matrix3::from_element(f64::NAN));
+        // Dividing by 1 is exact: `spin` then builds the rotation from this ω unchanged.
+        spin(&(inverse * angular_momentum), 1.0, dt)
+    }
+
+    /// The stopping rule for the die's current orientation: the one of the face now down.
+    pub(crate) fn stop_rule(&self, corner_offsets: &[Vector3<f64>; 8]) -> StopRule {
+        let down = opposite_face(face_most_nearly_up(corner_offsets));
+        self.face_rules[down as usize - 1]
+    }
+
+    /// erg, the authors' point-mass energy with each corner's own mass, `(kinetic, total)`:
+    /// `½·Σ m_k·|u_k|²`, `g·Σ m_k·(z + r_k,z)`, `½·Σ d_k·P_k`, less `M·g·a`.
+    pub(crate) fn point_mass_parts(
+        &self,
+        corner_velocities: &[Vector3<f64>; 8],
+        corner_heights: &[f64; 8],
+        ground_term: f64,
+        gravity: f64,
+        half_size: f64,
+    ) -> (f64, f64) {
+        let mut kinetic = 0.0;
+        let mut heights = 0.0;
+        for k in 0..8 {
+            let m = self.corner_mass + self.extra[k];
+            kinetic += m * corner_velocities[k].norm_squared();
+            heights += m * corner_heights[k];
+        }
+        let kinetic = 0.5 * kinetic;
+        let total_mass = self.uniform_mass + self.extra.iter().sum::<f64>();
+        let total = kinetic + gravity * heights + 0.5 * ground_term - total_mass * gravity * half_size;
+        (kinetic, total)
+    }
+}
+
+/// The stopping rule of each face down, from the fair rule of a die of the same total mass.
+///
+/// The fair rule asks for an energy below a share of `E_edge`, the lowest pass over an edge
+/// above rest, with the potential zero for a die lying flat. A loaded die lying on face f
+/// rests at `V_f = −M·g·(c·n_f)` (its centre of mass `a − c·n_f` above the table, `n_f` the
+/// face's outward normal), and balanced on the edge to face e its centre is
+/// `√((a − c·n_f)² + (a − c·n_e)²)` above the table. So the pass out of face f is
+/// `B_f = min_e M·g·(√((a − c·n_f)² + (a − c·n_e)²) − (a − c·n_f))`, and the rule for face
+/// f is the fair rule moved up by `V_f` and scaled by `B_f / E_edge` (the fair die gets its
+/// own rule back: `V_f = 0`, `B_f = E_edge`).
+fn face_rules(p: &Params, centre_of_mass: &Vector3<f64>) -> [StopRule; 6] {
+    let fair = StopRule::new(p);
+    let weight = p.total_mass() * p.world.gravity;
+    let a = p.die.half_size;
+    let edge = p.edge_energy();
+    let height = |f: usize| a - centre_of_mass.dot(&Vector3::from(FACE_NORMALS[f]));
+    std::array::from_fn(|f| {
+        if !fair.can_settle() {
+            return fair;
+        }
+        let rest = weight * (height(f) - a);
+        let pass = (0..6)
+            .filter(|&e| e != f && e != 5 - f)
+            .map(|e| weight * ((height(f).powi(2) + height(e).powi(2)).sqrt() - height(f)))
+            .fold(f64::INFINITY, f64::min);
+        let scale = pass / edge;
+        // The fair rule's resting energy, `energy_threshold − kinetic_threshold`, is the
+        // table's give below a die at rest; it stays the same on every face.
+        let give = fair.energy_threshold - fair.kinetic_threshold;
+        let energy_threshold = rest + scale * fair.energy_threshold;
+        StopRule {
+            energy_threshold,
+            kinetic_threshold: energy_threshold - (rest + give),
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn loaded(extra: [f64; 8]) -> Params {
+        let mut p = Params::default();
+        p.die.extra_corner_mass = extra;
+        p
+    }
+
+    #[test]
+    fn a_fair_die_has_no_mass_model() {
+        assert_eq!(LoadedMass::new(&Params::default()), None);
+        assert_eq!(Params::default().total_mass(), 8.0);
+    }
+
+    #[test]
+    fn centre_of_mass_moves_toward_the_heavy_corner() {
+        let mut extra = [0.0; 8];
+        extra[7] = 1.0;
+        let m = LoadedMass::new(&loaded(extra)).unwrap();
+        // One gram at (a, a, a) on a die of 9 g: the centre moves a/9 along each axis.
+        assert!((m.centre_of_mass() - Vector3::repeat(1.0 / 9.0)).norm() < 1e-15);
+    }
+
+    #[test]
+    fn inertia_is_the_sum_of_point_masses_and_the_cube() {
+        // Eight equal extras: the centre stays put and each adds Δm·(3a² − a²) per axis,
+        // 16·Δm·a² in all, isotropically.
+        let m = LoadedMass::new(&loaded([0.5; 8])).unwrap();
+        let p = Params::default();
+        let r = m.initial_corner_offsets(1.0, &InitialCondition::default());
+        let i = m.inertia(&r);
+        let expected = Matrix3::identity() * (16.0 / 3.0 + 16.0 * 0.5);
+        assert!((i - expected).norm() < 1e-12, "{i}");
+        assert_eq!(p.inertia(), 16.0 / 3.0);
+        // A heavy corner: the tensor equals the direct sum over all masses, each at its
+        // distance from the centre of mass, with the cube's own part by the parallel axes.
+        let mut extra = [0.0; 8];
+        extra[2] = 2.0;
+        let m = LoadedMass::new(&loaded(extra)).unwrap();
+        let ic = InitialCondition {
+            orientation: [30.0, 20.0, 10.0],
+            ..Default::default()
+        };
+        let r = m.initial_corner_offsets(1.0, &ic);
+        let c = ic.rotation() * m.centre_of_mass();
+        let mut direct = Matrix3::identity() * (16.0 / 3.0);
+        // The cube's centre is at −c from the centre of mass; its mass is 8 g.
+        direct += (Matrix3::identity() * c.norm_squared() - c * c.transpose()) * 8.0;
+        direct += (Matrix3::identity() * r[2].norm_squared() - r[2] * r[2].transpose()) * 2.0;
+        assert!((m.inertia(&r) - direct).norm() < 1e-12);
+        // The masses balance about the centre of mass.
+        let balance: Vector3<f64> = r.iter().sum::<Vector3<f64>>() * 1.0 + r[2] * 2.0;
+        assert!(balance.norm() < 1e-12, "{balance}");
+    }
+
+    #[test]
+    fn the_faces_at_the_heavy_corner_rest_higher_and_pass_more_easily() {
+        let mut extra = [0.0; 8];
+        extra[7] = 1.0; // corner 8 meets faces 4, 5 and 6
+        let p = loaded(extra);
+        let m = LoadedMass::new(&p).unwrap();
+        let fair = StopRule::new(&p);
+        // Face 3 down puts corner 8 on top: the centre rests a/9 higher.
+        let up = m.face_rules[2];
+        let down = m.face_rules[3];
+        assert!(up.energy_threshold > down.energy_threshold);
+        assert!(down.kinetic_threshold < fair.kinetic_threshold);
+        assert!(up.kinetic_threshold < down.kinetic_threshold);
+        for rule in m.face_rules {
+            assert!(rule.kinetic_threshold > 0.0 && rule.can_settle());
+        }
+    }
+}
