@@ -385,6 +385,61 @@ fn on_the_edge_of_stability_settles_though_many_throws_do_not() {
 // ---------------------------------------------------------------------------------------------
 // Loading: search order and errors
 
+/// The number just before `marker` in `text` (`"44 % of the time"` → 44).
+fn number_before(text: &str, marker: &str) -> f64 {
+    let at = text.find(marker).unwrap_or_else(|| panic!("`{marker}` in {text:?}"));
+    let digits: String = text[..at]
+        .trim_end()
+        .chars()
+        .rev()
+        .take_while(|c| c.is_ascii_digit() || *c == '.')
+        .collect::<Vec<_>>()
+        .into_iter()
+        .rev()
+        .collect();
+    digits.parse().unwrap_or_else(|_| panic!("a number before `{marker}`"))
+}
+
+#[test]
+fn loaded_corner_shows_the_bias_and_the_rolls_a_class_needs_that_it_states() {
+    use dicesim::experiment::{Rolls, RunOptions, stream_batch};
+    let p = shipped("loaded-corner");
+    let params = p.params();
+    assert!(params.die.is_loaded());
+    let stated_share = number_before(&p.description, "% of the time together") / 100.0;
+    let stated_rolls = number_before(&p.description, "rolls before");
+    let rolls = Rolls::Random {
+        ranges: &p.random,
+        base: &p.initial,
+        seed: p.random.seed,
+        first: 0,
+        count: 4000,
+    };
+    let run = stream_batch(
+        &params,
+        &rolls,
+        &RunOptions::default(),
+        &std::sync::atomic::AtomicBool::new(false),
+        &mut |_| Ok(()),
+    )
+    .unwrap();
+    let s = run.summary;
+    assert_eq!(s.status.settled, 4000);
+    let c = s.faces.counts();
+    let heavy = (c[3] + c[4] + c[5]) as f64 / s.faces.total() as f64;
+    // 4000 rolls measure a share to ±0.8 points (one standard error).
+    assert!(
+        (heavy - stated_share).abs() < 0.025,
+        "faces 4–6 came up {heavy}, the description says {stated_share}"
+    );
+    // And the rolls the test needs to ±20 % (the measured bias's own error at 4000 rolls).
+    let needed = s.rolls_to_detect.expect("a bias is measured") as f64;
+    assert!(
+        (0.7..1.4).contains(&(needed / stated_rolls)),
+        "{needed} rolls needed, the description says {stated_rolls}"
+    );
+}
+
 fn tempdir() -> tempfile::TempDir {
     tempfile::tempdir().unwrap()
 }

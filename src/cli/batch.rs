@@ -311,11 +311,12 @@ fn print_summary(out: &mut impl Write, batch: &BatchRun, s: &BatchSummary) -> st
 /// The summary's lines that depend on the rolls alone (not on threads or time), as `batch`
 /// and `merge` print them.
 pub(super) fn print_counts(out: &mut impl Write, s: &BatchSummary) -> std::io::Result<()> {
-    writeln!(out, "face   count   share")?;
+    writeln!(out, "face   count   share   95% interval")?;
     for f in 0..6 {
+        let [low, high] = s.face_intervals[f].map(|x| 100.0 * x);
         writeln!(
             out,
-            "{:>4} {:>7}  {:>5.1}%",
+            "{:>4} {:>7}  {:>5.1}%  {low:>5.1}–{high:.1}%",
             f + 1,
             s.faces.counts[f],
             100.0 * s.face_shares[f]
@@ -324,6 +325,16 @@ pub(super) fn print_counts(out: &mut impl Write, s: &BatchSummary) -> std::io::R
     match (s.chi_square, s.p_value) {
         (Some(chi2), Some(p)) => writeln!(out, "χ² against a fair die  {chi2:.3} (5 dof), p = {p:.4}")?,
         _ => writeln!(out, "χ² against a fair die  n/a (no faces)")?,
+    }
+    match s.rolls_to_detect {
+        Some(n) => writeln!(
+            out,
+            "bias detectable in     {n} rolls (χ² at 5 %, 80 % power, for the bias measured here)"
+        )?,
+        None if s.chi_square.is_some() => {
+            writeln!(out, "bias detectable in     — (no bias measured beyond chance)")?
+        }
+        None => {}
     }
     let [same, adjacent, opposite] = s.start_face_shares.map(|x| 100.0 * x);
     writeln!(

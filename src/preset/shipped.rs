@@ -27,6 +27,7 @@ pub const SHIPPED: &[(&str, &str)] = &[
         "on-the-edge-of-stability",
         include_str!("../../presets/on-the-edge-of-stability.toml"),
     ),
+    ("loaded-corner", include_str!("../../presets/loaded-corner.toml")),
 ];
 
 /// The text of the shipped preset `name`.
