@@ -76,7 +76,10 @@ fn torque_free_flight_keeps_l_exactly_and_the_energy_within_the_step_error() {
     let fine = rotational_drift(&p, 5e-4, 0.4);
     assert!(coarse > 0.0 && coarse < 5e-3, "drift {coarse}");
     let order = (coarse / fine).log2();
-    assert!((1.0..2.6).contains(&order), "drift {coarse} at 1 ms, {fine} at 0.5 ms");
+    assert!(
+        (1.0..2.6).contains(&order),
+        "drift {coarse} at 1 ms, {fine} at 0.5 ms"
+    );
 }
 
 #[test]
@@ -156,7 +159,14 @@ fn batch(p: &Params, count: u64) -> dicesim::experiment::BatchSummary {
         first: 0,
         count,
     };
-    let run = stream_batch(p, &rolls, &RunOptions::default(), &AtomicBool::new(false), &mut |_| Ok(())).unwrap();
+    let run = stream_batch(
+        p,
+        &rolls,
+        &RunOptions::default(),
+        &AtomicBool::new(false),
+        &mut |_| Ok(()),
+    )
+    .unwrap();
     run.summary
 }
 
@@ -172,7 +182,10 @@ fn a_heavy_corner_keeps_its_three_faces_down() {
     let heavy = (counts[3] + counts[4] + counts[5]) as f64 / n;
     // The batch's own 95 % interval on that share lies below the fair die's 1/2.
     let se = (heavy * (1.0 - heavy) / n).sqrt();
-    assert!(heavy + 1.96 * se < 0.5, "faces 4–6 came up in {heavy} of {n}: {counts:?}");
+    assert!(
+        heavy + 1.96 * se < 0.5,
+        "faces 4–6 came up in {heavy} of {n}: {counts:?}"
+    );
     assert!(summary.p_value.unwrap() < 0.01, "{counts:?}");
     // The fair die's batch from the same starts shows no such deficit.
     let fair = batch(&Params::default(), 1500).faces.counts();

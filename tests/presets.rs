@@ -387,7 +387,9 @@ fn on_the_edge_of_stability_settles_though_many_throws_do_not() {
 
 /// The number just before `marker` in `text` (`"44 % of the time"` → 44).
 fn number_before(text: &str, marker: &str) -> f64 {
-    let at = text.find(marker).unwrap_or_else(|| panic!("`{marker}` in {text:?}"));
+    let at = text
+        .find(marker)
+        .unwrap_or_else(|| panic!("`{marker}` in {text:?}"));
     let digits: String = text[..at]
         .trim_end()
         .chars()
@@ -397,7 +399,9 @@ fn number_before(text: &str, marker: &str) -> f64 {
         .into_iter()
         .rev()
         .collect();
-    digits.parse().unwrap_or_else(|_| panic!("a number before `{marker}`"))
+    digits
+        .parse()
+        .unwrap_or_else(|_| panic!("a number before `{marker}`"))
 }
 
 #[test]

@@ -33,7 +33,11 @@ impl Engine {
     /// The engine that really runs rolls of `params` on this CPU: the lane engine steps the
     /// uniform cube only, so a loaded die rolls on the scalar one.
     pub(crate) fn resolve_for(self, params: &Params) -> Engine {
-        if params.die.is_loaded() { Engine::Scalar } else { self.resolve() }
+        if params.die.is_loaded() {
+            Engine::Scalar
+        } else {
+            self.resolve()
+        }
     }
 
     /// The engine that really runs on this CPU: `Scalar` or `Lanes`.

@@ -187,7 +187,10 @@ mod tests {
     fn wilson_interval_by_hand() {
         // 20 of 100 at z = 1.96: centre (0.2 + 0.0192)/1.0384, half 0.0784…: [0.1333, 0.2888].
         let [low, high] = wilson_interval(20, 100);
-        assert!((low - 0.13332).abs() < 1e-4 && (high - 0.28883).abs() < 1e-4, "{low} {high}");
+        assert!(
+            (low - 0.13332).abs() < 1e-4 && (high - 0.28883).abs() < 1e-4,
+            "{low} {high}"
+        );
         // None of 10 still has room above zero; all of them room below one.
         assert_eq!(wilson_interval(0, 10)[0], 0.0);
         assert!(wilson_interval(0, 10)[1] > 0.25);
@@ -204,7 +207,11 @@ mod tests {
         assert!(noncentral_chi_square_cdf(11.07, 5.0, 20.0) < noncentral_chi_square_cdf(11.07, 5.0, 5.0));
         // Cohen's power tables (5 dof, α = 0.05, power 0.80): w = 0.1 needs 1 283 rolls and
         // w = 0.3 needs 143; λ = 12.83.
-        assert!((detecting_noncentrality() - 12.825).abs() < 0.005, "{}", detecting_noncentrality());
+        assert!(
+            (detecting_noncentrality() - 12.825).abs() < 0.005,
+            "{}",
+            detecting_noncentrality()
+        );
         // Counts whose unbiased w² is exactly 0.01 (w = 0.1): χ² = 5 + n·0.01.
         let n = 60_000u64;
         let t = FaceTally {
@@ -213,7 +220,10 @@ mod tests {
         let w2 = t.effect_size_squared().unwrap();
         let expected = (t.chi_square().unwrap() - 5.0) / n as f64;
         assert_eq!(w2, expected);
-        assert_eq!(t.rolls_to_detect(), Some((detecting_noncentrality() / w2).ceil() as u64));
+        assert_eq!(
+            t.rolls_to_detect(),
+            Some((detecting_noncentrality() / w2).ceil() as u64)
+        );
         // Cohen's w = 0.1 and 0.3 cases by this formula.
         assert_eq!((detecting_noncentrality() / 0.01).ceil(), 1283.0);
         assert_eq!((detecting_noncentrality() / 0.09).ceil(), 143.0);

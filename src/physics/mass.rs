@@ -61,7 +61,11 @@ impl LoadedMass {
     }
 
     /// cm, corners 1..8 relative to the centre of mass at the start, world frame.
-    pub(crate) fn initial_corner_offsets(&self, half_size: f64, initial: &InitialCondition) -> [Vector3<f64>; 8] {
+    pub(crate) fn initial_corner_offsets(
+        &self,
+        half_size: f64,
+        initial: &InitialCondition,
+    ) -> [Vector3<f64>; 8] {
         let rotation = initial.rotation();
         body_corner_offsets(half_size).map(|r| rotation * (r - self.centre_of_mass))
     }
@@ -83,7 +87,8 @@ impl LoadedMass {
     /// (the mean of the offsets), moved to the centre of mass by the parallel-axis term
     /// `M_u·(|g|²·E − g·gᵀ)`, plus each extra mass's `Δm_k·(|r_k|²·E − r_k·r_kᵀ)`.
     pub(crate) fn inertia(&self, corner_offsets: &[Vector3<f64>; 8]) -> Matrix3<f64> {
-        let point = |m: f64, r: &Vector3<f64>| (Matrix3::identity() * r.norm_squared() - r * r.transpose()) * m;
+        let point =
+            |m: f64, r: &Vector3<f64>| (Matrix3::identity() * r.norm_squared() - r * r.transpose()) * m;
         let centre = corner_offsets.iter().sum::<Vector3<f64>>() / 8.0;
         let mut inertia = Matrix3::identity() * self.uniform_inertia + point(self.uniform_mass, &centre);
         for (r, &dm) in corner_offsets.iter().zip(&self.extra) {

@@ -573,7 +573,9 @@ impl Simulation {
     #[inline]
     fn settled(&self, energy: &Energy, rigid: f64) -> bool {
         match self.c.stop_energy {
-            StopEnergy::RigidBody => settles(rigid, energy.kinetic(), energy.potential(), &self.stop_rule_now()),
+            StopEnergy::RigidBody => {
+                settles(rigid, energy.kinetic(), energy.potential(), &self.stop_rule_now())
+            }
             StopEnergy::PointMasses => {
                 let (kinetic, total) = self.point_mass_parts();
                 settles(total, kinetic, energy.potential(), &self.stop_rule_now())
@@ -609,7 +611,11 @@ impl Simulation {
     fn update_spin(&mut self) {
         let (w, rotation) = match &self.loaded {
             None => spin(&self.state.angular_momentum, self.c.inertia, self.c.dt),
-            Some(m) => m.spin(&self.state.angular_momentum, &self.state.corner_offsets, self.c.dt),
+            Some(m) => m.spin(
+                &self.state.angular_momentum,
+                &self.state.corner_offsets,
+                self.c.dt,
+            ),
         };
         self.angular_velocity = w;
         self.step_rotation = rotation;
