@@ -4,6 +4,7 @@ mod basin;
 mod batch;
 mod bench;
 mod merge;
+mod predict;
 mod presets;
 mod roll;
 mod shard;
@@ -116,6 +117,13 @@ pub(crate) enum Command {
   dicesim basin --x ground.friction:0:2 --y initial.height:2:20 --res 100x50 --out map.csv
   dicesim basin --x initial.height:1:15 --y initial.angular_velocity.x:-60:60 --res 300x1 --layer settle-time")]
     Basin(basin::BasinArgs),
+    /// How precisely a throw must be known: P(same face) of random starts beside their
+    /// ε-twins, chance and the threshold ε½ (CSV, JSON, PNG).
+    #[command(after_help = "Examples:
+  dicesim predict --rolls 500
+  dicesim predict --vary initial.height=2,5,15 --out curves.png --out curves.csv
+  dicesim predict --vary ground.damping=0.001,0.005,0.02 --epsilon 1e-12,1e-9,1e-6,1e-3 --json")]
+    Predict(predict::PredictArgs),
     /// Put the shards of a sweep (`batch --shard`, `basin --shard`) back together.
     #[command(after_help = "Examples:
   dicesim merge parts --out rolls.csv
@@ -345,6 +353,7 @@ pub fn main() -> Result<(), CliError> {
         Some(Command::Presets(args)) => presets::run(&args),
         Some(Command::Batch(args)) => batch::run(&args),
         Some(Command::Basin(args)) => basin::run(&args),
+        Some(Command::Predict(args)) => predict::run(&args),
         Some(Command::Bench(args)) => bench::run(&args),
         Some(Command::Merge(args)) => merge::run(&args),
         Some(Command::Slurm(args)) => slurm::run(&args),

@@ -14,6 +14,8 @@ pub(crate) mod keys;
 pub(crate) mod merge;
 pub(crate) mod parquet;
 pub(crate) mod plot;
+pub mod predict;
+pub(crate) mod predict_plot;
 pub(crate) mod random;
 pub(crate) mod record;
 pub(crate) mod shard;
@@ -83,4 +85,7 @@ pub enum Error {
     /// The cancel flag stopped the work.
     #[error("cancelled")]
     Cancelled,
+    /// A predictability experiment that cannot be rolled as asked.
+    #[error("{0}")]
+    Predict(String),
 }
