@@ -22,7 +22,7 @@ fn predict(key: &str, values: &[f64]) -> Prediction {
         epsilons: vec![1e-11, 1e-9, 1e-7, 1e-5, 1e-3, 1e-1],
         count: 200,
         seed: 1,
-        sweep: Some((ScanKey::parse(key).unwrap(), values.to_vec())),
+        sweep: Some((ScanKey::named(key).unwrap().clone(), values.to_vec())),
     };
     let p = run_prediction(
         &Params::default(),
