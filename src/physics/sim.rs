@@ -602,13 +602,16 @@ impl Simulation {
     fn state_is_finite(&self) -> bool {
         const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
         const EXPONENT_ONE: u64 = 1 << 52;
-        let flag = |x: &f64| (x.to_bits() & EXPONENT) + EXPONENT_ONE;
+        let flags = |v: &Vector3<f64>| {
+            let flag = |x: f64| (x.to_bits() & EXPONENT) + EXPONENT_ONE;
+            flag(v.x) | flag(v.y) | flag(v.z)
+        };
         let s = &self.state;
-        let mut flags = 0u64;
-        for v in [&s.position, &s.velocity].into_iter().chain(&s.corner_offsets) {
-            flags |= flag(&v.x) | flag(&v.y) | flag(&v.z);
+        let mut any = flags(&s.position) | flags(&s.velocity);
+        for r in &s.corner_offsets {
+            any |= flags(r);
         }
-        flags >> 63 == 0
+        any >> 63 == 0
     }
 
     /// ω from L, and the step rotation from ω (reference §2 step 5, built as the authors
