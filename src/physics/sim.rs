@@ -132,6 +132,9 @@ struct Constants {
     gravity: f64,
     /// dyn, `M·g` as a (negative) z force.
     weight_z: f64,
+    /// cm/s, the kick of a step in flight: the contact kick's quotients with every force
+    /// +0.0, `((0 + M·g_z)/M)·Δt` and `(0/M)·Δt`, the same for every flight step of a run.
+    flight_kick: Vector3<f64>,
     stiffness: f64,
     damping: f64,
     friction: f64,
@@ -144,6 +147,8 @@ struct Constants {
 impl Constants {
     fn new(p: &Params) -> Self {
         let mass = p.total_mass();
+        let weight_z = mass * -p.world.gravity;
+        let (dt, zero) = (p.integrator.dt, 0.0);
         Constants {
             dt: p.integrator.dt,
             mass,
@@ -151,7 +156,12 @@ impl Constants {
             inertia: p.inertia(),
             half_size: p.die.half_size,
             gravity: p.world.gravity,
-            weight_z: mass * -p.world.gravity,
+            weight_z,
+            flight_kick: Vector3::new(
+                (zero / mass) * dt,
+                (zero / mass) * dt,
+                ((zero + weight_z) / mass) * dt,
+            ),
             stiffness: p.ground.stiffness,
             damping: p.ground.damping,
             friction: p.ground.friction,
@@ -431,19 +441,19 @@ impl Simulation {
         // Corner velocities before the kick, for the energy ledger.
         let before = (self.in_contact && self.track_ledger).then_some(self.contact_velocities);
         let s = &mut self.state;
-        // 1. kick: v ← v + ((ΣF + M·g)/M)·Δt, forces summed in corner order.
-        let force = if self.in_contact {
-            let mut f = s.corner_forces[0];
+        // 1. kick: v ← v + ((ΣF + M·g)/M)·Δt, forces summed in corner order; in flight
+        // (ΣF = +0) the quotients are the run's constants.
+        if self.in_contact {
+            let mut force = s.corner_forces[0];
             for fk in &s.corner_forces[1..] {
-                f += fk;
+                force += fk;
             }
-            f
+            s.velocity.x += (force.x / c.mass) * c.dt;
+            s.velocity.y += (force.y / c.mass) * c.dt;
+            s.velocity.z += ((force.z + c.weight_z) / c.mass) * c.dt;
         } else {
-            Vector3::zeros()
-        };
-        s.velocity.x += (force.x / c.mass) * c.dt;
-        s.velocity.y += (force.y / c.mass) * c.dt;
-        s.velocity.z += ((force.z + c.weight_z) / c.mass) * c.dt;
+            s.velocity += c.flight_kick;
+        }
         // 2. drift with the new velocity (semi-implicit Euler).
         s.position += s.velocity * c.dt;
         // 3. angular momentum from the torque of the forces at the old corner offsets.
@@ -572,16 +582,14 @@ impl Simulation {
     fn settled(&self, energy: &Energy, rigid: f64) -> bool {
         let rule = &self.c.stop_rule;
         let potential = energy.potential();
-        if !(potential <= rule.energy_threshold) {
-            return false;
-        }
-        match self.c.stop_energy {
-            StopEnergy::RigidBody => settles(rigid, energy.kinetic(), potential, rule),
-            StopEnergy::PointMasses => {
-                let (kinetic, total) = self.point_mass_parts();
-                settles(total, kinetic, potential, rule)
+        potential <= rule.energy_threshold
+            && match self.c.stop_energy {
+                StopEnergy::RigidBody => settles(rigid, energy.kinetic(), potential, rule),
+                StopEnergy::PointMasses => {
+                    let (kinetic, total) = self.point_mass_parts();
+                    settles(total, kinetic, potential, rule)
+                }
             }
-        }
     }
 
     /// `(kinetic, total)` of the stop energy, given the rigid-body energy of this state.
@@ -627,16 +635,19 @@ impl Simulation {
     fn update_forces(&mut self) {
         let c = self.c;
         let z0 = self.state.position.z;
+        if !self.in_contact {
+            // Out of contact every depth is already +0.0: look before writing them.
+            let offsets = &self.state.corner_offsets;
+            if !offsets.iter().fold(false, |any, r| any | (r.z + z0 < 0.0)) {
+                return;
+            }
+        }
         let mut any = false;
         for k in 0..8 {
             let z = self.state.corner_offsets[k].z + z0;
             let depth = if z < 0.0 { -z } else { 0.0 };
             self.state.corner_depths[k] = depth;
             any |= z < 0.0;
-        }
-        if !any && !self.in_contact {
-            // Nothing touches now or did before: forces are already zero.
-            return;
         }
         self.in_contact = any;
         if !any {
