@@ -69,7 +69,9 @@ pub(crate) fn render_key_hints(app: &App, keys: Vec<(&str, &str, u8)>, area: Rec
     let notice = app
         .export_status()
         .or_else(|| app.notice.clone())
-        .map(|n| format!(" {n} "));
+        // Notices quote names and errors from files: an escape sequence in one is shown,
+        // not obeyed (ratatui alone would drop the control character and show the rest).
+        .map(|n| format!(" {} ", crate::output::printable(&n)));
     let width = |ks: &[(&str, &str, u8)]| -> usize {
         ks.iter()
             .map(|(k, w, _)| 2 + k.chars().count() + w.chars().count())

@@ -285,7 +285,9 @@ fn energy_log_scale_and_ascii_die() {
     assert!(text.contains("log (y)"));
     let die = lines_of(t.backend().buffer())[areas.die.y as usize..areas.die.bottom() as usize].join("\n");
     assert!(
-        die.contains('*') && !die.chars().any(|c| ('\u{2800}'..='\u{28ff}').contains(&c)),
+        ['-', '|', '/', '\\'].iter().any(|&c| die.contains(c))
+            && !die.contains('*')
+            && !die.chars().any(|c| ('\u{2800}'..='\u{28ff}').contains(&c)),
         "ASCII only:\n{die}"
     );
     insta::assert_snapshot!("log_ascii_120x36", text);
@@ -866,4 +868,27 @@ mod sizes {
             draw_into(&app, width, height);
         }
     }
+}
+
+/// Text that came from a file (a preset's name, an error quoting it) never sends a control
+/// character to the terminal: the footer's notices show it escaped, and no cell holds one.
+#[test]
+fn control_characters_from_files_never_reach_the_terminal() {
+    let title = "\u{1b}]0;owned\u{7}";
+    let preset = Preset {
+        name: format!("x{title}"),
+        ..Preset::default()
+    };
+    let mut s = Scene::new(&preset, Theme::default());
+    s.app.notice = Some(format!("cannot open {title}.toml"));
+    let t = draw(&s.app, 120, 36);
+    let buffer = t.backend().buffer();
+    for line in lines_of(buffer) {
+        assert!(!line.contains(char::is_control), "{line:?}");
+    }
+    let footer = &lines_of(buffer)[35];
+    assert!(
+        footer.contains(r"cannot open \u{1b}]0;owned\u{7}.toml"),
+        "{footer}"
+    );
 }
