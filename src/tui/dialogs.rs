@@ -1,10 +1,10 @@
 //! The preset dialogs: `o` picks a preset to load (shipped and the user's, with their
 //! descriptions), `s` saves the current setup under a name, asking before it replaces one.
 //!
-//! These are the only keys whose handling touches the disk: listing the preset folder when
-//! the picker opens, writing a file when a save is confirmed.
+//! Their keys never touch the disk themselves: listing the preset folder ([`open_picker`])
+//! and writing a file ([`save`]) are effects the event loop runs after `update`.
 
-use super::app::App;
+use super::app::{App, Effect, Prompt};
 use crate::output::printable;
 use crate::preset::{Preset, Source, check_name};
 use crate::worker::Command;
@@ -132,8 +132,17 @@ fn picker_key(
         KeyCode::Home | KeyCode::Char('g') => 0,
         KeyCode::End | KeyCode::Char('G') => last,
         KeyCode::Enter => match choices.get(selected).map(|c| c.preset.clone()) {
+            Some(Ok(preset)) if modified(app) => {
+                // The picker stays under the question: anything but yes goes back to it.
+                app.prompt = Some(Prompt::Load(preset));
+                return Some(Dialog::Picker {
+                    choices,
+                    selected,
+                    error,
+                });
+            }
             Some(Ok(preset)) => {
-                app.send(out, Command::LoadPreset(preset));
+                app.load(out, preset);
                 return None;
             }
             Some(Err(e)) => {
@@ -194,22 +203,15 @@ fn save_key(
             if let Err(e) = check_name(&name) {
                 return refuse(e.to_string(), false);
             }
-            if app.store.exists(&name) && !confirm_replace {
-                return refuse(
-                    format!("`{name}` exists: Enter again replaces it, Esc keeps it"),
-                    true,
-                );
-            }
-            let preset = current_setup(app, &name);
-            match app.store.save(&preset, confirm_replace) {
-                Ok(path) => {
-                    app.notice = Some(format!("saved {}", path.display()));
-                    // The saved file is now what the setup is compared with.
-                    app.preset = preset;
-                    None
-                }
-                Err(e) => refuse(e.to_string(), false),
-            }
+            app.ask(Effect::SavePreset {
+                preset: Box::new(current_setup(app, &name)),
+                replace: confirm_replace,
+            });
+            Some(Dialog::Save {
+                name,
+                error: None,
+                confirm_replace,
+            })
         }
         _ => Some(Dialog::Save {
             name,
@@ -219,8 +221,63 @@ fn save_key(
     }
 }
 
-/// Draws the open dialog, centred over the screen.
+/// Writes `preset` into the user's folder (the effect [`Effect::SavePreset`]): a name that
+/// exists is replaced only with `replace`, else the dialog asks for a second Enter.
+pub(crate) fn save(app: &mut App, preset: &Preset, replace: bool) {
+    let name = preset.name.clone();
+    let refuse = |app: &mut App, error: String, confirm_replace: bool| {
+        if let Some(Dialog::Save {
+            error: e,
+            confirm_replace: c,
+            ..
+        }) = &mut app.dialog
+        {
+            (*e, *c) = (Some(error), confirm_replace);
+        }
+    };
+    if !replace && app.store.exists(&name) {
+        return refuse(
+            app,
+            format!("`{name}` exists: Enter again replaces it, Esc keeps it"),
+            true,
+        );
+    }
+    match app.store.save(preset, replace) {
+        Ok(path) => {
+            app.notice = Some(format!("saved {}", path.display()));
+            // The saved file is now what the setup is compared with.
+            app.preset = preset.clone();
+            app.dialog = None;
+        }
+        Err(e) => refuse(app, e.to_string(), false),
+    }
+}
+
+/// Draws the open dialog, centred over the screen, and over it any question being asked.
 pub fn render(app: &App, area: Rect, frame: &mut Frame) {
+    render_dialog(app, area, frame);
+    if let Some(prompt) = &app.prompt {
+        let t = &app.theme;
+        let (keys, words) = prompt.answers();
+        let popup = area.centered(Constraint::Max(64), Constraint::Length(4));
+        frame.render_widget(Clear, popup);
+        let lines = vec![
+            Line::styled(prompt.question(&app.preset.name), t.caution()),
+            Line::from(vec![
+                Span::styled(keys, t.key()),
+                Span::raw(format!(" {words} · any other key stays")),
+            ]),
+        ];
+        frame.render_widget(
+            Paragraph::new(lines)
+                .wrap(Wrap { trim: true })
+                .block(Block::bordered().title(Line::styled(" are you sure? ", t.heading()))),
+            popup,
+        );
+    }
+}
+
+fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
     let Some(dialog) = &app.dialog else { return };
     let t = &app.theme;
     match dialog {

@@ -40,6 +40,7 @@ pub fn render(app: &App, frame: &mut Frame) {
     render_params(app, areas.params, frame);
     render_outcomes(app, areas.outcomes, frame);
     render_die(app, areas.die, frame);
+    super::timeline::render(app, areas.timeline, frame);
     if app.live.twin.is_some() {
         super::twin::render_separation(app, areas.energy, frame);
     } else {

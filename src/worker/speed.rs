@@ -42,6 +42,25 @@ impl Speed {
     pub(crate) fn label(self) -> &'static str {
         LABELS.get(self.0 as usize).copied().unwrap_or("instant")
     }
+
+    #[cfg(test)]
+    /// The speed a label names (`1/20×`, `1/20`, `5×`, `5`, `instant`), if it is on the ladder.
+    pub(crate) fn from_label(label: &str) -> Option<Speed> {
+        let bare = label.trim().trim_end_matches(['×', 'x']);
+        if bare == "instant" {
+            return Some(Speed::INSTANT);
+        }
+        LABELS
+            .iter()
+            .position(|l| l.trim_end_matches('×') == bare)
+            .map(|i| Speed(i as u8))
+    }
+
+    #[cfg(test)]
+    /// Every label, slowest first, for messages that list them.
+    pub(crate) fn labels() -> impl Iterator<Item = &'static str> {
+        LABELS.iter().copied().chain(["instant"])
+    }
 }
 
 #[cfg(test)]
@@ -59,5 +78,11 @@ mod tests {
         assert_eq!(Speed::INSTANT.factor(), None);
         assert_eq!(Speed::INSTANT.slower(), Speed::FASTEST);
         assert_eq!(Speed::default().slower().label(), "1/2×");
+        for label in Speed::labels() {
+            let s = Speed::from_label(label).expect("its own label");
+            assert_eq!(s.label(), label);
+        }
+        assert_eq!(Speed::from_label("1/20"), Some(Speed(2)));
+        assert_eq!(Speed::from_label("1/3×"), None);
     }
 }
