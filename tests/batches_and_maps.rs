@@ -78,8 +78,9 @@ fn map(method: Method, jobs: usize, partials: &mut Vec<BasinMap>) -> BasinMap {
         y: Axis::parse("initial.angular_velocity.y:-40:40", 33).unwrap(),
         method,
     };
+    // Low enough that the basins are wide and refinement pays (no switch to uniform).
     let base = InitialCondition {
-        height: 2.5,
+        height: 1.8,
         ..Default::default()
     };
     run_map(
@@ -101,6 +102,7 @@ fn refined_map_equals_the_uniform_grid_where_both_rolled() {
     assert!(adaptive.complete && uniform.complete);
     assert_eq!(uniform.sampled, 65 * 33);
     assert!(adaptive.sampled < uniform.sampled, "refinement rolled every cell");
+    assert_eq!(adaptive.switched_to_uniform, None);
     let mut faces = std::collections::BTreeSet::new();
     let mut shared = 0;
     for (a, u) in adaptive.cells.iter().zip(&uniform.cells) {
@@ -123,6 +125,41 @@ fn refined_map_equals_the_uniform_grid_where_both_rolled() {
     assert!(partials[0].cells.iter().all(Option::is_some));
     // The same map with another job count.
     assert_eq!(map(Method::Adaptive, 1, &mut Vec::new()), adaptive);
+}
+
+#[test]
+fn an_interleaved_map_switches_to_uniform_and_equals_it() {
+    // A 15 cm drop: the basins interleave on the scale of one cell, so nearly every split
+    // block still differs and the adaptive method rolls every cell after its first pass.
+    let spec = |method| MapSpec {
+        x: Axis::parse("initial.angular_velocity.x:-60:60", 65).unwrap(),
+        y: Axis::parse("initial.angular_velocity.y:-60:60", 33).unwrap(),
+        method,
+    };
+    let run = |method| {
+        run_map(
+            &Params::default(),
+            &InitialCondition::default(),
+            &spec(method),
+            2,
+            &AtomicBool::new(false),
+            &mut |_| {},
+        )
+        .unwrap()
+    };
+    let adaptive = run(Method::Adaptive);
+    let uniform = run(Method::Uniform);
+    let (passes, share) = adaptive.switched_to_uniform.expect("the map switches");
+    assert_eq!(passes, 1);
+    assert!(share > dicesim::experiment::UNIFORM_SWITCH_SHARE);
+    assert!(adaptive.complete);
+    assert_eq!(adaptive.sampled, 65 * 33);
+    assert_eq!(adaptive.cells, uniform.cells);
+    assert!(
+        adaptive
+            .method_report()
+            .contains("every remaining cell was rolled")
+    );
 }
 
 #[test]

@@ -148,6 +148,176 @@ fn trace_without_steps_ends_with_the_roll() {
 }
 
 #[test]
+fn both_engines_write_byte_identical_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let write = |engine: &str, ext: &str| {
+        let path = dir.path().join(format!("{engine}.{ext}"));
+        let o = dicesim(&[
+            "batch",
+            "--rolls",
+            "3000",
+            "--seed",
+            "77",
+            "--set",
+            "random.random_orientation=true",
+            "--engine",
+            engine,
+            "--out",
+            path.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(stdout(&o).contains(&format!("{engine} engine")), "{}", stdout(&o));
+        std::fs::read(&path).unwrap()
+    };
+    let csv = write("scalar", "csv");
+    assert_eq!(csv.iter().filter(|&&b| b == b'\n').count(), 3001);
+    assert!(csv == write("lanes", "csv"), "the CSVs differ");
+    let json = |engine| {
+        let mut v: serde_json::Value = serde_json::from_slice(&write(engine, "json")).unwrap();
+        // Only the wall-clock figures may differ.
+        for key in ["elapsed_s", "rolls_per_s", "steps_per_s"] {
+            v["summary"][key] = serde_json::Value::Null;
+        }
+        v
+    };
+    let scalar = json("scalar");
+    assert_eq!(scalar["rolls"].as_array().unwrap().len(), 3000);
+    assert_eq!(scalar, json("lanes"));
+}
+
+#[test]
+fn basin_maps_are_the_same_with_both_engines() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = |engine: &str| {
+        let path = dir.path().join(format!("{engine}.csv"));
+        let o = dicesim(&[
+            "basin",
+            "--x",
+            "ground.stiffness:20000:200000",
+            "--y",
+            "initial.angular_velocity.y:-30:30",
+            "--res",
+            "23x9",
+            "--engine",
+            engine,
+            "--out",
+            path.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        std::fs::read(&path).unwrap()
+    };
+    assert!(map("scalar") == map("lanes"), "the maps differ");
+}
+
+/// Sends SIGINT to a running `dicesim` and waits for it.
+#[cfg(unix)]
+fn interrupt(mut child: std::process::Child, after: std::time::Duration) -> Output {
+    std::thread::sleep(after);
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let start = std::time::Instant::now();
+    loop {
+        if child.try_wait().unwrap().is_some() {
+            break;
+        }
+        // A guard against a hang, not a speed test: the cancel is answered in milliseconds.
+        assert!(start.elapsed().as_secs() < 20, "Ctrl-C was not answered");
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    child.wait_with_output().unwrap()
+}
+
+#[cfg(unix)]
+#[test]
+fn ctrl_c_inside_long_rolls_keeps_an_exact_prefix() {
+    use std::process::Stdio;
+    let dir = tempfile::tempdir().unwrap();
+    let spawn = |engine: &str, out: &std::path::Path, rolls: &str, long: bool| {
+        let mut args = vec!["batch", "--rolls", rolls, "--jobs", "2", "--engine", engine];
+        if long {
+            // Rolls of 1.2·10⁷ steps each (thrown up from 10 m under weak gravity, Δt = 10 µs,
+            // 120 s before it could land): a cancel must be noticed inside the rolls.
+            args.extend([
+                "--set",
+                "integrator.dt=0.00001",
+                "--set",
+                "integrator.max_time=120",
+            ]);
+            args.extend(["--set", "world.gravity=10", "--set", "random.height=[1000,1000]"]);
+            args.extend(["--set", "random.velocity=[1000,1000]"]);
+        }
+        args.extend(["--out", out.to_str().unwrap()]);
+        Command::new(env!("CARGO_BIN_EXE_dicesim"))
+            .args(&args)
+            .env("DICESIM_PRESETS", dir.path().join("none"))
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap()
+    };
+    for engine in ["scalar", "lanes"] {
+        // Long rolls: nothing completes before the cancel, and nothing is kept.
+        let out = dir.path().join(format!("long-{engine}.csv"));
+        let o = interrupt(
+            spawn(engine, &out, "8", true),
+            std::time::Duration::from_millis(700),
+        );
+        assert_eq!(
+            o.status.code(),
+            Some(130),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.contains("interrupted: kept the 0 of 8 rolls completed"),
+            "{err}"
+        );
+        let text = std::fs::read_to_string(&out).unwrap();
+        assert_eq!(text.lines().count(), 1, "only the header: {text}");
+
+        // Short rolls: what was kept is the start of the full batch, row for row.
+        let out = dir.path().join(format!("short-{engine}.csv"));
+        let o = interrupt(
+            spawn(engine, &out, "1000000", false),
+            std::time::Duration::from_millis(1500),
+        );
+        assert_eq!(
+            o.status.code(),
+            Some(130),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let kept = std::fs::read_to_string(&out).unwrap();
+        let rows = kept.lines().count() - 1;
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.contains(&format!("kept the {rows} of 1000000 rolls")),
+            "{err}"
+        );
+        assert!(rows > 0 && rows < 1_000_000);
+        let full = dir.path().join(format!("full-{engine}.csv"));
+        let o = dicesim(&[
+            "batch",
+            "--rolls",
+            &rows.to_string(),
+            "--engine",
+            engine,
+            "--out",
+            full.to_str().unwrap(),
+        ]);
+        assert!(o.status.success());
+        assert!(
+            std::fs::read_to_string(&full).unwrap() == kept,
+            "the kept rows are not the batch's start"
+        );
+    }
+}
+
+#[test]
 fn completions_name_every_command_for_each_shell() {
     let bash = dicesim(&["completions", "bash"]);
     assert!(bash.status.success());

@@ -1,16 +1,15 @@
 //! `dicesim basin`: the outcome over a grid of two setup values, as CSV or an image.
 
 use super::shard::{ShardArgs, map_fingerprint, new_part, write_part};
-use super::{CliError, SetupArgs};
+use super::{CliError, EngineArg, SetupArgs, cancel_on_ctrl_c};
 use crate::experiment::plot::write_image;
 use crate::experiment::shard::Sweep;
-use crate::experiment::{Axis, BasinMap, FaceTally, Layer, MapSpec, Method, run_map_rows};
+use crate::experiment::{Axis, BasinMap, FaceTally, Layer, MapSpec, Method, RunOptions, run_map_rows};
 use crate::output::Output;
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
-use std::sync::atomic::AtomicBool;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum LayerArg {
@@ -55,6 +54,9 @@ pub(crate) struct BasinArgs {
     pub(crate) force: bool,
     #[command(flatten)]
     pub(crate) shard: ShardArgs,
+    /// The engine that steps the rolls; the map is bit for bit the same with either.
+    #[arg(long, value_enum, default_value_t = EngineArg::Auto)]
+    pub(crate) engine: EngineArg,
 }
 
 fn parse_resolution(s: &str) -> Result<(usize, usize), String> {
@@ -132,16 +134,20 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
         ProgressStyle::with_template("{bar:40} {pos}/{len} cells rolled, {elapsed}")
             .expect("the progress template is valid"),
     );
+    let options = RunOptions {
+        jobs,
+        engine: args.engine.engine(),
+    };
+    let stop = cancel_on_ctrl_c()?;
     let start = std::time::Instant::now();
-    let never = AtomicBool::new(false);
     let spec = MapSpec { x, y, method };
     let map = run_map_rows(
         &params,
         &preset.initial,
         &spec,
         rows.start as usize..rows.end as usize,
-        jobs,
-        &never,
+        &options,
+        &stop,
         &mut |m: &BasinMap| bar.set_position(m.sampled as u64),
     )
     .map_err(CliError::experiment(""))?;
@@ -181,7 +187,7 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
         write_part(part, &summary)?;
     }
     let mut out = std::io::stdout().lock();
-    print_map_summary(&mut out, &map, layer, &faces, total)?;
+    print_map_summary(&mut out, &map, layer, &faces)?;
     if let Some((shard, _)) = &sharding {
         writeln!(
             out,
@@ -192,37 +198,37 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
     }
     writeln!(
         out,
-        "time                {elapsed:.2} s on {jobs} thread{}",
-        if jobs == 1 { "" } else { "s" }
+        "time                {elapsed:.2} s on {jobs} thread{}, {} engine",
+        if jobs == 1 { "" } else { "s" },
+        options.engine.resolve().name()
     )?;
     if let Some(path) = &args.out {
         writeln!(out, "wrote               {}", path.display())?;
+    }
+    out.flush()?;
+    if !map.complete {
+        // A cancelled uniform map keeps an exact prefix of its cells in row order (what a
+        // longer run agrees with); an adaptive one its last whole refinement level.
+        return Err(CliError::Interrupted {
+            completed: map.cells.iter().flatten().count() as u64,
+            requested: total,
+            what: "cells",
+        });
     }
     Ok(())
 }
 
 /// What `basin` and `merge` print about a map: its grid, method, axes and the face shares
-/// over `cells` cells.
+/// over its known cells.
 pub(super) fn print_map_summary(
     out: &mut impl Write,
     map: &BasinMap,
     layer: Layer,
     faces: &FaceTally,
-    cells: u64,
 ) -> std::io::Result<()> {
     let (x, y) = (&map.x, &map.y);
     let (w, h) = (map.width(), map.height());
-    let total = w * h;
-    let how = match map.method {
-        Method::Uniform => "uniform grid: every cell rolled".to_string(),
-        Method::Adaptive => format!(
-            "adaptive: {} of {} cells rolled ({:.1}%), the rest filled from agreeing neighbours",
-            map.sampled,
-            total,
-            100.0 * map.sampled as f64 / total as f64
-        ),
-    };
-    writeln!(out, "{w}×{h} {} map, {how}", layer.name())?;
+    writeln!(out, "{w}×{h} {} map, {}", layer.name(), map.method_report())?;
     writeln!(out, "x  {} from {} to {}", x.key.label(), x.min, x.max)?;
     if h == 1 {
         writeln!(out, "y  {} = {}", y.key.label(), y.value(0))?;
@@ -233,7 +239,7 @@ pub(super) fn print_map_summary(
         .map(|f| format!("{f}: {:.1}%", 100.0 * faces.share(f)))
         .collect();
     writeln!(out, "faces over the map  {}", shares.join(", "))?;
-    let unsettled = cells - faces.total();
+    let unsettled = map.cells.iter().flatten().count() as u64 - faces.total();
     if unsettled > 0 {
         writeln!(out, "cells without a face {unsettled}")?;
     }

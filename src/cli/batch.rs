@@ -1,29 +1,26 @@
 //! `dicesim batch`: many rolls in parallel, per-roll results and their statistics.
 
 use super::shard::{ShardArgs, batch_fingerprint, write_batch_part};
-use super::{CliError, SetupArgs};
-use crate::experiment::ics::{parse_initial_conditions, write_records_csv};
+use super::{CliError, EngineArg, SetupArgs, cancel_on_ctrl_c};
+use crate::experiment::csv_io;
+use crate::experiment::ics::{parse_initial_conditions, record_csv_row, records_csv_header};
 use crate::experiment::parquet::RecordsWriter;
 use crate::experiment::shard::Sweep;
-use crate::experiment::{Batch, BatchSummary, RollRecord, Rolls, run_batch};
+use crate::experiment::{BatchRun, BatchSummary, RollRecord, Rolls, RunOptions, stream_batch};
 use crate::output::Output;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::json;
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
-use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
 
-/// The most rolls one batch takes: their records stay in memory (~1.5 GB at the limit).
-pub(crate) const MAX_ROLLS: u64 = 10_000_000;
+/// The most rolls one batch takes. Records stream to `--out` as they complete, so memory
+/// does not grow with the batch; past this a batch is years of core time, a typo more
+/// likely than a plan, and a sweep that size belongs on many machines (`--shard`).
+pub(crate) const MAX_ROLLS: u64 = 100_000_000_000;
 
 /// The largest `--ics` file read, bytes (about a million rows).
 const MAX_ICS_BYTES: u64 = 256 * 1024 * 1024;
-
-/// Exit status of a second Ctrl-C, which cannot wait for the error to reach `main`: as a
-/// shell reports a SIGINT (128 + 2), the status `main` gives an interrupted batch.
-const INTERRUPTED_AT_ONCE: i32 = 130;
 
 #[derive(Debug, Args)]
 pub(crate) struct BatchArgs {
@@ -62,6 +59,10 @@ pub(crate) struct BatchArgs {
     pub(crate) json: bool,
     #[command(flatten)]
     pub(crate) shard: ShardArgs,
+    /// The engine that steps the rolls; every roll's result is bit for bit the same with
+    /// either, so this changes speed only.
+    #[arg(long, value_enum, default_value_t = EngineArg::Auto)]
+    pub(crate) engine: EngineArg,
 }
 
 pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
@@ -77,9 +78,7 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
         && n > MAX_ROLLS
     {
         return Err(CliError::Usage(format!(
-            "--rolls {n}: at most {MAX_ROLLS} per batch (every roll's record is kept for the summary and --out, \
-             about {} bytes each); split it with --shard K/N",
-            size_of::<RollRecord>()
+            "--rolls {n}: at most {MAX_ROLLS} per batch; split a sweep this large over machines with --shard K/N"
         )));
     }
     let preset = args.setup.resolve()?;
@@ -129,17 +128,11 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
         },
     };
 
-    let stop = Arc::new(AtomicBool::new(false));
-    let handler_stop = stop.clone();
-    // The first Ctrl-C finishes the running chunk and keeps everything done; a second one
-    // quits at once.
-    ctrlc::set_handler(move || {
-        if handler_stop.swap(true, Ordering::SeqCst) {
-            std::process::exit(INTERRUPTED_AT_ONCE);
-        }
-    })
-    .map_err(|e| CliError::Io(std::io::Error::other(format!("cannot catch Ctrl-C: {e}"))))?;
-
+    let stop = cancel_on_ctrl_c()?;
+    let options = RunOptions {
+        jobs,
+        engine: args.engine.engine(),
+    };
     let bar = if std::io::stderr().is_terminal() {
         ProgressBar::new(rolls.len())
     } else {
@@ -149,23 +142,46 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
         ProgressStyle::with_template("{bar:40} {pos}/{len} rolls, {per_sec}, {eta} left")
             .expect("the progress template is valid"),
     );
-    let batch = run_batch(&params, &rolls, jobs, &stop, &mut |done: &[RollRecord]| {
-        bar.set_position(done.len() as u64)
-    })
-    .map_err(CliError::experiment(""))?;
-    bar.finish_and_clear();
-
-    let summary = batch.summary();
-    if let Some(output) = &output {
-        output
-            .write(|w| write_records(w, output.extension(), &batch, &summary, seed, given.is_some()))
-            .map_err(CliError::output(""))?;
+    let seed_field = given.is_none().then_some(seed);
+    let mut run = None;
+    // The sink's own I/O error, kept whole (the engine only carries its words).
+    let write_error = std::cell::RefCell::new(None);
+    let roll = |sink: &mut dyn FnMut(&[RollRecord]) -> std::io::Result<()>| {
+        stream_batch(&params, &rolls, &options, &stop, &mut |chunk: &[RollRecord]| {
+            bar.inc(chunk.len() as u64);
+            sink(chunk).map_err(|e| {
+                let words = e.to_string();
+                *write_error.borrow_mut() = Some(e);
+                words
+            })
+        })
+    };
+    // Records go to the file as they arrive, so memory stays flat in the number of rolls;
+    // the file appears under its name only once it is whole (or an interrupted prefix).
+    match &output {
+        Some(output) => output
+            .write(|w| {
+                let mut records = RecordsFile::start(w, output.extension(), seed_field, rolls.len())?;
+                let done = roll(&mut |chunk| records.write(chunk));
+                let batch = done.map_err(|e| match write_error.borrow_mut().take() {
+                    Some(io) => io,
+                    None => std::io::Error::other(e.to_string()),
+                })?;
+                records.finish(&batch)?;
+                run = Some(batch);
+                Ok(())
+            })
+            .map_err(CliError::output(""))?,
+        None => run = Some(roll(&mut |_| Ok(())).map_err(CliError::experiment(""))?),
     }
+    let batch = run.expect("the batch ran");
+    bar.finish_and_clear();
+    let summary = &batch.summary;
     if let Some((shard, part)) = &sharding {
         let sweep = Sweep::Batch {
             preset: preset.name.clone(),
             fingerprint: batch_fingerprint(&preset, given.as_deref()),
-            seed: given.is_none().then_some(seed),
+            seed: seed_field,
             rolls: total,
         };
         write_batch_part(part, sweep, *shard, range, args.out.as_deref(), &batch)?;
@@ -174,67 +190,111 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
     if args.json {
         let v = json!({
             "preset": preset.name,
-            "seed": if given.is_some() { None } else { Some(seed) },
+            "seed": seed_field,
             "requested": batch.requested,
-            "completed": batch.records.len(),
+            "completed": batch.completed,
             "interrupted": batch.cancelled,
             "jobs": batch.jobs,
+            "engine": batch.engine,
             "summary": summary,
         });
         writeln!(out, "{v}")?;
     } else {
-        print_summary(&mut out, &batch, &summary)?;
+        print_summary(&mut out, &batch, summary)?;
     }
     out.flush()?;
     if batch.cancelled {
         return Err(CliError::Interrupted {
-            completed: batch.records.len(),
+            completed: batch.completed,
             requested: batch.requested,
+            what: "rolls",
         });
     }
     Ok(())
 }
 
-/// The per-roll file, as CSV or JSON by `extension`.
-fn write_records(
-    w: &mut (dyn Write + Send),
-    extension: &str,
-    batch: &Batch,
-    summary: &BatchSummary,
-    seed: u64,
-    given: bool,
-) -> std::io::Result<()> {
-    match extension {
-        "csv" => write_records_csv(&mut *w, &batch.records)?,
-        "json" => {
-            let v = json!({
-                "seed": if given { None } else { Some(seed) },
-                "requested": batch.requested,
-                "interrupted": batch.cancelled,
-                "summary": summary,
-                "rolls": batch.records,
-            });
-            serde_json::to_writer(&mut *w, &v)?;
-            writeln!(w)?;
-        }
-        _ => {
-            let mut parquet = RecordsWriter::new(w).map_err(std::io::Error::other)?;
-            for r in &batch.records {
-                parquet.write(r).map_err(std::io::Error::other)?;
-            }
-            parquet.finish().map_err(std::io::Error::other)?;
-        }
-    }
-    Ok(())
+/// The per-roll file as the records arrive: CSV, JSON or Parquet by extension. JSON puts
+/// the rolls first and what is known only at the end (interrupted, summary) after them.
+enum RecordsFile<'w> {
+    Csv(csv::Writer<&'w mut (dyn Write + Send)>),
+    Json {
+        w: &'w mut (dyn Write + Send),
+        first: bool,
+    },
+    Parquet(RecordsWriter<&'w mut (dyn Write + Send)>),
 }
 
-fn print_summary(out: &mut impl Write, batch: &Batch, s: &BatchSummary) -> std::io::Result<()> {
+impl<'w> RecordsFile<'w> {
+    fn start(
+        w: &'w mut (dyn Write + Send),
+        extension: &str,
+        seed: Option<u64>,
+        requested: u64,
+    ) -> std::io::Result<Self> {
+        Ok(match extension {
+            "csv" => {
+                let mut csv = csv::Writer::from_writer(w);
+                csv.write_record(records_csv_header()).map_err(csv_io)?;
+                RecordsFile::Csv(csv)
+            }
+            "json" => {
+                write!(
+                    w,
+                    "{{\"seed\":{},\"requested\":{requested},\"rolls\":[",
+                    json!(seed)
+                )?;
+                RecordsFile::Json { w, first: true }
+            }
+            _ => RecordsFile::Parquet(RecordsWriter::new(w).map_err(std::io::Error::other)?),
+        })
+    }
+
+    fn write(&mut self, records: &[RollRecord]) -> std::io::Result<()> {
+        match self {
+            RecordsFile::Csv(csv) => {
+                for r in records {
+                    csv.write_record(record_csv_row(r)).map_err(csv_io)?;
+                }
+            }
+            RecordsFile::Json { w, first } => {
+                for r in records {
+                    if !std::mem::take(first) {
+                        w.write_all(b",")?;
+                    }
+                    serde_json::to_writer(&mut **w, r)?;
+                }
+            }
+            RecordsFile::Parquet(parquet) => {
+                for r in records {
+                    parquet.write(r).map_err(std::io::Error::other)?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn finish(self, batch: &BatchRun) -> std::io::Result<()> {
+        match self {
+            RecordsFile::Csv(mut csv) => csv.flush(),
+            RecordsFile::Json { w, .. } => writeln!(
+                w,
+                "],\"interrupted\":{},\"summary\":{}}}",
+                batch.cancelled,
+                json!(batch.summary)
+            ),
+            RecordsFile::Parquet(parquet) => parquet.finish().map(drop).map_err(std::io::Error::other),
+        }
+    }
+}
+
+fn print_summary(out: &mut impl Write, batch: &BatchRun, s: &BatchSummary) -> std::io::Result<()> {
     writeln!(
         out,
-        "{} rolls on {} thread{}",
+        "{} rolls on {} thread{}, {} engine",
         s.rolls,
         batch.jobs,
-        if batch.jobs == 1 { "" } else { "s" }
+        if batch.jobs == 1 { "" } else { "s" },
+        batch.engine.name()
     )?;
     print_counts(out, s)?;
     writeln!(

@@ -331,6 +331,7 @@ fn merge_map(args: &MergeArgs, outputs: &[Output], parts: &[(&Path, &Part)]) -> 
         cells: vec![None; width * height],
         sampled: 0,
         complete: true,
+        switched_to_uniform: None,
     };
     let kinds: Vec<&str> = args
         .out
@@ -382,7 +383,7 @@ fn merge_map(args: &MergeArgs, outputs: &[Output], parts: &[(&Path, &Part)]) -> 
     }
     let (shard_s, longest_s) = shard_times(parts);
     let mut stdout = std::io::stdout().lock();
-    print_map_summary(&mut stdout, &map, layer, &faces, (width * height) as u64)?;
+    print_map_summary(&mut stdout, &map, layer, &faces)?;
     writeln!(
         stdout,
         "time                {shard_s:.2} s over {} shards (the longest {longest_s:.2} s)",

@@ -2,6 +2,7 @@
 
 mod basin;
 mod batch;
+mod bench;
 mod merge;
 mod presets;
 mod roll;
@@ -11,10 +12,52 @@ mod trace;
 mod tui;
 
 use crate::experiment;
+use crate::experiment::Engine;
 use crate::physics::ParamError;
 use crate::preset::{Preset, PresetError, Store};
-use clap::{Args, CommandFactory, Parser, Subcommand};
+use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// `--engine` of `batch` and `basin`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum EngineArg {
+    /// The lane engine where the CPU has AVX2, else the scalar one.
+    Auto,
+    /// One roll after another.
+    Scalar,
+    /// Four rolls per AVX2 vector (the scalar engine on CPUs without AVX2).
+    Lanes,
+}
+
+impl EngineArg {
+    pub(crate) fn engine(self) -> Engine {
+        match self {
+            EngineArg::Auto => Engine::Auto,
+            EngineArg::Scalar => Engine::Scalar,
+            EngineArg::Lanes => Engine::Lanes,
+        }
+    }
+}
+
+/// Exit status of a second Ctrl-C, which cannot wait for the error to reach `main`: as a
+/// shell reports a SIGINT (128 + 2), the status `main` gives an interrupted command.
+const INTERRUPTED_AT_ONCE: i32 = 130;
+
+/// A flag the first Ctrl-C sets (the running rolls notice it within a few thousand steps
+/// and the command keeps what is complete); a second Ctrl-C quits at once.
+pub(crate) fn cancel_on_ctrl_c() -> Result<Arc<AtomicBool>, CliError> {
+    let stop = Arc::new(AtomicBool::new(false));
+    let handler_stop = stop.clone();
+    ctrlc::set_handler(move || {
+        if handler_stop.swap(true, Ordering::SeqCst) {
+            std::process::exit(INTERRUPTED_AT_ONCE);
+        }
+    })
+    .map_err(|e| CliError::Io(std::io::Error::other(format!("cannot catch Ctrl-C: {e}"))))?;
+    Ok(stop)
+}
 
 /// A die rolling on a table as a rigid body (Chin & Li, 2019).
 #[derive(Debug, Parser)]
@@ -85,6 +128,8 @@ pub(crate) enum Command {
   dicesim slurm --shards 64 --cpus-per-task 4 --time 1:00:00 --dir /scratch/$USER/sweep \\
                 --format parquet --submit -- batch --rolls 1000000000 --seed 7")]
     Slurm(slurm::SlurmArgs),
+    /// Time both engines on the same rolls and maps in this process and print the ratios.
+    Bench(bench::BenchArgs),
     /// The terminal explorer: a live die, energy plots, parameters and outcomes (the default).
     #[command(after_help = "Examples:
   dicesim tui
@@ -189,9 +234,14 @@ pub enum CliError {
     /// The explorer stopped with an error (its report, with the chain of causes).
     #[error("{0:#}")]
     Explorer(color_eyre::Report),
-    /// Ctrl-C stopped a batch; the rolls completed were reported and kept.
-    #[error("interrupted: kept the {completed} of {requested} rolls completed")]
-    Interrupted { completed: usize, requested: u64 },
+    /// Ctrl-C stopped a batch or a map; what was completed was reported and kept.
+    #[error("interrupted: kept the {completed} of {requested} {what} completed")]
+    Interrupted {
+        completed: u64,
+        requested: u64,
+        /// What was counted: `rolls`, `cells`.
+        what: &'static str,
+    },
 }
 
 /// What kind of failure an error is: the exit status follows from it.
@@ -295,6 +345,7 @@ pub fn main() -> Result<(), CliError> {
         Some(Command::Presets(args)) => presets::run(&args),
         Some(Command::Batch(args)) => batch::run(&args),
         Some(Command::Basin(args)) => basin::run(&args),
+        Some(Command::Bench(args)) => bench::run(&args),
         Some(Command::Merge(args)) => merge::run(&args),
         Some(Command::Slurm(args)) => slurm::run(&args),
         Some(Command::Tui(args)) => tui::run(&args, no_color),

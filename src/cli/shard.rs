@@ -2,9 +2,8 @@
 //! `dicesim merge`, and the setup fingerprints that tell sweeps apart.
 
 use super::CliError;
-use crate::experiment::Batch;
+use crate::experiment::BatchRun;
 use crate::experiment::shard::{PART_FORMAT, Part, Shard, Sweep, fingerprint};
-use crate::experiment::tally::Tally;
 use crate::physics::InitialCondition;
 use crate::preset::Preset;
 use clap::Args;
@@ -177,12 +176,12 @@ pub(crate) fn write_batch_part(
     shard: Shard,
     range: std::ops::Range<u64>,
     records: Option<&Path>,
-    batch: &Batch,
+    batch: &BatchRun,
 ) -> Result<(), CliError> {
     let mut part = new_part(sweep, shard, range, path, records);
     part.complete = !batch.cancelled;
-    part.tally = Some(batch.records.iter().collect::<Tally>());
-    part.elapsed_s = batch.elapsed.as_secs_f64();
+    part.tally = Some(batch.tally.clone());
+    part.elapsed_s = batch.summary.elapsed_s;
     part.jobs = batch.jobs;
     write_part(path, &part)
 }

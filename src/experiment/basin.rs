@@ -4,16 +4,32 @@
 //! one. The adaptive method samples a coarse grid, then splits only blocks whose corners
 //! differ (in face or status) and fills agreeing blocks from their corners; like the
 //! authors' refinement it can miss an island smaller than a coarse block, which the uniform
-//! method (every node rolled) cannot.
+//! method (every node rolled) cannot. Where the basins are finely interleaved (a 15 cm drop)
+//! nearly every block splits down to single cells, and refining level by level costs more
+//! than rolling every cell at once. A smooth boundary line leaves about half of a split
+//! block's four parts differing; so once more than [`UNIFORM_SWITCH_SHARE`] of the parts of
+//! the blocks split at a refinement still differ, the adaptive method rolls every remaining
+//! cell, and the map says so ([`BasinMap::switched_to_uniform`]).
 
 use super::Error;
-use super::batch::thread_pool;
+use super::batch::{RunOptions, thread_pool};
+use super::engine::roll_setups;
 use super::keys::ScanKey;
-use super::record::{RollRecord, roll_record_or_cancel};
+use super::record::RollRecord;
 use crate::physics::{InitialCondition, Outcome, Params, Status};
 use rayon::prelude::*;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
+
+/// The adaptive method rolls every remaining cell once more than this share of the parts
+/// of the blocks split at a refinement still differ: the map is nearly all boundary, its
+/// cells would be rolled nearly all anyway, and one pass keeps every thread and lane busy
+/// where level after level would not.
+pub const UNIFORM_SWITCH_SHARE: f64 = 0.75;
+
+/// Nodes per task: enough to keep four lanes full most of the time, few enough that two
+/// threads share a block of rows evenly.
+const NODES_PER_TASK: usize = 128;
 
 /// One axis of a map: a key scanned from `min` to `max` (both included) over `cells` nodes.
 #[derive(Debug, Clone, PartialEq)]
@@ -162,6 +178,10 @@ pub struct BasinMap {
     pub sampled: usize,
     /// False for a partial map (delivered while running, or after a cancel).
     pub complete: bool,
+    /// For an adaptive map that rolled every remaining cell: after how many refinement
+    /// passes, and the share of the parts of the blocks split at the last one that still
+    /// differed.
+    pub switched_to_uniform: Option<(usize, f64)>,
 }
 
 impl BasinMap {
@@ -175,6 +195,28 @@ impl BasinMap {
 
     pub fn cell(&self, i: usize, j: usize) -> Option<&Cell> {
         self.cells[j * self.width() + i].as_ref()
+    }
+
+    /// How the map was computed, in words.
+    pub fn method_report(&self) -> String {
+        let total = self.cells.len();
+        let rolled = format!(
+            "{} of {} cells rolled ({:.1}%)",
+            self.sampled,
+            total,
+            100.0 * self.sampled as f64 / total.max(1) as f64
+        );
+        match (self.method, self.switched_to_uniform) {
+            (Method::Uniform, _) => "uniform grid: every cell rolled".to_string(),
+            (Method::Adaptive, None) => {
+                format!("adaptive: {rolled}, the rest filled from agreeing neighbours")
+            }
+            (Method::Adaptive, Some((passes, share))) => format!(
+                "adaptive: {rolled}; after {passes} refinement{} {:.0}% of the split blocks' parts still differed, so every remaining cell was rolled",
+                if passes == 1 { "" } else { "s" },
+                100.0 * share
+            ),
+        }
     }
 }
 
@@ -235,29 +277,12 @@ pub(crate) fn node_setup(
     (p, ic)
 }
 
-/// Rolls node `(i, j)`, its record id the cell index `j * width + i`; `None` once `cancel`
-/// is set (looked at inside the roll).
-fn roll_node_or_cancel(
-    params: &Params,
-    base: &InitialCondition,
-    x: &Axis,
-    y: &Axis,
-    i: usize,
-    j: usize,
-    cancel: &AtomicBool,
-) -> Option<RollRecord> {
-    let (p, ic) = node_setup(params, base, x, y, i, j);
-    roll_record_or_cancel(&p, &ic, (j * x.cells + i) as u64, cancel)
-}
-
-/// Computes the map `spec` around `params` and `base` on `jobs` threads (0: one per core).
+/// Computes the map `spec` around `params` and `base` on `jobs` threads (0: one per core),
+/// with the engine of [`RunOptions::default`] (the lane engine where the CPU has AVX2).
 ///
 /// `on_partial` is called on the calling thread with the map so far: after each block of
 /// rows (uniform) or each refinement level (adaptive, every cell then filled from the
-/// nearest rolled corner of its block). Setting `cancel` stops the running rolls within a
-/// few thousand steps and returns the map as far as it got (`complete == false`): the last
-/// whole level (adaptive), or every cell rolled so far (uniform). The result is the same
-/// for any `jobs`.
+/// nearest rolled corner of its block). The result is the same for any `jobs` and engine.
 pub fn run_map(
     params: &Params,
     base: &InitialCondition,
@@ -266,18 +291,38 @@ pub fn run_map(
     cancel: &AtomicBool,
     on_partial: &mut dyn FnMut(&BasinMap),
 ) -> Result<BasinMap, Error> {
-    run_map_rows(params, base, spec, 0..spec.y.cells, jobs, cancel, on_partial)
+    let options = RunOptions {
+        jobs,
+        ..RunOptions::default()
+    };
+    run_map_with(params, base, spec, &options, cancel, on_partial)
 }
 
-/// [`run_map`] over the rows `rows` of the map only (a shard of it): the other rows stay
-/// unknown, and the map is complete when these are. Only the uniform method can split rows,
-/// since adaptive refinement compares cells across row boundaries.
+/// [`run_map`] with a choice of threads and engine.
+///
+/// Setting `cancel` stops the running rolls within a few thousand steps and returns the map
+/// as far as it got (`complete == false`): for a uniform map an exact prefix of its cells in
+/// row order, for an adaptive one the last whole level.
+pub fn run_map_with(
+    params: &Params,
+    base: &InitialCondition,
+    spec: &MapSpec,
+    options: &RunOptions,
+    cancel: &AtomicBool,
+    on_partial: &mut dyn FnMut(&BasinMap),
+) -> Result<BasinMap, Error> {
+    run_map_rows(params, base, spec, 0..spec.y.cells, options, cancel, on_partial)
+}
+
+/// [`run_map_with`] over the rows `rows` of the map only (a shard of it): the other rows
+/// stay unknown, and the map is complete when these are. Only the uniform method can split
+/// rows, since adaptive refinement compares cells across row boundaries.
 pub(crate) fn run_map_rows(
     params: &Params,
     base: &InitialCondition,
     spec: &MapSpec,
     rows: Range<usize>,
-    jobs: usize,
+    options: &RunOptions,
     cancel: &AtomicBool,
     on_partial: &mut dyn FnMut(&BasinMap),
 ) -> Result<BasinMap, Error> {
@@ -292,7 +337,8 @@ pub(crate) fn run_map_rows(
             spec.method.name()
         )));
     }
-    let pool = thread_pool(jobs)?;
+    let pool = thread_pool(options.jobs)?;
+    let engine = options.engine.resolve();
     let MapSpec { x, y, method } = spec;
     let method = *method;
     let mut map = BasinMap {
@@ -302,37 +348,61 @@ pub(crate) fn run_map_rows(
         cells: vec![None; x.cells * y.cells],
         sampled: 0,
         complete: false,
+        switched_to_uniform: None,
     };
-    // Rolls `nodes` into the map; false if a cancel stopped some of them (those stay unknown).
-    let roll = |map: &mut BasinMap, nodes: &[(usize, usize)]| {
-        let done: Vec<Option<RollRecord>> = pool.install(|| {
+    let stopped = || cancel.load(Ordering::Relaxed);
+    // Rolls `nodes`; false if a cancel cut it short (then some of them are left unknown).
+    let roll = |map: &mut BasinMap, nodes: &[(usize, usize)]| -> bool {
+        let done: Vec<(usize, Vec<RollRecord>)> = pool.install(|| {
             nodes
-                .par_iter()
-                .map(|&(i, j)| roll_node_or_cancel(params, base, x, y, i, j, cancel))
+                .par_chunks(NODES_PER_TASK)
+                .map(|chunk| {
+                    let setups: Vec<_> = chunk
+                        .iter()
+                        .map(|&(i, j)| {
+                            let (p, ic) = node_setup(params, base, x, y, i, j);
+                            ((j * x.cells + i) as u64, p, ic)
+                        })
+                        .collect();
+                    (chunk.len(), roll_setups(engine, &setups, &stopped))
+                })
                 .collect()
         });
-        let finished = done.iter().all(Option::is_some);
-        for r in done.into_iter().flatten() {
-            map.cells[r.id as usize] = Some(Cell {
-                outcome: r.outcome,
-                start_face: r.start_face,
-                sampled: true,
-            });
-            map.sampled += 1;
+        let mut whole = true;
+        for (asked, records) in done {
+            whole &= records.len() == asked;
+            map.sampled += records.len();
+            for r in records {
+                map.cells[r.id as usize] = Some(Cell {
+                    outcome: r.outcome,
+                    start_face: r.start_face,
+                    sampled: true,
+                });
+            }
         }
-        finished
+        whole
     };
     match method {
         Method::Uniform => {
-            let rows_per_block = (pool.current_num_threads() * 256 / x.cells).max(1);
+            let rows_per_block = (pool.current_num_threads() * 4 * NODES_PER_TASK / x.cells).max(1);
             let mut j0 = rows.start;
             map.complete = rows.is_empty();
-            while j0 < rows.end && !cancel.load(Ordering::Relaxed) {
+            while j0 < rows.end {
                 let j1 = (j0 + rows_per_block).min(rows.end);
                 let nodes: Vec<_> = (j0..j1).flat_map(|j| (0..x.cells).map(move |i| (i, j))).collect();
-                let finished = roll(&mut map, &nodes);
+                if !roll(&mut map, &nodes) || stopped() {
+                    // Keep only the exact prefix of the rows' cells in row order, so that
+                    // what a cancelled map shows or writes is what a longer run agrees with.
+                    let first = rows.start * x.cells;
+                    let known = map.cells[first..].iter().take_while(|c| c.is_some()).count();
+                    map.cells[first + known..].iter_mut().for_each(|c| *c = None);
+                    map.sampled = known;
+                    map.complete = false;
+                    on_partial(&map);
+                    return Ok(map);
+                }
                 j0 = j1;
-                map.complete = finished && j0 == rows.end;
+                map.complete = j0 == rows.end;
                 on_partial(&map);
             }
             Ok(map)
@@ -357,18 +427,39 @@ pub(crate) fn run_map_rows(
                 }
             }
             let mut settled: Vec<Block> = Vec::new();
-            loop {
+            let mut split = 0;
+            for passes in 0.. {
                 let (done, refine): (Vec<Block>, Vec<Block>) = pending
                     .drain(..)
                     .partition(|b| b.is_single() || b.corners_agree(&map));
                 settled.extend(done);
+                // Of the blocks the last pass split, the share whose parts still differ.
+                let still_differ = refine.len() as f64 / (4 * split).max(1) as f64;
+                if passes > 0 && still_differ > UNIFORM_SWITCH_SHARE {
+                    map.switched_to_uniform = Some((passes, still_differ));
+                    let rest: Vec<_> = (0..map.cells.len())
+                        .filter(|&n| map.cells[n].is_none())
+                        .map(|n| (n % x.cells, n / x.cells))
+                        .collect();
+                    let mut shown = map.clone();
+                    fill(&mut shown, settled.iter().chain(&refine));
+                    if !roll(&mut map, &rest) {
+                        // Half the remaining cells would mix rolled and filled ones unmarked.
+                        on_partial(&shown);
+                        return Ok(shown);
+                    }
+                    map.complete = true;
+                    on_partial(&map);
+                    return Ok(map);
+                }
                 let mut shown = map.clone();
                 fill(&mut shown, settled.iter().chain(&refine));
                 shown.complete = refine.is_empty();
                 on_partial(&shown);
-                if refine.is_empty() || cancel.load(Ordering::Relaxed) {
+                if refine.is_empty() || stopped() {
                     return Ok(shown);
                 }
+                split = refine.len();
                 let next: Vec<Block> = refine.into_iter().flat_map(Block::split).collect();
                 let mut nodes: Vec<_> = next.iter().flat_map(Block::corners).collect();
                 nodes.sort_unstable_by_key(|&(i, j)| (j, i));
@@ -380,6 +471,7 @@ pub(crate) fn run_map_rows(
                 }
                 pending = next;
             }
+            unreachable!("the refinement loop returns")
         }
     }
 }

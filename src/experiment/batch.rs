@@ -1,25 +1,37 @@
-//! Batches of rolls in parallel, reproducible for any thread count and cancellable.
+//! Batches of rolls in parallel, streamed in roll order, reproducible for any thread count
+//! and engine, and cancellable.
 //!
 //! Each roll depends on its own initial condition alone (random ones on (seed, roll index),
-//! see [`RandomRanges::draw`]), and results are collected in roll order, so the records are
-//! bit-identical for any number of jobs. Rolls run in chunks; the cancel flag is checked
-//! inside every roll (every few thousand steps), and a cancelled batch keeps the rolls
-//! before the first unfinished one: an exact prefix of the full batch.
+//! see [`RandomRanges::draw`]). Worker threads take chunks of consecutive rolls from a
+//! queue; finished chunks are put back in roll order on the calling thread and handed on at
+//! once, so records leave the engine in id order as they complete and memory stays flat in
+//! the number of rolls (at most [`CHUNKS_IN_FLIGHT_PER_JOB`] chunks per thread wait). The
+//! summary is accumulated record by record in roll order, so its float totals are the same
+//! for any job count. A cancel is noticed inside rolls (every few thousand steps); the
+//! records handed on are then an exact prefix of the full batch.
 
 use super::Error;
+use super::engine::{Engine, roll_setups};
 use super::random::RandomRanges;
-use super::record::{RollRecord, roll_record_or_cancel};
+use super::record::RollRecord;
 use super::stats::FaceTally;
 use super::tally::Tally;
 use crate::physics::{InitialCondition, Params, opposite_face};
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::collections::BTreeMap;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Condvar, Mutex, mpsc};
 use std::time::{Duration, Instant};
 
-/// Rolls per chunk and thread: long enough that the barrier at the end of a chunk costs
-/// little (a roll takes ~0.1 ms), short enough that cancelling answers within ~0.1 s.
-const CHUNK_PER_JOB: usize = 512;
+/// Rolls per chunk: long enough that a chunk's ragged end (lanes idle while its last rolls
+/// finish) and the hand-over cost little, short enough that records flow steadily.
+pub(crate) const CHUNK: u64 = 512;
+
+/// Chunks a thread may run ahead of the oldest unfinished one.
+pub(crate) const CHUNKS_IN_FLIGHT_PER_JOB: u64 = 4;
+
+/// How often the calling thread looks at the cancel flag while it waits for chunks.
+const POLL: Duration = Duration::from_millis(20);
 
 /// Where a batch's initial conditions come from.
 #[derive(Debug, Clone, Copy)]
@@ -61,7 +73,34 @@ impl Rolls<'_> {
     }
 }
 
-/// A finished (or cancelled) batch.
+/// How to run a batch or a map.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct RunOptions {
+    /// Worker threads; 0: one per available core.
+    pub jobs: usize,
+    pub engine: Engine,
+}
+
+/// A finished (or cancelled) batch whose records were streamed.
+#[derive(Debug, Clone)]
+pub struct BatchRun {
+    /// How many rolls were asked for.
+    pub requested: u64,
+    /// How many were handed on: all, or an exact prefix if cancelled.
+    pub completed: u64,
+    /// Whether the cancel flag stopped the batch before the end.
+    pub cancelled: bool,
+    /// Threads used.
+    pub jobs: usize,
+    /// The engine that ran (`Scalar` or `Lanes`).
+    pub engine: Engine,
+    /// The statistics of the completed rolls.
+    pub summary: BatchSummary,
+    /// Their counts in the exact form a merge of shards adds up.
+    pub(crate) tally: Tally,
+}
+
+/// A finished (or cancelled) batch with every record kept.
 #[derive(Debug, Clone)]
 pub struct Batch {
     /// The completed rolls in roll order: all of them, or an exact prefix if cancelled.
@@ -91,7 +130,7 @@ pub(crate) fn thread_count(jobs: usize) -> usize {
     }
 }
 
-/// A local thread pool of `jobs` threads (0: one per core), so a batch never competes
+/// A local thread pool of `jobs` threads (0: one per core), so a map never competes
 /// with, or depends on, rayon's global pool.
 pub(crate) fn thread_pool(jobs: usize) -> Result<rayon::ThreadPool, Error> {
     rayon::ThreadPoolBuilder::new()
@@ -101,14 +140,13 @@ pub(crate) fn thread_pool(jobs: usize) -> Result<rayon::ThreadPool, Error> {
         .map_err(|e| Error::Threads(e.to_string()))
 }
 
-/// Runs every roll of `rolls` with `params` on `jobs` threads (0: one per core).
+/// Runs every roll of `rolls` with `params` and keeps the records (the explorer's batches
+/// and tests; [`stream_batch`] is the same without keeping them).
 ///
 /// `progress` is called on the calling thread after each chunk with every record so far (in
-/// roll order), so a UI can draw a gauge or a live tally. Setting `cancel` stops every
-/// running roll within a few thousand steps; the records then are an exact prefix of the
-/// full batch.
-/// The parameters are validated first; initial conditions are the caller's to check (an
-/// out-of-range one still ends in a status, never a panic).
+/// roll order), so a UI can draw a gauge or a live tally. Setting `cancel` stops the batch
+/// within a few thousand steps of every running roll; the records then are an exact prefix
+/// of the full batch.
 pub fn run_batch(
     params: &Params,
     rolls: &Rolls,
@@ -116,39 +154,148 @@ pub fn run_batch(
     cancel: &AtomicBool,
     progress: &mut dyn FnMut(&[RollRecord]),
 ) -> Result<Batch, Error> {
+    let mut records = Vec::with_capacity(rolls.len().min(1 << 24) as usize);
+    let start = Instant::now();
+    let options = RunOptions {
+        jobs,
+        engine: Engine::Auto,
+    };
+    let run = stream_batch(params, rolls, &options, cancel, &mut |chunk| {
+        records.extend_from_slice(chunk);
+        progress(&records);
+        Ok(())
+    })?;
+    Ok(Batch {
+        records,
+        requested: run.requested,
+        cancelled: run.cancelled,
+        elapsed: start.elapsed(),
+        jobs: run.jobs,
+    })
+}
+
+/// What a worker thread hands back: chunk number, its records (a prefix of the chunk's
+/// rolls if the batch was cancelled), and whether it is whole.
+type Finished = (u64, Vec<RollRecord>, bool);
+
+/// Runs every roll of `rolls` with `params` and hands the records to `sink` on the calling
+/// thread, in roll order, a chunk at a time, as they complete.
+///
+/// Setting `cancel` stops the batch within a few thousand steps of every running roll; the
+/// records handed on are then an exact prefix of the full batch. A sink error stops the
+/// batch and is returned as [`Error::Records`]. The parameters are validated first; initial
+/// conditions are the caller's to check (an out-of-range one still ends in a status, never
+/// a panic).
+pub fn stream_batch(
+    params: &Params,
+    rolls: &Rolls,
+    options: &RunOptions,
+    cancel: &AtomicBool,
+    sink: &mut dyn FnMut(&[RollRecord]) -> Result<(), String>,
+) -> Result<BatchRun, Error> {
     params.validate()?;
     if let Rolls::Random { ranges, .. } = rolls {
         ranges.validate()?;
     }
-    let pool = thread_pool(jobs)?;
-    let jobs = pool.current_num_threads();
-    let chunk = (CHUNK_PER_JOB * jobs) as u64;
+    let jobs = thread_count(options.jobs);
+    let engine = options.engine.resolve();
     let requested = rolls.len();
-    let mut records = Vec::with_capacity(requested.min(1 << 24) as usize);
+    let chunks = requested.div_ceil(CHUNK);
     let start = Instant::now();
-    let mut next = 0;
-    while next < requested && !cancel.load(Ordering::Relaxed) {
-        let end = (next + chunk).min(requested);
-        let done: Vec<Option<RollRecord>> = pool.install(|| {
-            (next..end)
-                .into_par_iter()
-                .map(|i| {
-                    let (id, ic) = rolls.get(i);
-                    roll_record_or_cancel(params, &ic, id, cancel)
+    // Set when the calling thread stops the workers: a cancel, or a sink that failed.
+    let halt = AtomicBool::new(false);
+    let stopped = || cancel.load(Ordering::Relaxed) || halt.load(Ordering::Relaxed);
+    let next_chunk = AtomicU64::new(0);
+    // The oldest chunk not yet handed on; workers stay within the window after it.
+    let oldest = (Mutex::new(0u64), Condvar::new());
+    let window = CHUNKS_IN_FLIGHT_PER_JOB * jobs as u64;
+    let (send, receive) = mpsc::channel::<Finished>();
+    let mut tally = Tally::default();
+    let mut completed = 0u64;
+    let mut sink_error = None;
+    std::thread::scope(|scope| -> Result<(), Error> {
+        for j in 0..jobs {
+            let send = send.clone();
+            let (next_chunk, oldest, stopped) = (&next_chunk, &oldest, &stopped);
+            std::thread::Builder::new()
+                .name(format!("dicesim-roll-{j}"))
+                .spawn_scoped(scope, move || {
+                    loop {
+                        let c = next_chunk.fetch_add(1, Ordering::Relaxed);
+                        if c >= chunks {
+                            return;
+                        }
+                        let (lock, wake) = oldest;
+                        let mut first = lock.lock().expect("no worker panics holding it");
+                        while c >= *first + window && !stopped() {
+                            first = wake.wait_timeout(first, POLL).expect("no worker panics").0;
+                        }
+                        drop(first);
+                        if stopped() {
+                            return;
+                        }
+                        let setups: Vec<_> = (c * CHUNK..((c + 1) * CHUNK).min(requested))
+                            .map(|i| {
+                                let (id, ic) = rolls.get(i);
+                                (id, *params, ic)
+                            })
+                            .collect();
+                        let records = roll_setups(engine, &setups, stopped);
+                        let whole = records.len() == setups.len();
+                        if send.send((c, records, whole)).is_err() || !whole {
+                            return;
+                        }
+                    }
                 })
-                .collect()
-        });
-        // A cancel mid-chunk keeps the rolls before the first unfinished one: still a prefix.
-        records.extend(done.into_iter().map_while(|r| r));
-        next = end;
-        progress(&records);
+                .map_err(|e| Error::Threads(e.to_string()))?;
+        }
+        drop(send);
+        let mut waiting: BTreeMap<u64, (Vec<RollRecord>, bool)> = BTreeMap::new();
+        let mut next_out = 0u64;
+        let mut open = true;
+        loop {
+            match receive.recv_timeout(POLL) {
+                Ok((c, records, whole)) => {
+                    waiting.insert(c, (records, whole));
+                }
+                Err(mpsc::RecvTimeoutError::Timeout) => {}
+                Err(mpsc::RecvTimeoutError::Disconnected) => break,
+            }
+            if cancel.load(Ordering::Relaxed) {
+                halt.store(true, Ordering::Relaxed);
+            }
+            while open {
+                let Some((records, whole)) = waiting.remove(&next_out) else {
+                    break;
+                };
+                if let Err(e) = sink(&records) {
+                    sink_error = Some(e);
+                    halt.store(true, Ordering::Relaxed);
+                    open = false;
+                    break;
+                }
+                records.iter().for_each(|r| tally.add(r));
+                completed += records.len() as u64;
+                next_out += 1;
+                open = whole;
+                let (lock, wake) = &oldest;
+                *lock.lock().expect("no worker panics holding it") = next_out;
+                wake.notify_all();
+            }
+        }
+        Ok(())
+    })?;
+    if let Some(e) = sink_error {
+        return Err(Error::Records(e));
     }
-    Ok(Batch {
-        cancelled: (records.len() as u64) < requested,
-        records,
+    Ok(BatchRun {
         requested,
-        elapsed: start.elapsed(),
+        completed,
+        cancelled: completed < requested,
         jobs,
+        engine,
+        summary: tally.summary(start.elapsed()),
+        tally,
     })
 }
 
@@ -308,22 +455,25 @@ mod tests {
             base: &base,
             seed: 3,
             first: 0,
-            count: 3 * CHUNK_PER_JOB as u64,
+            count: 3 * CHUNK,
         };
         let cancel = AtomicBool::new(false);
         let mut calls = 0;
         let part = run_batch(&params, &rolls, 1, &cancel, &mut |done| {
             calls += 1;
-            assert_eq!(done.len(), calls * CHUNK_PER_JOB);
+            if calls == 1 {
+                assert_eq!(done.len() as u64, CHUNK);
+            }
             cancel.store(true, Ordering::Relaxed);
         })
         .unwrap();
         assert!(part.cancelled);
-        assert_eq!(part.records.len(), CHUNK_PER_JOB);
+        // The running chunk stops inside its rolls and gives its finished prefix.
+        assert!(part.records.len() as u64 >= CHUNK && (part.records.len() as u64) < 3 * CHUNK);
         let full = run_batch(&params, &rolls, 2, &AtomicBool::new(false), &mut |_| {}).unwrap();
         assert!(!full.cancelled);
-        assert_eq!(full.records.len(), 3 * CHUNK_PER_JOB);
-        assert_eq!(part.records[..], full.records[..CHUNK_PER_JOB]);
+        assert_eq!(full.records.len() as u64, 3 * CHUNK);
+        assert_eq!(part.records[..], full.records[..part.records.len()]);
         assert!(full.records.iter().enumerate().all(|(i, r)| r.id == i as u64));
     }
 }

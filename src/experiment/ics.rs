@@ -71,7 +71,9 @@ pub(crate) fn record_csv_row(r: &RollRecord) -> Vec<String> {
     row
 }
 
-/// Writes the header and one record per roll: what `--ics` reads back.
+/// Writes the header and one record per roll: what `--ics` reads back (the tests' way to
+/// make such a file; `batch` streams the same rows).
+#[cfg(test)]
 pub(crate) fn write_records_csv(out: impl std::io::Write, records: &[RollRecord]) -> std::io::Result<()> {
     let mut csv = csv::Writer::from_writer(out);
     csv.write_record(records_csv_header()).map_err(super::csv_io)?;

@@ -7,6 +7,7 @@
 pub(crate) mod basin;
 pub(crate) mod batch;
 pub(crate) mod energy_plot;
+pub(crate) mod engine;
 pub mod ics;
 pub(crate) mod keys;
 pub(crate) mod merge;
@@ -21,8 +22,9 @@ pub(crate) mod trace;
 pub mod twin;
 
 pub(crate) use basin::run_map_rows;
-pub use basin::{Axis, BasinMap, Cell, Layer, MapSpec, Method, run_map};
-pub use batch::{Batch, BatchSummary, Rolls, run_batch};
+pub use basin::{Axis, BasinMap, Cell, Layer, MapSpec, Method, UNIFORM_SWITCH_SHARE, run_map, run_map_with};
+pub use batch::{Batch, BatchRun, BatchSummary, Rolls, RunOptions, run_batch, stream_batch};
+pub use engine::Engine;
 pub use keys::ScanKey;
 pub use random::RandomRanges;
 pub use record::{RollRecord, roll_record};
@@ -68,6 +70,9 @@ pub enum Error {
     /// An image could not be drawn or written.
     #[error("cannot draw the map: {0}")]
     Plot(String),
+    /// The sink of a streamed batch refused its records (e.g. the disk is full).
+    #[error("cannot write the rolls: {0}")]
+    Records(String),
     /// A roll's trace or plot could not be written.
     #[error("cannot export the roll: {0}")]
     Export(String),

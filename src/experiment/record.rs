@@ -4,10 +4,6 @@ use crate::physics::{InitialCondition, Outcome, Params, Simulation, face_most_ne
 use serde::Serialize;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-/// Steps between looks at a cancel flag inside one roll: ~0.5 ms of physics, so a cancel
-/// answers at once even when one roll is millions of steps long.
-pub(crate) const CANCEL_CHECK_STEPS: u64 = 4096;
-
 /// A finished roll as batches, basin maps and the outcome table record it.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct RollRecord {
@@ -25,27 +21,26 @@ pub fn roll_record(params: &Params, initial: &InitialCondition, id: u64) -> Roll
     roll_record_or_cancel(params, initial, id, &AtomicBool::new(false)).expect("never cancelled")
 }
 
-/// [`roll_record`], or `None` once `cancel` is set (looked at every
-/// [`CANCEL_CHECK_STEPS`] steps, and before the first).
+/// [`roll_record`], or `None` once `cancel` is set (looked at before the first step and
+/// then every [`STEPS_BETWEEN_STOP_CHECKS`](crate::physics::sim::STEPS_BETWEEN_STOP_CHECKS)
+/// steps, so a cancel answers at once even when one roll is millions of steps long).
 pub(crate) fn roll_record_or_cancel(
     params: &Params,
     initial: &InitialCondition,
     id: u64,
     cancel: &AtomicBool,
 ) -> Option<RollRecord> {
-    let mut sim = Simulation::new_unchecked(params, initial);
+    let mut sim = Simulation::for_outcome(params, initial);
     let start_face = face_most_nearly_up(&sim.state().corner_offsets);
-    loop {
-        if cancel.load(Ordering::Relaxed) {
-            return None;
-        }
-        if let Some(outcome) = sim.run_for(CANCEL_CHECK_STEPS) {
-            return Some(RollRecord {
-                id,
-                initial: *initial,
-                outcome,
-                start_face,
-            });
-        }
+    let cancelled = || cancel.load(Ordering::Relaxed);
+    if cancelled() {
+        return None;
     }
+    let outcome = sim.run_until_stopped(&cancelled)?;
+    Some(RollRecord {
+        id,
+        initial: *initial,
+        outcome,
+        start_face,
+    })
 }

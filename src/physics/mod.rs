@@ -5,6 +5,7 @@
 pub(crate) mod body;
 pub(crate) mod energy;
 pub(crate) mod initial;
+pub mod lanes;
 pub mod params;
 pub mod registry;
 pub(crate) mod sim;

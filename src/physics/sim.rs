@@ -163,19 +163,29 @@ impl Constants {
     }
 }
 
+/// Steps between two looks at a stop request in [`Simulation::run_until_stopped`]: a few
+/// tenths of a millisecond of stepping, so a cancel is answered well within 0.2 s.
+pub const STEPS_BETWEEN_STOP_CHECKS: u64 = 4096;
+
 /// A die rolling from an initial condition: the state plus everything the step needs.
+///
+/// The fields are visible to the lane engine ([`super::lanes`]), which loads rolls from
+/// and stores them back into this struct so that both engines start and end alike.
 #[derive(Debug, Clone)]
 pub struct Simulation {
     params: Params,
     c: Constants,
-    state: State,
+    pub(super) state: State,
     /// rad/s, `L / I`, kept in step with the angular momentum.
-    angular_velocity: Vector3<f64>,
+    pub(super) angular_velocity: Vector3<f64>,
     /// The rotation applied to the corner rows each step; `None` while ω = 0. It depends on
     /// ω alone, so it is rebuilt only when a contact torque changed L.
-    step_rotation: Option<Matrix3<f64>>,
+    pub(super) step_rotation: Option<Matrix3<f64>>,
     /// Whether any corner is below the ground at the current state.
-    in_contact: bool,
+    pub(super) in_contact: bool,
+    /// Whether the energy ledger is kept (its work sums cost a second pass over the
+    /// corners per contact step, which a batch that only wants outcomes skips).
+    track_ledger: bool,
     /// cm/s, the corner velocities the current contact forces were computed from (kept
     /// while in contact): the ledger's velocities before the next kick.
     contact_velocities: [Vector3<f64>; 8],
@@ -183,6 +193,9 @@ pub struct Simulation {
     work: ContactWork,
     /// erg, rigid-body energy at t = 0.
     initial_energy: f64,
+    /// erg, a rigid-body energy above this is a runaway: `RUNAWAY_ENERGY_FACTOR ·
+    /// max(initial energy, edge energy)`, fixed at t = 0.
+    pub(super) runaway_energy: f64,
     outcome: Option<Outcome>,
 }
 
@@ -223,14 +236,26 @@ impl Simulation {
             angular_velocity: Vector3::zeros(),
             step_rotation: None,
             in_contact: false,
+            track_ledger: true,
             contact_velocities: [Vector3::zeros(); 8],
             work: ContactWork::default(),
             initial_energy: 0.0,
+            runaway_energy: 0.0,
             outcome: None,
         };
         sim.update_spin();
         sim.update_forces();
         sim.initial_energy = sim.energy().total();
+        sim.runaway_energy = RUNAWAY_ENERGY_FACTOR * sim.initial_energy.max(params.edge_energy());
+        sim
+    }
+
+    /// Like [`Simulation::new_unchecked`] for a roll whose outcome alone is wanted (batches,
+    /// maps): the same trajectory bit for bit, without the energy ledger's bookkeeping. Crate
+    /// internal, as its [`energy_ledger`](Simulation::energy_ledger) would miss the contact work.
+    pub(crate) fn for_outcome(params: &Params, initial: &InitialCondition) -> Self {
+        let mut sim = Self::new_unchecked(params, initial);
+        sim.track_ledger = false;
         sim
     }
 
@@ -254,6 +279,7 @@ impl Simulation {
 
     /// Where the energy has gone since t = 0.
     pub fn energy_ledger(&self) -> EnergyLedger {
+        debug_assert!(self.track_ledger, "a roll built for its outcome keeps no ledger");
         let current = self.energy().total();
         let (damping_loss, friction_loss) = (-self.work.damping, -self.work.friction);
         EnergyLedger {
@@ -403,7 +429,7 @@ impl Simulation {
     pub fn step(&mut self) {
         let c = self.c;
         // Corner velocities before the kick, for the energy ledger.
-        let before = self.in_contact.then_some(self.contact_velocities);
+        let before = (self.in_contact && self.track_ledger).then_some(self.contact_velocities);
         let s = &mut self.state;
         // 1. kick: v ← v + ((ΣF + M·g)/M)·Δt, forces summed in corner order.
         let force = if self.in_contact {
@@ -475,26 +501,35 @@ impl Simulation {
         }
     }
 
-    /// Up to `max_steps` steps, stopping at the end of the roll; its outcome once it has
-    /// ended. A caller that must stay responsive rolls in such slices (the same steps as
-    /// [`Simulation::run_to_end`], so the same outcome, bit for bit).
-    pub(crate) fn run_for(&mut self, max_steps: u64) -> Option<Outcome> {
-        if self.outcome.is_some() {
-            return self.outcome;
+    /// Steps until the roll ends, or until `stop()` answers true (asked every
+    /// [`STEPS_BETWEEN_STOP_CHECKS`] steps): `None` then, and the roll can be continued.
+    pub fn run_until_stopped(&mut self, stop: &dyn Fn() -> bool) -> Option<Outcome> {
+        if let Some(o) = self.outcome {
+            return Some(o);
         }
-        for _ in 0..max_steps {
-            if let Some(o) = self.advance() {
-                return Some(o);
+        loop {
+            for _ in 0..STEPS_BETWEEN_STOP_CHECKS {
+                if let Some(o) = self.advance() {
+                    return Some(o);
+                }
+            }
+            if stop() {
+                return None;
             }
         }
-        None
+    }
+
+    /// Records `outcome` as the end of the roll (the lane engine, which decided it with
+    /// [`Simulation::check_end`] on a state stored back here).
+    pub(super) fn set_outcome(&mut self, outcome: Outcome) {
+        self.outcome = Some(outcome);
     }
 
     /// Whether the current state ends the roll, and how.
-    fn check_end(&self) -> Option<Outcome> {
+    pub(super) fn check_end(&self) -> Option<Outcome> {
         let energy = self.energy();
         let rigid = energy.total();
-        let runaway = rigid > RUNAWAY_ENERGY_FACTOR * self.initial_energy.max(self.params.edge_energy());
+        let runaway = rigid > self.runaway_energy;
         let status = if !rigid.is_finite() || !self.state_is_finite() || runaway {
             Some(Status::Unstable)
         } else if self.settled(&energy, rigid) {
@@ -544,23 +579,9 @@ impl Simulation {
     /// ω from L, and the step rotation from ω (reference §2 step 5, built as the authors
     /// built it from their `w = −ω` and applied to row vectors).
     fn update_spin(&mut self) {
-        let w = self.state.angular_momentum / self.c.inertia;
+        let (w, rotation) = spin(&self.state.angular_momentum, self.c.inertia, self.c.dt);
         self.angular_velocity = w;
-        let norm = scaled_norm(&w);
-        self.step_rotation = if norm != 0.0 {
-            let theta = norm * self.c.dt;
-            let norm_sq = norm.powf(2.0);
-            let (sin, cos) = (theta.sin(), theta.cos());
-            // [w_code]× with w_code = −ω.
-            let cross = Matrix3::new(0.0, w.z, -w.y, -w.z, 0.0, w.x, w.y, -w.x, 0.0);
-            Some(Matrix3::from_fn(|i, j| {
-                let p = (w[i] * w[j]) / norm_sq;
-                let identity = if i == j { 1.0 } else { 0.0 };
-                (p + cos * (identity - p)) + (sin * cross[(i, j)]) / norm
-            }))
-        } else {
-            None
-        };
+        self.step_rotation = rotation;
     }
 
     /// Recomputes every corner's depth and contact force at the current state (eq. 13–15).
@@ -638,6 +659,46 @@ impl Simulation {
             }
         }
     }
+}
+
+/// ω = L / I and the step rotation by |ω|·Δt about ω (`None` while ω = 0), as the authors
+/// built it from their `w = −ω` for row vectors: entry (i, j) is
+/// `(p + cos·(δᵢⱼ − p)) + (sin·[w]×ᵢⱼ)/|ω|` with `p = (ωᵢ·ωⱼ)/|ω|²`.
+///
+/// Both engines call this one function (never inlined, so the two see the same libm calls
+/// in the same order). Its divisions are the fewest that keep every entry bitwise: `p` is
+/// symmetric (`ωᵢ·ωⱼ = ωⱼ·ωᵢ` exactly) and the cross term antisymmetric (a quotient's sign
+/// follows its dividend's), so 6 + 3 quotients serve 9 + 9 entries, and the diagonal's
+/// `(sin·0)/|ω|` (±0, or NaN when sin is) is taken once.
+#[inline(never)]
+pub(super) fn spin(
+    angular_momentum: &Vector3<f64>,
+    inertia: f64,
+    dt: f64,
+) -> (Vector3<f64>, Option<Matrix3<f64>>) {
+    let w = angular_momentum / inertia;
+    let norm = scaled_norm(&w);
+    if norm == 0.0 {
+        return (w, None);
+    }
+    let theta = norm * dt;
+    let norm_sq = norm.powf(2.0);
+    let (sin, cos) = (theta.sin(), theta.cos());
+    let p = |i: usize, j: usize| (w[i] * w[j]) / norm_sq;
+    let (pxx, pyy, pzz) = (p(0, 0), p(1, 1), p(2, 2));
+    let (pxy, pxz, pyz) = (p(0, 1), p(0, 2), p(1, 2));
+    // [w_code]× with w_code = −ω has (0,1) = ω_z, (0,2) = −ω_y, (1,2) = ω_x.
+    let (sz, sy, sx) = ((sin * w.z) / norm, (sin * -w.y) / norm, (sin * w.x) / norm);
+    let diagonal = (sin * 0.0) / norm;
+    let on = |p: f64| (p + cos * (1.0 - p)) + diagonal;
+    let off = |p: f64| p + cos * (0.0 - p);
+    #[rustfmt::skip]
+    let m = Matrix3::new(
+        on(pxx),        off(pxy) + sz,  off(pxz) + sy,
+        off(pxy) + -sz, on(pyy),        off(pyz) + sx,
+        off(pxz) + -sy, off(pyz) + -sx, on(pzz),
+    );
+    (w, Some(m))
 }
 
 /// Octave's overflow-safe 2-norm of a 3-vector (reference §9), bitwise.

@@ -1,0 +1,266 @@
+//! The lane engine against the scalar `Simulation`: every roll's face, status, step count,
+//! end time and final state must agree bit for bit.
+//!
+//! Per friction law and stop energy: 100 000 random initial conditions (random orientation,
+//! throws and spins, heights 1.5–30 cm) cut at 0.6 s of simulated time (identity must hold
+//! for any time limit, and the cut keeps the test fast: flight, impacts and the first
+//! bounces, each ending as a timeout unless it settled or blew up first), 5 000 more rolled
+//! to their natural end, and every reference initial condition; then a mixed
+//! sample where neighbouring lanes carry different parameters, laws and stop energies, with
+//! soft, stiff, damped and coarse-Δt setups that end in every status.
+
+mod common;
+
+use common::{Table, reference_initial, reference_params};
+use dicesim::experiment::RandomRanges;
+use dicesim::physics::lanes::{LaneResult, lanes_available, roll_in_lanes, roll_one_by_one};
+use dicesim::physics::{FrictionLaw, InitialCondition, Outcome, Params, State, Status, StopEnergy};
+use rand::{RngExt, SeedableRng};
+
+/// Everything a roll's result carries, as bits.
+#[derive(Debug, PartialEq, Eq)]
+struct Bits {
+    status: Status,
+    face: Option<u8>,
+    steps: u64,
+    time_s: u64,
+    start_face: u8,
+    state: Vec<u64>,
+}
+
+fn state_bits(s: &State) -> Vec<u64> {
+    let mut v: Vec<f64> = Vec::with_capacity(80);
+    v.extend(s.position.iter());
+    v.extend(s.velocity.iter());
+    v.extend(s.angular_momentum.iter());
+    for k in 0..8 {
+        v.extend(s.corner_offsets[k].iter());
+        v.extend(s.corner_forces[k].iter());
+        v.push(s.corner_depths[k]);
+    }
+    v.push(s.time_s);
+    let mut bits: Vec<u64> = v.into_iter().map(f64::to_bits).collect();
+    bits.push(s.step);
+    bits
+}
+
+fn bits(r: &LaneResult<'_>) -> Bits {
+    let Outcome {
+        status,
+        face,
+        steps,
+        time_s,
+    } = r.outcome;
+    Bits {
+        status,
+        face,
+        steps,
+        time_s: time_s.to_bits(),
+        start_face: r.start_face,
+        state: state_bits(r.state),
+    }
+}
+
+type Engine = fn(
+    usize,
+    &mut dyn FnMut(usize) -> (Params, InitialCondition),
+    &mut dyn FnMut(LaneResult<'_>),
+    &dyn Fn() -> bool,
+) -> bool;
+
+fn run(engine: Engine, setups: &[(Params, InitialCondition)]) -> Vec<Option<Bits>> {
+    let mut out: Vec<Option<Bits>> = (0..setups.len()).map(|_| None).collect();
+    let finished = engine(
+        setups.len(),
+        &mut |i| setups[i],
+        &mut |r| {
+            assert!(out[r.index].is_none(), "roll {} reported twice", r.index);
+            out[r.index] = Some(bits(&r));
+        },
+        &|| false,
+    );
+    assert!(finished);
+    out
+}
+
+/// Rolls `setups` through both engines and asserts equal bits; returns the status counts.
+fn assert_identical(what: &str, setups: &[(Params, InitialCondition)]) -> [usize; 3] {
+    assert!(lanes_available(), "this test needs an x86-64 CPU with AVX2");
+    let scalar = run(roll_one_by_one, setups);
+    let lanes = run(roll_in_lanes, setups);
+    let mut statuses = [0; 3];
+    let mut differing = Vec::new();
+    for (i, (s, l)) in scalar.iter().zip(&lanes).enumerate() {
+        let s = s.as_ref().expect("the scalar engine rolls every setup");
+        let l = l
+            .as_ref()
+            .unwrap_or_else(|| panic!("{what}: the lane engine skipped roll {i}"));
+        statuses[s.status as usize] += 1;
+        if s != l {
+            differing.push(i);
+        }
+    }
+    assert!(
+        differing.is_empty(),
+        "{what}: {} of {} rolls differ, first {:?}: scalar {:?}, lanes {:?}",
+        differing.len(),
+        setups.len(),
+        differing.first(),
+        scalar[differing[0]],
+        lanes[differing[0]]
+    );
+    println!("{what}: {} rolls identical, statuses {statuses:?}", setups.len());
+    statuses
+}
+
+const CUT_ROLLS: u64 = 100_000;
+const CUT_TIME_S: f64 = 0.6;
+const WHOLE_ROLLS: u64 = 5_000;
+
+fn random_setups(params: Params, seed: u64, count: u64) -> Vec<(Params, InitialCondition)> {
+    let ranges = RandomRanges {
+        seed,
+        height: [1.5, 30.0],
+        velocity: [-80.0, 80.0],
+        angular_velocity: [-80.0, 80.0],
+        random_orientation: true,
+    };
+    let base = InitialCondition::default();
+    (0..count)
+        .map(|i| (params, ranges.draw(&base, seed, i)))
+        .collect()
+}
+
+fn reference_setups(params: Params) -> Vec<(Params, InitialCondition)> {
+    ["original", "paper"]
+        .iter()
+        .flat_map(|variant| {
+            let table = Table::load(&format!("outcomes_{variant}.csv"));
+            table
+                .rows
+                .iter()
+                .map(|row| reference_initial(&table, row))
+                .collect::<Vec<_>>()
+        })
+        .map(|ic| (params, ic))
+        .collect()
+}
+
+fn law_and_stop(law: FrictionLaw, stop: StopEnergy, seed: u64) {
+    let mut params = reference_params("paper");
+    params.ground.friction_law = law;
+    params.integrator.stop_energy = stop;
+    let what = format!("{law:?} friction, {} stop energy", stop.name());
+    let cut = Params {
+        integrator: dicesim::physics::Integrator {
+            max_time: CUT_TIME_S,
+            ..params.integrator
+        },
+        ..params
+    };
+    let statuses = assert_identical(&format!("{what}, cut"), &random_setups(cut, seed, CUT_ROLLS));
+    assert!(statuses.iter().sum::<usize>() == CUT_ROLLS as usize);
+    let statuses = assert_identical(
+        &format!("{what}, whole rolls"),
+        &random_setups(params, seed + 100, WHOLE_ROLLS),
+    );
+    assert!(statuses[Status::Settled as usize] > 4_500, "{what}: {statuses:?}");
+    assert_identical(&format!("{what}, reference"), &reference_setups(params));
+}
+
+#[test]
+fn per_corner_rigid_body_stop() {
+    law_and_stop(FrictionLaw::PerCorner, StopEnergy::RigidBody, 11);
+}
+
+#[test]
+fn per_corner_point_mass_stop() {
+    law_and_stop(FrictionLaw::PerCorner, StopEnergy::PointMasses, 12);
+}
+
+#[test]
+fn whole_die_norm_rigid_body_stop() {
+    law_and_stop(FrictionLaw::WholeDieNorm, StopEnergy::RigidBody, 13);
+}
+
+#[test]
+fn whole_die_norm_point_mass_stop() {
+    law_and_stop(FrictionLaw::WholeDieNorm, StopEnergy::PointMasses, 14);
+}
+
+/// Neighbouring lanes with different parameters, and setups at the edges of the ranges:
+/// soft and stiff tables, heavy damping, no friction, coarse Δt (unstable rolls), short
+/// time limits (timeouts), spins up to the limit, drops from rest onto an edge.
+#[test]
+fn mixed_parameters_in_neighbouring_lanes() {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(5);
+    let base = InitialCondition::default();
+    let ranges = RandomRanges {
+        random_orientation: true,
+        ..RandomRanges::default()
+    };
+    let setups: Vec<(Params, InitialCondition)> = (0..4000u64)
+        .map(|i| {
+            let mut p = Params::default();
+            let log_uniform =
+                |rng: &mut rand::rngs::StdRng, lo: f64, hi: f64| (rng.random_range(lo.ln()..hi.ln())).exp();
+            p.ground.stiffness = log_uniform(&mut rng, 1e3, 1e7);
+            p.ground.damping = rng.random_range(0.0..0.05);
+            p.ground.friction = rng.random_range(0.0..2.0);
+            p.ground.friction_law = if rng.random_bool(0.5) {
+                FrictionLaw::PerCorner
+            } else {
+                FrictionLaw::WholeDieNorm
+            };
+            p.integrator.stop_energy = if rng.random_bool(0.5) {
+                StopEnergy::RigidBody
+            } else {
+                StopEnergy::PointMasses
+            };
+            p.integrator.dt = log_uniform(&mut rng, 1e-4, 1e-2);
+            p.integrator.max_time = rng.random_range(0.2..5.0);
+            p.die.half_size = rng.random_range(0.5..2.0);
+            let mut ic = ranges.draw(&base, 9, i);
+            ic.height = rng.random_range(0.5..40.0);
+            if i % 10 == 0 {
+                ic.angular_velocity = [rng.random_range(-3000.0..3000.0), 0.0, 0.0];
+            }
+            if i % 10 == 1 {
+                ic.velocity = [0.0; 3];
+                ic.angular_velocity = [0.0; 3];
+                ic.orientation = [0.0, 45.0, 0.0];
+            }
+            (p, ic)
+        })
+        .collect();
+    let statuses = assert_identical("mixed parameters", &setups);
+    assert!(
+        statuses.iter().all(|&n| n > 50),
+        "every status is exercised: {statuses:?}"
+    );
+}
+
+#[test]
+fn a_stop_request_ends_the_lanes_within_a_check_interval() {
+    let mut p = Params::default();
+    p.integrator.max_time = 10_000.0;
+    p.integrator.dt = 1e-5;
+    // A die spinning in free fall from 1000 cm: hundreds of thousands of steps per roll.
+    let ic = InitialCondition {
+        height: 1000.0,
+        angular_velocity: [5.0, 1.0, 0.0],
+        ..Default::default()
+    };
+    let asked = std::cell::Cell::new(0);
+    let finished = roll_in_lanes(
+        8,
+        &mut |_| (p, ic),
+        &mut |r| panic!("roll {} cannot end this soon", r.index),
+        &|| {
+            asked.set(asked.get() + 1);
+            asked.get() == 3
+        },
+    );
+    assert!(!finished);
+    assert_eq!(asked.get(), 3);
+}
