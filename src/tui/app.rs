@@ -8,10 +8,10 @@ use super::keys::{Action, Screen, lookup};
 use super::layout::{Areas, param_row_at, screen_layout};
 use super::map::{self, MapView, View};
 use super::param::{Param, all};
-use super::theme::Theme;
+use super::theme::{Palette, Theme};
 use crate::experiment::trace::{ExportProgress, human_bytes};
 use crate::physics::{InitialCondition, Params};
-use crate::preset::{Preset, Store};
+use crate::preset::{CameraView, Preset, Screen as ViewScreen, Store, ThemeName, View as PresetView};
 use crate::worker::{
     BatchProgress, Command, EnergySample, MapUpdate, OutcomeTable, SeparationSample, Snapshot, Speed,
 };
@@ -265,6 +265,9 @@ pub struct App {
     commands_sent: u64,
     /// Effects other than worker commands asked for during the current `update`.
     effects: Vec<Effect>,
+    /// The preset's view asks for the map screen: opened by the first `update`, once the
+    /// event loop has told the app its terminal size.
+    open_map: bool,
     /// Last mouse position while dragging the die.
     drag: Option<(u16, u16)>,
 }
@@ -312,7 +315,70 @@ impl App {
             map,
             commands_sent: 0,
             effects: Vec::new(),
+            open_map: false,
             drag: None,
+        }
+        .with_view()
+    }
+
+    /// The app with its preset's `[view]` applied.
+    fn with_view(mut self) -> App {
+        let view = self.preset.view;
+        self.apply_view(&view);
+        self
+    }
+
+    /// A preset's view: what the UI owns of it (the worker sets the speed and rolls the
+    /// twin itself). Keys the view leaves out stay as they are.
+    pub(crate) fn apply_view(&mut self, view: &PresetView) {
+        if let Some(c) = view.camera {
+            self.camera = Camera {
+                yaw_deg: c.yaw,
+                pitch_deg: c.pitch,
+                zoom: c.zoom,
+            };
+        }
+        if let Some(name) = view.theme {
+            self.theme.palette = match name {
+                ThemeName::Dark => Palette::Dark,
+                ThemeName::Light => Palette::Light,
+                ThemeName::Projector => Palette::Projector,
+            };
+        }
+        if let Some(arrows) = view.arrows {
+            self.vectors = arrows;
+        }
+        if let Some(epsilon) = view.twin {
+            self.twin = true;
+            self.epsilon = epsilon;
+        }
+        match view.screen {
+            Some(ViewScreen::Map) => self.open_map = true,
+            Some(ViewScreen::Die) => self.view = View::Die,
+            None => {}
+        }
+    }
+
+    /// The view on screen, as `s` saves it.
+    pub(crate) fn current_view(&self) -> PresetView {
+        PresetView {
+            speed: Some(self.speed),
+            camera: Some(CameraView {
+                yaw: self.camera.yaw_deg,
+                pitch: self.camera.pitch_deg,
+                zoom: self.camera.zoom,
+            }),
+            theme: Some(match self.theme.palette {
+                Palette::Dark => ThemeName::Dark,
+                Palette::Light => ThemeName::Light,
+                Palette::Projector => ThemeName::Projector,
+            }),
+            arrows: Some(self.vectors),
+            twin: self.twin.then_some(self.epsilon),
+            screen: Some(match self.view {
+                View::Die => ViewScreen::Die,
+                View::Map => ViewScreen::Map,
+            }),
         }
     }
 
@@ -375,6 +441,8 @@ impl App {
         }
         if let Some(p) = s.preset.take() {
             self.preset = *p;
+            let view = self.preset.view;
+            self.apply_view(&view);
         }
         // Until the worker has seen every command, the user's own values are newer.
         if s.commands_handled >= self.commands_sent {
@@ -516,6 +584,9 @@ pub fn update(app: &mut App, msg: Msg) -> Vec<Effect> {
         Msg::Input(Event::Mouse(m)) => on_mouse(app, m.kind, m.column, m.row, &mut out),
         Msg::Input(_) => {}
         Msg::Signal(_) => app.quit(&mut out),
+    }
+    if std::mem::take(&mut app.open_map) {
+        map::open(app, &mut out);
     }
     let mut effects: Vec<Effect> = out.into_iter().map(Effect::Worker).collect();
     effects.append(&mut app.effects);

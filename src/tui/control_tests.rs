@@ -258,3 +258,87 @@ fn prompts_read_in_the_projector_theme() {
     s.key(KeyCode::Char('q'));
     insta::assert_snapshot!("quit_prompt_projector_100x30", screen(&s.app, 100, 30));
 }
+
+#[test]
+fn slow_motion_classroom_opens_slowed_down_with_its_arrows() {
+    let preset = Store::new(None).load("slow-motion-classroom").expect("shipped").0;
+    let s = Scene::new(&preset, Theme::default());
+    assert_eq!(s.app.live.speed.label(), "1/10×");
+    assert!(s.app.vectors);
+    assert!(screen(&s.app, 120, 36).contains("speed 1/10×"));
+    // Loading it over another preset applies its view too.
+    let mut s = start();
+    s.command(Command::LoadPreset(Box::new(preset)));
+    assert_eq!(s.app.speed.label(), "1/10×");
+    assert!(s.app.vectors);
+}
+
+#[test]
+fn s_saves_the_view_and_a_description_and_loading_applies_them() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let store = Store::new(Some(dir.path().to_path_buf()));
+    let mut s = changed();
+    s.app.store = store.clone();
+    for key in ['[', '[', 'v', 't', 'a', 'T'] {
+        s.key(KeyCode::Char(key));
+    }
+    s.key(KeyCode::Char('s'));
+    for c in "lab-3".chars() {
+        s.key(KeyCode::Char(c));
+    }
+    let automatic = super::dialogs::automatic_description(&s.app);
+    assert_eq!(automatic, "The `paper` preset with ground.friction=0.5.");
+    // A fixed folder for the picture (the temporary one's name changes every run).
+    s.app.store = Store::new(Some("/home/teacher/presets".into()));
+    let text = screen(&s.app, 120, 36);
+    assert!(
+        text.contains(&automatic),
+        "the empty description shows what it will be:\n{text}"
+    );
+    insta::assert_snapshot!("save_dialog_120x36", text);
+    s.app.store = store.clone();
+    s.key(KeyCode::Tab);
+    for c in "Friction halved for lab 3.".chars() {
+        s.key(KeyCode::Char(c));
+    }
+    s.key(KeyCode::Enter);
+    assert!(s.app.dialog.is_none(), "{:?}", s.app.dialog);
+    let saved = store.load("lab-3").expect("saved").0;
+    assert_eq!(saved.description, "Friction halved for lab 3.");
+    assert_eq!(saved.ground.friction, 0.5);
+    let view = saved.view;
+    assert_eq!(view.speed.map(|v| v.label()), Some("1/5×"));
+    assert_eq!(view.arrows, Some(true));
+    assert_eq!(view.theme, Some(crate::preset::ThemeName::Light));
+    assert_eq!(view.twin, Some(1e-9));
+    assert_eq!(view.camera.map(|c| c.yaw), Some(15.0));
+    assert_eq!(view.screen, Some(crate::preset::Screen::Die));
+    let text = std::fs::read_to_string(dir.path().join("lab-3.toml")).expect("written");
+    assert!(text.contains("\nspeed = \"1/5×\""), "{text}");
+
+    // Opened in a fresh explorer, it looks the same.
+    let s = Scene::new(&saved, Theme::default());
+    assert_eq!(s.app.live.speed.label(), "1/5×");
+    assert!(s.app.vectors && s.app.twin && s.app.live.twin.is_some());
+    assert_eq!(s.app.theme.palette, super::theme::Palette::Light);
+    assert_eq!(s.app.camera.yaw_deg, 15.0);
+}
+
+#[test]
+fn a_view_on_the_map_screen_opens_it() {
+    let mut preset = Preset::default();
+    preset.view.screen = Some(crate::preset::Screen::Map);
+    let mut s = Scene::new(&preset, Theme::default());
+    s.sync();
+    assert_eq!(s.app.mode(), Mode::Map);
+    assert!(s.app.map.requested.is_some(), "the map is asked for at once");
+}
+
+#[test]
+fn the_views_camera_limits_are_the_cameras() {
+    use super::camera::Camera;
+    assert_eq!(crate::preset::PITCH.min, Camera::MIN_PITCH);
+    assert_eq!(crate::preset::PITCH.max, Camera::MAX_PITCH);
+    assert_eq!(crate::preset::ZOOM.min, f64::from(Camera::MIN_ZOOM));
+    assert_eq!(crate::preset::ZOOM.max, f64::from(Camera::MAX_ZOOM));
+}

@@ -1,7 +1,7 @@
 //! The `?` overlay: every key, and the model explained for a classroom.
 
 use super::app::{App, group};
-use super::keys::{Screen, rows};
+use super::keys::{Screen, section};
 use super::map::View;
 use ratatui::text::{Line, Span};
 
@@ -35,7 +35,7 @@ const MODEL: &[&str] = &[
 pub(crate) fn help_lines(app: &App) -> Vec<Line<'static>> {
     let t = &app.theme;
     let key_lines = |screen: Screen| {
-        rows(screen).map(move |b| {
+        section(screen).map(move |b| {
             let what = b
                 .help
                 .replace("a batch of", &format!("a batch of {}", group(app.batch_rolls)));

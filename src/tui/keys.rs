@@ -587,8 +587,14 @@ pub(crate) fn lookup(screen: Screen, code: KeyCode) -> Option<&'static Binding> 
         .find(|b| b.screen.includes(screen) && b.keys.contains(&code))
 }
 
-/// The rows of one screen's table (the shared ones with the die screen's).
+/// Every row that applies on `screen` (its own and the shared ones), for its footer.
 pub(crate) fn rows(screen: Screen) -> impl Iterator<Item = &'static Binding> {
+    BINDINGS.iter().filter(move |b| b.screen.includes(screen))
+}
+
+/// The rows one section of the help and the README lists: the die screen's with the
+/// shared ones, the map screen's own.
+pub(crate) fn section(screen: Screen) -> impl Iterator<Item = &'static Binding> {
     BINDINGS.iter().filter(move |b| match screen {
         Die => b.screen != Map,
         _ => b.screen == screen,
@@ -601,7 +607,7 @@ pub(crate) fn rows(screen: Screen) -> impl Iterator<Item = &'static Binding> {
 pub(crate) fn markdown_tables() -> String {
     let table = |title: &str, screen: Screen| {
         let mut out = format!("| {title} | |\n|---|---|\n");
-        for b in rows(screen) {
+        for b in section(screen) {
             let keys: Vec<String> = b.label.split(' ').map(|k| format!("`{k}`")).collect();
             out.push_str(&format!("| {} | {} |\n", keys.join(" "), b.help));
         }

@@ -3,7 +3,6 @@
 //! (and the thread in `mod.rs`) drive it step for step.
 
 use super::map::{MapJob, MapOrder};
-use super::speed::Speed;
 use super::timeline::{Keyframe, Timeline};
 use super::twin::Twin;
 use super::{
@@ -14,7 +13,7 @@ use crate::experiment::{RandomRanges, RollRecord, ScanKey};
 use crate::output::{Output, free_stem, safe_file_stem};
 use crate::physics::registry::Role;
 use crate::physics::{InitialCondition, ParamError, Params, Simulation, face_most_nearly_up};
-use crate::preset::Preset;
+use crate::preset::{Preset, Speed};
 use std::sync::atomic::AtomicBool;
 
 /// At most this many energy samples per roll: longer rolls keep each term's peak over a
@@ -176,9 +175,22 @@ impl Engine {
             export_request: None,
             exports_started: 0,
         };
+        engine.apply_view(preset);
         engine.restart(RollKind::Preset);
         engine.pending.preset = Some(Box::new(preset.clone()));
         Ok(engine)
+    }
+
+    /// The parts of a preset's `[view]` the worker owns: the playback speed and the chaos
+    /// twin (rolled from the next restart). Keys the view leaves out stay as they are.
+    fn apply_view(&mut self, preset: &Preset) {
+        if let Some(speed) = preset.view.speed {
+            self.speed = speed;
+        }
+        if let Some(epsilon) = preset.view.twin {
+            // ε was checked with the preset; the twin is placed by `restart`.
+            self.twin = Twin::new(&preset.params(), &preset.initial, epsilon).ok();
+        }
     }
 
     pub fn params(&self) -> &Params {
@@ -345,6 +357,7 @@ impl Engine {
         self.table = OutcomeTable::default();
         self.pending.table_changed = true;
         self.playing = false;
+        self.apply_view(&preset);
         self.restart(RollKind::Preset);
         self.pending.notice = Some(format!("loaded {}", preset.name));
         self.pending.preset = Some(Box::new(preset.clone()));

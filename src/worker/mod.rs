@@ -8,13 +8,12 @@ mod engine;
 mod job;
 pub(crate) mod map;
 mod pacer;
-mod speed;
 mod timeline;
 mod twin;
 
+pub use crate::preset::Speed;
 pub use engine::{BatchRequest, Engine};
 pub use map::{MapAxis, MapRequest, MapUpdate};
-pub use speed::Speed;
 
 use crate::experiment::trace::ExportProgress;
 use crate::experiment::twin::Separation;

@@ -1,4 +1,7 @@
-//! Playback speed: how much simulated time passes per second of wall time.
+//! Playback speed: how much simulated time passes per second of wall time. A preset's
+//! `[view]` names one by its label (`speed = "1/20×"`), so the ladder lives with presets.
+
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 /// Simulated seconds per wall-clock second, from 1/100× to 100×; the step Δt never changes.
 const FACTORS: [f64; 13] = [
@@ -43,7 +46,6 @@ impl Speed {
         LABELS.get(self.0 as usize).copied().unwrap_or("instant")
     }
 
-    #[cfg(test)]
     /// The speed a label names (`1/20×`, `1/20`, `5×`, `5`, `instant`), if it is on the ladder.
     pub(crate) fn from_label(label: &str) -> Option<Speed> {
         let bare = label.trim().trim_end_matches(['×', 'x']);
@@ -56,10 +58,27 @@ impl Speed {
             .map(|i| Speed(i as u8))
     }
 
-    #[cfg(test)]
     /// Every label, slowest first, for messages that list them.
     pub(crate) fn labels() -> impl Iterator<Item = &'static str> {
         LABELS.iter().copied().chain(["instant"])
+    }
+}
+
+impl Serialize for Speed {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.label())
+    }
+}
+
+impl<'de> Deserialize<'de> for Speed {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Speed, D::Error> {
+        let label = String::deserialize(d)?;
+        Speed::from_label(&label).ok_or_else(|| {
+            serde::de::Error::custom(format!(
+                "`{label}` is not a playback speed; one of {}",
+                Speed::labels().collect::<Vec<_>>().join(", ")
+            ))
+        })
     }
 }
 
