@@ -144,22 +144,30 @@ impl Output {
         &self,
         body: impl FnOnce(&mut (dyn Write + Send)) -> std::io::Result<()>,
     ) -> Result<(), OutputError> {
-        let failed = |e: std::io::Error| OutputError::Write {
-            path: self.path.clone(),
-            message: os_reason(&e),
-        };
+        self.write_with(|w| body(w).map_err(|e| self.failed(&e)), |e| e)
+    }
+
+    /// [`Output::write`] for a `body` that fails in its own terms (a merge that finds a bad
+    /// part half-way): its error is returned as it is, the file's own failures through
+    /// `own`, and either way nothing is left under the path.
+    pub(crate) fn write_with<E>(
+        &self,
+        body: impl FnOnce(&mut (dyn Write + Send)) -> Result<(), E>,
+        own: impl Fn(OutputError) -> E,
+    ) -> Result<(), E> {
+        let failed = |e: std::io::Error| own(self.failed(&e));
         if std::fs::metadata(&self.path).is_ok_and(|m| !m.is_file() && !m.is_dir()) {
             let file = std::fs::OpenOptions::new()
                 .write(true)
                 .open(&self.path)
                 .map_err(failed)?;
             let mut w = BufWriter::new(file);
-            body(&mut w).map_err(failed)?;
+            body(&mut w)?;
             return w.flush().map_err(failed);
         }
         let tmp = self.temporary().map_err(failed)?;
-        let mut w = BufWriter::new(tmp);
-        body(&mut w).map_err(failed)?;
+        let mut w = BufWriter::with_capacity(1 << 20, tmp);
+        body(&mut w)?;
         w.flush().map_err(failed)?;
         let tmp = w.into_inner().map_err(|e| failed(e.into_error()))?;
         tmp.as_file().sync_all().map_err(failed)?;
@@ -170,11 +178,19 @@ impl Output {
         };
         // On failure the error holds the temporary file; dropping it deletes it.
         persisted.map(drop).map_err(|e| match e.error.kind() {
-            std::io::ErrorKind::AlreadyExists => OutputError::Exists {
+            std::io::ErrorKind::AlreadyExists => own(OutputError::Exists {
                 path: self.path.clone(),
-            },
+            }),
             _ => failed(e.error),
         })
+    }
+
+    /// A write to this path that failed, with the OS's reason.
+    pub(crate) fn failed(&self, e: &std::io::Error) -> OutputError {
+        OutputError::Write {
+            path: self.path.clone(),
+            message: os_reason(e),
+        }
     }
 
     /// Writes `bytes` as the whole file.

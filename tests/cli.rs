@@ -491,3 +491,54 @@ fn set_takes_one_component_of_a_vector() {
         stdout(&o)
     );
 }
+
+#[cfg(unix)]
+#[test]
+fn ctrl_c_in_a_basin_map_keeps_an_exact_prefix_of_its_cells() {
+    use std::process::Stdio;
+    let dir = tempfile::tempdir().unwrap();
+    let axes = [
+        "basin",
+        "--x",
+        "initial.angular_velocity.x:-60:60",
+        "--y",
+        "initial.angular_velocity.y:-60:60",
+        "--uniform",
+    ];
+    let spawn = |res: &str, out: &std::path::Path| {
+        Command::new(env!("CARGO_BIN_EXE_dicesim"))
+            .args(axes)
+            .args(["--res", res, "--jobs", "2", "--out", out.to_str().unwrap()])
+            .env("DICESIM_PRESETS", dir.path().join("none"))
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap()
+    };
+    // 80 000 cells: seconds of work, so the interrupt lands in the middle.
+    let out = dir.path().join("part.csv");
+    let o = interrupt(spawn("400x200", &out), std::time::Duration::from_millis(800));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(130), "{err}");
+    let kept = std::fs::read_to_string(&out).unwrap();
+    let cells = kept.lines().count() - 1;
+    assert!(
+        err.contains(&format!("interrupted: kept the {cells} of 80000 cells completed")),
+        "{err}"
+    );
+    assert!(cells < 80_000, "the map finished before the interrupt");
+    // The kept cells are the full map's first cells in row order, row for row.
+    let full = dir.path().join("full.csv");
+    let o = Command::new(env!("CARGO_BIN_EXE_dicesim"))
+        .args(axes)
+        .args(["--res", "400x200", "--out", full.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let full = std::fs::read_to_string(&full).unwrap();
+    let start: Vec<&str> = full.lines().take(cells + 1).collect();
+    assert!(
+        kept.lines().eq(start.iter().copied()),
+        "the kept cells are not the map's start"
+    );
+}

@@ -382,3 +382,47 @@ fn the_slurm_scripts_run_a_sweep_task_by_task() {
     );
     assert!(e.contains("already holds the parts of a sweep"), "{e}");
 }
+
+#[test]
+fn a_part_summary_or_a_script_is_replaced_only_with_force() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let shard = [
+        "batch",
+        "--rolls",
+        "40",
+        "--shard",
+        "0/2",
+        "--part",
+        "a.part.json",
+    ];
+    ok(d, &shard);
+    let first = bytes(d, "a.part.json");
+    let err = refused(d, &shard);
+    assert!(
+        err.contains("a.part.json: the file exists (--force replaces it)"),
+        "{err}"
+    );
+    assert_eq!(bytes(d, "a.part.json"), first, "the refused run changed the part");
+    ok(d, &[&shard[..], &["--force"]].concat());
+
+    let sweep = d.join("sweep");
+    let slurm = [
+        "slurm",
+        "--shards",
+        "2",
+        "--dir",
+        sweep.to_str().unwrap(),
+        "--",
+        "batch",
+        "--rolls",
+        "90",
+    ];
+    ok(d, &slurm);
+    let err = refused(d, &slurm);
+    assert!(
+        err.contains("shards.sbatch: the file exists (--force replaces it)"),
+        "{err}"
+    );
+    ok(d, &[&slurm[..5], &["--force"], &slurm[5..]].concat());
+}

@@ -49,8 +49,8 @@ pub(crate) struct BasinArgs {
     /// Write the map to a .csv, .png or .svg file.
     #[arg(long, value_name = "map.csv|map.png|map.svg")]
     pub(crate) out: Option<PathBuf>,
-    /// Replace an existing --out file.
-    #[arg(long, requires = "out")]
+    /// Replace existing output files (--out, and a shard's --part summary).
+    #[arg(long)]
     pub(crate) force: bool,
     #[command(flatten)]
     pub(crate) shard: ShardArgs,
@@ -95,7 +95,7 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
     };
     // Filled cells copy a corner's settle time, which says little about the cells between,
     // and a 1-D scan is plotted as settle time: these roll every cell unless asked otherwise.
-    let sharding = args.shard.resolve(args.out.as_deref())?;
+    let sharding = args.shard.resolve(args.out.as_deref(), args.force)?;
     if sharding.is_some() && args.adaptive {
         return Err(CliError::Usage(
             "--shard rolls every cell of its rows: adaptive refinement compares cells across shards"
@@ -179,7 +179,7 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
             height: h,
             layer: layer.name().to_string(),
         };
-        let mut summary = new_part(sweep, *shard, rows.clone(), part, args.out.as_deref());
+        let mut summary = new_part(sweep, *shard, rows.clone(), part.path(), args.out.as_deref());
         summary.complete = map.complete;
         summary.map_faces = Some(faces);
         summary.elapsed_s = elapsed;

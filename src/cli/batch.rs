@@ -51,8 +51,8 @@ pub(crate) struct BatchArgs {
     /// third of the bytes, for pandas, polars or DuckDB).
     #[arg(long, value_name = "FILE.csv|FILE.json|FILE.parquet")]
     pub(crate) out: Option<PathBuf>,
-    /// Replace an existing --out file.
-    #[arg(long, requires = "out")]
+    /// Replace existing output files (--out, and a shard's --part summary).
+    #[arg(long)]
     pub(crate) force: bool,
     /// Print the summary as one JSON object instead of text.
     #[arg(long)]
@@ -67,7 +67,7 @@ pub(crate) struct BatchArgs {
 
 pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
     let jobs = super::checked_jobs(args.jobs)?;
-    let sharding = args.shard.resolve(args.out.as_deref())?;
+    let sharding = args.shard.resolve(args.out.as_deref(), args.force)?;
     // A shard keeps only its own rolls' records.
     let kept = args.rolls.map(|n| {
         sharding

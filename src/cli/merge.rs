@@ -4,7 +4,7 @@
 use super::CliError;
 use super::basin::print_map_summary;
 use super::batch::print_counts;
-use super::shard::{PART_EXTENSION, finish_atomically, read_part, records_path, temp_beside};
+use super::shard::{PART_EXTENSION, read_part, records_path};
 use crate::experiment::RollRecord;
 use crate::experiment::ics::{record_csv_row, records_csv_header};
 use crate::experiment::merge::{MergeError, check_roll_id, copy_rows, parse_map_row};
@@ -63,7 +63,7 @@ pub(crate) fn run(args: &MergeArgs) -> Result<(), CliError> {
         )));
     }
     match &first.sweep {
-        Sweep::Batch { .. } => merge_batch(args, &ordered),
+        Sweep::Batch { .. } => merge_batch(args, &outputs, &ordered),
         Sweep::Map { .. } => merge_map(args, &outputs, &ordered),
     }
 }
@@ -188,7 +188,7 @@ fn shard_times(parts: &[(&Path, &Part)]) -> (f64, f64) {
     (times.clone().sum(), times.fold(0.0, f64::max))
 }
 
-fn merge_batch(args: &MergeArgs, parts: &[(&Path, &Part)]) -> Result<(), CliError> {
+fn merge_batch(args: &MergeArgs, outputs: &[Output], parts: &[(&Path, &Part)]) -> Result<(), CliError> {
     let Sweep::Batch {
         preset, seed, rolls, ..
     } = &parts[0].1.sweep
@@ -213,37 +213,36 @@ fn merge_batch(args: &MergeArgs, parts: &[(&Path, &Part)]) -> Result<(), CliErro
         }
         tally.merge(t);
     }
-    for out in &args.out {
+    for output in outputs {
+        let out = output.path();
         let kind = out_kind(out, &["csv", "parquet"])?;
-        let tmp = temp_beside(out, "")?;
-        let mut w = std::io::BufWriter::with_capacity(1 << 20, tmp.as_file());
-        match kind {
+        let failed = |e: std::io::Error| CliError::output("")(output.failed(&e));
+        output.write_with(|w| match kind {
             "csv" => {
                 // Part files are copied line by line: no cell of a record needs quoting.
                 let header = records_csv_header().join(",");
-                writeln!(w, "{header}")?;
+                writeln!(w, "{header}").map_err(failed)?;
                 for (path, p) in parts {
                     if records_kind(path, p)? == "parquet" {
-                        let mut csv = csv::Writer::from_writer(&mut w);
+                        let mut csv = csv::Writer::from_writer(&mut *w);
                         for_each_record(path, p, &mut |r| {
                             csv.write_record(record_csv_row(&r)).map_err(|e| e.to_string())
                         })?;
-                        csv.flush()?;
+                        csv.flush().map_err(failed)?;
                         continue;
                     }
                     let (records, reader) = open_records(path, p)?;
                     let first = p.range[0];
-                    copy_rows(reader, &mut w, &header, p.len(), &mut |n, row| {
+                    copy_rows(reader, &mut *w, &header, p.len(), &mut |n, row| {
                         check_roll_id(row, first + n)
                     })
                     .map_err(|e| row_error(&records, e))?;
                 }
-                w.flush()?;
-                drop(w);
+                Ok(())
             }
             _ => {
-                let failed = |e: ParquetError| CliError::Sweep(format!("{}: {e}", out.display()));
-                let mut parquet = RecordsWriter::new(w).map_err(failed)?;
+                let failed = |e: ParquetError| failed(std::io::Error::other(e));
+                let mut parquet = RecordsWriter::new(&mut *w).map_err(failed)?;
                 for (path, p) in parts {
                     if records_kind(path, p)? != "parquet" {
                         return Err(CliError::Parts(format!(
@@ -253,10 +252,10 @@ fn merge_batch(args: &MergeArgs, parts: &[(&Path, &Part)]) -> Result<(), CliErro
                     }
                     for_each_record(path, p, &mut |r| parquet.write(&r).map_err(|e| e.to_string()))?;
                 }
-                parquet.finish().map_err(failed)?.flush()?;
+                parquet.finish().map_err(failed)?;
+                Ok(())
             }
-        }
-        finish_atomically(tmp, out).map_err(|e| CliError::Sweep(format!("{}: {e}", out.display())))?;
+        }, |e| CliError::output("")(e))?;
     }
     let (shard_s, longest_s) = shard_times(parts);
     let summary = tally.summary(Duration::from_secs_f64(shard_s));
@@ -344,36 +343,36 @@ fn merge_map(args: &MergeArgs, outputs: &[Output], parts: &[(&Path, &Part)]) -> 
         map.write_csv(&mut header)?;
         let header = String::from_utf8(header).expect("the CSV header is UTF-8");
         let header = header.trim_end();
-        let csv_out = args
-            .out
+        let csv_out = outputs
             .iter()
             .zip(&kinds)
             .find(|(_, k)| **k == "csv")
             .map(|(o, _)| o);
-        let tmp = csv_out.map(|o| temp_beside(o, "")).transpose()?;
-        let mut sink: Box<dyn Write> = match &tmp {
-            Some(t) => Box::new(std::io::BufWriter::with_capacity(1 << 20, t.as_file())),
-            None => Box::new(std::io::sink()),
-        };
-        writeln!(sink, "{header}")?;
         let w = *width;
-        for (path, p) in parts {
-            let (records, reader) = open_records(path, p)?;
-            let first_cell = p.range[0] as usize * w;
-            let cells = &mut map.cells;
-            copy_rows(reader, &mut sink, header, p.len() * w as u64, &mut |n, row| {
-                let index = first_cell + n as usize;
-                cells[index] = Some(parse_map_row(row, index % w, index / w)?);
-                Ok(())
-            })
-            .map_err(|e| row_error(&records, e))?;
+        let cells = &mut map.cells;
+        let mut read_parts = |sink: &mut (dyn Write + Send)| -> Result<(), CliError> {
+            let failed = |e: std::io::Error| match csv_out {
+                Some(o) => CliError::output("")(o.failed(&e)),
+                None => CliError::Io(e),
+            };
+            writeln!(sink, "{header}").map_err(failed)?;
+            for (path, p) in parts {
+                let (records, reader) = open_records(path, p)?;
+                let first_cell = p.range[0] as usize * w;
+                copy_rows(reader, &mut *sink, header, p.len() * w as u64, &mut |n, row| {
+                    let index = first_cell + n as usize;
+                    cells[index] = Some(parse_map_row(row, index % w, index / w)?);
+                    Ok(())
+                })
+                .map_err(|e| row_error(&records, e))?;
+            }
+            Ok(())
+        };
+        match csv_out {
+            Some(o) => o.write_with(&mut read_parts, |e| CliError::output("")(e))?,
+            None => read_parts(&mut std::io::sink())?,
         }
-        sink.flush()?;
-        drop(sink);
         map.sampled = map.cells.iter().flatten().filter(|c| c.sampled).count();
-        if let (Some(t), Some(o)) = (tmp, csv_out) {
-            finish_atomically(t, o).map_err(|e| CliError::Sweep(format!("{}: {e}", o.display())))?;
-        }
         for (output, _) in outputs.iter().zip(&kinds).filter(|(_, k)| **k != "csv") {
             write_image(&map, layer, output).map_err(|e| match e {
                 crate::experiment::Error::Output(e) => CliError::output("")(e),

@@ -4,10 +4,10 @@
 use super::CliError;
 use crate::experiment::BatchRun;
 use crate::experiment::shard::{PART_FORMAT, Part, Shard, Sweep, fingerprint};
+use crate::output::Output;
 use crate::physics::InitialCondition;
 use crate::preset::Preset;
 use clap::Args;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// The extension of a part summary, replacing the records file's.
@@ -26,8 +26,13 @@ pub(crate) struct ShardArgs {
 }
 
 impl ShardArgs {
-    /// The shard to roll and where its summary goes, or `None` for a whole run.
-    pub(crate) fn resolve(&self, out: Option<&Path>) -> Result<Option<(Shard, PathBuf)>, CliError> {
+    /// The shard to roll and where its summary goes (checked like any output: an existing
+    /// summary is replaced only with `force`), or `None` for a whole run.
+    pub(crate) fn resolve(
+        &self,
+        out: Option<&Path>,
+        force: bool,
+    ) -> Result<Option<(Shard, Output)>, CliError> {
         let Some(shard) = self.shard else {
             return Ok(None);
         };
@@ -46,6 +51,7 @@ impl ShardArgs {
                 part.display()
             )));
         }
+        let part = Output::check(&part, &["json"], force).map_err(CliError::output("--part "))?;
         Ok(Some((shard, part)))
     }
 }
@@ -112,12 +118,13 @@ pub(crate) fn map_fingerprint(preset: &Preset) -> String {
 }
 
 /// Writes `part` as JSON, atomically.
-pub(crate) fn write_part(path: &Path, part: &Part) -> Result<(), CliError> {
-    write_atomically(path, |w| {
-        serde_json::to_writer_pretty(&mut *w, part)?;
-        writeln!(w)
-    })
-    .map_err(|e| CliError::Sweep(format!("{}: {e}", path.display())))
+pub(crate) fn write_part(output: &Output, part: &Part) -> Result<(), CliError> {
+    output
+        .write(|w| {
+            serde_json::to_writer_pretty(&mut *w, part)?;
+            writeln!(w)
+        })
+        .map_err(CliError::output(""))
 }
 
 /// Reads a part summary, naming the file and the JSON problem when it is not one.
@@ -140,61 +147,20 @@ pub(crate) fn read_part(path: &Path) -> Result<Part, CliError> {
     })
 }
 
-/// Writes a file through `write` into a temporary file beside `path`, then renames it
-/// over `path`: a failure or a crash leaves the old file or the new one, never half of one.
-pub(crate) fn write_atomically(
-    path: &Path,
-    write: impl FnOnce(&mut std::io::BufWriter<&std::fs::File>) -> std::io::Result<()>,
-) -> std::io::Result<()> {
-    let tmp = temp_beside(path, "")?;
-    {
-        let mut w = std::io::BufWriter::new(tmp.as_file());
-        write(&mut w)?;
-        w.flush()?;
-    }
-    finish_atomically(tmp, path)
-}
-
-/// Syncs a finished temporary file, makes it readable like any other output, and renames it
-/// to `path` (replacing it; on failure the temporary file is deleted).
-pub(crate) fn finish_atomically(tmp: tempfile::NamedTempFile, path: &Path) -> std::io::Result<()> {
-    tmp.as_file().sync_all()?;
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        tmp.as_file()
-            .set_permissions(std::fs::Permissions::from_mode(0o644))?;
-    }
-    tmp.persist(path).map(drop).map_err(|e| e.error)
-}
-
 /// Writes the part summary of a batch shard that rolled `batch` (ids `range` of `sweep`),
 /// its records in `records` if any.
 pub(crate) fn write_batch_part(
-    path: &Path,
+    output: &Output,
     sweep: Sweep,
     shard: Shard,
     range: std::ops::Range<u64>,
     records: Option<&Path>,
     batch: &BatchRun,
 ) -> Result<(), CliError> {
-    let mut part = new_part(sweep, shard, range, path, records);
+    let mut part = new_part(sweep, shard, range, output.path(), records);
     part.complete = !batch.cancelled;
     part.tally = Some(batch.tally.clone());
     part.elapsed_s = batch.summary.elapsed_s;
     part.jobs = batch.jobs;
-    write_part(path, &part)
-}
-
-/// A temporary file in `path`'s folder (so renaming it to `path` is atomic), hidden, with
-/// `suffix` (an image backend picks its format from it).
-pub(crate) fn temp_beside(path: &Path, suffix: &str) -> std::io::Result<tempfile::NamedTempFile> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    tempfile::Builder::new()
-        .prefix(".dicesim-")
-        .suffix(suffix)
-        .tempfile_in(dir)
+    write_part(output, &part)
 }

@@ -1,8 +1,9 @@
 //! `dicesim slurm`: a sweep as a Slurm job array (one task per shard) and a merge job that
 //! runs once every shard has succeeded.
 
-use super::shard::{PART_EXTENSION, write_atomically};
+use super::shard::PART_EXTENSION;
 use super::{Cli, CliError, Command};
+use crate::output::Output;
 use clap::{Args, Parser, ValueEnum};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -55,6 +56,9 @@ pub(crate) struct SlurmArgs {
     /// Submit both jobs with `sbatch` (the merge with `--dependency=afterok` on the array).
     #[arg(long)]
     pub(crate) submit: bool,
+    /// Replace the scripts of an earlier `dicesim slurm` in --dir.
+    #[arg(long)]
+    pub(crate) force: bool,
     /// The sweep, after `--`: a `batch` or `basin` command line without --shard, --out,
     /// --part or --jobs, e.g. `-- batch --rolls 1000000 --seed 7`.
     #[arg(last = true, required = true, value_name = "COMMAND")]
@@ -108,9 +112,14 @@ pub(crate) fn run(args: &SlurmArgs) -> Result<(), CliError> {
     let scripts = Scripts::new(args, kind, &dicesim, &dir, &workdir);
     let shards_path = dir.join("shards.sbatch");
     let merge_path = dir.join("merge.sbatch");
-    for (path, text) in [(&shards_path, &scripts.shards), (&merge_path, &scripts.merge)] {
-        write_atomically(path, |w| w.write_all(text.as_bytes()))
-            .map_err(|e| CliError::Sweep(format!("{}: {e}", path.display())))?;
+    let outputs = [&shards_path, &merge_path]
+        .map(|path| Output::check(path, &["sbatch"], args.force).map_err(CliError::output("")));
+    let [shards_out, merge_out] = outputs;
+    let (shards_out, merge_out) = (shards_out?, merge_out?);
+    for (output, text) in [(&shards_out, &scripts.shards), (&merge_out, &scripts.merge)] {
+        output
+            .write_bytes(text.as_bytes())
+            .map_err(CliError::output(""))?;
     }
     let mut out = std::io::stdout().lock();
     let cpus = args.cpus_per_task;

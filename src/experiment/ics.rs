@@ -27,17 +27,20 @@ pub(crate) const RESULT_COLUMNS: [&str; 5] = ["start_face", "face", "status", "s
 
 const COLUMNS: usize = 13;
 
-/// The values of the initial-condition columns; `None` for an unset angular momentum.
+/// The values of the initial-condition columns: the spin once, as the angular momentum
+/// where one is set (the angular velocity is then not the spin, so its cells stay empty)
+/// and as the angular velocity otherwise.
 fn initial_values(ic: &InitialCondition) -> [Option<f64>; COLUMNS] {
     let l = ic.angular_momentum;
+    let w = |i: usize| l.is_none().then_some(ic.angular_velocity[i]);
     [
         Some(ic.height),
         Some(ic.velocity[0]),
         Some(ic.velocity[1]),
         Some(ic.velocity[2]),
-        Some(ic.angular_velocity[0]),
-        Some(ic.angular_velocity[1]),
-        Some(ic.angular_velocity[2]),
+        w(0),
+        w(1),
+        w(2),
         l.map(|l| l[0]),
         l.map(|l| l[1]),
         l.map(|l| l[2]),
@@ -192,6 +195,23 @@ pub fn parse_initial_conditions(
                 given[*k] = Some(v);
             }
         }
+        if given[4..7].iter().any(Option::is_some) && given[7..10].iter().any(Option::is_some) {
+            // The spin twice: fine only where both say the same (L = I·ω to rounding).
+            let w: [f64; 3] = std::array::from_fn(|i| given[4 + i].unwrap_or(base.angular_velocity[i]));
+            let l: [f64; 3] = std::array::from_fn(|i| given[7 + i].unwrap_or(base_momentum[i]));
+            let agree =
+                (0..3).all(|i| (w[i] * inertia - l[i]).abs() <= 1e-9 * l[i].abs().max(inertia * 1e-9));
+            if !agree {
+                return Err(bad(
+                    line,
+                    format!(
+                        "the spin is given twice and the two disagree: angular_velocity {w:?} rad/s \
+                         is angular momentum {:?} g·cm²/s, not {l:?}; leave one of them empty",
+                        w.map(|x| x * inertia)
+                    ),
+                ));
+            }
+        }
         let pick = |k: usize, default: f64| given[k].unwrap_or(default);
         let mut ic = *base;
         ic.height = pick(0, base.height);
@@ -258,6 +278,22 @@ mod tests {
         assert_eq!(ics[0].1.angular_momentum, Some([INERTIA, 4.0, 0.0]));
         let ics = parse_initial_conditions("id,height\n1,4", &base, INERTIA).unwrap();
         assert_eq!(ics[0].1.angular_momentum, base.angular_momentum);
+        // Both forms in one row: accepted where they agree, refused where they do not.
+        let both = format!("id,angular_velocity_x,angular_momentum_x\n1,2,{}", 2.0 * INERTIA);
+        let ics = parse_initial_conditions(&both, &base, INERTIA).unwrap();
+        assert_eq!(ics[0].1.angular_momentum, Some([2.0 * INERTIA, 0.0, 0.0]));
+        let e = parse_initial_conditions("id,angular_velocity_x,angular_momentum_x\n1,2,5", &base, INERTIA)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("line 2: the spin is given twice and the two disagree"),
+            "{e}"
+        );
+        // One form per row in one file: each row's own.
+        let mixed = "id,angular_velocity_x,angular_momentum_x\n1,2,\n2,,5\n";
+        let ics = parse_initial_conditions(mixed, &InitialCondition::default(), INERTIA).unwrap();
+        assert_eq!(ics[0].1.angular_momentum, None);
+        assert_eq!(ics[1].1.angular_momentum, Some([5.0, 0.0, 0.0]));
     }
 
     #[test]

@@ -21,7 +21,7 @@ pub(crate) enum MergeError {
 /// part must hold exactly `rows` rows. The header itself is not copied.
 pub(crate) fn copy_rows(
     reader: impl BufRead,
-    out: &mut impl Write,
+    out: &mut (impl Write + ?Sized),
     header: &str,
     rows: u64,
     check: &mut dyn FnMut(u64, &str) -> Result<(), String>,

@@ -325,7 +325,7 @@ pub fn render(app: &App, area: Rect, frame: &mut Frame) {
         let popup = area.centered(Constraint::Max(64), Constraint::Length(4));
         frame.render_widget(Clear, popup);
         let lines = vec![
-            Line::styled(prompt.question(&app.preset.name), t.caution()),
+            Line::styled(printable(&prompt.question(&app.preset.name)), t.caution()),
             Line::from(vec![
                 Span::styled(keys, t.key()),
                 Span::raw(format!(" {words} · any other key stays")),
@@ -406,7 +406,7 @@ fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
             };
             let cursor = |on: bool| if on { "▏" } else { "" };
             let description_line = if description.is_empty() && *field != SaveField::Description {
-                Span::raw(automatic_description(app))
+                Span::raw(printable(&automatic_description(app)))
             } else {
                 Span::styled(
                     format!("{description}{}", cursor(*field == SaveField::Description)),

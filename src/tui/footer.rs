@@ -97,7 +97,9 @@ pub(crate) fn render_key_hints(app: &App, keys: Vec<KeyHint>, area: Rect, frame:
 /// highest priority numbers are dropped first; priority 0 always stays.
 fn render_line(app: &App, notice: Option<String>, keys: Vec<KeyHint>, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
-    let notice = notice.map(|n| format!(" {n} "));
+    // Notices and questions quote names and errors from files: an escape sequence in one
+    // is shown, not obeyed (ratatui alone would drop the control character and show the rest).
+    let notice = notice.map(|n| format!(" {} ", crate::output::printable(&n)));
     let width = |ks: &[KeyHint]| -> usize {
         ks.iter()
             .map(|(k, w, _)| 2 + k.chars().count() + w.chars().count())

@@ -874,3 +874,26 @@ mod sizes {
         }
     }
 }
+
+/// Text that came from a file (a preset's name, an error quoting it) never sends a control
+/// character to the terminal: the footer's notices show it escaped, and no cell holds one.
+#[test]
+fn control_characters_from_files_never_reach_the_terminal() {
+    let title = "\u{1b}]0;owned\u{7}";
+    let preset = Preset {
+        name: format!("x{title}"),
+        ..Preset::default()
+    };
+    let mut s = Scene::new(&preset, Theme::default());
+    s.app.notice = Some(format!("cannot open {title}.toml"));
+    let t = draw(&s.app, 120, 36);
+    let buffer = t.backend().buffer();
+    for line in lines_of(buffer) {
+        assert!(!line.contains(char::is_control), "{line:?}");
+    }
+    let footer = &lines_of(buffer)[35];
+    assert!(
+        footer.contains(r"cannot open \u{1b}]0;owned\u{7}.toml"),
+        "{footer}"
+    );
+}
