@@ -6,6 +6,7 @@
 
 pub(crate) mod basin;
 pub(crate) mod batch;
+pub(crate) mod ending;
 pub(crate) mod energy_plot;
 pub(crate) mod engine;
 pub mod ics;

@@ -5,8 +5,10 @@
 
 use super::Error;
 use super::basin::{BasinMap, Cell, Layer};
+use super::ending::Ending;
 use crate::output::Output;
-use crate::physics::Status;
+use crate::physics::registry::{self, Role, Setup, Value};
+use crate::physics::{InitialCondition, Params, Status};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::register_font;
@@ -30,6 +32,11 @@ const NO_FACE: RGBColor = RGBColor(200, 200, 200);
 const TIMEOUT: RGBColor = RGBColor(90, 90, 90);
 const UNSTABLE: RGBColor = RGBColor(204, 121, 167);
 const UNKNOWN: RGBColor = WHITE;
+/// A settle-time cell the adaptive method filled in from its block instead of rolling: its
+/// face is known, its time is not.
+const INFERRED: RGBColor = RGBColor(215, 215, 215);
+/// What the legend calls such a cell.
+pub(crate) const INFERRED_WORDS: &str = "not rolled (filled in)";
 
 /// Viridis at 0, ¼, ½, ¾, 1: a perceptually even scale for settle times.
 const VIRIDIS: [RGBColor; 5] = [
@@ -84,55 +91,210 @@ impl ImageFormat {
     }
 }
 
-/// Draws with `draw` on a PNG canvas of `size` pixels and returns the encoded file. Drawing
-/// into memory keeps every write error with the one place that writes files.
+/// What an image records of how it was made: caption lines drawn under the picture, and
+/// text chunks (keyword, text) a PNG carries for any viewer or script to read.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct Record {
+    pub(crate) caption: Vec<String>,
+    pub(crate) text: Vec<(String, String)>,
+}
+
+/// Pixels one caption line takes.
+const CAPTION_LINE: u32 = 24;
+
+impl Record {
+    /// The record of a setup: the caption names the values a reader looks for first, the
+    /// `dicesim-setup` chunk holds every value, one `key = value` per line, as a preset
+    /// file writes them.
+    pub(crate) fn of_setup(title: &str, name: &str, params: &Params, initial: &InitialCondition) -> Record {
+        // Numbers as a person reads them, to a millionth.
+        let n = |v: f64| format!("{}", (v * 1e6).round() / 1e6);
+        let v3 = |v: [f64; 3]| format!("({}, {}, {})", n(v[0]), n(v[1]), n(v[2]));
+        let w = initial.angular_velocity_for(params.inertia());
+        let caption = vec![
+            format!(
+                "{name}: height {} cm, velocity {} cm/s, spin {} rad/s, yaw pitch roll {}°",
+                n(initial.height),
+                v3(initial.velocity),
+                v3(w.into()),
+                v3(initial.orientation),
+            ),
+            format!(
+                "table k {} dyn/cm, γ {} s/cm, μ {}; die a {} cm, m {} g; g {} cm/s², Δt {} s (every value in the file's dicesim-setup text)",
+                n(params.ground.stiffness),
+                n(params.ground.damping),
+                n(params.ground.friction),
+                n(params.die.half_size),
+                n(params.die.corner_mass),
+                n(params.world.gravity),
+                n(params.integrator.dt),
+            ),
+        ];
+        Record {
+            text: vec![
+                ("Title".to_string(), title.to_string()),
+                ("Description".to_string(), caption.join("\n")),
+                (
+                    "Software".to_string(),
+                    format!("dicesim {}", env!("CARGO_PKG_VERSION")),
+                ),
+                ("dicesim-setup".to_string(), setup_text(name, params, initial)),
+            ],
+            caption,
+        }
+    }
+}
+
+/// Every value of a setup (but the random ranges, which no single roll uses), one
+/// `key = value` per line, after the preset's name.
+pub(crate) fn setup_text(name: &str, params: &Params, initial: &InitialCondition) -> String {
+    let setup = Setup {
+        params: *params,
+        initial: *initial,
+        ..Setup::default()
+    };
+    let mut lines = vec![format!("preset = \"{name}\"")];
+    for spec in registry::ALL.iter().filter(|s| s.role != Role::Random) {
+        let value = match (spec.read)(&setup) {
+            Value::Number(x) => format!("{x}"),
+            Value::Vector(v) => format!("[{}, {}, {}]", v[0], v[1], v[2]),
+            Value::Range(r) => format!("[{}, {}]", r[0], r[1]),
+            Value::Name(s) => format!("\"{s}\""),
+            Value::Seed(s) => format!("{s}"),
+            Value::Flag(b) => format!("{b}"),
+            Value::Absent => continue,
+        };
+        lines.push(format!("{} = {value}", spec.key()));
+    }
+    lines.join("\n")
+}
+
+/// Draws with `draw` on a PNG canvas of `size` pixels and returns the encoded file with the
+/// record's text chunks. Drawing into memory keeps every write error with the one place
+/// that writes files.
 pub(crate) fn png_bytes(
     size: (u32, u32),
+    record: &Record,
     draw: impl FnOnce(DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), Error>,
 ) -> Result<Vec<u8>, Error> {
-    use image::ImageEncoder;
     let mut pixels = vec![0u8; size.0 as usize * size.1 as usize * 3];
     draw(BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area())?;
     let mut png = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut png)
-        .write_image(&pixels, size.0, size.1, image::ColorType::Rgb8)
-        .map_err(plot_error)?;
+    let mut encoder = png::Encoder::new(&mut png, size.0, size.1);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    // iTXt: UTF-8, for the model's own symbols (μ, Δt, ω).
+    for (keyword, text) in &record.text {
+        encoder
+            .add_itxt_chunk(keyword.clone(), text.clone())
+            .map_err(plot_error)?;
+    }
+    let mut writer = encoder.write_header().map_err(plot_error)?;
+    writer.write_image_data(&pixels).map_err(plot_error)?;
+    writer.finish().map_err(plot_error)?;
     Ok(png)
+}
+
+/// Draws the record's caption lines along the bottom of `root` and returns the area above.
+pub(crate) fn with_caption<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    record: &Record,
+) -> Result<DrawingArea<DB, Shift>, Error> {
+    if record.caption.is_empty() {
+        return Ok(root.clone());
+    }
+    let (_, height) = root.dim_in_pixel();
+    let strip = CAPTION_LINE * record.caption.len() as u32 + 10;
+    let (picture, caption) = root.split_vertically(height.saturating_sub(strip));
+    for (k, line) in record.caption.iter().enumerate() {
+        caption
+            .draw(&Text::new(
+                line.as_str(),
+                (20, 2 + (CAPTION_LINE * k as u32) as i32),
+                ("sans-serif", 16),
+            ))
+            .map_err(plot_error)?;
+    }
+    Ok(picture)
 }
 
 /// Writes `map` to `out` as a PNG or SVG image, by its extension; nothing is written if
 /// drawing fails.
 pub(crate) fn write_image(map: &BasinMap, layer: Layer, out: &Output) -> Result<(), Error> {
+    write_recorded_image(map, layer, &map_record(map, layer, None), SIZE, out)
+}
+
+/// [`write_image`] at `size` pixels, with `record`'s caption and (for a PNG) text chunks.
+pub(crate) fn write_recorded_image(
+    map: &BasinMap,
+    layer: Layer,
+    record: &Record,
+    size: (u32, u32),
+    out: &Output,
+) -> Result<(), Error> {
     let format = ImageFormat::from_extension(out.extension())
         .ok_or_else(|| Error::Plot(format!("{}: expected a .png or .svg file", out.path().display())))?;
-    out.write_bytes(&image_bytes(map, layer, format)?)?;
+    out.write_bytes(&image_bytes(map, layer, record, size, format)?)?;
     Ok(())
 }
 
-/// `map` as the bytes of a PNG or SVG file.
-pub(crate) fn image_bytes(map: &BasinMap, layer: Layer, format: ImageFormat) -> Result<Vec<u8>, Error> {
+/// A map's record: its title and axes, and the setup its cells start from when known
+/// (`name`, params and initial condition; the two axis values vary per cell).
+pub(crate) fn map_record(
+    map: &BasinMap,
+    layer: Layer,
+    setup: Option<(&str, &Params, &InitialCondition)>,
+) -> Record {
+    let axes = format!(
+        "x {} from {} to {}, y {} from {} to {}",
+        map.x.key.key, map.x.min, map.x.max, map.y.key.key, map.y.min, map.y.max
+    );
+    let mut record = match setup {
+        Some((name, params, initial)) => {
+            let mut r = Record::of_setup(&title(map, layer), name, params, initial);
+            r.caption.insert(0, format!("{axes}; every other value as below"));
+            r
+        }
+        None => Record {
+            caption: Vec::new(),
+            text: vec![("Title".to_string(), title(map, layer))],
+        },
+    };
+    record.text.push(("dicesim-axes".to_string(), axes));
+    record
+}
+
+/// `map` as the bytes of a PNG or SVG file of `size` pixels.
+pub(crate) fn image_bytes(
+    map: &BasinMap,
+    layer: Layer,
+    record: &Record,
+    size: (u32, u32),
+    format: ImageFormat,
+) -> Result<Vec<u8>, Error> {
     register_fonts()?;
     match format {
-        ImageFormat::Png => png_bytes(SIZE, |area| draw(area, map, layer)),
+        ImageFormat::Png => png_bytes(size, record, |area| draw(area, map, layer, record)),
         ImageFormat::Svg => {
             let mut svg = String::new();
             draw(
-                SVGBackend::with_string(&mut svg, SIZE).into_drawing_area(),
+                SVGBackend::with_string(&mut svg, size).into_drawing_area(),
                 map,
                 layer,
+                record,
             )?;
             Ok(svg.into_bytes())
         }
     }
 }
 
-/// The settle-time scale: s, over settled cells (`None` if none settled).
+/// The settle-time scale: s, over settled cells that were rolled (`None` if none).
 pub(crate) fn time_range(map: &BasinMap) -> Option<(f64, f64)> {
     let times = map
         .cells
         .iter()
         .flatten()
-        .filter(|c| c.outcome.status == Status::Settled)
+        .filter(|c| c.outcome.status == Status::Settled && c.sampled)
         .map(|c| c.outcome.time_s);
     times.fold(None, |r, t| match r {
         None => Some((t, t)),
@@ -148,6 +310,7 @@ pub(crate) fn cell_colour(cell: Option<&Cell>, layer: Layer, times: Option<(f64,
         (Status::Unstable, ..) => UNSTABLE,
         (Status::Settled, None, Layer::Face) => NO_FACE,
         (Status::Settled, Some(f), Layer::Face) => FACE_COLOURS[f as usize - 1],
+        (Status::Settled, _, Layer::SettleTime) if !c.sampled => INFERRED,
         (Status::Settled, _, Layer::SettleTime) => {
             let (lo, hi) = times.unwrap_or((0.0, 1.0));
             viridis((c.outcome.time_s - lo) / (hi - lo).max(1e-12))
@@ -174,9 +337,16 @@ fn axis_title(axis: &super::basin::Axis) -> String {
     format!("{}: {} to {}", axis.key.label(), axis.min, axis.max)
 }
 
-fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, map: &BasinMap, layer: Layer) -> Result<(), Error> {
+fn draw<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    map: &BasinMap,
+    layer: Layer,
+    record: &Record,
+) -> Result<(), Error> {
     root.fill(&WHITE).map_err(plot_error)?;
-    let (area, legend) = root.split_horizontally(SIZE.0 - LEGEND_WIDTH);
+    let picture = with_caption(&root, record)?;
+    let (width, _) = picture.dim_in_pixel();
+    let (area, legend) = picture.split_horizontally(width.saturating_sub(LEGEND_WIDTH));
     let times = time_range(map);
     let (x, y) = (&map.x, &map.y);
     let (dx, dy) = (x.spacing(), y.spacing());
@@ -276,21 +446,47 @@ fn face_legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, map: &BasinMap
     let mut entries: Vec<(String, RGBColor)> = (0..6)
         .map(|f| (format!("face {}", f + 1), FACE_COLOURS[f]))
         .collect();
-    if occurs(Status::Settled, None) {
-        entries.push(("no face (corner)".to_string(), NO_FACE));
+    for (ending, status, colour) in [
+        (Ending::WithoutFace, Status::Settled, NO_FACE),
+        (Ending::DidNotSettle, Status::Timeout, TIMEOUT),
+        (Ending::Unstable, Status::Unstable, UNSTABLE),
+    ] {
+        if occurs(status, None) {
+            entries.push((ending.name().to_string(), colour));
+        }
     }
-    if occurs(Status::Timeout, None) {
-        entries.push(("did not settle".to_string(), TIMEOUT));
-    }
-    if occurs(Status::Unstable, None) {
-        entries.push(("unstable".to_string(), UNSTABLE));
-    }
-    for (k, (label, colour)) in entries.iter().enumerate() {
-        let top = 80 + 34 * k as i32;
-        area.draw(&Rectangle::new([(10, top), (36, top + 24)], colour.filled()))
+    swatches(area, 80, &entries)
+}
+
+/// Colour swatches with their labels from `top` down, a label too long for the strip on two
+/// lines.
+fn swatches<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    top: i32,
+    entries: &[(String, RGBColor)],
+) -> Result<(), Error> {
+    let mut y = top;
+    for (label, colour) in entries {
+        area.draw(&Rectangle::new([(10, y), (36, y + 24)], colour.filled()))
             .map_err(plot_error)?;
-        area.draw(&Text::new(label.as_str(), (46, top + 3), ("sans-serif", 18)))
+        let lines: Vec<String> = match label
+            .char_indices()
+            .filter(|&(i, c)| c == ' ' && i >= 8)
+            .map(|(i, _)| i)
+            .next()
+        {
+            Some(i) if label.chars().count() > 15 => vec![label[..i].to_string(), label[i + 1..].to_string()],
+            _ => vec![label.clone()],
+        };
+        for (k, line) in lines.iter().enumerate() {
+            area.draw(&Text::new(
+                line.as_str(),
+                (46, y + 3 + 20 * k as i32),
+                ("sans-serif", 18),
+            ))
             .map_err(plot_error)?;
+        }
+        y += 34 + 20 * (lines.len() as i32 - 1);
     }
     Ok(())
 }
@@ -302,7 +498,7 @@ fn time_legend<DB: DrawingBackend>(
     times: Option<(f64, f64)>,
 ) -> Result<(), Error> {
     let (lo, hi) = times.unwrap_or((0.0, 0.0));
-    let (top, bottom) = (90, 600);
+    let (top, bottom) = (90, 520);
     area.draw(&Text::new("settle time (s)", (10, top - 40), ("sans-serif", 18)))
         .map_err(plot_error)?;
     for py in top..bottom {
@@ -317,21 +513,18 @@ fn time_legend<DB: DrawingBackend>(
         area.draw(&Text::new(label, (48, py - 8), ("sans-serif", 16)))
             .map_err(plot_error)?;
     }
-    let mut k = 0;
-    for (label, colour, status) in [
-        ("did not settle", TIMEOUT, Status::Timeout),
-        ("unstable", UNSTABLE, Status::Unstable),
-    ] {
-        if map.cells.iter().flatten().any(|c| c.outcome.status == status) {
-            let y = bottom + 30 + 34 * k;
-            area.draw(&Rectangle::new([(10, y), (36, y + 24)], colour.filled()))
-                .map_err(plot_error)?;
-            area.draw(&Text::new(label, (46, y + 3), ("sans-serif", 18)))
-                .map_err(plot_error)?;
-            k += 1;
-        }
+    let any = |occurs: &dyn Fn(&Cell) -> bool| map.cells.iter().flatten().any(occurs);
+    let mut entries = Vec::new();
+    if any(&|c| c.outcome.status == Status::Timeout) {
+        entries.push((Ending::DidNotSettle.name().to_string(), TIMEOUT));
     }
-    Ok(())
+    if any(&|c| c.outcome.status == Status::Unstable) {
+        entries.push((Ending::Unstable.name().to_string(), UNSTABLE));
+    }
+    if any(&|c| c.outcome.status == Status::Settled && !c.sampled) {
+        entries.push((INFERRED_WORDS.to_string(), INFERRED));
+    }
+    swatches(area, bottom + 30, &entries)
 }
 
 #[cfg(test)]

@@ -220,7 +220,10 @@ pub(crate) fn export_roll(
             crate::output::OutputError::Write { message, .. } if message == CANCELLED => Error::Cancelled,
             e => Error::Export(e.to_string()),
         })?;
-    let png = energy_plot_png(&samples, sim.stop_threshold(), title)
+    // The title starts with the preset's name ("paper · preset roll — …").
+    let name = title.split(" · ").next().unwrap_or(title);
+    let record = super::plot::Record::of_setup(title, name, params, initial);
+    let png = energy_plot_png(&samples, sim.stop_threshold(), false, &record)
         .map_err(|e| Error::Export(format!("{}: {e}", plot.path().display())))?;
     plot.write_bytes(&png).map_err(|e| Error::Export(e.to_string()))?;
     Ok(Exported {

@@ -329,15 +329,15 @@ impl App {
     }
 
     /// A preset's view: what the UI owns of it (the worker sets the speed and rolls the
-    /// twin itself). Keys the view leaves out stay as they are.
+    /// twin itself). A preset opens the same way every time, so a key the view leaves out
+    /// means the default (the camera's, no arrows, no twin, the die screen); only the theme
+    /// stays as it is, since it suits the room rather than the preset.
     pub(crate) fn apply_view(&mut self, view: &PresetView) {
-        if let Some(c) = view.camera {
-            self.camera = Camera {
-                yaw_deg: c.yaw,
-                pitch_deg: c.pitch,
-                zoom: c.zoom,
-            };
-        }
+        self.camera = view.camera.map_or_else(Camera::default, |c| Camera {
+            yaw_deg: c.yaw,
+            pitch_deg: c.pitch,
+            zoom: c.zoom,
+        });
         if let Some(name) = view.theme {
             self.theme.palette = match name {
                 ThemeName::Dark => Palette::Dark,
@@ -345,18 +345,12 @@ impl App {
                 ThemeName::Projector => Palette::Projector,
             };
         }
-        if let Some(arrows) = view.arrows {
-            self.vectors = arrows;
-        }
+        self.vectors = view.arrows.unwrap_or(false);
+        self.twin = view.twin.is_some();
         if let Some(epsilon) = view.twin {
-            self.twin = true;
             self.epsilon = epsilon;
         }
-        match view.screen {
-            Some(ViewScreen::Map) => self.open_map = true,
-            Some(ViewScreen::Die) => self.view = View::Die,
-            None => {}
-        }
+        self.open_map = view.screen == Some(ViewScreen::Map);
     }
 
     /// The view on screen, as `s` saves it.
@@ -553,12 +547,16 @@ impl App {
         self.send(out, Command::LoadPreset(preset));
     }
 
-    /// `B`: the next preset batch size, then typing one.
+    /// `B`: 1 000 → 10 000 → 100 000 → type one → 1 000 …
     fn next_batch_size(&mut self) {
-        match BATCH_SIZES.iter().find(|&&n| n > self.batch_rolls) {
-            Some(&n) => {
-                self.batch_rolls = n;
-                self.notice = Some(format!("batch size {} (B: next, then type one)", group(n)));
+        let at = BATCH_SIZES.iter().position(|&n| n == self.batch_rolls);
+        match at.map_or(Some(0), |i| (i + 1 < BATCH_SIZES.len()).then_some(i + 1)) {
+            Some(i) => {
+                self.batch_rolls = BATCH_SIZES[i];
+                self.notice = Some(format!(
+                    "batch size {} (B: the next size, after 100 000 type one)",
+                    group(self.batch_rolls)
+                ));
             }
             None => self.batch_editor = Some(Editor::default()),
         }

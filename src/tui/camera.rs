@@ -111,6 +111,87 @@ pub(crate) fn face_centre(corners: &[Vector3<f64>; 8], f: usize) -> Vector3<f64>
     FACE_CORNERS[f].iter().map(|&k| corners[k]).sum::<Vector3<f64>>() / 4.0
 }
 
+/// A point on the view plane, cm: across and up the screen.
+pub(crate) type Flat = (f64, f64);
+
+fn cross(o: Flat, a: Flat, b: Flat) -> f64 {
+    (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+}
+
+/// The convex hull of `points`, counter-clockwise (Andrew's monotone chain): the outline a
+/// convex body's projection covers.
+pub(crate) fn convex_hull(points: &[Flat]) -> Vec<Flat> {
+    let mut p: Vec<Flat> = points
+        .iter()
+        .copied()
+        .filter(|q| q.0.is_finite() && q.1.is_finite())
+        .collect();
+    p.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    p.dedup();
+    if p.len() < 3 {
+        return p;
+    }
+    let mut hull: Vec<Flat> = Vec::with_capacity(2 * p.len());
+    // The lower chain left to right, then the upper chain right to left.
+    let order: Vec<Flat> = p.iter().chain(p.iter().rev()).copied().collect();
+    for (k, chain) in order.chunks(p.len()).enumerate() {
+        let start = hull.len();
+        for &q in chain {
+            while hull.len() >= start + 2 && cross(hull[hull.len() - 2], hull[hull.len() - 1], q) <= 0.0 {
+                hull.pop();
+            }
+            hull.push(q);
+        }
+        if k < 2 {
+            hull.pop();
+        }
+    }
+    hull
+}
+
+/// Whether `p` lies inside the counter-clockwise convex polygon `hull` (or on its outline).
+pub(crate) fn inside(hull: &[Flat], p: Flat) -> bool {
+    hull.len() >= 3 && (0..hull.len()).all(|i| cross(hull[i], hull[(i + 1) % hull.len()], p) >= 0.0)
+}
+
+/// The parts of the segment `a`–`b` outside the counter-clockwise convex polygon `hull`
+/// (Cyrus–Beck clipping): what a line behind an opaque convex body still shows.
+pub(crate) fn outside_parts(hull: &[Flat], a: Flat, b: Flat) -> Vec<(Flat, Flat)> {
+    if hull.len() < 3 {
+        return vec![(a, b)];
+    }
+    let d = (b.0 - a.0, b.1 - a.1);
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for i in 0..hull.len() {
+        let (v, w) = (hull[i], hull[(i + 1) % hull.len()]);
+        let e = (w.0 - v.0, w.1 - v.1);
+        // Left of the edge (inside) where f(t) = start + t·rate ≥ 0.
+        let start = e.0 * (a.1 - v.1) - e.1 * (a.0 - v.0);
+        let rate = e.0 * d.1 - e.1 * d.0;
+        if rate == 0.0 {
+            if start < 0.0 {
+                return vec![(a, b)];
+            }
+        } else if rate > 0.0 {
+            t0 = t0.max(-start / rate);
+        } else {
+            t1 = t1.min(-start / rate);
+        }
+    }
+    if t0 >= t1 {
+        return vec![(a, b)];
+    }
+    let at = |t: f64| (a.0 + t * d.0, a.1 + t * d.1);
+    let mut parts = Vec::with_capacity(2);
+    if t0 > 0.0 {
+        parts.push((a, at(t0)));
+    }
+    if t1 < 1.0 {
+        parts.push((at(t1), b));
+    }
+    parts
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -145,5 +226,20 @@ mod tests {
             p.x.abs() < 1e-12 && p.y.abs() < 1e-12,
             "the focus' foot is the screen origin"
         );
+    }
+
+    #[test]
+    fn a_square_hides_the_middle_of_a_line_through_it() {
+        let square = convex_hull(&[(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.5)]);
+        assert_eq!(square.len(), 4, "the inner point is not on the hull: {square:?}");
+        assert!(inside(&square, (0.5, 0.5)) && !inside(&square, (1.5, 0.5)));
+        let parts = outside_parts(&square, (-1.0, 0.5), (2.0, 0.5));
+        assert_eq!(parts, vec![((-1.0, 0.5), (0.0, 0.5)), ((1.0, 0.5), (2.0, 0.5))]);
+        assert!(
+            outside_parts(&square, (0.2, 0.2), (0.8, 0.7)).is_empty(),
+            "wholly behind"
+        );
+        let missing = ((-1.0, 3.0), (2.0, 3.0));
+        assert_eq!(outside_parts(&square, missing.0, missing.1), vec![missing]);
     }
 }

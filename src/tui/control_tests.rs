@@ -215,10 +215,13 @@ fn the_batch_size_is_chosen_or_typed() {
     }
     s.key(KeyCode::Enter);
     assert_eq!(s.app.batch_rolls, 2_500);
+    assert!(screen(&s.app, 120, 36).contains("b batch 2 500"));
     s.key(KeyCode::Char('b'));
     assert_eq!(s.app.batch.map(|b| b.total), Some(2_500));
     s.key(KeyCode::Char('b'));
-    // From a typed size B goes on to the next size of the ladder.
+    // After a typed size the ladder starts again.
+    s.key(KeyCode::Char('B'));
+    assert_eq!(s.app.batch_rolls, 1_000);
     s.key(KeyCode::Char('B'));
     assert_eq!(s.app.batch_rolls, 10_000);
     let mut s = start();
@@ -226,9 +229,8 @@ fn the_batch_size_is_chosen_or_typed() {
     s.key(KeyCode::Char('B'));
     s.key(KeyCode::Esc);
     assert_eq!(s.app.batch_rolls, 100_000, "Esc keeps the size");
-    s.app.batch_rolls = 500;
     s.key(KeyCode::Char('B'));
-    assert_eq!(s.app.batch_rolls, 1_000);
+    assert_eq!(s.app.mode(), Mode::EditingValue, "from the largest, B types one");
 }
 
 #[test]
@@ -266,11 +268,21 @@ fn slow_motion_classroom_opens_slowed_down_with_its_arrows() {
     assert_eq!(s.app.live.speed.label(), "1/10×");
     assert!(s.app.vectors);
     assert!(screen(&s.app, 120, 36).contains("speed 1/10×"));
-    // Loading it over another preset applies its view too.
+    // Loading it over another preset applies its view too, and a preset without a view
+    // opens as the explorer does: at 1×, without arrows or twin, the theme kept.
     let mut s = start();
+    s.key(KeyCode::Char('t'));
     s.command(Command::LoadPreset(Box::new(preset)));
     assert_eq!(s.app.speed.label(), "1/10×");
     assert!(s.app.vectors);
+    s.key(KeyCode::Char('T'));
+    s.key(KeyCode::Char('a'));
+    s.command(Command::LoadPreset(Box::default()));
+    assert_eq!(s.app.speed.label(), "1×");
+    assert_eq!(s.engine.speed().label(), "1×");
+    assert!(!s.app.vectors && !s.app.twin && s.app.live.twin.is_none());
+    assert_eq!(s.app.camera, super::camera::Camera::default());
+    assert_eq!(s.app.theme.palette, super::theme::Palette::Light);
 }
 
 #[test]

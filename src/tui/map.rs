@@ -12,7 +12,10 @@ use super::format::fmt_num;
 use super::param::Param;
 use super::render::{render_header, render_too_small};
 use crate::experiment::basin::node_setup;
-use crate::experiment::plot::{cell_colour, time_range, write_image};
+use crate::experiment::ending::Ending;
+use crate::experiment::plot::{
+    INFERRED_WORDS, SIZE, cell_colour, map_record, time_range, write_recorded_image,
+};
 use crate::experiment::{BasinMap, Cell, Layer};
 use crate::output::{Output, free_stem};
 use crate::physics::{InitialCondition, Params, Status, registry};
@@ -297,14 +300,20 @@ pub(crate) fn export_if_asked(app: &mut App, dir: &Path) {
     if !std::mem::take(&mut app.map.export_asked) {
         return;
     }
-    let Some(map) = app.map.map() else {
+    let (Some(update), Some(map)) = (&app.map.shown, app.map.map()) else {
         app.notice = Some("no map to export yet".to_string());
         return;
     };
     let path = dir.join(format!("{}.png", free_stem(dir, "basin-map", &["png"])));
+    // The caption and the PNG's text chunks say which setup every cell started from.
+    let record = map_record(
+        map,
+        app.map.layer,
+        Some((&app.preset.name, &update.params, &update.initial)),
+    );
     let written = Output::check(&path, &["png"], false)
         .map_err(crate::experiment::Error::from)
-        .and_then(|out| write_image(map, app.map.layer, &out));
+        .and_then(|out| write_recorded_image(map, app.map.layer, &record, SIZE, &out));
     app.notice = Some(match written {
         Ok(()) if map.complete => format!("basin map saved to {}", path.display()),
         Ok(()) => format!("partial basin map saved to {}", path.display()),
@@ -323,12 +332,14 @@ pub(crate) fn terminal_colour(app: &App, cell: Option<&Cell>, times: Option<(f64
     }
 }
 
-/// Without colour a character shows its upper cell: the face digit, or a shade of settle time.
+/// Without colour a character shows its upper cell: the face digit, or a shade of settle
+/// time (`~` where the time was filled in, not rolled).
 fn monochrome_symbol(layer: Layer, cell: Option<&Cell>, times: Option<(f64, f64)>) -> char {
     let Some(c) = cell else { return ' ' };
     match (c.outcome.status, c.outcome.face, layer) {
         (Status::Timeout, ..) => '?',
         (Status::Unstable, ..) => '!',
+        (Status::Settled, _, Layer::SettleTime) if !c.sampled => '~',
         (Status::Settled, None, _) => '·',
         (Status::Settled, Some(f), Layer::Face) => char::from(b'0' + f),
         (Status::Settled, Some(_), Layer::SettleTime) => {
@@ -578,7 +589,7 @@ fn cursor_lines(app: &App) -> Vec<Line<'static>> {
     let (i, j) = m.cursor;
     let rolled = match m.map().and_then(|map| map.cell(i, j)) {
         Some(c) if c.sampled => " · rolled",
-        Some(_) => " · filled in",
+        Some(_) => " · inferred",
         None => "",
     };
     let mut lines = vec![Line::styled(
@@ -603,17 +614,23 @@ fn cursor_lines(app: &App) -> Vec<Line<'static>> {
     )));
     match map.cell(i, j) {
         Some(c) => {
-            let o_ = c.outcome;
-            let (end, style) = match (o_.status, o_.face) {
-                (Status::Settled, Some(f)) => (format!("face {f}"), t.good()),
-                (Status::Settled, None) => ("no face up".to_string(), t.caution()),
-                (Status::Timeout, _) => ("did not settle".to_string(), t.caution()),
-                (Status::Unstable, _) => ("unstable".to_string(), t.danger()),
+            let ending = Ending::of(&c.outcome);
+            let style = match ending {
+                Ending::Face(_) => t.good(),
+                Ending::Unstable => t.danger(),
+                _ => t.caution(),
+            };
+            let how = if c.sampled {
+                format!(" after {:.3} s (from {})", c.outcome.time_s, c.start_face)
+            } else {
+                // Filled in from its block's corners, which all ended so: the time of a
+                // roll nobody ran is not known.
+                " like its block's rolled corners; time not known".to_string()
             };
             lines.push(Line::from(vec![
                 Span::raw("   "),
-                Span::styled(end, style),
-                Span::raw(format!(" after {:.3} s (from {})", o_.time_s, c.start_face)),
+                Span::styled(ending.words(), style),
+                Span::raw(how),
             ]));
         }
         None => lines.push(Line::raw("   not computed yet")),
@@ -660,12 +677,18 @@ fn legend_lines(app: &App) -> Vec<Line<'static>> {
         start_face: 1,
         sampled: true,
     };
+    let (without, unsettled, unstable) = (
+        Ending::WithoutFace.name(),
+        Ending::DidNotSettle.name(),
+        Ending::Unstable.name(),
+    );
     if !app.theme.colour {
         lines.push(Line::raw(match m.layer {
-            Layer::Face => "   no colour: digits 1-6 show the face up",
-            Layer::SettleTime => "   no colour: ░▒▓█ longer settle times",
+            Layer::Face => "   no colour: digits 1-6 show the face up".to_string(),
+            Layer::SettleTime => format!("   no colour: ░▒▓█ longer settle times, ~ {INFERRED_WORDS}"),
         }));
-        lines.push(Line::raw("   · no face  ? did not settle  ! unstable"));
+        lines.push(Line::raw(format!("   · {without}")));
+        lines.push(Line::raw(format!("   ? {unsettled}  ! {unstable}")));
         return lines;
     }
     match m.layer {
@@ -695,14 +718,29 @@ fn legend_lines(app: &App) -> Vec<Line<'static>> {
             lines.push(Line::from(bar));
         }
     }
+    if m.layer == Layer::SettleTime {
+        let filled = Cell {
+            sampled: false,
+            ..cell(Status::Settled, Some(1), 0.0)
+        };
+        lines.push(Line::from(vec![
+            Span::raw("  "),
+            swatch(Some(filled), None),
+            Span::raw(INFERRED_WORDS),
+        ]));
+    } else {
+        lines.push(Line::from(vec![
+            Span::raw("  "),
+            swatch(Some(cell(Status::Settled, None, 0.0)), None),
+            Span::raw(without),
+        ]));
+    }
     lines.push(Line::from(vec![
         Span::raw("  "),
-        swatch(Some(cell(Status::Settled, None, 0.0)), None),
-        Span::raw("no face "),
         swatch(Some(cell(Status::Timeout, None, 0.0)), None),
-        Span::raw("not settled "),
+        Span::raw(format!("{unsettled} ")),
         swatch(Some(cell(Status::Unstable, None, 0.0)), None),
-        Span::raw("unstable"),
+        Span::raw(unstable),
     ]));
     lines
 }

@@ -33,7 +33,7 @@ fn press(app: &mut App, code: KeyCode) -> Vec<Command> {
 }
 
 /// The map the app asked for last, at [`CELLS`], as the worker would compute it.
-fn computed(app: &App) -> MapUpdate {
+pub(crate) fn computed(app: &App) -> MapUpdate {
     let (request, params, initial) = app.map.requested.expect("a map was requested");
     let mut x = request.x;
     let mut y = request.y;
@@ -55,7 +55,7 @@ fn computed(app: &App) -> MapUpdate {
 }
 
 /// The die view's scene, switched to the map screen, with the map in and the cursor moved.
-fn map_scene(theme: Theme) -> Scene {
+pub(crate) fn map_scene(theme: Theme) -> Scene {
     let mut s = Scene::new(&spun_preset(), theme);
     let sent = press(&mut s.app, KeyCode::Tab);
     assert!(matches!(sent[..], [Command::MapStart(_)]), "{sent:?}");

@@ -4,6 +4,7 @@
 pub(crate) mod app;
 pub(crate) mod camera;
 mod dialogs;
+mod die;
 mod footer;
 pub(crate) mod format;
 mod help;
@@ -34,3 +35,6 @@ mod tests;
 
 #[cfg(test)]
 mod map_tests;
+
+#[cfg(test)]
+mod view_tests;

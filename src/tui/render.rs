@@ -2,7 +2,7 @@
 //! the physics and never reads a clock.
 
 use super::app::{App, Drawing};
-use super::camera::{EDGES, FACE_CORNERS, face_centre, face_normal};
+pub(crate) use super::die::render_die;
 use super::footer::{render_footer, render_help};
 use super::format::{fmt_num, fmt_range};
 use super::layout::{MIN_HEIGHT, MIN_WIDTH, param_window, screen_layout};
@@ -10,30 +10,32 @@ use super::param::all;
 use crate::physics::stopping::why_it_cannot_settle;
 use crate::physics::{Stability, Status, UnstableReason};
 use crate::worker::{EnergySample, Phase, RollKind};
-use nalgebra::Vector3;
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Modifier, Style};
 use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::canvas::{Canvas, Context, Line as CanvasLine};
-use ratatui::widgets::{Axis, Block, Chart, Clear, Dataset, GraphType, LineGauge, Paragraph, Wrap};
+use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, LineGauge, Paragraph, Wrap};
 
 /// Share of the tightest stability limit from which the step is worth watching; past the
 /// limit itself (1) a roll is predicted unstable (docs/model.md, "Stability").
 pub(crate) const STABILITY_CAUTION: f64 = 0.8;
 pub(crate) const STABILITY_DANGER: f64 = 1.0;
 
-/// Draws the whole screen.
+/// Draws the whole screen, then paints the theme over every cell of it, whichever screen.
 pub fn render(app: &App, frame: &mut Frame) {
     if app.view == super::map::View::Map {
         super::map::render_map_screen(app, frame);
-        return;
+    } else {
+        render_die_screen(app, frame);
     }
+    app.theme.paint(frame.buffer_mut());
+}
+
+fn render_die_screen(app: &App, frame: &mut Frame) {
     let area = frame.area();
     let Some(areas) = screen_layout(area) else {
         render_too_small(area, frame);
-        app.theme.paint(frame.buffer_mut());
         return;
     };
     render_header(app, areas.header, frame);
@@ -52,7 +54,6 @@ pub fn render(app: &App, frame: &mut Frame) {
         render_help(app, area, frame);
     }
     super::dialogs::render(app, area, frame);
-    app.theme.paint(frame.buffer_mut());
 }
 
 pub(crate) fn render_too_small(area: Rect, frame: &mut Frame) {
@@ -113,7 +114,7 @@ pub(crate) fn stability_readout(app: &App, width: u16) -> Line<'static> {
 
 /// `text` broken at spaces into lines of at most `width` characters (a longer word gets a
 /// line of its own).
-fn wrap_words(text: &str, width: usize) -> Vec<String> {
+pub(crate) fn wrap_words(text: &str, width: usize) -> Vec<String> {
     let mut lines = Vec::new();
     let mut line = String::new();
     for word in text.split_whitespace() {
@@ -133,7 +134,7 @@ fn wrap_words(text: &str, width: usize) -> Vec<String> {
 }
 
 /// Why the roll on screen ended unstable, or could not settle on its table, when it did.
-fn end_reason(app: &App) -> Option<(String, Style)> {
+pub(crate) fn end_reason(app: &App) -> Option<(String, Style)> {
     match app.live.phase {
         Phase::Ended(o) if o.status == Status::Unstable => Some((
             format!(
@@ -283,6 +284,89 @@ pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
     }
 }
 
+/// Rolls below which some face's expected count n/6 is under 5, where the χ² test's
+/// p-value is not to be trusted.
+pub(crate) const RELIABLE_ROLLS: u64 = 30;
+
+/// " n 601  χ² 7.86  p 0.164": the face count and the fairness test, its p-value marked
+/// while too few rolls back it and while a batch is still adding rolls.
+fn fairness(app: &App) -> Vec<Span<'static>> {
+    let t = &app.theme;
+    let tally = &app.table.tally;
+    let n = tally.total();
+    let mut spans = vec![Span::raw(format!(" n {n}"))];
+    let end = Span::raw(" ");
+    match (tally.chi_square(), tally.p_value()) {
+        (Some(_), Some(_)) if n < RELIABLE_ROLLS => {
+            spans.push(Span::raw("  p "));
+            spans.push(Span::styled(
+                format!("unreliable below n {RELIABLE_ROLLS}"),
+                t.caution(),
+            ));
+        }
+        (Some(chi2), Some(p)) => {
+            spans.push(Span::raw(format!("  χ² {chi2:.2}  p ")));
+            if app.batch.is_some() {
+                spans.push(Span::raw(format!("{} so far", fmt_num(p))));
+            } else {
+                let style = if p < 0.01 { t.caution() } else { Style::new() };
+                spans.push(Span::styled(fmt_num(p), style));
+            }
+        }
+        _ => spans.push(Span::raw("  χ² –  p –")),
+    }
+    spans.push(end);
+    spans
+}
+
+/// The rolls that ended without a face, as "words count" items (only those that occurred).
+fn faceless_items(app: &App) -> Vec<(String, Style)> {
+    use crate::experiment::ending::Ending;
+    let table = &app.table;
+    let mut items = Vec::new();
+    if table.did_not_settle > 0 {
+        // The table counts both kinds together.
+        items.push((
+            format!(
+                "{} or {} {}",
+                Ending::DidNotSettle.name(),
+                Ending::WithoutFace.name(),
+                table.did_not_settle
+            ),
+            app.theme.caution(),
+        ));
+    }
+    if table.unstable > 0 {
+        items.push((
+            format!("{} {}", Ending::Unstable.name(), table.unstable),
+            app.theme.danger(),
+        ));
+    }
+    items
+}
+
+/// The items broken into lines of `width` at spaces, every item whole (a long one wraps
+/// onto lines of its own, never cut at the panel's edge).
+fn item_lines(items: &[(String, Style)], width: usize) -> Vec<Line<'static>> {
+    let mut lines: Vec<Line<'static>> = Vec::new();
+    let mut used = usize::MAX;
+    for (text, style) in items {
+        let len = text.chars().count() + 1;
+        if used != usize::MAX && used + 2 + len <= width {
+            let line = lines.last_mut().expect("a line");
+            line.spans.push(Span::raw(" ·"));
+            line.spans.push(Span::styled(format!(" {text}"), *style));
+            used += 2 + len;
+            continue;
+        }
+        for part in wrap_words(text, width.saturating_sub(1).max(1)) {
+            used = part.chars().count() + 1;
+            lines.push(Line::from(Span::styled(format!(" {part}"), *style)));
+        }
+    }
+    lines
+}
+
 pub(crate) fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let table = &app.table;
@@ -293,21 +377,34 @@ pub(crate) fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
             t.caution(),
         ));
     }
-    let block = Block::bordered().title(Line::from(title));
+    let mut block = Block::bordered().title(Line::from(title));
     let body = block.inner(area);
-    frame.render_widget(block, area);
     if body.height == 0 || body.width < 20 {
+        frame.render_widget(block, area);
         return;
     }
-    let bar_width = (body.width as usize).saturating_sub(21).max(2);
+    let width = body.width as usize;
+    let faceless = item_lines(&faceless_items(app), width);
+    // The six faces and every other ending always show; the heading row gives way first,
+    // then the fairness line moves into the bottom border.
+    let needed = 6 + faceless.len() as u16;
+    let header = needed + 2 <= body.height;
+    let fairness_inside = needed < body.height;
+    if !fairness_inside {
+        block = block.title_bottom(Line::from(fairness(app)));
+    }
+    frame.render_widget(block, area);
+    let bar_width = width.saturating_sub(21).max(2);
     let fair_at = bar_width / 2;
     let mut lines = Vec::new();
-    // The bar spans 0 to 1/3, so a fair face reaches the dotted mark in the middle.
-    let mark = format!("{}┆ 1/6 fair", " ".repeat(fair_at));
-    lines.push(Line::from(vec![
-        Span::styled(" face  count  share", t.heading()),
-        Span::raw(mark),
-    ]));
+    if header {
+        // The bar spans 0 to 1/3, so a fair face reaches the dotted mark in the middle.
+        let mark = format!("{}┆ 1/6 fair", " ".repeat(fair_at));
+        lines.push(Line::from(vec![
+            Span::styled(" face  count  share", t.heading()),
+            Span::raw(mark),
+        ]));
+    }
     let n = table.tally.total();
     for face in 1..=6u8 {
         let count = table.tally.counts[face as usize - 1];
@@ -337,22 +434,10 @@ pub(crate) fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
             Span::styled(over, t.bar()),
         ]));
     }
-    let mut summary = vec![Span::raw(format!(" n {n}"))];
-    match (table.tally.chi_square(), table.tally.p_value()) {
-        (Some(chi2), Some(p)) => {
-            summary.push(Span::raw(format!("  χ² {chi2:.2}  p ")));
-            let style = if p < 0.01 { t.caution() } else { Style::new() };
-            summary.push(Span::styled(fmt_num(p), style));
-        }
-        _ => summary.push(Span::raw("  χ² –  p –")),
+    if fairness_inside {
+        lines.push(Line::from(fairness(app)));
     }
-    if table.did_not_settle > 0 {
-        summary.push(Span::raw(format!("  no face {}", table.did_not_settle)));
-    }
-    if table.unstable > 0 {
-        summary.push(Span::styled(format!("  unstable {}", table.unstable), t.danger()));
-    }
-    lines.push(Line::from(summary));
+    lines.extend(faceless);
     let mut rest = body.height.saturating_sub(lines.len() as u16);
     let text_area = Rect {
         height: body.height.min(lines.len() as u16),
@@ -376,20 +461,16 @@ pub(crate) fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
         y += 1;
         rest -= 1;
     }
-    if rest > 0 && !table.last.is_empty() {
+    if rest > 1 && !table.last.is_empty() {
         let mut last = vec![Line::styled(
-            " last rolls: spin ω (rad/s) → face, steps",
+            " last rolls: spin ω (rad/s) → ending, steps",
             t.heading(),
         )];
         for r in table.last.iter().take(rest as usize - 1) {
             let w = r.initial.angular_velocity;
-            let end = match (r.outcome.status, r.outcome.face) {
-                (Status::Settled, Some(f)) => format!("→ {f}"),
-                (Status::Unstable, _) => "→ unstable".to_string(),
-                _ => "→ no face".to_string(),
-            };
+            let end = crate::experiment::ending::Ending::of(&r.outcome).words();
             last.push(Line::from(format!(
-                " #{:<5} ({:>4.0},{:>4.0},{:>4.0}) {end} {:>6}",
+                " #{:<5} ({:>4.0},{:>4.0},{:>4.0}) → {end} {:>6}",
                 r.id, w[0], w[1], w[2], r.outcome.steps
             )));
         }
@@ -400,185 +481,6 @@ pub(crate) fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
                 height: rest,
                 ..body
             },
-        );
-    }
-}
-
-pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
-    let t = &app.theme;
-    let die = &app.live.die;
-    let half = app.live.params.die.half_size;
-    let lowest = die.corners.iter().map(|c| c.z).fold(f64::INFINITY, f64::min);
-    let mut title = vec![
-        Span::styled(" die ", t.heading()),
-        Span::raw(format!(
-            "· face up {} · lowest corner {:.2} cm ",
-            die.face_up, lowest
-        )),
-    ];
-    if let Some(twin) = &app.live.twin {
-        title.push(Span::styled(
-            format!("· twin face up {} ", twin.die.face_up),
-            Style::new().fg(t.ghost()),
-        ));
-    }
-    let title = Line::from(title);
-    let block = Block::bordered().title(title);
-    let body = block.inner(area);
-    frame.render_widget(block, area);
-    if body.width < 2 || body.height < 2 {
-        return;
-    }
-    let cam = app.camera;
-    let width = cam.width_cm(half);
-    let height = width * 2.0 * body.height as f64 / body.width as f64;
-    let focus = Vector3::new(die.centre.x, die.centre.y, 0.0);
-    let centre_y = cam.project(&die.centre, &focus).y.max(0.35 * height);
-    let (x_lo, x_hi) = (-width / 2.0, width / 2.0);
-    let (y_lo, y_hi) = (centre_y - height / 2.0, centre_y + height / 2.0);
-    let marker = match app.drawing {
-        Drawing::Braille => Marker::Braille,
-        Drawing::Ascii => Marker::Custom('*'),
-    };
-    let contact: [bool; 8] = std::array::from_fn(|k| die.forces[k].depth > 0.0);
-    let canvas = Canvas::default()
-        .marker(marker)
-        .x_bounds([x_lo, x_hi])
-        .y_bounds([y_lo, y_hi])
-        .paint(|ctx| {
-            draw_ground(ctx, app, &focus, width, half);
-            if let Some(twin) = &app.live.twin {
-                super::twin::draw_ghost(ctx, app, &cam, &focus, &twin.die);
-            }
-            ctx.layer();
-            let foot = |p: &Vector3<f64>| Vector3::new(p.x, p.y, 0.0);
-            for (a, b) in EDGES {
-                line3(
-                    ctx,
-                    &cam,
-                    &focus,
-                    &foot(&die.corners[a]),
-                    &foot(&die.corners[b]),
-                    t.shadow(),
-                );
-            }
-            if lowest > 0.02 * half {
-                let low = die
-                    .corners
-                    .iter()
-                    .min_by(|p, q| p.z.total_cmp(&q.z))
-                    .copied()
-                    .unwrap_or(die.centre);
-                line3(ctx, &cam, &focus, &low, &foot(&low), t.shadow());
-            }
-            ctx.layer();
-            let visible: [bool; 6] =
-                std::array::from_fn(|f| cam.facing(&face_normal(&die.corners, &die.centre, f)) > 0.0);
-            for (a, b) in EDGES {
-                let seen = (0..6)
-                    .any(|f| visible[f] && FACE_CORNERS[f].contains(&a) && FACE_CORNERS[f].contains(&b));
-                let touching = contact[a] || contact[b];
-                if seen || touching {
-                    let colour = if touching { t.contact_colour() } else { t.die() };
-                    line3(ctx, &cam, &focus, &die.corners[a], &die.corners[b], colour);
-                }
-            }
-            for f in 0..6 {
-                let facing = cam.facing(&face_normal(&die.corners, &die.centre, f));
-                if facing > 0.3 {
-                    let c = cam.project(&face_centre(&die.corners, f), &focus);
-                    let style = if f as u8 + 1 == die.face_up {
-                        t.heading().add_modifier(Modifier::REVERSED)
-                    } else {
-                        t.heading()
-                    };
-                    ctx.print(c.x, c.y, Span::styled(format!("{}", f + 1), style));
-                }
-            }
-            let dot = if app.drawing == Drawing::Ascii { "@" } else { "●" };
-            for k in (0..8).filter(|&k| contact[k]) {
-                let c = cam.project(&die.corners[k], &focus);
-                ctx.print(c.x, c.y, Span::styled(dot, t.contact()));
-            }
-            if app.vectors {
-                super::vectors::draw(ctx, app, &cam, &focus, die);
-            }
-            ctx.print(x_lo, y_hi, Span::raw(format!("centre {:.2} cm up", die.centre.z)));
-        });
-    frame.render_widget(canvas, body);
-    if let Some((reason, style)) = end_reason(app) {
-        let lines: Vec<Line> = wrap_words(&reason, body.width as usize)
-            .into_iter()
-            .map(|l| Line::styled(l, style))
-            .collect();
-        let top = Rect {
-            height: (lines.len() as u16).min(body.height),
-            ..body
-        };
-        frame.render_widget(Clear, top);
-        frame.render_widget(Paragraph::new(lines), top);
-    }
-    if app.vectors && body.height >= 6 {
-        let legend = Rect {
-            y: body.bottom() - 2,
-            height: 2,
-            ..body
-        };
-        frame.render_widget(Paragraph::new(super::vectors::legend(app, body.width)), legend);
-    }
-}
-
-pub(crate) fn line3(
-    ctx: &mut Context,
-    cam: &super::camera::Camera,
-    focus: &Vector3<f64>,
-    a: &Vector3<f64>,
-    b: &Vector3<f64>,
-    colour: ratatui::style::Color,
-) {
-    let (p, q) = (cam.project(a, focus), cam.project(b, focus));
-    if [p.x, p.y, q.x, q.y].iter().all(|v| v.is_finite()) {
-        ctx.draw(&CanvasLine::new(p.x, p.y, q.x, q.y, colour));
-    }
-}
-
-/// A patch of floor tiles around the die, fixed to the world so the die's travel shows
-/// against it; small enough that the die stays the thing to look at.
-fn draw_ground(ctx: &mut Context, app: &App, focus: &Vector3<f64>, view_width: f64, half: f64) {
-    let side = 2.0 * half;
-    let spacing = 2.0 * side * (view_width / (6.0 * side)).round().max(1.0);
-    let reach = 0.45 * view_width;
-    let colour = app.theme.ground();
-    let cells = |c: f64| {
-        (
-            ((c - reach) / spacing).ceil() as i64,
-            ((c + reach) / spacing).floor() as i64,
-        )
-    };
-    let ((x0, x1), (y0, y1)) = (cells(focus.x), cells(focus.y));
-    let (xa, xb) = (focus.x - reach, focus.x + reach);
-    let (ya, yb) = (focus.y - reach, focus.y + reach);
-    let cam = app.camera;
-    for i in x0..=x1 {
-        let x = i as f64 * spacing;
-        line3(
-            ctx,
-            &cam,
-            focus,
-            &Vector3::new(x, ya, 0.0),
-            &Vector3::new(x, yb, 0.0),
-            colour,
-        );
-    }
-    for j in y0..=y1 {
-        let y = j as f64 * spacing;
-        line3(
-            ctx,
-            &cam,
-            focus,
-            &Vector3::new(xa, y, 0.0),
-            &Vector3::new(xb, y, 0.0),
-            colour,
         );
     }
 }
@@ -618,8 +520,11 @@ fn thinned(
 }
 
 /// Short names of the energy terms: total, translational, rotational, gravitational, elastic
-/// (the order of [`super::theme::Theme::energy_series`]).
+/// (the order of [`super::theme::Theme::energy_series`], and the ledger's words).
 const LEGEND: [&str; 5] = ["total", "transl", "rot", "grav", "elastic"];
+
+/// Without colour each line is drawn with its own character, so the five stay apart.
+const PATTERNS: [char; 5] = ['#', '+', 'x', 'o', '*'];
 
 /// One energy term of a sample, erg.
 type Term = fn(&EnergySample) -> f64;
@@ -627,20 +532,107 @@ type Term = fn(&EnergySample) -> f64;
 /// erg: the floor of the log plot (energies below, including negative gravity, sit on it).
 const LOG_FLOOR: f64 = 1.0;
 
+/// The energy plot's legend: each term's line sample and name, then the stop threshold's.
+fn energy_legend(app: &App) -> Vec<Span<'static>> {
+    let colours = app.theme.energy_series();
+    let mut items: Vec<Span<'static>> = LEGEND
+        .iter()
+        .zip(colours)
+        .zip(PATTERNS)
+        .map(|((name, colour), pattern)| {
+            let sample = if app.theme.colour { '━' } else { pattern };
+            Span::styled(format!("{sample}{name}"), Style::new().fg(colour))
+        })
+        .collect();
+    let dots = if app.drawing == Drawing::Ascii {
+        "--"
+    } else {
+        "••"
+    };
+    items.push(Span::raw(format!("{dots}stop")));
+    items
+}
+
+/// The legend's items packed into lines of at most `width` characters, one space apart.
+fn pack(items: Vec<Span<'static>>, width: usize) -> Vec<Line<'static>> {
+    let mut lines: Vec<Vec<Span<'static>>> = vec![Vec::new()];
+    let mut used = 0;
+    for item in items {
+        let w = item.width();
+        let line = lines.last_mut().expect("one line at least");
+        if !line.is_empty() && used + 1 + w > width {
+            lines.push(vec![item]);
+            used = w;
+        } else {
+            if !line.is_empty() {
+                line.push(Span::raw(" "));
+                used += 1;
+            }
+            used += w;
+            line.push(item);
+        }
+    }
+    lines.into_iter().map(Line::from).collect()
+}
+
+/// Axis ticks that read well: bounds and every tick a multiple of one step of 1, 2 or 5 × 10ⁿ,
+/// at most `most` labels, and the top at least `top`.
+pub(crate) fn nice_ticks(bottom: f64, top: f64, most: usize) -> (f64, f64, Vec<f64>) {
+    let most = most.max(2);
+    let span = (top - bottom).max(f64::MIN_POSITIVE);
+    let mut step = 10f64.powf((span / (most - 1) as f64).log10().floor());
+    loop {
+        for m in [1.0, 2.0, 5.0] {
+            let s = step * m;
+            let (lo, hi) = ((bottom / s).floor() * s, (top / s - 1e-9).ceil() * s);
+            let n = ((hi - lo) / s).round() as usize + 1;
+            if n <= most {
+                let ticks = (0..n)
+                    .map(|k| lo + k as f64 * s)
+                    .map(|v| if v.abs() < s * 1e-9 { 0.0 } else { v })
+                    .collect();
+                return (lo, hi, ticks);
+            }
+        }
+        step *= 10.0;
+    }
+}
+
 pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let scale = if app.log_scale { "log" } else { "linear" };
     let colours = t.energy_series();
-    // The legend rides in the title, so it never hides an impact spike.
-    let mut title = vec![
+    let border = area.width.saturating_sub(2) as usize;
+    // "(y)": the axis the scale applies to, where the title has room for it.
+    let axis = if 25 <= border { " (y)" } else { "" };
+    let heading = vec![
         Span::styled(" energy ", t.heading()),
-        Span::raw(format!("erg · {scale} (y) ")),
+        Span::raw(format!("erg · {scale}{axis} ")),
     ];
-    for (name, colour) in LEGEND.iter().zip(colours) {
-        title.push(Span::styled(format!("━{name} "), Style::new().fg(colour)));
+    let legend = energy_legend(app);
+    let legend_width: usize = legend.iter().map(Span::width).sum::<usize>() + legend.len() - 1;
+    let heading_width: usize = heading.iter().map(Span::width).sum();
+    // The legend rides in the title or the bottom border when it fits there whole; else it
+    // takes the plot's top rows, and the y range grows so that no line runs under it.
+    let mut block = Block::bordered();
+    let mut inside: Vec<Line<'static>> = Vec::new();
+    if heading_width + legend_width < border {
+        let mut title = heading;
+        title.extend(pack(legend, border).into_iter().flat_map(|l| l.spans));
+        block = block.title(Line::from(title));
+    } else if legend_width <= border {
+        block = block
+            .title(Line::from(heading))
+            .title_bottom(Line::from(pack(legend, border).remove(0).spans).right_aligned());
+    } else {
+        block = block.title(Line::from(heading));
+        // Over the whole width, the y labels under it left out; the threshold's item only
+        // if it needs no line of its own (it is no energy term).
+        inside = pack(legend.clone(), border);
+        if inside.len() > pack(legend[..legend.len() - 1].to_vec(), border).len() {
+            inside = pack(legend[..legend.len() - 1].to_vec(), border);
+        }
     }
-    title.push(Span::raw("••stop "));
-    let block = Block::bordered().title(Line::from(title));
     let body = block.inner(area);
     if body.width < 12 || body.height < 4 {
         frame.render_widget(block, area);
@@ -663,8 +655,11 @@ pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
     let t_end = app.history.last().map_or(0.0, |s| s.time_s).max(app.live.time_s);
     let x_hi = nice_ceiling(t_end.max(0.1));
     let threshold = app.live.stop_threshold;
-    let stop_line = [(0.0, y_of(threshold)), (x_hi, y_of(threshold))];
-    let (mut lo, mut hi) = (y_of(threshold), y_of(threshold));
+    let (mut lo, mut hi) = if threshold.is_finite() {
+        (y_of(threshold), y_of(threshold))
+    } else {
+        (y_of(LOG_FLOOR), y_of(LOG_FLOOR))
+    };
     for s in &series {
         for &(_, v) in s {
             if v.is_finite() {
@@ -673,18 +668,45 @@ pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
             }
         }
     }
-    let (y_lo, y_hi) = if log {
-        (y_of(LOG_FLOOR), hi.max(y_of(LOG_FLOOR) + 1.0).ceil())
+    // Rows of the plot itself (the x axis and its labels take two), and how many of the
+    // top ones the legend covers.
+    let rows = body.height.saturating_sub(2).max(1) as f64;
+    let covered = (inside.len() as f64).min(rows - 1.0);
+    let most_labels = (rows as usize).div_ceil(2).clamp(2, 5);
+    let (y_lo, y_hi, ticks) = if log {
+        let bottom = y_of(LOG_FLOOR);
+        let top = bottom + (hi.max(bottom + 1.0) - bottom) * rows / (rows - covered);
+        // Whole decades, every one labelled or every second, third, …
+        let decades = (top - bottom).ceil().max(1.0) as usize;
+        let every = (1..=decades)
+            .find(|d| decades.div_ceil(*d) < most_labels)
+            .unwrap_or(decades);
+        let n = decades.div_ceil(every);
+        let top = bottom + (n * every) as f64;
+        (
+            bottom,
+            top,
+            (0..=n).map(|k| bottom + (k * every) as f64).collect::<Vec<_>>(),
+        )
     } else {
-        let floor = if lo < 0.0 { -nice_ceiling(-lo) } else { 0.0 };
-        (floor, nice_ceiling(hi.max(1.0) * 1.05))
+        // A die pressed into the table has a slightly negative potential energy: a floor
+        // below zero only when that is a visible share of the plot.
+        let floor = if lo < -0.05 * hi.max(1.0) { lo } else { 0.0 };
+        let top = floor + (hi.max(1.0) * 1.05 - floor) * rows / (rows - covered);
+        nice_ticks(floor, top, most_labels)
     };
-    let marker = app.drawing.line_marker();
+    let stop_line = [(0.0, y_of(threshold)), (x_hi, y_of(threshold))];
     let mut datasets: Vec<Dataset> = series
         .iter()
         .zip(LEGEND)
         .zip(colours)
-        .map(|((data, name), colour)| {
+        .zip(PATTERNS)
+        .map(|(((data, name), colour), pattern)| {
+            let marker = if t.colour {
+                app.drawing.line_marker()
+            } else {
+                Marker::Custom(pattern)
+            };
             Dataset::default()
                 .name(name)
                 .marker(marker)
@@ -693,19 +715,40 @@ pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
                 .data(data)
         })
         .collect();
-    datasets.push(
-        Dataset::default()
-            .name("stop")
-            .marker(if app.drawing == Drawing::Ascii {
-                Marker::Custom('-')
+    if threshold.is_finite() {
+        datasets.push(
+            Dataset::default()
+                .name("stop")
+                .marker(if app.drawing == Drawing::Ascii {
+                    Marker::Custom('-')
+                } else {
+                    Marker::Dot
+                })
+                .graph_type(GraphType::Line)
+                .style(Style::new().fg(t.threshold()))
+                .data(&stop_line),
+        );
+    }
+    let label = |v: f64| {
+        let s = if log { fmt_num(10f64.powf(v)) } else { fmt_num(v) };
+        format!("{s:>width$}", width = Y_LABEL_WIDTH as usize - 1)
+    };
+    // Labels sit evenly from the bottom row (first) to the top (last); those under the
+    // legend are left blank.
+    let plot_rows = rows as usize;
+    let n = ticks.len();
+    let labels: Vec<String> = ticks
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| {
+            let from_top = (plot_rows - 1) as f64 * (1.0 - i as f64 / (n - 1).max(1) as f64);
+            if (from_top.round() as usize) < inside.len() {
+                String::new()
             } else {
-                Marker::Dot
-            })
-            .graph_type(GraphType::Line)
-            .style(Style::new().fg(t.threshold()))
-            .data(&stop_line),
-    );
-    let label = |v: f64| if log { fmt_num(10f64.powf(v)) } else { fmt_num(v) };
+                label(v)
+            }
+        })
+        .collect();
     let chart = Chart::new(datasets)
         .block(block)
         .x_axis(
@@ -713,14 +756,20 @@ pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
                 .bounds([0.0, x_hi])
                 .labels(["0 s".to_string(), format!("{} s", fmt_num(x_hi))]),
         )
-        .y_axis(Axis::default().bounds([y_lo, y_hi]).labels([
-            label(y_lo),
-            label((y_lo + y_hi) / 2.0),
-            label(y_hi),
-        ]))
+        .y_axis(Axis::default().bounds([y_lo, y_hi]).labels(labels))
         .legend_position(None);
     frame.render_widget(chart, area);
+    if !inside.is_empty() {
+        let legend_area = Rect {
+            height: (inside.len() as u16).min(body.height),
+            ..body
+        };
+        frame.render_widget(Paragraph::new(inside), legend_area);
+    }
 }
+
+/// Characters the y axis's labels take ("200000" and a space).
+const Y_LABEL_WIDTH: u16 = 7;
 
 /// The next of 1, 2, 5 × 10ⁿ at or above `v` (axis ends that read well).
 fn nice_ceiling(v: f64) -> f64 {

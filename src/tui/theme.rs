@@ -155,7 +155,8 @@ impl Theme {
         Style::new().add_modifier(Modifier::REVERSED)
     }
 
-    /// A corner touching the ground (the authors drew those edges red).
+    /// A corner touching the ground (the authors drew those edges red); no arrow is red, so
+    /// the highlight is never mistaken for one.
     pub(crate) fn contact(&self) -> Style {
         if self.colour {
             Style::new().fg(self.ink(Color::Red)).add_modifier(Modifier::BOLD)
@@ -197,8 +198,9 @@ impl Theme {
         self.fg(Color::Blue)
     }
 
+    /// The floor tiles: grey, so that the green contact-force arrows stand out on them.
     pub(crate) fn ground(&self) -> Color {
-        self.ink(Color::Green)
+        self.ink(Color::DarkGray)
     }
 
     pub(crate) fn shadow(&self) -> Color {
@@ -221,9 +223,42 @@ impl Theme {
         .map(|c| self.ink(c))
     }
 
-    /// Arrow colours of ω, L, the centre-of-mass velocity and the contact forces.
+    /// Arrow colours of ω, L, the centre-of-mass velocity and the contact forces: none of
+    /// them the contact highlight's red.
     pub(crate) fn vector_colours(&self) -> [Color; 4] {
-        [Color::Cyan, Color::Magenta, Color::Blue, Color::Red].map(|c| self.ink(c))
+        [Color::Cyan, Color::Magenta, Color::Blue, Color::Green].map(|c| self.ink(c))
+    }
+
+    /// The background of a die face turned `facing` (0 edge-on … 1 head-on) to the viewer,
+    /// lit from the front, or `None` without colour. The face up is tinted blue, so the
+    /// class sees which face is winning from the back of the room.
+    pub(crate) fn face_fill(&self, facing: f64, up: bool) -> Option<Color> {
+        if !self.colour {
+            return None;
+        }
+        let f = facing.clamp(0.0, 1.0);
+        let (dim, bright) = match self.palette {
+            Palette::Dark => (55.0, 120.0),
+            Palette::Light => (175.0, 240.0),
+            Palette::Projector => (150.0, 230.0),
+        };
+        let g = dim + (bright - dim) * f;
+        let rgb =
+            |r: f64, g: f64, b: f64| Color::Rgb(r.round() as u8, g.round() as u8, b.round().min(255.0) as u8);
+        Some(if up {
+            rgb(0.7 * g, 0.85 * g, (1.35 * g).max(g + 30.0))
+        } else {
+            rgb(g, g, g)
+        })
+    }
+
+    /// The die's shadow on the table, on the painted (white) themes.
+    pub(crate) fn shadow_fill(&self) -> Option<Color> {
+        match (self.colour, self.palette) {
+            (true, Palette::Light) => Some(Color::Rgb(222, 222, 222)),
+            (true, Palette::Projector) => Some(Color::Rgb(205, 205, 205)),
+            _ => None,
+        }
     }
 
     /// The chaos twin's die, drawn as a ghost behind the first.

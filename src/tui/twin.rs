@@ -2,19 +2,15 @@
 //! the separation of the two on a log scale, and both outcomes. The worker steps both.
 
 use super::app::{App, Editor, Typed};
-use super::camera::{Camera, EDGES};
 use super::format::fmt_num;
-use super::render::line3;
 use crate::experiment::twin::EPSILON;
 use crate::physics::Status;
-use crate::worker::{Command, DieState, Phase};
-use nalgebra::Vector3;
+use crate::worker::{Command, Phase};
 use ratatui::Frame;
 use ratatui::crossterm::event::{KeyCode, KeyEvent};
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::canvas::Context;
 use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph};
 
 /// The ε a twin starts with: small enough to look like "the same throw", large enough that
@@ -80,16 +76,6 @@ pub(crate) fn on_editor_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>
             Err(e) => editor.error = Some(e),
         },
     }
-}
-
-/// The twin's die drawn as a ghost: its visible edges in the ghost colour, behind the die.
-pub(crate) fn draw_ghost(ctx: &mut Context, app: &App, cam: &Camera, focus: &Vector3<f64>, die: &DieState) {
-    let colour = app.theme.ghost();
-    for (a, b) in EDGES {
-        line3(ctx, cam, focus, &die.corners[a], &die.corners[b], colour);
-    }
-    let c = cam.project(&die.centre, focus);
-    ctx.print(c.x, c.y, Span::styled("twin", Style::new().fg(colour)));
 }
 
 /// log₁₀ of the smallest separation the plot shows (below it: rounding of doubles).

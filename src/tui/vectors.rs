@@ -6,13 +6,12 @@
 //! die's half size and `x₀` a natural unit for each quantity. Directions are exact.
 
 use super::app::App;
-use super::camera::Camera;
+use super::camera::Flat;
 use super::format::fmt_num;
 use crate::worker::DieState;
 use nalgebra::Vector3;
 use ratatui::style::{Color, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::canvas::{Context, Line as CanvasLine};
 
 /// What an arrow shows, in the legend's order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -78,7 +77,7 @@ pub(crate) fn arrow_length(magnitude: f64, reference: f64, half_size: f64) -> f6
 }
 
 /// dyn: a corner's contact force as a vector `(friction x, friction y, P)`.
-fn force_vector(f: &crate::physics::ContactForce) -> Vector3<f64> {
+pub(crate) fn force_vector(f: &crate::physics::ContactForce) -> Vector3<f64> {
     Vector3::new(f.friction[0], f.friction[1], f.normal + f.damping)
 }
 
@@ -87,63 +86,24 @@ fn total_force(die: &DieState) -> Vector3<f64> {
     die.forces.iter().map(force_vector).sum()
 }
 
-/// Draws every arrow of `die` on the canvas.
-pub(crate) fn draw(ctx: &mut Context, app: &App, cam: &Camera, focus: &Vector3<f64>, die: &DieState) {
-    let half = app.live.params.die.half_size;
-    let mut arrow = |kind: Arrow, from: Vector3<f64>, v: Vector3<f64>, label: bool| {
-        let length = arrow_length(v.norm(), kind.reference(app), half);
-        if length <= 0.0 {
-            return;
-        }
-        let tip = from + v.normalize() * length;
-        draw_arrow(ctx, cam, focus, &from, &tip, kind.colour(app), 0.2 * half);
-        if label {
-            let p = cam.project(&tip, focus);
-            ctx.print(
-                p.x,
-                p.y,
-                Span::styled(kind.symbol(), Style::new().fg(kind.colour(app))),
-            );
-        }
-    };
-    arrow(Arrow::AngularVelocity, die.centre, die.angular_velocity, true);
-    arrow(Arrow::AngularMomentum, die.centre, die.angular_momentum, true);
-    arrow(Arrow::Velocity, die.centre, die.velocity, true);
-    for (corner, f) in die.corners.iter().zip(&die.forces) {
-        if f.depth > 0.0 {
-            arrow(Arrow::ContactForce, *corner, force_vector(f), false);
-        }
-    }
-}
-
-/// A shaft and a two-stroke head, the head drawn in the screen plane so it always shows.
-fn draw_arrow(
-    ctx: &mut Context,
-    cam: &Camera,
-    focus: &Vector3<f64>,
-    from: &Vector3<f64>,
-    to: &Vector3<f64>,
-    colour: Color,
-    head: f64,
-) {
-    let (p, q) = (cam.project(from, focus), cam.project(to, focus));
-    if ![p.x, p.y, q.x, q.y].iter().all(|v| v.is_finite()) {
-        return;
-    }
-    ctx.draw(&CanvasLine::new(p.x, p.y, q.x, q.y, colour));
-    let (dx, dy) = (q.x - p.x, q.y - p.y);
+/// The two strokes of an arrow's head at `tip`, `size` cm long, 25° either side of the
+/// shaft and drawn in the screen plane so it always shows.
+pub(crate) fn head(base: Flat, tip: Flat, size: f64) -> Vec<(Flat, Flat)> {
+    let (dx, dy) = (tip.0 - base.0, tip.1 - base.1);
     let n = dx.hypot(dy);
-    if n < 1e-9 {
-        return;
+    if n.is_nan() || n <= 1e-9 {
+        return Vec::new();
     }
     let (ux, uy) = (dx / n, dy / n);
-    let h = head.min(0.5 * n);
-    for s in [-1.0, 1.0] {
-        // 25° either side of the shaft, pointing back from the tip.
-        let (c, sn) = (25f64.to_radians().cos(), s * 25f64.to_radians().sin());
-        let (bx, by) = (ux * c - uy * sn, ux * sn + uy * c);
-        ctx.draw(&CanvasLine::new(q.x, q.y, q.x - h * bx, q.y - h * by, colour));
-    }
+    let h = size.min(0.5 * n);
+    let (c, s) = (25f64.to_radians().cos(), 25f64.to_radians().sin());
+    [-1.0, 1.0]
+        .into_iter()
+        .map(|side| {
+            let (bx, by) = (ux * c - uy * side * s, ux * side * s + uy * c);
+            (tip, (tip.0 - h * bx, tip.1 - h * by))
+        })
+        .collect()
 }
 
 /// The legend under the die: each arrow's colour and size, then how lengths are scaled.

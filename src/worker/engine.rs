@@ -182,15 +182,15 @@ impl Engine {
     }
 
     /// The parts of a preset's `[view]` the worker owns: the playback speed and the chaos
-    /// twin (rolled from the next restart). Keys the view leaves out stay as they are.
+    /// twin (rolled from the next restart). A preset opens the same way every time, so a
+    /// key the view leaves out means the default: 1×, no twin.
     fn apply_view(&mut self, preset: &Preset) {
-        if let Some(speed) = preset.view.speed {
-            self.speed = speed;
-        }
-        if let Some(epsilon) = preset.view.twin {
-            // ε was checked with the preset; the twin is placed by `restart`.
-            self.twin = Twin::new(&preset.params(), &preset.initial, epsilon).ok();
-        }
+        self.speed = preset.view.speed.unwrap_or_default();
+        // ε was checked with the preset; the twin is placed by `restart`.
+        self.twin = preset
+            .view
+            .twin
+            .and_then(|epsilon| Twin::new(&preset.params(), &preset.initial, epsilon).ok());
     }
 
     pub fn params(&self) -> &Params {

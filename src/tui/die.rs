@@ -1,0 +1,649 @@
+//! The die panel: a solid die seen by the orbiting camera.
+//!
+//! The cube is convex, so a face is seen exactly when its outward normal points towards the
+//! viewer, and an edge exactly when it borders a seen face. Everything behind the die (the
+//! floor tiles, its shadow, the chaos twin's ghost) is clipped against the die's outline, so
+//! nothing shows through it. Seen faces are filled with a shade of their angle to the viewer
+//! (in colour) and carry their pips as on a real die, opposite faces summing to 7; the face
+//! up is tinted and framed.
+//!
+//! The picture is built once as a list of strokes, pips, fills and labels, then drawn either
+//! with Braille dots (a ratatui canvas) or with ASCII slope characters (`-` `|` `/` `\`).
+//! Labels are placed last on a grid of taken cells, so none ever covers another.
+
+use super::app::{App, Drawing};
+use super::camera::{
+    Camera, EDGES, FACE_CORNERS, Flat, convex_hull, face_centre, face_normal, inside, outside_parts,
+};
+use super::vectors::{self, Arrow};
+use crate::worker::DieState;
+use nalgebra::Vector3;
+use ratatui::Frame;
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::symbols::Marker;
+use ratatui::text::{Line, Span};
+use ratatui::widgets::canvas::{Canvas, Line as CanvasLine, Points};
+use ratatui::widgets::{Block, Clear, Paragraph};
+
+/// Pip positions on a face, in units of its half side along its two edge directions, for
+/// 1..6 pips: the layout of a real die.
+const PIPS: [&[(f64, f64)]; 6] = [
+    &[(0.0, 0.0)],
+    &[(-0.5, -0.5), (0.5, 0.5)],
+    &[(-0.5, -0.5), (0.0, 0.0), (0.5, 0.5)],
+    &[(-0.5, -0.5), (-0.5, 0.5), (0.5, -0.5), (0.5, 0.5)],
+    &[(-0.5, -0.5), (-0.5, 0.5), (0.0, 0.0), (0.5, -0.5), (0.5, 0.5)],
+    &[
+        (-0.5, -0.5),
+        (-0.5, 0.0),
+        (-0.5, 0.5),
+        (0.5, -0.5),
+        (0.5, 0.0),
+        (0.5, 0.5),
+    ],
+];
+
+/// A pip's radius, in units of the face's half side.
+const PIP_RADIUS: f64 = 0.17;
+
+/// Where the frame marking the face up sits, in units of the half side from the centre.
+const UP_FRAME: f64 = 0.82;
+
+/// A line on the view plane, cm.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Stroke {
+    pub(crate) a: Flat,
+    pub(crate) b: Flat,
+    pub(crate) colour: Color,
+}
+
+/// Text anchored at a point of the view plane; placed on a free cell near it.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Label {
+    pub(crate) at: Flat,
+    pub(crate) text: String,
+    pub(crate) style: Style,
+    /// Whether the label may move away from its anchor to find free cells.
+    pub(crate) movable: bool,
+    /// Whether it names something behind the die, so it must not sit on the die either.
+    pub(crate) behind: bool,
+}
+
+/// The die panel's picture, before it is drawn in either marker.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Picture {
+    /// Strokes in drawing order: the floor (tiles, shadow, ghost), the die, the arrows.
+    pub(crate) layers: [Vec<Stroke>; 3],
+    /// Pip discs: centre, the points that fill it, colour (drawn with the die).
+    pub(crate) pips: Vec<(Flat, Vec<Flat>, Color)>,
+    /// The shadow's outline and background, where a theme paints one.
+    pub(crate) shadow: Option<(Vec<Flat>, Color)>,
+    /// The seen faces' outlines and backgrounds.
+    pub(crate) faces: Vec<(Vec<Flat>, Color)>,
+    /// The die's outline: cells inside it are the die's own.
+    pub(crate) outline: Vec<Flat>,
+    /// In order of importance: earlier labels get the cells they want.
+    pub(crate) labels: Vec<Label>,
+}
+
+/// The part of the view plane the die panel shows, and the cells it is drawn in.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct View {
+    pub(crate) camera: Camera,
+    /// The horizontal point the camera follows (the die's foot).
+    pub(crate) focus: Vector3<f64>,
+    pub(crate) x: (f64, f64),
+    pub(crate) y: (f64, f64),
+    pub(crate) area: Rect,
+}
+
+impl View {
+    /// The view of the die in `area`: the die's width in view fixed by the zoom, its height
+    /// from the cells' 1:2 aspect, the table kept in the lower third.
+    pub(crate) fn new(app: &App, area: Rect) -> View {
+        let die = &app.live.die;
+        let camera = app.camera;
+        let width = camera.width_cm(app.live.params.die.half_size);
+        let height = width * 2.0 * area.height as f64 / area.width.max(1) as f64;
+        let focus = Vector3::new(die.centre.x, die.centre.y, 0.0);
+        let centre_y = camera.project(&die.centre, &focus).y.max(0.35 * height);
+        // Never below the die's lowest corner or its shadow: a short panel shows the whole
+        // die and gives up sky instead.
+        let lowest = die
+            .corners
+            .iter()
+            .flat_map(|c| [*c, Vector3::new(c.x, c.y, 0.0)])
+            .map(|p| camera.project(&p, &focus).y)
+            .fold(f64::INFINITY, f64::min);
+        let bottom = (centre_y - height / 2.0).min(lowest - 0.04 * height);
+        View {
+            camera,
+            focus,
+            x: (-width / 2.0, width / 2.0),
+            y: (bottom, bottom + height),
+            area,
+        }
+    }
+
+    pub(crate) fn flat(&self, p: &Vector3<f64>) -> Flat {
+        let q = self.camera.project(p, &self.focus);
+        (q.x, q.y)
+    }
+
+    /// The cell (column, row from the top, inside `area`) a point falls in, if in view.
+    pub(crate) fn cell(&self, p: Flat) -> Option<(u16, u16)> {
+        let fx = (p.0 - self.x.0) / (self.x.1 - self.x.0);
+        let fy = (self.y.1 - p.1) / (self.y.1 - self.y.0);
+        let (w, h) = (self.area.width as f64, self.area.height as f64);
+        ((0.0..1.0).contains(&fx) && (0.0..1.0).contains(&fy)).then_some(((fx * w) as u16, (fy * h) as u16))
+    }
+
+    /// The point at the middle of a cell.
+    fn centre_of(&self, col: u16, row: u16) -> Flat {
+        let (w, h) = (self.area.width as f64, self.area.height as f64);
+        (
+            self.x.0 + (self.x.1 - self.x.0) * (col as f64 + 0.5) / w,
+            self.y.1 - (self.y.1 - self.y.0) * (row as f64 + 0.5) / h,
+        )
+    }
+
+    /// cm between neighbouring Braille dots, the finer of the two directions.
+    fn dot(&self) -> f64 {
+        let across = (self.x.1 - self.x.0) / (2.0 * self.area.width.max(1) as f64);
+        let up = (self.y.1 - self.y.0) / (4.0 * self.area.height.max(1) as f64);
+        across.min(up)
+    }
+}
+
+/// Which faces (0-based) of a die with these corners the camera sees, and how squarely.
+fn seen_faces(camera: &Camera, die: &DieState) -> [f64; 6] {
+    std::array::from_fn(|f| camera.facing(&face_normal(&die.corners, &die.centre, f)))
+}
+
+/// Edges that border a seen face: exactly the visible ones of a convex body.
+fn visible_edges(facing: &[f64; 6]) -> impl Iterator<Item = (usize, usize)> + '_ {
+    EDGES.into_iter().filter(move |&(a, b)| {
+        (0..6).any(|f| facing[f] > 0.0 && FACE_CORNERS[f].contains(&a) && FACE_CORNERS[f].contains(&b))
+    })
+}
+
+/// Whether corner `k` lies on a seen face.
+fn corner_seen(facing: &[f64; 6], k: usize) -> bool {
+    (0..6).any(|f| facing[f] > 0.0 && FACE_CORNERS[f].contains(&k))
+}
+
+impl Picture {
+    /// The strokes of `a`–`b` not hidden by the die, onto layer `layer`.
+    fn behind(&mut self, layer: usize, a: Flat, b: Flat, colour: Color) {
+        if ![a.0, a.1, b.0, b.1].iter().all(|v| v.is_finite()) {
+            return;
+        }
+        for (a, b) in outside_parts(&self.outline, a, b) {
+            self.layers[layer].push(Stroke { a, b, colour });
+        }
+    }
+
+    fn stroke(&mut self, layer: usize, a: Flat, b: Flat, colour: Color) {
+        if [a.0, a.1, b.0, b.1].iter().all(|v| v.is_finite()) {
+            self.layers[layer].push(Stroke { a, b, colour });
+        }
+    }
+
+    fn label(&mut self, at: Flat, text: impl Into<String>, style: Style, movable: bool) {
+        self.labels.push(Label {
+            at,
+            text: text.into(),
+            style,
+            movable,
+            behind: false,
+        });
+    }
+}
+
+/// The picture of the die panel: pure geometry of the app state.
+pub(crate) fn picture(app: &App, view: &View) -> Picture {
+    let t = &app.theme;
+    let die = &app.live.die;
+    let half = app.live.params.die.half_size;
+    let mut pic = Picture::default();
+    let corners: Vec<Flat> = die.corners.iter().map(|c| view.flat(c)).collect();
+    pic.outline = convex_hull(&corners);
+    let facing = seen_faces(&view.camera, die);
+    let contact: [bool; 8] = std::array::from_fn(|k| die.forces[k].depth > 0.0);
+
+    pic.label(
+        (view.x.0, view.y.1),
+        format!("centre {:.2} cm up", die.centre.z),
+        Style::new(),
+        false,
+    );
+    for k in (0..8).filter(|&k| contact[k] && corner_seen(&facing, k)) {
+        let dot = if app.drawing == Drawing::Ascii { "@" } else { "●" };
+        pic.label(corners[k], dot, t.contact(), false);
+    }
+
+    // The floor: tiles, the shadow straight below, the drop line, all behind the die.
+    ground(&mut pic, app, view, half);
+    let foot = |p: &Vector3<f64>| Vector3::new(p.x, p.y, 0.0);
+    let shadow = convex_hull(
+        &die.corners
+            .iter()
+            .map(|c| view.flat(&foot(c)))
+            .collect::<Vec<_>>(),
+    );
+    if let Some(fill) = t.shadow_fill() {
+        pic.shadow = Some((shadow.clone(), fill));
+    }
+    for i in 0..shadow.len() {
+        pic.behind(0, shadow[i], shadow[(i + 1) % shadow.len()], t.shadow());
+    }
+    let lowest = die
+        .corners
+        .iter()
+        .min_by(|p, q| p.z.total_cmp(&q.z))
+        .copied()
+        .unwrap_or(die.centre);
+    if lowest.z > 0.02 * half {
+        pic.behind(0, view.flat(&lowest), view.flat(&foot(&lowest)), t.shadow());
+    }
+    if let Some(twin) = &app.live.twin {
+        ghost(&mut pic, app, view, &twin.die);
+    }
+
+    // The die: its seen faces filled, their edges, pips and the frame of the face up.
+    for f in (0..6).filter(|&f| facing[f] > 0.0) {
+        let up = f as u8 + 1 == die.face_up;
+        let quad: Vec<Flat> = FACE_CORNERS[f].iter().map(|&k| corners[k]).collect();
+        if let Some(fill) = t.face_fill(facing[f], up) {
+            pic.faces.push((convex_hull(&quad), fill));
+        }
+        let [k0, k1, k2, _] = FACE_CORNERS[f];
+        let centre = face_centre(&die.corners, f);
+        let u = (die.corners[k1] - die.corners[k0]) / 2.0;
+        let w = (die.corners[k2] - die.corners[k0]) / 2.0;
+        let on_face = |a: f64, b: f64| view.flat(&(centre + a * u + b * w));
+        for &(a, b) in PIPS[f] {
+            let n = ((2.0 * PIP_RADIUS * half / (0.5 * view.dot())).ceil() as usize).clamp(2, 40);
+            let mut disc = Vec::with_capacity(n * n);
+            for i in 0..=n {
+                for j in 0..=n {
+                    let (da, db) = (
+                        PIP_RADIUS * (2.0 * i as f64 / n as f64 - 1.0),
+                        PIP_RADIUS * (2.0 * j as f64 / n as f64 - 1.0),
+                    );
+                    if da * da + db * db <= PIP_RADIUS * PIP_RADIUS {
+                        disc.push(on_face(a + da, b + db));
+                    }
+                }
+            }
+            pic.pips.push((on_face(a, b), disc, t.die()));
+        }
+        if up {
+            let s = UP_FRAME;
+            let frame = [on_face(-s, -s), on_face(-s, s), on_face(s, s), on_face(s, -s)];
+            for i in 0..4 {
+                pic.stroke(1, frame[i], frame[(i + 1) % 4], t.die());
+            }
+        }
+    }
+    for (a, b) in visible_edges(&facing) {
+        let colour = if contact[a] || contact[b] {
+            t.contact_colour()
+        } else {
+            t.die()
+        };
+        pic.stroke(1, corners[a], corners[b], colour);
+    }
+    if app.vectors {
+        arrows(&mut pic, app, view, die);
+    }
+    pic
+}
+
+/// A patch of floor tiles around the die, fixed to the world so the die's travel shows
+/// against it; small enough that the die stays the thing to look at.
+fn ground(pic: &mut Picture, app: &App, view: &View, half: f64) {
+    let view_width = view.x.1 - view.x.0;
+    let side = 2.0 * half;
+    let spacing = 2.0 * side * (view_width / (6.0 * side)).round().max(1.0);
+    let reach = 0.45 * view_width;
+    let colour = app.theme.ground();
+    let focus = view.focus;
+    let cells = |c: f64| {
+        (
+            ((c - reach) / spacing).ceil() as i64,
+            ((c + reach) / spacing).floor() as i64,
+        )
+    };
+    let ((x0, x1), (y0, y1)) = (cells(focus.x), cells(focus.y));
+    let (xa, xb) = (focus.x - reach, focus.x + reach);
+    let (ya, yb) = (focus.y - reach, focus.y + reach);
+    for i in x0..=x1 {
+        let x = i as f64 * spacing;
+        let (a, b) = (Vector3::new(x, ya, 0.0), Vector3::new(x, yb, 0.0));
+        pic.behind(0, view.flat(&a), view.flat(&b), colour);
+    }
+    for j in y0..=y1 {
+        let y = j as f64 * spacing;
+        let (a, b) = (Vector3::new(xa, y, 0.0), Vector3::new(xb, y, 0.0));
+        pic.behind(0, view.flat(&a), view.flat(&b), colour);
+    }
+}
+
+/// The chaos twin's die as a ghost: its own visible edges, hidden where the die covers them.
+fn ghost(pic: &mut Picture, app: &App, view: &View, twin: &DieState) {
+    let colour = app.theme.ghost();
+    let facing = seen_faces(&view.camera, twin);
+    for (a, b) in visible_edges(&facing) {
+        pic.behind(
+            0,
+            view.flat(&twin.corners[a]),
+            view.flat(&twin.corners[b]),
+            colour,
+        );
+    }
+    pic.label(view.flat(&twin.centre), "twin", Style::new().fg(colour), true);
+    if let Some(label) = pic.labels.last_mut() {
+        label.behind = true;
+    }
+}
+
+/// ω, L and v from the centre, F from each touching corner, each with its symbol at the tip.
+fn arrows(pic: &mut Picture, app: &App, view: &View, die: &DieState) {
+    let half = app.live.params.die.half_size;
+    let mut arrow = |kind: Arrow, from: Vector3<f64>, v: Vector3<f64>| {
+        let length = vectors::arrow_length(v.norm(), kind.reference(app), half);
+        if length <= 0.0 {
+            return;
+        }
+        let colour = kind.colour(app);
+        let tip = view.flat(&(from + v.normalize() * length));
+        let base = view.flat(&from);
+        pic.stroke(2, base, tip, colour);
+        for (a, b) in vectors::head(base, tip, 0.2 * half) {
+            pic.stroke(2, a, b, colour);
+        }
+        pic.label(
+            tip,
+            kind.symbol(),
+            Style::new().fg(colour).add_modifier(Modifier::BOLD),
+            true,
+        );
+    };
+    arrow(Arrow::AngularVelocity, die.centre, die.angular_velocity);
+    arrow(Arrow::AngularMomentum, die.centre, die.angular_momentum);
+    arrow(Arrow::Velocity, die.centre, die.velocity);
+    for (corner, f) in die.corners.iter().zip(&die.forces) {
+        if f.depth > 0.0 {
+            arrow(Arrow::ContactForce, *corner, vectors::force_vector(f));
+        }
+    }
+}
+
+/// The ASCII character that draws a stroke of this direction on cells twice as tall as wide.
+fn slope_char(dx_cells: f64, dy_cells: f64) -> char {
+    // Screen units: a cell is about twice as tall as it is wide.
+    let angle = (2.0 * dy_cells).atan2(dx_cells).to_degrees().rem_euclid(180.0);
+    match angle {
+        a if !(22.5..157.5).contains(&a) => '-',
+        a if (67.5..112.5).contains(&a) => '|',
+        a if a < 90.0 => '/',
+        _ => '\\',
+    }
+}
+
+/// Draws the picture's strokes and pips in ASCII slope characters straight into `buf`.
+fn draw_ascii(pic: &Picture, view: &View, buf: &mut Buffer) {
+    let area = view.area;
+    let (w, h) = (area.width as f64, area.height as f64);
+    let to_cells = |p: Flat| {
+        (
+            (p.0 - view.x.0) / (view.x.1 - view.x.0) * w,
+            (view.y.1 - p.1) / (view.y.1 - view.y.0) * h,
+        )
+    };
+    let mut put = |cx: f64, cy: f64, ch: char, colour: Color| {
+        if cx >= 0.0 && cy >= 0.0 && cx < w && cy < h {
+            let cell = &mut buf[(area.x + cx as u16, area.y + cy as u16)];
+            cell.set_char(ch).set_fg(colour);
+        }
+    };
+    for (layer, strokes) in pic.layers.iter().enumerate() {
+        for s in strokes {
+            let (a, b) = (to_cells(s.a), to_cells(s.b));
+            // Screen y grows downwards; the slope is read with y up.
+            let ch = slope_char(b.0 - a.0, a.1 - b.1);
+            let n = ((b.0 - a.0).abs().max((b.1 - a.1).abs()) * 2.0).ceil().max(1.0) as usize;
+            for i in 0..=n {
+                let f = i as f64 / n as f64;
+                put(a.0 + f * (b.0 - a.0), a.1 + f * (b.1 - a.1), ch, s.colour);
+            }
+        }
+        if layer == 1 {
+            for (centre, _, colour) in &pic.pips {
+                let c = to_cells(*centre);
+                put(c.0, c.1, 'o', *colour);
+            }
+        }
+    }
+}
+
+/// Draws the picture's strokes and pips with Braille dots.
+fn draw_braille(pic: &Picture, view: &View, frame: &mut Frame) {
+    let canvas = Canvas::default()
+        .marker(Marker::Braille)
+        .x_bounds([view.x.0, view.x.1])
+        .y_bounds([view.y.0, view.y.1])
+        .paint(|ctx| {
+            for (layer, strokes) in pic.layers.iter().enumerate() {
+                for s in strokes {
+                    ctx.draw(&CanvasLine::new(s.a.0, s.a.1, s.b.0, s.b.1, s.colour));
+                }
+                if layer == 1 {
+                    for (_, disc, colour) in &pic.pips {
+                        ctx.draw(&Points {
+                            coords: disc,
+                            color: *colour,
+                        });
+                    }
+                }
+                ctx.layer();
+            }
+        });
+    frame.render_widget(canvas, view.area);
+}
+
+/// Fills the backgrounds: each cell whose middle lies on a seen face takes its shade, and
+/// the shadow shows where the die does not cover it.
+fn draw_fills(pic: &Picture, view: &View, buf: &mut Buffer) {
+    for row in 0..view.area.height {
+        for col in 0..view.area.width {
+            let p = view.centre_of(col, row);
+            let fill = if inside(&pic.outline, p) {
+                pic.faces.iter().find(|(outline, _)| inside(outline, p))
+            } else {
+                pic.shadow.as_ref().filter(|(outline, _)| inside(outline, p))
+            };
+            if let Some((_, colour)) = fill {
+                buf[(view.area.x + col, view.area.y + row)].set_bg(*colour);
+            }
+        }
+    }
+}
+
+/// Where a label of `len` characters may go relative to its anchor's cell, nearest first:
+/// on it, beside it, above and below, then in widening rings.
+fn offsets(len: i32, reach: i32) -> impl Iterator<Item = (i32, i32)> {
+    let near = [
+        (0, 0),
+        (1, 0),
+        (-len, 0),
+        (0, -1),
+        (0, 1),
+        (1, -1),
+        (1, 1),
+        (-len, -1),
+        (-len, 1),
+    ];
+    let rings = (2..=reach).flat_map(move |r| {
+        (-r..=r).flat_map(move |dr| {
+            (-r - len..=r).filter_map(move |dc| {
+                let ring = dr.abs() == r || dc == -r - len || dc == r;
+                ring.then_some((dc, dr))
+            })
+        })
+    });
+    near.into_iter().chain(rings)
+}
+
+/// Places the labels in order, each on the first free cells near its anchor: never on a
+/// cell an earlier label took, never past the panel's edge, and a label of something
+/// behind the die never on the die.
+pub(crate) fn place_labels(labels: &[Label], view: &View, outline: &[Flat]) -> Vec<(u16, u16, Label)> {
+    let (w, h) = (view.area.width, view.area.height);
+    let mut taken = vec![false; w as usize * h as usize];
+    let mut placed = Vec::new();
+    for label in labels {
+        let anchor = if label.movable {
+            // Anchors just outside the view (an arrow's tip) come back to its edge.
+            let x = label
+                .at
+                .0
+                .clamp(view.x.0, view.x.1 - 1e-9 * (view.x.1 - view.x.0));
+            let y = label
+                .at
+                .1
+                .clamp(view.y.0 + 1e-9 * (view.y.1 - view.y.0), view.y.1);
+            view.cell((x, y))
+        } else {
+            view.cell(label.at)
+        };
+        let Some((col, row)) = anchor else { continue };
+        let len = label.text.chars().count() as i32;
+        let free = |c: i32, r: i32| {
+            c >= 0
+                && r >= 0
+                && c + len <= w as i32
+                && r < h as i32
+                && (c..c + len).all(|x| {
+                    !(taken[r as usize * w as usize + x as usize]
+                        || label.behind && inside(outline, view.centre_of(x as u16, r as u16)))
+                })
+        };
+        let reach = if label.movable { w.max(h) as i32 } else { 0 };
+        let Some((dc, dr)) = offsets(len, reach)
+            .take(if label.movable { usize::MAX } else { 1 })
+            .find(|&(dc, dr)| free(col as i32 + dc, row as i32 + dr))
+        else {
+            continue;
+        };
+        let (c, r) = ((col as i32 + dc) as u16, (row as i32 + dr) as u16);
+        for x in c..c + len as u16 {
+            taken[r as usize * w as usize + x as usize] = true;
+        }
+        placed.push((c, r, label.clone()));
+    }
+    placed
+}
+
+/// The die panel: title, the solid die, and the arrows' legend under it when they are on.
+pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
+    let t = &app.theme;
+    let die = &app.live.die;
+    let lowest = die.corners.iter().map(|c| c.z).fold(f64::INFINITY, f64::min);
+    let mut title = vec![
+        Span::styled(" die ", t.heading()),
+        Span::raw(format!(
+            "· face up {} · lowest corner {:.2} cm ",
+            die.face_up, lowest
+        )),
+    ];
+    if let Some(twin) = &app.live.twin {
+        title.push(Span::styled(
+            format!("· twin face up {} ", twin.die.face_up),
+            Style::new().fg(t.ghost()),
+        ));
+    }
+    let block = Block::bordered().title(Line::from(title));
+    let mut body = block.inner(area);
+    frame.render_widget(block, area);
+    if body.width < 2 || body.height < 2 {
+        return;
+    }
+    // The reason a roll ended and the arrows' legend take rows of their own: they hide
+    // nothing of the die.
+    if let Some((reason, style)) = super::render::end_reason(app) {
+        let lines: Vec<Line> = super::render::wrap_words(&reason, body.width as usize)
+            .into_iter()
+            .map(|l| Line::styled(l, style))
+            .collect();
+        let rows = (lines.len() as u16).min(body.height.saturating_sub(3));
+        let top = Rect { height: rows, ..body };
+        frame.render_widget(Clear, top);
+        frame.render_widget(Paragraph::new(lines), top);
+        body.y += rows;
+        body.height -= rows;
+    }
+    if app.vectors && body.height >= 6 {
+        let legend = Rect {
+            y: body.bottom() - 2,
+            height: 2,
+            ..body
+        };
+        frame.render_widget(Paragraph::new(vectors::legend(app, body.width)), legend);
+        body.height -= 2;
+    }
+    let view = View::new(app, body);
+    let pic = picture(app, &view);
+    match app.drawing {
+        Drawing::Braille => draw_braille(&pic, &view, frame),
+        Drawing::Ascii => draw_ascii(&pic, &view, frame.buffer_mut()),
+    }
+    let buf = frame.buffer_mut();
+    draw_fills(&pic, &view, buf);
+    for (col, row, label) in place_labels(&pic.labels, &view, &pic.outline) {
+        buf.set_span(
+            body.x + col,
+            body.y + row,
+            &Span::styled(label.text.as_str(), label.style),
+            body.width - col,
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slopes_read_as_their_characters() {
+        assert_eq!(slope_char(4.0, 0.0), '-');
+        assert_eq!(slope_char(0.0, 3.0), '|');
+        assert_eq!(slope_char(2.0, 1.0), '/');
+        assert_eq!(slope_char(-2.0, 1.0), '\\');
+        assert_eq!(slope_char(-4.0, -0.5), '-');
+    }
+
+    #[test]
+    fn each_face_has_its_number_of_pips_and_opposite_faces_sum_to_seven() {
+        let corners = crate::physics::body::body_corner_offsets(1.0);
+        let centre = Vector3::zeros();
+        for (f, pips) in PIPS.iter().enumerate() {
+            assert_eq!(pips.len(), f + 1);
+            let opposite = (0..6)
+                .find(|&g| {
+                    (face_normal(&corners, &centre, f) + face_normal(&corners, &centre, g)).norm() < 1e-12
+                })
+                .expect("a cube's faces come in opposite pairs");
+            assert_eq!(
+                PIPS[f].len() + PIPS[opposite].len(),
+                7,
+                "face {} and face {}",
+                f + 1,
+                opposite + 1
+            );
+        }
+    }
+}

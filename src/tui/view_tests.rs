@@ -1,0 +1,504 @@
+//! The die, the energy plot's legend and ticks and the outcome table, as a class sees them:
+//! snapshots of deterministic states and checks that a drawing defect would break.
+
+use super::app::{App, Drawing};
+use super::camera::{Camera, inside};
+use super::die::{View, picture, place_labels, render_die};
+use super::layout::screen_layout;
+use super::render::{RELIABLE_ROLLS, nice_ticks, render, render_energy, render_outcomes};
+use super::tests::{Scene, mid_impact_with, spun_preset};
+use super::theme::{Palette, Theme};
+use crate::worker::Phase;
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+
+type Panel = fn(&App, Rect, &mut ratatui::Frame);
+
+/// One panel drawn where the layout of a `w`×`h` terminal puts it, painted as the screen is.
+fn panel_at(app: &App, w: u16, h: u16, pick: fn(&super::layout::Areas) -> Rect, draw: Panel) -> Buffer {
+    let area = pick(&screen_layout(Rect::new(0, 0, w, h)).expect("big enough"));
+    let mut t = Terminal::new(TestBackend::new(area.width, area.height)).expect("test backend");
+    t.draw(|f| {
+        draw(app, f.area(), f);
+        app.theme.paint(f.buffer_mut());
+    })
+    .expect("draw");
+    t.backend().buffer().clone()
+}
+
+fn text(b: &Buffer) -> String {
+    let a = b.area;
+    (a.top()..a.bottom())
+        .map(|y| {
+            (a.left()..a.right())
+                .map(|x| b[(x, y)].symbol())
+                .collect::<String>()
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+fn screen(app: &App, w: u16, h: u16) -> String {
+    let mut t = Terminal::new(TestBackend::new(w, h)).expect("test backend");
+    t.draw(|f| render(app, f)).expect("draw");
+    t.backend().to_string()
+}
+
+/// The paper's spun roll `steps` steps in: at 150 the die is still falling, tumbling.
+fn after(steps: u64, theme: Theme) -> Scene {
+    let mut s = Scene::new(&spun_preset(), theme);
+    s.engine.advance_steps(steps);
+    s.sync();
+    s
+}
+
+fn at_rest(theme: Theme) -> Scene {
+    let mut s = Scene::new(&spun_preset(), theme);
+    s.run_to_end();
+    s
+}
+
+const HIGH: Camera = Camera {
+    yaw_deg: 135.0,
+    pitch_deg: 60.0,
+    zoom: 1,
+};
+
+/// The die's own cells in the panel: those whose middle lies inside its outline, away
+/// from the outline itself (where the edge's dots and the floor may share a cell).
+fn inner_cells(app: &App, body: Rect) -> Vec<(u16, u16)> {
+    let view = View::new(app, body);
+    let pic = picture(app, &view);
+    let (cw, ch) = (
+        (view.x.1 - view.x.0) / body.width as f64,
+        (view.y.1 - view.y.0) / body.height as f64,
+    );
+    let mut cells = Vec::new();
+    for row in 0..body.height {
+        for col in 0..body.width {
+            let p = (
+                view.x.0 + cw * (col as f64 + 0.5),
+                view.y.1 - ch * (row as f64 + 0.5),
+            );
+            let deep = [(-cw, -ch), (cw, -ch), (-cw, ch), (cw, ch)]
+                .iter()
+                .all(|&(dx, dy)| inside(&pic.outline, (p.0 + dx, p.1 + dy)));
+            if deep {
+                cells.push((col, row));
+            }
+        }
+    }
+    cells
+}
+
+/// Draws the die panel and checks what a solid die promises: no floor tile, shadow or ghost
+/// inside its outline, pips drawn, labels on cells of their own.
+fn check_solid(app: &App) -> Buffer {
+    let b = panel_at(app, 120, 36, |a| a.die, render_die);
+    let body = Rect::new(1, 1, b.area.width - 2, b.area.height - 2);
+    let inner = inner_cells(app, Rect::new(0, 0, body.width, body.height));
+    assert!(inner.len() > 10, "the die covers some cells: {}", inner.len());
+    let hidden = [app.theme.ground(), app.theme.shadow(), app.theme.ghost()];
+    for &(c, r) in &inner {
+        let cell = &b[(body.x + c, body.y + r)];
+        if cell.symbol() != " " {
+            assert!(
+                !hidden.contains(&cell.fg) || cell.fg == app.theme.die(),
+                "floor or ghost drawn through the die at ({c}, {r}): {:?}\n{}",
+                cell,
+                text(&b)
+            );
+        }
+    }
+    let view = View::new(app, body);
+    let pic = picture(app, &view);
+    let placed = place_labels(&pic.labels, &view, &pic.outline);
+    let mut taken = std::collections::HashSet::new();
+    for (c, r, label) in &placed {
+        for x in *c..*c + label.text.chars().count() as u16 {
+            assert!(taken.insert((x, *r)), "label {:?} overlaps another", label.text);
+        }
+    }
+    b
+}
+
+#[test]
+fn the_solid_die_mid_air_from_two_angles() {
+    let mut s = after(150, Theme::default());
+    assert_eq!(s.app.live.phase, Phase::Falling);
+    let low = check_solid(&s.app);
+    insta::assert_snapshot!("die_mid_air_default_camera", text(&low));
+    s.app.camera = HIGH;
+    let high = check_solid(&s.app);
+    insta::assert_snapshot!("die_mid_air_high_camera", text(&high));
+    assert_ne!(text(&low), text(&high));
+}
+
+#[test]
+fn the_solid_die_at_rest_from_two_angles() {
+    let mut s = at_rest(Theme::default());
+    let low = check_solid(&s.app);
+    insta::assert_snapshot!("die_at_rest_default_camera", text(&low));
+    s.app.camera = HIGH;
+    insta::assert_snapshot!("die_at_rest_high_camera", text(&check_solid(&s.app)));
+}
+
+#[test]
+fn a_die_shows_at_most_three_faces_and_nine_edges() {
+    let s = after(150, Theme::default());
+    let body = Rect::new(0, 0, 66, 15);
+    let view = View::new(&s.app, body);
+    let pic = picture(&s.app, &view);
+    // Seen faces are filled in colour themes; each seen face carries its pips.
+    let faces = pic.faces.len();
+    assert!((1..=3).contains(&faces), "{faces} faces seen");
+    let die_strokes = pic.layers[1].len();
+    assert!(
+        die_strokes <= 9 + 4,
+        "at most 9 edges and the up face's frame: {die_strokes}"
+    );
+    let pips: usize = pic.pips.len();
+    assert!((1..=6 + 5 + 4).contains(&pips), "{pips} pips");
+}
+
+#[test]
+fn ascii_draws_slopes_not_stars() {
+    let mut s = after(150, Theme::default());
+    s.app.drawing = Drawing::Ascii;
+    let b = panel_at(&s.app, 120, 36, |a| a.die, render_die);
+    let t = text(&b);
+    assert!(!t.contains('*'), "{t}");
+    for c in ['-', '|', '/', '\\'] {
+        assert!(t.contains(c), "no `{c}` in\n{t}");
+    }
+    insta::assert_snapshot!("die_ascii_mid_air", t);
+}
+
+#[test]
+fn every_arrow_has_its_label_and_the_legend_sits_below_the_die() {
+    let mut s = mid_impact_with(Theme::default());
+    s.app.vectors = true;
+    let b = check_solid(&s.app);
+    let t = text(&b);
+    let rows: Vec<&str> = t.lines().collect();
+    let touching = s.app.live.die.forces.iter().filter(|f| f.depth > 0.0).count();
+    assert!(touching > 0);
+    let f_labels = rows[1..rows.len() - 3]
+        .iter()
+        .map(|r| r.matches('F').count())
+        .sum::<usize>();
+    assert_eq!(f_labels, touching, "one F per touching corner\n{t}");
+    for symbol in ["ω", "L", "v"] {
+        assert!(
+            rows[1..rows.len() - 3].iter().any(|r| r.contains(symbol)),
+            "{symbol}\n{t}"
+        );
+    }
+    assert!(rows[rows.len() - 2].contains("length a·log₁₀(1+|x|/x₀)"), "{t}");
+    insta::assert_snapshot!("die_vectors_solid_mid_impact", t);
+    // The contact highlight has a colour no arrow has.
+    let colours = s.app.theme.vector_colours();
+    assert!(!colours.contains(&s.app.theme.contact_colour()));
+}
+
+#[test]
+fn the_twins_label_never_covers_the_die() {
+    let mut s = after(150, Theme::default());
+    s.key(ratatui::crossterm::event::KeyCode::Char('T'));
+    s.engine.advance_steps(150);
+    s.sync();
+    assert!(s.app.live.twin.is_some());
+    let t = text(&check_solid(&s.app));
+    assert!(t.contains("twin"), "{t}");
+}
+
+fn projector() -> Theme {
+    Theme {
+        palette: Palette::Projector,
+        ..Theme::default()
+    }
+}
+
+#[test]
+fn projector_screen_with_the_solid_die() {
+    let s = after(150, projector());
+    let t = screen(&s.app, 100, 30);
+    insta::assert_snapshot!("projector_mid_air_100x30", t);
+    let b = panel_at(&s.app, 100, 30, |a| a.die, render_die);
+    // Seen faces are filled: a good share of the die's cells carry a face's grey.
+    let body = Rect::new(1, 1, b.area.width - 2, b.area.height - 2);
+    let inner = inner_cells(&s.app, Rect::new(0, 0, body.width, body.height));
+    let filled = inner
+        .iter()
+        .filter(|&&(c, r)| {
+            matches!(b[(body.x + c, body.y + r)].bg, ratatui::style::Color::Rgb(r, g, bl) if r < 250 || g < 250 || bl < 250)
+        })
+        .count();
+    assert_eq!(filled, inner.len(), "every inner cell of the die is shaded");
+}
+
+#[test]
+fn the_energy_legend_names_every_term_at_both_sizes() {
+    for theme in [Theme::default(), Theme::monochrome()] {
+        let s = mid_impact_with(theme);
+        for (w, h) in [(80, 24), (120, 36)] {
+            let b = panel_at(&s.app, w, h, |a| a.energy, render_energy);
+            let t = text(&b);
+            for name in ["total", "transl", "rot", "grav", "elastic"] {
+                assert!(t.contains(name), "{name} missing at {w}×{h}:\n{t}");
+            }
+            if !theme.colour {
+                // Without colour every line has its own character, which the legend shows.
+                for item in ["#total", "+transl", "xrot", "ograv", "*elastic"] {
+                    assert!(t.contains(item), "`{item}` at {w}×{h}:\n{t}");
+                }
+            }
+            // No tick reads like 99750: each is a multiple of a round step.
+            let ticks: Vec<f64> = t
+                .lines()
+                .filter_map(|l| l.split('│').nth(1))
+                .filter_map(|cell| cell.trim().parse::<f64>().ok())
+                .collect();
+            assert!(ticks.len() >= 2, "{t}");
+            let step = (ticks[0] - ticks[1]).abs();
+            let mantissa = step / 10f64.powf(step.log10().floor());
+            assert!(
+                [1.0, 2.0, 5.0].iter().any(|m| (m - mantissa).abs() < 1e-9),
+                "{ticks:?}\n{t}"
+            );
+            let name = format!(
+                "energy_{}_{w}x{h}",
+                if theme.colour { "colour" } else { "no_colour" }
+            );
+            insta::assert_snapshot!(name, t);
+        }
+    }
+}
+
+#[test]
+fn ticks_are_round_numbers() {
+    assert_eq!(nice_ticks(0.0, 199_500.0, 3).2, vec![0.0, 100_000.0, 200_000.0]);
+    let (lo, hi, ticks) = nice_ticks(-480.0, 120_000.0, 4);
+    assert!(lo <= -480.0 && hi >= 120_000.0);
+    let step = ticks[1] - ticks[0];
+    let mantissa = step / 10f64.powf(step.log10().floor());
+    assert!(
+        [1.0, 2.0, 5.0].iter().any(|m| (m - mantissa).abs() < 1e-9),
+        "step {step}"
+    );
+    assert!(ticks.len() <= 4);
+    assert!(ticks.iter().all(|t| (t / step).fract().abs() < 1e-9), "{ticks:?}");
+}
+
+/// A table with every ending: faces, rolls without a face and unstable ones.
+fn every_ending() -> App {
+    let mut s = mid_impact_with(Theme::default());
+    let t = &mut s.app.table;
+    t.tally.counts = [512, 498, 530, 505, 470, 558];
+    t.did_not_settle = 16;
+    t.unstable = 2114;
+    s.app
+}
+
+#[test]
+fn the_outcome_table_shows_every_ending_whole() {
+    let app = every_ending();
+    for (w, h) in [(80, 24), (120, 36)] {
+        let b = panel_at(&app, w, h, |a| a.outcomes, render_outcomes);
+        let t = text(&b);
+        let flat = t
+            .lines()
+            .map(|l| l.trim_matches(|c| c == '│' || c == ' ' || c == '└' || c == '┘' || c == '─'))
+            .collect::<Vec<_>>()
+            .join(" ");
+        for words in [
+            "did not settle or settled without a face 16",
+            "unstable 2114",
+            "n 3073",
+        ] {
+            assert!(flat.contains(words), "`{words}` at {w}×{h}:\n{t}");
+        }
+        for face in 1..=6 {
+            assert!(t.contains(&format!("  {face}  ")), "face {face} at {w}×{h}:\n{t}");
+        }
+        insta::assert_snapshot!(format!("outcomes_every_ending_{w}x{h}"), t);
+    }
+}
+
+#[test]
+fn a_p_value_from_too_few_rolls_is_marked_unreliable() {
+    let mut app = every_ending();
+    app.table.tally.counts = [3, 5, 4, 6, 2, 4];
+    assert!(app.table.tally.total() < RELIABLE_ROLLS);
+    let t = text(&panel_at(&app, 120, 36, |a| a.outcomes, render_outcomes));
+    assert!(t.contains("unreliable below n 30"), "{t}");
+    app.table.tally.counts = [30, 50, 40, 60, 20, 40];
+    let t = text(&panel_at(&app, 120, 36, |a| a.outcomes, render_outcomes));
+    assert!(!t.contains("unreliable") && t.contains(" p "), "{t}");
+}
+
+mod map_screen {
+    use super::*;
+    use crate::experiment::plot::Record;
+    use crate::experiment::{Cell, Layer, MapSpec, Method, run_map};
+    use crate::preset::{Preset, shipped_text};
+    use crate::tui::map::{MapView, export_if_asked};
+    use crate::tui::map_tests::map_scene;
+    use ratatui::style::Color;
+    use std::sync::atomic::AtomicBool;
+
+    fn light() -> Theme {
+        Theme {
+            palette: Palette::Light,
+            ..Theme::default()
+        }
+    }
+
+    #[test]
+    fn the_map_is_painted_in_the_light_theme() {
+        let s = map_scene(light());
+        let mut t = Terminal::new(TestBackend::new(120, 36)).expect("test backend");
+        t.draw(|f| render(&s.app, f)).expect("draw");
+        let b = t.backend().buffer();
+        let unpainted = b
+            .content()
+            .iter()
+            .filter(|c| c.bg == Color::Reset || c.fg == Color::Reset)
+            .count();
+        assert_eq!(unpainted, 0, "every cell gets the theme's paper and ink");
+        insta::assert_snapshot!("map_light_120x36", t.backend().to_string());
+    }
+
+    /// The text chunks of a PNG file, keyword → text.
+    fn text_chunks(bytes: &[u8]) -> Vec<(String, String)> {
+        let reader = png::Decoder::new(std::io::Cursor::new(bytes))
+            .read_info()
+            .expect("a PNG");
+        reader
+            .info()
+            .utf8_text
+            .iter()
+            .map(|c| (c.keyword.clone(), c.get_text().expect("UTF-8 text")))
+            .collect()
+    }
+
+    #[test]
+    fn the_settle_time_layer_marks_filled_cells_and_the_readout_says_so() {
+        let mut s = map_scene(Theme::default());
+        s.app.map.layer = Layer::SettleTime;
+        // On the paper's setup refinement rolls every cell; mark the cursor's cell as one the
+        // adaptive method filled in, as it does wherever a block's corners agree.
+        let filled = s.app.map.cursor;
+        let Some(Ok(map)) = s.app.map.shown.as_mut().map(|u| &mut u.map) else {
+            panic!("a map")
+        };
+        let w = map.width();
+        let c = map.cells[filled.1 * w + filled.0].as_mut().expect("computed");
+        assert_eq!(c.outcome.status, crate::physics::Status::Settled);
+        c.sampled = false;
+        let map = map.clone();
+        let text = screen(&s.app, 120, 36);
+        assert!(text.contains("· inferred"), "{text}");
+        assert!(text.contains("time not known"), "{text}");
+        assert!(text.contains("not rolled (filled in)"), "{text}");
+        let c = map.cell(filled.0, filled.1).expect("filled");
+        let colour = crate::experiment::plot::cell_colour(Some(c), Layer::SettleTime, None);
+        let rolled = Cell { sampled: true, ..*c };
+        assert_ne!(
+            colour,
+            crate::experiment::plot::cell_colour(Some(&rolled), Layer::SettleTime, None),
+            "a filled cell does not wear a copied time's colour"
+        );
+    }
+
+    #[test]
+    fn the_exported_map_records_its_setup() {
+        let mut s = map_scene(Theme::default());
+        let dir = tempfile::tempdir().expect("temp dir");
+        s.app.map.export_asked = true;
+        export_if_asked(&mut s.app, dir.path());
+        let bytes = std::fs::read(dir.path().join("basin-map.png")).expect("written");
+        let chunks = text_chunks(&bytes);
+        let get = |k: &str| {
+            chunks
+                .iter()
+                .find(|(key, _)| key == k)
+                .map(|(_, t)| t.clone())
+                .unwrap_or_else(|| panic!("no {k} chunk in {chunks:?}"))
+        };
+        let setup = get("dicesim-setup");
+        let p = &s.app.map.shown.as_ref().expect("a map").params;
+        assert!(
+            setup.contains(&format!("ground.stiffness = {}", p.ground.stiffness)),
+            "{setup}"
+        );
+        assert!(setup.contains("integrator.dt = 0.001"), "{setup}");
+        assert!(get("dicesim-axes").contains("initial.angular_velocity.x from"));
+        assert!(get("Title").starts_with("Face up"));
+        assert!(
+            get("Description").contains("height 15 cm"),
+            "{}",
+            get("Description")
+        );
+    }
+
+    #[test]
+    fn the_energy_png_follows_the_scale_and_records_its_setup() {
+        let s = at_rest(Theme::default());
+        let samples: Vec<(f64, crate::physics::Energy)> =
+            s.app.history.iter().map(|h| (h.time_s, h.energy)).collect();
+        let record = Record::of_setup("paper — energy", "paper", &s.app.params, &s.app.initial);
+        let threshold = s.app.live.stop_threshold;
+        let log = crate::experiment::energy_plot::energy_plot_png(&samples, threshold, true, &record)
+            .expect("draws");
+        let linear = crate::experiment::energy_plot::energy_plot_png(&samples, threshold, false, &record)
+            .expect("draws");
+        assert_ne!(log, linear, "the scale changes the picture");
+        let chunks = text_chunks(&log);
+        assert!(
+            chunks
+                .iter()
+                .any(|(k, t)| k == "dicesim-setup" && t.contains("initial.height = 15")),
+            "{chunks:?}"
+        );
+    }
+
+    /// Share of neighbouring cells (along x and y) that end differently.
+    fn border_share(name: &str) -> f64 {
+        let preset = Preset::from_toml_str(shipped_text(name).expect("shipped"), name).expect("valid");
+        let (params, initial) = (preset.params(), preset.initial);
+        let view = MapView::new(&params, &initial);
+        let (mut x, mut y) = (view.x, view.y);
+        (x.cells, y.cells) = (80, 40);
+        let spec = MapSpec {
+            x: x.axis().expect("axis"),
+            y: y.axis().expect("axis"),
+            method: Method::Uniform,
+        };
+        let map = run_map(&params, &initial, &spec, 0, &AtomicBool::new(false), &mut |_| {}).expect("map");
+        let class = |i, j| map.cell(i, j).map(|c| (c.outcome.status, c.outcome.face));
+        let (mut differ, mut pairs) = (0, 0);
+        for j in 0..map.height() {
+            for i in 0..map.width() {
+                for (a, b) in [(i + 1, j), (i, j + 1)] {
+                    if a < map.width() && b < map.height() {
+                        pairs += 1;
+                        differ += usize::from(class(i, j) != class(a, b));
+                    }
+                }
+            }
+        }
+        differ as f64 / pairs as f64
+    }
+
+    #[test]
+    fn gentle_drop_shows_borders_on_the_maps_default_axes_where_paper_is_noise() {
+        // Regions with borders: some neighbours differ, most agree. Noise: most differ.
+        let gentle = border_share("gentle-drop");
+        let paper = border_share("paper");
+        assert!(gentle > 0.01 && gentle < 0.2, "gentle-drop: {gentle}");
+        assert!(paper > 2.0 * gentle, "paper {paper} against gentle-drop {gentle}");
+    }
+}
