@@ -343,6 +343,8 @@ mod avx2 {
         dt: F4,
         mass: F4,
         weight_z: F4,
+        /// The kick of a step in flight, `Simulation`'s quotients with every force +0.0.
+        flight_kick: V3,
         stiffness: F4,
         damping: F4,
         friction: F4,
@@ -418,6 +420,7 @@ mod avx2 {
                     dt: z,
                     mass: F4::splat(1.0),
                     weight_z: z,
+                    flight_kick: V3::zero(),
                     stiffness: z,
                     damping: z,
                     friction: z,
@@ -469,6 +472,13 @@ mod avx2 {
             c.dt.set_lane(l, params.integrator.dt);
             c.mass.set_lane(l, mass);
             c.weight_z.set_lane(l, mass * -gravity);
+            let (dt, zero) = (params.integrator.dt, 0.0);
+            let kick = Vector3::new(
+                (zero / mass) * dt,
+                (zero / mass) * dt,
+                ((zero + mass * -gravity) / mass) * dt,
+            );
+            c.flight_kick.set(l, &kick);
             c.stiffness.set_lane(l, params.ground.stiffness);
             c.damping.set_lane(l, params.ground.damping);
             c.friction.set_lane(l, params.ground.friction);
@@ -504,6 +514,7 @@ mod avx2 {
             self.position.set(l, &Vector3::new(0.0, 0.0, 1e9));
             self.velocity.set(l, &Vector3::zeros());
             self.c.weight_z.set_lane(l, 0.0);
+            self.c.flight_kick.set(l, &Vector3::zeros());
             for k in 0..8 {
                 self.forces[k].set(l, &Vector3::zeros());
                 self.depths[k].set_lane(l, 0.0);
@@ -549,24 +560,26 @@ mod avx2 {
             let c = self.c;
             let contact_bits = self.in_contact.bits();
             let touching = self.touching_corners;
-            // 1. kick. Out of contact every force is +0.0 and the sum is the scalar's zero.
-            // Skipping corners whose force is +0.0 in every lane keeps the scalar's sum bit
-            // for bit: adding +0.0 only turns a −0.0 into +0.0, and doing that once at the
-            // end gives the same as anywhere in between.
-            let force = if contact_bits != 0 {
+            // 1. kick. Out of contact every force is +0.0 and each lane's kick is its flight
+            // constant, as in the scalar step. Skipping corners whose force is +0.0 in every
+            // lane keeps the scalar's sum bit for bit: adding +0.0 only turns a −0.0 into
+            // +0.0, and doing that once at the end gives the same as anywhere in between.
+            if contact_bits != 0 {
                 let mut f: Option<V3> = None;
                 for k in (0..8).filter(|k| touching & (1 << k) != 0) {
                     f = Some(f.map_or(self.forces[k], |f| f.add(self.forces[k])));
                 }
                 let f = f.unwrap_or_else(V3::zero);
-                if touching != 0xff { f.add(V3::zero()) } else { f }
+                let force = if touching != 0xff { f.add(V3::zero()) } else { f };
+                // A lane in flight among them gets its flight constant this way too: its
+                // forces are +0.0, so these are the very quotients the constant holds.
+                let v = &mut self.velocity;
+                v.x = v.x + (force.x / c.mass) * c.dt;
+                v.y = v.y + (force.y / c.mass) * c.dt;
+                v.z = v.z + ((force.z + c.weight_z) / c.mass) * c.dt;
             } else {
-                V3::zero()
-            };
-            let v = &mut self.velocity;
-            v.x = v.x + (force.x / c.mass) * c.dt;
-            v.y = v.y + (force.y / c.mass) * c.dt;
-            v.z = v.z + ((force.z + c.weight_z) / c.mass) * c.dt;
+                self.velocity = self.velocity.add(c.flight_kick);
+            }
             // 2. drift.
             self.position = self.position.add(self.velocity.scale(c.dt));
             // 3. torque and L, then 4. the spin, in lanes that touched the ground.

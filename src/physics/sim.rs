@@ -132,6 +132,9 @@ struct Constants {
     gravity: f64,
     /// dyn, `M·g` as a (negative) z force.
     weight_z: f64,
+    /// cm/s, the kick of a step in flight: the contact kick's quotients with every force
+    /// +0.0, `((0 + M·g_z)/M)·Δt` and `(0/M)·Δt`, the same for every flight step of a run.
+    flight_kick: Vector3<f64>,
     stiffness: f64,
     damping: f64,
     friction: f64,
@@ -144,6 +147,8 @@ struct Constants {
 impl Constants {
     fn new(p: &Params) -> Self {
         let mass = p.total_mass();
+        let weight_z = mass * -p.world.gravity;
+        let (dt, zero) = (p.integrator.dt, 0.0);
         Constants {
             dt: p.integrator.dt,
             mass,
@@ -151,7 +156,12 @@ impl Constants {
             inertia: p.inertia(),
             half_size: p.die.half_size,
             gravity: p.world.gravity,
-            weight_z: mass * -p.world.gravity,
+            weight_z,
+            flight_kick: Vector3::new(
+                (zero / mass) * dt,
+                (zero / mass) * dt,
+                ((zero + weight_z) / mass) * dt,
+            ),
             stiffness: p.ground.stiffness,
             damping: p.ground.damping,
             friction: p.ground.friction,
@@ -431,19 +441,19 @@ impl Simulation {
         // Corner velocities before the kick, for the energy ledger.
         let before = (self.in_contact && self.track_ledger).then_some(self.contact_velocities);
         let s = &mut self.state;
-        // 1. kick: v ← v + ((ΣF + M·g)/M)·Δt, forces summed in corner order.
-        let force = if self.in_contact {
-            let mut f = s.corner_forces[0];
+        // 1. kick: v ← v + ((ΣF + M·g)/M)·Δt, forces summed in corner order; in flight
+        // (ΣF = +0) the quotients are the run's constants.
+        if self.in_contact {
+            let mut force = s.corner_forces[0];
             for fk in &s.corner_forces[1..] {
-                f += fk;
+                force += fk;
             }
-            f
+            s.velocity.x += (force.x / c.mass) * c.dt;
+            s.velocity.y += (force.y / c.mass) * c.dt;
+            s.velocity.z += ((force.z + c.weight_z) / c.mass) * c.dt;
         } else {
-            Vector3::zeros()
-        };
-        s.velocity.x += (force.x / c.mass) * c.dt;
-        s.velocity.y += (force.y / c.mass) * c.dt;
-        s.velocity.z += ((force.z + c.weight_z) / c.mass) * c.dt;
+            s.velocity += c.flight_kick;
+        }
         // 2. drift with the new velocity (semi-implicit Euler).
         s.position += s.velocity * c.dt;
         // 3. angular momentum from the torque of the forces at the old corner offsets.
@@ -460,13 +470,18 @@ impl Simulation {
             self.record_contact_work(&before);
         }
         // 5. rotate every corner offset by |ω|·Δt about ω.
-        if let Some(m) = &self.step_rotation {
+        if let Some(m) = self.step_rotation {
+            // The entries as locals: the compiler then keeps them in registers across the
+            // 8 corners instead of reloading them after every store.
+            let column = |j: usize| (m[(0, j)], m[(1, j)], m[(2, j)]);
+            let (cx, cy, cz) = (column(0), column(1), column(2));
             for r in &mut self.state.corner_offsets {
                 // Row vector times matrix, each entry (a₁b₁ + a₂b₂) + a₃b₃ as reference BLAS.
+                let (x, y, z) = (r.x, r.y, r.z);
                 *r = Vector3::new(
-                    (r.x * m[(0, 0)] + r.y * m[(1, 0)]) + r.z * m[(2, 0)],
-                    (r.x * m[(0, 1)] + r.y * m[(1, 1)]) + r.z * m[(2, 1)],
-                    (r.x * m[(0, 2)] + r.y * m[(1, 2)]) + r.z * m[(2, 2)],
+                    (x * cx.0 + y * cx.1) + z * cx.2,
+                    (x * cy.0 + y * cy.1) + z * cy.2,
+                    (x * cz.0 + y * cz.1) + z * cz.2,
                 );
             }
         }
@@ -484,9 +499,9 @@ impl Simulation {
         if self.outcome.is_some() {
             return None;
         }
-        let outcome = self.check_end();
-        self.outcome = outcome;
-        outcome
+        let outcome = self.check_end()?;
+        self.outcome = Some(outcome);
+        Some(outcome)
     }
 
     /// Steps until the roll ends (settled, did not settle, or unstable).
@@ -526,20 +541,29 @@ impl Simulation {
     }
 
     /// Whether the current state ends the roll, and how.
+    ///
+    /// Asked after every step, so the usual answer (finite, no runaway, not settled, time
+    /// left) is reached with one energy sum, one branch-free finiteness test and a few
+    /// comparisons; the outcome is only built on the step that ends the roll.
+    #[inline]
     pub(super) fn check_end(&self) -> Option<Outcome> {
         let energy = self.energy();
         let rigid = energy.total();
-        let runaway = rigid > self.runaway_energy;
-        let status = if !rigid.is_finite() || !self.state_is_finite() || runaway {
-            Some(Status::Unstable)
+        let status = if !rigid.is_finite() || !self.state_is_finite() || rigid > self.runaway_energy {
+            Status::Unstable
         } else if self.settled(&energy, rigid) {
-            Some(Status::Settled)
+            Status::Settled
         } else if self.state.step >= self.c.max_steps {
-            Some(Status::Timeout)
+            Status::Timeout
         } else {
-            None
+            return None;
         };
-        status.map(|status| Outcome {
+        Some(self.outcome_of(status))
+    }
+
+    #[cold]
+    fn outcome_of(&self, status: Status) -> Outcome {
+        Outcome {
             status,
             face: match status {
                 Status::Settled => self.face_of_highest_corners(),
@@ -547,19 +571,25 @@ impl Simulation {
             },
             steps: self.state.step,
             time_s: self.state.time_s,
-        })
+        }
     }
 
     /// The stopping rule on this state, given its rigid-body energy and that energy's total.
+    ///
+    /// The rule is a conjunction of comparisons, so the cheap rigid-body potential is
+    /// compared first: above the threshold, the point-mass energy need not be summed.
     #[inline]
     fn settled(&self, energy: &Energy, rigid: f64) -> bool {
-        match self.c.stop_energy {
-            StopEnergy::RigidBody => settles(rigid, energy.kinetic(), energy.potential(), &self.c.stop_rule),
-            StopEnergy::PointMasses => {
-                let (kinetic, total) = self.point_mass_parts();
-                settles(total, kinetic, energy.potential(), &self.c.stop_rule)
+        let rule = &self.c.stop_rule;
+        let potential = energy.potential();
+        potential <= rule.energy_threshold
+            && match self.c.stop_energy {
+                StopEnergy::RigidBody => settles(rigid, energy.kinetic(), potential, rule),
+                StopEnergy::PointMasses => {
+                    let (kinetic, total) = self.point_mass_parts();
+                    settles(total, kinetic, potential, rule)
+                }
             }
-        }
     }
 
     /// `(kinetic, total)` of the stop energy, given the rigid-body energy of this state.
@@ -570,10 +600,26 @@ impl Simulation {
         }
     }
 
+    /// Whether the position, velocity and every corner offset are finite.
+    ///
+    /// A value is not finite exactly when its 11 exponent bits are all set; adding one at
+    /// the exponent's lowest bit then carries into the sign bit. OR-ing that over the 30
+    /// values needs no branch per value, and integer ORs may be regrouped, so the compiler
+    /// vectorises it.
+    #[inline]
     fn state_is_finite(&self) -> bool {
+        const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
+        const EXPONENT_ONE: u64 = 1 << 52;
+        let flags = |v: &Vector3<f64>| {
+            let flag = |x: f64| (x.to_bits() & EXPONENT) + EXPONENT_ONE;
+            flag(v.x) | flag(v.y) | flag(v.z)
+        };
         let s = &self.state;
-        s.position.iter().chain(s.velocity.iter()).all(|x| x.is_finite())
-            && s.corner_offsets.iter().all(|r| r.iter().all(|x| x.is_finite()))
+        let mut any = flags(&s.position) | flags(&s.velocity);
+        for r in &s.corner_offsets {
+            any |= flags(r);
+        }
+        any >> 63 == 0
     }
 
     /// ω from L, and the step rotation from ω (reference §2 step 5, built as the authors
@@ -589,16 +635,19 @@ impl Simulation {
     fn update_forces(&mut self) {
         let c = self.c;
         let z0 = self.state.position.z;
+        if !self.in_contact {
+            // Out of contact every depth is already +0.0: look before writing them.
+            let offsets = &self.state.corner_offsets;
+            if !offsets.iter().fold(false, |any, r| any | (r.z + z0 < 0.0)) {
+                return;
+            }
+        }
         let mut any = false;
         for k in 0..8 {
             let z = self.state.corner_offsets[k].z + z0;
             let depth = if z < 0.0 { -z } else { 0.0 };
             self.state.corner_depths[k] = depth;
             any |= z < 0.0;
-        }
-        if !any && !self.in_contact {
-            // Nothing touches now or did before: forces are already zero.
-            return;
         }
         self.in_contact = any;
         if !any {
@@ -669,7 +718,7 @@ impl Simulation {
 /// in the same order). Its divisions are the fewest that keep every entry bitwise: `p` is
 /// symmetric (`ωᵢ·ωⱼ = ωⱼ·ωᵢ` exactly) and the cross term antisymmetric (a quotient's sign
 /// follows its dividend's), so 6 + 3 quotients serve 9 + 9 entries, and the diagonal's
-/// `(sin·0)/|ω|` (±0, or NaN when sin is) is taken once.
+/// `(sin·0)/|ω|` needs no division at all.
 #[inline(never)]
 pub(super) fn spin(
     angular_momentum: &Vector3<f64>,
@@ -689,7 +738,9 @@ pub(super) fn spin(
     let (pxy, pxz, pyz) = (p(0, 1), p(0, 2), p(1, 2));
     // [w_code]× with w_code = −ω has (0,1) = ω_z, (0,2) = −ω_y, (1,2) = ω_x.
     let (sz, sy, sx) = ((sin * w.z) / norm, (sin * -w.y) / norm, (sin * w.x) / norm);
-    let diagonal = (sin * 0.0) / norm;
+    // `(sin·0)/|ω|` is `sin·0` itself: ±0 keeps its sign over a positive |ω| (finite or
+    // ∞), and a NaN (sin of ∞ or NaN) passes through the division unchanged.
+    let diagonal = sin * 0.0;
     let on = |p: f64| (p + cos * (1.0 - p)) + diagonal;
     let off = |p: f64| p + cos * (0.0 - p);
     #[rustfmt::skip]
@@ -709,7 +760,12 @@ fn scaled_norm(w: &Vector3<f64>) -> f64 {
         if scale == t {
             sum += 1.0;
         } else if scale < t {
-            sum = sum * ((scale / t) * (scale / t)) + 1.0;
+            // The first nonzero component: `1·(0/t)² + 1` is exactly 1, no division needed.
+            sum = if scale == 0.0 {
+                1.0
+            } else {
+                sum * ((scale / t) * (scale / t)) + 1.0
+            };
             scale = t;
         } else if t != 0.0 {
             sum += (t / scale) * (t / scale);

@@ -109,13 +109,12 @@ impl View {
         let height = width * 2.0 * area.height as f64 / area.width.max(1) as f64;
         let focus = Vector3::new(die.centre.x, die.centre.y, 0.0);
         let centre_y = camera.project(&die.centre, &focus).y.max(0.35 * height);
-        // Never below the die's lowest corner or its shadow: a short panel shows the whole
-        // die and gives up sky instead.
+        // Never above the die's lowest corner: a short panel shows the whole die resting on
+        // the table and gives up sky instead.
         let lowest = die
             .corners
             .iter()
-            .flat_map(|c| [*c, Vector3::new(c.x, c.y, 0.0)])
-            .map(|p| camera.project(&p, &focus).y)
+            .map(|p| camera.project(p, &focus).y)
             .fold(f64::INFINITY, f64::min);
         let bottom = (centre_y - height / 2.0).min(lowest - 0.04 * height);
         View {
