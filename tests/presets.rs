@@ -6,7 +6,10 @@ mod common;
 
 use dicesim::experiment::roll_record;
 use dicesim::physics::{FrictionLaw, InitialCondition, Outcome, Params, Simulation, Status, StopEnergy};
-use dicesim::preset::{DEFAULT_NAME, FORMAT, Preset, PresetError, SHIPPED, Source, Store, load_file};
+use dicesim::preset::{
+    CameraView, DEFAULT_NAME, FORMAT, Preset, PresetError, SHIPPED, Screen, Source, Speed, Store, ThemeName,
+    View, load_file,
+};
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -718,6 +721,14 @@ prop_compose! {
             range2(dicesim::physics::registry::ANGULAR_VELOCITY.limits),
             any::<bool>(),
         ),
+        view in (
+            prop_oneof![Just(None), Just(Some(Speed::SLOWEST)), Just(Some(Speed::INSTANT)), Just(Some(Speed::default()))],
+            proptest::option::of((-360.0..=360.0f64, -10.0..=89.0f64, -8..=8i32)),
+            proptest::option::of(prop_oneof![Just(ThemeName::Dark), Just(ThemeName::Light), Just(ThemeName::Projector)]),
+            proptest::option::of(any::<bool>()),
+            proptest::option::of(1e-15..=0.1f64),
+            proptest::option::of(prop_oneof![Just(Screen::Die), Just(Screen::Map)]),
+        ),
     ) -> Preset {
         let mut p = Preset {
             name,
@@ -744,6 +755,14 @@ prop_compose! {
         p.random.seed = random.0;
         (p.random.height, p.random.velocity, p.random.angular_velocity) = (random.1, random.2, random.3);
         p.random.random_orientation = random.4;
+        p.view = View {
+            speed: view.0,
+            camera: view.1.map(|(yaw, pitch, zoom)| CameraView { yaw, pitch, zoom }),
+            theme: view.2,
+            arrows: view.3,
+            twin: view.4,
+            screen: view.5,
+        };
         p
     }
 }

@@ -124,6 +124,17 @@ impl Preset {
                 line(name, value, spec.comment);
             }
         }
+        let view = self.view.lines();
+        if !view.is_empty() {
+            line(
+                "\n[view]",
+                String::new(),
+                "how the explorer opens this preset (the CLI ignores it)",
+            );
+            for (key, value, comment) in view {
+                line(&key, value, comment);
+            }
+        }
         out
     }
 
@@ -471,6 +482,90 @@ mod tests {
         assert_eq!(
             q.initial.angular_momentum,
             Some([3.0 * inertia, 0.0, -1.5 * inertia])
+        );
+    }
+
+    #[test]
+    fn the_view_is_read_written_and_checked_like_every_other_table() {
+        use crate::preset::{CameraView, Screen, Speed, ThemeName, View};
+        let p = Preset::from_toml_str(
+            "[view]\nspeed = \"1/20×\"\ncamera = { yaw = 45.0, pitch = 60.0, zoom = 2 }\n\
+             theme = \"projector\"\narrows = true\ntwin = 1e-6\nscreen = \"map\"\n",
+            ORIGIN,
+        )
+        .unwrap();
+        let view = View {
+            speed: Speed::from_label("1/20"),
+            camera: Some(CameraView {
+                yaw: 45.0,
+                pitch: 60.0,
+                zoom: 2,
+            }),
+            theme: Some(ThemeName::Projector),
+            arrows: Some(true),
+            twin: Some(1e-6),
+            screen: Some(Screen::Map),
+        };
+        assert_eq!(p.view, view);
+        let text = p.to_toml();
+        assert!(text.contains("\n[view]"), "{text}");
+        assert_eq!(Preset::from_toml_str(&text, ORIGIN).unwrap(), p);
+        assert!(
+            !Preset::default().to_toml().contains("[view]"),
+            "no view, no table"
+        );
+        assert_eq!(
+            Preset::from_toml_str("[view]\nspeed = \"instant\"\n", ORIGIN)
+                .unwrap()
+                .view
+                .speed,
+            Some(Speed::INSTANT)
+        );
+
+        let e = err("[view]\nspeed = \"1/20\"\ncolour = \"red\"\n");
+        assert!(
+            e.to_string()
+                .starts_with("dir/p.toml:3:1: key `view.colour`: unknown field `colour`"),
+            "{e}"
+        );
+        let e = err("[view]\nspeed = \"1/3\"\n");
+        assert!(
+            e.to_string().starts_with(
+                "dir/p.toml:2:9: key `view.speed`: `1/3` is not a playback speed; one of 1/100×, 1/50×"
+            ),
+            "{e}"
+        );
+        let e = err("[view]\ntheme = \"neon\"\n");
+        assert!(
+            e.to_string()
+                .starts_with("dir/p.toml:2:9: key `view.theme`: unknown variant `neon`"),
+            "{e}"
+        );
+        let e = err("[view]\nscreen = 2\n");
+        assert!(
+            e.to_string().starts_with("dir/p.toml:2:10: key `view.screen`"),
+            "{e}"
+        );
+        let e = err("[view]\narrows = \"yes\"\n");
+        assert!(
+            e.to_string()
+                .starts_with("dir/p.toml:2:10: key `view.arrows`: invalid type"),
+            "{e}"
+        );
+        let e = err("[view]\ncamera = { yaw = 0.0, pitch = 95.0 }\n");
+        assert_eq!(
+            e.to_string(),
+            "dir/p.toml:2:23: `view.camera.pitch` = 95 is outside the allowed range -10 to 89 °"
+        );
+        let e = err("[view]\ncamera = { yaw = 0.0, pitch = 5.0, roll = 1.0 }\n");
+        assert!(
+            e.to_string().contains("key `view.camera.roll`: unknown field"),
+            "{e}"
+        );
+        let e = err("[view]\n\ntwin = 0.5\n");
+        assert_eq!(
+            e.to_string(),
+            "dir/p.toml:3:1: `view.twin` = 0.5 is outside the allowed range 1e-15 to 0.1"
         );
     }
 }

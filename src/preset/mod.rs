@@ -2,6 +2,7 @@
 //!
 //! - [`Preset`] is one setup; [`Preset::from_toml_str`] and [`Preset::to_toml`] read and write
 //!   the file format, [`Preset::with_overrides`] applies `--set KEY=VALUE`.
+//! - [`View`] is a preset's optional `[view]`: how the explorer opens it.
 //! - [`Store`] finds presets (a path, the user's folder, the shipped set), lists them and saves
 //!   into the user's folder atomically.
 //! - [`Preset::default`] is the shipped `paper` preset: what runs when no preset is named.
@@ -10,12 +11,18 @@ mod error;
 mod file;
 mod overrides;
 mod shipped;
+mod speed;
 mod store;
+mod view;
 
 pub use error::{Location, PresetError};
 pub use shipped::{DEFAULT_NAME, SHIPPED, shipped_text};
+pub use speed::Speed;
 pub(crate) use store::read_regular_file;
 pub use store::{Entry, PRESETS_ENV, Source, Store, check_name, load_file};
+pub use view::{CameraView, Screen, ThemeName, View};
+#[cfg(test)]
+pub(crate) use view::{PITCH, ZOOM};
 
 use crate::experiment::RandomRanges;
 use crate::physics::{Die, Ground, InitialCondition, Integrator, Limits, ParamError, Params, World};
@@ -60,6 +67,9 @@ pub struct Preset {
     pub initial: InitialCondition,
     #[serde(default)]
     pub random: RandomRanges,
+    /// How the explorer shows it (speed, camera, theme, …); all optional.
+    #[serde(default, skip_serializing_if = "View::is_empty")]
+    pub view: View,
 }
 
 fn current_format() -> u32 {
@@ -101,6 +111,7 @@ impl Preset {
         self.params().validate()?;
         self.initial.validate()?;
         self.initial.check_clear_of_table(&self.params())?;
-        self.random.validate()
+        self.random.validate()?;
+        self.view.validate()
     }
 }

@@ -4,13 +4,14 @@
 use super::camera::Camera;
 use super::dialogs::Dialog;
 use super::format::{fmt_num, fmt_range};
+use super::keys::{Action, Screen, lookup};
 use super::layout::{Areas, param_row_at, screen_layout};
 use super::map::{self, MapView, View};
 use super::param::{Param, all};
-use super::theme::Theme;
+use super::theme::{Palette, Theme};
 use crate::experiment::trace::{ExportProgress, human_bytes};
 use crate::physics::{InitialCondition, Params};
-use crate::preset::{Preset, Store};
+use crate::preset::{CameraView, Preset, Screen as ViewScreen, Store, ThemeName, View as PresetView};
 use crate::worker::{
     BatchProgress, Command, EnergySample, MapUpdate, OutcomeTable, SeparationSample, Snapshot, Speed,
 };
@@ -20,8 +21,107 @@ use ratatui::crossterm::event::{
 use ratatui::layout::{Position, Rect};
 use ratatui::symbols::Marker;
 
-/// Rolls in one batch (`b`).
+/// Rolls in one batch (`b`) until another size is chosen (`B`).
 pub(crate) const BATCH_ROLLS: u64 = 10_000;
+
+/// What the explorer asks of the world outside `update`: the event loop runs these (in
+/// order: worker commands as they come, then the rest), so `update` itself never touches
+/// the disk or a thread.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Effect {
+    /// A command for the simulation thread.
+    Worker(Command),
+    /// List the presets (shipped and the user's folder) and open the picker on them.
+    ListPresets,
+    /// Write this preset into the user's folder; an existing file of its name is replaced
+    /// only with `replace` (else the save dialog asks).
+    SavePreset { preset: Box<Preset>, replace: bool },
+    /// Write the basin map on screen as a PNG into the current folder.
+    ExportMap,
+}
+
+impl Effect {
+    /// The worker command, if this is one.
+    pub fn command(self) -> Option<Command> {
+        match self {
+            Effect::Worker(c) => Some(c),
+            _ => None,
+        }
+    }
+}
+
+/// Tests compare the effects of a key with the worker commands they expect.
+impl PartialEq<Command> for Effect {
+    fn eq(&self, other: &Command) -> bool {
+        matches!(self, Effect::Worker(c) if c == other)
+    }
+}
+
+/// What is topmost, and so gets the keys. [`App::mode`] is the one place that decides it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Mode {
+    /// A question that must be answered first (quit, reset or load over unsaved changes).
+    Prompt,
+    /// A parameter's value being typed.
+    EditingValue,
+    /// The preset picker or the save dialog.
+    Dialog,
+    /// The twin's ε being typed.
+    EditingEpsilon,
+    /// A map axis range being typed.
+    EditingRange,
+    Help,
+    /// The basin-map screen.
+    Map,
+    /// The die screen, nothing over it.
+    Normal,
+}
+
+/// A question asked before something that would lose the user's changes.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Prompt {
+    /// `q` with unsaved changes: `y` or `q` again quits.
+    Quit,
+    /// `Backspace` with changes: `y` or `Backspace` again resets to the open preset.
+    Reset,
+    /// A preset chosen in the picker over unsaved changes: `y` or `Enter` loads it.
+    Load(Box<Preset>),
+}
+
+impl Prompt {
+    /// The question, as the footer asks it.
+    pub(crate) fn question(&self, preset: &str) -> String {
+        match self {
+            Prompt::Quit => "Quit? The setup has unsaved changes (s saves them).".to_string(),
+            Prompt::Reset => format!("Reset the setup to {preset}? Your changes are lost."),
+            Prompt::Load(p) => format!("Open {}? Your changes to {preset} are lost.", p.name),
+        }
+    }
+
+    /// The footer's answers.
+    pub(crate) fn answers(&self) -> (&'static str, &'static str) {
+        match self {
+            Prompt::Quit => ("y/q", "quits"),
+            Prompt::Reset => ("y/⌫", "resets"),
+            Prompt::Load(_) => ("y/Enter", "opens it"),
+        }
+    }
+
+    fn confirmed_by(&self, code: KeyCode) -> bool {
+        code == KeyCode::Char('y')
+            || code
+                == match self {
+                    Prompt::Quit => KeyCode::Char('q'),
+                    Prompt::Reset => KeyCode::Backspace,
+                    Prompt::Load(_) => KeyCode::Enter,
+                }
+    }
+}
+
+/// Batch sizes `B` walks through before offering to type one.
+pub(crate) const BATCH_SIZES: [u64; 3] = [1_000, 10_000, 100_000];
+/// The largest batch that may be typed: a few minutes on two cores.
+pub(crate) const MAX_BATCH_ROLLS: u64 = 10_000_000;
 
 /// What the event loop hands to [`update`]: terminal input or a worker snapshot.
 #[derive(Debug, Clone)]
@@ -119,11 +219,17 @@ pub struct App {
     pub(crate) speed: Speed,
     /// Energy samples of the roll on screen.
     pub(crate) history: Vec<EnergySample>,
+    /// Steps at which the roll's impacts began, for the timeline.
+    pub(crate) impacts: Vec<u64>,
     pub(crate) table: OutcomeTable,
     pub(crate) batch: Option<BatchProgress>,
     /// The roll's export, while it runs.
     pub(crate) export: Option<ExportProgress>,
     pub(crate) batch_rolls: u64,
+    /// The batch size being typed (after `B` has walked past the largest preset size).
+    pub(crate) batch_editor: Option<Editor>,
+    /// The question being asked, if any: it takes every key until answered.
+    pub(crate) prompt: Option<Prompt>,
     pub(crate) notice: Option<String>,
     /// Index into [`all`](super::param::all).
     pub(crate) selected: usize,
@@ -157,6 +263,11 @@ pub struct App {
     pub(crate) view: View,
     pub(crate) map: MapView,
     commands_sent: u64,
+    /// Effects other than worker commands asked for during the current `update`.
+    effects: Vec<Effect>,
+    /// The preset's view asks for the map screen: opened by the first `update`, once the
+    /// event loop has told the app its terminal size.
+    open_map: bool,
     /// Last mouse position while dragging the die.
     drag: Option<(u16, u16)>,
 }
@@ -175,9 +286,12 @@ impl App {
             batch: first.batch,
             export: first.export,
             notice: first.notice.take(),
+            impacts: first.timeline.impacts.take().unwrap_or_default(),
             live: first,
             history,
             batch_rolls: BATCH_ROLLS,
+            batch_editor: None,
+            prompt: None,
             selected: 0,
             editing: None,
             help: false,
@@ -200,8 +314,92 @@ impl App {
             view: View::Die,
             map,
             commands_sent: 0,
+            effects: Vec::new(),
+            open_map: false,
             drag: None,
         }
+        .with_view()
+    }
+
+    /// The app with its preset's `[view]` applied.
+    fn with_view(mut self) -> App {
+        let view = self.preset.view;
+        self.apply_view(&view);
+        self
+    }
+
+    /// A preset's view: what the UI owns of it (the worker sets the speed and rolls the
+    /// twin itself). A preset opens the same way every time, so a key the view leaves out
+    /// means the default (the camera's, no arrows, no twin, the die screen); only the theme
+    /// stays as it is, since it suits the room rather than the preset.
+    pub(crate) fn apply_view(&mut self, view: &PresetView) {
+        self.camera = view.camera.map_or_else(Camera::default, |c| Camera {
+            yaw_deg: c.yaw,
+            pitch_deg: c.pitch,
+            zoom: c.zoom,
+        });
+        if let Some(name) = view.theme {
+            self.theme.palette = match name {
+                ThemeName::Dark => Palette::Dark,
+                ThemeName::Light => Palette::Light,
+                ThemeName::Projector => Palette::Projector,
+            };
+        }
+        self.vectors = view.arrows.unwrap_or(false);
+        self.twin = view.twin.is_some();
+        if let Some(epsilon) = view.twin {
+            self.epsilon = epsilon;
+        }
+        self.open_map = view.screen == Some(ViewScreen::Map);
+    }
+
+    /// The view on screen, as `s` saves it.
+    pub(crate) fn current_view(&self) -> PresetView {
+        PresetView {
+            speed: Some(self.speed),
+            camera: Some(CameraView {
+                yaw: self.camera.yaw_deg,
+                pitch: self.camera.pitch_deg,
+                zoom: self.camera.zoom,
+            }),
+            theme: Some(match self.theme.palette {
+                Palette::Dark => ThemeName::Dark,
+                Palette::Light => ThemeName::Light,
+                Palette::Projector => ThemeName::Projector,
+            }),
+            arrows: Some(self.vectors),
+            twin: self.twin.then_some(self.epsilon),
+            screen: Some(match self.view {
+                View::Die => ViewScreen::Die,
+                View::Map => ViewScreen::Map,
+            }),
+        }
+    }
+
+    /// What is topmost now.
+    pub(crate) fn mode(&self) -> Mode {
+        if self.prompt.is_some() {
+            Mode::Prompt
+        } else if self.editing.is_some() || self.batch_editor.is_some() {
+            Mode::EditingValue
+        } else if self.dialog.is_some() {
+            Mode::Dialog
+        } else if self.epsilon_editor.is_some() {
+            Mode::EditingEpsilon
+        } else if self.view == View::Map && self.map.editing.is_some() {
+            Mode::EditingRange
+        } else if self.help {
+            Mode::Help
+        } else if self.view == View::Map {
+            Mode::Map
+        } else {
+            Mode::Normal
+        }
+    }
+
+    /// Asks the event loop for an effect outside the worker (files, folders).
+    pub(crate) fn ask(&mut self, effect: Effect) {
+        self.effects.push(effect);
     }
 
     pub(crate) fn selected_param(&self) -> Param {
@@ -218,6 +416,13 @@ impl App {
             self.history.clear();
             self.twin_history.clear();
         }
+        if let Some(cut) = s.history_cut {
+            self.history.retain(|h| h.time_s <= cut);
+            self.twin_history.retain(|h| h.time_s <= cut);
+        }
+        if let Some(impacts) = s.timeline.impacts.take() {
+            self.impacts = impacts;
+        }
         if let Some(twin) = &mut s.twin {
             self.twin_history.append(&mut twin.history);
         }
@@ -230,6 +435,8 @@ impl App {
         }
         if let Some(p) = s.preset.take() {
             self.preset = *p;
+            let view = self.preset.view;
+            self.apply_view(&view);
         }
         // Until the worker has seen every command, the user's own values are newer.
         if s.commands_handled >= self.commands_sent {
@@ -314,13 +521,55 @@ impl App {
         self.send(out, Command::Quit);
     }
 
+    /// Quits, or asks first when the setup has unsaved changes.
+    fn quit_asking(&mut self, out: &mut Vec<Command>) {
+        if super::dialogs::modified(self) {
+            self.prompt = Some(Prompt::Quit);
+        } else {
+            self.quit(out);
+        }
+    }
+
+    /// The setup back to the open preset's (its roll from the start, a fresh table); asks
+    /// first when there are changes.
+    fn reset_asking(&mut self) {
+        if super::dialogs::modified(self) {
+            self.prompt = Some(Prompt::Reset);
+        } else {
+            self.notice = Some(format!("nothing to reset: the setup is {}'s", self.preset.name));
+        }
+    }
+
+    /// Loads `preset` (its setup and view), dropping whatever was on screen.
+    pub(crate) fn load(&mut self, out: &mut Vec<Command>, preset: Box<Preset>) {
+        self.params = preset.params();
+        self.initial = preset.initial;
+        self.send(out, Command::LoadPreset(preset));
+    }
+
+    /// `B`: 1 000 → 10 000 → 100 000 → type one → 1 000 …
+    fn next_batch_size(&mut self) {
+        let at = BATCH_SIZES.iter().position(|&n| n == self.batch_rolls);
+        match at.map_or(Some(0), |i| (i + 1 < BATCH_SIZES.len()).then_some(i + 1)) {
+            Some(i) => {
+                self.batch_rolls = BATCH_SIZES[i];
+                self.notice = Some(format!(
+                    "batch size {} (B: the next size, after 100 000 type one)",
+                    group(self.batch_rolls)
+                ));
+            }
+            None => self.batch_editor = Some(Editor::default()),
+        }
+    }
+
     fn areas(&self) -> Option<Areas> {
         screen_layout(self.screen)
     }
 }
 
-/// Applies one message; returns the commands to send to the worker, in order.
-pub fn update(app: &mut App, msg: Msg) -> Vec<Command> {
+/// Applies one message; returns what the event loop is to do, in order: the worker's
+/// commands, then any file work.
+pub fn update(app: &mut App, msg: Msg) -> Vec<Effect> {
     let mut out = Vec::new();
     match msg {
         Msg::Worker(s) => app.absorb(*s),
@@ -334,6 +583,24 @@ pub fn update(app: &mut App, msg: Msg) -> Vec<Command> {
         Msg::Input(_) => {}
         Msg::Signal(_) => app.quit(&mut out),
     }
+    if std::mem::take(&mut app.open_map) {
+        map::open(app, &mut out);
+    }
+    let mut effects: Vec<Effect> = out.into_iter().map(Effect::Worker).collect();
+    effects.append(&mut app.effects);
+    effects
+}
+
+/// `12 345` (thin groups of three), as the batch size is written.
+pub(crate) fn group(n: u64) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(' ');
+        }
+        out.push(c);
+    }
     out
 }
 
@@ -344,44 +611,68 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
         return;
     }
     app.notice = None;
-    if app.editing.is_some() {
-        on_edit_key(app, key, out);
-        return;
-    }
-    if app.dialog.is_some() {
-        super::dialogs::on_key(app, key, out);
-        return;
-    }
-    if app.epsilon_editor.is_some() {
-        super::twin::on_editor_key(app, key, out);
-        return;
-    }
-    if app.help {
-        match key.code {
-            KeyCode::Char('q') => app.quit(out),
+    match app.mode() {
+        Mode::Prompt => on_prompt_key(app, key, out),
+        Mode::EditingValue => on_edit_key(app, key, out),
+        Mode::Dialog => super::dialogs::on_key(app, key, out),
+        Mode::EditingEpsilon => super::twin::on_editor_key(app, key, out),
+        Mode::EditingRange => super::map_keys::on_range_key(app, key, out),
+        Mode::Help => match key.code {
             KeyCode::Up | KeyCode::Char('k') => app.help_scroll = app.help_scroll.saturating_sub(1),
             KeyCode::Down | KeyCode::Char('j') => app.help_scroll = app.help_scroll.saturating_add(1),
             KeyCode::Char('?') | KeyCode::Esc | KeyCode::Enter => app.help = false,
+            KeyCode::Char('q') => app.quit_asking(out),
             _ => {}
+        },
+        Mode::Map => {
+            if let Some(b) = lookup(Screen::Map, key.code) {
+                act(app, b.action, key, out);
+            }
         }
+        Mode::Normal => {
+            if let Some(b) = lookup(Screen::Die, key.code) {
+                act(app, b.action, key, out);
+            }
+        }
+    }
+}
+
+/// A question's answer: its own key or `y` goes ahead, anything else keeps things as they are.
+fn on_prompt_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
+    let Some(prompt) = app.prompt.take() else {
+        return;
+    };
+    if !prompt.confirmed_by(key.code) {
+        app.notice = Some("nothing changed".to_string());
         return;
     }
-    if app.view == View::Map && super::map_keys::on_key(app, key, out) {
-        return;
+    match prompt {
+        Prompt::Quit => app.quit(out),
+        Prompt::Reset => {
+            let preset = Box::new(app.preset.clone());
+            app.load(out, preset);
+        }
+        Prompt::Load(preset) => {
+            app.dialog = None;
+            app.load(out, preset);
+        }
     }
-    if super::twin::on_key(app, key, out) {
-        return;
-    }
+}
+
+/// Does what a key of the table stands for.
+fn act(app: &mut App, action: Action, key: KeyEvent, out: &mut Vec<Command>) {
     let coarse = key
         .modifiers
         .intersects(KeyModifiers::SHIFT | KeyModifiers::CONTROL | KeyModifiers::ALT);
-    match key.code {
-        KeyCode::Char('q') | KeyCode::Esc => app.quit(out),
-        KeyCode::Char(' ') => app.send(out, Command::TogglePlay),
-        KeyCode::Char('n') => app.send(out, Command::Step(1)),
-        KeyCode::Char('r') => app.send(out, Command::Replay),
-        KeyCode::Char('R') => app.send(out, Command::RandomRoll),
-        KeyCode::Char('b') => {
+    match action {
+        Action::TogglePlay => app.send(out, Command::TogglePlay),
+        Action::StepForward => app.send(out, Command::Step(1)),
+        Action::StepBack => app.send(out, Command::StepBack(1)),
+        Action::ToStart => app.send(out, Command::Seek(0)),
+        Action::ToEnd => app.send(out, Command::Seek(u64::MAX)),
+        Action::Replay => app.send(out, Command::Replay),
+        Action::RandomRoll => app.send(out, Command::RandomRoll),
+        Action::Batch => {
             let c = if app.batch.is_some() {
                 Command::BatchCancel
             } else {
@@ -389,26 +680,21 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
             };
             app.send(out, c);
         }
-        KeyCode::Char('c') => app.send(out, Command::ClearTable),
-        KeyCode::Char('[') | KeyCode::Char('-') => app.set_speed(out, app.speed.slower()),
-        KeyCode::Char(']') | KeyCode::Char('+') | KeyCode::Char('=') => {
-            app.set_speed(out, app.speed.faster())
-        }
-        KeyCode::Up | KeyCode::Char('k') => app.select(-1),
-        KeyCode::Down | KeyCode::Char('j') => app.select(1),
-        KeyCode::Home | KeyCode::Char('g') => app.selected = 0,
-        KeyCode::End | KeyCode::Char('G') => app.selected = all().len() - 1,
-        KeyCode::Left | KeyCode::Char('h') => app.nudge(out, -1, coarse),
-        KeyCode::Right | KeyCode::Char('l') => app.nudge(out, 1, coarse),
-        KeyCode::Char('H') => app.nudge(out, -1, true),
-        KeyCode::Char('L') => app.nudge(out, 1, true),
-        KeyCode::Enter => app.editing = Some(Editor::default()),
-        KeyCode::Char('?') => {
-            app.help = true;
-            app.help_scroll = 0;
-        }
-        KeyCode::Char('y') => app.log_scale = !app.log_scale,
-        KeyCode::Char('e') => {
+        Action::BatchSize => app.next_batch_size(),
+        Action::ClearTable => app.send(out, Command::ClearTable),
+        Action::Slower => app.set_speed(out, app.speed.slower()),
+        Action::Faster => app.set_speed(out, app.speed.faster()),
+        Action::SelectPrevious => app.select(-1),
+        Action::SelectNext => app.select(1),
+        Action::SelectFirst => app.selected = 0,
+        Action::SelectLast => app.selected = all().len() - 1,
+        Action::Decrease => app.nudge(out, -1, coarse),
+        Action::Increase => app.nudge(out, 1, coarse),
+        Action::DecreaseBig => app.nudge(out, -1, true),
+        Action::IncreaseBig => app.nudge(out, 1, true),
+        Action::TypeValue => app.editing = Some(Editor::default()),
+        Action::LogScale => app.log_scale = !app.log_scale,
+        Action::Export => {
             let c = if app.export.is_some() {
                 Command::ExportCancel
             } else {
@@ -416,8 +702,13 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
             };
             app.send(out, c);
         }
-        KeyCode::Char('v') => app.vectors = !app.vectors,
-        KeyCode::Char('t') => {
+        Action::Arrows => app.vectors = !app.vectors,
+        Action::Twin | Action::TwinEpsilonDown | Action::TwinEpsilonUp | Action::TwinEpsilonType => {
+            if !super::twin::on_key(app, key, out) {
+                app.notice = Some("T first: these keys set the twin's ε".to_string());
+            }
+        }
+        Action::Theme => {
             app.theme = app.theme.next();
             app.notice = Some(format!(
                 "theme: {}{} (t cycles dark, light, projector)",
@@ -429,27 +720,76 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
                 }
             ));
         }
-        KeyCode::Char('m') => {
+        Action::Drawing => {
             app.drawing = match app.drawing {
                 Drawing::Braille => Drawing::Ascii,
                 Drawing::Ascii => Drawing::Braille,
             }
         }
-        KeyCode::Char('a') => app.camera.orbit(-15.0, 0.0),
-        KeyCode::Char('d') => app.camera.orbit(15.0, 0.0),
-        KeyCode::Char('W') => app.camera.orbit(0.0, 10.0),
-        KeyCode::Char('S') => app.camera.orbit(0.0, -10.0),
-        KeyCode::Char('o') => super::dialogs::open_picker(app),
-        KeyCode::Char('s') => super::dialogs::open_save(app),
-        KeyCode::Char('z') => app.camera.zoom_by(1),
-        KeyCode::Char('x') => app.camera.zoom_by(-1),
-        KeyCode::Char('0') => app.camera = Camera::default(),
-        KeyCode::Tab | KeyCode::BackTab | KeyCode::Char('2') => map::open(app, out),
-        _ => {}
+        Action::OrbitLeft => app.camera.orbit(-15.0, 0.0),
+        Action::OrbitRight => app.camera.orbit(15.0, 0.0),
+        Action::TiltUp => app.camera.orbit(0.0, 10.0),
+        Action::TiltDown => app.camera.orbit(0.0, -10.0),
+        Action::ZoomIn => app.camera.zoom_by(1),
+        Action::ZoomOut => app.camera.zoom_by(-1),
+        Action::ResetCamera => app.camera = Camera::default(),
+        Action::OpenPreset => app.ask(Effect::ListPresets),
+        Action::SavePreset => super::dialogs::open_save(app),
+        Action::ResetSetup => app.reset_asking(),
+        Action::OpenMap => map::open(app, out),
+        Action::Help => {
+            app.help = true;
+            app.help_scroll = 0;
+        }
+        Action::Close => match app.view {
+            View::Map => map::close(app, out),
+            View::Die => app.notice = Some("nothing to close (q quits)".to_string()),
+        },
+        Action::Quit => app.quit_asking(out),
+        Action::MapBack
+        | Action::CursorLeft
+        | Action::CursorRight
+        | Action::CursorUp
+        | Action::CursorDown
+        | Action::CursorLeftBig
+        | Action::CursorRightBig
+        | Action::CursorUpBig
+        | Action::CursorDownBig
+        | Action::ReplayCell
+        | Action::MapZoomIn
+        | Action::MapZoomOut
+        | Action::NextXAxis
+        | Action::NextYAxis
+        | Action::TypeXRange
+        | Action::TypeYRange
+        | Action::MapLayer
+        | Action::ExportMap => super::map_keys::act(app, action, coarse, out),
     }
 }
 
 fn on_edit_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
+    if let Some(editor) = app.batch_editor.as_mut() {
+        match editor.key(key.code) {
+            Typed::Cancelled => app.batch_editor = None,
+            Typed::Editing => {}
+            Typed::Submitted(number) => match number {
+                Ok(n) if n.fract() == 0.0 && (1.0..=MAX_BATCH_ROLLS as f64).contains(&n) => {
+                    app.batch_rolls = n as u64;
+                    app.batch_editor = None;
+                    app.notice = Some(format!("batch size {}", group(app.batch_rolls)));
+                }
+                Ok(n) => {
+                    editor.error = Some(format!(
+                        "{} rolls: a whole number from 1 to {}",
+                        fmt_num(n),
+                        group(MAX_BATCH_ROLLS)
+                    ))
+                }
+                Err(e) => editor.error = Some(e),
+            },
+        }
+        return;
+    }
     let Some(editor) = app.editing.as_mut() else {
         return;
     };
@@ -471,12 +811,7 @@ fn on_edit_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
 }
 
 fn on_mouse(app: &mut App, kind: MouseEventKind, column: u16, row: u16, out: &mut Vec<Command>) {
-    if app.help
-        || app.editing.is_some()
-        || app.epsilon_editor.is_some()
-        || app.dialog.is_some()
-        || app.view == View::Map
-    {
+    if app.mode() != Mode::Normal {
         return;
     }
     let Some(areas) = app.areas() else { return };
@@ -485,6 +820,9 @@ fn on_mouse(app: &mut App, kind: MouseEventKind, column: u16, row: u16, out: &mu
         MouseEventKind::Down(MouseButton::Left) => {
             if let Some(i) = param_row_at(app, &areas, at) {
                 app.selected = i;
+            } else if let Some(bar) = super::timeline::bar(areas.timeline).filter(|b| b.contains(at)) {
+                let step = super::timeline::step_at(app, bar, column);
+                app.send(out, Command::Seek(step));
             } else if areas.die.contains(at) {
                 app.drag = Some((column, row));
             }

@@ -171,6 +171,9 @@ mod twin {
             app,
             Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))),
         )
+        .into_iter()
+        .filter_map(|e| crate::tui::run::perform(app, e))
+        .collect()
     }
 
     /// The paper's roll and its twin at ε = 1e-9, `steps` steps in.
@@ -328,6 +331,9 @@ mod presets {
             app,
             Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))),
         )
+        .into_iter()
+        .filter_map(|e| crate::tui::run::perform(app, e))
+        .collect()
     }
 
     fn type_text(app: &mut App, text: &str) {
@@ -507,6 +513,9 @@ mod export {
             app,
             Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))),
         )
+        .into_iter()
+        .filter_map(|e| crate::tui::run::perform(app, e))
+        .collect()
     }
 
     #[test]

@@ -1,10 +1,12 @@
 //! The preset dialogs: `o` picks a preset to load (shipped and the user's, with their
 //! descriptions), `s` saves the current setup under a name, asking before it replaces one.
 //!
-//! These are the only keys whose handling touches the disk: listing the preset folder when
-//! the picker opens, writing a file when a save is confirmed.
+//! Their keys never touch the disk themselves: listing the preset folder ([`open_picker`])
+//! and writing a file ([`save`]) are effects the event loop runs after `update`.
 
-use super::app::App;
+use super::app::{App, Effect, Prompt};
+use super::format::fmt_num;
+use super::param::all;
 use crate::output::printable;
 use crate::preset::{Preset, Source, check_name};
 use crate::worker::Command;
@@ -36,11 +38,27 @@ pub(crate) enum Dialog {
     },
     Save {
         name: String,
+        /// Empty: the automatic description ([`automatic_description`]) is saved.
+        description: String,
+        /// Which field the keys type into (Tab switches).
+        field: SaveField,
         error: Option<String>,
         /// The name exists and Enter was pressed once: the next Enter replaces it.
         confirm_replace: bool,
     },
 }
+
+/// The save dialog's fields.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum SaveField {
+    Name,
+    Description,
+}
+
+/// Characters a preset name may have in the dialog (the name check decides the rest).
+const NAME_CHARS: usize = 64;
+/// Characters of a description typed in the dialog.
+const DESCRIPTION_CHARS: usize = 600;
 
 /// Whether the setup on screen differs from the preset it was loaded from.
 pub(crate) fn modified(app: &App) -> bool {
@@ -73,26 +91,48 @@ pub(crate) fn open_picker(app: &mut App) {
 pub(crate) fn open_save(app: &mut App) {
     app.dialog = Some(Dialog::Save {
         name: String::new(),
+        description: String::new(),
+        field: SaveField::Name,
         error: None,
         confirm_replace: false,
     });
 }
 
-/// The setup on screen as a preset named `name`: the loaded preset's random ranges, the
-/// current model values and start.
-pub(crate) fn current_setup(app: &App, name: &str) -> Preset {
+/// What a saved setup says about itself when no description is typed: its base and the
+/// values changed from it, as `presets save --set` words it.
+pub(crate) fn automatic_description(app: &App) -> String {
+    let base = (app.preset.params(), app.preset.initial);
+    let changed: Vec<String> = all()
+        .iter()
+        .filter_map(|p| {
+            let (now, was) = (p.get(&app.params, &app.initial), p.get(&base.0, &base.1));
+            (now != was).then(|| format!("{}={}", p.key(), fmt_num(now)))
+        })
+        .collect();
+    if changed.is_empty() {
+        format!("The `{}` preset, saved from the explorer.", app.preset.name)
+    } else {
+        format!("The `{}` preset with {}.", app.preset.name, changed.join(", "))
+    }
+}
+
+/// The setup and the view on screen as a preset named `name`: the loaded preset's random
+/// ranges, the current model values, start and view.
+pub(crate) fn current_setup(app: &App, name: &str, description: &str) -> Preset {
     let p = &app.params;
+    let description = match description.trim() {
+        "" => automatic_description(app),
+        typed => typed.to_string(),
+    };
     Preset {
         name: name.to_string(),
-        description: format!(
-            "Saved from the explorer, starting from the {} preset. {}",
-            app.preset.name, app.preset.description
-        ),
+        description,
         die: p.die,
         ground: p.ground,
         world: p.world,
         integrator: p.integrator,
         initial: app.initial,
+        view: app.current_view(),
         ..app.preset.clone()
     }
 }
@@ -110,9 +150,21 @@ pub(crate) fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
         } => picker_key(app, key, out, choices, selected, error),
         Dialog::Save {
             name,
+            description,
+            field,
             error,
             confirm_replace,
-        } => save_key(app, key, name, error, confirm_replace),
+        } => save_key(
+            app,
+            key,
+            SaveForm {
+                name,
+                description,
+                field,
+            },
+            error,
+            confirm_replace,
+        ),
     };
 }
 
@@ -132,8 +184,17 @@ fn picker_key(
         KeyCode::Home | KeyCode::Char('g') => 0,
         KeyCode::End | KeyCode::Char('G') => last,
         KeyCode::Enter => match choices.get(selected).map(|c| c.preset.clone()) {
+            Some(Ok(preset)) if modified(app) => {
+                // The picker stays under the question: anything but yes goes back to it.
+                app.prompt = Some(Prompt::Load(preset));
+                return Some(Dialog::Picker {
+                    choices,
+                    selected,
+                    error,
+                });
+            }
             Some(Ok(preset)) => {
-                app.send(out, Command::LoadPreset(preset));
+                app.load(out, preset);
                 return None;
             }
             Some(Err(e)) => {
@@ -156,71 +217,130 @@ fn picker_key(
     })
 }
 
+/// What the save dialog holds as it is typed.
+struct SaveForm {
+    name: String,
+    description: String,
+    field: SaveField,
+}
+
 fn save_key(
     app: &mut App,
     key: KeyEvent,
-    mut name: String,
+    mut form: SaveForm,
     error: Option<String>,
     confirm_replace: bool,
 ) -> Option<Dialog> {
-    match key.code {
-        KeyCode::Esc => None,
-        KeyCode::Backspace => {
-            name.pop();
-            Some(Dialog::Save {
-                name,
-                error: None,
-                confirm_replace: false,
-            })
-        }
-        KeyCode::Char(c) if !c.is_control() => {
-            if name.chars().count() < 64 {
-                name.push(c);
-            }
-            Some(Dialog::Save {
-                name,
-                error: None,
-                confirm_replace: false,
-            })
-        }
-        KeyCode::Enter => {
-            let refuse = |error: String, confirm_replace: bool| {
-                Some(Dialog::Save {
-                    name: name.clone(),
-                    error: Some(error),
-                    confirm_replace,
-                })
-            };
-            if let Err(e) = check_name(&name) {
-                return refuse(e.to_string(), false);
-            }
-            if app.store.exists(&name) && !confirm_replace {
-                return refuse(
-                    format!("`{name}` exists: Enter again replaces it, Esc keeps it"),
-                    true,
-                );
-            }
-            let preset = current_setup(app, &name);
-            match app.store.save(&preset, confirm_replace) {
-                Ok(path) => {
-                    app.notice = Some(format!("saved {}", path.display()));
-                    // The saved file is now what the setup is compared with.
-                    app.preset = preset;
-                    None
-                }
-                Err(e) => refuse(e.to_string(), false),
-            }
-        }
-        _ => Some(Dialog::Save {
-            name,
+    let dialog = |form: SaveForm, error: Option<String>, confirm_replace: bool| {
+        Some(Dialog::Save {
+            name: form.name,
+            description: form.description,
+            field: form.field,
             error,
             confirm_replace,
-        }),
+        })
+    };
+    let typing = match form.field {
+        SaveField::Name => &mut form.name,
+        SaveField::Description => &mut form.description,
+    };
+    let limit = match form.field {
+        SaveField::Name => NAME_CHARS,
+        SaveField::Description => DESCRIPTION_CHARS,
+    };
+    match key.code {
+        KeyCode::Esc => None,
+        KeyCode::Tab | KeyCode::BackTab | KeyCode::Up | KeyCode::Down => {
+            form.field = match form.field {
+                SaveField::Name => SaveField::Description,
+                SaveField::Description => SaveField::Name,
+            };
+            dialog(form, error, confirm_replace)
+        }
+        KeyCode::Backspace => {
+            typing.pop();
+            // Another name is another question.
+            let keep = form.field == SaveField::Description;
+            dialog(form, error.filter(|_| keep), confirm_replace && keep)
+        }
+        KeyCode::Char(c) if !c.is_control() => {
+            if typing.chars().count() < limit {
+                typing.push(c);
+            }
+            let keep = form.field == SaveField::Description;
+            dialog(form, error.filter(|_| keep), confirm_replace && keep)
+        }
+        KeyCode::Enter => {
+            if let Err(e) = check_name(&form.name) {
+                return dialog(form, Some(e.to_string()), false);
+            }
+            app.ask(Effect::SavePreset {
+                preset: Box::new(current_setup(app, &form.name, &form.description)),
+                replace: confirm_replace,
+            });
+            dialog(form, None, confirm_replace)
+        }
+        _ => dialog(form, error, confirm_replace),
     }
 }
 
-/// Draws the open dialog, centred over the screen.
+/// Writes `preset` into the user's folder (the effect [`Effect::SavePreset`]): a name that
+/// exists is replaced only with `replace`, else the dialog asks for a second Enter.
+pub(crate) fn save(app: &mut App, preset: &Preset, replace: bool) {
+    let name = preset.name.clone();
+    let refuse = |app: &mut App, error: String, confirm_replace: bool| {
+        if let Some(Dialog::Save {
+            error: e,
+            confirm_replace: c,
+            ..
+        }) = &mut app.dialog
+        {
+            (*e, *c) = (Some(error), confirm_replace);
+        }
+    };
+    if !replace && app.store.exists(&name) {
+        return refuse(
+            app,
+            format!("`{name}` exists: Enter again replaces it, Esc keeps it"),
+            true,
+        );
+    }
+    match app.store.save(preset, replace) {
+        Ok(path) => {
+            app.notice = Some(format!("saved {}", path.display()));
+            // The saved file is now what the setup is compared with.
+            app.preset = preset.clone();
+            app.dialog = None;
+        }
+        Err(e) => refuse(app, e.to_string(), false),
+    }
+}
+
+/// Draws the open dialog, centred over the screen, and over it any question being asked.
 pub fn render(app: &App, area: Rect, frame: &mut Frame) {
+    render_dialog(app, area, frame);
+    if let Some(prompt) = &app.prompt {
+        let t = &app.theme;
+        let (keys, words) = prompt.answers();
+        let popup = area.centered(Constraint::Max(64), Constraint::Length(4));
+        frame.render_widget(Clear, popup);
+        let lines = vec![
+            Line::styled(printable(&prompt.question(&app.preset.name)), t.caution()),
+            Line::from(vec![
+                Span::styled(keys, t.key()),
+                Span::raw(format!(" {words} · any other key stays")),
+            ]),
+        ];
+        frame.render_widget(
+            Paragraph::new(lines)
+                .wrap(Wrap { trim: true })
+                .block(Block::bordered().title(Line::styled(" are you sure? ", t.heading()))),
+            popup,
+        );
+    }
+}
+
+fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
     let Some(dialog) = &app.dialog else { return };
     let t = &app.theme;
     match dialog {
@@ -268,25 +388,47 @@ pub fn render(app: &App, area: Rect, frame: &mut Frame) {
         }
         Dialog::Save {
             name,
+            description,
+            field,
             error,
             confirm_replace,
         } => {
-            let popup = area.centered(Constraint::Max(72), Constraint::Length(7));
+            let popup = area.centered(Constraint::Max(76), Constraint::Length(11));
             frame.render_widget(Clear, popup);
             let block = Block::bordered()
-                .title(Line::styled(" save the setup as a preset ", t.heading()))
-                .title_bottom(Line::from(" Enter saves · Esc cancels ").right_aligned());
+                .title(Line::styled(" save the setup and view as a preset ", t.heading()))
+                .title_bottom(
+                    Line::from(" Tab: name / description · Enter saves · Esc cancels ").right_aligned(),
+                );
             let folder = match app.store.user_dir() {
                 Ok(dir) => format!("into {}", dir.display()),
                 Err(e) => e.to_string(),
             };
+            let cursor = |on: bool| if on { "▏" } else { "" };
+            let description_line = if description.is_empty() && *field != SaveField::Description {
+                Span::raw(printable(&automatic_description(app)))
+            } else {
+                Span::styled(
+                    format!("{description}{}", cursor(*field == SaveField::Description)),
+                    t.selected(),
+                )
+            };
             let mut lines = vec![
                 Line::from(vec![
                     Span::styled("name: ", t.heading()),
-                    Span::styled(format!("{name}▏"), t.selected()),
+                    Span::styled(
+                        format!("{name}{}", cursor(*field == SaveField::Name)),
+                        t.selected(),
+                    ),
                 ]),
-                Line::raw(folder),
+                Line::from(vec![Span::styled("description: ", t.heading()), description_line]),
             ];
+            if description.is_empty() {
+                lines.push(Line::raw(
+                    "(left empty, the text above is saved; Tab to type your own)",
+                ));
+            }
+            lines.push(Line::raw(folder));
             if let Some(e) = error {
                 let style = if *confirm_replace { t.caution() } else { t.danger() };
                 lines.push(Line::styled(e.clone(), style));

@@ -1,78 +1,106 @@
 //! The footer's key hints and the help overlay's frame.
 
-use super::app::App;
+use super::app::{App, Mode, group};
+use super::dialogs::Dialog;
 use super::help::help_lines;
+use super::keys::{Action, Screen, rows};
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Rect};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph, Wrap};
 
+/// A footer hint: keys, what they do, and priority (on a narrow terminal the highest
+/// numbers go first, so the keys that matter most, help and quit among them, stay in view).
+pub(crate) type KeyHint = (String, String, u8);
+
+fn hint(keys: &str, words: &str, priority: u8) -> KeyHint {
+    (keys.to_string(), words.to_string(), priority)
+}
+
+/// The footer of either screen: the hints of whatever is topmost.
 pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
-    // (key, what it does, priority): on a narrow terminal the highest numbers go first, so
-    // the keys that matter most, help and quit among them, always stay in view.
-    let keys: Vec<(&str, &str, u8)> = if app.editing.is_some() || app.epsilon_editor.is_some() {
-        typing_hints("0-9 . - e")
-    } else if app.help {
-        help_hints()
-    } else {
-        vec![
-            ("space", if app.live.playing { "pause" } else { "play" }, 0),
-            ("n", "step", 1),
-            ("r", "replay", 1),
-            ("R", "random", 2),
-            (
-                "b",
-                if app.batch.is_some() {
-                    "cancel batch"
-                } else {
-                    "batch"
-                },
-                2,
-            ),
-            ("[ ]", "speed", 1),
-            ("↑↓←→", "values", 2),
-            ("v", "arrows", 3),
-            if app.twin {
-                ("T < > E", "twin, ε", 3)
-            } else {
-                ("T", "twin", 3)
-            },
-            ("Tab", "map", 3),
-            ("o s", "presets", 4),
-            ("e", "export", 4),
-            ("?", "help", 0),
-            ("q", "quit", 0),
-        ]
+    let keys = match app.mode() {
+        Mode::Prompt => {
+            let prompt = app.prompt.as_ref().expect("the mode says so");
+            let (keys, words) = prompt.answers();
+            let question = prompt.question(&app.preset.name);
+            let hints = vec![
+                hint(keys, &format!("{words} ·"), 0),
+                hint("any other key", "stays", 0),
+            ];
+            return render_line(app, Some(question), hints, area, frame);
+        }
+        Mode::EditingValue if app.batch_editor.is_some() => {
+            let editor = app.batch_editor.as_ref().expect("checked");
+            let line = match &editor.error {
+                Some(e) => e.clone(),
+                None => format!("batch size: {}▏ rolls", editor.text),
+            };
+            return render_line(app, Some(line), typing_hints("1-9"), area, frame);
+        }
+        Mode::EditingValue | Mode::EditingEpsilon => typing_hints("0-9 . - e"),
+        Mode::EditingRange => typing_hints("MIN MAX"),
+        Mode::Dialog => match app.dialog {
+            Some(Dialog::Save { .. }) => vec![
+                hint("Tab", "name/description", 0),
+                hint("Enter", "save", 0),
+                hint("Esc", "cancel", 0),
+            ],
+            _ => vec![
+                hint("↑↓", "choose", 0),
+                hint("Enter", "open", 0),
+                hint("Esc", "close", 0),
+            ],
+        },
+        Mode::Help => vec![
+            hint("↑↓", "scroll", 0),
+            hint("? Esc", "close help", 0),
+            hint("q", "quit", 0),
+        ],
+        Mode::Map => table_hints(app, Screen::Map),
+        Mode::Normal => table_hints(app, Screen::Die),
     };
     render_key_hints(app, keys, area, frame);
 }
 
+/// The hints of one screen's rows of the key table, in words that follow the state.
+fn table_hints(app: &App, screen: Screen) -> Vec<KeyHint> {
+    rows(screen)
+        .filter_map(|b| b.hint.map(|h| (b.action, h)))
+        .map(|(action, h)| match action {
+            Action::TogglePlay if app.live.playing => hint(h.keys, "pause", h.priority),
+            Action::Batch if app.batch.is_some() => hint(h.keys, "cancel batch", h.priority),
+            Action::Batch => hint(h.keys, &format!("batch {}", group(app.batch_rolls)), h.priority),
+            Action::Twin if app.twin => hint("T < > E", "twin, ε", h.priority),
+            _ => hint(h.keys, h.words, h.priority),
+        })
+        .collect()
+}
+
 /// The footer while a value is typed: `typing` says what may be typed.
-pub(crate) fn typing_hints(typing: &'static str) -> Vec<(&'static str, &'static str, u8)> {
+pub(crate) fn typing_hints(typing: &str) -> Vec<KeyHint> {
     vec![
-        (typing, "type", 0),
-        ("Enter", "apply", 0),
-        ("Esc", "cancel", 0),
-        ("Ctrl-C", "quit", 0),
+        hint(typing, "type", 0),
+        hint("Enter", "apply", 0),
+        hint("Esc", "cancel", 0),
+        hint("Ctrl-C", "quit", 0),
     ]
 }
 
-/// The footer while the help overlay is open.
-pub(crate) fn help_hints() -> Vec<(&'static str, &'static str, u8)> {
-    vec![("↑↓", "scroll", 0), ("? Esc", "close help", 0), ("q", "quit", 0)]
+/// A footer line of hints after any notice (an export's progress first).
+pub(crate) fn render_key_hints(app: &App, keys: Vec<KeyHint>, area: Rect, frame: &mut Frame) {
+    let notice = app.export_status().or_else(|| app.notice.clone());
+    render_line(app, notice, keys, area, frame);
 }
 
-/// A footer line of `(key, what it does, priority)` hints after any notice. On a narrow
-/// terminal the highest priority numbers are dropped first; priority 0 always stays.
-pub(crate) fn render_key_hints(app: &App, keys: Vec<(&str, &str, u8)>, area: Rect, frame: &mut Frame) {
+/// `notice` in the caution style, then as many hints as fit: on a narrow terminal the
+/// highest priority numbers are dropped first; priority 0 always stays.
+fn render_line(app: &App, notice: Option<String>, keys: Vec<KeyHint>, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
-    let notice = app
-        .export_status()
-        .or_else(|| app.notice.clone())
-        // Notices quote names and errors from files: an escape sequence in one is shown,
-        // not obeyed (ratatui alone would drop the control character and show the rest).
-        .map(|n| format!(" {} ", crate::output::printable(&n)));
-    let width = |ks: &[(&str, &str, u8)]| -> usize {
+    // Notices and questions quote names and errors from files: an escape sequence in one
+    // is shown, not obeyed (ratatui alone would drop the control character and show the rest).
+    let notice = notice.map(|n| format!(" {} ", crate::output::printable(&n)));
+    let width = |ks: &[KeyHint]| -> usize {
         ks.iter()
             .map(|(k, w, _)| 2 + k.chars().count() + w.chars().count())
             .sum::<usize>()
@@ -105,7 +133,7 @@ pub(crate) fn render_help(app: &App, area: Rect, frame: &mut Frame) {
     let block = Block::bordered()
         .title(Line::styled(" help · the model in a nutshell ", t.heading()))
         .title_bottom(Line::from(" ↑↓ scroll · ? or Esc closes ").right_aligned());
-    let para = Paragraph::new(help_lines(t))
+    let para = Paragraph::new(help_lines(app))
         .block(block)
         .wrap(Wrap { trim: false })
         .scroll((app.help_scroll, 0));

@@ -1,59 +1,9 @@
 //! The `?` overlay: every key, and the model explained for a classroom.
 
-use super::app::BATCH_ROLLS;
-use super::theme::Theme;
+use super::app::{App, group};
+use super::keys::{Screen, section};
+use super::map::View;
 use ratatui::text::{Line, Span};
-
-const KEYS: &[(&str, &str)] = &[
-    ("space", "play / pause (at the end of a roll: watch it again)"),
-    ("n", "one step of Δt, then pause"),
-    ("r", "replay the same start: the same face, every time"),
-    (
-        "R",
-        "a random roll from the preset's ranges (counted in the table)",
-    ),
-    ("b", "a batch of random rolls into the table; b again cancels"),
-    ("c", "clear the outcome table"),
-    ("[ -  ] +", "slower / faster: 1/100× … 100×, then instant"),
-    ("↑↓ j k", "select a value (g G: first, last)"),
-    ("←→ h l", "change it; Shift, H or L for big steps"),
-    ("Enter", "type an exact value (Esc cancels)"),
-    ("y", "energy plot: linear / log scale"),
-    (
-        "e",
-        "export the roll into the current folder: its trace (CSV) and energy plot (PNG)",
-    ),
-    (
-        "v",
-        "arrows: spin ω, angular momentum L, velocity v, contact forces F",
-    ),
-    (
-        "T",
-        "chaos twin: a second die (the ghost) whose height, velocity and spin are × (1 + ε)",
-    ),
-    (
-        "< >  E",
-        "twin: ε ÷10 / ×10 (1e-15 … 0.1), or type it; both dice roll again",
-    ),
-    (
-        "t",
-        "theme: dark / light / projector (high contrast, bold); NO_COLOR turns colour off",
-    ),
-    ("m", "draw the die with Braille dots / plain ASCII"),
-    ("a d  W S", "orbit / tilt the camera"),
-    ("z x  0", "zoom in / out, reset the view"),
-    (
-        "mouse",
-        "click a value to select it, scroll to change it; drag the die to orbit, scroll on it to zoom",
-    ),
-    (
-        "o",
-        "open a preset (shipped ones and yours, ★); the header marks a changed setup *",
-    ),
-    ("s", "save the setup as a preset (asks before replacing one)"),
-    ("?", "this help"),
-    ("q Esc Ctrl-C", "quit"),
-];
 
 const MODEL: &[&str] = &[
     "The die is a cube of 8 point masses, its corners, moving as one rigid body (Chin & Li, 2019). \
@@ -82,24 +32,38 @@ const MODEL: &[&str] = &[
      the energy grow instead of fall.",
 ];
 
-pub(crate) fn help_lines(t: &Theme) -> Vec<Line<'static>> {
-    let mut lines = vec![Line::styled("Keys", t.heading())];
-    for (k, what) in KEYS {
-        let what = what.replace("a batch of", &format!("a batch of {BATCH_ROLLS}"));
-        lines.push(Line::from(vec![
-            Span::styled(format!("  {k:<14}"), t.key()),
-            Span::raw(what),
-        ]));
-    }
-    lines.push(Line::raw(""));
-    lines.push(Line::styled("Basin-map screen (Tab)", t.heading()));
-    for (k, what) in super::map_keys::MAP_KEYS {
-        lines.push(Line::from(vec![
-            Span::styled(format!("  {k:<14}"), t.key()),
-            Span::raw(*what),
-        ]));
-    }
-    lines.push(Line::raw(""));
+pub(crate) fn help_lines(app: &App) -> Vec<Line<'static>> {
+    let t = &app.theme;
+    let key_lines = |screen: Screen| {
+        section(screen).map(move |b| {
+            let what = b
+                .help
+                .replace("a batch of", &format!("a batch of {}", group(app.batch_rolls)));
+            Line::from(vec![
+                Span::styled(format!("  {:<14}", b.label), t.key()),
+                Span::raw(what),
+            ])
+        })
+    };
+    let mut die = vec![Line::styled("Keys", t.heading())];
+    die.extend(key_lines(Screen::Die));
+    die.push(Line::from(vec![
+        Span::styled(format!("  {:<14}", "mouse"), t.key()),
+        Span::raw(
+            "click a value to select it, scroll to change it; drag the die to orbit, scroll on it to \
+             zoom; click the timeline to jump there",
+        ),
+    ]));
+    die.push(Line::raw(""));
+    let mut map = vec![Line::styled("Basin-map screen (Tab)", t.heading())];
+    map.extend(key_lines(Screen::Map));
+    map.push(Line::raw(""));
+    // The keys of the screen the help was opened on come first.
+    let mut lines = if app.view == View::Map {
+        [map, die].concat()
+    } else {
+        [die, map].concat()
+    };
     lines.push(Line::styled("The model", t.heading()));
     for paragraph in MODEL {
         lines.push(Line::raw(format!("  {paragraph}")));

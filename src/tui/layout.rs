@@ -17,6 +17,8 @@ pub(crate) struct Areas {
     pub(crate) params: Rect,
     pub(crate) outcomes: Rect,
     pub(crate) die: Rect,
+    /// The timeline strip: the die panel's bottom border, between its corners.
+    pub(crate) timeline: Rect,
     pub(crate) energy: Rect,
     /// The energy bar and ledger, beside the energy plot.
     pub(crate) ledger: Rect,
@@ -48,6 +50,12 @@ pub(crate) fn screen_layout(area: Rect) -> Option<Areas> {
         Constraint::Percentage(50),
         Constraint::Percentage(50),
     ]));
+    let timeline = Rect::new(
+        die.x + 1,
+        die.bottom().saturating_sub(1),
+        die.width.saturating_sub(2),
+        1,
+    );
     let [energy, ledger] = energy_row.layout(&Layout::horizontal([
         Constraint::Min(0),
         Constraint::Length(super::ledger::panel_width(area.width)),
@@ -57,6 +65,7 @@ pub(crate) fn screen_layout(area: Rect) -> Option<Areas> {
         params,
         outcomes,
         die,
+        timeline,
         energy,
         ledger,
         footer,

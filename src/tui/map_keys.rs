@@ -1,57 +1,55 @@
-//! The basin-map screen's keys: moving the cursor, zooming, choosing axes and ranges,
-//! and the footer and help rows that name them.
+//! What the basin-map screen's keys do: moving the cursor, zooming, choosing axes and
+//! ranges (the keys themselves are rows of [`super::keys::BINDINGS`]).
 
-use super::app::{App, Editor};
+use super::app::{App, Editor, Effect};
 use super::format::fmt_num;
+use super::keys::Action;
 use super::map::{RangeEditor, Side, ZOOM_FACTOR, ZoomStep, close, default_range, start};
 use super::param::{Param, all};
 use crate::experiment::basin::node_setup;
 use crate::experiment::{Axis, Layer};
 use crate::worker::{Command, MapAxis};
 use ratatui::Frame;
-use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use ratatui::crossterm::event::{KeyCode, KeyEvent};
 use ratatui::layout::Rect;
 
 /// Cells one Shift-arrow moves the cursor.
 const BIG_STEP: usize = 8;
 
-/// Keys of the map screen; false for the keys the explorer handles the same on every
-/// screen (quit and help).
-pub(crate) fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) -> bool {
-    if app.map.editing.is_some() {
-        on_range_key(app, key, out);
-        return true;
-    }
-    let big = key.modifiers.contains(KeyModifiers::SHIFT);
-    let step = if big { BIG_STEP } else { 1 };
-    match key.code {
-        KeyCode::Char('q') | KeyCode::Esc | KeyCode::Char('?') => return false,
-        KeyCode::Tab | KeyCode::BackTab | KeyCode::Char('1') => close(app, out),
-        KeyCode::Left | KeyCode::Char('h') => move_cursor(app, -(step as isize), 0),
-        KeyCode::Right | KeyCode::Char('l') => move_cursor(app, step as isize, 0),
-        KeyCode::Up | KeyCode::Char('k') => move_cursor(app, 0, step as isize),
-        KeyCode::Down | KeyCode::Char('j') => move_cursor(app, 0, -(step as isize)),
-        KeyCode::Char('H') => move_cursor(app, -(BIG_STEP as isize), 0),
-        KeyCode::Char('L') => move_cursor(app, BIG_STEP as isize, 0),
-        KeyCode::Char('K') => move_cursor(app, 0, BIG_STEP as isize),
-        KeyCode::Char('J') => move_cursor(app, 0, -(BIG_STEP as isize)),
-        KeyCode::Enter => replay(app, out),
-        KeyCode::Char('z') => zoom_in(app, out),
-        KeyCode::Char('Z') | KeyCode::Backspace => zoom_out(app, out),
-        KeyCode::Char('x') => next_axis(app, Side::X, out),
-        KeyCode::Char('y') => next_axis(app, Side::Y, out),
-        KeyCode::Char('X') => edit_range(app, Side::X),
-        KeyCode::Char('Y') => edit_range(app, Side::Y),
-        KeyCode::Char('v') => {
+/// What a key of the map screen's table does (see [`super::keys`]); `coarse` (Shift)
+/// moves the cursor by [`BIG_STEP`] cells.
+pub(crate) fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
+    let step = if coarse { BIG_STEP } else { 1 } as isize;
+    let big = BIG_STEP as isize;
+    match action {
+        Action::MapBack => close(app, out),
+        Action::CursorLeft => move_cursor(app, -step, 0),
+        Action::CursorRight => move_cursor(app, step, 0),
+        Action::CursorUp => move_cursor(app, 0, step),
+        Action::CursorDown => move_cursor(app, 0, -step),
+        Action::CursorLeftBig => move_cursor(app, -big, 0),
+        Action::CursorRightBig => move_cursor(app, big, 0),
+        Action::CursorUpBig => move_cursor(app, 0, big),
+        Action::CursorDownBig => move_cursor(app, 0, -big),
+        Action::ReplayCell => replay(app, out),
+        Action::MapZoomIn => zoom_in(app, out),
+        Action::MapZoomOut => zoom_out(app, out),
+        Action::NextXAxis => next_axis(app, Side::X, out),
+        Action::NextYAxis => next_axis(app, Side::Y, out),
+        Action::TypeXRange => edit_range(app, Side::X),
+        Action::TypeYRange => edit_range(app, Side::Y),
+        Action::MapLayer => {
             app.map.layer = match app.map.layer {
                 Layer::Face => Layer::SettleTime,
                 Layer::SettleTime => Layer::Face,
             }
         }
-        KeyCode::Char('e') => app.map.export_asked = true,
+        Action::ExportMap => {
+            app.map.export_asked = true;
+            app.ask(Effect::ExportMap);
+        }
         _ => {}
     }
-    true
 }
 
 fn move_cursor(app: &mut App, dx: isize, dy: isize) {
@@ -154,7 +152,7 @@ fn edit_range(app: &mut App, side: Side) {
     });
 }
 
-fn on_range_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
+pub(crate) fn on_range_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
     let Some(r) = app.map.editing.as_mut() else {
         return;
     };
@@ -212,38 +210,5 @@ pub(crate) fn parse_range(param: Param, text: &str) -> Result<(f64, f64), String
 }
 
 pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
-    let keys = if app.map.editing.is_some() {
-        super::footer::typing_hints("MIN MAX")
-    } else if app.help {
-        super::footer::help_hints()
-    } else {
-        vec![
-            ("Tab", "die", 0),
-            ("←↓↑→", "cursor", 1),
-            ("Enter", "replay", 1),
-            ("z Z", "zoom in/out", 1),
-            ("x y", "axis", 2),
-            ("X Y", "range", 2),
-            ("v", "face/time", 3),
-            ("e", "export PNG", 3),
-            ("?", "help", 0),
-            ("q", "quit", 0),
-        ]
-    };
-    super::footer::render_key_hints(app, keys, area, frame);
+    super::footer::render_footer(app, area, frame);
 }
-
-/// The map screen's keys, for the `?` overlay.
-pub(crate) const MAP_KEYS: &[(&str, &str)] = &[
-    ("Tab 2 / Tab 1", "basin-map screen / back to the die"),
-    (
-        "←↓↑→ h j k l",
-        "move the cursor over the map (Shift or H J K L: 8 cells)",
-    ),
-    ("Enter", "replay the cell under the cursor in the die view"),
-    ("z  Z", "zoom in ×4 around the cursor / back out"),
-    ("x  y", "next value of the list on the x / y axis"),
-    ("X  Y", "type the x / y range as MIN MAX"),
-    ("v", "colour by face up / by settle time (borders light up)"),
-    ("e", "save the map as a PNG in the current folder"),
-];

@@ -1,7 +1,7 @@
 //! The basin-map screen from deterministic states: a small map computed here with
 //! `run_map`, handed to the app through the message the worker's map thread sends.
 
-use super::app::{App, Msg, update};
+use super::app::{App, Effect, Msg, update};
 use super::map::{MapView, View, ZOOM_FACTOR, export_if_asked, map_layout};
 use super::param::Param;
 use super::render::render;
@@ -27,6 +27,9 @@ fn press(app: &mut App, code: KeyCode) -> Vec<Command> {
         app,
         Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))),
     )
+    .into_iter()
+    .filter_map(Effect::command)
+    .collect()
 }
 
 /// The map the app asked for last, at [`CELLS`], as the worker would compute it.

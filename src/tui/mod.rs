@@ -8,24 +8,28 @@ mod die;
 mod footer;
 pub(crate) mod format;
 mod help;
+mod keys;
 pub(crate) mod layout;
 mod ledger;
 pub(crate) mod map;
 mod map_keys;
 pub(crate) mod param;
 pub mod render;
-mod run;
+pub(crate) mod run;
 pub(crate) mod theme;
+mod timeline;
 mod twin;
 mod vectors;
 
-pub use app::{App, Msg, update};
+pub use app::{App, Effect, Msg, update};
 pub use render::render;
 pub(crate) use run::run;
 pub use theme::Theme;
 
 #[cfg(test)]
 mod class_tests;
+#[cfg(test)]
+mod control_tests;
 #[cfg(test)]
 mod tests;
 

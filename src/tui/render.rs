@@ -42,6 +42,7 @@ fn render_die_screen(app: &App, frame: &mut Frame) {
     render_params(app, areas.params, frame);
     render_outcomes(app, areas.outcomes, frame);
     render_die(app, areas.die, frame);
+    super::timeline::render(app, areas.timeline, frame);
     if app.live.twin.is_some() {
         super::twin::render_separation(app, areas.energy, frame);
     } else {

@@ -1,6 +1,8 @@
 //! The terminal's lifecycle and the event loop: report hooks first, then the terminal,
 //! restored on every way out.
 //!
+//! - `update` does no I/O: the effects it returns (worker commands, listing and saving
+//!   presets, exporting the map) are run here, by [`perform`].
 //! - Quitting (`q`, Ctrl-C as a key) leaves the loop and restores it.
 //! - SIGTERM, SIGHUP, SIGINT and SIGQUIT reach a thread of their own (signal-hook), which
 //!   asks the loop to stop, so the terminal is restored and the process exits with 128 +
@@ -13,11 +15,11 @@
 //! Drawing holds [`SCREEN`], and whoever restores takes it first and never gives it back,
 //! so no frame lands after the terminal was given back to the shell.
 
-use super::app::{App, Msg, update};
+use super::app::{App, Effect, Msg, update};
 use super::render::render;
 use super::theme::Theme;
 use crate::preset::Preset;
-use crate::worker::{Engine, Worker};
+use crate::worker::{Command, Engine, Worker};
 use color_eyre::eyre::{Result, WrapErr};
 use ratatui::DefaultTerminal;
 use ratatui::crossterm::cursor::Show;
@@ -100,6 +102,21 @@ pub(crate) fn run(preset: &Preset, theme: Theme) -> Result<()> {
     }
 }
 
+/// Runs one effect of `update`: the file work here, on the loop's thread; a worker command
+/// is handed back for the caller to send.
+pub(crate) fn perform(app: &mut App, effect: Effect) -> Option<Command> {
+    match effect {
+        Effect::Worker(command) => return Some(command),
+        Effect::ListPresets => super::dialogs::open_picker(app),
+        Effect::SavePreset { preset, replace } => super::dialogs::save(app, &preset, replace),
+        Effect::ExportMap => match std::env::current_dir() {
+            Ok(dir) => super::map::export_if_asked(app, &dir),
+            Err(e) => app.notice = Some(format!("export failed: no current folder: {e}")),
+        },
+    }
+    None
+}
+
 /// Runs until the user quits (`None`) or a signal arrives (`Some(signal)`).
 fn event_loop(
     terminal: &mut DefaultTerminal,
@@ -157,15 +174,14 @@ fn event_loop(
                 worker.shutdown();
                 return Ok(Some(signal));
             }
-            for command in update(&mut app, msg) {
-                worker.send(command);
+            for effect in update(&mut app, msg) {
+                if let Some(command) = perform(&mut app, effect) {
+                    worker.send(command);
+                }
             }
             if app.quit {
                 break 'frames;
             }
-        }
-        if let Ok(dir) = std::env::current_dir() {
-            super::map::export_if_asked(&mut app, &dir);
         }
         app.fps = app.animating().then_some(drawn.len() as f64);
     }

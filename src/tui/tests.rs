@@ -52,11 +52,13 @@ impl Scene {
     }
 
     pub(crate) fn key_with(&mut self, code: KeyCode, modifiers: KeyModifiers) {
-        for c in update(
+        for effect in update(
             &mut self.app,
             Msg::Input(Event::Key(KeyEvent::new(code, modifiers))),
         ) {
-            self.engine.handle(c);
+            if let Some(c) = crate::tui::run::perform(&mut self.app, effect) {
+                self.engine.handle(c);
+            }
         }
         self.sync();
     }
@@ -478,6 +480,9 @@ mod keys {
 
     fn press_with(app: &mut App, code: KeyCode, modifiers: KeyModifiers) -> Vec<Command> {
         update(app, Msg::Input(Event::Key(KeyEvent::new(code, modifiers))))
+            .into_iter()
+            .filter_map(|e| crate::tui::run::perform(app, e))
+            .collect()
     }
 
     fn mouse(app: &mut App, kind: MouseEventKind, column: u16, row: u16) -> Vec<Command> {
@@ -488,6 +493,9 @@ mod keys {
             modifiers: KeyModifiers::NONE,
         };
         update(app, Msg::Input(Event::Mouse(m)))
+            .into_iter()
+            .filter_map(|e| crate::tui::run::perform(app, e))
+            .collect()
     }
 
     #[test]
@@ -661,7 +669,6 @@ mod keys {
     fn quitting_keys() {
         for (code, modifiers) in [
             (KeyCode::Char('q'), KeyModifiers::NONE),
-            (KeyCode::Esc, KeyModifiers::NONE),
             (KeyCode::Char('c'), KeyModifiers::CONTROL),
         ] {
             let mut a = app();

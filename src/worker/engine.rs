@@ -3,15 +3,17 @@
 //! (and the thread in `mod.rs`) drive it step for step.
 
 use super::map::{MapJob, MapOrder};
-use super::speed::Speed;
+use super::timeline::{Keyframe, Timeline};
 use super::twin::Twin;
-use super::{BatchProgress, Command, DieState, EnergySample, OutcomeTable, Phase, RollKind, Snapshot};
+use super::{
+    BatchProgress, Command, DieState, EnergySample, OutcomeTable, Phase, RollKind, Snapshot, TimelineSnapshot,
+};
 use crate::experiment::trace::{ExportProgress, Exported, export_roll, human_bytes};
 use crate::experiment::{RandomRanges, RollRecord, ScanKey};
 use crate::output::{Output, free_stem, safe_file_stem};
 use crate::physics::registry::Role;
 use crate::physics::{InitialCondition, ParamError, Params, Simulation, face_most_nearly_up};
-use crate::preset::Preset;
+use crate::preset::{Preset, Speed};
 use std::sync::atomic::AtomicBool;
 
 /// At most this many energy samples per roll: longer rolls keep each term's peak over a
@@ -77,6 +79,8 @@ struct ExportState {
 struct Pending {
     history: Vec<EnergySample>,
     history_reset: bool,
+    /// s: samples after this time belong to a future that changed (a table value mid-roll).
+    history_cut: Option<f64>,
     table_changed: bool,
     notice: Option<String>,
     /// A preset was loaded (or the engine just started): the UI gets it whole.
@@ -92,6 +96,9 @@ pub struct Engine {
     params: Params,
     initial: InitialCondition,
     sim: Simulation,
+    /// Steps of Δt since the roll started: where on its timeline the roll on screen is.
+    position: u64,
+    timeline: Timeline,
     roll: RollKind,
     start_face: u8,
     /// Whether the live random roll has already entered the table (a replay must not count twice).
@@ -127,6 +134,15 @@ impl Engine {
         preset.validate()?;
         let params = preset.params();
         let sim = Simulation::new(&params, &preset.initial)?;
+        let timeline = Timeline::new(
+            1,
+            Keyframe {
+                position: 0,
+                sim: sim.clone(),
+                twin: None,
+                touched: false,
+            },
+        );
         let mut engine = Engine {
             preset: preset.clone(),
             base_initial: preset.initial,
@@ -134,6 +150,8 @@ impl Engine {
             params,
             initial: preset.initial,
             sim,
+            position: 0,
+            timeline,
             roll: RollKind::Preset,
             start_face: 0,
             counted: false,
@@ -157,9 +175,22 @@ impl Engine {
             export_request: None,
             exports_started: 0,
         };
+        engine.apply_view(preset);
         engine.restart(RollKind::Preset);
         engine.pending.preset = Some(Box::new(preset.clone()));
         Ok(engine)
+    }
+
+    /// The parts of a preset's `[view]` the worker owns: the playback speed and the chaos
+    /// twin (rolled from the next restart). A preset opens the same way every time, so a
+    /// key the view leaves out means the default: 1×, no twin.
+    fn apply_view(&mut self, preset: &Preset) {
+        self.speed = preset.view.speed.unwrap_or_default();
+        // ε was checked with the preset; the twin is placed by `restart`.
+        self.twin = preset
+            .view
+            .twin
+            .and_then(|epsilon| Twin::new(&preset.params(), &preset.initial, epsilon).ok());
     }
 
     pub fn params(&self) -> &Params {
@@ -218,6 +249,8 @@ impl Engine {
                     self.advance_steps(n);
                 }
             }
+            Command::StepBack(n) => self.seek(self.position.saturating_sub(n)),
+            Command::Seek(target) => self.seek(target),
             Command::Replay => {
                 self.restart(self.roll);
                 self.playing = true;
@@ -324,6 +357,7 @@ impl Engine {
         self.table = OutcomeTable::default();
         self.pending.table_changed = true;
         self.playing = false;
+        self.apply_view(&preset);
         self.restart(RollKind::Preset);
         self.pending.notice = Some(format!("loaded {}", preset.name));
         self.pending.preset = Some(Box::new(preset.clone()));
@@ -465,6 +499,14 @@ impl Engine {
             if let Some(twin) = &mut self.twin {
                 let _ = twin.sim.set_ground(params.ground);
             }
+            // From here on the roll is another one: its computed future is forgotten.
+            if !self.timeline.at_frontier(self.position) {
+                self.pending.history_cut = Some(self.sim.state().time_s);
+            }
+            self.peak = None;
+            self.peak_steps = 0;
+            let impact = self.impact_now();
+            self.timeline.diverge(self.keyframe(), impact);
         } else {
             // A new initial condition is a roll of its own; other values re-run the same one.
             let kind = if key.spec.role == Role::Initial {
@@ -495,7 +537,50 @@ impl Engine {
                 twin.sample(&self.sim);
             }
         }
+        self.position = 0;
+        self.timeline = Timeline::new(self.params.max_steps(), self.keyframe());
         self.pacing_epoch += 1;
+    }
+
+    /// The roll's state now, as a keyframe.
+    fn keyframe(&self) -> Keyframe {
+        Keyframe {
+            position: self.position,
+            sim: self.sim.clone(),
+            twin: self.twin.as_ref().map(|t| t.sim.clone()),
+            touched: self.touched,
+        }
+    }
+
+    /// Carries on from `k` (a twin removed since is not brought back).
+    fn restore(&mut self, k: &Keyframe) {
+        self.position = k.position;
+        self.sim = k.sim.clone();
+        self.touched = k.touched;
+        if let (Some(twin), Some(sim)) = (&mut self.twin, &k.twin) {
+            twin.sim = sim.clone();
+        }
+    }
+
+    /// Pauses at step `target` of the roll (at most its end): from the nearest keyframe,
+    /// or by computing on if the roll has not got there yet.
+    fn seek(&mut self, target: u64) {
+        self.playing = false;
+        self.pacing_epoch += 1;
+        let target = if self.timeline.ended {
+            target.min(self.timeline.furthest)
+        } else {
+            target
+        };
+        let from = self.timeline.before(target.min(self.timeline.furthest));
+        if target < self.position || from.position > self.position {
+            let from = from.clone();
+            self.restore(&from);
+        }
+        while self.position < target && !self.roll_over() {
+            self.step();
+        }
+        self.playing = false;
     }
 
     fn sample(&self) -> EnergySample {
@@ -510,16 +595,29 @@ impl Engine {
     /// One step with its bookkeeping, the die and its twin in lock-step; returns whether
     /// the roll can go on (a die whose roll has ended waits for the other).
     fn step(&mut self) -> bool {
+        // Steps already on the timeline are re-stepped to show them, not recorded again.
+        let new = self.timeline.at_frontier(self.position);
         let die_rolling = self.sim.outcome().is_none();
         if let Some(twin) = &mut self.twin {
             twin.step();
         }
         if die_rolling {
-            self.step_die();
+            self.step_die(new);
         }
+        self.position += 1;
         let done = self.roll_over();
-        if let Some(twin) = &mut self.twin {
-            twin.stepped(&self.sim, self.stride, done);
+        if new {
+            if let Some(twin) = &mut self.twin {
+                twin.stepped(&self.sim, self.stride, done);
+            }
+            let impact = self.impact_now();
+            let position = self.position;
+            let keyframe = self.timeline.keyframe_due(position).then(|| self.keyframe());
+            self.timeline.recorded(position, keyframe, impact, done);
+        } else if let Some(k) = self.timeline.at(self.position) {
+            // Where a table value changed mid-roll, the roll carries on with the new one.
+            let k = k.clone();
+            self.restore(&k);
         }
         if done {
             self.playing = false;
@@ -528,10 +626,14 @@ impl Engine {
         true
     }
 
-    /// One step of the die: its energy sample and, at its end, the outcome table.
-    fn step_die(&mut self) {
+    /// One step of the die; a `new` step also gives its energy sample and, at the roll's
+    /// end, its entry in the outcome table.
+    fn step_die(&mut self, new: bool) {
         let ended = self.sim.advance();
         self.touched |= self.sim.in_contact();
+        if !new {
+            return;
+        }
         let s = self.sample();
         let peak = match self.peak {
             None => s,
@@ -568,19 +670,6 @@ impl Engine {
     pub fn advance_steps(&mut self, n: u64) -> u64 {
         let mut taken = 0;
         while taken < n && !self.roll_over() {
-            taken += 1;
-            if !self.step() {
-                break;
-            }
-        }
-        taken
-    }
-
-    /// Steps while playing until simulated time reaches `time_s` s, at most `max_steps` steps.
-    pub(crate) fn advance_until(&mut self, time_s: f64, max_steps: u64) -> u64 {
-        let half_dt = 0.5 * self.params.integrator.dt;
-        let mut taken = 0;
-        while self.playing && taken < max_steps && self.sim.state().time_s + half_dt <= time_s {
             taken += 1;
             if !self.step() {
                 break;
@@ -668,14 +757,31 @@ impl Engine {
                 Phase::Falling
             };
         }
-        let push: f64 = self.sim.state().corner_forces.iter().map(|f| f.z).sum();
-        let weight = self.params.total_mass() * self.params.world.gravity;
-        // An impact: the ground pushes far harder than it takes to carry the die.
-        if push > 2.0 * weight {
+        if self.impact_now() {
             Phase::InContact
         } else {
             Phase::Rolling
         }
+    }
+
+    /// An impact: the ground pushes far harder than it takes to carry the die.
+    fn impact_now(&self) -> bool {
+        if !self.sim.in_contact() || self.sim.outcome().is_some() {
+            return false;
+        }
+        let push: f64 = self.sim.state().corner_forces.iter().map(|f| f.z).sum();
+        push > 2.0 * self.params.total_mass() * self.params.world.gravity
+    }
+
+    /// Where the roll on screen is on its timeline.
+    #[cfg(test)]
+    pub(crate) fn position(&self) -> u64 {
+        self.position
+    }
+
+    #[cfg(test)]
+    pub(crate) fn timeline(&self) -> &Timeline {
+        &self.timeline
     }
 
     /// Everything the UI draws, plus what happened since the last snapshot.
@@ -701,6 +807,14 @@ impl Engine {
             phase: self.phase(),
             history: pending.history,
             history_reset: pending.history_reset,
+            history_cut: pending.history_cut,
+            timeline: TimelineSnapshot {
+                position: self.position,
+                furthest: self.timeline.furthest,
+                ended: self.timeline.ended,
+                impacts: std::mem::take(&mut self.timeline.impacts_changed)
+                    .then(|| self.timeline.impacts.clone()),
+            },
             batch: self.batch.map(|b| BatchProgress {
                 done: b.done,
                 total: b.total,

@@ -7,12 +7,13 @@
 mod engine;
 mod job;
 pub(crate) mod map;
-mod speed;
+mod pacer;
+mod timeline;
 mod twin;
 
+pub use crate::preset::Speed;
 pub use engine::{BatchRequest, Engine};
 pub use map::{MapAxis, MapRequest, MapUpdate};
-pub use speed::Speed;
 
 use crate::experiment::trace::ExportProgress;
 use crate::experiment::twin::Separation;
@@ -22,11 +23,12 @@ use crate::physics::{ContactForce, Energy, EnergyLedger, InitialCondition, Outco
 use crate::preset::Preset;
 use job::Job;
 use nalgebra::Vector3;
+pub(crate) use pacer::TICK;
+use pacer::{Clock, WallClock};
 use std::collections::VecDeque;
 use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender, channel};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
-use std::time::{Duration, Instant};
 
 /// What the UI asks of the worker. Commands are applied in the order sent, none dropped.
 #[derive(Debug, Clone, PartialEq)]
@@ -35,6 +37,10 @@ pub enum Command {
     SetPlaying(bool),
     /// Pause, then take this many steps of Δt.
     Step(u64),
+    /// Pause, then go this many steps of Δt back (at most to the start).
+    StepBack(u64),
+    /// Pause at this step of the roll (`u64::MAX`: its end), computing on if need be.
+    Seek(u64),
     /// The same initial condition again, from t = 0 (the same face every time).
     Replay,
     /// The next random initial condition from the preset's ranges.
@@ -153,6 +159,19 @@ pub struct DieState {
     pub(crate) start_face: u8,
 }
 
+/// Where the roll on screen is on its timeline, and what is known of it.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct TimelineSnapshot {
+    /// Steps of Δt since the roll started.
+    pub position: u64,
+    /// The furthest step computed so far.
+    pub furthest: u64,
+    /// Whether the roll ends at `furthest`.
+    pub ended: bool,
+    /// Steps at which impacts began, whenever they changed.
+    pub impacts: Option<Vec<u64>>,
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct BatchProgress {
     pub done: u64,
@@ -215,6 +234,10 @@ pub struct Snapshot {
     pub history: Vec<EnergySample>,
     /// A new roll started: earlier samples belong to another roll.
     pub history_reset: bool,
+    /// s: samples after this time are of a future that changed (a table value mid-roll
+    /// while stepped back): drop them.
+    pub history_cut: Option<f64>,
+    pub timeline: TimelineSnapshot,
     pub batch: Option<BatchProgress>,
     /// The whole table, when it changed.
     pub table: Option<OutcomeTable>,
@@ -227,13 +250,6 @@ pub struct Snapshot {
     /// The running export, how far it has got.
     pub export: Option<ExportProgress>,
 }
-
-/// s of wall time between snapshots while something moves.
-pub(crate) const TICK: Duration = Duration::from_micros(16_667);
-
-/// Steps per tick at "instant": a roll of the default 30 s cap finishes in one tick, and
-/// the longest allowed (120 s at 10 µs) in a second or two without blocking commands.
-const INSTANT_STEPS_PER_TICK: u64 = 200_000;
 
 /// The running worker thread; dropping it stops the thread.
 pub struct Worker {
@@ -258,7 +274,7 @@ impl Worker {
         let maps = map::MapRunner::new(Arc::new(maps));
         let thread = std::thread::Builder::new()
             .name("dicesim-worker".to_string())
-            .spawn(move || run(engine, rx, out, maps))
+            .spawn(move || run(engine, rx, out, maps, WallClock))
             .expect("the OS can start a thread");
         Worker {
             commands,
@@ -290,35 +306,25 @@ impl Drop for Worker {
     }
 }
 
-/// Maps wall time to simulated time at the current speed.
-struct Pacer {
-    epoch: u64,
-    wall: Instant,
-    sim_s: f64,
-}
-
 fn run<T: From<Snapshot>>(
     mut engine: Engine,
     rx: Receiver<Command>,
     out: Sender<T>,
     mut maps: map::MapRunner,
+    clock: impl Clock,
 ) {
     if out.send(engine.snapshot().into()).is_err() {
         return;
     }
     crate::fault::inject("worker");
-    let mut pacer = Pacer {
-        epoch: u64::MAX,
-        wall: Instant::now(),
-        sim_s: 0.0,
-    };
-    let mut next_tick = Instant::now();
+    let mut pacer = None;
+    let mut next_tick = clock.now();
     let mut batch = BatchRunner::default();
     let mut export = ExportRunner::default();
     loop {
         // Block while idle; while busy, wait for a command at most until the next tick.
         let first = if engine.busy() || batch.running() || export.running() || maps.running() {
-            match rx.recv_timeout(next_tick.saturating_duration_since(Instant::now())) {
+            match rx.recv_timeout(next_tick.saturating_duration_since(clock.now())) {
                 Ok(c) => Some(c),
                 Err(RecvTimeoutError::Timeout) => None,
                 Err(RecvTimeoutError::Disconnected) => break,
@@ -338,41 +344,11 @@ fn run<T: From<Snapshot>>(
                 return;
             }
         }
-        let now = Instant::now();
+        let now = clock.now();
         if !handled && now < next_tick {
             continue;
         }
-        if engine.is_playing() {
-            if pacer.epoch != engine.pacing_epoch() {
-                pacer = Pacer {
-                    epoch: engine.pacing_epoch(),
-                    wall: now,
-                    sim_s: engine.time_s(),
-                };
-            }
-            match engine.speed().factor() {
-                None => {
-                    engine.advance_until(f64::INFINITY, INSTANT_STEPS_PER_TICK);
-                }
-                Some(factor) => {
-                    let target = pacer.sim_s + now.duration_since(pacer.wall).as_secs_f64() * factor;
-                    let dt = engine.params().integrator.dt;
-                    // Bound one tick's work; if the physics cannot keep up, let the clock slip.
-                    let budget = ((TICK.as_secs_f64() * factor / dt).ceil() as u64)
-                        .saturating_mul(2)
-                        .max(1);
-                    engine.advance_until(target, budget.min(INSTANT_STEPS_PER_TICK));
-                    let behind = target - engine.time_s();
-                    if engine.is_playing() && behind > TICK.as_secs_f64() * factor {
-                        pacer = Pacer {
-                            epoch: engine.pacing_epoch(),
-                            wall: now,
-                            sim_s: engine.time_s(),
-                        };
-                    }
-                }
-            }
-        }
+        pacer::play_tick(&mut engine, &mut pacer, now);
         batch.sync(&mut engine);
         export.sync(&mut engine);
         maps.sync(engine.take_map_order());

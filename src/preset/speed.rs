@@ -1,4 +1,7 @@
-//! Playback speed: how much simulated time passes per second of wall time.
+//! Playback speed: how much simulated time passes per second of wall time. A preset's
+//! `[view]` names one by its label (`speed = "1/20×"`), so the ladder lives with presets.
+
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 /// Simulated seconds per wall-clock second, from 1/100× to 100×; the step Δt never changes.
 const FACTORS: [f64; 13] = [
@@ -42,6 +45,41 @@ impl Speed {
     pub(crate) fn label(self) -> &'static str {
         LABELS.get(self.0 as usize).copied().unwrap_or("instant")
     }
+
+    /// The speed a label names (`1/20×`, `1/20`, `5×`, `5`, `instant`), if it is on the ladder.
+    pub(crate) fn from_label(label: &str) -> Option<Speed> {
+        let bare = label.trim().trim_end_matches(['×', 'x']);
+        if bare == "instant" {
+            return Some(Speed::INSTANT);
+        }
+        LABELS
+            .iter()
+            .position(|l| l.trim_end_matches('×') == bare)
+            .map(|i| Speed(i as u8))
+    }
+
+    /// Every label, slowest first, for messages that list them.
+    pub(crate) fn labels() -> impl Iterator<Item = &'static str> {
+        LABELS.iter().copied().chain(["instant"])
+    }
+}
+
+impl Serialize for Speed {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.label())
+    }
+}
+
+impl<'de> Deserialize<'de> for Speed {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Speed, D::Error> {
+        let label = String::deserialize(d)?;
+        Speed::from_label(&label).ok_or_else(|| {
+            serde::de::Error::custom(format!(
+                "`{label}` is not a playback speed; one of {}",
+                Speed::labels().collect::<Vec<_>>().join(", ")
+            ))
+        })
+    }
 }
 
 #[cfg(test)]
@@ -59,5 +97,11 @@ mod tests {
         assert_eq!(Speed::INSTANT.factor(), None);
         assert_eq!(Speed::INSTANT.slower(), Speed::FASTEST);
         assert_eq!(Speed::default().slower().label(), "1/2×");
+        for label in Speed::labels() {
+            let s = Speed::from_label(label).expect("its own label");
+            assert_eq!(s.label(), label);
+        }
+        assert_eq!(Speed::from_label("1/20"), Some(Speed(2)));
+        assert_eq!(Speed::from_label("1/3×"), None);
     }
 }

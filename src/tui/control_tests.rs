@@ -1,0 +1,356 @@
+//! The explorer's controls in a lesson: the timeline, the questions before changes are
+//! lost, Esc that never quits, the batch size; rendered deterministically.
+
+use super::app::{App, Mode, Prompt};
+use super::layout::screen_layout;
+use super::param::Param;
+use super::tests::{Scene, start};
+use super::theme::Theme;
+use crate::preset::{Preset, Store};
+use crate::worker::Command;
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use ratatui::crossterm::event::{Event, KeyCode, MouseButton, MouseEvent, MouseEventKind};
+
+fn screen(app: &App, w: u16, h: u16) -> String {
+    let mut t = Terminal::new(TestBackend::new(w, h)).expect("test backend");
+    t.draw(|f| crate::tui::render(app, f)).expect("draw");
+    t.backend().to_string()
+}
+
+/// The line of the screen that holds `needle`.
+fn line_with(text: &str, needle: &str) -> String {
+    text.lines()
+        .find(|l| l.contains(needle))
+        .unwrap_or_else(|| panic!("no `{needle}` in\n{text}"))
+        .to_string()
+}
+
+/// The paper's roll computed to its end, then stepped back to step 170 (its first impact).
+fn stepped_back() -> Scene {
+    let mut s = start();
+    s.run_to_end();
+    s.key(KeyCode::Home);
+    for _ in 0..170 {
+        s.key(KeyCode::Char('.'));
+    }
+    s
+}
+
+fn changed() -> Scene {
+    let mut s = start();
+    s.command(Command::SetParam(Param::named("ground.friction").scan_key(), 0.5));
+    s
+}
+
+#[test]
+fn the_timeline_shows_where_the_roll_is_and_its_impacts() {
+    let s = stepped_back();
+    assert_eq!(s.app.live.timeline.position, 170);
+    assert!(s.app.live.timeline.ended);
+    assert!(!s.app.impacts.is_empty());
+    let text = screen(&s.app, 120, 36);
+    let strip = line_with(&text, "t 0.170 s");
+    let end = s.app.live.timeline.furthest as f64 * 1e-3;
+    assert!(strip.contains(&format!("end {end:.3} s")), "{strip}");
+    assert!(strip.contains('◆') && strip.contains('┃'), "{strip}");
+    insta::assert_snapshot!("timeline_stepped_back_120x36", text);
+    insta::assert_snapshot!("timeline_stepped_back_80x24", screen(&s.app, 80, 24));
+}
+
+#[test]
+fn comma_steps_back_and_home_end_jump() {
+    let mut s = stepped_back();
+    s.key(KeyCode::Char(','));
+    assert_eq!(s.app.live.timeline.position, 169);
+    assert_eq!(s.app.live.step, 169);
+    s.key(KeyCode::End);
+    assert_eq!(s.app.live.timeline.position, s.app.live.timeline.furthest);
+    assert!(matches!(s.app.live.phase, crate::worker::Phase::Ended(_)));
+    s.key(KeyCode::Home);
+    assert_eq!(s.app.live.time_s, 0.0);
+    // Playing goes on from wherever the roll is.
+    s.key(KeyCode::Char('.'));
+    s.key(KeyCode::Char(' '));
+    assert!(s.app.live.playing && s.app.live.timeline.position == 1);
+}
+
+#[test]
+fn a_click_on_the_timeline_seeks_there() {
+    let mut s = stepped_back();
+    s.app.screen = ratatui::layout::Rect::new(0, 0, 120, 36);
+    let areas = screen_layout(s.app.screen).expect("fits");
+    let bar = super::timeline::bar(areas.timeline).expect("wide enough");
+    let furthest = s.app.live.timeline.furthest;
+    for (column, expected) in [(bar.x, 0), (bar.right() - 1, furthest)] {
+        let click = MouseEvent {
+            kind: MouseEventKind::Down(MouseButton::Left),
+            column,
+            row: bar.y,
+            modifiers: ratatui::crossterm::event::KeyModifiers::NONE,
+        };
+        let sent = crate::tui::update(&mut s.app, crate::tui::Msg::Input(Event::Mouse(click)));
+        assert_eq!(sent, [Command::Seek(expected)]);
+        s.command(Command::Seek(expected));
+        assert_eq!(s.app.live.timeline.position, expected);
+    }
+}
+
+#[test]
+fn esc_never_quits() {
+    for mut s in [start(), changed()] {
+        s.key(KeyCode::Esc);
+        assert!(!s.app.quit && s.app.prompt.is_none());
+        s.key(KeyCode::Char('?'));
+        s.key(KeyCode::Esc);
+        s.key(KeyCode::Esc);
+        assert!(!s.app.quit && !s.app.help, "Esc after closing help stays");
+        s.key(KeyCode::Tab);
+        assert_eq!(s.app.mode(), Mode::Map);
+        s.key(KeyCode::Esc);
+        assert_eq!(s.app.mode(), Mode::Normal, "Esc on the map screen goes back");
+        assert!(!s.app.quit);
+    }
+}
+
+#[test]
+fn q_asks_first_when_the_setup_has_changes() {
+    let mut s = start();
+    s.key(KeyCode::Char('q'));
+    assert!(s.app.quit, "nothing to lose: q quits at once");
+
+    let mut s = changed();
+    s.key(KeyCode::Char('q'));
+    assert!(!s.app.quit);
+    assert_eq!(s.app.prompt, Some(Prompt::Quit));
+    let text = screen(&s.app, 120, 36);
+    assert!(text.contains("Quit? The setup has unsaved changes"), "{text}");
+    insta::assert_snapshot!("quit_prompt_120x36", text);
+    insta::assert_snapshot!("quit_prompt_80x24", screen(&s.app, 80, 24));
+    s.key(KeyCode::Char('x'));
+    assert!(!s.app.quit && s.app.prompt.is_none(), "any other key stays");
+    assert_eq!(s.app.params.ground.friction, 0.5, "and changes nothing");
+    s.key(KeyCode::Char('q'));
+    s.key(KeyCode::Char('q'));
+    assert!(s.app.quit, "q again quits");
+    let mut s = changed();
+    s.key(KeyCode::Char('q'));
+    s.key(KeyCode::Char('y'));
+    assert!(s.app.quit, "y quits");
+}
+
+#[test]
+fn backspace_resets_to_the_preset_asking_first() {
+    let mut s = changed();
+    let preset = s.app.preset.clone();
+    s.key(KeyCode::Backspace);
+    assert_eq!(s.app.prompt, Some(Prompt::Reset));
+    let text = screen(&s.app, 120, 36);
+    assert!(
+        text.contains(&format!("Reset the setup to {}?", preset.name)),
+        "{text}"
+    );
+    insta::assert_snapshot!("reset_prompt_120x36", text);
+    s.key(KeyCode::Esc);
+    assert_eq!(s.app.params.ground.friction, 0.5, "Esc keeps the changes");
+    s.key(KeyCode::Backspace);
+    s.key(KeyCode::Backspace);
+    assert_eq!(s.app.params, preset.params());
+    assert_eq!(s.engine.params(), &preset.params());
+    assert!(!super::dialogs::modified(&s.app));
+    // Nothing changed: nothing to ask, nothing to do.
+    s.key(KeyCode::Backspace);
+    assert!(s.app.prompt.is_none());
+    assert!(
+        s.app
+            .notice
+            .as_deref()
+            .is_some_and(|n| n.contains("nothing to reset"))
+    );
+}
+
+#[test]
+fn opening_a_preset_over_changes_asks_first() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = changed();
+    s.app.store = Store::new(Some(dir.path().to_path_buf()));
+    s.key(KeyCode::Char('o'));
+    assert_eq!(s.app.mode(), Mode::Dialog);
+    s.key(KeyCode::Down);
+    s.key(KeyCode::Enter);
+    let Some(Prompt::Load(chosen)) = s.app.prompt.clone() else {
+        panic!("asks first: {:?}", s.app.prompt)
+    };
+    assert!(screen(&s.app, 120, 36).contains(&format!("Open {}?", chosen.name)));
+    s.key(KeyCode::Char('n'));
+    assert_eq!(s.app.mode(), Mode::Dialog, "no: back in the picker");
+    assert_eq!(s.app.params.ground.friction, 0.5);
+    s.key(KeyCode::Enter);
+    s.key(KeyCode::Enter);
+    assert!(s.app.dialog.is_none());
+    assert_eq!(s.app.preset.name, chosen.name);
+    assert_eq!(s.engine.params(), &chosen.params());
+}
+
+#[test]
+fn the_batch_size_is_chosen_or_typed() {
+    let mut s = start();
+    assert_eq!(s.app.batch_rolls, 10_000);
+    assert!(screen(&s.app, 120, 36).contains("b batch 10 000"));
+    s.key(KeyCode::Char('B'));
+    assert_eq!(s.app.batch_rolls, 100_000);
+    s.key(KeyCode::Char('B'));
+    assert_eq!(s.app.mode(), Mode::EditingValue);
+    for c in "2.5".chars() {
+        s.key(KeyCode::Char(c));
+    }
+    s.key(KeyCode::Enter);
+    let text = screen(&s.app, 120, 36);
+    assert!(text.contains("a whole number from 1 to 10 000 000"), "{text}");
+    for _ in 0..3 {
+        s.key(KeyCode::Backspace);
+    }
+    for c in "2500".chars() {
+        s.key(KeyCode::Char(c));
+    }
+    s.key(KeyCode::Enter);
+    assert_eq!(s.app.batch_rolls, 2_500);
+    assert!(screen(&s.app, 120, 36).contains("b batch 2 500"));
+    s.key(KeyCode::Char('b'));
+    assert_eq!(s.app.batch.map(|b| b.total), Some(2_500));
+    s.key(KeyCode::Char('b'));
+    // After a typed size the ladder starts again.
+    s.key(KeyCode::Char('B'));
+    assert_eq!(s.app.batch_rolls, 1_000);
+    s.key(KeyCode::Char('B'));
+    assert_eq!(s.app.batch_rolls, 10_000);
+    let mut s = start();
+    s.app.batch_rolls = 100_000;
+    s.key(KeyCode::Char('B'));
+    s.key(KeyCode::Esc);
+    assert_eq!(s.app.batch_rolls, 100_000, "Esc keeps the size");
+    s.key(KeyCode::Char('B'));
+    assert_eq!(s.app.mode(), Mode::EditingValue, "from the largest, B types one");
+}
+
+#[test]
+fn the_footer_and_help_come_from_the_key_table() {
+    let s = start();
+    let text = screen(&s.app, 120, 36);
+    let footer = text.lines().last().expect("a footer").to_string();
+    for hint in ["space play", ", . step", "? help", "q quit"] {
+        assert!(footer.contains(hint), "{footer}");
+    }
+    let narrow = screen(&s.app, 80, 24);
+    let footer = narrow.lines().last().expect("a footer").to_string();
+    assert!(footer.contains("? help") && footer.contains("q quit"), "{footer}");
+    let mut s = start();
+    s.key(KeyCode::Char('?'));
+    let help = screen(&s.app, 120, 36);
+    for row in super::keys::BINDINGS.iter().take(6) {
+        assert!(help.contains(row.help), "no `{}` in\n{help}", row.help);
+    }
+}
+
+/// A preset with a theme, for the projector check.
+#[test]
+fn prompts_read_in_the_projector_theme() {
+    let mut s = Scene::new(&Preset::default(), Theme::default().next().next());
+    s.command(Command::SetParam(Param::named("ground.friction").scan_key(), 0.5));
+    s.key(KeyCode::Char('q'));
+    insta::assert_snapshot!("quit_prompt_projector_100x30", screen(&s.app, 100, 30));
+}
+
+#[test]
+fn slow_motion_classroom_opens_slowed_down_with_its_arrows() {
+    let preset = Store::new(None).load("slow-motion-classroom").expect("shipped").0;
+    let s = Scene::new(&preset, Theme::default());
+    assert_eq!(s.app.live.speed.label(), "1/10×");
+    assert!(s.app.vectors);
+    assert!(screen(&s.app, 120, 36).contains("speed 1/10×"));
+    // Loading it over another preset applies its view too, and a preset without a view
+    // opens as the explorer does: at 1×, without arrows or twin, the theme kept.
+    let mut s = start();
+    s.key(KeyCode::Char('t'));
+    s.command(Command::LoadPreset(Box::new(preset)));
+    assert_eq!(s.app.speed.label(), "1/10×");
+    assert!(s.app.vectors);
+    s.key(KeyCode::Char('T'));
+    s.key(KeyCode::Char('a'));
+    s.command(Command::LoadPreset(Box::default()));
+    assert_eq!(s.app.speed.label(), "1×");
+    assert_eq!(s.engine.speed().label(), "1×");
+    assert!(!s.app.vectors && !s.app.twin && s.app.live.twin.is_none());
+    assert_eq!(s.app.camera, super::camera::Camera::default());
+    assert_eq!(s.app.theme.palette, super::theme::Palette::Light);
+}
+
+#[test]
+fn s_saves_the_view_and_a_description_and_loading_applies_them() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let store = Store::new(Some(dir.path().to_path_buf()));
+    let mut s = changed();
+    s.app.store = store.clone();
+    for key in ['[', '[', 'v', 't', 'a', 'T'] {
+        s.key(KeyCode::Char(key));
+    }
+    s.key(KeyCode::Char('s'));
+    for c in "lab-3".chars() {
+        s.key(KeyCode::Char(c));
+    }
+    let automatic = super::dialogs::automatic_description(&s.app);
+    assert_eq!(automatic, "The `paper` preset with ground.friction=0.5.");
+    // A fixed folder for the picture (the temporary one's name changes every run).
+    s.app.store = Store::new(Some("/home/teacher/presets".into()));
+    let text = screen(&s.app, 120, 36);
+    assert!(
+        text.contains(&automatic),
+        "the empty description shows what it will be:\n{text}"
+    );
+    insta::assert_snapshot!("save_dialog_120x36", text);
+    s.app.store = store.clone();
+    s.key(KeyCode::Tab);
+    for c in "Friction halved for lab 3.".chars() {
+        s.key(KeyCode::Char(c));
+    }
+    s.key(KeyCode::Enter);
+    assert!(s.app.dialog.is_none(), "{:?}", s.app.dialog);
+    let saved = store.load("lab-3").expect("saved").0;
+    assert_eq!(saved.description, "Friction halved for lab 3.");
+    assert_eq!(saved.ground.friction, 0.5);
+    let view = saved.view;
+    assert_eq!(view.speed.map(|v| v.label()), Some("1/5×"));
+    assert_eq!(view.arrows, Some(true));
+    assert_eq!(view.theme, Some(crate::preset::ThemeName::Light));
+    assert_eq!(view.twin, Some(1e-9));
+    assert_eq!(view.camera.map(|c| c.yaw), Some(15.0));
+    assert_eq!(view.screen, Some(crate::preset::Screen::Die));
+    let text = std::fs::read_to_string(dir.path().join("lab-3.toml")).expect("written");
+    assert!(text.contains("\nspeed = \"1/5×\""), "{text}");
+
+    // Opened in a fresh explorer, it looks the same.
+    let s = Scene::new(&saved, Theme::default());
+    assert_eq!(s.app.live.speed.label(), "1/5×");
+    assert!(s.app.vectors && s.app.twin && s.app.live.twin.is_some());
+    assert_eq!(s.app.theme.palette, super::theme::Palette::Light);
+    assert_eq!(s.app.camera.yaw_deg, 15.0);
+}
+
+#[test]
+fn a_view_on_the_map_screen_opens_it() {
+    let mut preset = Preset::default();
+    preset.view.screen = Some(crate::preset::Screen::Map);
+    let mut s = Scene::new(&preset, Theme::default());
+    s.sync();
+    assert_eq!(s.app.mode(), Mode::Map);
+    assert!(s.app.map.requested.is_some(), "the map is asked for at once");
+}
+
+#[test]
+fn the_views_camera_limits_are_the_cameras() {
+    use super::camera::Camera;
+    assert_eq!(crate::preset::PITCH.min, Camera::MIN_PITCH);
+    assert_eq!(crate::preset::PITCH.max, Camera::MAX_PITCH);
+    assert_eq!(crate::preset::ZOOM.min, f64::from(Camera::MIN_ZOOM));
+    assert_eq!(crate::preset::ZOOM.max, f64::from(Camera::MAX_ZOOM));
+}

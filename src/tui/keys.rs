@@ -1,0 +1,659 @@
+//! Every key of the explorer as one table row: which screen, which keys, what it does, its
+//! footer hint and its help text. Dispatch, the footer, the help overlay and the README's
+//! key tables are all read from [`BINDINGS`], so a key is changed in one place.
+
+use ratatui::crossterm::event::KeyCode;
+
+/// Where a binding applies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Screen {
+    /// The main screen: the die, its energy and the outcome table.
+    Die,
+    /// The basin-map screen (`Tab`).
+    Map,
+    /// Both screens.
+    Both,
+}
+
+impl Screen {
+    pub(crate) fn includes(self, on: Screen) -> bool {
+        self == Both || self == on
+    }
+}
+
+/// What a key does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Action {
+    TogglePlay,
+    StepForward,
+    StepBack,
+    ToStart,
+    ToEnd,
+    Replay,
+    RandomRoll,
+    Batch,
+    BatchSize,
+    ClearTable,
+    Slower,
+    Faster,
+    SelectPrevious,
+    SelectNext,
+    SelectFirst,
+    SelectLast,
+    Decrease,
+    Increase,
+    DecreaseBig,
+    IncreaseBig,
+    TypeValue,
+    LogScale,
+    Export,
+    Arrows,
+    Twin,
+    TwinEpsilonDown,
+    TwinEpsilonUp,
+    TwinEpsilonType,
+    Theme,
+    Drawing,
+    OrbitLeft,
+    OrbitRight,
+    TiltUp,
+    TiltDown,
+    ZoomIn,
+    ZoomOut,
+    ResetCamera,
+    OpenPreset,
+    SavePreset,
+    ResetSetup,
+    OpenMap,
+    Help,
+    Close,
+    Quit,
+    // The basin-map screen's own.
+    MapBack,
+    CursorLeft,
+    CursorRight,
+    CursorUp,
+    CursorDown,
+    CursorLeftBig,
+    CursorRightBig,
+    CursorUpBig,
+    CursorDownBig,
+    ReplayCell,
+    MapZoomIn,
+    MapZoomOut,
+    NextXAxis,
+    NextYAxis,
+    TypeXRange,
+    TypeYRange,
+    MapLayer,
+    ExportMap,
+}
+
+/// One row of the key table.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Binding {
+    pub(crate) screen: Screen,
+    pub(crate) keys: &'static [KeyCode],
+    /// How the keys are written in the help and the README (space-separated).
+    pub(crate) label: &'static str,
+    pub(crate) action: Action,
+    /// The footer's words and priority (on a narrow terminal the highest go first, 0
+    /// stays); `None` for keys only the help lists.
+    pub(crate) hint: Option<Hint>,
+    pub(crate) help: &'static str,
+}
+
+/// A footer hint: the keys as the footer writes them, what they do, how soon to drop it.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Hint {
+    pub(crate) keys: &'static str,
+    pub(crate) words: &'static str,
+    pub(crate) priority: u8,
+}
+
+const fn hint(keys: &'static str, words: &'static str, priority: u8) -> Option<Hint> {
+    Some(Hint {
+        keys,
+        words,
+        priority,
+    })
+}
+
+use Action as A;
+use KeyCode as K;
+use Screen::{Both, Die, Map};
+
+macro_rules! row {
+    ($screen:expr, [$($key:expr),+], $label:expr, $action:expr, $hint:expr, $help:expr) => {
+        Binding {
+            screen: $screen,
+            keys: &[$($key),+],
+            label: $label,
+            action: $action,
+            hint: $hint,
+            help: $help,
+        }
+    };
+}
+
+/// The key table, in the order the help and the README list it.
+pub(crate) const BINDINGS: &[Binding] = &[
+    row!(
+        Die,
+        [K::Char(' ')],
+        "space",
+        A::TogglePlay,
+        hint("space", "play", 0),
+        "play / pause, on from wherever the roll is (at its end: watch it again)"
+    ),
+    row!(
+        Die,
+        [K::Char('.'), K::Char('n')],
+        ". n",
+        A::StepForward,
+        hint(", .", "step", 1),
+        "one step of Δt forward, then pause"
+    ),
+    row!(
+        Die,
+        [K::Char(',')],
+        ",",
+        A::StepBack,
+        None,
+        "one step of Δt back, then pause"
+    ),
+    row!(
+        Die,
+        [K::Home],
+        "Home",
+        A::ToStart,
+        hint("Home End", "start/end", 4),
+        "jump to the start of the roll; a click on the timeline under the die jumps there"
+    ),
+    row!(
+        Die,
+        [K::End],
+        "End",
+        A::ToEnd,
+        None,
+        "jump to the end of the roll (computing it if it has not got there yet)"
+    ),
+    row!(
+        Die,
+        [K::Char('r')],
+        "r",
+        A::Replay,
+        hint("r", "replay", 3),
+        "replay the same start: the same face, every time"
+    ),
+    row!(
+        Die,
+        [K::Char('R')],
+        "R",
+        A::RandomRoll,
+        hint("R", "random", 3),
+        "a random roll from the preset's ranges (counted in the table)"
+    ),
+    row!(
+        Die,
+        [K::Char('b')],
+        "b",
+        A::Batch,
+        hint("b", "batch", 1),
+        "a batch of random rolls into the table, with a progress gauge; b again cancels"
+    ),
+    row!(
+        Die,
+        [K::Char('B')],
+        "B",
+        A::BatchSize,
+        hint("B", "size", 4),
+        "the batch size: 1 000 → 10 000 → 100 000 → type one (1 … 10 000 000)"
+    ),
+    row!(
+        Die,
+        [K::Char('c')],
+        "c",
+        A::ClearTable,
+        None,
+        "clear the outcome table"
+    ),
+    row!(
+        Die,
+        [K::Char('['), K::Char('-')],
+        "[ -",
+        A::Slower,
+        hint("[ ]", "speed", 1),
+        "slower: 1/100× … 100×, then instant"
+    ),
+    row!(
+        Die,
+        [K::Char(']'), K::Char('+'), K::Char('=')],
+        "] +",
+        A::Faster,
+        None,
+        "faster"
+    ),
+    row!(
+        Die,
+        [K::Up, K::Char('k')],
+        "↑ k",
+        A::SelectPrevious,
+        hint("↑↓←→", "values", 3),
+        "select the value above"
+    ),
+    row!(
+        Die,
+        [K::Down, K::Char('j')],
+        "↓ j",
+        A::SelectNext,
+        None,
+        "select the value below"
+    ),
+    row!(
+        Die,
+        [K::Char('g')],
+        "g",
+        A::SelectFirst,
+        None,
+        "select the first value"
+    ),
+    row!(
+        Die,
+        [K::Char('G')],
+        "G",
+        A::SelectLast,
+        None,
+        "select the last value"
+    ),
+    row!(
+        Die,
+        [K::Left, K::Char('h')],
+        "← h",
+        A::Decrease,
+        None,
+        "lower the value (Shift: big steps); ground values act at once, others restart the roll"
+    ),
+    row!(
+        Die,
+        [K::Right, K::Char('l')],
+        "→ l",
+        A::Increase,
+        None,
+        "raise the value (Shift: big steps)"
+    ),
+    row!(
+        Die,
+        [K::Char('H')],
+        "H",
+        A::DecreaseBig,
+        None,
+        "lower the value in a big step"
+    ),
+    row!(
+        Die,
+        [K::Char('L')],
+        "L",
+        A::IncreaseBig,
+        None,
+        "raise the value in a big step"
+    ),
+    row!(
+        Die,
+        [K::Enter],
+        "Enter",
+        A::TypeValue,
+        None,
+        "type an exact value (checked against its range; Esc cancels)"
+    ),
+    row!(
+        Die,
+        [K::Char('y')],
+        "y",
+        A::LogScale,
+        None,
+        "energy plot: linear / log scale"
+    ),
+    row!(
+        Die,
+        [K::Char('e')],
+        "e",
+        A::Export,
+        hint("e", "export", 4),
+        "export the roll into the current folder: its trace (CSV) and energy plot (PNG); e again cancels"
+    ),
+    row!(
+        Die,
+        [K::Char('v')],
+        "v",
+        A::Arrows,
+        hint("v", "arrows", 3),
+        "arrows: spin ω, angular momentum L, velocity v, contact forces F"
+    ),
+    row!(
+        Die,
+        [K::Char('T')],
+        "T",
+        A::Twin,
+        hint("T", "twin", 2),
+        "chaos twin: a second die (the ghost) whose height, velocity and spin are × (1 + ε)"
+    ),
+    row!(
+        Die,
+        [K::Char('<')],
+        "<",
+        A::TwinEpsilonDown,
+        None,
+        "twin: ε ÷10 (down to 1e-15); both dice roll again"
+    ),
+    row!(
+        Die,
+        [K::Char('>')],
+        ">",
+        A::TwinEpsilonUp,
+        None,
+        "twin: ε ×10 (up to 0.1)"
+    ),
+    row!(Die, [K::Char('E')], "E", A::TwinEpsilonType, None, "twin: type ε"),
+    row!(
+        Die,
+        [K::Char('t')],
+        "t",
+        A::Theme,
+        None,
+        "theme: dark / light / projector (high contrast, bold); NO_COLOR turns colour off"
+    ),
+    row!(
+        Die,
+        [K::Char('m')],
+        "m",
+        A::Drawing,
+        None,
+        "draw the die with Braille dots / plain ASCII"
+    ),
+    row!(
+        Die,
+        [K::Char('a')],
+        "a",
+        A::OrbitLeft,
+        None,
+        "orbit the camera left"
+    ),
+    row!(
+        Die,
+        [K::Char('d')],
+        "d",
+        A::OrbitRight,
+        None,
+        "orbit the camera right"
+    ),
+    row!(Die, [K::Char('W')], "W", A::TiltUp, None, "tilt the camera up"),
+    row!(
+        Die,
+        [K::Char('S')],
+        "S",
+        A::TiltDown,
+        None,
+        "tilt the camera down"
+    ),
+    row!(
+        Die,
+        [K::Char('z')],
+        "z",
+        A::ZoomIn,
+        None,
+        "zoom in (or scroll on the die; drag it to orbit)"
+    ),
+    row!(Die, [K::Char('x')], "x", A::ZoomOut, None, "zoom out"),
+    row!(Die, [K::Char('0')], "0", A::ResetCamera, None, "reset the camera"),
+    row!(
+        Die,
+        [K::Char('o')],
+        "o",
+        A::OpenPreset,
+        hint("o s", "presets", 4),
+        "open a preset (shipped ones and yours, ★); asks first if the setup has unsaved changes"
+    ),
+    row!(
+        Die,
+        [K::Char('s')],
+        "s",
+        A::SavePreset,
+        None,
+        "save the setup and the view as a preset, with a description (asks before replacing one)"
+    ),
+    row!(
+        Die,
+        [K::Backspace],
+        "Backspace",
+        A::ResetSetup,
+        hint("⌫", "reset", 2),
+        "reset the setup to the open preset (asks first if it has changes)"
+    ),
+    row!(
+        Die,
+        [K::Tab, K::BackTab, K::Char('2')],
+        "Tab 2",
+        A::OpenMap,
+        hint("Tab", "map", 2),
+        "the basin-map screen"
+    ),
+    row!(
+        Map,
+        [K::Tab, K::BackTab, K::Char('1')],
+        "Tab 1",
+        A::MapBack,
+        hint("Tab", "die", 0),
+        "back to the die (Esc too)"
+    ),
+    row!(
+        Map,
+        [K::Left, K::Char('h')],
+        "← h",
+        A::CursorLeft,
+        hint("←↓↑→", "cursor", 1),
+        "move the cursor left (Shift: 8 cells)"
+    ),
+    row!(
+        Map,
+        [K::Right, K::Char('l')],
+        "→ l",
+        A::CursorRight,
+        None,
+        "move the cursor right"
+    ),
+    row!(
+        Map,
+        [K::Up, K::Char('k')],
+        "↑ k",
+        A::CursorUp,
+        None,
+        "move the cursor up"
+    ),
+    row!(
+        Map,
+        [K::Down, K::Char('j')],
+        "↓ j",
+        A::CursorDown,
+        None,
+        "move the cursor down"
+    ),
+    row!(Map, [K::Char('H')], "H", A::CursorLeftBig, None, "8 cells left"),
+    row!(Map, [K::Char('L')], "L", A::CursorRightBig, None, "8 cells right"),
+    row!(Map, [K::Char('K')], "K", A::CursorUpBig, None, "8 cells up"),
+    row!(Map, [K::Char('J')], "J", A::CursorDownBig, None, "8 cells down"),
+    row!(
+        Map,
+        [K::Enter],
+        "Enter",
+        A::ReplayCell,
+        hint("Enter", "replay", 1),
+        "replay the cell under the cursor in the die view"
+    ),
+    row!(
+        Map,
+        [K::Char('z')],
+        "z",
+        A::MapZoomIn,
+        hint("z Z", "zoom in/out", 1),
+        "zoom in ×4 around the cursor"
+    ),
+    row!(
+        Map,
+        [K::Char('Z'), K::Backspace],
+        "Z Backspace",
+        A::MapZoomOut,
+        None,
+        "zoom back out"
+    ),
+    row!(
+        Map,
+        [K::Char('x')],
+        "x",
+        A::NextXAxis,
+        hint("x y", "axis", 2),
+        "next value of the parameter list on the x axis"
+    ),
+    row!(
+        Map,
+        [K::Char('y')],
+        "y",
+        A::NextYAxis,
+        None,
+        "next value on the y axis"
+    ),
+    row!(
+        Map,
+        [K::Char('X')],
+        "X",
+        A::TypeXRange,
+        hint("X Y", "range", 2),
+        "type the x range as MIN MAX"
+    ),
+    row!(
+        Map,
+        [K::Char('Y')],
+        "Y",
+        A::TypeYRange,
+        None,
+        "type the y range as MIN MAX"
+    ),
+    row!(
+        Map,
+        [K::Char('v')],
+        "v",
+        A::MapLayer,
+        hint("v", "face/time", 3),
+        "colour by face up / by settle time (borders light up)"
+    ),
+    row!(
+        Map,
+        [K::Char('e')],
+        "e",
+        A::ExportMap,
+        hint("e", "export PNG", 3),
+        "save the map as a PNG in the current folder"
+    ),
+    row!(
+        Both,
+        [K::Char('?')],
+        "?",
+        A::Help,
+        hint("?", "help", 0),
+        "this help (↑↓ scroll, ? or Esc closes)"
+    ),
+    row!(
+        Both,
+        [K::Esc],
+        "Esc",
+        A::Close,
+        None,
+        "close the topmost thing: an editor, a dialog, the help, the map screen; never quits"
+    ),
+    row!(
+        Both,
+        [K::Char('q')],
+        "q",
+        A::Quit,
+        hint("q", "quit", 0),
+        "quit (asks first if the setup has unsaved changes: y or q again quits); Ctrl-C quits at once"
+    ),
+];
+
+/// The binding of `code` on `screen`, if any.
+pub(crate) fn lookup(screen: Screen, code: KeyCode) -> Option<&'static Binding> {
+    BINDINGS
+        .iter()
+        .find(|b| b.screen.includes(screen) && b.keys.contains(&code))
+}
+
+/// Every row that applies on `screen` (its own and the shared ones), for its footer.
+pub(crate) fn rows(screen: Screen) -> impl Iterator<Item = &'static Binding> {
+    BINDINGS.iter().filter(move |b| b.screen.includes(screen))
+}
+
+/// The rows one section of the help and the README lists: the die screen's with the
+/// shared ones, the map screen's own.
+pub(crate) fn section(screen: Screen) -> impl Iterator<Item = &'static Binding> {
+    BINDINGS.iter().filter(move |b| match screen {
+        Die => b.screen != Map,
+        _ => b.screen == screen,
+    })
+}
+
+#[cfg(test)]
+/// The README's key tables as they must read: one for the die screen (with the keys of
+/// both screens), one for the map screen.
+pub(crate) fn markdown_tables() -> String {
+    let table = |title: &str, screen: Screen| {
+        let mut out = format!("| {title} | |\n|---|---|\n");
+        for b in section(screen) {
+            let keys: Vec<String> = b.label.split(' ').map(|k| format!("`{k}`")).collect();
+            out.push_str(&format!("| {} | {} |\n", keys.join(" "), b.help));
+        }
+        out
+    };
+    format!("{}\n{}", table("Keys", Die), table("Basin-map screen keys", Map))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn no_key_means_two_things_on_one_screen() {
+        for screen in [Die, Map] {
+            let mut seen: Vec<KeyCode> = Vec::new();
+            for b in BINDINGS.iter().filter(|b| b.screen.includes(screen)) {
+                for k in b.keys {
+                    assert!(!seen.contains(k), "{k:?} bound twice on {screen:?}");
+                    seen.push(*k);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_readme_key_tables_are_the_key_table() {
+        let readme = include_str!("../../README.md");
+        let expected = markdown_tables();
+        assert!(
+            readme.contains(&expected),
+            "README.md's key tables differ from src/tui/keys.rs; they should read:\n\n{expected}"
+        );
+    }
+
+    #[test]
+    fn esc_never_quits_and_q_does_on_every_screen() {
+        for screen in [Die, Map] {
+            assert_eq!(
+                lookup(screen, KeyCode::Esc).map(|b| b.action),
+                Some(Action::Close)
+            );
+            assert_eq!(
+                lookup(screen, KeyCode::Char('q')).map(|b| b.action),
+                Some(Action::Quit)
+            );
+        }
+    }
+}
