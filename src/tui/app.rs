@@ -28,6 +28,9 @@ pub(crate) const BATCH_ROLLS: u64 = 10_000;
 /// order: worker commands as they come, then the rest), so `update` itself never touches
 /// the disk or a thread.
 #[derive(Debug, Clone, PartialEq)]
+// A worker command carries a whole setup (a loaded die's eight corner masses among it); an
+// effect lives only from `update` to the event loop, so boxing it would buy nothing.
+#[allow(clippy::large_enum_variant)]
 pub enum Effect {
     /// A command for the simulation thread.
     Worker(Command),
