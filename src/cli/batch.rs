@@ -3,6 +3,7 @@
 use super::shard::{ShardArgs, batch_fingerprint, write_batch_part};
 use super::{CliError, EngineArg, SetupArgs, cancel_on_ctrl_c};
 use crate::experiment::csv_io;
+use crate::experiment::ending::Ending;
 use crate::experiment::ics::{parse_initial_conditions, record_csv_row, records_csv_header};
 use crate::experiment::parquet::RecordsWriter;
 use crate::experiment::shard::Sweep;
@@ -344,8 +345,14 @@ pub(super) fn print_counts(out: &mut impl Write, s: &BatchSummary) -> std::io::R
     let st = &s.status;
     writeln!(
         out,
-        "status                 settled {}, settled without a face {}, did not settle {}, unstable {}",
-        st.settled, st.settled_without_face, st.timeout, st.unstable
+        "status                 settled {}, {} {}, {} {}, {} {}",
+        st.settled,
+        Ending::WithoutFace.name(),
+        st.settled_without_face,
+        Ending::DidNotSettle.name(),
+        st.timeout,
+        Ending::Unstable.name(),
+        st.unstable
     )?;
     Ok(())
 }

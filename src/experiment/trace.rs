@@ -125,8 +125,17 @@ pub(crate) fn human_bytes(bytes: u64) -> String {
     }
 }
 
-/// Rolls `initial` again from t = 0 to its end, writing every step's row to `trace` and
-/// the energy against time to `plot` (a PNG).
+/// Where an export goes: the trace (CSV) and the energy plot (PNG), the plot on a
+/// logarithmic energy axis when `log_scale` (as the screen showed it).
+#[derive(Debug, Clone)]
+pub(crate) struct ExportFiles {
+    pub(crate) trace: Output,
+    pub(crate) plot: Output,
+    pub(crate) log_scale: bool,
+}
+
+/// Rolls `initial` again from t = 0 to its end, writing every step's row to `files.trace`
+/// and the energy against time to `files.plot` (a PNG).
 ///
 /// The roll is first run without writing, to learn its length and the trace's size: a trace
 /// above [`EXPORT_LIMIT_BYTES`] is refused, naming the `dicesim trace --every K` that fits.
@@ -135,11 +144,15 @@ pub(crate) fn export_roll(
     params: &Params,
     initial: &InitialCondition,
     title: &str,
-    trace: &Output,
-    plot: &Output,
+    files: &ExportFiles,
     cancel: &AtomicBool,
     progress: &mut dyn FnMut(ExportProgress),
 ) -> Result<Exported, Error> {
+    let ExportFiles {
+        trace,
+        plot,
+        log_scale,
+    } = files;
     let cancelled = || cancel.load(Ordering::Relaxed);
     let mut sim = Simulation::new_unchecked(params, initial);
     let mut status = ExportProgress {
@@ -223,7 +236,7 @@ pub(crate) fn export_roll(
     // The title starts with the preset's name ("paper · preset roll — …").
     let name = title.split(" · ").next().unwrap_or(title);
     let record = super::plot::Record::of_setup(title, name, params, initial);
-    let png = energy_plot_png(&samples, sim.stop_threshold(), false, &record)
+    let png = energy_plot_png(&samples, sim.stop_threshold(), *log_scale, &record)
         .map_err(|e| Error::Export(format!("{}: {e}", plot.path().display())))?;
     plot.write_bytes(&png).map_err(|e| Error::Export(e.to_string()))?;
     Ok(Exported {

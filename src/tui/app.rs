@@ -701,7 +701,10 @@ fn act(app: &mut App, action: Action, key: KeyEvent, out: &mut Vec<Command>) {
             let c = if app.export.is_some() {
                 Command::ExportCancel
             } else {
-                Command::Export(".".into())
+                Command::Export {
+                    dir: ".".into(),
+                    log_scale: app.log_scale,
+                }
             };
             app.send(out, c);
         }

@@ -521,17 +521,55 @@ mod export {
     #[test]
     fn e_exports_into_the_current_folder_and_y_switches_the_log_scale() {
         let mut a = start().app;
-        assert_eq!(press(&mut a, KeyCode::Char('e')), [Command::Export(".".into())]);
+        assert_eq!(
+            press(&mut a, KeyCode::Char('e')),
+            [Command::Export {
+                dir: ".".into(),
+                log_scale: false
+            }]
+        );
         assert!(!a.log_scale);
         assert!(press(&mut a, KeyCode::Char('y')).is_empty());
         assert!(a.log_scale);
     }
 
     #[test]
+    fn the_exported_energy_plot_follows_the_screens_scale() {
+        // `y` on screen, then `e`: the command carries the log scale to the export.
+        let mut a = mid_impact().app;
+        press(&mut a, KeyCode::Char('y'));
+        assert!(a.log_scale);
+        let c = press(&mut a, KeyCode::Char('e'));
+        assert!(
+            matches!(c[..], [Command::Export { log_scale: true, .. }]),
+            "{c:?}"
+        );
+        // The same roll exported on both scales: two different pictures (the export is
+        // deterministic, so equal files would mean the scale was ignored).
+        let png = |log_scale: bool| {
+            let dir = tempfile::tempdir().expect("temp dir");
+            let mut s = mid_impact();
+            s.command(Command::Export {
+                dir: dir.path().to_path_buf(),
+                log_scale,
+            });
+            s.engine.run_export_here();
+            s.sync();
+            std::fs::read(dir.path().join("dicesim-paper-preset-roll.png")).expect("png written")
+        };
+        let (linear, log) = (png(false), png(true));
+        assert_eq!(linear, png(false), "an export is reproducible");
+        assert_ne!(linear, log, "the log-scale export drew the linear plot");
+    }
+
+    #[test]
     fn export_writes_the_whole_roll_as_csv_and_its_energy_plot_as_png() {
         let dir = tempfile::tempdir().expect("temp dir");
         let mut s = mid_impact();
-        s.command(Command::Export(dir.path().to_path_buf()));
+        s.command(Command::Export {
+            dir: dir.path().to_path_buf(),
+            log_scale: false,
+        });
         assert!(s.app.export.is_some(), "the export runs off the worker's thread");
         s.engine.run_export_here();
         s.sync();
@@ -552,7 +590,10 @@ mod export {
         let image = std::fs::read(&png).expect("png written");
         assert!(image.starts_with(b"\x89PNG\r\n\x1a\n") && image.len() > 10_000);
         // A second export replaces nothing.
-        s.command(Command::Export(dir.path().to_path_buf()));
+        s.command(Command::Export {
+            dir: dir.path().to_path_buf(),
+            log_scale: false,
+        });
         s.engine.run_export_here();
         assert!(dir.path().join("dicesim-paper-preset-roll-2.csv").is_file());
         assert!(dir.path().join("dicesim-paper-preset-roll-2.png").is_file());
@@ -562,7 +603,10 @@ mod export {
     #[test]
     fn export_into_a_missing_folder_says_why() {
         let mut s = start();
-        s.command(Command::Export("/nonexistent/dicesim-export".into()));
+        s.command(Command::Export {
+            dir: "/nonexistent/dicesim-export".into(),
+            log_scale: false,
+        });
         let notice = s.app.notice.clone().expect("a notice");
         assert!(
             notice.starts_with("cannot export the roll: /nonexistent/dicesim-export/"),
@@ -581,7 +625,10 @@ mod export {
         let mut preset = s.engine.preset().clone();
         preset.name = "x/../../escaped".to_string();
         s.command(Command::LoadPreset(Box::new(preset)));
-        s.command(Command::Export(dir.clone()));
+        s.command(Command::Export {
+            dir: dir.clone(),
+            log_scale: false,
+        });
         s.engine.run_export_here();
         s.sync();
         let written: Vec<String> = std::fs::read_dir(&dir)
@@ -614,7 +661,10 @@ mod export {
             crate::tui::param::Param::named("integrator.dt").scan_key(),
             1e-5,
         ));
-        s.command(Command::Export(dir.path().to_path_buf()));
+        s.command(Command::Export {
+            dir: dir.path().to_path_buf(),
+            log_scale: false,
+        });
         s.engine.run_export_here();
         s.sync();
         let notice = s.app.notice.clone().expect("a notice");

@@ -324,23 +324,15 @@ fn faceless_items(app: &App) -> Vec<(String, Style)> {
     use crate::experiment::ending::Ending;
     let table = &app.table;
     let mut items = Vec::new();
-    if table.did_not_settle > 0 {
-        // The table counts both kinds together.
-        items.push((
-            format!(
-                "{} or {} {}",
-                Ending::DidNotSettle.name(),
-                Ending::WithoutFace.name(),
-                table.did_not_settle
-            ),
-            app.theme.caution(),
-        ));
-    }
-    if table.unstable > 0 {
-        items.push((
-            format!("{} {}", Ending::Unstable.name(), table.unstable),
-            app.theme.danger(),
-        ));
+    let counts = [
+        (Ending::WithoutFace, table.without_face, app.theme.caution()),
+        (Ending::DidNotSettle, table.did_not_settle, app.theme.caution()),
+        (Ending::Unstable, table.unstable, app.theme.danger()),
+    ];
+    for (ending, n, style) in counts {
+        if n > 0 {
+            items.push((format!("{} {n}", ending.name()), style));
+        }
     }
     items
 }

@@ -8,7 +8,7 @@ use super::twin::Twin;
 use super::{
     BatchProgress, Command, DieState, EnergySample, OutcomeTable, Phase, RollKind, Snapshot, TimelineSnapshot,
 };
-use crate::experiment::trace::{ExportProgress, Exported, export_roll, human_bytes};
+use crate::experiment::trace::{ExportFiles, ExportProgress, Exported, export_roll, human_bytes};
 use crate::experiment::{RandomRanges, RollRecord, ScanKey};
 use crate::output::{Output, free_stem, safe_file_stem};
 use crate::physics::registry::Role;
@@ -44,8 +44,7 @@ pub(crate) struct ExportJob {
     pub(crate) params: Params,
     pub(crate) initial: InitialCondition,
     pub(crate) title: String,
-    pub(crate) trace: Output,
-    pub(crate) plot: Output,
+    pub(crate) files: ExportFiles,
 }
 
 impl ExportJob {
@@ -59,8 +58,7 @@ impl ExportJob {
             &self.params,
             &self.initial,
             &self.title,
-            &self.trace,
-            &self.plot,
+            &self.files,
             cancel,
             progress,
         )
@@ -328,7 +326,7 @@ impl Engine {
                 Err(e) => self.pending.notice = Some(e.to_string()),
             },
             Command::LoadPreset(preset) => self.load_preset(*preset),
-            Command::Export(dir) => self.export(&dir),
+            Command::Export { dir, log_scale } => self.export(&dir, log_scale),
             Command::ExportCancel => {
                 self.export_request = None;
                 if self.export.take().is_some() {
@@ -366,7 +364,7 @@ impl Engine {
 
     /// Asks for the roll on screen to be written into `dir` (see [`Command::Export`]): the
     /// files are chosen and checked here, the writing happens on the export thread.
-    fn export(&mut self, dir: &std::path::Path) {
+    fn export(&mut self, dir: &std::path::Path, log_scale: bool) {
         if self.export.is_some() {
             self.pending.notice = Some("an export is running: e cancels it".to_string());
             return;
@@ -417,8 +415,11 @@ impl Engine {
             params: self.params,
             initial: self.initial,
             title,
-            trace,
-            plot,
+            files: ExportFiles {
+                trace,
+                plot,
+                log_scale,
+            },
         });
     }
 

@@ -64,8 +64,12 @@ pub enum Command {
     /// Another preset: its setup and its roll, a fresh outcome table.
     LoadPreset(Box<Preset>),
     /// Write the roll on screen, rolled again from t = 0, into this folder: its trace as
-    /// CSV and its energy plot as PNG (on a thread of its own, with progress).
-    Export(std::path::PathBuf),
+    /// CSV and its energy plot as PNG (on a thread of its own, with progress), the plot on
+    /// the energy axis the screen shows (`log_scale`: logarithmic).
+    Export {
+        dir: std::path::PathBuf,
+        log_scale: bool,
+    },
     ExportCancel,
     Quit,
 }
@@ -186,7 +190,9 @@ pub(crate) const LAST_ROLLS: usize = 12;
 pub struct OutcomeTable {
     /// Settled rolls with a face up.
     pub tally: FaceTally,
-    /// Rolls that reached the time cap, or settled without a face up.
+    /// Rolls that settled balanced on an edge or a corner: no face up.
+    pub(crate) without_face: u64,
+    /// Rolls that reached the time cap still moving.
     pub(crate) did_not_settle: u64,
     pub(crate) unstable: u64,
     /// Newest first.
@@ -197,8 +203,9 @@ impl OutcomeTable {
     pub(crate) fn add(&mut self, r: RollRecord) {
         match (r.outcome.status, r.outcome.face) {
             (Status::Settled, Some(f)) => self.tally.add(f),
+            (Status::Settled, None) => self.without_face += 1,
+            (Status::Timeout, _) => self.did_not_settle += 1,
             (Status::Unstable, _) => self.unstable += 1,
-            _ => self.did_not_settle += 1,
         }
         self.last.push_front(r);
         self.last.truncate(LAST_ROLLS);
@@ -206,7 +213,7 @@ impl OutcomeTable {
 
     /// Every roll entered, settled or not.
     pub fn rolls(&self) -> u64 {
-        self.tally.total() + self.did_not_settle + self.unstable
+        self.tally.total() + self.without_face + self.did_not_settle + self.unstable
     }
 }
 
