@@ -7,8 +7,7 @@ use crate::experiment::shard::Sweep;
 use crate::experiment::{Axis, BasinMap, FaceTally, Layer, MapSpec, Method, RunOptions, run_map_rows};
 use crate::output::Output;
 use clap::{Args, ValueEnum};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::PathBuf;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -125,15 +124,7 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
         .map_or(0..h as u64, |(shard, _)| shard.range(h as u64));
 
     let total = (w * (rows.end - rows.start) as usize) as u64;
-    let bar = if std::io::stderr().is_terminal() {
-        ProgressBar::new(total)
-    } else {
-        ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden())
-    };
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} cells rolled, {elapsed}")
-            .expect("the progress template is valid"),
-    );
+    let bar = super::progress_bar(total, "{bar:40} {pos}/{len} cells rolled, {elapsed}");
     let options = RunOptions {
         jobs,
         engine: args.engine.engine(),

@@ -10,9 +10,8 @@ use crate::experiment::shard::Sweep;
 use crate::experiment::{BatchRun, BatchSummary, RollRecord, Rolls, RunOptions, stream_batch};
 use crate::output::Output;
 use clap::Args;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::json;
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::PathBuf;
 
 /// The most rolls one batch takes. Records stream to `--out` as they complete, so memory
@@ -134,15 +133,7 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
         jobs,
         engine: args.engine.engine(),
     };
-    let bar = if std::io::stderr().is_terminal() {
-        ProgressBar::new(rolls.len())
-    } else {
-        ProgressBar::with_draw_target(Some(rolls.len()), ProgressDrawTarget::hidden())
-    };
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} rolls, {per_sec}, {eta} left")
-            .expect("the progress template is valid"),
-    );
+    let bar = super::progress_bar(rolls.len(), "{bar:40} {pos}/{len} rolls, {per_sec}, {eta} left");
     let seed_field = given.is_none().then_some(seed);
     let mut run = None;
     // The sink's own I/O error, kept whole (the engine only carries its words).

@@ -42,6 +42,20 @@ impl EngineArg {
     }
 }
 
+/// The progress bar of a long command: drawn on stderr while it is a terminal, hidden
+/// otherwise (a pipe or a log file gets no bar codes), in `template`'s words.
+pub(crate) fn progress_bar(total: u64, template: &str) -> indicatif::ProgressBar {
+    use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+    use std::io::IsTerminal;
+    let bar = if std::io::stderr().is_terminal() {
+        ProgressBar::new(total)
+    } else {
+        ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden())
+    };
+    bar.set_style(ProgressStyle::with_template(template).expect("the progress template is valid"));
+    bar
+}
+
 /// Exit status of a second Ctrl-C, which cannot wait for the error to reach `main`: as a
 /// shell reports a SIGINT (128 + 2), the status `main` gives an interrupted command.
 const INTERRUPTED_AT_ONCE: i32 = 130;

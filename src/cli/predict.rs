@@ -7,8 +7,7 @@ use crate::experiment::predict_plot::prediction_png;
 use crate::experiment::{RunOptions, ScanKey};
 use crate::output::Output;
 use clap::Args;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::PathBuf;
 
 /// The most rolls one experiment takes (starts × (1 + ε count) × values).
@@ -107,15 +106,7 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
         .collect::<Result<Vec<_>, _>>()
         .map_err(CliError::output("--out "))?;
 
-    let bar = if std::io::stderr().is_terminal() {
-        ProgressBar::new(total)
-    } else {
-        ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden())
-    };
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} rolls, {elapsed}")
-            .expect("the progress template is valid"),
-    );
+    let bar = super::progress_bar(total, "{bar:40} {pos}/{len} rolls, {elapsed}");
     let options = RunOptions {
         jobs,
         engine: args.engine.engine(),
