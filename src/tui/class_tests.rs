@@ -85,7 +85,7 @@ mod ledger {
 }
 
 mod vectors {
-    use super::super::render::render_die;
+    use super::super::die::render_die;
     use super::super::vectors::{ARROWS, Arrow, arrow_length};
     use super::*;
     use crate::tui::app::{Msg, update};
@@ -230,7 +230,7 @@ mod twin {
     fn the_ghost_is_drawn_in_its_own_colour() {
         let s = twin_after(300);
         let area = full().die;
-        let t = panel(&s.app, area, crate::tui::render::render_die);
+        let t = panel(&s.app, area, crate::tui::die::render_die);
         let b = t.backend().buffer();
         let ghost = (0..area.height)
             .flat_map(|y| (0..area.width).map(move |x| (x, y)))

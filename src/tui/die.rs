@@ -15,8 +15,11 @@ use super::app::{App, Drawing};
 use super::camera::{
     Camera, EDGES, FACE_CORNERS, Flat, convex_hull, face_centre, face_normal, inside, outside_parts,
 };
+use super::format::wrap_words;
 use super::vectors::{self, Arrow};
-use crate::worker::DieState;
+use crate::physics::stopping::why_it_cannot_settle;
+use crate::physics::{Status, UnstableReason};
+use crate::worker::{DieState, Phase};
 use nalgebra::Vector3;
 use ratatui::Frame;
 use ratatui::buffer::Buffer;
@@ -573,8 +576,8 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
     }
     // The reason a roll ended and the arrows' legend take rows of their own: they hide
     // nothing of the die.
-    if let Some((reason, style)) = super::render::end_reason(app) {
-        let lines: Vec<Line> = super::render::wrap_words(&reason, body.width as usize)
+    if let Some((reason, style)) = end_reason(app) {
+        let lines: Vec<Line> = wrap_words(&reason, body.width as usize)
             .into_iter()
             .map(|l| Line::styled(l, style))
             .collect();
@@ -644,5 +647,21 @@ mod tests {
                 opposite + 1
             );
         }
+    }
+}
+
+/// Why the roll on screen ended unstable, or could not settle on its table, when it did.
+pub(crate) fn end_reason(app: &App) -> Option<(String, Style)> {
+    match app.live.phase {
+        Phase::Ended(o) if o.status == Status::Unstable => Some((
+            format!(
+                "unstable: {}",
+                UnstableReason::new(&app.live.params, &app.live.initial)
+            ),
+            app.theme.danger(),
+        )),
+        Phase::Ended(o) if o.status == Status::Timeout => why_it_cannot_settle(&app.live.params)
+            .map(|why| (format!("did not settle: {why}"), app.theme.caution())),
+        _ => None,
     }
 }

@@ -9,8 +9,8 @@
 use super::app::{App, Editor};
 use super::footer::render_help;
 use super::format::fmt_num;
+use super::header::{render_header, render_too_small};
 use super::param::Param;
-use super::render::{render_header, render_too_small};
 use crate::experiment::basin::node_setup;
 use crate::experiment::ending::Ending;
 use crate::experiment::plot::{

@@ -7,6 +7,7 @@ mod dialogs;
 mod die;
 mod footer;
 pub(crate) mod format;
+mod header;
 mod help;
 mod keys;
 pub(crate) mod layout;

@@ -2,20 +2,21 @@
 //! the physics and never reads a clock.
 
 use super::app::{App, Drawing};
-pub(crate) use super::die::render_die;
+use super::die::render_die;
 use super::footer::{render_footer, render_help};
+use super::format::wrap_words;
 use super::format::{fmt_num, fmt_range};
-use super::layout::{MIN_HEIGHT, MIN_WIDTH, param_window, screen_layout};
+use super::header::{render_header, render_too_small};
+use super::layout::{param_window, screen_layout};
 use super::param::all;
-use crate::physics::stopping::why_it_cannot_settle;
-use crate::physics::{Stability, Status, UnstableReason};
-use crate::worker::{EnergySample, Phase, RollKind};
+use crate::physics::Stability;
+use crate::worker::EnergySample;
 use ratatui::Frame;
-use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, LineGauge, Paragraph, Wrap};
+use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, LineGauge, Paragraph};
 
 /// Share of the tightest stability limit from which the step is worth watching; past the
 /// limit itself (1) a roll is predicted unstable (docs/model.md, "Stability").
@@ -56,30 +57,6 @@ fn render_die_screen(app: &App, frame: &mut Frame) {
     super::dialogs::render(app, area, frame);
 }
 
-pub(crate) fn render_too_small(area: Rect, frame: &mut Frame) {
-    let text = vec![
-        Line::styled(
-            format!("Enlarge the terminal to at least {MIN_WIDTH}×{MIN_HEIGHT}"),
-            Style::new().add_modifier(Modifier::BOLD),
-        ),
-        Line::from(format!("(it is {}×{} now) · q quits", area.width, area.height)),
-    ];
-    let top = area.height.saturating_sub(2) / 2;
-    let [_, middle] = area.layout(&Layout::vertical([Constraint::Length(top), Constraint::Min(0)]));
-    frame.render_widget(Paragraph::new(text).centered().wrap(Wrap { trim: true }), middle);
-}
-
-fn phase_style(app: &App, phase: &Phase) -> Style {
-    let t = &app.theme;
-    match phase {
-        Phase::InContact => t.contact(),
-        Phase::Ended(o) if o.status == Status::Settled => t.good(),
-        Phase::Ended(o) if o.status == Status::Unstable => t.danger(),
-        Phase::Ended(_) => t.caution(),
-        _ => t.heading(),
-    }
-}
-
 fn stability_style(app: &App, load: f64) -> Style {
     if load > STABILITY_DANGER || load.is_nan() {
         app.theme.danger()
@@ -110,103 +87,6 @@ pub(crate) fn stability_readout(app: &App, width: u16) -> Line<'static> {
     .find(|t| t.chars().count() <= width as usize)
     .unwrap_or_else(|| format!(" Δt: {name} {percent} "));
     Line::styled(text, stability_style(app, load))
-}
-
-/// `text` broken at spaces into lines of at most `width` characters (a longer word gets a
-/// line of its own).
-pub(crate) fn wrap_words(text: &str, width: usize) -> Vec<String> {
-    let mut lines = Vec::new();
-    let mut line = String::new();
-    for word in text.split_whitespace() {
-        let needed = line.chars().count() + usize::from(!line.is_empty()) + word.chars().count();
-        if !line.is_empty() && needed > width {
-            lines.push(std::mem::take(&mut line));
-        }
-        if !line.is_empty() {
-            line.push(' ');
-        }
-        line.push_str(word);
-    }
-    if !line.is_empty() {
-        lines.push(line);
-    }
-    lines
-}
-
-/// Why the roll on screen ended unstable, or could not settle on its table, when it did.
-pub(crate) fn end_reason(app: &App) -> Option<(String, Style)> {
-    match app.live.phase {
-        Phase::Ended(o) if o.status == Status::Unstable => Some((
-            format!(
-                "unstable: {}",
-                UnstableReason::new(&app.live.params, &app.live.initial)
-            ),
-            app.theme.danger(),
-        )),
-        Phase::Ended(o) if o.status == Status::Timeout => why_it_cannot_settle(&app.live.params)
-            .map(|why| (format!("did not settle: {why}"), app.theme.caution())),
-        _ => None,
-    }
-}
-
-pub(crate) fn render_header(app: &App, area: Rect, frame: &mut Frame) {
-    let t = &app.theme;
-    let live = &app.live;
-    let sep = Span::raw(" │ ");
-    let roll = match live.roll {
-        RollKind::Preset => "preset roll".to_string(),
-        RollKind::Random(n) => format!("random roll #{n}"),
-        RollKind::Edited => "edited roll".to_string(),
-    };
-    let state = if live.playing { "▶ playing" } else { "⏸ paused" };
-    let fps = app.fps.map_or("– fps".to_string(), |f| format!("{f:.0} fps"));
-    let phase = Span::styled(live.phase.label(), phase_style(app, &live.phase));
-    // The setup differs from the preset it came from: saving (s) would keep it.
-    let changed = super::dialogs::modified(app);
-    let modified = Span::styled(if changed { "*" } else { "" }, t.caution());
-    let full = Line::from(vec![
-        Span::styled(" dicesim ", t.selected().add_modifier(Modifier::BOLD)),
-        Span::raw(" "),
-        Span::styled(app.preset.name.clone(), t.heading()),
-        Span::styled(if changed { " (changed)" } else { "" }, t.caution()),
-        Span::raw(format!(" · {roll}")),
-        sep.clone(),
-        Span::raw(format!("t = {:.3} s", live.time_s)),
-        sep.clone(),
-        Span::raw(format!("step {}", live.step)),
-        sep.clone(),
-        Span::raw(format!("speed {}", app.speed.label())),
-        sep.clone(),
-        Span::raw(state),
-        sep.clone(),
-        phase.clone(),
-        sep,
-        Span::raw(fps.clone()),
-    ]);
-    // Narrow terminals get the same facts in fewer words, the phase never cut off.
-    let line = if full.width() <= area.width as usize {
-        full
-    } else {
-        let sep = Span::raw("│");
-        Line::from(vec![
-            Span::styled(app.preset.name.clone(), t.heading()),
-            modified,
-            Span::raw(" "),
-            sep.clone(),
-            Span::raw(format!("t {:.3} s", live.time_s)),
-            sep.clone(),
-            Span::raw(format!("step {}", live.step)),
-            sep.clone(),
-            Span::raw(app.speed.label()),
-            sep.clone(),
-            Span::raw(if live.playing { "▶" } else { "⏸" }),
-            sep.clone(),
-            phase,
-            sep,
-            Span::raw(fps),
-        ])
-    };
-    frame.render_widget(Paragraph::new(line), area);
 }
 
 pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {

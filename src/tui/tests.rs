@@ -2,12 +2,13 @@
 //! fed through `update` into the worker's engine, no thread and no clock.
 
 use super::app::{App, Msg, update};
+use super::die::render_die;
 use super::footer::render_footer;
+use super::header::render_header;
 use super::layout::screen_layout;
 use super::param::{Param, all};
 use super::render::{
-    STABILITY_CAUTION, STABILITY_DANGER, render, render_die, render_energy, render_header, render_outcomes,
-    render_params,
+    STABILITY_CAUTION, STABILITY_DANGER, render, render_energy, render_outcomes, render_params,
 };
 use super::theme::Theme;
 use crate::physics::Status;
