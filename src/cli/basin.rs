@@ -132,6 +132,7 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
     let stop = cancel_on_ctrl_c()?;
     let start = std::time::Instant::now();
     let spec = MapSpec { x, y, method };
+    let engine = spec.engine_words(&params, options.engine);
     let map = run_map_rows(
         &params,
         &preset.initial,
@@ -189,9 +190,8 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
     }
     writeln!(
         out,
-        "time                {elapsed:.2} s on {jobs} thread{}, {} engine",
+        "time                {elapsed:.2} s on {jobs} thread{}, {engine}",
         if jobs == 1 { "" } else { "s" },
-        options.engine.resolve().name()
     )?;
     if let Some(path) = &args.out {
         writeln!(out, "wrote               {}", path.display())?;

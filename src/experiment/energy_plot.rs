@@ -3,7 +3,7 @@
 //! or log scale, and the setup in a caption and in the file's text chunks.
 
 use super::Error;
-use super::plot::{Record, plot_error, png_bytes, register_fonts, with_caption};
+use super::plot::{Record, Scale, plot_error, png_bytes, register_fonts, with_caption};
 use crate::physics::Energy;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -52,7 +52,7 @@ pub(crate) fn energy_plot_png(
         .to_string();
     png_bytes(SIZE, record, |root| {
         root.fill(&WHITE).map_err(plot_error)?;
-        let picture = with_caption(&root, record)?;
+        let picture = with_caption(&root, record, Scale::ONE)?;
         draw(&picture, samples, threshold, log, &title)
     })
 }

@@ -102,6 +102,27 @@ pub(crate) struct Record {
 /// Pixels one caption line takes.
 const CAPTION_LINE: u32 = 24;
 
+/// How much larger than its design size an image is drawn: every length, font and margin
+/// is multiplied by it, so a poster-sized map reads like the screen-sized one.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Scale(pub(crate) f64);
+
+impl Scale {
+    /// Drawn at the size it was designed for.
+    pub(crate) const ONE: Scale = Scale(1.0);
+
+    /// The scale of an image `size` pixels large, designed at `design` (by height, the
+    /// dimension the text stacks along; never below half size).
+    pub(crate) fn of(size: (u32, u32), design: (u32, u32)) -> Scale {
+        Scale((f64::from(size.1) / f64::from(design.1)).max(0.5))
+    }
+
+    /// `pixels` of the design size, at this scale.
+    pub(crate) fn px(self, pixels: i32) -> i32 {
+        (f64::from(pixels) * self.0).round() as i32
+    }
+}
+
 impl Record {
     /// The record of a setup: the caption names the values a reader looks for first, the
     /// `dicesim-setup` chunk holds every value, one `key = value` per line, as a preset
@@ -200,19 +221,21 @@ pub(crate) fn png_bytes(
 pub(crate) fn with_caption<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     record: &Record,
+    scale: Scale,
 ) -> Result<DrawingArea<DB, Shift>, Error> {
     if record.caption.is_empty() {
         return Ok(root.clone());
     }
     let (_, height) = root.dim_in_pixel();
-    let strip = CAPTION_LINE * record.caption.len() as u32 + 10;
+    let line_px = scale.px(CAPTION_LINE as i32) as u32;
+    let strip = line_px * record.caption.len() as u32 + scale.px(10) as u32;
     let (picture, caption) = root.split_vertically(height.saturating_sub(strip));
     for (k, line) in record.caption.iter().enumerate() {
         caption
             .draw(&Text::new(
                 line.as_str(),
-                (20, 2 + (CAPTION_LINE * k as u32) as i32),
-                ("sans-serif", 16),
+                (scale.px(20), scale.px(2) + (line_px * k as u32) as i32),
+                ("sans-serif", scale.px(16)),
             ))
             .map_err(plot_error)?;
     }
@@ -274,8 +297,9 @@ pub(crate) fn image_bytes(
     format: ImageFormat,
 ) -> Result<Vec<u8>, Error> {
     register_fonts()?;
+    let scale = Scale::of(size, SIZE);
     match format {
-        ImageFormat::Png => png_bytes(size, record, |area| draw(area, map, layer, record)),
+        ImageFormat::Png => png_bytes(size, record, |area| draw(area, map, layer, record, scale)),
         ImageFormat::Svg => {
             let mut svg = String::new();
             draw(
@@ -283,6 +307,7 @@ pub(crate) fn image_bytes(
                 map,
                 layer,
                 record,
+                scale,
             )?;
             Ok(svg.into_bytes())
         }
@@ -343,23 +368,25 @@ fn draw<DB: DrawingBackend>(
     map: &BasinMap,
     layer: Layer,
     record: &Record,
+    scale: Scale,
 ) -> Result<(), Error> {
+    let px = |v: i32| scale.px(v);
     root.fill(&WHITE).map_err(plot_error)?;
-    let picture = with_caption(&root, record)?;
+    let picture = with_caption(&root, record, scale)?;
     let (width, _) = picture.dim_in_pixel();
-    let (area, legend) = picture.split_horizontally(width.saturating_sub(LEGEND_WIDTH));
+    let (area, legend) = picture.split_horizontally(width.saturating_sub(px(LEGEND_WIDTH as i32) as u32));
     let times = time_range(map);
     let (x, y) = (&map.x, &map.y);
     let (dx, dy) = (x.spacing(), y.spacing());
     let x_range = (x.min - dx / 2.0)..(x.max + dx / 2.0);
     let mut chart = ChartBuilder::on(&area);
     chart
-        .caption(title(map, layer), ("sans-serif", 26))
-        .margin(20)
-        .x_label_area_size(60)
-        .y_label_area_size(80);
-    let label_style = ("sans-serif", 16);
-    let desc_style = ("sans-serif", 19);
+        .caption(title(map, layer), ("sans-serif", px(26)))
+        .margin(px(20))
+        .x_label_area_size(px(60))
+        .y_label_area_size(px(80));
+    let label_style = ("sans-serif", px(16));
+    let desc_style = ("sans-serif", px(19));
     if map.height() == 1 {
         // A 1-D scan: settle time against the value, each point in its face's colour, as the
         // authors plotted it (the time spikes at the borders between faces).
@@ -393,10 +420,10 @@ fn draw<DB: DrawingBackend>(
             .draw_series(
                 points
                     .iter()
-                    .map(|&(px, py, c)| Circle::new((px, py), 3, c.filled())),
+                    .map(|&(x, y, c)| Circle::new((x, y), px(3), c.filled())),
             )
             .map_err(plot_error)?;
-        face_legend(&legend, map)?;
+        face_legend(&legend, map, scale)?;
     } else {
         let y_range = (y.min - dy / 2.0)..(y.max + dy / 2.0);
         let mut chart = chart.build_cartesian_2d(x_range, y_range).map_err(plot_error)?;
@@ -429,15 +456,19 @@ fn draw<DB: DrawingBackend>(
         }
         chart.draw_series(runs).map_err(plot_error)?;
         match layer {
-            Layer::Face => face_legend(&legend, map)?,
-            Layer::SettleTime => time_legend(&legend, map, times)?,
+            Layer::Face => face_legend(&legend, map, scale)?,
+            Layer::SettleTime => time_legend(&legend, map, times, scale)?,
         }
     }
     root.present().map_err(plot_error)
 }
 
 /// Faces 1..6, then whichever other endings occur.
-fn face_legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, map: &BasinMap) -> Result<(), Error> {
+fn face_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    map: &BasinMap,
+    scale: Scale,
+) -> Result<(), Error> {
     let occurs = |status: Status, face: Option<u8>| {
         map.cells
             .iter()
@@ -456,7 +487,7 @@ fn face_legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, map: &BasinMap
             entries.push((ending.name().to_string(), colour));
         }
     }
-    swatches(area, 80, &entries)
+    swatches(area, scale.px(80), &entries, scale)
 }
 
 /// Colour swatches with their labels from `top` down, a label too long for the strip on two
@@ -465,11 +496,16 @@ fn swatches<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     top: i32,
     entries: &[(String, RGBColor)],
+    scale: Scale,
 ) -> Result<(), Error> {
+    let px = |v: i32| scale.px(v);
     let mut y = top;
     for (label, colour) in entries {
-        area.draw(&Rectangle::new([(10, y), (36, y + 24)], colour.filled()))
-            .map_err(plot_error)?;
+        area.draw(&Rectangle::new(
+            [(px(10), y), (px(36), y + px(24))],
+            colour.filled(),
+        ))
+        .map_err(plot_error)?;
         let lines: Vec<String> = match label
             .char_indices()
             .filter(|&(i, c)| c == ' ' && i >= 8)
@@ -482,12 +518,12 @@ fn swatches<DB: DrawingBackend>(
         for (k, line) in lines.iter().enumerate() {
             area.draw(&Text::new(
                 line.as_str(),
-                (46, y + 3 + 20 * k as i32),
-                ("sans-serif", 18),
+                (px(46), y + px(3 + 20 * k as i32)),
+                ("sans-serif", px(18)),
             ))
             .map_err(plot_error)?;
         }
-        y += 34 + 20 * (lines.len() as i32 - 1);
+        y += px(34 + 20 * (lines.len() as i32 - 1));
     }
     Ok(())
 }
@@ -497,21 +533,30 @@ fn time_legend<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     map: &BasinMap,
     times: Option<(f64, f64)>,
+    scale: Scale,
 ) -> Result<(), Error> {
+    let px = |v: i32| scale.px(v);
     let (lo, hi) = times.unwrap_or((0.0, 0.0));
-    let (top, bottom) = (90, 520);
-    area.draw(&Text::new("settle time (s)", (10, top - 40), ("sans-serif", 18)))
-        .map_err(plot_error)?;
+    let (top, bottom) = (px(90), px(520));
+    area.draw(&Text::new(
+        "settle time (s)",
+        (px(10), top - px(40)),
+        ("sans-serif", px(18)),
+    ))
+    .map_err(plot_error)?;
     for py in top..bottom {
         let t = (bottom - py) as f64 / (bottom - top) as f64;
-        area.draw(&Rectangle::new([(10, py), (40, py + 1)], viridis(t).filled()))
-            .map_err(plot_error)?;
+        area.draw(&Rectangle::new(
+            [(px(10), py), (px(40), py + 1)],
+            viridis(t).filled(),
+        ))
+        .map_err(plot_error)?;
     }
     for k in 0..=4 {
         let f = k as f64 / 4.0;
         let py = bottom - ((bottom - top) as f64 * f) as i32;
         let label = format!("{:.3}", lo + (hi - lo) * f);
-        area.draw(&Text::new(label, (48, py - 8), ("sans-serif", 16)))
+        area.draw(&Text::new(label, (px(48), py - px(8)), ("sans-serif", px(16))))
             .map_err(plot_error)?;
     }
     let any = |occurs: &dyn Fn(&Cell) -> bool| map.cells.iter().flatten().any(occurs);
@@ -525,7 +570,7 @@ fn time_legend<DB: DrawingBackend>(
     if any(&|c| c.outcome.status == Status::Settled && !c.sampled) {
         entries.push((INFERRED_WORDS.to_string(), INFERRED));
     }
-    swatches(area, bottom + 30, &entries)
+    swatches(area, bottom + px(30), &entries, scale)
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! curve per setup with its 95 % band, its chance level dashed and its ε½ marked.
 
 use super::Error;
-use super::plot::{Record, plot_error, png_bytes, register_fonts, with_caption};
+use super::plot::{Record, Scale, plot_error, png_bytes, register_fonts, with_caption};
 use super::predict::{Prediction, Threshold};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -27,7 +27,7 @@ pub(crate) fn prediction_png(prediction: &Prediction, record: &Record) -> Result
     register_fonts()?;
     png_bytes(SIZE, record, |root| {
         root.fill(&WHITE).map_err(plot_error)?;
-        let picture = with_caption(&root, record)?;
+        let picture = with_caption(&root, record, Scale::ONE)?;
         draw(&picture, prediction)
     })
 }

@@ -3,7 +3,7 @@
 
 use super::camera::Camera;
 use super::dialogs::Dialog;
-use super::format::{fmt_num, fmt_range};
+use super::format::{fmt_num, fmt_range, group};
 use super::keys::{Action, Screen, lookup};
 use super::layout::{Areas, param_row_at, screen_layout};
 use super::map::{self, MapView, View};
@@ -594,19 +594,6 @@ pub fn update(app: &mut App, msg: Msg) -> Vec<Effect> {
     effects
 }
 
-/// `12 345` (thin groups of three), as the batch size is written.
-pub(crate) fn group(n: u64) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i).is_multiple_of(3) {
-            out.push(' ');
-        }
-        out.push(c);
-    }
-    out
-}
-
 fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
     let ctrl = key.modifiers.contains(KeyModifiers::CONTROL);
     if ctrl && matches!(key.code, KeyCode::Char('c') | KeyCode::Char('C')) {
@@ -769,7 +756,8 @@ fn act(app: &mut App, action: Action, key: KeyEvent, out: &mut Vec<Command>) {
         | Action::TypeXRange
         | Action::TypeYRange
         | Action::MapLayer
-        | Action::ExportMap => super::map_keys::act(app, action, coarse, out),
+        | Action::ExportMap
+        | Action::MapExportSize => super::map_keys::act(app, action, coarse, out),
     }
 }
 

@@ -15,7 +15,7 @@ use super::app::{App, Drawing};
 use super::camera::{
     Camera, EDGES, FACE_CORNERS, Flat, convex_hull, face_centre, face_normal, inside, outside_parts,
 };
-use super::format::wrap_words;
+use super::format::{fmt_num, wrap_words};
 use super::vectors::{self, Arrow};
 use crate::physics::stopping::why_it_cannot_settle;
 use crate::physics::{Status, UnstableReason};
@@ -204,6 +204,12 @@ impl Picture {
     }
 }
 
+/// Whether the camera of `view` sees corner `k` of the die on screen.
+#[cfg(test)]
+pub(crate) fn corner_is_seen(app: &App, view: &View, k: usize) -> bool {
+    corner_seen(&seen_faces(&view.camera, &app.live.die), k)
+}
+
 /// The picture of the die panel: pure geometry of the app state.
 pub(crate) fn picture(app: &App, view: &View) -> Picture {
     let t = &app.theme;
@@ -224,6 +230,16 @@ pub(crate) fn picture(app: &App, view: &View) -> Picture {
     for k in (0..8).filter(|&k| contact[k] && corner_seen(&facing, k)) {
         let dot = if app.drawing == Drawing::Ascii { "@" } else { "●" };
         pic.label(corners[k], dot, t.contact(), false);
+    }
+    // A loaded die's extra masses: a mark on each seen heavy corner, and its mass beside
+    // it (also for a corner behind the die, whose mark would be hidden).
+    let extra = app.live.params.die.extra_corner_mass;
+    for k in (0..8).filter(|&k| extra[k] > 0.0) {
+        if corner_seen(&facing, k) {
+            let mark = if app.drawing == Drawing::Ascii { "#" } else { "◆" };
+            pic.label(corners[k], mark, t.heavy(), false);
+        }
+        pic.label(corners[k], format!("+{} g", fmt_num(extra[k])), t.heavy(), true);
     }
 
     // The floor: tiles, the shadow straight below, the drop line, all behind the die.

@@ -1,9 +1,11 @@
 //! The footer's key hints and the help overlay's frame.
 
-use super::app::{App, Mode, group};
+use super::app::{App, Mode};
 use super::dialogs::Dialog;
+use super::format::group;
 use super::help::help_lines;
 use super::keys::{Action, Screen, rows};
+use super::map::EXPORT_SIZES;
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Rect};
 use ratatui::text::{Line, Span};
@@ -72,6 +74,10 @@ fn table_hints(app: &App, screen: Screen) -> Vec<KeyHint> {
             Action::Batch if app.batch.is_some() => hint(h.keys, "cancel batch", h.priority),
             Action::Batch => hint(h.keys, &format!("batch {}", group(app.batch_rolls)), h.priority),
             Action::Twin if app.twin => hint("T < > E", "twin, ε", h.priority),
+            Action::ExportMap => {
+                let ((w, h_px), _) = EXPORT_SIZES[app.map.export_size];
+                hint("e E", &format!("PNG {w}×{h_px}"), h.priority)
+            }
             _ => hint(h.keys, h.words, h.priority),
         })
         .collect()

@@ -53,3 +53,16 @@ pub(crate) fn wrap_words(text: &str, width: usize) -> Vec<String> {
     }
     lines
 }
+
+/// `12 345` (thin groups of three), as the batch size is written.
+pub(crate) fn group(n: u64) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(' ');
+        }
+        out.push(c);
+    }
+    out
+}

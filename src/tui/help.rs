@@ -1,6 +1,7 @@
 //! The `?` overlay: every key, and the model explained for a classroom.
 
-use super::app::{App, group};
+use super::app::App;
+use super::format::group;
 use super::keys::{Screen, section};
 use super::map::View;
 use ratatui::text::{Line, Span};
@@ -28,8 +29,15 @@ const MODEL: &[&str] = &[
      apart, the gap growing by orders of magnitude at the impacts, until it is as big as the die; from a \
      gentle drop they land the same way.",
     "The step is stable only while ω_rock·Δt < 2, where ω_rock = √(6k/M) is how fast a die lying flat rocks \
-     on its face. The number beside k and Δt turns amber from 1 and red from 1.4: raise k or Δt and watch \
-     the energy grow instead of fall.",
+     on its face; spin, impact speed, damping and friction set limits of their own. The readout under the \
+     parameters names the tightest, \"Δt stability: … at N % of limit\", amber from 80 % and red past \
+     100 %: raise k or Δt and watch the energy grow instead of fall.",
+    "The outcome table: each face's share of the random rolls, its bar shaded (░) over the 95 % interval in \
+     which the die's true share lies; a fair die's 1/6 is the dotted line, ┼ where it falls inside the \
+     shading. χ² and p test the faces against a fair die, and the line below says how many rolls a test at \
+     5 % needs to see a bias as large as the one measured, 4 times in 5. A loaded die shows it: give a \
+     corner extra mass (extra mass 1…8, the last rows of the parameters; ◆ marks it on the die), or open \
+     loaded-corner, and batch.",
 ];
 
 pub(crate) fn help_lines(app: &App) -> Vec<Line<'static>> {

@@ -87,6 +87,7 @@ pub(crate) enum Action {
     TypeYRange,
     MapLayer,
     ExportMap,
+    MapExportSize,
 }
 
 /// One row of the key table.
@@ -552,7 +553,15 @@ pub(crate) const BINDINGS: &[Binding] = &[
         "e",
         A::ExportMap,
         hint("e", "export PNG", 3),
-        "save the map as a PNG in the current folder"
+        "save the map as a PNG in the current folder, its setup in a caption and in the file's text"
+    ),
+    row!(
+        Map,
+        [K::Char('E')],
+        "E",
+        A::MapExportSize,
+        None,
+        "the PNG's size: 1200×800 (screen) → 1920×1280 (slide) → 3000×2000 (print) → 6000×4000 (poster)"
     ),
     row!(
         Both,

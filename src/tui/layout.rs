@@ -40,8 +40,9 @@ pub(crate) fn screen_layout(area: Rect) -> Option<Areas> {
         Constraint::Length(left_width),
         Constraint::Min(0),
     ]));
-    // Every parameter row when there is room, and at least 10 rows for the table.
-    let params_height = (all().len() as u16 + 4).min(body.height.saturating_sub(10));
+    // The paper's parameter rows when there is room (a loaded die's extra masses scroll
+    // into view below them), and at least 10 rows for the table.
+    let params_height = (super::param::paper_rows() as u16 + 4).min(body.height.saturating_sub(10));
     let [params, outcomes] = left.layout(&Layout::vertical([
         Constraint::Length(params_height),
         Constraint::Min(0),

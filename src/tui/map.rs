@@ -88,7 +88,18 @@ pub(crate) struct MapView {
     pub(crate) editing: Option<RangeEditor>,
     /// The user asked for an image of the map (written by the event loop, not by `update`).
     pub(crate) export_asked: bool,
+    /// Which of [`EXPORT_SIZES`] the image is written at.
+    pub(crate) export_size: usize,
 }
+
+/// The sizes of the map's PNG (`E` picks one, `e` writes it), each with what it is for; all
+/// 3:2, the shape the image is designed at, its text scaled with its height.
+pub(crate) const EXPORT_SIZES: [((u32, u32), &str); 4] = [
+    (SIZE, "screen"),
+    ((1920, 1280), "slide"),
+    ((3000, 2000), "print"),
+    ((6000, 4000), "poster"),
+];
 
 impl MapView {
     /// Spin about x against spin about y, each over the preset's default random range
@@ -115,6 +126,7 @@ impl MapView {
             layer: Layer::Face,
             editing: None,
             export_asked: false,
+            export_size: 0,
         }
     }
 
@@ -304,6 +316,7 @@ pub(crate) fn export_if_asked(app: &mut App, dir: &Path) {
         app.notice = Some("no map to export yet".to_string());
         return;
     };
+    let (size, _) = EXPORT_SIZES[app.map.export_size];
     let path = dir.join(format!("{}.png", free_stem(dir, "basin-map", &["png"])));
     // The caption and the PNG's text chunks say which setup every cell started from.
     let record = map_record(
@@ -313,10 +326,11 @@ pub(crate) fn export_if_asked(app: &mut App, dir: &Path) {
     );
     let written = Output::check(&path, &["png"], false)
         .map_err(crate::experiment::Error::from)
-        .and_then(|out| write_recorded_image(map, app.map.layer, &record, SIZE, &out));
+        .and_then(|out| write_recorded_image(map, app.map.layer, &record, size, &out));
+    let what = format!("{}×{} px, {}×{} cells", size.0, size.1, map.width(), map.height());
     app.notice = Some(match written {
-        Ok(()) if map.complete => format!("basin map saved to {}", path.display()),
-        Ok(()) => format!("partial basin map saved to {}", path.display()),
+        Ok(()) if map.complete => format!("basin map saved to {} ({what})", path.display()),
+        Ok(()) => format!("partial basin map saved to {} ({what})", path.display()),
         Err(e) => format!("export failed: {e}"),
     });
 }

@@ -4,7 +4,7 @@
 use super::app::{App, Editor, Effect};
 use super::format::fmt_num;
 use super::keys::Action;
-use super::map::{RangeEditor, Side, ZOOM_FACTOR, ZoomStep, close, default_range, start};
+use super::map::{EXPORT_SIZES, RangeEditor, Side, ZOOM_FACTOR, ZoomStep, close, default_range, start};
 use super::param::{Param, all};
 use crate::experiment::basin::node_setup;
 use crate::experiment::{Axis, Layer};
@@ -47,6 +47,12 @@ pub(crate) fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Com
         Action::ExportMap => {
             app.map.export_asked = true;
             app.ask(Effect::ExportMap);
+        }
+        Action::MapExportSize => {
+            let m = &mut app.map;
+            m.export_size = (m.export_size + 1) % EXPORT_SIZES.len();
+            let ((w, h), what) = EXPORT_SIZES[m.export_size];
+            app.notice = Some(format!("PNG size {w}×{h} ({what}) · e exports, E the next size"));
         }
         _ => {}
     }

@@ -5,7 +5,7 @@ use super::app::{App, Effect, Msg, update};
 use super::map::{MapView, View, ZOOM_FACTOR, export_if_asked, map_layout};
 use super::param::Param;
 use super::render::render;
-use super::tests::{Scene, boundary_sizes, spun_preset, start};
+use super::tests::{Scene, boundary_sizes, screen, spun_preset, start};
 use super::theme::Theme;
 use crate::experiment::basin::node_setup;
 use crate::experiment::plot::{FACE_COLOURS, cell_colour, time_range};
@@ -372,6 +372,61 @@ mod keys {
         let outcome = map.cell(i, j).expect("cell").outcome;
         assert_eq!(s.app.live.phase, crate::worker::Phase::Ended(outcome));
         assert_eq!(s.app.initial, initial);
+    }
+
+    /// A PNG's size and the share of ink (non-white pixels) in its bottom tenth, where the
+    /// caption stands.
+    fn size_and_caption_ink(path: &std::path::Path) -> ((u32, u32), f64) {
+        let decoder = png::Decoder::new(std::io::BufReader::new(
+            std::fs::File::open(path).expect("written"),
+        ));
+        let mut reader = decoder.read_info().expect("a PNG");
+        let mut pixels = vec![0; reader.output_buffer_size()];
+        let info = reader.next_frame(&mut pixels).expect("its pixels");
+        let (w, h) = (info.width as usize, info.height as usize);
+        let rows = &pixels[(h - h / 10) * w * 3..h * w * 3];
+        let ink = rows.chunks(3).filter(|p| p.iter().any(|&c| c < 200)).count();
+        ((info.width, info.height), ink as f64 / (rows.len() / 3) as f64)
+    }
+
+    #[test]
+    fn export_writes_the_size_chosen_with_its_text_scaled() {
+        let mut s = map_scene(Theme::default());
+        let dir = tempfile::tempdir().expect("temp dir");
+        press(&mut s.app, KeyCode::Char('e'));
+        export_if_asked(&mut s.app, dir.path());
+        let (small, small_ink) = size_and_caption_ink(&dir.path().join("basin-map.png"));
+        assert_eq!(small, (1200, 800));
+        press(&mut s.app, KeyCode::Char('E'));
+        press(&mut s.app, KeyCode::Char('E'));
+        let notice = s.app.notice.clone().unwrap_or_default();
+        assert!(notice.contains("3000×2000 (print)"), "{notice}");
+        s.app.notice = None;
+        assert!(
+            screen(&s.app, 120, 36).contains("PNG 3000×2000"),
+            "the footer says the size"
+        );
+        press(&mut s.app, KeyCode::Char('e'));
+        export_if_asked(&mut s.app, dir.path());
+        let notice = s.app.notice.clone().unwrap_or_default();
+        assert!(notice.contains("3000×2000 px"), "{notice}");
+        let (large, large_ink) = size_and_caption_ink(&dir.path().join("basin-map-2.png"));
+        assert_eq!(large, (3000, 2000));
+        // The caption grew with the picture: it inks about the same share of its strip
+        // (unscaled text would ink some 2.5² times less).
+        assert!(
+            (large_ink / small_ink - 1.0).abs() < 0.35,
+            "caption ink {small_ink:.4} at 1200×800, {large_ink:.4} at 3000×2000"
+        );
+        // Four sizes, then the first again.
+        press(&mut s.app, KeyCode::Char('E'));
+        press(&mut s.app, KeyCode::Char('E'));
+        assert!(
+            s.app
+                .notice
+                .as_ref()
+                .is_some_and(|n| n.contains("1200×800 (screen)"))
+        );
     }
 
     #[test]

@@ -35,6 +35,15 @@ pub(crate) fn all() -> &'static [Param] {
     &ALL
 }
 
+/// How many entries of the list are the paper's own values: all but a loaded die's extra
+/// corner masses, which come last.
+pub(crate) fn paper_rows() -> usize {
+    all()
+        .iter()
+        .filter(|p| p.key.spec != &crate::physics::registry::EXTRA_CORNER_MASS)
+        .count()
+}
+
 impl Param {
     /// The listed value with this key (`initial.angular_velocity.x`).
     ///
@@ -164,6 +173,14 @@ mod tests {
                 "gravity g",
                 "half size a",
                 "corner mass m",
+                "extra mass 1",
+                "extra mass 2",
+                "extra mass 3",
+                "extra mass 4",
+                "extra mass 5",
+                "extra mass 6",
+                "extra mass 7",
+                "extra mass 8",
             ]
         );
         assert_eq!(all()[6].key(), "initial.angular_velocity.z");

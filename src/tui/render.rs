@@ -4,8 +4,8 @@
 use super::app::{App, Drawing};
 use super::die::render_die;
 use super::footer::{render_footer, render_help};
-use super::format::wrap_words;
 use super::format::{fmt_num, fmt_range};
+use super::format::{group, wrap_words};
 use super::header::{render_header, render_too_small};
 use super::layout::{param_window, screen_layout};
 use super::param::all;
@@ -91,8 +91,18 @@ pub(crate) fn stability_readout(app: &App, width: u16) -> Line<'static> {
 
 pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
+    let (first, visible) = param_window(app, area);
+    // Rows scrolled out of view, above and below: ↑↓ (or a click and the wheel) reach them.
+    let below = all().len().saturating_sub(first + visible);
+    let mut title = vec![Span::styled(" parameters ", t.heading())];
+    if first > 0 {
+        title.push(Span::raw(format!("↑{first} ")));
+    }
+    if below > 0 {
+        title.push(Span::raw(format!("↓{below} more ")));
+    }
     let block = Block::bordered()
-        .title(Line::styled(" parameters ", t.heading()))
+        .title(Line::from(title))
         .title_bottom(stability_readout(app, area.width.saturating_sub(2)));
     let body = block.inner(area);
     frame.render_widget(block, area);
@@ -106,7 +116,6 @@ pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
         head.push_str(&format!(" {:<11}", "range"));
     }
     lines.push(Line::styled(head, t.heading()));
-    let (first, visible) = param_window(app, area);
     for (i, &p) in all().iter().enumerate().skip(first).take(visible) {
         let value = fmt_num(p.get(&app.params, &app.initial));
         let mut spans = vec![Span::raw(format!(
@@ -199,6 +208,49 @@ fn fairness(app: &App) -> Vec<Span<'static>> {
     spans
 }
 
+/// Characters of the interval column: " 15.9–17.6".
+const INTERVAL_COLUMN: usize = 10;
+
+/// A face's bar over shares 0 to 1/3 in `width` cells: solid (in eighths) up to the low end
+/// of its 95 % interval and shaded from there to the high end, so the bar says where the
+/// share lies. The fair share's dotted mark stays in view: `┼` inside the shading, `┃`
+/// inside the solid part (the whole interval lies above 1/6), `┆` past the bar (below it).
+pub(crate) fn share_bar(share: f64, interval: Option<[f64; 2]>, width: usize) -> String {
+    let eighths_of = |x: f64| (x * 3.0 * width as f64 * 8.0).round().max(0.0) as usize;
+    let [low, high] = interval.map_or([eighths_of(share); 2], |[l, h]| [eighths_of(l), eighths_of(h)]);
+    let fair_at = width / 2;
+    (0..width)
+        .map(|j| {
+            let from = j * 8;
+            let eighths = low.saturating_sub(from).min(8);
+            // A cell the interval reaches at least half way into, that the solid part leaves open.
+            let shaded = high >= from + 4 && eighths < 4;
+            match eighths {
+                _ if shaded && j == fair_at => '┼',
+                _ if shaded => '░',
+                0 if j == fair_at => '┆',
+                0 => ' ',
+                _ if j == fair_at => '┃',
+                e => [' ', '▏', '▎', '▍', '▌', '▋', '▊', '▉', '█'][e],
+            }
+        })
+        .collect()
+}
+
+/// How many rolls a class needs to see the bias the table measures (the χ² test at 5 %
+/// with 80 % power), once the table has rolls enough for its p-value to mean something.
+fn detection_line(app: &App) -> Option<Line<'static>> {
+    let tally = &app.table.tally;
+    if tally.total() < RELIABLE_ROLLS {
+        return None;
+    }
+    let text = match tally.rolls_to_detect() {
+        Some(n) => format!(" bias this large shows in {} rolls", group(n)),
+        None => " no bias beyond chance so far".to_string(),
+    };
+    Some(Line::styled(text, app.theme.heading()))
+}
+
 /// The rolls that ended without a face, as "words count" items (only those that occurred).
 fn faceless_items(app: &App) -> Vec<(String, Style)> {
     use crate::experiment::ending::Ending;
@@ -266,42 +318,46 @@ pub(crate) fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
         block = block.title_bottom(Line::from(fairness(app)));
     }
     frame.render_widget(block, area);
-    let bar_width = width.saturating_sub(21).max(2);
+    let n = table.tally.total();
+    let intervals = table.tally.share_intervals();
+    // The interval's figures take a column of their own where the bar keeps room enough;
+    // the bar always shows it, shaded.
+    let numbers = width >= 21 + INTERVAL_COLUMN + 16;
+    let bar_width = width
+        .saturating_sub(21 + if numbers { INTERVAL_COLUMN } else { 0 })
+        .max(2);
     let fair_at = bar_width / 2;
     let mut lines = Vec::new();
     if header {
         // The bar spans 0 to 1/3, so a fair face reaches the dotted mark in the middle.
+        let column = if numbers { " 95 % int." } else { "" };
         let mark = format!("{}┆ 1/6 fair", " ".repeat(fair_at));
         lines.push(Line::from(vec![
-            Span::styled(" face  count  share", t.heading()),
+            Span::styled(format!(" face  count  share{column}"), t.heading()),
             Span::raw(mark),
         ]));
     }
-    let n = table.tally.total();
     for face in 1..=6u8 {
         let count = table.tally.counts[face as usize - 1];
         let share = table.tally.share(face);
-        let filled = (share * 3.0 * bar_width as f64 * 8.0).round() as usize;
-        let mut bar = String::new();
-        for j in 0..bar_width {
-            let eighths = filled.saturating_sub(j * 8).min(8);
-            bar.push(match eighths {
-                0 if j == fair_at => '┆',
-                0 => ' ',
-                e => [' ', '▏', '▎', '▍', '▌', '▋', '▊', '▉', '█'][e],
-            });
-        }
-        let over = if filled > bar_width * 8 { "▸" } else { "" };
+        let interval = (n > 0).then_some(intervals[face as usize - 1]);
+        let bar = share_bar(share, interval, bar_width);
+        let over = if share * 3.0 > 1.0 { "▸" } else { "" };
         let share_text = if n > 0 {
             format!("{:5.1}%", 100.0 * share)
         } else {
             "     –".to_string()
         };
+        let interval_text = match interval {
+            _ if !numbers => String::new(),
+            Some([low, high]) => format!(" {:>4.1}–{:<4.1}", 100.0 * low, 100.0 * high),
+            None => " ".repeat(INTERVAL_COLUMN),
+        };
         let newest = table.last.front().and_then(|r| r.outcome.face) == Some(face);
         let face_style = if newest { t.selected() } else { Style::new() };
         lines.push(Line::from(vec![
             Span::styled(format!("  {face}  "), face_style),
-            Span::raw(format!("{count:>6} {share_text} ")),
+            Span::raw(format!("{count:>6} {share_text}{interval_text} ")),
             Span::styled(bar, t.bar()),
             Span::styled(over, t.bar()),
         ]));
@@ -317,6 +373,13 @@ pub(crate) fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
     };
     frame.render_widget(Paragraph::new(lines), text_area);
     let mut y = text_area.bottom();
+    if rest > 0
+        && let Some(line) = detection_line(app)
+    {
+        frame.render_widget(Paragraph::new(line), Rect { y, height: 1, ..body });
+        y += 1;
+        rest -= 1;
+    }
     if let Some(b) = app.batch
         && rest > 0
     {

@@ -162,7 +162,7 @@ fn draw(app: &App, width: u16, height: u16) -> Terminal<TestBackend> {
     t
 }
 
-fn screen(app: &App, width: u16, height: u16) -> String {
+pub(crate) fn screen(app: &App, width: u16, height: u16) -> String {
     draw(app, width, height).backend().to_string()
 }
 

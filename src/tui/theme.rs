@@ -261,6 +261,17 @@ impl Theme {
         }
     }
 
+    /// A loaded die's heavy corner: its own colour, apart from the contact highlight.
+    pub(crate) fn heavy(&self) -> Style {
+        if self.colour {
+            Style::new()
+                .fg(self.ink(Color::Magenta))
+                .add_modifier(Modifier::BOLD)
+        } else {
+            Style::new().add_modifier(Modifier::BOLD | Modifier::UNDERLINED)
+        }
+    }
+
     /// The chaos twin's die, drawn as a ghost behind the first.
     pub(crate) fn ghost(&self) -> Color {
         self.ink(Color::DarkGray)

@@ -145,6 +145,49 @@ fn the_solid_die_at_rest_from_two_angles() {
     insta::assert_snapshot!("die_at_rest_high_camera", text(&check_solid(&s.app)));
 }
 
+/// The shipped loaded die, `steps` steps into its own roll.
+fn loaded_after(steps: u64, theme: Theme) -> Scene {
+    use crate::preset::{Preset, shipped_text};
+    let text = shipped_text("loaded-corner").expect("shipped");
+    let preset = Preset::from_toml_str(text, "loaded-corner").expect("valid");
+    let mut s = Scene::new(&preset, theme);
+    s.engine.advance_steps(steps);
+    s.sync();
+    s
+}
+
+#[test]
+fn the_heavy_corner_of_a_loaded_die_is_marked() {
+    for drawing in [Drawing::Braille, Drawing::Ascii] {
+        let mut s = loaded_after(150, Theme::default());
+        s.app.drawing = drawing;
+        let extra = s.app.live.params.die.extra_corner_mass;
+        let heavy = extra.iter().position(|&m| m > 0.0).expect("a heavy corner");
+        let label = format!("+{} g", super::format::fmt_num(extra[heavy]));
+        let b = check_solid(&s.app);
+        let t = text(&b);
+        assert!(t.contains(&label), "{label} on the die:\n{t}");
+        // The mark is drawn where the corner is, when the camera sees that corner.
+        let view = View::new(&s.app, Rect::new(0, 0, b.area.width - 2, b.area.height - 2));
+        let pic = picture(&s.app, &view);
+        let mark = if drawing == Drawing::Ascii { "#" } else { "◆" };
+        let marked = pic.labels.iter().any(|l| l.text == mark);
+        let seen = super::die::corner_is_seen(&s.app, &view, heavy);
+        assert_eq!(marked, seen, "mark {marked}, corner seen {seen}");
+        if drawing == Drawing::Braille {
+            insta::assert_snapshot!("die_loaded_mid_air", t);
+        }
+    }
+    // A fair die carries no mark.
+    let s = after(150, Theme::default());
+    let view = View::new(&s.app, Rect::new(0, 0, 64, 13));
+    let pic = picture(&s.app, &view);
+    assert!(
+        !pic.labels.iter().any(|l| l.text.ends_with(" g") || l.text == "◆"),
+        "no mass marked on a fair die"
+    );
+}
+
 #[test]
 fn a_die_shows_at_most_three_faces_and_nine_edges() {
     let s = after(150, Theme::default());
@@ -328,6 +371,83 @@ fn the_outcome_table_shows_every_ending_whole() {
         }
         insta::assert_snapshot!(format!("outcomes_every_ending_{w}x{h}"), t);
     }
+}
+
+/// The 95 % Wilson score interval, written out here from its formula.
+fn wilson(k: u64, n: u64) -> [f64; 2] {
+    let (k, n, z) = (k as f64, n as f64, 1.959_963_984_540_054);
+    let p = k / n;
+    let centre = (p + z * z / (2.0 * n)) / (1.0 + z * z / n);
+    let half = z / (1.0 + z * z / n) * (p * (1.0 - p) / n + z * z / (4.0 * n * n)).sqrt();
+    [centre - half, centre + half]
+}
+
+#[test]
+fn each_face_shows_its_95_percent_interval_in_figures_and_on_its_bar() {
+    let app = every_ending();
+    let counts = app.table.tally.counts;
+    let n: u64 = counts.iter().sum();
+    let t = text(&panel_at(&app, 120, 36, |a| a.outcomes, render_outcomes));
+    assert!(t.contains("95 % int."), "{t}");
+    for (f, &k) in counts.iter().enumerate() {
+        let [low, high] = wilson(k, n).map(|x| 100.0 * x);
+        let figures = format!("{low:.1}–{high:.1}");
+        let row = t
+            .lines()
+            .find(|l| l.starts_with(&format!("│  {}  ", f + 1)))
+            .unwrap_or_else(|| panic!("face {} row:\n{t}", f + 1));
+        assert!(row.contains(&figures), "face {} wants {figures}:\n{row}", f + 1);
+    }
+    // Where the interval covers 1/6 the fair mark sits inside the shading.
+    let wide = |k: u64| super::render::share_bar(k as f64 / n as f64, Some(wilson(k, n)), 29);
+    let (low, fair, high) = (wide(350), wide(480), wide(700));
+    assert!(
+        fair.contains('┼') && !fair.contains('┃') && !fair.contains('┆'),
+        "{fair}"
+    );
+    assert!(high.contains('┃') && !high.contains('┼'), "above 1/6: {high}");
+    assert!(low.contains('┆') && !low.contains('┼'), "below 1/6: {low}");
+    // The solid part ends at the interval's low end, the shading at its high end.
+    let [l, h] = wilson(700, n);
+    let cells = |x: f64| x * 3.0 * 29.0;
+    let solid = high.chars().filter(|&c| c == '█' || c == '┃').count() as f64;
+    let reach = high.trim_end().chars().count() as f64;
+    assert!(
+        (solid - cells(l)).abs() <= 1.0,
+        "solid {solid} cells, low end at {}",
+        cells(l)
+    );
+    assert!(
+        (reach - cells(h)).abs() <= 1.0,
+        "bar ends at {reach}, high end at {}",
+        cells(h)
+    );
+    // Narrow: no figures, the bar still shaded.
+    let t = text(&panel_at(&app, 80, 24, |a| a.outcomes, render_outcomes));
+    assert!(!t.contains("–1") && t.contains('░'), "{t}");
+}
+
+#[test]
+fn the_table_says_how_many_rolls_show_its_bias() {
+    let mut app = every_ending();
+    app.table.without_face = 0;
+    app.table.did_not_settle = 0;
+    app.table.unstable = 0;
+    // The heavy-corner die's shares, 20 000 rolls: a bias a class can measure.
+    app.table.tally.counts = [3000, 3000, 3000, 3700, 3650, 3650];
+    let t = text(&panel_at(&app, 120, 36, |a| a.outcomes, render_outcomes));
+    let n = app.table.tally.rolls_to_detect().expect("a measured bias");
+    assert!(
+        t.contains(&format!(
+            "bias this large shows in {} rolls",
+            crate::tui::format::group(n)
+        )),
+        "{t}"
+    );
+    assert!(n > 100 && n < 20_000, "{n}");
+    app.table.tally.counts = [100, 100, 100, 100, 100, 100];
+    let t = text(&panel_at(&app, 120, 36, |a| a.outcomes, render_outcomes));
+    assert!(t.contains("no bias beyond chance so far"), "{t}");
 }
 
 #[test]
