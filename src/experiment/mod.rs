@@ -20,18 +20,20 @@ pub(crate) mod random;
 pub(crate) mod record;
 pub(crate) mod shard;
 pub(crate) mod stats;
+pub(crate) mod summary;
 pub(crate) mod tally;
 pub(crate) mod trace;
 pub mod twin;
 
 pub(crate) use basin::run_map_rows;
 pub use basin::{Axis, BasinMap, Cell, Layer, MapSpec, Method, UNIFORM_SWITCH_SHARE, run_map, run_map_with};
-pub use batch::{Batch, BatchRun, BatchSummary, Rolls, RunOptions, run_batch, stream_batch};
+pub use batch::{Batch, BatchRun, Rolls, RunOptions, run_batch, stream_batch};
 pub use engine::Engine;
 pub use keys::ScanKey;
 pub use random::RandomRanges;
 pub use record::{RollRecord, roll_record};
 pub use stats::FaceTally;
+pub use summary::BatchSummary;
 
 use crate::physics::ParamError;
 

@@ -5,9 +5,9 @@
 //! depend on the order of addition. [`ExactSum`] keeps them as one wide fixed-point integer
 //! and rounds once at the end, so a merged batch reports the very bits a single run does.
 
-use super::batch::{BatchSummary, StartFaceCounts, StatusCounts};
 use super::record::RollRecord;
 use super::stats::FaceTally;
+use super::summary::{BatchSummary, StartFaceCounts, StatusCounts};
 use crate::physics::Status;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::time::Duration;
@@ -239,6 +239,13 @@ impl<'a> FromIterator<&'a RollRecord> for Tally {
             t.add(r);
         }
         t
+    }
+}
+
+impl BatchSummary {
+    /// Tallies `records` that took `elapsed` of wall-clock time.
+    pub fn new(records: &[RollRecord], elapsed: Duration) -> BatchSummary {
+        records.iter().collect::<Tally>().summary(elapsed)
     }
 }
 

@@ -631,6 +631,22 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
     }
 }
 
+/// Why the roll on screen ended unstable, or could not settle on its table, when it did.
+pub(crate) fn end_reason(app: &App) -> Option<(String, Style)> {
+    match app.live.phase {
+        Phase::Ended(o) if o.status == Status::Unstable => Some((
+            format!(
+                "unstable: {}",
+                UnstableReason::new(&app.live.params, &app.live.initial)
+            ),
+            app.theme.danger(),
+        )),
+        Phase::Ended(o) if o.status == Status::Timeout => why_it_cannot_settle(&app.live.params)
+            .map(|why| (format!("did not settle: {why}"), app.theme.caution())),
+        _ => None,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -663,21 +679,5 @@ mod tests {
                 opposite + 1
             );
         }
-    }
-}
-
-/// Why the roll on screen ended unstable, or could not settle on its table, when it did.
-pub(crate) fn end_reason(app: &App) -> Option<(String, Style)> {
-    match app.live.phase {
-        Phase::Ended(o) if o.status == Status::Unstable => Some((
-            format!(
-                "unstable: {}",
-                UnstableReason::new(&app.live.params, &app.live.initial)
-            ),
-            app.theme.danger(),
-        )),
-        Phase::Ended(o) if o.status == Status::Timeout => why_it_cannot_settle(&app.live.params)
-            .map(|why| (format!("did not settle: {why}"), app.theme.caution())),
-        _ => None,
     }
 }
