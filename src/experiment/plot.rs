@@ -132,6 +132,16 @@ impl Record {
         let n = |v: f64| format!("{}", (v * 1e6).round() / 1e6);
         let v3 = |v: [f64; 3]| format!("({}, {}, {})", n(v[0]), n(v[1]), n(v[2]));
         let w = initial.angular_velocity_for(params.inertia());
+        // A loaded die says where its extra masses are: "loaded: +0.5 g at corner 8".
+        let extras: Vec<String> = (params.die.extra_corner_mass.iter().enumerate())
+            .filter(|&(_, &m)| m > 0.0)
+            .map(|(k, &m)| format!("+{} g at corner {}", n(m), k + 1))
+            .collect();
+        let loaded = if extras.is_empty() {
+            String::new()
+        } else {
+            format!(", loaded: {}", extras.join(", "))
+        };
         let caption = vec![
             format!(
                 "{name}: height {} cm, velocity {} cm/s, spin {} rad/s, yaw pitch roll {}°",
@@ -141,7 +151,7 @@ impl Record {
                 v3(initial.orientation),
             ),
             format!(
-                "table k {} dyn/cm, γ {} s/cm, μ {}; die a {} cm, m {} g; g {} cm/s², Δt {} s (every value in the file's dicesim-setup text)",
+                "table k {} dyn/cm, γ {} s/cm, μ {}; die a {} cm, m {} g{loaded}; g {} cm/s², Δt {} s (every value in the file's dicesim-setup text)",
                 n(params.ground.stiffness),
                 n(params.ground.damping),
                 n(params.ground.friction),
@@ -576,6 +586,23 @@ fn time_legend<DB: DrawingBackend>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_caption_says_where_a_loaded_die_is_heavy() {
+        let initial = InitialCondition::default();
+        let mut params = Params::default();
+        let fair = Record::of_setup("t", "paper", &params, &initial)
+            .caption
+            .join("\n");
+        assert!(!fair.contains("loaded"), "{fair}");
+        params.die.extra_corner_mass[7] = 0.5;
+        params.die.extra_corner_mass[1] = 2.0;
+        let caption = Record::of_setup("t", "x", &params, &initial).caption.join("\n");
+        assert!(
+            caption.contains("m 1 g, loaded: +2 g at corner 2, +0.5 g at corner 8;"),
+            "{caption}"
+        );
+    }
 
     #[test]
     fn viridis_ends_and_middle() {
