@@ -2,8 +2,8 @@
 //!
 //! In a debug build (tests included), `DICESIM_FAULT=<place>` makes [`inject`] panic at that
 //! place: `ui` (the event loop, after the first frame), `worker` (the simulation thread,
-//! after its first snapshot) or `map` (a basin map's thread, as it starts). Release builds
-//! compile it away.
+//! after its first snapshot), `map` (a basin map's thread, as it starts) or `curve` (the
+//! thread of the twin's predictability curve, as it starts). Release builds compile it away.
 
 /// Panics here if `DICESIM_FAULT` names `place` (debug builds only).
 pub(crate) fn inject(place: &str) {

@@ -31,7 +31,7 @@ fn predict(key: &str, values: &[f64]) -> Prediction {
         &spec,
         &RunOptions::default(),
         &AtomicBool::new(false),
-        &mut |_, _| {},
+        &mut |_| {},
     )
     .unwrap();
     assert!(!p.cancelled);

@@ -186,10 +186,13 @@ fn every_ending_signal_restores_the_terminal_and_exits_128_plus_the_signal() {
 
 #[test]
 fn a_panic_on_any_thread_restores_the_terminal_prints_once_and_ends_the_app() {
-    for place in ["ui", "worker", "map"] {
+    for place in ["ui", "worker", "map", "curve"] {
         let mut e = Explorer::start(&["tui"], Some(place));
-        if place == "map" {
-            e.keys("\t");
+        match place {
+            "map" => e.keys("\t"),
+            // The twin starts its predictability curve.
+            "curve" => e.keys("T"),
+            _ => {}
         }
         let status = e.ended(place);
         assert_eq!(status.code(), Some(101), "{place}");
@@ -237,4 +240,18 @@ fn quit_answers_while_a_slow_map_computes() {
     e.keys("\t\tq");
     assert_eq!(e.ended("q during a map").code(), Some(0));
     e.assert_restored("q during a map");
+}
+
+#[test]
+fn quit_answers_while_the_twin_curve_computes() {
+    let mut e = Explorer::start(&SLOW, None);
+    // Each T turns the twin on or off: the curve starts, stops, starts again.
+    e.keys("TTT");
+    assert!(e.wait_for("computing"), "the curve started");
+    std::thread::sleep(Duration::from_millis(300));
+    let curves = e.threads_named("dicesim-curve");
+    assert!(curves <= 1, "{curves} curve threads alive");
+    e.keys("q");
+    assert_eq!(e.ended("q while the curve computes").code(), Some(0));
+    e.assert_restored("q while the curve computes");
 }

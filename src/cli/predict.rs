@@ -119,7 +119,7 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
         &spec,
         &options,
         &stop,
-        &mut |done, _| bar.set_position(done),
+        &mut |p| bar.set_position(p.done),
     )
     .map_err(CliError::experiment(""))?;
     bar.finish_and_clear();

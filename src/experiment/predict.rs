@@ -173,9 +173,20 @@ fn curve_setup(
     (params, ranges, base)
 }
 
+/// How far [`run_prediction`] has got, after a chunk of rolls.
+#[derive(Debug, Clone, Copy)]
+pub struct Progress<'a> {
+    /// Rolls done so far, over every curve.
+    pub done: u64,
+    /// Rolls in the whole experiment.
+    pub total: u64,
+    /// The curve being rolled, of its whole groups so far: what a screen can show filling in.
+    pub curve: &'a PredictCurve,
+}
+
 /// Rolls the experiment: for each curve, `count` starts and their twins as one batch.
-/// `progress(done, total)` is called after each chunk of rolls; setting `cancel` stops it,
-/// keeping the whole groups rolled so far.
+/// `progress` is called after each chunk of rolls; setting `cancel` stops it, keeping the
+/// whole groups rolled so far.
 pub fn run_prediction(
     params: &Params,
     ranges: &RandomRanges,
@@ -183,7 +194,7 @@ pub fn run_prediction(
     spec: &PredictSpec,
     options: &RunOptions,
     cancel: &AtomicBool,
-    progress: &mut dyn FnMut(u64, u64),
+    progress: &mut dyn FnMut(Progress<'_>),
 ) -> Result<Prediction, Error> {
     spec.validate()?;
     let values: Vec<Option<f64>> = match &spec.sweep {
@@ -214,7 +225,11 @@ pub fn run_prediction(
         let run = stream_batch(&params, &Rolls::Given(&starts), options, cancel, &mut |records| {
             done += records.len() as u64;
             curve.add(records);
-            progress(done_before + done, total);
+            progress(Progress {
+                done: done_before + done,
+                total,
+                curve: &curve.curve(*value, &spec.epsilons),
+            });
             Ok(())
         })?;
         curves.push(curve.curve(*value, &spec.epsilons));

@@ -13,7 +13,8 @@ use crate::experiment::trace::{ExportProgress, human_bytes};
 use crate::physics::{InitialCondition, Params};
 use crate::preset::{CameraView, Preset, Screen as ViewScreen, Store, ThemeName, View as PresetView};
 use crate::worker::{
-    BatchProgress, Command, EnergySample, MapUpdate, OutcomeTable, SeparationSample, Snapshot, Speed,
+    BatchProgress, Command, CurveUpdate, EnergySample, MapUpdate, OutcomeTable, SeparationSample, Snapshot,
+    Speed,
 };
 use ratatui::crossterm::event::{
     Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEventKind,
@@ -249,6 +250,8 @@ pub struct App {
     pub(crate) epsilon_editor: Option<Editor>,
     /// The twin's separation samples of the roll on screen.
     pub(crate) twin_history: Vec<SeparationSample>,
+    /// The predictability curve of the setup, while a twin rolls (newest generation).
+    pub(crate) curve: Option<CurveUpdate>,
     /// The preset the setup was loaded from (or last saved as).
     pub(crate) preset: Preset,
     /// Where presets are listed from and saved to.
@@ -279,6 +282,7 @@ impl App {
     /// The explorer showing `first`, typically the engine's snapshot before the worker starts.
     pub fn new(mut first: Snapshot, theme: Theme) -> App {
         let history = std::mem::take(&mut first.history);
+        let curve = first.curve.take();
         let map = MapView::new(&first.params, &first.initial);
         let preset = first.preset.take().map_or_else(Preset::default, |p| *p);
         App {
@@ -305,6 +309,7 @@ impl App {
             epsilon: super::twin::DEFAULT_EPSILON,
             epsilon_editor: None,
             twin_history: Vec::new(),
+            curve,
             preset,
             store: Store::new(None),
             dialog: None,
@@ -428,6 +433,17 @@ impl App {
         }
         if let Some(twin) = &mut s.twin {
             self.twin_history.append(&mut twin.history);
+        }
+        if let Some(c) = s.curve.take()
+            && self
+                .curve
+                .as_ref()
+                .is_none_or(|old| c.generation >= old.generation)
+        {
+            self.curve = Some(c);
+        }
+        if s.twin.is_none() {
+            self.curve = None;
         }
         self.history.append(&mut s.history);
         if let Some(t) = s.table.take() {

@@ -28,6 +28,11 @@ const MODEL: &[&str] = &[
      start changes the face (R, b). The chaos twin (T) shows it: two dice a relative ε = 1e-9 apart drift \
      apart, the gap growing by orders of magnitude at the impacts, until it is as big as the die; from a \
      gentle drop they land the same way.",
+    "While the twin rolls, the predictability curve of the setup takes the outcome table's place, \
+     computed in the background: random throws (the ones R draws), each rolled beside a twin at every ε \
+     from 1e-15 to 0.1, and P(same face), the share of pairs that land alike, against ε (● with its 95 % \
+     interval │). It falls from 1 towards chance, Σp² (┄), what two unrelated throws share; ε½ is where \
+     it crosses halfway (·). ◆ marks the twin's own ε on it. T again brings the table back.",
     "The step is stable only while ω_rock·Δt < 2, where ω_rock = √(6k/M) is how fast a die lying flat rocks \
      on its face; spin, impact speed, damping and friction set limits of their own. The readout under the \
      parameters names the tightest, \"Δt stability: … at N % of limit\", amber from 80 % and red past \

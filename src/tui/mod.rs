@@ -3,6 +3,7 @@
 
 pub(crate) mod app;
 pub(crate) mod camera;
+mod curve;
 mod dialogs;
 mod die;
 mod footer;
@@ -39,3 +40,6 @@ mod map_tests;
 
 #[cfg(test)]
 mod view_tests;
+
+#[cfg(test)]
+mod twin_tests;

@@ -41,7 +41,12 @@ fn render_die_screen(app: &App, frame: &mut Frame) {
     };
     render_header(app, areas.header, frame);
     render_params(app, areas.params, frame);
-    render_outcomes(app, areas.outcomes, frame);
+    // While a twin rolls, its predictability curve takes the outcome table's place.
+    if app.live.twin.is_some() {
+        super::curve::render_curve(app, areas.outcomes, frame);
+    } else {
+        render_outcomes(app, areas.outcomes, frame);
+    }
     render_die(app, areas.die, frame);
     super::timeline::render(app, areas.timeline, frame);
     if app.live.twin.is_some() {

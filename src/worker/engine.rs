@@ -2,6 +2,7 @@
 //! commands and by "advance to simulated time t". No thread and no clock live here, so tests
 //! (and the thread in `mod.rs`) drive it step for step.
 
+use super::curve::CurveSetup;
 use super::map::{MapJob, MapOrder};
 use super::timeline::{Keyframe, Timeline};
 use super::twin::Twin;
@@ -193,6 +194,16 @@ impl Engine {
 
     pub fn params(&self) -> &Params {
         &self.params
+    }
+
+    /// What the twin screen's predictability curve is of: the random throws `R` draws,
+    /// rolled with the current values; `None` while no twin rolls.
+    pub(crate) fn curve_setup(&self) -> Option<CurveSetup> {
+        self.twin.as_ref().map(|_| CurveSetup {
+            params: self.params,
+            ranges: self.random,
+            base: self.base_initial,
+        })
     }
 
     #[cfg(test)]
@@ -824,6 +835,7 @@ impl Engine {
             notice: pending.notice,
             preset: pending.preset,
             export: self.export.map(|e| e.progress),
+            curve: None,
             twin: match &mut self.twin {
                 Some(t) => Some(t.snapshot(&self.sim)),
                 None => None,

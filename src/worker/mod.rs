@@ -4,6 +4,7 @@
 //! playback speed, runs batches between commands, and blocks on its command channel while
 //! nothing moves, so a paused explorer costs no CPU. It never touches the terminal.
 
+pub(crate) mod curve;
 mod engine;
 mod job;
 pub(crate) mod map;
@@ -12,6 +13,7 @@ mod timeline;
 mod twin;
 
 pub use crate::preset::Speed;
+pub use curve::{CURVE_STARTS, CurveSetup, CurveState, CurveUpdate};
 pub use engine::{BatchRequest, Engine};
 pub use map::{MapAxis, MapRequest, MapUpdate};
 
@@ -256,6 +258,9 @@ pub struct Snapshot {
     pub preset: Option<Box<Preset>>,
     /// The running export, how far it has got.
     pub export: Option<ExportProgress>,
+    /// The twin's predictability curve, whenever it started, grew or ended (while a twin
+    /// rolls).
+    pub curve: Option<CurveUpdate>,
 }
 
 /// The running worker thread; dropping it stops the thread.
@@ -320,7 +325,8 @@ fn run<T: From<Snapshot>>(
     mut maps: map::MapRunner,
     clock: impl Clock,
 ) {
-    if out.send(engine.snapshot().into()).is_err() {
+    let mut curves = curve::CurveRunner::default();
+    if out.send(report(&mut engine, &mut curves).into()).is_err() {
         return;
     }
     crate::fault::inject("worker");
@@ -330,24 +336,26 @@ fn run<T: From<Snapshot>>(
     let mut export = ExportRunner::default();
     loop {
         // Block while idle; while busy, wait for a command at most until the next tick.
-        let first = if engine.busy() || batch.running() || export.running() || maps.running() {
-            match rx.recv_timeout(next_tick.saturating_duration_since(clock.now())) {
-                Ok(c) => Some(c),
-                Err(RecvTimeoutError::Timeout) => None,
-                Err(RecvTimeoutError::Disconnected) => break,
-            }
-        } else {
-            match rx.recv() {
-                Ok(c) => Some(c),
-                Err(_) => break,
-            }
-        };
+        let first =
+            if engine.busy() || batch.running() || export.running() || maps.running() || curves.running() {
+                match rx.recv_timeout(next_tick.saturating_duration_since(clock.now())) {
+                    Ok(c) => Some(c),
+                    Err(RecvTimeoutError::Timeout) => None,
+                    Err(RecvTimeoutError::Disconnected) => break,
+                }
+            } else {
+                match rx.recv() {
+                    Ok(c) => Some(c),
+                    Err(_) => break,
+                }
+            };
         let mut handled = false;
         for command in first.into_iter().chain(std::iter::from_fn(|| rx.try_recv().ok())) {
             handled = true;
             if !engine.handle(command) {
                 batch.stop();
                 export.stop();
+                curves.stop();
                 return;
             }
         }
@@ -359,13 +367,23 @@ fn run<T: From<Snapshot>>(
         batch.sync(&mut engine);
         export.sync(&mut engine);
         maps.sync(engine.take_map_order());
-        if out.send(engine.snapshot().into()).is_err() {
+        if out.send(report(&mut engine, &mut curves).into()).is_err() {
             break;
         }
         next_tick = now + TICK;
     }
     batch.stop();
     export.stop();
+    curves.stop();
+}
+
+/// The engine's snapshot, with whatever the curve thread has to report.
+fn report(engine: &mut Engine, curves: &mut curve::CurveRunner) -> Snapshot {
+    let curve = curves.sync(engine.curve_setup());
+    Snapshot {
+        curve,
+        ..engine.snapshot()
+    }
 }
 
 /// The batch thread: `experiment::run_batch` with a cancel flag, its progress passed on

@@ -1,0 +1,202 @@
+//! The twin screen's predictability curve: `experiment::predict::run_prediction` for the
+//! worker's current setup on a thread of its own, its partial curves passed on as they grow.
+//!
+//! The curve follows the engine rather than commands: on every tick the worker hands over
+//! the setup the curve should show (none while no twin rolls), and a setup other than the
+//! one computing stops the old computation and starts a new one under a new generation.
+//! Stopping waits for the thread, which takes milliseconds since every roll looks at the
+//! cancel flag every few thousand steps: at most one curve computes at a time, and nothing
+//! of an older generation is ever passed on.
+
+use super::job::Job;
+use crate::experiment::predict::{PredictCurve, PredictSpec, default_epsilons, run_prediction};
+use crate::experiment::{RandomRanges, RunOptions};
+use crate::physics::{InitialCondition, Params};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
+
+/// Random throws per curve, each rolled beside 15 twins (one per decade of ε): 16 000 rolls,
+/// about a second for the paper's setup and at most five for the shipped presets (the
+/// loaded die, on the scalar engine, is the slowest), and 95 % intervals of about ±3
+/// points where P(same face) is halfway.
+pub const CURVE_STARTS: u64 = 1000;
+
+/// Everything the curve depends on: the random throws `R` draws, rolled with these values.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CurveSetup {
+    pub params: Params,
+    /// The preset's random ranges; their seed is the curve's, so a setup always gives the
+    /// same curve.
+    pub ranges: RandomRanges,
+    /// The preset's start: random throws take their orientation from it.
+    pub base: InitialCondition,
+}
+
+impl CurveSetup {
+    /// The experiment: [`CURVE_STARTS`] throws, one twin per decade of ε, no sweep.
+    pub fn spec(&self) -> PredictSpec {
+        PredictSpec {
+            epsilons: default_epsilons(),
+            count: CURVE_STARTS,
+            seed: self.ranges.seed,
+            sweep: None,
+        }
+    }
+}
+
+/// How far a curve has got.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CurveState {
+    /// Rolling: the curve of the throws rolled whole so far (none before the first chunk).
+    Computing(Option<PredictCurve>),
+    Complete(PredictCurve),
+    /// Why there is no curve, in words.
+    Failed(String),
+}
+
+/// The curve, partial or complete, or why it could not be computed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CurveUpdate {
+    /// Newer curves have higher generations.
+    pub generation: u64,
+    /// Throws asked for.
+    pub count: u64,
+    pub state: CurveState,
+}
+
+/// Computes the curve of `setup` on this thread (one roll thread per core), handing each
+/// partial curve to `partial`; stops early when `cancel` is set.
+pub(crate) fn compute(
+    setup: &CurveSetup,
+    cancel: &AtomicBool,
+    partial: &mut dyn FnMut(&PredictCurve),
+) -> CurveState {
+    crate::fault::inject("curve");
+    let spec = setup.spec();
+    let run = run_prediction(
+        &setup.params,
+        &setup.ranges,
+        &setup.base,
+        &spec,
+        &RunOptions::default(),
+        cancel,
+        &mut |p| partial(p.curve),
+    );
+    match run {
+        Err(e) => CurveState::Failed(e.to_string()),
+        Ok(mut p) => match p.curves.pop() {
+            Some(c) if c.faces.total() == 0 => CurveState::Failed(format!(
+                "none of the {} throws ended on a face within the time cap of {} s \
+                 (they did not settle, or went unstable): no curve",
+                c.starts, setup.params.integrator.max_time
+            )),
+            Some(c) => CurveState::Complete(c),
+            None => CurveState::Failed("no curve was rolled".to_string()),
+        },
+    }
+}
+
+/// A curve computing: its newest partial curve, left for the worker's next tick.
+struct CurveRun {
+    newest: Arc<Mutex<Option<PredictCurve>>>,
+    job: Job<CurveState>,
+}
+
+/// The curve thread of one worker: at most one at a time.
+#[derive(Default)]
+pub(super) struct CurveRunner {
+    generation: u64,
+    /// The setup of the curve computing or shown last.
+    setup: Option<CurveSetup>,
+    /// Whether the last tick wanted a curve (a twin was rolling).
+    wanted: bool,
+    run: Option<CurveRun>,
+    /// The complete curve of `setup`, shown again at once when the twin comes back on it.
+    complete: Option<CurveState>,
+}
+
+impl CurveRunner {
+    /// Whether a curve is computing.
+    pub(crate) fn running(&self) -> bool {
+        self.run.is_some()
+    }
+
+    /// Follows the setup the engine wants a curve of (`None`: no twin, no curve), and
+    /// returns what the UI has not seen yet: a new curve's start, a grown curve, the end.
+    pub(crate) fn sync(&mut self, wanted: Option<CurveSetup>) -> Option<CurveUpdate> {
+        let Some(setup) = wanted else {
+            self.wanted = false;
+            self.stop();
+            return None;
+        };
+        if !self.wanted || self.setup != Some(setup) {
+            self.wanted = true;
+            self.stop();
+            self.generation += 1;
+            if self.setup == Some(setup)
+                && let Some(done) = &self.complete
+            {
+                return Some(self.update(done.clone()));
+            }
+            self.setup = Some(setup);
+            self.complete = None;
+            return Some(self.start(setup));
+        }
+        let run = self.run.as_ref()?;
+        if run.job.is_finished() {
+            let run = self.run.take().expect("checked above");
+            let state = run
+                .job
+                .join()
+                .unwrap_or_else(|| CurveState::Failed("the curve's computation panicked".to_string()));
+            if matches!(state, CurveState::Complete(_)) {
+                self.complete = Some(state.clone());
+            }
+            return Some(self.update(state));
+        }
+        let newest = run.newest.lock().unwrap_or_else(|e| e.into_inner()).take();
+        newest.map(|c| self.update(CurveState::Computing(Some(c))))
+    }
+
+    fn update(&self, state: CurveState) -> CurveUpdate {
+        CurveUpdate {
+            generation: self.generation,
+            count: CURVE_STARTS,
+            state,
+        }
+    }
+
+    fn start(&mut self, setup: CurveSetup) -> CurveUpdate {
+        let newest = Arc::new(Mutex::new(None));
+        let slot = newest.clone();
+        let job = Job::spawn("dicesim-curve", move |cancel| {
+            compute(&setup, cancel, &mut |c| {
+                if !cancel.load(Ordering::Relaxed) {
+                    *slot.lock().unwrap_or_else(|e| e.into_inner()) = Some(c.clone());
+                }
+            })
+        });
+        match job {
+            Ok(job) => {
+                self.run = Some(CurveRun { newest, job });
+                self.update(CurveState::Computing(None))
+            }
+            Err(e) => self.update(CurveState::Failed(format!(
+                "cannot start the curve's thread: {e}"
+            ))),
+        }
+    }
+
+    /// Cancels the curve computing, if any, and waits for its thread (milliseconds).
+    pub(crate) fn stop(&mut self) {
+        if let Some(run) = self.run.take() {
+            run.job.stop();
+        }
+    }
+}
+
+impl Drop for CurveRunner {
+    fn drop(&mut self) {
+        self.stop();
+    }
+}
