@@ -86,13 +86,28 @@ pub(crate) fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let Some(twin) = &app.live.twin else { return };
     let colours = t.separation_colours();
+    let epsilon = fmt_num(twin.epsilon);
     let title = Line::from(vec![
         Span::styled(" chaos twin ", t.heading()),
-        Span::raw(format!("ε = {} ", fmt_num(twin.epsilon))),
+        Span::raw(format!("ε = {epsilon} ")),
         Span::styled("━centre cm ", Style::new().fg(colours[0])),
         Span::styled("━angle rad ", Style::new().fg(colours[1])),
     ]);
-    let block = Block::bordered().title(title);
+    // A cut title would show another ε (1e-11 as 1e-1): narrow, ε keeps the top border and
+    // the legend goes to the bottom one.
+    let block = if title.to_string().trim_end().chars().count() + 2 <= area.width as usize {
+        Block::bordered().title(title)
+    } else {
+        Block::bordered()
+            .title(Line::from(vec![
+                Span::styled(" twin ", t.heading()),
+                Span::raw(format!("ε = {epsilon} ")),
+            ]))
+            .title_bottom(Line::from(vec![
+                Span::styled("━cm ", Style::new().fg(colours[0])),
+                Span::styled("━rad ", Style::new().fg(colours[1])),
+            ]))
+    };
     let body = block.inner(area);
     frame.render_widget(block, area);
     if body.height < 4 || body.width < 16 {

@@ -178,7 +178,7 @@ fn a_complete_curve_beside_the_separation_plot() {
     for (w, h) in [(120, 36), (80, 24)] {
         let text = screen(&s.app, w, h);
         // The separation plot keeps its axes and title.
-        assert!(text.contains("chaos twin") && text.contains("1e-16"), "{text}");
+        assert!(text.contains("twin ε = 1e-9") && text.contains("1e-16"), "{text}");
         assert!(
             text.contains(&format!("P(same face) · {THROWS} throws")),
             "{text}"
@@ -323,4 +323,22 @@ fn our_epsilon_reads_the_listed_point_or_interpolates_in_log_epsilon() {
     let (share, interval) = at_epsilon(c, 10f64.powf(-8.5)).expect("between two points");
     assert!((share - 0.5 * (listed.same_share + next.same_share)).abs() < 1e-9);
     assert_eq!(interval, None);
+}
+
+#[test]
+fn a_narrow_separation_panel_keeps_the_whole_epsilon_and_moves_its_legend_down() {
+    let mut s = twin_scene(Theme::default());
+    s.key(KeyCode::Char('<'));
+    s.key(KeyCode::Char('<'));
+    assert_eq!(s.app.live.twin.as_ref().map(|t| t.epsilon), Some(1e-11));
+    let narrow = screen(&s.app, 80, 24);
+    assert!(narrow.contains("┌ twin ε = 1e-11 ─"), "{narrow}");
+    assert!(narrow.contains("└━cm ━rad ─"), "{narrow}");
+    assert!(screen(&s.app, 120, 36).contains("ε = 1e-11"));
+    // Where it fits, the legend stays in the title.
+    let wide = screen(&twin_scene(Theme::default()).app, 120, 36);
+    assert!(
+        wide.contains("chaos twin ε = 1e-9 ━centre cm ━angle rad"),
+        "{wide}"
+    );
 }

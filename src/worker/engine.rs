@@ -734,6 +734,9 @@ impl Engine {
             return;
         }
         self.batch = None;
+        // The table goes with the news, even when its last rolls came a tick earlier: a
+        // snapshot that ends the batch always shows the table it ended with.
+        self.pending.table_changed = true;
         self.pending.notice = Some(match result {
             Ok(()) => format!("batch of {} rolls done", b.total),
             Err(e) => format!("batch stopped: {e}"),
