@@ -123,16 +123,10 @@ fn a_ground_change_mid_roll_keeps_the_roll_and_others_restart_it() {
 fn a_batch_fills_the_table_with_the_rolls_the_experiment_layer_computes() {
     let (worker, rx) = spawn();
     worker.send(Command::BatchStart(300));
-    // A snapshot carries the table only when it changed: the last rolls may arrive a tick
-    // before the batch is seen to have ended, so the newest table is kept across snapshots.
-    let mut newest = None;
-    wait_for(&rx, |s| {
-        if let Some(t) = &s.table {
-            newest = Some(t.clone());
-        }
-        s.batch.is_none() && newest.as_ref().is_some_and(|t| t.rolls() == 300)
+    let s = wait_for(&rx, |s| {
+        s.batch.is_none() && s.table.as_ref().is_some_and(|t| t.rolls() == 300)
     });
-    let table = newest.expect("table");
+    let table = s.table.expect("table");
     let preset = Preset::default();
     let ranges: RandomRanges = preset.random;
     let params = preset.params();
