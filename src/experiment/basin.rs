@@ -114,17 +114,17 @@ pub struct MapSpec {
 }
 
 impl MapSpec {
-    /// The engine that steps this map's cells around `params`, in words: the lane engine
-    /// steps the uniform cube only, so cells of a loaded die (the setup's, or an axis that
-    /// adds mass at a corner) roll on the scalar one.
+    /// The engine that steps this map's cells around `params`, in words: the one
+    /// [`Engine::resolve_for`] picks for the setup, and where an axis adds mass at a corner,
+    /// the scalar one for the cells it loads.
     pub fn engine_words(&self, params: &Params, engine: Engine) -> String {
         let adds_mass = |a: &Axis| a.key.spec == &EXTRA_CORNER_MASS && a.max > 0.0;
-        match engine.resolve() {
-            Engine::Lanes if params.die.is_loaded() => "scalar engine (a loaded die)".to_string(),
-            Engine::Lanes if adds_mass(&self.x) || adds_mass(&self.y) => {
+        match (engine.resolve(), engine.resolve_for(params)) {
+            (Engine::Lanes, Engine::Scalar) => "scalar engine (a loaded die)".to_string(),
+            (_, Engine::Lanes) if adds_mass(&self.x) || adds_mass(&self.y) => {
                 "lanes engine, scalar where the die is loaded".to_string()
             }
-            e => format!("{} engine", e.name()),
+            (_, e) => format!("{} engine", e.name()),
         }
     }
 }

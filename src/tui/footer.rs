@@ -5,7 +5,6 @@ use super::dialogs::Dialog;
 use super::format::group;
 use super::help::help_lines;
 use super::keys::{Action, Screen, rows};
-use super::map::EXPORT_SIZES;
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Rect};
 use ratatui::text::{Line, Span};
@@ -75,7 +74,7 @@ fn table_hints(app: &App, screen: Screen) -> Vec<KeyHint> {
             Action::Batch => hint(h.keys, &format!("batch {}", group(app.batch_rolls)), h.priority),
             Action::Twin if app.twin => hint("T < > E", "twin, ε", h.priority),
             Action::ExportMap => {
-                let ((w, h_px), _) = EXPORT_SIZES[app.map.export_size];
+                let ((w, h_px), _) = app.map.png_size();
                 hint("e E", &format!("PNG {w}×{h_px}"), h.priority)
             }
             _ => hint(h.keys, h.words, h.priority),

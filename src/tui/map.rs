@@ -130,6 +130,11 @@ impl MapView {
         }
     }
 
+    /// The chosen size of the map's PNG, in pixels, and what it is for.
+    pub(crate) fn png_size(&self) -> ((u32, u32), &'static str) {
+        EXPORT_SIZES[self.export_size]
+    }
+
     /// The map on screen, if one has arrived for the current request.
     pub(crate) fn map(&self) -> Option<&BasinMap> {
         self.shown.as_ref().and_then(|u| u.map.as_ref().ok())
@@ -316,7 +321,7 @@ pub(crate) fn export_if_asked(app: &mut App, dir: &Path) {
         app.notice = Some("no map to export yet".to_string());
         return;
     };
-    let (size, _) = EXPORT_SIZES[app.map.export_size];
+    let (size, _) = app.map.png_size();
     let path = dir.join(format!("{}.png", free_stem(dir, "basin-map", &["png"])));
     // The caption and the PNG's text chunks say which setup every cell started from.
     let record = map_record(

@@ -51,7 +51,7 @@ pub(crate) fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Com
         Action::MapExportSize => {
             let m = &mut app.map;
             m.export_size = (m.export_size + 1) % EXPORT_SIZES.len();
-            let ((w, h), what) = EXPORT_SIZES[m.export_size];
+            let ((w, h), what) = m.png_size();
             app.notice = Some(format!("PNG size {w}×{h} ({what}) · e exports, E the next size"));
         }
         _ => {}

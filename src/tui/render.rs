@@ -4,8 +4,7 @@
 use super::app::{App, Drawing};
 use super::die::render_die;
 use super::footer::{render_footer, render_help};
-use super::format::{fmt_num, fmt_range};
-use super::format::{group, wrap_words};
+use super::format::{fmt_num, fmt_range, group, wrap_words};
 use super::header::{render_header, render_too_small};
 use super::layout::{param_window, screen_layout};
 use super::param::all;
@@ -41,17 +40,15 @@ fn render_die_screen(app: &App, frame: &mut Frame) {
     };
     render_header(app, areas.header, frame);
     render_params(app, areas.params, frame);
-    // While a twin rolls, its predictability curve takes the outcome table's place.
-    if app.live.twin.is_some() {
-        super::curve::render_curve(app, areas.outcomes, frame);
-    } else {
-        render_outcomes(app, areas.outcomes, frame);
-    }
     render_die(app, areas.die, frame);
     super::timeline::render(app, areas.timeline, frame);
+    // While a twin rolls, its predictability curve takes the outcome table's place and
+    // the separation of the two dice the energy plot's.
     if app.live.twin.is_some() {
+        super::curve::render_curve(app, areas.outcomes, frame);
         super::twin::render_separation(app, areas.energy, frame);
     } else {
+        render_outcomes(app, areas.outcomes, frame);
         render_energy(app, areas.energy, frame);
     }
     super::ledger::render_ledger(app, areas.ledger, frame);
