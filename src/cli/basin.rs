@@ -132,7 +132,7 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
     let stop = cancel_on_ctrl_c()?;
     let start = std::time::Instant::now();
     let spec = MapSpec { x, y, method };
-    let engine = spec.engine_words(&params, options.engine);
+    let engine = format!("{} engine", options.engine.resolve().name());
     let map = run_map_rows(
         &params,
         &preset.initial,

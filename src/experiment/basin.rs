@@ -13,10 +13,9 @@
 
 use super::Error;
 use super::batch::{RunOptions, thread_pool};
-use super::engine::{Engine, roll_setups};
+use super::engine::roll_setups;
 use super::keys::ScanKey;
 use super::record::RollRecord;
-use crate::physics::registry::EXTRA_CORNER_MASS;
 use crate::physics::{InitialCondition, Outcome, Params, Status};
 use rayon::prelude::*;
 use std::ops::Range;
@@ -111,22 +110,6 @@ pub struct MapSpec {
     pub x: Axis,
     pub y: Axis,
     pub method: Method,
-}
-
-impl MapSpec {
-    /// The engine that steps this map's cells around `params`, in words: the one
-    /// [`Engine::resolve_for`] picks for the setup, and where an axis adds mass at a corner,
-    /// the scalar one for the cells it loads.
-    pub fn engine_words(&self, params: &Params, engine: Engine) -> String {
-        let adds_mass = |a: &Axis| a.key.spec == &EXTRA_CORNER_MASS && a.max > 0.0;
-        match (engine.resolve(), engine.resolve_for(params)) {
-            (Engine::Lanes, Engine::Scalar) => "scalar engine (a loaded die)".to_string(),
-            (_, Engine::Lanes) if adds_mass(&self.x) || adds_mass(&self.y) => {
-                "lanes engine, scalar where the die is loaded".to_string()
-            }
-            (_, e) => format!("{} engine", e.name()),
-        }
-    }
 }
 
 /// How a map was computed.
@@ -579,34 +562,6 @@ mod tests {
 
     fn axis(spec: &str, cells: usize) -> Axis {
         Axis::parse(spec, cells).unwrap()
-    }
-
-    #[test]
-    fn a_loaded_die_is_said_to_roll_on_the_scalar_engine() {
-        let spec = |x: &str| MapSpec {
-            x: axis(x, 4),
-            y: axis("initial.height:1:10", 4),
-            method: Method::Uniform,
-        };
-        let spin = spec("initial.angular_velocity.x:-60:60");
-        let fair = Params::default();
-        let mut loaded = fair;
-        loaded.die.extra_corner_mass[2] = 2.0;
-        assert_eq!(spin.engine_words(&loaded, Engine::Scalar), "scalar engine");
-        if Engine::Lanes.resolve() == Engine::Lanes {
-            assert_eq!(spin.engine_words(&fair, Engine::Auto), "lanes engine");
-            assert_eq!(
-                spin.engine_words(&loaded, Engine::Auto),
-                "scalar engine (a loaded die)"
-            );
-            let mass = spec("die.extra_corner_mass.3:0:2");
-            assert_eq!(
-                mass.engine_words(&fair, Engine::Lanes),
-                "lanes engine, scalar where the die is loaded"
-            );
-        } else {
-            assert_eq!(spin.engine_words(&fair, Engine::Auto), "scalar engine");
-        }
     }
 
     #[test]

@@ -197,7 +197,7 @@ pub fn stream_batch(
         ranges.validate()?;
     }
     let jobs = thread_count(options.jobs);
-    let engine = options.engine.resolve_for(params);
+    let engine = options.engine.resolve();
     let requested = rolls.len();
     let chunks = requested.div_ceil(CHUNK);
     let start = Instant::now();

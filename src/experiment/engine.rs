@@ -30,16 +30,6 @@ impl Engine {
         }
     }
 
-    /// The engine that really runs rolls of `params` on this CPU: the lane engine steps the
-    /// uniform cube only, so a loaded die rolls on the scalar one.
-    pub(crate) fn resolve_for(self, params: &Params) -> Engine {
-        if params.die.is_loaded() {
-            Engine::Scalar
-        } else {
-            self.resolve()
-        }
-    }
-
     /// The engine that really runs on this CPU: `Scalar` or `Lanes`.
     pub fn resolve(self) -> Engine {
         match self {
@@ -59,10 +49,8 @@ pub(crate) fn roll_setups(
     stop: &dyn Fn() -> bool,
 ) -> Vec<RollRecord> {
     let mut done: Vec<Option<RollRecord>> = vec![None; setups.len()];
-    // The lane engine steps the uniform cube only; a loaded die rolls on the scalar engine.
-    let loaded = setups.iter().any(|(_, p, _)| p.die.is_loaded());
     let roll = match engine.resolve() {
-        Engine::Lanes if !loaded => roll_in_lanes,
+        Engine::Lanes => roll_in_lanes,
         _ => roll_one_by_one,
     };
     roll(

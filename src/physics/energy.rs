@@ -20,11 +20,6 @@ impl Energy {
         self.translational + self.rotational
     }
 
-    /// `M·g·(z − a) + Σ ½·k·d_k²`.
-    pub(crate) fn potential(&self) -> f64 {
-        self.gravitational + self.elastic
-    }
-
     pub fn total(&self) -> f64 {
         self.translational + self.rotational + self.gravitational + self.elastic
     }

@@ -1,17 +1,12 @@
 //! The lane engine: four rolls stepped side by side in the 4 lanes of 256-bit AVX2 vectors,
 //! each lane bit-identical to [`Simulation`] rolling alone.
 //!
-//! The state is kept as a structure of arrays (one vector per coordinate, lane `l` holding
-//! roll `l`), and every lane does the scalar step's arithmetic operation for operation:
-//! `+ − × ÷ √` are correctly rounded in both, Rust never fuses a multiply and an add, sums
-//! run in corner order, and where the scalar path leaves a value at +0.0 (a corner above the
-//! ground, a roll out of contact) the lane selects +0.0 rather than computing a product that
-//! might be −0.0. The spin rebuild (libm's sin and cos) is the one scalar function
-//! `sim::spin`, called per lane whose angular momentum changed. The end-of-step decision is
-//! made by `Simulation::check_end` itself on the lane's state stored back into the roll's
-//! `Simulation`; the vector code only screens out lanes that surely go on (one place,
-//! `Lanes::may_end`, which replicates the stopping rule's comparisons). A lane whose roll
-//! ended takes the next roll at once.
+//! The step is the one kernel ([`super::kernel`]) both engines run: here on a vector type
+//! whose lane `l` holds roll `l` (a structure of arrays, one vector per coordinate), every
+//! operation the exactly rounded twin of the scalar one. Each roll is set up by its own
+//! [`Simulation`], loaded into a lane, and stored back into it when the kernel's end-of-step
+//! test ends it; a lane whose roll ended takes the next roll at once. Every die the scalar
+//! engine rolls, the lanes roll (a loaded die too), with the same results bit for bit.
 //!
 //! The one module that uses `unsafe`: the AVX2 intrinsics are `unsafe` to call, and each
 //! call is reached only through `roll_in_lanes`, after `is_x86_feature_detected!` said the
@@ -20,7 +15,7 @@
 
 use super::body::face_most_nearly_up;
 use super::initial::InitialCondition;
-use super::params::{FrictionLaw, Params, StopEnergy};
+use super::params::Params;
 use super::sim::{Outcome, STEPS_BETWEEN_STOP_CHECKS, Simulation, State};
 
 /// Whether this CPU can run the lane engine (x86-64 with AVX2).
@@ -95,8 +90,9 @@ pub fn roll_one_by_one(
 #[cfg(target_arch = "x86_64")]
 mod avx2 {
     use super::*;
-    use crate::physics::sim::spin;
-    use nalgebra::{Matrix3, Vector3};
+    use crate::physics::kernel::{Kernel, Lane, NoHook, lane3};
+    use crate::physics::sim::Status;
+    use nalgebra::Vector3;
     use std::arch::x86_64::*;
     use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
@@ -105,7 +101,7 @@ mod avx2 {
     /// Four f64 in one AVX register (or four lane masks: all bits set = true).
     #[derive(Clone, Copy)]
     #[repr(transparent)]
-    struct F4(__m256d);
+    pub(super) struct F4(__m256d);
 
     // The wrappers are always inlined into `roll_all`, which enables AVX2, so each becomes the
     // one instruction it names.
@@ -141,47 +137,34 @@ mod avx2 {
         type Output = F4;
         #[inline(always)]
         fn not(self) -> F4 {
-            self.xor(F4::all_set())
+            self.xor(F4::from_bits(0b1111))
+        }
+    }
+
+    // nalgebra's vectors hold any `Debug + PartialEq` scalar; both look at the bits.
+    impl std::fmt::Debug for F4 {
+        fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            self.to_lanes().fmt(f)
+        }
+    }
+
+    impl PartialEq for F4 {
+        fn eq(&self, other: &F4) -> bool {
+            self.to_lanes().map(f64::to_bits) == other.to_lanes().map(f64::to_bits)
         }
     }
 
     impl F4 {
         #[inline(always)]
-        fn splat(x: f64) -> F4 {
+        fn xor(self, other: F4) -> F4 {
             // SAFETY: as above.
-            F4(unsafe { _mm256_set1_pd(x) })
+            F4(unsafe { _mm256_xor_pd(self.0, other.0) })
         }
+        /// `self >= other` (false with a NaN).
         #[inline(always)]
-        fn zero() -> F4 {
+        fn ge(self, other: F4) -> F4 {
             // SAFETY: as above.
-            F4(unsafe { _mm256_setzero_pd() })
-        }
-        #[inline(always)]
-        fn all_set() -> F4 {
-            // SAFETY: as above.
-            F4(unsafe { _mm256_castsi256_pd(_mm256_set1_epi64x(-1)) })
-        }
-        #[inline(always)]
-        fn from_array(a: [f64; 4]) -> F4 {
-            // SAFETY: as above; the load is unaligned.
-            F4(unsafe { _mm256_loadu_pd(a.as_ptr()) })
-        }
-        #[inline(always)]
-        fn to_array(self) -> [f64; 4] {
-            let mut a = [0.0; 4];
-            // SAFETY: as above; the store is unaligned.
-            unsafe { _mm256_storeu_pd(a.as_mut_ptr(), self.0) };
-            a
-        }
-        #[inline(always)]
-        fn lane(self, l: usize) -> f64 {
-            self.to_array()[l]
-        }
-        #[inline(always)]
-        fn set_lane(&mut self, l: usize, x: f64) {
-            let mut a = self.to_array();
-            a[l] = x;
-            *self = F4::from_array(a);
+            F4(unsafe { _mm256_cmp_pd::<_CMP_GE_OQ>(self.0, other.0) })
         }
         /// The mask whose lane `l` is set where bit `l` of `bits` is, from a table (no
         /// stores to reload).
@@ -206,9 +189,29 @@ mod avx2 {
             F4(unsafe { _mm256_loadu_pd(MASKS[bits as usize & 15].as_ptr().cast()) })
         }
         #[inline(always)]
-        fn xor(self, other: F4) -> F4 {
+        fn set_lane(&mut self, l: usize, x: f64) {
+            let mut a = self.to_lanes();
+            a[l] = x;
+            *self = F4::from_lanes(a);
+        }
+    }
+
+    impl Lane for F4 {
+        type Mask = F4;
+        /// Steps taken, as exact whole numbers.
+        type Count = F4;
+        type PerLane<T: Copy> = [T; LANES];
+        const WIDTH: usize = LANES;
+
+        #[inline(always)]
+        fn splat(x: f64) -> F4 {
             // SAFETY: as above.
-            F4(unsafe { _mm256_xor_pd(self.0, other.0) })
+            F4(unsafe { _mm256_set1_pd(x) })
+        }
+        #[inline(always)]
+        fn zero() -> F4 {
+            // SAFETY: as above.
+            F4(unsafe { _mm256_setzero_pd() })
         }
         #[inline(always)]
         fn sqrt(self) -> F4 {
@@ -221,315 +224,236 @@ mod avx2 {
             // SAFETY: as above.
             F4(unsafe { _mm256_andnot_pd(_mm256_set1_pd(-0.0), self.0) })
         }
-        /// Lane masks of `self < other` (false with a NaN, as `<`).
         #[inline(always)]
         fn lt(self, other: F4) -> F4 {
             // SAFETY: as above.
             F4(unsafe { _mm256_cmp_pd::<_CMP_LT_OQ>(self.0, other.0) })
         }
-        /// `self <= other` (false with a NaN).
         #[inline(always)]
         fn le(self, other: F4) -> F4 {
             // SAFETY: as above.
             F4(unsafe { _mm256_cmp_pd::<_CMP_LE_OQ>(self.0, other.0) })
         }
-        /// `self > other` (false with a NaN).
         #[inline(always)]
         fn gt(self, other: F4) -> F4 {
             // SAFETY: as above.
             F4(unsafe { _mm256_cmp_pd::<_CMP_GT_OQ>(self.0, other.0) })
         }
-        /// `self >= other` (false with a NaN).
-        #[inline(always)]
-        fn ge(self, other: F4) -> F4 {
-            // SAFETY: as above.
-            F4(unsafe { _mm256_cmp_pd::<_CMP_GE_OQ>(self.0, other.0) })
-        }
-        /// `self != other` (true with a NaN, as `!=`).
+        /// True with a NaN, as `!=`.
         #[inline(always)]
         fn ne(self, other: F4) -> F4 {
             // SAFETY: as above.
             F4(unsafe { _mm256_cmp_pd::<_CMP_NEQ_UQ>(self.0, other.0) })
         }
-        /// Lanes where `self` is finite (|x| < ∞ is false for ±∞ and NaN).
+        /// |x| < ∞ is false for ±∞ and NaN.
         #[inline(always)]
         fn finite(self) -> F4 {
             self.abs().lt(F4::splat(f64::INFINITY))
         }
-        /// `if mask { self } else { other }` per lane.
         #[inline(always)]
         fn select(mask: F4, yes: F4, no: F4) -> F4 {
             // SAFETY: as above.
             F4(unsafe { _mm256_blendv_pd(no.0, yes.0, mask.0) })
         }
-        /// `if mask { self } else { +0.0 }` per lane.
         #[inline(always)]
         fn or_zero(self, mask: F4) -> F4 {
             self & mask
         }
-        /// One bit per lane of a mask.
         #[inline(always)]
-        fn bits(self) -> u32 {
+        fn bits(mask: F4) -> u32 {
             // SAFETY: as above.
-            unsafe { _mm256_movemask_pd(self.0) as u32 }
+            unsafe { _mm256_movemask_pd(mask.0) as u32 }
+        }
+        #[inline(always)]
+        fn mask_from_bits(bits: u32) -> F4 {
+            F4::from_bits(bits)
+        }
+        #[inline(always)]
+        fn to_lanes(self) -> [f64; LANES] {
+            // SAFETY: `__m256d` is four f64 in lane order, with no invalid bit patterns.
+            unsafe { std::mem::transmute::<__m256d, [f64; LANES]>(self.0) }
+        }
+        #[inline(always)]
+        fn from_lanes(lanes: [f64; LANES]) -> F4 {
+            // SAFETY: as in `to_lanes`.
+            F4(unsafe { std::mem::transmute::<[f64; LANES], __m256d>(lanes) })
+        }
+        #[inline(always)]
+        fn per_lane<T: Copy>(f: impl FnMut(usize) -> T) -> [T; LANES] {
+            std::array::from_fn(f)
+        }
+        #[inline(always)]
+        fn count_up(count: F4) -> F4 {
+            count + F4::splat(1.0)
+        }
+        #[inline(always)]
+        fn count_reached(count: F4, limit: F4) -> F4 {
+            count.ge(limit)
         }
     }
 
-    #[derive(Clone, Copy)]
-    struct V3 {
-        x: F4,
-        y: F4,
-        z: F4,
+    fn set_mask(mask: &mut F4, l: usize, on: bool) {
+        let mut bits = F4::bits(*mask);
+        if on {
+            bits |= 1 << l;
+        } else {
+            bits &= !(1 << l);
+        }
+        *mask = F4::from_bits(bits);
     }
 
-    impl V3 {
-        #[inline(always)]
-        fn zero() -> V3 {
-            V3 {
-                x: F4::zero(),
-                y: F4::zero(),
-                z: F4::zero(),
-            }
-        }
-        #[inline(always)]
-        fn add(self, o: V3) -> V3 {
-            V3 {
-                x: self.x + o.x,
-                y: self.y + o.y,
-                z: self.z + o.z,
-            }
-        }
-        #[inline(always)]
-        fn scale(self, s: F4) -> V3 {
-            V3 {
-                x: self.x * s,
-                y: self.y * s,
-                z: self.z * s,
-            }
-        }
-        /// nalgebra's cross product, operation for operation.
-        #[inline(always)]
-        fn cross(self, b: V3) -> V3 {
-            V3 {
-                x: self.y * b.z - self.z * b.y,
-                y: self.z * b.x - self.x * b.z,
-                z: self.x * b.y - self.y * b.x,
-            }
-        }
-        #[inline(always)]
-        fn select(mask: F4, yes: V3, no: V3) -> V3 {
-            V3 {
-                x: F4::select(mask, yes.x, no.x),
-                y: F4::select(mask, yes.y, no.y),
-                z: F4::select(mask, yes.z, no.z),
-            }
-        }
-        #[inline(always)]
-        fn get(&self, l: usize) -> Vector3<f64> {
-            Vector3::new(self.x.lane(l), self.y.lane(l), self.z.lane(l))
-        }
-        #[inline(always)]
-        fn set(&mut self, l: usize, v: &Vector3<f64>) {
-            self.x.set_lane(l, v.x);
-            self.y.set_lane(l, v.y);
-            self.z.set_lane(l, v.z);
-        }
+    #[inline(always)]
+    fn set3(v: &mut Vector3<F4>, l: usize, x: &Vector3<f64>) {
+        v.x.set_lane(l, x.x);
+        v.y.set_lane(l, x.y);
+        v.z.set_lane(l, x.z);
     }
 
-    /// Each lane's constants (lanes may come from different parameters, e.g. in a map
-    /// over the stiffness), as the scalar path derives them.
-    #[derive(Clone, Copy)]
-    struct LaneConstants {
-        dt: F4,
-        mass: F4,
-        weight_z: F4,
-        /// The kick of a step in flight, `Simulation`'s quotients with every force +0.0.
-        flight_kick: V3,
-        stiffness: F4,
-        damping: F4,
-        friction: F4,
-        /// `0.5·M`, `M·g`, `0.5·k`: the energy's leading products, grouped as the scalar
-        /// path groups them (left to right).
-        half_mass: F4,
-        mass_gravity: F4,
-        half_stiffness: F4,
-        half_size: F4,
-        /// Point-mass energy: `0.5·m`, `m·g`, `M·g·a`.
-        half_corner_mass: F4,
-        corner_mass_gravity: F4,
-        mass_gravity_half_size: F4,
-        /// The stopping rule's thresholds (`stopping::StopRule`).
-        energy_threshold: F4,
-        kinetic_threshold: F4,
-        runaway: F4,
-        max_steps: F4,
-        /// Lanes on the whole-die-norm friction law / on the point-mass stop energy.
-        whole_die_norm: F4,
-        point_masses: F4,
-    }
-
-    /// Four rolls in structure-of-arrays form.
+    /// Four rolls, one per lane, and the `Simulation` each was set up by.
     struct Lanes {
-        position: V3,
-        velocity: V3,
-        angular_momentum: V3,
-        angular_velocity: V3,
-        /// Row-major step rotation; meaningful in lanes of `rotating`.
-        rotation: [F4; 9],
-        rotating: F4,
-        offsets: [V3; 8],
-        forces: [V3; 8],
-        depths: [F4; 8],
-        /// Bit k: corner k is below the ground in some lane. A corner outside it has +0.0
-        /// depth and force in every lane, and the sums below skip it (see [`Lanes::step`]).
-        touching_corners: u8,
-        in_contact: F4,
-        time_s: F4,
-        /// Steps taken, as exact whole numbers.
-        step: F4,
-        c: LaneConstants,
+        k: Kernel<F4>,
         /// Lanes holding a roll that has not ended.
         live: F4,
-        /// Per lane: the roll's index and its `Simulation`, which the lane's state is stored
-        /// back into for the end-of-step decision and the result.
+        /// Per lane: the roll's index, its start face and its `Simulation`, which the lane's
+        /// state is stored back into at the end.
         rolls: [Option<(usize, u8, Simulation)>; LANES],
-        /// Per lane: inertia and Δt for the spin rebuild.
-        inertia: [f64; LANES],
-        dt: [f64; LANES],
     }
 
     impl Lanes {
-        #[inline(always)]
-        fn new() -> Lanes {
-            let z = F4::zero();
-            Lanes {
-                position: V3::zero(),
-                velocity: V3::zero(),
-                angular_momentum: V3::zero(),
-                angular_velocity: V3::zero(),
-                rotation: [z; 9],
-                rotating: z,
-                offsets: [V3::zero(); 8],
-                forces: [V3::zero(); 8],
-                depths: [z; 8],
-                touching_corners: 0,
-                in_contact: z,
-                time_s: z,
-                step: z,
-                c: LaneConstants {
-                    dt: z,
-                    mass: F4::splat(1.0),
-                    weight_z: z,
-                    flight_kick: V3::zero(),
-                    stiffness: z,
-                    damping: z,
-                    friction: z,
-                    half_mass: z,
-                    mass_gravity: z,
-                    half_stiffness: z,
-                    half_size: z,
-                    half_corner_mass: z,
-                    corner_mass_gravity: z,
-                    mass_gravity_half_size: z,
-                    energy_threshold: z,
-                    kinetic_threshold: z,
-                    runaway: z,
-                    max_steps: z,
-                    whole_die_norm: z,
-                    point_masses: z,
+        /// Four lanes from one roll's kernel (each is loaded before it steps, or parked).
+        fn new(first: &Kernel<f64>) -> Lanes {
+            let s = &first.state;
+            let splat3 = |v: &Vector3<f64>| Vector3::new(F4::splat(v.x), F4::splat(v.y), F4::splat(v.z));
+            let c = &first.c;
+            let k = Kernel {
+                state: State {
+                    position: splat3(&s.position),
+                    velocity: splat3(&s.velocity),
+                    angular_momentum: splat3(&s.angular_momentum),
+                    corner_offsets: s.corner_offsets.each_ref().map(splat3),
+                    corner_forces: s.corner_forces.each_ref().map(splat3),
+                    corner_depths: s.corner_depths.map(F4::splat),
+                    time_s: F4::splat(s.time_s),
+                    step: F4::splat(s.step as f64),
                 },
-                live: z,
+                angular_velocity: splat3(&first.angular_velocity),
+                rotation: first.rotation.map(F4::splat),
+                rotating: F4::from_bits(if first.rotating { 0b1111 } else { 0 }),
+                in_contact: F4::from_bits(if first.in_contact { 0b1111 } else { 0 }),
+                touching_corners: first.touching_corners,
+                c: crate::physics::kernel::Constants {
+                    dt: F4::splat(c.dt),
+                    mass: F4::splat(c.mass),
+                    weight_z: F4::splat(c.weight_z),
+                    flight_kick: splat3(&c.flight_kick),
+                    stiffness: F4::splat(c.stiffness),
+                    damping: F4::splat(c.damping),
+                    friction: F4::splat(c.friction),
+                    half_mass: F4::splat(c.half_mass),
+                    mass_gravity: F4::splat(c.mass_gravity),
+                    half_stiffness: F4::splat(c.half_stiffness),
+                    half_size: F4::splat(c.half_size),
+                    half_corner_mass: F4::splat(c.half_corner_mass),
+                    corner_mass_gravity: F4::splat(c.corner_mass_gravity),
+                    mass_gravity_half_size: F4::splat(c.mass_gravity_half_size),
+                    corner_masses: c.corner_masses.map(F4::splat),
+                    gravity: F4::splat(c.gravity),
+                    loaded_mass_gravity_half_size: F4::splat(c.loaded_mass_gravity_half_size),
+                    energy_threshold: F4::splat(c.energy_threshold),
+                    kinetic_threshold: F4::splat(c.kinetic_threshold),
+                    runaway: F4::splat(c.runaway),
+                    max_steps: F4::splat(c.max_steps as f64),
+                    whole_die_norm: F4::from_bits(if c.whole_die_norm { 0b1111 } else { 0 }),
+                    point_masses: F4::from_bits(if c.point_masses { 0b1111 } else { 0 }),
+                    loaded: F4::from_bits(if c.loaded { 0b1111 } else { 0 }),
+                },
+                bodies: [first.bodies[0]; LANES],
+            };
+            Lanes {
+                k,
+                live: F4::zero(),
                 rolls: [None, None, None, None],
-                inertia: [1.0; LANES],
-                dt: [0.0; LANES],
             }
         }
 
         /// Puts roll `index` into lane `l`, in the state `Simulation` starts it in.
         #[inline(always)]
-        fn load(&mut self, l: usize, index: usize, params: &Params, initial: &InitialCondition) {
-            let sim = Simulation::for_outcome(params, initial);
-            let s = &sim.state;
-            self.position.set(l, &s.position);
-            self.velocity.set(l, &s.velocity);
-            self.angular_momentum.set(l, &s.angular_momentum);
-            self.angular_velocity.set(l, &sim.angular_velocity);
-            self.set_rotation(l, sim.step_rotation.as_ref());
-            for k in 0..8 {
-                self.offsets[k].set(l, &s.corner_offsets[k]);
-                self.forces[k].set(l, &s.corner_forces[k]);
-                self.depths[k].set_lane(l, s.corner_depths[k]);
+        fn load(&mut self, l: usize, index: usize, sim: Simulation) {
+            let from = &sim.k;
+            let (k, s) = (&mut self.k, &from.state);
+            set3(&mut k.state.position, l, &s.position);
+            set3(&mut k.state.velocity, l, &s.velocity);
+            set3(&mut k.state.angular_momentum, l, &s.angular_momentum);
+            for c in 0..8 {
+                set3(&mut k.state.corner_offsets[c], l, &s.corner_offsets[c]);
+                set3(&mut k.state.corner_forces[c], l, &s.corner_forces[c]);
+                k.state.corner_depths[c].set_lane(l, s.corner_depths[c]);
             }
-            set_mask(&mut self.in_contact, l, sim.in_contact);
-            self.touching_corners = (0..8)
-                .filter(|&k| self.depths[k].gt(F4::zero()).bits() != 0)
-                .fold(0, |bits, k| bits | 1 << k);
-            self.time_s.set_lane(l, s.time_s);
-            self.step.set_lane(l, s.step as f64);
-            let (mass, gravity) = (params.total_mass(), params.world.gravity);
-            let (a, m) = (params.die.half_size, params.die.corner_mass);
-            let c = &mut self.c;
-            c.dt.set_lane(l, params.integrator.dt);
-            c.mass.set_lane(l, mass);
-            c.weight_z.set_lane(l, mass * -gravity);
-            let (dt, zero) = (params.integrator.dt, 0.0);
-            let kick = Vector3::new(
-                (zero / mass) * dt,
-                (zero / mass) * dt,
-                ((zero + mass * -gravity) / mass) * dt,
-            );
-            c.flight_kick.set(l, &kick);
-            c.stiffness.set_lane(l, params.ground.stiffness);
-            c.damping.set_lane(l, params.ground.damping);
-            c.friction.set_lane(l, params.ground.friction);
-            c.half_mass.set_lane(l, 0.5 * mass);
-            c.mass_gravity.set_lane(l, mass * gravity);
-            c.half_stiffness.set_lane(l, 0.5 * params.ground.stiffness);
-            c.half_size.set_lane(l, a);
-            c.half_corner_mass.set_lane(l, 0.5 * m);
-            c.corner_mass_gravity.set_lane(l, m * gravity);
-            c.mass_gravity_half_size.set_lane(l, mass * gravity * a);
-            let rule = sim.stop_rule();
-            c.energy_threshold.set_lane(l, rule.energy_threshold);
-            c.kinetic_threshold.set_lane(l, rule.kinetic_threshold);
-            c.runaway.set_lane(l, sim.runaway_energy);
-            c.max_steps.set_lane(l, params.max_steps() as f64);
-            let whole = params.ground.friction_law == FrictionLaw::WholeDieNorm;
-            set_mask(&mut c.whole_die_norm, l, whole);
-            let point = params.integrator.stop_energy == StopEnergy::PointMasses;
-            set_mask(&mut c.point_masses, l, point);
-            self.inertia[l] = params.inertia();
-            self.dt[l] = params.integrator.dt;
+            k.state.time_s.set_lane(l, s.time_s);
+            k.state.step.set_lane(l, s.step as f64);
+            set3(&mut k.angular_velocity, l, &from.angular_velocity);
+            for e in 0..9 {
+                k.rotation[e].set_lane(l, from.rotation[e]);
+            }
+            set_mask(&mut k.rotating, l, from.rotating);
+            set_mask(&mut k.in_contact, l, from.in_contact);
+            k.touching_corners = (0..8)
+                .filter(|&c| F4::bits(k.state.corner_depths[c].gt(F4::zero())) != 0)
+                .fold(0, |bits, c| bits | 1 << c);
+            let (c, f) = (&mut k.c, &from.c);
+            c.dt.set_lane(l, f.dt);
+            c.mass.set_lane(l, f.mass);
+            c.weight_z.set_lane(l, f.weight_z);
+            set3(&mut c.flight_kick, l, &f.flight_kick);
+            c.stiffness.set_lane(l, f.stiffness);
+            c.damping.set_lane(l, f.damping);
+            c.friction.set_lane(l, f.friction);
+            c.half_mass.set_lane(l, f.half_mass);
+            c.mass_gravity.set_lane(l, f.mass_gravity);
+            c.half_stiffness.set_lane(l, f.half_stiffness);
+            c.half_size.set_lane(l, f.half_size);
+            c.half_corner_mass.set_lane(l, f.half_corner_mass);
+            c.corner_mass_gravity.set_lane(l, f.corner_mass_gravity);
+            c.mass_gravity_half_size.set_lane(l, f.mass_gravity_half_size);
+            for corner in 0..8 {
+                c.corner_masses[corner].set_lane(l, f.corner_masses[corner]);
+            }
+            c.gravity.set_lane(l, f.gravity);
+            c.loaded_mass_gravity_half_size
+                .set_lane(l, f.loaded_mass_gravity_half_size);
+            c.energy_threshold.set_lane(l, f.energy_threshold);
+            c.kinetic_threshold.set_lane(l, f.kinetic_threshold);
+            c.runaway.set_lane(l, f.runaway);
+            c.max_steps.set_lane(l, f.max_steps as f64);
+            set_mask(&mut c.whole_die_norm, l, f.whole_die_norm);
+            set_mask(&mut c.point_masses, l, f.point_masses);
+            set_mask(&mut c.loaded, l, f.loaded);
+            k.bodies[l] = from.bodies[0];
             set_mask(&mut self.live, l, true);
             let start_face = face_most_nearly_up(&s.corner_offsets);
             self.rolls[l] = Some((index, start_face, sim));
         }
 
-        /// Empties lane `l` for good: a still die high above the ground without gravity, so
-        /// it never touches and costs the other lanes nothing (it turns by the identity).
+        /// Empties lane `l` for good: a still fair die high above the ground without
+        /// gravity, so it never touches nor spins and costs the other lanes nothing (it turns
+        /// by the identity).
         fn park(&mut self, l: usize) {
+            let k = &mut self.k;
             set_mask(&mut self.live, l, false);
-            set_mask(&mut self.in_contact, l, false);
-            self.set_rotation(l, Some(&Matrix3::identity()));
-            self.position.set(l, &Vector3::new(0.0, 0.0, 1e9));
-            self.velocity.set(l, &Vector3::zeros());
-            self.c.weight_z.set_lane(l, 0.0);
-            self.c.flight_kick.set(l, &Vector3::zeros());
-            for k in 0..8 {
-                self.forces[k].set(l, &Vector3::zeros());
-                self.depths[k].set_lane(l, 0.0);
+            set_mask(&mut k.in_contact, l, false);
+            set_mask(&mut k.rotating, l, true);
+            for (e, entry) in k.rotation.iter_mut().enumerate() {
+                entry.set_lane(l, if e % 4 == 0 { 1.0 } else { 0.0 });
             }
-        }
-
-        #[inline(always)]
-        fn set_rotation(&mut self, l: usize, m: Option<&Matrix3<f64>>) {
-            set_mask(&mut self.rotating, l, m.is_some());
-            if let Some(m) = m {
-                for i in 0..3 {
-                    for j in 0..3 {
-                        self.rotation[3 * i + j].set_lane(l, m[(i, j)]);
-                    }
-                }
+            set3(&mut k.state.position, l, &Vector3::new(0.0, 0.0, 1e9));
+            set3(&mut k.state.velocity, l, &Vector3::zeros());
+            k.c.weight_z.set_lane(l, 0.0);
+            set3(&mut k.c.flight_kick, l, &Vector3::zeros());
+            set_mask(&mut k.c.loaded, l, false);
+            k.bodies[l] = k.bodies[(l + 1) % LANES];
+            for c in 0..8 {
+                set3(&mut k.state.corner_forces[c], l, &Vector3::zeros());
+                k.state.corner_depths[c].set_lane(l, 0.0);
             }
         }
 
@@ -537,301 +461,27 @@ mod avx2 {
         #[inline(always)]
         fn store(&mut self, l: usize) -> &mut Simulation {
             let (_, _, sim) = self.rolls[l].as_mut().expect("a live lane holds a roll");
-            let s = &mut sim.state;
-            s.position = self.position.get(l);
-            s.velocity = self.velocity.get(l);
-            s.angular_momentum = self.angular_momentum.get(l);
-            for k in 0..8 {
-                s.corner_offsets[k] = self.offsets[k].get(l);
-                s.corner_forces[k] = self.forces[k].get(l);
-                s.corner_depths[k] = self.depths[k].lane(l);
+            let (k, to) = (&self.k, &mut sim.k);
+            let (from, s) = (&k.state, &mut to.state);
+            s.position = lane3(&from.position, l);
+            s.velocity = lane3(&from.velocity, l);
+            s.angular_momentum = lane3(&from.angular_momentum, l);
+            for c in 0..8 {
+                s.corner_offsets[c] = lane3(&from.corner_offsets[c], l);
+                s.corner_forces[c] = lane3(&from.corner_forces[c], l);
+                s.corner_depths[c] = from.corner_depths[c].lane(l);
             }
-            s.time_s = self.time_s.lane(l);
-            s.step = self.step.lane(l) as u64;
-            sim.angular_velocity = self.angular_velocity.get(l);
-            sim.in_contact = self.in_contact.bits() & (1 << l) != 0;
-            // The step rotation is not stored: nothing after the end reads it.
+            s.time_s = from.time_s.lane(l);
+            s.step = from.step.lane(l) as u64;
+            to.angular_velocity = lane3(&k.angular_velocity, l);
+            to.rotation = k.rotation.map(|e| e.lane(l));
+            to.rotating = F4::bits(k.rotating) & (1 << l) != 0;
+            to.in_contact = F4::bits(k.in_contact) & (1 << l) != 0;
+            to.touching_corners = (0..8)
+                .filter(|&c| s.corner_depths[c] > 0.0)
+                .fold(0, |bits, c| bits | 1 << c);
             sim
         }
-
-        /// One step of every lane: the scalar [`Simulation::step`] in vector form.
-        #[inline(always)]
-        fn step(&mut self) {
-            let c = self.c;
-            let contact_bits = self.in_contact.bits();
-            let touching = self.touching_corners;
-            // 1. kick. Out of contact every force is +0.0 and each lane's kick is its flight
-            // constant, as in the scalar step. Skipping corners whose force is +0.0 in every
-            // lane keeps the scalar's sum bit for bit: adding +0.0 only turns a −0.0 into
-            // +0.0, and doing that once at the end gives the same as anywhere in between.
-            if contact_bits != 0 {
-                let mut f: Option<V3> = None;
-                for k in (0..8).filter(|k| touching & (1 << k) != 0) {
-                    f = Some(f.map_or(self.forces[k], |f| f.add(self.forces[k])));
-                }
-                let f = f.unwrap_or_else(V3::zero);
-                let force = if touching != 0xff { f.add(V3::zero()) } else { f };
-                // A lane in flight among them gets its flight constant this way too: its
-                // forces are +0.0, so these are the very quotients the constant holds.
-                let v = &mut self.velocity;
-                v.x = v.x + (force.x / c.mass) * c.dt;
-                v.y = v.y + (force.y / c.mass) * c.dt;
-                v.z = v.z + ((force.z + c.weight_z) / c.mass) * c.dt;
-            } else {
-                self.velocity = self.velocity.add(c.flight_kick);
-            }
-            // 2. drift.
-            self.position = self.position.add(self.velocity.scale(c.dt));
-            // 3. torque and L, then 4. the spin, in lanes that touched the ground.
-            if contact_bits != 0 {
-                // The scalar sum starts from +0.0, so a skipped corner's ±0.0 term changes
-                // nothing (the offsets are finite: a lane ends as soon as they are not).
-                let mut torque = V3::zero();
-                for k in (0..8).filter(|k| touching & (1 << k) != 0) {
-                    torque = torque.add(self.offsets[k].cross(self.forces[k]));
-                }
-                let l_new = self.angular_momentum.add(torque.scale(c.dt));
-                self.angular_momentum = if contact_bits == 0b1111 {
-                    l_new
-                } else {
-                    V3::select(self.in_contact, l_new, self.angular_momentum)
-                };
-                self.respin(contact_bits);
-            }
-            // 5. rotate the corner rows, each entry (a₁b₁ + a₂b₂) + a₃b₃.
-            // Parked lanes turn too (by the identity), so the usual case is all four lanes
-            // turning and the rows are stored whole: a per-lane select against memory
-            // compiles to masked stores, which are slow.
-            let rotating = self.rotating.bits();
-            if rotating != 0 {
-                let m = &self.rotation;
-                for r in &mut self.offsets {
-                    let turned = V3 {
-                        x: (r.x * m[0] + r.y * m[3]) + r.z * m[6],
-                        y: (r.x * m[1] + r.y * m[4]) + r.z * m[7],
-                        z: (r.x * m[2] + r.y * m[5]) + r.z * m[8],
-                    };
-                    *r = if rotating == 0b1111 {
-                        turned
-                    } else {
-                        V3::select(self.rotating, turned, *r)
-                    };
-                }
-            }
-            // 6. forces at the new state.
-            self.update_forces();
-            // 7. the clock.
-            self.time_s = self.time_s + c.dt;
-            self.step = self.step + F4::splat(1.0);
-        }
-
-        /// ω and the step rotation rebuilt by [`spin`] in the lanes of `lanes`. The lanes
-        /// are gathered into plain arrays and each vector is loaded once at the end: writing
-        /// one lane at a time into a vector would stall on every write.
-        #[inline(always)]
-        fn respin(&mut self, lanes: u32) {
-            let w = &self.angular_velocity;
-            let mut omega = [w.x.to_array(), w.y.to_array(), w.z.to_array()];
-            let mut m: [[f64; 4]; 9] = std::array::from_fn(|e| self.rotation[e].to_array());
-            let l = &self.angular_momentum;
-            let momentum = [l.x.to_array(), l.y.to_array(), l.z.to_array()];
-            let mut rotating = self.rotating.bits();
-            for lane in (0..LANES).filter(|lane| lanes & (1 << lane) != 0) {
-                let l = Vector3::new(momentum[0][lane], momentum[1][lane], momentum[2][lane]);
-                let (w, rotation) = spin(&l, self.inertia[lane], self.dt[lane]);
-                for i in 0..3 {
-                    omega[i][lane] = w[i];
-                }
-                match rotation {
-                    Some(r) => {
-                        rotating |= 1 << lane;
-                        for i in 0..3 {
-                            for j in 0..3 {
-                                m[3 * i + j][lane] = r[(i, j)];
-                            }
-                        }
-                    }
-                    None => rotating &= !(1 << lane),
-                }
-            }
-            self.angular_velocity = V3 {
-                x: F4::from_array(omega[0]),
-                y: F4::from_array(omega[1]),
-                z: F4::from_array(omega[2]),
-            };
-            self.rotation = m.map(F4::from_array);
-            self.rotating = F4::from_bits(rotating);
-        }
-
-        #[inline(always)]
-        fn corner_velocity(&self, r: &V3) -> V3 {
-            let (v, w) = (&self.velocity, &self.angular_velocity);
-            V3 {
-                x: v.x + (r.z * w.y - r.y * w.z),
-                y: v.y + (r.x * w.z - r.z * w.x),
-                z: v.z + (r.y * w.x - r.x * w.y),
-            }
-        }
-
-        #[inline(always)]
-        fn update_forces(&mut self) {
-            let c = self.c;
-            let z0 = self.position.z;
-            let zero = F4::zero();
-            let mut touching = [zero; 8];
-            let mut any = zero;
-            for (k, t) in touching.iter_mut().enumerate() {
-                let z = self.offsets[k].z + z0;
-                *t = z.lt(zero);
-                self.depths[k] = (-z).or_zero(*t);
-                any = any | *t;
-            }
-            // Lanes that neither touch now nor did before keep their +0.0 forces; a lane that
-            // just left the ground gets +0.0 from the masks below.
-            if (any | self.in_contact).bits() == 0 {
-                return;
-            }
-            self.in_contact = any;
-            let laws = c.whole_die_norm.bits();
-            let per_corner_lanes = laws != 0b1111;
-            let whole_lanes = laws != 0;
-            let mut touching_corners = 0u8;
-            for (k, t) in touching.iter().enumerate() {
-                if t.bits() != 0 {
-                    touching_corners |= 1 << k;
-                }
-            }
-            let previous = std::mem::replace(&mut self.touching_corners, touching_corners);
-            for k in (0..8).filter(|k| (previous & !touching_corners) & (1 << k) != 0) {
-                self.forces[k] = V3::zero();
-            }
-            // The whole-die norm needs every corner's velocity, the per-corner law only
-            // those of corners that touch.
-            let norm = if whole_lanes {
-                let (mut a, mut b, mut cc) = (zero, zero, zero);
-                for r in &self.offsets {
-                    let uk = self.corner_velocity(r);
-                    a = a + uk.x * uk.x;
-                    b = b + uk.x * uk.y;
-                    cc = cc + uk.y * uk.y;
-                }
-                let half_diff = (a - cc) / F4::splat(2.0);
-                ((a + cc) / F4::splat(2.0) + (half_diff * half_diff + b * b).sqrt()).sqrt()
-            } else {
-                zero
-            };
-            let norm_nonzero = norm.ne(zero);
-            for k in (0..8).filter(|k| touching_corners & (1 << k) != 0) {
-                let uk = self.corner_velocity(&self.offsets[k]);
-                let normal = self.depths[k] * c.stiffness;
-                let vertical = normal * (F4::splat(1.0) - c.damping * uk.z);
-                let (mut fx, mut fy) = (zero, zero);
-                if per_corner_lanes {
-                    let slip = (uk.x * uk.x + uk.y * uk.y).sqrt();
-                    let sliding = slip.gt(zero);
-                    let scale = -(c.friction * vertical.abs());
-                    fx = (scale * (uk.x / slip)).or_zero(sliding);
-                    fy = (scale * (uk.y / slip)).or_zero(sliding);
-                }
-                if whole_lanes {
-                    let wx = (-((uk.x / norm) * vertical) * c.friction).or_zero(norm_nonzero);
-                    let wy = (-((uk.y / norm) * vertical) * c.friction).or_zero(norm_nonzero);
-                    fx = F4::select(c.whole_die_norm, wx, fx);
-                    fy = F4::select(c.whole_die_norm, wy, fy);
-                }
-                self.forces[k] = V3 {
-                    x: fx.or_zero(touching[k]),
-                    y: fy.or_zero(touching[k]),
-                    z: vertical.or_zero(touching[k]),
-                };
-            }
-        }
-
-        /// Lanes whose roll may end at this state: a superset of those where
-        /// [`Simulation::check_end`] ends it, computed from the same energies bit for bit,
-        /// so a lane left out surely goes on. The decision itself is the scalar one.
-        #[inline(always)]
-        fn may_end(&self) -> u32 {
-            let c = &self.c;
-            let zero = F4::zero();
-            let (v, w, l) = (&self.velocity, &self.angular_velocity, &self.angular_momentum);
-            let translational = c.half_mass * ((v.x * v.x + v.y * v.y) + v.z * v.z);
-            let rotational = F4::splat(0.5) * ((w.x * l.x + w.y * l.y) + w.z * l.z);
-            let gravitational = c.mass_gravity * (self.position.z - c.half_size);
-            let mut elastic = zero;
-            // Terms are ≥ +0.0, so leaving out the +0.0 of corners that touch nowhere is exact.
-            if self.in_contact.bits() != 0 {
-                for k in (0..8).filter(|k| self.touching_corners & (1 << k) != 0) {
-                    let d = self.depths[k];
-                    elastic = elastic + (c.half_stiffness * d) * d;
-                }
-            }
-            let elastic = elastic.or_zero(self.in_contact);
-            let kinetic = translational + rotational;
-            let potential = gravitational + elastic;
-            let rigid = (kinetic + gravitational) + elastic;
-            let mut finite = rigid.finite();
-            let p = &self.position;
-            let v = &self.velocity;
-            let mut sum = (p.x + p.y) + (p.z + v.x) + (v.y + v.z);
-            for r in &self.offsets {
-                sum = sum + (r.x + r.y) + r.z;
-            }
-            // A sum of finite values can overflow to ±∞, which only flags a lane for the
-            // exact check; a NaN or ∞ term always makes the sum non-finite.
-            finite = finite & sum.finite();
-            let (stop, stop_kinetic) = if c.point_masses.bits() != 0 {
-                let (point_kinetic, point_total) = self.point_mass_parts();
-                (
-                    F4::select(c.point_masses, point_total, rigid),
-                    F4::select(c.point_masses, point_kinetic, kinetic),
-                )
-            } else {
-                (rigid, kinetic)
-            };
-            // `stopping::settles`, comparison for comparison.
-            let settles = stop.le(c.energy_threshold)
-                & stop_kinetic.le(c.kinetic_threshold)
-                & potential.le(c.energy_threshold);
-            let ends = !finite | rigid.gt(c.runaway) | settles | self.step.ge(c.max_steps);
-            (ends & self.live).bits()
-        }
-
-        /// The authors' point-mass energy as `(kinetic, total)`, in vector form.
-        #[inline(always)]
-        fn point_mass_parts(&self) -> (F4, F4) {
-            let c = &self.c;
-            let u: [V3; 8] = std::array::from_fn(|k| self.corner_velocity(&self.offsets[k]));
-            let mut kinetic = F4::zero();
-            for uk in &u {
-                kinetic = kinetic + uk.x * uk.x;
-            }
-            for uk in &u {
-                kinetic = kinetic + uk.y * uk.y;
-            }
-            for uk in &u {
-                kinetic = kinetic + uk.z * uk.z;
-            }
-            let (mut heights, mut ground) = (F4::zero(), F4::zero());
-            for k in 0..8 {
-                heights = heights + (self.offsets[k].z + self.position.z);
-                ground = ground + self.depths[k] * self.forces[k].z;
-            }
-            let kinetic = c.half_corner_mass * kinetic;
-            let total = kinetic + c.corner_mass_gravity * heights + F4::splat(0.5) * ground
-                - c.mass_gravity_half_size;
-            (kinetic, total)
-        }
-    }
-
-    fn set_mask(mask: &mut F4, l: usize, on: bool) {
-        let mut bits = mask.bits();
-        if on {
-            bits |= 1 << l;
-        } else {
-            bits &= !(1 << l);
-        }
-        *mask = F4::from_bits(bits);
     }
 
     /// [`roll_in_lanes`] with AVX2.
@@ -845,23 +495,39 @@ mod avx2 {
         done: &mut dyn FnMut(LaneResult<'_>),
         stop: &dyn Fn() -> bool,
     ) -> bool {
-        let mut lanes = Lanes::new();
-        let mut next = 0;
-        for l in 0..LANES.min(count) {
-            let (params, initial) = setup(next);
-            lanes.load(l, next, &params, &initial);
-            next += 1;
+        if count == 0 {
+            return true;
+        }
+        let (params, initial) = setup(0);
+        let first = Simulation::for_outcome(&params, &initial);
+        let mut lanes = Lanes::new(&first.k);
+        lanes.load(0, 0, first);
+        let mut next = 1;
+        for l in 1..LANES {
+            if next < count {
+                let (params, initial) = setup(next);
+                lanes.load(l, next, Simulation::for_outcome(&params, &initial));
+                next += 1;
+            } else {
+                lanes.park(l);
+            }
         }
         let mut since_check = 0;
-        while lanes.live.bits() != 0 {
-            lanes.step();
-            let mut ending = lanes.may_end();
+        while F4::bits(lanes.live) != 0 {
+            lanes.k.step(&mut NoHook);
+            let ends = lanes.k.ends();
+            let mut ending = F4::bits((ends.unstable | ends.settled | ends.timeout) & lanes.live);
             while ending != 0 {
                 let l = ending.trailing_zeros() as usize;
                 ending &= ending - 1;
-                let sim = lanes.store(l);
-                let Some(outcome) = sim.check_end() else { continue };
-                sim.set_outcome(outcome);
+                let status = if F4::bits(ends.unstable) & (1 << l) != 0 {
+                    Status::Unstable
+                } else if F4::bits(ends.settled) & (1 << l) != 0 {
+                    Status::Settled
+                } else {
+                    Status::Timeout
+                };
+                let outcome = lanes.store(l).finish(status);
                 let (index, start_face, sim) = lanes.rolls[l].take().expect("a live lane holds a roll");
                 done(LaneResult {
                     index,
@@ -871,7 +537,7 @@ mod avx2 {
                 });
                 if next < count {
                     let (params, initial) = setup(next);
-                    lanes.load(l, next, &params, &initial);
+                    lanes.load(l, next, Simulation::for_outcome(&params, &initial));
                     next += 1;
                 } else {
                     lanes.park(l);

@@ -10,7 +10,7 @@
 use super::body::{CORNER_SIGNS, FACE_NORMALS, body_corner_offsets, face_most_nearly_up, opposite_face};
 use super::initial::InitialCondition;
 use super::params::Params;
-use super::sim::spin;
+use super::spin::spin;
 use super::stopping::StopRule;
 use nalgebra::{Matrix3, Vector3};
 
@@ -120,27 +120,29 @@ impl LoadedMass {
         self.face_rules[down as usize - 1]
     }
 
-    /// erg, the authors' point-mass energy with each corner's own mass, `(kinetic, total)`:
-    /// `½·Σ m_k·|u_k|²`, `g·Σ m_k·(z + r_k,z)`, `½·Σ d_k·P_k`, less `M·g·a`.
-    pub(crate) fn point_mass_parts(
-        &self,
-        corner_velocities: &[Vector3<f64>; 8],
-        corner_heights: &[f64; 8],
-        ground_term: f64,
-        gravity: f64,
-        half_size: f64,
-    ) -> (f64, f64) {
-        let mut kinetic = 0.0;
-        let mut heights = 0.0;
-        for k in 0..8 {
-            let m = self.corner_mass + self.extra[k];
-            kinetic += m * corner_velocities[k].norm_squared();
-            heights += m * corner_heights[k];
+    /// The widest rule over the faces: the largest of each threshold, which every face's
+    /// rule passes within (the step's cheap screen before the face down is looked up).
+    pub(crate) fn widest_stop_rule(&self) -> StopRule {
+        let widest = |threshold: fn(&StopRule) -> f64| {
+            self.face_rules
+                .iter()
+                .map(threshold)
+                .fold(f64::NEG_INFINITY, f64::max)
+        };
+        StopRule {
+            energy_threshold: widest(|r| r.energy_threshold),
+            kinetic_threshold: widest(|r| r.kinetic_threshold),
         }
-        let kinetic = 0.5 * kinetic;
+    }
+
+    /// The authors' point-mass energy with each corner's own mass: the corner masses
+    /// `m + Δm_k` (g), and the total mass `8·m + ΣΔm_k` (g) its `M·g·a` term uses.
+    pub(crate) fn point_masses(&self) -> ([f64; 8], f64) {
         let total_mass = self.uniform_mass + self.extra.iter().sum::<f64>();
-        let total = kinetic + gravity * heights + 0.5 * ground_term - total_mass * gravity * half_size;
-        (kinetic, total)
+        (
+            std::array::from_fn(|k| self.corner_mass + self.extra[k]),
+            total_mass,
+        )
     }
 }
 

@@ -5,17 +5,20 @@
 pub(crate) mod body;
 pub(crate) mod energy;
 pub(crate) mod initial;
+pub(crate) mod kernel;
 pub mod lanes;
 pub(crate) mod mass;
 pub mod params;
 pub mod registry;
 pub(crate) mod sim;
+pub(crate) mod spin;
 pub(crate) mod stability;
 pub mod stopping;
 
 pub(crate) use body::{face_most_nearly_up, opposite_face};
 pub(crate) use energy::Energy;
 pub use initial::{InitialCondition, RandomRanges};
+pub use kernel::Lane;
 pub use params::{Die, FrictionLaw, Ground, Integrator, Limits, ParamError, Params, StopEnergy, World};
 pub use sim::{ContactForce, EnergyLedger, Outcome, Simulation, State, Status};
 pub use stability::{Limit, Reading, Stability, UnstableReason};

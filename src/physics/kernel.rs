@@ -1,0 +1,839 @@
+//! The paper's step, written once over a lane type: the scalar engine runs it on `f64`
+//! (one roll), the lane engine on a 4-lane AVX2 vector (four rolls side by side).
+//!
+//! Bit identity between the two widths rests on three facts: every operation used here
+//! (`+ − × ÷ √`, `abs`, negation, comparisons) is exactly rounded, or exact, in both
+//! widths; Rust never fuses a multiply and an add; and where one lane's value must stay
+//! +0.0 (a corner above the ground, a roll in flight) the kernel selects +0.0 rather than
+//! computing a product that might be −0.0. So a lane of the vector does the scalar roll's
+//! arithmetic operation for operation, and both reproduce the authors' reference
+//! trajectories (tests/data/reference/README.md §2 and §9: sums in corner order, divisions
+//! where they divided).
+//!
+//! Two stages run per roll in scalar code whatever the width, each for a reason given where
+//! it happens: the spin (libm's `sin`/`cos`, [`super::spin`]) and, only for a loaded die
+//! near rest, the stopping rule of the face it lies on.
+
+use super::body::body_corner_offsets;
+use super::initial::InitialCondition;
+use super::mass::LoadedMass;
+use super::params::{FrictionLaw, Params, StopEnergy};
+use super::spin::spin;
+use super::stopping::StopRule;
+use nalgebra::{Matrix3, Scalar, Vector3};
+use std::fmt::Debug;
+use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
+
+/// A floating-point lane type: `f64` (one roll) or a vector of several rolls. Every
+/// arithmetic operation acts on each lane alone and rounds exactly as the `f64` one does.
+pub trait Lane:
+    Scalar
+    + Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// Per-lane truth values.
+    type Mask: Copy + BitAnd<Output = Self::Mask> + BitOr<Output = Self::Mask> + Not<Output = Self::Mask>;
+    /// Steps taken, per lane.
+    type Count: Copy + Debug + PartialEq;
+    /// One `T` per lane.
+    type PerLane<T: Copy>: Copy + AsRef<[T]> + AsMut<[T]>;
+    /// The number of lanes.
+    const WIDTH: usize;
+
+    fn splat(x: f64) -> Self;
+    fn sqrt(self) -> Self;
+    /// Clears the sign bit, as `f64::abs`.
+    fn abs(self) -> Self;
+    /// `<`, `<=`, `>`, `!=` per lane (false with a NaN, except `!=`).
+    fn lt(self, other: Self) -> Self::Mask;
+    fn le(self, other: Self) -> Self::Mask;
+    fn gt(self, other: Self) -> Self::Mask;
+    fn ne(self, other: Self) -> Self::Mask;
+    /// Neither infinite nor NaN.
+    fn finite(self) -> Self::Mask;
+    /// `if mask { yes } else { no }` per lane.
+    fn select(mask: Self::Mask, yes: Self, no: Self) -> Self;
+    /// `if mask { self } else { +0.0 }` per lane.
+    fn or_zero(self, mask: Self::Mask) -> Self;
+    /// Bit `l` set where lane `l` of `mask` is.
+    fn bits(mask: Self::Mask) -> u32;
+    fn mask_from_bits(bits: u32) -> Self::Mask;
+    fn to_lanes(self) -> Self::PerLane<f64>;
+    fn from_lanes(lanes: Self::PerLane<f64>) -> Self;
+    fn per_lane<T: Copy>(f: impl FnMut(usize) -> T) -> Self::PerLane<T>;
+    fn count_up(count: Self::Count) -> Self::Count;
+    fn count_reached(count: Self::Count, limit: Self::Count) -> Self::Mask;
+
+    #[inline(always)]
+    fn zero() -> Self {
+        Self::splat(0.0)
+    }
+    #[inline(always)]
+    fn lane(self, l: usize) -> f64 {
+        self.to_lanes().as_ref()[l]
+    }
+}
+
+impl Lane for f64 {
+    type Mask = bool;
+    type Count = u64;
+    type PerLane<T: Copy> = [T; 1];
+    const WIDTH: usize = 1;
+
+    #[inline(always)]
+    fn splat(x: f64) -> f64 {
+        x
+    }
+    #[inline(always)]
+    fn sqrt(self) -> f64 {
+        f64::sqrt(self)
+    }
+    #[inline(always)]
+    fn abs(self) -> f64 {
+        f64::abs(self)
+    }
+    #[inline(always)]
+    fn lt(self, other: f64) -> bool {
+        self < other
+    }
+    #[inline(always)]
+    fn le(self, other: f64) -> bool {
+        self <= other
+    }
+    #[inline(always)]
+    fn gt(self, other: f64) -> bool {
+        self > other
+    }
+    #[inline(always)]
+    fn ne(self, other: f64) -> bool {
+        self != other
+    }
+    #[inline(always)]
+    fn finite(self) -> bool {
+        self.is_finite()
+    }
+    #[inline(always)]
+    fn select(mask: bool, yes: f64, no: f64) -> f64 {
+        if mask { yes } else { no }
+    }
+    #[inline(always)]
+    fn or_zero(self, mask: bool) -> f64 {
+        if mask { self } else { 0.0 }
+    }
+    #[inline(always)]
+    fn bits(mask: bool) -> u32 {
+        mask as u32
+    }
+    #[inline(always)]
+    fn mask_from_bits(bits: u32) -> bool {
+        bits & 1 != 0
+    }
+    #[inline(always)]
+    fn to_lanes(self) -> [f64; 1] {
+        [self]
+    }
+    #[inline(always)]
+    fn from_lanes(lanes: [f64; 1]) -> f64 {
+        lanes[0]
+    }
+    #[inline(always)]
+    fn per_lane<T: Copy>(mut f: impl FnMut(usize) -> T) -> [T; 1] {
+        [f(0)]
+    }
+    #[inline(always)]
+    fn count_up(count: u64) -> u64 {
+        count + 1
+    }
+    #[inline(always)]
+    fn count_reached(count: u64, limit: u64) -> bool {
+        count >= limit
+    }
+}
+
+/// The bits of every lane.
+#[inline(always)]
+fn all_lanes<L: Lane>() -> u32 {
+    (1 << L::WIDTH) - 1
+}
+
+#[inline(always)]
+fn v3<L: Lane>(x: L, y: L, z: L) -> Vector3<L> {
+    Vector3::new(x, y, z)
+}
+
+#[inline(always)]
+fn zero3<L: Lane>() -> Vector3<L> {
+    v3(L::zero(), L::zero(), L::zero())
+}
+
+#[inline(always)]
+fn add3<L: Lane>(a: &Vector3<L>, b: &Vector3<L>) -> Vector3<L> {
+    v3(a.x + b.x, a.y + b.y, a.z + b.z)
+}
+
+#[inline(always)]
+fn scale3<L: Lane>(a: &Vector3<L>, s: L) -> Vector3<L> {
+    v3(a.x * s, a.y * s, a.z * s)
+}
+
+/// nalgebra's cross product, operation for operation.
+#[inline(always)]
+fn cross3<L: Lane>(a: &Vector3<L>, b: &Vector3<L>) -> Vector3<L> {
+    v3(
+        a.y * b.z - a.z * b.y,
+        a.z * b.x - a.x * b.z,
+        a.x * b.y - a.y * b.x,
+    )
+}
+
+#[inline(always)]
+fn select3<L: Lane>(mask: L::Mask, yes: &Vector3<L>, no: &Vector3<L>) -> Vector3<L> {
+    v3(
+        L::select(mask, yes.x, no.x),
+        L::select(mask, yes.y, no.y),
+        L::select(mask, yes.z, no.z),
+    )
+}
+
+/// Lane `l` of a vector of lanes.
+#[inline(always)]
+pub(crate) fn lane3<L: Lane>(v: &Vector3<L>, l: usize) -> Vector3<f64> {
+    Vector3::new(v.x.lane(l), v.y.lane(l), v.z.lane(l))
+}
+
+/// The dynamic state of the die at one instant (one per lane in a lane type).
+#[derive(Debug, Clone, PartialEq)]
+pub struct State<L: Lane = f64> {
+    /// cm, centre of mass.
+    pub position: Vector3<L>,
+    /// cm/s, centre of mass.
+    pub velocity: Vector3<L>,
+    /// g·cm²/s, about the centre of mass.
+    pub angular_momentum: Vector3<L>,
+    /// cm, corners 1..8 relative to the centre of mass, world frame.
+    pub corner_offsets: [Vector3<L>; 8],
+    /// dyn, the contact force on each corner at this state `(friction x, friction y, P)`.
+    pub corner_forces: [Vector3<L>; 8],
+    /// cm, how far each corner is below the ground (0 above it).
+    pub corner_depths: [L; 8],
+    /// s, simulated time.
+    pub time_s: L,
+    /// Steps taken since the initial condition.
+    pub step: L::Count,
+}
+
+/// The rigid-body energy terms, erg (docs/model.md, "Energy"), per lane.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct EnergyTerms<L> {
+    pub(crate) translational: L,
+    pub(crate) rotational: L,
+    pub(crate) gravitational: L,
+    pub(crate) elastic: L,
+}
+
+/// How each lane's roll ends at this state (at most one mask set per lane).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Ends<M> {
+    pub(crate) unstable: M,
+    pub(crate) settled: M,
+    pub(crate) timeout: M,
+}
+
+/// Per lane, what the spin and a loaded die's stopping rule need: the stages that run per
+/// roll in scalar code.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Body {
+    /// g·cm², the fair die's isotropic inertia.
+    inertia: f64,
+    /// s.
+    dt: f64,
+    /// A loaded die's mass model; `None` for the fair die, whose path it never touches.
+    loaded: Option<LoadedMass>,
+}
+
+impl Body {
+    /// ω = I⁻¹·L and the step rotation (the fair die's isotropic inertia, or a loaded
+    /// die's tensor at the current corner offsets).
+    #[inline(always)]
+    fn spin(
+        &self,
+        angular_momentum: &Vector3<f64>,
+        corner_offsets: impl FnOnce() -> [Vector3<f64>; 8],
+    ) -> (Vector3<f64>, Option<Matrix3<f64>>) {
+        match &self.loaded {
+            None => spin(angular_momentum, self.inertia, self.dt),
+            Some(m) => m.spin(angular_momentum, &corner_offsets(), self.dt),
+        }
+    }
+
+    pub(crate) fn loaded(&self) -> Option<&LoadedMass> {
+        self.loaded.as_ref()
+    }
+}
+
+/// Constants of one run per lane, derived once from the parameters (each lane may come from
+/// different parameters, e.g. in a map over the stiffness).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Constants<L: Lane> {
+    pub(crate) dt: L,
+    /// g, the total mass `M`.
+    pub(crate) mass: L,
+    /// dyn, `M·g` as a (negative) z force.
+    pub(crate) weight_z: L,
+    /// cm/s, the kick of a step in flight: the contact kick's quotients with every force
+    /// +0.0, `((0 + M·g_z)/M)·Δt` and `(0/M)·Δt`, the same for every flight step of a run.
+    pub(crate) flight_kick: Vector3<L>,
+    pub(crate) stiffness: L,
+    pub(crate) damping: L,
+    pub(crate) friction: L,
+    /// `0.5·M`, `M·g`, `0.5·k`: the energy's leading products, grouped as the scalar
+    /// formulas group them (left to right).
+    pub(crate) half_mass: L,
+    pub(crate) mass_gravity: L,
+    pub(crate) half_stiffness: L,
+    /// cm, `a`.
+    pub(crate) half_size: L,
+    /// The fair die's point-mass energy: `0.5·m`, `m·g`, `M·g·a`.
+    pub(crate) half_corner_mass: L,
+    pub(crate) corner_mass_gravity: L,
+    pub(crate) mass_gravity_half_size: L,
+    /// A loaded die's point-mass energy: each corner's mass `m + Δm_k`, `g`, `M·g·a`.
+    pub(crate) corner_masses: [L; 8],
+    pub(crate) gravity: L,
+    pub(crate) loaded_mass_gravity_half_size: L,
+    /// erg, the stopping rule's thresholds; for a loaded die the largest over its faces,
+    /// which only screens (the rule of the face down decides).
+    pub(crate) energy_threshold: L,
+    pub(crate) kinetic_threshold: L,
+    /// erg, a rigid-body energy above this is a runaway (fixed at t = 0).
+    pub(crate) runaway: L,
+    pub(crate) max_steps: L::Count,
+    /// Lanes on the whole-die-norm friction law, on the point-mass stop energy, with a
+    /// loaded die.
+    pub(crate) whole_die_norm: L::Mask,
+    pub(crate) point_masses: L::Mask,
+    pub(crate) loaded: L::Mask,
+}
+
+impl Constants<f64> {
+    /// The constants of `p`, with `runaway` still +∞ (it needs the initial energy).
+    pub(crate) fn new(p: &Params, loaded: Option<&LoadedMass>) -> Self {
+        let mass = p.total_mass();
+        let gravity = p.world.gravity;
+        let weight_z = mass * -gravity;
+        let (dt, zero) = (p.integrator.dt, 0.0);
+        let (a, m) = (p.die.half_size, p.die.corner_mass);
+        let rule = match loaded {
+            None => StopRule::new(p),
+            Some(l) => l.widest_stop_rule(),
+        };
+        let (corner_masses, loaded_total) = match loaded {
+            None => ([m; 8], mass),
+            Some(l) => l.point_masses(),
+        };
+        Constants {
+            dt,
+            mass,
+            weight_z,
+            flight_kick: Vector3::new(
+                (zero / mass) * dt,
+                (zero / mass) * dt,
+                ((zero + weight_z) / mass) * dt,
+            ),
+            stiffness: p.ground.stiffness,
+            damping: p.ground.damping,
+            friction: p.ground.friction,
+            half_mass: 0.5 * mass,
+            mass_gravity: mass * gravity,
+            half_stiffness: 0.5 * p.ground.stiffness,
+            half_size: a,
+            half_corner_mass: 0.5 * m,
+            corner_mass_gravity: m * gravity,
+            mass_gravity_half_size: mass * gravity * a,
+            corner_masses,
+            gravity,
+            loaded_mass_gravity_half_size: loaded_total * gravity * a,
+            energy_threshold: rule.energy_threshold,
+            kinetic_threshold: rule.kinetic_threshold,
+            runaway: f64::INFINITY,
+            max_steps: p.max_steps(),
+            whole_die_norm: p.ground.friction_law == FrictionLaw::WholeDieNorm,
+            point_masses: p.integrator.stop_energy == StopEnergy::PointMasses,
+            loaded: loaded.is_some(),
+        }
+    }
+}
+
+/// Calls the kernel makes into an engine's bookkeeping during a step; the energy ledger is
+/// the one user, and a run that does not keep it passes [`NoHook`].
+pub(crate) trait StepHook<L: Lane> {
+    /// Before the kick, at the state the contact forces were computed from.
+    fn before_kick(&mut self, kernel: &Kernel<L>);
+    /// After the kick and the new ω, before the corners turn.
+    fn after_spin(&mut self, kernel: &Kernel<L>);
+}
+
+/// No bookkeeping.
+pub(crate) struct NoHook;
+
+impl<L: Lane> StepHook<L> for NoHook {
+    #[inline(always)]
+    fn before_kick(&mut self, _: &Kernel<L>) {}
+    #[inline(always)]
+    fn after_spin(&mut self, _: &Kernel<L>) {}
+}
+
+/// One roll per lane: the state plus everything the step needs.
+#[derive(Debug, Clone)]
+pub(crate) struct Kernel<L: Lane> {
+    pub(crate) state: State<L>,
+    /// rad/s, `I⁻¹·L`, kept in step with the angular momentum.
+    pub(crate) angular_velocity: Vector3<L>,
+    /// Row-major step rotation applied to the corner rows; meaningful in lanes of
+    /// `rotating` (ω ≠ 0). It depends on ω alone, so it is rebuilt only when ω changed.
+    pub(crate) rotation: [L; 9],
+    pub(crate) rotating: L::Mask,
+    /// Lanes with a corner below the ground at the current state.
+    pub(crate) in_contact: L::Mask,
+    /// Bit k: corner k is below the ground in some lane. A corner outside it has +0.0
+    /// depth and force in every lane, and the sums skip it (see [`Kernel::step`]).
+    pub(crate) touching_corners: u8,
+    pub(crate) c: Constants<L>,
+    pub(crate) bodies: L::PerLane<Body>,
+}
+
+impl Kernel<f64> {
+    /// The die placed at `initial`, its spin and its forces computed (no range checks).
+    pub(crate) fn new(params: &Params, initial: &InitialCondition) -> Self {
+        let loaded = LoadedMass::new(params);
+        let c = Constants::new(params, loaded.as_ref());
+        let half_size = params.die.half_size;
+        let inertia = params.inertia();
+        let rotation = initial.rotation();
+        let corner_offsets = if let Some(m) = &loaded {
+            m.initial_corner_offsets(half_size, initial)
+        } else if initial.orientation == [0.0; 3] {
+            body_corner_offsets(half_size)
+        } else {
+            body_corner_offsets(half_size).map(|r| rotation * r)
+        };
+        let angular_momentum = match &loaded {
+            Some(m) => m.initial_angular_momentum(initial, &corner_offsets),
+            None => initial.angular_momentum_for(inertia),
+        };
+        let state = State {
+            position: Vector3::new(0.0, 0.0, initial.height),
+            velocity: Vector3::from(initial.velocity),
+            angular_momentum,
+            corner_offsets,
+            corner_forces: [Vector3::zeros(); 8],
+            corner_depths: [0.0; 8],
+            time_s: 0.0,
+            step: 0,
+        };
+        let mut kernel = Kernel {
+            state,
+            angular_velocity: Vector3::zeros(),
+            rotation: [0.0; 9],
+            rotating: false,
+            in_contact: false,
+            touching_corners: 0,
+            c,
+            bodies: [Body {
+                inertia,
+                dt: params.integrator.dt,
+                loaded,
+            }],
+        };
+        kernel.respin(1);
+        kernel.update_forces();
+        kernel
+    }
+}
+
+impl<L: Lane> Kernel<L> {
+    /// One step of Δt in every lane: kick → drift → L → ω → rotate → forces (docs/model.md,
+    /// "One time step").
+    #[inline(always)]
+    pub(crate) fn step(&mut self, hook: &mut impl StepHook<L>) {
+        let c = self.c;
+        let contact_bits = L::bits(self.in_contact);
+        let touching = self.touching_corners;
+        hook.before_kick(self);
+        let s = &mut self.state;
+        // 1. kick: v ← v + ((ΣF + M·g)/M)·Δt, forces summed in corner order. Out of contact
+        // every force is +0.0 and each lane's kick is its flight constant. Skipping corners
+        // whose force is +0.0 in every lane keeps the corner-order sum bit for bit: adding
+        // +0.0 only turns a −0.0 into +0.0, and doing that once at the end gives the same as
+        // anywhere in between.
+        if contact_bits != 0 {
+            let mut f: Option<Vector3<L>> = None;
+            for k in (0..8).filter(|k| touching & (1 << k) != 0) {
+                f = Some(f.map_or(s.corner_forces[k], |f| add3(&f, &s.corner_forces[k])));
+            }
+            let f = f.unwrap_or_else(zero3);
+            let force = if touching != 0xff { add3(&f, &zero3()) } else { f };
+            // A lane in flight among them gets its flight constant this way too: its
+            // forces are +0.0, so these are the very quotients the constant holds.
+            let v = &mut s.velocity;
+            v.x = v.x + (force.x / c.mass) * c.dt;
+            v.y = v.y + (force.y / c.mass) * c.dt;
+            v.z = v.z + ((force.z + c.weight_z) / c.mass) * c.dt;
+        } else {
+            s.velocity = add3(&s.velocity, &c.flight_kick);
+        }
+        // 2. drift with the new velocity (semi-implicit Euler).
+        s.position = add3(&s.position, &scale3(&s.velocity, c.dt));
+        // 3. angular momentum from the torque of the forces at the old corner offsets. The
+        // sum starts from +0.0, so a skipped corner's ±0.0 term changes nothing (the
+        // offsets are finite: a roll ends as soon as they are not).
+        if contact_bits != 0 {
+            let mut torque = zero3();
+            for k in (0..8).filter(|k| touching & (1 << k) != 0) {
+                torque = add3(&torque, &cross3(&s.corner_offsets[k], &s.corner_forces[k]));
+            }
+            let l_new = add3(&s.angular_momentum, &scale3(&torque, c.dt));
+            s.angular_momentum = if contact_bits == all_lanes::<L>() {
+                l_new
+            } else {
+                select3(self.in_contact, &l_new, &s.angular_momentum)
+            };
+        }
+        // 4. ω = I⁻¹·L and the rotation it implies, where L changed, and for a loaded die
+        // every step: its inertia turns with it, so ω changes in flight too.
+        let spinning = contact_bits | L::bits(c.loaded);
+        if spinning != 0 {
+            self.respin(spinning);
+        }
+        hook.after_spin(self);
+        // 5. rotate every corner row by |ω|·Δt about ω, each entry (a₁b₁ + a₂b₂) + a₃b₃ as
+        // reference BLAS. A lane whose ω = 0 keeps its rows; where every lane turns the
+        // rows are stored whole (a per-lane select against memory compiles to slow masked
+        // stores).
+        let rotating = L::bits(self.rotating);
+        if rotating != 0 {
+            let all = rotating == all_lanes::<L>();
+            let m = &self.rotation;
+            for r in &mut self.state.corner_offsets {
+                let turned = v3(
+                    (r.x * m[0] + r.y * m[3]) + r.z * m[6],
+                    (r.x * m[1] + r.y * m[4]) + r.z * m[7],
+                    (r.x * m[2] + r.y * m[5]) + r.z * m[8],
+                );
+                *r = if all {
+                    turned
+                } else {
+                    select3(self.rotating, &turned, r)
+                };
+            }
+        }
+        // 6. forces at the new state.
+        self.update_forces();
+        // 7. the clock.
+        self.state.time_s = self.state.time_s + c.dt;
+        self.state.step = L::count_up(self.state.step);
+    }
+
+    /// ω and the step rotation rebuilt in the lanes of `lanes`.
+    ///
+    /// This stage runs per lane in scalar code: the rotation needs `sin` and `cos`, and only
+    /// libm's scalar calls give the bits the reference data and the scalar engine have (no
+    /// vector sin/cos is correctly rounded, so a vector one would differ in the last bit).
+    /// The lanes are gathered into plain arrays and each vector is loaded once at the end:
+    /// writing one lane at a time into a vector would stall on every write.
+    #[inline(always)]
+    pub(crate) fn respin(&mut self, lanes: u32) {
+        let w = &self.angular_velocity;
+        let mut omega = [w.x.to_lanes(), w.y.to_lanes(), w.z.to_lanes()];
+        let mut m: [L::PerLane<f64>; 9] = std::array::from_fn(|e| self.rotation[e].to_lanes());
+        let l = &self.state.angular_momentum;
+        let momentum = [l.x.to_lanes(), l.y.to_lanes(), l.z.to_lanes()];
+        let mut rotating = L::bits(self.rotating);
+        for lane in (0..L::WIDTH).filter(|lane| lanes & (1 << lane) != 0) {
+            let l = Vector3::new(
+                momentum[0].as_ref()[lane],
+                momentum[1].as_ref()[lane],
+                momentum[2].as_ref()[lane],
+            );
+            let offsets = || self.state.corner_offsets.each_ref().map(|r| lane3(r, lane));
+            let (w, rotation) = self.bodies.as_ref()[lane].spin(&l, offsets);
+            for i in 0..3 {
+                omega[i].as_mut()[lane] = w[i];
+            }
+            match rotation {
+                Some(r) => {
+                    rotating |= 1 << lane;
+                    for i in 0..3 {
+                        for j in 0..3 {
+                            m[3 * i + j].as_mut()[lane] = r[(i, j)];
+                        }
+                    }
+                }
+                None => rotating &= !(1 << lane),
+            }
+        }
+        self.angular_velocity = v3(
+            L::from_lanes(omega[0]),
+            L::from_lanes(omega[1]),
+            L::from_lanes(omega[2]),
+        );
+        self.rotation = m.map(L::from_lanes);
+        self.rotating = L::mask_from_bits(rotating);
+    }
+
+    /// Velocity of a corner, `u_k = v + ω × r_k`, cm/s, in the authors' operation order.
+    #[inline(always)]
+    pub(crate) fn corner_velocity(&self, r: &Vector3<L>) -> Vector3<L> {
+        let (v, w) = (&self.state.velocity, &self.angular_velocity);
+        v3(
+            v.x + (r.z * w.y - r.y * w.z),
+            v.y + (r.x * w.z - r.z * w.x),
+            v.z + (r.y * w.x - r.x * w.y),
+        )
+    }
+
+    /// Recomputes every corner's depth and contact force at the current state (eq. 13–15),
+    /// under each lane's friction law.
+    #[inline(always)]
+    pub(crate) fn update_forces(&mut self) {
+        let c = self.c;
+        let z0 = self.state.position.z;
+        let zero = L::zero();
+        let mut touching = [L::mask_from_bits(0); 8];
+        let mut any = L::mask_from_bits(0);
+        for (k, t) in touching.iter_mut().enumerate() {
+            let z = self.state.corner_offsets[k].z + z0;
+            *t = z.lt(zero);
+            self.state.corner_depths[k] = (-z).or_zero(*t);
+            any = any | *t;
+        }
+        // Lanes that neither touch now nor did before keep their +0.0 forces; a lane that
+        // just left the ground gets +0.0 from the masks below.
+        if L::bits(any | self.in_contact) == 0 {
+            return;
+        }
+        self.in_contact = any;
+        let laws = L::bits(c.whole_die_norm);
+        let per_corner_lanes = laws != all_lanes::<L>();
+        let whole_lanes = laws != 0;
+        let mut touching_corners = 0u8;
+        for (k, t) in touching.iter().enumerate() {
+            if L::bits(*t) != 0 {
+                touching_corners |= 1 << k;
+            }
+        }
+        let previous = std::mem::replace(&mut self.touching_corners, touching_corners);
+        for k in (0..8).filter(|k| (previous & !touching_corners) & (1 << k) != 0) {
+            self.state.corner_forces[k] = zero3();
+        }
+        // The authors' law scales every corner's slip by one whole-die matrix norm: the
+        // largest singular value of the 8×2 matrix of horizontal corner velocities, from the
+        // largest eigenvalue of its 2×2 Gram matrix (within 5·10⁻¹⁶ of LAPACK's, reference
+        // §9). It needs every corner's velocity, the per-corner law only those that touch.
+        let norm = if whole_lanes {
+            let (mut a, mut b, mut cc) = (zero, zero, zero);
+            for r in &self.state.corner_offsets {
+                let uk = self.corner_velocity(r);
+                a = a + uk.x * uk.x;
+                b = b + uk.x * uk.y;
+                cc = cc + uk.y * uk.y;
+            }
+            let half_diff = (a - cc) / L::splat(2.0);
+            ((a + cc) / L::splat(2.0) + (half_diff * half_diff + b * b).sqrt()).sqrt()
+        } else {
+            zero
+        };
+        let norm_nonzero = norm.ne(zero);
+        for k in (0..8).filter(|k| touching_corners & (1 << k) != 0) {
+            let uk = self.corner_velocity(&self.state.corner_offsets[k]);
+            let normal = self.state.corner_depths[k] * c.stiffness;
+            let vertical = normal * (L::splat(1.0) - c.damping * uk.z);
+            let (mut fx, mut fy) = (zero, zero);
+            if per_corner_lanes {
+                let slip = (uk.x * uk.x + uk.y * uk.y).sqrt();
+                let sliding = slip.gt(zero);
+                let scale = -(c.friction * vertical.abs());
+                fx = (scale * (uk.x / slip)).or_zero(sliding);
+                fy = (scale * (uk.y / slip)).or_zero(sliding);
+            }
+            if whole_lanes {
+                let wx = (-((uk.x / norm) * vertical) * c.friction).or_zero(norm_nonzero);
+                let wy = (-((uk.y / norm) * vertical) * c.friction).or_zero(norm_nonzero);
+                fx = L::select(c.whole_die_norm, wx, fx);
+                fy = L::select(c.whole_die_norm, wy, fy);
+            }
+            self.state.corner_forces[k] = v3(
+                fx.or_zero(touching[k]),
+                fy.or_zero(touching[k]),
+                vertical.or_zero(touching[k]),
+            );
+        }
+    }
+
+    /// The rigid-body energy terms at the current state, erg.
+    #[inline(always)]
+    pub(crate) fn energy(&self) -> EnergyTerms<L> {
+        let c = &self.c;
+        let s = &self.state;
+        let (v, w, l) = (&s.velocity, &self.angular_velocity, &s.angular_momentum);
+        let mut elastic = L::zero();
+        // Terms are ≥ +0.0, so leaving out the +0.0 of corners that touch nowhere is exact.
+        if L::bits(self.in_contact) != 0 {
+            for k in (0..8).filter(|k| self.touching_corners & (1 << k) != 0) {
+                let d = s.corner_depths[k];
+                elastic = elastic + (c.half_stiffness * d) * d;
+            }
+        }
+        EnergyTerms {
+            translational: c.half_mass * ((v.x * v.x + v.y * v.y) + v.z * v.z),
+            // ω·L summed from +0.0 as nalgebra's dot product does (a −0.0 product first
+            // becomes +0.0).
+            rotational: L::splat(0.5) * (((L::zero() + w.x * l.x) + w.y * l.y) + w.z * l.z),
+            gravitational: c.mass_gravity * (s.position.z - c.half_size),
+            elastic: elastic.or_zero(self.in_contact),
+        }
+    }
+
+    /// erg, the authors' point-mass energy as `(kinetic, total)`: the corners as 8 point
+    /// masses and the ground term `½·Σ d_k·P_k` with the damped force (reference §2). The
+    /// fair die sums column-major as the authors did (every x component, then y, then z);
+    /// a loaded die weighs each corner's `|u_k|²` and height by its own mass.
+    #[inline(always)]
+    pub(crate) fn point_mass_parts(&self) -> (L, L) {
+        let c = &self.c;
+        let s = &self.state;
+        let u: [Vector3<L>; 8] = std::array::from_fn(|k| self.corner_velocity(&s.corner_offsets[k]));
+        let mut ground = L::zero();
+        for k in 0..8 {
+            ground = ground + s.corner_depths[k] * s.corner_forces[k].z;
+        }
+        let loaded = L::bits(c.loaded);
+        let fair = if loaded != all_lanes::<L>() {
+            let mut kinetic = L::zero();
+            for uk in &u {
+                kinetic = kinetic + uk.x * uk.x;
+            }
+            for uk in &u {
+                kinetic = kinetic + uk.y * uk.y;
+            }
+            for uk in &u {
+                kinetic = kinetic + uk.z * uk.z;
+            }
+            let mut heights = L::zero();
+            for r in &s.corner_offsets {
+                heights = heights + (r.z + s.position.z);
+            }
+            let kinetic = c.half_corner_mass * kinetic;
+            let total =
+                kinetic + c.corner_mass_gravity * heights + L::splat(0.5) * ground - c.mass_gravity_half_size;
+            (kinetic, total)
+        } else {
+            (L::zero(), L::zero())
+        };
+        if loaded == 0 {
+            return fair;
+        }
+        let (mut kinetic, mut heights) = (L::zero(), L::zero());
+        for ((uk, r), &m) in u.iter().zip(&s.corner_offsets).zip(&c.corner_masses) {
+            kinetic = kinetic + m * ((uk.x * uk.x + uk.y * uk.y) + uk.z * uk.z);
+            heights = heights + m * (r.z + s.position.z);
+        }
+        let kinetic = L::splat(0.5) * kinetic;
+        let total = kinetic + c.gravity * heights + L::splat(0.5) * ground - c.loaded_mass_gravity_half_size;
+        (
+            L::select(c.loaded, kinetic, fair.0),
+            L::select(c.loaded, total, fair.1),
+        )
+    }
+
+    /// Whether position, velocity and every corner offset are finite, per lane.
+    ///
+    /// A sum of finite values can overflow to ±∞, and a NaN or ∞ term always makes the sum
+    /// non-finite; so the sum screens, and only a lane it flags is looked at value by value.
+    #[inline(always)]
+    fn state_is_finite(&self) -> L::Mask {
+        let s = &self.state;
+        let (p, v) = (&s.position, &s.velocity);
+        let mut sum = (p.x + p.y) + (p.z + v.x) + (v.y + v.z);
+        for r in &s.corner_offsets {
+            sum = sum + (r.x + r.y) + r.z;
+        }
+        let screen = sum.finite();
+        if L::bits(!screen) == 0 {
+            return screen;
+        }
+        let finite3 = |r: &Vector3<L>| r.x.finite() & r.y.finite() & r.z.finite();
+        let mut all = finite3(p) & finite3(v);
+        for r in &s.corner_offsets {
+            all = all & finite3(r);
+        }
+        all
+    }
+
+    /// How the roll in each lane ends at this state (docs/model.md, "Stopping rule" and
+    /// "Stability"): unstable (not finite, or the energy ran away), settled, or out of time,
+    /// in that precedence.
+    ///
+    /// The stopping rule is a conjunction of comparisons, so the cheap rigid-body potential
+    /// is compared first: where no lane is below the threshold, the point-mass energy need
+    /// not be summed nor a loaded die's face looked up.
+    #[inline(always)]
+    pub(crate) fn ends(&self) -> Ends<L::Mask> {
+        let c = &self.c;
+        let e = self.energy();
+        let kinetic = e.translational + e.rotational;
+        let potential = e.gravitational + e.elastic;
+        let rigid = (kinetic + e.gravitational) + e.elastic;
+        let unstable = !(rigid.finite() & self.state_is_finite()) | rigid.gt(c.runaway);
+        let low = potential.le(c.energy_threshold);
+        let settled = if L::bits(low) == 0 {
+            L::mask_from_bits(0)
+        } else {
+            let (stop, stop_kinetic) = if L::bits(c.point_masses) != 0 {
+                let (point_kinetic, point_total) = self.point_mass_parts();
+                (
+                    L::select(c.point_masses, point_total, rigid),
+                    L::select(c.point_masses, point_kinetic, kinetic),
+                )
+            } else {
+                (rigid, kinetic)
+            };
+            // `stopping::settles`, comparison for comparison.
+            let settles = |energy_threshold: L, kinetic_threshold: L| {
+                stop.le(energy_threshold)
+                    & stop_kinetic.le(kinetic_threshold)
+                    & potential.le(energy_threshold)
+            };
+            let screened = settles(c.energy_threshold, c.kinetic_threshold);
+            let loaded = L::bits(screened & c.loaded);
+            if loaded == 0 {
+                screened
+            } else {
+                // A loaded die's rule depends on the face it lies on. Looking the face up
+                // is a per-roll table search, done only where the widest rule passed.
+                let (mut et, mut kt) = (c.energy_threshold.to_lanes(), c.kinetic_threshold.to_lanes());
+                for lane in (0..L::WIDTH).filter(|lane| loaded & (1 << lane) != 0) {
+                    let offsets = self.state.corner_offsets.each_ref().map(|r| lane3(r, lane));
+                    let rule = self.bodies.as_ref()[lane]
+                        .loaded
+                        .expect("a loaded lane has a mass model")
+                        .stop_rule(&offsets);
+                    et.as_mut()[lane] = rule.energy_threshold;
+                    kt.as_mut()[lane] = rule.kinetic_threshold;
+                }
+                settles(L::from_lanes(et), L::from_lanes(kt))
+            }
+        };
+        let settled = settled & !unstable;
+        let timeout = L::count_reached(self.state.step, c.max_steps) & !unstable & !settled;
+        Ends {
+            unstable,
+            settled,
+            timeout,
+        }
+    }
+}
