@@ -1,8 +1,8 @@
 //! Whatever the parameters, a roll ends in a status (or is refused by validation), never a
 //! panic or an endless loop.
 
+use dicesim::experiment::registry;
 use dicesim::physics::params::{Limits, MAX_STEPS_CAP};
-use dicesim::physics::registry;
 use dicesim::physics::{FrictionLaw, InitialCondition, Params, Simulation, StopEnergy};
 use proptest::prelude::*;
 

@@ -5,7 +5,7 @@
 //! predictor must rarely call an unstable set stable, and an unstable roll's stated reason
 //! must name a limit the set really passes. The figures are printed (`--nocapture`).
 
-use dicesim::physics::registry::{
+use dicesim::experiment::registry::{
     ANGULAR_VELOCITY, CORNER_MASS, DAMPING, DT, FRICTION, GRAVITY, HALF_SIZE, HEIGHT, ORIENTATION, STIFFNESS,
     STOP_ENERGY_FRACTION, VELOCITY,
 };

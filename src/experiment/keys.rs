@@ -1,11 +1,11 @@
 //! The numeric setup values an experiment can scan, by their dotted preset key.
 //!
-//! Each key is a numeric row of the physics [registry](crate::physics::registry) (a vector
+//! Each key is a numeric row of the [registry](crate::experiment::registry) (a vector
 //! by component): its range, unit and how it is read and set come from that row, so a scan
 //! is checked exactly as a preset is.
 
 use super::Error;
-use crate::physics::registry::{self, Scan, Spec};
+use crate::experiment::registry::{self, Scan, Spec};
 use crate::physics::{InitialCondition, Limits, ParamError, Params};
 
 /// A scannable value: its full key (components included), its registry row and component.

@@ -18,6 +18,7 @@ pub mod predict;
 pub(crate) mod predict_plot;
 pub(crate) mod random;
 pub(crate) mod record;
+pub mod registry;
 pub(crate) mod shard;
 pub(crate) mod stats;
 pub(crate) mod summary;

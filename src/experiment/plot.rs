@@ -6,8 +6,8 @@
 use super::Error;
 use super::basin::{BasinMap, Cell, Layer};
 use super::ending::Ending;
+use crate::experiment::registry::{self, Role, Setup, Value};
 use crate::output::Output;
-use crate::physics::registry::{self, Role, Setup, Value};
 use crate::physics::{InitialCondition, Params, Status};
 use plotters::coord::Shift;
 use plotters::prelude::*;

@@ -13,7 +13,7 @@ use super::random::RandomRanges;
 use super::record::RollRecord;
 use super::stats::{FaceTally, wilson_interval};
 use super::twin::{EPSILON, perturbed};
-use crate::physics::registry::{HEIGHT, Role};
+use crate::experiment::registry::{HEIGHT, Role};
 use crate::physics::{InitialCondition, Params};
 use serde::Serialize;
 use std::sync::atomic::AtomicBool;

@@ -1,9 +1,7 @@
 //! The initial condition of a roll (the `[initial]` section of a preset).
 
 use super::body::body_corner_offsets;
-use super::mass::LoadedMass;
-use super::params::{Limits, ParamError, Params};
-use super::registry::{self, Role, Setup};
+use super::params::{Limits, ParamError, XYZ};
 use nalgebra::{Rotation3, Vector3};
 use serde::{Deserialize, Serialize};
 
@@ -27,55 +25,84 @@ pub struct InitialCondition {
     pub orientation: [f64; 3],
 }
 
+/// The names of the orientation's components.
+pub(crate) const YAW_PITCH_ROLL: &[&str; 3] = &["yaw", "pitch", "roll"];
+
+/// Each value's key, unit and allowed range; a random range's bounds lie in the range of
+/// the value it draws.
+pub mod limits {
+    use super::Limits;
+
+    pub const HEIGHT: Limits = Limits {
+        key: "initial.height",
+        unit: "cm",
+        min: 0.0,
+        max: 1000.0,
+    };
+    pub const VELOCITY: Limits = Limits {
+        key: "initial.velocity",
+        unit: "cm/s",
+        min: -10_000.0,
+        max: 10_000.0,
+    };
+    pub const ANGULAR_VELOCITY: Limits = Limits {
+        key: "initial.angular_velocity",
+        unit: "rad/s",
+        min: -10_000.0,
+        max: 10_000.0,
+    };
+    pub const ANGULAR_MOMENTUM: Limits = Limits {
+        key: "initial.angular_momentum",
+        unit: "g·cm²/s",
+        min: -1e6,
+        max: 1e6,
+    };
+    pub const ORIENTATION: Limits = Limits {
+        key: "initial.orientation",
+        unit: "°",
+        min: -360.0,
+        max: 360.0,
+    };
+    pub const RANDOM_HEIGHT: Limits = Limits {
+        key: "random.height",
+        ..HEIGHT
+    };
+    pub const RANDOM_VELOCITY: Limits = Limits {
+        key: "random.velocity",
+        ..VELOCITY
+    };
+    pub const RANDOM_ANGULAR_VELOCITY: Limits = Limits {
+        key: "random.angular_velocity",
+        ..ANGULAR_VELOCITY
+    };
+}
+
 impl Default for InitialCondition {
     fn default() -> Self {
-        InitialCondition {
-            height: registry::HEIGHT.number(),
-            velocity: registry::VELOCITY.vector(),
-            angular_velocity: registry::ANGULAR_VELOCITY.vector(),
-            angular_momentum: None,
-            orientation: registry::ORIENTATION.vector(),
-        }
+        InitialCondition::DEFAULT
     }
 }
 
 impl InitialCondition {
-    /// Checks every value against its allowed range; the first failure is returned.
-    pub(crate) fn validate(&self) -> Result<(), ParamError> {
-        let setup = Setup {
-            initial: *self,
-            ..Setup::default()
-        };
-        registry::validate(&setup, &[Role::Initial])
-    }
+    /// The die at rest, unrotated, its centre 15 cm above the table.
+    pub const DEFAULT: InitialCondition = InitialCondition {
+        height: 15.0,
+        velocity: [0.0; 3],
+        angular_velocity: [0.0; 3],
+        angular_momentum: None,
+        orientation: [0.0; 3],
+    };
 
-    /// Refuses a start with any corner inside the table deeper than the die's resting depth
-    /// `M·g/(4k)` (a die may be placed resting on the table, not pushed into it): the error
-    /// names the lowest height allowed at this orientation.
-    pub(crate) fn check_clear_of_table(&self, params: &Params) -> Result<(), ParamError> {
-        let lowest_offset = match LoadedMass::new(params) {
-            Some(m) => m
-                .initial_corner_offsets(params.die.half_size, self)
-                .iter()
-                .map(|r| r.z)
-                .fold(f64::INFINITY, f64::min),
-            None => self.lowest_corner_offset(params.die.half_size),
-        };
-        let lowest = -lowest_offset - params.resting_depth();
-        if self.height >= lowest {
-            Ok(())
-        } else {
-            Err(ParamError {
-                key: registry::HEIGHT.key().to_string(),
-                value: self.height,
-                limits: Limits {
-                    min: lowest,
-                    unit: "cm at this orientation (lower, a corner starts inside the table)",
-                    ..registry::HEIGHT.limits
-                },
-                high_end: None,
-            })
+    /// Checks every value against its allowed range, in the order a preset lists them; the
+    /// first failure is returned.
+    pub(crate) fn validate(&self) -> Result<(), ParamError> {
+        limits::HEIGHT.check(self.height)?;
+        limits::VELOCITY.check_components(XYZ, &self.velocity)?;
+        limits::ANGULAR_VELOCITY.check_components(XYZ, &self.angular_velocity)?;
+        if let Some(l) = &self.angular_momentum {
+            limits::ANGULAR_MOMENTUM.check_components(XYZ, l)?;
         }
+        limits::ORIENTATION.check_components(YAW_PITCH_ROLL, &self.orientation)
     }
 
     /// cm, the lowest corner's height relative to the centre at `t = 0` (negative), with
@@ -138,23 +165,24 @@ pub struct RandomRanges {
 
 impl Default for RandomRanges {
     fn default() -> Self {
-        RandomRanges {
-            seed: registry::SEED.seed(),
-            height: registry::RANDOM_HEIGHT.range(),
-            velocity: registry::RANDOM_VELOCITY.range(),
-            angular_velocity: registry::RANDOM_ANGULAR_VELOCITY.range(),
-            random_orientation: registry::RANDOM_ORIENTATION.flag(),
-        }
+        RandomRanges::DEFAULT
     }
 }
 
 impl RandomRanges {
+    /// Throws from 15 cm with up to 50 cm/s and 60 rad/s per component, unrotated.
+    pub const DEFAULT: RandomRanges = RandomRanges {
+        seed: 1,
+        height: [15.0, 15.0],
+        velocity: [-50.0, 50.0],
+        angular_velocity: [-60.0, 60.0],
+        random_orientation: false,
+    };
+
     /// Each bound within the matching initial-condition range, and `low <= high`.
     pub(crate) fn validate(&self) -> Result<(), ParamError> {
-        let setup = Setup {
-            random: *self,
-            ..Setup::default()
-        };
-        registry::validate(&setup, &[Role::Random])
+        limits::RANDOM_HEIGHT.check_range(self.height)?;
+        limits::RANDOM_VELOCITY.check_range(self.velocity)?;
+        limits::RANDOM_ANGULAR_VELOCITY.check_range(self.angular_velocity)
     }
 }

@@ -15,9 +15,9 @@
 //! near rest, the stopping rule of the face it lies on.
 
 use super::body::body_corner_offsets;
-use super::initial::InitialCondition;
+use super::initial::{InitialCondition, limits};
 use super::mass::LoadedMass;
-use super::params::{FrictionLaw, Params, StopEnergy};
+use super::params::{FrictionLaw, Limits, ParamError, Params, StopEnergy};
 use super::spin::spin;
 use super::stopping::StopRule;
 use nalgebra::{Matrix3, Scalar, Vector3};
@@ -411,16 +411,8 @@ impl Kernel<f64> {
     pub(crate) fn new(params: &Params, initial: &InitialCondition) -> Self {
         let loaded = LoadedMass::new(params);
         let c = Constants::new(params, loaded.as_ref());
-        let half_size = params.die.half_size;
         let inertia = params.inertia();
-        let rotation = initial.rotation();
-        let corner_offsets = if let Some(m) = &loaded {
-            m.initial_corner_offsets(half_size, initial)
-        } else if initial.orientation == [0.0; 3] {
-            body_corner_offsets(half_size)
-        } else {
-            body_corner_offsets(half_size).map(|r| rotation * r)
-        };
+        let corner_offsets = initial_corner_offsets(params, initial, loaded.as_ref());
         let angular_momentum = match &loaded {
             Some(m) => m.initial_angular_momentum(initial, &corner_offsets),
             None => initial.angular_momentum_for(inertia),
@@ -452,6 +444,52 @@ impl Kernel<f64> {
         kernel.respin(1);
         kernel.update_forces();
         kernel
+    }
+}
+
+/// cm, corners 1..8 relative to the centre of mass at t = 0, world frame: where both
+/// engines place the die.
+fn initial_corner_offsets(
+    params: &Params,
+    initial: &InitialCondition,
+    loaded: Option<&LoadedMass>,
+) -> [Vector3<f64>; 8] {
+    let half_size = params.die.half_size;
+    if let Some(m) = loaded {
+        m.initial_corner_offsets(half_size, initial)
+    } else if initial.orientation == [0.0; 3] {
+        body_corner_offsets(half_size)
+    } else {
+        let rotation = initial.rotation();
+        body_corner_offsets(half_size).map(|r| rotation * r)
+    }
+}
+
+impl InitialCondition {
+    /// Refuses a start with any corner inside the table deeper than the die's resting depth
+    /// `M·g/(4k)` (a die may be placed resting on the table, not pushed into it): the error
+    /// names the lowest height allowed at this orientation.
+    pub(crate) fn check_clear_of_table(&self, params: &Params) -> Result<(), ParamError> {
+        let loaded = LoadedMass::new(params);
+        let lowest_offset = initial_corner_offsets(params, self, loaded.as_ref())
+            .iter()
+            .map(|r| r.z)
+            .fold(f64::INFINITY, f64::min);
+        let lowest = -lowest_offset - params.resting_depth();
+        if self.height >= lowest {
+            Ok(())
+        } else {
+            Err(ParamError {
+                key: limits::HEIGHT.key.to_string(),
+                value: self.height,
+                limits: Limits {
+                    min: lowest,
+                    unit: "cm at this orientation (lower, a corner starts inside the table)",
+                    ..limits::HEIGHT
+                },
+                high_end: None,
+            })
+        }
     }
 }
 

@@ -4,12 +4,11 @@
 
 pub(crate) mod body;
 pub(crate) mod energy;
-pub(crate) mod initial;
+pub mod initial;
 pub(crate) mod kernel;
 pub mod lanes;
 pub(crate) mod mass;
 pub mod params;
-pub mod registry;
 pub(crate) mod sim;
 pub(crate) mod spin;
 pub(crate) mod stability;

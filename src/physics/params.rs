@@ -1,11 +1,11 @@
-//! Model parameters (docs/model.md), in CGS units. Their defaults, allowed ranges and units
-//! are rows of the [registry](super::registry).
+//! Model parameters (docs/model.md), in CGS units, with their defaults ([`Params::DEFAULT`])
+//! and their keys, units and allowed ranges ([`limits`]), each stated here once: the
+//! registry of setup values one layer up reads them from here.
 //!
 //! The structs mirror the sections of a preset file (docs/presets.md), so the preset layer
 //! deserialises straight into them; every struct denies unknown keys and fills missing ones
 //! with the paper's defaults.
 
-use super::registry::{self, Role, Setup};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -37,6 +37,64 @@ impl Limits {
             })
         }
     }
+
+    /// Checks one number against the range, naming `key` in the error (a component, or a
+    /// range's end).
+    pub(crate) fn check_as(&self, key: &str, value: f64) -> Result<(), ParamError> {
+        self.check(value).map_err(|mut e| {
+            e.key = key.to_string();
+            e
+        })
+    }
+
+    /// Checks each component, naming it (`initial.velocity.y`, `die.extra_corner_mass.8`).
+    pub(crate) fn check_components(&self, names: &[&str], values: &[f64]) -> Result<(), ParamError> {
+        for (name, &x) in names.iter().zip(values) {
+            self.check_as(&format!("{}.{name}", self.key), x)?;
+        }
+        Ok(())
+    }
+
+    /// Checks a range `[low, high]`: each end inside, the low end not above the high end.
+    /// Errors name the end (`random.height[1]`).
+    pub(crate) fn check_range(&self, range: [f64; 2]) -> Result<(), ParamError> {
+        for (i, x) in range.into_iter().enumerate() {
+            self.check_as(&format!("{}[{i}]", self.key), x)?;
+        }
+        if range[0] > range[1] {
+            return Err(ParamError {
+                key: self.key.to_string(),
+                value: range[0],
+                limits: *self,
+                high_end: Some(range[1]),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// The names of a vector's components, and of the corners 1..8 of a per-corner value.
+pub(crate) const XYZ: &[&str; 3] = &["x", "y", "z"];
+pub(crate) const CORNERS: &[&str; 8] = &["1", "2", "3", "4", "5", "6", "7", "8"];
+
+/// Each numeric parameter's key, unit and allowed range.
+pub mod limits {
+    use super::Limits;
+
+    const fn limits(key: &'static str, unit: &'static str, min: f64, max: f64) -> Limits {
+        Limits { key, unit, min, max }
+    }
+
+    pub const HALF_SIZE: Limits = limits("die.half_size", "cm", 0.1, 10.0);
+    pub const CORNER_MASS: Limits = limits("die.corner_mass", "g", 0.01, 1000.0);
+    pub const EXTRA_CORNER_MASS: Limits = limits("die.extra_corner_mass", "g", 0.0, 1000.0);
+    pub const STIFFNESS: Limits = limits("ground.stiffness", "dyn/cm", 100.0, 1e8);
+    pub const DAMPING: Limits = limits("ground.damping", "s/cm", 0.0, 0.1);
+    pub const FRICTION: Limits = limits("ground.friction", "", 0.0, 5.0);
+    pub const GRAVITY: Limits = limits("world.gravity", "cm/s²", 10.0, 10000.0);
+    pub const DT: Limits = limits("integrator.dt", "s", 1e-5, 1e-2);
+    pub const STOP_ENERGY_FRACTION: Limits = limits("integrator.stop_energy_fraction", "", 0.01, 1.0);
+    pub const MAX_TIME: Limits = limits("integrator.max_time", "s", 0.01, 120.0);
 }
 
 /// A value outside its allowed range: names the field, the value and the range.
@@ -114,11 +172,7 @@ impl Die {
 
 impl Default for Die {
     fn default() -> Self {
-        Die {
-            half_size: registry::HALF_SIZE.number(),
-            corner_mass: registry::CORNER_MASS.number(),
-            extra_corner_mass: registry::EXTRA_CORNER_MASS.per_corner(),
-        }
+        Params::DEFAULT.die
     }
 }
 
@@ -135,7 +189,7 @@ pub enum FrictionLaw {
 }
 
 impl FrictionLaw {
-    pub(crate) fn name(self) -> &'static str {
+    pub(crate) const fn name(self) -> &'static str {
         match self {
             FrictionLaw::PerCorner => "per-corner",
             FrictionLaw::WholeDieNorm => "whole-die-norm",
@@ -158,12 +212,7 @@ pub struct Ground {
 
 impl Default for Ground {
     fn default() -> Self {
-        Ground {
-            stiffness: registry::STIFFNESS.number(),
-            damping: registry::DAMPING.number(),
-            friction: registry::FRICTION.number(),
-            friction_law: FrictionLaw::PerCorner,
-        }
+        Params::DEFAULT.ground
     }
 }
 
@@ -176,9 +225,7 @@ pub struct World {
 
 impl Default for World {
     fn default() -> Self {
-        World {
-            gravity: registry::GRAVITY.number(),
-        }
+        Params::DEFAULT.world
     }
 }
 
@@ -195,7 +242,7 @@ pub enum StopEnergy {
 }
 
 impl StopEnergy {
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             StopEnergy::RigidBody => "rigid-body",
             StopEnergy::PointMasses => "point-masses",
@@ -217,17 +264,12 @@ pub struct Integrator {
 
 impl Default for Integrator {
     fn default() -> Self {
-        Integrator {
-            dt: registry::DT.number(),
-            stop_energy_fraction: registry::STOP_ENERGY_FRACTION.number(),
-            max_time: registry::MAX_TIME.number(),
-            stop_energy: StopEnergy::RigidBody,
-        }
+        Params::DEFAULT.integrator
     }
 }
 
 /// Every model parameter, grouped as in a preset file.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Params {
     pub die: Die,
@@ -236,14 +278,49 @@ pub struct Params {
     pub integrator: Integrator,
 }
 
+impl Default for Params {
+    fn default() -> Self {
+        Params::DEFAULT
+    }
+}
+
 impl Params {
-    /// Checks every field against its allowed range; the first failure is returned.
+    /// The paper's parameters: a 2 cm die of 8 g on a stiff, damped, rough table.
+    pub const DEFAULT: Params = Params {
+        die: Die {
+            half_size: 1.0,
+            corner_mass: 1.0,
+            extra_corner_mass: [0.0; 8],
+        },
+        ground: Ground {
+            stiffness: 500_000.0,
+            damping: 0.005,
+            friction: 1.2,
+            friction_law: FrictionLaw::PerCorner,
+        },
+        world: World { gravity: 980.0 },
+        integrator: Integrator {
+            dt: 0.001,
+            stop_energy_fraction: 0.8,
+            max_time: 30.0,
+            stop_energy: StopEnergy::RigidBody,
+        },
+    };
+
+    /// Checks every field against its allowed range, in the order a preset lists them; the
+    /// first failure is returned.
     pub(crate) fn validate(&self) -> Result<(), ParamError> {
-        let setup = Setup {
-            params: *self,
-            ..Setup::default()
-        };
-        registry::validate(&setup, &[Role::Die, Role::Ground, Role::World, Role::Integrator])
+        let (d, g, i) = (&self.die, &self.ground, &self.integrator);
+        limits::HALF_SIZE.check(d.half_size)?;
+        limits::CORNER_MASS.check(d.corner_mass)?;
+        limits::EXTRA_CORNER_MASS.check_components(CORNERS, &d.extra_corner_mass)?;
+        limits::STIFFNESS.check(g.stiffness)?;
+        limits::DAMPING.check(g.damping)?;
+        limits::FRICTION.check(g.friction)?;
+        limits::GRAVITY.check(self.world.gravity)?;
+        limits::DT.check(i.dt)?;
+        limits::STOP_ENERGY_FRACTION.check(i.stop_energy_fraction)?;
+        limits::MAX_TIME.check(i.max_time)
     }
 
     /// g, the whole die: 8 corners and any extra corner masses (adding their zeros leaves

@@ -2,7 +2,7 @@
 //! its unit comments.
 
 use super::{FORMAT, Location, Preset, PresetError};
-use crate::physics::registry::{self, ANGULAR_MOMENTUM, ANGULAR_VELOCITY, Role, Setup, Value};
+use crate::experiment::registry::{self, ANGULAR_MOMENTUM, ANGULAR_VELOCITY, Role, Setup, Value};
 use crate::physics::{InitialCondition, ParamError};
 use toml::de::{DeTable, DeValue};
 

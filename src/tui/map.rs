@@ -16,9 +16,10 @@ use crate::experiment::ending::Ending;
 use crate::experiment::plot::{
     INFERRED_WORDS, SIZE, cell_colour, map_record, time_range, write_recorded_image,
 };
+use crate::experiment::registry;
 use crate::experiment::{BasinMap, Cell, Layer};
 use crate::output::{Output, free_stem};
-use crate::physics::{InitialCondition, Params, Status, registry};
+use crate::physics::{InitialCondition, Params, Status};
 use crate::worker::{Command, MapAxis, MapRequest, MapUpdate};
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};

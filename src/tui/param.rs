@@ -2,7 +2,7 @@
 //! component, in the rows' list order; how ←/→ step a value.
 
 use crate::experiment::ScanKey;
-use crate::physics::registry::Nudge;
+use crate::experiment::registry::Nudge;
 use crate::physics::{InitialCondition, Limits, ParamError, Params};
 use std::sync::LazyLock;
 
@@ -40,7 +40,7 @@ pub(crate) fn all() -> &'static [Param] {
 pub(crate) fn paper_rows() -> usize {
     all()
         .iter()
-        .filter(|p| p.key.spec != &crate::physics::registry::EXTRA_CORNER_MASS)
+        .filter(|p| p.key.spec != &crate::experiment::registry::EXTRA_CORNER_MASS)
         .count()
 }
 
@@ -213,7 +213,7 @@ mod tests {
 
     #[test]
     fn nudges_step_and_stay_in_range() {
-        use crate::physics::registry::{DAMPING, DT, FRICTION};
+        use crate::experiment::registry::{DAMPING, DT, FRICTION};
         let friction = Param::named("ground.friction");
         let stiffness = Param::named("ground.stiffness");
         assert_eq!(friction.nudged(1.2, 1, false), 1.25);

@@ -9,10 +9,10 @@ use super::twin::Twin;
 use super::{
     BatchProgress, Command, DieState, EnergySample, OutcomeTable, Phase, RollKind, Snapshot, TimelineSnapshot,
 };
+use crate::experiment::registry::Role;
 use crate::experiment::trace::{ExportFiles, ExportProgress, Exported, export_roll, human_bytes};
 use crate::experiment::{RandomRanges, RollRecord, ScanKey};
 use crate::output::{Output, free_stem, safe_file_stem};
-use crate::physics::registry::Role;
 use crate::physics::{InitialCondition, ParamError, Params, Simulation, face_most_nearly_up};
 use crate::preset::{Preset, Speed};
 use std::sync::atomic::AtomicBool;

@@ -1,14 +1,20 @@
-//! Every value of a setup, stated once: its preset key, unit, allowed range, default, what it
-//! means, how the explorer lists and steps it, and how it is read and written.
+//! Every value of a setup as the tools around the model see it: its preset key with unit,
+//! range and default (read from the physics, which states them), what it means, how the
+//! explorer lists and steps it, whether it acts mid-roll, and how it is read and written.
 //!
-//! Validation ([`Params::validate`], [`InitialCondition::validate`],
-//! [`RandomRanges::validate`]), the preset file's lines and comments, `--set`, basin-map
-//! axes, the explorer's parameter list and the README's table of keys are all derived from
-//! [`ALL`]. Adding a scalar parameter is one row here, its field (with the row's default) in
-//! its section's struct, and its use in the physics.
+//! The physics knows its parameters as plain structs with their defaults
+//! ([`Params::DEFAULT`], [`InitialCondition::DEFAULT`], [`RandomRanges::DEFAULT`]) and
+//! ranges ([`params::limits`], [`initial::limits`]), and validates them itself; everything
+//! else here serves the layers above: the preset file's lines and comments, `--set`,
+//! basin-map axes and scan keys (this layer), the explorer's parameter list and the README's
+//! table of keys all come from [`ALL`]. It lives in the experiment layer, one above the
+//! physics, because scan keys and map axes are the first users of a row; the preset layer
+//! and the explorer above read it from here. Adding a scalar parameter is its field, default
+//! and range in the physics, its use there, and one row here.
 
-use super::initial::{InitialCondition, RandomRanges};
-use super::params::{Limits, ParamError, Params};
+use crate::physics::initial::{self, YAW_PITCH_ROLL};
+use crate::physics::params::{self, CORNERS, XYZ};
+use crate::physics::{InitialCondition, Limits, ParamError, Params, RandomRanges};
 
 /// The section of a preset a value belongs to, which is also what changing it means.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -154,54 +160,6 @@ impl Spec {
         self.limits.key
     }
 
-    /// The default of a [`Shape::Number`] row (for the section structs' `Default`).
-    pub(crate) const fn number(&self) -> f64 {
-        match self.shape {
-            Shape::Number(x) => x,
-            _ => panic!("not a number row"),
-        }
-    }
-
-    /// The default of a [`Shape::Vector`] row.
-    pub(crate) const fn vector(&self) -> [f64; 3] {
-        match self.shape {
-            Shape::Vector { default, .. } => default,
-            _ => panic!("not a vector row"),
-        }
-    }
-
-    /// The default of a [`Shape::Range`] row.
-    pub(crate) const fn range(&self) -> [f64; 2] {
-        match self.shape {
-            Shape::Range(r) => r,
-            _ => panic!("not a range row"),
-        }
-    }
-
-    /// The default of a [`Shape::Seed`] row.
-    pub(crate) const fn seed(&self) -> u64 {
-        match self.shape {
-            Shape::Seed(s) => s,
-            _ => panic!("not a seed row"),
-        }
-    }
-
-    /// The default of a [`Shape::Flag`] row.
-    pub(crate) const fn flag(&self) -> bool {
-        match self.shape {
-            Shape::Flag(b) => b,
-            _ => panic!("not a flag row"),
-        }
-    }
-
-    /// The default of a [`Shape::PerCorner`] row.
-    pub(crate) const fn per_corner(&self) -> [f64; 8] {
-        match self.shape {
-            Shape::PerCorner(v) => v,
-            _ => panic!("not a per-corner row"),
-        }
-    }
-
     /// The names of a vector's or per-corner row's components; none for other shapes.
     pub(crate) fn components(&self) -> &'static [&'static str] {
         match self.shape {
@@ -228,64 +186,27 @@ impl Spec {
     /// Checks one number against the range, naming `key` in the error (NaN and infinities
     /// are outside every range).
     pub(crate) fn check_number(&self, key: &str, value: f64) -> Result<(), ParamError> {
-        self.limits.check(value).map_err(|mut e| {
-            e.key = key.to_string();
-            e
-        })
+        self.limits.check_as(key, value)
     }
 
     /// Checks a stored value: every component in range, a range's low end not above its high
     /// end. Errors name the component (`initial.velocity.y`, `random.height[1]`).
+    #[cfg(test)]
     pub(crate) fn check(&self, value: Value) -> Result<(), ParamError> {
-        let key = self.key();
         match value {
-            Value::Number(x) => self.check_number(key, x),
-            Value::Vector(v) => self.check_components(&v),
-            Value::PerCorner(v) => self.check_components(&v),
-            Value::Range(r) => {
-                for (i, x) in r.into_iter().enumerate() {
-                    self.check_number(&format!("{key}[{i}]"), x)?;
-                }
-                if r[0] > r[1] {
-                    return Err(ParamError {
-                        key: key.to_string(),
-                        value: r[0],
-                        limits: self.limits,
-                        high_end: Some(r[1]),
-                    });
-                }
-                Ok(())
-            }
+            Value::Number(x) => self.limits.check(x),
+            Value::Vector(v) => self.limits.check_components(self.components(), &v),
+            Value::PerCorner(v) => self.limits.check_components(self.components(), &v),
+            Value::Range(r) => self.limits.check_range(r),
             Value::Name(_) | Value::Seed(_) | Value::Flag(_) | Value::Absent => Ok(()),
         }
     }
-}
-
-impl Spec {
-    /// Checks each component, naming it (`initial.velocity.y`, `die.extra_corner_mass.8`).
-    fn check_components(&self, values: &[f64]) -> Result<(), ParamError> {
-        for (name, &x) in self.components().iter().zip(values) {
-            self.check_number(&format!("{}.{name}", self.key()), x)?;
-        }
-        Ok(())
-    }
-}
-
-/// Checks every row of `roles` in `setup`, in registry order; the first failure is returned.
-pub(crate) fn validate(setup: &Setup, roles: &[Role]) -> Result<(), ParamError> {
-    ALL.iter()
-        .filter(|spec| roles.contains(&spec.role))
-        .try_for_each(|spec| spec.check((spec.read)(setup)))
 }
 
 /// The row of a dotted preset key.
 pub(crate) fn find(key: &str) -> Option<&'static Spec> {
     ALL.iter().copied().find(|s| s.key() == key)
 }
-
-const XYZ: &[&str; 3] = &["x", "y", "z"];
-const YAW_PITCH_ROLL: &[&str; 3] = &["yaw", "pitch", "roll"];
-const CORNERS: &[&str] = &["1", "2", "3", "4", "5", "6", "7", "8"];
 
 /// Reads and sets a number field of `Params` by component (scalars ignore the component).
 macro_rules! params_field {
@@ -298,13 +219,8 @@ macro_rules! params_field {
 }
 
 pub const HALF_SIZE: Spec = Spec {
-    limits: Limits {
-        key: "die.half_size",
-        unit: "cm",
-        min: 0.1,
-        max: 10.0,
-    },
-    shape: Shape::Number(1.0),
+    limits: params::limits::HALF_SIZE,
+    shape: Shape::Number(Params::DEFAULT.die.half_size),
     role: Role::Die,
     comment: "cm, the paper's \"radius\" (side = 2 × half_size)",
     labels: &["half size a"],
@@ -319,13 +235,8 @@ pub const HALF_SIZE: Spec = Spec {
 };
 
 pub const CORNER_MASS: Spec = Spec {
-    limits: Limits {
-        key: "die.corner_mass",
-        unit: "g",
-        min: 0.01,
-        max: 1000.0,
-    },
-    shape: Shape::Number(1.0),
+    limits: params::limits::CORNER_MASS,
+    shape: Shape::Number(Params::DEFAULT.die.corner_mass),
     role: Role::Die,
     comment: "g, each of the 8 corners",
     labels: &["corner mass m"],
@@ -340,13 +251,8 @@ pub const CORNER_MASS: Spec = Spec {
 };
 
 pub const EXTRA_CORNER_MASS: Spec = Spec {
-    limits: Limits {
-        key: "die.extra_corner_mass",
-        unit: "g",
-        min: 0.0,
-        max: 1000.0,
-    },
-    shape: Shape::PerCorner([0.0; 8]),
+    limits: params::limits::EXTRA_CORNER_MASS,
+    shape: Shape::PerCorner(Params::DEFAULT.die.extra_corner_mass),
     role: Role::Die,
     comment: "g, extra point mass at corners 1..8: a loaded die (all zero: fair)",
     labels: &[
@@ -373,13 +279,8 @@ pub const EXTRA_CORNER_MASS: Spec = Spec {
 };
 
 pub const STIFFNESS: Spec = Spec {
-    limits: Limits {
-        key: "ground.stiffness",
-        unit: "dyn/cm",
-        min: 100.0,
-        max: 1e8,
-    },
-    shape: Shape::Number(500_000.0),
+    limits: params::limits::STIFFNESS,
+    shape: Shape::Number(Params::DEFAULT.ground.stiffness),
     role: Role::Ground,
     comment: "dyn/cm per corner (k)",
     labels: &["stiffness k"],
@@ -394,13 +295,8 @@ pub const STIFFNESS: Spec = Spec {
 };
 
 pub const DAMPING: Spec = Spec {
-    limits: Limits {
-        key: "ground.damping",
-        unit: "s/cm",
-        min: 0.0,
-        max: 0.1,
-    },
-    shape: Shape::Number(0.005),
+    limits: params::limits::DAMPING,
+    shape: Shape::Number(Params::DEFAULT.ground.damping),
     role: Role::Ground,
     comment: "s/cm (γ)",
     labels: &["damping γ"],
@@ -415,13 +311,8 @@ pub const DAMPING: Spec = Spec {
 };
 
 pub const FRICTION: Spec = Spec {
-    limits: Limits {
-        key: "ground.friction",
-        unit: "",
-        min: 0.0,
-        max: 5.0,
-    },
-    shape: Shape::Number(1.2),
+    limits: params::limits::FRICTION,
+    shape: Shape::Number(Params::DEFAULT.ground.friction),
     role: Role::Ground,
     comment: "kinetic coefficient (μ)",
     labels: &["friction μ"],
@@ -444,7 +335,7 @@ pub(crate) const FRICTION_LAW: Spec = Spec {
     },
     shape: Shape::Choice {
         names: &["per-corner", "whole-die-norm"],
-        default: "per-corner",
+        default: Params::DEFAULT.ground.friction_law.name(),
     },
     role: Role::Ground,
     comment: "\"per-corner\" (paper, eq. 15) or \"whole-die-norm\" (authors' program)",
@@ -457,13 +348,8 @@ pub(crate) const FRICTION_LAW: Spec = Spec {
 };
 
 pub const GRAVITY: Spec = Spec {
-    limits: Limits {
-        key: "world.gravity",
-        unit: "cm/s²",
-        min: 10.0,
-        max: 10000.0,
-    },
-    shape: Shape::Number(980.0),
+    limits: params::limits::GRAVITY,
+    shape: Shape::Number(Params::DEFAULT.world.gravity),
     role: Role::World,
     comment: "cm/s², downwards",
     labels: &["gravity g"],
@@ -478,13 +364,8 @@ pub const GRAVITY: Spec = Spec {
 };
 
 pub const DT: Spec = Spec {
-    limits: Limits {
-        key: "integrator.dt",
-        unit: "s",
-        min: 1e-5,
-        max: 1e-2,
-    },
-    shape: Shape::Number(0.001),
+    limits: params::limits::DT,
+    shape: Shape::Number(Params::DEFAULT.integrator.dt),
     role: Role::Integrator,
     comment: "s",
     labels: &["time step Δt"],
@@ -499,13 +380,8 @@ pub const DT: Spec = Spec {
 };
 
 pub const STOP_ENERGY_FRACTION: Spec = Spec {
-    limits: Limits {
-        key: "integrator.stop_energy_fraction",
-        unit: "",
-        min: 0.01,
-        max: 1.0,
-    },
-    shape: Shape::Number(0.8),
+    limits: params::limits::STOP_ENERGY_FRACTION,
+    shape: Shape::Number(Params::DEFAULT.integrator.stop_energy_fraction),
     role: Role::Integrator,
     comment: "a roll ends below this share of the edge-tipping energy",
     labels: &[],
@@ -517,13 +393,8 @@ pub const STOP_ENERGY_FRACTION: Spec = Spec {
 };
 
 pub const MAX_TIME: Spec = Spec {
-    limits: Limits {
-        key: "integrator.max_time",
-        unit: "s",
-        min: 0.01,
-        max: 120.0,
-    },
-    shape: Shape::Number(30.0),
+    limits: params::limits::MAX_TIME,
+    shape: Shape::Number(Params::DEFAULT.integrator.max_time),
     role: Role::Integrator,
     comment: "s of simulated time; past it the roll \"did not settle\"",
     labels: &[],
@@ -543,7 +414,7 @@ pub(crate) const STOP_ENERGY: Spec = Spec {
     },
     shape: Shape::Choice {
         names: &["rigid-body", "point-masses"],
-        default: "rigid-body",
+        default: Params::DEFAULT.integrator.stop_energy.name(),
     },
     role: Role::Integrator,
     comment: "\"rigid-body\" (docs/model.md) or \"point-masses\" (the authors' program)",
@@ -556,13 +427,8 @@ pub(crate) const STOP_ENERGY: Spec = Spec {
 };
 
 pub const HEIGHT: Spec = Spec {
-    limits: Limits {
-        key: "initial.height",
-        unit: "cm",
-        min: 0.0,
-        max: 1000.0,
-    },
-    shape: Shape::Number(15.0),
+    limits: initial::limits::HEIGHT,
+    shape: Shape::Number(InitialCondition::DEFAULT.height),
     role: Role::Initial,
     comment: "cm, centre of mass above the ground",
     labels: &["drop height"],
@@ -580,15 +446,10 @@ pub const HEIGHT: Spec = Spec {
 };
 
 pub const VELOCITY: Spec = Spec {
-    limits: Limits {
-        key: "initial.velocity",
-        unit: "cm/s",
-        min: -10_000.0,
-        max: 10_000.0,
-    },
+    limits: initial::limits::VELOCITY,
     shape: Shape::Vector {
         components: XYZ,
-        default: [0.0; 3],
+        default: InitialCondition::DEFAULT.velocity,
     },
     role: Role::Initial,
     comment: "cm/s, centre of mass",
@@ -610,15 +471,10 @@ pub const VELOCITY: Spec = Spec {
 /// converts with the die's inertia, and setting one first restates the spin in that form, so
 /// the other two components keep their physical value.
 pub const ANGULAR_VELOCITY: Spec = Spec {
-    limits: Limits {
-        key: "initial.angular_velocity",
-        unit: "rad/s",
-        min: -10_000.0,
-        max: 10_000.0,
-    },
+    limits: initial::limits::ANGULAR_VELOCITY,
     shape: Shape::Vector {
         components: XYZ,
-        default: [0.0; 3],
+        default: InitialCondition::DEFAULT.angular_velocity,
     },
     role: Role::Initial,
     comment: "rad/s, world frame",
@@ -642,12 +498,7 @@ pub const ANGULAR_VELOCITY: Spec = Spec {
 };
 
 pub const ANGULAR_MOMENTUM: Spec = Spec {
-    limits: Limits {
-        key: "initial.angular_momentum",
-        unit: "g·cm²/s",
-        min: -1e6,
-        max: 1e6,
-    },
+    limits: initial::limits::ANGULAR_MOMENTUM,
     shape: Shape::Vector {
         components: XYZ,
         default: [0.0; 3],
@@ -670,15 +521,10 @@ pub const ANGULAR_MOMENTUM: Spec = Spec {
 };
 
 pub const ORIENTATION: Spec = Spec {
-    limits: Limits {
-        key: "initial.orientation",
-        unit: "°",
-        min: -360.0,
-        max: 360.0,
-    },
+    limits: initial::limits::ORIENTATION,
     shape: Shape::Vector {
         components: YAW_PITCH_ROLL,
-        default: [0.0; 3],
+        default: InitialCondition::DEFAULT.orientation,
     },
     role: Role::Initial,
     comment: "degrees: yaw (z), pitch (y), roll (x), applied in that order",
@@ -703,7 +549,7 @@ pub(crate) const SEED: Spec = Spec {
         min: 0.0,
         max: 0.0,
     },
-    shape: Shape::Seed(1),
+    shape: Shape::Seed(RandomRanges::DEFAULT.seed),
     role: Role::Random,
     comment: "roll i's draw depends on (seed, i) alone",
     labels: &[],
@@ -715,9 +561,9 @@ pub(crate) const SEED: Spec = Spec {
 };
 
 /// A random range's bounds are checked against the initial condition's range.
-const fn random_range(of: &Spec, key: &'static str, default: [f64; 2], comment: &'static str) -> Spec {
+const fn random_range(limits: Limits, default: [f64; 2], comment: &'static str) -> Spec {
     Spec {
-        limits: Limits { key, ..of.limits },
+        limits,
         shape: Shape::Range(default),
         role: Role::Random,
         comment,
@@ -733,9 +579,8 @@ const fn random_range(of: &Spec, key: &'static str, default: [f64; 2], comment: 
 pub(crate) const RANDOM_HEIGHT: Spec = Spec {
     read: |s| Value::Range(s.random.height),
     ..random_range(
-        &HEIGHT,
-        "random.height",
-        [15.0, 15.0],
+        initial::limits::RANDOM_HEIGHT,
+        RandomRanges::DEFAULT.height,
         "cm, uniform in [low, high]",
     )
 };
@@ -743,9 +588,8 @@ pub(crate) const RANDOM_HEIGHT: Spec = Spec {
 pub(crate) const RANDOM_VELOCITY: Spec = Spec {
     read: |s| Value::Range(s.random.velocity),
     ..random_range(
-        &VELOCITY,
-        "random.velocity",
-        [-50.0, 50.0],
+        initial::limits::RANDOM_VELOCITY,
+        RandomRanges::DEFAULT.velocity,
         "cm/s, each component uniform in [low, high]",
     )
 };
@@ -753,9 +597,8 @@ pub(crate) const RANDOM_VELOCITY: Spec = Spec {
 pub(crate) const RANDOM_ANGULAR_VELOCITY: Spec = Spec {
     read: |s| Value::Range(s.random.angular_velocity),
     ..random_range(
-        &ANGULAR_VELOCITY,
-        "random.angular_velocity",
-        [-60.0, 60.0],
+        initial::limits::RANDOM_ANGULAR_VELOCITY,
+        RandomRanges::DEFAULT.angular_velocity,
         "rad/s, each component uniform in [low, high]",
     )
 };
@@ -767,7 +610,7 @@ pub(crate) const RANDOM_ORIENTATION: Spec = Spec {
         min: 0.0,
         max: 0.0,
     },
-    shape: Shape::Flag(false),
+    shape: Shape::Flag(RandomRanges::DEFAULT.random_orientation),
     role: Role::Random,
     comment: "true: orientation uniform over all rotations",
     labels: &[],
@@ -906,7 +749,9 @@ mod tests {
             assert_eq!((spec.read)(&setup), expected, "{}", spec.key());
             spec.check(expected).unwrap();
         }
-        validate(&setup, &Role::ALL).unwrap();
+        setup.params.validate().unwrap();
+        setup.initial.validate().unwrap();
+        setup.random.validate().unwrap();
     }
 
     #[test]
