@@ -5,9 +5,12 @@
 //! throws and spins, heights 1.5–30 cm) cut at 0.6 s of simulated time (identity must hold
 //! for any time limit, and the cut keeps the test fast: flight, impacts and the first
 //! bounces, each ending as a timeout unless it settled or blew up first), 5 000 more rolled
-//! to their natural end, and every reference initial condition; then a mixed
-//! sample where neighbouring lanes carry different parameters, laws and stop energies, with
-//! soft, stiff, damped and coarse-Δt setups that end in every status.
+//! to their natural end, and every reference initial condition. The same for three loaded
+//! dice (their full inertia tensor and per-face stopping rule), 10 000 cut rolls and 500
+//! whole ones each per law and stop energy (a loaded die's step rebuilds its tensor and spin
+//! every step, in flight too, so it costs about three fair steps). Then a
+//! mixed sample where neighbouring lanes carry different parameters, laws, stop energies and
+//! dice, with soft, stiff, damped and coarse-Δt setups that end in every status.
 
 mod common;
 
@@ -116,6 +119,16 @@ fn assert_identical(what: &str, setups: &[(Params, InitialCondition)]) -> [usize
 const CUT_ROLLS: u64 = 100_000;
 const CUT_TIME_S: f64 = 0.6;
 const WHOLE_ROLLS: u64 = 5_000;
+const LOADED_CUT_ROLLS: u64 = 10_000;
+const LOADED_WHOLE_ROLLS: u64 = 500;
+
+/// g of extra mass at corners 1..8: one heavy corner, two unequal corners, every corner a
+/// little and unevenly.
+const LOADED_DICE: [[f64; 8]; 3] = [
+    [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 2.0],
+    [0.0, 1.5, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0],
+    [0.3, 0.05, 0.7, 0.0, 0.15, 1.1, 0.0, 0.2],
+];
 
 fn random_setups(params: Params, seed: u64, count: u64) -> Vec<(Params, InitialCondition)> {
     let ranges = RandomRanges {
@@ -166,6 +179,27 @@ fn law_and_stop(law: FrictionLaw, stop: StopEnergy, seed: u64) {
     );
     assert!(statuses[Status::Settled as usize] > 4_500, "{what}: {statuses:?}");
     assert_identical(&format!("{what}, reference"), &reference_setups(params));
+    for (d, extra) in LOADED_DICE.into_iter().enumerate() {
+        let load = |p: Params| Params {
+            die: dicesim::physics::Die {
+                extra_corner_mass: extra,
+                ..p.die
+            },
+            ..p
+        };
+        let what = format!("{what}, loaded die {extra:?}");
+        let seed = seed + 1000 * (d as u64 + 1);
+        let statuses = assert_identical(
+            &format!("{what}, cut"),
+            &random_setups(load(cut), seed, LOADED_CUT_ROLLS),
+        );
+        assert!(statuses.iter().sum::<usize>() == LOADED_CUT_ROLLS as usize);
+        let statuses = assert_identical(
+            &format!("{what}, whole rolls"),
+            &random_setups(load(params), seed + 100, LOADED_WHOLE_ROLLS),
+        );
+        assert!(statuses[Status::Settled as usize] > 450, "{what}: {statuses:?}");
+    }
 }
 
 #[test]
@@ -220,6 +254,16 @@ fn mixed_parameters_in_neighbouring_lanes() {
             p.integrator.dt = log_uniform(&mut rng, 1e-4, 1e-2);
             p.integrator.max_time = rng.random_range(0.2..5.0);
             p.die.half_size = rng.random_range(0.5..2.0);
+            // Every third lane a loaded die, so fair and loaded dice share vectors.
+            if i % 3 == 2 {
+                p.die.extra_corner_mass = std::array::from_fn(|_| {
+                    if rng.random_bool(0.4) {
+                        rng.random_range(0.0..3.0)
+                    } else {
+                        0.0
+                    }
+                });
+            }
             let mut ic = ranges.draw(&base, 9, i);
             ic.height = rng.random_range(0.5..40.0);
             if i % 10 == 0 {

@@ -1,6 +1,8 @@
 //! Loaded dice (docs/model.md, "Loaded dice"): the mass model in flight, a die loaded evenly,
 //! and the bias a heavy corner gives, measured by a batch.
 
+mod common;
+
 use dicesim::experiment::{RandomRanges, Rolls, RunOptions, stream_batch};
 use dicesim::physics::{InitialCondition, Params, Simulation};
 use nalgebra::{Matrix3, Vector3};
@@ -191,4 +193,63 @@ fn a_heavy_corner_keeps_its_three_faces_down() {
     let fair = batch(&Params::default(), 1500).faces.counts();
     let fair_heavy = (fair[3] + fair[4] + fair[5]) as f64 / fair.iter().sum::<u64>() as f64;
     assert!(fair_heavy > heavy + 2.0 * se, "{fair:?} against {counts:?}");
+}
+
+/// The records files of loaded rolls, byte for byte against `tests/data/loaded/`.
+///
+/// Those files were written by the program as it stood before the step became one kernel
+/// for both engines, when a loaded die could only roll on the scalar engine (commit bab7ddc,
+/// `dicesim batch … --engine scalar --jobs 1 --out FILE.csv` with the arguments below): the
+/// reference data cover the fair die only, so this is what pins a loaded die's trajectory.
+/// Both engines must write them again.
+#[test]
+fn loaded_rolls_match_the_records_written_before_the_lanes_had_loaded_dice() {
+    let golden: [(&str, &[&str]); 2] = [
+        (
+            "loaded-corner.csv",
+            &["--preset", "loaded-corner", "--rolls", "200", "--seed", "19"],
+        ),
+        (
+            "loaded-two.csv",
+            &[
+                "--preset",
+                "loaded-corner",
+                "--set",
+                "die.extra_corner_mass=[0,1.5,0,0,0,0.5,0,0]",
+                "--set",
+                "ground.friction_law=whole-die-norm",
+                "--set",
+                "integrator.stop_energy=point-masses",
+                "--rolls",
+                "100",
+                "--seed",
+                "23",
+            ],
+        ),
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    for (file, args) in golden {
+        let expected =
+            std::fs::read(format!("{}/tests/data/loaded/{file}", env!("CARGO_MANIFEST_DIR"))).unwrap();
+        for engine in ["scalar", "lanes"] {
+            let out = dir.path().join(format!("{engine}-{file}"));
+            let mut all = vec![
+                "batch",
+                "--engine",
+                engine,
+                "--jobs",
+                "2",
+                "--out",
+                out.to_str().unwrap(),
+            ];
+            all.extend_from_slice(args);
+            let run = common::dicesim_in(dir.path(), &all);
+            assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+            let written = std::fs::read(&out).unwrap();
+            assert!(
+                written == expected,
+                "{file} with the {engine} engine differs from the records written before"
+            );
+        }
+    }
 }
