@@ -250,6 +250,25 @@ mod avx2 {
         fn finite(self) -> F4 {
             self.abs().lt(F4::splat(f64::INFINITY))
         }
+        /// A sum of finite values can overflow to ±∞, and a NaN or ∞ term always makes the
+        /// sum non-finite; so the sum screens, and only a lane it flags is looked at value by
+        /// value (vector adds in independent groups are cheaper here than the scalar
+        /// engine's integer trick).
+        #[inline(always)]
+        fn all_finite(p: &Vector3<F4>, v: &Vector3<F4>, offsets: &[Vector3<F4>; 8]) -> F4 {
+            let mut sum = (p.x + p.y) + (p.z + v.x) + (v.y + v.z);
+            for r in offsets {
+                sum = sum + (r.x + r.y) + r.z;
+            }
+            let screen = sum.finite();
+            if F4::bits(screen) == 0b1111 {
+                return screen;
+            }
+            let finite3 = |r: &Vector3<F4>| r.x.finite() & r.y.finite() & r.z.finite();
+            offsets
+                .iter()
+                .fold(finite3(p) & finite3(v), |all, r| all & finite3(r))
+        }
         #[inline(always)]
         fn select(mask: F4, yes: F4, no: F4) -> F4 {
             // SAFETY: as above.

@@ -343,10 +343,17 @@ impl Simulation {
     #[inline]
     pub fn step(&mut self) {
         if self.track_ledger {
-            self.k.step(&mut self.ledger);
+            self.step_with_ledger();
         } else {
             self.k.step(&mut NoHook);
         }
+    }
+
+    /// The step with the energy ledger's bookkeeping, kept out of line: inlined beside the
+    /// plain step, its second copy of the kernel would crowd the batch loop's code.
+    #[inline(never)]
+    fn step_with_ledger(&mut self) {
+        self.k.step(&mut self.ledger);
     }
 
     /// One step, then the end-of-roll checks; returns the outcome on the step that ends it.
