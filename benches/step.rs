@@ -35,6 +35,20 @@ fn bench_steps(c: &mut Criterion) {
             })
         });
     }
+    // A loaded die (the `loaded-corner` preset's half gram at corner 8): its tensor and spin
+    // are rebuilt every step, in flight too.
+    let mut params = Params::default();
+    params.die.extra_corner_mass[7] = 0.5;
+    let initial = spinning_roll();
+    let steps = Simulation::new(&params, &initial).unwrap().run_to_end().steps;
+    g.throughput(Throughput::Elements(steps));
+    g.bench_function("roll-steps/loaded", |b| {
+        b.iter(|| {
+            Simulation::new(black_box(&params), black_box(&initial))
+                .unwrap()
+                .run_to_end()
+        })
+    });
     // Random rolls from the default ranges: rolls per second on one core.
     let params = Params::default();
     let ranges = RandomRanges::default();
