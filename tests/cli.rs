@@ -170,7 +170,8 @@ fn both_engines_write_byte_identical_files() {
         std::fs::read(&path).unwrap()
     };
     let csv = write("scalar", "csv");
-    assert_eq!(csv.iter().filter(|&&b| b == b'\n').count(), 3001);
+    // The provenance line, the header and 3000 rolls.
+    assert_eq!(csv.iter().filter(|&&b| b == b'\n').count(), 3002);
     assert!(csv == write("lanes", "csv"), "the CSVs differ");
     let json = |engine| {
         let mut v: serde_json::Value = serde_json::from_slice(&write(engine, "json")).unwrap();
@@ -277,7 +278,11 @@ fn ctrl_c_inside_long_rolls_keeps_an_exact_prefix() {
             "{err}"
         );
         let text = std::fs::read_to_string(&out).unwrap();
-        assert_eq!(text.lines().count(), 1, "only the header: {text}");
+        assert_eq!(
+            text.lines().count(),
+            2,
+            "only the provenance and the header: {text}"
+        );
 
         // Short rolls: what was kept is the start of the full batch, row for row.
         let out = dir.path().join(format!("short-{engine}.csv"));
@@ -292,7 +297,7 @@ fn ctrl_c_inside_long_rolls_keeps_an_exact_prefix() {
             String::from_utf8_lossy(&o.stderr)
         );
         let kept = std::fs::read_to_string(&out).unwrap();
-        let rows = kept.lines().count() - 1;
+        let rows = kept.lines().count() - 2;
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(
             err.contains(&format!("kept the {rows} of 1000000 rolls")),
@@ -310,10 +315,14 @@ fn ctrl_c_inside_long_rolls_keeps_an_exact_prefix() {
             full.to_str().unwrap(),
         ]);
         assert!(o.status.success());
+        // The same rows; the provenance lines differ in the batch's size only.
+        let full = std::fs::read_to_string(&full).unwrap();
         assert!(
-            std::fs::read_to_string(&full).unwrap() == kept,
+            full.lines().skip(1).eq(kept.lines().skip(1)),
             "the kept rows are not the batch's start"
         );
+        let sized = |t: &str, n: usize| t.lines().next().unwrap().contains(&format!("\"rolls\":{n},"));
+        assert!(sized(&kept, 1_000_000) && sized(&full, rows));
     }
 }
 

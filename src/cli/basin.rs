@@ -1,6 +1,6 @@
 //! `dicesim basin`: the outcome over a grid of two setup values, as CSV or an image.
 
-use super::shard::{ShardArgs, map_fingerprint, new_part, write_part};
+use super::shard::{Hashing, ShardArgs, map_fingerprint, new_part, write_part};
 use super::{CliError, EngineArg, SetupArgs, cancel_on_ctrl_c};
 use crate::experiment::plot::write_image;
 use crate::experiment::shard::Sweep;
@@ -152,9 +152,17 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
         .filter_map(|c| c.outcome.face)
         .collect();
 
+    let mut written = None;
     if let Some(output) = &output {
         match output.extension() {
-            "csv" => output.write(|w| map.write_csv(w)).map_err(CliError::output(""))?,
+            "csv" => output
+                .write(|w| {
+                    let mut hashing = Hashing::new(w);
+                    map.write_csv(&mut hashing)?;
+                    written = Some(hashing.seal());
+                    Ok(())
+                })
+                .map_err(CliError::output(""))?,
             _ => write_image(&map, layer, output).map_err(|e| match e {
                 crate::experiment::Error::Output(e) => CliError::output("")(e),
                 e => CliError::experiment(&format!("{}: ", output.path().display()))(e),
@@ -171,7 +179,8 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
             height: h,
             layer: layer.name().to_string(),
         };
-        let mut summary = new_part(sweep, *shard, rows.clone(), part.path(), args.out.as_deref());
+        let records = args.out.as_deref().zip(written);
+        let mut summary = new_part(sweep, *shard, rows.clone(), part.path(), records, &preset);
         summary.complete = map.complete;
         summary.map_faces = Some(faces);
         summary.elapsed_s = elapsed;

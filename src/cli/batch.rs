@@ -1,6 +1,8 @@
 //! `dicesim batch`: many rolls in parallel, per-roll results and their statistics.
 
-use super::shard::{ShardArgs, batch_fingerprint, write_batch_part};
+use super::shard::{
+    Hashing, ShardArgs, batch_fingerprint, batch_provenance, csv_provenance_line, write_batch_part,
+};
 use super::{CliError, EngineArg, SetupArgs, cancel_on_ctrl_c};
 use crate::experiment::csv_io;
 use crate::experiment::ending::Ending;
@@ -135,6 +137,14 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
     };
     let bar = super::progress_bar(rolls.len(), "{bar:40} {pos}/{len} rolls, {per_sec}, {eta} left");
     let seed_field = given.is_none().then_some(seed);
+    let fingerprint = batch_fingerprint(&preset, given.as_deref());
+    let provenance = batch_provenance(
+        &preset,
+        seed_field,
+        total,
+        given.is_some().then_some(fingerprint.as_str()),
+    );
+    let mut written = None;
     let mut run = None;
     // The sink's own I/O error, kept whole (the engine only carries its words).
     let write_error = std::cell::RefCell::new(None);
@@ -153,13 +163,21 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
     match &output {
         Some(output) => output
             .write(|w| {
-                let mut records = RecordsFile::start(w, output.extension(), seed_field, rolls.len())?;
+                let mut hashing = Hashing::new(w);
+                let mut records = RecordsFile::start(
+                    &mut hashing,
+                    output.extension(),
+                    &provenance,
+                    seed_field,
+                    rolls.len(),
+                )?;
                 let done = roll(&mut |chunk| records.write(chunk));
                 let batch = done.map_err(|e| match write_error.borrow_mut().take() {
                     Some(io) => io,
                     None => std::io::Error::other(e.to_string()),
                 })?;
                 records.finish(&batch)?;
+                written = Some(hashing.seal());
                 run = Some(batch);
                 Ok(())
             })
@@ -172,11 +190,14 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
     if let Some((shard, part)) = &sharding {
         let sweep = Sweep::Batch {
             preset: preset.name.clone(),
-            fingerprint: batch_fingerprint(&preset, given.as_deref()),
+            fingerprint,
             seed: seed_field,
             rolls: total,
         };
-        write_batch_part(part, sweep, *shard, range, args.out.as_deref(), &batch)?;
+        let mut setup = preset.clone();
+        setup.random.seed = seed;
+        let records = args.out.as_deref().zip(written);
+        write_batch_part(part, sweep, *shard, range, records, &setup, &batch)?;
     }
     let mut out = std::io::stdout().lock();
     if args.json {
@@ -217,14 +238,18 @@ enum RecordsFile<'w> {
 }
 
 impl<'w> RecordsFile<'w> {
+    /// Starts the file with its provenance: a leading `#` comment line in CSV (which
+    /// `--ics` and `merge` read past), a field in JSON, key-value metadata in Parquet.
     fn start(
         w: &'w mut (dyn Write + Send),
         extension: &str,
+        provenance: &serde_json::Value,
         seed: Option<u64>,
         requested: u64,
     ) -> std::io::Result<Self> {
         Ok(match extension {
             "csv" => {
+                writeln!(w, "{}", csv_provenance_line(provenance))?;
                 let mut csv = csv::Writer::from_writer(w);
                 csv.write_record(records_csv_header()).map_err(csv_io)?;
                 RecordsFile::Csv(csv)
@@ -232,12 +257,14 @@ impl<'w> RecordsFile<'w> {
             "json" => {
                 write!(
                     w,
-                    "{{\"seed\":{},\"requested\":{requested},\"rolls\":[",
+                    "{{\"provenance\":{provenance},\"seed\":{},\"requested\":{requested},\"rolls\":[",
                     json!(seed)
                 )?;
                 RecordsFile::Json { w, first: true }
             }
-            _ => RecordsFile::Parquet(RecordsWriter::new(w).map_err(std::io::Error::other)?),
+            _ => RecordsFile::Parquet(
+                RecordsWriter::new(w, &provenance.to_string()).map_err(std::io::Error::other)?,
+            ),
         })
     }
 
