@@ -69,6 +69,31 @@ fn parse_resolution(s: &str) -> Result<(usize, usize), String> {
     Ok((w, h))
 }
 
+/// The check `roll` makes of its one start, made of every node before any is rolled: the
+/// first node whose start puts a corner into the table is the error, with its axis values.
+fn check_nodes_clear_of_table(
+    params: &crate::physics::Params,
+    base: &crate::physics::InitialCondition,
+    x: &Axis,
+    y: &Axis,
+) -> Result<(), CliError> {
+    for j in 0..y.cells {
+        for i in 0..x.cells {
+            let (p, ic) = crate::experiment::basin::node_setup(params, base, x, y, i, j);
+            if let Err(e) = ic.check_clear_of_table(&p) {
+                return Err(CliError::Usage(format!(
+                    "the node {} = {}, {} = {}: {e}",
+                    x.key.key,
+                    x.value(i),
+                    y.key.key,
+                    y.value(j)
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// The most cells a map takes (e.g. 2048×2048): the map and its partial copy stay in memory.
 pub(crate) const MAX_CELLS: usize = 2048 * 2048;
 
@@ -88,6 +113,7 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
     let params = preset.params();
     let x = Axis::parse(&args.x, w).map_err(CliError::experiment("--x "))?;
     let y = Axis::parse(&args.y, h).map_err(CliError::experiment("--y "))?;
+    check_nodes_clear_of_table(&params, &preset.initial, &x, &y)?;
     let layer = match args.layer {
         LayerArg::Face => Layer::Face,
         LayerArg::SettleTime => Layer::SettleTime,

@@ -99,6 +99,9 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
         ));
     }
     let seed = args.seed.unwrap_or(preset.random.seed);
+    if args.ics.is_none() {
+        preset.random.check_clear_of_table(&params, &preset.initial)?;
+    }
     let given = match &args.ics {
         Some(path) => {
             let text =
@@ -109,6 +112,16 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
                 })?;
             let ics = parse_initial_conditions(&text, &preset.initial, params.inertia())
                 .map_err(CliError::experiment(&format!("--ics {}: ", path.display())))?;
+            // The check `roll` makes of its one start, made of every row before any roll.
+            for (id, ic) in &ics {
+                ic.check_clear_of_table(&params).map_err(|e| {
+                    CliError::Usage(format!(
+                        "--ics {}: id {id}: {}",
+                        path.display(),
+                        e.to_string().replace("initial.", "")
+                    ))
+                })?;
+            }
             Some(ics)
         }
         None => None,
