@@ -619,9 +619,10 @@ impl Simulation {
         }
     }
 
-    /// The stopping rule for the current state: a loaded die's depends on the face down.
+    /// The stopping rule for the current state: a loaded die's depends on the face down
+    /// (what a report of a finished roll prints; [`Simulation::stop_rule`] is the fair die's).
     #[inline(always)]
-    fn stop_rule_now(&self) -> StopRule {
+    pub(crate) fn stop_rule_now(&self) -> StopRule {
         match &self.loaded {
             None => self.c.stop_rule,
             Some(m) => m.stop_rule(&self.state.corner_offsets),
