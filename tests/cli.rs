@@ -551,3 +551,39 @@ fn ctrl_c_in_a_basin_map_keeps_an_exact_prefix_of_its_cells() {
         "the kept cells are not the map's start"
     );
 }
+
+#[test]
+fn a_loaded_die_reports_the_stopping_threshold_its_roll_applied() {
+    // Loaded at corner 8, this roll settles face 5 up with a stop energy above the fair
+    // die's threshold: a settled roll's stop energy is at most the threshold applied, so
+    // the threshold reported must be at least it.
+    let args = [
+        "roll",
+        "--set",
+        "initial.angular_velocity=[-20,5,15]",
+        "--set",
+        "die.extra_corner_mass=[0,0,0,0,0,0,0,0.5]",
+    ];
+    let json = dicesim(&[&args[..], &["--json"]].concat());
+    let v: serde_json::Value = serde_json::from_str(&stdout(&json)).unwrap();
+    assert_eq!(v["status"], "settled");
+    let (stop, threshold) = (
+        v["stop_energy"].as_f64().unwrap(),
+        v["energy_threshold"].as_f64().unwrap(),
+    );
+    let fair = dicesim(&["roll", "--json"]);
+    let fair: serde_json::Value = serde_json::from_str(&stdout(&fair)).unwrap();
+    assert!(
+        stop > fair["energy_threshold"].as_f64().unwrap(),
+        "the case this test is about"
+    );
+    assert!(
+        stop <= threshold,
+        "stop energy {stop} above the threshold reported {threshold}"
+    );
+    let text = stdout(&dicesim(&args));
+    assert!(
+        text.contains(&format!("(threshold {threshold:.1} erg, rigid-body)")),
+        "{text}"
+    );
+}
