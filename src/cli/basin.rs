@@ -6,6 +6,8 @@ use crate::experiment::plot::write_image;
 use crate::experiment::shard::Sweep;
 use crate::experiment::{Axis, BasinMap, FaceTally, Layer, MapSpec, Method, RunOptions, run_map_rows};
 use crate::output::Output;
+use crate::physics::Params;
+use crate::preset::Preset;
 use clap::{Args, ValueEnum};
 use std::io::Write;
 use std::path::PathBuf;
@@ -69,10 +71,39 @@ fn parse_resolution(s: &str) -> Result<(usize, usize), String> {
     Ok((w, h))
 }
 
+/// Everything about a map's sweep that can be checked before any work: its size, setup,
+/// axes and every node's start. `slurm` runs the same checks before it writes a script.
+///
+/// `sharded`: the map is rolled in shards (`--shard`, or `slurm`'s array tasks).
+pub(crate) fn check_sweep(args: &BasinArgs, sharded: bool) -> Result<(Preset, Params, Axis, Axis), CliError> {
+    if sharded && args.adaptive {
+        return Err(CliError::Usage(
+            "--shard rolls every cell of its rows: adaptive refinement compares cells across shards"
+                .to_string(),
+        ));
+    }
+    let (w, h) = args.res;
+    if w * h > MAX_CELLS {
+        // The map, the copy shown while refining, and the image or CSV drawn from it.
+        let needed = 2 * w * h * size_of::<Option<crate::experiment::Cell>>();
+        return Err(CliError::Usage(format!(
+            "--res {w}x{h}: {} cells would need about {} of memory; at most {MAX_CELLS} cells (e.g. 2048x2048)",
+            w * h,
+            crate::experiment::trace::human_bytes(needed as u64)
+        )));
+    }
+    let preset = args.setup.resolve()?;
+    let params = preset.params();
+    let x = Axis::parse(&args.x, w).map_err(CliError::experiment("--x "))?;
+    let y = Axis::parse(&args.y, h).map_err(CliError::experiment("--y "))?;
+    check_nodes_clear_of_table(&params, &preset.initial, &x, &y)?;
+    Ok((preset, params, x, y))
+}
+
 /// The check `roll` makes of its one start, made of every node before any is rolled: the
 /// first node whose start puts a corner into the table is the error, with its axis values.
 fn check_nodes_clear_of_table(
-    params: &crate::physics::Params,
+    params: &Params,
     base: &crate::physics::InitialCondition,
     x: &Axis,
     y: &Axis,
@@ -100,20 +131,7 @@ pub(crate) const MAX_CELLS: usize = 2048 * 2048;
 pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
     let jobs = super::checked_jobs(args.jobs)?;
     let (w, h) = args.res;
-    if w * h > MAX_CELLS {
-        // The map, the copy shown while refining, and the image or CSV drawn from it.
-        let needed = 2 * w * h * size_of::<Option<crate::experiment::Cell>>();
-        return Err(CliError::Usage(format!(
-            "--res {w}x{h}: {} cells would need about {} of memory; at most {MAX_CELLS} cells (e.g. 2048x2048)",
-            w * h,
-            crate::experiment::trace::human_bytes(needed as u64)
-        )));
-    }
-    let preset = args.setup.resolve()?;
-    let params = preset.params();
-    let x = Axis::parse(&args.x, w).map_err(CliError::experiment("--x "))?;
-    let y = Axis::parse(&args.y, h).map_err(CliError::experiment("--y "))?;
-    check_nodes_clear_of_table(&params, &preset.initial, &x, &y)?;
+    let (preset, params, x, y) = check_sweep(args, args.shard.shard.is_some())?;
     let layer = match args.layer {
         LayerArg::Face => Layer::Face,
         LayerArg::SettleTime => Layer::SettleTime,
@@ -121,12 +139,6 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
     // Filled cells copy a corner's settle time, which says little about the cells between,
     // and a 1-D scan is plotted as settle time: these roll every cell unless asked otherwise.
     let sharding = args.shard.resolve(args.out.as_deref(), args.force)?;
-    if sharding.is_some() && args.adaptive {
-        return Err(CliError::Usage(
-            "--shard rolls every cell of its rows: adaptive refinement compares cells across shards"
-                .to_string(),
-        ));
-    }
     let method = match (args.adaptive, args.uniform) {
         _ if sharding.is_some() => Method::Uniform,
         (true, _) => Method::Adaptive,

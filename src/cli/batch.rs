@@ -8,9 +8,12 @@ use crate::experiment::csv_io;
 use crate::experiment::ending::Ending;
 use crate::experiment::ics::{parse_initial_conditions, record_csv_row, records_csv_header};
 use crate::experiment::parquet::RecordsWriter;
+use crate::experiment::shard::Shard;
 use crate::experiment::shard::Sweep;
 use crate::experiment::{BatchRun, BatchSummary, RollRecord, Rolls, RunOptions, stream_batch};
 use crate::output::Output;
+use crate::physics::InitialCondition;
+use crate::preset::Preset;
 use clap::Args;
 use serde_json::json;
 use std::io::Write;
@@ -70,22 +73,7 @@ pub(crate) struct BatchArgs {
 pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
     let jobs = super::checked_jobs(args.jobs)?;
     let sharding = args.shard.resolve(args.out.as_deref(), args.force)?;
-    // A shard keeps only its own rolls' records.
-    let kept = args.rolls.map(|n| {
-        sharding
-            .as_ref()
-            .map_or(n, |(s, _)| s.range(n).end - s.range(n).start)
-    });
-    if let Some(n) = kept
-        && n > MAX_ROLLS
-    {
-        return Err(CliError::Usage(format!(
-            "--rolls {n}: at most {MAX_ROLLS} per batch; split a sweep this large over machines with --shard K/N"
-        )));
-    }
-    let preset = args.setup.resolve()?;
-    let params = preset.params();
-    params.validate()?;
+    let (preset, params, given) = check_sweep(args, sharding.as_ref().map(|(s, _)| *s))?;
     let output = args
         .out
         .as_deref()
@@ -99,33 +87,6 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
         ));
     }
     let seed = args.seed.unwrap_or(preset.random.seed);
-    if args.ics.is_none() {
-        preset.random.check_clear_of_table(&params, &preset.initial)?;
-    }
-    let given = match &args.ics {
-        Some(path) => {
-            let text =
-                crate::preset::read_regular_file(path, MAX_ICS_BYTES).map_err(|message| CliError::Read {
-                    flag: "--ics",
-                    path: path.clone(),
-                    source: std::io::Error::other(message),
-                })?;
-            let ics = parse_initial_conditions(&text, &preset.initial, params.inertia())
-                .map_err(CliError::experiment(&format!("--ics {}: ", path.display())))?;
-            // The check `roll` makes of its one start, made of every row before any roll.
-            for (id, ic) in &ics {
-                ic.check_clear_of_table(&params).map_err(|e| {
-                    CliError::Usage(format!(
-                        "--ics {}: id {id}: {}",
-                        path.display(),
-                        e.to_string().replace("initial.", "")
-                    ))
-                })?;
-            }
-            Some(ics)
-        }
-        None => None,
-    };
     let total = given
         .as_ref()
         .map_or(args.rolls.unwrap_or(0), |ics| ics.len() as u64);
@@ -237,6 +198,61 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
         });
     }
     Ok(())
+}
+
+/// A batch's setup as checked: the preset, its parameters and the given starts if any.
+pub(crate) type CheckedSweep = (
+    Preset,
+    crate::physics::Params,
+    Option<Vec<(u64, InitialCondition)>>,
+);
+
+/// Everything about a batch's sweep that can be checked before any work, as a shard of it
+/// (`shard`) would check it: the roll count, the setup, the random ranges' starts or every
+/// row of `--ics`. `slurm` runs the same checks before it writes a script.
+pub(crate) fn check_sweep(args: &BatchArgs, shard: Option<Shard>) -> Result<CheckedSweep, CliError> {
+    // A shard keeps only its own rolls' records.
+    let kept = args
+        .rolls
+        .map(|n| shard.map_or(n, |s| s.range(n).end - s.range(n).start));
+    if let Some(n) = kept
+        && n > MAX_ROLLS
+    {
+        return Err(CliError::Usage(format!(
+            "--rolls {n}: at most {MAX_ROLLS} per batch; split a sweep this large over machines with --shard K/N"
+        )));
+    }
+    let preset = args.setup.resolve()?;
+    let params = preset.params();
+    params.validate()?;
+    if args.ics.is_none() {
+        preset.random.check_clear_of_table(&params, &preset.initial)?;
+    }
+    let given = match &args.ics {
+        Some(path) => {
+            let text =
+                crate::preset::read_regular_file(path, MAX_ICS_BYTES).map_err(|message| CliError::Read {
+                    flag: "--ics",
+                    path: path.clone(),
+                    source: std::io::Error::other(message),
+                })?;
+            let ics = parse_initial_conditions(&text, &preset.initial, params.inertia())
+                .map_err(CliError::experiment(&format!("--ics {}: ", path.display())))?;
+            // The check `roll` makes of its one start, made of every row before any roll.
+            for (id, ic) in &ics {
+                ic.check_clear_of_table(&params).map_err(|e| {
+                    CliError::Usage(format!(
+                        "--ics {}: id {id}: {}",
+                        path.display(),
+                        e.to_string().replace("initial.", "")
+                    ))
+                })?;
+            }
+            Some(ics)
+        }
+        None => None,
+    };
+    Ok((preset, params, given))
 }
 
 /// The per-roll file as the records arrive: CSV, JSON or Parquet by extension. JSON puts
