@@ -514,3 +514,29 @@ fn fifos_and_endless_files_are_refused_without_waiting() {
         "{e}"
     );
 }
+
+#[test]
+fn outputs_that_clash_with_each_other_or_the_inputs_are_refused_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    p4(d);
+    let e = refused(d, &["merge", "p4", "--out", "m.csv", "--out", "./m.csv"]);
+    assert_eq!(
+        e,
+        "dicesim: --out ./m.csv: named twice as an output (it would be written and then refused)\n"
+    );
+    let shard = std::fs::read(d.join("p4/part-1.csv")).unwrap();
+    let e = refused(d, &["merge", "p4", "--out", "p4/part-1.csv", "--force"]);
+    assert_eq!(
+        e,
+        "dicesim: --out p4/part-1.csv: this command reads it (the records of p4/part-1.part.json); write the result elsewhere\n"
+    );
+    assert_eq!(std::fs::read(d.join("p4/part-1.csv")).unwrap(), shard);
+    let o = dicesim_in(
+        d,
+        &["predict", "--rolls", "2", "--out", "c.csv", "--out", "c.csv"],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("c.csv: named twice as an output"));
+    assert!(!d.join("c.csv").exists());
+}

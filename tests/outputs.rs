@@ -16,7 +16,7 @@ const SLOW: [&str; 4] = ["--set", "ground.friction=0", "--set", "integrator.dt=1
 const BASIN: [&str; 6] = [
     "basin",
     "--x",
-    "initial.height:0.5:1.5",
+    "initial.height:1:2",
     "--y",
     "initial.angular_velocity.x:-5:5",
     "--res",

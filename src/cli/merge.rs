@@ -53,6 +53,8 @@ pub(crate) struct MergeArgs {
 }
 
 pub(crate) fn run(args: &MergeArgs) -> Result<(), CliError> {
+    // A merge keeps nothing partial: a signal removes the file being written and exits.
+    super::stop_at_once_on_signals()?;
     // Existing files are refused before any work, unless replacing them was asked for.
     let outputs: Vec<Output> = args
         .out
@@ -65,6 +67,14 @@ pub(crate) fn run(args: &MergeArgs) -> Result<(), CliError> {
         .iter()
         .map(|p| Ok((p.display().to_string(), read_part(p)?)))
         .collect::<Result<_, CliError>>()?;
+    let mut inputs: Vec<(PathBuf, String)> = Vec::new();
+    for (path, (_, part)) in paths.iter().zip(&parts) {
+        inputs.push((path.clone(), "a part summary".to_string()));
+        if let Some(records) = records_path(path, part) {
+            inputs.push((records, format!("the records of {}", path.display())));
+        }
+    }
+    crate::output::check_apart(&outputs, &inputs).map_err(CliError::output("--out "))?;
     let order = check_parts(&parts).map_err(CliError::Parts)?;
     let ordered: Vec<(&Path, &Part)> = order.iter().map(|&i| (paths[i].as_path(), &parts[i].1)).collect();
     let first = ordered[0].1;

@@ -105,6 +105,7 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
         .map(|p| Output::check(p, &["csv", "json", "png"], args.force))
         .collect::<Result<Vec<_>, _>>()
         .map_err(CliError::output("--out "))?;
+    crate::output::check_apart(&outputs, &[]).map_err(CliError::output("--out "))?;
 
     let bar = super::progress_bar(total, "{bar:40} {pos}/{len} rolls, {elapsed}");
     let options = RunOptions {
