@@ -587,3 +587,39 @@ fn a_loaded_die_reports_the_stopping_threshold_its_roll_applied() {
         "{text}"
     );
 }
+
+#[test]
+fn a_tiny_p_value_is_printed_as_the_explorer_prints_it_not_as_zero() {
+    // A die loaded this heavily lands on a few faces: p is far below 10⁻⁴.
+    let o = dicesim(&[
+        "batch",
+        "--rolls",
+        "200",
+        "--set",
+        "die.extra_corner_mass=[0,0,0,0,0,0,0,4]",
+    ]);
+    let text = stdout(&o);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let counts: Vec<f64> = text
+        .lines()
+        .skip(2)
+        .take(6)
+        .map(|l| l.split_whitespace().nth(1).unwrap().parse().unwrap())
+        .collect();
+    // p recomputed from the printed counts: the 5-dof closed form of the χ² tail.
+    let e = counts.iter().sum::<f64>() / 6.0;
+    let chi2: f64 = counts.iter().map(|c| (c - e).powi(2) / e).sum();
+    let p = statrs::function::erf::erfc((chi2 / 2.0).sqrt())
+        + (2.0 / std::f64::consts::PI).sqrt() * (-chi2 / 2.0).exp() * (chi2.sqrt() + chi2.powf(1.5) / 3.0);
+    assert!(p > 0.0 && p < 1e-4, "the case this test is about: p = {p}");
+    let printed: f64 = text
+        .split("p = ")
+        .nth(1)
+        .and_then(|r| r.lines().next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("{text}"));
+    assert!(
+        (printed - p).abs() <= 0.01 * p,
+        "printed {printed}, computed {p}: {text}"
+    );
+}

@@ -14,6 +14,7 @@ use crate::experiment::{BatchRun, BatchSummary, RollRecord, Rolls, RunOptions, s
 use crate::output::Output;
 use crate::physics::InitialCondition;
 use crate::preset::Preset;
+use crate::tui::format::fmt_num;
 use clap::Args;
 use serde_json::json;
 use std::io::Write;
@@ -371,7 +372,12 @@ pub(super) fn print_counts(out: &mut impl Write, s: &BatchSummary) -> std::io::R
         )?;
     }
     match (s.chi_square, s.p_value) {
-        (Some(chi2), Some(p)) => writeln!(out, "χ² against a fair die  {chi2:.3} (5 dof), p = {p:.4}")?,
+        // p as the explorer prints it (three significant digits, 6.02e-28 rather than 0.0000).
+        (Some(chi2), Some(p)) => writeln!(
+            out,
+            "χ² against a fair die  {chi2:.3} (5 dof), p = {}",
+            fmt_num(p)
+        )?,
         _ => writeln!(out, "χ² against a fair die  n/a (no faces)")?,
     }
     match s.rolls_to_detect {
