@@ -322,12 +322,15 @@ pub(crate) fn safe_file_stem(text: &str) -> String {
     if stem.is_empty() { "_".to_string() } else { stem }
 }
 
-/// `text` safe to print on a terminal: control characters (an escape sequence could retitle
-/// the window or hide what follows) are shown escaped, `\u{1b}`, instead of sent.
+/// `text` safe to print on a terminal: control characters (an escape sequence, or the C1
+/// introducer U+009B, could retitle the window or hide what follows) and the bidirectional
+/// overrides and isolates (U+202A–U+202E, U+2066–U+2069, which reorder what follows on the
+/// line) are shown escaped, `\u{1b}`, instead of sent.
 pub fn printable(text: &str) -> String {
+    let bidi = |c: char| matches!(c, '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}');
     text.chars()
         .map(|c| {
-            if c.is_control() && c != '\n' {
+            if (c.is_control() || bidi(c)) && c != '\n' {
                 c.escape_default().to_string()
             } else {
                 c.to_string()

@@ -201,8 +201,12 @@ fn print_prediction(out: &mut impl Write, p: &Prediction) -> std::io::Result<()>
         for pt in &c.points {
             writeln!(
                 out,
-                "{:>8.0e}   {:>8.3}      {:.3}–{:.3}",
-                pt.epsilon, pt.same_share, pt.interval[0], pt.interval[1]
+                "{:>8}   {:>8.3}      {:.3}–{:.3}",
+                // ε as given (1.5e-3, never rounded to 2e-3): the twins were rolled at it.
+                format!("{:e}", pt.epsilon),
+                pt.same_share,
+                pt.interval[0],
+                pt.interval[1]
             )?;
         }
         writeln!(
