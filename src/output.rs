@@ -31,6 +31,10 @@ pub enum OutputError {
     },
     #[error("{}: {message}; nothing was written", path.display())]
     Write { path: PathBuf, message: String },
+    #[error("{}: named twice as an output (it would be written and then refused)", path.display())]
+    Twice { path: PathBuf },
+    #[error("{}: this command reads it ({what}); write the result elsewhere", path.display())]
+    Input { path: PathBuf, what: String },
 }
 
 impl OutputError {
@@ -166,6 +170,7 @@ impl Output {
             return w.flush().map_err(failed);
         }
         let tmp = self.temporary().map_err(failed)?;
+        let _pending = Pending::register(tmp.path());
         let mut w = BufWriter::with_capacity(1 << 20, tmp);
         body(&mut w)?;
         w.flush().map_err(failed)?;
@@ -197,6 +202,78 @@ impl Output {
     pub(crate) fn write_bytes(&self, bytes: &[u8]) -> Result<(), OutputError> {
         self.write(|w| w.write_all(bytes))
     }
+}
+
+/// Where `path` points, so two names of one file compare equal: the file itself where it
+/// exists, else its folder's real path and its name.
+fn identity(path: &Path) -> PathBuf {
+    if let Ok(p) = std::fs::canonicalize(path) {
+        return p;
+    }
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let dir = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
+    dir.join(path.file_name().unwrap_or_default())
+}
+
+/// Checks, before any work, that no file is named twice among `outputs` and that none is
+/// one of `inputs` (each with the words for what it is): `--force` replaces an old result,
+/// never a file the command is reading.
+pub(crate) fn check_apart(outputs: &[Output], inputs: &[(PathBuf, String)]) -> Result<(), OutputError> {
+    let mut seen: Vec<PathBuf> = Vec::with_capacity(outputs.len());
+    for o in outputs {
+        let id = identity(o.path());
+        if seen.contains(&id) {
+            return Err(OutputError::Twice {
+                path: o.path().to_path_buf(),
+            });
+        }
+        if let Some((_, what)) = inputs.iter().find(|(p, _)| identity(p) == id) {
+            return Err(OutputError::Input {
+                path: o.path().to_path_buf(),
+                what: what.clone(),
+            });
+        }
+        seen.push(id);
+    }
+    Ok(())
+}
+
+/// The temporary files being written now, so a signal that stops the program at once can
+/// remove them ([`remove_pending`]); each is listed while its [`Pending`] guard lives.
+static PENDING: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+/// A temporary file listed in [`PENDING`] until this guard is dropped (the file is then
+/// renamed onto its path or already deleted).
+struct Pending(PathBuf);
+
+impl Pending {
+    fn register(path: &Path) -> Pending {
+        PENDING
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .push(path.to_path_buf());
+        Pending(path.to_path_buf())
+    }
+}
+
+impl Drop for Pending {
+    fn drop(&mut self) {
+        let mut pending = PENDING.lock().unwrap_or_else(|e| e.into_inner());
+        pending.retain(|p| *p != self.0);
+    }
+}
+
+/// Removes every temporary file still being written, for a program about to exit without
+/// unwinding (a signal that stops it at once); returns how many there were.
+pub(crate) fn remove_pending() -> usize {
+    let pending = PENDING.lock().unwrap_or_else(|e| e.into_inner());
+    for p in pending.iter() {
+        let _ = std::fs::remove_file(p);
+    }
+    pending.len()
 }
 
 /// The OS's reason alone: the temporary file's own name (which `tempfile` adds) means
@@ -245,12 +322,15 @@ pub(crate) fn safe_file_stem(text: &str) -> String {
     if stem.is_empty() { "_".to_string() } else { stem }
 }
 
-/// `text` safe to print on a terminal: control characters (an escape sequence could retitle
-/// the window or hide what follows) are shown escaped, `\u{1b}`, instead of sent.
+/// `text` safe to print on a terminal: control characters (an escape sequence, or the C1
+/// introducer U+009B, could retitle the window or hide what follows) and the bidirectional
+/// overrides and isolates (U+202A–U+202E, U+2066–U+2069, which reorder what follows on the
+/// line) are shown escaped, `\u{1b}`, instead of sent.
 pub fn printable(text: &str) -> String {
+    let bidi = |c: char| matches!(c, '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}');
     text.chars()
         .map(|c| {
-            if c.is_control() && c != '\n' {
+            if (c.is_control() || bidi(c)) && c != '\n' {
                 c.escape_default().to_string()
             } else {
                 c.to_string()

@@ -170,7 +170,8 @@ fn both_engines_write_byte_identical_files() {
         std::fs::read(&path).unwrap()
     };
     let csv = write("scalar", "csv");
-    assert_eq!(csv.iter().filter(|&&b| b == b'\n').count(), 3001);
+    // The provenance line, the header and 3000 rolls.
+    assert_eq!(csv.iter().filter(|&&b| b == b'\n').count(), 3002);
     assert!(csv == write("lanes", "csv"), "the CSVs differ");
     let json = |engine| {
         let mut v: serde_json::Value = serde_json::from_slice(&write(engine, "json")).unwrap();
@@ -277,7 +278,11 @@ fn ctrl_c_inside_long_rolls_keeps_an_exact_prefix() {
             "{err}"
         );
         let text = std::fs::read_to_string(&out).unwrap();
-        assert_eq!(text.lines().count(), 1, "only the header: {text}");
+        assert_eq!(
+            text.lines().count(),
+            2,
+            "only the provenance and the header: {text}"
+        );
 
         // Short rolls: what was kept is the start of the full batch, row for row.
         let out = dir.path().join(format!("short-{engine}.csv"));
@@ -292,7 +297,7 @@ fn ctrl_c_inside_long_rolls_keeps_an_exact_prefix() {
             String::from_utf8_lossy(&o.stderr)
         );
         let kept = std::fs::read_to_string(&out).unwrap();
-        let rows = kept.lines().count() - 1;
+        let rows = kept.lines().count() - 2;
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(
             err.contains(&format!("kept the {rows} of 1000000 rolls")),
@@ -310,10 +315,14 @@ fn ctrl_c_inside_long_rolls_keeps_an_exact_prefix() {
             full.to_str().unwrap(),
         ]);
         assert!(o.status.success());
+        // The same rows; the provenance lines differ in the batch's size only.
+        let full = std::fs::read_to_string(&full).unwrap();
         assert!(
-            std::fs::read_to_string(&full).unwrap() == kept,
+            full.lines().skip(1).eq(kept.lines().skip(1)),
             "the kept rows are not the batch's start"
         );
+        let sized = |t: &str, n: usize| t.lines().next().unwrap().contains(&format!("\"rolls\":{n},"));
+        assert!(sized(&kept, 1_000_000) && sized(&full, rows));
     }
 }
 
@@ -540,5 +549,77 @@ fn ctrl_c_in_a_basin_map_keeps_an_exact_prefix_of_its_cells() {
     assert!(
         kept.lines().eq(start.iter().copied()),
         "the kept cells are not the map's start"
+    );
+}
+
+#[test]
+fn a_loaded_die_reports_the_stopping_threshold_its_roll_applied() {
+    // Loaded at corner 8, this roll settles face 5 up with a stop energy above the fair
+    // die's threshold: a settled roll's stop energy is at most the threshold applied, so
+    // the threshold reported must be at least it.
+    let args = [
+        "roll",
+        "--set",
+        "initial.angular_velocity=[-20,5,15]",
+        "--set",
+        "die.extra_corner_mass=[0,0,0,0,0,0,0,0.5]",
+    ];
+    let json = dicesim(&[&args[..], &["--json"]].concat());
+    let v: serde_json::Value = serde_json::from_str(&stdout(&json)).unwrap();
+    assert_eq!(v["status"], "settled");
+    let (stop, threshold) = (
+        v["stop_energy"].as_f64().unwrap(),
+        v["energy_threshold"].as_f64().unwrap(),
+    );
+    let fair = dicesim(&["roll", "--json"]);
+    let fair: serde_json::Value = serde_json::from_str(&stdout(&fair)).unwrap();
+    assert!(
+        stop > fair["energy_threshold"].as_f64().unwrap(),
+        "the case this test is about"
+    );
+    assert!(
+        stop <= threshold,
+        "stop energy {stop} above the threshold reported {threshold}"
+    );
+    let text = stdout(&dicesim(&args));
+    assert!(
+        text.contains(&format!("(threshold {threshold:.1} erg, rigid-body)")),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_tiny_p_value_is_printed_as_the_explorer_prints_it_not_as_zero() {
+    // A die loaded this heavily lands on a few faces: p is far below 10⁻⁴.
+    let o = dicesim(&[
+        "batch",
+        "--rolls",
+        "200",
+        "--set",
+        "die.extra_corner_mass=[0,0,0,0,0,0,0,4]",
+    ]);
+    let text = stdout(&o);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let counts: Vec<f64> = text
+        .lines()
+        .skip(2)
+        .take(6)
+        .map(|l| l.split_whitespace().nth(1).unwrap().parse().unwrap())
+        .collect();
+    // p recomputed from the printed counts: the 5-dof closed form of the χ² tail.
+    let e = counts.iter().sum::<f64>() / 6.0;
+    let chi2: f64 = counts.iter().map(|c| (c - e).powi(2) / e).sum();
+    let p = statrs::function::erf::erfc((chi2 / 2.0).sqrt())
+        + (2.0 / std::f64::consts::PI).sqrt() * (-chi2 / 2.0).exp() * (chi2.sqrt() + chi2.powf(1.5) / 3.0);
+    assert!(p > 0.0 && p < 1e-4, "the case this test is about: p = {p}");
+    let printed: f64 = text
+        .split("p = ")
+        .nth(1)
+        .and_then(|r| r.lines().next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("{text}"));
+    assert!(
+        (printed - p).abs() <= 0.01 * p,
+        "printed {printed}, computed {p}: {text}"
     );
 }

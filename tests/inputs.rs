@@ -42,7 +42,7 @@ fn sizes_beyond_the_limits_are_refused_before_any_work() {
         &[
             "basin",
             "--x",
-            "initial.height:0.5:1.5",
+            "initial.height:1:2",
             "--y",
             "ground.friction:0:1",
             "--res",

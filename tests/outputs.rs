@@ -16,7 +16,7 @@ const SLOW: [&str; 4] = ["--set", "ground.friction=0", "--set", "integrator.dt=1
 const BASIN: [&str; 6] = [
     "basin",
     "--x",
-    "initial.height:0.5:1.5",
+    "initial.height:1:2",
     "--y",
     "initial.angular_velocity.x:-5:5",
     "--res",
@@ -54,7 +54,11 @@ fn an_existing_file_is_refused_without_force_and_replaced_with_it() {
     );
     assert!(o.status.success(), "{}", stderr(&o));
     let text = std::fs::read_to_string(dir.path().join("old.csv")).unwrap();
-    assert_eq!(text.lines().count(), 4, "a header and 3 rolls: {text}");
+    assert_eq!(
+        text.lines().count(),
+        5,
+        "provenance, a header and 3 rolls: {text}"
+    );
     args.push("--force");
     let o = dicesim_in(dir.path(), &args);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -140,7 +144,7 @@ fn the_first_ctrl_c_of_a_slow_batch_keeps_every_completed_roll() {
     let text = std::fs::read_to_string(dir.path().join("slow.csv")).expect("the file is written");
     let ids: Vec<&str> = text
         .lines()
-        .skip(1)
+        .skip(2)
         .map(|l| l.split(',').next().unwrap())
         .collect();
     assert_eq!(ids.len(), kept, "{message}");

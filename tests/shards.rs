@@ -71,11 +71,15 @@ fn eight_shards_of_40000_rolls_merge_into_the_one_machine_csv_and_summary() {
             ],
         );
     }
-    // Shard 3 of 8 is rolls 15 000 to 19 999 of the same streams.
+    // Shard 3 of 8 is rolls 15 000 to 19 999 of the same streams, under the provenance
+    // line and the header of the whole sweep.
     let part3 = String::from_utf8(bytes(d, "part-3.csv")).unwrap();
-    assert!(part3.lines().nth(1).unwrap().starts_with("15000,"));
+    let one_csv = String::from_utf8(bytes(d, "one.csv")).unwrap();
+    assert_eq!(part3.lines().next(), one_csv.lines().next());
+    assert!(part3.starts_with("# {\"initial_conditions\""));
+    assert!(part3.lines().nth(2).unwrap().starts_with("15000,"));
     assert!(part3.lines().last().unwrap().starts_with("19999,"));
-    assert_eq!(part3.lines().count(), 5001);
+    assert_eq!(part3.lines().count(), 5002);
 
     // Parts in any order; a folder stands for the parts inside.
     let mut names: Vec<String> = (0..8).rev().map(|k| format!("part-{k}.part.json")).collect();
@@ -226,10 +230,14 @@ fn merge_refuses_missing_duplicated_or_foreign_parts() {
     // A part whose records were cut short.
     let full = std::fs::read_to_string(d.join("p1.csv")).unwrap();
     let cut: String = full.lines().take(20).map(|l| format!("{l}\n")).collect();
-    std::fs::write(d.join("p1.csv"), cut).unwrap();
+    std::fs::write(d.join("p1.csv"), &cut).unwrap();
     assert_eq!(
         merge(&all),
-        "dicesim: p1.csv: line 21: the file ends after 19 of the 50 rows the part summary counts\n"
+        format!(
+            "dicesim: p1.csv (records of p1.part.json): {} bytes, but the shard wrote {}: the file was cut, extended or replaced\n",
+            cut.len(),
+            full.len()
+        )
     );
     assert!(!d.join("m.csv").exists(), "a refused merge writes nothing");
     let leftovers: Vec<_> = std::fs::read_dir(d)

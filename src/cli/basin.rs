@@ -1,11 +1,13 @@
 //! `dicesim basin`: the outcome over a grid of two setup values, as CSV or an image.
 
-use super::shard::{ShardArgs, map_fingerprint, new_part, write_part};
+use super::shard::{Hashing, ShardArgs, map_fingerprint, new_part, write_part};
 use super::{CliError, EngineArg, SetupArgs, cancel_on_ctrl_c};
 use crate::experiment::plot::write_image;
 use crate::experiment::shard::Sweep;
 use crate::experiment::{Axis, BasinMap, FaceTally, Layer, MapSpec, Method, RunOptions, run_map_rows};
 use crate::output::Output;
+use crate::physics::Params;
+use crate::preset::Preset;
 use clap::{Args, ValueEnum};
 use std::io::Write;
 use std::path::PathBuf;
@@ -69,11 +71,17 @@ fn parse_resolution(s: &str) -> Result<(usize, usize), String> {
     Ok((w, h))
 }
 
-/// The most cells a map takes (e.g. 2048×2048): the map and its partial copy stay in memory.
-pub(crate) const MAX_CELLS: usize = 2048 * 2048;
-
-pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
-    let jobs = super::checked_jobs(args.jobs)?;
+/// Everything about a map's sweep that can be checked before any work: its size, setup,
+/// axes and every node's start. `slurm` runs the same checks before it writes a script.
+///
+/// `sharded`: the map is rolled in shards (`--shard`, or `slurm`'s array tasks).
+pub(crate) fn check_sweep(args: &BasinArgs, sharded: bool) -> Result<(Preset, Params, Axis, Axis), CliError> {
+    if sharded && args.adaptive {
+        return Err(CliError::Usage(
+            "--shard rolls every cell of its rows: adaptive refinement compares cells across shards"
+                .to_string(),
+        ));
+    }
     let (w, h) = args.res;
     if w * h > MAX_CELLS {
         // The map, the copy shown while refining, and the image or CSV drawn from it.
@@ -88,6 +96,42 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
     let params = preset.params();
     let x = Axis::parse(&args.x, w).map_err(CliError::experiment("--x "))?;
     let y = Axis::parse(&args.y, h).map_err(CliError::experiment("--y "))?;
+    check_nodes_clear_of_table(&params, &preset.initial, &x, &y)?;
+    Ok((preset, params, x, y))
+}
+
+/// The check `roll` makes of its one start, made of every node before any is rolled: the
+/// first node whose start puts a corner into the table is the error, with its axis values.
+fn check_nodes_clear_of_table(
+    params: &Params,
+    base: &crate::physics::InitialCondition,
+    x: &Axis,
+    y: &Axis,
+) -> Result<(), CliError> {
+    for j in 0..y.cells {
+        for i in 0..x.cells {
+            let (p, ic) = crate::experiment::basin::node_setup(params, base, x, y, i, j);
+            if let Err(e) = ic.check_clear_of_table(&p) {
+                return Err(CliError::Usage(format!(
+                    "the node {} = {}, {} = {}: {e}",
+                    x.key.key,
+                    x.value(i),
+                    y.key.key,
+                    y.value(j)
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The most cells a map takes (e.g. 2048×2048): the map and its partial copy stay in memory.
+pub(crate) const MAX_CELLS: usize = 2048 * 2048;
+
+pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
+    let jobs = super::checked_jobs(args.jobs)?;
+    let (w, h) = args.res;
+    let (preset, params, x, y) = check_sweep(args, args.shard.shard.is_some())?;
     let layer = match args.layer {
         LayerArg::Face => Layer::Face,
         LayerArg::SettleTime => Layer::SettleTime,
@@ -95,12 +139,6 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
     // Filled cells copy a corner's settle time, which says little about the cells between,
     // and a 1-D scan is plotted as settle time: these roll every cell unless asked otherwise.
     let sharding = args.shard.resolve(args.out.as_deref(), args.force)?;
-    if sharding.is_some() && args.adaptive {
-        return Err(CliError::Usage(
-            "--shard rolls every cell of its rows: adaptive refinement compares cells across shards"
-                .to_string(),
-        ));
-    }
     let method = match (args.adaptive, args.uniform) {
         _ if sharding.is_some() => Method::Uniform,
         (true, _) => Method::Adaptive,
@@ -152,9 +190,17 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
         .filter_map(|c| c.outcome.face)
         .collect();
 
+    let mut written = None;
     if let Some(output) = &output {
         match output.extension() {
-            "csv" => output.write(|w| map.write_csv(w)).map_err(CliError::output(""))?,
+            "csv" => output
+                .write(|w| {
+                    let mut hashing = Hashing::new(w);
+                    map.write_csv(&mut hashing)?;
+                    written = Some(hashing.seal());
+                    Ok(())
+                })
+                .map_err(CliError::output(""))?,
             _ => write_image(&map, layer, output).map_err(|e| match e {
                 crate::experiment::Error::Output(e) => CliError::output("")(e),
                 e => CliError::experiment(&format!("{}: ", output.path().display()))(e),
@@ -171,7 +217,8 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
             height: h,
             layer: layer.name().to_string(),
         };
-        let mut summary = new_part(sweep, *shard, rows.clone(), part.path(), args.out.as_deref());
+        let records = args.out.as_deref().zip(written);
+        let mut summary = new_part(sweep, *shard, rows.clone(), part.path(), records, &preset);
         summary.complete = map.complete;
         summary.map_faces = Some(faces);
         summary.elapsed_s = elapsed;

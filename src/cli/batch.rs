@@ -1,14 +1,20 @@
 //! `dicesim batch`: many rolls in parallel, per-roll results and their statistics.
 
-use super::shard::{ShardArgs, batch_fingerprint, write_batch_part};
+use super::shard::{
+    Hashing, ShardArgs, batch_fingerprint, batch_provenance, csv_provenance_line, write_batch_part,
+};
 use super::{CliError, EngineArg, SetupArgs, cancel_on_ctrl_c};
 use crate::experiment::csv_io;
 use crate::experiment::ending::Ending;
 use crate::experiment::ics::{parse_initial_conditions, record_csv_row, records_csv_header};
 use crate::experiment::parquet::RecordsWriter;
+use crate::experiment::shard::Shard;
 use crate::experiment::shard::Sweep;
 use crate::experiment::{BatchRun, BatchSummary, RollRecord, Rolls, RunOptions, stream_batch};
 use crate::output::Output;
+use crate::physics::InitialCondition;
+use crate::preset::Preset;
+use crate::tui::format::fmt_num;
 use clap::Args;
 use serde_json::json;
 use std::io::Write;
@@ -68,22 +74,7 @@ pub(crate) struct BatchArgs {
 pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
     let jobs = super::checked_jobs(args.jobs)?;
     let sharding = args.shard.resolve(args.out.as_deref(), args.force)?;
-    // A shard keeps only its own rolls' records.
-    let kept = args.rolls.map(|n| {
-        sharding
-            .as_ref()
-            .map_or(n, |(s, _)| s.range(n).end - s.range(n).start)
-    });
-    if let Some(n) = kept
-        && n > MAX_ROLLS
-    {
-        return Err(CliError::Usage(format!(
-            "--rolls {n}: at most {MAX_ROLLS} per batch; split a sweep this large over machines with --shard K/N"
-        )));
-    }
-    let preset = args.setup.resolve()?;
-    let params = preset.params();
-    params.validate()?;
+    let (preset, params, given) = check_sweep(args, sharding.as_ref().map(|(s, _)| *s))?;
     let output = args
         .out
         .as_deref()
@@ -97,20 +88,6 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
         ));
     }
     let seed = args.seed.unwrap_or(preset.random.seed);
-    let given = match &args.ics {
-        Some(path) => {
-            let text =
-                crate::preset::read_regular_file(path, MAX_ICS_BYTES).map_err(|message| CliError::Read {
-                    flag: "--ics",
-                    path: path.clone(),
-                    source: std::io::Error::other(message),
-                })?;
-            let ics = parse_initial_conditions(&text, &preset.initial, params.inertia())
-                .map_err(CliError::experiment(&format!("--ics {}: ", path.display())))?;
-            Some(ics)
-        }
-        None => None,
-    };
     let total = given
         .as_ref()
         .map_or(args.rolls.unwrap_or(0), |ics| ics.len() as u64);
@@ -135,6 +112,14 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
     };
     let bar = super::progress_bar(rolls.len(), "{bar:40} {pos}/{len} rolls, {per_sec}, {eta} left");
     let seed_field = given.is_none().then_some(seed);
+    let fingerprint = batch_fingerprint(&preset, given.as_deref());
+    let provenance = batch_provenance(
+        &preset,
+        seed_field,
+        total,
+        given.is_some().then_some(fingerprint.as_str()),
+    );
+    let mut written = None;
     let mut run = None;
     // The sink's own I/O error, kept whole (the engine only carries its words).
     let write_error = std::cell::RefCell::new(None);
@@ -153,13 +138,21 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
     match &output {
         Some(output) => output
             .write(|w| {
-                let mut records = RecordsFile::start(w, output.extension(), seed_field, rolls.len())?;
+                let mut hashing = Hashing::new(w);
+                let mut records = RecordsFile::start(
+                    &mut hashing,
+                    output.extension(),
+                    &provenance,
+                    seed_field,
+                    rolls.len(),
+                )?;
                 let done = roll(&mut |chunk| records.write(chunk));
                 let batch = done.map_err(|e| match write_error.borrow_mut().take() {
                     Some(io) => io,
                     None => std::io::Error::other(e.to_string()),
                 })?;
                 records.finish(&batch)?;
+                written = Some(hashing.seal());
                 run = Some(batch);
                 Ok(())
             })
@@ -172,11 +165,14 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
     if let Some((shard, part)) = &sharding {
         let sweep = Sweep::Batch {
             preset: preset.name.clone(),
-            fingerprint: batch_fingerprint(&preset, given.as_deref()),
+            fingerprint,
             seed: seed_field,
             rolls: total,
         };
-        write_batch_part(part, sweep, *shard, range, args.out.as_deref(), &batch)?;
+        let mut setup = preset.clone();
+        setup.random.seed = seed;
+        let records = args.out.as_deref().zip(written);
+        write_batch_part(part, sweep, *shard, range, records, &setup, &batch)?;
     }
     let mut out = std::io::stdout().lock();
     if args.json {
@@ -205,6 +201,61 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// A batch's setup as checked: the preset, its parameters and the given starts if any.
+pub(crate) type CheckedSweep = (
+    Preset,
+    crate::physics::Params,
+    Option<Vec<(u64, InitialCondition)>>,
+);
+
+/// Everything about a batch's sweep that can be checked before any work, as a shard of it
+/// (`shard`) would check it: the roll count, the setup, the random ranges' starts or every
+/// row of `--ics`. `slurm` runs the same checks before it writes a script.
+pub(crate) fn check_sweep(args: &BatchArgs, shard: Option<Shard>) -> Result<CheckedSweep, CliError> {
+    // A shard keeps only its own rolls' records.
+    let kept = args
+        .rolls
+        .map(|n| shard.map_or(n, |s| s.range(n).end - s.range(n).start));
+    if let Some(n) = kept
+        && n > MAX_ROLLS
+    {
+        return Err(CliError::Usage(format!(
+            "--rolls {n}: at most {MAX_ROLLS} per batch; split a sweep this large over machines with --shard K/N"
+        )));
+    }
+    let preset = args.setup.resolve()?;
+    let params = preset.params();
+    params.validate()?;
+    if args.ics.is_none() {
+        preset.random.check_clear_of_table(&params, &preset.initial)?;
+    }
+    let given = match &args.ics {
+        Some(path) => {
+            let text =
+                crate::preset::read_regular_file(path, MAX_ICS_BYTES).map_err(|message| CliError::Read {
+                    flag: "--ics",
+                    path: path.clone(),
+                    source: std::io::Error::other(message),
+                })?;
+            let ics = parse_initial_conditions(&text, &preset.initial, params.inertia())
+                .map_err(CliError::experiment(&format!("--ics {}: ", path.display())))?;
+            // The check `roll` makes of its one start, made of every row before any roll.
+            for (id, ic) in &ics {
+                ic.check_clear_of_table(&params).map_err(|e| {
+                    CliError::Usage(format!(
+                        "--ics {}: id {id}: {}",
+                        path.display(),
+                        e.to_string().replace("initial.", "")
+                    ))
+                })?;
+            }
+            Some(ics)
+        }
+        None => None,
+    };
+    Ok((preset, params, given))
+}
+
 /// The per-roll file as the records arrive: CSV, JSON or Parquet by extension. JSON puts
 /// the rolls first and what is known only at the end (interrupted, summary) after them.
 enum RecordsFile<'w> {
@@ -217,14 +268,18 @@ enum RecordsFile<'w> {
 }
 
 impl<'w> RecordsFile<'w> {
+    /// Starts the file with its provenance: a leading `#` comment line in CSV (which
+    /// `--ics` and `merge` read past), a field in JSON, key-value metadata in Parquet.
     fn start(
         w: &'w mut (dyn Write + Send),
         extension: &str,
+        provenance: &serde_json::Value,
         seed: Option<u64>,
         requested: u64,
     ) -> std::io::Result<Self> {
         Ok(match extension {
             "csv" => {
+                writeln!(w, "{}", csv_provenance_line(provenance))?;
                 let mut csv = csv::Writer::from_writer(w);
                 csv.write_record(records_csv_header()).map_err(csv_io)?;
                 RecordsFile::Csv(csv)
@@ -232,12 +287,14 @@ impl<'w> RecordsFile<'w> {
             "json" => {
                 write!(
                     w,
-                    "{{\"seed\":{},\"requested\":{requested},\"rolls\":[",
+                    "{{\"provenance\":{provenance},\"seed\":{},\"requested\":{requested},\"rolls\":[",
                     json!(seed)
                 )?;
                 RecordsFile::Json { w, first: true }
             }
-            _ => RecordsFile::Parquet(RecordsWriter::new(w).map_err(std::io::Error::other)?),
+            _ => RecordsFile::Parquet(
+                RecordsWriter::new(w, &provenance.to_string()).map_err(std::io::Error::other)?,
+            ),
         })
     }
 
@@ -315,7 +372,12 @@ pub(super) fn print_counts(out: &mut impl Write, s: &BatchSummary) -> std::io::R
         )?;
     }
     match (s.chi_square, s.p_value) {
-        (Some(chi2), Some(p)) => writeln!(out, "χ² against a fair die  {chi2:.3} (5 dof), p = {p:.4}")?,
+        // p as the explorer prints it (three significant digits, 6.02e-28 rather than 0.0000).
+        (Some(chi2), Some(p)) => writeln!(
+            out,
+            "χ² against a fair die  {chi2:.3} (5 dof), p = {}",
+            fmt_num(p)
+        )?,
         _ => writeln!(out, "χ² against a fair die  n/a (no faces)")?,
     }
     match s.rolls_to_detect {

@@ -17,6 +17,8 @@ use crate::experiment::Engine;
 use crate::physics::ParamError;
 use crate::preset::{Preset, PresetError, Store};
 use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
+use signal_hook::consts::{SIGHUP, SIGINT, SIGQUIT, SIGTERM};
+use std::io::Write as _;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -60,18 +62,55 @@ pub(crate) fn progress_bar(total: u64, template: &str) -> indicatif::ProgressBar
 /// shell reports a SIGINT (128 + 2), the status `main` gives an interrupted command.
 const INTERRUPTED_AT_ONCE: i32 = 130;
 
-/// A flag the first Ctrl-C sets (the running rolls notice it within a few thousand steps
-/// and the command keeps what is complete); a second Ctrl-C quits at once.
+/// The signals that ask a command to stop: Ctrl-C, `kill`, a closed terminal, Ctrl-\\ (and
+/// Slurm's time limit, which sends SIGTERM).
+const STOP_SIGNALS: [i32; 4] = [SIGINT, SIGTERM, SIGHUP, SIGQUIT];
+
+/// A flag the first stop signal sets (the running rolls notice it within a few thousand
+/// steps and the command keeps what is complete); a second signal stops at once, after
+/// removing the temporary file being written and saying so.
 pub(crate) fn cancel_on_ctrl_c() -> Result<Arc<AtomicBool>, CliError> {
     let stop = Arc::new(AtomicBool::new(false));
-    let handler_stop = stop.clone();
-    ctrlc::set_handler(move || {
-        if handler_stop.swap(true, Ordering::SeqCst) {
-            std::process::exit(INTERRUPTED_AT_ONCE);
-        }
-    })
-    .map_err(|e| CliError::Io(std::io::Error::other(format!("cannot catch Ctrl-C: {e}"))))?;
+    on_stop_signals(Some(stop.clone()))?;
     Ok(stop)
+}
+
+/// For a command that has no use for a partial result (`merge`): any stop signal removes the
+/// temporary file being written, says that nothing was written and exits.
+pub(crate) fn stop_at_once_on_signals() -> Result<(), CliError> {
+    on_stop_signals(None)
+}
+
+fn on_stop_signals(graceful: Option<Arc<AtomicBool>>) -> Result<(), CliError> {
+    let mut signals = signal_hook::iterator::Signals::new(STOP_SIGNALS)
+        .map_err(|e| CliError::Io(std::io::Error::other(format!("cannot catch signals: {e}"))))?;
+    std::thread::spawn(move || {
+        for signal in signals.forever() {
+            if let Some(stop) = &graceful
+                && !stop.swap(true, Ordering::SeqCst)
+            {
+                continue;
+            }
+            let removed = crate::output::remove_pending();
+            let what = if removed > 0 {
+                "the file being written was removed, nothing was written"
+            } else {
+                "nothing was written"
+            };
+            let why = if graceful.is_some() {
+                "stopped again"
+            } else {
+                "stopped"
+            };
+            let _ = writeln!(std::io::stderr(), "dicesim: {why} by signal {signal}: {what}");
+            std::process::exit(if signal == SIGINT {
+                INTERRUPTED_AT_ONCE
+            } else {
+                128 + signal
+            });
+        }
+    });
+    Ok(())
 }
 
 /// A die rolling on a table as a rigid body (Chin & Li, 2019).

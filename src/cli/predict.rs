@@ -1,5 +1,6 @@
 //! `dicesim predict`: how precisely a throw must be known to predict its face.
 
+use super::shard::csv_provenance_line;
 use super::{CliError, EngineArg, SetupArgs, cancel_on_ctrl_c};
 use crate::experiment::plot::Record;
 use crate::experiment::predict::{PredictSpec, Prediction, default_epsilons, run_prediction};
@@ -105,6 +106,7 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
         .map(|p| Output::check(p, &["csv", "json", "png"], args.force))
         .collect::<Result<Vec<_>, _>>()
         .map_err(CliError::output("--out "))?;
+    crate::output::check_apart(&outputs, &[]).map_err(CliError::output("--out "))?;
 
     let bar = super::progress_bar(total, "{bar:40} {pos}/{len} rolls, {elapsed}");
     let options = RunOptions {
@@ -124,11 +126,27 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
     .map_err(CliError::experiment(""))?;
     bar.finish_and_clear();
 
+    // What defines the experiment, in every file it writes (never threads or time).
+    let mut values = preset.as_written();
+    values.random.seed = spec.seed;
+    let provenance = serde_json::json!({
+        "program": format!("dicesim {}", env!("CARGO_PKG_VERSION")),
+        "preset": values,
+        "seed": spec.seed,
+        "rolls": args.rolls,
+        "epsilons": spec.epsilons,
+        "vary": args.vary,
+    });
     for output in &outputs {
         match output.extension() {
-            "csv" => output.write(|w| prediction.write_csv(w)),
+            "csv" => output.write(|w| {
+                writeln!(w, "{}", csv_provenance_line(&provenance))?;
+                prediction.write_csv(w)
+            }),
             "json" => output.write(|w| {
-                serde_json::to_writer_pretty(&mut *w, &prediction)?;
+                let mut v = serde_json::to_value(&prediction)?;
+                v["provenance"] = provenance.clone();
+                serde_json::to_writer_pretty(&mut *w, &v)?;
                 writeln!(w)
             }),
             _ => {
@@ -183,8 +201,12 @@ fn print_prediction(out: &mut impl Write, p: &Prediction) -> std::io::Result<()>
         for pt in &c.points {
             writeln!(
                 out,
-                "{:>8.0e}   {:>8.3}      {:.3}–{:.3}",
-                pt.epsilon, pt.same_share, pt.interval[0], pt.interval[1]
+                "{:>8}   {:>8.3}      {:.3}–{:.3}",
+                // ε as given (1.5e-3, never rounded to 2e-3): the twins were rolled at it.
+                format!("{:e}", pt.epsilon),
+                pt.same_share,
+                pt.interval[0],
+                pt.interval[1]
             )?;
         }
         writeln!(

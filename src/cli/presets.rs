@@ -56,7 +56,7 @@ pub(crate) fn run(args: &PresetsArgs) -> Result<(), CliError> {
                 writeln!(
                     out,
                     "{:<width$}  {:<7}  {}",
-                    e.name,
+                    crate::output::printable(&e.name),
                     e.source.kind(),
                     crate::output::printable(&about)
                 )?;
@@ -67,7 +67,8 @@ pub(crate) fn run(args: &PresetsArgs) -> Result<(), CliError> {
                 preset: Some(name.clone()),
                 set: set.clone(),
             };
-            write!(out, "{}", setup.resolve()?.to_toml())?;
+            // A description may hold anything a file can; the terminal gets it escaped.
+            write!(out, "{}", crate::output::printable(&setup.resolve()?.to_toml()))?;
         }
         PresetsCommand::Save {
             name,

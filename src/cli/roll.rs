@@ -23,7 +23,8 @@ pub(crate) fn run(args: &RollArgs) -> Result<(), CliError> {
     let outcome = sim.run_to_end();
     let s = sim.state();
     let energy = sim.energy();
-    let rule = sim.stop_rule();
+    // The rule this roll applied at its end: a loaded die's depends on the face down.
+    let rule = sim.stop_rule_now();
     let stability = Stability::predict(&params, &preset.initial).verdict();
     let reason = (outcome.status == Status::Unstable).then(|| UnstableReason::new(&params, &preset.initial));
     let cannot_settle = why_it_cannot_settle(&params);

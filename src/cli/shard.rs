@@ -8,7 +8,10 @@ use crate::output::Output;
 use crate::physics::InitialCondition;
 use crate::preset::Preset;
 use clap::Args;
+use std::hash::Hasher;
+use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
+use twox_hash::XxHash64;
 
 /// The extension of a part summary, replacing the records file's.
 pub(crate) const PART_EXTENSION: &str = "part.json";
@@ -56,13 +59,74 @@ impl ShardArgs {
     }
 }
 
+/// A writer that passes bytes on and keeps their count and XXH64 hash: a shard's records
+/// are hashed as they are written, without reading the file again.
+pub(crate) struct Hashing<W> {
+    inner: W,
+    bytes: u64,
+    hash: XxHash64,
+}
+
+impl<W: Write> Hashing<W> {
+    pub(crate) fn new(inner: W) -> Self {
+        Hashing {
+            inner,
+            bytes: 0,
+            hash: XxHash64::with_seed(0),
+        }
+    }
+
+    /// The bytes written and their hash, as a part records them.
+    pub(crate) fn seal(&self) -> Written {
+        Written {
+            bytes: self.bytes,
+            hash: format!("{:016x}", self.hash.finish()),
+        }
+    }
+}
+
+impl<W: Write> Write for Hashing<W> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let n = self.inner.write(buf)?;
+        self.hash.write(&buf[..n]);
+        self.bytes += n as u64;
+        Ok(n)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.inner.flush()
+    }
+}
+
+/// A records file's size and content hash.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct Written {
+    pub(crate) bytes: u64,
+    pub(crate) hash: String,
+}
+
+/// The size and hash of a records file, read in bounded pieces; only a regular file is
+/// opened (a FIFO or device named as records would block or never end) and at most
+/// `expected_bytes + 1` bytes are read.
+pub(crate) fn hash_file(path: &Path, expected_bytes: u64) -> Result<Written, String> {
+    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    if !meta.is_file() {
+        return Err("not a regular file".to_string());
+    }
+    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+    let mut h = Hashing::new(std::io::sink());
+    std::io::copy(&mut file.take(expected_bytes.saturating_add(1)), &mut h).map_err(|e| e.to_string())?;
+    Ok(h.seal())
+}
+
 /// The part's fields every shard fills the same way.
 pub(crate) fn new_part(
     sweep: Sweep,
     shard: Shard,
     range: std::ops::Range<u64>,
     part_path: &Path,
-    records: Option<&Path>,
+    records: Option<(&Path, Written)>,
+    setup: &Preset,
 ) -> Part {
     Part {
         part_format: PART_FORMAT,
@@ -71,7 +135,10 @@ pub(crate) fn new_part(
         shard,
         range: [range.start, range.end],
         complete: false,
-        records: records.map(|r| records_reference(part_path, r)),
+        records_bytes: records.as_ref().map(|(_, w)| w.bytes),
+        records_hash: records.as_ref().map(|(_, w)| w.hash.clone()),
+        records: records.map(|(r, _)| records_reference(part_path, r)),
+        setup: setup.to_toml(),
         tally: None,
         map_faces: None,
         elapsed_s: 0.0,
@@ -105,11 +172,44 @@ pub(crate) fn records_path(part_path: &Path, part: &Part) -> Option<PathBuf> {
 /// The fingerprint of a batch's setup: every value of the preset but its name, description
 /// and seed (a merge names a different seed as such), and the given initial conditions.
 pub(crate) fn batch_fingerprint(preset: &Preset, given: Option<&[(u64, InitialCondition)]>) -> String {
-    let mut values = preset.clone();
+    // As the part's setup writes it, so a merge can recompute it from there.
+    let mut values = preset.as_written();
     values.name.clear();
     values.description.clear();
     values.random.seed = 0;
     fingerprint(&(values, given))
+}
+
+/// What every batch output says about where it came from: this program's version and
+/// the setup that defines the rolls (the preset's values, the seed, the roll count, or the
+/// fingerprint of given initial conditions). Never the engine, threads, shard or time, so
+/// a file is the same bytes however it was rolled. `merge` rebuilds it from a part.
+pub(crate) fn batch_provenance(
+    preset: &Preset,
+    seed: Option<u64>,
+    rolls: u64,
+    given_fingerprint: Option<&str>,
+) -> serde_json::Value {
+    let mut values = preset.as_written();
+    if let Some(seed) = seed {
+        values.random.seed = seed;
+    }
+    serde_json::json!({
+        "program": format!("dicesim {}", env!("CARGO_PKG_VERSION")),
+        "preset": values,
+        "seed": seed,
+        "rolls": rolls,
+        "initial_conditions": match given_fingerprint {
+            Some(f) => format!("given (--ics), fingerprint {f}"),
+            None => "drawn from the preset's [random] ranges with the seed".to_string(),
+        },
+    })
+}
+
+/// The provenance as a CSV file's first line: a `#` comment, which `--ics` skips and
+/// `merge` requires to be the sweep's own.
+pub(crate) fn csv_provenance_line(provenance: &serde_json::Value) -> String {
+    format!("# {provenance}")
 }
 
 /// The fingerprint of a map's setup: the preset's values (the axes are compared apart).
@@ -127,10 +227,15 @@ pub(crate) fn write_part(output: &Output, part: &Part) -> Result<(), CliError> {
         .map_err(CliError::output(""))
 }
 
-/// Reads a part summary, naming the file and the JSON problem when it is not one.
+/// The largest part summary read, bytes (a part is a few kB; its setup the largest part).
+const MAX_PART_BYTES: u64 = 1 << 20;
+
+/// Reads a part summary, naming the file and the JSON problem when it is not one. Only a
+/// regular file of at most [`MAX_PART_BYTES`] is read: a FIFO named `*.part.json` is
+/// refused rather than waited on.
 pub(crate) fn read_part(path: &Path) -> Result<Part, CliError> {
-    let text =
-        std::fs::read_to_string(path).map_err(|e| CliError::Parts(format!("{}: {e}", path.display())))?;
+    let text = crate::preset::read_regular_file(path, MAX_PART_BYTES)
+        .map_err(|e| CliError::Parts(format!("{}: {e}", path.display())))?;
     let de = &mut serde_json::Deserializer::from_str(&text);
     serde_path_to_error::deserialize(de).map_err(|e| {
         let at = e.path().to_string();
@@ -154,10 +259,11 @@ pub(crate) fn write_batch_part(
     sweep: Sweep,
     shard: Shard,
     range: std::ops::Range<u64>,
-    records: Option<&Path>,
+    records: Option<(&Path, Written)>,
+    setup: &Preset,
     batch: &BatchRun,
 ) -> Result<(), CliError> {
-    let mut part = new_part(sweep, shard, range, output.path(), records);
+    let mut part = new_part(sweep, shard, range, output.path(), records, setup);
     part.complete = !batch.cancelled;
     part.tally = Some(batch.tally.clone());
     part.elapsed_s = batch.summary.elapsed_s;

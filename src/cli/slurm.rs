@@ -3,6 +3,7 @@
 
 use super::shard::PART_EXTENSION;
 use super::{Cli, CliError, Command};
+use crate::experiment::shard::Shard;
 use crate::output::Output;
 use clap::{Args, Parser, ValueEnum};
 use std::io::Write;
@@ -73,7 +74,9 @@ enum Kind {
 }
 
 pub(crate) fn run(args: &SlurmArgs) -> Result<(), CliError> {
-    let kind = check_command(&args.command)?;
+    // Everything is checked before anything is written: a refusal leaves no folder or file.
+    check_directives(args)?;
+    let kind = check_command(&args.command, args.shards)?;
     if kind == Kind::Map && args.format == PartFormat::Parquet {
         return Err(CliError::Usage(
             "--format parquet holds roll records: a map's shards write .csv".to_string(),
@@ -84,30 +87,41 @@ pub(crate) fn run(args: &SlurmArgs) -> Result<(), CliError> {
         None => std::env::current_exe()
             .map_err(|e| CliError::Sweep(format!("cannot find this program's path (give --dicesim): {e}")))?,
     };
+    if let Some(c) = dicesim.to_string_lossy().chars().find(|c| c.is_control()) {
+        return Err(CliError::Usage(format!(
+            "--dicesim {}: a control character ({}) in a path a script runs",
+            dicesim.display(),
+            c.escape_unicode()
+        )));
+    }
     let dir = std::path::absolute(&args.dir)?;
+    let workdir = std::env::current_dir()?;
+    for (what, path) in [("--dir", &dir), ("the current folder", &workdir)] {
+        if !directive_safe(&path.to_string_lossy()) {
+            return Err(CliError::Usage(format!(
+                "{what} {}: a path in an #SBATCH line may not hold spaces, control characters, quotes, backslashes or %",
+                path.display().to_string().escape_debug()
+            )));
+        }
+    }
+    if dir.exists() && !dir.is_dir() {
+        return Err(CliError::Usage(format!("--dir {}: not a folder", dir.display())));
+    }
     let parts = dir.join("parts");
     let logs = dir.join("logs");
-    for d in [&dir, &parts, &logs] {
-        std::fs::create_dir_all(d).map_err(|e| CliError::Sweep(format!("{}: {e}", d.display())))?;
-    }
     let suffix = format!(".{PART_EXTENSION}");
-    let stale = std::fs::read_dir(&parts)?
-        .filter_map(|e| e.ok())
-        .any(|e| e.file_name().to_string_lossy().ends_with(&suffix));
+    let stale = parts.is_dir()
+        && std::fs::read_dir(&parts)?
+            .filter_map(|e| e.ok())
+            .any(|e| e.file_name().to_string_lossy().ends_with(&suffix));
     if stale {
         return Err(CliError::Usage(format!(
             "{} already holds the parts of a sweep: choose another --dir, or remove them first",
             parts.display()
         )));
     }
-    let workdir = std::env::current_dir()?;
-    for (what, path) in [("--dir", &dir), ("the current folder", &workdir)] {
-        if !directive_safe(&path.to_string_lossy()) {
-            return Err(CliError::Usage(format!(
-                "{what} {}: a path in an #SBATCH line may not hold spaces, quotes, backslashes or %",
-                path.display()
-            )));
-        }
+    for d in [&dir, &parts, &logs] {
+        std::fs::create_dir_all(d).map_err(|e| CliError::Sweep(format!("{}: {e}", d.display())))?;
     }
     let scripts = Scripts::new(args, kind, &dicesim, &dir, &workdir);
     let shards_path = dir.join("shards.sbatch");
@@ -153,9 +167,65 @@ pub(crate) fn run(args: &SlurmArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// Checks every value written into an `#SBATCH` line: sbatch reads these lines without a
+/// shell and without quoting, so whitespace would start another option (`--time '1:00:00
+/// --wrap=x'`) and a line break another line of the script. Each value must also be in
+/// Slurm's own notation for it.
+fn check_directives(args: &SlurmArgs) -> Result<(), CliError> {
+    let time_ok = |v: &str| v.chars().all(|c| c.is_ascii_digit() || c == ':' || c == '-');
+    let mem_ok = |v: &str| {
+        let digits = v.trim_end_matches(['K', 'M', 'G', 'T', 'k', 'm', 'g', 't']);
+        !digits.is_empty() && digits.len() + 1 >= v.len() && digits.chars().all(|c| c.is_ascii_digit())
+    };
+    let name_ok = |v: &str| v.chars().all(|c| c.is_ascii_alphanumeric() || "_-.,".contains(c));
+    type Check<'a> = &'a dyn Fn(&str) -> bool;
+    let values: [(&str, &Option<String>, Check<'_>, &str); 4] = [
+        (
+            "--time",
+            &args.time,
+            &time_ok,
+            "minutes, or [D-]H:M:S, e.g. 30 or 2:00:00",
+        ),
+        (
+            "--mem",
+            &args.mem,
+            &mem_ok,
+            "a number and a unit K, M, G or T, e.g. 500M",
+        ),
+        (
+            "--partition",
+            &args.partition,
+            &name_ok,
+            "letters, digits, _ - . and , only",
+        ),
+        (
+            "--account",
+            &args.account,
+            &name_ok,
+            "letters, digits, _ - . and , only",
+        ),
+    ];
+    for (flag, value, ok, expected) in values {
+        let Some(v) = value else { continue };
+        if v.is_empty() || !directive_safe(v) || !ok(v) {
+            return Err(CliError::Usage(format!(
+                "{flag} `{}`: not a value for an #SBATCH line ({expected}; no spaces or control characters)",
+                v.escape_debug()
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// Checks the sweep's command line as dicesim would parse it, and that it leaves the shard's
 /// own options to the script.
-fn check_command(command: &[String]) -> Result<Kind, CliError> {
+fn check_command(command: &[String], shards: u64) -> Result<Kind, CliError> {
+    if let Some(a) = command.iter().find(|a| a.chars().any(char::is_control)) {
+        return Err(CliError::Usage(format!(
+            "the sweep's command line: `{}` holds a control character",
+            a.escape_debug()
+        )));
+    }
     let cli = Cli::try_parse_from(std::iter::once("dicesim").chain(command.iter().map(String::as_str)))
         .map_err(|e| {
             CliError::Usage(format!(
@@ -183,6 +253,25 @@ fn check_command(command: &[String]) -> Result<Kind, CliError> {
         return Err(CliError::Usage(
             "the sweep's command line must leave --shard, --part, --out and --jobs to the script".to_string(),
         ));
+    }
+    // The whole sweep as an array task will check it, so a mistake is found now rather
+    // than by every task exiting 2.
+    let in_task = |e: CliError| CliError::Usage(format!("the sweep's command line: {e}"));
+    match &cli.command {
+        Some(Command::Batch(b)) => {
+            super::batch::check_sweep(
+                b,
+                Some(Shard {
+                    index: 0,
+                    count: shards,
+                }),
+            )
+            .map_err(in_task)?;
+        }
+        Some(Command::Basin(b)) => {
+            super::basin::check_sweep(b, true).map_err(in_task)?;
+        }
+        _ => unreachable!("the kind was matched above"),
     }
     Ok(kind)
 }
@@ -318,7 +407,8 @@ impl Scripts {
 /// Whether sbatch reads `s` in an #SBATCH line as it is (no quoting there; `%` is a
 /// file-name pattern).
 fn directive_safe(s: &str) -> bool {
-    !s.chars().any(|c| c.is_whitespace() || "'\"\\%".contains(c))
+    !s.chars()
+        .any(|c| c.is_whitespace() || c.is_control() || "'\"\\%".contains(c))
 }
 
 /// `s` as one word of a shell command: as it is when only safe characters, else in single
@@ -398,7 +488,7 @@ mod tests {
     #[test]
     fn sweeps_leave_the_shard_options_to_the_script() {
         let e = |c: &[&str]| {
-            check_command(&c.iter().map(|s| s.to_string()).collect::<Vec<_>>())
+            check_command(&c.iter().map(|s| s.to_string()).collect::<Vec<_>>(), 8)
                 .unwrap_err()
                 .to_string()
         };
@@ -414,7 +504,7 @@ mod tests {
             e(&["batch", "--rols", "5"])
                 .starts_with("the sweep's command line: error: unexpected argument '--rols'")
         );
-        let ok = |c: &[&str]| check_command(&c.iter().map(|s| s.to_string()).collect::<Vec<_>>()).unwrap();
+        let ok = |c: &[&str]| check_command(&c.iter().map(|s| s.to_string()).collect::<Vec<_>>(), 8).unwrap();
         assert_eq!(ok(&["batch", "--rolls", "5"]), Kind::Batch);
         assert_eq!(
             ok(&[

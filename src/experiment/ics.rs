@@ -3,7 +3,7 @@
 
 use super::Error;
 use super::record::RollRecord;
-use crate::physics::InitialCondition;
+use crate::physics::{InitialCondition, Outcome, Status};
 
 /// The initial-condition columns, in output order (`id` first, then these).
 pub(crate) const INITIAL_COLUMNS: [&str; COLUMNS] = [
@@ -72,6 +72,69 @@ pub(crate) fn record_csv_row(r: &RollRecord) -> Vec<String> {
         r.outcome.time_s.to_string(),
     ]);
     row
+}
+
+/// Reads back one row that [`record_csv_row`] wrote: exactly its cells in exactly its form
+/// (a row that parses but is written differently, e.g. `1.50` for `1.5` or a cell in
+/// quotes, is not a row this program wrote and is refused). The values themselves are
+/// checked by [`check_record`](super::record::check_record).
+pub(crate) fn parse_record_csv_row(row: &str) -> Result<RollRecord, String> {
+    let header = records_csv_header();
+    let cells: Vec<&str> = row.split(',').collect();
+    if cells.len() != header.len() {
+        return Err(format!("{} cells, expected {}", cells.len(), header.len()));
+    }
+    let bad = |k: usize| format!("`{}` = `{}` is not valid", header[k], cells[k].escape_debug());
+    let number = |k: usize| cells[k].parse::<f64>().map_err(|_| bad(k));
+    let optional = |k: usize| match cells[k] {
+        "" => Ok(None),
+        _ => number(k).map(Some),
+    };
+    let momentum = [optional(8)?, optional(9)?, optional(10)?];
+    let spin_given = momentum.iter().all(Option::is_some);
+    let angular_velocity = if spin_given {
+        if let Some(k) = (5..8).find(|&k| !cells[k].is_empty()) {
+            return Err(bad(k));
+        }
+        InitialCondition::default().angular_velocity
+    } else {
+        [number(5)?, number(6)?, number(7)?]
+    };
+    let small = |k: usize| cells[k].parse::<u8>().map_err(|_| bad(k));
+    let id_at = 0;
+    let r = RollRecord {
+        id: cells[id_at].parse().map_err(|_| bad(id_at))?,
+        initial: InitialCondition {
+            height: number(1)?,
+            velocity: [number(2)?, number(3)?, number(4)?],
+            angular_velocity,
+            angular_momentum: match momentum {
+                [Some(x), Some(y), Some(z)] => Some([x, y, z]),
+                [None, None, None] => None,
+                _ => return Err(bad(8)),
+            },
+            orientation: [number(11)?, number(12)?, number(13)?],
+        },
+        start_face: small(14)?,
+        outcome: Outcome {
+            face: match cells[15] {
+                "" => None,
+                _ => Some(small(15)?),
+            },
+            status: Status::from_name(cells[16]).ok_or_else(|| bad(16))?,
+            steps: cells[17].parse().map_err(|_| bad(17))?,
+            time_s: number(18)?,
+        },
+    };
+    // The one accepted spelling of every cell is the one this program writes.
+    if let Some(k) = record_csv_row(&r).iter().zip(&cells).position(|(a, b)| a != b) {
+        return Err(format!(
+            "`{}` = `{}` is not written as this program writes it",
+            header[k],
+            cells[k].escape_debug()
+        ));
+    }
+    Ok(r)
 }
 
 /// Writes the header and one record per roll: what `--ics` reads back (the tests' way to

@@ -3,7 +3,8 @@
 //! exactly the ids or cells its summary says, and a map's cells read back for its image.
 
 use super::basin::Cell;
-use crate::physics::{Outcome, Status};
+use super::record::check_outcome;
+use crate::physics::{Outcome, Params, Status};
 use std::io::{BufRead, Write};
 
 /// Why a part's rows cannot be merged.
@@ -16,26 +17,57 @@ pub(crate) enum MergeError {
     Row { line: u64, message: String },
 }
 
+/// The longest line a records file of this program holds, bytes (a row is under 400, a
+/// provenance line a few kB): a longer one is damage, refused before it fills memory.
+pub(crate) const MAX_LINE_BYTES: u64 = 64 * 1024;
+
+/// Reads one line of at most [`MAX_LINE_BYTES`] without its line end; `None` at the end.
+/// A last line without its line end is a file cut short.
+pub(crate) fn bounded_line(reader: &mut impl BufRead, buf: &mut Vec<u8>) -> Result<Option<String>, String> {
+    buf.clear();
+    let n = std::io::Read::take(&mut *reader, MAX_LINE_BYTES + 1)
+        .read_until(b'\n', buf)
+        .map_err(|e| e.to_string())?;
+    if n == 0 {
+        return Ok(None);
+    }
+    if buf.last() != Some(&b'\n') {
+        return Err(if n as u64 > MAX_LINE_BYTES {
+            format!("a line longer than {MAX_LINE_BYTES} bytes")
+        } else {
+            "the last line is cut short (no line end)".to_string()
+        });
+    }
+    buf.pop();
+    String::from_utf8(std::mem::take(buf))
+        .map(Some)
+        .map_err(|_| "a line that is not UTF-8 text".to_string())
+}
+
 /// Copies the rows of one CSV part from `reader` to `out`, after checking that its header
 /// is `header` and that row `n` (0-based, after the header) passes `check(n, row)`; the
 /// part must hold exactly `rows` rows. The header itself is not copied.
 pub(crate) fn copy_rows(
-    reader: impl BufRead,
+    mut reader: impl BufRead,
     out: &mut (impl Write + ?Sized),
     header: &str,
     rows: u64,
     check: &mut dyn FnMut(u64, &str) -> Result<(), String>,
 ) -> Result<(), MergeError> {
-    let mut lines = reader.lines();
+    let mut buf = Vec::new();
     let bad = |line: u64, message: String| MergeError::Row { line, message };
-    match lines.next().transpose()? {
+    match bounded_line(&mut reader, &mut buf).map_err(|e| bad(1, e))? {
         Some(h) if h == header => {}
-        Some(h) => return Err(bad(1, format!("header `{h}`, expected `{header}`"))),
+        Some(h) => {
+            return Err(bad(
+                1,
+                format!("header `{}`, expected `{header}`", h.escape_debug()),
+            ));
+        }
         None => return Err(bad(1, "empty file, expected a header".to_string())),
     }
     let mut n = 0;
-    for line in lines {
-        let line = line?;
+    while let Some(line) = bounded_line(&mut reader, &mut buf).map_err(|e| bad(n + 2, e))? {
         if n == rows {
             return Err(bad(
                 n + 2,
@@ -55,26 +87,34 @@ pub(crate) fn copy_rows(
     Ok(())
 }
 
-/// Checks that a batch row is roll `id` (its first column).
-pub(crate) fn check_roll_id(row: &str, id: u64) -> Result<(), String> {
-    let first = row.split(',').next().unwrap_or_default();
-    if first.parse() == Ok(id) {
-        Ok(())
-    } else {
-        Err(format!("roll id `{first}`, expected {id}"))
-    }
-}
-
 /// Reads a map row (`i,j,x,y,start_face,face,status,steps,time_s,sampled`, as
 /// [`BasinMap::write_csv`](super::BasinMap::write_csv) writes it) that must be node
 /// `(i, j)`; its floats are in shortest round-trip form, so the cell comes back exactly.
-pub(crate) fn parse_map_row(row: &str, i: usize, j: usize) -> Result<Cell, String> {
+///
+/// With `node`, the cell's coordinates as the map writes them (`x`, `y`) and the setup's
+/// parameters, every field is checked: the coordinates are the node's, the outcome one a
+/// roll can end in ([`check_outcome`]), and every cell written as the map writes it.
+pub(crate) fn parse_map_row(
+    row: &str,
+    i: usize,
+    j: usize,
+    node: Option<(&str, &str, &Params)>,
+) -> Result<Cell, String> {
     let cells: Vec<&str> = row.split(',').collect();
-    let [ri, rj, _, _, start_face, face, status, steps, time_s, sampled] = cells[..] else {
+    let [ri, rj, x, y, start_face, face, status, steps, time_s, sampled] = cells[..] else {
         return Err(format!("{} cells, expected 10", cells.len()));
     };
-    if (ri.parse(), rj.parse()) != (Ok(i), Ok(j)) {
+    if (ri.parse(), rj.parse()) != (Ok(i), Ok(j)) || (ri, rj) != (&i.to_string()[..], &j.to_string()[..]) {
         return Err(format!("cell ({ri}, {rj}), expected ({i}, {j})"));
+    }
+    if let Some((nx, ny, _)) = node
+        && (x, y) != (nx, ny)
+    {
+        return Err(format!(
+            "cell ({i}, {j}) at ({}, {}), but the map's axes put it at ({nx}, {ny})",
+            x.escape_debug(),
+            y.escape_debug()
+        ));
     }
     let number = |what: &str, s: &str| format!("{what} `{s}` is not valid");
     let face = match face {
@@ -87,13 +127,23 @@ pub(crate) fn parse_map_row(row: &str, i: usize, j: usize) -> Result<Cell, Strin
         ),
     };
     let status = Status::from_name(status).ok_or_else(|| number("status", status))?;
+    let outcome = Outcome {
+        status,
+        face,
+        steps: steps.parse().map_err(|_| number("steps", steps))?,
+        time_s: time_s.parse().map_err(|_| number("time_s", time_s))?,
+    };
+    if let Some((_, _, params)) = node {
+        check_outcome(&outcome, params)?;
+        let written = [outcome.steps.to_string(), outcome.time_s.to_string()];
+        if [steps, time_s] != [written[0].as_str(), written[1].as_str()] {
+            return Err(format!(
+                "`{steps}` steps, `{time_s}` s: not written as this program writes them"
+            ));
+        }
+    }
     Ok(Cell {
-        outcome: Outcome {
-            status,
-            face,
-            steps: steps.parse().map_err(|_| number("steps", steps))?,
-            time_s: time_s.parse().map_err(|_| number("time_s", time_s))?,
-        },
+        outcome,
         start_face: start_face
             .parse::<u8>()
             .ok()
@@ -114,7 +164,11 @@ mod tests {
     fn copy(text: &str, rows: u64) -> Result<String, String> {
         let mut out = Vec::new();
         copy_rows(text.as_bytes(), &mut out, "id,x", rows, &mut |n, row| {
-            check_roll_id(row, 10 + n)
+            let id = row.split(',').next().unwrap_or_default();
+            match id.parse() == Ok(10 + n) {
+                true => Ok(()),
+                false => Err(format!("roll id `{id}`, expected {}", 10 + n)),
+            }
         })
         .map_err(|e| e.to_string())?;
         Ok(String::from_utf8(out).unwrap())
@@ -144,25 +198,28 @@ mod tests {
 
     #[test]
     fn map_rows_read_back_exactly() {
-        let c = parse_map_row("3,1,-60,0.1,2,5,settled,1234,1.2345000000000002,1", 3, 1).unwrap();
+        let c = parse_map_row("3,1,-60,0.1,2,5,settled,1234,1.2345000000000002,1", 3, 1, None).unwrap();
         assert_eq!(c.outcome.face, Some(5));
         assert_eq!(c.outcome.status, Status::Settled);
         assert_eq!(c.outcome.steps, 1234);
         assert_eq!(c.outcome.time_s, 1.2345000000000002);
         assert_eq!((c.start_face, c.sampled), (2, true));
-        let t = parse_map_row("0,0,1,1,6,,timeout,9,3,0", 0, 0).unwrap();
+        let t = parse_map_row("0,0,1,1,6,,timeout,9,3,0", 0, 0, None).unwrap();
         assert_eq!(
             (t.outcome.face, t.outcome.status, t.sampled),
             (None, Status::Timeout, false)
         );
         assert_eq!(
-            parse_map_row("0,0,1,1,6,,timeout,9,3,0", 1, 0).unwrap_err(),
+            parse_map_row("0,0,1,1,6,,timeout,9,3,0", 1, 0, None).unwrap_err(),
             "cell (0, 0), expected (1, 0)"
         );
         assert_eq!(
-            parse_map_row("0,0,1,1,6,7,settled,9,3,0", 0, 0).unwrap_err(),
+            parse_map_row("0,0,1,1,6,7,settled,9,3,0", 0, 0, None).unwrap_err(),
             "face `7` is not valid"
         );
-        assert_eq!(parse_map_row("0,0,1", 0, 0).unwrap_err(), "3 cells, expected 10");
+        assert_eq!(
+            parse_map_row("0,0,1", 0, 0, None).unwrap_err(),
+            "3 cells, expected 10"
+        );
     }
 }

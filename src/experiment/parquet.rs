@@ -18,6 +18,7 @@ use crate::physics::{InitialCondition, Outcome, Status};
 use parquet::basic::{Compression, Encoding};
 use parquet::data_type::{ByteArray, ByteArrayType, DoubleType, Int32Type, Int64Type};
 use parquet::errors::ParquetError;
+use parquet::file::metadata::KeyValue;
 use parquet::file::properties::WriterProperties;
 use parquet::file::reader::{FileReader, SerializedFileReader};
 use parquet::file::writer::SerializedFileWriter;
@@ -25,6 +26,9 @@ use parquet::record::Field;
 use parquet::schema::parser::parse_message_type;
 use std::io::Write;
 use std::sync::Arc;
+
+/// The key of the file's key-value metadata that says where its records came from.
+pub(crate) const PROVENANCE_KEY: &str = "dicesim";
 
 /// Rolls per row group: readers load a group at a time, and the writer buffers one
 /// (~10 MB of records).
@@ -66,9 +70,15 @@ pub(crate) struct RecordsWriter<W: Write + Send> {
 }
 
 impl<W: Write + Send> RecordsWriter<W> {
-    pub(crate) fn new(sink: W) -> Result<Self, ParquetError> {
+    /// A writer whose file carries `provenance` (where the records came from) as the
+    /// key-value metadata [`PROVENANCE_KEY`].
+    pub(crate) fn new(sink: W, provenance: &str) -> Result<Self, ParquetError> {
         let schema = Arc::new(parse_message_type(&schema())?);
         let props = WriterProperties::builder()
+            .set_key_value_metadata(Some(vec![KeyValue::new(
+                PROVENANCE_KEY.to_string(),
+                provenance.to_string(),
+            )]))
             .set_compression(Compression::UNCOMPRESSED)
             .set_max_row_group_row_count(Some(ROW_GROUP))
             .set_column_dictionary_enabled("id".into(), false)
@@ -186,12 +196,28 @@ fn write_column(
 }
 
 /// Reads back every record of a file [`RecordsWriter`] wrote, in order, and checks its
-/// schema is the one this program writes.
+/// schema is the one this program writes and, where `provenance` is given, that the file
+/// says it came from there.
 pub(crate) fn read_records(
     file: std::fs::File,
+    provenance: Option<&str>,
     each: &mut dyn FnMut(RollRecord) -> Result<(), String>,
 ) -> Result<(), String> {
     let reader = SerializedFileReader::new(file).map_err(|e| e.to_string())?;
+    if let Some(expected) = provenance {
+        let found = reader
+            .metadata()
+            .file_metadata()
+            .key_value_metadata()
+            .and_then(|kv| kv.iter().find(|kv| kv.key == PROVENANCE_KEY))
+            .and_then(|kv| kv.value.as_deref());
+        if found != Some(expected) {
+            return Err(format!(
+                "its provenance (metadata `{PROVENANCE_KEY}`) is {}, not this sweep's",
+                found.map_or("missing".to_string(), |f| format!("`{f}`"))
+            ));
+        }
+    }
     let expected = parse_message_type(&schema()).map_err(|e| e.to_string())?;
     let names = |fields: &[parquet::schema::types::TypePtr]| -> Vec<String> {
         fields.iter().map(|f| f.name().to_string()).collect()
@@ -275,7 +301,7 @@ mod tests {
     }
 
     fn write(rs: &[RollRecord]) -> Vec<u8> {
-        let mut w = RecordsWriter::new(Vec::new()).unwrap();
+        let mut w = RecordsWriter::new(Vec::new(), "{}").unwrap();
         for r in rs {
             w.write(r).unwrap();
         }
@@ -295,7 +321,7 @@ mod tests {
         let path = dir.path().join("r.parquet");
         std::fs::write(&path, &bytes).unwrap();
         let mut back = Vec::new();
-        read_records(std::fs::File::open(&path).unwrap(), &mut |r| {
+        read_records(std::fs::File::open(&path).unwrap(), Some("{}"), &mut |r| {
             back.push(r);
             Ok(())
         })

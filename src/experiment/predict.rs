@@ -203,13 +203,23 @@ pub fn run_prediction(
     };
     let group = 1 + spec.epsilons.len() as u64;
     let total = group * spec.count * values.len() as u64;
-    let mut curves = Vec::new();
-    let mut cancelled = false;
-    for (i, value) in values.iter().enumerate() {
-        let sweep = spec.sweep.as_ref().zip(*value).map(|((k, _), v)| (k, v));
-        let (params, ranges, base) = curve_setup(params, ranges, base, sweep);
+    let setups: Vec<_> = values
+        .iter()
+        .map(|value| {
+            let sweep = spec.sweep.as_ref().zip(*value).map(|((k, _), v)| (k, v));
+            curve_setup(params, ranges, base, sweep)
+        })
+        .collect();
+    // Every curve's setup is checked before the first is rolled: no start of any of them
+    // may put a corner into the table.
+    for (params, ranges, base) in &setups {
         params.validate()?;
         ranges.validate()?;
+        ranges.check_clear_of_table(params, base)?;
+    }
+    let mut curves = Vec::new();
+    let mut cancelled = false;
+    for (i, ((params, ranges, base), value)) in setups.into_iter().zip(&values).enumerate() {
         let starts: Vec<(u64, InitialCondition)> = (0..spec.count)
             .flat_map(|s| {
                 let start = ranges.draw(&base, spec.seed, s);

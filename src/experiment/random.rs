@@ -1,13 +1,65 @@
 //! Random initial conditions drawn reproducibly: one ChaCha stream per (seed, roll index),
 //! so a roll's draw depends on nothing else (not the thread, not the order of completion).
 
-use crate::physics::InitialCondition;
 pub use crate::physics::RandomRanges;
+use crate::physics::{InitialCondition, Limits, ParamError, Params, Simulation};
 use nalgebra::{Quaternion, Rotation3, UnitQuaternion};
 use rand::rngs::ChaCha8Rng;
 use rand::{RngExt, SeedableRng};
 
 impl RandomRanges {
+    /// Refuses ranges whose draws can start with a corner inside the table, before any roll,
+    /// by the rule [`InitialCondition::check_clear_of_table`] applies to one start: the
+    /// lowest height allowed is the die's reach below its centre of mass (its farthest
+    /// corner, for a random orientation; the lowest corner at `base`'s orientation
+    /// otherwise) less its resting depth (a die may start resting on the table, not pushed into
+    /// it). The error names that height.
+    pub(crate) fn check_clear_of_table(
+        &self,
+        params: &Params,
+        base: &InitialCondition,
+    ) -> Result<(), ParamError> {
+        let reach = if self.random_orientation {
+            // Some orientation points the farthest corner straight down.
+            let upright = InitialCondition {
+                orientation: [0.0; 3],
+                ..*base
+            };
+            Simulation::for_outcome(params, &upright)
+                .state()
+                .corner_offsets
+                .iter()
+                .map(|r| r.norm())
+                .fold(0.0, f64::max)
+        } else {
+            -Simulation::for_outcome(params, base)
+                .state()
+                .corner_offsets
+                .iter()
+                .map(|r| r.z)
+                .fold(f64::INFINITY, f64::min)
+        };
+        let lowest = reach - params.resting_depth();
+        if self.height[0] >= lowest {
+            return Ok(());
+        }
+        let key = &crate::experiment::registry::RANDOM_HEIGHT;
+        Err(ParamError {
+            key: key.key().to_string(),
+            value: self.height[0],
+            limits: Limits {
+                min: lowest,
+                unit: if self.random_orientation {
+                    "cm at its low end (lower, a drawn orientation can start a corner inside the table)"
+                } else {
+                    "cm at its low end at this orientation (lower, a corner starts inside the table)"
+                },
+                ..key.limits
+            },
+            high_end: None,
+        })
+    }
+
     /// The initial condition of roll `index` of a batch seeded with `seed`: `base` with
     /// height, velocity, spin (and, if asked, orientation) drawn from these ranges.
     pub fn draw(&self, base: &InitialCondition, seed: u64, index: u64) -> InitialCondition {

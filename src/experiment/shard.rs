@@ -13,8 +13,13 @@ use std::collections::HashMap;
 use std::fmt;
 use std::ops::Range;
 
-/// The part-summary format this program writes; newer ones are refused.
-pub(crate) const PART_FORMAT: u32 = 1;
+/// The part-summary format this program writes and reads; others are refused (format 1
+/// had no setup and no content hash of its records, so its records could not be checked).
+pub(crate) const PART_FORMAT: u32 = 2;
+
+/// s, the longest time a part may say its shard took (32 years): sums of any number of
+/// parts then stay finite.
+const MAX_ELAPSED_S: f64 = 1e9;
 
 /// Shard `index` of `count` (0-based): an equal slice of a sweep's rolls or map rows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -200,6 +205,14 @@ pub(crate) struct Part {
     pub(crate) complete: bool,
     /// The records' file, relative to the part file's folder; `None` for a summary-only part.
     pub(crate) records: Option<String>,
+    /// Bytes of the records file as the shard wrote it.
+    pub(crate) records_bytes: Option<u64>,
+    /// The XXH64 hash (seed 0, 16 hexadecimal digits) of the records file's bytes: a file
+    /// damaged or swapped after the shard wrote it is refused before it is read.
+    pub(crate) records_hash: Option<String>,
+    /// The setup the shard rolled, as the preset file (TOML) that gives it, its seed the
+    /// one rolled: a merge recomputes every start from it and can roll records again.
+    pub(crate) setup: String,
     /// A batch's counts (`None` for a map).
     pub(crate) tally: Option<Tally>,
     /// A map's faces over its cells and how many cells were rolled (`None` for a batch).
@@ -229,6 +242,29 @@ pub(crate) fn check_parts(parts: &[(String, Part)]) -> Result<Vec<usize>, String
             return Err(format!(
                 "{name}: part format {} is newer than this program reads ({PART_FORMAT}); update dicesim",
                 p.part_format
+            ));
+        }
+        if p.part_format < PART_FORMAT {
+            return Err(format!(
+                "{name}: part format {}, which this program no longer reads (it reads {PART_FORMAT}, which records the setup and a content hash); run the shard again",
+                p.part_format
+            ));
+        }
+        if p.range[0] > p.range[1] {
+            return Err(format!(
+                "{name}: its range {}..{} ends before it starts",
+                p.range[0], p.range[1]
+            ));
+        }
+        if !(0.0..=MAX_ELAPSED_S).contains(&p.elapsed_s) {
+            return Err(format!(
+                "{name}: `elapsed_s` = {} is not a shard's duration (0 to 10⁹ s)",
+                p.elapsed_s
+            ));
+        }
+        if p.records.is_some() != (p.records_bytes.is_some() && p.records_hash.is_some()) {
+            return Err(format!(
+                "{name}: `records`, `records_bytes` and `records_hash` go together"
             ));
         }
         if p.version != first.version {
@@ -381,6 +417,9 @@ mod tests {
             range: [r.start, r.end],
             complete: true,
             records: Some(format!("{k}.csv")),
+            records_bytes: Some(0),
+            records_hash: Some("0".into()),
+            setup: String::new(),
             tally: Some(Tally::default()),
             map_faces: None,
             elapsed_s: 1.0,
@@ -438,6 +477,8 @@ mod tests {
         );
         let mut bare = part(1, 2);
         bare.1.records = None;
+        bare.1.records_bytes = None;
+        bare.1.records_hash = None;
         assert_eq!(
             err(vec![part(0, 2), bare]),
             "0.part.json has records but 1.part.json holds only a summary: merge parts of one kind"

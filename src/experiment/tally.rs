@@ -190,6 +190,43 @@ impl Tally {
         }
     }
 
+    /// Checks that the counts agree with each other and with `max_steps` per roll: every
+    /// roll has one status, every settled roll with a face one face and one start-face
+    /// relation. Sums are taken wide, so no count can wrap into agreement.
+    pub(crate) fn check(&self, max_steps: u64) -> Result<(), String> {
+        let sum = |xs: &[u64]| xs.iter().map(|&x| u128::from(x)).sum::<u128>();
+        let st = &self.status;
+        let statuses = sum(&[st.settled, st.settled_without_face, st.timeout, st.unstable]);
+        if statuses != u128::from(self.rolls) {
+            return Err(format!(
+                "its status counts add up to {statuses}, but it counts {} rolls",
+                self.rolls
+            ));
+        }
+        let faces = sum(&self.faces.counts);
+        if faces != u128::from(st.settled) {
+            return Err(format!(
+                "its face counts add up to {faces}, but it counts {} settled rolls",
+                st.settled
+            ));
+        }
+        let sf = &self.start_face;
+        let relations = sum(&[sf.same, sf.adjacent, sf.opposite]);
+        if relations != u128::from(st.settled) {
+            return Err(format!(
+                "its start-face counts add up to {relations}, but it counts {} settled rolls",
+                st.settled
+            ));
+        }
+        if u128::from(self.steps) > u128::from(self.rolls) * u128::from(max_steps) {
+            return Err(format!(
+                "it counts {} steps, more than {} rolls of at most {max_steps} steps take",
+                self.steps, self.rolls
+            ));
+        }
+        Ok(())
+    }
+
     /// Adds another tally's rolls (of disjoint rolls: a shard's).
     pub(crate) fn merge(&mut self, other: &Tally) {
         self.rolls += other.rolls;

@@ -327,6 +327,15 @@ impl Simulation {
         self.stop_rule
     }
 
+    /// The stopping rule for the current state: a loaded die's depends on the face down
+    /// (what a report of a finished roll prints; [`Simulation::stop_rule`] is the fair die's).
+    pub(crate) fn stop_rule_now(&self) -> StopRule {
+        match self.k.bodies[0].loaded() {
+            None => self.stop_rule,
+            Some(m) => m.stop_rule(&self.k.state.corner_offsets),
+        }
+    }
+
     /// The face whose outward normal points most nearly up (the live display's face).
     pub fn face_up(&self) -> u8 {
         face_most_nearly_up(&self.k.state.corner_offsets)

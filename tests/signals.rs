@@ -1,0 +1,158 @@
+//! A signal that stops a write never leaves a temporary file behind: a first stop signal
+//! (Ctrl-C, SIGTERM from `kill` or a Slurm time limit, SIGHUP, SIGQUIT) keeps what is
+//! complete, a second stops at once and removes the file being written, and `merge`, which
+//! has no use for half a result, removes it at the first. Each says what was kept.
+
+#![cfg(unix)]
+
+use nix::sys::signal::{Signal, kill};
+use nix::unistd::Pid;
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+fn spawn(dir: &Path, args: &[&str]) -> Child {
+    Command::new(env!("CARGO_BIN_EXE_dicesim"))
+        .current_dir(dir)
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap()
+}
+
+/// The temporary files in `dir` (`.NAME.XXXX.part`).
+fn temporaries(dir: &Path) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with('.') && n.ends_with(".part"))
+        .collect()
+}
+
+/// Whether a temporary file in `dir` holds data (the empty one `--out`'s check makes and
+/// deletes at once is not the write).
+fn writing(dir: &Path) -> bool {
+    temporaries(dir)
+        .iter()
+        .any(|n| std::fs::metadata(dir.join(n)).is_ok_and(|m| m.len() > 0))
+}
+
+/// Waits until the command is writing (its temporary file holds data), then sends
+/// `signals` 1 ms apart; returns the exit code and stderr.
+fn stop_while_writing(dir: &Path, child: Child, signals: &[Signal]) -> (Option<i32>, String) {
+    let start = Instant::now();
+    while !writing(dir) {
+        assert!(
+            start.elapsed() < Duration::from_secs(60),
+            "the write never started"
+        );
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    for &s in signals {
+        kill(Pid::from_raw(child.id() as i32), s).unwrap();
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    let o = child.wait_with_output().unwrap();
+    (o.status.code(), String::from_utf8_lossy(&o.stderr).into_owned())
+}
+
+/// Rolls that settle in a few hundred steps: many of them, quickly.
+const QUICK: [&str; 6] = [
+    "--set",
+    "random.height=[1.5,1.5]",
+    "--set",
+    "random.velocity=[0,0]",
+    "--set",
+    "random.angular_velocity=[0,0]",
+];
+
+fn batch(rolls: &str, out: &str) -> Vec<String> {
+    ["batch", "--rolls", rolls, "--out", out]
+        .iter()
+        .chain(QUICK.iter())
+        .map(|s| s.to_string())
+        .collect()
+}
+
+#[test]
+fn every_stop_signal_keeps_a_whole_prefix_and_leaves_no_temporary_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    for signal in [Signal::SIGTERM, Signal::SIGHUP, Signal::SIGQUIT, Signal::SIGINT] {
+        let out = format!("{signal:?}.csv");
+        let args = batch("100000000", &out);
+        let child = spawn(d, &args.iter().map(String::as_str).collect::<Vec<_>>());
+        let (code, err) = stop_while_writing(d, child, &[signal]);
+        assert_eq!(code, Some(130), "{signal:?}: {err}");
+        assert!(err.contains("interrupted: kept the "), "{signal:?}: {err}");
+        assert!(temporaries(d).is_empty(), "{signal:?}: {:?}", temporaries(d));
+        let text = std::fs::read_to_string(d.join(&out)).unwrap();
+        let ids: Vec<&str> = text
+            .lines()
+            .skip(2)
+            .map(|l| l.split(',').next().unwrap())
+            .collect();
+        assert!(
+            ids.iter().enumerate().all(|(i, id)| *id == i.to_string()),
+            "{signal:?}: a prefix"
+        );
+    }
+}
+
+#[test]
+fn two_signals_at_once_stop_at_once_and_remove_the_temporary_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let args = batch("100000000", "twice.csv");
+    let child = spawn(d, &args.iter().map(String::as_str).collect::<Vec<_>>());
+    let (code, err) = stop_while_writing(d, child, &[Signal::SIGINT, Signal::SIGINT]);
+    assert_eq!(code, Some(130), "{err}");
+    // Either the second signal stopped it at once, or the first had already kept a prefix;
+    // never silently, never with the temporary file left.
+    if d.join("twice.csv").exists() {
+        assert!(err.contains("interrupted: kept the "), "{err}");
+    } else {
+        assert!(
+            err.contains(
+                "dicesim: stopped again by signal 2: the file being written was removed, nothing was written"
+            ),
+            "{err}"
+        );
+    }
+    assert!(temporaries(d).is_empty(), "{:?}", temporaries(d));
+}
+
+#[test]
+fn a_signal_during_a_merge_removes_its_file_and_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let mut args = batch("20000", "a.csv");
+    args.extend(["--shard".to_string(), "0/1".to_string()]);
+    let o = Command::new(env!("CARGO_BIN_EXE_dicesim"))
+        .current_dir(d)
+        .args(&args)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for signal in [Signal::SIGTERM, Signal::SIGINT] {
+        let child = spawn(d, &["merge", "a.part.json", "--out", "m.csv"]);
+        let (code, err) = stop_while_writing(d, child, &[signal]);
+        let expected = if signal == Signal::SIGINT {
+            130
+        } else {
+            128 + signal as i32
+        };
+        assert_eq!(code, Some(expected), "{err}");
+        assert!(
+            err.contains(&format!(
+                "dicesim: stopped by signal {}: the file being written was removed, nothing was written",
+                signal as i32
+            )),
+            "{err}"
+        );
+        assert!(temporaries(d).is_empty(), "{:?}", temporaries(d));
+        assert!(!d.join("m.csv").exists());
+    }
+}
