@@ -165,16 +165,33 @@ fn a_fit_rolls_every_candidate_with_the_same_throws() {
         .map(|c| c["deviance"].as_f64().unwrap())
         .collect();
     let best = &fit["fit"];
+    let (x, low, high) = (
+        best["best"].as_f64().unwrap(),
+        best["low"].as_f64().unwrap(),
+        best["high"].as_f64().unwrap(),
+    );
+    assert!((0.25..=1.2).contains(&x) && low <= x && x <= high && low >= 0.25 && high <= 1.2);
+    // The candidate shown is the one nearest the best value.
     let i = best["best_index"].as_u64().unwrap() as usize;
-    assert!(deviances.iter().all(|&d| d >= deviances[i]));
-    assert_eq!(best["best"].as_f64().unwrap(), values[i]);
-    let (low, high) = (best["low"].as_f64().unwrap(), best["high"].as_f64().unwrap());
-    assert!(low <= values[i] && values[i] <= high && low >= 0.25 && high <= 1.2);
-    // Every candidate inside the interval is within 3.84 of the best.
-    for (v, d) in values.iter().zip(&deviances) {
-        if *v > low && *v < high {
-            assert!(*d <= deviances[i] + 3.8415, "{v}: {d}");
+    assert!(values.iter().all(|v| (v - x).abs() >= (values[i] - x).abs()));
+    match best["method"].as_str().unwrap() {
+        "parabola" => {
+            // The parabola is the least-squares one: its residuals sum to zero (the normal
+            // equation of the constant term) and it rises 3.84 at each closed end.
+            let p: Vec<f64> = (0..3).map(|k| best["parabola"][k].as_f64().unwrap()).collect();
+            let q = |x: f64| (p[0] * x + p[1]) * x + p[2];
+            let residuals: f64 = values.iter().zip(&deviances).map(|(v, d)| d - q(*v)).sum();
+            assert!(residuals.abs() < 1e-6, "{residuals}");
+            assert!(p[0] > 0.0);
+            let rise = best["best_deviance"].as_f64().unwrap() + 3.841_458_8;
+            if best["low_open"] == false {
+                assert!((q(low) - rise).abs() < 1e-6);
+            }
+            if best["high_open"] == false {
+                assert!((q(high) - rise).abs() < 1e-6);
+            }
         }
+        _ => assert!(deviances.iter().all(|&d| d >= deviances[i])),
     }
 }
 

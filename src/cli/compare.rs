@@ -5,6 +5,7 @@ use super::{CliError, EngineArg, SetupArgs, cancel_on_ctrl_c};
 use crate::experiment::RunOptions;
 use crate::experiment::compare::{CompareSpec, Comparison, DEFAULT_CANDIDATES, FitSpec, run_comparison};
 use crate::experiment::compare_plot::comparison_png;
+use crate::experiment::compare_stats::FitMethod;
 use crate::experiment::plot::Record;
 use crate::experiment::real_data::Dataset;
 use crate::output::Output;
@@ -216,7 +217,11 @@ fn print_comparison(out: &mut impl Write, c: &Comparison, preset: &str) -> std::
                             p_text(t.p_value),
                         )
                     });
-            let mark = if value == fit.best { " ← best" } else { "" };
+            let mark = if Some(k) == c.shown() {
+                " ← nearest the best"
+            } else {
+                ""
+            };
             writeln!(
                 out,
                 "{value:>12.6}  {deviance:>10.2}  {chi2:>8}  {dof:>4}  {p:>9}{mark}"
@@ -226,12 +231,16 @@ fn print_comparison(out: &mut impl Write, c: &Comparison, preset: &str) -> std::
             if open {
                 format!("{words} {v}")
             } else {
-                format!("{v:.4}")
+                format!("{v:.6}")
             }
+        };
+        let how = match fit.method {
+            FitMethod::Parabola => "on the least-squares parabola through the candidates' deviances",
+            FitMethod::Candidates => "the best candidate; the deviances follow no upward parabola",
         };
         writeln!(
             out,
-            "best {key} = {} (deviance {:.2}); 95 % interval {} to {} (deviance within 3.84 of the best)",
+            "best {key} = {:.6} (deviance {:.2}, {how}); 95 % interval {} to {} (deviance within 3.84 of the best)",
             fit.best,
             fit.best_deviance,
             side(fit.low, fit.low_open, "the range's low end,"),
@@ -263,19 +272,18 @@ fn print_comparison(out: &mut impl Write, c: &Comparison, preset: &str) -> std::
         "category", "real", "share", "95% interval", "simulated", "share", "95% interval", "residual"
     )?;
     let pc = |x: f64| 100.0 * x;
+    let interval = |i: [f64; 2]| format!("{:.2}–{:.2}%", pc(i[0]), pc(i[1]));
     for r in &rows {
         writeln!(
             out,
-            "{:>10}  {:>7}  {:>5.2}%  {:>5.2}–{:<5.2}%  {:>9}  {:>5.2}%  {:>5.2}–{:<5.2}%  {:>+8.2}",
+            "{:>10}  {:>7}  {:>5.2}%  {:>13}  {:>9}  {:>5.2}%  {:>13}  {:>+8.2}",
             r.category,
             r.data_count,
             pc(r.data_share),
-            pc(r.data_interval[0]),
-            pc(r.data_interval[1]),
+            interval(r.data_interval),
             r.simulated_count,
             pc(r.simulated_share),
-            pc(r.simulated_interval[0]),
-            pc(r.simulated_interval[1]),
+            interval(r.simulated_interval),
             r.residual
         )?;
     }

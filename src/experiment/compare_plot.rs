@@ -185,9 +185,21 @@ fn draw_deviance(area: &DrawingArea<BitMapBackend<'_>, Shift>, comparison: &Comp
     chart
         .draw_series(std::iter::once(PathElement::new(
             points.clone(),
-            SIMULATED.stroke_width(2),
+            SIMULATED.mix(0.5).stroke_width(1),
         )))
         .map_err(plot_error)?;
+    if let Some([a, b, c]) = fit.parabola {
+        let curve = (0..=200).map(|i| {
+            let x = x0 + (x1 - x0) * f64::from(i) / 200.0;
+            (x, (a * x + b) * x + c)
+        });
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                curve.collect::<Vec<_>>(),
+                DATA.stroke_width(2),
+            )))
+            .map_err(plot_error)?;
+    }
     chart
         .draw_series(points.iter().map(|&p| Circle::new(p, 4, SIMULATED.filled())))
         .map_err(plot_error)?;

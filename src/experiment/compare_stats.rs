@@ -247,25 +247,122 @@ pub(crate) fn fit_groups(data: &[u64]) -> Vec<Range<usize>> {
     pool(&weights, MIN_EXPECTED)
 }
 
-/// The best candidate of a fit and its 95 % profile interval.
+/// How a fit's best value and interval were read from the candidates' deviances.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum FitMethod {
+    /// From a parabola fitted to every candidate's deviance by least squares. Each
+    /// deviance carries the simulation's own noise (a roll is chaotic, so even with the same
+    /// throws a small change of the value changes many outcomes); the parabola reads the
+    /// trend instead of the noise, as one reads a profile likelihood from noisy points.
+    Parabola,
+    /// From the candidates themselves, interpolated between them: the deviances did not
+    /// follow an upward parabola.
+    Candidates,
+}
+
+/// The best value of a fit and its 95 % profile interval.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct FitInterval {
-    /// The candidate with the smallest deviance, and its index.
+    pub method: FitMethod,
+    /// The best value and its deviance (the parabola's, or the best candidate's).
     pub best: f64,
-    pub best_index: usize,
     pub best_deviance: f64,
-    /// Where the deviance rises 3.84 above its minimum, interpolated between candidates.
+    /// The candidate nearest to the best value, whose throws are shown.
+    pub best_index: usize,
+    /// Where the deviance rises 3.84 above its minimum.
     pub low: f64,
     pub high: f64,
     /// Whether the deviance stayed within 3.84 up to the range's own end on that side (the
     /// interval then reaches at least that far).
     pub low_open: bool,
     pub high_open: bool,
+    /// The parabola `a·x² + b·x + c` (`None` for [`FitMethod::Candidates`]).
+    pub parabola: Option<[f64; 3]>,
 }
 
-/// The best of `values` (increasing) by `deviances`, and the interval around it where the
-/// deviance stays within 3.84 of the best; `None` without candidates.
+/// The least-squares parabola `[a, b, c]` through the points, or `None` for fewer than three
+/// distinct values. Solved in centred and scaled coordinates, then converted back.
+pub(crate) fn least_squares_parabola(values: &[f64], deviances: &[f64]) -> Option<[f64; 3]> {
+    let n = values.len() as f64;
+    let mean = values.iter().sum::<f64>() / n;
+    let scale = values.iter().map(|v| (v - mean).abs()).fold(0.0, f64::max);
+    if values.len() < 3 || scale == 0.0 {
+        return None;
+    }
+    // Normal equations for u = (x − mean)/scale: Σ [u⁴ u³ u²; u³ u² u; u² u 1]·[A B C] = Σ [u²y uy y].
+    let mut m = [[0.0f64; 4]; 3];
+    for (&x, &y) in values.iter().zip(deviances) {
+        let u = (x - mean) / scale;
+        let powers = [u * u, u, 1.0];
+        for r in 0..3 {
+            for c in 0..3 {
+                m[r][c] += powers[r] * powers[c];
+            }
+            m[r][3] += powers[r] * y;
+        }
+    }
+    // Gaussian elimination with partial pivoting.
+    for col in 0..3 {
+        let pivot = (col..3).max_by(|&a, &b| m[a][col].abs().total_cmp(&m[b][col].abs()))?;
+        m.swap(col, pivot);
+        if m[col][col].abs() < 1e-12 {
+            return None;
+        }
+        let pivot_row = m[col];
+        for (r, row) in m.iter_mut().enumerate() {
+            if r != col {
+                let f = row[col] / pivot_row[col];
+                for (x, p) in row.iter_mut().zip(pivot_row).skip(col) {
+                    *x -= f * p;
+                }
+            }
+        }
+    }
+    let [a, b, c] = [0, 1, 2].map(|r| m[r][3] / m[r][r]);
+    // A·u² + B·u + C with u = (x − mean)/scale, expanded in x.
+    let (a2, b2) = (a / (scale * scale), b / scale);
+    Some([a2, b2 - 2.0 * a2 * mean, a2 * mean * mean - b2 * mean + c])
+}
+
+/// The best of `values` (increasing) by `deviances`, and the 95 % interval where the
+/// deviance stays within 3.84 of the best: from the least-squares parabola through all of
+/// them when it opens upward, else from the candidates themselves. `None` without
+/// candidates.
 pub(crate) fn profile_interval(values: &[f64], deviances: &[f64]) -> Option<FitInterval> {
+    let (lo, hi) = (*values.first()?, *values.last()?);
+    let nearest = |x: f64| {
+        (0..values.len())
+            .min_by(|&a, &b| (values[a] - x).abs().total_cmp(&(values[b] - x).abs()))
+            .unwrap_or(0)
+    };
+    if let Some([a, b, c]) = least_squares_parabola(values, deviances)
+        && a > 0.0
+    {
+        let best = (-b / (2.0 * a)).clamp(lo, hi);
+        let best_deviance = (a * best + b) * best + c;
+        // a·x² + b·x + c = best_deviance + 3.84, on each side of the vertex.
+        let vertex = -b / (2.0 * a);
+        let reach = ((best_deviance + deviance_rise_95() - c) / a + vertex * vertex).sqrt();
+        let (low, high) = (vertex - reach, vertex + reach);
+        return Some(FitInterval {
+            method: FitMethod::Parabola,
+            best,
+            best_deviance,
+            best_index: nearest(best),
+            low: low.max(lo),
+            high: high.min(hi),
+            low_open: low < lo,
+            high_open: high > hi,
+            parabola: Some([a, b, c]),
+        });
+    }
+    candidate_interval(values, deviances)
+}
+
+/// The best candidate and the interval read from the candidates themselves: outwards from
+/// the best to the first beyond 3.84 above it, interpolated linearly where it crosses.
+fn candidate_interval(values: &[f64], deviances: &[f64]) -> Option<FitInterval> {
     let (best_index, &best_deviance) = deviances.iter().enumerate().min_by(|a, b| a.1.total_cmp(b.1))?;
     let limit = best_deviance + deviance_rise_95();
     // From the best outwards to the first candidate beyond the limit, then linearly back
@@ -287,13 +384,15 @@ pub(crate) fn profile_interval(values: &[f64], deviances: &[f64]) -> Option<FitI
     };
     let ((low, low_open), (high, high_open)) = (edge(-1), edge(1));
     Some(FitInterval {
+        method: FitMethod::Candidates,
         best: values[best_index],
-        best_index,
         best_deviance,
+        best_index,
         low,
         high,
         low_open,
         high_open,
+        parabola: None,
     })
 }
 
@@ -436,23 +535,51 @@ mod tests {
     }
 
     #[test]
-    fn the_profile_interval_is_interpolated_where_the_deviance_crosses() {
+    fn the_profile_interval_is_read_from_the_parabola_or_the_candidates() {
         let rise = deviance_rise_95();
         assert!((rise - 3.841_458_8).abs() < 1e-6);
+        // Deviances on an exact parabola 2 + 4(x − 1.25)²: the vertex and x* ± √(3.84/4).
+        let values: Vec<f64> = (0..21).map(|i| f64::from(i) * 0.2).collect();
+        let deviances: Vec<f64> = values
+            .iter()
+            .map(|x| 2.0 + 4.0 * (x - 1.25) * (x - 1.25))
+            .collect();
+        let f = profile_interval(&values, &deviances).unwrap();
+        assert_eq!(f.method, FitMethod::Parabola);
+        assert!(
+            (f.best - 1.25).abs() < 1e-9 && (f.best_deviance - 2.0).abs() < 1e-9,
+            "{f:?}"
+        );
+        let half = (rise / 4.0).sqrt();
+        assert!((f.low - (1.25 - half)).abs() < 1e-9 && (f.high - (1.25 + half)).abs() < 1e-9);
+        assert_eq!(f.best_index, 6); // 1.2 is the nearest candidate
+        // Four points on 4(x − 1.5)² = 4x² − 12x + 9 (numpy's polyfit agrees).
+        let [a, b, _] = least_squares_parabola(&[0.0, 1.0, 2.0, 3.0], &[9.0, 1.0, 1.0, 9.0]).unwrap();
+        assert!((a - 4.0).abs() < 1e-9 && (-b / (2.0 * a) - 1.5).abs() < 1e-9);
+        // A vertex outside the range: the best is the range's end, the interval open there.
+        let rising: Vec<f64> = values.iter().map(|x| 1.0 + (x + 1.0) * (x + 1.0)).collect();
+        let f = profile_interval(&values, &rising).unwrap();
+        assert_eq!((f.best, f.low, f.low_open, f.high_open), (0.0, 0.0, true, false));
+        assert!((f.best_deviance - 2.0).abs() < 1e-9);
+        assert!((f.high - (-1.0 + (1.0 + rise).sqrt())).abs() < 1e-9, "{f:?}");
+        // Deviances that do not open upward: read from the candidates.
         let values = [0.0, 1.0, 2.0, 3.0, 4.0];
         let deviances = [20.0, 4.0, 1.0, 1.0 + rise / 2.0, 1.0 + 2.0 * rise];
-        let f = profile_interval(&values, &deviances).unwrap();
-        assert_eq!((f.best, f.best_index, f.best_deviance), (2.0, 2, 1.0));
-        // Left: from 1.0 (dev 4) to 0.0 (dev 20), limit 4.84: t = 0.84/16.
-        assert!((f.low - (1.0 - (1.0 + rise - 4.0) / 16.0)).abs() < 1e-12);
-        // Right: halfway between 3 (rise/2) and 4 (2 rise) in deviance: t = 1/3.
-        assert!((f.high - (3.0 + 1.0 / 3.0)).abs() < 1e-12);
-        assert!(!f.low_open && !f.high_open);
+        let f = profile_interval(&values, &[-5.0, -1.0, -1.0, -1.0, -5.0]).unwrap();
+        assert_eq!((f.method, f.parabola), (FitMethod::Candidates, None));
         let flat = profile_interval(&values, &[1.0; 5]).unwrap();
+        assert_eq!(flat.method, FitMethod::Candidates);
         assert_eq!(
             (flat.low, flat.high, flat.low_open, flat.high_open),
             (0.0, 4.0, true, true)
         );
+        // The candidates' own reading, interpolated where the deviance crosses: left from
+        // 1.0 (4) to 0.0 (20), limit 4.84: t = 0.84/16; right a third of the way from 3 to 4.
+        let f = candidate_interval(&values, &deviances).unwrap();
+        assert_eq!((f.best, f.best_index, f.best_deviance), (2.0, 2, 1.0));
+        assert!((f.low - (1.0 - (1.0 + rise - 4.0) / 16.0)).abs() < 1e-12);
+        assert!((f.high - (3.0 + 1.0 / 3.0)).abs() < 1e-12);
+        assert!(!f.low_open && !f.high_open);
         // The deviance of identical rows is zero; of different ones positive.
         let g = fit_groups(&[10, 10, 1]);
         assert_eq!(g, [0..1, 1..3]);
