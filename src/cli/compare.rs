@@ -133,7 +133,12 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
             }),
             _ => {
                 let title = format!("{} against real dice", preset.name);
-                let record = Record::of_setup(&title, &preset.name, &params, &preset.initial);
+                // The caption names the setup whose throws are drawn: a fit's shown value.
+                let (mut shown, mut initial) = (params, preset.initial);
+                if let (Some(fit), Some(value)) = (&spec.fit, comparison.shown().and_then(|c| c.value)) {
+                    fit.key.set(&mut shown, &mut initial, value);
+                }
+                let record = Record::of_setup(&title, &preset.name, &shown, &initial);
                 let png = comparison_png(&comparison, &record).map_err(CliError::experiment(""))?;
                 output.write_bytes(&png)
             }
