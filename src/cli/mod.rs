@@ -3,6 +3,7 @@
 mod basin;
 mod batch;
 mod bench;
+mod compare;
 mod merge;
 mod predict;
 mod presets;
@@ -177,6 +178,13 @@ pub(crate) enum Command {
   dicesim predict --vary initial.height=2,5,15 --out curves.png --out curves.csv
   dicesim predict --vary ground.damping=0.001,0.005,0.02 --epsilon 1e-12,1e-9,1e-6,1e-3 --json")]
     Predict(predict::PredictArgs),
+    /// Throw the die as a historical experiment threw real dice and hold it against their
+    /// counts: χ², residuals, power; `--fit` calibrates one setup value to them.
+    #[command(after_help = "Examples:
+  dicesim compare wolf-white
+  dicesim compare weldon --throws 2000 --out weldon.png --out weldon.csv
+  dicesim compare weldon --throws 2000 --fit ground.friction:0.2:1.2 --json")]
+    Compare(compare::CompareArgs),
     /// Put the shards of a sweep (`batch --shard`, `basin --shard`) back together.
     #[command(after_help = "Examples:
   dicesim merge parts --out rolls.csv
@@ -408,6 +416,7 @@ pub fn main() -> Result<(), CliError> {
         Some(Command::Basin(args)) => basin::run(&args),
         Some(Command::Predict(args)) => predict::run(&args),
         Some(Command::Bench(args)) => bench::run(&args),
+        Some(Command::Compare(args)) => compare::run(&args),
         Some(Command::Merge(args)) => merge::run(&args),
         Some(Command::Slurm(args)) => slurm::run(&args),
         Some(Command::Tui(args)) => tui::run(&args, no_color),

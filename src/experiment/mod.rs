@@ -6,6 +6,9 @@
 
 pub(crate) mod basin;
 pub(crate) mod batch;
+pub mod compare;
+pub(crate) mod compare_plot;
+pub mod compare_stats;
 pub(crate) mod ending;
 pub(crate) mod energy_plot;
 pub(crate) mod engine;
@@ -17,6 +20,7 @@ pub(crate) mod plot;
 pub mod predict;
 pub(crate) mod predict_plot;
 pub(crate) mod random;
+pub mod real_data;
 pub(crate) mod record;
 pub mod registry;
 pub(crate) mod shard;
@@ -88,6 +92,9 @@ pub enum Error {
     /// The cancel flag stopped the work.
     #[error("cancelled")]
     Cancelled,
+    /// A comparison with real dice that cannot be rolled as asked.
+    #[error("{0}")]
+    Compare(String),
     /// A predictability experiment that cannot be rolled as asked.
     #[error("{0}")]
     Predict(String),

@@ -1,0 +1,207 @@
+//! A comparison with real dice as a PNG image: the data's share of each category beside
+//! the simulation's, both with their 95 % intervals; with a fit, the deviance of every
+//! candidate beside it, the 3.84 line and the interval it cuts.
+
+use super::Error;
+use super::compare::Comparison;
+use super::compare_stats::deviance_rise_95;
+use super::plot::{Record, Scale, plot_error, png_bytes, register_fonts, with_caption};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+/// Image size in pixels.
+pub(crate) const SIZE: (u32, u32) = (1400, 760);
+
+/// Okabe–Ito: blue for the real dice, vermilion for the simulation.
+const DATA: RGBColor = RGBColor(0, 114, 178);
+const SIMULATED: RGBColor = RGBColor(213, 94, 0);
+
+/// The comparison as the bytes of a PNG file; `record` is captioned and written into it.
+pub(crate) fn comparison_png(comparison: &Comparison, record: &Record) -> Result<Vec<u8>, Error> {
+    register_fonts()?;
+    png_bytes(SIZE, record, |root| {
+        root.fill(&WHITE).map_err(plot_error)?;
+        let picture = with_caption(&root, record, Scale::ONE)?;
+        if comparison.fit.is_some() {
+            let (left, right) = picture.split_horizontally(SIZE.0 * 3 / 5);
+            draw_shares(&left, comparison)?;
+            draw_deviance(&right, comparison)?;
+        } else {
+            draw_shares(&picture, comparison)?;
+        }
+        root.present().map_err(plot_error)
+    })
+}
+
+fn draw_shares(area: &DrawingArea<BitMapBackend<'_>, Shift>, comparison: &Comparison) -> Result<(), Error> {
+    let Some(candidate) = comparison.shown() else {
+        return Ok(());
+    };
+    let rows = comparison.rows(candidate);
+    let top = rows
+        .iter()
+        .map(|r| r.data_interval[1].max(r.simulated_interval[1]))
+        .fold(0.0, f64::max)
+        * 1.1;
+    let n = rows.len().max(1) as f64;
+    let value = match (&comparison.key, candidate.value) {
+        (Some(k), Some(v)) => format!(", {k} = {v:.4}"),
+        _ => String::new(),
+    };
+    let title = format!(
+        "{}: {} real throws against {} simulated{value}",
+        comparison.dataset.name(),
+        comparison.data.total(),
+        candidate.throws
+    );
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, ("sans-serif", 22))
+        .margin(20)
+        .x_label_area_size(60)
+        .y_label_area_size(80)
+        .build_cartesian_2d(-0.5..n - 0.5, 0.0..top.max(1e-3))
+        .map_err(plot_error)?;
+    let names: Vec<String> = rows.iter().map(|r| r.category.clone()).collect();
+    let label = |x: &f64| {
+        let i = x.round();
+        if (x - i).abs() < 1e-9 && i >= 0.0 {
+            names.get(i as usize).cloned().unwrap_or_default()
+        } else {
+            String::new()
+        }
+    };
+    chart
+        .configure_mesh()
+        .disable_x_mesh()
+        .x_labels(rows.len())
+        .x_label_formatter(&label)
+        .x_desc(comparison.dataset.category_words())
+        .y_desc("share of throws, with 95 % intervals")
+        .y_label_formatter(&|v| format!("{v:.2}"))
+        .label_style(("sans-serif", 16))
+        .axis_desc_style(("sans-serif", 19))
+        .draw()
+        .map_err(plot_error)?;
+    let offset = 0.15;
+    for (colour, side, name) in [(DATA, -offset, "real dice"), (SIMULATED, offset, "simulated")] {
+        let points: Vec<(f64, [f64; 3])> = rows
+            .iter()
+            .enumerate()
+            .map(|(i, r)| {
+                let x = i as f64 + side;
+                if colour == DATA {
+                    (x, [r.data_interval[0], r.data_share, r.data_interval[1]])
+                } else {
+                    (
+                        x,
+                        [
+                            r.simulated_interval[0],
+                            r.simulated_share,
+                            r.simulated_interval[1],
+                        ],
+                    )
+                }
+            })
+            .collect();
+        // Each interval as a vertical line with caps a tenth of a category wide.
+        let cap = 0.05;
+        chart
+            .draw_series(points.iter().flat_map(|&(x, [lo, _, hi])| {
+                [
+                    vec![(x, lo), (x, hi)],
+                    vec![(x - cap, lo), (x + cap, lo)],
+                    vec![(x - cap, hi), (x + cap, hi)],
+                ]
+                .map(|line| PathElement::new(line, colour.stroke_width(2)))
+            }))
+            .map_err(plot_error)?;
+        chart
+            .draw_series(
+                points
+                    .iter()
+                    .map(|&(x, [_, mid, _])| Circle::new((x, mid), 5, colour.filled())),
+            )
+            .map_err(plot_error)?
+            .label(name)
+            .legend(move |(x, y)| Circle::new((x + 10, y), 5, colour.filled()));
+    }
+    chart
+        .configure_series_labels()
+        .label_font(("sans-serif", 18))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(plot_error)?;
+    Ok(())
+}
+
+fn draw_deviance(area: &DrawingArea<BitMapBackend<'_>, Shift>, comparison: &Comparison) -> Result<(), Error> {
+    let (Some(fit), Some(key)) = (&comparison.fit, &comparison.key) else {
+        return Ok(());
+    };
+    let points: Vec<(f64, f64)> = comparison
+        .candidates
+        .iter()
+        .filter_map(|c| Some((c.value?, c.deviance?)))
+        .collect();
+    let (x0, x1) = points
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.0), b.max(p.0))
+        });
+    let top = points.iter().map(|p| p.1).fold(0.0, f64::max) * 1.05;
+    let limit = fit.best_deviance + deviance_rise_95();
+    let mut chart = ChartBuilder::on(area)
+        .caption(
+            format!("deviance against {key}: best {:.4}", fit.best),
+            ("sans-serif", 22),
+        )
+        .margin(20)
+        .x_label_area_size(60)
+        .y_label_area_size(80)
+        .build_cartesian_2d(x0..x1.max(x0 + 1e-12), 0.0..top.max(limit * 1.05))
+        .map_err(plot_error)?;
+    chart
+        .configure_mesh()
+        .x_desc(key.as_str())
+        .y_desc("deviance G²")
+        .label_style(("sans-serif", 16))
+        .axis_desc_style(("sans-serif", 19))
+        .draw()
+        .map_err(plot_error)?;
+    chart
+        .draw_series(std::iter::once(Rectangle::new(
+            [(fit.low, 0.0), (fit.high, limit)],
+            DATA.mix(0.15).filled(),
+        )))
+        .map_err(plot_error)?;
+    chart
+        .draw_series(std::iter::once(PathElement::new(
+            vec![(x0, limit), (x1, limit)],
+            ShapeStyle::from(BLACK.mix(0.6)).stroke_width(1),
+        )))
+        .map_err(plot_error)?;
+    chart
+        .draw_series(std::iter::once(PathElement::new(
+            points.clone(),
+            SIMULATED.mix(0.5).stroke_width(1),
+        )))
+        .map_err(plot_error)?;
+    if let Some([a, b, c]) = fit.parabola {
+        let curve = (0..=200).map(|i| {
+            let x = x0 + (x1 - x0) * f64::from(i) / 200.0;
+            (x, (a * x + b) * x + c)
+        });
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                curve.collect::<Vec<_>>(),
+                DATA.stroke_width(2),
+            )))
+            .map_err(plot_error)?;
+    }
+    chart
+        .draw_series(points.iter().map(|&p| Circle::new(p, 4, SIMULATED.filled())))
+        .map_err(plot_error)?;
+    Ok(())
+}
