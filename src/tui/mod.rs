@@ -20,6 +20,7 @@ pub mod render;
 pub(crate) mod run;
 pub(crate) mod theme;
 mod timeline;
+mod tty;
 mod twin;
 mod vectors;
 
