@@ -4,7 +4,7 @@
 use super::camera::Camera;
 use super::dialogs::Dialog;
 use super::format::{fmt_num, fmt_range, group};
-use super::keys::{Action, Screen, lookup};
+use super::keys::{Action, Input, Screen, label, read};
 use super::layout::{Areas, param_row_at, screen_layout};
 use super::map::{self, MapView, View};
 use super::param::{Param, all};
@@ -13,12 +13,10 @@ use crate::experiment::trace::{ExportProgress, human_bytes};
 use crate::physics::{InitialCondition, Params};
 use crate::preset::{CameraView, Preset, Screen as ViewScreen, Store, ThemeName, View as PresetView};
 use crate::worker::{
-    BatchProgress, Command, CurveUpdate, EnergySample, MapUpdate, OutcomeTable, SeparationSample, Snapshot,
-    Speed,
+    BatchProgress, Command, CurveUpdate, EnergySample, MapUpdate, Notice, OutcomeTable, SeparationSample,
+    Snapshot, Speed,
 };
-use ratatui::crossterm::event::{
-    Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEventKind,
-};
+use ratatui::crossterm::event::{Event, KeyEvent, KeyEventKind, MouseButton, MouseEventKind};
 use ratatui::layout::{Position, Rect};
 use ratatui::symbols::Marker;
 
@@ -111,13 +109,14 @@ impl Prompt {
         }
     }
 
-    fn confirmed_by(&self, code: KeyCode) -> bool {
-        code == KeyCode::Char('y')
-            || code
+    /// Whether `action` answers yes: `y`, or the key that asked the question.
+    fn confirmed_by(&self, action: Action) -> bool {
+        action == Action::Confirm
+            || action
                 == match self {
-                    Prompt::Quit => KeyCode::Char('q'),
-                    Prompt::Reset => KeyCode::Backspace,
-                    Prompt::Load(_) => KeyCode::Enter,
+                    Prompt::Quit => Action::Quit,
+                    Prompt::Reset => Action::ResetSetup,
+                    Prompt::Load(_) => Action::OpenPreset,
                 }
     }
 }
@@ -167,24 +166,36 @@ pub(crate) enum Typed {
 }
 
 impl Editor {
-    /// Digits, `.`, `-`, `+` and exponents are typed; Backspace deletes; Enter submits the
-    /// number; Esc cancels. Typing clears the last error.
-    pub(crate) fn key(&mut self, code: KeyCode) -> Typed {
-        match code {
-            KeyCode::Esc => return Typed::Cancelled,
-            KeyCode::Backspace => {
+    /// Every printable character is typed (up to `limit`, so the text fits its line);
+    /// Backspace deletes; Enter submits the number; Esc cancels. Typing clears the last error.
+    pub(crate) fn input(&mut self, input: &Input, limit: usize) -> Typed {
+        match input {
+            Input::Act {
+                action: Action::Close,
+                ..
+            } => return Typed::Cancelled,
+            Input::Act {
+                action: Action::Delete,
+                ..
+            } => {
                 self.text.pop();
             }
-            KeyCode::Char(c) if c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E') => {
-                if self.text.len() < 24 {
-                    self.text.push(c);
+            Input::Type(c) => {
+                if self.text.chars().count() < limit {
+                    self.text.push(*c);
                 }
             }
-            KeyCode::Enter => {
+            Input::Act {
+                action: Action::Confirm,
+                ..
+            } => {
                 let text = self.text.trim();
                 return Typed::Submitted(match text.parse::<f64>() {
                     Ok(v) => Ok(v),
-                    Err(_) if text.is_empty() => Err("type a number, or Esc to cancel".to_string()),
+                    Err(_) if text.is_empty() => Err(format!(
+                        "type a number, or {} to cancel",
+                        label(Screen::Text, Action::Close)
+                    )),
                     Err(_) => Err(format!("`{text}` is not a number")),
                 });
             }
@@ -194,6 +205,9 @@ impl Editor {
         Typed::Editing
     }
 }
+
+/// Characters a typed value may hold: more than any number needs, fewer than its line.
+pub(crate) const VALUE_CHARS: usize = 24;
 
 /// How the die is drawn: Braille dots, or plain ASCII for fonts without Braille.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -292,7 +306,7 @@ impl App {
             table: first.table.take().unwrap_or_default(),
             batch: first.batch,
             export: first.export,
-            notice: first.notice.take(),
+            notice: first.notice.take().map(|n| worded(&n)),
             impacts: first.timeline.impacts.take().unwrap_or_default(),
             live: first,
             history,
@@ -405,6 +419,31 @@ impl App {
         }
     }
 
+    /// The mode whose rows of the key table apply now.
+    pub(crate) fn key_mode(&self) -> Screen {
+        match self.mode() {
+            Mode::Prompt => Screen::Prompt,
+            Mode::EditingValue | Mode::EditingEpsilon | Mode::EditingRange => Screen::Text,
+            Mode::Dialog => match self.dialog {
+                Some(Dialog::Save { .. }) => Screen::Save,
+                _ => Screen::Picker,
+            },
+            Mode::Help => Screen::Help,
+            Mode::Map => Screen::Map,
+            Mode::Normal => Screen::Die,
+        }
+    }
+
+    /// A key that means nothing here: it does nothing, and the footer says so.
+    pub(crate) fn nothing_here(&mut self, input: &Input) {
+        if let Input::Nothing(key) = input {
+            self.notice = Some(format!(
+                "{key}: nothing here ({} lists the keys)",
+                label(Screen::Die, Action::Help)
+            ));
+        }
+    }
+
     /// Asks the event loop for an effect outside the worker (files, folders).
     pub(crate) fn ask(&mut self, effect: Effect) {
         self.effects.push(effect);
@@ -450,7 +489,7 @@ impl App {
             self.table = t;
         }
         if let Some(n) = s.notice.take() {
-            self.notice = Some(n);
+            self.notice = Some(worded(&n));
         }
         if let Some(p) = s.preset.take() {
             self.preset = *p;
@@ -611,44 +650,57 @@ pub fn update(app: &mut App, msg: Msg) -> Vec<Effect> {
 }
 
 fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
-    let ctrl = key.modifiers.contains(KeyModifiers::CONTROL);
-    if ctrl && matches!(key.code, KeyCode::Char('c') | KeyCode::Char('C')) {
+    let input = read(app.key_mode(), key);
+    if input == Input::Interrupt {
         app.quit(out);
         return;
     }
     app.notice = None;
     match app.mode() {
-        Mode::Prompt => on_prompt_key(app, key, out),
-        Mode::EditingValue => on_edit_key(app, key, out),
-        Mode::Dialog => super::dialogs::on_key(app, key, out),
-        Mode::EditingEpsilon => super::twin::on_editor_key(app, key, out),
-        Mode::EditingRange => super::map_keys::on_range_key(app, key, out),
-        Mode::Help => match key.code {
-            KeyCode::Up | KeyCode::Char('k') => app.help_scroll = app.help_scroll.saturating_sub(1),
-            KeyCode::Down | KeyCode::Char('j') => app.help_scroll = app.help_scroll.saturating_add(1),
-            KeyCode::Char('?') | KeyCode::Esc | KeyCode::Enter => app.help = false,
-            KeyCode::Char('q') => app.quit_asking(out),
-            _ => {}
+        Mode::Prompt => on_prompt_key(app, &input, out),
+        Mode::EditingValue => on_edit_key(app, &input, out),
+        Mode::Dialog => super::dialogs::on_key(app, &input, out),
+        Mode::EditingEpsilon => super::twin::on_editor_key(app, &input, out),
+        Mode::EditingRange => super::map_keys::on_range_key(app, &input, out),
+        Mode::Help => match input {
+            Input::Act {
+                action: Action::SelectPrevious,
+                ..
+            } => app.help_scroll = app.help_scroll.saturating_sub(1),
+            Input::Act {
+                action: Action::SelectNext,
+                ..
+            } => app.help_scroll = app.help_scroll.saturating_add(1),
+            Input::Act {
+                action: Action::Close,
+                ..
+            } => app.help = false,
+            other => app.nothing_here(&other),
         },
-        Mode::Map => {
-            if let Some(b) = lookup(Screen::Map, key.code) {
-                act(app, b.action, key, out);
+        Mode::Map | Mode::Normal => match input {
+            Input::Act { action, coarse } => act(app, action, coarse, out),
+            // A digit on a parameter row starts the value editor with it typed.
+            Input::Type(digit) => {
+                app.editing = Some(Editor {
+                    text: digit.to_string(),
+                    error: None,
+                })
             }
-        }
-        Mode::Normal => {
-            if let Some(b) = lookup(Screen::Die, key.code) {
-                act(app, b.action, key, out);
-            }
-        }
+            other => app.nothing_here(&other),
+        },
     }
 }
 
 /// A question's answer: its own key or `y` goes ahead, anything else keeps things as they are.
-fn on_prompt_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
+fn on_prompt_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
     let Some(prompt) = app.prompt.take() else {
         return;
     };
-    if !prompt.confirmed_by(key.code) {
+    let yes = match input {
+        Input::Act { action, .. } => prompt.confirmed_by(*action),
+        _ => false,
+    };
+    if !yes {
         app.notice = Some("nothing changed".to_string());
         return;
     }
@@ -665,11 +717,23 @@ fn on_prompt_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
     }
 }
 
+/// A worker's notice in words, naming the keys it points at from the key table.
+pub(crate) fn worded(notice: &Notice) -> String {
+    match notice {
+        Notice::RollEnded => format!(
+            "the roll has ended: {} replays it",
+            label(Screen::Die, Action::Replay)
+        ),
+        Notice::ExportRunning => format!(
+            "an export is running: {} cancels it",
+            label(Screen::Die, Action::Export)
+        ),
+        Notice::Said(words) => words.clone(),
+    }
+}
+
 /// Does what a key of the table stands for.
-fn act(app: &mut App, action: Action, key: KeyEvent, out: &mut Vec<Command>) {
-    let coarse = key
-        .modifiers
-        .intersects(KeyModifiers::SHIFT | KeyModifiers::CONTROL | KeyModifiers::ALT);
+fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
     match action {
         Action::TogglePlay => app.send(out, Command::TogglePlay),
         Action::StepForward => app.send(out, Command::Step(1)),
@@ -713,20 +777,24 @@ fn act(app: &mut App, action: Action, key: KeyEvent, out: &mut Vec<Command>) {
         }
         Action::Arrows => app.vectors = !app.vectors,
         Action::Twin | Action::TwinEpsilonDown | Action::TwinEpsilonUp | Action::TwinEpsilonType => {
-            if !super::twin::on_key(app, key, out) {
-                app.notice = Some("T first: these keys set the twin's ε".to_string());
+            if !super::twin::on_key(app, action, out) {
+                app.notice = Some(format!(
+                    "{} first: these keys set the twin's ε",
+                    label(Screen::Die, Action::Twin)
+                ));
             }
         }
         Action::Theme => {
             app.theme = app.theme.next();
             app.notice = Some(format!(
-                "theme: {}{} (t cycles dark, light, projector)",
+                "theme: {}{} ({} cycles dark, light, projector)",
                 app.theme.palette.name(),
                 if app.theme.colour {
                     ""
                 } else {
                     ", but NO_COLOR is set"
-                }
+                },
+                label(Screen::Die, Action::Theme)
             ));
         }
         Action::Drawing => {
@@ -752,7 +820,12 @@ fn act(app: &mut App, action: Action, key: KeyEvent, out: &mut Vec<Command>) {
         }
         Action::Close => match app.view {
             View::Map => map::close(app, out),
-            View::Die => app.notice = Some("nothing to close (q quits)".to_string()),
+            View::Die => {
+                app.notice = Some(format!(
+                    "nothing to close ({} quits)",
+                    label(Screen::Die, Action::Quit)
+                ))
+            }
         },
         Action::Quit => app.quit_asking(out),
         Action::MapBack
@@ -774,12 +847,14 @@ fn act(app: &mut App, action: Action, key: KeyEvent, out: &mut Vec<Command>) {
         | Action::MapLayer
         | Action::ExportMap
         | Action::MapExportSize => super::map_keys::act(app, action, coarse, out),
+        // Rows of the overlays only: `read` never gives them on a screen.
+        Action::Confirm | Action::Delete | Action::NextField => {}
     }
 }
 
-fn on_edit_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
+fn on_edit_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
     if let Some(editor) = app.batch_editor.as_mut() {
-        match editor.key(key.code) {
+        match editor.input(input, VALUE_CHARS) {
             Typed::Cancelled => app.batch_editor = None,
             Typed::Editing => {}
             Typed::Submitted(number) => match number {
@@ -803,7 +878,7 @@ fn on_edit_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
     let Some(editor) = app.editing.as_mut() else {
         return;
     };
-    match editor.key(key.code) {
+    match editor.input(input, VALUE_CHARS) {
         Typed::Cancelled => app.editing = None,
         Typed::Editing => {}
         Typed::Submitted(number) => {

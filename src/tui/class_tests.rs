@@ -519,7 +519,7 @@ mod export {
     }
 
     #[test]
-    fn e_exports_into_the_current_folder_and_y_switches_the_log_scale() {
+    fn e_exports_into_the_current_folder_and_p_switches_the_log_scale() {
         let mut a = start().app;
         assert_eq!(
             press(&mut a, KeyCode::Char('e')),
@@ -529,15 +529,15 @@ mod export {
             }]
         );
         assert!(!a.log_scale);
-        assert!(press(&mut a, KeyCode::Char('y')).is_empty());
+        assert!(press(&mut a, KeyCode::Char('p')).is_empty());
         assert!(a.log_scale);
     }
 
     #[test]
     fn the_exported_energy_plot_follows_the_screens_scale() {
-        // `y` on screen, then `e`: the command carries the log scale to the export.
+        // `p` on screen, then `e`: the command carries the log scale to the export.
         let mut a = mid_impact().app;
-        press(&mut a, KeyCode::Char('y'));
+        press(&mut a, KeyCode::Char('p'));
         assert!(a.log_scale);
         let c = press(&mut a, KeyCode::Char('e'));
         assert!(

@@ -354,3 +354,51 @@ fn the_views_camera_limits_are_the_cameras() {
     assert_eq!(crate::preset::ZOOM.min, f64::from(Camera::MIN_ZOOM));
     assert_eq!(crate::preset::ZOOM.max, f64::from(Camera::MAX_ZOOM));
 }
+
+#[test]
+fn a_digit_on_a_parameter_row_opens_the_value_editor_with_it_typed() {
+    let mut s = start();
+    s.select(Param::named("initial.height"));
+    s.key(KeyCode::Char('2'));
+    s.key(KeyCode::Char('0'));
+    assert_eq!(
+        s.app.mode(),
+        Mode::EditingValue,
+        "2 opens no map and starts no map"
+    );
+    assert_eq!(s.app.editing.as_ref().map(|e| e.text.as_str()), Some("20"));
+    let text = screen(&s.app, 120, 36);
+    assert!(text.contains("20▏"), "{text}");
+    insta::assert_snapshot!("digit_typed_editor_120x36", text);
+    insta::assert_snapshot!("digit_typed_editor_80x24", screen(&s.app, 80, 24));
+    s.key(KeyCode::Enter);
+    assert_eq!(s.app.initial.height, 20.0, "Enter applies the 20 typed");
+    assert_eq!(s.app.mode(), Mode::Normal);
+}
+
+#[test]
+fn a_key_that_means_nothing_does_nothing_and_the_footer_says_so() {
+    let mut s = start();
+    let before = (s.app.log_scale, s.app.params, s.app.initial);
+    // `y` answers questions; with none open it means nothing (it once switched the log scale).
+    s.key(KeyCode::Char('y'));
+    assert_eq!((s.app.log_scale, s.app.params, s.app.initial), before);
+    assert_eq!(s.app.mode(), Mode::Normal);
+    let text = screen(&s.app, 120, 36);
+    assert!(text.contains("y: nothing here (? lists the keys)"), "{text}");
+    insta::assert_snapshot!("nothing_here_footer_120x36", text);
+    // The next key that does something clears it.
+    s.key(KeyCode::Down);
+    assert!(!screen(&s.app, 120, 36).contains("nothing here"));
+    // In the help too: Esc, ? and q close it, anything else stays and says so.
+    s.key(KeyCode::Char('?'));
+    s.key(KeyCode::Char('x'));
+    assert_eq!(s.app.mode(), Mode::Help);
+    assert_eq!(
+        s.app.notice.as_deref(),
+        Some("x: nothing here (? lists the keys)")
+    );
+    s.key(KeyCode::Char('q'));
+    assert_eq!(s.app.mode(), Mode::Normal, "q closes the help");
+    assert!(!s.app.quit, "and does not quit from it");
+}

@@ -6,12 +6,12 @@
 
 use super::app::{App, Effect, Prompt};
 use super::format::fmt_num;
+use super::keys::{Action, Input};
 use super::param::all;
 use crate::output::printable;
 use crate::preset::{Preset, Source, check_name};
 use crate::worker::Command;
 use ratatui::Frame;
-use ratatui::crossterm::event::{KeyCode, KeyEvent};
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph, Wrap};
@@ -138,7 +138,7 @@ pub(crate) fn current_setup(app: &App, name: &str, description: &str) -> Preset 
 }
 
 /// Keys while a dialog is open.
-pub(crate) fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
+pub(crate) fn on_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
     let Some(dialog) = app.dialog.take() else {
         return;
     };
@@ -147,7 +147,7 @@ pub(crate) fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
             choices,
             selected,
             error,
-        } => picker_key(app, key, out, choices, selected, error),
+        } => picker_key(app, input, out, choices, selected, error),
         Dialog::Save {
             name,
             description,
@@ -156,7 +156,7 @@ pub(crate) fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
             confirm_replace,
         } => save_key(
             app,
-            key,
+            input,
             SaveForm {
                 name,
                 description,
@@ -170,20 +170,31 @@ pub(crate) fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
 
 fn picker_key(
     app: &mut App,
-    key: KeyEvent,
+    input: &Input,
     out: &mut Vec<Command>,
     choices: Vec<Choice>,
     selected: usize,
     error: Option<String>,
 ) -> Option<Dialog> {
     let last = choices.len().saturating_sub(1);
-    let selected = match key.code {
-        KeyCode::Esc | KeyCode::Char('o') | KeyCode::Char('q') => return None,
-        KeyCode::Up | KeyCode::Char('k') => selected.saturating_sub(1),
-        KeyCode::Down | KeyCode::Char('j') => (selected + 1).min(last),
-        KeyCode::Home | KeyCode::Char('g') => 0,
-        KeyCode::End | KeyCode::Char('G') => last,
-        KeyCode::Enter => match choices.get(selected).map(|c| c.preset.clone()) {
+    let action = match input {
+        Input::Act { action, .. } => *action,
+        other => {
+            app.nothing_here(other);
+            return Some(Dialog::Picker {
+                choices,
+                selected,
+                error,
+            });
+        }
+    };
+    let selected = match action {
+        Action::Close => return None,
+        Action::SelectPrevious => selected.saturating_sub(1),
+        Action::SelectNext => (selected + 1).min(last),
+        Action::SelectFirst => 0,
+        Action::SelectLast => last,
+        Action::Confirm => match choices.get(selected).map(|c| c.preset.clone()) {
             Some(Ok(preset)) if modified(app) => {
                 // The picker stays under the question: anything but yes goes back to it.
                 app.prompt = Some(Prompt::Load(preset));
@@ -209,7 +220,7 @@ fn picker_key(
         _ => selected,
     };
     // Moving on clears the error of the file that did not load.
-    let error = if key.code == KeyCode::Enter { error } else { None };
+    let error = if action == Action::Confirm { error } else { None };
     Some(Dialog::Picker {
         choices,
         selected,
@@ -226,7 +237,7 @@ struct SaveForm {
 
 fn save_key(
     app: &mut App,
-    key: KeyEvent,
+    input: &Input,
     mut form: SaveForm,
     error: Option<String>,
     confirm_replace: bool,
@@ -248,29 +259,30 @@ fn save_key(
         SaveField::Name => NAME_CHARS,
         SaveField::Description => DESCRIPTION_CHARS,
     };
-    match key.code {
-        KeyCode::Esc => None,
-        KeyCode::Tab | KeyCode::BackTab | KeyCode::Up | KeyCode::Down => {
+    let action = |a: Action| matches!(input, Input::Act { action, .. } if *action == a);
+    match input {
+        _ if action(Action::Close) => None,
+        _ if action(Action::NextField) => {
             form.field = match form.field {
                 SaveField::Name => SaveField::Description,
                 SaveField::Description => SaveField::Name,
             };
             dialog(form, error, confirm_replace)
         }
-        KeyCode::Backspace => {
+        _ if action(Action::Delete) => {
             typing.pop();
             // Another name is another question.
             let keep = form.field == SaveField::Description;
             dialog(form, error.filter(|_| keep), confirm_replace && keep)
         }
-        KeyCode::Char(c) if !c.is_control() => {
+        Input::Type(c) => {
             if typing.chars().count() < limit {
-                typing.push(c);
+                typing.push(*c);
             }
             let keep = form.field == SaveField::Description;
             dialog(form, error.filter(|_| keep), confirm_replace && keep)
         }
-        KeyCode::Enter => {
+        _ if action(Action::Confirm) => {
             if let Err(e) = check_name(&form.name) {
                 return dialog(form, Some(e.to_string()), false);
             }
@@ -280,7 +292,10 @@ fn save_key(
             });
             dialog(form, None, confirm_replace)
         }
-        _ => dialog(form, error, confirm_replace),
+        other => {
+            app.nothing_here(other);
+            dialog(form, error, confirm_replace)
+        }
     }
 }
 

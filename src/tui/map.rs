@@ -680,7 +680,11 @@ fn legend_lines(app: &App) -> Vec<Line<'static>> {
     let t = &app.theme;
     let m = &app.map;
     let mut lines = vec![Line::styled(
-        format!(" legend: {} (v)", layer_name(m.layer)),
+        format!(
+            " legend: {} ({})",
+            layer_name(m.layer),
+            super::keys::label(super::keys::Screen::Map, super::keys::Action::MapLayer)
+        ),
         t.heading(),
     )];
     let swatch = |cell: Option<Cell>, times| {

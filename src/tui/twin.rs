@@ -1,13 +1,13 @@
 //! The chaos twin in the explorer (`T`): a ghost die rolled from a start a relative ε away,
 //! the separation of the two on a log scale, and both outcomes. The worker steps both.
 
-use super::app::{App, Editor, Typed};
+use super::app::{App, Editor, Typed, VALUE_CHARS};
 use super::format::fmt_num;
+use super::keys::{Action, Input};
 use crate::experiment::twin::EPSILON;
 use crate::physics::Status;
 use crate::worker::{Command, Phase};
 use ratatui::Frame;
-use ratatui::crossterm::event::{KeyCode, KeyEvent};
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
@@ -20,10 +20,10 @@ pub(crate) const DEFAULT_EPSILON: f64 = 1e-9;
 /// What ε does, in the words shown on screen.
 pub(crate) const DEFINITION: &str = "twin: height, velocity and spin × (1 + ε)";
 
-/// The twin's keys; returns whether `key` was one of them.
-pub(crate) fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) -> bool {
-    match key.code {
-        KeyCode::Char('T') => {
+/// The twin's keys; returns whether `action` did anything (the ε keys need the twin on).
+pub(crate) fn on_key(app: &mut App, action: Action, out: &mut Vec<Command>) -> bool {
+    match action {
+        Action::Twin => {
             app.twin = !app.twin;
             let c = Command::SetTwin(app.twin.then_some(app.epsilon));
             app.send(out, c);
@@ -31,9 +31,9 @@ pub(crate) fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) -> bo
                 app.notice = Some(format!("{DEFINITION}, ε = {}", fmt_num(app.epsilon)));
             }
         }
-        KeyCode::Char('<') if app.twin => set_epsilon(app, out, app.epsilon / 10.0),
-        KeyCode::Char('>') if app.twin => set_epsilon(app, out, app.epsilon * 10.0),
-        KeyCode::Char('E') if app.twin => app.epsilon_editor = Some(Editor::default()),
+        Action::TwinEpsilonDown if app.twin => set_epsilon(app, out, app.epsilon / 10.0),
+        Action::TwinEpsilonUp if app.twin => set_epsilon(app, out, app.epsilon * 10.0),
+        Action::TwinEpsilonType if app.twin => app.epsilon_editor = Some(Editor::default()),
         _ => return false,
     }
     true
@@ -52,11 +52,11 @@ fn set_epsilon(app: &mut App, out: &mut Vec<Command>, epsilon: f64) {
 }
 
 /// Typing ε (after `E`): digits, `e`, `-`, `.`; Enter applies, Esc cancels.
-pub(crate) fn on_editor_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
+pub(crate) fn on_editor_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
     let Some(editor) = app.epsilon_editor.as_mut() else {
         return;
     };
-    match editor.key(key.code) {
+    match editor.input(input, VALUE_CHARS) {
         Typed::Cancelled => app.epsilon_editor = None,
         Typed::Editing => {}
         Typed::Submitted(number) => match number {
