@@ -79,6 +79,24 @@ pub(crate) enum Mode {
     Normal,
 }
 
+/// What is on top of the screens. One thing at a time: opening one replaces another,
+/// except a question asked over the preset picker, which keeps the picker under it.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Overlay {
+    /// The help (`?`), scrolled down by `scroll` lines.
+    Help { scroll: u16 },
+    /// A value of the parameter list being typed.
+    Value(Editor),
+    /// The batch size being typed (after `B` has walked past the largest preset size).
+    BatchSize(Editor),
+    /// The twin's ε being typed.
+    Epsilon(Editor),
+    /// The preset picker or the save dialog.
+    Dialog(Dialog),
+    /// A question; `under` (the picker it was asked from) comes back after a no.
+    Prompt { prompt: Prompt, under: Option<Dialog> },
+}
+
 /// A question asked before something that would lose the user's changes.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) enum Prompt {
@@ -244,16 +262,11 @@ pub struct App {
     /// The roll's export, while it runs.
     pub(crate) export: Option<ExportProgress>,
     pub(crate) batch_rolls: u64,
-    /// The batch size being typed (after `B` has walked past the largest preset size).
-    pub(crate) batch_editor: Option<Editor>,
-    /// The question being asked, if any: it takes every key until answered.
-    pub(crate) prompt: Option<Prompt>,
+    /// What is on top of the screen, if anything: it takes every key.
+    pub(crate) overlay: Option<Overlay>,
     pub(crate) notice: Option<String>,
     /// Index into [`all`](super::param::all).
     pub(crate) selected: usize,
-    pub(crate) editing: Option<Editor>,
-    pub(crate) help: bool,
-    pub(crate) help_scroll: u16,
     pub(crate) log_scale: bool,
     /// Arrows for ω, L, v and the contact forces on the die (`v`).
     pub(crate) vectors: bool,
@@ -261,7 +274,6 @@ pub struct App {
     pub(crate) twin: bool,
     pub(crate) epsilon: f64,
     /// ε being typed in (`E`).
-    pub(crate) epsilon_editor: Option<Editor>,
     /// The twin's separation samples of the roll on screen.
     pub(crate) twin_history: Vec<SeparationSample>,
     /// The predictability curve of the setup, while a twin rolls (newest generation).
@@ -270,8 +282,6 @@ pub struct App {
     pub(crate) preset: Preset,
     /// Where presets are listed from and saved to.
     pub(crate) store: Store,
-    /// The preset picker or the save dialog, when open.
-    pub(crate) dialog: Option<Dialog>,
     pub(crate) drawing: Drawing,
     pub(crate) camera: Camera,
     pub(crate) theme: Theme,
@@ -311,22 +321,16 @@ impl App {
             live: first,
             history,
             batch_rolls: BATCH_ROLLS,
-            batch_editor: None,
-            prompt: None,
+            overlay: None,
             selected: 0,
-            editing: None,
-            help: false,
-            help_scroll: 0,
             log_scale: false,
             vectors: false,
             twin: false,
             epsilon: super::twin::DEFAULT_EPSILON,
-            epsilon_editor: None,
             twin_history: Vec::new(),
             curve,
             preset,
             store: Store::new(None),
-            dialog: None,
             drawing: Drawing::default(),
             camera: Camera::default(),
             theme,
@@ -400,22 +404,64 @@ impl App {
 
     /// What is topmost now.
     pub(crate) fn mode(&self) -> Mode {
-        if self.prompt.is_some() {
-            Mode::Prompt
-        } else if self.editing.is_some() || self.batch_editor.is_some() {
-            Mode::EditingValue
-        } else if self.dialog.is_some() {
-            Mode::Dialog
-        } else if self.epsilon_editor.is_some() {
-            Mode::EditingEpsilon
-        } else if self.view == View::Map && self.map.editing.is_some() {
-            Mode::EditingRange
-        } else if self.help {
-            Mode::Help
-        } else if self.view == View::Map {
-            Mode::Map
-        } else {
-            Mode::Normal
+        match &self.overlay {
+            Some(Overlay::Prompt { .. }) => Mode::Prompt,
+            Some(Overlay::Value(_) | Overlay::BatchSize(_)) => Mode::EditingValue,
+            Some(Overlay::Dialog(_)) => Mode::Dialog,
+            Some(Overlay::Epsilon(_)) => Mode::EditingEpsilon,
+            // The map's range editor is the map screen's own, under any overlay.
+            _ if self.view == View::Map && self.map.editing.is_some() => Mode::EditingRange,
+            Some(Overlay::Help { .. }) => Mode::Help,
+            None if self.view == View::Map => Mode::Map,
+            None => Mode::Normal,
+        }
+    }
+
+    /// The question being asked, if any.
+    pub(crate) fn prompt(&self) -> Option<&Prompt> {
+        match &self.overlay {
+            Some(Overlay::Prompt { prompt, .. }) => Some(prompt),
+            _ => None,
+        }
+    }
+
+    /// The dialog open, on top or under a question.
+    pub(crate) fn dialog(&self) -> Option<&Dialog> {
+        match &self.overlay {
+            Some(Overlay::Dialog(d)) | Some(Overlay::Prompt { under: Some(d), .. }) => Some(d),
+            _ => None,
+        }
+    }
+
+    /// The parameter value being typed, if any.
+    pub(crate) fn value_editor(&self) -> Option<&Editor> {
+        match &self.overlay {
+            Some(Overlay::Value(e)) => Some(e),
+            _ => None,
+        }
+    }
+
+    /// The batch size being typed, if any.
+    pub(crate) fn batch_editor(&self) -> Option<&Editor> {
+        match &self.overlay {
+            Some(Overlay::BatchSize(e)) => Some(e),
+            _ => None,
+        }
+    }
+
+    /// The twin's ε being typed, if any.
+    pub(crate) fn epsilon_editor(&self) -> Option<&Editor> {
+        match &self.overlay {
+            Some(Overlay::Epsilon(e)) => Some(e),
+            _ => None,
+        }
+    }
+
+    /// How far the help is scrolled, while it is open.
+    pub(crate) fn help_scroll(&self) -> Option<u16> {
+        match &self.overlay {
+            Some(Overlay::Help { scroll }) => Some(*scroll),
+            _ => None,
         }
     }
 
@@ -424,7 +470,7 @@ impl App {
         match self.mode() {
             Mode::Prompt => Screen::Prompt,
             Mode::EditingValue | Mode::EditingEpsilon | Mode::EditingRange => Screen::Text,
-            Mode::Dialog => match self.dialog {
+            Mode::Dialog => match self.dialog() {
                 Some(Dialog::Save { .. }) => Screen::Save,
                 _ => Screen::Picker,
             },
@@ -582,7 +628,10 @@ impl App {
     /// Quits, or asks first when the setup has unsaved changes.
     fn quit_asking(&mut self, out: &mut Vec<Command>) {
         if super::dialogs::modified(self) {
-            self.prompt = Some(Prompt::Quit);
+            self.overlay = Some(Overlay::Prompt {
+                prompt: Prompt::Quit,
+                under: None,
+            });
         } else {
             self.quit(out);
         }
@@ -592,7 +641,10 @@ impl App {
     /// first when there are changes.
     fn reset_asking(&mut self) {
         if super::dialogs::modified(self) {
-            self.prompt = Some(Prompt::Reset);
+            self.overlay = Some(Overlay::Prompt {
+                prompt: Prompt::Reset,
+                under: None,
+            });
         } else {
             self.notice = Some(format!("nothing to reset: the setup is {}'s", self.preset.name));
         }
@@ -616,7 +668,7 @@ impl App {
                     group(self.batch_rolls)
                 ));
             }
-            None => self.batch_editor = Some(Editor::default()),
+            None => self.overlay = Some(Overlay::BatchSize(Editor::default())),
         }
     }
 
@@ -662,29 +714,34 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
         Mode::Dialog => super::dialogs::on_key(app, &input, out),
         Mode::EditingEpsilon => super::twin::on_editor_key(app, &input, out),
         Mode::EditingRange => super::map_keys::on_range_key(app, &input, out),
-        Mode::Help => match input {
-            Input::Act {
-                action: Action::SelectPrevious,
-                ..
-            } => app.help_scroll = app.help_scroll.saturating_sub(1),
-            Input::Act {
-                action: Action::SelectNext,
-                ..
-            } => app.help_scroll = app.help_scroll.saturating_add(1),
-            Input::Act {
-                action: Action::Close,
-                ..
-            } => app.help = false,
-            other => app.nothing_here(&other),
-        },
+        Mode::Help => {
+            let Some(Overlay::Help { scroll }) = &mut app.overlay else {
+                return;
+            };
+            match input {
+                Input::Act {
+                    action: Action::SelectPrevious,
+                    ..
+                } => *scroll = scroll.saturating_sub(1),
+                Input::Act {
+                    action: Action::SelectNext,
+                    ..
+                } => *scroll = scroll.saturating_add(1),
+                Input::Act {
+                    action: Action::Close,
+                    ..
+                } => app.overlay = None,
+                other => app.nothing_here(&other),
+            }
+        }
         Mode::Map | Mode::Normal => match input {
             Input::Act { action, coarse } => act(app, action, coarse, out),
             // A digit on a parameter row starts the value editor with it typed.
             Input::Type(digit) => {
-                app.editing = Some(Editor {
+                app.overlay = Some(Overlay::Value(Editor {
                     text: digit.to_string(),
                     error: None,
-                })
+                }))
             }
             other => app.nothing_here(&other),
         },
@@ -693,7 +750,7 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
 
 /// A question's answer: its own key or `y` goes ahead, anything else keeps things as they are.
 fn on_prompt_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
-    let Some(prompt) = app.prompt.take() else {
+    let Some(Overlay::Prompt { prompt, under }) = app.overlay.take() else {
         return;
     };
     let yes = match input {
@@ -701,6 +758,7 @@ fn on_prompt_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
         _ => false,
     };
     if !yes {
+        app.overlay = under.map(Overlay::Dialog);
         app.notice = Some("nothing changed".to_string());
         return;
     }
@@ -711,7 +769,6 @@ fn on_prompt_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
             app.load(out, preset);
         }
         Prompt::Load(preset) => {
-            app.dialog = None;
             app.load(out, preset);
         }
     }
@@ -762,7 +819,7 @@ fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
         Action::Increase => app.nudge(out, 1, coarse),
         Action::DecreaseBig => app.nudge(out, -1, true),
         Action::IncreaseBig => app.nudge(out, 1, true),
-        Action::TypeValue => app.editing = Some(Editor::default()),
+        Action::TypeValue => app.overlay = Some(Overlay::Value(Editor::default())),
         Action::LogScale => app.log_scale = !app.log_scale,
         Action::Export => {
             let c = if app.export.is_some() {
@@ -815,8 +872,7 @@ fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
         Action::ResetSetup => app.reset_asking(),
         Action::OpenMap => map::open(app, out),
         Action::Help => {
-            app.help = true;
-            app.help_scroll = 0;
+            app.overlay = Some(Overlay::Help { scroll: 0 });
         }
         Action::Close => match app.view {
             View::Map => map::close(app, out),
@@ -853,14 +909,14 @@ fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
 }
 
 fn on_edit_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
-    if let Some(editor) = app.batch_editor.as_mut() {
+    if let Some(Overlay::BatchSize(editor)) = app.overlay.as_mut() {
         match editor.input(input, VALUE_CHARS) {
-            Typed::Cancelled => app.batch_editor = None,
+            Typed::Cancelled => app.overlay = None,
             Typed::Editing => {}
             Typed::Submitted(number) => match number {
                 Ok(n) if n.fract() == 0.0 && (1.0..=MAX_BATCH_ROLLS as f64).contains(&n) => {
                     app.batch_rolls = n as u64;
-                    app.batch_editor = None;
+                    app.overlay = None;
                     app.notice = Some(format!("batch size {}", group(app.batch_rolls)));
                 }
                 Ok(n) => {
@@ -875,18 +931,18 @@ fn on_edit_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
         }
         return;
     }
-    let Some(editor) = app.editing.as_mut() else {
+    let Some(Overlay::Value(editor)) = app.overlay.as_mut() else {
         return;
     };
     match editor.input(input, VALUE_CHARS) {
-        Typed::Cancelled => app.editing = None,
+        Typed::Cancelled => app.overlay = None,
         Typed::Editing => {}
         Typed::Submitted(number) => {
             let p = app.selected_param();
             match number.and_then(|v| app.set_param(out, p, v)) {
-                Ok(()) => app.editing = None,
+                Ok(()) => app.overlay = None,
                 Err(e) => {
-                    if let Some(editor) = app.editing.as_mut() {
+                    if let Some(Overlay::Value(editor)) = app.overlay.as_mut() {
                         editor.error = Some(e);
                     }
                 }

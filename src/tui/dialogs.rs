@@ -4,7 +4,7 @@
 //! Their keys never touch the disk themselves: listing the preset folder ([`open_picker`])
 //! and writing a file ([`save`]) are effects the event loop runs after `update`.
 
-use super::app::{App, Effect, Prompt};
+use super::app::{App, Effect, Overlay, Prompt};
 use super::format::fmt_num;
 use super::keys::{Action, Input};
 use super::param::all;
@@ -81,21 +81,21 @@ pub(crate) fn open_picker(app: &mut App) {
         .iter()
         .position(|c| c.name == app.preset.name)
         .unwrap_or(0);
-    app.dialog = Some(Dialog::Picker {
+    app.overlay = Some(Overlay::Dialog(Dialog::Picker {
         choices,
         selected,
         error: None,
-    });
+    }));
 }
 
 pub(crate) fn open_save(app: &mut App) {
-    app.dialog = Some(Dialog::Save {
+    app.overlay = Some(Overlay::Dialog(Dialog::Save {
         name: String::new(),
         description: String::new(),
         field: SaveField::Name,
         error: None,
         confirm_replace: false,
-    });
+    }));
 }
 
 /// What a saved setup says about itself when no description is typed: its base and the
@@ -139,10 +139,10 @@ pub(crate) fn current_setup(app: &App, name: &str, description: &str) -> Preset 
 
 /// Keys while a dialog is open.
 pub(crate) fn on_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
-    let Some(dialog) = app.dialog.take() else {
+    let Some(Overlay::Dialog(dialog)) = app.overlay.take() else {
         return;
     };
-    app.dialog = match dialog {
+    let next = match dialog {
         Dialog::Picker {
             choices,
             selected,
@@ -166,6 +166,10 @@ pub(crate) fn on_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
             confirm_replace,
         ),
     };
+    // A question asked from the picker has taken the top, the picker kept under it.
+    if app.overlay.is_none() {
+        app.overlay = next.map(Overlay::Dialog);
+    }
 }
 
 fn picker_key(
@@ -197,12 +201,15 @@ fn picker_key(
         Action::Confirm => match choices.get(selected).map(|c| c.preset.clone()) {
             Some(Ok(preset)) if modified(app) => {
                 // The picker stays under the question: anything but yes goes back to it.
-                app.prompt = Some(Prompt::Load(preset));
-                return Some(Dialog::Picker {
-                    choices,
-                    selected,
-                    error,
+                app.overlay = Some(Overlay::Prompt {
+                    prompt: Prompt::Load(preset),
+                    under: Some(Dialog::Picker {
+                        choices,
+                        selected,
+                        error,
+                    }),
                 });
+                return None;
             }
             Some(Ok(preset)) => {
                 app.load(out, preset);
@@ -304,11 +311,11 @@ fn save_key(
 pub(crate) fn save(app: &mut App, preset: &Preset, replace: bool) {
     let name = preset.name.clone();
     let refuse = |app: &mut App, error: String, confirm_replace: bool| {
-        if let Some(Dialog::Save {
+        if let Some(Overlay::Dialog(Dialog::Save {
             error: e,
             confirm_replace: c,
             ..
-        }) = &mut app.dialog
+        })) = &mut app.overlay
         {
             (*e, *c) = (Some(error), confirm_replace);
         }
@@ -325,7 +332,7 @@ pub(crate) fn save(app: &mut App, preset: &Preset, replace: bool) {
             app.notice = Some(format!("saved {}", path.display()));
             // The saved file is now what the setup is compared with.
             app.preset = preset.clone();
-            app.dialog = None;
+            app.overlay = None;
         }
         Err(e) => refuse(app, e.to_string(), false),
     }
@@ -334,7 +341,7 @@ pub(crate) fn save(app: &mut App, preset: &Preset, replace: bool) {
 /// Draws the open dialog, centred over the screen, and over it any question being asked.
 pub fn render(app: &App, area: Rect, frame: &mut Frame) {
     render_dialog(app, area, frame);
-    if let Some(prompt) = &app.prompt {
+    if let Some(prompt) = app.prompt() {
         let t = &app.theme;
         let (keys, words) = prompt.answers();
         let popup = area.centered(Constraint::Max(64), Constraint::Length(4));
@@ -356,7 +363,7 @@ pub fn render(app: &App, area: Rect, frame: &mut Frame) {
 }
 
 fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
-    let Some(dialog) = &app.dialog else { return };
+    let Some(dialog) = app.dialog() else { return };
     let t = &app.theme;
     match dialog {
         Dialog::Picker {

@@ -21,7 +21,7 @@ fn hint(keys: &str, words: &str, priority: u8) -> KeyHint {
 pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
     let keys = match app.mode() {
         Mode::Prompt => {
-            let prompt = app.prompt.as_ref().expect("the mode says so");
+            let prompt = app.prompt().expect("the mode says so");
             let (keys, words) = prompt.answers();
             let question = prompt.question(&app.preset.name);
             let hints = vec![
@@ -30,8 +30,8 @@ pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
             ];
             return render_line(app, Some(question), hints, area, frame);
         }
-        Mode::EditingValue if app.batch_editor.is_some() => {
-            let editor = app.batch_editor.as_ref().expect("checked");
+        Mode::EditingValue if app.batch_editor().is_some() => {
+            let editor = app.batch_editor().expect("checked");
             let line = match &editor.error {
                 Some(e) => e.clone(),
                 None => format!("batch size: {}▏ rolls", editor.text),
@@ -124,6 +124,6 @@ pub(crate) fn render_help(app: &App, area: Rect, frame: &mut Frame) {
     let para = Paragraph::new(help_lines(app))
         .block(block)
         .wrap(Wrap { trim: false })
-        .scroll((app.help_scroll, 0));
+        .scroll((app.help_scroll().unwrap_or(0), 0));
     frame.render_widget(para, popup);
 }

@@ -380,7 +380,7 @@ pub(crate) fn render_map_screen(app: &App, frame: &mut Frame) {
     render_side(app, areas.side, frame);
     render_panel(app, &areas, frame);
     super::map_keys::render_footer(app, areas.footer, frame);
-    if app.help {
+    if app.help_scroll().is_some() {
         render_help(app, area, frame);
     }
 }

@@ -53,7 +53,7 @@ fn render_die_screen(app: &App, frame: &mut Frame) {
     }
     super::ledger::render_ledger(app, areas.ledger, frame);
     render_footer(app, areas.footer, frame);
-    if app.help {
+    if app.help_scroll().is_some() {
         render_help(app, area, frame);
     }
     super::dialogs::render(app, area, frame);
@@ -137,7 +137,7 @@ pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
         lines.push(line);
     }
     let p = app.selected_param();
-    let detail = match &app.editing {
+    let detail = match app.value_editor() {
         Some(editor) => match &editor.error {
             Some(e) => Line::styled(format!(" {e}"), t.danger()),
             None => Line::from(vec![

@@ -255,7 +255,7 @@ fn editing_a_value() {
     s.key(KeyCode::Char('9'));
     s.key(KeyCode::Enter);
     assert!(
-        s.app.editing.as_ref().is_some_and(|e| e.error.is_some()),
+        s.app.value_editor().is_some_and(|e| e.error.is_some()),
         "9 is outside 0…5"
     );
     assert_eq!(
@@ -657,15 +657,15 @@ mod keys {
             .position(|&p| p == Param::named("initial.height"))
             .expect("listed");
         press(&mut a, KeyCode::Enter);
-        assert!(a.editing.is_some());
+        assert!(a.value_editor().is_some());
         for c in "2x5q".chars() {
             // Every printable character is text here: q does not quit, x is typed.
             press(&mut a, KeyCode::Char(c));
         }
         assert!(!a.quit);
-        assert_eq!(a.editing.as_ref().map(|e| e.text.as_str()), Some("2x5q"));
+        assert_eq!(a.value_editor().map(|e| e.text.as_str()), Some("2x5q"));
         assert!(press(&mut a, KeyCode::Enter).is_empty());
-        assert!(a.editing.as_ref().is_some_and(|e| {
+        assert!(a.value_editor().is_some_and(|e| {
             e.error
                 .as_deref()
                 .is_some_and(|m| m.contains("`2x5q` is not a number"))
@@ -680,7 +680,7 @@ mod keys {
             press(&mut a, KeyCode::Enter).is_empty(),
             "25e9 cm is out of range"
         );
-        assert!(a.editing.as_ref().is_some_and(|e| {
+        assert!(a.value_editor().is_some_and(|e| {
             e.error
                 .as_deref()
                 .is_some_and(|m| m.contains("outside 0…1000 cm"))
@@ -691,12 +691,12 @@ mod keys {
             press(&mut a, KeyCode::Enter),
             [Command::SetParam(Param::named("initial.height").scan_key(), 25.0)]
         );
-        assert!(a.editing.is_none());
+        assert!(a.value_editor().is_none());
         press(&mut a, KeyCode::Enter);
         press(&mut a, KeyCode::Char('7'));
         assert!(press(&mut a, KeyCode::Esc).is_empty());
         assert!(
-            a.editing.is_none() && !a.quit,
+            a.value_editor().is_none() && !a.quit,
             "Esc leaves the editor, not the program"
         );
         assert_eq!(a.initial.height, 25.0);
@@ -725,19 +725,19 @@ mod keys {
     fn help_opens_scrolls_and_closes_without_quitting() {
         let mut a = app();
         press(&mut a, KeyCode::Char('?'));
-        assert!(a.help);
+        assert!(a.help_scroll().is_some());
         assert!(
             press(&mut a, KeyCode::Char(' ')).is_empty(),
             "keys do not reach the die under the help"
         );
         press(&mut a, KeyCode::Down);
-        assert_eq!(a.help_scroll, 1);
+        assert_eq!(a.help_scroll(), Some(1));
         press(&mut a, KeyCode::Esc);
-        assert!(!a.help && !a.quit);
+        assert!(a.help_scroll().is_none() && !a.quit);
         press(&mut a, KeyCode::Char('?'));
-        assert_eq!(a.help_scroll, 0);
+        assert_eq!(a.help_scroll(), Some(0));
         press(&mut a, KeyCode::Char('?'));
-        assert!(!a.help);
+        assert!(a.help_scroll().is_none());
     }
 
     #[test]
@@ -906,7 +906,9 @@ mod sizes {
             app.camera.zoom_by(zoom);
             app.selected = selected;
             app.log_scale = log;
-            app.help_scroll = help_scroll;
+            if app.help_scroll().is_some() {
+                app.overlay = Some(super::super::app::Overlay::Help { scroll: help_scroll });
+            }
             app.drawing = if ascii { super::super::app::Drawing::Ascii } else { super::super::app::Drawing::Braille };
             app.screen = Rect::new(0, 0, width, height);
             draw_into(&app, width, height);

@@ -1,7 +1,7 @@
 //! The chaos twin in the explorer (`T`): a ghost die rolled from a start a relative ε away,
 //! the separation of the two on a log scale, and both outcomes. The worker steps both.
 
-use super::app::{App, Editor, Typed, VALUE_CHARS};
+use super::app::{App, Editor, Overlay, Typed, VALUE_CHARS};
 use super::format::fmt_num;
 use super::keys::{Action, Input};
 use crate::experiment::twin::EPSILON;
@@ -33,7 +33,7 @@ pub(crate) fn on_key(app: &mut App, action: Action, out: &mut Vec<Command>) -> b
         }
         Action::TwinEpsilonDown if app.twin => set_epsilon(app, out, app.epsilon / 10.0),
         Action::TwinEpsilonUp if app.twin => set_epsilon(app, out, app.epsilon * 10.0),
-        Action::TwinEpsilonType if app.twin => app.epsilon_editor = Some(Editor::default()),
+        Action::TwinEpsilonType if app.twin => app.overlay = Some(Overlay::Epsilon(Editor::default())),
         _ => return false,
     }
     true
@@ -53,15 +53,15 @@ fn set_epsilon(app: &mut App, out: &mut Vec<Command>, epsilon: f64) {
 
 /// Typing ε (after `E`): digits, `e`, `-`, `.`; Enter applies, Esc cancels.
 pub(crate) fn on_editor_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
-    let Some(editor) = app.epsilon_editor.as_mut() else {
+    let Some(Overlay::Epsilon(editor)) = app.overlay.as_mut() else {
         return;
     };
     match editor.input(input, VALUE_CHARS) {
-        Typed::Cancelled => app.epsilon_editor = None,
+        Typed::Cancelled => app.overlay = None,
         Typed::Editing => {}
         Typed::Submitted(number) => match number {
             Ok(v) if EPSILON.check(v).is_ok() => {
-                app.epsilon_editor = None;
+                app.overlay = None;
                 app.epsilon = v;
                 app.send(out, Command::SetTwin(Some(v)));
             }
@@ -118,7 +118,7 @@ pub(crate) fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
         Constraint::Min(0),
         Constraint::Length(1),
     ]));
-    let definition_text = match &app.epsilon_editor {
+    let definition_text = match app.epsilon_editor() {
         Some(editor) => match &editor.error {
             Some(e) => Line::styled(e.clone(), t.danger()),
             None => Line::from(vec![
