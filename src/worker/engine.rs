@@ -814,7 +814,7 @@ impl Engine {
             roll: self.roll,
             playing: self.playing,
             speed: self.speed,
-            die: die_state(&self.sim, self.start_face),
+            die: DieState::of(&self.sim, self.start_face),
             energy: self.sim.energy(),
             ledger: self.sim.energy_ledger(),
             stop_threshold: self.sim.stop_threshold(),
@@ -848,20 +848,5 @@ impl Engine {
                 None => None,
             },
         }
-    }
-}
-
-/// The die as drawn, from a simulation's current state.
-pub(crate) fn die_state(sim: &Simulation, start_face: u8) -> DieState {
-    let s = sim.state();
-    DieState {
-        corners: sim.corner_positions(),
-        forces: sim.contact_forces(),
-        centre: s.position,
-        velocity: s.velocity,
-        angular_velocity: sim.angular_velocity(),
-        angular_momentum: s.angular_momentum,
-        face_up: sim.face_up(),
-        start_face,
     }
 }

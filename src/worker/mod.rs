@@ -165,6 +165,23 @@ pub struct DieState {
     pub(crate) start_face: u8,
 }
 
+impl DieState {
+    /// The die as drawn, from a simulation's current state (the live die's or the twin's).
+    pub(crate) fn of(sim: &crate::physics::Simulation, start_face: u8) -> DieState {
+        let s = sim.state();
+        DieState {
+            corners: sim.corner_positions(),
+            forces: sim.contact_forces(),
+            centre: s.position,
+            velocity: s.velocity,
+            angular_velocity: sim.angular_velocity(),
+            angular_momentum: s.angular_momentum,
+            face_up: sim.face_up(),
+            start_face,
+        }
+    }
+}
+
 /// Where the roll on screen is on its timeline, and what is known of it.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct TimelineSnapshot {
