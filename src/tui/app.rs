@@ -1,12 +1,13 @@
-//! The explorer's state and its pure key and mouse handling: `update(&mut App, Msg)`
-//! returns the commands for the worker; nothing here draws, sleeps or reads a clock.
+//! The explorer's state and what changes it (a worker snapshot absorbed, a value set);
+//! keys and the mouse reach it through [`super::input`]. Nothing here draws, sleeps or reads a clock.
 
 use super::camera::Camera;
-use super::dialogs::Dialog;
+use super::dialog::Dialog;
+pub(crate) use super::editor::{Editor, Typed, VALUE_CHARS};
 use super::format::{fmt_num, fmt_range, group};
-use super::keys::{Action, Input, Screen, label, read};
-use super::layout::{Areas, param_row_at, screen_layout};
-use super::map::{self, MapView, View};
+use super::keys::{Action, Input, Screen, label};
+use super::layout::{Areas, screen_layout};
+use super::map_view::{MapView, View};
 use super::param::{Param, all};
 use super::theme::{Palette, Theme};
 use crate::experiment::trace::{ExportProgress, human_bytes};
@@ -16,9 +17,13 @@ use crate::worker::{
     BatchProgress, Command, CurveUpdate, EnergySample, MapUpdate, Notice, OutcomeTable, SeparationSample,
     Snapshot, Speed,
 };
-use ratatui::crossterm::event::{Event, KeyEvent, KeyEventKind, MouseButton, MouseEventKind};
-use ratatui::layout::{Position, Rect};
+use ratatui::crossterm::event::Event;
+use ratatui::layout::Rect;
 use ratatui::symbols::Marker;
+
+/// The ε a twin starts with: small enough to look like "the same throw", large enough that
+/// on the paper's setup the face often changes.
+pub(crate) const DEFAULT_EPSILON: f64 = 1e-9;
 
 /// Rolls in one batch (`b`) until another size is chosen (`B`).
 pub(crate) const BATCH_ROLLS: u64 = 10_000;
@@ -128,7 +133,7 @@ impl Prompt {
     }
 
     /// Whether `action` answers yes: `y`, or the key that asked the question.
-    fn confirmed_by(&self, action: Action) -> bool {
+    pub(crate) fn confirmed_by(&self, action: Action) -> bool {
         action == Action::Confirm
             || action
                 == match self {
@@ -166,66 +171,6 @@ impl From<MapUpdate> for Msg {
         Msg::Map(Box::new(m))
     }
 }
-
-/// A value being typed in (Enter on a parameter).
-#[derive(Debug, Clone, PartialEq, Default)]
-pub(crate) struct Editor {
-    pub(crate) text: String,
-    /// Why the last Enter was refused.
-    pub(crate) error: Option<String>,
-}
-
-/// What a key did to a number being typed.
-pub(crate) enum Typed {
-    Cancelled,
-    /// Enter: the trimmed text, parsed (or why it is not a number).
-    Submitted(Result<f64, String>),
-    Editing,
-}
-
-impl Editor {
-    /// Every printable character is typed (up to `limit`, so the text fits its line);
-    /// Backspace deletes; Enter submits the number; Esc cancels. Typing clears the last error.
-    pub(crate) fn input(&mut self, input: &Input, limit: usize) -> Typed {
-        match input {
-            Input::Act {
-                action: Action::Close,
-                ..
-            } => return Typed::Cancelled,
-            Input::Act {
-                action: Action::Delete,
-                ..
-            } => {
-                self.text.pop();
-            }
-            Input::Type(c) => {
-                if self.text.chars().count() < limit {
-                    self.text.push(*c);
-                }
-            }
-            Input::Act {
-                action: Action::Confirm,
-                ..
-            } => {
-                let text = self.text.trim();
-                return Typed::Submitted(match text.parse::<f64>() {
-                    Ok(v) => Ok(v),
-                    Err(_) if text.is_empty() => Err(format!(
-                        "type a number, or {} to cancel",
-                        label(Screen::Text, Action::Close)
-                    )),
-                    Err(_) => Err(format!("`{text}` is not a number")),
-                });
-            }
-            _ => return Typed::Editing,
-        }
-        self.error = None;
-        Typed::Editing
-    }
-}
-
-/// Characters a typed value may hold: more than any number needs, fewer than its line.
-pub(crate) const VALUE_CHARS: usize = 24;
 
 /// How the die is drawn: Braille dots, or plain ASCII for fonts without Braille.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -294,12 +239,12 @@ pub struct App {
     pub(crate) map: MapView,
     commands_sent: u64,
     /// Effects other than worker commands asked for during the current `update`.
-    effects: Vec<Effect>,
+    pub(crate) effects: Vec<Effect>,
     /// The preset's view asks for the map screen: opened by the first `update`, once the
     /// event loop has told the app its terminal size.
-    open_map: bool,
+    pub(crate) open_map: bool,
     /// Last mouse position while dragging the die.
-    drag: Option<(u16, u16)>,
+    pub(crate) drag: Option<(u16, u16)>,
 }
 
 impl App {
@@ -326,7 +271,7 @@ impl App {
             log_scale: false,
             vectors: false,
             twin: false,
-            epsilon: super::twin::DEFAULT_EPSILON,
+            epsilon: DEFAULT_EPSILON,
             twin_history: Vec::new(),
             curve,
             preset,
@@ -417,6 +362,11 @@ impl App {
         }
     }
 
+    /// Whether the setup differs from the open preset's (questions guard such changes).
+    pub(crate) fn modified(&self) -> bool {
+        self.params != self.preset.params() || self.initial != self.preset.initial
+    }
+
     /// The question being asked, if any.
     pub(crate) fn prompt(&self) -> Option<&Prompt> {
         match &self.overlay {
@@ -504,7 +454,7 @@ impl App {
         self.live.playing || self.batch.is_some() || self.export.is_some()
     }
 
-    fn absorb(&mut self, mut s: Snapshot) {
+    pub(crate) fn absorb(&mut self, mut s: Snapshot) {
         if s.history_reset {
             self.history.clear();
             self.twin_history.clear();
@@ -578,7 +528,7 @@ impl App {
         out.push(c);
     }
 
-    fn set_param(&mut self, out: &mut Vec<Command>, p: Param, value: f64) -> Result<(), String> {
+    pub(crate) fn set_param(&mut self, out: &mut Vec<Command>, p: Param, value: f64) -> Result<(), String> {
         p.set(&mut self.params, &mut self.initial, value).map_err(|e| {
             if e.limits == p.limits() {
                 format!(
@@ -600,7 +550,7 @@ impl App {
         Ok(())
     }
 
-    fn nudge(&mut self, out: &mut Vec<Command>, steps: i32, coarse: bool) {
+    pub(crate) fn nudge(&mut self, out: &mut Vec<Command>, steps: i32, coarse: bool) {
         let p = self.selected_param();
         let now = p.get(&self.params, &self.initial);
         let next = p.nudged(now, steps, coarse);
@@ -609,25 +559,25 @@ impl App {
         }
     }
 
-    fn select(&mut self, delta: isize) {
+    pub(crate) fn select(&mut self, delta: isize) {
         self.selected = (self.selected as isize + delta).clamp(0, all().len() as isize - 1) as usize;
     }
 
-    fn set_speed(&mut self, out: &mut Vec<Command>, speed: Speed) {
+    pub(crate) fn set_speed(&mut self, out: &mut Vec<Command>, speed: Speed) {
         if speed != self.speed {
             self.speed = speed;
             self.send(out, Command::SetSpeed(speed));
         }
     }
 
-    fn quit(&mut self, out: &mut Vec<Command>) {
+    pub(crate) fn quit(&mut self, out: &mut Vec<Command>) {
         self.quit = true;
         self.send(out, Command::Quit);
     }
 
     /// Quits, or asks first when the setup has unsaved changes.
-    fn quit_asking(&mut self, out: &mut Vec<Command>) {
-        if super::dialogs::modified(self) {
+    pub(crate) fn quit_asking(&mut self, out: &mut Vec<Command>) {
+        if self.modified() {
             self.overlay = Some(Overlay::Prompt {
                 prompt: Prompt::Quit,
                 under: None,
@@ -639,8 +589,8 @@ impl App {
 
     /// The setup back to the open preset's (its roll from the start, a fresh table); asks
     /// first when there are changes.
-    fn reset_asking(&mut self) {
-        if super::dialogs::modified(self) {
+    pub(crate) fn reset_asking(&mut self) {
+        if self.modified() {
             self.overlay = Some(Overlay::Prompt {
                 prompt: Prompt::Reset,
                 under: None,
@@ -658,7 +608,7 @@ impl App {
     }
 
     /// `B`: 1 000 → 10 000 → 100 000 → type one → 1 000 …
-    fn next_batch_size(&mut self) {
+    pub(crate) fn next_batch_size(&mut self) {
         let at = BATCH_SIZES.iter().position(|&n| n == self.batch_rolls);
         match at.map_or(Some(0), |i| (i + 1 < BATCH_SIZES.len()).then_some(i + 1)) {
             Some(i) => {
@@ -672,105 +622,8 @@ impl App {
         }
     }
 
-    fn areas(&self) -> Option<Areas> {
+    pub(crate) fn areas(&self) -> Option<Areas> {
         screen_layout(self.screen)
-    }
-}
-
-/// Applies one message; returns what the event loop is to do, in order: the worker's
-/// commands, then any file work.
-pub fn update(app: &mut App, msg: Msg) -> Vec<Effect> {
-    let mut out = Vec::new();
-    match msg {
-        Msg::Worker(s) => app.absorb(*s),
-        Msg::Map(m) => map::absorb(app, *m),
-        Msg::Input(Event::Resize(w, h)) => {
-            app.screen = Rect::new(0, 0, w, h);
-            map::resized(app, &mut out);
-        }
-        Msg::Input(Event::Key(key)) if key.kind != KeyEventKind::Release => on_key(app, key, &mut out),
-        Msg::Input(Event::Mouse(m)) => on_mouse(app, m.kind, m.column, m.row, &mut out),
-        Msg::Input(_) => {}
-        Msg::Signal(_) => app.quit(&mut out),
-    }
-    if std::mem::take(&mut app.open_map) {
-        map::open(app, &mut out);
-    }
-    let mut effects: Vec<Effect> = out.into_iter().map(Effect::Worker).collect();
-    effects.append(&mut app.effects);
-    effects
-}
-
-fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
-    let input = read(app.key_mode(), key);
-    if input == Input::Interrupt {
-        app.quit(out);
-        return;
-    }
-    app.notice = None;
-    match app.mode() {
-        Mode::Prompt => on_prompt_key(app, &input, out),
-        Mode::EditingValue => on_edit_key(app, &input, out),
-        Mode::Dialog => super::dialogs::on_key(app, &input, out),
-        Mode::EditingEpsilon => super::twin::on_editor_key(app, &input, out),
-        Mode::EditingRange => super::map_keys::on_range_key(app, &input, out),
-        Mode::Help => {
-            let Some(Overlay::Help { scroll }) = &mut app.overlay else {
-                return;
-            };
-            match input {
-                Input::Act {
-                    action: Action::SelectPrevious,
-                    ..
-                } => *scroll = scroll.saturating_sub(1),
-                Input::Act {
-                    action: Action::SelectNext,
-                    ..
-                } => *scroll = scroll.saturating_add(1),
-                Input::Act {
-                    action: Action::Close,
-                    ..
-                } => app.overlay = None,
-                other => app.nothing_here(&other),
-            }
-        }
-        Mode::Map | Mode::Normal => match input {
-            Input::Act { action, coarse } => act(app, action, coarse, out),
-            // A digit on a parameter row starts the value editor with it typed.
-            Input::Type(digit) => {
-                app.overlay = Some(Overlay::Value(Editor {
-                    text: digit.to_string(),
-                    error: None,
-                }))
-            }
-            other => app.nothing_here(&other),
-        },
-    }
-}
-
-/// A question's answer: its own key or `y` goes ahead, anything else keeps things as they are.
-fn on_prompt_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
-    let Some(Overlay::Prompt { prompt, under }) = app.overlay.take() else {
-        return;
-    };
-    let yes = match input {
-        Input::Act { action, .. } => prompt.confirmed_by(*action),
-        _ => false,
-    };
-    if !yes {
-        app.overlay = under.map(Overlay::Dialog);
-        app.notice = Some("nothing changed".to_string());
-        return;
-    }
-    match prompt {
-        Prompt::Quit => app.quit(out),
-        Prompt::Reset => {
-            let preset = Box::new(app.preset.clone());
-            app.load(out, preset);
-        }
-        Prompt::Load(preset) => {
-            app.load(out, preset);
-        }
     }
 }
 
@@ -786,207 +639,5 @@ pub(crate) fn worded(notice: &Notice) -> String {
             label(Screen::Die, Action::Export)
         ),
         Notice::Said(words) => words.clone(),
-    }
-}
-
-/// Does what a key of the table stands for.
-fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
-    match action {
-        Action::TogglePlay => app.send(out, Command::TogglePlay),
-        Action::StepForward => app.send(out, Command::Step(1)),
-        Action::StepBack => app.send(out, Command::StepBack(1)),
-        Action::ToStart => app.send(out, Command::Seek(0)),
-        Action::ToEnd => app.send(out, Command::Seek(u64::MAX)),
-        Action::Replay => app.send(out, Command::Replay),
-        Action::RandomRoll => app.send(out, Command::RandomRoll),
-        Action::Batch => {
-            let c = if app.batch.is_some() {
-                Command::BatchCancel
-            } else {
-                Command::BatchStart(app.batch_rolls)
-            };
-            app.send(out, c);
-        }
-        Action::BatchSize => app.next_batch_size(),
-        Action::ClearTable => app.send(out, Command::ClearTable),
-        Action::Slower => app.set_speed(out, app.speed.slower()),
-        Action::Faster => app.set_speed(out, app.speed.faster()),
-        Action::SelectPrevious => app.select(-1),
-        Action::SelectNext => app.select(1),
-        Action::SelectFirst => app.selected = 0,
-        Action::SelectLast => app.selected = all().len() - 1,
-        Action::Decrease => app.nudge(out, -1, coarse),
-        Action::Increase => app.nudge(out, 1, coarse),
-        Action::DecreaseBig => app.nudge(out, -1, true),
-        Action::IncreaseBig => app.nudge(out, 1, true),
-        Action::TypeValue => app.overlay = Some(Overlay::Value(Editor::default())),
-        Action::LogScale => app.log_scale = !app.log_scale,
-        Action::Export => {
-            let c = if app.export.is_some() {
-                Command::ExportCancel
-            } else {
-                Command::Export {
-                    dir: ".".into(),
-                    log_scale: app.log_scale,
-                }
-            };
-            app.send(out, c);
-        }
-        Action::Arrows => app.vectors = !app.vectors,
-        Action::Twin | Action::TwinEpsilonDown | Action::TwinEpsilonUp | Action::TwinEpsilonType => {
-            if !super::twin::on_key(app, action, out) {
-                app.notice = Some(format!(
-                    "{} first: these keys set the twin's ε",
-                    label(Screen::Die, Action::Twin)
-                ));
-            }
-        }
-        Action::Theme => {
-            app.theme = app.theme.next();
-            app.notice = Some(format!(
-                "theme: {}{} ({} cycles dark, light, projector)",
-                app.theme.palette.name(),
-                if app.theme.colour {
-                    ""
-                } else {
-                    ", but NO_COLOR is set"
-                },
-                label(Screen::Die, Action::Theme)
-            ));
-        }
-        Action::Drawing => {
-            app.drawing = match app.drawing {
-                Drawing::Braille => Drawing::Ascii,
-                Drawing::Ascii => Drawing::Braille,
-            }
-        }
-        Action::OrbitLeft => app.camera.orbit(-15.0, 0.0),
-        Action::OrbitRight => app.camera.orbit(15.0, 0.0),
-        Action::TiltUp => app.camera.orbit(0.0, 10.0),
-        Action::TiltDown => app.camera.orbit(0.0, -10.0),
-        Action::ZoomIn => app.camera.zoom_by(1),
-        Action::ZoomOut => app.camera.zoom_by(-1),
-        Action::ResetCamera => app.camera = Camera::default(),
-        Action::OpenPreset => app.ask(Effect::ListPresets),
-        Action::SavePreset => super::dialogs::open_save(app),
-        Action::ResetSetup => app.reset_asking(),
-        Action::OpenMap => map::open(app, out),
-        Action::Help => {
-            app.overlay = Some(Overlay::Help { scroll: 0 });
-        }
-        Action::Close => match app.view {
-            View::Map => map::close(app, out),
-            View::Die => {
-                app.notice = Some(format!(
-                    "nothing to close ({} quits)",
-                    label(Screen::Die, Action::Quit)
-                ))
-            }
-        },
-        Action::Quit => app.quit_asking(out),
-        Action::MapBack
-        | Action::CursorLeft
-        | Action::CursorRight
-        | Action::CursorUp
-        | Action::CursorDown
-        | Action::CursorLeftBig
-        | Action::CursorRightBig
-        | Action::CursorUpBig
-        | Action::CursorDownBig
-        | Action::ReplayCell
-        | Action::MapZoomIn
-        | Action::MapZoomOut
-        | Action::NextXAxis
-        | Action::NextYAxis
-        | Action::TypeXRange
-        | Action::TypeYRange
-        | Action::MapLayer
-        | Action::ExportMap
-        | Action::MapExportSize => super::map_keys::act(app, action, coarse, out),
-        // Rows of the overlays only: `read` never gives them on a screen.
-        Action::Confirm | Action::Delete | Action::NextField => {}
-    }
-}
-
-fn on_edit_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
-    if let Some(Overlay::BatchSize(editor)) = app.overlay.as_mut() {
-        match editor.input(input, VALUE_CHARS) {
-            Typed::Cancelled => app.overlay = None,
-            Typed::Editing => {}
-            Typed::Submitted(number) => match number {
-                Ok(n) if n.fract() == 0.0 && (1.0..=MAX_BATCH_ROLLS as f64).contains(&n) => {
-                    app.batch_rolls = n as u64;
-                    app.overlay = None;
-                    app.notice = Some(format!("batch size {}", group(app.batch_rolls)));
-                }
-                Ok(n) => {
-                    editor.error = Some(format!(
-                        "{} rolls: a whole number from 1 to {}",
-                        fmt_num(n),
-                        group(MAX_BATCH_ROLLS)
-                    ))
-                }
-                Err(e) => editor.error = Some(e),
-            },
-        }
-        return;
-    }
-    let Some(Overlay::Value(editor)) = app.overlay.as_mut() else {
-        return;
-    };
-    match editor.input(input, VALUE_CHARS) {
-        Typed::Cancelled => app.overlay = None,
-        Typed::Editing => {}
-        Typed::Submitted(number) => {
-            let p = app.selected_param();
-            match number.and_then(|v| app.set_param(out, p, v)) {
-                Ok(()) => app.overlay = None,
-                Err(e) => {
-                    if let Some(Overlay::Value(editor)) = app.overlay.as_mut() {
-                        editor.error = Some(e);
-                    }
-                }
-            }
-        }
-    }
-}
-
-fn on_mouse(app: &mut App, kind: MouseEventKind, column: u16, row: u16, out: &mut Vec<Command>) {
-    if app.mode() != Mode::Normal {
-        return;
-    }
-    let Some(areas) = app.areas() else { return };
-    let at = Position::new(column, row);
-    match kind {
-        MouseEventKind::Down(MouseButton::Left) => {
-            if let Some(i) = param_row_at(app, &areas, at) {
-                app.selected = i;
-            } else if let Some(bar) = super::timeline::bar(areas.timeline).filter(|b| b.contains(at)) {
-                let step = super::timeline::step_at(app, bar, column);
-                app.send(out, Command::Seek(step));
-            } else if areas.die.contains(at) {
-                app.drag = Some((column, row));
-            }
-        }
-        MouseEventKind::Drag(MouseButton::Left) => {
-            if let Some((x, y)) = app.drag {
-                app.camera
-                    .orbit(5.0 * (column as f64 - x as f64), 5.0 * (row as f64 - y as f64));
-                app.drag = Some((column, row));
-            }
-        }
-        MouseEventKind::Up(_) => app.drag = None,
-        MouseEventKind::ScrollUp | MouseEventKind::ScrollDown => {
-            let up = kind == MouseEventKind::ScrollUp;
-            if areas.params.contains(at) {
-                if let Some(i) = param_row_at(app, &areas, at) {
-                    app.selected = i;
-                }
-                app.nudge(out, if up { 1 } else { -1 }, false);
-            } else if areas.die.contains(at) {
-                app.camera.zoom_by(if up { 1 } else { -1 });
-            }
-        }
-        _ => {}
     }
 }

@@ -88,7 +88,8 @@ mod vectors {
     use super::super::die::render_die;
     use super::super::vectors::{ARROWS, Arrow, arrow_length};
     use super::*;
-    use crate::tui::app::{Msg, update};
+    use crate::tui::app::Msg;
+    use crate::tui::input::update;
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 
     fn with_vectors() -> App {
@@ -161,7 +162,8 @@ mod vectors {
 
 mod twin {
     use super::*;
-    use crate::tui::app::{Msg, update};
+    use crate::tui::app::Msg;
+    use crate::tui::input::update;
     use crate::tui::tests::Scene;
     use crate::worker::{Command, Phase};
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
@@ -319,8 +321,9 @@ mod twin {
 mod presets {
     use super::*;
     use crate::preset::{Preset, Store};
-    use crate::tui::app::{Msg, update};
+    use crate::tui::app::Msg;
     use crate::tui::dialogs::{Dialog, modified};
+    use crate::tui::input::update;
     use crate::tui::param::Param;
     use crate::tui::tests::Scene;
     use crate::worker::Command;
@@ -504,7 +507,8 @@ mod export {
     use super::*;
     use crate::experiment::trace::{header, row};
     use crate::physics::Simulation;
-    use crate::tui::app::{Msg, update};
+    use crate::tui::app::Msg;
+    use crate::tui::input::update;
     use crate::worker::Command;
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 
@@ -681,7 +685,8 @@ mod export {
 mod themes {
     use super::*;
     use crate::tui::Theme;
-    use crate::tui::app::{Msg, update};
+    use crate::tui::app::Msg;
+    use crate::tui::input::update;
     use crate::tui::tests::mid_impact_with;
     use crate::tui::theme::Palette;
     use ratatui::buffer::Buffer;
@@ -818,7 +823,8 @@ mod themes {
 mod sizes {
     use super::*;
     use crate::tui::Theme;
-    use crate::tui::app::{Msg, update};
+    use crate::tui::app::Msg;
+    use crate::tui::input::update;
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 
     fn with_keys(mut app: App, keys: &[KeyCode]) -> App {

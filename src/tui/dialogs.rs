@@ -5,6 +5,7 @@
 //! and writing a file ([`save`]) are effects the event loop runs after `update`.
 
 use super::app::{App, Effect, Overlay, Prompt};
+pub(crate) use super::dialog::{Choice, Dialog, SaveField};
 use super::format::fmt_num;
 use super::keys::{Action, Input};
 use super::param::all;
@@ -19,42 +20,6 @@ use ratatui::widgets::{Block, Clear, Paragraph, Wrap};
 /// Characters of a preset's description the picker shows: more than any screen holds.
 const DESCRIPTION_SHOWN: usize = 4000;
 
-/// One preset the picker offers.
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Choice {
-    pub(crate) name: String,
-    /// The user's own (saved from here or by hand), rather than shipped.
-    pub(crate) user: bool,
-    /// The preset, or why its file does not load.
-    pub(crate) preset: Result<Box<Preset>, String>,
-}
-
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) enum Dialog {
-    Picker {
-        choices: Vec<Choice>,
-        selected: usize,
-        error: Option<String>,
-    },
-    Save {
-        name: String,
-        /// Empty: the automatic description ([`automatic_description`]) is saved.
-        description: String,
-        /// Which field the keys type into (Tab switches).
-        field: SaveField,
-        error: Option<String>,
-        /// The name exists and Enter was pressed once: the next Enter replaces it.
-        confirm_replace: bool,
-    },
-}
-
-/// The save dialog's fields.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum SaveField {
-    Name,
-    Description,
-}
-
 /// Characters a preset name may have in the dialog (the name check decides the rest).
 const NAME_CHARS: usize = 64;
 /// Characters of a description typed in the dialog.
@@ -62,7 +27,7 @@ const DESCRIPTION_CHARS: usize = 600;
 
 /// Whether the setup on screen differs from the preset it was loaded from.
 pub(crate) fn modified(app: &App) -> bool {
-    app.params != app.preset.params() || app.initial != app.preset.initial
+    app.modified()
 }
 
 /// Opens the picker on every preset the store lists, the loaded one selected.

@@ -3,7 +3,7 @@
 use super::app::App;
 use super::format::group;
 use super::keys::{Action, Screen, label, section};
-use super::map::View;
+use super::map_view::View;
 use ratatui::text::{Line, Span};
 
 const MODEL: &[&str] = &[

@@ -4,13 +4,12 @@
 use super::app::{App, Editor, Effect, Typed};
 use super::format::fmt_num;
 use super::keys::{Action, Input};
-use super::map::{EXPORT_SIZES, RangeEditor, Side, ZOOM_FACTOR, ZoomStep, close, default_range, start};
+use super::map::{close, start};
+use super::map_view::{EXPORT_SIZES, RangeEditor, Side, ZOOM_FACTOR, ZoomStep, default_range};
 use super::param::{Param, all};
 use crate::experiment::basin::node_setup;
 use crate::experiment::{Axis, Layer};
 use crate::worker::{Command, MapAxis};
-use ratatui::Frame;
-use ratatui::layout::Rect;
 
 /// Cells one Shift-arrow moves the cursor.
 const BIG_STEP: usize = 8;
@@ -206,8 +205,4 @@ pub(crate) fn parse_range(param: Param, text: &str) -> Result<(f64, f64), String
             crate::experiment::Error::Axis { message, .. } => message,
             e => e.to_string(),
         })
-}
-
-pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
-    super::footer::render_footer(app, area, frame);
 }

@@ -1,7 +1,8 @@
 //! The basin-map screen from deterministic states: a small map computed here with
 //! `run_map`, handed to the app through the message the worker's map thread sends.
 
-use super::app::{App, Effect, Msg, update};
+use super::app::{App, Effect, Msg};
+use super::input::update;
 use super::map::{MapView, View, ZOOM_FACTOR, export_if_asked, map_layout};
 use super::param::Param;
 use super::render::render;

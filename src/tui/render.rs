@@ -93,7 +93,7 @@ pub(crate) fn stability_readout(app: &App, width: u16) -> Line<'static> {
 
 pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
-    let (first, visible) = param_window(app, area);
+    let (first, visible) = param_window(app.selected, area);
     // Rows scrolled out of view, above and below: ↑↓ (or a click and the wheel) reach them.
     let below = all().len().saturating_sub(first + visible);
     let mut title = vec![Span::styled(" parameters ", t.heading())];

@@ -15,7 +15,8 @@
 //! Drawing holds [`SCREEN`], and whoever restores takes it first and never gives it back,
 //! so no frame lands after the terminal was given back to the shell.
 
-use super::app::{App, Effect, Msg, update};
+use super::app::{App, Effect, Msg};
+use super::input::update;
 use super::render::render;
 use super::theme::Theme;
 use crate::preset::Preset;

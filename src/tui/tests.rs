@@ -1,10 +1,11 @@
 //! Screens and panels from deterministic states: a fixed preset, exact step counts, keys
 //! fed through `update` into the worker's engine, no thread and no clock.
 
-use super::app::{App, Msg, update};
+use super::app::{App, Msg};
 use super::die::render_die;
 use super::footer::render_footer;
 use super::header::render_header;
+use super::input::update;
 use super::layout::screen_layout;
 use super::param::{Param, all};
 use super::render::{

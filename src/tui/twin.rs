@@ -13,10 +13,6 @@ use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph};
 
-/// The ε a twin starts with: small enough to look like "the same throw", large enough that
-/// on the paper's setup the face often changes.
-pub(crate) const DEFAULT_EPSILON: f64 = 1e-9;
-
 /// What ε does, in the words shown on screen.
 pub(crate) const DEFINITION: &str = "twin: height, velocity and spin × (1 + ε)";
 
