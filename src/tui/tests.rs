@@ -3,14 +3,15 @@
 
 use super::app::{App, Msg};
 use super::die::render_die;
+use super::energy::render_energy;
 use super::footer::render_footer;
 use super::header::render_header;
 use super::input::update;
 use super::layout::screen_layout;
+use super::outcomes::render_outcomes;
 use super::param::{Param, all};
-use super::render::{
-    STABILITY_CAUTION, STABILITY_DANGER, render, render_energy, render_outcomes, render_params,
-};
+use super::params_panel::{STABILITY_CAUTION, STABILITY_DANGER, render_params};
+use super::render::render;
 use super::theme::Theme;
 use crate::physics::Status;
 use crate::physics::stability::CONTACT_MODE_LIMIT;
