@@ -255,3 +255,27 @@ fn quit_answers_while_the_twin_curve_computes() {
     assert_eq!(e.ended("q while the curve computes").code(), Some(0));
     e.assert_restored("q while the curve computes");
 }
+
+/// crossterm's reader waited for the end of `ESC [ ?` (what Alt+[ then `?` sends) and of a
+/// paste opener forever, swallowing every key after it; now the first becomes the keys it
+/// spells once nothing follows, and the second is dropped.
+#[test]
+fn unfinished_and_unknown_escape_sequences_swallow_no_later_key() {
+    let mut e = Explorer::start(&["tui"], None);
+    // Alt+[ then `?`, typed as a person would: the `?` (help) arrives on its own.
+    e.keys("\x1b[");
+    std::thread::sleep(Duration::from_millis(20));
+    e.keys("?");
+    assert!(e.wait_for("? or Esc"), "the ? after Alt+[ opened the help");
+    let before = e.text().len();
+    e.keys("?");
+    let closed = Instant::now() + PATIENCE;
+    while e.text().len() == before && Instant::now() < closed {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    e.keys("\x1b[200~");
+    std::thread::sleep(Duration::from_millis(200));
+    e.keys("q");
+    assert_eq!(e.ended("q after the two sequences").code(), Some(0));
+    e.assert_restored("q after the two sequences");
+}

@@ -4,7 +4,7 @@
 use dicesim::experiment::{FaceTally, RandomRanges, ScanKey, roll_record};
 use dicesim::physics::{Simulation, Status};
 use dicesim::preset::Preset;
-use dicesim::worker::{Command, Engine, Phase, Snapshot, Speed, Worker};
+use dicesim::worker::{Command, Engine, Notice, Phase, Snapshot, Speed, Worker};
 use std::sync::mpsc::{Receiver, RecvTimeoutError, channel};
 use std::time::Duration;
 
@@ -113,7 +113,10 @@ fn a_ground_change_mid_roll_keeps_the_roll_and_others_restart_it() {
     ));
     let s = wait_for(&rx, |s| s.commands_handled == 4);
     assert!(
-        s.notice.is_some_and(|n| n.contains("ground.friction")),
+        s.notice
+            .as_ref()
+            .and_then(Notice::said)
+            .is_some_and(|n| n.contains("ground.friction")),
         "an out-of-range value is refused"
     );
     assert_eq!(s.params.ground.friction, Preset::default().ground.friction);
@@ -157,7 +160,12 @@ fn a_batch_can_be_cancelled_and_the_worker_stops_cleanly_during_one() {
     wait_for(&rx, |s| s.batch.is_some_and(|b| b.done > 0));
     worker.send(Command::BatchCancel);
     let s = wait_for(&rx, |s| s.batch.is_none());
-    assert!(s.notice.is_some_and(|n| n.contains("cancelled")));
+    assert!(
+        s.notice
+            .as_ref()
+            .and_then(Notice::said)
+            .is_some_and(|n| n.contains("cancelled"))
+    );
     worker.send(Command::BatchStart(5_000_000));
     wait_for(&rx, |s| s.batch.is_some());
     worker.shutdown();

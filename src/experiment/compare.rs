@@ -20,7 +20,7 @@ use super::random::RandomRanges;
 use super::real_data::{CountData, Dataset};
 use super::record::RollRecord;
 use super::stats::wilson_interval;
-use crate::physics::registry::Role;
+use crate::experiment::registry::Role;
 use crate::physics::{InitialCondition, Params};
 use serde::Serialize;
 use std::sync::atomic::AtomicBool;

@@ -1,26 +1,29 @@
-//! The explorer's state and its pure key and mouse handling: `update(&mut App, Msg)`
-//! returns the commands for the worker; nothing here draws, sleeps or reads a clock.
+//! The explorer's state and what changes it (a worker snapshot absorbed, a value set);
+//! keys and the mouse reach it through [`super::input`]. Nothing here draws, sleeps or reads a clock.
 
 use super::camera::Camera;
-use super::dialogs::Dialog;
+use super::dialog::Dialog;
+pub(crate) use super::editor::{Editor, Typed, VALUE_CHARS};
 use super::format::{fmt_num, fmt_range, group};
-use super::keys::{Action, Screen, lookup};
-use super::layout::{Areas, param_row_at, screen_layout};
-use super::map::{self, MapView, View};
+use super::keys::{Action, Input, Screen, label};
+use super::layout::{Areas, screen_layout};
+use super::map_view::{MapView, View};
 use super::param::{Param, all};
 use super::theme::{Palette, Theme};
 use crate::experiment::trace::{ExportProgress, human_bytes};
 use crate::physics::{InitialCondition, Params};
 use crate::preset::{CameraView, Preset, Screen as ViewScreen, Store, ThemeName, View as PresetView};
 use crate::worker::{
-    BatchProgress, Command, CurveUpdate, EnergySample, MapUpdate, OutcomeTable, SeparationSample, Snapshot,
-    Speed,
+    BatchProgress, Command, CurveUpdate, EnergySample, MapUpdate, Notice, OutcomeTable, SeparationSample,
+    Snapshot, Speed,
 };
-use ratatui::crossterm::event::{
-    Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEventKind,
-};
-use ratatui::layout::{Position, Rect};
+use ratatui::crossterm::event::Event;
+use ratatui::layout::Rect;
 use ratatui::symbols::Marker;
+
+/// The ε a twin starts with: small enough to look like "the same throw", large enough that
+/// on the paper's setup the face often changes.
+pub(crate) const DEFAULT_EPSILON: f64 = 1e-9;
 
 /// Rolls in one batch (`b`) until another size is chosen (`B`).
 pub(crate) const BATCH_ROLLS: u64 = 10_000;
@@ -81,6 +84,24 @@ pub(crate) enum Mode {
     Normal,
 }
 
+/// What is on top of the screens. One thing at a time: opening one replaces another,
+/// except a question asked over the preset picker, which keeps the picker under it.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Overlay {
+    /// The help (`?`), scrolled down by `scroll` lines.
+    Help { scroll: u16 },
+    /// A value of the parameter list being typed.
+    Value(Editor),
+    /// The batch size being typed (after `B` has walked past the largest preset size).
+    BatchSize(Editor),
+    /// The twin's ε being typed.
+    Epsilon(Editor),
+    /// The preset picker or the save dialog.
+    Dialog(Dialog),
+    /// A question; `under` (the picker it was asked from) comes back after a no.
+    Prompt { prompt: Prompt, under: Option<Dialog> },
+}
+
 /// A question asked before something that would lose the user's changes.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) enum Prompt {
@@ -111,13 +132,14 @@ impl Prompt {
         }
     }
 
-    fn confirmed_by(&self, code: KeyCode) -> bool {
-        code == KeyCode::Char('y')
-            || code
+    /// Whether `action` answers yes: `y`, or the key that asked the question.
+    pub(crate) fn confirmed_by(&self, action: Action) -> bool {
+        action == Action::Confirm
+            || action
                 == match self {
-                    Prompt::Quit => KeyCode::Char('q'),
-                    Prompt::Reset => KeyCode::Backspace,
-                    Prompt::Load(_) => KeyCode::Enter,
+                    Prompt::Quit => Action::Quit,
+                    Prompt::Reset => Action::ResetSetup,
+                    Prompt::Load(_) => Action::OpenPreset,
                 }
     }
 }
@@ -147,51 +169,6 @@ impl From<Snapshot> for Msg {
 impl From<MapUpdate> for Msg {
     fn from(m: MapUpdate) -> Msg {
         Msg::Map(Box::new(m))
-    }
-}
-
-/// A value being typed in (Enter on a parameter).
-#[derive(Debug, Clone, PartialEq, Default)]
-pub(crate) struct Editor {
-    pub(crate) text: String,
-    /// Why the last Enter was refused.
-    pub(crate) error: Option<String>,
-}
-
-/// What a key did to a number being typed.
-pub(crate) enum Typed {
-    Cancelled,
-    /// Enter: the trimmed text, parsed (or why it is not a number).
-    Submitted(Result<f64, String>),
-    Editing,
-}
-
-impl Editor {
-    /// Digits, `.`, `-`, `+` and exponents are typed; Backspace deletes; Enter submits the
-    /// number; Esc cancels. Typing clears the last error.
-    pub(crate) fn key(&mut self, code: KeyCode) -> Typed {
-        match code {
-            KeyCode::Esc => return Typed::Cancelled,
-            KeyCode::Backspace => {
-                self.text.pop();
-            }
-            KeyCode::Char(c) if c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E') => {
-                if self.text.len() < 24 {
-                    self.text.push(c);
-                }
-            }
-            KeyCode::Enter => {
-                let text = self.text.trim();
-                return Typed::Submitted(match text.parse::<f64>() {
-                    Ok(v) => Ok(v),
-                    Err(_) if text.is_empty() => Err("type a number, or Esc to cancel".to_string()),
-                    Err(_) => Err(format!("`{text}` is not a number")),
-                });
-            }
-            _ => return Typed::Editing,
-        }
-        self.error = None;
-        Typed::Editing
     }
 }
 
@@ -230,16 +207,11 @@ pub struct App {
     /// The roll's export, while it runs.
     pub(crate) export: Option<ExportProgress>,
     pub(crate) batch_rolls: u64,
-    /// The batch size being typed (after `B` has walked past the largest preset size).
-    pub(crate) batch_editor: Option<Editor>,
-    /// The question being asked, if any: it takes every key until answered.
-    pub(crate) prompt: Option<Prompt>,
+    /// What is on top of the screen, if anything: it takes every key.
+    pub(crate) overlay: Option<Overlay>,
     pub(crate) notice: Option<String>,
     /// Index into [`all`](super::param::all).
     pub(crate) selected: usize,
-    pub(crate) editing: Option<Editor>,
-    pub(crate) help: bool,
-    pub(crate) help_scroll: u16,
     pub(crate) log_scale: bool,
     /// Arrows for ω, L, v and the contact forces on the die (`v`).
     pub(crate) vectors: bool,
@@ -247,7 +219,6 @@ pub struct App {
     pub(crate) twin: bool,
     pub(crate) epsilon: f64,
     /// ε being typed in (`E`).
-    pub(crate) epsilon_editor: Option<Editor>,
     /// The twin's separation samples of the roll on screen.
     pub(crate) twin_history: Vec<SeparationSample>,
     /// The predictability curve of the setup, while a twin rolls (newest generation).
@@ -256,8 +227,6 @@ pub struct App {
     pub(crate) preset: Preset,
     /// Where presets are listed from and saved to.
     pub(crate) store: Store,
-    /// The preset picker or the save dialog, when open.
-    pub(crate) dialog: Option<Dialog>,
     pub(crate) drawing: Drawing,
     pub(crate) camera: Camera,
     pub(crate) theme: Theme,
@@ -270,12 +239,12 @@ pub struct App {
     pub(crate) map: MapView,
     commands_sent: u64,
     /// Effects other than worker commands asked for during the current `update`.
-    effects: Vec<Effect>,
+    pub(crate) effects: Vec<Effect>,
     /// The preset's view asks for the map screen: opened by the first `update`, once the
     /// event loop has told the app its terminal size.
-    open_map: bool,
+    pub(crate) open_map: bool,
     /// Last mouse position while dragging the die.
-    drag: Option<(u16, u16)>,
+    pub(crate) drag: Option<(u16, u16)>,
 }
 
 impl App {
@@ -292,27 +261,21 @@ impl App {
             table: first.table.take().unwrap_or_default(),
             batch: first.batch,
             export: first.export,
-            notice: first.notice.take(),
+            notice: first.notice.take().map(|n| worded(&n)),
             impacts: first.timeline.impacts.take().unwrap_or_default(),
             live: first,
             history,
             batch_rolls: BATCH_ROLLS,
-            batch_editor: None,
-            prompt: None,
+            overlay: None,
             selected: 0,
-            editing: None,
-            help: false,
-            help_scroll: 0,
             log_scale: false,
             vectors: false,
             twin: false,
-            epsilon: super::twin::DEFAULT_EPSILON,
-            epsilon_editor: None,
+            epsilon: DEFAULT_EPSILON,
             twin_history: Vec::new(),
             curve,
             preset,
             store: Store::new(None),
-            dialog: None,
             drawing: Drawing::default(),
             camera: Camera::default(),
             theme,
@@ -386,22 +349,94 @@ impl App {
 
     /// What is topmost now.
     pub(crate) fn mode(&self) -> Mode {
-        if self.prompt.is_some() {
-            Mode::Prompt
-        } else if self.editing.is_some() || self.batch_editor.is_some() {
-            Mode::EditingValue
-        } else if self.dialog.is_some() {
-            Mode::Dialog
-        } else if self.epsilon_editor.is_some() {
-            Mode::EditingEpsilon
-        } else if self.view == View::Map && self.map.editing.is_some() {
-            Mode::EditingRange
-        } else if self.help {
-            Mode::Help
-        } else if self.view == View::Map {
-            Mode::Map
-        } else {
-            Mode::Normal
+        match &self.overlay {
+            Some(Overlay::Prompt { .. }) => Mode::Prompt,
+            Some(Overlay::Value(_) | Overlay::BatchSize(_)) => Mode::EditingValue,
+            Some(Overlay::Dialog(_)) => Mode::Dialog,
+            Some(Overlay::Epsilon(_)) => Mode::EditingEpsilon,
+            // The map's range editor is the map screen's own, under any overlay.
+            _ if self.view == View::Map && self.map.editing.is_some() => Mode::EditingRange,
+            Some(Overlay::Help { .. }) => Mode::Help,
+            None if self.view == View::Map => Mode::Map,
+            None => Mode::Normal,
+        }
+    }
+
+    /// Whether the setup differs from the open preset's (questions guard such changes).
+    pub(crate) fn modified(&self) -> bool {
+        self.params != self.preset.params() || self.initial != self.preset.initial
+    }
+
+    /// The question being asked, if any.
+    pub(crate) fn prompt(&self) -> Option<&Prompt> {
+        match &self.overlay {
+            Some(Overlay::Prompt { prompt, .. }) => Some(prompt),
+            _ => None,
+        }
+    }
+
+    /// The dialog open, on top or under a question.
+    pub(crate) fn dialog(&self) -> Option<&Dialog> {
+        match &self.overlay {
+            Some(Overlay::Dialog(d)) | Some(Overlay::Prompt { under: Some(d), .. }) => Some(d),
+            _ => None,
+        }
+    }
+
+    /// The parameter value being typed, if any.
+    pub(crate) fn value_editor(&self) -> Option<&Editor> {
+        match &self.overlay {
+            Some(Overlay::Value(e)) => Some(e),
+            _ => None,
+        }
+    }
+
+    /// The batch size being typed, if any.
+    pub(crate) fn batch_editor(&self) -> Option<&Editor> {
+        match &self.overlay {
+            Some(Overlay::BatchSize(e)) => Some(e),
+            _ => None,
+        }
+    }
+
+    /// The twin's ε being typed, if any.
+    pub(crate) fn epsilon_editor(&self) -> Option<&Editor> {
+        match &self.overlay {
+            Some(Overlay::Epsilon(e)) => Some(e),
+            _ => None,
+        }
+    }
+
+    /// How far the help is scrolled, while it is open.
+    pub(crate) fn help_scroll(&self) -> Option<u16> {
+        match &self.overlay {
+            Some(Overlay::Help { scroll }) => Some(*scroll),
+            _ => None,
+        }
+    }
+
+    /// The mode whose rows of the key table apply now.
+    pub(crate) fn key_mode(&self) -> Screen {
+        match self.mode() {
+            Mode::Prompt => Screen::Prompt,
+            Mode::EditingValue | Mode::EditingEpsilon | Mode::EditingRange => Screen::Text,
+            Mode::Dialog => match self.dialog() {
+                Some(Dialog::Save { .. }) => Screen::Save,
+                _ => Screen::Picker,
+            },
+            Mode::Help => Screen::Help,
+            Mode::Map => Screen::Map,
+            Mode::Normal => Screen::Die,
+        }
+    }
+
+    /// A key that means nothing here: it does nothing, and the footer says so.
+    pub(crate) fn nothing_here(&mut self, input: &Input) {
+        if let Input::Nothing(key) = input {
+            self.notice = Some(format!(
+                "{key}: nothing here ({} lists the keys)",
+                label(Screen::Die, Action::Help)
+            ));
         }
     }
 
@@ -419,7 +454,7 @@ impl App {
         self.live.playing || self.batch.is_some() || self.export.is_some()
     }
 
-    fn absorb(&mut self, mut s: Snapshot) {
+    pub(crate) fn absorb(&mut self, mut s: Snapshot) {
         if s.history_reset {
             self.history.clear();
             self.twin_history.clear();
@@ -450,7 +485,7 @@ impl App {
             self.table = t;
         }
         if let Some(n) = s.notice.take() {
-            self.notice = Some(n);
+            self.notice = Some(worded(&n));
         }
         if let Some(p) = s.preset.take() {
             self.preset = *p;
@@ -493,7 +528,7 @@ impl App {
         out.push(c);
     }
 
-    fn set_param(&mut self, out: &mut Vec<Command>, p: Param, value: f64) -> Result<(), String> {
+    pub(crate) fn set_param(&mut self, out: &mut Vec<Command>, p: Param, value: f64) -> Result<(), String> {
         p.set(&mut self.params, &mut self.initial, value).map_err(|e| {
             if e.limits == p.limits() {
                 format!(
@@ -515,7 +550,7 @@ impl App {
         Ok(())
     }
 
-    fn nudge(&mut self, out: &mut Vec<Command>, steps: i32, coarse: bool) {
+    pub(crate) fn nudge(&mut self, out: &mut Vec<Command>, steps: i32, coarse: bool) {
         let p = self.selected_param();
         let now = p.get(&self.params, &self.initial);
         let next = p.nudged(now, steps, coarse);
@@ -524,26 +559,29 @@ impl App {
         }
     }
 
-    fn select(&mut self, delta: isize) {
+    pub(crate) fn select(&mut self, delta: isize) {
         self.selected = (self.selected as isize + delta).clamp(0, all().len() as isize - 1) as usize;
     }
 
-    fn set_speed(&mut self, out: &mut Vec<Command>, speed: Speed) {
+    pub(crate) fn set_speed(&mut self, out: &mut Vec<Command>, speed: Speed) {
         if speed != self.speed {
             self.speed = speed;
             self.send(out, Command::SetSpeed(speed));
         }
     }
 
-    fn quit(&mut self, out: &mut Vec<Command>) {
+    pub(crate) fn quit(&mut self, out: &mut Vec<Command>) {
         self.quit = true;
         self.send(out, Command::Quit);
     }
 
     /// Quits, or asks first when the setup has unsaved changes.
-    fn quit_asking(&mut self, out: &mut Vec<Command>) {
-        if super::dialogs::modified(self) {
-            self.prompt = Some(Prompt::Quit);
+    pub(crate) fn quit_asking(&mut self, out: &mut Vec<Command>) {
+        if self.modified() {
+            self.overlay = Some(Overlay::Prompt {
+                prompt: Prompt::Quit,
+                under: None,
+            });
         } else {
             self.quit(out);
         }
@@ -551,9 +589,12 @@ impl App {
 
     /// The setup back to the open preset's (its roll from the start, a fresh table); asks
     /// first when there are changes.
-    fn reset_asking(&mut self) {
-        if super::dialogs::modified(self) {
-            self.prompt = Some(Prompt::Reset);
+    pub(crate) fn reset_asking(&mut self) {
+        if self.modified() {
+            self.overlay = Some(Overlay::Prompt {
+                prompt: Prompt::Reset,
+                under: None,
+            });
         } else {
             self.notice = Some(format!("nothing to reset: the setup is {}'s", self.preset.name));
         }
@@ -567,7 +608,7 @@ impl App {
     }
 
     /// `B`: 1 000 → 10 000 → 100 000 → type one → 1 000 …
-    fn next_batch_size(&mut self) {
+    pub(crate) fn next_batch_size(&mut self) {
         let at = BATCH_SIZES.iter().position(|&n| n == self.batch_rolls);
         match at.map_or(Some(0), |i| (i + 1 < BATCH_SIZES.len()).then_some(i + 1)) {
             Some(i) => {
@@ -577,285 +618,26 @@ impl App {
                     group(self.batch_rolls)
                 ));
             }
-            None => self.batch_editor = Some(Editor::default()),
+            None => self.overlay = Some(Overlay::BatchSize(Editor::default())),
         }
     }
 
-    fn areas(&self) -> Option<Areas> {
+    pub(crate) fn areas(&self) -> Option<Areas> {
         screen_layout(self.screen)
     }
 }
 
-/// Applies one message; returns what the event loop is to do, in order: the worker's
-/// commands, then any file work.
-pub fn update(app: &mut App, msg: Msg) -> Vec<Effect> {
-    let mut out = Vec::new();
-    match msg {
-        Msg::Worker(s) => app.absorb(*s),
-        Msg::Map(m) => map::absorb(app, *m),
-        Msg::Input(Event::Resize(w, h)) => {
-            app.screen = Rect::new(0, 0, w, h);
-            map::resized(app, &mut out);
-        }
-        Msg::Input(Event::Key(key)) if key.kind != KeyEventKind::Release => on_key(app, key, &mut out),
-        Msg::Input(Event::Mouse(m)) => on_mouse(app, m.kind, m.column, m.row, &mut out),
-        Msg::Input(_) => {}
-        Msg::Signal(_) => app.quit(&mut out),
-    }
-    if std::mem::take(&mut app.open_map) {
-        map::open(app, &mut out);
-    }
-    let mut effects: Vec<Effect> = out.into_iter().map(Effect::Worker).collect();
-    effects.append(&mut app.effects);
-    effects
-}
-
-fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
-    let ctrl = key.modifiers.contains(KeyModifiers::CONTROL);
-    if ctrl && matches!(key.code, KeyCode::Char('c') | KeyCode::Char('C')) {
-        app.quit(out);
-        return;
-    }
-    app.notice = None;
-    match app.mode() {
-        Mode::Prompt => on_prompt_key(app, key, out),
-        Mode::EditingValue => on_edit_key(app, key, out),
-        Mode::Dialog => super::dialogs::on_key(app, key, out),
-        Mode::EditingEpsilon => super::twin::on_editor_key(app, key, out),
-        Mode::EditingRange => super::map_keys::on_range_key(app, key, out),
-        Mode::Help => match key.code {
-            KeyCode::Up | KeyCode::Char('k') => app.help_scroll = app.help_scroll.saturating_sub(1),
-            KeyCode::Down | KeyCode::Char('j') => app.help_scroll = app.help_scroll.saturating_add(1),
-            KeyCode::Char('?') | KeyCode::Esc | KeyCode::Enter => app.help = false,
-            KeyCode::Char('q') => app.quit_asking(out),
-            _ => {}
-        },
-        Mode::Map => {
-            if let Some(b) = lookup(Screen::Map, key.code) {
-                act(app, b.action, key, out);
-            }
-        }
-        Mode::Normal => {
-            if let Some(b) = lookup(Screen::Die, key.code) {
-                act(app, b.action, key, out);
-            }
-        }
-    }
-}
-
-/// A question's answer: its own key or `y` goes ahead, anything else keeps things as they are.
-fn on_prompt_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
-    let Some(prompt) = app.prompt.take() else {
-        return;
-    };
-    if !prompt.confirmed_by(key.code) {
-        app.notice = Some("nothing changed".to_string());
-        return;
-    }
-    match prompt {
-        Prompt::Quit => app.quit(out),
-        Prompt::Reset => {
-            let preset = Box::new(app.preset.clone());
-            app.load(out, preset);
-        }
-        Prompt::Load(preset) => {
-            app.dialog = None;
-            app.load(out, preset);
-        }
-    }
-}
-
-/// Does what a key of the table stands for.
-fn act(app: &mut App, action: Action, key: KeyEvent, out: &mut Vec<Command>) {
-    let coarse = key
-        .modifiers
-        .intersects(KeyModifiers::SHIFT | KeyModifiers::CONTROL | KeyModifiers::ALT);
-    match action {
-        Action::TogglePlay => app.send(out, Command::TogglePlay),
-        Action::StepForward => app.send(out, Command::Step(1)),
-        Action::StepBack => app.send(out, Command::StepBack(1)),
-        Action::ToStart => app.send(out, Command::Seek(0)),
-        Action::ToEnd => app.send(out, Command::Seek(u64::MAX)),
-        Action::Replay => app.send(out, Command::Replay),
-        Action::RandomRoll => app.send(out, Command::RandomRoll),
-        Action::Batch => {
-            let c = if app.batch.is_some() {
-                Command::BatchCancel
-            } else {
-                Command::BatchStart(app.batch_rolls)
-            };
-            app.send(out, c);
-        }
-        Action::BatchSize => app.next_batch_size(),
-        Action::ClearTable => app.send(out, Command::ClearTable),
-        Action::Slower => app.set_speed(out, app.speed.slower()),
-        Action::Faster => app.set_speed(out, app.speed.faster()),
-        Action::SelectPrevious => app.select(-1),
-        Action::SelectNext => app.select(1),
-        Action::SelectFirst => app.selected = 0,
-        Action::SelectLast => app.selected = all().len() - 1,
-        Action::Decrease => app.nudge(out, -1, coarse),
-        Action::Increase => app.nudge(out, 1, coarse),
-        Action::DecreaseBig => app.nudge(out, -1, true),
-        Action::IncreaseBig => app.nudge(out, 1, true),
-        Action::TypeValue => app.editing = Some(Editor::default()),
-        Action::LogScale => app.log_scale = !app.log_scale,
-        Action::Export => {
-            let c = if app.export.is_some() {
-                Command::ExportCancel
-            } else {
-                Command::Export {
-                    dir: ".".into(),
-                    log_scale: app.log_scale,
-                }
-            };
-            app.send(out, c);
-        }
-        Action::Arrows => app.vectors = !app.vectors,
-        Action::Twin | Action::TwinEpsilonDown | Action::TwinEpsilonUp | Action::TwinEpsilonType => {
-            if !super::twin::on_key(app, key, out) {
-                app.notice = Some("T first: these keys set the twin's ε".to_string());
-            }
-        }
-        Action::Theme => {
-            app.theme = app.theme.next();
-            app.notice = Some(format!(
-                "theme: {}{} (t cycles dark, light, projector)",
-                app.theme.palette.name(),
-                if app.theme.colour {
-                    ""
-                } else {
-                    ", but NO_COLOR is set"
-                }
-            ));
-        }
-        Action::Drawing => {
-            app.drawing = match app.drawing {
-                Drawing::Braille => Drawing::Ascii,
-                Drawing::Ascii => Drawing::Braille,
-            }
-        }
-        Action::OrbitLeft => app.camera.orbit(-15.0, 0.0),
-        Action::OrbitRight => app.camera.orbit(15.0, 0.0),
-        Action::TiltUp => app.camera.orbit(0.0, 10.0),
-        Action::TiltDown => app.camera.orbit(0.0, -10.0),
-        Action::ZoomIn => app.camera.zoom_by(1),
-        Action::ZoomOut => app.camera.zoom_by(-1),
-        Action::ResetCamera => app.camera = Camera::default(),
-        Action::OpenPreset => app.ask(Effect::ListPresets),
-        Action::SavePreset => super::dialogs::open_save(app),
-        Action::ResetSetup => app.reset_asking(),
-        Action::OpenMap => map::open(app, out),
-        Action::Help => {
-            app.help = true;
-            app.help_scroll = 0;
-        }
-        Action::Close => match app.view {
-            View::Map => map::close(app, out),
-            View::Die => app.notice = Some("nothing to close (q quits)".to_string()),
-        },
-        Action::Quit => app.quit_asking(out),
-        Action::MapBack
-        | Action::CursorLeft
-        | Action::CursorRight
-        | Action::CursorUp
-        | Action::CursorDown
-        | Action::CursorLeftBig
-        | Action::CursorRightBig
-        | Action::CursorUpBig
-        | Action::CursorDownBig
-        | Action::ReplayCell
-        | Action::MapZoomIn
-        | Action::MapZoomOut
-        | Action::NextXAxis
-        | Action::NextYAxis
-        | Action::TypeXRange
-        | Action::TypeYRange
-        | Action::MapLayer
-        | Action::ExportMap
-        | Action::MapExportSize => super::map_keys::act(app, action, coarse, out),
-    }
-}
-
-fn on_edit_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
-    if let Some(editor) = app.batch_editor.as_mut() {
-        match editor.key(key.code) {
-            Typed::Cancelled => app.batch_editor = None,
-            Typed::Editing => {}
-            Typed::Submitted(number) => match number {
-                Ok(n) if n.fract() == 0.0 && (1.0..=MAX_BATCH_ROLLS as f64).contains(&n) => {
-                    app.batch_rolls = n as u64;
-                    app.batch_editor = None;
-                    app.notice = Some(format!("batch size {}", group(app.batch_rolls)));
-                }
-                Ok(n) => {
-                    editor.error = Some(format!(
-                        "{} rolls: a whole number from 1 to {}",
-                        fmt_num(n),
-                        group(MAX_BATCH_ROLLS)
-                    ))
-                }
-                Err(e) => editor.error = Some(e),
-            },
-        }
-        return;
-    }
-    let Some(editor) = app.editing.as_mut() else {
-        return;
-    };
-    match editor.key(key.code) {
-        Typed::Cancelled => app.editing = None,
-        Typed::Editing => {}
-        Typed::Submitted(number) => {
-            let p = app.selected_param();
-            match number.and_then(|v| app.set_param(out, p, v)) {
-                Ok(()) => app.editing = None,
-                Err(e) => {
-                    if let Some(editor) = app.editing.as_mut() {
-                        editor.error = Some(e);
-                    }
-                }
-            }
-        }
-    }
-}
-
-fn on_mouse(app: &mut App, kind: MouseEventKind, column: u16, row: u16, out: &mut Vec<Command>) {
-    if app.mode() != Mode::Normal {
-        return;
-    }
-    let Some(areas) = app.areas() else { return };
-    let at = Position::new(column, row);
-    match kind {
-        MouseEventKind::Down(MouseButton::Left) => {
-            if let Some(i) = param_row_at(app, &areas, at) {
-                app.selected = i;
-            } else if let Some(bar) = super::timeline::bar(areas.timeline).filter(|b| b.contains(at)) {
-                let step = super::timeline::step_at(app, bar, column);
-                app.send(out, Command::Seek(step));
-            } else if areas.die.contains(at) {
-                app.drag = Some((column, row));
-            }
-        }
-        MouseEventKind::Drag(MouseButton::Left) => {
-            if let Some((x, y)) = app.drag {
-                app.camera
-                    .orbit(5.0 * (column as f64 - x as f64), 5.0 * (row as f64 - y as f64));
-                app.drag = Some((column, row));
-            }
-        }
-        MouseEventKind::Up(_) => app.drag = None,
-        MouseEventKind::ScrollUp | MouseEventKind::ScrollDown => {
-            let up = kind == MouseEventKind::ScrollUp;
-            if areas.params.contains(at) {
-                if let Some(i) = param_row_at(app, &areas, at) {
-                    app.selected = i;
-                }
-                app.nudge(out, if up { 1 } else { -1 }, false);
-            } else if areas.die.contains(at) {
-                app.camera.zoom_by(if up { 1 } else { -1 });
-            }
-        }
-        _ => {}
+/// A worker's notice in words, naming the keys it points at from the key table.
+pub(crate) fn worded(notice: &Notice) -> String {
+    match notice {
+        Notice::RollEnded => format!(
+            "the roll has ended: {} replays it",
+            label(Screen::Die, Action::Replay)
+        ),
+        Notice::ExportRunning => format!(
+            "an export is running: {} cancels it",
+            label(Screen::Die, Action::Export)
+        ),
+        Notice::Said(words) => words.clone(),
     }
 }

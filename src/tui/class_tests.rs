@@ -88,7 +88,8 @@ mod vectors {
     use super::super::die::render_die;
     use super::super::vectors::{ARROWS, Arrow, arrow_length};
     use super::*;
-    use crate::tui::app::{Msg, update};
+    use crate::tui::app::Msg;
+    use crate::tui::input::update;
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 
     fn with_vectors() -> App {
@@ -161,7 +162,8 @@ mod vectors {
 
 mod twin {
     use super::*;
-    use crate::tui::app::{Msg, update};
+    use crate::tui::app::Msg;
+    use crate::tui::input::update;
     use crate::tui::tests::Scene;
     use crate::worker::{Command, Phase};
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
@@ -258,7 +260,7 @@ mod twin {
         assert_eq!(press(&mut a, KeyCode::Char('T')), [Command::SetTwin(None)]);
         // Without a twin, ε keys do nothing.
         assert!(press(&mut a, KeyCode::Char('>')).is_empty());
-        assert!(press(&mut a, KeyCode::Char('E')).is_empty() && a.epsilon_editor.is_none());
+        assert!(press(&mut a, KeyCode::Char('E')).is_empty() && a.epsilon_editor().is_none());
     }
 
     #[test]
@@ -270,7 +272,7 @@ mod twin {
             assert!(press(&mut a, KeyCode::Char(c)).is_empty());
         }
         assert!(press(&mut a, KeyCode::Enter).is_empty());
-        let error = a.epsilon_editor.as_ref().and_then(|e| e.error.clone());
+        let error = a.epsilon_editor().and_then(|e| e.error.clone());
         assert_eq!(error.as_deref(), Some("ε = 1e-20 is outside 1e-15…0.1"));
         for _ in 0..5 {
             press(&mut a, KeyCode::Backspace);
@@ -279,12 +281,12 @@ mod twin {
             press(&mut a, KeyCode::Char(c));
         }
         assert_eq!(press(&mut a, KeyCode::Enter), [Command::SetTwin(Some(2e-3))]);
-        assert!(a.epsilon_editor.is_none());
+        assert!(a.epsilon_editor().is_none());
         press(&mut a, KeyCode::Char('E'));
         press(&mut a, KeyCode::Char('q'));
         assert!(!a.quit, "q is not a digit and does not quit while typing");
         press(&mut a, KeyCode::Esc);
-        assert!(a.epsilon_editor.is_none() && !a.quit);
+        assert!(a.epsilon_editor().is_none() && !a.quit);
     }
 
     #[test]
@@ -319,8 +321,9 @@ mod twin {
 mod presets {
     use super::*;
     use crate::preset::{Preset, Store};
-    use crate::tui::app::{Msg, update};
+    use crate::tui::app::Msg;
     use crate::tui::dialogs::{Dialog, modified};
+    use crate::tui::input::update;
     use crate::tui::param::Param;
     use crate::tui::tests::Scene;
     use crate::worker::Command;
@@ -370,7 +373,7 @@ mod presets {
         s.key(KeyCode::Char('o'));
         let Some(Dialog::Picker {
             choices, selected, ..
-        }) = &s.app.dialog
+        }) = s.app.dialog()
         else {
             panic!("the picker is open")
         };
@@ -384,7 +387,7 @@ mod presets {
         s.key(KeyCode::Up);
         let sent = press(&mut s.app, KeyCode::Enter);
         assert!(matches!(sent.as_slice(), [Command::LoadPreset(p)] if p.name == "lab-2"));
-        assert!(s.app.dialog.is_none());
+        assert!(s.app.dialog().is_none());
         for c in sent {
             s.engine.handle(c);
         }
@@ -403,19 +406,19 @@ mod presets {
         press(&mut a, KeyCode::End);
         let Some(Dialog::Picker {
             choices, selected, ..
-        }) = &a.dialog
+        }) = a.dialog()
         else {
             panic!("open")
         };
         assert_eq!(*selected, choices.len() - 1);
         press(&mut a, KeyCode::Esc);
         assert!(
-            a.dialog.is_none() && !a.quit,
+            a.dialog().is_none() && !a.quit,
             "Esc closes the picker, not the explorer"
         );
         press(&mut a, KeyCode::Char('o'));
         press(&mut a, KeyCode::Char('q'));
-        assert!(a.dialog.is_none() && !a.quit);
+        assert!(a.dialog().is_none() && !a.quit);
     }
 
     #[test]
@@ -438,7 +441,7 @@ mod presets {
         s.key(KeyCode::Char('s'));
         type_text(&mut s.app, "my preset!");
         assert!(press(&mut s.app, KeyCode::Enter).is_empty());
-        let Some(Dialog::Save { error: Some(e), .. }) = &s.app.dialog else {
+        let Some(Dialog::Save { error: Some(e), .. }) = s.app.dialog() else {
             panic!("still open, with an error")
         };
         assert!(e.contains("my preset!"), "{e}");
@@ -459,14 +462,14 @@ mod presets {
             error: Some(e),
             confirm_replace: true,
             ..
-        }) = &s.app.dialog
+        }) = s.app.dialog()
         else {
-            panic!("asks first: {:?}", s.app.dialog)
+            panic!("asks first: {:?}", s.app.dialog())
         };
         assert!(e.contains("exists"), "{e}");
         assert_eq!(store.load("lab-2").expect("kept").0.initial.height, 30.0);
         press(&mut s.app, KeyCode::Enter);
-        assert!(s.app.dialog.is_none());
+        assert!(s.app.dialog().is_none());
         let saved = store.load("lab-2").expect("saved").0;
         assert_eq!(saved.ground.friction, 0.4);
         assert_eq!(saved.initial, s.app.initial);
@@ -478,7 +481,7 @@ mod presets {
         s.key(KeyCode::Char('s'));
         type_text(&mut s.app, "lab-3");
         press(&mut s.app, KeyCode::Enter);
-        assert!(s.app.dialog.is_none());
+        assert!(s.app.dialog().is_none());
         assert!(dir.path().join("lab-3.toml").is_file());
     }
 
@@ -504,7 +507,8 @@ mod export {
     use super::*;
     use crate::experiment::trace::{header, row};
     use crate::physics::Simulation;
-    use crate::tui::app::{Msg, update};
+    use crate::tui::app::Msg;
+    use crate::tui::input::update;
     use crate::worker::Command;
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 
@@ -519,7 +523,7 @@ mod export {
     }
 
     #[test]
-    fn e_exports_into_the_current_folder_and_y_switches_the_log_scale() {
+    fn e_exports_into_the_current_folder_and_p_switches_the_log_scale() {
         let mut a = start().app;
         assert_eq!(
             press(&mut a, KeyCode::Char('e')),
@@ -529,15 +533,15 @@ mod export {
             }]
         );
         assert!(!a.log_scale);
-        assert!(press(&mut a, KeyCode::Char('y')).is_empty());
+        assert!(press(&mut a, KeyCode::Char('p')).is_empty());
         assert!(a.log_scale);
     }
 
     #[test]
     fn the_exported_energy_plot_follows_the_screens_scale() {
-        // `y` on screen, then `e`: the command carries the log scale to the export.
+        // `p` on screen, then `e`: the command carries the log scale to the export.
         let mut a = mid_impact().app;
-        press(&mut a, KeyCode::Char('y'));
+        press(&mut a, KeyCode::Char('p'));
         assert!(a.log_scale);
         let c = press(&mut a, KeyCode::Char('e'));
         assert!(
@@ -681,7 +685,8 @@ mod export {
 mod themes {
     use super::*;
     use crate::tui::Theme;
-    use crate::tui::app::{Msg, update};
+    use crate::tui::app::Msg;
+    use crate::tui::input::update;
     use crate::tui::tests::mid_impact_with;
     use crate::tui::theme::Palette;
     use ratatui::buffer::Buffer;
@@ -818,7 +823,8 @@ mod themes {
 mod sizes {
     use super::*;
     use crate::tui::Theme;
-    use crate::tui::app::{Msg, update};
+    use crate::tui::app::Msg;
+    use crate::tui::input::update;
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 
     fn with_keys(mut app: App, keys: &[KeyCode]) -> App {

@@ -100,11 +100,14 @@ fn a_click_on_the_timeline_seeks_there() {
 fn esc_never_quits() {
     for mut s in [start(), changed()] {
         s.key(KeyCode::Esc);
-        assert!(!s.app.quit && s.app.prompt.is_none());
+        assert!(!s.app.quit && s.app.prompt().is_none());
         s.key(KeyCode::Char('?'));
         s.key(KeyCode::Esc);
         s.key(KeyCode::Esc);
-        assert!(!s.app.quit && !s.app.help, "Esc after closing help stays");
+        assert!(
+            !s.app.quit && s.app.help_scroll().is_none(),
+            "Esc after closing help stays"
+        );
         s.key(KeyCode::Tab);
         assert_eq!(s.app.mode(), Mode::Map);
         s.key(KeyCode::Esc);
@@ -122,13 +125,13 @@ fn q_asks_first_when_the_setup_has_changes() {
     let mut s = changed();
     s.key(KeyCode::Char('q'));
     assert!(!s.app.quit);
-    assert_eq!(s.app.prompt, Some(Prompt::Quit));
+    assert_eq!(s.app.prompt(), Some(&Prompt::Quit));
     let text = screen(&s.app, 120, 36);
     assert!(text.contains("Quit? The setup has unsaved changes"), "{text}");
     insta::assert_snapshot!("quit_prompt_120x36", text);
     insta::assert_snapshot!("quit_prompt_80x24", screen(&s.app, 80, 24));
     s.key(KeyCode::Char('x'));
-    assert!(!s.app.quit && s.app.prompt.is_none(), "any other key stays");
+    assert!(!s.app.quit && s.app.prompt().is_none(), "any other key stays");
     assert_eq!(s.app.params.ground.friction, 0.5, "and changes nothing");
     s.key(KeyCode::Char('q'));
     s.key(KeyCode::Char('q'));
@@ -144,7 +147,7 @@ fn backspace_resets_to_the_preset_asking_first() {
     let mut s = changed();
     let preset = s.app.preset.clone();
     s.key(KeyCode::Backspace);
-    assert_eq!(s.app.prompt, Some(Prompt::Reset));
+    assert_eq!(s.app.prompt(), Some(&Prompt::Reset));
     let text = screen(&s.app, 120, 36);
     assert!(
         text.contains(&format!("Reset the setup to {}?", preset.name)),
@@ -160,7 +163,7 @@ fn backspace_resets_to_the_preset_asking_first() {
     assert!(!super::dialogs::modified(&s.app));
     // Nothing changed: nothing to ask, nothing to do.
     s.key(KeyCode::Backspace);
-    assert!(s.app.prompt.is_none());
+    assert!(s.app.prompt().is_none());
     assert!(
         s.app
             .notice
@@ -178,8 +181,8 @@ fn opening_a_preset_over_changes_asks_first() {
     assert_eq!(s.app.mode(), Mode::Dialog);
     s.key(KeyCode::Down);
     s.key(KeyCode::Enter);
-    let Some(Prompt::Load(chosen)) = s.app.prompt.clone() else {
-        panic!("asks first: {:?}", s.app.prompt)
+    let Some(Prompt::Load(chosen)) = s.app.prompt().cloned() else {
+        panic!("asks first: {:?}", s.app.prompt())
     };
     assert!(screen(&s.app, 120, 36).contains(&format!("Open {}?", chosen.name)));
     s.key(KeyCode::Char('n'));
@@ -187,7 +190,7 @@ fn opening_a_preset_over_changes_asks_first() {
     assert_eq!(s.app.params.ground.friction, 0.5);
     s.key(KeyCode::Enter);
     s.key(KeyCode::Enter);
-    assert!(s.app.dialog.is_none());
+    assert!(s.app.dialog().is_none());
     assert_eq!(s.app.preset.name, chosen.name);
     assert_eq!(s.engine.params(), &chosen.params());
 }
@@ -314,7 +317,7 @@ fn s_saves_the_view_and_a_description_and_loading_applies_them() {
         s.key(KeyCode::Char(c));
     }
     s.key(KeyCode::Enter);
-    assert!(s.app.dialog.is_none(), "{:?}", s.app.dialog);
+    assert!(s.app.dialog().is_none(), "{:?}", s.app.dialog());
     let saved = store.load("lab-3").expect("saved").0;
     assert_eq!(saved.description, "Friction halved for lab 3.");
     assert_eq!(saved.ground.friction, 0.5);
@@ -353,4 +356,52 @@ fn the_views_camera_limits_are_the_cameras() {
     assert_eq!(crate::preset::PITCH.max, Camera::MAX_PITCH);
     assert_eq!(crate::preset::ZOOM.min, f64::from(Camera::MIN_ZOOM));
     assert_eq!(crate::preset::ZOOM.max, f64::from(Camera::MAX_ZOOM));
+}
+
+#[test]
+fn a_digit_on_a_parameter_row_opens_the_value_editor_with_it_typed() {
+    let mut s = start();
+    s.select(Param::named("initial.height"));
+    s.key(KeyCode::Char('2'));
+    s.key(KeyCode::Char('0'));
+    assert_eq!(
+        s.app.mode(),
+        Mode::EditingValue,
+        "2 opens no map and starts no map"
+    );
+    assert_eq!(s.app.value_editor().map(|e| e.text.as_str()), Some("20"));
+    let text = screen(&s.app, 120, 36);
+    assert!(text.contains("20▏"), "{text}");
+    insta::assert_snapshot!("digit_typed_editor_120x36", text);
+    insta::assert_snapshot!("digit_typed_editor_80x24", screen(&s.app, 80, 24));
+    s.key(KeyCode::Enter);
+    assert_eq!(s.app.initial.height, 20.0, "Enter applies the 20 typed");
+    assert_eq!(s.app.mode(), Mode::Normal);
+}
+
+#[test]
+fn a_key_that_means_nothing_does_nothing_and_the_footer_says_so() {
+    let mut s = start();
+    let before = (s.app.log_scale, s.app.params, s.app.initial);
+    // `y` answers questions; with none open it means nothing (it once switched the log scale).
+    s.key(KeyCode::Char('y'));
+    assert_eq!((s.app.log_scale, s.app.params, s.app.initial), before);
+    assert_eq!(s.app.mode(), Mode::Normal);
+    let text = screen(&s.app, 120, 36);
+    assert!(text.contains("y: nothing here (? lists the keys)"), "{text}");
+    insta::assert_snapshot!("nothing_here_footer_120x36", text);
+    // The next key that does something clears it.
+    s.key(KeyCode::Down);
+    assert!(!screen(&s.app, 120, 36).contains("nothing here"));
+    // In the help too: Esc, ? and q close it, anything else stays and says so.
+    s.key(KeyCode::Char('?'));
+    s.key(KeyCode::Char('x'));
+    assert_eq!(s.app.mode(), Mode::Help);
+    assert_eq!(
+        s.app.notice.as_deref(),
+        Some("x: nothing here (? lists the keys)")
+    );
+    s.key(KeyCode::Char('q'));
+    assert_eq!(s.app.mode(), Mode::Normal, "q closes the help");
+    assert!(!s.app.quit, "and does not quit from it");
 }

@@ -4,56 +4,21 @@
 //! Their keys never touch the disk themselves: listing the preset folder ([`open_picker`])
 //! and writing a file ([`save`]) are effects the event loop runs after `update`.
 
-use super::app::{App, Effect, Prompt};
+use super::app::{App, Effect, Overlay, Prompt};
+pub(crate) use super::dialog::{Choice, Dialog, SaveField};
 use super::format::fmt_num;
+use super::keys::{Action, Input};
 use super::param::all;
 use crate::output::printable;
 use crate::preset::{Preset, Source, check_name};
 use crate::worker::Command;
 use ratatui::Frame;
-use ratatui::crossterm::event::{KeyCode, KeyEvent};
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph, Wrap};
 
 /// Characters of a preset's description the picker shows: more than any screen holds.
 const DESCRIPTION_SHOWN: usize = 4000;
-
-/// One preset the picker offers.
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Choice {
-    pub(crate) name: String,
-    /// The user's own (saved from here or by hand), rather than shipped.
-    pub(crate) user: bool,
-    /// The preset, or why its file does not load.
-    pub(crate) preset: Result<Box<Preset>, String>,
-}
-
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) enum Dialog {
-    Picker {
-        choices: Vec<Choice>,
-        selected: usize,
-        error: Option<String>,
-    },
-    Save {
-        name: String,
-        /// Empty: the automatic description ([`automatic_description`]) is saved.
-        description: String,
-        /// Which field the keys type into (Tab switches).
-        field: SaveField,
-        error: Option<String>,
-        /// The name exists and Enter was pressed once: the next Enter replaces it.
-        confirm_replace: bool,
-    },
-}
-
-/// The save dialog's fields.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum SaveField {
-    Name,
-    Description,
-}
 
 /// Characters a preset name may have in the dialog (the name check decides the rest).
 const NAME_CHARS: usize = 64;
@@ -62,7 +27,7 @@ const DESCRIPTION_CHARS: usize = 600;
 
 /// Whether the setup on screen differs from the preset it was loaded from.
 pub(crate) fn modified(app: &App) -> bool {
-    app.params != app.preset.params() || app.initial != app.preset.initial
+    app.modified()
 }
 
 /// Opens the picker on every preset the store lists, the loaded one selected.
@@ -81,21 +46,21 @@ pub(crate) fn open_picker(app: &mut App) {
         .iter()
         .position(|c| c.name == app.preset.name)
         .unwrap_or(0);
-    app.dialog = Some(Dialog::Picker {
+    app.overlay = Some(Overlay::Dialog(Dialog::Picker {
         choices,
         selected,
         error: None,
-    });
+    }));
 }
 
 pub(crate) fn open_save(app: &mut App) {
-    app.dialog = Some(Dialog::Save {
+    app.overlay = Some(Overlay::Dialog(Dialog::Save {
         name: String::new(),
         description: String::new(),
         field: SaveField::Name,
         error: None,
         confirm_replace: false,
-    });
+    }));
 }
 
 /// What a saved setup says about itself when no description is typed: its base and the
@@ -138,16 +103,16 @@ pub(crate) fn current_setup(app: &App, name: &str, description: &str) -> Preset 
 }
 
 /// Keys while a dialog is open.
-pub(crate) fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
-    let Some(dialog) = app.dialog.take() else {
+pub(crate) fn on_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
+    let Some(Overlay::Dialog(dialog)) = app.overlay.take() else {
         return;
     };
-    app.dialog = match dialog {
+    let next = match dialog {
         Dialog::Picker {
             choices,
             selected,
             error,
-        } => picker_key(app, key, out, choices, selected, error),
+        } => picker_key(app, input, out, choices, selected, error),
         Dialog::Save {
             name,
             description,
@@ -156,7 +121,7 @@ pub(crate) fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
             confirm_replace,
         } => save_key(
             app,
-            key,
+            input,
             SaveForm {
                 name,
                 description,
@@ -166,32 +131,50 @@ pub(crate) fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
             confirm_replace,
         ),
     };
+    // A question asked from the picker has taken the top, the picker kept under it.
+    if app.overlay.is_none() {
+        app.overlay = next.map(Overlay::Dialog);
+    }
 }
 
 fn picker_key(
     app: &mut App,
-    key: KeyEvent,
+    input: &Input,
     out: &mut Vec<Command>,
     choices: Vec<Choice>,
     selected: usize,
     error: Option<String>,
 ) -> Option<Dialog> {
     let last = choices.len().saturating_sub(1);
-    let selected = match key.code {
-        KeyCode::Esc | KeyCode::Char('o') | KeyCode::Char('q') => return None,
-        KeyCode::Up | KeyCode::Char('k') => selected.saturating_sub(1),
-        KeyCode::Down | KeyCode::Char('j') => (selected + 1).min(last),
-        KeyCode::Home | KeyCode::Char('g') => 0,
-        KeyCode::End | KeyCode::Char('G') => last,
-        KeyCode::Enter => match choices.get(selected).map(|c| c.preset.clone()) {
+    let action = match input {
+        Input::Act { action, .. } => *action,
+        other => {
+            app.nothing_here(other);
+            return Some(Dialog::Picker {
+                choices,
+                selected,
+                error,
+            });
+        }
+    };
+    let selected = match action {
+        Action::Close => return None,
+        Action::SelectPrevious => selected.saturating_sub(1),
+        Action::SelectNext => (selected + 1).min(last),
+        Action::SelectFirst => 0,
+        Action::SelectLast => last,
+        Action::Confirm => match choices.get(selected).map(|c| c.preset.clone()) {
             Some(Ok(preset)) if modified(app) => {
                 // The picker stays under the question: anything but yes goes back to it.
-                app.prompt = Some(Prompt::Load(preset));
-                return Some(Dialog::Picker {
-                    choices,
-                    selected,
-                    error,
+                app.overlay = Some(Overlay::Prompt {
+                    prompt: Prompt::Load(preset),
+                    under: Some(Dialog::Picker {
+                        choices,
+                        selected,
+                        error,
+                    }),
                 });
+                return None;
             }
             Some(Ok(preset)) => {
                 app.load(out, preset);
@@ -209,7 +192,7 @@ fn picker_key(
         _ => selected,
     };
     // Moving on clears the error of the file that did not load.
-    let error = if key.code == KeyCode::Enter { error } else { None };
+    let error = if action == Action::Confirm { error } else { None };
     Some(Dialog::Picker {
         choices,
         selected,
@@ -226,7 +209,7 @@ struct SaveForm {
 
 fn save_key(
     app: &mut App,
-    key: KeyEvent,
+    input: &Input,
     mut form: SaveForm,
     error: Option<String>,
     confirm_replace: bool,
@@ -248,29 +231,30 @@ fn save_key(
         SaveField::Name => NAME_CHARS,
         SaveField::Description => DESCRIPTION_CHARS,
     };
-    match key.code {
-        KeyCode::Esc => None,
-        KeyCode::Tab | KeyCode::BackTab | KeyCode::Up | KeyCode::Down => {
+    let action = |a: Action| matches!(input, Input::Act { action, .. } if *action == a);
+    match input {
+        _ if action(Action::Close) => None,
+        _ if action(Action::NextField) => {
             form.field = match form.field {
                 SaveField::Name => SaveField::Description,
                 SaveField::Description => SaveField::Name,
             };
             dialog(form, error, confirm_replace)
         }
-        KeyCode::Backspace => {
+        _ if action(Action::Delete) => {
             typing.pop();
             // Another name is another question.
             let keep = form.field == SaveField::Description;
             dialog(form, error.filter(|_| keep), confirm_replace && keep)
         }
-        KeyCode::Char(c) if !c.is_control() => {
+        Input::Type(c) => {
             if typing.chars().count() < limit {
-                typing.push(c);
+                typing.push(*c);
             }
             let keep = form.field == SaveField::Description;
             dialog(form, error.filter(|_| keep), confirm_replace && keep)
         }
-        KeyCode::Enter => {
+        _ if action(Action::Confirm) => {
             if let Err(e) = check_name(&form.name) {
                 return dialog(form, Some(e.to_string()), false);
             }
@@ -280,7 +264,10 @@ fn save_key(
             });
             dialog(form, None, confirm_replace)
         }
-        _ => dialog(form, error, confirm_replace),
+        other => {
+            app.nothing_here(other);
+            dialog(form, error, confirm_replace)
+        }
     }
 }
 
@@ -289,11 +276,11 @@ fn save_key(
 pub(crate) fn save(app: &mut App, preset: &Preset, replace: bool) {
     let name = preset.name.clone();
     let refuse = |app: &mut App, error: String, confirm_replace: bool| {
-        if let Some(Dialog::Save {
+        if let Some(Overlay::Dialog(Dialog::Save {
             error: e,
             confirm_replace: c,
             ..
-        }) = &mut app.dialog
+        })) = &mut app.overlay
         {
             (*e, *c) = (Some(error), confirm_replace);
         }
@@ -310,7 +297,7 @@ pub(crate) fn save(app: &mut App, preset: &Preset, replace: bool) {
             app.notice = Some(format!("saved {}", path.display()));
             // The saved file is now what the setup is compared with.
             app.preset = preset.clone();
-            app.dialog = None;
+            app.overlay = None;
         }
         Err(e) => refuse(app, e.to_string(), false),
     }
@@ -319,7 +306,7 @@ pub(crate) fn save(app: &mut App, preset: &Preset, replace: bool) {
 /// Draws the open dialog, centred over the screen, and over it any question being asked.
 pub fn render(app: &App, area: Rect, frame: &mut Frame) {
     render_dialog(app, area, frame);
-    if let Some(prompt) = &app.prompt {
+    if let Some(prompt) = app.prompt() {
         let t = &app.theme;
         let (keys, words) = prompt.answers();
         let popup = area.centered(Constraint::Max(64), Constraint::Length(4));
@@ -341,7 +328,7 @@ pub fn render(app: &App, area: Rect, frame: &mut Frame) {
 }
 
 fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
-    let Some(dialog) = &app.dialog else { return };
+    let Some(dialog) = app.dialog() else { return };
     let t = &app.theme;
     match dialog {
         Dialog::Picker {

@@ -1,7 +1,6 @@
 //! The footer's key hints and the help overlay's frame.
 
 use super::app::{App, Mode};
-use super::dialogs::Dialog;
 use super::format::group;
 use super::help::help_lines;
 use super::keys::{Action, Screen, rows};
@@ -22,7 +21,7 @@ fn hint(keys: &str, words: &str, priority: u8) -> KeyHint {
 pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
     let keys = match app.mode() {
         Mode::Prompt => {
-            let prompt = app.prompt.as_ref().expect("the mode says so");
+            let prompt = app.prompt().expect("the mode says so");
             let (keys, words) = prompt.answers();
             let question = prompt.question(&app.preset.name);
             let hints = vec![
@@ -31,8 +30,8 @@ pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
             ];
             return render_line(app, Some(question), hints, area, frame);
         }
-        Mode::EditingValue if app.batch_editor.is_some() => {
-            let editor = app.batch_editor.as_ref().expect("checked");
+        Mode::EditingValue if app.batch_editor().is_some() => {
+            let editor = app.batch_editor().expect("checked");
             let line = match &editor.error {
                 Some(e) => e.clone(),
                 None => format!("batch size: {}▏ rolls", editor.text),
@@ -41,23 +40,7 @@ pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
         }
         Mode::EditingValue | Mode::EditingEpsilon => typing_hints("0-9 . - e"),
         Mode::EditingRange => typing_hints("MIN MAX"),
-        Mode::Dialog => match app.dialog {
-            Some(Dialog::Save { .. }) => vec![
-                hint("Tab", "name/description", 0),
-                hint("Enter", "save", 0),
-                hint("Esc", "cancel", 0),
-            ],
-            _ => vec![
-                hint("↑↓", "choose", 0),
-                hint("Enter", "open", 0),
-                hint("Esc", "close", 0),
-            ],
-        },
-        Mode::Help => vec![
-            hint("↑↓", "scroll", 0),
-            hint("? Esc", "close help", 0),
-            hint("q", "quit", 0),
-        ],
+        Mode::Dialog | Mode::Help => table_hints(app, app.key_mode()),
         Mode::Map => table_hints(app, Screen::Map),
         Mode::Normal => table_hints(app, Screen::Die),
     };
@@ -73,6 +56,7 @@ fn table_hints(app: &App, screen: Screen) -> Vec<KeyHint> {
             Action::Batch if app.batch.is_some() => hint(h.keys, "cancel batch", h.priority),
             Action::Batch => hint(h.keys, &format!("batch {}", group(app.batch_rolls)), h.priority),
             Action::Twin if app.twin => hint("T < > E", "twin, ε", h.priority),
+            Action::Confirm if screen == Screen::Save => hint(h.keys, "save", h.priority),
             Action::ExportMap => {
                 let ((w, h_px), _) = app.map.png_size();
                 hint("e E", &format!("PNG {w}×{h_px}"), h.priority)
@@ -84,12 +68,11 @@ fn table_hints(app: &App, screen: Screen) -> Vec<KeyHint> {
 
 /// The footer while a value is typed: `typing` says what may be typed.
 pub(crate) fn typing_hints(typing: &str) -> Vec<KeyHint> {
-    vec![
-        hint(typing, "type", 0),
-        hint("Enter", "apply", 0),
-        hint("Esc", "cancel", 0),
-        hint("Ctrl-C", "quit", 0),
-    ]
+    let mut hints = vec![hint(typing, "type", 0)];
+    hints.extend(rows(Screen::Text).filter_map(|b| b.hint.map(|h| hint(h.keys, h.words, h.priority))));
+    // Ctrl-C is no row: it quits in every mode, text entry included.
+    hints.push(hint("Ctrl-C", "quit", 0));
+    hints
 }
 
 /// A footer line of hints after any notice (an export's progress first).
@@ -141,6 +124,6 @@ pub(crate) fn render_help(app: &App, area: Rect, frame: &mut Frame) {
     let para = Paragraph::new(help_lines(app))
         .block(block)
         .wrap(Wrap { trim: false })
-        .scroll((app.help_scroll, 0));
+        .scroll((app.help_scroll().unwrap_or(0), 0));
     frame.render_widget(para, popup);
 }

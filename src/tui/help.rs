@@ -2,8 +2,8 @@
 
 use super::app::App;
 use super::format::group;
-use super::keys::{Screen, section};
-use super::map::View;
+use super::keys::{Action, Screen, label, section};
+use super::map_view::View;
 use ratatui::text::{Line, Span};
 
 const MODEL: &[&str] = &[
@@ -17,7 +17,7 @@ const MODEL: &[&str] = &[
     "Energy: translational (moving), rotational (turning), gravitational (height) and elastic (the squashed \
      spring). At an impact a corner sinks a fraction of a millimetre into a very stiff spring: for a \
      millisecond the elastic term spikes above all the others, then is handed back as motion, less what \
-     damping and friction took. The log scale (y) shows the spikes and the small terms together.",
+     damping and friction took. The log scale ({LogScale}) shows the spikes and the small terms together.",
     "The energy panel: a bar of the energy now, stacked by form and scaled to the energy at the start \
      (◀ marks the total), and the ledger of where the rest went: work done by the ground's damping and by \
      friction, measured step by step, and the remainder, the integrator's own error (semi-implicit Euler \
@@ -29,10 +29,10 @@ const MODEL: &[&str] = &[
      apart, the gap growing by orders of magnitude at the impacts, until it is as big as the die; from a \
      gentle drop they land the same way.",
     "While the twin rolls, the predictability curve of the setup takes the outcome table's place, \
-     computed in the background: random throws (the ones R draws), each rolled beside a twin at every ε \
+     computed in the background: random throws (the ones {RandomRoll} draws), each rolled beside a twin at every ε \
      from 1e-15 to 0.1, and P(same face), the share of pairs that land alike, against ε (● with its 95 % \
      interval │). It falls from 1 towards chance, Σp² (┄), what two unrelated throws share; ε½ is where \
-     it crosses halfway (·). ◆ marks the twin's own ε on it. T again brings the table back.",
+     it crosses halfway (·). ◆ marks the twin's own ε on it. {Twin} again brings the table back.",
     "The step is stable only while ω_rock·Δt < 2, where ω_rock = √(6k/M) is how fast a die lying flat rocks \
      on its face; spin, impact speed, damping and friction set limits of their own. The readout under the \
      parameters names the tightest, \"Δt stability: … at N % of limit\", amber from 80 % and red past \
@@ -44,6 +44,21 @@ const MODEL: &[&str] = &[
      corner extra mass (extra mass 1…8, the last rows of the parameters; ◆ marks it on the die), or open \
      loaded-corner, and batch.",
 ];
+
+/// `text` with each `{Action}` replaced by that action's keys on the die screen.
+fn keyed(text: &str) -> String {
+    [
+        ("{Replay}", Action::Replay),
+        ("{RandomRoll}", Action::RandomRoll),
+        ("{Batch}", Action::Batch),
+        ("{Twin}", Action::Twin),
+        ("{LogScale}", Action::LogScale),
+    ]
+    .iter()
+    .fold(text.to_string(), |t, (name, action)| {
+        t.replace(name, label(Screen::Die, *action))
+    })
+}
 
 pub(crate) fn help_lines(app: &App) -> Vec<Line<'static>> {
     let t = &app.theme;
@@ -77,9 +92,18 @@ pub(crate) fn help_lines(app: &App) -> Vec<Line<'static>> {
     } else {
         [die, map].concat()
     };
+    // What is on top of the screens keeps its own keys.
+    for mode in Screen::MODES
+        .into_iter()
+        .filter(|m| !matches!(m, Screen::Die | Screen::Map))
+    {
+        lines.push(Line::styled(mode.title(), t.heading()));
+        lines.extend(key_lines(mode));
+        lines.push(Line::raw(""));
+    }
     lines.push(Line::styled("The model", t.heading()));
     for paragraph in MODEL {
-        lines.push(Line::raw(format!("  {paragraph}")));
+        lines.push(Line::raw(format!("  {}", keyed(paragraph))));
         lines.push(Line::raw(""));
     }
     lines

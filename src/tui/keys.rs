@@ -1,23 +1,56 @@
-//! Every key of the explorer as one table row: which screen, which keys, what it does, its
-//! footer hint and its help text. Dispatch, the footer, the help overlay and the README's
-//! key tables are all read from [`BINDINGS`], so a key is changed in one place.
+//! Every key of the explorer as one table row: which mode, which keys, what it does, its
+//! footer hint and its help text. Dispatch ([`read`]), the footer, the help overlay and the
+//! README's key tables are all read from [`BINDINGS`], so a key is changed in one place;
+//! this is the one module that looks at key codes.
 
-use ratatui::crossterm::event::KeyCode;
+use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
-/// Where a binding applies.
+/// Where a binding applies: a screen, or what is on top of it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Screen {
     /// The main screen: the die, its energy and the outcome table.
     Die,
     /// The basin-map screen (`Tab`).
     Map,
-    /// Both screens.
+    /// Both screens (rows only; a mode is never `Both`).
     Both,
+    /// The help overlay (`?`).
+    Help,
+    /// A yes/no question (quit, reset, load over unsaved changes).
+    Prompt,
+    /// Typing text: a value, the batch size, ε, a map range; the save dialog's fields too.
+    Text,
+    /// The save dialog: its two text fields.
+    Save,
+    /// The preset picker (`o`).
+    Picker,
 }
 
 impl Screen {
+    /// Whether a row of `self` applies in mode `on`.
     pub(crate) fn includes(self, on: Screen) -> bool {
-        self == Both || self == on
+        self == on || (self == Both && matches!(on, Die | Map)) || (self == Text && on == Save)
+    }
+
+    /// Every mode, for the checks that hold in all of them.
+    pub(crate) const MODES: [Screen; 7] = [Die, Map, Help, Prompt, Text, Save, Picker];
+
+    /// How the help and the README title this mode's keys.
+    pub(crate) fn title(self) -> &'static str {
+        match self {
+            Die | Both => "Keys",
+            Map => "Basin-map screen keys",
+            Help => "In the help",
+            Prompt => "Answering a question",
+            Text => "Typing a value, a range or a name",
+            Save => "The save dialog",
+            Picker => "The preset picker",
+        }
+    }
+
+    /// Whether printable characters are text here rather than keys.
+    pub(crate) fn takes_text(self) -> bool {
+        matches!(self, Text | Save)
     }
 }
 
@@ -88,6 +121,13 @@ pub(crate) enum Action {
     MapLayer,
     ExportMap,
     MapExportSize,
+    // Questions, dialogs and text entry.
+    /// Yes / apply / open.
+    Confirm,
+    /// Text entry: delete the last character.
+    Delete,
+    /// The save dialog: the other field.
+    NextField,
 }
 
 /// One row of the key table.
@@ -122,7 +162,7 @@ const fn hint(keys: &'static str, words: &'static str, priority: u8) -> Option<H
 
 use Action as A;
 use KeyCode as K;
-use Screen::{Both, Die, Map};
+use Screen::{Both, Die, Help, Map, Picker, Prompt, Save, Text};
 
 macro_rules! row {
     ($screen:expr, [$($key:expr),+], $label:expr, $action:expr, $hint:expr, $help:expr) => {
@@ -305,12 +345,12 @@ pub(crate) const BINDINGS: &[Binding] = &[
         "Enter",
         A::TypeValue,
         None,
-        "type an exact value (checked against its range; Esc cancels)"
+        "type an exact value (checked against its range; Esc cancels); a digit starts it typed"
     ),
     row!(
         Die,
-        [K::Char('y')],
-        "y",
+        [K::Char('p')],
+        "p",
         A::LogScale,
         None,
         "energy plot: linear / log scale"
@@ -406,7 +446,7 @@ pub(crate) const BINDINGS: &[Binding] = &[
         "zoom in (or scroll on the die; drag it to orbit)"
     ),
     row!(Die, [K::Char('x')], "x", A::ZoomOut, None, "zoom out"),
-    row!(Die, [K::Char('0')], "0", A::ResetCamera, None, "reset the camera"),
+    row!(Die, [K::Char('C')], "C", A::ResetCamera, None, "reset the camera"),
     row!(
         Die,
         [K::Char('o')],
@@ -433,16 +473,16 @@ pub(crate) const BINDINGS: &[Binding] = &[
     ),
     row!(
         Die,
-        [K::Tab, K::BackTab, K::Char('2')],
-        "Tab 2",
+        [K::Tab, K::BackTab],
+        "Tab",
         A::OpenMap,
         hint("Tab", "map", 2),
         "the basin-map screen"
     ),
     row!(
         Map,
-        [K::Tab, K::BackTab, K::Char('1')],
-        "Tab 1",
+        [K::Tab, K::BackTab],
+        "Tab",
         A::MapBack,
         hint("Tab", "die", 0),
         "back to the die (Esc too)"
@@ -587,7 +627,217 @@ pub(crate) const BINDINGS: &[Binding] = &[
         hint("q", "quit", 0),
         "quit (asks first if the setup has unsaved changes: y or q again quits); Ctrl-C quits at once"
     ),
+    row!(
+        Help,
+        [K::Up, K::Char('k')],
+        "↑ k",
+        A::SelectPrevious,
+        hint("↑↓", "scroll", 0),
+        "scroll up"
+    ),
+    row!(
+        Help,
+        [K::Down, K::Char('j')],
+        "↓ j",
+        A::SelectNext,
+        None,
+        "scroll down"
+    ),
+    row!(
+        Help,
+        [K::Char('?'), K::Esc, K::Enter, K::Char('q')],
+        "? Esc Enter q",
+        A::Close,
+        hint("? Esc", "close help", 0),
+        "close the help"
+    ),
+    row!(Prompt, [K::Char('y')], "y", A::Confirm, None, "yes: go ahead"),
+    row!(
+        Prompt,
+        [K::Char('q')],
+        "q",
+        A::Quit,
+        None,
+        "asked whether to quit: quit; asked anything else: no"
+    ),
+    row!(
+        Prompt,
+        [K::Backspace],
+        "Backspace",
+        A::ResetSetup,
+        None,
+        "asked whether to reset: reset; asked anything else: no"
+    ),
+    row!(
+        Prompt,
+        [K::Enter],
+        "Enter",
+        A::OpenPreset,
+        None,
+        "asked whether to open a preset over changes: open it; asked anything else: no"
+    ),
+    row!(
+        Prompt,
+        [K::Esc, K::Char('n')],
+        "Esc n",
+        A::Close,
+        None,
+        "no: everything stays as it is (so does any other key)"
+    ),
+    // Before the text rows: the save dialog's footer names its own key first.
+    row!(
+        Save,
+        [K::Tab, K::BackTab, K::Up, K::Down],
+        "Tab ↑ ↓",
+        A::NextField,
+        hint("Tab", "name/description", 0),
+        "the other field: name / description"
+    ),
+    row!(
+        Text,
+        [K::Enter],
+        "Enter",
+        A::Confirm,
+        hint("Enter", "apply", 0),
+        "apply what was typed (an error says why not, and typing goes on)"
+    ),
+    row!(
+        Text,
+        [K::Esc],
+        "Esc",
+        A::Close,
+        hint("Esc", "cancel", 0),
+        "cancel: nothing changes; every other key (q among them) is typed as text"
+    ),
+    row!(
+        Text,
+        [K::Backspace],
+        "Backspace",
+        A::Delete,
+        None,
+        "delete the last character"
+    ),
+    row!(
+        Picker,
+        [K::Up, K::Char('k')],
+        "↑ k",
+        A::SelectPrevious,
+        hint("↑↓", "choose", 0),
+        "the preset above"
+    ),
+    row!(
+        Picker,
+        [K::Down, K::Char('j')],
+        "↓ j",
+        A::SelectNext,
+        None,
+        "the preset below"
+    ),
+    row!(
+        Picker,
+        [K::Home, K::Char('g')],
+        "Home g",
+        A::SelectFirst,
+        None,
+        "the first preset"
+    ),
+    row!(
+        Picker,
+        [K::End, K::Char('G')],
+        "End G",
+        A::SelectLast,
+        None,
+        "the last preset"
+    ),
+    row!(
+        Picker,
+        [K::Enter],
+        "Enter",
+        A::Confirm,
+        hint("Enter", "open", 0),
+        "open the preset chosen (asks first if the setup has unsaved changes)"
+    ),
+    row!(
+        Picker,
+        [K::Esc, K::Char('o'), K::Char('q')],
+        "Esc o q",
+        A::Close,
+        hint("Esc", "close", 0),
+        "close the picker"
+    ),
 ];
+
+/// What a key press means in a mode.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Input {
+    /// A row of the table; `coarse` when Shift, Ctrl or Alt was held (big steps).
+    Act { action: Action, coarse: bool },
+    /// A character typed as text (or, on the main screen, a digit that starts the editor).
+    Type(char),
+    /// Ctrl-C: quit at once, in every mode.
+    Interrupt,
+    /// Nothing in this mode; the footer says so, naming the key.
+    Nothing(String),
+}
+
+/// What `key` means in `mode`. In text entry every printable character is text unless a
+/// row claims its key; on the main screen a digit opens the value editor with it typed.
+pub(crate) fn read(mode: Screen, key: KeyEvent) -> Input {
+    let ctrl = key.modifiers.contains(KeyModifiers::CONTROL);
+    if ctrl && matches!(key.code, K::Char('c') | K::Char('C')) {
+        return Input::Interrupt;
+    }
+    let printable = match key.code {
+        K::Char(c) if !c.is_control() && !ctrl && !key.modifiers.contains(KeyModifiers::ALT) => Some(c),
+        _ => None,
+    };
+    if let Some(b) = lookup(mode, key.code) {
+        return Input::Act {
+            action: b.action,
+            coarse: key
+                .modifiers
+                .intersects(KeyModifiers::SHIFT | KeyModifiers::CONTROL | KeyModifiers::ALT),
+        };
+    }
+    match printable {
+        Some(c) if mode.takes_text() => Input::Type(c),
+        Some(c) if mode == Die && c.is_ascii_digit() => Input::Type(c),
+        _ => Input::Nothing(name(key.code)),
+    }
+}
+
+/// A key's name as the footer writes it when the key means nothing.
+fn name(code: KeyCode) -> String {
+    let name = match code {
+        K::Char(' ') => "space",
+        K::Char(c) => return c.to_string(),
+        K::F(_) => "that function key",
+        K::Insert => "Insert",
+        K::Delete => "Delete",
+        K::PageUp => "PageUp",
+        K::PageDown => "PageDown",
+        K::Left => "←",
+        K::Right => "→",
+        K::Up => "↑",
+        K::Down => "↓",
+        K::Home => "Home",
+        K::End => "End",
+        K::Enter => "Enter",
+        K::Tab | K::BackTab => "Tab",
+        K::Backspace => "Backspace",
+        K::Esc => "Esc",
+        _ => "that key",
+    };
+    name.to_string()
+}
+
+/// The keys of `action` in `mode` as the help writes them, for texts that name a key.
+pub(crate) fn label(mode: Screen, action: Action) -> &'static str {
+    BINDINGS
+        .iter()
+        .find(|b| b.screen.includes(mode) && b.action == action)
+        .map_or("?", |b| b.label)
+}
 
 /// The binding of `code` on `screen`, if any.
 pub(crate) fn lookup(screen: Screen, code: KeyCode) -> Option<&'static Binding> {
@@ -602,10 +852,10 @@ pub(crate) fn rows(screen: Screen) -> impl Iterator<Item = &'static Binding> {
 }
 
 /// The rows one section of the help and the README lists: the die screen's with the
-/// shared ones, the map screen's own.
+/// shared ones, every other mode its own.
 pub(crate) fn section(screen: Screen) -> impl Iterator<Item = &'static Binding> {
     BINDINGS.iter().filter(move |b| match screen {
-        Die => b.screen != Map,
+        Die => matches!(b.screen, Die | Both),
         _ => b.screen == screen,
     })
 }
@@ -622,20 +872,28 @@ pub(crate) fn markdown_tables() -> String {
         }
         out
     };
-    format!("{}\n{}", table("Keys", Die), table("Basin-map screen keys", Map))
+    Screen::MODES
+        .iter()
+        .map(|&mode| table(mode.title(), mode))
+        .collect::<Vec<_>>()
+        .join("\n")
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    fn press(mode: Screen, code: KeyCode) -> Input {
+        read(mode, KeyEvent::new(code, KeyModifiers::NONE))
+    }
+
     #[test]
-    fn no_key_means_two_things_on_one_screen() {
-        for screen in [Die, Map] {
+    fn no_key_means_two_things_in_one_mode() {
+        for mode in Screen::MODES {
             let mut seen: Vec<KeyCode> = Vec::new();
-            for b in BINDINGS.iter().filter(|b| b.screen.includes(screen)) {
+            for b in BINDINGS.iter().filter(|b| b.screen.includes(mode)) {
                 for k in b.keys {
-                    assert!(!seen.contains(k), "{k:?} bound twice on {screen:?}");
+                    assert!(!seen.contains(k), "{k:?} bound twice in {mode:?}");
                     seen.push(*k);
                 }
             }
@@ -653,16 +911,43 @@ mod tests {
     }
 
     #[test]
-    fn esc_never_quits_and_q_does_on_every_screen() {
-        for screen in [Die, Map] {
-            assert_eq!(
-                lookup(screen, KeyCode::Esc).map(|b| b.action),
-                Some(Action::Close)
-            );
-            assert_eq!(
-                lookup(screen, KeyCode::Char('q')).map(|b| b.action),
-                Some(Action::Quit)
+    fn esc_closes_and_never_quits_q_quits_the_screens_closes_overlays_and_is_text_in_text() {
+        let act = |action| Input::Act {
+            action,
+            coarse: false,
+        };
+        for mode in Screen::MODES {
+            assert_eq!(press(mode, K::Esc), act(A::Close), "Esc in {mode:?}");
+            let q = press(mode, K::Char('q'));
+            let expected = match mode {
+                Die | Map => act(A::Quit),
+                // Its own key answers the quit question; in the others it is a no.
+                Prompt => act(A::Quit),
+                Text | Save => Input::Type('q'),
+                _ => act(A::Close),
+            };
+            assert_eq!(q, expected, "q in {mode:?}");
+            let ctrl_c = read(mode, KeyEvent::new(K::Char('c'), KeyModifiers::CONTROL));
+            assert_eq!(ctrl_c, Input::Interrupt, "Ctrl-C in {mode:?}");
+        }
+    }
+
+    #[test]
+    fn text_entry_takes_every_printable_character_and_the_main_screen_no_digit() {
+        for c in ['q', 'y', '2', ' ', 'é', '?', 'e', '-', 'T'] {
+            assert_eq!(press(Text, K::Char(c)), Input::Type(c));
+            assert_eq!(press(Save, K::Char(c)), Input::Type(c));
+        }
+        for d in '0'..='9' {
+            assert_eq!(press(Die, K::Char(d)), Input::Type(d), "{d} on the main screen");
+            assert!(
+                !BINDINGS
+                    .iter()
+                    .any(|b| b.screen.includes(Die) && b.keys.contains(&K::Char(d))),
+                "{d} is bound on the main screen"
             );
         }
+        assert_eq!(press(Die, K::Char('y')), Input::Nothing("y".into()));
+        assert_eq!(press(Help, K::Char('x')), Input::Nothing("x".into()));
     }
 }

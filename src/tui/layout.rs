@@ -1,7 +1,6 @@
 //! Where each panel of the main screen goes, and which parameter row a screen position is:
 //! shared by rendering and by the mouse handling in `update`, so neither imports the other.
 
-use super::app::App;
 use super::param::all;
 use ratatui::layout::{Constraint, Layout, Position, Rect};
 use ratatui::widgets::Block;
@@ -59,7 +58,7 @@ pub(crate) fn screen_layout(area: Rect) -> Option<Areas> {
     );
     let [energy, ledger] = energy_row.layout(&Layout::horizontal([
         Constraint::Min(0),
-        Constraint::Length(super::ledger::panel_width(area.width)),
+        Constraint::Length(ledger_width(area.width)),
     ]));
     Some(Areas {
         header,
@@ -79,10 +78,10 @@ pub(crate) fn inner(area: Rect) -> Rect {
 }
 
 /// How many parameter rows fit, and the first one shown (the selection stays in view).
-pub(crate) fn param_window(app: &App, params_area: Rect) -> (usize, usize) {
+pub(crate) fn param_window(selected: usize, params_area: Rect) -> (usize, usize) {
     let visible = inner(params_area).height.saturating_sub(2) as usize;
-    let first = if visible > 0 && app.selected >= visible {
-        app.selected + 1 - visible
+    let first = if visible > 0 && selected >= visible {
+        selected + 1 - visible
     } else {
         0
     };
@@ -90,14 +89,19 @@ pub(crate) fn param_window(app: &App, params_area: Rect) -> (usize, usize) {
 }
 
 /// The parameter under a screen position, for mouse clicks and scrolls.
-pub(crate) fn param_row_at(app: &App, areas: &Areas, at: Position) -> Option<usize> {
+pub(crate) fn param_row_at(selected: usize, areas: &Areas, at: Position) -> Option<usize> {
     let body = inner(areas.params);
     if !body.contains(at) || at.y < body.y + 1 {
         return None;
     }
-    let (first, visible) = param_window(app, areas.params);
+    let (first, visible) = param_window(selected, areas.params);
     let row = (at.y - body.y - 1) as usize;
     (row < visible)
         .then_some(first + row)
         .filter(|&i| i < all().len())
+}
+
+/// Outer width of the energy ledger panel: wide terminals get room for the unit.
+pub(crate) fn ledger_width(screen_width: u16) -> u16 {
+    if screen_width >= 120 { 24 } else { 20 }
 }

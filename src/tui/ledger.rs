@@ -10,11 +10,6 @@ use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph};
 
-/// Outer width of the panel: wide terminals get room for the unit.
-pub(crate) fn panel_width(screen_width: u16) -> u16 {
-    if screen_width >= 120 { 24 } else { 20 }
-}
-
 /// Columns the bar (and its total mark) take on the left of the panel.
 const BAR_COLUMNS: u16 = 3;
 

@@ -1,17 +1,15 @@
 //! What the basin-map screen's keys do: moving the cursor, zooming, choosing axes and
 //! ranges (the keys themselves are rows of [`super::keys::BINDINGS`]).
 
-use super::app::{App, Editor, Effect};
+use super::app::{App, Editor, Effect, Typed};
 use super::format::fmt_num;
-use super::keys::Action;
-use super::map::{EXPORT_SIZES, RangeEditor, Side, ZOOM_FACTOR, ZoomStep, close, default_range, start};
+use super::keys::{Action, Input};
+use super::map::{close, start};
+use super::map_view::{EXPORT_SIZES, RangeEditor, Side, ZOOM_FACTOR, ZoomStep, default_range};
 use super::param::{Param, all};
 use crate::experiment::basin::node_setup;
 use crate::experiment::{Axis, Layer};
 use crate::worker::{Command, MapAxis};
-use ratatui::Frame;
-use ratatui::crossterm::event::{KeyCode, KeyEvent};
-use ratatui::layout::Rect;
 
 /// Cells one Shift-arrow moves the cursor.
 const BIG_STEP: usize = 8;
@@ -158,23 +156,18 @@ fn edit_range(app: &mut App, side: Side) {
     });
 }
 
-pub(crate) fn on_range_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
+/// Characters a typed range may hold: two numbers and what separates them.
+const RANGE_CHARS: usize = 40;
+
+pub(crate) fn on_range_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
     let Some(r) = app.map.editing.as_mut() else {
         return;
     };
-    match key.code {
-        KeyCode::Esc => app.map.editing = None,
-        KeyCode::Backspace => {
-            r.editor.text.pop();
-            r.editor.error = None;
-        }
-        KeyCode::Char(c) if c.is_ascii_digit() || ".-+eE :,".contains(c) => {
-            if r.editor.text.len() < 40 {
-                r.editor.text.push(c);
-            }
-            r.editor.error = None;
-        }
-        KeyCode::Enter => {
+    match r.editor.input(input, RANGE_CHARS) {
+        Typed::Cancelled => app.map.editing = None,
+        Typed::Editing => {}
+        // Two numbers, not one: the text is read as a range.
+        Typed::Submitted(_) => {
             let side = r.side;
             let param = match side {
                 Side::X => Param::of(app.map.x.key),
@@ -191,7 +184,6 @@ pub(crate) fn on_range_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>)
                 Err(e) => r.editor.error = Some(e),
             }
         }
-        _ => {}
     }
 }
 
@@ -213,8 +205,4 @@ pub(crate) fn parse_range(param: Param, text: &str) -> Result<(f64, f64), String
             crate::experiment::Error::Axis { message, .. } => message,
             e => e.to_string(),
         })
-}
-
-pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
-    super::footer::render_footer(app, area, frame);
 }

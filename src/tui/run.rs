@@ -15,7 +15,8 @@
 //! Drawing holds [`SCREEN`], and whoever restores takes it first and never gives it back,
 //! so no frame lands after the terminal was given back to the shell.
 
-use super::app::{App, Effect, Msg, update};
+use super::app::{App, Effect, Msg};
+use super::input::update;
 use super::render::render;
 use super::theme::Theme;
 use crate::preset::Preset;
@@ -23,7 +24,7 @@ use crate::worker::{Command, Engine, Worker};
 use color_eyre::eyre::{Result, WrapErr};
 use ratatui::DefaultTerminal;
 use ratatui::crossterm::cursor::Show;
-use ratatui::crossterm::event::{self, DisableMouseCapture, EnableMouseCapture};
+use ratatui::crossterm::event::{DisableMouseCapture, EnableMouseCapture};
 use ratatui::crossterm::execute;
 use ratatui::layout::Rect;
 use signal_hook::consts::{SIGHUP, SIGINT, SIGQUIT, SIGTERM};
@@ -131,16 +132,8 @@ fn event_loop(
     app.screen = Rect::new(0, 0, size.width, size.height);
     let maps = tx.clone();
     let worker = Worker::spawn_with_maps(engine, tx.clone(), move |m| maps.send(Msg::from(m)).is_ok());
-    // The input thread blocks in `event::read` for the life of the process; it ends with it.
-    std::thread::Builder::new()
-        .name("dicesim-input".to_string())
-        .spawn(move || {
-            while let Ok(ev) = event::read() {
-                if tx.send(Msg::Input(ev)).is_err() {
-                    break;
-                }
-            }
-        })?;
+    // The input threads block reading the terminal for the life of the process.
+    super::tty::spawn(move |ev| tx.send(Msg::Input(ev)).is_ok()).wrap_err("cannot read the terminal")?;
     let mut drawn: VecDeque<Instant> = VecDeque::new();
     'frames: loop {
         {

@@ -1,15 +1,17 @@
 //! Screens and panels from deterministic states: a fixed preset, exact step counts, keys
 //! fed through `update` into the worker's engine, no thread and no clock.
 
-use super::app::{App, Msg, update};
+use super::app::{App, Msg};
 use super::die::render_die;
+use super::energy::render_energy;
 use super::footer::render_footer;
 use super::header::render_header;
+use super::input::update;
 use super::layout::screen_layout;
+use super::outcomes::render_outcomes;
 use super::param::{Param, all};
-use super::render::{
-    STABILITY_CAUTION, STABILITY_DANGER, render, render_energy, render_outcomes, render_params,
-};
+use super::params_panel::{STABILITY_CAUTION, STABILITY_DANGER, render_params};
+use super::render::render;
 use super::theme::Theme;
 use crate::physics::Status;
 use crate::physics::stability::CONTACT_MODE_LIMIT;
@@ -255,7 +257,7 @@ fn editing_a_value() {
     s.key(KeyCode::Char('9'));
     s.key(KeyCode::Enter);
     assert!(
-        s.app.editing.as_ref().is_some_and(|e| e.error.is_some()),
+        s.app.value_editor().is_some_and(|e| e.error.is_some()),
         "9 is outside 0…5"
     );
     assert_eq!(
@@ -306,7 +308,7 @@ fn each_panel() {
 #[test]
 fn energy_log_scale_and_ascii_die() {
     let mut s = mid_impact();
-    s.key(KeyCode::Char('y'));
+    s.key(KeyCode::Char('p'));
     s.key(KeyCode::Char('m'));
     assert!(s.app.log_scale);
     let areas = screen_layout(Rect::new(0, 0, 120, 36)).expect("full size");
@@ -657,21 +659,30 @@ mod keys {
             .position(|&p| p == Param::named("initial.height"))
             .expect("listed");
         press(&mut a, KeyCode::Enter);
-        assert!(a.editing.is_some());
+        assert!(a.value_editor().is_some());
         for c in "2x5q".chars() {
-            // Letters other than an exponent are not part of a number, and q does not quit here.
+            // Every printable character is text here: q does not quit, x is typed.
             press(&mut a, KeyCode::Char(c));
         }
         assert!(!a.quit);
-        assert_eq!(a.editing.as_ref().map(|e| e.text.as_str()), Some("25"));
-        for c in "e9".chars() {
+        assert_eq!(a.value_editor().map(|e| e.text.as_str()), Some("2x5q"));
+        assert!(press(&mut a, KeyCode::Enter).is_empty());
+        assert!(a.value_editor().is_some_and(|e| {
+            e.error
+                .as_deref()
+                .is_some_and(|m| m.contains("`2x5q` is not a number"))
+        }));
+        for _ in 0..3 {
+            press(&mut a, KeyCode::Backspace);
+        }
+        for c in "5e9".chars() {
             press(&mut a, KeyCode::Char(c));
         }
         assert!(
             press(&mut a, KeyCode::Enter).is_empty(),
             "25e9 cm is out of range"
         );
-        assert!(a.editing.as_ref().is_some_and(|e| {
+        assert!(a.value_editor().is_some_and(|e| {
             e.error
                 .as_deref()
                 .is_some_and(|m| m.contains("outside 0…1000 cm"))
@@ -682,12 +693,12 @@ mod keys {
             press(&mut a, KeyCode::Enter),
             [Command::SetParam(Param::named("initial.height").scan_key(), 25.0)]
         );
-        assert!(a.editing.is_none());
+        assert!(a.value_editor().is_none());
         press(&mut a, KeyCode::Enter);
         press(&mut a, KeyCode::Char('7'));
         assert!(press(&mut a, KeyCode::Esc).is_empty());
         assert!(
-            a.editing.is_none() && !a.quit,
+            a.value_editor().is_none() && !a.quit,
             "Esc leaves the editor, not the program"
         );
         assert_eq!(a.initial.height, 25.0);
@@ -716,31 +727,31 @@ mod keys {
     fn help_opens_scrolls_and_closes_without_quitting() {
         let mut a = app();
         press(&mut a, KeyCode::Char('?'));
-        assert!(a.help);
+        assert!(a.help_scroll().is_some());
         assert!(
             press(&mut a, KeyCode::Char(' ')).is_empty(),
             "keys do not reach the die under the help"
         );
         press(&mut a, KeyCode::Down);
-        assert_eq!(a.help_scroll, 1);
+        assert_eq!(a.help_scroll(), Some(1));
         press(&mut a, KeyCode::Esc);
-        assert!(!a.help && !a.quit);
+        assert!(a.help_scroll().is_none() && !a.quit);
         press(&mut a, KeyCode::Char('?'));
-        assert_eq!(a.help_scroll, 0);
+        assert_eq!(a.help_scroll(), Some(0));
         press(&mut a, KeyCode::Char('?'));
-        assert!(!a.help);
+        assert!(a.help_scroll().is_none());
     }
 
     #[test]
     fn view_keys_change_only_the_view() {
         let mut a = app();
         let camera = a.camera;
-        for c in ['a', 'W', 'z', 'y', 'm'] {
+        for c in ['a', 'W', 'z', 'p', 'm'] {
             assert!(press(&mut a, KeyCode::Char(c)).is_empty());
         }
         assert!(a.camera.yaw_deg != camera.yaw_deg && a.camera.pitch_deg > camera.pitch_deg);
         assert!(a.camera.zoom > camera.zoom && a.log_scale);
-        press(&mut a, KeyCode::Char('0'));
+        press(&mut a, KeyCode::Char('C'));
         assert_eq!(a.camera, camera);
     }
 
@@ -897,7 +908,9 @@ mod sizes {
             app.camera.zoom_by(zoom);
             app.selected = selected;
             app.log_scale = log;
-            app.help_scroll = help_scroll;
+            if app.help_scroll().is_some() {
+                app.overlay = Some(super::super::app::Overlay::Help { scroll: help_scroll });
+            }
             app.drawing = if ascii { super::super::app::Drawing::Ascii } else { super::super::app::Drawing::Braille };
             app.screen = Rect::new(0, 0, width, height);
             draw_into(&app, width, height);

@@ -1,29 +1,25 @@
 //! The chaos twin in the explorer (`T`): a ghost die rolled from a start a relative ε away,
 //! the separation of the two on a log scale, and both outcomes. The worker steps both.
 
-use super::app::{App, Editor, Typed};
+use super::app::{App, Editor, Overlay, Typed, VALUE_CHARS};
 use super::format::fmt_num;
+use super::keys::{Action, Input};
 use crate::experiment::twin::EPSILON;
 use crate::physics::Status;
 use crate::worker::{Command, Phase};
 use ratatui::Frame;
-use ratatui::crossterm::event::{KeyCode, KeyEvent};
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph};
 
-/// The ε a twin starts with: small enough to look like "the same throw", large enough that
-/// on the paper's setup the face often changes.
-pub(crate) const DEFAULT_EPSILON: f64 = 1e-9;
-
 /// What ε does, in the words shown on screen.
 pub(crate) const DEFINITION: &str = "twin: height, velocity and spin × (1 + ε)";
 
-/// The twin's keys; returns whether `key` was one of them.
-pub(crate) fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) -> bool {
-    match key.code {
-        KeyCode::Char('T') => {
+/// The twin's keys; returns whether `action` did anything (the ε keys need the twin on).
+pub(crate) fn on_key(app: &mut App, action: Action, out: &mut Vec<Command>) -> bool {
+    match action {
+        Action::Twin => {
             app.twin = !app.twin;
             let c = Command::SetTwin(app.twin.then_some(app.epsilon));
             app.send(out, c);
@@ -31,9 +27,9 @@ pub(crate) fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) -> bo
                 app.notice = Some(format!("{DEFINITION}, ε = {}", fmt_num(app.epsilon)));
             }
         }
-        KeyCode::Char('<') if app.twin => set_epsilon(app, out, app.epsilon / 10.0),
-        KeyCode::Char('>') if app.twin => set_epsilon(app, out, app.epsilon * 10.0),
-        KeyCode::Char('E') if app.twin => app.epsilon_editor = Some(Editor::default()),
+        Action::TwinEpsilonDown if app.twin => set_epsilon(app, out, app.epsilon / 10.0),
+        Action::TwinEpsilonUp if app.twin => set_epsilon(app, out, app.epsilon * 10.0),
+        Action::TwinEpsilonType if app.twin => app.overlay = Some(Overlay::Epsilon(Editor::default())),
         _ => return false,
     }
     true
@@ -52,16 +48,16 @@ fn set_epsilon(app: &mut App, out: &mut Vec<Command>, epsilon: f64) {
 }
 
 /// Typing ε (after `E`): digits, `e`, `-`, `.`; Enter applies, Esc cancels.
-pub(crate) fn on_editor_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
-    let Some(editor) = app.epsilon_editor.as_mut() else {
+pub(crate) fn on_editor_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
+    let Some(Overlay::Epsilon(editor)) = app.overlay.as_mut() else {
         return;
     };
-    match editor.key(key.code) {
-        Typed::Cancelled => app.epsilon_editor = None,
+    match editor.input(input, VALUE_CHARS) {
+        Typed::Cancelled => app.overlay = None,
         Typed::Editing => {}
         Typed::Submitted(number) => match number {
             Ok(v) if EPSILON.check(v).is_ok() => {
-                app.epsilon_editor = None;
+                app.overlay = None;
                 app.epsilon = v;
                 app.send(out, Command::SetTwin(Some(v)));
             }
@@ -118,7 +114,7 @@ pub(crate) fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
         Constraint::Min(0),
         Constraint::Length(1),
     ]));
-    let definition_text = match &app.epsilon_editor {
+    let definition_text = match app.epsilon_editor() {
         Some(editor) => match &editor.error {
             Some(e) => Line::styled(e.clone(), t.danger()),
             None => Line::from(vec![

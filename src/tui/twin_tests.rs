@@ -2,8 +2,9 @@
 //! here by the experiment itself (fewer throws than the worker's, the same code), handed to
 //! the app as the worker hands them, at both sizes and in every theme.
 
-use super::app::{App, Drawing, Msg, update};
+use super::app::{App, Drawing, Msg};
 use super::curve::at_epsilon;
+use super::input::update;
 use super::layout::screen_layout;
 use super::tests::{Scene, start};
 use super::theme::{Palette, Theme};

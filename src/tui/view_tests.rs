@@ -4,8 +4,10 @@
 use super::app::{App, Drawing};
 use super::camera::{Camera, inside};
 use super::die::{View, picture, place_labels, render_die};
+use super::energy::{nice_ticks, render_energy};
 use super::layout::screen_layout;
-use super::render::{RELIABLE_ROLLS, nice_ticks, render, render_energy, render_outcomes};
+use super::outcomes::{RELIABLE_ROLLS, render_outcomes};
+use super::render::render;
 use super::tests::{Scene, mid_impact_with, spun_preset};
 use super::theme::{Palette, Theme};
 use crate::worker::Phase;
@@ -399,7 +401,7 @@ fn each_face_shows_its_95_percent_interval_in_figures_and_on_its_bar() {
         assert!(row.contains(&figures), "face {} wants {figures}:\n{row}", f + 1);
     }
     // Where the interval covers 1/6 the fair mark sits inside the shading.
-    let wide = |k: u64| super::render::share_bar(k as f64 / n as f64, Some(wilson(k, n)), 29);
+    let wide = |k: u64| super::outcomes::share_bar(k as f64 / n as f64, Some(wilson(k, n)), 29);
     let (low, fair, high) = (wide(350), wide(480), wide(700));
     assert!(
         fair.contains('┼') && !fair.contains('┃') && !fair.contains('┆'),

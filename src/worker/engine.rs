@@ -7,7 +7,8 @@ use super::map::{MapJob, MapOrder};
 use super::timeline::{Keyframe, Timeline};
 use super::twin::Twin;
 use super::{
-    BatchProgress, Command, DieState, EnergySample, OutcomeTable, Phase, RollKind, Snapshot, TimelineSnapshot,
+    BatchProgress, Command, DieState, EnergySample, Notice, OutcomeTable, Phase, RollKind, Snapshot,
+    TimelineSnapshot,
 };
 use crate::experiment::registry::Role;
 use crate::experiment::trace::{ExportFiles, ExportProgress, Exported, export_roll, human_bytes};
@@ -81,7 +82,7 @@ struct Pending {
     /// s: samples after this time belong to a future that changed (a table value mid-roll).
     history_cut: Option<f64>,
     table_changed: bool,
-    notice: Option<String>,
+    notice: Option<Notice>,
     /// A preset was loaded (or the engine just started): the UI gets it whole.
     preset: Option<Box<Preset>>,
 }
@@ -253,7 +254,7 @@ impl Engine {
                 self.playing = false;
                 self.pacing_epoch += 1;
                 if self.roll_over() {
-                    self.pending.notice = Some("the roll has ended: r replays it".to_string());
+                    self.pending.notice = Some(Notice::RollEnded);
                 } else {
                     self.advance_steps(n);
                 }
@@ -301,8 +302,10 @@ impl Engine {
             Command::BatchCancel => {
                 self.batch_request = None;
                 if let Some(b) = self.batch.take() {
-                    self.pending.notice =
-                        Some(format!("batch cancelled after {} of {} rolls", b.done, b.total));
+                    self.pending.notice = Some(Notice::Said(format!(
+                        "batch cancelled after {} of {} rolls",
+                        b.done, b.total
+                    )));
                 }
             }
             Command::ClearTable => {
@@ -319,7 +322,7 @@ impl Engine {
             Command::MapCancel => self.map_order = Some(MapOrder::Cancel),
             Command::PlaySetup(params, initial) => {
                 if let Err(e) = params.validate().and_then(|_| initial.validate()) {
-                    self.pending.notice = Some(e.to_string());
+                    self.pending.notice = Some(Notice::Said(e.to_string()));
                 } else {
                     (self.params, self.initial) = (params, initial);
                     self.restart(RollKind::Edited);
@@ -334,14 +337,15 @@ impl Engine {
                     self.restart(self.roll);
                     self.playing = true;
                 }
-                Err(e) => self.pending.notice = Some(e.to_string()),
+                Err(e) => self.pending.notice = Some(Notice::Said(e.to_string())),
             },
             Command::LoadPreset(preset) => self.load_preset(*preset),
             Command::Export { dir, log_scale } => self.export(&dir, log_scale),
             Command::ExportCancel => {
                 self.export_request = None;
                 if self.export.take().is_some() {
-                    self.pending.notice = Some("export cancelled: nothing was written".to_string());
+                    self.pending.notice =
+                        Some(Notice::Said("export cancelled: nothing was written".to_string()));
                 }
             }
             Command::Quit => return false,
@@ -353,7 +357,7 @@ impl Engine {
     /// counts belonged to another setup); a running batch is cancelled.
     fn load_preset(&mut self, preset: Preset) {
         if let Err(e) = preset.validate() {
-            self.pending.notice = Some(format!("{}: {e}", preset.name));
+            self.pending.notice = Some(Notice::Said(format!("{}: {e}", preset.name)));
             return;
         }
         self.batch_request = None;
@@ -368,7 +372,7 @@ impl Engine {
         self.playing = false;
         self.apply_view(&preset);
         self.restart(RollKind::Preset);
-        self.pending.notice = Some(format!("loaded {}", preset.name));
+        self.pending.notice = Some(Notice::Said(format!("loaded {}", preset.name)));
         self.pending.preset = Some(Box::new(preset.clone()));
         self.preset = preset;
     }
@@ -377,7 +381,7 @@ impl Engine {
     /// files are chosen and checked here, the writing happens on the export thread.
     fn export(&mut self, dir: &std::path::Path, log_scale: bool) {
         if self.export.is_some() {
-            self.pending.notice = Some("an export is running: e cancels it".to_string());
+            self.pending.notice = Some(Notice::ExportRunning);
             return;
         }
         let roll = match self.roll {
@@ -406,7 +410,7 @@ impl Engine {
         let (trace, plot) = match checked {
             Ok(files) => files,
             Err(e) => {
-                self.pending.notice = Some(format!("cannot export the roll: {e}"));
+                self.pending.notice = Some(Notice::Said(format!("cannot export the roll: {e}")));
                 return;
             }
         };
@@ -459,7 +463,7 @@ impl Engine {
             return;
         }
         self.export = None;
-        self.pending.notice = Some(match result {
+        self.pending.notice = Some(Notice::Said(match result {
             Ok(done) => format!(
                 "exported {} ({}, {} rows) and .png",
                 done.trace.display(),
@@ -468,7 +472,7 @@ impl Engine {
             ),
             Err(crate::experiment::Error::Cancelled) => "export cancelled: nothing was written".to_string(),
             Err(e) => e.to_string(),
-        });
+        }));
     }
 
     /// Runs the requested export on this thread to its end (tests).
@@ -498,14 +502,14 @@ impl Engine {
     fn set_param(&mut self, key: &ScanKey, value: f64) {
         let (mut params, mut initial) = (self.params, self.initial);
         if let Err(e) = key.set_checked(&mut params, &mut initial, value) {
-            self.pending.notice = Some(e.to_string());
+            self.pending.notice = Some(Notice::Said(e.to_string()));
             return;
         }
         self.params = params;
         self.initial = initial;
         if key.spec.acts_mid_roll && self.sim.outcome().is_none() {
             if let Err(e) = self.sim.set_ground(params.ground) {
-                self.pending.notice = Some(e.to_string());
+                self.pending.notice = Some(Notice::Said(e.to_string()));
             }
             // The twin feels the same table, so only ε tells the two apart.
             if let Some(twin) = &mut self.twin {
@@ -737,10 +741,10 @@ impl Engine {
         // The table goes with the news, even when its last rolls came a tick earlier: a
         // snapshot that ends the batch always shows the table it ended with.
         self.pending.table_changed = true;
-        self.pending.notice = Some(match result {
+        self.pending.notice = Some(Notice::Said(match result {
             Ok(()) => format!("batch of {} rolls done", b.total),
             Err(e) => format!("batch stopped: {e}"),
-        });
+        }));
     }
 
     /// Runs the requested batch on this thread to its end (tests and anything else that
@@ -810,7 +814,7 @@ impl Engine {
             roll: self.roll,
             playing: self.playing,
             speed: self.speed,
-            die: die_state(&self.sim, self.start_face),
+            die: DieState::of(&self.sim, self.start_face),
             energy: self.sim.energy(),
             ledger: self.sim.energy_ledger(),
             stop_threshold: self.sim.stop_threshold(),
@@ -844,20 +848,5 @@ impl Engine {
                 None => None,
             },
         }
-    }
-}
-
-/// The die as drawn, from a simulation's current state.
-pub(crate) fn die_state(sim: &Simulation, start_face: u8) -> DieState {
-    let s = sim.state();
-    DieState {
-        corners: sim.corner_positions(),
-        forces: sim.contact_forces(),
-        centre: s.position,
-        velocity: s.velocity,
-        angular_velocity: sim.angular_velocity(),
-        angular_momentum: s.angular_momentum,
-        face_up: sim.face_up(),
-        start_face,
     }
 }

@@ -165,6 +165,23 @@ pub struct DieState {
     pub(crate) start_face: u8,
 }
 
+impl DieState {
+    /// The die as drawn, from a simulation's current state (the live die's or the twin's).
+    pub(crate) fn of(sim: &crate::physics::Simulation, start_face: u8) -> DieState {
+        let s = sim.state();
+        DieState {
+            corners: sim.corner_positions(),
+            forces: sim.contact_forces(),
+            centre: s.position,
+            velocity: s.velocity,
+            angular_velocity: sim.angular_velocity(),
+            angular_momentum: s.angular_momentum,
+            face_up: sim.face_up(),
+            start_face,
+        }
+    }
+}
+
 /// Where the roll on screen is on its timeline, and what is known of it.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct TimelineSnapshot {
@@ -219,6 +236,28 @@ impl OutcomeTable {
     }
 }
 
+/// What the worker has to tell the user. The explorer words it: the worker knows no keys,
+/// so a notice that would point at one is a variant of its own.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Notice {
+    /// A step forward was asked for at the end of a finished roll (replaying moves it).
+    RollEnded,
+    /// An export was asked for while one runs (asking again would cancel it).
+    ExportRunning,
+    /// Anything else, in words that name no key (a refused value, a finished batch).
+    Said(String),
+}
+
+impl Notice {
+    /// The words, for notices that need no key to say them.
+    pub fn said(&self) -> Option<&str> {
+        match self {
+            Notice::Said(words) => Some(words),
+            _ => None,
+        }
+    }
+}
+
 /// The worker's report after each batch of commands and each tick.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Snapshot {
@@ -251,7 +290,7 @@ pub struct Snapshot {
     /// The whole table, when it changed.
     pub table: Option<OutcomeTable>,
     /// A one-line message for the user (a refused value, a finished batch).
-    pub notice: Option<String>,
+    pub notice: Option<Notice>,
     /// The chaos twin, stepped in lock-step with the die.
     pub twin: Option<TwinSnapshot>,
     /// The preset loaded, in the first snapshot and whenever another is loaded.

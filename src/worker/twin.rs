@@ -1,8 +1,7 @@
 //! The engine's chaos twin: a second simulation from the ε-perturbed start, stepped in
 //! lock-step with the die, and the separation samples the plot shows.
 
-use super::engine::die_state;
-use super::{Phase, SeparationSample, TwinSnapshot};
+use super::{DieState, Phase, SeparationSample, TwinSnapshot};
 use crate::experiment::twin::{EPSILON, perturbed, separation};
 use crate::physics::{InitialCondition, ParamError, Params, Simulation, face_most_nearly_up};
 
@@ -63,7 +62,7 @@ impl Twin {
     pub(crate) fn snapshot(&mut self, die: &Simulation) -> TwinSnapshot {
         TwinSnapshot {
             epsilon: self.epsilon,
-            die: die_state(&self.sim, self.start_face),
+            die: DieState::of(&self.sim, self.start_face),
             phase: match self.sim.outcome() {
                 Some(o) => Phase::Ended(o),
                 None => Phase::Rolling,
