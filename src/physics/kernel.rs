@@ -371,7 +371,10 @@ impl<L: Lane> Kernel<L> {
     /// "One time step").
     #[inline(always)]
     pub(crate) fn step(&mut self, hook: &mut impl StepHook<L>) {
-        let c = self.c;
+        // The constants this stage reads, copied out one by one: a copy of them all costs a
+        // memcpy call per step.
+        let c = &self.c;
+        let (dt, mass, weight_z, flight_kick, loaded) = (c.dt, c.mass, c.weight_z, c.flight_kick, c.loaded);
         let contact_bits = L::bits(self.in_contact);
         let touching = self.touching_corners;
         hook.before_kick(self);
@@ -391,14 +394,14 @@ impl<L: Lane> Kernel<L> {
             // A lane in flight among them gets its flight constant this way too: its
             // forces are +0.0, so these are the very quotients the constant holds.
             let v = &mut s.velocity;
-            v.x = v.x + (force.x / c.mass) * c.dt;
-            v.y = v.y + (force.y / c.mass) * c.dt;
-            v.z = v.z + ((force.z + c.weight_z) / c.mass) * c.dt;
+            v.x = v.x + (force.x / mass) * dt;
+            v.y = v.y + (force.y / mass) * dt;
+            v.z = v.z + ((force.z + weight_z) / mass) * dt;
         } else {
-            s.velocity = add3(&s.velocity, &c.flight_kick);
+            s.velocity = add3(&s.velocity, &flight_kick);
         }
         // 2. drift with the new velocity (semi-implicit Euler).
-        s.position = add3(&s.position, &scale3(&s.velocity, c.dt));
+        s.position = add3(&s.position, &scale3(&s.velocity, dt));
         // 3. angular momentum from the torque of the forces at the old corner offsets. The
         // sum starts from +0.0, so a skipped corner's ±0.0 term changes nothing (the
         // offsets are finite: a roll ends as soon as they are not).
@@ -407,7 +410,7 @@ impl<L: Lane> Kernel<L> {
             for k in (0..8).filter(|k| touching & (1 << k) != 0) {
                 torque = add3(&torque, &cross3(&s.corner_offsets[k], &s.corner_forces[k]));
             }
-            let l_new = add3(&s.angular_momentum, &scale3(&torque, c.dt));
+            let l_new = add3(&s.angular_momentum, &scale3(&torque, dt));
             s.angular_momentum = if contact_bits == all_lanes::<L>() {
                 l_new
             } else {
@@ -416,7 +419,7 @@ impl<L: Lane> Kernel<L> {
         }
         // 4. ω = I⁻¹·L and the rotation it implies, where L changed, and for a loaded die
         // every step: its inertia turns with it, so ω changes in flight too.
-        let spinning = contact_bits | L::bits(c.loaded);
+        let spinning = contact_bits | L::bits(loaded);
         if spinning != 0 {
             self.respin(spinning);
         }
@@ -445,7 +448,7 @@ impl<L: Lane> Kernel<L> {
         // 6. forces at the new state.
         self.update_forces();
         // 7. the clock.
-        self.state.time_s = self.state.time_s + c.dt;
+        self.state.time_s = self.state.time_s + dt;
         self.state.step = L::count_up(self.state.step);
     }
 
@@ -543,7 +546,10 @@ impl<L: Lane> Kernel<L> {
     /// under each lane's friction law.
     #[inline(always)]
     pub(crate) fn update_forces(&mut self) {
-        let c = self.c;
+        // Copied out one by one, as in `step`.
+        let c = &self.c;
+        let (stiffness, damping, friction, whole_die_norm) =
+            (c.stiffness, c.damping, c.friction, c.whole_die_norm);
         let z0 = self.state.position.z;
         let zero = L::zero();
         let mut touching = [L::mask_from_bits(0); 8];
@@ -560,7 +566,7 @@ impl<L: Lane> Kernel<L> {
             return;
         }
         self.in_contact = any;
-        let laws = L::bits(c.whole_die_norm);
+        let laws = L::bits(whole_die_norm);
         let per_corner_lanes = laws != all_lanes::<L>();
         let whole_lanes = laws != 0;
         let mut touching_corners = 0u8;
@@ -593,21 +599,21 @@ impl<L: Lane> Kernel<L> {
         let norm_nonzero = norm.ne(zero);
         for k in (0..8).filter(|k| touching_corners & (1 << k) != 0) {
             let uk = self.corner_velocity(&self.state.corner_offsets[k]);
-            let normal = self.state.corner_depths[k] * c.stiffness;
-            let vertical = normal * (L::splat(1.0) - c.damping * uk.z);
+            let normal = self.state.corner_depths[k] * stiffness;
+            let vertical = normal * (L::splat(1.0) - damping * uk.z);
             let (mut fx, mut fy) = (zero, zero);
             if per_corner_lanes {
                 let slip = (uk.x * uk.x + uk.y * uk.y).sqrt();
                 let sliding = slip.gt(zero);
-                let scale = -(c.friction * vertical.abs());
+                let scale = -(friction * vertical.abs());
                 fx = (scale * (uk.x / slip)).or_zero(sliding);
                 fy = (scale * (uk.y / slip)).or_zero(sliding);
             }
             if whole_lanes {
-                let wx = (-((uk.x / norm) * vertical) * c.friction).or_zero(norm_nonzero);
-                let wy = (-((uk.y / norm) * vertical) * c.friction).or_zero(norm_nonzero);
-                fx = L::select(c.whole_die_norm, wx, fx);
-                fy = L::select(c.whole_die_norm, wy, fy);
+                let wx = (-((uk.x / norm) * vertical) * friction).or_zero(norm_nonzero);
+                let wy = (-((uk.y / norm) * vertical) * friction).or_zero(norm_nonzero);
+                fx = L::select(whole_die_norm, wx, fx);
+                fy = L::select(whole_die_norm, wy, fy);
             }
             self.state.corner_forces[k] = v3(
                 fx.or_zero(touching[k]),
