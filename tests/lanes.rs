@@ -6,9 +6,9 @@
 //! for any time limit, and the cut keeps the test fast: flight, impacts and the first
 //! bounces, each ending as a timeout unless it settled or blew up first), 5 000 more rolled
 //! to their natural end, and every reference initial condition. The same for three loaded
-//! dice (their full inertia tensor and per-face stopping rule), 10 000 cut rolls and 500
+//! dice (their full inertia tensor and per-face stopping rule), 25 000 cut rolls and 500
 //! whole ones each per law and stop energy (a loaded die's step rebuilds its tensor and spin
-//! every step, in flight too, so it costs about three fair steps). Then a
+//! every step, in flight too, so it costs about two fair steps). Then a
 //! mixed sample where neighbouring lanes carry different parameters, laws, stop energies and
 //! dice, with soft, stiff, damped and coarse-Δt setups that end in every status.
 
@@ -119,7 +119,7 @@ fn assert_identical(what: &str, setups: &[(Params, InitialCondition)]) -> [usize
 const CUT_ROLLS: u64 = 100_000;
 const CUT_TIME_S: f64 = 0.6;
 const WHOLE_ROLLS: u64 = 5_000;
-const LOADED_CUT_ROLLS: u64 = 10_000;
+const LOADED_CUT_ROLLS: u64 = 25_000;
 const LOADED_WHOLE_ROLLS: u64 = 500;
 
 /// g of extra mass at corners 1..8: one heavy corner, two unequal corners, every corner a

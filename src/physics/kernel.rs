@@ -16,169 +16,12 @@
 
 use super::body::body_corner_offsets;
 use super::initial::{InitialCondition, limits};
-use super::mass::LoadedMass;
+pub use super::lane::Lane;
+use super::mass::{InertiaTensor, LoadedMass};
 use super::params::{FrictionLaw, Limits, ParamError, Params, StopEnergy};
 use super::spin::spin;
 use super::stopping::StopRule;
-use nalgebra::{Matrix3, Scalar, Vector3};
-use std::fmt::Debug;
-use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
-
-/// A floating-point lane type: `f64` (one roll) or a vector of several rolls. Every
-/// arithmetic operation acts on each lane alone and rounds exactly as the `f64` one does.
-pub trait Lane:
-    Scalar
-    + Copy
-    + Add<Output = Self>
-    + Sub<Output = Self>
-    + Mul<Output = Self>
-    + Div<Output = Self>
-    + Neg<Output = Self>
-{
-    /// Per-lane truth values.
-    type Mask: Copy + BitAnd<Output = Self::Mask> + BitOr<Output = Self::Mask> + Not<Output = Self::Mask>;
-    /// Steps taken, per lane.
-    type Count: Copy + Debug + PartialEq;
-    /// One `T` per lane.
-    type PerLane<T: Copy>: Copy + AsRef<[T]> + AsMut<[T]>;
-    /// The number of lanes.
-    const WIDTH: usize;
-
-    fn splat(x: f64) -> Self;
-    fn sqrt(self) -> Self;
-    /// Clears the sign bit, as `f64::abs`.
-    fn abs(self) -> Self;
-    /// `<`, `<=`, `>`, `!=` per lane (false with a NaN, except `!=`).
-    fn lt(self, other: Self) -> Self::Mask;
-    fn le(self, other: Self) -> Self::Mask;
-    fn gt(self, other: Self) -> Self::Mask;
-    fn ne(self, other: Self) -> Self::Mask;
-    /// Neither infinite nor NaN.
-    fn finite(self) -> Self::Mask;
-    /// Whether the position, the velocity and every corner offset are finite, per lane: the
-    /// end-of-step test asks it of these 30 values every step, so each width answers it its
-    /// fastest exact way.
-    fn all_finite(
-        position: &Vector3<Self>,
-        velocity: &Vector3<Self>,
-        offsets: &[Vector3<Self>; 8],
-    ) -> Self::Mask;
-    /// `if mask { yes } else { no }` per lane.
-    fn select(mask: Self::Mask, yes: Self, no: Self) -> Self;
-    /// `if mask { self } else { +0.0 }` per lane.
-    fn or_zero(self, mask: Self::Mask) -> Self;
-    /// Bit `l` set where lane `l` of `mask` is.
-    fn bits(mask: Self::Mask) -> u32;
-    fn mask_from_bits(bits: u32) -> Self::Mask;
-    fn to_lanes(self) -> Self::PerLane<f64>;
-    fn from_lanes(lanes: Self::PerLane<f64>) -> Self;
-    fn per_lane<T: Copy>(f: impl FnMut(usize) -> T) -> Self::PerLane<T>;
-    fn count_up(count: Self::Count) -> Self::Count;
-    fn count_reached(count: Self::Count, limit: Self::Count) -> Self::Mask;
-
-    #[inline(always)]
-    fn zero() -> Self {
-        Self::splat(0.0)
-    }
-    #[inline(always)]
-    fn lane(self, l: usize) -> f64 {
-        self.to_lanes().as_ref()[l]
-    }
-}
-
-impl Lane for f64 {
-    type Mask = bool;
-    type Count = u64;
-    type PerLane<T: Copy> = [T; 1];
-    const WIDTH: usize = 1;
-
-    #[inline(always)]
-    fn splat(x: f64) -> f64 {
-        x
-    }
-    #[inline(always)]
-    fn sqrt(self) -> f64 {
-        f64::sqrt(self)
-    }
-    #[inline(always)]
-    fn abs(self) -> f64 {
-        f64::abs(self)
-    }
-    #[inline(always)]
-    fn lt(self, other: f64) -> bool {
-        self < other
-    }
-    #[inline(always)]
-    fn le(self, other: f64) -> bool {
-        self <= other
-    }
-    #[inline(always)]
-    fn gt(self, other: f64) -> bool {
-        self > other
-    }
-    #[inline(always)]
-    fn ne(self, other: f64) -> bool {
-        self != other
-    }
-    #[inline(always)]
-    fn finite(self) -> bool {
-        self.is_finite()
-    }
-    /// A value is not finite exactly when its 11 exponent bits are all set; adding one at
-    /// the exponent's lowest bit then carries into the sign bit. OR-ing that over the values
-    /// needs no branch per value, and integer ORs may be regrouped, so the compiler
-    /// vectorises it.
-    #[inline(always)]
-    fn all_finite(position: &Vector3<f64>, velocity: &Vector3<f64>, offsets: &[Vector3<f64>; 8]) -> bool {
-        const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
-        const EXPONENT_ONE: u64 = 1 << 52;
-        let flags = |v: &Vector3<f64>| {
-            let flag = |x: f64| (x.to_bits() & EXPONENT) + EXPONENT_ONE;
-            flag(v.x) | flag(v.y) | flag(v.z)
-        };
-        let mut any = flags(position) | flags(velocity);
-        for r in offsets {
-            any |= flags(r);
-        }
-        any >> 63 == 0
-    }
-    #[inline(always)]
-    fn select(mask: bool, yes: f64, no: f64) -> f64 {
-        if mask { yes } else { no }
-    }
-    #[inline(always)]
-    fn or_zero(self, mask: bool) -> f64 {
-        if mask { self } else { 0.0 }
-    }
-    #[inline(always)]
-    fn bits(mask: bool) -> u32 {
-        mask as u32
-    }
-    #[inline(always)]
-    fn mask_from_bits(bits: u32) -> bool {
-        bits & 1 != 0
-    }
-    #[inline(always)]
-    fn to_lanes(self) -> [f64; 1] {
-        [self]
-    }
-    #[inline(always)]
-    fn from_lanes(lanes: [f64; 1]) -> f64 {
-        lanes[0]
-    }
-    #[inline(always)]
-    fn per_lane<T: Copy>(mut f: impl FnMut(usize) -> T) -> [T; 1] {
-        [f(0)]
-    }
-    #[inline(always)]
-    fn count_up(count: u64) -> u64 {
-        count + 1
-    }
-    #[inline(always)]
-    fn count_reached(count: u64, limit: u64) -> bool {
-        count >= limit
-    }
-}
+use nalgebra::{Matrix3, Vector3};
 
 /// The bits of every lane.
 #[inline(always)]
@@ -282,18 +125,13 @@ pub(crate) struct Body {
 }
 
 impl Body {
-    /// ω = I⁻¹·L and the step rotation (the fair die's isotropic inertia, or a loaded
-    /// die's tensor at the current corner offsets).
+    /// ω and the step rotation from this lane's `spin_input`: the angular momentum of a
+    /// fair die (ω = L/I with its isotropic inertia), or a loaded die's ω = I(t)⁻¹·L,
+    /// which [`Kernel::respin`] computes in every lane at once (dividing it by 1 is exact,
+    /// so `spin` builds the rotation from that ω unchanged).
     #[inline(always)]
-    fn spin(
-        &self,
-        angular_momentum: &Vector3<f64>,
-        corner_offsets: impl FnOnce() -> [Vector3<f64>; 8],
-    ) -> (Vector3<f64>, Option<Matrix3<f64>>) {
-        match &self.loaded {
-            None => spin(angular_momentum, self.inertia, self.dt),
-            Some(m) => m.spin(angular_momentum, &corner_offsets(), self.dt),
-        }
+    fn spin(&self, spin_input: &Vector3<f64>, loaded: bool) -> (Vector3<f64>, Option<Matrix3<f64>>) {
+        spin(spin_input, if loaded { 1.0 } else { self.inertia }, self.dt)
     }
 
     pub(crate) fn loaded(&self) -> Option<&LoadedMass> {
@@ -331,6 +169,12 @@ pub(crate) struct Constants<L: Lane> {
     pub(crate) corner_masses: [L; 8],
     pub(crate) gravity: L,
     pub(crate) loaded_mass_gravity_half_size: L,
+    /// A loaded die's inertia tensor: the uniform cube's isotropic inertia `I_u` (g·cm²),
+    /// its mass `M_u` (g) and the extra mass at each corner (g); a fair die's own values
+    /// (no extra mass) in a fair lane, whose tensor is never used.
+    pub(crate) uniform_inertia: L,
+    pub(crate) uniform_mass: L,
+    pub(crate) extra_masses: [L; 8],
     /// erg, the stopping rule's thresholds; for a loaded die the largest over its faces,
     /// which only screens (the rule of the face down decides).
     pub(crate) energy_threshold: L,
@@ -383,6 +227,9 @@ impl Constants<f64> {
             corner_masses,
             gravity,
             loaded_mass_gravity_half_size: loaded_total * gravity * a,
+            uniform_inertia: p.inertia(),
+            uniform_mass: p.uniform_mass(),
+            extra_masses: p.die.extra_corner_mass,
             energy_threshold: rule.energy_threshold,
             kinetic_threshold: rule.kinetic_threshold,
             runaway: f64::INFINITY,
@@ -524,7 +371,10 @@ impl<L: Lane> Kernel<L> {
     /// "One time step").
     #[inline(always)]
     pub(crate) fn step(&mut self, hook: &mut impl StepHook<L>) {
-        let c = self.c;
+        // The constants this stage reads, copied out one by one: a copy of them all costs a
+        // memcpy call per step.
+        let c = &self.c;
+        let (dt, mass, weight_z, flight_kick, loaded) = (c.dt, c.mass, c.weight_z, c.flight_kick, c.loaded);
         let contact_bits = L::bits(self.in_contact);
         let touching = self.touching_corners;
         hook.before_kick(self);
@@ -544,14 +394,14 @@ impl<L: Lane> Kernel<L> {
             // A lane in flight among them gets its flight constant this way too: its
             // forces are +0.0, so these are the very quotients the constant holds.
             let v = &mut s.velocity;
-            v.x = v.x + (force.x / c.mass) * c.dt;
-            v.y = v.y + (force.y / c.mass) * c.dt;
-            v.z = v.z + ((force.z + c.weight_z) / c.mass) * c.dt;
+            v.x = v.x + (force.x / mass) * dt;
+            v.y = v.y + (force.y / mass) * dt;
+            v.z = v.z + ((force.z + weight_z) / mass) * dt;
         } else {
-            s.velocity = add3(&s.velocity, &c.flight_kick);
+            s.velocity = add3(&s.velocity, &flight_kick);
         }
         // 2. drift with the new velocity (semi-implicit Euler).
-        s.position = add3(&s.position, &scale3(&s.velocity, c.dt));
+        s.position = add3(&s.position, &scale3(&s.velocity, dt));
         // 3. angular momentum from the torque of the forces at the old corner offsets. The
         // sum starts from +0.0, so a skipped corner's ±0.0 term changes nothing (the
         // offsets are finite: a roll ends as soon as they are not).
@@ -560,7 +410,7 @@ impl<L: Lane> Kernel<L> {
             for k in (0..8).filter(|k| touching & (1 << k) != 0) {
                 torque = add3(&torque, &cross3(&s.corner_offsets[k], &s.corner_forces[k]));
             }
-            let l_new = add3(&s.angular_momentum, &scale3(&torque, c.dt));
+            let l_new = add3(&s.angular_momentum, &scale3(&torque, dt));
             s.angular_momentum = if contact_bits == all_lanes::<L>() {
                 l_new
             } else {
@@ -569,7 +419,7 @@ impl<L: Lane> Kernel<L> {
         }
         // 4. ω = I⁻¹·L and the rotation it implies, where L changed, and for a loaded die
         // every step: its inertia turns with it, so ω changes in flight too.
-        let spinning = contact_bits | L::bits(c.loaded);
+        let spinning = contact_bits | L::bits(loaded);
         if spinning != 0 {
             self.respin(spinning);
         }
@@ -598,24 +448,38 @@ impl<L: Lane> Kernel<L> {
         // 6. forces at the new state.
         self.update_forces();
         // 7. the clock.
-        self.state.time_s = self.state.time_s + c.dt;
+        self.state.time_s = self.state.time_s + dt;
         self.state.step = L::count_up(self.state.step);
     }
 
     /// ω and the step rotation rebuilt in the lanes of `lanes`.
     ///
-    /// This stage runs per lane in scalar code: the rotation needs `sin` and `cos`, and only
-    /// libm's scalar calls give the bits the reference data and the scalar engine have (no
-    /// vector sin/cos is correctly rounded, so a vector one would differ in the last bit).
-    /// The lanes are gathered into plain arrays and each vector is loaded once at the end:
-    /// writing one lane at a time into a vector would stall on every write.
+    /// A loaded die's ω = I(t)⁻¹·L (its tensor built from the current corner offsets and
+    /// inverted) is computed in every lane at once. The rest runs per lane in scalar code:
+    /// the rotation needs `sin` and `cos`, and only libm's scalar calls give the bits the
+    /// reference data and the scalar engine have (no vector sin/cos is correctly rounded,
+    /// so a vector one would differ in the last bit). The lanes are gathered into plain
+    /// arrays and each vector is loaded once at the end: writing one lane at a time into a
+    /// vector would stall on every write.
     #[inline(always)]
     pub(crate) fn respin(&mut self, lanes: u32) {
+        let c = &self.c;
+        let loaded = L::bits(c.loaded) & lanes;
+        let spin_input = if loaded == 0 {
+            self.state.angular_momentum
+        } else {
+            let tensor = InertiaTensor::new(
+                c.uniform_inertia,
+                c.uniform_mass,
+                &c.extra_masses,
+                &self.state.corner_offsets,
+            );
+            let w = tensor.angular_velocity(&self.state.angular_momentum);
+            select3(c.loaded, &w, &self.state.angular_momentum)
+        };
         if L::WIDTH == 1 {
             // One lane: ω and the rotation go straight into place, nothing to gather.
-            let l = lane3(&self.state.angular_momentum, 0);
-            let offsets = || self.state.corner_offsets.each_ref().map(|r| lane3(r, 0));
-            let (w, rotation) = self.bodies.as_ref()[0].spin(&l, offsets);
+            let (w, rotation) = self.bodies.as_ref()[0].spin(&lane3(&spin_input, 0), loaded != 0);
             self.angular_velocity = v3(L::splat(w.x), L::splat(w.y), L::splat(w.z));
             if let Some(r) = &rotation {
                 for i in 0..3 {
@@ -630,17 +494,19 @@ impl<L: Lane> Kernel<L> {
         let w = &self.angular_velocity;
         let mut omega = [w.x.to_lanes(), w.y.to_lanes(), w.z.to_lanes()];
         let mut m: [L::PerLane<f64>; 9] = std::array::from_fn(|e| self.rotation[e].to_lanes());
-        let l = &self.state.angular_momentum;
-        let momentum = [l.x.to_lanes(), l.y.to_lanes(), l.z.to_lanes()];
+        let input = [
+            spin_input.x.to_lanes(),
+            spin_input.y.to_lanes(),
+            spin_input.z.to_lanes(),
+        ];
         let mut rotating = L::bits(self.rotating);
         for lane in (0..L::WIDTH).filter(|lane| lanes & (1 << lane) != 0) {
             let l = Vector3::new(
-                momentum[0].as_ref()[lane],
-                momentum[1].as_ref()[lane],
-                momentum[2].as_ref()[lane],
+                input[0].as_ref()[lane],
+                input[1].as_ref()[lane],
+                input[2].as_ref()[lane],
             );
-            let offsets = || self.state.corner_offsets.each_ref().map(|r| lane3(r, lane));
-            let (w, rotation) = self.bodies.as_ref()[lane].spin(&l, offsets);
+            let (w, rotation) = self.bodies.as_ref()[lane].spin(&l, loaded & (1 << lane) != 0);
             for i in 0..3 {
                 omega[i].as_mut()[lane] = w[i];
             }
@@ -680,7 +546,10 @@ impl<L: Lane> Kernel<L> {
     /// under each lane's friction law.
     #[inline(always)]
     pub(crate) fn update_forces(&mut self) {
-        let c = self.c;
+        // Copied out one by one, as in `step`.
+        let c = &self.c;
+        let (stiffness, damping, friction, whole_die_norm) =
+            (c.stiffness, c.damping, c.friction, c.whole_die_norm);
         let z0 = self.state.position.z;
         let zero = L::zero();
         let mut touching = [L::mask_from_bits(0); 8];
@@ -697,7 +566,7 @@ impl<L: Lane> Kernel<L> {
             return;
         }
         self.in_contact = any;
-        let laws = L::bits(c.whole_die_norm);
+        let laws = L::bits(whole_die_norm);
         let per_corner_lanes = laws != all_lanes::<L>();
         let whole_lanes = laws != 0;
         let mut touching_corners = 0u8;
@@ -730,21 +599,21 @@ impl<L: Lane> Kernel<L> {
         let norm_nonzero = norm.ne(zero);
         for k in (0..8).filter(|k| touching_corners & (1 << k) != 0) {
             let uk = self.corner_velocity(&self.state.corner_offsets[k]);
-            let normal = self.state.corner_depths[k] * c.stiffness;
-            let vertical = normal * (L::splat(1.0) - c.damping * uk.z);
+            let normal = self.state.corner_depths[k] * stiffness;
+            let vertical = normal * (L::splat(1.0) - damping * uk.z);
             let (mut fx, mut fy) = (zero, zero);
             if per_corner_lanes {
                 let slip = (uk.x * uk.x + uk.y * uk.y).sqrt();
                 let sliding = slip.gt(zero);
-                let scale = -(c.friction * vertical.abs());
+                let scale = -(friction * vertical.abs());
                 fx = (scale * (uk.x / slip)).or_zero(sliding);
                 fy = (scale * (uk.y / slip)).or_zero(sliding);
             }
             if whole_lanes {
-                let wx = (-((uk.x / norm) * vertical) * c.friction).or_zero(norm_nonzero);
-                let wy = (-((uk.y / norm) * vertical) * c.friction).or_zero(norm_nonzero);
-                fx = L::select(c.whole_die_norm, wx, fx);
-                fy = L::select(c.whole_die_norm, wy, fy);
+                let wx = (-((uk.x / norm) * vertical) * friction).or_zero(norm_nonzero);
+                let wy = (-((uk.y / norm) * vertical) * friction).or_zero(norm_nonzero);
+                fx = L::select(whole_die_norm, wx, fx);
+                fy = L::select(whole_die_norm, wy, fy);
             }
             self.state.corner_forces[k] = v3(
                 fx.or_zero(touching[k]),

@@ -378,6 +378,9 @@ mod avx2 {
                     corner_masses: c.corner_masses.map(F4::splat),
                     gravity: F4::splat(c.gravity),
                     loaded_mass_gravity_half_size: F4::splat(c.loaded_mass_gravity_half_size),
+                    uniform_inertia: F4::splat(c.uniform_inertia),
+                    uniform_mass: F4::splat(c.uniform_mass),
+                    extra_masses: c.extra_masses.map(F4::splat),
                     energy_threshold: F4::splat(c.energy_threshold),
                     kinetic_threshold: F4::splat(c.kinetic_threshold),
                     runaway: F4::splat(c.runaway),
@@ -440,6 +443,11 @@ mod avx2 {
             c.gravity.set_lane(l, f.gravity);
             c.loaded_mass_gravity_half_size
                 .set_lane(l, f.loaded_mass_gravity_half_size);
+            c.uniform_inertia.set_lane(l, f.uniform_inertia);
+            c.uniform_mass.set_lane(l, f.uniform_mass);
+            for corner in 0..8 {
+                c.extra_masses[corner].set_lane(l, f.extra_masses[corner]);
+            }
             c.energy_threshold.set_lane(l, f.energy_threshold);
             c.kinetic_threshold.set_lane(l, f.kinetic_threshold);
             c.runaway.set_lane(l, f.runaway);

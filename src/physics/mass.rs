@@ -9,8 +9,8 @@
 
 use super::body::{CORNER_SIGNS, FACE_NORMALS, body_corner_offsets, face_most_nearly_up, opposite_face};
 use super::initial::InitialCondition;
+use super::lane::Lane;
 use super::params::Params;
-use super::spin::spin;
 use super::stopping::StopRule;
 use nalgebra::{Matrix3, Vector3};
 
@@ -82,36 +82,16 @@ impl LoadedMass {
         }
     }
 
-    /// g·cm², the inertia tensor about the centre of mass, world frame, from the current
-    /// corner offsets `r_k`: the uniform cube's `I_u·E` about its geometric centre `g`
-    /// (the mean of the offsets), moved to the centre of mass by the parallel-axis term
-    /// `M_u·(|g|²·E − g·gᵀ)`, plus each extra mass's `Δm_k·(|r_k|²·E − r_k·r_kᵀ)`.
+    /// g·cm², the inertia tensor about the centre of mass, world frame, at the current
+    /// corner offsets (see [`InertiaTensor::new`]).
     pub(crate) fn inertia(&self, corner_offsets: &[Vector3<f64>; 8]) -> Matrix3<f64> {
-        let point =
-            |m: f64, r: &Vector3<f64>| (Matrix3::identity() * r.norm_squared() - r * r.transpose()) * m;
-        let centre = corner_offsets.iter().sum::<Vector3<f64>>() / 8.0;
-        let mut inertia = Matrix3::identity() * self.uniform_inertia + point(self.uniform_mass, &centre);
-        for (r, &dm) in corner_offsets.iter().zip(&self.extra) {
-            inertia += point(dm, r);
-        }
-        inertia
-    }
-
-    /// `ω = I(t)⁻¹·L` and the step rotation it implies (the fair die's rotation, built by
-    /// the same function from ω).
-    pub(crate) fn spin(
-        &self,
-        angular_momentum: &Vector3<f64>,
-        corner_offsets: &[Vector3<f64>; 8],
-        dt: f64,
-    ) -> (Vector3<f64>, Option<Matrix3<f64>>) {
-        // The tensor is symmetric positive definite (every mass is positive), so it inverts.
-        let inverse = self
-            .inertia(corner_offsets)
-            .try_inverse()
-            .unwrap_or_else(|| Matrix3::from_element(f64::NAN));
-        // Dividing by 1 is exact: `spin` then builds the rotation from this ω unchanged.
-        spin(&(inverse * angular_momentum), 1.0, dt)
+        InertiaTensor::new(
+            self.uniform_inertia,
+            self.uniform_mass,
+            &self.extra,
+            corner_offsets,
+        )
+        .matrix()
     }
 
     /// The stopping rule for the die's current orientation: the one of the face now down.
@@ -143,6 +123,144 @@ impl LoadedMass {
             std::array::from_fn(|k| self.corner_mass + self.extra[k]),
             total_mass,
         )
+    }
+}
+
+/// g·cm², a loaded die's inertia tensor by its upper triangle (it is exactly symmetric:
+/// every term's `(i, j)` entry is built from `r_i·r_j`, which equals `r_j·r_i` bit for bit).
+///
+/// Written once over the lane type: the scalar engine builds and inverts one roll's tensor,
+/// the lane engine four at once. Every operation is the one nalgebra 0.35 performs for the
+/// `Matrix3` expressions this replaced, in the same order and with the same operands, so
+/// both widths keep the bits of the records written before: `Matrix3 · scalar` and
+/// `identity · s` multiply each entry (`0·s` off the diagonal, kept: it is NaN for s = ∞),
+/// `r·rᵀ` has entries `r_i·r_j`, `norm_squared` sums `+0 + ((x² + y²) + z²)`, a sum of
+/// vectors folds from the zero vector.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct InertiaTensor<L> {
+    xx: L,
+    xy: L,
+    xz: L,
+    yy: L,
+    yz: L,
+    zz: L,
+}
+
+impl<L: Lane> InertiaTensor<L> {
+    /// The tensor about the centre of mass from the current corner offsets `r_k`: the
+    /// uniform cube's `I_u·E` (g·cm²) about its geometric centre `g` (the mean of the
+    /// offsets), moved to the centre of mass by the parallel-axis term
+    /// `M_u·(|g|²·E − g·gᵀ)` (`M_u` in g), plus each extra mass's
+    /// `Δm_k·(|r_k|²·E − r_k·r_kᵀ)`.
+    #[inline(always)]
+    pub(crate) fn new(
+        uniform_inertia: L,
+        uniform_mass: L,
+        extra_masses: &[L; 8],
+        corner_offsets: &[Vector3<L>; 8],
+    ) -> Self {
+        let zero = L::zero();
+        let mut sum = [zero; 3];
+        for r in corner_offsets {
+            sum = [sum[0] + r.x, sum[1] + r.y, sum[2] + r.z];
+        }
+        let eight = L::splat(8.0);
+        let centre = Vector3::new(sum[0] / eight, sum[1] / eight, sum[2] / eight);
+        let off = zero * uniform_inertia;
+        let cube = InertiaTensor {
+            xx: uniform_inertia,
+            xy: off,
+            xz: off,
+            yy: uniform_inertia,
+            yz: off,
+            zz: uniform_inertia,
+        };
+        let mut tensor = cube.plus(&Self::point(uniform_mass, &centre));
+        for (r, &dm) in corner_offsets.iter().zip(extra_masses) {
+            tensor = tensor.plus(&Self::point(dm, r));
+        }
+        tensor
+    }
+
+    /// `m·(|r|²·E − r·rᵀ)`.
+    #[inline(always)]
+    fn point(m: L, r: &Vector3<L>) -> Self {
+        let norm_squared = L::zero() + ((r.x * r.x + r.y * r.y) + r.z * r.z);
+        let off = L::zero() * norm_squared;
+        InertiaTensor {
+            xx: (norm_squared - r.x * r.x) * m,
+            xy: (off - r.x * r.y) * m,
+            xz: (off - r.x * r.z) * m,
+            yy: (norm_squared - r.y * r.y) * m,
+            yz: (off - r.y * r.z) * m,
+            zz: (norm_squared - r.z * r.z) * m,
+        }
+    }
+
+    #[inline(always)]
+    fn plus(&self, other: &Self) -> Self {
+        InertiaTensor {
+            xx: self.xx + other.xx,
+            xy: self.xy + other.xy,
+            xz: self.xz + other.xz,
+            yy: self.yy + other.yy,
+            yz: self.yz + other.yz,
+            zz: self.zz + other.zz,
+        }
+    }
+
+    /// rad/s, `ω = I⁻¹·L` for `L` in g·cm²/s: nalgebra's `try_inverse` (the 3×3 cofactor
+    /// formula over the determinant, operation for operation) and its `Matrix3 · Vector3`
+    /// (each entry `(a₀·L₀ + a₁·L₁) + a₂·L₂`). Where the determinant is zero nalgebra
+    /// gives no inverse and ω is NaN, so the roll ends unstable; the tensor is positive
+    /// definite (every mass is positive), so it never happens for a die that is in range.
+    #[inline(always)]
+    pub(crate) fn angular_velocity(&self, l: &Vector3<L>) -> Vector3<L> {
+        let (m11, m12, m13) = (self.xx, self.xy, self.xz);
+        let (m21, m22, m23) = (self.xy, self.yy, self.yz);
+        let (m31, m32, m33) = (self.xz, self.yz, self.zz);
+        let minor_m12_m23 = m22 * m33 - m32 * m23;
+        let minor_m11_m23 = m21 * m33 - m31 * m23;
+        let minor_m11_m22 = m21 * m32 - m31 * m22;
+        let det = m11 * minor_m12_m23 - m12 * minor_m11_m23 + m13 * minor_m11_m22;
+        let inverse = [
+            [
+                minor_m12_m23 / det,
+                (m13 * m32 - m33 * m12) / det,
+                (m12 * m23 - m22 * m13) / det,
+            ],
+            [
+                -minor_m11_m23 / det,
+                (m11 * m33 - m31 * m13) / det,
+                (m13 * m21 - m23 * m11) / det,
+            ],
+            [
+                minor_m11_m22 / det,
+                (m12 * m31 - m32 * m11) / det,
+                (m11 * m22 - m21 * m12) / det,
+            ],
+        ];
+        let row = |a: &[L; 3]| (a[0] * l.x + a[1] * l.y) + a[2] * l.z;
+        let invertible = det.ne(L::zero());
+        let nan = L::splat(f64::NAN);
+        Vector3::new(
+            L::select(invertible, row(&inverse[0]), nan),
+            L::select(invertible, row(&inverse[1]), nan),
+            L::select(invertible, row(&inverse[2]), nan),
+        )
+    }
+}
+
+impl InertiaTensor<f64> {
+    /// The full matrix.
+    pub(crate) fn matrix(&self) -> Matrix3<f64> {
+        #[rustfmt::skip]
+        let m = Matrix3::new(
+            self.xx, self.xy, self.xz,
+            self.xy, self.yy, self.yz,
+            self.xz, self.yz, self.zz,
+        );
+        m
     }
 }
 

@@ -1,0 +1,165 @@
+//! The lane type the kernel is written over: `f64` for one roll, or a vector of several
+//! rolls side by side (the 4-lane AVX2 vector in [`super::lanes`]).
+//!
+//! It stands alone so that the stages written over it (the step in [`super::kernel`], a
+//! loaded die's inertia tensor in [`super::mass`]) can use it without importing each other.
+
+use nalgebra::{Scalar, Vector3};
+use std::fmt::Debug;
+use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
+
+/// A floating-point lane type: `f64` (one roll) or a vector of several rolls. Every
+/// arithmetic operation acts on each lane alone and rounds exactly as the `f64` one does.
+pub trait Lane:
+    Scalar
+    + Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// Per-lane truth values.
+    type Mask: Copy + BitAnd<Output = Self::Mask> + BitOr<Output = Self::Mask> + Not<Output = Self::Mask>;
+    /// Steps taken, per lane.
+    type Count: Copy + Debug + PartialEq;
+    /// One `T` per lane.
+    type PerLane<T: Copy>: Copy + AsRef<[T]> + AsMut<[T]>;
+    /// The number of lanes.
+    const WIDTH: usize;
+
+    fn splat(x: f64) -> Self;
+    fn sqrt(self) -> Self;
+    /// Clears the sign bit, as `f64::abs`.
+    fn abs(self) -> Self;
+    /// `<`, `<=`, `>`, `!=` per lane (false with a NaN, except `!=`).
+    fn lt(self, other: Self) -> Self::Mask;
+    fn le(self, other: Self) -> Self::Mask;
+    fn gt(self, other: Self) -> Self::Mask;
+    fn ne(self, other: Self) -> Self::Mask;
+    /// Neither infinite nor NaN.
+    fn finite(self) -> Self::Mask;
+    /// Whether the position, the velocity and every corner offset are finite, per lane: the
+    /// end-of-step test asks it of these 30 values every step, so each width answers it its
+    /// fastest exact way.
+    fn all_finite(
+        position: &Vector3<Self>,
+        velocity: &Vector3<Self>,
+        offsets: &[Vector3<Self>; 8],
+    ) -> Self::Mask;
+    /// `if mask { yes } else { no }` per lane.
+    fn select(mask: Self::Mask, yes: Self, no: Self) -> Self;
+    /// `if mask { self } else { +0.0 }` per lane.
+    fn or_zero(self, mask: Self::Mask) -> Self;
+    /// Bit `l` set where lane `l` of `mask` is.
+    fn bits(mask: Self::Mask) -> u32;
+    fn mask_from_bits(bits: u32) -> Self::Mask;
+    fn to_lanes(self) -> Self::PerLane<f64>;
+    fn from_lanes(lanes: Self::PerLane<f64>) -> Self;
+    fn per_lane<T: Copy>(f: impl FnMut(usize) -> T) -> Self::PerLane<T>;
+    fn count_up(count: Self::Count) -> Self::Count;
+    fn count_reached(count: Self::Count, limit: Self::Count) -> Self::Mask;
+
+    #[inline(always)]
+    fn zero() -> Self {
+        Self::splat(0.0)
+    }
+    #[inline(always)]
+    fn lane(self, l: usize) -> f64 {
+        self.to_lanes().as_ref()[l]
+    }
+}
+
+impl Lane for f64 {
+    type Mask = bool;
+    type Count = u64;
+    type PerLane<T: Copy> = [T; 1];
+    const WIDTH: usize = 1;
+
+    #[inline(always)]
+    fn splat(x: f64) -> f64 {
+        x
+    }
+    #[inline(always)]
+    fn sqrt(self) -> f64 {
+        f64::sqrt(self)
+    }
+    #[inline(always)]
+    fn abs(self) -> f64 {
+        f64::abs(self)
+    }
+    #[inline(always)]
+    fn lt(self, other: f64) -> bool {
+        self < other
+    }
+    #[inline(always)]
+    fn le(self, other: f64) -> bool {
+        self <= other
+    }
+    #[inline(always)]
+    fn gt(self, other: f64) -> bool {
+        self > other
+    }
+    #[inline(always)]
+    fn ne(self, other: f64) -> bool {
+        self != other
+    }
+    #[inline(always)]
+    fn finite(self) -> bool {
+        self.is_finite()
+    }
+    /// A value is not finite exactly when its 11 exponent bits are all set; adding one at
+    /// the exponent's lowest bit then carries into the sign bit. OR-ing that over the values
+    /// needs no branch per value, and integer ORs may be regrouped, so the compiler
+    /// vectorises it.
+    #[inline(always)]
+    fn all_finite(position: &Vector3<f64>, velocity: &Vector3<f64>, offsets: &[Vector3<f64>; 8]) -> bool {
+        const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
+        const EXPONENT_ONE: u64 = 1 << 52;
+        let flags = |v: &Vector3<f64>| {
+            let flag = |x: f64| (x.to_bits() & EXPONENT) + EXPONENT_ONE;
+            flag(v.x) | flag(v.y) | flag(v.z)
+        };
+        let mut any = flags(position) | flags(velocity);
+        for r in offsets {
+            any |= flags(r);
+        }
+        any >> 63 == 0
+    }
+    #[inline(always)]
+    fn select(mask: bool, yes: f64, no: f64) -> f64 {
+        if mask { yes } else { no }
+    }
+    #[inline(always)]
+    fn or_zero(self, mask: bool) -> f64 {
+        if mask { self } else { 0.0 }
+    }
+    #[inline(always)]
+    fn bits(mask: bool) -> u32 {
+        mask as u32
+    }
+    #[inline(always)]
+    fn mask_from_bits(bits: u32) -> bool {
+        bits & 1 != 0
+    }
+    #[inline(always)]
+    fn to_lanes(self) -> [f64; 1] {
+        [self]
+    }
+    #[inline(always)]
+    fn from_lanes(lanes: [f64; 1]) -> f64 {
+        lanes[0]
+    }
+    #[inline(always)]
+    fn per_lane<T: Copy>(mut f: impl FnMut(usize) -> T) -> [T; 1] {
+        [f(0)]
+    }
+    #[inline(always)]
+    fn count_up(count: u64) -> u64 {
+        count + 1
+    }
+    #[inline(always)]
+    fn count_reached(count: u64, limit: u64) -> bool {
+        count >= limit
+    }
+}
