@@ -6,6 +6,7 @@
 
 pub(crate) mod curve;
 mod engine;
+mod export;
 mod job;
 pub(crate) mod map;
 mod pacer;
