@@ -435,9 +435,10 @@ fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
                 Line::from(vec![Span::styled("description: ", t.heading()), description_line]),
             ];
             if description.is_empty() {
-                lines.push(Line::raw(
-                    "(left empty, the text above is saved; Tab to type your own)",
-                ));
+                lines.push(Line::raw(format!(
+                    "(left empty, the text above is saved; {} to type your own)",
+                    named(Screen::Save, Action::NextField)
+                )));
             }
             lines.push(Line::raw(folder));
             if let Some(e) = error {
