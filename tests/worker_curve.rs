@@ -150,11 +150,23 @@ fn a_changed_setup_restarts_the_curve_and_the_old_one_is_never_seen_again() {
     }
     let damping = ScanKey::named("ground.damping").unwrap();
     worker.send(Command::SetParam(damping, 0.01));
-    let (s, restarted) = next_curve(&rx);
-    assert_eq!(
-        s.commands_handled, 2,
-        "the restart comes with the edit's snapshot"
-    );
+    // Until the worker takes the edit, its ticks go on reporting the old curve (grown, or
+    // complete on a fast or idle machine): all of them of the old generation. Reading the
+    // next curve update as the restart was the race this test once lost under load.
+    let mut s = until_handled(&rx, 2, |s| {
+        if s.commands_handled < 2
+            && let Some(old) = &s.curve
+        {
+            assert_eq!(
+                old.generation, first.generation,
+                "only the old curve before the edit"
+            );
+        }
+    });
+    let restarted = s
+        .curve
+        .take()
+        .expect("the restart comes with the edit's snapshot");
     assert_eq!(s.params.ground.damping, 0.01);
     assert_eq!(restarted.state, CurveState::Computing(None));
     assert!(restarted.generation > first.generation);

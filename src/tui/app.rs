@@ -5,7 +5,7 @@ use super::camera::Camera;
 use super::dialog::Dialog;
 pub(crate) use super::editor::{Editor, Typed, VALUE_CHARS};
 use super::format::{fmt_num, fmt_range, group};
-use super::keys::{Action, Input, Screen, label};
+use super::keys::{self, Action, Input, Screen, label};
 use super::layout::{Areas, screen_layout};
 use super::map_view::{MapView, View};
 use super::param::{Param, all};
@@ -117,30 +117,40 @@ impl Prompt {
     /// The question, as the footer asks it.
     pub(crate) fn question(&self, preset: &str) -> String {
         match self {
-            Prompt::Quit => "Quit? The setup has unsaved changes (s saves them).".to_string(),
+            Prompt::Quit => format!(
+                "Quit? The setup has unsaved changes ({} saves them).",
+                keys::named(Screen::Die, Action::SavePreset)
+            ),
             Prompt::Reset => format!("Reset the setup to {preset}? Your changes are lost."),
             Prompt::Load(p) => format!("Open {}? Your changes to {preset} are lost.", p.name),
         }
     }
 
     /// The footer's answers.
-    pub(crate) fn answers(&self) -> (&'static str, &'static str) {
+    pub(crate) fn answers(&self) -> (String, &'static str) {
+        let asking = self.asked_by();
+        (
+            format!(
+                "{}/{}",
+                keys::named(Screen::Prompt, Action::Confirm),
+                keys::named(Screen::Prompt, asking)
+            ),
+            keys::words(Screen::Prompt, asking),
+        )
+    }
+
+    /// The action whose key asked the question (and answers yes to it).
+    fn asked_by(&self) -> Action {
         match self {
-            Prompt::Quit => ("y/q", "quits"),
-            Prompt::Reset => ("y/⌫", "resets"),
-            Prompt::Load(_) => ("y/Enter", "opens it"),
+            Prompt::Quit => Action::Quit,
+            Prompt::Reset => Action::ResetSetup,
+            Prompt::Load(_) => Action::OpenPreset,
         }
     }
 
     /// Whether `action` answers yes: `y`, or the key that asked the question.
     pub(crate) fn confirmed_by(&self, action: Action) -> bool {
-        action == Action::Confirm
-            || action
-                == match self {
-                    Prompt::Quit => Action::Quit,
-                    Prompt::Reset => Action::ResetSetup,
-                    Prompt::Load(_) => Action::OpenPreset,
-                }
+        action == Action::Confirm || action == self.asked_by()
     }
 }
 

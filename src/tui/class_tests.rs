@@ -611,13 +611,16 @@ mod export {
             dir: "/nonexistent/dicesim-export".into(),
             log_scale: false,
         });
+        s.engine.run_export_here();
+        s.sync();
         let notice = s.app.notice.clone().expect("a notice");
         assert!(
             notice.starts_with("cannot export the roll: /nonexistent/dicesim-export/"),
             "{notice}"
         );
         assert!(notice.ends_with("does not exist"), "{notice}");
-        assert!(s.app.export.is_none(), "nothing starts");
+        assert!(s.app.export.is_none(), "the export is over");
+        assert!(!std::path::Path::new("/nonexistent/dicesim-export").exists());
     }
 
     #[test]

@@ -7,7 +7,7 @@
 use super::app::{App, Effect, Overlay, Prompt};
 pub(crate) use super::dialog::{Choice, Dialog, SaveField};
 use super::format::fmt_num;
-use super::keys::{Action, Input};
+use super::keys::{Action, Input, Screen, named};
 use super::param::all;
 use crate::output::printable;
 use crate::preset::{Preset, Source, check_name};
@@ -288,7 +288,11 @@ pub(crate) fn save(app: &mut App, preset: &Preset, replace: bool) {
     if !replace && app.store.exists(&name) {
         return refuse(
             app,
-            format!("`{name}` exists: Enter again replaces it, Esc keeps it"),
+            format!(
+                "`{name}` exists: {} again replaces it, {} keeps it",
+                named(Screen::Save, Action::Confirm),
+                named(Screen::Save, Action::Close)
+            ),
             true,
         );
     }
@@ -340,7 +344,15 @@ fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
             frame.render_widget(Clear, popup);
             let block = Block::bordered()
                 .title(Line::styled(" open a preset ", t.heading()))
-                .title_bottom(Line::from(" ↑↓ choose · Enter loads · Esc closes · ★ yours ").right_aligned());
+                .title_bottom(
+                    Line::from(format!(
+                        " {} choose · {} loads · {} closes · ★ yours ",
+                        named(Screen::Picker, Action::SelectPrevious),
+                        named(Screen::Picker, Action::Confirm),
+                        named(Screen::Picker, Action::Close)
+                    ))
+                    .right_aligned(),
+                );
             let body = block.inner(popup);
             frame.render_widget(block, popup);
             let mut lines = Vec::new();
@@ -359,7 +371,13 @@ fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
                 (None, Some(Ok(p))) => Line::raw(printable(
                     &p.description.chars().take(DESCRIPTION_SHOWN).collect::<String>(),
                 )),
-                (None, Some(Err(_))) => Line::styled("this file does not load: Enter shows why", t.caution()),
+                (None, Some(Err(_))) => Line::styled(
+                    format!(
+                        "this file does not load: {} shows why",
+                        named(Screen::Picker, Action::Confirm)
+                    ),
+                    t.caution(),
+                ),
                 (None, None) => Line::raw("no presets found"),
             };
             // The list on top (scrolled to keep the selection in view), the description below.
@@ -385,7 +403,13 @@ fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
             let block = Block::bordered()
                 .title(Line::styled(" save the setup and view as a preset ", t.heading()))
                 .title_bottom(
-                    Line::from(" Tab: name / description · Enter saves · Esc cancels ").right_aligned(),
+                    Line::from(format!(
+                        " {}: name / description · {} saves · {} cancels ",
+                        named(Screen::Save, Action::NextField),
+                        named(Screen::Save, Action::Confirm),
+                        named(Screen::Save, Action::Close)
+                    ))
+                    .right_aligned(),
                 );
             let folder = match app.store.user_dir() {
                 Ok(dir) => format!("into {}", dir.display()),
@@ -411,9 +435,10 @@ fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
                 Line::from(vec![Span::styled("description: ", t.heading()), description_line]),
             ];
             if description.is_empty() {
-                lines.push(Line::raw(
-                    "(left empty, the text above is saved; Tab to type your own)",
-                ));
+                lines.push(Line::raw(format!(
+                    "(left empty, the text above is saved; {} to type your own)",
+                    named(Screen::Save, Action::NextField)
+                )));
             }
             lines.push(Line::raw(folder));
             if let Some(e) = error {

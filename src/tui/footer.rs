@@ -3,7 +3,7 @@
 use super::app::{App, Mode};
 use super::format::group;
 use super::help::help_lines;
-use super::keys::{Action, Screen, rows};
+use super::keys::{Action, Screen, named, rows};
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Rect};
 use ratatui::text::{Line, Span};
@@ -25,7 +25,7 @@ pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
             let (keys, words) = prompt.answers();
             let question = prompt.question(&app.preset.name);
             let hints = vec![
-                hint(keys, &format!("{words} ·"), 0),
+                hint(&keys, &format!("{words} ·"), 0),
                 hint("any other key", "stays", 0),
             ];
             return render_line(app, Some(question), hints, area, frame);
@@ -36,10 +36,10 @@ pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
                 Some(e) => e.clone(),
                 None => format!("batch size: {}▏ rolls", editor.text),
             };
-            return render_line(app, Some(line), typing_hints("1-9"), area, frame);
+            return render_line(app, Some(line), typing_hints(None), area, frame);
         }
-        Mode::EditingValue | Mode::EditingEpsilon => typing_hints("0-9 . - e"),
-        Mode::EditingRange => typing_hints("MIN MAX"),
+        Mode::EditingValue | Mode::EditingEpsilon => typing_hints(None),
+        Mode::EditingRange => typing_hints(Some("MIN MAX")),
         Mode::Dialog | Mode::Help => table_hints(app, app.key_mode()),
         Mode::Map => table_hints(app, Screen::Map),
         Mode::Normal => table_hints(app, Screen::Die),
@@ -66,12 +66,16 @@ fn table_hints(app: &App, screen: Screen) -> Vec<KeyHint> {
         .collect()
 }
 
-/// The footer while a value is typed: `typing` says what may be typed.
-pub(crate) fn typing_hints(typing: &str) -> Vec<KeyHint> {
-    let mut hints = vec![hint(typing, "type", 0)];
+/// The footer while text is typed: the text mode's rows of the key table, and that every
+/// other key is typed (`form`, when given, says what the text should look like).
+pub(crate) fn typing_hints(form: Option<&str>) -> Vec<KeyHint> {
+    let mut hints: Vec<KeyHint> = form.map(|f| hint(f, "type", 0)).into_iter().collect();
     hints.extend(rows(Screen::Text).filter_map(|b| b.hint.map(|h| hint(h.keys, h.words, h.priority))));
     // Ctrl-C is no row: it quits in every mode, text entry included.
     hints.push(hint("Ctrl-C", "quit", 0));
+    if form.is_none() {
+        hints.push(hint("other keys", "type", 0));
+    }
     hints
 }
 
@@ -120,7 +124,14 @@ pub(crate) fn render_help(app: &App, area: Rect, frame: &mut Frame) {
     frame.render_widget(Clear, popup);
     let block = Block::bordered()
         .title(Line::styled(" help · the model in a nutshell ", t.heading()))
-        .title_bottom(Line::from(" ↑↓ scroll · ? or Esc closes ").right_aligned());
+        .title_bottom(
+            Line::from(format!(
+                " {} scroll · {} closes ",
+                named(Screen::Help, Action::SelectPrevious),
+                named(Screen::Help, Action::Close)
+            ))
+            .right_aligned(),
+        );
     let para = Paragraph::new(help_lines(app))
         .block(block)
         .wrap(Wrap { trim: false })

@@ -83,7 +83,10 @@ pub(crate) fn help_lines(app: &App) -> Vec<Line<'static>> {
         ),
     ]));
     die.push(Line::raw(""));
-    let mut map = vec![Line::styled("Basin-map screen (Tab)", t.heading())];
+    let mut map = vec![Line::styled(
+        format!("Basin-map screen ({})", label(Screen::Die, Action::OpenMap)),
+        t.heading(),
+    )];
     map.extend(key_lines(Screen::Map));
     map.push(Line::raw(""));
     // The keys of the screen the help was opened on come first.

@@ -651,13 +651,20 @@ pub(crate) const BINDINGS: &[Binding] = &[
         hint("? Esc", "close help", 0),
         "close the help"
     ),
-    row!(Prompt, [K::Char('y')], "y", A::Confirm, None, "yes: go ahead"),
+    row!(
+        Prompt,
+        [K::Char('y')],
+        "y",
+        A::Confirm,
+        hint("y", "yes", 0),
+        "yes: go ahead"
+    ),
     row!(
         Prompt,
         [K::Char('q')],
         "q",
         A::Quit,
-        None,
+        hint("q", "quits", 0),
         "asked whether to quit: quit; asked anything else: no"
     ),
     row!(
@@ -665,7 +672,7 @@ pub(crate) const BINDINGS: &[Binding] = &[
         [K::Backspace],
         "Backspace",
         A::ResetSetup,
-        None,
+        hint("⌫", "resets", 0),
         "asked whether to reset: reset; asked anything else: no"
     ),
     row!(
@@ -673,7 +680,7 @@ pub(crate) const BINDINGS: &[Binding] = &[
         [K::Enter],
         "Enter",
         A::OpenPreset,
-        None,
+        hint("Enter", "opens it", 0),
         "asked whether to open a preset over changes: open it; asked anything else: no"
     ),
     row!(
@@ -837,6 +844,32 @@ pub(crate) fn label(mode: Screen, action: Action) -> &'static str {
         .iter()
         .find(|b| b.screen.includes(mode) && b.action == action)
         .map_or("?", |b| b.label)
+}
+
+/// How a text names the keys of `action` in `mode`: the footer's way when the row has a
+/// hint, else the help's, alternatives joined by "or" (`? or Esc`).
+pub(crate) fn named(mode: Screen, action: Action) -> String {
+    row_of(mode, action).map_or_else(
+        || "?".to_string(),
+        |b| {
+            b.hint
+                .map_or(b.label, |h| h.keys)
+                .split(' ')
+                .collect::<Vec<_>>()
+                .join(" or ")
+        },
+    )
+}
+
+/// What the row of `action` in `mode` says it does in the footer.
+pub(crate) fn words(mode: Screen, action: Action) -> &'static str {
+    row_of(mode, action).and_then(|b| b.hint).map_or("", |h| h.words)
+}
+
+fn row_of(mode: Screen, action: Action) -> Option<&'static Binding> {
+    BINDINGS
+        .iter()
+        .find(|b| b.screen.includes(mode) && b.action == action)
 }
 
 /// The binding of `code` on `screen`, if any.

@@ -10,6 +10,7 @@ use super::app::App;
 use super::footer::render_help;
 use super::format::fmt_num;
 use super::header::{render_header, render_too_small};
+use super::keys::{Action, Screen, label};
 pub(crate) use super::map_view::*;
 use super::param::Param;
 use crate::experiment::basin::node_setup;
@@ -215,9 +216,14 @@ fn render_panel(app: &App, areas: &MapAreas, frame: &mut Frame) {
     let grid = areas.grid;
     let Some(map) = m.map() else {
         let text = if m.running {
-            "computing the first cells…"
+            "computing the first cells…".to_string()
         } else {
-            "no map: Tab back to the die, or x / y to choose axes"
+            format!(
+                "no map: {} back to the die, or {} / {} to choose axes",
+                label(Screen::Map, Action::MapBack),
+                label(Screen::Map, Action::NextXAxis),
+                label(Screen::Map, Action::NextYAxis)
+            )
         };
         frame.render_widget(Paragraph::new(text).wrap(Wrap { trim: true }), grid);
         return;
@@ -477,7 +483,7 @@ fn legend_lines(app: &App) -> Vec<Line<'static>> {
         format!(
             " legend: {} ({})",
             layer_name(m.layer),
-            super::keys::label(super::keys::Screen::Map, super::keys::Action::MapLayer)
+            label(Screen::Map, Action::MapLayer)
         ),
         t.heading(),
     )];

@@ -8,12 +8,11 @@
 //! cancel flag every few thousand steps: at most one curve computes at a time, and nothing
 //! of an older generation is ever passed on.
 
-use super::job::Job;
+use super::job::Tracked;
 use crate::experiment::predict::{PredictCurve, PredictSpec, default_epsilons, run_prediction};
 use crate::experiment::{RandomRanges, RunOptions};
 use crate::physics::{InitialCondition, Params};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex};
 
 /// Random throws per curve, each rolled beside 15 twins (one per decade of ε): 16 000 rolls,
 /// about a second for the paper's setup and at most five for the shipped presets (the
@@ -96,12 +95,6 @@ pub(crate) fn compute(
     }
 }
 
-/// A curve computing: its newest partial curve, left for the worker's next tick.
-struct CurveRun {
-    newest: Arc<Mutex<Option<PredictCurve>>>,
-    job: Job<CurveState>,
-}
-
 /// The curve thread of one worker: at most one at a time.
 #[derive(Default)]
 pub(super) struct CurveRunner {
@@ -110,7 +103,8 @@ pub(super) struct CurveRunner {
     setup: Option<CurveSetup>,
     /// Whether the last tick wanted a curve (a twin was rolling).
     wanted: bool,
-    run: Option<CurveRun>,
+    /// The curve computing: its newest partial curve, left for the worker's next tick.
+    run: Option<Tracked<Option<PredictCurve>, CurveState>>,
     /// The complete curve of `setup`, shown again at once when the twin comes back on it.
     complete: Option<CurveState>,
 }
@@ -143,19 +137,19 @@ impl CurveRunner {
             return Some(self.start(setup));
         }
         let run = self.run.as_ref()?;
-        if run.job.is_finished() {
+        if run.is_finished() {
             let run = self.run.take().expect("checked above");
             let state = run
-                .job
-                .join()
+                .finish()
+                .1
                 .unwrap_or_else(|| CurveState::Failed("the curve's computation panicked".to_string()));
             if matches!(state, CurveState::Complete(_)) {
                 self.complete = Some(state.clone());
             }
             return Some(self.update(state));
         }
-        let newest = run.newest.lock().unwrap_or_else(|e| e.into_inner()).take();
-        newest.map(|c| self.update(CurveState::Computing(Some(c))))
+        run.progress()
+            .map(|c| self.update(CurveState::Computing(Some(c))))
     }
 
     fn update(&self, state: CurveState) -> CurveUpdate {
@@ -167,18 +161,19 @@ impl CurveRunner {
     }
 
     fn start(&mut self, setup: CurveSetup) -> CurveUpdate {
-        let newest = Arc::new(Mutex::new(None));
-        let slot = newest.clone();
-        let job = Job::spawn("dicesim-curve", move |cancel| {
+        let run = Tracked::start("dicesim-curve", self.generation, move |cancel, post| {
             compute(&setup, cancel, &mut |c| {
-                if !cancel.load(Ordering::Relaxed) {
-                    *slot.lock().unwrap_or_else(|e| e.into_inner()) = Some(c.clone());
+                // The last partial curve has every throw: it is the complete curve, which
+                // comes as the job's result. Posted, a tick between it and the thread's end
+                // would show it as still computing.
+                if !cancel.load(Ordering::Relaxed) && c.starts < CURVE_STARTS {
+                    post.post(|newest| *newest = Some(c.clone()));
                 }
             })
         });
-        match job {
-            Ok(job) => {
-                self.run = Some(CurveRun { newest, job });
+        match run {
+            Ok(run) => {
+                self.run = Some(run);
                 self.update(CurveState::Computing(None))
             }
             Err(e) => self.update(CurveState::Failed(format!(
@@ -190,7 +185,7 @@ impl CurveRunner {
     /// Cancels the curve computing, if any, and waits for its thread (milliseconds).
     pub(crate) fn stop(&mut self) {
         if let Some(run) = self.run.take() {
-            run.job.stop();
+            run.stop();
         }
     }
 }

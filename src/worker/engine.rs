@@ -3,6 +3,7 @@
 //! (and the thread in `mod.rs`) drive it step for step.
 
 use super::curve::CurveSetup;
+use super::export::ExportJob;
 use super::map::{MapJob, MapOrder};
 use super::timeline::{Keyframe, Timeline};
 use super::twin::Twin;
@@ -11,12 +12,11 @@ use super::{
     TimelineSnapshot,
 };
 use crate::experiment::registry::Role;
-use crate::experiment::trace::{ExportFiles, ExportProgress, Exported, export_roll, human_bytes};
+use crate::experiment::trace::{ExportProgress, Exported, human_bytes};
 use crate::experiment::{RandomRanges, RollRecord, ScanKey};
-use crate::output::{Output, free_stem, safe_file_stem};
+use crate::output::safe_file_stem;
 use crate::physics::{InitialCondition, ParamError, Params, Simulation, face_most_nearly_up};
 use crate::preset::{Preset, Speed};
-use std::sync::atomic::AtomicBool;
 
 /// At most this many energy samples per roll: longer rolls keep each term's peak over a
 /// stride of steps, so impact spikes survive the thinning.
@@ -37,34 +37,6 @@ pub struct BatchRequest {
     pub(crate) id: u64,
     pub(crate) params: Params,
     pub(crate) rolls: Vec<(u64, InitialCondition)>,
-}
-
-/// An export to run off the worker's thread: the roll's setup and the two checked files.
-#[derive(Debug, Clone)]
-pub(crate) struct ExportJob {
-    pub(crate) id: u64,
-    pub(crate) params: Params,
-    pub(crate) initial: InitialCondition,
-    pub(crate) title: String,
-    pub(crate) files: ExportFiles,
-}
-
-impl ExportJob {
-    /// Runs the export on this thread (see [`export_roll`]).
-    pub(crate) fn run(
-        &self,
-        cancel: &AtomicBool,
-        progress: &mut dyn FnMut(ExportProgress),
-    ) -> Result<Exported, crate::experiment::Error> {
-        export_roll(
-            &self.params,
-            &self.initial,
-            &self.title,
-            &self.files,
-            cancel,
-            progress,
-        )
-    }
 }
 
 /// The export the UI is waiting for.
@@ -378,7 +350,7 @@ impl Engine {
     }
 
     /// Asks for the roll on screen to be written into `dir` (see [`Command::Export`]): the
-    /// files are chosen and checked here, the writing happens on the export thread.
+    /// files are chosen, checked and written on the export thread (see [`ExportJob::run`]).
     fn export(&mut self, dir: &std::path::Path, log_scale: bool) {
         if self.export.is_some() {
             self.pending.notice = Some(Notice::ExportRunning);
@@ -389,31 +361,11 @@ impl Engine {
             RollKind::Random(n) => format!("random-roll-{n}"),
             RollKind::Edited => "edited-roll".to_string(),
         };
-        let dir = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
-        // The preset's name comes from a file: it names the export, it never leads elsewhere.
-        let stem = free_stem(
-            &dir,
-            &format!("dicesim-{}-{roll}", safe_file_stem(&self.preset.name)),
-            &["csv", "png"],
-        );
         let title = format!(
             "{} · {} — energy against time",
             self.preset.name,
             roll.replace('-', " ")
         );
-        let checked = Output::check(&dir.join(format!("{stem}.csv")), &["csv"], false).and_then(|trace| {
-            Ok((
-                trace,
-                Output::check(&dir.join(format!("{stem}.png")), &["png"], false)?,
-            ))
-        });
-        let (trace, plot) = match checked {
-            Ok(files) => files,
-            Err(e) => {
-                self.pending.notice = Some(Notice::Said(format!("cannot export the roll: {e}")));
-                return;
-            }
-        };
         let id = self.exports_started;
         self.exports_started += 1;
         self.export = Some(ExportState {
@@ -430,11 +382,10 @@ impl Engine {
             params: self.params,
             initial: self.initial,
             title,
-            files: ExportFiles {
-                trace,
-                plot,
-                log_scale,
-            },
+            dir: dir.to_path_buf(),
+            // The preset's name comes from a file: it names the export, it never leads elsewhere.
+            stem: format!("dicesim-{}-{roll}", safe_file_stem(&self.preset.name)),
+            log_scale,
         });
     }
 
@@ -479,7 +430,7 @@ impl Engine {
     #[cfg(test)]
     pub(crate) fn run_export_here(&mut self) {
         if let Some(job) = self.take_export_request() {
-            let result = job.run(&AtomicBool::new(false), &mut |_| {});
+            let result = job.run(&std::sync::atomic::AtomicBool::new(false), &mut |_| {});
             self.finish_export(job.id, result);
         }
     }
@@ -756,7 +707,7 @@ impl Engine {
             return;
         };
         let rolls = Rolls::Given(&request.rolls);
-        let never = AtomicBool::new(false);
+        let never = std::sync::atomic::AtomicBool::new(false);
         let mut seen = 0;
         let result = run_batch(&request.params, &rolls, 0, &never, &mut |records| {
             self.add_batch_records(request.id, &records[seen..]);

@@ -6,6 +6,7 @@
 
 pub(crate) mod curve;
 mod engine;
+mod export;
 mod job;
 pub(crate) mod map;
 mod pacer;
@@ -23,13 +24,13 @@ use crate::experiment::{FaceTally, RollRecord};
 use crate::experiment::{Rolls, ScanKey, run_batch};
 use crate::physics::{ContactForce, Energy, EnergyLedger, InitialCondition, Outcome, Params, Status};
 use crate::preset::Preset;
-use job::Job;
+use job::Tracked;
 use nalgebra::Vector3;
 pub(crate) use pacer::TICK;
 use pacer::{Clock, WallClock};
 use std::collections::VecDeque;
+use std::sync::Arc;
 use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender, channel};
-use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 
 /// What the UI asks of the worker. Commands are applied in the order sent, none dropped.
@@ -429,14 +430,8 @@ fn report(engine: &mut Engine, curves: &mut curve::CurveRunner) -> Snapshot {
 /// to the engine on every tick.
 #[derive(Default)]
 struct BatchRunner {
-    run: Option<BatchRun>,
-}
-
-struct BatchRun {
-    id: u64,
-    /// Rolls finished since the engine last took them.
-    fresh: Arc<Mutex<Vec<RollRecord>>>,
-    job: Job<Result<(), String>>,
+    /// Rolls finished since the engine last took them, and how the batch ended.
+    run: Option<Tracked<Vec<RollRecord>, Result<(), String>>>,
 }
 
 impl BatchRunner {
@@ -454,38 +449,30 @@ impl BatchRunner {
             self.start(request, engine);
         }
         let Some(run) = &self.run else { return };
-        let fresh = std::mem::take(&mut *run.fresh.lock().unwrap_or_else(|e| e.into_inner()));
-        engine.add_batch_records(run.id, &fresh);
-        if run.job.is_finished() {
+        engine.add_batch_records(run.id, &run.progress());
+        if run.is_finished() {
             let run = self.run.take().expect("checked above");
-            let rest = std::mem::take(&mut *run.fresh.lock().unwrap_or_else(|e| e.into_inner()));
-            engine.add_batch_records(run.id, &rest);
-            let result = run
-                .job
-                .join()
-                .unwrap_or_else(|| Err("a roll panicked".to_string()));
-            engine.finish_batch(run.id, result);
+            let id = run.id;
+            let (rest, result) = run.finish();
+            engine.add_batch_records(id, &rest);
+            engine.finish_batch(id, result.unwrap_or_else(|| Err("a roll panicked".to_string())));
         }
     }
 
     fn start(&mut self, request: BatchRequest, engine: &mut Engine) {
-        let fresh = Arc::new(Mutex::new(Vec::new()));
-        let sink = fresh.clone();
         let id = request.id;
-        let job = Job::spawn("dicesim-batch", move |cancel| {
+        let run = Tracked::start("dicesim-batch", id, move |cancel, post| {
             let rolls = Rolls::Given(&request.rolls);
             let mut seen = 0;
             run_batch(&request.params, &rolls, 0, cancel, &mut |records| {
-                sink.lock()
-                    .unwrap_or_else(|e| e.into_inner())
-                    .extend_from_slice(&records[seen..]);
+                post.post(|fresh: &mut Vec<RollRecord>| fresh.extend_from_slice(&records[seen..]));
                 seen = records.len();
             })
             .map(|_| ())
             .map_err(|e| e.to_string())
         });
-        match job {
-            Ok(job) => self.run = Some(BatchRun { id, fresh, job }),
+        match run {
+            Ok(run) => self.run = Some(run),
             Err(e) => engine.finish_batch(id, Err(e.to_string())),
         }
     }
@@ -494,7 +481,7 @@ impl BatchRunner {
     /// the flag every few thousand steps).
     fn stop(&mut self) {
         if let Some(run) = self.run.take() {
-            run.job.stop();
+            run.stop();
         }
     }
 }
@@ -503,16 +490,11 @@ impl BatchRunner {
 /// engine on every tick.
 #[derive(Default)]
 struct ExportRunner {
-    run: Option<ExportRun>,
+    /// The newest progress, and what was written.
+    run: Option<Tracked<Option<ExportProgress>, ExportResult>>,
 }
 
 type ExportResult = Result<crate::experiment::trace::Exported, crate::experiment::Error>;
-
-struct ExportRun {
-    id: u64,
-    progress: Arc<Mutex<Option<ExportProgress>>>,
-    job: Job<ExportResult>,
-}
 
 impl ExportRunner {
     fn running(&self) -> bool {
@@ -529,37 +511,34 @@ impl ExportRunner {
         }
         if let Some(request) = engine.take_export_request() {
             self.stop();
-            let progress = Arc::new(Mutex::new(None));
-            let sink = progress.clone();
             let id = request.id;
-            let job = Job::spawn("dicesim-export", move |cancel| {
-                request.run(cancel, &mut |p| {
-                    *sink.lock().unwrap_or_else(|e| e.into_inner()) = Some(p);
-                })
+            let run = Tracked::start("dicesim-export", id, move |cancel, post| {
+                request.run(cancel, &mut |p| post.post(|newest| *newest = Some(p)))
             });
-            match job {
-                Ok(job) => self.run = Some(ExportRun { id, progress, job }),
+            match run {
+                Ok(run) => self.run = Some(run),
                 Err(e) => engine.finish_export(id, Err(crate::experiment::Error::Export(e.to_string()))),
             }
         }
         let Some(run) = &self.run else { return };
-        if let Some(p) = run.progress.lock().unwrap_or_else(|e| e.into_inner()).take() {
+        if let Some(p) = run.progress() {
             engine.export_progress(run.id, p);
         }
-        if run.job.is_finished() {
+        if run.is_finished() {
             let run = self.run.take().expect("checked above");
-            let result = run.job.join().unwrap_or_else(|| {
+            let id = run.id;
+            let result = run.finish().1.unwrap_or_else(|| {
                 Err(crate::experiment::Error::Export(
                     "the export panicked".to_string(),
                 ))
             });
-            engine.finish_export(run.id, result);
+            engine.finish_export(id, result);
         }
     }
 
     fn stop(&mut self) {
         if let Some(run) = self.run.take() {
-            run.job.stop();
+            run.stop();
         }
     }
 }
