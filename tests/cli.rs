@@ -210,10 +210,44 @@ fn basin_maps_are_the_same_with_both_engines() {
     assert!(map("scalar") == map("lanes"), "the maps differ");
 }
 
-/// Sends SIGINT to a running `dicesim` and waits for it.
+/// Sends SIGINT to a running `dicesim` after `after` and waits for it to end.
 #[cfg(unix)]
-fn interrupt(mut child: std::process::Child, after: std::time::Duration) -> Output {
+fn interrupt(child: std::process::Child, after: std::time::Duration) -> Output {
     std::thread::sleep(after);
+    signal_and_wait(child)
+}
+
+/// Sends SIGINT to `child` once its output's temporary file in `dir` holds at least
+/// `min_bytes` (the work is then under way, however fast the machine), and waits for it.
+/// The file is polled rather than waited for by a fixed time, so the test does not depend
+/// on how quickly the machine rolls.
+#[cfg(unix)]
+fn interrupt_once_written(mut child: std::process::Child, dir: &std::path::Path, min_bytes: u64) -> Output {
+    let start = std::time::Instant::now();
+    loop {
+        let written = std::fs::read_dir(dir)
+            .unwrap()
+            .filter_map(Result::ok)
+            .filter(|e| e.file_name().to_string_lossy().ends_with(".part"))
+            .filter_map(|e| e.metadata().ok())
+            .any(|m| m.len() >= min_bytes);
+        if written {
+            break;
+        }
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "the command ended before its output reached {min_bytes} bytes"
+        );
+        // A guard against a hang, not a speed test.
+        assert!(start.elapsed().as_secs() < 120, "no output was started");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    signal_and_wait(child)
+}
+
+/// Sends SIGINT to `child` and waits for it to end.
+#[cfg(unix)]
+fn signal_and_wait(mut child: std::process::Child) -> Output {
     let killed = Command::new("kill")
         .args(["-INT", &child.id().to_string()])
         .status()
@@ -260,36 +294,41 @@ fn ctrl_c_inside_long_rolls_keeps_an_exact_prefix() {
             .unwrap()
     };
     for engine in ["scalar", "lanes"] {
-        // Long rolls: nothing completes before the cancel, and nothing is kept.
-        let out = dir.path().join(format!("long-{engine}.csv"));
-        let o = interrupt(
-            spawn(engine, &out, "8", true),
-            std::time::Duration::from_millis(700),
-        );
-        assert_eq!(
-            o.status.code(),
-            Some(130),
-            "{}",
-            String::from_utf8_lossy(&o.stderr)
-        );
+        // Long rolls, signalled as soon as the output is started: at any speed a machine
+        // could have, 64 rolls of 1.2·10⁷ steps on two threads are not done by then. What was
+        // kept (nothing, most likely) is named and is the batch's start.
+        let long = dir.path().join(format!("long-{engine}"));
+        std::fs::create_dir(&long).unwrap();
+        let out = long.join("long.csv");
+        let o = interrupt_once_written(spawn(engine, &out, "64", true), &long, 0);
         let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(130), "{err}");
+        let text = std::fs::read_to_string(&out).unwrap();
+        let rows = text.lines().count() - 2;
         assert!(
-            err.contains("interrupted: kept the 0 of 8 rolls completed"),
+            err.contains(&format!("interrupted: kept the {rows} of 64 rolls completed")),
             "{err}"
         );
-        let text = std::fs::read_to_string(&out).unwrap();
-        assert_eq!(
-            text.lines().count(),
-            2,
-            "only the provenance and the header: {text}"
-        );
+        assert!(rows < 64, "the long rolls finished before the cancel");
+        if rows > 0 {
+            let full = long.join("full.csv");
+            let o = spawn(engine, &full, &rows.to_string(), true)
+                .wait_with_output()
+                .unwrap();
+            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+            let full = std::fs::read_to_string(&full).unwrap();
+            assert!(
+                full.lines().skip(1).eq(text.lines().skip(1)),
+                "the kept long rolls are not the batch's start"
+            );
+        }
 
         // Short rolls: what was kept is the start of the full batch, row for row.
-        let out = dir.path().join(format!("short-{engine}.csv"));
-        let o = interrupt(
-            spawn(engine, &out, "1000000", false),
-            std::time::Duration::from_millis(1500),
-        );
+        // Signalled once 64 KiB of rows are written, so some rows are kept at any speed.
+        let short = dir.path().join(format!("short-{engine}"));
+        std::fs::create_dir(&short).unwrap();
+        let out = short.join("short.csv");
+        let o = interrupt_once_written(spawn(engine, &out, "1000000", false), &short, 64 << 10);
         assert_eq!(
             o.status.code(),
             Some(130),
@@ -530,7 +569,7 @@ fn ctrl_c_in_a_basin_map_keeps_an_exact_prefix_of_its_cells() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(130), "{err}");
     let kept = std::fs::read_to_string(&out).unwrap();
-    let cells = kept.lines().count() - 1;
+    let cells = kept.lines().count() - 2;
     assert!(
         err.contains(&format!("interrupted: kept the {cells} of 80000 cells completed")),
         "{err}"
@@ -545,7 +584,8 @@ fn ctrl_c_in_a_basin_map_keeps_an_exact_prefix_of_its_cells() {
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let full = std::fs::read_to_string(&full).unwrap();
-    let start: Vec<&str> = full.lines().take(cells + 1).collect();
+    // The provenance and the header, then the cells.
+    let start: Vec<&str> = full.lines().take(cells + 2).collect();
     assert!(
         kept.lines().eq(start.iter().copied()),
         "the kept cells are not the map's start"

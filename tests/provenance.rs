@@ -96,3 +96,123 @@ fn predict_files_record_the_ranges_the_vary_and_the_epsilons() {
     assert_eq!(csv["rolls"], 3);
     assert!(csv["preset"]["random"]["height"].is_array());
 }
+
+/// A PNG's iTXt chunks, keyword → text (read by the png decoder, not by dicesim).
+fn png_text(path: &Path) -> std::collections::BTreeMap<String, String> {
+    let file = std::fs::File::open(path).unwrap();
+    let reader = png::Decoder::new(std::io::BufReader::new(file))
+        .read_info()
+        .unwrap();
+    (reader.info().utf8_text.iter())
+        .map(|c| (c.keyword.clone(), c.get_text().unwrap()))
+        .collect()
+}
+
+#[test]
+fn map_files_record_the_program_the_setup_the_axes_and_the_method() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let map = [
+        "basin",
+        "--x",
+        "initial.angular_velocity.x:-60:60",
+        "--y",
+        "initial.height:5:20",
+        "--res",
+        "4x3",
+        "--uniform",
+        "--set",
+        "die.extra_corner_mass=[0,0,0,0,0,0,0,0.25]",
+    ];
+    for (out, jobs, engine) in [("a", "1", "scalar"), ("b", "2", "lanes")] {
+        for ext in ["csv", "png"] {
+            let out = format!("{out}.{ext}");
+            let args = ["--jobs", jobs, "--engine", engine, "--out", &out];
+            ok(d, &[&map[..], &args[..]].concat());
+        }
+    }
+    // Threads and engine change no byte of either file.
+    for f in ["csv", "png"] {
+        let read = |stem: &str| std::fs::read(d.join(format!("{stem}.{f}"))).unwrap();
+        assert!(read("a") == read("b"), "the {f} files differ");
+    }
+    let csv = first_line_json(&d.join("a.csv"));
+    assert_eq!(csv["program"], format!("dicesim {}", env!("CARGO_PKG_VERSION")));
+    assert_eq!(csv["preset"]["die"]["extra_corner_mass"][7], 0.25);
+    assert_eq!(csv["x"]["axis"], "initial.angular_velocity.x:-60:60");
+    assert_eq!(csv["x"]["nodes"], 4);
+    assert_eq!(csv["y"]["axis"], "initial.height:5:20");
+    assert_eq!(csv["y"]["nodes"], 3);
+    assert_eq!(csv["method"], "uniform");
+    assert!(csv.get("jobs").is_none() && csv.get("engine").is_none());
+    // The header and the 12 cells follow the provenance line.
+    let text = std::fs::read_to_string(d.join("a.csv")).unwrap();
+    assert!(
+        text.lines()
+            .nth(1)
+            .unwrap()
+            .starts_with("i,j,initial.angular_velocity.x,initial.height,")
+    );
+    assert_eq!(text.lines().count(), 2 + 12);
+
+    // The image carries the same provenance, and every value of the start the cells vary.
+    let png = png_text(&d.join("a.png"));
+    let provenance: serde_json::Value = serde_json::from_str(&png["dicesim-provenance"]).unwrap();
+    assert_eq!(provenance, csv);
+    assert_eq!(png["Software"], format!("dicesim {}", env!("CARGO_PKG_VERSION")));
+    assert!(
+        png["dicesim-setup"].contains("die.extra_corner_mass = [0, 0, 0, 0, 0, 0, 0, 0.25]"),
+        "{}",
+        png["dicesim-setup"]
+    );
+    assert!(
+        png["Description"].contains("loaded: +0.25 g at corner 8"),
+        "{png:?}"
+    );
+}
+
+#[test]
+fn the_predict_image_records_the_ranges_and_the_vary_not_one_roll() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    ok(
+        d,
+        &[
+            "predict",
+            "--rolls",
+            "3",
+            "--seed",
+            "5",
+            "--epsilon",
+            "1e-3,1.5e-2",
+            "--vary",
+            "ground.damping=0.001,0.02",
+            "--set",
+            "random.height=[4,7.5]",
+            "--out",
+            "p.csv",
+            "--out",
+            "p.png",
+        ],
+    );
+    let csv = first_line_json(&d.join("p.csv"));
+    let png = png_text(&d.join("p.png"));
+    let provenance: serde_json::Value = serde_json::from_str(&png["dicesim-provenance"]).unwrap();
+    assert_eq!(provenance, csv);
+    assert_eq!(
+        provenance["preset"]["random"]["height"],
+        serde_json::json!([4.0, 7.5])
+    );
+    let caption = &png["Description"];
+    for words in [
+        "3 starts drawn with seed 5",
+        "height 4…7.5 cm",
+        "ε 0.001, 0.015",
+        "--vary ground.damping=0.001,0.02",
+    ] {
+        assert!(caption.contains(words), "`{words}` not in {caption}");
+    }
+    // Not the preset's one roll: no single start's velocity vector, no per-roll setup.
+    assert!(!caption.contains("velocity ("), "{caption}");
+    assert!(!png.contains_key("dicesim-setup"), "{png:?}");
+}

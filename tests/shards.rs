@@ -125,8 +125,11 @@ fn a_map_split_in_4_merges_into_the_one_machine_csv_and_png() {
     }
     // 18 rows in 4 shards: rows 0–3, 4–8, 9–12, 13–17.
     let rows1 = String::from_utf8(bytes(d, "rows-1.csv")).unwrap();
-    assert_eq!(rows1.lines().count(), 1 + 5 * 40);
-    assert!(rows1.lines().nth(1).unwrap().starts_with("0,4,"));
+    // The sweep's provenance (the same on every shard and on one machine), the header, rows.
+    assert_eq!(rows1.lines().count(), 2 + 5 * 40);
+    let one_csv = String::from_utf8(bytes(d, "one.csv")).unwrap();
+    assert_eq!(rows1.lines().next(), one_csv.lines().next());
+    assert!(rows1.lines().nth(2).unwrap().starts_with("0,4,"));
     let merged = ok(d, &["merge", ".", "--out", "map.csv", "--out", "map.png"]);
     assert_eq!(bytes(d, "map.csv"), bytes(d, "one.csv"));
     assert_eq!(bytes(d, "map.png"), bytes(d, "one.png"));

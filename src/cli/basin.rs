@@ -1,6 +1,8 @@
 //! `dicesim basin`: the outcome over a grid of two setup values, as CSV or an image.
 
-use super::shard::{Hashing, ShardArgs, map_fingerprint, new_part, write_part};
+use super::shard::{
+    Hashing, ShardArgs, csv_provenance_line, map_fingerprint, map_provenance, new_part, write_part,
+};
 use super::{CliError, EngineArg, SetupArgs, cancel_on_ctrl_c};
 use crate::experiment::plot::write_image;
 use crate::experiment::shard::Sweep;
@@ -191,17 +193,26 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
         .collect();
 
     let mut written = None;
+    let provenance = map_provenance(&preset, &map);
     if let Some(output) = &output {
         match output.extension() {
             "csv" => output
                 .write(|w| {
                     let mut hashing = Hashing::new(w);
+                    writeln!(hashing, "{}", csv_provenance_line(&provenance))?;
                     map.write_csv(&mut hashing)?;
                     written = Some(hashing.seal());
                     Ok(())
                 })
                 .map_err(CliError::output(""))?,
-            _ => write_image(&map, layer, output).map_err(|e| match e {
+            _ => write_image(
+                &map,
+                layer,
+                (&preset.name, &params, &preset.initial),
+                &provenance,
+                output,
+            )
+            .map_err(|e| match e {
                 crate::experiment::Error::Output(e) => CliError::output("")(e),
                 e => CliError::experiment(&format!("{}: ", output.path().display()))(e),
             })?,

@@ -7,6 +7,7 @@ use super::{CliError, EngineArg, SetupArgs, cancel_on_ctrl_c};
 use crate::experiment::csv_io;
 use crate::experiment::ending::Ending;
 use crate::experiment::ics::{parse_initial_conditions, record_csv_row, records_csv_header};
+use crate::experiment::number::fmt_num;
 use crate::experiment::parquet::RecordsWriter;
 use crate::experiment::shard::Shard;
 use crate::experiment::shard::Sweep;
@@ -14,7 +15,6 @@ use crate::experiment::{BatchRun, BatchSummary, RollRecord, Rolls, RunOptions, s
 use crate::output::Output;
 use crate::physics::InitialCondition;
 use crate::preset::Preset;
-use crate::tui::format::fmt_num;
 use clap::Args;
 use serde_json::json;
 use std::io::Write;

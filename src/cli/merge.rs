@@ -5,21 +5,21 @@ use super::CliError;
 use super::basin::print_map_summary;
 use super::batch::print_counts;
 use super::shard::{
-    PART_EXTENSION, batch_fingerprint, batch_provenance, csv_provenance_line, hash_file, read_part,
-    records_path,
+    PART_EXTENSION, batch_fingerprint, batch_provenance, csv_provenance_line, hash_file, map_provenance,
+    read_part, records_path,
 };
-use crate::experiment::csv_io;
-use crate::experiment::ics::{parse_record_csv_row, record_csv_row, records_csv_header};
-use crate::experiment::merge::{MergeError, bounded_line, copy_rows, parse_map_row};
+use crate::experiment::basin::node_setup;
+use crate::experiment::ics::{parse_record_csv_row, record_csv_line, records_csv_header};
+use crate::experiment::merge::{MergeError, bounded_line, copy_rows, parse_map_row, without_bom};
 use crate::experiment::parquet::{RecordsWriter, read_records};
 use crate::experiment::plot::write_image;
 use crate::experiment::record::{check_record, same_record};
 use crate::experiment::shard::{Part, Sweep, check_parts};
 use crate::experiment::tally::Tally;
-use crate::experiment::{Axis, BasinMap, FaceTally, Layer, Method};
+use crate::experiment::{Axis, BasinMap, Cell, FaceTally, Layer, Method};
 use crate::experiment::{RollRecord, roll_record};
 use crate::output::Output;
-use crate::physics::Params;
+use crate::physics::{InitialCondition, Outcome, Params};
 use crate::preset::Preset;
 use clap::Args;
 use parquet::errors::ParquetError;
@@ -244,7 +244,8 @@ fn for_each_record(
                 records_csv_header().join(","),
             ];
             for (line, want) in expected.iter().enumerate() {
-                match bounded_line(&mut reader, &mut buf).map_err(|e| at(line as u64 + 1, e))? {
+                let got = bounded_line(&mut reader, &mut buf).map_err(|e| at(line as u64 + 1, e))?;
+                match got.map(|g| if line == 0 { without_bom(g) } else { g }) {
                     Some(got) if got == *want => {}
                     Some(got) => {
                         let what = if line == 0 { "provenance" } else { "header" };
@@ -466,11 +467,11 @@ fn merge_batch(args: &MergeArgs, outputs: &[Output], parts: &[(&Path, &Part)]) -
             |w| match kind {
                 "csv" => {
                     writeln!(w, "{}", csv_provenance_line(&expect.provenance)).map_err(failed)?;
-                    let mut csv = csv::Writer::from_writer(&mut *w);
-                    csv.write_record(records_csv_header())
-                        .map_err(|e| failed(csv_io(e)))?;
-                    read_all(&mut |r| csv.write_record(record_csv_row(r)).map_err(|e| failed(csv_io(e))))?;
-                    csv.flush().map_err(failed)
+                    writeln!(w, "{}", records_csv_header().join(",")).map_err(failed)?;
+                    // The cells are numbers and status names, which CSV never quotes: the
+                    // line is what the csv writer of a one-machine batch writes.
+                    read_all(&mut |r| writeln!(w, "{}", record_csv_line(r)).map_err(failed))?;
+                    w.flush().map_err(failed)
                 }
                 _ => {
                     let failed = |e: ParquetError| failed(std::io::Error::other(e));
@@ -546,11 +547,90 @@ fn verify(params: &Params, records: &[RollRecord]) -> Result<(), CliError> {
     }
 }
 
-fn outcome_words(r: &RollRecord) -> String {
-    match r.outcome.face {
-        Some(f) => format!("{} on face {f}", r.outcome.status.name()),
-        None => r.outcome.status.name().to_string(),
+/// Refuses a map part whose face counts are not those of its own cells.
+fn check_map_faces(parts: &[(&Path, &Part)], cells: &[Option<Cell>], w: usize) -> Result<(), CliError> {
+    for (path, p) in parts {
+        let rows = p.range[0] as usize * w..p.range[1] as usize * w;
+        let found: FaceTally = cells[rows]
+            .iter()
+            .flatten()
+            .filter_map(|c| c.outcome.face)
+            .collect();
+        if Some(found) != p.map_faces {
+            return Err(CliError::Parts(format!(
+                "{}: its face counts {:?} are not those of its cells {:?}",
+                path.display(),
+                p.map_faces.map(|f| f.counts),
+                found.counts
+            )));
+        }
     }
+    Ok(())
+}
+
+/// Rolls the cells `chosen` (indices in row order) of a map with axes `(x, y)` again from
+/// their nodes' starts (`base` with the two axis values set, as the shard rolled them) and
+/// refuses the merge if any ends differently in any bit, its start face included.
+fn verify_cells(
+    params: &Params,
+    base: &InitialCondition,
+    (x, y): (&Axis, &Axis),
+    cells: &[Option<Cell>],
+    chosen: &[usize],
+) -> Result<(), CliError> {
+    use rayon::prelude::*;
+    let w = x.cells;
+    let again = |index: usize| {
+        let (p, ic) = node_setup(params, base, x, y, index % w, index / w);
+        roll_record(&p, &ic, index as u64)
+    };
+    let differs = |index: usize| {
+        let r = again(index);
+        match &cells[index] {
+            Some(c) => {
+                let (a, b) = (&c.outcome, &r.outcome);
+                c.start_face != r.start_face
+                    || (a.status, a.face, a.steps) != (b.status, b.face, b.steps)
+                    || a.time_s.to_bits() != b.time_s.to_bits()
+            }
+            None => true,
+        }
+    };
+    let Some(index) = chosen.par_iter().copied().find_first(|&k| differs(k)) else {
+        return Ok(());
+    };
+    let r = again(index);
+    let (i, j) = (index % w, index / w);
+    let recorded = match &cells[index] {
+        Some(c) => format!(
+            "{} after {} steps (start face {})",
+            cell_outcome_words(&c.outcome),
+            c.outcome.steps,
+            c.start_face
+        ),
+        None => "nothing".to_string(),
+    };
+    Err(CliError::Parts(format!(
+        "--verify: cell ({i}, {j}) ({} = {}, {} = {}) rolled again ends {} after {} steps (start face {}), but its row says {recorded}: the cells are not what this setup rolls",
+        x.key.key,
+        x.value(i),
+        y.key.key,
+        y.value(j),
+        cell_outcome_words(&r.outcome),
+        r.outcome.steps,
+        r.start_face,
+    )))
+}
+
+fn cell_outcome_words(o: &Outcome) -> String {
+    match o.face {
+        Some(f) => format!("{} on face {f}", o.status.name()),
+        None => o.status.name().to_string(),
+    }
+}
+
+fn outcome_words(r: &RollRecord) -> String {
+    cell_outcome_words(&r.outcome)
 }
 
 fn merge_map(args: &MergeArgs, outputs: &[Output], parts: &[(&Path, &Part)]) -> Result<(), CliError> {
@@ -570,7 +650,8 @@ fn merge_map(args: &MergeArgs, outputs: &[Output], parts: &[(&Path, &Part)]) -> 
             "--json: a map's summary is text (its cells are the --out .csv)".to_string(),
         ));
     }
-    let params = part_setup(parts)?.params();
+    let preset = part_setup(parts)?;
+    let params = preset.params();
     params.validate()?;
     let bad_sweep = |e: String| CliError::Parts(format!("{}: {e}", parts[0].0.display()));
     let x = Axis::parse(x, *width).map_err(|e| bad_sweep(e.to_string()))?;
@@ -605,12 +686,26 @@ fn merge_map(args: &MergeArgs, outputs: &[Output], parts: &[(&Path, &Part)]) -> 
         .iter()
         .map(|o| out_kind(o, &["csv", "png", "svg"]))
         .collect::<Result<_, _>>()?;
-    if !args.out.is_empty() {
-        // One pass over the parts: the merged CSV as it is read, and every cell for images.
+    // The cells --verify rolls again, chosen at random where a forger cannot foresee them.
+    let chosen: Vec<usize> = if args.verify > 0 {
+        let cells = width * height;
+        let n = (args.verify as usize).min(cells);
+        let mut chosen = rand::seq::index::sample(&mut rand::rng(), cells, n).into_vec();
+        chosen.sort_unstable();
+        chosen
+    } else {
+        Vec::new()
+    };
+    if !args.out.is_empty() || !chosen.is_empty() {
+        // One pass over the parts: the merged CSV as it is read, and every cell for images
+        // and --verify.
         let mut header = Vec::new();
         map.write_csv(&mut header)?;
         let header = String::from_utf8(header).expect("the CSV header is UTF-8");
         let header = header.trim_end();
+        let provenance = map_provenance(&preset, &map);
+        let provenance_line = csv_provenance_line(&provenance);
+        let leading = [provenance_line.as_str(), header];
         let csv_out = outputs
             .iter()
             .zip(&kinds)
@@ -624,14 +719,14 @@ fn merge_map(args: &MergeArgs, outputs: &[Output], parts: &[(&Path, &Part)]) -> 
                 Some(o) => CliError::output("")(o.failed(&e)),
                 None => CliError::Io(e),
             };
-            writeln!(sink, "{header}").map_err(failed)?;
+            writeln!(sink, "{provenance_line}\n{header}").map_err(failed)?;
             for (path, p) in parts {
                 let records = checked_records_path(path, p)?;
                 let reader = std::fs::File::open(&records)
                     .map(|f| BufReader::with_capacity(1 << 20, f))
                     .map_err(|e| CliError::Parts(format!("{}: {e}", records.display())))?;
                 let first_cell = p.range[0] as usize * w;
-                copy_rows(reader, &mut *sink, header, p.len() * w as u64, &mut |n, row| {
+                copy_rows(reader, &mut *sink, &leading, p.len() * w as u64, &mut |n, row| {
                     let index = first_cell + n as usize;
                     let (i, j) = (index % w, index / w);
                     let (nx, ny) = (x_axis.value(i).to_string(), y_axis.value(j).to_string());
@@ -640,32 +735,18 @@ fn merge_map(args: &MergeArgs, outputs: &[Output], parts: &[(&Path, &Part)]) -> 
                 })
                 .map_err(|e| row_error(&records, e))?;
             }
-            Ok(())
+            // Checked before the merged CSV is kept: a refused merge writes nothing.
+            check_map_faces(parts, cells, w)?;
+            verify_cells(&params, &preset.initial, (&x_axis, &y_axis), cells, &chosen)
         };
         match csv_out {
             Some(o) => o.write_with(&mut read_parts, |e| CliError::output("")(e))?,
             None => read_parts(&mut std::io::sink())?,
         }
-        // Each part's face counts are its own cells' faces.
-        for (path, p) in parts {
-            let rows = p.range[0] as usize * w..p.range[1] as usize * w;
-            let found: FaceTally = map.cells[rows]
-                .iter()
-                .flatten()
-                .filter_map(|c| c.outcome.face)
-                .collect();
-            if Some(found) != p.map_faces {
-                return Err(CliError::Parts(format!(
-                    "{}: its face counts {:?} are not those of its cells {:?}",
-                    path.display(),
-                    p.map_faces.map(|f| f.counts),
-                    found.counts
-                )));
-            }
-        }
         map.sampled = map.cells.iter().flatten().filter(|c| c.sampled).count();
         for (output, _) in outputs.iter().zip(&kinds).filter(|(_, k)| **k != "csv") {
-            write_image(&map, layer, output).map_err(|e| match e {
+            let setup = (preset.name.as_str(), &params, &preset.initial);
+            write_image(&map, layer, setup, &provenance, output).map_err(|e| match e {
                 crate::experiment::Error::Output(e) => CliError::output("")(e),
                 e => CliError::experiment(&format!("{}: ", output.path().display()))(e),
             })?;
@@ -674,6 +755,13 @@ fn merge_map(args: &MergeArgs, outputs: &[Output], parts: &[(&Path, &Part)]) -> 
     let (shard_s, longest_s) = shard_times(parts);
     let mut stdout = std::io::stdout().lock();
     print_map_summary(&mut stdout, &map, layer, &faces)?;
+    if !chosen.is_empty() {
+        writeln!(
+            stdout,
+            "verified            {} cells chosen at random, rolled again: identical bit for bit",
+            chosen.len()
+        )?;
+    }
     writeln!(
         stdout,
         "time                {shard_s:.2} s over {} shards (the longest {longest_s:.2} s)",

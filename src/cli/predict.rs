@@ -5,7 +5,7 @@ use super::{CliError, EngineArg, SetupArgs, cancel_on_ctrl_c};
 use crate::experiment::plot::Record;
 use crate::experiment::predict::{PredictSpec, Prediction, default_epsilons, run_prediction};
 use crate::experiment::predict_plot::prediction_png;
-use crate::experiment::{RunOptions, ScanKey};
+use crate::experiment::{RandomRanges, RunOptions, ScanKey};
 use crate::output::Output;
 use clap::Args;
 use std::io::Write;
@@ -150,11 +150,11 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
                 writeln!(w)
             }),
             _ => {
-                let record = Record::of_setup(
+                let record = Record::of_experiment(
                     "predictability of a throw",
-                    &preset.name,
+                    experiment_line(&preset.name, &preset.random, &spec, args.vary.as_deref()),
                     &params,
-                    &preset.initial,
+                    &provenance,
                 );
                 let png = prediction_png(&prediction, &record).map_err(CliError::experiment(""))?;
                 output.write_bytes(&png)
@@ -225,4 +225,28 @@ fn print_prediction(out: &mut impl Write, p: &Prediction) -> std::io::Result<()>
         )?;
     }
     Ok(())
+}
+
+/// What defines a prediction, as its image's caption says it: the starts drawn from the
+/// preset's random ranges with the seed, the perturbation sizes and the varied value.
+fn experiment_line(name: &str, r: &RandomRanges, spec: &PredictSpec, vary: Option<&str>) -> String {
+    let orientation = if r.random_orientation {
+        "random orientation"
+    } else {
+        "the preset's orientation"
+    };
+    let epsilons: Vec<String> = spec.epsilons.iter().map(f64::to_string).collect();
+    let vary = vary.map(|v| format!("; --vary {v}")).unwrap_or_default();
+    format!(
+        "{name}: {} starts drawn with seed {}: height {}…{} cm, velocity {}…{} cm/s, spin {}…{} rad/s, {orientation}; ε {}{vary}",
+        spec.count,
+        spec.seed,
+        r.height[0],
+        r.height[1],
+        r.velocity[0],
+        r.velocity[1],
+        r.angular_velocity[0],
+        r.angular_velocity[1],
+        epsilons.join(", "),
+    )
 }

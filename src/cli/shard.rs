@@ -2,8 +2,8 @@
 //! `dicesim merge`, and the setup fingerprints that tell sweeps apart.
 
 use super::CliError;
-use crate::experiment::BatchRun;
 use crate::experiment::shard::{PART_FORMAT, Part, Shard, Sweep, fingerprint};
+use crate::experiment::{Axis, BasinMap, BatchRun};
 use crate::output::Output;
 use crate::physics::InitialCondition;
 use crate::preset::Preset;
@@ -210,6 +210,27 @@ pub(crate) fn batch_provenance(
 /// `merge` requires to be the sweep's own.
 pub(crate) fn csv_provenance_line(provenance: &serde_json::Value) -> String {
     format!("# {provenance}")
+}
+
+/// What every map output says about where it came from: this program's version, the
+/// preset's values (the start every cell varies two values of), each axis as `KEY:MIN:MAX`
+/// with its node count, and how the cells were found (every node rolled, or the adaptive
+/// method). Never the engine, threads, shard or time: a merged map is the same bytes as the
+/// map rolled on one machine. `merge` rebuilds it from the parts.
+pub(crate) fn map_provenance(preset: &Preset, map: &BasinMap) -> serde_json::Value {
+    let axis = |a: &Axis| {
+        serde_json::json!({
+            "axis": format!("{}:{}:{}", a.key.key, a.min, a.max),
+            "nodes": a.cells,
+        })
+    };
+    serde_json::json!({
+        "program": format!("dicesim {}", env!("CARGO_PKG_VERSION")),
+        "preset": preset.as_written(),
+        "x": axis(&map.x),
+        "y": axis(&map.y),
+        "method": map.method.name(),
+    })
 }
 
 /// The fingerprint of a map's setup: the preset's values (the axes are compared apart).

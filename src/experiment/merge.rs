@@ -44,43 +44,60 @@ pub(crate) fn bounded_line(reader: &mut impl BufRead, buf: &mut Vec<u8>) -> Resu
         .map_err(|_| "a line that is not UTF-8 text".to_string())
 }
 
-/// Copies the rows of one CSV part from `reader` to `out`, after checking that its header
-/// is `header` and that row `n` (0-based, after the header) passes `check(n, row)`; the
-/// part must hold exactly `rows` rows. The header itself is not copied.
+/// The first line of a file without the UTF-8 byte-order mark a spreadsheet puts in front:
+/// the mark is invisible, so a header refused for it would read the same as the one expected.
+pub(crate) fn without_bom(line: String) -> String {
+    match line.strip_prefix('\u{feff}') {
+        Some(rest) => rest.to_string(),
+        None => line,
+    }
+}
+
+/// Copies the rows of one CSV part from `reader` to `out`, after checking that its first
+/// lines are `leading` (the provenance and the header; a byte-order mark in front is not
+/// part of them) and that row `n` (0-based, after them) passes `check(n, row)`; the part
+/// must hold exactly `rows` rows. The leading lines themselves are not copied.
 pub(crate) fn copy_rows(
     mut reader: impl BufRead,
     out: &mut (impl Write + ?Sized),
-    header: &str,
+    leading: &[&str],
     rows: u64,
     check: &mut dyn FnMut(u64, &str) -> Result<(), String>,
 ) -> Result<(), MergeError> {
     let mut buf = Vec::new();
     let bad = |line: u64, message: String| MergeError::Row { line, message };
-    match bounded_line(&mut reader, &mut buf).map_err(|e| bad(1, e))? {
-        Some(h) if h == header => {}
-        Some(h) => {
-            return Err(bad(
-                1,
-                format!("header `{}`, expected `{header}`", h.escape_debug()),
-            ));
+    for (k, want) in leading.iter().enumerate() {
+        let line = k as u64 + 1;
+        let got = bounded_line(&mut reader, &mut buf).map_err(|e| bad(line, e))?;
+        match got.map(|g| if k == 0 { without_bom(g) } else { g }) {
+            Some(h) if h == *want => {}
+            Some(h) => {
+                let what = if k + 1 == leading.len() { "header" } else { "line" };
+                return Err(bad(
+                    line,
+                    format!("{what} `{}`, expected `{want}`", h.escape_debug()),
+                ));
+            }
+            None if k == 0 => return Err(bad(line, "empty file, expected a header".to_string())),
+            None => return Err(bad(line, "the file ends before its rows".to_string())),
         }
-        None => return Err(bad(1, "empty file, expected a header".to_string())),
     }
+    let first = leading.len() as u64 + 1;
     let mut n = 0;
-    while let Some(line) = bounded_line(&mut reader, &mut buf).map_err(|e| bad(n + 2, e))? {
+    while let Some(line) = bounded_line(&mut reader, &mut buf).map_err(|e| bad(first + n, e))? {
         if n == rows {
             return Err(bad(
-                n + 2,
+                first + n,
                 format!("more rows than the {rows} the part summary counts"),
             ));
         }
-        check(n, &line).map_err(|m| bad(n + 2, m))?;
+        check(n, &line).map_err(|m| bad(first + n, m))?;
         writeln!(out, "{line}")?;
         n += 1;
     }
     if n < rows {
         return Err(bad(
-            n + 2,
+            first + n,
             format!("the file ends after {n} of the {rows} rows the part summary counts"),
         ));
     }
@@ -163,7 +180,7 @@ mod tests {
 
     fn copy(text: &str, rows: u64) -> Result<String, String> {
         let mut out = Vec::new();
-        copy_rows(text.as_bytes(), &mut out, "id,x", rows, &mut |n, row| {
+        copy_rows(text.as_bytes(), &mut out, &["id,x"], rows, &mut |n, row| {
             let id = row.split(',').next().unwrap_or_default();
             match id.parse() == Ok(10 + n) {
                 true => Ok(()),
@@ -177,6 +194,13 @@ mod tests {
     #[test]
     fn rows_are_copied_after_their_checks() {
         assert_eq!(copy("id,x\n10,a\n11,b\n", 2).unwrap(), "10,a\n11,b\n");
+        // A spreadsheet's byte-order mark in front of the header is not part of the header.
+        assert_eq!(copy("\u{feff}id,x\n10,a\n", 1).unwrap(), "10,a\n");
+        // Only in front: a mark anywhere else is a changed header, and named as one.
+        assert_eq!(
+            copy("id\u{feff},x\n10,a\n", 1).unwrap_err(),
+            "line 1: header `id\\u{feff},x`, expected `id,x`"
+        );
         assert_eq!(
             copy("id,y\n10,a\n", 1).unwrap_err(),
             "line 1: header `id,y`, expected `id,x`"

@@ -15,6 +15,7 @@ pub(crate) mod engine;
 pub mod ics;
 pub(crate) mod keys;
 pub(crate) mod merge;
+pub(crate) mod number;
 pub(crate) mod parquet;
 pub(crate) mod plot;
 pub mod predict;

@@ -132,16 +132,6 @@ impl Record {
         let n = |v: f64| format!("{}", (v * 1e6).round() / 1e6);
         let v3 = |v: [f64; 3]| format!("({}, {}, {})", n(v[0]), n(v[1]), n(v[2]));
         let w = initial.angular_velocity_for(params.inertia());
-        // A loaded die says where its extra masses are: "loaded: +0.5 g at corner 8".
-        let extras: Vec<String> = (params.die.extra_corner_mass.iter().enumerate())
-            .filter(|&(_, &m)| m > 0.0)
-            .map(|(k, &m)| format!("+{} g at corner {}", n(m), k + 1))
-            .collect();
-        let loaded = if extras.is_empty() {
-            String::new()
-        } else {
-            format!(", loaded: {}", extras.join(", "))
-        };
         let caption = vec![
             format!(
                 "{name}: height {} cm, velocity {} cm/s, spin {} rad/s, yaw pitch roll {}°",
@@ -151,14 +141,8 @@ impl Record {
                 v3(initial.orientation),
             ),
             format!(
-                "table k {} dyn/cm, γ {} s/cm, μ {}; die a {} cm, m {} g{loaded}; g {} cm/s², Δt {} s (every value in the file's dicesim-setup text)",
-                n(params.ground.stiffness),
-                n(params.ground.damping),
-                n(params.ground.friction),
-                n(params.die.half_size),
-                n(params.die.corner_mass),
-                n(params.world.gravity),
-                n(params.integrator.dt),
+                "{} (every value in the file's dicesim-setup text)",
+                body_line(params)
             ),
         ];
         Record {
@@ -173,6 +157,73 @@ impl Record {
             ],
             caption,
         }
+    }
+}
+
+/// The table, die, gravity and time step as a caption names them; a loaded die says where
+/// its extra masses are ("loaded: +0.5 g at corner 8").
+fn body_line(params: &Params) -> String {
+    // Numbers as a person reads them, to a millionth.
+    let n = |v: f64| format!("{}", (v * 1e6).round() / 1e6);
+    let extras: Vec<String> = (params.die.extra_corner_mass.iter().enumerate())
+        .filter(|&(_, &m)| m > 0.0)
+        .map(|(k, &m)| format!("+{} g at corner {}", n(m), k + 1))
+        .collect();
+    let loaded = if extras.is_empty() {
+        String::new()
+    } else {
+        format!(", loaded: {}", extras.join(", "))
+    };
+    format!(
+        "table k {} dyn/cm, γ {} s/cm, μ {}; die a {} cm, m {} g{loaded}; g {} cm/s², Δt {} s",
+        n(params.ground.stiffness),
+        n(params.ground.damping),
+        n(params.ground.friction),
+        n(params.die.half_size),
+        n(params.die.corner_mass),
+        n(params.world.gravity),
+        n(params.integrator.dt),
+    )
+}
+
+impl Record {
+    /// The record of an experiment over many starts (a prediction drawn from the random
+    /// ranges): the caption says what defines it (`experiment`, a line) and the body it
+    /// rolls; the `dicesim-provenance` text holds every value, the ranges included, as the
+    /// JSON its CSV starts with.
+    pub(crate) fn of_experiment(
+        title: &str,
+        experiment: String,
+        params: &Params,
+        provenance: &serde_json::Value,
+    ) -> Record {
+        let caption = vec![
+            experiment,
+            format!(
+                "{} (every value in the file's dicesim-provenance text)",
+                body_line(params)
+            ),
+        ];
+        Record {
+            text: vec![
+                ("Title".to_string(), title.to_string()),
+                ("Description".to_string(), caption.join("\n")),
+                (
+                    "Software".to_string(),
+                    format!("dicesim {}", env!("CARGO_PKG_VERSION")),
+                ),
+            ],
+            caption,
+        }
+        .with_provenance(provenance)
+    }
+
+    /// The record with `provenance` (program, setup, what defines the experiment) as the
+    /// `dicesim-provenance` text: the JSON a CSV of the same experiment starts with.
+    pub(crate) fn with_provenance(mut self, provenance: &serde_json::Value) -> Record {
+        self.text
+            .push(("dicesim-provenance".to_string(), provenance.to_string()));
+        self
     }
 }
 
@@ -252,10 +303,18 @@ pub(crate) fn with_caption<DB: DrawingBackend>(
     Ok(picture)
 }
 
-/// Writes `map` to `out` as a PNG or SVG image, by its extension; nothing is written if
-/// drawing fails.
-pub(crate) fn write_image(map: &BasinMap, layer: Layer, out: &Output) -> Result<(), Error> {
-    write_recorded_image(map, layer, &map_record(map, layer, None), SIZE, out)
+/// Writes `map` to `out` as a PNG or SVG image, by its extension, recording the setup its
+/// cells start from (`name`, params and initial condition) and `provenance` (the JSON the
+/// map's CSV starts with); nothing is written if drawing fails.
+pub(crate) fn write_image(
+    map: &BasinMap,
+    layer: Layer,
+    setup: (&str, &Params, &InitialCondition),
+    provenance: &serde_json::Value,
+    out: &Output,
+) -> Result<(), Error> {
+    let record = map_record(map, layer, Some(setup)).with_provenance(provenance);
+    write_recorded_image(map, layer, &record, SIZE, out)
 }
 
 /// [`write_image`] at `size` pixels, with `record`'s caption and (for a PNG) text chunks.

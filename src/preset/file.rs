@@ -3,6 +3,7 @@
 
 use super::{FORMAT, Location, Preset, PresetError};
 use crate::experiment::registry::{self, ANGULAR_MOMENTUM, ANGULAR_VELOCITY, Role, Setup, Value};
+use crate::physics::params::CORNERS;
 use crate::physics::{InitialCondition, ParamError};
 use toml::de::{DeTable, DeValue};
 
@@ -280,8 +281,8 @@ fn range_error(doc: &DeTable<'_>, origin: &str, text: &str, error: ParamError) -
 }
 
 /// The byte offset of a key as [`ParamError`] names it (`ground.friction`,
-/// `initial.velocity.y`, `random.height[1]`): the key itself, or the array element when the
-/// key names a component.
+/// `initial.velocity.y`, `die.extra_corner_mass.8`, `random.height[1]`): the key itself, or
+/// the array element when the key names a component (an axis or a corner).
 fn find(doc: &DeTable<'_>, key: &str) -> Option<usize> {
     let mut table = doc;
     let mut segments = key.split('.').peekable();
@@ -293,7 +294,10 @@ fn find(doc: &DeTable<'_>, key: &str) -> Option<usize> {
         let (k, v) = table.iter().find(|(k, _)| k.get_ref() == name)?;
         let component = match (index, segments.peek()) {
             (Some(i), _) => Some(i),
-            (None, Some(&axis)) if v.get_ref().is_array() => ["x", "y", "z"].iter().position(|a| *a == axis),
+            (None, Some(&axis)) if v.get_ref().is_array() => ["x", "y", "z"]
+                .iter()
+                .position(|a| *a == axis)
+                .or_else(|| CORNERS.iter().position(|c| *c == axis)),
             _ => None,
         };
         if let Some(i) = component {
@@ -391,6 +395,12 @@ mod tests {
         assert_eq!(
             e.to_string(),
             "dir/p.toml:3:3: `initial.velocity.y` = 20000 is outside the allowed range -10000 to 10000 cm/s"
+        );
+        // The eighth corner's mass is the array's eighth element: line 3, column 15.
+        let e = err("[die]\nextra_corner_mass = [0, 0, 0,\n  0, 0, 0, 0, 5000]\n");
+        assert_eq!(
+            e.to_string(),
+            "dir/p.toml:3:15: `die.extra_corner_mass.8` = 5000 is outside the allowed range 0 to 1000 g"
         );
         let e = err("[random]\nheight = [5.0, 2.0]\n");
         assert_eq!(

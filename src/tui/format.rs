@@ -2,30 +2,7 @@
 
 use super::param::Param;
 
-/// A number in at most `width` characters: plain when it reads well, else in e-notation.
-pub(crate) fn fmt_num(v: f64) -> String {
-    if !v.is_finite() {
-        return format!("{v}");
-    }
-    let a = v.abs();
-    if a == 0.0 {
-        "0".to_string()
-    } else if !(1e-3..1e6).contains(&a) {
-        let s = format!("{v:.2e}");
-        // 5.00e5 → 5e5, 1.20e-3 → 1.2e-3
-        let (mantissa, exp) = s.split_once('e').unwrap_or((&s, "0"));
-        let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
-        format!("{mantissa}e{exp}")
-    } else {
-        let decimals = (3 - a.log10().floor() as i32).clamp(0, 6) as usize;
-        let s = format!("{v:.decimals$}");
-        if s.contains('.') {
-            s.trim_end_matches('0').trim_end_matches('.').to_string()
-        } else {
-            s
-        }
-    }
-}
+pub(crate) use crate::experiment::number::fmt_num;
 
 /// A value's allowed range as the list shows it, `min…max`.
 pub(crate) fn fmt_range(p: Param) -> String {
