@@ -940,3 +940,25 @@ fn control_characters_from_files_never_reach_the_terminal() {
         "{footer}"
     );
 }
+
+/// A batch whose random drop heights reach below the die's lowest corner (the paper's
+/// preset keeps the start's orientation, upright: a cm below the centre) is refused up
+/// front, as `dicesim batch` refuses it: no roll is drawn, the table stays empty and the
+/// footer names the key and the lowest allowed height.
+#[test]
+fn a_batch_whose_range_could_start_a_corner_in_the_table_is_refused() {
+    let preset = Preset::default()
+        .with_overrides(&["random.height=[0.5,2]"])
+        .expect("in range");
+    let mut s = Scene::new(&preset, Theme::default());
+    s.command(Command::BatchStart(20));
+    assert!(s.engine.take_batch_request().is_none(), "a batch was started");
+    s.engine.run_batch_here();
+    s.sync();
+    let text = screen(&s.app, 120, 36);
+    assert!(text.contains("batch not started"), "{text}");
+    assert!(text.contains("random.height"), "{text}");
+    // a = 1 cm less the resting depth M·g/(4k) = 8·980/(4·500 000) = 0.00392 cm.
+    assert!(text.contains("0.99608"), "{text}");
+    assert_eq!(s.app.table.rolls(), 0);
+}

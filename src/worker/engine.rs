@@ -251,7 +251,11 @@ impl Engine {
                 self.pacing_epoch += 1;
             }
             Command::BatchStart(rolls) => {
-                if self.batch.is_none() && rolls > 0 {
+                // The same up-front check as `dicesim batch`: a range whose lowest drop
+                // could put a corner into the table is refused before any roll is drawn.
+                if let Err(e) = self.random.check_clear_of_table(&self.params, &self.base_initial) {
+                    self.pending.notice = Some(Notice::Said(format!("batch not started: {e}")));
+                } else if self.batch.is_none() && rolls > 0 {
                     let id = self.batches_started;
                     self.batches_started += 1;
                     let first = self.next_random;
