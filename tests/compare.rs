@@ -106,6 +106,23 @@ fn weldon_throws_twelve_dice_and_writes_its_files() {
     assert!(groups < 13 && c["test"]["dof"].as_u64().unwrap() as usize == groups - 1);
     let table = std::fs::read_to_string(&csv).unwrap();
     let mut lines = table.lines();
+    // Where the file came from: the program, the experiment and the throws, then the table.
+    let provenance: serde_json::Value = serde_json::from_str(
+        lines
+            .next()
+            .unwrap()
+            .strip_prefix("# ")
+            .expect("a provenance line"),
+    )
+    .unwrap();
+    assert_eq!(provenance, v["provenance"]);
+    assert_eq!(
+        provenance["program"],
+        format!("dicesim {}", env!("CARGO_PKG_VERSION"))
+    );
+    assert_eq!(provenance["dataset"], "weldon");
+    assert_eq!(provenance["throws"], 150);
+    assert_eq!(provenance["preset"]["ground"]["friction"], 1.2);
     assert!(
         lines
             .next()
@@ -233,6 +250,20 @@ fn bad_requests_are_refused_before_rolling() {
     // Budden's cuboids need bodies of other proportions than a cube: not offered yet.
     refused(&["compare", "budden"], "invalid value 'budden'");
     refused(&["compare", "weldon", "--throws", "0"], "--throws");
+    // The paper's starts keep their upright orientation: the lowest corner is a = 1 cm
+    // below the centre, less the resting depth M·g/(4k) = 0.00392 cm.
+    refused(
+        &["compare", "weldon", "--set", "random.height=[0.5,2]"],
+        "0.99608",
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let twice = dir.path().join("c.csv");
+    let twice = twice.to_str().unwrap();
+    refused(
+        &["compare", "weldon", "--out", twice, "--out", twice],
+        "named twice as an output",
+    );
+    assert!(!std::path::Path::new(twice).exists());
 }
 
 #[cfg(unix)]

@@ -80,6 +80,8 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     let preset = args.setup.resolve()?;
     let params = preset.params();
     params.validate()?;
+    // The same up-front start check as `batch`: no drawn throw may start inside the table.
+    preset.random.check_clear_of_table(&params, &preset.initial)?;
     let dataset = args.dataset.dataset();
     let spec = CompareSpec {
         dataset,
@@ -105,6 +107,7 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
         .map(|p| Output::check(p, &["csv", "json", "png"], args.force))
         .collect::<Result<Vec<_>, _>>()
         .map_err(CliError::output("--out "))?;
+    crate::output::check_apart(&outputs, &[]).map_err(CliError::output("--out "))?;
 
     let bar = super::progress_bar(total, "{bar:40} {pos}/{len} rolls, {per_sec}, {eta} left");
     let options = RunOptions {
@@ -124,11 +127,28 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     .map_err(CliError::experiment(""))?;
     bar.finish_and_clear();
 
+    // What defines the comparison, in every file it writes (never threads or time).
+    let mut values = preset.as_written();
+    values.random.seed = spec.seed;
+    let provenance = serde_json::json!({
+        "program": format!("dicesim {}", env!("CARGO_PKG_VERSION")),
+        "preset": values,
+        "dataset": dataset.name(),
+        "seed": spec.seed,
+        "throws": spec.throws,
+        "fit": args.fit,
+        "candidates": args.fit.as_ref().map(|_| args.candidates),
+    });
     for output in &outputs {
         match output.extension() {
-            "csv" => output.write(|w| comparison.write_csv(w)),
+            "csv" => output.write(|w| {
+                writeln!(w, "{}", super::shard::csv_provenance_line(&provenance))?;
+                comparison.write_csv(w)
+            }),
             "json" => output.write(|w| {
-                serde_json::to_writer_pretty(&mut *w, &comparison)?;
+                let mut v = serde_json::to_value(&comparison)?;
+                v["provenance"] = provenance.clone();
+                serde_json::to_writer_pretty(&mut *w, &v)?;
                 writeln!(w)
             }),
             _ => {
@@ -138,7 +158,8 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
                 if let (Some(fit), Some(value)) = (&spec.fit, comparison.shown().and_then(|c| c.value)) {
                     fit.key.set(&mut shown, &mut initial, value);
                 }
-                let record = Record::of_setup(&title, &preset.name, &shown, &initial);
+                let record =
+                    Record::of_setup(&title, &preset.name, &shown, &initial).with_provenance(&provenance);
                 let png = comparison_png(&comparison, &record).map_err(CliError::experiment(""))?;
                 output.write_bytes(&png)
             }
