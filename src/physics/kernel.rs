@@ -458,9 +458,10 @@ impl<L: Lane> Kernel<L> {
     /// inverted) is computed in every lane at once. The rest runs per lane in scalar code:
     /// the rotation needs `sin` and `cos`, and only libm's scalar calls give the bits the
     /// reference data and the scalar engine have (no vector sin/cos is correctly rounded,
-    /// so a vector one would differ in the last bit). The lanes are gathered into plain
-    /// arrays and each vector is loaded once at the end: writing one lane at a time into a
-    /// vector would stall on every write.
+    /// so a vector one would differ in the last bit). ω is gathered into plain arrays and
+    /// each vector loaded once at the end: writing one lane at a time into a vector register
+    /// would stall on every write. The rotation's lanes are written in place in memory
+    /// instead: gathering its nine vectors cost two 288-byte copies (`memcpy` calls) a step.
     #[inline(always)]
     pub(crate) fn respin(&mut self, lanes: u32) {
         let c = &self.c;
@@ -493,7 +494,6 @@ impl<L: Lane> Kernel<L> {
         }
         let w = &self.angular_velocity;
         let mut omega = [w.x.to_lanes(), w.y.to_lanes(), w.z.to_lanes()];
-        let mut m: [L::PerLane<f64>; 9] = std::array::from_fn(|e| self.rotation[e].to_lanes());
         let input = [
             spin_input.x.to_lanes(),
             spin_input.y.to_lanes(),
@@ -515,7 +515,7 @@ impl<L: Lane> Kernel<L> {
                     rotating |= 1 << lane;
                     for i in 0..3 {
                         for j in 0..3 {
-                            m[3 * i + j].as_mut()[lane] = r[(i, j)];
+                            self.rotation[3 * i + j].lanes_mut().as_mut()[lane] = r[(i, j)];
                         }
                     }
                 }
@@ -527,7 +527,6 @@ impl<L: Lane> Kernel<L> {
             L::from_lanes(omega[1]),
             L::from_lanes(omega[2]),
         );
-        self.rotation = m.map(L::from_lanes);
         self.rotating = L::mask_from_bits(rotating);
     }
 

@@ -56,6 +56,9 @@ pub trait Lane:
     fn mask_from_bits(bits: u32) -> Self::Mask;
     fn to_lanes(self) -> Self::PerLane<f64>;
     fn from_lanes(lanes: Self::PerLane<f64>) -> Self;
+    /// The lanes of a value held in memory, to write single lanes in place (no copy of the
+    /// value out and back in).
+    fn lanes_mut(&mut self) -> &mut Self::PerLane<f64>;
     fn per_lane<T: Copy>(f: impl FnMut(usize) -> T) -> Self::PerLane<T>;
     fn count_up(count: Self::Count) -> Self::Count;
     fn count_reached(count: Self::Count, limit: Self::Count) -> Self::Mask;
@@ -149,6 +152,10 @@ impl Lane for f64 {
     #[inline(always)]
     fn from_lanes(lanes: [f64; 1]) -> f64 {
         lanes[0]
+    }
+    #[inline(always)]
+    fn lanes_mut(&mut self) -> &mut [f64; 1] {
+        std::array::from_mut(self)
     }
     #[inline(always)]
     fn per_lane<T: Copy>(mut f: impl FnMut(usize) -> T) -> [T; 1] {

@@ -298,6 +298,12 @@ mod avx2 {
             F4(unsafe { std::mem::transmute::<[f64; LANES], __m256d>(lanes) })
         }
         #[inline(always)]
+        fn lanes_mut(&mut self) -> &mut [f64; LANES] {
+            // SAFETY: `F4` is `repr(transparent)` over `__m256d`, four f64 in lane order with
+            // no invalid bit patterns, aligned at least as strictly as `[f64; 4]`.
+            unsafe { &mut *(self as *mut F4).cast::<[f64; LANES]>() }
+        }
+        #[inline(always)]
         fn per_lane<T: Copy>(f: impl FnMut(usize) -> T) -> [T; LANES] {
             std::array::from_fn(f)
         }
