@@ -8,7 +8,6 @@ use crate::experiment::compare_plot::comparison_png;
 use crate::experiment::compare_stats::FitMethod;
 use crate::experiment::plot::Record;
 use crate::experiment::real_data::Dataset;
-use crate::output::Output;
 use clap::{Args, ValueEnum};
 use std::io::Write;
 use std::path::PathBuf;
@@ -101,13 +100,7 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
             "{total} rolls: at most {MAX_ROLLS} in one comparison (fewer --throws or --candidates)"
         )));
     }
-    let outputs = args
-        .out
-        .iter()
-        .map(|p| Output::check(p, &["csv", "json", "png"], args.force))
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(CliError::output("--out "))?;
-    crate::output::check_apart(&outputs, &[]).map_err(CliError::output("--out "))?;
+    let outputs = super::checked_outputs(&args.out, &["csv", "json", "png"], args.force)?;
 
     let bar = super::progress_bar(total, "{bar:40} {pos}/{len} rolls, {per_sec}, {eta} left");
     let options = RunOptions {
@@ -131,7 +124,7 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     let mut values = preset.as_written();
     values.random.seed = spec.seed;
     let provenance = serde_json::json!({
-        "program": format!("dicesim {}", env!("CARGO_PKG_VERSION")),
+        "program": crate::experiment::PROGRAM,
         "preset": values,
         "dataset": dataset.name(),
         "seed": spec.seed,

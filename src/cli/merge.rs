@@ -56,12 +56,7 @@ pub(crate) fn run(args: &MergeArgs) -> Result<(), CliError> {
     // A merge keeps nothing partial: a signal removes the file being written and exits.
     super::stop_at_once_on_signals()?;
     // Existing files are refused before any work, unless replacing them was asked for.
-    let outputs: Vec<Output> = args
-        .out
-        .iter()
-        .map(|o| Output::check(o, &["csv", "parquet", "png", "svg"], args.force))
-        .collect::<Result<_, _>>()
-        .map_err(CliError::output("--out "))?;
+    let outputs = super::checked_outputs(&args.out, &["csv", "parquet", "png", "svg"], args.force)?;
     let paths = part_files(&args.parts)?;
     let parts: Vec<(String, Part)> = paths
         .iter()

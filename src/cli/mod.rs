@@ -379,6 +379,22 @@ pub(crate) fn max_jobs() -> usize {
 }
 
 /// `--jobs J` checked against [`max_jobs`]; no value means one thread per core.
+/// The `--out` files of a command that writes several: each checked (extension, folder,
+/// `--force`) and none named twice, before any work.
+pub(crate) fn checked_outputs(
+    paths: &[PathBuf],
+    extensions: &[&str],
+    force: bool,
+) -> Result<Vec<crate::output::Output>, CliError> {
+    let outputs = paths
+        .iter()
+        .map(|p| crate::output::Output::check(p, extensions, force))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(CliError::output("--out "))?;
+    crate::output::check_apart(&outputs, &[]).map_err(CliError::output("--out "))?;
+    Ok(outputs)
+}
+
 pub(crate) fn checked_jobs(jobs: Option<u64>) -> Result<usize, CliError> {
     match jobs {
         None => Ok(experiment::batch::thread_count(0)),

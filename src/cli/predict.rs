@@ -6,7 +6,6 @@ use crate::experiment::plot::Record;
 use crate::experiment::predict::{PredictSpec, Prediction, default_epsilons, run_prediction};
 use crate::experiment::predict_plot::prediction_png;
 use crate::experiment::{RandomRanges, RunOptions, ScanKey};
-use crate::output::Output;
 use clap::Args;
 use std::io::Write;
 use std::path::PathBuf;
@@ -100,13 +99,7 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
             "{total} rolls: at most {MAX_ROLLS} in one experiment (fewer --rolls, ε or values)"
         )));
     }
-    let outputs = args
-        .out
-        .iter()
-        .map(|p| Output::check(p, &["csv", "json", "png"], args.force))
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(CliError::output("--out "))?;
-    crate::output::check_apart(&outputs, &[]).map_err(CliError::output("--out "))?;
+    let outputs = super::checked_outputs(&args.out, &["csv", "json", "png"], args.force)?;
 
     let bar = super::progress_bar(total, "{bar:40} {pos}/{len} rolls, {elapsed}");
     let options = RunOptions {
@@ -130,7 +123,7 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
     let mut values = preset.as_written();
     values.random.seed = spec.seed;
     let provenance = serde_json::json!({
-        "program": format!("dicesim {}", env!("CARGO_PKG_VERSION")),
+        "program": crate::experiment::PROGRAM,
         "preset": values,
         "seed": spec.seed,
         "rolls": args.rolls,

@@ -195,7 +195,7 @@ pub(crate) fn batch_provenance(
         values.random.seed = seed;
     }
     serde_json::json!({
-        "program": format!("dicesim {}", env!("CARGO_PKG_VERSION")),
+        "program": crate::experiment::PROGRAM,
         "preset": values,
         "seed": seed,
         "rolls": rolls,
@@ -225,7 +225,7 @@ pub(crate) fn map_provenance(preset: &Preset, map: &BasinMap) -> serde_json::Val
         })
     };
     serde_json::json!({
-        "program": format!("dicesim {}", env!("CARGO_PKG_VERSION")),
+        "program": crate::experiment::PROGRAM,
         "preset": preset.as_written(),
         "x": axis(&map.x),
         "y": axis(&map.y),

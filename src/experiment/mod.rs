@@ -31,6 +31,9 @@ pub(crate) mod tally;
 pub(crate) mod trace;
 pub mod twin;
 
+/// The program and its version, as every output records it.
+pub(crate) const PROGRAM: &str = concat!("dicesim ", env!("CARGO_PKG_VERSION"));
+
 pub(crate) use basin::run_map_rows;
 pub use basin::{Axis, BasinMap, Cell, Layer, MapSpec, Method, UNIFORM_SWITCH_SHARE, run_map, run_map_with};
 pub use batch::{Batch, BatchRun, Rolls, RunOptions, run_batch, stream_batch};

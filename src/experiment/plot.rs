@@ -149,10 +149,7 @@ impl Record {
             text: vec![
                 ("Title".to_string(), title.to_string()),
                 ("Description".to_string(), caption.join("\n")),
-                (
-                    "Software".to_string(),
-                    format!("dicesim {}", env!("CARGO_PKG_VERSION")),
-                ),
+                ("Software".to_string(), crate::experiment::PROGRAM.to_string()),
                 ("dicesim-setup".to_string(), setup_text(name, params, initial)),
             ],
             caption,
@@ -208,10 +205,7 @@ impl Record {
             text: vec![
                 ("Title".to_string(), title.to_string()),
                 ("Description".to_string(), caption.join("\n")),
-                (
-                    "Software".to_string(),
-                    format!("dicesim {}", env!("CARGO_PKG_VERSION")),
-                ),
+                ("Software".to_string(), crate::experiment::PROGRAM.to_string()),
             ],
             caption,
         }
