@@ -34,6 +34,26 @@ pub(crate) const FACE_NORMALS: [[f64; 3]; 6] = [
     [1.0, 0.0, 0.0],
 ];
 
+/// Pip centres of faces 1..6, in units of the face's half sizes along its two edge directions
+/// (from its first corner in `FACE_CORNERS` to the second, and to the third): the layout of a
+/// real die, with the off-centre pips halfway from the centre to the edges. The explorer's
+/// drawing and every picture of the die read this one table.
+pub const PIP_LAYOUT: [&[(f64, f64)]; 6] = [
+    &[(0.0, 0.0)],
+    &[(-0.5, -0.5), (0.5, 0.5)],
+    &[(-0.5, -0.5), (0.0, 0.0), (0.5, 0.5)],
+    &[(-0.5, -0.5), (-0.5, 0.5), (0.5, -0.5), (0.5, 0.5)],
+    &[(-0.5, -0.5), (-0.5, 0.5), (0.0, 0.0), (0.5, -0.5), (0.5, 0.5)],
+    &[
+        (-0.5, -0.5),
+        (-0.5, 0.0),
+        (-0.5, 0.5),
+        (0.5, -0.5),
+        (0.5, 0.0),
+        (0.5, 0.5),
+    ],
+];
+
 /// Corner offsets from the centre of mass at identity orientation, cm.
 pub(crate) fn body_corner_offsets(half_size: f64) -> [Vector3<f64>; 8] {
     CORNER_SIGNS.map(|s| Vector3::new(s[0] * half_size, s[1] * half_size, s[2] * half_size))

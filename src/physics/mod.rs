@@ -15,6 +15,7 @@ pub(crate) mod spin;
 pub(crate) mod stability;
 pub mod stopping;
 
+pub use body::PIP_LAYOUT;
 pub(crate) use body::{face_most_nearly_up, opposite_face};
 pub(crate) use energy::Energy;
 pub use initial::{InitialCondition, RandomRanges};

@@ -18,7 +18,7 @@ use super::camera::{
 use super::format::{fmt_num, wrap_words};
 use super::vectors::{self, Arrow};
 use crate::physics::stopping::why_it_cannot_settle;
-use crate::physics::{Status, UnstableReason};
+use crate::physics::{PIP_LAYOUT, Status, UnstableReason};
 use crate::worker::{DieState, Phase};
 use nalgebra::Vector3;
 use ratatui::Frame;
@@ -29,24 +29,6 @@ use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::canvas::{Canvas, Line as CanvasLine, Points};
 use ratatui::widgets::{Block, Clear, Paragraph};
-
-/// Pip positions on a face, in units of its half side along its two edge directions, for
-/// 1..6 pips: the layout of a real die.
-const PIPS: [&[(f64, f64)]; 6] = [
-    &[(0.0, 0.0)],
-    &[(-0.5, -0.5), (0.5, 0.5)],
-    &[(-0.5, -0.5), (0.0, 0.0), (0.5, 0.5)],
-    &[(-0.5, -0.5), (-0.5, 0.5), (0.5, -0.5), (0.5, 0.5)],
-    &[(-0.5, -0.5), (-0.5, 0.5), (0.0, 0.0), (0.5, -0.5), (0.5, 0.5)],
-    &[
-        (-0.5, -0.5),
-        (-0.5, 0.0),
-        (-0.5, 0.5),
-        (0.5, -0.5),
-        (0.5, 0.0),
-        (0.5, 0.5),
-    ],
-];
 
 /// A pip's radius, in units of the face's half side.
 const PIP_RADIUS: f64 = 0.17;
@@ -282,7 +264,7 @@ pub(crate) fn picture(app: &App, view: &View) -> Picture {
         let u = (die.corners[k1] - die.corners[k0]) / 2.0;
         let w = (die.corners[k2] - die.corners[k0]) / 2.0;
         let on_face = |a: f64, b: f64| view.flat(&(centre + a * u + b * w));
-        for &(a, b) in PIPS[f] {
+        for &(a, b) in PIP_LAYOUT[f] {
             let n = ((2.0 * PIP_RADIUS * half / (0.5 * view.dot())).ceil() as usize).clamp(2, 40);
             let mut disc = Vec::with_capacity(n * n);
             for i in 0..=n {
@@ -664,7 +646,7 @@ mod tests {
     fn each_face_has_its_number_of_pips_and_opposite_faces_sum_to_seven() {
         let corners = crate::physics::body::body_corner_offsets(1.0);
         let centre = Vector3::zeros();
-        for (f, pips) in PIPS.iter().enumerate() {
+        for (f, pips) in PIP_LAYOUT.iter().enumerate() {
             assert_eq!(pips.len(), f + 1);
             let opposite = (0..6)
                 .find(|&g| {
@@ -672,7 +654,7 @@ mod tests {
                 })
                 .expect("a cube's faces come in opposite pairs");
             assert_eq!(
-                PIPS[f].len() + PIPS[opposite].len(),
+                PIP_LAYOUT[f].len() + PIP_LAYOUT[opposite].len(),
                 7,
                 "face {} and face {}",
                 f + 1,
