@@ -4,29 +4,19 @@
 use super::camera::Camera;
 use super::dialog::Dialog;
 pub(crate) use super::editor::{Editor, Typed, VALUE_CHARS};
-use super::format::{fmt_num, fmt_range, group};
 use super::keys::{self, Action, Input, Screen, label};
 use super::layout::{Areas, screen_layout};
 use super::map_view::{MapView, View};
 use super::param::{Param, all};
+use super::roll_view::RollView;
+use super::setup::Setup;
 use super::theme::{Palette, Theme};
-use crate::experiment::trace::{ExportProgress, human_bytes};
-use crate::physics::{InitialCondition, Params};
+use super::twin_view::TwinView;
 use crate::preset::{CameraView, Preset, Screen as ViewScreen, Store, ThemeName, View as PresetView};
-use crate::worker::{
-    BatchProgress, Command, CurveUpdate, EnergySample, MapUpdate, Notice, OutcomeTable, SeparationSample,
-    Snapshot, Speed,
-};
+use crate::worker::{Command, MapUpdate, Notice, Snapshot};
 use ratatui::crossterm::event::Event;
 use ratatui::layout::Rect;
 use ratatui::symbols::Marker;
-
-/// The ε a twin starts with: small enough to look like "the same throw", large enough that
-/// on the paper's setup the face often changes.
-pub(crate) const DEFAULT_EPSILON: f64 = 1e-9;
-
-/// Rolls in one batch (`b`) until another size is chosen (`B`).
-pub(crate) const BATCH_ROLLS: u64 = 10_000;
 
 /// What the explorer asks of the world outside `update`: the event loop runs these (in
 /// order: worker commands as they come, then the rest), so `update` itself never touches
@@ -154,11 +144,6 @@ impl Prompt {
     }
 }
 
-/// Batch sizes `B` walks through before offering to type one.
-pub(crate) const BATCH_SIZES: [u64; 3] = [1_000, 10_000, 100_000];
-/// The largest batch that may be typed: a few minutes on two cores.
-pub(crate) const MAX_BATCH_ROLLS: u64 = 10_000_000;
-
 /// What the event loop hands to [`update`]: terminal input or a worker snapshot.
 #[derive(Debug, Clone)]
 pub enum Msg {
@@ -200,23 +185,17 @@ impl Drawing {
     }
 }
 
+/// The explorer's state: parts with their own rules (the roll as the worker reports it,
+/// the user's setup, the twin, the map screen, whatever is on top) and the few facts of
+/// the screen itself.
 #[derive(Debug, Clone)]
 pub struct App {
-    /// The newest worker snapshot (its history already moved into `history`).
-    pub(crate) live: Snapshot,
-    /// The setup as the user last set it (ahead of `live` until the worker catches up).
-    pub(crate) params: Params,
-    pub(crate) initial: InitialCondition,
-    pub(crate) speed: Speed,
-    /// Energy samples of the roll on screen.
-    pub(crate) history: Vec<EnergySample>,
-    /// Steps at which the roll's impacts began, for the timeline.
-    pub(crate) impacts: Vec<u64>,
-    pub(crate) table: OutcomeTable,
-    pub(crate) batch: Option<BatchProgress>,
-    /// The roll's export, while it runs.
-    pub(crate) export: Option<ExportProgress>,
-    pub(crate) batch_rolls: u64,
+    /// The live roll, its table, batch and export, as the worker's snapshots tell them.
+    pub(crate) roll: RollView,
+    /// The setup as the user last set it (ahead of the worker's until it catches up).
+    pub(crate) setup: Setup,
+    /// The chaos twin (`T`): its ε, its drift and the predictability curve.
+    pub(crate) twin: TwinView,
     /// What is on top of the screen, if anything: it takes every key.
     pub(crate) overlay: Option<Overlay>,
     pub(crate) notice: Option<String>,
@@ -225,16 +204,6 @@ pub struct App {
     pub(crate) log_scale: bool,
     /// Arrows for ω, L, v and the contact forces on the die (`v`).
     pub(crate) vectors: bool,
-    /// Whether a chaos twin rolls beside the die (`T`), and its ε.
-    pub(crate) twin: bool,
-    pub(crate) epsilon: f64,
-    /// ε being typed in (`E`).
-    /// The twin's separation samples of the roll on screen.
-    pub(crate) twin_history: Vec<SeparationSample>,
-    /// The predictability curve of the setup, while a twin rolls (newest generation).
-    pub(crate) curve: Option<CurveUpdate>,
-    /// The preset the setup was loaded from (or last saved as).
-    pub(crate) preset: Preset,
     /// Where presets are listed from and saved to.
     pub(crate) store: Store,
     pub(crate) drawing: Drawing,
@@ -247,12 +216,8 @@ pub struct App {
     pub(crate) quit: bool,
     pub(crate) view: View,
     pub(crate) map: MapView,
-    commands_sent: u64,
     /// Effects other than worker commands asked for during the current `update`.
     pub(crate) effects: Vec<Effect>,
-    /// The preset's view asks for the map screen: opened by the first `update`, once the
-    /// event loop has told the app its terminal size.
-    pub(crate) open_map: bool,
     /// Last mouse position while dragging the die.
     pub(crate) drag: Option<(u16, u16)>,
 }
@@ -260,31 +225,22 @@ pub struct App {
 impl App {
     /// The explorer showing `first`, typically the engine's snapshot before the worker starts.
     pub fn new(mut first: Snapshot, theme: Theme) -> App {
-        let history = std::mem::take(&mut first.history);
-        let curve = first.curve.take();
-        let map = MapView::new(&first.params, &first.initial);
         let preset = first.preset.take().map_or_else(Preset::default, |p| *p);
+        let notice = first.notice.take().map(|n| worded(&n));
+        let twin = TwinView {
+            curve: first.curve.take(),
+            ..TwinView::default()
+        };
         App {
-            params: first.params,
-            initial: first.initial,
-            speed: first.speed,
-            table: first.table.take().unwrap_or_default(),
-            batch: first.batch,
-            export: first.export,
-            notice: first.notice.take().map(|n| worded(&n)),
-            impacts: first.timeline.impacts.take().unwrap_or_default(),
-            live: first,
-            history,
-            batch_rolls: BATCH_ROLLS,
+            map: MapView::new(&first.params, &first.initial),
+            setup: Setup::new(&first, preset),
+            roll: RollView::new(first),
+            twin,
+            notice,
             overlay: None,
             selected: 0,
             log_scale: false,
             vectors: false,
-            twin: false,
-            epsilon: DEFAULT_EPSILON,
-            twin_history: Vec::new(),
-            curve,
-            preset,
             store: Store::new(None),
             drawing: Drawing::default(),
             camera: Camera::default(),
@@ -293,10 +249,7 @@ impl App {
             screen: Rect::new(0, 0, 120, 36),
             quit: false,
             view: View::Die,
-            map,
-            commands_sent: 0,
             effects: Vec::new(),
-            open_map: false,
             drag: None,
         }
         .with_view()
@@ -304,7 +257,7 @@ impl App {
 
     /// The app with its preset's `[view]` applied.
     fn with_view(mut self) -> App {
-        let view = self.preset.view;
+        let view = self.setup.preset.view;
         self.apply_view(&view);
         self
     }
@@ -327,17 +280,14 @@ impl App {
             };
         }
         self.vectors = view.arrows.unwrap_or(false);
-        self.twin = view.twin.is_some();
-        if let Some(epsilon) = view.twin {
-            self.epsilon = epsilon;
-        }
-        self.open_map = view.screen == Some(ViewScreen::Map);
+        self.twin.apply(view.twin);
+        self.map.open_asked = view.screen == Some(ViewScreen::Map);
     }
 
     /// The view on screen, as `s` saves it.
     pub(crate) fn current_view(&self) -> PresetView {
         PresetView {
-            speed: Some(self.speed),
+            speed: Some(self.setup.speed),
             camera: Some(CameraView {
                 yaw: self.camera.yaw_deg,
                 pitch: self.camera.pitch_deg,
@@ -349,7 +299,7 @@ impl App {
                 Palette::Projector => ThemeName::Projector,
             }),
             arrows: Some(self.vectors),
-            twin: self.twin.then_some(self.epsilon),
+            twin: self.twin.on.then_some(self.twin.epsilon),
             screen: Some(match self.view {
                 View::Die => ViewScreen::Die,
                 View::Map => ViewScreen::Map,
@@ -370,11 +320,6 @@ impl App {
             None if self.view == View::Map => Mode::Map,
             None => Mode::Normal,
         }
-    }
-
-    /// Whether the setup differs from the open preset's (questions guard such changes).
-    pub(crate) fn modified(&self) -> bool {
-        self.params != self.preset.params() || self.initial != self.preset.initial
     }
 
     /// The question being asked, if any.
@@ -461,133 +406,34 @@ impl App {
 
     /// Whether frames should keep coming without input (a moving roll or a running batch).
     pub fn animating(&self) -> bool {
-        self.live.playing || self.batch.is_some() || self.export.is_some()
+        self.roll.animating()
     }
 
+    /// A worker snapshot: its roll, its twin, its notice in words, a newly loaded preset
+    /// (and its view), and its setup once the worker has caught up with the user's edits.
     pub(crate) fn absorb(&mut self, mut s: Snapshot) {
-        if s.history_reset {
-            self.history.clear();
-            self.twin_history.clear();
-        }
-        if let Some(cut) = s.history_cut {
-            self.history.retain(|h| h.time_s <= cut);
-            self.twin_history.retain(|h| h.time_s <= cut);
-        }
-        if let Some(impacts) = s.timeline.impacts.take() {
-            self.impacts = impacts;
-        }
-        if let Some(twin) = &mut s.twin {
-            self.twin_history.append(&mut twin.history);
-        }
-        if let Some(c) = s.curve.take()
-            && self
-                .curve
-                .as_ref()
-                .is_none_or(|old| c.generation >= old.generation)
-        {
-            self.curve = Some(c);
-        }
-        if s.twin.is_none() {
-            self.curve = None;
-        }
-        self.history.append(&mut s.history);
-        if let Some(t) = s.table.take() {
-            self.table = t;
-        }
+        self.twin.absorb(&mut s);
         if let Some(n) = s.notice.take() {
             self.notice = Some(worded(&n));
         }
         if let Some(p) = s.preset.take() {
-            self.preset = *p;
-            let view = self.preset.view;
+            let view = p.view;
+            self.setup.preset = *p;
             self.apply_view(&view);
         }
-        // Until the worker has seen every command, the user's own values are newer.
-        if s.commands_handled >= self.commands_sent {
-            self.params = s.params;
-            self.initial = s.initial;
-            self.speed = s.speed;
-        }
-        self.batch = s.batch;
-        self.export = s.export;
-        self.live = s;
+        self.setup.adopt(&s);
+        self.roll.absorb(s);
     }
 
-    /// What the status line says while the roll is exported: its size first, then how far.
-    pub(crate) fn export_status(&self) -> Option<String> {
-        let p = self.export?;
-        let share = 100.0 * p.steps_done as f64 / p.steps_total.max(1) as f64;
-        Some(if p.writing {
-            format!(
-                "exporting the roll: {share:.0}% of {} rows, {} · e cancels",
-                p.steps_total + 1,
-                human_bytes(p.bytes)
-            )
-        } else if p.bytes == 0 {
-            "exporting the roll: measuring its length · e cancels".to_string()
-        } else {
-            format!(
-                "exporting the roll: measuring its length, {share:.0}% of the time cap (at most {}) · e cancels",
-                human_bytes(p.bytes)
-            )
-        })
-    }
-
-    pub(crate) fn send(&mut self, out: &mut Vec<Command>, c: Command) {
-        self.commands_sent += 1;
-        out.push(c);
-    }
-
-    pub(crate) fn set_param(&mut self, out: &mut Vec<Command>, p: Param, value: f64) -> Result<(), String> {
-        p.set(&mut self.params, &mut self.initial, value).map_err(|e| {
-            if e.limits == p.limits() {
-                format!(
-                    "{} is outside {} {}",
-                    fmt_num(value),
-                    fmt_range(p),
-                    p.limits().unit
-                )
-            } else {
-                // The value is in range, but the die would start inside the table.
-                format!(
-                    "{}: corner in the table; ≥ {} cm",
-                    fmt_num(value),
-                    fmt_num(e.limits.min)
-                )
-            }
-        })?;
-        self.send(out, Command::SetParam(p.scan_key(), value));
-        Ok(())
-    }
-
-    pub(crate) fn nudge(&mut self, out: &mut Vec<Command>, steps: i32, coarse: bool) {
-        let p = self.selected_param();
-        let now = p.get(&self.params, &self.initial);
-        let next = p.nudged(now, steps, coarse);
-        if next != now {
-            let _ = self.set_param(out, p, next);
-        }
-    }
-
-    pub(crate) fn select(&mut self, delta: isize) {
-        self.selected = (self.selected as isize + delta).clamp(0, all().len() as isize - 1) as usize;
-    }
-
-    pub(crate) fn set_speed(&mut self, out: &mut Vec<Command>, speed: Speed) {
-        if speed != self.speed {
-            self.speed = speed;
-            self.send(out, Command::SetSpeed(speed));
-        }
-    }
-
+    /// Quits, telling the worker.
     pub(crate) fn quit(&mut self, out: &mut Vec<Command>) {
         self.quit = true;
-        self.send(out, Command::Quit);
+        self.setup.send(out, Command::Quit);
     }
 
     /// Quits, or asks first when the setup has unsaved changes.
     pub(crate) fn quit_asking(&mut self, out: &mut Vec<Command>) {
-        if self.modified() {
+        if self.setup.modified() {
             self.overlay = Some(Overlay::Prompt {
                 prompt: Prompt::Quit,
                 under: None,
@@ -600,34 +446,34 @@ impl App {
     /// The setup back to the open preset's (its roll from the start, a fresh table); asks
     /// first when there are changes.
     pub(crate) fn reset_asking(&mut self) {
-        if self.modified() {
+        if self.setup.modified() {
             self.overlay = Some(Overlay::Prompt {
                 prompt: Prompt::Reset,
                 under: None,
             });
         } else {
-            self.notice = Some(format!("nothing to reset: the setup is {}'s", self.preset.name));
+            self.notice = Some(format!(
+                "nothing to reset: the setup is {}'s",
+                self.setup.preset.name
+            ));
         }
     }
 
-    /// Loads `preset` (its setup and view), dropping whatever was on screen.
-    pub(crate) fn load(&mut self, out: &mut Vec<Command>, preset: Box<Preset>) {
-        self.params = preset.params();
-        self.initial = preset.initial;
-        self.send(out, Command::LoadPreset(preset));
+    /// Moves the parameter list's selection by `delta` rows, inside the list.
+    pub(crate) fn select(&mut self, delta: isize) {
+        self.selected = (self.selected as isize + delta).clamp(0, all().len() as isize - 1) as usize;
     }
 
-    /// `B`: 1 000 → 10 000 → 100 000 → type one → 1 000 …
+    /// The selected parameter a step up or down (`coarse`: a big step).
+    pub(crate) fn nudge(&mut self, out: &mut Vec<Command>, steps: i32, coarse: bool) {
+        let p = self.selected_param();
+        self.setup.nudge(out, p, steps, coarse);
+    }
+
+    /// `B`: the next batch size, or the editor to type one.
     pub(crate) fn next_batch_size(&mut self) {
-        let at = BATCH_SIZES.iter().position(|&n| n == self.batch_rolls);
-        match at.map_or(Some(0), |i| (i + 1 < BATCH_SIZES.len()).then_some(i + 1)) {
-            Some(i) => {
-                self.batch_rolls = BATCH_SIZES[i];
-                self.notice = Some(format!(
-                    "batch size {} (B: the next size, after 100 000 type one)",
-                    group(self.batch_rolls)
-                ));
-            }
+        match self.roll.next_batch_size() {
+            Some(notice) => self.notice = Some(notice),
             None => self.overlay = Some(Overlay::BatchSize(Editor::default())),
         }
     }

@@ -40,12 +40,12 @@ mod ledger {
     #[test]
     fn the_books_close_as_shown() {
         for s in [start(), mid_impact(), settled()] {
-            let l = s.app.live.ledger;
+            let l = s.app.roll.live.ledger;
             let sum = l.current + l.damping_loss + l.friction_loss + l.integrator_loss;
             assert!((sum - l.initial).abs() <= 1e-9 * l.initial, "{l:?}");
-            assert_eq!(l.current, s.app.live.energy.total());
+            assert_eq!(l.current, s.app.roll.live.energy.total());
         }
-        let l = settled().app.live.ledger;
+        let l = settled().app.roll.live.ledger;
         assert!(
             l.damping_loss > 0.5 * l.initial,
             "damping takes most of it: {l:?}"
@@ -197,9 +197,9 @@ mod twin {
     #[test]
     fn chaos_twin_after_700_steps() {
         let s = twin_after(700);
-        let twin = s.app.live.twin.as_ref().expect("a twin");
+        let twin = s.app.roll.live.twin.as_ref().expect("a twin");
         assert_eq!(twin.epsilon, 1e-9);
-        assert_eq!(s.app.live.step, 700);
+        assert_eq!(s.app.roll.live.step, 700);
         let text = screen(&s.app, 120, 36);
         assert!(
             text.contains("twin: height, velocity and spin × (1 + ε)"),
@@ -213,9 +213,9 @@ mod twin {
     fn both_outcomes_show_once_both_dice_have_settled() {
         let mut s = twin_after(0);
         s.run_to_end();
-        let twin = s.app.live.twin.as_ref().expect("a twin");
+        let twin = s.app.roll.live.twin.as_ref().expect("a twin");
         assert!(matches!(twin.phase, Phase::Ended(_)), "{:?}", twin.phase);
-        assert!(matches!(s.app.live.phase, Phase::Ended(_)));
+        assert!(matches!(s.app.roll.live.phase, Phase::Ended(_)));
         let line = super::super::twin::outcome_line(&s.app, 80).to_string();
         assert!(line.starts_with("die settled: face"), "{line}");
         assert!(line.contains("twin settled: face"), "{line}");
@@ -224,8 +224,8 @@ mod twin {
             "{line}"
         );
         // Samples cover the whole roll, up to the later of the two ends.
-        let last = s.app.twin_history.last().expect("samples");
-        assert_eq!(last.time_s, s.app.live.time_s);
+        let last = s.app.twin.history.last().expect("samples");
+        assert_eq!(last.time_s, s.app.roll.live.time_s);
     }
 
     #[test]
@@ -251,12 +251,12 @@ mod twin {
         for _ in 0..20 {
             press(&mut a, KeyCode::Char('<'));
         }
-        assert_eq!(a.epsilon, 1e-15);
+        assert_eq!(a.twin.epsilon, 1e-15);
         assert!(press(&mut a, KeyCode::Char('<')).is_empty(), "at its floor");
         for _ in 0..20 {
             press(&mut a, KeyCode::Char('>'));
         }
-        assert_eq!(a.epsilon, 0.1);
+        assert_eq!(a.twin.epsilon, 0.1);
         assert_eq!(press(&mut a, KeyCode::Char('T')), [Command::SetTwin(None)]);
         // Without a twin, ε keys do nothing.
         assert!(press(&mut a, KeyCode::Char('>')).is_empty());
@@ -293,16 +293,16 @@ mod twin {
     fn the_engine_steps_both_dice_in_lock_step_from_the_epsilon_scale() {
         let mut s = start();
         s.command(Command::SetTwin(Some(1e-9)));
-        let twin = s.app.live.twin.as_ref().expect("a twin");
-        let h = s.app.initial.height;
+        let twin = s.app.roll.live.twin.as_ref().expect("a twin");
+        let h = s.app.setup.initial.height;
         assert!((twin.separation.centre - 1e-9 * h).abs() < 1e-6 * 1e-9 * h);
-        assert_eq!(s.app.twin_history.len(), 1);
+        assert_eq!(s.app.twin.history.len(), 1);
         s.command(Command::SetPlaying(false));
         s.engine.advance_steps(2000);
         s.sync();
-        let twin = s.app.live.twin.as_ref().expect("a twin");
+        let twin = s.app.roll.live.twin.as_ref().expect("a twin");
         assert!(twin.separation.centre > 1e3 * 1e-9 * h, "{:?}", twin.separation);
-        let times: Vec<f64> = s.app.twin_history.iter().map(|x| x.time_s).collect();
+        let times: Vec<f64> = s.app.twin.history.iter().map(|x| x.time_s).collect();
         assert!(times.windows(2).all(|w| w[0] < w[1]), "one sample per time");
         // Out of range ε: refused with a notice, the twin stays as it was.
         s.command(Command::SetTwin(Some(1.0)));
@@ -312,9 +312,9 @@ mod twin {
                 .as_deref()
                 .is_some_and(|n| n.contains("twin.epsilon"))
         );
-        assert_eq!(s.app.live.twin.as_ref().map(|t| t.epsilon), Some(1e-9));
+        assert_eq!(s.app.roll.live.twin.as_ref().map(|t| t.epsilon), Some(1e-9));
         s.command(Command::SetTwin(None));
-        assert!(s.app.live.twin.is_none());
+        assert!(s.app.roll.live.twin.is_none());
     }
 }
 
@@ -392,9 +392,9 @@ mod presets {
             s.engine.handle(c);
         }
         s.sync();
-        assert_eq!(s.app.preset.name, "lab-2");
-        assert_eq!(s.app.initial.height, 30.0);
-        assert_eq!(s.app.live.step, 0);
+        assert_eq!(s.app.setup.preset.name, "lab-2");
+        assert_eq!(s.app.setup.initial.height, 30.0);
+        assert_eq!(s.app.roll.live.step, 0);
         assert!(!modified(&s.app));
         assert!(screen(&s.app, 120, 36).starts_with("\" dicesim  lab-2 · preset roll"));
     }
@@ -472,11 +472,11 @@ mod presets {
         assert!(s.app.dialog().is_none());
         let saved = store.load("lab-2").expect("saved").0;
         assert_eq!(saved.ground.friction, 0.4);
-        assert_eq!(saved.initial, s.app.initial);
+        assert_eq!(saved.initial, s.app.setup.initial);
         assert_eq!(saved.random, Preset::default().random);
         assert!(s.app.notice.as_deref().is_some_and(|n| n.contains("lab-2.toml")));
         assert!(!modified(&s.app), "the setup is now the saved preset");
-        assert_eq!(s.app.preset.name, "lab-2");
+        assert_eq!(s.app.setup.preset.name, "lab-2");
         // A new name saves without asking.
         s.key(KeyCode::Char('s'));
         type_text(&mut s.app, "lab-3");
@@ -491,13 +491,13 @@ mod presets {
         s.command(Command::BatchStart(20));
         s.engine.run_batch_here();
         s.sync();
-        assert_eq!(s.app.table.rolls(), 20);
+        assert_eq!(s.app.roll.table.rolls(), 20);
         let gentle = Store::new(None).load("gentle-drop").expect("shipped").0;
         s.command(Command::LoadPreset(Box::new(gentle.clone())));
-        assert_eq!(s.app.table.rolls(), 0);
-        assert_eq!(s.app.params, gentle.params());
-        assert_eq!(s.app.initial, gentle.initial);
-        assert_eq!(s.app.preset, gentle);
+        assert_eq!(s.app.roll.table.rolls(), 0);
+        assert_eq!(s.app.setup.params, gentle.params());
+        assert_eq!(s.app.setup.initial, gentle.initial);
+        assert_eq!(s.app.setup.preset, gentle);
         assert_eq!(s.engine.preset(), &gentle);
         assert_eq!(s.app.notice.as_deref(), Some("loaded gentle-drop"));
     }
@@ -574,7 +574,10 @@ mod export {
             dir: dir.path().to_path_buf(),
             log_scale: false,
         });
-        assert!(s.app.export.is_some(), "the export runs off the worker's thread");
+        assert!(
+            s.app.roll.export.is_some(),
+            "the export runs off the worker's thread"
+        );
         s.engine.run_export_here();
         s.sync();
         let csv = dir.path().join("dicesim-paper-preset-roll.csv");
@@ -584,7 +587,7 @@ mod export {
         // The roll again from t = 0 to its end, every step, in `dicesim trace`'s format.
         let text = std::fs::read_to_string(&csv).expect("csv written");
         let lines: Vec<&str> = text.lines().collect();
-        let mut sim = Simulation::new(&s.app.params, &s.app.initial).expect("valid");
+        let mut sim = Simulation::new(&s.app.setup.params, &s.app.setup.initial).expect("valid");
         let first = row(&sim);
         let outcome = sim.run_to_end();
         assert_eq!(lines[0], header().join(","));
@@ -619,7 +622,7 @@ mod export {
             "{notice}"
         );
         assert!(notice.ends_with("does not exist"), "{notice}");
-        assert!(s.app.export.is_none(), "the export is over");
+        assert!(s.app.roll.export.is_none(), "the export is over");
         assert!(!std::path::Path::new("/nonexistent/dicesim-export").exists());
     }
 

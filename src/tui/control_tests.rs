@@ -46,12 +46,12 @@ fn changed() -> Scene {
 #[test]
 fn the_timeline_shows_where_the_roll_is_and_its_impacts() {
     let s = stepped_back();
-    assert_eq!(s.app.live.timeline.position, 170);
-    assert!(s.app.live.timeline.ended);
-    assert!(!s.app.impacts.is_empty());
+    assert_eq!(s.app.roll.live.timeline.position, 170);
+    assert!(s.app.roll.live.timeline.ended);
+    assert!(!s.app.roll.impacts.is_empty());
     let text = screen(&s.app, 120, 36);
     let strip = line_with(&text, "t 0.170 s");
-    let end = s.app.live.timeline.furthest as f64 * 1e-3;
+    let end = s.app.roll.live.timeline.furthest as f64 * 1e-3;
     assert!(strip.contains(&format!("end {end:.3} s")), "{strip}");
     assert!(strip.contains('◆') && strip.contains('┃'), "{strip}");
     insta::assert_snapshot!("timeline_stepped_back_120x36", text);
@@ -62,17 +62,20 @@ fn the_timeline_shows_where_the_roll_is_and_its_impacts() {
 fn comma_steps_back_and_home_end_jump() {
     let mut s = stepped_back();
     s.key(KeyCode::Char(','));
-    assert_eq!(s.app.live.timeline.position, 169);
-    assert_eq!(s.app.live.step, 169);
+    assert_eq!(s.app.roll.live.timeline.position, 169);
+    assert_eq!(s.app.roll.live.step, 169);
     s.key(KeyCode::End);
-    assert_eq!(s.app.live.timeline.position, s.app.live.timeline.furthest);
-    assert!(matches!(s.app.live.phase, crate::worker::Phase::Ended(_)));
+    assert_eq!(
+        s.app.roll.live.timeline.position,
+        s.app.roll.live.timeline.furthest
+    );
+    assert!(matches!(s.app.roll.live.phase, crate::worker::Phase::Ended(_)));
     s.key(KeyCode::Home);
-    assert_eq!(s.app.live.time_s, 0.0);
+    assert_eq!(s.app.roll.live.time_s, 0.0);
     // Playing goes on from wherever the roll is.
     s.key(KeyCode::Char('.'));
     s.key(KeyCode::Char(' '));
-    assert!(s.app.live.playing && s.app.live.timeline.position == 1);
+    assert!(s.app.roll.live.playing && s.app.roll.live.timeline.position == 1);
 }
 
 #[test]
@@ -81,7 +84,7 @@ fn a_click_on_the_timeline_seeks_there() {
     s.app.screen = ratatui::layout::Rect::new(0, 0, 120, 36);
     let areas = screen_layout(s.app.screen).expect("fits");
     let bar = super::timeline::bar(areas.timeline).expect("wide enough");
-    let furthest = s.app.live.timeline.furthest;
+    let furthest = s.app.roll.live.timeline.furthest;
     for (column, expected) in [(bar.x, 0), (bar.right() - 1, furthest)] {
         let click = MouseEvent {
             kind: MouseEventKind::Down(MouseButton::Left),
@@ -92,7 +95,7 @@ fn a_click_on_the_timeline_seeks_there() {
         let sent = crate::tui::update(&mut s.app, crate::tui::Msg::Input(Event::Mouse(click)));
         assert_eq!(sent, [Command::Seek(expected)]);
         s.command(Command::Seek(expected));
-        assert_eq!(s.app.live.timeline.position, expected);
+        assert_eq!(s.app.roll.live.timeline.position, expected);
     }
 }
 
@@ -132,7 +135,7 @@ fn q_asks_first_when_the_setup_has_changes() {
     insta::assert_snapshot!("quit_prompt_80x24", screen(&s.app, 80, 24));
     s.key(KeyCode::Char('x'));
     assert!(!s.app.quit && s.app.prompt().is_none(), "any other key stays");
-    assert_eq!(s.app.params.ground.friction, 0.5, "and changes nothing");
+    assert_eq!(s.app.setup.params.ground.friction, 0.5, "and changes nothing");
     s.key(KeyCode::Char('q'));
     s.key(KeyCode::Char('q'));
     assert!(s.app.quit, "q again quits");
@@ -145,7 +148,7 @@ fn q_asks_first_when_the_setup_has_changes() {
 #[test]
 fn backspace_resets_to_the_preset_asking_first() {
     let mut s = changed();
-    let preset = s.app.preset.clone();
+    let preset = s.app.setup.preset.clone();
     s.key(KeyCode::Backspace);
     assert_eq!(s.app.prompt(), Some(&Prompt::Reset));
     let text = screen(&s.app, 120, 36);
@@ -155,10 +158,10 @@ fn backspace_resets_to_the_preset_asking_first() {
     );
     insta::assert_snapshot!("reset_prompt_120x36", text);
     s.key(KeyCode::Esc);
-    assert_eq!(s.app.params.ground.friction, 0.5, "Esc keeps the changes");
+    assert_eq!(s.app.setup.params.ground.friction, 0.5, "Esc keeps the changes");
     s.key(KeyCode::Backspace);
     s.key(KeyCode::Backspace);
-    assert_eq!(s.app.params, preset.params());
+    assert_eq!(s.app.setup.params, preset.params());
     assert_eq!(s.engine.params(), &preset.params());
     assert!(!super::dialogs::modified(&s.app));
     // Nothing changed: nothing to ask, nothing to do.
@@ -187,21 +190,21 @@ fn opening_a_preset_over_changes_asks_first() {
     assert!(screen(&s.app, 120, 36).contains(&format!("Open {}?", chosen.name)));
     s.key(KeyCode::Char('n'));
     assert_eq!(s.app.mode(), Mode::Dialog, "no: back in the picker");
-    assert_eq!(s.app.params.ground.friction, 0.5);
+    assert_eq!(s.app.setup.params.ground.friction, 0.5);
     s.key(KeyCode::Enter);
     s.key(KeyCode::Enter);
     assert!(s.app.dialog().is_none());
-    assert_eq!(s.app.preset.name, chosen.name);
+    assert_eq!(s.app.setup.preset.name, chosen.name);
     assert_eq!(s.engine.params(), &chosen.params());
 }
 
 #[test]
 fn the_batch_size_is_chosen_or_typed() {
     let mut s = start();
-    assert_eq!(s.app.batch_rolls, 10_000);
+    assert_eq!(s.app.roll.batch_size, 10_000);
     assert!(screen(&s.app, 120, 36).contains("b batch 10 000"));
     s.key(KeyCode::Char('B'));
-    assert_eq!(s.app.batch_rolls, 100_000);
+    assert_eq!(s.app.roll.batch_size, 100_000);
     s.key(KeyCode::Char('B'));
     assert_eq!(s.app.mode(), Mode::EditingValue);
     for c in "2.5".chars() {
@@ -217,21 +220,21 @@ fn the_batch_size_is_chosen_or_typed() {
         s.key(KeyCode::Char(c));
     }
     s.key(KeyCode::Enter);
-    assert_eq!(s.app.batch_rolls, 2_500);
+    assert_eq!(s.app.roll.batch_size, 2_500);
     assert!(screen(&s.app, 120, 36).contains("b batch 2 500"));
     s.key(KeyCode::Char('b'));
-    assert_eq!(s.app.batch.map(|b| b.total), Some(2_500));
+    assert_eq!(s.app.roll.batch.map(|b| b.total), Some(2_500));
     s.key(KeyCode::Char('b'));
     // After a typed size the ladder starts again.
     s.key(KeyCode::Char('B'));
-    assert_eq!(s.app.batch_rolls, 1_000);
+    assert_eq!(s.app.roll.batch_size, 1_000);
     s.key(KeyCode::Char('B'));
-    assert_eq!(s.app.batch_rolls, 10_000);
+    assert_eq!(s.app.roll.batch_size, 10_000);
     let mut s = start();
-    s.app.batch_rolls = 100_000;
+    s.app.roll.batch_size = 100_000;
     s.key(KeyCode::Char('B'));
     s.key(KeyCode::Esc);
-    assert_eq!(s.app.batch_rolls, 100_000, "Esc keeps the size");
+    assert_eq!(s.app.roll.batch_size, 100_000, "Esc keeps the size");
     s.key(KeyCode::Char('B'));
     assert_eq!(s.app.mode(), Mode::EditingValue, "from the largest, B types one");
 }
@@ -268,7 +271,7 @@ fn prompts_read_in_the_projector_theme() {
 fn slow_motion_classroom_opens_slowed_down_with_its_arrows() {
     let preset = Store::new(None).load("slow-motion-classroom").expect("shipped").0;
     let s = Scene::new(&preset, Theme::default());
-    assert_eq!(s.app.live.speed.label(), "1/10×");
+    assert_eq!(s.app.roll.live.speed.label(), "1/10×");
     assert!(s.app.vectors);
     assert!(screen(&s.app, 120, 36).contains("speed 1/10×"));
     // Loading it over another preset applies its view too, and a preset without a view
@@ -276,14 +279,14 @@ fn slow_motion_classroom_opens_slowed_down_with_its_arrows() {
     let mut s = start();
     s.key(KeyCode::Char('t'));
     s.command(Command::LoadPreset(Box::new(preset)));
-    assert_eq!(s.app.speed.label(), "1/10×");
+    assert_eq!(s.app.setup.speed.label(), "1/10×");
     assert!(s.app.vectors);
     s.key(KeyCode::Char('T'));
     s.key(KeyCode::Char('a'));
     s.command(Command::LoadPreset(Box::default()));
-    assert_eq!(s.app.speed.label(), "1×");
+    assert_eq!(s.app.setup.speed.label(), "1×");
     assert_eq!(s.engine.speed().label(), "1×");
-    assert!(!s.app.vectors && !s.app.twin && s.app.live.twin.is_none());
+    assert!(!s.app.vectors && !s.app.twin.on && s.app.roll.live.twin.is_none());
     assert_eq!(s.app.camera, super::camera::Camera::default());
     assert_eq!(s.app.theme.palette, super::theme::Palette::Light);
 }
@@ -333,8 +336,8 @@ fn s_saves_the_view_and_a_description_and_loading_applies_them() {
 
     // Opened in a fresh explorer, it looks the same.
     let s = Scene::new(&saved, Theme::default());
-    assert_eq!(s.app.live.speed.label(), "1/5×");
-    assert!(s.app.vectors && s.app.twin && s.app.live.twin.is_some());
+    assert_eq!(s.app.roll.live.speed.label(), "1/5×");
+    assert!(s.app.vectors && s.app.twin.on && s.app.roll.live.twin.is_some());
     assert_eq!(s.app.theme.palette, super::theme::Palette::Light);
     assert_eq!(s.app.camera.yaw_deg, 15.0);
 }
@@ -375,17 +378,17 @@ fn a_digit_on_a_parameter_row_opens_the_value_editor_with_it_typed() {
     insta::assert_snapshot!("digit_typed_editor_120x36", text);
     insta::assert_snapshot!("digit_typed_editor_80x24", screen(&s.app, 80, 24));
     s.key(KeyCode::Enter);
-    assert_eq!(s.app.initial.height, 20.0, "Enter applies the 20 typed");
+    assert_eq!(s.app.setup.initial.height, 20.0, "Enter applies the 20 typed");
     assert_eq!(s.app.mode(), Mode::Normal);
 }
 
 #[test]
 fn a_key_that_means_nothing_does_nothing_and_the_footer_says_so() {
     let mut s = start();
-    let before = (s.app.log_scale, s.app.params, s.app.initial);
+    let before = (s.app.log_scale, s.app.setup.params, s.app.setup.initial);
     // `y` answers questions; with none open it means nothing (it once switched the log scale).
     s.key(KeyCode::Char('y'));
-    assert_eq!((s.app.log_scale, s.app.params, s.app.initial), before);
+    assert_eq!((s.app.log_scale, s.app.setup.params, s.app.setup.initial), before);
     assert_eq!(s.app.mode(), Mode::Normal);
     let text = screen(&s.app, 120, 36);
     assert!(text.contains("y: nothing here (? lists the keys)"), "{text}");

@@ -180,7 +180,7 @@ fn colours(app: &App) -> Colours {
 /// no curve.
 pub(crate) fn render_curve(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
-    let update = app.curve.as_ref();
+    let update = app.twin.curve.as_ref();
     let failed = matches!(update.map(|u| &u.state), Some(CurveState::Failed(_)));
     let mut block = Block::bordered().title(title(app, update, area.width.saturating_sub(2)));
     if !failed {
@@ -191,7 +191,12 @@ pub(crate) fn render_curve(app: &App, area: Rect, frame: &mut Frame) {
     if body.height < 3 || body.width < 16 {
         return;
     }
-    let epsilon = app.live.twin.as_ref().map_or(app.epsilon, |tw| tw.epsilon);
+    let epsilon = app
+        .roll
+        .live
+        .twin
+        .as_ref()
+        .map_or(app.twin.epsilon, |tw| tw.epsilon);
     let (curve, computing) = match update.map(|u| &u.state) {
         Some(CurveState::Complete(c)) => (Some(c), false),
         Some(CurveState::Computing(c)) => (c.as_ref(), true),

@@ -27,7 +27,7 @@ const DESCRIPTION_CHARS: usize = 600;
 
 /// Whether the setup on screen differs from the preset it was loaded from.
 pub(crate) fn modified(app: &App) -> bool {
-    app.modified()
+    app.setup.modified()
 }
 
 /// Opens the picker on every preset the store lists, the loaded one selected.
@@ -44,7 +44,7 @@ pub(crate) fn open_picker(app: &mut App) {
         .collect();
     let selected = choices
         .iter()
-        .position(|c| c.name == app.preset.name)
+        .position(|c| c.name == app.setup.preset.name)
         .unwrap_or(0);
     app.overlay = Some(Overlay::Dialog(Dialog::Picker {
         choices,
@@ -66,25 +66,32 @@ pub(crate) fn open_save(app: &mut App) {
 /// What a saved setup says about itself when no description is typed: its base and the
 /// values changed from it, as `presets save --set` words it.
 pub(crate) fn automatic_description(app: &App) -> String {
-    let base = (app.preset.params(), app.preset.initial);
+    let base = (app.setup.preset.params(), app.setup.preset.initial);
     let changed: Vec<String> = all()
         .iter()
         .filter_map(|p| {
-            let (now, was) = (p.get(&app.params, &app.initial), p.get(&base.0, &base.1));
+            let (now, was) = (
+                p.get(&app.setup.params, &app.setup.initial),
+                p.get(&base.0, &base.1),
+            );
             (now != was).then(|| format!("{}={}", p.key(), fmt_num(now)))
         })
         .collect();
     if changed.is_empty() {
-        format!("The `{}` preset, saved from the explorer.", app.preset.name)
+        format!("The `{}` preset, saved from the explorer.", app.setup.preset.name)
     } else {
-        format!("The `{}` preset with {}.", app.preset.name, changed.join(", "))
+        format!(
+            "The `{}` preset with {}.",
+            app.setup.preset.name,
+            changed.join(", ")
+        )
     }
 }
 
 /// The setup and the view on screen as a preset named `name`: the loaded preset's random
 /// ranges, the current model values, start and view.
 pub(crate) fn current_setup(app: &App, name: &str, description: &str) -> Preset {
-    let p = &app.params;
+    let p = &app.setup.params;
     let description = match description.trim() {
         "" => automatic_description(app),
         typed => typed.to_string(),
@@ -96,9 +103,9 @@ pub(crate) fn current_setup(app: &App, name: &str, description: &str) -> Preset 
         ground: p.ground,
         world: p.world,
         integrator: p.integrator,
-        initial: app.initial,
+        initial: app.setup.initial,
         view: app.current_view(),
-        ..app.preset.clone()
+        ..app.setup.preset.clone()
     }
 }
 
@@ -177,7 +184,7 @@ fn picker_key(
                 return None;
             }
             Some(Ok(preset)) => {
-                app.load(out, preset);
+                app.setup.load(out, preset);
                 return None;
             }
             Some(Err(e)) => {
@@ -300,7 +307,7 @@ pub(crate) fn save(app: &mut App, preset: &Preset, replace: bool) {
         Ok(path) => {
             app.notice = Some(format!("saved {}", path.display()));
             // The saved file is now what the setup is compared with.
-            app.preset = preset.clone();
+            app.setup.preset = preset.clone();
             app.overlay = None;
         }
         Err(e) => refuse(app, e.to_string(), false),
@@ -316,7 +323,7 @@ pub fn render(app: &App, area: Rect, frame: &mut Frame) {
         let popup = area.centered(Constraint::Max(64), Constraint::Length(4));
         frame.render_widget(Clear, popup);
         let lines = vec![
-            Line::styled(printable(&prompt.question(&app.preset.name)), t.caution()),
+            Line::styled(printable(&prompt.question(&app.setup.preset.name)), t.caution()),
             Line::from(vec![
                 Span::styled(keys, t.key()),
                 Span::raw(format!(" {words} · any other key stays")),

@@ -88,9 +88,9 @@ impl View {
     /// The view of the die in `area`: the die's width in view fixed by the zoom, its height
     /// from the cells' 1:2 aspect, the table kept in the lower third.
     pub(crate) fn new(app: &App, area: Rect) -> View {
-        let die = &app.live.die;
+        let die = &app.roll.live.die;
         let camera = app.camera;
-        let width = camera.width_cm(app.live.params.die.half_size);
+        let width = camera.width_cm(app.roll.live.params.die.half_size);
         let height = width * 2.0 * area.height as f64 / area.width.max(1) as f64;
         let focus = Vector3::new(die.centre.x, die.centre.y, 0.0);
         let centre_y = camera.project(&die.centre, &focus).y.max(0.35 * height);
@@ -189,14 +189,14 @@ impl Picture {
 /// Whether the camera of `view` sees corner `k` of the die on screen.
 #[cfg(test)]
 pub(crate) fn corner_is_seen(app: &App, view: &View, k: usize) -> bool {
-    corner_seen(&seen_faces(&view.camera, &app.live.die), k)
+    corner_seen(&seen_faces(&view.camera, &app.roll.live.die), k)
 }
 
 /// The picture of the die panel: pure geometry of the app state.
 pub(crate) fn picture(app: &App, view: &View) -> Picture {
     let t = &app.theme;
-    let die = &app.live.die;
-    let half = app.live.params.die.half_size;
+    let die = &app.roll.live.die;
+    let half = app.roll.live.params.die.half_size;
     let mut pic = Picture::default();
     let corners: Vec<Flat> = die.corners.iter().map(|c| view.flat(c)).collect();
     pic.outline = convex_hull(&corners);
@@ -215,7 +215,7 @@ pub(crate) fn picture(app: &App, view: &View) -> Picture {
     }
     // A loaded die's extra masses: a mark on each seen heavy corner, and its mass beside
     // it (also for a corner behind the die, whose mark would be hidden).
-    let extra = app.live.params.die.extra_corner_mass;
+    let extra = app.roll.live.params.die.extra_corner_mass;
     for k in (0..8).filter(|&k| extra[k] > 0.0) {
         if corner_seen(&facing, k) {
             let mark = if app.drawing == Drawing::Ascii { "#" } else { "◆" };
@@ -248,7 +248,7 @@ pub(crate) fn picture(app: &App, view: &View) -> Picture {
     if lowest.z > 0.02 * half {
         pic.behind(0, view.flat(&lowest), view.flat(&foot(&lowest)), t.shadow());
     }
-    if let Some(twin) = &app.live.twin {
+    if let Some(twin) = &app.roll.live.twin {
         ghost(&mut pic, app, view, &twin.die);
     }
 
@@ -352,7 +352,7 @@ fn ghost(pic: &mut Picture, app: &App, view: &View, twin: &DieState) {
 
 /// ω, L and v from the centre, F from each touching corner, each with its symbol at the tip.
 fn arrows(pic: &mut Picture, app: &App, view: &View, die: &DieState) {
-    let half = app.live.params.die.half_size;
+    let half = app.roll.live.params.die.half_size;
     let mut arrow = |kind: Arrow, from: Vector3<f64>, v: Vector3<f64>| {
         let length = vectors::arrow_length(v.norm(), kind.reference(app), half);
         if length <= 0.0 {
@@ -551,7 +551,7 @@ pub(crate) fn place_labels(labels: &[Label], view: &View, outline: &[Flat]) -> V
 /// The die panel: title, the solid die, and the arrows' legend under it when they are on.
 pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
-    let die = &app.live.die;
+    let die = &app.roll.live.die;
     let lowest = die.corners.iter().map(|c| c.z).fold(f64::INFINITY, f64::min);
     let mut title = vec![
         Span::styled(" die ", t.heading()),
@@ -560,7 +560,7 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
             die.face_up, lowest
         )),
     ];
-    if let Some(twin) = &app.live.twin {
+    if let Some(twin) = &app.roll.live.twin {
         title.push(Span::styled(
             format!("· twin face up {} ", twin.die.face_up),
             Style::new().fg(t.ghost()),
@@ -615,15 +615,15 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
 
 /// Why the roll on screen ended unstable, or could not settle on its table, when it did.
 pub(crate) fn end_reason(app: &App) -> Option<(String, Style)> {
-    match app.live.phase {
+    match app.roll.live.phase {
         Phase::Ended(o) if o.status == Status::Unstable => Some((
             format!(
                 "unstable: {}",
-                UnstableReason::new(&app.live.params, &app.live.initial)
+                UnstableReason::new(&app.roll.live.params, &app.roll.live.initial)
             ),
             app.theme.danger(),
         )),
-        Phase::Ended(o) if o.status == Status::Timeout => why_it_cannot_settle(&app.live.params)
+        Phase::Ended(o) if o.status == Status::Timeout => why_it_cannot_settle(&app.roll.live.params)
             .map(|why| (format!("did not settle: {why}"), app.theme.caution())),
         _ => None,
     }

@@ -175,11 +175,16 @@ pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
     ];
     let series: Vec<Vec<(f64, f64)>> = terms
         .iter()
-        .map(|f| thinned(&app.history, buckets, |s| y_of(f(s))))
+        .map(|f| thinned(&app.roll.history, buckets, |s| y_of(f(s))))
         .collect();
-    let t_end = app.history.last().map_or(0.0, |s| s.time_s).max(app.live.time_s);
+    let t_end = app
+        .roll
+        .history
+        .last()
+        .map_or(0.0, |s| s.time_s)
+        .max(app.roll.live.time_s);
     let x_hi = nice_ceiling(t_end.max(0.1));
-    let threshold = app.live.stop_threshold;
+    let threshold = app.roll.live.stop_threshold;
     let (mut lo, mut hi) = if threshold.is_finite() {
         (y_of(threshold), y_of(threshold))
     } else {

@@ -3,7 +3,7 @@
 use super::app::{App, Mode};
 use super::format::group;
 use super::help::help_lines;
-use super::keys::{Action, Screen, named, rows};
+use super::keys::{Action, Screen, labels, named, rows};
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Rect};
 use ratatui::text::{Line, Span};
@@ -23,7 +23,7 @@ pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
         Mode::Prompt => {
             let prompt = app.prompt().expect("the mode says so");
             let (keys, words) = prompt.answers();
-            let question = prompt.question(&app.preset.name);
+            let question = prompt.question(&app.setup.preset.name);
             let hints = vec![
                 hint(&keys, &format!("{words} ·"), 0),
                 hint("any other key", "stays", 0),
@@ -52,14 +52,31 @@ fn table_hints(app: &App, screen: Screen) -> Vec<KeyHint> {
     rows(screen)
         .filter_map(|b| b.hint.map(|h| (b.action, h)))
         .map(|(action, h)| match action {
-            Action::TogglePlay if app.live.playing => hint(h.keys, "pause", h.priority),
-            Action::Batch if app.batch.is_some() => hint(h.keys, "cancel batch", h.priority),
-            Action::Batch => hint(h.keys, &format!("batch {}", group(app.batch_rolls)), h.priority),
-            Action::Twin if app.twin => hint("T < > E", "twin, ε", h.priority),
+            Action::TogglePlay if app.roll.live.playing => hint(h.keys, "pause", h.priority),
+            Action::Batch if app.roll.batch.is_some() => hint(h.keys, "cancel batch", h.priority),
+            Action::Batch => hint(
+                h.keys,
+                &format!("batch {}", group(app.roll.batch_size)),
+                h.priority,
+            ),
+            Action::Twin if app.twin.on => hint(
+                &labels(
+                    screen,
+                    &[
+                        Action::Twin,
+                        Action::TwinEpsilonDown,
+                        Action::TwinEpsilonUp,
+                        Action::TwinEpsilonType,
+                    ],
+                ),
+                "twin, ε",
+                h.priority,
+            ),
             Action::Confirm if screen == Screen::Save => hint(h.keys, "save", h.priority),
             Action::ExportMap => {
                 let ((w, h_px), _) = app.map.png_size();
-                hint("e E", &format!("PNG {w}×{h_px}"), h.priority)
+                let keys = labels(screen, &[Action::ExportMap, Action::MapExportSize]);
+                hint(&keys, &format!("PNG {w}×{h_px}"), h.priority)
             }
             _ => hint(h.keys, h.words, h.priority),
         })
@@ -81,7 +98,7 @@ pub(crate) fn typing_hints(form: Option<&str>) -> Vec<KeyHint> {
 
 /// A footer line of hints after any notice (an export's progress first).
 pub(crate) fn render_key_hints(app: &App, keys: Vec<KeyHint>, area: Rect, frame: &mut Frame) {
-    let notice = app.export_status().or_else(|| app.notice.clone());
+    let notice = app.roll.export_status().or_else(|| app.notice.clone());
     render_line(app, notice, keys, area, frame);
 }
 

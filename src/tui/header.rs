@@ -2,6 +2,7 @@
 //! shown instead of a screen when the terminal is too small for it.
 
 use super::app::App;
+use super::keys::{Action, Screen, label};
 use super::layout::{MIN_HEIGHT, MIN_WIDTH};
 use crate::physics::Status;
 use crate::worker::{Phase, RollKind};
@@ -17,7 +18,12 @@ pub(crate) fn render_too_small(area: Rect, frame: &mut Frame) {
             format!("Enlarge the terminal to at least {MIN_WIDTH}×{MIN_HEIGHT}"),
             Style::new().add_modifier(Modifier::BOLD),
         ),
-        Line::from(format!("(it is {}×{} now) · q quits", area.width, area.height)),
+        Line::from(format!(
+            "(it is {}×{} now) · {} quits",
+            area.width,
+            area.height,
+            label(Screen::Die, Action::Quit)
+        )),
     ];
     let top = area.height.saturating_sub(2) / 2;
     let [_, middle] = area.layout(&Layout::vertical([Constraint::Length(top), Constraint::Min(0)]));
@@ -37,7 +43,7 @@ fn phase_style(app: &App, phase: &Phase) -> Style {
 
 pub(crate) fn render_header(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
-    let live = &app.live;
+    let live = &app.roll.live;
     let sep = Span::raw(" │ ");
     let roll = match live.roll {
         RollKind::Preset => "preset roll".to_string(),
@@ -53,7 +59,7 @@ pub(crate) fn render_header(app: &App, area: Rect, frame: &mut Frame) {
     let full = Line::from(vec![
         Span::styled(" dicesim ", t.selected().add_modifier(Modifier::BOLD)),
         Span::raw(" "),
-        Span::styled(app.preset.name.clone(), t.heading()),
+        Span::styled(app.setup.preset.name.clone(), t.heading()),
         Span::styled(if changed { " (changed)" } else { "" }, t.caution()),
         Span::raw(format!(" · {roll}")),
         sep.clone(),
@@ -61,7 +67,7 @@ pub(crate) fn render_header(app: &App, area: Rect, frame: &mut Frame) {
         sep.clone(),
         Span::raw(format!("step {}", live.step)),
         sep.clone(),
-        Span::raw(format!("speed {}", app.speed.label())),
+        Span::raw(format!("speed {}", app.setup.speed.label())),
         sep.clone(),
         Span::raw(state),
         sep.clone(),
@@ -75,7 +81,7 @@ pub(crate) fn render_header(app: &App, area: Rect, frame: &mut Frame) {
     } else {
         let sep = Span::raw("│");
         Line::from(vec![
-            Span::styled(app.preset.name.clone(), t.heading()),
+            Span::styled(app.setup.preset.name.clone(), t.heading()),
             modified,
             Span::raw(" "),
             sep.clone(),
@@ -83,7 +89,7 @@ pub(crate) fn render_header(app: &App, area: Rect, frame: &mut Frame) {
             sep.clone(),
             Span::raw(format!("step {}", live.step)),
             sep.clone(),
-            Span::raw(app.speed.label()),
+            Span::raw(app.setup.speed.label()),
             sep.clone(),
             Span::raw(if live.playing { "▶" } else { "⏸" }),
             sep.clone(),

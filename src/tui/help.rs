@@ -64,9 +64,10 @@ pub(crate) fn help_lines(app: &App) -> Vec<Line<'static>> {
     let t = &app.theme;
     let key_lines = |screen: Screen| {
         section(screen).map(move |b| {
-            let what = b
-                .help
-                .replace("a batch of", &format!("a batch of {}", group(app.batch_rolls)));
+            let what = b.help.replace(
+                "a batch of",
+                &format!("a batch of {}", group(app.roll.batch_size)),
+            );
             Line::from(vec![
                 Span::styled(format!("  {:<14}", b.label), t.key()),
                 Span::raw(what),

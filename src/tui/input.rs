@@ -4,11 +4,8 @@
 //! draws, sleeps or reads a clock: the commands for the worker and the file work are
 //! returned.
 
-use super::app::{
-    App, Drawing, Editor, Effect, MAX_BATCH_ROLLS, Mode, Msg, Overlay, Prompt, Typed, VALUE_CHARS,
-};
+use super::app::{App, Drawing, Editor, Effect, Mode, Msg, Overlay, Prompt, Typed, VALUE_CHARS};
 use super::camera::Camera;
-use super::format::{fmt_num, group};
 use super::keys::{Action, Input, Screen, label, read};
 use super::layout::param_row_at;
 use super::map::{self, View};
@@ -33,7 +30,7 @@ pub fn update(app: &mut App, msg: Msg) -> Vec<Effect> {
         Msg::Input(_) => {}
         Msg::Signal(_) => app.quit(&mut out),
     }
-    if std::mem::take(&mut app.open_map) {
+    if std::mem::take(&mut app.map.open_asked) {
         map::open(app, &mut out);
     }
     let mut effects: Vec<Effect> = out.into_iter().map(Effect::Worker).collect();
@@ -105,11 +102,11 @@ fn on_prompt_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
     match prompt {
         Prompt::Quit => app.quit(out),
         Prompt::Reset => {
-            let preset = Box::new(app.preset.clone());
-            app.load(out, preset);
+            let preset = Box::new(app.setup.preset.clone());
+            app.setup.load(out, preset);
         }
         Prompt::Load(preset) => {
-            app.load(out, preset);
+            app.setup.load(out, preset);
         }
     }
 }
@@ -117,25 +114,21 @@ fn on_prompt_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
 /// Does what a key of the table stands for.
 fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
     match action {
-        Action::TogglePlay => app.send(out, Command::TogglePlay),
-        Action::StepForward => app.send(out, Command::Step(1)),
-        Action::StepBack => app.send(out, Command::StepBack(1)),
-        Action::ToStart => app.send(out, Command::Seek(0)),
-        Action::ToEnd => app.send(out, Command::Seek(u64::MAX)),
-        Action::Replay => app.send(out, Command::Replay),
-        Action::RandomRoll => app.send(out, Command::RandomRoll),
+        Action::TogglePlay => app.setup.send(out, Command::TogglePlay),
+        Action::StepForward => app.setup.send(out, Command::Step(1)),
+        Action::StepBack => app.setup.send(out, Command::StepBack(1)),
+        Action::ToStart => app.setup.send(out, Command::Seek(0)),
+        Action::ToEnd => app.setup.send(out, Command::Seek(u64::MAX)),
+        Action::Replay => app.setup.send(out, Command::Replay),
+        Action::RandomRoll => app.setup.send(out, Command::RandomRoll),
         Action::Batch => {
-            let c = if app.batch.is_some() {
-                Command::BatchCancel
-            } else {
-                Command::BatchStart(app.batch_rolls)
-            };
-            app.send(out, c);
+            let c = app.roll.batch_command();
+            app.setup.send(out, c);
         }
         Action::BatchSize => app.next_batch_size(),
-        Action::ClearTable => app.send(out, Command::ClearTable),
-        Action::Slower => app.set_speed(out, app.speed.slower()),
-        Action::Faster => app.set_speed(out, app.speed.faster()),
+        Action::ClearTable => app.setup.send(out, Command::ClearTable),
+        Action::Slower => app.setup.set_speed(out, app.setup.speed.slower()),
+        Action::Faster => app.setup.set_speed(out, app.setup.speed.faster()),
         Action::SelectPrevious => app.select(-1),
         Action::SelectNext => app.select(1),
         Action::SelectFirst => app.selected = 0,
@@ -147,15 +140,8 @@ fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
         Action::TypeValue => app.overlay = Some(Overlay::Value(Editor::default())),
         Action::LogScale => app.log_scale = !app.log_scale,
         Action::Export => {
-            let c = if app.export.is_some() {
-                Command::ExportCancel
-            } else {
-                Command::Export {
-                    dir: ".".into(),
-                    log_scale: app.log_scale,
-                }
-            };
-            app.send(out, c);
+            let c = app.roll.export_command(app.log_scale);
+            app.setup.send(out, c);
         }
         Action::Arrows => app.vectors = !app.vectors,
         Action::Twin | Action::TwinEpsilonDown | Action::TwinEpsilonUp | Action::TwinEpsilonType => {
@@ -238,18 +224,10 @@ fn on_edit_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
         match editor.input(input, VALUE_CHARS) {
             Typed::Cancelled => app.overlay = None,
             Typed::Editing => {}
-            Typed::Submitted(number) => match number {
-                Ok(n) if n.fract() == 0.0 && (1.0..=MAX_BATCH_ROLLS as f64).contains(&n) => {
-                    app.batch_rolls = n as u64;
+            Typed::Submitted(number) => match number.and_then(|n| app.roll.set_batch_size(n)) {
+                Ok(notice) => {
                     app.overlay = None;
-                    app.notice = Some(format!("batch size {}", group(app.batch_rolls)));
-                }
-                Ok(n) => {
-                    editor.error = Some(format!(
-                        "{} rolls: a whole number from 1 to {}",
-                        fmt_num(n),
-                        group(MAX_BATCH_ROLLS)
-                    ))
+                    app.notice = Some(notice);
                 }
                 Err(e) => editor.error = Some(e),
             },
@@ -264,7 +242,7 @@ fn on_edit_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
         Typed::Editing => {}
         Typed::Submitted(number) => {
             let p = app.selected_param();
-            match number.and_then(|v| app.set_param(out, p, v)) {
+            match number.and_then(|v| app.setup.set_param(out, p, v)) {
                 Ok(()) => app.overlay = None,
                 Err(e) => {
                     if let Some(Overlay::Value(editor)) = app.overlay.as_mut() {
@@ -288,7 +266,7 @@ fn on_mouse(app: &mut App, kind: MouseEventKind, column: u16, row: u16, out: &mu
                 app.selected = i;
             } else if let Some(bar) = super::timeline::bar(areas.timeline).filter(|b| b.contains(at)) {
                 let step = super::timeline::step_at(app, bar, column);
-                app.send(out, Command::Seek(step));
+                app.setup.send(out, Command::Seek(step));
             } else if areas.die.contains(at) {
                 app.drag = Some((column, row));
             }

@@ -846,6 +846,20 @@ pub(crate) fn label(mode: Screen, action: Action) -> &'static str {
         .map_or("?", |b| b.label)
 }
 
+/// The first key of `action` in `mode`, for a text too short to list them all.
+pub(crate) fn first_key(mode: Screen, action: Action) -> &'static str {
+    label(mode, action).split(' ').next().unwrap_or("?")
+}
+
+/// The keys of several actions in `mode`, as one hint writes them (`T < > E`).
+pub(crate) fn labels(mode: Screen, actions: &[Action]) -> String {
+    actions
+        .iter()
+        .map(|&a| label(mode, a))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
 /// How a text names the keys of `action` in `mode`: the footer's way when the row has a
 /// hint, else the help's, alternatives joined by "or" (`? or Esc`).
 pub(crate) fn named(mode: Screen, action: Action) -> String {

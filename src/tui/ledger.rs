@@ -15,7 +15,7 @@ const BAR_COLUMNS: u16 = 3;
 
 /// The four stacked forms, bottom to top: name, index into `energy_series`, value.
 fn forms(app: &App) -> [(&'static str, usize, f64); 4] {
-    let e = &app.live.energy;
+    let e = &app.roll.live.energy;
     [
         ("grav", 3, e.gravitational),
         ("transl", 1, e.translational),
@@ -40,8 +40,8 @@ fn glyph(app: &App, index: usize) -> char {
 pub(crate) fn bar_rows(app: &App, rows: u16) -> (Vec<Option<usize>>, Option<u16>) {
     let forms = forms(app);
     let stacked: f64 = forms.iter().map(|f| f.2.max(0.0)).sum();
-    let total = app.live.energy.total();
-    let top = app.live.ledger.initial.max(stacked).max(total);
+    let total = app.roll.live.energy.total();
+    let top = app.roll.live.ledger.initial.max(stacked).max(total);
     if rows == 0 || !(top.is_finite() && top > 0.0) {
         return (vec![None; rows as usize], None);
     }
@@ -101,7 +101,7 @@ pub(crate) fn render_ledger(app: &App, area: Rect, frame: &mut Frame) {
         let pad = text_width.saturating_sub(label.width() + number.chars().count());
         Line::from(vec![label, Span::raw(" ".repeat(pad)), Span::raw(number)])
     };
-    let l = &app.live.ledger;
+    let l = &app.roll.live.ledger;
     let mut now: Vec<Line> = forms
         .iter()
         .enumerate()
@@ -116,7 +116,10 @@ pub(crate) fn render_ledger(app: &App, area: Rect, frame: &mut Frame) {
             )
         })
         .collect();
-    now.push(row(Span::styled("◀ total", t.heading()), app.live.energy.total()));
+    now.push(row(
+        Span::styled("◀ total", t.heading()),
+        app.roll.live.energy.total(),
+    ));
     let heading = if text_width >= 20 {
         "lost since 0 s, erg"
     } else {

@@ -10,7 +10,7 @@ use super::app::App;
 use super::footer::render_help;
 use super::format::fmt_num;
 use super::header::{render_header, render_too_small};
-use super::keys::{Action, Screen, label};
+use super::keys::{Action, Screen, first_key, label};
 pub(crate) use super::map_view::*;
 use super::param::Param;
 use crate::experiment::basin::node_setup;
@@ -43,11 +43,11 @@ pub(crate) fn start(app: &mut App, out: &mut Vec<Command>) {
         x: m.x,
         y: m.y,
     };
-    m.requested = Some((request, app.params, app.initial));
+    m.requested = Some((request, app.setup.params, app.setup.initial));
     m.running = true;
     m.shown = None;
     m.clamp_cursor();
-    app.send(out, Command::MapStart(request));
+    app.setup.send(out, Command::MapStart(request));
 }
 
 /// Switches to the map screen; computes the map unless the one there still fits the setup
@@ -55,7 +55,9 @@ pub(crate) fn start(app: &mut App, out: &mut Vec<Command>) {
 pub(crate) fn open(app: &mut App, out: &mut Vec<Command>) {
     app.view = View::Map;
     let fits = app.map.requested.as_ref().is_some_and(|(r, p, ic)| {
-        (r.x.cells, r.y.cells) == fitted_cells(app.screen) && *p == app.params && *ic == app.initial
+        (r.x.cells, r.y.cells) == fitted_cells(app.screen)
+            && *p == app.setup.params
+            && *ic == app.setup.initial
     });
     let finished = app.map.running || app.map.map().is_some_and(|m| m.complete);
     if !fits || !finished {
@@ -70,7 +72,7 @@ pub(crate) fn close(app: &mut App, out: &mut Vec<Command>) {
     app.map.editing = None;
     if app.map.running {
         app.map.running = false;
-        app.send(out, Command::MapCancel);
+        app.setup.send(out, Command::MapCancel);
     }
 }
 
@@ -122,7 +124,7 @@ pub(crate) fn export_if_asked(app: &mut App, dir: &Path) {
     let record = map_record(
         map,
         app.map.layer,
-        Some((&app.preset.name, &update.params, &update.initial)),
+        Some((&app.setup.preset.name, &update.params, &update.initial)),
     );
     let written = Output::check(&path, &["png"], false)
         .map_err(crate::experiment::Error::from)
@@ -348,7 +350,11 @@ fn render_side(app: &App, area: Rect, frame: &mut Frame) {
     let m = &app.map;
     let block = Block::bordered().title(Line::styled(" basin map of the current setup ", t.heading()));
     let mut lines = Vec::new();
-    for (side, a, keys) in [(Side::X, &m.x, "x · X"), (Side::Y, &m.y, "y · Y")] {
+    let keys = |axis, range| format!("{} · {}", label(Screen::Map, axis), label(Screen::Map, range));
+    for (side, a, keys) in [
+        (Side::X, &m.x, keys(Action::NextXAxis, Action::TypeXRange)),
+        (Side::Y, &m.y, keys(Action::NextYAxis, Action::TypeYRange)),
+    ] {
         let name = if side == Side::X { "x" } else { "y" };
         lines.push(Line::from(vec![
             Span::styled(format!(" {name} "), t.heading()),
@@ -392,7 +398,12 @@ fn render_side(app: &App, area: Rect, frame: &mut Frame) {
         (None, false) => Line::raw(" not computed"),
     };
     lines.push(progress);
-    lines.push(Line::raw(format!(" zoom ×{} (z in, Z out)", fmt_num(zoom))));
+    lines.push(Line::raw(format!(
+        " zoom ×{} ({} in, {} out)",
+        fmt_num(zoom),
+        first_key(Screen::Map, Action::MapZoomIn),
+        first_key(Screen::Map, Action::MapZoomOut)
+    )));
     lines.push(Line::raw(""));
     lines.extend(cursor_lines(app));
     lines.extend(legend_lines(app));

@@ -3,7 +3,7 @@
 
 use super::app::{App, Editor, Effect, Typed};
 use super::format::fmt_num;
-use super::keys::{Action, Input};
+use super::keys::{Action, Input, Screen, label};
 use super::map::{close, start};
 use super::map_view::{EXPORT_SIZES, RangeEditor, Side, ZOOM_FACTOR, ZoomStep, default_range};
 use super::param::{Param, all};
@@ -50,7 +50,11 @@ pub(crate) fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Com
             let m = &mut app.map;
             m.export_size = (m.export_size + 1) % EXPORT_SIZES.len();
             let ((w, h), what) = m.png_size();
-            app.notice = Some(format!("PNG size {w}×{h} ({what}) · e exports, E the next size"));
+            app.notice = Some(format!(
+                "PNG size {w}×{h} ({what}) · {} exports, {} the next size",
+                label(Screen::Map, Action::ExportMap),
+                label(Screen::Map, Action::MapExportSize)
+            ));
         }
         _ => {}
     }
@@ -79,9 +83,7 @@ fn replay(app: &mut App, out: &mut Vec<Command>) {
         Param::of(app.map.y.key).label(),
         fmt_num(map.y.value(j)),
     );
-    app.params = params;
-    app.initial = initial;
-    app.send(out, Command::PlaySetup(params, initial));
+    app.setup.play(out, params, initial);
     close(app, out);
     app.notice = Some(notice);
 }
@@ -134,7 +136,7 @@ fn next_axis(app: &mut App, side: Side, out: &mut Vec<Command>) {
         .map(|k| all()[(at + k) % all().len()])
         .find(|&p| p != other)
         .unwrap_or(now);
-    let (min, max) = default_range(next, &app.params, &app.initial);
+    let (min, max) = default_range(next, &app.setup.params, &app.setup.initial);
     *app.map.axis_mut(side) = MapAxis {
         key: next.scan_key(),
         min,

@@ -371,8 +371,8 @@ mod keys {
         }
         s.run_to_end();
         let outcome = map.cell(i, j).expect("cell").outcome;
-        assert_eq!(s.app.live.phase, crate::worker::Phase::Ended(outcome));
-        assert_eq!(s.app.initial, initial);
+        assert_eq!(s.app.roll.live.phase, crate::worker::Phase::Ended(outcome));
+        assert_eq!(s.app.setup.initial, initial);
     }
 
     /// A PNG's size and the share of ink (non-white pixels) in its bottom tenth, where the

@@ -74,6 +74,9 @@ pub(crate) struct MapView {
     pub(crate) export_asked: bool,
     /// Which of [`EXPORT_SIZES`] the image is written at.
     pub(crate) export_size: usize,
+    /// The preset's view asks for the map screen: opened by the first `update`, once the
+    /// event loop has told the app its terminal size.
+    pub(crate) open_asked: bool,
 }
 
 /// The sizes of the map's PNG (`E` picks one, `e` writes it), each with what it is for; all
@@ -111,6 +114,7 @@ impl MapView {
             editing: None,
             export_asked: false,
             export_size: 0,
+            open_asked: false,
         }
     }
 

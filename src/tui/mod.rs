@@ -24,11 +24,14 @@ mod outcomes;
 pub(crate) mod param;
 mod params_panel;
 pub mod render;
+mod roll_view;
 pub(crate) mod run;
+mod setup;
 pub(crate) mod theme;
 mod timeline;
 mod tty;
 mod twin;
+mod twin_view;
 mod vectors;
 
 pub use app::{App, Effect, Msg};

@@ -17,7 +17,7 @@ pub(crate) const RELIABLE_ROLLS: u64 = 30;
 /// while too few rolls back it and while a batch is still adding rolls.
 fn fairness(app: &App) -> Vec<Span<'static>> {
     let t = &app.theme;
-    let tally = &app.table.tally;
+    let tally = &app.roll.table.tally;
     let n = tally.total();
     let mut spans = vec![Span::raw(format!(" n {n}"))];
     let end = Span::raw(" ");
@@ -31,7 +31,7 @@ fn fairness(app: &App) -> Vec<Span<'static>> {
         }
         (Some(chi2), Some(p)) => {
             spans.push(Span::raw(format!("  χ² {chi2:.2}  p ")));
-            if app.batch.is_some() {
+            if app.roll.batch.is_some() {
                 spans.push(Span::raw(format!("{} so far", fmt_num(p))));
             } else {
                 let style = if p < 0.01 { t.caution() } else { Style::new() };
@@ -76,7 +76,7 @@ pub(crate) fn share_bar(share: f64, interval: Option<[f64; 2]>, width: usize) ->
 /// How many rolls a class needs to see the bias the table measures (the χ² test at 5 %
 /// with 80 % power), once the table has rolls enough for its p-value to mean something.
 fn detection_line(app: &App) -> Option<Line<'static>> {
-    let tally = &app.table.tally;
+    let tally = &app.roll.table.tally;
     if tally.total() < RELIABLE_ROLLS {
         return None;
     }
@@ -90,7 +90,7 @@ fn detection_line(app: &App) -> Option<Line<'static>> {
 /// The rolls that ended without a face, as "words count" items (only those that occurred).
 fn faceless_items(app: &App) -> Vec<(String, Style)> {
     use crate::experiment::ending::Ending;
-    let table = &app.table;
+    let table = &app.roll.table;
     let mut items = Vec::new();
     let counts = [
         (Ending::WithoutFace, table.without_face, app.theme.caution()),
@@ -129,9 +129,9 @@ fn item_lines(items: &[(String, Style)], width: usize) -> Vec<Line<'static>> {
 
 pub(crate) fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
-    let table = &app.table;
+    let table = &app.roll.table;
     let mut title = vec![Span::styled(" outcomes of random rolls ", t.heading())];
-    if let Some(b) = app.batch {
+    if let Some(b) = app.roll.batch {
         title.push(Span::styled(
             format!("batch {}/{} ", b.done, b.total),
             t.caution(),
@@ -216,7 +216,7 @@ pub(crate) fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
         y += 1;
         rest -= 1;
     }
-    if let Some(b) = app.batch
+    if let Some(b) = app.roll.batch
         && rest > 0
     {
         let ratio = if b.total > 0 {

@@ -30,7 +30,7 @@ fn stability_style(app: &App, load: f64) -> Style {
 /// The one stability readout: the tightest of the predictor's limits for the setup on the
 /// list, as a share of that limit, e.g. "Δt stability: table stiffness at 44 % of limit".
 pub(crate) fn stability_readout(app: &App, width: u16) -> Line<'static> {
-    let reading = Stability::predict(&app.params, &app.initial).verdict();
+    let reading = Stability::predict(&app.setup.params, &app.setup.initial).verdict();
     let load = reading.load();
     let percent = if load.is_finite() {
         format!("{:.0} %", 100.0 * load)
@@ -77,7 +77,7 @@ pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
     }
     lines.push(Line::styled(head, t.heading()));
     for (i, &p) in all().iter().enumerate().skip(first).take(visible) {
-        let value = fmt_num(p.get(&app.params, &app.initial));
+        let value = fmt_num(p.get(&app.setup.params, &app.setup.initial));
         let mut spans = vec![Span::raw(format!(
             "{}{:<13} {:>8} {:<6}",
             if i == app.selected { "▶" } else { " " },

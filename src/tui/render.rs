@@ -33,7 +33,7 @@ fn render_die_screen(app: &App, frame: &mut Frame) {
     super::timeline::render(app, areas.timeline, frame);
     // While a twin rolls, its predictability curve takes the outcome table's place and
     // the separation of the two dice the energy plot's.
-    if app.live.twin.is_some() {
+    if app.roll.live.twin.is_some() {
         super::curve::render_curve(app, areas.outcomes, frame);
         super::twin::render_separation(app, areas.energy, frame);
     } else {

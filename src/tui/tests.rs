@@ -182,7 +182,7 @@ fn lines_of(buffer: &Buffer) -> Vec<String> {
 #[test]
 fn start_screen() {
     let s = start();
-    assert_eq!(s.app.live.step, 0);
+    assert_eq!(s.app.roll.live.step, 0);
     insta::assert_snapshot!("start_120x36", screen(&s.app, 120, 36));
     insta::assert_snapshot!("start_80x24", screen(&s.app, 80, 24));
 }
@@ -190,7 +190,7 @@ fn start_screen() {
 #[test]
 fn mid_impact_screen() {
     let s = mid_impact();
-    assert_eq!(s.app.live.phase, Phase::InContact);
+    assert_eq!(s.app.roll.live.phase, Phase::InContact);
     insta::assert_snapshot!("mid_impact_120x36", screen(&s.app, 120, 36));
     insta::assert_snapshot!("mid_impact_80x24", screen(&s.app, 80, 24));
 }
@@ -225,7 +225,7 @@ fn the_readmes_screenshot_is_the_explorer_at_its_first_impact() {
 #[test]
 fn settled_screen() {
     let s = settled();
-    assert!(matches!(s.app.live.phase, Phase::Ended(o) if o.status == Status::Settled));
+    assert!(matches!(s.app.roll.live.phase, Phase::Ended(o) if o.status == Status::Settled));
     insta::assert_snapshot!("settled_120x36", screen(&s.app, 120, 36));
     insta::assert_snapshot!("settled_80x24", screen(&s.app, 80, 24));
 }
@@ -233,8 +233,8 @@ fn settled_screen() {
 #[test]
 fn unstable_screen() {
     let s = unstable();
-    assert!(matches!(s.app.live.phase, Phase::Ended(o) if o.status == Status::Unstable));
-    assert_eq!(s.app.params.ground.stiffness, 2e7);
+    assert!(matches!(s.app.roll.live.phase, Phase::Ended(o) if o.status == Status::Unstable));
+    assert_eq!(s.app.setup.params.ground.stiffness, 2e7);
     insta::assert_snapshot!("unstable_120x36", screen(&s.app, 120, 36));
     insta::assert_snapshot!("unstable_80x24", screen(&s.app, 80, 24));
 }
@@ -261,7 +261,7 @@ fn editing_a_value() {
         "9 is outside 0…5"
     );
     assert_eq!(
-        s.app.params.ground.friction,
+        s.app.setup.params.ground.friction,
         spun_preset().ground.friction,
         "a refused value changes nothing"
     );
@@ -271,7 +271,7 @@ fn editing_a_value() {
 #[test]
 fn filled_outcome_table() {
     let s = filled_table();
-    assert_eq!(s.app.table.rolls(), 601);
+    assert_eq!(s.app.roll.table.rolls(), 601);
     insta::assert_snapshot!("table_120x36", screen(&s.app, 120, 36));
     insta::assert_snapshot!("table_80x24", screen(&s.app, 80, 24));
 }
@@ -342,7 +342,15 @@ fn contact_cells(buffer: &Buffer, area: Rect, mark: &str) -> Vec<(u16, u16)> {
 fn touching_corners_are_red_and_bold_or_reversed_without_colour() {
     let areas = screen_layout(Rect::new(0, 0, 120, 36)).expect("full size");
     let s = mid_impact();
-    let touching = s.app.live.die.forces.iter().filter(|f| f.depth > 0.0).count();
+    let touching = s
+        .app
+        .roll
+        .live
+        .die
+        .forces
+        .iter()
+        .filter(|f| f.depth > 0.0)
+        .count();
     assert!(touching > 0);
     let t = draw(&s.app, 120, 36);
     let cells = contact_cells(t.backend().buffer(), areas.die, "●");
@@ -423,7 +431,8 @@ fn stability_readout_warns_as_the_tightest_limit_nears() {
     assert_eq!(calm.bg, Color::Reset);
     // k for a given share of the contact-mode limit: (share·limit / Δt)² · M / 6.
     let k_for = |share: f64, app: &App| {
-        (share * CONTACT_MODE_LIMIT / app.params.integrator.dt).powi(2) * app.params.total_mass() / 6.0
+        (share * CONTACT_MODE_LIMIT / app.setup.params.integrator.dt).powi(2) * app.setup.params.total_mass()
+            / 6.0
     };
     let k = k_for((STABILITY_CAUTION + STABILITY_DANGER) / 2.0, &s.app);
     s.command(Command::SetParam(Param::named("ground.stiffness").scan_key(), k));
@@ -449,7 +458,7 @@ fn fast_spin_is_called_unstable_with_its_reason() {
     let (text, _) = stability_readout_cell(&s.app);
     assert!(text.contains("corner speed at 1749 % of limit"), "{text}");
     s.run_to_end();
-    assert!(matches!(s.app.live.phase, Phase::Ended(o) if o.status == Status::Unstable));
+    assert!(matches!(s.app.roll.live.phase, Phase::Ended(o) if o.status == Status::Unstable));
     let wide = screen(&s.app, 120, 36);
     // ω·a·√3 + the fall from 15 cm, times Δt: 17.3 + 0.17 cm.
     assert!(
@@ -469,7 +478,7 @@ fn a_table_too_soft_ends_as_did_not_settle() {
         .expect("in range");
     let mut s = Scene::new(&preset, Theme::default());
     s.run_to_end();
-    assert!(matches!(s.app.live.phase, Phase::Ended(o) if o.status == Status::Timeout));
+    assert!(matches!(s.app.roll.live.phase, Phase::Ended(o) if o.status == Status::Timeout));
     let text = screen(&s.app, 120, 36);
     assert!(
         text.contains("did not settle: the table is too soft to hold the die"),
@@ -488,7 +497,7 @@ fn a_start_inside_the_table_is_refused() {
     }
     s.key(KeyCode::Char('0'));
     s.key(KeyCode::Enter);
-    assert_eq!(s.app.initial.height, 15.0);
+    assert_eq!(s.app.setup.initial.height, 15.0);
     let text = screen(&s.app, 120, 36);
     assert!(text.contains("0: corner in the table; ≥ 0.9961 cm"), "{text}");
     insta::assert_snapshot!("start_inside_table_refused_80x24", screen(&s.app, 80, 24));
@@ -538,7 +547,7 @@ mod keys {
         assert_eq!(press(&mut a, KeyCode::Char('c')), [Command::ClearTable]);
         assert_eq!(
             press(&mut a, KeyCode::Char('b')),
-            [Command::BatchStart(super::super::app::BATCH_ROLLS)]
+            [Command::BatchStart(super::super::roll_view::BATCH_ROLLS)]
         );
         assert!(!a.quit);
     }
@@ -547,14 +556,14 @@ mod keys {
     fn b_cancels_a_running_batch() {
         let mut s = start();
         s.key(KeyCode::Char('b'));
-        assert!(s.app.batch.is_some());
+        assert!(s.app.roll.batch.is_some());
         assert_eq!(press(&mut s.app, KeyCode::Char('b')), [Command::BatchCancel]);
     }
 
     #[test]
     fn speed_walks_the_ladder_and_stops_at_its_ends() {
         let mut a = app();
-        let start = a.speed;
+        let start = a.setup.speed;
         assert_eq!(
             press(&mut a, KeyCode::Char('[')),
             [Command::SetSpeed(start.slower())]
@@ -568,7 +577,7 @@ mod keys {
         for _ in 0..30 {
             press(&mut a, KeyCode::Char(']'));
         }
-        assert_eq!(a.speed, Speed::INSTANT);
+        assert_eq!(a.setup.speed, Speed::INSTANT);
         assert!(
             press(&mut a, KeyCode::Char(']')).is_empty(),
             "nothing faster than instant"
@@ -576,7 +585,7 @@ mod keys {
         for _ in 0..30 {
             press(&mut a, KeyCode::Char('-'));
         }
-        assert_eq!(a.speed, Speed::SLOWEST);
+        assert_eq!(a.setup.speed, Speed::SLOWEST);
     }
 
     #[test]
@@ -590,7 +599,7 @@ mod keys {
         press(&mut a, KeyCode::Down);
         press(&mut a, KeyCode::Char('j'));
         assert_eq!(a.selected_param(), Param::named("ground.friction"));
-        let mu = a.params.ground.friction;
+        let mu = a.setup.params.ground.friction;
         let fine = Param::named("ground.friction").nudged(mu, 1, false);
         assert_eq!(
             press(&mut a, KeyCode::Right),
@@ -600,7 +609,7 @@ mod keys {
             )]
         );
         assert_eq!(
-            a.params.ground.friction, fine,
+            a.setup.params.ground.friction, fine,
             "the list shows the new value at once"
         );
         let coarse = Param::named("ground.friction").nudged(fine, -1, true);
@@ -701,7 +710,7 @@ mod keys {
             a.value_editor().is_none() && !a.quit,
             "Esc leaves the editor, not the program"
         );
-        assert_eq!(a.initial.height, 25.0);
+        assert_eq!(a.setup.initial.height, 25.0);
     }
 
     #[test]
@@ -786,7 +795,7 @@ mod keys {
             .is_empty()
         );
         assert_eq!(a.selected_param(), Param::named("ground.friction"));
-        let up = Param::named("ground.friction").nudged(a.params.ground.friction, 1, false);
+        let up = Param::named("ground.friction").nudged(a.setup.params.ground.friction, 1, false);
         assert_eq!(
             mouse(&mut a, MouseEventKind::ScrollUp, areas.params.x + 3, friction_row),
             [Command::SetParam(Param::named("ground.friction").scan_key(), up)]
@@ -817,18 +826,18 @@ mod keys {
         press(&mut s.app, KeyCode::Down);
         press(&mut s.app, KeyCode::Down);
         let cmds = press(&mut s.app, KeyCode::Right);
-        let mine = s.app.params.ground.friction;
+        let mine = s.app.setup.params.ground.friction;
         update(&mut s.app, Msg::from(stale));
         assert_eq!(
-            s.app.params.ground.friction, mine,
+            s.app.setup.params.ground.friction, mine,
             "an older snapshot does not undo the edit"
         );
         for c in cmds {
             s.engine.handle(c);
         }
         s.sync();
-        assert_eq!(s.app.params.ground.friction, mine);
-        assert_eq!(s.app.live.params.ground.friction, mine);
+        assert_eq!(s.app.setup.params.ground.friction, mine);
+        assert_eq!(s.app.roll.live.params.ground.friction, mine);
     }
 }
 
@@ -960,5 +969,5 @@ fn a_batch_whose_range_could_start_a_corner_in_the_table_is_refused() {
     assert!(text.contains("random.height"), "{text}");
     // a = 1 cm less the resting depth M·g/(4k) = 8·980/(4·500 000) = 0.00392 cm.
     assert!(text.contains("0.99608"), "{text}");
-    assert_eq!(s.app.table.rolls(), 0);
+    assert_eq!(s.app.roll.table.rolls(), 0);
 }

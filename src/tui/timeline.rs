@@ -22,7 +22,7 @@ pub(crate) fn bar(area: Rect) -> Option<Rect> {
 
 /// Steps the bar spans: the whole roll once it has ended, else as far as it has got.
 fn span_steps(app: &App) -> u64 {
-    let t = &app.live.timeline;
+    let t = &app.roll.live.timeline;
     t.furthest.max(t.position).max(1)
 }
 
@@ -41,8 +41,8 @@ pub(crate) fn step_at(app: &App, bar: Rect, column: u16) -> u64 {
 
 pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
-    let timeline = &app.live.timeline;
-    let dt = app.live.params.integrator.dt;
+    let timeline = &app.roll.live.timeline;
+    let dt = app.roll.live.params.integrator.dt;
     // As many decimals as Δt has (at least the header's three), so one step shows.
     let decimals = ((-dt.log10()).ceil().max(3.0)) as usize;
     let seconds = |n: u64| format!("{:.*} s", decimals, n as f64 * dt);
@@ -63,7 +63,7 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
             *cell = ('━', Style::new().fg(t.ground()));
         }
     }
-    for &impact in &app.impacts {
+    for &impact in &app.roll.impacts {
         let i = column_of(impact, steps, bar.width) as usize;
         cells[i] = ('┃', t.contact());
     }

@@ -18,33 +18,29 @@ pub(crate) const DEFINITION: &str = "twin: height, velocity and spin × (1 + ε)
 
 /// The twin's keys; returns whether `action` did anything (the ε keys need the twin on).
 pub(crate) fn on_key(app: &mut App, action: Action, out: &mut Vec<Command>) -> bool {
+    let twin = &mut app.twin;
     match action {
         Action::Twin => {
-            app.twin = !app.twin;
-            let c = Command::SetTwin(app.twin.then_some(app.epsilon));
-            app.send(out, c);
-            if app.twin {
-                app.notice = Some(format!("{DEFINITION}, ε = {}", fmt_num(app.epsilon)));
+            let c = twin.toggle();
+            if twin.on {
+                app.notice = Some(format!("{DEFINITION}, ε = {}", fmt_num(twin.epsilon)));
+            }
+            app.setup.send(out, c);
+        }
+        Action::TwinEpsilonDown | Action::TwinEpsilonUp if twin.on => {
+            let factor = if action == Action::TwinEpsilonUp {
+                10.0
+            } else {
+                0.1
+            };
+            if let Some(c) = twin.step(factor) {
+                app.setup.send(out, c);
             }
         }
-        Action::TwinEpsilonDown if app.twin => set_epsilon(app, out, app.epsilon / 10.0),
-        Action::TwinEpsilonUp if app.twin => set_epsilon(app, out, app.epsilon * 10.0),
-        Action::TwinEpsilonType if app.twin => app.overlay = Some(Overlay::Epsilon(Editor::default())),
+        Action::TwinEpsilonType if twin.on => app.overlay = Some(Overlay::Epsilon(Editor::default())),
         _ => return false,
     }
     true
-}
-
-/// Sets ε (clamped to its range) and rolls both dice again from t = 0.
-fn set_epsilon(app: &mut App, out: &mut Vec<Command>, epsilon: f64) {
-    // Decade steps land exactly on powers of ten, not on 9.999…e-10.
-    let epsilon = 10f64
-        .powi(epsilon.log10().round() as i32)
-        .clamp(EPSILON.min, EPSILON.max);
-    if epsilon != app.epsilon {
-        app.epsilon = epsilon;
-        app.send(out, Command::SetTwin(Some(epsilon)));
-    }
 }
 
 /// Typing ε (after `E`): digits, `e`, `-`, `.`; Enter applies, Esc cancels.
@@ -55,19 +51,10 @@ pub(crate) fn on_editor_key(app: &mut App, input: &Input, out: &mut Vec<Command>
     match editor.input(input, VALUE_CHARS) {
         Typed::Cancelled => app.overlay = None,
         Typed::Editing => {}
-        Typed::Submitted(number) => match number {
-            Ok(v) if EPSILON.check(v).is_ok() => {
+        Typed::Submitted(number) => match number.and_then(|v| app.twin.set(v)) {
+            Ok(c) => {
                 app.overlay = None;
-                app.epsilon = v;
-                app.send(out, Command::SetTwin(Some(v)));
-            }
-            Ok(v) => {
-                editor.error = Some(format!(
-                    "ε = {} is outside {}…{}",
-                    fmt_num(v),
-                    fmt_num(EPSILON.min),
-                    fmt_num(EPSILON.max)
-                ))
+                app.setup.send(out, c);
             }
             Err(e) => editor.error = Some(e),
         },
@@ -80,7 +67,7 @@ const FLOOR: f64 = -16.0;
 /// The separation plot with ε's meaning above and both outcomes below.
 pub(crate) fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
-    let Some(twin) = &app.live.twin else { return };
+    let Some(twin) = &app.roll.live.twin else { return };
     let colours = t.separation_colours();
     let epsilon = fmt_num(twin.epsilon);
     let title = Line::from(vec![
@@ -129,20 +116,23 @@ pub(crate) fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
     frame.render_widget(Paragraph::new(definition_text), definition);
     let y_of = |v: f64| if v > 0.0 { v.log10().max(FLOOR) } else { FLOOR };
     let centre: Vec<(f64, f64)> = app
-        .twin_history
+        .twin
+        .history
         .iter()
         .map(|s| (s.time_s, y_of(s.separation.centre)))
         .collect();
     let angle: Vec<(f64, f64)> = app
-        .twin_history
+        .twin
+        .history
         .iter()
         .map(|s| (s.time_s, y_of(s.separation.angle)))
         .collect();
     let t_end = app
-        .twin_history
+        .twin
+        .history
         .last()
         .map_or(0.0, |s| s.time_s)
-        .max(app.live.time_s);
+        .max(app.roll.live.time_s);
     let x_hi = nice_seconds(t_end);
     let marker = app.drawing.line_marker();
     let datasets = vec![
@@ -192,16 +182,20 @@ fn face_of(phase: &Phase) -> Option<u8> {
 /// "die settled: face 3 · twin settled: face 5 · faces differ"; narrow: "3 · 5 differ".
 pub(crate) fn outcome_line(app: &App, width: u16) -> Line<'static> {
     let t = &app.theme;
-    let Some(twin) = &app.live.twin else {
+    let Some(twin) = &app.roll.live.twin else {
         return Line::default();
     };
-    let faces = (face_of(&app.live.phase), face_of(&twin.phase));
+    let faces = (face_of(&app.roll.live.phase), face_of(&twin.phase));
     let verdict = match faces {
         (Some(a), Some(b)) if a == b => Some(Span::styled("same face", t.good())),
         (Some(_), Some(_)) => Some(Span::styled("faces differ", t.caution())),
         _ => None,
     };
-    let full = format!("die {} · twin {}", app.live.phase.label(), twin.phase.label());
+    let full = format!(
+        "die {} · twin {}",
+        app.roll.live.phase.label(),
+        twin.phase.label()
+    );
     let mut spans = if full.chars().count() + 14 <= width as usize {
         vec![Span::raw(full)]
     } else {

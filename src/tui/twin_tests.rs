@@ -228,8 +228,8 @@ fn a_partial_curve_says_it_is_computing_and_how_far() {
 #[test]
 fn a_setup_that_cannot_settle_says_why() {
     let s = failed();
-    let Some(CurveState::Failed(why)) = s.app.curve.as_ref().map(|c| &c.state) else {
-        panic!("{:?}", s.app.curve);
+    let Some(CurveState::Failed(why)) = s.app.twin.curve.as_ref().map(|c| &c.state) else {
+        panic!("{:?}", s.app.twin.curve);
     };
     assert!(why.contains("time cap of 0.01 s"), "{why}");
     for (w, h) in [(120, 36), (80, 24)] {
@@ -303,10 +303,10 @@ fn the_app_keeps_the_newest_curve_and_drops_it_with_the_twin() {
     );
     // A late update of an older generation changes nothing.
     let mut s = with_curve(s, 4, CurveState::Computing(Some(part.clone())));
-    assert_eq!(s.app.curve.as_ref().map(|c| c.generation), Some(5));
+    assert_eq!(s.app.twin.curve.as_ref().map(|c| c.generation), Some(5));
     s.key(KeyCode::Char('T'));
-    assert!(s.app.live.twin.is_none());
-    assert!(s.app.curve.is_none(), "no twin, no curve");
+    assert!(s.app.roll.live.twin.is_none());
+    assert!(s.app.twin.curve.is_none(), "no twin, no curve");
     let text = screen(&s.app, 120, 36);
     assert!(text.contains("outcomes of random rolls"), "the table is back");
 }
@@ -331,7 +331,7 @@ fn a_narrow_separation_panel_keeps_the_whole_epsilon_and_moves_its_legend_down()
     let mut s = twin_scene(Theme::default());
     s.key(KeyCode::Char('<'));
     s.key(KeyCode::Char('<'));
-    assert_eq!(s.app.live.twin.as_ref().map(|t| t.epsilon), Some(1e-11));
+    assert_eq!(s.app.roll.live.twin.as_ref().map(|t| t.epsilon), Some(1e-11));
     let narrow = screen(&s.app, 80, 24);
     assert!(narrow.contains("┌ twin ε = 1e-11 ─"), "{narrow}");
     assert!(narrow.contains("└━cm ━rad ─"), "{narrow}");

@@ -53,7 +53,7 @@ impl Arrow {
     /// L is parallel to ω (the cube's inertia is isotropic); its larger x₀ keeps the two
     /// arrows, and their labels, apart.
     pub(crate) fn reference(self, app: &App) -> f64 {
-        let p = &app.live.params;
+        let p = &app.roll.live.params;
         match self {
             Arrow::AngularVelocity => 1.0,
             Arrow::AngularMomentum => 100.0,
@@ -108,7 +108,7 @@ pub(crate) fn head(base: Flat, tip: Flat, size: f64) -> Vec<(Flat, Flat)> {
 
 /// The legend under the die: each arrow's colour and size, then how lengths are scaled.
 pub(crate) fn legend(app: &App, width: u16) -> Vec<Line<'static>> {
-    let die = &app.live.die;
+    let die = &app.roll.live.die;
     let sizes = [
         die.angular_velocity.norm(),
         die.angular_momentum.norm(),

@@ -129,7 +129,7 @@ fn check_solid(app: &App) -> Buffer {
 #[test]
 fn the_solid_die_mid_air_from_two_angles() {
     let mut s = after(150, Theme::default());
-    assert_eq!(s.app.live.phase, Phase::Falling);
+    assert_eq!(s.app.roll.live.phase, Phase::Falling);
     let low = check_solid(&s.app);
     insta::assert_snapshot!("die_mid_air_default_camera", text(&low));
     s.app.camera = HIGH;
@@ -163,7 +163,7 @@ fn the_heavy_corner_of_a_loaded_die_is_marked() {
     for drawing in [Drawing::Braille, Drawing::Ascii] {
         let mut s = loaded_after(150, Theme::default());
         s.app.drawing = drawing;
-        let extra = s.app.live.params.die.extra_corner_mass;
+        let extra = s.app.roll.live.params.die.extra_corner_mass;
         let heavy = extra.iter().position(|&m| m > 0.0).expect("a heavy corner");
         let label = format!("+{} g", super::format::fmt_num(extra[heavy]));
         let b = check_solid(&s.app);
@@ -228,7 +228,15 @@ fn every_arrow_has_its_label_and_the_legend_sits_below_the_die() {
     let b = check_solid(&s.app);
     let t = text(&b);
     let rows: Vec<&str> = t.lines().collect();
-    let touching = s.app.live.die.forces.iter().filter(|f| f.depth > 0.0).count();
+    let touching = s
+        .app
+        .roll
+        .live
+        .die
+        .forces
+        .iter()
+        .filter(|f| f.depth > 0.0)
+        .count();
     assert!(touching > 0);
     let f_labels = rows[1..rows.len() - 3]
         .iter()
@@ -254,7 +262,7 @@ fn the_twins_label_never_covers_the_die() {
     s.key(ratatui::crossterm::event::KeyCode::Char('T'));
     s.engine.advance_steps(150);
     s.sync();
-    assert!(s.app.live.twin.is_some());
+    assert!(s.app.roll.live.twin.is_some());
     let t = text(&check_solid(&s.app));
     assert!(t.contains("twin"), "{t}");
 }
@@ -341,7 +349,7 @@ fn ticks_are_round_numbers() {
 /// unstable ones.
 fn every_ending() -> App {
     let mut s = mid_impact_with(Theme::default());
-    let t = &mut s.app.table;
+    let t = &mut s.app.roll.table;
     t.tally.counts = [512, 498, 530, 505, 470, 558];
     t.without_face = 7;
     t.did_not_settle = 16;
@@ -387,7 +395,7 @@ fn wilson(k: u64, n: u64) -> [f64; 2] {
 #[test]
 fn each_face_shows_its_95_percent_interval_in_figures_and_on_its_bar() {
     let app = every_ending();
-    let counts = app.table.tally.counts;
+    let counts = app.roll.table.tally.counts;
     let n: u64 = counts.iter().sum();
     let t = text(&panel_at(&app, 120, 36, |a| a.outcomes, render_outcomes));
     assert!(t.contains("95 % int."), "{t}");
@@ -432,13 +440,13 @@ fn each_face_shows_its_95_percent_interval_in_figures_and_on_its_bar() {
 #[test]
 fn the_table_says_how_many_rolls_show_its_bias() {
     let mut app = every_ending();
-    app.table.without_face = 0;
-    app.table.did_not_settle = 0;
-    app.table.unstable = 0;
+    app.roll.table.without_face = 0;
+    app.roll.table.did_not_settle = 0;
+    app.roll.table.unstable = 0;
     // The heavy-corner die's shares, 20 000 rolls: a bias a class can measure.
-    app.table.tally.counts = [3000, 3000, 3000, 3700, 3650, 3650];
+    app.roll.table.tally.counts = [3000, 3000, 3000, 3700, 3650, 3650];
     let t = text(&panel_at(&app, 120, 36, |a| a.outcomes, render_outcomes));
-    let n = app.table.tally.rolls_to_detect().expect("a measured bias");
+    let n = app.roll.table.tally.rolls_to_detect().expect("a measured bias");
     assert!(
         t.contains(&format!(
             "bias this large shows in {} rolls",
@@ -447,7 +455,7 @@ fn the_table_says_how_many_rolls_show_its_bias() {
         "{t}"
     );
     assert!(n > 100 && n < 20_000, "{n}");
-    app.table.tally.counts = [100, 100, 100, 100, 100, 100];
+    app.roll.table.tally.counts = [100, 100, 100, 100, 100, 100];
     let t = text(&panel_at(&app, 120, 36, |a| a.outcomes, render_outcomes));
     assert!(t.contains("no bias beyond chance so far"), "{t}");
 }
@@ -455,11 +463,11 @@ fn the_table_says_how_many_rolls_show_its_bias() {
 #[test]
 fn a_p_value_from_too_few_rolls_is_marked_unreliable() {
     let mut app = every_ending();
-    app.table.tally.counts = [3, 5, 4, 6, 2, 4];
-    assert!(app.table.tally.total() < RELIABLE_ROLLS);
+    app.roll.table.tally.counts = [3, 5, 4, 6, 2, 4];
+    assert!(app.roll.table.tally.total() < RELIABLE_ROLLS);
     let t = text(&panel_at(&app, 120, 36, |a| a.outcomes, render_outcomes));
     assert!(t.contains("unreliable below n 30"), "{t}");
-    app.table.tally.counts = [30, 50, 40, 60, 20, 40];
+    app.roll.table.tally.counts = [30, 50, 40, 60, 20, 40];
     let t = text(&panel_at(&app, 120, 36, |a| a.outcomes, render_outcomes));
     assert!(!t.contains("unreliable") && t.contains(" p "), "{t}");
 }
@@ -573,9 +581,14 @@ mod map_screen {
     fn the_energy_png_follows_the_scale_and_records_its_setup() {
         let s = at_rest(Theme::default());
         let samples: Vec<(f64, crate::physics::Energy)> =
-            s.app.history.iter().map(|h| (h.time_s, h.energy)).collect();
-        let record = Record::of_setup("paper — energy", "paper", &s.app.params, &s.app.initial);
-        let threshold = s.app.live.stop_threshold;
+            s.app.roll.history.iter().map(|h| (h.time_s, h.energy)).collect();
+        let record = Record::of_setup(
+            "paper — energy",
+            "paper",
+            &s.app.setup.params,
+            &s.app.setup.initial,
+        );
+        let threshold = s.app.roll.live.stop_threshold;
         let log = crate::experiment::energy_plot::energy_plot_png(&samples, threshold, true, &record)
             .expect("draws");
         let linear = crate::experiment::energy_plot::energy_plot_png(&samples, threshold, false, &record)
