@@ -285,7 +285,7 @@ fn slow_motion_classroom_opens_slowed_down_with_its_arrows() {
     s.key(KeyCode::Char('a'));
     s.command(Command::LoadPreset(Box::default()));
     assert_eq!(s.app.setup.speed.label(), "1×");
-    assert_eq!(s.engine.speed().label(), "1×");
+    assert_eq!(s.engine.live().speed().label(), "1×");
     assert!(!s.app.vectors && !s.app.twin.on && s.app.roll.live.twin.is_none());
     assert_eq!(s.app.camera, super::camera::Camera::default());
     assert_eq!(s.app.theme.palette, super::theme::Palette::Light);

@@ -8,7 +8,7 @@
 //! cancel flag every few thousand steps: at most one curve computes at a time, and nothing
 //! of an older generation is ever passed on.
 
-use super::job::Tracked;
+use super::job::{Report, Runner};
 use crate::experiment::predict::{PredictCurve, PredictSpec, default_epsilons, run_prediction};
 use crate::experiment::{RandomRanges, RunOptions};
 use crate::physics::{InitialCondition, Params};
@@ -95,24 +95,36 @@ pub(crate) fn compute(
     }
 }
 
-/// The curve thread of one worker: at most one at a time.
-#[derive(Default)]
+/// The curve thread of one worker: at most one at a time, on the runner every job uses.
 pub(super) struct CurveRunner {
     generation: u64,
     /// The setup of the curve computing or shown last.
     setup: Option<CurveSetup>,
     /// Whether the last tick wanted a curve (a twin was rolling).
     wanted: bool,
-    /// The curve computing: its newest partial curve, left for the worker's next tick.
-    run: Option<Tracked<Option<PredictCurve>, CurveState>>,
+    /// The curve computing (under its generation): its newest partial curve, left for the
+    /// worker's next tick.
+    runner: Runner<Option<PredictCurve>, CurveState>,
     /// The complete curve of `setup`, shown again at once when the twin comes back on it.
     complete: Option<CurveState>,
+}
+
+impl Default for CurveRunner {
+    fn default() -> CurveRunner {
+        CurveRunner {
+            generation: 0,
+            setup: None,
+            wanted: false,
+            runner: Runner::new("dicesim-curve"),
+            complete: None,
+        }
+    }
 }
 
 impl CurveRunner {
     /// Whether a curve is computing.
     pub(crate) fn running(&self) -> bool {
-        self.run.is_some()
+        self.runner.running()
     }
 
     /// Follows the setup the engine wants a curve of (`None`: no twin, no curve), and
@@ -136,20 +148,17 @@ impl CurveRunner {
             self.complete = None;
             return Some(self.start(setup));
         }
-        let run = self.run.as_ref()?;
-        if run.is_finished() {
-            let run = self.run.take().expect("checked above");
-            let state = run
-                .finish()
-                .1
-                .unwrap_or_else(|| CurveState::Failed("the curve's computation panicked".to_string()));
-            if matches!(state, CurveState::Complete(_)) {
-                self.complete = Some(state.clone());
+        match self.runner.poll()? {
+            Report::Progress(_, partial) => partial.map(|c| self.update(CurveState::Computing(Some(c)))),
+            Report::Finished(_, _, state) => {
+                let state =
+                    state.unwrap_or_else(|| CurveState::Failed("the curve's computation panicked".to_string()));
+                if matches!(state, CurveState::Complete(_)) {
+                    self.complete = Some(state.clone());
+                }
+                Some(self.update(state))
             }
-            return Some(self.update(state));
         }
-        run.progress()
-            .map(|c| self.update(CurveState::Computing(Some(c))))
     }
 
     fn update(&self, state: CurveState) -> CurveUpdate {
@@ -161,7 +170,7 @@ impl CurveRunner {
     }
 
     fn start(&mut self, setup: CurveSetup) -> CurveUpdate {
-        let run = Tracked::start("dicesim-curve", self.generation, move |cancel, post| {
+        let started = self.runner.start(self.generation, move |cancel, post| {
             compute(&setup, cancel, &mut |c| {
                 // The last partial curve has every throw: it is the complete curve, which
                 // comes as the job's result. Posted, a tick between it and the thread's end
@@ -171,11 +180,8 @@ impl CurveRunner {
                 }
             })
         });
-        match run {
-            Ok(run) => {
-                self.run = Some(run);
-                self.update(CurveState::Computing(None))
-            }
+        match started {
+            Ok(()) => self.update(CurveState::Computing(None)),
             Err(e) => self.update(CurveState::Failed(format!(
                 "cannot start the curve's thread: {e}"
             ))),
@@ -184,14 +190,6 @@ impl CurveRunner {
 
     /// Cancels the curve computing, if any, and waits for its thread (milliseconds).
     pub(crate) fn stop(&mut self) {
-        if let Some(run) = self.run.take() {
-            run.stop();
-        }
-    }
-}
-
-impl Drop for CurveRunner {
-    fn drop(&mut self) {
-        self.stop();
+        self.runner.stop();
     }
 }

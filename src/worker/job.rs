@@ -1,6 +1,8 @@
 //! One computation on a thread of its own with a cancel flag: the worker's batches, maps,
-//! curves and exports all run this way, so cancelling and waiting are written once; those
-//! that report progress to the worker's ticks share one runner shape too ([`Tracked`]).
+//! curves and exports all run this way, so cancelling and waiting are written once. Each
+//! kind of job has one [`Runner`] (at most one job of that kind at a time, its progress
+//! taken on every tick), and the engine keeps what it asked for in an [`Order`]: the
+//! runner stops any job whose id the order no longer waits for.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
@@ -52,8 +54,8 @@ impl<P> Post<P> {
     }
 }
 
-/// The one shape of the worker's jobs (batch, export, curve): started under the id the
-/// engine gave it, its progress taken on every tick, stopped or joined once. Only the
+/// The one shape of the worker's jobs (batch, export, map, curve): started under the id
+/// the engine gave it, its progress taken on every tick, stopped or joined once. Only the
 /// kind of progress (`P`) and of result (`T`) differ.
 pub(super) struct Tracked<P, T> {
     pub id: u64,
@@ -93,5 +95,141 @@ impl<P: Default + Send + 'static, T: Send + 'static> Tracked<P, T> {
     /// Cancels it and waits for its thread (see [`Job::stop`]).
     pub fn stop(self) {
         self.job.stop();
+    }
+}
+
+/// What a runner's job did since the last tick.
+pub(super) enum Report<P, T> {
+    /// Still running: what it posted since.
+    Progress(u64, P),
+    /// Ended: what it posted last, and its result (`None` if it panicked).
+    Finished(u64, P, Option<T>),
+}
+
+/// The thread of one kind of job: at most one at a time.
+pub(super) struct Runner<P, T> {
+    /// The thread's name.
+    name: &'static str,
+    run: Option<Tracked<P, T>>,
+}
+
+impl<P: Default + Send + 'static, T: Send + 'static> Runner<P, T> {
+    pub fn new(name: &'static str) -> Runner<P, T> {
+        Runner { name, run: None }
+    }
+
+    pub fn running(&self) -> bool {
+        self.run.is_some()
+    }
+
+    /// Stops the job unless it is the one `wanted` (the engine's order moved on, or was
+    /// cancelled).
+    pub fn keep_only(&mut self, wanted: Option<u64>) {
+        if self.run.as_ref().is_some_and(|r| Some(r.id) != wanted) {
+            self.stop();
+        }
+    }
+
+    /// Starts `work` under `id`, after stopping the job running, if any.
+    pub fn start(
+        &mut self,
+        id: u64,
+        work: impl FnOnce(&AtomicBool, &Post<P>) -> T + Send + 'static,
+    ) -> std::io::Result<()> {
+        self.stop();
+        self.run = Some(Tracked::start(self.name, id, work)?);
+        Ok(())
+    }
+
+    /// What the job did since the last call; `None` while none runs.
+    pub fn poll(&mut self) -> Option<Report<P, T>> {
+        let run = self.run.as_ref()?;
+        if !run.is_finished() {
+            return Some(Report::Progress(run.id, run.progress()));
+        }
+        let run = self.run.take().expect("checked above");
+        let id = run.id;
+        let (rest, result) = run.finish();
+        Some(Report::Finished(id, rest, result))
+    }
+
+    /// Cancels the job running, if any, and waits for its thread (see [`Job::stop`]).
+    pub fn stop(&mut self) {
+        if let Some(run) = self.run.take() {
+            run.stop();
+        }
+    }
+}
+
+impl<P, T> Drop for Runner<P, T> {
+    fn drop(&mut self) {
+        if let Some(run) = self.run.take() {
+            run.job.cancel.store(true, Ordering::Relaxed);
+            let _ = run.job.thread.join();
+        }
+    }
+}
+
+/// What the engine has asked a runner for: the job it waits for (with what it shows of
+/// it, `S`), and the request not yet taken. Ids are never reused, so a report of an older
+/// job is recognised and dropped.
+#[derive(Debug)]
+pub(super) struct Order<S, R> {
+    current: Option<(u64, S)>,
+    request: Option<R>,
+    started: u64,
+}
+
+impl<S, R> Default for Order<S, R> {
+    fn default() -> Self {
+        Order {
+            current: None,
+            request: None,
+            started: 0,
+        }
+    }
+}
+
+impl<S, R> Order<S, R> {
+    /// Orders a new job (replacing any other), shown as `state`; `request` gets its id.
+    pub fn place(&mut self, state: S, request: impl FnOnce(u64) -> R) {
+        let id = self.started;
+        self.started += 1;
+        self.current = Some((id, state));
+        self.request = Some(request(id));
+    }
+
+    /// Nothing is waited for any more; what was shown of the job, if one was ordered.
+    pub fn cancel(&mut self) -> Option<S> {
+        self.request = None;
+        self.current.take().map(|(_, s)| s)
+    }
+
+    /// The request, once, for the runner.
+    pub fn take_request(&mut self) -> Option<R> {
+        self.request.take()
+    }
+
+    /// The job waited for.
+    pub fn id(&self) -> Option<u64> {
+        self.current.as_ref().map(|(id, _)| *id)
+    }
+
+    pub fn state(&self) -> Option<&S> {
+        self.current.as_ref().map(|(_, s)| s)
+    }
+
+    /// What is shown of job `id`, if it is the one waited for.
+    pub fn state_of(&mut self, id: u64) -> Option<&mut S> {
+        self.current.as_mut().filter(|(i, _)| *i == id).map(|(_, s)| s)
+    }
+
+    /// Job `id` has ended: what was shown of it, if it was the one waited for.
+    pub fn finish(&mut self, id: u64) -> Option<S> {
+        if self.id() == Some(id) {
+            self.current.take().map(|(_, s)| s)
+        } else {
+            None
+        }
     }
 }

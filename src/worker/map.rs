@@ -1,12 +1,11 @@
-//! Basin maps for the explorer: `experiment::run_map` on a thread of its own, its partial
-//! maps sent straight to the UI as they come, coarse first.
+//! Basin maps for the explorer: `experiment::run_map` as a job of the worker's map runner,
+//! its partial maps passed straight on to the UI on every tick, coarse first.
 //!
 //! Every map is tagged with the generation the UI gave its request. A new request or a
 //! cancel stops the old map and waits for its thread, which takes milliseconds since every
 //! roll looks at the cancel flag every few thousand steps: at most one map computes at a
 //! time. Whatever the old map sent last carries the old generation and the UI drops it.
 
-use super::job::Job;
 use crate::experiment::{Axis, BasinMap, Error, MapSpec, Method, ScanKey, run_map};
 use crate::physics::{InitialCondition, Params};
 use std::sync::Arc;
@@ -42,16 +41,11 @@ pub struct MapRequest {
 /// A request with the setup it maps around, as the worker had it when the request came.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct MapJob {
+    /// The engine's id of the job (the UI knows it by `request.generation`).
+    pub(crate) id: u64,
     pub(crate) request: MapRequest,
     pub(crate) params: Params,
     pub(crate) initial: InitialCondition,
-}
-
-/// What the worker's engine asks its map thread to do next.
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) enum MapOrder {
-    Start(Box<MapJob>),
-    Cancel,
 }
 
 /// A map, partial or complete, or why it could not be computed.
@@ -96,64 +90,17 @@ pub(crate) fn compute(job: &MapJob, cancel: &AtomicBool, send: &mut dyn FnMut(Ma
     }
 }
 
-/// Where map threads send their updates; false once the UI has gone.
+/// Where the map runner sends the maps; false once the UI has gone.
 pub(super) type MapSink = Arc<dyn Fn(MapUpdate) -> bool + Send + Sync>;
 
-/// The map thread of one worker: at most one at a time.
-pub(super) struct MapRunner {
-    sink: MapSink,
-    current: Option<Job<()>>,
-}
-
-impl MapRunner {
-    pub(crate) fn new(sink: MapSink) -> MapRunner {
-        MapRunner { sink, current: None }
-    }
-
-    /// Follows the engine's newest order, and forgets a map that has ended.
-    pub(crate) fn sync(&mut self, order: Option<MapOrder>) {
-        if let Some(order) = order {
-            self.stop();
-            if let MapOrder::Start(job) = order {
-                self.start(*job);
-            }
+impl MapJob {
+    /// What the UI is told when the job could not even start.
+    pub(crate) fn failed(&self, why: String) -> MapUpdate {
+        MapUpdate {
+            generation: self.request.generation,
+            params: self.params,
+            initial: self.initial,
+            map: Err(why),
         }
-        if self.current.as_ref().is_some_and(Job::is_finished) {
-            self.stop();
-        }
-    }
-
-    /// Whether a map is computing.
-    pub(crate) fn running(&self) -> bool {
-        self.current.is_some()
-    }
-
-    fn start(&mut self, job: MapJob) {
-        let sink = self.sink.clone();
-        match Job::spawn("dicesim-map", move |cancel| {
-            compute(&job, cancel, &mut |u| sink(u))
-        }) {
-            Ok(run) => self.current = Some(run),
-            Err(e) => {
-                (self.sink)(MapUpdate {
-                    generation: job.request.generation,
-                    params: job.params,
-                    initial: job.initial,
-                    map: Err(format!("cannot start the map thread: {e}")),
-                });
-            }
-        }
-    }
-
-    fn stop(&mut self) {
-        if let Some(run) = self.current.take() {
-            run.stop();
-        }
-    }
-}
-
-impl Drop for MapRunner {
-    fn drop(&mut self) {
-        self.stop();
     }
 }

@@ -8,6 +8,7 @@ pub(crate) mod curve;
 mod engine;
 mod export;
 mod job;
+mod live;
 pub(crate) mod map;
 mod pacer;
 mod timeline;
@@ -24,12 +25,14 @@ use crate::experiment::{FaceTally, RollRecord};
 use crate::experiment::{Rolls, ScanKey, run_batch};
 use crate::physics::{ContactForce, Energy, EnergyLedger, InitialCondition, Outcome, Params, Status};
 use crate::preset::Preset;
-use job::Tracked;
+use job::{Post, Report, Runner};
+use map::MapSink;
 use nalgebra::Vector3;
 pub(crate) use pacer::TICK;
 use pacer::{Clock, WallClock};
 use std::collections::VecDeque;
 use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
 use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender, channel};
 use std::thread::JoinHandle;
 
@@ -323,7 +326,7 @@ impl Worker {
         F: Fn(MapUpdate) -> bool + Send + Sync + 'static,
     {
         let (commands, rx) = channel();
-        let maps = map::MapRunner::new(Arc::new(maps));
+        let maps: MapSink = Arc::new(maps);
         let thread = std::thread::Builder::new()
             .name("dicesim-worker".to_string())
             .spawn(move || run(engine, rx, out, maps, WallClock))
@@ -362,40 +365,35 @@ fn run<T: From<Snapshot>>(
     mut engine: Engine,
     rx: Receiver<Command>,
     out: Sender<T>,
-    mut maps: map::MapRunner,
+    maps: MapSink,
     clock: impl Clock,
 ) {
-    let mut curves = curve::CurveRunner::default();
-    if out.send(report(&mut engine, &mut curves).into()).is_err() {
+    let mut jobs = Jobs::new(maps);
+    if out.send(report(&mut engine, &mut jobs.curves).into()).is_err() {
         return;
     }
     crate::fault::inject("worker");
     let mut pacer = None;
     let mut next_tick = clock.now();
-    let mut batch = BatchRunner::default();
-    let mut export = ExportRunner::default();
     loop {
         // Block while idle; while busy, wait for a command at most until the next tick.
-        let first =
-            if engine.busy() || batch.running() || export.running() || maps.running() || curves.running() {
-                match rx.recv_timeout(next_tick.saturating_duration_since(clock.now())) {
-                    Ok(c) => Some(c),
-                    Err(RecvTimeoutError::Timeout) => None,
-                    Err(RecvTimeoutError::Disconnected) => break,
-                }
-            } else {
-                match rx.recv() {
-                    Ok(c) => Some(c),
-                    Err(_) => break,
-                }
-            };
+        let first = if engine.busy() || jobs.running() {
+            match rx.recv_timeout(next_tick.saturating_duration_since(clock.now())) {
+                Ok(c) => Some(c),
+                Err(RecvTimeoutError::Timeout) => None,
+                Err(RecvTimeoutError::Disconnected) => break,
+            }
+        } else {
+            match rx.recv() {
+                Ok(c) => Some(c),
+                Err(_) => break,
+            }
+        };
         let mut handled = false;
         for command in first.into_iter().chain(std::iter::from_fn(|| rx.try_recv().ok())) {
             handled = true;
             if !engine.handle(command) {
-                batch.stop();
-                export.stop();
-                curves.stop();
+                jobs.stop();
                 return;
             }
         }
@@ -404,17 +402,13 @@ fn run<T: From<Snapshot>>(
             continue;
         }
         pacer::play_tick(&mut engine, &mut pacer, now);
-        batch.sync(&mut engine);
-        export.sync(&mut engine);
-        maps.sync(engine.take_map_order());
-        if out.send(report(&mut engine, &mut curves).into()).is_err() {
+        jobs.sync(&mut engine);
+        if out.send(report(&mut engine, &mut jobs.curves).into()).is_err() {
             break;
         }
         next_tick = now + TICK;
     }
-    batch.stop();
-    export.stop();
-    curves.stop();
+    jobs.stop();
 }
 
 /// The engine's snapshot, with whatever the curve thread has to report.
@@ -426,119 +420,130 @@ fn report(engine: &mut Engine, curves: &mut curve::CurveRunner) -> Snapshot {
     }
 }
 
-/// The batch thread: `experiment::run_batch` with a cancel flag, its progress passed on
-/// to the engine on every tick.
-#[derive(Default)]
-struct BatchRunner {
-    /// Rolls finished since the engine last took them, and how the batch ended.
-    run: Option<Tracked<Vec<RollRecord>, Result<(), String>>>,
-}
-
-impl BatchRunner {
-    fn running(&self) -> bool {
-        self.run.is_some()
-    }
-
-    /// Starts, cancels and collects so the batch thread follows the engine.
-    fn sync(&mut self, engine: &mut Engine) {
-        if self.run.as_ref().is_some_and(|r| engine.batch_id() != Some(r.id)) {
-            self.stop();
-        }
-        if let Some(request) = engine.take_batch_request() {
-            self.stop();
-            self.start(request, engine);
-        }
-        let Some(run) = &self.run else { return };
-        engine.add_batch_records(run.id, &run.progress());
-        if run.is_finished() {
-            let run = self.run.take().expect("checked above");
-            let id = run.id;
-            let (rest, result) = run.finish();
-            engine.add_batch_records(id, &rest);
-            engine.finish_batch(id, result.unwrap_or_else(|| Err("a roll panicked".to_string())));
-        }
-    }
-
-    fn start(&mut self, request: BatchRequest, engine: &mut Engine) {
-        let id = request.id;
-        let run = Tracked::start("dicesim-batch", id, move |cancel, post| {
-            let rolls = Rolls::Given(&request.rolls);
-            let mut seen = 0;
-            run_batch(&request.params, &rolls, 0, cancel, &mut |records| {
-                post.post(|fresh: &mut Vec<RollRecord>| fresh.extend_from_slice(&records[seen..]));
-                seen = records.len();
-            })
-            .map(|_| ())
-            .map_err(|e| e.to_string())
-        });
-        match run {
-            Ok(run) => self.run = Some(run),
-            Err(e) => engine.finish_batch(id, Err(e.to_string())),
-        }
-    }
-
-    /// Cancels the running batch and waits for its threads (milliseconds: rolls look at
-    /// the flag every few thousand steps).
-    fn stop(&mut self) {
-        if let Some(run) = self.run.take() {
-            run.stop();
-        }
-    }
-}
-
-/// The export thread: `experiment::trace::export_roll`, its progress passed on to the
-/// engine on every tick.
-#[derive(Default)]
-struct ExportRunner {
-    /// The newest progress, and what was written.
-    run: Option<Tracked<Option<ExportProgress>, ExportResult>>,
-}
-
 type ExportResult = Result<crate::experiment::trace::Exported, crate::experiment::Error>;
 
-impl ExportRunner {
-    fn running(&self) -> bool {
-        self.run.is_some()
+/// The worker's jobs, each kind on a runner of its own: they follow what the engine has
+/// ordered (a job it no longer waits for is stopped), and their progress goes back to the
+/// engine, or for maps straight on to the UI, on every tick.
+struct Jobs {
+    /// Rolls finished since the last tick, and how the batch ended.
+    batch: Runner<Vec<RollRecord>, Result<(), String>>,
+    /// The newest progress, and what was written.
+    export: Runner<Option<ExportProgress>, ExportResult>,
+    /// Maps since the last tick (partial, coarse first, then the complete one).
+    map: Runner<Vec<MapUpdate>, ()>,
+    maps: MapSink,
+    /// The twin's predictability curve follows the engine's setup, not an order.
+    curves: curve::CurveRunner,
+}
+
+impl Jobs {
+    fn new(maps: MapSink) -> Jobs {
+        Jobs {
+            batch: Runner::new("dicesim-batch"),
+            export: Runner::new("dicesim-export"),
+            map: Runner::new("dicesim-map"),
+            maps,
+            curves: curve::CurveRunner::default(),
+        }
     }
 
+    fn running(&self) -> bool {
+        self.batch.running() || self.export.running() || self.map.running() || self.curves.running()
+    }
+
+    /// Starts, stops and collects so every runner follows the engine's orders.
     fn sync(&mut self, engine: &mut Engine) {
-        if self
-            .run
-            .as_ref()
-            .is_some_and(|r| engine.export_id() != Some(r.id))
-        {
-            self.stop();
-        }
-        if let Some(request) = engine.take_export_request() {
-            self.stop();
+        self.batch.keep_only(engine.batch_id());
+        if let Some(request) = engine.take_batch_request() {
             let id = request.id;
-            let run = Tracked::start("dicesim-export", id, move |cancel, post| {
-                request.run(cancel, &mut |p| post.post(|newest| *newest = Some(p)))
-            });
-            match run {
-                Ok(run) => self.run = Some(run),
-                Err(e) => engine.finish_export(id, Err(crate::experiment::Error::Export(e.to_string()))),
+            if let Err(e) = self
+                .batch
+                .start(id, move |cancel, post| batch_work(&request, cancel, post))
+            {
+                engine.finish_batch(id, Err(e.to_string()));
             }
         }
-        let Some(run) = &self.run else { return };
-        if let Some(p) = run.progress() {
-            engine.export_progress(run.id, p);
+        match self.batch.poll() {
+            Some(Report::Progress(id, fresh)) => engine.add_batch_records(id, &fresh),
+            Some(Report::Finished(id, rest, result)) => {
+                engine.add_batch_records(id, &rest);
+                engine.finish_batch(id, result.unwrap_or_else(|| Err("a roll panicked".to_string())));
+            }
+            None => {}
         }
-        if run.is_finished() {
-            let run = self.run.take().expect("checked above");
-            let id = run.id;
-            let result = run.finish().1.unwrap_or_else(|| {
-                Err(crate::experiment::Error::Export(
-                    "the export panicked".to_string(),
-                ))
+
+        self.export.keep_only(engine.export_id());
+        if let Some(job) = engine.take_export_request() {
+            let id = job.id;
+            let started = self.export.start(id, move |cancel, post| {
+                job.run(cancel, &mut |p| post.post(|newest| *newest = Some(p)))
             });
-            engine.finish_export(id, result);
+            if let Err(e) = started {
+                engine.finish_export(id, Err(crate::experiment::Error::Export(e.to_string())));
+            }
+        }
+        match self.export.poll() {
+            Some(Report::Progress(id, Some(p))) => engine.export_progress(id, p),
+            Some(Report::Finished(id, _, result)) => engine.finish_export(
+                id,
+                result.unwrap_or_else(|| {
+                    Err(crate::experiment::Error::Export(
+                        "the export panicked".to_string(),
+                    ))
+                }),
+            ),
+            _ => {}
+        }
+
+        self.map.keep_only(engine.map_id());
+        if let Some(job) = engine.take_map_request() {
+            let started = self.map.start(job.id, move |cancel, post| {
+                map::compute(&job, cancel, &mut |u| {
+                    post.post(|fresh| fresh.push(u));
+                    true
+                })
+            });
+            if let Err(e) = started {
+                (self.maps)(job.failed(format!("cannot start the map thread: {e}")));
+                engine.finish_map(job.id);
+            }
+        }
+        let (maps, ended) = match self.map.poll() {
+            Some(Report::Progress(_, maps)) => (maps, None),
+            Some(Report::Finished(id, rest, _)) => (rest, Some(id)),
+            None => (Vec::new(), None),
+        };
+        for u in maps {
+            (self.maps)(u);
+        }
+        if let Some(id) = ended {
+            engine.finish_map(id);
         }
     }
 
+    /// Cancels every job and waits for its thread (milliseconds: rolls look at the flag
+    /// every few thousand steps).
     fn stop(&mut self) {
-        if let Some(run) = self.run.take() {
-            run.stop();
-        }
+        self.batch.stop();
+        self.export.stop();
+        self.map.stop();
+        self.curves.stop();
     }
+}
+
+/// A batch's rolls, posted as they finish.
+fn batch_work(
+    request: &BatchRequest,
+    cancel: &AtomicBool,
+    post: &Post<Vec<RollRecord>>,
+) -> Result<(), String> {
+    let rolls = Rolls::Given(&request.rolls);
+    let mut seen = 0;
+    run_batch(&request.params, &rolls, 0, cancel, &mut |records| {
+        post.post(|fresh: &mut Vec<RollRecord>| fresh.extend_from_slice(&records[seen..]));
+        seen = records.len();
+    })
+    .map(|_| ())
+    .map_err(|e| e.to_string())
 }

@@ -79,17 +79,18 @@ impl Pacer {
 /// of computing). Pacing restarts whenever the engine's epoch moved (play, pause, speed,
 /// a new roll, a seek), since nothing is owed across those.
 pub(crate) fn play_tick(engine: &mut Engine, pacer: &mut Option<Pacer>, now: Instant) -> u64 {
-    if !engine.is_playing() {
+    let live = engine.live();
+    if !live.is_playing() {
         return 0;
     }
-    let epoch = engine.pacing_epoch();
+    let epoch = live.pacing_epoch();
     let p = match pacer {
         Some(p) if p.epoch == epoch => p,
         _ => pacer.insert(Pacer::new(epoch, now)),
     };
-    let steps = match engine.speed().factor() {
+    let steps = match live.speed().factor() {
         None => INSTANT_STEPS_PER_TICK,
-        Some(factor) => p.due(now, factor, engine.params().integrator.dt),
+        Some(factor) => p.due(now, factor, live.params().integrator.dt),
     };
     engine.advance_steps(steps)
 }
