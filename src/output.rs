@@ -305,6 +305,25 @@ pub(crate) fn free_stem(dir: &Path, stem: &str, extensions: &[&str]) -> String {
         .unwrap_or_else(|| stem.to_string())
 }
 
+/// Files `<stem>.<ext>` in `dir`, one per extension under the first stem free for all of
+/// them (see [`free_stem`]), each checked as [`Output::check`] checks: the explorer's
+/// exports, which never replace a file.
+pub(crate) fn free_outputs<const N: usize>(
+    dir: &Path,
+    stem: &str,
+    extensions: [&str; N],
+) -> Result<[Output; N], OutputError> {
+    let stem = free_stem(dir, stem, &extensions);
+    let outputs = extensions
+        .iter()
+        .map(|ext| Output::check(&dir.join(format!("{stem}.{ext}")), &[ext], false))
+        .collect::<Result<Vec<_>, _>>()?;
+    match outputs.try_into() {
+        Ok(outputs) => Ok(outputs),
+        Err(_) => unreachable!("one output per extension"),
+    }
+}
+
 /// `text` as a file name part: letters, digits, `-` and `_` kept, anything else (a `/`, a
 /// dot, a space, a control character) becomes `_`, so it can never add a path component.
 pub(crate) fn safe_file_stem(text: &str) -> String {

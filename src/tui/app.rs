@@ -33,8 +33,6 @@ pub enum Effect {
     /// Write this preset into the user's folder; an existing file of its name is replaced
     /// only with `replace` (else the save dialog asks).
     SavePreset { preset: Box<Preset>, replace: bool },
-    /// Write the basin map on screen as a PNG into the current folder.
-    ExportMap,
 }
 
 impl Effect {

@@ -593,7 +593,7 @@ pub(crate) const BINDINGS: &[Binding] = &[
         "e",
         A::ExportMap,
         hint("e", "export PNG", 3),
-        "save the map as a PNG in the current folder, its setup in a caption and in the file's text"
+        "export the map into the current folder: its cells (CSV) and picture (PNG, its setup in a caption and in the file's text); e again cancels"
     ),
     row!(
         Map,

@@ -15,17 +15,15 @@ pub(crate) use super::map_view::*;
 use super::param::Param;
 use crate::experiment::basin::node_setup;
 use crate::experiment::ending::Ending;
-use crate::experiment::plot::{INFERRED_WORDS, cell_colour, map_record, time_range, write_recorded_image};
+use crate::experiment::plot::{INFERRED_WORDS, cell_colour, time_range};
 use crate::experiment::{Cell, Layer};
-use crate::output::{Output, free_stem};
 use crate::physics::Status;
-use crate::worker::{Command, MapAxis, MapRequest, MapUpdate};
+use crate::worker::{Command, MapAxis, MapExport, MapRequest, MapUpdate};
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Wrap};
-use std::path::Path;
 
 /// Asks the worker for the map of the chosen axes at the resolution that fits the screen.
 pub(crate) fn start(app: &mut App, out: &mut Vec<Command>) {
@@ -108,33 +106,26 @@ pub(crate) fn resized(app: &mut App, out: &mut Vec<Command>) {
     }
 }
 
-/// Writes the map on screen as a PNG into `dir` if the user asked (`e`); the status line
-/// says where. The event loop calls this after `update`, so `update` itself writes nothing.
-pub(crate) fn export_if_asked(app: &mut App, dir: &Path) {
-    if !std::mem::take(&mut app.map.export_asked) {
+/// The export key: the map on screen written into the current folder (its cells and its
+/// picture at the chosen size, by the worker's export job), or the running export cancelled.
+pub(crate) fn export(app: &mut App, out: &mut Vec<Command>) {
+    if app.roll.export.is_some() {
+        app.setup.send(out, Command::ExportCancel);
         return;
     }
     let (Some(update), Some(map)) = (&app.map.shown, app.map.map()) else {
         app.notice = Some("no map to export yet".to_string());
         return;
     };
-    let (size, _) = app.map.png_size();
-    let path = dir.join(format!("{}.png", free_stem(dir, "basin-map", &["png"])));
-    // The caption and the PNG's text chunks say which setup every cell started from.
-    let record = map_record(
-        map,
-        app.map.layer,
-        Some((&app.setup.preset.name, &update.params, &update.initial)),
-    );
-    let written = Output::check(&path, &["png"], false)
-        .map_err(crate::experiment::Error::from)
-        .and_then(|out| write_recorded_image(map, app.map.layer, &record, size, &out));
-    let what = format!("{}×{} px, {}×{} cells", size.0, size.1, map.width(), map.height());
-    app.notice = Some(match written {
-        Ok(()) if map.complete => format!("basin map saved to {} ({what})", path.display()),
-        Ok(()) => format!("partial basin map saved to {} ({what})", path.display()),
-        Err(e) => format!("export failed: {e}"),
-    });
+    let c = Command::ExportMap(Box::new(MapExport {
+        dir: ".".into(),
+        map: map.clone(),
+        params: update.params,
+        initial: update.initial,
+        layer: app.map.layer,
+        size: app.map.png_size().0,
+    }));
+    app.setup.send(out, c);
 }
 
 /// The terminal colour of a cell: the exported image's colour, or nothing without colour.

@@ -1,7 +1,7 @@
 //! What the basin-map screen's keys do: moving the cursor, zooming, choosing axes and
 //! ranges (the keys themselves are rows of [`super::keys::BINDINGS`]).
 
-use super::app::{App, Editor, Effect, Typed};
+use super::app::{App, Editor, Typed};
 use super::format::fmt_num;
 use super::keys::{Action, Input, Screen, label};
 use super::map::{close, start};
@@ -42,10 +42,7 @@ pub(crate) fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Com
                 Layer::SettleTime => Layer::Face,
             }
         }
-        Action::ExportMap => {
-            app.map.export_asked = true;
-            app.ask(Effect::ExportMap);
-        }
+        Action::ExportMap => super::map::export(app, out),
         Action::MapExportSize => {
             let m = &mut app.map;
             m.export_size = (m.export_size + 1) % EXPORT_SIZES.len();

@@ -3,7 +3,7 @@
 
 use super::app::{App, Effect, Msg};
 use super::input::update;
-use super::map::{MapView, View, ZOOM_FACTOR, export_if_asked, map_layout};
+use super::map::{MapView, View, ZOOM_FACTOR, map_layout};
 use super::param::Param;
 use super::render::render;
 use super::tests::{Scene, boundary_sizes, screen, spun_preset, start};
@@ -56,6 +56,23 @@ pub(crate) fn computed(app: &App) -> MapUpdate {
 }
 
 /// The die view's scene, switched to the map screen, with the map in and the cursor moved.
+/// `e` on the map screen, and the export it orders run into `dir` as the worker's export
+/// runner would run it (the key itself asks for the current folder).
+pub(crate) fn export_into(s: &mut Scene, dir: &std::path::Path) {
+    for c in press(&mut s.app, KeyCode::Char('e')) {
+        let c = match c {
+            Command::ExportMap(mut m) => {
+                m.dir = dir.to_path_buf();
+                Command::ExportMap(m)
+            }
+            other => other,
+        };
+        s.engine.handle(c);
+    }
+    s.engine.run_export_here();
+    s.sync();
+}
+
 pub(crate) fn map_scene(theme: Theme) -> Scene {
     let mut s = Scene::new(&spun_preset(), theme);
     let sent = press(&mut s.app, KeyCode::Tab);
@@ -394,8 +411,7 @@ mod keys {
     fn export_writes_the_size_chosen_with_its_text_scaled() {
         let mut s = map_scene(Theme::default());
         let dir = tempfile::tempdir().expect("temp dir");
-        press(&mut s.app, KeyCode::Char('e'));
-        export_if_asked(&mut s.app, dir.path());
+        export_into(&mut s, dir.path());
         let (small, small_ink) = size_and_caption_ink(&dir.path().join("basin-map.png"));
         assert_eq!(small, (1200, 800));
         press(&mut s.app, KeyCode::Char('E'));
@@ -407,8 +423,7 @@ mod keys {
             screen(&s.app, 120, 36).contains("PNG 3000×2000"),
             "the footer says the size"
         );
-        press(&mut s.app, KeyCode::Char('e'));
-        export_if_asked(&mut s.app, dir.path());
+        export_into(&mut s, dir.path());
         let notice = s.app.notice.clone().unwrap_or_default();
         assert!(notice.contains("3000×2000 px"), "{notice}");
         let (large, large_ink) = size_and_caption_ink(&dir.path().join("basin-map-2.png"));
@@ -431,27 +446,43 @@ mod keys {
     }
 
     #[test]
-    fn export_writes_a_png_and_says_where() {
+    fn export_writes_a_png_and_its_cells_and_says_where() {
         let mut s = map_scene(Theme::default());
         let dir = tempfile::tempdir().expect("temp dir");
-        press(&mut s.app, KeyCode::Char('e'));
-        export_if_asked(&mut s.app, dir.path());
+        export_into(&mut s, dir.path());
         let path = dir.path().join("basin-map.png");
         assert!(path.exists());
+        // The cells as CSV: a header, then one row per known cell, each as the map holds it.
+        let csv = std::fs::read_to_string(dir.path().join("basin-map.csv")).expect("the cells");
+        let map = map_of(&s.app);
+        let known = map.cells.iter().flatten().count();
+        assert_eq!(csv.lines().count(), known + 1, "{}", &csv[..200.min(csv.len())]);
+        let (i, j) = s.app.map.cursor;
+        let cell = map.cell(i, j).expect("the cursor's cell is known");
+        let row = csv
+            .lines()
+            .find(|l| l.starts_with(&format!("{i},{j},")))
+            .expect("the cursor's row");
+        let fields: Vec<&str> = row.split(',').collect();
+        let face = cell.outcome.face.map_or(String::new(), |f| f.to_string());
+        assert_eq!(
+            (fields[5], fields[7]),
+            (face.as_str(), cell.outcome.steps.to_string().as_str()),
+            "{row}"
+        );
         assert!(
             s.app
                 .notice
                 .as_ref()
                 .is_some_and(|n| n.contains(&path.display().to_string()))
         );
-        press(&mut s.app, KeyCode::Char('e'));
-        export_if_asked(&mut s.app, dir.path());
+        export_into(&mut s, dir.path());
         assert!(
-            dir.path().join("basin-map-2.png").exists(),
+            dir.path().join("basin-map-2.png").exists() && dir.path().join("basin-map-2.csv").exists(),
             "an earlier export is kept"
         );
         // Nothing is written unless asked.
-        export_if_asked(&mut s.app, dir.path());
+        s.engine.run_export_here();
         assert!(!dir.path().join("basin-map-3.png").exists());
     }
 

@@ -70,8 +70,6 @@ pub(crate) struct MapView {
     pub(crate) cursor: (usize, usize),
     pub(crate) layer: Layer,
     pub(crate) editing: Option<RangeEditor>,
-    /// The user asked for an image of the map (written by the event loop, not by `update`).
-    pub(crate) export_asked: bool,
     /// Which of [`EXPORT_SIZES`] the image is written at.
     pub(crate) export_size: usize,
     /// The preset's view asks for the map screen: opened by the first `update`, once the
@@ -112,7 +110,6 @@ impl MapView {
             cursor: (0, 0),
             layer: Layer::Face,
             editing: None,
-            export_asked: false,
             export_size: 0,
             open_asked: false,
         }

@@ -7,8 +7,8 @@
 
 use super::format::group;
 use super::keys::{Action, Screen, label};
-use crate::experiment::trace::{ExportProgress, human_bytes};
-use crate::worker::{BatchProgress, Command, EnergySample, OutcomeTable, Snapshot};
+use crate::experiment::trace::human_bytes;
+use crate::worker::{BatchProgress, Command, EnergySample, ExportStatus, OutcomeTable, Snapshot};
 
 /// Rolls in one batch (`b`) until another size is chosen (`B`).
 pub(crate) const BATCH_ROLLS: u64 = 10_000;
@@ -27,8 +27,8 @@ pub(crate) struct RollView {
     pub(crate) impacts: Vec<u64>,
     pub(crate) table: OutcomeTable,
     pub(crate) batch: Option<BatchProgress>,
-    /// The roll's export, while it runs.
-    pub(crate) export: Option<ExportProgress>,
+    /// The export running (the roll's or a map's), how far it has got.
+    pub(crate) export: Option<ExportStatus>,
     /// Rolls the next batch (`b`) asks for.
     pub(crate) batch_size: u64,
 }
@@ -124,9 +124,17 @@ impl RollView {
         }
     }
 
-    /// What the status line says while the roll is exported: its size first, then how far.
+    /// What the status line says while an export runs: the roll's size first, then how far.
     pub(crate) fn export_status(&self) -> Option<String> {
-        let p = self.export?;
+        let p = match self.export? {
+            ExportStatus::Roll(p) => p,
+            ExportStatus::Map { size: (w, h) } => {
+                return Some(format!(
+                    "exporting the basin map at {w}×{h} px · {} cancels",
+                    label(Screen::Map, Action::ExportMap)
+                ));
+            }
+        };
         let share = 100.0 * p.steps_done as f64 / p.steps_total.max(1) as f64;
         let cancel = label(Screen::Die, Action::Export);
         Some(if p.writing {

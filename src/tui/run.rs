@@ -2,7 +2,7 @@
 //! restored on every way out.
 //!
 //! - `update` does no I/O: the effects it returns (worker commands, listing and saving
-//!   presets, exporting the map) are run here, by [`perform`].
+//!   presets) are run here, by [`perform`].
 //! - Quitting (`q`, Ctrl-C as a key) leaves the loop and restores it.
 //! - SIGTERM, SIGHUP, SIGINT and SIGQUIT reach a thread of their own (signal-hook), which
 //!   asks the loop to stop, so the terminal is restored and the process exits with 128 +
@@ -110,10 +110,6 @@ pub(crate) fn perform(app: &mut App, effect: Effect) -> Option<Command> {
         Effect::Worker(command) => return Some(command),
         Effect::ListPresets => super::dialogs::open_picker(app),
         Effect::SavePreset { preset, replace } => super::dialogs::save(app, &preset, replace),
-        Effect::ExportMap => match std::env::current_dir() {
-            Ok(dir) => super::map::export_if_asked(app, &dir),
-            Err(e) => app.notice = Some(format!("export failed: no current folder: {e}")),
-        },
     }
     None
 }

@@ -477,8 +477,8 @@ mod map_screen {
     use crate::experiment::plot::Record;
     use crate::experiment::{Cell, Layer, MapSpec, Method, run_map};
     use crate::preset::{Preset, shipped_text};
-    use crate::tui::map::{MapView, export_if_asked};
-    use crate::tui::map_tests::map_scene;
+    use crate::tui::map::MapView;
+    use crate::tui::map_tests::{export_into, map_scene};
     use ratatui::style::Color;
     use std::sync::atomic::AtomicBool;
 
@@ -550,8 +550,7 @@ mod map_screen {
     fn the_exported_map_records_its_setup() {
         let mut s = map_scene(Theme::default());
         let dir = tempfile::tempdir().expect("temp dir");
-        s.app.map.export_asked = true;
-        export_if_asked(&mut s.app, dir.path());
+        export_into(&mut s, dir.path());
         let bytes = std::fs::read(dir.path().join("basin-map.png")).expect("written");
         let chunks = text_chunks(&bytes);
         let get = |k: &str| {

@@ -151,8 +151,8 @@ impl CurveRunner {
         match self.runner.poll()? {
             Report::Progress(_, partial) => partial.map(|c| self.update(CurveState::Computing(Some(c)))),
             Report::Finished(_, _, state) => {
-                let state =
-                    state.unwrap_or_else(|| CurveState::Failed("the curve's computation panicked".to_string()));
+                let state = state
+                    .unwrap_or_else(|| CurveState::Failed("the curve's computation panicked".to_string()));
                 if matches!(state, CurveState::Complete(_)) {
                     self.complete = Some(state.clone());
                 }

@@ -4,14 +4,14 @@
 //! drive it step for step.
 
 use super::curve::CurveSetup;
-use super::export::ExportJob;
+use super::export::{ExportJob, Exporting, Written};
 use super::job::Order;
 use super::live::LiveRoll;
 use super::map::MapJob;
 use super::twin::Twin;
-use super::{BatchProgress, Command, Notice, OutcomeTable, RollKind, Snapshot};
+use super::{BatchProgress, Command, ExportStatus, MapExport, Notice, OutcomeTable, RollKind, Snapshot};
 use crate::experiment::RollRecord;
-use crate::experiment::trace::{ExportProgress, Exported, human_bytes};
+use crate::experiment::trace::{ExportProgress, human_bytes};
 use crate::output::safe_file_stem;
 use crate::physics::{InitialCondition, ParamError, Params};
 use crate::preset::Preset;
@@ -43,7 +43,7 @@ pub struct Engine {
     table: OutcomeTable,
     live: LiveRoll,
     batch: Order<BatchProgress, BatchRequest>,
-    export: Order<ExportProgress, ExportJob>,
+    export: Order<ExportStatus, ExportJob>,
     map: Order<(), MapJob>,
     pending: Pending,
     commands_handled: u64,
@@ -207,7 +207,8 @@ impl Engine {
                 }
             }
             Command::LoadPreset(preset) => Some(self.load_preset(*preset)),
-            Command::Export { dir, log_scale } => self.export(dir, log_scale),
+            Command::Export { dir, log_scale } => self.export_roll(dir, log_scale),
+            Command::ExportMap(map) => self.export_map(*map),
             Command::ExportCancel => self
                 .export
                 .cancel()
@@ -283,7 +284,7 @@ impl Engine {
 
     /// Orders the roll on screen written into `dir` (see [`Command::Export`]): the files
     /// are chosen, checked and written where the job runs (see [`ExportJob::run`]).
-    fn export(&mut self, dir: std::path::PathBuf, log_scale: bool) -> Option<Notice> {
+    fn export_roll(&mut self, dir: std::path::PathBuf, log_scale: bool) -> Option<Notice> {
         if self.export.id().is_some() {
             return Some(Notice::ExportRunning);
         }
@@ -306,15 +307,40 @@ impl Engine {
             steps_total: params.max_steps(),
             bytes: 0,
         };
-        self.export.place(progress, |id| ExportJob {
+        self.export.place(ExportStatus::Roll(progress), |id| ExportJob {
             id,
-            params,
-            initial,
-            title,
             dir,
             stem,
-            log_scale,
+            what: Exporting::Roll {
+                params,
+                initial,
+                title,
+                log_scale,
+            },
         });
+        None
+    }
+
+    /// Orders a basin map written (see [`Command::ExportMap`]), the same way as the roll.
+    fn export_map(&mut self, m: MapExport) -> Option<Notice> {
+        if self.export.id().is_some() {
+            return Some(Notice::ExportRunning);
+        }
+        let preset = self.preset.name.clone();
+        self.export
+            .place(ExportStatus::Map { size: m.size }, |id| ExportJob {
+                id,
+                dir: m.dir,
+                stem: "basin-map".to_string(),
+                what: Exporting::Map {
+                    map: Box::new(m.map),
+                    params: m.params,
+                    initial: m.initial,
+                    preset,
+                    layer: m.layer,
+                    size: m.size,
+                },
+            });
         None
     }
 
@@ -330,25 +356,46 @@ impl Engine {
     }
 
     pub(crate) fn export_progress(&mut self, id: u64, progress: ExportProgress) {
-        if let Some(p) = self.export.state_of(id) {
+        if let Some(ExportStatus::Roll(p)) = self.export.state_of(id) {
             *p = progress;
         }
     }
 
     /// Export `id` has stopped: the notice says what was written, or why nothing was.
-    pub(crate) fn finish_export(&mut self, id: u64, result: Result<Exported, crate::experiment::Error>) {
-        if self.export.finish(id).is_none() {
+    pub(crate) fn finish_export(&mut self, id: u64, result: Result<Written, crate::experiment::Error>) {
+        let Some(status) = self.export.finish(id) else {
             return;
-        }
-        self.pending.notice = Some(Notice::Said(match result {
-            Ok(done) => format!(
+        };
+        self.pending.notice = Some(Notice::Said(match (status, result) {
+            (_, Ok(Written::Roll(done))) => format!(
                 "exported {} ({}, {} rows) and .png",
                 done.trace.display(),
                 human_bytes(done.bytes),
                 done.rows
             ),
-            Err(crate::experiment::Error::Cancelled) => "export cancelled: nothing was written".to_string(),
-            Err(e) => e.to_string(),
+            (
+                _,
+                Ok(Written::Map {
+                    png,
+                    size,
+                    cells,
+                    complete,
+                    ..
+                }),
+            ) => format!(
+                "{}basin map saved to {} and .csv ({}×{} px, {}×{} cells)",
+                if complete { "" } else { "partial " },
+                png.display(),
+                size.0,
+                size.1,
+                cells.0,
+                cells.1
+            ),
+            (_, Err(crate::experiment::Error::Cancelled)) => {
+                "export cancelled: nothing was written".to_string()
+            }
+            (ExportStatus::Map { .. }, Err(e)) => format!("cannot export the map: {e}"),
+            (ExportStatus::Roll(_), Err(e)) => e.to_string(),
         }));
     }
 

@@ -21,8 +21,8 @@ pub use map::{MapAxis, MapRequest, MapUpdate};
 
 use crate::experiment::trace::ExportProgress;
 use crate::experiment::twin::Separation;
+use crate::experiment::{BasinMap, Layer, Rolls, ScanKey, run_batch};
 use crate::experiment::{FaceTally, RollRecord};
-use crate::experiment::{Rolls, ScanKey, run_batch};
 use crate::physics::{ContactForce, Energy, EnergyLedger, InitialCondition, Outcome, Params, Status};
 use crate::preset::Preset;
 use job::{Post, Report, Runner};
@@ -76,8 +76,33 @@ pub enum Command {
         dir: std::path::PathBuf,
         log_scale: bool,
     },
+    /// Write this basin map, as the screen shows it, into a folder: its cells as CSV and
+    /// its picture as PNG (on the export's thread, like the roll's).
+    ExportMap(Box<MapExport>),
     ExportCancel,
     Quit,
+}
+
+/// A basin map to write (see [`Command::ExportMap`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MapExport {
+    pub dir: std::path::PathBuf,
+    pub map: BasinMap,
+    /// The setup every cell starts from, but for its two axis values.
+    pub params: Params,
+    pub initial: InitialCondition,
+    pub layer: Layer,
+    /// Pixels.
+    pub size: (u32, u32),
+}
+
+/// The export running, as the status line tells it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ExportStatus {
+    /// The roll: rolled again to learn its length, then written.
+    Roll(ExportProgress),
+    /// A basin map, drawn at this many pixels.
+    Map { size: (u32, u32) },
 }
 
 /// Which roll is on screen.
@@ -300,7 +325,7 @@ pub struct Snapshot {
     /// The preset loaded, in the first snapshot and whenever another is loaded.
     pub preset: Option<Box<Preset>>,
     /// The running export, how far it has got.
-    pub export: Option<ExportProgress>,
+    pub export: Option<ExportStatus>,
     /// The twin's predictability curve, whenever it started, grew or ended (while a twin
     /// rolls).
     pub curve: Option<CurveUpdate>,
@@ -420,7 +445,7 @@ fn report(engine: &mut Engine, curves: &mut curve::CurveRunner) -> Snapshot {
     }
 }
 
-type ExportResult = Result<crate::experiment::trace::Exported, crate::experiment::Error>;
+type ExportResult = Result<export::Written, crate::experiment::Error>;
 
 /// The worker's jobs, each kind on a runner of its own: they follow what the engine has
 /// ordered (a job it no longer waits for is stopped), and their progress goes back to the
