@@ -3,7 +3,7 @@
 use super::app::{App, Mode};
 use super::format::group;
 use super::help::help_lines;
-use super::keys::{Action, Screen, labels, named, rows};
+use super::keys::{Action, INTERRUPT, Screen, labels, named, rows};
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Rect};
 use ratatui::text::{Line, Span};
@@ -89,7 +89,7 @@ pub(crate) fn typing_hints(form: Option<&str>) -> Vec<KeyHint> {
     let mut hints: Vec<KeyHint> = form.map(|f| hint(f, "type", 0)).into_iter().collect();
     hints.extend(rows(Screen::Text).filter_map(|b| b.hint.map(|h| hint(h.keys, h.words, h.priority))));
     // Ctrl-C is no row: it quits in every mode, text entry included.
-    hints.push(hint("Ctrl-C", "quit", 0));
+    hints.push(hint(INTERRUPT, "quit", 0));
     if form.is_none() {
         hints.push(hint("other keys", "type", 0));
     }

@@ -8,7 +8,8 @@ use super::app::{App, Drawing, Editor, Effect, Mode, Msg, Overlay, Prompt, Typed
 use super::camera::Camera;
 use super::keys::{Action, Input, Screen, label, read};
 use super::layout::param_row_at;
-use super::map::{self, View};
+use super::map_keys as map;
+use super::map_view::View;
 use super::param::all;
 use crate::worker::Command;
 use ratatui::crossterm::event::{Event, KeyEvent, KeyEventKind, MouseButton, MouseEventKind};
@@ -50,7 +51,7 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
         Mode::EditingValue => on_edit_key(app, &input, out),
         Mode::Dialog => super::dialogs::on_key(app, &input, out),
         Mode::EditingEpsilon => super::twin::on_editor_key(app, &input, out),
-        Mode::EditingRange => super::map_keys::on_range_key(app, &input, out),
+        Mode::EditingRange => map::on_range_key(app, &input, out),
         Mode::Help => {
             let Some(Overlay::Help { scroll }) = &mut app.overlay else {
                 return;
@@ -186,7 +187,9 @@ fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
             app.overlay = Some(Overlay::Help { scroll: 0 });
         }
         Action::Close => match app.view {
-            View::Map => map::close(app, out),
+            View::Map => {
+                map::close(app, out);
+            }
             View::Die => {
                 app.notice = Some(format!(
                     "nothing to close ({} quits)",
@@ -213,7 +216,7 @@ fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
         | Action::TypeYRange
         | Action::MapLayer
         | Action::ExportMap
-        | Action::MapExportSize => super::map_keys::act(app, action, coarse, out),
+        | Action::MapExportSize => map::act(app, action, coarse, out),
         // Rows of the overlays only: `read` never gives them on a screen.
         Action::Confirm | Action::Delete | Action::NextField => {}
     }

@@ -846,6 +846,10 @@ pub(crate) fn label(mode: Screen, action: Action) -> &'static str {
         .map_or("?", |b| b.label)
 }
 
+/// How texts name the key that quits in every mode, text entry included ([`Input::Interrupt`]):
+/// no row of the table, since no mode may rebind it.
+pub(crate) const INTERRUPT: &str = "Ctrl-C";
+
 /// The first key of `action` in `mode`, for a text too short to list them all.
 pub(crate) fn first_key(mode: Screen, action: Action) -> &'static str {
     label(mode, action).split(' ').next().unwrap_or("?")

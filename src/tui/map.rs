@@ -18,115 +18,12 @@ use crate::experiment::ending::Ending;
 use crate::experiment::plot::{INFERRED_WORDS, cell_colour, time_range};
 use crate::experiment::{Cell, Layer};
 use crate::physics::Status;
-use crate::worker::{Command, MapAxis, MapExport, MapRequest, MapUpdate};
+use crate::worker::MapAxis;
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Wrap};
-
-/// Asks the worker for the map of the chosen axes at the resolution that fits the screen.
-pub(crate) fn start(app: &mut App, out: &mut Vec<Command>) {
-    let (nx, ny) = fitted_cells(app.screen);
-    let m = &mut app.map;
-    if m.requested.is_none() {
-        // The first map opens with the cursor in the middle.
-        m.cursor = (nx / 2, ny / 2);
-    }
-    m.generation += 1;
-    m.x.cells = nx;
-    m.y.cells = ny;
-    let request = MapRequest {
-        generation: m.generation,
-        x: m.x,
-        y: m.y,
-    };
-    m.requested = Some((request, app.setup.params, app.setup.initial));
-    m.running = true;
-    m.shown = None;
-    m.clamp_cursor();
-    app.setup.send(out, Command::MapStart(request));
-}
-
-/// Switches to the map screen; computes the map unless the one there still fits the setup
-/// and the terminal.
-pub(crate) fn open(app: &mut App, out: &mut Vec<Command>) {
-    app.view = View::Map;
-    let fits = app.map.requested.as_ref().is_some_and(|(r, p, ic)| {
-        (r.x.cells, r.y.cells) == fitted_cells(app.screen)
-            && *p == app.setup.params
-            && *ic == app.setup.initial
-    });
-    let finished = app.map.running || app.map.map().is_some_and(|m| m.complete);
-    if !fits || !finished {
-        start(app, out);
-    }
-}
-
-/// Back to the die. A map still being computed is cancelled so the live roll gets the cores;
-/// coming back computes it again.
-pub(crate) fn close(app: &mut App, out: &mut Vec<Command>) {
-    app.view = View::Die;
-    app.map.editing = None;
-    if app.map.running {
-        app.map.running = false;
-        app.setup.send(out, Command::MapCancel);
-    }
-}
-
-/// Takes a map from the worker, unless it belongs to a request the user has moved away from.
-pub(crate) fn absorb(app: &mut App, update: MapUpdate) {
-    let m = &mut app.map;
-    if update.generation != m.generation || !m.running {
-        return;
-    }
-    match &update.map {
-        Ok(map) => {
-            m.running = !map.complete;
-            m.shown = Some(update);
-            m.clamp_cursor();
-        }
-        Err(e) => {
-            m.running = false;
-            app.notice = Some(format!("the map cannot be computed: {e}"));
-        }
-    }
-}
-
-/// The terminal was resized: a map on screen is recomputed to fill the new panel.
-pub(crate) fn resized(app: &mut App, out: &mut Vec<Command>) {
-    let fitted = fitted_cells(app.screen);
-    let stale = app
-        .map
-        .requested
-        .as_ref()
-        .is_some_and(|(r, ..)| (r.x.cells, r.y.cells) != fitted);
-    if app.view == View::Map && stale {
-        start(app, out);
-    }
-}
-
-/// The export key: the map on screen written into the current folder (its cells and its
-/// picture at the chosen size, by the worker's export job), or the running export cancelled.
-pub(crate) fn export(app: &mut App, out: &mut Vec<Command>) {
-    if app.roll.export.is_some() {
-        app.setup.send(out, Command::ExportCancel);
-        return;
-    }
-    let (Some(update), Some(map)) = (&app.map.shown, app.map.map()) else {
-        app.notice = Some("no map to export yet".to_string());
-        return;
-    };
-    let c = Command::ExportMap(Box::new(MapExport {
-        dir: ".".into(),
-        map: map.clone(),
-        params: update.params,
-        initial: update.initial,
-        layer: app.map.layer,
-        size: app.map.png_size().0,
-    }));
-    app.setup.send(out, c);
-}
 
 /// The terminal colour of a cell: the exported image's colour, or nothing without colour.
 pub(crate) fn terminal_colour(app: &App, cell: Option<&Cell>, times: Option<(f64, f64)>) -> Color {
