@@ -1,10 +1,9 @@
-//! The basin-map screen: which face each start in a plane of two setup values ends on,
-//! drawn while the worker computes it, with a cursor to read and replay single cells and a
-//! zoom stack for the authors' tour through the borders.
+//! The basin-map screen drawn: which face each start in a plane of two setup values ends
+//! on, while the worker computes it, with the cursor's cell read out and the legend.
 //!
-//! State and key handling are pure like the rest of `update`; the map itself is computed
-//! by the worker's map thread and arrives as [`MapUpdate`]s tagged with a generation, so a
-//! map the user has moved away from can never overwrite the current one.
+//! Its state and rules (cursor, zoom stack, axes, the generation that keeps a map the user
+//! has moved away from off the screen) are in [`super::map_view`]; its keys in
+//! [`super::map_keys`].
 
 use super::app::App;
 use super::footer::render_help;
