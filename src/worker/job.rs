@@ -233,3 +233,94 @@ impl<S, R> Order<S, R> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::time::Duration;
+
+    #[test]
+    fn an_order_waits_for_its_newest_job_only() {
+        let mut o: Order<u32, &str> = Order::default();
+        o.place(1, |id| {
+            assert_eq!(id, 0);
+            "first"
+        });
+        o.place(2, |id| {
+            assert_eq!(id, 1);
+            "second"
+        });
+        assert_eq!(
+            o.take_request(),
+            Some("second"),
+            "the newest request replaces the other"
+        );
+        assert_eq!(o.take_request(), None, "a request is taken once");
+        assert!(o.state_of(0).is_none(), "reports of the replaced job are dropped");
+        assert_eq!(o.finish(0), None);
+        assert_eq!(o.state_of(1).copied(), Some(2));
+        assert_eq!(o.finish(1), Some(2));
+        assert_eq!(o.id(), None, "nothing is waited for after the end");
+        o.place(3, |id| {
+            assert_eq!(id, 2, "ids are never reused");
+            "third"
+        });
+        assert_eq!(o.cancel(), Some(3));
+        assert_eq!(o.take_request(), None, "a cancelled order starts nothing");
+        assert_eq!(o.finish(2), None, "a cancelled job's end is not reported");
+    }
+
+    /// Polls until the job ends; what it posted, in order, and its result.
+    fn run_out(r: &mut Runner<Vec<u32>, u32>) -> (u64, Vec<u32>, Option<u32>) {
+        let mut seen = Vec::new();
+        loop {
+            match r.poll() {
+                Some(Report::Progress(_, mut p)) => seen.append(&mut p),
+                Some(Report::Finished(id, mut rest, result)) => {
+                    seen.append(&mut rest);
+                    return (id, seen, result);
+                }
+                None => panic!("no job runs"),
+            }
+            std::thread::sleep(Duration::from_millis(1));
+        }
+    }
+
+    #[test]
+    fn a_runner_stops_the_job_no_longer_wanted_and_reports_the_next_whole() {
+        let mut r: Runner<Vec<u32>, u32> = Runner::new("dicesim-test-job");
+        let ran_to_cancel = Arc::new(AtomicBool::new(false));
+        let flag = ran_to_cancel.clone();
+        r.start(7, move |cancel, post| {
+            post.post(|p| p.push(1));
+            while !cancel.load(Ordering::Relaxed) {
+                std::thread::sleep(Duration::from_millis(1));
+            }
+            flag.store(true, Ordering::Relaxed);
+            0
+        })
+        .expect("a thread");
+        r.keep_only(Some(7));
+        assert!(r.running(), "the job waited for keeps running");
+        r.keep_only(Some(8));
+        assert!(!r.running() && r.poll().is_none(), "another order stops it");
+        assert!(
+            ran_to_cancel.load(Ordering::Relaxed),
+            "stopping waited for its thread"
+        );
+        r.start(9, |_, post| {
+            post.post(|p| p.push(2));
+            post.post(|p| p.push(3));
+            5
+        })
+        .expect("a thread");
+        assert_eq!(run_out(&mut r), (9, vec![2, 3], Some(5)));
+        assert!(!r.running());
+        r.start(10, |_, _| panic!("a job that panics")).expect("a thread");
+        assert_eq!(
+            run_out(&mut r),
+            (10, vec![], None),
+            "a panic is an end without a result"
+        );
+    }
+}
