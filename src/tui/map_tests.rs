@@ -446,6 +446,44 @@ mod keys {
     }
 
     #[test]
+    fn a_map_export_runs_as_the_workers_job_and_e_cancels_it() {
+        let mut s = map_scene(Theme::default());
+        let sent = press(&mut s.app, KeyCode::Char('e'));
+        let [Command::ExportMap(m)] = &sent[..] else {
+            panic!("{sent:?}")
+        };
+        // The map on screen, at the size chosen, from the setup its cells started from.
+        let shown = s.app.map.shown.clone().expect("a map");
+        assert_eq!(
+            (&m.map, m.params, m.initial, m.size),
+            (
+                shown.map.as_ref().expect("computed"),
+                shown.params,
+                shown.initial,
+                (1200, 800)
+            )
+        );
+        let dir = tempfile::tempdir().expect("temp dir");
+        let mut m = m.clone();
+        m.dir = dir.path().to_path_buf();
+        s.engine.handle(Command::ExportMap(m));
+        s.sync();
+        assert!(
+            screen(&s.app, 120, 36).contains("exporting the basin map at 1200×800 px · e cancels"),
+            "the status line says what runs and how to stop it"
+        );
+        assert_eq!(press(&mut s.app, KeyCode::Char('e')), [Command::ExportCancel]);
+        s.engine.handle(Command::ExportCancel);
+        s.engine.run_export_here();
+        s.sync();
+        assert_eq!(
+            s.app.notice.as_deref(),
+            Some("export cancelled: nothing was written")
+        );
+        assert_eq!(std::fs::read_dir(dir.path()).expect("the folder").count(), 0);
+    }
+
+    #[test]
     fn export_writes_a_png_and_its_cells_and_says_where() {
         let mut s = map_scene(Theme::default());
         let dir = tempfile::tempdir().expect("temp dir");
