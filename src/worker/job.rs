@@ -26,7 +26,9 @@ impl<T: Send + 'static> Job<T> {
             .spawn(move || work(&flag))?;
         Ok(Job { cancel, thread })
     }
+}
 
+impl<T> Job<T> {
     pub fn is_finished(&self) -> bool {
         self.thread.is_finished()
     }
@@ -91,7 +93,9 @@ impl<P: Default + Send + 'static, T: Send + 'static> Tracked<P, T> {
         let rest = std::mem::take(&mut *self.progress.lock().unwrap_or_else(|e| e.into_inner()));
         (rest, result)
     }
+}
 
+impl<P, T> Tracked<P, T> {
     /// Cancels it and waits for its thread (see [`Job::stop`]).
     pub fn stop(self) {
         self.job.stop();
@@ -152,7 +156,9 @@ impl<P: Default + Send + 'static, T: Send + 'static> Runner<P, T> {
         let (rest, result) = run.finish();
         Some(Report::Finished(id, rest, result))
     }
+}
 
+impl<P, T> Runner<P, T> {
     /// Cancels the job running, if any, and waits for its thread (see [`Job::stop`]).
     pub fn stop(&mut self) {
         if let Some(run) = self.run.take() {
@@ -163,10 +169,7 @@ impl<P: Default + Send + 'static, T: Send + 'static> Runner<P, T> {
 
 impl<P, T> Drop for Runner<P, T> {
     fn drop(&mut self) {
-        if let Some(run) = self.run.take() {
-            run.job.cancel.store(true, Ordering::Relaxed);
-            let _ = run.job.thread.join();
-        }
+        self.stop();
     }
 }
 
