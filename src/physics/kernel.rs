@@ -23,6 +23,25 @@ use super::spin::spin;
 use super::stopping::StopRule;
 use nalgebra::{Matrix3, Vector3};
 
+/// The indices of the set bits of `bits`, lowest first: the corners (or lanes) a loop visits,
+/// in corner (lane) order.
+///
+/// Each turn costs one branch, the loop's exit, where testing each of the eight corners costs
+/// eight whose outcome changes as corners touch and leave the ground: the scalar engine
+/// mispredicted about 1.2 more branches per step that way than the program before the shared
+/// kernel, which summed all eight corners.
+#[inline(always)]
+fn set_bits(bits: u32) -> impl Iterator<Item = usize> {
+    let mut rest = bits;
+    std::iter::from_fn(move || {
+        (rest != 0).then(|| {
+            let i = rest.trailing_zeros() as usize;
+            rest &= rest - 1;
+            i
+        })
+    })
+}
+
 /// The bits of every lane.
 #[inline(always)]
 fn all_lanes<L: Lane>() -> u32 {
@@ -386,7 +405,7 @@ impl<L: Lane> Kernel<L> {
         // anywhere in between.
         if contact_bits != 0 {
             let mut f: Option<Vector3<L>> = None;
-            for k in (0..8).filter(|k| touching & (1 << k) != 0) {
+            for k in set_bits(touching.into()) {
                 f = Some(f.map_or(s.corner_forces[k], |f| add3(&f, &s.corner_forces[k])));
             }
             let f = f.unwrap_or_else(zero3);
@@ -407,7 +426,7 @@ impl<L: Lane> Kernel<L> {
         // offsets are finite: a roll ends as soon as they are not).
         if contact_bits != 0 {
             let mut torque = zero3();
-            for k in (0..8).filter(|k| touching & (1 << k) != 0) {
+            for k in set_bits(touching.into()) {
                 torque = add3(&torque, &cross3(&s.corner_offsets[k], &s.corner_forces[k]));
             }
             let l_new = add3(&s.angular_momentum, &scale3(&torque, dt));
@@ -500,7 +519,7 @@ impl<L: Lane> Kernel<L> {
             spin_input.z.to_lanes(),
         ];
         let mut rotating = L::bits(self.rotating);
-        for lane in (0..L::WIDTH).filter(|lane| lanes & (1 << lane) != 0) {
+        for lane in set_bits(lanes) {
             let l = Vector3::new(
                 input[0].as_ref()[lane],
                 input[1].as_ref()[lane],
@@ -575,7 +594,7 @@ impl<L: Lane> Kernel<L> {
             }
         }
         let previous = std::mem::replace(&mut self.touching_corners, touching_corners);
-        for k in (0..8).filter(|k| (previous & !touching_corners) & (1 << k) != 0) {
+        for k in set_bits((previous & !touching_corners).into()) {
             self.state.corner_forces[k] = zero3();
         }
         // The authors' law scales every corner's slip by one whole-die matrix norm: the
@@ -596,7 +615,7 @@ impl<L: Lane> Kernel<L> {
             zero
         };
         let norm_nonzero = norm.ne(zero);
-        for k in (0..8).filter(|k| touching_corners & (1 << k) != 0) {
+        for k in set_bits(touching_corners.into()) {
             let uk = self.corner_velocity(&self.state.corner_offsets[k]);
             let normal = self.state.corner_depths[k] * stiffness;
             let vertical = normal * (L::splat(1.0) - damping * uk.z);
@@ -631,7 +650,7 @@ impl<L: Lane> Kernel<L> {
         let mut elastic = L::zero();
         // Terms are ≥ +0.0, so leaving out the +0.0 of corners that touch nowhere is exact.
         if L::bits(self.in_contact) != 0 {
-            for k in (0..8).filter(|k| self.touching_corners & (1 << k) != 0) {
+            for k in set_bits(self.touching_corners.into()) {
                 let d = s.corner_depths[k];
                 elastic = elastic + (c.half_stiffness * d) * d;
             }
@@ -746,7 +765,7 @@ impl<L: Lane> Kernel<L> {
                 // A loaded die's rule depends on the face it lies on. Looking the face up
                 // is a per-roll table search, done only where the widest rule passed.
                 let (mut et, mut kt) = (c.energy_threshold.to_lanes(), c.kinetic_threshold.to_lanes());
-                for lane in (0..L::WIDTH).filter(|lane| loaded & (1 << lane) != 0) {
+                for lane in set_bits(loaded) {
                     let offsets = self.state.corner_offsets.each_ref().map(|r| lane3(r, lane));
                     let rule = self.bodies.as_ref()[lane]
                         .loaded
