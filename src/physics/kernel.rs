@@ -17,30 +17,12 @@
 use super::body::body_corner_offsets;
 use super::initial::{InitialCondition, limits};
 pub use super::lane::Lane;
+use super::lane::set_bits;
 use super::mass::{InertiaTensor, LoadedMass};
 use super::params::{FrictionLaw, Limits, ParamError, Params, StopEnergy};
-use super::spin::spin;
+use super::spin::{spin, spin_lanes};
 use super::stopping::StopRule;
 use nalgebra::{Matrix3, Vector3};
-
-/// The indices of the set bits of `bits`, lowest first: the corners (or lanes) a loop visits,
-/// in corner (lane) order.
-///
-/// Each turn costs one branch, the loop's exit, where testing each of the eight corners costs
-/// eight whose outcome changes as corners touch and leave the ground: the scalar engine
-/// mispredicted about 1.2 more branches per step that way than the program before the shared
-/// kernel, which summed all eight corners.
-#[inline(always)]
-fn set_bits(bits: u32) -> impl Iterator<Item = usize> {
-    let mut rest = bits;
-    std::iter::from_fn(move || {
-        (rest != 0).then(|| {
-            let i = rest.trailing_zeros() as usize;
-            rest &= rest - 1;
-            i
-        })
-    })
-}
 
 /// The bits of every lane.
 #[inline(always)]
@@ -474,13 +456,10 @@ impl<L: Lane> Kernel<L> {
     /// ω and the step rotation rebuilt in the lanes of `lanes`.
     ///
     /// A loaded die's ω = I(t)⁻¹·L (its tensor built from the current corner offsets and
-    /// inverted) is computed in every lane at once. The rest runs per lane in scalar code:
-    /// the rotation needs `sin` and `cos`, and only libm's scalar calls give the bits the
-    /// reference data and the scalar engine have (no vector sin/cos is correctly rounded,
-    /// so a vector one would differ in the last bit). ω is gathered into plain arrays and
-    /// each vector loaded once at the end: writing one lane at a time into a vector register
-    /// would stall on every write. The rotation's lanes are written in place in memory
-    /// instead: gathering its nine vectors cost two 288-byte copies (`memcpy` calls) a step.
+    /// inverted) is computed in every lane at once, and so is the rotation but for its `sin`
+    /// and `cos`: only libm's scalar calls give the bits the reference data and the scalar
+    /// engine have (no vector sin/cos is correctly rounded, so a vector one would differ in
+    /// the last bit), so those are taken per lane ([`spin_lanes`]).
     #[inline(always)]
     pub(crate) fn respin(&mut self, lanes: u32) {
         let c = &self.c;
@@ -511,42 +490,27 @@ impl<L: Lane> Kernel<L> {
             self.rotating = L::mask_from_bits(rotation.is_some() as u32);
             return;
         }
-        let w = &self.angular_velocity;
-        let mut omega = [w.x.to_lanes(), w.y.to_lanes(), w.z.to_lanes()];
-        let input = [
-            spin_input.x.to_lanes(),
-            spin_input.y.to_lanes(),
-            spin_input.z.to_lanes(),
-        ];
-        let mut rotating = L::bits(self.rotating);
-        for lane in set_bits(lanes) {
-            let l = Vector3::new(
-                input[0].as_ref()[lane],
-                input[1].as_ref()[lane],
-                input[2].as_ref()[lane],
-            );
-            let (w, rotation) = self.bodies.as_ref()[lane].spin(&l, loaded & (1 << lane) != 0);
-            for i in 0..3 {
-                omega[i].as_mut()[lane] = w[i];
-            }
-            match rotation {
-                Some(r) => {
-                    rotating |= 1 << lane;
-                    for i in 0..3 {
-                        for j in 0..3 {
-                            self.rotation[3 * i + j].lanes_mut().as_mut()[lane] = r[(i, j)];
-                        }
-                    }
-                }
-                None => rotating &= !(1 << lane),
-            }
-        }
-        self.angular_velocity = v3(
-            L::from_lanes(omega[0]),
-            L::from_lanes(omega[1]),
-            L::from_lanes(omega[2]),
+        // Several lanes: ω = L/I (a loaded lane's ω is the tensor's already) and the
+        // rotation in vector operations, only `sin` and `cos` per lane ([`spin_lanes`]).
+        let (dt, inertia, loaded_lanes) = (c.dt, c.uniform_inertia, c.loaded);
+        let divided = v3(
+            spin_input.x / inertia,
+            spin_input.y / inertia,
+            spin_input.z / inertia,
         );
-        self.rotating = L::mask_from_bits(rotating);
+        let w = if loaded == 0 {
+            divided
+        } else {
+            select3(loaded_lanes, &spin_input, &divided)
+        };
+        let (nonzero, rotation) = spin_lanes(&w, dt, lanes);
+        let update = L::mask_from_bits(lanes);
+        let turn = update & nonzero;
+        self.angular_velocity = select3(update, &w, &self.angular_velocity);
+        for (old, new) in self.rotation.iter_mut().zip(rotation) {
+            *old = L::select(turn, new, *old);
+        }
+        self.rotating = (self.rotating & !update) | turn;
     }
 
     /// Velocity of a corner, `u_k = v + ω × r_k`, cm/s, in the authors' operation order.
