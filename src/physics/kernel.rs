@@ -20,7 +20,7 @@ pub use super::lane::Lane;
 use super::lane::set_bits;
 use super::mass::{InertiaTensor, LoadedMass};
 use super::params::{FrictionLaw, Limits, ParamError, Params, StopEnergy};
-use super::spin::{spin, spin_lanes};
+use super::spin::{spin, spin_lanes, step_rotation};
 use super::stopping::StopRule;
 use nalgebra::{Matrix3, Vector3};
 
@@ -113,8 +113,8 @@ pub(crate) struct Ends<M> {
     pub(crate) timeout: M,
 }
 
-/// Per lane, what the spin and a loaded die's stopping rule need: the stages that run per
-/// roll in scalar code.
+/// Per lane, what the scalar engine's spin and a loaded die's stopping rule need (the lane
+/// engine's spin reads the same inertia and Δt from [`Constants`]).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Body {
     /// g·cm², the fair die's isotropic inertia.
@@ -128,11 +128,16 @@ pub(crate) struct Body {
 impl Body {
     /// ω and the step rotation from this lane's `spin_input`: the angular momentum of a
     /// fair die (ω = L/I with its isotropic inertia), or a loaded die's ω = I(t)⁻¹·L,
-    /// which [`Kernel::respin`] computes in every lane at once (dividing it by 1 is exact,
-    /// so `spin` builds the rotation from that ω unchanged).
+    /// which [`Kernel::respin`] computes in every lane at once and the rotation is built
+    /// from as it is (the program before the shared kernel divided it by an inertia of 1,
+    /// which is exact).
     #[inline(always)]
     fn spin(&self, spin_input: &Vector3<f64>, loaded: bool) -> (Vector3<f64>, Option<Matrix3<f64>>) {
-        spin(spin_input, if loaded { 1.0 } else { self.inertia }, self.dt)
+        if loaded {
+            (*spin_input, step_rotation(spin_input, self.dt))
+        } else {
+            spin(spin_input, self.inertia, self.dt)
+        }
     }
 
     pub(crate) fn loaded(&self) -> Option<&LoadedMass> {
@@ -477,7 +482,8 @@ impl<L: Lane> Kernel<L> {
             select3(c.loaded, &w, &self.state.angular_momentum)
         };
         if L::WIDTH == 1 {
-            // One lane: ω and the rotation go straight into place, nothing to gather.
+            // One lane: the scalar spin, its branches taken rather than selected, and ω and
+            // the rotation straight into place.
             let (w, rotation) = self.bodies.as_ref()[0].spin(&lane3(&spin_input, 0), loaded != 0);
             self.angular_velocity = v3(L::splat(w.x), L::splat(w.y), L::splat(w.z));
             if let Some(r) = &rotation {

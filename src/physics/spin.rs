@@ -8,23 +8,30 @@ use super::lane::{Lane, set_bits};
 use nalgebra::{Matrix3, Vector3};
 
 /// ω = L / I and the step rotation by |ω|·Δt about ω (`None` while ω = 0), as the authors
-/// built it from their `w = −ω` for row vectors: entry (i, j) is
-/// `(p + cos·(δᵢⱼ − p)) + (sin·[w]×ᵢⱼ)/|ω|` with `p = (ωᵢ·ωⱼ)/|ω|²`.
-///
-/// The scalar engine calls it out of line: inlined, it crowds the step's loop. Its divisions are the fewest that keep every entry bitwise: `p` is
-/// symmetric (`ωᵢ·ωⱼ = ωⱼ·ωᵢ` exactly) and the cross term antisymmetric (a quotient's sign
-/// follows its dividend's), so 6 + 3 quotients serve 9 + 9 entries, and the diagonal's
-/// `(sin·0)/|ω|` needs no division at all.
-#[inline(never)]
+/// built it: see [`step_rotation`].
+#[inline(always)]
 pub(crate) fn spin(
     angular_momentum: &Vector3<f64>,
     inertia: f64,
     dt: f64,
 ) -> (Vector3<f64>, Option<Matrix3<f64>>) {
     let w = angular_momentum / inertia;
-    let norm = scaled_norm(&w);
+    (w, step_rotation(&w, dt))
+}
+
+/// The step rotation by |ω|·Δt about ω (`None` while ω = 0), as the authors built it from
+/// their `w = −ω` for row vectors: entry (i, j) is `(p + cos·(δᵢⱼ − p)) + (sin·[w]×ᵢⱼ)/|ω|`
+/// with `p = (ωᵢ·ωⱼ)/|ω|²`.
+///
+/// The scalar engine calls it out of line: inlined, it crowds the step's loop. Its divisions
+/// are the fewest that keep every entry bitwise: `p` is symmetric (`ωᵢ·ωⱼ = ωⱼ·ωᵢ` exactly)
+/// and the cross term antisymmetric (a quotient's sign follows its dividend's), so 6 + 3
+/// quotients serve 9 + 9 entries, and the diagonal's `(sin·0)/|ω|` needs no division at all.
+#[inline(never)]
+pub(crate) fn step_rotation(w: &Vector3<f64>, dt: f64) -> Option<Matrix3<f64>> {
+    let norm = scaled_norm(w);
     if norm == 0.0 {
-        return (w, None);
+        return None;
     }
     let theta = norm * dt;
     let norm_sq = norm.powf(2.0);
@@ -45,7 +52,7 @@ pub(crate) fn spin(
         off(pxy) + -sz, on(pyy),        off(pyz) + sx,
         off(pxz) + -sy, off(pyz) + -sx, on(pzz),
     );
-    (w, Some(m))
+    Some(m)
 }
 
 /// [`spin`] in several lanes at once, from ω (the quotient `L/I` already taken): where ω ≠ 0,
