@@ -41,7 +41,7 @@ pub struct Separation {
 /// minus corner 1 is 2a along x, corner 3 minus 1 along y, corner 2 minus 1 along z.
 fn axes(sim: &Simulation) -> [nalgebra::Vector3<f64>; 3] {
     let r = &sim.state().corner_offsets;
-    let side = 2.0 * sim.params().die.half_size;
+    let side = 2.0 * sim.params().die.half_size();
     [(r[4] - r[0]) / side, (r[2] - r[0]) / side, (r[1] - r[0]) / side]
 }
 

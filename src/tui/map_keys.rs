@@ -81,7 +81,7 @@ fn replay(app: &mut App, out: &mut Vec<Command>) {
     );
     app.params = params;
     app.initial = initial;
-    app.send(out, Command::PlaySetup(params, initial));
+    app.send(out, Command::PlaySetup(Box::new(params), initial));
     close(app, out);
     app.notice = Some(notice);
 }

@@ -300,7 +300,7 @@ impl Engine {
                 if let Err(e) = params.validate().and_then(|_| initial.validate()) {
                     self.pending.notice = Some(Notice::Said(e.to_string()));
                 } else {
-                    (self.params, self.initial) = (params, initial);
+                    (self.params, self.initial) = (*params, initial);
                     self.restart(RollKind::Edited);
                     self.playing = true;
                 }
