@@ -22,7 +22,7 @@ pub(crate) use energy::Energy;
 pub use initial::{InitialCondition, RandomRanges};
 pub use lane::Lane;
 pub use params::{Die, FrictionLaw, Ground, Integrator, Limits, ParamError, Params, StopEnergy, World};
-pub use shape::{FaceReadout, MassProperties, mass_properties};
+pub use shape::{FaceReadout, MassProperties, face_readouts, mass_properties};
 pub use sim::{ContactForce, EnergyLedger, Outcome, Simulation, State, Status};
 pub use stability::{Limit, Reading, Stability, UnstableReason};
 pub use stopping::{StopRule, settles};

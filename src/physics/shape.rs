@@ -124,6 +124,12 @@ pub fn mass_properties(die: &Die) -> MassProperties {
     }
 }
 
+/// Each face down of `p`'s body (any die, the paper's cube too): its rest height and depth,
+/// and the energy to balance it on each of its four edges, rounded edges included.
+pub fn face_readouts(p: &Params) -> [FaceReadout; 6] {
+    Shape::new(p).faces()
+}
+
 /// One face down: where the body rests and what it takes to tip it over each edge.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FaceReadout {
