@@ -226,8 +226,10 @@ pub const HALF_SIZES: Spec = Spec {
     },
     role: Role::Die,
     comment: "cm, half the side along x (faces 1, 6), y (2, 5), z (3, 4); a cube may give `half_size = a`",
-    labels: &["half size ax", "half size ay", "half size az"],
-    list_position: 15,
+    // Not in the explorer's list yet: its drawing of a cuboid comes with the list's rows
+    // for the three sizes and the pips.
+    labels: &[],
+    list_position: u8::MAX,
     nudge: Some(Nudge::Add {
         fine: 0.05,
         coarse: 0.5,
@@ -246,7 +248,7 @@ pub const CORNER_RADIUS: Spec = Spec {
     role: Role::Die,
     comment: "cm, rounded corners and edges (0: sharp, the paper's); below the smallest half size",
     labels: &["corner radius r"],
-    list_position: 18,
+    list_position: 15,
     nudge: Some(Nudge::Add {
         fine: 0.01,
         coarse: 0.1,
@@ -261,8 +263,8 @@ pub const PIP_DIAMETER: Spec = Spec {
     shape: Shape::Number(Params::DEFAULT.die.pip_diameter),
     role: Role::Die,
     comment: "cm, each pip's opening; the pips must lie apart on the flat of every face",
-    labels: &["pip diameter"],
-    list_position: 19,
+    labels: &[],
+    list_position: u8::MAX,
     nudge: Some(Nudge::Add {
         fine: 0.01,
         coarse: 0.1,
@@ -277,8 +279,8 @@ pub const PIP_DEPTH: Spec = Spec {
     shape: Shape::Number(Params::DEFAULT.die.pip_depth),
     role: Role::Die,
     comment: "cm, pips drilled as spherical caps this deep (0: none), at most half the diameter",
-    labels: &["pip depth"],
-    list_position: 20,
+    labels: &[],
+    list_position: u8::MAX,
     nudge: Some(Nudge::Add {
         fine: 0.005,
         coarse: 0.05,
