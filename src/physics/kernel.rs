@@ -26,11 +26,28 @@ use super::stopping::StopRule;
 use nalgebra::{Matrix3, Vector3};
 
 /// Where a corner's contact force acts, relative to the centre of mass: a rounded body's
-/// contact sphere's lowest point, the radius below its centre (lanes of a sharp body have
-/// radius +0.0, and `z − 0` is `z`).
+/// contact sphere's lowest point, the radius below its centre (lanes of a sharp body among
+/// rounded ones have radius +0.0, and `z − 0` is `z`). `ROUNDED` is decided once per call of
+/// the stage, so a sharp die's step compiles without it.
 #[inline(always)]
-pub(crate) fn contact_point<L: Lane>(r: &Vector3<L>, rounded: bool, radius: L) -> Vector3<L> {
-    if rounded { v3(r.x, r.y, r.z - radius) } else { *r }
+pub(crate) fn contact_point<const ROUNDED: bool, L: Lane>(r: &Vector3<L>, radius: L) -> Vector3<L> {
+    if ROUNDED { v3(r.x, r.y, r.z - radius) } else { *r }
+}
+
+/// `Σ ρ_k × F_k` over the touching corners, in corner order from +0.0.
+#[inline(always)]
+fn torque<const ROUNDED: bool, L: Lane>(
+    offsets: &[Vector3<L>; 8],
+    forces: &[Vector3<L>; 8],
+    touching: u8,
+    radius: L,
+) -> Vector3<L> {
+    let mut torque = zero3();
+    for k in set_bits(touching.into()) {
+        let arm = contact_point::<ROUNDED, L>(&offsets[k], radius);
+        torque = add3(&torque, &cross3(&arm, &forces[k]));
+    }
+    torque
 }
 
 /// The bits of every lane.
@@ -467,11 +484,11 @@ impl<L: Lane> Kernel<L> {
         // offsets are finite: a roll ends as soon as they are not). A rounded body's force
         // acts at its contact sphere's lowest point.
         if contact_bits != 0 {
-            let mut torque = zero3();
-            for k in set_bits(touching.into()) {
-                let arm = contact_point(&s.corner_offsets[k], rounded, radius);
-                torque = add3(&torque, &cross3(&arm, &s.corner_forces[k]));
-            }
+            let torque = if rounded {
+                torque::<true, L>(&s.corner_offsets, &s.corner_forces, touching, radius)
+            } else {
+                torque::<false, L>(&s.corner_offsets, &s.corner_forces, touching, radius)
+            };
             let l_new = add3(&s.angular_momentum, &scale3(&torque, dt));
             s.angular_momentum = if contact_bits == all_lanes::<L>() {
                 l_new
@@ -600,20 +617,30 @@ impl<L: Lane> Kernel<L> {
     /// under each lane's friction law.
     #[inline(always)]
     pub(crate) fn update_forces(&mut self) {
+        // A rounded body touches the table with the lowest points of its corner spheres, the
+        // radius below their centres (docs/model.md, "Real dice"); a sharp one skips this.
+        if L::bits(self.c.rounded) != 0 {
+            self.update_forces_at::<true>();
+        } else {
+            self.update_forces_at::<false>();
+        }
+    }
+
+    /// [`Kernel::update_forces`] for sharp (`ROUNDED` false) or rounded lanes.
+    #[inline(always)]
+    fn update_forces_at<const ROUNDED: bool>(&mut self) {
         // Copied out one by one, as in `step`.
         let c = &self.c;
         let (stiffness, damping, friction, whole_die_norm) =
             (c.stiffness, c.damping, c.friction, c.whole_die_norm);
-        // A rounded body touches the table with the lowest points of its corner spheres, the
-        // radius below their centres (docs/model.md, "Real dice"); a sharp one skips this.
-        let (rounded, radius) = (L::bits(c.rounded) != 0, c.corner_radius);
+        let radius = c.corner_radius;
         let z0 = self.state.position.z;
         let zero = L::zero();
         let mut touching = [L::mask_from_bits(0); 8];
         let mut any = L::mask_from_bits(0);
         for (k, t) in touching.iter_mut().enumerate() {
             let z = self.state.corner_offsets[k].z + z0;
-            let z = if rounded { z - radius } else { z };
+            let z = if ROUNDED { z - radius } else { z };
             *t = z.lt(zero);
             self.state.corner_depths[k] = (-z).or_zero(*t);
             any = any | *t;
@@ -644,7 +671,7 @@ impl<L: Lane> Kernel<L> {
         let norm = if whole_lanes {
             let (mut a, mut b, mut cc) = (zero, zero, zero);
             for r in &self.state.corner_offsets {
-                let uk = self.corner_velocity(&contact_point(r, rounded, radius));
+                let uk = self.corner_velocity(&contact_point::<ROUNDED, L>(r, radius));
                 a = a + uk.x * uk.x;
                 b = b + uk.x * uk.y;
                 cc = cc + uk.y * uk.y;
@@ -656,7 +683,10 @@ impl<L: Lane> Kernel<L> {
         };
         let norm_nonzero = norm.ne(zero);
         for k in set_bits(touching_corners.into()) {
-            let uk = self.corner_velocity(&contact_point(&self.state.corner_offsets[k], rounded, radius));
+            let uk = self.corner_velocity(&contact_point::<ROUNDED, L>(
+                &self.state.corner_offsets[k],
+                radius,
+            ));
             let normal = self.state.corner_depths[k] * stiffness;
             let vertical = normal * (L::splat(1.0) - damping * uk.z);
             let (mut fx, mut fy) = (zero, zero);

@@ -169,7 +169,7 @@ fn corner_velocities(k: &Kernel<f64>) -> [Vector3<f64>; 8] {
     let radius = k.c.corner_radius;
     k.state
         .corner_offsets
-        .map(|r| k.corner_velocity(&contact_point(&r, radius > 0.0, radius)))
+        .map(|r| k.corner_velocity(&contact_point::<true, f64>(&r, radius)))
 }
 
 impl Simulation {
