@@ -253,12 +253,13 @@ pub(crate) struct Constants<L: Lane> {
     pub(crate) whole_die_norm: L::Mask,
     pub(crate) point_masses: L::Mask,
     pub(crate) loaded: L::Mask,
-    /// Lanes with a general body; with rounded corners; whose inertia turns with the body
-    /// (loaded or general: ω changes in flight too); whose stopping rule depends on the face
-    /// down (the same lanes).
+    /// Lanes with a general body; whose inertia turns with the body (loaded or general: ω
+    /// changes in flight too); whose stopping rule depends on the face down (the same lanes).
     pub(crate) shaped: L::Mask,
-    pub(crate) rounded: L::Mask,
     pub(crate) turning: L::Mask,
+    /// Bit l: lane l's body has rounded corners. Plain bits, not a mask: the step asks
+    /// only whether any lane has, and a sharp die's step should not pay for asking.
+    pub(crate) rounded: u32,
 }
 
 impl Constants<f64> {
@@ -317,7 +318,7 @@ impl Constants<f64> {
             point_masses: p.integrator.stop_energy == StopEnergy::PointMasses,
             loaded: loaded.is_some(),
             shaped: shape.is_some(),
-            rounded: shape.is_some_and(|s| s.radius > 0.0),
+            rounded: shape.is_some_and(|s| s.radius > 0.0) as u32,
             turning: loaded.is_some() || shape.is_some(),
         }
     }
@@ -451,7 +452,7 @@ impl<L: Lane> Kernel<L> {
         // memcpy call per step.
         let c = &self.c;
         let (dt, mass, weight_z, flight_kick, turning) = (c.dt, c.mass, c.weight_z, c.flight_kick, c.turning);
-        let (rounded, radius) = (L::bits(c.rounded) != 0, c.corner_radius);
+        let (rounded, radius) = (c.rounded != 0, c.corner_radius);
         let contact_bits = L::bits(self.in_contact);
         let touching = self.touching_corners;
         hook.before_kick(self);
@@ -619,7 +620,7 @@ impl<L: Lane> Kernel<L> {
     pub(crate) fn update_forces(&mut self) {
         // A rounded body touches the table with the lowest points of its corner spheres, the
         // radius below their centres (docs/model.md, "Real dice"); a sharp one skips this.
-        if L::bits(self.c.rounded) != 0 {
+        if self.c.rounded != 0 {
             self.update_forces_at::<true>();
         } else {
             self.update_forces_at::<false>();

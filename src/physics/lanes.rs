@@ -398,7 +398,7 @@ mod avx2 {
                     point_masses: F4::from_bits(if c.point_masses { 0b1111 } else { 0 }),
                     loaded: F4::from_bits(if c.loaded { 0b1111 } else { 0 }),
                     shaped: F4::from_bits(if c.shaped { 0b1111 } else { 0 }),
-                    rounded: F4::from_bits(if c.rounded { 0b1111 } else { 0 }),
+                    rounded: if c.rounded != 0 { 0b1111 } else { 0 },
                     turning: F4::from_bits(if c.turning { 0b1111 } else { 0 }),
                 },
                 bodies: [first.bodies[0]; LANES],
@@ -475,7 +475,7 @@ mod avx2 {
             set_mask(&mut c.point_masses, l, f.point_masses);
             set_mask(&mut c.loaded, l, f.loaded);
             set_mask(&mut c.shaped, l, f.shaped);
-            set_mask(&mut c.rounded, l, f.rounded);
+            c.rounded = (c.rounded & !(1 << l)) | (f.rounded << l);
             set_mask(&mut c.turning, l, f.turning);
             k.bodies[l] = from.bodies[0];
             set_mask(&mut self.live, l, true);
@@ -500,7 +500,7 @@ mod avx2 {
             set3(&mut k.c.flight_kick, l, &Vector3::zeros());
             set_mask(&mut k.c.loaded, l, false);
             set_mask(&mut k.c.shaped, l, false);
-            set_mask(&mut k.c.rounded, l, false);
+            k.c.rounded &= !(1 << l);
             set_mask(&mut k.c.turning, l, false);
             k.c.corner_radius.set_lane(l, 0.0);
             k.bodies[l] = k.bodies[(l + 1) % LANES];

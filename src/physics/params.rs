@@ -568,7 +568,7 @@ impl Params {
     /// (docs/model.md, "Real dice").
     pub fn edge_energy(&self) -> f64 {
         if !self.die.is_cube() {
-            return Shape::new(self).lowest_edge_energy();
+            return Shape::lowest_edge_energy(self);
         }
         self.total_mass() * self.world.gravity * self.die.half_size() * (std::f64::consts::SQRT_2 - 1.0)
     }

@@ -127,7 +127,7 @@ pub fn mass_properties(die: &Die) -> MassProperties {
 /// Each face down of `p`'s body (any die, the paper's cube too): its rest height and depth,
 /// and the energy to balance it on each of its four edges, rounded edges included.
 pub fn face_readouts(p: &Params) -> [FaceReadout; 6] {
-    Shape::new(p).faces()
+    Shape::faces(p)
 }
 
 /// One face down: where the body rests and what it takes to tip it over each edge.
@@ -161,7 +161,6 @@ pub(crate) struct Shape {
     /// cm, the height of the centre of mass the potential is measured from: the lowest of
     /// the rest heights on a rigid table.
     pub(crate) reference_height: f64,
-    faces: [FaceReadout; 6],
     face_rules: [StopRule; 6],
 }
 
@@ -179,26 +178,16 @@ impl Shape {
         let c = properties.centre_of_mass;
         let height = |f: usize| die.half_sizes[axis(f)] - c.dot(&Vector3::from(FACE_NORMALS[f]));
         let reference_height = (0..6).map(height).fold(f64::INFINITY, f64::min);
-        let mut shape = Shape {
+        let (_, face_rules) = read_faces(p, &properties, reference_height);
+        Shape {
             properties,
             inverse_inertia: [sym(0, 0), sym(0, 1), sym(0, 2), sym(1, 1), sym(1, 2), sym(2, 2)],
             axis_scale: b.map(|b| 1.0 / (2.0 * b)),
             radius: die.corner_radius,
             flat: b,
             reference_height,
-            faces: [FaceReadout {
-                face: 0,
-                rest_height: 0.0,
-                rest_depth: 0.0,
-                edges: [(0, 0.0); 4],
-            }; 6],
-            face_rules: [StopRule {
-                energy_threshold: f64::NEG_INFINITY,
-                kinetic_threshold: f64::NEG_INFINITY,
-            }; 6],
-        };
-        shape.read_faces(p);
-        shape
+            face_rules,
+        }
     }
 
     /// Pips' mass alone, g: what drilling removes from `8·m`.
@@ -213,72 +202,16 @@ impl Shape {
         mass_properties(die)
     }
 
-    /// The rest depth and edge energies of each face down, and from them each face's
-    /// stopping rule: the paper's rule moved to that face's rest and scaled to its lowest
-    /// edge (docs/model.md, "Real dice").
-    fn read_faces(&mut self, p: &Params) {
-        let die = &p.die;
-        let weight = self.properties.mass * p.world.gravity;
-        let (k, r) = (p.ground.stiffness, die.corner_radius);
-        let c = self.properties.centre_of_mass;
-        let spheres = contact_sphere_centres(die);
-        let frac = p.integrator.stop_energy_fraction;
-        // Heights of the sphere bottoms relative to the centre of mass with `down` (body
-        // frame, unit) pointing at the table, ascending.
-        let offsets = |down: &Vector3<f64>| {
-            let mut o = spheres.map(|x| -(x - c).dot(down) - r);
-            o.sort_by(f64::total_cmp);
-            o
-        };
-        let reference = self.reference_height;
-        let lowest = |down: &Vector3<f64>| lowest_potential_at(weight, k, reference, &offsets(down));
-        for (f, normal) in FACE_NORMALS.iter().enumerate() {
-            let n_f = Vector3::from(*normal);
-            let (a_f, c_f) = (die.half_sizes[axis(f)], c.dot(&n_f));
-            let rest_height = a_f - c_f;
-            let mut edges = [(0u8, 0.0); 4];
-            let mut v_edge = f64::INFINITY;
-            for (slot, e) in (0..6).filter(|&e| e != f && e != 5 - f).enumerate() {
-                let n_e = Vector3::from(FACE_NORMALS[e]);
-                let lever_f = a_f - r - c_f;
-                let lever_e = die.half_sizes[axis(e)] - r - c.dot(&n_e);
-                let balanced = r + lever_f.hypot(lever_e);
-                edges[slot] = (e as u8 + 1, weight * (balanced - rest_height));
-                let down = (n_f * lever_f + n_e * lever_e).normalize();
-                v_edge = v_edge.min(lowest(&down).1);
-            }
-            let (centre, v_rest) = lowest(&n_f);
-            self.faces[f] = FaceReadout {
-                face: f as u8 + 1,
-                rest_height,
-                rest_depth: rest_height - centre,
-                edges,
-            };
-            let pass = edges.iter().map(|e| e.1).fold(f64::INFINITY, f64::min);
-            let rigid_rest = weight * (rest_height - reference);
-            let threshold = (rigid_rest + frac * pass).min(v_edge - 0.5 * (1.0 - frac) * pass);
-            self.face_rules[f] = if threshold > v_rest && centre > 0.0 {
-                StopRule {
-                    energy_threshold: threshold,
-                    kinetic_threshold: threshold - v_rest,
-                }
-            } else {
-                StopRule {
-                    energy_threshold: f64::NEG_INFINITY,
-                    kinetic_threshold: f64::NEG_INFINITY,
-                }
-            };
-        }
+    /// Each face down of `p`'s body: rest height and depth, and the energy over each edge
+    /// (worked out afresh: a roll keeps only the rules, so its body stays small to copy).
+    pub(crate) fn faces(p: &Params) -> [FaceReadout; 6] {
+        let shape = Shape::new(p);
+        read_faces(p, &shape.properties, shape.reference_height).0
     }
 
-    /// Each face down: rest height and depth, and the energy over each edge.
-    pub(crate) fn faces(&self) -> [FaceReadout; 6] {
-        self.faces
-    }
-
-    /// erg, the lowest edge pass over every face and edge.
-    pub(crate) fn lowest_edge_energy(&self) -> f64 {
-        self.faces
+    /// erg, the lowest edge pass over every face and edge of `p`'s body.
+    pub(crate) fn lowest_edge_energy(p: &Params) -> f64 {
+        Shape::faces(p)
             .iter()
             .flat_map(|f| f.edges.iter().map(|e| e.1))
             .fold(f64::INFINITY, f64::min)
@@ -352,6 +285,74 @@ impl Shape {
             }
         }
     }
+}
+
+/// The rest depth and edge energies of each face down, and from them each face's
+/// stopping rule: the paper's rule moved to that face's rest and scaled to its lowest
+/// edge (docs/model.md, "Real dice").
+fn read_faces(p: &Params, properties: &MassProperties, reference: f64) -> ([FaceReadout; 6], [StopRule; 6]) {
+    let die = &p.die;
+    let weight = properties.mass * p.world.gravity;
+    let (k, r) = (p.ground.stiffness, die.corner_radius);
+    let c = properties.centre_of_mass;
+    let spheres = contact_sphere_centres(die);
+    let frac = p.integrator.stop_energy_fraction;
+    // Heights of the sphere bottoms relative to the centre of mass with `down` (body
+    // frame, unit) pointing at the table, ascending.
+    let offsets = |down: &Vector3<f64>| {
+        let mut o = spheres.map(|x| -(x - c).dot(down) - r);
+        o.sort_by(f64::total_cmp);
+        o
+    };
+    let mut faces = [FaceReadout {
+        face: 0,
+        rest_height: 0.0,
+        rest_depth: 0.0,
+        edges: [(0, 0.0); 4],
+    }; 6];
+    let mut rules = [StopRule {
+        energy_threshold: f64::NEG_INFINITY,
+        kinetic_threshold: f64::NEG_INFINITY,
+    }; 6];
+    let lowest = |down: &Vector3<f64>| lowest_potential_at(weight, k, reference, &offsets(down));
+    for (f, normal) in FACE_NORMALS.iter().enumerate() {
+        let n_f = Vector3::from(*normal);
+        let (a_f, c_f) = (die.half_sizes[axis(f)], c.dot(&n_f));
+        let rest_height = a_f - c_f;
+        let mut edges = [(0u8, 0.0); 4];
+        let mut v_edge = f64::INFINITY;
+        for (slot, e) in (0..6).filter(|&e| e != f && e != 5 - f).enumerate() {
+            let n_e = Vector3::from(FACE_NORMALS[e]);
+            let lever_f = a_f - r - c_f;
+            let lever_e = die.half_sizes[axis(e)] - r - c.dot(&n_e);
+            let balanced = r + lever_f.hypot(lever_e);
+            edges[slot] = (e as u8 + 1, weight * (balanced - rest_height));
+            let down = (n_f * lever_f + n_e * lever_e).normalize();
+            v_edge = v_edge.min(lowest(&down).1);
+        }
+        let (centre, v_rest) = lowest(&n_f);
+        faces[f] = FaceReadout {
+            face: f as u8 + 1,
+            rest_height,
+            rest_depth: rest_height - centre,
+            edges,
+        };
+        let pass = edges.iter().map(|e| e.1).fold(f64::INFINITY, f64::min);
+        let rigid_rest = weight * (rest_height - reference);
+        let threshold = (rigid_rest + frac * pass).min(v_edge - 0.5 * (1.0 - frac) * pass);
+        rules[f] = if threshold > v_rest && centre > 0.0 {
+            StopRule {
+                energy_threshold: threshold,
+                kinetic_threshold: threshold - v_rest,
+            }
+        } else {
+            StopRule {
+                energy_threshold: f64::NEG_INFINITY,
+                kinetic_threshold: f64::NEG_INFINITY,
+            }
+        };
+    }
+    (faces, rules)
 }
 
 /// The body axis (0 x, 1 y, 2 z) of face index `f` (0..5).
@@ -545,7 +546,7 @@ mod tests {
         p.die = die([0.6, 1.0, 1.4], 0.25);
         let shape = Shape::new(&p);
         let weight = shape.properties.mass * p.world.gravity;
-        for face in shape.faces() {
+        for face in Shape::faces(&p) {
             let f = face.face as usize - 1;
             assert!(close(face.rest_height, p.die.half_sizes[axis(f)], 1e-15));
             // Four springs carry the weight: M·g/(4k) each.
@@ -562,7 +563,7 @@ mod tests {
         // Rounding lowers the pass: the same box sharp needs more.
         let mut sharp = p;
         sharp.die.corner_radius = 0.0;
-        assert!(Shape::new(&sharp).lowest_edge_energy() > shape.lowest_edge_energy());
+        assert!(Shape::lowest_edge_energy(&sharp) > Shape::lowest_edge_energy(&p));
     }
 
     #[test]
@@ -580,7 +581,7 @@ mod tests {
             );
             assert!(close(rule.kinetic_threshold, paper.kinetic_threshold, 1e-12));
         }
-        assert!(close(shape.lowest_edge_energy(), p.edge_energy(), 1e-14));
+        assert!(close(Shape::lowest_edge_energy(&p), p.edge_energy(), 1e-14));
         assert!(close(
             p.rocking_frequency(),
             mass_properties(&p.die).rocking_frequency(&p.die, p.ground.stiffness),

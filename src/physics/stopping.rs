@@ -106,7 +106,7 @@ pub fn settles(stop_energy: f64, kinetic: f64, potential: f64, rule: &StopRule) 
 /// other than the paper's cube, the deepest over its faces.
 pub fn resting_depth_on_face(p: &Params) -> f64 {
     if !p.die.is_cube() {
-        let faces = Shape::new(p).faces();
+        let faces = Shape::faces(p);
         return faces.iter().map(|f| f.rest_depth).fold(0.0, f64::max);
     }
     let a = p.die.half_size();
