@@ -9,7 +9,7 @@ fn sim(params: &Params, initial: InitialCondition) -> Simulation {
 
 /// Centre height of a die resting flat at equilibrium: each corner sinks M·g/(4k).
 fn resting_height(p: &Params) -> f64 {
-    p.die.half_size - p.resting_depth()
+    p.die.half_size() - p.resting_depth()
 }
 
 #[test]

@@ -22,7 +22,7 @@ fn across_and_beyond(l: Limits) -> impl Strategy<Value = f64> {
 fn any_params() -> impl Strategy<Value = Params> {
     (
         (
-            across_and_beyond(registry::HALF_SIZE.limits),
+            across_and_beyond(registry::HALF_SIZES.limits),
             across_and_beyond(registry::CORNER_MASS.limits),
         ),
         (
@@ -37,7 +37,7 @@ fn any_params() -> impl Strategy<Value = Params> {
     )
         .prop_map(|((a, m), (k, gamma, mu), g, (dt, max_time), (law, stop))| {
             let mut p = Params::default();
-            p.die.half_size = a;
+            p.die.half_sizes = [a; 3];
             p.die.corner_mass = m;
             p.ground.stiffness = k;
             p.ground.damping = gamma;

@@ -257,7 +257,7 @@ fn mixed_parameters_in_neighbouring_lanes() {
             };
             p.integrator.dt = log_uniform(&mut rng, 1e-4, 1e-2);
             p.integrator.max_time = rng.random_range(0.2..5.0);
-            p.die.half_size = rng.random_range(0.5..2.0);
+            p.die.half_sizes = [rng.random_range(0.5..2.0); 3];
             // Every third lane a loaded die, so fair and loaded dice share vectors.
             if i % 3 == 2 {
                 p.die.extra_corner_mass = std::array::from_fn(|_| {

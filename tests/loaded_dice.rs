@@ -29,7 +29,7 @@ fn in_flight() -> InitialCondition {
 /// the mean of the corner offsets) moved by the parallel-axis term, plus each extra mass.
 fn inertia_from_masses(p: &Params, r: &[Vector3<f64>; 8]) -> Matrix3<f64> {
     let point = |m: f64, x: &Vector3<f64>| (Matrix3::identity() * x.dot(x) - x * x.transpose()) * m;
-    let side = 2.0 * p.die.half_size;
+    let side = 2.0 * p.die.half_size();
     let uniform = 8.0 * p.die.corner_mass;
     let centre = r.iter().sum::<Vector3<f64>>() / 8.0;
     let mut i = Matrix3::identity() * (side * side / 6.0 * uniform) + point(uniform, &centre);

@@ -693,7 +693,7 @@ prop_compose! {
     fn any_preset()(
         name in "[A-Za-z0-9_-]{1,24}",
         description in "[ -~\n\t\"\\\\é°·]{0,300}",
-        die in (limits(dicesim::experiment::registry::HALF_SIZE.limits), limits(dicesim::experiment::registry::CORNER_MASS.limits)),
+        die in (limits(dicesim::experiment::registry::HALF_SIZES.limits), limits(dicesim::experiment::registry::CORNER_MASS.limits)),
         ground in (
             limits(dicesim::experiment::registry::STIFFNESS.limits),
             limits(dicesim::experiment::registry::DAMPING.limits),
@@ -735,7 +735,7 @@ prop_compose! {
             description,
             ..Preset::default()
         };
-        (p.die.half_size, p.die.corner_mass) = die;
+        (p.die.half_sizes, p.die.corner_mass) = ([die.0; 3], die.1);
         (p.ground.stiffness, p.ground.damping, p.ground.friction) = (ground.0, ground.1, ground.2);
         p.ground.friction_law = if ground.3 { FrictionLaw::WholeDieNorm } else { FrictionLaw::PerCorner };
         p.world.gravity = gravity;
@@ -750,7 +750,7 @@ prop_compose! {
             orientation,
         };
         // A start inside the table is refused: lift it clear, as a valid preset must be.
-        let lowest = -p.initial.lowest_corner_offset(p.die.half_size) - p.params().resting_depth();
+        let lowest = -p.initial.lowest_corner_offset(&p.die) - p.params().resting_depth();
         p.initial.height = p.initial.height.max(lowest);
         p.random.seed = random.0;
         (p.random.height, p.random.velocity, p.random.angular_velocity) = (random.1, random.2, random.3);

@@ -6,8 +6,8 @@
 //! must name a limit the set really passes. The figures are printed (`--nocapture`).
 
 use dicesim::experiment::registry::{
-    ANGULAR_VELOCITY, CORNER_MASS, DAMPING, DT, FRICTION, GRAVITY, HALF_SIZE, HEIGHT, ORIENTATION, STIFFNESS,
-    STOP_ENERGY_FRACTION, VELOCITY,
+    ANGULAR_VELOCITY, CORNER_MASS, DAMPING, DT, FRICTION, GRAVITY, HALF_SIZES, HEIGHT, ORIENTATION,
+    STIFFNESS, STOP_ENERGY_FRACTION, VELOCITY,
 };
 use dicesim::physics::stopping::resting_depth_on_face;
 use dicesim::physics::{
@@ -42,7 +42,7 @@ fn signed_log(l: Limits, sign: f64, u: f64) -> f64 {
 /// One parameter set and start from 24 uniform numbers in [0, 1).
 fn draw(u: &[f64; 24]) -> (Params, InitialCondition) {
     let mut p = Params::default();
-    p.die.half_size = log_uniform(HALF_SIZE.limits, u[0]);
+    p.die.half_sizes = [log_uniform(HALF_SIZES.limits, u[0]); 3];
     p.die.corner_mass = log_uniform(CORNER_MASS.limits, u[1]);
     p.ground.stiffness = log_uniform(STIFFNESS.limits, u[2]);
     p.ground.damping = uniform(DAMPING.limits, u[3]);
@@ -79,8 +79,8 @@ fn draw(u: &[f64; 24]) -> (Params, InitialCondition) {
         })
     };
     // From just clear of the table to a hundred half sizes above it.
-    let clearance = -ic.lowest_corner_offset(p.die.half_size);
-    let lift = p.die.half_size * (10f64.ln() * (-2.0 + 4.0 * u[23])).exp();
+    let clearance = -ic.lowest_corner_offset(&p.die);
+    let lift = p.die.half_size() * (10f64.ln() * (-2.0 + 4.0 * u[23])).exp();
     ic.height = (clearance + lift).min(HEIGHT.limits.max);
     (p, ic)
 }

@@ -176,7 +176,7 @@ fn body_line(params: &Params) -> String {
         n(params.ground.stiffness),
         n(params.ground.damping),
         n(params.ground.friction),
-        n(params.die.half_size),
+        n(params.die.half_size()),
         n(params.die.corner_mass),
         n(params.world.gravity),
         n(params.integrator.dt),

@@ -56,7 +56,7 @@ impl RandomRanges {
                 },
                 ..key.limits
             },
-            high_end: None,
+            detail: None,
         })
     }
 

@@ -218,20 +218,76 @@ macro_rules! params_field {
     };
 }
 
-pub const HALF_SIZE: Spec = Spec {
-    limits: params::limits::HALF_SIZE,
-    shape: Shape::Number(Params::DEFAULT.die.half_size),
+pub const HALF_SIZES: Spec = Spec {
+    limits: params::limits::HALF_SIZES,
+    shape: Shape::Vector {
+        components: XYZ,
+        default: Params::DEFAULT.die.half_sizes,
+    },
     role: Role::Die,
-    comment: "cm, the paper's \"radius\" (side = 2 × half_size)",
-    labels: &["half size a"],
-    list_position: 15,
+    comment: "cm, half the side along x (faces 1, 6), y (2, 5), z (3, 4); a cube may give `half_size = a`",
+    // Not in the explorer's list yet: its drawing of a cuboid comes with the list's rows
+    // for the three sizes and the pips.
+    labels: &[],
+    list_position: u8::MAX,
     nudge: Some(Nudge::Add {
         fine: 0.05,
         coarse: 0.5,
     }),
     acts_mid_roll: false,
-    read: |s| Value::Number(s.params.die.half_size),
-    scan: params_field!(die.half_size),
+    read: |s| Value::Vector(s.params.die.half_sizes),
+    scan: Some(Scan {
+        get: |p, _, i| p.die.half_sizes[i],
+        set: |p, _, i, v| p.die.half_sizes[i] = v,
+    }),
+};
+
+pub const CORNER_RADIUS: Spec = Spec {
+    limits: params::limits::CORNER_RADIUS,
+    shape: Shape::Number(Params::DEFAULT.die.corner_radius),
+    role: Role::Die,
+    comment: "cm, rounded corners and edges (0: sharp, the paper's); below the smallest half size",
+    labels: &["corner radius r"],
+    list_position: 15,
+    nudge: Some(Nudge::Add {
+        fine: 0.01,
+        coarse: 0.1,
+    }),
+    acts_mid_roll: false,
+    read: |s| Value::Number(s.params.die.corner_radius),
+    scan: params_field!(die.corner_radius),
+};
+
+pub const PIP_DIAMETER: Spec = Spec {
+    limits: params::limits::PIP_DIAMETER,
+    shape: Shape::Number(Params::DEFAULT.die.pip_diameter),
+    role: Role::Die,
+    comment: "cm, each pip's opening; the pips must lie apart on the flat of every face",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: Some(Nudge::Add {
+        fine: 0.01,
+        coarse: 0.1,
+    }),
+    acts_mid_roll: false,
+    read: |s| Value::Number(s.params.die.pip_diameter),
+    scan: params_field!(die.pip_diameter),
+};
+
+pub const PIP_DEPTH: Spec = Spec {
+    limits: params::limits::PIP_DEPTH,
+    shape: Shape::Number(Params::DEFAULT.die.pip_depth),
+    role: Role::Die,
+    comment: "cm, pips drilled as spherical caps this deep (0: none), at most half the diameter",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: Some(Nudge::Add {
+        fine: 0.005,
+        coarse: 0.05,
+    }),
+    acts_mid_roll: false,
+    read: |s| Value::Number(s.params.die.pip_depth),
+    scan: params_field!(die.pip_depth),
 };
 
 pub const CORNER_MASS: Spec = Spec {
@@ -622,8 +678,11 @@ pub(crate) const RANDOM_ORIENTATION: Spec = Spec {
 };
 
 /// Every value of a setup, in the order a preset file lists them.
-pub(crate) static ALL: [&Spec; 22] = [
-    &HALF_SIZE,
+pub(crate) static ALL: [&Spec; 25] = [
+    &HALF_SIZES,
+    &CORNER_RADIUS,
+    &PIP_DIAMETER,
+    &PIP_DEPTH,
     &CORNER_MASS,
     &EXTRA_CORNER_MASS,
     &STIFFNESS,

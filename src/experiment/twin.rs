@@ -39,10 +39,18 @@ pub struct Separation {
 
 /// The body axes of a die (columns of its orientation), from its corner offsets: corner 5
 /// minus corner 1 is 2a along x, corner 3 minus 1 along y, corner 2 minus 1 along z.
+/// Any other body's corners (sphere centres) are `2·(a_i − r)` apart along each axis, so its
+/// differences are normalised instead.
 fn axes(sim: &Simulation) -> [nalgebra::Vector3<f64>; 3] {
     let r = &sim.state().corner_offsets;
-    let side = 2.0 * sim.params().die.half_size;
-    [(r[4] - r[0]) / side, (r[2] - r[0]) / side, (r[1] - r[0]) / side]
+    let die = &sim.params().die;
+    let differences = [r[4] - r[0], r[2] - r[0], r[1] - r[0]];
+    if die.is_cube() {
+        let side = 2.0 * die.half_size();
+        differences.map(|d| d / side)
+    } else {
+        differences.map(|d| d.normalize())
+    }
 }
 
 /// The separation of two dice at their current states.

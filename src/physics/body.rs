@@ -1,5 +1,8 @@
-//! The die's geometry: corner numbering and faces (docs/model.md, "Faces").
+//! The die's geometry: corner numbering, faces, pips and contact spheres (docs/model.md,
+//! "Faces" and "Real dice"). The explorer's drawing and any picture or export of the die
+//! read these, so the body is defined once.
 
+use super::params::Die;
 use nalgebra::Vector3;
 
 /// Signs of corners 1..8 in the body frame, `(x, y, z)/a`, in the authors' order.
@@ -53,6 +56,79 @@ pub const PIP_LAYOUT: [&[(f64, f64)]; 6] = [
         (0.5, 0.5),
     ],
 ];
+
+/// A face's outward normal and its two edge directions (body frame, unit axis vectors): from
+/// its first corner in [`FACE_CORNERS`] to the second, and to the third. `face` is 1..6.
+pub fn face_frame(face: u8) -> [[f64; 3]; 3] {
+    let corners = FACE_CORNERS[face as usize - 1];
+    let along = |to: usize| -> [f64; 3] {
+        std::array::from_fn(|i| (CORNER_SIGNS[corners[to]][i] - CORNER_SIGNS[corners[0]][i]) / 2.0)
+    };
+    [FACE_NORMALS[face as usize - 1], along(1), along(2)]
+}
+
+/// cm, body frame about the geometric centre: where the pips of `face` (1..6) open in its
+/// plane, in [`PIP_LAYOUT`] order, for a body of these half sizes. The pips' places do not
+/// depend on whether they are drilled, so a drawing of an undrilled die uses them too.
+pub fn pip_centres(half_sizes: [f64; 3], face: u8) -> Vec<[f64; 3]> {
+    let [n, e1, e2] = face_frame(face);
+    PIP_LAYOUT[face as usize - 1]
+        .iter()
+        .map(|&(u, v)| std::array::from_fn(|i| (n[i] + u * e1[i] + v * e2[i]) * half_sizes[i]))
+        .collect()
+}
+
+/// One drilled pip: a spherical-cap hole opening in a face (docs/model.md, "Real dice").
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pip {
+    /// 1..6.
+    pub face: u8,
+    /// cm, body frame about the geometric centre: the centre of the opening, in the face.
+    pub centre: [f64; 3],
+    /// The face's outward normal.
+    pub normal: [f64; 3],
+    /// cm, the opening's radius (half `die.pip_diameter`).
+    pub radius: f64,
+    /// cm, from the face to the bottom of the hole.
+    pub depth: f64,
+}
+
+impl Pip {
+    /// cm, the radius of the sphere the cap is cut from: `(ρ² + h²)/(2h)`.
+    pub fn sphere_radius(&self) -> f64 {
+        (self.radius * self.radius + self.depth * self.depth) / (2.0 * self.depth)
+    }
+}
+
+/// Every pip of `die` (21, faces 1..6 in order), or none for an undrilled die.
+pub fn pips(die: &Die) -> Vec<Pip> {
+    if !die.is_drilled() {
+        return Vec::new();
+    }
+    (1..=6u8)
+        .flat_map(|face| {
+            pip_centres(die.half_sizes, face)
+                .into_iter()
+                .map(move |centre| Pip {
+                    face,
+                    centre,
+                    normal: FACE_NORMALS[face as usize - 1],
+                    radius: 0.5 * die.pip_diameter,
+                    depth: die.pip_depth,
+                })
+        })
+        .collect()
+}
+
+/// cm, body frame about the geometric centre: the centres of the 8 corner spheres, the
+/// sharp box shrunk by the corner radius (corners 1..8; for a sharp die, its corners). The
+/// rounded body is this box grown by a ball of the corner radius, so against the table its
+/// lowest point is always on one of these spheres.
+pub fn contact_sphere_centres(die: &Die) -> [Vector3<f64>; 8] {
+    let r = die.corner_radius;
+    let b = die.half_sizes.map(|a| a - r);
+    CORNER_SIGNS.map(|s| Vector3::new(s[0] * b[0], s[1] * b[1], s[2] * b[2]))
+}
 
 /// Corner offsets from the centre of mass at identity orientation, cm.
 pub(crate) fn body_corner_offsets(half_size: f64) -> [Vector3<f64>; 8] {

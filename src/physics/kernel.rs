@@ -20,9 +20,35 @@ pub use super::lane::Lane;
 use super::lane::set_bits;
 use super::mass::{InertiaTensor, LoadedMass};
 use super::params::{FrictionLaw, Limits, ParamError, Params, StopEnergy};
+use super::shape::{self, Shape};
 use super::spin::{spin, spin_lanes, step_rotation};
 use super::stopping::StopRule;
 use nalgebra::{Matrix3, Vector3};
+
+/// Where a corner's contact force acts, relative to the centre of mass: a rounded body's
+/// contact sphere's lowest point, the radius below its centre (lanes of a sharp body among
+/// rounded ones have radius +0.0, and `z − 0` is `z`). `ROUNDED` is decided once per call of
+/// the stage, so a sharp die's step compiles without it.
+#[inline(always)]
+pub(crate) fn contact_point<const ROUNDED: bool, L: Lane>(r: &Vector3<L>, radius: L) -> Vector3<L> {
+    if ROUNDED { v3(r.x, r.y, r.z - radius) } else { *r }
+}
+
+/// `Σ ρ_k × F_k` over the touching corners, in corner order from +0.0.
+#[inline(always)]
+fn torque<const ROUNDED: bool, L: Lane>(
+    offsets: &[Vector3<L>; 8],
+    forces: &[Vector3<L>; 8],
+    touching: u8,
+    radius: L,
+) -> Vector3<L> {
+    let mut torque = zero3();
+    for k in set_bits(touching.into()) {
+        let arm = contact_point::<ROUNDED, L>(&offsets[k], radius);
+        torque = add3(&torque, &cross3(&arm, &forces[k]));
+    }
+    torque
+}
 
 /// The bits of every lane.
 #[inline(always)]
@@ -113,27 +139,41 @@ pub(crate) struct Ends<M> {
     pub(crate) timeout: M,
 }
 
-/// Per lane, what the scalar engine's spin and a loaded die's stopping rule need (the lane
-/// engine's spin reads the same inertia and Δt from [`Constants`]).
+/// Per lane, what the scalar engine's spin and the stopping rule of a die other than the
+/// fair cube need (the lane engine's spin reads the same inertia and Δt from [`Constants`]).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Body {
     /// g·cm², the fair die's isotropic inertia.
     inertia: f64,
     /// s.
     dt: f64,
-    /// A loaded die's mass model; `None` for the fair die, whose path it never touches.
+    /// A loaded cube's mass model; `None` for any other die.
     loaded: Option<LoadedMass>,
+    /// A general body (any die but the paper's sharp cube without pips); `None` for the
+    /// cube, loaded or not, whose path it never touches.
+    shape: Option<Shape>,
 }
 
 impl Body {
+    pub(crate) fn new(params: &Params) -> Body {
+        let cube = params.die.is_cube();
+        Body {
+            inertia: params.inertia(),
+            dt: params.integrator.dt,
+            loaded: if cube { LoadedMass::new(params) } else { None },
+            shape: (!cube).then(|| Shape::new(params)),
+        }
+    }
+
     /// ω and the step rotation from this lane's `spin_input`: the angular momentum of a
-    /// fair die (ω = L/I with its isotropic inertia), or a loaded die's ω = I(t)⁻¹·L,
-    /// which [`Kernel::respin`] computes in every lane at once and the rotation is built
-    /// from as it is (the program before the shared kernel divided it by an inertia of 1,
-    /// which is exact).
+    /// fair die (ω = L/I with its isotropic inertia), or the ω of a body whose inertia turns
+    /// with it (a loaded die's I(t)⁻¹·L, a general body's R·I⁻¹·Rᵀ·L), which
+    /// [`Kernel::respin`] computes in every lane at once and the rotation is built from as
+    /// it is (the program before the shared kernel divided it by an inertia of 1, which is
+    /// exact).
     #[inline(always)]
-    fn spin(&self, spin_input: &Vector3<f64>, loaded: bool) -> (Vector3<f64>, Option<Matrix3<f64>>) {
-        if loaded {
+    fn spin(&self, spin_input: &Vector3<f64>, turning: bool) -> (Vector3<f64>, Option<Matrix3<f64>>) {
+        if turning {
             (*spin_input, step_rotation(spin_input, self.dt))
         } else {
             spin(spin_input, self.inertia, self.dt)
@@ -142,6 +182,19 @@ impl Body {
 
     pub(crate) fn loaded(&self) -> Option<&LoadedMass> {
         self.loaded.as_ref()
+    }
+
+    pub(crate) fn shape(&self) -> Option<&Shape> {
+        self.shape.as_ref()
+    }
+
+    /// The stopping rule of the face now down, for a die whose rule depends on it.
+    pub(crate) fn stop_rule(&self, corner_offsets: &[Vector3<f64>; 8]) -> Option<StopRule> {
+        match (&self.loaded, &self.shape) {
+            (Some(m), _) => Some(m.stop_rule(corner_offsets)),
+            (_, Some(s)) => Some(s.stop_rule(corner_offsets)),
+            _ => None,
+        }
     }
 }
 
@@ -181,6 +234,13 @@ pub(crate) struct Constants<L: Lane> {
     pub(crate) uniform_inertia: L,
     pub(crate) uniform_mass: L,
     pub(crate) extra_masses: [L; 8],
+    /// A general body's inverse inertia tensor about its centre of mass, body frame, by its
+    /// upper triangle (1/(g·cm²)), and `1/(2·b_i)` (1/cm) to read its axes off the spheres
+    /// ([`shape::angular_velocity`]).
+    pub(crate) inverse_inertia: [L; 6],
+    pub(crate) axis_scale: [L; 3],
+    /// cm, the corner radius: a contact sphere's lowest point is this far below its centre.
+    pub(crate) corner_radius: L,
     /// erg, the stopping rule's thresholds; for a loaded die the largest over its faces,
     /// which only screens (the rule of the face down decides).
     pub(crate) energy_threshold: L,
@@ -193,19 +253,30 @@ pub(crate) struct Constants<L: Lane> {
     pub(crate) whole_die_norm: L::Mask,
     pub(crate) point_masses: L::Mask,
     pub(crate) loaded: L::Mask,
+    /// Lanes with a general body; whose inertia turns with the body (loaded or general: ω
+    /// changes in flight too); whose stopping rule depends on the face down (the same lanes).
+    pub(crate) shaped: L::Mask,
+    pub(crate) turning: L::Mask,
+    /// Bit l: lane l's body has rounded corners. Plain bits, not a mask: the step asks
+    /// only whether any lane has, and a sharp die's step should not pay for asking.
+    pub(crate) rounded: u32,
 }
 
 impl Constants<f64> {
     /// The constants of `p`, with `runaway` still +∞ (it needs the initial energy).
-    pub(crate) fn new(p: &Params, loaded: Option<&LoadedMass>) -> Self {
+    pub(crate) fn new(p: &Params, body: &Body) -> Self {
+        let (loaded, shape) = (body.loaded(), body.shape());
         let mass = p.total_mass();
         let gravity = p.world.gravity;
         let weight_z = mass * -gravity;
         let (dt, zero) = (p.integrator.dt, 0.0);
-        let (a, m) = (p.die.half_size, p.die.corner_mass);
-        let rule = match loaded {
-            None => StopRule::new(p),
-            Some(l) => l.widest_stop_rule(),
+        // A general body's potential is measured from its lowest rest height.
+        let a = shape.map_or(p.die.half_size(), |s| s.reference_height);
+        let m = p.die.corner_mass;
+        let rule = match (loaded, shape) {
+            (Some(l), _) => l.widest_stop_rule(),
+            (_, Some(s)) => s.widest_stop_rule(),
+            _ => StopRule::new(p),
         };
         let (corner_masses, loaded_total) = match loaded {
             None => ([m; 8], mass),
@@ -236,6 +307,9 @@ impl Constants<f64> {
             uniform_inertia: p.inertia(),
             uniform_mass: p.uniform_mass(),
             extra_masses: p.die.extra_corner_mass,
+            inverse_inertia: shape.map_or([0.0; 6], |s| s.inverse_inertia),
+            axis_scale: shape.map_or([0.0; 3], |s| s.axis_scale),
+            corner_radius: shape.map_or(0.0, |s| s.radius),
             energy_threshold: rule.energy_threshold,
             kinetic_threshold: rule.kinetic_threshold,
             runaway: f64::INFINITY,
@@ -243,6 +317,9 @@ impl Constants<f64> {
             whole_die_norm: p.ground.friction_law == FrictionLaw::WholeDieNorm,
             point_masses: p.integrator.stop_energy == StopEnergy::PointMasses,
             loaded: loaded.is_some(),
+            shaped: shape.is_some(),
+            rounded: shape.is_some_and(|s| s.radius > 0.0) as u32,
+            turning: loaded.is_some() || shape.is_some(),
         }
     }
 }
@@ -288,13 +365,13 @@ pub(crate) struct Kernel<L: Lane> {
 impl Kernel<f64> {
     /// The die placed at `initial`, its spin and its forces computed (no range checks).
     pub(crate) fn new(params: &Params, initial: &InitialCondition) -> Self {
-        let loaded = LoadedMass::new(params);
-        let c = Constants::new(params, loaded.as_ref());
-        let inertia = params.inertia();
-        let corner_offsets = initial_corner_offsets(params, initial, loaded.as_ref());
-        let angular_momentum = match &loaded {
-            Some(m) => m.initial_angular_momentum(initial, &corner_offsets),
-            None => initial.angular_momentum_for(inertia),
+        let body = Body::new(params);
+        let c = Constants::new(params, &body);
+        let corner_offsets = initial_corner_offsets(params, initial, &body);
+        let angular_momentum = match (&body.loaded, &body.shape) {
+            (Some(m), _) => m.initial_angular_momentum(initial, &corner_offsets),
+            (_, Some(s)) => s.initial_angular_momentum(initial),
+            _ => initial.angular_momentum_for(body.inertia),
         };
         let state = State {
             position: Vector3::new(0.0, 0.0, initial.height),
@@ -314,11 +391,7 @@ impl Kernel<f64> {
             in_contact: false,
             touching_corners: 0,
             c,
-            bodies: [Body {
-                inertia,
-                dt: params.integrator.dt,
-                loaded,
-            }],
+            bodies: [body],
         };
         kernel.respin(1);
         kernel.update_forces();
@@ -326,15 +399,13 @@ impl Kernel<f64> {
     }
 }
 
-/// cm, corners 1..8 relative to the centre of mass at t = 0, world frame: where both
-/// engines place the die.
-fn initial_corner_offsets(
-    params: &Params,
-    initial: &InitialCondition,
-    loaded: Option<&LoadedMass>,
-) -> [Vector3<f64>; 8] {
-    let half_size = params.die.half_size;
-    if let Some(m) = loaded {
+/// cm, corners 1..8 (a general body's contact-sphere centres) relative to the centre of
+/// mass at t = 0, world frame: where both engines place the die.
+fn initial_corner_offsets(params: &Params, initial: &InitialCondition, body: &Body) -> [Vector3<f64>; 8] {
+    let half_size = params.die.half_size();
+    if let Some(s) = &body.shape {
+        s.initial_sphere_offsets(&params.die, initial)
+    } else if let Some(m) = &body.loaded {
         m.initial_corner_offsets(half_size, initial)
     } else if initial.orientation == [0.0; 3] {
         body_corner_offsets(half_size)
@@ -349,10 +420,10 @@ impl InitialCondition {
     /// `M·g/(4k)` (a die may be placed resting on the table, not pushed into it): the error
     /// names the lowest height allowed at this orientation.
     pub(crate) fn check_clear_of_table(&self, params: &Params) -> Result<(), ParamError> {
-        let loaded = LoadedMass::new(params);
-        let lowest_offset = initial_corner_offsets(params, self, loaded.as_ref())
+        let body = Body::new(params);
+        let lowest_offset = initial_corner_offsets(params, self, &body)
             .iter()
-            .map(|r| r.z)
+            .map(|r| r.z - params.die.corner_radius)
             .fold(f64::INFINITY, f64::min);
         let lowest = -lowest_offset - params.resting_depth();
         if self.height >= lowest {
@@ -366,7 +437,7 @@ impl InitialCondition {
                     unit: "cm at this orientation (lower, a corner starts inside the table)",
                     ..limits::HEIGHT
                 },
-                high_end: None,
+                detail: None,
             })
         }
     }
@@ -380,7 +451,8 @@ impl<L: Lane> Kernel<L> {
         // The constants this stage reads, copied out one by one: a copy of them all costs a
         // memcpy call per step.
         let c = &self.c;
-        let (dt, mass, weight_z, flight_kick, loaded) = (c.dt, c.mass, c.weight_z, c.flight_kick, c.loaded);
+        let (dt, mass, weight_z, flight_kick, turning) = (c.dt, c.mass, c.weight_z, c.flight_kick, c.turning);
+        let (rounded, radius) = (c.rounded != 0, c.corner_radius);
         let contact_bits = L::bits(self.in_contact);
         let touching = self.touching_corners;
         hook.before_kick(self);
@@ -410,12 +482,14 @@ impl<L: Lane> Kernel<L> {
         s.position = add3(&s.position, &scale3(&s.velocity, dt));
         // 3. angular momentum from the torque of the forces at the old corner offsets. The
         // sum starts from +0.0, so a skipped corner's ±0.0 term changes nothing (the
-        // offsets are finite: a roll ends as soon as they are not).
+        // offsets are finite: a roll ends as soon as they are not). A rounded body's force
+        // acts at its contact sphere's lowest point.
         if contact_bits != 0 {
-            let mut torque = zero3();
-            for k in set_bits(touching.into()) {
-                torque = add3(&torque, &cross3(&s.corner_offsets[k], &s.corner_forces[k]));
-            }
+            let torque = if rounded {
+                torque::<true, L>(&s.corner_offsets, &s.corner_forces, touching, radius)
+            } else {
+                torque::<false, L>(&s.corner_offsets, &s.corner_forces, touching, radius)
+            };
             let l_new = add3(&s.angular_momentum, &scale3(&torque, dt));
             s.angular_momentum = if contact_bits == all_lanes::<L>() {
                 l_new
@@ -423,9 +497,9 @@ impl<L: Lane> Kernel<L> {
                 select3(self.in_contact, &l_new, &s.angular_momentum)
             };
         }
-        // 4. ω = I⁻¹·L and the rotation it implies, where L changed, and for a loaded die
-        // every step: its inertia turns with it, so ω changes in flight too.
-        let spinning = contact_bits | L::bits(loaded);
+        // 4. ω = I⁻¹·L and the rotation it implies, where L changed, and for a loaded die or
+        // a general body every step: its inertia turns with it, so ω changes in flight too.
+        let spinning = contact_bits | L::bits(turning);
         if spinning != 0 {
             self.respin(spinning);
         }
@@ -469,9 +543,9 @@ impl<L: Lane> Kernel<L> {
     pub(crate) fn respin(&mut self, lanes: u32) {
         let c = &self.c;
         let loaded = L::bits(c.loaded) & lanes;
-        let spin_input = if loaded == 0 {
-            self.state.angular_momentum
-        } else {
+        let shaped = L::bits(c.shaped) & lanes;
+        let mut spin_input = self.state.angular_momentum;
+        if loaded != 0 {
             let tensor = InertiaTensor::new(
                 c.uniform_inertia,
                 c.uniform_mass,
@@ -479,8 +553,18 @@ impl<L: Lane> Kernel<L> {
                 &self.state.corner_offsets,
             );
             let w = tensor.angular_velocity(&self.state.angular_momentum);
-            select3(c.loaded, &w, &self.state.angular_momentum)
-        };
+            spin_input = select3(c.loaded, &w, &spin_input);
+        }
+        if shaped != 0 {
+            let w = shape::angular_velocity(
+                &c.inverse_inertia,
+                &c.axis_scale,
+                &self.state.corner_offsets,
+                &self.state.angular_momentum,
+            );
+            spin_input = select3(c.shaped, &w, &spin_input);
+        }
+        let loaded = loaded | shaped;
         if L::WIDTH == 1 {
             // One lane: the scalar spin, its branches taken rather than selected, and ω and
             // the rotation straight into place.
@@ -496,9 +580,9 @@ impl<L: Lane> Kernel<L> {
             self.rotating = L::mask_from_bits(rotation.is_some() as u32);
             return;
         }
-        // Several lanes: ω = L/I (a loaded lane's ω is the tensor's already) and the
-        // rotation in vector operations, only `sin` and `cos` per lane ([`spin_lanes`]).
-        let (dt, inertia, loaded_lanes) = (c.dt, c.uniform_inertia, c.loaded);
+        // Several lanes: ω = L/I (a loaded or general body's ω is its tensor's already) and
+        // the rotation in vector operations, only `sin` and `cos` per lane ([`spin_lanes`]).
+        let (dt, inertia, turning_lanes) = (c.dt, c.uniform_inertia, c.turning);
         let divided = v3(
             spin_input.x / inertia,
             spin_input.y / inertia,
@@ -507,7 +591,7 @@ impl<L: Lane> Kernel<L> {
         let w = if loaded == 0 {
             divided
         } else {
-            select3(loaded_lanes, &spin_input, &divided)
+            select3(turning_lanes, &spin_input, &divided)
         };
         let (nonzero, rotation) = spin_lanes(&w, dt, lanes);
         let update = L::mask_from_bits(lanes);
@@ -534,16 +618,30 @@ impl<L: Lane> Kernel<L> {
     /// under each lane's friction law.
     #[inline(always)]
     pub(crate) fn update_forces(&mut self) {
+        // A rounded body touches the table with the lowest points of its corner spheres, the
+        // radius below their centres (docs/model.md, "Real dice"); a sharp one skips this.
+        if self.c.rounded != 0 {
+            self.update_forces_at::<true>();
+        } else {
+            self.update_forces_at::<false>();
+        }
+    }
+
+    /// [`Kernel::update_forces`] for sharp (`ROUNDED` false) or rounded lanes.
+    #[inline(always)]
+    fn update_forces_at<const ROUNDED: bool>(&mut self) {
         // Copied out one by one, as in `step`.
         let c = &self.c;
         let (stiffness, damping, friction, whole_die_norm) =
             (c.stiffness, c.damping, c.friction, c.whole_die_norm);
+        let radius = c.corner_radius;
         let z0 = self.state.position.z;
         let zero = L::zero();
         let mut touching = [L::mask_from_bits(0); 8];
         let mut any = L::mask_from_bits(0);
         for (k, t) in touching.iter_mut().enumerate() {
             let z = self.state.corner_offsets[k].z + z0;
+            let z = if ROUNDED { z - radius } else { z };
             *t = z.lt(zero);
             self.state.corner_depths[k] = (-z).or_zero(*t);
             any = any | *t;
@@ -574,7 +672,7 @@ impl<L: Lane> Kernel<L> {
         let norm = if whole_lanes {
             let (mut a, mut b, mut cc) = (zero, zero, zero);
             for r in &self.state.corner_offsets {
-                let uk = self.corner_velocity(r);
+                let uk = self.corner_velocity(&contact_point::<ROUNDED, L>(r, radius));
                 a = a + uk.x * uk.x;
                 b = b + uk.x * uk.y;
                 cc = cc + uk.y * uk.y;
@@ -586,7 +684,10 @@ impl<L: Lane> Kernel<L> {
         };
         let norm_nonzero = norm.ne(zero);
         for k in set_bits(touching_corners.into()) {
-            let uk = self.corner_velocity(&self.state.corner_offsets[k]);
+            let uk = self.corner_velocity(&contact_point::<ROUNDED, L>(
+                &self.state.corner_offsets[k],
+                radius,
+            ));
             let normal = self.state.corner_depths[k] * stiffness;
             let vertical = normal * (L::splat(1.0) - damping * uk.z);
             let (mut fx, mut fy) = (zero, zero);
@@ -728,19 +829,19 @@ impl<L: Lane> Kernel<L> {
                     & potential.le(energy_threshold)
             };
             let screened = settles(c.energy_threshold, c.kinetic_threshold);
-            let loaded = L::bits(screened & c.loaded);
+            let loaded = L::bits(screened & c.turning);
             if loaded == 0 {
                 screened
             } else {
-                // A loaded die's rule depends on the face it lies on. Looking the face up
-                // is a per-roll table search, done only where the widest rule passed.
+                // A loaded die's or a general body's rule depends on the face it lies on.
+                // Looking the face up is a per-roll table search, done only where the widest
+                // rule passed.
                 let (mut et, mut kt) = (c.energy_threshold.to_lanes(), c.kinetic_threshold.to_lanes());
                 for lane in set_bits(loaded) {
                     let offsets = self.state.corner_offsets.each_ref().map(|r| lane3(r, lane));
                     let rule = self.bodies.as_ref()[lane]
-                        .loaded
-                        .expect("a loaded lane has a mass model")
-                        .stop_rule(&offsets);
+                        .stop_rule(&offsets)
+                        .expect("a turning lane has a mass model");
                     et.as_mut()[lane] = rule.energy_threshold;
                     kt.as_mut()[lane] = rule.kinetic_threshold;
                 }

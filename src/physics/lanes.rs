@@ -387,6 +387,9 @@ mod avx2 {
                     uniform_inertia: F4::splat(c.uniform_inertia),
                     uniform_mass: F4::splat(c.uniform_mass),
                     extra_masses: c.extra_masses.map(F4::splat),
+                    inverse_inertia: c.inverse_inertia.map(F4::splat),
+                    axis_scale: c.axis_scale.map(F4::splat),
+                    corner_radius: F4::splat(c.corner_radius),
                     energy_threshold: F4::splat(c.energy_threshold),
                     kinetic_threshold: F4::splat(c.kinetic_threshold),
                     runaway: F4::splat(c.runaway),
@@ -394,6 +397,9 @@ mod avx2 {
                     whole_die_norm: F4::from_bits(if c.whole_die_norm { 0b1111 } else { 0 }),
                     point_masses: F4::from_bits(if c.point_masses { 0b1111 } else { 0 }),
                     loaded: F4::from_bits(if c.loaded { 0b1111 } else { 0 }),
+                    shaped: F4::from_bits(if c.shaped { 0b1111 } else { 0 }),
+                    rounded: if c.rounded != 0 { 0b1111 } else { 0 },
+                    turning: F4::from_bits(if c.turning { 0b1111 } else { 0 }),
                 },
                 bodies: [first.bodies[0]; LANES],
             };
@@ -454,6 +460,13 @@ mod avx2 {
             for corner in 0..8 {
                 c.extra_masses[corner].set_lane(l, f.extra_masses[corner]);
             }
+            for e in 0..6 {
+                c.inverse_inertia[e].set_lane(l, f.inverse_inertia[e]);
+            }
+            for axis in 0..3 {
+                c.axis_scale[axis].set_lane(l, f.axis_scale[axis]);
+            }
+            c.corner_radius.set_lane(l, f.corner_radius);
             c.energy_threshold.set_lane(l, f.energy_threshold);
             c.kinetic_threshold.set_lane(l, f.kinetic_threshold);
             c.runaway.set_lane(l, f.runaway);
@@ -461,6 +474,9 @@ mod avx2 {
             set_mask(&mut c.whole_die_norm, l, f.whole_die_norm);
             set_mask(&mut c.point_masses, l, f.point_masses);
             set_mask(&mut c.loaded, l, f.loaded);
+            set_mask(&mut c.shaped, l, f.shaped);
+            c.rounded = (c.rounded & !(1 << l)) | (f.rounded << l);
+            set_mask(&mut c.turning, l, f.turning);
             k.bodies[l] = from.bodies[0];
             set_mask(&mut self.live, l, true);
             let start_face = face_most_nearly_up(&s.corner_offsets);
@@ -483,6 +499,10 @@ mod avx2 {
             k.c.weight_z.set_lane(l, 0.0);
             set3(&mut k.c.flight_kick, l, &Vector3::zeros());
             set_mask(&mut k.c.loaded, l, false);
+            set_mask(&mut k.c.shaped, l, false);
+            k.c.rounded &= !(1 << l);
+            set_mask(&mut k.c.turning, l, false);
+            k.c.corner_radius.set_lane(l, 0.0);
             k.bodies[l] = k.bodies[(l + 1) % LANES];
             for c in 0..8 {
                 set3(&mut k.state.corner_forces[c], l, &Vector3::zeros());

@@ -37,7 +37,7 @@ impl LoadedMass {
         if !p.die.is_loaded() {
             return None;
         }
-        let a = p.die.half_size;
+        let a = p.die.half_size();
         let total = p.total_mass();
         let mut moment = Vector3::zeros();
         for (s, &dm) in CORNER_SIGNS.iter().zip(&p.die.extra_corner_mass) {
@@ -277,7 +277,7 @@ impl InertiaTensor<f64> {
 fn face_rules(p: &Params, centre_of_mass: &Vector3<f64>) -> [StopRule; 6] {
     let fair = StopRule::new(p);
     let weight = p.total_mass() * p.world.gravity;
-    let a = p.die.half_size;
+    let a = p.die.half_size();
     let edge = p.edge_energy();
     let height = |f: usize| a - centre_of_mass.dot(&Vector3::from(FACE_NORMALS[f]));
     std::array::from_fn(|f| {

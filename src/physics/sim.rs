@@ -4,10 +4,10 @@
 //! and §9: sums in corner order, divisions where they divided, Octave's scaled 2-norm and
 //! `pow(x, 2)`), so the reference trajectories are reproduced to rounding, not merely in law.
 
-use super::body::{face_most_nearly_up, face_of_highest_corners};
+use super::body::{face_most_nearly_up, face_of_highest_corners, opposite_face};
 use super::energy::Energy;
 use super::initial::InitialCondition;
-use super::kernel::{Constants, Kernel, NoHook, StepHook};
+use super::kernel::{Body, Constants, Kernel, NoHook, StepHook, contact_point};
 use super::params::{Ground, ParamError, Params, StopEnergy};
 use super::stopping::StopRule;
 use nalgebra::Vector3;
@@ -164,9 +164,12 @@ impl StepHook<f64> for Ledger {
     }
 }
 
-/// Velocities of corners 1..8, cm/s.
+/// Velocities of corners 1..8 (a rounded body's contact points), cm/s.
 fn corner_velocities(k: &Kernel<f64>) -> [Vector3<f64>; 8] {
-    k.state.corner_offsets.map(|r| k.corner_velocity(&r))
+    let radius = k.c.corner_radius;
+    k.state
+        .corner_offsets
+        .map(|r| k.corner_velocity(&contact_point::<true, f64>(&r, radius)))
 }
 
 impl Simulation {
@@ -250,14 +253,17 @@ impl Simulation {
         params.validate()?;
         self.params = params;
         let runaway = self.k.c.runaway;
-        self.k.c = Constants::new(&params, self.k.bodies[0].loaded());
+        // The stopping rules of a loaded die or a general body depend on the table.
+        self.k.bodies[0] = Body::new(&params);
+        self.k.c = Constants::new(&params, &self.k.bodies[0]);
         self.k.c.runaway = runaway;
         self.stop_rule = StopRule::new(&params);
         self.k.update_forces();
         Ok(())
     }
 
-    /// World positions of corners 1..8, cm.
+    /// World positions of corners 1..8, cm (a rounded body's: its corner spheres' centres,
+    /// `die.corner_radius` inside the surface).
     pub fn corner_positions(&self) -> [Vector3<f64>; 8] {
         let s = &self.k.state;
         s.corner_offsets.map(|r| s.position + r)
@@ -327,13 +333,13 @@ impl Simulation {
         self.stop_rule
     }
 
-    /// The stopping rule for the current state: a loaded die's depends on the face down
-    /// (what a report of a finished roll prints; [`Simulation::stop_rule`] is the fair die's).
+    /// The stopping rule for the current state: a loaded die's or a general body's depends
+    /// on the face down (what a report of a finished roll prints; [`Simulation::stop_rule`]
+    /// is the fair die's, or the widest over the faces).
     pub(crate) fn stop_rule_now(&self) -> StopRule {
-        match self.k.bodies[0].loaded() {
-            None => self.stop_rule,
-            Some(m) => m.stop_rule(&self.k.state.corner_offsets),
-        }
+        self.k.bodies[0]
+            .stop_rule(&self.k.state.corner_offsets)
+            .unwrap_or(self.stop_rule)
     }
 
     /// The face whose outward normal points most nearly up (the live display's face).
@@ -342,7 +348,13 @@ impl Simulation {
     }
 
     /// The face whose 4 corners are highest (the outcome rule).
+    /// A general body's outcome is the face up over the face its centre of mass stands on
+    /// ([`super::shape::Shape::face_down`]): a flat or long body can rest tilted further
+    /// than the four highest corners allow.
     pub(crate) fn face_of_highest_corners(&self) -> Option<u8> {
+        if let Some(shape) = self.k.bodies[0].shape() {
+            return Some(opposite_face(shape.face_down(&self.k.state.corner_offsets)));
+        }
         face_of_highest_corners(&self.k.state.corner_offsets.map(|r| r.z))
     }
 

@@ -9,6 +9,7 @@
 //! potential energy must each be within what the energy test allows above rest.
 
 use super::params::Params;
+use super::shape::Shape;
 
 /// The two thresholds of the stopping rule, erg, derived once from the parameters.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -24,12 +25,18 @@ impl StopRule {
     /// `kinetic_threshold = energy_threshold − V_rest`; both are −∞ (the roll can only end
     /// as a timeout) when the table cannot hold the die on a face: its resting centre would
     /// be below the table top, or the threshold would not lie above the resting energy.
+    ///
+    /// A body other than the paper's cube has a rule per face down
+    /// ([`super::shape::Shape`]); this is the widest of them.
     pub(crate) fn new(p: &Params) -> StopRule {
+        if !p.die.is_cube() {
+            return Shape::new(p).widest_stop_rule();
+        }
         let paper = p.stop_threshold();
         let rest = resting_energy(p);
         let margin = 0.5 * (1.0 - p.integrator.stop_energy_fraction) * p.edge_energy();
         let energy_threshold = paper.min(edge_balanced_energy(p) - margin);
-        let rest_centre = p.die.half_size - resting_depth_on_face(p);
+        let rest_centre = p.die.half_size() - resting_depth_on_face(p);
         if energy_threshold > rest && rest_centre > 0.0 {
             StopRule {
                 energy_threshold,
@@ -55,7 +62,7 @@ pub(crate) fn why_it_cannot_settle(p: &Params) -> Option<String> {
         return None;
     }
     let depth = resting_depth_on_face(p);
-    let a = p.die.half_size;
+    let a = p.die.half_size();
     Some(if depth >= a {
         format!(
             "the table is too soft to hold the die: at rest it would sink {depth:.3} cm, its centre \
@@ -95,9 +102,14 @@ pub fn settles(stop_energy: f64, kinetic: f64, potential: f64, rule: &StopRule) 
 }
 
 /// cm, how deep the lower corners sink when the die rests on a face, with as many corners
-/// touching as the depth implies (4, or all 8 on a table too soft to carry it).
+/// touching as the depth implies (4, or all 8 on a table too soft to carry it); for a body
+/// other than the paper's cube, the deepest over its faces.
 pub fn resting_depth_on_face(p: &Params) -> f64 {
-    let a = p.die.half_size;
+    if !p.die.is_cube() {
+        let faces = Shape::faces(p);
+        return faces.iter().map(|f| f.rest_depth).fold(0.0, f64::max);
+    }
+    let a = p.die.half_size();
     let (centre, _) = lowest_potential(p, &[-a, -a, -a, -a, a, a, a, a]);
     a - centre
 }
@@ -105,14 +117,14 @@ pub fn resting_depth_on_face(p: &Params) -> f64 {
 /// erg, the potential energy of the die at rest on a face (`−½·M·g·δ` while only the four
 /// lower corners touch), measured like the rigid-body energy from the flat height `z = a`.
 pub(crate) fn resting_energy(p: &Params) -> f64 {
-    let a = p.die.half_size;
+    let a = p.die.half_size();
     lowest_potential(p, &[-a, -a, -a, -a, a, a, a, a]).1
 }
 
 /// erg, the potential energy of the die at rest balanced on an edge (`E_edge − M·g·δ` while
 /// only the edge's two corners touch): the lowest pass between two faces.
 pub(crate) fn edge_balanced_energy(p: &Params) -> f64 {
-    let e = p.die.half_size * std::f64::consts::SQRT_2;
+    let e = p.die.half_size() * std::f64::consts::SQRT_2;
     lowest_potential(p, &[-e, -e, 0.0, 0.0, 0.0, 0.0, e, e]).1
 }
 
@@ -123,13 +135,17 @@ pub(crate) fn edge_balanced_energy(p: &Params) -> f64 {
 /// The potential is convex in `z`, so the minimum is where the weight balances the springs
 /// of the corners in contact: with the `j` lowest corners touching, `z = −(M·g/k + Σ o)/j`.
 fn lowest_potential(p: &Params, offsets: &[f64; 8]) -> (f64, f64) {
-    let (mass, g, k, a) = (
-        p.total_mass(),
-        p.world.gravity,
+    lowest_potential_at(
+        p.total_mass() * p.world.gravity,
         p.ground.stiffness,
-        p.die.half_size,
-    );
-    let weight = mass * g;
+        p.die.half_size(),
+        offsets,
+    )
+}
+
+/// [`lowest_potential`] for a body of weight `weight` (dyn) on a table of stiffness `k`
+/// (dyn/cm), the potential measured from the centre at height `reference` (cm).
+pub(crate) fn lowest_potential_at(weight: f64, k: f64, reference: f64, offsets: &[f64; 8]) -> (f64, f64) {
     let mut sum = 0.0;
     let mut centre = f64::NAN;
     for j in 0..8 {
@@ -149,7 +165,7 @@ fn lowest_potential(p: &Params, offsets: &[f64; 8]) -> (f64, f64) {
             0.5 * k * depth * depth
         })
         .sum();
-    (centre, weight * (centre - a) + elastic)
+    (centre, weight * (centre - reference) + elastic)
 }
 
 #[cfg(test)]

@@ -3,7 +3,7 @@
 
 use super::{FORMAT, Location, Preset, PresetError};
 use crate::experiment::registry::{self, ANGULAR_MOMENTUM, ANGULAR_VELOCITY, Role, Setup, Value};
-use crate::physics::params::CORNERS;
+use crate::physics::params::{CORNERS, SIZE_TWICE};
 use crate::physics::{InitialCondition, ParamError};
 use toml::de::{DeTable, DeValue};
 
@@ -22,6 +22,14 @@ impl Preset {
         let doc = DeTable::parse(text).map_err(|e| syntax_error(origin, text, &e))?;
         let doc = doc.get_ref();
         check_format(doc, origin, text)?;
+        // The size is stated once; said before the deserializer, which cannot name the lines.
+        if let (Some(_), Some(both)) = (find(doc, "die.half_size"), find(doc, "die.half_sizes")) {
+            return Err(PresetError::Key {
+                at: Location::at(origin, text, both),
+                key: "die.half_sizes".to_string(),
+                message: SIZE_TWICE.to_string(),
+            });
+        }
 
         let de = toml::Deserializer::parse(text).map_err(|e| syntax_error(origin, text, &e))?;
         let preset: Preset = serde_path_to_error::deserialize(de).map_err(|e| {

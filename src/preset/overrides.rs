@@ -82,11 +82,18 @@ impl Preset {
                 _ => return Err(err(format!("`{}` is not a table", parents[..=depth].join(".")))),
             };
         }
-        // Spin is given one way: setting one form replaces the other.
+        // Spin is given one way, and the die's size: setting one form replaces the other.
         if component.is_none() && parents == ["initial"] {
             match *last {
                 "angular_momentum" => drop(node.remove("angular_velocity")),
                 "angular_velocity" => drop(node.remove("angular_momentum")),
+                _ => {}
+            }
+        }
+        if component.is_none() && parents == ["die"] {
+            match *last {
+                "half_size" => drop(node.remove("half_sizes")),
+                "half_sizes" => drop(node.remove("half_size")),
                 _ => {}
             }
         }

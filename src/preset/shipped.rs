@@ -28,6 +28,11 @@ pub const SHIPPED: &[(&str, &str)] = &[
         include_str!("../../presets/on-the-edge-of-stability.toml"),
     ),
     ("loaded-corner", include_str!("../../presets/loaded-corner.toml")),
+    ("casino-die", include_str!("../../presets/casino-die.toml")),
+    ("rounded-die", include_str!("../../presets/rounded-die.toml")),
+    ("shaved-die", include_str!("../../presets/shaved-die.toml")),
+    ("plate", include_str!("../../presets/plate.toml")),
+    ("tennis-racket", include_str!("../../presets/tennis-racket.toml")),
 ];
 
 /// The text of the shipped preset `name`.

@@ -90,7 +90,7 @@ impl View {
     pub(crate) fn new(app: &App, area: Rect) -> View {
         let die = &app.roll.live.die;
         let camera = app.camera;
-        let width = camera.width_cm(app.roll.live.params.die.half_size);
+        let width = camera.width_cm(app.roll.live.params.die.largest_half_size());
         let height = width * 2.0 * area.height as f64 / area.width.max(1) as f64;
         let focus = Vector3::new(die.centre.x, die.centre.y, 0.0);
         let centre_y = camera.project(&die.centre, &focus).y.max(0.35 * height);
@@ -196,7 +196,7 @@ pub(crate) fn corner_is_seen(app: &App, view: &View, k: usize) -> bool {
 pub(crate) fn picture(app: &App, view: &View) -> Picture {
     let t = &app.theme;
     let die = &app.roll.live.die;
-    let half = app.roll.live.params.die.half_size;
+    let half = app.roll.live.params.die.largest_half_size();
     let mut pic = Picture::default();
     let corners: Vec<Flat> = die.corners.iter().map(|c| view.flat(c)).collect();
     pic.outline = convex_hull(&corners);
@@ -352,7 +352,7 @@ fn ghost(pic: &mut Picture, app: &App, view: &View, twin: &DieState) {
 
 /// ω, L and v from the centre, F from each touching corner, each with its symbol at the tip.
 fn arrows(pic: &mut Picture, app: &App, view: &View, die: &DieState) {
-    let half = app.roll.live.params.die.half_size;
+    let half = app.roll.live.params.die.largest_half_size();
     let mut arrow = |kind: Arrow, from: Vector3<f64>, v: Vector3<f64>| {
         let length = vectors::arrow_length(v.norm(), kind.reference(app), half);
         if length <= 0.0 {

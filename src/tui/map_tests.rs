@@ -380,7 +380,7 @@ mod keys {
         let (i, j) = s.app.map.cursor;
         let (params, initial) = node_setup(&shown.params, &shown.initial, &map.x, &map.y, i, j);
         let sent = press(&mut s.app, KeyCode::Enter);
-        assert_eq!(sent, [Command::PlaySetup(params, initial)]);
+        assert_eq!(sent, [Command::PlaySetup(Box::new(params), initial)]);
         assert_eq!(s.app.view, View::Die);
         // The worker's engine plays it to the face the map shows for that cell.
         for c in sent {

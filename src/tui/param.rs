@@ -171,7 +171,7 @@ mod tests {
                 "roll",
                 "time step Δt",
                 "gravity g",
-                "half size a",
+                "corner radius r",
                 "corner mass m",
                 "extra mass 1",
                 "extra mass 2",

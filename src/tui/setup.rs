@@ -106,6 +106,6 @@ impl Setup {
     pub(crate) fn play(&mut self, out: &mut Vec<Command>, params: Params, initial: InitialCondition) {
         self.params = params;
         self.initial = initial;
-        self.send(out, Command::PlaySetup(params, initial));
+        self.send(out, Command::PlaySetup(Box::new(params), initial));
     }
 }

@@ -188,7 +188,7 @@ impl Engine {
             Command::PlaySetup(params, initial) => match params.validate().and_then(|_| initial.validate()) {
                 Err(e) => Some(Notice::Said(e.to_string())),
                 Ok(()) => {
-                    self.live.play_from(params, initial, RollKind::Edited);
+                    self.live.play_from(*params, initial, RollKind::Edited);
                     None
                 }
             },

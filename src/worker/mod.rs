@@ -63,7 +63,7 @@ pub enum Command {
     MapStart(MapRequest),
     MapCancel,
     /// Play this exact setup from t = 0 (a cell of a basin map, replayed).
-    PlaySetup(Params, InitialCondition),
+    PlaySetup(Box<Params>, InitialCondition),
     /// Roll a chaos twin beside the die, its start perturbed by this relative ε
     /// ([`crate::experiment::twin::perturbed`]), from t = 0; `None` removes it.
     SetTwin(Option<f64>),

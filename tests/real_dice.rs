@@ -1,0 +1,247 @@
+//! Real dice bodies (docs/model.md, "Real dice"): every shipped preset rolls alike in both
+//! engine widths; a general body's torque-free flight and the tennis-racket flip; the size
+//! keys of a preset file.
+
+use dicesim::experiment::RandomRanges;
+use dicesim::physics::lanes::{LaneResult, lanes_available, roll_in_lanes, roll_one_by_one};
+use dicesim::physics::{InitialCondition, Params, Simulation};
+use dicesim::preset::{Preset, SHIPPED};
+use nalgebra::Vector3;
+
+/// A roll's result as bits: status, face, steps, time and the whole final state.
+fn bits(r: &LaneResult<'_>) -> Vec<u64> {
+    let s = r.state;
+    let mut v: Vec<f64> = Vec::new();
+    v.extend(s.position.iter());
+    v.extend(s.velocity.iter());
+    v.extend(s.angular_momentum.iter());
+    for k in 0..8 {
+        v.extend(s.corner_offsets[k].iter());
+        v.extend(s.corner_forces[k].iter());
+        v.push(s.corner_depths[k]);
+    }
+    v.push(s.time_s);
+    v.push(r.outcome.time_s);
+    let mut out: Vec<u64> = v.into_iter().map(f64::to_bits).collect();
+    out.extend([
+        r.outcome.status as u64,
+        r.outcome.face.map_or(0, u64::from),
+        r.outcome.steps,
+        s.step,
+        u64::from(r.start_face),
+    ]);
+    out
+}
+
+type Engine = fn(
+    usize,
+    &mut dyn FnMut(usize) -> (Params, InitialCondition),
+    &mut dyn FnMut(LaneResult<'_>),
+    &dyn Fn() -> bool,
+) -> bool;
+
+fn run(engine: Engine, setups: &[(Params, InitialCondition)]) -> Vec<Vec<u64>> {
+    let mut out = vec![Vec::new(); setups.len()];
+    assert!(engine(
+        setups.len(),
+        &mut |i| setups[i],
+        &mut |r| out[r.index] = bits(&r),
+        &|| false
+    ));
+    out
+}
+
+fn shipped(name: &str) -> Preset {
+    let text = SHIPPED.iter().find(|(n, _)| *n == name).expect("shipped").1;
+    Preset::from_toml_str(text, name).expect("valid")
+}
+
+/// Random throws of a preset (its `[random]` ranges, from any orientation), some cut at
+/// 0.4 s (flight and the first impacts) and some rolled to their end.
+fn throws(p: &Preset, cut: usize, whole: usize) -> Vec<(Params, InitialCondition)> {
+    let random = RandomRanges {
+        random_orientation: true,
+        ..p.random
+    };
+    (0..cut + whole)
+        .map(|i| {
+            let mut params = p.params();
+            if i < cut {
+                params.integrator.max_time = 0.4;
+            }
+            (params, random.draw(&p.initial, 20, i as u64))
+        })
+        .collect()
+}
+
+#[test]
+fn every_shipped_preset_rolls_alike_in_both_widths() {
+    assert!(lanes_available(), "this test needs an x86-64 CPU with AVX2");
+    let mut mixed = Vec::new();
+    for (name, _) in SHIPPED {
+        let p = shipped(name);
+        let mut setups = throws(&p, 60, 12);
+        // The preset's own roll too (the tennis racket's flip is that one).
+        setups.push((p.params(), p.initial));
+        let (scalar, lanes) = (run(roll_one_by_one, &setups), run(roll_in_lanes, &setups));
+        for (i, (s, l)) in scalar.iter().zip(&lanes).enumerate() {
+            assert_eq!(s, l, "{name}: roll {i} differs between the widths");
+        }
+        mixed.extend(setups.into_iter().step_by(7));
+    }
+    // Neighbouring lanes carrying different bodies: sharp, rounded, drilled, loaded.
+    let (scalar, lanes) = (run(roll_one_by_one, &mixed), run(roll_in_lanes, &mixed));
+    assert_eq!(scalar, lanes, "mixed presets differ between the widths");
+}
+
+/// The body's y axis in the world frame, from its sphere centres (corner 1 to corner 3).
+fn middle_axis(sim: &Simulation) -> Vector3<f64> {
+    let r = &sim.state().corner_offsets;
+    (r[2] - r[0]).normalize()
+}
+
+#[test]
+fn the_tennis_racket_flips_at_least_twice_in_flight() {
+    // The middle axis turns over against L: from within 18° of L to within 18° of −L and
+    // back, each crossing one flip, counted until the first touch of the table.
+    let p = shipped("tennis-racket");
+    let mut sim = Simulation::new(&p.params(), &p.initial).unwrap();
+    let l = sim.state().angular_momentum.normalize();
+    let near = 18f64.to_radians().cos();
+    let mut side = 0i8;
+    let mut flips = 0;
+    while !sim.in_contact() {
+        let c = middle_axis(&sim).dot(&l);
+        let now = if c >= near {
+            1
+        } else if c <= -near {
+            -1
+        } else {
+            0
+        };
+        if now != 0 && now != side {
+            if side != 0 {
+                flips += 1;
+                println!("flip {flips} at {:.3} s", sim.state().time_s);
+            }
+            side = now;
+        }
+        sim.step();
+        assert!(sim.state().time_s < 10.0, "it never landed");
+    }
+    assert!(
+        flips >= 2,
+        "only {flips} flips before landing at {} s",
+        sim.state().time_s
+    );
+}
+
+/// The largest relative drift of `½·L·ω` and of `|L|` in the body frame over 1 s of
+/// torque-free flight at this Δt.
+fn flight_drift(dt: f64) -> (f64, f64) {
+    let mut p = shipped("tennis-racket").params();
+    p.integrator.dt = dt;
+    p.world.gravity = 10.0;
+    let initial = InitialCondition {
+        height: 500.0,
+        velocity: [0.0; 3],
+        angular_velocity: [7.0, 3.0, -11.0],
+        orientation: [20.0, 35.0, -10.0],
+        ..InitialCondition::default()
+    };
+    let mut sim = Simulation::new(&p, &initial).unwrap();
+    let body_l = |sim: &Simulation| {
+        let r = &sim.state().corner_offsets;
+        let l = sim.state().angular_momentum;
+        let axes = [
+            (r[4] - r[0]).normalize(),
+            (r[2] - r[0]).normalize(),
+            (r[1] - r[0]).normalize(),
+        ];
+        Vector3::new(axes[0].dot(&l), axes[1].dot(&l), axes[2].dot(&l)).norm()
+    };
+    let (e0, l0) = (sim.energy().rotational, body_l(&sim));
+    let (mut e_drift, mut l_drift) = (0.0f64, 0.0f64);
+    let steps = (1.0 / dt).round() as usize;
+    for _ in 0..steps {
+        sim.step();
+        assert!(!sim.in_contact());
+        e_drift = e_drift.max(((sim.energy().rotational - e0) / e0).abs());
+        l_drift = l_drift.max(((body_l(&sim) - l0) / l0).abs());
+    }
+    (e_drift, l_drift)
+}
+
+#[test]
+fn torque_free_flight_drifts_by_order_dt() {
+    let (e1, l1) = flight_drift(1e-3);
+    let (e2, l2) = flight_drift(5e-4);
+    // First order: halving Δt halves the energy's drift.
+    let ratio = e1 / e2;
+    println!("½L·ω drifts {e1:e} at 1 ms, {e2:e} at 0.5 ms; |L| in the body frame {l1:e}, {l2:e}");
+    assert!(
+        e1 > 0.0 && (1.6..2.5).contains(&ratio),
+        "drift {e1:e} then {e2:e}, ratio {ratio}"
+    );
+    assert!(e1 < 0.05, "{e1}");
+    // Each step turns the body by an exact rotation and L stands still in flight, so |L|
+    // in the body frame keeps to rounding: far inside any O(Δt) bound.
+    assert!(l1 < 1e-12 && l2 < 1e-12, "{l1:e} {l2:e}");
+}
+
+#[test]
+fn the_older_half_size_loads_as_three_and_both_are_refused() {
+    let p = Preset::from_toml_str("[die]\nhalf_size = 0.8\n", "old.toml").unwrap();
+    assert_eq!(p.die.half_sizes, [0.8; 3]);
+    let e = Preset::from_toml_str(
+        "[die]\nhalf_size = 0.8\nhalf_sizes = [1.0, 1.0, 0.9]\n",
+        "both.toml",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.starts_with("both.toml:3:1: key `die.half_sizes`"), "{e}");
+    assert!(
+        e.contains("`half_sizes`") && e.contains("`half_size`") && e.contains("not both"),
+        "{e}"
+    );
+    // A cube is written the older way; any other body with its three half sizes, and read
+    // back the same.
+    for name in ["paper", "plate", "rounded-die"] {
+        let p = shipped(name);
+        let again = Preset::from_toml_str(&p.to_toml(), name).unwrap();
+        assert_eq!(again.die, p.die, "{name}");
+    }
+    let overridden = shipped("paper")
+        .with_overrides(&["die.half_sizes=[1.0, 0.9, 1.0]"])
+        .unwrap();
+    assert_eq!(overridden.die.half_sizes, [1.0, 0.9, 1.0]);
+    let back = overridden.with_overrides(&["die.half_size=0.7"]).unwrap();
+    assert_eq!(back.die.half_sizes, [0.7; 3]);
+}
+
+#[test]
+fn bodies_out_of_shape_are_refused_naming_the_rule() {
+    let refused = |toml: &str| Preset::from_toml_str(toml, "p.toml").unwrap_err().to_string();
+    let e = refused("[die]\nhalf_sizes = [1.0, 0.5, 1.0]\ncorner_radius = 0.5\n");
+    assert!(
+        e.contains("`die.corner_radius` = 0.5") && e.contains("below the smallest half size, 0.5 cm"),
+        "{e}"
+    );
+    let e = refused("[die]\ncorner_radius = 0.4\npip_diameter = 0.3\n");
+    assert!(
+        e.contains("`die.pip_diameter` = 0.3") && e.contains("at most 0.2 cm"),
+        "{e}"
+    );
+    let e = refused("[die]\npip_diameter = 0.3\npip_depth = 0.2\n");
+    assert!(
+        e.starts_with("p.toml:3:1:") && e.contains("at most half the pip diameter, 0.15 cm"),
+        "{e}"
+    );
+    let e = refused("[die]\ncorner_radius = 0.1\n[integrator]\nstop_energy = \"point-masses\"\n");
+    assert!(
+        e.contains("`integrator.stop_energy`") && e.contains("paper's sharp cube"),
+        "{e}"
+    );
+    // The paper's die keeps the authors' energy.
+    Preset::from_toml_str("[integrator]\nstop_energy = \"point-masses\"\n", "p.toml").unwrap();
+}
