@@ -32,6 +32,72 @@ pub(crate) fn resolved(value: f64, resolution: f64) -> String {
     fixed(value, decimals_for(resolution))
 }
 
+/// The labels of an axis's ticks: plotters puts at most `count` of them on multiples of 1,
+/// 2 or 5 × 10ⁿ; every label gets the decimals of that step, so `120000` never reads
+/// `120000.0` and `0.25` never `0.25000000000000006`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Ticks {
+    pub(crate) count: usize,
+    decimals: usize,
+}
+
+impl Ticks {
+    /// The ticks of the range `lo..hi` with at most `count` labels.
+    pub(crate) fn new(lo: f64, hi: f64, count: usize) -> Ticks {
+        Ticks {
+            count,
+            decimals: decimals_for(nice_step(lo, hi, count)),
+        }
+    }
+
+    /// The tick values of `lo..hi` a colour bar marks: the multiples of the step inside
+    /// the range.
+    pub(crate) fn values(lo: f64, hi: f64, count: usize) -> (Ticks, Vec<f64>) {
+        let step = nice_step(lo, hi, count);
+        let ticks = Ticks {
+            count,
+            decimals: decimals_for(step),
+        };
+        if !(lo.is_finite() && hi.is_finite()) || hi < lo {
+            return (ticks, Vec::new());
+        }
+        let first = (lo / step - 1e-9).ceil() as i64;
+        let last = (hi / step + 1e-9).floor() as i64;
+        (ticks, (first..=last).map(|k| k as f64 * step).collect())
+    }
+
+    /// A tick's label.
+    pub(crate) fn label(&self, value: f64) -> String {
+        if value != 0.0 && value.abs() >= 1e6 {
+            // 2500000 → 2.5e6: past a million, digits stop being readable.
+            let s = format!("{value:.2e}");
+            let (mantissa, exp) = s.split_once('e').unwrap_or((&s, "0"));
+            let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+            return format!("{mantissa}e{exp}");
+        }
+        fixed(value, self.decimals)
+    }
+}
+
+/// The finest step of 1, 2 or 5 × 10ⁿ whose multiples inside `lo..hi` are at most `count`
+/// (plotters' rule for its tick marks).
+fn nice_step(lo: f64, hi: f64, count: usize) -> f64 {
+    let span = hi - lo;
+    if !(span.is_finite() && span > 0.0) || count < 2 {
+        return 1.0;
+    }
+    let fits = |step: f64| ((hi / step + 1e-9).floor() - (lo / step - 1e-9).ceil() + 1.0) <= count as f64;
+    let mut decade = 10f64.powf((span / count as f64).log10().floor() - 1.0);
+    loop {
+        for m in [1.0, 2.0, 5.0] {
+            if fits(m * decade) {
+                return m * decade;
+            }
+        }
+        decade *= 10.0;
+    }
+}
+
 /// A setup value in a caption: at most six significant digits, no trailing zeros
 /// (`0.005`, `500000`, `1.2`).
 pub(crate) fn setup_value(value: f64) -> String {
@@ -147,6 +213,23 @@ mod tests {
         assert_eq!(resolved(-0.01, 0.5), "0.0");
         assert_eq!(decimals_for(0.001), 3);
         assert_eq!(decimals_for(1e-12), 12);
+    }
+
+    #[test]
+    fn tick_labels_carry_the_decimals_of_their_step() {
+        let t = Ticks::new(0.0, 140000.0, 10);
+        assert_eq!(t.label(120000.0), "120000");
+        let t = Ticks::new(0.0, 1.02, 10);
+        assert_eq!(t.label(0.6000000000000001), "0.6");
+        let t = Ticks::new(-1.0, 1.0, 5);
+        assert_eq!(t.label(0.5), "0.5");
+        assert_eq!(t.label(-0.0), "0.0");
+        assert_eq!(Ticks::new(0.0, 5e6, 6).label(2.5e6), "2.5e6");
+        let (t, values) = Ticks::values(0.429, 1.286, 5);
+        assert_eq!(
+            values.iter().map(|&v| t.label(v)).collect::<Vec<_>>(),
+            ["0.6", "0.8", "1.0", "1.2"]
+        );
     }
 
     #[test]
