@@ -662,6 +662,54 @@ mod tests {
     }
 
     #[test]
+    fn no_caption_line_is_wider_than_the_frame() {
+        use crate::experiment::figure::text_width;
+        let die = DieShot {
+            corners: crate::physics::body::body_corner_offsets(1.0).map(|c| c + Vector3::new(0.0, 0.0, 1.0)),
+            centre: Vector3::new(0.0, 0.0, 1.0),
+            up: Some(4),
+        };
+        let shot = Shot {
+            die,
+            twin: Some(die),
+            headline: "a-preset-with-a-rather-long-name · t = 12.34 s · did not settle within 30 s\n\
+                       twin (ε 1e-9): did not settle within 30 s, 0.01 cm apart"
+                .to_string(),
+        };
+        let caption = [
+            "a-preset-with-a-rather-long-name: height 15 cm, velocity (30, 0, 0) cm/s, spin (12, -20, 6) rad/s".to_string(),
+            "table k 500000 dyn/cm, γ 0.005 s/cm, μ 1.2; die a 1 cm, m 1 g; g 980 cm/s², Δt 0.001 s".to_string(),
+        ];
+        for (w, h) in [(64, 64), (160, 120), (640, 480), (1920, 1080)] {
+            let scene = Scene::new(w, h, Camera::DEFAULT, std::slice::from_ref(&shot), &caption);
+            // Between the margins on either side.
+            let room = f64::from(w) - 2.0 * scene.margin;
+            for line in &scene.caption {
+                assert!(
+                    text_width(line, scene.caption_px, false) <= room,
+                    "{w}×{h}: {line}"
+                );
+            }
+            let headline = wrap_lines(
+                &shot.headline,
+                scene.headline_px,
+                f64::from(w) - 2.0 * scene.margin,
+                true,
+            );
+            assert_eq!(headline.len(), scene.headline_lines);
+            for line in &headline {
+                assert!(
+                    text_width(line, scene.headline_px, true) <= room,
+                    "{w}×{h}: {line}"
+                );
+            }
+            // The frame draws: the band and the picture below it.
+            let frame = scene.render(&shot);
+            assert_eq!(frame.pixels.len(), (w * h) as usize);
+        }
+    }
+
+    #[test]
     fn hull_and_inside_agree_on_a_square() {
         let h = hull(&[(0.0, 0.0), (1.0, 0.0), (0.5, 0.5), (1.0, 1.0), (0.0, 1.0)]);
         assert_eq!(h.len(), 4);
