@@ -7,33 +7,14 @@
 //! them, most tests also rewrite the part's hash (as a careless copy or a forger would), so
 //! the records themselves must be read and refused.
 
-use std::hash::Hasher;
 use std::path::Path;
 mod common;
 
-use common::dicesim_in;
-
-fn ok(dir: &Path, args: &[&str]) -> String {
-    let o = dicesim_in(dir, args);
-    assert!(
-        o.status.success(),
-        "dicesim {}: {}",
-        args.join(" "),
-        String::from_utf8_lossy(&o.stderr)
-    );
-    String::from_utf8(o.stdout).unwrap()
-}
+use common::{dicesim_in, dicesim_ok as ok, dicesim_refused, rehash_part as rehash};
 
 /// Runs a merge that must be refused (exit 2) without writing `m.csv`; returns stderr.
 fn refused(dir: &Path, args: &[&str]) -> String {
-    let o = dicesim_in(dir, args);
-    let stderr = String::from_utf8(o.stderr).unwrap();
-    assert_eq!(
-        o.status.code(),
-        Some(2),
-        "dicesim {} should be refused: {stderr}",
-        args.join(" ")
-    );
+    let stderr = dicesim_refused(dir, args);
     assert!(!dir.join("m.csv").exists(), "a refused merge writes nothing");
     stderr
 }
@@ -57,22 +38,6 @@ fn p4(d: &Path) {
             ],
         );
     }
-}
-
-fn xxh64(bytes: &[u8]) -> String {
-    let mut h = twox_hash::XxHash64::with_seed(0);
-    h.write(bytes);
-    format!("{:016x}", h.finish())
-}
-
-/// Makes `part` agree with its records file's current bytes (size and hash).
-fn rehash(part: &Path) {
-    let mut v: serde_json::Value = serde_json::from_slice(&std::fs::read(part).unwrap()).unwrap();
-    let records = part.parent().unwrap().join(v["records"].as_str().unwrap());
-    let bytes = std::fs::read(records).unwrap();
-    v["records_bytes"] = bytes.len().into();
-    v["records_hash"] = xxh64(&bytes).into();
-    std::fs::write(part, serde_json::to_vec_pretty(&v).unwrap()).unwrap();
 }
 
 /// Edits the part summary's JSON.

@@ -8,21 +8,10 @@
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
-use std::hash::Hasher;
-use std::path::Path;
 
 mod common;
 
-use common::dicesim_in;
-
-fn ok(dir: &Path, args: &[&str]) {
-    let o = dicesim_in(dir, args);
-    assert!(
-        o.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-}
+use common::{dicesim_in, dicesim_ok as ok, rehash_part as rehash};
 
 /// How a file is damaged; positions are fractions of its length.
 #[derive(Debug, Clone)]
@@ -106,24 +95,6 @@ fn apply(bytes: &[u8], m: &Mutation) -> Vec<u8> {
         }
     }
     b
-}
-
-/// Makes `part` agree with its records file's current bytes (size and hash), if it still
-/// reads as JSON with a records file.
-fn rehash(part: &Path) {
-    let Ok(text) = std::fs::read(part) else { return };
-    let Ok(mut v) = serde_json::from_slice::<serde_json::Value>(&text) else {
-        return;
-    };
-    let Some(name) = v["records"].as_str() else { return };
-    let Ok(bytes) = std::fs::read(part.parent().unwrap().join(name)) else {
-        return;
-    };
-    let mut h = twox_hash::XxHash64::with_seed(0);
-    h.write(&bytes);
-    v["records_bytes"] = bytes.len().into();
-    v["records_hash"] = format!("{:016x}", h.finish()).into();
-    std::fs::write(part, serde_json::to_vec_pretty(&v).unwrap()).unwrap();
 }
 
 #[test]

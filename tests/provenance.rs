@@ -4,17 +4,8 @@
 
 mod common;
 
-use common::dicesim_in;
+use common::{dicesim_ok as ok, png_text};
 use std::path::Path;
-
-fn ok(dir: &Path, args: &[&str]) {
-    let o = dicesim_in(dir, args);
-    assert!(
-        o.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-}
 
 fn first_line_json(path: &Path) -> serde_json::Value {
     let text = std::fs::read_to_string(path).unwrap();
@@ -95,17 +86,6 @@ fn predict_files_record_the_ranges_the_vary_and_the_epsilons() {
     assert_eq!(csv["epsilons"], serde_json::json!([1e-3, 1.5e-2]));
     assert_eq!(csv["rolls"], 3);
     assert!(csv["preset"]["random"]["height"].is_array());
-}
-
-/// A PNG's iTXt chunks, keyword → text (read by the png decoder, not by dicesim).
-fn png_text(path: &Path) -> std::collections::BTreeMap<String, String> {
-    let file = std::fs::File::open(path).unwrap();
-    let reader = png::Decoder::new(std::io::BufReader::new(file))
-        .read_info()
-        .unwrap();
-    (reader.info().utf8_text.iter())
-        .map(|c| (c.keyword.clone(), c.get_text().unwrap()))
-        .collect()
 }
 
 #[test]

@@ -5,32 +5,8 @@
 use std::path::Path;
 mod common;
 
-use common::dicesim_in;
+use common::{dicesim_ok as ok, dicesim_refused as refused};
 use std::process::Command;
-
-/// Runs and asserts success; returns stdout.
-fn ok(dir: &Path, args: &[&str]) -> String {
-    let o = dicesim_in(dir, args);
-    assert!(
-        o.status.success(),
-        "dicesim {}: {}",
-        args.join(" "),
-        String::from_utf8_lossy(&o.stderr)
-    );
-    String::from_utf8(o.stdout).unwrap()
-}
-
-/// Runs and asserts a refusal for bad input (exit status 2); returns stderr.
-fn refused(dir: &Path, args: &[&str]) -> String {
-    let o = dicesim_in(dir, args);
-    assert_eq!(
-        o.status.code(),
-        Some(2),
-        "dicesim {} should be refused",
-        args.join(" ")
-    );
-    String::from_utf8(o.stderr).unwrap()
-}
 
 fn bytes(dir: &Path, name: &str) -> Vec<u8> {
     std::fs::read(dir.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"))

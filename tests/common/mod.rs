@@ -80,3 +80,66 @@ pub fn dicesim_in(dir: &std::path::Path, args: &[&str]) -> std::process::Output 
         .output()
         .expect("the binary runs")
 }
+
+/// Runs `dicesim args` in `dir` and asserts that it succeeded; returns its stdout.
+pub fn dicesim_ok(dir: &std::path::Path, args: &[&str]) -> String {
+    let o = dicesim_in(dir, args);
+    assert!(
+        o.status.success(),
+        "dicesim {}: {}",
+        args.join(" "),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    String::from_utf8(o.stdout).expect("stdout is UTF-8")
+}
+
+/// Runs `dicesim args` in `dir` and asserts a refusal for bad input (exit status 2); returns
+/// its stderr.
+pub fn dicesim_refused(dir: &std::path::Path, args: &[&str]) -> String {
+    let o = dicesim_in(dir, args);
+    let stderr = String::from_utf8(o.stderr).expect("stderr is UTF-8");
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "dicesim {} should be refused: {stderr}",
+        args.join(" ")
+    );
+    stderr
+}
+
+/// A records file's content hash as `part.json` states it: XXH64, seed 0, 16 hex digits
+/// (computed by the twox-hash crate, not by dicesim).
+pub fn records_hash(bytes: &[u8]) -> String {
+    use std::hash::Hasher;
+    let mut h = twox_hash::XxHash64::with_seed(0);
+    h.write(bytes);
+    format!("{:016x}", h.finish())
+}
+
+/// Makes a part summary agree with its records file's current bytes (size and hash), as a
+/// forger would; leaves it alone when it no longer reads as JSON naming a readable records
+/// file.
+pub fn rehash_part(part: &std::path::Path) {
+    let Ok(text) = std::fs::read(part) else { return };
+    let Ok(mut v) = serde_json::from_slice::<serde_json::Value>(&text) else {
+        return;
+    };
+    let Some(name) = v["records"].as_str() else { return };
+    let Ok(bytes) = std::fs::read(part.parent().unwrap().join(name)) else {
+        return;
+    };
+    v["records_bytes"] = bytes.len().into();
+    v["records_hash"] = records_hash(&bytes).into();
+    std::fs::write(part, serde_json::to_vec_pretty(&v).unwrap()).unwrap();
+}
+
+/// A PNG's iTXt chunks, keyword → text (read by the png decoder, not by dicesim).
+pub fn png_text(path: &std::path::Path) -> std::collections::BTreeMap<String, String> {
+    let file = std::fs::File::open(path).unwrap();
+    let reader = png::Decoder::new(std::io::BufReader::new(file))
+        .read_info()
+        .unwrap();
+    (reader.info().utf8_text.iter())
+        .map(|c| (c.keyword.clone(), c.get_text().unwrap()))
+        .collect()
+}
