@@ -99,11 +99,9 @@ pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
     )
     .map_err(|e| match e {
         crate::experiment::Error::Output(e) => CliError::output("")(e),
-        crate::experiment::Error::Cancelled => CliError::Interrupted {
-            completed: 0,
-            requested: 1,
-            what: "animations (nothing was written)",
-        },
+        crate::experiment::Error::Cancelled => {
+            CliError::Stopped(format!("{}: nothing was written", args.out.display()))
+        }
         e => CliError::experiment("")(e),
     })?;
     bar.finish_and_clear();

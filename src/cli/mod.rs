@@ -310,6 +310,9 @@ pub enum CliError {
     /// The explorer stopped with an error (its report, with the chain of causes).
     #[error("{0:#}")]
     Explorer(color_eyre::Report),
+    /// Ctrl-C stopped a command that keeps nothing of a partial result (an animation).
+    #[error("interrupted: {0}")]
+    Stopped(String),
     /// Ctrl-C stopped a batch or a map; what was completed was reported and kept.
     #[error("interrupted: kept the {completed} of {requested} {what} completed")]
     Interrupted {
@@ -360,7 +363,7 @@ impl CliError {
             | CliError::Output { .. }
             | CliError::Explorer(_)
             | CliError::Sweep(_) => ErrorKind::Failure,
-            CliError::Interrupted { .. } => ErrorKind::Interrupted,
+            CliError::Interrupted { .. } | CliError::Stopped(_) => ErrorKind::Interrupted,
         }
     }
 
