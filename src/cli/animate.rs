@@ -5,6 +5,7 @@ use crate::experiment::animation::render::Camera;
 use crate::experiment::animation::{self, AnimationSpec, write_animation};
 use crate::experiment::twin::DEFAULT_EPSILON;
 use crate::output::Output;
+use crate::preset::Speed;
 use clap::Args;
 use std::io::Write;
 use std::path::PathBuf;
@@ -13,10 +14,14 @@ use std::path::PathBuf;
 pub(crate) struct AnimateArgs {
     #[command(flatten)]
     pub(crate) setup: SetupArgs,
-    /// Frames per simulated second; the animation plays in real time.
+    /// Frames per second of playback.
     #[arg(long, value_name = "N", default_value_t = 25,
           value_parser = clap::value_parser!(u32).range(*animation::FPS.start() as i64..=*animation::FPS.end() as i64))]
     pub(crate) fps: u32,
+    /// Playback speed, as the explorer's ladder: `1/10` plays ten times slower, `2` twice as
+    /// fast (default: the preset's `view.speed`, else 1, real time).
+    #[arg(long, value_name = "1/100…100")]
+    pub(crate) speed: Option<String>,
     /// Width × height in pixels.
     #[arg(long, value_name = "WxH", default_value = "640x480", value_parser = parse_size)]
     pub(crate) size: (u32, u32),
@@ -66,6 +71,13 @@ pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
                 .map_err(|_| CliError::Usage(format!("--twin `{text}`: expected a number, e.g. 1e-9")))?,
         ),
     };
+    let speed = match args.speed.as_deref() {
+        None => preset.view.speed.and_then(Speed::factor).unwrap_or(1.0),
+        Some(label) => Speed::from_label(label).and_then(Speed::factor).ok_or_else(|| {
+            let ladder: Vec<&str> = Speed::labels().filter(|l| *l != "instant").collect();
+            CliError::Usage(format!("--speed `{label}`: one of {}", ladder.join(", ")))
+        })?,
+    };
     let camera = preset.view.camera.map_or(Camera::DEFAULT, |c| Camera {
         yaw_deg: c.yaw,
         pitch_deg: c.pitch,
@@ -73,6 +85,7 @@ pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
     let spec = AnimationSpec {
         twin,
         camera,
+        speed,
         ..AnimationSpec::new(args.fps, args.size)
     };
     spec.validate().map_err(CliError::experiment("--twin "))?;
@@ -112,8 +125,13 @@ pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
     let mut out = std::io::stdout().lock();
     writeln!(
         out,
-        "{} frames, {:.2} s of roll at {} frames/s, {}×{} pixels",
-        animated.frames, animated.duration_s, args.fps, args.size.0, args.size.1
+        "{} frames, {:.2} s of roll at {} frames/s and {}, {}×{} pixels",
+        animated.frames,
+        animated.duration_s,
+        args.fps,
+        animation::speed_words(speed),
+        args.size.0,
+        args.size.1
     )?;
     writeln!(out, "die               {}", face(&animated.outcome))?;
     if let (Some(t), Some(e)) = (&animated.twin, twin) {

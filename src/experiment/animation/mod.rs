@@ -29,6 +29,11 @@ pub(crate) const WIDTH: std::ops::RangeInclusive<u32> = 64..=3840;
 pub(crate) const HEIGHT: std::ops::RangeInclusive<u32> = 64..=2160;
 /// s the last frame stays before the animation starts again, to read the face.
 pub(crate) const HOLD_S: f64 = 2.0;
+/// Simulated seconds per played second, as the explorer's speed ladder has them.
+pub(crate) const SPEED: std::ops::RangeInclusive<f64> = 0.01..=100.0;
+/// The most frames one animation has (a 30 s roll that never settles at 1/100× would be
+/// 75 000): past it a lower rate or a faster speed is asked for.
+pub(crate) const MAX_FRAMES: usize = 10_000;
 
 /// The file formats: by the extension, `.gif` or `.png` (an animated PNG).
 pub(crate) const EXTENSIONS: [&str; 2] = ["gif", "png"];
@@ -36,7 +41,10 @@ pub(crate) const EXTENSIONS: [&str; 2] = ["gif", "png"];
 /// How to film a roll.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct AnimationSpec {
+    /// Frames per played second.
     pub(crate) fps: u32,
+    /// Simulated seconds per played second: 1 plays in real time, 0.1 ten times slower.
+    pub(crate) speed: f64,
     /// Pixels, width × height.
     pub(crate) size: (u32, u32),
     /// The chaos twin's ε ([`crate::experiment::twin::perturbed`]), if it rolls beside.
@@ -49,6 +57,7 @@ impl AnimationSpec {
     pub(crate) fn new(fps: u32, size: (u32, u32)) -> AnimationSpec {
         AnimationSpec {
             fps,
+            speed: 1.0,
             size,
             twin: None,
             camera: Camera::DEFAULT,
@@ -64,6 +73,14 @@ impl AnimationSpec {
                 self.fps,
                 FPS.start(),
                 FPS.end()
+            ));
+        }
+        if !SPEED.contains(&self.speed) {
+            return bad(format!(
+                "speed {}×: from {}× to {}×",
+                self.speed,
+                SPEED.start(),
+                SPEED.end()
             ));
         }
         let (w, h) = self.size;
@@ -129,6 +146,15 @@ fn die_shot(sim: &Simulation) -> DieShot {
     }
 }
 
+/// A playback speed as the explorer's ladder writes it: `1/10×`, `1×`, `5×`.
+pub(crate) fn speed_words(speed: f64) -> String {
+    if speed < 1.0 {
+        format!("1/{}×", super::figure::setup_value(1.0 / speed))
+    } else {
+        format!("{}×", super::figure::setup_value(speed))
+    }
+}
+
 /// How an ended roll reads in a headline.
 fn ending_words(o: &Outcome, params: &Params) -> String {
     match (o.status, o.face) {
@@ -157,8 +183,14 @@ pub(crate) fn film(
         .twin
         .map(|e| Simulation::new_unchecked(params, &super::twin::perturbed(initial, e)));
     let dt = params.integrator.dt;
-    let frame_s = 1.0 / f64::from(spec.fps);
-    let time_words = |t: f64| format!("t = {} s", resolved(t, frame_s));
+    // Simulated seconds between frames.
+    let frame_s = spec.speed / f64::from(spec.fps);
+    let pace = if spec.speed == 1.0 {
+        String::new()
+    } else {
+        format!(" ({})", speed_words(spec.speed))
+    };
+    let time_words = |t: f64| format!("t = {} s{pace}", resolved(t, frame_s));
     let headline = |die: &Simulation, twin: Option<&Simulation>, t: f64| {
         let face = |s: &Simulation| match s.outcome() {
             Some(o) => ending_words(&o, params),
@@ -198,6 +230,13 @@ pub(crate) fn film(
                 twin: twin.as_ref().map(die_shot),
                 headline: headline(&die, twin.as_ref(), at),
             });
+        }
+        if times.len() > MAX_FRAMES {
+            return Err(Error::Animation(format!(
+                "more than {MAX_FRAMES} frames at {} frames/s and {}: a lower rate or a faster speed",
+                spec.fps,
+                speed_words(spec.speed)
+            )));
         }
         let ended = die.outcome().is_some() && twin.as_ref().is_none_or(|b| b.outcome().is_some());
         if ended {
@@ -271,6 +310,7 @@ fn animation_record(
     let mut json = serde_json::json!({
         "frames": film.shots.len(),
         "fps": spec.fps,
+        "speed": spec.speed,
         "width": spec.size.0,
         "height": spec.size.1,
         "camera": { "yaw": spec.camera.yaw_deg, "pitch": spec.camera.pitch_deg },
@@ -317,7 +357,9 @@ pub(crate) fn write_animation(
         &film.shots,
         &record.caption,
     );
-    let until = display_times(&film.times);
+    // Played seconds: simulated ones over the speed.
+    let played: Vec<f64> = film.times.iter().map(|t| t / spec.speed).collect();
+    let until = display_times(&played);
     let mut status = AnimationProgress {
         drawing: true,
         done: 0,
@@ -339,7 +381,7 @@ pub(crate) fn write_animation(
                 w,
                 spec.size,
                 &record,
-                &delays(&film.times, &until, 0.01),
+                &delays(&played, &until, 0.01),
                 &mut frames,
                 &mut each,
             )
@@ -348,7 +390,7 @@ pub(crate) fn write_animation(
                 w,
                 spec.size,
                 &record,
-                &delays(&film.times, &until, 0.001),
+                &delays(&played, &until, 0.001),
                 &mut frames,
                 &mut each,
             )
@@ -648,6 +690,26 @@ mod tests {
             assert_eq!(animated.frames as f64, n);
             assert_eq!(animated.outcome, outcome);
         }
+        // Slowed down ten times: ten times the frames, and the delays add up to the played
+        // time (hundredths of a second) and the hold at the end.
+        let mut spec = AnimationSpec::new(10, (120, 90));
+        spec.speed = 0.1;
+        let (bytes, _) = animate(&params, &initial, &spec, "gif");
+        let n = gif_frames(&bytes).len() as f64;
+        assert!(
+            (n - (outcome.time_s * 100.0).ceil()).abs() <= 1.0,
+            "{n} frames at 1/10×"
+        );
+        let mut decoder = gif::DecodeOptions::new().read_info(&bytes[..]).unwrap();
+        let mut played_cs = 0u32;
+        while let Some(f) = decoder.read_next_frame().unwrap() {
+            played_cs += u32::from(f.delay);
+        }
+        let expected_cs = (outcome.time_s / 0.1 + HOLD_S) * 100.0;
+        assert!(
+            (f64::from(played_cs) - expected_cs).abs() <= 1.0,
+            "{played_cs} cs, {expected_cs} expected"
+        );
         // The twin's roll may be the longer one: the film lasts until both have ended.
         let mut spec = AnimationSpec::new(25, (160, 120));
         spec.twin = Some(1e-3);
@@ -834,6 +896,14 @@ mod tests {
     fn out_of_range_specs_are_refused_with_their_range() {
         let e = AnimationSpec::new(0, (640, 480)).validate().unwrap_err();
         assert!(e.to_string().contains("0 frames/s: from 1 to 50"), "{e}");
+        let mut slow = AnimationSpec::new(25, (640, 480));
+        slow.speed = 0.001;
+        assert!(
+            slow.validate()
+                .unwrap_err()
+                .to_string()
+                .contains("from 0.01× to 100×")
+        );
         let e = AnimationSpec::new(25, (10, 480)).validate().unwrap_err();
         assert!(e.to_string().contains("10×480 pixels"), "{e}");
         let mut spec = AnimationSpec::new(25, (640, 480));
