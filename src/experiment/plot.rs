@@ -465,13 +465,17 @@ fn title(map: &BasinMap, layer: Layer) -> String {
 /// An axis's key and range, to the precision its grid resolves (a one-node axis: its
 /// value).
 fn axis_range(axis: &super::basin::Axis) -> String {
+    let unit = match axis.key.unit() {
+        "" => String::new(),
+        u => format!(" {u}"),
+    };
     if axis.cells == 1 {
-        return format!("{} = {}", axis.key.label(), setup_value(axis.value(0)));
+        return format!("{} = {}{unit}", axis.key.key, setup_value(axis.value(0)));
     }
     let d = axis.spacing();
     format!(
-        "{} from {} to {}",
-        axis.key.label(),
+        "{} from {} to {}{unit}",
+        axis.key.key,
         resolved(axis.min, d),
         resolved(axis.max, d)
     )
