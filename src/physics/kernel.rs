@@ -17,9 +17,10 @@
 use super::body::body_corner_offsets;
 use super::initial::{InitialCondition, limits};
 pub use super::lane::Lane;
+use super::lane::set_bits;
 use super::mass::{InertiaTensor, LoadedMass};
 use super::params::{FrictionLaw, Limits, ParamError, Params, StopEnergy};
-use super::spin::spin;
+use super::spin::{spin, spin_lanes, step_rotation};
 use super::stopping::StopRule;
 use nalgebra::{Matrix3, Vector3};
 
@@ -112,8 +113,8 @@ pub(crate) struct Ends<M> {
     pub(crate) timeout: M,
 }
 
-/// Per lane, what the spin and a loaded die's stopping rule need: the stages that run per
-/// roll in scalar code.
+/// Per lane, what the scalar engine's spin and a loaded die's stopping rule need (the lane
+/// engine's spin reads the same inertia and Δt from [`Constants`]).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Body {
     /// g·cm², the fair die's isotropic inertia.
@@ -127,11 +128,16 @@ pub(crate) struct Body {
 impl Body {
     /// ω and the step rotation from this lane's `spin_input`: the angular momentum of a
     /// fair die (ω = L/I with its isotropic inertia), or a loaded die's ω = I(t)⁻¹·L,
-    /// which [`Kernel::respin`] computes in every lane at once (dividing it by 1 is exact,
-    /// so `spin` builds the rotation from that ω unchanged).
+    /// which [`Kernel::respin`] computes in every lane at once and the rotation is built
+    /// from as it is (the program before the shared kernel divided it by an inertia of 1,
+    /// which is exact).
     #[inline(always)]
     fn spin(&self, spin_input: &Vector3<f64>, loaded: bool) -> (Vector3<f64>, Option<Matrix3<f64>>) {
-        spin(spin_input, if loaded { 1.0 } else { self.inertia }, self.dt)
+        if loaded {
+            (*spin_input, step_rotation(spin_input, self.dt))
+        } else {
+            spin(spin_input, self.inertia, self.dt)
+        }
     }
 
     pub(crate) fn loaded(&self) -> Option<&LoadedMass> {
@@ -386,7 +392,7 @@ impl<L: Lane> Kernel<L> {
         // anywhere in between.
         if contact_bits != 0 {
             let mut f: Option<Vector3<L>> = None;
-            for k in (0..8).filter(|k| touching & (1 << k) != 0) {
+            for k in set_bits(touching.into()) {
                 f = Some(f.map_or(s.corner_forces[k], |f| add3(&f, &s.corner_forces[k])));
             }
             let f = f.unwrap_or_else(zero3);
@@ -407,7 +413,7 @@ impl<L: Lane> Kernel<L> {
         // offsets are finite: a roll ends as soon as they are not).
         if contact_bits != 0 {
             let mut torque = zero3();
-            for k in (0..8).filter(|k| touching & (1 << k) != 0) {
+            for k in set_bits(touching.into()) {
                 torque = add3(&torque, &cross3(&s.corner_offsets[k], &s.corner_forces[k]));
             }
             let l_new = add3(&s.angular_momentum, &scale3(&torque, dt));
@@ -455,13 +461,10 @@ impl<L: Lane> Kernel<L> {
     /// ω and the step rotation rebuilt in the lanes of `lanes`.
     ///
     /// A loaded die's ω = I(t)⁻¹·L (its tensor built from the current corner offsets and
-    /// inverted) is computed in every lane at once. The rest runs per lane in scalar code:
-    /// the rotation needs `sin` and `cos`, and only libm's scalar calls give the bits the
-    /// reference data and the scalar engine have (no vector sin/cos is correctly rounded,
-    /// so a vector one would differ in the last bit). ω is gathered into plain arrays and
-    /// each vector loaded once at the end: writing one lane at a time into a vector register
-    /// would stall on every write. The rotation's lanes are written in place in memory
-    /// instead: gathering its nine vectors cost two 288-byte copies (`memcpy` calls) a step.
+    /// inverted) is computed in every lane at once, and so is the rotation but for its `sin`
+    /// and `cos`: only libm's scalar calls give the bits the reference data and the scalar
+    /// engine have (no vector sin/cos is correctly rounded, so a vector one would differ in
+    /// the last bit), so those are taken per lane ([`spin_lanes`]).
     #[inline(always)]
     pub(crate) fn respin(&mut self, lanes: u32) {
         let c = &self.c;
@@ -479,7 +482,8 @@ impl<L: Lane> Kernel<L> {
             select3(c.loaded, &w, &self.state.angular_momentum)
         };
         if L::WIDTH == 1 {
-            // One lane: ω and the rotation go straight into place, nothing to gather.
+            // One lane: the scalar spin, its branches taken rather than selected, and ω and
+            // the rotation straight into place.
             let (w, rotation) = self.bodies.as_ref()[0].spin(&lane3(&spin_input, 0), loaded != 0);
             self.angular_velocity = v3(L::splat(w.x), L::splat(w.y), L::splat(w.z));
             if let Some(r) = &rotation {
@@ -492,42 +496,27 @@ impl<L: Lane> Kernel<L> {
             self.rotating = L::mask_from_bits(rotation.is_some() as u32);
             return;
         }
-        let w = &self.angular_velocity;
-        let mut omega = [w.x.to_lanes(), w.y.to_lanes(), w.z.to_lanes()];
-        let input = [
-            spin_input.x.to_lanes(),
-            spin_input.y.to_lanes(),
-            spin_input.z.to_lanes(),
-        ];
-        let mut rotating = L::bits(self.rotating);
-        for lane in (0..L::WIDTH).filter(|lane| lanes & (1 << lane) != 0) {
-            let l = Vector3::new(
-                input[0].as_ref()[lane],
-                input[1].as_ref()[lane],
-                input[2].as_ref()[lane],
-            );
-            let (w, rotation) = self.bodies.as_ref()[lane].spin(&l, loaded & (1 << lane) != 0);
-            for i in 0..3 {
-                omega[i].as_mut()[lane] = w[i];
-            }
-            match rotation {
-                Some(r) => {
-                    rotating |= 1 << lane;
-                    for i in 0..3 {
-                        for j in 0..3 {
-                            self.rotation[3 * i + j].lanes_mut().as_mut()[lane] = r[(i, j)];
-                        }
-                    }
-                }
-                None => rotating &= !(1 << lane),
-            }
-        }
-        self.angular_velocity = v3(
-            L::from_lanes(omega[0]),
-            L::from_lanes(omega[1]),
-            L::from_lanes(omega[2]),
+        // Several lanes: ω = L/I (a loaded lane's ω is the tensor's already) and the
+        // rotation in vector operations, only `sin` and `cos` per lane ([`spin_lanes`]).
+        let (dt, inertia, loaded_lanes) = (c.dt, c.uniform_inertia, c.loaded);
+        let divided = v3(
+            spin_input.x / inertia,
+            spin_input.y / inertia,
+            spin_input.z / inertia,
         );
-        self.rotating = L::mask_from_bits(rotating);
+        let w = if loaded == 0 {
+            divided
+        } else {
+            select3(loaded_lanes, &spin_input, &divided)
+        };
+        let (nonzero, rotation) = spin_lanes(&w, dt, lanes);
+        let update = L::mask_from_bits(lanes);
+        let turn = update & nonzero;
+        self.angular_velocity = select3(update, &w, &self.angular_velocity);
+        for (old, new) in self.rotation.iter_mut().zip(rotation) {
+            *old = L::select(turn, new, *old);
+        }
+        self.rotating = (self.rotating & !update) | turn;
     }
 
     /// Velocity of a corner, `u_k = v + ω × r_k`, cm/s, in the authors' operation order.
@@ -575,7 +564,7 @@ impl<L: Lane> Kernel<L> {
             }
         }
         let previous = std::mem::replace(&mut self.touching_corners, touching_corners);
-        for k in (0..8).filter(|k| (previous & !touching_corners) & (1 << k) != 0) {
+        for k in set_bits((previous & !touching_corners).into()) {
             self.state.corner_forces[k] = zero3();
         }
         // The authors' law scales every corner's slip by one whole-die matrix norm: the
@@ -596,7 +585,7 @@ impl<L: Lane> Kernel<L> {
             zero
         };
         let norm_nonzero = norm.ne(zero);
-        for k in (0..8).filter(|k| touching_corners & (1 << k) != 0) {
+        for k in set_bits(touching_corners.into()) {
             let uk = self.corner_velocity(&self.state.corner_offsets[k]);
             let normal = self.state.corner_depths[k] * stiffness;
             let vertical = normal * (L::splat(1.0) - damping * uk.z);
@@ -631,7 +620,7 @@ impl<L: Lane> Kernel<L> {
         let mut elastic = L::zero();
         // Terms are ≥ +0.0, so leaving out the +0.0 of corners that touch nowhere is exact.
         if L::bits(self.in_contact) != 0 {
-            for k in (0..8).filter(|k| self.touching_corners & (1 << k) != 0) {
+            for k in set_bits(self.touching_corners.into()) {
                 let d = s.corner_depths[k];
                 elastic = elastic + (c.half_stiffness * d) * d;
             }
@@ -746,7 +735,7 @@ impl<L: Lane> Kernel<L> {
                 // A loaded die's rule depends on the face it lies on. Looking the face up
                 // is a per-roll table search, done only where the widest rule passed.
                 let (mut et, mut kt) = (c.energy_threshold.to_lanes(), c.kinetic_threshold.to_lanes());
-                for lane in (0..L::WIDTH).filter(|lane| loaded & (1 << lane) != 0) {
+                for lane in set_bits(loaded) {
                     let offsets = self.state.corner_offsets.each_ref().map(|r| lane3(r, lane));
                     let rule = self.bodies.as_ref()[lane]
                         .loaded

@@ -8,6 +8,25 @@ use nalgebra::{Scalar, Vector3};
 use std::fmt::Debug;
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
+/// The indices of the set bits of `bits`, lowest first: the corners (or lanes) a loop visits,
+/// in corner (lane) order.
+///
+/// Each turn costs one branch, the loop's exit, where testing each of the eight corners costs
+/// eight whose outcome changes as corners touch and leave the ground: the scalar engine
+/// mispredicted about 1.2 more branches per step that way than the program before the shared
+/// kernel, which summed all eight corners.
+#[inline(always)]
+pub(crate) fn set_bits(bits: u32) -> impl Iterator<Item = usize> {
+    let mut rest = bits;
+    std::iter::from_fn(move || {
+        (rest != 0).then(|| {
+            let i = rest.trailing_zeros() as usize;
+            rest &= rest - 1;
+            i
+        })
+    })
+}
+
 /// A floating-point lane type: `f64` (one roll) or a vector of several rolls. Every
 /// arithmetic operation acts on each lane alone and rounds exactly as the `f64` one does.
 pub trait Lane:

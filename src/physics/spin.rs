@@ -1,31 +1,37 @@
 //! The spin stage of the step: ω from L and the rotation it turns the die by in one Δt.
 //!
-//! The one stage both engines run per roll in scalar code (docs/model.md, "One time step"):
-//! it calls libm's `sin` and `cos`, which have no exactly rounded vector twin, so a lane
-//! engine calls this function once per lane rather than a vector approximation that would
-//! differ in the last bit.
+//! It calls libm's `sin` and `cos`, which have no exactly rounded vector twin: the lane
+//! engine ([`spin_lanes`]) does everything else in vector operations and calls them once
+//! per lane, rather than a vector approximation that would differ in the last bit.
 
+use super::lane::{Lane, set_bits};
 use nalgebra::{Matrix3, Vector3};
 
 /// ω = L / I and the step rotation by |ω|·Δt about ω (`None` while ω = 0), as the authors
-/// built it from their `w = −ω` for row vectors: entry (i, j) is
-/// `(p + cos·(δᵢⱼ − p)) + (sin·[w]×ᵢⱼ)/|ω|` with `p = (ωᵢ·ωⱼ)/|ω|²`.
-///
-/// Both engines call this one function (never inlined, so the two see the same libm calls
-/// in the same order). Its divisions are the fewest that keep every entry bitwise: `p` is
-/// symmetric (`ωᵢ·ωⱼ = ωⱼ·ωᵢ` exactly) and the cross term antisymmetric (a quotient's sign
-/// follows its dividend's), so 6 + 3 quotients serve 9 + 9 entries, and the diagonal's
-/// `(sin·0)/|ω|` needs no division at all.
-#[inline(never)]
+/// built it: see [`step_rotation`].
+#[inline(always)]
 pub(crate) fn spin(
     angular_momentum: &Vector3<f64>,
     inertia: f64,
     dt: f64,
 ) -> (Vector3<f64>, Option<Matrix3<f64>>) {
     let w = angular_momentum / inertia;
-    let norm = scaled_norm(&w);
+    (w, step_rotation(&w, dt))
+}
+
+/// The step rotation by |ω|·Δt about ω (`None` while ω = 0), as the authors built it from
+/// their `w = −ω` for row vectors: entry (i, j) is `(p + cos·(δᵢⱼ − p)) + (sin·[w]×ᵢⱼ)/|ω|`
+/// with `p = (ωᵢ·ωⱼ)/|ω|²`.
+///
+/// The scalar engine calls it out of line: inlined, it crowds the step's loop. Its divisions
+/// are the fewest that keep every entry bitwise: `p` is symmetric (`ωᵢ·ωⱼ = ωⱼ·ωᵢ` exactly)
+/// and the cross term antisymmetric (a quotient's sign follows its dividend's), so 6 + 3
+/// quotients serve 9 + 9 entries, and the diagonal's `(sin·0)/|ω|` needs no division at all.
+#[inline(never)]
+pub(crate) fn step_rotation(w: &Vector3<f64>, dt: f64) -> Option<Matrix3<f64>> {
+    let norm = scaled_norm(w);
     if norm == 0.0 {
-        return (w, None);
+        return None;
     }
     let theta = norm * dt;
     let norm_sq = norm.powf(2.0);
@@ -46,7 +52,64 @@ pub(crate) fn spin(
         off(pxy) + -sz, on(pyy),        off(pyz) + sx,
         off(pxz) + -sy, off(pyz) + -sx, on(pzz),
     );
-    (w, Some(m))
+    Some(m)
+}
+
+/// [`spin`] in several lanes at once, from ω (the quotient `L/I` already taken): where ω ≠ 0,
+/// and the row-major step rotation, meaningful in those lanes of `lanes` (the others'
+/// entries are whatever their values gave, to be discarded).
+///
+/// The same operations on the same operands lane by lane, so every entry has [`spin`]'s
+/// bits: the branches of the scaled norm become selects between their values (a lane
+/// computes every branch's value and keeps the one its branch would have taken; the
+/// others may divide by zero, harmlessly), and `sin` and `cos` come from libm per lane.
+#[inline(always)]
+pub(crate) fn spin_lanes<L: Lane>(w: &Vector3<L>, dt: L, lanes: u32) -> (L::Mask, [L; 9]) {
+    let (zero, one) = (L::zero(), L::splat(1.0));
+    let (mut scale, mut sum) = (zero, one);
+    for t in [w.x.abs(), w.y.abs(), w.z.abs()] {
+        // `scaled_norm`'s three branches, in its order of precedence.
+        let equal = !scale.ne(t);
+        let grows = scale.lt(t);
+        let counts = t.ne(zero);
+        let q = scale / t;
+        let grown = L::select(!scale.ne(zero), one, sum * (q * q) + one);
+        let r = t / scale;
+        let added = sum + r * r;
+        sum = L::select(
+            equal,
+            sum + one,
+            L::select(grows, grown, L::select(counts, added, sum)),
+        );
+        scale = L::select(grows, t, scale);
+    }
+    let norm = scale * sum.sqrt();
+    let nonzero = norm.ne(zero);
+    let theta = (norm * dt).to_lanes();
+    let (mut sin, mut cos) = (zero.to_lanes(), zero.to_lanes());
+    for lane in set_bits(lanes & L::bits(nonzero)) {
+        let t = theta.as_ref()[lane];
+        sin.as_mut()[lane] = t.sin();
+        cos.as_mut()[lane] = t.cos();
+    }
+    let (sin, cos) = (L::from_lanes(sin), L::from_lanes(cos));
+    // `norm.powf(2.0)` in `spin` compiles to this product (LLVM folds pow(x, 2) to x·x,
+    // exact in both).
+    let norm_sq = norm * norm;
+    let p = |a: L, b: L| (a * b) / norm_sq;
+    let (pxx, pyy, pzz) = (p(w.x, w.x), p(w.y, w.y), p(w.z, w.z));
+    let (pxy, pxz, pyz) = (p(w.x, w.y), p(w.x, w.z), p(w.y, w.z));
+    let (sz, sy, sx) = ((sin * w.z) / norm, (sin * -w.y) / norm, (sin * w.x) / norm);
+    let diagonal = sin * zero;
+    let on = |p: L| (p + cos * (one - p)) + diagonal;
+    let off = |p: L| p + cos * (zero - p);
+    #[rustfmt::skip]
+    let m = [
+        on(pxx),        off(pxy) + sz,  off(pxz) + sy,
+        off(pxy) + -sz, on(pyy),        off(pyz) + sx,
+        off(pxz) + -sy, off(pyz) + -sx, on(pzz),
+    ];
+    (nonzero, m)
 }
 
 /// Octave's overflow-safe 2-norm of a 3-vector (reference §9), bitwise.
