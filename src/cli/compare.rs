@@ -6,7 +6,8 @@ use crate::experiment::RunOptions;
 use crate::experiment::compare::{CompareSpec, Comparison, DEFAULT_CANDIDATES, FitSpec, run_comparison};
 use crate::experiment::compare_plot::comparison_png;
 use crate::experiment::compare_stats::FitMethod;
-use crate::experiment::plot::Record;
+use crate::experiment::figure::setup_value;
+use crate::experiment::plot::{Record, random_starts};
 use crate::experiment::real_data::Dataset;
 use clap::{Args, ValueEnum};
 use std::io::Write;
@@ -151,8 +152,27 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
                 if let (Some(fit), Some(value)) = (&spec.fit, comparison.shown().and_then(|c| c.value)) {
                     fit.key.set(&mut shown, &mut initial, value);
                 }
-                let record =
-                    Record::of_setup(&title, &preset.name, &shown, &initial).with_provenance(&provenance);
+                // The throws are drawn from the random ranges: those define the figure.
+                let fit = match (
+                    &args.fit,
+                    comparison.shown().and_then(|c| c.value),
+                    &comparison.key,
+                ) {
+                    (Some(f), Some(v), Some(k)) => format!(
+                        "; --fit {f} over {} candidates, drawn at the best, {k} = {}",
+                        args.candidates,
+                        setup_value(v)
+                    ),
+                    _ => String::new(),
+                };
+                let experiment = format!(
+                    "{}: {} throws as {} threw them, each die {}{fit}",
+                    preset.name,
+                    spec.throws,
+                    dataset.name(),
+                    random_starts(&preset.random, spec.seed),
+                );
+                let record = Record::of_experiment(&title, experiment, &shown, &provenance);
                 let png = comparison_png(&comparison, &record).map_err(CliError::experiment(""))?;
                 output.write_bytes(&png)
             }

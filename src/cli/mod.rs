@@ -1,5 +1,6 @@
 //! Headless commands: the model usable and checkable without a terminal UI.
 
+mod animate;
 mod basin;
 mod batch;
 mod bench;
@@ -152,6 +153,12 @@ pub(crate) enum Command {
   dicesim trace > roll.csv
   dicesim trace --every 10 --steps 3000 --preset icy-table > icy.csv")]
     Trace(trace::TraceArgs),
+    /// Write a roll (or a roll and its chaos twin) as an animated GIF or PNG for a slide.
+    #[command(after_help = "Examples:
+  dicesim animate --out roll.gif
+  dicesim animate --preset gentle-drop --fps 30 --size 800x600 --out drop.png
+  dicesim animate --twin 1e-6 --out twins.gif --force")]
+    Animate(animate::AnimateArgs),
     /// List, show and save presets (TOML setups; see `presets path`).
     #[command(after_help = "Examples:
   dicesim presets list
@@ -303,6 +310,9 @@ pub enum CliError {
     /// The explorer stopped with an error (its report, with the chain of causes).
     #[error("{0:#}")]
     Explorer(color_eyre::Report),
+    /// Ctrl-C stopped a command that keeps nothing of a partial result (an animation).
+    #[error("interrupted: {0}")]
+    Stopped(String),
     /// Ctrl-C stopped a batch or a map; what was completed was reported and kept.
     #[error("interrupted: kept the {completed} of {requested} {what} completed")]
     Interrupted {
@@ -336,9 +346,10 @@ impl CliError {
             | CliError::Parts(_) => ErrorKind::Input,
             CliError::Read { .. } => ErrorKind::Input,
             CliError::Experiment { source, .. } => match source {
-                experiment::Error::Threads(_) | experiment::Error::Plot(_) | experiment::Error::Export(_) => {
-                    ErrorKind::Failure
-                }
+                experiment::Error::Threads(_)
+                | experiment::Error::Plot(_)
+                | experiment::Error::Export(_)
+                | experiment::Error::Animation(_) => ErrorKind::Failure,
                 _ => ErrorKind::Input,
             },
             CliError::Io(e) | CliError::Write { source: e, .. }
@@ -352,7 +363,7 @@ impl CliError {
             | CliError::Output { .. }
             | CliError::Explorer(_)
             | CliError::Sweep(_) => ErrorKind::Failure,
-            CliError::Interrupted { .. } => ErrorKind::Interrupted,
+            CliError::Interrupted { .. } | CliError::Stopped(_) => ErrorKind::Interrupted,
         }
     }
 
@@ -427,6 +438,7 @@ pub fn main() -> Result<(), CliError> {
     match cli.command {
         Some(Command::Roll(args)) => roll::run(&args),
         Some(Command::Trace(args)) => trace::run(&args),
+        Some(Command::Animate(args)) => animate::run(&args),
         Some(Command::Presets(args)) => presets::run(&args),
         Some(Command::Batch(args)) => batch::run(&args),
         Some(Command::Basin(args)) => basin::run(&args),

@@ -2,7 +2,8 @@
 
 use super::shard::csv_provenance_line;
 use super::{CliError, EngineArg, SetupArgs, cancel_on_ctrl_c};
-use crate::experiment::plot::Record;
+use crate::experiment::figure::setup_value;
+use crate::experiment::plot::{Record, random_starts};
 use crate::experiment::predict::{PredictSpec, Prediction, default_epsilons, run_prediction};
 use crate::experiment::predict_plot::prediction_png;
 use crate::experiment::{RandomRanges, RunOptions, ScanKey};
@@ -223,23 +224,14 @@ fn print_prediction(out: &mut impl Write, p: &Prediction) -> std::io::Result<()>
 /// What defines a prediction, as its image's caption says it: the starts drawn from the
 /// preset's random ranges with the seed, the perturbation sizes and the varied value.
 fn experiment_line(name: &str, r: &RandomRanges, spec: &PredictSpec, vary: Option<&str>) -> String {
-    let orientation = if r.random_orientation {
-        "random orientation"
-    } else {
-        "the preset's orientation"
-    };
-    let epsilons: Vec<String> = spec.epsilons.iter().map(f64::to_string).collect();
-    let vary = vary.map(|v| format!("; --vary {v}")).unwrap_or_default();
+    let epsilons: Vec<String> = spec.epsilons.iter().map(|&e| setup_value(e)).collect();
+    let vary = vary
+        .map(|v| format!("; one curve per value of --vary {v}"))
+        .unwrap_or_default();
     format!(
-        "{name}: {} starts drawn with seed {}: height {}…{} cm, velocity {}…{} cm/s, spin {}…{} rad/s, {orientation}; ε {}{vary}",
+        "{name}: {} starts {}, for each curve; each beside its twin at ε {}{vary}",
         spec.count,
-        spec.seed,
-        r.height[0],
-        r.height[1],
-        r.velocity[0],
-        r.velocity[1],
-        r.angular_velocity[0],
-        r.angular_velocity[1],
+        random_starts(r, spec.seed),
         epsilons.join(", "),
     )
 }

@@ -5,7 +5,8 @@
 use super::Error;
 use super::compare::Comparison;
 use super::compare_stats::deviance_rise_95;
-use super::plot::{Record, Scale, plot_error, png_bytes, register_fonts, with_caption};
+use super::figure::{Ticks, resolved};
+use super::plot::{Record, Scale, TICKS, plot_error, png_bytes, register_fonts, with_caption};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -33,6 +34,16 @@ pub(crate) fn comparison_png(comparison: &Comparison, record: &Record) -> Result
     })
 }
 
+/// How far apart a fit's candidates are (what its best value is known to), or a
+/// ten-thousandth where there is no fit.
+fn candidate_spacing(comparison: &Comparison) -> f64 {
+    let values: Vec<f64> = comparison.candidates.iter().filter_map(|c| c.value).collect();
+    match values.as_slice() {
+        [first, .., last] if values.len() > 1 => (last - first).abs() / (values.len() - 1) as f64,
+        _ => 1e-4,
+    }
+}
+
 fn draw_shares(area: &DrawingArea<BitMapBackend<'_>, Shift>, comparison: &Comparison) -> Result<(), Error> {
     let Some(candidate) = comparison.shown() else {
         return Ok(());
@@ -45,7 +56,7 @@ fn draw_shares(area: &DrawingArea<BitMapBackend<'_>, Shift>, comparison: &Compar
         * 1.1;
     let n = rows.len().max(1) as f64;
     let value = match (&comparison.key, candidate.value) {
-        (Some(k), Some(v)) => format!(", {k} = {v:.4}"),
+        (Some(k), Some(v)) => format!(", {k} = {}", resolved(v, candidate_spacing(comparison))),
         _ => String::new(),
     };
     let title = format!(
@@ -54,6 +65,7 @@ fn draw_shares(area: &DrawingArea<BitMapBackend<'_>, Shift>, comparison: &Compar
         comparison.data.total(),
         candidate.throws
     );
+    let yt = Ticks::new(0.0, top.max(1e-3), TICKS);
     let mut chart = ChartBuilder::on(area)
         .caption(title, ("sans-serif", 22))
         .margin(20)
@@ -77,7 +89,8 @@ fn draw_shares(area: &DrawingArea<BitMapBackend<'_>, Shift>, comparison: &Compar
         .x_label_formatter(&label)
         .x_desc(comparison.dataset.category_words())
         .y_desc("share of throws, with 95 % intervals")
-        .y_label_formatter(&|v| format!("{v:.2}"))
+        .y_labels(TICKS)
+        .y_label_formatter(&|v| yt.label(*v))
         .label_style(("sans-serif", 16))
         .axis_desc_style(("sans-serif", 19))
         .draw()
@@ -152,20 +165,30 @@ fn draw_deviance(area: &DrawingArea<BitMapBackend<'_>, Shift>, comparison: &Comp
         });
     let top = points.iter().map(|p| p.1).fold(0.0, f64::max) * 1.05;
     let limit = fit.best_deviance + deviance_rise_95();
+    let x_hi = x1.max(x0 + 1e-12);
+    let y_hi = top.max(limit * 1.05);
+    let (xt, yt) = (Ticks::new(x0, x_hi, TICKS), Ticks::new(0.0, y_hi, TICKS));
     let mut chart = ChartBuilder::on(area)
         .caption(
-            format!("deviance against {key}: best {:.4}", fit.best),
+            format!(
+                "deviance against {key}: best {}",
+                resolved(fit.best, candidate_spacing(comparison))
+            ),
             ("sans-serif", 22),
         )
         .margin(20)
         .x_label_area_size(60)
         .y_label_area_size(80)
-        .build_cartesian_2d(x0..x1.max(x0 + 1e-12), 0.0..top.max(limit * 1.05))
+        .build_cartesian_2d(x0..x_hi, 0.0..y_hi)
         .map_err(plot_error)?;
     chart
         .configure_mesh()
         .x_desc(key.as_str())
         .y_desc("deviance G²")
+        .x_labels(TICKS)
+        .y_labels(TICKS)
+        .x_label_formatter(&|v| xt.label(*v))
+        .y_label_formatter(&|v| yt.label(*v))
         .label_style(("sans-serif", 16))
         .axis_desc_style(("sans-serif", 19))
         .draw()

@@ -3,7 +3,8 @@
 //! or log scale, and the setup in a caption and in the file's text chunks.
 
 use super::Error;
-use super::plot::{Record, Scale, plot_error, png_bytes, register_fonts, with_caption};
+use super::figure::Ticks;
+use super::plot::{Record, Scale, TICKS, plot_error, png_bytes, register_fonts, with_caption};
 use crate::physics::Energy;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -87,6 +88,10 @@ fn draw(
     } else {
         (lo..hi * 1.05, 0)
     };
+    let (xt, yt) = (
+        Ticks::new(0.0, t_end, TICKS),
+        Ticks::new(y_range.start, y_range.end, TICKS),
+    );
     let mut chart = ChartBuilder::on(root)
         .caption(title, ("sans-serif", 26))
         .margin(20)
@@ -107,7 +112,10 @@ fn draw(
         }
     };
     let mut mesh = chart.configure_mesh();
-    mesh.x_desc("time (s)")
+    let (x_label, y_label) = (|v: &f64| xt.label(*v), |v: &f64| yt.label(*v));
+    mesh.x_labels(TICKS)
+        .x_label_formatter(&x_label)
+        .x_desc("time (s)")
         .y_desc(if log {
             "energy (erg, log scale)"
         } else {
@@ -117,6 +125,8 @@ fn draw(
         .axis_desc_style(("sans-serif", 19));
     if log {
         mesh.y_labels(decades + 1).y_label_formatter(&decade);
+    } else {
+        mesh.y_labels(TICKS).y_label_formatter(&y_label);
     }
     mesh.draw().map_err(plot_error)?;
     for (k, (name, colour)) in SERIES.iter().enumerate() {

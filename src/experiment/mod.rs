@@ -4,6 +4,7 @@
 //! [`InitialCondition`](crate::physics::InitialCondition) values as arguments; resolving a
 //! preset is the caller's job.
 
+pub(crate) mod animation;
 pub(crate) mod basin;
 pub(crate) mod batch;
 pub mod compare;
@@ -12,6 +13,7 @@ pub mod compare_stats;
 pub(crate) mod ending;
 pub(crate) mod energy_plot;
 pub(crate) mod engine;
+pub(crate) mod figure;
 pub mod ics;
 pub(crate) mod keys;
 pub(crate) mod merge;
@@ -87,6 +89,9 @@ pub enum Error {
     /// The sink of a streamed batch refused its records (e.g. the disk is full).
     #[error("cannot write the rolls: {0}")]
     Records(String),
+    /// An animation that cannot be made as asked.
+    #[error("cannot make the animation: {0}")]
+    Animation(String),
     /// A roll's trace or plot could not be written.
     #[error("cannot export the roll: {0}")]
     Export(String),

@@ -6,6 +6,7 @@
 use super::Error;
 use super::basin::{BasinMap, Cell, Layer};
 use super::ending::Ending;
+use super::figure::{Ticks, resolved, setup_value, wrap};
 use crate::experiment::registry::{self, Role, Setup, Value};
 use crate::output::Output;
 use crate::physics::{InitialCondition, Params, Status};
@@ -128,8 +129,7 @@ impl Record {
     /// `dicesim-setup` chunk holds every value, one `key = value` per line, as a preset
     /// file writes them.
     pub(crate) fn of_setup(title: &str, name: &str, params: &Params, initial: &InitialCondition) -> Record {
-        // Numbers as a person reads them, to a millionth.
-        let n = |v: f64| format!("{}", (v * 1e6).round() / 1e6);
+        let n = setup_value;
         let v3 = |v: [f64; 3]| format!("({}, {}, {})", n(v[0]), n(v[1]), n(v[2]));
         let w = initial.angular_velocity_for(params.inertia());
         let caption = vec![
@@ -160,8 +160,7 @@ impl Record {
 /// The table, die, gravity and time step as a caption names them; a loaded die says where
 /// its extra masses are ("loaded: +0.5 g at corner 8").
 fn body_line(params: &Params) -> String {
-    // Numbers as a person reads them, to a millionth.
-    let n = |v: f64| format!("{}", (v * 1e6).round() / 1e6);
+    let n = setup_value;
     let extras: Vec<String> = (params.die.extra_corner_mass.iter().enumerate())
         .filter(|&(_, &m)| m > 0.0)
         .map(|(k, &m)| format!("+{} g at corner {}", n(m), k + 1))
@@ -221,6 +220,29 @@ impl Record {
     }
 }
 
+/// Random starts as a caption names them: the seed and each range (`height 15 cm` where
+/// the range is one value), and the orientation.
+pub(crate) fn random_starts(r: &crate::physics::RandomRanges, seed: u64) -> String {
+    let range = |[lo, hi]: [f64; 2], unit: &str| {
+        if lo == hi {
+            format!("{} {unit}", setup_value(lo))
+        } else {
+            format!("{}…{} {unit}", setup_value(lo), setup_value(hi))
+        }
+    };
+    let orientation = if r.random_orientation {
+        "any orientation"
+    } else {
+        "the preset's orientation"
+    };
+    format!(
+        "drawn with seed {seed}: height {}, velocity {} and spin {} each component, {orientation}",
+        range(r.height, "cm"),
+        range(r.velocity, "cm/s"),
+        range(r.angular_velocity, "rad/s"),
+    )
+}
+
 /// Every value of a setup (but the random ranges, which no single roll uses), one
 /// `key = value` per line, after the preset's name.
 pub(crate) fn setup_text(name: &str, params: &Params, initial: &InitialCondition) -> String {
@@ -272,6 +294,23 @@ pub(crate) fn png_bytes(
     Ok(png)
 }
 
+/// Pixels per em of caption text, at the design size.
+const CAPTION_FONT: i32 = 16;
+/// Pixels left of (and kept right of) a caption line, at the design size.
+const CAPTION_MARGIN: i32 = 20;
+
+/// The record's caption as drawn across an image `width` pixels wide: each line wrapped
+/// at spaces to fit between the margins, never cut.
+pub(crate) fn caption_lines(record: &Record, width: u32, scale: Scale) -> Vec<String> {
+    let px = f64::from(scale.px(CAPTION_FONT));
+    let room = f64::from(width) - 2.0 * f64::from(scale.px(CAPTION_MARGIN));
+    record
+        .caption
+        .iter()
+        .flat_map(|line| wrap(line, px, room, false))
+        .collect()
+}
+
 /// Draws the record's caption lines along the bottom of `root` and returns the area above.
 pub(crate) fn with_caption<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
@@ -281,16 +320,20 @@ pub(crate) fn with_caption<DB: DrawingBackend>(
     if record.caption.is_empty() {
         return Ok(root.clone());
     }
-    let (_, height) = root.dim_in_pixel();
+    let (width, height) = root.dim_in_pixel();
+    let lines = caption_lines(record, width, scale);
     let line_px = scale.px(CAPTION_LINE as i32) as u32;
-    let strip = line_px * record.caption.len() as u32 + scale.px(10) as u32;
+    let strip = line_px * lines.len() as u32 + scale.px(10) as u32;
     let (picture, caption) = root.split_vertically(height.saturating_sub(strip));
-    for (k, line) in record.caption.iter().enumerate() {
+    for (k, line) in lines.iter().enumerate() {
         caption
             .draw(&Text::new(
                 line.as_str(),
-                (scale.px(20), scale.px(2) + (line_px * k as u32) as i32),
-                ("sans-serif", scale.px(16)),
+                (
+                    scale.px(CAPTION_MARGIN),
+                    scale.px(2) + (line_px * k as u32) as i32,
+                ),
+                ("sans-serif", scale.px(CAPTION_FONT)),
             ))
             .map_err(plot_error)?;
     }
@@ -332,10 +375,7 @@ pub(crate) fn map_record(
     layer: Layer,
     setup: Option<(&str, &Params, &InitialCondition)>,
 ) -> Record {
-    let axes = format!(
-        "x {} from {} to {}, y {} from {} to {}",
-        map.x.key.key, map.x.min, map.x.max, map.y.key.key, map.y.min, map.y.max
-    );
+    let axes = format!("x {}, y {}", axis_range(&map.x), axis_range(&map.y));
     let mut record = match setup {
         Some((name, params, initial)) => {
             let mut r = Record::of_setup(&title(map, layer), name, params, initial);
@@ -343,7 +383,7 @@ pub(crate) fn map_record(
             r
         }
         None => Record {
-            caption: Vec::new(),
+            caption: vec![axes.clone()],
             text: vec![("Title".to_string(), title(map, layer))],
         },
     };
@@ -422,9 +462,38 @@ fn title(map: &BasinMap, layer: Layer) -> String {
     format!("{what} — {how}")
 }
 
-fn axis_title(axis: &super::basin::Axis) -> String {
-    format!("{}: {} to {}", axis.key.label(), axis.min, axis.max)
+/// An axis's key and range, to the precision its grid resolves (a one-node axis: its
+/// value).
+fn axis_range(axis: &super::basin::Axis) -> String {
+    let unit = match axis.key.unit() {
+        "" => String::new(),
+        u => format!(" {u}"),
+    };
+    if axis.cells == 1 {
+        return format!("{} = {}{unit}", axis.key.key, setup_value(axis.value(0)));
+    }
+    let d = axis.spacing();
+    format!(
+        "{} from {} to {}{unit}",
+        axis.key.key,
+        resolved(axis.min, d),
+        resolved(axis.max, d)
+    )
 }
+
+/// The words under (or beside) an axis: its key with the unit, and its range.
+fn axis_title(axis: &super::basin::Axis) -> String {
+    let d = axis.spacing();
+    format!(
+        "{}: {} to {}",
+        axis.key.label(),
+        resolved(axis.min, d),
+        resolved(axis.max, d)
+    )
+}
+
+/// Labels on every axis of every figure: at most this many ticks.
+pub(crate) const TICKS: usize = 10;
 
 fn draw<DB: DrawingBackend>(
     root: DrawingArea<DB, Shift>,
@@ -454,11 +523,19 @@ fn draw<DB: DrawingBackend>(
         // A 1-D scan: settle time against the value, each point in its face's colour, as the
         // authors plotted it (the time spikes at the borders between faces).
         let hi = times.map_or(1.0, |t| t.1) * 1.05;
+        let (xt, yt) = (
+            Ticks::new(x_range.start, x_range.end, TICKS),
+            Ticks::new(0.0, hi, TICKS),
+        );
         let mut chart = chart.build_cartesian_2d(x_range, 0.0..hi).map_err(plot_error)?;
         chart
             .configure_mesh()
             .x_desc(axis_title(x))
-            .y_desc(format!("settle time (s), {} = {}", y.key.label(), y.value(0)))
+            .y_desc(format!("settle time (s), {}", axis_range(y)))
+            .x_labels(TICKS)
+            .y_labels(TICKS)
+            .x_label_formatter(&|v| xt.label(*v))
+            .y_label_formatter(&|v| yt.label(*v))
             .label_style(label_style)
             .axis_desc_style(desc_style)
             .draw()
@@ -489,12 +566,20 @@ fn draw<DB: DrawingBackend>(
         face_legend(&legend, map, scale)?;
     } else {
         let y_range = (y.min - dy / 2.0)..(y.max + dy / 2.0);
+        let (xt, yt) = (
+            Ticks::new(x_range.start, x_range.end, TICKS),
+            Ticks::new(y_range.start, y_range.end, TICKS),
+        );
         let mut chart = chart.build_cartesian_2d(x_range, y_range).map_err(plot_error)?;
         chart
             .configure_mesh()
             .disable_mesh()
             .x_desc(axis_title(x))
             .y_desc(axis_title(y))
+            .x_labels(TICKS)
+            .y_labels(TICKS)
+            .x_label_formatter(&|v| xt.label(*v))
+            .y_label_formatter(&|v| yt.label(*v))
             .label_style(label_style)
             .axis_desc_style(desc_style)
             .draw()
@@ -526,7 +611,8 @@ fn draw<DB: DrawingBackend>(
     root.present().map_err(plot_error)
 }
 
-/// Faces 1..6, then whichever other endings occur.
+/// The faces that occur, then whichever other endings do: the legend names only what is
+/// drawn.
 fn face_legend<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     map: &BasinMap,
@@ -538,8 +624,9 @@ fn face_legend<DB: DrawingBackend>(
             .flatten()
             .any(|c| c.outcome.status == status && (status != Status::Settled || c.outcome.face == face))
     };
-    let mut entries: Vec<(String, RGBColor)> = (0..6)
-        .map(|f| (format!("face {}", f + 1), FACE_COLOURS[f]))
+    let mut entries: Vec<(String, RGBColor)> = (1..=6u8)
+        .filter(|&f| occurs(Status::Settled, Some(f)))
+        .map(|f| (format!("face {f}"), FACE_COLOURS[f as usize - 1]))
         .collect();
     for (ending, status, colour) in [
         (Ending::WithoutFace, Status::Settled, NO_FACE),
@@ -615,10 +702,18 @@ fn time_legend<DB: DrawingBackend>(
         ))
         .map_err(plot_error)?;
     }
-    for k in 0..=4 {
-        let f = k as f64 / 4.0;
+    // Marks at round times inside the scale (a scale of one time: that time).
+    let (ticks, values) = if hi > lo {
+        Ticks::values(lo, hi, 5)
+    } else {
+        (Ticks::new(0.0, 1.0, 5), vec![lo])
+    };
+    for v in values.into_iter().filter(|_| times.is_some()) {
+        let f = if hi > lo { (v - lo) / (hi - lo) } else { 0.0 };
         let py = bottom - ((bottom - top) as f64 * f) as i32;
-        let label = format!("{:.3}", lo + (hi - lo) * f);
+        area.draw(&Rectangle::new([(px(40), py), (px(44), py + 1)], BLACK.filled()))
+            .map_err(plot_error)?;
+        let label = if hi > lo { ticks.label(v) } else { setup_value(v) };
         area.draw(&Text::new(label, (px(48), py - px(8)), ("sans-serif", px(16))))
             .map_err(plot_error)?;
     }
@@ -655,6 +750,163 @@ mod tests {
             caption.contains("m 1 g, loaded: +2 g at corner 2, +0.5 g at corner 8;"),
             "{caption}"
         );
+    }
+
+    /// A small map of the paper's roll over the issue's awkward range, rolled for real.
+    fn awkward_map(layer: Layer, height: usize) -> BasinMap {
+        use super::super::basin::{Axis, MapSpec, Method, run_map};
+        let initial = InitialCondition {
+            velocity: [30.0, 0.0, 0.0],
+            angular_velocity: [12.0, -20.0, 6.0],
+            ..InitialCondition::default()
+        };
+        let spec = MapSpec {
+            x: Axis::parse(
+                "initial.angular_velocity.x:-14.204545454545455:-6.704545454545455",
+                9,
+            )
+            .unwrap(),
+            y: Axis::parse("ground.friction:0.2:1.4", height).unwrap(),
+            method: if layer == Layer::Face {
+                Method::Adaptive
+            } else {
+                Method::Uniform
+            },
+        };
+        let never = std::sync::atomic::AtomicBool::new(false);
+        run_map(&Params::default(), &initial, &spec, 1, &never, &mut |_| {}).unwrap()
+    }
+
+    /// The text elements of an SVG (their content, unescaped enough to read) with their
+    /// x position and font size.
+    fn svg_texts(svg: &str) -> Vec<(f64, f64, String)> {
+        let attribute = |tag: &str, name: &str| -> f64 {
+            let at = tag.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+            tag[at..].split('"').next().unwrap().parse().unwrap()
+        };
+        svg.split("<text")
+            .skip(1)
+            .map(|chunk| {
+                let (tag, rest) = chunk.split_once('>').unwrap();
+                let content = rest
+                    .split("</text>")
+                    .next()
+                    .unwrap()
+                    .trim()
+                    .replace("&apos;", "'");
+                (attribute(tag, "x"), attribute(tag, "font-size"), content)
+            })
+            .collect()
+    }
+
+    /// Decimals of every number written in `text` (`-14.2` has 1, `9×6` none).
+    fn decimals_in(text: &str) -> Vec<(String, usize)> {
+        let mut found = Vec::new();
+        let mut number = String::new();
+        for c in text.chars().chain(std::iter::once(' ')) {
+            if c.is_ascii_digit() || (c == '.' && !number.is_empty() && !number.contains('.')) {
+                number.push(c);
+            } else if !number.is_empty() {
+                let n = number.trim_end_matches('.').to_string();
+                let decimals = n.split_once('.').map_or(0, |(_, d)| d.len());
+                found.push((n, decimals));
+                number.clear();
+            }
+        }
+        found
+    }
+
+    #[test]
+    fn no_svg_text_carries_more_digits_than_the_grid_resolves() {
+        for (layer, height) in [(Layer::Face, 6), (Layer::SettleTime, 6), (Layer::Face, 1)] {
+            let map = awkward_map(layer, height);
+            // Without a setup the caption is the axes' line: every number on the image
+            // comes from the grid (or counts cells).
+            let record = map_record(&map, layer, None);
+            let svg = String::from_utf8(image_bytes(&map, layer, &record, SIZE, ImageFormat::Svg).unwrap())
+                .unwrap();
+            // x is 0.94 apart, friction 0.24 apart: one decimal; the time scale's marks sit
+            // on a round step of its 5 at most.
+            let allowed = 1.max(match (layer, time_range(&map)) {
+                (Layer::SettleTime, Some((lo, hi))) => {
+                    super::super::figure::decimals_for((hi - lo) / 4.0) + 1
+                }
+                _ => 0,
+            });
+            let texts = svg_texts(&svg);
+            assert!(texts.iter().any(|t| t.2.contains("-14.2")), "{texts:?}");
+            for (_, _, text) in &texts {
+                for (number, decimals) in decimals_in(text) {
+                    assert!(decimals <= allowed, "{layer:?} {height}: `{number}` in `{text}`");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn caption_lines_wrap_inside_the_image_at_every_size() {
+        let map = awkward_map(Layer::Face, 6);
+        let mut params = Params::default();
+        params.die.extra_corner_mass = [0.25; 8];
+        let initial = InitialCondition::default();
+        for size in [SIZE, (600, 400), (2400, 1600)] {
+            let record = map_record(
+                &map,
+                Layer::Face,
+                Some(("a-preset-with-a-long-name", &params, &initial)),
+            );
+            let svg =
+                String::from_utf8(image_bytes(&map, Layer::Face, &record, size, ImageFormat::Svg).unwrap())
+                    .unwrap();
+            let texts = svg_texts(&svg);
+            let scale = Scale::of(size, SIZE);
+            let lines = caption_lines(&record, size.0, scale);
+            // Every caption word is drawn: nothing cut.
+            assert_eq!(
+                lines.concat().replace(' ', ""),
+                record.caption.concat().replace(' ', "")
+            );
+            assert!(
+                lines.len() > record.caption.len() || size.0 >= 1200,
+                "{size:?}: {lines:?}"
+            );
+            for line in &lines {
+                let width = super::super::figure::text_width(line, f64::from(scale.px(CAPTION_FONT)), false);
+                assert!(
+                    f64::from(scale.px(CAPTION_MARGIN)) + width <= f64::from(size.0),
+                    "{size:?}: {width} px: {line}"
+                );
+                // And the SVG has that line as one text element.
+                assert!(texts.iter().any(|t| t.2 == line.replace("&", "&amp;")), "{line}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_legend_names_only_the_faces_drawn() {
+        let map = awkward_map(Layer::Face, 6);
+        let record = map_record(&map, Layer::Face, None);
+        let svg = String::from_utf8(image_bytes(&map, Layer::Face, &record, SIZE, ImageFormat::Svg).unwrap())
+            .unwrap();
+        let texts = svg_texts(&svg);
+        for f in 1..=6u8 {
+            let occurs = map.cells.iter().flatten().any(|c| c.outcome.face == Some(f));
+            let listed = texts.iter().any(|t| t.2 == format!("face {f}"));
+            assert_eq!(occurs, listed, "face {f}");
+        }
+        // A map of one face lists one.
+        let mut one = map.clone();
+        for c in one.cells.iter_mut().flatten() {
+            c.outcome.face = Some(2);
+        }
+        let svg = String::from_utf8(image_bytes(&one, Layer::Face, &record, SIZE, ImageFormat::Svg).unwrap())
+            .unwrap();
+        let faces: Vec<String> = svg_texts(&svg)
+            .into_iter()
+            .map(|t| t.2)
+            .filter(|t| t.starts_with("face "))
+            .collect();
+        assert_eq!(faces, ["face 2"]);
     }
 
     #[test]

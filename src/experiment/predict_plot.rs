@@ -2,7 +2,8 @@
 //! curve per setup with its 95 % band, its chance level dashed and its ε½ marked.
 
 use super::Error;
-use super::plot::{Record, Scale, plot_error, png_bytes, register_fonts, with_caption};
+use super::figure::{Ticks, setup_value};
+use super::plot::{Record, Scale, TICKS, plot_error, png_bytes, register_fonts, with_caption};
 use super::predict::{Prediction, Threshold};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -35,7 +36,7 @@ pub(crate) fn prediction_png(prediction: &Prediction, record: &Record) -> Result
 /// A curve's name in the legend: the swept value with its key's last part.
 fn curve_label(prediction: &Prediction, value: Option<f64>, threshold: Option<Threshold>) -> String {
     let name = match (&prediction.key, value) {
-        (Some(key), Some(v)) => format!("{} = {v}", key.rsplit('.').next().unwrap_or(key)),
+        (Some(key), Some(v)) => format!("{} = {}", key.rsplit('.').next().unwrap_or(key), setup_value(v)),
         _ => "this setup".to_string(),
     };
     match threshold {
@@ -59,13 +60,15 @@ fn draw(root: &DrawingArea<BitMapBackend<'_>, Shift>, prediction: &Prediction) -
         .build_cartesian_2d(lo..hi, 0.0..1.02)
         .map_err(plot_error)?;
     let decade = |v: &f64| format!("1e{}", v.round() as i32);
+    let yt = Ticks::new(0.0, 1.02, TICKS);
     chart
         .configure_mesh()
         .x_desc("ε, relative change of height, velocity and spin (log scale)")
         .y_desc("P(same face)")
         .x_labels((hi - lo) as usize + 1)
         .x_label_formatter(&decade)
-        .y_label_formatter(&|v| format!("{v:.1}"))
+        .y_labels(TICKS)
+        .y_label_formatter(&|v| yt.label(*v))
         .label_style(("sans-serif", 16))
         .axis_desc_style(("sans-serif", 19))
         .draw()

@@ -16,6 +16,10 @@ pub const EPSILON: Limits = Limits {
     max: 1e-1,
 };
 
+/// The ε a twin rolls at when none is asked for: far below anything a hand controls, and
+/// still the two dice part within a roll.
+pub const DEFAULT_EPSILON: f64 = 1e-9;
+
 /// The twin's start: height, velocity and spin times (1 + ε).
 pub fn perturbed(initial: &InitialCondition, epsilon: f64) -> InitialCondition {
     let f = 1.0 + epsilon;

@@ -1,0 +1,143 @@
+//! `dicesim animate`: a roll (or a roll and its chaos twin) as an animated GIF or PNG.
+
+use super::{CliError, SetupArgs, cancel_on_ctrl_c};
+use crate::experiment::animation::render::Camera;
+use crate::experiment::animation::{self, AnimationSpec, write_animation};
+use crate::experiment::twin::DEFAULT_EPSILON;
+use crate::output::Output;
+use crate::preset::Speed;
+use clap::Args;
+use std::io::Write;
+use std::path::PathBuf;
+
+#[derive(Debug, Args)]
+pub(crate) struct AnimateArgs {
+    #[command(flatten)]
+    pub(crate) setup: SetupArgs,
+    /// Frames per second of playback.
+    #[arg(long, value_name = "N", default_value_t = 25,
+          value_parser = clap::value_parser!(u32).range(*animation::FPS.start() as i64..=*animation::FPS.end() as i64))]
+    pub(crate) fps: u32,
+    /// Playback speed, as the explorer's ladder: `1/10` plays ten times slower, `2` twice as
+    /// fast (default: the preset's `view.speed`, else 1, real time).
+    #[arg(long, value_name = "1/100…100")]
+    pub(crate) speed: Option<String>,
+    /// Width × height in pixels.
+    #[arg(long, value_name = "WxH", default_value = "640x480", value_parser = parse_size)]
+    pub(crate) size: (u32, u32),
+    /// Roll a chaos twin beside the die, its height, velocity and spin × (1 + ε) (default:
+    /// the preset's `view.twin`, else 1e-9).
+    #[arg(long, value_name = "EPSILON", num_args = 0..=1, default_missing_value = "default")]
+    pub(crate) twin: Option<String>,
+    /// Write the animation to a .gif or an (animated) .png file.
+    #[arg(long, value_name = "FILE.gif|FILE.png")]
+    pub(crate) out: PathBuf,
+    /// Replace an existing file.
+    #[arg(long)]
+    pub(crate) force: bool,
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = (animation::WIDTH, animation::HEIGHT);
+    let bad = || {
+        format!(
+            "`{s}`: expected WxH in pixels, from {}x{} to {}x{}, e.g. 640x480",
+            w.start(),
+            h.start(),
+            w.end(),
+            h.end()
+        )
+    };
+    let (x, y) = s.split_once(['x', 'X', '×']).ok_or_else(bad)?;
+    let x: u32 = x.trim().parse().map_err(|_| bad())?;
+    let y: u32 = y.trim().parse().map_err(|_| bad())?;
+    if !w.contains(&x) || !h.contains(&y) {
+        return Err(bad());
+    }
+    Ok((x, y))
+}
+
+pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
+    let preset = args.setup.resolve()?;
+    let params = preset.params();
+    // The checks `roll` makes: every value in range, no corner starting inside the table.
+    crate::physics::Simulation::new(&params, &preset.initial)?;
+    let twin = match args.twin.as_deref() {
+        None => None,
+        Some("default") => Some(preset.view.twin.unwrap_or(DEFAULT_EPSILON)),
+        Some(text) => Some(
+            text.trim()
+                .parse::<f64>()
+                .map_err(|_| CliError::Usage(format!("--twin `{text}`: expected a number, e.g. 1e-9")))?,
+        ),
+    };
+    let speed = match args.speed.as_deref() {
+        None => preset.view.speed.and_then(Speed::factor).unwrap_or(1.0),
+        Some(label) => Speed::from_label(label).and_then(Speed::factor).ok_or_else(|| {
+            let ladder: Vec<&str> = Speed::labels().filter(|l| *l != "instant").collect();
+            CliError::Usage(format!("--speed `{label}`: one of {}", ladder.join(", ")))
+        })?,
+    };
+    let camera = preset.view.camera.map_or(Camera::DEFAULT, |c| Camera {
+        yaw_deg: c.yaw,
+        pitch_deg: c.pitch,
+    });
+    let spec = AnimationSpec {
+        twin,
+        camera,
+        speed,
+        ..AnimationSpec::new(args.fps, args.size)
+    };
+    spec.validate().map_err(CliError::experiment("--twin "))?;
+    let output =
+        Output::check(&args.out, &animation::EXTENSIONS, args.force).map_err(CliError::output("--out "))?;
+
+    let bar = super::progress_bar(params.max_steps(), "{msg:14} {bar:40} {pos}/{len}, {elapsed}");
+    bar.set_message("steps rolled");
+    let stop = cancel_on_ctrl_c()?;
+    let animated = write_animation(
+        &preset.name,
+        &params,
+        &preset.initial,
+        &spec,
+        &output,
+        &stop,
+        &mut |p| {
+            if p.drawing && bar.length() != Some(p.total) {
+                bar.set_length(p.total);
+                bar.set_message("frames drawn");
+            }
+            bar.set_position(p.done);
+        },
+    )
+    .map_err(|e| match e {
+        crate::experiment::Error::Output(e) => CliError::output("")(e),
+        crate::experiment::Error::Cancelled => {
+            CliError::Stopped(format!("{}: nothing was written", args.out.display()))
+        }
+        e => CliError::experiment("")(e),
+    })?;
+    bar.finish_and_clear();
+    let face = |o: &crate::physics::Outcome| match o.face {
+        Some(f) => format!("face {f} ({})", o.status.name()),
+        None => o.status.name().to_string(),
+    };
+    let mut out = std::io::stdout().lock();
+    writeln!(
+        out,
+        "{} frames, {:.2} s of roll at {} frames/s and {}, {}×{} pixels",
+        animated.frames,
+        animated.duration_s,
+        args.fps,
+        animation::speed_words(speed),
+        args.size.0,
+        args.size.1
+    )?;
+    writeln!(out, "die               {}", face(&animated.outcome))?;
+    if let (Some(t), Some(e)) = (&animated.twin, twin) {
+        writeln!(out, "twin (ε {e:e})    {}", face(t))?;
+    }
+    writeln!(out, "wrote             {}", args.out.display())?;
+    out.flush()?;
+    Ok(())
+}
