@@ -52,3 +52,6 @@ mod view_tests;
 
 #[cfg(test)]
 mod twin_tests;
+
+#[cfg(test)]
+mod contrast_tests;
