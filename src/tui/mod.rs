@@ -55,3 +55,6 @@ mod twin_tests;
 
 #[cfg(test)]
 mod contrast_tests;
+
+#[cfg(test)]
+mod lesson_tests;
