@@ -8,7 +8,7 @@ use super::app::App;
 use super::map_tests::map_scene;
 use super::tests::{Scene, editing, filled_table, help, mid_impact_with, settled, start, unstable};
 use super::theme::{Palette, Theme};
-use super::twin_tests::{complete, twin_scene};
+use super::twin_tests::{complete, failed, partial, twin_scene};
 use super::view_tests::loaded_after;
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
@@ -58,10 +58,10 @@ fn is_marker(symbol: &str) -> bool {
 }
 
 /// Block cells are area fills (map cells, legend swatches): a half block's two halves are
-/// two neighbouring cells, or a cell and the page, not a mark on its background. Only the map
-/// cursor's notch, a half in ink, is a mark and is checked.
-fn is_fill(symbol: &str, fg: (u8, u8, u8), bg: (u8, u8, u8), ink: (u8, u8, u8)) -> bool {
-    matches!(symbol, "▀" | "▄" | "█") && fg != ink && bg != ink
+/// two neighbouring cells, or a cell and the page, not a mark on its background. The map
+/// cursor's notch, the one mark among them, has a test of its own below.
+fn is_fill(symbol: &str) -> bool {
+    matches!(symbol, "▀" | "▄" | "█")
 }
 
 fn rgb(c: Color) -> Option<(u8, u8, u8)> {
@@ -87,7 +87,6 @@ struct Poor {
 
 fn check(buf: &Buffer, state: &'static str, theme: Theme, out: &mut Vec<Poor>) {
     let area = buf.area;
-    let ink = rgb(theme.base().fg.expect("a painted ink")).expect("RGB ink");
     for y in area.top()..area.bottom() {
         for x in area.left()..area.right() {
             let cell = &buf[(x, y)];
@@ -114,7 +113,7 @@ fn check(buf: &Buffer, state: &'static str, theme: Theme, out: &mut Vec<Poor>) {
                 out.push(poor(0.0, TEXT));
                 continue;
             };
-            if !printable || is_fill(symbol, f, b, ink) {
+            if !printable || is_fill(symbol) {
                 continue;
             }
             let need = if is_marker(symbol) { MARKER } else { TEXT };
@@ -127,8 +126,9 @@ fn check(buf: &Buffer, state: &'static str, theme: Theme, out: &mut Vec<Poor>) {
 }
 
 /// Every screen the snapshot tests build: main, mid-impact with arrows, the ending, an
-/// unstable roll, help, editing, a batch's table, the twin and its curve, the map, a loaded
-/// die, the preset picker, the save dialog and the quit prompt.
+/// unstable roll, help, editing, a batch's table, the twin and its curve (complete,
+/// computing, failed), the map in both layers, a loaded die, the preset picker, the save
+/// dialog, the quit and reset prompts, a roll stepped back, the die from above.
 fn states(theme: Theme) -> Vec<(&'static str, App)> {
     let keyed = |mut s: Scene, keys: &[KeyCode]| {
         for &k in keys {
@@ -161,6 +161,28 @@ fn states(theme: Theme) -> Vec<(&'static str, App)> {
         (
             "quit prompt",
             keyed(start(), &[KeyCode::Char('l'), KeyCode::Char('q')]),
+        ),
+        (
+            "reset prompt",
+            keyed(start(), &[KeyCode::Char('l'), KeyCode::Backspace]),
+        ),
+        ("stepped back", {
+            let mut s = settled();
+            s.key(KeyCode::Home);
+            for _ in 0..170 {
+                s.key(KeyCode::Char('.'));
+            }
+            s.app
+        }),
+        ("twin curve computing", partial().app),
+        ("twin curve failed", failed().app),
+        ("map settle times", keyed(map_scene(theme), &[KeyCode::Char('v')])),
+        (
+            "light shadow, high camera",
+            keyed(
+                settled(),
+                &[KeyCode::Char('W'), KeyCode::Char('W'), KeyCode::Char('W')],
+            ),
         ),
     ];
     for (_, app) in &mut states {
@@ -237,26 +259,64 @@ fn the_check_catches_faint_text_and_named_colours() {
     assert_eq!(at, vec![(0, TEXT), (1, MARKER), (2, TEXT)]);
 }
 
-/// The map cursor is a notch in ink on its cell's face colour, and ink stands out from every
-/// face's colour by a marker's 3:1.
+/// The map cursor is a notch beside its cell's colour, and stands out from it by a marker's
+/// 3:1: for every face colour and every colour the settle-time layer draws, and on screen,
+/// where the cursor is the cell that changes when it moves.
 #[test]
-fn the_map_cursor_stands_out_from_every_face() {
+fn the_map_cursor_stands_out_from_every_map_colour() {
     use crate::experiment::plot::FACE_COLOURS;
-    for theme in painted() {
-        let ink = rgb(theme.notch()).expect("an RGB notch");
-        for c in FACE_COLOURS {
-            let ratio = contrast((c.0, c.1, c.2), ink);
-            assert!(ratio >= MARKER, "face colour {c:?}: {ratio:.2}");
-        }
-        let app = map_scene(theme).app;
+    let draw = |app: &App| {
         let mut t = Terminal::new(TestBackend::new(120, 36)).expect("test backend");
-        t.draw(|f| super::render(&app, f)).expect("draw");
-        let buf = t.backend().buffer();
-        let notches = buf
-            .content()
-            .iter()
-            .filter(|c| matches!(c.symbol(), "▀" | "▄") && c.bg == theme.notch())
-            .count();
-        assert_eq!(notches, 1, "{} theme", theme.palette.name());
+        t.draw(|f| super::render(app, f)).expect("draw");
+        t.backend().buffer().clone()
+    };
+    for theme in painted() {
+        let mut colours: Vec<(u8, u8, u8)> = FACE_COLOURS.iter().map(|c| (c.0, c.1, c.2)).collect();
+        for layer_keys in [&[][..], &[KeyCode::Char('v')][..]] {
+            let mut s = map_scene(theme);
+            for &k in layer_keys {
+                s.key(k);
+            }
+            let here = draw(&s.app);
+            s.key(KeyCode::Right);
+            let moved = draw(&s.app);
+            let blocks = |b: &Buffer| {
+                b.content()
+                    .iter()
+                    .filter(|c| matches!(c.symbol(), "▀" | "▄"))
+                    .flat_map(|c| [c.fg, c.bg])
+                    .filter_map(rgb)
+                    .collect::<Vec<_>>()
+            };
+            colours.extend(blocks(&here));
+            // The cursor's cell: a half block that changed when the cursor moved away, its
+            // other half the notch.
+            let cursor = here
+                .content()
+                .iter()
+                .zip(moved.content())
+                .filter(|(a, b)| a != b && matches!(a.symbol(), "▀" | "▄"))
+                .map(|(a, _)| a)
+                .find(|a| a.bg == theme.notch(a.fg))
+                .unwrap_or_else(|| panic!("a cursor in the {} theme", theme.palette.name()));
+            let ratio = contrast(rgb(cursor.fg).expect("RGB"), rgb(cursor.bg).expect("RGB"));
+            assert!(
+                ratio >= MARKER,
+                "the cursor: {:?} on {:?}, {ratio:.2}",
+                cursor.fg,
+                cursor.bg
+            );
+        }
+        colours.sort();
+        colours.dedup();
+        assert!(colours.len() > 10, "{} map colours", colours.len());
+        for c in colours {
+            let notch = rgb(theme.notch(Color::Rgb(c.0, c.1, c.2))).expect("an RGB notch");
+            let ratio = contrast(c, notch);
+            assert!(
+                ratio >= MARKER,
+                "map colour {c:?} beside the notch {notch:?}: {ratio:.2}"
+            );
+        }
     }
 }

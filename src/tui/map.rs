@@ -260,9 +260,10 @@ fn render_panel(app: &App, areas: &MapAreas, frame: &mut Frame) {
                 if app.theme.colour {
                     // The cursor's half keeps its colour, the other half is a notch that
                     // reads on any face.
+                    let colour = terminal_colour(app, under, times);
                     cell.set_symbol(if on_upper { "▀" } else { "▄" })
-                        .set_fg(terminal_colour(app, under, times))
-                        .set_bg(app.theme.notch());
+                        .set_fg(colour)
+                        .set_bg(app.theme.notch(colour));
                 } else {
                     let mut s = [0u8; 4];
                     cell.set_symbol(monochrome_symbol(m.layer, under, times).encode_utf8(&mut s))

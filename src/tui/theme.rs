@@ -267,12 +267,21 @@ impl Theme {
         })
     }
 
-    /// The map cursor's notch, the half of its cell that shows no map: the terminal's own
-    /// background on the dark theme, ink on the painted ones, where the page's white would
-    /// vanish beside face 4's yellow (1.3:1); black stands out from every face (3.7:1 and up).
-    pub(crate) fn notch(&self) -> Color {
-        match (self.colour, self.palette) {
-            (true, Palette::Light | Palette::Projector) => INK,
+    /// The map cursor's notch, the half of its cell that shows no map, beside a map cell of
+    /// colour `beside`: the terminal's own background on the dark theme; on the painted ones
+    /// black or white, whichever stands out more (the page's white beside face 4's yellow
+    /// would be 1.3:1, black beside the settle-time scale's dark blue 2.9:1).
+    pub(crate) fn notch(&self, beside: Color) -> Color {
+        match (self.colour, self.palette, beside) {
+            (true, Palette::Light | Palette::Projector, Color::Rgb(r, g, b)) => {
+                // Black and white contrast equally with a luminance of √(1.05·0.05) − 0.05.
+                if relative_luminance(r, g, b) > 0.179 {
+                    INK
+                } else {
+                    PAPER
+                }
+            }
+            (true, Palette::Light | Palette::Projector, _) => INK,
             _ => Color::Reset,
         }
     }
@@ -310,4 +319,17 @@ impl Theme {
     pub(crate) fn threshold(&self) -> Color {
         Color::Reset
     }
+}
+
+/// WCAG 2's relative luminance of an sRGB colour, 0 (black) to 1 (white).
+fn relative_luminance(r: u8, g: u8, b: u8) -> f64 {
+    let linear = |c: u8| {
+        let c = c as f64 / 255.0;
+        if c <= 0.04045 {
+            c / 12.92
+        } else {
+            ((c + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    0.2126 * linear(r) + 0.7152 * linear(g) + 0.0722 * linear(b)
 }

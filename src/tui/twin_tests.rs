@@ -81,7 +81,7 @@ pub(crate) fn complete(theme: Theme) -> Scene {
     with_curve(twin_scene(theme), 1, CurveState::Complete(curves().1.clone()))
 }
 
-fn partial() -> Scene {
+pub(crate) fn partial() -> Scene {
     with_curve(
         twin_scene(Theme::default()),
         1,
@@ -90,7 +90,7 @@ fn partial() -> Scene {
 }
 
 /// A setup whose throws cannot settle: the time cap ends every roll in mid-air.
-fn failed() -> Scene {
+pub(crate) fn failed() -> Scene {
     let s = twin_scene(Theme::default());
     let mut setup: CurveSetup = s.engine.curve_setup().expect("a twin rolls");
     setup.params.integrator.max_time = 0.01;
