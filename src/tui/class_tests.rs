@@ -771,14 +771,14 @@ mod themes {
         let dots = cells_with(&plain, areas.die, "●");
         assert!(!dots.is_empty());
         for p in dots {
-            assert_eq!(plain[p].fg, Color::Rgb(200, 0, 0));
+            assert_eq!(plain[p].fg, Color::Rgb(160, 0, 0));
         }
         let bar = (areas.ledger.x + 1, areas.ledger.bottom() - 2);
         assert_eq!(b[bar].symbol(), "█");
-        assert_eq!(b[bar].fg, Color::Rgb(160, 0, 160));
+        assert_eq!(b[bar].fg, Color::Rgb(130, 0, 140));
         // ω's arrow in the darkened cyan.
         let omega = cells_with(&b, areas.die, "ω");
-        assert!(omega.iter().any(|&p| b[p].fg == Color::Rgb(0, 120, 140)));
+        assert!(omega.iter().any(|&p| b[p].fg == Color::Rgb(0, 80, 120)));
     }
 
     #[test]
@@ -800,7 +800,7 @@ mod themes {
         let dots = cells_with(&b, areas.die, "●");
         assert!(!dots.is_empty());
         for p in dots {
-            assert_eq!(b[p].fg, Color::Rgb(230, 0, 0));
+            assert_eq!(b[p].fg, Color::Rgb(170, 0, 0));
         }
     }
 

@@ -50,10 +50,10 @@ pub(crate) struct Label {
     pub(crate) at: Flat,
     pub(crate) text: String,
     pub(crate) style: Style,
-    /// Whether the label may move away from its anchor to find free cells.
+    /// Whether the label may move away from its anchor to find free cells: then it never
+    /// sits on the die (where it would hide a face and read as one of its marks) nor right
+    /// beside another label (`ω` and `v` touching read as one word, `ωv`).
     pub(crate) movable: bool,
-    /// Whether it names something behind the die, so it must not sit on the die either.
-    pub(crate) behind: bool,
 }
 
 /// The die panel's picture, before it is drawn in either marker.
@@ -125,7 +125,7 @@ impl View {
     }
 
     /// The point at the middle of a cell.
-    fn centre_of(&self, col: u16, row: u16) -> Flat {
+    pub(crate) fn centre_of(&self, col: u16, row: u16) -> Flat {
         let (w, h) = (self.area.width as f64, self.area.height as f64);
         (
             self.x.0 + (self.x.1 - self.x.0) * (col as f64 + 0.5) / w,
@@ -181,7 +181,6 @@ impl Picture {
             text: text.into(),
             style,
             movable,
-            behind: false,
         });
     }
 }
@@ -345,9 +344,6 @@ fn ghost(pic: &mut Picture, app: &App, view: &View, twin: &DieState) {
         );
     }
     pic.label(view.flat(&twin.centre), "twin", Style::new().fg(colour), true);
-    if let Some(label) = pic.labels.last_mut() {
-        label.behind = true;
-    }
 }
 
 /// ω, L and v from the centre, F from each touching corner, each with its symbol at the tip.
@@ -499,8 +495,8 @@ fn offsets(len: i32, reach: i32) -> impl Iterator<Item = (i32, i32)> {
 }
 
 /// Places the labels in order, each on the first free cells near its anchor: never on a
-/// cell an earlier label took, never past the panel's edge, and a label of something
-/// behind the die never on the die.
+/// cell an earlier label took, never past the panel's edge, and a movable label never on the
+/// die nor touching another label.
 pub(crate) fn place_labels(labels: &[Label], view: &View, outline: &[Flat]) -> Vec<(u16, u16, Label)> {
     let (w, h) = (view.area.width, view.area.height);
     let mut taken = vec![false; w as usize * h as usize];
@@ -522,15 +518,16 @@ pub(crate) fn place_labels(labels: &[Label], view: &View, outline: &[Flat]) -> V
         };
         let Some((col, row)) = anchor else { continue };
         let len = label.text.chars().count() as i32;
+        let taken_at = |x: i32, r: i32| x >= 0 && x < w as i32 && taken[r as usize * w as usize + x as usize];
         let free = |c: i32, r: i32| {
             c >= 0
                 && r >= 0
                 && c + len <= w as i32
                 && r < h as i32
                 && (c..c + len).all(|x| {
-                    !(taken[r as usize * w as usize + x as usize]
-                        || label.behind && inside(outline, view.centre_of(x as u16, r as u16)))
+                    !(taken_at(x, r) || label.movable && inside(outline, view.centre_of(x as u16, r as u16)))
                 })
+                && !(label.movable && (taken_at(c - 1, r) || taken_at(c + len, r)))
         };
         let reach = if label.movable { w.max(h) as i32 } else { 0 };
         let Some((dc, dr)) = offsets(len, reach)

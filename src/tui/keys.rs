@@ -953,11 +953,11 @@ mod tests {
 
     #[test]
     fn the_readme_key_tables_are_the_key_table() {
-        let readme = include_str!("../../README.md");
+        let reference = include_str!("../../docs/explorer.md");
         let expected = markdown_tables();
         assert!(
-            readme.contains(&expected),
-            "README.md's key tables differ from src/tui/keys.rs; they should read:\n\n{expected}"
+            reference.contains(&expected),
+            "docs/explorer.md's key tables differ from src/tui/keys.rs; they should read:\n\n{expected}"
         );
     }
 

@@ -147,11 +147,12 @@ fn render_panel(app: &App, areas: &MapAreas, frame: &mut Frame) {
                 let on_upper = m.cursor.1 as isize == upper;
                 let under = if on_upper { top } else { bottom };
                 if app.theme.colour {
-                    // The cursor's half keeps its colour, the other half shows the terminal's
-                    // background: a notch that reads on any face.
+                    // The cursor's half keeps its colour, the other half is a notch that
+                    // reads on any face.
+                    let colour = terminal_colour(app, under, times);
                     cell.set_symbol(if on_upper { "▀" } else { "▄" })
-                        .set_fg(terminal_colour(app, under, times))
-                        .set_bg(Color::Reset);
+                        .set_fg(colour)
+                        .set_bg(app.theme.notch(colour));
                 } else {
                     let mut s = [0u8; 4];
                     cell.set_symbol(monochrome_symbol(m.layer, under, times).encode_utf8(&mut s))

@@ -55,3 +55,9 @@ mod view_tests;
 
 #[cfg(test)]
 mod twin_tests;
+
+#[cfg(test)]
+mod contrast_tests;
+
+#[cfg(test)]
+mod lesson_tests;

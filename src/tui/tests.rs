@@ -118,7 +118,7 @@ pub(crate) fn settled() -> Scene {
     s
 }
 
-fn unstable() -> Scene {
+pub(crate) fn unstable() -> Scene {
     let mut s = start();
     s.select(Param::named("ground.stiffness"));
     s.key(KeyCode::Enter);
@@ -130,13 +130,13 @@ fn unstable() -> Scene {
     s
 }
 
-fn help() -> Scene {
+pub(crate) fn help() -> Scene {
     let mut s = mid_impact();
     s.key(KeyCode::Char('?'));
     s
 }
 
-fn editing() -> Scene {
+pub(crate) fn editing() -> Scene {
     let mut s = start();
     s.select(Param::named("ground.friction"));
     s.key(KeyCode::Enter);

@@ -6,9 +6,15 @@
 //! darker inks, projector with the strongest inks and every character bold, for a washed-out
 //! beamer at the back of a classroom.
 //!
-//! Only the standard ANSI colours whose hue the terminal's own theme keeps readable on both
-//! dark and light backgrounds are used (no white, grey or yellow text); warnings use a
+//! The dark theme uses only the standard ANSI colours whose hue the terminal's own theme
+//! keeps readable on dark backgrounds (no white, grey or yellow text); warnings use a
 //! background, which reads on any theme and on a projector.
+//!
+//! The painted themes give every colour as RGB, never a terminal's named colour (whose shade
+//! is the terminal's choice), so their contrast can be promised: every ink is dark enough for
+//! WCAG 2's 4.5:1 as text on the lightest and darkest background it is drawn on (the white
+//! page, the die's grey faces, the blue-tinted face up, the shadow), and so more than the
+//! 3:1 that lines and markers need. The faces stay light for the same reason.
 
 use ratatui::style::{Color, Modifier, Style};
 
@@ -16,6 +22,11 @@ use ratatui::style::{Color, Modifier, Style};
 /// colours (a "white" may be grey), which would cost contrast.
 const PAPER: Color = Color::Rgb(255, 255, 255);
 const INK: Color = Color::Rgb(0, 0, 0);
+
+/// The painted themes' warning backgrounds: a yellow that black reads on at 14:1, and a red
+/// that white reads on at 7:1.
+const CAUTION: Color = Color::Rgb(255, 210, 0);
+const DANGER: Color = Color::Rgb(180, 0, 0);
 
 /// Which palette (`t` cycles them).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -86,19 +97,22 @@ impl Theme {
         match (self.palette, c) {
             (Palette::Dark, c) => c,
             (_, Color::Reset) => INK,
-            (Palette::Light, Color::Blue) => Color::Rgb(0, 80, 200),
-            (Palette::Light, Color::Magenta) => Color::Rgb(160, 0, 160),
-            (Palette::Light, Color::Green) => Color::Rgb(0, 120, 0),
-            (Palette::Light, Color::Red) => Color::Rgb(200, 0, 0),
-            (Palette::Light, Color::Cyan) => Color::Rgb(0, 120, 140),
-            (Palette::Light, Color::DarkGray) => Color::Rgb(130, 130, 130),
+            // Relative luminance at most 0.09 each: 4.5:1 on the darkest fill (the face up
+            // turned away, 0.59).
+            (Palette::Light, Color::Blue) => Color::Rgb(0, 70, 190),
+            (Palette::Light, Color::Magenta) => Color::Rgb(130, 0, 140),
+            (Palette::Light, Color::Green) => Color::Rgb(0, 90, 0),
+            (Palette::Light, Color::Red) => Color::Rgb(160, 0, 0),
+            (Palette::Light, Color::Cyan) => Color::Rgb(0, 80, 120),
+            (Palette::Light, Color::DarkGray) => Color::Rgb(80, 80, 80),
             (Palette::Projector, Color::Blue) => Color::Rgb(0, 0, 230),
-            (Palette::Projector, Color::Magenta) => Color::Rgb(190, 0, 190),
-            (Palette::Projector, Color::Green) => Color::Rgb(0, 140, 0),
-            (Palette::Projector, Color::Red) => Color::Rgb(230, 0, 0),
-            (Palette::Projector, Color::Cyan) => Color::Rgb(0, 130, 190),
-            (Palette::Projector, Color::DarkGray) => Color::Rgb(100, 100, 100),
-            (_, c) => c,
+            (Palette::Projector, Color::Magenta) => Color::Rgb(140, 0, 140),
+            (Palette::Projector, Color::Green) => Color::Rgb(0, 95, 0),
+            (Palette::Projector, Color::Red) => Color::Rgb(170, 0, 0),
+            (Palette::Projector, Color::Cyan) => Color::Rgb(0, 85, 130),
+            (Palette::Projector, Color::DarkGray) => Color::Rgb(80, 80, 80),
+            // Any other named colour has no promised shade: ink it.
+            (_, _) => INK,
         }
     }
 
@@ -171,20 +185,21 @@ impl Theme {
 
     /// Worth a look: the stability number past 1, a p-value that doubts fairness.
     pub(crate) fn caution(&self) -> Style {
-        if self.colour {
-            Style::new().fg(Color::Black).bg(Color::Yellow)
-        } else {
-            Style::new().add_modifier(Modifier::BOLD | Modifier::UNDERLINED)
+        match (self.colour, self.palette) {
+            (true, Palette::Dark) => Style::new().fg(Color::Black).bg(Color::Yellow),
+            (true, _) => Style::new().fg(INK).bg(CAUTION),
+            (false, _) => Style::new().add_modifier(Modifier::BOLD | Modifier::UNDERLINED),
         }
     }
 
     /// Trouble: the stability number near 2, an unstable roll, a refused value.
     pub(crate) fn danger(&self) -> Style {
+        let (fg, bg) = match self.palette {
+            Palette::Dark => (Color::White, Color::Red),
+            _ => (PAPER, DANGER),
+        };
         if self.colour {
-            Style::new()
-                .fg(Color::White)
-                .bg(Color::Red)
-                .add_modifier(Modifier::BOLD)
+            Style::new().fg(fg).bg(bg).add_modifier(Modifier::BOLD)
         } else {
             Style::new().add_modifier(Modifier::BOLD | Modifier::REVERSED)
         }
@@ -237,26 +252,44 @@ impl Theme {
             return None;
         }
         let f = facing.clamp(0.0, 1.0);
-        let (dim, bright) = match self.palette {
-            Palette::Dark => (55.0, 120.0),
-            Palette::Light => (175.0, 240.0),
-            Palette::Projector => (150.0, 230.0),
-        };
-        let g = dim + (bright - dim) * f;
         let rgb =
             |r: f64, g: f64, b: f64| Color::Rgb(r.round() as u8, g.round() as u8, b.round().min(255.0) as u8);
-        Some(if up {
-            rgb(0.7 * g, 0.85 * g, (1.35 * g).max(g + 30.0))
-        } else {
-            rgb(g, g, g)
+        // The painted faces stay light (luminance 0.59 and up) so every ink reads on them.
+        let (dim, bright) = match self.palette {
+            Palette::Dark => (55.0, 120.0),
+            Palette::Light | Palette::Projector => (210.0, 250.0),
+        };
+        let g = dim + (bright - dim) * f;
+        Some(match (up, self.palette) {
+            (false, _) => rgb(g, g, g),
+            (true, Palette::Dark) => rgb(0.7 * g, 0.85 * g, (1.35 * g).max(g + 30.0)),
+            (true, _) => rgb(g - 30.0, g - 8.0, 255.0),
         })
+    }
+
+    /// The map cursor's notch, the half of its cell that shows no map, beside a map cell of
+    /// colour `beside`: the terminal's own background on the dark theme; on the painted ones
+    /// black or white, whichever stands out more (the page's white beside face 4's yellow
+    /// would be 1.3:1, black beside the settle-time scale's dark blue 2.9:1).
+    pub(crate) fn notch(&self, beside: Color) -> Color {
+        match (self.colour, self.palette, beside) {
+            (true, Palette::Light | Palette::Projector, Color::Rgb(r, g, b)) => {
+                // Black and white contrast equally with a luminance of √(1.05·0.05) − 0.05.
+                if relative_luminance(r, g, b) > 0.179 {
+                    INK
+                } else {
+                    PAPER
+                }
+            }
+            (true, Palette::Light | Palette::Projector, _) => INK,
+            _ => Color::Reset,
+        }
     }
 
     /// The die's shadow on the table, on the painted (white) themes.
     pub(crate) fn shadow_fill(&self) -> Option<Color> {
         match (self.colour, self.palette) {
-            (true, Palette::Light) => Some(Color::Rgb(222, 222, 222)),
-            (true, Palette::Projector) => Some(Color::Rgb(205, 205, 205)),
+            (true, Palette::Light | Palette::Projector) => Some(Color::Rgb(225, 225, 225)),
             _ => None,
         }
     }
@@ -286,4 +319,17 @@ impl Theme {
     pub(crate) fn threshold(&self) -> Color {
         Color::Reset
     }
+}
+
+/// WCAG 2's relative luminance of an sRGB colour, 0 (black) to 1 (white).
+fn relative_luminance(r: u8, g: u8, b: u8) -> f64 {
+    let linear = |c: u8| {
+        let c = c as f64 / 255.0;
+        if c <= 0.04045 {
+            c / 12.92
+        } else {
+            ((c + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    0.2126 * linear(r) + 0.7152 * linear(g) + 0.0722 * linear(b)
 }

@@ -24,7 +24,7 @@ use std::sync::atomic::AtomicBool;
 const THROWS: u64 = 48;
 
 /// The paper's roll and its twin at ε = 1e-9, 700 steps in, paused.
-fn twin_scene(theme: Theme) -> Scene {
+pub(crate) fn twin_scene(theme: Theme) -> Scene {
     let mut s = start();
     s.app.theme = theme;
     s.key(KeyCode::Char('T'));
@@ -77,11 +77,11 @@ fn with_curve(mut s: Scene, generation: u64, state: CurveState) -> Scene {
     s
 }
 
-fn complete(theme: Theme) -> Scene {
+pub(crate) fn complete(theme: Theme) -> Scene {
     with_curve(twin_scene(theme), 1, CurveState::Complete(curves().1.clone()))
 }
 
-fn partial() -> Scene {
+pub(crate) fn partial() -> Scene {
     with_curve(
         twin_scene(Theme::default()),
         1,
@@ -90,7 +90,7 @@ fn partial() -> Scene {
 }
 
 /// A setup whose throws cannot settle: the time cap ends every roll in mid-air.
-fn failed() -> Scene {
+pub(crate) fn failed() -> Scene {
     let s = twin_scene(Theme::default());
     let mut setup: CurveSetup = s.engine.curve_setup().expect("a twin rolls");
     setup.params.integrator.max_time = 0.01;

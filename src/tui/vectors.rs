@@ -144,3 +144,65 @@ pub(crate) fn legend(app: &App, width: u16) -> Vec<Line<'static>> {
     };
     vec![Line::from(first), Line::styled(scale, app.theme.heading())]
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::camera::inside;
+    use super::super::die::{View, picture, place_labels};
+    use super::super::tests::mid_impact_with;
+    use super::super::theme::{Palette, Theme};
+    use super::super::twin_tests::twin_scene;
+    use super::*;
+    use ratatui::crossterm::event::KeyCode;
+    use ratatui::layout::Rect;
+
+    /// Arrow labels find free cells: each arrow's symbol is placed, off the die, apart from
+    /// every other label by at least one blank cell, at the die panel's sizes from the
+    /// classroom's 80×24 to a wide screen.
+    #[test]
+    fn arrow_labels_sit_off_the_die_and_apart() {
+        let projector = Theme {
+            colour: true,
+            palette: Palette::Projector,
+        };
+        let mut impact = mid_impact_with(projector);
+        impact.key(KeyCode::Char('v'));
+        let mut twin = twin_scene(projector);
+        twin.key(KeyCode::Char('v'));
+        for (name, app) in [("mid impact", &impact.app), ("twin", &twin.app)] {
+            let touching = app.roll.live.die.forces.iter().filter(|f| f.depth > 0.0).count();
+            for (w, h) in [(38, 14), (48, 20), (70, 26)] {
+                let view = View::new(app, Rect::new(0, 0, w, h));
+                let pic = picture(app, &view);
+                let placed = place_labels(&pic.labels, &view, &pic.outline);
+                let count = |s: &str| placed.iter().filter(|(_, _, l)| l.text == s).count();
+                for kind in [Arrow::AngularVelocity, Arrow::AngularMomentum, Arrow::Velocity] {
+                    assert_eq!(count(kind.symbol()), 1, "{name} {w}×{h}: {}", kind.symbol());
+                }
+                assert_eq!(count("F"), touching, "{name} {w}×{h}: one F per touching corner");
+                for (c, r, l) in placed.iter().filter(|(_, _, l)| l.movable) {
+                    for x in *c..c + l.text.chars().count() as u16 {
+                        assert!(
+                            !inside(&pic.outline, view.centre_of(x, *r)),
+                            "{name} {w}×{h}: {:?} on the die at ({x},{r})",
+                            l.text
+                        );
+                    }
+                }
+                for (i, (c1, r1, l1)) in placed.iter().enumerate() {
+                    for (c2, r2, l2) in &placed[i + 1..] {
+                        let (a, b) = (*c1 as i32, *c2 as i32);
+                        let (la, lb) = (l1.text.chars().count() as i32, l2.text.chars().count() as i32);
+                        let gap = if l1.movable || l2.movable { 1 } else { 0 };
+                        let apart = r1 != r2 || a + la + gap <= b || b + lb + gap <= a;
+                        assert!(
+                            apart,
+                            "{name} {w}×{h}: {:?} at ({c1},{r1}) and {:?} at ({c2},{r2})",
+                            l1.text, l2.text
+                        );
+                    }
+                }
+            }
+        }
+    }
+}

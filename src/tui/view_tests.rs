@@ -148,7 +148,7 @@ fn the_solid_die_at_rest_from_two_angles() {
 }
 
 /// The shipped loaded die, `steps` steps into its own roll.
-fn loaded_after(steps: u64, theme: Theme) -> Scene {
+pub(crate) fn loaded_after(steps: u64, theme: Theme) -> Scene {
     use crate::preset::{Preset, shipped_text};
     let text = shipped_text("loaded-corner").expect("shipped");
     let preset = Preset::from_toml_str(text, "loaded-corner").expect("valid");
