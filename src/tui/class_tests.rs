@@ -509,6 +509,7 @@ mod export {
     use crate::physics::Simulation;
     use crate::tui::app::Msg;
     use crate::tui::input::update;
+    use crate::tui::tests::screen;
     use crate::worker::Command;
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 
@@ -605,6 +606,75 @@ mod export {
         assert!(dir.path().join("dicesim-paper-preset-roll-2.csv").is_file());
         assert!(dir.path().join("dicesim-paper-preset-roll-2.png").is_file());
         assert_eq!(std::fs::read_to_string(&csv).expect("kept"), text);
+    }
+
+    #[test]
+    fn a_sends_the_animation_of_the_camera_s_view_and_the_status_line_follows_it() {
+        let mut s = start();
+        s.app.camera.orbit(15.0, 10.0);
+        let (yaw_deg, pitch_deg) = (s.app.camera.yaw_deg, s.app.camera.pitch_deg);
+        assert_eq!(
+            press(&mut s.app, KeyCode::Char('A')),
+            [Command::ExportAnimation {
+                dir: ".".into(),
+                yaw_deg,
+                pitch_deg
+            }]
+        );
+        // Ordered into a folder of its own: the status line tells the rolling and the
+        // drawing, and the same key (or the roll's export key) cancels.
+        let dir = tempfile::tempdir().expect("temp dir");
+        s.command(Command::ExportAnimation {
+            dir: dir.path().to_path_buf(),
+            yaw_deg,
+            pitch_deg,
+        });
+        let status = screen(&s.app, 120, 40);
+        assert!(
+            status.contains("exporting the animation: rolling, 0% of the time cap · A cancels"),
+            "{status}"
+        );
+        s.app.roll.export = Some(crate::worker::ExportStatus::Animation(
+            crate::experiment::animation::AnimationProgress {
+                drawing: true,
+                done: 12,
+                total: 80,
+            },
+        ));
+        let status = screen(&s.app, 120, 40);
+        assert!(
+            status.contains("exporting the animation: frame 12 of 80 · A cancels"),
+            "{status}"
+        );
+        assert_eq!(press(&mut s.app, KeyCode::Char('A')), [Command::ExportCancel]);
+        assert_eq!(press(&mut s.app, KeyCode::Char('e')), [Command::ExportCancel]);
+        s.command(Command::ExportCancel);
+        assert_eq!(
+            s.app.notice.as_deref(),
+            Some("export cancelled: nothing was written")
+        );
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+        // Done: the status line says where it went.
+        s.command(Command::ExportAnimation {
+            dir: dir.path().to_path_buf(),
+            yaw_deg,
+            pitch_deg,
+        });
+        s.engine.run_export_here();
+        s.sync();
+        let gif = std::fs::canonicalize(dir.path())
+            .unwrap()
+            .join("dicesim-paper-preset-roll.gif");
+        assert!(
+            gif.is_file(),
+            "{:?}",
+            std::fs::read_dir(dir.path()).unwrap().collect::<Vec<_>>()
+        );
+        let status = screen(&s.app, 160, 40);
+        assert!(
+            status.contains(&format!("animation saved to {}", gif.display())),
+            "{status}"
+        );
     }
 
     #[test]

@@ -144,6 +144,10 @@ fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
             let c = app.roll.export_command(app.log_scale);
             app.setup.send(out, c);
         }
+        Action::ExportAnimation => {
+            let c = app.roll.animation_command(&app.camera);
+            app.setup.send(out, c);
+        }
         Action::Arrows => app.vectors = !app.vectors,
         Action::Twin | Action::TwinEpsilonDown | Action::TwinEpsilonUp | Action::TwinEpsilonType => {
             if !super::twin::on_key(app, action, out) {

@@ -80,6 +80,7 @@ pub(crate) enum Action {
     TypeValue,
     LogScale,
     Export,
+    ExportAnimation,
     Arrows,
     Twin,
     TwinEpsilonDown,
@@ -362,6 +363,14 @@ pub(crate) const BINDINGS: &[Binding] = &[
         A::Export,
         hint("e", "export", 4),
         "export the roll into the current folder: its trace (CSV) and energy plot (PNG); e again cancels"
+    ),
+    row!(
+        Die,
+        [K::Char('A')],
+        "A",
+        A::ExportAnimation,
+        None,
+        "export the roll as shown as an animated GIF (current folder); A again cancels"
     ),
     row!(
         Die,

@@ -95,6 +95,20 @@ impl RollView {
         }
     }
 
+    /// The animation key: the roll on screen written into the current folder as an
+    /// animated GIF seen from `camera`, or the running export cancelled.
+    pub(crate) fn animation_command(&self, camera: &super::camera::Camera) -> Command {
+        if self.export.is_some() {
+            Command::ExportCancel
+        } else {
+            Command::ExportAnimation {
+                dir: ".".into(),
+                yaw_deg: camera.yaw_deg,
+                pitch_deg: camera.pitch_deg,
+            }
+        }
+    }
+
     /// `B`: 1 000 → 10 000 → 100 000 → type one → 1 000 …; the notice, or `None` when
     /// the next step is typing one.
     pub(crate) fn next_batch_size(&mut self) -> Option<String> {
@@ -133,6 +147,20 @@ impl RollView {
                     "exporting the basin map at {w}×{h} px · {} cancels",
                     label(Screen::Map, Action::ExportMap)
                 ));
+            }
+            ExportStatus::Animation(p) => {
+                let cancel = label(Screen::Die, Action::ExportAnimation);
+                let share = 100.0 * p.done as f64 / p.total.max(1) as f64;
+                return Some(if p.drawing {
+                    format!(
+                        "exporting the animation: frame {} of {} · {cancel} cancels",
+                        p.done, p.total
+                    )
+                } else {
+                    format!(
+                        "exporting the animation: rolling, {share:.0}% of the time cap · {cancel} cancels"
+                    )
+                });
             }
         };
         let share = 100.0 * p.steps_done as f64 / p.steps_total.max(1) as f64;

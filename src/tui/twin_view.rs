@@ -4,12 +4,8 @@
 //! never older than one already shown. Its keys are in [`super::twin`].
 
 use super::format::fmt_num;
-use crate::experiment::twin::EPSILON;
+use crate::experiment::twin::{DEFAULT_EPSILON, EPSILON};
 use crate::worker::{Command, CurveUpdate, SeparationSample, Snapshot};
-
-/// The ε a twin starts with: small enough to look like "the same throw", large enough that
-/// on the paper's setup the face often changes.
-pub(crate) const DEFAULT_EPSILON: f64 = 1e-9;
 
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct TwinView {

@@ -11,6 +11,8 @@ use super::map::MapJob;
 use super::twin::Twin;
 use super::{BatchProgress, Command, ExportStatus, MapExport, Notice, OutcomeTable, RollKind, Snapshot};
 use crate::experiment::RollRecord;
+use crate::experiment::animation::render::Camera;
+use crate::experiment::animation::{AnimationProgress, AnimationSpec};
 use crate::experiment::trace::{ExportProgress, human_bytes};
 use crate::output::safe_file_stem;
 use crate::physics::{InitialCondition, ParamError, Params};
@@ -24,6 +26,11 @@ pub struct BatchRequest {
     pub(crate) params: Params,
     pub(crate) rolls: Vec<(u64, InitialCondition)>,
 }
+
+/// Frames per second and pixels of the explorer's animations: a slide's size, as
+/// `dicesim animate` writes by default.
+const ANIMATION_FPS: u32 = 25;
+const ANIMATION_SIZE: (u32, u32) = (640, 480);
 
 /// What happened since the last snapshot, besides the roll's own samples.
 #[derive(Debug, Default)]
@@ -209,6 +216,11 @@ impl Engine {
             Command::LoadPreset(preset) => Some(self.load_preset(*preset)),
             Command::Export { dir, log_scale } => self.export_roll(dir, log_scale),
             Command::ExportMap(map) => self.export_map(*map),
+            Command::ExportAnimation {
+                dir,
+                yaw_deg,
+                pitch_deg,
+            } => self.export_animation(dir, Camera { yaw_deg, pitch_deg }),
             Command::ExportCancel => self
                 .export
                 .cancel()
@@ -282,25 +294,40 @@ impl Engine {
         notice
     }
 
+    /// The roll on screen as a file name part: `preset-roll`, `random-roll-4`, `edited-roll`.
+    fn roll_name(&self) -> String {
+        match self.live.roll {
+            RollKind::Preset => "preset-roll".to_string(),
+            RollKind::Random(n) => format!("random-roll-{n}"),
+            RollKind::Edited => "edited-roll".to_string(),
+        }
+    }
+
+    /// The name the roll's exports ask for (`dicesim-paper-preset-roll`), without a number
+    /// or extension.
+    fn export_stem(&self) -> String {
+        // The preset's name comes from a file: it names the export, it never leads elsewhere.
+        format!(
+            "dicesim-{}-{}",
+            safe_file_stem(&self.preset.name),
+            self.roll_name()
+        )
+    }
+
     /// Orders the roll on screen written into `dir` (see [`Command::Export`]): the files
     /// are chosen, checked and written where the job runs (see [`ExportJob::run`]).
     fn export_roll(&mut self, dir: std::path::PathBuf, log_scale: bool) -> Option<Notice> {
         if self.export.id().is_some() {
             return Some(Notice::ExportRunning);
         }
-        let roll = match self.live.roll {
-            RollKind::Preset => "preset-roll".to_string(),
-            RollKind::Random(n) => format!("random-roll-{n}"),
-            RollKind::Edited => "edited-roll".to_string(),
-        };
+        let roll = self.roll_name();
         let title = format!(
             "{} · {} — energy against time",
             self.preset.name,
             roll.replace('-', " ")
         );
         let (params, initial) = (self.live.params, self.live.initial);
-        // The preset's name comes from a file: it names the export, it never leads elsewhere.
-        let stem = format!("dicesim-{}-{roll}", safe_file_stem(&self.preset.name));
+        let stem = self.export_stem();
         let progress = ExportProgress {
             writing: false,
             steps_done: 0,
@@ -344,6 +371,45 @@ impl Engine {
         None
     }
 
+    /// Orders the roll on screen written as an animation (see [`Command::ExportAnimation`]):
+    /// its setup and twin as they are now, at the playback speed (1× when instant, which
+    /// has no pace to film at).
+    fn export_animation(&mut self, dir: std::path::PathBuf, camera: Camera) -> Option<Notice> {
+        if self.export.id().is_some() {
+            return Some(Notice::ExportRunning);
+        }
+        let spec = AnimationSpec {
+            speed: self.live.speed.factor().unwrap_or(1.0),
+            twin: self.live.twin.as_ref().map(|t| t.epsilon),
+            camera,
+            ..AnimationSpec::new(ANIMATION_FPS, ANIMATION_SIZE)
+        };
+        if let Err(e) = spec.validate() {
+            return Some(Notice::Said(format!("cannot export the animation: {e}")));
+        }
+        let progress = AnimationProgress {
+            drawing: false,
+            done: 0,
+            total: self.live.params.max_steps(),
+        };
+        let stem = self.export_stem();
+        let (params, initial) = (self.live.params, self.live.initial);
+        let preset = self.preset.name.clone();
+        self.export
+            .place(ExportStatus::Animation(progress), |id| ExportJob {
+                id,
+                dir,
+                stem,
+                what: Exporting::Animation {
+                    params,
+                    initial,
+                    preset,
+                    spec,
+                },
+            });
+        None
+    }
+
     /// The export to start, once: whoever runs it reports back with
     /// [`Engine::export_progress`] and [`Engine::finish_export`].
     pub(crate) fn take_export_request(&mut self) -> Option<ExportJob> {
@@ -355,9 +421,9 @@ impl Engine {
         self.export.id()
     }
 
-    pub(crate) fn export_progress(&mut self, id: u64, progress: ExportProgress) {
-        if let Some(ExportStatus::Roll(p)) = self.export.state_of(id) {
-            *p = progress;
+    pub(crate) fn export_progress(&mut self, id: u64, progress: ExportStatus) {
+        if let Some(status) = self.export.state_of(id) {
+            *status = progress;
         }
     }
 
@@ -391,10 +457,21 @@ impl Engine {
                 cells.0,
                 cells.1
             ),
+            (_, Ok(Written::Animation { gif, animated })) => format!(
+                "animation saved to {} ({} frames, {:.2} s of roll{})",
+                gif.display(),
+                animated.frames,
+                animated.duration_s,
+                match animated.outcome.face {
+                    Some(f) => format!(", ends on face {f}"),
+                    None => String::new(),
+                }
+            ),
             (_, Err(crate::experiment::Error::Cancelled)) => {
                 "export cancelled: nothing was written".to_string()
             }
             (ExportStatus::Map { .. }, Err(e)) => format!("cannot export the map: {e}"),
+            (ExportStatus::Animation(_), Err(e)) => format!("cannot export the animation: {e}"),
             (ExportStatus::Roll(_), Err(e)) => e.to_string(),
         }));
     }

@@ -19,6 +19,7 @@ pub use curve::{CURVE_STARTS, CurveSetup, CurveState, CurveUpdate};
 pub use engine::{BatchRequest, Engine};
 pub use map::{MapAxis, MapRequest, MapUpdate};
 
+use crate::experiment::animation::AnimationProgress;
 use crate::experiment::trace::ExportProgress;
 use crate::experiment::twin::Separation;
 use crate::experiment::{BasinMap, Layer, Rolls, ScanKey, run_batch};
@@ -79,6 +80,14 @@ pub enum Command {
     /// Write this basin map, as the screen shows it, into a folder: its cells as CSV and
     /// its picture as PNG (on the export's thread, like the roll's).
     ExportMap(Box<MapExport>),
+    /// Write the roll on screen (with its chaos twin when one rolls), rolled again from
+    /// t = 0, into this folder as an animated GIF: seen from the explorer's camera (degrees)
+    /// and played at its speed (on the export's thread, like the roll's).
+    ExportAnimation {
+        dir: std::path::PathBuf,
+        yaw_deg: f64,
+        pitch_deg: f64,
+    },
     ExportCancel,
     Quit,
 }
@@ -103,6 +112,8 @@ pub enum ExportStatus {
     Roll(ExportProgress),
     /// A basin map, drawn at this many pixels.
     Map { size: (u32, u32) },
+    /// The roll as an animation: rolled to its end, then its frames drawn.
+    Animation(AnimationProgress),
 }
 
 /// Which roll is on screen.
@@ -454,7 +465,7 @@ struct Jobs {
     /// Rolls finished since the last tick, and how the batch ended.
     batch: Runner<Vec<RollRecord>, Result<(), String>>,
     /// The newest progress, and what was written.
-    export: Runner<Option<ExportProgress>, ExportResult>,
+    export: Runner<Option<ExportStatus>, ExportResult>,
     /// Maps since the last tick (partial, coarse first, then the complete one).
     map: Runner<Vec<MapUpdate>, ()>,
     maps: MapSink,

@@ -590,7 +590,7 @@ fn encode_apng(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::physics::roll;
 
@@ -651,7 +651,7 @@ mod tests {
     }
 
     /// The GIF's comment extensions (read block by block, as a viewer does).
-    fn gif_comments(bytes: &[u8]) -> Vec<String> {
+    pub(crate) fn gif_comments(bytes: &[u8]) -> Vec<String> {
         let palette = 3 << ((bytes[10] & 7) + 1);
         let mut at = 13 + palette;
         let mut comments = Vec::new();
