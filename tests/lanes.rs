@@ -18,10 +18,10 @@
 
 mod common;
 
-use common::{Table, reference_initial, reference_params};
+use common::{Table, reference_initial, reference_params, state_bits};
 use dicesim::experiment::RandomRanges;
 use dicesim::physics::lanes::{LaneResult, lanes_available, roll_in_lanes, roll_one_by_one};
-use dicesim::physics::{FrictionLaw, InitialCondition, Outcome, Params, State, Status, StopEnergy};
+use dicesim::physics::{FrictionLaw, InitialCondition, Outcome, Params, Status, StopEnergy};
 use rand::{RngExt, SeedableRng};
 
 /// Everything a roll's result carries, as bits.
@@ -33,22 +33,6 @@ struct Bits {
     time_s: u64,
     start_face: u8,
     state: Vec<u64>,
-}
-
-fn state_bits(s: &State) -> Vec<u64> {
-    let mut v: Vec<f64> = Vec::with_capacity(80);
-    v.extend(s.position.iter());
-    v.extend(s.velocity.iter());
-    v.extend(s.angular_momentum.iter());
-    for k in 0..8 {
-        v.extend(s.corner_offsets[k].iter());
-        v.extend(s.corner_forces[k].iter());
-        v.push(s.corner_depths[k]);
-    }
-    v.push(s.time_s);
-    let mut bits: Vec<u64> = v.into_iter().map(f64::to_bits).collect();
-    bits.push(s.step);
-    bits
 }
 
 fn bits(r: &LaneResult<'_>) -> Bits {
