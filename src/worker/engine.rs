@@ -458,12 +458,12 @@ impl Engine {
                 cells.1
             ),
             (_, Ok(Written::Animation { gif, animated })) => format!(
-                "animation saved to {} ({} frames, {:.2} s of roll{})",
+                "animation saved to {} ({} frames, {:.2} s{})",
                 gif.display(),
                 animated.frames,
                 animated.duration_s,
                 match animated.outcome.face {
-                    Some(f) => format!(", ends on face {f}"),
+                    Some(f) => format!(", face {f}"),
                     None => String::new(),
                 }
             ),

@@ -242,9 +242,25 @@ mod tests {
         );
         assert!(words.contains(&format!("{} frames", drawn)), "{words}");
         assert!(
-            words.contains(&format!("ends on face {}", die.face.unwrap())),
+            words.ends_with(&format!(", face {})", die.face.unwrap())),
             "{words}"
         );
+    }
+
+    #[test]
+    fn an_instant_explorer_films_in_real_time_and_a_removed_twin_is_not_filmed() {
+        let mut engine = Engine::new(&Preset::default()).expect("valid preset");
+        engine.handle(Command::SetTwin(Some(1e-6)));
+        engine.handle(Command::SetTwin(None));
+        engine.handle(Command::SetSpeed(Speed::INSTANT));
+        engine.handle(animation_command(std::path::Path::new(".")));
+        let job = engine.take_export_request().expect("an export ordered");
+        let super::Exporting::Animation { spec, .. } = job.what else {
+            panic!("an animation: {:?}", job.what)
+        };
+        assert_eq!(spec.speed, 1.0, "instant has no pace: real time");
+        assert_eq!(spec.twin, None);
+        assert_eq!((spec.camera.yaw_deg, spec.camera.pitch_deg), (50.0, 40.0));
     }
 
     #[test]
