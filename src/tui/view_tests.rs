@@ -765,3 +765,43 @@ mod real_dice {
         assert!((7..=15).contains(&counted), "{counted} pips");
     }
 }
+
+/// The real dice's values in the parameter list: a value in range that no body can have
+/// with the others is refused with the physics' reason and changes nothing; one it can have
+/// is sent to the worker, which restarts the roll with the new body.
+#[test]
+fn a_body_value_no_die_can_have_is_refused_and_changes_nothing() {
+    use super::param::Param;
+    let preset = crate::preset::Preset::from_toml_str(
+        crate::preset::shipped_text("rounded-die").expect("shipped"),
+        "rounded-die",
+    )
+    .expect("valid");
+    let mut s = Scene::new(&preset, Theme::default());
+    let before = (s.app.setup.params, s.app.setup.initial);
+    let mut out = Vec::new();
+    // In the row's range (0…10 cm) but not below the smallest half size, 0.8 cm.
+    let radius = Param::named("die.corner_radius");
+    let refused = s.app.setup.set_param(&mut out, radius, 0.9).unwrap_err();
+    assert!(refused.contains("below the smallest half size"), "{refused}");
+    // Pips 0.5 cm wide do not fit beside each other on a 1.6 cm face rounded by 0.15 cm.
+    let refused = s
+        .app
+        .setup
+        .set_param(&mut out, Param::named("die.pip_diameter"), 0.5)
+        .unwrap_err();
+    assert!(refused.contains("at most 0.4 cm"), "{refused}");
+    assert!(out.is_empty() && (s.app.setup.params, s.app.setup.initial) == before);
+    // A flatter die is a die: the worker takes it and rolls it from the start.
+    let z = Param::named("die.half_sizes.z");
+    s.engine.advance_steps(50);
+    s.app.setup.set_param(&mut out, z, 0.6).expect("a body");
+    for c in out {
+        s.command(c);
+    }
+    assert_eq!(s.app.roll.live.params.die.half_sizes, [0.8, 0.8, 0.6]);
+    assert_eq!(
+        s.app.roll.live.timeline.position, 0,
+        "the body changed: the roll starts again"
+    );
+}
