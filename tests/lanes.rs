@@ -6,22 +6,22 @@
 //! for any time limit, and the cut keeps the test fast: flight, impacts and the first
 //! bounces, each ending as a timeout unless it settled or blew up first), 5 000 more rolled
 //! to their natural end, and every reference initial condition. The same for three loaded
-//! dice (their full inertia tensor and per-face stopping rule), 25 000 cut rolls and 500
-//! whole ones each per law and stop energy, 100 000 cut rolls per die in all. A loaded die's
-//! step rebuilds and inverts its tensor and rebuilds the spin's rotation every step, in flight
-//! too: about twice a fair step's instructions (callgrind over cut rolls like these: 1370 against
-//! 649 scalar, 551 against 308 per lane), and a chain of dependent divisions, a square root
-//! and a sine that takes longer still, so a loaded cut roll costs 3–4 fair ones and these are
-//! most of this file's time; 100 000 per law and stop energy would add minutes to CI. Then a
+//! dice (their full inertia tensor and per-face stopping rule): 100 000 cut rolls and 500
+//! whole ones each per law and stop energy. A loaded die's step rebuilds and inverts its
+//! tensor and rebuilds the spin's rotation every step, in flight too: about twice a fair
+//! step's instructions (callgrind over cut rolls like these: 1370 against 649 scalar, 551
+//! against 308 per lane), and a chain of dependent divisions, a square root and a sine that
+//! takes longer still, so a loaded cut roll costs 3–4 fair ones and these are most of this
+//! file's time (about two minutes on two idle cores). Then a
 //! mixed sample where neighbouring lanes carry different parameters, laws, stop energies and
 //! dice, with soft, stiff, damped and coarse-Δt setups that end in every status.
 
 mod common;
 
-use common::{Table, reference_initial, reference_params};
+use common::{Table, reference_initial, reference_params, state_bits};
 use dicesim::experiment::RandomRanges;
 use dicesim::physics::lanes::{LaneResult, lanes_available, roll_in_lanes, roll_one_by_one};
-use dicesim::physics::{FrictionLaw, InitialCondition, Outcome, Params, State, Status, StopEnergy};
+use dicesim::physics::{FrictionLaw, InitialCondition, Outcome, Params, Status, StopEnergy};
 use rand::{RngExt, SeedableRng};
 
 /// Everything a roll's result carries, as bits.
@@ -33,22 +33,6 @@ struct Bits {
     time_s: u64,
     start_face: u8,
     state: Vec<u64>,
-}
-
-fn state_bits(s: &State) -> Vec<u64> {
-    let mut v: Vec<f64> = Vec::with_capacity(80);
-    v.extend(s.position.iter());
-    v.extend(s.velocity.iter());
-    v.extend(s.angular_momentum.iter());
-    for k in 0..8 {
-        v.extend(s.corner_offsets[k].iter());
-        v.extend(s.corner_forces[k].iter());
-        v.push(s.corner_depths[k]);
-    }
-    v.push(s.time_s);
-    let mut bits: Vec<u64> = v.into_iter().map(f64::to_bits).collect();
-    bits.push(s.step);
-    bits
 }
 
 fn bits(r: &LaneResult<'_>) -> Bits {
@@ -123,7 +107,7 @@ fn assert_identical(what: &str, setups: &[(Params, InitialCondition)]) -> [usize
 const CUT_ROLLS: u64 = 100_000;
 const CUT_TIME_S: f64 = 0.6;
 const WHOLE_ROLLS: u64 = 5_000;
-const LOADED_CUT_ROLLS: u64 = 25_000;
+const LOADED_CUT_ROLLS: u64 = 100_000;
 const LOADED_WHOLE_ROLLS: u64 = 500;
 
 /// g of extra mass at corners 1..8: one heavy corner, two unequal corners, every corner a

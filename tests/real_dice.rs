@@ -2,32 +2,24 @@
 //! engine widths; a general body's torque-free flight and the tennis-racket flip; the size
 //! keys of a preset file.
 
+mod common;
+
+use common::state_bits;
 use dicesim::experiment::RandomRanges;
 use dicesim::physics::lanes::{LaneResult, lanes_available, roll_in_lanes, roll_one_by_one};
 use dicesim::physics::{InitialCondition, Params, Simulation};
 use dicesim::preset::{Preset, SHIPPED};
 use nalgebra::Vector3;
 
-/// A roll's result as bits: status, face, steps, time and the whole final state.
+/// A roll's result as bits: the whole final state, then end time, status, face, steps and
+/// start face.
 fn bits(r: &LaneResult<'_>) -> Vec<u64> {
-    let s = r.state;
-    let mut v: Vec<f64> = Vec::new();
-    v.extend(s.position.iter());
-    v.extend(s.velocity.iter());
-    v.extend(s.angular_momentum.iter());
-    for k in 0..8 {
-        v.extend(s.corner_offsets[k].iter());
-        v.extend(s.corner_forces[k].iter());
-        v.push(s.corner_depths[k]);
-    }
-    v.push(s.time_s);
-    v.push(r.outcome.time_s);
-    let mut out: Vec<u64> = v.into_iter().map(f64::to_bits).collect();
+    let mut out = state_bits(r.state);
     out.extend([
+        r.outcome.time_s.to_bits(),
         r.outcome.status as u64,
         r.outcome.face.map_or(0, u64::from),
         r.outcome.steps,
-        s.step,
         u64::from(r.start_face),
     ]);
     out

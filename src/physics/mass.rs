@@ -103,16 +103,7 @@ impl LoadedMass {
     /// The widest rule over the faces: the largest of each threshold, which every face's
     /// rule passes within (the step's cheap screen before the face down is looked up).
     pub(crate) fn widest_stop_rule(&self) -> StopRule {
-        let widest = |threshold: fn(&StopRule) -> f64| {
-            self.face_rules
-                .iter()
-                .map(threshold)
-                .fold(f64::NEG_INFINITY, f64::max)
-        };
-        StopRule {
-            energy_threshold: widest(|r| r.energy_threshold),
-            kinetic_threshold: widest(|r| r.kinetic_threshold),
-        }
+        StopRule::widest(&self.face_rules)
     }
 
     /// The authors' point-mass energy with each corner's own mass: the corner masses

@@ -252,16 +252,7 @@ impl Shape {
 
     /// The widest rule over the faces (the step's cheap screen).
     pub(crate) fn widest_stop_rule(&self) -> StopRule {
-        let widest = |threshold: fn(&StopRule) -> f64| {
-            self.face_rules
-                .iter()
-                .map(threshold)
-                .fold(f64::NEG_INFINITY, f64::max)
-        };
-        StopRule {
-            energy_threshold: widest(|r| r.energy_threshold),
-            kinetic_threshold: widest(|r| r.kinetic_threshold),
-        }
+        StopRule::widest(&self.face_rules)
     }
 
     /// cm, the contact spheres' centres relative to the centre of mass at the start, world

@@ -21,6 +21,17 @@ pub struct StopRule {
 }
 
 impl StopRule {
+    /// The widest of several faces' rules: the largest of each threshold, which every one of
+    /// them passes within (the step's cheap screen before the face down is looked up).
+    pub(crate) fn widest(rules: &[StopRule; 6]) -> StopRule {
+        let widest =
+            |threshold: fn(&StopRule) -> f64| rules.iter().map(threshold).fold(f64::NEG_INFINITY, f64::max);
+        StopRule {
+            energy_threshold: widest(|r| r.energy_threshold),
+            kinetic_threshold: widest(|r| r.kinetic_threshold),
+        }
+    }
+
     /// `energy_threshold = min(f·E_edge, V_edge − ½·(1 − f)·E_edge)` and
     /// `kinetic_threshold = energy_threshold − V_rest`; both are −∞ (the roll can only end
     /// as a timeout) when the table cannot hold the die on a face: its resting centre would

@@ -143,3 +143,20 @@ pub fn png_text(path: &std::path::Path) -> std::collections::BTreeMap<String, St
         .map(|c| (c.keyword.clone(), c.get_text().unwrap()))
         .collect()
 }
+
+/// A state's every number as bits, and its step count: what two engines must agree on.
+pub fn state_bits(s: &dicesim::physics::State) -> Vec<u64> {
+    let mut v: Vec<f64> = Vec::with_capacity(80);
+    v.extend(s.position.iter());
+    v.extend(s.velocity.iter());
+    v.extend(s.angular_momentum.iter());
+    for k in 0..8 {
+        v.extend(s.corner_offsets[k].iter());
+        v.extend(s.corner_forces[k].iter());
+        v.push(s.corner_depths[k]);
+    }
+    v.push(s.time_s);
+    let mut bits: Vec<u64> = v.into_iter().map(f64::to_bits).collect();
+    bits.push(s.step);
+    bits
+}
