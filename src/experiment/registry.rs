@@ -226,10 +226,8 @@ pub const HALF_SIZES: Spec = Spec {
     },
     role: Role::Die,
     comment: "cm, half the side along x (faces 1, 6), y (2, 5), z (3, 4); a cube may give `half_size = a`",
-    // Not in the explorer's list yet: its drawing of a cuboid comes with the list's rows
-    // for the three sizes and the pips.
-    labels: &[],
-    list_position: u8::MAX,
+    labels: &["half size x", "half size y", "half size z"],
+    list_position: 16,
     nudge: Some(Nudge::Add {
         fine: 0.05,
         coarse: 0.5,
@@ -248,7 +246,7 @@ pub const CORNER_RADIUS: Spec = Spec {
     role: Role::Die,
     comment: "cm, rounded corners and edges (0: sharp, the paper's); below the smallest half size",
     labels: &["corner radius r"],
-    list_position: 15,
+    list_position: 17,
     nudge: Some(Nudge::Add {
         fine: 0.01,
         coarse: 0.1,
@@ -263,8 +261,8 @@ pub const PIP_DIAMETER: Spec = Spec {
     shape: Shape::Number(Params::DEFAULT.die.pip_diameter),
     role: Role::Die,
     comment: "cm, each pip's opening; the pips must lie apart on the flat of every face",
-    labels: &[],
-    list_position: u8::MAX,
+    labels: &["pip diameter"],
+    list_position: 18,
     nudge: Some(Nudge::Add {
         fine: 0.01,
         coarse: 0.1,
@@ -279,8 +277,8 @@ pub const PIP_DEPTH: Spec = Spec {
     shape: Shape::Number(Params::DEFAULT.die.pip_depth),
     role: Role::Die,
     comment: "cm, pips drilled as spherical caps this deep (0: none), at most half the diameter",
-    labels: &[],
-    list_position: u8::MAX,
+    labels: &["pip depth"],
+    list_position: 19,
     nudge: Some(Nudge::Add {
         fine: 0.005,
         coarse: 0.05,
@@ -296,7 +294,7 @@ pub const CORNER_MASS: Spec = Spec {
     role: Role::Die,
     comment: "g, each of the 8 corners",
     labels: &["corner mass m"],
-    list_position: 16,
+    list_position: 15,
     nudge: Some(Nudge::Times {
         fine: 1.1,
         coarse: 2.0,
@@ -321,7 +319,7 @@ pub const EXTRA_CORNER_MASS: Spec = Spec {
         "extra mass 7",
         "extra mass 8",
     ],
-    list_position: 17,
+    list_position: 20,
     nudge: Some(Nudge::Add {
         fine: 0.1,
         coarse: 1.0,

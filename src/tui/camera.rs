@@ -1,5 +1,7 @@
-//! The die's view: an orbiting, zooming orthographic camera and the cube's geometry.
+//! The die's view: an orbiting, zooming orthographic camera and the body's geometry.
 
+use crate::physics::Die;
+use crate::physics::body::CORNER_SIGNS;
 use nalgebra::Vector3;
 
 /// Corner indices (0-based) of faces 1..6 (docs/model.md, "Faces").
@@ -102,14 +104,106 @@ impl Camera {
     }
 }
 
-/// Outward normal of face `f` (0-based) of a cube with these corners.
-pub(crate) fn face_normal(corners: &[Vector3<f64>; 8], centre: &Vector3<f64>, f: usize) -> Vector3<f64> {
-    face_centre(corners, f) - centre
+/// The die's body in the world, as the worker reports it (its 8 corner-sphere centres, which
+/// for a sharp die are its corners) with the sizes the physics gives it: the box of the three
+/// half sizes shrunk by the corner radius and grown by a ball of that radius.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Solid {
+    /// cm, world: the centres of the corner spheres 1..8.
+    pub(crate) spheres: [Vector3<f64>; 8],
+    /// cm, the corner radius.
+    pub(crate) radius: f64,
+    /// cm, the three half sizes of the sharp box.
+    pub(crate) half_sizes: [f64; 3],
+    /// cm, world: the geometric centre (not the centre of mass of a drilled or loaded die).
+    pub(crate) centre: Vector3<f64>,
+    /// The body's x, y and z axes in the world, unit vectors.
+    pub(crate) axes: [Vector3<f64>; 3],
 }
 
-pub(crate) fn face_centre(corners: &[Vector3<f64>; 8], f: usize) -> Vector3<f64> {
-    FACE_CORNERS[f].iter().map(|&k| corners[k]).sum::<Vector3<f64>>() / 4.0
+impl Solid {
+    pub(crate) fn new(die: &Die, spheres: &[Vector3<f64>; 8]) -> Solid {
+        let radius = die.corner_radius;
+        let centre = spheres.iter().sum::<Vector3<f64>>() / 8.0;
+        // Corners 1 and 5, 3 and 1, 2 and 1 differ along x, y and z only, by twice the
+        // spheres' box half size `a − r` (positive: the radius is below every half size).
+        let along = |k: usize, i: usize| (spheres[k] - spheres[0]) / (2.0 * (die.half_sizes[i] - radius));
+        Solid {
+            spheres: *spheres,
+            radius,
+            half_sizes: die.half_sizes,
+            centre,
+            axes: [along(4, 0), along(2, 1), along(1, 2)],
+        }
+    }
+
+    /// A body-frame direction in the world.
+    pub(crate) fn direction(&self, v: [f64; 3]) -> Vector3<f64> {
+        self.axes[0] * v[0] + self.axes[1] * v[1] + self.axes[2] * v[2]
+    }
+
+    /// cm, world: a body-frame point about the geometric centre.
+    pub(crate) fn point(&self, p: [f64; 3]) -> Vector3<f64> {
+        self.centre + self.direction(p)
+    }
+
+    /// The outward normal of face `f` (0-based), world.
+    pub(crate) fn normal(&self, f: usize) -> Vector3<f64> {
+        self.direction(crate::physics::face_frame(f as u8 + 1)[0])
+    }
+
+    /// cm, world: the corners of face `f`'s flat part (0-based face, corners in
+    /// [`FACE_CORNERS`] order): its corner spheres' centres moved out by the radius. For a
+    /// sharp die these are the face's corners.
+    pub(crate) fn flat_face(&self, f: usize) -> [Vector3<f64>; 4] {
+        let out = self.normal(f) * self.radius;
+        FACE_CORNERS[f].map(|k| self.spheres[k] + out)
+    }
+
+    /// cm, world: sharp corner `k` (0-based) of the box the body is rounded from, where a
+    /// loaded die's extra mass sits.
+    pub(crate) fn sharp_corner(&self, k: usize) -> Vector3<f64> {
+        self.spheres[k] + self.direction(CORNER_SIGNS[k]) * self.radius
+    }
+
+    /// cm, world: the bottom of corner sphere `k`, where it touches the table.
+    pub(crate) fn foot_of_sphere(&self, k: usize) -> Vector3<f64> {
+        self.spheres[k] - Vector3::z() * self.radius
+    }
+
+    /// cm, world: the body's lowest point.
+    pub(crate) fn lowest(&self) -> Vector3<f64> {
+        let k = (0..8)
+            .min_by(|&i, &j| self.spheres[i].z.total_cmp(&self.spheres[j].z))
+            .unwrap_or(0);
+        self.foot_of_sphere(k)
+    }
+
+    /// The body's outline on the view plane, counter-clockwise: the hull of the corners for
+    /// a sharp die; for a rounded one the hull of the discs the corner spheres project to
+    /// (an orthographic view keeps lengths, so each ball is a disc of the corner radius),
+    /// which rounds the outline's corners with arcs.
+    pub(crate) fn outline(&self, flat: impl Fn(&Vector3<f64>) -> Flat) -> Vec<Flat> {
+        let centres = self.spheres.map(|c| flat(&c));
+        if self.radius <= 0.0 {
+            return convex_hull(&centres);
+        }
+        let discs: Vec<Flat> = centres
+            .iter()
+            .flat_map(|&(x, y)| {
+                (0..ARC_POINTS).map(move |i| {
+                    let (s, c) = (std::f64::consts::TAU * i as f64 / ARC_POINTS as f64).sin_cos();
+                    (x + self.radius * c, y + self.radius * s)
+                })
+            })
+            .collect();
+        convex_hull(&discs)
+    }
 }
+
+/// Points on each corner sphere's outline: enough that its arc reads as round at any zoom
+/// the explorer allows.
+const ARC_POINTS: usize = 32;
 
 /// A point on the view plane, cm: across and up the screen.
 pub(crate) type Flat = (f64, f64);

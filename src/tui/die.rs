@@ -12,13 +12,11 @@
 //! Labels are placed last on a grid of taken cells, so none ever covers another.
 
 use super::app::{App, Drawing};
-use super::camera::{
-    Camera, EDGES, FACE_CORNERS, Flat, convex_hull, face_centre, face_normal, inside, outside_parts,
-};
+use super::camera::{Camera, EDGES, FACE_CORNERS, Flat, Solid, convex_hull, inside, outside_parts};
 use super::format::{fmt_num, wrap_words};
 use super::vectors::{self, Arrow};
 use crate::physics::stopping::why_it_cannot_settle;
-use crate::physics::{PIP_LAYOUT, Status, UnstableReason};
+use crate::physics::{Status, UnstableReason, face_frame, pip_centres};
 use crate::worker::{DieState, Phase};
 use nalgebra::Vector3;
 use ratatui::Frame;
@@ -30,10 +28,11 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::canvas::{Canvas, Line as CanvasLine, Points};
 use ratatui::widgets::{Block, Clear, Paragraph};
 
-/// A pip's radius, in units of the face's half side.
+/// An undrilled die's drawn pip radius, in units of the face's smaller half size.
 const PIP_RADIUS: f64 = 0.17;
 
-/// Where the frame marking the face up sits, in units of the half side from the centre.
+/// Where the frame marking the face up sits, in units of the face's half sizes from its
+/// centre (never past the flat part of a rounded face).
 const UP_FRAME: f64 = 0.82;
 
 /// A line on the view plane, cm.
@@ -96,10 +95,11 @@ impl View {
         let centre_y = camera.project(&die.centre, &focus).y.max(0.35 * height);
         // Never above the die's lowest corner: a short panel shows the whole die resting on
         // the table and gives up sky instead.
+        let radius = app.roll.live.params.die.corner_radius;
         let lowest = die
             .corners
             .iter()
-            .map(|p| camera.project(p, &focus).y)
+            .map(|p| camera.project(p, &focus).y - radius)
             .fold(f64::INFINITY, f64::min);
         let bottom = (centre_y - height / 2.0).min(lowest - 0.04 * height);
         View {
@@ -141,9 +141,14 @@ impl View {
     }
 }
 
-/// Which faces (0-based) of a die with these corners the camera sees, and how squarely.
-fn seen_faces(camera: &Camera, die: &DieState) -> [f64; 6] {
-    std::array::from_fn(|f| camera.facing(&face_normal(&die.corners, &die.centre, f)))
+/// Which faces (0-based) of the body the camera sees, and how squarely.
+fn seen_faces(camera: &Camera, body: &Solid) -> [f64; 6] {
+    std::array::from_fn(|f| camera.facing(&body.normal(f)))
+}
+
+/// The body of a die state (the live die's or the twin's), with the setup's sizes.
+fn solid(app: &App, die: &DieState) -> Solid {
+    Solid::new(&app.roll.live.params.die, &die.corners)
 }
 
 /// Edges that border a seen face: exactly the visible ones of a convex body.
@@ -188,7 +193,7 @@ impl Picture {
 /// Whether the camera of `view` sees corner `k` of the die on screen.
 #[cfg(test)]
 pub(crate) fn corner_is_seen(app: &App, view: &View, k: usize) -> bool {
-    corner_seen(&seen_faces(&view.camera, &app.roll.live.die), k)
+    corner_seen(&seen_faces(&view.camera, &solid(app, &app.roll.live.die)), k)
 }
 
 /// The picture of the die panel: pure geometry of the app state.
@@ -196,10 +201,11 @@ pub(crate) fn picture(app: &App, view: &View) -> Picture {
     let t = &app.theme;
     let die = &app.roll.live.die;
     let half = app.roll.live.params.die.largest_half_size();
+    let body = solid(app, die);
     let mut pic = Picture::default();
     let corners: Vec<Flat> = die.corners.iter().map(|c| view.flat(c)).collect();
-    pic.outline = convex_hull(&corners);
-    let facing = seen_faces(&view.camera, die);
+    pic.outline = body.outline(|p| view.flat(p));
+    let facing = seen_faces(&view.camera, &body);
     let contact: [bool; 8] = std::array::from_fn(|k| die.forces[k].depth > 0.0);
 
     pic.label(
@@ -210,40 +216,31 @@ pub(crate) fn picture(app: &App, view: &View) -> Picture {
     );
     for k in (0..8).filter(|&k| contact[k] && corner_seen(&facing, k)) {
         let dot = if app.drawing == Drawing::Ascii { "@" } else { "●" };
-        pic.label(corners[k], dot, t.contact(), false);
+        pic.label(view.flat(&body.foot_of_sphere(k)), dot, t.contact(), false);
     }
     // A loaded die's extra masses: a mark on each seen heavy corner, and its mass beside
     // it (also for a corner behind the die, whose mark would be hidden).
     let extra = app.roll.live.params.die.extra_corner_mass;
     for k in (0..8).filter(|&k| extra[k] > 0.0) {
+        let at = view.flat(&body.sharp_corner(k));
         if corner_seen(&facing, k) {
             let mark = if app.drawing == Drawing::Ascii { "#" } else { "◆" };
-            pic.label(corners[k], mark, t.heavy(), false);
+            pic.label(at, mark, t.heavy(), false);
         }
-        pic.label(corners[k], format!("+{} g", fmt_num(extra[k])), t.heavy(), true);
+        pic.label(at, format!("+{} g", fmt_num(extra[k])), t.heavy(), true);
     }
 
     // The floor: tiles, the shadow straight below, the drop line, all behind the die.
     ground(&mut pic, app, view, half);
     let foot = |p: &Vector3<f64>| Vector3::new(p.x, p.y, 0.0);
-    let shadow = convex_hull(
-        &die.corners
-            .iter()
-            .map(|c| view.flat(&foot(c)))
-            .collect::<Vec<_>>(),
-    );
+    let shadow = convex_hull(&shadow_points(&body, view));
     if let Some(fill) = t.shadow_fill() {
         pic.shadow = Some((shadow.clone(), fill));
     }
     for i in 0..shadow.len() {
         pic.behind(0, shadow[i], shadow[(i + 1) % shadow.len()], t.shadow());
     }
-    let lowest = die
-        .corners
-        .iter()
-        .min_by(|p, q| p.z.total_cmp(&q.z))
-        .copied()
-        .unwrap_or(die.centre);
+    let lowest = body.lowest();
     if lowest.z > 0.02 * half {
         pic.behind(0, view.flat(&lowest), view.flat(&foot(&lowest)), t.shadow());
     }
@@ -252,53 +249,109 @@ pub(crate) fn picture(app: &App, view: &View) -> Picture {
     }
 
     // The die: its seen faces filled, their edges, pips and the frame of the face up.
+    let drilled = app.roll.live.params.die.is_drilled();
     for f in (0..6).filter(|&f| facing[f] > 0.0) {
-        let up = f as u8 + 1 == die.face_up;
-        let quad: Vec<Flat> = FACE_CORNERS[f].iter().map(|&k| corners[k]).collect();
+        let face = f as u8 + 1;
+        let up = face == die.face_up;
+        let flat_part = body.flat_face(f).map(|p| view.flat(&p));
         if let Some(fill) = t.face_fill(facing[f], up) {
-            pic.faces.push((convex_hull(&quad), fill));
+            pic.faces.push((convex_hull(&flat_part), fill));
         }
-        let [k0, k1, k2, _] = FACE_CORNERS[f];
-        let centre = face_centre(&die.corners, f);
-        let u = (die.corners[k1] - die.corners[k0]) / 2.0;
-        let w = (die.corners[k2] - die.corners[k0]) / 2.0;
-        let on_face = |a: f64, b: f64| view.flat(&(centre + a * u + b * w));
-        for &(a, b) in PIP_LAYOUT[f] {
-            let n = ((2.0 * PIP_RADIUS * half / (0.5 * view.dot())).ceil() as usize).clamp(2, 40);
+        // The face's two edge directions, world, and its half sizes along them, cm.
+        let [normal, e1, e2] = face_frame(face);
+        let (u, w) = (body.direction(e1), body.direction(e2));
+        let size = |e: [f64; 3]| (0..3).map(|i| e[i].abs() * body.half_sizes[i]).sum::<f64>();
+        let (a1, a2) = (size(e1), size(e2));
+        let pip_radius = if drilled {
+            0.5 * app.roll.live.params.die.pip_diameter
+        } else {
+            PIP_RADIUS * a1.min(a2)
+        };
+        let n = ((2.0 * pip_radius / (0.5 * view.dot())).ceil() as usize).clamp(2, 40);
+        for centre in pip_centres(body.half_sizes, face) {
+            let centre = body.point(centre);
             let mut disc = Vec::with_capacity(n * n);
             for i in 0..=n {
                 for j in 0..=n {
                     let (da, db) = (
-                        PIP_RADIUS * (2.0 * i as f64 / n as f64 - 1.0),
-                        PIP_RADIUS * (2.0 * j as f64 / n as f64 - 1.0),
+                        pip_radius * (2.0 * i as f64 / n as f64 - 1.0),
+                        pip_radius * (2.0 * j as f64 / n as f64 - 1.0),
                     );
-                    if da * da + db * db <= PIP_RADIUS * PIP_RADIUS {
-                        disc.push(on_face(a + da, b + db));
+                    if da * da + db * db <= pip_radius * pip_radius {
+                        disc.push(view.flat(&(centre + da * u + db * w)));
                     }
                 }
             }
-            pic.pips.push((on_face(a, b), disc, t.die()));
+            pic.pips.push((view.flat(&centre), disc, t.die()));
         }
         if up {
-            let s = UP_FRAME;
-            let frame = [on_face(-s, -s), on_face(-s, s), on_face(s, s), on_face(s, -s)];
+            let centre = body.centre + body.direction(normal) * size(normal);
+            let flat = |a: f64| (a - body.radius) * 0.95;
+            let (s1, s2) = ((UP_FRAME * a1).min(flat(a1)), (UP_FRAME * a2).min(flat(a2)));
+            let on_face = |x: f64, y: f64| view.flat(&(centre + x * u + y * w));
+            let frame = [
+                on_face(-s1, -s2),
+                on_face(-s1, s2),
+                on_face(s1, s2),
+                on_face(s1, -s2),
+            ];
             for i in 0..4 {
                 pic.stroke(1, frame[i], frame[(i + 1) % 4], t.die());
             }
         }
     }
-    for (a, b) in visible_edges(&facing) {
-        let colour = if contact[a] || contact[b] {
+    let edge_colour = |a: usize, b: usize| {
+        if contact[a] || contact[b] {
             t.contact_colour()
         } else {
             t.die()
-        };
-        pic.stroke(1, corners[a], corners[b], colour);
+        }
+    };
+    if body.radius > 0.0 {
+        // A rounded die: its outline with the corners' arcs, and each seen face's flat part,
+        // so the rounded edges show as the bands between neighbouring faces.
+        let outline = pic.outline.clone();
+        for i in 0..outline.len() {
+            pic.stroke(1, outline[i], outline[(i + 1) % outline.len()], t.die());
+        }
+        for f in (0..6).filter(|&f| facing[f] > 0.0) {
+            let flat_part = body.flat_face(f).map(|p| view.flat(&p));
+            for (i, j) in FLAT_EDGES {
+                let colour = edge_colour(FACE_CORNERS[f][i], FACE_CORNERS[f][j]);
+                pic.stroke(1, flat_part[i], flat_part[j], colour);
+            }
+        }
+    } else {
+        for (a, b) in visible_edges(&facing) {
+            pic.stroke(1, corners[a], corners[b], edge_colour(a, b));
+        }
     }
     if app.vectors {
         arrows(&mut pic, app, view, die);
     }
     pic
+}
+
+/// The sides of a face's flat part, by index into its corners in [`FACE_CORNERS`] order
+/// (the first two and the first and third differ along one edge each).
+const FLAT_EDGES: [(usize, usize); 4] = [(0, 1), (1, 3), (3, 2), (2, 0)];
+
+/// The points whose hull is the body's shadow straight below it: the corner spheres' feet,
+/// and for a rounded die the rims of the discs they cast.
+fn shadow_points(body: &Solid, view: &View) -> Vec<Flat> {
+    let feet = body.spheres.map(|c| Vector3::new(c.x, c.y, 0.0));
+    if body.radius <= 0.0 {
+        return feet.iter().map(|p| view.flat(p)).collect();
+    }
+    const RIM: usize = 32;
+    feet.iter()
+        .flat_map(|p| {
+            (0..RIM).map(move |i| {
+                let (s, c) = (std::f64::consts::TAU * i as f64 / RIM as f64).sin_cos();
+                view.flat(&(p + Vector3::new(c, s, 0.0) * body.radius))
+            })
+        })
+        .collect()
 }
 
 /// A patch of floor tiles around the die, fixed to the world so the die's travel shows
@@ -331,17 +384,32 @@ fn ground(pic: &mut Picture, app: &App, view: &View, half: f64) {
     }
 }
 
-/// The chaos twin's die as a ghost: its own visible edges, hidden where the die covers them.
+/// The chaos twin's die as a ghost: its own visible edges (a rounded die's outline and flat
+/// faces), hidden where the die covers them.
 fn ghost(pic: &mut Picture, app: &App, view: &View, twin: &DieState) {
     let colour = app.theme.ghost();
-    let facing = seen_faces(&view.camera, twin);
-    for (a, b) in visible_edges(&facing) {
-        pic.behind(
-            0,
-            view.flat(&twin.corners[a]),
-            view.flat(&twin.corners[b]),
-            colour,
-        );
+    let body = solid(app, twin);
+    let facing = seen_faces(&view.camera, &body);
+    if body.radius > 0.0 {
+        let outline = body.outline(|p| view.flat(p));
+        for i in 0..outline.len() {
+            pic.behind(0, outline[i], outline[(i + 1) % outline.len()], colour);
+        }
+        for f in (0..6).filter(|&f| facing[f] > 0.0) {
+            let flat_part = body.flat_face(f).map(|p| view.flat(&p));
+            for (i, j) in FLAT_EDGES {
+                pic.behind(0, flat_part[i], flat_part[j], colour);
+            }
+        }
+    } else {
+        for (a, b) in visible_edges(&facing) {
+            pic.behind(
+                0,
+                view.flat(&twin.corners[a]),
+                view.flat(&twin.corners[b]),
+                colour,
+            );
+        }
     }
     pic.label(view.flat(&twin.centre), "twin", Style::new().fg(colour), true);
 }
@@ -549,7 +617,7 @@ pub(crate) fn place_labels(labels: &[Label], view: &View, outline: &[Flat]) -> V
 pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let die = &app.roll.live.die;
-    let lowest = die.corners.iter().map(|c| c.z).fold(f64::INFINITY, f64::min);
+    let lowest = solid(app, die).lowest().z;
     let mut title = vec![
         Span::styled(" die ", t.heading()),
         Span::raw(format!(
@@ -641,17 +709,16 @@ mod tests {
 
     #[test]
     fn each_face_has_its_number_of_pips_and_opposite_faces_sum_to_seven() {
-        let corners = crate::physics::body::body_corner_offsets(1.0);
-        let centre = Vector3::zeros();
-        for (f, pips) in PIP_LAYOUT.iter().enumerate() {
+        let die = crate::physics::Params::DEFAULT.die;
+        let body = Solid::new(&die, &crate::physics::body::body_corner_offsets(1.0));
+        for f in 0..6 {
+            let pips = pip_centres(die.half_sizes, f as u8 + 1);
             assert_eq!(pips.len(), f + 1);
             let opposite = (0..6)
-                .find(|&g| {
-                    (face_normal(&corners, &centre, f) + face_normal(&corners, &centre, g)).norm() < 1e-12
-                })
+                .find(|&g| (body.normal(f) + body.normal(g)).norm() < 1e-12)
                 .expect("a cube's faces come in opposite pairs");
             assert_eq!(
-                PIP_LAYOUT[f].len() + PIP_LAYOUT[opposite].len(),
+                pips.len() + pip_centres(die.half_sizes, opposite as u8 + 1).len(),
                 7,
                 "face {} and face {}",
                 f + 1,

@@ -35,12 +35,24 @@ pub(crate) fn all() -> &'static [Param] {
     &ALL
 }
 
-/// How many entries of the list are the paper's own values: all but a loaded die's extra
-/// corner masses, which come last.
+/// How many entries of the list are the paper's own values: all but a real die's shape
+/// beyond the paper's one half size (the other two half sizes, the corner radius and the
+/// pips) and a loaded die's extra corner masses. The layout gives the list this many rows
+/// when there is room; the rest scroll into view.
 pub(crate) fn paper_rows() -> usize {
+    use crate::experiment::registry::{
+        CORNER_RADIUS, EXTRA_CORNER_MASS, HALF_SIZES, PIP_DEPTH, PIP_DIAMETER,
+    };
     all()
         .iter()
-        .filter(|p| p.key.spec != &crate::experiment::registry::EXTRA_CORNER_MASS)
+        .filter(|p| {
+            let spec = p.key.spec;
+            !(spec == &EXTRA_CORNER_MASS
+                || spec == &CORNER_RADIUS
+                || spec == &PIP_DIAMETER
+                || spec == &PIP_DEPTH
+                || spec == &HALF_SIZES && p.key.component > 0)
+        })
         .count()
 }
 
@@ -171,8 +183,13 @@ mod tests {
                 "roll",
                 "time step Δt",
                 "gravity g",
-                "corner radius r",
                 "corner mass m",
+                "half size x",
+                "half size y",
+                "half size z",
+                "corner radius r",
+                "pip diameter",
+                "pip depth",
                 "extra mass 1",
                 "extra mass 2",
                 "extra mass 3",
@@ -183,6 +200,9 @@ mod tests {
                 "extra mass 8",
             ]
         );
+        // The paper's values: the table's three, the drop height, spin, velocity and
+        // orientation by three each, Δt, g, the half size and the corner mass.
+        assert_eq!(paper_rows(), 3 + 1 + 3 * 3 + 2 + 2);
         assert_eq!(all()[6].key(), "initial.angular_velocity.z");
         assert_eq!(all()[11].key(), "initial.orientation.pitch");
         let mut params = Params::default();

@@ -6,6 +6,7 @@
 
 use super::format::{fmt_num, fmt_range};
 use super::param::Param;
+use crate::physics::params::Detail;
 use crate::physics::{InitialCondition, Params};
 use crate::preset::Preset;
 use crate::worker::{Command, Snapshot, Speed};
@@ -55,10 +56,13 @@ impl Setup {
         }
     }
 
-    /// Sets `p` and tells the worker; a value outside its range, or one that would start
-    /// the die inside the table, is refused in words and changes nothing.
+    /// Sets `p` and tells the worker; a value outside its range, one that would start the
+    /// die inside the table, or one that no body can have with the other values (a corner
+    /// radius not below the smallest half size, pips too wide or too deep) is refused in
+    /// words and changes nothing.
     pub(crate) fn set_param(&mut self, out: &mut Vec<Command>, p: Param, value: f64) -> Result<(), String> {
-        p.set(&mut self.params, &mut self.initial, value).map_err(|e| {
+        let (mut params, mut initial) = (self.params, self.initial);
+        p.set(&mut params, &mut initial, value).map_err(|e| {
             if e.limits == p.limits() {
                 format!(
                     "{} is outside {} {}",
@@ -75,6 +79,13 @@ impl Setup {
                 )
             }
         })?;
+        if let Err(e) = params.validate() {
+            return Err(match e.detail.as_deref() {
+                Some(Detail::Refused(why)) => format!("{}: {why}", fmt_num(value)),
+                _ => e.to_string(),
+            });
+        }
+        (self.params, self.initial) = (params, initial);
         self.send(out, Command::SetParam(p.scan_key(), value));
         Ok(())
     }

@@ -639,3 +639,169 @@ mod map_screen {
         assert!(paper > 2.0 * gentle, "paper {paper} against gentle-drop {gentle}");
     }
 }
+
+/// The real dice of issue 20 as the explorer draws them: their proportions, rounded corners
+/// and drilled pips, whole screens at both sizes.
+mod real_dice {
+    use super::*;
+    use crate::physics::Params;
+    use crate::physics::contact_sphere_centres;
+    use crate::preset::{Preset, shipped_text};
+    use crate::tui::camera::Solid;
+    use nalgebra::Vector3;
+
+    fn shipped(name: &str, overrides: &[&str]) -> Scene {
+        let text = shipped_text(name).expect("shipped");
+        let preset = Preset::from_toml_str(text, name)
+            .expect("valid")
+            .with_overrides(overrides)
+            .expect("valid overrides");
+        Scene::new(&preset, Theme::default())
+    }
+
+    /// The tennis racket at the first step its middle axis has turned more than a quarter
+    /// turn away from `L`: half way through its first flip, in flight.
+    fn tennis_racket_mid_flip() -> Scene {
+        let mut s = shipped("tennis-racket", &[]);
+        for _ in 0..4000 {
+            s.engine.advance_steps(1);
+            s.sync();
+            let die = &s.app.roll.live.die;
+            let body = Solid::new(&s.app.roll.live.params.die, &die.corners);
+            if body.axes[1].dot(&die.angular_momentum.normalize()) < 0.0 {
+                assert!(die.centre.z > 100.0, "the flip comes in flight");
+                return s;
+            }
+        }
+        panic!("the middle axis never turned over in 2 s");
+    }
+
+    #[test]
+    fn the_rounded_die_the_plate_and_the_tennis_racket_mid_flip() {
+        let spin = ["initial.angular_velocity=[12,-20,6]"];
+        let mut rounded = shipped("rounded-die", &spin);
+        rounded.engine.advance_steps(150);
+        rounded.sync();
+        let mut plate = shipped("plate", &spin);
+        plate.engine.advance_steps(300);
+        plate.sync();
+        let racket = tennis_racket_mid_flip();
+        for (name, s) in [
+            ("rounded_die", &rounded),
+            ("plate", &plate),
+            ("tennis_racket_mid_flip", &racket),
+        ] {
+            for (w, h) in [(80, 24), (120, 36)] {
+                insta::assert_snapshot!(format!("{name}_{w}x{h}"), screen(&s.app, w, h));
+            }
+        }
+    }
+
+    /// A rounded cuboid's body read back from its sphere centres: axes, flat faces, sharp
+    /// corners and the outline's arcs, against the sizes it was built from.
+    #[test]
+    fn a_rounded_cuboid_has_its_sizes_flat_faces_and_round_outline() {
+        let mut die = Params::DEFAULT.die;
+        die.half_sizes = [1.5, 1.0, 0.5];
+        die.corner_radius = 0.2;
+        let offset = Vector3::new(3.0, -2.0, 4.0);
+        let body = Solid::new(&die, &contact_sphere_centres(&die).map(|c| c + offset));
+        for (i, axis) in body.axes.iter().enumerate() {
+            assert!((axis - Vector3::ith(i, 1.0)).norm() < 1e-12, "axis {i}: {axis}");
+        }
+        assert!((body.centre - offset).norm() < 1e-12);
+        // Face 4 is z = +az: its flat part spans the half sizes less the radius.
+        for p in body.flat_face(3) {
+            let q = p - offset;
+            assert!(
+                (q.z - 0.5).abs() < 1e-12
+                    && (q.x.abs() - 1.3).abs() < 1e-12
+                    && (q.y.abs() - 0.8).abs() < 1e-12
+            );
+        }
+        assert!((body.sharp_corner(7) - offset - Vector3::new(1.5, 1.0, 0.5)).norm() < 1e-12);
+        assert!((body.lowest().z - (offset.z - 0.5)).abs() < 1e-12);
+        // Seen level along y: the outline reaches the half sizes but cuts the corners round.
+        let level = Camera {
+            yaw_deg: 0.0,
+            pitch_deg: 0.0,
+            zoom: 0,
+        };
+        let outline = body.outline(|p| {
+            let q = level.project(p, &offset);
+            (q.x, q.y - offset.z)
+        });
+        let reach = outline.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
+        assert!((reach - 1.5).abs() < 1e-9, "reaches the half size: {reach}");
+        assert!(inside(&outline, (1.49, 0.0)) && inside(&outline, (0.0, 0.49)));
+        // 0.1·r in from the sharp corner on both sides is 1.27·r from its sphere's centre.
+        assert!(!inside(&outline, (1.5 - 0.02, 0.5 - 0.02)), "the corner is round");
+        assert!(inside(&outline, (1.5 - 0.16 * 0.5, 0.0)));
+    }
+
+    /// Drilled pips are drawn their real size: each disc spans the pip diameter, and every
+    /// seen face carries its number of them.
+    #[test]
+    fn drilled_pips_are_drawn_at_their_diameter() {
+        let s = shipped("rounded-die", &[]);
+        let body = Rect::new(0, 0, 60, 20);
+        let view = View::new(&s.app, body);
+        let pic = picture(&s.app, &view);
+        let radius = 0.5 * s.app.roll.live.params.die.pip_diameter;
+        let mut counted = 0;
+        for (centre, disc, _) in &pic.pips {
+            let widest = disc
+                .iter()
+                .map(|p| ((p.0 - centre.0).powi(2) + (p.1 - centre.1).powi(2)).sqrt())
+                .fold(0.0, f64::max);
+            assert!(widest <= radius * (1.0 + 1e-9), "{widest} > {radius}");
+            assert!(
+                widest > 0.8 * radius,
+                "a seen pip keeps its width across: {widest}"
+            );
+            counted += 1;
+        }
+        // Level at the start, seen from the default camera: face 4 up and two sides.
+        assert!((7..=15).contains(&counted), "{counted} pips");
+    }
+}
+
+/// The real dice's values in the parameter list: a value in range that no body can have
+/// with the others is refused with the physics' reason and changes nothing; one it can have
+/// is sent to the worker, which restarts the roll with the new body.
+#[test]
+fn a_body_value_no_die_can_have_is_refused_and_changes_nothing() {
+    use super::param::Param;
+    let preset = crate::preset::Preset::from_toml_str(
+        crate::preset::shipped_text("rounded-die").expect("shipped"),
+        "rounded-die",
+    )
+    .expect("valid");
+    let mut s = Scene::new(&preset, Theme::default());
+    let before = (s.app.setup.params, s.app.setup.initial);
+    let mut out = Vec::new();
+    // In the row's range (0…10 cm) but not below the smallest half size, 0.8 cm.
+    let radius = Param::named("die.corner_radius");
+    let refused = s.app.setup.set_param(&mut out, radius, 0.9).unwrap_err();
+    assert!(refused.contains("below the smallest half size"), "{refused}");
+    // Pips 0.5 cm wide do not fit beside each other on a 1.6 cm face rounded by 0.15 cm.
+    let refused = s
+        .app
+        .setup
+        .set_param(&mut out, Param::named("die.pip_diameter"), 0.5)
+        .unwrap_err();
+    assert!(refused.contains("at most 0.4 cm"), "{refused}");
+    assert!(out.is_empty() && (s.app.setup.params, s.app.setup.initial) == before);
+    // A flatter die is a die: the worker takes it and rolls it from the start.
+    let z = Param::named("die.half_sizes.z");
+    s.engine.advance_steps(50);
+    s.app.setup.set_param(&mut out, z, 0.6).expect("a body");
+    for c in out {
+        s.command(c);
+    }
+    assert_eq!(s.app.roll.live.params.die.half_sizes, [0.8, 0.8, 0.6]);
+    assert_eq!(
+        s.app.roll.live.timeline.position, 0,
+        "the body changed: the roll starts again"
+    );
+}
