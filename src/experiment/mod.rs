@@ -19,6 +19,7 @@ pub(crate) mod keys;
 pub(crate) mod merge;
 pub(crate) mod number;
 pub(crate) mod parquet;
+pub(crate) mod plane;
 pub(crate) mod plot;
 pub mod predict;
 pub(crate) mod predict_plot;

@@ -8,6 +8,7 @@
 //! depend on the machine), and the same setup gives the same bytes.
 
 use crate::experiment::figure::{font, wrap};
+use crate::experiment::plane::{convex_hull as hull, inside};
 use crate::physics::PIP_LAYOUT;
 use crate::physics::body::FACE_CORNERS;
 use ab_glyph::{Font, PxScale, ScaleFont, point};
@@ -602,49 +603,6 @@ fn visible_edges(die: &DieShot, viewer: &Vector3<f64>) -> Vec<(usize, usize)> {
         }
     }
     edges
-}
-
-/// The convex hull of `points`, counter-clockwise (Andrew's monotone chain).
-fn hull(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
-    let mut p: Vec<(f64, f64)> = points
-        .iter()
-        .copied()
-        .filter(|q| q.0.is_finite() && q.1.is_finite())
-        .collect();
-    p.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
-    p.dedup();
-    if p.len() < 3 {
-        return p;
-    }
-    let cross =
-        |o: (f64, f64), a: (f64, f64), b: (f64, f64)| (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0);
-    let mut lower: Vec<(f64, f64)> = Vec::new();
-    for &q in &p {
-        while lower.len() >= 2 && cross(lower[lower.len() - 2], lower[lower.len() - 1], q) <= 0.0 {
-            lower.pop();
-        }
-        lower.push(q);
-    }
-    let mut upper: Vec<(f64, f64)> = Vec::new();
-    for &q in p.iter().rev() {
-        while upper.len() >= 2 && cross(upper[upper.len() - 2], upper[upper.len() - 1], q) <= 0.0 {
-            upper.pop();
-        }
-        upper.push(q);
-    }
-    lower.pop();
-    upper.pop();
-    lower.extend(upper);
-    lower
-}
-
-/// Whether `q` lies inside the counter-clockwise convex polygon `poly`.
-fn inside(poly: &[(f64, f64)], q: (f64, f64)) -> bool {
-    poly.len() >= 3
-        && (0..poly.len()).all(|k| {
-            let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
-            (b.0 - a.0) * (q.1 - a.1) - (b.1 - a.1) * (q.0 - a.0) >= 0.0
-        })
 }
 
 #[cfg(test)]
