@@ -821,7 +821,7 @@ mod tests {
     }
 
     #[test]
-    fn the_readme_table_is_the_registrys() {
+    fn the_preset_docs_table_is_the_registrys() {
         let table = markdown_table();
         assert!(
             include_str!("../../docs/presets.md").contains(&table),

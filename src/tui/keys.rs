@@ -1,6 +1,6 @@
 //! Every key of the explorer as one table row: which mode, which keys, what it does, its
 //! footer hint and its help text. Dispatch ([`read`]), the footer, the help overlay and the
-//! README's key tables are all read from [`BINDINGS`], so a key is changed in one place;
+//! key tables of docs/explorer.md are all read from [`BINDINGS`], so a key is changed in one place;
 //! this is the one module that looks at key codes.
 
 use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
@@ -921,7 +921,7 @@ pub(crate) fn section(screen: Screen) -> impl Iterator<Item = &'static Binding> 
 }
 
 #[cfg(test)]
-/// The README's key tables as they must read: one for the die screen (with the keys of
+/// The key tables of docs/explorer.md as they must read: one for the die screen (with the keys of
 /// both screens), one for the map screen.
 pub(crate) fn markdown_tables() -> String {
     let table = |title: &str, screen: Screen| {
@@ -961,7 +961,7 @@ mod tests {
     }
 
     #[test]
-    fn the_readme_key_tables_are_the_key_table() {
+    fn the_explorer_docs_key_tables_are_the_key_table() {
         let reference = include_str!("../../docs/explorer.md");
         let expected = markdown_tables();
         assert!(
