@@ -1,7 +1,7 @@
 //! `dicesim compare`: the simulated die thrown as a historical experiment threw real ones,
 //! held against its counts, and one setup value fitted to them.
 
-use super::{CliError, EngineArg, SetupArgs, cancel_on_ctrl_c};
+use super::{CliError, EngineArg, SetupArgs};
 use crate::experiment::RunOptions;
 use crate::experiment::compare::{CompareSpec, Comparison, DEFAULT_CANDIDATES, FitSpec, run_comparison};
 use crate::experiment::compare_plot::comparison_png;
@@ -103,23 +103,25 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     }
     let outputs = super::checked_outputs(&args.out, &["csv", "json", "png"], args.force)?;
 
-    let bar = super::progress_bar(total, "{bar:40} {pos}/{len} rolls, {per_sec}, {eta} left");
     let options = RunOptions {
         jobs,
         engine: args.engine.engine(),
     };
-    let stop = cancel_on_ctrl_c()?;
-    let comparison = run_comparison(
-        &params,
-        &preset.random,
-        &preset.initial,
-        &spec,
-        &options,
-        &stop,
-        &mut |p| bar.set_position(p.done),
-    )
-    .map_err(CliError::experiment(""))?;
-    bar.finish_and_clear();
+    let comparison = super::run_with_progress(
+        total,
+        "{bar:40} {pos}/{len} rolls, {per_sec}, {eta} left",
+        |stop, done| {
+            run_comparison(
+                &params,
+                &preset.random,
+                &preset.initial,
+                &spec,
+                &options,
+                stop,
+                &mut |p| done(p.done),
+            )
+        },
+    )?;
 
     // What defines the comparison, in every file it writes (never threads or time).
     let mut values = preset.as_written();

@@ -71,6 +71,21 @@ const STOP_SIGNALS: [i32; 4] = [SIGINT, SIGTERM, SIGHUP, SIGQUIT];
 /// A flag the first stop signal sets (the running rolls notice it within a few thousand
 /// steps and the command keeps what is complete); a second signal stops at once, after
 /// removing the temporary file being written and saying so.
+/// Runs a long experiment as every such command does: a progress bar over its `total` rolls
+/// (`template` in indicatif's words), Ctrl-C asking it to stop, its error worded like the
+/// others'. `run` gets the stop flag and reports how many rolls are done.
+pub(crate) fn run_with_progress<T>(
+    total: u64,
+    template: &str,
+    run: impl FnOnce(&AtomicBool, &mut dyn FnMut(u64)) -> Result<T, experiment::Error>,
+) -> Result<T, CliError> {
+    let bar = progress_bar(total, template);
+    let stop = cancel_on_ctrl_c()?;
+    let result = run(&stop, &mut |done| bar.set_position(done)).map_err(CliError::experiment(""))?;
+    bar.finish_and_clear();
+    Ok(result)
+}
+
 pub(crate) fn cancel_on_ctrl_c() -> Result<Arc<AtomicBool>, CliError> {
     let stop = Arc::new(AtomicBool::new(false));
     on_stop_signals(Some(stop.clone()))?;

@@ -1,7 +1,7 @@
 //! `dicesim predict`: how precisely a throw must be known to predict its face.
 
 use super::shard::csv_provenance_line;
-use super::{CliError, EngineArg, SetupArgs, cancel_on_ctrl_c};
+use super::{CliError, EngineArg, SetupArgs};
 use crate::experiment::figure::setup_value;
 use crate::experiment::plot::{Record, random_starts};
 use crate::experiment::predict::{PredictSpec, Prediction, default_epsilons, run_prediction};
@@ -102,23 +102,22 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
     }
     let outputs = super::checked_outputs(&args.out, &["csv", "json", "png"], args.force)?;
 
-    let bar = super::progress_bar(total, "{bar:40} {pos}/{len} rolls, {elapsed}");
     let options = RunOptions {
         jobs,
         engine: args.engine.engine(),
     };
-    let stop = cancel_on_ctrl_c()?;
-    let prediction = run_prediction(
-        &params,
-        &preset.random,
-        &preset.initial,
-        &spec,
-        &options,
-        &stop,
-        &mut |p| bar.set_position(p.done),
-    )
-    .map_err(CliError::experiment(""))?;
-    bar.finish_and_clear();
+    let prediction =
+        super::run_with_progress(total, "{bar:40} {pos}/{len} rolls, {elapsed}", |stop, done| {
+            run_prediction(
+                &params,
+                &preset.random,
+                &preset.initial,
+                &spec,
+                &options,
+                stop,
+                &mut |p| done(p.done),
+            )
+        })?;
 
     // What defines the experiment, in every file it writes (never threads or time).
     let mut values = preset.as_written();
