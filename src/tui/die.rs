@@ -13,7 +13,7 @@
 
 use super::app::{App, Drawing};
 use super::camera::{Camera, EDGES, FACE_CORNERS, Flat, Solid, convex_hull, inside, outside_parts};
-use super::format::{fmt_num, wrap_words};
+use super::format::fmt_num;
 use super::vectors::{self, Arrow};
 use crate::physics::stopping::why_it_cannot_settle;
 use crate::physics::{Status, UnstableReason, face_frame, pip_centres};
@@ -618,20 +618,25 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let die = &app.roll.live.die;
     let lowest = solid(app, die).lowest().z;
+    // The face up matters most (the lesson's question), then the twin's, then the height.
     let mut title = vec![
-        Span::styled(" die ", t.heading()),
-        Span::raw(format!(
-            "· face up {} · lowest corner {:.2} cm ",
-            die.face_up, lowest
-        )),
+        (0, vec![Span::styled(" die ", t.heading())]),
+        (0, vec![Span::raw(format!("· face up {} ", die.face_up))]),
     ];
     if let Some(twin) = &app.roll.live.twin {
-        title.push(Span::styled(
-            format!("· twin face up {} ", twin.die.face_up),
-            Style::new().fg(t.ghost()),
+        title.push((
+            1,
+            vec![Span::styled(
+                format!("· twin face up {} ", twin.die.face_up),
+                Style::new().fg(t.ghost()),
+            )],
         ));
     }
-    let block = Block::bordered().title(Line::from(title));
+    title.insert(
+        2,
+        (2, vec![Span::raw(format!("· lowest corner {lowest:.2} cm "))]),
+    );
+    let block = Block::bordered().title(super::fit::line(title, area.width.saturating_sub(2) as usize));
     let mut body = block.inner(area);
     frame.render_widget(block, area);
     if body.width < 2 || body.height < 2 {
@@ -640,7 +645,7 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
     // The reason a roll ended and the arrows' legend take rows of their own: they hide
     // nothing of the die.
     if let Some((reason, style)) = end_reason(app) {
-        let lines: Vec<Line> = wrap_words(&reason, body.width as usize)
+        let lines: Vec<Line> = super::fit::wrap(&reason, body.width as usize)
             .into_iter()
             .map(|l| Line::styled(l, style))
             .collect();

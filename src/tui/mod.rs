@@ -9,6 +9,7 @@ mod dialogs;
 mod die;
 mod editor;
 mod energy;
+pub(crate) mod fit;
 mod footer;
 pub(crate) mod format;
 mod header;
@@ -61,3 +62,6 @@ mod contrast_tests;
 
 #[cfg(test)]
 mod lesson_tests;
+
+#[cfg(test)]
+pub(crate) mod screen_tests;

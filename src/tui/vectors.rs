@@ -7,6 +7,7 @@
 
 use super::app::App;
 use super::camera::Flat;
+use super::fit;
 use super::format::fmt_num;
 use crate::worker::DieState;
 use nalgebra::Vector3;
@@ -115,34 +116,46 @@ pub(crate) fn legend(app: &App, width: u16) -> Vec<Line<'static>> {
         die.velocity.norm(),
         total_force(die).norm(),
     ];
-    let wide = width >= 60;
-    let mut first = Vec::new();
-    for (kind, size) in ARROWS.iter().zip(sizes) {
-        let name = if *kind == Arrow::ContactForce {
-            "ΣF"
-        } else {
-            kind.symbol()
-        };
-        first.push(Span::styled(
-            format!("━{name} "),
-            Style::new().fg(kind.colour(app)),
-        ));
-        let unit = if wide {
-            format!(" {}", kind.unit())
-        } else {
-            String::new()
-        };
-        first.push(Span::raw(format!("{}{unit}  ", fmt_num(size))));
-    }
-    let scale = if wide {
-        format!(
-            "length a·log₁₀(1+|x|/x₀), x₀: ω 1, L 100, v 10, F {} (M·g/8)",
-            fmt_num(Arrow::ContactForce.reference(app))
-        )
-    } else {
-        "length a·log₁₀(1+|x|/x₀)".to_string()
+    // Each arrow's size with its unit where the panel has room for every unit, without
+    // the units where not; the scale in as many words as fit.
+    let first = |units: bool| {
+        let mut spans = Vec::new();
+        for (kind, size) in ARROWS.iter().zip(sizes) {
+            let name = if *kind == Arrow::ContactForce {
+                "ΣF"
+            } else {
+                kind.symbol()
+            };
+            spans.push(Span::styled(
+                format!("━{name} "),
+                Style::new().fg(kind.colour(app)),
+            ));
+            let unit = if units {
+                format!(" {}", kind.unit())
+            } else {
+                String::new()
+            };
+            spans.push(Span::raw(format!("{}{unit}  ", fmt_num(size))));
+        }
+        Line::from(spans)
     };
-    vec![Line::from(first), Line::styled(scale, app.theme.heading())]
+    let with_units = first(true);
+    // The two spaces after the last size are not text.
+    let sizes_line = if with_units.width() - 2 <= fit::room(width as usize) {
+        with_units
+    } else {
+        fit::abbreviate(first(false), width as usize + 2)
+    };
+    let force = fmt_num(Arrow::ContactForce.reference(app));
+    let scale = fit::longest_fitting(
+        &[
+            format!("length a·log₁₀(1+|x|/x₀), x₀: ω 1, L 100, v 10, F {force} (M·g/8)"),
+            format!("length a·log₁₀(1+|x|/x₀), x₀: ω 1, L 100, v 10, F {force}"),
+            "length a·log₁₀(1+|x|/x₀)".to_string(),
+        ],
+        width as usize,
+    );
+    vec![sizes_line, Line::styled(scale, app.theme.heading())]
 }
 
 #[cfg(test)]
