@@ -103,6 +103,28 @@ pub(crate) fn states(theme: Theme) -> Vec<ScreenState> {
         .and_then(|e| e.error.clone())
         .expect("refused");
     assert!(refusal.starts_with("0: corner in the table"), "{refusal}");
+    // Both dice of the twin at rest: the verdict the lesson's step 4 is about, worked out
+    // here from the two faces.
+    let mut twin_end = twin_scene(theme);
+    twin_end.run_to_end();
+    let face_of = |phase: &crate::worker::Phase| match phase {
+        crate::worker::Phase::Ended(o) => o.face,
+        _ => None,
+    };
+    let die_face = face_of(&twin_end.app.roll.live.phase).expect("the die settles");
+    let twin_face = twin_end
+        .app
+        .roll
+        .live
+        .twin
+        .as_ref()
+        .and_then(|t| face_of(&t.phase))
+        .expect("the twin settles");
+    let verdict = if die_face == twin_face {
+        "same face"
+    } else {
+        "faces differ"
+    };
     let mut states = vec![
         state("start", start().app, &["face up", "Δt"]),
         state("mid impact with arrows", arrows.app, &["face up", "━ΣF"]),
@@ -131,6 +153,11 @@ pub(crate) fn states(theme: Theme) -> Vec<ScreenState> {
             &["twin face up"],
         ),
         state("twin curve", complete(theme).app, &["ε½", "P(same face)"]),
+        state(
+            "twin settled",
+            twin_end.app,
+            &[verdict, &format!("face up {die_face}")],
+        ),
         state("map", map_scene(theme).app, &["face up"]),
         state("loaded die", loaded.app, &["+0.5 g"]),
         state(
