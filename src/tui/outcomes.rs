@@ -57,16 +57,29 @@ const INTERVAL_COLUMN: usize = 10;
 /// of its 95 % interval and shaded from there to the high end, so the bar says where the
 /// share lies. The fair share's dotted mark stays in view: `┼` inside the shading, `┃`
 /// inside the solid part (the whole interval lies above 1/6), `┆` past the bar (below it).
+/// The mark is read from the interval itself, not from the cells: on a narrow bar a tight
+/// interval around 1/6 may fill too little of a cell to shade it, and must still read fair.
 pub(crate) fn share_bar(share: f64, interval: Option<[f64; 2]>, width: usize) -> String {
     let eighths_of = |x: f64| (x * 3.0 * width as f64 * 8.0).round().max(0.0) as usize;
     let [low, high] = interval.map_or([eighths_of(share); 2], |[l, h]| [eighths_of(l), eighths_of(h)]);
     let fair_at = width / 2;
+    let fair = 1.0 / 6.0;
+    let fair_mark = interval.map(|[l, h]| match () {
+        _ if h < fair => '┆',
+        _ if l > fair => '┃',
+        _ => '┼',
+    });
     (0..width)
         .map(|j| {
             let from = j * 8;
             let eighths = low.saturating_sub(from).min(8);
             // A cell the interval reaches at least half way into, that the solid part leaves open.
             let shaded = high >= from + 4 && eighths < 4;
+            if j == fair_at
+                && let Some(mark) = fair_mark
+            {
+                return mark;
+            }
             match eighths {
                 _ if shaded && j == fair_at => '┼',
                 _ if shaded => '░',
