@@ -134,7 +134,7 @@ fn detail_line(app: &App, width: usize) -> Line<'static> {
                     vec![
                         typed[0].clone(),
                         typed[1].clone(),
-                        (1, vec![Span::styled("  refused (below)", t.danger())]),
+                        (1, vec![Span::styled("  refused ↓", t.danger())]),
                     ],
                     width,
                 ),
