@@ -71,6 +71,11 @@ pub(crate) fn states(theme: Theme) -> Vec<ScreenState> {
     };
     let mut arrows = mid_impact_with(theme);
     arrows.key(KeyCode::Char('v'));
+    // The table's push on the die at the impact, whole in the arrows' legend.
+    let force = format!(
+        "━ΣF {}",
+        super::format::fmt_num(super::vectors::total_force(&arrows.app.roll.live.die).norm())
+    );
     let mut refused = editing();
     refused.key(KeyCode::Char('9'));
     refused.key(KeyCode::Enter);
@@ -127,7 +132,7 @@ pub(crate) fn states(theme: Theme) -> Vec<ScreenState> {
     };
     let mut states = vec![
         state("start", start().app, &["face up", "Δt"]),
-        state("mid impact with arrows", arrows.app, &["face up", "━ΣF"]),
+        state("mid impact with arrows", arrows.app, &["face up", &force]),
         state(
             "settled",
             settled_app,

@@ -83,7 +83,7 @@ pub(crate) fn force_vector(f: &crate::physics::ContactForce) -> Vector3<f64> {
 }
 
 /// dyn: the sum of the contact forces on the die.
-fn total_force(die: &DieState) -> Vector3<f64> {
+pub(crate) fn total_force(die: &DieState) -> Vector3<f64> {
     die.forces.iter().map(force_vector).sum()
 }
 
@@ -118,14 +118,17 @@ pub(crate) fn legend(app: &App, width: u16) -> Vec<Line<'static>> {
     ];
     // Each arrow's size with its unit where the panel has room for every unit, without
     // the units where not; the scale in as many words as fit.
-    let first = |units: bool| {
+    let sizes_line = |units: bool, gap: &str| {
         let mut spans = Vec::new();
-        for (kind, size) in ARROWS.iter().zip(sizes) {
+        for (i, (kind, size)) in ARROWS.iter().zip(sizes).enumerate() {
             let name = if *kind == Arrow::ContactForce {
                 "ΣF"
             } else {
                 kind.symbol()
             };
+            if i > 0 {
+                spans.push(Span::raw(gap.to_string()));
+            }
             spans.push(Span::styled(
                 format!("━{name} "),
                 Style::new().fg(kind.colour(app)),
@@ -135,17 +138,17 @@ pub(crate) fn legend(app: &App, width: u16) -> Vec<Line<'static>> {
             } else {
                 String::new()
             };
-            spans.push(Span::raw(format!("{}{unit}  ", fmt_num(size))));
+            spans.push(Span::raw(format!("{}{unit}", fmt_num(size))));
         }
         Line::from(spans)
     };
-    let with_units = first(true);
-    // The two spaces after the last size are not text.
-    let sizes_line = if with_units.width() - 2 <= fit::room(width as usize) {
-        with_units
-    } else {
-        fit::abbreviate(first(false), width as usize + 2)
-    };
+    // Every size with its unit, else without units, else closer together; only then cut.
+    let forms = [(true, "  "), (false, "  "), (false, " ")];
+    let sizes_line = forms
+        .iter()
+        .map(|&(units, gap)| sizes_line(units, gap))
+        .find(|l| l.width() <= fit::room(width as usize))
+        .unwrap_or_else(|| fit::abbreviate(sizes_line(false, " "), width as usize));
     let force = fmt_num(Arrow::ContactForce.reference(app));
     let scale = fit::longest_fitting(
         &[
