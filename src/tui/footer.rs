@@ -25,7 +25,7 @@ pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
             let (keys, words) = prompt.answers();
             let question = prompt.question(&app.setup.preset.name);
             let hints = vec![
-                hint(&keys, &words, 0),
+                hint(&keys, words, 0),
                 // Its separator goes with it when a narrow footer drops it.
                 hint("· any other key", "stays", 1),
             ];
