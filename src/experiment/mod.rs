@@ -23,6 +23,7 @@ pub(crate) mod plane;
 pub(crate) mod plot;
 pub mod predict;
 pub(crate) mod predict_plot;
+pub mod quantity;
 pub(crate) mod random;
 pub mod real_data;
 pub(crate) mod record;
