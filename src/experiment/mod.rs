@@ -34,6 +34,7 @@ pub(crate) mod summary;
 pub(crate) mod tally;
 pub(crate) mod trace;
 pub mod twin;
+pub mod versus;
 
 /// The program and its version, as every output records it.
 pub(crate) const PROGRAM: &str = concat!("dicesim ", env!("CARGO_PKG_VERSION"));
