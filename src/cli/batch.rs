@@ -498,7 +498,6 @@ fn run_versus(args: &BatchArgs, jobs: usize) -> Result<(), CliError> {
             "interrupted": run.cancelled,
             "jobs": run.jobs,
             "engine": run.engine,
-            "faceless": "row and column 7 of `table` count the throws that ended on no face; `agreement` is over the throws that ended on a face in both setups",
         })
     };
     let run = match &output {

@@ -141,8 +141,14 @@ fn value_axis(data: &[(f64, f64)], most: usize, width: usize) -> ([f64; 2], Vec<
     if lo > 0.0 && lo < 0.5 * hi {
         lo = 0.0;
     }
-    if hi - lo < 1e-12 * hi.abs().max(1e-12) {
-        (lo, hi) = (lo - 0.5 * lo.abs().max(1.0), hi + 0.5 * hi.abs().max(1.0));
+    // A constant (a stability load before any edit, the force in flight): from zero to
+    // half as much again, so the line sits at two thirds of the height.
+    if hi - lo <= 1e-12 * hi.abs().max(lo.abs()) {
+        (lo, hi) = match lo {
+            v if v > 0.0 => (0.0, 1.5 * v),
+            v if v < 0.0 => (1.5 * v, 0.0),
+            _ => (0.0, 1.0),
+        };
     }
     let (lo, hi, ticks) = nice_ticks(lo, hi, most);
     let labels = ticks.iter().map(|&v| format!("{:>width$}", fmt_num(v))).collect();
@@ -240,7 +246,12 @@ pub(crate) fn render_phase(app: &App, area: Rect, frame: &mut Frame, i: usize, j
     let ([y_lo, y_hi], y_labels) = value_axis(&data, rows.div_ceil(2).clamp(2, 5), LABEL_WIDTH);
     let across: Vec<(f64, f64)> = data.iter().map(|&(a, b)| (b, a)).collect();
     let ([x_lo, x_hi], mut x_labels) = value_axis(&across, time_labels_for(body.width), 0);
-    if let Some(last) = x_labels.last_mut() {
+    // The unit after the last number where the two fit the label's share of the width
+    // (else the title carries it, or the panel is too narrow for it).
+    let share = body.width as usize / x_labels.len().max(2);
+    if let Some(last) = x_labels.last_mut()
+        && last.chars().count() + 1 + x.unit.chars().count() < share
+    {
         *last = format!("{last} {}", x.unit);
     }
     let now: Vec<(f64, f64)> = sample_now(history, app.roll.live.time_s)
@@ -300,6 +311,21 @@ mod tests {
         }
         p.toggle_phase();
         assert_eq!(p.phase, None);
+    }
+
+    #[test]
+    fn a_value_axis_holds_its_data_and_a_constant_sits_inside_it() {
+        let ([lo, hi], labels) = value_axis(&[(0.0, 3.0), (1.0, 17.0)], 5, 4);
+        assert!(lo <= 3.0 && hi >= 17.0 && lo == 0.0, "{lo} {hi}");
+        assert!(labels.iter().all(|l| l.len() >= 4), "{labels:?}");
+        // A constant 0.42 (a stability load) and a constant 0 (the force in flight).
+        let ([lo, hi], _) = value_axis(&[(0.0, 0.42), (1.0, 0.42)], 5, 0);
+        assert!(lo == 0.0 && hi > 0.42, "{lo} {hi}");
+        let ([lo, hi], _) = value_axis(&[(0.0, 0.0), (1.0, 0.0)], 5, 0);
+        assert_eq!([lo, hi], [0.0, 1.0]);
+        // Negative data (the lowest corner pressed in) keeps its sign below zero.
+        let ([lo, hi], _) = value_axis(&[(0.0, -0.2), (1.0, 14.0)], 5, 0);
+        assert!(lo <= -0.2 && hi >= 14.0, "{lo} {hi}");
     }
 
     #[test]
