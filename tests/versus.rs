@@ -191,3 +191,77 @@ fn bad_versus_values_are_refused_naming_the_key() {
     assert!(err.contains("ground.grip"), "{err}");
     assert!(!dir.path().join("x.csv").exists());
 }
+
+/// Ctrl-C during a long `--versus` run keeps the throws rolled in both setups, a whole
+/// prefix of them, says how many, and exits with status 130.
+#[cfg(unix)]
+#[test]
+fn ctrl_c_keeps_a_whole_prefix_of_the_throws() {
+    use nix::sys::signal::{Signal, kill};
+    use nix::unistd::Pid;
+    use std::time::{Duration, Instant};
+    let dir = tempfile::tempdir().unwrap();
+    // Drops from 1.5 cm without throw or spin: each settles in a few hundred steps.
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_dicesim"))
+        .current_dir(dir.path())
+        .args([
+            "batch",
+            "--rolls",
+            "100000000",
+            "--versus",
+            "ground.friction=0.3",
+            "--out",
+            "x.csv",
+            "--set",
+            "random.height=[1.5,1.5]",
+            "--set",
+            "random.velocity=[0,0]",
+            "--set",
+            "random.angular_velocity=[0,0]",
+        ])
+        .env("DICESIM_PRESETS", dir.path().join("no-user-presets"))
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Until the file being written holds some throws.
+    let start = Instant::now();
+    let writing = || {
+        std::fs::read_dir(dir.path())
+            .unwrap()
+            .filter_map(|e| e.ok())
+            .any(|e| {
+                let name = e.file_name().to_string_lossy().into_owned();
+                name.ends_with(".part") && e.metadata().is_ok_and(|m| m.len() > 100_000)
+            })
+    };
+    while !writing() {
+        assert!(
+            start.elapsed() < Duration::from_secs(60),
+            "the write never started"
+        );
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    kill(Pid::from_raw(child.id() as i32), Signal::SIGINT).unwrap();
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(130), "{err}");
+    assert!(
+        err.contains("interrupted: kept the ") && err.contains(" throws completed"),
+        "{err}"
+    );
+    let text = std::fs::read_to_string(dir.path().join("x.csv")).unwrap();
+    let header: Vec<&str> = text.lines().nth(1).unwrap().split(',').collect();
+    let b_status = header.iter().position(|c| *c == "b_status").unwrap();
+    let rows: Vec<Vec<&str>> = text.lines().skip(2).map(|l| l.split(',').collect()).collect();
+    assert!(!rows.is_empty());
+    for (i, r) in rows.iter().enumerate() {
+        assert_eq!(r[0], i.to_string(), "a prefix of the throws");
+        assert_eq!(r.len(), header.len());
+        assert!(!r[b_status].is_empty(), "throw {i} was rolled in B too");
+    }
+    assert!(
+        err.contains(&format!("kept the {} of 100000000", rows.len())),
+        "{err}"
+    );
+}

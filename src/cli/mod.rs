@@ -185,7 +185,8 @@ pub(crate) enum Command {
     #[command(after_help = "Examples:
   dicesim batch --rolls 10000
   dicesim batch --rolls 2000 --seed 7 --out rolls.csv
-  dicesim batch --ics starts.csv --json")]
+  dicesim batch --ics starts.csv --json
+  dicesim batch --rolls 10000 --set ground.friction=0.3 --versus ground.friction=1.2")]
     Batch(batch::BatchArgs),
     /// Map the outcome over a grid of two setup values (CSV, PNG or SVG).
     #[command(after_help = "Examples:
