@@ -3,7 +3,10 @@
 
 use super::app::{App, Drawing};
 use super::format::fmt_num;
-use super::plot::{marker_dataset, render_phase, render_quantity, time_axis, time_labels_for, time_marker};
+use super::plot::{
+    edit_datasets, edit_marks, marker_dataset, previous_dataset, render_phase, render_quantity, time_axis,
+    time_labels_for, time_marker,
+};
 use crate::worker::EnergySample;
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -184,6 +187,7 @@ fn render_energy_terms(app: &App, area: Rect, frame: &mut Frame) {
         |s| s.energy.gravitational,
         |s| s.energy.elastic,
     ];
+    let previous = thinned(&app.roll.previous, buckets, |s| y_of(s.total));
     let series: Vec<Vec<(f64, f64)>> = terms
         .iter()
         .map(|f| thinned(&app.roll.history, buckets, |s| y_of(f(s))))
@@ -195,7 +199,7 @@ fn render_energy_terms(app: &App, area: Rect, frame: &mut Frame) {
     } else {
         (y_of(LOG_FLOOR), y_of(LOG_FLOOR))
     };
-    for s in &series {
+    for s in series.iter().chain([&previous]) {
         for &(_, v) in s {
             if v.is_finite() {
                 lo = lo.min(v);
@@ -234,7 +238,11 @@ fn render_energy_terms(app: &App, area: Rect, frame: &mut Frame) {
     // The marker first, so the curves are drawn over it.
     // Below the legend's rows, as the curves are.
     let marker = time_marker(app, y_lo, y_hi - (y_hi - y_lo) * covered / rows);
-    let mut datasets: Vec<Dataset> = vec![marker_dataset(app, &marker)];
+    let edits = edit_marks(app, y_lo, y_hi - (y_hi - y_lo) * covered / rows);
+    // The previous run's total, faded, under everything.
+    let mut datasets: Vec<Dataset> = vec![previous_dataset(app, &previous)];
+    datasets.extend(edit_datasets(app, &edits));
+    datasets.push(marker_dataset(app, &marker));
     datasets.extend(series.iter().zip(LEGEND).zip(colours).zip(PATTERNS).map(
         |(((data, name), colour), pattern)| {
             let marker = if t.colour {

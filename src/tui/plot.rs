@@ -124,6 +124,51 @@ pub(crate) fn marker_dataset<'a>(app: &App, points: &'a [(f64, f64)]) -> Dataset
         .data(points)
 }
 
+/// The vertical lines of the mid-roll edits ([`super::roll_view::RollView::edits`]) from
+/// `y_lo` to `y_hi`, one pair of points each.
+pub(crate) fn edit_marks(app: &App, y_lo: f64, y_hi: f64) -> Vec<[(f64, f64); 2]> {
+    let dt = app.roll.live.params.integrator.dt;
+    app.roll
+        .edits
+        .iter()
+        .map(|&n| {
+            let t = n as f64 * dt;
+            [(t, y_lo), (t, y_hi)]
+        })
+        .collect()
+}
+
+/// The datasets drawing [`edit_marks`]: each a line of `┊` (`:` in ASCII).
+pub(crate) fn edit_datasets<'a>(app: &App, marks: &'a [[(f64, f64); 2]]) -> Vec<Dataset<'a>> {
+    let symbol = if app.drawing == Drawing::Ascii { ':' } else { '┊' };
+    marks
+        .iter()
+        .map(|m| {
+            Dataset::default()
+                .name("edit")
+                .marker(Marker::Custom(symbol))
+                .graph_type(GraphType::Line)
+                .style(Style::new().fg(marker_colour(app)))
+                .data(m)
+        })
+        .collect()
+}
+
+/// The dataset of the previous run's curve, faded (the chaos twin's ghost grey; `.`
+/// without colour).
+pub(crate) fn previous_dataset<'a>(app: &App, data: &'a [(f64, f64)]) -> Dataset<'a> {
+    Dataset::default()
+        .name("previous")
+        .marker(if app.theme.colour {
+            app.drawing.line_marker()
+        } else {
+            Marker::Custom('.')
+        })
+        .graph_type(GraphType::Line)
+        .style(Style::new().fg(app.theme.ghost()))
+        .data(data)
+}
+
 /// The value axis of `data`: a floor and top that read well, with at most `most` labels,
 /// each `width` characters wide.
 fn value_axis(data: &[(f64, f64)], most: usize, width: usize) -> ([f64; 2], Vec<String>) {
@@ -182,10 +227,13 @@ pub(crate) fn render_quantity(app: &App, area: Rect, frame: &mut Frame, i: usize
         return;
     }
     let data = thinned(&app.roll.history, body.width as usize * 2, |s| s.quantities[i]);
+    let previous = thinned(&app.roll.previous, body.width as usize * 2, |s| s.quantities[i]);
     let rows = body.height.saturating_sub(2).max(1) as usize;
-    let ([y_lo, y_hi], labels) = value_axis(&data, rows.div_ceil(2).clamp(2, 5), LABEL_WIDTH);
+    let both: Vec<(f64, f64)> = data.iter().chain(&previous).copied().collect();
+    let ([y_lo, y_hi], labels) = value_axis(&both, rows.div_ceil(2).clamp(2, 5), LABEL_WIDTH);
     let (x_hi, x_labels) = time_axis(app, time_labels_for(body.width));
     let marker = time_marker(app, y_lo, y_hi);
+    let edits = edit_marks(app, y_lo, y_hi);
     let colour = app.theme.energy_series()[0];
     let line = Dataset::default()
         .name(q.short)
@@ -197,7 +245,10 @@ pub(crate) fn render_quantity(app: &App, area: Rect, frame: &mut Frame, i: usize
         .graph_type(GraphType::Line)
         .style(Style::new().fg(colour))
         .data(&data);
-    let chart = Chart::new(vec![marker_dataset(app, &marker), line])
+    let mut datasets = vec![previous_dataset(app, &previous)];
+    datasets.extend(edit_datasets(app, &edits));
+    datasets.extend([marker_dataset(app, &marker), line]);
+    let chart = Chart::new(datasets)
         .block(block)
         .x_axis(Axis::default().bounds([0.0, x_hi]).labels(x_labels))
         .y_axis(Axis::default().bounds([y_lo, y_hi]).labels(labels))
@@ -234,17 +285,22 @@ pub(crate) fn render_phase(app: &App, area: Rect, frame: &mut Frame, i: usize, j
         frame.render_widget(block, area);
         return;
     }
+    let curve_of = |history: &[EnergySample]| -> Vec<(f64, f64)> {
+        let every = history.len().div_ceil(PHASE_POINTS).max(1);
+        history
+            .iter()
+            .step_by(every)
+            .chain(history.last())
+            .map(|s| (s.quantities[i], s.quantities[j]))
+            .collect()
+    };
     let history = &app.roll.history;
-    let every = history.len().div_ceil(PHASE_POINTS).max(1);
-    let data: Vec<(f64, f64)> = history
-        .iter()
-        .step_by(every)
-        .chain(history.last())
-        .map(|s| (s.quantities[i], s.quantities[j]))
-        .collect();
+    let data = curve_of(history);
+    let previous = curve_of(&app.roll.previous);
+    let both: Vec<(f64, f64)> = data.iter().chain(&previous).copied().collect();
     let rows = body.height.saturating_sub(2).max(1) as usize;
-    let ([y_lo, y_hi], y_labels) = value_axis(&data, rows.div_ceil(2).clamp(2, 5), LABEL_WIDTH);
-    let across: Vec<(f64, f64)> = data.iter().map(|&(a, b)| (b, a)).collect();
+    let ([y_lo, y_hi], y_labels) = value_axis(&both, rows.div_ceil(2).clamp(2, 5), LABEL_WIDTH);
+    let across: Vec<(f64, f64)> = both.iter().map(|&(a, b)| (b, a)).collect();
     let ([x_lo, x_hi], mut x_labels) = value_axis(&across, time_labels_for(body.width), 0);
     // The unit after the last number where the two fit the label's share of the width
     // (else the title carries it, or the panel is too narrow for it).
@@ -275,7 +331,7 @@ pub(crate) fn render_phase(app: &App, area: Rect, frame: &mut Frame, i: usize, j
         .graph_type(GraphType::Scatter)
         .style(Style::new().fg(marker_colour(app)))
         .data(&now);
-    let chart = Chart::new(vec![curve, here])
+    let chart = Chart::new(vec![previous_dataset(app, &previous), curve, here])
         .block(block)
         .x_axis(Axis::default().bounds([x_lo, x_hi]).labels(x_labels))
         .y_axis(Axis::default().bounds([y_lo, y_hi]).labels(y_labels))

@@ -125,3 +125,31 @@ fn the_phase_plot_draws_the_speed_against_the_height_and_marks_the_state_on_scre
     let narrow = screen(&s.app, 80, 24);
     assert!(narrow.contains("speed vs height"), "{narrow}");
 }
+
+#[test]
+fn a_mid_roll_edit_is_marked_on_the_timeline_and_the_plot_and_the_old_run_stays_faded() {
+    let mut s = plot_at(300, 0, false);
+    let before = s.app.roll.history.clone();
+    // The stiffness (the first row) one step up, at 0.3 s: the table acts at once.
+    assert_eq!(s.app.selected, 0);
+    s.key(KeyCode::Right);
+    assert_eq!(s.app.roll.edits, vec![300], "the worker's record of the edit");
+    assert_eq!(s.app.roll.previous, before, "the run before the edit, kept whole");
+    s.run_to_end();
+    // The new run shares the old one's samples up to the edit and parts from it after.
+    let shared = s.app.roll.history.iter().take_while(|h| h.time_s <= 0.3).count();
+    assert_eq!(s.app.roll.history[..shared], before[..shared]);
+    assert_ne!(s.app.roll.history[shared..], before[shared..shared + 1]);
+    let text = screen(&s.app, 120, 36);
+    insta::assert_snapshot!("plot_edit_120x36", text);
+    insta::assert_snapshot!("plot_edit_80x24", screen(&s.app, 80, 24));
+    assert_eq!(text.matches('▼').count(), 1, "the edit on the timeline:\n{text}");
+    assert!(text.contains('┊'), "the edit on the plot:\n{text}");
+    // A replay is a new run: no edit in it, the edited run now the faded one.
+    let edited = s.app.roll.history.clone();
+    s.key(KeyCode::Char('r'));
+    s.sync();
+    assert!(s.app.roll.edits.is_empty());
+    assert_eq!(s.app.roll.previous, edited);
+    assert!(!screen(&s.app, 120, 36).contains('▼'));
+}

@@ -498,6 +498,7 @@ impl LiveRoll {
             position: self.position,
             furthest: self.timeline.furthest,
             ended: self.timeline.ended,
+            edits: self.timeline.impacts_changed.then(|| self.timeline.edits.clone()),
             impacts: std::mem::take(&mut self.timeline.impacts_changed)
                 .then(|| self.timeline.impacts.clone()),
         }

@@ -234,8 +234,10 @@ pub struct TimelineSnapshot {
     pub furthest: u64,
     /// Whether the roll ends at `furthest`.
     pub ended: bool,
-    /// Steps at which impacts began, whenever they changed.
+    /// Steps at which impacts began, whenever they (or the edits) changed.
     pub impacts: Option<Vec<u64>>,
+    /// Steps at which a table value was changed mid-roll, sent with the impacts.
+    pub edits: Option<Vec<u64>>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
