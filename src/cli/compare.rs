@@ -500,7 +500,11 @@ fn budden_record(
     let best = c.fit.as_ref().map_or(String::new(), |f| {
         format!(", drawn at the best, {} = {}", c.key, n(f.best))
     });
-    let p = preset.params();
+    // The table and world as the throws were drawn: with the fitted value at its best.
+    let (mut p, mut initial) = (preset.params(), preset.initial);
+    if let Some(f) = &c.fit {
+        spec.fit.key.set(&mut p, &mut initial, f.best);
+    }
     let caption = vec![
         format!(
             "{}: {throws}, each {}; --fit {fit_text} over {} candidates on ratios {}{best}",
