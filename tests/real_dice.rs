@@ -259,9 +259,9 @@ fn a_budden_cuboid_has_its_sizes_steel_mass_and_the_cuboid_inertia() {
             mass * (a * a + c * c) / 3.0,
             mass * (a * a + b * b) / 3.0,
         ];
-        for i in 0..3 {
+        for (i, &expected) in inertia.iter().enumerate() {
             assert!(
-                (m.inertia[(i, i)] - inertia[i]).abs() < 1e-9 * inertia[i],
+                (m.inertia[(i, i)] - expected).abs() < 1e-9 * expected,
                 "{ratio} {i}"
             );
             for j in (0..3).filter(|&j| j != i) {
@@ -278,8 +278,10 @@ fn a_budden_cuboid_has_its_sizes_steel_mass_and_the_cuboid_inertia() {
 fn a_budden_cuboid_at_rest_on_each_face_is_counted_square_or_not() {
     use dicesim::experiment::compare_budden::{cuboid, is_square_face};
     let ratio = 0.63;
-    let mut params = Params::default();
-    params.die = cuboid(ratio);
+    let params = Params {
+        die: cuboid(ratio),
+        ..Params::default()
+    };
     // Each orientation turns a different body axis to the vertical, either way up.
     let orientations = [
         [0.0, 0.0, 0.0],

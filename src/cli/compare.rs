@@ -603,15 +603,15 @@ fn print_budden(out: &mut impl Write, c: &BuddenComparison, preset: &str) -> std
     )?;
     writeln!(
         out,
-        "{:>5}  {:>9}  {:>5}  {:>6}  {:>11}  {:>5}  {:>6}  {:>11}  {:>6}  {}",
-        "x/y", "role", "real", "share", "95% interval", "sim", "share", "95% interval", "z (σ)", "within 2σ"
+        "{:>5}  {:>9}  {:>6}  {:>6}  {:>11}  {:>6}  {:>6}  {:>11}  {:>6}  within 2σ",
+        "x/y", "role", "real n", "share", "95% interval", "sim n", "share", "95% interval", "z (σ)"
     )?;
     let interval = |i: [f64; 2]| format!("{:.3}–{:.3}", i[0], i[1]);
     for r in &c.ratios {
         let s = &r.shares;
         writeln!(
             out,
-            "{:>5.2}  {:>9}  {:>5}  {:>6.3}  {:>11}  {:>5}  {:>6.3}  {:>11}  {:>+6.2}  {}",
+            "{:>5.2}  {:>9}  {:>6}  {:>6.3}  {:>11}  {:>6}  {:>6.3}  {:>11}  {:>+6.2}  {}",
             r.ratio,
             match r.role {
                 RatioRole::Calibrate => "calibrate",
