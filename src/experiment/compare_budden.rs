@@ -303,9 +303,20 @@ fn setup(
 ) -> Result<(Params, InitialCondition), Error> {
     let (mut p, mut ic) = (*params, *base);
     p.die = cuboid(ratio);
-    fit.key.set_checked(&mut p, &mut ic, value)?;
-    p.validate()?;
-    ranges.check_clear_of_table(&p, &ic)?;
+    // Which cuboid and candidate a refusal is about: the key alone does not say.
+    let context = |e: Error| {
+        Error::Compare(format!(
+            "the cuboid of ratio {ratio} with {} = {value}: {e}",
+            fit.key.key
+        ))
+    };
+    fit.key
+        .set_checked(&mut p, &mut ic, value)
+        .map_err(|e| context(e.into()))?;
+    p.validate().map_err(|e| context(e.into()))?;
+    ranges
+        .check_clear_of_table(&p, &ic)
+        .map_err(|e| context(e.into()))?;
     Ok((p, ic))
 }
 
@@ -526,6 +537,24 @@ mod tests {
         assert!(e.contains("named twice"), "{e}");
         let e = spec(&[]).validate().unwrap_err().to_string();
         assert!(e.contains("at least one ratio"), "{e}");
+    }
+
+    #[test]
+    fn a_refused_cuboid_is_named_by_its_ratio_and_value() {
+        let fit = FitSpec::parse("die.corner_radius:0:0.6", 21).unwrap();
+        let (p, ic, r) = (
+            Params::default(),
+            InitialCondition::default(),
+            RandomRanges::default(),
+        );
+        // Ratio 0.47: half sizes 0.47, 1, 1 cm, so a 0.6 cm rounding does not fit.
+        let e = setup(&p, &ic, &r, &fit, 0.47, 0.6).unwrap_err().to_string();
+        assert!(
+            e.contains("the cuboid of ratio 0.47 with die.corner_radius = 0.6"),
+            "{e}"
+        );
+        assert!(e.contains("below the smallest half size, 0.47 cm"), "{e}");
+        assert!(setup(&p, &ic, &r, &fit, 1.87, 0.6).is_ok());
     }
 
     #[test]
