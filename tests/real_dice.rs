@@ -293,10 +293,12 @@ fn a_budden_cuboid_at_rest_on_each_face_is_counted_square_or_not() {
     ];
     let mut faces = Vec::new();
     for orientation in orientations {
-        // Its lowest point 1 mm above the table: the vertical half size is ratio or 1 cm.
+        // Dropped flat from 1 cm: 1 cm of fall is more energy than the stop rule lets a
+        // settled body keep (tipping this cuboid off a square face takes 0.55 cm of rise),
+        // so it lands, bounces and settles before the roll ends.
         let vertical = if orientation[1] != 0.0 { ratio } else { 1.0 };
         let initial = InitialCondition {
-            height: vertical + 0.1,
+            height: vertical + 1.0,
             velocity: [0.0; 3],
             angular_velocity: [0.0; 3],
             angular_momentum: None,
@@ -306,9 +308,10 @@ fn a_budden_cuboid_at_rest_on_each_face_is_counted_square_or_not() {
         let outcome = sim.run_to_end();
         let face = outcome.face.expect("it settles on a face");
         let height = sim.state().position.z;
-        // Less the springs' give under its weight, M·g/(4k) = 0.019 cm.
+        // The roll ends once its energy is below the stop rule's, still bobbing on the
+        // springs by some hundredths of a cm; the two half sizes differ by 0.37 cm.
         assert!(
-            (height - vertical).abs() < 0.05,
+            (height - vertical).abs() < 0.15,
             "{orientation:?}: rests at {height} cm"
         );
         assert_eq!(
