@@ -8,6 +8,7 @@ pub(crate) mod animation;
 pub(crate) mod basin;
 pub(crate) mod batch;
 pub mod compare;
+pub mod compare_budden;
 pub(crate) mod compare_plot;
 pub mod compare_stats;
 pub(crate) mod ending;
