@@ -99,26 +99,49 @@ fn trace_header_and_rows() {
     assert!(o.status.success());
     let text = stdout(&o);
     let mut lines = text.lines();
-    let mut want =
-        "step,t,x,y,z,vx,vy,vz,Lx,Ly,Lz,wx,wy,wz,e_trans,e_rot,e_grav,e_elastic,e_total".to_string();
+    let mut want = "step,t_s,x_cm,y_cm,z_cm,vx_cm_per_s,vy_cm_per_s,vz_cm_per_s,\
+                    Lx_g_cm2_per_s,Ly_g_cm2_per_s,Lz_g_cm2_per_s,wx_rad_per_s,wy_rad_per_s,wz_rad_per_s,\
+                    height_cm,lowest_corner_cm,speed_cm_per_s,spin_rate_rad_per_s,contact_force_dyn,\
+                    e_trans_erg,e_rot_erg,e_grav_erg,e_elastic_erg,e_total_erg,\
+                    contact_mode_load,corner_travel_load,damping_load,friction_load"
+        .to_string();
     for k in 1..=8 {
-        want += &format!(",c{k}x,c{k}y,c{k}z");
+        want += &format!(",c{k}x_cm,c{k}y_cm,c{k}z_cm");
     }
-    assert_eq!(lines.next().unwrap(), want);
+    let header = lines.next().unwrap();
+    assert_eq!(header, want);
+    let column = |name: &str| header.split(',').position(|c| c == name).unwrap();
     let rows: Vec<Vec<f64>> = lines
         .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
         .collect();
     assert_eq!(rows.iter().map(|r| r[0] as u64).collect::<Vec<_>>(), [0, 2, 4, 5]);
-    assert!(rows.iter().all(|r| r.len() == 19 + 24));
+    assert!(rows.iter().all(|r| r.len() == 28 + 24));
     // Free fall, kick then drift: z_n = 15 − g·Δt²·n(n+1)/2, v_n = −g·Δt·n.
     let r4 = &rows[2];
-    assert!((r4[4] - (15.0 - 980e-6 * 10.0)).abs() < 1e-12);
-    assert!((r4[7] + 980e-3 * 4.0).abs() < 1e-12);
+    let z4 = 15.0 - 980e-6 * 10.0;
+    assert!((r4[column("z_cm")] - z4).abs() < 1e-12);
+    assert!((r4[column("vz_cm_per_s")] + 980e-3 * 4.0).abs() < 1e-12);
+    // The quantities: the height is the centre's z, the die falls straight at |v_z|
+    // without spin, its lowest point one half size below the centre, nothing touches.
+    assert_eq!(r4[column("height_cm")], r4[column("z_cm")]);
+    assert!((r4[column("speed_cm_per_s")] - 980e-3 * 4.0).abs() < 1e-12);
+    assert_eq!(r4[column("spin_rate_rad_per_s")], 0.0);
+    assert!((r4[column("lowest_corner_cm")] - (z4 - 1.0)).abs() < 1e-12);
+    assert_eq!(r4[column("contact_force_dyn")], 0.0);
+    // ½·M·v² with M = 8 g, and M·g·(z − a).
+    let v = 980e-3 * 4.0;
+    assert!((r4[column("e_trans_erg")] - 0.5 * 8.0 * v * v).abs() < 1e-9);
+    assert!((r4[column("e_grav_erg")] - 8.0 * 980.0 * (z4 - 1.0)).abs() < 1e-6);
     // Corner 2 (−,−,+) sits one half size above and beside the centre.
-    assert_eq!((r4[19 + 3], r4[19 + 4]), (-1.0, -1.0));
-    assert!((r4[19 + 5] - (r4[4] + 1.0)).abs() < 1e-12);
+    let c2 = column("c2x_cm");
+    assert_eq!((r4[c2], r4[c2 + 1]), (-1.0, -1.0));
+    assert!((r4[c2 + 2] - (z4 + 1.0)).abs() < 1e-12);
     // Energy columns add up.
-    assert!((r4[14] + r4[15] + r4[16] + r4[17] - r4[18]).abs() < 1e-6);
+    let terms: f64 = ["e_trans_erg", "e_rot_erg", "e_grav_erg", "e_elastic_erg"]
+        .iter()
+        .map(|c| r4[column(c)])
+        .sum();
+    assert!((terms - r4[column("e_total_erg")]).abs() < 1e-6);
 }
 
 #[test]

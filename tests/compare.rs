@@ -247,8 +247,16 @@ fn bad_requests_are_refused_before_rolling() {
         &["compare", "weldon", "--fit", "ground.friction:0.2:7"],
         "allowed range",
     );
-    // Budden's cuboids need bodies of other proportions than a cube: not offered yet.
-    refused(&["compare", "budden"], "invalid value 'budden'");
+    // Budden's calibration ratios must be his: the error names all fifteen.
+    refused(
+        &["compare", "budden", "--calibrate-on", "0.63,1.0"],
+        "--calibrate-on: 1 is not one of Budden's ratios x/y; they are 0.47, 0.63, 0.75, 0.81, \
+         0.93, 0.97, 1.16, 1.23, 1.44, 1.55, 1.60, 1.71, 1.87, 2.12, 2.65",
+    );
+    refused(
+        &["compare", "weldon", "--calibrate-on", "0.47"],
+        "for `compare budden` only",
+    );
     refused(&["compare", "weldon", "--throws", "0"], "--throws");
     // The paper's starts keep their upright orientation: the lowest corner is a = 1 cm
     // below the centre, less the resting depth M·g/(4k) = 0.00392 cm.
@@ -307,4 +315,122 @@ fn ctrl_c_keeps_the_throws_that_finished_and_says_so() {
     assert!(err.contains("interrupted: kept the 0 of 8 throws"), "{err}");
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(out.contains("0 simulated"), "{out}");
+}
+
+/// Budden's ratios and his shares of square-face landings, typed from the source's table.
+const BUDDEN: [(f64, f64, u64); 15] = [
+    (0.47, 0.916, 332),
+    (0.63, 0.738, 840),
+    (0.75, 0.548, 799),
+    (0.81, 0.496, 740),
+    (0.93, 0.399, 516),
+    (0.97, 0.385, 530),
+    (1.16, 0.148, 1011),
+    (1.23, 0.154, 532),
+    (1.44, 0.052, 654),
+    (1.55, 0.040, 606),
+    (1.60, 0.017, 702),
+    (1.71, 0.031, 609),
+    (1.87, 0.009, 680),
+    (2.12, 0.007, 275),
+    (2.65, 0.006, 503),
+];
+
+fn budden_run(extra: &[&str]) -> Output {
+    let mut args = vec!["compare", "budden", "--throws", "12", "--json"];
+    args.extend_from_slice(extra);
+    dicesim(&args)
+}
+
+#[test]
+fn budden_runs_end_to_end_naming_every_ratio_and_its_role() {
+    let dir = tempfile::tempdir().unwrap();
+    let (png, csv) = (dir.path().join("b.png"), dir.path().join("b.csv"));
+    let v = json(&budden_run(&[
+        "--out",
+        png.to_str().unwrap(),
+        "--out",
+        csv.to_str().unwrap(),
+    ]));
+    assert_eq!(v["dataset"], "budden");
+    assert_eq!(v["key"], "ground.damping");
+    let text = v["assumptions"].to_string();
+    assert!(text.contains("2 cm") && text.contains("7.8 g/cm³"), "{text}");
+    assert!(text.contains("uniformly random orientation"), "{text}");
+    // 21 candidates, each with 12 throws of each of the three default calibration ratios.
+    let candidates = v["candidates"].as_array().unwrap();
+    assert_eq!(candidates.len(), 21);
+    for c in candidates {
+        let ratios: Vec<f64> = c["ratios"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|r| r["ratio"].as_f64().unwrap())
+            .collect();
+        assert_eq!(ratios, [0.63, 1.16, 1.87]);
+    }
+    let ratios = v["ratios"].as_array().unwrap();
+    assert_eq!(ratios.len(), 15);
+    let mut within = 0;
+    for (r, &(ratio, share, throws)) in ratios.iter().zip(&BUDDEN) {
+        assert_eq!(r["ratio"].as_f64().unwrap(), ratio);
+        let role = if [0.63, 1.16, 1.87].contains(&ratio) {
+            "calibrate"
+        } else {
+            "predict"
+        };
+        assert_eq!(r["role"], role, "ratio {ratio}");
+        assert_eq!(r["data_throws"].as_u64().unwrap(), throws);
+        let square = r["data_square"].as_u64().unwrap();
+        assert_eq!((square as f64 / throws as f64 * 1000.0).round() / 1000.0, share);
+        let sim = &r["simulated"];
+        let (n, k) = (sim["throws"].as_u64().unwrap(), sim["square"].as_u64().unwrap());
+        assert_eq!(n + sim["uncounted"].as_u64().unwrap(), 12);
+        // The difference of the two shares in σ of the pooled share, by the textbook formula.
+        let pooled = (square + k) as f64 / (throws + n) as f64;
+        let sigma = (pooled * (1.0 - pooled) * (1.0 / throws as f64 + 1.0 / n as f64)).sqrt();
+        let z = (square as f64 / throws as f64 - k as f64 / n as f64) / sigma;
+        assert!(
+            (r["shares"]["z"].as_f64().unwrap() - z).abs() < 1e-9,
+            "ratio {ratio}"
+        );
+        if role == "predict" && z.abs() <= 2.0 {
+            within += 1;
+        }
+    }
+    assert_eq!(v["predicted"]["shares"], 12);
+    assert_eq!(v["predicted"]["within_two_sigma"], within);
+    assert_eq!(v["calibrated"]["shares"], 3);
+    let png = std::fs::read(&png).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    let table = std::fs::read_to_string(&csv).unwrap();
+    // The provenance line, the header and one row per ratio.
+    assert_eq!(table.lines().count(), 17);
+    assert!(
+        table.lines().nth(4).unwrap().starts_with("0.75,predict,"),
+        "{table}"
+    );
+
+    // Other calibration ratios change the roles and nothing else about the ratios.
+    let other = json(&budden_run(&["--calibrate-on", "0.47,2.65"]));
+    let roles: Vec<&str> = other["ratios"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["role"].as_str().unwrap())
+        .collect();
+    assert_eq!(roles.iter().filter(|&&r| r == "calibrate").count(), 2);
+    assert_eq!(
+        (roles[0], roles[14], roles[1]),
+        ("calibrate", "calibrate", "predict")
+    );
+}
+
+#[test]
+fn budden_is_the_same_for_any_thread_count() {
+    let run = |jobs: &str| budden_run(&["--seed", "5", "--jobs", jobs, "--calibrate-on", "0.81"]);
+    let (one, two) = (run("1"), run("2"));
+    assert!(one.status.success(), "{}", String::from_utf8_lossy(&one.stderr));
+    // Every count, share, deviance and fitted value printed with all its digits.
+    assert_eq!(one.stdout, two.stdout, "the result depends on the thread count");
 }

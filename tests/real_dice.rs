@@ -237,3 +237,90 @@ fn bodies_out_of_shape_are_refused_naming_the_rule() {
     // The paper's die keeps the authors' energy.
     Preset::from_toml_str("[integrator]\nstop_energy = \"point-masses\"\n", "p.toml").unwrap();
 }
+
+/// Budden's cuboid of ratio x/y: two square faces 2 cm across (faces 1 and 6), x = ratio·2
+/// cm apart, solid steel of 7.8 g/cm³.
+#[test]
+fn a_budden_cuboid_has_its_sizes_steel_mass_and_the_cuboid_inertia() {
+    use dicesim::experiment::compare_budden::cuboid;
+    use dicesim::physics::mass_properties;
+    for ratio in [0.47, 1.16, 2.65] {
+        let die = cuboid(ratio);
+        assert_eq!(die.half_sizes, [ratio, 1.0, 1.0]);
+        let m = mass_properties(&die);
+        // 7.8 g/cm³ × (2·ratio cm × 2 cm × 2 cm).
+        let mass = 7.8 * 8.0 * ratio;
+        assert!((m.mass - mass).abs() < 1e-12 * mass, "{ratio}: {}", m.mass);
+        assert!(m.centre_of_mass.norm() < 1e-12);
+        // A solid cuboid of sides 2a, 2b, 2c about its centre: M(b² + c²)/3 and the others.
+        let [a, b, c] = [ratio, 1.0, 1.0];
+        let inertia = [
+            mass * (b * b + c * c) / 3.0,
+            mass * (a * a + c * c) / 3.0,
+            mass * (a * a + b * b) / 3.0,
+        ];
+        for (i, &expected) in inertia.iter().enumerate() {
+            assert!(
+                (m.inertia[(i, i)] - expected).abs() < 1e-9 * expected,
+                "{ratio} {i}"
+            );
+            for j in (0..3).filter(|&j| j != i) {
+                assert!(m.inertia[(i, j)].abs() < 1e-9);
+            }
+        }
+    }
+}
+
+/// A cuboid set down on each of its six faces stays there, and the square-face count agrees
+/// with where its centre comes to rest: at the half length (ratio · 1 cm) above the table
+/// on a square face, 1 cm on a long one.
+#[test]
+fn a_budden_cuboid_at_rest_on_each_face_is_counted_square_or_not() {
+    use dicesim::experiment::compare_budden::{cuboid, is_square_face};
+    let ratio = 0.63;
+    let params = Params {
+        die: cuboid(ratio),
+        ..Params::default()
+    };
+    // Each orientation turns a different body axis to the vertical, either way up.
+    let orientations = [
+        [0.0, 0.0, 0.0],
+        [0.0, 0.0, 180.0],
+        [0.0, 0.0, 90.0],
+        [0.0, 0.0, -90.0],
+        [0.0, 90.0, 0.0],
+        [0.0, -90.0, 0.0],
+    ];
+    let mut faces = Vec::new();
+    for orientation in orientations {
+        // Dropped flat from 1 cm: 1 cm of fall is more energy than the stop rule lets a
+        // settled body keep (tipping this cuboid off a square face takes 0.55 cm of rise),
+        // so it lands, bounces and settles before the roll ends.
+        let vertical = if orientation[1] != 0.0 { ratio } else { 1.0 };
+        let initial = InitialCondition {
+            height: vertical + 1.0,
+            velocity: [0.0; 3],
+            angular_velocity: [0.0; 3],
+            angular_momentum: None,
+            orientation,
+        };
+        let mut sim = Simulation::new(&params, &initial).unwrap();
+        let outcome = sim.run_to_end();
+        let face = outcome.face.expect("it settles on a face");
+        let height = sim.state().position.z;
+        // The roll ends once its energy is below the stop rule's, still bobbing on the
+        // springs by some hundredths of a cm; the two half sizes differ by 0.37 cm.
+        assert!(
+            (height - vertical).abs() < 0.15,
+            "{orientation:?}: rests at {height} cm"
+        );
+        assert_eq!(
+            is_square_face(face),
+            vertical == ratio,
+            "{orientation:?}: face {face}"
+        );
+        faces.push(face);
+    }
+    faces.sort_unstable();
+    assert_eq!(faces, [1, 2, 3, 4, 5, 6]);
+}

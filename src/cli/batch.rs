@@ -11,6 +11,7 @@ use crate::experiment::number::fmt_num;
 use crate::experiment::parquet::RecordsWriter;
 use crate::experiment::shard::Shard;
 use crate::experiment::shard::Sweep;
+use crate::experiment::versus::{NO_FACE, VersusRun, stream_versus};
 use crate::experiment::{BatchRun, BatchSummary, RollRecord, Rolls, RunOptions, stream_batch};
 use crate::output::Output;
 use crate::physics::InitialCondition;
@@ -69,10 +70,19 @@ pub(crate) struct BatchArgs {
     /// either, so this changes speed only.
     #[arg(long, value_enum, default_value_t = EngineArg::Auto)]
     pub(crate) engine: EngineArg,
+    /// Roll every throw twice: in setup A (as given) and in setup B, A with this value
+    /// changed (a `--set` key of the die, ground, world or integrator; repeatable). Prints
+    /// the table of A's face against B's and the share of throws that agree; --out writes
+    /// each throw's two outcomes (.csv) or the figures (.json).
+    #[arg(long, value_name = "KEY=VALUE", conflicts_with = "shard")]
+    pub(crate) versus: Vec<String>,
 }
 
 pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
     let jobs = super::checked_jobs(args.jobs)?;
+    if !args.versus.is_empty() {
+        return run_versus(args, jobs);
+    }
     let sharding = args.shard.resolve(args.out.as_deref(), args.force)?;
     let (preset, params, given) = check_sweep(args, sharding.as_ref().map(|(s, _)| *s))?;
     let output = args
@@ -406,6 +416,215 @@ pub(super) fn print_counts(out: &mut impl Write, s: &BatchSummary) -> std::io::R
         st.timeout,
         Ending::Unstable.name(),
         st.unstable
+    )?;
+    Ok(())
+}
+
+/// `batch --versus`: the same throws in setup A (as given) and in B (with the `--versus`
+/// values), A's ending against B's.
+fn run_versus(args: &BatchArgs, jobs: usize) -> Result<(), CliError> {
+    let (preset, params, given) = check_sweep(args, None)?;
+    let twin = preset.with_overrides(&args.versus)?;
+    // The throws are A's: a value of the throw itself would make the throws differ.
+    if twin.initial != preset.initial || twin.random != preset.random {
+        return Err(CliError::Usage(format!(
+            "--versus {}: the throws are shared, so --versus changes the setup (die.*, ground.*, \
+             world.*, integrator.*), not the throw (initial.*, random.*)",
+            args.versus.join(" ")
+        )));
+    }
+    let params_b = twin.params();
+    params_b.validate()?;
+    let output = args
+        .out
+        .as_deref()
+        .map(|p| Output::check(p, &["csv", "json"], args.force))
+        .transpose()
+        .map_err(CliError::output("--out "))?;
+    let seed = args.seed.unwrap_or(preset.random.seed);
+    let rolls = match &given {
+        Some(ics) => Rolls::Given(ics),
+        None => Rolls::Random {
+            ranges: &preset.random,
+            base: &preset.initial,
+            seed,
+            first: 0,
+            count: args.rolls.unwrap_or(0),
+        },
+    };
+    let seed_field = given.is_none().then_some(seed);
+    let fingerprint = batch_fingerprint(&preset, given.as_deref());
+    let mut provenance = batch_provenance(
+        &preset,
+        seed_field,
+        rolls.len(),
+        given.is_some().then_some(fingerprint.as_str()),
+    );
+    provenance["versus"] = json!(args.versus);
+    let options = RunOptions {
+        jobs,
+        engine: args.engine.engine(),
+    };
+    let stop = cancel_on_ctrl_c()?;
+    let bar = super::progress_bar(
+        rolls.len(),
+        "{bar:40} {pos}/{len} throws ×2, {per_sec}, {eta} left",
+    );
+    let write_error = std::cell::RefCell::new(None);
+    let roll = |sink: &mut dyn FnMut(&[RollRecord]) -> std::io::Result<()>| {
+        stream_versus(
+            &params,
+            &params_b,
+            &rolls,
+            &options,
+            &stop,
+            &mut |chunk: &[RollRecord]| {
+                bar.inc(chunk.len() as u64 / 2);
+                sink(chunk).map_err(|e| {
+                    let words = e.to_string();
+                    *write_error.borrow_mut() = Some(e);
+                    words
+                })
+            },
+        )
+    };
+    let figures = |run: &VersusRun| {
+        json!({
+            "preset": preset.name,
+            "versus": args.versus,
+            "seed": seed_field,
+            "requested": run.requested,
+            "completed": run.completed,
+            "interrupted": run.cancelled,
+            "jobs": run.jobs,
+            "engine": run.engine,
+        })
+    };
+    let run = match &output {
+        Some(output) if output.extension() == "csv" => {
+            let mut run = None;
+            output
+                .write(|w| {
+                    writeln!(w, "{}", csv_provenance_line(&provenance))?;
+                    let mut csv = csv::Writer::from_writer(w);
+                    csv.write_record(versus_csv_header()).map_err(csv_io)?;
+                    let done = roll(&mut |chunk| {
+                        for pair in chunk.chunks_exact(2) {
+                            csv.write_record(versus_csv_row(&pair[0], &pair[1]))
+                                .map_err(csv_io)?;
+                        }
+                        Ok(())
+                    });
+                    let done = done.map_err(|e| match write_error.borrow_mut().take() {
+                        Some(io) => io,
+                        None => std::io::Error::other(e.to_string()),
+                    })?;
+                    csv.flush()?;
+                    run = Some(done);
+                    Ok(())
+                })
+                .map_err(CliError::output(""))?;
+            run.expect("the throws were rolled")
+        }
+        _ => roll(&mut |_| Ok(())).map_err(CliError::experiment(""))?,
+    };
+    bar.finish_and_clear();
+    let mut v = figures(&run);
+    let summary = json!(run.table.summary());
+    for (key, value) in summary.as_object().expect("a struct") {
+        v[key] = value.clone();
+    }
+    if let Some(output) = output.as_ref().filter(|o| o.extension() == "json") {
+        v["provenance"] = provenance.clone();
+        output
+            .write_bytes(format!("{v}\n").as_bytes())
+            .map_err(CliError::output(""))?;
+    }
+    let mut out = std::io::stdout().lock();
+    if args.json {
+        writeln!(out, "{v}")?;
+    } else {
+        print_versus(&mut out, &run, &preset.name, &args.versus)?;
+    }
+    out.flush()?;
+    if run.cancelled {
+        return Err(CliError::Interrupted {
+            completed: run.completed,
+            requested: run.requested,
+            what: "throws",
+        });
+    }
+    Ok(())
+}
+
+/// The per-throw CSV of `--versus`: the throw (id, initial condition, start face) and each
+/// setup's ending, A's columns `a_…`, B's `b_…`.
+fn versus_csv_header() -> Vec<String> {
+    let header = records_csv_header();
+    let (throw, ending) = header.split_at(header.len() - VERSUS_ENDING_COLUMNS);
+    let mut h: Vec<String> = throw.iter().map(|c| c.to_string()).collect();
+    for side in ["a", "b"] {
+        h.extend(ending.iter().map(|c| format!("{side}_{c}")));
+    }
+    h
+}
+
+/// Columns of a roll's record that are its ending: face, status, steps, time_s.
+const VERSUS_ENDING_COLUMNS: usize = 4;
+
+fn versus_csv_row(a: &RollRecord, b: &RollRecord) -> Vec<String> {
+    let mut row = record_csv_row(a);
+    let b = record_csv_row(b);
+    row.extend_from_slice(&b[b.len() - VERSUS_ENDING_COLUMNS..]);
+    row
+}
+
+/// The table and the share that agree, as text.
+fn print_versus(
+    out: &mut impl Write,
+    run: &VersusRun,
+    preset: &str,
+    versus: &[String],
+) -> std::io::Result<()> {
+    let t = &run.table;
+    writeln!(
+        out,
+        "{} throws in A ({preset} as given) and B (A with {}), {} thread{}, {} engine",
+        t.throws(),
+        versus.join(" "),
+        run.jobs,
+        if run.jobs == 1 { "" } else { "s" },
+        run.engine.name()
+    )?;
+    writeln!(out, "A \\ B     1      2      3      4      5      6  none")?;
+    for (a, row) in t.counts.iter().enumerate() {
+        let name = if a == NO_FACE {
+            "none".to_string()
+        } else {
+            (a + 1).to_string()
+        };
+        write!(out, "{name:>5}")?;
+        for count in row {
+            write!(out, " {count:>6}")?;
+        }
+        writeln!(out)?;
+    }
+    match t.agreement() {
+        Some((share, [low, high])) => writeln!(
+            out,
+            "agreement  {:.1}% ({} of {}), 95% interval {:.1}–{:.1}%",
+            100.0 * share,
+            t.agreeing(),
+            t.faced(),
+            100.0 * low,
+            100.0 * high
+        )?,
+        None => writeln!(out, "agreement  none: no throw ended on a face in both setups")?,
+    }
+    writeln!(
+        out,
+        "           over the throws ending on a face in both; {} ended on no face in A or B (\"none\")",
+        t.throws() - t.faced()
     )?;
     Ok(())
 }

@@ -4,7 +4,11 @@
 use super::{CliError, EngineArg, SetupArgs};
 use crate::experiment::RunOptions;
 use crate::experiment::compare::{CompareSpec, Comparison, DEFAULT_CANDIDATES, FitSpec, run_comparison};
-use crate::experiment::compare_plot::comparison_png;
+use crate::experiment::compare_budden::{
+    BuddenComparison, BuddenSpec, DEFAULT_CALIBRATE_ON, DEFAULT_FIT, RatioRole, hand_throw,
+    run_budden as roll_budden,
+};
+use crate::experiment::compare_plot::{budden_png, comparison_png};
 use crate::experiment::compare_stats::FitMethod;
 use crate::experiment::figure::setup_value;
 use crate::experiment::plot::{Record, random_starts};
@@ -16,7 +20,7 @@ use std::path::PathBuf;
 /// The most rolls one comparison takes (throws × dice × candidates).
 const MAX_ROLLS: u64 = 1_000_000_000;
 
-/// The experiments a cubic die can be thrown against today.
+/// The experiments the simulated die can be thrown against.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum DatasetArg {
     /// Weldon's 26 306 throws of 12 dice, counted by how many showed a 5 or a 6 (1894).
@@ -25,14 +29,18 @@ pub(crate) enum DatasetArg {
     WolfRed,
     /// Wolf's white die, 20 000 throws counted by face (about 1850).
     WolfWhite,
+    /// Budden's steel cuboids, 15 ratios x/y, counted by square-face landings (1980).
+    Budden,
 }
 
 impl DatasetArg {
-    fn dataset(self) -> Dataset {
+    /// The cubic die's experiment (`None` for Budden's cuboids).
+    fn dataset(self) -> Option<Dataset> {
         match self {
-            DatasetArg::Weldon => Dataset::Weldon,
-            DatasetArg::WolfRed => Dataset::WolfRed,
-            DatasetArg::WolfWhite => Dataset::WolfWhite,
+            DatasetArg::Weldon => Some(Dataset::Weldon),
+            DatasetArg::WolfRed => Some(Dataset::WolfRed),
+            DatasetArg::WolfWhite => Some(Dataset::WolfWhite),
+            DatasetArg::Budden => None,
         }
     }
 }
@@ -44,20 +52,26 @@ pub(crate) struct CompareArgs {
     pub(crate) dataset: DatasetArg,
     #[command(flatten)]
     pub(crate) setup: SetupArgs,
-    /// Simulated throws by the experiment's protocol (12 dice a throw for Weldon), each die
-    /// drawn from the preset's `[random]` ranges (default: as many as the experiment made).
+    /// Simulated throws by the experiment's protocol (12 dice a throw for Weldon; for
+    /// Budden, throws of each ratio's cuboid), each die drawn from the preset's `[random]`
+    /// ranges (default: as many as the experiment made, for Budden ratio by ratio).
     #[arg(long, visible_alias = "rolls", value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub(crate) throws: Option<u64>,
     /// Seed of the random throws (default: the preset's `random.seed`).
     #[arg(long, value_name = "S")]
     pub(crate) seed: Option<u64>,
     /// Fit one setup value to the data: candidates evenly spaced from LO to HI, each rolled
-    /// with the same throws, e.g. `ground.friction:0.2:1.2` or `die.extra_corner_mass.8:0:1`.
+    /// with the same throws, e.g. `ground.friction:0.2:1.2` or `die.extra_corner_mass.8:0:1`
+    /// (Budden always fits; default `ground.damping:0:0.05`).
     #[arg(long, value_name = "KEY:LO:HI", allow_hyphen_values = true)]
     pub(crate) fit: Option<String>,
-    /// Candidates of a fit (at least 20).
-    #[arg(long, value_name = "N", default_value_t = DEFAULT_CANDIDATES, requires = "fit")]
-    pub(crate) candidates: usize,
+    /// Candidates of a fit (at least 20; default 21).
+    #[arg(long, value_name = "N")]
+    pub(crate) candidates: Option<usize>,
+    /// Budden only: the ratios x/y the fit uses (the others are predicted with the best
+    /// value, out of sample).
+    #[arg(long, value_name = "R,R,…", value_delimiter = ',', default_values_t = DEFAULT_CALIBRATE_ON)]
+    pub(crate) calibrate_on: Vec<f64>,
     /// Worker threads (default: one per core); the results do not depend on it.
     #[arg(long, value_name = "J", value_parser = clap::value_parser!(u64).range(1..))]
     pub(crate) jobs: Option<u64>,
@@ -82,7 +96,20 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     params.validate()?;
     // The same up-front start check as `batch`: no drawn throw may start inside the table.
     preset.random.check_clear_of_table(&params, &preset.initial)?;
-    let dataset = args.dataset.dataset();
+    let candidates = args.candidates.unwrap_or(DEFAULT_CANDIDATES);
+    let Some(dataset) = args.dataset.dataset() else {
+        return run_budden(args, jobs, &preset, candidates);
+    };
+    if args.calibrate_on != DEFAULT_CALIBRATE_ON {
+        return Err(CliError::Usage(
+            "--calibrate-on chooses Budden's ratios: it is for `compare budden` only".to_string(),
+        ));
+    }
+    if args.candidates.is_some() && args.fit.is_none() {
+        return Err(CliError::Usage(
+            "--candidates counts a fit's values: give --fit KEY:LO:HI".to_string(),
+        ));
+    }
     let spec = CompareSpec {
         dataset,
         throws: args.throws.unwrap_or_else(|| dataset.data().total()),
@@ -90,7 +117,7 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
         fit: args
             .fit
             .as_deref()
-            .map(|f| FitSpec::parse(f, args.candidates))
+            .map(|f| FitSpec::parse(f, candidates))
             .transpose()
             .map_err(CliError::experiment("--fit "))?,
     };
@@ -133,7 +160,7 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
         "seed": spec.seed,
         "throws": spec.throws,
         "fit": args.fit,
-        "candidates": args.fit.as_ref().map(|_| args.candidates),
+        "candidates": args.fit.as_ref().map(|_| candidates),
     });
     for output in &outputs {
         match output.extension() {
@@ -162,7 +189,7 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
                 ) {
                     (Some(f), Some(v), Some(k)) => format!(
                         "; --fit {f} over {} candidates, drawn at the best, {k} = {}",
-                        args.candidates,
+                        candidates,
                         setup_value(v)
                     ),
                     _ => String::new(),
@@ -350,4 +377,277 @@ fn print_comparison(out: &mut impl Write, c: &Comparison, preset: &str) -> std::
             "real throws that tell this model from the real die: — (no difference measured beyond chance)"
         ),
     }
+}
+
+/// `dicesim compare budden`: the fit on the calibration ratios, then every ratio predicted.
+fn run_budden(
+    args: &CompareArgs,
+    jobs: usize,
+    preset: &crate::preset::Preset,
+    candidates: usize,
+) -> Result<(), CliError> {
+    let params = preset.params();
+    let fit_text = args.fit.as_deref().unwrap_or(DEFAULT_FIT);
+    let spec = BuddenSpec {
+        throws: args.throws,
+        seed: args.seed.unwrap_or(preset.random.seed),
+        fit: FitSpec::parse(fit_text, candidates).map_err(CliError::experiment("--fit "))?,
+        calibrate_on: args.calibrate_on.clone(),
+    };
+    spec.validate().map_err(CliError::experiment(""))?;
+    let total = spec.total_rolls();
+    if total > MAX_ROLLS {
+        return Err(CliError::Usage(format!(
+            "{total} rolls: at most {MAX_ROLLS} in one comparison (fewer --throws or --candidates)"
+        )));
+    }
+    let outputs = super::checked_outputs(&args.out, &["csv", "json", "png"], args.force)?;
+    let options = RunOptions {
+        jobs,
+        engine: args.engine.engine(),
+    };
+    let comparison = super::run_with_progress(
+        total,
+        "{bar:40} {pos}/{len} rolls, {per_sec}, {eta} left",
+        |stop, done| {
+            roll_budden(
+                &params,
+                &preset.random,
+                &preset.initial,
+                &spec,
+                &options,
+                stop,
+                &mut |p| done(p.done),
+            )
+        },
+    )?;
+    // The throw as rolled: the preset's ranges from a uniformly random orientation.
+    let mut values = preset.as_written();
+    values.random = hand_throw(&values.random);
+    values.random.seed = spec.seed;
+    let provenance = serde_json::json!({
+        "program": crate::experiment::PROGRAM,
+        "preset": values,
+        "dataset": "budden",
+        "seed": spec.seed,
+        "throws": spec.throws,
+        "fit": fit_text,
+        "candidates": candidates,
+        "calibrate_on": spec.calibrate_on,
+    });
+    for output in &outputs {
+        match output.extension() {
+            "csv" => output.write(|w| {
+                writeln!(w, "{}", super::shard::csv_provenance_line(&provenance))?;
+                comparison.write_csv(w)
+            }),
+            "json" => output.write(|w| {
+                let mut v = serde_json::to_value(&comparison)?;
+                v["provenance"] = provenance.clone();
+                serde_json::to_writer_pretty(&mut *w, &v)?;
+                writeln!(w)
+            }),
+            _ => {
+                let record = budden_record(&comparison, preset, &spec, fit_text, &provenance);
+                let png = budden_png(&comparison, &record).map_err(CliError::experiment(""))?;
+                output.write_bytes(&png)
+            }
+        }
+        .map_err(CliError::output(""))?;
+    }
+    let mut out = std::io::stdout().lock();
+    if args.json {
+        serde_json::to_writer_pretty(&mut out, &comparison).map_err(std::io::Error::from)?;
+        writeln!(out)?;
+    } else {
+        print_budden(&mut out, &comparison, &preset.name)?;
+        for path in &args.out {
+            writeln!(out, "wrote {}", path.display())?;
+        }
+    }
+    out.flush()?;
+    if comparison.cancelled {
+        let done: u64 = comparison
+            .candidates
+            .iter()
+            .flat_map(|c| &c.ratios)
+            .chain(comparison.ratios.iter().map(|r| &r.simulated))
+            .map(|t| t.throws + t.uncounted)
+            .sum();
+        return Err(CliError::Interrupted {
+            completed: done,
+            requested: total,
+            what: "throws (whole ratios of whole candidates only)",
+        });
+    }
+    Ok(())
+}
+
+/// The PNG's caption: the throw, the fit, and the table and body assumptions.
+fn budden_record(
+    c: &BuddenComparison,
+    preset: &crate::preset::Preset,
+    spec: &BuddenSpec,
+    fit_text: &str,
+    provenance: &serde_json::Value,
+) -> Record {
+    let n = setup_value;
+    let throws = spec
+        .throws
+        .map_or("Budden's own throws per ratio".to_string(), |t| {
+            format!("{t} throws per ratio")
+        });
+    let best = c.fit.as_ref().map_or(String::new(), |f| {
+        format!(", drawn at the best, {} = {}", c.key, n(f.best))
+    });
+    // The table and world as the throws were drawn: with the fitted value at its best.
+    let (mut p, mut initial) = (preset.params(), preset.initial);
+    if let Some(f) = &c.fit {
+        spec.fit.key.set(&mut p, &mut initial, f.best);
+    }
+    let caption = vec![
+        format!(
+            "{}: {throws}, each {}; --fit {fit_text} over {} candidates on ratios {}{best}",
+            preset.name,
+            random_starts(&hand_throw(&preset.random), spec.seed),
+            spec.fit.candidates,
+            spec.calibrate_on
+                .iter()
+                .map(|r| n(*r))
+                .collect::<Vec<_>>()
+                .join(", "),
+        ),
+        format!(
+            "{}; table k {} dyn/cm, γ {} s/cm, μ {}; g {} cm/s², Δt {} s (every value in the file's dicesim-provenance text)",
+            c.assumptions[..2].join("; "),
+            n(p.ground.stiffness),
+            n(p.ground.damping),
+            n(p.ground.friction),
+            n(p.world.gravity),
+            n(p.integrator.dt),
+        ),
+    ];
+    Record {
+        text: vec![
+            ("Title".to_string(), format!("{}: Budden's cuboids", preset.name)),
+            ("Description".to_string(), caption.join("\n")),
+            ("Software".to_string(), crate::experiment::PROGRAM.to_string()),
+        ],
+        caption,
+    }
+    .with_provenance(provenance)
+}
+
+fn print_budden(out: &mut impl Write, c: &BuddenComparison, preset: &str) -> std::io::Result<()> {
+    writeln!(out, "budden ({})", c.source)?;
+    for a in &c.assumptions {
+        writeln!(out, "assumed: {a}")?;
+    }
+    let ratios = |rs: &[f64]| {
+        rs.iter()
+            .map(|r| format!("{r:.2}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    writeln!(
+        out,
+        "\nfit of {} on ratios {}: {} candidates, each with the same throws (seed {})",
+        c.key,
+        ratios(&c.calibrate_on),
+        c.candidates.len(),
+        c.seed
+    )?;
+    let short = c.key.rsplit('.').next().unwrap_or(&c.key);
+    writeln!(out, "{short:>12}  {:>10}  square share by ratio", "deviance")?;
+    for k in &c.candidates {
+        let shares: Vec<String> = k
+            .ratios
+            .iter()
+            .map(|t| format!("{:.2}: {:.3}", t.ratio, t.square as f64 / t.throws.max(1) as f64))
+            .collect();
+        writeln!(
+            out,
+            "{:>12.6}  {:>10.2}  {}",
+            k.value,
+            k.deviance,
+            shares.join("  ")
+        )?;
+    }
+    let Some(fit) = &c.fit else {
+        return writeln!(out, "no fit: too few candidates completed");
+    };
+    let side = |v: f64, open: bool, words: &str| {
+        if open {
+            format!("{words} {v}")
+        } else {
+            format!("{v:.6}")
+        }
+    };
+    let how = match fit.method {
+        FitMethod::Parabola => "on the least-squares parabola through the candidates' deviances",
+        FitMethod::Candidates => "the best candidate; the deviances follow no upward parabola",
+    };
+    writeln!(
+        out,
+        "best {} = {:.6} (deviance {:.2}, {how}); 95 % interval {} to {} (deviance within 3.84 of the best)",
+        c.key,
+        fit.best,
+        fit.best_deviance,
+        side(fit.low, fit.low_open, "the range's low end,"),
+        side(fit.high, fit.high_open, "the range's high end,"),
+    )?;
+    writeln!(
+        out,
+        "\nevery ratio thrown with {} = {:.6} ({preset}, seed {}): Budden's share of square-face landings beside the simulation's",
+        c.key, fit.best, c.seed
+    )?;
+    writeln!(
+        out,
+        "{:>5}  {:>9}  {:>6}  {:>6}  {:>11}  {:>6}  {:>6}  {:>11}  {:>6}  within 2σ",
+        "x/y", "role", "real n", "share", "95% interval", "sim n", "share", "95% interval", "z (σ)"
+    )?;
+    let interval = |i: [f64; 2]| format!("{:.3}–{:.3}", i[0], i[1]);
+    for r in &c.ratios {
+        let s = &r.shares;
+        writeln!(
+            out,
+            "{:>5.2}  {:>9}  {:>6}  {:>6.3}  {:>11}  {:>6}  {:>6.3}  {:>11}  {:>+6.2}  {}",
+            r.ratio,
+            match r.role {
+                RatioRole::Calibrate => "calibrate",
+                RatioRole::Predict => "predict",
+            },
+            r.data_throws,
+            s.data_share,
+            interval(s.data_interval),
+            r.simulated.throws,
+            s.simulated_share,
+            interval(s.simulated_interval),
+            s.z,
+            if s.within_two_sigma() { "yes" } else { "no" }
+        )?;
+    }
+    let uncounted: u64 = c.ratios.iter().map(|r| r.simulated.uncounted).sum();
+    writeln!(
+        out,
+        "{uncounted} simulated throws not counted (the cuboid ended without a face)"
+    )?;
+    for (words, summary) in [
+        ("calibration ratios (in sample)", &c.calibrated),
+        ("predicted ratios (out of sample)", &c.predicted),
+        ("all ratios", &c.all),
+    ] {
+        if let Some(s) = summary {
+            writeln!(
+                out,
+                "{words}: {} of {} within 2σ; χ² {:.2} on {} dof, p = {}",
+                s.within_two_sigma,
+                s.shares,
+                s.chi_square,
+                s.shares,
+                p_text(s.p_value)
+            )?;
+        }
+    }
+    Ok(())
 }

@@ -185,7 +185,8 @@ pub(crate) enum Command {
     #[command(after_help = "Examples:
   dicesim batch --rolls 10000
   dicesim batch --rolls 2000 --seed 7 --out rolls.csv
-  dicesim batch --ics starts.csv --json")]
+  dicesim batch --ics starts.csv --json
+  dicesim batch --rolls 10000 --set ground.friction=0.3 --versus ground.friction=1.2")]
     Batch(batch::BatchArgs),
     /// Map the outcome over a grid of two setup values (CSV, PNG or SVG).
     #[command(after_help = "Examples:
@@ -205,7 +206,8 @@ pub(crate) enum Command {
     #[command(after_help = "Examples:
   dicesim compare wolf-white
   dicesim compare weldon --throws 2000 --out weldon.png --out weldon.csv
-  dicesim compare weldon --throws 2000 --fit ground.friction:0.2:1.2 --json")]
+  dicesim compare weldon --throws 2000 --fit ground.friction:0.2:1.2 --json
+  dicesim compare budden --calibrate-on 0.47,1.16,2.12 --out budden.png")]
     Compare(compare::CompareArgs),
     /// Put the shards of a sweep (`batch --shard`, `basin --shard`) back together.
     #[command(after_help = "Examples:

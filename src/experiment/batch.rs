@@ -192,7 +192,58 @@ pub fn stream_batch(
     cancel: &AtomicBool,
     sink: &mut dyn FnMut(&[RollRecord]) -> Result<(), String>,
 ) -> Result<BatchRun, Error> {
-    params.validate()?;
+    let start = Instant::now();
+    let mut tally = Tally::default();
+    let run = stream_setups(
+        std::slice::from_ref(params),
+        rolls,
+        options,
+        cancel,
+        &mut |chunk| {
+            sink(chunk)?;
+            chunk.iter().for_each(|r| tally.add(r));
+            Ok(())
+        },
+    )?;
+    Ok(BatchRun {
+        requested: run.requested,
+        completed: run.completed,
+        cancelled: run.completed < run.requested,
+        jobs: run.jobs,
+        engine: run.engine,
+        summary: tally.summary(start.elapsed()),
+        tally,
+    })
+}
+
+/// How a run of [`stream_setups`] went.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SetupsRun {
+    /// Throws asked for.
+    pub(crate) requested: u64,
+    /// Throws rolled in every setup and handed on: all, or a prefix if cancelled.
+    pub(crate) completed: u64,
+    pub(crate) jobs: usize,
+    /// The engine that ran (`Scalar` or `Lanes`).
+    pub(crate) engine: Engine,
+}
+
+/// Rolls every throw of `rolls` in each of `setups` (the same initial condition in each)
+/// and hands the records to `sink` on the calling thread in throw order, a chunk at a time:
+/// throw 0 in every setup in their order, then throw 1, … — `setups.len()` records a throw.
+/// Cancelling and sink errors as in [`stream_batch`]; a throw is handed on only when it has
+/// ended in every setup.
+pub(crate) fn stream_setups(
+    setups: &[Params],
+    rolls: &Rolls,
+    options: &RunOptions,
+    cancel: &AtomicBool,
+    sink: &mut dyn FnMut(&[RollRecord]) -> Result<(), String>,
+) -> Result<SetupsRun, Error> {
+    for params in setups {
+        params.validate()?;
+    }
+    let per_throw = setups.len().max(1);
     if let Rolls::Random { ranges, .. } = rolls {
         ranges.validate()?;
     }
@@ -200,7 +251,6 @@ pub fn stream_batch(
     let engine = options.engine.resolve();
     let requested = rolls.len();
     let chunks = requested.div_ceil(CHUNK);
-    let start = Instant::now();
     // Set when the calling thread stops the workers: a cancel, or a sink that failed.
     let halt = AtomicBool::new(false);
     let stopped = || cancel.load(Ordering::Relaxed) || halt.load(Ordering::Relaxed);
@@ -209,7 +259,6 @@ pub fn stream_batch(
     let oldest = (Mutex::new(0u64), Condvar::new());
     let window = CHUNKS_IN_FLIGHT_PER_JOB * jobs as u64;
     let (send, receive) = mpsc::channel::<Finished>();
-    let mut tally = Tally::default();
     let mut completed = 0u64;
     let mut sink_error = None;
     std::thread::scope(|scope| -> Result<(), Error> {
@@ -233,14 +282,16 @@ pub fn stream_batch(
                         if stopped() {
                             return;
                         }
-                        let setups: Vec<_> = (c * CHUNK..((c + 1) * CHUNK).min(requested))
-                            .map(|i| {
+                        let chunk: Vec<_> = (c * CHUNK..((c + 1) * CHUNK).min(requested))
+                            .flat_map(|i| {
                                 let (id, ic) = rolls.get(i);
-                                (id, *params, ic)
+                                setups.iter().map(move |params| (id, *params, ic))
                             })
                             .collect();
-                        let records = roll_setups(engine, &setups, stopped);
-                        let whole = records.len() == setups.len();
+                        let mut records = roll_setups(engine, &chunk, stopped);
+                        let whole = records.len() == chunk.len();
+                        // Only throws ended in every setup.
+                        records.truncate(records.len() / per_throw * per_throw);
                         if send.send((c, records, whole)).is_err() || !whole {
                             return;
                         }
@@ -273,8 +324,7 @@ pub fn stream_batch(
                     open = false;
                     break;
                 }
-                records.iter().for_each(|r| tally.add(r));
-                completed += records.len() as u64;
+                completed += (records.len() / per_throw) as u64;
                 next_out += 1;
                 open = whole;
                 let (lock, wake) = &oldest;
@@ -287,14 +337,11 @@ pub fn stream_batch(
     if let Some(e) = sink_error {
         return Err(Error::Records(e));
     }
-    Ok(BatchRun {
+    Ok(SetupsRun {
         requested,
         completed,
-        cancelled: completed < requested,
         jobs,
         engine,
-        summary: tally.summary(start.elapsed()),
-        tally,
     })
 }
 

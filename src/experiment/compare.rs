@@ -53,6 +53,34 @@ impl FitSpec {
         })
     }
 
+    /// Checks the fit: a key of the setup (not of the throw), a range inside the key's
+    /// limits and increasing, and enough candidates.
+    pub fn validate(&self) -> Result<(), Error> {
+        let refuse = |m: String| Err(Error::Compare(m));
+        if matches!(self.key.spec.role, Role::Initial | Role::Random) {
+            return refuse(format!(
+                "`{}` is part of the throw, which is drawn from the random ranges; fit a die, \
+                 ground, world or integrator key",
+                self.key.key
+            ));
+        }
+        self.key.check(self.low)?;
+        self.key.check(self.high)?;
+        if self.low >= self.high {
+            return refuse(format!(
+                "`{}`: the range's low end {} is not below its high end {}",
+                self.key.key, self.low, self.high
+            ));
+        }
+        if self.candidates < MIN_CANDIDATES {
+            return refuse(format!(
+                "a fit rolls at least {MIN_CANDIDATES} candidates, not {}",
+                self.candidates
+            ));
+        }
+        Ok(())
+    }
+
     /// The candidate values, from `low` to `high`, exact at both ends (a range that ends
     /// at the preset's own value rolls that value itself).
     pub fn values(&self) -> Vec<f64> {
@@ -87,27 +115,7 @@ impl CompareSpec {
             return refuse("throw at least once".to_string());
         }
         if let Some(fit) = &self.fit {
-            if matches!(fit.key.spec.role, Role::Initial | Role::Random) {
-                return refuse(format!(
-                    "`{}` is part of the throw, which is drawn from the random ranges; fit a die, \
-                     ground, world or integrator key",
-                    fit.key.key
-                ));
-            }
-            fit.key.check(fit.low)?;
-            fit.key.check(fit.high)?;
-            if fit.low >= fit.high {
-                return refuse(format!(
-                    "`{}`: the range's low end {} is not below its high end {}",
-                    fit.key.key, fit.low, fit.high
-                ));
-            }
-            if fit.candidates < MIN_CANDIDATES {
-                return refuse(format!(
-                    "a fit rolls at least {MIN_CANDIDATES} candidates, not {}",
-                    fit.candidates
-                ));
-            }
+            fit.validate()?;
         }
         Ok(())
     }

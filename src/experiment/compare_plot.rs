@@ -4,7 +4,8 @@
 
 use super::Error;
 use super::compare::Comparison;
-use super::compare_stats::deviance_rise_95;
+use super::compare_budden::{BuddenComparison, RatioRole};
+use super::compare_stats::{FitInterval, deviance_rise_95};
 use super::figure::{Ticks, resolved};
 use super::plot::{Record, Scale, TICKS, plot_error, png_bytes, register_fonts, with_caption};
 use plotters::coord::Shift;
@@ -26,7 +27,7 @@ pub(crate) fn comparison_png(comparison: &Comparison, record: &Record) -> Result
         if comparison.fit.is_some() {
             let (left, right) = picture.split_horizontally(SIZE.0 * 3 / 5);
             draw_shares(&left, comparison)?;
-            draw_deviance(&right, comparison)?;
+            draw_comparison_deviance(&right, comparison)?;
         } else {
             draw_shares(&picture, comparison)?;
         }
@@ -149,7 +150,10 @@ fn draw_shares(area: &DrawingArea<BitMapBackend<'_>, Shift>, comparison: &Compar
     Ok(())
 }
 
-fn draw_deviance(area: &DrawingArea<BitMapBackend<'_>, Shift>, comparison: &Comparison) -> Result<(), Error> {
+fn draw_comparison_deviance(
+    area: &DrawingArea<BitMapBackend<'_>, Shift>,
+    comparison: &Comparison,
+) -> Result<(), Error> {
     let (Some(fit), Some(key)) = (&comparison.fit, &comparison.key) else {
         return Ok(());
     };
@@ -158,6 +162,18 @@ fn draw_deviance(area: &DrawingArea<BitMapBackend<'_>, Shift>, comparison: &Comp
         .iter()
         .filter_map(|c| Some((c.value?, c.deviance?)))
         .collect();
+    draw_deviance(area, key, fit, &points, candidate_spacing(comparison))
+}
+
+/// A fit's deviance at each candidate (`points`: value, deviance), the parabola through
+/// them, the 3.84 line and the interval it cuts; `spacing` is the candidates' step.
+fn draw_deviance(
+    area: &DrawingArea<BitMapBackend<'_>, Shift>,
+    key: &str,
+    fit: &FitInterval,
+    points: &[(f64, f64)],
+    spacing: f64,
+) -> Result<(), Error> {
     let (x0, x1) = points
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
@@ -170,10 +186,7 @@ fn draw_deviance(area: &DrawingArea<BitMapBackend<'_>, Shift>, comparison: &Comp
     let (xt, yt) = (Ticks::new(x0, x_hi, TICKS), Ticks::new(0.0, y_hi, TICKS));
     let mut chart = ChartBuilder::on(area)
         .caption(
-            format!(
-                "deviance against {key}: best {}",
-                resolved(fit.best, candidate_spacing(comparison))
-            ),
+            format!("deviance against {key}: best {}", resolved(fit.best, spacing)),
             ("sans-serif", 22),
         )
         .margin(20)
@@ -183,7 +196,7 @@ fn draw_deviance(area: &DrawingArea<BitMapBackend<'_>, Shift>, comparison: &Comp
         .map_err(plot_error)?;
     chart
         .configure_mesh()
-        .x_desc(key.as_str())
+        .x_desc(key)
         .y_desc("deviance G²")
         .x_labels(TICKS)
         .y_labels(TICKS)
@@ -207,7 +220,7 @@ fn draw_deviance(area: &DrawingArea<BitMapBackend<'_>, Shift>, comparison: &Comp
         .map_err(plot_error)?;
     chart
         .draw_series(std::iter::once(PathElement::new(
-            points.clone(),
+            points.to_vec(),
             SIMULATED.mix(0.5).stroke_width(1),
         )))
         .map_err(plot_error)?;
@@ -225,6 +238,129 @@ fn draw_deviance(area: &DrawingArea<BitMapBackend<'_>, Shift>, comparison: &Comp
     }
     chart
         .draw_series(points.iter().map(|&p| Circle::new(p, 4, SIMULATED.filled())))
+        .map_err(plot_error)?;
+    Ok(())
+}
+
+/// Budden's comparison as the bytes of a PNG file: the shares by ratio on the left, the
+/// fit's deviance on the right.
+pub(crate) fn budden_png(comparison: &BuddenComparison, record: &Record) -> Result<Vec<u8>, Error> {
+    register_fonts()?;
+    png_bytes(SIZE, record, |root| {
+        root.fill(&WHITE).map_err(plot_error)?;
+        let picture = with_caption(&root, record, Scale::ONE)?;
+        let (left, right) = picture.split_horizontally(SIZE.0 * 3 / 5);
+        draw_budden_shares(&left, comparison)?;
+        if let Some(fit) = &comparison.fit {
+            let points: Vec<(f64, f64)> = comparison
+                .candidates
+                .iter()
+                .map(|c| (c.value, c.deviance))
+                .collect();
+            let spacing = match points.as_slice() {
+                [first, .., last] => (last.0 - first.0) / (points.len() - 1) as f64,
+                _ => 1e-4,
+            };
+            draw_deviance(&right, &comparison.key, fit, &points, spacing)?;
+        }
+        root.present().map_err(plot_error)
+    })
+}
+
+fn draw_budden_shares(
+    area: &DrawingArea<BitMapBackend<'_>, Shift>,
+    comparison: &BuddenComparison,
+) -> Result<(), Error> {
+    let rows = &comparison.ratios;
+    let (x0, x1) = (0.3, 2.8);
+    let (xt, yt) = (Ticks::new(x0, x1, TICKS), Ticks::new(0.0, 1.0, TICKS));
+    let predicted = rows.iter().filter(|r| r.role == RatioRole::Predict);
+    let (count, within) = (
+        predicted.clone().count(),
+        predicted.filter(|r| r.shares.within_two_sigma()).count(),
+    );
+    let mut chart = ChartBuilder::on(area)
+        .caption(
+            format!("Budden's cuboids: {within} of {count} predicted ratios within 2σ"),
+            ("sans-serif", 22),
+        )
+        .margin(20)
+        .x_label_area_size(60)
+        .y_label_area_size(80)
+        .build_cartesian_2d(x0..x1, 0.0..1.0)
+        .map_err(plot_error)?;
+    chart
+        .configure_mesh()
+        .x_desc("ratio x/y (length between the square faces over their side)")
+        .y_desc("share of throws on a square face, with 95 % intervals")
+        .x_labels(TICKS)
+        .y_labels(TICKS)
+        .x_label_formatter(&|v| xt.label(*v))
+        .y_label_formatter(&|v| yt.label(*v))
+        .label_style(("sans-serif", 16))
+        .axis_desc_style(("sans-serif", 19))
+        .draw()
+        .map_err(plot_error)?;
+    // The two series a little apart so their intervals do not hide each other.
+    let offset = 0.012;
+    for (colour, side, name) in [(DATA, -offset, "Budden"), (SIMULATED, offset, "simulated")] {
+        let points: Vec<(f64, [f64; 3])> = rows
+            .iter()
+            .map(|r| {
+                let s = &r.shares;
+                let x = r.ratio + side;
+                if colour == DATA {
+                    (x, [s.data_interval[0], s.data_share, s.data_interval[1]])
+                } else {
+                    (
+                        x,
+                        [
+                            s.simulated_interval[0],
+                            s.simulated_share,
+                            s.simulated_interval[1],
+                        ],
+                    )
+                }
+            })
+            .collect();
+        let cap = 0.01;
+        chart
+            .draw_series(points.iter().flat_map(|&(x, [lo, _, hi])| {
+                [
+                    vec![(x, lo), (x, hi)],
+                    vec![(x - cap, lo), (x + cap, lo)],
+                    vec![(x - cap, hi), (x + cap, hi)],
+                ]
+                .map(|line| PathElement::new(line, colour.stroke_width(2)))
+            }))
+            .map_err(plot_error)?;
+        chart
+            .draw_series(
+                points
+                    .iter()
+                    .map(|&(x, [_, mid, _])| Circle::new((x, mid), 5, colour.filled())),
+            )
+            .map_err(plot_error)?
+            .label(name)
+            .legend(move |(x, y)| Circle::new((x + 10, y), 5, colour.filled()));
+    }
+    // The calibration ratios ringed: the fit saw them, the others are predictions.
+    chart
+        .draw_series(
+            rows.iter()
+                .filter(|r| r.role == RatioRole::Calibrate)
+                .map(|r| Circle::new((r.ratio - offset, r.shares.data_share), 11, BLACK.stroke_width(2))),
+        )
+        .map_err(plot_error)?
+        .label("calibration ratio (fitted on)")
+        .legend(|(x, y)| Circle::new((x + 10, y), 8, BLACK.stroke_width(2)));
+    chart
+        .configure_series_labels()
+        .label_font(("sans-serif", 18))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
         .map_err(plot_error)?;
     Ok(())
 }

@@ -8,6 +8,7 @@ pub(crate) mod animation;
 pub(crate) mod basin;
 pub(crate) mod batch;
 pub mod compare;
+pub mod compare_budden;
 pub(crate) mod compare_plot;
 pub mod compare_stats;
 pub(crate) mod ending;
@@ -23,6 +24,7 @@ pub(crate) mod plane;
 pub(crate) mod plot;
 pub mod predict;
 pub(crate) mod predict_plot;
+pub mod quantity;
 pub(crate) mod random;
 pub mod real_data;
 pub(crate) mod record;
@@ -33,6 +35,7 @@ pub(crate) mod summary;
 pub(crate) mod tally;
 pub(crate) mod trace;
 pub mod twin;
+pub mod versus;
 
 /// The program and its version, as every output records it.
 pub(crate) const PROGRAM: &str = concat!("dicesim ", env!("CARGO_PKG_VERSION"));

@@ -1,21 +1,30 @@
-//! A roll's trajectory and energies as CSV rows (`dicesim trace`, and the explorer's export),
+//! A roll's trajectory and every quantity of [`super::quantity`] as CSV rows (`dicesim trace`, and the explorer's export),
 //! and the export of one roll: its trace and its energy plot, written side by side.
 
 use super::Error;
 use super::energy_plot::energy_plot_png;
+use super::quantity::{QUANTITIES, read_all};
 use crate::output::Output;
 use crate::physics::{Energy, InitialCondition, Params, Simulation};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-/// The CSV columns; the corner columns follow docs/model.md's corner order.
+/// The CSV columns, each with its unit: the state (centre of mass, its velocity, angular
+/// momentum, angular velocity), every quantity of [`QUANTITIES`], then the corners in
+/// docs/model.md's corner order.
 pub(crate) fn header() -> Vec<String> {
-    let mut h: Vec<String> = "step,t,x,y,z,vx,vy,vz,Lx,Ly,Lz,wx,wy,wz,e_trans,e_rot,e_grav,e_elastic,e_total"
-        .split(',')
-        .map(str::to_string)
-        .collect();
+    let mut h: Vec<String> = vec!["step".to_string(), "t_s".to_string()];
+    for (names, unit) in [
+        (["x", "y", "z"], "cm"),
+        (["vx", "vy", "vz"], "cm_per_s"),
+        (["Lx", "Ly", "Lz"], "g_cm2_per_s"),
+        (["wx", "wy", "wz"], "rad_per_s"),
+    ] {
+        h.extend(names.map(|n| format!("{n}_{unit}")));
+    }
+    h.extend(QUANTITIES.iter().map(|q| q.column.to_string()));
     for k in 1..=8 {
-        h.extend(["x", "y", "z"].map(|a| format!("c{k}{a}")));
+        h.extend(["x", "y", "z"].map(|a| format!("c{k}{a}_cm")));
     }
     h
 }
@@ -24,7 +33,6 @@ pub(crate) fn header() -> Vec<String> {
 /// round-trip form, so reading them back gives the same bits.
 pub(crate) fn row(sim: &Simulation) -> Vec<String> {
     let s = sim.state();
-    let e = sim.energy();
     let w = sim.angular_velocity();
     let mut record = vec![s.step.to_string(), s.time_s.to_string()];
     let values = s
@@ -32,19 +40,10 @@ pub(crate) fn row(sim: &Simulation) -> Vec<String> {
         .iter()
         .chain(s.velocity.iter())
         .chain(s.angular_momentum.iter())
-        .chain(w.iter());
-    record.extend(
-        values
-            .copied()
-            .chain([
-                e.translational,
-                e.rotational,
-                e.gravitational,
-                e.elastic,
-                e.total(),
-            ])
-            .map(|v| v.to_string()),
-    );
+        .chain(w.iter())
+        .copied()
+        .chain(read_all(sim));
+    record.extend(values.map(|v| v.to_string()));
     for p in sim.corner_positions() {
         record.extend([p.x, p.y, p.z].map(|v| v.to_string()));
     }

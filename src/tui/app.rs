@@ -8,6 +8,7 @@ use super::keys::{self, Action, Input, Screen, label};
 use super::layout::{Areas, screen_layout};
 use super::map_view::{MapView, View};
 use super::param::{Param, all};
+use super::plot::PlotChoice;
 use super::roll_view::RollView;
 use super::setup::Setup;
 use super::theme::{Palette, Theme};
@@ -200,6 +201,8 @@ pub struct App {
     /// Index into [`all`](super::param::all).
     pub(crate) selected: usize,
     pub(crate) log_scale: bool,
+    /// What the plot panel draws (`w`, `V`).
+    pub(crate) plot: PlotChoice,
     /// Arrows for ω, L, v and the contact forces on the die (`v`).
     pub(crate) vectors: bool,
     /// Where presets are listed from and saved to.
@@ -238,6 +241,7 @@ impl App {
             overlay: None,
             selected: 0,
             log_scale: false,
+            plot: PlotChoice::default(),
             vectors: false,
             store: Store::new(None),
             drawing: Drawing::default(),

@@ -1,7 +1,12 @@
-//! The energy plot: the roll's energy by form against time, on a linear or log scale.
+//! The energy plot: the roll's energy by form against time, on a linear or log scale, the
+//! time on screen marked; the plot panel's other plots are [`super::plot`]'s.
 
 use super::app::{App, Drawing};
 use super::format::fmt_num;
+use super::plot::{
+    edit_datasets, edit_marks, marker_dataset, previous_dataset, render_phase, render_quantity, time_axis,
+    time_labels_for, time_marker,
+};
 use crate::worker::EnergySample;
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -12,7 +17,7 @@ use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph};
 
 /// Each series thinned to at most two points (its low and its high) per bucket, so a frame
 /// costs the same for any roll length and impact spikes stay visible.
-fn thinned(
+pub(crate) fn thinned(
     history: &[EnergySample],
     buckets: usize,
     value: impl Fn(&EnergySample) -> f64,
@@ -123,7 +128,16 @@ pub(crate) fn nice_ticks(bottom: f64, top: f64, most: usize) -> (f64, f64, Vec<f
     }
 }
 
+/// The plot panel: the energy plot, or the quantity or phase plot chosen instead.
 pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
+    match (app.plot.quantity, app.plot.phase) {
+        (_, Some(j)) => render_phase(app, area, frame, app.plot.first(), j),
+        (Some(i), None) => render_quantity(app, area, frame, i),
+        (None, None) => render_energy_terms(app, area, frame),
+    }
+}
+
+fn render_energy_terms(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let scale = if app.log_scale { "log" } else { "linear" };
     let colours = t.energy_series();
@@ -178,24 +192,19 @@ pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
         |s| s.energy.gravitational,
         |s| s.energy.elastic,
     ];
+    let previous = thinned(&app.roll.previous, buckets, |s| y_of(s.total));
     let series: Vec<Vec<(f64, f64)>> = terms
         .iter()
         .map(|f| thinned(&app.roll.history, buckets, |s| y_of(f(s))))
         .collect();
-    let t_end = app
-        .roll
-        .history
-        .last()
-        .map_or(0.0, |s| s.time_s)
-        .max(app.roll.live.time_s);
-    let x_hi = nice_ceiling(t_end.max(0.1));
+    let (x_hi, x_labels) = time_axis(app, time_labels_for(body.width));
     let threshold = app.roll.live.stop_threshold;
     let (mut lo, mut hi) = if threshold.is_finite() {
         (y_of(threshold), y_of(threshold))
     } else {
         (y_of(LOG_FLOOR), y_of(LOG_FLOOR))
     };
-    for s in &series {
+    for s in series.iter().chain([&previous]) {
         for &(_, v) in s {
             if v.is_finite() {
                 lo = lo.min(v);
@@ -231,12 +240,16 @@ pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
         nice_ticks(floor, top, most_labels)
     };
     let stop_line = [(0.0, y_of(threshold)), (x_hi, y_of(threshold))];
-    let mut datasets: Vec<Dataset> = series
-        .iter()
-        .zip(LEGEND)
-        .zip(colours)
-        .zip(PATTERNS)
-        .map(|(((data, name), colour), pattern)| {
+    // The marker first, so the curves are drawn over it.
+    // Below the legend's rows, as the curves are.
+    let marker = time_marker(app, y_lo, y_hi - (y_hi - y_lo) * covered / rows);
+    let edits = edit_marks(app, y_lo, y_hi - (y_hi - y_lo) * covered / rows);
+    // The previous run's total, faded, under everything.
+    let mut datasets: Vec<Dataset> = vec![previous_dataset(app, &previous)];
+    datasets.extend(edit_datasets(app, &edits));
+    datasets.push(marker_dataset(app, &marker));
+    datasets.extend(series.iter().zip(LEGEND).zip(colours).zip(PATTERNS).map(
+        |(((data, name), colour), pattern)| {
             let marker = if t.colour {
                 app.drawing.line_marker()
             } else {
@@ -248,8 +261,8 @@ pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
                 .graph_type(GraphType::Line)
                 .style(Style::new().fg(colour))
                 .data(data)
-        })
-        .collect();
+        },
+    ));
     if threshold.is_finite() {
         datasets.push(
             Dataset::default()
@@ -286,12 +299,7 @@ pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
         .collect();
     let chart = Chart::new(datasets)
         .block(block)
-        .x_axis(
-            Axis::default()
-                .bounds([0.0, x_hi])
-                // The space keeps the label off the border (`fit`'s gap column).
-                .labels(["0 s".to_string(), format!("{} s ", fmt_num(x_hi))]),
-        )
+        .x_axis(Axis::default().bounds([0.0, x_hi]).labels(x_labels))
         .y_axis(Axis::default().bounds([y_lo, y_hi]).labels(labels))
         .legend_position(None);
     frame.render_widget(chart, area);
@@ -306,16 +314,3 @@ pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
 
 /// Characters the y axis's labels take ("200000" and a space).
 const Y_LABEL_WIDTH: u16 = 7;
-
-/// The next of 1, 2, 5 × 10ⁿ at or above `v` (axis ends that read well).
-fn nice_ceiling(v: f64) -> f64 {
-    if v <= 0.0 || !v.is_finite() {
-        return 1.0;
-    }
-    let p = 10f64.powf(v.log10().floor());
-    [1.0, 2.0, 5.0, 10.0]
-        .iter()
-        .map(|m| m * p)
-        .find(|&c| c >= v * (1.0 - 1e-12))
-        .unwrap_or(10.0 * p)
-}

@@ -140,6 +140,8 @@ fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
         Action::IncreaseBig => app.nudge(out, 1, true),
         Action::TypeValue => app.overlay = Some(Overlay::Value(Editor::default())),
         Action::LogScale => app.log_scale = !app.log_scale,
+        Action::PlotQuantity => app.plot.next(),
+        Action::PhasePlot => app.plot.toggle_phase(),
         Action::Export => {
             let c = app.roll.export_command(app.log_scale);
             app.setup.send(out, c);

@@ -79,6 +79,8 @@ pub(crate) enum Action {
     IncreaseBig,
     TypeValue,
     LogScale,
+    PlotQuantity,
+    PhasePlot,
     Export,
     ExportAnimation,
     Arrows,
@@ -355,6 +357,24 @@ pub(crate) const BINDINGS: &[Binding] = &[
         A::LogScale,
         None,
         "energy plot: linear / log scale"
+    ),
+    row!(
+        Die,
+        [K::Char('w')],
+        "w",
+        A::PlotQuantity,
+        hint("w V", "plot", 3),
+        "plot: the energy terms → height → lowest corner → speed → spin rate → contact force → each \
+         energy term → each stability load, against time (│ marks the time on screen); in the phase \
+         plot, the quantity up"
+    ),
+    row!(
+        Die,
+        [K::Char('V')],
+        "V",
+        A::PhasePlot,
+        None,
+        "phase plot on / off: a second quantity (up) against the one plotted (across), ● the state on screen"
     ),
     row!(
         Die,

@@ -24,6 +24,7 @@ mod map_view;
 mod outcomes;
 pub(crate) mod param;
 mod params_panel;
+mod plot;
 pub mod render;
 mod roll_view;
 pub(crate) mod run;
@@ -56,6 +57,9 @@ mod view_tests;
 
 #[cfg(test)]
 mod twin_tests;
+
+#[cfg(test)]
+mod plot_tests;
 
 #[cfg(test)]
 mod contrast_tests;

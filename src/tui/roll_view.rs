@@ -25,6 +25,12 @@ pub(crate) struct RollView {
     pub(crate) history: Vec<EnergySample>,
     /// Steps at which the roll's impacts began, for the timeline.
     pub(crate) impacts: Vec<u64>,
+    /// Steps at which a table value was changed mid-roll (the worker's record), marked on
+    /// the timeline and the plot.
+    pub(crate) edits: Vec<u64>,
+    /// The samples of the run before the last restart or mid-roll change, drawn faded
+    /// under the new one until the next.
+    pub(crate) previous: Vec<EnergySample>,
     pub(crate) table: OutcomeTable,
     pub(crate) batch: Option<BatchProgress>,
     /// The export running (the roll's or a map's), how far it has got.
@@ -39,6 +45,8 @@ impl RollView {
         RollView {
             history: std::mem::take(&mut first.history),
             impacts: first.timeline.impacts.take().unwrap_or_default(),
+            edits: first.timeline.edits.take().unwrap_or_default(),
+            previous: Vec::new(),
             table: first.table.take().unwrap_or_default(),
             batch: first.batch,
             export: first.export,
@@ -50,6 +58,10 @@ impl RollView {
     /// Takes a snapshot in: new samples appended (after a new roll's reset, or a cut at a
     /// changed future), the table and impacts when they changed, the rest replaced.
     pub(crate) fn absorb(&mut self, mut s: Snapshot) {
+        // A run of more than its start is kept to be drawn faded.
+        if (s.history_reset || s.history_cut.is_some()) && self.history.len() > 1 {
+            self.previous = self.history.clone();
+        }
         if s.history_reset {
             self.history.clear();
         }
@@ -58,6 +70,9 @@ impl RollView {
         }
         if let Some(impacts) = s.timeline.impacts.take() {
             self.impacts = impacts;
+        }
+        if let Some(edits) = s.timeline.edits.take() {
+            self.edits = edits;
         }
         self.history.append(&mut s.history);
         if let Some(t) = s.table.take() {

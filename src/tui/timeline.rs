@@ -1,5 +1,6 @@
 //! The timeline strip, drawn in the die panel's bottom border: where the roll on screen is, how far it has been
-//! computed, and where its impacts began; a click seeks there (`,` `.` `Home` `End` step
+//! computed, where its impacts began and where a table value was changed mid-roll (▼); a
+//! click seeks there (`,` `.` `Home` `End` step
 //! and jump by key).
 
 use super::app::App;
@@ -66,6 +67,10 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     for &impact in &app.roll.impacts {
         let i = column_of(impact, steps, bar.width) as usize;
         cells[i] = ('┃', t.contact());
+    }
+    for &edit in &app.roll.edits {
+        let i = column_of(edit, steps, bar.width) as usize;
+        cells[i] = ('▼', Style::new().fg(super::plot::marker_colour(app)));
     }
     let i = column_of(timeline.position, steps, bar.width) as usize;
     cells[i] = ('◆', t.selected());

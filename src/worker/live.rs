@@ -51,6 +51,10 @@ impl EnergyTrace {
                 time_s: s.time_s,
                 energy: p.energy.max_each(&s.energy),
                 total: p.total.max(s.total),
+                quantities: std::array::from_fn(|i| {
+                    let (a, b) = (p.quantities[i], s.quantities[i]);
+                    if b.abs() > a.abs() { b } else { a }
+                }),
             },
         };
         self.peak_steps += 1;
@@ -360,6 +364,7 @@ impl LiveRoll {
             time_s: self.sim.state().time_s,
             energy,
             total: energy.total(),
+            quantities: crate::experiment::quantity::read_all(&self.sim),
         }
     }
 
@@ -493,6 +498,7 @@ impl LiveRoll {
             position: self.position,
             furthest: self.timeline.furthest,
             ended: self.timeline.ended,
+            edits: self.timeline.impacts_changed.then(|| self.timeline.edits.clone()),
             impacts: std::mem::take(&mut self.timeline.impacts_changed)
                 .then(|| self.timeline.impacts.clone()),
         }

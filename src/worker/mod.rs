@@ -162,6 +162,9 @@ pub struct EnergySample {
     pub(crate) time_s: f64,
     pub(crate) energy: Energy,
     pub(crate) total: f64,
+    /// Every quantity of [`crate::experiment::quantity::QUANTITIES`] (each one's value of
+    /// largest magnitude over the steps when samples are thinned), for the plot of any of them.
+    pub(crate) quantities: crate::experiment::quantity::Readings,
 }
 
 /// How far the twin has drifted from the die at one instant (each term's newest value).
@@ -231,8 +234,10 @@ pub struct TimelineSnapshot {
     pub furthest: u64,
     /// Whether the roll ends at `furthest`.
     pub ended: bool,
-    /// Steps at which impacts began, whenever they changed.
+    /// Steps at which impacts began, whenever they (or the edits) changed.
     pub impacts: Option<Vec<u64>>,
+    /// Steps at which a table value was changed mid-roll, sent with the impacts.
+    pub edits: Option<Vec<u64>>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

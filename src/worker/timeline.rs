@@ -44,7 +44,10 @@ pub(crate) struct Timeline {
     pub(crate) impacts: Vec<u64>,
     /// Whether the newest computed step is inside an impact.
     in_impact: bool,
-    /// The impacts changed since the UI last got them.
+    /// Steps at which a table value was changed mid-roll, in order: the one record of
+    /// edits that the timeline strip and the plot both mark.
+    pub(crate) edits: Vec<u64>,
+    /// The impacts or the edits changed since the UI last got them.
     pub(crate) impacts_changed: bool,
 }
 
@@ -58,6 +61,7 @@ impl Timeline {
             ended: false,
             impacts: Vec::new(),
             in_impact: false,
+            edits: Vec::new(),
             impacts_changed: true,
         }
     }
@@ -113,6 +117,13 @@ impl Timeline {
             self.impacts_changed = true;
         }
         self.in_impact = impact;
+        // Edits after this one were of the future just forgotten; one here replaces them.
+        // A change at step 0 is no mid-roll edit: the whole roll has the new value.
+        self.edits.retain(|&p| p < position);
+        if position > 0 {
+            self.edits.push(position);
+        }
+        self.impacts_changed = true;
     }
 
     /// How many keyframes are kept (for tests of the memory bound).
