@@ -262,8 +262,9 @@ impl App {
 
     /// A preset's view: what the UI owns of it (the worker sets the speed and rolls the
     /// twin itself). A preset opens the same way every time, so a key the view leaves out
-    /// means the default (the camera's, no arrows, no twin, the die screen); only the theme
-    /// stays as it is, since it suits the room rather than the preset.
+    /// means the default (the camera's, no arrows, the die screen); the theme stays as it
+    /// is, since it suits the room rather than the preset, and so does a twin that rolls
+    /// (a lesson turns it on, then opens presets to compare them with it).
     pub(crate) fn apply_view(&mut self, view: &PresetView) {
         self.camera = view.camera.map_or_else(Camera::default, |c| Camera {
             yaw_deg: c.yaw,
@@ -278,7 +279,9 @@ impl App {
             };
         }
         self.vectors = view.arrows.unwrap_or(false);
-        self.twin.apply(view.twin);
+        if view.twin.is_some() {
+            self.twin.apply(view.twin);
+        }
         self.map.open_asked = view.screen == Some(ViewScreen::Map);
     }
 
@@ -415,6 +418,7 @@ impl App {
             self.notice = Some(worded(&n));
         }
         if let Some(p) = s.preset.take() {
+            self.map.reopen(&p.params(), &p.initial);
             let view = p.view;
             self.setup.preset = *p;
             self.apply_view(&view);

@@ -120,6 +120,20 @@ impl MapView {
         }
     }
 
+    /// Another preset opened: the default axes around its own values, no zoom and no map
+    /// yet (a map of the old preset's ranges would answer a question nobody asked); the
+    /// layer and the PNG size stay, being the user's choice rather than the setup's.
+    /// Updates of a map still computing for the old preset are dropped.
+    pub(crate) fn reopen(&mut self, params: &Params, initial: &InitialCondition) {
+        *self = MapView {
+            generation: self.generation + 1,
+            layer: self.layer,
+            export_size: self.export_size,
+            open_asked: self.open_asked,
+            ..MapView::new(params, initial)
+        };
+    }
+
     /// The chosen size of the map's PNG, in pixels, and what it is for.
     pub(crate) fn png_size(&self) -> ((u32, u32), &'static str) {
         EXPORT_SIZES[self.export_size]

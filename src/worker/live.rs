@@ -103,6 +103,9 @@ pub(crate) struct LiveRoll {
     counted: bool,
     pub(super) playing: bool,
     pub(super) speed: Speed,
+    /// A table value changed mid-roll: the roll on screen is no longer the one its start
+    /// gives, so a re-roll from t = 0 (an export, a replay) differs from what was shown.
+    pub(super) changed_mid_roll: bool,
     /// Changes whenever the mapping from wall time to simulated time must restart.
     pacing_epoch: u64,
 }
@@ -140,6 +143,7 @@ impl LiveRoll {
             counted: false,
             playing: false,
             speed,
+            changed_mid_roll: false,
             pacing_epoch: 0,
         };
         live.restart(RollKind::Preset);
@@ -271,6 +275,7 @@ impl LiveRoll {
         self.initial = initial;
         if key.spec.acts_mid_roll && self.sim.outcome().is_none() {
             let refused = self.sim.set_ground(params.ground).err();
+            self.changed_mid_roll = true;
             // The twin feels the same table, so only ε tells the two apart.
             if let Some(twin) = &mut self.twin {
                 let _ = twin.sim.set_ground(params.ground);
@@ -297,6 +302,7 @@ impl LiveRoll {
     /// Places the die at the current initial condition; the history starts again.
     pub(crate) fn restart(&mut self, kind: RollKind) {
         self.roll = kind;
+        self.changed_mid_roll = false;
         self.sim = Simulation::new_unchecked(&self.params, &self.initial);
         self.start_face = face_most_nearly_up(&self.sim.state().corner_offsets);
         self.touched = self.sim.in_contact();
