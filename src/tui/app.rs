@@ -213,6 +213,8 @@ pub struct App {
     pub(crate) screen: Rect,
     pub(crate) quit: bool,
     pub(crate) view: View,
+    /// The number the presentation view shows beside the face.
+    pub(crate) readout: super::presentation::Readout,
     pub(crate) map: MapView,
     /// Effects other than worker commands asked for during the current `update`.
     pub(crate) effects: Vec<Effect>,
@@ -247,6 +249,7 @@ impl App {
             screen: Rect::new(0, 0, 120, 36),
             quit: false,
             view: View::Die,
+            readout: Default::default(),
             effects: Vec::new(),
             drag: None,
         }
@@ -302,7 +305,7 @@ impl App {
             arrows: Some(self.vectors),
             twin: self.twin.on.then_some(self.twin.epsilon),
             screen: Some(match self.view {
-                View::Die => ViewScreen::Die,
+                View::Die | View::Presentation => ViewScreen::Die,
                 View::Map => ViewScreen::Map,
             }),
         }
@@ -382,6 +385,7 @@ impl App {
             },
             Mode::Help => Screen::Help,
             Mode::Map => Screen::Map,
+            Mode::Normal if self.view == View::Presentation => Screen::Show,
             Mode::Normal => Screen::Die,
         }
     }

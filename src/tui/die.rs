@@ -660,15 +660,20 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
         frame.render_widget(Paragraph::new(vectors::legend(app, body.width)), legend);
         body.height -= 2;
     }
-    let view = View::new(app, body);
-    let pic = picture(app, &view);
+    draw(app, &View::new(app, body), frame);
+}
+
+/// The die's picture seen in `view`, drawn into its area: strokes, fills, then labels.
+pub(crate) fn draw(app: &App, view: &View, frame: &mut Frame) {
+    let body = view.area;
+    let pic = picture(app, view);
     match app.drawing {
-        Drawing::Braille => draw_braille(&pic, &view, frame),
-        Drawing::Ascii => draw_ascii(&pic, &view, frame.buffer_mut()),
+        Drawing::Braille => draw_braille(&pic, view, frame),
+        Drawing::Ascii => draw_ascii(&pic, view, frame.buffer_mut()),
     }
     let buf = frame.buffer_mut();
-    draw_fills(&pic, &view, buf);
-    for (col, row, label) in place_labels(&pic.labels, &view, &pic.outline) {
+    draw_fills(&pic, view, buf);
+    for (col, row, label) in place_labels(&pic.labels, view, &pic.outline) {
         buf.set_span(
             body.x + col,
             body.y + row,

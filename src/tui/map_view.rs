@@ -32,6 +32,8 @@ pub(crate) enum View {
     #[default]
     Die,
     Map,
+    /// The presentation view (`P`): the die large, for a projector.
+    Presentation,
 }
 
 /// The map's x or y axis.

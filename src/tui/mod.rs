@@ -23,6 +23,7 @@ mod map_view;
 mod outcomes;
 pub(crate) mod param;
 mod params_panel;
+mod presentation;
 pub mod render;
 mod roll_view;
 pub(crate) mod run;
