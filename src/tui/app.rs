@@ -428,6 +428,17 @@ impl App {
             self.apply_view(&view);
         }
         self.setup.adopt(&s);
+        let (was, now) = (self.roll.live.timeline.position, s.timeline.position);
+        if let Some(d) = s
+            .timeline
+            .decided
+            .filter(|&d| was < d && d <= now && !s.history_reset)
+        {
+            self.notice = Some(format!(
+                "face decided at {:.3} s: the roll's data end there",
+                d as f64 * s.params.integrator.dt
+            ));
+        }
         self.roll.absorb(s);
     }
 

@@ -279,7 +279,7 @@ fn draw_panel(app: &App, area: Rect, frame: &mut Frame) {
         _ => char::from_digit(live.die.face_up as u32, 10).unwrap_or('?'),
     };
     // Text below the digits: the time, the number's name and value, the key that changes it.
-    let text_rows = 6;
+    let text_rows = 7;
     let sy = ((inner.height.saturating_sub(text_rows) as usize) / GLYPH_ROWS).clamp(1, 3);
     let sx = (2 * sy)
         .min((inner.width as usize).saturating_sub(2) / GLYPH_COLUMNS)
@@ -290,6 +290,9 @@ fn draw_panel(app: &App, area: Rect, frame: &mut Frame) {
         .collect();
     lines.push(Line::raw(""));
     lines.push(Line::from(vec![Span::styled(format!("t {:.3} s", live.time_s), t.heading())]).centered());
+    if let Some(t_s) = die::decided_at(app) {
+        lines.push(Line::raw(format!("face decided {t_s:.3} s")).centered());
+    }
     lines.push(Line::raw(""));
     lines.push(Line::raw(readout.name()).centered());
     lines.push(Line::styled(readout.text(app), t.heading()).centered());

@@ -9,12 +9,35 @@ use super::twin::Twin;
 use super::{DieState, EnergySample, Notice, Phase, RollKind, TimelineSnapshot, TwinSnapshot};
 use crate::experiment::registry::Role;
 use crate::experiment::{RollRecord, ScanKey};
-use crate::physics::{InitialCondition, Params, Simulation, face_most_nearly_up};
+use crate::physics::{InitialCondition, Params, Simulation, Status, face_most_nearly_up};
 use crate::preset::Speed;
 
 /// At most this many energy samples per roll: longer rolls keep each term's peak over a
 /// stride of steps, so impact spikes survive the thinning.
 const HISTORY_SAMPLES: u64 = 40_000;
+
+/// s of simulated time a settled die plays on past its stopping rule at most.
+pub(crate) const PLAY_ON_S: f64 = 2.0;
+
+/// A die that plays on past its stopping rule is at rest once its kinetic energy is below
+/// this share of the rule's threshold.
+pub(crate) const AT_REST_SHARE: f64 = 0.01;
+
+/// Whether a die's roll is over on screen. Its stopping rule decides the face (and ends
+/// the roll's data: the outcome, the table, the exports) while the die may still rock or
+/// slide a little; a settled die plays on until it is at rest or [`PLAY_ON_S`] later,
+/// whichever comes first, so a class never sees it freeze mid-motion. A roll that did not
+/// settle, or went unstable, is over at once.
+pub(crate) fn played_out(sim: &Simulation) -> bool {
+    match sim.outcome() {
+        None => false,
+        Some(o) if o.status != Status::Settled => true,
+        Some(o) => {
+            sim.energy().kinetic() < AT_REST_SHARE * sim.stop_threshold()
+                || sim.state().time_s >= o.time_s + PLAY_ON_S
+        }
+    }
+}
 
 /// The roll's energy samples not yet sent, each term's peak over a stride of steps.
 #[derive(Debug, Default)]
@@ -179,7 +202,7 @@ impl LiveRoll {
 
     /// Whether the roll on screen has ended: the die's, and its twin's if there is one.
     pub(crate) fn roll_over(&self) -> bool {
-        self.sim.outcome().is_some() && self.twin.as_ref().is_none_or(Twin::ended)
+        played_out(&self.sim) && self.twin.as_ref().is_none_or(Twin::ended)
     }
 
     pub(crate) fn is_playing(&self) -> bool {
@@ -374,7 +397,7 @@ impl LiveRoll {
     fn step(&mut self) -> bool {
         // Steps already on the timeline are re-stepped to show them, not recorded again.
         let new = self.timeline.at_frontier(self.position);
-        let die_rolling = self.sim.outcome().is_none();
+        let die_rolling = !played_out(&self.sim);
         if let Some(twin) = &mut self.twin {
             twin.step();
         }
@@ -411,7 +434,11 @@ impl LiveRoll {
         if !new {
             return;
         }
-        self.trace.record(self.sample(), ended.is_some());
+        self.trace
+            .record(self.sample(), ended.is_some() || played_out(&self.sim));
+        if let Some(outcome) = ended.filter(|o| o.status == Status::Settled) {
+            self.timeline.decided = Some(outcome.steps);
+        }
         if let Some(outcome) = ended
             && let RollKind::Random(id) = self.roll
             && !self.counted
@@ -496,6 +523,7 @@ impl LiveRoll {
     /// Where the roll is on its timeline (the impacts only when they changed).
     pub(crate) fn timeline_snapshot(&mut self) -> TimelineSnapshot {
         TimelineSnapshot {
+            decided: self.timeline.decided,
             position: self.position,
             furthest: self.timeline.furthest,
             ended: self.timeline.ended,

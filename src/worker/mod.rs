@@ -231,6 +231,10 @@ pub struct TimelineSnapshot {
     pub furthest: u64,
     /// Whether the roll ends at `furthest`.
     pub ended: bool,
+    /// The step at which the stopping rule found the die settled, once it has: the roll's
+    /// data (its outcome, the table, the exports) end there, while the die on screen plays
+    /// on until it is at rest.
+    pub decided: Option<u64>,
     /// Steps at which impacts began, whenever they changed.
     pub impacts: Option<Vec<u64>>,
 }
