@@ -539,3 +539,91 @@ impl LiveRoll {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::preset::Preset;
+    use crate::worker::{Command, Engine, Phase};
+
+    /// Bits of the die's state (`==` on floats would let −0 pass for +0).
+    fn bits(sim: &Simulation) -> String {
+        format!("{:?} {:?}", sim.state(), sim.outcome())
+    }
+
+    fn at_rest(sim: &Simulation) -> bool {
+        sim.energy().kinetic() < 0.01 * sim.stop_threshold()
+    }
+
+    #[test]
+    fn a_settled_die_plays_on_to_rest_and_its_data_end_at_the_stop() {
+        let preset = Preset::default();
+        // The roll as the physics alone gives it, stopped by its rule.
+        let mut plain = Simulation::new(&preset.params(), &preset.initial).expect("valid");
+        let outcome = plain.run_to_end();
+        assert_eq!(outcome.status, Status::Settled);
+        assert!(
+            !at_rest(&plain),
+            "the paper's die is still moving when its face is decided"
+        );
+
+        let mut e = Engine::new(&preset).expect("valid");
+        e.run_to_end();
+        let end = e.timeline().furthest;
+        assert_eq!(e.timeline().decided, Some(outcome.steps));
+        assert!(
+            end > outcome.steps,
+            "played on: {end} steps, decided at {}",
+            outcome.steps
+        );
+        assert_eq!(e.phase(), Phase::Ended(outcome), "the outcome is the stop's");
+        // It ends at the first step at rest (or 2 s on), no earlier, no later.
+        let rest_or_late = |s: &Simulation| at_rest(s) || s.state().time_s >= outcome.time_s + 2.0;
+        assert!(rest_or_late(e.simulation()));
+        e.handle(Command::Seek(end - 1));
+        assert!(!rest_or_late(e.simulation()), "one step earlier it still moved");
+        // Up to the stop, the bits are the plain roll's.
+        e.handle(Command::Seek(outcome.steps));
+        assert_eq!(bits(e.simulation()), bits(&plain));
+        // The export rolls to the stop only: one row per step from t = 0 to it.
+        let dir = tempfile::tempdir().expect("temp dir");
+        e.handle(Command::Export {
+            dir: dir.path().to_path_buf(),
+            log_scale: false,
+        });
+        e.run_export_here();
+        let notice = e.snapshot().notice.expect("a notice");
+        let words = notice.said().expect("words");
+        assert!(words.contains(&format!("{} rows", outcome.steps + 1)), "{words}");
+    }
+
+    #[test]
+    fn a_random_roll_enters_the_table_with_the_stops_outcome() {
+        let preset = Preset::default();
+        let mut e = Engine::new(&preset).expect("valid");
+        e.handle(Command::RandomRoll);
+        e.run_to_end();
+        let table = e.snapshot().table.expect("the table changed");
+        let r = table.last.front().copied().expect("the roll is in it");
+        let plain = Simulation::new(&preset.params(), &r.initial)
+            .expect("valid")
+            .run_to_end();
+        assert_eq!(r.outcome, plain);
+        assert_eq!(table.rolls(), 1);
+    }
+
+    #[test]
+    fn a_roll_that_does_not_settle_ends_where_it_stops() {
+        let preset = Preset::default()
+            .with_overrides(&["ground.stiffness=2e7"])
+            .expect("valid overrides");
+        let mut e = Engine::new(&preset).expect("valid");
+        e.run_to_end();
+        let Phase::Ended(o) = e.phase() else {
+            panic!("ended")
+        };
+        assert_ne!(o.status, Status::Settled, "{o:?}");
+        assert_eq!(e.timeline().furthest, o.steps, "no playing on");
+        assert_eq!(e.timeline().decided, None);
+    }
+}
