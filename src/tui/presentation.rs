@@ -165,7 +165,7 @@ pub(crate) fn row_of_height(view: &View, z_cm: f64) -> Option<u16> {
     let f = (view.y.1 - y) / (view.y.1 - view.y.0);
     (0.0..1.0)
         .contains(&f)
-        .then(|| (f * view.area.height as f64) as u16)
+        .then_some((f * view.area.height as f64) as u16)
 }
 
 /// Draws the presentation view over the whole terminal.
@@ -182,13 +182,19 @@ pub(crate) fn render(app: &App, frame: &mut Frame) {
         Constraint::Min(0),
         Constraint::Length(side),
     ]));
+    let live = &app.roll.live;
+    let at_end = live.timeline.ended && live.timeline.position >= live.timeline.furthest;
+    // Between the stop and rest the face is known but the die still moves: not "settled" yet.
+    let phase = match (die::decided_at(app), live.phase) {
+        (Some(_), crate::worker::Phase::Ended(o)) if !at_end => match o.face {
+            Some(f) => format!("face {f} decided, coming to rest"),
+            None => "decided, coming to rest".to_string(),
+        },
+        _ => live.phase.label(),
+    };
     let title = Line::from(vec![
         Span::styled(" dicesim ", t.heading()),
-        Span::raw(format!(
-            "· {} · {} ",
-            app.setup.preset.name,
-            app.roll.live.phase.label()
-        )),
+        Span::raw(format!("· {} · {phase} ", app.setup.preset.name)),
     ]);
     frame.render_widget(Paragraph::new(title), header);
 
@@ -483,7 +489,7 @@ mod tests {
         // The main screen's view follows the die: its picture rises with it.
         let main = |s: &Scene| {
             let area = screen_layout(Rect::new(0, 0, 120, 36)).expect("fits").die;
-            die::View::new(&s.app, area).y
+            View::new(&s.app, area).y
         };
         assert_ne!(main(&start), main(&lower));
     }

@@ -446,7 +446,7 @@ impl Engine {
         };
         // Said first, where a narrow status line still shows it.
         let rerolled = if self.export_rerolled && result.is_ok() {
-            "re-rolled from t = 0 with the values now, not the roll shown (a value changed mid-roll): "
+            "re-rolled from t = 0, not the roll shown (a value changed mid-roll): "
         } else {
             ""
         };
