@@ -315,6 +315,7 @@ fn draw_panel(app: &App, area: Rect, frame: &mut Frame) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::tui::app::Msg;
     use crate::tui::layout::screen_layout;
     use crate::tui::map_view::View as Screenful;
     use crate::tui::tests::{Scene, screen, spun_preset};
@@ -402,6 +403,31 @@ mod tests {
         s.key(KeyCode::Enter);
         assert!(s.app.value_editor().is_none());
         assert!(s.app.notice.as_deref().is_some_and(|n| n.contains("main screen")));
+    }
+
+    #[test]
+    fn the_mouse_orbits_and_zooms_and_selects_no_hidden_value() {
+        use ratatui::crossterm::event::{Event, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
+        let mut s = Scene::new(&spun_preset(), projector());
+        s.key(KeyCode::Char('P'));
+        let areas = screen_layout(s.app.screen).expect("fits");
+        // Where the parameter list would be on the main screen: its third row.
+        let (column, row) = (areas.params.x + 3, areas.params.y + 4);
+        let mouse = |kind| {
+            Msg::Input(Event::Mouse(MouseEvent {
+                kind,
+                column,
+                row,
+                modifiers: KeyModifiers::NONE,
+            }))
+        };
+        let (selected, zoom) = (s.app.selected, s.app.camera.zoom);
+        crate::tui::update(&mut s.app, mouse(MouseEventKind::Down(MouseButton::Left)));
+        assert_eq!(s.app.selected, selected, "no value selected behind the die");
+        assert_eq!(s.app.drag, Some((column, row)), "a drag starts anywhere");
+        crate::tui::update(&mut s.app, mouse(MouseEventKind::ScrollUp));
+        assert_eq!(s.app.camera.zoom, zoom + 1);
+        assert_eq!(s.app.setup.params, spun_preset().params(), "no value scrolled");
     }
 
     #[test]
