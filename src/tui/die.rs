@@ -620,16 +620,23 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
     let lowest = solid(app, die).lowest().z;
     let mut title = vec![
         Span::styled(" die ", t.heading()),
-        Span::raw(format!(
-            "· face up {} · lowest corner {:.2} cm ",
-            die.face_up, lowest
-        )),
+        Span::raw(format!("· face up {} ", die.face_up)),
+        Span::raw(format!("· lowest corner {lowest:.2} cm ")),
     ];
+    let decided = decided_at(app);
+    if let Some(t_s) = decided {
+        title.insert(2, Span::raw(format!("· face decided {t_s:.3} s ")));
+    }
     if let Some(twin) = &app.roll.live.twin {
         title.push(Span::styled(
             format!("· twin face up {} ", twin.die.face_up),
             Style::new().fg(t.ghost()),
         ));
+    }
+    // Once the face is decided, the lowest corner makes room for it and the twin's face.
+    let width: usize = title.iter().map(|s| s.content.chars().count()).sum();
+    if decided.is_some() && width + 2 > area.width as usize {
+        title.retain(|s| !s.content.starts_with("· lowest corner"));
     }
     let block = Block::bordered().title(Line::from(title));
     let mut body = block.inner(area);
@@ -660,15 +667,20 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
         frame.render_widget(Paragraph::new(vectors::legend(app, body.width)), legend);
         body.height -= 2;
     }
-    let view = View::new(app, body);
-    let pic = picture(app, &view);
+    draw(app, &View::new(app, body), frame);
+}
+
+/// The die's picture seen in `view`, drawn into its area: strokes, fills, then labels.
+pub(crate) fn draw(app: &App, view: &View, frame: &mut Frame) {
+    let body = view.area;
+    let pic = picture(app, view);
     match app.drawing {
-        Drawing::Braille => draw_braille(&pic, &view, frame),
-        Drawing::Ascii => draw_ascii(&pic, &view, frame.buffer_mut()),
+        Drawing::Braille => draw_braille(&pic, view, frame),
+        Drawing::Ascii => draw_ascii(&pic, view, frame.buffer_mut()),
     }
     let buf = frame.buffer_mut();
-    draw_fills(&pic, &view, buf);
-    for (col, row, label) in place_labels(&pic.labels, &view, &pic.outline) {
+    draw_fills(&pic, view, buf);
+    for (col, row, label) in place_labels(&pic.labels, view, &pic.outline) {
         buf.set_span(
             body.x + col,
             body.y + row,
@@ -676,6 +688,16 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
             body.width - col,
         );
     }
+}
+
+/// s: when the stopping rule decided the face, once the roll on screen is past it. The die
+/// plays on to rest after it, but the roll's outcome, table entry and exports end there.
+pub(crate) fn decided_at(app: &App) -> Option<f64> {
+    let live = &app.roll.live;
+    live.timeline
+        .decided
+        .filter(|&d| live.timeline.position >= d)
+        .map(|d| d as f64 * live.params.integrator.dt)
 }
 
 /// Why the roll on screen ended unstable, or could not settle on its table, when it did.
