@@ -216,6 +216,8 @@ pub struct App {
     pub(crate) screen: Rect,
     pub(crate) quit: bool,
     pub(crate) view: View,
+    /// The number the presentation view shows beside the face.
+    pub(crate) readout: super::presentation::Readout,
     pub(crate) map: MapView,
     /// Effects other than worker commands asked for during the current `update`.
     pub(crate) effects: Vec<Effect>,
@@ -251,6 +253,7 @@ impl App {
             screen: Rect::new(0, 0, 120, 36),
             quit: false,
             view: View::Die,
+            readout: Default::default(),
             effects: Vec::new(),
             drag: None,
         }
@@ -266,8 +269,9 @@ impl App {
 
     /// A preset's view: what the UI owns of it (the worker sets the speed and rolls the
     /// twin itself). A preset opens the same way every time, so a key the view leaves out
-    /// means the default (the camera's, no arrows, no twin, the die screen); only the theme
-    /// stays as it is, since it suits the room rather than the preset.
+    /// means the default (the camera's, no arrows, the die screen); the theme stays as it
+    /// is, since it suits the room rather than the preset, and so does a twin that rolls
+    /// (a lesson turns it on, then opens presets to compare them with it).
     pub(crate) fn apply_view(&mut self, view: &PresetView) {
         self.camera = view.camera.map_or_else(Camera::default, |c| Camera {
             yaw_deg: c.yaw,
@@ -282,7 +286,9 @@ impl App {
             };
         }
         self.vectors = view.arrows.unwrap_or(false);
-        self.twin.apply(view.twin);
+        if view.twin.is_some() {
+            self.twin.apply(view.twin);
+        }
         self.map.open_asked = view.screen == Some(ViewScreen::Map);
     }
 
@@ -303,7 +309,7 @@ impl App {
             arrows: Some(self.vectors),
             twin: self.twin.on.then_some(self.twin.epsilon),
             screen: Some(match self.view {
-                View::Die => ViewScreen::Die,
+                View::Die | View::Presentation => ViewScreen::Die,
                 View::Map => ViewScreen::Map,
             }),
         }
@@ -383,6 +389,7 @@ impl App {
             },
             Mode::Help => Screen::Help,
             Mode::Map => Screen::Map,
+            Mode::Normal if self.view == View::Presentation => Screen::Show,
             Mode::Normal => Screen::Die,
         }
     }
@@ -419,11 +426,23 @@ impl App {
             self.notice = Some(worded(&n));
         }
         if let Some(p) = s.preset.take() {
+            self.map.reopen(&p.params(), &p.initial);
             let view = p.view;
             self.setup.preset = *p;
             self.apply_view(&view);
         }
         self.setup.adopt(&s);
+        let (was, now) = (self.roll.live.timeline.position, s.timeline.position);
+        if let Some(d) = s
+            .timeline
+            .decided
+            .filter(|&d| was < d && d <= now && !s.history_reset)
+        {
+            self.notice = Some(format!(
+                "face decided at {:.3} s: the roll's data end there",
+                d as f64 * s.params.integrator.dt
+            ));
+        }
         self.roll.absorb(s);
     }
 

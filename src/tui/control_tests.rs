@@ -286,7 +286,8 @@ fn slow_motion_classroom_opens_slowed_down_with_its_arrows() {
     s.command(Command::LoadPreset(Box::default()));
     assert_eq!(s.app.setup.speed.label(), "1×");
     assert_eq!(s.engine.live().speed().label(), "1×");
-    assert!(!s.app.vectors && !s.app.twin.on && s.app.roll.live.twin.is_none());
+    // The twin turned on stays on (a lesson compares presets with it).
+    assert!(!s.app.vectors && s.app.twin.on && s.app.roll.live.twin.is_some());
     assert_eq!(s.app.camera, super::camera::Camera::default());
     assert_eq!(s.app.theme.palette, super::theme::Palette::Light);
 }
@@ -407,4 +408,96 @@ fn a_key_that_means_nothing_does_nothing_and_the_footer_says_so() {
     s.key(KeyCode::Char('q'));
     assert_eq!(s.app.mode(), Mode::Normal, "q closes the help");
     assert!(!s.app.quit, "and does not quit from it");
+}
+
+/// The shipped preset `name`.
+fn shipped(name: &str) -> Preset {
+    Store::new(None).load(name).expect("shipped").0
+}
+
+#[test]
+fn a_random_roll_is_no_change_of_the_users_and_o_opens_without_asking() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = start();
+    s.app.store = Store::new(Some(dir.path().to_path_buf()));
+    s.key(KeyCode::Char('R'));
+    assert_ne!(
+        s.app.setup.initial, s.app.setup.preset.initial,
+        "R drew another start from the ranges"
+    );
+    assert!(!s.app.setup.modified(), "a draw is not an edit");
+    s.key(KeyCode::Char('o'));
+    s.key(KeyCode::Down);
+    s.key(KeyCode::Enter);
+    assert!(s.app.prompt().is_none(), "no question: {:?}", s.app.prompt());
+    assert_ne!(s.app.setup.preset.name, spun_name(), "the chosen preset opened");
+    // An edit after a draw is a change, and is guarded again.
+    let mut s = start();
+    s.key(KeyCode::Char('R'));
+    s.select(Param::named("initial.height"));
+    s.key(KeyCode::Right);
+    assert!(s.app.setup.modified());
+    s.key(KeyCode::Char('q'));
+    assert_eq!(s.app.prompt(), Some(&Prompt::Quit));
+}
+
+/// The name of the preset [`start`] opens.
+fn spun_name() -> String {
+    start().app.setup.preset.name
+}
+
+#[test]
+fn opening_a_preset_keeps_the_twin_rolling_at_its_epsilon() {
+    let mut s = start();
+    s.key(KeyCode::Char('T'));
+    s.key(KeyCode::Char('>'));
+    let epsilon = s.app.twin.epsilon;
+    assert!(s.app.twin.on && s.app.roll.live.twin.is_some());
+    let gentle = shipped("gentle-drop");
+    assert_eq!(gentle.view.twin, None, "the preset asks for no twin of its own");
+    s.command(Command::LoadPreset(Box::new(gentle.clone())));
+    assert_eq!(s.app.setup.preset.name, gentle.name);
+    assert!(s.app.twin.on, "the explorer still says the twin is on");
+    let twin = s.app.roll.live.twin.as_ref().expect("the worker rolls a twin");
+    assert_eq!(twin.epsilon, epsilon);
+    // The twin is the new preset's start perturbed, not the old one's: both start at
+    // gentle-drop's 1.8 cm, the twin ε higher.
+    let h = s.app.roll.live.die.centre.z;
+    assert!((h - 1.8).abs() < 1e-12, "{h}");
+    assert!(
+        (twin.die.centre.z - 1.8 * (1.0 + epsilon)).abs() < 1e-9,
+        "{}",
+        twin.die.centre.z
+    );
+}
+
+#[test]
+fn the_map_after_opening_a_preset_spans_that_presets_own_values() {
+    let mut s = Scene::new(&shipped("paper"), Theme::default());
+    s.app.screen = ratatui::layout::Rect::new(0, 0, 100, 30);
+    s.key(KeyCode::Tab);
+    // The map spans the random range of spin, 120 rad/s wide, around the preset's own spin
+    // (its ends on the value list's coarse grid of 10 rad/s): about x the paper spins at
+    // 12 rad/s, about y at −20; gentle-drop at 1 and −1.
+    let around = |range: (f64, f64), own: f64| {
+        let width = range.1 - range.0;
+        (110.0..=130.0).contains(&width) && ((range.0 + range.1) / 2.0 - own).abs() <= 10.0
+    };
+    let axes = |s: &Scene| {
+        (
+            (s.app.map.x.min, s.app.map.x.max),
+            (s.app.map.y.min, s.app.map.y.max),
+        )
+    };
+    let (x, y) = axes(&s);
+    assert!(around(x, 12.0) && around(y, -20.0), "{x:?} {y:?}");
+    s.key(KeyCode::Tab);
+    s.command(Command::LoadPreset(Box::new(shipped("gentle-drop"))));
+    s.key(KeyCode::Tab);
+    let (x, y) = axes(&s);
+    assert!(around(x, 1.0) && around(y, -1.0), "{x:?} {y:?}");
+    let (request, params, initial) = s.app.map.requested.expect("a map was asked for");
+    assert_eq!((request.x.min, request.x.max), x);
+    assert_eq!(initial.height, 1.8);
+    assert_eq!(params, shipped("gentle-drop").params());
 }

@@ -618,11 +618,17 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let die = &app.roll.live.die;
     let lowest = solid(app, die).lowest().z;
-    // The face up matters most (the lesson's question), then the twin's, then the height.
+    // The face up matters most (the lesson's question), then the twin's, then when the face
+    // was decided (the status line says it too), then the height: once the face is decided,
+    // the lowest corner makes room.
     let mut title = vec![
         (0, vec![Span::styled(" die ", t.heading())]),
         (0, vec![Span::raw(format!("· face up {} ", die.face_up))]),
     ];
+    if let Some(t_s) = decided_at(app) {
+        title.push((2, vec![Span::raw(format!("· face decided {t_s:.3} s "))]));
+    }
+    title.push((3, vec![Span::raw(format!("· lowest corner {lowest:.2} cm "))]));
     if let Some(twin) = &app.roll.live.twin {
         title.push((
             1,
@@ -632,10 +638,6 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
             )],
         ));
     }
-    title.insert(
-        2,
-        (2, vec![Span::raw(format!("· lowest corner {lowest:.2} cm "))]),
-    );
     let block = Block::bordered().title(super::fit::line(title, area.width.saturating_sub(2) as usize));
     let mut body = block.inner(area);
     frame.render_widget(block, area);
@@ -665,15 +667,20 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
         frame.render_widget(Paragraph::new(vectors::legend(app, body.width)), legend);
         body.height -= 2;
     }
-    let view = View::new(app, body);
-    let pic = picture(app, &view);
+    draw(app, &View::new(app, body), frame);
+}
+
+/// The die's picture seen in `view`, drawn into its area: strokes, fills, then labels.
+pub(crate) fn draw(app: &App, view: &View, frame: &mut Frame) {
+    let body = view.area;
+    let pic = picture(app, view);
     match app.drawing {
-        Drawing::Braille => draw_braille(&pic, &view, frame),
-        Drawing::Ascii => draw_ascii(&pic, &view, frame.buffer_mut()),
+        Drawing::Braille => draw_braille(&pic, view, frame),
+        Drawing::Ascii => draw_ascii(&pic, view, frame.buffer_mut()),
     }
     let buf = frame.buffer_mut();
-    draw_fills(&pic, &view, buf);
-    for (col, row, label) in place_labels(&pic.labels, &view, &pic.outline) {
+    draw_fills(&pic, view, buf);
+    for (col, row, label) in place_labels(&pic.labels, view, &pic.outline) {
         buf.set_span(
             body.x + col,
             body.y + row,
@@ -681,6 +688,16 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
             body.width - col,
         );
     }
+}
+
+/// s: when the stopping rule decided the face, once the roll on screen is past it. The die
+/// plays on to rest after it, but the roll's outcome, table entry and exports end there.
+pub(crate) fn decided_at(app: &App) -> Option<f64> {
+    let live = &app.roll.live;
+    live.timeline
+        .decided
+        .filter(|&d| live.timeline.position >= d)
+        .map(|d| d as f64 * live.params.integrator.dt)
 }
 
 /// Why the roll on screen ended unstable, or could not settle on its table, when it did.

@@ -138,6 +138,14 @@ fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
         Action::Increase => app.nudge(out, 1, coarse),
         Action::DecreaseBig => app.nudge(out, -1, true),
         Action::IncreaseBig => app.nudge(out, 1, true),
+        // The value editor and the parameter list are the main screen's: typing a value
+        // blind is no help to a class.
+        Action::TypeValue if app.view == View::Presentation => {
+            app.notice = Some(format!(
+                "{} first: values are typed on the main screen",
+                label(Screen::Show, Action::Presentation)
+            ))
+        }
         Action::TypeValue => app.overlay = Some(Overlay::Value(Editor::default())),
         Action::LogScale => app.log_scale = !app.log_scale,
         Action::PlotQuantity => app.plot.next(),
@@ -189,6 +197,13 @@ fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
         Action::SavePreset => super::dialogs::open_save(app),
         Action::ResetSetup => app.reset_asking(),
         Action::OpenMap => map::open(app, out),
+        Action::Presentation => {
+            app.view = match app.view {
+                View::Presentation => View::Die,
+                _ => View::Presentation,
+            }
+        }
+        Action::NextReadout => app.readout = app.readout.next(),
         Action::Help => {
             app.overlay = Some(Overlay::Help { scroll: 0 });
         }
@@ -196,6 +211,7 @@ fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
             View::Map => {
                 map::close(app, out);
             }
+            View::Presentation => app.view = View::Die,
             View::Die => {
                 app.notice = Some(format!(
                     "nothing to close ({} quits)",
@@ -267,9 +283,20 @@ fn on_mouse(app: &mut App, kind: MouseEventKind, column: u16, row: u16, out: &mu
     if app.mode() != Mode::Normal {
         return;
     }
+    if app.view == View::Presentation {
+        // The die fills the view: a drag anywhere orbits, a scroll zooms.
+        match kind {
+            MouseEventKind::Down(MouseButton::Left) => app.drag = Some((column, row)),
+            MouseEventKind::ScrollUp => app.camera.zoom_by(1),
+            MouseEventKind::ScrollDown => app.camera.zoom_by(-1),
+            _ => {}
+        }
+    }
     let Some(areas) = app.areas() else { return };
     let at = Position::new(column, row);
     match kind {
+        MouseEventKind::Down(_) | MouseEventKind::ScrollUp | MouseEventKind::ScrollDown
+            if app.view == View::Presentation => {}
         MouseEventKind::Down(MouseButton::Left) => {
             if let Some(i) = param_row_at(app.selected, &areas, at) {
                 app.selected = i;

@@ -14,6 +14,8 @@ pub(crate) enum Screen {
     Map,
     /// Both screens (rows only; a mode is never `Both`).
     Both,
+    /// The presentation view (`P`): the die screen's keys work in it too, besides its own.
+    Show,
     /// The help overlay (`?`).
     Help,
     /// A yes/no question (quit, reset, load over unsaved changes).
@@ -29,17 +31,21 @@ pub(crate) enum Screen {
 impl Screen {
     /// Whether a row of `self` applies in mode `on`.
     pub(crate) fn includes(self, on: Screen) -> bool {
-        self == on || (self == Both && matches!(on, Die | Map)) || (self == Text && on == Save)
+        self == on
+            || (self == Both && matches!(on, Die | Map | Show))
+            || (self == Die && on == Show)
+            || (self == Text && on == Save)
     }
 
     /// Every mode, for the checks that hold in all of them.
-    pub(crate) const MODES: [Screen; 7] = [Die, Map, Help, Prompt, Text, Save, Picker];
+    pub(crate) const MODES: [Screen; 8] = [Die, Map, Show, Help, Prompt, Text, Save, Picker];
 
     /// How the help and the README title this mode's keys.
     pub(crate) fn title(self) -> &'static str {
         match self {
             Die | Both => "Keys",
             Map => "Basin-map screen keys",
+            Show => "Presentation view keys (the main screen's work too)",
             Help => "In the help",
             Prompt => "Answering a question",
             Text => "Typing a value, a range or a name",
@@ -101,6 +107,10 @@ pub(crate) enum Action {
     SavePreset,
     ResetSetup,
     OpenMap,
+    /// The presentation view on or off.
+    Presentation,
+    /// The presentation view's number: the next of height, speed, spin, kinetic energy.
+    NextReadout,
     Help,
     Close,
     Quit,
@@ -165,7 +175,7 @@ const fn hint(keys: &'static str, words: &'static str, priority: u8) -> Option<H
 
 use Action as A;
 use KeyCode as K;
-use Screen::{Both, Die, Help, Map, Picker, Prompt, Save, Text};
+use Screen::{Both, Die, Help, Map, Picker, Prompt, Save, Show, Text};
 
 macro_rules! row {
     ($screen:expr, [$($key:expr),+], $label:expr, $action:expr, $hint:expr, $help:expr) => {
@@ -507,6 +517,22 @@ pub(crate) const BINDINGS: &[Binding] = &[
         A::OpenMap,
         hint("Tab", "map", 2),
         "the basin-map screen"
+    ),
+    row!(
+        Die,
+        [K::Char('P')],
+        "P",
+        A::Presentation,
+        hint("P", "present", 2),
+        "presentation view: the die large over a height scale, the face up in big digits, the time and one number; P or Esc back"
+    ),
+    row!(
+        Show,
+        [K::Char('N')],
+        "N",
+        A::NextReadout,
+        hint("N", "number", 0),
+        "the number shown: height → speed → spin → kinetic energy"
     ),
     row!(
         Map,
@@ -1000,7 +1026,7 @@ mod tests {
             assert_eq!(press(mode, K::Esc), act(A::Close), "Esc in {mode:?}");
             let q = press(mode, K::Char('q'));
             let expected = match mode {
-                Die | Map => act(A::Quit),
+                Die | Map | Show => act(A::Quit),
                 // Its own key answers the quit question; in the others it is a no.
                 Prompt => act(A::Quit),
                 Text | Save => Input::Type('q'),

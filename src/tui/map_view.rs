@@ -32,6 +32,8 @@ pub(crate) enum View {
     #[default]
     Die,
     Map,
+    /// The presentation view (`P`): the die large, for a projector.
+    Presentation,
 }
 
 /// The map's x or y axis.
@@ -118,6 +120,20 @@ impl MapView {
             export_size: 0,
             open_asked: false,
         }
+    }
+
+    /// Another preset opened: the default axes around its own values, no zoom and no map
+    /// yet (a map of the old preset's ranges would answer a question nobody asked); the
+    /// layer and the PNG size stay, being the user's choice rather than the setup's.
+    /// Updates of a map still computing for the old preset are dropped.
+    pub(crate) fn reopen(&mut self, params: &Params, initial: &InitialCondition) {
+        *self = MapView {
+            generation: self.generation + 1,
+            layer: self.layer,
+            export_size: self.export_size,
+            open_asked: self.open_asked,
+            ..MapView::new(params, initial)
+        };
     }
 
     /// The chosen size of the map's PNG, in pixels, and what it is for.

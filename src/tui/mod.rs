@@ -25,6 +25,7 @@ mod outcomes;
 pub(crate) mod param;
 mod params_panel;
 mod plot;
+mod presentation;
 pub mod render;
 mod roll_view;
 pub(crate) mod run;

@@ -66,8 +66,9 @@ impl PlotChoice {
     }
 }
 
-/// The time axis of a plot against time, fitted to the roll computed so far: from 0 to the
-/// first tick of 1, 2 or 5 × 10ⁿ s at or past its end, at most `most` labels.
+/// The time axis of a plot against time, fitted to the roll computed so far: from 0 to its
+/// end rounded up on a fine grid (1.096 s → 1.2 s), labelled evenly with at most `most`
+/// labels on a round step where one divides the axis (0, 0.4, 0.8, 1.2 s), else its two ends.
 pub(crate) fn time_axis(app: &App, most: usize) -> (f64, Vec<String>) {
     let t_end = app
         .roll
@@ -75,19 +76,42 @@ pub(crate) fn time_axis(app: &App, most: usize) -> (f64, Vec<String>) {
         .last()
         .map_or(0.0, |s| s.time_s)
         .max(app.roll.live.time_s);
-    // Before the roll has moved, a tenth of a second, not a zero-width axis.
-    let (_, hi, ticks) = nice_ticks(0.0, t_end.max(0.1), most);
-    let n = ticks.len();
-    let labels = ticks
-        .iter()
-        .enumerate()
-        .map(|(i, &t)| {
-            let v = fmt_num(t);
-            // The last label ends in a space: a panel's gap column (`fit`), never text.
-            if i + 1 == n { format!("{v} s ") } else { v }
+    let (hi, mut labels) = time_ticks(t_end, most);
+    // The last label ends in a space: a panel's gap column (`fit`), never text.
+    if let Some(last) = labels.last_mut() {
+        last.push(' ');
+    }
+    (hi, labels)
+}
+
+/// [`time_axis`] for a roll computed to `t_end` seconds.
+fn time_ticks(t_end: f64, most: usize) -> (f64, Vec<String>) {
+    // Before the roll has moved, a tenth of a second, not a zero-width axis. The end is
+    // chosen on a grid finer than the labels' so that the curve fills the plot: labels
+    // alone would round a 1.1 s roll up to a 2 s axis, half of it empty.
+    let (_, hi, _) = nice_ticks(0.0, t_end.max(0.1), FINE_TIME_TICKS);
+    let n = (2..=most.max(2))
+        .rev()
+        .find(|&n| is_round_step(hi / (n - 1) as f64))
+        .unwrap_or(2);
+    let labels = (0..n)
+        .map(|i| {
+            let v = fmt_num(hi * i as f64 / (n - 1) as f64);
+            if i + 1 == n { format!("{v} s") } else { v }
         })
         .collect();
     (hi, labels)
+}
+
+/// How finely the time axis's end is rounded up: to one of about this many steps.
+const FINE_TIME_TICKS: usize = 8;
+
+/// Whether `step` is 2.5 × 10ⁿ or has one significant digit (0.4, 20), a step whose
+/// multiples read as round numbers (0.6, 1.2 do; 0.35, 0.7 do not).
+fn is_round_step(step: f64) -> bool {
+    let decade = 10f64.powf(step.log10().floor());
+    let digits = step / decade;
+    (digits - digits.round()).abs() < 1e-9 || (digits - 2.5).abs() < 1e-9
 }
 
 /// At most this many time labels for a plot `width` columns wide ("0.25" and room around).
@@ -343,6 +367,23 @@ pub(crate) fn render_phase(app: &App, area: Rect, frame: &mut Frame, i: usize, j
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_time_axis_ends_just_past_the_roll_with_round_labels() {
+        let axis = |t_end: f64, most: usize| {
+            let (hi, labels) = time_ticks(t_end, most);
+            ((hi * 1e6).round() / 1e6, labels.join(" "))
+        };
+        // The paper's roll played on to rest (1.096 s): a 1.2 s axis, not 2 s.
+        assert_eq!(axis(1.096, 2), (1.2, "0 1.2 s".into()));
+        assert_eq!(axis(1.096, 3), (1.2, "0 0.6 1.2 s".into()));
+        assert_eq!(axis(1.096, 4), (1.2, "0 0.4 0.8 1.2 s".into()));
+        // A half-second roll on a half-second axis; a roll not yet moving on a tenth.
+        assert_eq!(axis(0.49, 3), (0.5, "0 0.25 0.5 s".into()));
+        assert_eq!(axis(0.0, 2), (0.1, "0 0.1 s".into()));
+        assert!(is_round_step(0.25) && is_round_step(20.0) && is_round_step(0.6));
+        assert!(!is_round_step(0.35) && !is_round_step(1.2));
+    }
 
     #[test]
     fn the_plot_key_walks_every_quantity_and_back_to_the_energy_plot() {

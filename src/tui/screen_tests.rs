@@ -200,6 +200,7 @@ pub(crate) fn states(theme: Theme) -> Vec<ScreenState> {
             keyed(map_scene(theme), &[KeyCode::Char('v')]),
             &[],
         ),
+        state("presentation", keyed(settled(), &[KeyCode::Char('P')]), &[]),
         state(
             "light shadow, high camera",
             keyed(

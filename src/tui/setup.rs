@@ -9,7 +9,7 @@ use super::param::Param;
 use crate::physics::params::Detail;
 use crate::physics::{InitialCondition, Params};
 use crate::preset::Preset;
-use crate::worker::{Command, Snapshot, Speed};
+use crate::worker::{Command, RollKind, Snapshot, Speed};
 
 #[derive(Debug, Clone)]
 pub(crate) struct Setup {
@@ -19,6 +19,9 @@ pub(crate) struct Setup {
     /// The preset the setup was loaded from (or last saved as): the questions over unsaved
     /// changes compare with it.
     pub(crate) preset: Preset,
+    /// The start the last random roll (`R`) drew from the preset's ranges: a draw is the
+    /// preset's own doing, not a change of the user's, so no question guards it.
+    drawn: Option<InitialCondition>,
     /// Commands sent to the worker so far (see [`Snapshot::commands_handled`]).
     commands_sent: u64,
 }
@@ -31,13 +34,15 @@ impl Setup {
             initial: first.initial,
             speed: first.speed,
             preset,
+            drawn: None,
             commands_sent: 0,
         }
     }
 
     /// Whether the setup differs from the open preset's (questions guard such changes).
     pub(crate) fn modified(&self) -> bool {
-        self.params != self.preset.params() || self.initial != self.preset.initial
+        self.params != self.preset.params()
+            || (self.initial != self.preset.initial && Some(self.initial) != self.drawn)
     }
 
     /// Queues a command for the worker.
@@ -53,6 +58,9 @@ impl Setup {
             self.params = s.params;
             self.initial = s.initial;
             self.speed = s.speed;
+            if let RollKind::Random(_) = s.roll {
+                self.drawn = Some(s.initial);
+            }
         }
     }
 
@@ -110,6 +118,7 @@ impl Setup {
     pub(crate) fn load(&mut self, out: &mut Vec<Command>, preset: Box<Preset>) {
         self.params = preset.params();
         self.initial = preset.initial;
+        self.drawn = None;
         self.send(out, Command::LoadPreset(preset));
     }
 

@@ -54,6 +54,9 @@ pub struct Engine {
     map: Order<(), MapJob>,
     pending: Pending,
     commands_handled: u64,
+    /// The running export rolls again from t = 0 a roll that changed a value mid-roll on
+    /// screen: its files are not what was shown, and the notice says so.
+    export_rerolled: bool,
 }
 
 /// The twin a preset's view asks for, if any (its ε was checked with the preset).
@@ -90,6 +93,7 @@ impl Engine {
                 ..Pending::default()
             },
             commands_handled: 0,
+            export_rerolled: false,
         })
     }
 
@@ -273,7 +277,7 @@ impl Engine {
     }
 
     /// Switches to `preset`: its setup, its roll from t = 0 (paused), a fresh table (the
-    /// counts belonged to another setup); a running batch is cancelled.
+    /// counts belonged to another setup), a twin if one rolled; a running batch is cancelled.
     fn load_preset(&mut self, preset: Preset) -> Notice {
         if let Err(e) = preset.validate() {
             return Notice::Said(format!("{}: {e}", preset.name));
@@ -282,10 +286,15 @@ impl Engine {
         self.next_random = 0;
         self.table = OutcomeTable::default();
         self.pending.table_changed = true;
+        // A twin that rolls stays on at its ε unless the preset asks for its own: a lesson
+        // turns it on, then opens presets to compare them with it.
+        let kept = self.live.twin.as_ref().map(|t| t.epsilon);
+        let twin = twin_of(&preset)
+            .or_else(|| kept.and_then(|epsilon| Twin::new(&preset.params(), &preset.initial, epsilon).ok()));
         self.live.load(
             preset.params(),
             preset.initial,
-            twin_of(&preset),
+            twin,
             preset.view.speed.unwrap_or_default(),
         );
         let notice = Notice::Said(format!("loaded {}", preset.name));
@@ -334,6 +343,7 @@ impl Engine {
             steps_total: params.max_steps(),
             bytes: 0,
         };
+        self.export_rerolled = self.live.changed_mid_roll;
         self.export.place(ExportStatus::Roll(progress), |id| ExportJob {
             id,
             dir,
@@ -354,6 +364,7 @@ impl Engine {
             return Some(Notice::ExportRunning);
         }
         let preset = self.preset.name.clone();
+        self.export_rerolled = false;
         self.export
             .place(ExportStatus::Map { size: m.size }, |id| ExportJob {
                 id,
@@ -395,6 +406,7 @@ impl Engine {
         let stem = self.export_stem();
         let (params, initial) = (self.live.params, self.live.initial);
         let preset = self.preset.name.clone();
+        self.export_rerolled = self.live.changed_mid_roll;
         self.export
             .place(ExportStatus::Animation(progress), |id| ExportJob {
                 id,
@@ -432,7 +444,13 @@ impl Engine {
         let Some(status) = self.export.finish(id) else {
             return;
         };
-        self.pending.notice = Some(Notice::Said(match (status, result) {
+        // Said first, where a narrow status line still shows it.
+        let rerolled = if self.export_rerolled && result.is_ok() {
+            "re-rolled from t = 0, not the roll shown (a value changed mid-roll): "
+        } else {
+            ""
+        };
+        let words = match (status, result) {
             (_, Ok(Written::Roll(done))) => format!(
                 "exported {} ({}, {} rows) and .png",
                 done.trace.display(),
@@ -473,7 +491,8 @@ impl Engine {
             (ExportStatus::Map { .. }, Err(e)) => format!("cannot export the map: {e}"),
             (ExportStatus::Animation(_), Err(e)) => format!("cannot export the animation: {e}"),
             (ExportStatus::Roll(_), Err(e)) => e.to_string(),
-        }));
+        };
+        self.pending.notice = Some(Notice::Said(format!("{rerolled}{words}")));
     }
 
     /// Runs the requested export on this thread to its end (tests).
@@ -622,5 +641,46 @@ impl Engine {
             curve: None,
             twin: live.twin_snapshot(),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::experiment::ScanKey;
+    use crate::worker::Command;
+
+    /// The notice of an export of the roll on screen into a fresh folder.
+    fn exported(e: &mut Engine) -> String {
+        let dir = tempfile::tempdir().expect("temp dir");
+        e.handle(Command::Export {
+            dir: dir.path().to_path_buf(),
+            log_scale: false,
+        });
+        e.run_export_here();
+        let notice = e.snapshot().notice.expect("the export says how it went");
+        notice.said().expect("in words").to_string()
+    }
+
+    #[test]
+    fn an_export_after_a_mid_roll_change_says_it_rolled_again() {
+        let mut e = Engine::new(&Preset::default()).expect("valid");
+        e.advance_steps(300);
+        let friction = ScanKey::named("ground.friction").expect("a scan key");
+        e.handle(Command::SetParam(friction, 0.2));
+        e.handle(Command::Seek(u64::MAX));
+        let words = exported(&mut e);
+        assert!(words.starts_with("re-rolled from t = 0"), "{words}");
+        assert!(words.contains("exported "), "{words}");
+        // A roll played straight from its start is the roll the export gives: no word of it.
+        e.handle(Command::Replay);
+        e.run_to_end();
+        let words = exported(&mut e);
+        assert!(!words.contains("re-rolled"), "{words}");
+        // A value that restarts the roll (not one acting mid-roll) is no mid-roll change.
+        let height = ScanKey::named("initial.height").expect("a scan key");
+        e.handle(Command::SetParam(height, 12.0));
+        e.run_to_end();
+        assert!(!exported(&mut e).contains("re-rolled"));
     }
 }

@@ -9,12 +9,35 @@ use super::twin::Twin;
 use super::{DieState, EnergySample, Notice, Phase, RollKind, TimelineSnapshot, TwinSnapshot};
 use crate::experiment::registry::Role;
 use crate::experiment::{RollRecord, ScanKey};
-use crate::physics::{InitialCondition, Params, Simulation, face_most_nearly_up};
+use crate::physics::{InitialCondition, Params, Simulation, Status, face_most_nearly_up};
 use crate::preset::Speed;
 
 /// At most this many energy samples per roll: longer rolls keep each term's peak over a
 /// stride of steps, so impact spikes survive the thinning.
 const HISTORY_SAMPLES: u64 = 40_000;
+
+/// s of simulated time a settled die plays on past its stopping rule at most.
+pub(crate) const PLAY_ON_S: f64 = 2.0;
+
+/// A die that plays on past its stopping rule is at rest once its kinetic energy is below
+/// this share of the rule's threshold.
+pub(crate) const AT_REST_SHARE: f64 = 0.01;
+
+/// Whether a die's roll is over on screen. Its stopping rule decides the face (and ends
+/// the roll's data: the outcome, the table, the exports) while the die may still rock or
+/// slide a little; a settled die plays on until it is at rest or [`PLAY_ON_S`] later,
+/// whichever comes first, so a class never sees it freeze mid-motion. A roll that did not
+/// settle, or went unstable, is over at once.
+pub(crate) fn played_out(sim: &Simulation) -> bool {
+    match sim.outcome() {
+        None => false,
+        Some(o) if o.status != Status::Settled => true,
+        Some(o) => {
+            sim.energy().kinetic() < AT_REST_SHARE * sim.stop_threshold()
+                || sim.state().time_s >= o.time_s + PLAY_ON_S
+        }
+    }
+}
 
 /// The roll's energy samples not yet sent, each term's peak over a stride of steps.
 #[derive(Debug, Default)]
@@ -107,6 +130,9 @@ pub(crate) struct LiveRoll {
     counted: bool,
     pub(super) playing: bool,
     pub(super) speed: Speed,
+    /// A table value changed mid-roll: the roll on screen is no longer the one its start
+    /// gives, so a re-roll from t = 0 (an export, a replay) differs from what was shown.
+    pub(super) changed_mid_roll: bool,
     /// Changes whenever the mapping from wall time to simulated time must restart.
     pacing_epoch: u64,
 }
@@ -144,6 +170,7 @@ impl LiveRoll {
             counted: false,
             playing: false,
             speed,
+            changed_mid_roll: false,
             pacing_epoch: 0,
         };
         live.restart(RollKind::Preset);
@@ -179,7 +206,7 @@ impl LiveRoll {
 
     /// Whether the roll on screen has ended: the die's, and its twin's if there is one.
     pub(crate) fn roll_over(&self) -> bool {
-        self.sim.outcome().is_some() && self.twin.as_ref().is_none_or(Twin::ended)
+        played_out(&self.sim) && self.twin.as_ref().is_none_or(Twin::ended)
     }
 
     pub(crate) fn is_playing(&self) -> bool {
@@ -275,6 +302,7 @@ impl LiveRoll {
         self.initial = initial;
         if key.spec.acts_mid_roll && self.sim.outcome().is_none() {
             let refused = self.sim.set_ground(params.ground).err();
+            self.changed_mid_roll = true;
             // The twin feels the same table, so only ε tells the two apart.
             if let Some(twin) = &mut self.twin {
                 let _ = twin.sim.set_ground(params.ground);
@@ -301,6 +329,7 @@ impl LiveRoll {
     /// Places the die at the current initial condition; the history starts again.
     pub(crate) fn restart(&mut self, kind: RollKind) {
         self.roll = kind;
+        self.changed_mid_roll = false;
         self.sim = Simulation::new_unchecked(&self.params, &self.initial);
         self.start_face = face_most_nearly_up(&self.sim.state().corner_offsets);
         self.touched = self.sim.in_contact();
@@ -373,7 +402,7 @@ impl LiveRoll {
     fn step(&mut self) -> bool {
         // Steps already on the timeline are re-stepped to show them, not recorded again.
         let new = self.timeline.at_frontier(self.position);
-        let die_rolling = self.sim.outcome().is_none();
+        let die_rolling = !played_out(&self.sim);
         if let Some(twin) = &mut self.twin {
             twin.step();
         }
@@ -410,7 +439,11 @@ impl LiveRoll {
         if !new {
             return;
         }
-        self.trace.record(self.sample(), ended.is_some());
+        self.trace
+            .record(self.sample(), ended.is_some() || played_out(&self.sim));
+        if let Some(outcome) = ended.filter(|o| o.status == Status::Settled) {
+            self.timeline.decided = Some(outcome.steps);
+        }
         if let Some(outcome) = ended
             && let RollKind::Random(id) = self.roll
             && !self.counted
@@ -495,6 +528,7 @@ impl LiveRoll {
     /// Where the roll is on its timeline (the impacts only when they changed).
     pub(crate) fn timeline_snapshot(&mut self) -> TimelineSnapshot {
         TimelineSnapshot {
+            decided: self.timeline.decided,
             position: self.position,
             furthest: self.timeline.furthest,
             ended: self.timeline.ended,
@@ -509,5 +543,93 @@ impl LiveRoll {
             Some(t) => Some(t.snapshot(&self.sim)),
             None => None,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::preset::Preset;
+    use crate::worker::{Command, Engine, Phase};
+
+    /// Bits of the die's state (`==` on floats would let −0 pass for +0).
+    fn bits(sim: &Simulation) -> String {
+        format!("{:?} {:?}", sim.state(), sim.outcome())
+    }
+
+    fn at_rest(sim: &Simulation) -> bool {
+        sim.energy().kinetic() < 0.01 * sim.stop_threshold()
+    }
+
+    #[test]
+    fn a_settled_die_plays_on_to_rest_and_its_data_end_at_the_stop() {
+        let preset = Preset::default();
+        // The roll as the physics alone gives it, stopped by its rule.
+        let mut plain = Simulation::new(&preset.params(), &preset.initial).expect("valid");
+        let outcome = plain.run_to_end();
+        assert_eq!(outcome.status, Status::Settled);
+        assert!(
+            !at_rest(&plain),
+            "the paper's die is still moving when its face is decided"
+        );
+
+        let mut e = Engine::new(&preset).expect("valid");
+        e.run_to_end();
+        let end = e.timeline().furthest;
+        assert_eq!(e.timeline().decided, Some(outcome.steps));
+        assert!(
+            end > outcome.steps,
+            "played on: {end} steps, decided at {}",
+            outcome.steps
+        );
+        assert_eq!(e.phase(), Phase::Ended(outcome), "the outcome is the stop's");
+        // It ends at the first step at rest (or 2 s on), no earlier, no later.
+        let rest_or_late = |s: &Simulation| at_rest(s) || s.state().time_s >= outcome.time_s + 2.0;
+        assert!(rest_or_late(e.simulation()));
+        e.handle(Command::Seek(end - 1));
+        assert!(!rest_or_late(e.simulation()), "one step earlier it still moved");
+        // Up to the stop, the bits are the plain roll's.
+        e.handle(Command::Seek(outcome.steps));
+        assert_eq!(bits(e.simulation()), bits(&plain));
+        // The export rolls to the stop only: one row per step from t = 0 to it.
+        let dir = tempfile::tempdir().expect("temp dir");
+        e.handle(Command::Export {
+            dir: dir.path().to_path_buf(),
+            log_scale: false,
+        });
+        e.run_export_here();
+        let notice = e.snapshot().notice.expect("a notice");
+        let words = notice.said().expect("words");
+        assert!(words.contains(&format!("{} rows", outcome.steps + 1)), "{words}");
+    }
+
+    #[test]
+    fn a_random_roll_enters_the_table_with_the_stops_outcome() {
+        let preset = Preset::default();
+        let mut e = Engine::new(&preset).expect("valid");
+        e.handle(Command::RandomRoll);
+        e.run_to_end();
+        let table = e.snapshot().table.expect("the table changed");
+        let r = table.last.front().copied().expect("the roll is in it");
+        let plain = Simulation::new(&preset.params(), &r.initial)
+            .expect("valid")
+            .run_to_end();
+        assert_eq!(r.outcome, plain);
+        assert_eq!(table.rolls(), 1);
+    }
+
+    #[test]
+    fn a_roll_that_does_not_settle_ends_where_it_stops() {
+        let preset = Preset::default()
+            .with_overrides(&["ground.stiffness=2e7"])
+            .expect("valid overrides");
+        let mut e = Engine::new(&preset).expect("valid");
+        e.run_to_end();
+        let Phase::Ended(o) = e.phase() else {
+            panic!("ended")
+        };
+        assert_ne!(o.status, Status::Settled, "{o:?}");
+        assert_eq!(e.timeline().furthest, o.steps, "no playing on");
+        assert_eq!(e.timeline().decided, None);
     }
 }

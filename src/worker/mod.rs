@@ -234,6 +234,10 @@ pub struct TimelineSnapshot {
     pub furthest: u64,
     /// Whether the roll ends at `furthest`.
     pub ended: bool,
+    /// The step at which the stopping rule found the die settled, once it has: the roll's
+    /// data (its outcome, the table, the exports) end there, while the die on screen plays
+    /// on until it is at rest.
+    pub decided: Option<u64>,
     /// Steps at which impacts began, whenever they (or the edits) changed.
     pub impacts: Option<Vec<u64>>,
     /// Steps at which a table value was changed mid-roll, sent with the impacts.

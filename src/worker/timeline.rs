@@ -40,6 +40,9 @@ pub(crate) struct Timeline {
     pub(crate) furthest: u64,
     /// Whether the roll ended at `furthest`.
     pub(crate) ended: bool,
+    /// The step at which the stopping rule decided the face, once computed (the die plays
+    /// on past it to rest).
+    pub(crate) decided: Option<u64>,
     /// Steps at which an impact began, in order.
     pub(crate) impacts: Vec<u64>,
     /// Whether the newest computed step is inside an impact.
@@ -59,6 +62,7 @@ impl Timeline {
             keyframes: vec![start],
             furthest: 0,
             ended: false,
+            decided: None,
             impacts: Vec::new(),
             in_impact: false,
             edits: Vec::new(),
@@ -111,6 +115,7 @@ impl Timeline {
         self.keyframes.push(now);
         self.furthest = position;
         self.ended = false;
+        self.decided = self.decided.filter(|&d| d <= position);
         let kept = self.impacts.partition_point(|&p| p <= position);
         if kept < self.impacts.len() {
             self.impacts.truncate(kept);

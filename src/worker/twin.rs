@@ -30,15 +30,15 @@ impl Twin {
         })
     }
 
-    /// One step, unless its roll has ended.
+    /// One step, unless its roll is over (it plays on past its stopping rule as the die does).
     pub(crate) fn step(&mut self) {
-        if self.sim.outcome().is_none() {
+        if !self.ended() {
             self.sim.advance();
         }
     }
 
     pub(crate) fn ended(&self) -> bool {
-        self.sim.outcome().is_some()
+        super::live::played_out(&self.sim)
     }
 
     /// After a step: records the separation every `stride` steps, and at the end.
