@@ -401,6 +401,20 @@ pub fn run_budden(
         done += n;
         progress(Progress { done, total });
     };
+    // Ratio `i`'s throws with the fitted key at `value` (None: stopped part way).
+    let mut throw = |i: usize, row: &BuddenRow, value: f64| {
+        let s = setup(params, base, ranges, fit, row.ratio, value)?;
+        throw_ratio(
+            s,
+            ranges,
+            spec.seed,
+            (i, row.ratio),
+            spec.throws_of(row),
+            options,
+            cancel,
+            &mut advance,
+        )
+    };
     let calibration: Vec<(usize, &BuddenRow)> = rows
         .iter()
         .enumerate()
@@ -411,18 +425,7 @@ pub fn run_budden(
     'candidates: for &value in &values {
         let mut thrown = Vec::new();
         for &(i, row) in &calibration {
-            let s = setup(params, base, ranges, fit, row.ratio, value)?;
-            let t = throw_ratio(
-                s,
-                ranges,
-                spec.seed,
-                (i, row.ratio),
-                spec.throws_of(row),
-                options,
-                cancel,
-                &mut advance,
-            )?;
-            match t {
+            match throw(i, row, value)? {
                 Some(t) => thrown.push(t),
                 None => {
                     cancelled = true;
@@ -451,18 +454,7 @@ pub fn run_budden(
     let mut results = Vec::new();
     if let Some(best) = interval.as_ref().map(|f| f.best) {
         for (i, row) in rows.iter().enumerate() {
-            let s = setup(params, base, ranges, fit, row.ratio, best)?;
-            let thrown = throw_ratio(
-                s,
-                ranges,
-                spec.seed,
-                (i, row.ratio),
-                spec.throws_of(row),
-                options,
-                cancel,
-                &mut advance,
-            )?;
-            let Some(t) = thrown else {
+            let Some(t) = throw(i, row, best)? else {
                 cancelled = true;
                 break;
             };
