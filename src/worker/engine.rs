@@ -8,7 +8,7 @@ use super::export::{ExportJob, Exporting, Written};
 use super::job::Order;
 use super::live::LiveRoll;
 use super::map::MapJob;
-use super::twin::Twin;
+use super::twin::{Difference, Twin};
 use super::{BatchProgress, Command, ExportStatus, MapExport, Notice, OutcomeTable, RollKind, Snapshot};
 use crate::experiment::RollRecord;
 use crate::experiment::animation::render::Camera;
@@ -64,7 +64,7 @@ fn twin_of(preset: &Preset) -> Option<Twin> {
     preset
         .view
         .twin
-        .and_then(|epsilon| Twin::new(&preset.params(), &preset.initial, epsilon).ok())
+        .and_then(|epsilon| Twin::new(&preset.params(), &preset.initial, Difference::Start { epsilon }).ok())
 }
 
 impl Engine {
@@ -207,16 +207,12 @@ impl Engine {
                 self.live.set_twin(None);
                 None
             }
-            Command::SetTwin(Some(epsilon)) => {
-                match Twin::new(&self.live.params, &self.live.initial, epsilon) {
-                    Ok(twin) => {
-                        // Both dice start again from t = 0, side by side.
-                        self.live.set_twin(Some(twin));
-                        None
-                    }
-                    Err(e) => Some(Notice::Said(e.to_string())),
-                }
+            Command::SetTwin(Some(epsilon)) => self.set_twin(Difference::Start { epsilon }),
+            Command::SetParamTwin(values) if values.is_empty() => {
+                self.live.set_twin(None);
+                None
             }
+            Command::SetParamTwin(values) => self.set_twin(Difference::Setup { values }),
             Command::LoadPreset(preset) => Some(self.load_preset(*preset)),
             Command::Export { dir, log_scale } => self.export_roll(dir, log_scale),
             Command::ExportMap(map) => self.export_map(*map),
@@ -288,9 +284,11 @@ impl Engine {
         self.pending.table_changed = true;
         // A twin that rolls stays on at its ε unless the preset asks for its own: a lesson
         // turns it on, then opens presets to compare them with it.
-        let kept = self.live.twin.as_ref().map(|t| t.epsilon);
-        let twin = twin_of(&preset)
-            .or_else(|| kept.and_then(|epsilon| Twin::new(&preset.params(), &preset.initial, epsilon).ok()));
+        // A parameter twin stays on too, with B's values on the new preset's setup.
+        let kept = self.live.twin.as_ref().map(|t| t.difference.clone());
+        let twin = twin_of(&preset).or_else(|| {
+            kept.and_then(|difference| Twin::new(&preset.params(), &preset.initial, difference).ok())
+        });
         self.live.load(
             preset.params(),
             preset.initial,
@@ -382,6 +380,18 @@ impl Engine {
         None
     }
 
+    /// A twin differing by `difference` beside the die; both start again from t = 0, side
+    /// by side. A difference the twin refuses changes nothing and says why.
+    fn set_twin(&mut self, difference: Difference) -> Option<Notice> {
+        match Twin::new(&self.live.params, &self.live.initial, difference) {
+            Ok(twin) => {
+                self.live.set_twin(Some(twin));
+                None
+            }
+            Err(e) => Some(Notice::Said(e)),
+        }
+    }
+
     /// Orders the roll on screen written as an animation (see [`Command::ExportAnimation`]):
     /// its setup and twin as they are now, at the playback speed (1× when instant, which
     /// has no pace to film at).
@@ -391,7 +401,7 @@ impl Engine {
         }
         let spec = AnimationSpec {
             speed: self.live.speed.factor().unwrap_or(1.0),
-            twin: self.live.twin.as_ref().map(|t| t.epsilon),
+            twin: self.live.twin.as_ref().and_then(Twin::epsilon),
             camera,
             ..AnimationSpec::new(ANIMATION_FPS, ANIMATION_SIZE)
         };

@@ -11,6 +11,8 @@ mod job;
 mod live;
 pub(crate) mod map;
 mod pacer;
+#[cfg(test)]
+mod param_twin_tests;
 mod timeline;
 mod twin;
 
@@ -68,6 +70,10 @@ pub enum Command {
     /// Roll a chaos twin beside the die, its start perturbed by this relative ε
     /// ([`crate::experiment::twin::perturbed`]), from t = 0; `None` removes it.
     SetTwin(Option<f64>),
+    /// Roll a parameter twin beside the die: the same start in setup B, the current setup
+    /// with these values (registry keys; not start values, not Δt), from t = 0; an empty
+    /// list removes it. It takes the place of a chaos twin.
+    SetParamTwin(Vec<(&'static ScanKey, f64)>),
     /// Another preset: its setup and its roll, a fresh outcome table.
     LoadPreset(Box<Preset>),
     /// Write the roll on screen, rolled again from t = 0, into this folder: its trace as
@@ -178,7 +184,10 @@ pub(crate) struct SeparationSample {
 /// The chaos twin as drawn: its die, how its roll went, and its drift from the first die.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TwinSnapshot {
+    /// Relative: the chaos twin's start perturbation (0 for a parameter twin).
     pub(crate) epsilon: f64,
+    /// The values setup B differs by (empty for the chaos twin).
+    pub(crate) differs_by: Vec<(&'static ScanKey, f64)>,
     pub(crate) die: DieState,
     pub(crate) phase: Phase,
     pub(crate) separation: Separation,

@@ -1,0 +1,100 @@
+//! The parameter twin in the worker: the same start rolled in setup B beside the die.
+
+use super::{Command, Engine, Phase};
+use crate::experiment::ScanKey;
+use crate::physics::{Outcome, Params, Simulation};
+use crate::preset::Preset;
+
+fn key(name: &str) -> &'static ScanKey {
+    ScanKey::named(name).expect("a registry key")
+}
+
+/// Bits of a simulation's state and outcome (`==` on floats would let −0 pass for +0).
+fn bits(sim: &Simulation) -> String {
+    format!("{:?} {:?}", sim.state(), sim.outcome())
+}
+
+/// The roll of the paper's start in `params`, by the physics alone.
+fn independent(params: &Params, preset: &Preset) -> Outcome {
+    Simulation::new(params, &preset.initial)
+        .expect("valid")
+        .run_to_end()
+}
+
+fn ended(phase: Phase) -> Outcome {
+    match phase {
+        Phase::Ended(o) => o,
+        other => panic!("the roll has not ended: {other:?}"),
+    }
+}
+
+#[test]
+fn a_twin_with_no_difference_rolls_bit_identical_to_the_die() {
+    let preset = Preset::default();
+    let mut e = Engine::new(&preset).expect("valid");
+    let mu = preset.params().ground.friction;
+    e.handle(Command::SetParamTwin(vec![(key("ground.friction"), mu)]));
+    e.run_to_end();
+    let twin = e.live().twin.as_ref().expect("a parameter twin rolls");
+    assert_eq!(bits(&twin.sim), bits(e.simulation()));
+    let s = e.snapshot();
+    let t = s.twin.expect("drawn");
+    assert_eq!(t.differs_by, vec![(key("ground.friction"), mu)]);
+    assert_eq!(t.epsilon, 0.0, "the same start");
+    assert_eq!(t.phase, s.phase);
+}
+
+#[test]
+fn friction_0_3_against_1_2_rolls_as_the_physics_gives_each() {
+    let preset = Preset::default()
+        .with_overrides(&["ground.friction=0.3"])
+        .expect("valid overrides");
+    let mut b = preset.params();
+    b.ground.friction = 1.2;
+    let (want_a, want_b) = (independent(&preset.params(), &preset), independent(&b, &preset));
+
+    let mut e = Engine::new(&preset).expect("valid");
+    e.handle(Command::SetParamTwin(vec![(key("ground.friction"), 1.2)]));
+    e.run_to_end();
+    let s = e.snapshot();
+    let got_b = ended(s.twin.expect("the twin").phase);
+    assert_eq!(ended(s.phase), want_a, "A keeps μ = 0.3");
+    assert_eq!(got_b, want_b, "B rolls with μ = 1.2");
+    assert_eq!(e.params().ground.friction, 0.3, "A's setup is untouched");
+    // The two frictions end the paper's roll on different faces (the physics says so above).
+    assert_ne!(want_a.face, want_b.face, "{want_a:?} {want_b:?}");
+}
+
+#[test]
+fn a_table_change_mid_roll_reaches_b_with_bs_own_value_kept() {
+    let preset = Preset::default();
+    let mut e = Engine::new(&preset).expect("valid");
+    e.handle(Command::SetParamTwin(vec![(key("ground.friction"), 1.2)]));
+    e.handle(Command::Step(50));
+    e.handle(Command::SetParam(key("ground.stiffness"), 2e5));
+    let twin = e.live().twin.as_ref().expect("still rolls");
+    let ground = twin.sim.params().ground;
+    assert_eq!((ground.friction, ground.stiffness), (1.2, 2e5));
+}
+
+#[test]
+fn a_start_value_or_another_dt_is_refused_and_changes_nothing() {
+    let preset = Preset::default();
+    let mut e = Engine::new(&preset).expect("valid");
+    for (name, value, words) in [
+        ("initial.height", 20.0, "same start"),
+        ("integrator.dt", preset.params().integrator.dt * 2.0, "Δt"),
+        ("ground.friction", -1.0, "ground.friction"),
+    ] {
+        e.handle(Command::SetParamTwin(vec![(key(name), value)]));
+        let s = e.snapshot();
+        let notice = s.notice.expect("refused in words");
+        let said = notice.said().expect("words");
+        assert!(said.contains(words) && said.contains("twin B"), "{name}: {said}");
+        assert!(s.twin.is_none(), "{name}: no twin rolls");
+    }
+    e.handle(Command::SetParamTwin(vec![(key("ground.friction"), 0.9)]));
+    assert!(e.snapshot().twin.is_some());
+    e.handle(Command::SetParamTwin(Vec::new()));
+    assert!(e.snapshot().twin.is_none(), "an empty list removes it");
+}
