@@ -384,7 +384,7 @@ fn ground(pic: &mut Picture, app: &App, view: &View, half: f64) {
     }
 }
 
-/// The chaos twin's die as a ghost: its own visible edges (a rounded die's outline and flat
+/// The twin's die (chaos or parameter twin) as a ghost: its own visible edges (a rounded die's outline and flat
 /// faces), hidden where the die covers them.
 fn ghost(pic: &mut Picture, app: &App, view: &View, twin: &DieState) {
     let colour = app.theme.ghost();
@@ -411,7 +411,9 @@ fn ghost(pic: &mut Picture, app: &App, view: &View, twin: &DieState) {
             );
         }
     }
-    pic.label(view.flat(&twin.centre), "twin", Style::new().fg(colour), true);
+    let parameter_twin = app.roll.live.twin.as_ref().is_some_and(|t| !t.differs_by.is_empty());
+    let name = if parameter_twin { "B" } else { "twin" };
+    pic.label(view.flat(&twin.centre), name, Style::new().fg(colour), true);
 }
 
 /// ω, L and v from the centre, F from each touching corner, each with its symbol at the tip.
@@ -627,16 +629,29 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
     if let Some(t_s) = decided {
         title.insert(2, Span::raw(format!("· face decided {t_s:.3} s ")));
     }
-    if let Some(twin) = &app.roll.live.twin {
+    if let Some((outcomes, differs)) = super::versus::outcomes_text(app, false) {
+        // The parameter twin: both outcomes and what B differs by, in place of one face.
+        title[1] = Span::raw(format!("· {outcomes} "));
+        title[0] = Span::styled(" dice ", t.heading());
+        title.push(Span::styled(format!("· {differs} "), Style::new().fg(t.ghost())));
+    } else if let Some(twin) = &app.roll.live.twin {
         title.push(Span::styled(
             format!("· twin face up {} ", twin.die.face_up),
             Style::new().fg(t.ghost()),
         ));
     }
-    // Once the face is decided, the lowest corner makes room for it and the twin's face.
+    // Once the face is decided, the lowest corner makes room for it and the twin's face
+    // (for a parameter twin, for both faces and what B differs by).
     let width: usize = title.iter().map(|s| s.content.chars().count()).sum();
-    if decided.is_some() && width + 2 > area.width as usize {
+    let parameter_twin = app.roll.live.twin.as_ref().is_some_and(|t| !t.differs_by.is_empty());
+    if (decided.is_some() || parameter_twin) && width + 2 > area.width as usize {
         title.retain(|s| !s.content.starts_with("· lowest corner"));
+    }
+    let width: usize = title.iter().map(|s| s.content.chars().count()).sum();
+    if width + 2 > area.width as usize
+        && let Some((outcomes, _)) = super::versus::outcomes_text(app, true)
+    {
+        title[1] = Span::raw(format!("· {outcomes} "));
     }
     let block = Block::bordered().title(Line::from(title));
     let mut body = block.inner(area);

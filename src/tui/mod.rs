@@ -35,6 +35,7 @@ mod tty;
 mod twin;
 mod twin_view;
 mod vectors;
+mod versus;
 
 pub use app::{App, Effect, Msg};
 pub use input::update;
@@ -66,3 +67,6 @@ mod contrast_tests;
 
 #[cfg(test)]
 mod lesson_tests;
+
+#[cfg(test)]
+mod versus_tests;

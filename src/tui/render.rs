@@ -34,10 +34,15 @@ fn render_die_screen(app: &App, frame: &mut Frame) {
     render_params(app, areas.params, frame);
     render_die(app, areas.die, frame);
     super::timeline::render(app, areas.timeline, frame);
-    // While a twin rolls, its predictability curve takes the outcome table's place and
-    // the separation of the two dice the energy plot's.
-    if app.roll.live.twin.is_some() {
-        super::curve::render_curve(app, areas.outcomes, frame);
+    // While a chaos twin rolls, its predictability curve takes the outcome table's place;
+    // with either twin the separation of the two dice takes the energy plot's.
+    // A parameter twin has no predictability curve: the outcome table stays.
+    if let Some(twin) = &app.roll.live.twin {
+        if twin.differs_by.is_empty() {
+            super::curve::render_curve(app, areas.outcomes, frame);
+        } else {
+            render_outcomes(app, areas.outcomes, frame);
+        }
         super::twin::render_separation(app, areas.energy, frame);
     } else {
         render_outcomes(app, areas.outcomes, frame);

@@ -69,10 +69,14 @@ pub(crate) fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let Some(twin) = &app.roll.live.twin else { return };
     let colours = t.separation_colours();
-    let epsilon = fmt_num(twin.epsilon);
+    // A parameter twin's panel names what B differs by where the chaos twin's names ε.
+    let (name, epsilon) = match super::versus::outcomes_text(app, false) {
+        Some((_, differs)) => (" die B ", differs),
+        None => (" chaos twin ", format!("ε = {}", fmt_num(twin.epsilon))),
+    };
     let title = Line::from(vec![
-        Span::styled(" chaos twin ", t.heading()),
-        Span::raw(format!("ε = {epsilon} ")),
+        Span::styled(name, t.heading()),
+        Span::raw(format!("{epsilon} ")),
         Span::styled("━centre cm ", Style::new().fg(colours[0])),
         Span::styled("━angle rad ", Style::new().fg(colours[1])),
     ]);
@@ -84,7 +88,7 @@ pub(crate) fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
         Block::bordered()
             .title(Line::from(vec![
                 Span::styled(" twin ", t.heading()),
-                Span::raw(format!("ε = {epsilon} ")),
+                Span::raw(format!("{epsilon} ")),
             ]))
             .title_bottom(Line::from(vec![
                 Span::styled("━cm ", Style::new().fg(colours[0])),
@@ -110,6 +114,7 @@ pub(crate) fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
                 Span::raw(format!("  {}…{}", fmt_num(EPSILON.min), fmt_num(EPSILON.max))),
             ]),
         },
+        None if !twin.differs_by.is_empty() => Line::raw("B: the same start, other values"),
         None if definition.width as usize >= DEFINITION.chars().count() => Line::raw(DEFINITION),
         None => Line::raw("h, v, ω × (1+ε)"),
     };

@@ -107,9 +107,9 @@ impl Engine {
     }
 
     /// What the twin screen's predictability curve is of: the random throws `R` draws,
-    /// rolled with the current values; `None` while no twin rolls.
+    /// rolled with the current values; `None` while no chaos twin rolls.
     pub(crate) fn curve_setup(&self) -> Option<CurveSetup> {
-        self.live.twin.as_ref().map(|_| CurveSetup {
+        self.live.twin.as_ref().and_then(Twin::epsilon).map(|_| CurveSetup {
             params: self.live.params,
             ranges: self.preset.random,
             base: self.preset.initial,

@@ -1,0 +1,90 @@
+//! The parameter twin in the explorer (`D`, "differ"): while differ mode is on, a value
+//! changed on the parameter list goes to a second die B only, rolled from the same start
+//! beside the die A, which keeps its values. The worker rolls both (see its twin); this
+//! turns the edits into B's difference and words it for the panels.
+
+use super::app::App;
+use super::format::fmt_num;
+use super::keys::{Action, Screen, label};
+use super::param::Param;
+use crate::experiment::ScanKey;
+use crate::experiment::registry::Role;
+use crate::physics::{InitialCondition, Params};
+use crate::worker::{Command, Phase};
+
+/// `D`: differ mode on or off, with a notice saying what it does.
+pub(crate) fn on_key(app: &mut App, out: &mut Vec<Command>) {
+    let command = app.twin.toggle_differ();
+    let key = label(Screen::Die, Action::Differ);
+    app.notice = Some(if app.twin.differ {
+        format!("differ: the next value changes go to die B only; {key} again ends it")
+    } else {
+        "differ off: die B is gone".to_string()
+    });
+    if let Some(c) = command {
+        app.setup.send(out, c);
+    }
+}
+
+/// While differ mode is on, the value changes a key queued in `out` become B's
+/// difference: the setup as the user sees it goes back to `before` (A keeps its values)
+/// and each change is sent as B's new list. A start value changes both dice (they share
+/// the start), and Δt cannot differ (the dice step in lock-step): both are left to A, Δt
+/// with a notice.
+pub(crate) fn divert(app: &mut App, before: (Params, InitialCondition), out: &mut [Command]) {
+    if !app.twin.differ {
+        return;
+    }
+    for c in out.iter_mut() {
+        let Command::SetParam(key, value) = *c else {
+            continue;
+        };
+        if key.spec.role == Role::Initial {
+            continue;
+        }
+        (app.setup.params, app.setup.initial) = before;
+        if key.key == "integrator.dt" {
+            // Resent as A's own value: nothing changes, and the count of commands sent stays true.
+            *c = Command::SetParam(key, key.get(&before.0, &before.1));
+            app.notice = Some("Δt cannot differ: the two dice step in lock-step".to_string());
+            continue;
+        }
+        *c = app.twin.differ_by(key, value);
+        app.notice = Some(format!("die B: {}", differs_text(&app.twin.differs_by)));
+    }
+}
+
+/// `label value` pairs in the parameter list's words, e.g. `friction μ 0.3, damping γ 0.01`.
+pub(crate) fn differs_text(values: &[(&'static ScanKey, f64)]) -> String {
+    values
+        .iter()
+        .map(|(k, v)| format!("{} {}", Param::of(k).label(), fmt_num(*v)))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// A die's outcome in words: `face 3` once decided (`no face` if it ended on none),
+/// `face up 3` while it rolls; `compact`: the number alone (`—` for no face).
+fn face_text(phase: &Phase, face_up: u8, compact: bool) -> String {
+    match (phase, compact) {
+        (Phase::Ended(o), false) => o.face.map_or("no face".to_string(), |f| format!("face {f}")),
+        (Phase::Ended(o), true) => o.face.map_or("—".to_string(), |f| f.to_string()),
+        (_, false) => format!("face up {face_up}"),
+        (_, true) => face_up.to_string(),
+    }
+}
+
+/// Both outcomes, `A face 3 · B face 5` (`compact`: `A 3 · B 5`), and what B differs by,
+/// while a parameter twin rolls.
+pub(crate) fn outcomes_text(app: &App, compact: bool) -> Option<(String, String)> {
+    let twin = app.roll.live.twin.as_ref().filter(|t| !t.differs_by.is_empty())?;
+    let live = &app.roll.live;
+    Some((
+        format!(
+            "A {} · B {}",
+            face_text(&live.phase, live.die.face_up, compact),
+            face_text(&twin.phase, twin.die.face_up, compact)
+        ),
+        format!("B: {}", differs_text(&twin.differs_by)),
+    ))
+}
