@@ -491,7 +491,10 @@ impl App {
         let before = (self.setup.params, self.setup.initial);
         // In differ mode a value die B already differs by steps on from B's value (the
         // change then goes to B and A's value comes back: see `versus::divert`).
-        let b = self.twin.differ.then(|| self.twin.differs_by.iter().find(|(k, _)| *k == p.scan_key()));
+        let b = self
+            .twin
+            .differ
+            .then(|| self.twin.differs_by.iter().find(|(k, _)| *k == p.scan_key()));
         if let Some(Some(&(_, value))) = b {
             let _ = p.set(&mut self.setup.params, &mut self.setup.initial, value);
         }

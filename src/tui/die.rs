@@ -411,7 +411,12 @@ fn ghost(pic: &mut Picture, app: &App, view: &View, twin: &DieState) {
             );
         }
     }
-    let parameter_twin = app.roll.live.twin.as_ref().is_some_and(|t| !t.differs_by.is_empty());
+    let parameter_twin = app
+        .roll
+        .live
+        .twin
+        .as_ref()
+        .is_some_and(|t| !t.differs_by.is_empty());
     let name = if parameter_twin { "B" } else { "twin" };
     pic.label(view.flat(&twin.centre), name, Style::new().fg(colour), true);
 }
@@ -643,7 +648,12 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
     // Once the face is decided, the lowest corner makes room for it and the twin's face
     // (for a parameter twin, for both faces and what B differs by).
     let width: usize = title.iter().map(|s| s.content.chars().count()).sum();
-    let parameter_twin = app.roll.live.twin.as_ref().is_some_and(|t| !t.differs_by.is_empty());
+    let parameter_twin = app
+        .roll
+        .live
+        .twin
+        .as_ref()
+        .is_some_and(|t| !t.differs_by.is_empty());
     if (decided.is_some() || parameter_twin) && width + 2 > area.width as usize {
         title.retain(|s| !s.content.starts_with("· lowest corner"));
     }

@@ -4,13 +4,18 @@
 //! turns the edits into B's difference and words it for the panels.
 
 use super::app::App;
-use super::format::fmt_num;
+use super::format::{fmt_num, wrap_words};
 use super::keys::{Action, Screen, label};
 use super::param::Param;
 use crate::experiment::ScanKey;
 use crate::experiment::registry::Role;
+use crate::experiment::versus::{ENDINGS, NO_FACE};
 use crate::physics::{InitialCondition, Params};
 use crate::worker::{Command, Phase};
+use ratatui::Frame;
+use ratatui::layout::Rect;
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Paragraph};
 
 /// `D`: differ mode on or off, with a notice saying what it does.
 pub(crate) fn on_key(app: &mut App, out: &mut Vec<Command>) {
@@ -87,4 +92,81 @@ pub(crate) fn outcomes_text(app: &App, compact: bool) -> Option<(String, String)
         ),
         format!("B: {}", differs_text(&twin.differs_by)),
     ))
+}
+
+/// The parameter twin's shared throws in the outcome table's place: A's ending (rows)
+/// against B's (columns), faces 1–6 then no face (`—`), and the share that agree with its
+/// 95 % interval. The worker's batches (`b`) fill it, each throw rolled in both setups.
+pub(crate) fn render_table(app: &App, area: Rect, frame: &mut Frame) {
+    let t = &app.theme;
+    let mut title = vec![Span::styled(" A face ↓ against B face → ", t.heading())];
+    if let Some(b) = app.roll.batch {
+        title.push(Span::styled(
+            format!("batch {}/{} ", b.done, b.total),
+            t.caution(),
+        ));
+    }
+    let mut block = Block::bordered().title(Line::from(title));
+    let body = block.inner(area);
+    let Some(table) = app.roll.live.versus else {
+        frame.render_widget(block, area);
+        let key = label(Screen::Die, Action::Batch);
+        let words = format!("{key}: a batch of shared throws, each rolled in A and in B");
+        let lines: Vec<Line> = wrap_words(&words, body.width as usize)
+            .into_iter()
+            .map(Line::raw)
+            .collect();
+        frame.render_widget(Paragraph::new(lines), body);
+        return;
+    };
+    let column = ((body.width as usize).saturating_sub(3) / ENDINGS).clamp(3, 8);
+    let name = |i: usize| {
+        if i == NO_FACE {
+            "—".to_string()
+        } else {
+            (i + 1).to_string()
+        }
+    };
+    let mut lines = vec![Line::styled(
+        format!(
+            "   {}",
+            (0..ENDINGS)
+                .map(|b| format!("{:>column$}", name(b)))
+                .collect::<String>()
+        ),
+        t.heading(),
+    )];
+    for (a, row) in table.counts.iter().enumerate() {
+        let mut spans = vec![Span::styled(format!("{:>2} ", name(a)), t.heading())];
+        for (b, n) in row.iter().enumerate() {
+            let text = format!("{n:>column$}");
+            spans.push(if a == b && a != NO_FACE {
+                Span::styled(text, t.good())
+            } else {
+                Span::raw(text)
+            });
+        }
+        lines.push(Line::from(spans));
+    }
+    let agreement = Line::raw(match table.agreement() {
+        Some((share, [lo, hi])) => {
+            let (k, n) = (table.agreeing(), table.faced());
+            let (share, lo, hi) = (100.0 * share, 100.0 * lo, 100.0 * hi);
+            let full = format!("agree {k}/{n} = {share:.1} % (95 % {lo:.1}–{hi:.1} %)");
+            if full.chars().count() <= body.width as usize {
+                full
+            } else {
+                format!("agree {k}/{n} · {share:.1} % ({lo:.1}–{hi:.1} %)")
+            }
+        }
+        None => "agree: no throw ended on a face in both yet".to_string(),
+    });
+    // Short of a row, the share that agree moves into the bottom border.
+    if lines.len() < body.height as usize {
+        lines.push(agreement);
+    } else {
+        block = block.title_bottom(agreement);
+    }
+    frame.render_widget(block, area);
+    frame.render_widget(Paragraph::new(lines), body);
 }

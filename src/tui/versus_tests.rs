@@ -40,10 +40,17 @@ fn a_typed_value_goes_to_b_only_and_a_keeps_its_own() {
     assert_ne!(paper, 0.3, "the test needs a change");
     let mut s = differing(Theme::default());
     assert_eq!(friction(&s.app), paper, "A's value on screen");
-    assert_eq!(s.engine.params().ground.friction, paper, "A's value in the worker");
+    assert_eq!(
+        s.engine.params().ground.friction,
+        paper,
+        "A's value in the worker"
+    );
     let twin = s.app.roll.live.twin.clone().expect("die B rolls");
     assert_eq!(twin.differs_by.len(), 1);
-    assert_eq!((twin.differs_by[0].0.key.as_str(), twin.differs_by[0].1), ("ground.friction", 0.3));
+    assert_eq!(
+        (twin.differs_by[0].0.key.as_str(), twin.differs_by[0].1),
+        ("ground.friction", 0.3)
+    );
     // A nudge steps on from B's value, not from A's.
     s.key(KeyCode::Right);
     let b = s.app.twin.differs_by[0].1;
@@ -77,7 +84,9 @@ fn both_outcomes_are_the_physics_of_each_setup() {
     let (full, short) = (format!("A face {a} · B face {b}"), format!("A {a} · B {b}"));
     assert!(text.contains(&full) || text.contains(&short), "{text}");
     assert!(text.contains("B: friction μ 0.3"), "{text}");
-    let Some(twin) = &s.app.roll.live.twin else { panic!("B rolls") };
+    let Some(twin) = &s.app.roll.live.twin else {
+        panic!("B rolls")
+    };
     assert!(matches!(twin.phase, Phase::Ended(_)));
 }
 
@@ -92,7 +101,10 @@ fn dt_cannot_differ_and_changes_nothing() {
     assert_eq!(s.engine.params().integrator.dt, dt);
     assert!(s.app.roll.live.twin.is_none());
     assert!(
-        s.app.notice.as_deref().is_some_and(|n| n.contains("Δt cannot differ")),
+        s.app
+            .notice
+            .as_deref()
+            .is_some_and(|n| n.contains("Δt cannot differ")),
         "{:?}",
         s.app.notice
     );
@@ -103,7 +115,24 @@ fn the_parameter_twin_screen() {
     let mut s = differing(projector());
     s.command(Command::SetPlaying(false));
     s.engine.advance_steps(700);
+    // A batch of shared throws, each rolled in A and in B, fills the table.
+    s.app.roll.batch_size = 60;
+    s.key(KeyCode::Char('b'));
+    s.engine.run_batch_here();
     s.sync();
+    let table = s.app.roll.live.versus.expect("the shared throws' table");
+    assert_eq!(table.throws(), 60);
+    let text = screen(&s.app, 120, 36);
+    let (share, [lo, hi]) = table.agreement().expect("faces in both");
+    let agree = format!(
+        "agree {}/{} = {:.1} % (95 % {:.1}–{:.1} %)",
+        table.agreeing(),
+        table.faced(),
+        100.0 * share,
+        100.0 * lo,
+        100.0 * hi
+    );
+    assert!(text.contains(&agree), "{text}");
     insta::assert_snapshot!("versus_twin_120x36", screen(&s.app, 120, 36));
     insta::assert_snapshot!("versus_twin_80x24", screen(&s.app, 80, 24));
 }

@@ -347,6 +347,9 @@ pub struct Snapshot {
     pub batch: Option<BatchProgress>,
     /// The whole table, when it changed.
     pub table: Option<OutcomeTable>,
+    /// While batches ran with a parameter twin on: A's ending against B's over their
+    /// shared throws (until the table is cleared or another preset loads).
+    pub versus: Option<crate::experiment::versus::VersusTable>,
     /// A one-line message for the user (a refused value, a finished batch).
     pub notice: Option<Notice>,
     /// The chaos twin, stepped in lock-step with the die.
@@ -593,6 +596,23 @@ fn batch_work(
     post: &Post<Vec<RollRecord>>,
 ) -> Result<(), String> {
     let rolls = Rolls::Given(&request.rolls);
+    if let Some(b) = &request.versus {
+        // The parameter twin's throws, each in A and in B: pairs of records, in order.
+        let options = crate::experiment::RunOptions::default();
+        return crate::experiment::versus::stream_versus(
+            &request.params,
+            b,
+            &rolls,
+            &options,
+            cancel,
+            &mut |chunk| {
+                post.post(|fresh: &mut Vec<RollRecord>| fresh.extend_from_slice(chunk));
+                Ok(())
+            },
+        )
+        .map(|_| ())
+        .map_err(|e| e.to_string());
+    }
     let mut seen = 0;
     run_batch(&request.params, &rolls, 0, cancel, &mut |records| {
         post.post(|fresh: &mut Vec<RollRecord>| fresh.extend_from_slice(&records[seen..]));

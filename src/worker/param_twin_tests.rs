@@ -98,3 +98,54 @@ fn a_start_value_or_another_dt_is_refused_and_changes_nothing() {
     e.handle(Command::SetParamTwin(Vec::new()));
     assert!(e.snapshot().twin.is_none(), "an empty list removes it");
 }
+
+#[test]
+fn a_batch_beside_a_parameter_twin_tallies_each_throw_in_both_setups() {
+    let preset = Preset::default();
+    let mut e = Engine::new(&preset).expect("valid");
+    e.handle(Command::SetParamTwin(vec![(key("ground.friction"), 0.3)]));
+    e.handle(Command::BatchStart(24));
+    let request = e.take_batch_request().expect("ordered");
+    let rolls = request.rolls.clone();
+    e.run_request_here(request);
+    let s = e.snapshot();
+    let table = s.versus.expect("the shared throws' table");
+    assert_eq!(table.throws(), 24);
+    // Each throw as the physics gives it in A (the paper's μ) and in B (μ = 0.3).
+    let mut b = preset.params();
+    b.ground.friction = 0.3;
+    let ending = |p: &Params, i: usize| {
+        let o = Simulation::new(p, &rolls[i].1).expect("valid").run_to_end();
+        match o.face {
+            Some(f) if o.status == crate::physics::Status::Settled => f as usize - 1,
+            _ => crate::experiment::versus::NO_FACE,
+        }
+    };
+    let mut want = [[0u64; 7]; 7];
+    for i in 0..rolls.len() {
+        want[ending(&preset.params(), i)][ending(&b, i)] += 1;
+    }
+    assert_eq!(table.counts, want);
+    let diagonal: u64 = (0..6).map(|f| table.counts[f][f]).sum();
+    assert_eq!(diagonal, table.agreeing());
+    // A's throws entered the outcome table too.
+    assert_eq!(s.table.expect("changed").rolls(), 24);
+}
+
+#[test]
+fn a_batch_beside_a_twin_with_no_difference_agrees_on_every_throw() {
+    let preset = Preset::default();
+    let mut e = Engine::new(&preset).expect("valid");
+    let mu = preset.params().ground.friction;
+    e.handle(Command::SetParamTwin(vec![(key("ground.friction"), mu)]));
+    e.handle(Command::BatchStart(24));
+    e.run_batch_here();
+    let table = e.snapshot().versus.expect("the shared throws' table");
+    assert_eq!(table.throws(), 24);
+    for (a, row) in table.counts.iter().enumerate() {
+        for (b, n) in row.iter().enumerate() {
+            assert!(a == b || *n == 0, "off the diagonal: {a} {b} {n}");
+        }
+    }
+    assert_eq!(table.agreement().map(|a| a.0), Some(1.0));
+}

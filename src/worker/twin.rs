@@ -96,6 +96,14 @@ impl Twin {
         })
     }
 
+    /// Setup B for the die's `params` and `initial`, if this is a parameter twin.
+    pub(crate) fn setup_b(&self, params: &Params, initial: &InitialCondition) -> Option<Params> {
+        match self.difference {
+            Difference::Start { .. } => None,
+            Difference::Setup { .. } => self.difference.apply(params, initial).ok().map(|(b, _)| b),
+        }
+    }
+
     /// The chaos twin at ε, if it is one.
     pub(crate) fn epsilon(&self) -> Option<f64> {
         match self.difference {
