@@ -34,16 +34,17 @@ fn render_die_screen(app: &App, frame: &mut Frame) {
     render_params(app, areas.params, frame);
     render_die(app, areas.die, frame);
     super::timeline::render(app, areas.timeline, frame);
-    // While a twin rolls, the outcome table's place goes to the chaos twin's
-    // predictability curve or to the parameter twin's table of shared throws, and the
-    // energy plot's to the separation of the two dice.
+    // While a chaos twin rolls, its predictability curve takes the outcome table's place
+    // and the separation of the two dice the plot's. A parameter twin's table of shared
+    // throws takes the outcome table's place; the plot stays, with die B's curve in it.
     if let Some(twin) = &app.roll.live.twin {
         if twin.differs_by.is_empty() {
             super::curve::render_curve(app, areas.outcomes, frame);
+            super::twin::render_separation(app, areas.energy, frame);
         } else {
             super::versus::render_table(app, areas.outcomes, frame);
+            render_energy(app, areas.energy, frame);
         }
-        super::twin::render_separation(app, areas.energy, frame);
     } else {
         render_outcomes(app, areas.outcomes, frame);
         render_energy(app, areas.energy, frame);

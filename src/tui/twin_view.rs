@@ -6,7 +6,7 @@
 use super::format::fmt_num;
 use crate::experiment::ScanKey;
 use crate::experiment::twin::{DEFAULT_EPSILON, EPSILON};
-use crate::worker::{Command, CurveUpdate, SeparationSample, Snapshot};
+use crate::worker::{Command, CurveUpdate, EnergySample, SeparationSample, Snapshot};
 
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct TwinView {
@@ -20,6 +20,8 @@ pub(crate) struct TwinView {
     pub(crate) curve: Option<CurveUpdate>,
     /// Whether value changes go to the parameter twin's setup B only (`D`, "differ").
     pub(crate) differ: bool,
+    /// A parameter twin's energy and quantity samples of the roll on screen (B's curve).
+    pub(crate) samples: Vec<EnergySample>,
     /// The values B differs from the die's setup by, in the order first changed.
     pub(crate) differs_by: Vec<(&'static ScanKey, f64)>,
 }
@@ -32,6 +34,7 @@ impl Default for TwinView {
             history: Vec::new(),
             curve: None,
             differ: false,
+            samples: Vec::new(),
             differs_by: Vec::new(),
         }
     }
@@ -108,12 +111,17 @@ impl TwinView {
     pub(crate) fn absorb(&mut self, s: &mut Snapshot) {
         if s.history_reset {
             self.history.clear();
+            self.samples.clear();
         }
         if let Some(cut) = s.history_cut {
             self.history.retain(|h| h.time_s <= cut);
+            self.samples.retain(|h| h.time_s <= cut);
         }
         if let Some(twin) = &mut s.twin {
             self.history.append(&mut twin.history);
+            self.samples.append(&mut twin.samples);
+        } else {
+            self.samples.clear();
         }
         if let Some(c) = s.curve.take()
             && self

@@ -133,6 +133,12 @@ fn the_parameter_twin_screen() {
         100.0 * hi
     );
     assert!(text.contains(&agree), "{text}");
+    assert!(text.contains("━B total"), "die B's curve is named: {text}");
     insta::assert_snapshot!("versus_twin_120x36", screen(&s.app, 120, 36));
     insta::assert_snapshot!("versus_twin_80x24", screen(&s.app, 80, 24));
+    // A quantity plotted: A's curve and B's, named in the title.
+    s.key(KeyCode::Char('w'));
+    let text = screen(&s.app, 120, 36);
+    assert!(text.contains("━A ━B"), "{text}");
+    insta::assert_snapshot!("versus_twin_height_120x36", text);
 }

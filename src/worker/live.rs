@@ -39,6 +39,17 @@ pub(crate) fn played_out(sim: &Simulation) -> bool {
     }
 }
 
+/// A simulation's energy and every quantity now (the die's, or a parameter twin's).
+pub(crate) fn energy_sample(sim: &Simulation) -> EnergySample {
+    let energy = sim.energy();
+    EnergySample {
+        time_s: sim.state().time_s,
+        energy,
+        total: energy.total(),
+        quantities: crate::experiment::quantity::read_all(sim),
+    }
+}
+
 /// The roll's energy samples not yet sent, each term's peak over a stride of steps.
 #[derive(Debug, Default)]
 struct EnergyTrace {
@@ -388,13 +399,7 @@ impl LiveRoll {
     }
 
     fn sample(&self) -> EnergySample {
-        let energy = self.sim.energy();
-        EnergySample {
-            time_s: self.sim.state().time_s,
-            energy,
-            total: energy.total(),
-            quantities: crate::experiment::quantity::read_all(&self.sim),
-        }
+        energy_sample(&self.sim)
     }
 
     /// One step with its bookkeeping, the die and its twin in lock-step; returns whether

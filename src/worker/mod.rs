@@ -194,6 +194,9 @@ pub struct TwinSnapshot {
     /// Samples since the previous snapshot (after clearing, if the snapshot's
     /// `history_reset`).
     pub(crate) history: Vec<SeparationSample>,
+    /// A parameter twin's own samples since the previous snapshot, as `history`'s (empty
+    /// for the chaos twin).
+    pub(crate) samples: Vec<EnergySample>,
 }
 
 /// The die as drawn.

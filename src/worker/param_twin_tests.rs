@@ -149,3 +149,28 @@ fn a_batch_beside_a_twin_with_no_difference_agrees_on_every_throw() {
     }
     assert_eq!(table.agreement().map(|a| a.0), Some(1.0));
 }
+
+#[test]
+fn the_parameter_twins_samples_are_bs_own_roll() {
+    let preset = Preset::default();
+    let mut e = Engine::new(&preset).expect("valid");
+    e.handle(Command::SetParamTwin(vec![(key("ground.friction"), 0.3)]));
+    e.handle(Command::Step(400));
+    let samples = e.snapshot().twin.expect("B rolls").samples;
+    let last = *samples.last().expect("sampled");
+    // B by the physics alone: μ = 0.3, stepped to the sample's time.
+    let mut b = preset.params();
+    b.ground.friction = 0.3;
+    let mut sim = Simulation::new(&b, &preset.initial).expect("valid");
+    while sim.state().time_s < last.time_s {
+        sim.advance();
+    }
+    assert_eq!(sim.state().time_s, last.time_s);
+    assert_eq!(last.quantities, crate::experiment::quantity::read_all(&sim));
+    // And not A's: the die's own sample at that time differs.
+    let mut a = Simulation::new(&preset.params(), &preset.initial).expect("valid");
+    while a.state().time_s < last.time_s {
+        a.advance();
+    }
+    assert_ne!(last.quantities, crate::experiment::quantity::read_all(&a));
+}

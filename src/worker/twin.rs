@@ -2,7 +2,7 @@
 //! separation samples the plot shows. What tells the two apart is its [`Difference`]: a
 //! start ε away (the chaos twin) or a setup B with some values changed (the parameter twin).
 
-use super::{DieState, Phase, SeparationSample, TwinSnapshot};
+use super::{DieState, EnergySample, Phase, SeparationSample, TwinSnapshot};
 use crate::experiment::ScanKey;
 use crate::experiment::registry::Role;
 use crate::experiment::twin::{EPSILON, perturbed, separation};
@@ -72,6 +72,9 @@ pub(crate) struct Twin {
     start_face: u8,
     /// Samples since the last snapshot.
     history: Vec<SeparationSample>,
+    /// A parameter twin's own energy and quantity samples since the last snapshot, taken
+    /// with the separation (the plot draws B's curve beside A's).
+    samples: Vec<EnergySample>,
     /// Steps since the last sample.
     unsampled: u64,
 }
@@ -92,6 +95,7 @@ impl Twin {
             sim,
             start_face,
             history: Vec::new(),
+            samples: Vec::new(),
             unsampled: 0,
         })
     }
@@ -147,6 +151,9 @@ impl Twin {
             time_s,
             separation: separation(die, &self.sim),
         });
+        if let Difference::Setup { .. } = self.difference {
+            self.samples.push(super::live::energy_sample(&self.sim));
+        }
     }
 
     pub(crate) fn snapshot(&mut self, die: &Simulation) -> TwinSnapshot {
@@ -163,6 +170,7 @@ impl Twin {
             },
             separation: separation(die, &self.sim),
             history: std::mem::take(&mut self.history),
+            samples: std::mem::take(&mut self.samples),
         }
     }
 }
