@@ -266,7 +266,10 @@ fn unfinished_and_unknown_escape_sequences_swallow_no_later_key() {
     e.keys("\x1b[");
     std::thread::sleep(Duration::from_millis(20));
     e.keys("?");
-    assert!(e.wait_for("? or Esc"), "the ? after Alt+[ opened the help");
+    // The help's own word "scroll" (its bottom border): ratatui writes only the cells that
+    // change, so a longer phrase can be split in the byte stream where a cell under it
+    // already showed the same character.
+    assert!(e.wait_for("scroll"), "the ? after Alt+[ opened the help");
     let before = e.text().len();
     e.keys("?");
     let closed = Instant::now() + PATIENCE;

@@ -7,6 +7,7 @@ use super::compare::Comparison;
 use super::compare_budden::{BuddenComparison, RatioRole};
 use super::compare_stats::{FitInterval, deviance_rise_95};
 use super::figure::{Ticks, resolved};
+use super::keys::ScanKey;
 use super::plot::{Record, Scale, TICKS, plot_error, png_bytes, register_fonts, with_caption};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -184,9 +185,18 @@ fn draw_deviance(
     let x_hi = x1.max(x0 + 1e-12);
     let y_hi = top.max(limit * 1.05);
     let (xt, yt) = (Ticks::new(x0, x_hi, TICKS), Ticks::new(0.0, y_hi, TICKS));
+    // The fitted key's unit, on the axis and after the best value (none if dimensionless).
+    let unit = ScanKey::named(key)
+        .map(|k| k.unit())
+        .ok()
+        .filter(|u| !u.is_empty())
+        .map_or(String::new(), |u| format!(" {u}"));
     let mut chart = ChartBuilder::on(area)
         .caption(
-            format!("deviance against {key}: best {}", resolved(fit.best, spacing)),
+            format!(
+                "deviance against {key}: best {}{unit}",
+                resolved(fit.best, spacing)
+            ),
             ("sans-serif", 22),
         )
         .margin(20)
@@ -196,7 +206,10 @@ fn draw_deviance(
         .map_err(plot_error)?;
     chart
         .configure_mesh()
-        .x_desc(key)
+        .x_desc(match unit.as_str() {
+            "" => key.to_string(),
+            u => format!("{key} ({})", u.trim()),
+        })
         .y_desc("deviance G²")
         .x_labels(TICKS)
         .y_labels(TICKS)

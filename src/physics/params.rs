@@ -488,7 +488,8 @@ impl Params {
         }
         limits::PIP_DIAMETER.check(d.pip_diameter)?;
         let widest_pip = (0.5 * smallest).min(smallest - 2.0 * d.corner_radius);
-        if d.pip_diameter > widest_pip {
+        // An undrilled die has no pips to fit on its faces, however round its corners.
+        if d.pip_diameter > 0.0 && d.pip_diameter > widest_pip {
             return Err(ParamError::refused(
                 limits::PIP_DIAMETER,
                 d.pip_diameter,
@@ -651,5 +652,20 @@ mod tests {
             p.validate().unwrap_err().to_string(),
             "`integrator.dt` = 0.5 is outside the allowed range 0.00001 to 0.01 s"
         );
+    }
+
+    #[test]
+    fn round_corners_need_room_for_pips_only_on_a_drilled_die() {
+        // A 1 cm cube (half size 0.5) rounded by 0.3 cm leaves 0.5 − 2·0.3 < 0 for pips.
+        let mut p = Params::default();
+        p.die.half_sizes = [0.5, 0.5, 0.5];
+        p.die.corner_radius = 0.3;
+        p.die.pip_diameter = 0.0;
+        p.die.pip_depth = 0.0;
+        p.validate().expect("no pips, nothing to fit");
+        p.die.pip_diameter = 0.1;
+        let e = p.validate().unwrap_err();
+        assert_eq!(e.key, "die.pip_diameter");
+        assert!(e.to_string().contains("at most 0 cm"), "{e}");
     }
 }

@@ -216,13 +216,20 @@ mod twin {
         let twin = s.app.roll.live.twin.as_ref().expect("a twin");
         assert!(matches!(twin.phase, Phase::Ended(_)), "{:?}", twin.phase);
         assert!(matches!(s.app.roll.live.phase, Phase::Ended(_)));
-        let line = super::super::twin::outcome_line(&s.app, 80).to_string();
+        let lines = super::super::twin::outcome_lines(&s.app, 80);
+        assert_eq!(lines.len(), 1, "{lines:?}");
+        let line = lines[0].to_string();
         assert!(line.starts_with("die settled: face"), "{line}");
         assert!(line.contains("twin settled: face"), "{line}");
         assert!(
             line.ends_with("same face") || line.ends_with("faces differ"),
             "{line}"
         );
+        // On a narrow panel the verdict keeps a line of its own, whole.
+        let narrow = super::super::twin::outcome_lines(&s.app, 18);
+        let verdict = narrow.last().expect("lines").to_string();
+        assert!(verdict == "same face" || verdict == "faces differ", "{narrow:?}");
+        assert!(narrow[0].to_string().starts_with("die "), "{narrow:?}");
         // Samples cover the whole roll, up to the later of the two ends.
         let last = s.app.twin.history.last().expect("samples");
         assert_eq!(last.time_s, s.app.roll.live.time_s);

@@ -1,4 +1,4 @@
-//! Contrast on the painted themes: every state the snapshot tests draw, rendered in the
+//! Contrast on the painted themes: every screen state of `screen_tests`, rendered in the
 //! light and projector palettes at the classroom sizes, read back cell by cell. A cell with
 //! a printable symbol must stand out from the colour it is drawn on by WCAG 2's contrast
 //! ratio: 4.5 for text, 3 for a marker (Braille dots, line and block characters, the
@@ -6,10 +6,8 @@
 
 use super::app::App;
 use super::map_tests::map_scene;
-use super::tests::{Scene, editing, filled_table, help, mid_impact_with, settled, start, unstable};
+use super::screen_tests::{SIZES, draw, states};
 use super::theme::{Palette, Theme};
-use super::twin_tests::{complete, failed, partial, twin_scene};
-use super::view_tests::loaded_after;
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
@@ -125,72 +123,6 @@ fn check(buf: &Buffer, state: &'static str, theme: Theme, out: &mut Vec<Poor>) {
     }
 }
 
-/// Every screen the snapshot tests build: main, mid-impact with arrows, the ending, an
-/// unstable roll, help, editing, a batch's table, the twin and its curve (complete,
-/// computing, failed), the map in both layers, a loaded die, the preset picker, the save
-/// dialog, the quit and reset prompts, a roll stepped back, the die from above.
-fn states(theme: Theme) -> Vec<(&'static str, App)> {
-    let keyed = |mut s: Scene, keys: &[KeyCode]| {
-        for &k in keys {
-            s.key(k);
-        }
-        s.app
-    };
-    let mut arrows = mid_impact_with(theme);
-    arrows.key(KeyCode::Char('v'));
-    let mut refused = editing();
-    refused.key(KeyCode::Char('9'));
-    refused.key(KeyCode::Enter);
-    let mut loaded = loaded_after(40, theme);
-    loaded.key(KeyCode::Char('v'));
-    let mut states = vec![
-        ("start", start().app),
-        ("mid impact with arrows", arrows.app),
-        ("settled", settled().app),
-        ("unstable", unstable().app),
-        ("help", help().app),
-        ("editing", editing().app),
-        ("editing refused", refused.app),
-        ("batch done", filled_table().app),
-        ("twin", keyed(twin_scene(theme), &[KeyCode::Char('v')])),
-        ("twin curve", complete(theme).app),
-        ("map", map_scene(theme).app),
-        ("loaded die", loaded.app),
-        ("preset picker", keyed(start(), &[KeyCode::Char('o')])),
-        ("save dialog", keyed(start(), &[KeyCode::Char('s')])),
-        (
-            "quit prompt",
-            keyed(start(), &[KeyCode::Char('l'), KeyCode::Char('q')]),
-        ),
-        (
-            "reset prompt",
-            keyed(start(), &[KeyCode::Char('l'), KeyCode::Backspace]),
-        ),
-        ("stepped back", {
-            let mut s = settled();
-            s.key(KeyCode::Home);
-            for _ in 0..170 {
-                s.key(KeyCode::Char('.'));
-            }
-            s.app
-        }),
-        ("twin curve computing", partial().app),
-        ("twin curve failed", failed().app),
-        ("map settle times", keyed(map_scene(theme), &[KeyCode::Char('v')])),
-        (
-            "light shadow, high camera",
-            keyed(
-                settled(),
-                &[KeyCode::Char('W'), KeyCode::Char('W'), KeyCode::Char('W')],
-            ),
-        ),
-    ];
-    for (_, app) in &mut states {
-        app.theme = theme;
-    }
-    states
-}
-
 fn painted() -> [Theme; 2] {
     [Palette::Light, Palette::Projector].map(|palette| Theme {
         colour: true,
@@ -203,12 +135,10 @@ fn every_cell_of_every_screen_reads_on_the_painted_themes() {
     let mut poor = Vec::new();
     let mut cells = 0usize;
     for theme in painted() {
-        for (name, app) in states(theme) {
-            for (w, h) in [(80, 24), (100, 30), (120, 36)] {
-                let mut t = Terminal::new(TestBackend::new(w, h)).expect("test backend");
-                t.draw(|f| super::render(&app, f)).expect("draw");
-                check(t.backend().buffer(), name, theme, &mut poor);
-                cells += w as usize * h as usize;
+        for s in states(theme) {
+            for size in SIZES {
+                check(&draw(&s.app, size), s.name, theme, &mut poor);
+                cells += size.0 as usize * size.1 as usize;
             }
         }
     }

@@ -90,20 +90,23 @@ fn our_epsilon_text(curve: &PredictCurve, epsilon: f64, width: usize) -> String 
     texts.push(format!("our ε {eps}: {approx}{share} same face"));
     texts
         .iter()
-        .find(|t| t.chars().count() <= width)
-        .unwrap_or(texts.last().expect("three texts"))
-        .clone()
+        .find(|t| t.chars().count() <= super::fit::room(width))
+        .cloned()
+        .unwrap_or_else(|| super::fit::cut_text(texts.last().expect("three texts"), super::fit::room(width)))
 }
 
 /// ε½ and the levels it is measured between.
 fn threshold_text(curve: &PredictCurve, width: usize) -> String {
     let eps = curve.threshold.map_or("–".to_string(), |t| t.text());
     let long = format!("ε½ {eps}: halfway from 1 to chance ({:.2})", curve.chance);
-    if long.chars().count() <= width {
-        long
-    } else {
-        format!("ε½ {eps} · chance {:.2}", curve.chance)
-    }
+    super::fit::longest_fitting(
+        &[
+            long,
+            format!("ε½ {eps} · chance {:.2}", curve.chance),
+            format!("ε½ {eps}"),
+        ],
+        width,
+    )
 }
 
 /// The panel's title: what is plotted and how many throws it rests on, in `width` columns.
@@ -127,10 +130,13 @@ fn title(app: &App, update: Option<&CurveUpdate>, width: u16) -> Line<'static> {
         Some((CurveState::Failed(_), _)) => ("· no curve ".to_string(), t.danger()),
         None => ("· waiting for the worker ".to_string(), Style::new()),
     };
-    Line::from(vec![
-        Span::styled(" P(same face) ", t.heading()),
-        Span::styled(text, style),
-    ])
+    super::fit::abbreviate(
+        Line::from(vec![
+            Span::styled(" P(same face) ", t.heading()),
+            Span::styled(text, style),
+        ]),
+        width as usize,
+    )
 }
 
 /// The legend on the bottom border: each line's glyph and what it is.
@@ -206,7 +212,7 @@ pub(crate) fn render_curve(app: &App, area: Rect, frame: &mut Frame) {
                 Line::raw(why.clone()),
             ])
             .wrap(Wrap { trim: true });
-            frame.render_widget(text, body);
+            frame.render_widget(text, super::dialogs::text_area(body));
             return;
         }
         None => (None, true),
@@ -220,21 +226,21 @@ pub(crate) fn render_curve(app: &App, area: Rect, frame: &mut Frame) {
                 Style::new().fg(colours(app).ours),
             )]));
             if computing {
-                text.push(Line::styled(
-                    "computing: the intervals narrow as throws come in",
-                    t.caution(),
+                text.push(super::fit::abbreviate(
+                    Line::styled("computing: the intervals narrow as throws come in", t.caution()),
+                    width,
                 ));
             } else {
                 text.push(Line::raw(threshold_text(c, width)));
             }
         }
-        _ => text.push(Line::styled(
-            "computing: each throw beside 15 twins, ε 1e-15…0.1",
-            t.caution(),
+        _ => text.push(super::fit::abbreviate(
+            Line::styled("computing: each throw beside 15 twins, ε 1e-15…0.1", t.caution()),
+            width,
         )),
     }
     // Two lines of text where there is room, else the first only.
-    let rows = if body.height >= 9 { text.len() as u16 } else { 1 };
+    let rows = if body.height >= 8 { text.len() as u16 } else { 1 };
     text.truncate(rows as usize);
     let [words, plot] = body.layout(&Layout::vertical([Constraint::Length(rows), Constraint::Min(0)]));
     frame.render_widget(Paragraph::new(text), words);
@@ -317,7 +323,7 @@ fn chart<'a>(app: &App, s: &'a Series) -> Chart<'a> {
         scatter(&s.ours_point, g.our_point, c.ours),
     ];
     Chart::new(datasets)
-        .x_axis(Axis::default().bounds(X_RANGE).labels(["1e-15", "1e-8", "0.1"]))
+        .x_axis(Axis::default().bounds(X_RANGE).labels(["1e-15", "1e-8", "0.1 "]))
         .y_axis(Axis::default().bounds([0.0, 1.0]).labels(["0", "0.5", "1"]))
         .legend_position(None)
 }

@@ -6,6 +6,7 @@
 
 use super::app::{App, Effect, Overlay, Prompt};
 pub(crate) use super::dialog::{Choice, Dialog, SaveField};
+use super::fit;
 use super::format::fmt_num;
 use super::keys::{Action, Input, Screen, named};
 use super::param::all;
@@ -321,7 +322,7 @@ pub fn render(app: &App, area: Rect, frame: &mut Frame) {
         let t = &app.theme;
         let (keys, words) = prompt.answers();
         let popup = area.centered(Constraint::Max(64), Constraint::Length(4));
-        frame.render_widget(Clear, popup);
+        clear_around(popup, area, frame);
         let lines = vec![
             Line::styled(printable(&prompt.question(&app.setup.preset.name)), t.caution()),
             Line::from(vec![
@@ -329,13 +330,47 @@ pub fn render(app: &App, area: Rect, frame: &mut Frame) {
                 Span::raw(format!(" {words} · any other key stays")),
             ]),
         ];
-        frame.render_widget(
-            Paragraph::new(lines)
-                .wrap(Wrap { trim: true })
-                .block(Block::bordered().title(Line::styled(" are you sure? ", t.heading()))),
-            popup,
-        );
+        let block = Block::bordered().title(Line::styled(" are you sure? ", t.heading()));
+        let body = text_area(block.inner(popup));
+        frame.render_widget(block, popup);
+        frame.render_widget(Paragraph::new(lines).wrap(Wrap { trim: true }), body);
     }
+}
+
+/// Clears a popup and a column either side of it, so the text it covers ends in a blank
+/// column instead of running into its border as if cut.
+pub(crate) fn clear_around(popup: Rect, screen: Rect, frame: &mut Frame) {
+    let x = popup.x.saturating_sub(1).max(screen.x);
+    let right = (popup.right() + 1).min(screen.right());
+    frame.render_widget(
+        Clear,
+        Rect {
+            x,
+            width: right - x,
+            ..popup
+        },
+    );
+}
+
+/// The part of a popup's inside its text wraps in: the last column stays free (`fit`).
+pub(crate) fn text_area(inside: Rect) -> Rect {
+    Rect {
+        width: fit::room(inside.width as usize) as u16,
+        ..inside
+    }
+}
+
+/// The picker's list of `total` entries in `height` rows, the selection in view: the first
+/// entry shown, how many are shown, and whether a row above and below marks more entries.
+pub(crate) fn picker_window(total: usize, selected: usize, height: usize) -> (usize, usize, bool) {
+    if total <= height || height < 3 {
+        let shown = total.min(height);
+        let first = selected.saturating_sub(shown.saturating_sub(1));
+        return (first.min(total - shown), shown, false);
+    }
+    let shown = height - 2;
+    let first = selected.saturating_sub(shown - 1).min(total - shown);
+    (first, shown, true)
 }
 
 fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
@@ -348,25 +383,30 @@ fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
             error,
         } => {
             let popup = area.centered(Constraint::Max(90), Constraint::Percentage(80));
-            frame.render_widget(Clear, popup);
+            clear_around(popup, area, frame);
             let block = Block::bordered()
                 .title(Line::styled(" open a preset ", t.heading()))
                 .title_bottom(
-                    Line::from(format!(
-                        " {} choose · {} loads · {} closes · ★ yours ",
-                        named(Screen::Picker, Action::SelectPrevious),
-                        named(Screen::Picker, Action::Confirm),
-                        named(Screen::Picker, Action::Close)
-                    ))
+                    fit::abbreviate(
+                        Line::from(format!(
+                            " {} choose · {} loads · {} closes · ★ yours ",
+                            named(Screen::Picker, Action::SelectPrevious),
+                            named(Screen::Picker, Action::Confirm),
+                            named(Screen::Picker, Action::Close)
+                        )),
+                        popup.width.saturating_sub(2) as usize,
+                    )
                     .right_aligned(),
                 );
             let body = block.inner(popup);
             frame.render_widget(block, popup);
             let mut lines = Vec::new();
+            let room = fit::room(body.width as usize);
             for (i, c) in choices.iter().enumerate() {
                 let mark = if c.user { "★" } else { " " };
                 let pointer = if i == *selected { "▶" } else { " " };
-                let mut line = Line::from(format!("{pointer}{mark} {}", printable(&c.name)));
+                let name = fit::cut_text(&printable(&c.name), room.saturating_sub(3));
+                let mut line = Line::from(format!("{pointer}{mark} {name}"));
                 if i == *selected {
                     line = line.style(t.selected());
                 }
@@ -394,9 +434,26 @@ fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
                 Constraint::Length(1),
                 Constraint::Min(0),
             ]));
-            let scroll = (*selected as u16).saturating_sub(list_height.saturating_sub(1));
-            frame.render_widget(Paragraph::new(lines).scroll((scroll, 0)), list);
-            frame.render_widget(Paragraph::new(about).wrap(Wrap { trim: true }), description);
+            // Entries past the list's ends are counted on a row of their own.
+            let total = lines.len();
+            let (first, shown, marked) = picker_window(total, *selected, list_height as usize);
+            let mut rows: Vec<Line> = lines.into_iter().skip(first).take(shown).collect();
+            if marked {
+                let more = |arrow: &str, n: usize| {
+                    if n > 0 {
+                        Line::styled(format!(" {arrow} {n} more"), t.heading())
+                    } else {
+                        Line::raw("")
+                    }
+                };
+                rows.insert(0, more("▲", first));
+                rows.push(more("▼", total - first - shown));
+            }
+            frame.render_widget(Paragraph::new(rows), list);
+            frame.render_widget(
+                Paragraph::new(about).wrap(Wrap { trim: true }),
+                text_area(description),
+            );
         }
         Dialog::Save {
             name,
@@ -406,16 +463,19 @@ fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
             confirm_replace,
         } => {
             let popup = area.centered(Constraint::Max(76), Constraint::Length(11));
-            frame.render_widget(Clear, popup);
+            clear_around(popup, area, frame);
             let block = Block::bordered()
                 .title(Line::styled(" save the setup and view as a preset ", t.heading()))
                 .title_bottom(
-                    Line::from(format!(
-                        " {}: name / description · {} saves · {} cancels ",
-                        named(Screen::Save, Action::NextField),
-                        named(Screen::Save, Action::Confirm),
-                        named(Screen::Save, Action::Close)
-                    ))
+                    fit::abbreviate(
+                        Line::from(format!(
+                            " {}: name / description · {} saves · {} cancels ",
+                            named(Screen::Save, Action::NextField),
+                            named(Screen::Save, Action::Confirm),
+                            named(Screen::Save, Action::Close)
+                        )),
+                        popup.width.saturating_sub(2) as usize,
+                    )
                     .right_aligned(),
                 );
             let folder = match app.store.user_dir() {
@@ -452,10 +512,25 @@ fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
                 let style = if *confirm_replace { t.caution() } else { t.danger() };
                 lines.push(Line::styled(e.clone(), style));
             }
-            frame.render_widget(
-                Paragraph::new(lines).wrap(Wrap { trim: true }).block(block),
-                popup,
-            );
+            let body = text_area(block.inner(popup));
+            frame.render_widget(block, popup);
+            frame.render_widget(Paragraph::new(lines).wrap(Wrap { trim: true }), body);
         }
+    }
+}
+
+#[cfg(test)]
+mod picker_tests {
+    use super::picker_window;
+
+    #[test]
+    fn the_picker_keeps_the_selection_in_view_between_its_markers() {
+        // Fifteen presets in seven rows: five entries between the two marker rows.
+        assert_eq!(picker_window(15, 0, 7), (0, 5, true));
+        assert_eq!(picker_window(15, 4, 7), (0, 5, true));
+        assert_eq!(picker_window(15, 5, 7), (1, 5, true));
+        assert_eq!(picker_window(15, 14, 7), (10, 5, true));
+        // Everything fits: no markers.
+        assert_eq!(picker_window(5, 4, 7), (0, 5, false));
     }
 }

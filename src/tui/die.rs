@@ -13,7 +13,7 @@
 
 use super::app::{App, Drawing};
 use super::camera::{Camera, EDGES, FACE_CORNERS, Flat, Solid, convex_hull, inside, outside_parts};
-use super::format::{fmt_num, wrap_words};
+use super::format::fmt_num;
 use super::vectors::{self, Arrow};
 use crate::physics::stopping::why_it_cannot_settle;
 use crate::physics::{Status, UnstableReason, face_frame, pip_centres};
@@ -625,45 +625,41 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let die = &app.roll.live.die;
     let lowest = solid(app, die).lowest().z;
+    // The face up matters most (the lesson's question), then the twin's, then when the face
+    // was decided (the status line says it too), then the height: once the face is decided,
+    // the lowest corner makes room.
     let mut title = vec![
-        Span::styled(" die ", t.heading()),
-        Span::raw(format!("· face up {} ", die.face_up)),
-        Span::raw(format!("· lowest corner {lowest:.2} cm ")),
+        (0, vec![Span::styled(" die ", t.heading())]),
+        (0, vec![Span::raw(format!("· face up {} ", die.face_up))]),
     ];
-    let decided = decided_at(app);
-    if let Some(t_s) = decided {
-        title.insert(2, Span::raw(format!("· face decided {t_s:.3} s ")));
+    if let Some(t_s) = decided_at(app) {
+        title.push((2, vec![Span::raw(format!("· face decided {t_s:.3} s "))]));
     }
+    title.push((3, vec![Span::raw(format!("· lowest corner {lowest:.2} cm "))]));
+    let room = area.width.saturating_sub(2) as usize;
     if let Some((outcomes, differs)) = super::versus::outcomes_text(app, false) {
-        // The parameter twin: both outcomes and what B differs by, in place of one face.
-        title[1] = Span::raw(format!("· {outcomes} "));
-        title[0] = Span::styled(" dice ", t.heading());
-        title.push(Span::styled(format!("· {differs} "), Style::new().fg(t.ghost())));
+        // The parameter twin: both outcomes (by the faces alone when short of room) and
+        // what B differs by, in place of one face.
+        let differs = format!("· {differs} ");
+        let full = format!(" dice · {outcomes} {differs}");
+        let outcomes = if full.chars().count() <= super::fit::room(room) {
+            outcomes
+        } else {
+            super::versus::outcomes_text(app, true).map_or(outcomes, |(short, _)| short)
+        };
+        title[0] = (0, vec![Span::styled(" dice ", t.heading())]);
+        title[1] = (0, vec![Span::raw(format!("· {outcomes} "))]);
+        title.push((1, vec![Span::styled(differs, Style::new().fg(t.ghost()))]));
     } else if let Some(twin) = &app.roll.live.twin {
-        title.push(Span::styled(
-            format!("· twin face up {} ", twin.die.face_up),
-            Style::new().fg(t.ghost()),
+        title.push((
+            1,
+            vec![Span::styled(
+                format!("· twin face up {} ", twin.die.face_up),
+                Style::new().fg(t.ghost()),
+            )],
         ));
     }
-    // Once the face is decided, the lowest corner makes room for it and the twin's face
-    // (for a parameter twin, for both faces and what B differs by).
-    let width: usize = title.iter().map(|s| s.content.chars().count()).sum();
-    let parameter_twin = app
-        .roll
-        .live
-        .twin
-        .as_ref()
-        .is_some_and(|t| !t.differs_by.is_empty());
-    if (decided.is_some() || parameter_twin) && width + 2 > area.width as usize {
-        title.retain(|s| !s.content.starts_with("· lowest corner"));
-    }
-    let width: usize = title.iter().map(|s| s.content.chars().count()).sum();
-    if width + 2 > area.width as usize
-        && let Some((outcomes, _)) = super::versus::outcomes_text(app, true)
-    {
-        title[1] = Span::raw(format!("· {outcomes} "));
-    }
-    let block = Block::bordered().title(Line::from(title));
+    let block = Block::bordered().title(super::fit::line(title, room));
     let mut body = block.inner(area);
     frame.render_widget(block, area);
     if body.width < 2 || body.height < 2 {
@@ -672,7 +668,7 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
     // The reason a roll ended and the arrows' legend take rows of their own: they hide
     // nothing of the die.
     if let Some((reason, style)) = end_reason(app) {
-        let lines: Vec<Line> = wrap_words(&reason, body.width as usize)
+        let lines: Vec<Line> = super::fit::wrap(&reason, body.width as usize)
             .into_iter()
             .map(|l| Line::styled(l, style))
             .collect();

@@ -164,21 +164,26 @@ fn render_energy_terms(app: &App, area: Rect, frame: &mut Frame) {
     // takes the plot's top rows, and the y range grows so that no line runs under it.
     let mut block = Block::bordered();
     let mut inside: Vec<Line<'static>> = Vec::new();
-    if heading_width + legend_width < border {
+    if heading_width + legend_width < super::fit::room(border) {
         let mut title = heading;
         title.extend(pack(legend, border).into_iter().flat_map(|l| l.spans));
         block = block.title(Line::from(title));
-    } else if legend_width <= border {
+    } else if legend_width < border {
         block = block
-            .title(Line::from(heading))
-            .title_bottom(Line::from(pack(legend, border).remove(0).spans).right_aligned());
+            .title(super::fit::abbreviate(Line::from(heading), border))
+            .title_bottom({
+                // A space before the corner: `fit`'s gap column.
+                let mut spans = pack(legend, border).remove(0).spans;
+                spans.push(Span::raw(" "));
+                Line::from(spans).right_aligned()
+            });
     } else {
-        block = block.title(Line::from(heading));
+        block = block.title(super::fit::abbreviate(Line::from(heading), border));
         // Over the whole width, the y labels under it left out; the threshold's item only
         // if it needs no line of its own (it is no energy term).
-        inside = pack(legend.clone(), border);
-        if inside.len() > pack(legend[..legend.len() - 1].to_vec(), border).len() {
-            inside = pack(legend[..legend.len() - 1].to_vec(), border);
+        inside = pack(legend.clone(), super::fit::room(border));
+        if inside.len() > pack(legend[..legend.len() - 1].to_vec(), super::fit::room(border)).len() {
+            inside = pack(legend[..legend.len() - 1].to_vec(), super::fit::room(border));
         }
     }
     let body = block.inner(area);

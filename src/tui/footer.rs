@@ -7,7 +7,7 @@ use super::keys::{Action, INTERRUPT, Screen, labels, named, rows};
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Rect};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Clear, Paragraph, Wrap};
+use ratatui::widgets::{Block, Paragraph, Wrap};
 
 /// A footer hint: keys, what they do, and priority (on a narrow terminal the highest
 /// numbers go first, so the keys that matter most, help and quit among them, stay in view).
@@ -25,8 +25,9 @@ pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
             let (keys, words) = prompt.answers();
             let question = prompt.question(&app.setup.preset.name);
             let hints = vec![
-                hint(&keys, &format!("{words} ·"), 0),
-                hint("any other key", "stays", 0),
+                hint(&keys, words, 0),
+                // Its separator goes with it when a narrow footer drops it.
+                hint("· any other key", "stays", 1),
             ];
             return render_line(app, Some(question), hints, area, frame);
         }
@@ -37,6 +38,10 @@ pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
                 None => format!("batch size: {}▏ rolls", editor.text),
             };
             return render_line(app, Some(line), typing_hints(None), area, frame);
+        }
+        Mode::EditingValue if app.value_editor().is_some() => {
+            let refusal = super::params_panel::refusal_for_status_line(app, area.width);
+            return render_line(app, refusal, typing_hints(None), area, frame);
         }
         Mode::EditingValue | Mode::EditingEpsilon => typing_hints(None),
         Mode::EditingRange => typing_hints(Some("MIN MAX")),
@@ -91,7 +96,7 @@ pub(crate) fn typing_hints(form: Option<&str>) -> Vec<KeyHint> {
     // Ctrl-C is no row: it quits in every mode, text entry included.
     hints.push(hint(INTERRUPT, "quit", 0));
     if form.is_none() {
-        hints.push(hint("other keys", "type", 0));
+        hints.push(hint("other keys", "type", 9));
     }
     hints
 }
@@ -116,7 +121,7 @@ fn render_line(app: &App, notice: Option<String>, keys: Vec<KeyHint>, area: Rect
             + notice.as_ref().map_or(0, |n| n.chars().count())
     };
     let mut shown = keys;
-    while width(&shown) > area.width as usize {
+    while width(&shown) > super::fit::room(area.width as usize) {
         let droppable = shown.iter().enumerate().filter(|(_, e)| e.2 > 0);
         let Some((i, _)) = droppable.max_by_key(|(i, e)| (e.2, *i)) else {
             break;
@@ -132,13 +137,14 @@ fn render_line(app: &App, notice: Option<String>, keys: Vec<KeyHint>, area: Rect
         spans.push(Span::styled(k, t.key()));
         spans.push(Span::raw(format!(" {what}")));
     }
-    frame.render_widget(Paragraph::new(Line::from(spans)), area);
+    let line = super::fit::abbreviate(Line::from(spans), area.width as usize);
+    frame.render_widget(Paragraph::new(line), area);
 }
 
 pub(crate) fn render_help(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let popup = area.centered(Constraint::Max(100), Constraint::Percentage(90));
-    frame.render_widget(Clear, popup);
+    super::dialogs::clear_around(popup, area, frame);
     let block = Block::bordered()
         .title(Line::styled(" help · the model in a nutshell ", t.heading()))
         .title_bottom(
@@ -149,9 +155,10 @@ pub(crate) fn render_help(app: &App, area: Rect, frame: &mut Frame) {
             ))
             .right_aligned(),
         );
+    let body = super::dialogs::text_area(block.inner(popup));
+    frame.render_widget(block, popup);
     let para = Paragraph::new(help_lines(app))
-        .block(block)
         .wrap(Wrap { trim: false })
         .scroll((app.help_scroll().unwrap_or(0), 0));
-    frame.render_widget(para, popup);
+    frame.render_widget(para, body);
 }

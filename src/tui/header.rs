@@ -76,27 +76,30 @@ pub(crate) fn render_header(app: &App, area: Rect, frame: &mut Frame) {
         Span::raw(fps.clone()),
     ]);
     // Narrow terminals get the same facts in fewer words, the phase never cut off.
-    let line = if full.width() <= area.width as usize {
+    let line = if full.width() <= super::fit::room(area.width as usize) {
         full
     } else {
-        let sep = Span::raw("│");
-        Line::from(vec![
-            Span::styled(app.setup.preset.name.clone(), t.heading()),
-            modified,
-            Span::raw(" "),
-            sep.clone(),
-            Span::raw(format!("t {:.3} s", live.time_s)),
-            sep.clone(),
-            Span::raw(format!("step {}", live.step)),
-            sep.clone(),
-            Span::raw(app.setup.speed.label()),
-            sep.clone(),
-            Span::raw(if live.playing { "▶" } else { "⏸" }),
-            sep.clone(),
-            phase,
-            sep,
-            Span::raw(fps),
-        ])
+        let sep = || Span::raw("│");
+        let part = |rank: u8, spans: Vec<Span<'static>>| (rank, spans);
+        super::fit::line(
+            vec![
+                part(
+                    0,
+                    vec![
+                        Span::styled(app.setup.preset.name.clone(), t.heading()),
+                        modified,
+                        Span::raw(" "),
+                    ],
+                ),
+                part(0, vec![sep(), Span::raw(format!("t {:.3} s", live.time_s))]),
+                part(2, vec![sep(), Span::raw(format!("step {}", live.step))]),
+                part(1, vec![sep(), Span::raw(app.setup.speed.label())]),
+                part(1, vec![sep(), Span::raw(if live.playing { "▶" } else { "⏸" })]),
+                part(0, vec![sep(), phase]),
+                part(3, vec![sep(), Span::raw(fps)]),
+            ],
+            area.width as usize,
+        )
     };
     frame.render_widget(Paragraph::new(line), area);
 }

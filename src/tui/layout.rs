@@ -9,6 +9,9 @@ use ratatui::widgets::Block;
 pub(crate) const MIN_WIDTH: u16 = 80;
 pub(crate) const MIN_HEIGHT: u16 = 24;
 
+/// Rows the outcome table keeps on the smallest screen, borders included.
+const OUTCOME_ROWS: u16 = 11;
+
 /// Where each panel goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Areas {
@@ -34,14 +37,14 @@ pub(crate) fn screen_layout(area: Rect) -> Option<Areas> {
         Constraint::Min(0),
         Constraint::Length(1),
     ]));
-    let left_width = if area.width >= 120 { 52 } else { 38 };
     let [left, right] = body.layout(&Layout::horizontal([
-        Constraint::Length(left_width),
+        Constraint::Length(left_width(area.width)),
         Constraint::Min(0),
     ]));
     // The paper's parameter rows when there is room (a loaded die's extra masses scroll
-    // into view below them), and at least 10 rows for the table.
-    let params_height = (super::param::paper_rows() as u16 + 4).min(body.height.saturating_sub(10));
+    // into view below them), and at least the table's rows a lesson reads: its six faces,
+    // the fairness test and how many rolls show the bias (the list scrolls, the table can't).
+    let params_height = (super::param::paper_rows() as u16 + 4).min(body.height.saturating_sub(OUTCOME_ROWS));
     let [params, outcomes] = left.layout(&Layout::vertical([
         Constraint::Length(params_height),
         Constraint::Min(0),
@@ -70,6 +73,11 @@ pub(crate) fn screen_layout(area: Rect) -> Option<Areas> {
         ledger,
         footer,
     })
+}
+
+/// Outer width of the left column (the parameters and the outcome table).
+pub(crate) fn left_width(screen_width: u16) -> u16 {
+    if screen_width >= 120 { 52 } else { 38 }
 }
 
 /// Inner area of a bordered panel.
@@ -101,7 +109,12 @@ pub(crate) fn param_row_at(selected: usize, areas: &Areas, at: Position) -> Opti
         .filter(|&i| i < all().len())
 }
 
-/// Outer width of the energy ledger panel: wide terminals get room for the unit.
+/// Outer width of the energy ledger panel: wide terminals get room for the unit, and from
+/// 100 columns a six-digit loss keeps its label whole.
 pub(crate) fn ledger_width(screen_width: u16) -> u16 {
-    if screen_width >= 120 { 24 } else { 20 }
+    match screen_width {
+        120.. => 24,
+        100.. => 22,
+        _ => 20,
+    }
 }

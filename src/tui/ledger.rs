@@ -3,6 +3,7 @@
 //! integrator's own error), as the physics measured it step by step.
 
 use super::app::App;
+use super::fit;
 use super::format::fmt_num;
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -65,10 +66,10 @@ pub(crate) fn bar_rows(app: &App, rows: u16) -> (Vec<Option<usize>>, Option<u16>
 
 pub(crate) fn render_ledger(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
-    let block = Block::bordered().title(Line::styled(" energy ", t.heading()));
+    let mut block = Block::bordered().title(Line::styled(" energy ", t.heading()));
     let body = block.inner(area);
-    frame.render_widget(block, area);
     if body.width < BAR_COLUMNS + 8 || body.height < 2 {
+        frame.render_widget(block, area);
         return;
     }
     let colours = t.energy_series();
@@ -96,50 +97,68 @@ pub(crate) fn render_ledger(app: &App, area: Rect, frame: &mut Frame) {
         },
     );
     let text_width = (body.width - BAR_COLUMNS) as usize;
+    // A label too long beside its number loses its glyph or indent, then is abbreviated:
+    // the number is what is read.
     let row = |label: Span<'static>, value: f64| {
         let number = fmt_num(value);
-        let pad = text_width.saturating_sub(label.width() + number.chars().count());
+        let room = fit::room(text_width);
+        let label_room = room.saturating_sub(number.chars().count() + 1);
+        let text = if label.content.chars().count() <= label_room {
+            label.content.to_string()
+        } else {
+            let bare = label.content.trim_start_matches(['█', '▓', '▒', '░', ' ']);
+            fit::cut_text(bare, label_room)
+        };
+        let label = Span::styled(text, label.style);
+        let pad = room.saturating_sub(label.width() + number.chars().count());
         Line::from(vec![label, Span::raw(" ".repeat(pad)), Span::raw(number)])
     };
     let l = &app.roll.live.ledger;
-    let mut now: Vec<Line> = forms
+    // By importance, for a short panel: the total, the heading that says the numbers under
+    // it are energy gone (not energy present) and the two losses a class asks about; the
+    // start moves into the bottom border; then the integrator's share and the forms go.
+    let mut lines: Vec<(u8, Line)> = forms
         .iter()
         .enumerate()
         .rev()
         .map(|(i, (name, colour, value))| {
-            row(
-                Span::styled(
-                    format!("{} {name}", glyph(app, i)),
-                    Style::new().fg(colours[*colour]),
-                ),
-                *value,
-            )
+            let rank = if i == 3 { 4 } else { 3 };
+            let label = Span::styled(
+                format!("{} {name}", glyph(app, i)),
+                Style::new().fg(colours[*colour]),
+            );
+            (rank, row(label, *value))
         })
         .collect();
-    now.push(row(
-        Span::styled("◀ total", t.heading()),
-        app.roll.live.energy.total(),
+    lines.push((
+        0,
+        row(Span::styled("◀ total", t.heading()), app.roll.live.energy.total()),
     ));
     let heading = if text_width >= 20 {
         "lost since 0 s, erg"
     } else {
         "lost since 0 s"
     };
+    lines.push((0, Line::styled(heading, t.heading())));
     // Indented under their heading where the numbers leave room.
     let indent = if text_width >= 17 { "  " } else { "" };
-    let mut gone = vec![
-        row(Span::raw(format!("{indent}damping")), l.damping_loss),
-        row(Span::raw(format!("{indent}friction")), l.friction_loss),
-        // The remainder: what semi-implicit Euler itself took (negative: gave).
-        row(Span::raw(format!("{indent}integr.")), l.integrator_loss),
-        row(Span::styled("= start", t.heading()), l.initial),
-    ];
-    let mut lines = now;
-    // Short panels drop the heading before any number.
-    if (lines.len() + gone.len()) < body.height as usize {
-        lines.push(Line::styled(heading, t.heading()));
-    }
-    lines.append(&mut gone);
+    lines.push((0, row(Span::raw(format!("{indent}damping")), l.damping_loss)));
+    lines.push((0, row(Span::raw(format!("{indent}friction")), l.friction_loss)));
+    // The remainder: what semi-implicit Euler itself took (negative: gave).
+    lines.push((2, row(Span::raw(format!("{indent}integr.")), l.integrator_loss)));
+    let start = row(Span::styled("= start", t.heading()), l.initial);
+    let lines = if lines.len() < body.height as usize {
+        lines.push((0, start));
+        fit::rows(lines, body.height as usize)
+    } else {
+        // A space before the corner keeps the number in line with those above.
+        let mut spans = vec![Span::raw(" ")];
+        spans.extend(start.spans);
+        spans.push(Span::raw(" "));
+        block = block.title_bottom(Line::from(spans).right_aligned());
+        fit::rows(lines, body.height as usize)
+    };
+    frame.render_widget(block, area);
     frame.render_widget(
         Paragraph::new(lines),
         Rect {

@@ -7,6 +7,7 @@ use super::app::Msg;
 use super::dialog::Dialog;
 use super::input::update;
 use super::map_tests::computed;
+use super::screen_tests::SIZES;
 use super::tests::Scene;
 use super::theme::{Palette, Theme};
 use crate::preset::{Preset, Store};
@@ -57,8 +58,8 @@ fn the_readmes_lesson_is_the_lesson_file() {
     );
 }
 
-fn screen(s: &Scene) -> String {
-    let mut t = Terminal::new(TestBackend::new(120, 36)).expect("test backend");
+fn screen(s: &Scene, (w, h): (u16, u16)) -> String {
+    let mut t = Terminal::new(TestBackend::new(w, h)).expect("test backend");
     t.draw(|f| super::render(&s.app, f)).expect("draw");
     let b = t.backend().buffer();
     (0..b.area.height)
@@ -123,7 +124,8 @@ fn press(s: &mut Scene, key: &str) {
 }
 
 /// Each step, in order, from the explorer as it opens (the `paper` preset, projector theme,
-/// only the shipped presets): after its keys, everything its `see` lists is on screen.
+/// only the shipped presets): after its keys, everything its `see` lists is on screen at
+/// each classroom size, a projector's 80×24 and 100×30 as well as 120×36.
 #[test]
 fn every_lesson_step_shows_what_it_says() {
     let theme = Theme {
@@ -137,14 +139,18 @@ fn every_lesson_step_shows_what_it_says() {
         for key in &step.keys {
             press(&mut s, key);
         }
-        let shown = screen(&s);
-        let absent: Vec<&String> = step.see.iter().filter(|w| !shown.contains(w.as_str())).collect();
-        if !absent.is_empty() {
-            missing.push(format!(
-                "step {} ({}): {absent:?} not on screen:\n{shown}",
-                i + 1,
-                step.title
-            ));
+        for size in SIZES {
+            let shown = screen(&s, size);
+            let absent: Vec<&String> = step.see.iter().filter(|w| !shown.contains(w.as_str())).collect();
+            if !absent.is_empty() {
+                missing.push(format!(
+                    "step {} ({}) at {}×{}: {absent:?} not on screen:\n{shown}",
+                    i + 1,
+                    step.title,
+                    size.0,
+                    size.1
+                ));
+            }
         }
     }
     assert!(missing.is_empty(), "{}", missing.join("\n\n"));

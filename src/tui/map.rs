@@ -196,7 +196,8 @@ fn render_panel(app: &App, areas: &MapAreas, frame: &mut Frame) {
         let lo = fmt_num(map.x.min);
         let hi = fmt_num(map.x.max);
         frame.render_widget(Paragraph::new(lo.clone()), row);
-        frame.render_widget(Paragraph::new(Line::from(hi.clone()).right_aligned()), row);
+        // The space is the panel's gap column (`fit`): a label never meets the border.
+        frame.render_widget(Paragraph::new(Line::from(format!("{hi} ")).right_aligned()), row);
         // The cursor's column, unless that would cover an end label.
         let tick = m.cursor.0 as u16;
         if tick > lo.chars().count() as u16 && tick + (hi.chars().count() as u16) + 1 < cols {
@@ -295,10 +296,9 @@ fn render_side(app: &App, area: Rect, frame: &mut Frame) {
     lines.push(Line::raw(""));
     lines.extend(cursor_lines(app));
     lines.extend(legend_lines(app));
-    frame.render_widget(
-        Paragraph::new(lines).block(block).wrap(Wrap { trim: false }),
-        area,
-    );
+    let body = super::dialogs::text_area(block.inner(area));
+    frame.render_widget(block, area);
+    frame.render_widget(Paragraph::new(lines).wrap(Wrap { trim: false }), body);
 }
 
 fn cursor_lines(app: &App) -> Vec<Line<'static>> {

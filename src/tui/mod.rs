@@ -9,6 +9,7 @@ mod dialogs;
 mod die;
 mod editor;
 mod energy;
+pub(crate) mod fit;
 mod footer;
 pub(crate) mod format;
 mod header;
@@ -70,3 +71,6 @@ mod lesson_tests;
 
 #[cfg(test)]
 mod versus_tests;
+
+#[cfg(test)]
+pub(crate) mod screen_tests;

@@ -2,6 +2,7 @@
 //! typed, and the step's stability readout under them.
 
 use super::app::App;
+use super::fit;
 use super::format::{fmt_num, fmt_range};
 use super::layout::param_window;
 use super::param::all;
@@ -69,7 +70,7 @@ pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
     if body.height == 0 {
         return;
     }
-    let wide = body.width >= 49;
+    let wide = body.width as usize >= WIDE;
     let mut lines = Vec::with_capacity(body.height as usize);
     let mut head = format!(" {:<13} {:>8} {:<6}", "parameter", "value", "unit");
     if wide {
@@ -94,30 +95,7 @@ pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
         }
         lines.push(line);
     }
-    let p = app.selected_param();
-    let detail = match app.value_editor() {
-        Some(editor) => match &editor.error {
-            Some(e) => Line::styled(format!(" {e}"), t.danger()),
-            None => Line::from(vec![
-                Span::styled(format!(" {} = ", p.label()), t.heading()),
-                Span::styled(format!("{}▏", editor.text), t.selected()),
-                Span::raw(format!("  {} {}", fmt_range(p), p.limits().unit)),
-            ]),
-        },
-        None => {
-            let when = if p.acts_mid_roll() {
-                "acts now"
-            } else {
-                "restarts the roll"
-            };
-            let mut s = vec![Span::raw(format!(" {} ", p.key()))];
-            if !wide {
-                s.push(Span::raw(format!("{} ", fmt_range(p))));
-            }
-            s.push(Span::raw(format!("· {when}")));
-            Line::from(s)
-        }
-    };
+    let detail = detail_line(app, body.width as usize);
     let rows_area = Rect {
         height: body.height.saturating_sub(1),
         ..body
@@ -131,4 +109,66 @@ pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
         };
         frame.render_widget(Paragraph::new(detail), detail_area);
     }
+}
+
+/// The line under the list: the value being typed and its range, or why it was refused,
+/// or the selected value's key and whether a change acts now or restarts the roll; its
+/// parts ranked for a narrow panel. A refusal too long for the line is on the status line
+/// instead ([`error_fits`]), whole.
+fn detail_line(app: &App, width: usize) -> Line<'static> {
+    let t = &app.theme;
+    let p = app.selected_param();
+    match app.value_editor() {
+        Some(editor) => {
+            let typed = vec![
+                (0, vec![Span::styled(format!(" {} = ", p.label()), t.heading())]),
+                (0, vec![Span::styled(format!("{}▏", editor.text), t.selected())]),
+                (
+                    1,
+                    vec![Span::raw(format!("  {} {}", fmt_range(p), p.limits().unit))],
+                ),
+            ];
+            match &editor.error {
+                Some(e) if error_fits(e, width) => Line::styled(format!(" {e}"), t.danger()),
+                Some(_) => fit::line(
+                    vec![
+                        typed[0].clone(),
+                        typed[1].clone(),
+                        (1, vec![Span::styled("  refused ↓", t.danger())]),
+                    ],
+                    width,
+                ),
+                None => fit::line(typed, width),
+            }
+        }
+        None => {
+            let when = if p.acts_mid_roll() {
+                "acts now"
+            } else {
+                "restarts the roll"
+            };
+            let mut parts = vec![(0, vec![Span::raw(format!(" {} ", p.key()))])];
+            if width < WIDE {
+                parts.push((2, vec![Span::raw(format!("{} ", fmt_range(p)))]));
+            }
+            parts.push((1, vec![Span::raw(format!("· {when}"))]));
+            fit::line(parts, width)
+        }
+    }
+}
+
+/// Inside width from which the list has a range column.
+const WIDE: usize = 49;
+
+/// Whether a refusal fits the line under the list of a panel `width` wide inside.
+fn error_fits(error: &str, width: usize) -> bool {
+    error.chars().count() < fit::room(width)
+}
+
+/// The refusal of the value being typed when the parameter panel of a screen this wide
+/// has no room for it: the status line shows it.
+pub(crate) fn refusal_for_status_line(app: &App, screen_width: u16) -> Option<String> {
+    let inside = super::layout::left_width(screen_width).saturating_sub(2) as usize;
+    let error = app.value_editor()?.error.as_ref()?;
+    (!error_fits(error, inside)).then(|| error.clone())
 }

@@ -76,7 +76,12 @@ pub(crate) fn time_axis(app: &App, most: usize) -> (f64, Vec<String>) {
         .last()
         .map_or(0.0, |s| s.time_s)
         .max(app.roll.live.time_s);
-    time_ticks(t_end, most)
+    let (hi, mut labels) = time_ticks(t_end, most);
+    // The last label ends in a space: a panel's gap column (`fit`), never text.
+    if let Some(last) = labels.last_mut() {
+        last.push(' ');
+    }
+    (hi, labels)
 }
 
 /// [`time_axis`] for a roll computed to `t_end` seconds.

@@ -69,26 +69,22 @@ pub(crate) fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let Some(twin) = &app.roll.live.twin else { return };
     let colours = t.separation_colours();
-    // A parameter twin's panel names what B differs by where the chaos twin's names ε.
-    let (name, epsilon) = match super::versus::outcomes_text(app, false) {
-        Some((_, differs)) => (" die B ", differs),
-        None => (" chaos twin ", format!("ε = {}", fmt_num(twin.epsilon))),
-    };
+    let epsilon = fmt_num(twin.epsilon);
     let title = Line::from(vec![
-        Span::styled(name, t.heading()),
-        Span::raw(format!("{epsilon} ")),
+        Span::styled(" chaos twin ", t.heading()),
+        Span::raw(format!("ε = {epsilon} ")),
         Span::styled("━centre cm ", Style::new().fg(colours[0])),
         Span::styled("━angle rad ", Style::new().fg(colours[1])),
     ]);
     // A cut title would show another ε (1e-11 as 1e-1): narrow, ε keeps the top border and
     // the legend goes to the bottom one.
-    let block = if title.to_string().trim_end().chars().count() + 2 <= area.width as usize {
+    let block = if title.to_string().trim_end().chars().count() + 2 < area.width as usize {
         Block::bordered().title(title)
     } else {
         Block::bordered()
             .title(Line::from(vec![
                 Span::styled(" twin ", t.heading()),
-                Span::raw(format!("{epsilon} ")),
+                Span::raw(format!("ε = {epsilon} ")),
             ]))
             .title_bottom(Line::from(vec![
                 Span::styled("━cm ", Style::new().fg(colours[0])),
@@ -100,10 +96,11 @@ pub(crate) fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
     if body.height < 4 || body.width < 16 {
         return;
     }
+    let verdict = outcome_lines(app, body.width);
     let [definition, plot, outcomes] = body.layout(&Layout::vertical([
         Constraint::Length(1),
         Constraint::Min(0),
-        Constraint::Length(1),
+        Constraint::Length(verdict.len() as u16),
     ]));
     let definition_text = match app.epsilon_editor() {
         Some(editor) => match &editor.error {
@@ -114,8 +111,9 @@ pub(crate) fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
                 Span::raw(format!("  {}…{}", fmt_num(EPSILON.min), fmt_num(EPSILON.max))),
             ]),
         },
-        None if !twin.differs_by.is_empty() => Line::raw("B: the same start, other values"),
-        None if definition.width as usize >= DEFINITION.chars().count() => Line::raw(DEFINITION),
+        None if super::fit::room(definition.width as usize) >= DEFINITION.chars().count() => {
+            Line::raw(DEFINITION)
+        }
         None => Line::raw("h, v, ω × (1+ε)"),
     };
     frame.render_widget(Paragraph::new(definition_text), definition);
@@ -156,7 +154,7 @@ pub(crate) fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
         .x_axis(
             Axis::default()
                 .bounds([0.0, x_hi])
-                .labels(["0 s".to_string(), format!("{} s", fmt_num(x_hi))]),
+                .labels(["0 s".to_string(), format!("{} s ", fmt_num(x_hi))]),
         )
         .y_axis(
             Axis::default()
@@ -165,7 +163,7 @@ pub(crate) fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
         )
         .legend_position(None);
     frame.render_widget(chart, plot);
-    frame.render_widget(Paragraph::new(outcome_line(app, outcomes.width)), outcomes);
+    frame.render_widget(Paragraph::new(verdict), outcomes);
 }
 
 /// The plot's time axis end: whole seconds past one, tenths below.
@@ -184,36 +182,43 @@ fn face_of(phase: &Phase) -> Option<u8> {
     }
 }
 
-/// "die settled: face 3 · twin settled: face 5 · faces differ"; narrow: "3 · 5 differ".
-pub(crate) fn outcome_line(app: &App, width: u16) -> Line<'static> {
+/// "die settled: face 3 · twin settled: face 5 · faces differ"; narrower "die 3 · twin 5 ·
+/// faces differ"; narrower still, the verdict on a line of its own (the lesson's point, so
+/// it is never cut).
+pub(crate) fn outcome_lines(app: &App, width: u16) -> Vec<Line<'static>> {
     let t = &app.theme;
     let Some(twin) = &app.roll.live.twin else {
-        return Line::default();
+        return Vec::new();
     };
+    let room = super::fit::room(width as usize);
     let faces = (face_of(&app.roll.live.phase), face_of(&twin.phase));
     let verdict = match faces {
         (Some(a), Some(b)) if a == b => Some(Span::styled("same face", t.good())),
         (Some(_), Some(_)) => Some(Span::styled("faces differ", t.caution())),
         _ => None,
     };
+    let verdict_width = verdict.as_ref().map_or(0, |v| v.width() + 3);
     let full = format!(
         "die {} · twin {}",
         app.roll.live.phase.label(),
         twin.phase.label()
     );
-    let mut spans = if full.chars().count() + 14 <= width as usize {
-        vec![Span::raw(full)]
+    let short = |f: Option<u8>| f.map_or("…".to_string(), |f| f.to_string());
+    let brief = format!("die {} · twin {}", short(faces.0), short(faces.1));
+    let text = if full.chars().count() + verdict_width <= room {
+        full
     } else {
-        let short = |f: Option<u8>| f.map_or("…".to_string(), |f| f.to_string());
-        vec![Span::raw(format!(
-            "die {} · twin {}",
-            short(faces.0),
-            short(faces.1)
-        ))]
+        brief
     };
+    let together = text.chars().count() + verdict_width <= room;
+    let mut lines = vec![Line::from(super::fit::cut_text(&text, room))];
     if let Some(v) = verdict {
-        spans.push(Span::raw(" · "));
-        spans.push(v);
+        if together {
+            lines[0].spans.push(Span::raw(" · "));
+            lines[0].spans.push(v);
+        } else {
+            lines.push(Line::from(v));
+        }
     }
-    Line::from(spans)
+    lines
 }

@@ -336,8 +336,8 @@ fn a_narrow_separation_panel_keeps_the_whole_epsilon_and_moves_its_legend_down()
     assert!(narrow.contains("┌ twin ε = 1e-11 ─"), "{narrow}");
     assert!(narrow.contains("└━cm ━rad ─"), "{narrow}");
     assert!(screen(&s.app, 120, 36).contains("ε = 1e-11"));
-    // Where it fits, the legend stays in the title.
-    let wide = screen(&twin_scene(Theme::default()).app, 120, 36);
+    // Where it fits with the gap column before the corner, the legend stays in the title.
+    let wide = screen(&twin_scene(Theme::default()).app, 130, 36);
     assert!(
         wide.contains("chaos twin ε = 1e-9 ━centre cm ━angle rad"),
         "{wide}"

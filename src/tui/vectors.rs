@@ -7,6 +7,7 @@
 
 use super::app::App;
 use super::camera::Flat;
+use super::fit;
 use super::format::fmt_num;
 use crate::worker::DieState;
 use nalgebra::Vector3;
@@ -82,7 +83,7 @@ pub(crate) fn force_vector(f: &crate::physics::ContactForce) -> Vector3<f64> {
 }
 
 /// dyn: the sum of the contact forces on the die.
-fn total_force(die: &DieState) -> Vector3<f64> {
+pub(crate) fn total_force(die: &DieState) -> Vector3<f64> {
     die.forces.iter().map(force_vector).sum()
 }
 
@@ -115,34 +116,49 @@ pub(crate) fn legend(app: &App, width: u16) -> Vec<Line<'static>> {
         die.velocity.norm(),
         total_force(die).norm(),
     ];
-    let wide = width >= 60;
-    let mut first = Vec::new();
-    for (kind, size) in ARROWS.iter().zip(sizes) {
-        let name = if *kind == Arrow::ContactForce {
-            "ΣF"
-        } else {
-            kind.symbol()
-        };
-        first.push(Span::styled(
-            format!("━{name} "),
-            Style::new().fg(kind.colour(app)),
-        ));
-        let unit = if wide {
-            format!(" {}", kind.unit())
-        } else {
-            String::new()
-        };
-        first.push(Span::raw(format!("{}{unit}  ", fmt_num(size))));
-    }
-    let scale = if wide {
-        format!(
-            "length a·log₁₀(1+|x|/x₀), x₀: ω 1, L 100, v 10, F {} (M·g/8)",
-            fmt_num(Arrow::ContactForce.reference(app))
-        )
-    } else {
-        "length a·log₁₀(1+|x|/x₀)".to_string()
+    // Each arrow's size with its unit where the panel has room for every unit, without
+    // the units where not; the scale in as many words as fit.
+    let sizes_line = |units: bool, gap: &str| {
+        let mut spans = Vec::new();
+        for (i, (kind, size)) in ARROWS.iter().zip(sizes).enumerate() {
+            let name = if *kind == Arrow::ContactForce {
+                "ΣF"
+            } else {
+                kind.symbol()
+            };
+            if i > 0 {
+                spans.push(Span::raw(gap.to_string()));
+            }
+            spans.push(Span::styled(
+                format!("━{name} "),
+                Style::new().fg(kind.colour(app)),
+            ));
+            let unit = if units {
+                format!(" {}", kind.unit())
+            } else {
+                String::new()
+            };
+            spans.push(Span::raw(format!("{}{unit}", fmt_num(size))));
+        }
+        Line::from(spans)
     };
-    vec![Line::from(first), Line::styled(scale, app.theme.heading())]
+    // Every size with its unit, else without units, else closer together; only then cut.
+    let forms = [(true, "  "), (false, "  "), (false, " ")];
+    let sizes_line = forms
+        .iter()
+        .map(|&(units, gap)| sizes_line(units, gap))
+        .find(|l| l.width() <= fit::room(width as usize))
+        .unwrap_or_else(|| fit::abbreviate(sizes_line(false, " "), width as usize));
+    let force = fmt_num(Arrow::ContactForce.reference(app));
+    let scale = fit::longest_fitting(
+        &[
+            format!("length a·log₁₀(1+|x|/x₀), x₀: ω 1, L 100, v 10, F {force} (M·g/8)"),
+            format!("length a·log₁₀(1+|x|/x₀), x₀: ω 1, L 100, v 10, F {force}"),
+            "length a·log₁₀(1+|x|/x₀)".to_string(),
+        ],
+        width as usize,
+    );
+    vec![sizes_line, Line::styled(scale, app.theme.heading())]
 }
 
 #[cfg(test)]

@@ -4,7 +4,8 @@
 //! turns the edits into B's difference and words it for the panels.
 
 use super::app::App;
-use super::format::{fmt_num, wrap_words};
+use super::fit::wrap;
+use super::format::fmt_num;
 use super::keys::{Action, Screen, label};
 use super::param::Param;
 use crate::experiment::ScanKey;
@@ -112,7 +113,7 @@ pub(crate) fn render_table(app: &App, area: Rect, frame: &mut Frame) {
         frame.render_widget(block, area);
         let key = label(Screen::Die, Action::Batch);
         let words = format!("{key}: a batch of shared throws, each rolled in A and in B");
-        let lines: Vec<Line> = wrap_words(&words, body.width as usize)
+        let lines: Vec<Line> = wrap(&words, body.width as usize)
             .into_iter()
             .map(Line::raw)
             .collect();

@@ -417,6 +417,14 @@ fn each_face_shows_its_95_percent_interval_in_figures_and_on_its_bar() {
     );
     assert!(high.contains('┃') && !high.contains('┼'), "above 1/6: {high}");
     assert!(low.contains('┆') && !low.contains('┼'), "below 1/6: {low}");
+    // A tight interval around 1/6 on a narrow bar (12 cells, 2.8 % each): 15.5–16.9 %
+    // covers the fair share, so the mark reads fair though no cell is half shaded.
+    let tight = super::outcomes::share_bar(0.162, Some([0.155, 0.169]), 12);
+    assert_eq!(tight.chars().nth(6), Some('┼'), "{tight}");
+    let below = super::outcomes::share_bar(0.150, Some([0.143, 0.157]), 12);
+    assert_eq!(below.chars().nth(6), Some('┆'), "{below}");
+    let above = super::outcomes::share_bar(0.185, Some([0.177, 0.192]), 12);
+    assert_eq!(above.chars().nth(6), Some('┃'), "{above}");
     // The solid part ends at the interval's low end, the shading at its high end.
     let [l, h] = wilson(700, n);
     let cells = |x: f64| x * 3.0 * 29.0;
@@ -432,9 +440,12 @@ fn each_face_shows_its_95_percent_interval_in_figures_and_on_its_bar() {
         "bar ends at {reach}, high end at {}",
         cells(h)
     );
-    // Narrow: no figures, the bar still shaded.
+    // At 80×24 the figures stay (a class reads them off a projector) and the count column
+    // gives way; the bar is still shaded.
     let t = text(&panel_at(&app, 80, 24, |a| a.outcomes, render_outcomes));
-    assert!(!t.contains("–1") && t.contains('░'), "{t}");
+    let [low, high] = wilson(counts[0], n).map(|x| 100.0 * x);
+    assert!(t.contains(&format!("{low:.1}–{high:.1}")), "{t}");
+    assert!(!t.contains("count") && t.contains('░'), "{t}");
 }
 
 #[test]

@@ -769,5 +769,17 @@ mod tests {
         e.handle(Command::SetParam(height, 12.0));
         e.run_to_end();
         assert!(!exported(&mut e).contains("re-rolled"));
+        // A table value changed before the roll has moved is the whole roll's: no word either,
+        // and what is shown is what a fresh roll with that value gives.
+        let stiffness = ScanKey::named("ground.stiffness").expect("a scan key");
+        let mut e = Engine::new(&Preset::default()).expect("valid");
+        e.handle(Command::SetParam(stiffness, 550_000.0));
+        e.run_to_end();
+        assert!(!exported(&mut e).contains("re-rolled"));
+        let mut preset = Preset::default();
+        preset.ground.stiffness = 550_000.0;
+        let mut fresh = Engine::new(&preset).expect("valid");
+        fresh.run_to_end();
+        assert_eq!(e.phase(), fresh.phase(), "the same roll as a fresh one");
     }
 }

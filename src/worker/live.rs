@@ -311,7 +311,8 @@ impl LiveRoll {
             .map_err(|e| Notice::Said(e.to_string()))?;
         self.params = params;
         self.initial = initial;
-        if key.spec.acts_mid_roll && self.sim.outcome().is_none() {
+        // At step 0 there is no "mid" yet: the whole roll has the new value, as a fresh one.
+        if key.spec.acts_mid_roll && self.sim.outcome().is_none() && self.position > 0 {
             let refused = self.sim.set_ground(params.ground).err();
             self.changed_mid_roll = true;
             // The twin feels the same table (with B's own values, for a parameter twin).
