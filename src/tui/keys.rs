@@ -441,8 +441,9 @@ pub(crate) const BINDINGS: &[Binding] = &[
         [K::Char('D')],
         "D",
         A::Differ,
-        hint("D", "differ", 2),
-        "parameter twin (differ): the next value changes go to a second die B only, rolled from the          same start beside A; D again ends it"
+        hint("D", "differ", 4),
+        "parameter twin (differ): the next value changes go to a second die B only, rolled from the \
+         same start beside A; D again ends it"
     ),
     row!(
         Die,

@@ -44,6 +44,11 @@ impl TwinView {
     /// A preset's view: a twin at its ε, or none (the ε kept for the next `T`).
     pub(crate) fn apply(&mut self, twin: Option<f64>) {
         self.on = twin.is_some();
+        // A preset's chaos twin takes the parameter twin's place.
+        if self.on {
+            self.differ = false;
+            self.differs_by.clear();
+        }
         if let Some(epsilon) = twin {
             self.epsilon = epsilon;
         }
