@@ -153,12 +153,14 @@ pub(crate) fn render_table(app: &App, area: Rect, frame: &mut Frame) {
         Some((share, [lo, hi])) => {
             let (k, n) = (table.agreeing(), table.faced());
             let (share, lo, hi) = (100.0 * share, 100.0 * lo, 100.0 * hi);
-            let full = format!("agree {k}/{n} = {share:.1} % (95 % {lo:.1}–{hi:.1} %)");
-            if full.chars().count() <= body.width as usize {
-                full
-            } else {
-                format!("agree {k}/{n} · {share:.1} % ({lo:.1}–{hi:.1} %)")
-            }
+            super::fit::longest_fitting(
+                &[
+                    format!("agree {k}/{n} = {share:.1} % (95 % {lo:.1}–{hi:.1} %)"),
+                    format!("agree {k}/{n} · {share:.1} % ({lo:.1}–{hi:.1} %)"),
+                    format!("agree {share:.1} % ({lo:.1}–{hi:.1} %) of {n}"),
+                ],
+                body.width as usize,
+            )
         }
         None => "agree: no throw ended on a face in both yet".to_string(),
     });
