@@ -162,63 +162,47 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
         "fit": args.fit,
         "candidates": args.fit.as_ref().map(|_| candidates),
     });
-    for output in &outputs {
-        match output.extension() {
-            "csv" => output.write(|w| {
-                writeln!(w, "{}", super::shard::csv_provenance_line(&provenance))?;
-                comparison.write_csv(w)
-            }),
-            "json" => output.write(|w| {
-                let mut v = serde_json::to_value(&comparison)?;
-                v["provenance"] = provenance.clone();
-                serde_json::to_writer_pretty(&mut *w, &v)?;
-                writeln!(w)
-            }),
-            _ => {
-                let title = format!("{} against real dice", preset.name);
-                // The caption names the setup whose throws are drawn: a fit's shown value.
-                let (mut shown, mut initial) = (params, preset.initial);
-                if let (Some(fit), Some(value)) = (&spec.fit, comparison.shown().and_then(|c| c.value)) {
-                    fit.key.set(&mut shown, &mut initial, value);
-                }
-                // The throws are drawn from the random ranges: those define the figure.
-                let fit = match (
-                    &args.fit,
-                    comparison.shown().and_then(|c| c.value),
-                    &comparison.key,
-                ) {
-                    (Some(f), Some(v), Some(k)) => format!(
-                        "; --fit {f} over {} candidates, drawn at the best, {k} = {}",
-                        candidates,
-                        setup_value(v)
-                    ),
-                    _ => String::new(),
-                };
-                let experiment = format!(
-                    "{}: {} throws as {} threw them, each die {}{fit}",
-                    preset.name,
-                    spec.throws,
-                    dataset.name(),
-                    random_starts(&preset.random, spec.seed),
-                );
-                let record = Record::of_experiment(&title, experiment, &shown, &provenance);
-                let png = comparison_png(&comparison, &record).map_err(CliError::experiment(""))?;
-                output.write_bytes(&png)
-            }
+    let png = || {
+        let title = format!("{} against real dice", preset.name);
+        // The caption names the setup whose throws are drawn: a fit's shown value.
+        let (mut shown, mut initial) = (params, preset.initial);
+        if let (Some(fit), Some(value)) = (&spec.fit, comparison.shown().and_then(|c| c.value)) {
+            fit.key.set(&mut shown, &mut initial, value);
         }
-        .map_err(CliError::output(""))?;
-    }
-    let mut out = std::io::stdout().lock();
-    if args.json {
-        serde_json::to_writer_pretty(&mut out, &comparison).map_err(std::io::Error::from)?;
-        writeln!(out)?;
-    } else {
-        print_comparison(&mut out, &comparison, &preset.name)?;
-        for path in &args.out {
-            writeln!(out, "wrote {}", path.display())?;
-        }
-    }
-    out.flush()?;
+        // The throws are drawn from the random ranges: those define the figure.
+        let fit = match (
+            &args.fit,
+            comparison.shown().and_then(|c| c.value),
+            &comparison.key,
+        ) {
+            (Some(f), Some(v), Some(k)) => format!(
+                "; --fit {f} over {} candidates, drawn at the best, {k} = {}",
+                candidates,
+                setup_value(v)
+            ),
+            _ => String::new(),
+        };
+        let experiment = format!(
+            "{}: {} throws as {} threw them, each die {}{fit}",
+            preset.name,
+            spec.throws,
+            dataset.name(),
+            random_starts(&preset.random, spec.seed),
+        );
+        let record = Record::of_experiment(&title, experiment, &shown, &provenance);
+        comparison_png(&comparison, &record).map_err(CliError::experiment(""))
+    };
+    super::write_results(
+        &outputs,
+        args.json,
+        super::Results {
+            value: &comparison,
+            provenance: &provenance,
+            csv: &|w| comparison.write_csv(w),
+            png: &png,
+            table: &|out| print_comparison(out, &comparison, &preset.name),
+        },
+    )?;
     if comparison.cancelled {
         let candidates = spec.fit.as_ref().map_or(1, |f| f.candidates as u64);
         let done: u64 = comparison.candidates.iter().map(|c| c.throws + c.uncounted).sum();
@@ -244,7 +228,7 @@ fn p_text(p: f64) -> String {
     }
 }
 
-fn print_comparison(out: &mut impl Write, c: &Comparison, preset: &str) -> std::io::Result<()> {
+fn print_comparison(out: &mut dyn Write, c: &Comparison, preset: &str) -> std::io::Result<()> {
     writeln!(out, "{} ({})", c.dataset.name(), c.data.source)?;
     let fair = &c.data_against_fair;
     writeln!(
@@ -435,37 +419,21 @@ fn run_budden(
         "candidates": candidates,
         "calibrate_on": spec.calibrate_on,
     });
-    for output in &outputs {
-        match output.extension() {
-            "csv" => output.write(|w| {
-                writeln!(w, "{}", super::shard::csv_provenance_line(&provenance))?;
-                comparison.write_csv(w)
-            }),
-            "json" => output.write(|w| {
-                let mut v = serde_json::to_value(&comparison)?;
-                v["provenance"] = provenance.clone();
-                serde_json::to_writer_pretty(&mut *w, &v)?;
-                writeln!(w)
-            }),
-            _ => {
-                let record = budden_record(&comparison, preset, &spec, fit_text, &provenance);
-                let png = budden_png(&comparison, &record).map_err(CliError::experiment(""))?;
-                output.write_bytes(&png)
-            }
-        }
-        .map_err(CliError::output(""))?;
-    }
-    let mut out = std::io::stdout().lock();
-    if args.json {
-        serde_json::to_writer_pretty(&mut out, &comparison).map_err(std::io::Error::from)?;
-        writeln!(out)?;
-    } else {
-        print_budden(&mut out, &comparison, &preset.name)?;
-        for path in &args.out {
-            writeln!(out, "wrote {}", path.display())?;
-        }
-    }
-    out.flush()?;
+    let png = || {
+        let record = budden_record(&comparison, preset, &spec, fit_text, &provenance);
+        budden_png(&comparison, &record).map_err(CliError::experiment(""))
+    };
+    super::write_results(
+        &outputs,
+        args.json,
+        super::Results {
+            value: &comparison,
+            provenance: &provenance,
+            csv: &|w| comparison.write_csv(w),
+            png: &png,
+            table: &|out| print_budden(out, &comparison, &preset.name),
+        },
+    )?;
     if comparison.cancelled {
         let done: u64 = comparison
             .candidates
@@ -538,7 +506,7 @@ fn budden_record(
     .with_provenance(provenance)
 }
 
-fn print_budden(out: &mut impl Write, c: &BuddenComparison, preset: &str) -> std::io::Result<()> {
+fn print_budden(out: &mut dyn Write, c: &BuddenComparison, preset: &str) -> std::io::Result<()> {
     writeln!(out, "budden ({})", c.source)?;
     for a in &c.assumptions {
         writeln!(out, "assumed: {a}")?;

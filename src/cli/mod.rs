@@ -86,6 +86,55 @@ pub(crate) fn run_with_progress<T>(
     Ok(result)
 }
 
+/// A long experiment's result, written the one way every such command writes it.
+pub(crate) struct Results<'a, T: serde::Serialize> {
+    pub(crate) value: &'a T,
+    /// What defines the experiment: the CSV's first line, the JSON's `provenance`.
+    pub(crate) provenance: &'a serde_json::Value,
+    /// The CSV's rows after its provenance line.
+    pub(crate) csv: &'a dyn Fn(&mut (dyn std::io::Write + Send)) -> std::io::Result<()>,
+    pub(crate) png: &'a dyn Fn() -> Result<Vec<u8>, CliError>,
+    /// The table printed when `--json` is not given.
+    pub(crate) table: &'a dyn Fn(&mut dyn std::io::Write) -> std::io::Result<()>,
+}
+
+/// Writes each `--out` file by its extension (CSV, JSON with the provenance, else PNG), then
+/// prints the table and the files written, or the JSON alone with `--json`.
+pub(crate) fn write_results<T: serde::Serialize>(
+    outputs: &[crate::output::Output],
+    json: bool,
+    r: Results<'_, T>,
+) -> Result<(), CliError> {
+    for output in outputs {
+        match output.extension() {
+            "csv" => output.write(|w| {
+                writeln!(w, "{}", shard::csv_provenance_line(r.provenance))?;
+                (r.csv)(w)
+            }),
+            "json" => output.write(|w| {
+                let mut v = serde_json::to_value(r.value)?;
+                v["provenance"] = r.provenance.clone();
+                serde_json::to_writer_pretty(&mut *w, &v)?;
+                writeln!(w)
+            }),
+            _ => output.write_bytes(&(r.png)()?),
+        }
+        .map_err(CliError::output(""))?;
+    }
+    let mut out = std::io::stdout().lock();
+    if json {
+        serde_json::to_writer_pretty(&mut out, r.value).map_err(std::io::Error::from)?;
+        writeln!(out)?;
+    } else {
+        (r.table)(&mut out)?;
+        for output in outputs {
+            writeln!(out, "wrote {}", output.path().display())?;
+        }
+    }
+    out.flush()?;
+    Ok(())
+}
+
 pub(crate) fn cancel_on_ctrl_c() -> Result<Arc<AtomicBool>, CliError> {
     let stop = Arc::new(AtomicBool::new(false));
     on_stop_signals(Some(stop.clone()))?;

@@ -1,6 +1,5 @@
 //! `dicesim predict`: how precisely a throw must be known to predict its face.
 
-use super::shard::csv_provenance_line;
 use super::{CliError, EngineArg, SetupArgs};
 use crate::experiment::figure::setup_value;
 use crate::experiment::plot::{Record, random_starts};
@@ -130,42 +129,26 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
         "epsilons": spec.epsilons,
         "vary": args.vary,
     });
-    for output in &outputs {
-        match output.extension() {
-            "csv" => output.write(|w| {
-                writeln!(w, "{}", csv_provenance_line(&provenance))?;
-                prediction.write_csv(w)
-            }),
-            "json" => output.write(|w| {
-                let mut v = serde_json::to_value(&prediction)?;
-                v["provenance"] = provenance.clone();
-                serde_json::to_writer_pretty(&mut *w, &v)?;
-                writeln!(w)
-            }),
-            _ => {
-                let record = Record::of_experiment(
-                    "predictability of a throw",
-                    experiment_line(&preset.name, &preset.random, &spec, args.vary.as_deref()),
-                    &params,
-                    &provenance,
-                );
-                let png = prediction_png(&prediction, &record).map_err(CliError::experiment(""))?;
-                output.write_bytes(&png)
-            }
-        }
-        .map_err(CliError::output(""))?;
-    }
-    let mut out = std::io::stdout().lock();
-    if args.json {
-        serde_json::to_writer_pretty(&mut out, &prediction).map_err(std::io::Error::from)?;
-        writeln!(out)?;
-    } else {
-        print_prediction(&mut out, &prediction)?;
-        for path in &args.out {
-            writeln!(out, "wrote {}", path.display())?;
-        }
-    }
-    out.flush()?;
+    let png = || {
+        let record = Record::of_experiment(
+            "predictability of a throw",
+            experiment_line(&preset.name, &preset.random, &spec, args.vary.as_deref()),
+            &params,
+            &provenance,
+        );
+        prediction_png(&prediction, &record).map_err(CliError::experiment(""))
+    };
+    super::write_results(
+        &outputs,
+        args.json,
+        super::Results {
+            value: &prediction,
+            provenance: &provenance,
+            csv: &|w| prediction.write_csv(w),
+            png: &png,
+            table: &|out| print_prediction(out, &prediction),
+        },
+    )?;
     if prediction.cancelled {
         let done: u64 = prediction.curves.iter().map(|c| c.starts).sum();
         return Err(CliError::Interrupted {
@@ -178,7 +161,7 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
 }
 
 /// The table: one column of P(same face) per curve, then chance, ε½ and the start face.
-fn print_prediction(out: &mut impl Write, p: &Prediction) -> std::io::Result<()> {
+fn print_prediction(out: &mut dyn Write, p: &Prediction) -> std::io::Result<()> {
     let name = |v: Option<f64>| match (&p.key, v) {
         (Some(k), Some(v)) => format!("{k} = {v}"),
         _ => "this setup".to_string(),

@@ -10,6 +10,7 @@ use super::figure::{Ticks, resolved};
 use super::keys::ScanKey;
 use super::plot::{Record, Scale, TICKS, plot_error, png_bytes, register_fonts, with_caption};
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
 /// Image size in pixels.
@@ -98,48 +99,19 @@ fn draw_shares(area: &DrawingArea<BitMapBackend<'_>, Shift>, comparison: &Compar
         .draw()
         .map_err(plot_error)?;
     let offset = 0.15;
-    for (colour, side, name) in [(DATA, -offset, "real dice"), (SIMULATED, offset, "simulated")] {
-        let points: Vec<(f64, [f64; 3])> = rows
-            .iter()
-            .enumerate()
-            .map(|(i, r)| {
-                let x = i as f64 + side;
-                if colour == DATA {
-                    (x, [r.data_interval[0], r.data_share, r.data_interval[1]])
-                } else {
-                    (
-                        x,
-                        [
-                            r.simulated_interval[0],
-                            r.simulated_share,
-                            r.simulated_interval[1],
-                        ],
-                    )
-                }
-            })
-            .collect();
-        // Each interval as a vertical line with caps a tenth of a category wide.
-        let cap = 0.05;
-        chart
-            .draw_series(points.iter().flat_map(|&(x, [lo, _, hi])| {
-                [
-                    vec![(x, lo), (x, hi)],
-                    vec![(x - cap, lo), (x + cap, lo)],
-                    vec![(x - cap, hi), (x + cap, hi)],
-                ]
-                .map(|line| PathElement::new(line, colour.stroke_width(2)))
-            }))
-            .map_err(plot_error)?;
-        chart
-            .draw_series(
-                points
-                    .iter()
-                    .map(|&(x, [_, mid, _])| Circle::new((x, mid), 5, colour.filled())),
+    let pairs: Vec<(f64, [[f64; 3]; 2])> = rows
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let (d, m) = (r.data_interval, r.simulated_interval);
+            (
+                i as f64,
+                [[d[0], r.data_share, d[1]], [m[0], r.simulated_share, m[1]]],
             )
-            .map_err(plot_error)?
-            .label(name)
-            .legend(move |(x, y)| Circle::new((x + 10, y), 5, colour.filled()));
-    }
+        })
+        .collect();
+    // Caps a tenth of a category wide.
+    draw_share_pairs(&mut chart, &pairs, ["real dice", "simulated"], offset, 0.05)?;
     chart
         .configure_series_labels()
         .label_font(("sans-serif", 18))
@@ -255,6 +227,41 @@ fn draw_deviance(
     Ok(())
 }
 
+/// The data's and the simulation's share at each `x` (each as low end, share, high end),
+/// side by side `offset` apart, as dots with their 95 % intervals (caps `cap` wide), named in
+/// the legend by `names`.
+fn draw_share_pairs(
+    chart: &mut ChartContext<'_, BitMapBackend<'_>, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    pairs: &[(f64, [[f64; 3]; 2])],
+    names: [&str; 2],
+    offset: f64,
+    cap: f64,
+) -> Result<(), Error> {
+    for (k, (colour, side)) in [(DATA, -offset), (SIMULATED, offset)].into_iter().enumerate() {
+        let points: Vec<(f64, [f64; 3])> = pairs.iter().map(|&(x, both)| (x + side, both[k])).collect();
+        chart
+            .draw_series(points.iter().flat_map(|&(x, [lo, _, hi])| {
+                [
+                    vec![(x, lo), (x, hi)],
+                    vec![(x - cap, lo), (x + cap, lo)],
+                    vec![(x - cap, hi), (x + cap, hi)],
+                ]
+                .map(|line| PathElement::new(line, colour.stroke_width(2)))
+            }))
+            .map_err(plot_error)?;
+        chart
+            .draw_series(
+                points
+                    .iter()
+                    .map(|&(x, [_, mid, _])| Circle::new((x, mid), 5, colour.filled())),
+            )
+            .map_err(plot_error)?
+            .label(names[k])
+            .legend(move |(x, y)| Circle::new((x + 10, y), 5, colour.filled()));
+    }
+    Ok(())
+}
+
 /// Budden's comparison as the bytes of a PNG file: the shares by ratio on the left, the
 /// fit's deviance on the right.
 pub(crate) fn budden_png(comparison: &BuddenComparison, record: &Record) -> Result<Vec<u8>, Error> {
@@ -316,47 +323,18 @@ fn draw_budden_shares(
         .map_err(plot_error)?;
     // The two series a little apart so their intervals do not hide each other.
     let offset = 0.012;
-    for (colour, side, name) in [(DATA, -offset, "Budden"), (SIMULATED, offset, "simulated")] {
-        let points: Vec<(f64, [f64; 3])> = rows
-            .iter()
-            .map(|r| {
-                let s = &r.shares;
-                let x = r.ratio + side;
-                if colour == DATA {
-                    (x, [s.data_interval[0], s.data_share, s.data_interval[1]])
-                } else {
-                    (
-                        x,
-                        [
-                            s.simulated_interval[0],
-                            s.simulated_share,
-                            s.simulated_interval[1],
-                        ],
-                    )
-                }
-            })
-            .collect();
-        let cap = 0.01;
-        chart
-            .draw_series(points.iter().flat_map(|&(x, [lo, _, hi])| {
-                [
-                    vec![(x, lo), (x, hi)],
-                    vec![(x - cap, lo), (x + cap, lo)],
-                    vec![(x - cap, hi), (x + cap, hi)],
-                ]
-                .map(|line| PathElement::new(line, colour.stroke_width(2)))
-            }))
-            .map_err(plot_error)?;
-        chart
-            .draw_series(
-                points
-                    .iter()
-                    .map(|&(x, [_, mid, _])| Circle::new((x, mid), 5, colour.filled())),
+    let pairs: Vec<(f64, [[f64; 3]; 2])> = rows
+        .iter()
+        .map(|r| {
+            let s = &r.shares;
+            let (d, m) = (s.data_interval, s.simulated_interval);
+            (
+                r.ratio,
+                [[d[0], s.data_share, d[1]], [m[0], s.simulated_share, m[1]]],
             )
-            .map_err(plot_error)?
-            .label(name)
-            .legend(move |(x, y)| Circle::new((x + 10, y), 5, colour.filled()));
-    }
+        })
+        .collect();
+    draw_share_pairs(&mut chart, &pairs, ["Budden", "simulated"], offset, 0.01)?;
     // The calibration ratios ringed: the fit saw them, the others are predictions.
     chart
         .draw_series(

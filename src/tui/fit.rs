@@ -4,6 +4,7 @@
 //! end and marked `…`. A word is never cut mid-way at an edge, and a panel's text stops one
 //! column short of its right edge, so a class never reads a cut word as a whole one.
 
+use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 
 /// Columns a panel's text leaves free at its right edge.
@@ -129,6 +130,80 @@ pub(crate) fn wrap(text: &str, width: usize) -> Vec<String> {
     lines.into_iter().map(|l| cut_text(&l, limit)).collect()
 }
 
+/// `lines` wrapped to fit `width` with a hanging indent: a line too wide breaks after its
+/// last ` · ` that fits (the parts of a line are its natural units), else at its last space,
+/// and goes on indented two columns past its own indent, so a wrapped value reads as part of
+/// its line, not as a line of its own. Styles are kept character by character.
+pub(crate) fn hanging(lines: Vec<Line<'static>>, width: usize) -> Vec<Line<'static>> {
+    let limit = room(width).max(1);
+    let mut out = Vec::new();
+    for line in lines {
+        let cells: Vec<(char, Style)> = line
+            .spans
+            .iter()
+            .flat_map(|s| s.content.chars().map(move |c| (c, line.style.patch(s.style))))
+            .collect();
+        if cells.len() <= limit {
+            out.push(line);
+            continue;
+        }
+        let indent = cells.iter().take_while(|(c, _)| *c == ' ').count();
+        let lead = " ".repeat((indent + 2).min(limit / 2));
+        let mut rest: &[(char, Style)] = &cells;
+        let mut first = true;
+        while !rest.is_empty() {
+            let prefix = if first { 0 } else { lead.chars().count() };
+            let room_here = limit.saturating_sub(prefix).max(1);
+            let (piece, next) = if rest.len() <= room_here {
+                (rest, &rest[rest.len()..])
+            } else {
+                let at = |i: usize| rest[i].0;
+                let separator = (1..room_here.saturating_sub(1))
+                    .rev()
+                    .find(|&i| at(i) == '·' && at(i - 1) == ' ' && at(i + 1) == ' ');
+                let space = (1..=room_here).rev().find(|&i| at(i) == ' ');
+                match (separator, space) {
+                    // The line ends before the separator; the next part starts after it.
+                    (Some(i), _) if i > indent + 1 => (&rest[..i - 1], &rest[i + 2..]),
+                    (_, Some(i)) if i > indent => (&rest[..i], &rest[i + 1..]),
+                    // No space to break at: the word is cut and marked (below).
+                    _ => (&rest[..room_here - 1], &rest[rest.len()..]),
+                }
+            };
+            let mut spans = Vec::new();
+            if !first {
+                spans.push(Span::raw(lead.clone()));
+            }
+            spans.extend(styled_runs(piece));
+            if piece.len() < rest.len() && next.is_empty() {
+                spans.push(Span::raw("…"));
+            }
+            out.push(Line::from(spans));
+            rest = next;
+            first = false;
+        }
+    }
+    out
+}
+
+/// Consecutive characters of one style as one span.
+fn styled_runs(cells: &[(char, Style)]) -> Vec<Span<'static>> {
+    let mut spans: Vec<Span<'static>> = Vec::new();
+    let mut text = String::new();
+    let mut style = cells.first().map_or(Style::new(), |c| c.1);
+    for &(c, s) in cells {
+        if s != style && !text.is_empty() {
+            spans.push(Span::styled(std::mem::take(&mut text), style));
+        }
+        style = s;
+        text.push(c);
+    }
+    if !text.is_empty() {
+        spans.push(Span::styled(text, style));
+    }
+    spans
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -184,5 +259,33 @@ mod tests {
             vec!["0.1: corner in the", "table; ≥ 1.529 cm", "keeps it above"]
         );
         assert!(lines.iter().all(|l| l.chars().count() <= 20));
+    }
+
+    #[test]
+    fn a_long_line_hangs_after_its_last_separator_that_fits() {
+        let lines = vec![
+            Line::raw("   spin ωx 1.091 · spin ωy 1.224"),
+            Line::raw("   yaw pitch roll (20, 25, -15)°"),
+            Line::raw(" short"),
+        ];
+        let out: Vec<String> = hanging(lines, 30).iter().map(plain).collect();
+        assert_eq!(
+            out,
+            [
+                "   spin ωx 1.091",
+                "     spin ωy 1.224",
+                "   yaw pitch roll (20, 25,",
+                "     -15)°",
+                " short",
+            ]
+        );
+        // Every line leaves the gap column free.
+        assert!(out.iter().all(|l| l.chars().count() <= room(30)));
+        // A word longer than the line is cut and marked.
+        let out: Vec<String> = hanging(vec![Line::raw("abcdefghij")], 6)
+            .iter()
+            .map(plain)
+            .collect();
+        assert_eq!(out, ["abcd…"]);
     }
 }

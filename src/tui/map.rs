@@ -298,7 +298,8 @@ fn render_side(app: &App, area: Rect, frame: &mut Frame) {
     lines.extend(legend_lines(app));
     let body = super::dialogs::text_area(block.inner(area));
     frame.render_widget(block, area);
-    frame.render_widget(Paragraph::new(lines).wrap(Wrap { trim: false }), body);
+    let lines = super::fit::hanging(lines, body.width as usize);
+    frame.render_widget(Paragraph::new(lines), body);
 }
 
 fn cursor_lines(app: &App) -> Vec<Line<'static>> {

@@ -76,6 +76,11 @@ pub(crate) fn time_axis(app: &App, most: usize) -> (f64, Vec<String>) {
         .last()
         .map_or(0.0, |s| s.time_s)
         .max(app.roll.live.time_s);
+    time_axis_to(t_end, most)
+}
+
+/// [`time_axis`] for a roll computed to `t_end` seconds (the twin's plot reads its own).
+pub(crate) fn time_axis_to(t_end: f64, most: usize) -> (f64, Vec<String>) {
     let (hi, mut labels) = time_ticks(t_end, most);
     // The last label ends in a space: a panel's gap column (`fit`), never text.
     if let Some(last) = labels.last_mut() {
@@ -84,7 +89,7 @@ pub(crate) fn time_axis(app: &App, most: usize) -> (f64, Vec<String>) {
     (hi, labels)
 }
 
-/// [`time_axis`] for a roll computed to `t_end` seconds.
+/// The axis end and labels of [`time_axis_to`], without the gap column.
 fn time_ticks(t_end: f64, most: usize) -> (f64, Vec<String>) {
     // Before the roll has moved, a tenth of a second, not a zero-width axis. The end is
     // chosen on a grid finer than the labels' so that the curve fills the plot: labels

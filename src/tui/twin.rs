@@ -4,6 +4,7 @@
 use super::app::{App, Editor, Overlay, Typed, VALUE_CHARS};
 use super::format::fmt_num;
 use super::keys::{Action, Input};
+use super::plot::{time_axis_to, time_labels_for};
 use crate::experiment::twin::EPSILON;
 use crate::physics::Status;
 use crate::worker::{Command, Phase};
@@ -136,7 +137,7 @@ pub(crate) fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
         .last()
         .map_or(0.0, |s| s.time_s)
         .max(app.roll.live.time_s);
-    let x_hi = nice_seconds(t_end);
+    let (x_hi, x_labels) = time_axis_to(t_end, time_labels_for(body.width));
     let marker = app.drawing.line_marker();
     let datasets = vec![
         Dataset::default()
@@ -151,11 +152,7 @@ pub(crate) fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
             .data(&angle),
     ];
     let chart = Chart::new(datasets)
-        .x_axis(
-            Axis::default()
-                .bounds([0.0, x_hi])
-                .labels(["0 s".to_string(), format!("{} s ", fmt_num(x_hi))]),
-        )
+        .x_axis(Axis::default().bounds([0.0, x_hi]).labels(x_labels))
         .y_axis(
             Axis::default()
                 .bounds([FLOOR, 1.0])
@@ -167,14 +164,6 @@ pub(crate) fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
 }
 
 /// The plot's time axis end: whole seconds past one, tenths below.
-fn nice_seconds(t: f64) -> f64 {
-    if t > 1.0 {
-        t.ceil()
-    } else {
-        ((t * 10.0).ceil() / 10.0).max(0.1)
-    }
-}
-
 fn face_of(phase: &Phase) -> Option<u8> {
     match phase {
         Phase::Ended(o) if o.status == Status::Settled => o.face,
