@@ -488,7 +488,21 @@ impl App {
     /// The selected parameter a step up or down (`coarse`: a big step).
     pub(crate) fn nudge(&mut self, out: &mut Vec<Command>, steps: i32, coarse: bool) {
         let p = self.selected_param();
+        let before = (self.setup.params, self.setup.initial);
+        // In differ mode a value die B already differs by steps on from B's value (the
+        // change then goes to B and A's value comes back: see `versus::divert`).
+        let b = self
+            .twin
+            .differ
+            .then(|| self.twin.differs_by.iter().find(|(k, _)| *k == p.scan_key()));
+        if let Some(Some(&(_, value))) = b {
+            let _ = p.set(&mut self.setup.params, &mut self.setup.initial, value);
+        }
+        let sent = out.len();
         self.setup.nudge(out, p, steps, coarse);
+        if out.len() == sent {
+            (self.setup.params, self.setup.initial) = before;
+        }
     }
 
     /// `B`: the next batch size, or the editor to type one.

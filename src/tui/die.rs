@@ -384,7 +384,7 @@ fn ground(pic: &mut Picture, app: &App, view: &View, half: f64) {
     }
 }
 
-/// The chaos twin's die as a ghost: its own visible edges (a rounded die's outline and flat
+/// The twin's die (chaos or parameter twin) as a ghost: its own visible edges (a rounded die's outline and flat
 /// faces), hidden where the die covers them.
 fn ghost(pic: &mut Picture, app: &App, view: &View, twin: &DieState) {
     let colour = app.theme.ghost();
@@ -411,7 +411,14 @@ fn ghost(pic: &mut Picture, app: &App, view: &View, twin: &DieState) {
             );
         }
     }
-    pic.label(view.flat(&twin.centre), "twin", Style::new().fg(colour), true);
+    let parameter_twin = app
+        .roll
+        .live
+        .twin
+        .as_ref()
+        .is_some_and(|t| !t.differs_by.is_empty());
+    let name = if parameter_twin { "B" } else { "twin" };
+    pic.label(view.flat(&twin.centre), name, Style::new().fg(colour), true);
 }
 
 /// ω, L and v from the centre, F from each touching corner, each with its symbol at the tip.
@@ -629,7 +636,21 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
         title.push((2, vec![Span::raw(format!("· face decided {t_s:.3} s "))]));
     }
     title.push((3, vec![Span::raw(format!("· lowest corner {lowest:.2} cm "))]));
-    if let Some(twin) = &app.roll.live.twin {
+    let room = area.width.saturating_sub(2) as usize;
+    if let Some((outcomes, differs)) = super::versus::outcomes_text(app, false) {
+        // The parameter twin: both outcomes (by the faces alone when short of room) and
+        // what B differs by, in place of one face.
+        let differs = format!("· {differs} ");
+        let full = format!(" dice · {outcomes} {differs}");
+        let outcomes = if full.chars().count() <= super::fit::room(room) {
+            outcomes
+        } else {
+            super::versus::outcomes_text(app, true).map_or(outcomes, |(short, _)| short)
+        };
+        title[0] = (0, vec![Span::styled(" dice ", t.heading())]);
+        title[1] = (0, vec![Span::raw(format!("· {outcomes} "))]);
+        title.push((1, vec![Span::styled(differs, Style::new().fg(t.ghost()))]));
+    } else if let Some(twin) = &app.roll.live.twin {
         title.push((
             1,
             vec![Span::styled(
@@ -638,7 +659,7 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
             )],
         ));
     }
-    let block = Block::bordered().title(super::fit::line(title, area.width.saturating_sub(2) as usize));
+    let block = Block::bordered().title(super::fit::line(title, room));
     let mut body = block.inner(area);
     frame.render_widget(block, area);
     if body.width < 2 || body.height < 2 {

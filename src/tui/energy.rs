@@ -4,8 +4,8 @@
 use super::app::{App, Drawing};
 use super::format::fmt_num;
 use super::plot::{
-    edit_datasets, edit_marks, marker_dataset, previous_dataset, render_phase, render_quantity, time_axis,
-    time_labels_for, time_marker,
+    edit_datasets, edit_marks, faded_run, marker_dataset, previous_dataset, render_phase, render_quantity,
+    time_axis, time_labels_for, time_marker,
 };
 use crate::worker::EnergySample;
 use ratatui::Frame;
@@ -62,7 +62,8 @@ type Term = fn(&EnergySample) -> f64;
 /// erg: the floor of the log plot (energies below, including negative gravity, sit on it).
 const LOG_FLOOR: f64 = 1.0;
 
-/// The energy plot's legend: each term's line sample and name, then the stop threshold's.
+/// The energy plot's legend: each term's line sample and name (and die B's total), then
+/// the stop threshold's.
 fn energy_legend(app: &App) -> Vec<Span<'static>> {
     let colours = app.theme.energy_series();
     let mut items: Vec<Span<'static>> = LEGEND
@@ -74,6 +75,14 @@ fn energy_legend(app: &App) -> Vec<Span<'static>> {
             Span::styled(format!("{sample}{name}"), Style::new().fg(colour))
         })
         .collect();
+    // Die B's total, faded, while a parameter twin rolls (`.` marks it without colour).
+    if super::plot::parameter_twin(app) {
+        let sample = if app.theme.colour { '━' } else { '.' };
+        items.push(Span::styled(
+            format!("{sample}B total"),
+            Style::new().fg(app.theme.ghost()),
+        ));
+    }
     let dots = if app.drawing == Drawing::Ascii {
         "--"
     } else {
@@ -192,7 +201,7 @@ fn render_energy_terms(app: &App, area: Rect, frame: &mut Frame) {
         |s| s.energy.gravitational,
         |s| s.energy.elastic,
     ];
-    let previous = thinned(&app.roll.previous, buckets, |s| y_of(s.total));
+    let previous = thinned(faded_run(app), buckets, |s| y_of(s.total));
     let series: Vec<Vec<(f64, f64)>> = terms
         .iter()
         .map(|f| thinned(&app.roll.history, buckets, |s| y_of(f(s))))
@@ -244,7 +253,7 @@ fn render_energy_terms(app: &App, area: Rect, frame: &mut Frame) {
     // Below the legend's rows, as the curves are.
     let marker = time_marker(app, y_lo, y_hi - (y_hi - y_lo) * covered / rows);
     let edits = edit_marks(app, y_lo, y_hi - (y_hi - y_lo) * covered / rows);
-    // The previous run's total, faded, under everything.
+    // The previous run's total (or die B's), faded, under everything.
     let mut datasets: Vec<Dataset> = vec![previous_dataset(app, &previous)];
     datasets.extend(edit_datasets(app, &edits));
     datasets.push(marker_dataset(app, &marker));

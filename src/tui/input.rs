@@ -19,6 +19,8 @@ use ratatui::layout::{Position, Rect};
 /// commands, then any file work.
 pub fn update(app: &mut App, msg: Msg) -> Vec<Effect> {
     let mut out = Vec::new();
+    // In differ mode the value changes a key or the mouse makes go to die B.
+    let before = (app.setup.params, app.setup.initial);
     match msg {
         Msg::Worker(s) => app.absorb(*s),
         Msg::Map(m) => map::absorb(app, *m),
@@ -31,6 +33,7 @@ pub fn update(app: &mut App, msg: Msg) -> Vec<Effect> {
         Msg::Input(_) => {}
         Msg::Signal(_) => app.quit(&mut out),
     }
+    super::versus::divert(app, before, &mut out);
     if std::mem::take(&mut app.map.open_asked) {
         map::open(app, &mut out);
     }
@@ -167,6 +170,7 @@ fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
                 ));
             }
         }
+        Action::Differ => super::versus::on_key(app, out),
         Action::Theme => {
             app.theme = app.theme.next();
             app.notice = Some(format!(

@@ -94,6 +94,7 @@ pub(crate) enum Action {
     TwinEpsilonDown,
     TwinEpsilonUp,
     TwinEpsilonType,
+    Differ,
     Theme,
     Drawing,
     OrbitLeft,
@@ -435,6 +436,15 @@ pub(crate) const BINDINGS: &[Binding] = &[
         "twin: ε ×10 (up to 0.1)"
     ),
     row!(Die, [K::Char('E')], "E", A::TwinEpsilonType, None, "twin: type ε"),
+    row!(
+        Die,
+        [K::Char('D')],
+        "D",
+        A::Differ,
+        hint("D", "differ", 4),
+        "parameter twin (differ): the next value changes go to a second die B only, rolled from the \
+         same start beside A; D again ends it"
+    ),
     row!(
         Die,
         [K::Char('t')],

@@ -36,6 +36,7 @@ mod tty;
 mod twin;
 mod twin_view;
 mod vectors;
+mod versus;
 
 pub use app::{App, Effect, Msg};
 pub use input::update;
@@ -67,6 +68,9 @@ mod contrast_tests;
 
 #[cfg(test)]
 mod lesson_tests;
+
+#[cfg(test)]
+mod versus_tests;
 
 #[cfg(test)]
 pub(crate) mod screen_tests;

@@ -184,11 +184,30 @@ pub(crate) fn edit_datasets<'a>(app: &App, marks: &'a [[(f64, f64); 2]]) -> Vec<
         .collect()
 }
 
-/// The dataset of the previous run's curve, faded (the chaos twin's ghost grey; `.`
-/// without colour).
+/// Whether a parameter twin rolls: its die B's curve then takes the faded curve's place.
+pub(crate) fn parameter_twin(app: &App) -> bool {
+    app.roll
+        .live
+        .twin
+        .as_ref()
+        .is_some_and(|t| !t.differs_by.is_empty())
+}
+
+/// The samples drawn faded under the roll's: die B's while a parameter twin rolls (the
+/// same start in the other setup, side by side in time), else the previous run's.
+pub(crate) fn faded_run(app: &App) -> &[EnergySample] {
+    if parameter_twin(app) {
+        &app.twin.samples
+    } else {
+        &app.roll.previous
+    }
+}
+
+/// The dataset of the faded curve (the previous run's, or die B's): the twin's ghost
+/// grey; `.` without colour.
 pub(crate) fn previous_dataset<'a>(app: &App, data: &'a [(f64, f64)]) -> Dataset<'a> {
     Dataset::default()
-        .name("previous")
+        .name(if parameter_twin(app) { "B" } else { "previous" })
         .marker(if app.theme.colour {
             app.drawing.line_marker()
         } else {
@@ -232,7 +251,13 @@ fn value_axis(data: &[(f64, f64)], most: usize, width: usize) -> ([f64; 2], Vec<
 
 /// The panel's title: the plot's name and unit, and the keys that change it.
 fn title<'a>(app: &App, words: String) -> Line<'a> {
-    Line::from(vec![Span::styled(format!(" {words} "), app.theme.heading())])
+    let mut spans = vec![Span::styled(format!(" {words} "), app.theme.heading())];
+    // Which curve is which, while die B's is drawn beside A's.
+    if parameter_twin(app) {
+        spans.push(Span::styled("━A ", Style::new().fg(app.theme.energy_series()[0])));
+        spans.push(Span::styled("━B ", Style::new().fg(app.theme.ghost())));
+    }
+    Line::from(spans)
 }
 
 /// Characters the y labels take.
@@ -257,7 +282,7 @@ pub(crate) fn render_quantity(app: &App, area: Rect, frame: &mut Frame, i: usize
         return;
     }
     let data = thinned(&app.roll.history, body.width as usize * 2, |s| s.quantities[i]);
-    let previous = thinned(&app.roll.previous, body.width as usize * 2, |s| s.quantities[i]);
+    let previous = thinned(faded_run(app), body.width as usize * 2, |s| s.quantities[i]);
     let rows = body.height.saturating_sub(2).max(1) as usize;
     let both: Vec<(f64, f64)> = data.iter().chain(&previous).copied().collect();
     let ([y_lo, y_hi], labels) = value_axis(&both, rows.div_ceil(2).clamp(2, 5), LABEL_WIDTH);
@@ -326,7 +351,7 @@ pub(crate) fn render_phase(app: &App, area: Rect, frame: &mut Frame, i: usize, j
     };
     let history = &app.roll.history;
     let data = curve_of(history);
-    let previous = curve_of(&app.roll.previous);
+    let previous = curve_of(faded_run(app));
     let both: Vec<(f64, f64)> = data.iter().chain(&previous).copied().collect();
     let rows = body.height.saturating_sub(2).max(1) as usize;
     let ([y_lo, y_hi], y_labels) = value_axis(&both, rows.div_ceil(2).clamp(2, 5), LABEL_WIDTH);

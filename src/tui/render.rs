@@ -34,11 +34,17 @@ fn render_die_screen(app: &App, frame: &mut Frame) {
     render_params(app, areas.params, frame);
     render_die(app, areas.die, frame);
     super::timeline::render(app, areas.timeline, frame);
-    // While a twin rolls, its predictability curve takes the outcome table's place and
-    // the separation of the two dice the energy plot's.
-    if app.roll.live.twin.is_some() {
-        super::curve::render_curve(app, areas.outcomes, frame);
-        super::twin::render_separation(app, areas.energy, frame);
+    // While a chaos twin rolls, its predictability curve takes the outcome table's place
+    // and the separation of the two dice the plot's. A parameter twin's table of shared
+    // throws takes the outcome table's place; the plot stays, with die B's curve in it.
+    if let Some(twin) = &app.roll.live.twin {
+        if twin.differs_by.is_empty() {
+            super::curve::render_curve(app, areas.outcomes, frame);
+            super::twin::render_separation(app, areas.energy, frame);
+        } else {
+            super::versus::render_table(app, areas.outcomes, frame);
+            render_energy(app, areas.energy, frame);
+        }
     } else {
         render_outcomes(app, areas.outcomes, frame);
         render_energy(app, areas.energy, frame);

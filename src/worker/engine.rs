@@ -8,12 +8,13 @@ use super::export::{ExportJob, Exporting, Written};
 use super::job::Order;
 use super::live::LiveRoll;
 use super::map::MapJob;
-use super::twin::Twin;
+use super::twin::{Difference, Twin};
 use super::{BatchProgress, Command, ExportStatus, MapExport, Notice, OutcomeTable, RollKind, Snapshot};
 use crate::experiment::RollRecord;
 use crate::experiment::animation::render::Camera;
 use crate::experiment::animation::{AnimationProgress, AnimationSpec};
 use crate::experiment::trace::{ExportProgress, human_bytes};
+use crate::experiment::versus::VersusTable;
 use crate::output::safe_file_stem;
 use crate::physics::{InitialCondition, ParamError, Params};
 use crate::preset::Preset;
@@ -25,6 +26,19 @@ pub struct BatchRequest {
     pub(crate) id: u64,
     pub(crate) params: Params,
     pub(crate) rolls: Vec<(u64, InitialCondition)>,
+    /// While a parameter twin rolls: its setup B, each throw rolled in both (the records
+    /// then come in pairs, A's then B's).
+    pub(crate) versus: Option<Params>,
+}
+
+/// The parameter twin's shared throws: A's ending against B's, for one pair of setups.
+#[derive(Debug, Clone)]
+struct Versus {
+    a: Params,
+    b: Params,
+    table: VersusTable,
+    /// The batch filling it, if one runs.
+    batch: Option<u64>,
 }
 
 /// Frames per second and pixels of the explorer's animations: a slide's size, as
@@ -54,6 +68,8 @@ pub struct Engine {
     map: Order<(), MapJob>,
     pending: Pending,
     commands_handled: u64,
+    /// The parameter twin's table of shared throws (batches run while it rolls).
+    versus: Option<Versus>,
     /// The running export rolls again from t = 0 a roll that changed a value mid-roll on
     /// screen: its files are not what was shown, and the notice says so.
     export_rerolled: bool,
@@ -64,7 +80,7 @@ fn twin_of(preset: &Preset) -> Option<Twin> {
     preset
         .view
         .twin
-        .and_then(|epsilon| Twin::new(&preset.params(), &preset.initial, epsilon).ok())
+        .and_then(|epsilon| Twin::new(&preset.params(), &preset.initial, Difference::Start { epsilon }).ok())
 }
 
 impl Engine {
@@ -94,6 +110,7 @@ impl Engine {
             },
             commands_handled: 0,
             export_rerolled: false,
+            versus: None,
         })
     }
 
@@ -107,13 +124,17 @@ impl Engine {
     }
 
     /// What the twin screen's predictability curve is of: the random throws `R` draws,
-    /// rolled with the current values; `None` while no twin rolls.
+    /// rolled with the current values; `None` while no chaos twin rolls.
     pub(crate) fn curve_setup(&self) -> Option<CurveSetup> {
-        self.live.twin.as_ref().map(|_| CurveSetup {
-            params: self.live.params,
-            ranges: self.preset.random,
-            base: self.preset.initial,
-        })
+        self.live
+            .twin
+            .as_ref()
+            .and_then(Twin::epsilon)
+            .map(|_| CurveSetup {
+                params: self.live.params,
+                ranges: self.preset.random,
+                base: self.preset.initial,
+            })
     }
 
     #[cfg(test)]
@@ -179,6 +200,7 @@ impl Engine {
                 .map(|b| Notice::Said(format!("batch cancelled after {} of {} rolls", b.done, b.total))),
             Command::ClearTable => {
                 self.table = OutcomeTable::default();
+                self.versus = None;
                 self.pending.table_changed = true;
                 None
             }
@@ -207,16 +229,12 @@ impl Engine {
                 self.live.set_twin(None);
                 None
             }
-            Command::SetTwin(Some(epsilon)) => {
-                match Twin::new(&self.live.params, &self.live.initial, epsilon) {
-                    Ok(twin) => {
-                        // Both dice start again from t = 0, side by side.
-                        self.live.set_twin(Some(twin));
-                        None
-                    }
-                    Err(e) => Some(Notice::Said(e.to_string())),
-                }
+            Command::SetTwin(Some(epsilon)) => self.set_twin(Difference::Start { epsilon }),
+            Command::SetParamTwin(values) if values.is_empty() => {
+                self.live.set_twin(None);
+                None
             }
+            Command::SetParamTwin(values) => self.set_twin(Difference::Setup { values }),
             Command::LoadPreset(preset) => Some(self.load_preset(*preset)),
             Command::Export { dir, log_scale } => self.export_roll(dir, log_scale),
             Command::ExportMap(map) => self.export_map(*map),
@@ -262,6 +280,11 @@ impl Engine {
             .map(|i| (i, r.draw(&self.preset.initial, r.seed, i)))
             .collect();
         let params = self.live.params;
+        let versus = self
+            .live
+            .twin
+            .as_ref()
+            .and_then(|t| t.setup_b(&params, &self.live.initial));
         self.batch.place(
             BatchProgress {
                 done: 0,
@@ -271,8 +294,23 @@ impl Engine {
                 id,
                 params,
                 rolls: list,
+                versus,
             },
         );
+        if let Some(b) = versus {
+            // Another pair of setups starts a table of its own.
+            if self.versus.as_ref().is_none_or(|v| v.a != params || v.b != b) {
+                self.versus = Some(Versus {
+                    a: params,
+                    b,
+                    table: VersusTable::default(),
+                    batch: None,
+                });
+            }
+            if let Some(v) = &mut self.versus {
+                v.batch = self.batch.id();
+            }
+        }
         None
     }
 
@@ -285,12 +323,15 @@ impl Engine {
         self.batch.cancel();
         self.next_random = 0;
         self.table = OutcomeTable::default();
+        self.versus = None;
         self.pending.table_changed = true;
         // A twin that rolls stays on at its ε unless the preset asks for its own: a lesson
         // turns it on, then opens presets to compare them with it.
-        let kept = self.live.twin.as_ref().map(|t| t.epsilon);
-        let twin = twin_of(&preset)
-            .or_else(|| kept.and_then(|epsilon| Twin::new(&preset.params(), &preset.initial, epsilon).ok()));
+        // A parameter twin stays on too, with B's values on the new preset's setup.
+        let kept = self.live.twin.as_ref().map(|t| t.difference.clone());
+        let twin = twin_of(&preset).or_else(|| {
+            kept.and_then(|difference| Twin::new(&preset.params(), &preset.initial, difference).ok())
+        });
         self.live.load(
             preset.params(),
             preset.initial,
@@ -382,6 +423,18 @@ impl Engine {
         None
     }
 
+    /// A twin differing by `difference` beside the die; both start again from t = 0, side
+    /// by side. A difference the twin refuses changes nothing and says why.
+    fn set_twin(&mut self, difference: Difference) -> Option<Notice> {
+        match Twin::new(&self.live.params, &self.live.initial, difference) {
+            Ok(twin) => {
+                self.live.set_twin(Some(twin));
+                None
+            }
+            Err(e) => Some(Notice::Said(e)),
+        }
+    }
+
     /// Orders the roll on screen written as an animation (see [`Command::ExportAnimation`]):
     /// its setup and twin as they are now, at the playback speed (1× when instant, which
     /// has no pace to film at).
@@ -391,7 +444,7 @@ impl Engine {
         }
         let spec = AnimationSpec {
             speed: self.live.speed.factor().unwrap_or(1.0),
-            twin: self.live.twin.as_ref().map(|t| t.epsilon),
+            twin: self.live.twin.as_ref().and_then(Twin::epsilon),
             camera,
             ..AnimationSpec::new(ANIMATION_FPS, ANIMATION_SIZE)
         };
@@ -556,9 +609,21 @@ impl Engine {
             return;
         }
         let Some(b) = self.batch.state_of(id) else { return };
-        b.done += records.len() as u64;
-        for r in records {
-            self.table.add(*r);
+        match self.versus.as_mut().filter(|v| v.batch == Some(id)) {
+            // Pairs of one throw: A's record enters the outcome table, both the versus table.
+            Some(v) => {
+                b.done += records.len() as u64 / 2;
+                for pair in records.chunks_exact(2) {
+                    self.table.add(pair[0]);
+                    v.table.add(&pair[0], &pair[1]);
+                }
+            }
+            None => {
+                b.done += records.len() as u64;
+                for r in records {
+                    self.table.add(*r);
+                }
+            }
         }
         self.pending.table_changed = true;
     }
@@ -579,12 +644,33 @@ impl Engine {
     /// wants the table filled deterministically).
     #[cfg(test)]
     pub(crate) fn run_batch_here(&mut self) {
+        if let Some(request) = self.take_batch_request() {
+            self.run_request_here(request);
+        }
+    }
+
+    /// Runs a batch taken with [`Engine::take_batch_request`] on this thread to its end.
+    #[cfg(test)]
+    pub(crate) fn run_request_here(&mut self, request: BatchRequest) {
         use crate::experiment::{Rolls, run_batch};
-        let Some(request) = self.take_batch_request() else {
-            return;
-        };
         let rolls = Rolls::Given(&request.rolls);
         let never = std::sync::atomic::AtomicBool::new(false);
+        if let Some(b) = &request.versus {
+            let options = crate::experiment::RunOptions::default();
+            let result = crate::experiment::versus::stream_versus(
+                &request.params,
+                b,
+                &rolls,
+                &options,
+                &never,
+                &mut |chunk| {
+                    self.add_batch_records(request.id, chunk);
+                    Ok(())
+                },
+            );
+            self.finish_batch(request.id, result.map(|_| ()).map_err(|e| e.to_string()));
+            return;
+        }
         let mut seen = 0;
         let result = run_batch(&request.params, &rolls, 0, &never, &mut |records| {
             self.add_batch_records(request.id, &records[seen..]);
@@ -635,6 +721,7 @@ impl Engine {
             timeline: live.timeline_snapshot(),
             batch: self.batch.state().copied(),
             table: pending.table_changed.then(|| self.table.clone()),
+            versus: self.versus.as_ref().map(|v| v.table),
             notice: pending.notice,
             preset: pending.preset,
             export: self.export.state().copied(),

@@ -39,6 +39,17 @@ pub(crate) fn played_out(sim: &Simulation) -> bool {
     }
 }
 
+/// A simulation's energy and every quantity now (the die's, or a parameter twin's).
+pub(crate) fn energy_sample(sim: &Simulation) -> EnergySample {
+    let energy = sim.energy();
+    EnergySample {
+        time_s: sim.state().time_s,
+        energy,
+        total: energy.total(),
+        quantities: crate::experiment::quantity::read_all(sim),
+    }
+}
+
 /// The roll's energy samples not yet sent, each term's peak over a stride of steps.
 #[derive(Debug, Default)]
 struct EnergyTrace {
@@ -282,7 +293,7 @@ impl LiveRoll {
         self.playing = true;
     }
 
-    /// A twin at `epsilon` (`None`: no twin); with one, both dice start again, playing.
+    /// A twin (`None`: no twin); with one, both dice start again, playing.
     pub(crate) fn set_twin(&mut self, twin: Option<Twin>) {
         let on = twin.is_some();
         self.twin = twin;
@@ -304,9 +315,9 @@ impl LiveRoll {
         if key.spec.acts_mid_roll && self.sim.outcome().is_none() && self.position > 0 {
             let refused = self.sim.set_ground(params.ground).err();
             self.changed_mid_roll = true;
-            // The twin feels the same table, so only ε tells the two apart.
+            // The twin feels the same table (with B's own values, for a parameter twin).
             if let Some(twin) = &mut self.twin {
-                let _ = twin.sim.set_ground(params.ground);
+                twin.set_ground(&params, &initial);
             }
             // From here on the roll is another one: its computed future is forgotten.
             let stepped_back = !self.timeline.at_frontier(self.position);
@@ -335,9 +346,9 @@ impl LiveRoll {
         self.start_face = face_most_nearly_up(&self.sim.state().corner_offsets);
         self.touched = self.sim.in_contact();
         self.trace.restart(self.params.max_steps(), self.sample());
-        if let Some(epsilon) = self.twin.as_ref().map(|t| t.epsilon) {
-            // ε was checked when the twin was made.
-            self.twin = Twin::new(&self.params, &self.initial, epsilon).ok();
+        if let Some(difference) = self.twin.as_ref().map(|t| t.difference.clone()) {
+            // The difference was checked when the twin was made.
+            self.twin = Twin::new(&self.params, &self.initial, difference).ok();
             if let Some(twin) = &mut self.twin {
                 twin.sample(&self.sim);
             }
@@ -389,13 +400,7 @@ impl LiveRoll {
     }
 
     fn sample(&self) -> EnergySample {
-        let energy = self.sim.energy();
-        EnergySample {
-            time_s: self.sim.state().time_s,
-            energy,
-            total: energy.total(),
-            quantities: crate::experiment::quantity::read_all(&self.sim),
-        }
+        energy_sample(&self.sim)
     }
 
     /// One step with its bookkeeping, the die and its twin in lock-step; returns whether

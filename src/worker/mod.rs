@@ -11,6 +11,8 @@ mod job;
 mod live;
 pub(crate) mod map;
 mod pacer;
+#[cfg(test)]
+mod param_twin_tests;
 mod timeline;
 mod twin;
 
@@ -68,6 +70,10 @@ pub enum Command {
     /// Roll a chaos twin beside the die, its start perturbed by this relative ε
     /// ([`crate::experiment::twin::perturbed`]), from t = 0; `None` removes it.
     SetTwin(Option<f64>),
+    /// Roll a parameter twin beside the die: the same start in setup B, the current setup
+    /// with these values (registry keys; not start values, not Δt), from t = 0; an empty
+    /// list removes it. It takes the place of a chaos twin.
+    SetParamTwin(Vec<(&'static ScanKey, f64)>),
     /// Another preset: its setup and its roll, a fresh outcome table.
     LoadPreset(Box<Preset>),
     /// Write the roll on screen, rolled again from t = 0, into this folder: its trace as
@@ -178,13 +184,19 @@ pub(crate) struct SeparationSample {
 /// The chaos twin as drawn: its die, how its roll went, and its drift from the first die.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TwinSnapshot {
+    /// Relative: the chaos twin's start perturbation (0 for a parameter twin).
     pub(crate) epsilon: f64,
+    /// The values setup B differs by (empty for the chaos twin).
+    pub(crate) differs_by: Vec<(&'static ScanKey, f64)>,
     pub(crate) die: DieState,
     pub(crate) phase: Phase,
     pub(crate) separation: Separation,
     /// Samples since the previous snapshot (after clearing, if the snapshot's
     /// `history_reset`).
     pub(crate) history: Vec<SeparationSample>,
+    /// A parameter twin's own samples since the previous snapshot, as `history`'s (empty
+    /// for the chaos twin).
+    pub(crate) samples: Vec<EnergySample>,
 }
 
 /// The die as drawn.
@@ -338,6 +350,9 @@ pub struct Snapshot {
     pub batch: Option<BatchProgress>,
     /// The whole table, when it changed.
     pub table: Option<OutcomeTable>,
+    /// While batches ran with a parameter twin on: A's ending against B's over their
+    /// shared throws (until the table is cleared or another preset loads).
+    pub versus: Option<crate::experiment::versus::VersusTable>,
     /// A one-line message for the user (a refused value, a finished batch).
     pub notice: Option<Notice>,
     /// The chaos twin, stepped in lock-step with the die.
@@ -584,6 +599,23 @@ fn batch_work(
     post: &Post<Vec<RollRecord>>,
 ) -> Result<(), String> {
     let rolls = Rolls::Given(&request.rolls);
+    if let Some(b) = &request.versus {
+        // The parameter twin's throws, each in A and in B: pairs of records, in order.
+        let options = crate::experiment::RunOptions::default();
+        return crate::experiment::versus::stream_versus(
+            &request.params,
+            b,
+            &rolls,
+            &options,
+            cancel,
+            &mut |chunk| {
+                post.post(|fresh: &mut Vec<RollRecord>| fresh.extend_from_slice(chunk));
+                Ok(())
+            },
+        )
+        .map(|_| ())
+        .map_err(|e| e.to_string());
+    }
     let mut seen = 0;
     run_batch(&request.params, &rolls, 0, cancel, &mut |records| {
         post.post(|fresh: &mut Vec<RollRecord>| fresh.extend_from_slice(&records[seen..]));

@@ -1,33 +1,127 @@
-//! The engine's chaos twin: a second simulation from the ε-perturbed start, stepped in
-//! lock-step with the die, and the separation samples the plot shows.
+//! The engine's twin: a second simulation stepped in lock-step with the die, and the
+//! separation samples the plot shows. What tells the two apart is its [`Difference`]: a
+//! start ε away (the chaos twin) or a setup B with some values changed (the parameter twin).
 
-use super::{DieState, Phase, SeparationSample, TwinSnapshot};
+use super::{DieState, EnergySample, Phase, SeparationSample, TwinSnapshot};
+use crate::experiment::ScanKey;
+use crate::experiment::registry::Role;
 use crate::experiment::twin::{EPSILON, perturbed, separation};
-use crate::physics::{InitialCondition, ParamError, Params, Simulation, face_most_nearly_up};
+use crate::physics::{InitialCondition, Params, Simulation, face_most_nearly_up};
+
+/// What the twin differs from the die by.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Difference {
+    /// The chaos twin: its start's height, velocity and spin × (1 + ε), the same setup.
+    Start { epsilon: f64 },
+    /// The parameter twin: the same start, rolled in setup B = the die's setup with these
+    /// values (the last one given for a key wins).
+    Setup { values: Vec<(&'static ScanKey, f64)> },
+}
+
+impl Difference {
+    /// Relative: the chaos twin's ε (0 for the parameter twin, whose start is the die's).
+    pub(crate) fn epsilon(&self) -> f64 {
+        match self {
+            Difference::Start { epsilon } => *epsilon,
+            Difference::Setup { .. } => 0.0,
+        }
+    }
+
+    /// The twin's setup and start for the die's `params` and `initial`; a value out of its
+    /// range, a start value (both roll the same start) or a Δt difference (the two step in
+    /// lock-step, step for step) is refused in words naming the key.
+    pub(crate) fn apply(
+        &self,
+        params: &Params,
+        initial: &InitialCondition,
+    ) -> Result<(Params, InitialCondition), String> {
+        match self {
+            Difference::Start { epsilon } => {
+                EPSILON.check(*epsilon).map_err(|e| e.to_string())?;
+                Ok((*params, perturbed(initial, *epsilon)))
+            }
+            Difference::Setup { values } => {
+                let (mut b, mut start) = (*params, *initial);
+                for (key, value) in values {
+                    if key.spec.role == Role::Initial {
+                        return Err(format!(
+                            "twin B: {} is a start value; both dice roll the same start",
+                            key.key
+                        ));
+                    }
+                    key.set_checked(&mut b, &mut start, *value)
+                        .map_err(|e| format!("twin B: {e}"))?;
+                }
+                if b.integrator.dt.to_bits() != params.integrator.dt.to_bits() {
+                    return Err(format!(
+                        "twin B: Δt {} s differs from A's {} s; the dice step in lock-step, so \
+                         both need the same Δt",
+                        b.integrator.dt, params.integrator.dt
+                    ));
+                }
+                b.validate().map_err(|e| format!("twin B: {e}"))?;
+                Ok((b, start))
+            }
+        }
+    }
+}
 
 pub(crate) struct Twin {
-    pub(crate) epsilon: f64,
+    pub(crate) difference: Difference,
     pub(crate) sim: Simulation,
     start_face: u8,
     /// Samples since the last snapshot.
     history: Vec<SeparationSample>,
+    /// A parameter twin's own energy and quantity samples since the last snapshot, taken
+    /// with the separation (the plot draws B's curve beside A's).
+    samples: Vec<EnergySample>,
     /// Steps since the last sample.
     unsampled: u64,
 }
 
 impl Twin {
-    /// A twin of the roll from `initial`, at t = 0; ε outside its range is refused.
-    pub(crate) fn new(params: &Params, initial: &InitialCondition, epsilon: f64) -> Result<Twin, ParamError> {
-        EPSILON.check(epsilon)?;
-        let sim = Simulation::new_unchecked(params, &perturbed(initial, epsilon));
+    /// A twin of the roll of `params` from `initial`, at t = 0; a difference
+    /// [`Difference::apply`] refuses is refused.
+    pub(crate) fn new(
+        params: &Params,
+        initial: &InitialCondition,
+        difference: Difference,
+    ) -> Result<Twin, String> {
+        let (b, start) = difference.apply(params, initial)?;
+        let sim = Simulation::new_unchecked(&b, &start);
         let start_face = face_most_nearly_up(&sim.state().corner_offsets);
         Ok(Twin {
-            epsilon,
+            difference,
             sim,
             start_face,
             history: Vec::new(),
+            samples: Vec::new(),
             unsampled: 0,
         })
+    }
+
+    /// Setup B for the die's `params` and `initial`, if this is a parameter twin.
+    pub(crate) fn setup_b(&self, params: &Params, initial: &InitialCondition) -> Option<Params> {
+        match self.difference {
+            Difference::Start { .. } => None,
+            Difference::Setup { .. } => self.difference.apply(params, initial).ok().map(|(b, _)| b),
+        }
+    }
+
+    /// The chaos twin at ε, if it is one.
+    pub(crate) fn epsilon(&self) -> Option<f64> {
+        match self.difference {
+            Difference::Start { epsilon } => Some(epsilon),
+            Difference::Setup { .. } => None,
+        }
+    }
+
+    /// The die's table changed mid-roll to `params`' (the die's new setup): the twin feels
+    /// it too, with B's own values kept.
+    pub(crate) fn set_ground(&mut self, params: &Params, initial: &InitialCondition) {
+        if let Ok((b, _)) = self.difference.apply(params, initial) {
+            let _ = self.sim.set_ground(b.ground);
+        }
     }
 
     /// One step, unless its roll is over (it plays on past its stopping rule as the die does).
@@ -57,11 +151,18 @@ impl Twin {
             time_s,
             separation: separation(die, &self.sim),
         });
+        if let Difference::Setup { .. } = self.difference {
+            self.samples.push(super::live::energy_sample(&self.sim));
+        }
     }
 
     pub(crate) fn snapshot(&mut self, die: &Simulation) -> TwinSnapshot {
         TwinSnapshot {
-            epsilon: self.epsilon,
+            epsilon: self.difference.epsilon(),
+            differs_by: match &self.difference {
+                Difference::Start { .. } => Vec::new(),
+                Difference::Setup { values } => values.clone(),
+            },
             die: DieState::of(&self.sim, self.start_face),
             phase: match self.sim.outcome() {
                 Some(o) => Phase::Ended(o),
@@ -69,6 +170,7 @@ impl Twin {
             },
             separation: separation(die, &self.sim),
             history: std::mem::take(&mut self.history),
+            samples: std::mem::take(&mut self.samples),
         }
     }
 }
