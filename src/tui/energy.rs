@@ -5,7 +5,7 @@ use super::app::{App, Drawing};
 use super::format::fmt_num;
 use super::plot::{
     edit_datasets, edit_marks, faded_run, marker_dataset, previous_dataset, render_phase, render_quantity,
-    time_axis, time_labels_for, time_marker,
+    time_axis, time_marker,
 };
 use crate::worker::EnergySample;
 use ratatui::Frame;
@@ -206,7 +206,7 @@ fn render_energy_terms(app: &App, area: Rect, frame: &mut Frame) {
         .iter()
         .map(|f| thinned(&app.roll.history, buckets, |s| y_of(f(s))))
         .collect();
-    let (x_hi, x_labels) = time_axis(app, time_labels_for(body.width));
+    let (x_hi, x_labels) = time_axis(app, body.width);
     let threshold = app.roll.live.stop_threshold;
     let (mut lo, mut hi) = if threshold.is_finite() {
         (y_of(threshold), y_of(threshold))

@@ -66,22 +66,33 @@ impl PlotChoice {
     }
 }
 
-/// The time axis of a plot against time, fitted to the roll computed so far: from 0 to its
-/// end rounded up on a fine grid (1.096 s → 1.2 s), labelled evenly with at most `most`
-/// labels on a round step where one divides the axis (0, 0.4, 0.8, 1.2 s), else its two ends.
-pub(crate) fn time_axis(app: &App, most: usize) -> (f64, Vec<String>) {
+/// The time axis of a plot against time, `width` columns wide, fitted to the roll computed so
+/// far: from 0 to its end rounded up on a fine grid (1.096 s → 1.2 s), labelled evenly on a
+/// round step where one divides the axis (0, 0.4, 0.8, 1.2 s), else at its two ends.
+pub(crate) fn time_axis(app: &App, width: u16) -> (f64, Vec<String>) {
     let t_end = app
         .roll
         .history
         .last()
         .map_or(0.0, |s| s.time_s)
         .max(app.roll.live.time_s);
-    time_axis_to(t_end, most)
+    time_axis_to(t_end, width)
 }
 
 /// [`time_axis`] for a roll computed to `t_end` seconds (the twin's plot reads its own).
-pub(crate) fn time_axis_to(t_end: f64, most: usize) -> (f64, Vec<String>) {
-    let (hi, mut labels) = time_ticks(t_end, most);
+pub(crate) fn time_axis_to(t_end: f64, width: u16) -> (f64, Vec<String>) {
+    let most = time_labels_for(width);
+    // A chart gives its last label a share of the plot (less the value labels, about 7
+    // columns): a longer one loses its first digits (0.35 s read ".35 s"). A coarser end
+    // keeps the label short enough.
+    let plot = (width as usize).saturating_sub(7);
+    let fits =
+        |labels: &[String]| labels.last().map_or(0, |l| l.chars().count()) < plot / labels.len().max(1);
+    let (hi, mut labels) = FINE_TIME_TICKS
+        .iter()
+        .map(|&fine| time_ticks(t_end, most, fine))
+        .find(|(_, labels)| fits(labels))
+        .unwrap_or_else(|| time_ticks(t_end, most, 2));
     // The last label ends in a space: a panel's gap column (`fit`), never text.
     if let Some(last) = labels.last_mut() {
         last.push(' ');
@@ -89,12 +100,13 @@ pub(crate) fn time_axis_to(t_end: f64, most: usize) -> (f64, Vec<String>) {
     (hi, labels)
 }
 
-/// The axis end and labels of [`time_axis_to`], without the gap column.
-fn time_ticks(t_end: f64, most: usize) -> (f64, Vec<String>) {
+/// The axis end and labels of [`time_axis_to`], without the gap column: the end rounded up
+/// to one of about `fine` steps, at most `most` labels.
+fn time_ticks(t_end: f64, most: usize, fine: usize) -> (f64, Vec<String>) {
     // Before the roll has moved, a tenth of a second, not a zero-width axis. The end is
     // chosen on a grid finer than the labels' so that the curve fills the plot: labels
     // alone would round a 1.1 s roll up to a 2 s axis, half of it empty.
-    let (_, hi, _) = nice_ticks(0.0, t_end.max(0.1), FINE_TIME_TICKS);
+    let (_, hi, _) = nice_ticks(0.0, t_end.max(0.1), fine);
     let n = (2..=most.max(2))
         .rev()
         .find(|&n| is_round_step(hi / (n - 1) as f64))
@@ -108,8 +120,9 @@ fn time_ticks(t_end: f64, most: usize) -> (f64, Vec<String>) {
     (hi, labels)
 }
 
-/// How finely the time axis's end is rounded up: to one of about this many steps.
-const FINE_TIME_TICKS: usize = 8;
+/// How finely the time axis's end is rounded up, finest first: to one of about this many
+/// steps, or fewer where the plot is too narrow for the finer end's label.
+const FINE_TIME_TICKS: [usize; 3] = [8, 4, 2];
 
 /// Whether `step` is 2.5 × 10ⁿ or has one significant digit (0.4, 20), a step whose
 /// multiples read as round numbers (0.6, 1.2 do; 0.35, 0.7 do not).
@@ -286,7 +299,7 @@ pub(crate) fn render_quantity(app: &App, area: Rect, frame: &mut Frame, i: usize
     let rows = body.height.saturating_sub(2).max(1) as usize;
     let both: Vec<(f64, f64)> = data.iter().chain(&previous).copied().collect();
     let ([y_lo, y_hi], labels) = value_axis(&both, rows.div_ceil(2).clamp(2, 5), LABEL_WIDTH);
-    let (x_hi, x_labels) = time_axis(app, time_labels_for(body.width));
+    let (x_hi, x_labels) = time_axis(app, body.width);
     let marker = time_marker(app, y_lo, y_hi);
     let edits = edit_marks(app, y_lo, y_hi);
     let colour = app.theme.energy_series()[0];
@@ -401,7 +414,7 @@ mod tests {
     #[test]
     fn the_time_axis_ends_just_past_the_roll_with_round_labels() {
         let axis = |t_end: f64, most: usize| {
-            let (hi, labels) = time_ticks(t_end, most);
+            let (hi, labels) = time_ticks(t_end, most, 8);
             ((hi * 1e6).round() / 1e6, labels.join(" "))
         };
         // The paper's roll played on to rest (1.096 s): a 1.2 s axis, not 2 s.
@@ -411,6 +424,12 @@ mod tests {
         // A half-second roll on a half-second axis; a roll not yet moving on a tenth.
         assert_eq!(axis(0.49, 3), (0.5, "0 0.25 0.5 s".into()));
         assert_eq!(axis(0.0, 2), (0.1, "0 0.1 s".into()));
+        // On a plot too narrow for "0.35 s" (80×24's energy panel), a coarser end: 0.4 s.
+        assert_eq!(time_axis_to(0.302, 20).1, ["0", "0.4 s "]);
+        assert_eq!(
+            time_axis_to(0.302, 60).1.last().map(String::as_str),
+            Some("0.35 s ")
+        );
         assert!(is_round_step(0.25) && is_round_step(20.0) && is_round_step(0.6));
         assert!(!is_round_step(0.35) && !is_round_step(1.2));
     }

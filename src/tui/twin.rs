@@ -4,7 +4,7 @@
 use super::app::{App, Editor, Overlay, Typed, VALUE_CHARS};
 use super::format::fmt_num;
 use super::keys::{Action, Input};
-use super::plot::{time_axis_to, time_labels_for};
+use super::plot::time_axis_to;
 use crate::experiment::twin::EPSILON;
 use crate::physics::Status;
 use crate::worker::{Command, Phase};
@@ -137,7 +137,7 @@ pub(crate) fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
         .last()
         .map_or(0.0, |s| s.time_s)
         .max(app.roll.live.time_s);
-    let (x_hi, x_labels) = time_axis_to(t_end, time_labels_for(body.width));
+    let (x_hi, x_labels) = time_axis_to(t_end, body.width);
     let marker = app.drawing.line_marker();
     let datasets = vec![
         Dataset::default()
