@@ -123,32 +123,18 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     };
     spec.validate().map_err(CliError::experiment(""))?;
     let total = spec.total_rolls();
-    if total > MAX_ROLLS {
-        return Err(CliError::Usage(format!(
-            "{total} rolls: at most {MAX_ROLLS} in one comparison (fewer --throws or --candidates)"
-        )));
-    }
-    let outputs = super::checked_outputs(&args.out, &["csv", "json", "png"], args.force)?;
-
-    let options = RunOptions {
-        jobs,
-        engine: args.engine.engine(),
-    };
-    let comparison = super::run_with_progress(
-        total,
-        "{bar:40} {pos}/{len} rolls, {per_sec}, {eta} left",
-        |stop, done| {
-            run_comparison(
-                &params,
-                &preset.random,
-                &preset.initial,
-                &spec,
-                &options,
-                stop,
-                &mut |p| done(p.done),
-            )
-        },
-    )?;
+    let (outputs, options) = prepare(args, jobs, total)?;
+    let comparison = super::run_with_progress(total, PROGRESS, |stop, done| {
+        run_comparison(
+            &params,
+            &preset.random,
+            &preset.initial,
+            &spec,
+            &options,
+            stop,
+            &mut |p| done(p.done),
+        )
+    })?;
 
     // What defines the comparison, in every file it writes (never threads or time).
     let mut values = preset.as_written();
@@ -363,6 +349,29 @@ fn print_comparison(out: &mut dyn Write, c: &Comparison, preset: &str) -> std::i
     }
 }
 
+/// How a comparison's progress bar reads.
+const PROGRESS: &str = "{bar:40} {pos}/{len} rolls, {per_sec}, {eta} left";
+
+/// Before any roll, as both kinds of comparison check it: the size within bounds and every
+/// `--out` file writable; then how the rolls are run.
+fn prepare(
+    args: &CompareArgs,
+    jobs: usize,
+    total: u64,
+) -> Result<(Vec<crate::output::Output>, RunOptions), CliError> {
+    if total > MAX_ROLLS {
+        return Err(CliError::Usage(format!(
+            "{total} rolls: at most {MAX_ROLLS} in one comparison (fewer --throws or --candidates)"
+        )));
+    }
+    let outputs = super::checked_outputs(&args.out, &["csv", "json", "png"], args.force)?;
+    let options = RunOptions {
+        jobs,
+        engine: args.engine.engine(),
+    };
+    Ok((outputs, options))
+}
+
 /// `dicesim compare budden`: the fit on the calibration ratios, then every ratio predicted.
 fn run_budden(
     args: &CompareArgs,
@@ -380,31 +389,18 @@ fn run_budden(
     };
     spec.validate().map_err(CliError::experiment(""))?;
     let total = spec.total_rolls();
-    if total > MAX_ROLLS {
-        return Err(CliError::Usage(format!(
-            "{total} rolls: at most {MAX_ROLLS} in one comparison (fewer --throws or --candidates)"
-        )));
-    }
-    let outputs = super::checked_outputs(&args.out, &["csv", "json", "png"], args.force)?;
-    let options = RunOptions {
-        jobs,
-        engine: args.engine.engine(),
-    };
-    let comparison = super::run_with_progress(
-        total,
-        "{bar:40} {pos}/{len} rolls, {per_sec}, {eta} left",
-        |stop, done| {
-            roll_budden(
-                &params,
-                &preset.random,
-                &preset.initial,
-                &spec,
-                &options,
-                stop,
-                &mut |p| done(p.done),
-            )
-        },
-    )?;
+    let (outputs, options) = prepare(args, jobs, total)?;
+    let comparison = super::run_with_progress(total, PROGRESS, |stop, done| {
+        roll_budden(
+            &params,
+            &preset.random,
+            &preset.initial,
+            &spec,
+            &options,
+            stop,
+            &mut |p| done(p.done),
+        )
+    })?;
     // The throw as rolled: the preset's ranges from a uniformly random orientation.
     let mut values = preset.as_written();
     values.random = hand_throw(&values.random);
