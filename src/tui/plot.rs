@@ -276,24 +276,36 @@ fn title<'a>(app: &App, words: String) -> Line<'a> {
 /// Characters the y labels take.
 const LABEL_WIDTH: usize = 6;
 
-/// One quantity against time, with the marker of the time on screen.
-pub(crate) fn render_quantity(app: &App, area: Rect, frame: &mut Frame, i: usize) {
-    let q = &QUANTITIES[i];
+/// A plot's frame, titled by the longest of `forms` that fits its border whole (never a
+/// word cut), and the area inside it; `None`, the frame drawn alone, where it is too small
+/// to plot in.
+fn framed(app: &App, area: Rect, frame: &mut Frame, forms: &[String]) -> Option<(Block<'static>, Rect)> {
     let border = area.width.saturating_sub(2) as usize;
-    let words = [
-        format!("{} · {}", q.name, q.unit),
-        format!("{} · {}", q.short, q.unit),
-        q.short.to_string(),
-    ]
-    .into_iter()
-    .find(|w| w.chars().count() + 2 <= border)
-    .unwrap_or_default();
+    let words = forms
+        .iter()
+        .find(|w| w.chars().count() + 2 <= border)
+        .cloned()
+        .unwrap_or_default();
     let block = Block::bordered().title(title(app, words));
     let body = block.inner(area);
     if body.width < 12 || body.height < 4 {
         frame.render_widget(block, area);
-        return;
+        return None;
     }
+    Some((block, body))
+}
+
+/// One quantity against time, with the marker of the time on screen.
+pub(crate) fn render_quantity(app: &App, area: Rect, frame: &mut Frame, i: usize) {
+    let q = &QUANTITIES[i];
+    let forms = [
+        format!("{} · {}", q.name, q.unit),
+        format!("{} · {}", q.short, q.unit),
+        q.short.to_string(),
+    ];
+    let Some((block, body)) = framed(app, area, frame, &forms) else {
+        return;
+    };
     let data = thinned(&app.roll.history, body.width as usize * 2, |s| s.quantities[i]);
     let previous = thinned(faded_run(app), body.width as usize * 2, |s| s.quantities[i]);
     let rows = body.height.saturating_sub(2).max(1) as usize;
@@ -336,23 +348,15 @@ const PHASE_POINTS: usize = 4000;
 /// `QUANTITIES[j]` up against `QUANTITIES[i]` across, the state on screen marked.
 pub(crate) fn render_phase(app: &App, area: Rect, frame: &mut Frame, i: usize, j: usize) {
     let (x, y) = (&QUANTITIES[i], &QUANTITIES[j]);
-    let border = area.width.saturating_sub(2) as usize;
-    // The longest wording that fits the border whole, never a word cut.
-    let words = [
+    let forms = [
         format!("{} ({}) against {} ({})", y.name, y.unit, x.name, x.unit),
         format!("{} ({}) vs {} ({})", y.short, y.unit, x.short, x.unit),
         format!("{} vs {}", y.short, x.short),
         y.short.to_string(),
-    ]
-    .into_iter()
-    .find(|w| w.chars().count() + 2 <= border)
-    .unwrap_or_default();
-    let block = Block::bordered().title(title(app, words));
-    let body = block.inner(area);
-    if body.width < 12 || body.height < 4 {
-        frame.render_widget(block, area);
+    ];
+    let Some((block, body)) = framed(app, area, frame, &forms) else {
         return;
-    }
+    };
     let curve_of = |history: &[EnergySample]| -> Vec<(f64, f64)> {
         let every = history.len().div_ceil(PHASE_POINTS).max(1);
         history
