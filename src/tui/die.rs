@@ -15,9 +15,10 @@ use super::app::{App, Drawing};
 use super::camera::{Camera, EDGES, FACE_CORNERS, Flat, Solid, convex_hull, inside, outside_parts};
 use super::format::fmt_num;
 use super::vectors::{self, Arrow};
+use crate::physics::InitialCondition;
 use crate::physics::stopping::why_it_cannot_settle;
 use crate::physics::{Status, UnstableReason, face_frame, pip_centres};
-use crate::worker::{DieState, Phase};
+use crate::worker::{DieState, Phase, TwinSnapshot};
 use nalgebra::Vector3;
 use ratatui::Frame;
 use ratatui::buffer::Buffer;
@@ -151,6 +152,17 @@ fn solid(app: &App, die: &DieState) -> Solid {
     Solid::new(&app.roll.live.params.die, &die.corners)
 }
 
+/// The twin's body: a parameter twin's is the setup's with B's values, so a rounder or
+/// drilled B is drawn as B is, not as A.
+pub(crate) fn twin_body(app: &App, twin: &TwinSnapshot) -> Solid {
+    let mut params = app.roll.live.params;
+    let mut start = InitialCondition::DEFAULT;
+    for (key, value) in &twin.differs_by {
+        key.set(&mut params, &mut start, *value);
+    }
+    Solid::new(&params.die, &twin.die.corners)
+}
+
 /// Edges that border a seen face: exactly the visible ones of a convex body.
 fn visible_edges(facing: &[f64; 6]) -> impl Iterator<Item = (usize, usize)> + '_ {
     EDGES.into_iter().filter(move |&(a, b)| {
@@ -245,7 +257,7 @@ pub(crate) fn picture(app: &App, view: &View) -> Picture {
         pic.behind(0, view.flat(&lowest), view.flat(&foot(&lowest)), t.shadow());
     }
     if let Some(twin) = &app.roll.live.twin {
-        ghost(&mut pic, app, view, &twin.die);
+        ghost(&mut pic, app, view, twin);
     }
 
     // The die: its seen faces filled, their edges, pips and the frame of the face up.
@@ -386,9 +398,10 @@ fn ground(pic: &mut Picture, app: &App, view: &View, half: f64) {
 
 /// The twin's die (chaos or parameter twin) as a ghost: its own visible edges (a rounded die's outline and flat
 /// faces), hidden where the die covers them.
-fn ghost(pic: &mut Picture, app: &App, view: &View, twin: &DieState) {
+fn ghost(pic: &mut Picture, app: &App, view: &View, snapshot: &TwinSnapshot) {
     let colour = app.theme.ghost();
-    let body = solid(app, twin);
+    let twin = &snapshot.die;
+    let body = twin_body(app, snapshot);
     let facing = seen_faces(&view.camera, &body);
     if body.radius > 0.0 {
         let outline = body.outline(|p| view.flat(p));
@@ -411,12 +424,7 @@ fn ghost(pic: &mut Picture, app: &App, view: &View, twin: &DieState) {
             );
         }
     }
-    let parameter_twin = app
-        .roll
-        .live
-        .twin
-        .as_ref()
-        .is_some_and(|t| !t.differs_by.is_empty());
+    let parameter_twin = !snapshot.differs_by.is_empty();
     let name = if parameter_twin { "B" } else { "twin" };
     pic.label(view.flat(&twin.centre), name, Style::new().fg(colour), true);
 }

@@ -142,3 +142,19 @@ fn the_parameter_twin_screen() {
     assert!(text.contains("━A ━B"), "{text}");
     insta::assert_snapshot!("versus_twin_height_120x36", text);
 }
+
+#[test]
+fn die_b_is_drawn_with_its_own_body() {
+    // B rounded by 0.4 cm while A keeps the paper's sharp cube.
+    let mut s = start();
+    s.key(KeyCode::Char('D'));
+    s.select(Param::named("die.corner_radius"));
+    s.key(KeyCode::Enter);
+    for c in "0.4".chars() {
+        s.key(KeyCode::Char(c));
+    }
+    s.key(KeyCode::Enter);
+    assert_eq!(s.app.roll.live.params.die.corner_radius, 0.0, "A stays sharp");
+    let twin = s.app.roll.live.twin.clone().expect("die B rolls");
+    assert_eq!(super::die::twin_body(&s.app, &twin).radius, 0.4);
+}
