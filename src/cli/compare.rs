@@ -9,7 +9,7 @@ use crate::experiment::compare_budden::{
     run_budden as roll_budden,
 };
 use crate::experiment::compare_plot::{budden_png, comparison_png};
-use crate::experiment::compare_stats::FitMethod;
+use crate::experiment::compare_stats::{FitInterval, FitMethod};
 use crate::experiment::figure::setup_value;
 use crate::experiment::plot::{Record, random_starts};
 use crate::experiment::real_data::Dataset;
@@ -265,25 +265,7 @@ fn print_comparison(out: &mut dyn Write, c: &Comparison, preset: &str) -> std::i
                 "{value:>12.6}  {deviance:>10.2}  {chi2:>8}  {dof:>4}  {p:>9}{mark}"
             )?;
         }
-        let side = |v: f64, open: bool, words: &str| {
-            if open {
-                format!("{words} {v}")
-            } else {
-                format!("{v:.6}")
-            }
-        };
-        let how = match fit.method {
-            FitMethod::Parabola => "on the least-squares parabola through the candidates' deviances",
-            FitMethod::Candidates => "the best candidate; the deviances follow no upward parabola",
-        };
-        writeln!(
-            out,
-            "best {key} = {:.6} (deviance {:.2}, {how}); 95 % interval {} to {} (deviance within 3.84 of the best)",
-            fit.best,
-            fit.best_deviance,
-            side(fit.low, fit.low_open, "the range's low end,"),
-            side(fit.high, fit.high_open, "the range's high end,"),
-        )?;
+        print_fit_line(out, key, fit)?;
     }
     let Some(shown) = c.shown() else {
         return writeln!(out, "no simulated throws completed");
@@ -502,6 +484,29 @@ fn budden_record(
     .with_provenance(provenance)
 }
 
+/// A fit's best value and its 95 % interval (an end that reached the range's edge said so).
+fn print_fit_line(out: &mut dyn Write, key: &str, fit: &FitInterval) -> std::io::Result<()> {
+    let side = |v: f64, open: bool, words: &str| {
+        if open {
+            format!("{words} {v}")
+        } else {
+            format!("{v:.6}")
+        }
+    };
+    let how = match fit.method {
+        FitMethod::Parabola => "on the least-squares parabola through the candidates' deviances",
+        FitMethod::Candidates => "the best candidate; the deviances follow no upward parabola",
+    };
+    writeln!(
+        out,
+        "best {key} = {:.6} (deviance {:.2}, {how}); 95 % interval {} to {} (deviance within 3.84 of the best)",
+        fit.best,
+        fit.best_deviance,
+        side(fit.low, fit.low_open, "the range's low end,"),
+        side(fit.high, fit.high_open, "the range's high end,"),
+    )
+}
+
 fn print_budden(out: &mut dyn Write, c: &BuddenComparison, preset: &str) -> std::io::Result<()> {
     writeln!(out, "budden ({})", c.source)?;
     for a in &c.assumptions {
@@ -540,26 +545,7 @@ fn print_budden(out: &mut dyn Write, c: &BuddenComparison, preset: &str) -> std:
     let Some(fit) = &c.fit else {
         return writeln!(out, "no fit: too few candidates completed");
     };
-    let side = |v: f64, open: bool, words: &str| {
-        if open {
-            format!("{words} {v}")
-        } else {
-            format!("{v:.6}")
-        }
-    };
-    let how = match fit.method {
-        FitMethod::Parabola => "on the least-squares parabola through the candidates' deviances",
-        FitMethod::Candidates => "the best candidate; the deviances follow no upward parabola",
-    };
-    writeln!(
-        out,
-        "best {} = {:.6} (deviance {:.2}, {how}); 95 % interval {} to {} (deviance within 3.84 of the best)",
-        c.key,
-        fit.best,
-        fit.best_deviance,
-        side(fit.low, fit.low_open, "the range's low end,"),
-        side(fit.high, fit.high_open, "the range's high end,"),
-    )?;
+    print_fit_line(out, &c.key, fit)?;
     writeln!(
         out,
         "\nevery ratio thrown with {} = {:.6} ({preset}, seed {}): Budden's share of square-face landings beside the simulation's",
