@@ -5,8 +5,8 @@
 //! per-core speed.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use dicesim::experiment::{Axis, MapSpec, Method, RandomRanges, Rolls, run_batch, run_map};
-use dicesim::physics::{InitialCondition, Params};
+use dicesim_experiment::{Axis, MapSpec, Method, RandomRanges, Rolls, run_batch, run_map};
+use dicesim_physics::{InitialCondition, Params};
 use std::hint::black_box;
 use std::sync::atomic::AtomicBool;
 use std::time::Duration;

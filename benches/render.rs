@@ -3,9 +3,9 @@
 //! `cargo bench --bench render`; the target is at most 1 ms per frame.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use dicesim::preset::Preset;
-use dicesim::tui::{App, Theme, render};
-use dicesim::worker::Engine;
+use dicesim_explorer::tui::{App, Theme, render};
+use dicesim_explorer::worker::Engine;
+use dicesim_setup::preset::Preset;
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 

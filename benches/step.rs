@@ -3,8 +3,9 @@
 //! `cargo bench --bench step`; the README quotes the figures.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use dicesim::experiment::{RandomRanges, roll_record};
-use dicesim::physics::{FrictionLaw, InitialCondition, Params, Simulation};
+use dicesim_experiment::{RandomRanges, roll_record};
+use dicesim_physics::{FrictionLaw, InitialCondition, Params, Simulation};
+use dicesim_setup::random::RandomDraws;
 use std::hint::black_box;
 
 /// A paper-default roll with some spin (so contact, friction and rotation all take part).

@@ -1,5 +1,5 @@
 use dicesim::cli::{self, ErrorKind};
-use dicesim::output::printable;
+use dicesim_setup::output::printable;
 use std::process::ExitCode;
 
 /// The exit status of each kind of failure; `dicesim --help` and the README list them.

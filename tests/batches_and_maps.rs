@@ -1,10 +1,10 @@
 //! Batches and basin maps: reproducibility, statistics, physics facts and file outputs.
 
-use dicesim::experiment::ics::parse_initial_conditions;
-use dicesim::experiment::{
+use dicesim_experiment::ics::parse_initial_conditions;
+use dicesim_experiment::{
     Axis, BasinMap, MapSpec, Method, RandomRanges, RollRecord, Rolls, run_batch, run_map,
 };
-use dicesim::physics::{InitialCondition, Params, Status};
+use dicesim_physics::{InitialCondition, Params, Status};
 use std::path::Path;
 use std::process::{Command, Output};
 use std::sync::atomic::AtomicBool;
@@ -62,7 +62,7 @@ fn a_gentle_drop_keeps_the_start_face_and_a_high_one_does_not() {
     let p = Params::default();
     for (height, low, high) in [(1.8, 0.95, 1.0), (15.0, 0.0, 0.40)] {
         let records = batch(&p, &drop_ranges(height), 5, 400, 2);
-        let summary = dicesim::experiment::BatchSummary::new(&records, Default::default());
+        let summary = dicesim_experiment::BatchSummary::new(&records, Default::default());
         assert_eq!(summary.status.settled, 400, "{height} cm: {:?}", summary.status);
         let same = summary.start_face_shares[0];
         assert!(
@@ -151,7 +151,7 @@ fn an_interleaved_map_switches_to_uniform_and_equals_it() {
     let uniform = run(Method::Uniform);
     let (passes, share) = adaptive.switched_to_uniform.expect("the map switches");
     assert_eq!(passes, 1);
-    assert!(share > dicesim::experiment::UNIFORM_SWITCH_SHARE);
+    assert!(share > dicesim_experiment::UNIFORM_SWITCH_SHARE);
     assert!(adaptive.complete);
     assert_eq!(adaptive.sampled, 65 * 33);
     assert_eq!(adaptive.cells, uniform.cells);
@@ -185,7 +185,7 @@ fn a_one_dimensional_scan_is_a_row() {
         height: 4.5,
         ..Default::default()
     };
-    let direct = dicesim::experiment::roll_record(&p, &ic, 0);
+    let direct = dicesim_experiment::roll_record(&p, &ic, 0);
     assert_eq!(m.cell(5, 0).unwrap().outcome, direct.outcome);
 }
 
@@ -373,7 +373,7 @@ fn ics_file_rolls_its_rows_with_the_preset_filling_the_rest() {
     };
     let parsed =
         parse_initial_conditions(&std::fs::read_to_string(&ics).unwrap(), &base, 16.0 / 3.0).unwrap();
-    let direct = dicesim::experiment::roll_record(&Params::default(), &parsed[1].1, 20);
+    let direct = dicesim_experiment::roll_record(&Params::default(), &parsed[1].1, 20);
     assert_eq!(rows[1][col("steps")], direct.outcome.steps.to_string());
     assert_eq!(rows[1][col("status")], direct.outcome.status.name());
 }

@@ -1,9 +1,10 @@
 //! The chaos twin: ε-perturbed starts on the paper's setup often end on another face; from a
 //! gentle drop they never do. The separation starts at the ε scale and grows.
 
-use dicesim::experiment::twin::{EPSILON, perturbed, roll_twins, separation};
-use dicesim::physics::{Simulation, Status};
-use dicesim::preset::{Preset, Store};
+use dicesim_physics::{Simulation, Status};
+use dicesim_setup::chaos::{EPSILON, perturbed, roll_twins, separation};
+use dicesim_setup::preset::{Preset, Store};
+use dicesim_setup::random::RandomDraws;
 
 fn preset(name: &str) -> Preset {
     Store::new(None).load(name).expect("shipped preset").0

@@ -1,6 +1,6 @@
 //! The derived checks of docs/model.md's last section: facts any correct implementation passes.
 
-use dicesim::physics::{InitialCondition, Params, Simulation, Status};
+use dicesim_physics::{InitialCondition, Params, Simulation, Status};
 use nalgebra::{Matrix3, Vector3};
 
 fn sim(params: &Params, initial: InitialCondition) -> Simulation {

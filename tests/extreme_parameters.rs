@@ -1,9 +1,9 @@
 //! Whatever the parameters, a roll ends in a status (or is refused by validation), never a
 //! panic or an endless loop.
 
-use dicesim::experiment::registry;
-use dicesim::physics::params::{Limits, MAX_STEPS_CAP};
-use dicesim::physics::{FrictionLaw, InitialCondition, Params, Simulation, StopEnergy};
+use dicesim_physics::params::{Limits, MAX_STEPS_CAP};
+use dicesim_physics::{FrictionLaw, InitialCondition, Params, Simulation, StopEnergy};
+use dicesim_setup::registry;
 use proptest::prelude::*;
 
 /// Values across a field's range and beyond it, NaN and infinities included.

@@ -188,7 +188,7 @@ fn mutated_shipped_presets_are_refused_with_one_line_naming_the_file() {
         let file = dir.path().join(&name);
         std::fs::write(&file, &text).unwrap();
         cases += 1;
-        let parsed = dicesim::preset::Preset::from_toml_str(&text, &name);
+        let parsed = dicesim_setup::preset::Preset::from_toml_str(&text, &name);
         let o = dicesim_in(dir.path(), &["presets", "show", &name]);
         let err = stderr(&o);
         assert!(!err.contains("panicked"), "{name}: {err}\n{text}");
@@ -199,7 +199,7 @@ fn mutated_shipped_presets_are_refused_with_one_line_naming_the_file() {
                 assert_eq!(o.status.code(), Some(2), "{name}: {err}\n{text}");
                 assert_eq!(err.lines().count(), 1, "{name}: {err}");
                 assert!(err.starts_with(&format!("dicesim: {name}")), "{name}: {err}");
-                if let dicesim::preset::PresetError::Syntax { at, .. } = &e {
+                if let dicesim_setup::preset::PresetError::Syntax { at, .. } = &e {
                     assert!(at.line.is_some() && at.column.is_some(), "{name}: {err}");
                     let position = format!("{name}:{}:{}:", at.line.unwrap(), at.column.unwrap());
                     assert!(err.starts_with(&format!("dicesim: {position}")), "{name}: {err}");

@@ -19,9 +19,10 @@
 mod common;
 
 use common::{Table, reference_initial, reference_params, state_bits};
-use dicesim::experiment::RandomRanges;
-use dicesim::physics::lanes::{LaneResult, lanes_available, roll_in_lanes, roll_one_by_one};
-use dicesim::physics::{FrictionLaw, InitialCondition, Outcome, Params, Status, StopEnergy};
+use dicesim_physics::RandomRanges;
+use dicesim_physics::lanes::{LaneResult, lanes_available, roll_in_lanes, roll_one_by_one};
+use dicesim_physics::{FrictionLaw, InitialCondition, Outcome, Params, Status, StopEnergy};
+use dicesim_setup::random::RandomDraws;
 use rand::{RngExt, SeedableRng};
 
 /// Everything a roll's result carries, as bits.
@@ -153,7 +154,7 @@ fn law_and_stop(law: FrictionLaw, stop: StopEnergy, seed: u64) {
     params.integrator.stop_energy = stop;
     let what = format!("{law:?} friction, {} stop energy", stop.name());
     let cut = Params {
-        integrator: dicesim::physics::Integrator {
+        integrator: dicesim_physics::Integrator {
             max_time: CUT_TIME_S,
             ..params.integrator
         },
@@ -169,7 +170,7 @@ fn law_and_stop(law: FrictionLaw, stop: StopEnergy, seed: u64) {
     assert_identical(&format!("{what}, reference"), &reference_setups(params));
     for (d, extra) in LOADED_DICE.into_iter().enumerate() {
         let load = |p: Params| Params {
-            die: dicesim::physics::Die {
+            die: dicesim_physics::Die {
                 extra_corner_mass: extra,
                 ..p.die
             },

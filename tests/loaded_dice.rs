@@ -3,8 +3,8 @@
 
 mod common;
 
-use dicesim::experiment::{RandomRanges, Rolls, RunOptions, stream_batch};
-use dicesim::physics::{InitialCondition, Params, Simulation};
+use dicesim_experiment::{RandomRanges, Rolls, RunOptions, stream_batch};
+use dicesim_physics::{InitialCondition, Params, Simulation};
 use nalgebra::{Matrix3, Vector3};
 use std::sync::atomic::AtomicBool;
 
@@ -148,7 +148,7 @@ fn all_extras_equal_is_a_heavier_fair_die() {
     assert!(summary.p_value.unwrap() > 0.001, "{:?}", summary.faces);
 }
 
-fn batch(p: &Params, count: u64) -> dicesim::experiment::BatchSummary {
+fn batch(p: &Params, count: u64) -> dicesim_experiment::BatchSummary {
     let ranges = RandomRanges {
         random_orientation: true,
         ..RandomRanges::default()

@@ -1,9 +1,9 @@
 //! The literature's statements about predictability (Nagler & Richter 2008; Kapitaniak et
 //! al. 2012), reproduced with this model on seeded experiments: a start beside its ε-twins.
 
-use dicesim::experiment::predict::{PredictSpec, Prediction, run_prediction};
-use dicesim::experiment::{RandomRanges, RunOptions, ScanKey};
-use dicesim::physics::{InitialCondition, Params};
+use dicesim_experiment::predict::{PredictSpec, Prediction, run_prediction};
+use dicesim_experiment::{RandomRanges, RunOptions, ScanKey};
+use dicesim_physics::{InitialCondition, Params};
 use std::sync::atomic::AtomicBool;
 
 /// A gentle throw from any orientation: ±20 cm/s, ±10 rad/s.

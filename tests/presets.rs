@@ -4,12 +4,13 @@
 
 mod common;
 
-use dicesim::experiment::roll_record;
-use dicesim::physics::{FrictionLaw, InitialCondition, Outcome, Params, Simulation, Status, StopEnergy};
-use dicesim::preset::{
+use dicesim_experiment::roll_record;
+use dicesim_physics::{FrictionLaw, InitialCondition, Outcome, Params, Simulation, Status, StopEnergy};
+use dicesim_setup::preset::{
     CameraView, DEFAULT_NAME, FORMAT, Preset, PresetError, SHIPPED, Screen, Source, Speed, Store, ThemeName,
     View, load_file,
 };
+use dicesim_setup::random::RandomDraws;
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -248,7 +249,7 @@ fn authors_program_reproduces_their_reference_run() {
     assert_eq!(o.steps as f64, table.get(row, "steps"));
 
     // The same throw under the paper's rules lands elsewhere.
-    let (paper, _) = dicesim::physics::roll(&Params::default(), &p.initial).unwrap();
+    let (paper, _) = dicesim_physics::roll(&Params::default(), &p.initial).unwrap();
     assert_ne!(paper.face, o.face);
 
     // Point-mass energy counts the spin three times: 2 × rotational energy more, in flight.
@@ -262,7 +263,7 @@ fn authors_program_reproduces_their_reference_run() {
     // So it runs on at least as long as the rigid-body rule would.
     let mut rigid = p.params();
     rigid.integrator.stop_energy = StopEnergy::RigidBody;
-    let (rigid_end, _) = dicesim::physics::roll(&rigid, &p.initial).unwrap();
+    let (rigid_end, _) = dicesim_physics::roll(&rigid, &p.initial).unwrap();
     assert!(o.steps >= rigid_end.steps, "{} < {}", o.steps, rigid_end.steps);
 }
 
@@ -371,7 +372,7 @@ fn on_the_edge_of_stability_settles_though_many_throws_do_not() {
     same_but_dt.integrator.dt = paper.params().integrator.dt;
     assert_eq!(same_but_dt, paper.params());
 
-    let (o, _) = dicesim::physics::roll(&params, &p.initial).unwrap();
+    let (o, _) = dicesim_physics::roll(&params, &p.initial).unwrap();
     assert_eq!(o.status, Status::Settled);
 
     let unstable: Vec<InitialCondition> = random_rolls(&p, 30)
@@ -409,7 +410,7 @@ fn number_before(text: &str, marker: &str) -> f64 {
 
 #[test]
 fn loaded_corner_shows_the_bias_and_the_rolls_a_class_needs_that_it_states() {
-    use dicesim::experiment::{Rolls, RunOptions, stream_batch};
+    use dicesim_experiment::{Rolls, RunOptions, stream_batch};
     let p = shipped("loaded-corner");
     let params = p.params();
     assert!(params.die.is_loaded());
@@ -677,15 +678,15 @@ fn a_failed_write_leaves_the_old_state_and_no_temporary_file() {
     }
 }
 
-fn limits(l: dicesim::physics::Limits) -> std::ops::RangeInclusive<f64> {
+fn limits(l: dicesim_physics::Limits) -> std::ops::RangeInclusive<f64> {
     l.min..=l.max
 }
 
-fn vec3(l: dicesim::physics::Limits) -> impl Strategy<Value = [f64; 3]> {
+fn vec3(l: dicesim_physics::Limits) -> impl Strategy<Value = [f64; 3]> {
     [limits(l), limits(l), limits(l)]
 }
 
-fn range2(l: dicesim::physics::Limits) -> impl Strategy<Value = [f64; 2]> {
+fn range2(l: dicesim_physics::Limits) -> impl Strategy<Value = [f64; 2]> {
     (limits(l), limits(l)).prop_map(|(a, b)| [a.min(b), a.max(b)])
 }
 
@@ -693,32 +694,32 @@ prop_compose! {
     fn any_preset()(
         name in "[A-Za-z0-9_-]{1,24}",
         description in "[ -~\n\t\"\\\\é°·]{0,300}",
-        die in (limits(dicesim::experiment::registry::HALF_SIZES.limits), limits(dicesim::experiment::registry::CORNER_MASS.limits)),
+        die in (limits(dicesim_setup::registry::HALF_SIZES.limits), limits(dicesim_setup::registry::CORNER_MASS.limits)),
         ground in (
-            limits(dicesim::experiment::registry::STIFFNESS.limits),
-            limits(dicesim::experiment::registry::DAMPING.limits),
-            limits(dicesim::experiment::registry::FRICTION.limits),
+            limits(dicesim_setup::registry::STIFFNESS.limits),
+            limits(dicesim_setup::registry::DAMPING.limits),
+            limits(dicesim_setup::registry::FRICTION.limits),
             any::<bool>(),
         ),
-        gravity in limits(dicesim::experiment::registry::GRAVITY.limits),
+        gravity in limits(dicesim_setup::registry::GRAVITY.limits),
         integrator in (
-            limits(dicesim::experiment::registry::DT.limits),
-            limits(dicesim::experiment::registry::STOP_ENERGY_FRACTION.limits),
-            limits(dicesim::experiment::registry::MAX_TIME.limits),
+            limits(dicesim_setup::registry::DT.limits),
+            limits(dicesim_setup::registry::STOP_ENERGY_FRACTION.limits),
+            limits(dicesim_setup::registry::MAX_TIME.limits),
             any::<bool>(),
         ),
-        height in limits(dicesim::experiment::registry::HEIGHT.limits),
-        velocity in vec3(dicesim::experiment::registry::VELOCITY.limits),
+        height in limits(dicesim_setup::registry::HEIGHT.limits),
+        velocity in vec3(dicesim_setup::registry::VELOCITY.limits),
         spin in prop_oneof![
-            vec3(dicesim::experiment::registry::ANGULAR_VELOCITY.limits).prop_map(|w| (w, None)),
-            vec3(dicesim::experiment::registry::ANGULAR_MOMENTUM.limits).prop_map(|l| ([0.0; 3], Some(l))),
+            vec3(dicesim_setup::registry::ANGULAR_VELOCITY.limits).prop_map(|w| (w, None)),
+            vec3(dicesim_setup::registry::ANGULAR_MOMENTUM.limits).prop_map(|l| ([0.0; 3], Some(l))),
         ],
-        orientation in vec3(dicesim::experiment::registry::ORIENTATION.limits),
+        orientation in vec3(dicesim_setup::registry::ORIENTATION.limits),
         random in (
             0..=i64::MAX as u64,
-            range2(dicesim::experiment::registry::HEIGHT.limits),
-            range2(dicesim::experiment::registry::VELOCITY.limits),
-            range2(dicesim::experiment::registry::ANGULAR_VELOCITY.limits),
+            range2(dicesim_setup::registry::HEIGHT.limits),
+            range2(dicesim_setup::registry::VELOCITY.limits),
+            range2(dicesim_setup::registry::ANGULAR_VELOCITY.limits),
             any::<bool>(),
         ),
         view in (

@@ -2,9 +2,9 @@
 //! worked out by hand from the preset's numbers (docs/model.md: a uniform solid cube of
 //! eight 1 g corners, I = (2a)²/6·M).
 
-use dicesim::experiment::quantity::{QUANTITIES, read_all};
-use dicesim::physics::Simulation;
-use dicesim::preset::Store;
+use dicesim_physics::Simulation;
+use dicesim_setup::preset::Store;
+use dicesim_setup::quantity::{QUANTITIES, read_all};
 
 /// The paper's throw as its preset states it (presets/paper.toml), and the analytic value of
 /// every quantity at t = 0, by the quantity's CSV column.

@@ -4,8 +4,9 @@
 //! release; an upgrade of `rand` or of its ChaCha stream that changed any bit of them would
 //! change every random roll, and must be a deliberate, announced change.
 
-use dicesim::experiment::RandomRanges;
-use dicesim::physics::InitialCondition;
+use dicesim_physics::InitialCondition;
+use dicesim_physics::RandomRanges;
+use dicesim_setup::random::RandomDraws;
 
 fn bits(ic: &InitialCondition) -> Vec<u64> {
     std::iter::once(ic.height)

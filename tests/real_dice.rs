@@ -5,10 +5,11 @@
 mod common;
 
 use common::state_bits;
-use dicesim::experiment::RandomRanges;
-use dicesim::physics::lanes::{LaneResult, lanes_available, roll_in_lanes, roll_one_by_one};
-use dicesim::physics::{InitialCondition, Params, Simulation};
-use dicesim::preset::{Preset, SHIPPED};
+use dicesim_physics::RandomRanges;
+use dicesim_physics::lanes::{LaneResult, lanes_available, roll_in_lanes, roll_one_by_one};
+use dicesim_physics::{InitialCondition, Params, Simulation};
+use dicesim_setup::preset::{Preset, SHIPPED};
+use dicesim_setup::random::RandomDraws;
 use nalgebra::Vector3;
 
 /// A roll's result as bits: the whole final state, then end time, status, face, steps and
@@ -242,8 +243,8 @@ fn bodies_out_of_shape_are_refused_naming_the_rule() {
 /// cm apart, solid steel of 7.8 g/cm³.
 #[test]
 fn a_budden_cuboid_has_its_sizes_steel_mass_and_the_cuboid_inertia() {
-    use dicesim::experiment::compare_budden::cuboid;
-    use dicesim::physics::mass_properties;
+    use dicesim_experiment::compare_budden::cuboid;
+    use dicesim_physics::mass_properties;
     for ratio in [0.47, 1.16, 2.65] {
         let die = cuboid(ratio);
         assert_eq!(die.half_sizes, [ratio, 1.0, 1.0]);
@@ -276,7 +277,7 @@ fn a_budden_cuboid_has_its_sizes_steel_mass_and_the_cuboid_inertia() {
 /// on a square face, 1 cm on a long one.
 #[test]
 fn a_budden_cuboid_at_rest_on_each_face_is_counted_square_or_not() {
-    use dicesim::experiment::compare_budden::{cuboid, is_square_face};
+    use dicesim_experiment::compare_budden::{cuboid, is_square_face};
     let ratio = 0.63;
     let params = Params {
         die: cuboid(ratio),

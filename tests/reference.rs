@@ -7,7 +7,7 @@
 mod common;
 
 use common::{Table, reference_initial, reference_params};
-use dicesim::physics::{Simulation, Status, StopEnergy};
+use dicesim_physics::{Simulation, Status, StopEnergy};
 
 struct FaceAgreement {
     total: usize,
@@ -177,8 +177,8 @@ fn compare_trajectories(variant: &str, up_to: u64) -> (f64, f64, Vec<String>) {
     (worst_cm, worst_corner, end_mismatch)
 }
 
-fn reference_initial_from_trajectory(table: &Table, row: &[f64]) -> dicesim::physics::InitialCondition {
-    dicesim::physics::InitialCondition {
+fn reference_initial_from_trajectory(table: &Table, row: &[f64]) -> dicesim_physics::InitialCondition {
+    dicesim_physics::InitialCondition {
         height: table.get(row, "cm_z"),
         velocity: table.vec3(row, "v"),
         angular_momentum: Some(table.vec3(row, "L_phys")),

@@ -5,13 +5,13 @@
 //! predictor must rarely call an unstable set stable, and an unstable roll's stated reason
 //! must name a limit the set really passes. The figures are printed (`--nocapture`).
 
-use dicesim::experiment::registry::{
+use dicesim_physics::stopping::resting_depth_on_face;
+use dicesim_physics::{
+    FrictionLaw, InitialCondition, Limits, Params, Simulation, Stability, Status, StopEnergy, UnstableReason,
+};
+use dicesim_setup::registry::{
     ANGULAR_VELOCITY, CORNER_MASS, DAMPING, DT, FRICTION, GRAVITY, HALF_SIZES, HEIGHT, ORIENTATION,
     STIFFNESS, STOP_ENERGY_FRACTION, VELOCITY,
-};
-use dicesim::physics::stopping::resting_depth_on_face;
-use dicesim::physics::{
-    FrictionLaw, InitialCondition, Limits, Params, Simulation, Stability, Status, StopEnergy, UnstableReason,
 };
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};

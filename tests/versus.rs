@@ -5,9 +5,9 @@
 mod common;
 
 use common::{dicesim_ok, dicesim_refused};
-use dicesim::experiment::versus::{NO_FACE, VersusTable, stream_versus};
-use dicesim::experiment::{Rolls, RunOptions};
-use dicesim::preset::{Preset, Store};
+use dicesim_experiment::versus::{NO_FACE, VersusTable, stream_versus};
+use dicesim_experiment::{Rolls, RunOptions};
+use dicesim_setup::preset::{Preset, Store};
 use std::sync::atomic::AtomicBool;
 
 fn paper() -> Preset {

@@ -3,10 +3,12 @@
 //! thread count; a changed setup restarts it under a new generation, the twin turned off
 //! stops it, and quitting does not wait for it.
 
-use dicesim::experiment::predict::{PredictCurve, run_prediction};
-use dicesim::experiment::{RunOptions, ScanKey};
-use dicesim::preset::Preset;
-use dicesim::worker::{CURVE_STARTS, Command, CurveSetup, CurveState, CurveUpdate, Engine, Snapshot, Worker};
+use dicesim_experiment::predict::{PredictCurve, run_prediction};
+use dicesim_experiment::{RunOptions, ScanKey};
+use dicesim_explorer::worker::{
+    CURVE_STARTS, Command, CurveSetup, CurveState, CurveUpdate, Engine, Snapshot, Worker,
+};
+use dicesim_setup::preset::Preset;
 use std::sync::atomic::AtomicBool;
 use std::sync::mpsc::{Receiver, RecvTimeoutError, channel};
 use std::time::Duration;

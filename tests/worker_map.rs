@@ -1,10 +1,10 @@
 //! Basin maps through the worker: partial maps first, then the complete one, equal to what
 //! the experiment layer computes; a cancelled map stops sending.
 
-use dicesim::experiment::ScanKey;
-use dicesim::experiment::{MapSpec, Method, run_map};
-use dicesim::preset::Preset;
-use dicesim::worker::{Command, Engine, MapAxis, MapRequest, MapUpdate, Snapshot, Worker};
+use dicesim_experiment::{MapSpec, Method, run_map};
+use dicesim_explorer::worker::{Command, Engine, MapAxis, MapRequest, MapUpdate, Snapshot, Worker};
+use dicesim_setup::keys::ScanKey;
+use dicesim_setup::preset::Preset;
 use std::sync::atomic::AtomicBool;
 use std::sync::mpsc::{Receiver, channel};
 use std::time::Duration;

@@ -1,10 +1,11 @@
 //! The worker thread's protocol: commands in, snapshots out, in order, none lost, and a
 //! clean stop when the UI goes.
 
-use dicesim::experiment::{FaceTally, RandomRanges, ScanKey, roll_record};
-use dicesim::physics::{Simulation, Status};
-use dicesim::preset::Preset;
-use dicesim::worker::{Command, Engine, Notice, Phase, Snapshot, Speed, Worker};
+use dicesim_experiment::{FaceTally, RandomRanges, ScanKey, roll_record};
+use dicesim_explorer::worker::{Command, Engine, Notice, Phase, Snapshot, Speed, Worker};
+use dicesim_physics::{Simulation, Status};
+use dicesim_setup::preset::Preset;
+use dicesim_setup::random::RandomDraws;
 use std::sync::mpsc::{Receiver, RecvTimeoutError, channel};
 use std::time::Duration;
 

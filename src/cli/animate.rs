@@ -1,12 +1,12 @@
 //! `dicesim animate`: a roll (or a roll and its chaos twin) as an animated GIF or PNG.
 
 use super::{CliError, SetupArgs, cancel_on_ctrl_c};
-use crate::experiment::animation::render::Camera;
-use crate::experiment::animation::{self, AnimationSpec, write_animation};
-use crate::experiment::twin::DEFAULT_EPSILON;
-use crate::output::Output;
-use crate::preset::Speed;
 use clap::Args;
+use dicesim_figures::animation::render::Camera;
+use dicesim_figures::animation::{self, AnimationSpec, write_animation};
+use dicesim_setup::chaos::DEFAULT_EPSILON;
+use dicesim_setup::output::Output;
+use dicesim_setup::preset::Speed;
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -61,7 +61,7 @@ pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
     let preset = args.setup.resolve()?;
     let params = preset.params();
     // The checks `roll` makes: every value in range, no corner starting inside the table.
-    crate::physics::Simulation::new(&params, &preset.initial)?;
+    dicesim_physics::Simulation::new(&params, &preset.initial)?;
     let twin = match args.twin.as_deref() {
         None => None,
         Some("default") => Some(preset.view.twin.unwrap_or(DEFAULT_EPSILON)),
@@ -111,14 +111,14 @@ pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
         },
     )
     .map_err(|e| match e {
-        crate::experiment::Error::Output(e) => CliError::output("")(e),
-        crate::experiment::Error::Cancelled => {
+        dicesim_experiment::Error::Output(e) => CliError::output("")(e),
+        dicesim_experiment::Error::Cancelled => {
             CliError::Stopped(format!("{}: nothing was written", args.out.display()))
         }
         e => CliError::experiment("")(e),
     })?;
     bar.finish_and_clear();
-    let face = |o: &crate::physics::Outcome| match o.face {
+    let face = |o: &dicesim_physics::Outcome| match o.face {
         Some(f) => format!("face {f} ({})", o.status.name()),
         None => o.status.name().to_string(),
     };

@@ -4,13 +4,13 @@ use super::shard::{
     Hashing, ShardArgs, csv_provenance_line, map_fingerprint, map_provenance, new_part, write_part,
 };
 use super::{CliError, EngineArg, SetupArgs, cancel_on_ctrl_c};
-use crate::experiment::plot::write_image;
-use crate::experiment::shard::Sweep;
-use crate::experiment::{Axis, BasinMap, FaceTally, Layer, MapSpec, Method, RunOptions, run_map_rows};
-use crate::output::Output;
-use crate::physics::Params;
-use crate::preset::Preset;
 use clap::{Args, ValueEnum};
+use dicesim_experiment::shard::Sweep;
+use dicesim_experiment::{Axis, BasinMap, FaceTally, Layer, MapSpec, Method, RunOptions, run_map_rows};
+use dicesim_figures::plot::write_image;
+use dicesim_physics::Params;
+use dicesim_setup::output::Output;
+use dicesim_setup::preset::Preset;
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -87,11 +87,11 @@ pub(crate) fn check_sweep(args: &BasinArgs, sharded: bool) -> Result<(Preset, Pa
     let (w, h) = args.res;
     if w * h > MAX_CELLS {
         // The map, the copy shown while refining, and the image or CSV drawn from it.
-        let needed = 2 * w * h * size_of::<Option<crate::experiment::Cell>>();
+        let needed = 2 * w * h * size_of::<Option<dicesim_experiment::Cell>>();
         return Err(CliError::Usage(format!(
             "--res {w}x{h}: {} cells would need about {} of memory; at most {MAX_CELLS} cells (e.g. 2048x2048)",
             w * h,
-            crate::experiment::trace::human_bytes(needed as u64)
+            dicesim_setup::number::human_bytes(needed as u64)
         )));
     }
     let preset = args.setup.resolve()?;
@@ -106,13 +106,13 @@ pub(crate) fn check_sweep(args: &BasinArgs, sharded: bool) -> Result<(Preset, Pa
 /// first node whose start puts a corner into the table is the error, with its axis values.
 fn check_nodes_clear_of_table(
     params: &Params,
-    base: &crate::physics::InitialCondition,
+    base: &dicesim_physics::InitialCondition,
     x: &Axis,
     y: &Axis,
 ) -> Result<(), CliError> {
     for j in 0..y.cells {
         for i in 0..x.cells {
-            let (p, ic) = crate::experiment::basin::node_setup(params, base, x, y, i, j);
+            let (p, ic) = dicesim_experiment::basin::node_setup(params, base, x, y, i, j);
             if let Err(e) = ic.check_clear_of_table(&p) {
                 return Err(CliError::Usage(format!(
                     "the node {} = {}, {} = {}: {e}",
@@ -213,7 +213,7 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
                 output,
             )
             .map_err(|e| match e {
-                crate::experiment::Error::Output(e) => CliError::output("")(e),
+                dicesim_experiment::Error::Output(e) => CliError::output("")(e),
                 e => CliError::experiment(&format!("{}: ", output.path().display()))(e),
             })?,
         }

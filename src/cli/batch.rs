@@ -4,19 +4,20 @@ use super::shard::{
     Hashing, ShardArgs, batch_fingerprint, batch_provenance, csv_provenance_line, write_batch_part,
 };
 use super::{CliError, EngineArg, SetupArgs, cancel_on_ctrl_c};
-use crate::experiment::csv_io;
-use crate::experiment::ending::Ending;
-use crate::experiment::ics::{parse_initial_conditions, record_csv_row, records_csv_header};
-use crate::experiment::number::fmt_num;
-use crate::experiment::parquet::RecordsWriter;
-use crate::experiment::shard::Shard;
-use crate::experiment::shard::Sweep;
-use crate::experiment::versus::{NO_FACE, VersusRun, stream_versus};
-use crate::experiment::{BatchRun, BatchSummary, RollRecord, Rolls, RunOptions, stream_batch};
-use crate::output::Output;
-use crate::physics::InitialCondition;
-use crate::preset::Preset;
 use clap::Args;
+use dicesim_experiment::csv_io;
+use dicesim_experiment::ending::Ending;
+use dicesim_experiment::ics::{parse_initial_conditions, record_csv_row, records_csv_header};
+use dicesim_experiment::parquet::RecordsWriter;
+use dicesim_experiment::shard::Shard;
+use dicesim_experiment::shard::Sweep;
+use dicesim_experiment::versus::{NO_FACE, VersusRun, stream_versus};
+use dicesim_experiment::{BatchRun, BatchSummary, RollRecord, Rolls, RunOptions, stream_batch};
+use dicesim_physics::InitialCondition;
+use dicesim_setup::number::fmt_num;
+use dicesim_setup::output::Output;
+use dicesim_setup::preset::Preset;
+use dicesim_setup::random::RandomDraws;
 use serde_json::json;
 use std::io::Write;
 use std::path::PathBuf;
@@ -214,7 +215,7 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
 /// A batch's setup as checked: the preset, its parameters and the given starts if any.
 pub(crate) type CheckedSweep = (
     Preset,
-    crate::physics::Params,
+    dicesim_physics::Params,
     Option<Vec<(u64, InitialCondition)>>,
 );
 
@@ -241,12 +242,13 @@ pub(crate) fn check_sweep(args: &BatchArgs, shard: Option<Shard>) -> Result<Chec
     }
     let given = match &args.ics {
         Some(path) => {
-            let text =
-                crate::preset::read_regular_file(path, MAX_ICS_BYTES).map_err(|message| CliError::Read {
+            let text = dicesim_setup::preset::read_regular_file(path, MAX_ICS_BYTES).map_err(|message| {
+                CliError::Read {
                     flag: "--ics",
                     path: path.clone(),
                     source: std::io::Error::other(message),
-                })?;
+                }
+            })?;
             let ics = parse_initial_conditions(&text, &preset.initial, params.inertia())
                 .map_err(CliError::experiment(&format!("--ics {}: ", path.display())))?;
             // The check `roll` makes of its one start, made of every row before any roll.

@@ -4,9 +4,9 @@
 //! alternates its two sides round by round and reports the median of the per-round ratios.
 
 use super::{CliError, SetupArgs};
-use crate::experiment::{Axis, Engine, MapSpec, Method, Rolls, RunOptions, run_map_with, stream_batch};
-use crate::physics::{InitialCondition, Params};
 use clap::Args;
+use dicesim_experiment::{Axis, Engine, MapSpec, Method, Rolls, RunOptions, run_map_with, stream_batch};
+use dicesim_physics::{InitialCondition, Params};
 use std::io::Write;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;

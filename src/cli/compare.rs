@@ -2,18 +2,19 @@
 //! held against its counts, and one setup value fitted to them.
 
 use super::{CliError, EngineArg, SetupArgs};
-use crate::experiment::RunOptions;
-use crate::experiment::compare::{CompareSpec, Comparison, DEFAULT_CANDIDATES, FitSpec, run_comparison};
-use crate::experiment::compare_budden::{
+use clap::{Args, ValueEnum};
+use dicesim_experiment::RunOptions;
+use dicesim_experiment::compare::{CompareSpec, Comparison, DEFAULT_CANDIDATES, FitSpec, run_comparison};
+use dicesim_experiment::compare_budden::{
     BuddenComparison, BuddenSpec, DEFAULT_CALIBRATE_ON, DEFAULT_FIT, RatioRole, hand_throw,
     run_budden as roll_budden,
 };
-use crate::experiment::compare_plot::{budden_png, comparison_png};
-use crate::experiment::compare_stats::{FitInterval, FitMethod};
-use crate::experiment::figure::setup_value;
-use crate::experiment::plot::{Record, random_starts};
-use crate::experiment::real_data::Dataset;
-use clap::{Args, ValueEnum};
+use dicesim_experiment::compare_stats::{FitInterval, FitMethod};
+use dicesim_experiment::real_data::Dataset;
+use dicesim_figures::compare_plot::{budden_png, comparison_png};
+use dicesim_figures::figure::setup_value;
+use dicesim_figures::plot::{Record, random_starts};
+use dicesim_setup::random::RandomDraws;
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -140,7 +141,7 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     let mut values = preset.as_written();
     values.random.seed = spec.seed;
     let provenance = serde_json::json!({
-        "program": crate::experiment::PROGRAM,
+        "program": dicesim_experiment::PROGRAM,
         "preset": values,
         "dataset": dataset.name(),
         "seed": spec.seed,
@@ -340,7 +341,7 @@ fn prepare(
     args: &CompareArgs,
     jobs: usize,
     total: u64,
-) -> Result<(Vec<crate::output::Output>, RunOptions), CliError> {
+) -> Result<(Vec<dicesim_setup::output::Output>, RunOptions), CliError> {
     if total > MAX_ROLLS {
         return Err(CliError::Usage(format!(
             "{total} rolls: at most {MAX_ROLLS} in one comparison (fewer --throws or --candidates)"
@@ -358,7 +359,7 @@ fn prepare(
 fn run_budden(
     args: &CompareArgs,
     jobs: usize,
-    preset: &crate::preset::Preset,
+    preset: &dicesim_setup::preset::Preset,
     candidates: usize,
 ) -> Result<(), CliError> {
     let params = preset.params();
@@ -388,7 +389,7 @@ fn run_budden(
     values.random = hand_throw(&values.random);
     values.random.seed = spec.seed;
     let provenance = serde_json::json!({
-        "program": crate::experiment::PROGRAM,
+        "program": dicesim_experiment::PROGRAM,
         "preset": values,
         "dataset": "budden",
         "seed": spec.seed,
@@ -432,7 +433,7 @@ fn run_budden(
 /// The PNG's caption: the throw, the fit, and the table and body assumptions.
 fn budden_record(
     c: &BuddenComparison,
-    preset: &crate::preset::Preset,
+    preset: &dicesim_setup::preset::Preset,
     spec: &BuddenSpec,
     fit_text: &str,
     provenance: &serde_json::Value,
@@ -477,7 +478,7 @@ fn budden_record(
         text: vec![
             ("Title".to_string(), format!("{}: Budden's cuboids", preset.name)),
             ("Description".to_string(), caption.join("\n")),
-            ("Software".to_string(), crate::experiment::PROGRAM.to_string()),
+            ("Software".to_string(), dicesim_experiment::PROGRAM.to_string()),
         ],
         caption,
     }

@@ -8,20 +8,21 @@ use super::shard::{
     PART_EXTENSION, batch_fingerprint, batch_provenance, csv_provenance_line, hash_file, map_provenance,
     read_part, records_path,
 };
-use crate::experiment::basin::node_setup;
-use crate::experiment::ics::{parse_record_csv_row, record_csv_line, records_csv_header};
-use crate::experiment::merge::{MergeError, bounded_line, copy_rows, parse_map_row, without_bom};
-use crate::experiment::parquet::{RecordsWriter, read_records};
-use crate::experiment::plot::write_image;
-use crate::experiment::record::{check_record, same_record};
-use crate::experiment::shard::{Part, Sweep, check_parts};
-use crate::experiment::tally::Tally;
-use crate::experiment::{Axis, BasinMap, Cell, FaceTally, Layer, Method};
-use crate::experiment::{RollRecord, roll_record};
-use crate::output::Output;
-use crate::physics::{InitialCondition, Outcome, Params};
-use crate::preset::Preset;
 use clap::Args;
+use dicesim_experiment::basin::node_setup;
+use dicesim_experiment::ics::{parse_record_csv_row, record_csv_line, records_csv_header};
+use dicesim_experiment::merge::{MergeError, bounded_line, copy_rows, parse_map_row, without_bom};
+use dicesim_experiment::parquet::{RecordsWriter, read_records};
+use dicesim_experiment::record::{check_record, same_record};
+use dicesim_experiment::shard::{Part, Sweep, check_parts};
+use dicesim_experiment::tally::Tally;
+use dicesim_experiment::{Axis, BasinMap, Cell, FaceTally, Layer, Method};
+use dicesim_experiment::{RollRecord, roll_record};
+use dicesim_figures::plot::write_image;
+use dicesim_physics::{InitialCondition, Outcome, Params};
+use dicesim_setup::output::Output;
+use dicesim_setup::preset::Preset;
+use dicesim_setup::random::RandomDraws;
 use parquet::errors::ParquetError;
 use serde_json::json;
 use std::io::{BufReader, Write};
@@ -69,7 +70,7 @@ pub(crate) fn run(args: &MergeArgs) -> Result<(), CliError> {
             inputs.push((records, format!("the records of {}", path.display())));
         }
     }
-    crate::output::check_apart(&outputs, &inputs).map_err(CliError::output("--out "))?;
+    dicesim_setup::output::check_apart(&outputs, &inputs).map_err(CliError::output("--out "))?;
     let order = check_parts(&parts).map_err(CliError::Parts)?;
     let ordered: Vec<(&Path, &Part)> = order.iter().map(|&i| (paths[i].as_path(), &parts[i].1)).collect();
     let first = ordered[0].1;
@@ -742,7 +743,7 @@ fn merge_map(args: &MergeArgs, outputs: &[Output], parts: &[(&Path, &Part)]) -> 
         for (output, _) in outputs.iter().zip(&kinds).filter(|(_, k)| **k != "csv") {
             let setup = (preset.name.as_str(), &params, &preset.initial);
             write_image(&map, layer, setup, &provenance, output).map_err(|e| match e {
-                crate::experiment::Error::Output(e) => CliError::output("")(e),
+                dicesim_experiment::Error::Output(e) => CliError::output("")(e),
                 e => CliError::experiment(&format!("{}: ", output.path().display()))(e),
             })?;
         }

@@ -14,11 +14,11 @@ mod slurm;
 mod trace;
 mod tui;
 
-use crate::experiment;
-use crate::experiment::Engine;
-use crate::physics::ParamError;
-use crate::preset::{Preset, PresetError, Store};
 use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
+use dicesim_experiment as experiment;
+use dicesim_experiment::Engine;
+use dicesim_physics::ParamError;
+use dicesim_setup::preset::{Preset, PresetError, Store};
 use signal_hook::consts::{SIGHUP, SIGINT, SIGQUIT, SIGTERM};
 use std::io::Write as _;
 use std::path::PathBuf;
@@ -101,7 +101,7 @@ pub(crate) struct Results<'a, T: serde::Serialize> {
 /// Writes each `--out` file by its extension (CSV, JSON with the provenance, else PNG), then
 /// prints the table and the files written, or the JSON alone with `--json`.
 pub(crate) fn write_results<T: serde::Serialize>(
-    outputs: &[crate::output::Output],
+    outputs: &[dicesim_setup::output::Output],
     json: bool,
     r: Results<'_, T>,
 ) -> Result<(), CliError> {
@@ -157,7 +157,7 @@ fn on_stop_signals(graceful: Option<Arc<AtomicBool>>) -> Result<(), CliError> {
             {
                 continue;
             }
-            let removed = crate::output::remove_pending();
+            let removed = dicesim_setup::output::remove_pending();
             let what = if removed > 0 {
                 "the file being written was removed, nothing was written"
             } else {
@@ -371,7 +371,7 @@ pub enum CliError {
         /// The option the path came from, e.g. `--out ` (empty when the message says it).
         context: String,
         #[source]
-        source: crate::output::OutputError,
+        source: dicesim_setup::output::OutputError,
     },
     /// The explorer stopped with an error (its report, with the chain of causes).
     #[error("{0:#}")]
@@ -434,7 +434,7 @@ impl CliError {
     }
 
     /// An output path's error, prefixed with the option it came from (`"--out "`, or `""`).
-    pub(crate) fn output(context: &str) -> impl FnOnce(crate::output::OutputError) -> CliError + '_ {
+    pub(crate) fn output(context: &str) -> impl FnOnce(dicesim_setup::output::OutputError) -> CliError + '_ {
         move |source| CliError::Output {
             context: context.to_string(),
             source,
@@ -462,13 +462,13 @@ pub(crate) fn checked_outputs(
     paths: &[PathBuf],
     extensions: &[&str],
     force: bool,
-) -> Result<Vec<crate::output::Output>, CliError> {
+) -> Result<Vec<dicesim_setup::output::Output>, CliError> {
     let outputs = paths
         .iter()
-        .map(|p| crate::output::Output::check(p, extensions, force))
+        .map(|p| dicesim_setup::output::Output::check(p, extensions, force))
         .collect::<Result<Vec<_>, _>>()
         .map_err(CliError::output("--out "))?;
-    crate::output::check_apart(&outputs, &[]).map_err(CliError::output("--out "))?;
+    dicesim_setup::output::check_apart(&outputs, &[]).map_err(CliError::output("--out "))?;
     Ok(outputs)
 }
 

@@ -1,12 +1,12 @@
 //! `dicesim predict`: how precisely a throw must be known to predict its face.
 
 use super::{CliError, EngineArg, SetupArgs};
-use crate::experiment::figure::setup_value;
-use crate::experiment::plot::{Record, random_starts};
-use crate::experiment::predict::{PredictSpec, Prediction, default_epsilons, run_prediction};
-use crate::experiment::predict_plot::prediction_png;
-use crate::experiment::{RandomRanges, RunOptions, ScanKey};
 use clap::Args;
+use dicesim_experiment::predict::{PredictSpec, Prediction, default_epsilons, run_prediction};
+use dicesim_experiment::{RandomRanges, RunOptions, ScanKey};
+use dicesim_figures::figure::setup_value;
+use dicesim_figures::plot::{Record, random_starts};
+use dicesim_figures::predict_plot::prediction_png;
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -59,7 +59,7 @@ fn parse_vary(text: &str) -> Result<(ScanKey, Vec<f64>), CliError> {
     let (key, values) = text
         .split_once('=')
         .ok_or_else(|| CliError::Usage(format!("--vary `{text}`: expected KEY=V1,V2,…")))?;
-    let key = ScanKey::parse(key.trim()).map_err(CliError::experiment("--vary "))?;
+    let key = ScanKey::parse(key.trim()).map_err(|e| CliError::experiment("--vary ")(e.into()))?;
     let values = values
         .split(',')
         .map(|v| {
@@ -122,7 +122,7 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
     let mut values = preset.as_written();
     values.random.seed = spec.seed;
     let provenance = serde_json::json!({
-        "program": crate::experiment::PROGRAM,
+        "program": dicesim_experiment::PROGRAM,
         "preset": values,
         "seed": spec.seed,
         "rolls": args.rolls,

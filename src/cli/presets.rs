@@ -1,8 +1,8 @@
 //! `dicesim presets`: list, show and save presets, and tell where the user's folder is.
 
 use super::{CliError, SetupArgs};
-use crate::preset::{PresetError, Store, check_name};
 use clap::{Args, Subcommand};
+use dicesim_setup::preset::{PresetError, Store, check_name};
 use std::io::Write;
 
 #[derive(Debug, Args)]
@@ -56,9 +56,9 @@ pub(crate) fn run(args: &PresetsArgs) -> Result<(), CliError> {
                 writeln!(
                     out,
                     "{:<width$}  {:<7}  {}",
-                    crate::output::printable(&e.name),
+                    dicesim_setup::output::printable(&e.name),
                     e.source.kind(),
-                    crate::output::printable(&about)
+                    dicesim_setup::output::printable(&about)
                 )?;
             }
         }
@@ -68,7 +68,11 @@ pub(crate) fn run(args: &PresetsArgs) -> Result<(), CliError> {
                 set: set.clone(),
             };
             // A description may hold anything a file can; the terminal gets it escaped.
-            write!(out, "{}", crate::output::printable(&setup.resolve()?.to_toml()))?;
+            write!(
+                out,
+                "{}",
+                dicesim_setup::output::printable(&setup.resolve()?.to_toml())
+            )?;
         }
         PresetsCommand::Save {
             name,

@@ -1,9 +1,9 @@
 //! `dicesim roll`: one roll from the initial condition.
 
 use super::{CliError, SetupArgs};
-use crate::physics::stopping::why_it_cannot_settle;
-use crate::physics::{Simulation, Stability, Status, UnstableReason};
 use clap::Args;
+use dicesim_physics::stopping::why_it_cannot_settle;
+use dicesim_physics::{Simulation, Stability, Status, UnstableReason};
 use serde_json::json;
 use std::io::Write;
 

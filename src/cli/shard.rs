@@ -2,12 +2,12 @@
 //! `dicesim merge`, and the setup fingerprints that tell sweeps apart.
 
 use super::CliError;
-use crate::experiment::shard::{PART_FORMAT, Part, Shard, Sweep, fingerprint};
-use crate::experiment::{Axis, BasinMap, BatchRun};
-use crate::output::Output;
-use crate::physics::InitialCondition;
-use crate::preset::Preset;
 use clap::Args;
+use dicesim_experiment::shard::{PART_FORMAT, Part, Shard, Sweep, fingerprint};
+use dicesim_experiment::{Axis, BasinMap, BatchRun};
+use dicesim_physics::InitialCondition;
+use dicesim_setup::output::Output;
+use dicesim_setup::preset::Preset;
 use std::hash::Hasher;
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
@@ -195,7 +195,7 @@ pub(crate) fn batch_provenance(
         values.random.seed = seed;
     }
     serde_json::json!({
-        "program": crate::experiment::PROGRAM,
+        "program": dicesim_experiment::PROGRAM,
         "preset": values,
         "seed": seed,
         "rolls": rolls,
@@ -225,7 +225,7 @@ pub(crate) fn map_provenance(preset: &Preset, map: &BasinMap) -> serde_json::Val
         })
     };
     serde_json::json!({
-        "program": crate::experiment::PROGRAM,
+        "program": dicesim_experiment::PROGRAM,
         "preset": preset.as_written(),
         "x": axis(&map.x),
         "y": axis(&map.y),
@@ -255,7 +255,7 @@ const MAX_PART_BYTES: u64 = 1 << 20;
 /// regular file of at most [`MAX_PART_BYTES`] is read: a FIFO named `*.part.json` is
 /// refused rather than waited on.
 pub(crate) fn read_part(path: &Path) -> Result<Part, CliError> {
-    let text = crate::preset::read_regular_file(path, MAX_PART_BYTES)
+    let text = dicesim_setup::preset::read_regular_file(path, MAX_PART_BYTES)
         .map_err(|e| CliError::Parts(format!("{}: {e}", path.display())))?;
     let de = &mut serde_json::Deserializer::from_str(&text);
     serde_path_to_error::deserialize(de).map_err(|e| {

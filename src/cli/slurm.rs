@@ -3,9 +3,9 @@
 
 use super::shard::PART_EXTENSION;
 use super::{Cli, CliError, Command};
-use crate::experiment::shard::Shard;
-use crate::output::Output;
 use clap::{Args, Parser, ValueEnum};
+use dicesim_experiment::shard::Shard;
+use dicesim_setup::output::Output;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 

@@ -1,9 +1,9 @@
 //! `dicesim trace`: a roll's trajectory and energies as CSV.
 
 use super::{CliError, SetupArgs};
-use crate::experiment::trace::TraceWriter;
-use crate::physics::Simulation;
 use clap::Args;
+use dicesim_experiment::trace::TraceWriter;
+use dicesim_physics::Simulation;
 
 #[derive(Debug, Args)]
 pub(crate) struct TraceArgs {

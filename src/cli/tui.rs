@@ -1,9 +1,9 @@
 //! `dicesim tui` (and `dicesim` alone): the terminal explorer.
 
 use super::{CliError, SetupArgs};
-use crate::preset::{Preset, ThemeName};
-use crate::tui::Theme;
 use clap::{Args, ValueEnum};
+use dicesim_explorer::tui::Theme;
+use dicesim_setup::preset::{Preset, ThemeName};
 use std::io::IsTerminal;
 
 #[derive(Debug, Clone, Default, Args)]
@@ -58,7 +58,7 @@ pub(crate) fn run(args: &TuiArgs, no_color: bool) -> Result<(), CliError> {
     } else {
         Theme::from_env()
     };
-    crate::tui::run(&preset, theme).map_err(CliError::Explorer)
+    dicesim_explorer::tui::run(&preset, theme).map_err(CliError::Explorer)
 }
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
 //! Helpers shared by the integration tests: reading the reference CSVs, running the binary.
 #![allow(dead_code)]
 
-use dicesim::physics::{FrictionLaw, InitialCondition, Params, StopEnergy};
+use dicesim_physics::{FrictionLaw, InitialCondition, Params, StopEnergy};
 use std::collections::HashMap;
 use std::path::PathBuf;
 
@@ -145,7 +145,7 @@ pub fn png_text(path: &std::path::Path) -> std::collections::BTreeMap<String, St
 }
 
 /// A state's every number as bits, and its step count: what two engines must agree on.
-pub fn state_bits(s: &dicesim::physics::State) -> Vec<u64> {
+pub fn state_bits(s: &dicesim_physics::State) -> Vec<u64> {
     let mut v: Vec<f64> = Vec::with_capacity(80);
     v.extend(s.position.iter());
     v.extend(s.velocity.iter());

@@ -1,0 +1,503 @@
+//! Simulated dice thrown the way a historical experiment threw real ones, held against its
+//! counts ([`real_data`](crate::real_data)), and one setup value fitted to them.
+//!
+//! A throw of the experiment is [`Dataset::dice_per_throw`] consecutive rolls of one batch
+//! ([`stream_batch`]), each drawn from the preset's random ranges, so the comparison is
+//! parallel, the same for any thread count or engine, and a cancel keeps an exact prefix of
+//! whole throws. A fit rolls every candidate value with the same seed: the same throws
+//! (common random numbers), so the candidates differ by the value alone and the deviance
+//! profile is smooth enough to read an interval from.
+
+use crate::Error;
+use crate::basin::Axis;
+use crate::batch::{Rolls, RunOptions, stream_batch};
+use crate::compare_stats::{
+    FitInterval, GoodnessOfFit, TwoSample, deviance, fit_groups, goodness_of_fit, profile_interval,
+    two_sample,
+};
+use crate::real_data::{CountData, Dataset};
+use crate::record::RollRecord;
+use crate::stats::wilson_interval;
+use dicesim_physics::{InitialCondition, Params};
+use dicesim_setup::keys::ScanKey;
+use dicesim_setup::random::RandomRanges;
+use dicesim_setup::registry::Role;
+use serde::Serialize;
+use std::sync::atomic::AtomicBool;
+
+/// The fewest candidates a fit rolls: enough to trace the deviance's valley.
+pub const MIN_CANDIDATES: usize = 20;
+
+/// The candidates a fit rolls unless told otherwise: 20 steps over the range.
+pub const DEFAULT_CANDIDATES: usize = 21;
+
+/// One setup value fitted to the data: `candidates` values evenly spaced over `[low, high]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FitSpec {
+    pub key: ScanKey,
+    pub low: f64,
+    pub high: f64,
+    pub candidates: usize,
+}
+
+impl FitSpec {
+    /// `KEY:LO:HI` (as a basin map's axis), e.g. `ground.friction:0.2:1.2`, with the
+    /// number of candidates.
+    pub fn parse(text: &str, candidates: usize) -> Result<FitSpec, Error> {
+        let axis = Axis::parse(text, candidates.max(2))?;
+        Ok(FitSpec {
+            key: axis.key,
+            low: axis.min,
+            high: axis.max,
+            candidates,
+        })
+    }
+
+    /// Checks the fit: a key of the setup (not of the throw), a range inside the key's
+    /// limits and increasing, and enough candidates.
+    pub fn validate(&self) -> Result<(), Error> {
+        let refuse = |m: String| Err(Error::Compare(m));
+        if matches!(self.key.spec.role, Role::Initial | Role::Random) {
+            return refuse(format!(
+                "`{}` is part of the throw, which is drawn from the random ranges; fit a die, \
+                 ground, world or integrator key",
+                self.key.key
+            ));
+        }
+        self.key.check(self.low)?;
+        self.key.check(self.high)?;
+        if self.low >= self.high {
+            return refuse(format!(
+                "`{}`: the range's low end {} is not below its high end {}",
+                self.key.key, self.low, self.high
+            ));
+        }
+        if self.candidates < MIN_CANDIDATES {
+            return refuse(format!(
+                "a fit rolls at least {MIN_CANDIDATES} candidates, not {}",
+                self.candidates
+            ));
+        }
+        Ok(())
+    }
+
+    /// The candidate values, from `low` to `high`, exact at both ends (a range that ends
+    /// at the preset's own value rolls that value itself).
+    pub fn values(&self) -> Vec<f64> {
+        let steps = (self.candidates - 1) as f64;
+        (0..self.candidates)
+            .map(|i| {
+                if i + 1 == self.candidates {
+                    self.high
+                } else {
+                    self.low + (self.high - self.low) * i as f64 / steps
+                }
+            })
+            .collect()
+    }
+}
+
+/// What to throw: `throws` throws of the dataset's protocol (with the setup as it is, or
+/// once per candidate of a fit), drawn from the random ranges with `seed`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CompareSpec {
+    pub dataset: Dataset,
+    pub throws: u64,
+    pub seed: u64,
+    pub fit: Option<FitSpec>,
+}
+
+impl CompareSpec {
+    /// Checks the spec before anything is rolled.
+    pub fn validate(&self) -> Result<(), Error> {
+        let refuse = |m: String| Err(Error::Compare(m));
+        if self.throws == 0 {
+            return refuse("throw at least once".to_string());
+        }
+        if let Some(fit) = &self.fit {
+            fit.validate()?;
+        }
+        Ok(())
+    }
+
+    /// The values rolled: the fit's candidates, or the setup as it is.
+    fn values(&self) -> Vec<Option<f64>> {
+        match &self.fit {
+            Some(fit) => fit.values().into_iter().map(Some).collect(),
+            None => vec![None],
+        }
+    }
+
+    /// Rolls in the whole experiment.
+    pub fn total_rolls(&self) -> u64 {
+        let candidates = self.fit.as_ref().map_or(1, |f| f.candidates as u64);
+        self.throws
+            .saturating_mul(self.dataset.dice_per_throw() as u64)
+            .saturating_mul(candidates)
+    }
+}
+
+/// The simulated throws of one setup.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Candidate {
+    /// The fitted key's value (`None` without a fit).
+    pub value: Option<f64>,
+    /// Throws counted: every die of them settled on a face.
+    pub throws: u64,
+    /// Throws not counted because a die ended without a face (on an edge, not settled, or
+    /// unstable), as a real experimenter would throw again.
+    pub uncounted: u64,
+    /// Counted throws by category.
+    pub counts: Vec<u64>,
+    /// The data against these throws (`None` with too few throws to test).
+    pub test: Option<TwoSample>,
+    /// The deviance over the fit's fixed groups (only when fitting).
+    pub deviance: Option<f64>,
+}
+
+/// The whole comparison.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Comparison {
+    pub dataset: Dataset,
+    /// The data as bundled, with its source.
+    pub data: CountData,
+    /// The data against a fair die's exact probabilities.
+    pub data_against_fair: GoodnessOfFit,
+    pub seed: u64,
+    /// Throws asked for per candidate.
+    pub throws: u64,
+    /// The fitted key (`None` without a fit).
+    pub key: Option<String>,
+    pub candidates: Vec<Candidate>,
+    /// The fit's best value and interval (`None` without a fit or its candidates).
+    pub fit: Option<FitInterval>,
+    /// Whether a cancel stopped it before the end.
+    pub cancelled: bool,
+}
+
+/// One row of the side-by-side table: a group of categories (pooled as the test pooled
+/// them) in the data and in the simulation.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Row {
+    /// `"3"`, or `"10–12"` for a pooled group.
+    pub category: String,
+    pub data_count: u64,
+    pub data_share: f64,
+    pub data_interval: [f64; 2],
+    pub simulated_count: u64,
+    pub simulated_share: f64,
+    pub simulated_interval: [f64; 2],
+    /// The data's adjusted residual against the simulation.
+    pub residual: f64,
+}
+
+impl Comparison {
+    /// The candidate shown: the fit's best, or the one setup rolled.
+    pub fn shown(&self) -> Option<&Candidate> {
+        match &self.fit {
+            Some(f) => self.candidates.get(f.best_index),
+            None => self.candidates.first(),
+        }
+    }
+
+    /// The rows of `candidate`'s table (none without a test).
+    pub fn rows(&self, candidate: &Candidate) -> Vec<Row> {
+        let Some(test) = &candidate.test else {
+            return Vec::new();
+        };
+        let (n, m) = (test.data.iter().sum::<u64>(), test.simulated.iter().sum::<u64>());
+        let share = |k: u64, n: u64| k as f64 / n as f64;
+        test.groups
+            .iter()
+            .enumerate()
+            .map(|(g, range)| {
+                let names = &self.data.categories[range.clone()];
+                let category = match names {
+                    [one] => one.clone(),
+                    [first, .., last] => format!("{first}–{last}"),
+                    [] => String::new(),
+                };
+                let (a, b) = (test.data[g], test.simulated[g]);
+                Row {
+                    category,
+                    data_count: a,
+                    data_share: share(a, n),
+                    data_interval: wilson_interval(a, n),
+                    simulated_count: b,
+                    simulated_share: share(b, m),
+                    simulated_interval: wilson_interval(b, m),
+                    residual: test.residuals[g],
+                }
+            })
+            .collect()
+    }
+
+    /// One row per candidate and group: the key's value, the group, both counts with their
+    /// shares and intervals, the residual, and the candidate's test and deviance.
+    pub fn write_csv(&self, w: &mut dyn std::io::Write) -> std::io::Result<()> {
+        let mut csv = csv::Writer::from_writer(w);
+        let key = self.key.as_deref().unwrap_or("value");
+        csv.write_record([
+            key,
+            "category",
+            "data_count",
+            "data_share",
+            "data_low",
+            "data_high",
+            "simulated_count",
+            "simulated_share",
+            "simulated_low",
+            "simulated_high",
+            "residual",
+            "chi_square",
+            "dof",
+            "p_value",
+            "deviance",
+        ])
+        .map_err(crate::csv_io)?;
+        let text = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
+        for c in &self.candidates {
+            let Some(test) = &c.test else { continue };
+            for r in self.rows(c) {
+                csv.write_record([
+                    text(c.value),
+                    r.category,
+                    r.data_count.to_string(),
+                    r.data_share.to_string(),
+                    r.data_interval[0].to_string(),
+                    r.data_interval[1].to_string(),
+                    r.simulated_count.to_string(),
+                    r.simulated_share.to_string(),
+                    r.simulated_interval[0].to_string(),
+                    r.simulated_interval[1].to_string(),
+                    r.residual.to_string(),
+                    test.chi_square.to_string(),
+                    test.dof.to_string(),
+                    test.p_value.to_string(),
+                    text(c.deviance),
+                ])
+                .map_err(crate::csv_io)?;
+            }
+        }
+        csv.flush()
+    }
+}
+
+/// The throws of one candidate, fed with records in roll order; a throw counts once all
+/// its dice are in.
+struct ThrowTally {
+    dataset: Dataset,
+    faces: Vec<u8>,
+    whole: bool,
+    counted: u64,
+    uncounted: u64,
+    counts: Vec<u64>,
+}
+
+impl ThrowTally {
+    fn new(dataset: Dataset, categories: usize) -> ThrowTally {
+        ThrowTally {
+            dataset,
+            faces: Vec::with_capacity(dataset.dice_per_throw()),
+            whole: true,
+            counted: 0,
+            uncounted: 0,
+            counts: vec![0; categories],
+        }
+    }
+
+    fn add(&mut self, records: &[RollRecord]) {
+        for r in records {
+            match r.outcome.face {
+                Some(face) => self.faces.push(face),
+                None => self.whole = false,
+            }
+            let dice = self.dataset.dice_per_throw() as u64;
+            if r.id % dice == dice - 1 {
+                if self.whole {
+                    self.counts[self.dataset.category(&self.faces)] += 1;
+                    self.counted += 1;
+                } else {
+                    self.uncounted += 1;
+                }
+                self.faces.clear();
+                self.whole = true;
+            }
+        }
+    }
+}
+
+/// How far [`run_comparison`] has got, after a chunk of rolls.
+#[derive(Debug, Clone, Copy)]
+pub struct Progress {
+    /// Rolls done so far, over every candidate.
+    pub done: u64,
+    /// Rolls in the whole experiment.
+    pub total: u64,
+}
+
+/// Throws the dataset's protocol with `params` (once, or once per candidate of the fit,
+/// each with the same throws), tests each against the data and, when fitting, finds the
+/// best value and its interval. `progress` is called after each chunk of rolls; setting
+/// `cancel` stops it: without a fit the whole throws so far are kept, with a fit the
+/// candidates rolled whole.
+pub fn run_comparison(
+    params: &Params,
+    ranges: &RandomRanges,
+    base: &InitialCondition,
+    spec: &CompareSpec,
+    options: &RunOptions,
+    cancel: &AtomicBool,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<Comparison, Error> {
+    spec.validate()?;
+    let data = spec.dataset.data();
+    let dice = spec.dataset.dice_per_throw() as u64;
+    let rolls_each = spec.throws * dice;
+    let total = spec.total_rolls();
+    // Every candidate is checked before the first is rolled.
+    let setups = spec
+        .values()
+        .into_iter()
+        .map(|value| {
+            let (mut p, mut ic) = (*params, *base);
+            if let (Some(fit), Some(v)) = (&spec.fit, value) {
+                fit.key.set_checked(&mut p, &mut ic, v)?;
+            }
+            p.validate()?;
+            Ok((value, p, ic))
+        })
+        .collect::<Result<Vec<_>, Error>>()?;
+    let groups = fit_groups(&data.counts);
+    let mut candidates = Vec::new();
+    let mut cancelled = false;
+    for (i, (value, params, base)) in setups.into_iter().enumerate() {
+        let rolls = Rolls::Random {
+            ranges,
+            base: &base,
+            seed: spec.seed,
+            first: 0,
+            count: rolls_each,
+        };
+        let mut tally = ThrowTally::new(spec.dataset, data.counts.len());
+        let mut done = i as u64 * rolls_each;
+        let run = stream_batch(&params, &rolls, options, cancel, &mut |records| {
+            tally.add(records);
+            done += records.len() as u64;
+            progress(Progress { done, total });
+            Ok(())
+        })?;
+        if run.cancelled {
+            cancelled = true;
+            if spec.fit.is_some() {
+                break;
+            }
+        }
+        candidates.push(Candidate {
+            value,
+            throws: tally.counted,
+            uncounted: tally.uncounted,
+            test: two_sample(&data.counts, &tally.counts),
+            deviance: spec
+                .fit
+                .as_ref()
+                .map(|_| deviance(&data.counts, &tally.counts, &groups)),
+            counts: tally.counts,
+        });
+        if cancelled {
+            break;
+        }
+    }
+    let fit = spec.fit.as_ref().and_then(|_| {
+        let values: Vec<f64> = candidates.iter().filter_map(|c| c.value).collect();
+        let deviances: Vec<f64> = candidates.iter().filter_map(|c| c.deviance).collect();
+        profile_interval(&values, &deviances)
+    });
+    Ok(Comparison {
+        dataset: spec.dataset,
+        data_against_fair: goodness_of_fit(&data.counts, &spec.dataset.fair_probabilities()),
+        data,
+        seed: spec.seed,
+        throws: spec.throws,
+        key: spec.fit.as_ref().map(|f| f.key.key.clone()),
+        candidates,
+        fit,
+        cancelled,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use dicesim_physics::{Outcome, Status};
+
+    fn record(id: u64, face: Option<u8>) -> RollRecord {
+        RollRecord {
+            id,
+            initial: InitialCondition::default(),
+            outcome: Outcome {
+                status: if face.is_some() {
+                    Status::Settled
+                } else {
+                    Status::Timeout
+                },
+                face,
+                steps: 1,
+                time_s: 0.001,
+            },
+            start_face: 4,
+        }
+    }
+
+    #[test]
+    fn a_throw_counts_when_all_its_dice_are_in() {
+        let mut t = ThrowTally::new(Dataset::Weldon, 13);
+        // Throw 0: five 5s and 6s; throw 1: one die without a face.
+        let first = [5, 6, 5, 6, 5, 1, 2, 3, 4, 1, 2, 3];
+        let records: Vec<RollRecord> = (0..24)
+            .map(|i| match i {
+                i if i < 12 => record(i, Some(first[i as usize])),
+                13 => record(i, None),
+                _ => record(i, Some(6)),
+            })
+            .collect();
+        // Fed in two uneven chunks, as a batch hands them on.
+        t.add(&records[..7]);
+        t.add(&records[7..]);
+        assert_eq!((t.counted, t.uncounted), (1, 1));
+        assert_eq!(t.counts[5], 1);
+        assert_eq!(t.counts.iter().sum::<u64>(), 1);
+        let mut wolf = ThrowTally::new(Dataset::WolfRed, 6);
+        wolf.add(&[record(0, Some(3)), record(1, None), record(2, Some(3))]);
+        assert_eq!((wolf.counted, wolf.uncounted, wolf.counts[2]), (2, 1, 2));
+    }
+
+    #[test]
+    fn candidates_span_the_range_and_bad_fits_are_refused() {
+        let fit = |key: &str, low: f64, high: f64, candidates: usize| CompareSpec {
+            dataset: Dataset::Weldon,
+            throws: 10,
+            seed: 1,
+            fit: Some(FitSpec {
+                key: ScanKey::parse(key).unwrap(),
+                low,
+                high,
+                candidates,
+            }),
+        };
+        let spec = fit("ground.friction", 0.2, 1.2, 21);
+        spec.validate().unwrap();
+        let values = spec.fit.as_ref().unwrap().values();
+        assert_eq!((values.len(), values[0], values[20]), (21, 0.2, 1.2));
+        assert!((values[10] - 0.7).abs() < 1e-12);
+        assert_eq!(spec.total_rolls(), 21 * 10 * 12);
+        let e = fit("ground.friction", 0.2, 1.2, 19).validate().unwrap_err();
+        assert!(e.to_string().contains("at least 20 candidates"), "{e}");
+        let e = fit("ground.friction", 1.2, 0.2, 21).validate().unwrap_err();
+        assert!(e.to_string().contains("not below"), "{e}");
+        let e = fit("ground.friction", 0.2, 9.0, 21).validate().unwrap_err();
+        assert!(e.to_string().contains("ground.friction"), "{e}");
+        let e = fit("initial.height", 2.0, 9.0, 21).validate().unwrap_err();
+        assert!(e.to_string().contains("drawn from the random ranges"), "{e}");
+    }
+}

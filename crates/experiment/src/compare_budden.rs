@@ -1,0 +1,575 @@
+//! Budden's steel cuboids ([`real_data::budden`](crate::real_data::budden)) thrown as
+//! Budden threw them: one cuboid per ratio x/y, each throw drawn from the preset's random
+//! ranges, counted by whether a square face ended up (or, the same, down).
+//!
+//! A hand does not hold a cuboid the same way up twice, so every throw starts from a
+//! uniformly random orientation, with the preset's ranges for height, velocity and spin.
+//!
+//! One setup value is fitted on a few ratios (`calibrate_on`) with common random numbers,
+//! as [`compare`](crate::compare) fits a cubic die; every ratio is then thrown once more
+//! with the best value, so the other ratios are predictions out of sample: the fit never
+//! saw them.
+//!
+//! The source gives only the ratio, not the cuboids' size: the square faces are taken as
+//! 2 cm across and the cuboids as solid steel (both stated in every output).
+
+use crate::Error;
+use crate::batch::{Rolls, RunOptions, stream_batch};
+use crate::compare::{FitSpec, Progress};
+use crate::compare_stats::{
+    FitInterval, SharePair, SharesSummary, deviance, profile_interval, shares_summary,
+};
+use crate::real_data::{BuddenRow, budden};
+use dicesim_physics::{Die, InitialCondition, Params};
+use dicesim_setup::random::RandomDraws;
+use dicesim_setup::random::RandomRanges;
+use serde::Serialize;
+use std::sync::atomic::AtomicBool;
+
+/// cm, the side of the cuboids' square faces (not in the source: an assumption).
+pub const SQUARE_SIDE_CM: f64 = 2.0;
+
+/// g/cm³, the density of the cuboids' steel (an assumption: the source says "steel").
+pub const STEEL_DENSITY_G_PER_CM3: f64 = 7.8;
+
+/// The ratios a fit uses unless told otherwise: one where square faces win, one near the
+/// even split and one where they are rare, so the fit sees the whole curve's shape.
+pub const DEFAULT_CALIBRATE_ON: [f64; 3] = [0.63, 1.16, 1.87];
+
+/// The fit unless told otherwise: the table's damping γ (s/cm), which sets how much of a
+/// landing's energy a bounce keeps and so how long a cuboid tumbles before it settles
+/// (docs/real-dice.md, "Budden's cuboids", says why this key and not the friction).
+pub const DEFAULT_FIT: &str = "ground.damping:0:0.05";
+
+/// Throws of different ratios are drawn from disjoint parts of the seed's stream: ratio
+/// `i`'s throw `j` is roll `i·RATIO_STREAM + j`.
+const RATIO_STREAM: u64 = 1 << 32;
+
+/// The sentences every output states about the body and the throw.
+pub fn assumptions() -> Vec<String> {
+    vec![
+        format!("square faces {SQUARE_SIDE_CM} cm across (the source gives only the ratio x/y)"),
+        format!(
+            "solid steel of {STEEL_DENSITY_G_PER_CM3} g/cm³, sharp corners: mass {STEEL_DENSITY_G_PER_CM3} g/cm³ × \
+             x·{SQUARE_SIDE_CM}·{SQUARE_SIDE_CM} cm³, spread evenly through the body"
+        ),
+        "a hand throw: each throw drawn from the preset's random ranges (height, velocity, spin) \
+         from a uniformly random orientation, whatever the preset says; the preset's die is \
+         replaced by the cuboid, its table, world and integrator are kept"
+            .to_string(),
+    ]
+}
+
+/// The steel cuboid of `ratio` = x/y: faces 1 and 6 (the body's x axis) are the square
+/// ones, `x = ratio·y` apart; half sizes `[ratio·y/2, y/2, y/2]`, sharp, no pips, and a
+/// body mass of density × volume (`8·corner_mass`, spread evenly through a body that is not
+/// a cube; Budden's ratios never are 1).
+pub fn cuboid(ratio: f64) -> Die {
+    let half = 0.5 * SQUARE_SIDE_CM;
+    let half_sizes = [ratio * half, half, half];
+    let volume = 8.0 * half_sizes.iter().product::<f64>();
+    Die {
+        half_sizes,
+        corner_radius: 0.0,
+        pip_diameter: 0.0,
+        pip_depth: 0.0,
+        corner_mass: STEEL_DENSITY_G_PER_CM3 * volume / 8.0,
+        extra_corner_mass: [0.0; 8],
+    }
+}
+
+/// Whether the face up (1..6) is a square one: the cuboid's square faces are 1 and 6,
+/// opposite each other, so a square face up is a square face down.
+pub fn is_square_face(face: u8) -> bool {
+    face == 1 || face == 6
+}
+
+/// What a ratio is for in a comparison.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RatioRole {
+    /// The fit used it.
+    Calibrate,
+    /// Thrown with the fitted value only: a prediction out of sample.
+    Predict,
+}
+
+/// What to throw: each ratio `throws` times (Budden's own count when `None`), drawn with
+/// `seed`; `fit` calibrated on the ratios `calibrate_on`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BuddenSpec {
+    pub throws: Option<u64>,
+    pub seed: u64,
+    pub fit: FitSpec,
+    pub calibrate_on: Vec<f64>,
+}
+
+impl BuddenSpec {
+    /// Checks the spec before anything is rolled: the fit, and every calibration ratio one
+    /// of Budden's (the error names those).
+    pub fn validate(&self) -> Result<(), Error> {
+        if self.throws == Some(0) {
+            return Err(Error::Compare("throw at least once".to_string()));
+        }
+        self.fit.validate()?;
+        let rows = budden().0;
+        if self.calibrate_on.is_empty() {
+            return Err(Error::Compare(
+                "--calibrate-on: name at least one ratio to fit on".to_string(),
+            ));
+        }
+        for (i, &r) in self.calibrate_on.iter().enumerate() {
+            if !rows.iter().any(|row| row.ratio == r) {
+                return Err(Error::Compare(format!(
+                    "--calibrate-on: {r} is not one of Budden's ratios x/y; they are {}",
+                    ratio_list(&rows)
+                )));
+            }
+            if self.calibrate_on[..i].contains(&r) {
+                return Err(Error::Compare(format!(
+                    "--calibrate-on: ratio {r} is named twice"
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// Throws of `row`'s ratio.
+    fn throws_of(&self, row: &BuddenRow) -> u64 {
+        self.throws.unwrap_or(row.throws)
+    }
+
+    fn role(&self, row: &BuddenRow) -> RatioRole {
+        if self.calibrate_on.contains(&row.ratio) {
+            RatioRole::Calibrate
+        } else {
+            RatioRole::Predict
+        }
+    }
+
+    /// Rolls in the whole comparison: every candidate on the calibration ratios, then every
+    /// ratio once with the best value.
+    pub fn total_rolls(&self) -> u64 {
+        let rows = budden().0;
+        let calibrating: u64 = rows
+            .iter()
+            .filter(|r| self.role(r) == RatioRole::Calibrate)
+            .map(|r| self.throws_of(r))
+            .sum();
+        let all: u64 = rows.iter().map(|r| self.throws_of(r)).sum();
+        calibrating
+            .saturating_mul(self.fit.candidates as u64)
+            .saturating_add(all)
+    }
+}
+
+/// Budden's ratios as a list for messages: `0.47, 0.63, …, 2.65`.
+fn ratio_list(rows: &[BuddenRow]) -> String {
+    rows.iter()
+        .map(|r| format!("{:.2}", r.ratio))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// One ratio thrown with one setup.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct RatioThrows {
+    pub ratio: f64,
+    /// Throws that ended on a face.
+    pub throws: u64,
+    /// Throws not counted: the cuboid ended without a face (on an edge, not settled).
+    pub uncounted: u64,
+    /// Counted throws that ended on a square face.
+    pub square: u64,
+}
+
+/// One candidate of the fit: its value, its throws of the calibration ratios and the
+/// deviance summed over them.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BuddenCandidate {
+    pub value: f64,
+    pub ratios: Vec<RatioThrows>,
+    pub deviance: f64,
+}
+
+/// One ratio of the final table: Budden's count beside the simulation's with the best
+/// value.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct RatioResult {
+    pub ratio: f64,
+    pub role: RatioRole,
+    /// Budden's throws and those on a square face.
+    pub data_throws: u64,
+    pub data_square: u64,
+    pub simulated: RatioThrows,
+    /// The two shares with their intervals, and their difference in σ.
+    pub shares: SharePair,
+}
+
+/// The whole comparison.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BuddenComparison {
+    /// `"budden"`.
+    pub dataset: &'static str,
+    pub source: String,
+    pub assumptions: Vec<String>,
+    pub seed: u64,
+    /// Throws per ratio asked for (`None`: Budden's own count for each).
+    pub throws: Option<u64>,
+    pub key: String,
+    pub calibrate_on: Vec<f64>,
+    pub candidates: Vec<BuddenCandidate>,
+    pub fit: Option<FitInterval>,
+    /// Every ratio thrown with the fit's best value (empty if cancelled before).
+    pub ratios: Vec<RatioResult>,
+    /// The calibration ratios, the predicted ones and all of them against the data.
+    pub calibrated: Option<SharesSummary>,
+    pub predicted: Option<SharesSummary>,
+    pub all: Option<SharesSummary>,
+    pub cancelled: bool,
+}
+
+impl BuddenComparison {
+    /// One row per ratio of the final table.
+    pub fn write_csv(&self, w: &mut dyn std::io::Write) -> std::io::Result<()> {
+        let mut csv = csv::Writer::from_writer(w);
+        csv.write_record([
+            "ratio",
+            "role",
+            self.key.as_str(),
+            "data_throws",
+            "data_square",
+            "data_share",
+            "data_low",
+            "data_high",
+            "simulated_throws",
+            "simulated_uncounted",
+            "simulated_square",
+            "simulated_share",
+            "simulated_low",
+            "simulated_high",
+            "sigma",
+            "z",
+            "within_two_sigma",
+        ])
+        .map_err(crate::csv_io)?;
+        let best = self.fit.as_ref().map_or(String::new(), |f| f.best.to_string());
+        for r in &self.ratios {
+            let s = &r.shares;
+            csv.write_record([
+                r.ratio.to_string(),
+                match r.role {
+                    RatioRole::Calibrate => "calibrate",
+                    RatioRole::Predict => "predict",
+                }
+                .to_string(),
+                best.clone(),
+                r.data_throws.to_string(),
+                r.data_square.to_string(),
+                s.data_share.to_string(),
+                s.data_interval[0].to_string(),
+                s.data_interval[1].to_string(),
+                r.simulated.throws.to_string(),
+                r.simulated.uncounted.to_string(),
+                r.simulated.square.to_string(),
+                s.simulated_share.to_string(),
+                s.simulated_interval[0].to_string(),
+                s.simulated_interval[1].to_string(),
+                s.sigma.to_string(),
+                s.z.to_string(),
+                s.within_two_sigma().to_string(),
+            ])
+            .map_err(crate::csv_io)?;
+        }
+        csv.flush()
+    }
+}
+
+/// The throw of Budden's protocol: `ranges` from a uniformly random orientation.
+pub fn hand_throw(ranges: &RandomRanges) -> RandomRanges {
+    RandomRanges {
+        random_orientation: true,
+        ..*ranges
+    }
+}
+
+/// `params` with the cuboid of `ratio` as its die and the fitted key at `value`, checked.
+fn setup(
+    params: &Params,
+    base: &InitialCondition,
+    ranges: &RandomRanges,
+    fit: &FitSpec,
+    ratio: f64,
+    value: f64,
+) -> Result<(Params, InitialCondition), Error> {
+    let (mut p, mut ic) = (*params, *base);
+    p.die = cuboid(ratio);
+    // Which cuboid and candidate a refusal is about: the key alone does not say.
+    let context = |e: Error| {
+        Error::Compare(format!(
+            "the cuboid of ratio {ratio} with {} = {value}: {e}",
+            fit.key.key
+        ))
+    };
+    fit.key
+        .set_checked(&mut p, &mut ic, value)
+        .map_err(|e| context(e.into()))?;
+    p.validate().map_err(|e| context(e.into()))?;
+    ranges
+        .check_clear_of_table(&p, &ic)
+        .map_err(|e| context(e.into()))?;
+    Ok((p, ic))
+}
+
+/// Throws ratio `index` of Budden's table `throws` times; `None` when cancelled before
+/// the last throw (a ratio counts whole or not at all).
+#[allow(clippy::too_many_arguments)]
+fn throw_ratio(
+    (params, base): (Params, InitialCondition),
+    ranges: &RandomRanges,
+    seed: u64,
+    (index, ratio): (usize, f64),
+    throws: u64,
+    options: &RunOptions,
+    cancel: &AtomicBool,
+    mut advance: impl FnMut(u64),
+) -> Result<Option<RatioThrows>, Error> {
+    let rolls = Rolls::Random {
+        ranges,
+        base: &base,
+        seed,
+        first: index as u64 * RATIO_STREAM,
+        count: throws,
+    };
+    let mut t = RatioThrows {
+        ratio,
+        throws: 0,
+        uncounted: 0,
+        square: 0,
+    };
+    let run = stream_batch(&params, &rolls, options, cancel, &mut |records| {
+        for r in records {
+            match r.outcome.face {
+                Some(face) => {
+                    t.throws += 1;
+                    t.square += u64::from(is_square_face(face));
+                }
+                None => t.uncounted += 1,
+            }
+        }
+        advance(records.len() as u64);
+        Ok(())
+    })?;
+    Ok((!run.cancelled).then_some(t))
+}
+
+/// The deviance of Budden's counts against the simulation's at one ratio: the 2 × 2 table
+/// of square and other landings.
+fn ratio_deviance(row: &BuddenRow, t: &RatioThrows) -> f64 {
+    let data = [row.square_count(), row.throws - row.square_count()];
+    let simulated = [t.square, t.throws - t.square];
+    deviance(&data, &simulated, &[0..1, 1..2])
+}
+
+/// Fits `spec.fit` on the calibration ratios (every candidate with the same throws), then
+/// throws every ratio with the best value and holds each against Budden's share.
+/// `progress` is called after each chunk of rolls; `cancel` keeps the candidates and
+/// ratios thrown whole.
+pub fn run_budden(
+    params: &Params,
+    ranges: &RandomRanges,
+    base: &InitialCondition,
+    spec: &BuddenSpec,
+    options: &RunOptions,
+    cancel: &AtomicBool,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<BuddenComparison, Error> {
+    spec.validate()?;
+    let hand = hand_throw(ranges);
+    let ranges = &hand;
+    let (rows, source) = budden();
+    let fit = &spec.fit;
+    let values = fit.values();
+    // Every setup is checked before the first roll.
+    for row in &rows {
+        for &v in &values {
+            setup(params, base, ranges, fit, row.ratio, v)?;
+        }
+    }
+    let total = spec.total_rolls();
+    let mut done = 0;
+    let mut advance = |n: u64| {
+        done += n;
+        progress(Progress { done, total });
+    };
+    // Ratio `i`'s throws with the fitted key at `value` (None: stopped part way).
+    let mut throw = |i: usize, row: &BuddenRow, value: f64| {
+        let s = setup(params, base, ranges, fit, row.ratio, value)?;
+        throw_ratio(
+            s,
+            ranges,
+            spec.seed,
+            (i, row.ratio),
+            spec.throws_of(row),
+            options,
+            cancel,
+            &mut advance,
+        )
+    };
+    let calibration: Vec<(usize, &BuddenRow)> = rows
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| spec.role(r) == RatioRole::Calibrate)
+        .collect();
+    let mut candidates = Vec::new();
+    let mut cancelled = false;
+    'candidates: for &value in &values {
+        let mut thrown = Vec::new();
+        for &(i, row) in &calibration {
+            match throw(i, row, value)? {
+                Some(t) => thrown.push(t),
+                None => {
+                    cancelled = true;
+                    break 'candidates;
+                }
+            }
+        }
+        let deviance = calibration
+            .iter()
+            .zip(&thrown)
+            .map(|((_, row), t)| ratio_deviance(row, t))
+            .sum();
+        candidates.push(BuddenCandidate {
+            value,
+            ratios: thrown,
+            deviance,
+        });
+    }
+    let interval = if cancelled {
+        None
+    } else {
+        let values: Vec<f64> = candidates.iter().map(|c| c.value).collect();
+        let deviances: Vec<f64> = candidates.iter().map(|c| c.deviance).collect();
+        profile_interval(&values, &deviances)
+    };
+    let mut results = Vec::new();
+    if let Some(best) = interval.as_ref().map(|f| f.best) {
+        for (i, row) in rows.iter().enumerate() {
+            let Some(t) = throw(i, row, best)? else {
+                cancelled = true;
+                break;
+            };
+            results.push(RatioResult {
+                ratio: row.ratio,
+                role: spec.role(row),
+                data_throws: row.throws,
+                data_square: row.square_count(),
+                simulated: t,
+                shares: SharePair::new(row.square_count(), row.throws, t.square, t.throws),
+            });
+        }
+    }
+    let complete = results.len() == rows.len();
+    let summary = |role: Option<RatioRole>| {
+        let pairs: Vec<SharePair> = results
+            .iter()
+            .filter(|r| role.is_none_or(|role| r.role == role))
+            .map(|r| r.shares)
+            .collect();
+        (complete && !pairs.is_empty()).then(|| shares_summary(&pairs))
+    };
+    Ok(BuddenComparison {
+        dataset: "budden",
+        source,
+        assumptions: assumptions(),
+        seed: spec.seed,
+        throws: spec.throws,
+        key: fit.key.key.clone(),
+        calibrate_on: spec.calibrate_on.clone(),
+        candidates,
+        fit: interval,
+        calibrated: summary(Some(RatioRole::Calibrate)),
+        predicted: summary(Some(RatioRole::Predict)),
+        all: summary(None),
+        ratios: results,
+        cancelled,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spec(calibrate_on: &[f64]) -> BuddenSpec {
+        BuddenSpec {
+            throws: None,
+            seed: 1,
+            fit: FitSpec::parse(DEFAULT_FIT, 21).unwrap(),
+            calibrate_on: calibrate_on.to_vec(),
+        }
+    }
+
+    #[test]
+    fn the_default_calibration_rolls_its_three_ratios_per_candidate_then_all_fifteen() {
+        let s = spec(&DEFAULT_CALIBRATE_ON);
+        s.validate().unwrap();
+        // Budden's throws at 0.63, 1.16 and 1.87: 840 + 1011 + 680; all 15 ratios: 9 329.
+        assert_eq!(s.total_rolls(), 21 * (840 + 1011 + 680) + 9329);
+        let roles: Vec<RatioRole> = budden().0.iter().map(|r| s.role(r)).collect();
+        assert_eq!(roles.iter().filter(|&&r| r == RatioRole::Predict).count(), 12);
+        assert_eq!(roles[1], RatioRole::Calibrate);
+    }
+
+    #[test]
+    fn calibration_ratios_outside_the_data_are_refused() {
+        let e = spec(&[0.63, 1.0]).validate().unwrap_err().to_string();
+        assert!(e.contains("1 is not one of Budden's ratios"), "{e}");
+        assert!(e.contains("0.47, 0.63, 0.75"), "{e}");
+        assert!(e.contains("2.12, 2.65"), "{e}");
+        let e = spec(&[0.63, 0.63]).validate().unwrap_err().to_string();
+        assert!(e.contains("named twice"), "{e}");
+        let e = spec(&[]).validate().unwrap_err().to_string();
+        assert!(e.contains("at least one ratio"), "{e}");
+    }
+
+    #[test]
+    fn a_refused_cuboid_is_named_by_its_ratio_and_value() {
+        let fit = FitSpec::parse("die.corner_radius:0:0.6", 21).unwrap();
+        let (p, ic, r) = (
+            Params::default(),
+            InitialCondition::default(),
+            RandomRanges::default(),
+        );
+        // Ratio 0.47: half sizes 0.47, 1, 1 cm, so a 0.6 cm rounding does not fit.
+        let e = setup(&p, &ic, &r, &fit, 0.47, 0.6).unwrap_err().to_string();
+        assert!(
+            e.contains("the cuboid of ratio 0.47 with die.corner_radius = 0.6"),
+            "{e}"
+        );
+        assert!(e.contains("below the smallest half size, 0.47 cm"), "{e}");
+        // The same cuboid with a rounding it has room for.
+        assert!(setup(&p, &ic, &r, &fit, 0.47, 0.2).is_ok());
+    }
+
+    #[test]
+    fn a_ratio_deviance_is_the_two_by_two_g_squared() {
+        // Ratio 0.63: 620 of 840 (0.738) square. Against 300 of 400 simulated, by hand:
+        // E = 840·920/1240, 840·320/1240, 400·920/1240, 400·320/1240.
+        let row = budden().0[1];
+        assert_eq!(row.square_count(), 620);
+        let t = RatioThrows {
+            ratio: 0.63,
+            throws: 400,
+            uncounted: 7,
+            square: 300,
+        };
+        let g = |o: f64, e: f64| o * (o / e).ln();
+        let n = 1240.0;
+        let expected = 2.0
+            * (g(620.0, 840.0 * 920.0 / n)
+                + g(220.0, 840.0 * 320.0 / n)
+                + g(300.0, 400.0 * 920.0 / n)
+                + g(100.0, 400.0 * 320.0 / n));
+        assert!((ratio_deviance(&row, &t) - expected).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,298 @@
+//! The die's view: an orbiting, zooming orthographic camera and the body's geometry.
+
+use dicesim_physics::Die;
+use dicesim_physics::body::CORNER_SIGNS;
+use nalgebra::Vector3;
+
+/// Corner indices (0-based) of faces 1..6 (docs/model.md, "Faces").
+pub(crate) const FACE_CORNERS: [[usize; 4]; 6] = [
+    [0, 1, 2, 3],
+    [0, 1, 4, 5],
+    [0, 2, 4, 6],
+    [1, 3, 5, 7],
+    [2, 3, 6, 7],
+    [4, 5, 6, 7],
+];
+
+/// The 12 edges: corners whose (x, y, z) signs differ in one place (corner k−1 has bits x y z).
+pub(crate) const EDGES: [(usize, usize); 12] = [
+    (0, 1),
+    (2, 3),
+    (4, 5),
+    (6, 7),
+    (0, 2),
+    (1, 3),
+    (4, 6),
+    (5, 7),
+    (0, 4),
+    (1, 5),
+    (2, 6),
+    (3, 7),
+];
+
+/// An orthographic camera circling the die: yaw about the vertical, pitch looking down.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Camera {
+    /// °, turn about the vertical axis.
+    pub yaw_deg: f64,
+    /// °, elevation: 0 looks level, 90 straight down.
+    pub pitch_deg: f64,
+    /// Zoom steps; each makes the view 1.25 times closer.
+    pub(crate) zoom: i32,
+}
+
+impl Default for Camera {
+    fn default() -> Self {
+        Camera {
+            yaw_deg: 30.0,
+            pitch_deg: 25.0,
+            zoom: 0,
+        }
+    }
+}
+
+/// A point on the screen plane, cm, with its distance from the viewer (larger is farther).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Projected {
+    pub(crate) x: f64,
+    pub(crate) y: f64,
+    pub(crate) depth: f64,
+}
+
+impl Camera {
+    pub(crate) const MIN_PITCH: f64 = -10.0;
+    pub(crate) const MAX_PITCH: f64 = 89.0;
+    pub(crate) const MIN_ZOOM: i32 = -8;
+    pub(crate) const MAX_ZOOM: i32 = 8;
+
+    pub(crate) fn orbit(&mut self, d_yaw: f64, d_pitch: f64) {
+        self.yaw_deg = (self.yaw_deg + d_yaw).rem_euclid(360.0);
+        self.pitch_deg = (self.pitch_deg + d_pitch).clamp(Self::MIN_PITCH, Self::MAX_PITCH);
+    }
+
+    pub(crate) fn zoom_by(&mut self, steps: i32) {
+        self.zoom = (self.zoom + steps).clamp(Self::MIN_ZOOM, Self::MAX_ZOOM);
+    }
+
+    /// cm of world shown across the view for a die of half size `a` cm.
+    pub(crate) fn width_cm(&self, half_size: f64) -> f64 {
+        9.0 * half_size * 1.25f64.powi(-self.zoom)
+    }
+
+    /// Projects `p` with the view's horizontal origin at `focus` (the camera follows the die
+    /// across the table; heights stay absolute so the ground is z = 0 on screen too).
+    pub(crate) fn project(&self, p: &Vector3<f64>, focus: &Vector3<f64>) -> Projected {
+        let (sy, cy) = self.yaw_deg.to_radians().sin_cos();
+        let (sp, cp) = self.pitch_deg.to_radians().sin_cos();
+        let (dx, dy, z) = (p.x - focus.x, p.y - focus.y, p.z);
+        let across = cy * dx + sy * dy;
+        let away = -sy * dx + cy * dy;
+        Projected {
+            x: across,
+            y: z * cp + away * sp,
+            depth: away * cp - z * sp,
+        }
+    }
+
+    /// How directly a world direction faces the viewer (1 straight at them, < 0 away).
+    pub(crate) fn facing(&self, direction: &Vector3<f64>) -> f64 {
+        let n = direction.normalize();
+        if !n.iter().all(|c| c.is_finite()) {
+            return -1.0;
+        }
+        -self.project(&n, &Vector3::zeros()).depth
+    }
+}
+
+/// The die's body in the world, as the worker reports it (its 8 corner-sphere centres, which
+/// for a sharp die are its corners) with the sizes the physics gives it: the box of the three
+/// half sizes shrunk by the corner radius and grown by a ball of that radius.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Solid {
+    /// cm, world: the centres of the corner spheres 1..8.
+    pub(crate) spheres: [Vector3<f64>; 8],
+    /// cm, the corner radius.
+    pub(crate) radius: f64,
+    /// cm, the three half sizes of the sharp box.
+    pub(crate) half_sizes: [f64; 3],
+    /// cm, world: the geometric centre (not the centre of mass of a drilled or loaded die).
+    pub(crate) centre: Vector3<f64>,
+    /// The body's x, y and z axes in the world, unit vectors.
+    pub(crate) axes: [Vector3<f64>; 3],
+}
+
+impl Solid {
+    pub(crate) fn new(die: &Die, spheres: &[Vector3<f64>; 8]) -> Solid {
+        let radius = die.corner_radius;
+        let centre = spheres.iter().sum::<Vector3<f64>>() / 8.0;
+        // Corners 1 and 5, 3 and 1, 2 and 1 differ along x, y and z only, by twice the
+        // spheres' box half size `a − r` (positive: the radius is below every half size).
+        let along = |k: usize, i: usize| (spheres[k] - spheres[0]) / (2.0 * (die.half_sizes[i] - radius));
+        Solid {
+            spheres: *spheres,
+            radius,
+            half_sizes: die.half_sizes,
+            centre,
+            axes: [along(4, 0), along(2, 1), along(1, 2)],
+        }
+    }
+
+    /// A body-frame direction in the world.
+    pub(crate) fn direction(&self, v: [f64; 3]) -> Vector3<f64> {
+        self.axes[0] * v[0] + self.axes[1] * v[1] + self.axes[2] * v[2]
+    }
+
+    /// cm, world: a body-frame point about the geometric centre.
+    pub(crate) fn point(&self, p: [f64; 3]) -> Vector3<f64> {
+        self.centre + self.direction(p)
+    }
+
+    /// The outward normal of face `f` (0-based), world.
+    pub(crate) fn normal(&self, f: usize) -> Vector3<f64> {
+        self.direction(dicesim_physics::face_frame(f as u8 + 1)[0])
+    }
+
+    /// cm, world: the corners of face `f`'s flat part (0-based face, corners in
+    /// [`FACE_CORNERS`] order): its corner spheres' centres moved out by the radius. For a
+    /// sharp die these are the face's corners.
+    pub(crate) fn flat_face(&self, f: usize) -> [Vector3<f64>; 4] {
+        let out = self.normal(f) * self.radius;
+        FACE_CORNERS[f].map(|k| self.spheres[k] + out)
+    }
+
+    /// cm, world: sharp corner `k` (0-based) of the box the body is rounded from, where a
+    /// loaded die's extra mass sits.
+    pub(crate) fn sharp_corner(&self, k: usize) -> Vector3<f64> {
+        self.spheres[k] + self.direction(CORNER_SIGNS[k]) * self.radius
+    }
+
+    /// cm, world: the bottom of corner sphere `k`, where it touches the table.
+    pub(crate) fn foot_of_sphere(&self, k: usize) -> Vector3<f64> {
+        self.spheres[k] - Vector3::z() * self.radius
+    }
+
+    /// cm, world: the body's lowest point.
+    pub(crate) fn lowest(&self) -> Vector3<f64> {
+        let k = (0..8)
+            .min_by(|&i, &j| self.spheres[i].z.total_cmp(&self.spheres[j].z))
+            .unwrap_or(0);
+        self.foot_of_sphere(k)
+    }
+
+    /// The body's outline on the view plane, counter-clockwise: the hull of the corners for
+    /// a sharp die; for a rounded one the hull of the discs the corner spheres project to
+    /// (an orthographic view keeps lengths, so each ball is a disc of the corner radius),
+    /// which rounds the outline's corners with arcs.
+    pub(crate) fn outline(&self, flat: impl Fn(&Vector3<f64>) -> Flat) -> Vec<Flat> {
+        let centres = self.spheres.map(|c| flat(&c));
+        if self.radius <= 0.0 {
+            return convex_hull(&centres);
+        }
+        let discs: Vec<Flat> = centres
+            .iter()
+            .flat_map(|&(x, y)| {
+                (0..ARC_POINTS).map(move |i| {
+                    let (s, c) = (std::f64::consts::TAU * i as f64 / ARC_POINTS as f64).sin_cos();
+                    (x + self.radius * c, y + self.radius * s)
+                })
+            })
+            .collect();
+        convex_hull(&discs)
+    }
+}
+
+/// Points on each corner sphere's outline: enough that its arc reads as round at any zoom
+/// the explorer allows.
+const ARC_POINTS: usize = 32;
+
+pub(crate) use dicesim_figures::plane::{Flat, convex_hull, inside};
+
+/// The parts of the segment `a`–`b` outside the counter-clockwise convex polygon `hull`
+/// (Cyrus–Beck clipping): what a line behind an opaque convex body still shows.
+pub(crate) fn outside_parts(hull: &[Flat], a: Flat, b: Flat) -> Vec<(Flat, Flat)> {
+    if hull.len() < 3 {
+        return vec![(a, b)];
+    }
+    let d = (b.0 - a.0, b.1 - a.1);
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for i in 0..hull.len() {
+        let (v, w) = (hull[i], hull[(i + 1) % hull.len()]);
+        let e = (w.0 - v.0, w.1 - v.1);
+        // Left of the edge (inside) where f(t) = start + t·rate ≥ 0.
+        let start = e.0 * (a.1 - v.1) - e.1 * (a.0 - v.0);
+        let rate = e.0 * d.1 - e.1 * d.0;
+        if rate == 0.0 {
+            if start < 0.0 {
+                return vec![(a, b)];
+            }
+        } else if rate > 0.0 {
+            t0 = t0.max(-start / rate);
+        } else {
+            t1 = t1.min(-start / rate);
+        }
+    }
+    if t0 >= t1 {
+        return vec![(a, b)];
+    }
+    let at = |t: f64| (a.0 + t * d.0, a.1 + t * d.1);
+    let mut parts = Vec::with_capacity(2);
+    if t0 > 0.0 {
+        parts.push((a, at(t0)));
+    }
+    if t1 < 1.0 {
+        parts.push((at(t1), b));
+    }
+    parts
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use dicesim_physics::body::body_corner_offsets;
+
+    #[test]
+    fn faces_and_edges_follow_the_papers_numbering() {
+        let c = body_corner_offsets(1.0);
+        // face 4 is z = +a, face 1 is x = −a (docs/model.md).
+        assert!(FACE_CORNERS[3].iter().all(|&k| c[k].z > 0.0));
+        assert!(FACE_CORNERS[0].iter().all(|&k| c[k].x < 0.0));
+        for (a, b) in EDGES {
+            assert!(
+                ((c[a] - c[b]).norm() - 2.0).abs() < 1e-12,
+                "edge {a}-{b} has the side's length"
+            );
+        }
+    }
+
+    #[test]
+    fn the_top_faces_the_viewer_from_above_and_the_bottom_does_not() {
+        let cam = Camera::default();
+        assert!(cam.facing(&Vector3::z()) > 0.0);
+        assert!(cam.facing(&-Vector3::z()) < 0.0);
+        let level = Camera {
+            pitch_deg: 0.0,
+            ..cam
+        };
+        assert!(level.facing(&Vector3::z()).abs() < 1e-12);
+        let p = cam.project(&Vector3::new(3.0, 4.0, 0.0), &Vector3::new(3.0, 4.0, 9.0));
+        assert!(
+            p.x.abs() < 1e-12 && p.y.abs() < 1e-12,
+            "the focus' foot is the screen origin"
+        );
+    }
+
+    #[test]
+    fn a_square_hides_the_middle_of_a_line_through_it() {
+        let square = convex_hull(&[(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.5)]);
+        assert_eq!(square.len(), 4, "the inner point is not on the hull: {square:?}");
+        assert!(inside(&square, (0.5, 0.5)) && !inside(&square, (1.5, 0.5)));
+        let parts = outside_parts(&square, (-1.0, 0.5), (2.0, 0.5));
+        assert_eq!(parts, vec![((-1.0, 0.5), (0.0, 0.5)), ((1.0, 0.5), (2.0, 0.5))]);
+        assert!(
+            outside_parts(&square, (0.2, 0.2), (0.8, 0.7)).is_empty(),
+            "wholly behind"
+        );
+        let missing = ((-1.0, 3.0), (2.0, 3.0));
+        assert_eq!(outside_parts(&square, missing.0, missing.1), vec![missing]);
+    }
+}

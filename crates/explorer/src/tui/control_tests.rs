@@ -1,0 +1,503 @@
+//! The explorer's controls in a lesson: the timeline, the questions before changes are
+//! lost, Esc that never quits, the batch size; rendered deterministically.
+
+use super::app::{App, Mode, Prompt};
+use super::layout::screen_layout;
+use super::param::Param;
+use super::tests::{Scene, start};
+use super::theme::Theme;
+use crate::worker::Command;
+use dicesim_setup::preset::{Preset, Store};
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use ratatui::crossterm::event::{Event, KeyCode, MouseButton, MouseEvent, MouseEventKind};
+
+fn screen(app: &App, w: u16, h: u16) -> String {
+    let mut t = Terminal::new(TestBackend::new(w, h)).expect("test backend");
+    t.draw(|f| crate::tui::render(app, f)).expect("draw");
+    t.backend().to_string()
+}
+
+/// The line of the screen that holds `needle`.
+fn line_with(text: &str, needle: &str) -> String {
+    text.lines()
+        .find(|l| l.contains(needle))
+        .unwrap_or_else(|| panic!("no `{needle}` in\n{text}"))
+        .to_string()
+}
+
+/// The paper's roll computed to its end, then stepped back to step 170 (its first impact).
+fn stepped_back() -> Scene {
+    let mut s = start();
+    s.run_to_end();
+    s.key(KeyCode::Home);
+    for _ in 0..170 {
+        s.key(KeyCode::Char('.'));
+    }
+    s
+}
+
+fn changed() -> Scene {
+    let mut s = start();
+    s.command(Command::SetParam(Param::named("ground.friction").scan_key(), 0.5));
+    s
+}
+
+#[test]
+fn the_timeline_shows_where_the_roll_is_and_its_impacts() {
+    let s = stepped_back();
+    assert_eq!(s.app.roll.live.timeline.position, 170);
+    assert!(s.app.roll.live.timeline.ended);
+    assert!(!s.app.roll.impacts.is_empty());
+    let text = screen(&s.app, 120, 36);
+    let strip = line_with(&text, "t 0.170 s");
+    let end = s.app.roll.live.timeline.furthest as f64 * 1e-3;
+    assert!(strip.contains(&format!("end {end:.3} s")), "{strip}");
+    assert!(strip.contains('◆') && strip.contains('┃'), "{strip}");
+    insta::assert_snapshot!("timeline_stepped_back_120x36", text);
+    insta::assert_snapshot!("timeline_stepped_back_80x24", screen(&s.app, 80, 24));
+}
+
+#[test]
+fn comma_steps_back_and_home_end_jump() {
+    let mut s = stepped_back();
+    s.key(KeyCode::Char(','));
+    assert_eq!(s.app.roll.live.timeline.position, 169);
+    assert_eq!(s.app.roll.live.step, 169);
+    s.key(KeyCode::End);
+    assert_eq!(
+        s.app.roll.live.timeline.position,
+        s.app.roll.live.timeline.furthest
+    );
+    assert!(matches!(s.app.roll.live.phase, crate::worker::Phase::Ended(_)));
+    s.key(KeyCode::Home);
+    assert_eq!(s.app.roll.live.time_s, 0.0);
+    // Playing goes on from wherever the roll is.
+    s.key(KeyCode::Char('.'));
+    s.key(KeyCode::Char(' '));
+    assert!(s.app.roll.live.playing && s.app.roll.live.timeline.position == 1);
+}
+
+#[test]
+fn a_click_on_the_timeline_seeks_there() {
+    let mut s = stepped_back();
+    s.app.screen = ratatui::layout::Rect::new(0, 0, 120, 36);
+    let areas = screen_layout(s.app.screen).expect("fits");
+    let bar = super::timeline::bar(areas.timeline).expect("wide enough");
+    let furthest = s.app.roll.live.timeline.furthest;
+    for (column, expected) in [(bar.x, 0), (bar.right() - 1, furthest)] {
+        let click = MouseEvent {
+            kind: MouseEventKind::Down(MouseButton::Left),
+            column,
+            row: bar.y,
+            modifiers: ratatui::crossterm::event::KeyModifiers::NONE,
+        };
+        let sent = crate::tui::update(&mut s.app, crate::tui::Msg::Input(Event::Mouse(click)));
+        assert_eq!(sent, [Command::Seek(expected)]);
+        s.command(Command::Seek(expected));
+        assert_eq!(s.app.roll.live.timeline.position, expected);
+    }
+}
+
+#[test]
+fn esc_never_quits() {
+    for mut s in [start(), changed()] {
+        s.key(KeyCode::Esc);
+        assert!(!s.app.quit && s.app.prompt().is_none());
+        s.key(KeyCode::Char('?'));
+        s.key(KeyCode::Esc);
+        s.key(KeyCode::Esc);
+        assert!(
+            !s.app.quit && s.app.help_scroll().is_none(),
+            "Esc after closing help stays"
+        );
+        s.key(KeyCode::Tab);
+        assert_eq!(s.app.mode(), Mode::Map);
+        s.key(KeyCode::Esc);
+        assert_eq!(s.app.mode(), Mode::Normal, "Esc on the map screen goes back");
+        assert!(!s.app.quit);
+    }
+}
+
+#[test]
+fn q_asks_first_when_the_setup_has_changes() {
+    let mut s = start();
+    s.key(KeyCode::Char('q'));
+    assert!(s.app.quit, "nothing to lose: q quits at once");
+
+    let mut s = changed();
+    s.key(KeyCode::Char('q'));
+    assert!(!s.app.quit);
+    assert_eq!(s.app.prompt(), Some(&Prompt::Quit));
+    let text = screen(&s.app, 120, 36);
+    assert!(text.contains("Quit? The setup has unsaved changes"), "{text}");
+    insta::assert_snapshot!("quit_prompt_120x36", text);
+    insta::assert_snapshot!("quit_prompt_80x24", screen(&s.app, 80, 24));
+    s.key(KeyCode::Char('x'));
+    assert!(!s.app.quit && s.app.prompt().is_none(), "any other key stays");
+    assert_eq!(s.app.setup.params.ground.friction, 0.5, "and changes nothing");
+    s.key(KeyCode::Char('q'));
+    s.key(KeyCode::Char('q'));
+    assert!(s.app.quit, "q again quits");
+    let mut s = changed();
+    s.key(KeyCode::Char('q'));
+    s.key(KeyCode::Char('y'));
+    assert!(s.app.quit, "y quits");
+}
+
+#[test]
+fn backspace_resets_to_the_preset_asking_first() {
+    let mut s = changed();
+    let preset = s.app.setup.preset.clone();
+    s.key(KeyCode::Backspace);
+    assert_eq!(s.app.prompt(), Some(&Prompt::Reset));
+    let text = screen(&s.app, 120, 36);
+    assert!(
+        text.contains(&format!("Reset the setup to {}?", preset.name)),
+        "{text}"
+    );
+    insta::assert_snapshot!("reset_prompt_120x36", text);
+    s.key(KeyCode::Esc);
+    assert_eq!(s.app.setup.params.ground.friction, 0.5, "Esc keeps the changes");
+    s.key(KeyCode::Backspace);
+    s.key(KeyCode::Backspace);
+    assert_eq!(s.app.setup.params, preset.params());
+    assert_eq!(s.engine.params(), &preset.params());
+    assert!(!super::dialogs::modified(&s.app));
+    // Nothing changed: nothing to ask, nothing to do.
+    s.key(KeyCode::Backspace);
+    assert!(s.app.prompt().is_none());
+    assert!(
+        s.app
+            .notice
+            .as_deref()
+            .is_some_and(|n| n.contains("nothing to reset"))
+    );
+}
+
+#[test]
+fn opening_a_preset_over_changes_asks_first() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = changed();
+    s.app.store = Store::new(Some(dir.path().to_path_buf()));
+    s.key(KeyCode::Char('o'));
+    assert_eq!(s.app.mode(), Mode::Dialog);
+    s.key(KeyCode::Down);
+    s.key(KeyCode::Enter);
+    let Some(Prompt::Load(chosen)) = s.app.prompt().cloned() else {
+        panic!("asks first: {:?}", s.app.prompt())
+    };
+    assert!(screen(&s.app, 120, 36).contains(&format!("Open {}?", chosen.name)));
+    s.key(KeyCode::Char('n'));
+    assert_eq!(s.app.mode(), Mode::Dialog, "no: back in the picker");
+    assert_eq!(s.app.setup.params.ground.friction, 0.5);
+    s.key(KeyCode::Enter);
+    s.key(KeyCode::Enter);
+    assert!(s.app.dialog().is_none());
+    assert_eq!(s.app.setup.preset.name, chosen.name);
+    assert_eq!(s.engine.params(), &chosen.params());
+}
+
+#[test]
+fn the_batch_size_is_chosen_or_typed() {
+    let mut s = start();
+    assert_eq!(s.app.roll.batch_size, 10_000);
+    assert!(screen(&s.app, 120, 36).contains("b batch 10 000"));
+    s.key(KeyCode::Char('B'));
+    assert_eq!(s.app.roll.batch_size, 100_000);
+    s.key(KeyCode::Char('B'));
+    assert_eq!(s.app.mode(), Mode::EditingValue);
+    for c in "2.5".chars() {
+        s.key(KeyCode::Char(c));
+    }
+    s.key(KeyCode::Enter);
+    let text = screen(&s.app, 120, 36);
+    assert!(text.contains("a whole number from 1 to 10 000 000"), "{text}");
+    for _ in 0..3 {
+        s.key(KeyCode::Backspace);
+    }
+    for c in "2500".chars() {
+        s.key(KeyCode::Char(c));
+    }
+    s.key(KeyCode::Enter);
+    assert_eq!(s.app.roll.batch_size, 2_500);
+    assert!(screen(&s.app, 120, 36).contains("b batch 2 500"));
+    s.key(KeyCode::Char('b'));
+    assert_eq!(s.app.roll.batch.map(|b| b.total), Some(2_500));
+    s.key(KeyCode::Char('b'));
+    // After a typed size the ladder starts again.
+    s.key(KeyCode::Char('B'));
+    assert_eq!(s.app.roll.batch_size, 1_000);
+    s.key(KeyCode::Char('B'));
+    assert_eq!(s.app.roll.batch_size, 10_000);
+    let mut s = start();
+    s.app.roll.batch_size = 100_000;
+    s.key(KeyCode::Char('B'));
+    s.key(KeyCode::Esc);
+    assert_eq!(s.app.roll.batch_size, 100_000, "Esc keeps the size");
+    s.key(KeyCode::Char('B'));
+    assert_eq!(s.app.mode(), Mode::EditingValue, "from the largest, B types one");
+}
+
+#[test]
+fn the_footer_and_help_come_from_the_key_table() {
+    let s = start();
+    let text = screen(&s.app, 120, 36);
+    let footer = text.lines().last().expect("a footer").to_string();
+    for hint in ["space play", ", . step", "? help", "q quit"] {
+        assert!(footer.contains(hint), "{footer}");
+    }
+    let narrow = screen(&s.app, 80, 24);
+    let footer = narrow.lines().last().expect("a footer").to_string();
+    assert!(footer.contains("? help") && footer.contains("q quit"), "{footer}");
+    let mut s = start();
+    s.key(KeyCode::Char('?'));
+    let help = screen(&s.app, 120, 36);
+    for row in super::keys::BINDINGS.iter().take(6) {
+        assert!(help.contains(row.help), "no `{}` in\n{help}", row.help);
+    }
+}
+
+/// A preset with a theme, for the projector check.
+#[test]
+fn prompts_read_in_the_projector_theme() {
+    let mut s = Scene::new(&Preset::default(), Theme::default().next().next());
+    s.command(Command::SetParam(Param::named("ground.friction").scan_key(), 0.5));
+    s.key(KeyCode::Char('q'));
+    insta::assert_snapshot!("quit_prompt_projector_100x30", screen(&s.app, 100, 30));
+}
+
+#[test]
+fn slow_motion_classroom_opens_slowed_down_with_its_arrows() {
+    let preset = Store::new(None).load("slow-motion-classroom").expect("shipped").0;
+    let s = Scene::new(&preset, Theme::default());
+    assert_eq!(s.app.roll.live.speed.label(), "1/10×");
+    assert!(s.app.vectors);
+    assert!(screen(&s.app, 120, 36).contains("speed 1/10×"));
+    // Loading it over another preset applies its view too, and a preset without a view
+    // opens as the explorer does: at 1×, without arrows or twin, the theme kept.
+    let mut s = start();
+    s.key(KeyCode::Char('t'));
+    s.command(Command::LoadPreset(Box::new(preset)));
+    assert_eq!(s.app.setup.speed.label(), "1/10×");
+    assert!(s.app.vectors);
+    s.key(KeyCode::Char('T'));
+    s.key(KeyCode::Char('a'));
+    s.command(Command::LoadPreset(Box::default()));
+    assert_eq!(s.app.setup.speed.label(), "1×");
+    assert_eq!(s.engine.live().speed().label(), "1×");
+    // The twin turned on stays on (a lesson compares presets with it).
+    assert!(!s.app.vectors && s.app.twin.on && s.app.roll.live.twin.is_some());
+    assert_eq!(s.app.camera, super::camera::Camera::default());
+    assert_eq!(s.app.theme.palette, super::theme::Palette::Light);
+}
+
+#[test]
+fn s_saves_the_view_and_a_description_and_loading_applies_them() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let store = Store::new(Some(dir.path().to_path_buf()));
+    let mut s = changed();
+    s.app.store = store.clone();
+    for key in ['[', '[', 'v', 't', 'a', 'T'] {
+        s.key(KeyCode::Char(key));
+    }
+    s.key(KeyCode::Char('s'));
+    for c in "lab-3".chars() {
+        s.key(KeyCode::Char(c));
+    }
+    let automatic = super::dialogs::automatic_description(&s.app);
+    assert_eq!(automatic, "The `paper` preset with ground.friction=0.5.");
+    // A fixed folder for the picture (the temporary one's name changes every run).
+    s.app.store = Store::new(Some("/home/teacher/presets".into()));
+    let text = screen(&s.app, 120, 36);
+    assert!(
+        text.contains(&automatic),
+        "the empty description shows what it will be:\n{text}"
+    );
+    insta::assert_snapshot!("save_dialog_120x36", text);
+    s.app.store = store.clone();
+    s.key(KeyCode::Tab);
+    for c in "Friction halved for lab 3.".chars() {
+        s.key(KeyCode::Char(c));
+    }
+    s.key(KeyCode::Enter);
+    assert!(s.app.dialog().is_none(), "{:?}", s.app.dialog());
+    let saved = store.load("lab-3").expect("saved").0;
+    assert_eq!(saved.description, "Friction halved for lab 3.");
+    assert_eq!(saved.ground.friction, 0.5);
+    let view = saved.view;
+    assert_eq!(view.speed.map(|v| v.label()), Some("1/5×"));
+    assert_eq!(view.arrows, Some(true));
+    assert_eq!(view.theme, Some(dicesim_setup::preset::ThemeName::Light));
+    assert_eq!(view.twin, Some(1e-9));
+    assert_eq!(view.camera.map(|c| c.yaw), Some(15.0));
+    assert_eq!(view.screen, Some(dicesim_setup::preset::Screen::Die));
+    let text = std::fs::read_to_string(dir.path().join("lab-3.toml")).expect("written");
+    assert!(text.contains("\nspeed = \"1/5×\""), "{text}");
+
+    // Opened in a fresh explorer, it looks the same.
+    let s = Scene::new(&saved, Theme::default());
+    assert_eq!(s.app.roll.live.speed.label(), "1/5×");
+    assert!(s.app.vectors && s.app.twin.on && s.app.roll.live.twin.is_some());
+    assert_eq!(s.app.theme.palette, super::theme::Palette::Light);
+    assert_eq!(s.app.camera.yaw_deg, 15.0);
+}
+
+#[test]
+fn a_view_on_the_map_screen_opens_it() {
+    let mut preset = Preset::default();
+    preset.view.screen = Some(dicesim_setup::preset::Screen::Map);
+    let mut s = Scene::new(&preset, Theme::default());
+    s.sync();
+    assert_eq!(s.app.mode(), Mode::Map);
+    assert!(s.app.map.requested.is_some(), "the map is asked for at once");
+}
+
+#[test]
+fn the_views_camera_limits_are_the_cameras() {
+    use super::camera::Camera;
+    assert_eq!(dicesim_setup::preset::PITCH.min, Camera::MIN_PITCH);
+    assert_eq!(dicesim_setup::preset::PITCH.max, Camera::MAX_PITCH);
+    assert_eq!(dicesim_setup::preset::ZOOM.min, f64::from(Camera::MIN_ZOOM));
+    assert_eq!(dicesim_setup::preset::ZOOM.max, f64::from(Camera::MAX_ZOOM));
+}
+
+#[test]
+fn a_digit_on_a_parameter_row_opens_the_value_editor_with_it_typed() {
+    let mut s = start();
+    s.select(Param::named("initial.height"));
+    s.key(KeyCode::Char('2'));
+    s.key(KeyCode::Char('0'));
+    assert_eq!(
+        s.app.mode(),
+        Mode::EditingValue,
+        "2 opens no map and starts no map"
+    );
+    assert_eq!(s.app.value_editor().map(|e| e.text.as_str()), Some("20"));
+    let text = screen(&s.app, 120, 36);
+    assert!(text.contains("20▏"), "{text}");
+    insta::assert_snapshot!("digit_typed_editor_120x36", text);
+    insta::assert_snapshot!("digit_typed_editor_80x24", screen(&s.app, 80, 24));
+    s.key(KeyCode::Enter);
+    assert_eq!(s.app.setup.initial.height, 20.0, "Enter applies the 20 typed");
+    assert_eq!(s.app.mode(), Mode::Normal);
+}
+
+#[test]
+fn a_key_that_means_nothing_does_nothing_and_the_footer_says_so() {
+    let mut s = start();
+    let before = (s.app.log_scale, s.app.setup.params, s.app.setup.initial);
+    // `y` answers questions; with none open it means nothing (it once switched the log scale).
+    s.key(KeyCode::Char('y'));
+    assert_eq!((s.app.log_scale, s.app.setup.params, s.app.setup.initial), before);
+    assert_eq!(s.app.mode(), Mode::Normal);
+    let text = screen(&s.app, 120, 36);
+    assert!(text.contains("y: nothing here (? lists the keys)"), "{text}");
+    insta::assert_snapshot!("nothing_here_footer_120x36", text);
+    // The next key that does something clears it.
+    s.key(KeyCode::Down);
+    assert!(!screen(&s.app, 120, 36).contains("nothing here"));
+    // In the help too: Esc, ? and q close it, anything else stays and says so.
+    s.key(KeyCode::Char('?'));
+    s.key(KeyCode::Char('x'));
+    assert_eq!(s.app.mode(), Mode::Help);
+    assert_eq!(
+        s.app.notice.as_deref(),
+        Some("x: nothing here (? lists the keys)")
+    );
+    s.key(KeyCode::Char('q'));
+    assert_eq!(s.app.mode(), Mode::Normal, "q closes the help");
+    assert!(!s.app.quit, "and does not quit from it");
+}
+
+/// The shipped preset `name`.
+fn shipped(name: &str) -> Preset {
+    Store::new(None).load(name).expect("shipped").0
+}
+
+#[test]
+fn a_random_roll_is_no_change_of_the_users_and_o_opens_without_asking() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut s = start();
+    s.app.store = Store::new(Some(dir.path().to_path_buf()));
+    s.key(KeyCode::Char('R'));
+    assert_ne!(
+        s.app.setup.initial, s.app.setup.preset.initial,
+        "R drew another start from the ranges"
+    );
+    assert!(!s.app.setup.modified(), "a draw is not an edit");
+    s.key(KeyCode::Char('o'));
+    s.key(KeyCode::Down);
+    s.key(KeyCode::Enter);
+    assert!(s.app.prompt().is_none(), "no question: {:?}", s.app.prompt());
+    assert_ne!(s.app.setup.preset.name, spun_name(), "the chosen preset opened");
+    // An edit after a draw is a change, and is guarded again.
+    let mut s = start();
+    s.key(KeyCode::Char('R'));
+    s.select(Param::named("initial.height"));
+    s.key(KeyCode::Right);
+    assert!(s.app.setup.modified());
+    s.key(KeyCode::Char('q'));
+    assert_eq!(s.app.prompt(), Some(&Prompt::Quit));
+}
+
+/// The name of the preset [`start`] opens.
+fn spun_name() -> String {
+    start().app.setup.preset.name
+}
+
+#[test]
+fn opening_a_preset_keeps_the_twin_rolling_at_its_epsilon() {
+    let mut s = start();
+    s.key(KeyCode::Char('T'));
+    s.key(KeyCode::Char('>'));
+    let epsilon = s.app.twin.epsilon;
+    assert!(s.app.twin.on && s.app.roll.live.twin.is_some());
+    let gentle = shipped("gentle-drop");
+    assert_eq!(gentle.view.twin, None, "the preset asks for no twin of its own");
+    s.command(Command::LoadPreset(Box::new(gentle.clone())));
+    assert_eq!(s.app.setup.preset.name, gentle.name);
+    assert!(s.app.twin.on, "the explorer still says the twin is on");
+    let twin = s.app.roll.live.twin.as_ref().expect("the worker rolls a twin");
+    assert_eq!(twin.epsilon, epsilon);
+    // The twin is the new preset's start perturbed, not the old one's: both start at
+    // gentle-drop's 1.8 cm, the twin ε higher.
+    let h = s.app.roll.live.die.centre.z;
+    assert!((h - 1.8).abs() < 1e-12, "{h}");
+    assert!(
+        (twin.die.centre.z - 1.8 * (1.0 + epsilon)).abs() < 1e-9,
+        "{}",
+        twin.die.centre.z
+    );
+}
+
+#[test]
+fn the_map_after_opening_a_preset_spans_that_presets_own_values() {
+    let mut s = Scene::new(&shipped("paper"), Theme::default());
+    s.app.screen = ratatui::layout::Rect::new(0, 0, 100, 30);
+    s.key(KeyCode::Tab);
+    // The map spans the random range of spin, 120 rad/s wide, around the preset's own spin
+    // (its ends on the value list's coarse grid of 10 rad/s): about x the paper spins at
+    // 12 rad/s, about y at −20; gentle-drop at 1 and −1.
+    let around = |range: (f64, f64), own: f64| {
+        let width = range.1 - range.0;
+        (110.0..=130.0).contains(&width) && ((range.0 + range.1) / 2.0 - own).abs() <= 10.0
+    };
+    let axes = |s: &Scene| {
+        (
+            (s.app.map.x.min, s.app.map.x.max),
+            (s.app.map.y.min, s.app.map.y.max),
+        )
+    };
+    let (x, y) = axes(&s);
+    assert!(around(x, 12.0) && around(y, -20.0), "{x:?} {y:?}");
+    s.key(KeyCode::Tab);
+    s.command(Command::LoadPreset(Box::new(shipped("gentle-drop"))));
+    s.key(KeyCode::Tab);
+    let (x, y) = axes(&s);
+    assert!(around(x, 1.0) && around(y, -1.0), "{x:?} {y:?}");
+    let (request, params, initial) = s.app.map.requested.expect("a map was asked for");
+    assert_eq!((request.x.min, request.x.max), x);
+    assert_eq!(initial.height, 1.8);
+    assert_eq!(params, shipped("gentle-drop").params());
+}

@@ -1,0 +1,40 @@
+//! The preset dialogs' state: what the picker offers and what the save dialog holds.
+//! Their keys and drawing are in [`super::dialogs`].
+
+use dicesim_setup::preset::Preset;
+
+/// One preset the picker offers.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Choice {
+    pub(crate) name: String,
+    /// The user's own (saved from here or by hand), rather than shipped.
+    pub(crate) user: bool,
+    /// The preset, or why its file does not load.
+    pub(crate) preset: Result<Box<Preset>, String>,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Dialog {
+    Picker {
+        choices: Vec<Choice>,
+        selected: usize,
+        error: Option<String>,
+    },
+    Save {
+        name: String,
+        /// Empty: the automatic description ([`super::dialogs::automatic_description`]) is saved.
+        description: String,
+        /// Which field the keys type into (Tab switches).
+        field: SaveField,
+        error: Option<String>,
+        /// The name exists and Enter was pressed once: the next Enter replaces it.
+        confirm_replace: bool,
+    },
+}
+
+/// The save dialog's fields.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum SaveField {
+    Name,
+    Description,
+}

@@ -1,0 +1,155 @@
+//! The plot panel's choices drawn from deterministic states: the paper's spun roll computed
+//! to its end and the screen stepped back into it, then `w` / `V` pressed as a user would.
+
+use super::tests::{Scene, screen, settled};
+use crate::worker::Command;
+use dicesim_physics::Simulation;
+use ratatui::crossterm::event::KeyCode;
+
+/// The spun roll computed to its end, the screen back at `step`, `w` pressed `presses`
+/// times (and `V` after, for a phase plot).
+fn plot_at(step: u64, presses: usize, phase: bool) -> Scene {
+    let mut s = settled();
+    s.command(Command::Seek(step));
+    for _ in 0..presses {
+        s.key(KeyCode::Char('w'));
+    }
+    if phase {
+        s.key(KeyCode::Char('V'));
+    }
+    s
+}
+
+/// The plot panel's rows of a screen: those between its title row and the next panel's.
+fn panel_rows(text: &str, title: &str) -> Vec<String> {
+    let lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let top = lines
+        .iter()
+        .position(|l| l.contains(title))
+        .unwrap_or_else(|| panic!("no {title:?} in\n{text}"));
+    lines[top..].to_vec()
+}
+
+/// Where the roll of the scene ends, s, worked out by a simulation of its own.
+fn roll_end(s: &Scene) -> f64 {
+    let mut sim = Simulation::new(&s.app.roll.live.params, &s.app.roll.live.initial).unwrap();
+    sim.run_to_end().time_s
+}
+
+#[test]
+fn the_height_plot_marks_the_time_on_screen_on_an_axis_fitted_to_the_roll() {
+    let s = plot_at(300, 1, false);
+    let text = screen(&s.app, 120, 36);
+    insta::assert_snapshot!("plot_height_120x36", text);
+    insta::assert_snapshot!("plot_height_80x24", screen(&s.app, 80, 24));
+    let rows = panel_rows(&text, "height of the centre · cm");
+    // The axis's end label: a round number of seconds past the roll's end, not a fixed 1 s.
+    let end = roll_end(&s);
+    let label = rows
+        .iter()
+        .find_map(|l| {
+            let at = l.find(" s")?;
+            let number = l[..at].split_whitespace().last()?;
+            number.parse::<f64>().ok()
+        })
+        .expect("a time label");
+    assert!(
+        label >= end && label < end + 0.5 * end.max(0.2),
+        "axis to {label} s for a {end} s roll"
+    );
+    // The marker: one column of │ in the plot, at 0.3 s of the axis's span.
+    let columns: Vec<usize> = rows
+        .iter()
+        .filter_map(|l| l.chars().position(|c| c == '│').filter(|&x| x > 0))
+        .collect();
+    assert!(columns.len() >= 3, "the time marker spans rows: {rows:#?}");
+    // The y-axis line is the left border of the plot (the first column of ─ in the x axis).
+    let axis_row = rows.iter().find(|l| l.contains("└")).expect("the x axis");
+    let left = axis_row.chars().position(|c| c == '└').unwrap();
+    let right = left + axis_row.chars().skip(left + 1).take_while(|&c| c == '─').count();
+    let want = left as f64 + 0.3 / label * (right - left) as f64;
+    assert!(
+        columns.iter().any(|&c| (c as f64 - want).abs() <= 1.5),
+        "marker columns {columns:?}, want about {want:.1}"
+    );
+}
+
+#[test]
+fn the_contact_force_plot_is_flat_in_flight_and_spikes_at_the_impacts() {
+    let s = plot_at(300, 5, false);
+    let text = screen(&s.app, 120, 36);
+    insta::assert_snapshot!("plot_contact_force_120x36", text);
+    insta::assert_snapshot!("plot_contact_force_80x24", screen(&s.app, 80, 24));
+    assert!(text.contains("contact force · dyn"), "{text}");
+    // The table pushes only on a die pressed into it: no force while the lowest corner is
+    // above the table, and the largest force of the roll while it is below.
+    let history = &s.app.roll.history;
+    let (lowest, force) = (
+        |h: &crate::worker::EnergySample| h.quantities[1],
+        |h: &crate::worker::EnergySample| h.quantities[4],
+    );
+    assert!(
+        history
+            .iter()
+            .filter(|h| lowest(h) > 0.0)
+            .all(|h| force(h) == 0.0)
+    );
+    let peak = history
+        .iter()
+        .max_by(|a, b| force(a).total_cmp(&force(b)))
+        .unwrap();
+    assert!(lowest(peak) < 0.0 && force(peak) > 0.0, "{peak:?}");
+    assert!(
+        history.iter().any(|h| lowest(h) > 0.0),
+        "the roll starts in the air"
+    );
+}
+
+#[test]
+fn the_phase_plot_draws_the_speed_against_the_height_and_marks_the_state_on_screen() {
+    let s = plot_at(300, 1, true);
+    let text = screen(&s.app, 120, 36);
+    insta::assert_snapshot!("plot_phase_120x36", text);
+    insta::assert_snapshot!("plot_phase_80x24", screen(&s.app, 80, 24));
+    assert!(text.contains("speed (cm/s) vs height (cm)"), "{text}");
+    // One ● more than the same screen without the phase plot (the die marks its contacts
+    // with ● too).
+    let mut plain = plot_at(300, 1, false);
+    plain.sync();
+    let before = screen(&plain.app, 120, 36).matches('●').count();
+    assert_eq!(
+        text.matches('●').count(),
+        before + 1,
+        "one state on screen:\n{text}"
+    );
+    let narrow = screen(&s.app, 80, 24);
+    assert!(narrow.contains("speed vs height"), "{narrow}");
+}
+
+#[test]
+fn a_mid_roll_edit_is_marked_on_the_timeline_and_the_plot_and_the_old_run_stays_faded() {
+    let mut s = plot_at(300, 0, false);
+    let before = s.app.roll.history.clone();
+    // The stiffness (the first row) one step up, at 0.3 s: the table acts at once.
+    assert_eq!(s.app.selected, 0);
+    s.key(KeyCode::Right);
+    assert_eq!(s.app.roll.edits, vec![300], "the worker's record of the edit");
+    assert_eq!(s.app.roll.previous, before, "the run before the edit, kept whole");
+    s.run_to_end();
+    // The new run shares the old one's samples up to the edit and parts from it after.
+    let shared = s.app.roll.history.iter().take_while(|h| h.time_s <= 0.3).count();
+    assert_eq!(s.app.roll.history[..shared], before[..shared]);
+    assert_ne!(s.app.roll.history[shared..], before[shared..shared + 1]);
+    let text = screen(&s.app, 120, 36);
+    insta::assert_snapshot!("plot_edit_120x36", text);
+    insta::assert_snapshot!("plot_edit_80x24", screen(&s.app, 80, 24));
+    assert_eq!(text.matches('▼').count(), 1, "the edit on the timeline:\n{text}");
+    assert!(text.contains('┊'), "the edit on the plot:\n{text}");
+    // A replay is a new run: no edit in it, the edited run now the faded one.
+    let edited = s.app.roll.history.clone();
+    s.key(KeyCode::Char('r'));
+    s.sync();
+    assert!(s.app.roll.edits.is_empty());
+    assert_eq!(s.app.roll.previous, edited);
+    assert!(!screen(&s.app, 120, 36).contains('▼'));
+}

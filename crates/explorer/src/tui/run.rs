@@ -1,0 +1,179 @@
+//! The terminal's lifecycle and the event loop: report hooks first, then the terminal,
+//! restored on every way out.
+//!
+//! - `update` does no I/O: the effects it returns (worker commands, listing and saving
+//!   presets) are run here, by [`perform`].
+//! - Quitting (`q`, Ctrl-C as a key) leaves the loop and restores it.
+//! - SIGTERM, SIGHUP, SIGINT and SIGQUIT reach a thread of their own (signal-hook), which
+//!   asks the loop to stop, so the terminal is restored and the process exits with 128 +
+//!   the signal; should the loop not answer within half a second, that thread restores the
+//!   terminal and exits itself.
+//! - A panic on any thread restores the terminal first, then prints its message once, then
+//!   ends the whole process (exit status 101): a half-alive explorer drawing over the
+//!   message helps nobody.
+//!
+//! Drawing holds [`SCREEN`], and whoever restores takes it first and never gives it back,
+//! so no frame lands after the terminal was given back to the shell.
+
+use super::app::{App, Effect, Msg};
+use super::input::update;
+use super::render::render;
+use super::theme::Theme;
+use crate::worker::{Command, Engine, Worker};
+use color_eyre::eyre::{Result, WrapErr};
+use dicesim_setup::preset::Preset;
+use ratatui::DefaultTerminal;
+use ratatui::crossterm::cursor::Show;
+use ratatui::crossterm::event::{DisableMouseCapture, EnableMouseCapture};
+use ratatui::crossterm::execute;
+use ratatui::layout::Rect;
+use signal_hook::consts::{SIGHUP, SIGINT, SIGQUIT, SIGTERM};
+use signal_hook::iterator::Signals;
+use std::collections::VecDeque;
+use std::io::stdout;
+use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender, channel};
+use std::sync::{Mutex, TryLockError};
+use std::time::{Duration, Instant};
+
+/// Longest wait between frames while something moves (the worker's ticks usually come first).
+const FRAME: Duration = Duration::from_millis(33);
+
+/// Held while a frame is drawn, and for good once the terminal has been restored.
+static SCREEN: Mutex<()> = Mutex::new(());
+
+/// Mouse reporting off, the cursor shown, raw mode off, the normal screen back. Waits
+/// (briefly: a panic mid-frame holds it on this very thread) for any frame being drawn.
+fn restore_for_good() {
+    let deadline = Instant::now() + Duration::from_millis(200);
+    let guard = loop {
+        match SCREEN.try_lock() {
+            Ok(g) => break Some(g),
+            Err(TryLockError::Poisoned(p)) => break Some(p.into_inner()),
+            Err(TryLockError::WouldBlock) if Instant::now() < deadline => {
+                std::thread::sleep(Duration::from_millis(5))
+            }
+            Err(TryLockError::WouldBlock) => break None,
+        }
+    };
+    // ratatui's restore turns neither mouse reporting off nor the cursor back on.
+    let _ = execute!(stdout(), DisableMouseCapture, Show);
+    ratatui::restore();
+    std::mem::forget(guard);
+}
+
+/// The signals that end the explorer: a terminal closing, `kill`, Ctrl-C or Ctrl-\ sent
+/// from outside (inside, raw mode turns those keys into key presses).
+const ENDING_SIGNALS: [i32; 4] = [SIGTERM, SIGHUP, SIGINT, SIGQUIT];
+
+/// Opens the explorer on `preset` and runs it until the user quits; a signal ends the
+/// process from here with 128 + the signal, after restoring the terminal.
+pub fn run(preset: &Preset, theme: Theme) -> Result<()> {
+    let engine = Engine::new(preset).wrap_err("the preset cannot be simulated")?;
+    let mut signals = Signals::new(ENDING_SIGNALS).wrap_err("cannot catch signals")?;
+    let signal_handle = signals.handle();
+    // A second install (a caller already did) is harmless: keep the first.
+    let _ = color_eyre::install();
+    let mut terminal = ratatui::init();
+    let _ = execute!(stdout(), EnableMouseCapture);
+    let previous = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        restore_for_good();
+        previous(info);
+        std::process::exit(101);
+    }));
+    let (tx, rx) = channel::<Msg>();
+    let to_loop = tx.clone();
+    std::thread::Builder::new()
+        .name("dicesim-signals".to_string())
+        .spawn(move || {
+            if let Some(signal) = signals.forever().next() {
+                let _ = to_loop.send(Msg::Signal(signal));
+                std::thread::sleep(Duration::from_millis(500));
+                restore_for_good();
+                std::process::exit(128 + signal);
+            }
+        })?;
+    let result = event_loop(&mut terminal, engine, theme, tx, rx);
+    restore_for_good();
+    signal_handle.close();
+    match result {
+        Ok(Some(signal)) => std::process::exit(128 + signal),
+        Ok(None) => Ok(()),
+        Err(e) => Err(e),
+    }
+}
+
+/// Runs one effect of `update`: the file work here, on the loop's thread; a worker command
+/// is handed back for the caller to send.
+pub(crate) fn perform(app: &mut App, effect: Effect) -> Option<Command> {
+    match effect {
+        Effect::Worker(command) => return Some(command),
+        Effect::ListPresets => super::dialogs::open_picker(app),
+        Effect::SavePreset { preset, replace } => super::dialogs::save(app, &preset, replace),
+    }
+    None
+}
+
+/// Runs until the user quits (`None`) or a signal arrives (`Some(signal)`).
+fn event_loop(
+    terminal: &mut DefaultTerminal,
+    mut engine: Engine,
+    theme: Theme,
+    tx: Sender<Msg>,
+    rx: Receiver<Msg>,
+) -> Result<Option<i32>> {
+    let mut app = App::new(engine.snapshot(), theme);
+    app.store = dicesim_setup::preset::Store::from_env();
+    let size = terminal.size()?;
+    app.screen = Rect::new(0, 0, size.width, size.height);
+    let maps = tx.clone();
+    let worker = Worker::spawn_with_maps(engine, tx.clone(), move |m| maps.send(Msg::from(m)).is_ok());
+    // The input threads block reading the terminal for the life of the process.
+    super::tty::spawn(move |ev| tx.send(Msg::Input(ev)).is_ok()).wrap_err("cannot read the terminal")?;
+    let mut drawn: VecDeque<Instant> = VecDeque::new();
+    'frames: loop {
+        {
+            let _drawing = SCREEN.lock().unwrap_or_else(|p| p.into_inner());
+            terminal.draw(|f| render(&app, f))?;
+        }
+        crate::fault::inject("ui");
+        let now = Instant::now();
+        drawn.push_back(now);
+        while drawn
+            .front()
+            .is_some_and(|t| now.duration_since(*t) > Duration::from_secs(1))
+        {
+            drawn.pop_front();
+        }
+        // Idle: block until input or a worker message, so a paused explorer uses no CPU.
+        let first = if app.animating() {
+            match rx.recv_timeout(FRAME) {
+                Ok(m) => Some(m),
+                Err(RecvTimeoutError::Timeout) => None,
+                Err(RecvTimeoutError::Disconnected) => break,
+            }
+        } else {
+            match rx.recv() {
+                Ok(m) => Some(m),
+                Err(_) => break,
+            }
+        };
+        for msg in first.into_iter().chain(std::iter::from_fn(|| rx.try_recv().ok())) {
+            if let Msg::Signal(signal) = msg {
+                worker.shutdown();
+                return Ok(Some(signal));
+            }
+            for effect in update(&mut app, msg) {
+                if let Some(command) = perform(&mut app, effect) {
+                    worker.send(command);
+                }
+            }
+            if app.quit {
+                break 'frames;
+            }
+        }
+        app.fps = app.animating().then_some(drawn.len() as f64);
+    }
+    worker.shutdown();
+    Ok(None)
+}

@@ -1,0 +1,919 @@
+//! A roll as an animation for a slide: an animated GIF or PNG (APNG) of the die, or of the
+//! die and its chaos twin, from the drop to the face it ends on.
+//!
+//! The roll is rolled first, keeping the dice's state at every frame's time (`1/fps` s
+//! apart, then the end), so the view can hold the whole path and the frame count is known;
+//! then each frame is drawn ([`render::Scene::render`], a pure function of the state) and
+//! encoded as it comes. Frames after the first carry only the rectangle that changed, its
+//! unchanged pixels transparent, so a few seconds at 640×480 stay well under a megabyte or
+//! two. The file says how it was made: the setup and the outcome as GIF comments or PNG
+//! text chunks, the same keys the plots' PNGs carry. Nothing in it depends on the clock or
+//! the machine: the same setup gives the same bytes.
+
+pub mod render;
+
+use crate::figure::resolved;
+use crate::plot::Record;
+use dicesim_experiment::Error;
+use dicesim_physics::{InitialCondition, Outcome, Params, Simulation, Status, face_most_nearly_up};
+use dicesim_setup::output::{Output, OutputError};
+use render::{CLEAR, Camera, DieShot, Frame, PALETTE, Scene, Shot};
+use std::io::Write;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Frames per second an animation may have: GIF delays are whole hundredths of a second
+/// and viewers slow anything under two of them down, so 50 is the most that plays true.
+pub const FPS: std::ops::RangeInclusive<u32> = 1..=50;
+/// Pixels across and down an animation may have.
+pub const WIDTH: std::ops::RangeInclusive<u32> = 64..=3840;
+pub const HEIGHT: std::ops::RangeInclusive<u32> = 64..=2160;
+/// s the last frame stays before the animation starts again, to read the face.
+pub(crate) const HOLD_S: f64 = 2.0;
+/// Simulated seconds per played second, as the explorer's speed ladder has them.
+pub(crate) const SPEED: std::ops::RangeInclusive<f64> = 0.01..=100.0;
+/// The most frames one animation has (a 30 s roll that never settles at 1/100× would be
+/// 75 000): past it a lower rate or a faster speed is asked for.
+pub(crate) const MAX_FRAMES: usize = 10_000;
+
+/// The file formats: by the extension, `.gif` or `.png` (an animated PNG).
+pub const EXTENSIONS: [&str; 2] = ["gif", "png"];
+
+/// How to film a roll.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AnimationSpec {
+    /// Frames per played second.
+    pub fps: u32,
+    /// Simulated seconds per played second: 1 plays in real time, 0.1 ten times slower.
+    pub speed: f64,
+    /// Pixels, width × height.
+    pub size: (u32, u32),
+    /// The chaos twin's ε ([`dicesim_setup::chaos::perturbed`]), if it rolls beside.
+    pub twin: Option<f64>,
+    pub camera: Camera,
+}
+
+impl AnimationSpec {
+    /// A spec of `fps` frames per second and `size` pixels, no twin, the explorer's camera.
+    pub fn new(fps: u32, size: (u32, u32)) -> AnimationSpec {
+        AnimationSpec {
+            fps,
+            speed: 1.0,
+            size,
+            twin: None,
+            camera: Camera::DEFAULT,
+        }
+    }
+
+    /// Every value in its range, else what is wrong.
+    pub fn validate(&self) -> Result<(), Error> {
+        let bad = |what: String| Err(Error::Animation(what));
+        if !FPS.contains(&self.fps) {
+            return bad(format!(
+                "{} frames/s: from {} to {}",
+                self.fps,
+                FPS.start(),
+                FPS.end()
+            ));
+        }
+        if !SPEED.contains(&self.speed) {
+            return bad(format!(
+                "speed {}×: from {}× to {}×",
+                self.speed,
+                SPEED.start(),
+                SPEED.end()
+            ));
+        }
+        let (w, h) = self.size;
+        if !WIDTH.contains(&w) || !HEIGHT.contains(&h) {
+            return bad(format!(
+                "{w}×{h} pixels: from {}×{} to {}×{}",
+                WIDTH.start(),
+                HEIGHT.start(),
+                WIDTH.end(),
+                HEIGHT.end()
+            ));
+        }
+        if let Some(e) = self.twin {
+            dicesim_setup::chaos::EPSILON.check(e)?;
+        }
+        Ok(())
+    }
+}
+
+/// How far an animation has got.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct AnimationProgress {
+    /// False while the roll is rolled, true once frames are drawn.
+    pub drawing: bool,
+    /// Steps rolled (of the cap `integrator.max_time / dt`), or frames drawn.
+    pub done: u64,
+    pub total: u64,
+}
+
+/// What [`write_animation`] wrote.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Animated {
+    pub frames: usize,
+    /// s of simulated time, the drop to the end of the later die.
+    pub duration_s: f64,
+    pub outcome: Outcome,
+    pub twin: Option<Outcome>,
+}
+
+/// A filmed roll: each frame's time and picture state, and how the dice ended.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Film {
+    pub(crate) times: Vec<f64>,
+    pub(crate) shots: Vec<Shot>,
+    pub(crate) outcome: Outcome,
+    pub(crate) twin: Option<Outcome>,
+}
+
+/// Steps between looks at the cancel flag while rolling.
+const REPORT_EVERY: u64 = 4096;
+
+/// The face drawn up: the one the roll ended on once it has, else the one most nearly up.
+fn die_shot(sim: &Simulation) -> DieShot {
+    let s = sim.state();
+    let up = match sim.outcome() {
+        Some(o) => o.face,
+        None => Some(face_most_nearly_up(&s.corner_offsets)),
+    };
+    DieShot {
+        corners: sim.corner_positions(),
+        centre: s.position,
+        up,
+    }
+}
+
+/// A playback speed as the explorer's ladder writes it: `1/10×`, `1×`, `5×`.
+pub fn speed_words(speed: f64) -> String {
+    if speed < 1.0 {
+        format!("1/{}×", crate::figure::setup_value(1.0 / speed))
+    } else {
+        format!("{}×", crate::figure::setup_value(speed))
+    }
+}
+
+/// How an ended roll reads in a headline.
+fn ending_words(o: &Outcome, params: &Params) -> String {
+    match (o.status, o.face) {
+        (Status::Settled, Some(f)) => format!("ended on face {f}"),
+        (Status::Settled, None) => "settled on no face (the 4 highest corners form none)".to_string(),
+        (Status::Timeout, _) => format!(
+            "did not settle within {} s",
+            crate::figure::setup_value(params.integrator.max_time)
+        ),
+        (Status::Unstable, _) => "unstable (the time step is too long for this table)".to_string(),
+    }
+}
+
+/// Rolls `initial` (and its twin) to the end, keeping the state at `k / fps` s for every
+/// frame before the end and at the end itself.
+pub(crate) fn film(
+    name: &str,
+    params: &Params,
+    initial: &InitialCondition,
+    spec: &AnimationSpec,
+    cancel: &AtomicBool,
+    progress: &mut dyn FnMut(AnimationProgress),
+) -> Result<Film, Error> {
+    let mut die = Simulation::new_unchecked(params, initial);
+    let mut twin = spec
+        .twin
+        .map(|e| Simulation::new_unchecked(params, &dicesim_setup::chaos::perturbed(initial, e)));
+    let dt = params.integrator.dt;
+    // Simulated seconds between frames.
+    let frame_s = spec.speed / f64::from(spec.fps);
+    let pace = if spec.speed == 1.0 {
+        String::new()
+    } else {
+        format!(" ({})", speed_words(spec.speed))
+    };
+    let time_words = |t: f64| format!("t = {} s{pace}", resolved(t, frame_s));
+    let headline = |die: &Simulation, twin: Option<&Simulation>, t: f64| {
+        let face = |s: &Simulation| match s.outcome() {
+            Some(o) => ending_words(&o, params),
+            None => format!("face {} up", face_most_nearly_up(&s.state().corner_offsets)),
+        };
+        let mut line = format!("{name} · {} · {}", time_words(t), face(die));
+        if let (Some(b), Some(e)) = (twin, spec.twin) {
+            let apart = (die.state().position - b.state().position).norm();
+            line += &format!(
+                "\ntwin (ε {}): {}, {} cm apart",
+                crate::figure::setup_value(e),
+                face(b),
+                resolved(apart, 0.01)
+            );
+        }
+        line
+    };
+    let mut times = Vec::new();
+    let mut shots = Vec::new();
+    let mut status = AnimationProgress {
+        drawing: false,
+        done: 0,
+        total: params.max_steps(),
+    };
+    loop {
+        // The later die's clock: one that has ended stays where it stopped.
+        let t = die
+            .state()
+            .time_s
+            .max(twin.as_ref().map_or(0.0, |b| b.state().time_s));
+        // Every frame time this step reaches (its state is the nearest at or after it).
+        while (times.len() as f64) * frame_s <= t + 0.5 * dt {
+            let at = times.len() as f64 * frame_s;
+            times.push(at);
+            shots.push(Shot {
+                die: die_shot(&die),
+                twin: twin.as_ref().map(die_shot),
+                headline: headline(&die, twin.as_ref(), at),
+            });
+        }
+        if times.len() > MAX_FRAMES {
+            return Err(Error::Animation(format!(
+                "more than {MAX_FRAMES} frames at {} frames/s and {}: a lower rate or a faster speed",
+                spec.fps,
+                speed_words(spec.speed)
+            )));
+        }
+        let ended = die.outcome().is_some() && twin.as_ref().is_none_or(|b| b.outcome().is_some());
+        if ended {
+            break;
+        }
+        for s in std::iter::once(&mut die).chain(twin.as_mut()) {
+            if s.outcome().is_none() {
+                s.advance();
+            }
+        }
+        let step = die.state().step.max(twin.as_ref().map_or(0, |b| b.state().step));
+        if step.is_multiple_of(REPORT_EVERY) {
+            if cancel.load(Ordering::Relaxed) {
+                return Err(Error::Cancelled);
+            }
+            status.done = step;
+            progress(status);
+        }
+    }
+    // The end, as the last frame: a sampled frame within half a step of it is the end.
+    let end = die
+        .state()
+        .time_s
+        .max(twin.as_ref().map_or(0.0, |b| b.state().time_s));
+    while times.last().is_some_and(|&t| t >= end - 0.5 * dt) {
+        times.pop();
+        shots.pop();
+    }
+    times.push(end);
+    shots.push(Shot {
+        die: die_shot(&die),
+        twin: twin.as_ref().map(die_shot),
+        headline: headline(&die, twin.as_ref(), end),
+    });
+    Ok(Film {
+        times,
+        shots,
+        outcome: die.outcome().expect("the loop ends when the die has"),
+        twin: twin.as_ref().and_then(Simulation::outcome),
+    })
+}
+
+/// The record of an animation: the setup's caption and text (as the plots' PNGs have
+/// them), the twin's ε, and the outcome as JSON in `dicesim-outcome`.
+fn animation_record(
+    name: &str,
+    params: &Params,
+    initial: &InitialCondition,
+    spec: &AnimationSpec,
+    film: &Film,
+) -> Record {
+    let title = match spec.twin {
+        Some(_) => format!("{name}: a roll and its chaos twin"),
+        None => format!("{name}: a roll"),
+    };
+    let mut record = Record::of_setup(&title, name, params, initial);
+    if let Some(e) = spec.twin {
+        record.caption.push(format!(
+            "twin: height, velocity and spin × (1 + ε), ε = {}",
+            crate::figure::setup_value(e)
+        ));
+    }
+    let outcome = |o: &Outcome| {
+        serde_json::json!({
+            "status": o.status.name(),
+            "face": o.face,
+            "steps": o.steps,
+            "time_s": o.time_s,
+        })
+    };
+    let mut json = serde_json::json!({
+        "frames": film.shots.len(),
+        "fps": spec.fps,
+        "speed": spec.speed,
+        "width": spec.size.0,
+        "height": spec.size.1,
+        "camera": { "yaw": spec.camera.yaw_deg, "pitch": spec.camera.pitch_deg },
+        "die": outcome(&film.outcome),
+    });
+    if let (Some(e), Some(t)) = (spec.twin, &film.twin) {
+        json["twin"] = outcome(t);
+        json["twin"]["epsilon"] = serde_json::json!(e);
+    }
+    record
+        .text
+        .push(("dicesim-outcome".to_string(), json.to_string()));
+    record
+}
+
+/// Rolls `initial` under `params` (and the twin, if `spec` asks) and writes it to `out` as
+/// an animated GIF or PNG, by the extension; the setup and outcome travel in the file.
+/// `cancel` stops it (nothing is written), `progress` hears of the rolling and drawing.
+pub fn write_animation(
+    name: &str,
+    params: &Params,
+    initial: &InitialCondition,
+    spec: &AnimationSpec,
+    out: &Output,
+    cancel: &AtomicBool,
+    progress: &mut dyn FnMut(AnimationProgress),
+) -> Result<Animated, Error> {
+    spec.validate()?;
+    let gif = match out.extension() {
+        "gif" => true,
+        "png" => false,
+        other => {
+            return Err(Error::Animation(format!(
+                "a .{other} file: expected a .gif or .png file"
+            )));
+        }
+    };
+    let film = film(name, params, initial, spec, cancel, progress)?;
+    let record = animation_record(name, params, initial, spec, &film);
+    let scene = Scene::new(
+        spec.size.0,
+        spec.size.1,
+        spec.camera,
+        &film.shots,
+        &record.caption,
+    );
+    // Played seconds: simulated ones over the speed.
+    let played: Vec<f64> = film.times.iter().map(|t| t / spec.speed).collect();
+    let until = display_times(&played);
+    let mut status = AnimationProgress {
+        drawing: true,
+        done: 0,
+        total: film.shots.len() as u64,
+    };
+    progress(status);
+    let mut frames = film.shots.iter().map(|s| scene.render(s));
+    let mut each = |k: usize| {
+        if cancel.load(Ordering::Relaxed) {
+            return Err(std::io::Error::other(CANCELLED));
+        }
+        status.done = k as u64 + 1;
+        progress(status);
+        Ok(())
+    };
+    out.write(|w| {
+        if gif {
+            encode_gif(
+                w,
+                spec.size,
+                &record,
+                &delays(&played, &until, 0.01),
+                &mut frames,
+                &mut each,
+            )
+        } else {
+            encode_apng(
+                w,
+                spec.size,
+                &record,
+                &delays(&played, &until, 0.001),
+                &mut frames,
+                &mut each,
+            )
+        }
+    })
+    .map_err(|e| match e {
+        OutputError::Write { message, .. } if message == CANCELLED => Error::Cancelled,
+        e => Error::Output(e),
+    })?;
+    Ok(Animated {
+        frames: film.shots.len(),
+        duration_s: film.times.last().copied().unwrap_or(0.0),
+        outcome: film.outcome,
+        twin: film.twin,
+    })
+}
+
+/// The reason a cancelled write stops with (it never reaches a person).
+const CANCELLED: &str = "animation cancelled";
+
+/// s from the start each frame is shown until: the next frame's time, and the last
+/// [`HOLD_S`] past the end.
+fn display_times(times: &[f64]) -> Vec<f64> {
+    let end = times.last().copied().unwrap_or(0.0);
+    times
+        .iter()
+        .skip(1)
+        .copied()
+        .chain(std::iter::once(end + HOLD_S))
+        .collect()
+}
+
+/// Whole units of `unit_s` from one frame's start to the next: rounded on the running
+/// total, so the clock never drifts however the frames divide.
+fn delays(times: &[f64], until: &[f64], unit_s: f64) -> Vec<u16> {
+    times
+        .iter()
+        .zip(until)
+        .map(|(&t, &u)| {
+            let ticks = (u / unit_s).round() - (t / unit_s).round();
+            ticks.clamp(1.0, f64::from(u16::MAX)) as u16
+        })
+        .collect()
+}
+
+/// The rectangle of `frame` that differs from `previous` (x, y, width, height), or a
+/// single pixel where nothing does (a frame must still be there to keep the time).
+fn changed(previous: &Frame, frame: &Frame) -> (u32, u32, u32, u32) {
+    let w = frame.width as usize;
+    let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
+    for (y, (a, b)) in previous.pixels.chunks(w).zip(frame.pixels.chunks(w)).enumerate() {
+        if a == b {
+            continue;
+        }
+        let first = a.iter().zip(b).position(|(p, q)| p != q).unwrap_or(0);
+        let last = w
+            - 1
+            - a.iter()
+                .rev()
+                .zip(b.iter().rev())
+                .position(|(p, q)| p != q)
+                .unwrap_or(0);
+        x0 = x0.min(first);
+        x1 = x1.max(last);
+        y0 = y0.min(y);
+        y1 = y;
+    }
+    if x0 == usize::MAX {
+        return (0, 0, 1, 1);
+    }
+    (x0 as u32, y0 as u32, (x1 - x0 + 1) as u32, (y1 - y0 + 1) as u32)
+}
+
+/// The pixels of `frame` in `rect`, those equal to `previous` [`CLEAR`] (drawn over the
+/// old frame, they leave it as it was, and long runs of one index pack tightly).
+fn delta(previous: Option<&Frame>, frame: &Frame, rect: (u32, u32, u32, u32)) -> Vec<u8> {
+    let (x, y, w, h) = rect;
+    let stride = frame.width as usize;
+    let mut out = Vec::with_capacity(w as usize * h as usize);
+    for row in y as usize..(y + h) as usize {
+        let span = row * stride + x as usize..row * stride + (x + w) as usize;
+        match previous {
+            Some(p) => out.extend(
+                frame.pixels[span.clone()]
+                    .iter()
+                    .zip(&p.pixels[span])
+                    .map(|(&q, &o)| if q == o { CLEAR } else { q }),
+            ),
+            None => out.extend_from_slice(&frame.pixels[span]),
+        }
+    }
+    out
+}
+
+/// Each frame's rectangle and pixels: the first whole, the others as [`delta`]s.
+fn frame_parts<'a>(
+    frames: &'a mut dyn Iterator<Item = Frame>,
+) -> impl Iterator<Item = ((u32, u32, u32, u32), Vec<u8>)> + 'a {
+    let mut previous: Option<Frame> = None;
+    frames.map(move |frame| {
+        let rect = match &previous {
+            None => (0, 0, frame.width, frame.height),
+            Some(p) => changed(p, &frame),
+        };
+        let pixels = delta(previous.as_ref(), &frame, rect);
+        previous = Some(frame);
+        (rect, pixels)
+    })
+}
+
+fn flat_palette() -> Vec<u8> {
+    PALETTE.iter().flatten().copied().collect()
+}
+
+fn io(e: impl std::fmt::Display) -> std::io::Error {
+    std::io::Error::other(e.to_string())
+}
+
+/// The frames as an animated GIF (looping; the record as comment extensions).
+fn encode_gif(
+    w: &mut (dyn Write + Send),
+    size: (u32, u32),
+    record: &Record,
+    delays: &[u16],
+    frames: &mut dyn Iterator<Item = Frame>,
+    each: &mut dyn FnMut(usize) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    let mut encoder = gif::Encoder::new(w, size.0 as u16, size.1 as u16, &flat_palette()).map_err(io)?;
+    encoder.set_repeat(gif::Repeat::Infinite).map_err(io)?;
+    for (keyword, text) in &record.text {
+        let comment = format!("{keyword}: {text}");
+        encoder
+            .write_raw_extension(gif::Extension::Comment.into(), &[comment.as_bytes()])
+            .map_err(io)?;
+    }
+    for (k, ((x, y, fw, fh), pixels)) in frame_parts(frames).enumerate() {
+        each(k)?;
+        let frame = gif::Frame {
+            delay: delays[k],
+            dispose: gif::DisposalMethod::Keep,
+            transparent: (k > 0).then_some(CLEAR),
+            left: x as u16,
+            top: y as u16,
+            width: fw as u16,
+            height: fh as u16,
+            buffer: std::borrow::Cow::Owned(pixels),
+            ..gif::Frame::default()
+        };
+        encoder.write_frame(&frame).map_err(io)?;
+    }
+    encoder.into_inner().map_err(io)?;
+    Ok(())
+}
+
+/// The frames as an animated PNG (looping; the record as iTXt chunks, UTF-8 for μ and Δt).
+fn encode_apng(
+    w: &mut (dyn Write + Send),
+    size: (u32, u32),
+    record: &Record,
+    delays: &[u16],
+    frames: &mut dyn Iterator<Item = Frame>,
+    each: &mut dyn FnMut(usize) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    let mut encoder = png::Encoder::new(w, size.0, size.1);
+    encoder.set_color(png::ColorType::Indexed);
+    encoder.set_depth(png::BitDepth::Eight);
+    encoder.set_palette(flat_palette());
+    // Only the unchanged pixels of a delta frame are see-through.
+    encoder.set_trns(vec![0u8]);
+    encoder.set_filter(png::FilterType::NoFilter);
+    encoder.set_compression(png::Compression::Best);
+    encoder.set_animated(delays.len() as u32, 0).map_err(io)?;
+    for (keyword, text) in &record.text {
+        encoder
+            .add_itxt_chunk(keyword.clone(), text.clone())
+            .map_err(io)?;
+    }
+    let mut writer = encoder.write_header().map_err(io)?;
+    for (k, ((x, y, fw, fh), pixels)) in frame_parts(frames).enumerate() {
+        each(k)?;
+        writer.reset_frame_position().map_err(io)?;
+        writer.set_frame_dimension(fw, fh).map_err(io)?;
+        writer.set_frame_position(x, y).map_err(io)?;
+        writer.set_frame_delay(delays[k], 1000).map_err(io)?;
+        writer.set_dispose_op(png::DisposeOp::None).map_err(io)?;
+        writer
+            .set_blend_op(if k == 0 {
+                png::BlendOp::Source
+            } else {
+                png::BlendOp::Over
+            })
+            .map_err(io)?;
+        writer.write_image_data(&pixels).map_err(io)?;
+    }
+    writer.finish().map_err(io)?;
+    Ok(())
+}
+
+/// The comment extensions of a GIF this module wrote (its provenance), read block by block
+/// as a viewer does; a file cut short gives the comments before the cut.
+pub fn gif_comments(bytes: &[u8]) -> Vec<String> {
+    let Some(flags) = bytes.get(10) else {
+        return Vec::new();
+    };
+    let palette = 3 << ((flags & 7) + 1);
+    let mut at = 13 + palette;
+    let mut comments = Vec::new();
+    while bytes.get(at) == Some(&0x21) {
+        let Some(&label) = bytes.get(at + 1) else { break };
+        at += 2;
+        let mut data = Vec::new();
+        while let Some(&n) = bytes.get(at).filter(|&&n| n != 0) {
+            let Some(block) = bytes.get(at + 1..at + 1 + n as usize) else {
+                return comments;
+            };
+            data.extend_from_slice(block);
+            at += 1 + n as usize;
+        }
+        at += 1;
+        if label == 0xFE {
+            comments.push(String::from_utf8_lossy(&data).into_owned());
+        }
+    }
+    comments
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use dicesim_physics::roll;
+
+    /// The paper's roll: thrown sideways with a lopsided spin from 15 cm.
+    fn paper() -> (Params, InitialCondition) {
+        let initial = InitialCondition {
+            velocity: [30.0, 0.0, 0.0],
+            angular_velocity: [12.0, -20.0, 6.0],
+            ..InitialCondition::default()
+        };
+        (Params::default(), initial)
+    }
+
+    /// Writes the animation of `params`/`initial` into a fresh folder; its bytes.
+    fn animate(
+        params: &Params,
+        initial: &InitialCondition,
+        spec: &AnimationSpec,
+        ext: &str,
+    ) -> (Vec<u8>, Animated) {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join(format!("roll.{ext}"));
+        let out = Output::check(&path, &EXTENSIONS, false).unwrap();
+        let animated = write_animation(
+            "paper",
+            params,
+            initial,
+            spec,
+            &out,
+            &AtomicBool::new(false),
+            &mut |_| {},
+        )
+        .unwrap();
+        (std::fs::read(&path).unwrap(), animated)
+    }
+
+    /// The GIF's frames as the viewer shows them: each drawn over the last, its transparent
+    /// pixels leaving what was there.
+    fn gif_frames(bytes: &[u8]) -> Vec<Vec<u8>> {
+        let mut options = gif::DecodeOptions::new();
+        options.set_color_output(gif::ColorOutput::Indexed);
+        let mut decoder = options.read_info(bytes).unwrap();
+        let (w, h) = (decoder.width() as usize, decoder.height() as usize);
+        let mut canvas = vec![0u8; w * h];
+        let mut frames = Vec::new();
+        while let Some(f) = decoder.read_next_frame().unwrap() {
+            for row in 0..f.height as usize {
+                for col in 0..f.width as usize {
+                    let i = f.buffer[row * f.width as usize + col];
+                    if Some(i) != f.transparent {
+                        canvas[(f.top as usize + row) * w + f.left as usize + col] = i;
+                    }
+                }
+            }
+            frames.push(canvas.clone());
+        }
+        frames
+    }
+
+    #[test]
+    fn frames_are_one_per_frame_time_of_the_roll() {
+        let (params, initial) = paper();
+        // The roll's length, from the physics alone.
+        let (outcome, _) = roll(&params, &initial).unwrap();
+        for fps in [7, 25, 50] {
+            let spec = AnimationSpec::new(fps, (160, 120));
+            let (bytes, animated) = animate(&params, &initial, &spec, "gif");
+            let n = gif_frames(&bytes).len() as f64;
+            let expected = (outcome.time_s * f64::from(fps)).ceil();
+            assert!(
+                (n - expected).abs() <= 1.0,
+                "{fps} fps: {n} frames for {} s",
+                outcome.time_s
+            );
+            assert_eq!(animated.frames as f64, n);
+            assert_eq!(animated.outcome, outcome);
+        }
+        // Slowed down ten times: ten times the frames, and the delays add up to the played
+        // time (hundredths of a second) and the hold at the end.
+        let mut spec = AnimationSpec::new(10, (120, 90));
+        spec.speed = 0.1;
+        let (bytes, _) = animate(&params, &initial, &spec, "gif");
+        let n = gif_frames(&bytes).len() as f64;
+        assert!(
+            (n - (outcome.time_s * 100.0).ceil()).abs() <= 1.0,
+            "{n} frames at 1/10×"
+        );
+        let mut decoder = gif::DecodeOptions::new().read_info(&bytes[..]).unwrap();
+        let mut played_cs = 0u32;
+        while let Some(f) = decoder.read_next_frame().unwrap() {
+            played_cs += u32::from(f.delay);
+        }
+        let expected_cs = (outcome.time_s / 0.1 + HOLD_S) * 100.0;
+        assert!(
+            (f64::from(played_cs) - expected_cs).abs() <= 1.0,
+            "{played_cs} cs, {expected_cs} expected"
+        );
+        // The twin's roll may be the longer one: the film lasts until both have ended.
+        let mut spec = AnimationSpec::new(25, (160, 120));
+        spec.twin = Some(1e-3);
+        let twin = dicesim_setup::chaos::perturbed(&initial, 1e-3);
+        let (twin_outcome, _) = roll(&params, &twin).unwrap();
+        let (bytes, _) = animate(&params, &initial, &spec, "gif");
+        let n = gif_frames(&bytes).len() as f64;
+        let end = outcome.time_s.max(twin_outcome.time_s);
+        assert!((n - (end * 25.0).ceil()).abs() <= 1.0, "{n} frames for {end} s");
+    }
+
+    #[test]
+    fn the_same_setup_gives_the_same_bytes() {
+        let (params, initial) = paper();
+        let mut spec = AnimationSpec::new(20, (200, 150));
+        spec.twin = Some(1e-6);
+        for ext in EXTENSIONS {
+            let (a, _) = animate(&params, &initial, &spec, ext);
+            let (b, _) = animate(&params, &initial, &spec, ext);
+            assert!(a == b, "{ext}: two runs differ");
+        }
+    }
+
+    /// Pip discs on the face drawn up in `frame`: connected pip-coloured regions with a
+    /// face-up pixel right beside them.
+    fn pips_on_the_up_face(frame: &[u8], width: usize) -> usize {
+        let is_pip = |i: u8| (render::PIP..render::PIP + render::PIP_STEPS).contains(&i);
+        let is_up = |i: u8| {
+            let up = render::RAMP + render::RAMP_STEPS;
+            (up..up + render::RAMP_STEPS).contains(&i)
+        };
+        let mut seen = vec![false; frame.len()];
+        let mut count = 0;
+        for start in 0..frame.len() {
+            if seen[start] || !is_pip(frame[start]) {
+                continue;
+            }
+            let (mut stack, mut beside_up) = (vec![start], false);
+            seen[start] = true;
+            while let Some(i) = stack.pop() {
+                let (x, y) = (i % width, i / width);
+                let around = [
+                    (x > 0).then(|| i - 1),
+                    (x + 1 < width).then(|| i + 1),
+                    (y > 0).then(|| i - width),
+                    (i + width < frame.len()).then(|| i + width),
+                ];
+                for j in around.into_iter().flatten() {
+                    if is_up(frame[j]) {
+                        beside_up = true;
+                    }
+                    if !seen[j] && is_pip(frame[j]) {
+                        seen[j] = true;
+                        stack.push(j);
+                    }
+                }
+            }
+            count += usize::from(beside_up);
+        }
+        count
+    }
+
+    #[test]
+    fn the_last_frame_shows_the_face_the_roll_ends_on() {
+        // Seen from nearly straight above, so each pip of the face up is a disc of its own.
+        let (params, paper) = paper();
+        let spun = InitialCondition {
+            angular_velocity: [30.0, 5.0, -10.0],
+            ..paper
+        };
+        for (name, initial) in [("paper", paper), ("spun", spun)] {
+            let (outcome, _) = roll(&params, &initial).unwrap();
+            let face = outcome.face.expect("these rolls settle on a face");
+            let mut spec = AnimationSpec::new(10, (480, 360));
+            spec.camera = Camera {
+                yaw_deg: 0.0,
+                pitch_deg: 85.0,
+            };
+            let (bytes, _) = animate(&params, &initial, &spec, "gif");
+            let frames = gif_frames(&bytes);
+            let last = frames.last().unwrap();
+            assert_eq!(
+                pips_on_the_up_face(last, 480),
+                usize::from(face),
+                "{name}: face {face}"
+            );
+            // And the outcome the file records is the physics' own.
+            let comments = gif_comments(&bytes);
+            let recorded = comments
+                .iter()
+                .find_map(|c| c.strip_prefix("dicesim-outcome: "))
+                .unwrap();
+            let v: serde_json::Value = serde_json::from_str(recorded).unwrap();
+            assert_eq!(v["die"]["face"], serde_json::json!(face), "{name}");
+            assert_eq!(v["frames"], serde_json::json!(frames.len()));
+        }
+    }
+
+    #[test]
+    fn gif_and_apng_show_the_same_frames_and_carry_the_setup() {
+        let (params, initial) = paper();
+        let spec = AnimationSpec::new(12, (200, 150));
+        let (gif_bytes, _) = animate(&params, &initial, &spec, "gif");
+        let (png_bytes, _) = animate(&params, &initial, &spec, "png");
+        let gif = gif_frames(&gif_bytes);
+        // The APNG's frames composited the same way (palette indices, index 0 see-through).
+        let mut decoder = png::Decoder::new(std::io::Cursor::new(&png_bytes));
+        decoder.set_transformations(png::Transformations::IDENTITY);
+        let mut reader = decoder.read_info().unwrap();
+        let info = reader.info().clone();
+        assert_eq!(info.animation_control.unwrap().num_frames as usize, gif.len());
+        let texts: Vec<(String, String)> = info
+            .utf8_text
+            .iter()
+            .map(|t| (t.keyword.clone(), t.get_text().unwrap()))
+            .collect();
+        let setup = &texts.iter().find(|(k, _)| k == "dicesim-setup").unwrap().1;
+        assert!(setup.contains("ground.stiffness = 500000"), "{setup}");
+        assert!(
+            gif_comments(&gif_bytes)
+                .iter()
+                .any(|c| c.starts_with("dicesim-setup: preset = \"paper\""))
+        );
+        let (w, _) = (200usize, 150usize);
+        let mut canvas = vec![0u8; 200 * 150];
+        let mut buffer = vec![0u8; reader.output_buffer_size()];
+        for (k, expected) in gif.iter().enumerate() {
+            let frame = reader.next_frame(&mut buffer).unwrap();
+            let fc = reader.info().frame_control.unwrap();
+            for row in 0..frame.height as usize {
+                for col in 0..frame.width as usize {
+                    let i = buffer[row * frame.line_size + col];
+                    if i != CLEAR {
+                        canvas[(fc.y_offset as usize + row) * w + fc.x_offset as usize + col] = i;
+                    }
+                }
+            }
+            assert!(canvas == *expected, "frame {k} differs");
+        }
+    }
+
+    #[test]
+    fn three_seconds_at_640_by_480_stay_under_five_megabytes() {
+        // A softly damped table and a higher drop: the die rolls for 3.4 s.
+        let (mut params, mut initial) = paper();
+        params.ground.damping = 0.0003;
+        initial.height = 30.0;
+        let mut spec = AnimationSpec::new(25, (640, 480));
+        spec.twin = Some(1e-6);
+        for ext in EXTENSIONS {
+            let (bytes, animated) = animate(&params, &initial, &spec, ext);
+            assert!(animated.duration_s >= 3.0, "{} s", animated.duration_s);
+            assert!(bytes.len() < 5_000_000, "{ext}: {} bytes", bytes.len());
+        }
+    }
+
+    #[test]
+    fn a_cancelled_animation_writes_nothing() {
+        let (params, initial) = paper();
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("roll.gif");
+        let out = Output::check(&path, &EXTENSIONS, false).unwrap();
+        let cancel = AtomicBool::new(false);
+        // Cancelled once the frames are being drawn: the write has begun.
+        let e = write_animation(
+            "paper",
+            &params,
+            &initial,
+            &AnimationSpec::new(25, (160, 120)),
+            &out,
+            &cancel,
+            &mut |p| {
+                if p.drawing && p.done >= 3 {
+                    cancel.store(true, Ordering::Relaxed);
+                }
+            },
+        )
+        .unwrap_err();
+        assert_eq!(e, Error::Cancelled);
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    }
+
+    #[test]
+    fn out_of_range_specs_are_refused_with_their_range() {
+        let e = AnimationSpec::new(0, (640, 480)).validate().unwrap_err();
+        assert!(e.to_string().contains("0 frames/s: from 1 to 50"), "{e}");
+        let mut slow = AnimationSpec::new(25, (640, 480));
+        slow.speed = 0.001;
+        assert!(
+            slow.validate()
+                .unwrap_err()
+                .to_string()
+                .contains("from 0.01× to 100×")
+        );
+        let e = AnimationSpec::new(25, (10, 480)).validate().unwrap_err();
+        assert!(e.to_string().contains("10×480 pixels"), "{e}");
+        let mut spec = AnimationSpec::new(25, (640, 480));
+        spec.twin = Some(0.5);
+        assert!(spec.validate().unwrap_err().to_string().contains("twin.epsilon"));
+    }
+}

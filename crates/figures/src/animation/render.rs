@@ -1,0 +1,677 @@
+//! One frame of an animation, a pure function of the dice's state: the table's tiles with
+//! the dice's shadows, each die a solid shaded body with its pips (the face up tinted), the
+//! corners touching the table marked, and a caption band with the time and the setup.
+//!
+//! Every colour is an entry of one fixed palette ([`PALETTE`]): the die's shades are ramps
+//! of it and text is drawn as coverage steps of one ramp. So a frame is stored as palette
+//! indices, the GIF and APNG encoders take it as it is (no quantiser, nothing that could
+//! depend on the machine), and the same setup gives the same bytes.
+
+use crate::figure::{font, wrap};
+use crate::plane::{convex_hull as hull, inside};
+use ab_glyph::{Font, PxScale, ScaleFont, point};
+use dicesim_physics::PIP_LAYOUT;
+use dicesim_physics::body::FACE_CORNERS;
+use nalgebra::Vector3;
+
+/// The palette index no drawing uses: a delta frame's "unchanged" pixel.
+pub(crate) const CLEAR: u8 = 0;
+const BACKGROUND: u8 = 1;
+/// The caption band; coverage 0 of the text ramp.
+const BAND: u8 = TEXT;
+const TEXT: u8 = 2;
+const TEXT_STEPS: u8 = 16;
+const TILE_LIGHT: u8 = 18;
+const TILE_DARK: u8 = 19;
+const SHADOW_LIGHT: u8 = 20;
+const SHADOW_DARK: u8 = 21;
+const CONTACT: u8 = 22;
+const EDGE: u8 = 23;
+const TWIN_EDGE: u8 = 24;
+const TABLE_EDGE: u8 = 25;
+pub(crate) const PIP: u8 = 26;
+pub(crate) const PIP_STEPS: u8 = 6;
+/// Four ramps of shades, dark to light: the die, its face up, the twin, the twin's face up.
+pub(crate) const RAMP: u8 = 32;
+pub(crate) const RAMP_STEPS: u8 = 48;
+
+/// A ramp's base colour (lit squarely) for each of the four.
+const RAMP_COLOURS: [[f64; 3]; 4] = [
+    [250.0, 246.0, 236.0], // ivory
+    [255.0, 214.0, 140.0], // the face up: warm (Okabe–Ito orange, lightened)
+    [170.0, 210.0, 240.0], // the twin: sky blue
+    [110.0, 205.0, 170.0], // the twin's face up: bluish green
+];
+
+// The ranges of the palette do not overlap, and the four ramps fit in it.
+const _: () = assert!(TEXT + TEXT_STEPS <= TILE_LIGHT && PIP + PIP_STEPS <= RAMP);
+const _: () = assert!(RAMP as u32 + 4 * RAMP_STEPS as u32 <= 256);
+
+/// The fixed 256-colour palette, RGB.
+pub(crate) const PALETTE: [[u8; 3]; 256] = palette();
+
+const fn mix(a: [u8; 3], b: [u8; 3], num: u32, den: u32) -> [u8; 3] {
+    let mut out = [0u8; 3];
+    let mut i = 0;
+    while i < 3 {
+        out[i] = ((a[i] as u32 * (den - num) + b[i] as u32 * num + den / 2) / den) as u8;
+        i += 1;
+    }
+    out
+}
+
+const fn palette() -> [[u8; 3]; 256] {
+    let mut p = [[0u8; 3]; 256];
+    p[CLEAR as usize] = [255, 0, 255]; // never shown: transparent where used
+    p[BACKGROUND as usize] = [226, 231, 236];
+    let band = [255, 255, 255];
+    let ink = [25, 25, 30];
+    let mut k = 0;
+    while k < TEXT_STEPS as u32 {
+        p[(TEXT as u32 + k) as usize] = mix(band, ink, k, TEXT_STEPS as u32 - 1);
+        k += 1;
+    }
+    p[TILE_LIGHT as usize] = [214, 200, 176];
+    p[TILE_DARK as usize] = [190, 172, 146];
+    p[SHADOW_LIGHT as usize] = [150, 140, 124];
+    p[SHADOW_DARK as usize] = [133, 121, 102];
+    p[CONTACT as usize] = [213, 94, 0];
+    p[EDGE as usize] = [45, 45, 50];
+    p[TWIN_EDGE as usize] = [0, 94, 158];
+    p[TABLE_EDGE as usize] = [150, 132, 108];
+    let mut k = 0;
+    while k < PIP_STEPS as u32 {
+        p[(PIP as u32 + k) as usize] = mix([20, 20, 24], [70, 70, 78], k, PIP_STEPS as u32 - 1);
+        k += 1;
+    }
+    let mut r = 0;
+    while r < 4 {
+        let mut k = 0;
+        while k < RAMP_STEPS as u32 {
+            // Lit from 45 % (in shade) to 100 % of the base colour.
+            let lit = 45 + 55 * k / (RAMP_STEPS as u32 - 1);
+            let base = RAMP_COLOURS[r];
+            let mut c = [0u8; 3];
+            let mut i = 0;
+            while i < 3 {
+                c[i] = (base[i] as u32 * lit / 100) as u8;
+                i += 1;
+            }
+            p[RAMP as usize + r * RAMP_STEPS as usize + k as usize] = c;
+            k += 1;
+        }
+        r += 1;
+    }
+    p
+}
+
+/// A frame: `width` × `height` palette indices, row by row from the top.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct Frame {
+    pub(crate) width: u32,
+    pub(crate) height: u32,
+    pub(crate) pixels: Vec<u8>,
+}
+
+impl Frame {
+    fn new(width: u32, height: u32, fill: u8) -> Frame {
+        Frame {
+            width,
+            height,
+            pixels: vec![fill; width as usize * height as usize],
+        }
+    }
+
+    fn set(&mut self, x: i64, y: i64, colour: u8) {
+        if x >= 0 && y >= 0 && (x as u32) < self.width && (y as u32) < self.height {
+            self.pixels[y as usize * self.width as usize + x as usize] = colour;
+        }
+    }
+
+    /// Fills the convex polygon `points` (pixel coordinates), each pixel whose centre is
+    /// inside it taking `colour(x, y)`.
+    fn fill_convex(&mut self, points: &[(f64, f64)], mut colour: impl FnMut(i64, i64) -> u8) {
+        if points.len() < 3 || points.iter().any(|p| !(p.0.is_finite() && p.1.is_finite())) {
+            return;
+        }
+        let top = points.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+        let bottom = points.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max);
+        let y0 = (top - 0.5).ceil().max(0.0) as i64;
+        let y1 = ((bottom - 0.5).floor() as i64).min(i64::from(self.height) - 1);
+        for y in y0..=y1 {
+            let yc = y as f64 + 0.5;
+            let (mut left, mut right) = (f64::INFINITY, f64::NEG_INFINITY);
+            for k in 0..points.len() {
+                let (p, q) = (points[k], points[(k + 1) % points.len()]);
+                if (p.1 <= yc && yc < q.1) || (q.1 <= yc && yc < p.1) {
+                    let x = p.0 + (yc - p.1) / (q.1 - p.1) * (q.0 - p.0);
+                    left = left.min(x);
+                    right = right.max(x);
+                }
+            }
+            if left > right {
+                continue;
+            }
+            let x0 = (left - 0.5).ceil().max(0.0) as i64;
+            let x1 = ((right - 0.5).floor() as i64).min(i64::from(self.width) - 1);
+            for x in x0..=x1 {
+                let c = colour(x, y);
+                self.set(x, y, c);
+            }
+        }
+    }
+
+    /// A line `width` pixels wide from `a` to `b`, with round-enough ends.
+    fn line(&mut self, a: (f64, f64), b: (f64, f64), width: f64, colour: u8) {
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        let length = (dx * dx + dy * dy).sqrt();
+        let h = width / 2.0;
+        let (nx, ny) = if length > 1e-9 {
+            (-dy / length * h, dx / length * h)
+        } else {
+            (h, 0.0)
+        };
+        let (ex, ey) = if length > 1e-9 {
+            (dx / length * h, dy / length * h)
+        } else {
+            (0.0, h)
+        };
+        let quad = [
+            (a.0 + nx - ex, a.1 + ny - ey),
+            (b.0 + nx + ex, b.1 + ny + ey),
+            (b.0 - nx + ex, b.1 - ny + ey),
+            (a.0 - nx - ex, a.1 - ny - ey),
+        ];
+        self.fill_convex(&quad, |_, _| colour);
+    }
+
+    /// `text` with its baseline's left end at `(x, y)`, `px` pixels per em, on the caption
+    /// band (its anti-aliased edges are steps of the text ramp).
+    fn text(&mut self, x: f64, y: f64, text: &str, px: f64, bold: bool) {
+        let font = font(bold);
+        let scaled = font.as_scaled(PxScale::from(px as f32));
+        let mut caret = x as f32;
+        let mut previous = None;
+        for c in text.chars() {
+            let id = scaled.glyph_id(c);
+            if let Some(p) = previous {
+                caret += scaled.kern(p, id);
+            }
+            let glyph = id.with_scale_and_position(PxScale::from(px as f32), point(caret, y as f32));
+            caret += scaled.h_advance(id);
+            previous = Some(id);
+            let Some(outline) = font.outline_glyph(glyph) else {
+                continue;
+            };
+            let bounds = outline.px_bounds();
+            outline.draw(|gx, gy, coverage| {
+                let (px_x, px_y) = (bounds.min.x as i64 + gx as i64, bounds.min.y as i64 + gy as i64);
+                let step = (coverage.clamp(0.0, 1.0) * f32::from(TEXT_STEPS - 1)).round() as u8;
+                if step == 0 || px_x < 0 || px_y < 0 || px_x >= i64::from(self.width) {
+                    return;
+                }
+                let i = px_y as usize * self.width as usize + px_x as usize;
+                if let Some(old) = self.pixels.get_mut(i)
+                    && (TEXT..TEXT + TEXT_STEPS).contains(old)
+                {
+                    *old = (*old).max(TEXT + step);
+                }
+            });
+        }
+    }
+}
+
+/// One die at one instant: its corners (cm, world frame, the physics' corner order) and
+/// its centre of mass.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct DieShot {
+    pub(crate) corners: [Vector3<f64>; 8],
+    pub(crate) centre: Vector3<f64>,
+    /// The face (1..6) drawn as the face up.
+    pub(crate) up: Option<u8>,
+}
+
+/// What one frame shows: the die, the twin if there is one, and the headline (time,
+/// faces; its lines split at `\n`) above the setup.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Shot {
+    pub(crate) die: DieShot,
+    pub(crate) twin: Option<DieShot>,
+    pub(crate) headline: String,
+}
+
+/// The camera: orthographic, turned `yaw` degrees about the vertical and looking down
+/// `pitch` degrees, as the explorer's.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Camera {
+    pub yaw_deg: f64,
+    pub pitch_deg: f64,
+}
+
+impl Camera {
+    /// The explorer's default view.
+    pub const DEFAULT: Camera = Camera {
+        yaw_deg: 30.0,
+        pitch_deg: 25.0,
+    };
+
+    fn trig(&self) -> (f64, f64, f64, f64) {
+        let (sy, cy) = self.yaw_deg.to_radians().sin_cos();
+        let (sp, cp) = self.pitch_deg.to_radians().sin_cos();
+        (sy, cy, sp, cp)
+    }
+
+    /// `p` on the view plane: (across, up), cm.
+    fn project(&self, p: &Vector3<f64>) -> (f64, f64) {
+        let (sy, cy, sp, cp) = self.trig();
+        let across = cy * p.x + sy * p.y;
+        let away = -sy * p.x + cy * p.y;
+        (across, p.z * cp + away * sp)
+    }
+
+    /// The unit vector from the scene towards the viewer.
+    fn towards_viewer(&self) -> Vector3<f64> {
+        let (sy, cy, sp, cp) = self.trig();
+        Vector3::new(sy * cp, -cy * cp, sp)
+    }
+
+    /// The light: from above, a little to the viewer's left and in front.
+    fn light(&self) -> Vector3<f64> {
+        let (sy, cy, ..) = self.trig();
+        let across = Vector3::new(cy, sy, 0.0);
+        (0.55 * self.towards_viewer() + Vector3::z() - 0.45 * across).normalize()
+    }
+}
+
+/// Everything the frames of one animation share: the size, the camera, the part of the
+/// world in view, the table and the caption.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Scene {
+    width: u32,
+    height: u32,
+    camera: Camera,
+    /// Pixels per cm, and the pixel of the view plane's origin.
+    scale: f64,
+    origin: (f64, f64),
+    /// The table top, cm: x and y ranges; tiles `tile` cm square.
+    table: [(f64, f64); 2],
+    tile: f64,
+    /// The caption's fixed lines (already wrapped), and the pixel sizes of its text.
+    caption: Vec<String>,
+    headline_px: f64,
+    caption_px: f64,
+    headline_lines: usize,
+    band: u32,
+    margin: f64,
+}
+
+impl Scene {
+    /// The scene of `width` × `height` pixels that holds every one of `shots` whole, seen
+    /// by `camera`, with `caption` (the setup) under each headline.
+    pub(crate) fn new(width: u32, height: u32, camera: Camera, shots: &[Shot], caption: &[String]) -> Scene {
+        let (w, h) = (f64::from(width), f64::from(height));
+        let headline_px = (h / 28.0).clamp(9.0, 40.0);
+        let caption_px = (headline_px * 0.8).max(8.0);
+        let margin = (headline_px * 0.6).round();
+        let text_width_px = w - 2.0 * margin;
+        let headline_lines = shots
+            .iter()
+            .map(|s| wrap_lines(&s.headline, headline_px, text_width_px, true).len())
+            .max()
+            .unwrap_or(1);
+        let caption: Vec<String> = caption
+            .iter()
+            .flat_map(|line| wrap(line, caption_px, text_width_px, false))
+            .collect();
+        let band = (margin * 0.8
+            + headline_lines as f64 * headline_px * 1.25
+            + caption.len() as f64 * caption_px * 1.25
+            + margin * 0.5)
+            .ceil()
+            .min(h * 0.6) as u32;
+
+        // The table: the dice's whole path, a die and a half around it.
+        let dice = || {
+            shots
+                .iter()
+                .flat_map(|s| std::iter::once(&s.die).chain(s.twin.as_ref()))
+        };
+        let side = dice()
+            .next()
+            .map_or(2.0, |d| {
+                (d.corners[4] - d.corners[0])
+                    .norm()
+                    .max((d.corners[2] - d.corners[0]).norm())
+            })
+            .max(1e-6);
+        let (mut x, mut y) = (
+            (f64::INFINITY, f64::NEG_INFINITY),
+            (f64::INFINITY, f64::NEG_INFINITY),
+        );
+        for d in dice() {
+            for c in &d.corners {
+                x = (x.0.min(c.x), x.1.max(c.x));
+                y = (y.0.min(c.y), y.1.max(c.y));
+            }
+        }
+        if !x.0.is_finite() {
+            (x, y) = ((-side, side), (-side, side));
+        }
+        let pad = 1.5 * side;
+        let table = [(x.0 - pad, x.1 + pad), (y.0 - pad, y.1 + pad)];
+        // The view: the dice and the table a die's side around their path (the rest of
+        // the table runs out of the picture).
+        let mut points: Vec<(f64, f64)> = Vec::new();
+        for &tx in &[x.0 - side, x.1 + side] {
+            for &ty in &[y.0 - side, y.1 + side] {
+                points.push(camera.project(&Vector3::new(tx, ty, 0.0)));
+            }
+        }
+        for d in dice() {
+            points.extend(d.corners.iter().map(|c| camera.project(c)));
+        }
+        let (mut lo, mut hi) = (
+            (f64::INFINITY, f64::INFINITY),
+            (f64::NEG_INFINITY, f64::NEG_INFINITY),
+        );
+        for p in points.iter().filter(|p| p.0.is_finite() && p.1.is_finite()) {
+            lo = (lo.0.min(p.0), lo.1.min(p.1));
+            hi = (hi.0.max(p.0), hi.1.max(p.1));
+        }
+        let picture = (w - 2.0 * margin, h - f64::from(band) - 2.0 * margin);
+        let span = ((hi.0 - lo.0).max(1e-6), (hi.1 - lo.1).max(1e-6));
+        let scale = (picture.0 / span.0).min(picture.1 / span.1).max(1e-6);
+        let centre = ((lo.0 + hi.0) / 2.0, (lo.1 + hi.1) / 2.0);
+        let origin = (
+            w / 2.0 - centre.0 * scale,
+            f64::from(band) + margin + picture.1 / 2.0 + centre.1 * scale,
+        );
+        Scene {
+            width,
+            height,
+            camera,
+            scale,
+            origin,
+            table,
+            tile: side,
+            caption,
+            headline_px,
+            caption_px,
+            headline_lines,
+            band,
+            margin,
+        }
+    }
+
+    fn pixel(&self, p: &Vector3<f64>) -> (f64, f64) {
+        let (across, up) = self.camera.project(p);
+        (
+            self.origin.0 + across * self.scale,
+            self.origin.1 - up * self.scale,
+        )
+    }
+
+    /// The table point (cm) seen at pixel centre `(x, y)`, if the view sees the table top.
+    fn table_point(&self, x: f64, y: f64) -> Option<(f64, f64)> {
+        let (sy, cy, sp, _) = self.camera.trig();
+        if sp < 0.02 {
+            return None;
+        }
+        let across = (x - self.origin.0) / self.scale;
+        let up = (self.origin.1 - y) / self.scale;
+        let away = up / sp;
+        Some((cy * across - sy * away, sy * across + cy * away))
+    }
+
+    /// The frame of `shot`: pure, the same pixels for the same shot.
+    pub(crate) fn render(&self, shot: &Shot) -> Frame {
+        let mut frame = Frame::new(self.width, self.height, BACKGROUND);
+        let line_width = (f64::from(self.height) / 320.0).max(1.0);
+        let dice: Vec<(&DieShot, bool)> = std::iter::once((&shot.die, false))
+            .chain(shot.twin.as_ref().map(|t| (t, true)))
+            .collect();
+
+        // The table and the shadows (the light of the shadows straight above: each die's
+        // footprint, the hull of its corners' feet).
+        let shadows: Vec<Vec<(f64, f64)>> = dice
+            .iter()
+            .map(|(d, _)| hull(&d.corners.iter().map(|c| (c.x, c.y)).collect::<Vec<_>>()))
+            .collect();
+        let [tx, ty] = self.table;
+        let table_corners: Vec<(f64, f64)> = [(tx.0, ty.0), (tx.1, ty.0), (tx.1, ty.1), (tx.0, ty.1)]
+            .iter()
+            .map(|&(x, y)| self.pixel(&Vector3::new(x, y, 0.0)))
+            .collect();
+        let table_outline = hull(&table_corners);
+        frame.fill_convex(&table_outline, |x, y| {
+            let Some((wx, wy)) = self.table_point(x as f64 + 0.5, y as f64 + 0.5) else {
+                return TILE_LIGHT;
+            };
+            let dark = ((wx / self.tile).floor() + (wy / self.tile).floor()).rem_euclid(2.0) >= 1.0;
+            let shaded = shadows.iter().any(|s| inside(s, (wx, wy)));
+            match (dark, shaded) {
+                (false, false) => TILE_LIGHT,
+                (true, false) => TILE_DARK,
+                (false, true) => SHADOW_LIGHT,
+                (true, true) => SHADOW_DARK,
+            }
+        });
+        for k in 0..table_outline.len() {
+            let (a, b) = (table_outline[k], table_outline[(k + 1) % table_outline.len()]);
+            frame.line(a, b, line_width, TABLE_EDGE);
+        }
+
+        // The dice, the farther first.
+        let viewer = self.camera.towards_viewer();
+        let mut order = dice.clone();
+        order.sort_by(|a, b| a.0.centre.dot(&viewer).total_cmp(&b.0.centre.dot(&viewer)));
+        for &(die, twin) in &order {
+            self.draw_die(&mut frame, die, twin, line_width);
+        }
+        // The twin's edges over everything: where the two dice still coincide, its outline
+        // shows on the first die's faces.
+        if let Some(twin) = &shot.twin {
+            for (a, b) in visible_edges(twin, &viewer) {
+                frame.line(
+                    self.pixel(&twin.corners[a]),
+                    self.pixel(&twin.corners[b]),
+                    line_width,
+                    TWIN_EDGE,
+                );
+            }
+        }
+
+        // The caption band: the headline, then the setup.
+        let band_pixels = (self.band as usize * self.width as usize).min(frame.pixels.len());
+        frame.pixels[..band_pixels].fill(BAND);
+        let mut baseline = self.margin * 0.8 + self.headline_px;
+        let text_width_px = f64::from(self.width) - 2.0 * self.margin;
+        let headline = wrap_lines(&shot.headline, self.headline_px, text_width_px, true);
+        for line in headline.iter().take(self.headline_lines) {
+            frame.text(self.margin, baseline, line, self.headline_px, true);
+            baseline += self.headline_px * 1.25;
+        }
+        baseline +=
+            (self.headline_lines - headline.len().min(self.headline_lines)) as f64 * self.headline_px * 1.25;
+        for line in &self.caption {
+            frame.text(self.margin, baseline, line, self.caption_px, false);
+            baseline += self.caption_px * 1.25;
+        }
+        frame
+    }
+
+    fn draw_die(&self, frame: &mut Frame, die: &DieShot, twin: bool, line_width: f64) {
+        let viewer = self.camera.towards_viewer();
+        let light = self.camera.light();
+        for (f, corners) in FACE_CORNERS.iter().enumerate() {
+            let centre = face_centre(die, f);
+            let normal = (centre - die.centre).normalize();
+            let facing = normal.dot(&viewer);
+            if facing.is_nan() || facing <= 0.0 {
+                continue;
+            }
+            let lit = 0.3 + 0.7 * normal.dot(&light).max(0.0);
+            let up = die.up == Some(f as u8 + 1);
+            let ramp = RAMP + RAMP_STEPS * (2 * u8::from(twin) + u8::from(up));
+            let shade = ramp + (lit * f64::from(RAMP_STEPS - 1)).round() as u8;
+            // A face's corners in order around it: FACE_CORNERS lists them as a grid.
+            let outline =
+                [corners[0], corners[1], corners[3], corners[2]].map(|k| self.pixel(&die.corners[k]));
+            frame.fill_convex(&outline, |_, _| shade);
+            let pip = PIP + (lit * f64::from(PIP_STEPS - 1)).round() as u8;
+            let u = (die.corners[corners[1]] - die.corners[corners[0]]) / 2.0;
+            let w = (die.corners[corners[2]] - die.corners[corners[0]]) / 2.0;
+            for &(a, b) in PIP_LAYOUT[f] {
+                let disc: Vec<(f64, f64)> = (0..24)
+                    .map(|k| {
+                        let phi = f64::from(k) * std::f64::consts::TAU / 24.0;
+                        let (s, c) = phi.sin_cos();
+                        self.pixel(&(centre + (a + PIP_RADIUS * c) * u + (b + PIP_RADIUS * s) * w))
+                    })
+                    .collect();
+                frame.fill_convex(&disc, |_, _| pip);
+            }
+        }
+        let edge = if twin { TWIN_EDGE } else { EDGE };
+        for (a, b) in visible_edges(die, &viewer) {
+            frame.line(
+                self.pixel(&die.corners[a]),
+                self.pixel(&die.corners[b]),
+                line_width,
+                edge,
+            );
+        }
+        // A corner touching the table (at or below it), where the viewer sees it.
+        let seen = seen_corners(die, &viewer);
+        for k in (0..8).filter(|&k| die.corners[k].z <= 0.0 && seen[k]) {
+            let (x, y) = self.pixel(&die.corners[k]);
+            let r = (2.2 * line_width).max(2.0);
+            let disc: Vec<(f64, f64)> = (0..16)
+                .map(|i| {
+                    let (s, c) = (f64::from(i) * std::f64::consts::TAU / 16.0).sin_cos();
+                    (x + r * c, y + r * s)
+                })
+                .collect();
+            frame.fill_convex(&disc, |_, _| CONTACT);
+        }
+    }
+}
+
+/// `text`'s lines (split at `\n`) each wrapped to `max_width` pixels.
+fn wrap_lines(text: &str, px: f64, max_width: f64, bold: bool) -> Vec<String> {
+    text.lines()
+        .flat_map(|line| wrap(line, px, max_width, bold))
+        .collect()
+}
+
+/// A pip's radius, in units of the face's half side.
+const PIP_RADIUS: f64 = 0.17;
+
+fn face_centre(die: &DieShot, f: usize) -> Vector3<f64> {
+    FACE_CORNERS[f]
+        .iter()
+        .map(|&k| die.corners[k])
+        .sum::<Vector3<f64>>()
+        / 4.0
+}
+
+fn face_seen(die: &DieShot, f: usize, viewer: &Vector3<f64>) -> bool {
+    (face_centre(die, f) - die.centre).dot(viewer) > 0.0
+}
+
+fn seen_corners(die: &DieShot, viewer: &Vector3<f64>) -> [bool; 8] {
+    let mut seen = [false; 8];
+    for f in (0..6).filter(|&f| face_seen(die, f, viewer)) {
+        for &k in &FACE_CORNERS[f] {
+            seen[k] = true;
+        }
+    }
+    seen
+}
+
+/// The edges of a convex body the viewer sees: those of a seen face (two corners of a face
+/// that differ in one coordinate of the body frame, i.e. not its diagonal).
+fn visible_edges(die: &DieShot, viewer: &Vector3<f64>) -> Vec<(usize, usize)> {
+    let mut edges = Vec::new();
+    for f in (0..6).filter(|&f| face_seen(die, f, viewer)) {
+        let c = FACE_CORNERS[f];
+        for (a, b) in [(c[0], c[1]), (c[1], c[3]), (c[3], c[2]), (c[2], c[0])] {
+            let e = (a.min(b), a.max(b));
+            if !edges.contains(&e) {
+                edges.push(e);
+            }
+        }
+    }
+    edges
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_palette_ramps_are_distinct_and_nothing_draws_the_clear_index() {
+        let mut seen = std::collections::HashSet::new();
+        for c in &PALETTE[1..(RAMP + 4 * RAMP_STEPS) as usize] {
+            seen.insert(*c);
+        }
+        // Ramps may meet in their darkest steps, but the colours stay many.
+        assert!(seen.len() > 200, "{}", seen.len());
+    }
+
+    #[test]
+    fn no_caption_line_is_wider_than_the_frame() {
+        use crate::figure::text_width;
+        let die = DieShot {
+            corners: dicesim_physics::body::body_corner_offsets(1.0).map(|c| c + Vector3::new(0.0, 0.0, 1.0)),
+            centre: Vector3::new(0.0, 0.0, 1.0),
+            up: Some(4),
+        };
+        let shot = Shot {
+            die,
+            twin: Some(die),
+            headline: "a-preset-with-a-rather-long-name · t = 12.34 s · did not settle within 30 s\n\
+                       twin (ε 1e-9): did not settle within 30 s, 0.01 cm apart"
+                .to_string(),
+        };
+        let caption = [
+            "a-preset-with-a-rather-long-name: height 15 cm, velocity (30, 0, 0) cm/s, spin (12, -20, 6) rad/s".to_string(),
+            "table k 500000 dyn/cm, γ 0.005 s/cm, μ 1.2; die a 1 cm, m 1 g; g 980 cm/s², Δt 0.001 s".to_string(),
+        ];
+        for (w, h) in [(64, 64), (160, 120), (640, 480), (1920, 1080)] {
+            let scene = Scene::new(w, h, Camera::DEFAULT, std::slice::from_ref(&shot), &caption);
+            // Between the margins on either side.
+            let room = f64::from(w) - 2.0 * scene.margin;
+            for line in &scene.caption {
+                assert!(
+                    text_width(line, scene.caption_px, false) <= room,
+                    "{w}×{h}: {line}"
+                );
+            }
+            let headline = wrap_lines(
+                &shot.headline,
+                scene.headline_px,
+                f64::from(w) - 2.0 * scene.margin,
+                true,
+            );
+            assert_eq!(headline.len(), scene.headline_lines);
+            for line in &headline {
+                assert!(
+                    text_width(line, scene.headline_px, true) <= room,
+                    "{w}×{h}: {line}"
+                );
+            }
+            // The frame draws: the band and the picture below it.
+            let frame = scene.render(&shot);
+            assert_eq!(frame.pixels.len(), (w * h) as usize);
+        }
+    }
+
+    #[test]
+    fn hull_and_inside_agree_on_a_square() {
+        let h = hull(&[(0.0, 0.0), (1.0, 0.0), (0.5, 0.5), (1.0, 1.0), (0.0, 1.0)]);
+        assert_eq!(h.len(), 4);
+        assert!(inside(&h, (0.5, 0.5)));
+        assert!(!inside(&h, (1.5, 0.5)));
+    }
+}

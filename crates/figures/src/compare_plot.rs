@@ -1,0 +1,357 @@
+//! A comparison with real dice as a PNG image: the data's share of each category beside
+//! the simulation's, both with their 95 % intervals; with a fit, the deviance of every
+//! candidate beside it, the 3.84 line and the interval it cuts.
+
+use crate::figure::{Ticks, resolved};
+use crate::plot::{Record, Scale, TICKS, plot_error, png_bytes, register_fonts, with_caption};
+use dicesim_experiment::Error;
+use dicesim_experiment::compare::Comparison;
+use dicesim_experiment::compare_budden::{BuddenComparison, RatioRole};
+use dicesim_experiment::compare_stats::{FitInterval, deviance_rise_95};
+use dicesim_setup::keys::ScanKey;
+use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
+use plotters::prelude::*;
+
+/// Image size in pixels.
+pub(crate) const SIZE: (u32, u32) = (1400, 760);
+
+/// Okabe–Ito: blue for the real dice, vermilion for the simulation.
+const DATA: RGBColor = RGBColor(0, 114, 178);
+const SIMULATED: RGBColor = RGBColor(213, 94, 0);
+
+/// The comparison as the bytes of a PNG file; `record` is captioned and written into it.
+pub fn comparison_png(comparison: &Comparison, record: &Record) -> Result<Vec<u8>, Error> {
+    register_fonts()?;
+    png_bytes(SIZE, record, |root| {
+        root.fill(&WHITE).map_err(plot_error)?;
+        let picture = with_caption(&root, record, Scale::ONE)?;
+        if comparison.fit.is_some() {
+            let (left, right) = picture.split_horizontally(SIZE.0 * 3 / 5);
+            draw_shares(&left, comparison)?;
+            draw_comparison_deviance(&right, comparison)?;
+        } else {
+            draw_shares(&picture, comparison)?;
+        }
+        root.present().map_err(plot_error)
+    })
+}
+
+/// How far apart a fit's candidates are (what its best value is known to), or a
+/// ten-thousandth where there is no fit.
+fn candidate_spacing(comparison: &Comparison) -> f64 {
+    let values: Vec<f64> = comparison.candidates.iter().filter_map(|c| c.value).collect();
+    match values.as_slice() {
+        [first, .., last] if values.len() > 1 => (last - first).abs() / (values.len() - 1) as f64,
+        _ => 1e-4,
+    }
+}
+
+fn draw_shares(area: &DrawingArea<BitMapBackend<'_>, Shift>, comparison: &Comparison) -> Result<(), Error> {
+    let Some(candidate) = comparison.shown() else {
+        return Ok(());
+    };
+    let rows = comparison.rows(candidate);
+    let top = rows
+        .iter()
+        .map(|r| r.data_interval[1].max(r.simulated_interval[1]))
+        .fold(0.0, f64::max)
+        * 1.1;
+    let n = rows.len().max(1) as f64;
+    let value = match (&comparison.key, candidate.value) {
+        (Some(k), Some(v)) => format!(", {k} = {}", resolved(v, candidate_spacing(comparison))),
+        _ => String::new(),
+    };
+    let title = format!(
+        "{}: {} real throws against {} simulated{value}",
+        comparison.dataset.name(),
+        comparison.data.total(),
+        candidate.throws
+    );
+    let yt = Ticks::new(0.0, top.max(1e-3), TICKS);
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, ("sans-serif", 22))
+        .margin(20)
+        .x_label_area_size(60)
+        .y_label_area_size(80)
+        .build_cartesian_2d(-0.5..n - 0.5, 0.0..top.max(1e-3))
+        .map_err(plot_error)?;
+    let names: Vec<String> = rows.iter().map(|r| r.category.clone()).collect();
+    let label = |x: &f64| {
+        let i = x.round();
+        if (x - i).abs() < 1e-9 && i >= 0.0 {
+            names.get(i as usize).cloned().unwrap_or_default()
+        } else {
+            String::new()
+        }
+    };
+    chart
+        .configure_mesh()
+        .disable_x_mesh()
+        .x_labels(rows.len())
+        .x_label_formatter(&label)
+        .x_desc(comparison.dataset.category_words())
+        .y_desc("share of throws, with 95 % intervals")
+        .y_labels(TICKS)
+        .y_label_formatter(&|v| yt.label(*v))
+        .label_style(("sans-serif", 16))
+        .axis_desc_style(("sans-serif", 19))
+        .draw()
+        .map_err(plot_error)?;
+    let offset = 0.15;
+    let pairs: Vec<(f64, [[f64; 3]; 2])> = rows
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let (d, m) = (r.data_interval, r.simulated_interval);
+            (
+                i as f64,
+                [[d[0], r.data_share, d[1]], [m[0], r.simulated_share, m[1]]],
+            )
+        })
+        .collect();
+    // Caps a tenth of a category wide.
+    draw_share_pairs(&mut chart, &pairs, ["real dice", "simulated"], offset, 0.05)?;
+    chart
+        .configure_series_labels()
+        .label_font(("sans-serif", 18))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(plot_error)?;
+    Ok(())
+}
+
+fn draw_comparison_deviance(
+    area: &DrawingArea<BitMapBackend<'_>, Shift>,
+    comparison: &Comparison,
+) -> Result<(), Error> {
+    let (Some(fit), Some(key)) = (&comparison.fit, &comparison.key) else {
+        return Ok(());
+    };
+    let points: Vec<(f64, f64)> = comparison
+        .candidates
+        .iter()
+        .filter_map(|c| Some((c.value?, c.deviance?)))
+        .collect();
+    draw_deviance(area, key, fit, &points, candidate_spacing(comparison))
+}
+
+/// A fit's deviance at each candidate (`points`: value, deviance), the parabola through
+/// them, the 3.84 line and the interval it cuts; `spacing` is the candidates' step.
+fn draw_deviance(
+    area: &DrawingArea<BitMapBackend<'_>, Shift>,
+    key: &str,
+    fit: &FitInterval,
+    points: &[(f64, f64)],
+    spacing: f64,
+) -> Result<(), Error> {
+    let (x0, x1) = points
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.0), b.max(p.0))
+        });
+    let top = points.iter().map(|p| p.1).fold(0.0, f64::max) * 1.05;
+    let limit = fit.best_deviance + deviance_rise_95();
+    let x_hi = x1.max(x0 + 1e-12);
+    let y_hi = top.max(limit * 1.05);
+    let (xt, yt) = (Ticks::new(x0, x_hi, TICKS), Ticks::new(0.0, y_hi, TICKS));
+    // The fitted key's unit, on the axis and after the best value (none if dimensionless).
+    let unit = ScanKey::named(key)
+        .map(|k| k.unit())
+        .ok()
+        .filter(|u| !u.is_empty())
+        .map_or(String::new(), |u| format!(" {u}"));
+    let mut chart = ChartBuilder::on(area)
+        .caption(
+            format!(
+                "deviance against {key}: best {}{unit}",
+                resolved(fit.best, spacing)
+            ),
+            ("sans-serif", 22),
+        )
+        .margin(20)
+        .x_label_area_size(60)
+        .y_label_area_size(80)
+        .build_cartesian_2d(x0..x_hi, 0.0..y_hi)
+        .map_err(plot_error)?;
+    chart
+        .configure_mesh()
+        .x_desc(match unit.as_str() {
+            "" => key.to_string(),
+            u => format!("{key} ({})", u.trim()),
+        })
+        .y_desc("deviance G²")
+        .x_labels(TICKS)
+        .y_labels(TICKS)
+        .x_label_formatter(&|v| xt.label(*v))
+        .y_label_formatter(&|v| yt.label(*v))
+        .label_style(("sans-serif", 16))
+        .axis_desc_style(("sans-serif", 19))
+        .draw()
+        .map_err(plot_error)?;
+    chart
+        .draw_series(std::iter::once(Rectangle::new(
+            [(fit.low, 0.0), (fit.high, limit)],
+            DATA.mix(0.15).filled(),
+        )))
+        .map_err(plot_error)?;
+    chart
+        .draw_series(std::iter::once(PathElement::new(
+            vec![(x0, limit), (x1, limit)],
+            ShapeStyle::from(BLACK.mix(0.6)).stroke_width(1),
+        )))
+        .map_err(plot_error)?;
+    chart
+        .draw_series(std::iter::once(PathElement::new(
+            points.to_vec(),
+            SIMULATED.mix(0.5).stroke_width(1),
+        )))
+        .map_err(plot_error)?;
+    if let Some([a, b, c]) = fit.parabola {
+        let curve = (0..=200).map(|i| {
+            let x = x0 + (x1 - x0) * f64::from(i) / 200.0;
+            (x, (a * x + b) * x + c)
+        });
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                curve.collect::<Vec<_>>(),
+                DATA.stroke_width(2),
+            )))
+            .map_err(plot_error)?;
+    }
+    chart
+        .draw_series(points.iter().map(|&p| Circle::new(p, 4, SIMULATED.filled())))
+        .map_err(plot_error)?;
+    Ok(())
+}
+
+/// The data's and the simulation's share at each `x` (each as low end, share, high end),
+/// side by side `offset` apart, as dots with their 95 % intervals (caps `cap` wide), named in
+/// the legend by `names`.
+fn draw_share_pairs(
+    chart: &mut ChartContext<'_, BitMapBackend<'_>, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    pairs: &[(f64, [[f64; 3]; 2])],
+    names: [&str; 2],
+    offset: f64,
+    cap: f64,
+) -> Result<(), Error> {
+    for (k, (colour, side)) in [(DATA, -offset), (SIMULATED, offset)].into_iter().enumerate() {
+        let points: Vec<(f64, [f64; 3])> = pairs.iter().map(|&(x, both)| (x + side, both[k])).collect();
+        chart
+            .draw_series(points.iter().flat_map(|&(x, [lo, _, hi])| {
+                [
+                    vec![(x, lo), (x, hi)],
+                    vec![(x - cap, lo), (x + cap, lo)],
+                    vec![(x - cap, hi), (x + cap, hi)],
+                ]
+                .map(|line| PathElement::new(line, colour.stroke_width(2)))
+            }))
+            .map_err(plot_error)?;
+        chart
+            .draw_series(
+                points
+                    .iter()
+                    .map(|&(x, [_, mid, _])| Circle::new((x, mid), 5, colour.filled())),
+            )
+            .map_err(plot_error)?
+            .label(names[k])
+            .legend(move |(x, y)| Circle::new((x + 10, y), 5, colour.filled()));
+    }
+    Ok(())
+}
+
+/// Budden's comparison as the bytes of a PNG file: the shares by ratio on the left, the
+/// fit's deviance on the right.
+pub fn budden_png(comparison: &BuddenComparison, record: &Record) -> Result<Vec<u8>, Error> {
+    register_fonts()?;
+    png_bytes(SIZE, record, |root| {
+        root.fill(&WHITE).map_err(plot_error)?;
+        let picture = with_caption(&root, record, Scale::ONE)?;
+        let (left, right) = picture.split_horizontally(SIZE.0 * 3 / 5);
+        draw_budden_shares(&left, comparison)?;
+        if let Some(fit) = &comparison.fit {
+            let points: Vec<(f64, f64)> = comparison
+                .candidates
+                .iter()
+                .map(|c| (c.value, c.deviance))
+                .collect();
+            let spacing = match points.as_slice() {
+                [first, .., last] => (last.0 - first.0) / (points.len() - 1) as f64,
+                _ => 1e-4,
+            };
+            draw_deviance(&right, &comparison.key, fit, &points, spacing)?;
+        }
+        root.present().map_err(plot_error)
+    })
+}
+
+fn draw_budden_shares(
+    area: &DrawingArea<BitMapBackend<'_>, Shift>,
+    comparison: &BuddenComparison,
+) -> Result<(), Error> {
+    let rows = &comparison.ratios;
+    let (x0, x1) = (0.3, 2.8);
+    let (xt, yt) = (Ticks::new(x0, x1, TICKS), Ticks::new(0.0, 1.0, TICKS));
+    let predicted = rows.iter().filter(|r| r.role == RatioRole::Predict);
+    let (count, within) = (
+        predicted.clone().count(),
+        predicted.filter(|r| r.shares.within_two_sigma()).count(),
+    );
+    let mut chart = ChartBuilder::on(area)
+        .caption(
+            format!("Budden's cuboids: {within} of {count} predicted ratios within 2σ"),
+            ("sans-serif", 22),
+        )
+        .margin(20)
+        .x_label_area_size(60)
+        .y_label_area_size(80)
+        .build_cartesian_2d(x0..x1, 0.0..1.0)
+        .map_err(plot_error)?;
+    chart
+        .configure_mesh()
+        .x_desc("ratio x/y (length between the square faces over their side)")
+        .y_desc("share of throws on a square face, with 95 % intervals")
+        .x_labels(TICKS)
+        .y_labels(TICKS)
+        .x_label_formatter(&|v| xt.label(*v))
+        .y_label_formatter(&|v| yt.label(*v))
+        .label_style(("sans-serif", 16))
+        .axis_desc_style(("sans-serif", 19))
+        .draw()
+        .map_err(plot_error)?;
+    // The two series a little apart so their intervals do not hide each other.
+    let offset = 0.012;
+    let pairs: Vec<(f64, [[f64; 3]; 2])> = rows
+        .iter()
+        .map(|r| {
+            let s = &r.shares;
+            let (d, m) = (s.data_interval, s.simulated_interval);
+            (
+                r.ratio,
+                [[d[0], s.data_share, d[1]], [m[0], s.simulated_share, m[1]]],
+            )
+        })
+        .collect();
+    draw_share_pairs(&mut chart, &pairs, ["Budden", "simulated"], offset, 0.01)?;
+    // The calibration ratios ringed: the fit saw them, the others are predictions.
+    chart
+        .draw_series(
+            rows.iter()
+                .filter(|r| r.role == RatioRole::Calibrate)
+                .map(|r| Circle::new((r.ratio - offset, r.shares.data_share), 11, BLACK.stroke_width(2))),
+        )
+        .map_err(plot_error)?
+        .label("calibration ratio (fitted on)")
+        .legend(|(x, y)| Circle::new((x + 10, y), 8, BLACK.stroke_width(2)));
+    chart
+        .configure_series_labels()
+        .label_font(("sans-serif", 18))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(plot_error)?;
+    Ok(())
+}

@@ -1,0 +1,915 @@
+//! Basin maps as PNG or SVG images a teacher can put on a slide.
+//!
+//! Text is measured with the DejaVu Sans font embedded in the binary, so drawing needs no
+//! system fonts (and the SVG names `sans-serif`, which viewers resolve themselves).
+
+use crate::figure::{Ticks, resolved, setup_value, wrap};
+use dicesim_experiment::Error;
+use dicesim_experiment::basin::{BasinMap, Cell, Layer};
+use dicesim_experiment::ending::Ending;
+use dicesim_physics::{InitialCondition, Params, Status};
+use dicesim_setup::output::Output;
+use dicesim_setup::registry::{self, Role, Setup, Value};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::register_font;
+use std::sync::OnceLock;
+
+/// Image size in pixels (SVG user units).
+pub const SIZE: (u32, u32) = (1200, 800);
+/// Width of the legend strip on the right.
+const LEGEND_WIDTH: u32 = 200;
+
+/// Okabe–Ito colours for faces 1..6: distinguishable with the common colour-vision deficiencies.
+pub const FACE_COLOURS: [RGBColor; 6] = [
+    RGBColor(230, 159, 0),
+    RGBColor(86, 180, 233),
+    RGBColor(0, 158, 115),
+    RGBColor(240, 228, 66),
+    RGBColor(0, 114, 178),
+    RGBColor(213, 94, 0),
+];
+const NO_FACE: RGBColor = RGBColor(200, 200, 200);
+const TIMEOUT: RGBColor = RGBColor(90, 90, 90);
+const UNSTABLE: RGBColor = RGBColor(204, 121, 167);
+const UNKNOWN: RGBColor = WHITE;
+/// A settle-time cell the adaptive method filled in from its block instead of rolling: its
+/// face is known, its time is not.
+const INFERRED: RGBColor = RGBColor(215, 215, 215);
+/// What the legend calls such a cell.
+pub const INFERRED_WORDS: &str = "not rolled (filled in)";
+
+/// Viridis at 0, ¼, ½, ¾, 1: a perceptually even scale for settle times.
+const VIRIDIS: [RGBColor; 5] = [
+    RGBColor(68, 1, 84),
+    RGBColor(59, 82, 139),
+    RGBColor(33, 145, 140),
+    RGBColor(94, 201, 98),
+    RGBColor(253, 231, 37),
+];
+
+fn viridis(t: f64) -> RGBColor {
+    let t = if t.is_finite() { t.clamp(0.0, 1.0) } else { 0.0 };
+    let x = t * (VIRIDIS.len() - 1) as f64;
+    let k = (x.floor() as usize).min(VIRIDIS.len() - 2);
+    let f = x - k as f64;
+    let (a, b) = (VIRIDIS[k], VIRIDIS[k + 1]);
+    let mix = |p: u8, q: u8| (p as f64 + (q as f64 - p as f64) * f).round() as u8;
+    RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+}
+
+pub(crate) fn register_fonts() -> Result<(), Error> {
+    static REGISTERED: OnceLock<Result<(), String>> = OnceLock::new();
+    REGISTERED
+        .get_or_init(|| {
+            register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular())
+                .and_then(|_| register_font("sans-serif", FontStyle::Bold, dejavu::sans::bold()))
+                .map_err(|_| "the embedded DejaVu Sans font is not a valid font".to_string())
+        })
+        .clone()
+        .map_err(Error::Plot)
+}
+
+pub(crate) fn plot_error(e: impl std::fmt::Display) -> Error {
+    Error::Plot(e.to_string())
+}
+
+/// An image file format the plots are drawn in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ImageFormat {
+    Png,
+    Svg,
+}
+
+impl ImageFormat {
+    /// The format for a file extension (`png` or `svg`, any case).
+    pub(crate) fn from_extension(extension: &str) -> Option<ImageFormat> {
+        match extension.to_ascii_lowercase().as_str() {
+            "png" => Some(ImageFormat::Png),
+            "svg" => Some(ImageFormat::Svg),
+            _ => None,
+        }
+    }
+}
+
+/// What an image records of how it was made: caption lines drawn under the picture, and
+/// text chunks (keyword, text) a PNG carries for any viewer or script to read.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Record {
+    pub caption: Vec<String>,
+    pub text: Vec<(String, String)>,
+}
+
+/// Pixels one caption line takes.
+const CAPTION_LINE: u32 = 24;
+
+/// How much larger than its design size an image is drawn: every length, font and margin
+/// is multiplied by it, so a poster-sized map reads like the screen-sized one.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Scale(pub(crate) f64);
+
+impl Scale {
+    /// Drawn at the size it was designed for.
+    pub(crate) const ONE: Scale = Scale(1.0);
+
+    /// The scale of an image `size` pixels large, designed at `design` (by height, the
+    /// dimension the text stacks along; never below half size).
+    pub(crate) fn of(size: (u32, u32), design: (u32, u32)) -> Scale {
+        Scale((f64::from(size.1) / f64::from(design.1)).max(0.5))
+    }
+
+    /// `pixels` of the design size, at this scale.
+    pub(crate) fn px(self, pixels: i32) -> i32 {
+        (f64::from(pixels) * self.0).round() as i32
+    }
+}
+
+impl Record {
+    /// The record of a setup: the caption names the values a reader looks for first, the
+    /// `dicesim-setup` chunk holds every value, one `key = value` per line, as a preset
+    /// file writes them.
+    pub fn of_setup(title: &str, name: &str, params: &Params, initial: &InitialCondition) -> Record {
+        let n = setup_value;
+        let v3 = |v: [f64; 3]| format!("({}, {}, {})", n(v[0]), n(v[1]), n(v[2]));
+        let w = initial.angular_velocity_for(params.inertia());
+        let caption = vec![
+            format!(
+                "{name}: height {} cm, velocity {} cm/s, spin {} rad/s, yaw pitch roll {}°",
+                n(initial.height),
+                v3(initial.velocity),
+                v3(w.into()),
+                v3(initial.orientation),
+            ),
+            format!(
+                "{} (every value in the file's dicesim-setup text)",
+                body_line(params)
+            ),
+        ];
+        Record {
+            text: vec![
+                ("Title".to_string(), title.to_string()),
+                ("Description".to_string(), caption.join("\n")),
+                ("Software".to_string(), dicesim_experiment::PROGRAM.to_string()),
+                ("dicesim-setup".to_string(), setup_text(name, params, initial)),
+            ],
+            caption,
+        }
+    }
+}
+
+/// The table, die, gravity and time step as a caption names them; a loaded die says where
+/// its extra masses are ("loaded: +0.5 g at corner 8").
+fn body_line(params: &Params) -> String {
+    let n = setup_value;
+    let extras: Vec<String> = (params.die.extra_corner_mass.iter().enumerate())
+        .filter(|&(_, &m)| m > 0.0)
+        .map(|(k, &m)| format!("+{} g at corner {}", n(m), k + 1))
+        .collect();
+    let loaded = if extras.is_empty() {
+        String::new()
+    } else {
+        format!(", loaded: {}", extras.join(", "))
+    };
+    format!(
+        "table k {} dyn/cm, γ {} s/cm, μ {}; die a {} cm, m {} g{loaded}; g {} cm/s², Δt {} s",
+        n(params.ground.stiffness),
+        n(params.ground.damping),
+        n(params.ground.friction),
+        n(params.die.half_size()),
+        n(params.die.corner_mass),
+        n(params.world.gravity),
+        n(params.integrator.dt),
+    )
+}
+
+impl Record {
+    /// The record of an experiment over many starts (a prediction drawn from the random
+    /// ranges): the caption says what defines it (`experiment`, a line) and the body it
+    /// rolls; the `dicesim-provenance` text holds every value, the ranges included, as the
+    /// JSON its CSV starts with.
+    pub fn of_experiment(
+        title: &str,
+        experiment: String,
+        params: &Params,
+        provenance: &serde_json::Value,
+    ) -> Record {
+        let caption = vec![
+            experiment,
+            format!(
+                "{} (every value in the file's dicesim-provenance text)",
+                body_line(params)
+            ),
+        ];
+        Record {
+            text: vec![
+                ("Title".to_string(), title.to_string()),
+                ("Description".to_string(), caption.join("\n")),
+                ("Software".to_string(), dicesim_experiment::PROGRAM.to_string()),
+            ],
+            caption,
+        }
+        .with_provenance(provenance)
+    }
+
+    /// The record with `provenance` (program, setup, what defines the experiment) as the
+    /// `dicesim-provenance` text: the JSON a CSV of the same experiment starts with.
+    pub fn with_provenance(mut self, provenance: &serde_json::Value) -> Record {
+        self.text
+            .push(("dicesim-provenance".to_string(), provenance.to_string()));
+        self
+    }
+}
+
+/// Random starts as a caption names them: the seed and each range (`height 15 cm` where
+/// the range is one value), and the orientation.
+pub fn random_starts(r: &dicesim_physics::RandomRanges, seed: u64) -> String {
+    let range = |[lo, hi]: [f64; 2], unit: &str| {
+        if lo == hi {
+            format!("{} {unit}", setup_value(lo))
+        } else {
+            format!("{}…{} {unit}", setup_value(lo), setup_value(hi))
+        }
+    };
+    let orientation = if r.random_orientation {
+        "any orientation"
+    } else {
+        "the preset's orientation"
+    };
+    format!(
+        "drawn with seed {seed}: height {}, velocity {} and spin {} each component, {orientation}",
+        range(r.height, "cm"),
+        range(r.velocity, "cm/s"),
+        range(r.angular_velocity, "rad/s"),
+    )
+}
+
+/// Every value of a setup (but the random ranges, which no single roll uses), one
+/// `key = value` per line, after the preset's name.
+pub(crate) fn setup_text(name: &str, params: &Params, initial: &InitialCondition) -> String {
+    let setup = Setup {
+        params: *params,
+        initial: *initial,
+        ..Setup::default()
+    };
+    let mut lines = vec![format!("preset = \"{name}\"")];
+    for spec in registry::ALL.iter().filter(|s| s.role != Role::Random) {
+        let value = match (spec.read)(&setup) {
+            Value::Number(x) => format!("{x}"),
+            Value::Vector(v) => format!("[{}, {}, {}]", v[0], v[1], v[2]),
+            Value::Range(r) => format!("[{}, {}]", r[0], r[1]),
+            Value::PerCorner(v) => format!("[{}]", v.map(|x| x.to_string()).join(", ")),
+            Value::Name(s) => format!("\"{s}\""),
+            Value::Seed(s) => format!("{s}"),
+            Value::Flag(b) => format!("{b}"),
+            Value::Absent => continue,
+        };
+        lines.push(format!("{} = {value}", spec.key()));
+    }
+    lines.join("\n")
+}
+
+/// Draws with `draw` on a PNG canvas of `size` pixels and returns the encoded file with the
+/// record's text chunks. Drawing into memory keeps every write error with the one place
+/// that writes files.
+pub(crate) fn png_bytes(
+    size: (u32, u32),
+    record: &Record,
+    draw: impl FnOnce(DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), Error>,
+) -> Result<Vec<u8>, Error> {
+    let mut pixels = vec![0u8; size.0 as usize * size.1 as usize * 3];
+    draw(BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area())?;
+    let mut png = Vec::new();
+    let mut encoder = png::Encoder::new(&mut png, size.0, size.1);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    // iTXt: UTF-8, for the model's own symbols (μ, Δt, ω).
+    for (keyword, text) in &record.text {
+        encoder
+            .add_itxt_chunk(keyword.clone(), text.clone())
+            .map_err(plot_error)?;
+    }
+    let mut writer = encoder.write_header().map_err(plot_error)?;
+    writer.write_image_data(&pixels).map_err(plot_error)?;
+    writer.finish().map_err(plot_error)?;
+    Ok(png)
+}
+
+/// Pixels per em of caption text, at the design size.
+const CAPTION_FONT: i32 = 16;
+/// Pixels left of (and kept right of) a caption line, at the design size.
+const CAPTION_MARGIN: i32 = 20;
+
+/// The record's caption as drawn across an image `width` pixels wide: each line wrapped
+/// at spaces to fit between the margins, never cut.
+pub(crate) fn caption_lines(record: &Record, width: u32, scale: Scale) -> Vec<String> {
+    let px = f64::from(scale.px(CAPTION_FONT));
+    let room = f64::from(width) - 2.0 * f64::from(scale.px(CAPTION_MARGIN));
+    record
+        .caption
+        .iter()
+        .flat_map(|line| wrap(line, px, room, false))
+        .collect()
+}
+
+/// Draws the record's caption lines along the bottom of `root` and returns the area above.
+pub(crate) fn with_caption<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    record: &Record,
+    scale: Scale,
+) -> Result<DrawingArea<DB, Shift>, Error> {
+    if record.caption.is_empty() {
+        return Ok(root.clone());
+    }
+    let (width, height) = root.dim_in_pixel();
+    let lines = caption_lines(record, width, scale);
+    let line_px = scale.px(CAPTION_LINE as i32) as u32;
+    let strip = line_px * lines.len() as u32 + scale.px(10) as u32;
+    let (picture, caption) = root.split_vertically(height.saturating_sub(strip));
+    for (k, line) in lines.iter().enumerate() {
+        caption
+            .draw(&Text::new(
+                line.as_str(),
+                (
+                    scale.px(CAPTION_MARGIN),
+                    scale.px(2) + (line_px * k as u32) as i32,
+                ),
+                ("sans-serif", scale.px(CAPTION_FONT)),
+            ))
+            .map_err(plot_error)?;
+    }
+    Ok(picture)
+}
+
+/// Writes `map` to `out` as a PNG or SVG image, by its extension, recording the setup its
+/// cells start from (`name`, params and initial condition) and `provenance` (the JSON the
+/// map's CSV starts with); nothing is written if drawing fails.
+pub fn write_image(
+    map: &BasinMap,
+    layer: Layer,
+    setup: (&str, &Params, &InitialCondition),
+    provenance: &serde_json::Value,
+    out: &Output,
+) -> Result<(), Error> {
+    let record = map_record(map, layer, Some(setup)).with_provenance(provenance);
+    write_recorded_image(map, layer, &record, SIZE, out)
+}
+
+/// [`write_image`] at `size` pixels, with `record`'s caption and (for a PNG) text chunks.
+pub(crate) fn write_recorded_image(
+    map: &BasinMap,
+    layer: Layer,
+    record: &Record,
+    size: (u32, u32),
+    out: &Output,
+) -> Result<(), Error> {
+    let format = ImageFormat::from_extension(out.extension())
+        .ok_or_else(|| Error::Plot(format!("{}: expected a .png or .svg file", out.path().display())))?;
+    out.write_bytes(&image_bytes(map, layer, record, size, format)?)?;
+    Ok(())
+}
+
+/// A map's record: its title and axes, and the setup its cells start from when known
+/// (`name`, params and initial condition; the two axis values vary per cell).
+pub fn map_record(map: &BasinMap, layer: Layer, setup: Option<(&str, &Params, &InitialCondition)>) -> Record {
+    let axes = format!("x {}, y {}", axis_range(&map.x), axis_range(&map.y));
+    let mut record = match setup {
+        Some((name, params, initial)) => {
+            let mut r = Record::of_setup(&title(map, layer), name, params, initial);
+            r.caption.insert(0, format!("{axes}; every other value as below"));
+            r
+        }
+        None => Record {
+            caption: vec![axes.clone()],
+            text: vec![("Title".to_string(), title(map, layer))],
+        },
+    };
+    record.text.push(("dicesim-axes".to_string(), axes));
+    record
+}
+
+/// `map` as the bytes of a PNG or SVG file of `size` pixels.
+pub fn image_bytes(
+    map: &BasinMap,
+    layer: Layer,
+    record: &Record,
+    size: (u32, u32),
+    format: ImageFormat,
+) -> Result<Vec<u8>, Error> {
+    register_fonts()?;
+    let scale = Scale::of(size, SIZE);
+    match format {
+        ImageFormat::Png => png_bytes(size, record, |area| draw(area, map, layer, record, scale)),
+        ImageFormat::Svg => {
+            let mut svg = String::new();
+            draw(
+                SVGBackend::with_string(&mut svg, size).into_drawing_area(),
+                map,
+                layer,
+                record,
+                scale,
+            )?;
+            Ok(svg.into_bytes())
+        }
+    }
+}
+
+/// The settle-time scale: s, over settled cells that were rolled (`None` if none).
+pub fn time_range(map: &BasinMap) -> Option<(f64, f64)> {
+    let times = map
+        .cells
+        .iter()
+        .flatten()
+        .filter(|c| c.outcome.status == Status::Settled && c.sampled)
+        .map(|c| c.outcome.time_s);
+    times.fold(None, |r, t| match r {
+        None => Some((t, t)),
+        Some((lo, hi)) => Some((t.min(lo), t.max(hi))),
+    })
+}
+
+/// A cell's colour in the image; the explorer draws its map in the same colours.
+pub fn cell_colour(cell: Option<&Cell>, layer: Layer, times: Option<(f64, f64)>) -> RGBColor {
+    let Some(c) = cell else { return UNKNOWN };
+    match (c.outcome.status, c.outcome.face, layer) {
+        (Status::Timeout, ..) => TIMEOUT,
+        (Status::Unstable, ..) => UNSTABLE,
+        (Status::Settled, None, Layer::Face) => NO_FACE,
+        (Status::Settled, Some(f), Layer::Face) => FACE_COLOURS[f as usize - 1],
+        (Status::Settled, _, Layer::SettleTime) if !c.sampled => INFERRED,
+        (Status::Settled, _, Layer::SettleTime) => {
+            let (lo, hi) = times.unwrap_or((0.0, 1.0));
+            viridis((c.outcome.time_s - lo) / (hi - lo).max(1e-12))
+        }
+    }
+}
+
+fn title(map: &BasinMap, layer: Layer) -> String {
+    let what = match layer {
+        Layer::Face => "Face up",
+        Layer::SettleTime => "Settle time",
+    };
+    let (w, h) = (map.width(), map.height());
+    let how = match map.method {
+        dicesim_experiment::basin::Method::Uniform => format!("uniform grid {w}×{h}"),
+        dicesim_experiment::basin::Method::Adaptive => {
+            format!("adaptive {w}×{h}, {} of {} cells rolled", map.sampled, w * h)
+        }
+    };
+    format!("{what} — {how}")
+}
+
+/// An axis's key and range, to the precision its grid resolves (a one-node axis: its
+/// value).
+fn axis_range(axis: &dicesim_experiment::basin::Axis) -> String {
+    let unit = match axis.key.unit() {
+        "" => String::new(),
+        u => format!(" {u}"),
+    };
+    if axis.cells == 1 {
+        return format!("{} = {}{unit}", axis.key.key, setup_value(axis.value(0)));
+    }
+    let d = axis.spacing();
+    format!(
+        "{} from {} to {}{unit}",
+        axis.key.key,
+        resolved(axis.min, d),
+        resolved(axis.max, d)
+    )
+}
+
+/// The words under (or beside) an axis: its key with the unit, and its range.
+fn axis_title(axis: &dicesim_experiment::basin::Axis) -> String {
+    let d = axis.spacing();
+    format!(
+        "{}: {} to {}",
+        axis.key.label(),
+        resolved(axis.min, d),
+        resolved(axis.max, d)
+    )
+}
+
+/// Labels on every axis of every figure: at most this many ticks.
+pub(crate) const TICKS: usize = 10;
+
+fn draw<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    map: &BasinMap,
+    layer: Layer,
+    record: &Record,
+    scale: Scale,
+) -> Result<(), Error> {
+    let px = |v: i32| scale.px(v);
+    root.fill(&WHITE).map_err(plot_error)?;
+    let picture = with_caption(&root, record, scale)?;
+    let (width, _) = picture.dim_in_pixel();
+    let (area, legend) = picture.split_horizontally(width.saturating_sub(px(LEGEND_WIDTH as i32) as u32));
+    let times = time_range(map);
+    let (x, y) = (&map.x, &map.y);
+    let (dx, dy) = (x.spacing(), y.spacing());
+    let x_range = (x.min - dx / 2.0)..(x.max + dx / 2.0);
+    let mut chart = ChartBuilder::on(&area);
+    chart
+        .caption(title(map, layer), ("sans-serif", px(26)))
+        .margin(px(20))
+        .x_label_area_size(px(60))
+        .y_label_area_size(px(80));
+    let label_style = ("sans-serif", px(16));
+    let desc_style = ("sans-serif", px(19));
+    if map.height() == 1 {
+        // A 1-D scan: settle time against the value, each point in its face's colour, as the
+        // authors plotted it (the time spikes at the borders between faces).
+        let hi = times.map_or(1.0, |t| t.1) * 1.05;
+        let (xt, yt) = (
+            Ticks::new(x_range.start, x_range.end, TICKS),
+            Ticks::new(0.0, hi, TICKS),
+        );
+        let mut chart = chart.build_cartesian_2d(x_range, 0.0..hi).map_err(plot_error)?;
+        chart
+            .configure_mesh()
+            .x_desc(axis_title(x))
+            .y_desc(format!("settle time (s), {}", axis_range(y)))
+            .x_labels(TICKS)
+            .y_labels(TICKS)
+            .x_label_formatter(&|v| xt.label(*v))
+            .y_label_formatter(&|v| yt.label(*v))
+            .label_style(label_style)
+            .axis_desc_style(desc_style)
+            .draw()
+            .map_err(plot_error)?;
+        let points: Vec<(f64, f64, RGBColor)> = (0..map.width())
+            .filter_map(|i| {
+                let c = map.cell(i, 0)?;
+                Some((
+                    x.value(i),
+                    c.outcome.time_s,
+                    cell_colour(Some(c), Layer::Face, times),
+                ))
+            })
+            .collect();
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                points.iter().map(|p| (p.0, p.1)).collect::<Vec<_>>(),
+                RGBColor(160, 160, 160),
+            )))
+            .map_err(plot_error)?;
+        chart
+            .draw_series(
+                points
+                    .iter()
+                    .map(|&(x, y, c)| Circle::new((x, y), px(3), c.filled())),
+            )
+            .map_err(plot_error)?;
+        face_legend(&legend, map, scale)?;
+    } else {
+        let y_range = (y.min - dy / 2.0)..(y.max + dy / 2.0);
+        let (xt, yt) = (
+            Ticks::new(x_range.start, x_range.end, TICKS),
+            Ticks::new(y_range.start, y_range.end, TICKS),
+        );
+        let mut chart = chart.build_cartesian_2d(x_range, y_range).map_err(plot_error)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc(axis_title(x))
+            .y_desc(axis_title(y))
+            .x_labels(TICKS)
+            .y_labels(TICKS)
+            .x_label_formatter(&|v| xt.label(*v))
+            .y_label_formatter(&|v| yt.label(*v))
+            .label_style(label_style)
+            .axis_desc_style(desc_style)
+            .draw()
+            .map_err(plot_error)?;
+        // One rectangle per run of equal colour along a row keeps the SVG small.
+        let mut runs = Vec::new();
+        for j in 0..map.height() {
+            let mut i = 0;
+            while i < map.width() {
+                let colour = cell_colour(map.cell(i, j), layer, times);
+                let start = i;
+                while i + 1 < map.width() && cell_colour(map.cell(i + 1, j), layer, times) == colour {
+                    i += 1;
+                }
+                let (yc, xa, xb) = (y.value(j), x.value(start), x.value(i));
+                runs.push(Rectangle::new(
+                    [(xa - dx / 2.0, yc - dy / 2.0), (xb + dx / 2.0, yc + dy / 2.0)],
+                    colour.filled(),
+                ));
+                i += 1;
+            }
+        }
+        chart.draw_series(runs).map_err(plot_error)?;
+        match layer {
+            Layer::Face => face_legend(&legend, map, scale)?,
+            Layer::SettleTime => time_legend(&legend, map, times, scale)?,
+        }
+    }
+    root.present().map_err(plot_error)
+}
+
+/// The faces that occur, then whichever other endings do: the legend names only what is
+/// drawn.
+fn face_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    map: &BasinMap,
+    scale: Scale,
+) -> Result<(), Error> {
+    let occurs = |status: Status, face: Option<u8>| {
+        map.cells
+            .iter()
+            .flatten()
+            .any(|c| c.outcome.status == status && (status != Status::Settled || c.outcome.face == face))
+    };
+    let mut entries: Vec<(String, RGBColor)> = (1..=6u8)
+        .filter(|&f| occurs(Status::Settled, Some(f)))
+        .map(|f| (format!("face {f}"), FACE_COLOURS[f as usize - 1]))
+        .collect();
+    for (ending, status, colour) in [
+        (Ending::WithoutFace, Status::Settled, NO_FACE),
+        (Ending::DidNotSettle, Status::Timeout, TIMEOUT),
+        (Ending::Unstable, Status::Unstable, UNSTABLE),
+    ] {
+        if occurs(status, None) {
+            entries.push((ending.name().to_string(), colour));
+        }
+    }
+    swatches(area, scale.px(80), &entries, scale)
+}
+
+/// Colour swatches with their labels from `top` down, a label too long for the strip on two
+/// lines.
+fn swatches<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    top: i32,
+    entries: &[(String, RGBColor)],
+    scale: Scale,
+) -> Result<(), Error> {
+    let px = |v: i32| scale.px(v);
+    let mut y = top;
+    for (label, colour) in entries {
+        area.draw(&Rectangle::new(
+            [(px(10), y), (px(36), y + px(24))],
+            colour.filled(),
+        ))
+        .map_err(plot_error)?;
+        let lines: Vec<String> = match label
+            .char_indices()
+            .filter(|&(i, c)| c == ' ' && i >= 8)
+            .map(|(i, _)| i)
+            .next()
+        {
+            Some(i) if label.chars().count() > 15 => vec![label[..i].to_string(), label[i + 1..].to_string()],
+            _ => vec![label.clone()],
+        };
+        for (k, line) in lines.iter().enumerate() {
+            area.draw(&Text::new(
+                line.as_str(),
+                (px(46), y + px(3 + 20 * k as i32)),
+                ("sans-serif", px(18)),
+            ))
+            .map_err(plot_error)?;
+        }
+        y += px(34 + 20 * (lines.len() as i32 - 1));
+    }
+    Ok(())
+}
+
+/// A vertical colour bar from the shortest (bottom) to the longest (top) settle time.
+fn time_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    map: &BasinMap,
+    times: Option<(f64, f64)>,
+    scale: Scale,
+) -> Result<(), Error> {
+    let px = |v: i32| scale.px(v);
+    let (lo, hi) = times.unwrap_or((0.0, 0.0));
+    let (top, bottom) = (px(90), px(520));
+    area.draw(&Text::new(
+        "settle time (s)",
+        (px(10), top - px(40)),
+        ("sans-serif", px(18)),
+    ))
+    .map_err(plot_error)?;
+    for py in top..bottom {
+        let t = (bottom - py) as f64 / (bottom - top) as f64;
+        area.draw(&Rectangle::new(
+            [(px(10), py), (px(40), py + 1)],
+            viridis(t).filled(),
+        ))
+        .map_err(plot_error)?;
+    }
+    // Marks at round times inside the scale (a scale of one time: that time).
+    let (ticks, values) = if hi > lo {
+        Ticks::values(lo, hi, 5)
+    } else {
+        (Ticks::new(0.0, 1.0, 5), vec![lo])
+    };
+    for v in values.into_iter().filter(|_| times.is_some()) {
+        let f = if hi > lo { (v - lo) / (hi - lo) } else { 0.0 };
+        let py = bottom - ((bottom - top) as f64 * f) as i32;
+        area.draw(&Rectangle::new([(px(40), py), (px(44), py + 1)], BLACK.filled()))
+            .map_err(plot_error)?;
+        let label = if hi > lo { ticks.label(v) } else { setup_value(v) };
+        area.draw(&Text::new(label, (px(48), py - px(8)), ("sans-serif", px(16))))
+            .map_err(plot_error)?;
+    }
+    let any = |occurs: &dyn Fn(&Cell) -> bool| map.cells.iter().flatten().any(occurs);
+    let mut entries = Vec::new();
+    if any(&|c| c.outcome.status == Status::Timeout) {
+        entries.push((Ending::DidNotSettle.name().to_string(), TIMEOUT));
+    }
+    if any(&|c| c.outcome.status == Status::Unstable) {
+        entries.push((Ending::Unstable.name().to_string(), UNSTABLE));
+    }
+    if any(&|c| c.outcome.status == Status::Settled && !c.sampled) {
+        entries.push((INFERRED_WORDS.to_string(), INFERRED));
+    }
+    swatches(area, bottom + px(30), &entries, scale)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_caption_says_where_a_loaded_die_is_heavy() {
+        let initial = InitialCondition::default();
+        let mut params = Params::default();
+        let fair = Record::of_setup("t", "paper", &params, &initial)
+            .caption
+            .join("\n");
+        assert!(!fair.contains("loaded"), "{fair}");
+        params.die.extra_corner_mass[7] = 0.5;
+        params.die.extra_corner_mass[1] = 2.0;
+        let caption = Record::of_setup("t", "x", &params, &initial).caption.join("\n");
+        assert!(
+            caption.contains("m 1 g, loaded: +2 g at corner 2, +0.5 g at corner 8;"),
+            "{caption}"
+        );
+    }
+
+    /// A small map of the paper's roll over the issue's awkward range, rolled for real.
+    fn awkward_map(layer: Layer, height: usize) -> BasinMap {
+        use dicesim_experiment::{Axis, MapSpec, Method, run_map};
+        let initial = InitialCondition {
+            velocity: [30.0, 0.0, 0.0],
+            angular_velocity: [12.0, -20.0, 6.0],
+            ..InitialCondition::default()
+        };
+        let spec = MapSpec {
+            x: Axis::parse(
+                "initial.angular_velocity.x:-14.204545454545455:-6.704545454545455",
+                9,
+            )
+            .unwrap(),
+            y: Axis::parse("ground.friction:0.2:1.4", height).unwrap(),
+            method: if layer == Layer::Face {
+                Method::Adaptive
+            } else {
+                Method::Uniform
+            },
+        };
+        let never = std::sync::atomic::AtomicBool::new(false);
+        run_map(&Params::default(), &initial, &spec, 1, &never, &mut |_| {}).unwrap()
+    }
+
+    /// The text elements of an SVG (their content, unescaped enough to read) with their
+    /// x position and font size.
+    fn svg_texts(svg: &str) -> Vec<(f64, f64, String)> {
+        let attribute = |tag: &str, name: &str| -> f64 {
+            let at = tag.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+            tag[at..].split('"').next().unwrap().parse().unwrap()
+        };
+        svg.split("<text")
+            .skip(1)
+            .map(|chunk| {
+                let (tag, rest) = chunk.split_once('>').unwrap();
+                let content = rest
+                    .split("</text>")
+                    .next()
+                    .unwrap()
+                    .trim()
+                    .replace("&apos;", "'");
+                (attribute(tag, "x"), attribute(tag, "font-size"), content)
+            })
+            .collect()
+    }
+
+    /// Decimals of every number written in `text` (`-14.2` has 1, `9×6` none).
+    fn decimals_in(text: &str) -> Vec<(String, usize)> {
+        let mut found = Vec::new();
+        let mut number = String::new();
+        for c in text.chars().chain(std::iter::once(' ')) {
+            if c.is_ascii_digit() || (c == '.' && !number.is_empty() && !number.contains('.')) {
+                number.push(c);
+            } else if !number.is_empty() {
+                let n = number.trim_end_matches('.').to_string();
+                let decimals = n.split_once('.').map_or(0, |(_, d)| d.len());
+                found.push((n, decimals));
+                number.clear();
+            }
+        }
+        found
+    }
+
+    #[test]
+    fn no_svg_text_carries_more_digits_than_the_grid_resolves() {
+        for (layer, height) in [(Layer::Face, 6), (Layer::SettleTime, 6), (Layer::Face, 1)] {
+            let map = awkward_map(layer, height);
+            // Without a setup the caption is the axes' line: every number on the image
+            // comes from the grid (or counts cells).
+            let record = map_record(&map, layer, None);
+            let svg = String::from_utf8(image_bytes(&map, layer, &record, SIZE, ImageFormat::Svg).unwrap())
+                .unwrap();
+            // x is 0.94 apart, friction 0.24 apart: one decimal; the time scale's marks sit
+            // on a round step of its 5 at most.
+            let allowed = 1.max(match (layer, time_range(&map)) {
+                (Layer::SettleTime, Some((lo, hi))) => {
+                    super::super::figure::decimals_for((hi - lo) / 4.0) + 1
+                }
+                _ => 0,
+            });
+            let texts = svg_texts(&svg);
+            assert!(texts.iter().any(|t| t.2.contains("-14.2")), "{texts:?}");
+            for (_, _, text) in &texts {
+                for (number, decimals) in decimals_in(text) {
+                    assert!(decimals <= allowed, "{layer:?} {height}: `{number}` in `{text}`");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn caption_lines_wrap_inside_the_image_at_every_size() {
+        let map = awkward_map(Layer::Face, 6);
+        let mut params = Params::default();
+        params.die.extra_corner_mass = [0.25; 8];
+        let initial = InitialCondition::default();
+        for size in [SIZE, (600, 400), (2400, 1600)] {
+            let record = map_record(
+                &map,
+                Layer::Face,
+                Some(("a-preset-with-a-long-name", &params, &initial)),
+            );
+            let svg =
+                String::from_utf8(image_bytes(&map, Layer::Face, &record, size, ImageFormat::Svg).unwrap())
+                    .unwrap();
+            let texts = svg_texts(&svg);
+            let scale = Scale::of(size, SIZE);
+            let lines = caption_lines(&record, size.0, scale);
+            // Every caption word is drawn: nothing cut.
+            assert_eq!(
+                lines.concat().replace(' ', ""),
+                record.caption.concat().replace(' ', "")
+            );
+            assert!(
+                lines.len() > record.caption.len() || size.0 >= 1200,
+                "{size:?}: {lines:?}"
+            );
+            for line in &lines {
+                let width = super::super::figure::text_width(line, f64::from(scale.px(CAPTION_FONT)), false);
+                assert!(
+                    f64::from(scale.px(CAPTION_MARGIN)) + width <= f64::from(size.0),
+                    "{size:?}: {width} px: {line}"
+                );
+                // And the SVG has that line as one text element.
+                assert!(texts.iter().any(|t| t.2 == line.replace("&", "&amp;")), "{line}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_legend_names_only_the_faces_drawn() {
+        let map = awkward_map(Layer::Face, 6);
+        let record = map_record(&map, Layer::Face, None);
+        let svg = String::from_utf8(image_bytes(&map, Layer::Face, &record, SIZE, ImageFormat::Svg).unwrap())
+            .unwrap();
+        let texts = svg_texts(&svg);
+        for f in 1..=6u8 {
+            let occurs = map.cells.iter().flatten().any(|c| c.outcome.face == Some(f));
+            let listed = texts.iter().any(|t| t.2 == format!("face {f}"));
+            assert_eq!(occurs, listed, "face {f}");
+        }
+        // A map of one face lists one.
+        let mut one = map.clone();
+        for c in one.cells.iter_mut().flatten() {
+            c.outcome.face = Some(2);
+        }
+        let svg = String::from_utf8(image_bytes(&one, Layer::Face, &record, SIZE, ImageFormat::Svg).unwrap())
+            .unwrap();
+        let faces: Vec<String> = svg_texts(&svg)
+            .into_iter()
+            .map(|t| t.2)
+            .filter(|t| t.starts_with("face "))
+            .collect();
+        assert_eq!(faces, ["face 2"]);
+    }
+
+    #[test]
+    fn viridis_ends_and_middle() {
+        assert_eq!(viridis(0.0), VIRIDIS[0]);
+        assert_eq!(viridis(1.0), VIRIDIS[4]);
+        assert_eq!(viridis(0.5), VIRIDIS[2]);
+        assert_eq!(viridis(f64::NAN), VIRIDIS[0]);
+    }
+}

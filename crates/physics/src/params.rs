@@ -1,0 +1,671 @@
+//! Model parameters (docs/model.md), in CGS units, with their defaults ([`Params::DEFAULT`])
+//! and their keys, units and allowed ranges ([`limits`]), each stated here once: the
+//! registry of setup values one layer up reads them from here.
+//!
+//! The structs mirror the sections of a preset file (docs/presets.md), so the preset layer
+//! deserialises straight into them; every struct denies unknown keys and fills missing ones
+//! with the paper's defaults.
+
+use super::shape::Shape;
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+/// A numeric parameter's identity: its dotted preset key, its unit and its allowed range.
+///
+/// Every range check, error message and UI label reads from these, so a field's limits are
+/// stated once.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Limits {
+    /// Dotted preset / `--set` key, e.g. `ground.stiffness`.
+    pub key: &'static str,
+    /// Unit as shown to users (`""` for dimensionless).
+    pub unit: &'static str,
+    pub min: f64,
+    pub max: f64,
+}
+
+impl Limits {
+    /// Checks `value` (NaN and infinities are outside every range).
+    pub fn check(&self, value: f64) -> Result<(), ParamError> {
+        if value >= self.min && value <= self.max {
+            Ok(())
+        } else {
+            Err(ParamError {
+                key: self.key.to_string(),
+                value,
+                limits: *self,
+                detail: None,
+            })
+        }
+    }
+
+    /// Checks one number against the range, naming `key` in the error (a component, or a
+    /// range's end).
+    pub fn check_as(&self, key: &str, value: f64) -> Result<(), ParamError> {
+        self.check(value).map_err(|mut e| {
+            e.key = key.to_string();
+            e
+        })
+    }
+
+    /// Checks each component, naming it (`initial.velocity.y`, `die.extra_corner_mass.8`).
+    pub fn check_components(&self, names: &[&str], values: &[f64]) -> Result<(), ParamError> {
+        for (name, &x) in names.iter().zip(values) {
+            self.check_as(&format!("{}.{name}", self.key), x)?;
+        }
+        Ok(())
+    }
+
+    /// Checks a range `[low, high]`: each end inside, the low end not above the high end.
+    /// Errors name the end (`random.height[1]`).
+    pub fn check_range(&self, range: [f64; 2]) -> Result<(), ParamError> {
+        for (i, x) in range.into_iter().enumerate() {
+            self.check_as(&format!("{}[{i}]", self.key), x)?;
+        }
+        if range[0] > range[1] {
+            return Err(ParamError {
+                key: self.key.to_string(),
+                value: range[0],
+                limits: *self,
+                detail: Some(Box::new(Detail::HighEnd(range[1]))),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// The names of a vector's components, and of the corners 1..8 of a per-corner value.
+pub const XYZ: &[&str; 3] = &["x", "y", "z"];
+pub const CORNERS: &[&str; 8] = &["1", "2", "3", "4", "5", "6", "7", "8"];
+
+/// Each numeric parameter's key, unit and allowed range.
+pub mod limits {
+    use super::Limits;
+
+    const fn limits(key: &'static str, unit: &'static str, min: f64, max: f64) -> Limits {
+        Limits { key, unit, min, max }
+    }
+
+    pub const HALF_SIZES: Limits = limits("die.half_sizes", "cm", 0.1, 10.0);
+    /// Also below the smallest half size ([`super::Params::validate`]).
+    pub const CORNER_RADIUS: Limits = limits("die.corner_radius", "cm", 0.0, 10.0);
+    /// Also small enough for the pips to fit the flat of every face ([`super::Params::validate`]).
+    pub const PIP_DIAMETER: Limits = limits("die.pip_diameter", "cm", 0.0, 10.0);
+    /// Also at most the pip's radius: a hole no deeper than a hemisphere.
+    pub const PIP_DEPTH: Limits = limits("die.pip_depth", "cm", 0.0, 5.0);
+    pub const CORNER_MASS: Limits = limits("die.corner_mass", "g", 0.01, 1000.0);
+    pub const EXTRA_CORNER_MASS: Limits = limits("die.extra_corner_mass", "g", 0.0, 1000.0);
+    pub const STIFFNESS: Limits = limits("ground.stiffness", "dyn/cm", 100.0, 1e8);
+    pub const DAMPING: Limits = limits("ground.damping", "s/cm", 0.0, 0.1);
+    pub const FRICTION: Limits = limits("ground.friction", "", 0.0, 5.0);
+    pub const GRAVITY: Limits = limits("world.gravity", "cm/s²", 10.0, 10000.0);
+    pub const DT: Limits = limits("integrator.dt", "s", 1e-5, 1e-2);
+    pub const STOP_ENERGY_FRACTION: Limits = limits("integrator.stop_energy_fraction", "", 0.01, 1.0);
+    pub const MAX_TIME: Limits = limits("integrator.max_time", "s", 0.01, 120.0);
+}
+
+/// A value outside its allowed range: names the field, the value and the range.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParamError {
+    pub key: String,
+    pub value: f64,
+    pub limits: Limits,
+    /// More than a value outside its range (boxed: errors travel far and stay small).
+    pub detail: Option<Box<Detail>>,
+}
+
+/// What else a [`ParamError`] says.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Detail {
+    /// A range `[low, high]` given the wrong way round: the error's value is the low end,
+    /// this the high end below it.
+    HighEnd(f64),
+    /// A value refused by a rule that ties it to others (a corner radius against the half
+    /// sizes): the rule and its bound in words, said instead of the range.
+    Refused(String),
+}
+
+impl ParamError {
+    /// `key` = `value` refused for `why` (the rule and the bound it sets).
+    pub(crate) fn refused(limits: Limits, value: f64, why: String) -> ParamError {
+        ParamError {
+            key: limits.key.to_string(),
+            value,
+            limits,
+            detail: Some(Box::new(Detail::Refused(why))),
+        }
+    }
+}
+
+/// cm, rounded to 10⁻⁹ cm: a bound computed from others reads 0.2, not 0.19999999999999996.
+fn rounded_to_nanometres(x: f64) -> f64 {
+    (x * 1e9).round() / 1e9
+}
+
+/// A number as a person reads it: 1e308 rather than its 309 digits.
+fn fmt_number(value: f64) -> String {
+    let magnitude = value.abs();
+    if value.is_finite() && (magnitude >= 1e15 || (magnitude > 0.0 && magnitude < 1e-6)) {
+        format!("{value:e}")
+    } else {
+        format!("{value}")
+    }
+}
+
+impl fmt::Display for ParamError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let unit = if self.limits.unit.is_empty() {
+            String::new()
+        } else {
+            format!(" {}", self.limits.unit)
+        };
+        if let Some(Detail::Refused(why)) = self.detail.as_deref() {
+            return if self.value.is_nan() {
+                write!(f, "`{}`: {why}", self.key)
+            } else {
+                write!(f, "`{}` = {}: {why}", self.key, fmt_number(self.value))
+            };
+        }
+        if let Some(&Detail::HighEnd(high)) = self.detail.as_deref() {
+            return write!(
+                f,
+                "`{}` = [{}, {}]: the low end is above the high end",
+                self.key,
+                fmt_number(self.value),
+                fmt_number(high)
+            );
+        }
+        write!(
+            f,
+            "`{}` = {} is outside the allowed range {} to {}{unit}",
+            self.key,
+            fmt_number(self.value),
+            fmt_number(self.limits.min),
+            fmt_number(self.limits.max)
+        )
+    }
+}
+
+impl std::error::Error for ParamError {}
+
+/// The stop-energy choice's key, for its refusal.
+const STOP_ENERGY_KEY: Limits = Limits {
+    key: "integrator.stop_energy",
+    unit: "",
+    min: 0.0,
+    max: 0.0,
+};
+
+/// No roll runs longer than this many steps, whatever its parameters (under a second).
+pub const MAX_STEPS_CAP: u64 = 12_000_000;
+
+/// The die: a cuboid with rounded corners and drilled pips (the paper's: a sharp cube of
+/// 8 corner point masses, without pips), docs/model.md "Real dice".
+///
+/// A file states the size as `half_sizes = [ax, ay, az]` or, for a cube, the older
+/// `half_size = a`; a cube is written back the older way, so the paper's die reads and
+/// serialises as it always has.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "DieKeys", into = "DieKeys")]
+pub struct Die {
+    /// cm, half the side along the body axes x (faces 1 and 6), y (2 and 5), z (3 and 4).
+    pub half_sizes: [f64; 3],
+    /// cm, the radius of the rounded corners and edges (0: sharp, the paper's die).
+    pub corner_radius: f64,
+    /// cm, the diameter of each pip's opening in its face.
+    pub pip_diameter: f64,
+    /// cm, how deep each pip is drilled: a spherical cap (0: no pips, the paper's die).
+    pub pip_depth: f64,
+    /// g, each of the 8 corners: `8·corner_mass` is the undrilled body's mass.
+    pub corner_mass: f64,
+    /// g, point masses added at corners 1..8 (a loaded die, docs/model.md "Loaded dice");
+    /// all zero is the paper's fair die.
+    pub extra_corner_mass: [f64; 8],
+}
+
+impl Die {
+    /// Whether any corner carries extra mass.
+    pub fn is_loaded(&self) -> bool {
+        self.extra_corner_mass.iter().any(|&m| m != 0.0)
+    }
+
+    /// Whether it has drilled pips (both a depth and a diameter).
+    pub fn is_drilled(&self) -> bool {
+        self.pip_depth > 0.0 && self.pip_diameter > 0.0
+    }
+
+    /// Whether this is the paper's body (loaded or not): a sharp cube without pips. Such a
+    /// die keeps the paper's arithmetic; any other is a general body
+    /// ([`super::shape::Shape`]).
+    pub fn is_cube(&self) -> bool {
+        let [x, y, z] = self.half_sizes;
+        x == y && y == z && self.corner_radius == 0.0 && !self.is_drilled()
+    }
+
+    /// cm, the cube's half size `a` (the first half size of any other body).
+    pub fn half_size(&self) -> f64 {
+        self.half_sizes[0]
+    }
+
+    /// cm, the smallest half size.
+    pub fn smallest_half_size(&self) -> f64 {
+        self.half_sizes.iter().copied().fold(f64::INFINITY, f64::min)
+    }
+
+    /// cm, the largest half size.
+    pub fn largest_half_size(&self) -> f64 {
+        self.half_sizes.iter().copied().fold(0.0, f64::max)
+    }
+}
+
+/// A `[die]` table as a file states it: the size one of two ways, the new keys optional.
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct DieKeys {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    half_size: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    half_sizes: Option<[f64; 3]>,
+    #[serde(default, skip_serializing_if = "is_zero")]
+    corner_radius: f64,
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pip_diameter: f64,
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pip_depth: f64,
+    #[serde(default = "default_corner_mass")]
+    corner_mass: f64,
+    #[serde(default)]
+    extra_corner_mass: [f64; 8],
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
+}
+
+fn default_corner_mass() -> f64 {
+    Params::DEFAULT.die.corner_mass
+}
+
+/// Why a `[die]` table states its size twice.
+pub const SIZE_TWICE: &str =
+    "give the size once: `half_sizes` (cm, three half sizes) or `half_size` (cm, a cube), not both";
+
+impl TryFrom<DieKeys> for Die {
+    type Error = &'static str;
+
+    fn try_from(k: DieKeys) -> Result<Die, Self::Error> {
+        let half_sizes = match (k.half_size, k.half_sizes) {
+            (Some(_), Some(_)) => return Err(SIZE_TWICE),
+            (Some(a), None) => [a; 3],
+            (None, Some(sizes)) => sizes,
+            (None, None) => Params::DEFAULT.die.half_sizes,
+        };
+        Ok(Die {
+            half_sizes,
+            corner_radius: k.corner_radius,
+            pip_diameter: k.pip_diameter,
+            pip_depth: k.pip_depth,
+            corner_mass: k.corner_mass,
+            extra_corner_mass: k.extra_corner_mass,
+        })
+    }
+}
+
+impl From<Die> for DieKeys {
+    /// Equal half sizes are written as the one `half_size`, and zero radius and pips not at
+    /// all: the paper's die serialises byte for byte as before these keys existed.
+    fn from(d: Die) -> DieKeys {
+        let [x, y, z] = d.half_sizes;
+        let cube = x == y && y == z;
+        DieKeys {
+            half_size: cube.then_some(x),
+            half_sizes: (!cube).then_some(d.half_sizes),
+            corner_radius: d.corner_radius,
+            pip_diameter: d.pip_diameter,
+            pip_depth: d.pip_depth,
+            corner_mass: d.corner_mass,
+            extra_corner_mass: d.extra_corner_mass,
+        }
+    }
+}
+
+impl Default for Die {
+    fn default() -> Self {
+        Params::DEFAULT.die
+    }
+}
+
+/// How the horizontal friction force on a touching corner is scaled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FrictionLaw {
+    /// The paper's eq. 15: `−μ·|P|·û` with each corner's own slip direction.
+    #[default]
+    PerCorner,
+    /// The authors' original program: each corner's slip divided by the largest singular
+    /// value of the 8×2 matrix of all corners' horizontal slips, times the signed `P`.
+    WholeDieNorm,
+}
+
+impl FrictionLaw {
+    pub const fn name(self) -> &'static str {
+        match self {
+            FrictionLaw::PerCorner => "per-corner",
+            FrictionLaw::WholeDieNorm => "whole-die-norm",
+        }
+    }
+}
+
+/// The ground: a stiff damped spring under every corner, with kinetic friction.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Ground {
+    /// dyn/cm per corner (k).
+    pub stiffness: f64,
+    /// s/cm (γ): the vertical force is `k·d·(1 − γ·u_z)`.
+    pub damping: f64,
+    /// Kinetic friction coefficient (μ).
+    pub friction: f64,
+    pub friction_law: FrictionLaw,
+}
+
+impl Default for Ground {
+    fn default() -> Self {
+        Params::DEFAULT.ground
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct World {
+    /// cm/s², pointing down.
+    pub gravity: f64,
+}
+
+impl Default for World {
+    fn default() -> Self {
+        Params::DEFAULT.world
+    }
+}
+
+/// Which energy the stopping rule compares with the threshold.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum StopEnergy {
+    /// docs/model.md: translational + rotational (with the cube's inertia) + gravitational + elastic.
+    #[default]
+    RigidBody,
+    /// The authors' program: the 8 corners as point masses (½·m·Σ|u_k|²), gravity, and the
+    /// ground term ½·Σ d_k·P_k with the damped vertical force.
+    PointMasses,
+}
+
+impl StopEnergy {
+    pub const fn name(self) -> &'static str {
+        match self {
+            StopEnergy::RigidBody => "rigid-body",
+            StopEnergy::PointMasses => "point-masses",
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Integrator {
+    /// s, the time step Δt.
+    pub dt: f64,
+    /// A roll ends below this share of the edge-tipping energy.
+    pub stop_energy_fraction: f64,
+    /// s of simulated time; past it the roll "did not settle".
+    pub max_time: f64,
+    pub stop_energy: StopEnergy,
+}
+
+impl Default for Integrator {
+    fn default() -> Self {
+        Params::DEFAULT.integrator
+    }
+}
+
+/// Every model parameter, grouped as in a preset file.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Params {
+    pub die: Die,
+    pub ground: Ground,
+    pub world: World,
+    pub integrator: Integrator,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Params::DEFAULT
+    }
+}
+
+impl Params {
+    /// The paper's parameters: a 2 cm die of 8 g on a stiff, damped, rough table.
+    pub const DEFAULT: Params = Params {
+        die: Die {
+            half_sizes: [1.0; 3],
+            corner_radius: 0.0,
+            pip_diameter: 0.0,
+            pip_depth: 0.0,
+            corner_mass: 1.0,
+            extra_corner_mass: [0.0; 8],
+        },
+        ground: Ground {
+            stiffness: 500_000.0,
+            damping: 0.005,
+            friction: 1.2,
+            friction_law: FrictionLaw::PerCorner,
+        },
+        world: World { gravity: 980.0 },
+        integrator: Integrator {
+            dt: 0.001,
+            stop_energy_fraction: 0.8,
+            max_time: 30.0,
+            stop_energy: StopEnergy::RigidBody,
+        },
+    };
+
+    /// Checks every field against its allowed range, in the order a preset lists them; the
+    /// first failure is returned.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        let (d, g, i) = (&self.die, &self.ground, &self.integrator);
+        limits::HALF_SIZES.check_components(XYZ, &d.half_sizes)?;
+        limits::CORNER_RADIUS.check(d.corner_radius)?;
+        let smallest = d.smallest_half_size();
+        if d.corner_radius >= smallest {
+            return Err(ParamError::refused(
+                limits::CORNER_RADIUS,
+                d.corner_radius,
+                format!(
+                    "the corner radius must be below the smallest half size, {} cm",
+                    fmt_number(smallest)
+                ),
+            ));
+        }
+        limits::PIP_DIAMETER.check(d.pip_diameter)?;
+        let widest_pip = (0.5 * smallest).min(smallest - 2.0 * d.corner_radius);
+        // An undrilled die has no pips to fit on its faces, however round its corners.
+        if d.pip_diameter > 0.0 && d.pip_diameter > widest_pip {
+            return Err(ParamError::refused(
+                limits::PIP_DIAMETER,
+                d.pip_diameter,
+                format!(
+                    "the pips must lie apart on the flat of every face: at most {} cm here (half the \
+                     smallest half size, and at most the smallest half size less twice the corner radius)",
+                    fmt_number(rounded_to_nanometres(widest_pip.max(0.0)))
+                ),
+            ));
+        }
+        limits::PIP_DEPTH.check(d.pip_depth)?;
+        if d.pip_depth > 0.5 * d.pip_diameter {
+            return Err(ParamError::refused(
+                limits::PIP_DEPTH,
+                d.pip_depth,
+                format!(
+                    "a pip is a spherical cap at most a hemisphere deep: at most half the pip \
+                     diameter, {} cm",
+                    fmt_number(0.5 * d.pip_diameter)
+                ),
+            ));
+        }
+        limits::CORNER_MASS.check(d.corner_mass)?;
+        limits::EXTRA_CORNER_MASS.check_components(CORNERS, &d.extra_corner_mass)?;
+        limits::STIFFNESS.check(g.stiffness)?;
+        limits::DAMPING.check(g.damping)?;
+        limits::FRICTION.check(g.friction)?;
+        limits::GRAVITY.check(self.world.gravity)?;
+        limits::DT.check(i.dt)?;
+        limits::STOP_ENERGY_FRACTION.check(i.stop_energy_fraction)?;
+        limits::MAX_TIME.check(i.max_time)?;
+        if i.stop_energy == StopEnergy::PointMasses && !d.is_cube() {
+            return Err(ParamError::refused(
+                STOP_ENERGY_KEY,
+                f64::NAN,
+                "\"point-masses\" (the authors' energy of 8 corner point masses) is defined for the \
+                 paper's sharp cube without pips only; this die needs \"rigid-body\""
+                    .to_string(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// g, the whole die: the undrilled body's `8·m` less the pips plus any extra corner
+    /// masses (adding the extras' zeros leaves the fair die's `8·m` bit for bit).
+    pub fn total_mass(&self) -> f64 {
+        let body = if self.die.is_drilled() {
+            self.uniform_mass() - Shape::pips_mass(&self.die)
+        } else {
+            self.uniform_mass()
+        };
+        body + self.die.extra_corner_mass.iter().sum::<f64>()
+    }
+
+    /// g, the undrilled body (8 corners of `die.corner_mass`).
+    pub(crate) fn uniform_mass(&self) -> f64 {
+        8.0 * self.die.corner_mass
+    }
+
+    /// g·cm², one moment of inertia for the whole body: the paper's cube's isotropic
+    /// `(2a)²/6·M`; for any other body the mean of its principal moments about the centre
+    /// of mass. The roll itself steps a general body with its full tensor; this one number
+    /// converts a spin stated as ω into L and back where no orientation is at hand (preset
+    /// files, `--set`, the explorer's spin fields).
+    ///
+    /// Written in the authors' order of operations so the default is bitwise 16/3.
+    pub fn inertia(&self) -> f64 {
+        if !self.die.is_cube() {
+            return Shape::mass_properties(&self.die).inertia.trace() / 3.0;
+        }
+        let side = 2.0 * self.die.half_size();
+        side * side / 6.0 * self.uniform_mass()
+    }
+
+    /// erg, the energy to tip over an edge from lying flat: `M·g·a·(√2 − 1)` for the
+    /// paper's cube; for any other body the lowest edge pass over every face and edge
+    /// (docs/model.md, "Real dice").
+    pub fn edge_energy(&self) -> f64 {
+        if !self.die.is_cube() {
+            return Shape::lowest_edge_energy(self);
+        }
+        self.total_mass() * self.world.gravity * self.die.half_size() * (std::f64::consts::SQRT_2 - 1.0)
+    }
+
+    /// erg, the paper's stopping threshold: a roll ends once its energy is at or below this.
+    pub(crate) fn stop_threshold(&self) -> f64 {
+        if !self.die.is_cube() {
+            return self.integrator.stop_energy_fraction * self.edge_energy();
+        }
+        // (fraction · M·g·a) · (√2 − 1): the authors' grouping, bitwise 2597.9474632040528.
+        self.integrator.stop_energy_fraction
+            * (self.total_mass() * self.world.gravity * self.die.half_size())
+            * (std::f64::consts::SQRT_2 - 1.0)
+    }
+
+    /// rad/s, the fastest contact mode: the paper's cube lying flat rocking on its face,
+    /// `√(6k/M)`; any other body rocking on its four contact spheres about the axis that
+    /// gives the fastest mode, `max √(4k·b_j²/I_ii)` (docs/model.md, "Real dice").
+    pub(crate) fn rocking_frequency(&self) -> f64 {
+        if !self.die.is_cube() {
+            return Shape::mass_properties(&self.die).rocking_frequency(&self.die, self.ground.stiffness);
+        }
+        (6.0 * self.ground.stiffness / self.total_mass()).sqrt()
+    }
+
+    /// `ω_rock·Δt`: semi-implicit Euler is stable only below 2 (docs/model.md, "Stability").
+    pub fn stability_number(&self) -> f64 {
+        self.rocking_frequency() * self.integrator.dt
+    }
+
+    /// cm, how far each corner sinks when the die rests flat: `M·g/(4k)`.
+    pub fn resting_depth(&self) -> f64 {
+        self.total_mass() * self.world.gravity / (4.0 * self.ground.stiffness)
+    }
+
+    /// The step count at which a roll is declared "did not settle".
+    pub fn max_steps(&self) -> u64 {
+        let steps = (self.integrator.max_time / self.integrator.dt).ceil();
+        // Validated parameters give at most 1.2·10⁷; the clamp bounds unvalidated ones.
+        if steps >= 1.0 {
+            steps.min(MAX_STEPS_CAP as f64) as u64
+        } else {
+            1
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    #[allow(clippy::excessive_precision)] // the reference's threshold, digit for digit
+    fn defaults_are_the_papers() {
+        let p = Params::default();
+        assert_eq!(p.inertia(), 16.0 / 3.0);
+        assert_eq!(p.stop_threshold(), 2597.9474632040528);
+        assert!((p.edge_energy() - 3247.4).abs() < 0.05);
+        assert!((p.rocking_frequency() - 612.37).abs() < 0.01);
+        assert!((p.resting_depth() - 3.92e-3).abs() < 1e-5);
+        assert_eq!(p.max_steps(), 30_000);
+        p.validate().unwrap();
+    }
+
+    #[test]
+    fn out_of_range_names_field_value_and_range() {
+        let mut p = Params::default();
+        p.ground.friction = 7.5;
+        let e = p.validate().unwrap_err();
+        assert_eq!(e.key, "ground.friction");
+        assert_eq!(
+            e.to_string(),
+            "`ground.friction` = 7.5 is outside the allowed range 0 to 5"
+        );
+        p.ground.friction = f64::NAN;
+        assert!(p.validate().unwrap_err().to_string().contains("NaN"));
+        let mut p = Params::default();
+        p.integrator.dt = 0.5;
+        assert_eq!(
+            p.validate().unwrap_err().to_string(),
+            "`integrator.dt` = 0.5 is outside the allowed range 0.00001 to 0.01 s"
+        );
+    }
+
+    #[test]
+    fn round_corners_need_room_for_pips_only_on_a_drilled_die() {
+        // A 1 cm cube (half size 0.5) rounded by 0.3 cm leaves 0.5 − 2·0.3 < 0 for pips.
+        let mut p = Params::default();
+        p.die.half_sizes = [0.5, 0.5, 0.5];
+        p.die.corner_radius = 0.3;
+        p.die.pip_diameter = 0.0;
+        p.die.pip_depth = 0.0;
+        p.validate().expect("no pips, nothing to fit");
+        p.die.pip_diameter = 0.1;
+        let e = p.validate().unwrap_err();
+        assert_eq!(e.key, "die.pip_diameter");
+        assert!(e.to_string().contains("at most 0 cm"), "{e}");
+    }
+}

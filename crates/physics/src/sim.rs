@@ -1,0 +1,458 @@
+//! The state of a rolling die and the paper's semi-implicit Euler step (docs/model.md).
+//!
+//! The arithmetic follows the authors' program operation by operation (tests/data/reference/README.md §2
+//! and §9: sums in corner order, divisions where they divided, Octave's scaled 2-norm and
+//! `pow(x, 2)`), so the reference trajectories are reproduced to rounding, not merely in law.
+
+use super::body::{face_most_nearly_up, face_of_highest_corners, opposite_face};
+use super::energy::Energy;
+use super::initial::InitialCondition;
+use super::kernel::{Body, Constants, Kernel, NoHook, StepHook, contact_point};
+use super::params::{Ground, ParamError, Params, StopEnergy};
+use super::stopping::StopRule;
+use nalgebra::Vector3;
+use serde::Serialize;
+
+pub use super::kernel::State;
+
+/// A rigid-body energy above this multiple of `max(initial energy, edge energy)` means the
+/// integrator is feeding energy in (docs/model.md, "Stability"): a stable roll stays within a
+/// few percent of its start.
+pub(crate) const RUNAWAY_ENERGY_FACTOR: f64 = 10.0;
+
+/// One corner's contact force split into the paper's three parts (eq. 13–15), dyn.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct ContactForce {
+    /// cm below the ground (0 when not touching).
+    pub depth: f64,
+    /// Spring force `k·d`, up.
+    pub normal: f64,
+    /// Damping force `−k·d·γ·u_z` (the vertical force is normal + damping).
+    pub damping: f64,
+    /// Horizontal kinetic friction `(x, y)`.
+    pub friction: [f64; 2],
+}
+
+/// Work done on the die since t = 0 by the ground's damping and by friction, erg.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct ContactWork {
+    damping: f64,
+    friction: f64,
+}
+
+/// Where the energy went since t = 0, erg (the energy ledger).
+///
+/// `initial = current + damping_loss + friction_loss + integrator_loss`: the first three are
+/// measured, the last is the remainder, the energy semi-implicit Euler itself gains or loses
+/// (½·M·g²·Δt² per step in free flight, docs/model.md).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct EnergyLedger {
+    /// Rigid-body energy at t = 0.
+    pub initial: f64,
+    /// Rigid-body energy now.
+    pub current: f64,
+    /// Energy taken out by the ground's damping (the work it did, negated).
+    pub damping_loss: f64,
+    /// Energy taken out by kinetic friction.
+    pub friction_loss: f64,
+    /// The remainder: energy lost (positive) or gained by the integrator.
+    pub integrator_loss: f64,
+}
+
+/// How a roll ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Status {
+    /// The stopping rule held (docs/model.md, "Stopping rule"): the energy is too low to
+    /// pass over an edge and the die is close to rest, so the face can no longer change.
+    Settled,
+    /// Simulated time passed `integrator.max_time` first: the die did not settle.
+    Timeout,
+    /// The state stopped being finite or the energy ran away: the integrator is unstable
+    /// for these parameters (docs/model.md, "Stability").
+    Unstable,
+}
+
+impl Status {
+    pub fn name(self) -> &'static str {
+        match self {
+            Status::Settled => "settled",
+            Status::Timeout => "timeout",
+            Status::Unstable => "unstable",
+        }
+    }
+
+    /// The status of a [`name`](Status::name), as result files write it.
+    pub fn from_name(name: &str) -> Option<Status> {
+        [Status::Settled, Status::Timeout, Status::Unstable]
+            .into_iter()
+            .find(|s| s.name() == name)
+    }
+}
+
+/// The end of a roll.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Outcome {
+    pub status: Status,
+    /// The face up (4 highest corners) for a settled roll; `None` otherwise, or when the 4
+    /// highest corners do not form a face.
+    pub face: Option<u8>,
+    /// Steps taken when the roll ended.
+    pub steps: u64,
+    /// s of simulated time when the roll ended.
+    pub time_s: f64,
+}
+
+/// Steps between two looks at a stop request in [`Simulation::run_until_stopped`]: a few
+/// tenths of a millisecond of stepping, so a cancel is answered well within 0.2 s.
+pub const STEPS_BETWEEN_STOP_CHECKS: u64 = 4096;
+
+/// A die rolling from an initial condition: the scalar engine, the step kernel on `f64`.
+#[derive(Debug, Clone)]
+pub struct Simulation {
+    params: Params,
+    /// The state and everything the step needs; visible to the lane engine
+    /// ([`super::lanes`]), which loads rolls from it and stores them back, so that both
+    /// engines start and end alike.
+    pub(super) k: Kernel<f64>,
+    /// Whether the energy ledger is kept (its work sums cost a second pass over the
+    /// corners per contact step, which a batch that only wants outcomes skips).
+    track_ledger: bool,
+    ledger: Ledger,
+    /// erg, rigid-body energy at t = 0.
+    initial_energy: f64,
+    /// The stopping rule of these parameters (a loaded die's depends on the face down).
+    stop_rule: StopRule,
+    outcome: Option<Outcome>,
+}
+
+/// The energy ledger's bookkeeping, a hook the step calls while the ledger is kept.
+#[derive(Debug, Clone, Default)]
+struct Ledger {
+    /// cm/s, the corner velocities before the kick, taken while in contact.
+    before: Option<[Vector3<f64>; 8]>,
+    /// erg, work done on the die by damping and by friction since t = 0 (negative: lost).
+    work: ContactWork,
+}
+
+impl StepHook<f64> for Ledger {
+    #[inline]
+    fn before_kick(&mut self, k: &Kernel<f64>) {
+        self.before = k.in_contact.then(|| corner_velocities(k));
+    }
+
+    /// Adds this step's work of damping and friction to the ledger.
+    ///
+    /// Over the kick, the kinetic energy changes by exactly `Σ F_k·Δt·ū_k`, where `ū_k` is
+    /// the mean of corner k's velocity before and after the kick (at the unrotated offsets):
+    /// `½M|v|²` and `½|L|²/I` are quadratic. So this is the work each force really does in
+    /// the discrete step, chatter included, not a sampled power.
+    #[inline]
+    fn after_spin(&mut self, k: &Kernel<f64>) {
+        let Some(before) = self.before.take() else { return };
+        let after = corner_velocities(k);
+        let s = &k.state;
+        for k_ in 0..8 {
+            if s.corner_depths[k_] > 0.0 {
+                let mean = (before[k_] + after[k_]) * 0.5;
+                let f = &s.corner_forces[k_];
+                let damping = f.z - s.corner_depths[k_] * k.c.stiffness;
+                self.work.damping += damping * mean.z * k.c.dt;
+                self.work.friction += (f.x * mean.x + f.y * mean.y) * k.c.dt;
+            }
+        }
+    }
+}
+
+/// Velocities of corners 1..8 (a rounded body's contact points), cm/s.
+fn corner_velocities(k: &Kernel<f64>) -> [Vector3<f64>; 8] {
+    let radius = k.c.corner_radius;
+    k.state
+        .corner_offsets
+        .map(|r| k.corner_velocity(&contact_point::<true, f64>(&r, radius)))
+}
+
+impl Simulation {
+    /// Validates the parameters and the initial condition (no corner may start inside the
+    /// table), then places the die.
+    pub fn new(params: &Params, initial: &InitialCondition) -> Result<Self, ParamError> {
+        params.validate()?;
+        initial.validate()?;
+        initial.check_clear_of_table(params)?;
+        Ok(Self::new_unchecked(params, initial))
+    }
+
+    /// Like [`Simulation::new`] without the range checks. Any input still ends in a status:
+    /// non-finite or absurd values end the first step as [`Status::Unstable`].
+    pub fn new_unchecked(params: &Params, initial: &InitialCondition) -> Self {
+        let mut sim = Simulation {
+            params: *params,
+            k: Kernel::new(params, initial),
+            track_ledger: true,
+            ledger: Ledger::default(),
+            initial_energy: 0.0,
+            stop_rule: StopRule::new(params),
+            outcome: None,
+        };
+        sim.initial_energy = sim.energy().total();
+        sim.k.c.runaway = RUNAWAY_ENERGY_FACTOR * sim.initial_energy.max(params.edge_energy());
+        sim
+    }
+
+    /// Like [`Simulation::new_unchecked`] for a roll whose outcome alone is wanted (batches,
+    /// maps): the same trajectory bit for bit, without the energy ledger's bookkeeping. Crate
+    /// internal, as its [`energy_ledger`](Simulation::energy_ledger) would miss the contact work.
+    pub fn for_outcome(params: &Params, initial: &InitialCondition) -> Self {
+        let mut sim = Self::new_unchecked(params, initial);
+        sim.track_ledger = false;
+        sim
+    }
+
+    pub fn params(&self) -> &Params {
+        &self.params
+    }
+
+    pub fn state(&self) -> &State {
+        &self.k.state
+    }
+
+    /// rad/s, world frame.
+    pub fn angular_velocity(&self) -> Vector3<f64> {
+        self.k.angular_velocity
+    }
+
+    /// The end of the roll, once it has ended (later steps do not change it).
+    pub fn outcome(&self) -> Option<Outcome> {
+        self.outcome
+    }
+
+    /// Where the energy has gone since t = 0.
+    pub fn energy_ledger(&self) -> EnergyLedger {
+        debug_assert!(self.track_ledger, "a roll built for its outcome keeps no ledger");
+        let current = self.energy().total();
+        let work = &self.ledger.work;
+        let (damping_loss, friction_loss) = (-work.damping, -work.friction);
+        EnergyLedger {
+            initial: self.initial_energy,
+            current,
+            damping_loss,
+            friction_loss,
+            integrator_loss: self.initial_energy - current - damping_loss - friction_loss,
+        }
+    }
+
+    /// Whether any corner is below the ground now.
+    pub fn in_contact(&self) -> bool {
+        self.k.in_contact
+    }
+
+    /// Changes the ground mid-roll; the new law acts from the next step on.
+    pub fn set_ground(&mut self, ground: Ground) -> Result<(), ParamError> {
+        let mut params = self.params;
+        params.ground = ground;
+        params.validate()?;
+        self.params = params;
+        let runaway = self.k.c.runaway;
+        // The stopping rules of a loaded die or a general body depend on the table.
+        self.k.bodies[0] = Body::new(&params);
+        self.k.c = Constants::new(&params, &self.k.bodies[0]);
+        self.k.c.runaway = runaway;
+        self.stop_rule = StopRule::new(&params);
+        self.k.update_forces();
+        Ok(())
+    }
+
+    /// World positions of corners 1..8, cm (a rounded body's: its corner spheres' centres,
+    /// `die.corner_radius` inside the surface).
+    pub fn corner_positions(&self) -> [Vector3<f64>; 8] {
+        let s = &self.k.state;
+        s.corner_offsets.map(|r| s.position + r)
+    }
+
+    /// Each corner's contact force split into normal, damping and friction, at the current
+    /// state (the forces the next step will apply).
+    pub fn contact_forces(&self) -> [ContactForce; 8] {
+        let s = &self.k.state;
+        std::array::from_fn(|k| {
+            let depth = s.corner_depths[k];
+            let normal = depth * self.k.c.stiffness;
+            ContactForce {
+                depth,
+                normal,
+                damping: s.corner_forces[k].z - normal,
+                friction: [s.corner_forces[k].x, s.corner_forces[k].y],
+            }
+        })
+    }
+
+    /// The energy terms at the current state (docs/model.md, "Energy"), erg.
+    pub fn energy(&self) -> Energy {
+        let e = self.k.energy();
+        Energy {
+            translational: e.translational,
+            rotational: e.rotational,
+            gravitational: e.gravitational,
+            elastic: e.elastic,
+        }
+    }
+
+    /// erg, the energy the authors' program compared with the threshold: the corners as 8
+    /// point masses and the ground term `½·Σ d_k·P_k` with the damped force (reference §2).
+    pub fn point_mass_energy(&self) -> f64 {
+        self.k.point_mass_parts().1
+    }
+
+    /// `(kinetic, total)` of the stop energy.
+    fn stop_energy_parts(&self) -> (f64, f64) {
+        match self.params.integrator.stop_energy {
+            StopEnergy::RigidBody => {
+                let energy = self.energy();
+                (energy.kinetic(), energy.total())
+            }
+            StopEnergy::PointMasses => self.k.point_mass_parts(),
+        }
+    }
+
+    /// erg, the energy the stopping rule uses (`integrator.stop_energy`).
+    pub fn stop_energy(&self) -> f64 {
+        self.stop_energy_parts().1
+    }
+
+    /// erg, the kinetic part of the stop energy.
+    pub fn stop_kinetic_energy(&self) -> f64 {
+        self.stop_energy_parts().0
+    }
+
+    /// erg, the stop energy's threshold (docs/model.md, "Stopping rule").
+    pub fn stop_threshold(&self) -> f64 {
+        self.stop_rule.energy_threshold
+    }
+
+    /// The stopping rule's thresholds for these parameters.
+    pub fn stop_rule(&self) -> StopRule {
+        self.stop_rule
+    }
+
+    /// The stopping rule for the current state: a loaded die's or a general body's depends
+    /// on the face down (what a report of a finished roll prints; [`Simulation::stop_rule`]
+    /// is the fair die's, or the widest over the faces).
+    pub fn stop_rule_now(&self) -> StopRule {
+        self.k.bodies[0]
+            .stop_rule(&self.k.state.corner_offsets)
+            .unwrap_or(self.stop_rule)
+    }
+
+    /// The face whose outward normal points most nearly up (the live display's face).
+    pub fn face_up(&self) -> u8 {
+        face_most_nearly_up(&self.k.state.corner_offsets)
+    }
+
+    /// The face whose 4 corners are highest (the outcome rule).
+    /// A general body's outcome is the face up over the face its centre of mass stands on
+    /// ([`super::shape::Shape::face_down`]): a flat or long body can rest tilted further
+    /// than the four highest corners allow.
+    pub(crate) fn face_of_highest_corners(&self) -> Option<u8> {
+        if let Some(shape) = self.k.bodies[0].shape() {
+            return Some(opposite_face(shape.face_down(&self.k.state.corner_offsets)));
+        }
+        face_of_highest_corners(&self.k.state.corner_offsets.map(|r| r.z))
+    }
+
+    /// One step of Δt: kick → drift → L → rotate → forces (docs/model.md, "One time step").
+    ///
+    /// Steps on past the end of a roll if asked; the recorded outcome stays the first end.
+    #[inline]
+    pub fn step(&mut self) {
+        if self.track_ledger {
+            self.step_with_ledger();
+        } else {
+            self.k.step(&mut NoHook);
+        }
+    }
+
+    /// The step with the energy ledger's bookkeeping, kept out of line: inlined beside the
+    /// plain step, its second copy of the kernel would crowd the batch loop's code.
+    #[inline(never)]
+    fn step_with_ledger(&mut self) {
+        self.k.step(&mut self.ledger);
+    }
+
+    /// One step, then the end-of-roll checks; returns the outcome on the step that ends it.
+    #[inline]
+    pub fn advance(&mut self) -> Option<Outcome> {
+        self.step();
+        if self.outcome.is_some() {
+            return None;
+        }
+        let outcome = self.check_end()?;
+        self.outcome = Some(outcome);
+        Some(outcome)
+    }
+
+    /// Steps until the roll ends (settled, did not settle, or unstable).
+    pub fn run_to_end(&mut self) -> Outcome {
+        if let Some(o) = self.outcome {
+            return o;
+        }
+        loop {
+            if let Some(o) = self.advance() {
+                return o;
+            }
+        }
+    }
+
+    /// Steps until the roll ends, or until `stop()` answers true (asked every
+    /// [`STEPS_BETWEEN_STOP_CHECKS`] steps): `None` then, and the roll can be continued.
+    pub fn run_until_stopped(&mut self, stop: &dyn Fn() -> bool) -> Option<Outcome> {
+        if let Some(o) = self.outcome {
+            return Some(o);
+        }
+        loop {
+            for _ in 0..STEPS_BETWEEN_STOP_CHECKS {
+                if let Some(o) = self.advance() {
+                    return Some(o);
+                }
+            }
+            if stop() {
+                return None;
+            }
+        }
+    }
+
+    /// Ends the roll as `status` at the current state (the lane engine, whose kernel
+    /// decided it on the lane this roll's state was stored back from).
+    pub(super) fn finish(&mut self, status: Status) -> Outcome {
+        let outcome = self.outcome_of(status);
+        self.outcome = Some(outcome);
+        outcome
+    }
+
+    /// Whether the current state ends the roll, and how (the kernel's end-of-step test).
+    #[inline]
+    fn check_end(&self) -> Option<Outcome> {
+        let ends = self.k.ends();
+        let status = if ends.unstable {
+            Status::Unstable
+        } else if ends.settled {
+            Status::Settled
+        } else if ends.timeout {
+            Status::Timeout
+        } else {
+            return None;
+        };
+        Some(self.outcome_of(status))
+    }
+
+    #[cold]
+    fn outcome_of(&self, status: Status) -> Outcome {
+        Outcome {
+            status,
+            face: match status {
+                Status::Settled => self.face_of_highest_corners(),
+                _ => None,
+            },
+            steps: self.k.state.step,
+            time_s: self.k.state.time_s,
+        }
+    }
+}

@@ -1,0 +1,229 @@
+//! Whether semi-implicit Euler can follow a roll with these parameters, before it is rolled
+//! (docs/model.md, "Stability"): one reading per cause the allowed ranges make possible.
+
+use super::initial::InitialCondition;
+use super::params::Params;
+use serde::Serialize;
+use std::fmt;
+
+/// ω_rock·Δt above this lets the rocking mode gain energy. A lone undamped spring allows 2;
+/// contact switching on and off between steps pumps energy in well below it.
+pub const CONTACT_MODE_LIMIT: f64 = 1.4;
+
+/// A corner may move at most this many half sizes in one step: faster, the step jumps it
+/// deep into the table (or through it) before any force acts, and a spin turns the die
+/// by so much per step that its contacts are sampled at random.
+pub const CORNER_TRAVEL_LIMIT: f64 = 1.0;
+
+/// `γ·u_z` above this turns the press force `k·d·(1 − γ·u_z)` into a pull on a corner
+/// leaving the table, and multiplies the push on one striking it. On a finely resolved
+/// contact that only kills the bounce; it feeds energy in once one step of that force
+/// changes the corner's speed by about twice its own speed, `γ·u_z·√(k/m)·Δt ≳ 2`. So the
+/// allowed `γ·u_z` is `max(1, 2/(√(k/m)·Δt))`.
+pub const DAMPING_LIMIT: f64 = 1.0;
+
+/// One step's friction impulse `μ·|P|·Δt`, per corner mass and per unit of the corner's
+/// slip speed, above this reverses the slip faster than it was: friction then feeds energy
+/// in. The press force of a corner striking at speed `u` peaks at `u·√(k·m)`, so the
+/// number is `μ·√(k/m)·Δt`, whatever the speed.
+pub const FRICTION_CHATTER_LIMIT: f64 = 2.0;
+
+/// A cause of instability.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Limit {
+    /// The table's fastest mode, a die rocking on a face: `ω_rock·Δt`.
+    ContactMode,
+    /// How far the fastest corner moves in one step at the first impact, cm.
+    CornerTravel,
+    /// `γ·u_z` of the fastest corner at the first impact, against `max(1, 2/(√(k/m)·Δt))`.
+    Damping,
+    /// `μ·√(k/m)·Δt`: one step's friction against a corner's slip.
+    FrictionChatter,
+}
+
+impl Limit {
+    /// A short name for the readout.
+    pub fn name(self) -> &'static str {
+        match self {
+            Limit::ContactMode => "table stiffness",
+            Limit::CornerTravel => "corner speed",
+            Limit::Damping => "damping",
+            Limit::FrictionChatter => "friction",
+        }
+    }
+}
+
+/// One cause: its value for a roll and the largest value that still steps stably.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Reading {
+    pub limit: Limit,
+    pub value: f64,
+    /// The value above which the roll is predicted unstable.
+    pub allowed: f64,
+    /// For [`Limit::CornerTravel`] and [`Limit::Damping`]: whether spin, rather than the
+    /// die's speed, gives the corner most of its speed.
+    #[serde(skip)]
+    spin_dominated: bool,
+    /// cm/s, the fastest corner's speed at the first impact (the last two readings).
+    #[serde(skip)]
+    corner_speed: f64,
+}
+
+impl Reading {
+    /// `value / allowed`: below 1 the roll is predicted to step stably.
+    pub fn load(&self) -> f64 {
+        self.value / self.allowed
+    }
+
+    pub fn exceeded(&self) -> bool {
+        let load = self.load();
+        load > 1.0 || load.is_nan()
+    }
+}
+
+/// A reading in words a student understands, e.g. "spin too fast for Δt: a corner moves
+/// 17.3 cm per step (stable below 0.50 cm)".
+impl fmt::Display for Reading {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (v, allowed) = (self.value, self.allowed);
+        match self.limit {
+            Limit::ContactMode => write!(
+                f,
+                "table too stiff for Δt: the die rocks on it with ω_rock·Δt = {v:.2}, \
+                 only {:.1} steps per swing (stable below {allowed:.2}, {:.1} steps)",
+                std::f64::consts::TAU / v,
+                std::f64::consts::TAU / allowed
+            ),
+            Limit::CornerTravel if self.spin_dominated => write!(
+                f,
+                "spin too fast for Δt: a corner moves {v:.3} cm per step (stable below {allowed:.3} cm)"
+            ),
+            Limit::CornerTravel => write!(
+                f,
+                "die too fast for Δt: a corner hits the table at {:.0} cm/s and moves {v:.3} cm per \
+                 step (stable below {allowed:.3} cm)",
+                self.corner_speed
+            ),
+            Limit::Damping => write!(
+                f,
+                "damping too strong for a corner at {:.0} cm/s: γ·u_z = {v:.2} turns the table's \
+                 push into a pull on a buried corner (stable below {allowed:.2} at this Δt)",
+                self.corner_speed
+            ),
+            Limit::FrictionChatter => write!(
+                f,
+                "friction too strong for Δt: one step of friction reverses a sliding corner {v:.2} \
+                 times as fast as it slid (μ·√(k/m)·Δt, stable below {allowed:.0})"
+            ),
+        }
+    }
+}
+
+/// Every reading for one roll.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Stability {
+    pub readings: [Reading; 4],
+}
+
+impl Stability {
+    /// Reads every cause for these parameters and this initial condition.
+    pub fn predict(p: &Params, initial: &InitialCondition) -> Stability {
+        let dt = p.integrator.dt;
+        // A general body: its corners' reach from the centre (for their speed in a spin) and
+        // its smallest half size (how far one may move per step); the cube's `a·√3` and `a`.
+        let cube = p.die.is_cube();
+        let a = if cube {
+            p.die.half_size()
+        } else {
+            p.die.smallest_half_size()
+        };
+        // rad/s, one corner on its spring.
+        let corner_frequency = (p.ground.stiffness / p.die.corner_mass).sqrt();
+        // The centre's speed when the lowest corner first reaches the table.
+        let drop = (initial.height + initial.lowest_corner_offset(&p.die)).max(0.0);
+        let v = initial.velocity;
+        let vz_impact = (v[2] * v[2] + 2.0 * p.world.gravity * drop).sqrt();
+        let translation = (v[0] * v[0] + v[1] * v[1] + vz_impact * vz_impact).sqrt();
+        let spin_rate = initial.angular_velocity_for(p.inertia()).norm();
+        let spin = if cube {
+            spin_rate * a * 3f64.sqrt()
+        } else {
+            let [x, y, z] = p.die.half_sizes;
+            spin_rate * (x * x + y * y + z * z).sqrt()
+        };
+        let spin_dominated = spin > translation;
+        let corner_speed = translation + spin;
+        let reading = |limit, value, allowed| Reading {
+            limit,
+            value,
+            allowed,
+            spin_dominated,
+            corner_speed,
+        };
+        Stability {
+            readings: [
+                reading(Limit::ContactMode, p.stability_number(), CONTACT_MODE_LIMIT),
+                reading(Limit::CornerTravel, corner_speed * dt, CORNER_TRAVEL_LIMIT * a),
+                reading(
+                    Limit::Damping,
+                    p.ground.damping * (vz_impact + spin),
+                    DAMPING_LIMIT.max(2.0 / (corner_frequency * dt)),
+                ),
+                reading(
+                    Limit::FrictionChatter,
+                    p.ground.friction * corner_frequency * dt,
+                    FRICTION_CHATTER_LIMIT,
+                ),
+            ],
+        }
+    }
+
+    /// The reading to report: the first past its limit in the order contact mode, corner
+    /// travel, damping, friction chatter (a cause before its symptoms: a corner moving too
+    /// far per step also strikes too fast for the damping); when none is past, the one
+    /// with the largest `value / allowed`.
+    pub fn verdict(&self) -> Reading {
+        if let Some(r) = self.readings.iter().find(|r| r.exceeded()) {
+            return *r;
+        }
+        let mut closest = self.readings[0];
+        for r in &self.readings[1..] {
+            if r.load() > closest.load() {
+                closest = *r;
+            }
+        }
+        closest
+    }
+
+    /// Whether every reading is within its limit.
+    pub fn is_stable(&self) -> bool {
+        !self.verdict().exceeded()
+    }
+}
+
+/// Why a roll ended unstable: [`Stability::verdict`] of its parameters and start. When
+/// no reading is past its limit the words say so and name the closest.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UnstableReason(pub Reading);
+
+impl UnstableReason {
+    pub fn new(p: &Params, initial: &InitialCondition) -> UnstableReason {
+        UnstableReason(Stability::predict(p, initial).verdict())
+    }
+}
+
+/// E.g. "spin too fast for Δt: a corner moves 17.321 cm per step (stable below 1.000 cm)".
+impl fmt::Display for UnstableReason {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.0.exceeded() {
+            write!(f, "{}", self.0)
+        } else {
+            write!(
+                f,
+                "the energy ran away although no known limit was passed; closest: {}",
+                self.0
+            )
+        }
+    }
+}

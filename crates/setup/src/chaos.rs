@@ -1,0 +1,95 @@
+//! The chaos twin: a second die whose start differs from the first by a relative ε, and how
+//! far apart the two have drifted.
+//!
+//! ε is defined on the start's magnitudes that set the motion: the twin's drop height, its
+//! centre-of-mass velocity and its spin (ω, or L when the start states L) are each the first
+//! die's times (1 + ε). The orientation is the same. So at t = 0 the centres are ε·h apart.
+
+use dicesim_physics::{InitialCondition, Limits, Outcome, Params, Simulation};
+use serde::Serialize;
+
+/// The range a user may set ε in: from a few units in the last place of a double to 10%.
+pub const EPSILON: Limits = Limits {
+    key: "twin.epsilon",
+    unit: "",
+    min: 1e-15,
+    max: 1e-1,
+};
+
+/// The ε a twin rolls at when none is asked for: far below anything a hand controls, and
+/// still the two dice part within a roll.
+pub const DEFAULT_EPSILON: f64 = 1e-9;
+
+/// The twin's start: height, velocity and spin times (1 + ε).
+pub fn perturbed(initial: &InitialCondition, epsilon: f64) -> InitialCondition {
+    let f = 1.0 + epsilon;
+    InitialCondition {
+        height: initial.height * f,
+        velocity: initial.velocity.map(|v| v * f),
+        angular_velocity: initial.angular_velocity.map(|w| w * f),
+        angular_momentum: initial.angular_momentum.map(|l| l.map(|x| x * f)),
+        orientation: initial.orientation,
+    }
+}
+
+/// How far apart two dice are.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct Separation {
+    /// cm, between the centres of mass.
+    pub centre: f64,
+    /// rad, the angle of the rotation that turns one die's orientation into the other's.
+    pub angle: f64,
+}
+
+/// The body axes of a die (columns of its orientation), from its corner offsets: corner 5
+/// minus corner 1 is 2a along x, corner 3 minus 1 along y, corner 2 minus 1 along z.
+/// Any other body's corners (sphere centres) are `2·(a_i − r)` apart along each axis, so its
+/// differences are normalised instead.
+fn axes(sim: &Simulation) -> [nalgebra::Vector3<f64>; 3] {
+    let r = &sim.state().corner_offsets;
+    let die = &sim.params().die;
+    let differences = [r[4] - r[0], r[2] - r[0], r[1] - r[0]];
+    if die.is_cube() {
+        let side = 2.0 * die.half_size();
+        differences.map(|d| d / side)
+    } else {
+        differences.map(|d| d.normalize())
+    }
+}
+
+/// The separation of two dice at their current states.
+pub fn separation(a: &Simulation, b: &Simulation) -> Separation {
+    let centre = (a.state().position - b.state().position).norm();
+    // ‖R₁ − R₂‖_F = 2√2·sin(θ/2): exact for tiny angles, where acos of the trace is not.
+    let frobenius = axes(a)
+        .iter()
+        .zip(axes(b))
+        .map(|(p, q)| (p - q).norm_squared())
+        .sum::<f64>()
+        .sqrt();
+    let angle = 2.0 * (frobenius / (2.0 * std::f64::consts::SQRT_2)).min(1.0).asin();
+    Separation { centre, angle }
+}
+
+/// Rolls a die and its twin to their ends in lock-step; returns both outcomes and the
+/// separation after each step (index 0 is t = 0).
+pub fn roll_twins(
+    params: &Params,
+    initial: &InitialCondition,
+    epsilon: f64,
+) -> (Outcome, Outcome, Vec<Separation>) {
+    let mut a = Simulation::new_unchecked(params, initial);
+    let mut b = Simulation::new_unchecked(params, &perturbed(initial, epsilon));
+    let mut trace = vec![separation(&a, &b)];
+    loop {
+        if let (Some(oa), Some(ob)) = (a.outcome(), b.outcome()) {
+            return (oa, ob, trace);
+        }
+        for s in [&mut a, &mut b] {
+            if s.outcome().is_none() {
+                s.advance();
+            }
+        }
+        trace.push(separation(&a, &b));
+    }
+}

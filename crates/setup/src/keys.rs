@@ -1,0 +1,214 @@
+//! The numeric setup values an experiment can scan, by their dotted preset key.
+//!
+//! Each key is a numeric row of the [registry](crate::registry) (a vector
+//! by component): its range, unit and how it is read and set come from that row, so a scan
+//! is checked exactly as a preset is.
+
+use crate::registry::{self, Scan, Spec};
+use dicesim_physics::{InitialCondition, Limits, ParamError, Params};
+
+/// A scan key that names no numeric setup value.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("`{key}` is not a numeric setup key{hint}; known keys: {known}")]
+pub struct UnknownKey {
+    pub key: String,
+    /// How to name it instead, when the key is a vector's (" (name one component, …)").
+    pub hint: String,
+    pub known: String,
+}
+
+/// A scannable value: its full key (components included), its registry row and component.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScanKey {
+    /// The full dotted key, e.g. `initial.angular_velocity.x`.
+    pub key: String,
+    /// The row it belongs to (a vector's row for each of its components).
+    pub spec: &'static Spec,
+    /// 0 for a scalar; the component's index for a vector.
+    pub component: usize,
+}
+
+impl ScanKey {
+    /// Every scannable key, in preset order (for help texts and pickers).
+    pub fn all() -> &'static [ScanKey] {
+        static ALL: std::sync::LazyLock<Vec<ScanKey>> = std::sync::LazyLock::new(ScanKey::build_all);
+        &ALL
+    }
+
+    fn build_all() -> Vec<ScanKey> {
+        let mut keys = Vec::new();
+        for &spec in registry::ALL.iter().filter(|s| s.scan.is_some()) {
+            match spec.components() {
+                [] => keys.push(ScanKey {
+                    key: spec.key().to_string(),
+                    spec,
+                    component: 0,
+                }),
+                names => keys.extend(names.iter().enumerate().map(|(component, name)| ScanKey {
+                    key: format!("{}.{name}", spec.key()),
+                    spec,
+                    component,
+                })),
+            }
+        }
+        keys
+    }
+
+    /// The key named `key`; an unknown or non-numeric key is an error listing the valid ones.
+    pub fn parse(key: &str) -> Result<ScanKey, UnknownKey> {
+        Self::named(key).cloned()
+    }
+
+    /// The key named `key`, as [`ScanKey::parse`] but borrowed from [`ScanKey::all`].
+    pub fn named(key: &str) -> Result<&'static ScanKey, UnknownKey> {
+        let all = Self::all();
+        if let Some(k) = all.iter().find(|k| k.key == key) {
+            return Ok(k);
+        }
+        let hint = match registry::find(key) {
+            Some(spec) if !spec.components().is_empty() => {
+                format!(" (name one component, e.g. `{key}.{}`)", spec.components()[0])
+            }
+            _ => String::new(),
+        };
+        Err(UnknownKey {
+            key: key.to_string(),
+            hint,
+            known: all.iter().map(|k| k.key.as_str()).collect::<Vec<_>>().join(", "),
+        })
+    }
+
+    /// The row's limits (`limits.key` names the whole vector for components).
+    pub fn limits(&self) -> Limits {
+        self.spec.limits
+    }
+
+    /// Unit as shown to users (`""` for dimensionless).
+    pub fn unit(&self) -> &'static str {
+        self.spec.limits.unit
+    }
+
+    /// `key (unit)`, or the key alone for dimensionless values: an axis title.
+    pub fn label(&self) -> String {
+        if self.unit().is_empty() {
+            self.key.clone()
+        } else {
+            format!("{} ({})", self.key, self.unit())
+        }
+    }
+
+    /// Checks `value` against the field's allowed range, naming this key in the error.
+    pub fn check(&self, value: f64) -> Result<(), ParamError> {
+        self.spec.check_number(&self.key, value)
+    }
+
+    fn scan(&self) -> Scan {
+        self.spec.scan.expect("scan keys are built from rows that scan")
+    }
+
+    /// The field's current value. A spin stated in the other form is converted (with the
+    /// die's inertia), so `initial.angular_velocity.x` always reads ω_x.
+    pub fn get(&self, params: &Params, initial: &InitialCondition) -> f64 {
+        (self.scan().get)(params, initial, self.component)
+    }
+
+    /// Sets the field to `value` (not range-checked: see [`ScanKey::check`]).
+    pub fn set(&self, params: &mut Params, initial: &mut InitialCondition, value: f64) {
+        (self.scan().set)(params, initial, self.component, value)
+    }
+
+    /// Checks `value` against its range and the start it gives against the table (no corner
+    /// inside it), then sets it; on error nothing changes.
+    pub fn set_checked(
+        &self,
+        params: &mut Params,
+        initial: &mut InitialCondition,
+        value: f64,
+    ) -> Result<(), ParamError> {
+        self.check(value)?;
+        let (mut p, mut ic) = (*params, *initial);
+        self.set(&mut p, &mut ic, value);
+        ic.check_clear_of_table(&p)?;
+        (*params, *initial) = (p, ic);
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_key_sets_its_own_field() {
+        for key in ScanKey::all() {
+            let (mut p, mut ic) = (Params::default(), InitialCondition::default());
+            let value = 0.25 * key.limits().min + 0.75 * key.limits().max;
+            key.set(&mut p, &mut ic, value);
+            assert_eq!(key.get(&p, &ic), value, "{}", key.key);
+            let (p0, ic0) = (Params::default(), InitialCondition::default());
+            assert!(p != p0 || ic != ic0, "{} changed nothing", key.key);
+            // Read the value back through the preset-shaped JSON, by the key's own path.
+            let json = serde_json::json!({
+                "die": p.die, "ground": p.ground, "world": p.world, "integrator": p.integrator,
+                "initial": ic,
+            });
+            let mut node = &json;
+            let mut parts = key.key.split('.').peekable();
+            while let Some(part) = parts.next() {
+                let index = key
+                    .spec
+                    .components()
+                    .iter()
+                    .position(|n| *n == part)
+                    .filter(|_| parts.peek().is_none() && node.is_array());
+                node = match index {
+                    Some(i) => &node[i],
+                    None => &node[part],
+                };
+            }
+            assert_eq!(node.as_f64(), Some(value), "{}", key.key);
+        }
+    }
+
+    #[test]
+    fn spin_components_keep_the_other_axes() {
+        let p = Params::default();
+        let mut ic = InitialCondition {
+            angular_momentum: Some([16.0 / 3.0, 32.0 / 3.0, 0.0]),
+            ..Default::default()
+        };
+        ScanKey::parse("initial.angular_velocity.z")
+            .unwrap()
+            .set(&mut p.clone(), &mut ic, 5.0);
+        assert_eq!(ic.angular_momentum, None);
+        assert_eq!(ic.angular_velocity, [1.0, 2.0, 5.0]);
+    }
+
+    #[test]
+    fn unknown_and_vector_keys_are_explained() {
+        let e = ScanKey::parse("ground.stifness").unwrap_err().to_string();
+        assert!(
+            e.starts_with("`ground.stifness` is not a numeric setup key"),
+            "{e}"
+        );
+        assert!(e.contains("ground.stiffness"), "{e}");
+        let e = ScanKey::parse("initial.velocity").unwrap_err().to_string();
+        assert!(e.contains("`initial.velocity.x`"), "{e}");
+        let e = ScanKey::parse("ground.friction_law").unwrap_err().to_string();
+        assert!(e.contains("not a numeric setup key"), "{e}");
+    }
+
+    #[test]
+    fn range_errors_name_the_component() {
+        let k = ScanKey::parse("initial.angular_velocity.x").unwrap();
+        assert_eq!(
+            k.check(20_000.0).unwrap_err().to_string(),
+            "`initial.angular_velocity.x` = 20000 is outside the allowed range -10000 to 10000 rad/s"
+        );
+        assert_eq!(k.label(), "initial.angular_velocity.x (rad/s)");
+        assert_eq!(
+            ScanKey::parse("ground.friction").unwrap().label(),
+            "ground.friction"
+        );
+    }
+}

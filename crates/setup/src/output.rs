@@ -1,0 +1,455 @@
+//! Every file the program writes goes through here, the CLI's `--out` and the explorer's
+//! exports and saved presets alike.
+//!
+//! - [`Output::check`] looks at the path before any work: a known extension, an existing
+//!   folder the program may write into, and no existing file unless replacing was asked for.
+//! - [`Output::write`] writes into a temporary file in the same folder, flushes and syncs it,
+//!   and only then renames it onto the path, so a failed write (a full disk, a lost device)
+//!   leaves no partial file and an old file as it was. The error names the OS's reason.
+//!
+//! A path that already is a device or a pipe (`/dev/stdout`, `/dev/full`, a FIFO) cannot be
+//! replaced by a rename and holds no data to lose: it is written in place, its errors
+//! (final flush included) still reported.
+
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+/// Why a file could not be written. The first four are found before any work is done.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum OutputError {
+    #[error("{}: the file exists (--force replaces it)", path.display())]
+    Exists { path: PathBuf },
+    #[error("{}: expected {expected}", path.display())]
+    Extension { path: PathBuf, expected: String },
+    #[error("{}: the folder {} does not exist", path.display(), dir.display())]
+    NoFolder { path: PathBuf, dir: PathBuf },
+    #[error("{}: cannot write into {}: {message}", path.display(), dir.display())]
+    Folder {
+        path: PathBuf,
+        dir: PathBuf,
+        message: String,
+    },
+    #[error("{}: {message}; nothing was written", path.display())]
+    Write { path: PathBuf, message: String },
+    #[error("{}: named twice as an output (it would be written and then refused)", path.display())]
+    Twice { path: PathBuf },
+    #[error("{}: this command reads it ({what}); write the result elsewhere", path.display())]
+    Input { path: PathBuf, what: String },
+}
+
+impl OutputError {
+    /// Whether the path itself was refused (bad input), rather than the writing failing.
+    pub fn is_refusal(&self) -> bool {
+        !matches!(self, OutputError::Write { .. })
+    }
+}
+
+/// A checked output path: where to write, in which format, whether it may replace a file.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Output {
+    path: PathBuf,
+    extension: String,
+    replace: bool,
+}
+
+impl Output {
+    /// Checks `path` before any work: its extension is one of `extensions` (lower case,
+    /// without the dot), its folder exists and takes new files, and it names no existing
+    /// regular file unless `replace`.
+    pub fn check(path: &Path, extensions: &[&str], replace: bool) -> Result<Output, OutputError> {
+        let extension = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase)
+            .filter(|e| extensions.contains(&e.as_str()));
+        let Some(extension) = extension else {
+            let names: Vec<String> = extensions.iter().map(|e| format!(".{e}")).collect();
+            let expected = match names.as_slice() {
+                [one] => format!("a {one} file"),
+                [rest @ .., last] => format!("a {} or {last} file", rest.join(", ")),
+                [] => "no file".to_string(),
+            };
+            return Err(OutputError::Extension {
+                path: path.to_path_buf(),
+                expected,
+            });
+        };
+        let output = Output {
+            path: path.to_path_buf(),
+            extension,
+            replace,
+        };
+        match std::fs::metadata(path) {
+            Ok(meta) if meta.is_dir() => {
+                return Err(OutputError::Write {
+                    path: output.path,
+                    message: "is a folder".to_string(),
+                });
+            }
+            Ok(meta) if meta.is_file() && !replace => return Err(OutputError::Exists { path: output.path }),
+            Ok(meta) if !meta.is_file() => return Ok(output), // a device or a pipe: written in place
+            _ => {}
+        }
+        let dir = output.dir();
+        if !dir.is_dir() {
+            return Err(OutputError::NoFolder {
+                path: output.path.clone(),
+                dir: dir.to_path_buf(),
+            });
+        }
+        // The one sure test of "may write here": make a file and let it go.
+        if let Err(e) = output.temporary() {
+            return Err(OutputError::Folder {
+                path: output.path.clone(),
+                dir: dir.to_path_buf(),
+                message: os_reason(&e),
+            });
+        }
+        Ok(output)
+    }
+
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The extension that was recognised, lower case.
+    pub fn extension(&self) -> &str {
+        &self.extension
+    }
+
+    fn dir(&self) -> &Path {
+        match self.path.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
+        }
+    }
+
+    fn temporary(&self) -> std::io::Result<tempfile::NamedTempFile> {
+        let name = self
+            .path
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let prefix = format!(".{name}.");
+        let mut builder = tempfile::Builder::new();
+        builder.prefix(&prefix).suffix(".part");
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            // As `File::create` would make it (the umask applies), not the temp file's 0600.
+            builder.permissions(std::fs::Permissions::from_mode(0o666));
+        }
+        builder.tempfile_in(self.dir())
+    }
+
+    /// Writes the file with `body`, all or nothing (see the module comment). The writer is
+    /// `Send`, so an encoder that needs one (Parquet's) can own it.
+    pub fn write(
+        &self,
+        body: impl FnOnce(&mut (dyn Write + Send)) -> std::io::Result<()>,
+    ) -> Result<(), OutputError> {
+        self.write_with(|w| body(w).map_err(|e| self.failed(&e)), |e| e)
+    }
+
+    /// [`Output::write`] for a `body` that fails in its own terms (a merge that finds a bad
+    /// part half-way): its error is returned as it is, the file's own failures through
+    /// `own`, and either way nothing is left under the path.
+    pub fn write_with<E>(
+        &self,
+        body: impl FnOnce(&mut (dyn Write + Send)) -> Result<(), E>,
+        own: impl Fn(OutputError) -> E,
+    ) -> Result<(), E> {
+        let failed = |e: std::io::Error| own(self.failed(&e));
+        if std::fs::metadata(&self.path).is_ok_and(|m| !m.is_file() && !m.is_dir()) {
+            let file = std::fs::OpenOptions::new()
+                .write(true)
+                .open(&self.path)
+                .map_err(failed)?;
+            let mut w = BufWriter::new(file);
+            body(&mut w)?;
+            return w.flush().map_err(failed);
+        }
+        let tmp = self.temporary().map_err(failed)?;
+        let _pending = Pending::register(tmp.path());
+        let mut w = BufWriter::with_capacity(1 << 20, tmp);
+        body(&mut w)?;
+        w.flush().map_err(failed)?;
+        let tmp = w.into_inner().map_err(|e| failed(e.into_error()))?;
+        tmp.as_file().sync_all().map_err(failed)?;
+        let persisted = if self.replace {
+            tmp.persist(&self.path)
+        } else {
+            tmp.persist_noclobber(&self.path)
+        };
+        // On failure the error holds the temporary file; dropping it deletes it.
+        persisted.map(drop).map_err(|e| match e.error.kind() {
+            std::io::ErrorKind::AlreadyExists => own(OutputError::Exists {
+                path: self.path.clone(),
+            }),
+            _ => failed(e.error),
+        })
+    }
+
+    /// A write to this path that failed, with the OS's reason.
+    pub fn failed(&self, e: &std::io::Error) -> OutputError {
+        OutputError::Write {
+            path: self.path.clone(),
+            message: os_reason(e),
+        }
+    }
+
+    /// Writes `bytes` as the whole file.
+    pub fn write_bytes(&self, bytes: &[u8]) -> Result<(), OutputError> {
+        self.write(|w| w.write_all(bytes))
+    }
+}
+
+/// Where `path` points, so two names of one file compare equal: the file itself where it
+/// exists, else its folder's real path and its name.
+fn identity(path: &Path) -> PathBuf {
+    if let Ok(p) = std::fs::canonicalize(path) {
+        return p;
+    }
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let dir = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
+    dir.join(path.file_name().unwrap_or_default())
+}
+
+/// Checks, before any work, that no file is named twice among `outputs` and that none is
+/// one of `inputs` (each with the words for what it is): `--force` replaces an old result,
+/// never a file the command is reading.
+pub fn check_apart(outputs: &[Output], inputs: &[(PathBuf, String)]) -> Result<(), OutputError> {
+    let mut seen: Vec<PathBuf> = Vec::with_capacity(outputs.len());
+    for o in outputs {
+        let id = identity(o.path());
+        if seen.contains(&id) {
+            return Err(OutputError::Twice {
+                path: o.path().to_path_buf(),
+            });
+        }
+        if let Some((_, what)) = inputs.iter().find(|(p, _)| identity(p) == id) {
+            return Err(OutputError::Input {
+                path: o.path().to_path_buf(),
+                what: what.clone(),
+            });
+        }
+        seen.push(id);
+    }
+    Ok(())
+}
+
+/// The temporary files being written now, so a signal that stops the program at once can
+/// remove them ([`remove_pending`]); each is listed while its [`Pending`] guard lives.
+static PENDING: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+/// A temporary file listed in [`PENDING`] until this guard is dropped (the file is then
+/// renamed onto its path or already deleted).
+struct Pending(PathBuf);
+
+impl Pending {
+    fn register(path: &Path) -> Pending {
+        PENDING
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .push(path.to_path_buf());
+        Pending(path.to_path_buf())
+    }
+}
+
+impl Drop for Pending {
+    fn drop(&mut self) {
+        let mut pending = PENDING.lock().unwrap_or_else(|e| e.into_inner());
+        pending.retain(|p| *p != self.0);
+    }
+}
+
+/// Removes every temporary file still being written, for a program about to exit without
+/// unwinding (a signal that stops it at once); returns how many there were.
+pub fn remove_pending() -> usize {
+    let pending = PENDING.lock().unwrap_or_else(|e| e.into_inner());
+    for p in pending.iter() {
+        let _ = std::fs::remove_file(p);
+    }
+    pending.len()
+}
+
+/// The OS's reason alone: the temporary file's own name (which `tempfile` adds) means
+/// nothing to the person who asked for `path`.
+fn os_reason(e: &std::io::Error) -> String {
+    let inner = e
+        .get_ref()
+        .and_then(|i| i.source())
+        .and_then(|s| s.downcast_ref::<std::io::Error>());
+    inner.unwrap_or(e).to_string()
+}
+
+/// The first stem for files `<stem>.<ext>` (one per extension) in `dir` that replaces no
+/// file: `stem`, then `stem-2`, `stem-3`, … (the explorer's exports never ask to replace).
+pub(crate) fn free_stem(dir: &Path, stem: &str, extensions: &[&str]) -> String {
+    (1..)
+        .map(|n| {
+            if n == 1 {
+                stem.to_string()
+            } else {
+                format!("{stem}-{n}")
+            }
+        })
+        .find(|s| {
+            extensions
+                .iter()
+                .all(|ext| std::fs::symlink_metadata(dir.join(format!("{s}.{ext}"))).is_err())
+        })
+        .unwrap_or_else(|| stem.to_string())
+}
+
+/// Files `<stem>.<ext>` in `dir`, one per extension under the first stem free for all of
+/// them (see [`free_stem`]), each checked as [`Output::check`] checks: the explorer's
+/// exports, which never replace a file.
+pub fn free_outputs<const N: usize>(
+    dir: &Path,
+    stem: &str,
+    extensions: [&str; N],
+) -> Result<[Output; N], OutputError> {
+    let stem = free_stem(dir, stem, &extensions);
+    let outputs = extensions
+        .iter()
+        .map(|ext| Output::check(&dir.join(format!("{stem}.{ext}")), &[ext], false))
+        .collect::<Result<Vec<_>, _>>()?;
+    match outputs.try_into() {
+        Ok(outputs) => Ok(outputs),
+        Err(_) => unreachable!("one output per extension"),
+    }
+}
+
+/// `text` as a file name part: letters, digits, `-` and `_` kept, anything else (a `/`, a
+/// dot, a space, a control character) becomes `_`, so it can never add a path component.
+pub fn safe_file_stem(text: &str) -> String {
+    let stem: String = text
+        .chars()
+        .take(64)
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if stem.is_empty() { "_".to_string() } else { stem }
+}
+
+/// `text` safe to print on a terminal: control characters (an escape sequence, or the C1
+/// introducer U+009B, could retitle the window or hide what follows) and the bidirectional
+/// overrides and isolates (U+202A–U+202E, U+2066–U+2069, which reorder what follows on the
+/// line) are shown escaped, `\u{1b}`, instead of sent.
+pub fn printable(text: &str) -> String {
+    let bidi = |c: char| matches!(c, '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}');
+    text.chars()
+        .map(|c| {
+            if (c.is_control() || bidi(c)) && c != '\n' {
+                c.escape_default().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_existing_file_is_refused_without_replace() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.csv");
+        std::fs::write(&path, "old").unwrap();
+        let e = Output::check(&path, &["csv"], false).unwrap_err();
+        assert_eq!(e, OutputError::Exists { path: path.clone() });
+        assert!(
+            e.to_string()
+                .ends_with("a.csv: the file exists (--force replaces it)")
+        );
+        Output::check(&path, &["csv"], true)
+            .unwrap()
+            .write_bytes(b"new")
+            .unwrap();
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "new");
+    }
+
+    #[test]
+    fn paths_are_checked_before_any_work() {
+        let dir = tempfile::tempdir().unwrap();
+        let missing = dir.path().join("nope").join("x.csv");
+        assert!(matches!(
+            Output::check(&missing, &["csv"], false),
+            Err(OutputError::NoFolder { .. })
+        ));
+        let e = Output::check(&dir.path().join("x.txt"), &["csv", "png", "svg"], false).unwrap_err();
+        assert!(
+            e.to_string().ends_with("expected a .csv, .png or .svg file"),
+            "{e}"
+        );
+        let ok = Output::check(&dir.path().join("X.PNG"), &["png"], false).unwrap();
+        assert_eq!(ok.extension(), "png");
+        // The writability probe leaves nothing behind.
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    }
+
+    #[test]
+    fn a_failed_write_leaves_no_file_and_the_old_one_intact() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.csv");
+        std::fs::write(&path, "old").unwrap();
+        let out = Output::check(&path, &["csv"], true).unwrap();
+        let e = out
+            .write(|w| {
+                w.write_all(&[b'x'; 10_000])?;
+                Err(std::io::Error::other("the disk went away"))
+            })
+            .unwrap_err();
+        assert!(
+            e.to_string().contains("the disk went away; nothing was written"),
+            "{e}"
+        );
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "old");
+        assert_eq!(
+            std::fs::read_dir(dir.path()).unwrap().count(),
+            1,
+            "no temporary file left"
+        );
+    }
+
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn the_final_flush_error_is_reported() {
+        // A device is written in place, so its errors are the writer's own, final flush
+        // included (a small file fits the buffer and fails only there).
+        let dir = tempfile::tempdir().unwrap();
+        let link = dir.path().join("full.svg");
+        std::os::unix::fs::symlink("/dev/full", &link).unwrap();
+        let out = Output::check(&link, &["svg"], false).unwrap();
+        let e = out.write_bytes(b"<svg/>").unwrap_err();
+        assert!(e.to_string().contains("No space left on device"), "{e}");
+    }
+
+    #[test]
+    fn names_from_files_stay_one_path_component() {
+        assert_eq!(safe_file_stem("x/../../escaped"), "x_______escaped");
+        assert_eq!(safe_file_stem("paper"), "paper");
+        assert_eq!(safe_file_stem(".."), "__");
+        assert_eq!(safe_file_stem(""), "_");
+        assert_eq!(safe_file_stem("a\u{1b}]0;pwned\u{7}"), "a__0_pwned_");
+    }
+
+    #[test]
+    fn free_stems_skip_taken_names() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("r.csv"), "").unwrap();
+        std::fs::write(dir.path().join("r-2.png"), "").unwrap();
+        assert_eq!(free_stem(dir.path(), "r", &["csv", "png"]), "r-3");
+    }
+}

@@ -1,0 +1,589 @@
+//! The preset file format: reading with positions in every error, writing the whole file with
+//! its unit comments.
+
+use super::{FORMAT, Location, Preset, PresetError};
+use crate::registry::{self, ANGULAR_MOMENTUM, ANGULAR_VELOCITY, Role, Setup, Value};
+use dicesim_physics::params::{CORNERS, SIZE_TWICE};
+use dicesim_physics::{InitialCondition, ParamError};
+use toml::de::{DeTable, DeValue};
+
+/// Up to this column the values stand, then the comments start (as in the shipped presets).
+const COMMENT_COLUMN: usize = 34;
+/// Longer lines put their comment above them.
+const MAX_LINE: usize = 110;
+/// Where a long description is folded onto the next line.
+const FOLD_WIDTH: usize = 84;
+
+impl Preset {
+    /// Reads a preset from TOML text. `origin` names the text in errors (a file path, or
+    /// `shipped/NAME.toml`). Every error names the origin, the line and column and, where it
+    /// is about one key, that key; nothing is returned unless the whole file is valid.
+    pub fn from_toml_str(text: &str, origin: &str) -> Result<Preset, PresetError> {
+        let doc = DeTable::parse(text).map_err(|e| syntax_error(origin, text, &e))?;
+        let doc = doc.get_ref();
+        check_format(doc, origin, text)?;
+        // The size is stated once; said before the deserializer, which cannot name the lines.
+        if let (Some(_), Some(both)) = (find(doc, "die.half_size"), find(doc, "die.half_sizes")) {
+            return Err(PresetError::Key {
+                at: Location::at(origin, text, both),
+                key: "die.half_sizes".to_string(),
+                message: SIZE_TWICE.to_string(),
+            });
+        }
+
+        let de = toml::Deserializer::parse(text).map_err(|e| syntax_error(origin, text, &e))?;
+        let preset: Preset = serde_path_to_error::deserialize(de).map_err(|e| {
+            let key = e.path().to_string();
+            let inner = e.into_inner();
+            let at = match inner.span() {
+                Some(span) => Location::at(origin, text, span.start),
+                None => Location::file(origin),
+            };
+            PresetError::Key {
+                at,
+                key,
+                message: inner.message().trim().to_string(),
+            }
+        })?;
+
+        // The streaming deserializer ignores extra array elements (`velocity = [1,2,3,"junk"]`);
+        // a second pass through a TOML value refuses them as `--set` does.
+        let table: toml::Table = toml::from_str(text).map_err(|e| syntax_error(origin, text, &e))?;
+        if let Err(e) = serde_path_to_error::deserialize::<_, Preset>(toml::Value::Table(table)) {
+            let key = e.path().to_string();
+            let at = match find(doc, &key) {
+                Some(offset) => Location::at(origin, text, offset),
+                None => Location::file(origin),
+            };
+            return Err(PresetError::Key {
+                at,
+                key,
+                message: e.into_inner().message().trim().to_string(),
+            });
+        }
+
+        if let (Some(_), Some(l)) = (
+            find(doc, "initial.angular_velocity"),
+            find(doc, "initial.angular_momentum"),
+        ) {
+            return Err(PresetError::Key {
+                at: Location::at(origin, text, l),
+                key: "initial.angular_momentum".to_string(),
+                message: "give the spin once: `angular_velocity` (rad/s) or `angular_momentum` (g·cm²/s), \
+                          not both"
+                    .to_string(),
+            });
+        }
+
+        preset
+            .validate()
+            .map_err(|error| range_error(doc, origin, text, error))?;
+        Ok(preset)
+    }
+
+    /// The whole file: every key, with its unit and meaning in a comment. Reading it back
+    /// with [`Preset::from_toml_str`] gives this preset again (with the spin stated the way
+    /// it is used: `angular_momentum` when present, else `angular_velocity`).
+    pub fn to_toml(&self) -> String {
+        let mut out = String::new();
+        let mut line = |key: &str, value: String, comment: &str| push_line(&mut out, key, &value, comment);
+        let float = |x: f64| toml::Value::Float(x).to_string();
+        let vector = |v: &[f64]| format!("[{}]", v.iter().map(|&x| float(x)).collect::<Vec<_>>().join(", "));
+        let string = |s: &str| toml::Value::String(s.to_string()).to_string();
+
+        line(
+            "format",
+            FORMAT.to_string(),
+            "the file format's version; a newer one is refused clearly",
+        );
+        line("name", string(&self.name), "shown in the TUI header");
+        line(
+            "description",
+            folded_string(&self.description),
+            "shown in the TUI and by `presets list`",
+        );
+
+        let setup = Setup {
+            params: self.params(),
+            initial: self.initial,
+            random: self.random,
+        };
+        for role in Role::ALL {
+            line(&format!("\n[{}]", role.section()), String::new(), role.comment());
+            for spec in registry::ALL.iter().filter(|s| s.role == role) {
+                // The two ways of stating the spin are written together, as one choice.
+                if **spec == ANGULAR_VELOCITY {
+                    self.spin_lines(&mut line, &vector);
+                    continue;
+                }
+                if **spec == ANGULAR_MOMENTUM {
+                    continue;
+                }
+                let name = spec.key().rsplit('.').next().unwrap_or_default();
+                let value = match (spec.read)(&setup) {
+                    Value::Number(x) => float(x),
+                    Value::Vector(v) => vector(&v),
+                    Value::Range(r) => vector(&r),
+                    Value::PerCorner(v) => vector(&v),
+                    Value::Name(n) => string(n),
+                    Value::Seed(n) => n.to_string(),
+                    Value::Flag(b) => b.to_string(),
+                    Value::Absent => continue,
+                };
+                line(name, value, spec.comment);
+            }
+        }
+        let view = self.view.lines();
+        if !view.is_empty() {
+            line(
+                "\n[view]",
+                String::new(),
+                "how the explorer opens this preset (the CLI ignores it)",
+            );
+            for (key, value, comment) in view {
+                line(&key, value, comment);
+            }
+        }
+        out
+    }
+
+    /// The spin, stated once; the other form is shown commented out, converted, so a reader
+    /// sees both and can switch by moving the `#`.
+    fn spin_lines(&self, line: &mut impl FnMut(&str, String, &str), vector: &dyn Fn(&[f64]) -> String) {
+        let ic = &self.initial;
+        let inertia = self.params().inertia();
+        let omega = ic.angular_velocity_for(inertia);
+        let momentum = ic.angular_momentum_for(inertia);
+        let (w, l) = (vector(omega.as_slice()), vector(momentum.as_slice()));
+        if ic.angular_momentum.is_some() {
+            line(
+                "# angular_velocity",
+                w,
+                "rad/s, world frame: the same spin as ω = L/I",
+            );
+            line("angular_momentum", l, "g·cm²/s, world frame (L = I·ω)");
+        } else {
+            line("angular_velocity", w, ANGULAR_VELOCITY.comment);
+            line(
+                "# angular_momentum",
+                l,
+                "g·cm²/s: the same spin stated as L = I·ω (give one of the two)",
+            );
+        }
+    }
+
+    /// This preset as [`Preset::to_toml`] writes it: a spin given as angular momentum makes
+    /// the angular velocity field unused, so it is zeroed.
+    pub fn as_written(&self) -> Preset {
+        let mut p = self.clone();
+        p.format = FORMAT;
+        if p.initial.angular_momentum.is_some() {
+            p.initial.angular_velocity = InitialCondition::default().angular_velocity;
+        }
+        p
+    }
+}
+
+/// `key = value   # comment`, or a section header when `value` is empty. A comment that
+/// would make the line too long goes on the line above.
+fn push_line(out: &mut String, key: &str, value: &str, comment: &str) {
+    let code = if value.is_empty() {
+        key.to_string()
+    } else {
+        format!("{key} = {value}")
+    };
+    let first_line = code.trim_start_matches('\n').lines().next().unwrap_or_default();
+    let width = first_line.chars().count();
+    if comment.is_empty() {
+        out.push_str(&code);
+    } else if width + 2 + comment.chars().count() > MAX_LINE || code.contains("\"\"\"") {
+        let blank = code.len() - code.trim_start_matches('\n').len();
+        out.push_str(&code[..blank]);
+        out.push_str(&format!("# {comment}\n"));
+        out.push_str(&code[blank..]);
+    } else {
+        out.push_str(&code);
+        out.push_str(&" ".repeat(COMMENT_COLUMN.saturating_sub(width).max(2)));
+        out.push_str(&format!("# {comment}"));
+    }
+    out.push('\n');
+}
+
+/// A long one-line text as a multi-line basic string folded at spaces (a line-ending `\`
+/// joins the lines back), so the file reads well; anything it cannot fold exactly stays on
+/// one line.
+fn folded_string(text: &str) -> String {
+    let single = toml::Value::String(text.to_string()).to_string();
+    let body = match single.strip_prefix('"').and_then(|b| b.strip_suffix('"')) {
+        Some(body) if single.chars().count() > MAX_LINE - 16 && !body.starts_with('"') => body,
+        _ => return single,
+    };
+    let mut folded = String::from("\"\"\"\\\n");
+    let mut width = 0;
+    let chars: Vec<char> = body.chars().collect();
+    for (i, &c) in chars.iter().enumerate() {
+        folded.push(c);
+        width += 1;
+        // A fold eats the whitespace that starts the next line, so fold only at a single space.
+        let single_space =
+            c == ' ' && i > 0 && chars[i - 1] != ' ' && chars.get(i + 1).is_some_and(|n| *n != ' ');
+        if single_space && width >= FOLD_WIDTH {
+            folded.push_str("\\\n");
+            width = 0;
+        }
+    }
+    folded.push_str("\"\"\"");
+    let same = format!("v = {folded}")
+        .parse::<toml::Table>()
+        .ok()
+        .and_then(|t| t.get("v").and_then(|v| v.as_str().map(|v| v == text)));
+    if same == Some(true) { folded } else { single }
+}
+
+fn syntax_error(origin: &str, text: &str, e: &toml::de::Error) -> PresetError {
+    let at = match e.span() {
+        Some(span) => Location::at(origin, text, span.start),
+        None => Location::file(origin),
+    };
+    let mut message = e.message().trim().to_string();
+    // toml says "duplicate key" and points at it: name it, the way every other error does.
+    if message == "duplicate key"
+        && let Some(key) = e.span().and_then(|span| text.get(span))
+    {
+        message = format!("duplicate key `{}`", key.trim());
+    }
+    PresetError::Syntax { at, message }
+}
+
+/// A newer format is refused before anything else is read: its keys may mean other things.
+fn check_format(doc: &DeTable<'_>, origin: &str, text: &str) -> Result<(), PresetError> {
+    let Some((key, value)) = doc.iter().find(|(k, _)| k.get_ref() == "format") else {
+        return Ok(());
+    };
+    let Some(found) = value
+        .get_ref()
+        .as_integer()
+        .and_then(|i| i64::from_str_radix(i.as_str(), i.radix()).ok())
+    else {
+        return Ok(()); // not an integer: the deserializer names the type error
+    };
+    if found > i64::from(FORMAT) {
+        return Err(PresetError::NewerFormat {
+            at: Location::at(origin, text, key.span().start),
+            found,
+        });
+    }
+    Ok(())
+}
+
+/// Names the line of the out-of-range key when the file has it.
+fn range_error(doc: &DeTable<'_>, origin: &str, text: &str, error: ParamError) -> PresetError {
+    let at = match find(doc, &error.key) {
+        Some(offset) => Location::at(origin, text, offset),
+        None => Location::file(origin),
+    };
+    PresetError::Range {
+        at,
+        error: Box::new(error),
+    }
+}
+
+/// The byte offset of a key as [`ParamError`] names it (`ground.friction`,
+/// `initial.velocity.y`, `die.extra_corner_mass.8`, `random.height[1]`): the key itself, or
+/// the array element when the key names a component (an axis or a corner).
+fn find(doc: &DeTable<'_>, key: &str) -> Option<usize> {
+    let mut table = doc;
+    let mut segments = key.split('.').peekable();
+    while let Some(segment) = segments.next() {
+        let (name, index) = match segment.split_once('[') {
+            Some((name, rest)) => (name, rest.trim_end_matches(']').parse::<usize>().ok()),
+            None => (segment, None),
+        };
+        let (k, v) = table.iter().find(|(k, _)| k.get_ref() == name)?;
+        let component = match (index, segments.peek()) {
+            (Some(i), _) => Some(i),
+            (None, Some(&axis)) if v.get_ref().is_array() => ["x", "y", "z"]
+                .iter()
+                .position(|a| *a == axis)
+                .or_else(|| CORNERS.iter().position(|c| *c == axis)),
+            _ => None,
+        };
+        if let Some(i) = component {
+            let element = v.get_ref().as_array()?.get(i)?;
+            return Some(element.span().start);
+        }
+        match (segments.peek(), v.get_ref()) {
+            (None, _) => return Some(k.span().start),
+            (Some(_), DeValue::Table(t)) => table = t,
+            _ => return None,
+        }
+    }
+    None
+}
+
+/// For tests: the deserializer alone, without spans, so a test can check what a file means.
+#[cfg(test)]
+pub(crate) fn parse_plain(text: &str) -> Preset {
+    use serde::Deserialize;
+    Preset::deserialize(toml::Deserializer::parse(text).unwrap()).unwrap()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use dicesim_physics::{FrictionLaw, Params};
+
+    const ORIGIN: &str = "dir/p.toml";
+
+    fn err(text: &str) -> PresetError {
+        Preset::from_toml_str(text, ORIGIN).unwrap_err()
+    }
+
+    #[test]
+    fn missing_keys_take_the_papers_defaults() {
+        let p = Preset::from_toml_str("[ground]\nfriction = 0.3\n", ORIGIN).unwrap();
+        assert_eq!(p.ground.friction, 0.3);
+        assert_eq!(p.die, Params::default().die);
+        assert_eq!(p.initial, InitialCondition::default());
+        assert_eq!(p.format, FORMAT);
+        assert_eq!(p.name, "");
+    }
+
+    #[test]
+    fn malformed_toml_names_file_line_and_column() {
+        let e = err("name = \"x\"\n\n[ground\nfriction = 1\n");
+        assert!(matches!(e, PresetError::Syntax { .. }), "{e:?}");
+        let msg = e.to_string();
+        assert!(msg.starts_with("dir/p.toml:3:"), "{msg}");
+        assert!(msg.contains("unclosed table"), "{msg}");
+    }
+
+    #[test]
+    fn unknown_key_names_file_line_column_and_key() {
+        let e = err("format = 1\n[ground]\nfriction = 1.0\nstifness = 1.0\n");
+        assert_eq!(
+            e.to_string().lines().next().unwrap(),
+            "dir/p.toml:4:1: key `ground.stifness`: unknown field `stifness`, expected one of \
+             `stiffness`, `damping`, `friction`, `friction_law`"
+        );
+        let e = err("colour = \"red\"\n");
+        assert!(
+            e.to_string()
+                .starts_with("dir/p.toml:1:1: key `colour`: unknown field"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn wrong_type_names_file_line_column_and_key() {
+        let e = err("[ground]\nfriction = \"high\"\n");
+        assert_eq!(
+            e.to_string(),
+            "dir/p.toml:2:12: key `ground.friction`: invalid type: string \"high\", expected f64"
+        );
+        let e = err("[initial]\nvelocity = [1.0, 2.0]\n");
+        let msg = e.to_string();
+        assert!(msg.starts_with("dir/p.toml:2:"), "{msg}");
+        assert!(
+            msg.contains("`initial.velocity`") && msg.contains("invalid length 2"),
+            "{msg}"
+        );
+        let e = err("[ground]\nfriction_law = \"per_corner\"\n");
+        assert!(e.to_string().contains("unknown variant `per_corner`"), "{e}");
+    }
+
+    #[test]
+    fn out_of_range_names_file_line_key_and_range() {
+        let e = err("[die]\nhalf_size = 1.0\n[ground]\n\nfriction = 9.0\n");
+        assert_eq!(
+            e.to_string(),
+            "dir/p.toml:5:1: `ground.friction` = 9 is outside the allowed range 0 to 5"
+        );
+        let e = err("[initial]\nvelocity = [0.0,\n  20000.0, 0.0]\n");
+        assert_eq!(
+            e.to_string(),
+            "dir/p.toml:3:3: `initial.velocity.y` = 20000 is outside the allowed range -10000 to 10000 cm/s"
+        );
+        // The eighth corner's mass is the array's eighth element: line 3, column 15.
+        let e = err("[die]\nextra_corner_mass = [0, 0, 0,\n  0, 0, 0, 0, 5000]\n");
+        assert_eq!(
+            e.to_string(),
+            "dir/p.toml:3:15: `die.extra_corner_mass.8` = 5000 is outside the allowed range 0 to 1000 g"
+        );
+        let e = err("[random]\nheight = [5.0, 2.0]\n");
+        assert_eq!(
+            e.to_string(),
+            "dir/p.toml:2:1: `random.height` = [5, 2]: the low end is above the high end"
+        );
+        let e = err("[ground]\nfriction = 0.5\nfriction = 0.6\n");
+        assert_eq!(e.to_string(), "dir/p.toml:3:1: duplicate key `friction`");
+        let e = err("[initial]\norientation = [400.0, 0.0, 0.0]\n");
+        assert!(e.to_string().contains("`initial.orientation.yaw` = 400"), "{e}");
+        let e = err("format = 0\n");
+        assert_eq!(
+            e.to_string(),
+            "dir/p.toml:1:1: `format` = 0 is outside the allowed range 1 to 1"
+        );
+    }
+
+    #[test]
+    fn newer_format_is_refused_before_its_keys_are_read() {
+        let e = err("name = \"future\"\nformat = 2\n[sparkles]\nglitter = true\n");
+        assert_eq!(
+            e.to_string(),
+            "dir/p.toml:2:1: preset format 2 is newer than this dicesim understands (it reads \
+             format 1); update dicesim to load it"
+        );
+    }
+
+    #[test]
+    fn both_spins_at_once_are_refused() {
+        let e = err("[initial]\nangular_velocity = [1.0, 0.0, 0.0]\nangular_momentum = [1.0, 0.0, 0.0]\n");
+        let msg = e.to_string();
+        assert!(
+            msg.starts_with("dir/p.toml:3:1: key `initial.angular_momentum`: give the spin once"),
+            "{msg}"
+        );
+    }
+
+    #[test]
+    fn written_file_has_every_key_and_its_unit() {
+        let mut p = Preset::default();
+        p.ground.friction_law = FrictionLaw::WholeDieNorm;
+        let text = p.to_toml();
+        for key in [
+            "format = 1",
+            "half_size = ",
+            "corner_mass = ",
+            "stiffness = ",
+            "damping = ",
+            "friction = ",
+            "friction_law = \"whole-die-norm\"",
+            "gravity = ",
+            "dt = ",
+            "stop_energy_fraction = ",
+            "max_time = ",
+            "stop_energy = \"rigid-body\"",
+            "height = ",
+            "velocity = ",
+            "angular_velocity = ",
+            "# angular_momentum = ",
+            "orientation = ",
+            "seed = ",
+            "random_orientation = ",
+        ] {
+            assert!(text.contains(key), "no `{key}` in\n{text}");
+        }
+        for unit in [
+            "# dyn/cm per corner",
+            "# s/cm",
+            "# cm/s², downwards",
+            "# rad/s, world frame",
+        ] {
+            assert!(text.contains(unit), "no `{unit}` in\n{text}");
+        }
+        assert_eq!(parse_plain(&text), p);
+    }
+
+    #[test]
+    fn the_commented_spin_is_the_same_spin() {
+        let mut p = Preset::default();
+        p.initial.angular_velocity = [3.0, 0.0, -1.5];
+        p.initial.angular_momentum = None;
+        let inertia = p.params().inertia();
+        let text = p.to_toml();
+        // The first `angular_velocity` is [initial]'s; [random] has its own further down.
+        let uncommented = text
+            .replacen("angular_velocity = [", "# angular_velocity = [", 1)
+            .replacen("# angular_momentum = [", "angular_momentum = [", 1);
+        let q = Preset::from_toml_str(&uncommented, ORIGIN).unwrap();
+        assert_eq!(
+            q.initial.angular_momentum,
+            Some([3.0 * inertia, 0.0, -1.5 * inertia])
+        );
+    }
+
+    #[test]
+    fn the_view_is_read_written_and_checked_like_every_other_table() {
+        use crate::preset::{CameraView, Screen, Speed, ThemeName, View};
+        let p = Preset::from_toml_str(
+            "[view]\nspeed = \"1/20×\"\ncamera = { yaw = 45.0, pitch = 60.0, zoom = 2 }\n\
+             theme = \"projector\"\narrows = true\ntwin = 1e-6\nscreen = \"map\"\n",
+            ORIGIN,
+        )
+        .unwrap();
+        let view = View {
+            speed: Speed::from_label("1/20"),
+            camera: Some(CameraView {
+                yaw: 45.0,
+                pitch: 60.0,
+                zoom: 2,
+            }),
+            theme: Some(ThemeName::Projector),
+            arrows: Some(true),
+            twin: Some(1e-6),
+            screen: Some(Screen::Map),
+        };
+        assert_eq!(p.view, view);
+        let text = p.to_toml();
+        assert!(text.contains("\n[view]"), "{text}");
+        assert_eq!(Preset::from_toml_str(&text, ORIGIN).unwrap(), p);
+        assert!(
+            !Preset::default().to_toml().contains("[view]"),
+            "no view, no table"
+        );
+        assert_eq!(
+            Preset::from_toml_str("[view]\nspeed = \"instant\"\n", ORIGIN)
+                .unwrap()
+                .view
+                .speed,
+            Some(Speed::INSTANT)
+        );
+
+        let e = err("[view]\nspeed = \"1/20\"\ncolour = \"red\"\n");
+        assert!(
+            e.to_string()
+                .starts_with("dir/p.toml:3:1: key `view.colour`: unknown field `colour`"),
+            "{e}"
+        );
+        let e = err("[view]\nspeed = \"1/3\"\n");
+        assert!(
+            e.to_string().starts_with(
+                "dir/p.toml:2:9: key `view.speed`: `1/3` is not a playback speed; one of 1/100×, 1/50×"
+            ),
+            "{e}"
+        );
+        let e = err("[view]\ntheme = \"neon\"\n");
+        assert!(
+            e.to_string()
+                .starts_with("dir/p.toml:2:9: key `view.theme`: unknown variant `neon`"),
+            "{e}"
+        );
+        let e = err("[view]\nscreen = 2\n");
+        assert!(
+            e.to_string().starts_with("dir/p.toml:2:10: key `view.screen`"),
+            "{e}"
+        );
+        let e = err("[view]\narrows = \"yes\"\n");
+        assert!(
+            e.to_string()
+                .starts_with("dir/p.toml:2:10: key `view.arrows`: invalid type"),
+            "{e}"
+        );
+        let e = err("[view]\ncamera = { yaw = 0.0, pitch = 95.0 }\n");
+        assert_eq!(
+            e.to_string(),
+            "dir/p.toml:2:23: `view.camera.pitch` = 95 is outside the allowed range -10 to 89 °"
+        );
+        let e = err("[view]\ncamera = { yaw = 0.0, pitch = 5.0, roll = 1.0 }\n");
+        assert!(
+            e.to_string().contains("key `view.camera.roll`: unknown field"),
+            "{e}"
+        );
+        let e = err("[view]\n\ntwin = 0.5\n");
+        assert_eq!(
+            e.to_string(),
+            "dir/p.toml:3:1: `view.twin` = 0.5 is outside the allowed range 1e-15 to 0.1"
+        );
+    }
+}

@@ -1,0 +1,272 @@
+//! `--set KEY=VALUE` overrides, applied after a preset is loaded and checked like a file.
+
+use super::{Preset, PresetError};
+use crate::keys::ScanKey;
+
+impl Preset {
+    /// Applies one `--set KEY=VALUE` (dotted key as in a file; the value is read as a TOML
+    /// value, a bare word as a string). On error `self` is unchanged.
+    pub(crate) fn apply_override(&mut self, key: &str, value: &str) -> Result<(), PresetError> {
+        let err = |message: String| PresetError::Override {
+            key: key.to_string(),
+            message,
+        };
+        if let Ok(number) = value.parse::<f64>()
+            && !number.is_finite()
+        {
+            return Err(err(format!("`{value}` is not a finite number")));
+        }
+        let parsed = parse_override_value(value);
+        // One component of a vector (`initial.velocity.y=5`) is set through its registry row.
+        if let Ok(scan) = ScanKey::named(key)
+            && !scan.spec.components().is_empty()
+        {
+            let number = match parsed {
+                toml::Value::Float(x) => x,
+                toml::Value::Integer(i) => i as f64,
+                _ => return Err(err(format!("expected a number, found `{value}`"))),
+            };
+            let mut updated = self.clone();
+            let mut params = updated.params();
+            scan.set(&mut params, &mut updated.initial, number);
+            updated.set_params(params);
+            updated.validate()?;
+            *self = updated;
+            return Ok(());
+        }
+        let mut table = toml::Table::try_from(&*self).map_err(|e| err(e.to_string()))?;
+        let path: Vec<&str> = key.split('.').collect();
+        if path.iter().any(|p| p.is_empty()) {
+            return Err(err("empty key segment".to_string()));
+        }
+        let (last, parents) = path.split_last().expect("split on '.' yields at least one part");
+        // One component of a vector, by the name basin axes and errors use for it.
+        let mut component = None;
+        if let (Some(field), Some(toml::Value::Array(items))) =
+            (parents.last(), value_at(&mut table, parents))
+        {
+            let names = component_names(field);
+            let Some(i) = names.iter().position(|n| n == last) else {
+                return Err(err(format!(
+                    "`{}` has the components {}",
+                    parents.join("."),
+                    names.join(", ")
+                )));
+            };
+            if i >= items.len() {
+                return Err(err(format!(
+                    "`{}` has fewer than {} values",
+                    parents.join("."),
+                    i + 1
+                )));
+            }
+            items[i] = parsed.clone();
+            component = Some(i);
+            if let (["initial", form], Some(toml::Value::Table(initial))) =
+                (parents, table.get_mut("initial"))
+            {
+                match *form {
+                    "angular_momentum" => drop(initial.remove("angular_velocity")),
+                    "angular_velocity" => drop(initial.remove("angular_momentum")),
+                    _ => {}
+                }
+            }
+        }
+        let mut node = &mut table;
+        for (depth, part) in parents.iter().enumerate().filter(|_| component.is_none()) {
+            let entry = node
+                .entry(part.to_string())
+                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+            node = match entry {
+                toml::Value::Table(t) => t,
+                _ => return Err(err(format!("`{}` is not a table", parents[..=depth].join(".")))),
+            };
+        }
+        // Spin is given one way, and the die's size: setting one form replaces the other.
+        if component.is_none() && parents == ["initial"] {
+            match *last {
+                "angular_momentum" => drop(node.remove("angular_velocity")),
+                "angular_velocity" => drop(node.remove("angular_momentum")),
+                _ => {}
+            }
+        }
+        if component.is_none() && parents == ["die"] {
+            match *last {
+                "half_size" => drop(node.remove("half_sizes")),
+                "half_sizes" => drop(node.remove("half_size")),
+                _ => {}
+            }
+        }
+        if component.is_none() {
+            node.insert(last.to_string(), parsed);
+        }
+        let updated: Preset = serde_path_to_error::deserialize(toml::Value::Table(table)).map_err(|e| {
+            // toml appends the table path on a second line; the key is already named.
+            let inner = e.inner().to_string();
+            let first = inner.lines().next().unwrap_or_default();
+            err(first.split(" in `").next().unwrap_or(first).trim().to_string())
+        })?;
+        updated.validate()?;
+        *self = updated;
+        Ok(())
+    }
+
+    /// Applies `KEY=VALUE` overrides in order; on any error nothing is changed.
+    pub fn with_overrides<S: AsRef<str>>(&self, overrides: &[S]) -> Result<Preset, PresetError> {
+        let mut p = self.clone();
+        for o in overrides {
+            let o = o.as_ref();
+            let (key, value) = o.split_once('=').ok_or_else(|| PresetError::Override {
+                key: o.to_string(),
+                message: "expected KEY=VALUE".to_string(),
+            })?;
+            p.apply_override(key.trim(), value.trim())?;
+        }
+        Ok(p)
+    }
+}
+
+/// The value at `path` in `table`, if every step but the last is a table.
+fn value_at<'a>(table: &'a mut toml::Table, path: &[&str]) -> Option<&'a mut toml::Value> {
+    let (first, rest) = path.split_first()?;
+    let mut value = table.get_mut(*first)?;
+    for part in rest {
+        value = value.as_table_mut()?.get_mut(*part)?;
+    }
+    Some(value)
+}
+
+/// What the components of the vector `field` are called (its errors and basin axes agree).
+fn component_names(field: &str) -> [&'static str; 3] {
+    match field {
+        "orientation" => ["yaw", "pitch", "roll"],
+        _ => ["x", "y", "z"],
+    }
+}
+
+/// A `--set` value as TOML (`600000`, `[10,0,3]`, `true`, `"x"`); anything that does not
+/// parse (a bare word such as `whole-die-norm`) is taken as a string.
+fn parse_override_value(value: &str) -> toml::Value {
+    let doc = format!("v = {value}");
+    match doc.parse::<toml::Table>() {
+        Ok(mut t) => t
+            .remove("v")
+            .unwrap_or_else(|| toml::Value::String(value.to_string())),
+        Err(_) => toml::Value::String(value.to_string()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use dicesim_physics::FrictionLaw;
+
+    #[test]
+    fn overrides_set_nested_values() {
+        let p = Preset::default()
+            .with_overrides(&[
+                "ground.stiffness=600000",
+                "initial.angular_velocity=[10,0,3]",
+                "ground.friction_law=whole-die-norm",
+                "integrator.stop_energy=\"point-masses\"",
+            ])
+            .unwrap();
+        assert_eq!(p.ground.stiffness, 600000.0);
+        assert_eq!(p.initial.angular_velocity, [10.0, 0.0, 3.0]);
+        assert_eq!(p.ground.friction_law, FrictionLaw::WholeDieNorm);
+    }
+
+    #[test]
+    fn a_component_is_set_alone() {
+        let p = Preset::default();
+        let q = p
+            .with_overrides(&["initial.velocity.y=7", "initial.orientation.pitch=-30"])
+            .unwrap();
+        assert_eq!(
+            q.initial.velocity,
+            [p.initial.velocity[0], 7.0, p.initial.velocity[2]]
+        );
+        assert_eq!(q.initial.orientation[1], -30.0);
+        let e = p.with_overrides(&["initial.velocity.z=20000"]).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "`initial.velocity.z` = 20000 is outside the allowed range -10000 to 10000 cm/s"
+        );
+        let e = p.with_overrides(&["initial.velocity.x=fast"]).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "--set initial.velocity.x: expected a number, found `fast`"
+        );
+    }
+
+    #[test]
+    fn angular_momentum_replaces_angular_velocity_and_back() {
+        let p = Preset::default()
+            .with_overrides(&["initial.angular_momentum=[0,-100,0]"])
+            .unwrap();
+        assert_eq!(p.initial.angular_momentum, Some([0.0, -100.0, 0.0]));
+        let q = p.with_overrides(&["initial.angular_velocity=[1,2,3]"]).unwrap();
+        assert_eq!(q.initial.angular_momentum, None);
+        assert_eq!(q.initial.angular_velocity, [1.0, 2.0, 3.0]);
+    }
+
+    #[test]
+    fn bad_overrides_name_the_key_and_change_nothing() {
+        let p = Preset::default();
+        let e = p.with_overrides(&["ground.stifness=1"]).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("--set ground.stifness: unknown field `stifness`"),
+            "{e}"
+        );
+        let e = p.with_overrides(&["ground.friction=high"]).unwrap_err();
+        assert!(e.to_string().contains("invalid type: string \"high\""), "{e}");
+        let e = p.with_overrides(&["ground.friction=9"]).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "`ground.friction` = 9 is outside the allowed range 0 to 5"
+        );
+        let e = p.with_overrides(&["format.x=1"]).unwrap_err();
+        assert!(e.to_string().contains("`format` is not a table"), "{e}");
+        let e = p.with_overrides(&["initial.velocity=[1,2]"]).unwrap_err();
+        assert!(e.to_string().contains("invalid length 2"), "{e}");
+        assert!(p.with_overrides(&["nonsense"]).is_err());
+    }
+
+    #[test]
+    fn one_name_per_value_and_clear_numbers() {
+        let p = Preset::default();
+        let q = p
+            .with_overrides(&["initial.velocity.y=7", "initial.orientation.pitch=30"])
+            .unwrap();
+        assert_eq!(q.initial.velocity[1], 7.0);
+        assert_eq!(q.initial.orientation[1], 30.0);
+        let e = p.with_overrides(&["initial.orientation.yaw=400"]).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "`initial.orientation.yaw` = 400 is outside the allowed range -360 to 360 °"
+        );
+        let e = p.with_overrides(&["initial.orientation.x=1"]).unwrap_err();
+        assert!(
+            e.to_string().contains("has the components yaw, pitch, roll"),
+            "{e}"
+        );
+        for bad in ["1e309", "NaN", "-inf"] {
+            let e = p.with_overrides(&[format!("ground.friction={bad}")]).unwrap_err();
+            assert_eq!(
+                e.to_string(),
+                format!("--set ground.friction: `{bad}` is not a finite number")
+            );
+        }
+        let e = p.with_overrides(&["ground.friction=1e308"]).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "`ground.friction` = 1e308 is outside the allowed range 0 to 5"
+        );
+        let e = p.with_overrides(&["random.height=[5,1]"]).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "`random.height` = [5, 1]: the low end is above the high end"
+        );
+    }
+}

@@ -1,0 +1,221 @@
+//! Every quantity of a roll a person may plot or export: its name, its unit and how it is
+//! read from the die's state. The roll CSV's columns and the explorer's plot both come from
+//! [`QUANTITIES`], so a quantity added here appears in both.
+
+use dicesim_physics::Simulation;
+use dicesim_physics::stability::{
+    CONTACT_MODE_LIMIT, CORNER_TRAVEL_LIMIT, DAMPING_LIMIT, FRICTION_CHATTER_LIMIT,
+};
+use nalgebra::Vector3;
+
+/// One quantity of a roll.
+#[derive(Debug, Clone, Copy)]
+pub struct Quantity {
+    /// The words a plot's axis and the help use, e.g. "height of the centre".
+    pub name: &'static str,
+    /// Short name for narrow places (a plot title at 80 columns).
+    pub short: &'static str,
+    /// The unit as a person reads it, e.g. "cm/s"; "× limit" for a stability load.
+    pub unit: &'static str,
+    /// The roll CSV's column: a name with the unit in it, e.g. `speed_cm_per_s`.
+    pub column: &'static str,
+    /// Reads the quantity from the simulation's current state.
+    pub read: fn(&Simulation) -> f64,
+}
+
+/// How many quantities [`QUANTITIES`] has.
+pub const QUANTITY_COUNT: usize = 14;
+
+/// Every quantity of one state, in the order of [`QUANTITIES`].
+pub type Readings = [f64; QUANTITY_COUNT];
+
+/// Index of the total energy in [`QUANTITIES`] (the plot's first choice).
+pub const TOTAL_ENERGY: usize = 9;
+
+/// Every quantity of a roll. The stability loads are the readings of docs/model.md's
+/// "Stability" taken at the current state (value / allowed: below 1 the step is stable),
+/// so a tuner sees which one a change of the table pushes up, and when in the roll.
+pub const QUANTITIES: [Quantity; QUANTITY_COUNT] = [
+    Quantity {
+        name: "height of the centre",
+        short: "height",
+        unit: "cm",
+        column: "height_cm",
+        read: |s| s.state().position.z,
+    },
+    Quantity {
+        name: "lowest corner",
+        short: "lowest",
+        unit: "cm",
+        column: "lowest_corner_cm",
+        read: lowest_point,
+    },
+    Quantity {
+        name: "speed",
+        short: "speed",
+        unit: "cm/s",
+        column: "speed_cm_per_s",
+        read: |s| s.state().velocity.norm(),
+    },
+    Quantity {
+        name: "spin rate",
+        short: "spin",
+        unit: "rad/s",
+        column: "spin_rate_rad_per_s",
+        read: |s| s.angular_velocity().norm(),
+    },
+    Quantity {
+        name: "contact force",
+        short: "force",
+        unit: "dyn",
+        column: "contact_force_dyn",
+        read: |s| s.state().corner_forces.iter().sum::<Vector3<f64>>().norm(),
+    },
+    Quantity {
+        name: "translational energy",
+        short: "E transl",
+        unit: "erg",
+        column: "e_trans_erg",
+        read: |s| s.energy().translational,
+    },
+    Quantity {
+        name: "rotational energy",
+        short: "E rot",
+        unit: "erg",
+        column: "e_rot_erg",
+        read: |s| s.energy().rotational,
+    },
+    Quantity {
+        name: "potential energy",
+        short: "E grav",
+        unit: "erg",
+        column: "e_grav_erg",
+        read: |s| s.energy().gravitational,
+    },
+    Quantity {
+        name: "spring energy",
+        short: "E elastic",
+        unit: "erg",
+        column: "e_elastic_erg",
+        read: |s| s.energy().elastic,
+    },
+    Quantity {
+        name: "total energy",
+        short: "E total",
+        unit: "erg",
+        column: "e_total_erg",
+        read: |s| s.energy().total(),
+    },
+    Quantity {
+        name: "stability: table stiffness",
+        short: "stiff load",
+        unit: "× limit",
+        column: "contact_mode_load",
+        read: contact_mode_load,
+    },
+    Quantity {
+        name: "stability: corner speed",
+        short: "travel load",
+        unit: "× limit",
+        column: "corner_travel_load",
+        read: corner_travel_load,
+    },
+    Quantity {
+        name: "stability: damping",
+        short: "damp load",
+        unit: "× limit",
+        column: "damping_load",
+        read: damping_load,
+    },
+    Quantity {
+        name: "stability: friction",
+        short: "fric load",
+        unit: "× limit",
+        column: "friction_load",
+        read: friction_load,
+    },
+];
+
+/// Every quantity of the simulation's current state.
+pub fn read_all(sim: &Simulation) -> Readings {
+    QUANTITIES.map(|q| (q.read)(sim))
+}
+
+/// The axis label of a quantity: its name and unit, e.g. "speed (cm/s)".
+pub fn label(q: &Quantity) -> String {
+    format!("{} ({})", q.name, q.unit)
+}
+
+/// cm, the die's lowest point above the table (negative: pressed into it). A rounded
+/// body's corner spheres reach `corner_radius` below their centres.
+fn lowest_point(sim: &Simulation) -> f64 {
+    let lowest = sim
+        .corner_positions()
+        .iter()
+        .map(|c| c.z)
+        .fold(f64::INFINITY, f64::min);
+    lowest - sim.params().die.corner_radius
+}
+
+/// cm/s, each corner's velocity `v + ω × r` now.
+fn corner_velocities(sim: &Simulation) -> [Vector3<f64>; 8] {
+    let (v, w) = (sim.state().velocity, sim.angular_velocity());
+    sim.state().corner_offsets.map(|r| v + w.cross(&r))
+}
+
+/// rad/s, one corner on its spring.
+fn corner_frequency(sim: &Simulation) -> f64 {
+    let p = sim.params();
+    (p.ground.stiffness / p.die.corner_mass).sqrt()
+}
+
+/// `ω_rock·Δt` against its limit: a property of the table and Δt, changed by a mid-roll edit.
+fn contact_mode_load(sim: &Simulation) -> f64 {
+    sim.params().stability_number() / CONTACT_MODE_LIMIT
+}
+
+/// How far the fastest corner moves in one step now, against the smallest half size.
+fn corner_travel_load(sim: &Simulation) -> f64 {
+    let p = sim.params();
+    let fastest = corner_velocities(sim)
+        .iter()
+        .map(|u| u.norm())
+        .fold(0.0, f64::max);
+    fastest * p.integrator.dt / (CORNER_TRAVEL_LIMIT * p.die.smallest_half_size())
+}
+
+/// `γ·u_z` of the corner falling fastest now, against `max(1, 2/(√(k/m)·Δt))`.
+fn damping_load(sim: &Simulation) -> f64 {
+    let p = sim.params();
+    let falling = corner_velocities(sim).iter().map(|u| -u.z).fold(0.0, f64::max);
+    let allowed = DAMPING_LIMIT.max(2.0 / (corner_frequency(sim) * p.integrator.dt));
+    p.ground.damping * falling / allowed
+}
+
+/// `μ·√(k/m)·Δt` against its limit.
+fn friction_load(sim: &Simulation) -> f64 {
+    let p = sim.params();
+    p.ground.friction * corner_frequency(sim) * p.integrator.dt / FRICTION_CHATTER_LIMIT
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn columns_are_distinct_and_carry_their_units() {
+        for (i, q) in QUANTITIES.iter().enumerate() {
+            assert!(
+                QUANTITIES[..i].iter().all(|o| o.column != q.column),
+                "{}",
+                q.column
+            );
+            let suffix = match q.unit {
+                "× limit" => "_load".to_string(),
+                u => format!("_{}", u.replace("/", "_per_")),
+            };
+            assert!(q.column.ends_with(&suffix), "{} lacks {suffix}", q.column);
+        }
+        assert_eq!(QUANTITIES[TOTAL_ENERGY].name, "total energy");
+    }
+}

@@ -1,0 +1,831 @@
+//! Every value of a setup as the tools around the model see it: its preset key with unit,
+//! range and default (read from the physics, which states them), what it means, how the
+//! explorer lists and steps it, whether it acts mid-roll, and how it is read and written.
+//!
+//! The physics knows its parameters as plain structs with their defaults
+//! ([`Params::DEFAULT`], [`InitialCondition::DEFAULT`], [`RandomRanges::DEFAULT`]) and
+//! ranges ([`params::limits`], [`initial::limits`]), and validates them itself; everything
+//! else here serves the layers above: the preset file's lines and comments, `--set`,
+//! basin-map axes and scan keys (this layer), the explorer's parameter list and the README's
+//! table of keys all come from [`ALL`]. It lives in the experiment layer, one above the
+//! physics, because scan keys and map axes are the first users of a row; the preset layer
+//! and the explorer above read it from here. Adding a scalar parameter is its field, default
+//! and range in the physics, its use there, and one row here.
+
+use dicesim_physics::initial::{self, YAW_PITCH_ROLL};
+use dicesim_physics::params::{self, CORNERS, XYZ};
+use dicesim_physics::{InitialCondition, Limits, ParamError, Params, RandomRanges};
+
+/// The section of a preset a value belongs to, which is also what changing it means.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Role {
+    Die,
+    Ground,
+    World,
+    Integrator,
+    /// The initial condition of "the" roll: changing it makes a roll of its own.
+    Initial,
+    /// How random rolls are drawn.
+    Random,
+}
+
+impl Role {
+    /// Every section, in the order a preset file lists them.
+    pub(crate) const ALL: [Role; 6] = [
+        Role::Die,
+        Role::Ground,
+        Role::World,
+        Role::Integrator,
+        Role::Initial,
+        Role::Random,
+    ];
+
+    /// The preset file's table name.
+    pub(crate) fn section(self) -> &'static str {
+        match self {
+            Role::Die => "die",
+            Role::Ground => "ground",
+            Role::World => "world",
+            Role::Integrator => "integrator",
+            Role::Initial => "initial",
+            Role::Random => "random",
+        }
+    }
+
+    /// The comment on the section's header line in a written preset.
+    pub(crate) fn comment(self) -> &'static str {
+        match self {
+            Role::Initial => "the initial condition of \"the\" roll",
+            Role::Random => "how random rolls are drawn (batch runs, \"random roll\")",
+            _ => "",
+        }
+    }
+}
+
+/// What kind of value a key holds, with its default.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Shape {
+    /// One number.
+    Number(f64),
+    /// Three numbers, named by these components in `--set` and scan keys.
+    Vector {
+        components: &'static [&'static str; 3],
+        default: [f64; 3],
+    },
+    /// `[low, high]`, each inside the range and `low <= high`.
+    Range([f64; 2]),
+    /// One of these names (the first listed is not necessarily the default).
+    Choice {
+        names: &'static [&'static str],
+        default: &'static str,
+    },
+    /// A non-negative integer.
+    Seed(u64),
+    Flag(bool),
+    /// One number per corner 1..8, named `1` … `8` in `--set` and scan keys.
+    PerCorner([f64; 8]),
+}
+
+/// How the explorer steps a value under ←/→: by a fixed amount, or by a factor for values
+/// that span decades (stiffness, Δt, mass), where equal ratios are the natural steps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Nudge {
+    Add { fine: f64, coarse: f64 },
+    Times { fine: f64, coarse: f64 },
+}
+
+/// A value as a setup stores it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Value {
+    Number(f64),
+    Vector([f64; 3]),
+    Range([f64; 2]),
+    Name(&'static str),
+    Seed(u64),
+    Flag(bool),
+    PerCorner([f64; 8]),
+    /// An optional value that is not given.
+    Absent,
+}
+
+/// Everything a setup holds, for reading any value by its row.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Setup {
+    pub params: Params,
+    pub initial: InitialCondition,
+    pub random: RandomRanges,
+}
+
+/// How a numeric value is read and changed by component (0 for a scalar): what `--set` on a
+/// component, a basin-map axis and the explorer use.
+#[derive(Debug, Clone, Copy)]
+pub struct Scan {
+    pub(crate) get: fn(&Params, &InitialCondition, usize) -> f64,
+    /// Not range-checked: see [`Spec::check_number`].
+    pub(crate) set: fn(&mut Params, &mut InitialCondition, usize, f64),
+}
+
+/// One row of the registry.
+#[derive(Debug, Clone, Copy)]
+pub struct Spec {
+    /// Dotted preset key, unit (`""` for dimensionless) and allowed range.
+    pub limits: Limits,
+    pub shape: Shape,
+    pub role: Role,
+    /// Its meaning, as the comment beside it in a written preset and in the README.
+    pub comment: &'static str,
+    /// The explorer's short labels, one per component; empty: not in the explorer's list.
+    pub labels: &'static [&'static str],
+    /// Where the explorer lists it (lower first).
+    pub list_position: u8,
+    pub nudge: Option<Nudge>,
+    /// Acts on the running roll at once (the explorer does not restart the roll).
+    pub acts_mid_roll: bool,
+    /// The value as stored (no conversion: a spin given as momentum reads as given).
+    pub read: fn(&Setup) -> Value,
+    /// Numeric values a scan or the explorer can change; `None` for the rest.
+    pub scan: Option<Scan>,
+}
+
+/// Rows are equal when they name the same key.
+impl PartialEq for Spec {
+    fn eq(&self, other: &Spec) -> bool {
+        self.key() == other.key()
+    }
+}
+
+impl Spec {
+    /// The dotted preset key.
+    pub fn key(&self) -> &'static str {
+        self.limits.key
+    }
+
+    /// The names of a vector's or per-corner row's components; none for other shapes.
+    pub(crate) fn components(&self) -> &'static [&'static str] {
+        match self.shape {
+            Shape::Vector { components, .. } => components,
+            Shape::PerCorner(_) => CORNERS,
+            _ => &[],
+        }
+    }
+
+    /// The default as a [`Value`].
+    #[cfg(test)]
+    pub(crate) fn default_value(&self) -> Value {
+        match self.shape {
+            Shape::Number(x) => Value::Number(x),
+            Shape::Vector { default, .. } => Value::Vector(default),
+            Shape::Range(r) => Value::Range(r),
+            Shape::Choice { default, .. } => Value::Name(default),
+            Shape::Seed(s) => Value::Seed(s),
+            Shape::Flag(b) => Value::Flag(b),
+            Shape::PerCorner(v) => Value::PerCorner(v),
+        }
+    }
+
+    /// Checks one number against the range, naming `key` in the error (NaN and infinities
+    /// are outside every range).
+    pub(crate) fn check_number(&self, key: &str, value: f64) -> Result<(), ParamError> {
+        self.limits.check_as(key, value)
+    }
+
+    /// Checks a stored value: every component in range, a range's low end not above its high
+    /// end. Errors name the component (`initial.velocity.y`, `random.height[1]`).
+    #[cfg(test)]
+    pub(crate) fn check(&self, value: Value) -> Result<(), ParamError> {
+        match value {
+            Value::Number(x) => self.limits.check(x),
+            Value::Vector(v) => self.limits.check_components(self.components(), &v),
+            Value::PerCorner(v) => self.limits.check_components(self.components(), &v),
+            Value::Range(r) => self.limits.check_range(r),
+            Value::Name(_) | Value::Seed(_) | Value::Flag(_) | Value::Absent => Ok(()),
+        }
+    }
+}
+
+/// The row of a dotted preset key.
+pub(crate) fn find(key: &str) -> Option<&'static Spec> {
+    ALL.iter().copied().find(|s| s.key() == key)
+}
+
+/// Reads and sets a number field of `Params` by component (scalars ignore the component).
+macro_rules! params_field {
+    ($($path:ident).+) => {
+        Some(Scan {
+            get: |p, _, _| p.$($path).+,
+            set: |p, _, _, v| p.$($path).+ = v,
+        })
+    };
+}
+
+pub const HALF_SIZES: Spec = Spec {
+    limits: params::limits::HALF_SIZES,
+    shape: Shape::Vector {
+        components: XYZ,
+        default: Params::DEFAULT.die.half_sizes,
+    },
+    role: Role::Die,
+    comment: "cm, half the side along x (faces 1, 6), y (2, 5), z (3, 4); a cube may give `half_size = a`",
+    labels: &["half size x", "half size y", "half size z"],
+    list_position: 16,
+    nudge: Some(Nudge::Add {
+        fine: 0.05,
+        coarse: 0.5,
+    }),
+    acts_mid_roll: false,
+    read: |s| Value::Vector(s.params.die.half_sizes),
+    scan: Some(Scan {
+        get: |p, _, i| p.die.half_sizes[i],
+        set: |p, _, i, v| p.die.half_sizes[i] = v,
+    }),
+};
+
+pub const CORNER_RADIUS: Spec = Spec {
+    limits: params::limits::CORNER_RADIUS,
+    shape: Shape::Number(Params::DEFAULT.die.corner_radius),
+    role: Role::Die,
+    comment: "cm, rounded corners and edges (0: sharp, the paper's); below the smallest half size",
+    labels: &["corner radius r"],
+    list_position: 17,
+    nudge: Some(Nudge::Add {
+        fine: 0.01,
+        coarse: 0.1,
+    }),
+    acts_mid_roll: false,
+    read: |s| Value::Number(s.params.die.corner_radius),
+    scan: params_field!(die.corner_radius),
+};
+
+pub const PIP_DIAMETER: Spec = Spec {
+    limits: params::limits::PIP_DIAMETER,
+    shape: Shape::Number(Params::DEFAULT.die.pip_diameter),
+    role: Role::Die,
+    comment: "cm, each pip's opening; the pips must lie apart on the flat of every face",
+    labels: &["pip diameter"],
+    list_position: 18,
+    nudge: Some(Nudge::Add {
+        fine: 0.01,
+        coarse: 0.1,
+    }),
+    acts_mid_roll: false,
+    read: |s| Value::Number(s.params.die.pip_diameter),
+    scan: params_field!(die.pip_diameter),
+};
+
+pub const PIP_DEPTH: Spec = Spec {
+    limits: params::limits::PIP_DEPTH,
+    shape: Shape::Number(Params::DEFAULT.die.pip_depth),
+    role: Role::Die,
+    comment: "cm, pips drilled as spherical caps this deep (0: none), at most half the diameter",
+    labels: &["pip depth"],
+    list_position: 19,
+    nudge: Some(Nudge::Add {
+        fine: 0.005,
+        coarse: 0.05,
+    }),
+    acts_mid_roll: false,
+    read: |s| Value::Number(s.params.die.pip_depth),
+    scan: params_field!(die.pip_depth),
+};
+
+pub const CORNER_MASS: Spec = Spec {
+    limits: params::limits::CORNER_MASS,
+    shape: Shape::Number(Params::DEFAULT.die.corner_mass),
+    role: Role::Die,
+    comment: "g, each of the 8 corners",
+    labels: &["corner mass m"],
+    list_position: 15,
+    nudge: Some(Nudge::Times {
+        fine: 1.1,
+        coarse: 2.0,
+    }),
+    acts_mid_roll: false,
+    read: |s| Value::Number(s.params.die.corner_mass),
+    scan: params_field!(die.corner_mass),
+};
+
+pub const EXTRA_CORNER_MASS: Spec = Spec {
+    limits: params::limits::EXTRA_CORNER_MASS,
+    shape: Shape::PerCorner(Params::DEFAULT.die.extra_corner_mass),
+    role: Role::Die,
+    comment: "g, extra point mass at corners 1..8: a loaded die (all zero: fair)",
+    labels: &[
+        "extra mass 1",
+        "extra mass 2",
+        "extra mass 3",
+        "extra mass 4",
+        "extra mass 5",
+        "extra mass 6",
+        "extra mass 7",
+        "extra mass 8",
+    ],
+    list_position: 20,
+    nudge: Some(Nudge::Add {
+        fine: 0.1,
+        coarse: 1.0,
+    }),
+    acts_mid_roll: false,
+    read: |s| Value::PerCorner(s.params.die.extra_corner_mass),
+    scan: Some(Scan {
+        get: |p, _, i| p.die.extra_corner_mass[i],
+        set: |p, _, i, v| p.die.extra_corner_mass[i] = v,
+    }),
+};
+
+pub const STIFFNESS: Spec = Spec {
+    limits: params::limits::STIFFNESS,
+    shape: Shape::Number(Params::DEFAULT.ground.stiffness),
+    role: Role::Ground,
+    comment: "dyn/cm per corner (k)",
+    labels: &["stiffness k"],
+    list_position: 0,
+    nudge: Some(Nudge::Times {
+        fine: 1.1,
+        coarse: 2.0,
+    }),
+    acts_mid_roll: true,
+    read: |s| Value::Number(s.params.ground.stiffness),
+    scan: params_field!(ground.stiffness),
+};
+
+pub const DAMPING: Spec = Spec {
+    limits: params::limits::DAMPING,
+    shape: Shape::Number(Params::DEFAULT.ground.damping),
+    role: Role::Ground,
+    comment: "s/cm (γ)",
+    labels: &["damping γ"],
+    list_position: 1,
+    nudge: Some(Nudge::Add {
+        fine: 0.0005,
+        coarse: 0.005,
+    }),
+    acts_mid_roll: true,
+    read: |s| Value::Number(s.params.ground.damping),
+    scan: params_field!(ground.damping),
+};
+
+pub const FRICTION: Spec = Spec {
+    limits: params::limits::FRICTION,
+    shape: Shape::Number(Params::DEFAULT.ground.friction),
+    role: Role::Ground,
+    comment: "kinetic coefficient (μ)",
+    labels: &["friction μ"],
+    list_position: 2,
+    nudge: Some(Nudge::Add {
+        fine: 0.05,
+        coarse: 0.5,
+    }),
+    acts_mid_roll: true,
+    read: |s| Value::Number(s.params.ground.friction),
+    scan: params_field!(ground.friction),
+};
+
+pub(crate) const FRICTION_LAW: Spec = Spec {
+    limits: Limits {
+        key: "ground.friction_law",
+        unit: "",
+        min: 0.0,
+        max: 0.0,
+    },
+    shape: Shape::Choice {
+        names: &["per-corner", "whole-die-norm"],
+        default: Params::DEFAULT.ground.friction_law.name(),
+    },
+    role: Role::Ground,
+    comment: "\"per-corner\" (paper, eq. 15) or \"whole-die-norm\" (authors' program)",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: true,
+    read: |s| Value::Name(s.params.ground.friction_law.name()),
+    scan: None,
+};
+
+pub const GRAVITY: Spec = Spec {
+    limits: params::limits::GRAVITY,
+    shape: Shape::Number(Params::DEFAULT.world.gravity),
+    role: Role::World,
+    comment: "cm/s², downwards",
+    labels: &["gravity g"],
+    list_position: 14,
+    nudge: Some(Nudge::Add {
+        fine: 10.0,
+        coarse: 100.0,
+    }),
+    acts_mid_roll: false,
+    read: |s| Value::Number(s.params.world.gravity),
+    scan: params_field!(world.gravity),
+};
+
+pub const DT: Spec = Spec {
+    limits: params::limits::DT,
+    shape: Shape::Number(Params::DEFAULT.integrator.dt),
+    role: Role::Integrator,
+    comment: "s",
+    labels: &["time step Δt"],
+    list_position: 13,
+    nudge: Some(Nudge::Times {
+        fine: 1.1,
+        coarse: 2.0,
+    }),
+    acts_mid_roll: false,
+    read: |s| Value::Number(s.params.integrator.dt),
+    scan: params_field!(integrator.dt),
+};
+
+pub const STOP_ENERGY_FRACTION: Spec = Spec {
+    limits: params::limits::STOP_ENERGY_FRACTION,
+    shape: Shape::Number(Params::DEFAULT.integrator.stop_energy_fraction),
+    role: Role::Integrator,
+    comment: "a roll ends below this share of the edge-tipping energy",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: false,
+    read: |s| Value::Number(s.params.integrator.stop_energy_fraction),
+    scan: params_field!(integrator.stop_energy_fraction),
+};
+
+pub const MAX_TIME: Spec = Spec {
+    limits: params::limits::MAX_TIME,
+    shape: Shape::Number(Params::DEFAULT.integrator.max_time),
+    role: Role::Integrator,
+    comment: "s of simulated time; past it the roll \"did not settle\"",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: false,
+    read: |s| Value::Number(s.params.integrator.max_time),
+    scan: params_field!(integrator.max_time),
+};
+
+pub(crate) const STOP_ENERGY: Spec = Spec {
+    limits: Limits {
+        key: "integrator.stop_energy",
+        unit: "",
+        min: 0.0,
+        max: 0.0,
+    },
+    shape: Shape::Choice {
+        names: &["rigid-body", "point-masses"],
+        default: Params::DEFAULT.integrator.stop_energy.name(),
+    },
+    role: Role::Integrator,
+    comment: "\"rigid-body\" (docs/model.md) or \"point-masses\" (the authors' program)",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: false,
+    read: |s| Value::Name(s.params.integrator.stop_energy.name()),
+    scan: None,
+};
+
+pub const HEIGHT: Spec = Spec {
+    limits: initial::limits::HEIGHT,
+    shape: Shape::Number(InitialCondition::DEFAULT.height),
+    role: Role::Initial,
+    comment: "cm, centre of mass above the ground",
+    labels: &["drop height"],
+    list_position: 3,
+    nudge: Some(Nudge::Add {
+        fine: 0.5,
+        coarse: 5.0,
+    }),
+    acts_mid_roll: false,
+    read: |s| Value::Number(s.initial.height),
+    scan: Some(Scan {
+        get: |_, ic, _| ic.height,
+        set: |_, ic, _, v| ic.height = v,
+    }),
+};
+
+pub const VELOCITY: Spec = Spec {
+    limits: initial::limits::VELOCITY,
+    shape: Shape::Vector {
+        components: XYZ,
+        default: InitialCondition::DEFAULT.velocity,
+    },
+    role: Role::Initial,
+    comment: "cm/s, centre of mass",
+    labels: &["velocity vx", "velocity vy", "velocity vz"],
+    list_position: 7,
+    nudge: Some(Nudge::Add {
+        fine: 5.0,
+        coarse: 50.0,
+    }),
+    acts_mid_roll: false,
+    read: |s| Value::Vector(s.initial.velocity),
+    scan: Some(Scan {
+        get: |_, ic, i| ic.velocity[i],
+        set: |_, ic, i, v| ic.velocity[i] = v,
+    }),
+};
+
+/// Spin is stated one way in an initial condition: reading a component of either form
+/// converts with the die's inertia, and setting one first restates the spin in that form, so
+/// the other two components keep their physical value.
+pub const ANGULAR_VELOCITY: Spec = Spec {
+    limits: initial::limits::ANGULAR_VELOCITY,
+    shape: Shape::Vector {
+        components: XYZ,
+        default: InitialCondition::DEFAULT.angular_velocity,
+    },
+    role: Role::Initial,
+    comment: "rad/s, world frame",
+    labels: &["spin ωx", "spin ωy", "spin ωz"],
+    list_position: 4,
+    nudge: Some(Nudge::Add {
+        fine: 1.0,
+        coarse: 10.0,
+    }),
+    acts_mid_roll: false,
+    read: |s| Value::Vector(s.initial.angular_velocity),
+    scan: Some(Scan {
+        get: |p, ic, i| ic.angular_velocity_for(p.inertia())[i],
+        set: |p, ic, i, v| {
+            let mut w: [f64; 3] = ic.angular_velocity_for(p.inertia()).into();
+            w[i] = v;
+            ic.angular_velocity = w;
+            ic.angular_momentum = None;
+        },
+    }),
+};
+
+pub const ANGULAR_MOMENTUM: Spec = Spec {
+    limits: initial::limits::ANGULAR_MOMENTUM,
+    shape: Shape::Vector {
+        components: XYZ,
+        default: [0.0; 3],
+    },
+    role: Role::Initial,
+    comment: "g·cm²/s, world frame (L = I·ω); given instead of angular_velocity",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: false,
+    read: |s| s.initial.angular_momentum.map_or(Value::Absent, Value::Vector),
+    scan: Some(Scan {
+        get: |p, ic, i| ic.angular_momentum_for(p.inertia())[i],
+        set: |p, ic, i, v| {
+            let mut l: [f64; 3] = ic.angular_momentum_for(p.inertia()).into();
+            l[i] = v;
+            ic.angular_momentum = Some(l);
+        },
+    }),
+};
+
+pub const ORIENTATION: Spec = Spec {
+    limits: initial::limits::ORIENTATION,
+    shape: Shape::Vector {
+        components: YAW_PITCH_ROLL,
+        default: InitialCondition::DEFAULT.orientation,
+    },
+    role: Role::Initial,
+    comment: "degrees: yaw (z), pitch (y), roll (x), applied in that order",
+    labels: &["yaw", "pitch", "roll"],
+    list_position: 10,
+    nudge: Some(Nudge::Add {
+        fine: 5.0,
+        coarse: 45.0,
+    }),
+    acts_mid_roll: false,
+    read: |s| Value::Vector(s.initial.orientation),
+    scan: Some(Scan {
+        get: |_, ic, i| ic.orientation[i],
+        set: |_, ic, i, v| ic.orientation[i] = v,
+    }),
+};
+
+pub(crate) const SEED: Spec = Spec {
+    limits: Limits {
+        key: "random.seed",
+        unit: "",
+        min: 0.0,
+        max: 0.0,
+    },
+    shape: Shape::Seed(RandomRanges::DEFAULT.seed),
+    role: Role::Random,
+    comment: "roll i's draw depends on (seed, i) alone",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: false,
+    read: |s| Value::Seed(s.random.seed),
+    scan: None,
+};
+
+/// A random range's bounds are checked against the initial condition's range.
+const fn random_range(limits: Limits, default: [f64; 2], comment: &'static str) -> Spec {
+    Spec {
+        limits,
+        shape: Shape::Range(default),
+        role: Role::Random,
+        comment,
+        labels: &[],
+        list_position: u8::MAX,
+        nudge: None,
+        acts_mid_roll: false,
+        read: |_| Value::Absent,
+        scan: None,
+    }
+}
+
+pub(crate) const RANDOM_HEIGHT: Spec = Spec {
+    read: |s| Value::Range(s.random.height),
+    ..random_range(
+        initial::limits::RANDOM_HEIGHT,
+        RandomRanges::DEFAULT.height,
+        "cm, uniform in [low, high]",
+    )
+};
+
+pub(crate) const RANDOM_VELOCITY: Spec = Spec {
+    read: |s| Value::Range(s.random.velocity),
+    ..random_range(
+        initial::limits::RANDOM_VELOCITY,
+        RandomRanges::DEFAULT.velocity,
+        "cm/s, each component uniform in [low, high]",
+    )
+};
+
+pub(crate) const RANDOM_ANGULAR_VELOCITY: Spec = Spec {
+    read: |s| Value::Range(s.random.angular_velocity),
+    ..random_range(
+        initial::limits::RANDOM_ANGULAR_VELOCITY,
+        RandomRanges::DEFAULT.angular_velocity,
+        "rad/s, each component uniform in [low, high]",
+    )
+};
+
+pub(crate) const RANDOM_ORIENTATION: Spec = Spec {
+    limits: Limits {
+        key: "random.random_orientation",
+        unit: "",
+        min: 0.0,
+        max: 0.0,
+    },
+    shape: Shape::Flag(RandomRanges::DEFAULT.random_orientation),
+    role: Role::Random,
+    comment: "true: orientation uniform over all rotations",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: false,
+    read: |s| Value::Flag(s.random.random_orientation),
+    scan: None,
+};
+
+/// Every value of a setup, in the order a preset file lists them.
+pub static ALL: [&Spec; 25] = [
+    &HALF_SIZES,
+    &CORNER_RADIUS,
+    &PIP_DIAMETER,
+    &PIP_DEPTH,
+    &CORNER_MASS,
+    &EXTRA_CORNER_MASS,
+    &STIFFNESS,
+    &DAMPING,
+    &FRICTION,
+    &FRICTION_LAW,
+    &GRAVITY,
+    &DT,
+    &STOP_ENERGY_FRACTION,
+    &MAX_TIME,
+    &STOP_ENERGY,
+    &HEIGHT,
+    &VELOCITY,
+    &ANGULAR_VELOCITY,
+    &ANGULAR_MOMENTUM,
+    &ORIENTATION,
+    &SEED,
+    &RANDOM_HEIGHT,
+    &RANDOM_VELOCITY,
+    &RANDOM_ANGULAR_VELOCITY,
+    &RANDOM_ORIENTATION,
+];
+
+/// A number in a text table: as written in a preset, without a trailing `.0`.
+#[cfg(test)]
+fn number_text(x: f64) -> String {
+    format!("{x}")
+}
+
+/// The README's table of preset keys, one line per row: key, unit, allowed range, default
+/// and meaning. A test keeps the README's copy equal to this.
+#[cfg(test)]
+pub(crate) fn markdown_table() -> String {
+    let mut out = String::from("| key | unit | allowed | default | meaning |\n|---|---|---|---|---|\n");
+    for spec in ALL {
+        let (allowed, default) = match spec.shape {
+            Shape::Number(x) => (range_text(&spec.limits), number_text(x)),
+            Shape::Vector { components, default } => (
+                format!("{} (each of {})", range_text(&spec.limits), components.join(", ")),
+                list_text(&default),
+            ),
+            Shape::Range(r) => (
+                format!("low ≤ high, each {}", range_text(&spec.limits)),
+                list_text(&r),
+            ),
+            Shape::Choice { names, default } => (
+                names
+                    .iter()
+                    .map(|n| format!("`\"{n}\"`"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                format!("`\"{default}\"`"),
+            ),
+            Shape::Seed(s) => ("0 to 2⁶³ − 1".to_string(), s.to_string()),
+            Shape::Flag(b) => ("`true`, `false`".to_string(), format!("`{b}`")),
+            Shape::PerCorner(v) => (
+                format!("{} (each of corners 1 to 8)", range_text(&spec.limits)),
+                list_text(&v),
+            ),
+        };
+        let default = if spec.key() == ANGULAR_MOMENTUM.key() {
+            "not given".to_string()
+        } else {
+            default
+        };
+        let unit = if spec.limits.unit.is_empty() {
+            "–"
+        } else {
+            spec.limits.unit
+        };
+        let meaning = spec.comment.replace('|', "\\|");
+        out.push_str(&format!(
+            "| `{}` | {unit} | {allowed} | {default} | {meaning} |\n",
+            spec.key()
+        ));
+    }
+    out
+}
+
+#[cfg(test)]
+fn range_text(l: &Limits) -> String {
+    format!("{} to {}", number_text(l.min), number_text(l.max))
+}
+
+#[cfg(test)]
+fn list_text(values: &[f64]) -> String {
+    let items: Vec<String> = values.iter().map(|&x| number_text(x)).collect();
+    format!("[{}]", items.join(", "))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keys_are_unique_and_in_section_order() {
+        for (i, a) in ALL.iter().enumerate() {
+            assert!(
+                a.key().starts_with(&format!("{}.", a.role.section())),
+                "{} is listed under {:?}",
+                a.key(),
+                a.role
+            );
+            for b in &ALL[i + 1..] {
+                assert_ne!(a.key(), b.key());
+            }
+        }
+        let roles: Vec<usize> = ALL
+            .iter()
+            .map(|s| Role::ALL.iter().position(|r| *r == s.role).unwrap())
+            .collect();
+        assert!(roles.is_sorted(), "rows grouped by section, in file order");
+    }
+
+    #[test]
+    fn every_default_is_what_a_default_setup_holds() {
+        let setup = Setup::default();
+        for spec in ALL {
+            let expected = match spec.default_value() {
+                _ if spec.key() == ANGULAR_MOMENTUM.key() => Value::Absent,
+                v => v,
+            };
+            assert_eq!((spec.read)(&setup), expected, "{}", spec.key());
+            spec.check(expected).unwrap();
+        }
+        setup.params.validate().unwrap();
+        setup.initial.validate().unwrap();
+        setup.random.validate().unwrap();
+    }
+
+    #[test]
+    fn explorer_rows_have_a_label_per_component_and_a_step() {
+        for spec in ALL.iter().filter(|s| !s.labels.is_empty()) {
+            let components = spec.components().len().max(1);
+            assert_eq!(spec.labels.len(), components, "{}", spec.key());
+            assert!(spec.nudge.is_some() && spec.scan.is_some(), "{}", spec.key());
+        }
+    }
+
+    #[test]
+    fn the_preset_docs_table_is_the_registrys() {
+        let table = markdown_table();
+        assert!(
+            include_str!("../../../docs/presets.md").contains(&table),
+            "docs/presets.md's table of preset keys differs from the registry; it should read:\n{table}"
+        );
+    }
+}
