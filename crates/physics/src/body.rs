@@ -126,7 +126,12 @@ pub fn pips(die: &Die) -> Vec<Pip> {
 /// lowest point is always on one of these spheres.
 pub fn contact_sphere_centres(die: &Die) -> [Vector3<f64>; 8] {
     let r = die.corner_radius;
-    let b = die.half_sizes.map(|a| a - r);
+    sphere_centres(die.half_sizes.map(|a| a - r))
+}
+
+/// cm, the corners 1..8 of the box of half sizes `flat` (`a − r`) the corner spheres sit on.
+pub(crate) fn sphere_centres(flat: [f64; 3]) -> [Vector3<f64>; 8] {
+    let b = flat;
     CORNER_SIGNS.map(|s| Vector3::new(s[0] * b[0], s[1] * b[1], s[2] * b[2]))
 }
 

@@ -90,7 +90,8 @@ pub fn roll_one_by_one(
 #[cfg(target_arch = "x86_64")]
 mod avx2 {
     use super::*;
-    use crate::kernel::{Kernel, Lane, NoHook, lane3};
+    use crate::kernel::{Kernel, NoHook, lane3};
+    use crate::lane::Lane;
     use crate::sim::Status;
     use nalgebra::Vector3;
     use std::arch::x86_64::*;
