@@ -251,7 +251,7 @@ impl Params {
         Body::new(self).mass()
     }
 
-    /// g·cm², one moment of inertia for the whole body ([`Body::mean_inertia`]): what
+    /// g·cm², one moment of inertia for the whole body: what
     /// converts a spin stated as ω into L and back where no orientation is at hand (preset
     /// files, `--set`, the explorer's spin fields). Bitwise 16/3 at the defaults.
     pub fn inertia(&self) -> f64 {

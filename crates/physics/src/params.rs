@@ -6,7 +6,7 @@
 //! deserialises straight into them; every struct denies unknown keys and fills missing ones
 //! with the paper's defaults.
 //!
-//! Data and their validation only: [`Die::kind`] says which body a die is, and what follows
+//! Data and their validation only: `Die::kind` says which body a die is, and what follows
 //! from that (its mass, inertia, edge energy, stopping rule, resting depth) is the body
 //! model's (model.rs).
 
