@@ -7,8 +7,8 @@
 //! +0.0 (a corner above the ground, a roll in flight) the kernel selects +0.0 rather than
 //! computing a product that might be −0.0. So a lane of the vector does the scalar roll's
 //! arithmetic operation for operation, and both reproduce the authors' reference
-//! trajectories (tests/data/reference/README.md §2 and §9: sums in corner order, divisions
-//! where they divided).
+//! trajectories (crates/physics/tests/data/reference/README.md §2 and §9: sums in corner
+//! order, divisions where they divided).
 //!
 //! Two stages run per roll in scalar code whatever the width, each for a reason given where
 //! it happens: the spin (libm's `sin`/`cos`, [`super::spin`]) and, only for a loaded die

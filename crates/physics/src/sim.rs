@@ -1,8 +1,9 @@
 //! The state of a rolling die and the paper's semi-implicit Euler step (docs/model.md).
 //!
-//! The arithmetic follows the authors' program operation by operation (tests/data/reference/README.md §2
-//! and §9: sums in corner order, divisions where they divided, Octave's scaled 2-norm and
-//! `pow(x, 2)`), so the reference trajectories are reproduced to rounding, not merely in law.
+//! The arithmetic follows the authors' program operation by operation
+//! (crates/physics/tests/data/reference/README.md §2 and §9: sums in corner order, divisions
+//! where they divided, Octave's scaled 2-norm and `pow(x, 2)`), so the reference
+//! trajectories are reproduced to rounding, not merely in law.
 
 use super::body::face_most_nearly_up;
 use super::energy::Energy;
