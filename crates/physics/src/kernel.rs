@@ -187,9 +187,10 @@ pub(crate) struct Constants<L: Lane> {
     pub(crate) corner_masses: [L; 8],
     pub(crate) gravity: L,
     pub(crate) loaded_mass_gravity_half_size: L,
-    /// A loaded die's inertia tensor: the uniform cube's isotropic inertia `I_u` (g·cm²),
-    /// its mass `M_u` (g) and the extra mass at each corner (g); a fair die's own values
-    /// (no extra mass) in a fair lane, whose tensor is never used.
+    /// g·cm², the body's one isotropic inertia ([`Body::mean_inertia`]): the fair die's
+    /// `ω = L/I` divides by it in both engines. With the uniform cube's mass `M_u` (g) and
+    /// the extra mass at each corner (g) it also builds a loaded die's tensor, as `I_u`; a
+    /// fair die's own values (no extra mass) in a fair lane, whose tensor is never used.
     pub(crate) uniform_inertia: L,
     pub(crate) uniform_mass: L,
     pub(crate) extra_masses: [L; 8],
@@ -315,6 +316,8 @@ pub(crate) struct Kernel<L: Lane> {
     /// depth and force in every lane, and the sums skip it (see [`Kernel::step`]).
     pub(crate) touching_corners: u8,
     pub(crate) c: Constants<L>,
+    /// Each lane's body: what the end-of-step test asks for the stopping rule of the face
+    /// down, and the outcome rule asks at the end.
     pub(crate) bodies: L::PerLane<Body>,
 }
 

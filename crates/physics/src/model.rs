@@ -5,9 +5,11 @@
 //!
 //! A die is one of three bodies. The paper's sharp cube keeps the paper's arithmetic bit
 //! for bit (cube.rs); a loaded cube is that cube with extra corner masses, whose inertia
-//! turns with it (mass.rs); any other die is a general body (shape.rs). [`Die::kind`] tells
-//! them apart, and [`Body::new`] is where the answer is acted on: every other question about
-//! the body is asked of a [`Body`], which answers for its own kind.
+//! turns with it (mass.rs); any other die is a general body (shape.rs). `Die::kind`
+//! (params.rs) tells them apart from the die's data; [`Body::new`] is the one place that
+//! acts on the answer (the validation asks it too, to refuse the authors' point-mass energy
+//! for a general body), and every other question about the body is asked of a [`Body`],
+//! which answers for its own kind.
 //!
 //! The quantities the parameters imply about their body ([`Params::total_mass`],
 //! [`Params::inertia`] …) and where a start places it ([`InitialCondition::check_clear_of_table`])
@@ -400,7 +402,7 @@ mod tests {
         assert_eq!(p.edge_energy(), shape.edge_energy);
         // Rounded corners lower the pass and lighten the body.
         assert!(p.edge_energy() < Params::default().edge_energy());
-        assert!(p.total_mass() == 8.0, "undrilled: still 8·m");
+        assert_eq!(p.total_mass(), 8.0, "undrilled: still 8·m");
         assert!(p.inertia() < 16.0 / 3.0);
         assert_eq!(body.reference_height(), 1.0);
     }
