@@ -87,7 +87,7 @@ fn every_link_and_named_document_resolves() {
         for doc in [
             "docs/model.md",
             "docs/presets.md",
-            "tests/data/reference/README.md",
+            "crates/physics/tests/data/reference/README.md",
         ] {
             if text.contains(doc) {
                 assert!(

@@ -751,7 +751,7 @@ prop_compose! {
             orientation,
         };
         // A start inside the table is refused: lift it clear, as a valid preset must be.
-        let lowest = -p.initial.lowest_corner_offset(&p.die) - p.params().resting_depth();
+        let lowest = -p.initial.lowest_corner_offset(&p.params()) - p.params().resting_depth();
         p.initial.height = p.initial.height.max(lowest);
         p.random.seed = random.0;
         (p.random.height, p.random.velocity, p.random.angular_velocity) = (random.1, random.2, random.3);

@@ -5,7 +5,7 @@
 //! predictor must rarely call an unstable set stable, and an unstable roll's stated reason
 //! must name a limit the set really passes. The figures are printed (`--nocapture`).
 
-use dicesim_physics::stopping::resting_depth_on_face;
+use dicesim_physics::resting_depth_on_face;
 use dicesim_physics::{
     FrictionLaw, InitialCondition, Limits, Params, Simulation, Stability, Status, StopEnergy, UnstableReason,
 };
@@ -79,7 +79,7 @@ fn draw(u: &[f64; 24]) -> (Params, InitialCondition) {
         })
     };
     // From just clear of the table to a hundred half sizes above it.
-    let clearance = -ic.lowest_corner_offset(&p.die);
+    let clearance = -ic.lowest_corner_offset(&p);
     let lift = p.die.half_size() * (10f64.ln() * (-2.0 + 4.0 * u[23])).exp();
     ic.height = (clearance + lift).min(HEIGHT.limits.max);
     (p, ic)

@@ -2,7 +2,7 @@
 
 use super::{CliError, SetupArgs};
 use clap::Args;
-use dicesim_physics::stopping::why_it_cannot_settle;
+use dicesim_physics::why_it_cannot_settle;
 use dicesim_physics::{Simulation, Stability, Status, UnstableReason};
 use serde_json::json;
 use std::io::Write;

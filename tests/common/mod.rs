@@ -1,7 +1,7 @@
 //! Helpers shared by the integration tests: reading the reference CSVs, running the binary.
 #![allow(dead_code)]
 
-use dicesim_physics::{FrictionLaw, InitialCondition, Params, StopEnergy};
+use dicesim_physics::InitialCondition;
 use std::collections::HashMap;
 use std::path::PathBuf;
 
@@ -15,7 +15,7 @@ pub struct Table {
 impl Table {
     pub fn load(name: &str) -> Table {
         let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-            .join("tests/data/reference")
+            .join("crates/physics/tests/data/reference")
             .join(name);
         let fail = |e: &dyn std::fmt::Display| -> ! { panic!("{}: {e}", path.display()) };
         let mut reader = csv::Reader::from_path(&path).unwrap_or_else(|e| fail(&e));
@@ -55,19 +55,6 @@ pub fn reference_initial(table: &Table, row: &[f64]) -> InitialCondition {
         angular_momentum: Some(table.vec3(row, "L_phys")),
         ..InitialCondition::default()
     }
-}
-
-/// Parameters of a reference variant: `original` (whole-die-norm friction) or `paper`.
-/// Both files were produced with the point-mass stop energy.
-pub fn reference_params(variant: &str) -> Params {
-    let mut p = Params::default();
-    p.ground.friction_law = match variant {
-        "original" => FrictionLaw::WholeDieNorm,
-        "paper" => FrictionLaw::PerCorner,
-        other => panic!("unknown variant {other}"),
-    };
-    p.integrator.stop_energy = StopEnergy::PointMasses;
-    p
 }
 
 /// Runs the `dicesim` binary in `dir`, with a user preset folder that does not exist, so

@@ -1,7 +1,7 @@
 //! Which engine rolls a batch or a map, and rolling a run of setups with it.
 //!
-//! Both engines give every roll bit for bit the same result (tests/lanes.rs), so the choice
-//! changes speed only.
+//! Both engines give every roll bit for bit the same result (crates/physics/tests/physics/lanes.rs),
+//! so the choice changes speed only.
 
 use crate::record::RollRecord;
 use dicesim_physics::lanes::{LaneResult, lanes_available, roll_in_lanes, roll_one_by_one};

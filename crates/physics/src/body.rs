@@ -80,28 +80,19 @@ pub fn pip_centres(half_sizes: [f64; 3], face: u8) -> Vec<[f64; 3]> {
 
 /// One drilled pip: a spherical-cap hole opening in a face (docs/model.md, "Real dice").
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Pip {
-    /// 1..6.
-    pub face: u8,
+pub(crate) struct Pip {
     /// cm, body frame about the geometric centre: the centre of the opening, in the face.
-    pub centre: [f64; 3],
+    pub(crate) centre: [f64; 3],
     /// The face's outward normal.
-    pub normal: [f64; 3],
+    pub(crate) normal: [f64; 3],
     /// cm, the opening's radius (half `die.pip_diameter`).
-    pub radius: f64,
+    pub(crate) radius: f64,
     /// cm, from the face to the bottom of the hole.
-    pub depth: f64,
-}
-
-impl Pip {
-    /// cm, the radius of the sphere the cap is cut from: `(ρ² + h²)/(2h)`.
-    pub fn sphere_radius(&self) -> f64 {
-        (self.radius * self.radius + self.depth * self.depth) / (2.0 * self.depth)
-    }
+    pub(crate) depth: f64,
 }
 
 /// Every pip of `die` (21, faces 1..6 in order), or none for an undrilled die.
-pub fn pips(die: &Die) -> Vec<Pip> {
+pub(crate) fn pips(die: &Die) -> Vec<Pip> {
     if !die.is_drilled() {
         return Vec::new();
     }
@@ -110,7 +101,6 @@ pub fn pips(die: &Die) -> Vec<Pip> {
             pip_centres(die.half_sizes, face)
                 .into_iter()
                 .map(move |centre| Pip {
-                    face,
                     centre,
                     normal: FACE_NORMALS[face as usize - 1],
                     radius: 0.5 * die.pip_diameter,
@@ -126,7 +116,12 @@ pub fn pips(die: &Die) -> Vec<Pip> {
 /// lowest point is always on one of these spheres.
 pub fn contact_sphere_centres(die: &Die) -> [Vector3<f64>; 8] {
     let r = die.corner_radius;
-    let b = die.half_sizes.map(|a| a - r);
+    sphere_centres(die.half_sizes.map(|a| a - r))
+}
+
+/// cm, the corners 1..8 of the box of half sizes `flat` (`a − r`) the corner spheres sit on.
+pub(crate) fn sphere_centres(flat: [f64; 3]) -> [Vector3<f64>; 8] {
+    let b = flat;
     CORNER_SIGNS.map(|s| Vector3::new(s[0] * b[0], s[1] * b[1], s[2] * b[2]))
 }
 
@@ -155,7 +150,7 @@ pub(crate) fn face_of_highest_corners(corner_heights: &[f64; 8]) -> Option<u8> {
 /// The face whose outward normal points most nearly up, from the world corner offsets.
 ///
 /// Mid-flight the 4 highest corners often do not form a face; this rule always answers, and
-/// agrees with [`face_of_highest_corners`] at rest.
+/// agrees with the outcome rule (the face of the 4 highest corners) at rest.
 pub fn face_most_nearly_up(corner_offsets: &[Vector3<f64>; 8]) -> u8 {
     let up = face_normal_heights(corner_offsets);
     let mut best = 0;

@@ -1,9 +1,9 @@
-//! The initial condition of a roll (the `[initial]` section of a preset).
+//! The initial condition of a roll (the `[initial]` section of a preset) and the ranges
+//! random rolls are drawn from: data and their validation. Where a start puts the die's
+//! corners, and whether that is clear of the table, depends on the body and is the body
+//! model's (model.rs).
 
-use super::body::{body_corner_offsets, contact_sphere_centres};
-use super::params::Die;
 use super::params::{Limits, ParamError, XYZ};
-use super::shape::mass_properties;
 use nalgebra::{Rotation3, Vector3};
 use serde::{Deserialize, Serialize};
 
@@ -105,32 +105,6 @@ impl InitialCondition {
             limits::ANGULAR_MOMENTUM.check_components(XYZ, l)?;
         }
         limits::ORIENTATION.check_components(YAW_PITCH_ROLL, &self.orientation)
-    }
-
-    /// cm, the lowest point's height relative to the centre at `t = 0` (negative), with
-    /// the corners placed exactly as the simulation places them (a general body's lowest
-    /// contact sphere's bottom, about its centre of mass).
-    pub fn lowest_corner_offset(&self, die: &Die) -> f64 {
-        if !die.is_cube() {
-            let rotation = self.rotation();
-            let c = mass_properties(die).centre_of_mass;
-            return contact_sphere_centres(die)
-                .iter()
-                .map(|x| (rotation * (x - c)).z - die.corner_radius)
-                .fold(f64::INFINITY, f64::min);
-        }
-        let corners = body_corner_offsets(die.half_size());
-        let rotation = self.rotation();
-        corners
-            .iter()
-            .map(|r| {
-                if self.orientation == [0.0; 3] {
-                    r.z
-                } else {
-                    (rotation * r).z
-                }
-            })
-            .fold(f64::INFINITY, f64::min)
     }
 
     /// g·cm²/s, the initial angular momentum for a body of moment of inertia `inertia`.

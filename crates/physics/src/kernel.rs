@@ -7,22 +7,21 @@
 //! +0.0 (a corner above the ground, a roll in flight) the kernel selects +0.0 rather than
 //! computing a product that might be −0.0. So a lane of the vector does the scalar roll's
 //! arithmetic operation for operation, and both reproduce the authors' reference
-//! trajectories (tests/data/reference/README.md §2 and §9: sums in corner order, divisions
-//! where they divided).
+//! trajectories (crates/physics/tests/data/reference/README.md §2 and §9: sums in corner
+//! order, divisions where they divided).
 //!
 //! Two stages run per roll in scalar code whatever the width, each for a reason given where
 //! it happens: the spin (libm's `sin`/`cos`, [`super::spin`]) and, only for a loaded die
 //! near rest, the stopping rule of the face it lies on.
 
-use super::body::body_corner_offsets;
-use super::initial::{InitialCondition, limits};
-pub use super::lane::Lane;
-use super::lane::set_bits;
-use super::mass::{InertiaTensor, LoadedMass};
-use super::params::{FrictionLaw, Limits, ParamError, Params, StopEnergy};
-use super::shape::{self, Shape};
+use super::initial::InitialCondition;
+use super::lane::{Lane, set_bits};
+use super::mass::InertiaTensor;
+use super::model::Body;
+use super::params::{FrictionLaw, Params, StopEnergy};
+use super::shape;
 use super::spin::{spin, spin_lanes, step_rotation};
-use super::stopping::StopRule;
+use super::stopping::settles;
 use nalgebra::{Matrix3, Vector3};
 
 /// Where a corner's contact force acts, relative to the centre of mass: a rounded body's
@@ -139,62 +138,22 @@ pub(crate) struct Ends<M> {
     pub(crate) timeout: M,
 }
 
-/// Per lane, what the scalar engine's spin and the stopping rule of a die other than the
-/// fair cube need (the lane engine's spin reads the same inertia and Δt from [`Constants`]).
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Body {
-    /// g·cm², the fair die's isotropic inertia.
+/// ω and the step rotation of one roll from its `spin_input`: the angular momentum of a
+/// fair die (ω = L/I with its isotropic inertia, g·cm²), or the ω of a body whose inertia
+/// turns with it (a loaded die's I(t)⁻¹·L, a general body's R·I⁻¹·Rᵀ·L), which
+/// [`Kernel::respin`] computes in every lane at once and the rotation is built from as it
+/// is (the program before the shared kernel divided it by an inertia of 1, which is exact).
+#[inline(always)]
+fn scalar_spin(
+    spin_input: &Vector3<f64>,
     inertia: f64,
-    /// s.
     dt: f64,
-    /// A loaded cube's mass model; `None` for any other die.
-    loaded: Option<LoadedMass>,
-    /// A general body (any die but the paper's sharp cube without pips); `None` for the
-    /// cube, loaded or not, whose path it never touches.
-    shape: Option<Shape>,
-}
-
-impl Body {
-    pub(crate) fn new(params: &Params) -> Body {
-        let cube = params.die.is_cube();
-        Body {
-            inertia: params.inertia(),
-            dt: params.integrator.dt,
-            loaded: if cube { LoadedMass::new(params) } else { None },
-            shape: (!cube).then(|| Shape::new(params)),
-        }
-    }
-
-    /// ω and the step rotation from this lane's `spin_input`: the angular momentum of a
-    /// fair die (ω = L/I with its isotropic inertia), or the ω of a body whose inertia turns
-    /// with it (a loaded die's I(t)⁻¹·L, a general body's R·I⁻¹·Rᵀ·L), which
-    /// [`Kernel::respin`] computes in every lane at once and the rotation is built from as
-    /// it is (the program before the shared kernel divided it by an inertia of 1, which is
-    /// exact).
-    #[inline(always)]
-    fn spin(&self, spin_input: &Vector3<f64>, turning: bool) -> (Vector3<f64>, Option<Matrix3<f64>>) {
-        if turning {
-            (*spin_input, step_rotation(spin_input, self.dt))
-        } else {
-            spin(spin_input, self.inertia, self.dt)
-        }
-    }
-
-    pub(crate) fn loaded(&self) -> Option<&LoadedMass> {
-        self.loaded.as_ref()
-    }
-
-    pub(crate) fn shape(&self) -> Option<&Shape> {
-        self.shape.as_ref()
-    }
-
-    /// The stopping rule of the face now down, for a die whose rule depends on it.
-    pub(crate) fn stop_rule(&self, corner_offsets: &[Vector3<f64>; 8]) -> Option<StopRule> {
-        match (&self.loaded, &self.shape) {
-            (Some(m), _) => Some(m.stop_rule(corner_offsets)),
-            (_, Some(s)) => Some(s.stop_rule(corner_offsets)),
-            _ => None,
-        }
+    turning: bool,
+) -> (Vector3<f64>, Option<Matrix3<f64>>) {
+    if turning {
+        (*spin_input, step_rotation(spin_input, dt))
+    } else {
+        spin(spin_input, inertia, dt)
     }
 }
 
@@ -228,9 +187,10 @@ pub(crate) struct Constants<L: Lane> {
     pub(crate) corner_masses: [L; 8],
     pub(crate) gravity: L,
     pub(crate) loaded_mass_gravity_half_size: L,
-    /// A loaded die's inertia tensor: the uniform cube's isotropic inertia `I_u` (g·cm²),
-    /// its mass `M_u` (g) and the extra mass at each corner (g); a fair die's own values
-    /// (no extra mass) in a fair lane, whose tensor is never used.
+    /// g·cm², the body's one isotropic inertia ([`Body::mean_inertia`]): the fair die's
+    /// `ω = L/I` divides by it in both engines. With the uniform cube's mass `M_u` (g) and
+    /// the extra mass at each corner (g) it also builds a loaded die's tensor, as `I_u`; a
+    /// fair die's own values (no extra mass) in a fair lane, whose tensor is never used.
     pub(crate) uniform_inertia: L,
     pub(crate) uniform_mass: L,
     pub(crate) extra_masses: [L; 8],
@@ -265,23 +225,20 @@ pub(crate) struct Constants<L: Lane> {
 impl Constants<f64> {
     /// The constants of `p`, with `runaway` still +∞ (it needs the initial energy).
     pub(crate) fn new(p: &Params, body: &Body) -> Self {
-        let (loaded, shape) = (body.loaded(), body.shape());
-        let mass = p.total_mass();
+        let shape = body.shape();
+        let mass = body.mass();
         let gravity = p.world.gravity;
         let weight_z = mass * -gravity;
         let (dt, zero) = (p.integrator.dt, 0.0);
         // A general body's potential is measured from its lowest rest height.
-        let a = shape.map_or(p.die.half_size(), |s| s.reference_height);
+        let a = body.reference_height();
         let m = p.die.corner_mass;
-        let rule = match (loaded, shape) {
-            (Some(l), _) => l.widest_stop_rule(),
-            (_, Some(s)) => s.widest_stop_rule(),
-            _ => StopRule::new(p),
+        let rule = body.widest_stop_rule();
+        let (corner_masses, loaded_total) = match body {
+            Body::LoadedCube(_, load) => load.point_masses(),
+            Body::PaperCube(_) | Body::Shaped(_) => ([m; 8], mass),
         };
-        let (corner_masses, loaded_total) = match loaded {
-            None => ([m; 8], mass),
-            Some(l) => l.point_masses(),
-        };
+        let loaded = matches!(body, Body::LoadedCube(..));
         Constants {
             dt,
             mass,
@@ -304,8 +261,8 @@ impl Constants<f64> {
             corner_masses,
             gravity,
             loaded_mass_gravity_half_size: loaded_total * gravity * a,
-            uniform_inertia: p.inertia(),
-            uniform_mass: p.uniform_mass(),
+            uniform_inertia: body.mean_inertia(),
+            uniform_mass: 8.0 * m,
             extra_masses: p.die.extra_corner_mass,
             inverse_inertia: shape.map_or([0.0; 6], |s| s.inverse_inertia),
             axis_scale: shape.map_or([0.0; 3], |s| s.axis_scale),
@@ -316,10 +273,10 @@ impl Constants<f64> {
             max_steps: p.max_steps(),
             whole_die_norm: p.ground.friction_law == FrictionLaw::WholeDieNorm,
             point_masses: p.integrator.stop_energy == StopEnergy::PointMasses,
-            loaded: loaded.is_some(),
+            loaded,
             shaped: shape.is_some(),
             rounded: shape.is_some_and(|s| s.radius > 0.0) as u32,
-            turning: loaded.is_some() || shape.is_some(),
+            turning: loaded || shape.is_some(),
         }
     }
 }
@@ -359,6 +316,8 @@ pub(crate) struct Kernel<L: Lane> {
     /// depth and force in every lane, and the sums skip it (see [`Kernel::step`]).
     pub(crate) touching_corners: u8,
     pub(crate) c: Constants<L>,
+    /// Each lane's body: what the end-of-step test asks for the stopping rule of the face
+    /// down, and the outcome rule asks at the end.
     pub(crate) bodies: L::PerLane<Body>,
 }
 
@@ -367,12 +326,8 @@ impl Kernel<f64> {
     pub(crate) fn new(params: &Params, initial: &InitialCondition) -> Self {
         let body = Body::new(params);
         let c = Constants::new(params, &body);
-        let corner_offsets = initial_corner_offsets(params, initial, &body);
-        let angular_momentum = match (&body.loaded, &body.shape) {
-            (Some(m), _) => m.initial_angular_momentum(initial, &corner_offsets),
-            (_, Some(s)) => s.initial_angular_momentum(initial),
-            _ => initial.angular_momentum_for(body.inertia),
-        };
+        let corner_offsets = body.start_offsets(initial);
+        let angular_momentum = body.initial_angular_momentum(initial, &corner_offsets);
         let state = State {
             position: Vector3::new(0.0, 0.0, initial.height),
             velocity: Vector3::from(initial.velocity),
@@ -396,50 +351,6 @@ impl Kernel<f64> {
         kernel.respin(1);
         kernel.update_forces();
         kernel
-    }
-}
-
-/// cm, corners 1..8 (a general body's contact-sphere centres) relative to the centre of
-/// mass at t = 0, world frame: where both engines place the die.
-fn initial_corner_offsets(params: &Params, initial: &InitialCondition, body: &Body) -> [Vector3<f64>; 8] {
-    let half_size = params.die.half_size();
-    if let Some(s) = &body.shape {
-        s.initial_sphere_offsets(&params.die, initial)
-    } else if let Some(m) = &body.loaded {
-        m.initial_corner_offsets(half_size, initial)
-    } else if initial.orientation == [0.0; 3] {
-        body_corner_offsets(half_size)
-    } else {
-        let rotation = initial.rotation();
-        body_corner_offsets(half_size).map(|r| rotation * r)
-    }
-}
-
-impl InitialCondition {
-    /// Refuses a start with any corner inside the table deeper than the die's resting depth
-    /// `M·g/(4k)` (a die may be placed resting on the table, not pushed into it): the error
-    /// names the lowest height allowed at this orientation.
-    pub fn check_clear_of_table(&self, params: &Params) -> Result<(), ParamError> {
-        let body = Body::new(params);
-        let lowest_offset = initial_corner_offsets(params, self, &body)
-            .iter()
-            .map(|r| r.z - params.die.corner_radius)
-            .fold(f64::INFINITY, f64::min);
-        let lowest = -lowest_offset - params.resting_depth();
-        if self.height >= lowest {
-            Ok(())
-        } else {
-            Err(ParamError {
-                key: limits::HEIGHT.key.to_string(),
-                value: self.height,
-                limits: Limits {
-                    min: lowest,
-                    unit: "cm at this orientation (lower, a corner starts inside the table)",
-                    ..limits::HEIGHT
-                },
-                detail: None,
-            })
-        }
     }
 }
 
@@ -568,7 +479,12 @@ impl<L: Lane> Kernel<L> {
         if L::WIDTH == 1 {
             // One lane: the scalar spin, its branches taken rather than selected, and ω and
             // the rotation straight into place.
-            let (w, rotation) = self.bodies.as_ref()[0].spin(&lane3(&spin_input, 0), loaded != 0);
+            let (w, rotation) = scalar_spin(
+                &lane3(&spin_input, 0),
+                c.uniform_inertia.lane(0),
+                c.dt.lane(0),
+                loaded != 0,
+            );
             self.angular_velocity = v3(L::splat(w.x), L::splat(w.y), L::splat(w.z));
             if let Some(r) = &rotation {
                 for i in 0..3 {
@@ -822,13 +738,13 @@ impl<L: Lane> Kernel<L> {
             } else {
                 (rigid, kinetic)
             };
-            // `stopping::settles`, comparison for comparison.
-            let settles = |energy_threshold: L, kinetic_threshold: L| {
-                stop.le(energy_threshold)
-                    & stop_kinetic.le(kinetic_threshold)
-                    & potential.le(energy_threshold)
-            };
-            let screened = settles(c.energy_threshold, c.kinetic_threshold);
+            let screened = settles(
+                stop,
+                stop_kinetic,
+                potential,
+                c.energy_threshold,
+                c.kinetic_threshold,
+            );
             let loaded = L::bits(screened & c.turning);
             if loaded == 0 {
                 screened
@@ -839,13 +755,17 @@ impl<L: Lane> Kernel<L> {
                 let (mut et, mut kt) = (c.energy_threshold.to_lanes(), c.kinetic_threshold.to_lanes());
                 for lane in set_bits(loaded) {
                     let offsets = self.state.corner_offsets.each_ref().map(|r| lane3(r, lane));
-                    let rule = self.bodies.as_ref()[lane]
-                        .stop_rule(&offsets)
-                        .expect("a turning lane has a mass model");
+                    let rule = self.bodies.as_ref()[lane].stop_rule_at(&offsets);
                     et.as_mut()[lane] = rule.energy_threshold;
                     kt.as_mut()[lane] = rule.kinetic_threshold;
                 }
-                settles(L::from_lanes(et), L::from_lanes(kt))
+                settles(
+                    stop,
+                    stop_kinetic,
+                    potential,
+                    L::from_lanes(et),
+                    L::from_lanes(kt),
+                )
             }
         };
         let settled = settled & !unstable;

@@ -1,8 +1,9 @@
 //! The lane type the kernel is written over: `f64` for one roll, or a vector of several
-//! rolls side by side (the 4-lane AVX2 vector in [`super::lanes`]).
+//! rolls side by side (the 4-lane AVX2 vector in lanes.rs).
 //!
-//! It stands alone so that the stages written over it (the step in [`super::kernel`], a
-//! loaded die's inertia tensor in [`super::mass`]) can use it without importing each other.
+//! It stands alone, below everything written over it (the step in kernel.rs, a loaded
+//! die's inertia tensor in mass.rs, the stopping test in stopping.rs), so that those can
+//! use it without importing each other.
 
 use nalgebra::{Scalar, Vector3};
 use std::fmt::Debug;

@@ -1,7 +1,7 @@
 //! The lane engine: four rolls stepped side by side in the 4 lanes of 256-bit AVX2 vectors,
 //! each lane bit-identical to [`Simulation`] rolling alone.
 //!
-//! The step is the one kernel ([`super::kernel`]) both engines run: here on a vector type
+//! The step is the one kernel (kernel.rs) both engines run: here on a vector type
 //! whose lane `l` holds roll `l` (a structure of arrays, one vector per coordinate), every
 //! operation the exactly rounded twin of the scalar one. Each roll is set up by its own
 //! [`Simulation`], loaded into a lane, and stored back into it when the kernel's end-of-step
@@ -90,7 +90,8 @@ pub fn roll_one_by_one(
 #[cfg(target_arch = "x86_64")]
 mod avx2 {
     use super::*;
-    use crate::kernel::{Kernel, Lane, NoHook, lane3};
+    use crate::kernel::{Kernel, NoHook, lane3};
+    use crate::lane::Lane;
     use crate::sim::Status;
     use nalgebra::Vector3;
     use std::arch::x86_64::*;

@@ -1,31 +1,40 @@
 //! The paper's dice model (docs/model.md): pure, no I/O, no threads.
 //!
 //! Units are CGS throughout: cm, g, s; forces in dyn, energies in erg.
+//!
+//! The modules are layered, each using only those before it: the data (`params`,
+//! `initial`, and `lane`, `energy`), then the body — its geometry (`body`), the stopping
+//! rule's arithmetic (`stopping`), the three bodies a die can be (`cube`, `mass`, `shape`)
+//! and `model`, which says which of them a die is and answers every question about it —
+//! then the step written over a lane type (`spin`, `kernel`), the scalar engine (`sim`), and
+//! on top the lane engine (`lanes`) and the stability readings (`stability`).
 
 pub mod body;
-pub(crate) mod energy;
+mod cube;
+mod energy;
 pub mod initial;
-pub(crate) mod kernel;
-pub(crate) mod lane;
+mod kernel;
+mod lane;
 pub mod lanes;
-pub(crate) mod mass;
+mod mass;
+mod model;
 pub mod params;
-pub mod shape;
-pub(crate) mod sim;
-pub(crate) mod spin;
+mod shape;
+mod sim;
+mod spin;
 pub mod stability;
-pub mod stopping;
+mod stopping;
 
-pub use body::{PIP_LAYOUT, Pip, contact_sphere_centres, face_frame, pip_centres, pips};
+pub use body::{PIP_LAYOUT, contact_sphere_centres, face_frame, pip_centres};
 pub use body::{face_most_nearly_up, opposite_face};
 pub use energy::Energy;
 pub use initial::{InitialCondition, RandomRanges};
-pub use lane::Lane;
+pub use model::{resting_depth_on_face, why_it_cannot_settle};
 pub use params::{Die, FrictionLaw, Ground, Integrator, Limits, ParamError, Params, StopEnergy, World};
-pub use shape::{FaceReadout, MassProperties, face_readouts, mass_properties};
-pub use sim::{ContactForce, EnergyLedger, Outcome, Simulation, State, Status};
+pub use shape::{MassProperties, mass_properties};
+pub use sim::{ContactForce, EnergyLedger, Outcome, STEPS_BETWEEN_STOP_CHECKS, Simulation, State, Status};
 pub use stability::{Limit, Reading, Stability, UnstableReason};
-pub use stopping::{StopRule, settles};
+pub use stopping::StopRule;
 
 /// Rolls one die from `initial` to the end; the parameters must already be valid.
 pub fn roll(params: &Params, initial: &InitialCondition) -> Result<(Outcome, Simulation), ParamError> {

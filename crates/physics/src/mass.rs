@@ -8,6 +8,7 @@
 //! step, in flight too, from the current corner offsets (the paper's eq. 8–9).
 
 use super::body::{CORNER_SIGNS, FACE_NORMALS, body_corner_offsets, face_most_nearly_up, opposite_face};
+use super::cube::Cube;
 use super::initial::InitialCondition;
 use super::lane::Lane;
 use super::params::Params;
@@ -32,26 +33,22 @@ pub(crate) struct LoadedMass {
 }
 
 impl LoadedMass {
-    /// The mass model of `p`'s die; `None` for a fair die (no extra mass anywhere).
-    pub(crate) fn new(p: &Params) -> Option<LoadedMass> {
-        if !p.die.is_loaded() {
-            return None;
-        }
-        let a = p.die.half_size();
-        let total = p.total_mass();
+    /// The mass model of `p`'s loaded die, the paper's `cube` with its extra corner masses.
+    pub(crate) fn new(p: &Params, cube: &Cube) -> LoadedMass {
+        let a = cube.half_size();
         let mut moment = Vector3::zeros();
         for (s, &dm) in CORNER_SIGNS.iter().zip(&p.die.extra_corner_mass) {
             moment += Vector3::from(*s) * (a * dm);
         }
-        let centre_of_mass = moment / total;
-        Some(LoadedMass {
-            uniform_mass: p.uniform_mass(),
+        let centre_of_mass = moment / cube.mass();
+        LoadedMass {
+            uniform_mass: cube.uniform_mass(),
             corner_mass: p.die.corner_mass,
             extra: p.die.extra_corner_mass,
-            uniform_inertia: p.inertia(),
+            uniform_inertia: cube.inertia(),
             centre_of_mass,
-            face_rules: face_rules(p, &centre_of_mass),
-        })
+            face_rules: face_rules(cube, p.world.gravity, &centre_of_mass),
+        }
     }
 
     /// cm, body frame: the centre of mass relative to the cube's geometric centre.
@@ -265,11 +262,11 @@ impl InertiaTensor<f64> {
 /// `B_f = min_e M·g·(√((a − c·n_f)² + (a − c·n_e)²) − (a − c·n_f))`, and the rule for face
 /// f is the fair rule moved up by `V_f` and scaled by `B_f / E_edge` (the fair die gets its
 /// own rule back: `V_f = 0`, `B_f = E_edge`).
-fn face_rules(p: &Params, centre_of_mass: &Vector3<f64>) -> [StopRule; 6] {
-    let fair = StopRule::new(p);
-    let weight = p.total_mass() * p.world.gravity;
-    let a = p.die.half_size();
-    let edge = p.edge_energy();
+fn face_rules(cube: &Cube, gravity: f64, centre_of_mass: &Vector3<f64>) -> [StopRule; 6] {
+    let fair = cube.stop_rule();
+    let weight = cube.mass() * gravity;
+    let a = cube.half_size();
+    let edge = cube.edge_energy();
     let height = |f: usize| a - centre_of_mass.dot(&Vector3::from(FACE_NORMALS[f]));
     std::array::from_fn(|f| {
         if !fair.can_settle() {
@@ -302,17 +299,15 @@ mod tests {
         p
     }
 
-    #[test]
-    fn a_fair_die_has_no_mass_model() {
-        assert_eq!(LoadedMass::new(&Params::default()), None);
-        assert_eq!(Params::default().total_mass(), 8.0);
+    fn mass_model(p: &Params) -> LoadedMass {
+        LoadedMass::new(p, &Cube::new(p))
     }
 
     #[test]
     fn centre_of_mass_moves_toward_the_heavy_corner() {
         let mut extra = [0.0; 8];
         extra[7] = 1.0;
-        let m = LoadedMass::new(&loaded(extra)).unwrap();
+        let m = mass_model(&loaded(extra));
         // One gram at (a, a, a) on a die of 9 g: the centre moves a/9 along each axis.
         assert!((m.centre_of_mass() - Vector3::repeat(1.0 / 9.0)).norm() < 1e-15);
     }
@@ -321,18 +316,16 @@ mod tests {
     fn inertia_is_the_sum_of_point_masses_and_the_cube() {
         // Eight equal extras: the centre stays put and each adds Δm·(3a² − a²) per axis,
         // 16·Δm·a² in all, isotropically.
-        let m = LoadedMass::new(&loaded([0.5; 8])).unwrap();
-        let p = Params::default();
+        let m = mass_model(&loaded([0.5; 8]));
         let r = m.initial_corner_offsets(1.0, &InitialCondition::default());
         let i = m.inertia(&r);
         let expected = Matrix3::identity() * (16.0 / 3.0 + 16.0 * 0.5);
         assert!((i - expected).norm() < 1e-12, "{i}");
-        assert_eq!(p.inertia(), 16.0 / 3.0);
         // A heavy corner: the tensor equals the direct sum over all masses, each at its
         // distance from the centre of mass, with the cube's own part by the parallel axes.
         let mut extra = [0.0; 8];
         extra[2] = 2.0;
-        let m = LoadedMass::new(&loaded(extra)).unwrap();
+        let m = mass_model(&loaded(extra));
         let ic = InitialCondition {
             orientation: [30.0, 20.0, 10.0],
             ..Default::default()
@@ -354,8 +347,8 @@ mod tests {
         let mut extra = [0.0; 8];
         extra[7] = 1.0; // corner 8 meets faces 4, 5 and 6
         let p = loaded(extra);
-        let m = LoadedMass::new(&p).unwrap();
-        let fair = StopRule::new(&p);
+        let m = mass_model(&p);
+        let fair = Cube::new(&p).stop_rule();
         // Face 3 down puts corner 8 on top: the centre rests a/9 higher.
         let up = m.face_rules[2];
         let down = m.face_rules[3];

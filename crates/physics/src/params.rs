@@ -5,8 +5,11 @@
 //! The structs mirror the sections of a preset file (docs/presets.md), so the preset layer
 //! deserialises straight into them; every struct denies unknown keys and fills missing ones
 //! with the paper's defaults.
+//!
+//! Data and their validation only: `Die::kind` says which body a die is, and what follows
+//! from that (its mass, inertia, edge energy, stopping rule, resting depth) is the body
+//! model's (model.rs).
 
-use super::shape::Shape;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -234,12 +237,18 @@ impl Die {
         self.pip_depth > 0.0 && self.pip_diameter > 0.0
     }
 
-    /// Whether this is the paper's body (loaded or not): a sharp cube without pips. Such a
-    /// die keeps the paper's arithmetic; any other is a general body
-    /// ([`super::shape::Shape`]).
-    pub fn is_cube(&self) -> bool {
+    /// Which body this die is: the one place that tells the paper's cube from any other
+    /// body (docs/model.md, "Real dice"). A sharp cube without pips keeps the paper's
+    /// arithmetic bit for bit, its extra corner masses (if any) added as point masses; a
+    /// rounded, drilled or not cubic die is a general body, loaded or not.
+    pub(crate) fn kind(&self) -> BodyKind {
         let [x, y, z] = self.half_sizes;
-        x == y && y == z && self.corner_radius == 0.0 && !self.is_drilled()
+        let cube = x == y && y == z && self.corner_radius == 0.0 && !self.is_drilled();
+        match (cube, self.is_loaded()) {
+            (true, false) => BodyKind::PaperCube,
+            (true, true) => BodyKind::LoadedCube,
+            (false, _) => BodyKind::Shaped,
+        }
     }
 
     /// cm, the cube's half size `a` (the first half size of any other body).
@@ -256,6 +265,17 @@ impl Die {
     pub fn largest_half_size(&self) -> f64 {
         self.half_sizes.iter().copied().fold(0.0, f64::max)
     }
+}
+
+/// The three bodies a `[die]` table can describe ([`Die::kind`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum BodyKind {
+    /// The paper's sharp cube of 8 equal corner masses, without pips.
+    PaperCube,
+    /// The paper's cube with extra point masses at some corners (docs/model.md, "Loaded dice").
+    LoadedCube,
+    /// Any other die: rounded corners, drilled pips or unequal half sizes, loaded or not.
+    Shaped,
 }
 
 /// A `[die]` table as a file states it: the size one of two ways, the new keys optional.
@@ -521,7 +541,7 @@ impl Params {
         limits::DT.check(i.dt)?;
         limits::STOP_ENERGY_FRACTION.check(i.stop_energy_fraction)?;
         limits::MAX_TIME.check(i.max_time)?;
-        if i.stop_energy == StopEnergy::PointMasses && !d.is_cube() {
+        if i.stop_energy == StopEnergy::PointMasses && d.kind() == BodyKind::Shaped {
             return Err(ParamError::refused(
                 STOP_ENERGY_KEY,
                 f64::NAN,
@@ -531,78 +551,6 @@ impl Params {
             ));
         }
         Ok(())
-    }
-
-    /// g, the whole die: the undrilled body's `8·m` less the pips plus any extra corner
-    /// masses (adding the extras' zeros leaves the fair die's `8·m` bit for bit).
-    pub fn total_mass(&self) -> f64 {
-        let body = if self.die.is_drilled() {
-            self.uniform_mass() - Shape::pips_mass(&self.die)
-        } else {
-            self.uniform_mass()
-        };
-        body + self.die.extra_corner_mass.iter().sum::<f64>()
-    }
-
-    /// g, the undrilled body (8 corners of `die.corner_mass`).
-    pub(crate) fn uniform_mass(&self) -> f64 {
-        8.0 * self.die.corner_mass
-    }
-
-    /// g·cm², one moment of inertia for the whole body: the paper's cube's isotropic
-    /// `(2a)²/6·M`; for any other body the mean of its principal moments about the centre
-    /// of mass. The roll itself steps a general body with its full tensor; this one number
-    /// converts a spin stated as ω into L and back where no orientation is at hand (preset
-    /// files, `--set`, the explorer's spin fields).
-    ///
-    /// Written in the authors' order of operations so the default is bitwise 16/3.
-    pub fn inertia(&self) -> f64 {
-        if !self.die.is_cube() {
-            return Shape::mass_properties(&self.die).inertia.trace() / 3.0;
-        }
-        let side = 2.0 * self.die.half_size();
-        side * side / 6.0 * self.uniform_mass()
-    }
-
-    /// erg, the energy to tip over an edge from lying flat: `M·g·a·(√2 − 1)` for the
-    /// paper's cube; for any other body the lowest edge pass over every face and edge
-    /// (docs/model.md, "Real dice").
-    pub fn edge_energy(&self) -> f64 {
-        if !self.die.is_cube() {
-            return Shape::lowest_edge_energy(self);
-        }
-        self.total_mass() * self.world.gravity * self.die.half_size() * (std::f64::consts::SQRT_2 - 1.0)
-    }
-
-    /// erg, the paper's stopping threshold: a roll ends once its energy is at or below this.
-    pub(crate) fn stop_threshold(&self) -> f64 {
-        if !self.die.is_cube() {
-            return self.integrator.stop_energy_fraction * self.edge_energy();
-        }
-        // (fraction · M·g·a) · (√2 − 1): the authors' grouping, bitwise 2597.9474632040528.
-        self.integrator.stop_energy_fraction
-            * (self.total_mass() * self.world.gravity * self.die.half_size())
-            * (std::f64::consts::SQRT_2 - 1.0)
-    }
-
-    /// rad/s, the fastest contact mode: the paper's cube lying flat rocking on its face,
-    /// `√(6k/M)`; any other body rocking on its four contact spheres about the axis that
-    /// gives the fastest mode, `max √(4k·b_j²/I_ii)` (docs/model.md, "Real dice").
-    pub(crate) fn rocking_frequency(&self) -> f64 {
-        if !self.die.is_cube() {
-            return Shape::mass_properties(&self.die).rocking_frequency(&self.die, self.ground.stiffness);
-        }
-        (6.0 * self.ground.stiffness / self.total_mass()).sqrt()
-    }
-
-    /// `ω_rock·Δt`: semi-implicit Euler is stable only below 2 (docs/model.md, "Stability").
-    pub fn stability_number(&self) -> f64 {
-        self.rocking_frequency() * self.integrator.dt
-    }
-
-    /// cm, how far each corner sinks when the die rests flat: `M·g/(4k)`.
-    pub fn resting_depth(&self) -> f64 {
-        self.total_mass() * self.world.gravity / (4.0 * self.ground.stiffness)
     }
 
     /// The step count at which a roll is declared "did not settle".
@@ -622,16 +570,46 @@ mod tests {
     use super::*;
 
     #[test]
-    #[allow(clippy::excessive_precision)] // the reference's threshold, digit for digit
     fn defaults_are_the_papers() {
         let p = Params::default();
-        assert_eq!(p.inertia(), 16.0 / 3.0);
-        assert_eq!(p.stop_threshold(), 2597.9474632040528);
-        assert!((p.edge_energy() - 3247.4).abs() < 0.05);
-        assert!((p.rocking_frequency() - 612.37).abs() < 0.01);
-        assert!((p.resting_depth() - 3.92e-3).abs() < 1e-5);
+        assert_eq!(p.die.kind(), BodyKind::PaperCube);
         assert_eq!(p.max_steps(), 30_000);
         p.validate().unwrap();
+    }
+
+    #[test]
+    fn only_a_sharp_cube_without_pips_is_the_papers_body() {
+        let kind = |change: fn(&mut Die)| {
+            let mut die = Params::DEFAULT.die;
+            change(&mut die);
+            die.kind()
+        };
+        assert_eq!(kind(|d| d.extra_corner_mass[7] = 0.5), BodyKind::LoadedCube);
+        assert_eq!(kind(|d| d.corner_radius = 0.1), BodyKind::Shaped);
+        assert_eq!(kind(|d| d.half_sizes[2] = 0.9), BodyKind::Shaped);
+        // Pips need both a depth and a diameter to be drilled.
+        assert_eq!(kind(|d| d.pip_depth = 0.1), BodyKind::PaperCube);
+        assert_eq!(
+            kind(|d| (d.pip_depth, d.pip_diameter) = (0.1, 0.3)),
+            BodyKind::Shaped
+        );
+        assert_eq!(
+            kind(|d| (d.corner_radius, d.extra_corner_mass[0]) = (0.1, 1.0)),
+            BodyKind::Shaped
+        );
+    }
+
+    #[test]
+    fn the_point_mass_energy_is_refused_for_a_general_body_only() {
+        let mut p = Params::default();
+        p.integrator.stop_energy = StopEnergy::PointMasses;
+        p.die.extra_corner_mass[3] = 1.0;
+        p.validate()
+            .expect("a loaded cube's corners are its point masses");
+        p.die.corner_radius = 0.1;
+        let e = p.validate().unwrap_err();
+        assert_eq!(e.key, "integrator.stop_energy");
+        assert!(e.to_string().contains("\"rigid-body\""), "{e}");
     }
 
     #[test]

@@ -10,6 +10,7 @@
 
 use super::body::{
     CORNER_SIGNS, FACE_NORMALS, contact_sphere_centres, face_most_nearly_up, opposite_face, pips,
+    sphere_centres,
 };
 use super::initial::InitialCondition;
 use super::lane::Lane;
@@ -27,22 +28,6 @@ pub struct MassProperties {
     pub centre_of_mass: Vector3<f64>,
     /// g·cm², about the centre of mass, body frame.
     pub inertia: Matrix3<f64>,
-}
-
-impl MassProperties {
-    /// rad/s, the fastest rocking mode on four contact spheres (docs/model.md, "Real
-    /// dice"): springs `k` at `±b_j` rocking the body about axis `i`, `√(4k·b_j²/I_ii)`,
-    /// the largest over the six pairs of axes (`√(6k/M)` for the paper's cube).
-    pub(crate) fn rocking_frequency(&self, die: &Die, stiffness: f64) -> f64 {
-        let b = die.half_sizes.map(|a| a - die.corner_radius);
-        let mut fastest: f64 = 0.0;
-        for i in 0..3 {
-            for j in (0..3).filter(|&j| j != i) {
-                fastest = fastest.max(4.0 * stiffness * b[j] * b[j] / self.inertia[(i, i)]);
-            }
-        }
-        fastest.sqrt()
-    }
 }
 
 /// The rounded box of half sizes `a` and corner radius `r`: its volume (cm³) and its
@@ -124,30 +109,28 @@ pub fn mass_properties(die: &Die) -> MassProperties {
     }
 }
 
-/// Each face down of `p`'s body (any die, the paper's cube too): its rest height and depth,
-/// and the energy to balance it on each of its four edges, rounded edges included.
-pub fn face_readouts(p: &Params) -> [FaceReadout; 6] {
-    Shape::faces(p)
-}
-
 /// One face down: where the body rests and what it takes to tip it over each edge.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FaceReadout {
+pub(crate) struct FaceReadout {
     /// 1..6, the face down.
-    pub face: u8,
+    pub(crate) face: u8,
     /// cm, the centre of mass above a rigid table.
-    pub rest_height: f64,
+    pub(crate) rest_height: f64,
     /// cm, how far the body sinks into this table at rest.
-    pub rest_depth: f64,
+    pub(crate) rest_depth: f64,
     /// The four neighbouring faces it can tip onto, each with the energy (erg) to balance
     /// it on that edge from rest on a rigid table, rounded edge included.
-    pub edges: [(u8, f64); 4],
+    pub(crate) edges: [(u8, f64); 4],
 }
 
 /// The general body as a roll steps it: its mass properties and everything per step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Shape {
     pub(crate) properties: MassProperties,
+    /// g, the whole die as the roll weighs it: the undrilled body's `8·m` less the pips plus
+    /// the extra corner masses (the sum the paper's cube is weighed by, with the pips taken
+    /// off, rather than `properties.mass`'s integral).
+    pub(crate) mass: f64,
     /// `I⁻¹` about the centre of mass, body frame, by its upper triangle
     /// `(xx, xy, xz, yy, yz, zz)`, 1/(g·cm²).
     pub(crate) inverse_inertia: [f64; 6],
@@ -156,16 +139,24 @@ pub(crate) struct Shape {
     pub(crate) axis_scale: [f64; 3],
     /// cm, the corner radius.
     pub(crate) radius: f64,
+    /// cm, the die's half sizes `a`.
+    pub(crate) half_sizes: [f64; 3],
     /// cm, the half sizes of the box the corner spheres sit on, `a − r`.
     flat: [f64; 3],
     /// cm, the height of the centre of mass the potential is measured from: the lowest of
     /// the rest heights on a rigid table.
     pub(crate) reference_height: f64,
+    /// erg, the lowest edge pass over every face and edge (docs/model.md, "Real dice").
+    pub(crate) edge_energy: f64,
+    /// cm, the deepest any face sinks into the table at rest.
+    pub(crate) resting_depth: f64,
+    /// rad/s, the fastest contact mode.
+    pub(crate) rocking_frequency: f64,
     face_rules: [StopRule; 6],
 }
 
 impl Shape {
-    /// `p`'s body (any die; the step uses it only for those that are not the paper's cube).
+    /// `p`'s body (any die; a roll uses it only for those that are not the paper's cube).
     pub(crate) fn new(p: &Params) -> Shape {
         let die = &p.die;
         let properties = mass_properties(die);
@@ -178,43 +169,30 @@ impl Shape {
         let c = properties.centre_of_mass;
         let height = |f: usize| die.half_sizes[axis(f)] - c.dot(&Vector3::from(FACE_NORMALS[f]));
         let reference_height = (0..6).map(height).fold(f64::INFINITY, f64::min);
-        let (_, face_rules) = read_faces(p, &properties, reference_height);
+        let (faces, face_rules) = read_faces(p, &properties, reference_height);
+        let undrilled = 8.0 * die.corner_mass;
+        let body = if die.is_drilled() {
+            undrilled - pips_mass(die)
+        } else {
+            undrilled
+        };
         Shape {
             properties,
+            mass: body + die.extra_corner_mass.iter().sum::<f64>(),
             inverse_inertia: [sym(0, 0), sym(0, 1), sym(0, 2), sym(1, 1), sym(1, 2), sym(2, 2)],
             axis_scale: b.map(|b| 1.0 / (2.0 * b)),
             radius: die.corner_radius,
+            half_sizes: die.half_sizes,
             flat: b,
             reference_height,
+            edge_energy: faces
+                .iter()
+                .flat_map(|f| f.edges.iter().map(|e| e.1))
+                .fold(f64::INFINITY, f64::min),
+            resting_depth: faces.iter().map(|f| f.rest_depth).fold(0.0, f64::max),
+            rocking_frequency: rocking_frequency(&properties, b, p.ground.stiffness),
             face_rules,
         }
-    }
-
-    /// Pips' mass alone, g: what drilling removes from `8·m`.
-    pub(crate) fn pips_mass(die: &Die) -> f64 {
-        let (volume, _) = rounded_box(die.half_sizes, die.corner_radius);
-        let density = 8.0 * die.corner_mass / volume;
-        pips(die).iter().map(|p| cap(p.radius, p.depth).0).sum::<f64>() * density
-    }
-
-    /// The mass properties of `die`.
-    pub(crate) fn mass_properties(die: &Die) -> MassProperties {
-        mass_properties(die)
-    }
-
-    /// Each face down of `p`'s body: rest height and depth, and the energy over each edge
-    /// (worked out afresh: a roll keeps only the rules, so its body stays small to copy).
-    pub(crate) fn faces(p: &Params) -> [FaceReadout; 6] {
-        let shape = Shape::new(p);
-        read_faces(p, &shape.properties, shape.reference_height).0
-    }
-
-    /// erg, the lowest edge pass over every face and edge of `p`'s body.
-    pub(crate) fn lowest_edge_energy(p: &Params) -> f64 {
-        Shape::faces(p)
-            .iter()
-            .flat_map(|f| f.edges.iter().map(|e| e.1))
-            .fold(f64::INFINITY, f64::min)
     }
 
     /// The face the body rests on if it comes to rest from this orientation: the face the
@@ -257,10 +235,10 @@ impl Shape {
 
     /// cm, the contact spheres' centres relative to the centre of mass at the start, world
     /// frame.
-    pub(crate) fn initial_sphere_offsets(&self, die: &Die, initial: &InitialCondition) -> [Vector3<f64>; 8] {
+    pub(crate) fn initial_sphere_offsets(&self, initial: &InitialCondition) -> [Vector3<f64>; 8] {
         let rotation = initial.rotation();
         let c = self.properties.centre_of_mass;
-        contact_sphere_centres(die).map(|x| rotation * (x - c))
+        sphere_centres(self.flat).map(|x| rotation * (x - c))
     }
 
     /// g·cm²/s: `L` as given, or `R·I·Rᵀ·ω` for a start stated as an angular velocity.
@@ -276,6 +254,28 @@ impl Shape {
             }
         }
     }
+}
+
+/// g, what drilling removes from `8·m`: the pips' volume at the undrilled body's density.
+fn pips_mass(die: &Die) -> f64 {
+    let (volume, _) = rounded_box(die.half_sizes, die.corner_radius);
+    let density = 8.0 * die.corner_mass / volume;
+    pips(die).iter().map(|p| cap(p.radius, p.depth).0).sum::<f64>() * density
+}
+
+/// rad/s, the fastest rocking mode on four contact spheres (docs/model.md, "Real dice"):
+/// springs `k` (dyn/cm) at `±b_j` (`flat`, cm) rocking the body about axis `i`,
+/// `√(4k·b_j²/I_ii)`, the largest over the six pairs of axes (`√(6k/M)` for the paper's
+/// cube).
+fn rocking_frequency(properties: &MassProperties, flat: [f64; 3], stiffness: f64) -> f64 {
+    let b = flat;
+    let mut fastest: f64 = 0.0;
+    for i in 0..3 {
+        for j in (0..3).filter(|&j| j != i) {
+            fastest = fastest.max(4.0 * stiffness * b[j] * b[j] / properties.inertia[(i, i)]);
+        }
+    }
+    fastest.sqrt()
 }
 
 /// The rest depth and edge energies of each face down, and from them each face's
@@ -301,10 +301,7 @@ fn read_faces(p: &Params, properties: &MassProperties, reference: f64) -> ([Face
         rest_depth: 0.0,
         edges: [(0, 0.0); 4],
     }; 6];
-    let mut rules = [StopRule {
-        energy_threshold: f64::NEG_INFINITY,
-        kinetic_threshold: f64::NEG_INFINITY,
-    }; 6];
+    let mut rules = [StopRule::NEVER; 6];
     let lowest = |down: &Vector3<f64>| lowest_potential_at(weight, k, reference, &offsets(down));
     for (f, normal) in FACE_NORMALS.iter().enumerate() {
         let n_f = Vector3::from(*normal);
@@ -337,10 +334,7 @@ fn read_faces(p: &Params, properties: &MassProperties, reference: f64) -> ([Face
                 kinetic_threshold: threshold - v_rest,
             }
         } else {
-            StopRule {
-                energy_threshold: f64::NEG_INFINITY,
-                kinetic_threshold: f64::NEG_INFINITY,
-            }
+            StopRule::NEVER
         };
     }
     (faces, rules)
@@ -393,6 +387,7 @@ pub(crate) fn angular_velocity<L: Lane>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::cube::Cube;
 
     fn die(half_sizes: [f64; 3], radius: f64) -> Die {
         Die {
@@ -502,15 +497,11 @@ mod tests {
                 p.centre_of_mass
             );
         }
-        assert!(close(
-            Params {
-                die: d,
-                ..Params::DEFAULT
-            }
-            .total_mass(),
-            mass,
-            1e-13
-        ));
+        let drilled = Params {
+            die: d,
+            ..Params::DEFAULT
+        };
+        assert!(close(Shape::new(&drilled).mass, mass, 1e-13));
     }
 
     /// The highest the centre of mass gets when the body tilts from face f onto face e,
@@ -537,7 +528,9 @@ mod tests {
         p.die = die([0.6, 1.0, 1.4], 0.25);
         let shape = Shape::new(&p);
         let weight = shape.properties.mass * p.world.gravity;
-        for face in Shape::faces(&p) {
+        let (faces, _) = read_faces(&p, &shape.properties, shape.reference_height);
+        let mut deepest: f64 = 0.0;
+        for face in faces {
             let f = face.face as usize - 1;
             assert!(close(face.rest_height, p.die.half_sizes[axis(f)], 1e-15));
             // Four springs carry the weight: M·g/(4k) each.
@@ -549,12 +542,15 @@ mod tests {
                 let height = balanced_height(&p.die, f, e as usize - 1);
                 let expected = weight * (height - face.rest_height);
                 assert!(close(energy, expected, 1e-9), "{f} {e}: {energy} {expected}");
+                assert!(shape.edge_energy <= energy);
             }
+            deepest = deepest.max(face.rest_depth);
         }
+        assert_eq!(shape.resting_depth, deepest);
         // Rounding lowers the pass: the same box sharp needs more.
         let mut sharp = p;
         sharp.die.corner_radius = 0.0;
-        assert!(Shape::lowest_edge_energy(&sharp) > Shape::lowest_edge_energy(&p));
+        assert!(Shape::new(&sharp).edge_energy > shape.edge_energy);
     }
 
     #[test]
@@ -563,7 +559,8 @@ mod tests {
         // the paper's rule on every face.
         let p = Params::DEFAULT;
         let shape = Shape::new(&p);
-        let paper = StopRule::new(&p);
+        let cube = Cube::new(&p);
+        let paper = cube.stop_rule();
         for f in 0..6 {
             let rule = shape.face_rules[f];
             assert!(
@@ -572,12 +569,9 @@ mod tests {
             );
             assert!(close(rule.kinetic_threshold, paper.kinetic_threshold, 1e-12));
         }
-        assert!(close(Shape::lowest_edge_energy(&p), p.edge_energy(), 1e-14));
-        assert!(close(
-            p.rocking_frequency(),
-            mass_properties(&p.die).rocking_frequency(&p.die, p.ground.stiffness),
-            1e-14
-        ));
+        assert!(close(shape.edge_energy, cube.edge_energy(), 1e-14));
+        assert!(close(shape.rocking_frequency, cube.rocking_frequency(), 1e-14));
+        assert_eq!(shape.mass, cube.mass());
     }
 
     #[test]

@@ -1,13 +1,15 @@
 //! The state of a rolling die and the paper's semi-implicit Euler step (docs/model.md).
 //!
-//! The arithmetic follows the authors' program operation by operation (tests/data/reference/README.md §2
-//! and §9: sums in corner order, divisions where they divided, Octave's scaled 2-norm and
-//! `pow(x, 2)`), so the reference trajectories are reproduced to rounding, not merely in law.
+//! The arithmetic follows the authors' program operation by operation
+//! (crates/physics/tests/data/reference/README.md §2 and §9: sums in corner order, divisions
+//! where they divided, Octave's scaled 2-norm and `pow(x, 2)`), so the reference
+//! trajectories are reproduced to rounding, not merely in law.
 
-use super::body::{face_most_nearly_up, face_of_highest_corners, opposite_face};
+use super::body::face_most_nearly_up;
 use super::energy::Energy;
 use super::initial::InitialCondition;
-use super::kernel::{Body, Constants, Kernel, NoHook, StepHook, contact_point};
+use super::kernel::{Constants, Kernel, NoHook, StepHook, contact_point};
+use super::model::Body;
 use super::params::{Ground, ParamError, Params, StopEnergy};
 use super::stopping::StopRule;
 use nalgebra::Vector3;
@@ -111,9 +113,9 @@ pub const STEPS_BETWEEN_STOP_CHECKS: u64 = 4096;
 #[derive(Debug, Clone)]
 pub struct Simulation {
     params: Params,
-    /// The state and everything the step needs; visible to the lane engine
-    /// ([`super::lanes`]), which loads rolls from it and stores them back, so that both
-    /// engines start and end alike.
+    /// The state and everything the step needs; visible to the lane engine (lanes.rs),
+    /// which loads rolls from it and stores them back, so that both engines start and end
+    /// alike.
     pub(super) k: Kernel<f64>,
     /// Whether the energy ledger is kept (its work sums cost a second pass over the
     /// corners per contact step, which a batch that only wants outcomes skips).
@@ -185,23 +187,25 @@ impl Simulation {
     /// Like [`Simulation::new`] without the range checks. Any input still ends in a status:
     /// non-finite or absurd values end the first step as [`Status::Unstable`].
     pub fn new_unchecked(params: &Params, initial: &InitialCondition) -> Self {
+        let k = Kernel::new(params, initial);
+        let body = k.bodies[0];
         let mut sim = Simulation {
             params: *params,
-            k: Kernel::new(params, initial),
+            k,
             track_ledger: true,
             ledger: Ledger::default(),
             initial_energy: 0.0,
-            stop_rule: StopRule::new(params),
+            stop_rule: body.stop_rule(),
             outcome: None,
         };
         sim.initial_energy = sim.energy().total();
-        sim.k.c.runaway = RUNAWAY_ENERGY_FACTOR * sim.initial_energy.max(params.edge_energy());
+        sim.k.c.runaway = RUNAWAY_ENERGY_FACTOR * sim.initial_energy.max(body.edge_energy());
         sim
     }
 
     /// Like [`Simulation::new_unchecked`] for a roll whose outcome alone is wanted (batches,
-    /// maps): the same trajectory bit for bit, without the energy ledger's bookkeeping. Crate
-    /// internal, as its [`energy_ledger`](Simulation::energy_ledger) would miss the contact work.
+    /// maps): the same trajectory bit for bit, without the energy ledger's bookkeeping, so
+    /// its [`energy_ledger`](Simulation::energy_ledger) must not be asked for.
     pub fn for_outcome(params: &Params, initial: &InitialCondition) -> Self {
         let mut sim = Self::new_unchecked(params, initial);
         sim.track_ledger = false;
@@ -253,11 +257,12 @@ impl Simulation {
         params.validate()?;
         self.params = params;
         let runaway = self.k.c.runaway;
-        // The stopping rules of a loaded die or a general body depend on the table.
-        self.k.bodies[0] = Body::new(&params);
-        self.k.c = Constants::new(&params, &self.k.bodies[0]);
+        // The stopping rules of every body depend on the table.
+        let body = Body::new(&params);
+        self.k.bodies[0] = body;
+        self.k.c = Constants::new(&params, &body);
         self.k.c.runaway = runaway;
-        self.stop_rule = StopRule::new(&params);
+        self.stop_rule = body.stop_rule();
         self.k.update_forces();
         Ok(())
     }
@@ -337,9 +342,7 @@ impl Simulation {
     /// on the face down (what a report of a finished roll prints; [`Simulation::stop_rule`]
     /// is the fair die's, or the widest over the faces).
     pub fn stop_rule_now(&self) -> StopRule {
-        self.k.bodies[0]
-            .stop_rule(&self.k.state.corner_offsets)
-            .unwrap_or(self.stop_rule)
+        self.k.bodies[0].stop_rule_at(&self.k.state.corner_offsets)
     }
 
     /// The face whose outward normal points most nearly up (the live display's face).
@@ -347,15 +350,10 @@ impl Simulation {
         face_most_nearly_up(&self.k.state.corner_offsets)
     }
 
-    /// The face whose 4 corners are highest (the outcome rule).
-    /// A general body's outcome is the face up over the face its centre of mass stands on
-    /// ([`super::shape::Shape::face_down`]): a flat or long body can rest tilted further
-    /// than the four highest corners allow.
-    pub(crate) fn face_of_highest_corners(&self) -> Option<u8> {
-        if let Some(shape) = self.k.bodies[0].shape() {
-            return Some(opposite_face(shape.face_down(&self.k.state.corner_offsets)));
-        }
-        face_of_highest_corners(&self.k.state.corner_offsets.map(|r| r.z))
+    /// The body's x, y and z axes in the world frame, unit vectors read off its corners
+    /// (the orientation's columns).
+    pub fn body_axes(&self) -> [Vector3<f64>; 3] {
+        self.k.bodies[0].axes(&self.k.state.corner_offsets)
     }
 
     /// One step of Δt: kick → drift → L → rotate → forces (docs/model.md, "One time step").
@@ -448,7 +446,7 @@ impl Simulation {
         Outcome {
             status,
             face: match status {
-                Status::Settled => self.face_of_highest_corners(),
+                Status::Settled => self.k.bodies[0].face_up_at_rest(&self.k.state.corner_offsets),
                 _ => None,
             },
             steps: self.k.state.step,

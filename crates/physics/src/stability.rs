@@ -2,6 +2,7 @@
 //! (docs/model.md, "Stability"): one reading per cause the allowed ranges make possible.
 
 use super::initial::InitialCondition;
+use super::model::Body;
 use super::params::Params;
 use serde::Serialize;
 use std::fmt;
@@ -130,28 +131,18 @@ impl Stability {
     /// Reads every cause for these parameters and this initial condition.
     pub fn predict(p: &Params, initial: &InitialCondition) -> Stability {
         let dt = p.integrator.dt;
-        // A general body: its corners' reach from the centre (for their speed in a spin) and
-        // its smallest half size (how far one may move per step); the cube's `a·√3` and `a`.
-        let cube = p.die.is_cube();
-        let a = if cube {
-            p.die.half_size()
-        } else {
-            p.die.smallest_half_size()
-        };
+        let body = Body::new(p);
+        // How far a corner may move per step: the smallest half size (a cube's half size).
+        let a = p.die.smallest_half_size();
         // rad/s, one corner on its spring.
         let corner_frequency = (p.ground.stiffness / p.die.corner_mass).sqrt();
         // The centre's speed when the lowest corner first reaches the table.
-        let drop = (initial.height + initial.lowest_corner_offset(&p.die)).max(0.0);
+        let drop = (initial.height + body.lowest_point_at_start(initial)).max(0.0);
         let v = initial.velocity;
         let vz_impact = (v[2] * v[2] + 2.0 * p.world.gravity * drop).sqrt();
         let translation = (v[0] * v[0] + v[1] * v[1] + vz_impact * vz_impact).sqrt();
-        let spin_rate = initial.angular_velocity_for(p.inertia()).norm();
-        let spin = if cube {
-            spin_rate * a * 3f64.sqrt()
-        } else {
-            let [x, y, z] = p.die.half_sizes;
-            spin_rate * (x * x + y * y + z * z).sqrt()
-        };
+        let spin_rate = initial.angular_velocity_for(body.mean_inertia()).norm();
+        let spin = body.corner_speed_of_spin(spin_rate);
         let spin_dominated = spin > translation;
         let corner_speed = translation + spin;
         let reading = |limit, value, allowed| Reading {
@@ -163,7 +154,11 @@ impl Stability {
         };
         Stability {
             readings: [
-                reading(Limit::ContactMode, p.stability_number(), CONTACT_MODE_LIMIT),
+                reading(
+                    Limit::ContactMode,
+                    body.rocking_frequency() * dt,
+                    CONTACT_MODE_LIMIT,
+                ),
                 reading(Limit::CornerTravel, corner_speed * dt, CORNER_TRAVEL_LIMIT * a),
                 reading(
                     Limit::Damping,

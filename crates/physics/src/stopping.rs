@@ -1,15 +1,9 @@
-//! When a roll has settled: the stopping rule over the whole allowed range (docs/model.md,
-//! "Stopping rule").
-//!
-//! The paper ends a roll once its energy is below `f·E_edge`, with the potential measured
-//! from a die lying flat on a rigid table. On a table of finite stiffness the die rests
-//! `δ = M·g/(4k)` deep, so its resting energy `V_rest` is below zero and an edge-balanced
-//! die sits lower too (`V_edge`). The rule below keeps the paper's test and adds what only
-//! binds on soft tables: the energy must stay clear of `V_edge`, and the kinetic and the
-//! potential energy must each be within what the energy test allows above rest.
+//! When a roll has settled (docs/model.md, "Stopping rule"): the two thresholds a body's
+//! rule sets, the test a state must pass, and the lowest potential of a body resting on
+//! its springs, from which every body works out its thresholds (cube.rs for the paper's
+//! cube, mass.rs for a loaded one, shape.rs for a general body).
 
-use super::params::Params;
-use super::shape::Shape;
+use super::lane::Lane;
 
 /// The two thresholds of the stopping rule, erg, derived once from the parameters.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -21,6 +15,13 @@ pub struct StopRule {
 }
 
 impl StopRule {
+    /// The rule of a table that cannot hold the die on a face: no state meets it, and the
+    /// roll can only end as a timeout.
+    pub(crate) const NEVER: StopRule = StopRule {
+        energy_threshold: f64::NEG_INFINITY,
+        kinetic_threshold: f64::NEG_INFINITY,
+    };
+
     /// The widest of several faces' rules: the largest of each threshold, which every one of
     /// them passes within (the step's cheap screen before the face down is looked up).
     pub(crate) fn widest(rules: &[StopRule; 6]) -> StopRule {
@@ -32,67 +33,16 @@ impl StopRule {
         }
     }
 
-    /// `energy_threshold = min(f·E_edge, V_edge − ½·(1 − f)·E_edge)` and
-    /// `kinetic_threshold = energy_threshold − V_rest`; both are −∞ (the roll can only end
-    /// as a timeout) when the table cannot hold the die on a face: its resting centre would
-    /// be below the table top, or the threshold would not lie above the resting energy.
-    ///
-    /// A body other than the paper's cube has a rule per face down
-    /// ([`super::shape::Shape`]); this is the widest of them.
-    pub(crate) fn new(p: &Params) -> StopRule {
-        if !p.die.is_cube() {
-            return Shape::new(p).widest_stop_rule();
-        }
-        let paper = p.stop_threshold();
-        let rest = resting_energy(p);
-        let margin = 0.5 * (1.0 - p.integrator.stop_energy_fraction) * p.edge_energy();
-        let energy_threshold = paper.min(edge_balanced_energy(p) - margin);
-        let rest_centre = p.die.half_size() - resting_depth_on_face(p);
-        if energy_threshold > rest && rest_centre > 0.0 {
-            StopRule {
-                energy_threshold,
-                kinetic_threshold: energy_threshold - rest,
-            }
-        } else {
-            StopRule {
-                energy_threshold: f64::NEG_INFINITY,
-                kinetic_threshold: f64::NEG_INFINITY,
-            }
-        }
-    }
-
     /// Whether any state can meet this rule (false on a table too soft to hold a face).
     pub fn can_settle(&self) -> bool {
         self.energy_threshold.is_finite()
     }
 }
 
-/// Why no roll can settle on this table, in words; `None` when one can.
-pub fn why_it_cannot_settle(p: &Params) -> Option<String> {
-    if StopRule::new(p).can_settle() {
-        return None;
-    }
-    let depth = resting_depth_on_face(p);
-    let a = p.die.half_size();
-    Some(if depth >= a {
-        format!(
-            "the table is too soft to hold the die: at rest it would sink {depth:.3} cm, its centre \
-             {:.3} cm below the table top",
-            depth - a
-        )
-    } else {
-        format!(
-            "the table is too soft to keep a face: at rest the die sinks {depth:.3} cm, and tipping \
-             it over an edge takes only {:.1} erg, too little to tell a settled die from a rocking one",
-            edge_balanced_energy(p) - resting_energy(p)
-        )
-    })
-}
-
-/// Whether a state has settled:
+/// Whether a state has settled, per lane:
 ///
 /// `stop_energy ≤ energy_threshold && kinetic ≤ kinetic_threshold && potential ≤
-/// energy_threshold`, evaluated in that order, every comparison inclusive.
+/// energy_threshold`, every comparison inclusive, the thresholds those of a [`StopRule`].
 ///
 /// - `stop_energy`: the energy named by `integrator.stop_energy`. Rigid body:
 ///   `((½·M·|v|² + ½·ω·L) + M·g·(z − a)) + Σ ½·k·d_k²`; point masses: the authors' sum
@@ -106,56 +56,23 @@ pub fn why_it_cannot_settle(p: &Params) -> Option<String> {
 /// All three are the energies the step's end-of-roll check has already computed; NaN in
 /// any of them never settles.
 #[inline(always)]
-pub fn settles(stop_energy: f64, kinetic: f64, potential: f64, rule: &StopRule) -> bool {
-    stop_energy <= rule.energy_threshold
-        && kinetic <= rule.kinetic_threshold
-        && potential <= rule.energy_threshold
+pub(crate) fn settles<L: Lane>(
+    stop_energy: L,
+    kinetic: L,
+    potential: L,
+    energy_threshold: L,
+    kinetic_threshold: L,
+) -> L::Mask {
+    stop_energy.le(energy_threshold) & kinetic.le(kinetic_threshold) & potential.le(energy_threshold)
 }
 
-/// cm, how deep the lower corners sink when the die rests on a face, with as many corners
-/// touching as the depth implies (4, or all 8 on a table too soft to carry it); for a body
-/// other than the paper's cube, the deepest over its faces.
-pub fn resting_depth_on_face(p: &Params) -> f64 {
-    if !p.die.is_cube() {
-        let faces = Shape::faces(p);
-        return faces.iter().map(|f| f.rest_depth).fold(0.0, f64::max);
-    }
-    let a = p.die.half_size();
-    let (centre, _) = lowest_potential(p, &[-a, -a, -a, -a, a, a, a, a]);
-    a - centre
-}
-
-/// erg, the potential energy of the die at rest on a face (`−½·M·g·δ` while only the four
-/// lower corners touch), measured like the rigid-body energy from the flat height `z = a`.
-pub(crate) fn resting_energy(p: &Params) -> f64 {
-    let a = p.die.half_size();
-    lowest_potential(p, &[-a, -a, -a, -a, a, a, a, a]).1
-}
-
-/// erg, the potential energy of the die at rest balanced on an edge (`E_edge − M·g·δ` while
-/// only the edge's two corners touch): the lowest pass between two faces.
-pub(crate) fn edge_balanced_energy(p: &Params) -> f64 {
-    let e = p.die.half_size() * std::f64::consts::SQRT_2;
-    lowest_potential(p, &[-e, -e, 0.0, 0.0, 0.0, 0.0, e, e]).1
-}
-
-/// The centre height (cm) that minimises the potential `M·g·(z − a) + Σ ½·k·max(0, −z − o)²`
-/// of a die whose corners sit `offsets` (cm, ascending) above or below its centre, and that
-/// lowest potential (erg).
+/// The centre height `z` (cm) that minimises the potential
+/// `weight·(z − reference) + Σ ½·k·max(0, −z − o)²` of a body of weight `weight` (`M·g`,
+/// dyn) on a table of stiffness `k` (dyn/cm), whose contact points sit `offsets` (cm,
+/// ascending) above or below its centre of mass, and that lowest potential (erg).
 ///
 /// The potential is convex in `z`, so the minimum is where the weight balances the springs
-/// of the corners in contact: with the `j` lowest corners touching, `z = −(M·g/k + Σ o)/j`.
-fn lowest_potential(p: &Params, offsets: &[f64; 8]) -> (f64, f64) {
-    lowest_potential_at(
-        p.total_mass() * p.world.gravity,
-        p.ground.stiffness,
-        p.die.half_size(),
-        offsets,
-    )
-}
-
-/// [`lowest_potential`] for a body of weight `weight` (dyn) on a table of stiffness `k`
-/// (dyn/cm), the potential measured from the centre at height `reference` (cm).
+/// of the points in contact: with the `j` lowest touching, `z = −(M·g/k + Σ o)/j`.
 pub(crate) fn lowest_potential_at(weight: f64, k: f64, reference: f64, offsets: &[f64; 8]) -> (f64, f64) {
     let mut sum = 0.0;
     let mut centre = f64::NAN;
@@ -183,64 +100,38 @@ pub(crate) fn lowest_potential_at(weight: f64, k: f64, reference: f64, offsets: 
 mod tests {
     use super::*;
 
-    fn with_stiffness(k: f64) -> Params {
-        let mut p = Params::default();
-        p.ground.stiffness = k;
-        p
-    }
-
-    #[test]
-    fn shallow_table_matches_the_closed_forms() {
-        let p = Params::default();
-        let (m, g, delta) = (p.total_mass(), p.world.gravity, p.resting_depth());
-        assert!((resting_depth_on_face(&p) - delta).abs() < 1e-12);
-        assert!((resting_energy(&p) + 0.5 * m * g * delta).abs() < 1e-9);
-        assert!((edge_balanced_energy(&p) - (p.edge_energy() - m * g * delta)).abs() < 1e-9);
-    }
-
-    #[test]
-    fn the_papers_threshold_stands_at_the_defaults() {
-        let p = Params::default();
-        let rule = StopRule::new(&p);
-        assert_eq!(rule.energy_threshold, p.stop_threshold());
-        assert_eq!(rule.kinetic_threshold, p.stop_threshold() - resting_energy(&p));
-    }
-
-    #[test]
-    fn a_table_softer_than_the_die_cannot_hold_a_face() {
-        // k = 100: δ = 19.6 cm, all 8 corners sink and the die rests 9.8 cm under the top.
-        let p = with_stiffness(100.0);
-        assert!((resting_depth_on_face(&p) - (1.0 + 9.8)).abs() < 1e-9);
-        // Buried whole, every orientation has the same energy: there is no pass to climb.
-        assert!((edge_balanced_energy(&p) - resting_energy(&p)).abs() < 1e-6);
-        assert!(!StopRule::new(&p).can_settle());
-    }
-
-    #[test]
-    fn a_soft_table_lowers_the_threshold_below_the_edge() {
-        // k = 5000: δ = 0.392 cm, the paper's 2598 erg would lie above the edge (174 erg).
-        let p = with_stiffness(5000.0);
-        let rule = StopRule::new(&p);
-        let edge = edge_balanced_energy(&p);
-        assert!(edge < p.stop_threshold());
-        assert!(rule.energy_threshold < edge);
-        assert!(rule.energy_threshold > resting_energy(&p));
-        assert!(rule.kinetic_threshold < p.stop_threshold());
-    }
-
     #[test]
     fn settles_needs_all_three_energies_and_refuses_nan() {
         let rule = StopRule {
             energy_threshold: 10.0,
             kinetic_threshold: 20.0,
         };
-        assert!(settles(10.0, 20.0, -10.0, &rule));
-        assert!(settles(10.0, 20.0, 10.0, &rule));
-        assert!(!settles(10.5, 0.0, 0.0, &rule));
-        assert!(!settles(-100.0, 21.0, 0.0, &rule));
-        assert!(!settles(-100.0, 0.0, 11.0, &rule));
-        assert!(!settles(f64::NAN, 0.0, 0.0, &rule));
-        assert!(!settles(0.0, f64::NAN, 0.0, &rule));
-        assert!(!settles(0.0, 0.0, f64::NAN, &rule));
+        let settles = |stop: f64, kinetic: f64, potential: f64| {
+            settles(
+                stop,
+                kinetic,
+                potential,
+                rule.energy_threshold,
+                rule.kinetic_threshold,
+            )
+        };
+        assert!(settles(10.0, 20.0, -10.0));
+        assert!(settles(10.0, 20.0, 10.0));
+        assert!(!settles(10.5, 0.0, 0.0));
+        assert!(!settles(-100.0, 21.0, 0.0));
+        assert!(!settles(-100.0, 0.0, 11.0));
+        assert!(!settles(f64::NAN, 0.0, 0.0));
+        assert!(!settles(0.0, f64::NAN, 0.0));
+        assert!(!settles(0.0, 0.0, f64::NAN));
+    }
+
+    #[test]
+    fn the_widest_rule_takes_each_threshold_from_any_face() {
+        let mut rules = [StopRule::NEVER; 6];
+        rules[1].energy_threshold = 5.0;
+        rules[4].kinetic_threshold = 7.0;
+        let widest = StopRule::widest(&rules);
+        assert_eq!((widest.energy_threshold, widest.kinetic_threshold), (5.0, 7.0));
+        assert!(!StopRule::NEVER.can_settle() && widest.can_settle());
     }
 }

@@ -41,29 +41,14 @@ pub struct Separation {
     pub angle: f64,
 }
 
-/// The body axes of a die (columns of its orientation), from its corner offsets: corner 5
-/// minus corner 1 is 2a along x, corner 3 minus 1 along y, corner 2 minus 1 along z.
-/// Any other body's corners (sphere centres) are `2·(a_i − r)` apart along each axis, so its
-/// differences are normalised instead.
-fn axes(sim: &Simulation) -> [nalgebra::Vector3<f64>; 3] {
-    let r = &sim.state().corner_offsets;
-    let die = &sim.params().die;
-    let differences = [r[4] - r[0], r[2] - r[0], r[1] - r[0]];
-    if die.is_cube() {
-        let side = 2.0 * die.half_size();
-        differences.map(|d| d / side)
-    } else {
-        differences.map(|d| d.normalize())
-    }
-}
-
 /// The separation of two dice at their current states.
 pub fn separation(a: &Simulation, b: &Simulation) -> Separation {
     let centre = (a.state().position - b.state().position).norm();
     // ‖R₁ − R₂‖_F = 2√2·sin(θ/2): exact for tiny angles, where acos of the trace is not.
-    let frobenius = axes(a)
+    let frobenius = a
+        .body_axes()
         .iter()
-        .zip(axes(b))
+        .zip(b.body_axes())
         .map(|(p, q)| (p - q).norm_squared())
         .sum::<f64>()
         .sqrt();

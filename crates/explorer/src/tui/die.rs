@@ -17,7 +17,7 @@ use super::format::fmt_num;
 use super::vectors::{self, Arrow};
 use crate::worker::{DieState, Phase, TwinSnapshot};
 use dicesim_physics::InitialCondition;
-use dicesim_physics::stopping::why_it_cannot_settle;
+use dicesim_physics::why_it_cannot_settle;
 use dicesim_physics::{Status, UnstableReason, face_frame, pip_centres};
 use nalgebra::Vector3;
 use ratatui::Frame;

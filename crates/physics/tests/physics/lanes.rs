@@ -16,13 +16,10 @@
 //! mixed sample where neighbouring lanes carry different parameters, laws, stop energies and
 //! dice, with soft, stiff, damped and coarse-Δt setups that end in every status.
 
-mod common;
-
-use common::{Table, reference_initial, reference_params, state_bits};
+use crate::common::{Table, random_start, reference_initial, reference_params, state_bits};
 use dicesim_physics::RandomRanges;
 use dicesim_physics::lanes::{LaneResult, lanes_available, roll_in_lanes, roll_one_by_one};
 use dicesim_physics::{FrictionLaw, InitialCondition, Outcome, Params, Status, StopEnergy};
-use dicesim_setup::random::RandomDraws;
 use rand::{RngExt, SeedableRng};
 
 /// Everything a roll's result carries, as bits.
@@ -129,7 +126,7 @@ fn random_setups(params: Params, seed: u64, count: u64) -> Vec<(Params, InitialC
     };
     let base = InitialCondition::default();
     (0..count)
-        .map(|i| (params, ranges.draw(&base, seed, i)))
+        .map(|i| (params, random_start(&ranges, &base, seed, i)))
         .collect()
 }
 
@@ -253,7 +250,7 @@ fn mixed_parameters_in_neighbouring_lanes() {
                     }
                 });
             }
-            let mut ic = ranges.draw(&base, 9, i);
+            let mut ic = random_start(&ranges, &base, 9, i);
             ic.height = rng.random_range(0.5..40.0);
             if i % 10 == 0 {
                 ic.angular_velocity = [rng.random_range(-3000.0..3000.0), 0.0, 0.0];

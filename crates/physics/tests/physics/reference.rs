@@ -1,12 +1,10 @@
-//! Agreement with the authors' own program (tests/data/reference/README.md).
+//! Agreement with the authors' own program (crates/physics/tests/data/reference/README.md).
 //!
 //! The paper's friction law chatters and a 15 cm roll is chaotic, so the paper variant is
 //! compared tightly only early in the roll and on faces marked robust; the original variant is
 //! smooth and is compared over whole rolls.
 
-mod common;
-
-use common::{Table, reference_initial, reference_params};
+use crate::common::{Table, reference_initial, reference_params};
 use dicesim_physics::{Simulation, Status, StopEnergy};
 
 struct FaceAgreement {

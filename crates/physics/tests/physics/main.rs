@@ -1,0 +1,9 @@
+//! The physics crate's integration tests, one binary built from the physics and its
+//! dev-dependencies alone: agreement with the authors' program, the two engines bit for
+//! bit, loaded dice, and the derived checks of docs/model.md.
+
+mod common;
+mod derived_checks;
+mod lanes;
+mod loaded_dice;
+mod reference;
