@@ -226,7 +226,7 @@ pub struct App {
 }
 
 impl App {
-    /// The explorer showing `first`, typically the engine's snapshot before the worker starts.
+    /// The explorer showing `first`, typically the simulator's snapshot before the worker starts.
     pub fn new(mut first: Snapshot, theme: Theme) -> App {
         let preset = first.preset.take().map_or_else(Preset::default, |p| *p);
         let notice = first.notice.take().map(|n| worded(&n));

@@ -183,7 +183,7 @@ mod twin {
         let mut s = start();
         s.key(KeyCode::Char('T'));
         s.command(Command::SetPlaying(false));
-        s.engine.advance_steps(steps);
+        s.simulator.advance_steps(steps);
         s.sync();
         s
     }
@@ -297,7 +297,7 @@ mod twin {
     }
 
     #[test]
-    fn the_engine_steps_both_dice_in_lock_step_from_the_epsilon_scale() {
+    fn the_simulator_steps_both_dice_in_lock_step_from_the_epsilon_scale() {
         let mut s = start();
         s.command(Command::SetTwin(Some(1e-9)));
         let twin = s.app.roll.live.twin.as_ref().expect("a twin");
@@ -305,7 +305,7 @@ mod twin {
         assert!((twin.separation.centre - 1e-9 * h).abs() < 1e-6 * 1e-9 * h);
         assert_eq!(s.app.twin.history.len(), 1);
         s.command(Command::SetPlaying(false));
-        s.engine.advance_steps(2000);
+        s.simulator.advance_steps(2000);
         s.sync();
         let twin = s.app.roll.live.twin.as_ref().expect("a twin");
         assert!(twin.separation.centre > 1e3 * 1e-9 * h, "{:?}", twin.separation);
@@ -396,7 +396,7 @@ mod presets {
         assert!(matches!(sent.as_slice(), [Command::LoadPreset(p)] if p.name == "lab-2"));
         assert!(s.app.dialog().is_none());
         for c in sent {
-            s.engine.handle(c);
+            s.simulator.handle(c);
         }
         s.sync();
         assert_eq!(s.app.setup.preset.name, "lab-2");
@@ -493,10 +493,10 @@ mod presets {
     }
 
     #[test]
-    fn engine_loads_a_preset_with_a_fresh_table() {
+    fn the_simulator_loads_a_preset_with_a_fresh_table() {
         let mut s = Scene::new(&Preset::default(), crate::tui::Theme::default());
         s.command(Command::BatchStart(20));
-        s.engine.run_batch_here();
+        s.simulator.run_batch_here();
         s.sync();
         assert_eq!(s.app.roll.table.rolls(), 20);
         let gentle = Store::new(None).load("gentle-drop").expect("shipped").0;
@@ -505,7 +505,7 @@ mod presets {
         assert_eq!(s.app.setup.params, gentle.params());
         assert_eq!(s.app.setup.initial, gentle.initial);
         assert_eq!(s.app.setup.preset, gentle);
-        assert_eq!(s.engine.preset(), &gentle);
+        assert_eq!(s.simulator.preset(), &gentle);
         assert_eq!(s.app.notice.as_deref(), Some("loaded gentle-drop"));
     }
 }
@@ -565,7 +565,7 @@ mod export {
                 dir: dir.path().to_path_buf(),
                 log_scale,
             });
-            s.engine.run_export_here();
+            s.simulator.run_export_here();
             s.sync();
             std::fs::read(dir.path().join("dicesim-paper-preset-roll.png")).expect("png written")
         };
@@ -586,7 +586,7 @@ mod export {
             s.app.roll.export.is_some(),
             "the export runs off the worker's thread"
         );
-        s.engine.run_export_here();
+        s.simulator.run_export_here();
         s.sync();
         let csv = dir.path().join("dicesim-paper-preset-roll.csv");
         let png = dir.path().join("dicesim-paper-preset-roll.png");
@@ -609,7 +609,7 @@ mod export {
             dir: dir.path().to_path_buf(),
             log_scale: false,
         });
-        s.engine.run_export_here();
+        s.simulator.run_export_here();
         assert!(dir.path().join("dicesim-paper-preset-roll-2.csv").is_file());
         assert!(dir.path().join("dicesim-paper-preset-roll-2.png").is_file());
         assert_eq!(std::fs::read_to_string(&csv).expect("kept"), text);
@@ -667,7 +667,7 @@ mod export {
             yaw_deg,
             pitch_deg,
         });
-        s.engine.run_export_here();
+        s.simulator.run_export_here();
         s.sync();
         let gif = std::fs::canonicalize(dir.path())
             .unwrap()
@@ -691,7 +691,7 @@ mod export {
             dir: "/nonexistent/dicesim-export".into(),
             log_scale: false,
         });
-        s.engine.run_export_here();
+        s.simulator.run_export_here();
         s.sync();
         let notice = s.app.notice.clone().expect("a notice");
         assert!(
@@ -709,14 +709,14 @@ mod export {
         let dir = root.path().join("a").join("b");
         std::fs::create_dir_all(&dir).unwrap();
         let mut s = start();
-        let mut preset = s.engine.preset().clone();
+        let mut preset = s.simulator.preset().clone();
         preset.name = "x/../../escaped".to_string();
         s.command(Command::LoadPreset(Box::new(preset)));
         s.command(Command::Export {
             dir: dir.clone(),
             log_scale: false,
         });
-        s.engine.run_export_here();
+        s.simulator.run_export_here();
         s.sync();
         let written: Vec<String> = std::fs::read_dir(&dir)
             .unwrap()
@@ -752,7 +752,7 @@ mod export {
             dir: dir.path().to_path_buf(),
             log_scale: false,
         });
-        s.engine.run_export_here();
+        s.simulator.run_export_here();
         s.sync();
         let notice = s.app.notice.clone().expect("a notice");
         assert!(notice.contains("rows) is over the 268.4 MB limit"), "{notice}");

@@ -162,7 +162,7 @@ fn backspace_resets_to_the_preset_asking_first() {
     s.key(KeyCode::Backspace);
     s.key(KeyCode::Backspace);
     assert_eq!(s.app.setup.params, preset.params());
-    assert_eq!(s.engine.params(), &preset.params());
+    assert_eq!(s.simulator.params(), &preset.params());
     assert!(!super::dialogs::modified(&s.app));
     // Nothing changed: nothing to ask, nothing to do.
     s.key(KeyCode::Backspace);
@@ -195,7 +195,7 @@ fn opening_a_preset_over_changes_asks_first() {
     s.key(KeyCode::Enter);
     assert!(s.app.dialog().is_none());
     assert_eq!(s.app.setup.preset.name, chosen.name);
-    assert_eq!(s.engine.params(), &chosen.params());
+    assert_eq!(s.simulator.params(), &chosen.params());
 }
 
 #[test]
@@ -285,7 +285,7 @@ fn slow_motion_classroom_opens_slowed_down_with_its_arrows() {
     s.key(KeyCode::Char('a'));
     s.command(Command::LoadPreset(Box::default()));
     assert_eq!(s.app.setup.speed.label(), "1×");
-    assert_eq!(s.engine.live().speed().label(), "1×");
+    assert_eq!(s.simulator.live().speed().label(), "1×");
     // The twin turned on stays on (a lesson compares presets with it).
     assert!(!s.app.vectors && s.app.twin.on && s.app.roll.live.twin.is_some());
     assert_eq!(s.app.camera, super::camera::Camera::default());

@@ -1,5 +1,5 @@
 //! The classroom lesson from its one source, `docs/lesson.toml`: the README's lesson is
-//! generated from it, and each step's keys are pressed in the explorer (the worker's engine
+//! generated from it, and each step's keys are pressed in the explorer (the worker's simulator
 //! in the test's own thread, so every screen is deterministic) and what the step says the
 //! class will see is looked for on the screen.
 
@@ -99,7 +99,7 @@ fn press(s: &mut Scene, key: &str) {
     match key {
         "wait" => s.run_to_end(),
         "batch" => {
-            s.engine.run_batch_here();
+            s.simulator.run_batch_here();
             s.sync();
         }
         "map" => {

@@ -67,9 +67,9 @@ pub(crate) fn export_into(s: &mut Scene, dir: &std::path::Path) {
             }
             other => other,
         };
-        s.engine.handle(c);
+        s.simulator.handle(c);
     }
-    s.engine.run_export_here();
+    s.simulator.run_export_here();
     s.sync();
 }
 
@@ -382,9 +382,9 @@ mod keys {
         let sent = press(&mut s.app, KeyCode::Enter);
         assert_eq!(sent, [Command::PlaySetup(Box::new(params), initial)]);
         assert_eq!(s.app.view, View::Die);
-        // The worker's engine plays it to the face the map shows for that cell.
+        // The worker's simulator plays it to the face the map shows for that cell.
         for c in sent {
-            s.engine.handle(c);
+            s.simulator.handle(c);
         }
         s.run_to_end();
         let outcome = map.cell(i, j).expect("cell").outcome;
@@ -466,15 +466,15 @@ mod keys {
         let dir = tempfile::tempdir().expect("temp dir");
         let mut m = m.clone();
         m.dir = dir.path().to_path_buf();
-        s.engine.handle(Command::ExportMap(m));
+        s.simulator.handle(Command::ExportMap(m));
         s.sync();
         assert!(
             screen(&s.app, 120, 36).contains("exporting the basin map at 1200×800 px · e cancels"),
             "the status line says what runs and how to stop it"
         );
         assert_eq!(press(&mut s.app, KeyCode::Char('e')), [Command::ExportCancel]);
-        s.engine.handle(Command::ExportCancel);
-        s.engine.run_export_here();
+        s.simulator.handle(Command::ExportCancel);
+        s.simulator.run_export_here();
         s.sync();
         assert_eq!(
             s.app.notice.as_deref(),
@@ -520,7 +520,7 @@ mod keys {
             "an earlier export is kept"
         );
         // Nothing is written unless asked.
-        s.engine.run_export_here();
+        s.simulator.run_export_here();
         assert!(!dir.path().join("basin-map-3.png").exists());
     }
 

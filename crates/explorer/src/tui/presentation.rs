@@ -339,8 +339,8 @@ mod tests {
     fn falling_to(height: f64, theme: Theme) -> Scene {
         let mut s = Scene::new(&spun_preset(), theme);
         s.key(KeyCode::Char('P'));
-        while s.engine.simulation().state().position.z >= height {
-            assert_eq!(s.engine.advance_steps(1), 1, "the die falls");
+        while s.simulator.simulation().state().position.z >= height {
+            assert_eq!(s.simulator.advance_steps(1), 1, "the die falls");
         }
         s.sync();
         s

@@ -19,7 +19,7 @@ use super::app::{App, Effect, Msg};
 use super::input::update;
 use super::render::render;
 use super::theme::Theme;
-use crate::worker::{Command, Engine, Worker};
+use crate::worker::{Command, Simulator, Worker};
 use color_eyre::eyre::{Result, WrapErr};
 use dicesim_setup::preset::Preset;
 use ratatui::DefaultTerminal;
@@ -68,7 +68,7 @@ const ENDING_SIGNALS: [i32; 4] = [SIGTERM, SIGHUP, SIGINT, SIGQUIT];
 /// Opens the explorer on `preset` and runs it until the user quits; a signal ends the
 /// process from here with 128 + the signal, after restoring the terminal.
 pub fn run(preset: &Preset, theme: Theme) -> Result<()> {
-    let engine = Engine::new(preset).wrap_err("the preset cannot be simulated")?;
+    let simulator = Simulator::new(preset).wrap_err("the preset cannot be simulated")?;
     let mut signals = Signals::new(ENDING_SIGNALS).wrap_err("cannot catch signals")?;
     let signal_handle = signals.handle();
     // A second install (a caller already did) is harmless: keep the first.
@@ -93,7 +93,7 @@ pub fn run(preset: &Preset, theme: Theme) -> Result<()> {
                 std::process::exit(128 + signal);
             }
         })?;
-    let result = event_loop(&mut terminal, engine, theme, tx, rx);
+    let result = event_loop(&mut terminal, simulator, theme, tx, rx);
     restore_for_good();
     signal_handle.close();
     match result {
@@ -117,17 +117,17 @@ pub(crate) fn perform(app: &mut App, effect: Effect) -> Option<Command> {
 /// Runs until the user quits (`None`) or a signal arrives (`Some(signal)`).
 fn event_loop(
     terminal: &mut DefaultTerminal,
-    mut engine: Engine,
+    mut simulator: Simulator,
     theme: Theme,
     tx: Sender<Msg>,
     rx: Receiver<Msg>,
 ) -> Result<Option<i32>> {
-    let mut app = App::new(engine.snapshot(), theme);
+    let mut app = App::new(simulator.snapshot(), theme);
     app.store = dicesim_setup::preset::Store::from_env();
     let size = terminal.size()?;
     app.screen = Rect::new(0, 0, size.width, size.height);
     let maps = tx.clone();
-    let worker = Worker::spawn_with_maps(engine, tx.clone(), move |m| maps.send(Msg::from(m)).is_ok());
+    let worker = Worker::spawn_with_maps(simulator, tx.clone(), move |m| maps.send(Msg::from(m)).is_ok());
     // The input threads block reading the terminal for the life of the process.
     super::tty::spawn(move |ev| tx.send(Msg::Input(ev)).is_ok()).wrap_err("cannot read the terminal")?;
     let mut drawn: VecDeque<Instant> = VecDeque::new();

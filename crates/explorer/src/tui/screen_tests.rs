@@ -51,7 +51,7 @@ fn shipped(name: &str, theme: Theme) -> Scene {
 fn loaded_batch(rolls: u64, theme: Theme) -> Scene {
     let mut s = shipped("loaded-corner", theme);
     s.command(Command::BatchStart(rolls));
-    s.engine.run_batch_here();
+    s.simulator.run_batch_here();
     s.sync();
     s
 }

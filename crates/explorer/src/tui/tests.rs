@@ -1,5 +1,5 @@
 //! Screens and panels from deterministic states: a fixed preset, exact step counts, keys
-//! fed through `update` into the worker's engine, no thread and no clock.
+//! fed through `update` into the worker's simulator, no thread and no clock.
 
 use super::app::{App, Msg};
 use super::die::render_die;
@@ -13,7 +13,7 @@ use super::param::{Param, all};
 use super::params_panel::{STABILITY_CAUTION, STABILITY_DANGER, render_params};
 use super::render::render;
 use super::theme::Theme;
-use crate::worker::{Command, Engine, Phase};
+use crate::worker::{Command, Phase, Simulator};
 use dicesim_physics::Status;
 use dicesim_physics::stability::CONTACT_MODE_LIMIT;
 use dicesim_setup::preset::Preset;
@@ -31,26 +31,26 @@ pub(crate) fn spun_preset() -> Preset {
         .expect("valid overrides")
 }
 
-/// The engine and the app wired together as the event loop wires them, minus the thread.
+/// The simulator and the app wired together as the event loop wires them, minus the thread.
 pub(crate) struct Scene {
-    pub(crate) engine: Engine,
+    pub(crate) simulator: Simulator,
     pub(crate) app: App,
 }
 
 impl Scene {
     pub(crate) fn new(preset: &Preset, theme: Theme) -> Scene {
-        let mut engine = Engine::new(preset).expect("valid preset");
-        let app = App::new(engine.snapshot(), theme);
-        Scene { engine, app }
+        let mut simulator = Simulator::new(preset).expect("valid preset");
+        let app = App::new(simulator.snapshot(), theme);
+        Scene { simulator, app }
     }
 
     pub(crate) fn sync(&mut self) {
-        let s = self.engine.snapshot();
+        let s = self.simulator.snapshot();
         update(&mut self.app, Msg::from(s));
     }
 
     pub(crate) fn command(&mut self, c: Command) {
-        self.engine.handle(c);
+        self.simulator.handle(c);
         self.sync();
     }
 
@@ -60,7 +60,7 @@ impl Scene {
             Msg::Input(Event::Key(KeyEvent::new(code, modifiers))),
         ) {
             if let Some(c) = crate::tui::run::perform(&mut self.app, effect) {
-                self.engine.handle(c);
+                self.simulator.handle(c);
             }
         }
         self.sync();
@@ -82,7 +82,7 @@ impl Scene {
     }
 
     pub(crate) fn run_to_end(&mut self) {
-        self.engine.run_to_end();
+        self.simulator.run_to_end();
         self.sync();
     }
 }
@@ -94,13 +94,13 @@ pub(crate) fn start() -> Scene {
 /// The first impact, at the step where the ground's spring is squeezed most.
 pub(crate) fn mid_impact_with(theme: Theme) -> Scene {
     let mut s = Scene::new(&spun_preset(), theme);
-    while s.engine.phase() != Phase::InContact {
-        assert!(s.engine.advance_steps(1) == 1, "the die reaches the ground");
+    while s.simulator.phase() != Phase::InContact {
+        assert!(s.simulator.advance_steps(1) == 1, "the die reaches the ground");
     }
     loop {
-        let before = s.engine.simulation().energy().elastic;
-        s.engine.advance_steps(1);
-        if s.engine.simulation().energy().elastic < before {
+        let before = s.simulator.simulation().energy().elastic;
+        s.simulator.advance_steps(1);
+        if s.simulator.simulation().energy().elastic < before {
             break;
         }
     }
@@ -150,9 +150,9 @@ pub(crate) fn filled_table() -> Scene {
     let mut s = start();
     s.key(KeyCode::Char('b'));
     // A smaller batch than `b` asks for keeps the test quick; the path is the same.
-    s.engine.handle(Command::BatchCancel);
+    s.simulator.handle(Command::BatchCancel);
     s.command(Command::BatchStart(600));
-    s.engine.run_batch_here();
+    s.simulator.run_batch_here();
     s.key(KeyCode::Char('R'));
     s.run_to_end();
     s
@@ -822,7 +822,7 @@ mod keys {
     #[test]
     fn own_edits_win_until_the_worker_has_seen_them() {
         let mut s = start();
-        let stale = s.engine.snapshot();
+        let stale = s.simulator.snapshot();
         press(&mut s.app, KeyCode::Down);
         press(&mut s.app, KeyCode::Down);
         let cmds = press(&mut s.app, KeyCode::Right);
@@ -833,7 +833,7 @@ mod keys {
             "an older snapshot does not undo the edit"
         );
         for c in cmds {
-            s.engine.handle(c);
+            s.simulator.handle(c);
         }
         s.sync();
         assert_eq!(s.app.setup.params.ground.friction, mine);
@@ -961,8 +961,8 @@ fn a_batch_whose_range_could_start_a_corner_in_the_table_is_refused() {
         .expect("in range");
     let mut s = Scene::new(&preset, Theme::default());
     s.command(Command::BatchStart(20));
-    assert!(s.engine.take_batch_request().is_none(), "a batch was started");
-    s.engine.run_batch_here();
+    assert!(s.simulator.take_batch_request().is_none(), "a batch was started");
+    s.simulator.run_batch_here();
     s.sync();
     let text = screen(&s.app, 120, 36);
     assert!(text.contains("batch not started"), "{text}");

@@ -29,7 +29,7 @@ pub(crate) fn twin_scene(theme: Theme) -> Scene {
     s.app.theme = theme;
     s.key(KeyCode::Char('T'));
     s.command(Command::SetPlaying(false));
-    s.engine.advance_steps(700);
+    s.simulator.advance_steps(700);
     s.sync();
     s
 }
@@ -38,7 +38,7 @@ pub(crate) fn twin_scene(theme: Theme) -> Scene {
 fn curves() -> &'static (PredictCurve, PredictCurve) {
     static CURVES: LazyLock<(PredictCurve, PredictCurve)> = LazyLock::new(|| {
         let setup = twin_scene(Theme::default())
-            .engine
+            .simulator
             .curve_setup()
             .expect("a twin rolls");
         let spec = dicesim_experiment::predict::PredictSpec {
@@ -67,7 +67,7 @@ fn curves() -> &'static (PredictCurve, PredictCurve) {
 
 /// The scene with `state` delivered as the worker delivers it: in a snapshot.
 fn with_curve(mut s: Scene, generation: u64, state: CurveState) -> Scene {
-    let mut snapshot = s.engine.snapshot();
+    let mut snapshot = s.simulator.snapshot();
     snapshot.curve = Some(CurveUpdate {
         generation,
         count: THROWS,
@@ -92,7 +92,7 @@ pub(crate) fn partial() -> Scene {
 /// A setup whose throws cannot settle: the time cap ends every roll in mid-air.
 pub(crate) fn failed() -> Scene {
     let s = twin_scene(Theme::default());
-    let mut setup: CurveSetup = s.engine.curve_setup().expect("a twin rolls");
+    let mut setup: CurveSetup = s.simulator.curve_setup().expect("a twin rolls");
     setup.params.integrator.max_time = 0.01;
     let state = crate::worker::curve::compute(&setup, &AtomicBool::new(false), &mut |_| {});
     with_curve(s, 1, state)

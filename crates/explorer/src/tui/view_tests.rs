@@ -51,7 +51,7 @@ fn screen(app: &App, w: u16, h: u16) -> String {
 /// The paper's spun roll `steps` steps in: at 150 the die is still falling, tumbling.
 fn after(steps: u64, theme: Theme) -> Scene {
     let mut s = Scene::new(&spun_preset(), theme);
-    s.engine.advance_steps(steps);
+    s.simulator.advance_steps(steps);
     s.sync();
     s
 }
@@ -153,7 +153,7 @@ pub(crate) fn loaded_after(steps: u64, theme: Theme) -> Scene {
     let text = shipped_text("loaded-corner").expect("shipped");
     let preset = Preset::from_toml_str(text, "loaded-corner").expect("valid");
     let mut s = Scene::new(&preset, theme);
-    s.engine.advance_steps(steps);
+    s.simulator.advance_steps(steps);
     s.sync();
     s
 }
@@ -260,7 +260,7 @@ fn every_arrow_has_its_label_and_the_legend_sits_below_the_die() {
 fn the_twins_label_never_covers_the_die() {
     let mut s = after(150, Theme::default());
     s.key(ratatui::crossterm::event::KeyCode::Char('T'));
-    s.engine.advance_steps(150);
+    s.simulator.advance_steps(150);
     s.sync();
     assert!(s.app.roll.live.twin.is_some());
     let t = text(&check_solid(&s.app));
@@ -675,7 +675,7 @@ mod real_dice {
     fn tennis_racket_mid_flip() -> Scene {
         let mut s = shipped("tennis-racket", &[]);
         for _ in 0..4000 {
-            s.engine.advance_steps(1);
+            s.simulator.advance_steps(1);
             s.sync();
             let die = &s.app.roll.live.die;
             let body = Solid::new(&s.app.roll.live.params.die, &die.corners);
@@ -691,10 +691,10 @@ mod real_dice {
     fn the_rounded_die_the_plate_and_the_tennis_racket_mid_flip() {
         let spin = ["initial.angular_velocity=[12,-20,6]"];
         let mut rounded = shipped("rounded-die", &spin);
-        rounded.engine.advance_steps(150);
+        rounded.simulator.advance_steps(150);
         rounded.sync();
         let mut plate = shipped("plate", &spin);
-        plate.engine.advance_steps(300);
+        plate.simulator.advance_steps(300);
         plate.sync();
         let racket = tennis_racket_mid_flip();
         for (name, s) in [
@@ -805,7 +805,7 @@ fn a_body_value_no_die_can_have_is_refused_and_changes_nothing() {
     assert!(out.is_empty() && (s.app.setup.params, s.app.setup.initial) == before);
     // A flatter die is a die: the worker takes it and rolls it from the start.
     let z = Param::named("die.half_sizes.z");
-    s.engine.advance_steps(50);
+    s.simulator.advance_steps(50);
     s.app.setup.set_param(&mut out, z, 0.6).expect("a body");
     for c in out {
         s.command(c);

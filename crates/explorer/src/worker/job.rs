@@ -1,7 +1,7 @@
 //! One computation on a thread of its own with a cancel flag: the worker's batches, maps,
 //! curves and exports all run this way, so cancelling and waiting are written once. Each
 //! kind of job has one [`Runner`] (at most one job of that kind at a time, its progress
-//! taken on every tick), and the engine keeps what it asked for in an [`Order`]: the
+//! taken on every tick), and the simulator keeps what it asked for in an [`Order`]: the
 //! runner stops any job whose id the order no longer waits for.
 
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -57,7 +57,7 @@ impl<P> Post<P> {
 }
 
 /// The one shape of the worker's jobs (batch, export, map, curve): started under the id
-/// the engine gave it, its progress taken on every tick, stopped or joined once. Only the
+/// the simulator gave it, its progress taken on every tick, stopped or joined once. Only the
 /// kind of progress (`P`) and of result (`T`) differ.
 pub(super) struct Tracked<P, T> {
     pub id: u64,
@@ -126,7 +126,7 @@ impl<P: Default + Send + 'static, T: Send + 'static> Runner<P, T> {
         self.run.is_some()
     }
 
-    /// Stops the job unless it is the one `wanted` (the engine's order moved on, or was
+    /// Stops the job unless it is the one `wanted` (the simulator's order moved on, or was
     /// cancelled).
     pub fn keep_only(&mut self, wanted: Option<u64>) {
         if self.run.as_ref().is_some_and(|r| Some(r.id) != wanted) {
@@ -173,7 +173,7 @@ impl<P, T> Drop for Runner<P, T> {
     }
 }
 
-/// What the engine has asked a runner for: the job it waits for (with what it shows of
+/// What the simulator has asked a runner for: the job it waits for (with what it shows of
 /// it, `S`), and the request not yet taken. Ids are never reused, so a report of an older
 /// job is recognised and dropped.
 #[derive(Debug)]

@@ -1,4 +1,4 @@
-//! The worker's state machine: the live roll, the outcome table and the jobs ordered off
+//! The simulator, the worker's state machine: the live roll, the outcome table and the jobs ordered off
 //! its thread (batch, export, map), driven by commands and by "advance to simulated time
 //! t". No thread, no clock and no file live here, so tests (and the thread in `mod.rs`)
 //! drive it step for step.
@@ -8,8 +8,10 @@ use super::export::{ExportJob, Exporting, Written};
 use super::job::Order;
 use super::live::LiveRoll;
 use super::map::MapJob;
-use super::twin::{Difference, Twin};
-use super::{BatchProgress, Command, ExportStatus, MapExport, Notice, OutcomeTable, RollKind, Snapshot};
+use super::protocol::{
+    BatchProgress, Command, ExportStatus, MapExport, Notice, OutcomeTable, RollKind, Snapshot,
+};
+use super::twin_die::{Difference, Twin};
 use dicesim_experiment::RollRecord;
 use dicesim_experiment::versus::VersusTable;
 use dicesim_figures::animation::render::Camera;
@@ -53,11 +55,11 @@ const ANIMATION_SIZE: (u32, u32) = (640, 480);
 struct Pending {
     table_changed: bool,
     notice: Option<Notice>,
-    /// A preset was loaded (or the engine just started): the UI gets it whole.
+    /// A preset was loaded (or the simulator just started): the UI gets it whole.
     preset: Option<Box<Preset>>,
 }
 
-pub struct Engine {
+pub struct Simulator {
     /// The preset as loaded: the UI compares the setup with it and saves from it; random
     /// rolls are drawn from its ranges around its start.
     preset: Preset,
@@ -85,10 +87,10 @@ fn twin_of(preset: &Preset) -> Option<Twin> {
         .and_then(|epsilon| Twin::new(&preset.params(), &preset.initial, Difference::Start { epsilon }).ok())
 }
 
-impl Engine {
-    /// A paused engine at the start of the preset's roll, at the preset's speed and with
+impl Simulator {
+    /// A paused simulator at the start of the preset's roll, at the preset's speed and with
     /// its twin (a key its view leaves out means the default: 1×, no twin).
-    pub fn new(preset: &Preset) -> Result<Engine, ParamError> {
+    pub fn new(preset: &Preset) -> Result<Simulator, ParamError> {
         preset.validate()?;
         let params = preset.params();
         dicesim_physics::Simulation::new(&params, &preset.initial)?;
@@ -98,7 +100,7 @@ impl Engine {
             twin_of(preset),
             preset.view.speed.unwrap_or_default(),
         );
-        Ok(Engine {
+        Ok(Simulator {
             preset: preset.clone(),
             next_random: 0,
             table: OutcomeTable::default(),
@@ -478,7 +480,7 @@ impl Engine {
     }
 
     /// The export to start, once: whoever runs it reports back with
-    /// [`Engine::export_progress`] and [`Engine::finish_export`].
+    /// [`Simulator::export_progress`] and [`Simulator::finish_export`].
     pub(crate) fn take_export_request(&mut self) -> Option<ExportJob> {
         self.export.take_request()
     }
@@ -579,8 +581,8 @@ impl Engine {
         self.count_finished_roll();
     }
 
-    /// The batch to start, once: whoever runs it reports back with [`Engine::add_batch_records`]
-    /// and [`Engine::finish_batch`].
+    /// The batch to start, once: whoever runs it reports back with [`Simulator::add_batch_records`]
+    /// and [`Simulator::finish_batch`].
     pub(crate) fn take_batch_request(&mut self) -> Option<BatchRequest> {
         self.batch.take_request()
     }
@@ -651,7 +653,7 @@ impl Engine {
         }
     }
 
-    /// Runs a batch taken with [`Engine::take_batch_request`] on this thread to its end.
+    /// Runs a batch taken with [`Simulator::take_batch_request`] on this thread to its end.
     #[cfg(test)]
     pub(crate) fn run_request_here(&mut self, request: BatchRequest) {
         use dicesim_experiment::{Rolls, run_batch};
@@ -682,7 +684,7 @@ impl Engine {
     }
 
     #[cfg(test)]
-    pub(crate) fn phase(&self) -> super::Phase {
+    pub(crate) fn phase(&self) -> super::protocol::Phase {
         self.live.phase()
     }
 
@@ -740,7 +742,7 @@ mod tests {
     use dicesim_setup::keys::ScanKey;
 
     /// The notice of an export of the roll on screen into a fresh folder.
-    fn exported(e: &mut Engine) -> String {
+    fn exported(e: &mut Simulator) -> String {
         let dir = tempfile::tempdir().expect("temp dir");
         e.handle(Command::Export {
             dir: dir.path().to_path_buf(),
@@ -753,7 +755,7 @@ mod tests {
 
     #[test]
     fn an_export_after_a_mid_roll_change_says_it_rolled_again() {
-        let mut e = Engine::new(&Preset::default()).expect("valid");
+        let mut e = Simulator::new(&Preset::default()).expect("valid");
         e.advance_steps(300);
         let friction = ScanKey::named("ground.friction").expect("a scan key");
         e.handle(Command::SetParam(friction, 0.2));
@@ -774,13 +776,13 @@ mod tests {
         // A table value changed before the roll has moved is the whole roll's: no word either,
         // and what is shown is what a fresh roll with that value gives.
         let stiffness = ScanKey::named("ground.stiffness").expect("a scan key");
-        let mut e = Engine::new(&Preset::default()).expect("valid");
+        let mut e = Simulator::new(&Preset::default()).expect("valid");
         e.handle(Command::SetParam(stiffness, 550_000.0));
         e.run_to_end();
         assert!(!exported(&mut e).contains("re-rolled"));
         let mut preset = Preset::default();
         preset.ground.stiffness = 550_000.0;
-        let mut fresh = Engine::new(&preset).expect("valid");
+        let mut fresh = Simulator::new(&preset).expect("valid");
         fresh.run_to_end();
         assert_eq!(e.phase(), fresh.phase(), "the same roll as a fresh one");
     }
