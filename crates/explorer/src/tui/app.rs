@@ -1,20 +1,22 @@
 //! The explorer's state and what changes it (a worker snapshot absorbed, a value set);
 //! keys and the mouse reach it through [`super::input`]. Nothing here draws, sleeps or reads a clock.
 
-use super::camera::Camera;
+use super::camera::OrbitCamera;
 use super::dialog::Dialog;
 pub(crate) use super::editor::{Editor, Typed, VALUE_CHARS};
-use super::keys::{self, Action, Input, Screen, label};
+use super::keys::{self, Action, Input, Scope, label};
 use super::layout::{Areas, screen_layout};
-use super::map_view::{MapView, View};
+use super::map_view::{MapView, Page};
 use super::param::{Param, all};
 use super::plot::PlotChoice;
 use super::roll_view::RollView;
-use super::setup::Setup;
+use super::setup::UserSetup;
 use super::theme::{Palette, Theme};
 use super::twin_view::TwinView;
 use crate::worker::{Command, MapUpdate, Notice, Snapshot};
-use dicesim_setup::preset::{CameraView, Preset, Screen as ViewScreen, Store, ThemeName, View as PresetView};
+use dicesim_setup::preset::{
+    CameraView, Preset, Screen as PresetScreen, Store, ThemeName, View as PresetView,
+};
 use ratatui::crossterm::event::Event;
 use ratatui::layout::Rect;
 use ratatui::symbols::Marker;
@@ -108,7 +110,7 @@ impl Prompt {
         match self {
             Prompt::Quit => format!(
                 "Quit? The setup has unsaved changes ({} saves them).",
-                keys::named(Screen::Die, Action::SavePreset)
+                keys::named(Scope::Die, Action::SavePreset)
             ),
             Prompt::Reset => format!("Reset the setup to {preset}? Your changes are lost."),
             Prompt::Load(p) => format!("Open {}? Your changes to {preset} are lost.", p.name),
@@ -121,10 +123,10 @@ impl Prompt {
         (
             format!(
                 "{}/{}",
-                keys::named(Screen::Prompt, Action::Confirm),
-                keys::named(Screen::Prompt, asking)
+                keys::named(Scope::Prompt, Action::Confirm),
+                keys::named(Scope::Prompt, asking)
             ),
-            keys::words(Screen::Prompt, asking),
+            keys::words(Scope::Prompt, asking),
         )
     }
 
@@ -192,7 +194,7 @@ pub struct App {
     /// The live roll, its table, batch and export, as the worker's snapshots tell them.
     pub(crate) roll: RollView,
     /// The setup as the user last set it (ahead of the worker's until it catches up).
-    pub(crate) setup: Setup,
+    pub(crate) setup: UserSetup,
     /// The chaos twin (`T`): its ε, its drift and the predictability curve.
     pub(crate) twin: TwinView,
     /// What is on top of the screen, if anything: it takes every key.
@@ -208,14 +210,15 @@ pub struct App {
     /// Where presets are listed from and saved to.
     pub(crate) store: Store,
     pub(crate) drawing: Drawing,
-    pub(crate) camera: Camera,
+    pub(crate) camera: OrbitCamera,
     pub(crate) theme: Theme,
     /// Frames drawn per second, measured by the event loop.
     pub(crate) fps: Option<f64>,
     /// The terminal's size, for mouse hit tests.
     pub(crate) screen: Rect,
     pub(crate) quit: bool,
-    pub(crate) view: View,
+    /// The page on screen: the die, the basin map or the presentation view.
+    pub(crate) page: Page,
     /// The number the presentation view shows beside the face.
     pub(crate) readout: super::presentation::Readout,
     pub(crate) map: MapView,
@@ -236,7 +239,7 @@ impl App {
         };
         App {
             map: MapView::new(&first.params, &first.initial),
-            setup: Setup::new(&first, preset),
+            setup: UserSetup::new(&first, preset),
             roll: RollView::new(first),
             twin,
             notice,
@@ -247,12 +250,12 @@ impl App {
             vectors: false,
             store: Store::new(None),
             drawing: Drawing::default(),
-            camera: Camera::default(),
+            camera: OrbitCamera::default(),
             theme,
             fps: None,
             screen: Rect::new(0, 0, 120, 36),
             quit: false,
-            view: View::Die,
+            page: Page::Die,
             readout: Default::default(),
             effects: Vec::new(),
             drag: None,
@@ -273,7 +276,7 @@ impl App {
     /// is, since it suits the room rather than the preset, and so does a twin that rolls
     /// (a lesson turns it on, then opens presets to compare them with it).
     pub(crate) fn apply_view(&mut self, view: &PresetView) {
-        self.camera = view.camera.map_or_else(Camera::default, |c| Camera {
+        self.camera = view.camera.map_or_else(OrbitCamera::default, |c| OrbitCamera {
             yaw_deg: c.yaw,
             pitch_deg: c.pitch,
             zoom: c.zoom,
@@ -289,7 +292,7 @@ impl App {
         if view.twin.is_some() {
             self.twin.apply(view.twin);
         }
-        self.map.open_asked = view.screen == Some(ViewScreen::Map);
+        self.map.open_asked = view.screen == Some(PresetScreen::Map);
     }
 
     /// The view on screen, as `s` saves it.
@@ -308,9 +311,9 @@ impl App {
             }),
             arrows: Some(self.vectors),
             twin: self.twin.on.then_some(self.twin.epsilon),
-            screen: Some(match self.view {
-                View::Die | View::Presentation => ViewScreen::Die,
-                View::Map => ViewScreen::Map,
+            screen: Some(match self.page {
+                Page::Die | Page::Presentation => PresetScreen::Die,
+                Page::Map => PresetScreen::Map,
             }),
         }
     }
@@ -323,9 +326,9 @@ impl App {
             Some(Overlay::Dialog(_)) => Mode::Dialog,
             Some(Overlay::Epsilon(_)) => Mode::EditingEpsilon,
             // The map's range editor is the map screen's own, under any overlay.
-            _ if self.view == View::Map && self.map.editing.is_some() => Mode::EditingRange,
+            _ if self.page == Page::Map && self.map.editing.is_some() => Mode::EditingRange,
             Some(Overlay::Help { .. }) => Mode::Help,
-            None if self.view == View::Map => Mode::Map,
+            None if self.page == Page::Map => Mode::Map,
             None => Mode::Normal,
         }
     }
@@ -379,18 +382,18 @@ impl App {
     }
 
     /// The mode whose rows of the key table apply now.
-    pub(crate) fn key_mode(&self) -> Screen {
+    pub(crate) fn key_scope(&self) -> Scope {
         match self.mode() {
-            Mode::Prompt => Screen::Prompt,
-            Mode::EditingValue | Mode::EditingEpsilon | Mode::EditingRange => Screen::Text,
+            Mode::Prompt => Scope::Prompt,
+            Mode::EditingValue | Mode::EditingEpsilon | Mode::EditingRange => Scope::Text,
             Mode::Dialog => match self.dialog() {
-                Some(Dialog::Save { .. }) => Screen::Save,
-                _ => Screen::Picker,
+                Some(Dialog::Save { .. }) => Scope::Save,
+                _ => Scope::Picker,
             },
-            Mode::Help => Screen::Help,
-            Mode::Map => Screen::Map,
-            Mode::Normal if self.view == View::Presentation => Screen::Show,
-            Mode::Normal => Screen::Die,
+            Mode::Help => Scope::Help,
+            Mode::Map => Scope::Map,
+            Mode::Normal if self.page == Page::Presentation => Scope::Show,
+            Mode::Normal => Scope::Die,
         }
     }
 
@@ -399,7 +402,7 @@ impl App {
         if let Input::Nothing(key) = input {
             self.notice = Some(format!(
                 "{key}: nothing here ({} lists the keys)",
-                label(Screen::Die, Action::Help)
+                label(Scope::Die, Action::Help)
             ));
         }
     }
@@ -523,11 +526,11 @@ pub(crate) fn worded(notice: &Notice) -> String {
     match notice {
         Notice::RollEnded => format!(
             "the roll has ended: {} replays it",
-            label(Screen::Die, Action::Replay)
+            label(Scope::Die, Action::Replay)
         ),
         Notice::ExportRunning => format!(
             "an export is running: {} cancels it",
-            label(Screen::Die, Action::Export)
+            label(Scope::Die, Action::Export)
         ),
         Notice::Said(words) => words.clone(),
     }

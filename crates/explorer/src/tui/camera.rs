@@ -32,7 +32,7 @@ pub(crate) const EDGES: [(usize, usize); 12] = [
 
 /// An orthographic camera circling the die: yaw about the vertical, pitch looking down.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Camera {
+pub(crate) struct OrbitCamera {
     /// °, turn about the vertical axis.
     pub yaw_deg: f64,
     /// °, elevation: 0 looks level, 90 straight down.
@@ -41,9 +41,9 @@ pub(crate) struct Camera {
     pub(crate) zoom: i32,
 }
 
-impl Default for Camera {
+impl Default for OrbitCamera {
     fn default() -> Self {
-        Camera {
+        OrbitCamera {
             yaw_deg: 30.0,
             pitch_deg: 25.0,
             zoom: 0,
@@ -59,7 +59,7 @@ pub(crate) struct Projected {
     pub(crate) depth: f64,
 }
 
-impl Camera {
+impl OrbitCamera {
     pub(crate) const MIN_PITCH: f64 = -10.0;
     pub(crate) const MAX_PITCH: f64 = 89.0;
     pub(crate) const MIN_ZOOM: i32 = -8;
@@ -266,10 +266,10 @@ mod tests {
 
     #[test]
     fn the_top_faces_the_viewer_from_above_and_the_bottom_does_not() {
-        let cam = Camera::default();
+        let cam = OrbitCamera::default();
         assert!(cam.facing(&Vector3::z()) > 0.0);
         assert!(cam.facing(&-Vector3::z()) < 0.0);
-        let level = Camera {
+        let level = OrbitCamera {
             pitch_deg: 0.0,
             ..cam
         };

@@ -288,7 +288,7 @@ fn slow_motion_classroom_opens_slowed_down_with_its_arrows() {
     assert_eq!(s.simulator.live().speed().label(), "1×");
     // The twin turned on stays on (a lesson compares presets with it).
     assert!(!s.app.vectors && s.app.twin.on && s.app.roll.live.twin.is_some());
-    assert_eq!(s.app.camera, super::camera::Camera::default());
+    assert_eq!(s.app.camera, super::camera::OrbitCamera::default());
     assert_eq!(s.app.theme.palette, super::theme::Palette::Light);
 }
 
@@ -355,11 +355,11 @@ fn a_view_on_the_map_screen_opens_it() {
 
 #[test]
 fn the_views_camera_limits_are_the_cameras() {
-    use super::camera::Camera;
-    assert_eq!(dicesim_setup::preset::PITCH.min, Camera::MIN_PITCH);
-    assert_eq!(dicesim_setup::preset::PITCH.max, Camera::MAX_PITCH);
-    assert_eq!(dicesim_setup::preset::ZOOM.min, f64::from(Camera::MIN_ZOOM));
-    assert_eq!(dicesim_setup::preset::ZOOM.max, f64::from(Camera::MAX_ZOOM));
+    use super::camera::OrbitCamera;
+    assert_eq!(dicesim_setup::preset::PITCH.min, OrbitCamera::MIN_PITCH);
+    assert_eq!(dicesim_setup::preset::PITCH.max, OrbitCamera::MAX_PITCH);
+    assert_eq!(dicesim_setup::preset::ZOOM.min, f64::from(OrbitCamera::MIN_ZOOM));
+    assert_eq!(dicesim_setup::preset::ZOOM.max, f64::from(OrbitCamera::MAX_ZOOM));
 }
 
 #[test]

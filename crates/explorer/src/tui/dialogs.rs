@@ -8,7 +8,7 @@ use super::app::{App, Effect, Overlay, Prompt};
 pub(crate) use super::dialog::{Choice, Dialog, SaveField};
 use super::fit;
 use super::format::fmt_num;
-use super::keys::{Action, Input, Screen, named};
+use super::keys::{Action, Input, Scope, named};
 use super::param::all;
 use crate::worker::Command;
 use dicesim_setup::output::printable;
@@ -298,8 +298,8 @@ pub(crate) fn save(app: &mut App, preset: &Preset, replace: bool) {
             app,
             format!(
                 "`{name}` exists: {} again replaces it, {} keeps it",
-                named(Screen::Save, Action::Confirm),
-                named(Screen::Save, Action::Close)
+                named(Scope::Save, Action::Confirm),
+                named(Scope::Save, Action::Close)
             ),
             true,
         );
@@ -390,9 +390,9 @@ fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
                     fit::abbreviate(
                         Line::from(format!(
                             " {} choose · {} loads · {} closes · ★ yours ",
-                            named(Screen::Picker, Action::SelectPrevious),
-                            named(Screen::Picker, Action::Confirm),
-                            named(Screen::Picker, Action::Close)
+                            named(Scope::Picker, Action::SelectPrevious),
+                            named(Scope::Picker, Action::Confirm),
+                            named(Scope::Picker, Action::Close)
                         )),
                         popup.width.saturating_sub(2) as usize,
                     )
@@ -421,7 +421,7 @@ fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
                 (None, Some(Err(_))) => Line::styled(
                     format!(
                         "this file does not load: {} shows why",
-                        named(Screen::Picker, Action::Confirm)
+                        named(Scope::Picker, Action::Confirm)
                     ),
                     t.caution(),
                 ),
@@ -470,9 +470,9 @@ fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
                     fit::abbreviate(
                         Line::from(format!(
                             " {}: name / description · {} saves · {} cancels ",
-                            named(Screen::Save, Action::NextField),
-                            named(Screen::Save, Action::Confirm),
-                            named(Screen::Save, Action::Close)
+                            named(Scope::Save, Action::NextField),
+                            named(Scope::Save, Action::Confirm),
+                            named(Scope::Save, Action::Close)
                         )),
                         popup.width.saturating_sub(2) as usize,
                     )
@@ -504,7 +504,7 @@ fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
             if description.is_empty() {
                 lines.push(Line::raw(format!(
                     "(left empty, the text above is saved; {} to type your own)",
-                    named(Screen::Save, Action::NextField)
+                    named(Scope::Save, Action::NextField)
                 )));
             }
             lines.push(Line::raw(folder));

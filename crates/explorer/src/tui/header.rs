@@ -2,7 +2,7 @@
 //! shown instead of a screen when the terminal is too small for it.
 
 use super::app::App;
-use super::keys::{Action, Screen, label};
+use super::keys::{Action, Scope, label};
 use super::layout::{MIN_HEIGHT, MIN_WIDTH};
 use crate::worker::{Phase, RollKind};
 use dicesim_physics::Status;
@@ -22,7 +22,7 @@ pub(crate) fn render_too_small(area: Rect, frame: &mut Frame) {
             "(it is {}×{} now) · {} quits",
             area.width,
             area.height,
-            label(Screen::Die, Action::Quit)
+            label(Scope::Die, Action::Quit)
         )),
     ];
     let top = area.height.saturating_sub(2) / 2;

@@ -5,11 +5,11 @@
 //! returned.
 
 use super::app::{App, Drawing, Editor, Effect, Mode, Msg, Overlay, Prompt, Typed, VALUE_CHARS};
-use super::camera::Camera;
-use super::keys::{Action, Input, Screen, label, read};
+use super::camera::OrbitCamera;
+use super::keys::{Action, Input, Scope, label, read};
 use super::layout::param_row_at;
 use super::map_keys as map;
-use super::map_view::View;
+use super::map_view::Page;
 use super::param::all;
 use crate::worker::Command;
 use ratatui::crossterm::event::{Event, KeyEvent, KeyEventKind, MouseButton, MouseEventKind};
@@ -43,7 +43,7 @@ pub fn update(app: &mut App, msg: Msg) -> Vec<Effect> {
 }
 
 fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
-    let input = read(app.key_mode(), key);
+    let input = read(app.key_scope(), key);
     if input == Input::Interrupt {
         app.quit(out);
         return;
@@ -143,10 +143,10 @@ fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
         Action::IncreaseBig => app.nudge(out, 1, true),
         // The value editor and the parameter list are the main screen's: typing a value
         // blind is no help to a class.
-        Action::TypeValue if app.view == View::Presentation => {
+        Action::TypeValue if app.page == Page::Presentation => {
             app.notice = Some(format!(
                 "{} first: values are typed on the main screen",
-                label(Screen::Show, Action::Presentation)
+                label(Scope::Show, Action::Presentation)
             ))
         }
         Action::TypeValue => app.overlay = Some(Overlay::Value(Editor::default())),
@@ -166,7 +166,7 @@ fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
             if !super::twin::on_key(app, action, out) {
                 app.notice = Some(format!(
                     "{} first: these keys set the twin's ε",
-                    label(Screen::Die, Action::Twin)
+                    label(Scope::Die, Action::Twin)
                 ));
             }
         }
@@ -181,7 +181,7 @@ fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
                 } else {
                     ", but NO_COLOR is set"
                 },
-                label(Screen::Die, Action::Theme)
+                label(Scope::Die, Action::Theme)
             ));
         }
         Action::Drawing => {
@@ -196,30 +196,30 @@ fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
         Action::TiltDown => app.camera.orbit(0.0, -10.0),
         Action::ZoomIn => app.camera.zoom_by(1),
         Action::ZoomOut => app.camera.zoom_by(-1),
-        Action::ResetCamera => app.camera = Camera::default(),
+        Action::ResetCamera => app.camera = OrbitCamera::default(),
         Action::OpenPreset => app.ask(Effect::ListPresets),
         Action::SavePreset => super::dialogs::open_save(app),
         Action::ResetSetup => app.reset_asking(),
         Action::OpenMap => map::open(app, out),
         Action::Presentation => {
-            app.view = match app.view {
-                View::Presentation => View::Die,
-                _ => View::Presentation,
+            app.page = match app.page {
+                Page::Presentation => Page::Die,
+                _ => Page::Presentation,
             }
         }
         Action::NextReadout => app.readout = app.readout.next(),
         Action::Help => {
             app.overlay = Some(Overlay::Help { scroll: 0 });
         }
-        Action::Close => match app.view {
-            View::Map => {
+        Action::Close => match app.page {
+            Page::Map => {
                 map::close(app, out);
             }
-            View::Presentation => app.view = View::Die,
-            View::Die => {
+            Page::Presentation => app.page = Page::Die,
+            Page::Die => {
                 app.notice = Some(format!(
                     "nothing to close ({} quits)",
-                    label(Screen::Die, Action::Quit)
+                    label(Scope::Die, Action::Quit)
                 ))
             }
         },
@@ -287,7 +287,7 @@ fn on_mouse(app: &mut App, kind: MouseEventKind, column: u16, row: u16, out: &mu
     if app.mode() != Mode::Normal {
         return;
     }
-    if app.view == View::Presentation {
+    if app.page == Page::Presentation {
         // The die fills the view: a drag anywhere orbits, a scroll zooms.
         match kind {
             MouseEventKind::Down(MouseButton::Left) => app.drag = Some((column, row)),
@@ -300,7 +300,7 @@ fn on_mouse(app: &mut App, kind: MouseEventKind, column: u16, row: u16, out: &mu
     let at = Position::new(column, row);
     match kind {
         MouseEventKind::Down(_) | MouseEventKind::ScrollUp | MouseEventKind::ScrollDown
-            if app.view == View::Presentation => {}
+            if app.page == Page::Presentation => {}
         MouseEventKind::Down(MouseButton::Left) => {
             if let Some(i) = param_row_at(app.selected, &areas, at) {
                 app.selected = i;

@@ -9,7 +9,7 @@ use super::app::App;
 use super::footer::render_help;
 use super::format::fmt_num;
 use super::header::{render_header, render_too_small};
-use super::keys::{Action, Screen, first_key, label};
+use super::keys::{Action, Scope, first_key, label};
 pub(crate) use super::map_view::*;
 use super::param::Param;
 use crate::worker::MapAxis;
@@ -109,9 +109,9 @@ fn render_panel(app: &App, areas: &MapAreas, frame: &mut Frame) {
         } else {
             format!(
                 "no map: {} back to the die, or {} / {} to choose axes",
-                label(Screen::Map, Action::MapBack),
-                label(Screen::Map, Action::NextXAxis),
-                label(Screen::Map, Action::NextYAxis)
+                label(Scope::Map, Action::MapBack),
+                label(Scope::Map, Action::NextXAxis),
+                label(Scope::Map, Action::NextYAxis)
             )
         };
         frame.render_widget(Paragraph::new(text).wrap(Wrap { trim: true }), grid);
@@ -239,7 +239,7 @@ fn render_side(app: &App, area: Rect, frame: &mut Frame) {
     let m = &app.map;
     let block = Block::bordered().title(Line::styled(" basin map of the current setup ", t.heading()));
     let mut lines = Vec::new();
-    let keys = |axis, range| format!("{} · {}", label(Screen::Map, axis), label(Screen::Map, range));
+    let keys = |axis, range| format!("{} · {}", label(Scope::Map, axis), label(Scope::Map, range));
     for (side, a, keys) in [
         (Side::X, &m.x, keys(Action::NextXAxis, Action::TypeXRange)),
         (Side::Y, &m.y, keys(Action::NextYAxis, Action::TypeYRange)),
@@ -290,8 +290,8 @@ fn render_side(app: &App, area: Rect, frame: &mut Frame) {
     lines.push(Line::raw(format!(
         " zoom ×{} ({} in, {} out)",
         fmt_num(zoom),
-        first_key(Screen::Map, Action::MapZoomIn),
-        first_key(Screen::Map, Action::MapZoomOut)
+        first_key(Scope::Map, Action::MapZoomIn),
+        first_key(Scope::Map, Action::MapZoomOut)
     )));
     lines.push(Line::raw(""));
     lines.extend(cursor_lines(app));
@@ -383,7 +383,7 @@ fn legend_lines(app: &App) -> Vec<Line<'static>> {
         format!(
             " legend: {} ({})",
             layer_name(m.layer),
-            label(Screen::Map, Action::MapLayer)
+            label(Scope::Map, Action::MapLayer)
         ),
         t.heading(),
     )];

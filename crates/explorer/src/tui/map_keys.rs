@@ -4,8 +4,8 @@
 //! terminal and sends the requests they make.
 
 use super::app::App;
-use super::keys::{Action, Input, Screen, label};
-use super::map_view::{MapView, Side, View};
+use super::keys::{Action, Input, Scope, label};
+use super::map_view::{MapView, Page, Side};
 use crate::worker::{Command, MapRequest, MapUpdate};
 
 /// Cells one Shift-arrow moves the cursor.
@@ -27,7 +27,7 @@ fn start(app: &mut App, out: &mut Vec<Command>) {
 /// Switches to the map screen; computes the map unless the one there still fits the setup
 /// and the terminal.
 pub(crate) fn open(app: &mut App, out: &mut Vec<Command>) {
-    app.view = View::Map;
+    app.page = Page::Map;
     if !app
         .map
         .still_fits(app.screen, &app.setup.params, &app.setup.initial)
@@ -39,7 +39,7 @@ pub(crate) fn open(app: &mut App, out: &mut Vec<Command>) {
 /// Back to the die. A map still being computed is cancelled so the live roll gets the cores;
 /// coming back computes it again.
 pub(crate) fn close(app: &mut App, out: &mut Vec<Command>) -> Option<MapRequest> {
-    app.view = View::Die;
+    app.page = Page::Die;
     if app.map.leave() {
         app.setup.send(out, Command::MapCancel);
     }
@@ -55,7 +55,7 @@ pub(crate) fn absorb(app: &mut App, update: MapUpdate) {
 
 /// The terminal was resized: a map on screen is recomputed to fill the new panel.
 pub(crate) fn resized(app: &mut App, out: &mut Vec<Command>) {
-    if app.view == View::Map && app.map.stale(app.screen) {
+    if app.page == Page::Map && app.map.stale(app.screen) {
         start(app, out);
     }
 }
@@ -94,8 +94,8 @@ pub(crate) fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Com
             let ((w, h), what) = m.next_export_size();
             app.notice = Some(format!(
                 "PNG size {w}×{h} ({what}) · {} exports, {} the next size",
-                label(Screen::Map, Action::ExportMap),
-                label(Screen::Map, Action::MapExportSize)
+                label(Scope::Map, Action::ExportMap),
+                label(Scope::Map, Action::MapExportSize)
             ));
             None
         }

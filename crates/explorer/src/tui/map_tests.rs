@@ -3,7 +3,7 @@
 
 use super::app::{App, Effect, Msg};
 use super::input::update;
-use super::map::{MapView, View, ZOOM_FACTOR, map_layout};
+use super::map::{MapView, Page, ZOOM_FACTOR, map_layout};
 use super::param::Param;
 use super::render::render;
 use super::tests::{Scene, boundary_sizes, screen, spun_preset, start};
@@ -100,7 +100,7 @@ fn map_of(app: &App) -> &BasinMap {
 #[test]
 fn map_screen() {
     let s = map_scene(Theme::default());
-    assert_eq!(s.app.view, View::Map);
+    assert_eq!(s.app.page, Page::Map);
     let cursor = s.app.map.cursor;
     assert_eq!(cursor, (CELLS.0 / 2 + 3, CELLS.1 / 2 + 1));
     let text = draw(&s.app, 120, 36).backend().to_string();
@@ -328,7 +328,7 @@ mod keys {
         press(&mut a, KeyCode::Tab);
         let sent = press(&mut a, KeyCode::Tab);
         assert_eq!(sent, [Command::MapCancel]);
-        assert_eq!(a.view, View::Die);
+        assert_eq!(a.page, Page::Die);
         let sent = press(&mut a, KeyCode::Tab);
         assert_eq!(starts(&sent).len(), 1);
         // A finished map on an unchanged setup is shown again without recomputing.
@@ -381,7 +381,7 @@ mod keys {
         let (params, initial) = node_setup(&shown.params, &shown.initial, &map.x, &map.y, i, j);
         let sent = press(&mut s.app, KeyCode::Enter);
         assert_eq!(sent, [Command::PlaySetup(Box::new(params), initial)]);
-        assert_eq!(s.app.view, View::Die);
+        assert_eq!(s.app.page, Page::Die);
         // The worker's simulator plays it to the face the map shows for that cell.
         for c in sent {
             s.simulator.handle(c);

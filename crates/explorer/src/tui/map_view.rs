@@ -28,7 +28,7 @@ pub(crate) const Y_LABELS: u16 = 8;
 
 /// Which screen is on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub(crate) enum View {
+pub(crate) enum Page {
     #[default]
     Die,
     Map,

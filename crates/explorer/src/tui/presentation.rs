@@ -4,9 +4,9 @@
 //! face up in large block digits, the time and one number the lesson is about beside it.
 
 use super::app::{App, Mode};
-use super::die::{self, View};
+use super::die::{self, Projection};
 use super::footer::{KeyHint, render_footer, render_help, render_key_hints};
-use super::keys::{Action, Screen, first_key, rows};
+use super::keys::{Action, Scope, first_key, rows};
 use nalgebra::Vector3;
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -134,7 +134,7 @@ pub(crate) fn tick_step(span: f64, most: usize) -> f64 {
 /// higher), the same for every step of the roll; the zoom keys shrink it from the top, the
 /// table staying at the bottom. Horizontally the camera follows the die, as on the main
 /// screen, so the die stays in view as it travels.
-pub(crate) fn fixed_view(app: &App, area: Rect) -> View {
+pub(crate) fn fixed_view(app: &App, area: Rect) -> Projection {
     let live = &app.roll.live;
     let camera = app.camera;
     let half = live.params.die.largest_half_size();
@@ -149,7 +149,7 @@ pub(crate) fn fixed_view(app: &App, area: Rect) -> View {
     let height = (top - bottom) * 1.25f64.powi(-camera.zoom);
     let width = height * area.width.max(1) as f64 / (2.0 * area.height.max(1) as f64);
     let die = &live.die;
-    View {
+    Projection {
         camera,
         focus: Vector3::new(die.centre.x, die.centre.y, 0.0),
         x: (-width / 2.0, width / 2.0),
@@ -160,7 +160,7 @@ pub(crate) fn fixed_view(app: &App, area: Rect) -> View {
 
 /// The row of `view.area` (from its top) where a height of `z_cm` above the table shows,
 /// straight above the die's foot (where the die's centre is), if inside the area.
-pub(crate) fn row_of_height(view: &View, z_cm: f64) -> Option<u16> {
+pub(crate) fn row_of_height(view: &Projection, z_cm: f64) -> Option<u16> {
     let y = z_cm * view.camera.pitch_deg.to_radians().cos();
     let f = (view.y.1 - y) / (view.y.1 - view.y.0);
     (0.0..1.0)
@@ -234,8 +234,8 @@ fn hints() -> Vec<KeyHint> {
         Action::Help,
         Action::Quit,
     ];
-    let own = rows(Screen::Show).filter(|b| b.screen == Screen::Show || b.action == Action::Presentation);
-    let shared = rows(Screen::Show).filter(|b| wanted.contains(&b.action));
+    let own = rows(Scope::Show).filter(|b| b.screen == Scope::Show || b.action == Action::Presentation);
+    let shared = rows(Scope::Show).filter(|b| wanted.contains(&b.action));
     own.chain(shared)
         .filter_map(|b| {
             let h = b.hint?;
@@ -250,7 +250,7 @@ fn hints() -> Vec<KeyHint> {
 }
 
 /// The height scale: a tick at each whole step of cm, labelled, the table at 0.
-fn draw_scale(app: &App, view: &View, area: Rect, frame: &mut Frame) {
+fn draw_scale(app: &App, view: &Projection, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let cp = view.camera.pitch_deg.to_radians().cos();
     if cp <= 0.05 {
@@ -304,7 +304,7 @@ fn draw_panel(app: &App, area: Rect, frame: &mut Frame) {
     lines.push(Line::styled(readout.text(app), t.heading()).centered());
     lines.push(
         Line::from(vec![
-            Span::styled(first_key(Screen::Show, Action::NextReadout), t.key()),
+            Span::styled(first_key(Scope::Show, Action::NextReadout), t.key()),
             Span::raw(format!(" {}", readout.next().name())),
         ])
         .centered(),
@@ -317,7 +317,7 @@ mod tests {
     use super::*;
     use crate::tui::app::Msg;
     use crate::tui::layout::screen_layout;
-    use crate::tui::map_view::View as Screenful;
+    use crate::tui::map_view::Page;
     use crate::tui::tests::{Scene, screen, spun_preset};
     use crate::tui::theme::{Palette, Theme};
     use ratatui::Terminal;
@@ -378,7 +378,7 @@ mod tests {
     fn p_opens_and_closes_it_n_picks_the_number_and_esc_leaves() {
         let mut s = Scene::new(&spun_preset(), projector());
         s.key(KeyCode::Char('P'));
-        assert_eq!(s.app.view, Screenful::Presentation);
+        assert_eq!(s.app.page, Page::Presentation);
         let names: Vec<&str> = (0..4)
             .map(|_| {
                 let name = s.app.readout.name();
@@ -392,10 +392,10 @@ mod tests {
         s.key(KeyCode::Char(' '));
         assert!(s.app.roll.live.playing);
         s.key(KeyCode::Esc);
-        assert_eq!(s.app.view, Screenful::Die);
+        assert_eq!(s.app.page, Page::Die);
         s.key(KeyCode::Char('P'));
         s.key(KeyCode::Char('P'));
-        assert_eq!(s.app.view, Screenful::Die);
+        assert_eq!(s.app.page, Page::Die);
         // On the main screen N means nothing; in the view, no value is typed blind.
         s.key(KeyCode::Char('N'));
         assert_eq!(s.app.readout, Readout::Height);
@@ -515,7 +515,7 @@ mod tests {
         // The main screen's view follows the die: its picture rises with it.
         let main = |s: &Scene| {
             let area = screen_layout(Rect::new(0, 0, 120, 36)).expect("fits").die;
-            View::new(&s.app, area).y
+            Projection::new(&s.app, area).y
         };
         assert_ne!(main(&start), main(&lower));
     }

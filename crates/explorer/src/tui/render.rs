@@ -7,16 +7,16 @@ use super::energy::render_energy;
 use super::footer::{render_footer, render_help};
 use super::header::{render_header, render_too_small};
 use super::layout::screen_layout;
-use super::map_view::View;
+use super::map_view::Page;
 use super::outcomes::render_outcomes;
 use super::params_panel::render_params;
 use ratatui::Frame;
 
 /// Draws the whole screen, then paints the theme over every cell of it, whichever screen.
 pub fn render(app: &App, frame: &mut Frame) {
-    match app.view {
-        View::Map => super::map::render_map_screen(app, frame),
-        View::Presentation if screen_layout(frame.area()).is_some() => {
+    match app.page {
+        Page::Map => super::map::render_map_screen(app, frame),
+        Page::Presentation if screen_layout(frame.area()).is_some() => {
             super::presentation::render(app, frame)
         }
         _ => render_die_screen(app, frame),

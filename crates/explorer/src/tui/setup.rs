@@ -1,7 +1,7 @@
 //! The setup as the user has set it: the values, the playback speed and the preset they
 //! came from. The user's values run ahead of the worker's: every command leaves through
-//! [`Setup::send`], which counts it, and a snapshot's values are taken only once the worker
-//! has handled every command sent ([`Setup::adopt`]), so an edit never flickers back to the
+//! [`UserSetup::send`], which counts it, and a snapshot's values are taken only once the worker
+//! has handled every command sent ([`UserSetup::adopt`]), so an edit never flickers back to the
 //! value it replaced.
 
 use super::format::{fmt_num, fmt_range};
@@ -12,7 +12,7 @@ use dicesim_physics::{InitialCondition, Params};
 use dicesim_setup::preset::Preset;
 
 #[derive(Debug, Clone)]
-pub(crate) struct Setup {
+pub(crate) struct UserSetup {
     pub(crate) params: Params,
     pub(crate) initial: InitialCondition,
     pub(crate) speed: Speed,
@@ -26,10 +26,10 @@ pub(crate) struct Setup {
     commands_sent: u64,
 }
 
-impl Setup {
+impl UserSetup {
     /// The setup of the worker's first snapshot.
-    pub(crate) fn new(first: &Snapshot, preset: Preset) -> Setup {
-        Setup {
+    pub(crate) fn new(first: &Snapshot, preset: Preset) -> UserSetup {
+        UserSetup {
             params: first.params,
             initial: first.initial,
             speed: first.speed,

@@ -6,7 +6,7 @@
 use super::app::App;
 use super::fit::wrap;
 use super::format::fmt_num;
-use super::keys::{Action, Screen, label};
+use super::keys::{Action, Scope, label};
 use super::param::Param;
 use crate::worker::{Command, Phase};
 use dicesim_experiment::versus::{ENDINGS, NO_FACE};
@@ -21,7 +21,7 @@ use ratatui::widgets::{Block, Paragraph};
 /// `D`: differ mode on or off, with a notice saying what it does.
 pub(crate) fn on_key(app: &mut App, out: &mut Vec<Command>) {
     let command = app.twin.toggle_differ();
-    let key = label(Screen::Die, Action::Differ);
+    let key = label(Scope::Die, Action::Differ);
     app.notice = Some(if app.twin.differ {
         format!("differ: the next value changes go to die B only; {key} again ends it")
     } else {
@@ -111,7 +111,7 @@ pub(crate) fn render_table(app: &App, area: Rect, frame: &mut Frame) {
     let body = block.inner(area);
     let Some(table) = app.roll.live.versus else {
         frame.render_widget(block, area);
-        let key = label(Screen::Die, Action::Batch);
+        let key = label(Scope::Die, Action::Batch);
         let words = format!("{key}: a batch of shared throws, each rolled in A and in B");
         let lines: Vec<Line> = wrap(&words, body.width as usize)
             .into_iter()

@@ -2,8 +2,8 @@
 //! snapshots of deterministic states and checks that a drawing defect would break.
 
 use super::app::{App, Drawing};
-use super::camera::{Camera, inside};
-use super::die::{View, picture, place_labels, render_die};
+use super::camera::{OrbitCamera, inside};
+use super::die::{Projection, picture, place_labels, render_die};
 use super::energy::{nice_ticks, render_energy};
 use super::layout::screen_layout;
 use super::outcomes::{RELIABLE_ROLLS, render_outcomes};
@@ -62,7 +62,7 @@ fn at_rest(theme: Theme) -> Scene {
     s
 }
 
-const HIGH: Camera = Camera {
+const HIGH: OrbitCamera = OrbitCamera {
     yaw_deg: 135.0,
     pitch_deg: 60.0,
     zoom: 1,
@@ -71,7 +71,7 @@ const HIGH: Camera = Camera {
 /// The die's own cells in the panel: those whose middle lies inside its outline, away
 /// from the outline itself (where the edge's dots and the floor may share a cell).
 fn inner_cells(app: &App, body: Rect) -> Vec<(u16, u16)> {
-    let view = View::new(app, body);
+    let view = Projection::new(app, body);
     let pic = picture(app, &view);
     let (cw, ch) = (
         (view.x.1 - view.x.0) / body.width as f64,
@@ -114,7 +114,7 @@ fn check_solid(app: &App) -> Buffer {
             );
         }
     }
-    let view = View::new(app, body);
+    let view = Projection::new(app, body);
     let pic = picture(app, &view);
     let placed = place_labels(&pic.labels, &view, &pic.outline);
     let mut taken = std::collections::HashSet::new();
@@ -170,7 +170,7 @@ fn the_heavy_corner_of_a_loaded_die_is_marked() {
         let t = text(&b);
         assert!(t.contains(&label), "{label} on the die:\n{t}");
         // The mark is drawn where the corner is, when the camera sees that corner.
-        let view = View::new(&s.app, Rect::new(0, 0, b.area.width - 2, b.area.height - 2));
+        let view = Projection::new(&s.app, Rect::new(0, 0, b.area.width - 2, b.area.height - 2));
         let pic = picture(&s.app, &view);
         let mark = if drawing == Drawing::Ascii { "#" } else { "◆" };
         let marked = pic.labels.iter().any(|l| l.text == mark);
@@ -182,7 +182,7 @@ fn the_heavy_corner_of_a_loaded_die_is_marked() {
     }
     // A fair die carries no mark.
     let s = after(150, Theme::default());
-    let view = View::new(&s.app, Rect::new(0, 0, 64, 13));
+    let view = Projection::new(&s.app, Rect::new(0, 0, 64, 13));
     let pic = picture(&s.app, &view);
     assert!(
         !pic.labels.iter().any(|l| l.text.ends_with(" g") || l.text == "◆"),
@@ -194,7 +194,7 @@ fn the_heavy_corner_of_a_loaded_die_is_marked() {
 fn a_die_shows_at_most_three_faces_and_nine_edges() {
     let s = after(150, Theme::default());
     let body = Rect::new(0, 0, 66, 15);
-    let view = View::new(&s.app, body);
+    let view = Projection::new(&s.app, body);
     let pic = picture(&s.app, &view);
     // Seen faces are filled in colour themes; each seen face carries its pips.
     let faces = pic.faces.len();
@@ -733,7 +733,7 @@ mod real_dice {
         assert!((body.sharp_corner(7) - offset - Vector3::new(1.5, 1.0, 0.5)).norm() < 1e-12);
         assert!((body.lowest().z - (offset.z - 0.5)).abs() < 1e-12);
         // Seen level along y: the outline reaches the half sizes but cuts the corners round.
-        let level = Camera {
+        let level = OrbitCamera {
             yaw_deg: 0.0,
             pitch_deg: 0.0,
             zoom: 0,
@@ -756,7 +756,7 @@ mod real_dice {
     fn drilled_pips_are_drawn_at_their_diameter() {
         let s = shipped("rounded-die", &[]);
         let body = Rect::new(0, 0, 60, 20);
-        let view = View::new(&s.app, body);
+        let view = Projection::new(&s.app, body);
         let pic = picture(&s.app, &view);
         let radius = 0.5 * s.app.roll.live.params.die.pip_diameter;
         let mut counted = 0;

@@ -60,7 +60,7 @@ pub(crate) struct ExportJob {
 
 /// What an export wrote.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) enum Written {
+pub(crate) enum WrittenExport {
     Roll(Exported),
     Map {
         csv: PathBuf,
@@ -79,7 +79,11 @@ impl ExportJob {
     /// Chooses free names in the folder, checks them and writes the files on this
     /// thread; nothing is written if a check fails, and a cancel before the last file
     /// leaves none.
-    pub fn run(&self, cancel: &AtomicBool, progress: &mut dyn FnMut(ExportStatus)) -> Result<Written, Error> {
+    pub fn run(
+        &self,
+        cancel: &AtomicBool,
+        progress: &mut dyn FnMut(ExportStatus),
+    ) -> Result<WrittenExport, Error> {
         let dir = std::fs::canonicalize(&self.dir).unwrap_or_else(|_| self.dir.clone());
         let outputs = || free_outputs(&dir, &self.stem, ["csv", "png"]);
         match &self.what {
@@ -98,7 +102,7 @@ impl ExportJob {
                 export_roll(params, initial, title, &files, cancel, &mut |p| {
                     progress(ExportStatus::Roll(p))
                 })
-                .map(Written::Roll)
+                .map(WrittenExport::Roll)
             }
             Exporting::Map {
                 map,
@@ -121,7 +125,7 @@ impl ExportJob {
                     let _ = std::fs::remove_file(csv.path());
                     return Err(e.into());
                 }
-                Ok(Written::Map {
+                Ok(WrittenExport::Map {
                     csv: csv.path().to_path_buf(),
                     png: png.path().to_path_buf(),
                     size: *size,
@@ -139,7 +143,7 @@ impl ExportJob {
                 write_animation(preset, params, initial, spec, &gif, cancel, &mut |p| {
                     progress(ExportStatus::Animation(p))
                 })
-                .map(|animated| Written::Animation {
+                .map(|animated| WrittenExport::Animation {
                     gif: gif.path().to_path_buf(),
                     animated,
                 })

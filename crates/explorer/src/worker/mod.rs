@@ -156,7 +156,7 @@ fn report(simulator: &mut Simulator, curves: &mut curve::CurveRunner) -> Snapsho
     }
 }
 
-type ExportResult = Result<export::Written, dicesim_experiment::Error>;
+type ExportResult = Result<export::WrittenExport, dicesim_experiment::Error>;
 
 /// The worker's jobs, each kind on a runner of its own: they follow what the simulator has
 /// ordered (a job it no longer waits for is stopped), and their progress goes back to the

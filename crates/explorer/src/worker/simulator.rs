@@ -4,7 +4,7 @@
 //! drive it step for step.
 
 use super::curve::CurveSetup;
-use super::export::{ExportJob, Exporting, Written};
+use super::export::{ExportJob, Exporting, WrittenExport};
 use super::job::Order;
 use super::live::LiveRoll;
 use super::map::MapJob;
@@ -50,9 +50,10 @@ struct Versus {
 const ANIMATION_FPS: u32 = 25;
 const ANIMATION_SIZE: (u32, u32) = (640, 480);
 
-/// What happened since the last snapshot, besides the roll's own samples.
+/// What happened since the last snapshot and is not yet reported, besides the roll's own
+/// samples.
 #[derive(Debug, Default)]
-struct Pending {
+struct Unreported {
     table_changed: bool,
     notice: Option<Notice>,
     /// A preset was loaded (or the simulator just started): the UI gets it whole.
@@ -70,7 +71,7 @@ pub struct Simulator {
     batch: Order<BatchProgress, BatchRequest>,
     export: Order<ExportStatus, ExportJob>,
     map: Order<(), MapJob>,
-    pending: Pending,
+    unreported: Unreported,
     commands_handled: u64,
     /// The parameter twin's table of shared throws (batches run while it rolls).
     versus: Option<Versus>,
@@ -108,9 +109,9 @@ impl Simulator {
             batch: Order::default(),
             export: Order::default(),
             map: Order::default(),
-            pending: Pending {
+            unreported: Unreported {
                 preset: Some(Box::new(preset.clone())),
-                ..Pending::default()
+                ..Unreported::default()
             },
             commands_handled: 0,
             export_rerolled: false,
@@ -205,7 +206,7 @@ impl Simulator {
             Command::ClearTable => {
                 self.table = OutcomeTable::default();
                 self.versus = None;
-                self.pending.table_changed = true;
+                self.unreported.table_changed = true;
                 None
             }
             Command::MapStart(request) => {
@@ -254,7 +255,7 @@ impl Simulator {
             Command::Quit => return false,
         };
         if notice.is_some() {
-            self.pending.notice = notice;
+            self.unreported.notice = notice;
         }
         true
     }
@@ -263,7 +264,7 @@ impl Simulator {
     fn count_finished_roll(&mut self) {
         if let Some(r) = self.live.take_finished() {
             self.table.add(r);
-            self.pending.table_changed = true;
+            self.unreported.table_changed = true;
         }
     }
 
@@ -328,7 +329,7 @@ impl Simulator {
         self.next_random = 0;
         self.table = OutcomeTable::default();
         self.versus = None;
-        self.pending.table_changed = true;
+        self.unreported.table_changed = true;
         // A twin that rolls stays on at its ε unless the preset asks for its own: a lesson
         // turns it on, then opens presets to compare them with it.
         // A parameter twin stays on too, with B's values on the new preset's setup.
@@ -343,7 +344,7 @@ impl Simulator {
             preset.view.speed.unwrap_or_default(),
         );
         let notice = Notice::Said(format!("loaded {}", preset.name));
-        self.pending.preset = Some(Box::new(preset.clone()));
+        self.unreported.preset = Some(Box::new(preset.clone()));
         self.preset = preset;
         notice
     }
@@ -497,7 +498,11 @@ impl Simulator {
     }
 
     /// Export `id` has stopped: the notice says what was written, or why nothing was.
-    pub(crate) fn finish_export(&mut self, id: u64, result: Result<Written, dicesim_experiment::Error>) {
+    pub(crate) fn finish_export(
+        &mut self,
+        id: u64,
+        result: Result<WrittenExport, dicesim_experiment::Error>,
+    ) {
         let Some(status) = self.export.finish(id) else {
             return;
         };
@@ -508,7 +513,7 @@ impl Simulator {
             ""
         };
         let words = match (status, result) {
-            (_, Ok(Written::Roll(done))) => format!(
+            (_, Ok(WrittenExport::Roll(done))) => format!(
                 "exported {} ({}, {} rows) and .png",
                 done.trace.display(),
                 human_bytes(done.bytes),
@@ -516,7 +521,7 @@ impl Simulator {
             ),
             (
                 _,
-                Ok(Written::Map {
+                Ok(WrittenExport::Map {
                     png,
                     size,
                     cells,
@@ -532,7 +537,7 @@ impl Simulator {
                 cells.0,
                 cells.1
             ),
-            (_, Ok(Written::Animation { gif, animated })) => format!(
+            (_, Ok(WrittenExport::Animation { gif, animated })) => format!(
                 "animation saved to {} ({} frames, {:.2} s{})",
                 gif.display(),
                 animated.frames,
@@ -549,7 +554,7 @@ impl Simulator {
             (ExportStatus::Animation(_), Err(e)) => format!("cannot export the animation: {e}"),
             (ExportStatus::Roll(_), Err(e)) => e.to_string(),
         };
-        self.pending.notice = Some(Notice::Said(format!("{rerolled}{words}")));
+        self.unreported.notice = Some(Notice::Said(format!("{rerolled}{words}")));
     }
 
     /// Runs the requested export on this thread to its end (tests).
@@ -629,7 +634,7 @@ impl Simulator {
                 }
             }
         }
-        self.pending.table_changed = true;
+        self.unreported.table_changed = true;
     }
 
     /// Batch `id` has stopped (finished, cancelled or failed to start).
@@ -637,8 +642,8 @@ impl Simulator {
         let Some(b) = self.batch.finish(id) else { return };
         // The table goes with the news, even when its last rolls came a tick earlier: a
         // snapshot that ends the batch always shows the table it ended with.
-        self.pending.table_changed = true;
-        self.pending.notice = Some(Notice::Said(match result {
+        self.unreported.table_changed = true;
+        self.unreported.notice = Some(Notice::Said(match result {
             Ok(()) => format!("batch of {} rolls done", b.total),
             Err(e) => format!("batch stopped: {e}"),
         }));
@@ -701,7 +706,7 @@ impl Simulator {
 
     /// Everything the UI draws, plus what happened since the last snapshot.
     pub fn snapshot(&mut self) -> Snapshot {
-        let pending = std::mem::take(&mut self.pending);
+        let unreported = std::mem::take(&mut self.unreported);
         let live = &mut self.live;
         let (history, history_reset, history_cut) = live.take_history();
         let (die, step) = live.die();
@@ -724,10 +729,10 @@ impl Simulator {
             history_cut,
             timeline: live.timeline_snapshot(),
             batch: self.batch.state().copied(),
-            table: pending.table_changed.then(|| self.table.clone()),
+            table: unreported.table_changed.then(|| self.table.clone()),
             versus: self.versus.as_ref().map(|v| v.table),
-            notice: pending.notice,
-            preset: pending.preset,
+            notice: unreported.notice,
+            preset: unreported.preset,
             export: self.export.state().copied(),
             curve: None,
             twin: live.twin_snapshot(),
