@@ -1,9 +1,9 @@
 //! The explorer's controls in a lesson: the timeline, the questions before changes are
 //! lost, Esc that never quits, the batch size; rendered deterministically.
 
-use super::app::{App, Mode, Prompt};
 use super::layout::screen_layout;
 use super::param::Param;
+use super::state::app::{App, Mode, Prompt};
 use super::tests::{Scene, start};
 use super::theme::Theme;
 use crate::worker::Command;
@@ -83,7 +83,7 @@ fn a_click_on_the_timeline_seeks_there() {
     let mut s = stepped_back();
     s.app.screen = ratatui::layout::Rect::new(0, 0, 120, 36);
     let areas = screen_layout(s.app.screen).expect("fits");
-    let bar = super::timeline::bar(areas.timeline).expect("wide enough");
+    let bar = super::layout::timeline_bar(areas.timeline).expect("wide enough");
     let furthest = s.app.roll.live.timeline.furthest;
     for (column, expected) in [(bar.x, 0), (bar.right() - 1, furthest)] {
         let click = MouseEvent {
@@ -163,7 +163,7 @@ fn backspace_resets_to_the_preset_asking_first() {
     s.key(KeyCode::Backspace);
     assert_eq!(s.app.setup.params, preset.params());
     assert_eq!(s.simulator.params(), &preset.params());
-    assert!(!super::dialogs::modified(&s.app));
+    assert!(!s.app.setup.modified());
     // Nothing changed: nothing to ask, nothing to do.
     s.key(KeyCode::Backspace);
     assert!(s.app.prompt().is_none());
@@ -272,7 +272,7 @@ fn slow_motion_classroom_opens_slowed_down_with_its_arrows() {
     let preset = Store::new(None).load("slow-motion-classroom").expect("shipped").0;
     let s = Scene::new(&preset, Theme::default());
     assert_eq!(s.app.roll.live.speed.label(), "1/10×");
-    assert!(s.app.vectors);
+    assert!(s.app.die_screen.arrows);
     assert!(screen(&s.app, 120, 36).contains("speed 1/10×"));
     // Loading it over another preset applies its view too, and a preset without a view
     // opens as the explorer does: at 1×, without arrows or twin, the theme kept.
@@ -280,15 +280,18 @@ fn slow_motion_classroom_opens_slowed_down_with_its_arrows() {
     s.key(KeyCode::Char('t'));
     s.command(Command::LoadPreset(Box::new(preset)));
     assert_eq!(s.app.setup.speed.label(), "1/10×");
-    assert!(s.app.vectors);
+    assert!(s.app.die_screen.arrows);
     s.key(KeyCode::Char('T'));
     s.key(KeyCode::Char('a'));
     s.command(Command::LoadPreset(Box::default()));
     assert_eq!(s.app.setup.speed.label(), "1×");
     assert_eq!(s.simulator.live().speed().label(), "1×");
     // The twin turned on stays on (a lesson compares presets with it).
-    assert!(!s.app.vectors && s.app.twin.on && s.app.roll.live.twin.is_some());
-    assert_eq!(s.app.camera, super::camera::OrbitCamera::default());
+    assert!(!s.app.die_screen.arrows && s.app.twin.on && s.app.roll.live.twin.is_some());
+    assert_eq!(
+        s.app.die_screen.camera,
+        super::state::camera::OrbitCamera::default()
+    );
     assert_eq!(s.app.theme.palette, super::theme::Palette::Light);
 }
 
@@ -305,7 +308,7 @@ fn s_saves_the_view_and_a_description_and_loading_applies_them() {
     for c in "lab-3".chars() {
         s.key(KeyCode::Char(c));
     }
-    let automatic = super::dialogs::automatic_description(&s.app);
+    let automatic = s.app.setup.automatic_description();
     assert_eq!(automatic, "The `paper` preset with ground.friction=0.5.");
     // A fixed folder for the picture (the temporary one's name changes every run).
     s.app.store = Store::new(Some("/home/teacher/presets".into()));
@@ -338,9 +341,9 @@ fn s_saves_the_view_and_a_description_and_loading_applies_them() {
     // Opened in a fresh explorer, it looks the same.
     let s = Scene::new(&saved, Theme::default());
     assert_eq!(s.app.roll.live.speed.label(), "1/5×");
-    assert!(s.app.vectors && s.app.twin.on && s.app.roll.live.twin.is_some());
+    assert!(s.app.die_screen.arrows && s.app.twin.on && s.app.roll.live.twin.is_some());
     assert_eq!(s.app.theme.palette, super::theme::Palette::Light);
-    assert_eq!(s.app.camera.yaw_deg, 15.0);
+    assert_eq!(s.app.die_screen.camera.yaw_deg, 15.0);
 }
 
 #[test]
@@ -355,7 +358,7 @@ fn a_view_on_the_map_screen_opens_it() {
 
 #[test]
 fn the_views_camera_limits_are_the_cameras() {
-    use super::camera::OrbitCamera;
+    use super::state::camera::OrbitCamera;
     assert_eq!(dicesim_setup::preset::PITCH.min, OrbitCamera::MIN_PITCH);
     assert_eq!(dicesim_setup::preset::PITCH.max, OrbitCamera::MAX_PITCH);
     assert_eq!(dicesim_setup::preset::ZOOM.min, f64::from(OrbitCamera::MIN_ZOOM));
@@ -386,10 +389,21 @@ fn a_digit_on_a_parameter_row_opens_the_value_editor_with_it_typed() {
 #[test]
 fn a_key_that_means_nothing_does_nothing_and_the_footer_says_so() {
     let mut s = start();
-    let before = (s.app.log_scale, s.app.setup.params, s.app.setup.initial);
+    let before = (
+        s.app.die_screen.log_scale,
+        s.app.setup.params,
+        s.app.setup.initial,
+    );
     // `y` answers questions; with none open it means nothing (it once switched the log scale).
     s.key(KeyCode::Char('y'));
-    assert_eq!((s.app.log_scale, s.app.setup.params, s.app.setup.initial), before);
+    assert_eq!(
+        (
+            s.app.die_screen.log_scale,
+            s.app.setup.params,
+            s.app.setup.initial
+        ),
+        before
+    );
     assert_eq!(s.app.mode(), Mode::Normal);
     let text = screen(&s.app, 120, 36);
     assert!(text.contains("y: nothing here (? lists the keys)"), "{text}");

@@ -11,9 +11,11 @@
 //! with Braille dots (a ratatui canvas) or with ASCII slope characters (`-` `|` `/` `\`).
 //! Labels are placed last on a grid of taken cells, so none ever covers another.
 
-use super::app::{App, Drawing};
-use super::camera::{EDGES, FACE_CORNERS, Flat, OrbitCamera, Solid, convex_hull, inside, outside_parts};
 use super::format::fmt_num;
+use super::solid::{EDGES, FACE_CORNERS, Flat, Solid, convex_hull, inside, outside_parts};
+use super::state::app::App;
+use super::state::camera::OrbitCamera;
+use super::state::die_screen::Drawing;
 use super::vectors::{self, Arrow};
 use crate::worker::{DieState, Phase, TwinSnapshot};
 use dicesim_physics::InitialCondition;
@@ -89,7 +91,7 @@ impl Projection {
     /// from the cells' 1:2 aspect, the table kept in the lower third.
     pub(crate) fn new(app: &App, area: Rect) -> Projection {
         let die = &app.roll.live.die;
-        let camera = app.camera;
+        let camera = app.die_screen.camera;
         let width = camera.width_cm(app.roll.live.params.die.largest_half_size());
         let height = width * 2.0 * area.height as f64 / area.width.max(1) as f64;
         let focus = Vector3::new(die.centre.x, die.centre.y, 0.0);
@@ -227,7 +229,11 @@ pub(crate) fn picture(app: &App, view: &Projection) -> Picture {
         false,
     );
     for k in (0..8).filter(|&k| contact[k] && corner_seen(&facing, k)) {
-        let dot = if app.drawing == Drawing::Ascii { "@" } else { "●" };
+        let dot = if app.die_screen.drawing == Drawing::Ascii {
+            "@"
+        } else {
+            "●"
+        };
         pic.label(view.flat(&body.foot_of_sphere(k)), dot, t.contact(), false);
     }
     // A loaded die's extra masses: a mark on each seen heavy corner, and its mass beside
@@ -236,7 +242,11 @@ pub(crate) fn picture(app: &App, view: &Projection) -> Picture {
     for k in (0..8).filter(|&k| extra[k] > 0.0) {
         let at = view.flat(&body.sharp_corner(k));
         if corner_seen(&facing, k) {
-            let mark = if app.drawing == Drawing::Ascii { "#" } else { "◆" };
+            let mark = if app.die_screen.drawing == Drawing::Ascii {
+                "#"
+            } else {
+                "◆"
+            };
             pic.label(at, mark, t.heavy(), false);
         }
         pic.label(at, format!("+{} g", fmt_num(extra[k])), t.heavy(), true);
@@ -338,7 +348,7 @@ pub(crate) fn picture(app: &App, view: &Projection) -> Picture {
             pic.stroke(1, corners[a], corners[b], edge_colour(a, b));
         }
     }
-    if app.vectors {
+    if app.die_screen.arrows {
         arrows(&mut pic, app, view, die);
     }
     pic
@@ -687,7 +697,7 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
         body.y += rows;
         body.height -= rows;
     }
-    if app.vectors && body.height >= 6 {
+    if app.die_screen.arrows && body.height >= 6 {
         let legend = Rect {
             y: body.bottom() - 2,
             height: 2,
@@ -703,7 +713,7 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
 pub(crate) fn draw(app: &App, view: &Projection, frame: &mut Frame) {
     let body = view.area;
     let pic = picture(app, view);
-    match app.drawing {
+    match app.die_screen.drawing {
         Drawing::Braille => draw_braille(&pic, view, frame),
         Drawing::Ascii => draw_ascii(&pic, view, frame.buffer_mut()),
     }

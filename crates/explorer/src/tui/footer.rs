@@ -1,9 +1,9 @@
 //! The footer's key hints and the help overlay's frame.
 
-use super::app::{App, Mode};
 use super::format::group;
 use super::help::help_lines;
 use super::keys::{Action, INTERRUPT, Scope, labels, named, rows};
+use super::state::app::{App, Mode};
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Rect};
 use ratatui::text::{Line, Span};
@@ -144,7 +144,7 @@ fn render_line(app: &App, notice: Option<String>, keys: Vec<KeyHint>, area: Rect
 pub(crate) fn render_help(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let popup = area.centered(Constraint::Max(100), Constraint::Percentage(90));
-    super::dialogs::clear_around(popup, area, frame);
+    super::popup::clear_around(popup, area, frame);
     let block = Block::bordered()
         .title(Line::styled(" help · the model in a nutshell ", t.heading()))
         .title_bottom(
@@ -155,7 +155,7 @@ pub(crate) fn render_help(app: &App, area: Rect, frame: &mut Frame) {
             ))
             .right_aligned(),
         );
-    let body = super::dialogs::text_area(block.inner(popup));
+    let body = super::popup::text_area(block.inner(popup));
     frame.render_widget(block, popup);
     let para = Paragraph::new(help_lines(app))
         .wrap(Wrap { trim: false })

@@ -1,9 +1,9 @@
 //! The `?` overlay: every key, and the model explained for a classroom.
 
-use super::app::App;
 use super::format::group;
 use super::keys::{Action, Scope, label, section};
-use super::map_view::Page;
+use super::state::app::App;
+use super::state::app::Page;
 use ratatui::text::{Line, Span};
 
 const MODEL: &[&str] = &[

@@ -3,11 +3,11 @@
 //! in the test's own thread, so every screen is deterministic) and what the step says the
 //! class will see is looked for on the screen.
 
-use super::app::Msg;
-use super::dialog::Dialog;
 use super::input::update;
 use super::map_tests::computed;
 use super::screen_tests::SIZES;
+use super::state::dialog::Dialog;
+use super::state::messages::Msg;
 use super::tests::Scene;
 use super::theme::{Palette, Theme};
 use dicesim_setup::preset::{Preset, Store};

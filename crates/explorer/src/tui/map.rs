@@ -2,16 +2,15 @@
 //! on, while the worker computes it, with the cursor's cell read out and the legend.
 //!
 //! Its state and rules (cursor, zoom stack, axes, the generation that keeps a map the user
-//! has moved away from off the screen) are in [`super::map_view`]; its keys in
-//! [`super::map_keys`].
+//! has moved away from off the screen) are the state's [`MapView`](super::state::map_view::MapView).
 
-use super::app::App;
 use super::footer::render_help;
 use super::format::fmt_num;
 use super::header::{render_header, render_too_small};
 use super::keys::{Action, Scope, first_key, label};
-pub(crate) use super::map_view::*;
 use super::param::Param;
+use super::state::app::App;
+use super::state::map_view::{MapAreas, Side, Y_LABELS, ZOOM_FACTOR, map_layout};
 use crate::worker::MapAxis;
 use dicesim_experiment::basin::node_setup;
 use dicesim_experiment::ending::Ending;
@@ -296,7 +295,7 @@ fn render_side(app: &App, area: Rect, frame: &mut Frame) {
     lines.push(Line::raw(""));
     lines.extend(cursor_lines(app));
     lines.extend(legend_lines(app));
-    let body = super::dialogs::text_area(block.inner(area));
+    let body = super::popup::text_area(block.inner(area));
     frame.render_widget(block, area);
     let lines = super::fit::hanging(lines, body.width as usize);
     frame.render_widget(Paragraph::new(lines), body);

@@ -1,11 +1,13 @@
 //! The basin-map screen from deterministic states: a small map computed here with
 //! `run_map`, handed to the app through the message the worker's map thread sends.
 
-use super::app::{App, Effect, Msg};
 use super::input::update;
-use super::map::{MapView, Page, ZOOM_FACTOR, map_layout};
 use super::param::Param;
 use super::render::render;
+use super::state::app::App;
+use super::state::app::Page;
+use super::state::map_view::{MapView, ZOOM_FACTOR, map_layout};
+use super::state::messages::{Effect, Msg};
 use super::tests::{Scene, boundary_sizes, screen, spun_preset, start};
 use super::theme::Theme;
 use crate::worker::{Command, MapUpdate};

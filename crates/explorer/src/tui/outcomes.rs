@@ -1,9 +1,9 @@
 //! The outcome table: each face's share of the random rolls with its 95 % interval, the
 //! fairness test and how many rolls a bias as large as the one measured needs.
 
-use super::app::App;
 use super::fit;
 use super::format::{fmt_num, group};
+use super::state::app::App;
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};

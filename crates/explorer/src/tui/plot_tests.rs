@@ -131,7 +131,7 @@ fn a_mid_roll_edit_is_marked_on_the_timeline_and_the_plot_and_the_old_run_stays_
     let mut s = plot_at(300, 0, false);
     let before = s.app.roll.history.clone();
     // The stiffness (the first row) one step up, at 0.3 s: the table acts at once.
-    assert_eq!(s.app.selected, 0);
+    assert_eq!(s.app.die_screen.selected, 0);
     s.key(KeyCode::Right);
     assert_eq!(s.app.roll.edits, vec![300], "the worker's record of the edit");
     assert_eq!(s.app.roll.previous, before, "the run before the edit, kept whole");

@@ -3,73 +3,16 @@
 //! but never up and down, so a drop or a bounce is seen as a change of height), with the
 //! face up in large block digits, the time and one number the lesson is about beside it.
 
-use super::app::{App, Mode};
 use super::die::{self, Projection};
 use super::footer::{KeyHint, render_footer, render_help, render_key_hints};
 use super::keys::{Action, Scope, first_key, rows};
+use super::state::app::{App, Mode};
 use nalgebra::Vector3;
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph};
-
-/// The one number the view shows beside the face (`N` picks the next).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub(crate) enum Readout {
-    /// cm, the centre of mass above the table.
-    #[default]
-    Height,
-    /// cm/s, of the centre of mass.
-    Speed,
-    /// rad/s, |ω|.
-    Spin,
-    /// erg, translational and rotational.
-    KineticEnergy,
-}
-
-impl Readout {
-    pub(crate) fn next(self) -> Readout {
-        match self {
-            Readout::Height => Readout::Speed,
-            Readout::Speed => Readout::Spin,
-            Readout::Spin => Readout::KineticEnergy,
-            Readout::KineticEnergy => Readout::Height,
-        }
-    }
-
-    /// What it is, in the model's words.
-    pub(crate) fn name(self) -> &'static str {
-        match self {
-            Readout::Height => "height",
-            Readout::Speed => "speed",
-            Readout::Spin => "spin",
-            Readout::KineticEnergy => "kinetic energy",
-        }
-    }
-
-    /// Its value on screen now and the unit.
-    pub(crate) fn value(self, app: &App) -> (f64, &'static str) {
-        let live = &app.roll.live;
-        match self {
-            Readout::Height => (live.die.centre.z, "cm"),
-            Readout::Speed => (live.die.velocity.norm(), "cm/s"),
-            Readout::Spin => (live.die.angular_velocity.norm(), "rad/s"),
-            Readout::KineticEnergy => (live.energy.kinetic(), "erg"),
-        }
-    }
-
-    /// The value as the view writes it: a fixed number of decimals for the lengths and
-    /// rates, so the digits do not jump about while they change.
-    pub(crate) fn text(self, app: &App) -> String {
-        let (v, unit) = self.value(app);
-        match self {
-            Readout::Height => format!("{v:.2} {unit}"),
-            Readout::Speed | Readout::Spin => format!("{v:.1} {unit}"),
-            Readout::KineticEnergy => format!("{} {unit}", super::format::fmt_num(v)),
-        }
-    }
-}
 
 /// Rows and columns of one block digit in [`GLYPHS`].
 const GLYPH_ROWS: usize = 5;
@@ -136,7 +79,7 @@ pub(crate) fn tick_step(span: f64, most: usize) -> f64 {
 /// screen, so the die stays in view as it travels.
 pub(crate) fn fixed_view(app: &App, area: Rect) -> Projection {
     let live = &app.roll.live;
-    let camera = app.camera;
+    let camera = app.die_screen.camera;
     let half = live.params.die.largest_half_size();
     let (sp, cp) = camera.pitch_deg.to_radians().sin_cos();
     let rise = live.initial.velocity[2].max(0.0);
@@ -279,7 +222,7 @@ fn draw_panel(app: &App, area: Rect, frame: &mut Frame) {
     let block = Block::bordered().title(Line::styled(" face up ", t.heading()));
     let inner = block.inner(area);
     frame.render_widget(block, area);
-    let readout = app.readout;
+    let readout = app.die_screen.readout;
     let face = match live.phase {
         crate::worker::Phase::Ended(o) if o.face.is_none() => '?',
         _ => char::from_digit(live.die.face_up as u32, 10).unwrap_or('?'),
@@ -301,7 +244,7 @@ fn draw_panel(app: &App, area: Rect, frame: &mut Frame) {
     }
     lines.push(Line::raw(""));
     lines.push(Line::raw(readout.name()).centered());
-    lines.push(Line::styled(readout.text(app), t.heading()).centered());
+    lines.push(Line::styled(readout.text(&app.roll.live), t.heading()).centered());
     lines.push(
         Line::from(vec![
             Span::styled(first_key(Scope::Show, Action::NextReadout), t.key()),
@@ -315,9 +258,10 @@ fn draw_panel(app: &App, area: Rect, frame: &mut Frame) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::tui::app::Msg;
     use crate::tui::layout::screen_layout;
-    use crate::tui::map_view::Page;
+    use crate::tui::state::app::Page;
+    use crate::tui::state::die_screen::Readout;
+    use crate::tui::state::messages::Msg;
     use crate::tui::tests::{Scene, screen, spun_preset};
     use crate::tui::theme::{Palette, Theme};
     use ratatui::Terminal;
@@ -381,13 +325,13 @@ mod tests {
         assert_eq!(s.app.page, Page::Presentation);
         let names: Vec<&str> = (0..4)
             .map(|_| {
-                let name = s.app.readout.name();
+                let name = s.app.die_screen.readout.name();
                 s.key(KeyCode::Char('N'));
                 name
             })
             .collect();
         assert_eq!(names, ["height", "speed", "spin", "kinetic energy"]);
-        assert_eq!(s.app.readout, Readout::Height, "round again");
+        assert_eq!(s.app.die_screen.readout, Readout::Height, "round again");
         // The main screen's keys work here: space plays.
         s.key(KeyCode::Char(' '));
         assert!(s.app.roll.live.playing);
@@ -398,7 +342,7 @@ mod tests {
         assert_eq!(s.app.page, Page::Die);
         // On the main screen N means nothing; in the view, no value is typed blind.
         s.key(KeyCode::Char('N'));
-        assert_eq!(s.app.readout, Readout::Height);
+        assert_eq!(s.app.die_screen.readout, Readout::Height);
         s.key(KeyCode::Char('P'));
         s.key(KeyCode::Enter);
         assert!(s.app.value_editor().is_none());
@@ -421,12 +365,19 @@ mod tests {
                 modifiers: KeyModifiers::NONE,
             }))
         };
-        let (selected, zoom) = (s.app.selected, s.app.camera.zoom);
+        let (selected, zoom) = (s.app.die_screen.selected, s.app.die_screen.camera.zoom);
         crate::tui::update(&mut s.app, mouse(MouseEventKind::Down(MouseButton::Left)));
-        assert_eq!(s.app.selected, selected, "no value selected behind the die");
-        assert_eq!(s.app.drag, Some((column, row)), "a drag starts anywhere");
+        assert_eq!(
+            s.app.die_screen.selected, selected,
+            "no value selected behind the die"
+        );
+        assert_eq!(
+            s.app.die_screen.drag,
+            Some((column, row)),
+            "a drag starts anywhere"
+        );
         crate::tui::update(&mut s.app, mouse(MouseEventKind::ScrollUp));
-        assert_eq!(s.app.camera.zoom, zoom + 1);
+        assert_eq!(s.app.die_screen.camera.zoom, zoom + 1);
         assert_eq!(s.app.setup.params, spun_preset().params(), "no value scrolled");
     }
 

@@ -2,7 +2,7 @@
 //! restored on every way out.
 //!
 //! - `update` does no I/O: the effects it returns (worker commands, listing and saving
-//!   presets) are run here, by [`perform`].
+//!   presets) are run here, through [`perform`].
 //! - Quitting (`q`, Ctrl-C as a key) leaves the loop and restores it.
 //! - SIGTERM, SIGHUP, SIGINT and SIGQUIT reach a thread of their own (signal-hook), which
 //!   asks the loop to stop, so the terminal is restored and the process exits with 128 +
@@ -15,11 +15,13 @@
 //! Drawing holds [`SCREEN`], and whoever restores takes it first and never gives it back,
 //! so no frame lands after the terminal was given back to the shell.
 
-use super::app::{App, Effect, Msg};
+use super::effects::perform;
 use super::input::update;
 use super::render::render;
+use super::state::app::App;
+use super::state::messages::Msg;
 use super::theme::Theme;
-use crate::worker::{Command, Simulator, Worker};
+use crate::worker::{Simulator, Worker};
 use color_eyre::eyre::{Result, WrapErr};
 use dicesim_setup::preset::Preset;
 use ratatui::DefaultTerminal;
@@ -101,17 +103,6 @@ pub fn run(preset: &Preset, theme: Theme) -> Result<()> {
         Ok(None) => Ok(()),
         Err(e) => Err(e),
     }
-}
-
-/// Runs one effect of `update`: the file work here, on the loop's thread; a worker command
-/// is handed back for the caller to send.
-pub(crate) fn perform(app: &mut App, effect: Effect) -> Option<Command> {
-    match effect {
-        Effect::Worker(command) => return Some(command),
-        Effect::ListPresets => super::dialogs::open_picker(app),
-        Effect::SavePreset { preset, replace } => super::dialogs::save(app, &preset, replace),
-    }
-    None
 }
 
 /// Runs until the user quits (`None`) or a signal arrives (`Some(signal)`).

@@ -7,8 +7,8 @@
 //! right edge (`super::fit`), so text that reaches the edge was cut, unless it ends in `…`,
 //! the mark of an abbreviation.
 
-use super::app::App;
 use super::map_tests::map_scene;
+use super::state::app::App;
 use super::tests::{Scene, editing, filled_table, help, mid_impact_with, settled, start, unstable};
 use super::theme::{Palette, Theme};
 use super::twin_tests::{complete, failed, partial, twin_scene};

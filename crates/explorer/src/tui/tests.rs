@@ -1,9 +1,7 @@
 //! Screens and panels from deterministic states: a fixed preset, exact step counts, keys
 //! fed through `update` into the worker's simulator, no thread and no clock.
 
-use super::app::{App, Msg};
 use super::die::render_die;
-use super::energy::render_energy;
 use super::footer::render_footer;
 use super::header::render_header;
 use super::input::update;
@@ -11,7 +9,10 @@ use super::layout::screen_layout;
 use super::outcomes::render_outcomes;
 use super::param::{Param, all};
 use super::params_panel::{STABILITY_CAUTION, STABILITY_DANGER, render_params};
+use super::plot::render_plot;
 use super::render::render;
+use super::state::app::App;
+use super::state::messages::Msg;
 use super::theme::Theme;
 use crate::worker::{Command, Phase, Simulator};
 use dicesim_physics::Status;
@@ -59,7 +60,7 @@ impl Scene {
             &mut self.app,
             Msg::Input(Event::Key(KeyEvent::new(code, modifiers))),
         ) {
-            if let Some(c) = crate::tui::run::perform(&mut self.app, effect) {
+            if let Some(c) = crate::tui::effects::perform(&mut self.app, effect) {
                 self.simulator.handle(c);
             }
         }
@@ -72,8 +73,8 @@ impl Scene {
 
     pub(crate) fn select(&mut self, p: Param) {
         let target = all().iter().position(|&q| q == p).expect("listed");
-        while self.app.selected != target {
-            self.key(if self.app.selected < target {
+        while self.app.die_screen.selected != target {
+            self.key(if self.app.die_screen.selected < target {
                 KeyCode::Down
             } else {
                 KeyCode::Up
@@ -295,7 +296,7 @@ fn each_panel() {
         ("panel_params", &impact.app, areas.params, render_params),
         ("panel_outcomes", &table.app, areas.outcomes, render_outcomes),
         ("panel_die", &impact.app, areas.die, render_die),
-        ("panel_energy", &impact.app, areas.energy, render_energy),
+        ("panel_energy", &impact.app, areas.energy, render_plot),
         ("panel_footer", &impact.app, areas.footer, render_footer),
     ];
     for (name, app, area, panel) in panels {
@@ -310,7 +311,7 @@ fn energy_log_scale_and_ascii_die() {
     let mut s = mid_impact();
     s.key(KeyCode::Char('p'));
     s.key(KeyCode::Char('m'));
-    assert!(s.app.log_scale);
+    assert!(s.app.die_screen.log_scale);
     let areas = screen_layout(Rect::new(0, 0, 120, 36)).expect("full size");
     let t = draw(&s.app, 120, 36);
     let text = t.backend().to_string();
@@ -520,7 +521,7 @@ mod keys {
     fn press_with(app: &mut App, code: KeyCode, modifiers: KeyModifiers) -> Vec<Command> {
         update(app, Msg::Input(Event::Key(KeyEvent::new(code, modifiers))))
             .into_iter()
-            .filter_map(|e| crate::tui::run::perform(app, e))
+            .filter_map(|e| crate::tui::effects::perform(app, e))
             .collect()
     }
 
@@ -533,7 +534,7 @@ mod keys {
         };
         update(app, Msg::Input(Event::Mouse(m)))
             .into_iter()
-            .filter_map(|e| crate::tui::run::perform(app, e))
+            .filter_map(|e| crate::tui::effects::perform(app, e))
             .collect()
     }
 
@@ -547,7 +548,7 @@ mod keys {
         assert_eq!(press(&mut a, KeyCode::Char('c')), [Command::ClearTable]);
         assert_eq!(
             press(&mut a, KeyCode::Char('b')),
-            [Command::BatchStart(super::super::roll_view::BATCH_ROLLS)]
+            [Command::BatchStart(super::super::state::roll::BATCH_ROLLS)]
         );
         assert!(!a.quit);
     }
@@ -591,14 +592,14 @@ mod keys {
     #[test]
     fn arrows_and_vim_keys_select_and_change_values() {
         let mut a = app();
-        assert_eq!(a.selected_param(), Param::named("ground.stiffness"));
+        assert_eq!(a.die_screen.selected_param(), Param::named("ground.stiffness"));
         assert!(
             press(&mut a, KeyCode::Up).is_empty(),
             "the first row stays selected"
         );
         press(&mut a, KeyCode::Down);
         press(&mut a, KeyCode::Char('j'));
-        assert_eq!(a.selected_param(), Param::named("ground.friction"));
+        assert_eq!(a.die_screen.selected_param(), Param::named("ground.friction"));
         let mu = a.setup.params.ground.friction;
         let fine = Param::named("ground.friction").nudged(mu, 1, false);
         assert_eq!(
@@ -637,15 +638,15 @@ mod keys {
             )]
         );
         press(&mut a, KeyCode::Char('k'));
-        assert_eq!(a.selected_param(), Param::named("ground.damping"));
+        assert_eq!(a.die_screen.selected_param(), Param::named("ground.damping"));
         press(&mut a, KeyCode::Char('G'));
-        assert_eq!(a.selected_param(), *all().last().expect("rows"));
+        assert_eq!(a.die_screen.selected_param(), *all().last().expect("rows"));
     }
 
     #[test]
     fn a_value_at_its_limit_sends_nothing() {
         let mut a = app();
-        a.selected = all()
+        a.die_screen.selected = all()
             .iter()
             .position(|&p| p == Param::named("ground.friction"))
             .expect("listed");
@@ -663,7 +664,7 @@ mod keys {
     #[test]
     fn typing_a_value_validates_it_and_esc_cancels() {
         let mut a = app();
-        a.selected = all()
+        a.die_screen.selected = all()
             .iter()
             .position(|&p| p == Param::named("initial.height"))
             .expect("listed");
@@ -754,14 +755,16 @@ mod keys {
     #[test]
     fn view_keys_change_only_the_view() {
         let mut a = app();
-        let camera = a.camera;
+        let camera = a.die_screen.camera;
         for c in ['a', 'W', 'z', 'p', 'm'] {
             assert!(press(&mut a, KeyCode::Char(c)).is_empty());
         }
-        assert!(a.camera.yaw_deg != camera.yaw_deg && a.camera.pitch_deg > camera.pitch_deg);
-        assert!(a.camera.zoom > camera.zoom && a.log_scale);
+        assert!(
+            a.die_screen.camera.yaw_deg != camera.yaw_deg && a.die_screen.camera.pitch_deg > camera.pitch_deg
+        );
+        assert!(a.die_screen.camera.zoom > camera.zoom && a.die_screen.log_scale);
         press(&mut a, KeyCode::Char('C'));
-        assert_eq!(a.camera, camera);
+        assert_eq!(a.die_screen.camera, camera);
     }
 
     #[test]
@@ -794,16 +797,16 @@ mod keys {
             )
             .is_empty()
         );
-        assert_eq!(a.selected_param(), Param::named("ground.friction"));
+        assert_eq!(a.die_screen.selected_param(), Param::named("ground.friction"));
         let up = Param::named("ground.friction").nudged(a.setup.params.ground.friction, 1, false);
         assert_eq!(
             mouse(&mut a, MouseEventKind::ScrollUp, areas.params.x + 3, friction_row),
             [Command::SetParam(Param::named("ground.friction").scan_key(), up)]
         );
-        let zoom = a.camera.zoom;
+        let zoom = a.die_screen.camera.zoom;
         mouse(&mut a, MouseEventKind::ScrollUp, areas.die.x + 5, areas.die.y + 5);
-        assert_eq!(a.camera.zoom, zoom + 1);
-        let yaw = a.camera.yaw_deg;
+        assert_eq!(a.die_screen.camera.zoom, zoom + 1);
+        let yaw = a.die_screen.camera.yaw_deg;
         mouse(
             &mut a,
             MouseEventKind::Down(MouseButton::Left),
@@ -816,7 +819,10 @@ mod keys {
             areas.die.x + 8,
             areas.die.y + 5,
         );
-        assert!(a.camera.yaw_deg != yaw, "dragging the die orbits the camera");
+        assert!(
+            a.die_screen.camera.yaw_deg != yaw,
+            "dragging the die orbits the camera"
+        );
     }
 
     #[test]
@@ -913,14 +919,14 @@ mod sizes {
             help_scroll in 0u16..200,
         ) {
             let mut app = states()[which].clone();
-            app.camera.orbit(yaw, pitch);
-            app.camera.zoom_by(zoom);
-            app.selected = selected;
-            app.log_scale = log;
+            app.die_screen.camera.orbit(yaw, pitch);
+            app.die_screen.camera.zoom_by(zoom);
+            app.die_screen.selected = selected;
+            app.die_screen.log_scale = log;
             if app.help_scroll().is_some() {
-                app.overlay = Some(super::super::app::Overlay::Help { scroll: help_scroll });
+                app.overlay = Some(super::super::state::app::Overlay::Help { scroll: help_scroll });
             }
-            app.drawing = if ascii { super::super::app::Drawing::Ascii } else { super::super::app::Drawing::Braille };
+            app.die_screen.drawing = if ascii { super::super::state::die_screen::Drawing::Ascii } else { super::super::state::die_screen::Drawing::Braille };
             app.screen = Rect::new(0, 0, width, height);
             draw_into(&app, width, height);
         }

@@ -2,10 +2,12 @@
 //! here by the experiment itself (fewer throws than the worker's, the same code), handed to
 //! the app as the worker hands them, at both sizes and in every theme.
 
-use super::app::{App, Drawing, Msg};
 use super::curve::at_epsilon;
 use super::input::update;
 use super::layout::screen_layout;
+use super::state::app::App;
+use super::state::die_screen::Drawing;
+use super::state::messages::Msg;
 use super::tests::{Scene, start};
 use super::theme::{Palette, Theme};
 use crate::worker::{Command, CurveSetup, CurveState, CurveUpdate};
@@ -279,7 +281,7 @@ fn without_colour_or_braille_the_lines_keep_their_own_characters() {
         assert!(text.contains(glyph), "{glyph}: {text}");
     }
     let mut ascii = complete(Theme::monochrome());
-    ascii.app.drawing = Drawing::Ascii;
+    ascii.app.die_screen.drawing = Drawing::Ascii;
     let text = panel_text(&draw(&ascii.app, 80, 24));
     for glyph in ['#', 'o', '|', '=', '-'] {
         assert!(text.contains(glyph), "{glyph}: {text}");

@@ -5,10 +5,10 @@
 //! hundred times more), so lengths are log-compressed: `a·log₁₀(1 + |x|/x₀)`, with `a` the
 //! die's half size and `x₀` a natural unit for each quantity. Directions are exact.
 
-use super::app::App;
-use super::camera::Flat;
 use super::fit;
 use super::format::fmt_num;
+use super::solid::Flat;
+use super::state::app::App;
 use crate::worker::DieState;
 use nalgebra::Vector3;
 use ratatui::style::{Color, Style};
@@ -163,8 +163,8 @@ pub(crate) fn legend(app: &App, width: u16) -> Vec<Line<'static>> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::camera::inside;
     use super::super::die::{Projection, picture, place_labels};
+    use super::super::solid::inside;
     use super::super::tests::mid_impact_with;
     use super::super::theme::{Palette, Theme};
     use super::super::twin_tests::twin_scene;

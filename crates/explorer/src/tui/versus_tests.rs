@@ -1,8 +1,8 @@
 //! The parameter twin in the explorer (`D`): edits go to die B only, both dice and both
 //! outcomes are shown, and what B differs by is named.
 
-use super::app::App;
 use super::param::Param;
+use super::state::app::App;
 use super::tests::{Scene, screen, spun_preset, start};
 use super::theme::{Palette, Theme};
 use crate::worker::{Command, Phase};

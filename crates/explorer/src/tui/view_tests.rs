@@ -1,13 +1,16 @@
 //! The die, the energy plot's legend and ticks and the outcome table, as a class sees them:
 //! snapshots of deterministic states and checks that a drawing defect would break.
 
-use super::app::{App, Drawing};
-use super::camera::{OrbitCamera, inside};
+use super::chart::nice_ticks;
 use super::die::{Projection, picture, place_labels, render_die};
-use super::energy::{nice_ticks, render_energy};
 use super::layout::screen_layout;
 use super::outcomes::{RELIABLE_ROLLS, render_outcomes};
+use super::plot::render_plot;
 use super::render::render;
+use super::solid::inside;
+use super::state::app::App;
+use super::state::camera::OrbitCamera;
+use super::state::die_screen::Drawing;
 use super::tests::{Scene, mid_impact_with, spun_preset};
 use super::theme::{Palette, Theme};
 use crate::worker::Phase;
@@ -132,7 +135,7 @@ fn the_solid_die_mid_air_from_two_angles() {
     assert_eq!(s.app.roll.live.phase, Phase::Falling);
     let low = check_solid(&s.app);
     insta::assert_snapshot!("die_mid_air_default_camera", text(&low));
-    s.app.camera = HIGH;
+    s.app.die_screen.camera = HIGH;
     let high = check_solid(&s.app);
     insta::assert_snapshot!("die_mid_air_high_camera", text(&high));
     assert_ne!(text(&low), text(&high));
@@ -143,7 +146,7 @@ fn the_solid_die_at_rest_from_two_angles() {
     let mut s = at_rest(Theme::default());
     let low = check_solid(&s.app);
     insta::assert_snapshot!("die_at_rest_default_camera", text(&low));
-    s.app.camera = HIGH;
+    s.app.die_screen.camera = HIGH;
     insta::assert_snapshot!("die_at_rest_high_camera", text(&check_solid(&s.app)));
 }
 
@@ -162,7 +165,7 @@ pub(crate) fn loaded_after(steps: u64, theme: Theme) -> Scene {
 fn the_heavy_corner_of_a_loaded_die_is_marked() {
     for drawing in [Drawing::Braille, Drawing::Ascii] {
         let mut s = loaded_after(150, Theme::default());
-        s.app.drawing = drawing;
+        s.app.die_screen.drawing = drawing;
         let extra = s.app.roll.live.params.die.extra_corner_mass;
         let heavy = extra.iter().position(|&m| m > 0.0).expect("a heavy corner");
         let label = format!("+{} g", super::format::fmt_num(extra[heavy]));
@@ -211,7 +214,7 @@ fn a_die_shows_at_most_three_faces_and_nine_edges() {
 #[test]
 fn ascii_draws_slopes_not_stars() {
     let mut s = after(150, Theme::default());
-    s.app.drawing = Drawing::Ascii;
+    s.app.die_screen.drawing = Drawing::Ascii;
     let b = panel_at(&s.app, 120, 36, |a| a.die, render_die);
     let t = text(&b);
     assert!(!t.contains('*'), "{t}");
@@ -224,7 +227,7 @@ fn ascii_draws_slopes_not_stars() {
 #[test]
 fn every_arrow_has_its_label_and_the_legend_sits_below_the_die() {
     let mut s = mid_impact_with(Theme::default());
-    s.app.vectors = true;
+    s.app.die_screen.arrows = true;
     let b = check_solid(&s.app);
     let t = text(&b);
     let rows: Vec<&str> = t.lines().collect();
@@ -297,7 +300,7 @@ fn the_energy_legend_names_every_term_at_both_sizes() {
     for theme in [Theme::default(), Theme::monochrome()] {
         let s = mid_impact_with(theme);
         for (w, h) in [(80, 24), (120, 36)] {
-            let b = panel_at(&s.app, w, h, |a| a.energy, render_energy);
+            let b = panel_at(&s.app, w, h, |a| a.energy, render_plot);
             let t = text(&b);
             for name in ["total", "transl", "rot", "grav", "elastic"] {
                 assert!(t.contains(name), "{name} missing at {w}×{h}:\n{t}");
@@ -485,8 +488,8 @@ fn a_p_value_from_too_few_rolls_is_marked_unreliable() {
 
 mod map_screen {
     use super::*;
-    use crate::tui::map::MapView;
     use crate::tui::map_tests::{export_into, map_scene};
+    use crate::tui::state::map_view::MapView;
     use dicesim_experiment::{Cell, Layer, MapSpec, Method, run_map};
     use dicesim_figures::plot::Record;
     use dicesim_setup::preset::{Preset, shipped_text};
@@ -655,7 +658,7 @@ mod map_screen {
 /// and drilled pips, whole screens at both sizes.
 mod real_dice {
     use super::*;
-    use crate::tui::camera::Solid;
+    use crate::tui::solid::Solid;
     use dicesim_physics::Params;
     use dicesim_physics::contact_sphere_centres;
     use dicesim_setup::preset::{Preset, shipped_text};
@@ -790,26 +793,23 @@ fn a_body_value_no_die_can_have_is_refused_and_changes_nothing() {
     .expect("valid");
     let mut s = Scene::new(&preset, Theme::default());
     let before = (s.app.setup.params, s.app.setup.initial);
-    let mut out = Vec::new();
     // In the row's range (0…10 cm) but not below the smallest half size, 0.8 cm.
     let radius = Param::named("die.corner_radius");
-    let refused = s.app.setup.set_param(&mut out, radius, 0.9).unwrap_err();
+    let refused = s.app.setup.set_param(radius, 0.9).unwrap_err();
     assert!(refused.contains("below the smallest half size"), "{refused}");
     // Pips 0.5 cm wide do not fit beside each other on a 1.6 cm face rounded by 0.15 cm.
     let refused = s
         .app
         .setup
-        .set_param(&mut out, Param::named("die.pip_diameter"), 0.5)
+        .set_param(Param::named("die.pip_diameter"), 0.5)
         .unwrap_err();
     assert!(refused.contains("at most 0.4 cm"), "{refused}");
-    assert!(out.is_empty() && (s.app.setup.params, s.app.setup.initial) == before);
+    assert!((s.app.setup.params, s.app.setup.initial) == before);
     // A flatter die is a die: the worker takes it and rolls it from the start.
     let z = Param::named("die.half_sizes.z");
     s.simulator.advance_steps(50);
-    s.app.setup.set_param(&mut out, z, 0.6).expect("a body");
-    for c in out {
-        s.command(c);
-    }
+    let c = s.app.setup.set_param(z, 0.6).expect("a body");
+    s.command(c);
     assert_eq!(s.app.roll.live.params.die.half_sizes, [0.8, 0.8, 0.6]);
     assert_eq!(
         s.app.roll.live.timeline.position, 0,

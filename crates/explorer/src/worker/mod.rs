@@ -27,7 +27,7 @@ pub use dicesim_setup::preset::Speed;
 pub use map::{MapAxis, MapRequest, MapUpdate};
 pub(crate) use protocol::{
     BatchProgress, DieState, EnergySample, ExportStatus, MapExport, OutcomeTable, RollKind, SeparationSample,
-    TwinSnapshot,
+    TimelineSnapshot, TwinSnapshot,
 };
 pub use protocol::{Command, Notice, Phase, Snapshot};
 pub use simulator::Simulator;

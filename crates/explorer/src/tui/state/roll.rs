@@ -5,8 +5,9 @@
 //! the roll's whole picture is kept in step: a new roll clears the history, a changed
 //! future cuts it.
 
-use super::format::group;
-use super::keys::{Action, Scope, label};
+use super::camera::OrbitCamera;
+use crate::tui::format::{fmt_num, group};
+use crate::tui::keys::{Action, Scope, label};
 use crate::worker::{BatchProgress, Command, EnergySample, ExportStatus, OutcomeTable, Snapshot};
 use dicesim_setup::number::human_bytes;
 
@@ -112,7 +113,7 @@ impl RollView {
 
     /// The animation key: the roll on screen written into the current folder as an
     /// animated GIF seen from `camera`, or the running export cancelled.
-    pub(crate) fn animation_command(&self, camera: &super::camera::OrbitCamera) -> Command {
+    pub(crate) fn animation_command(&self, camera: &OrbitCamera) -> Command {
         if self.export.is_some() {
             Command::ExportCancel
         } else {
@@ -147,7 +148,7 @@ impl RollView {
         } else {
             Err(format!(
                 "{} rolls: a whole number from 1 to {}",
-                super::format::fmt_num(rolls),
+                fmt_num(rolls),
                 group(MAX_BATCH_ROLLS)
             ))
         }
