@@ -92,7 +92,10 @@ fn a_click_on_the_timeline_seeks_there() {
             row: bar.y,
             modifiers: ratatui::crossterm::event::KeyModifiers::NONE,
         };
-        let sent = crate::tui::update(&mut s.app, crate::tui::Msg::Input(Event::Mouse(click)));
+        let sent = crate::tui::input::update(
+            &mut s.app,
+            crate::tui::state::messages::Msg::Input(Event::Mouse(click)),
+        );
         assert_eq!(sent, [Command::Seek(expected)]);
         s.command(Command::Seek(expected));
         assert_eq!(s.app.roll.live.timeline.position, expected);

@@ -17,7 +17,7 @@ use ratatui::widgets::{Block, Paragraph, Wrap};
 const DESCRIPTION_SHOWN: usize = 4000;
 
 /// Draws the open dialog, centred over the screen, and over it any question being asked.
-pub fn render(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     render_dialog(app, area, frame);
     if let Some(prompt) = app.prompt() {
         let t = &app.theme;

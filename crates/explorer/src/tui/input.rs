@@ -21,7 +21,7 @@ use ratatui::layout::{Position, Rect};
 
 /// Applies one message; returns what the event loop is to do, in the order asked: worker
 /// commands and file work.
-pub fn update(app: &mut App, msg: Msg) -> Vec<Effect> {
+pub(crate) fn update(app: &mut App, msg: Msg) -> Vec<Effect> {
     // In differ mode the value changes a key or the mouse makes go to die B.
     let before = (app.setup.params, app.setup.initial);
     match msg {

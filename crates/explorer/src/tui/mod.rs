@@ -1,5 +1,5 @@
-//! The terminal explorer: [`App`] state, pure [`update`] and [`render()`], and [`run()`], the
-//! event loop that owns the terminal.
+//! The terminal explorer: [`App`] state, pure [`update`](input::update) and [`render()`],
+//! and [`run()`], the event loop that owns the terminal.
 //!
 //! Its modules build on each other in one direction, each importing only those before it:
 //! the vocabulary (the key table `keys`, `param`, `format`, `fit`, `theme`, `layout`,
@@ -32,8 +32,8 @@ mod params_panel;
 mod plot;
 mod popup;
 mod presentation;
-pub mod render;
-pub(crate) mod run;
+mod render;
+mod run;
 mod separation;
 mod solid;
 pub(crate) mod state;
@@ -44,11 +44,9 @@ mod twin_keys;
 mod vectors;
 mod versus;
 
-pub use input::update;
 pub use render::render;
 pub use run::run;
 pub use state::app::App;
-pub use state::messages::{Effect, Msg};
 pub use theme::Theme;
 
 #[cfg(test)]

@@ -366,7 +366,7 @@ mod tests {
             }))
         };
         let (selected, zoom) = (s.app.die_screen.selected, s.app.die_screen.camera.zoom);
-        crate::tui::update(&mut s.app, mouse(MouseEventKind::Down(MouseButton::Left)));
+        crate::tui::input::update(&mut s.app, mouse(MouseEventKind::Down(MouseButton::Left)));
         assert_eq!(
             s.app.die_screen.selected, selected,
             "no value selected behind the die"
@@ -376,7 +376,7 @@ mod tests {
             Some((column, row)),
             "a drag starts anywhere"
         );
-        crate::tui::update(&mut s.app, mouse(MouseEventKind::ScrollUp));
+        crate::tui::input::update(&mut s.app, mouse(MouseEventKind::ScrollUp));
         assert_eq!(s.app.die_screen.camera.zoom, zoom + 1);
         assert_eq!(s.app.setup.params, spun_preset().params(), "no value scrolled");
     }

@@ -79,7 +79,7 @@ impl ExportJob {
     /// Chooses free names in the folder, checks them and writes the files on this
     /// thread; nothing is written if a check fails, and a cancel before the last file
     /// leaves none.
-    pub fn run(
+    pub(crate) fn run(
         &self,
         cancel: &AtomicBool,
         progress: &mut dyn FnMut(ExportStatus),

@@ -78,19 +78,19 @@ pub enum Command {
 /// A basin map to write (see [`Command::ExportMap`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct MapExport {
-    pub dir: std::path::PathBuf,
-    pub map: BasinMap,
+    pub(crate) dir: std::path::PathBuf,
+    pub(crate) map: BasinMap,
     /// The setup every cell starts from, but for its two axis values.
-    pub params: Params,
-    pub initial: InitialCondition,
-    pub layer: Layer,
+    pub(crate) params: Params,
+    pub(crate) initial: InitialCondition,
+    pub(crate) layer: Layer,
     /// Pixels.
-    pub size: (u32, u32),
+    pub(crate) size: (u32, u32),
 }
 
 /// The export running, as the status line tells it.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum ExportStatus {
+pub(crate) enum ExportStatus {
     /// The roll: rolled again to learn its length, then written.
     Roll(ExportProgress),
     /// A basin map, drawn at this many pixels.
@@ -101,7 +101,7 @@ pub enum ExportStatus {
 
 /// Which roll is on screen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum RollKind {
+pub(crate) enum RollKind {
     /// The preset's own initial condition.
     Preset,
     /// Random roll number `n` (counted in the outcome table once).
@@ -191,7 +191,7 @@ pub struct TwinSnapshot {
 
 /// The die as drawn.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct DieState {
+pub(crate) struct DieState {
     /// cm, world positions of corners 1..8.
     pub(crate) corners: [Vector3<f64>; 8],
     /// Each corner's contact force (depth > 0 means it touches the ground).
@@ -231,9 +231,9 @@ impl DieState {
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct TimelineSnapshot {
     /// Steps of Δt since the roll started.
-    pub position: u64,
+    pub(crate) position: u64,
     /// The furthest step computed so far.
-    pub furthest: u64,
+    pub(crate) furthest: u64,
     /// Whether the roll ends at `furthest`.
     pub ended: bool,
     /// The step at which the stopping rule found the die settled, once it has: the roll's
@@ -241,9 +241,9 @@ pub struct TimelineSnapshot {
     /// on until it is at rest.
     pub decided: Option<u64>,
     /// Steps at which impacts began, whenever they (or the edits) changed.
-    pub impacts: Option<Vec<u64>>,
+    pub(crate) impacts: Option<Vec<u64>>,
     /// Steps at which a table value was changed mid-roll, sent with the impacts.
-    pub edits: Option<Vec<u64>>,
+    pub(crate) edits: Option<Vec<u64>>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -316,13 +316,13 @@ pub struct Snapshot {
     pub commands_handled: u64,
     pub params: Params,
     pub initial: InitialCondition,
-    pub roll: RollKind,
+    pub(crate) roll: RollKind,
     pub playing: bool,
-    pub speed: Speed,
-    pub die: DieState,
+    pub(crate) speed: Speed,
+    pub(crate) die: DieState,
     pub energy: Energy,
     /// Where the energy went since t = 0 (measured in the physics, step by step).
-    pub ledger: EnergyLedger,
+    pub(crate) ledger: EnergyLedger,
     /// erg, the stopping threshold.
     pub stop_threshold: f64,
     /// s, simulated.
@@ -335,22 +335,22 @@ pub struct Snapshot {
     pub history_reset: bool,
     /// s: samples after this time are of a future that changed (a table value mid-roll
     /// while stepped back): drop them.
-    pub history_cut: Option<f64>,
+    pub(crate) history_cut: Option<f64>,
     pub timeline: TimelineSnapshot,
     pub batch: Option<BatchProgress>,
     /// The whole table, when it changed.
     pub table: Option<OutcomeTable>,
     /// While batches ran with a parameter twin on: A's ending against B's over their
     /// shared throws (until the table is cleared or another preset loads).
-    pub versus: Option<dicesim_experiment::versus::VersusTable>,
+    pub(crate) versus: Option<dicesim_experiment::versus::VersusTable>,
     /// A one-line message for the user (a refused value, a finished batch).
     pub notice: Option<Notice>,
     /// The chaos twin, stepped in lock-step with the die.
     pub twin: Option<TwinSnapshot>,
     /// The preset loaded, in the first snapshot and whenever another is loaded.
-    pub preset: Option<Box<Preset>>,
+    pub(crate) preset: Option<Box<Preset>>,
     /// The running export, how far it has got.
-    pub export: Option<ExportStatus>,
+    pub(crate) export: Option<ExportStatus>,
     /// The twin's predictability curve, whenever it started, grew or ended (while a twin
     /// rolls).
     pub curve: Option<CurveUpdate>,

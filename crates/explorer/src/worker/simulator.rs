@@ -26,7 +26,7 @@ use dicesim_setup::random::RandomDraws;
 /// A batch to start: its rolls are random rolls numbered on from the live ones, so no
 /// initial condition enters the table twice.
 #[derive(Debug, Clone)]
-pub struct BatchRequest {
+pub(crate) struct BatchRequest {
     pub(crate) id: u64,
     pub(crate) params: Params,
     pub(crate) rolls: Vec<(u64, InitialCondition)>,
@@ -124,7 +124,9 @@ impl Simulator {
         &mut self.live
     }
 
-    pub fn params(&self) -> &Params {
+    /// The values the live roll is rolled with.
+    #[cfg(test)]
+    pub(crate) fn params(&self) -> &Params {
         self.live.params()
     }
 

@@ -361,7 +361,7 @@ impl App {
     }
 
     /// Whether frames should keep coming without input (a moving roll or a running batch).
-    pub fn animating(&self) -> bool {
+    pub(crate) fn animating(&self) -> bool {
         self.roll.animating()
     }
 

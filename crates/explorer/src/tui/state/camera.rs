@@ -7,9 +7,9 @@ use nalgebra::Vector3;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct OrbitCamera {
     /// °, turn about the vertical axis.
-    pub yaw_deg: f64,
+    pub(crate) yaw_deg: f64,
     /// °, elevation: 0 looks level, 90 straight down.
-    pub pitch_deg: f64,
+    pub(crate) pitch_deg: f64,
     /// Zoom steps; each makes the view 1.25 times closer.
     pub(crate) zoom: i32,
 }

@@ -7,7 +7,7 @@ use ratatui::crossterm::event::Event;
 
 /// What the event loop hands to `update`: terminal input or a worker snapshot.
 #[derive(Debug, Clone)]
-pub enum Msg {
+pub(crate) enum Msg {
     Input(Event),
     Worker(Box<Snapshot>),
     /// A basin map from the worker's map thread.
@@ -34,7 +34,7 @@ impl From<MapUpdate> for Msg {
 // A worker command carries a whole setup (a loaded die's eight corner masses among it); an
 // effect lives only from `update` to the event loop, so boxing it would buy nothing.
 #[allow(clippy::large_enum_variant)]
-pub enum Effect {
+pub(crate) enum Effect {
     /// A command for the simulation thread.
     Worker(Command),
     /// List the presets (shipped and the user's folder) and open the picker on them.
@@ -46,7 +46,8 @@ pub enum Effect {
 
 impl Effect {
     /// The worker command, if this is one.
-    pub fn command(self) -> Option<Command> {
+    #[cfg(test)]
+    pub(crate) fn command(self) -> Option<Command> {
         match self {
             Effect::Worker(c) => Some(c),
             _ => None,
