@@ -1,7 +1,7 @@
-//! What every plot against time shares (the energy plot, the quantity and phase plots,
-//! the twin's separation): the time axis fitted to the roll, ticks that read well, long
-//! histories thinned to the cells, the marker of the time on screen and of mid-roll edits,
-//! and the faded curve drawn under the roll's (the previous run's, or die B's).
+//! What the plots share (the energy plot, the quantity and phase plots, the twin's
+//! separation, and the timeline's marks): the time axis fitted to the roll, ticks that read
+//! well, long histories thinned to the cells, the marker of the time on screen and of
+//! mid-roll edits, and the faded curve drawn under the roll's (the previous run's, or die B's).
 
 use super::format::fmt_num;
 use super::state::app::App;

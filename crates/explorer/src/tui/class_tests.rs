@@ -164,7 +164,7 @@ mod twin {
     use super::*;
     use crate::tui::input::update;
     use crate::tui::state::messages::Msg;
-    use crate::tui::tests::Scene;
+    use crate::tui::tests::Harness;
     use crate::worker::{Command, Phase};
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 
@@ -179,7 +179,7 @@ mod twin {
     }
 
     /// The paper's roll and its twin at ε = 1e-9, `steps` steps in.
-    pub(crate) fn twin_after(steps: u64) -> Scene {
+    pub(crate) fn twin_after(steps: u64) -> Harness {
         let mut s = start();
         s.key(KeyCode::Char('T'));
         s.command(Command::SetPlaying(false));
@@ -331,7 +331,7 @@ mod presets {
     use crate::tui::param::Param;
     use crate::tui::state::dialog::Dialog;
     use crate::tui::state::messages::Msg;
-    use crate::tui::tests::Scene;
+    use crate::tui::tests::Harness;
     use crate::worker::Command;
     use dicesim_setup::preset::{Preset, Store};
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
@@ -494,7 +494,7 @@ mod presets {
 
     #[test]
     fn the_simulator_loads_a_preset_with_a_fresh_table() {
-        let mut s = Scene::new(&Preset::default(), crate::tui::Theme::default());
+        let mut s = Harness::new(&Preset::default(), crate::tui::Theme::default());
         s.command(Command::BatchStart(20));
         s.simulator.run_batch_here();
         s.sync();

@@ -4,7 +4,7 @@
 use super::layout::screen_layout;
 use super::param::Param;
 use super::state::app::{App, Mode, Prompt};
-use super::tests::{Scene, start};
+use super::tests::{Harness, start};
 use super::theme::Theme;
 use crate::worker::Command;
 use dicesim_setup::preset::{Preset, Store};
@@ -27,7 +27,7 @@ fn line_with(text: &str, needle: &str) -> String {
 }
 
 /// The paper's roll computed to its end, then stepped back to step 170 (its first impact).
-fn stepped_back() -> Scene {
+fn stepped_back() -> Harness {
     let mut s = start();
     s.run_to_end();
     s.key(KeyCode::Home);
@@ -37,7 +37,7 @@ fn stepped_back() -> Scene {
     s
 }
 
-fn changed() -> Scene {
+fn changed() -> Harness {
     let mut s = start();
     s.command(Command::SetParam(Param::named("ground.friction").scan_key(), 0.5));
     s
@@ -264,7 +264,7 @@ fn the_footer_and_help_come_from_the_key_table() {
 /// A preset with a theme, for the projector check.
 #[test]
 fn prompts_read_in_the_projector_theme() {
-    let mut s = Scene::new(&Preset::default(), Theme::default().next().next());
+    let mut s = Harness::new(&Preset::default(), Theme::default().next().next());
     s.command(Command::SetParam(Param::named("ground.friction").scan_key(), 0.5));
     s.key(KeyCode::Char('q'));
     insta::assert_snapshot!("quit_prompt_projector_100x30", screen(&s.app, 100, 30));
@@ -273,7 +273,7 @@ fn prompts_read_in_the_projector_theme() {
 #[test]
 fn slow_motion_classroom_opens_slowed_down_with_its_arrows() {
     let preset = Store::new(None).load("slow-motion-classroom").expect("shipped").0;
-    let s = Scene::new(&preset, Theme::default());
+    let s = Harness::new(&preset, Theme::default());
     assert_eq!(s.app.roll.live.speed.label(), "1/10×");
     assert!(s.app.die_screen.arrows);
     assert!(screen(&s.app, 120, 36).contains("speed 1/10×"));
@@ -342,7 +342,7 @@ fn s_saves_the_view_and_a_description_and_loading_applies_them() {
     assert!(text.contains("\nspeed = \"1/5×\""), "{text}");
 
     // Opened in a fresh explorer, it looks the same.
-    let s = Scene::new(&saved, Theme::default());
+    let s = Harness::new(&saved, Theme::default());
     assert_eq!(s.app.roll.live.speed.label(), "1/5×");
     assert!(s.app.die_screen.arrows && s.app.twin.on && s.app.roll.live.twin.is_some());
     assert_eq!(s.app.theme.palette, super::theme::Palette::Light);
@@ -353,7 +353,7 @@ fn s_saves_the_view_and_a_description_and_loading_applies_them() {
 fn a_view_on_the_map_screen_opens_it() {
     let mut preset = Preset::default();
     preset.view.screen = Some(dicesim_setup::preset::Screen::Map);
-    let mut s = Scene::new(&preset, Theme::default());
+    let mut s = Harness::new(&preset, Theme::default());
     s.sync();
     assert_eq!(s.app.mode(), Mode::Map);
     assert!(s.app.map.requested.is_some(), "the map is asked for at once");
@@ -490,7 +490,7 @@ fn opening_a_preset_keeps_the_twin_rolling_at_its_epsilon() {
 
 #[test]
 fn the_map_after_opening_a_preset_spans_that_presets_own_values() {
-    let mut s = Scene::new(&shipped("paper"), Theme::default());
+    let mut s = Harness::new(&shipped("paper"), Theme::default());
     s.app.screen = ratatui::layout::Rect::new(0, 0, 100, 30);
     s.key(KeyCode::Tab);
     // The map spans the random range of spin, 120 rad/s wide, around the preset's own spin
@@ -500,7 +500,7 @@ fn the_map_after_opening_a_preset_spans_that_presets_own_values() {
         let width = range.1 - range.0;
         (110.0..=130.0).contains(&width) && ((range.0 + range.1) / 2.0 - own).abs() <= 10.0
     };
-    let axes = |s: &Scene| {
+    let axes = |s: &Harness| {
         (
             (s.app.map.x.min, s.app.map.x.max),
             (s.app.map.y.min, s.app.map.y.max),

@@ -1,7 +1,6 @@
-//! The preset dialogs' keys: `o` lists the presets (an effect: the event loop reads the
-//! folder) and the picker chooses one to load, asking first over unsaved changes; `s` opens
-//! the save dialog, whose Enter asks the event loop to write the preset. No key here
-//! touches the disk.
+//! The preset dialogs' keys. The picker (open once the event loop has listed the presets
+//! `o` asked for) chooses one to load, asking first over unsaved changes; `s` opens the save
+//! dialog, whose Enter asks the event loop to write the preset. No key here touches the disk.
 
 use super::keys::{Action, Input};
 use super::state::app::{App, Overlay, Prompt};

@@ -8,7 +8,7 @@ use super::state::app::App;
 use super::state::app::Page;
 use super::state::map_view::{MapView, ZOOM_FACTOR, map_layout};
 use super::state::messages::{Effect, Msg};
-use super::tests::{Scene, boundary_sizes, screen, spun_preset, start};
+use super::tests::{Harness, boundary_sizes, screen, spun_preset, start};
 use super::theme::Theme;
 use crate::worker::{Command, MapUpdate};
 use dicesim_experiment::basin::node_setup;
@@ -60,7 +60,7 @@ pub(crate) fn computed(app: &App) -> MapUpdate {
 /// The die view's scene, switched to the map screen, with the map in and the cursor moved.
 /// `e` on the map screen, and the export it orders run into `dir` as the worker's export
 /// runner would run it (the key itself asks for the current folder).
-pub(crate) fn export_into(s: &mut Scene, dir: &std::path::Path) {
+pub(crate) fn export_into(s: &mut Harness, dir: &std::path::Path) {
     for c in press(&mut s.app, KeyCode::Char('e')) {
         let c = match c {
             Command::ExportMap(mut m) => {
@@ -75,8 +75,8 @@ pub(crate) fn export_into(s: &mut Scene, dir: &std::path::Path) {
     s.sync();
 }
 
-pub(crate) fn map_scene(theme: Theme) -> Scene {
-    let mut s = Scene::new(&spun_preset(), theme);
+pub(crate) fn map_scene(theme: Theme) -> Harness {
+    let mut s = Harness::new(&spun_preset(), theme);
     let sent = press(&mut s.app, KeyCode::Tab);
     assert!(matches!(sent[..], [Command::MapStart(_)]), "{sent:?}");
     let m = computed(&s.app);

@@ -1,6 +1,6 @@
-//! What every popup and boxed text shares (the dialogs, the question, the help, the map's
-//! side panel): the cells it covers cleared with a margin, and its text kept off the last
-//! column.
+//! What the popups (the dialogs, the question, the help) and the panels of wrapped text
+//! (the map's side panel, the twin's curve) share: a popup's cells cleared with a margin,
+//! and wrapped text kept off a box's last column.
 
 use super::fit;
 use ratatui::Frame;

@@ -262,7 +262,7 @@ mod tests {
     use crate::tui::state::app::Page;
     use crate::tui::state::die_screen::Readout;
     use crate::tui::state::messages::Msg;
-    use crate::tui::tests::{Scene, screen, spun_preset};
+    use crate::tui::tests::{Harness, screen, spun_preset};
     use crate::tui::theme::{Palette, Theme};
     use ratatui::Terminal;
     use ratatui::backend::TestBackend;
@@ -280,8 +280,8 @@ mod tests {
 
     /// The spun paper roll (from 15 cm) in the presentation view, until its centre is
     /// below `height` cm.
-    fn falling_to(height: f64, theme: Theme) -> Scene {
-        let mut s = Scene::new(&spun_preset(), theme);
+    fn falling_to(height: f64, theme: Theme) -> Harness {
+        let mut s = Harness::new(&spun_preset(), theme);
         s.key(KeyCode::Char('P'));
         while s.simulator.simulation().state().position.z >= height {
             assert_eq!(s.simulator.advance_steps(1), 1, "the die falls");
@@ -320,7 +320,7 @@ mod tests {
 
     #[test]
     fn p_opens_and_closes_it_n_picks_the_number_and_esc_leaves() {
-        let mut s = Scene::new(&spun_preset(), projector());
+        let mut s = Harness::new(&spun_preset(), projector());
         s.key(KeyCode::Char('P'));
         assert_eq!(s.app.page, Page::Presentation);
         let names: Vec<&str> = (0..4)
@@ -352,7 +352,7 @@ mod tests {
     #[test]
     fn the_mouse_orbits_and_zooms_and_selects_no_hidden_value() {
         use ratatui::crossterm::event::{Event, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
-        let mut s = Scene::new(&spun_preset(), projector());
+        let mut s = Harness::new(&spun_preset(), projector());
         s.key(KeyCode::Char('P'));
         let areas = screen_layout(s.app.screen).expect("fits");
         // Where the parameter list would be on the main screen: its third row.
@@ -442,7 +442,7 @@ mod tests {
     #[test]
     fn the_camera_does_not_follow_the_die_up_and_down() {
         let start = {
-            let mut s = Scene::new(&spun_preset(), projector());
+            let mut s = Harness::new(&spun_preset(), projector());
             s.key(KeyCode::Char('P'));
             s
         };
@@ -464,7 +464,7 @@ mod tests {
             );
         }
         // The main screen's view follows the die: its picture rises with it.
-        let main = |s: &Scene| {
+        let main = |s: &Harness| {
             let area = screen_layout(Rect::new(0, 0, 120, 36)).expect("fits").die;
             Projection::new(&s.app, area).y
         };

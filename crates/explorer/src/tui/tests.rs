@@ -32,17 +32,20 @@ pub(crate) fn spun_preset() -> Preset {
         .expect("valid overrides")
 }
 
+/// A panel's drawing function, as `render` calls it.
+pub(crate) type Panel = fn(&App, Rect, &mut ratatui::Frame);
+
 /// The simulator and the app wired together as the event loop wires them, minus the thread.
-pub(crate) struct Scene {
+pub(crate) struct Harness {
     pub(crate) simulator: Simulator,
     pub(crate) app: App,
 }
 
-impl Scene {
-    pub(crate) fn new(preset: &Preset, theme: Theme) -> Scene {
+impl Harness {
+    pub(crate) fn new(preset: &Preset, theme: Theme) -> Harness {
         let mut simulator = Simulator::new(preset).expect("valid preset");
         let app = App::new(simulator.snapshot(), theme);
-        Scene { simulator, app }
+        Harness { simulator, app }
     }
 
     pub(crate) fn sync(&mut self) {
@@ -88,13 +91,13 @@ impl Scene {
     }
 }
 
-pub(crate) fn start() -> Scene {
-    Scene::new(&spun_preset(), Theme::default())
+pub(crate) fn start() -> Harness {
+    Harness::new(&spun_preset(), Theme::default())
 }
 
 /// The first impact, at the step where the ground's spring is squeezed most.
-pub(crate) fn mid_impact_with(theme: Theme) -> Scene {
-    let mut s = Scene::new(&spun_preset(), theme);
+pub(crate) fn mid_impact_with(theme: Theme) -> Harness {
+    let mut s = Harness::new(&spun_preset(), theme);
     while s.simulator.phase() != Phase::InContact {
         assert!(s.simulator.advance_steps(1) == 1, "the die reaches the ground");
     }
@@ -109,17 +112,17 @@ pub(crate) fn mid_impact_with(theme: Theme) -> Scene {
     s
 }
 
-pub(crate) fn mid_impact() -> Scene {
+pub(crate) fn mid_impact() -> Harness {
     mid_impact_with(Theme::default())
 }
 
-pub(crate) fn settled() -> Scene {
+pub(crate) fn settled() -> Harness {
     let mut s = start();
     s.run_to_end();
     s
 }
 
-pub(crate) fn unstable() -> Scene {
+pub(crate) fn unstable() -> Harness {
     let mut s = start();
     s.select(Param::named("ground.stiffness"));
     s.key(KeyCode::Enter);
@@ -131,13 +134,13 @@ pub(crate) fn unstable() -> Scene {
     s
 }
 
-pub(crate) fn help() -> Scene {
+pub(crate) fn help() -> Harness {
     let mut s = mid_impact();
     s.key(KeyCode::Char('?'));
     s
 }
 
-pub(crate) fn editing() -> Scene {
+pub(crate) fn editing() -> Harness {
     let mut s = start();
     s.select(Param::named("ground.friction"));
     s.key(KeyCode::Enter);
@@ -147,7 +150,7 @@ pub(crate) fn editing() -> Scene {
     s
 }
 
-pub(crate) fn filled_table() -> Scene {
+pub(crate) fn filled_table() -> Harness {
     let mut s = start();
     s.key(KeyCode::Char('b'));
     // A smaller batch than `b` asks for keeps the test quick; the path is the same.
@@ -290,7 +293,6 @@ fn each_panel() {
     let table = filled_table();
     let impact = mid_impact();
     let areas = screen_layout(Rect::new(0, 0, 120, 36)).expect("full size");
-    type Panel = fn(&App, Rect, &mut ratatui::Frame);
     let panels: [(&str, &App, Rect, Panel); 6] = [
         ("panel_header", &impact.app, areas.header, render_header),
         ("panel_params", &impact.app, areas.params, render_params),
@@ -384,7 +386,7 @@ fn touching_corners_are_red_and_bold_or_reversed_without_colour() {
 #[test]
 fn no_color_sends_no_colour_at_all() {
     for mut s in [mid_impact_with(Theme::monochrome()), {
-        let mut s = Scene::new(&spun_preset(), Theme::monochrome());
+        let mut s = Harness::new(&spun_preset(), Theme::monochrome());
         s.command(Command::SetParam(
             Param::named("ground.stiffness").scan_key(),
             4e6,
@@ -455,7 +457,7 @@ fn fast_spin_is_called_unstable_with_its_reason() {
     let preset = Preset::default()
         .with_overrides(&["initial.angular_velocity=[10000,0,0]"])
         .expect("in range");
-    let mut s = Scene::new(&preset, Theme::default());
+    let mut s = Harness::new(&preset, Theme::default());
     let (text, _) = stability_readout_cell(&s.app);
     assert!(text.contains("corner speed at 1749 % of limit"), "{text}");
     s.run_to_end();
@@ -477,7 +479,7 @@ fn a_table_too_soft_ends_as_did_not_settle() {
     let preset = Preset::default()
         .with_overrides(&["ground.stiffness=100"])
         .expect("in range");
-    let mut s = Scene::new(&preset, Theme::default());
+    let mut s = Harness::new(&preset, Theme::default());
     s.run_to_end();
     assert!(matches!(s.app.roll.live.phase, Phase::Ended(o) if o.status == Status::Timeout));
     let text = screen(&s.app, 120, 36);
@@ -942,7 +944,7 @@ fn control_characters_from_files_never_reach_the_terminal() {
         name: format!("x{title}"),
         ..Preset::default()
     };
-    let mut s = Scene::new(&preset, Theme::default());
+    let mut s = Harness::new(&preset, Theme::default());
     s.app.notice = Some(format!("cannot open {title}.toml"));
     let t = draw(&s.app, 120, 36);
     let buffer = t.backend().buffer();
@@ -965,7 +967,7 @@ fn a_batch_whose_range_could_start_a_corner_in_the_table_is_refused() {
     let preset = Preset::default()
         .with_overrides(&["random.height=[0.5,2]"])
         .expect("in range");
-    let mut s = Scene::new(&preset, Theme::default());
+    let mut s = Harness::new(&preset, Theme::default());
     s.command(Command::BatchStart(20));
     assert!(s.simulator.take_batch_request().is_none(), "a batch was started");
     s.simulator.run_batch_here();

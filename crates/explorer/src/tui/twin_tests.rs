@@ -8,7 +8,7 @@ use super::layout::screen_layout;
 use super::state::app::App;
 use super::state::die_screen::Drawing;
 use super::state::messages::Msg;
-use super::tests::{Scene, start};
+use super::tests::{Harness, start};
 use super::theme::{Palette, Theme};
 use crate::worker::{Command, CurveSetup, CurveState, CurveUpdate};
 use dicesim_experiment::RunOptions;
@@ -26,7 +26,7 @@ use std::sync::atomic::AtomicBool;
 const THROWS: u64 = 48;
 
 /// The paper's roll and its twin at ε = 1e-9, 700 steps in, paused.
-pub(crate) fn twin_scene(theme: Theme) -> Scene {
+pub(crate) fn twin_scene(theme: Theme) -> Harness {
     let mut s = start();
     s.app.theme = theme;
     s.key(KeyCode::Char('T'));
@@ -68,7 +68,7 @@ fn curves() -> &'static (PredictCurve, PredictCurve) {
 }
 
 /// The scene with `state` delivered as the worker delivers it: in a snapshot.
-fn with_curve(mut s: Scene, generation: u64, state: CurveState) -> Scene {
+fn with_curve(mut s: Harness, generation: u64, state: CurveState) -> Harness {
     let mut snapshot = s.simulator.snapshot();
     snapshot.curve = Some(CurveUpdate {
         generation,
@@ -79,11 +79,11 @@ fn with_curve(mut s: Scene, generation: u64, state: CurveState) -> Scene {
     s
 }
 
-pub(crate) fn complete(theme: Theme) -> Scene {
+pub(crate) fn complete(theme: Theme) -> Harness {
     with_curve(twin_scene(theme), 1, CurveState::Complete(curves().1.clone()))
 }
 
-pub(crate) fn partial() -> Scene {
+pub(crate) fn partial() -> Harness {
     with_curve(
         twin_scene(Theme::default()),
         1,
@@ -92,7 +92,7 @@ pub(crate) fn partial() -> Scene {
 }
 
 /// A setup whose throws cannot settle: the time cap ends every roll in mid-air.
-pub(crate) fn failed() -> Scene {
+pub(crate) fn failed() -> Harness {
     let s = twin_scene(Theme::default());
     let mut setup: CurveSetup = s.simulator.curve_setup().expect("a twin rolls");
     setup.params.integrator.max_time = 0.01;

@@ -3,7 +3,7 @@
 
 use super::param::Param;
 use super::state::app::App;
-use super::tests::{Scene, screen, spun_preset, start};
+use super::tests::{Harness, screen, spun_preset, start};
 use super::theme::{Palette, Theme};
 use crate::worker::{Command, Phase};
 use dicesim_physics::Simulation;
@@ -17,7 +17,7 @@ fn projector() -> Theme {
 }
 
 /// Differ mode on, friction selected, typed 0.3 (A keeps the paper's μ).
-fn differing(theme: Theme) -> Scene {
+fn differing(theme: Theme) -> Harness {
     let mut s = start();
     s.app.theme = theme;
     s.key(KeyCode::Char('D'));

@@ -11,15 +11,13 @@ use super::solid::inside;
 use super::state::app::App;
 use super::state::camera::OrbitCamera;
 use super::state::die_screen::Drawing;
-use super::tests::{Scene, mid_impact_with, spun_preset};
+use super::tests::{Harness, Panel, mid_impact_with, spun_preset};
 use super::theme::{Palette, Theme};
 use crate::worker::Phase;
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-
-type Panel = fn(&App, Rect, &mut ratatui::Frame);
 
 /// One panel drawn where the layout of a `w`×`h` terminal puts it, painted as the screen is.
 fn panel_at(app: &App, w: u16, h: u16, pick: fn(&super::layout::Areas) -> Rect, draw: Panel) -> Buffer {
@@ -52,15 +50,15 @@ fn screen(app: &App, w: u16, h: u16) -> String {
 }
 
 /// The paper's spun roll `steps` steps in: at 150 the die is still falling, tumbling.
-fn after(steps: u64, theme: Theme) -> Scene {
-    let mut s = Scene::new(&spun_preset(), theme);
+fn after(steps: u64, theme: Theme) -> Harness {
+    let mut s = Harness::new(&spun_preset(), theme);
     s.simulator.advance_steps(steps);
     s.sync();
     s
 }
 
-fn at_rest(theme: Theme) -> Scene {
-    let mut s = Scene::new(&spun_preset(), theme);
+fn at_rest(theme: Theme) -> Harness {
+    let mut s = Harness::new(&spun_preset(), theme);
     s.run_to_end();
     s
 }
@@ -151,11 +149,11 @@ fn the_solid_die_at_rest_from_two_angles() {
 }
 
 /// The shipped loaded die, `steps` steps into its own roll.
-pub(crate) fn loaded_after(steps: u64, theme: Theme) -> Scene {
+pub(crate) fn loaded_after(steps: u64, theme: Theme) -> Harness {
     use dicesim_setup::preset::{Preset, shipped_text};
     let text = shipped_text("loaded-corner").expect("shipped");
     let preset = Preset::from_toml_str(text, "loaded-corner").expect("valid");
-    let mut s = Scene::new(&preset, theme);
+    let mut s = Harness::new(&preset, theme);
     s.simulator.advance_steps(steps);
     s.sync();
     s
@@ -664,18 +662,18 @@ mod real_dice {
     use dicesim_setup::preset::{Preset, shipped_text};
     use nalgebra::Vector3;
 
-    fn shipped(name: &str, overrides: &[&str]) -> Scene {
+    fn shipped(name: &str, overrides: &[&str]) -> Harness {
         let text = shipped_text(name).expect("shipped");
         let preset = Preset::from_toml_str(text, name)
             .expect("valid")
             .with_overrides(overrides)
             .expect("valid overrides");
-        Scene::new(&preset, Theme::default())
+        Harness::new(&preset, Theme::default())
     }
 
     /// The tennis racket at the first step its middle axis has turned more than a quarter
     /// turn away from `L`: half way through its first flip, in flight.
-    fn tennis_racket_mid_flip() -> Scene {
+    fn tennis_racket_mid_flip() -> Harness {
         let mut s = shipped("tennis-racket", &[]);
         for _ in 0..4000 {
             s.simulator.advance_steps(1);
@@ -791,7 +789,7 @@ fn a_body_value_no_die_can_have_is_refused_and_changes_nothing() {
         "rounded-die",
     )
     .expect("valid");
-    let mut s = Scene::new(&preset, Theme::default());
+    let mut s = Harness::new(&preset, Theme::default());
     let before = (s.app.setup.params, s.app.setup.initial);
     // In the row's range (0…10 cm) but not below the smallest half size, 0.8 cm.
     let radius = Param::named("die.corner_radius");

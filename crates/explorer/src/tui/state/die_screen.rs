@@ -22,7 +22,9 @@ pub(crate) struct DieScreen {
     pub(crate) plot: PlotChoice,
     /// Arrows for ω, L, v and the contact forces on the die (`v`).
     pub(crate) arrows: bool,
+    /// Braille dots or ASCII (`m`).
     pub(crate) drawing: Drawing,
+    /// Orbited and zoomed by its keys, a drag and the wheel.
     pub(crate) camera: OrbitCamera,
     /// The number the presentation view shows beside the face.
     pub(crate) readout: Readout,
