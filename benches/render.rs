@@ -4,7 +4,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use dicesim_explorer::tui::{App, Theme, render};
-use dicesim_explorer::worker::Engine;
+use dicesim_explorer::worker::Simulator;
 use dicesim_setup::preset::Preset;
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
@@ -14,9 +14,9 @@ fn mid_roll() -> App {
     let preset = Preset::default()
         .with_overrides(&["initial.angular_velocity=[12,-20,6]", "initial.velocity=[30,0,0]"])
         .expect("valid overrides");
-    let mut engine = Engine::new(&preset).expect("valid preset");
-    engine.advance_steps(600);
-    App::new(engine.snapshot(), Theme::default())
+    let mut simulator = Simulator::new(&preset).expect("valid preset");
+    simulator.advance_steps(600);
+    App::new(simulator.snapshot(), Theme::default())
 }
 
 fn bench_render(c: &mut Criterion) {

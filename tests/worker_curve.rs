@@ -6,7 +6,7 @@
 use dicesim_experiment::predict::{PredictCurve, run_prediction};
 use dicesim_experiment::{RunOptions, ScanKey};
 use dicesim_explorer::worker::{
-    CURVE_STARTS, Command, CurveSetup, CurveState, CurveUpdate, Engine, Snapshot, Worker,
+    CURVE_STARTS, Command, CurveSetup, CurveState, CurveUpdate, Simulator, Snapshot, Worker,
 };
 use dicesim_setup::preset::Preset;
 use std::sync::atomic::AtomicBool;
@@ -18,7 +18,7 @@ const PATIENCE: Duration = Duration::from_secs(60);
 
 fn spawn(preset: &Preset) -> (Worker, Receiver<Snapshot>) {
     let (tx, rx) = channel();
-    let worker = Worker::spawn(Engine::new(preset).expect("valid"), tx);
+    let worker = Worker::spawn(Simulator::new(preset).expect("valid"), tx);
     (worker, rx)
 }
 

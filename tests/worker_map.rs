@@ -2,7 +2,7 @@
 //! the experiment layer computes; a cancelled map stops sending.
 
 use dicesim_experiment::{MapSpec, Method, run_map};
-use dicesim_explorer::worker::{Command, Engine, MapAxis, MapRequest, MapUpdate, Snapshot, Worker};
+use dicesim_explorer::worker::{Command, MapAxis, MapRequest, MapUpdate, Simulator, Snapshot, Worker};
 use dicesim_setup::keys::ScanKey;
 use dicesim_setup::preset::Preset;
 use std::sync::atomic::AtomicBool;
@@ -14,7 +14,7 @@ const PATIENCE: Duration = Duration::from_secs(30);
 fn spawn() -> (Worker, Receiver<Snapshot>, Receiver<MapUpdate>) {
     let (tx, rx) = channel();
     let (map_tx, map_rx) = channel();
-    let worker = Worker::spawn_with_maps(Engine::new(&Preset::default()).expect("valid"), tx, move |m| {
+    let worker = Worker::spawn_with_maps(Simulator::new(&Preset::default()).expect("valid"), tx, move |m| {
         map_tx.send(m).is_ok()
     });
     (worker, rx, map_rx)

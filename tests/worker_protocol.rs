@@ -2,7 +2,7 @@
 //! clean stop when the UI goes.
 
 use dicesim_experiment::{FaceTally, RandomRanges, ScanKey, roll_record};
-use dicesim_explorer::worker::{Command, Engine, Notice, Phase, Snapshot, Speed, Worker};
+use dicesim_explorer::worker::{Command, Notice, Phase, Simulator, Snapshot, Speed, Worker};
 use dicesim_physics::{Simulation, Status};
 use dicesim_setup::preset::Preset;
 use dicesim_setup::random::RandomDraws;
@@ -14,7 +14,7 @@ const PATIENCE: Duration = Duration::from_secs(20);
 
 fn spawn() -> (Worker, Receiver<Snapshot>) {
     let (tx, rx) = channel();
-    let worker = Worker::spawn(Engine::new(&Preset::default()).expect("valid"), tx);
+    let worker = Worker::spawn(Simulator::new(&Preset::default()).expect("valid"), tx);
     (worker, rx)
 }
 

@@ -1,9 +1,9 @@
 //! Tests of the classroom views (energy ledger, vectors, chaos twin, presets, exports,
 //! themes) from deterministic states, built with the helpers of `tests.rs`.
 
-use super::app::App;
 use super::layout::screen_layout;
 use super::ledger::{bar_rows, render_ledger};
+use super::state::app::App;
 use super::tests::{mid_impact, settled, start};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
@@ -88,8 +88,8 @@ mod vectors {
     use super::super::die::render_die;
     use super::super::vectors::{ARROWS, Arrow, arrow_length};
     use super::*;
-    use crate::tui::app::Msg;
     use crate::tui::input::update;
+    use crate::tui::state::messages::Msg;
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 
     fn with_vectors() -> App {
@@ -99,7 +99,7 @@ mod vectors {
             Msg::Input(Event::Key(KeyEvent::new(KeyCode::Char('v'), KeyModifiers::NONE))),
         );
         assert!(sent.is_empty(), "a view toggle asks nothing of the worker");
-        assert!(app.vectors);
+        assert!(app.die_screen.arrows);
         app
     }
 
@@ -110,7 +110,7 @@ mod vectors {
             &mut app,
             Msg::Input(Event::Key(KeyEvent::new(KeyCode::Char('v'), KeyModifiers::NONE))),
         );
-        assert!(!app.vectors);
+        assert!(!app.die_screen.arrows);
     }
 
     #[test]
@@ -162,9 +162,9 @@ mod vectors {
 
 mod twin {
     use super::*;
-    use crate::tui::app::Msg;
     use crate::tui::input::update;
-    use crate::tui::tests::Scene;
+    use crate::tui::state::messages::Msg;
+    use crate::tui::tests::Harness;
     use crate::worker::{Command, Phase};
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 
@@ -174,16 +174,16 @@ mod twin {
             Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))),
         )
         .into_iter()
-        .filter_map(|e| crate::tui::run::perform(app, e))
+        .filter_map(|e| crate::tui::effects::perform(app, e))
         .collect()
     }
 
     /// The paper's roll and its twin at ε = 1e-9, `steps` steps in.
-    pub(crate) fn twin_after(steps: u64) -> Scene {
+    pub(crate) fn twin_after(steps: u64) -> Harness {
         let mut s = start();
         s.key(KeyCode::Char('T'));
         s.command(Command::SetPlaying(false));
-        s.engine.advance_steps(steps);
+        s.simulator.advance_steps(steps);
         s.sync();
         s
     }
@@ -216,7 +216,7 @@ mod twin {
         let twin = s.app.roll.live.twin.as_ref().expect("a twin");
         assert!(matches!(twin.phase, Phase::Ended(_)), "{:?}", twin.phase);
         assert!(matches!(s.app.roll.live.phase, Phase::Ended(_)));
-        let lines = super::super::twin::outcome_lines(&s.app, 80);
+        let lines = super::super::separation::outcome_lines(&s.app, 80);
         assert_eq!(lines.len(), 1, "{lines:?}");
         let line = lines[0].to_string();
         assert!(line.starts_with("die settled: face"), "{line}");
@@ -226,7 +226,7 @@ mod twin {
             "{line}"
         );
         // On a narrow panel the verdict keeps a line of its own, whole.
-        let narrow = super::super::twin::outcome_lines(&s.app, 18);
+        let narrow = super::super::separation::outcome_lines(&s.app, 18);
         let verdict = narrow.last().expect("lines").to_string();
         assert!(verdict == "same face" || verdict == "faces differ", "{narrow:?}");
         assert!(narrow[0].to_string().starts_with("die "), "{narrow:?}");
@@ -297,7 +297,7 @@ mod twin {
     }
 
     #[test]
-    fn the_engine_steps_both_dice_in_lock_step_from_the_epsilon_scale() {
+    fn the_simulator_steps_both_dice_in_lock_step_from_the_epsilon_scale() {
         let mut s = start();
         s.command(Command::SetTwin(Some(1e-9)));
         let twin = s.app.roll.live.twin.as_ref().expect("a twin");
@@ -305,7 +305,7 @@ mod twin {
         assert!((twin.separation.centre - 1e-9 * h).abs() < 1e-6 * 1e-9 * h);
         assert_eq!(s.app.twin.history.len(), 1);
         s.command(Command::SetPlaying(false));
-        s.engine.advance_steps(2000);
+        s.simulator.advance_steps(2000);
         s.sync();
         let twin = s.app.roll.live.twin.as_ref().expect("a twin");
         assert!(twin.separation.centre > 1e3 * 1e-9 * h, "{:?}", twin.separation);
@@ -327,11 +327,11 @@ mod twin {
 
 mod presets {
     use super::*;
-    use crate::tui::app::Msg;
-    use crate::tui::dialogs::{Dialog, modified};
     use crate::tui::input::update;
     use crate::tui::param::Param;
-    use crate::tui::tests::Scene;
+    use crate::tui::state::dialog::Dialog;
+    use crate::tui::state::messages::Msg;
+    use crate::tui::tests::Harness;
     use crate::worker::Command;
     use dicesim_setup::preset::{Preset, Store};
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
@@ -342,7 +342,7 @@ mod presets {
             Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))),
         )
         .into_iter()
-        .filter_map(|e| crate::tui::run::perform(app, e))
+        .filter_map(|e| crate::tui::effects::perform(app, e))
         .collect()
     }
 
@@ -396,13 +396,13 @@ mod presets {
         assert!(matches!(sent.as_slice(), [Command::LoadPreset(p)] if p.name == "lab-2"));
         assert!(s.app.dialog().is_none());
         for c in sent {
-            s.engine.handle(c);
+            s.simulator.handle(c);
         }
         s.sync();
         assert_eq!(s.app.setup.preset.name, "lab-2");
         assert_eq!(s.app.setup.initial.height, 30.0);
         assert_eq!(s.app.roll.live.step, 0);
-        assert!(!modified(&s.app));
+        assert!(!s.app.setup.modified());
         assert!(screen(&s.app, 120, 36).starts_with("\" dicesim  lab-2 · preset roll"));
     }
 
@@ -433,11 +433,11 @@ mod presets {
         let mut s = start();
         assert!(!screen(&s.app, 120, 36).contains("(changed)"));
         s.command(Command::SetParam(Param::named("ground.friction").scan_key(), 0.5));
-        assert!(modified(&s.app));
+        assert!(s.app.setup.modified());
         assert!(screen(&s.app, 120, 36).starts_with("\" dicesim  paper (changed) ·"));
         assert!(screen(&s.app, 80, 24).starts_with("\"paper* │"));
         s.command(Command::SetParam(Param::named("ground.friction").scan_key(), 1.2));
-        assert!(!modified(&s.app), "back at the preset's value");
+        assert!(!s.app.setup.modified(), "back at the preset's value");
     }
 
     #[test]
@@ -482,7 +482,7 @@ mod presets {
         assert_eq!(saved.initial, s.app.setup.initial);
         assert_eq!(saved.random, Preset::default().random);
         assert!(s.app.notice.as_deref().is_some_and(|n| n.contains("lab-2.toml")));
-        assert!(!modified(&s.app), "the setup is now the saved preset");
+        assert!(!s.app.setup.modified(), "the setup is now the saved preset");
         assert_eq!(s.app.setup.preset.name, "lab-2");
         // A new name saves without asking.
         s.key(KeyCode::Char('s'));
@@ -493,10 +493,10 @@ mod presets {
     }
 
     #[test]
-    fn engine_loads_a_preset_with_a_fresh_table() {
-        let mut s = Scene::new(&Preset::default(), crate::tui::Theme::default());
+    fn the_simulator_loads_a_preset_with_a_fresh_table() {
+        let mut s = Harness::new(&Preset::default(), crate::tui::Theme::default());
         s.command(Command::BatchStart(20));
-        s.engine.run_batch_here();
+        s.simulator.run_batch_here();
         s.sync();
         assert_eq!(s.app.roll.table.rolls(), 20);
         let gentle = Store::new(None).load("gentle-drop").expect("shipped").0;
@@ -505,15 +505,15 @@ mod presets {
         assert_eq!(s.app.setup.params, gentle.params());
         assert_eq!(s.app.setup.initial, gentle.initial);
         assert_eq!(s.app.setup.preset, gentle);
-        assert_eq!(s.engine.preset(), &gentle);
+        assert_eq!(s.simulator.preset(), &gentle);
         assert_eq!(s.app.notice.as_deref(), Some("loaded gentle-drop"));
     }
 }
 
 mod export {
     use super::*;
-    use crate::tui::app::Msg;
     use crate::tui::input::update;
+    use crate::tui::state::messages::Msg;
     use crate::tui::tests::screen;
     use crate::worker::Command;
     use dicesim_experiment::trace::{header, row};
@@ -526,7 +526,7 @@ mod export {
             Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))),
         )
         .into_iter()
-        .filter_map(|e| crate::tui::run::perform(app, e))
+        .filter_map(|e| crate::tui::effects::perform(app, e))
         .collect()
     }
 
@@ -540,9 +540,9 @@ mod export {
                 log_scale: false
             }]
         );
-        assert!(!a.log_scale);
+        assert!(!a.die_screen.log_scale);
         assert!(press(&mut a, KeyCode::Char('p')).is_empty());
-        assert!(a.log_scale);
+        assert!(a.die_screen.log_scale);
     }
 
     #[test]
@@ -550,7 +550,7 @@ mod export {
         // `p` on screen, then `e`: the command carries the log scale to the export.
         let mut a = mid_impact().app;
         press(&mut a, KeyCode::Char('p'));
-        assert!(a.log_scale);
+        assert!(a.die_screen.log_scale);
         let c = press(&mut a, KeyCode::Char('e'));
         assert!(
             matches!(c[..], [Command::Export { log_scale: true, .. }]),
@@ -565,7 +565,7 @@ mod export {
                 dir: dir.path().to_path_buf(),
                 log_scale,
             });
-            s.engine.run_export_here();
+            s.simulator.run_export_here();
             s.sync();
             std::fs::read(dir.path().join("dicesim-paper-preset-roll.png")).expect("png written")
         };
@@ -586,7 +586,7 @@ mod export {
             s.app.roll.export.is_some(),
             "the export runs off the worker's thread"
         );
-        s.engine.run_export_here();
+        s.simulator.run_export_here();
         s.sync();
         let csv = dir.path().join("dicesim-paper-preset-roll.csv");
         let png = dir.path().join("dicesim-paper-preset-roll.png");
@@ -609,7 +609,7 @@ mod export {
             dir: dir.path().to_path_buf(),
             log_scale: false,
         });
-        s.engine.run_export_here();
+        s.simulator.run_export_here();
         assert!(dir.path().join("dicesim-paper-preset-roll-2.csv").is_file());
         assert!(dir.path().join("dicesim-paper-preset-roll-2.png").is_file());
         assert_eq!(std::fs::read_to_string(&csv).expect("kept"), text);
@@ -618,8 +618,8 @@ mod export {
     #[test]
     fn a_sends_the_animation_of_the_camera_s_view_and_the_status_line_follows_it() {
         let mut s = start();
-        s.app.camera.orbit(15.0, 10.0);
-        let (yaw_deg, pitch_deg) = (s.app.camera.yaw_deg, s.app.camera.pitch_deg);
+        s.app.die_screen.camera.orbit(15.0, 10.0);
+        let (yaw_deg, pitch_deg) = (s.app.die_screen.camera.yaw_deg, s.app.die_screen.camera.pitch_deg);
         assert_eq!(
             press(&mut s.app, KeyCode::Char('A')),
             [Command::ExportAnimation {
@@ -667,7 +667,7 @@ mod export {
             yaw_deg,
             pitch_deg,
         });
-        s.engine.run_export_here();
+        s.simulator.run_export_here();
         s.sync();
         let gif = std::fs::canonicalize(dir.path())
             .unwrap()
@@ -691,7 +691,7 @@ mod export {
             dir: "/nonexistent/dicesim-export".into(),
             log_scale: false,
         });
-        s.engine.run_export_here();
+        s.simulator.run_export_here();
         s.sync();
         let notice = s.app.notice.clone().expect("a notice");
         assert!(
@@ -709,14 +709,14 @@ mod export {
         let dir = root.path().join("a").join("b");
         std::fs::create_dir_all(&dir).unwrap();
         let mut s = start();
-        let mut preset = s.engine.preset().clone();
+        let mut preset = s.simulator.preset().clone();
         preset.name = "x/../../escaped".to_string();
         s.command(Command::LoadPreset(Box::new(preset)));
         s.command(Command::Export {
             dir: dir.clone(),
             log_scale: false,
         });
-        s.engine.run_export_here();
+        s.simulator.run_export_here();
         s.sync();
         let written: Vec<String> = std::fs::read_dir(&dir)
             .unwrap()
@@ -752,7 +752,7 @@ mod export {
             dir: dir.path().to_path_buf(),
             log_scale: false,
         });
-        s.engine.run_export_here();
+        s.simulator.run_export_here();
         s.sync();
         let notice = s.app.notice.clone().expect("a notice");
         assert!(notice.contains("rows) is over the 268.4 MB limit"), "{notice}");
@@ -768,8 +768,8 @@ mod export {
 mod themes {
     use super::*;
     use crate::tui::Theme;
-    use crate::tui::app::Msg;
     use crate::tui::input::update;
+    use crate::tui::state::messages::Msg;
     use crate::tui::tests::mid_impact_with;
     use crate::tui::theme::Palette;
     use ratatui::buffer::Buffer;
@@ -825,7 +825,7 @@ mod themes {
     #[test]
     fn light_paints_white_with_dark_inks() {
         let mut s = mid_impact_with(Theme::default().next());
-        s.app.vectors = true;
+        s.app.die_screen.arrows = true;
         let b = buffer(&s.app);
         let areas = full();
         // Plain text: black on white, not bold.
@@ -843,7 +843,7 @@ mod themes {
         }
         // A touching corner in the light red (drawn without the arrows' legend over it);
         // at the impact the die is low, so the bar's bottom is rotational, light magenta.
-        s.app.vectors = false;
+        s.app.die_screen.arrows = false;
         let plain = buffer(&s.app);
         let dots = cells_with(&plain, areas.die, "●");
         assert!(!dots.is_empty());
@@ -884,7 +884,7 @@ mod themes {
     #[test]
     fn no_color_stays_colourless_in_every_theme() {
         let mut s = mid_impact_with(Theme::monochrome());
-        s.app.vectors = true;
+        s.app.die_screen.arrows = true;
         for _ in 0..3 {
             press(&mut s.app, KeyCode::Char('t'));
             assert!(s.app.notice.as_deref().is_some_and(|n| n.contains("NO_COLOR")));
@@ -906,8 +906,8 @@ mod themes {
 mod sizes {
     use super::*;
     use crate::tui::Theme;
-    use crate::tui::app::Msg;
     use crate::tui::input::update;
+    use crate::tui::state::messages::Msg;
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 
     fn with_keys(mut app: App, keys: &[KeyCode]) -> App {
@@ -923,7 +923,7 @@ mod sizes {
     fn classroom_views() -> [App; 6] {
         let twin = twin::twin_after(500).app;
         let mut editing = with_keys(twin.clone(), &[KeyCode::Char('E'), KeyCode::Char('1')]);
-        editing.vectors = true;
+        editing.die_screen.arrows = true;
         [
             with_keys(mid_impact().app, &[KeyCode::Char('v'), KeyCode::Char('t')]),
             twin,
@@ -936,7 +936,7 @@ mod sizes {
             {
                 let mut a = settled().app;
                 a.theme = Theme::default().next().next();
-                a.vectors = true;
+                a.die_screen.arrows = true;
                 a
             },
         ]

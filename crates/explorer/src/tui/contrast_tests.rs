@@ -4,9 +4,9 @@
 //! ratio: 4.5 for text, 3 for a marker (Braille dots, line and block characters, the
 //! contact and heavy-corner marks).
 
-use super::app::App;
 use super::map_tests::map_scene;
 use super::screen_tests::{SIZES, draw, states};
+use super::state::app::App;
 use super::theme::{Palette, Theme};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;

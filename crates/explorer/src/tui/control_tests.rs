@@ -1,10 +1,10 @@
 //! The explorer's controls in a lesson: the timeline, the questions before changes are
 //! lost, Esc that never quits, the batch size; rendered deterministically.
 
-use super::app::{App, Mode, Prompt};
 use super::layout::screen_layout;
 use super::param::Param;
-use super::tests::{Scene, start};
+use super::state::app::{App, Mode, Prompt};
+use super::tests::{Harness, start};
 use super::theme::Theme;
 use crate::worker::Command;
 use dicesim_setup::preset::{Preset, Store};
@@ -27,7 +27,7 @@ fn line_with(text: &str, needle: &str) -> String {
 }
 
 /// The paper's roll computed to its end, then stepped back to step 170 (its first impact).
-fn stepped_back() -> Scene {
+fn stepped_back() -> Harness {
     let mut s = start();
     s.run_to_end();
     s.key(KeyCode::Home);
@@ -37,7 +37,7 @@ fn stepped_back() -> Scene {
     s
 }
 
-fn changed() -> Scene {
+fn changed() -> Harness {
     let mut s = start();
     s.command(Command::SetParam(Param::named("ground.friction").scan_key(), 0.5));
     s
@@ -83,7 +83,7 @@ fn a_click_on_the_timeline_seeks_there() {
     let mut s = stepped_back();
     s.app.screen = ratatui::layout::Rect::new(0, 0, 120, 36);
     let areas = screen_layout(s.app.screen).expect("fits");
-    let bar = super::timeline::bar(areas.timeline).expect("wide enough");
+    let bar = super::layout::timeline_bar(areas.timeline).expect("wide enough");
     let furthest = s.app.roll.live.timeline.furthest;
     for (column, expected) in [(bar.x, 0), (bar.right() - 1, furthest)] {
         let click = MouseEvent {
@@ -92,7 +92,10 @@ fn a_click_on_the_timeline_seeks_there() {
             row: bar.y,
             modifiers: ratatui::crossterm::event::KeyModifiers::NONE,
         };
-        let sent = crate::tui::update(&mut s.app, crate::tui::Msg::Input(Event::Mouse(click)));
+        let sent = crate::tui::input::update(
+            &mut s.app,
+            crate::tui::state::messages::Msg::Input(Event::Mouse(click)),
+        );
         assert_eq!(sent, [Command::Seek(expected)]);
         s.command(Command::Seek(expected));
         assert_eq!(s.app.roll.live.timeline.position, expected);
@@ -162,8 +165,8 @@ fn backspace_resets_to_the_preset_asking_first() {
     s.key(KeyCode::Backspace);
     s.key(KeyCode::Backspace);
     assert_eq!(s.app.setup.params, preset.params());
-    assert_eq!(s.engine.params(), &preset.params());
-    assert!(!super::dialogs::modified(&s.app));
+    assert_eq!(s.simulator.params(), &preset.params());
+    assert!(!s.app.setup.modified());
     // Nothing changed: nothing to ask, nothing to do.
     s.key(KeyCode::Backspace);
     assert!(s.app.prompt().is_none());
@@ -195,7 +198,7 @@ fn opening_a_preset_over_changes_asks_first() {
     s.key(KeyCode::Enter);
     assert!(s.app.dialog().is_none());
     assert_eq!(s.app.setup.preset.name, chosen.name);
-    assert_eq!(s.engine.params(), &chosen.params());
+    assert_eq!(s.simulator.params(), &chosen.params());
 }
 
 #[test]
@@ -261,7 +264,7 @@ fn the_footer_and_help_come_from_the_key_table() {
 /// A preset with a theme, for the projector check.
 #[test]
 fn prompts_read_in_the_projector_theme() {
-    let mut s = Scene::new(&Preset::default(), Theme::default().next().next());
+    let mut s = Harness::new(&Preset::default(), Theme::default().next().next());
     s.command(Command::SetParam(Param::named("ground.friction").scan_key(), 0.5));
     s.key(KeyCode::Char('q'));
     insta::assert_snapshot!("quit_prompt_projector_100x30", screen(&s.app, 100, 30));
@@ -270,9 +273,9 @@ fn prompts_read_in_the_projector_theme() {
 #[test]
 fn slow_motion_classroom_opens_slowed_down_with_its_arrows() {
     let preset = Store::new(None).load("slow-motion-classroom").expect("shipped").0;
-    let s = Scene::new(&preset, Theme::default());
+    let s = Harness::new(&preset, Theme::default());
     assert_eq!(s.app.roll.live.speed.label(), "1/10×");
-    assert!(s.app.vectors);
+    assert!(s.app.die_screen.arrows);
     assert!(screen(&s.app, 120, 36).contains("speed 1/10×"));
     // Loading it over another preset applies its view too, and a preset without a view
     // opens as the explorer does: at 1×, without arrows or twin, the theme kept.
@@ -280,15 +283,18 @@ fn slow_motion_classroom_opens_slowed_down_with_its_arrows() {
     s.key(KeyCode::Char('t'));
     s.command(Command::LoadPreset(Box::new(preset)));
     assert_eq!(s.app.setup.speed.label(), "1/10×");
-    assert!(s.app.vectors);
+    assert!(s.app.die_screen.arrows);
     s.key(KeyCode::Char('T'));
     s.key(KeyCode::Char('a'));
     s.command(Command::LoadPreset(Box::default()));
     assert_eq!(s.app.setup.speed.label(), "1×");
-    assert_eq!(s.engine.live().speed().label(), "1×");
+    assert_eq!(s.simulator.live().speed().label(), "1×");
     // The twin turned on stays on (a lesson compares presets with it).
-    assert!(!s.app.vectors && s.app.twin.on && s.app.roll.live.twin.is_some());
-    assert_eq!(s.app.camera, super::camera::Camera::default());
+    assert!(!s.app.die_screen.arrows && s.app.twin.on && s.app.roll.live.twin.is_some());
+    assert_eq!(
+        s.app.die_screen.camera,
+        super::state::camera::OrbitCamera::default()
+    );
     assert_eq!(s.app.theme.palette, super::theme::Palette::Light);
 }
 
@@ -305,7 +311,7 @@ fn s_saves_the_view_and_a_description_and_loading_applies_them() {
     for c in "lab-3".chars() {
         s.key(KeyCode::Char(c));
     }
-    let automatic = super::dialogs::automatic_description(&s.app);
+    let automatic = s.app.setup.automatic_description();
     assert_eq!(automatic, "The `paper` preset with ground.friction=0.5.");
     // A fixed folder for the picture (the temporary one's name changes every run).
     s.app.store = Store::new(Some("/home/teacher/presets".into()));
@@ -336,18 +342,18 @@ fn s_saves_the_view_and_a_description_and_loading_applies_them() {
     assert!(text.contains("\nspeed = \"1/5×\""), "{text}");
 
     // Opened in a fresh explorer, it looks the same.
-    let s = Scene::new(&saved, Theme::default());
+    let s = Harness::new(&saved, Theme::default());
     assert_eq!(s.app.roll.live.speed.label(), "1/5×");
-    assert!(s.app.vectors && s.app.twin.on && s.app.roll.live.twin.is_some());
+    assert!(s.app.die_screen.arrows && s.app.twin.on && s.app.roll.live.twin.is_some());
     assert_eq!(s.app.theme.palette, super::theme::Palette::Light);
-    assert_eq!(s.app.camera.yaw_deg, 15.0);
+    assert_eq!(s.app.die_screen.camera.yaw_deg, 15.0);
 }
 
 #[test]
 fn a_view_on_the_map_screen_opens_it() {
     let mut preset = Preset::default();
     preset.view.screen = Some(dicesim_setup::preset::Screen::Map);
-    let mut s = Scene::new(&preset, Theme::default());
+    let mut s = Harness::new(&preset, Theme::default());
     s.sync();
     assert_eq!(s.app.mode(), Mode::Map);
     assert!(s.app.map.requested.is_some(), "the map is asked for at once");
@@ -355,11 +361,11 @@ fn a_view_on_the_map_screen_opens_it() {
 
 #[test]
 fn the_views_camera_limits_are_the_cameras() {
-    use super::camera::Camera;
-    assert_eq!(dicesim_setup::preset::PITCH.min, Camera::MIN_PITCH);
-    assert_eq!(dicesim_setup::preset::PITCH.max, Camera::MAX_PITCH);
-    assert_eq!(dicesim_setup::preset::ZOOM.min, f64::from(Camera::MIN_ZOOM));
-    assert_eq!(dicesim_setup::preset::ZOOM.max, f64::from(Camera::MAX_ZOOM));
+    use super::state::camera::OrbitCamera;
+    assert_eq!(dicesim_setup::preset::PITCH.min, OrbitCamera::MIN_PITCH);
+    assert_eq!(dicesim_setup::preset::PITCH.max, OrbitCamera::MAX_PITCH);
+    assert_eq!(dicesim_setup::preset::ZOOM.min, f64::from(OrbitCamera::MIN_ZOOM));
+    assert_eq!(dicesim_setup::preset::ZOOM.max, f64::from(OrbitCamera::MAX_ZOOM));
 }
 
 #[test]
@@ -386,10 +392,21 @@ fn a_digit_on_a_parameter_row_opens_the_value_editor_with_it_typed() {
 #[test]
 fn a_key_that_means_nothing_does_nothing_and_the_footer_says_so() {
     let mut s = start();
-    let before = (s.app.log_scale, s.app.setup.params, s.app.setup.initial);
+    let before = (
+        s.app.die_screen.log_scale,
+        s.app.setup.params,
+        s.app.setup.initial,
+    );
     // `y` answers questions; with none open it means nothing (it once switched the log scale).
     s.key(KeyCode::Char('y'));
-    assert_eq!((s.app.log_scale, s.app.setup.params, s.app.setup.initial), before);
+    assert_eq!(
+        (
+            s.app.die_screen.log_scale,
+            s.app.setup.params,
+            s.app.setup.initial
+        ),
+        before
+    );
     assert_eq!(s.app.mode(), Mode::Normal);
     let text = screen(&s.app, 120, 36);
     assert!(text.contains("y: nothing here (? lists the keys)"), "{text}");
@@ -473,7 +490,7 @@ fn opening_a_preset_keeps_the_twin_rolling_at_its_epsilon() {
 
 #[test]
 fn the_map_after_opening_a_preset_spans_that_presets_own_values() {
-    let mut s = Scene::new(&shipped("paper"), Theme::default());
+    let mut s = Harness::new(&shipped("paper"), Theme::default());
     s.app.screen = ratatui::layout::Rect::new(0, 0, 100, 30);
     s.key(KeyCode::Tab);
     // The map spans the random range of spin, 120 rad/s wide, around the preset's own spin
@@ -483,7 +500,7 @@ fn the_map_after_opening_a_preset_spans_that_presets_own_values() {
         let width = range.1 - range.0;
         (110.0..=130.0).contains(&width) && ((range.0 + range.1) / 2.0 - own).abs() <= 10.0
     };
-    let axes = |s: &Scene| {
+    let axes = |s: &Harness| {
         (
             (s.app.map.x.min, s.app.map.x.max),
             (s.app.map.y.min, s.app.map.y.max),

@@ -2,8 +2,9 @@
 //! against log₁₀ ε, with 95 % intervals, the chance and halfway levels, ε½, and where the
 //! twin's own ε lies on it. The worker computes it (`worker::curve`); this draws it.
 
-use super::app::{App, Drawing};
 use super::format::fmt_num;
+use super::state::app::App;
+use super::state::die_screen::Drawing;
 use crate::worker::{CurveState, CurveUpdate};
 use dicesim_experiment::predict::PredictCurve;
 use ratatui::Frame;
@@ -141,9 +142,9 @@ fn title(app: &App, update: Option<&CurveUpdate>, width: u16) -> Line<'static> {
 
 /// The legend on the bottom border: each line's glyph and what it is.
 fn legend(app: &App, width: u16) -> Line<'static> {
-    let g = Glyphs::of(app.drawing);
+    let g = Glyphs::of(app.die_screen.drawing);
     let c = colours(app);
-    let curve_glyph = match app.drawing {
+    let curve_glyph = match app.die_screen.drawing {
         Drawing::Braille => '━',
         Drawing::Ascii => g.point,
     };
@@ -212,7 +213,7 @@ pub(crate) fn render_curve(app: &App, area: Rect, frame: &mut Frame) {
                 Line::raw(why.clone()),
             ])
             .wrap(Wrap { trim: true });
-            frame.render_widget(text, super::dialogs::text_area(body));
+            frame.render_widget(text, super::popup::text_area(body));
             return;
         }
         None => (None, true),
@@ -300,7 +301,7 @@ impl Series {
 /// The plot: later datasets are drawn over earlier ones, so the curve's points and our ε's
 /// mark stay visible where lines cross them.
 fn chart<'a>(app: &App, s: &'a Series) -> Chart<'a> {
-    let g = Glyphs::of(app.drawing);
+    let g = Glyphs::of(app.die_screen.drawing);
     let c = colours(app);
     let scatter = |data: &'a [(f64, f64)], glyph: char, colour: Color| {
         Dataset::default()

@@ -11,9 +11,11 @@
 //! with Braille dots (a ratatui canvas) or with ASCII slope characters (`-` `|` `/` `\`).
 //! Labels are placed last on a grid of taken cells, so none ever covers another.
 
-use super::app::{App, Drawing};
-use super::camera::{Camera, EDGES, FACE_CORNERS, Flat, Solid, convex_hull, inside, outside_parts};
 use super::format::fmt_num;
+use super::solid::{EDGES, FACE_CORNERS, Flat, Solid, convex_hull, inside, outside_parts};
+use super::state::app::App;
+use super::state::camera::OrbitCamera;
+use super::state::die_screen::Drawing;
 use super::vectors::{self, Arrow};
 use crate::worker::{DieState, Phase, TwinSnapshot};
 use dicesim_physics::InitialCondition;
@@ -75,8 +77,8 @@ pub(crate) struct Picture {
 
 /// The part of the view plane the die panel shows, and the cells it is drawn in.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct View {
-    pub(crate) camera: Camera,
+pub(crate) struct Projection {
+    pub(crate) camera: OrbitCamera,
     /// The horizontal point the camera follows (the die's foot).
     pub(crate) focus: Vector3<f64>,
     pub(crate) x: (f64, f64),
@@ -84,12 +86,12 @@ pub(crate) struct View {
     pub(crate) area: Rect,
 }
 
-impl View {
+impl Projection {
     /// The view of the die in `area`: the die's width in view fixed by the zoom, its height
     /// from the cells' 1:2 aspect, the table kept in the lower third.
-    pub(crate) fn new(app: &App, area: Rect) -> View {
+    pub(crate) fn new(app: &App, area: Rect) -> Projection {
         let die = &app.roll.live.die;
-        let camera = app.camera;
+        let camera = app.die_screen.camera;
         let width = camera.width_cm(app.roll.live.params.die.largest_half_size());
         let height = width * 2.0 * area.height as f64 / area.width.max(1) as f64;
         let focus = Vector3::new(die.centre.x, die.centre.y, 0.0);
@@ -103,7 +105,7 @@ impl View {
             .map(|p| camera.project(p, &focus).y - radius)
             .fold(f64::INFINITY, f64::min);
         let bottom = (centre_y - height / 2.0).min(lowest - 0.04 * height);
-        View {
+        Projection {
             camera,
             focus,
             x: (-width / 2.0, width / 2.0),
@@ -143,7 +145,7 @@ impl View {
 }
 
 /// Which faces (0-based) of the body the camera sees, and how squarely.
-fn seen_faces(camera: &Camera, body: &Solid) -> [f64; 6] {
+fn seen_faces(camera: &OrbitCamera, body: &Solid) -> [f64; 6] {
     std::array::from_fn(|f| camera.facing(&body.normal(f)))
 }
 
@@ -204,12 +206,12 @@ impl Picture {
 
 /// Whether the camera of `view` sees corner `k` of the die on screen.
 #[cfg(test)]
-pub(crate) fn corner_is_seen(app: &App, view: &View, k: usize) -> bool {
+pub(crate) fn corner_is_seen(app: &App, view: &Projection, k: usize) -> bool {
     corner_seen(&seen_faces(&view.camera, &solid(app, &app.roll.live.die)), k)
 }
 
 /// The picture of the die panel: pure geometry of the app state.
-pub(crate) fn picture(app: &App, view: &View) -> Picture {
+pub(crate) fn picture(app: &App, view: &Projection) -> Picture {
     let t = &app.theme;
     let die = &app.roll.live.die;
     let half = app.roll.live.params.die.largest_half_size();
@@ -227,7 +229,11 @@ pub(crate) fn picture(app: &App, view: &View) -> Picture {
         false,
     );
     for k in (0..8).filter(|&k| contact[k] && corner_seen(&facing, k)) {
-        let dot = if app.drawing == Drawing::Ascii { "@" } else { "●" };
+        let dot = if app.die_screen.drawing == Drawing::Ascii {
+            "@"
+        } else {
+            "●"
+        };
         pic.label(view.flat(&body.foot_of_sphere(k)), dot, t.contact(), false);
     }
     // A loaded die's extra masses: a mark on each seen heavy corner, and its mass beside
@@ -236,7 +242,11 @@ pub(crate) fn picture(app: &App, view: &View) -> Picture {
     for k in (0..8).filter(|&k| extra[k] > 0.0) {
         let at = view.flat(&body.sharp_corner(k));
         if corner_seen(&facing, k) {
-            let mark = if app.drawing == Drawing::Ascii { "#" } else { "◆" };
+            let mark = if app.die_screen.drawing == Drawing::Ascii {
+                "#"
+            } else {
+                "◆"
+            };
             pic.label(at, mark, t.heavy(), false);
         }
         pic.label(at, format!("+{} g", fmt_num(extra[k])), t.heavy(), true);
@@ -338,7 +348,7 @@ pub(crate) fn picture(app: &App, view: &View) -> Picture {
             pic.stroke(1, corners[a], corners[b], edge_colour(a, b));
         }
     }
-    if app.vectors {
+    if app.die_screen.arrows {
         arrows(&mut pic, app, view, die);
     }
     pic
@@ -350,7 +360,7 @@ const FLAT_EDGES: [(usize, usize); 4] = [(0, 1), (1, 3), (3, 2), (2, 0)];
 
 /// The points whose hull is the body's shadow straight below it: the corner spheres' feet,
 /// and for a rounded die the rims of the discs they cast.
-fn shadow_points(body: &Solid, view: &View) -> Vec<Flat> {
+fn shadow_points(body: &Solid, view: &Projection) -> Vec<Flat> {
     let feet = body.spheres.map(|c| Vector3::new(c.x, c.y, 0.0));
     if body.radius <= 0.0 {
         return feet.iter().map(|p| view.flat(p)).collect();
@@ -368,7 +378,7 @@ fn shadow_points(body: &Solid, view: &View) -> Vec<Flat> {
 
 /// A patch of floor tiles around the die, fixed to the world so the die's travel shows
 /// against it; small enough that the die stays the thing to look at.
-fn ground(pic: &mut Picture, app: &App, view: &View, half: f64) {
+fn ground(pic: &mut Picture, app: &App, view: &Projection, half: f64) {
     let view_width = view.x.1 - view.x.0;
     let side = 2.0 * half;
     let spacing = 2.0 * side * (view_width / (6.0 * side)).round().max(1.0);
@@ -398,7 +408,7 @@ fn ground(pic: &mut Picture, app: &App, view: &View, half: f64) {
 
 /// The twin's die (chaos or parameter twin) as a ghost: its own visible edges (a rounded die's outline and flat
 /// faces), hidden where the die covers them.
-fn ghost(pic: &mut Picture, app: &App, view: &View, snapshot: &TwinSnapshot) {
+fn ghost(pic: &mut Picture, app: &App, view: &Projection, snapshot: &TwinSnapshot) {
     let colour = app.theme.ghost();
     let twin = &snapshot.die;
     let body = twin_body(app, snapshot);
@@ -430,7 +440,7 @@ fn ghost(pic: &mut Picture, app: &App, view: &View, snapshot: &TwinSnapshot) {
 }
 
 /// ω, L and v from the centre, F from each touching corner, each with its symbol at the tip.
-fn arrows(pic: &mut Picture, app: &App, view: &View, die: &DieState) {
+fn arrows(pic: &mut Picture, app: &App, view: &Projection, die: &DieState) {
     let half = app.roll.live.params.die.largest_half_size();
     let mut arrow = |kind: Arrow, from: Vector3<f64>, v: Vector3<f64>| {
         let length = vectors::arrow_length(v.norm(), kind.reference(app), half);
@@ -474,7 +484,7 @@ fn slope_char(dx_cells: f64, dy_cells: f64) -> char {
 }
 
 /// Draws the picture's strokes and pips in ASCII slope characters straight into `buf`.
-fn draw_ascii(pic: &Picture, view: &View, buf: &mut Buffer) {
+fn draw_ascii(pic: &Picture, view: &Projection, buf: &mut Buffer) {
     let area = view.area;
     let (w, h) = (area.width as f64, area.height as f64);
     let to_cells = |p: Flat| {
@@ -510,7 +520,7 @@ fn draw_ascii(pic: &Picture, view: &View, buf: &mut Buffer) {
 }
 
 /// Draws the picture's strokes and pips with Braille dots.
-fn draw_braille(pic: &Picture, view: &View, frame: &mut Frame) {
+fn draw_braille(pic: &Picture, view: &Projection, frame: &mut Frame) {
     let canvas = Canvas::default()
         .marker(Marker::Braille)
         .x_bounds([view.x.0, view.x.1])
@@ -536,7 +546,7 @@ fn draw_braille(pic: &Picture, view: &View, frame: &mut Frame) {
 
 /// Fills the backgrounds: each cell whose middle lies on a seen face takes its shade, and
 /// the shadow shows where the die does not cover it.
-fn draw_fills(pic: &Picture, view: &View, buf: &mut Buffer) {
+fn draw_fills(pic: &Picture, view: &Projection, buf: &mut Buffer) {
     for row in 0..view.area.height {
         for col in 0..view.area.width {
             let p = view.centre_of(col, row);
@@ -580,7 +590,7 @@ fn offsets(len: i32, reach: i32) -> impl Iterator<Item = (i32, i32)> {
 /// Places the labels in order, each on the first free cells near its anchor: never on a
 /// cell an earlier label took, never past the panel's edge, and a movable label never on the
 /// die nor touching another label.
-pub(crate) fn place_labels(labels: &[Label], view: &View, outline: &[Flat]) -> Vec<(u16, u16, Label)> {
+pub(crate) fn place_labels(labels: &[Label], view: &Projection, outline: &[Flat]) -> Vec<(u16, u16, Label)> {
     let (w, h) = (view.area.width, view.area.height);
     let mut taken = vec![false; w as usize * h as usize];
     let mut placed = Vec::new();
@@ -687,7 +697,7 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
         body.y += rows;
         body.height -= rows;
     }
-    if app.vectors && body.height >= 6 {
+    if app.die_screen.arrows && body.height >= 6 {
         let legend = Rect {
             y: body.bottom() - 2,
             height: 2,
@@ -696,14 +706,14 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
         frame.render_widget(Paragraph::new(vectors::legend(app, body.width)), legend);
         body.height -= 2;
     }
-    draw(app, &View::new(app, body), frame);
+    draw(app, &Projection::new(app, body), frame);
 }
 
 /// The die's picture seen in `view`, drawn into its area: strokes, fills, then labels.
-pub(crate) fn draw(app: &App, view: &View, frame: &mut Frame) {
+pub(crate) fn draw(app: &App, view: &Projection, frame: &mut Frame) {
     let body = view.area;
     let pic = picture(app, view);
-    match app.drawing {
+    match app.die_screen.drawing {
         Drawing::Braille => draw_braille(&pic, view, frame),
         Drawing::Ascii => draw_ascii(&pic, view, frame.buffer_mut()),
     }

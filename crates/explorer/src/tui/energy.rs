@@ -1,12 +1,13 @@
 //! The energy plot: the roll's energy by form against time, on a linear or log scale, the
-//! time on screen marked; the plot panel's other plots are [`super::plot`]'s.
+//! time on screen marked; the plot panel shows it unless another plot was chosen.
 
-use super::app::{App, Drawing};
-use super::format::fmt_num;
-use super::plot::{
-    edit_datasets, edit_marks, faded_run, marker_dataset, previous_dataset, render_phase, render_quantity,
-    time_axis, time_marker,
+use super::chart::{
+    edit_datasets, edit_marks, faded_run, marker_dataset, nice_ticks, parameter_twin, previous_dataset,
+    thinned, time_axis, time_marker,
 };
+use super::format::fmt_num;
+use super::state::app::App;
+use super::state::die_screen::Drawing;
 use crate::worker::EnergySample;
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -14,40 +15,6 @@ use ratatui::style::Style;
 use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph};
-
-/// Each series thinned to at most two points (its low and its high) per bucket, so a frame
-/// costs the same for any roll length and impact spikes stay visible.
-pub(crate) fn thinned(
-    history: &[EnergySample],
-    buckets: usize,
-    value: impl Fn(&EnergySample) -> f64,
-) -> Vec<(f64, f64)> {
-    let n = history.len();
-    if n <= 2 * buckets.max(1) {
-        return history.iter().map(|s| (s.time_s, value(s))).collect();
-    }
-    let mut out = Vec::with_capacity(2 * buckets);
-    for b in 0..buckets {
-        let slice = &history[b * n / buckets..((b + 1) * n / buckets).max(b * n / buckets + 1).min(n)];
-        let (mut lo, mut hi) = (slice[0], slice[0]);
-        for s in slice {
-            if value(s) < value(&lo) {
-                lo = *s;
-            }
-            if value(s) > value(&hi) {
-                hi = *s;
-            }
-        }
-        let (first, second) = if lo.time_s <= hi.time_s {
-            (lo, hi)
-        } else {
-            (hi, lo)
-        };
-        out.push((first.time_s, value(&first)));
-        out.push((second.time_s, value(&second)));
-    }
-    out
-}
 
 /// Short names of the energy terms: total, translational, rotational, gravitational, elastic
 /// (the order of [`super::theme::Theme::energy_series`], and the ledger's words).
@@ -76,14 +43,14 @@ fn energy_legend(app: &App) -> Vec<Span<'static>> {
         })
         .collect();
     // Die B's total, faded, while a parameter twin rolls (`.` marks it without colour).
-    if super::plot::parameter_twin(app) {
+    if parameter_twin(app) {
         let sample = if app.theme.colour { '━' } else { '.' };
         items.push(Span::styled(
             format!("{sample}B total"),
             Style::new().fg(app.theme.ghost()),
         ));
     }
-    let dots = if app.drawing == Drawing::Ascii {
+    let dots = if app.die_screen.drawing == Drawing::Ascii {
         "--"
     } else {
         "••"
@@ -114,41 +81,10 @@ fn pack(items: Vec<Span<'static>>, width: usize) -> Vec<Line<'static>> {
     lines.into_iter().map(Line::from).collect()
 }
 
-/// Axis ticks that read well: bounds and every tick a multiple of one step of 1, 2 or 5 × 10ⁿ,
-/// at most `most` labels, and the top at least `top`.
-pub(crate) fn nice_ticks(bottom: f64, top: f64, most: usize) -> (f64, f64, Vec<f64>) {
-    let most = most.max(2);
-    let span = (top - bottom).max(f64::MIN_POSITIVE);
-    let mut step = 10f64.powf((span / (most - 1) as f64).log10().floor());
-    loop {
-        for m in [1.0, 2.0, 5.0] {
-            let s = step * m;
-            let (lo, hi) = ((bottom / s).floor() * s, (top / s - 1e-9).ceil() * s);
-            let n = ((hi - lo) / s).round() as usize + 1;
-            if n <= most {
-                let ticks = (0..n)
-                    .map(|k| lo + k as f64 * s)
-                    .map(|v| if v.abs() < s * 1e-9 { 0.0 } else { v })
-                    .collect();
-                return (lo, hi, ticks);
-            }
-        }
-        step *= 10.0;
-    }
-}
-
-/// The plot panel: the energy plot, or the quantity or phase plot chosen instead.
+/// The energy plot: each energy term and the total against time, the stop threshold across.
 pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
-    match (app.plot.quantity, app.plot.phase) {
-        (_, Some(j)) => render_phase(app, area, frame, app.plot.first(), j),
-        (Some(i), None) => render_quantity(app, area, frame, i),
-        (None, None) => render_energy_terms(app, area, frame),
-    }
-}
-
-fn render_energy_terms(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
-    let scale = if app.log_scale { "log" } else { "linear" };
+    let scale = if app.die_screen.log_scale { "log" } else { "linear" };
     let colours = t.energy_series();
     let border = area.width.saturating_sub(2) as usize;
     // "(y)": the axis the scale applies to, where the title has room for it.
@@ -191,7 +127,7 @@ fn render_energy_terms(app: &App, area: Rect, frame: &mut Frame) {
         frame.render_widget(block, area);
         return;
     }
-    let log = app.log_scale;
+    let log = app.die_screen.log_scale;
     let y_of = |v: f64| if log { v.max(LOG_FLOOR).log10() } else { v };
     let buckets = (body.width as usize).saturating_mul(2);
     let terms: [Term; 5] = [
@@ -260,7 +196,7 @@ fn render_energy_terms(app: &App, area: Rect, frame: &mut Frame) {
     datasets.extend(series.iter().zip(LEGEND).zip(colours).zip(PATTERNS).map(
         |(((data, name), colour), pattern)| {
             let marker = if t.colour {
-                app.drawing.line_marker()
+                app.die_screen.drawing.line_marker()
             } else {
                 Marker::Custom(pattern)
             };
@@ -276,7 +212,7 @@ fn render_energy_terms(app: &App, area: Rect, frame: &mut Frame) {
         datasets.push(
             Dataset::default()
                 .name("stop")
-                .marker(if app.drawing == Drawing::Ascii {
+                .marker(if app.die_screen.drawing == Drawing::Ascii {
                     Marker::Custom('-')
                 } else {
                     Marker::Dot

@@ -1,9 +1,9 @@
 //! The footer's key hints and the help overlay's frame.
 
-use super::app::{App, Mode};
 use super::format::group;
 use super::help::help_lines;
-use super::keys::{Action, INTERRUPT, Screen, labels, named, rows};
+use super::keys::{Action, INTERRUPT, Scope, labels, named, rows};
+use super::state::app::{App, Mode};
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Rect};
 use ratatui::text::{Line, Span};
@@ -45,15 +45,15 @@ pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
         }
         Mode::EditingValue | Mode::EditingEpsilon => typing_hints(None),
         Mode::EditingRange => typing_hints(Some("MIN MAX")),
-        Mode::Dialog | Mode::Help => table_hints(app, app.key_mode()),
-        Mode::Map => table_hints(app, Screen::Map),
-        Mode::Normal => table_hints(app, Screen::Die),
+        Mode::Dialog | Mode::Help => table_hints(app, app.key_scope()),
+        Mode::Map => table_hints(app, Scope::Map),
+        Mode::Normal => table_hints(app, Scope::Die),
     };
     render_key_hints(app, keys, area, frame);
 }
 
 /// The hints of one screen's rows of the key table, in words that follow the state.
-fn table_hints(app: &App, screen: Screen) -> Vec<KeyHint> {
+fn table_hints(app: &App, screen: Scope) -> Vec<KeyHint> {
     rows(screen)
         .filter_map(|b| b.hint.map(|h| (b.action, h)))
         .map(|(action, h)| match action {
@@ -77,7 +77,7 @@ fn table_hints(app: &App, screen: Screen) -> Vec<KeyHint> {
                 "twin, ε",
                 h.priority,
             ),
-            Action::Confirm if screen == Screen::Save => hint(h.keys, "save", h.priority),
+            Action::Confirm if screen == Scope::Save => hint(h.keys, "save", h.priority),
             Action::ExportMap => {
                 let ((w, h_px), _) = app.map.png_size();
                 let keys = labels(screen, &[Action::ExportMap, Action::MapExportSize]);
@@ -92,7 +92,7 @@ fn table_hints(app: &App, screen: Screen) -> Vec<KeyHint> {
 /// other key is typed (`form`, when given, says what the text should look like).
 pub(crate) fn typing_hints(form: Option<&str>) -> Vec<KeyHint> {
     let mut hints: Vec<KeyHint> = form.map(|f| hint(f, "type", 0)).into_iter().collect();
-    hints.extend(rows(Screen::Text).filter_map(|b| b.hint.map(|h| hint(h.keys, h.words, h.priority))));
+    hints.extend(rows(Scope::Text).filter_map(|b| b.hint.map(|h| hint(h.keys, h.words, h.priority))));
     // Ctrl-C is no row: it quits in every mode, text entry included.
     hints.push(hint(INTERRUPT, "quit", 0));
     if form.is_none() {
@@ -144,18 +144,18 @@ fn render_line(app: &App, notice: Option<String>, keys: Vec<KeyHint>, area: Rect
 pub(crate) fn render_help(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let popup = area.centered(Constraint::Max(100), Constraint::Percentage(90));
-    super::dialogs::clear_around(popup, area, frame);
+    super::popup::clear_around(popup, area, frame);
     let block = Block::bordered()
         .title(Line::styled(" help · the model in a nutshell ", t.heading()))
         .title_bottom(
             Line::from(format!(
                 " {} scroll · {} closes ",
-                named(Screen::Help, Action::SelectPrevious),
-                named(Screen::Help, Action::Close)
+                named(Scope::Help, Action::SelectPrevious),
+                named(Scope::Help, Action::Close)
             ))
             .right_aligned(),
         );
-    let body = super::dialogs::text_area(block.inner(popup));
+    let body = super::popup::text_area(block.inner(popup));
     frame.render_widget(block, popup);
     let para = Paragraph::new(help_lines(app))
         .wrap(Wrap { trim: false })

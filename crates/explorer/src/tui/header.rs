@@ -1,9 +1,9 @@
 //! The top line every screen shares (the preset, the roll, time, speed, phase) and the notice
 //! shown instead of a screen when the terminal is too small for it.
 
-use super::app::App;
-use super::keys::{Action, Screen, label};
+use super::keys::{Action, Scope, label};
 use super::layout::{MIN_HEIGHT, MIN_WIDTH};
+use super::state::app::App;
 use crate::worker::{Phase, RollKind};
 use dicesim_physics::Status;
 use ratatui::Frame;
@@ -22,7 +22,7 @@ pub(crate) fn render_too_small(area: Rect, frame: &mut Frame) {
             "(it is {}×{} now) · {} quits",
             area.width,
             area.height,
-            label(Screen::Die, Action::Quit)
+            label(Scope::Die, Action::Quit)
         )),
     ];
     let top = area.height.saturating_sub(2) / 2;
@@ -54,7 +54,7 @@ pub(crate) fn render_header(app: &App, area: Rect, frame: &mut Frame) {
     let fps = app.fps.map_or("– fps".to_string(), |f| format!("{f:.0} fps"));
     let phase = Span::styled(live.phase.label(), phase_style(app, &live.phase));
     // The setup differs from the preset it came from: saving (s) would keep it.
-    let changed = super::dialogs::modified(app);
+    let changed = app.setup.modified();
     let modified = Span::styled(if changed { "*" } else { "" }, t.caution());
     let full = Line::from(vec![
         Span::styled(" dicesim ", t.selected().add_modifier(Modifier::BOLD)),

@@ -1,9 +1,9 @@
 //! The `?` overlay: every key, and the model explained for a classroom.
 
-use super::app::App;
 use super::format::group;
-use super::keys::{Action, Screen, label, section};
-use super::map_view::View;
+use super::keys::{Action, Scope, label, section};
+use super::state::app::App;
+use super::state::app::Page;
 use ratatui::text::{Line, Span};
 
 const MODEL: &[&str] = &[
@@ -56,13 +56,13 @@ fn keyed(text: &str) -> String {
     ]
     .iter()
     .fold(text.to_string(), |t, (name, action)| {
-        t.replace(name, label(Screen::Die, *action))
+        t.replace(name, label(Scope::Die, *action))
     })
 }
 
 pub(crate) fn help_lines(app: &App) -> Vec<Line<'static>> {
     let t = &app.theme;
-    let key_lines = |screen: Screen| {
+    let key_lines = |screen: Scope| {
         section(screen).map(move |b| {
             let what = b.help.replace(
                 "a batch of",
@@ -75,7 +75,7 @@ pub(crate) fn help_lines(app: &App) -> Vec<Line<'static>> {
         })
     };
     let mut die = vec![Line::styled("Keys", t.heading())];
-    die.extend(key_lines(Screen::Die));
+    die.extend(key_lines(Scope::Die));
     die.push(Line::from(vec![
         Span::styled(format!("  {:<14}", "mouse"), t.key()),
         Span::raw(
@@ -85,21 +85,21 @@ pub(crate) fn help_lines(app: &App) -> Vec<Line<'static>> {
     ]));
     die.push(Line::raw(""));
     let mut map = vec![Line::styled(
-        format!("Basin-map screen ({})", label(Screen::Die, Action::OpenMap)),
+        format!("Basin-map screen ({})", label(Scope::Die, Action::OpenMap)),
         t.heading(),
     )];
-    map.extend(key_lines(Screen::Map));
+    map.extend(key_lines(Scope::Map));
     map.push(Line::raw(""));
     // The keys of the screen the help was opened on come first.
-    let mut lines = if app.view == View::Map {
+    let mut lines = if app.page == Page::Map {
         [map, die].concat()
     } else {
         [die, map].concat()
     };
     // What is on top of the screens keeps its own keys.
-    for mode in Screen::MODES
+    for mode in Scope::MODES
         .into_iter()
-        .filter(|m| !matches!(m, Screen::Die | Screen::Map))
+        .filter(|m| !matches!(m, Scope::Die | Scope::Map))
     {
         lines.push(Line::styled(mode.title(), t.heading()));
         lines.extend(key_lines(mode));

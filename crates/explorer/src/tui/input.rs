@@ -1,24 +1,27 @@
 //! Key and mouse routing: `update(&mut App, Msg)` reads a key through the key table
 //! ([`super::keys::read`]) and hands it to whatever is on top, or to the screen under it.
-//! It sits above the state ([`App`]) and the panels; nothing below imports it. Nothing here
-//! draws, sleeps or reads a clock: the commands for the worker and the file work are
-//! returned.
+//! It sits above the state ([`App`]) and below the panels, which never import it. Nothing
+//! here draws, sleeps or reads a clock: the commands for the worker and the file work are
+//! queued in the app's outbox and returned.
 
-use super::app::{App, Drawing, Editor, Effect, Mode, Msg, Overlay, Prompt, Typed, VALUE_CHARS};
-use super::camera::Camera;
-use super::keys::{Action, Input, Screen, label, read};
-use super::layout::param_row_at;
+use super::dialog_keys;
+use super::keys::{Action, Input, Scope, label, read};
+use super::layout::{param_row_at, timeline_bar, timeline_step_at};
 use super::map_keys as map;
-use super::map_view::View;
 use super::param::all;
+use super::state::app::{App, Mode, Overlay, Page, Prompt};
+use super::state::camera::OrbitCamera;
+use super::state::die_screen::Drawing;
+use super::state::editor::{Editor, Typed, VALUE_CHARS};
+use super::state::messages::{Effect, Msg};
+use super::twin_keys;
 use crate::worker::Command;
 use ratatui::crossterm::event::{Event, KeyEvent, KeyEventKind, MouseButton, MouseEventKind};
 use ratatui::layout::{Position, Rect};
 
-/// Applies one message; returns what the event loop is to do, in order: the worker's
-/// commands, then any file work.
-pub fn update(app: &mut App, msg: Msg) -> Vec<Effect> {
-    let mut out = Vec::new();
+/// Applies one message; returns what the event loop is to do, in the order asked: worker
+/// commands and file work.
+pub(crate) fn update(app: &mut App, msg: Msg) -> Vec<Effect> {
     // In differ mode the value changes a key or the mouse makes go to die B.
     let before = (app.setup.params, app.setup.initial);
     match msg {
@@ -26,35 +29,33 @@ pub fn update(app: &mut App, msg: Msg) -> Vec<Effect> {
         Msg::Map(m) => map::absorb(app, *m),
         Msg::Input(Event::Resize(w, h)) => {
             app.screen = Rect::new(0, 0, w, h);
-            map::resized(app, &mut out);
+            map::resized(app);
         }
-        Msg::Input(Event::Key(key)) if key.kind != KeyEventKind::Release => on_key(app, key, &mut out),
-        Msg::Input(Event::Mouse(m)) => on_mouse(app, m.kind, m.column, m.row, &mut out),
+        Msg::Input(Event::Key(key)) if key.kind != KeyEventKind::Release => on_key(app, key),
+        Msg::Input(Event::Mouse(m)) => on_mouse(app, m.kind, m.column, m.row),
         Msg::Input(_) => {}
-        Msg::Signal(_) => app.quit(&mut out),
+        Msg::Signal(_) => app.quit(),
     }
-    super::versus::divert(app, before, &mut out);
+    twin_keys::divert(app, before);
     if std::mem::take(&mut app.map.open_asked) {
-        map::open(app, &mut out);
+        map::open(app);
     }
-    let mut effects: Vec<Effect> = out.into_iter().map(Effect::Worker).collect();
-    effects.append(&mut app.effects);
-    effects
+    app.outbox.take()
 }
 
-fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
-    let input = read(app.key_mode(), key);
+fn on_key(app: &mut App, key: KeyEvent) {
+    let input = read(app.key_scope(), key);
     if input == Input::Interrupt {
-        app.quit(out);
+        app.quit();
         return;
     }
     app.notice = None;
     match app.mode() {
-        Mode::Prompt => on_prompt_key(app, &input, out),
-        Mode::EditingValue => on_edit_key(app, &input, out),
-        Mode::Dialog => super::dialogs::on_key(app, &input, out),
-        Mode::EditingEpsilon => super::twin::on_editor_key(app, &input, out),
-        Mode::EditingRange => map::on_range_key(app, &input, out),
+        Mode::Prompt => on_prompt_key(app, &input),
+        Mode::EditingValue => on_edit_key(app, &input),
+        Mode::Dialog => dialog_keys::on_key(app, &input),
+        Mode::EditingEpsilon => twin_keys::on_epsilon_key(app, &input),
+        Mode::EditingRange => map::on_range_key(app, &input),
         Mode::Help => {
             let Some(Overlay::Help { scroll }) = &mut app.overlay else {
                 return;
@@ -76,7 +77,7 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
             }
         }
         Mode::Map | Mode::Normal => match input {
-            Input::Act { action, coarse } => act(app, action, coarse, out),
+            Input::Act { action, coarse } => act(app, action, coarse),
             // A digit on a parameter row starts the value editor with it typed.
             Input::Type(digit) => {
                 app.overlay = Some(Overlay::Value(Editor {
@@ -90,7 +91,7 @@ fn on_key(app: &mut App, key: KeyEvent, out: &mut Vec<Command>) {
 }
 
 /// A question's answer: its own key or `y` goes ahead, anything else keeps things as they are.
-fn on_prompt_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
+fn on_prompt_key(app: &mut App, input: &Input) {
     let Some(Overlay::Prompt { prompt, under }) = app.overlay.take() else {
         return;
     };
@@ -104,73 +105,81 @@ fn on_prompt_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
         return;
     }
     match prompt {
-        Prompt::Quit => app.quit(out),
+        Prompt::Quit => app.quit(),
         Prompt::Reset => {
             let preset = Box::new(app.setup.preset.clone());
-            app.setup.load(out, preset);
+            app.load(preset);
         }
         Prompt::Load(preset) => {
-            app.setup.load(out, preset);
+            app.load(preset);
         }
     }
 }
 
 /// Does what a key of the table stands for.
-fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
+fn act(app: &mut App, action: Action, coarse: bool) {
     match action {
-        Action::TogglePlay => app.setup.send(out, Command::TogglePlay),
-        Action::StepForward => app.setup.send(out, Command::Step(1)),
-        Action::StepBack => app.setup.send(out, Command::StepBack(1)),
-        Action::ToStart => app.setup.send(out, Command::Seek(0)),
-        Action::ToEnd => app.setup.send(out, Command::Seek(u64::MAX)),
-        Action::Replay => app.setup.send(out, Command::Replay),
-        Action::RandomRoll => app.setup.send(out, Command::RandomRoll),
+        Action::TogglePlay => app.send(Command::TogglePlay),
+        Action::StepForward => app.send(Command::Step(1)),
+        Action::StepBack => app.send(Command::StepBack(1)),
+        Action::ToStart => app.send(Command::Seek(0)),
+        Action::ToEnd => app.send(Command::Seek(u64::MAX)),
+        Action::Replay => app.send(Command::Replay),
+        Action::RandomRoll => app.send(Command::RandomRoll),
         Action::Batch => {
             let c = app.roll.batch_command();
-            app.setup.send(out, c);
+            app.send(c);
         }
         Action::BatchSize => app.next_batch_size(),
-        Action::ClearTable => app.setup.send(out, Command::ClearTable),
-        Action::Slower => app.setup.set_speed(out, app.setup.speed.slower()),
-        Action::Faster => app.setup.set_speed(out, app.setup.speed.faster()),
-        Action::SelectPrevious => app.select(-1),
-        Action::SelectNext => app.select(1),
-        Action::SelectFirst => app.selected = 0,
-        Action::SelectLast => app.selected = all().len() - 1,
-        Action::Decrease => app.nudge(out, -1, coarse),
-        Action::Increase => app.nudge(out, 1, coarse),
-        Action::DecreaseBig => app.nudge(out, -1, true),
-        Action::IncreaseBig => app.nudge(out, 1, true),
+        Action::ClearTable => app.send(Command::ClearTable),
+        Action::Slower => {
+            if let Some(c) = app.setup.set_speed(app.setup.speed.slower()) {
+                app.send(c)
+            }
+        }
+        Action::Faster => {
+            if let Some(c) = app.setup.set_speed(app.setup.speed.faster()) {
+                app.send(c)
+            }
+        }
+        Action::SelectPrevious => app.die_screen.select(-1),
+        Action::SelectNext => app.die_screen.select(1),
+        Action::SelectFirst => app.die_screen.selected = 0,
+        Action::SelectLast => app.die_screen.selected = all().len() - 1,
+        Action::Decrease => app.nudge(-1, coarse),
+        Action::Increase => app.nudge(1, coarse),
+        Action::DecreaseBig => app.nudge(-1, true),
+        Action::IncreaseBig => app.nudge(1, true),
         // The value editor and the parameter list are the main screen's: typing a value
         // blind is no help to a class.
-        Action::TypeValue if app.view == View::Presentation => {
+        Action::TypeValue if app.page == Page::Presentation => {
             app.notice = Some(format!(
                 "{} first: values are typed on the main screen",
-                label(Screen::Show, Action::Presentation)
+                label(Scope::Show, Action::Presentation)
             ))
         }
         Action::TypeValue => app.overlay = Some(Overlay::Value(Editor::default())),
-        Action::LogScale => app.log_scale = !app.log_scale,
-        Action::PlotQuantity => app.plot.next(),
-        Action::PhasePlot => app.plot.toggle_phase(),
+        Action::LogScale => app.die_screen.log_scale = !app.die_screen.log_scale,
+        Action::PlotQuantity => app.die_screen.plot.next(),
+        Action::PhasePlot => app.die_screen.plot.toggle_phase(),
         Action::Export => {
-            let c = app.roll.export_command(app.log_scale);
-            app.setup.send(out, c);
+            let c = app.roll.export_command(app.die_screen.log_scale);
+            app.send(c);
         }
         Action::ExportAnimation => {
-            let c = app.roll.animation_command(&app.camera);
-            app.setup.send(out, c);
+            let c = app.roll.animation_command(&app.die_screen.camera);
+            app.send(c);
         }
-        Action::Arrows => app.vectors = !app.vectors,
+        Action::Arrows => app.die_screen.arrows = !app.die_screen.arrows,
         Action::Twin | Action::TwinEpsilonDown | Action::TwinEpsilonUp | Action::TwinEpsilonType => {
-            if !super::twin::on_key(app, action, out) {
+            if !twin_keys::on_twin_key(app, action) {
                 app.notice = Some(format!(
                     "{} first: these keys set the twin's ε",
-                    label(Screen::Die, Action::Twin)
+                    label(Scope::Die, Action::Twin)
                 ));
             }
         }
-        Action::Differ => super::versus::on_key(app, out),
+        Action::Differ => twin_keys::on_differ_key(app),
         Action::Theme => {
             app.theme = app.theme.next();
             app.notice = Some(format!(
@@ -181,49 +190,49 @@ fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
                 } else {
                     ", but NO_COLOR is set"
                 },
-                label(Screen::Die, Action::Theme)
+                label(Scope::Die, Action::Theme)
             ));
         }
         Action::Drawing => {
-            app.drawing = match app.drawing {
+            app.die_screen.drawing = match app.die_screen.drawing {
                 Drawing::Braille => Drawing::Ascii,
                 Drawing::Ascii => Drawing::Braille,
             }
         }
-        Action::OrbitLeft => app.camera.orbit(-15.0, 0.0),
-        Action::OrbitRight => app.camera.orbit(15.0, 0.0),
-        Action::TiltUp => app.camera.orbit(0.0, 10.0),
-        Action::TiltDown => app.camera.orbit(0.0, -10.0),
-        Action::ZoomIn => app.camera.zoom_by(1),
-        Action::ZoomOut => app.camera.zoom_by(-1),
-        Action::ResetCamera => app.camera = Camera::default(),
+        Action::OrbitLeft => app.die_screen.camera.orbit(-15.0, 0.0),
+        Action::OrbitRight => app.die_screen.camera.orbit(15.0, 0.0),
+        Action::TiltUp => app.die_screen.camera.orbit(0.0, 10.0),
+        Action::TiltDown => app.die_screen.camera.orbit(0.0, -10.0),
+        Action::ZoomIn => app.die_screen.camera.zoom_by(1),
+        Action::ZoomOut => app.die_screen.camera.zoom_by(-1),
+        Action::ResetCamera => app.die_screen.camera = OrbitCamera::default(),
         Action::OpenPreset => app.ask(Effect::ListPresets),
-        Action::SavePreset => super::dialogs::open_save(app),
+        Action::SavePreset => dialog_keys::open_save(app),
         Action::ResetSetup => app.reset_asking(),
-        Action::OpenMap => map::open(app, out),
+        Action::OpenMap => map::open(app),
         Action::Presentation => {
-            app.view = match app.view {
-                View::Presentation => View::Die,
-                _ => View::Presentation,
+            app.page = match app.page {
+                Page::Presentation => Page::Die,
+                _ => Page::Presentation,
             }
         }
-        Action::NextReadout => app.readout = app.readout.next(),
+        Action::NextReadout => app.die_screen.readout = app.die_screen.readout.next(),
         Action::Help => {
             app.overlay = Some(Overlay::Help { scroll: 0 });
         }
-        Action::Close => match app.view {
-            View::Map => {
-                map::close(app, out);
+        Action::Close => match app.page {
+            Page::Map => {
+                map::close(app);
             }
-            View::Presentation => app.view = View::Die,
-            View::Die => {
+            Page::Presentation => app.page = Page::Die,
+            Page::Die => {
                 app.notice = Some(format!(
                     "nothing to close ({} quits)",
-                    label(Screen::Die, Action::Quit)
+                    label(Scope::Die, Action::Quit)
                 ))
             }
         },
-        Action::Quit => app.quit_asking(out),
+        Action::Quit => app.quit_asking(),
         Action::MapBack
         | Action::CursorLeft
         | Action::CursorRight
@@ -242,13 +251,13 @@ fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
         | Action::TypeYRange
         | Action::MapLayer
         | Action::ExportMap
-        | Action::MapExportSize => map::act(app, action, coarse, out),
+        | Action::MapExportSize => map::act(app, action, coarse),
         // Rows of the overlays only: `read` never gives them on a screen.
         Action::Confirm | Action::Delete | Action::NextField => {}
     }
 }
 
-fn on_edit_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
+fn on_edit_key(app: &mut App, input: &Input) {
     if let Some(Overlay::BatchSize(editor)) = app.overlay.as_mut() {
         match editor.input(input, VALUE_CHARS) {
             Typed::Cancelled => app.overlay = None,
@@ -270,9 +279,12 @@ fn on_edit_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
         Typed::Cancelled => app.overlay = None,
         Typed::Editing => {}
         Typed::Submitted(number) => {
-            let p = app.selected_param();
-            match number.and_then(|v| app.setup.set_param(out, p, v)) {
-                Ok(()) => app.overlay = None,
+            let p = app.die_screen.selected_param();
+            match number.and_then(|v| app.setup.set_param(p, v)) {
+                Ok(c) => {
+                    app.overlay = None;
+                    app.send(c);
+                }
                 Err(e) => {
                     if let Some(Overlay::Value(editor)) = app.overlay.as_mut() {
                         editor.error = Some(e);
@@ -283,16 +295,16 @@ fn on_edit_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
     }
 }
 
-fn on_mouse(app: &mut App, kind: MouseEventKind, column: u16, row: u16, out: &mut Vec<Command>) {
+fn on_mouse(app: &mut App, kind: MouseEventKind, column: u16, row: u16) {
     if app.mode() != Mode::Normal {
         return;
     }
-    if app.view == View::Presentation {
+    if app.page == Page::Presentation {
         // The die fills the view: a drag anywhere orbits, a scroll zooms.
         match kind {
-            MouseEventKind::Down(MouseButton::Left) => app.drag = Some((column, row)),
-            MouseEventKind::ScrollUp => app.camera.zoom_by(1),
-            MouseEventKind::ScrollDown => app.camera.zoom_by(-1),
+            MouseEventKind::Down(MouseButton::Left) => app.die_screen.drag = Some((column, row)),
+            MouseEventKind::ScrollUp => app.die_screen.camera.zoom_by(1),
+            MouseEventKind::ScrollDown => app.die_screen.camera.zoom_by(-1),
             _ => {}
         }
     }
@@ -300,34 +312,35 @@ fn on_mouse(app: &mut App, kind: MouseEventKind, column: u16, row: u16, out: &mu
     let at = Position::new(column, row);
     match kind {
         MouseEventKind::Down(_) | MouseEventKind::ScrollUp | MouseEventKind::ScrollDown
-            if app.view == View::Presentation => {}
+            if app.page == Page::Presentation => {}
         MouseEventKind::Down(MouseButton::Left) => {
-            if let Some(i) = param_row_at(app.selected, &areas, at) {
-                app.selected = i;
-            } else if let Some(bar) = super::timeline::bar(areas.timeline).filter(|b| b.contains(at)) {
-                let step = super::timeline::step_at(app, bar, column);
-                app.setup.send(out, Command::Seek(step));
+            if let Some(i) = param_row_at(app.die_screen.selected, &areas, at) {
+                app.die_screen.selected = i;
+            } else if let Some(bar) = timeline_bar(areas.timeline).filter(|b| b.contains(at)) {
+                let step = timeline_step_at(&app.roll.live.timeline, bar, column);
+                app.send(Command::Seek(step));
             } else if areas.die.contains(at) {
-                app.drag = Some((column, row));
+                app.die_screen.drag = Some((column, row));
             }
         }
         MouseEventKind::Drag(MouseButton::Left) => {
-            if let Some((x, y)) = app.drag {
-                app.camera
+            if let Some((x, y)) = app.die_screen.drag {
+                app.die_screen
+                    .camera
                     .orbit(5.0 * (column as f64 - x as f64), 5.0 * (row as f64 - y as f64));
-                app.drag = Some((column, row));
+                app.die_screen.drag = Some((column, row));
             }
         }
-        MouseEventKind::Up(_) => app.drag = None,
+        MouseEventKind::Up(_) => app.die_screen.drag = None,
         MouseEventKind::ScrollUp | MouseEventKind::ScrollDown => {
             let up = kind == MouseEventKind::ScrollUp;
             if areas.params.contains(at) {
-                if let Some(i) = param_row_at(app.selected, &areas, at) {
-                    app.selected = i;
+                if let Some(i) = param_row_at(app.die_screen.selected, &areas, at) {
+                    app.die_screen.selected = i;
                 }
-                app.nudge(out, if up { 1 } else { -1 }, false);
+                app.nudge(if up { 1 } else { -1 }, false);
             } else if areas.die.contains(at) {
-                app.camera.zoom_by(if up { 1 } else { -1 });
+                app.die_screen.camera.zoom_by(if up { 1 } else { -1 });
             }
         }
         _ => {}

@@ -7,7 +7,7 @@ use ratatui::crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
 /// Where a binding applies: a screen, or what is on top of it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Screen {
+pub(crate) enum Scope {
     /// The main screen: the die, its energy and the outcome table.
     Die,
     /// The basin-map screen (`Tab`).
@@ -28,9 +28,9 @@ pub(crate) enum Screen {
     Picker,
 }
 
-impl Screen {
+impl Scope {
     /// Whether a row of `self` applies in mode `on`.
-    pub(crate) fn includes(self, on: Screen) -> bool {
+    pub(crate) fn includes(self, on: Scope) -> bool {
         self == on
             || (self == Both && matches!(on, Die | Map | Show))
             || (self == Die && on == Show)
@@ -38,7 +38,7 @@ impl Screen {
     }
 
     /// Every mode, for the checks that hold in all of them.
-    pub(crate) const MODES: [Screen; 8] = [Die, Map, Show, Help, Prompt, Text, Save, Picker];
+    pub(crate) const MODES: [Scope; 8] = [Die, Map, Show, Help, Prompt, Text, Save, Picker];
 
     /// How the help and the README title this mode's keys.
     pub(crate) fn title(self) -> &'static str {
@@ -147,7 +147,7 @@ pub(crate) enum Action {
 /// One row of the key table.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Binding {
-    pub(crate) screen: Screen,
+    pub(crate) screen: Scope,
     pub(crate) keys: &'static [KeyCode],
     /// How the keys are written in the help and the README (space-separated).
     pub(crate) label: &'static str,
@@ -176,7 +176,7 @@ const fn hint(keys: &'static str, words: &'static str, priority: u8) -> Option<H
 
 use Action as A;
 use KeyCode as K;
-use Screen::{Both, Die, Help, Map, Picker, Prompt, Save, Show, Text};
+use Scope::{Both, Die, Help, Map, Picker, Prompt, Save, Show, Text};
 
 macro_rules! row {
     ($screen:expr, [$($key:expr),+], $label:expr, $action:expr, $hint:expr, $help:expr) => {
@@ -854,7 +854,7 @@ pub(crate) enum Input {
 
 /// What `key` means in `mode`. In text entry every printable character is text unless a
 /// row claims its key; on the main screen a digit opens the value editor with it typed.
-pub(crate) fn read(mode: Screen, key: KeyEvent) -> Input {
+pub(crate) fn read(mode: Scope, key: KeyEvent) -> Input {
     let ctrl = key.modifiers.contains(KeyModifiers::CONTROL);
     if ctrl && matches!(key.code, K::Char('c') | K::Char('C')) {
         return Input::Interrupt;
@@ -904,7 +904,7 @@ fn name(code: KeyCode) -> String {
 }
 
 /// The keys of `action` in `mode` as the help writes them, for texts that name a key.
-pub(crate) fn label(mode: Screen, action: Action) -> &'static str {
+pub(crate) fn label(mode: Scope, action: Action) -> &'static str {
     BINDINGS
         .iter()
         .find(|b| b.screen.includes(mode) && b.action == action)
@@ -916,12 +916,12 @@ pub(crate) fn label(mode: Screen, action: Action) -> &'static str {
 pub(crate) const INTERRUPT: &str = "Ctrl-C";
 
 /// The first key of `action` in `mode`, for a text too short to list them all.
-pub(crate) fn first_key(mode: Screen, action: Action) -> &'static str {
+pub(crate) fn first_key(mode: Scope, action: Action) -> &'static str {
     label(mode, action).split(' ').next().unwrap_or("?")
 }
 
 /// The keys of several actions in `mode`, as one hint writes them (`T < > E`).
-pub(crate) fn labels(mode: Screen, actions: &[Action]) -> String {
+pub(crate) fn labels(mode: Scope, actions: &[Action]) -> String {
     actions
         .iter()
         .map(|&a| label(mode, a))
@@ -931,7 +931,7 @@ pub(crate) fn labels(mode: Screen, actions: &[Action]) -> String {
 
 /// How a text names the keys of `action` in `mode`: the footer's way when the row has a
 /// hint, else the help's, alternatives joined by "or" (`? or Esc`).
-pub(crate) fn named(mode: Screen, action: Action) -> String {
+pub(crate) fn named(mode: Scope, action: Action) -> String {
     row_of(mode, action).map_or_else(
         || "?".to_string(),
         |b| {
@@ -945,31 +945,31 @@ pub(crate) fn named(mode: Screen, action: Action) -> String {
 }
 
 /// What the row of `action` in `mode` says it does in the footer.
-pub(crate) fn words(mode: Screen, action: Action) -> &'static str {
+pub(crate) fn words(mode: Scope, action: Action) -> &'static str {
     row_of(mode, action).and_then(|b| b.hint).map_or("", |h| h.words)
 }
 
-fn row_of(mode: Screen, action: Action) -> Option<&'static Binding> {
+fn row_of(mode: Scope, action: Action) -> Option<&'static Binding> {
     BINDINGS
         .iter()
         .find(|b| b.screen.includes(mode) && b.action == action)
 }
 
 /// The binding of `code` on `screen`, if any.
-pub(crate) fn lookup(screen: Screen, code: KeyCode) -> Option<&'static Binding> {
+pub(crate) fn lookup(screen: Scope, code: KeyCode) -> Option<&'static Binding> {
     BINDINGS
         .iter()
         .find(|b| b.screen.includes(screen) && b.keys.contains(&code))
 }
 
 /// Every row that applies on `screen` (its own and the shared ones), for its footer.
-pub(crate) fn rows(screen: Screen) -> impl Iterator<Item = &'static Binding> {
+pub(crate) fn rows(screen: Scope) -> impl Iterator<Item = &'static Binding> {
     BINDINGS.iter().filter(move |b| b.screen.includes(screen))
 }
 
 /// The rows one section of the help and the README lists: the die screen's with the
 /// shared ones, every other mode its own.
-pub(crate) fn section(screen: Screen) -> impl Iterator<Item = &'static Binding> {
+pub(crate) fn section(screen: Scope) -> impl Iterator<Item = &'static Binding> {
     BINDINGS.iter().filter(move |b| match screen {
         Die => matches!(b.screen, Die | Both),
         _ => b.screen == screen,
@@ -980,7 +980,7 @@ pub(crate) fn section(screen: Screen) -> impl Iterator<Item = &'static Binding> 
 /// The key tables of docs/explorer.md as they must read: one for the die screen (with the keys of
 /// both screens), one for the map screen.
 pub(crate) fn markdown_tables() -> String {
-    let table = |title: &str, screen: Screen| {
+    let table = |title: &str, screen: Scope| {
         let mut out = format!("| {title} | |\n|---|---|\n");
         for b in section(screen) {
             let keys: Vec<String> = b.label.split(' ').map(|k| format!("`{k}`")).collect();
@@ -988,7 +988,7 @@ pub(crate) fn markdown_tables() -> String {
         }
         out
     };
-    Screen::MODES
+    Scope::MODES
         .iter()
         .map(|&mode| table(mode.title(), mode))
         .collect::<Vec<_>>()
@@ -999,13 +999,13 @@ pub(crate) fn markdown_tables() -> String {
 mod tests {
     use super::*;
 
-    fn press(mode: Screen, code: KeyCode) -> Input {
+    fn press(mode: Scope, code: KeyCode) -> Input {
         read(mode, KeyEvent::new(code, KeyModifiers::NONE))
     }
 
     #[test]
     fn no_key_means_two_things_in_one_mode() {
-        for mode in Screen::MODES {
+        for mode in Scope::MODES {
             let mut seen: Vec<KeyCode> = Vec::new();
             for b in BINDINGS.iter().filter(|b| b.screen.includes(mode)) {
                 for k in b.keys {
@@ -1032,7 +1032,7 @@ mod tests {
             action,
             coarse: false,
         };
-        for mode in Screen::MODES {
+        for mode in Scope::MODES {
             assert_eq!(press(mode, K::Esc), act(A::Close), "Esc in {mode:?}");
             let q = press(mode, K::Char('q'));
             let expected = match mode {

@@ -1,7 +1,9 @@
-//! Where each panel of the main screen goes, and which parameter row a screen position is:
-//! shared by rendering and by the mouse handling in `update`, so neither imports the other.
+//! Where each panel of the main screen goes, which parameter row a screen position is, and
+//! where the timeline's bar sits and which step a click on it means: shared by rendering
+//! and by the mouse handling in `update`, so neither imports the other.
 
 use super::param::all;
+use crate::worker::TimelineSnapshot;
 use ratatui::layout::{Constraint, Layout, Position, Rect};
 use ratatui::widgets::Block;
 
@@ -117,4 +119,35 @@ pub(crate) fn ledger_width(screen_width: u16) -> u16 {
         100.. => 22,
         _ => 20,
     }
+}
+
+/// Characters of the timeline strip before its bar: the time now (`t 12.345 s `).
+pub(crate) const TIMELINE_LEFT: u16 = 12;
+/// Characters after the bar: the end, or how far the roll has got (` end 12.345 s`).
+pub(crate) const TIMELINE_RIGHT: u16 = 14;
+
+/// The timeline bar's columns inside its strip; `None` if the strip is too narrow for one.
+pub(crate) fn timeline_bar(area: Rect) -> Option<Rect> {
+    let width = area
+        .width
+        .checked_sub(TIMELINE_LEFT + TIMELINE_RIGHT)
+        .filter(|&w| w >= 8)?;
+    Some(Rect::new(
+        area.x + TIMELINE_LEFT,
+        area.y,
+        width,
+        area.height.min(1),
+    ))
+}
+
+/// Steps the timeline bar spans: the whole roll once it has ended, else as far as it has got.
+pub(crate) fn timeline_steps(t: &TimelineSnapshot) -> u64 {
+    t.furthest.max(t.position).max(1)
+}
+
+/// The step a click on screen column `column` of the timeline bar `bar` asks for.
+pub(crate) fn timeline_step_at(t: &TimelineSnapshot, bar: Rect, column: u16) -> u64 {
+    let last = bar.width.saturating_sub(1).max(1) as u64;
+    let x = column.saturating_sub(bar.x).min(bar.width.saturating_sub(1)) as u64;
+    (x * timeline_steps(t) + last / 2) / last
 }

@@ -2,9 +2,9 @@
 //! stacked by form, and where the rest went since t = 0 (damping, friction, and the
 //! integrator's own error), as the physics measured it step by step.
 
-use super::app::App;
 use super::fit;
 use super::format::fmt_num;
+use super::state::app::App;
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::style::Style;

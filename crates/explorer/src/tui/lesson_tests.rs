@@ -1,14 +1,14 @@
 //! The classroom lesson from its one source, `docs/lesson.toml`: the README's lesson is
-//! generated from it, and each step's keys are pressed in the explorer (the worker's engine
+//! generated from it, and each step's keys are pressed in the explorer (the worker's simulator
 //! in the test's own thread, so every screen is deterministic) and what the step says the
 //! class will see is looked for on the screen.
 
-use super::app::Msg;
-use super::dialog::Dialog;
 use super::input::update;
 use super::map_tests::computed;
 use super::screen_tests::SIZES;
-use super::tests::Scene;
+use super::state::dialog::Dialog;
+use super::state::messages::Msg;
+use super::tests::Harness;
 use super::theme::{Palette, Theme};
 use dicesim_setup::preset::{Preset, Store};
 use ratatui::Terminal;
@@ -23,12 +23,12 @@ const README: &str = include_str!("../../../../README.md");
 #[serde(deny_unknown_fields)]
 struct Lesson {
     intro: String,
-    step: Vec<Step>,
+    step: Vec<LessonStep>,
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct Step {
+struct LessonStep {
     title: String,
     keys: Vec<String>,
     see: Vec<String>,
@@ -58,7 +58,7 @@ fn the_readmes_lesson_is_the_lesson_file() {
     );
 }
 
-fn screen(s: &Scene, (w, h): (u16, u16)) -> String {
+fn screen(s: &Harness, (w, h): (u16, u16)) -> String {
     let mut t = Terminal::new(TestBackend::new(w, h)).expect("test backend");
     t.draw(|f| super::render(&s.app, f)).expect("draw");
     let b = t.backend().buffer();
@@ -86,7 +86,7 @@ fn code(name: &str) -> KeyCode {
     }
 }
 
-fn picked(s: &Scene) -> Option<String> {
+fn picked(s: &Harness) -> Option<String> {
     match s.app.dialog() {
         Some(Dialog::Picker {
             choices, selected, ..
@@ -95,11 +95,11 @@ fn picked(s: &Scene) -> Option<String> {
     }
 }
 
-fn press(s: &mut Scene, key: &str) {
+fn press(s: &mut Harness, key: &str) {
     match key {
         "wait" => s.run_to_end(),
         "batch" => {
-            s.engine.run_batch_here();
+            s.simulator.run_batch_here();
             s.sync();
         }
         "map" => {
@@ -132,7 +132,7 @@ fn every_lesson_step_shows_what_it_says() {
         colour: true,
         palette: Palette::Projector,
     };
-    let mut s = Scene::new(&Preset::default(), theme);
+    let mut s = Harness::new(&Preset::default(), theme);
     s.app.store = Store::new(None);
     let mut missing = Vec::new();
     for (i, step) in lesson().step.iter().enumerate() {

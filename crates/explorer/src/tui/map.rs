@@ -2,16 +2,15 @@
 //! on, while the worker computes it, with the cursor's cell read out and the legend.
 //!
 //! Its state and rules (cursor, zoom stack, axes, the generation that keeps a map the user
-//! has moved away from off the screen) are in [`super::map_view`]; its keys in
-//! [`super::map_keys`].
+//! has moved away from off the screen) are the state's [`MapView`](super::state::map_view::MapView).
 
-use super::app::App;
 use super::footer::render_help;
 use super::format::fmt_num;
 use super::header::{render_header, render_too_small};
-use super::keys::{Action, Screen, first_key, label};
-pub(crate) use super::map_view::*;
+use super::keys::{Action, Scope, first_key, label};
 use super::param::Param;
+use super::state::app::App;
+use super::state::map_view::{MapAreas, Side, Y_LABELS, ZOOM_FACTOR, map_layout};
 use crate::worker::MapAxis;
 use dicesim_experiment::basin::node_setup;
 use dicesim_experiment::ending::Ending;
@@ -109,9 +108,9 @@ fn render_panel(app: &App, areas: &MapAreas, frame: &mut Frame) {
         } else {
             format!(
                 "no map: {} back to the die, or {} / {} to choose axes",
-                label(Screen::Map, Action::MapBack),
-                label(Screen::Map, Action::NextXAxis),
-                label(Screen::Map, Action::NextYAxis)
+                label(Scope::Map, Action::MapBack),
+                label(Scope::Map, Action::NextXAxis),
+                label(Scope::Map, Action::NextYAxis)
             )
         };
         frame.render_widget(Paragraph::new(text).wrap(Wrap { trim: true }), grid);
@@ -239,7 +238,7 @@ fn render_side(app: &App, area: Rect, frame: &mut Frame) {
     let m = &app.map;
     let block = Block::bordered().title(Line::styled(" basin map of the current setup ", t.heading()));
     let mut lines = Vec::new();
-    let keys = |axis, range| format!("{} · {}", label(Screen::Map, axis), label(Screen::Map, range));
+    let keys = |axis, range| format!("{} · {}", label(Scope::Map, axis), label(Scope::Map, range));
     for (side, a, keys) in [
         (Side::X, &m.x, keys(Action::NextXAxis, Action::TypeXRange)),
         (Side::Y, &m.y, keys(Action::NextYAxis, Action::TypeYRange)),
@@ -290,13 +289,13 @@ fn render_side(app: &App, area: Rect, frame: &mut Frame) {
     lines.push(Line::raw(format!(
         " zoom ×{} ({} in, {} out)",
         fmt_num(zoom),
-        first_key(Screen::Map, Action::MapZoomIn),
-        first_key(Screen::Map, Action::MapZoomOut)
+        first_key(Scope::Map, Action::MapZoomIn),
+        first_key(Scope::Map, Action::MapZoomOut)
     )));
     lines.push(Line::raw(""));
     lines.extend(cursor_lines(app));
     lines.extend(legend_lines(app));
-    let body = super::dialogs::text_area(block.inner(area));
+    let body = super::popup::text_area(block.inner(area));
     frame.render_widget(block, area);
     let lines = super::fit::hanging(lines, body.width as usize);
     frame.render_widget(Paragraph::new(lines), body);
@@ -383,7 +382,7 @@ fn legend_lines(app: &App) -> Vec<Line<'static>> {
         format!(
             " legend: {} ({})",
             layer_name(m.layer),
-            label(Screen::Map, Action::MapLayer)
+            label(Scope::Map, Action::MapLayer)
         ),
         t.heading(),
     )];

@@ -1,47 +1,47 @@
 //! What reaches the basin-map screen: its keys (rows of [`super::keys::BINDINGS`]), the
 //! maps the worker sends, the terminal's size. The screen's own rules live with its state
-//! ([`MapView`](super::map_view::MapView)); this file only hands them the app's setup and
-//! terminal and sends the requests they make.
+//! ([`MapView`]); this file only hands them the app's setup and terminal and sends the
+//! requests they make.
 
-use super::app::App;
-use super::keys::{Action, Input, Screen, label};
-use super::map_view::{MapView, Side, View};
+use super::keys::{Action, Input, Scope, label};
+use super::state::app::{App, Page};
+use super::state::map_view::{MapView, Side};
 use crate::worker::{Command, MapRequest, MapUpdate};
 
 /// Cells one Shift-arrow moves the cursor.
 const BIG_STEP: usize = 8;
 
 /// Asks the worker for `request`, if one was made.
-fn send(app: &mut App, out: &mut Vec<Command>, request: Option<MapRequest>) {
+fn send(app: &mut App, request: Option<MapRequest>) {
     if let Some(r) = request {
-        app.setup.send(out, Command::MapStart(r));
+        app.send(Command::MapStart(r));
     }
 }
 
 /// Asks for a fresh map of the chosen axes, fitted to the terminal, around the setup.
-fn start(app: &mut App, out: &mut Vec<Command>) {
+fn start(app: &mut App) {
     let r = app.map.request(app.screen, &app.setup.params, &app.setup.initial);
-    send(app, out, Some(r));
+    send(app, Some(r));
 }
 
 /// Switches to the map screen; computes the map unless the one there still fits the setup
 /// and the terminal.
-pub(crate) fn open(app: &mut App, out: &mut Vec<Command>) {
-    app.view = View::Map;
+pub(crate) fn open(app: &mut App) {
+    app.page = Page::Map;
     if !app
         .map
         .still_fits(app.screen, &app.setup.params, &app.setup.initial)
     {
-        start(app, out);
+        start(app);
     }
 }
 
 /// Back to the die. A map still being computed is cancelled so the live roll gets the cores;
 /// coming back computes it again.
-pub(crate) fn close(app: &mut App, out: &mut Vec<Command>) -> Option<MapRequest> {
-    app.view = View::Die;
+pub(crate) fn close(app: &mut App) -> Option<MapRequest> {
+    app.page = Page::Die;
     if app.map.leave() {
-        app.setup.send(out, Command::MapCancel);
+        app.send(Command::MapCancel);
     }
     None
 }
@@ -54,16 +54,16 @@ pub(crate) fn absorb(app: &mut App, update: MapUpdate) {
 }
 
 /// The terminal was resized: a map on screen is recomputed to fill the new panel.
-pub(crate) fn resized(app: &mut App, out: &mut Vec<Command>) {
-    if app.view == View::Map && app.map.stale(app.screen) {
-        start(app, out);
+pub(crate) fn resized(app: &mut App) {
+    if app.page == Page::Map && app.map.stale(app.screen) {
+        start(app);
     }
 }
 
 /// What a key of the map screen's table does (see [`super::keys`]); `coarse` (Shift)
 /// moves the cursor by [`BIG_STEP`] cells. A key that asks for another map (zoom, axis)
 /// gets its request from the map's state and sends it once, here.
-pub(crate) fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Command>) {
+pub(crate) fn act(app: &mut App, action: Action, coarse: bool) {
     let step = if coarse { BIG_STEP } else { 1 } as isize;
     let big = BIG_STEP as isize;
     let (screen, params, initial) = (app.screen, app.setup.params, app.setup.initial);
@@ -94,17 +94,17 @@ pub(crate) fn act(app: &mut App, action: Action, coarse: bool, out: &mut Vec<Com
             let ((w, h), what) = m.next_export_size();
             app.notice = Some(format!(
                 "PNG size {w}×{h} ({what}) · {} exports, {} the next size",
-                label(Screen::Map, Action::ExportMap),
-                label(Screen::Map, Action::MapExportSize)
+                label(Scope::Map, Action::ExportMap),
+                label(Scope::Map, Action::MapExportSize)
             ));
             None
         }
-        Action::MapBack => close(app, out),
-        Action::ReplayCell => replay(app, out),
-        Action::ExportMap => export(app, out),
+        Action::MapBack => close(app),
+        Action::ReplayCell => replay(app),
+        Action::ExportMap => export(app),
         _ => None,
     };
-    send(app, out, request);
+    send(app, request);
 }
 
 fn cursor(m: &mut MapView, dx: isize, dy: isize) -> Option<MapRequest> {
@@ -113,11 +113,12 @@ fn cursor(m: &mut MapView, dx: isize, dy: isize) -> Option<MapRequest> {
 }
 
 /// Plays the cell under the cursor in the die view: exactly the setup the map rolled there.
-fn replay(app: &mut App, out: &mut Vec<Command>) -> Option<MapRequest> {
+fn replay(app: &mut App) -> Option<MapRequest> {
     match app.map.cell_setup() {
         Some((params, initial, cell)) => {
-            app.setup.play(out, params, initial);
-            close(app, out);
+            let c = app.setup.play(params, initial);
+            app.send(c);
+            close(app);
             app.notice = Some(format!("replaying {cell}"));
         }
         None => app.notice = Some("no map yet: wait for the first cells".to_string()),
@@ -127,22 +128,22 @@ fn replay(app: &mut App, out: &mut Vec<Command>) -> Option<MapRequest> {
 
 /// The export key: the map on screen written into the current folder (its cells and its
 /// picture at the chosen size, by the worker's export job), or the running export cancelled.
-fn export(app: &mut App, out: &mut Vec<Command>) -> Option<MapRequest> {
+fn export(app: &mut App) -> Option<MapRequest> {
     if app.roll.export.is_some() {
-        app.setup.send(out, Command::ExportCancel);
+        app.send(Command::ExportCancel);
         return None;
     }
     match app.map.export() {
-        Some(m) => app.setup.send(out, Command::ExportMap(Box::new(m))),
+        Some(m) => app.send(Command::ExportMap(Box::new(m))),
         None => app.notice = Some("no map to export yet".to_string()),
     }
     None
 }
 
 /// A key typed into an axis's range editor.
-pub(crate) fn on_range_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
+pub(crate) fn on_range_key(app: &mut App, input: &Input) {
     let r = app
         .map
         .type_range(input, app.screen, &app.setup.params, &app.setup.initial);
-    send(app, out, r);
+    send(app, r);
 }

@@ -1,12 +1,14 @@
 //! The basin-map screen from deterministic states: a small map computed here with
 //! `run_map`, handed to the app through the message the worker's map thread sends.
 
-use super::app::{App, Effect, Msg};
 use super::input::update;
-use super::map::{MapView, View, ZOOM_FACTOR, map_layout};
 use super::param::Param;
 use super::render::render;
-use super::tests::{Scene, boundary_sizes, screen, spun_preset, start};
+use super::state::app::App;
+use super::state::app::Page;
+use super::state::map_view::{MapView, ZOOM_FACTOR, map_layout};
+use super::state::messages::{Effect, Msg};
+use super::tests::{Harness, boundary_sizes, screen, spun_preset, start};
 use super::theme::Theme;
 use crate::worker::{Command, MapUpdate};
 use dicesim_experiment::basin::node_setup;
@@ -58,7 +60,7 @@ pub(crate) fn computed(app: &App) -> MapUpdate {
 /// The die view's scene, switched to the map screen, with the map in and the cursor moved.
 /// `e` on the map screen, and the export it orders run into `dir` as the worker's export
 /// runner would run it (the key itself asks for the current folder).
-pub(crate) fn export_into(s: &mut Scene, dir: &std::path::Path) {
+pub(crate) fn export_into(s: &mut Harness, dir: &std::path::Path) {
     for c in press(&mut s.app, KeyCode::Char('e')) {
         let c = match c {
             Command::ExportMap(mut m) => {
@@ -67,14 +69,14 @@ pub(crate) fn export_into(s: &mut Scene, dir: &std::path::Path) {
             }
             other => other,
         };
-        s.engine.handle(c);
+        s.simulator.handle(c);
     }
-    s.engine.run_export_here();
+    s.simulator.run_export_here();
     s.sync();
 }
 
-pub(crate) fn map_scene(theme: Theme) -> Scene {
-    let mut s = Scene::new(&spun_preset(), theme);
+pub(crate) fn map_scene(theme: Theme) -> Harness {
+    let mut s = Harness::new(&spun_preset(), theme);
     let sent = press(&mut s.app, KeyCode::Tab);
     assert!(matches!(sent[..], [Command::MapStart(_)]), "{sent:?}");
     let m = computed(&s.app);
@@ -100,7 +102,7 @@ fn map_of(app: &App) -> &BasinMap {
 #[test]
 fn map_screen() {
     let s = map_scene(Theme::default());
-    assert_eq!(s.app.view, View::Map);
+    assert_eq!(s.app.page, Page::Map);
     let cursor = s.app.map.cursor;
     assert_eq!(cursor, (CELLS.0 / 2 + 3, CELLS.1 / 2 + 1));
     let text = draw(&s.app, 120, 36).backend().to_string();
@@ -328,7 +330,7 @@ mod keys {
         press(&mut a, KeyCode::Tab);
         let sent = press(&mut a, KeyCode::Tab);
         assert_eq!(sent, [Command::MapCancel]);
-        assert_eq!(a.view, View::Die);
+        assert_eq!(a.page, Page::Die);
         let sent = press(&mut a, KeyCode::Tab);
         assert_eq!(starts(&sent).len(), 1);
         // A finished map on an unchanged setup is shown again without recomputing.
@@ -381,10 +383,10 @@ mod keys {
         let (params, initial) = node_setup(&shown.params, &shown.initial, &map.x, &map.y, i, j);
         let sent = press(&mut s.app, KeyCode::Enter);
         assert_eq!(sent, [Command::PlaySetup(Box::new(params), initial)]);
-        assert_eq!(s.app.view, View::Die);
-        // The worker's engine plays it to the face the map shows for that cell.
+        assert_eq!(s.app.page, Page::Die);
+        // The worker's simulator plays it to the face the map shows for that cell.
         for c in sent {
-            s.engine.handle(c);
+            s.simulator.handle(c);
         }
         s.run_to_end();
         let outcome = map.cell(i, j).expect("cell").outcome;
@@ -466,15 +468,15 @@ mod keys {
         let dir = tempfile::tempdir().expect("temp dir");
         let mut m = m.clone();
         m.dir = dir.path().to_path_buf();
-        s.engine.handle(Command::ExportMap(m));
+        s.simulator.handle(Command::ExportMap(m));
         s.sync();
         assert!(
             screen(&s.app, 120, 36).contains("exporting the basin map at 1200×800 px · e cancels"),
             "the status line says what runs and how to stop it"
         );
         assert_eq!(press(&mut s.app, KeyCode::Char('e')), [Command::ExportCancel]);
-        s.engine.handle(Command::ExportCancel);
-        s.engine.run_export_here();
+        s.simulator.handle(Command::ExportCancel);
+        s.simulator.run_export_here();
         s.sync();
         assert_eq!(
             s.app.notice.as_deref(),
@@ -520,7 +522,7 @@ mod keys {
             "an earlier export is kept"
         );
         // Nothing is written unless asked.
-        s.engine.run_export_here();
+        s.simulator.run_export_here();
         assert!(!dir.path().join("basin-map-3.png").exists());
     }
 

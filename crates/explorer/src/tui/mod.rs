@@ -1,13 +1,19 @@
-//! The terminal explorer: [`App`] state, pure [`update`] and [`render`], and [`run`], the
-//! event loop that owns the terminal.
+//! The terminal explorer: [`App`] state, pure [`update`](input::update) and [`render()`],
+//! and [`run()`], the event loop that owns the terminal.
+//!
+//! Its modules build on each other in one direction, each importing only those before it:
+//! the vocabulary (the key table `keys`, `param`, `format`, `fit`, `theme`, `layout`,
+//! `solid`); the `state` (`App` and every part it holds, and the rules that change them);
+//! the input routing that `update` runs (`input`, with the map screen's, the dialogs' and
+//! the twins' keys); the panels, each drawing one part of the screen from the state; then
+//! `render`, which lays the panels out, and the event loop (`run`, `effects`, `tty`).
 
-pub(crate) mod app;
-pub(crate) mod camera;
+mod chart;
 mod curve;
-mod dialog;
+mod dialog_keys;
 mod dialogs;
 mod die;
-mod editor;
+mod effects;
 mod energy;
 pub(crate) mod fit;
 mod footer;
@@ -20,28 +26,27 @@ pub(crate) mod layout;
 mod ledger;
 pub(crate) mod map;
 mod map_keys;
-mod map_view;
 mod outcomes;
 pub(crate) mod param;
 mod params_panel;
 mod plot;
+mod popup;
 mod presentation;
-pub mod render;
-mod roll_view;
-pub(crate) mod run;
-mod setup;
+mod render;
+mod run;
+mod separation;
+mod solid;
+pub(crate) mod state;
 pub(crate) mod theme;
 mod timeline;
 mod tty;
-mod twin;
-mod twin_view;
+mod twin_keys;
 mod vectors;
 mod versus;
 
-pub use app::{App, Effect, Msg};
-pub use input::update;
 pub use render::render;
 pub use run::run;
+pub use state::app::App;
 pub use theme::Theme;
 
 #[cfg(test)]

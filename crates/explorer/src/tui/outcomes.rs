@@ -1,9 +1,9 @@
 //! The outcome table: each face's share of the random rolls with its 95 % interval, the
 //! fairness test and how many rolls a bias as large as the one measured needs.
 
-use super::app::App;
 use super::fit;
 use super::format::{fmt_num, group};
+use super::state::app::App;
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
@@ -155,7 +155,7 @@ fn item_lines(items: &[(String, Style)], width: usize) -> Vec<Line<'static>> {
 }
 
 /// A row of the table's body: text, or the batch's progress gauge.
-enum Row {
+enum TableRow {
     Text(Line<'static>),
     Fairness,
     Gauge(f64),
@@ -208,7 +208,7 @@ pub(crate) fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
         .saturating_sub(if count_shown { COUNT_COLUMN } else { 0 })
         .max(2);
     let fair_at = bar_width / 2;
-    let mut rows: Vec<(u8, Row)> = Vec::new();
+    let mut rows: Vec<(u8, TableRow)> = Vec::new();
     // The bar spans 0 to 1/3, so a fair face reaches the dotted mark in the middle.
     let mut head = " face".to_string();
     if count_shown {
@@ -227,7 +227,7 @@ pub(crate) fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
     // The heading names the interval column; the fairness line can move to the border.
     rows.push((
         1,
-        Row::Text(Line::from(vec![
+        TableRow::Text(Line::from(vec![
             Span::styled(head, t.heading()),
             Span::raw(format!("{}{mark}", " ".repeat(fair_at))),
         ])),
@@ -257,7 +257,7 @@ pub(crate) fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
         let face_style = if newest { t.selected() } else { Style::new() };
         rows.push((
             0,
-            Row::Text(Line::from(vec![
+            TableRow::Text(Line::from(vec![
                 Span::styled(format!("  {face}  "), face_style),
                 Span::raw(format!("{count_text}{share_text}{interval_text} ")),
                 Span::styled(bar, t.bar()),
@@ -265,12 +265,12 @@ pub(crate) fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
             ])),
         ));
     }
-    rows.push((2, Row::Fairness));
+    rows.push((2, TableRow::Fairness));
     for line in item_lines(&faceless_items(app), width) {
-        rows.push((0, Row::Text(line)));
+        rows.push((0, TableRow::Text(line)));
     }
     for line in detection_lines(app, width) {
-        rows.push((0, Row::Text(line)));
+        rows.push((0, TableRow::Text(line)));
     }
     if let Some(b) = app.roll.batch {
         let ratio = if b.total > 0 {
@@ -278,12 +278,12 @@ pub(crate) fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
         } else {
             0.0
         };
-        rows.push((1, Row::Gauge(ratio.clamp(0.0, 1.0))));
+        rows.push((1, TableRow::Gauge(ratio.clamp(0.0, 1.0))));
     }
     if !table.last.is_empty() {
         rows.push((
             3,
-            Row::Text(fit::abbreviate(
+            TableRow::Text(fit::abbreviate(
                 Line::styled(" last rolls: spin ω (rad/s) → ending, steps", t.heading()),
                 width,
             )),
@@ -295,21 +295,21 @@ pub(crate) fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
                 " #{:<5} ({:>4.0},{:>4.0},{:>4.0}) → {end} {:>6}",
                 r.id, w[0], w[1], w[2], r.outcome.steps
             ));
-            rows.push((4, Row::Text(fit::abbreviate(line, width))));
+            rows.push((4, TableRow::Text(fit::abbreviate(line, width))));
         }
     }
     let rows = fit::rows(rows, body.height as usize);
     // The fairness line that has no row of its own goes into the bottom border.
-    if !rows.iter().any(|r| matches!(r, Row::Fairness)) {
+    if !rows.iter().any(|r| matches!(r, TableRow::Fairness)) {
         block = block.title_bottom(fairness(app, inside));
     }
     frame.render_widget(block, area);
     for (row, y) in rows.into_iter().zip(body.y..) {
         let at = Rect { y, height: 1, ..body };
         match row {
-            Row::Text(line) => frame.render_widget(Paragraph::new(line), at),
-            Row::Fairness => frame.render_widget(Paragraph::new(fairness(app, width)), at),
-            Row::Gauge(ratio) => {
+            TableRow::Text(line) => frame.render_widget(Paragraph::new(line), at),
+            TableRow::Fairness => frame.render_widget(Paragraph::new(fairness(app, width)), at),
+            TableRow::Gauge(ratio) => {
                 let gauge = LineGauge::default()
                     .ratio(ratio)
                     .label(format!(" batch {:>3.0}% ", 100.0 * ratio))

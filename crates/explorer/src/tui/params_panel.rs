@@ -1,11 +1,11 @@
 //! The parameter panel: every value of the setup, the one selected, the value being
 //! typed, and the step's stability readout under them.
 
-use super::app::App;
 use super::fit;
 use super::format::{fmt_num, fmt_range};
 use super::layout::param_window;
 use super::param::all;
+use super::state::app::App;
 use dicesim_physics::Stability;
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -52,7 +52,7 @@ pub(crate) fn stability_readout(app: &App, width: u16) -> Line<'static> {
 
 pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
-    let (first, visible) = param_window(app.selected, area);
+    let (first, visible) = param_window(app.die_screen.selected, area);
     // Rows scrolled out of view, above and below: ↑↓ (or a click and the wheel) reach them.
     let below = all().len().saturating_sub(first + visible);
     let mut title = vec![Span::styled(" parameters ", t.heading())];
@@ -81,7 +81,7 @@ pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
         let value = fmt_num(p.get(&app.setup.params, &app.setup.initial));
         let mut spans = vec![Span::raw(format!(
             "{}{:<13} {:>8} {:<6}",
-            if i == app.selected { "▶" } else { " " },
+            if i == app.die_screen.selected { "▶" } else { " " },
             p.label(),
             value,
             p.limits().unit
@@ -90,7 +90,7 @@ pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
             spans.push(Span::raw(format!(" {:<11}", fmt_range(p))));
         }
         let mut line = Line::from(spans);
-        if i == app.selected {
+        if i == app.die_screen.selected {
             line = line.style(t.selected());
         }
         lines.push(line);
@@ -117,7 +117,7 @@ pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
 /// instead ([`error_fits`]), whole.
 fn detail_line(app: &App, width: usize) -> Line<'static> {
     let t = &app.theme;
-    let p = app.selected_param();
+    let p = app.die_screen.selected_param();
     match app.value_editor() {
         Some(editor) => {
             let typed = vec![

@@ -1,14 +1,14 @@
 //! The plot panel's choices drawn from deterministic states: the paper's spun roll computed
 //! to its end and the screen stepped back into it, then `w` / `V` pressed as a user would.
 
-use super::tests::{Scene, screen, settled};
+use super::tests::{Harness, screen, settled};
 use crate::worker::Command;
 use dicesim_physics::Simulation;
 use ratatui::crossterm::event::KeyCode;
 
 /// The spun roll computed to its end, the screen back at `step`, `w` pressed `presses`
 /// times (and `V` after, for a phase plot).
-fn plot_at(step: u64, presses: usize, phase: bool) -> Scene {
+fn plot_at(step: u64, presses: usize, phase: bool) -> Harness {
     let mut s = settled();
     s.command(Command::Seek(step));
     for _ in 0..presses {
@@ -31,7 +31,7 @@ fn panel_rows(text: &str, title: &str) -> Vec<String> {
 }
 
 /// Where the roll of the scene ends, s, worked out by a simulation of its own.
-fn roll_end(s: &Scene) -> f64 {
+fn roll_end(s: &Harness) -> f64 {
     let mut sim = Simulation::new(&s.app.roll.live.params, &s.app.roll.live.initial).unwrap();
     sim.run_to_end().time_s
 }
@@ -131,7 +131,7 @@ fn a_mid_roll_edit_is_marked_on_the_timeline_and_the_plot_and_the_old_run_stays_
     let mut s = plot_at(300, 0, false);
     let before = s.app.roll.history.clone();
     // The stiffness (the first row) one step up, at 0.3 s: the table acts at once.
-    assert_eq!(s.app.selected, 0);
+    assert_eq!(s.app.die_screen.selected, 0);
     s.key(KeyCode::Right);
     assert_eq!(s.app.roll.edits, vec![300], "the worker's record of the edit");
     assert_eq!(s.app.roll.previous, before, "the run before the edit, kept whole");

@@ -3,73 +3,16 @@
 //! but never up and down, so a drop or a bounce is seen as a change of height), with the
 //! face up in large block digits, the time and one number the lesson is about beside it.
 
-use super::app::{App, Mode};
-use super::die::{self, View};
+use super::die::{self, Projection};
 use super::footer::{KeyHint, render_footer, render_help, render_key_hints};
-use super::keys::{Action, Screen, first_key, rows};
+use super::keys::{Action, Scope, first_key, rows};
+use super::state::app::{App, Mode};
 use nalgebra::Vector3;
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph};
-
-/// The one number the view shows beside the face (`N` picks the next).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub(crate) enum Readout {
-    /// cm, the centre of mass above the table.
-    #[default]
-    Height,
-    /// cm/s, of the centre of mass.
-    Speed,
-    /// rad/s, |ω|.
-    Spin,
-    /// erg, translational and rotational.
-    KineticEnergy,
-}
-
-impl Readout {
-    pub(crate) fn next(self) -> Readout {
-        match self {
-            Readout::Height => Readout::Speed,
-            Readout::Speed => Readout::Spin,
-            Readout::Spin => Readout::KineticEnergy,
-            Readout::KineticEnergy => Readout::Height,
-        }
-    }
-
-    /// What it is, in the model's words.
-    pub(crate) fn name(self) -> &'static str {
-        match self {
-            Readout::Height => "height",
-            Readout::Speed => "speed",
-            Readout::Spin => "spin",
-            Readout::KineticEnergy => "kinetic energy",
-        }
-    }
-
-    /// Its value on screen now and the unit.
-    pub(crate) fn value(self, app: &App) -> (f64, &'static str) {
-        let live = &app.roll.live;
-        match self {
-            Readout::Height => (live.die.centre.z, "cm"),
-            Readout::Speed => (live.die.velocity.norm(), "cm/s"),
-            Readout::Spin => (live.die.angular_velocity.norm(), "rad/s"),
-            Readout::KineticEnergy => (live.energy.kinetic(), "erg"),
-        }
-    }
-
-    /// The value as the view writes it: a fixed number of decimals for the lengths and
-    /// rates, so the digits do not jump about while they change.
-    pub(crate) fn text(self, app: &App) -> String {
-        let (v, unit) = self.value(app);
-        match self {
-            Readout::Height => format!("{v:.2} {unit}"),
-            Readout::Speed | Readout::Spin => format!("{v:.1} {unit}"),
-            Readout::KineticEnergy => format!("{} {unit}", super::format::fmt_num(v)),
-        }
-    }
-}
 
 /// Rows and columns of one block digit in [`GLYPHS`].
 const GLYPH_ROWS: usize = 5;
@@ -134,9 +77,9 @@ pub(crate) fn tick_step(span: f64, most: usize) -> f64 {
 /// higher), the same for every step of the roll; the zoom keys shrink it from the top, the
 /// table staying at the bottom. Horizontally the camera follows the die, as on the main
 /// screen, so the die stays in view as it travels.
-pub(crate) fn fixed_view(app: &App, area: Rect) -> View {
+pub(crate) fn fixed_view(app: &App, area: Rect) -> Projection {
     let live = &app.roll.live;
-    let camera = app.camera;
+    let camera = app.die_screen.camera;
     let half = live.params.die.largest_half_size();
     let (sp, cp) = camera.pitch_deg.to_radians().sin_cos();
     let rise = live.initial.velocity[2].max(0.0);
@@ -149,7 +92,7 @@ pub(crate) fn fixed_view(app: &App, area: Rect) -> View {
     let height = (top - bottom) * 1.25f64.powi(-camera.zoom);
     let width = height * area.width.max(1) as f64 / (2.0 * area.height.max(1) as f64);
     let die = &live.die;
-    View {
+    Projection {
         camera,
         focus: Vector3::new(die.centre.x, die.centre.y, 0.0),
         x: (-width / 2.0, width / 2.0),
@@ -160,7 +103,7 @@ pub(crate) fn fixed_view(app: &App, area: Rect) -> View {
 
 /// The row of `view.area` (from its top) where a height of `z_cm` above the table shows,
 /// straight above the die's foot (where the die's centre is), if inside the area.
-pub(crate) fn row_of_height(view: &View, z_cm: f64) -> Option<u16> {
+pub(crate) fn row_of_height(view: &Projection, z_cm: f64) -> Option<u16> {
     let y = z_cm * view.camera.pitch_deg.to_radians().cos();
     let f = (view.y.1 - y) / (view.y.1 - view.y.0);
     (0.0..1.0)
@@ -234,8 +177,8 @@ fn hints() -> Vec<KeyHint> {
         Action::Help,
         Action::Quit,
     ];
-    let own = rows(Screen::Show).filter(|b| b.screen == Screen::Show || b.action == Action::Presentation);
-    let shared = rows(Screen::Show).filter(|b| wanted.contains(&b.action));
+    let own = rows(Scope::Show).filter(|b| b.screen == Scope::Show || b.action == Action::Presentation);
+    let shared = rows(Scope::Show).filter(|b| wanted.contains(&b.action));
     own.chain(shared)
         .filter_map(|b| {
             let h = b.hint?;
@@ -250,7 +193,7 @@ fn hints() -> Vec<KeyHint> {
 }
 
 /// The height scale: a tick at each whole step of cm, labelled, the table at 0.
-fn draw_scale(app: &App, view: &View, area: Rect, frame: &mut Frame) {
+fn draw_scale(app: &App, view: &Projection, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let cp = view.camera.pitch_deg.to_radians().cos();
     if cp <= 0.05 {
@@ -279,7 +222,7 @@ fn draw_panel(app: &App, area: Rect, frame: &mut Frame) {
     let block = Block::bordered().title(Line::styled(" face up ", t.heading()));
     let inner = block.inner(area);
     frame.render_widget(block, area);
-    let readout = app.readout;
+    let readout = app.die_screen.readout;
     let face = match live.phase {
         crate::worker::Phase::Ended(o) if o.face.is_none() => '?',
         _ => char::from_digit(live.die.face_up as u32, 10).unwrap_or('?'),
@@ -301,10 +244,10 @@ fn draw_panel(app: &App, area: Rect, frame: &mut Frame) {
     }
     lines.push(Line::raw(""));
     lines.push(Line::raw(readout.name()).centered());
-    lines.push(Line::styled(readout.text(app), t.heading()).centered());
+    lines.push(Line::styled(readout.text(&app.roll.live), t.heading()).centered());
     lines.push(
         Line::from(vec![
-            Span::styled(first_key(Screen::Show, Action::NextReadout), t.key()),
+            Span::styled(first_key(Scope::Show, Action::NextReadout), t.key()),
             Span::raw(format!(" {}", readout.next().name())),
         ])
         .centered(),
@@ -315,10 +258,11 @@ fn draw_panel(app: &App, area: Rect, frame: &mut Frame) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::tui::app::Msg;
     use crate::tui::layout::screen_layout;
-    use crate::tui::map_view::View as Screenful;
-    use crate::tui::tests::{Scene, screen, spun_preset};
+    use crate::tui::state::app::Page;
+    use crate::tui::state::die_screen::Readout;
+    use crate::tui::state::messages::Msg;
+    use crate::tui::tests::{Harness, screen, spun_preset};
     use crate::tui::theme::{Palette, Theme};
     use ratatui::Terminal;
     use ratatui::backend::TestBackend;
@@ -336,11 +280,11 @@ mod tests {
 
     /// The spun paper roll (from 15 cm) in the presentation view, until its centre is
     /// below `height` cm.
-    fn falling_to(height: f64, theme: Theme) -> Scene {
-        let mut s = Scene::new(&spun_preset(), theme);
+    fn falling_to(height: f64, theme: Theme) -> Harness {
+        let mut s = Harness::new(&spun_preset(), theme);
         s.key(KeyCode::Char('P'));
-        while s.engine.simulation().state().position.z >= height {
-            assert_eq!(s.engine.advance_steps(1), 1, "the die falls");
+        while s.simulator.simulation().state().position.z >= height {
+            assert_eq!(s.simulator.advance_steps(1), 1, "the die falls");
         }
         s.sync();
         s
@@ -376,29 +320,29 @@ mod tests {
 
     #[test]
     fn p_opens_and_closes_it_n_picks_the_number_and_esc_leaves() {
-        let mut s = Scene::new(&spun_preset(), projector());
+        let mut s = Harness::new(&spun_preset(), projector());
         s.key(KeyCode::Char('P'));
-        assert_eq!(s.app.view, Screenful::Presentation);
+        assert_eq!(s.app.page, Page::Presentation);
         let names: Vec<&str> = (0..4)
             .map(|_| {
-                let name = s.app.readout.name();
+                let name = s.app.die_screen.readout.name();
                 s.key(KeyCode::Char('N'));
                 name
             })
             .collect();
         assert_eq!(names, ["height", "speed", "spin", "kinetic energy"]);
-        assert_eq!(s.app.readout, Readout::Height, "round again");
+        assert_eq!(s.app.die_screen.readout, Readout::Height, "round again");
         // The main screen's keys work here: space plays.
         s.key(KeyCode::Char(' '));
         assert!(s.app.roll.live.playing);
         s.key(KeyCode::Esc);
-        assert_eq!(s.app.view, Screenful::Die);
+        assert_eq!(s.app.page, Page::Die);
         s.key(KeyCode::Char('P'));
         s.key(KeyCode::Char('P'));
-        assert_eq!(s.app.view, Screenful::Die);
+        assert_eq!(s.app.page, Page::Die);
         // On the main screen N means nothing; in the view, no value is typed blind.
         s.key(KeyCode::Char('N'));
-        assert_eq!(s.app.readout, Readout::Height);
+        assert_eq!(s.app.die_screen.readout, Readout::Height);
         s.key(KeyCode::Char('P'));
         s.key(KeyCode::Enter);
         assert!(s.app.value_editor().is_none());
@@ -408,7 +352,7 @@ mod tests {
     #[test]
     fn the_mouse_orbits_and_zooms_and_selects_no_hidden_value() {
         use ratatui::crossterm::event::{Event, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
-        let mut s = Scene::new(&spun_preset(), projector());
+        let mut s = Harness::new(&spun_preset(), projector());
         s.key(KeyCode::Char('P'));
         let areas = screen_layout(s.app.screen).expect("fits");
         // Where the parameter list would be on the main screen: its third row.
@@ -421,12 +365,19 @@ mod tests {
                 modifiers: KeyModifiers::NONE,
             }))
         };
-        let (selected, zoom) = (s.app.selected, s.app.camera.zoom);
-        crate::tui::update(&mut s.app, mouse(MouseEventKind::Down(MouseButton::Left)));
-        assert_eq!(s.app.selected, selected, "no value selected behind the die");
-        assert_eq!(s.app.drag, Some((column, row)), "a drag starts anywhere");
-        crate::tui::update(&mut s.app, mouse(MouseEventKind::ScrollUp));
-        assert_eq!(s.app.camera.zoom, zoom + 1);
+        let (selected, zoom) = (s.app.die_screen.selected, s.app.die_screen.camera.zoom);
+        crate::tui::input::update(&mut s.app, mouse(MouseEventKind::Down(MouseButton::Left)));
+        assert_eq!(
+            s.app.die_screen.selected, selected,
+            "no value selected behind the die"
+        );
+        assert_eq!(
+            s.app.die_screen.drag,
+            Some((column, row)),
+            "a drag starts anywhere"
+        );
+        crate::tui::input::update(&mut s.app, mouse(MouseEventKind::ScrollUp));
+        assert_eq!(s.app.die_screen.camera.zoom, zoom + 1);
         assert_eq!(s.app.setup.params, spun_preset().params(), "no value scrolled");
     }
 
@@ -491,7 +442,7 @@ mod tests {
     #[test]
     fn the_camera_does_not_follow_the_die_up_and_down() {
         let start = {
-            let mut s = Scene::new(&spun_preset(), projector());
+            let mut s = Harness::new(&spun_preset(), projector());
             s.key(KeyCode::Char('P'));
             s
         };
@@ -513,9 +464,9 @@ mod tests {
             );
         }
         // The main screen's view follows the die: its picture rises with it.
-        let main = |s: &Scene| {
+        let main = |s: &Harness| {
             let area = screen_layout(Rect::new(0, 0, 120, 36)).expect("fits").die;
-            View::new(&s.app, area).y
+            Projection::new(&s.app, area).y
         };
         assert_ne!(main(&start), main(&lower));
     }

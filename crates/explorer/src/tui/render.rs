@@ -1,22 +1,21 @@
 //! Drawing: `render(&App, &mut Frame)` is a pure function of the app state. It never steps
 //! the physics and never reads a clock.
 
-use super::app::App;
 use super::die::render_die;
-use super::energy::render_energy;
 use super::footer::{render_footer, render_help};
 use super::header::{render_header, render_too_small};
 use super::layout::screen_layout;
-use super::map_view::View;
 use super::outcomes::render_outcomes;
 use super::params_panel::render_params;
+use super::plot::render_plot;
+use super::state::app::{App, Page};
 use ratatui::Frame;
 
 /// Draws the whole screen, then paints the theme over every cell of it, whichever screen.
 pub fn render(app: &App, frame: &mut Frame) {
-    match app.view {
-        View::Map => super::map::render_map_screen(app, frame),
-        View::Presentation if screen_layout(frame.area()).is_some() => {
+    match app.page {
+        Page::Map => super::map::render_map_screen(app, frame),
+        Page::Presentation if screen_layout(frame.area()).is_some() => {
             super::presentation::render(app, frame)
         }
         _ => render_die_screen(app, frame),
@@ -40,14 +39,14 @@ fn render_die_screen(app: &App, frame: &mut Frame) {
     if let Some(twin) = &app.roll.live.twin {
         if twin.differs_by.is_empty() {
             super::curve::render_curve(app, areas.outcomes, frame);
-            super::twin::render_separation(app, areas.energy, frame);
+            super::separation::render_separation(app, areas.energy, frame);
         } else {
             super::versus::render_table(app, areas.outcomes, frame);
-            render_energy(app, areas.energy, frame);
+            render_plot(app, areas.energy, frame);
         }
     } else {
         render_outcomes(app, areas.outcomes, frame);
-        render_energy(app, areas.energy, frame);
+        render_plot(app, areas.energy, frame);
     }
     super::ledger::render_ledger(app, areas.ledger, frame);
     render_footer(app, areas.footer, frame);

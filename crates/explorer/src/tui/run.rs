@@ -2,7 +2,7 @@
 //! restored on every way out.
 //!
 //! - `update` does no I/O: the effects it returns (worker commands, listing and saving
-//!   presets) are run here, by [`perform`].
+//!   presets) are run here, through [`perform`].
 //! - Quitting (`q`, Ctrl-C as a key) leaves the loop and restores it.
 //! - SIGTERM, SIGHUP, SIGINT and SIGQUIT reach a thread of their own (signal-hook), which
 //!   asks the loop to stop, so the terminal is restored and the process exits with 128 +
@@ -15,11 +15,13 @@
 //! Drawing holds [`SCREEN`], and whoever restores takes it first and never gives it back,
 //! so no frame lands after the terminal was given back to the shell.
 
-use super::app::{App, Effect, Msg};
+use super::effects::perform;
 use super::input::update;
 use super::render::render;
+use super::state::app::App;
+use super::state::messages::Msg;
 use super::theme::Theme;
-use crate::worker::{Command, Engine, Worker};
+use crate::worker::{Simulator, Worker};
 use color_eyre::eyre::{Result, WrapErr};
 use dicesim_setup::preset::Preset;
 use ratatui::DefaultTerminal;
@@ -68,7 +70,7 @@ const ENDING_SIGNALS: [i32; 4] = [SIGTERM, SIGHUP, SIGINT, SIGQUIT];
 /// Opens the explorer on `preset` and runs it until the user quits; a signal ends the
 /// process from here with 128 + the signal, after restoring the terminal.
 pub fn run(preset: &Preset, theme: Theme) -> Result<()> {
-    let engine = Engine::new(preset).wrap_err("the preset cannot be simulated")?;
+    let simulator = Simulator::new(preset).wrap_err("the preset cannot be simulated")?;
     let mut signals = Signals::new(ENDING_SIGNALS).wrap_err("cannot catch signals")?;
     let signal_handle = signals.handle();
     // A second install (a caller already did) is harmless: keep the first.
@@ -93,7 +95,7 @@ pub fn run(preset: &Preset, theme: Theme) -> Result<()> {
                 std::process::exit(128 + signal);
             }
         })?;
-    let result = event_loop(&mut terminal, engine, theme, tx, rx);
+    let result = event_loop(&mut terminal, simulator, theme, tx, rx);
     restore_for_good();
     signal_handle.close();
     match result {
@@ -103,31 +105,20 @@ pub fn run(preset: &Preset, theme: Theme) -> Result<()> {
     }
 }
 
-/// Runs one effect of `update`: the file work here, on the loop's thread; a worker command
-/// is handed back for the caller to send.
-pub(crate) fn perform(app: &mut App, effect: Effect) -> Option<Command> {
-    match effect {
-        Effect::Worker(command) => return Some(command),
-        Effect::ListPresets => super::dialogs::open_picker(app),
-        Effect::SavePreset { preset, replace } => super::dialogs::save(app, &preset, replace),
-    }
-    None
-}
-
 /// Runs until the user quits (`None`) or a signal arrives (`Some(signal)`).
 fn event_loop(
     terminal: &mut DefaultTerminal,
-    mut engine: Engine,
+    mut simulator: Simulator,
     theme: Theme,
     tx: Sender<Msg>,
     rx: Receiver<Msg>,
 ) -> Result<Option<i32>> {
-    let mut app = App::new(engine.snapshot(), theme);
+    let mut app = App::new(simulator.snapshot(), theme);
     app.store = dicesim_setup::preset::Store::from_env();
     let size = terminal.size()?;
     app.screen = Rect::new(0, 0, size.width, size.height);
     let maps = tx.clone();
-    let worker = Worker::spawn_with_maps(engine, tx.clone(), move |m| maps.send(Msg::from(m)).is_ok());
+    let worker = Worker::spawn_with_maps(simulator, tx.clone(), move |m| maps.send(Msg::from(m)).is_ok());
     // The input threads block reading the terminal for the life of the process.
     super::tty::spawn(move |ev| tx.send(Msg::Input(ev)).is_ok()).wrap_err("cannot read the terminal")?;
     let mut drawn: VecDeque<Instant> = VecDeque::new();

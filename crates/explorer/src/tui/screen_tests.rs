@@ -7,9 +7,9 @@
 //! right edge (`super::fit`), so text that reaches the edge was cut, unless it ends in `…`,
 //! the mark of an abbreviation.
 
-use super::app::App;
 use super::map_tests::map_scene;
-use super::tests::{Scene, editing, filled_table, help, mid_impact_with, settled, start, unstable};
+use super::state::app::App;
+use super::tests::{Harness, editing, filled_table, help, mid_impact_with, settled, start, unstable};
 use super::theme::{Palette, Theme};
 use super::twin_tests::{complete, failed, partial, twin_scene};
 use super::view_tests::loaded_after;
@@ -31,7 +31,7 @@ pub(crate) struct ScreenState {
     pub(crate) shows: Vec<String>,
 }
 
-fn keyed(mut s: Scene, keys: &[KeyCode]) -> App {
+fn keyed(mut s: Harness, keys: &[KeyCode]) -> App {
     for &k in keys {
         s.key(k);
     }
@@ -39,19 +39,19 @@ fn keyed(mut s: Scene, keys: &[KeyCode]) -> App {
 }
 
 /// A shipped preset's scene, with only the shipped presets in its picker.
-fn shipped(name: &str, theme: Theme) -> Scene {
+fn shipped(name: &str, theme: Theme) -> Harness {
     let text = shipped_text(name).expect("shipped");
     let preset = Preset::from_toml_str(text, name).expect("valid");
-    let mut s = Scene::new(&preset, theme);
+    let mut s = Harness::new(&preset, theme);
     s.app.store = Store::new(None);
     s
 }
 
 /// `loaded-corner` after a batch of `rolls` random rolls: a bias the table measures.
-fn loaded_batch(rolls: u64, theme: Theme) -> Scene {
+fn loaded_batch(rolls: u64, theme: Theme) -> Harness {
     let mut s = shipped("loaded-corner", theme);
     s.command(Command::BatchStart(rolls));
-    s.engine.run_batch_here();
+    s.simulator.run_batch_here();
     s.sync();
     s
 }

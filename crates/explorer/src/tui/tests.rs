@@ -1,9 +1,7 @@
 //! Screens and panels from deterministic states: a fixed preset, exact step counts, keys
-//! fed through `update` into the worker's engine, no thread and no clock.
+//! fed through `update` into the worker's simulator, no thread and no clock.
 
-use super::app::{App, Msg};
 use super::die::render_die;
-use super::energy::render_energy;
 use super::footer::render_footer;
 use super::header::render_header;
 use super::input::update;
@@ -11,9 +9,12 @@ use super::layout::screen_layout;
 use super::outcomes::render_outcomes;
 use super::param::{Param, all};
 use super::params_panel::{STABILITY_CAUTION, STABILITY_DANGER, render_params};
+use super::plot::render_plot;
 use super::render::render;
+use super::state::app::App;
+use super::state::messages::Msg;
 use super::theme::Theme;
-use crate::worker::{Command, Engine, Phase};
+use crate::worker::{Command, Phase, Simulator};
 use dicesim_physics::Status;
 use dicesim_physics::stability::CONTACT_MODE_LIMIT;
 use dicesim_setup::preset::Preset;
@@ -31,26 +32,29 @@ pub(crate) fn spun_preset() -> Preset {
         .expect("valid overrides")
 }
 
-/// The engine and the app wired together as the event loop wires them, minus the thread.
-pub(crate) struct Scene {
-    pub(crate) engine: Engine,
+/// A panel's drawing function, as `render` calls it.
+pub(crate) type Panel = fn(&App, Rect, &mut ratatui::Frame);
+
+/// The simulator and the app wired together as the event loop wires them, minus the thread.
+pub(crate) struct Harness {
+    pub(crate) simulator: Simulator,
     pub(crate) app: App,
 }
 
-impl Scene {
-    pub(crate) fn new(preset: &Preset, theme: Theme) -> Scene {
-        let mut engine = Engine::new(preset).expect("valid preset");
-        let app = App::new(engine.snapshot(), theme);
-        Scene { engine, app }
+impl Harness {
+    pub(crate) fn new(preset: &Preset, theme: Theme) -> Harness {
+        let mut simulator = Simulator::new(preset).expect("valid preset");
+        let app = App::new(simulator.snapshot(), theme);
+        Harness { simulator, app }
     }
 
     pub(crate) fn sync(&mut self) {
-        let s = self.engine.snapshot();
+        let s = self.simulator.snapshot();
         update(&mut self.app, Msg::from(s));
     }
 
     pub(crate) fn command(&mut self, c: Command) {
-        self.engine.handle(c);
+        self.simulator.handle(c);
         self.sync();
     }
 
@@ -59,8 +63,8 @@ impl Scene {
             &mut self.app,
             Msg::Input(Event::Key(KeyEvent::new(code, modifiers))),
         ) {
-            if let Some(c) = crate::tui::run::perform(&mut self.app, effect) {
-                self.engine.handle(c);
+            if let Some(c) = crate::tui::effects::perform(&mut self.app, effect) {
+                self.simulator.handle(c);
             }
         }
         self.sync();
@@ -72,8 +76,8 @@ impl Scene {
 
     pub(crate) fn select(&mut self, p: Param) {
         let target = all().iter().position(|&q| q == p).expect("listed");
-        while self.app.selected != target {
-            self.key(if self.app.selected < target {
+        while self.app.die_screen.selected != target {
+            self.key(if self.app.die_screen.selected < target {
                 KeyCode::Down
             } else {
                 KeyCode::Up
@@ -82,25 +86,25 @@ impl Scene {
     }
 
     pub(crate) fn run_to_end(&mut self) {
-        self.engine.run_to_end();
+        self.simulator.run_to_end();
         self.sync();
     }
 }
 
-pub(crate) fn start() -> Scene {
-    Scene::new(&spun_preset(), Theme::default())
+pub(crate) fn start() -> Harness {
+    Harness::new(&spun_preset(), Theme::default())
 }
 
 /// The first impact, at the step where the ground's spring is squeezed most.
-pub(crate) fn mid_impact_with(theme: Theme) -> Scene {
-    let mut s = Scene::new(&spun_preset(), theme);
-    while s.engine.phase() != Phase::InContact {
-        assert!(s.engine.advance_steps(1) == 1, "the die reaches the ground");
+pub(crate) fn mid_impact_with(theme: Theme) -> Harness {
+    let mut s = Harness::new(&spun_preset(), theme);
+    while s.simulator.phase() != Phase::InContact {
+        assert!(s.simulator.advance_steps(1) == 1, "the die reaches the ground");
     }
     loop {
-        let before = s.engine.simulation().energy().elastic;
-        s.engine.advance_steps(1);
-        if s.engine.simulation().energy().elastic < before {
+        let before = s.simulator.simulation().energy().elastic;
+        s.simulator.advance_steps(1);
+        if s.simulator.simulation().energy().elastic < before {
             break;
         }
     }
@@ -108,17 +112,17 @@ pub(crate) fn mid_impact_with(theme: Theme) -> Scene {
     s
 }
 
-pub(crate) fn mid_impact() -> Scene {
+pub(crate) fn mid_impact() -> Harness {
     mid_impact_with(Theme::default())
 }
 
-pub(crate) fn settled() -> Scene {
+pub(crate) fn settled() -> Harness {
     let mut s = start();
     s.run_to_end();
     s
 }
 
-pub(crate) fn unstable() -> Scene {
+pub(crate) fn unstable() -> Harness {
     let mut s = start();
     s.select(Param::named("ground.stiffness"));
     s.key(KeyCode::Enter);
@@ -130,13 +134,13 @@ pub(crate) fn unstable() -> Scene {
     s
 }
 
-pub(crate) fn help() -> Scene {
+pub(crate) fn help() -> Harness {
     let mut s = mid_impact();
     s.key(KeyCode::Char('?'));
     s
 }
 
-pub(crate) fn editing() -> Scene {
+pub(crate) fn editing() -> Harness {
     let mut s = start();
     s.select(Param::named("ground.friction"));
     s.key(KeyCode::Enter);
@@ -146,13 +150,13 @@ pub(crate) fn editing() -> Scene {
     s
 }
 
-pub(crate) fn filled_table() -> Scene {
+pub(crate) fn filled_table() -> Harness {
     let mut s = start();
     s.key(KeyCode::Char('b'));
     // A smaller batch than `b` asks for keeps the test quick; the path is the same.
-    s.engine.handle(Command::BatchCancel);
+    s.simulator.handle(Command::BatchCancel);
     s.command(Command::BatchStart(600));
-    s.engine.run_batch_here();
+    s.simulator.run_batch_here();
     s.key(KeyCode::Char('R'));
     s.run_to_end();
     s
@@ -289,13 +293,12 @@ fn each_panel() {
     let table = filled_table();
     let impact = mid_impact();
     let areas = screen_layout(Rect::new(0, 0, 120, 36)).expect("full size");
-    type Panel = fn(&App, Rect, &mut ratatui::Frame);
     let panels: [(&str, &App, Rect, Panel); 6] = [
         ("panel_header", &impact.app, areas.header, render_header),
         ("panel_params", &impact.app, areas.params, render_params),
         ("panel_outcomes", &table.app, areas.outcomes, render_outcomes),
         ("panel_die", &impact.app, areas.die, render_die),
-        ("panel_energy", &impact.app, areas.energy, render_energy),
+        ("panel_energy", &impact.app, areas.energy, render_plot),
         ("panel_footer", &impact.app, areas.footer, render_footer),
     ];
     for (name, app, area, panel) in panels {
@@ -310,7 +313,7 @@ fn energy_log_scale_and_ascii_die() {
     let mut s = mid_impact();
     s.key(KeyCode::Char('p'));
     s.key(KeyCode::Char('m'));
-    assert!(s.app.log_scale);
+    assert!(s.app.die_screen.log_scale);
     let areas = screen_layout(Rect::new(0, 0, 120, 36)).expect("full size");
     let t = draw(&s.app, 120, 36);
     let text = t.backend().to_string();
@@ -383,7 +386,7 @@ fn touching_corners_are_red_and_bold_or_reversed_without_colour() {
 #[test]
 fn no_color_sends_no_colour_at_all() {
     for mut s in [mid_impact_with(Theme::monochrome()), {
-        let mut s = Scene::new(&spun_preset(), Theme::monochrome());
+        let mut s = Harness::new(&spun_preset(), Theme::monochrome());
         s.command(Command::SetParam(
             Param::named("ground.stiffness").scan_key(),
             4e6,
@@ -454,7 +457,7 @@ fn fast_spin_is_called_unstable_with_its_reason() {
     let preset = Preset::default()
         .with_overrides(&["initial.angular_velocity=[10000,0,0]"])
         .expect("in range");
-    let mut s = Scene::new(&preset, Theme::default());
+    let mut s = Harness::new(&preset, Theme::default());
     let (text, _) = stability_readout_cell(&s.app);
     assert!(text.contains("corner speed at 1749 % of limit"), "{text}");
     s.run_to_end();
@@ -476,7 +479,7 @@ fn a_table_too_soft_ends_as_did_not_settle() {
     let preset = Preset::default()
         .with_overrides(&["ground.stiffness=100"])
         .expect("in range");
-    let mut s = Scene::new(&preset, Theme::default());
+    let mut s = Harness::new(&preset, Theme::default());
     s.run_to_end();
     assert!(matches!(s.app.roll.live.phase, Phase::Ended(o) if o.status == Status::Timeout));
     let text = screen(&s.app, 120, 36);
@@ -520,7 +523,7 @@ mod keys {
     fn press_with(app: &mut App, code: KeyCode, modifiers: KeyModifiers) -> Vec<Command> {
         update(app, Msg::Input(Event::Key(KeyEvent::new(code, modifiers))))
             .into_iter()
-            .filter_map(|e| crate::tui::run::perform(app, e))
+            .filter_map(|e| crate::tui::effects::perform(app, e))
             .collect()
     }
 
@@ -533,7 +536,7 @@ mod keys {
         };
         update(app, Msg::Input(Event::Mouse(m)))
             .into_iter()
-            .filter_map(|e| crate::tui::run::perform(app, e))
+            .filter_map(|e| crate::tui::effects::perform(app, e))
             .collect()
     }
 
@@ -547,7 +550,7 @@ mod keys {
         assert_eq!(press(&mut a, KeyCode::Char('c')), [Command::ClearTable]);
         assert_eq!(
             press(&mut a, KeyCode::Char('b')),
-            [Command::BatchStart(super::super::roll_view::BATCH_ROLLS)]
+            [Command::BatchStart(super::super::state::roll::BATCH_ROLLS)]
         );
         assert!(!a.quit);
     }
@@ -591,14 +594,14 @@ mod keys {
     #[test]
     fn arrows_and_vim_keys_select_and_change_values() {
         let mut a = app();
-        assert_eq!(a.selected_param(), Param::named("ground.stiffness"));
+        assert_eq!(a.die_screen.selected_param(), Param::named("ground.stiffness"));
         assert!(
             press(&mut a, KeyCode::Up).is_empty(),
             "the first row stays selected"
         );
         press(&mut a, KeyCode::Down);
         press(&mut a, KeyCode::Char('j'));
-        assert_eq!(a.selected_param(), Param::named("ground.friction"));
+        assert_eq!(a.die_screen.selected_param(), Param::named("ground.friction"));
         let mu = a.setup.params.ground.friction;
         let fine = Param::named("ground.friction").nudged(mu, 1, false);
         assert_eq!(
@@ -637,15 +640,15 @@ mod keys {
             )]
         );
         press(&mut a, KeyCode::Char('k'));
-        assert_eq!(a.selected_param(), Param::named("ground.damping"));
+        assert_eq!(a.die_screen.selected_param(), Param::named("ground.damping"));
         press(&mut a, KeyCode::Char('G'));
-        assert_eq!(a.selected_param(), *all().last().expect("rows"));
+        assert_eq!(a.die_screen.selected_param(), *all().last().expect("rows"));
     }
 
     #[test]
     fn a_value_at_its_limit_sends_nothing() {
         let mut a = app();
-        a.selected = all()
+        a.die_screen.selected = all()
             .iter()
             .position(|&p| p == Param::named("ground.friction"))
             .expect("listed");
@@ -663,7 +666,7 @@ mod keys {
     #[test]
     fn typing_a_value_validates_it_and_esc_cancels() {
         let mut a = app();
-        a.selected = all()
+        a.die_screen.selected = all()
             .iter()
             .position(|&p| p == Param::named("initial.height"))
             .expect("listed");
@@ -754,14 +757,16 @@ mod keys {
     #[test]
     fn view_keys_change_only_the_view() {
         let mut a = app();
-        let camera = a.camera;
+        let camera = a.die_screen.camera;
         for c in ['a', 'W', 'z', 'p', 'm'] {
             assert!(press(&mut a, KeyCode::Char(c)).is_empty());
         }
-        assert!(a.camera.yaw_deg != camera.yaw_deg && a.camera.pitch_deg > camera.pitch_deg);
-        assert!(a.camera.zoom > camera.zoom && a.log_scale);
+        assert!(
+            a.die_screen.camera.yaw_deg != camera.yaw_deg && a.die_screen.camera.pitch_deg > camera.pitch_deg
+        );
+        assert!(a.die_screen.camera.zoom > camera.zoom && a.die_screen.log_scale);
         press(&mut a, KeyCode::Char('C'));
-        assert_eq!(a.camera, camera);
+        assert_eq!(a.die_screen.camera, camera);
     }
 
     #[test]
@@ -794,16 +799,16 @@ mod keys {
             )
             .is_empty()
         );
-        assert_eq!(a.selected_param(), Param::named("ground.friction"));
+        assert_eq!(a.die_screen.selected_param(), Param::named("ground.friction"));
         let up = Param::named("ground.friction").nudged(a.setup.params.ground.friction, 1, false);
         assert_eq!(
             mouse(&mut a, MouseEventKind::ScrollUp, areas.params.x + 3, friction_row),
             [Command::SetParam(Param::named("ground.friction").scan_key(), up)]
         );
-        let zoom = a.camera.zoom;
+        let zoom = a.die_screen.camera.zoom;
         mouse(&mut a, MouseEventKind::ScrollUp, areas.die.x + 5, areas.die.y + 5);
-        assert_eq!(a.camera.zoom, zoom + 1);
-        let yaw = a.camera.yaw_deg;
+        assert_eq!(a.die_screen.camera.zoom, zoom + 1);
+        let yaw = a.die_screen.camera.yaw_deg;
         mouse(
             &mut a,
             MouseEventKind::Down(MouseButton::Left),
@@ -816,13 +821,16 @@ mod keys {
             areas.die.x + 8,
             areas.die.y + 5,
         );
-        assert!(a.camera.yaw_deg != yaw, "dragging the die orbits the camera");
+        assert!(
+            a.die_screen.camera.yaw_deg != yaw,
+            "dragging the die orbits the camera"
+        );
     }
 
     #[test]
     fn own_edits_win_until_the_worker_has_seen_them() {
         let mut s = start();
-        let stale = s.engine.snapshot();
+        let stale = s.simulator.snapshot();
         press(&mut s.app, KeyCode::Down);
         press(&mut s.app, KeyCode::Down);
         let cmds = press(&mut s.app, KeyCode::Right);
@@ -833,7 +841,7 @@ mod keys {
             "an older snapshot does not undo the edit"
         );
         for c in cmds {
-            s.engine.handle(c);
+            s.simulator.handle(c);
         }
         s.sync();
         assert_eq!(s.app.setup.params.ground.friction, mine);
@@ -913,14 +921,14 @@ mod sizes {
             help_scroll in 0u16..200,
         ) {
             let mut app = states()[which].clone();
-            app.camera.orbit(yaw, pitch);
-            app.camera.zoom_by(zoom);
-            app.selected = selected;
-            app.log_scale = log;
+            app.die_screen.camera.orbit(yaw, pitch);
+            app.die_screen.camera.zoom_by(zoom);
+            app.die_screen.selected = selected;
+            app.die_screen.log_scale = log;
             if app.help_scroll().is_some() {
-                app.overlay = Some(super::super::app::Overlay::Help { scroll: help_scroll });
+                app.overlay = Some(super::super::state::app::Overlay::Help { scroll: help_scroll });
             }
-            app.drawing = if ascii { super::super::app::Drawing::Ascii } else { super::super::app::Drawing::Braille };
+            app.die_screen.drawing = if ascii { super::super::state::die_screen::Drawing::Ascii } else { super::super::state::die_screen::Drawing::Braille };
             app.screen = Rect::new(0, 0, width, height);
             draw_into(&app, width, height);
         }
@@ -936,7 +944,7 @@ fn control_characters_from_files_never_reach_the_terminal() {
         name: format!("x{title}"),
         ..Preset::default()
     };
-    let mut s = Scene::new(&preset, Theme::default());
+    let mut s = Harness::new(&preset, Theme::default());
     s.app.notice = Some(format!("cannot open {title}.toml"));
     let t = draw(&s.app, 120, 36);
     let buffer = t.backend().buffer();
@@ -959,10 +967,10 @@ fn a_batch_whose_range_could_start_a_corner_in_the_table_is_refused() {
     let preset = Preset::default()
         .with_overrides(&["random.height=[0.5,2]"])
         .expect("in range");
-    let mut s = Scene::new(&preset, Theme::default());
+    let mut s = Harness::new(&preset, Theme::default());
     s.command(Command::BatchStart(20));
-    assert!(s.engine.take_batch_request().is_none(), "a batch was started");
-    s.engine.run_batch_here();
+    assert!(s.simulator.take_batch_request().is_none(), "a batch was started");
+    s.simulator.run_batch_here();
     s.sync();
     let text = screen(&s.app, 120, 36);
     assert!(text.contains("batch not started"), "{text}");

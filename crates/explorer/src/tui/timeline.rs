@@ -3,29 +3,14 @@
 //! click seeks there (`,` `.` `Home` `End` step
 //! and jump by key).
 
-use super::app::App;
+use super::chart::marker_colour;
+use super::layout::{TIMELINE_LEFT, TIMELINE_RIGHT, timeline_bar, timeline_steps};
+use super::state::app::App;
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
-
-/// Characters before the bar: the time now (`t 12.345 s `).
-const LEFT: u16 = 12;
-/// Characters after it: the end, or how far the roll has got (` end 12.345 s`).
-const RIGHT: u16 = 14;
-
-/// The bar's columns inside the strip; `None` if the strip is too narrow for one.
-pub(crate) fn bar(area: Rect) -> Option<Rect> {
-    let width = area.width.checked_sub(LEFT + RIGHT).filter(|&w| w >= 8)?;
-    Some(Rect::new(area.x + LEFT, area.y, width, area.height.min(1)))
-}
-
-/// Steps the bar spans: the whole roll once it has ended, else as far as it has got.
-fn span_steps(app: &App) -> u64 {
-    let t = &app.roll.live.timeline;
-    t.furthest.max(t.position).max(1)
-}
 
 /// The bar column that step `n` falls in.
 fn column_of(n: u64, steps: u64, width: u16) -> u16 {
@@ -33,13 +18,7 @@ fn column_of(n: u64, steps: u64, width: u16) -> u16 {
     ((n.min(steps) * last + steps / 2) / steps) as u16
 }
 
-/// The step a click on bar column `column` asks for.
-pub(crate) fn step_at(app: &App, bar: Rect, column: u16) -> u64 {
-    let last = bar.width.saturating_sub(1).max(1) as u64;
-    let x = column.saturating_sub(bar.x).min(bar.width.saturating_sub(1)) as u64;
-    (x * span_steps(app) + last / 2) / last
-}
-
+/// The strip: the time now, the bar with its marks, the end (or how far the roll has got).
 pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let timeline = &app.roll.live.timeline;
@@ -53,11 +32,11 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     } else {
         format!("… {}", seconds(timeline.furthest))
     };
-    let Some(bar) = bar(area) else {
+    let Some(bar) = timeline_bar(area) else {
         frame.render_widget(Paragraph::new(format!("{now} · {end}")), area);
         return;
     };
-    let steps = span_steps(app);
+    let steps = timeline_steps(timeline);
     let mut cells: Vec<(char, Style)> = vec![('─', Style::new().fg(t.shadow())); bar.width as usize];
     for (i, cell) in cells.iter_mut().enumerate() {
         if column_of(timeline.furthest, steps, bar.width) >= i as u16 {
@@ -70,12 +49,12 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     }
     for &edit in &app.roll.edits {
         let i = column_of(edit, steps, bar.width) as usize;
-        cells[i] = ('▼', Style::new().fg(super::plot::marker_colour(app)));
+        cells[i] = ('▼', Style::new().fg(marker_colour(app)));
     }
     let i = column_of(timeline.position, steps, bar.width) as usize;
     cells[i] = ('◆', t.selected());
     let mut spans = vec![Span::styled(
-        format!("{now:<width$}", width = LEFT as usize),
+        format!("{now:<width$}", width = TIMELINE_LEFT as usize),
         t.heading(),
     )];
     spans.extend(
@@ -83,6 +62,9 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
             .into_iter()
             .map(|(c, style)| Span::styled(c.to_string(), style)),
     );
-    spans.push(Span::raw(format!(" {end:<width$}", width = RIGHT as usize - 1)));
+    spans.push(Span::raw(format!(
+        " {end:<width$}",
+        width = TIMELINE_RIGHT as usize - 1
+    )));
     frame.render_widget(Paragraph::new(Line::from(spans)), area);
 }

@@ -30,8 +30,8 @@ pub(crate) struct Decoder {
     pending: Vec<u8>,
 }
 
-/// One step of decoding at the front of the buffer.
-enum Step {
+/// What the bytes at the front of the buffer decode to.
+enum Decoded {
     /// `len` bytes read: an event, or nothing (a sequence the explorer has no use for).
     Done(Option<Event>, usize),
     /// The bytes so far begin a sequence that is not finished yet.
@@ -60,11 +60,11 @@ impl Decoder {
         let mut at = 0;
         while at < self.pending.len() {
             match step(&self.pending[at..], last) {
-                Step::Done(event, len) => {
+                Decoded::Done(event, len) => {
                     events.extend(event);
                     at += len;
                 }
-                Step::Unfinished => break,
+                Decoded::Unfinished => break,
             }
         }
         self.pending.drain(..at);
@@ -78,7 +78,7 @@ fn key(code: KeyCode, modifiers: KeyModifiers) -> Option<Event> {
 
 /// Decodes the front of `b`; with `last`, nothing more is coming, so an unfinished
 /// sequence becomes the keys its bytes spell.
-fn step(b: &[u8], last: bool) -> Step {
+fn step(b: &[u8], last: bool) -> Decoded {
     match b[0] {
         ESC => escape(b, last),
         _ => plain(b, last),
@@ -86,7 +86,7 @@ fn step(b: &[u8], last: bool) -> Step {
 }
 
 /// A byte or UTF-8 character outside any sequence.
-fn plain(b: &[u8], last: bool) -> Step {
+fn plain(b: &[u8], last: bool) -> Decoded {
     let none = KeyModifiers::NONE;
     let event = match b[0] {
         b'\r' | b'\n' => key(KeyCode::Enter, none),
@@ -97,23 +97,23 @@ fn plain(b: &[u8], last: bool) -> Step {
         c @ 0x1c..=0x1f => key(KeyCode::Char((c - 0x1c + b'4') as char), KeyModifiers::CONTROL),
         _ => return utf8(b, last),
     };
-    Step::Done(event, 1)
+    Decoded::Done(event, 1)
 }
 
-fn utf8(b: &[u8], last: bool) -> Step {
+fn utf8(b: &[u8], last: bool) -> Decoded {
     let len = match b[0] {
         0x00..=0x7f => 1,
         0xc0..=0xdf => 2,
         0xe0..=0xef => 3,
         0xf0..=0xf7 => 4,
         // A stray continuation byte or worse: nothing a key could be made of.
-        _ => return Step::Done(None, 1),
+        _ => return Decoded::Done(None, 1),
     };
     if b.len() < len {
         return if last {
-            Step::Done(None, b.len())
+            Decoded::Done(None, b.len())
         } else {
-            Step::Unfinished
+            Decoded::Unfinished
         };
     }
     match std::str::from_utf8(&b[..len]).ok().and_then(|s| s.chars().next()) {
@@ -123,46 +123,46 @@ fn utf8(b: &[u8], last: bool) -> Step {
             } else {
                 KeyModifiers::NONE
             };
-            Step::Done(key(KeyCode::Char(c), shift), len)
+            Decoded::Done(key(KeyCode::Char(c), shift), len)
         }
-        None => Step::Done(None, 1),
+        None => Decoded::Done(None, 1),
     }
 }
 
 /// `ESC` alone, `ESC` + a key (that key with Alt), `ESC O x` and `ESC [ …`.
-fn escape(b: &[u8], last: bool) -> Step {
+fn escape(b: &[u8], last: bool) -> Decoded {
     let Some(&second) = b.get(1) else {
         return if last {
-            Step::Done(key(KeyCode::Esc, KeyModifiers::NONE), 1)
+            Decoded::Done(key(KeyCode::Esc, KeyModifiers::NONE), 1)
         } else {
-            Step::Unfinished
+            Decoded::Unfinished
         };
     };
     match second {
         // Esc pressed twice: the first is a key of its own.
-        ESC => Step::Done(key(KeyCode::Esc, KeyModifiers::NONE), 1),
+        ESC => Decoded::Done(key(KeyCode::Esc, KeyModifiers::NONE), 1),
         b'[' => match csi(b) {
-            Step::Unfinished if last => alt(b, last),
+            Decoded::Unfinished if last => alt(b, last),
             step => step,
         },
         b'O' => match b.get(2) {
             None if last => alt(b, last),
-            None => Step::Unfinished,
-            Some(&c) => Step::Done(ss3(c), 3),
+            None => Decoded::Unfinished,
+            Some(&c) => Decoded::Done(ss3(c), 3),
         },
         _ => alt(b, last),
     }
 }
 
 /// `ESC` then a key: that key with Alt held.
-fn alt(b: &[u8], last: bool) -> Step {
+fn alt(b: &[u8], last: bool) -> Decoded {
     match plain(&b[1..], last) {
-        Step::Done(Some(Event::Key(mut k)), len) => {
+        Decoded::Done(Some(Event::Key(mut k)), len) => {
             k.modifiers |= KeyModifiers::ALT;
-            Step::Done(Some(Event::Key(k)), len + 1)
+            Decoded::Done(Some(Event::Key(k)), len + 1)
         }
-        Step::Done(other, len) => Step::Done(other, len + 1),
-        Step::Unfinished => Step::Unfinished,
+        Decoded::Done(other, len) => Decoded::Done(other, len + 1),
+        Decoded::Unfinished => Decoded::Unfinished,
     }
 }
 
@@ -183,25 +183,25 @@ fn ss3(c: u8) -> Option<Event> {
 
 /// `ESC [` parameters, intermediates, one final byte (ECMA-48), or the three raw bytes
 /// of an X10 mouse report after `ESC [ M`.
-fn csi(b: &[u8]) -> Step {
+fn csi(b: &[u8]) -> Decoded {
     if b.get(2) == Some(&b'M') {
         return match b.get(3..6) {
             Some(&[cb, cx, cy]) => {
                 let (column, row) = (cx.saturating_sub(33), cy.saturating_sub(33));
-                Step::Done(mouse(cb.wrapping_sub(32), column.into(), row.into(), false), 6)
+                Decoded::Done(mouse(cb.wrapping_sub(32), column.into(), row.into(), false), 6)
             }
-            _ => Step::Unfinished,
+            _ => Decoded::Unfinished,
         };
     }
     for (i, &c) in b.iter().enumerate().skip(2) {
         match c {
             0x20..=0x3f => continue,
-            0x40..=0x7e => return Step::Done(csi_event(&b[2..i], c), i + 1),
+            0x40..=0x7e => return Decoded::Done(csi_event(&b[2..i], c), i + 1),
             // Not a sequence after all (Alt+[ then Esc or Enter): what came so far is keys.
             _ => return alt(&b[..2], true),
         }
     }
-    Step::Unfinished
+    Decoded::Unfinished
 }
 
 /// A complete `ESC [ params final`; `None` for those the explorer never asked for.

@@ -2,11 +2,13 @@
 //! here by the experiment itself (fewer throws than the worker's, the same code), handed to
 //! the app as the worker hands them, at both sizes and in every theme.
 
-use super::app::{App, Drawing, Msg};
 use super::curve::at_epsilon;
 use super::input::update;
 use super::layout::screen_layout;
-use super::tests::{Scene, start};
+use super::state::app::App;
+use super::state::die_screen::Drawing;
+use super::state::messages::Msg;
+use super::tests::{Harness, start};
 use super::theme::{Palette, Theme};
 use crate::worker::{Command, CurveSetup, CurveState, CurveUpdate};
 use dicesim_experiment::RunOptions;
@@ -24,12 +26,12 @@ use std::sync::atomic::AtomicBool;
 const THROWS: u64 = 48;
 
 /// The paper's roll and its twin at ε = 1e-9, 700 steps in, paused.
-pub(crate) fn twin_scene(theme: Theme) -> Scene {
+pub(crate) fn twin_scene(theme: Theme) -> Harness {
     let mut s = start();
     s.app.theme = theme;
     s.key(KeyCode::Char('T'));
     s.command(Command::SetPlaying(false));
-    s.engine.advance_steps(700);
+    s.simulator.advance_steps(700);
     s.sync();
     s
 }
@@ -38,7 +40,7 @@ pub(crate) fn twin_scene(theme: Theme) -> Scene {
 fn curves() -> &'static (PredictCurve, PredictCurve) {
     static CURVES: LazyLock<(PredictCurve, PredictCurve)> = LazyLock::new(|| {
         let setup = twin_scene(Theme::default())
-            .engine
+            .simulator
             .curve_setup()
             .expect("a twin rolls");
         let spec = dicesim_experiment::predict::PredictSpec {
@@ -66,8 +68,8 @@ fn curves() -> &'static (PredictCurve, PredictCurve) {
 }
 
 /// The scene with `state` delivered as the worker delivers it: in a snapshot.
-fn with_curve(mut s: Scene, generation: u64, state: CurveState) -> Scene {
-    let mut snapshot = s.engine.snapshot();
+fn with_curve(mut s: Harness, generation: u64, state: CurveState) -> Harness {
+    let mut snapshot = s.simulator.snapshot();
     snapshot.curve = Some(CurveUpdate {
         generation,
         count: THROWS,
@@ -77,11 +79,11 @@ fn with_curve(mut s: Scene, generation: u64, state: CurveState) -> Scene {
     s
 }
 
-pub(crate) fn complete(theme: Theme) -> Scene {
+pub(crate) fn complete(theme: Theme) -> Harness {
     with_curve(twin_scene(theme), 1, CurveState::Complete(curves().1.clone()))
 }
 
-pub(crate) fn partial() -> Scene {
+pub(crate) fn partial() -> Harness {
     with_curve(
         twin_scene(Theme::default()),
         1,
@@ -90,9 +92,9 @@ pub(crate) fn partial() -> Scene {
 }
 
 /// A setup whose throws cannot settle: the time cap ends every roll in mid-air.
-pub(crate) fn failed() -> Scene {
+pub(crate) fn failed() -> Harness {
     let s = twin_scene(Theme::default());
-    let mut setup: CurveSetup = s.engine.curve_setup().expect("a twin rolls");
+    let mut setup: CurveSetup = s.simulator.curve_setup().expect("a twin rolls");
     setup.params.integrator.max_time = 0.01;
     let state = crate::worker::curve::compute(&setup, &AtomicBool::new(false), &mut |_| {});
     with_curve(s, 1, state)
@@ -279,7 +281,7 @@ fn without_colour_or_braille_the_lines_keep_their_own_characters() {
         assert!(text.contains(glyph), "{glyph}: {text}");
     }
     let mut ascii = complete(Theme::monochrome());
-    ascii.app.drawing = Drawing::Ascii;
+    ascii.app.die_screen.drawing = Drawing::Ascii;
     let text = panel_text(&draw(&ascii.app, 80, 24));
     for glyph in ['#', 'o', '|', '=', '-'] {
         assert!(text.contains(glyph), "{glyph}: {text}");

@@ -5,10 +5,10 @@
 //! hundred times more), so lengths are log-compressed: `a·log₁₀(1 + |x|/x₀)`, with `a` the
 //! die's half size and `x₀` a natural unit for each quantity. Directions are exact.
 
-use super::app::App;
-use super::camera::Flat;
 use super::fit;
 use super::format::fmt_num;
+use super::solid::Flat;
+use super::state::app::App;
 use crate::worker::DieState;
 use nalgebra::Vector3;
 use ratatui::style::{Color, Style};
@@ -163,8 +163,8 @@ pub(crate) fn legend(app: &App, width: u16) -> Vec<Line<'static>> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::camera::inside;
-    use super::super::die::{View, picture, place_labels};
+    use super::super::die::{Projection, picture, place_labels};
+    use super::super::solid::inside;
     use super::super::tests::mid_impact_with;
     use super::super::theme::{Palette, Theme};
     use super::super::twin_tests::twin_scene;
@@ -188,7 +188,7 @@ mod tests {
         for (name, app) in [("mid impact", &impact.app), ("twin", &twin.app)] {
             let touching = app.roll.live.die.forces.iter().filter(|f| f.depth > 0.0).count();
             for (w, h) in [(38, 14), (48, 20), (70, 26)] {
-                let view = View::new(app, Rect::new(0, 0, w, h));
+                let view = Projection::new(app, Rect::new(0, 0, w, h));
                 let pic = picture(app, &view);
                 let placed = place_labels(&pic.labels, &view, &pic.outline);
                 let count = |s: &str| placed.iter().filter(|(_, _, l)| l.text == s).count();

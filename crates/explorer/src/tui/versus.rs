@@ -1,73 +1,17 @@
-//! The parameter twin in the explorer (`D`, "differ"): while differ mode is on, a value
-//! changed on the parameter list goes to a second die B only, rolled from the same start
-//! beside the die A, which keeps its values. The worker rolls both (see its twin); this
-//! turns the edits into B's difference and words it for the panels.
+//! The parameter twin (`D`, "differ") on screen: both dice's outcomes and what die B
+//! differs by, for the die panel's title, and the table of their shared throws in the
+//! outcome table's place.
 
-use super::app::App;
 use super::fit::wrap;
-use super::format::fmt_num;
-use super::keys::{Action, Screen, label};
-use super::param::Param;
-use crate::worker::{Command, Phase};
+use super::keys::{Action, Scope, label};
+use super::state::app::App;
+use super::state::twins::differs_text;
+use crate::worker::Phase;
 use dicesim_experiment::versus::{ENDINGS, NO_FACE};
-use dicesim_physics::{InitialCondition, Params};
-use dicesim_setup::keys::ScanKey;
-use dicesim_setup::registry::Role;
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph};
-
-/// `D`: differ mode on or off, with a notice saying what it does.
-pub(crate) fn on_key(app: &mut App, out: &mut Vec<Command>) {
-    let command = app.twin.toggle_differ();
-    let key = label(Screen::Die, Action::Differ);
-    app.notice = Some(if app.twin.differ {
-        format!("differ: the next value changes go to die B only; {key} again ends it")
-    } else {
-        "differ off: die B is gone".to_string()
-    });
-    if let Some(c) = command {
-        app.setup.send(out, c);
-    }
-}
-
-/// While differ mode is on, the value changes a key queued in `out` become B's
-/// difference: the setup as the user sees it goes back to `before` (A keeps its values)
-/// and each change is sent as B's new list. A start value changes both dice (they share
-/// the start), and Δt cannot differ (the dice step in lock-step): both are left to A, Δt
-/// with a notice.
-pub(crate) fn divert(app: &mut App, before: (Params, InitialCondition), out: &mut [Command]) {
-    if !app.twin.differ {
-        return;
-    }
-    for c in out.iter_mut() {
-        let Command::SetParam(key, value) = *c else {
-            continue;
-        };
-        if key.spec.role == Role::Initial {
-            continue;
-        }
-        (app.setup.params, app.setup.initial) = before;
-        if key.key == "integrator.dt" {
-            // Resent as A's own value: nothing changes, and the count of commands sent stays true.
-            *c = Command::SetParam(key, key.get(&before.0, &before.1));
-            app.notice = Some("Δt cannot differ: the two dice step in lock-step".to_string());
-            continue;
-        }
-        *c = app.twin.differ_by(key, value);
-        app.notice = Some(format!("die B: {}", differs_text(&app.twin.differs_by)));
-    }
-}
-
-/// `label value` pairs in the parameter list's words, e.g. `friction μ 0.3, damping γ 0.01`.
-pub(crate) fn differs_text(values: &[(&'static ScanKey, f64)]) -> String {
-    values
-        .iter()
-        .map(|(k, v)| format!("{} {}", Param::of(k).label(), fmt_num(*v)))
-        .collect::<Vec<_>>()
-        .join(", ")
-}
 
 /// A die's outcome in words: `face 3` once decided (`no face` if it ended on none),
 /// `face up 3` while it rolls; `compact`: the number alone (`—` for no face).
@@ -111,7 +55,7 @@ pub(crate) fn render_table(app: &App, area: Rect, frame: &mut Frame) {
     let body = block.inner(area);
     let Some(table) = app.roll.live.versus else {
         frame.render_widget(block, area);
-        let key = label(Screen::Die, Action::Batch);
+        let key = label(Scope::Die, Action::Batch);
         let words = format!("{key}: a batch of shared throws, each rolled in A and in B");
         let lines: Vec<Line> = wrap(&words, body.width as usize)
             .into_iter()

@@ -1,9 +1,9 @@
 //! The parameter twin in the explorer (`D`): edits go to die B only, both dice and both
 //! outcomes are shown, and what B differs by is named.
 
-use super::app::App;
 use super::param::Param;
-use super::tests::{Scene, screen, spun_preset, start};
+use super::state::app::App;
+use super::tests::{Harness, screen, spun_preset, start};
 use super::theme::{Palette, Theme};
 use crate::worker::{Command, Phase};
 use dicesim_physics::Simulation;
@@ -17,7 +17,7 @@ fn projector() -> Theme {
 }
 
 /// Differ mode on, friction selected, typed 0.3 (A keeps the paper's μ).
-fn differing(theme: Theme) -> Scene {
+fn differing(theme: Theme) -> Harness {
     let mut s = start();
     s.app.theme = theme;
     s.key(KeyCode::Char('D'));
@@ -41,7 +41,7 @@ fn a_typed_value_goes_to_b_only_and_a_keeps_its_own() {
     let mut s = differing(Theme::default());
     assert_eq!(friction(&s.app), paper, "A's value on screen");
     assert_eq!(
-        s.engine.params().ground.friction,
+        s.simulator.params().ground.friction,
         paper,
         "A's value in the worker"
     );
@@ -98,7 +98,7 @@ fn dt_cannot_differ_and_changes_nothing() {
     s.select(Param::named("integrator.dt"));
     s.key(KeyCode::Right);
     assert_eq!(s.app.setup.params.integrator.dt, dt);
-    assert_eq!(s.engine.params().integrator.dt, dt);
+    assert_eq!(s.simulator.params().integrator.dt, dt);
     assert!(s.app.roll.live.twin.is_none());
     assert!(
         s.app
@@ -114,11 +114,11 @@ fn dt_cannot_differ_and_changes_nothing() {
 fn the_parameter_twin_screen() {
     let mut s = differing(projector());
     s.command(Command::SetPlaying(false));
-    s.engine.advance_steps(700);
+    s.simulator.advance_steps(700);
     // A batch of shared throws, each rolled in A and in B, fills the table.
     s.app.roll.batch_size = 60;
     s.key(KeyCode::Char('b'));
-    s.engine.run_batch_here();
+    s.simulator.run_batch_here();
     s.sync();
     let table = s.app.roll.live.versus.expect("the shared throws' table");
     assert_eq!(table.throws(), 60);

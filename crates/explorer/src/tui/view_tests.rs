@@ -1,22 +1,23 @@
 //! The die, the energy plot's legend and ticks and the outcome table, as a class sees them:
 //! snapshots of deterministic states and checks that a drawing defect would break.
 
-use super::app::{App, Drawing};
-use super::camera::{Camera, inside};
-use super::die::{View, picture, place_labels, render_die};
-use super::energy::{nice_ticks, render_energy};
+use super::chart::nice_ticks;
+use super::die::{Projection, picture, place_labels, render_die};
 use super::layout::screen_layout;
 use super::outcomes::{RELIABLE_ROLLS, render_outcomes};
+use super::plot::render_plot;
 use super::render::render;
-use super::tests::{Scene, mid_impact_with, spun_preset};
+use super::solid::inside;
+use super::state::app::App;
+use super::state::camera::OrbitCamera;
+use super::state::die_screen::Drawing;
+use super::tests::{Harness, Panel, mid_impact_with, spun_preset};
 use super::theme::{Palette, Theme};
 use crate::worker::Phase;
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-
-type Panel = fn(&App, Rect, &mut ratatui::Frame);
 
 /// One panel drawn where the layout of a `w`×`h` terminal puts it, painted as the screen is.
 fn panel_at(app: &App, w: u16, h: u16, pick: fn(&super::layout::Areas) -> Rect, draw: Panel) -> Buffer {
@@ -49,20 +50,20 @@ fn screen(app: &App, w: u16, h: u16) -> String {
 }
 
 /// The paper's spun roll `steps` steps in: at 150 the die is still falling, tumbling.
-fn after(steps: u64, theme: Theme) -> Scene {
-    let mut s = Scene::new(&spun_preset(), theme);
-    s.engine.advance_steps(steps);
+fn after(steps: u64, theme: Theme) -> Harness {
+    let mut s = Harness::new(&spun_preset(), theme);
+    s.simulator.advance_steps(steps);
     s.sync();
     s
 }
 
-fn at_rest(theme: Theme) -> Scene {
-    let mut s = Scene::new(&spun_preset(), theme);
+fn at_rest(theme: Theme) -> Harness {
+    let mut s = Harness::new(&spun_preset(), theme);
     s.run_to_end();
     s
 }
 
-const HIGH: Camera = Camera {
+const HIGH: OrbitCamera = OrbitCamera {
     yaw_deg: 135.0,
     pitch_deg: 60.0,
     zoom: 1,
@@ -71,7 +72,7 @@ const HIGH: Camera = Camera {
 /// The die's own cells in the panel: those whose middle lies inside its outline, away
 /// from the outline itself (where the edge's dots and the floor may share a cell).
 fn inner_cells(app: &App, body: Rect) -> Vec<(u16, u16)> {
-    let view = View::new(app, body);
+    let view = Projection::new(app, body);
     let pic = picture(app, &view);
     let (cw, ch) = (
         (view.x.1 - view.x.0) / body.width as f64,
@@ -114,7 +115,7 @@ fn check_solid(app: &App) -> Buffer {
             );
         }
     }
-    let view = View::new(app, body);
+    let view = Projection::new(app, body);
     let pic = picture(app, &view);
     let placed = place_labels(&pic.labels, &view, &pic.outline);
     let mut taken = std::collections::HashSet::new();
@@ -132,7 +133,7 @@ fn the_solid_die_mid_air_from_two_angles() {
     assert_eq!(s.app.roll.live.phase, Phase::Falling);
     let low = check_solid(&s.app);
     insta::assert_snapshot!("die_mid_air_default_camera", text(&low));
-    s.app.camera = HIGH;
+    s.app.die_screen.camera = HIGH;
     let high = check_solid(&s.app);
     insta::assert_snapshot!("die_mid_air_high_camera", text(&high));
     assert_ne!(text(&low), text(&high));
@@ -143,17 +144,17 @@ fn the_solid_die_at_rest_from_two_angles() {
     let mut s = at_rest(Theme::default());
     let low = check_solid(&s.app);
     insta::assert_snapshot!("die_at_rest_default_camera", text(&low));
-    s.app.camera = HIGH;
+    s.app.die_screen.camera = HIGH;
     insta::assert_snapshot!("die_at_rest_high_camera", text(&check_solid(&s.app)));
 }
 
 /// The shipped loaded die, `steps` steps into its own roll.
-pub(crate) fn loaded_after(steps: u64, theme: Theme) -> Scene {
+pub(crate) fn loaded_after(steps: u64, theme: Theme) -> Harness {
     use dicesim_setup::preset::{Preset, shipped_text};
     let text = shipped_text("loaded-corner").expect("shipped");
     let preset = Preset::from_toml_str(text, "loaded-corner").expect("valid");
-    let mut s = Scene::new(&preset, theme);
-    s.engine.advance_steps(steps);
+    let mut s = Harness::new(&preset, theme);
+    s.simulator.advance_steps(steps);
     s.sync();
     s
 }
@@ -162,7 +163,7 @@ pub(crate) fn loaded_after(steps: u64, theme: Theme) -> Scene {
 fn the_heavy_corner_of_a_loaded_die_is_marked() {
     for drawing in [Drawing::Braille, Drawing::Ascii] {
         let mut s = loaded_after(150, Theme::default());
-        s.app.drawing = drawing;
+        s.app.die_screen.drawing = drawing;
         let extra = s.app.roll.live.params.die.extra_corner_mass;
         let heavy = extra.iter().position(|&m| m > 0.0).expect("a heavy corner");
         let label = format!("+{} g", super::format::fmt_num(extra[heavy]));
@@ -170,7 +171,7 @@ fn the_heavy_corner_of_a_loaded_die_is_marked() {
         let t = text(&b);
         assert!(t.contains(&label), "{label} on the die:\n{t}");
         // The mark is drawn where the corner is, when the camera sees that corner.
-        let view = View::new(&s.app, Rect::new(0, 0, b.area.width - 2, b.area.height - 2));
+        let view = Projection::new(&s.app, Rect::new(0, 0, b.area.width - 2, b.area.height - 2));
         let pic = picture(&s.app, &view);
         let mark = if drawing == Drawing::Ascii { "#" } else { "◆" };
         let marked = pic.labels.iter().any(|l| l.text == mark);
@@ -182,7 +183,7 @@ fn the_heavy_corner_of_a_loaded_die_is_marked() {
     }
     // A fair die carries no mark.
     let s = after(150, Theme::default());
-    let view = View::new(&s.app, Rect::new(0, 0, 64, 13));
+    let view = Projection::new(&s.app, Rect::new(0, 0, 64, 13));
     let pic = picture(&s.app, &view);
     assert!(
         !pic.labels.iter().any(|l| l.text.ends_with(" g") || l.text == "◆"),
@@ -194,7 +195,7 @@ fn the_heavy_corner_of_a_loaded_die_is_marked() {
 fn a_die_shows_at_most_three_faces_and_nine_edges() {
     let s = after(150, Theme::default());
     let body = Rect::new(0, 0, 66, 15);
-    let view = View::new(&s.app, body);
+    let view = Projection::new(&s.app, body);
     let pic = picture(&s.app, &view);
     // Seen faces are filled in colour themes; each seen face carries its pips.
     let faces = pic.faces.len();
@@ -211,7 +212,7 @@ fn a_die_shows_at_most_three_faces_and_nine_edges() {
 #[test]
 fn ascii_draws_slopes_not_stars() {
     let mut s = after(150, Theme::default());
-    s.app.drawing = Drawing::Ascii;
+    s.app.die_screen.drawing = Drawing::Ascii;
     let b = panel_at(&s.app, 120, 36, |a| a.die, render_die);
     let t = text(&b);
     assert!(!t.contains('*'), "{t}");
@@ -224,7 +225,7 @@ fn ascii_draws_slopes_not_stars() {
 #[test]
 fn every_arrow_has_its_label_and_the_legend_sits_below_the_die() {
     let mut s = mid_impact_with(Theme::default());
-    s.app.vectors = true;
+    s.app.die_screen.arrows = true;
     let b = check_solid(&s.app);
     let t = text(&b);
     let rows: Vec<&str> = t.lines().collect();
@@ -260,7 +261,7 @@ fn every_arrow_has_its_label_and_the_legend_sits_below_the_die() {
 fn the_twins_label_never_covers_the_die() {
     let mut s = after(150, Theme::default());
     s.key(ratatui::crossterm::event::KeyCode::Char('T'));
-    s.engine.advance_steps(150);
+    s.simulator.advance_steps(150);
     s.sync();
     assert!(s.app.roll.live.twin.is_some());
     let t = text(&check_solid(&s.app));
@@ -297,7 +298,7 @@ fn the_energy_legend_names_every_term_at_both_sizes() {
     for theme in [Theme::default(), Theme::monochrome()] {
         let s = mid_impact_with(theme);
         for (w, h) in [(80, 24), (120, 36)] {
-            let b = panel_at(&s.app, w, h, |a| a.energy, render_energy);
+            let b = panel_at(&s.app, w, h, |a| a.energy, render_plot);
             let t = text(&b);
             for name in ["total", "transl", "rot", "grav", "elastic"] {
                 assert!(t.contains(name), "{name} missing at {w}×{h}:\n{t}");
@@ -485,8 +486,8 @@ fn a_p_value_from_too_few_rolls_is_marked_unreliable() {
 
 mod map_screen {
     use super::*;
-    use crate::tui::map::MapView;
     use crate::tui::map_tests::{export_into, map_scene};
+    use crate::tui::state::map_view::MapView;
     use dicesim_experiment::{Cell, Layer, MapSpec, Method, run_map};
     use dicesim_figures::plot::Record;
     use dicesim_setup::preset::{Preset, shipped_text};
@@ -655,27 +656,27 @@ mod map_screen {
 /// and drilled pips, whole screens at both sizes.
 mod real_dice {
     use super::*;
-    use crate::tui::camera::Solid;
+    use crate::tui::solid::Solid;
     use dicesim_physics::Params;
     use dicesim_physics::contact_sphere_centres;
     use dicesim_setup::preset::{Preset, shipped_text};
     use nalgebra::Vector3;
 
-    fn shipped(name: &str, overrides: &[&str]) -> Scene {
+    fn shipped(name: &str, overrides: &[&str]) -> Harness {
         let text = shipped_text(name).expect("shipped");
         let preset = Preset::from_toml_str(text, name)
             .expect("valid")
             .with_overrides(overrides)
             .expect("valid overrides");
-        Scene::new(&preset, Theme::default())
+        Harness::new(&preset, Theme::default())
     }
 
     /// The tennis racket at the first step its middle axis has turned more than a quarter
     /// turn away from `L`: half way through its first flip, in flight.
-    fn tennis_racket_mid_flip() -> Scene {
+    fn tennis_racket_mid_flip() -> Harness {
         let mut s = shipped("tennis-racket", &[]);
         for _ in 0..4000 {
-            s.engine.advance_steps(1);
+            s.simulator.advance_steps(1);
             s.sync();
             let die = &s.app.roll.live.die;
             let body = Solid::new(&s.app.roll.live.params.die, &die.corners);
@@ -691,10 +692,10 @@ mod real_dice {
     fn the_rounded_die_the_plate_and_the_tennis_racket_mid_flip() {
         let spin = ["initial.angular_velocity=[12,-20,6]"];
         let mut rounded = shipped("rounded-die", &spin);
-        rounded.engine.advance_steps(150);
+        rounded.simulator.advance_steps(150);
         rounded.sync();
         let mut plate = shipped("plate", &spin);
-        plate.engine.advance_steps(300);
+        plate.simulator.advance_steps(300);
         plate.sync();
         let racket = tennis_racket_mid_flip();
         for (name, s) in [
@@ -733,7 +734,7 @@ mod real_dice {
         assert!((body.sharp_corner(7) - offset - Vector3::new(1.5, 1.0, 0.5)).norm() < 1e-12);
         assert!((body.lowest().z - (offset.z - 0.5)).abs() < 1e-12);
         // Seen level along y: the outline reaches the half sizes but cuts the corners round.
-        let level = Camera {
+        let level = OrbitCamera {
             yaw_deg: 0.0,
             pitch_deg: 0.0,
             zoom: 0,
@@ -756,7 +757,7 @@ mod real_dice {
     fn drilled_pips_are_drawn_at_their_diameter() {
         let s = shipped("rounded-die", &[]);
         let body = Rect::new(0, 0, 60, 20);
-        let view = View::new(&s.app, body);
+        let view = Projection::new(&s.app, body);
         let pic = picture(&s.app, &view);
         let radius = 0.5 * s.app.roll.live.params.die.pip_diameter;
         let mut counted = 0;
@@ -788,28 +789,25 @@ fn a_body_value_no_die_can_have_is_refused_and_changes_nothing() {
         "rounded-die",
     )
     .expect("valid");
-    let mut s = Scene::new(&preset, Theme::default());
+    let mut s = Harness::new(&preset, Theme::default());
     let before = (s.app.setup.params, s.app.setup.initial);
-    let mut out = Vec::new();
     // In the row's range (0…10 cm) but not below the smallest half size, 0.8 cm.
     let radius = Param::named("die.corner_radius");
-    let refused = s.app.setup.set_param(&mut out, radius, 0.9).unwrap_err();
+    let refused = s.app.setup.set_param(radius, 0.9).unwrap_err();
     assert!(refused.contains("below the smallest half size"), "{refused}");
     // Pips 0.5 cm wide do not fit beside each other on a 1.6 cm face rounded by 0.15 cm.
     let refused = s
         .app
         .setup
-        .set_param(&mut out, Param::named("die.pip_diameter"), 0.5)
+        .set_param(Param::named("die.pip_diameter"), 0.5)
         .unwrap_err();
     assert!(refused.contains("at most 0.4 cm"), "{refused}");
-    assert!(out.is_empty() && (s.app.setup.params, s.app.setup.initial) == before);
+    assert!((s.app.setup.params, s.app.setup.initial) == before);
     // A flatter die is a die: the worker takes it and rolls it from the start.
     let z = Param::named("die.half_sizes.z");
-    s.engine.advance_steps(50);
-    s.app.setup.set_param(&mut out, z, 0.6).expect("a body");
-    for c in out {
-        s.command(c);
-    }
+    s.simulator.advance_steps(50);
+    let c = s.app.setup.set_param(z, 0.6).expect("a body");
+    s.command(c);
     assert_eq!(s.app.roll.live.params.die.half_sizes, [0.8, 0.8, 0.6]);
     assert_eq!(
         s.app.roll.live.timeline.position, 0,

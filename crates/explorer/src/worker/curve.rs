@@ -1,7 +1,7 @@
 //! The twin screen's predictability curve: `experiment::predict::run_prediction` for the
 //! worker's current setup on a thread of its own, its partial curves passed on as they grow.
 //!
-//! The curve follows the engine rather than commands: on every tick the worker hands over
+//! The curve follows the simulator rather than commands: on every tick the worker hands over
 //! the setup the curve should show (none while no twin rolls), and a setup other than the
 //! one computing stops the old computation and starts a new one under a new generation.
 //! Stopping waits for the thread, which takes milliseconds since every roll looks at the
@@ -127,7 +127,7 @@ impl CurveRunner {
         self.runner.running()
     }
 
-    /// Follows the setup the engine wants a curve of (`None`: no twin, no curve), and
+    /// Follows the setup the simulator wants a curve of (`None`: no twin, no curve), and
     /// returns what the UI has not seen yet: a new curve's start, a grown curve, the end.
     pub(crate) fn sync(&mut self, wanted: Option<CurveSetup>) -> Option<CurveUpdate> {
         let Some(setup) = wanted else {

@@ -1,4 +1,4 @@
-//! The explorer's exports as jobs: the engine orders one (what, the folder, the name it
+//! The explorer's exports as jobs: the simulator orders one (what, the folder, the name it
 //! asks for), the export runner runs it on a thread of its own, and only there does it
 //! meet the file system: free names chosen and checked together (see
 //! `output::free_outputs`), each file written whole or not at all. The roll gives its
@@ -6,7 +6,7 @@
 //! cells (CSV) and its picture (PNG); the roll as an animation, one GIF (written by
 //! `experiment::animation`).
 
-use super::ExportStatus;
+use super::protocol::ExportStatus;
 use dicesim_experiment::{BasinMap, Error, Layer};
 use dicesim_figures::animation::{Animated, AnimationSpec, write_animation};
 use dicesim_figures::export::{ExportFiles, Exported, export_roll};
@@ -60,7 +60,7 @@ pub(crate) struct ExportJob {
 
 /// What an export wrote.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) enum Written {
+pub(crate) enum WrittenExport {
     Roll(Exported),
     Map {
         csv: PathBuf,
@@ -79,7 +79,11 @@ impl ExportJob {
     /// Chooses free names in the folder, checks them and writes the files on this
     /// thread; nothing is written if a check fails, and a cancel before the last file
     /// leaves none.
-    pub fn run(&self, cancel: &AtomicBool, progress: &mut dyn FnMut(ExportStatus)) -> Result<Written, Error> {
+    pub(crate) fn run(
+        &self,
+        cancel: &AtomicBool,
+        progress: &mut dyn FnMut(ExportStatus),
+    ) -> Result<WrittenExport, Error> {
         let dir = std::fs::canonicalize(&self.dir).unwrap_or_else(|_| self.dir.clone());
         let outputs = || free_outputs(&dir, &self.stem, ["csv", "png"]);
         match &self.what {
@@ -98,7 +102,7 @@ impl ExportJob {
                 export_roll(params, initial, title, &files, cancel, &mut |p| {
                     progress(ExportStatus::Roll(p))
                 })
-                .map(Written::Roll)
+                .map(WrittenExport::Roll)
             }
             Exporting::Map {
                 map,
@@ -121,7 +125,7 @@ impl ExportJob {
                     let _ = std::fs::remove_file(csv.path());
                     return Err(e.into());
                 }
-                Ok(Written::Map {
+                Ok(WrittenExport::Map {
                     csv: csv.path().to_path_buf(),
                     png: png.path().to_path_buf(),
                     size: *size,
@@ -139,7 +143,7 @@ impl ExportJob {
                 write_animation(preset, params, initial, spec, &gif, cancel, &mut |p| {
                     progress(ExportStatus::Animation(p))
                 })
-                .map(|animated| Written::Animation {
+                .map(|animated| WrittenExport::Animation {
                     gif: gif.path().to_path_buf(),
                     animated,
                 })
@@ -150,7 +154,7 @@ impl ExportJob {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{Command, Engine, ExportStatus, Notice};
+    use super::super::{Command, ExportStatus, Notice, Simulator};
     use dicesim_figures::animation::gif_comments;
     use dicesim_physics::Simulation;
     use dicesim_setup::chaos::perturbed;
@@ -178,24 +182,24 @@ mod tests {
     fn the_animation_export_records_the_faces_the_physics_gives_die_and_twin() {
         let dir = tempfile::tempdir().expect("temp dir");
         let preset = Preset::default();
-        let mut engine = Engine::new(&preset).expect("valid preset");
-        engine.handle(Command::SetTwin(Some(1e-9)));
+        let mut simulator = Simulator::new(&preset).expect("valid preset");
+        simulator.handle(Command::SetTwin(Some(1e-9)));
         // 2×: half the frames of real time, so the test stays quick.
-        engine.handle(Command::SetSpeed(Speed::from_label("2×").expect("on the ladder")));
-        engine.handle(animation_command(dir.path()));
+        simulator.handle(Command::SetSpeed(Speed::from_label("2×").expect("on the ladder")));
+        simulator.handle(animation_command(dir.path()));
         assert!(
-            matches!(engine.snapshot().export, Some(ExportStatus::Animation(_))),
+            matches!(simulator.snapshot().export, Some(ExportStatus::Animation(_))),
             "the export is shown running"
         );
-        let job = engine.take_export_request().expect("an export ordered");
+        let job = simulator.take_export_request().expect("an export ordered");
         let mut drawn = 0;
         let result = job.run(&AtomicBool::new(false), &mut |p| {
             if let ExportStatus::Animation(p) = p {
                 drawn = drawn.max(if p.drawing { p.done } else { 0 });
             }
         });
-        engine.finish_export(job.id, result);
-        let snapshot = engine.snapshot();
+        simulator.finish_export(job.id, result);
+        let snapshot = simulator.snapshot();
         assert_eq!(snapshot.export, None, "the export is over");
         let [name] = &files_in(dir.path())[..] else {
             panic!("one file: {:?}", files_in(dir.path()))
@@ -245,12 +249,12 @@ mod tests {
 
     #[test]
     fn an_instant_explorer_films_in_real_time_and_a_removed_twin_is_not_filmed() {
-        let mut engine = Engine::new(&Preset::default()).expect("valid preset");
-        engine.handle(Command::SetTwin(Some(1e-6)));
-        engine.handle(Command::SetTwin(None));
-        engine.handle(Command::SetSpeed(Speed::INSTANT));
-        engine.handle(animation_command(std::path::Path::new(".")));
-        let job = engine.take_export_request().expect("an export ordered");
+        let mut simulator = Simulator::new(&Preset::default()).expect("valid preset");
+        simulator.handle(Command::SetTwin(Some(1e-6)));
+        simulator.handle(Command::SetTwin(None));
+        simulator.handle(Command::SetSpeed(Speed::INSTANT));
+        simulator.handle(animation_command(std::path::Path::new(".")));
+        let job = simulator.take_export_request().expect("an export ordered");
         let super::Exporting::Animation { spec, .. } = job.what else {
             panic!("an animation: {:?}", job.what)
         };
@@ -262,10 +266,10 @@ mod tests {
     #[test]
     fn a_cancelled_animation_writes_nothing_and_a_second_never_overwrites_the_first() {
         let dir = tempfile::tempdir().expect("temp dir");
-        let mut engine = Engine::new(&Preset::default()).expect("valid preset");
-        engine.handle(Command::SetSpeed(Speed::from_label("5×").expect("on the ladder")));
-        engine.handle(animation_command(dir.path()));
-        let job = engine.take_export_request().expect("an export ordered");
+        let mut simulator = Simulator::new(&Preset::default()).expect("valid preset");
+        simulator.handle(Command::SetSpeed(Speed::from_label("5×").expect("on the ladder")));
+        simulator.handle(animation_command(dir.path()));
+        let job = simulator.take_export_request().expect("an export ordered");
         // Cancelled half-way through writing the frames, as the key does from the UI.
         let cancel = AtomicBool::new(false);
         let result = job.run(&cancel, &mut |p| {
@@ -280,20 +284,20 @@ mod tests {
             matches!(result, Err(dicesim_experiment::Error::Cancelled)),
             "{result:?}"
         );
-        engine.finish_export(job.id, result);
+        simulator.finish_export(job.id, result);
         assert_eq!(
-            engine.snapshot().notice,
+            simulator.snapshot().notice,
             Some(Notice::Said("export cancelled: nothing was written".to_string()))
         );
         assert_eq!(files_in(dir.path()), Vec::<String>::new(), "nothing written");
 
         // Asked again while one runs: refused, the running one untouched.
-        engine.handle(animation_command(dir.path()));
-        engine.handle(animation_command(dir.path()));
-        assert_eq!(engine.snapshot().notice, Some(Notice::ExportRunning));
-        engine.run_export_here();
-        engine.handle(animation_command(dir.path()));
-        engine.run_export_here();
+        simulator.handle(animation_command(dir.path()));
+        simulator.handle(animation_command(dir.path()));
+        assert_eq!(simulator.snapshot().notice, Some(Notice::ExportRunning));
+        simulator.run_export_here();
+        simulator.handle(animation_command(dir.path()));
+        simulator.run_export_here();
         let names = files_in(dir.path());
         assert_eq!(names.len(), 2, "a free name each time: {names:?}");
         assert!(names.iter().all(|n| n.ends_with(".gif")), "{names:?}");

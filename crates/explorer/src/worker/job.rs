@@ -1,7 +1,7 @@
 //! One computation on a thread of its own with a cancel flag: the worker's batches, maps,
 //! curves and exports all run this way, so cancelling and waiting are written once. Each
 //! kind of job has one [`Runner`] (at most one job of that kind at a time, its progress
-//! taken on every tick), and the engine keeps what it asked for in an [`Order`]: the
+//! taken on every tick), and the simulator keeps what it asked for in an [`Order`]: the
 //! runner stops any job whose id the order no longer waits for.
 
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -15,7 +15,7 @@ pub(super) struct Job<T> {
 
 impl<T: Send + 'static> Job<T> {
     /// Starts `work` on a thread named `name`; `work` gets the flag [`Job::stop`] sets.
-    pub fn spawn(
+    pub(crate) fn spawn(
         name: &str,
         work: impl FnOnce(&AtomicBool) -> T + Send + 'static,
     ) -> std::io::Result<Job<T>> {
@@ -29,18 +29,18 @@ impl<T: Send + 'static> Job<T> {
 }
 
 impl<T> Job<T> {
-    pub fn is_finished(&self) -> bool {
+    pub(crate) fn is_finished(&self) -> bool {
         self.thread.is_finished()
     }
 
     /// Its result; `None` if it panicked.
-    pub fn join(self) -> Option<T> {
+    pub(crate) fn join(self) -> Option<T> {
         self.thread.join().ok()
     }
 
     /// Cancels it and waits for its thread to end. Every computation looks at the flag
     /// within a few thousand steps, so this takes milliseconds, not a roll.
-    pub fn stop(self) {
+    pub(crate) fn stop(self) {
         self.cancel.store(true, Ordering::Relaxed);
         let _ = self.thread.join();
     }
@@ -51,23 +51,23 @@ pub(super) struct Post<P>(Arc<Mutex<P>>);
 
 impl<P> Post<P> {
     /// Changes what waits for the worker (appends rolls, replaces the newest curve…).
-    pub fn post(&self, change: impl FnOnce(&mut P)) {
+    pub(crate) fn post(&self, change: impl FnOnce(&mut P)) {
         change(&mut self.0.lock().unwrap_or_else(|e| e.into_inner()));
     }
 }
 
 /// The one shape of the worker's jobs (batch, export, map, curve): started under the id
-/// the engine gave it, its progress taken on every tick, stopped or joined once. Only the
+/// the simulator gave it, its progress taken on every tick, stopped or joined once. Only the
 /// kind of progress (`P`) and of result (`T`) differ.
 pub(super) struct Tracked<P, T> {
-    pub id: u64,
+    pub(crate) id: u64,
     progress: Arc<Mutex<P>>,
     job: Job<T>,
 }
 
 impl<P: Default + Send + 'static, T: Send + 'static> Tracked<P, T> {
     /// Starts `work` on a thread named `name`; it gets the cancel flag and where to post.
-    pub fn start(
+    pub(crate) fn start(
         name: &str,
         id: u64,
         work: impl FnOnce(&AtomicBool, &Post<P>) -> T + Send + 'static,
@@ -79,16 +79,16 @@ impl<P: Default + Send + 'static, T: Send + 'static> Tracked<P, T> {
     }
 
     /// What was posted since the last call.
-    pub fn progress(&self) -> P {
+    pub(crate) fn progress(&self) -> P {
         std::mem::take(&mut *self.progress.lock().unwrap_or_else(|e| e.into_inner()))
     }
 
-    pub fn is_finished(&self) -> bool {
+    pub(crate) fn is_finished(&self) -> bool {
         self.job.is_finished()
     }
 
     /// Waits for its end: what was posted last, and its result (`None` if it panicked).
-    pub fn finish(self) -> (P, Option<T>) {
+    pub(crate) fn finish(self) -> (P, Option<T>) {
         let result = self.job.join();
         let rest = std::mem::take(&mut *self.progress.lock().unwrap_or_else(|e| e.into_inner()));
         (rest, result)
@@ -97,7 +97,7 @@ impl<P: Default + Send + 'static, T: Send + 'static> Tracked<P, T> {
 
 impl<P, T> Tracked<P, T> {
     /// Cancels it and waits for its thread (see [`Job::stop`]).
-    pub fn stop(self) {
+    pub(crate) fn stop(self) {
         self.job.stop();
     }
 }
@@ -118,24 +118,24 @@ pub(super) struct Runner<P, T> {
 }
 
 impl<P: Default + Send + 'static, T: Send + 'static> Runner<P, T> {
-    pub fn new(name: &'static str) -> Runner<P, T> {
+    pub(crate) fn new(name: &'static str) -> Runner<P, T> {
         Runner { name, run: None }
     }
 
-    pub fn running(&self) -> bool {
+    pub(crate) fn running(&self) -> bool {
         self.run.is_some()
     }
 
-    /// Stops the job unless it is the one `wanted` (the engine's order moved on, or was
+    /// Stops the job unless it is the one `wanted` (the simulator's order moved on, or was
     /// cancelled).
-    pub fn keep_only(&mut self, wanted: Option<u64>) {
+    pub(crate) fn keep_only(&mut self, wanted: Option<u64>) {
         if self.run.as_ref().is_some_and(|r| Some(r.id) != wanted) {
             self.stop();
         }
     }
 
     /// Starts `work` under `id`, after stopping the job running, if any.
-    pub fn start(
+    pub(crate) fn start(
         &mut self,
         id: u64,
         work: impl FnOnce(&AtomicBool, &Post<P>) -> T + Send + 'static,
@@ -146,7 +146,7 @@ impl<P: Default + Send + 'static, T: Send + 'static> Runner<P, T> {
     }
 
     /// What the job did since the last call; `None` while none runs.
-    pub fn poll(&mut self) -> Option<Report<P, T>> {
+    pub(crate) fn poll(&mut self) -> Option<Report<P, T>> {
         let run = self.run.as_ref()?;
         if !run.is_finished() {
             return Some(Report::Progress(run.id, run.progress()));
@@ -160,7 +160,7 @@ impl<P: Default + Send + 'static, T: Send + 'static> Runner<P, T> {
 
 impl<P, T> Runner<P, T> {
     /// Cancels the job running, if any, and waits for its thread (see [`Job::stop`]).
-    pub fn stop(&mut self) {
+    pub(crate) fn stop(&mut self) {
         if let Some(run) = self.run.take() {
             run.stop();
         }
@@ -173,7 +173,7 @@ impl<P, T> Drop for Runner<P, T> {
     }
 }
 
-/// What the engine has asked a runner for: the job it waits for (with what it shows of
+/// What the simulator has asked a runner for: the job it waits for (with what it shows of
 /// it, `S`), and the request not yet taken. Ids are never reused, so a report of an older
 /// job is recognised and dropped.
 #[derive(Debug)]
@@ -195,7 +195,7 @@ impl<S, R> Default for Order<S, R> {
 
 impl<S, R> Order<S, R> {
     /// Orders a new job (replacing any other), shown as `state`; `request` gets its id.
-    pub fn place(&mut self, state: S, request: impl FnOnce(u64) -> R) {
+    pub(crate) fn place(&mut self, state: S, request: impl FnOnce(u64) -> R) {
         let id = self.started;
         self.started += 1;
         self.current = Some((id, state));
@@ -203,32 +203,32 @@ impl<S, R> Order<S, R> {
     }
 
     /// Nothing is waited for any more; what was shown of the job, if one was ordered.
-    pub fn cancel(&mut self) -> Option<S> {
+    pub(crate) fn cancel(&mut self) -> Option<S> {
         self.request = None;
         self.current.take().map(|(_, s)| s)
     }
 
     /// The request, once, for the runner.
-    pub fn take_request(&mut self) -> Option<R> {
+    pub(crate) fn take_request(&mut self) -> Option<R> {
         self.request.take()
     }
 
     /// The job waited for.
-    pub fn id(&self) -> Option<u64> {
+    pub(crate) fn id(&self) -> Option<u64> {
         self.current.as_ref().map(|(id, _)| *id)
     }
 
-    pub fn state(&self) -> Option<&S> {
+    pub(crate) fn state(&self) -> Option<&S> {
         self.current.as_ref().map(|(_, s)| s)
     }
 
     /// What is shown of job `id`, if it is the one waited for.
-    pub fn state_of(&mut self, id: u64) -> Option<&mut S> {
+    pub(crate) fn state_of(&mut self, id: u64) -> Option<&mut S> {
         self.current.as_mut().filter(|(i, _)| *i == id).map(|(_, s)| s)
     }
 
     /// Job `id` has ended: what was shown of it, if it was the one waited for.
-    pub fn finish(&mut self, id: u64) -> Option<S> {
+    pub(crate) fn finish(&mut self, id: u64) -> Option<S> {
         if self.id() == Some(id) {
             self.current.take().map(|(_, s)| s)
         } else {

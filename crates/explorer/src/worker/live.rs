@@ -2,11 +2,12 @@
 //! can be stepped back and scrubbed, its energy history thinned to what a plot needs, and
 //! the pacing epoch that tells the pacer when wall time and simulated time part. It knows
 //! nothing of the outcome table, the preset or the jobs: a random roll that ends is handed
-//! to the engine once ([`LiveRoll::take_finished`]).
+//! to the simulator once ([`LiveRoll::take_finished`]).
 
+use super::play_on::played_out;
+use super::protocol::{DieState, EnergySample, Notice, Phase, RollKind, TimelineSnapshot, TwinSnapshot};
 use super::timeline::{Keyframe, Timeline};
-use super::twin::Twin;
-use super::{DieState, EnergySample, Notice, Phase, RollKind, TimelineSnapshot, TwinSnapshot};
+use super::twin_die::Twin;
 use dicesim_experiment::{RollRecord, ScanKey};
 use dicesim_physics::{InitialCondition, Params, Simulation, Status, face_most_nearly_up};
 use dicesim_setup::preset::Speed;
@@ -15,40 +16,6 @@ use dicesim_setup::registry::Role;
 /// At most this many energy samples per roll: longer rolls keep each term's peak over a
 /// stride of steps, so impact spikes survive the thinning.
 const HISTORY_SAMPLES: u64 = 40_000;
-
-/// s of simulated time a settled die plays on past its stopping rule at most.
-pub(crate) const PLAY_ON_S: f64 = 2.0;
-
-/// A die that plays on past its stopping rule is at rest once its kinetic energy is below
-/// this share of the rule's threshold.
-pub(crate) const AT_REST_SHARE: f64 = 0.01;
-
-/// Whether a die's roll is over on screen. Its stopping rule decides the face (and ends
-/// the roll's data: the outcome, the table, the exports) while the die may still rock or
-/// slide a little; a settled die plays on until it is at rest or [`PLAY_ON_S`] later,
-/// whichever comes first, so a class never sees it freeze mid-motion. A roll that did not
-/// settle, or went unstable, is over at once.
-pub(crate) fn played_out(sim: &Simulation) -> bool {
-    match sim.outcome() {
-        None => false,
-        Some(o) if o.status != Status::Settled => true,
-        Some(o) => {
-            sim.energy().kinetic() < AT_REST_SHARE * sim.stop_threshold()
-                || sim.state().time_s >= o.time_s + PLAY_ON_S
-        }
-    }
-}
-
-/// A simulation's energy and every quantity now (the die's, or a parameter twin's).
-pub(crate) fn energy_sample(sim: &Simulation) -> EnergySample {
-    let energy = sim.energy();
-    EnergySample {
-        time_s: sim.state().time_s,
-        energy,
-        total: energy.total(),
-        quantities: dicesim_setup::quantity::read_all(sim),
-    }
-}
 
 /// The roll's energy samples not yet sent, each term's peak over a stride of steps.
 #[derive(Debug, Default)]
@@ -400,7 +367,7 @@ impl LiveRoll {
     }
 
     fn sample(&self) -> EnergySample {
-        energy_sample(&self.sim)
+        EnergySample::of(&self.sim)
     }
 
     /// One step with its bookkeeping, the die and its twin in lock-step; returns whether
@@ -555,7 +522,7 @@ impl LiveRoll {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::worker::{Command, Engine, Phase};
+    use crate::worker::{Command, Phase, Simulator};
     use dicesim_setup::preset::Preset;
 
     /// Bits of the die's state (`==` on floats would let −0 pass for +0).
@@ -579,7 +546,7 @@ mod tests {
             "the paper's die is still moving when its face is decided"
         );
 
-        let mut e = Engine::new(&preset).expect("valid");
+        let mut e = Simulator::new(&preset).expect("valid");
         e.run_to_end();
         let end = e.timeline().furthest;
         assert_eq!(e.timeline().decided, Some(outcome.steps));
@@ -612,7 +579,7 @@ mod tests {
     #[test]
     fn a_random_roll_enters_the_table_with_the_stops_outcome() {
         let preset = Preset::default();
-        let mut e = Engine::new(&preset).expect("valid");
+        let mut e = Simulator::new(&preset).expect("valid");
         e.handle(Command::RandomRoll);
         e.run_to_end();
         let table = e.snapshot().table.expect("the table changed");
@@ -629,7 +596,7 @@ mod tests {
         let preset = Preset::default()
             .with_overrides(&["ground.stiffness=2e7"])
             .expect("valid overrides");
-        let mut e = Engine::new(&preset).expect("valid");
+        let mut e = Simulator::new(&preset).expect("valid");
         e.run_to_end();
         let Phase::Ended(o) = e.phase() else {
             panic!("ended")

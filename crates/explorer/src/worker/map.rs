@@ -41,7 +41,7 @@ pub struct MapRequest {
 /// A request with the setup it maps around, as the worker had it when the request came.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct MapJob {
-    /// The engine's id of the job (the UI knows it by `request.generation`).
+    /// The simulator's id of the job (the UI knows it by `request.generation`).
     pub(crate) id: u64,
     pub(crate) request: MapRequest,
     pub(crate) params: Params,

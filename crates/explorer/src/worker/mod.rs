@@ -3,9 +3,12 @@
 //! The worker owns the physics. It paces simulated time against wall time at the requested
 //! playback speed, runs batches between commands, and blocks on its command channel while
 //! nothing moves, so a paused explorer costs no CPU. It never touches the terminal.
+//!
+//! Its parts build on each other in one direction: the messages (`protocol`), the twin die
+//! and the live roll over them, the [`Simulator`] (the state machine the commands drive)
+//! over those, and this file, which runs the simulator on its thread with its jobs.
 
 pub(crate) mod curve;
-mod engine;
 mod export;
 mod job;
 mod live;
@@ -13,358 +16,31 @@ pub(crate) mod map;
 mod pacer;
 #[cfg(test)]
 mod param_twin_tests;
+mod play_on;
+mod protocol;
+mod simulator;
 mod timeline;
-mod twin;
+mod twin_die;
 
 pub use curve::{CURVE_STARTS, CurveSetup, CurveState, CurveUpdate};
 pub use dicesim_setup::preset::Speed;
-pub use engine::{BatchRequest, Engine};
 pub use map::{MapAxis, MapRequest, MapUpdate};
+pub(crate) use protocol::{
+    BatchProgress, DieState, EnergySample, ExportStatus, MapExport, OutcomeTable, RollKind, SeparationSample,
+    TimelineSnapshot, TwinSnapshot,
+};
+pub use protocol::{Command, Notice, Phase, Snapshot};
+pub use simulator::Simulator;
 
-use dicesim_experiment::{BasinMap, Layer, Rolls, ScanKey, run_batch};
-use dicesim_experiment::{FaceTally, RollRecord};
-use dicesim_figures::animation::AnimationProgress;
-use dicesim_figures::export::ExportProgress;
-use dicesim_physics::{ContactForce, Energy, EnergyLedger, InitialCondition, Outcome, Params, Status};
-use dicesim_setup::chaos::Separation;
-use dicesim_setup::preset::Preset;
+use dicesim_experiment::{RollRecord, Rolls, run_batch};
 use job::{Post, Report, Runner};
 use map::MapSink;
-use nalgebra::Vector3;
-pub(crate) use pacer::TICK;
-use pacer::{Clock, WallClock};
-use std::collections::VecDeque;
+use pacer::{Clock, TICK, WallClock};
+use simulator::BatchRequest;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender, channel};
 use std::thread::JoinHandle;
-
-/// What the UI asks of the worker. Commands are applied in the order sent, none dropped.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Command {
-    TogglePlay,
-    SetPlaying(bool),
-    /// Pause, then take this many steps of Δt.
-    Step(u64),
-    /// Pause, then go this many steps of Δt back (at most to the start).
-    StepBack(u64),
-    /// Pause at this step of the roll (`u64::MAX`: its end), computing on if need be.
-    Seek(u64),
-    /// The same initial condition again, from t = 0 (the same face every time).
-    Replay,
-    /// The next random initial condition from the preset's ranges.
-    RandomRoll,
-    /// A new value; values that act mid-roll (the ground's) change the running roll, others
-    /// restart it.
-    SetParam(&'static ScanKey, f64),
-    SetSpeed(Speed),
-    /// Random rolls computed into the outcome table.
-    BatchStart(u64),
-    BatchCancel,
-    ClearTable,
-    /// Compute a basin map around the current setup (cancelling the running one).
-    MapStart(MapRequest),
-    MapCancel,
-    /// Play this exact setup from t = 0 (a cell of a basin map, replayed).
-    PlaySetup(Box<Params>, InitialCondition),
-    /// Roll a chaos twin beside the die, its start perturbed by this relative ε
-    /// ([`dicesim_setup::chaos::perturbed`]), from t = 0; `None` removes it.
-    SetTwin(Option<f64>),
-    /// Roll a parameter twin beside the die: the same start in setup B, the current setup
-    /// with these values (registry keys; not start values, not Δt), from t = 0; an empty
-    /// list removes it. It takes the place of a chaos twin.
-    SetParamTwin(Vec<(&'static ScanKey, f64)>),
-    /// Another preset: its setup and its roll, a fresh outcome table.
-    LoadPreset(Box<Preset>),
-    /// Write the roll on screen, rolled again from t = 0, into this folder: its trace as
-    /// CSV and its energy plot as PNG (on a thread of its own, with progress), the plot on
-    /// the energy axis the screen shows (`log_scale`: logarithmic).
-    Export {
-        dir: std::path::PathBuf,
-        log_scale: bool,
-    },
-    /// Write this basin map, as the screen shows it, into a folder: its cells as CSV and
-    /// its picture as PNG (on the export's thread, like the roll's).
-    ExportMap(Box<MapExport>),
-    /// Write the roll on screen (with its chaos twin when one rolls), rolled again from
-    /// t = 0, into this folder as an animated GIF: seen from the explorer's camera (degrees)
-    /// and played at its speed (on the export's thread, like the roll's).
-    ExportAnimation {
-        dir: std::path::PathBuf,
-        yaw_deg: f64,
-        pitch_deg: f64,
-    },
-    ExportCancel,
-    Quit,
-}
-
-/// A basin map to write (see [`Command::ExportMap`]).
-#[derive(Debug, Clone, PartialEq)]
-pub struct MapExport {
-    pub dir: std::path::PathBuf,
-    pub map: BasinMap,
-    /// The setup every cell starts from, but for its two axis values.
-    pub params: Params,
-    pub initial: InitialCondition,
-    pub layer: Layer,
-    /// Pixels.
-    pub size: (u32, u32),
-}
-
-/// The export running, as the status line tells it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum ExportStatus {
-    /// The roll: rolled again to learn its length, then written.
-    Roll(ExportProgress),
-    /// A basin map, drawn at this many pixels.
-    Map { size: (u32, u32) },
-    /// The roll as an animation: rolled to its end, then its frames drawn.
-    Animation(AnimationProgress),
-}
-
-/// Which roll is on screen.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum RollKind {
-    /// The preset's own initial condition.
-    Preset,
-    /// Random roll number `n` (counted in the outcome table once).
-    Random(u64),
-    /// An initial condition the user edited.
-    Edited,
-}
-
-/// Where the roll is, in the words of the model.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Phase {
-    /// No corner has touched the ground yet.
-    Falling,
-    /// An impact: the ground pushes with more than twice the die's weight.
-    InContact,
-    /// After the first impact: tumbling, sliding, or briefly in the air.
-    Rolling,
-    Ended(Outcome),
-}
-
-impl Phase {
-    pub(crate) fn label(&self) -> String {
-        match self {
-            Phase::Falling => "falling".to_string(),
-            Phase::InContact => "in contact".to_string(),
-            Phase::Rolling => "rolling".to_string(),
-            Phase::Ended(o) => match (o.status, o.face) {
-                (Status::Settled, Some(f)) => format!("settled: face {f}"),
-                (Status::Settled, None) => "settled: no face up".to_string(),
-                (Status::Timeout, _) => "did not settle".to_string(),
-                (Status::Unstable, _) => "unstable".to_string(),
-            },
-        }
-    }
-}
-
-/// One energy sample of the live roll, erg (each term's peak when samples are thinned).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct EnergySample {
-    /// s, simulated.
-    pub(crate) time_s: f64,
-    pub(crate) energy: Energy,
-    pub(crate) total: f64,
-    /// Every quantity of [`dicesim_setup::quantity::QUANTITIES`] (each one's value of
-    /// largest magnitude over the steps when samples are thinned), for the plot of any of them.
-    pub(crate) quantities: dicesim_setup::quantity::Readings,
-}
-
-/// How far the twin has drifted from the die at one instant (each term's newest value).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct SeparationSample {
-    /// s, simulated.
-    pub(crate) time_s: f64,
-    pub(crate) separation: Separation,
-}
-
-/// The chaos twin as drawn: its die, how its roll went, and its drift from the first die.
-#[derive(Debug, Clone, PartialEq)]
-pub struct TwinSnapshot {
-    /// Relative: the chaos twin's start perturbation (0 for a parameter twin).
-    pub(crate) epsilon: f64,
-    /// The values setup B differs by (empty for the chaos twin).
-    pub(crate) differs_by: Vec<(&'static ScanKey, f64)>,
-    pub(crate) die: DieState,
-    pub(crate) phase: Phase,
-    pub(crate) separation: Separation,
-    /// Samples since the previous snapshot (after clearing, if the snapshot's
-    /// `history_reset`).
-    pub(crate) history: Vec<SeparationSample>,
-    /// A parameter twin's own samples since the previous snapshot, as `history`'s (empty
-    /// for the chaos twin).
-    pub(crate) samples: Vec<EnergySample>,
-}
-
-/// The die as drawn.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct DieState {
-    /// cm, world positions of corners 1..8.
-    pub(crate) corners: [Vector3<f64>; 8],
-    /// Each corner's contact force (depth > 0 means it touches the ground).
-    pub(crate) forces: [ContactForce; 8],
-    /// cm, centre of mass.
-    pub(crate) centre: Vector3<f64>,
-    /// cm/s, centre-of-mass velocity.
-    pub(crate) velocity: Vector3<f64>,
-    /// rad/s, ω (world frame).
-    pub(crate) angular_velocity: Vector3<f64>,
-    /// g·cm²/s, L about the centre of mass.
-    pub(crate) angular_momentum: Vector3<f64>,
-    /// The face most nearly up now.
-    pub(crate) face_up: u8,
-    /// The face most nearly up at t = 0.
-    pub(crate) start_face: u8,
-}
-
-impl DieState {
-    /// The die as drawn, from a simulation's current state (the live die's or the twin's).
-    pub(crate) fn of(sim: &dicesim_physics::Simulation, start_face: u8) -> DieState {
-        let s = sim.state();
-        DieState {
-            corners: sim.corner_positions(),
-            forces: sim.contact_forces(),
-            centre: s.position,
-            velocity: s.velocity,
-            angular_velocity: sim.angular_velocity(),
-            angular_momentum: s.angular_momentum,
-            face_up: sim.face_up(),
-            start_face,
-        }
-    }
-}
-
-/// Where the roll on screen is on its timeline, and what is known of it.
-#[derive(Debug, Clone, PartialEq, Eq, Default)]
-pub struct TimelineSnapshot {
-    /// Steps of Δt since the roll started.
-    pub position: u64,
-    /// The furthest step computed so far.
-    pub furthest: u64,
-    /// Whether the roll ends at `furthest`.
-    pub ended: bool,
-    /// The step at which the stopping rule found the die settled, once it has: the roll's
-    /// data (its outcome, the table, the exports) end there, while the die on screen plays
-    /// on until it is at rest.
-    pub decided: Option<u64>,
-    /// Steps at which impacts began, whenever they (or the edits) changed.
-    pub impacts: Option<Vec<u64>>,
-    /// Steps at which a table value was changed mid-roll, sent with the impacts.
-    pub edits: Option<Vec<u64>>,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct BatchProgress {
-    pub done: u64,
-    pub(crate) total: u64,
-}
-
-/// How many finished rolls the table lists.
-pub(crate) const LAST_ROLLS: usize = 12;
-
-/// The outcome table: face counts of random rolls and the last few rolls.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct OutcomeTable {
-    /// Settled rolls with a face up.
-    pub tally: FaceTally,
-    /// Rolls that settled balanced on an edge or a corner: no face up.
-    pub(crate) without_face: u64,
-    /// Rolls that reached the time cap still moving.
-    pub(crate) did_not_settle: u64,
-    pub(crate) unstable: u64,
-    /// Newest first.
-    pub last: VecDeque<RollRecord>,
-}
-
-impl OutcomeTable {
-    pub(crate) fn add(&mut self, r: RollRecord) {
-        match (r.outcome.status, r.outcome.face) {
-            (Status::Settled, Some(f)) => self.tally.add(f),
-            (Status::Settled, None) => self.without_face += 1,
-            (Status::Timeout, _) => self.did_not_settle += 1,
-            (Status::Unstable, _) => self.unstable += 1,
-        }
-        self.last.push_front(r);
-        self.last.truncate(LAST_ROLLS);
-    }
-
-    /// Every roll entered, settled or not.
-    pub fn rolls(&self) -> u64 {
-        self.tally.total() + self.without_face + self.did_not_settle + self.unstable
-    }
-}
-
-/// What the worker has to tell the user. The explorer words it: the worker knows no keys,
-/// so a notice that would point at one is a variant of its own.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Notice {
-    /// A step forward was asked for at the end of a finished roll (replaying moves it).
-    RollEnded,
-    /// An export was asked for while one runs (asking again would cancel it).
-    ExportRunning,
-    /// Anything else, in words that name no key (a refused value, a finished batch).
-    Said(String),
-}
-
-impl Notice {
-    /// The words, for notices that need no key to say them.
-    pub fn said(&self) -> Option<&str> {
-        match self {
-            Notice::Said(words) => Some(words),
-            _ => None,
-        }
-    }
-}
-
-/// The worker's report after each batch of commands and each tick.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Snapshot {
-    /// Commands applied so far: the UI knows its own edits have arrived when this catches up.
-    pub commands_handled: u64,
-    pub params: Params,
-    pub initial: InitialCondition,
-    pub roll: RollKind,
-    pub playing: bool,
-    pub speed: Speed,
-    pub die: DieState,
-    pub energy: Energy,
-    /// Where the energy went since t = 0 (measured in the physics, step by step).
-    pub ledger: EnergyLedger,
-    /// erg, the stopping threshold.
-    pub stop_threshold: f64,
-    /// s, simulated.
-    pub time_s: f64,
-    pub step: u64,
-    pub phase: Phase,
-    /// Energy samples since the previous snapshot (after clearing, if `history_reset`).
-    pub history: Vec<EnergySample>,
-    /// A new roll started: earlier samples belong to another roll.
-    pub history_reset: bool,
-    /// s: samples after this time are of a future that changed (a table value mid-roll
-    /// while stepped back): drop them.
-    pub history_cut: Option<f64>,
-    pub timeline: TimelineSnapshot,
-    pub batch: Option<BatchProgress>,
-    /// The whole table, when it changed.
-    pub table: Option<OutcomeTable>,
-    /// While batches ran with a parameter twin on: A's ending against B's over their
-    /// shared throws (until the table is cleared or another preset loads).
-    pub versus: Option<dicesim_experiment::versus::VersusTable>,
-    /// A one-line message for the user (a refused value, a finished batch).
-    pub notice: Option<Notice>,
-    /// The chaos twin, stepped in lock-step with the die.
-    pub twin: Option<TwinSnapshot>,
-    /// The preset loaded, in the first snapshot and whenever another is loaded.
-    pub preset: Option<Box<Preset>>,
-    /// The running export, how far it has got.
-    pub export: Option<ExportStatus>,
-    /// The twin's predictability curve, whenever it started, grew or ended (while a twin
-    /// rolls).
-    pub curve: Option<CurveUpdate>,
-}
 
 /// The running worker thread; dropping it stops the thread.
 pub struct Worker {
@@ -375,12 +51,12 @@ pub struct Worker {
 impl Worker {
     /// Starts the thread. Every snapshot goes to `out` (converted, so the UI can merge it
     /// with its input events in one channel); the first is sent at once.
-    pub fn spawn<T: From<Snapshot> + Send + 'static>(engine: Engine, out: Sender<T>) -> Worker {
-        Worker::spawn_with_maps(engine, out, |_: MapUpdate| true)
+    pub fn spawn<T: From<Snapshot> + Send + 'static>(simulator: Simulator, out: Sender<T>) -> Worker {
+        Worker::spawn_with_maps(simulator, out, |_: MapUpdate| true)
     }
 
     /// Like [`Worker::spawn`], with basin maps (partial, then complete) sent to `maps`.
-    pub fn spawn_with_maps<T, F>(engine: Engine, out: Sender<T>, maps: F) -> Worker
+    pub fn spawn_with_maps<T, F>(simulator: Simulator, out: Sender<T>, maps: F) -> Worker
     where
         T: From<Snapshot> + Send + 'static,
         F: Fn(MapUpdate) -> bool + Send + Sync + 'static,
@@ -389,7 +65,7 @@ impl Worker {
         let maps: MapSink = Arc::new(maps);
         let thread = std::thread::Builder::new()
             .name("dicesim-worker".to_string())
-            .spawn(move || run(engine, rx, out, maps, WallClock))
+            .spawn(move || run(simulator, rx, out, maps, WallClock))
             .expect("the OS can start a thread");
         Worker {
             commands,
@@ -422,14 +98,14 @@ impl Drop for Worker {
 }
 
 fn run<T: From<Snapshot>>(
-    mut engine: Engine,
+    mut simulator: Simulator,
     rx: Receiver<Command>,
     out: Sender<T>,
     maps: MapSink,
     clock: impl Clock,
 ) {
     let mut jobs = Jobs::new(maps);
-    if out.send(report(&mut engine, &mut jobs.curves).into()).is_err() {
+    if out.send(report(&mut simulator, &mut jobs.curves).into()).is_err() {
         return;
     }
     crate::fault::inject("worker");
@@ -437,7 +113,7 @@ fn run<T: From<Snapshot>>(
     let mut next_tick = clock.now();
     loop {
         // Block while idle; while busy, wait for a command at most until the next tick.
-        let first = if engine.busy() || jobs.running() {
+        let first = if simulator.busy() || jobs.running() {
             match rx.recv_timeout(next_tick.saturating_duration_since(clock.now())) {
                 Ok(c) => Some(c),
                 Err(RecvTimeoutError::Timeout) => None,
@@ -452,7 +128,7 @@ fn run<T: From<Snapshot>>(
         let mut handled = false;
         for command in first.into_iter().chain(std::iter::from_fn(|| rx.try_recv().ok())) {
             handled = true;
-            if !engine.handle(command) {
+            if !simulator.handle(command) {
                 jobs.stop();
                 return;
             }
@@ -461,9 +137,9 @@ fn run<T: From<Snapshot>>(
         if !handled && now < next_tick {
             continue;
         }
-        pacer::play_tick(&mut engine, &mut pacer, now);
-        jobs.sync(&mut engine);
-        if out.send(report(&mut engine, &mut jobs.curves).into()).is_err() {
+        pacer::play_tick(&mut simulator, &mut pacer, now);
+        jobs.sync(&mut simulator);
+        if out.send(report(&mut simulator, &mut jobs.curves).into()).is_err() {
             break;
         }
         next_tick = now + TICK;
@@ -471,20 +147,20 @@ fn run<T: From<Snapshot>>(
     jobs.stop();
 }
 
-/// The engine's snapshot, with whatever the curve thread has to report.
-fn report(engine: &mut Engine, curves: &mut curve::CurveRunner) -> Snapshot {
-    let curve = curves.sync(engine.curve_setup());
+/// The simulator's snapshot, with whatever the curve thread has to report.
+fn report(simulator: &mut Simulator, curves: &mut curve::CurveRunner) -> Snapshot {
+    let curve = curves.sync(simulator.curve_setup());
     Snapshot {
         curve,
-        ..engine.snapshot()
+        ..simulator.snapshot()
     }
 }
 
-type ExportResult = Result<export::Written, dicesim_experiment::Error>;
+type ExportResult = Result<export::WrittenExport, dicesim_experiment::Error>;
 
-/// The worker's jobs, each kind on a runner of its own: they follow what the engine has
+/// The worker's jobs, each kind on a runner of its own: they follow what the simulator has
 /// ordered (a job it no longer waits for is stopped), and their progress goes back to the
-/// engine, or for maps straight on to the UI, on every tick.
+/// simulator, or for maps straight on to the UI, on every tick.
 struct Jobs {
     /// Rolls finished since the last tick, and how the batch ended.
     batch: Runner<Vec<RollRecord>, Result<(), String>>,
@@ -493,7 +169,7 @@ struct Jobs {
     /// Maps since the last tick (partial, coarse first, then the complete one).
     map: Runner<Vec<MapUpdate>, ()>,
     maps: MapSink,
-    /// The twin's predictability curve follows the engine's setup, not an order.
+    /// The twin's predictability curve follows the simulator's setup, not an order.
     curves: curve::CurveRunner,
 }
 
@@ -512,40 +188,40 @@ impl Jobs {
         self.batch.running() || self.export.running() || self.map.running() || self.curves.running()
     }
 
-    /// Starts, stops and collects so every runner follows the engine's orders.
-    fn sync(&mut self, engine: &mut Engine) {
-        self.batch.keep_only(engine.batch_id());
-        if let Some(request) = engine.take_batch_request() {
+    /// Starts, stops and collects so every runner follows the simulator's orders.
+    fn sync(&mut self, simulator: &mut Simulator) {
+        self.batch.keep_only(simulator.batch_id());
+        if let Some(request) = simulator.take_batch_request() {
             let id = request.id;
             if let Err(e) = self
                 .batch
                 .start(id, move |cancel, post| batch_work(&request, cancel, post))
             {
-                engine.finish_batch(id, Err(e.to_string()));
+                simulator.finish_batch(id, Err(e.to_string()));
             }
         }
         match self.batch.poll() {
-            Some(Report::Progress(id, fresh)) => engine.add_batch_records(id, &fresh),
+            Some(Report::Progress(id, fresh)) => simulator.add_batch_records(id, &fresh),
             Some(Report::Finished(id, rest, result)) => {
-                engine.add_batch_records(id, &rest);
-                engine.finish_batch(id, result.unwrap_or_else(|| Err("a roll panicked".to_string())));
+                simulator.add_batch_records(id, &rest);
+                simulator.finish_batch(id, result.unwrap_or_else(|| Err("a roll panicked".to_string())));
             }
             None => {}
         }
 
-        self.export.keep_only(engine.export_id());
-        if let Some(job) = engine.take_export_request() {
+        self.export.keep_only(simulator.export_id());
+        if let Some(job) = simulator.take_export_request() {
             let id = job.id;
             let started = self.export.start(id, move |cancel, post| {
                 job.run(cancel, &mut |p| post.post(|newest| *newest = Some(p)))
             });
             if let Err(e) = started {
-                engine.finish_export(id, Err(dicesim_experiment::Error::Export(e.to_string())));
+                simulator.finish_export(id, Err(dicesim_experiment::Error::Export(e.to_string())));
             }
         }
         match self.export.poll() {
-            Some(Report::Progress(id, Some(p))) => engine.export_progress(id, p),
-            Some(Report::Finished(id, _, result)) => engine.finish_export(
+            Some(Report::Progress(id, Some(p))) => simulator.export_progress(id, p),
+            Some(Report::Finished(id, _, result)) => simulator.finish_export(
                 id,
                 result.unwrap_or_else(|| {
                     Err(dicesim_experiment::Error::Export(
@@ -556,8 +232,8 @@ impl Jobs {
             _ => {}
         }
 
-        self.map.keep_only(engine.map_id());
-        if let Some(job) = engine.take_map_request() {
+        self.map.keep_only(simulator.map_id());
+        if let Some(job) = simulator.take_map_request() {
             let started = self.map.start(job.id, move |cancel, post| {
                 map::compute(&job, cancel, &mut |u| {
                     post.post(|fresh| fresh.push(u));
@@ -566,7 +242,7 @@ impl Jobs {
             });
             if let Err(e) = started {
                 (self.maps)(job.failed(format!("cannot start the map thread: {e}")));
-                engine.finish_map(job.id);
+                simulator.finish_map(job.id);
             }
         }
         let (maps, ended) = match self.map.poll() {
@@ -578,7 +254,7 @@ impl Jobs {
             (self.maps)(u);
         }
         if let Some(id) = ended {
-            engine.finish_map(id);
+            simulator.finish_map(id);
         }
     }
 

@@ -6,7 +6,7 @@
 //! drift. A fraction of a step that is not yet due stays owed to the next tick (at 1/100× and
 //! Δt = 2.4 ms a step falls due only every 14 ticks).
 
-use super::Engine;
+use super::simulator::Simulator;
 use std::time::{Duration, Instant};
 
 /// Where the worker reads the time from: the wall clock, or a test's clock.
@@ -39,7 +39,7 @@ const CATCH_UP_STEPS: u64 = 1000;
 /// Wall time mapped to steps since pacing last restarted.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Pacer {
-    /// The engine's pacing epoch this pacer belongs to.
+    /// The simulator's pacing epoch this pacer belongs to.
     epoch: u64,
     /// The wall instant step `taken = 0` belongs to.
     origin: Instant,
@@ -76,10 +76,10 @@ impl Pacer {
 }
 
 /// One tick of playback at `now`: the steps the speed asks for (at instant, a tick's worth
-/// of computing). Pacing restarts whenever the engine's epoch moved (play, pause, speed,
+/// of computing). Pacing restarts whenever the simulator's epoch moved (play, pause, speed,
 /// a new roll, a seek), since nothing is owed across those.
-pub(crate) fn play_tick(engine: &mut Engine, pacer: &mut Option<Pacer>, now: Instant) -> u64 {
-    let live = engine.live();
+pub(crate) fn play_tick(simulator: &mut Simulator, pacer: &mut Option<Pacer>, now: Instant) -> u64 {
+    let live = simulator.live();
     if !live.is_playing() {
         return 0;
     }
@@ -92,7 +92,7 @@ pub(crate) fn play_tick(engine: &mut Engine, pacer: &mut Option<Pacer>, now: Ins
         None => INSTANT_STEPS_PER_TICK,
         Some(factor) => p.due(now, factor, live.params().integrator.dt),
     };
-    engine.advance_steps(steps)
+    simulator.advance_steps(steps)
 }
 
 #[cfg(test)]
@@ -116,14 +116,14 @@ mod tests {
 
     /// A roll that cannot end before its 120 s cap: a die thrown up at 10 m/s under a
     /// gravity of 10 cm/s² lands after 200 s.
-    fn engine(dt: f64, speed: Speed) -> Engine {
+    fn simulator(dt: f64, speed: Speed) -> Simulator {
         let mut preset = Preset::default();
         preset.integrator.dt = dt;
         preset.integrator.max_time = 120.0;
         preset.world.gravity = 10.0;
         preset.initial.height = 1000.0;
         preset.initial.velocity = [0.0, 0.0, 1000.0];
-        let mut e = Engine::new(&preset).expect("valid");
+        let mut e = Simulator::new(&preset).expect("valid");
         e.handle(Command::SetSpeed(speed));
         e.handle(Command::SetPlaying(true));
         e
@@ -140,7 +140,7 @@ mod tests {
         let s = speed(label);
         let factor = s.factor().expect("not instant");
         let wall_s = (110.0 / factor).min(60.0);
-        let mut e = engine(dt, s);
+        let mut e = simulator(dt, s);
         let clock = TestClock {
             start: Instant::now(),
             elapsed: Cell::new(Duration::ZERO),
@@ -175,7 +175,7 @@ mod tests {
     #[test]
     fn a_hundredth_at_one_millisecond_is_ten_steps_a_second_for_a_minute() {
         paced(1e-3, "1/100×");
-        let mut e = engine(1e-3, speed("1/100×"));
+        let mut e = simulator(1e-3, speed("1/100×"));
         let start = Instant::now();
         let mut pacer = None;
         play_tick(&mut e, &mut pacer, start);
@@ -201,7 +201,7 @@ mod tests {
 
     #[test]
     fn pausing_owes_nothing_and_a_hopeless_lag_slips_instead_of_bursting() {
-        let mut e = engine(1e-3, speed("1×"));
+        let mut e = simulator(1e-3, speed("1×"));
         let start = Instant::now();
         let mut pacer = None;
         play_tick(&mut e, &mut pacer, start);

@@ -1,6 +1,6 @@
 //! The parameter twin in the worker: the same start rolled in setup B beside the die.
 
-use super::{Command, Engine, Phase};
+use super::{Command, Phase, Simulator};
 use dicesim_physics::{Outcome, Params, Simulation};
 use dicesim_setup::keys::ScanKey;
 use dicesim_setup::preset::Preset;
@@ -31,7 +31,7 @@ fn ended(phase: Phase) -> Outcome {
 #[test]
 fn a_twin_with_no_difference_rolls_bit_identical_to_the_die() {
     let preset = Preset::default();
-    let mut e = Engine::new(&preset).expect("valid");
+    let mut e = Simulator::new(&preset).expect("valid");
     let mu = preset.params().ground.friction;
     e.handle(Command::SetParamTwin(vec![(key("ground.friction"), mu)]));
     e.run_to_end();
@@ -53,7 +53,7 @@ fn friction_0_3_against_1_2_rolls_as_the_physics_gives_each() {
     b.ground.friction = 1.2;
     let (want_a, want_b) = (independent(&preset.params(), &preset), independent(&b, &preset));
 
-    let mut e = Engine::new(&preset).expect("valid");
+    let mut e = Simulator::new(&preset).expect("valid");
     e.handle(Command::SetParamTwin(vec![(key("ground.friction"), 1.2)]));
     e.run_to_end();
     let s = e.snapshot();
@@ -68,7 +68,7 @@ fn friction_0_3_against_1_2_rolls_as_the_physics_gives_each() {
 #[test]
 fn a_table_change_mid_roll_reaches_b_with_bs_own_value_kept() {
     let preset = Preset::default();
-    let mut e = Engine::new(&preset).expect("valid");
+    let mut e = Simulator::new(&preset).expect("valid");
     e.handle(Command::SetParamTwin(vec![(key("ground.friction"), 1.2)]));
     e.handle(Command::Step(50));
     e.handle(Command::SetParam(key("ground.stiffness"), 2e5));
@@ -80,7 +80,7 @@ fn a_table_change_mid_roll_reaches_b_with_bs_own_value_kept() {
 #[test]
 fn a_start_value_or_another_dt_is_refused_and_changes_nothing() {
     let preset = Preset::default();
-    let mut e = Engine::new(&preset).expect("valid");
+    let mut e = Simulator::new(&preset).expect("valid");
     for (name, value, words) in [
         ("initial.height", 20.0, "same start"),
         ("integrator.dt", preset.params().integrator.dt * 2.0, "Δt"),
@@ -102,7 +102,7 @@ fn a_start_value_or_another_dt_is_refused_and_changes_nothing() {
 #[test]
 fn a_batch_beside_a_parameter_twin_tallies_each_throw_in_both_setups() {
     let preset = Preset::default();
-    let mut e = Engine::new(&preset).expect("valid");
+    let mut e = Simulator::new(&preset).expect("valid");
     e.handle(Command::SetParamTwin(vec![(key("ground.friction"), 0.3)]));
     e.handle(Command::BatchStart(24));
     let request = e.take_batch_request().expect("ordered");
@@ -135,7 +135,7 @@ fn a_batch_beside_a_parameter_twin_tallies_each_throw_in_both_setups() {
 #[test]
 fn a_batch_beside_a_twin_with_no_difference_agrees_on_every_throw() {
     let preset = Preset::default();
-    let mut e = Engine::new(&preset).expect("valid");
+    let mut e = Simulator::new(&preset).expect("valid");
     let mu = preset.params().ground.friction;
     e.handle(Command::SetParamTwin(vec![(key("ground.friction"), mu)]));
     e.handle(Command::BatchStart(24));
@@ -153,7 +153,7 @@ fn a_batch_beside_a_twin_with_no_difference_agrees_on_every_throw() {
 #[test]
 fn the_parameter_twins_samples_are_bs_own_roll() {
     let preset = Preset::default();
-    let mut e = Engine::new(&preset).expect("valid");
+    let mut e = Simulator::new(&preset).expect("valid");
     e.handle(Command::SetParamTwin(vec![(key("ground.friction"), 0.3)]));
     e.handle(Command::Step(400));
     let samples = e.snapshot().twin.expect("B rolls").samples;

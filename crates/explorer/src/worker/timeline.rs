@@ -17,7 +17,7 @@ pub(crate) const MAX_KEYFRAMES: u64 = 2_000;
 /// could otherwise start millions.
 const MAX_IMPACTS: usize = 10_000;
 
-/// The engine's roll state at one step: enough to carry on from there exactly.
+/// The simulator's roll state at one step: enough to carry on from there exactly.
 #[derive(Debug, Clone)]
 pub(crate) struct Keyframe {
     /// Steps of Δt since the roll started.
@@ -141,7 +141,7 @@ impl Timeline {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::worker::{Command, Engine};
+    use crate::worker::{Command, Simulator};
     use dicesim_setup::keys::ScanKey;
     use dicesim_setup::preset::Preset;
 
@@ -152,7 +152,7 @@ mod tests {
 
     /// The state after `n` steps from the start, stepped straight through.
     fn stepped(preset: &Preset, n: u64) -> String {
-        let mut e = Engine::new(preset).expect("valid");
+        let mut e = Simulator::new(preset).expect("valid");
         e.advance_steps(n);
         bits(e.simulation())
     }
@@ -160,7 +160,7 @@ mod tests {
     #[test]
     fn seeking_anywhere_gives_the_state_stepping_there_gives() {
         let preset = Preset::default();
-        let mut e = Engine::new(&preset).expect("valid");
+        let mut e = Simulator::new(&preset).expect("valid");
         e.run_to_end();
         let end = e.timeline().furthest;
         assert!(e.timeline().ended && end > 500, "{end}");
@@ -190,7 +190,7 @@ mod tests {
     #[test]
     fn stepping_back_then_playing_on_is_the_same_roll_and_records_nothing_twice() {
         let preset = Preset::default();
-        let mut e = Engine::new(&preset).expect("valid");
+        let mut e = Simulator::new(&preset).expect("valid");
         e.advance_steps(500);
         let _ = e.snapshot();
         e.handle(Command::StepBack(1));
@@ -215,7 +215,7 @@ mod tests {
     #[test]
     fn a_table_change_while_stepped_back_forgets_the_old_future() {
         let preset = Preset::default();
-        let mut e = Engine::new(&preset).expect("valid");
+        let mut e = Simulator::new(&preset).expect("valid");
         e.advance_steps(800);
         e.handle(Command::Seek(300));
         let _ = e.snapshot();
@@ -226,7 +226,7 @@ mod tests {
         assert_eq!(s.timeline.furthest, 300);
         e.handle(Command::Seek(600));
         // The same roll as one whose friction changed at step 300 while playing straight on.
-        let mut straight = Engine::new(&preset).expect("valid");
+        let mut straight = Simulator::new(&preset).expect("valid");
         straight.advance_steps(300);
         straight.handle(Command::SetParam(key, 0.2));
         straight.advance_steps(300);
@@ -245,7 +245,7 @@ mod tests {
         preset.integrator.max_time = 30.0;
         let max_steps = preset.params().max_steps();
         assert_eq!(max_steps, 3_000_000);
-        let mut e = Engine::new(&preset).expect("valid");
+        let mut e = Simulator::new(&preset).expect("valid");
         e.run_to_end();
         let end = e.timeline().furthest;
         assert!(

@@ -1,5 +1,4 @@
 //! The preset dialogs' state: what the picker offers and what the save dialog holds.
-//! Their keys and drawing are in [`super::dialogs`].
 
 use dicesim_setup::preset::Preset;
 
@@ -22,7 +21,9 @@ pub(crate) enum Dialog {
     },
     Save {
         name: String,
-        /// Empty: the automatic description ([`super::dialogs::automatic_description`]) is saved.
+        /// Empty: the automatic description
+        /// ([`UserSetup::automatic_description`](super::setup::UserSetup::automatic_description))
+        /// is saved.
         description: String,
         /// Which field the keys type into (Tab switches).
         field: SaveField,

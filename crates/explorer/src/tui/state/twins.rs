@@ -1,12 +1,17 @@
-//! The chaos twin as the explorer keeps it: whether one rolls and at which ε, its drift
-//! from the die over the roll on screen, and the setup's predictability curve. ε only
-//! moves inside its range and by whole decades with the step keys; the curve shown is
-//! never older than one already shown. Its keys are in [`super::twin`].
+//! The twins as the explorer keeps them: whether a chaos twin rolls and at which ε, its
+//! drift from the die over the roll on screen and the setup's predictability curve; whether
+//! differ mode sends value changes to the parameter twin's die B, and what B differs by. ε
+//! only moves inside its range and by whole decades with the step keys; the curve shown is
+//! never older than one already shown.
 
-use super::format::fmt_num;
+use crate::tui::format::fmt_num;
+use crate::tui::param::Param;
 use crate::worker::{Command, CurveUpdate, EnergySample, SeparationSample, Snapshot};
 use dicesim_setup::chaos::{DEFAULT_EPSILON, EPSILON};
 use dicesim_setup::keys::ScanKey;
+
+/// What ε does, in the words shown on screen.
+pub(crate) const DEFINITION: &str = "twin: height, velocity and spin × (1 + ε)";
 
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct TwinView {
@@ -140,4 +145,13 @@ impl TwinView {
             self.curve = None;
         }
     }
+}
+
+/// `label value` pairs in the parameter list's words, e.g. `friction μ 0.3, damping γ 0.01`.
+pub(crate) fn differs_text(values: &[(&'static ScanKey, f64)]) -> String {
+    values
+        .iter()
+        .map(|(k, v)| format!("{} {}", Param::of(k).label(), fmt_num(*v)))
+        .collect::<Vec<_>>()
+        .join(", ")
 }

@@ -1,11 +1,12 @@
-//! The chaos twin in the explorer (`T`): a ghost die rolled from a start a relative ε away,
-//! the separation of the two on a log scale, and both outcomes. The worker steps both.
+//! The chaos twin (`T`) on screen: the separation of the ghost die from the die on a log
+//! scale, ε's meaning above it (or ε being typed), and both outcomes below. The worker
+//! steps both dice.
 
-use super::app::{App, Editor, Overlay, Typed, VALUE_CHARS};
+use super::chart::time_axis_to;
 use super::format::fmt_num;
-use super::keys::{Action, Input};
-use super::plot::time_axis_to;
-use crate::worker::{Command, Phase};
+use super::state::app::App;
+use super::state::twins::DEFINITION;
+use crate::worker::Phase;
 use dicesim_physics::Status;
 use dicesim_setup::chaos::EPSILON;
 use ratatui::Frame;
@@ -13,54 +14,6 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph};
-
-/// What ε does, in the words shown on screen.
-pub(crate) const DEFINITION: &str = "twin: height, velocity and spin × (1 + ε)";
-
-/// The twin's keys; returns whether `action` did anything (the ε keys need the twin on).
-pub(crate) fn on_key(app: &mut App, action: Action, out: &mut Vec<Command>) -> bool {
-    let twin = &mut app.twin;
-    match action {
-        Action::Twin => {
-            let c = twin.toggle();
-            if twin.on {
-                app.notice = Some(format!("{DEFINITION}, ε = {}", fmt_num(twin.epsilon)));
-            }
-            app.setup.send(out, c);
-        }
-        Action::TwinEpsilonDown | Action::TwinEpsilonUp if twin.on => {
-            let factor = if action == Action::TwinEpsilonUp {
-                10.0
-            } else {
-                0.1
-            };
-            if let Some(c) = twin.step(factor) {
-                app.setup.send(out, c);
-            }
-        }
-        Action::TwinEpsilonType if twin.on => app.overlay = Some(Overlay::Epsilon(Editor::default())),
-        _ => return false,
-    }
-    true
-}
-
-/// Typing ε (after `E`): digits, `e`, `-`, `.`; Enter applies, Esc cancels.
-pub(crate) fn on_editor_key(app: &mut App, input: &Input, out: &mut Vec<Command>) {
-    let Some(Overlay::Epsilon(editor)) = app.overlay.as_mut() else {
-        return;
-    };
-    match editor.input(input, VALUE_CHARS) {
-        Typed::Cancelled => app.overlay = None,
-        Typed::Editing => {}
-        Typed::Submitted(number) => match number.and_then(|v| app.twin.set(v)) {
-            Ok(c) => {
-                app.overlay = None;
-                app.setup.send(out, c);
-            }
-            Err(e) => editor.error = Some(e),
-        },
-    }
-}
 
 /// log₁₀ of the smallest separation the plot shows (below it: rounding of doubles).
 const FLOOR: f64 = -16.0;
@@ -138,7 +91,7 @@ pub(crate) fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
         .map_or(0.0, |s| s.time_s)
         .max(app.roll.live.time_s);
     let (x_hi, x_labels) = time_axis_to(t_end, body.width);
-    let marker = app.drawing.line_marker();
+    let marker = app.die_screen.drawing.line_marker();
     let datasets = vec![
         Dataset::default()
             .marker(marker)

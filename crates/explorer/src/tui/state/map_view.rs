@@ -1,12 +1,12 @@
 //! The basin-map screen's state: its axes, zoom steps, cursor and range editor, and the
 //! map on screen, and the rules that change them (a request fitted to the terminal, the
-//! zoom stack, the range editor). Keys reach it through [`super::map_keys`]; its drawing is
-//! in [`super::map`].
+//! zoom stack, the range editor). Keys reach it through the map screen's keys; the map
+//! screen's panel draws it.
 
 use super::editor::{Editor, Typed};
-use super::format::fmt_num;
-use super::keys::Input;
-use super::param::Param;
+use crate::tui::format::fmt_num;
+use crate::tui::keys::Input;
+use crate::tui::param::{Param, all};
 use crate::worker::{MapAxis, MapExport, MapRequest, MapUpdate};
 use dicesim_experiment::basin::node_setup;
 use dicesim_experiment::{Axis, BasinMap, Layer};
@@ -25,16 +25,6 @@ pub(crate) const FALLBACK_CELLS: (usize, usize) = (64, 48);
 pub(crate) const ZOOM_FACTOR: f64 = 4.0;
 /// Characters for the y-axis labels.
 pub(crate) const Y_LABELS: u16 = 8;
-
-/// Which screen is on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub(crate) enum View {
-    #[default]
-    Die,
-    Map,
-    /// The presentation view (`P`): the die large, for a projector.
-    Presentation,
-}
 
 /// The map's x or y axis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -287,7 +277,7 @@ impl MapView {
             Side::Y => Param::of(self.x.key),
         };
         let now = Param::of(self.axis_mut(side).key);
-        let list = super::param::all();
+        let list = all();
         let at = list.iter().position(|&p| p == now).unwrap_or(0);
         let next = (1..list.len())
             .map(|k| list[(at + k) % list.len()])
@@ -445,7 +435,7 @@ pub(crate) struct MapAreas {
 
 /// The map screen's layout; `None` below the explorer's minimum size.
 pub(crate) fn map_layout(area: Rect) -> Option<MapAreas> {
-    super::layout::screen_layout(area)?;
+    crate::tui::layout::screen_layout(area)?;
     let [header, body, footer] = area.layout(&Layout::vertical([
         Constraint::Length(1),
         Constraint::Min(0),

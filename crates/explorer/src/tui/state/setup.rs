@@ -1,18 +1,18 @@
 //! The setup as the user has set it: the values, the playback speed and the preset they
-//! came from. The user's values run ahead of the worker's: every command leaves through
-//! [`Setup::send`], which counts it, and a snapshot's values are taken only once the worker
-//! has handled every command sent ([`Setup::adopt`]), so an edit never flickers back to the
-//! value it replaced.
+//! came from. The user's values run ahead of the worker's: each change returns the command
+//! that tells the worker, every command is counted on its way out (the app's outbox), and a
+//! snapshot's values are taken only once the worker has handled every command sent
+//! ([`UserSetup::adopt`]), so an edit never flickers back to the value it replaced.
 
-use super::format::{fmt_num, fmt_range};
-use super::param::Param;
+use crate::tui::format::{fmt_num, fmt_range};
+use crate::tui::param::{Param, all};
 use crate::worker::{Command, RollKind, Snapshot, Speed};
 use dicesim_physics::params::Detail;
 use dicesim_physics::{InitialCondition, Params};
 use dicesim_setup::preset::Preset;
 
 #[derive(Debug, Clone)]
-pub(crate) struct Setup {
+pub(crate) struct UserSetup {
     pub(crate) params: Params,
     pub(crate) initial: InitialCondition,
     pub(crate) speed: Speed,
@@ -22,20 +22,17 @@ pub(crate) struct Setup {
     /// The start the last random roll (`R`) drew from the preset's ranges: a draw is the
     /// preset's own doing, not a change of the user's, so no question guards it.
     drawn: Option<InitialCondition>,
-    /// Commands sent to the worker so far (see [`Snapshot::commands_handled`]).
-    commands_sent: u64,
 }
 
-impl Setup {
+impl UserSetup {
     /// The setup of the worker's first snapshot.
-    pub(crate) fn new(first: &Snapshot, preset: Preset) -> Setup {
-        Setup {
+    pub(crate) fn new(first: &Snapshot, preset: Preset) -> UserSetup {
+        UserSetup {
             params: first.params,
             initial: first.initial,
             speed: first.speed,
             preset,
             drawn: None,
-            commands_sent: 0,
         }
     }
 
@@ -45,16 +42,10 @@ impl Setup {
             || (self.initial != self.preset.initial && Some(self.initial) != self.drawn)
     }
 
-    /// Queues a command for the worker.
-    pub(crate) fn send(&mut self, out: &mut Vec<Command>, c: Command) {
-        self.commands_sent += 1;
-        out.push(c);
-    }
-
-    /// Takes the worker's values, unless it has not seen every command yet (then the
-    /// user's own values are newer).
-    pub(crate) fn adopt(&mut self, s: &Snapshot) {
-        if s.commands_handled >= self.commands_sent {
+    /// Takes the worker's values, unless it has not handled all `commands_sent` yet (then
+    /// the user's own values are newer).
+    pub(crate) fn adopt(&mut self, s: &Snapshot, commands_sent: u64) {
+        if s.commands_handled >= commands_sent {
             self.params = s.params;
             self.initial = s.initial;
             self.speed = s.speed;
@@ -64,11 +55,11 @@ impl Setup {
         }
     }
 
-    /// Sets `p` and tells the worker; a value outside its range, one that would start the
-    /// die inside the table, or one that no body can have with the other values (a corner
-    /// radius not below the smallest half size, pips too wide or too deep) is refused in
-    /// words and changes nothing.
-    pub(crate) fn set_param(&mut self, out: &mut Vec<Command>, p: Param, value: f64) -> Result<(), String> {
+    /// Sets `p`; the command that tells the worker. A value outside its range, one that
+    /// would start the die inside the table, or one that no body can have with the other
+    /// values (a corner radius not below the smallest half size, pips too wide or too deep)
+    /// is refused in words and changes nothing.
+    pub(crate) fn set_param(&mut self, p: Param, value: f64) -> Result<Command, String> {
         let (mut params, mut initial) = (self.params, self.initial);
         p.set(&mut params, &mut initial, value).map_err(|e| {
             if e.limits == p.limits() {
@@ -94,38 +85,55 @@ impl Setup {
             });
         }
         (self.params, self.initial) = (params, initial);
-        self.send(out, Command::SetParam(p.scan_key(), value));
-        Ok(())
+        Ok(Command::SetParam(p.scan_key(), value))
     }
 
-    /// `p` a step up or down (`coarse`: a big step), inside its range.
-    pub(crate) fn nudge(&mut self, out: &mut Vec<Command>, p: Param, steps: i32, coarse: bool) {
+    /// `p` a step up or down (`coarse`: a big step), inside its range; the command, if the
+    /// value changed.
+    pub(crate) fn nudge(&mut self, p: Param, steps: i32, coarse: bool) -> Option<Command> {
         let now = p.get(&self.params, &self.initial);
         let next = p.nudged(now, steps, coarse);
-        if next != now {
-            let _ = self.set_param(out, p, next);
-        }
+        (next != now).then(|| self.set_param(p, next).ok()).flatten()
     }
 
-    pub(crate) fn set_speed(&mut self, out: &mut Vec<Command>, speed: Speed) {
-        if speed != self.speed {
+    /// Another playback speed; the command, if it is another.
+    pub(crate) fn set_speed(&mut self, speed: Speed) -> Option<Command> {
+        (speed != self.speed).then(|| {
             self.speed = speed;
-            self.send(out, Command::SetSpeed(speed));
-        }
+            Command::SetSpeed(speed)
+        })
     }
 
     /// Loads `preset`'s setup (the worker sends the preset itself back with its roll).
-    pub(crate) fn load(&mut self, out: &mut Vec<Command>, preset: Box<Preset>) {
+    pub(crate) fn load(&mut self, preset: Box<Preset>) -> Command {
         self.params = preset.params();
         self.initial = preset.initial;
         self.drawn = None;
-        self.send(out, Command::LoadPreset(preset));
+        Command::LoadPreset(preset)
     }
 
     /// Plays exactly this setup from t = 0 (a map cell replayed).
-    pub(crate) fn play(&mut self, out: &mut Vec<Command>, params: Params, initial: InitialCondition) {
+    pub(crate) fn play(&mut self, params: Params, initial: InitialCondition) -> Command {
         self.params = params;
         self.initial = initial;
-        self.send(out, Command::PlaySetup(Box::new(params), initial));
+        Command::PlaySetup(Box::new(params), initial)
+    }
+
+    /// What a saved setup says about itself when no description is typed: its base and the
+    /// values changed from it, as `presets save --set` words it.
+    pub(crate) fn automatic_description(&self) -> String {
+        let base = (self.preset.params(), self.preset.initial);
+        let changed: Vec<String> = all()
+            .iter()
+            .filter_map(|p| {
+                let (now, was) = (p.get(&self.params, &self.initial), p.get(&base.0, &base.1));
+                (now != was).then(|| format!("{}={}", p.key(), fmt_num(now)))
+            })
+            .collect();
+        if changed.is_empty() {
+            format!("The `{}` preset, saved from the explorer.", self.preset.name)
+        } else {
+            format!("The `{}` preset with {}.", self.preset.name, changed.join(", "))
+        }
     }
 }

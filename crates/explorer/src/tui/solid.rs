@@ -1,4 +1,5 @@
-//! The die's view: an orbiting, zooming orthographic camera and the body's geometry.
+//! The die's body as the die panel draws it: its faces, edges and corner spheres in the
+//! world, its outline on the view plane, and what of a line behind it still shows.
 
 use dicesim_physics::Die;
 use dicesim_physics::body::CORNER_SIGNS;
@@ -29,80 +30,6 @@ pub(crate) const EDGES: [(usize, usize); 12] = [
     (2, 6),
     (3, 7),
 ];
-
-/// An orthographic camera circling the die: yaw about the vertical, pitch looking down.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Camera {
-    /// °, turn about the vertical axis.
-    pub yaw_deg: f64,
-    /// °, elevation: 0 looks level, 90 straight down.
-    pub pitch_deg: f64,
-    /// Zoom steps; each makes the view 1.25 times closer.
-    pub(crate) zoom: i32,
-}
-
-impl Default for Camera {
-    fn default() -> Self {
-        Camera {
-            yaw_deg: 30.0,
-            pitch_deg: 25.0,
-            zoom: 0,
-        }
-    }
-}
-
-/// A point on the screen plane, cm, with its distance from the viewer (larger is farther).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Projected {
-    pub(crate) x: f64,
-    pub(crate) y: f64,
-    pub(crate) depth: f64,
-}
-
-impl Camera {
-    pub(crate) const MIN_PITCH: f64 = -10.0;
-    pub(crate) const MAX_PITCH: f64 = 89.0;
-    pub(crate) const MIN_ZOOM: i32 = -8;
-    pub(crate) const MAX_ZOOM: i32 = 8;
-
-    pub(crate) fn orbit(&mut self, d_yaw: f64, d_pitch: f64) {
-        self.yaw_deg = (self.yaw_deg + d_yaw).rem_euclid(360.0);
-        self.pitch_deg = (self.pitch_deg + d_pitch).clamp(Self::MIN_PITCH, Self::MAX_PITCH);
-    }
-
-    pub(crate) fn zoom_by(&mut self, steps: i32) {
-        self.zoom = (self.zoom + steps).clamp(Self::MIN_ZOOM, Self::MAX_ZOOM);
-    }
-
-    /// cm of world shown across the view for a die of half size `a` cm.
-    pub(crate) fn width_cm(&self, half_size: f64) -> f64 {
-        9.0 * half_size * 1.25f64.powi(-self.zoom)
-    }
-
-    /// Projects `p` with the view's horizontal origin at `focus` (the camera follows the die
-    /// across the table; heights stay absolute so the ground is z = 0 on screen too).
-    pub(crate) fn project(&self, p: &Vector3<f64>, focus: &Vector3<f64>) -> Projected {
-        let (sy, cy) = self.yaw_deg.to_radians().sin_cos();
-        let (sp, cp) = self.pitch_deg.to_radians().sin_cos();
-        let (dx, dy, z) = (p.x - focus.x, p.y - focus.y, p.z);
-        let across = cy * dx + sy * dy;
-        let away = -sy * dx + cy * dy;
-        Projected {
-            x: across,
-            y: z * cp + away * sp,
-            depth: away * cp - z * sp,
-        }
-    }
-
-    /// How directly a world direction faces the viewer (1 straight at them, < 0 away).
-    pub(crate) fn facing(&self, direction: &Vector3<f64>) -> f64 {
-        let n = direction.normalize();
-        if !n.iter().all(|c| c.is_finite()) {
-            return -1.0;
-        }
-        -self.project(&n, &Vector3::zeros()).depth
-    }
-}
 
 /// The die's body in the world, as the worker reports it (its 8 corner-sphere centres, which
 /// for a sharp die are its corners) with the sizes the physics gives it: the box of the three
@@ -262,23 +189,6 @@ mod tests {
                 "edge {a}-{b} has the side's length"
             );
         }
-    }
-
-    #[test]
-    fn the_top_faces_the_viewer_from_above_and_the_bottom_does_not() {
-        let cam = Camera::default();
-        assert!(cam.facing(&Vector3::z()) > 0.0);
-        assert!(cam.facing(&-Vector3::z()) < 0.0);
-        let level = Camera {
-            pitch_deg: 0.0,
-            ..cam
-        };
-        assert!(level.facing(&Vector3::z()).abs() < 1e-12);
-        let p = cam.project(&Vector3::new(3.0, 4.0, 0.0), &Vector3::new(3.0, 4.0, 9.0));
-        assert!(
-            p.x.abs() < 1e-12 && p.y.abs() < 1e-12,
-            "the focus' foot is the screen origin"
-        );
     }
 
     #[test]

@@ -1,15 +1,17 @@
-//! The worker's state machine: the live roll, the outcome table and the jobs ordered off
+//! The simulator, the worker's state machine: the live roll, the outcome table and the jobs ordered off
 //! its thread (batch, export, map), driven by commands and by "advance to simulated time
 //! t". No thread, no clock and no file live here, so tests (and the thread in `mod.rs`)
 //! drive it step for step.
 
 use super::curve::CurveSetup;
-use super::export::{ExportJob, Exporting, Written};
+use super::export::{ExportJob, Exporting, WrittenExport};
 use super::job::Order;
 use super::live::LiveRoll;
 use super::map::MapJob;
-use super::twin::{Difference, Twin};
-use super::{BatchProgress, Command, ExportStatus, MapExport, Notice, OutcomeTable, RollKind, Snapshot};
+use super::protocol::{
+    BatchProgress, Command, ExportStatus, MapExport, Notice, OutcomeTable, RollKind, Snapshot,
+};
+use super::twin_die::{Difference, Twin};
 use dicesim_experiment::RollRecord;
 use dicesim_experiment::versus::VersusTable;
 use dicesim_figures::animation::render::Camera;
@@ -24,7 +26,7 @@ use dicesim_setup::random::RandomDraws;
 /// A batch to start: its rolls are random rolls numbered on from the live ones, so no
 /// initial condition enters the table twice.
 #[derive(Debug, Clone)]
-pub struct BatchRequest {
+pub(crate) struct BatchRequest {
     pub(crate) id: u64,
     pub(crate) params: Params,
     pub(crate) rolls: Vec<(u64, InitialCondition)>,
@@ -48,16 +50,17 @@ struct Versus {
 const ANIMATION_FPS: u32 = 25;
 const ANIMATION_SIZE: (u32, u32) = (640, 480);
 
-/// What happened since the last snapshot, besides the roll's own samples.
+/// What happened since the last snapshot and is not yet reported, besides the roll's own
+/// samples.
 #[derive(Debug, Default)]
-struct Pending {
+struct Unreported {
     table_changed: bool,
     notice: Option<Notice>,
-    /// A preset was loaded (or the engine just started): the UI gets it whole.
+    /// A preset was loaded (or the simulator just started): the UI gets it whole.
     preset: Option<Box<Preset>>,
 }
 
-pub struct Engine {
+pub struct Simulator {
     /// The preset as loaded: the UI compares the setup with it and saves from it; random
     /// rolls are drawn from its ranges around its start.
     preset: Preset,
@@ -68,7 +71,7 @@ pub struct Engine {
     batch: Order<BatchProgress, BatchRequest>,
     export: Order<ExportStatus, ExportJob>,
     map: Order<(), MapJob>,
-    pending: Pending,
+    unreported: Unreported,
     commands_handled: u64,
     /// The parameter twin's table of shared throws (batches run while it rolls).
     versus: Option<Versus>,
@@ -85,10 +88,10 @@ fn twin_of(preset: &Preset) -> Option<Twin> {
         .and_then(|epsilon| Twin::new(&preset.params(), &preset.initial, Difference::Start { epsilon }).ok())
 }
 
-impl Engine {
-    /// A paused engine at the start of the preset's roll, at the preset's speed and with
+impl Simulator {
+    /// A paused simulator at the start of the preset's roll, at the preset's speed and with
     /// its twin (a key its view leaves out means the default: 1×, no twin).
-    pub fn new(preset: &Preset) -> Result<Engine, ParamError> {
+    pub fn new(preset: &Preset) -> Result<Simulator, ParamError> {
         preset.validate()?;
         let params = preset.params();
         dicesim_physics::Simulation::new(&params, &preset.initial)?;
@@ -98,7 +101,7 @@ impl Engine {
             twin_of(preset),
             preset.view.speed.unwrap_or_default(),
         );
-        Ok(Engine {
+        Ok(Simulator {
             preset: preset.clone(),
             next_random: 0,
             table: OutcomeTable::default(),
@@ -106,9 +109,9 @@ impl Engine {
             batch: Order::default(),
             export: Order::default(),
             map: Order::default(),
-            pending: Pending {
+            unreported: Unreported {
                 preset: Some(Box::new(preset.clone())),
-                ..Pending::default()
+                ..Unreported::default()
             },
             commands_handled: 0,
             export_rerolled: false,
@@ -121,7 +124,9 @@ impl Engine {
         &mut self.live
     }
 
-    pub fn params(&self) -> &Params {
+    /// The values the live roll is rolled with.
+    #[cfg(test)]
+    pub(crate) fn params(&self) -> &Params {
         self.live.params()
     }
 
@@ -203,7 +208,7 @@ impl Engine {
             Command::ClearTable => {
                 self.table = OutcomeTable::default();
                 self.versus = None;
-                self.pending.table_changed = true;
+                self.unreported.table_changed = true;
                 None
             }
             Command::MapStart(request) => {
@@ -252,7 +257,7 @@ impl Engine {
             Command::Quit => return false,
         };
         if notice.is_some() {
-            self.pending.notice = notice;
+            self.unreported.notice = notice;
         }
         true
     }
@@ -261,7 +266,7 @@ impl Engine {
     fn count_finished_roll(&mut self) {
         if let Some(r) = self.live.take_finished() {
             self.table.add(r);
-            self.pending.table_changed = true;
+            self.unreported.table_changed = true;
         }
     }
 
@@ -326,7 +331,7 @@ impl Engine {
         self.next_random = 0;
         self.table = OutcomeTable::default();
         self.versus = None;
-        self.pending.table_changed = true;
+        self.unreported.table_changed = true;
         // A twin that rolls stays on at its ε unless the preset asks for its own: a lesson
         // turns it on, then opens presets to compare them with it.
         // A parameter twin stays on too, with B's values on the new preset's setup.
@@ -341,7 +346,7 @@ impl Engine {
             preset.view.speed.unwrap_or_default(),
         );
         let notice = Notice::Said(format!("loaded {}", preset.name));
-        self.pending.preset = Some(Box::new(preset.clone()));
+        self.unreported.preset = Some(Box::new(preset.clone()));
         self.preset = preset;
         notice
     }
@@ -478,7 +483,7 @@ impl Engine {
     }
 
     /// The export to start, once: whoever runs it reports back with
-    /// [`Engine::export_progress`] and [`Engine::finish_export`].
+    /// [`Simulator::export_progress`] and [`Simulator::finish_export`].
     pub(crate) fn take_export_request(&mut self) -> Option<ExportJob> {
         self.export.take_request()
     }
@@ -495,7 +500,11 @@ impl Engine {
     }
 
     /// Export `id` has stopped: the notice says what was written, or why nothing was.
-    pub(crate) fn finish_export(&mut self, id: u64, result: Result<Written, dicesim_experiment::Error>) {
+    pub(crate) fn finish_export(
+        &mut self,
+        id: u64,
+        result: Result<WrittenExport, dicesim_experiment::Error>,
+    ) {
         let Some(status) = self.export.finish(id) else {
             return;
         };
@@ -506,7 +515,7 @@ impl Engine {
             ""
         };
         let words = match (status, result) {
-            (_, Ok(Written::Roll(done))) => format!(
+            (_, Ok(WrittenExport::Roll(done))) => format!(
                 "exported {} ({}, {} rows) and .png",
                 done.trace.display(),
                 human_bytes(done.bytes),
@@ -514,7 +523,7 @@ impl Engine {
             ),
             (
                 _,
-                Ok(Written::Map {
+                Ok(WrittenExport::Map {
                     png,
                     size,
                     cells,
@@ -530,7 +539,7 @@ impl Engine {
                 cells.0,
                 cells.1
             ),
-            (_, Ok(Written::Animation { gif, animated })) => format!(
+            (_, Ok(WrittenExport::Animation { gif, animated })) => format!(
                 "animation saved to {} ({} frames, {:.2} s{})",
                 gif.display(),
                 animated.frames,
@@ -547,7 +556,7 @@ impl Engine {
             (ExportStatus::Animation(_), Err(e)) => format!("cannot export the animation: {e}"),
             (ExportStatus::Roll(_), Err(e)) => e.to_string(),
         };
-        self.pending.notice = Some(Notice::Said(format!("{rerolled}{words}")));
+        self.unreported.notice = Some(Notice::Said(format!("{rerolled}{words}")));
     }
 
     /// Runs the requested export on this thread to its end (tests).
@@ -579,8 +588,8 @@ impl Engine {
         self.count_finished_roll();
     }
 
-    /// The batch to start, once: whoever runs it reports back with [`Engine::add_batch_records`]
-    /// and [`Engine::finish_batch`].
+    /// The batch to start, once: whoever runs it reports back with [`Simulator::add_batch_records`]
+    /// and [`Simulator::finish_batch`].
     pub(crate) fn take_batch_request(&mut self) -> Option<BatchRequest> {
         self.batch.take_request()
     }
@@ -627,7 +636,7 @@ impl Engine {
                 }
             }
         }
-        self.pending.table_changed = true;
+        self.unreported.table_changed = true;
     }
 
     /// Batch `id` has stopped (finished, cancelled or failed to start).
@@ -635,8 +644,8 @@ impl Engine {
         let Some(b) = self.batch.finish(id) else { return };
         // The table goes with the news, even when its last rolls came a tick earlier: a
         // snapshot that ends the batch always shows the table it ended with.
-        self.pending.table_changed = true;
-        self.pending.notice = Some(Notice::Said(match result {
+        self.unreported.table_changed = true;
+        self.unreported.notice = Some(Notice::Said(match result {
             Ok(()) => format!("batch of {} rolls done", b.total),
             Err(e) => format!("batch stopped: {e}"),
         }));
@@ -651,7 +660,7 @@ impl Engine {
         }
     }
 
-    /// Runs a batch taken with [`Engine::take_batch_request`] on this thread to its end.
+    /// Runs a batch taken with [`Simulator::take_batch_request`] on this thread to its end.
     #[cfg(test)]
     pub(crate) fn run_request_here(&mut self, request: BatchRequest) {
         use dicesim_experiment::{Rolls, run_batch};
@@ -682,7 +691,7 @@ impl Engine {
     }
 
     #[cfg(test)]
-    pub(crate) fn phase(&self) -> super::Phase {
+    pub(crate) fn phase(&self) -> super::protocol::Phase {
         self.live.phase()
     }
 
@@ -699,7 +708,7 @@ impl Engine {
 
     /// Everything the UI draws, plus what happened since the last snapshot.
     pub fn snapshot(&mut self) -> Snapshot {
-        let pending = std::mem::take(&mut self.pending);
+        let unreported = std::mem::take(&mut self.unreported);
         let live = &mut self.live;
         let (history, history_reset, history_cut) = live.take_history();
         let (die, step) = live.die();
@@ -722,10 +731,10 @@ impl Engine {
             history_cut,
             timeline: live.timeline_snapshot(),
             batch: self.batch.state().copied(),
-            table: pending.table_changed.then(|| self.table.clone()),
+            table: unreported.table_changed.then(|| self.table.clone()),
             versus: self.versus.as_ref().map(|v| v.table),
-            notice: pending.notice,
-            preset: pending.preset,
+            notice: unreported.notice,
+            preset: unreported.preset,
             export: self.export.state().copied(),
             curve: None,
             twin: live.twin_snapshot(),
@@ -740,7 +749,7 @@ mod tests {
     use dicesim_setup::keys::ScanKey;
 
     /// The notice of an export of the roll on screen into a fresh folder.
-    fn exported(e: &mut Engine) -> String {
+    fn exported(e: &mut Simulator) -> String {
         let dir = tempfile::tempdir().expect("temp dir");
         e.handle(Command::Export {
             dir: dir.path().to_path_buf(),
@@ -753,7 +762,7 @@ mod tests {
 
     #[test]
     fn an_export_after_a_mid_roll_change_says_it_rolled_again() {
-        let mut e = Engine::new(&Preset::default()).expect("valid");
+        let mut e = Simulator::new(&Preset::default()).expect("valid");
         e.advance_steps(300);
         let friction = ScanKey::named("ground.friction").expect("a scan key");
         e.handle(Command::SetParam(friction, 0.2));
@@ -774,13 +783,13 @@ mod tests {
         // A table value changed before the roll has moved is the whole roll's: no word either,
         // and what is shown is what a fresh roll with that value gives.
         let stiffness = ScanKey::named("ground.stiffness").expect("a scan key");
-        let mut e = Engine::new(&Preset::default()).expect("valid");
+        let mut e = Simulator::new(&Preset::default()).expect("valid");
         e.handle(Command::SetParam(stiffness, 550_000.0));
         e.run_to_end();
         assert!(!exported(&mut e).contains("re-rolled"));
         let mut preset = Preset::default();
         preset.ground.stiffness = 550_000.0;
-        let mut fresh = Engine::new(&preset).expect("valid");
+        let mut fresh = Simulator::new(&preset).expect("valid");
         fresh.run_to_end();
         assert_eq!(e.phase(), fresh.phase(), "the same roll as a fresh one");
     }

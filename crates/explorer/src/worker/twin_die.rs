@@ -1,8 +1,9 @@
-//! The engine's twin: a second simulation stepped in lock-step with the die, and the
+//! The twin die: a second simulation stepped in lock-step with the die, and the
 //! separation samples the plot shows. What tells the two apart is its [`Difference`]: a
 //! start ε away (the chaos twin) or a setup B with some values changed (the parameter twin).
 
-use super::{DieState, EnergySample, Phase, SeparationSample, TwinSnapshot};
+use super::play_on::played_out;
+use super::protocol::{DieState, EnergySample, Phase, SeparationSample, TwinSnapshot};
 use dicesim_physics::{InitialCondition, Params, Simulation, face_most_nearly_up};
 use dicesim_setup::chaos::{EPSILON, perturbed, separation};
 use dicesim_setup::keys::ScanKey;
@@ -132,7 +133,7 @@ impl Twin {
     }
 
     pub(crate) fn ended(&self) -> bool {
-        super::live::played_out(&self.sim)
+        played_out(&self.sim)
     }
 
     /// After a step: records the separation every `stride` steps, and at the end.
@@ -152,7 +153,7 @@ impl Twin {
             separation: separation(die, &self.sim),
         });
         if let Difference::Setup { .. } = self.difference {
-            self.samples.push(super::live::energy_sample(&self.sim));
+            self.samples.push(EnergySample::of(&self.sim));
         }
     }
 

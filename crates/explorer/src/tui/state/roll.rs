@@ -5,8 +5,9 @@
 //! the roll's whole picture is kept in step: a new roll clears the history, a changed
 //! future cuts it.
 
-use super::format::group;
-use super::keys::{Action, Screen, label};
+use super::camera::OrbitCamera;
+use crate::tui::format::{fmt_num, group};
+use crate::tui::keys::{Action, Scope, label};
 use crate::worker::{BatchProgress, Command, EnergySample, ExportStatus, OutcomeTable, Snapshot};
 use dicesim_setup::number::human_bytes;
 
@@ -112,7 +113,7 @@ impl RollView {
 
     /// The animation key: the roll on screen written into the current folder as an
     /// animated GIF seen from `camera`, or the running export cancelled.
-    pub(crate) fn animation_command(&self, camera: &super::camera::Camera) -> Command {
+    pub(crate) fn animation_command(&self, camera: &OrbitCamera) -> Command {
         if self.export.is_some() {
             Command::ExportCancel
         } else {
@@ -133,7 +134,7 @@ impl RollView {
         Some(format!(
             "batch size {} ({}: the next size, after {} type one)",
             group(self.batch_size),
-            label(Screen::Die, Action::BatchSize),
+            label(Scope::Die, Action::BatchSize),
             group(BATCH_SIZES[BATCH_SIZES.len() - 1])
         ))
     }
@@ -147,7 +148,7 @@ impl RollView {
         } else {
             Err(format!(
                 "{} rolls: a whole number from 1 to {}",
-                super::format::fmt_num(rolls),
+                fmt_num(rolls),
                 group(MAX_BATCH_ROLLS)
             ))
         }
@@ -160,11 +161,11 @@ impl RollView {
             ExportStatus::Map { size: (w, h) } => {
                 return Some(format!(
                     "exporting the basin map at {w}×{h} px · {} cancels",
-                    label(Screen::Map, Action::ExportMap)
+                    label(Scope::Map, Action::ExportMap)
                 ));
             }
             ExportStatus::Animation(p) => {
-                let cancel = label(Screen::Die, Action::ExportAnimation);
+                let cancel = label(Scope::Die, Action::ExportAnimation);
                 let share = 100.0 * p.done as f64 / p.total.max(1) as f64;
                 return Some(if p.drawing {
                     format!(
@@ -179,7 +180,7 @@ impl RollView {
             }
         };
         let share = 100.0 * p.steps_done as f64 / p.steps_total.max(1) as f64;
-        let cancel = label(Screen::Die, Action::Export);
+        let cancel = label(Scope::Die, Action::Export);
         Some(if p.writing {
             format!(
                 "exporting the roll: {share:.0}% of {} rows, {} · {cancel} cancels",

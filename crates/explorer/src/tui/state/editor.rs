@@ -1,7 +1,7 @@
 //! Text being typed: a value, the batch size, ε, a map range. State only; the keys that
 //! reach it come already read through the key table.
 
-use super::keys::{Action, Input, Screen, label};
+use crate::tui::keys::{Action, Input, Scope, label};
 
 /// A value being typed in (Enter on a parameter).
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -48,7 +48,7 @@ impl Editor {
                     Ok(v) => Ok(v),
                     Err(_) if text.is_empty() => Err(format!(
                         "type a number, or {} to cancel",
-                        label(Screen::Text, Action::Close)
+                        label(Scope::Text, Action::Close)
                     )),
                     Err(_) => Err(format!("`{text}` is not a number")),
                 });

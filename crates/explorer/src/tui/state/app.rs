@@ -1,56 +1,36 @@
-//! The explorer's state and what changes it (a worker snapshot absorbed, a value set);
-//! keys and the mouse reach it through [`super::input`]. Nothing here draws, sleeps or reads a clock.
+//! The explorer's state and what changes it (a worker snapshot absorbed, a value set, a
+//! question asked). Keys and the mouse reach it through the input routing above it; the
+//! panels read it. Nothing here draws, sleeps or reads a clock, and nothing here imports
+//! a panel: what `App` holds lives beside it in the state module.
 
-use super::camera::Camera;
+use super::camera::OrbitCamera;
 use super::dialog::Dialog;
-pub(crate) use super::editor::{Editor, Typed, VALUE_CHARS};
-use super::keys::{self, Action, Input, Screen, label};
-use super::layout::{Areas, screen_layout};
-use super::map_view::{MapView, View};
-use super::param::{Param, all};
-use super::plot::PlotChoice;
-use super::roll_view::RollView;
-use super::setup::Setup;
-use super::theme::{Palette, Theme};
-use super::twin_view::TwinView;
-use crate::worker::{Command, MapUpdate, Notice, Snapshot};
-use dicesim_setup::preset::{CameraView, Preset, Screen as ViewScreen, Store, ThemeName, View as PresetView};
-use ratatui::crossterm::event::Event;
+use super::die_screen::DieScreen;
+use super::editor::Editor;
+use super::map_view::MapView;
+use super::messages::{Effect, Outbox};
+use super::roll::RollView;
+use super::setup::UserSetup;
+use super::twins::TwinView;
+use crate::tui::keys::{self, Action, Input, Scope, label};
+use crate::tui::layout::{Areas, screen_layout};
+use crate::tui::theme::{Palette, Theme};
+use crate::worker::{Command, Notice, Snapshot};
+use dicesim_setup::preset::{
+    CameraView, Preset, Screen as PresetScreen, Store, ThemeName, View as PresetView,
+};
 use ratatui::layout::Rect;
-use ratatui::symbols::Marker;
 
-/// What the explorer asks of the world outside `update`: the event loop runs these (in
-/// order: worker commands as they come, then the rest), so `update` itself never touches
-/// the disk or a thread.
-#[derive(Debug, Clone, PartialEq)]
-// A worker command carries a whole setup (a loaded die's eight corner masses among it); an
-// effect lives only from `update` to the event loop, so boxing it would buy nothing.
-#[allow(clippy::large_enum_variant)]
-pub enum Effect {
-    /// A command for the simulation thread.
-    Worker(Command),
-    /// List the presets (shipped and the user's folder) and open the picker on them.
-    ListPresets,
-    /// Write this preset into the user's folder; an existing file of its name is replaced
-    /// only with `replace` (else the save dialog asks).
-    SavePreset { preset: Box<Preset>, replace: bool },
-}
-
-impl Effect {
-    /// The worker command, if this is one.
-    pub fn command(self) -> Option<Command> {
-        match self {
-            Effect::Worker(c) => Some(c),
-            _ => None,
-        }
-    }
-}
-
-/// Tests compare the effects of a key with the worker commands they expect.
-impl PartialEq<Command> for Effect {
-    fn eq(&self, other: &Command) -> bool {
-        matches!(self, Effect::Worker(c) if c == other)
-    }
+/// Which page is on screen.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) enum Page {
+    /// The main screen: the die, its energy and the outcome table.
+    #[default]
+    Die,
+    /// The basin-map screen (`Tab`).
+    Map,
+    /// The presentation view (`P`): the die large, for a projector.
+    Presentation,
 }
 
 /// What is topmost, and so gets the keys. [`App::mode`] is the one place that decides it.
@@ -108,7 +88,7 @@ impl Prompt {
         match self {
             Prompt::Quit => format!(
                 "Quit? The setup has unsaved changes ({} saves them).",
-                keys::named(Screen::Die, Action::SavePreset)
+                keys::named(Scope::Die, Action::SavePreset)
             ),
             Prompt::Reset => format!("Reset the setup to {preset}? Your changes are lost."),
             Prompt::Load(p) => format!("Open {}? Your changes to {preset} are lost.", p.name),
@@ -121,10 +101,10 @@ impl Prompt {
         (
             format!(
                 "{}/{}",
-                keys::named(Screen::Prompt, Action::Confirm),
-                keys::named(Screen::Prompt, asking)
+                keys::named(Scope::Prompt, Action::Confirm),
+                keys::named(Scope::Prompt, asking)
             ),
-            keys::words(Screen::Prompt, asking),
+            keys::words(Scope::Prompt, asking),
         )
     }
 
@@ -143,90 +123,40 @@ impl Prompt {
     }
 }
 
-/// What the event loop hands to [`update`]: terminal input or a worker snapshot.
-#[derive(Debug, Clone)]
-pub enum Msg {
-    Input(Event),
-    Worker(Box<Snapshot>),
-    /// A basin map from the worker's map thread.
-    Map(Box<MapUpdate>),
-    /// A signal that ends the explorer (the event loop handles it before `update`).
-    Signal(i32),
-}
-
-impl From<Snapshot> for Msg {
-    fn from(s: Snapshot) -> Msg {
-        Msg::Worker(Box::new(s))
-    }
-}
-
-impl From<MapUpdate> for Msg {
-    fn from(m: MapUpdate) -> Msg {
-        Msg::Map(Box::new(m))
-    }
-}
-
-/// How the die is drawn: Braille dots, or plain ASCII for fonts without Braille.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub(crate) enum Drawing {
-    #[default]
-    Braille,
-    Ascii,
-}
-
-impl Drawing {
-    /// The marker that draws the plots' lines.
-    pub(crate) fn line_marker(self) -> Marker {
-        match self {
-            Drawing::Braille => Marker::Braille,
-            Drawing::Ascii => Marker::Custom('.'),
-        }
-    }
-}
-
 /// The explorer's state: parts with their own rules (the roll as the worker reports it,
-/// the user's setup, the twin, the map screen, whatever is on top) and the few facts of
-/// the screen itself.
+/// the user's setup, the twins, the die and map screens, whatever is on top) and the few
+/// facts of the terminal itself.
 #[derive(Debug, Clone)]
 pub struct App {
     /// The live roll, its table, batch and export, as the worker's snapshots tell them.
     pub(crate) roll: RollView,
     /// The setup as the user last set it (ahead of the worker's until it catches up).
-    pub(crate) setup: Setup,
-    /// The chaos twin (`T`): its ε, its drift and the predictability curve.
+    pub(crate) setup: UserSetup,
+    /// The chaos twin (`T`) and the parameter twin (`D`): ε, drift, die B, the curve.
     pub(crate) twin: TwinView,
+    /// The die screen's selection, plot, arrows, drawing, camera and readout.
+    pub(crate) die_screen: DieScreen,
+    pub(crate) map: MapView,
+    /// The page on screen: the die, the basin map or the presentation view.
+    pub(crate) page: Page,
     /// What is on top of the screen, if anything: it takes every key.
     pub(crate) overlay: Option<Overlay>,
+    /// One line for the user, in the footer, until the next key.
     pub(crate) notice: Option<String>,
-    /// Index into [`all`](super::param::all).
-    pub(crate) selected: usize,
-    pub(crate) log_scale: bool,
-    /// What the plot panel draws (`w`, `V`).
-    pub(crate) plot: PlotChoice,
-    /// Arrows for ω, L, v and the contact forces on the die (`v`).
-    pub(crate) vectors: bool,
     /// Where presets are listed from and saved to.
     pub(crate) store: Store,
-    pub(crate) drawing: Drawing,
-    pub(crate) camera: Camera,
     pub(crate) theme: Theme,
     /// Frames drawn per second, measured by the event loop.
     pub(crate) fps: Option<f64>,
     /// The terminal's size, for mouse hit tests.
     pub(crate) screen: Rect,
     pub(crate) quit: bool,
-    pub(crate) view: View,
-    /// The number the presentation view shows beside the face.
-    pub(crate) readout: super::presentation::Readout,
-    pub(crate) map: MapView,
-    /// Effects other than worker commands asked for during the current `update`.
-    pub(crate) effects: Vec<Effect>,
-    /// Last mouse position while dragging the die.
-    pub(crate) drag: Option<(u16, u16)>,
+    /// What the current `update` sends out: worker commands and file work, in order.
+    pub(crate) outbox: Outbox,
 }
 
 impl App {
-    /// The explorer showing `first`, typically the engine's snapshot before the worker starts.
+    /// The explorer showing `first`, typically the simulator's snapshot before the worker starts.
     pub fn new(mut first: Snapshot, theme: Theme) -> App {
         let preset = first.preset.take().map_or_else(Preset::default, |p| *p);
         let notice = first.notice.take().map(|n| worded(&n));
@@ -236,26 +166,19 @@ impl App {
         };
         App {
             map: MapView::new(&first.params, &first.initial),
-            setup: Setup::new(&first, preset),
+            setup: UserSetup::new(&first, preset),
             roll: RollView::new(first),
             twin,
+            die_screen: DieScreen::default(),
+            page: Page::Die,
             notice,
             overlay: None,
-            selected: 0,
-            log_scale: false,
-            plot: PlotChoice::default(),
-            vectors: false,
             store: Store::new(None),
-            drawing: Drawing::default(),
-            camera: Camera::default(),
             theme,
             fps: None,
             screen: Rect::new(0, 0, 120, 36),
             quit: false,
-            view: View::Die,
-            readout: Default::default(),
-            effects: Vec::new(),
-            drag: None,
+            outbox: Outbox::default(),
         }
         .with_view()
     }
@@ -273,7 +196,7 @@ impl App {
     /// is, since it suits the room rather than the preset, and so does a twin that rolls
     /// (a lesson turns it on, then opens presets to compare them with it).
     pub(crate) fn apply_view(&mut self, view: &PresetView) {
-        self.camera = view.camera.map_or_else(Camera::default, |c| Camera {
+        self.die_screen.camera = view.camera.map_or_else(OrbitCamera::default, |c| OrbitCamera {
             yaw_deg: c.yaw,
             pitch_deg: c.pitch,
             zoom: c.zoom,
@@ -285,33 +208,56 @@ impl App {
                 ThemeName::Projector => Palette::Projector,
             };
         }
-        self.vectors = view.arrows.unwrap_or(false);
+        self.die_screen.arrows = view.arrows.unwrap_or(false);
         if view.twin.is_some() {
             self.twin.apply(view.twin);
         }
-        self.map.open_asked = view.screen == Some(ViewScreen::Map);
+        self.map.open_asked = view.screen == Some(PresetScreen::Map);
     }
 
     /// The view on screen, as `s` saves it.
     pub(crate) fn current_view(&self) -> PresetView {
+        let camera = &self.die_screen.camera;
         PresetView {
             speed: Some(self.setup.speed),
             camera: Some(CameraView {
-                yaw: self.camera.yaw_deg,
-                pitch: self.camera.pitch_deg,
-                zoom: self.camera.zoom,
+                yaw: camera.yaw_deg,
+                pitch: camera.pitch_deg,
+                zoom: camera.zoom,
             }),
             theme: Some(match self.theme.palette {
                 Palette::Dark => ThemeName::Dark,
                 Palette::Light => ThemeName::Light,
                 Palette::Projector => ThemeName::Projector,
             }),
-            arrows: Some(self.vectors),
+            arrows: Some(self.die_screen.arrows),
             twin: self.twin.on.then_some(self.twin.epsilon),
-            screen: Some(match self.view {
-                View::Die | View::Presentation => ViewScreen::Die,
-                View::Map => ViewScreen::Map,
+            screen: Some(match self.page {
+                Page::Die | Page::Presentation => PresetScreen::Die,
+                Page::Map => PresetScreen::Map,
             }),
+        }
+    }
+
+    /// The setup and the view on screen as a preset named `name`: the loaded preset's random
+    /// ranges, the current model values, start and view, and `description` (empty: the
+    /// automatic one, [`UserSetup::automatic_description`]).
+    pub(crate) fn as_preset(&self, name: &str, description: &str) -> Preset {
+        let p = &self.setup.params;
+        let description = match description.trim() {
+            "" => self.setup.automatic_description(),
+            typed => typed.to_string(),
+        };
+        Preset {
+            name: name.to_string(),
+            description,
+            die: p.die,
+            ground: p.ground,
+            world: p.world,
+            integrator: p.integrator,
+            initial: self.setup.initial,
+            view: self.current_view(),
+            ..self.setup.preset.clone()
         }
     }
 
@@ -323,9 +269,9 @@ impl App {
             Some(Overlay::Dialog(_)) => Mode::Dialog,
             Some(Overlay::Epsilon(_)) => Mode::EditingEpsilon,
             // The map's range editor is the map screen's own, under any overlay.
-            _ if self.view == View::Map && self.map.editing.is_some() => Mode::EditingRange,
+            _ if self.page == Page::Map && self.map.editing.is_some() => Mode::EditingRange,
             Some(Overlay::Help { .. }) => Mode::Help,
-            None if self.view == View::Map => Mode::Map,
+            None if self.page == Page::Map => Mode::Map,
             None => Mode::Normal,
         }
     }
@@ -378,19 +324,19 @@ impl App {
         }
     }
 
-    /// The mode whose rows of the key table apply now.
-    pub(crate) fn key_mode(&self) -> Screen {
+    /// Where the rows of the key table that apply now come from.
+    pub(crate) fn key_scope(&self) -> Scope {
         match self.mode() {
-            Mode::Prompt => Screen::Prompt,
-            Mode::EditingValue | Mode::EditingEpsilon | Mode::EditingRange => Screen::Text,
+            Mode::Prompt => Scope::Prompt,
+            Mode::EditingValue | Mode::EditingEpsilon | Mode::EditingRange => Scope::Text,
             Mode::Dialog => match self.dialog() {
-                Some(Dialog::Save { .. }) => Screen::Save,
-                _ => Screen::Picker,
+                Some(Dialog::Save { .. }) => Scope::Save,
+                _ => Scope::Picker,
             },
-            Mode::Help => Screen::Help,
-            Mode::Map => Screen::Map,
-            Mode::Normal if self.view == View::Presentation => Screen::Show,
-            Mode::Normal => Screen::Die,
+            Mode::Help => Scope::Help,
+            Mode::Map => Scope::Map,
+            Mode::Normal if self.page == Page::Presentation => Scope::Show,
+            Mode::Normal => Scope::Die,
         }
     }
 
@@ -399,22 +345,23 @@ impl App {
         if let Input::Nothing(key) = input {
             self.notice = Some(format!(
                 "{key}: nothing here ({} lists the keys)",
-                label(Screen::Die, Action::Help)
+                label(Scope::Die, Action::Help)
             ));
         }
     }
 
-    /// Asks the event loop for an effect outside the worker (files, folders).
-    pub(crate) fn ask(&mut self, effect: Effect) {
-        self.effects.push(effect);
+    /// Queues a command for the worker.
+    pub(crate) fn send(&mut self, c: Command) {
+        self.outbox.command(c);
     }
 
-    pub(crate) fn selected_param(&self) -> Param {
-        all()[self.selected.min(all().len() - 1)]
+    /// Asks the event loop for an effect outside the worker (files, folders).
+    pub(crate) fn ask(&mut self, effect: Effect) {
+        self.outbox.ask(effect);
     }
 
     /// Whether frames should keep coming without input (a moving roll or a running batch).
-    pub fn animating(&self) -> bool {
+    pub(crate) fn animating(&self) -> bool {
         self.roll.animating()
     }
 
@@ -431,7 +378,7 @@ impl App {
             self.setup.preset = *p;
             self.apply_view(&view);
         }
-        self.setup.adopt(&s);
+        self.setup.adopt(&s, self.outbox.commands_sent());
         let (was, now) = (self.roll.live.timeline.position, s.timeline.position);
         if let Some(d) = s
             .timeline
@@ -447,20 +394,20 @@ impl App {
     }
 
     /// Quits, telling the worker.
-    pub(crate) fn quit(&mut self, out: &mut Vec<Command>) {
+    pub(crate) fn quit(&mut self) {
         self.quit = true;
-        self.setup.send(out, Command::Quit);
+        self.send(Command::Quit);
     }
 
     /// Quits, or asks first when the setup has unsaved changes.
-    pub(crate) fn quit_asking(&mut self, out: &mut Vec<Command>) {
+    pub(crate) fn quit_asking(&mut self) {
         if self.setup.modified() {
             self.overlay = Some(Overlay::Prompt {
                 prompt: Prompt::Quit,
                 under: None,
             });
         } else {
-            self.quit(out);
+            self.quit();
         }
     }
 
@@ -480,17 +427,18 @@ impl App {
         }
     }
 
-    /// Moves the parameter list's selection by `delta` rows, inside the list.
-    pub(crate) fn select(&mut self, delta: isize) {
-        self.selected = (self.selected as isize + delta).clamp(0, all().len() as isize - 1) as usize;
+    /// Loads `preset`'s setup (the worker sends the preset itself back with its roll).
+    pub(crate) fn load(&mut self, preset: Box<Preset>) {
+        let c = self.setup.load(preset);
+        self.send(c);
     }
 
     /// The selected parameter a step up or down (`coarse`: a big step).
-    pub(crate) fn nudge(&mut self, out: &mut Vec<Command>, steps: i32, coarse: bool) {
-        let p = self.selected_param();
+    pub(crate) fn nudge(&mut self, steps: i32, coarse: bool) {
+        let p = self.die_screen.selected_param();
         let before = (self.setup.params, self.setup.initial);
         // In differ mode a value die B already differs by steps on from B's value (the
-        // change then goes to B and A's value comes back: see `versus::divert`).
+        // change then goes to B and A's value comes back: see the twins' keys, `divert`).
         let b = self
             .twin
             .differ
@@ -498,10 +446,9 @@ impl App {
         if let Some(Some(&(_, value))) = b {
             let _ = p.set(&mut self.setup.params, &mut self.setup.initial, value);
         }
-        let sent = out.len();
-        self.setup.nudge(out, p, steps, coarse);
-        if out.len() == sent {
-            (self.setup.params, self.setup.initial) = before;
+        match self.setup.nudge(p, steps, coarse) {
+            Some(c) => self.send(c),
+            None => (self.setup.params, self.setup.initial) = before,
         }
     }
 
@@ -523,11 +470,11 @@ pub(crate) fn worded(notice: &Notice) -> String {
     match notice {
         Notice::RollEnded => format!(
             "the roll has ended: {} replays it",
-            label(Screen::Die, Action::Replay)
+            label(Scope::Die, Action::Replay)
         ),
         Notice::ExportRunning => format!(
             "an export is running: {} cancels it",
-            label(Screen::Die, Action::Export)
+            label(Scope::Die, Action::Export)
         ),
         Notice::Said(words) => words.clone(),
     }

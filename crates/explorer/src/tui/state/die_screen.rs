@@ -1,0 +1,201 @@
+//! The die screen as the user set it up: which value of the parameter list is selected,
+//! what the plot panel draws and on which scale, whether the arrows show, how the die is
+//! drawn and seen, and the presentation view's number. The keys set these; the panels read
+//! them.
+
+use super::camera::OrbitCamera;
+use crate::tui::format::fmt_num;
+use crate::tui::param::{Param, all};
+use crate::worker::Snapshot;
+use dicesim_setup::quantity::{QUANTITY_COUNT, TOTAL_ENERGY};
+use ratatui::symbols::Marker;
+
+/// The die screen's choices, each changed by its keys (or the mouse) and kept while the
+/// map screen or an overlay is on top.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct DieScreen {
+    /// Index into [`all`].
+    pub(crate) selected: usize,
+    /// The energy plot on a logarithmic scale (`p`).
+    pub(crate) log_scale: bool,
+    /// What the plot panel draws (`w`, `V`).
+    pub(crate) plot: PlotChoice,
+    /// Arrows for ω, L, v and the contact forces on the die (`v`).
+    pub(crate) arrows: bool,
+    /// Braille dots or ASCII (`m`).
+    pub(crate) drawing: Drawing,
+    /// Orbited and zoomed by its keys, a drag and the wheel.
+    pub(crate) camera: OrbitCamera,
+    /// The number the presentation view shows beside the face.
+    pub(crate) readout: Readout,
+    /// Last mouse position while dragging the die.
+    pub(crate) drag: Option<(u16, u16)>,
+}
+
+impl DieScreen {
+    /// The parameter selected on the list.
+    pub(crate) fn selected_param(&self) -> Param {
+        all()[self.selected.min(all().len() - 1)]
+    }
+
+    /// Moves the parameter list's selection by `delta` rows, inside the list.
+    pub(crate) fn select(&mut self, delta: isize) {
+        self.selected = (self.selected as isize + delta).clamp(0, all().len() as isize - 1) as usize;
+    }
+}
+
+/// How the die is drawn: Braille dots, or plain ASCII for fonts without Braille.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) enum Drawing {
+    #[default]
+    Braille,
+    Ascii,
+}
+
+impl Drawing {
+    /// The marker that draws the plots' lines.
+    pub(crate) fn line_marker(self) -> Marker {
+        match self {
+            Drawing::Braille => Marker::Braille,
+            Drawing::Ascii => Marker::Custom('.'),
+        }
+    }
+}
+
+/// Index of the height of the centre and of the speed in [`QUANTITIES`](dicesim_setup::quantity::QUANTITIES).
+const HEIGHT: usize = 0;
+const SPEED: usize = 2;
+
+/// What the plot panel draws, chosen with the plot keys.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) struct PlotChoice {
+    /// `None`: the energy terms together; `Some(i)`: `QUANTITIES[i]` against time.
+    pub(crate) quantity: Option<usize>,
+    /// `Some(j)`: the phase plot, `QUANTITIES[j]` up against the first quantity across.
+    pub(crate) phase: Option<usize>,
+}
+
+impl PlotChoice {
+    /// The quantity plotted against time, or across in the phase plot (the energy plot's
+    /// is its total).
+    pub(crate) fn first(&self) -> usize {
+        self.quantity.unwrap_or(TOTAL_ENERGY)
+    }
+
+    /// The next quantity: against time, the energy terms, then each quantity in turn; in
+    /// the phase plot, the next quantity up (never the one across).
+    pub(crate) fn next(&mut self) {
+        match self.phase {
+            Some(j) => {
+                let mut k = (j + 1) % QUANTITY_COUNT;
+                if k == self.first() {
+                    k = (k + 1) % QUANTITY_COUNT;
+                }
+                self.phase = Some(k);
+            }
+            None => {
+                self.quantity = match self.quantity {
+                    None => Some(0),
+                    Some(i) if i + 1 < QUANTITY_COUNT => Some(i + 1),
+                    Some(_) => None,
+                }
+            }
+        }
+    }
+
+    /// The phase plot on (up: the height, or the speed when the height is across) or off.
+    pub(crate) fn toggle_phase(&mut self) {
+        self.phase = match self.phase {
+            Some(_) => None,
+            None if self.first() == HEIGHT => Some(SPEED),
+            None => Some(HEIGHT),
+        };
+    }
+}
+
+/// The one number the view shows beside the face (`N` picks the next).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) enum Readout {
+    /// cm, the centre of mass above the table.
+    #[default]
+    Height,
+    /// cm/s, of the centre of mass.
+    Speed,
+    /// rad/s, |ω|.
+    Spin,
+    /// erg, translational and rotational.
+    KineticEnergy,
+}
+
+impl Readout {
+    pub(crate) fn next(self) -> Readout {
+        match self {
+            Readout::Height => Readout::Speed,
+            Readout::Speed => Readout::Spin,
+            Readout::Spin => Readout::KineticEnergy,
+            Readout::KineticEnergy => Readout::Height,
+        }
+    }
+
+    /// What it is, in the model's words.
+    pub(crate) fn name(self) -> &'static str {
+        match self {
+            Readout::Height => "height",
+            Readout::Speed => "speed",
+            Readout::Spin => "spin",
+            Readout::KineticEnergy => "kinetic energy",
+        }
+    }
+
+    /// Its value in the snapshot on screen, and the unit.
+    pub(crate) fn value(self, live: &Snapshot) -> (f64, &'static str) {
+        match self {
+            Readout::Height => (live.die.centre.z, "cm"),
+            Readout::Speed => (live.die.velocity.norm(), "cm/s"),
+            Readout::Spin => (live.die.angular_velocity.norm(), "rad/s"),
+            Readout::KineticEnergy => (live.energy.kinetic(), "erg"),
+        }
+    }
+
+    /// The value as the view writes it: a fixed number of decimals for the lengths and
+    /// rates, so the digits do not jump about while they change.
+    pub(crate) fn text(self, live: &Snapshot) -> String {
+        let (v, unit) = self.value(live);
+        match self {
+            Readout::Height => format!("{v:.2} {unit}"),
+            Readout::Speed | Readout::Spin => format!("{v:.1} {unit}"),
+            Readout::KineticEnergy => format!("{} {unit}", fmt_num(v)),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_plot_key_walks_every_quantity_and_back_to_the_energy_plot() {
+        let mut p = PlotChoice::default();
+        let mut seen = Vec::new();
+        for _ in 0..=QUANTITY_COUNT {
+            p.next();
+            seen.push(p.quantity);
+        }
+        assert_eq!(seen.last(), Some(&None));
+        assert_eq!(
+            seen[..QUANTITY_COUNT],
+            (0..QUANTITY_COUNT).map(Some).collect::<Vec<_>>()
+        );
+        // The phase plot: up is never the quantity across.
+        p.quantity = Some(HEIGHT);
+        p.toggle_phase();
+        assert_eq!(p.phase, Some(SPEED));
+        for _ in 0..2 * QUANTITY_COUNT {
+            p.next();
+            assert_ne!(p.phase, Some(HEIGHT));
+            assert_eq!(p.quantity, Some(HEIGHT));
+        }
+        p.toggle_phase();
+        assert_eq!(p.phase, None);
+    }
+}
