@@ -13,6 +13,7 @@ mod batches_and_maps;
 mod commands;
 mod compare;
 mod docs;
+mod import_cycles;
 mod inputs;
 mod merge_checks;
 mod merge_fuzz;
