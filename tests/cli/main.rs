@@ -15,6 +15,7 @@ mod compare;
 mod docs;
 mod import_cycles;
 mod inputs;
+mod layers;
 mod merge_checks;
 mod merge_fuzz;
 mod outputs;

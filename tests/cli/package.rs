@@ -27,6 +27,7 @@ fn project_files() -> Vec<PathBuf> {
     let root = Path::new(ROOT);
     let mut files = vec![
         root.join("README.md"),
+        root.join("ARCHITECTURE.md"),
         root.join("Cargo.toml"),
         root.join(".ci/run"),
     ];
