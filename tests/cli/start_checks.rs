@@ -2,9 +2,7 @@
 //! may begin inside the table deeper than the die's resting depth. The lowest height each
 //! error names is derived here from the die's geometry, not taken from the program.
 
-mod common;
-
-use common::dicesim_in;
+use crate::common::dicesim_in;
 use std::path::Path;
 
 /// cm: the default die's half size and its resting depth M·g/(4k) (8 g, 980 cm/s²,

@@ -2,10 +2,8 @@
 //! must be the one-machine files byte for byte, and a merge of parts that are not one
 //! sweep must be refused without writing anything.
 
+use crate::common::{dicesim_ok as ok, dicesim_refused as refused};
 use std::path::Path;
-mod common;
-
-use common::{dicesim_ok as ok, dicesim_refused as refused};
 use std::process::Command;
 
 fn bytes(dir: &Path, name: &str) -> Vec<u8> {

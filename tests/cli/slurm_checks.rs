@@ -1,9 +1,7 @@
 //! `dicesim slurm` writes shell scripts: every value it puts into one is checked, the whole
 //! sweep is checked as an array task will parse it, and a refusal writes nothing at all.
 
-mod common;
-
-use common::dicesim_in;
+use crate::common::dicesim_in;
 use std::path::Path;
 
 /// Runs `slurm` into `dir/sweep` with `options` and the sweep `command`; it must be

@@ -2,15 +2,29 @@
 //! engine widths; a general body's torque-free flight and the tennis-racket flip; the size
 //! keys of a preset file.
 
-mod common;
-
-use common::state_bits;
 use dicesim_physics::RandomRanges;
 use dicesim_physics::lanes::{LaneResult, lanes_available, roll_in_lanes, roll_one_by_one};
 use dicesim_physics::{InitialCondition, Params, Simulation};
 use dicesim_setup::preset::{Preset, SHIPPED};
 use dicesim_setup::random::RandomDraws;
 use nalgebra::Vector3;
+
+/// A state's every number as bits, and its step count: what two engines must agree on.
+fn state_bits(s: &dicesim_physics::State) -> Vec<u64> {
+    let mut v: Vec<f64> = Vec::with_capacity(80);
+    v.extend(s.position.iter());
+    v.extend(s.velocity.iter());
+    v.extend(s.angular_momentum.iter());
+    for k in 0..8 {
+        v.extend(s.corner_offsets[k].iter());
+        v.extend(s.corner_forces[k].iter());
+        v.push(s.corner_depths[k]);
+    }
+    v.push(s.time_s);
+    let mut bits: Vec<u64> = v.into_iter().map(f64::to_bits).collect();
+    bits.push(s.step);
+    bits
+}
 
 /// A roll's result as bits: the whole final state, then end time, status, face, steps and
 /// start face.

@@ -2,9 +2,7 @@
 //! defines it, never the threads, engine, shard or time, so files stay byte-identical
 //! across them.
 
-mod common;
-
-use common::{dicesim_ok as ok, png_text};
+use crate::common::{dicesim_ok as ok, png_text};
 use std::path::Path;
 
 fn first_line_json(path: &Path) -> serde_json::Value {

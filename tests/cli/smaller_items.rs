@@ -1,9 +1,7 @@
 //! The smaller defects of issue 26: ε labels printed as given, and preset text that could
 //! steer the terminal printed escaped.
 
-mod common;
-
-use common::dicesim_in;
+use crate::common::dicesim_in;
 use std::process::Command;
 
 #[test]

@@ -2,7 +2,7 @@
 //! fair, a heavy corner biases it, and the binary writes the loaded records of before again.
 //! The mass model itself is tested in the physics crate (crates/physics/tests/physics/).
 
-mod common;
+use crate::common;
 
 use dicesim_experiment::{RandomRanges, Rolls, RunOptions, stream_batch};
 use dicesim_physics::{InitialCondition, Params};

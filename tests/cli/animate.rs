@@ -1,9 +1,7 @@
 //! `dicesim animate` as a user runs it: the face its file records and shows agrees with
 //! `dicesim roll --json`, two runs write the same bytes, and bad input writes nothing.
 
-mod common;
-
-use common::{dicesim_ok as ok, dicesim_refused as refused, png_text};
+use crate::common::{dicesim_ok as ok, dicesim_refused as refused, png_text};
 
 #[test]
 fn the_recorded_outcome_is_the_rolls_own() {

@@ -7,10 +7,8 @@
 //! them, most tests also rewrite the part's hash (as a careless copy or a forger would), so
 //! the records themselves must be read and refused.
 
+use crate::common::{dicesim_in, dicesim_ok as ok, dicesim_refused, rehash_part as rehash};
 use std::path::Path;
-mod common;
-
-use common::{dicesim_in, dicesim_ok as ok, dicesim_refused, rehash_part as rehash};
 
 /// Runs a merge that must be refused (exit 2) without writing `m.csv`; returns stderr.
 fn refused(dir: &Path, args: &[&str]) -> String {

@@ -1,9 +1,7 @@
 //! Files written from the command line: never clobbered, checked before any work, written
 //! whole or not at all.
 
-mod common;
-
-use common::dicesim_in;
+use crate::common::dicesim_in;
 use std::process::{Command, Output};
 
 fn stderr(o: &Output) -> String {

@@ -9,9 +9,7 @@
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
 
-mod common;
-
-use common::{dicesim_in, dicesim_ok as ok, rehash_part as rehash};
+use crate::common::{dicesim_in, dicesim_ok as ok, rehash_part as rehash};
 
 /// How a file is damaged; positions are fractions of its length.
 #[derive(Debug, Clone)]

@@ -1,0 +1,367 @@
+//! The shipped presets do what their descriptions say: each loads, rolls and settles; the
+//! paper's die tumbles through every face; the slow-motion wheel stays in its plane; the soft,
+//! icy and sticky tables and the edge of stability behave as described; the loaded corner
+//! shows the bias it states.
+
+use dicesim_experiment::roll_record;
+use dicesim_physics::{InitialCondition, Outcome, Params, Simulation, Status};
+use dicesim_setup::preset::{FORMAT, Preset, SHIPPED, Source, Store};
+use dicesim_setup::random::RandomDraws;
+
+fn shipped(name: &str) -> Preset {
+    let (preset, source) = Store::new(None)
+        .load(name)
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert_eq!(source, Source::Shipped);
+    preset
+}
+
+/// A roll followed step by step.
+struct Watched {
+    outcome: Outcome,
+    sim: Simulation,
+    /// The face most nearly up, each time it changes (starting with the first).
+    faces: Vec<u8>,
+    /// Steps the first contact with the table lasted.
+    first_contact_steps: u64,
+    /// cm/s, the vertical velocity as the first contact ends.
+    first_rebound_speed: f64,
+    /// cm, the largest sideways (y) excursion of the centre.
+    max_abs_y: f64,
+}
+
+fn watch(params: &Params, initial: &InitialCondition) -> Watched {
+    let mut sim = Simulation::new(params, initial).unwrap();
+    let mut faces = vec![sim.face_up()];
+    let (mut contact_start, mut first_contact_steps, mut first_rebound_speed) = (None, 0, f64::NAN);
+    let mut max_abs_y: f64 = 0.0;
+    let outcome = loop {
+        let end = sim.advance();
+        let s = sim.state();
+        max_abs_y = max_abs_y.max(s.position.y.abs());
+        if faces.last() != Some(&sim.face_up()) {
+            faces.push(sim.face_up());
+        }
+        match (contact_start, sim.in_contact()) {
+            (None, true) => contact_start = Some(s.step),
+            (Some(start), false) if first_contact_steps == 0 => {
+                first_contact_steps = s.step - start;
+                first_rebound_speed = s.velocity.z;
+            }
+            _ => {}
+        }
+        if let Some(o) = end {
+            break o;
+        }
+    };
+    Watched {
+        outcome,
+        sim,
+        faces,
+        first_contact_steps,
+        first_rebound_speed,
+        max_abs_y,
+    }
+}
+
+/// A die dropped flat, without spin or sideways motion, from the preset's height.
+fn flat_drop(p: &Preset) -> InitialCondition {
+    InitialCondition {
+        height: p.initial.height,
+        ..InitialCondition::default()
+    }
+}
+
+/// The preset's `[random]` rolls number 0..n.
+fn random_rolls(p: &Preset, n: u64) -> Vec<InitialCondition> {
+    (0..n)
+        .map(|i| p.random.draw(&p.initial, p.random.seed, i))
+        .collect()
+}
+
+fn mean(xs: impl IntoIterator<Item = f64>) -> f64 {
+    let (sum, n) = xs.into_iter().fold((0.0, 0.0), |(s, n), x| (s + x, n + 1.0));
+    sum / n
+}
+
+// ---------------------------------------------------------------------------------------------
+// The shipped set
+
+#[test]
+fn every_shipped_preset_loads_rolls_and_settles() {
+    for (name, _) in SHIPPED {
+        let p = shipped(name);
+        assert_eq!(p.name, *name);
+        assert_eq!(p.format, FORMAT);
+        assert!(
+            p.description.split_whitespace().count() >= 30,
+            "{name}: a teacher reads this aloud"
+        );
+        p.validate().unwrap();
+        let params = p.params();
+        assert!(params.stability_number() < 2.0, "{name}");
+        let mut sim = Simulation::new(&params, &p.initial).unwrap();
+        let outcome = sim.run_to_end();
+        assert_eq!(outcome.status, Status::Settled, "{name}: {outcome:?}");
+        assert!((1..=6).contains(&outcome.face.unwrap()), "{name}");
+        // The die at least fell to the table (its corners reach √3 cm below the centre).
+        let fall = (p.initial.height - 3f64.sqrt()).max(0.0);
+        assert!(
+            outcome.time_s >= (2.0 * fall / params.world.gravity).sqrt(),
+            "{name}"
+        );
+    }
+}
+
+#[test]
+fn paper_has_the_papers_constants_and_a_lively_first_roll() {
+    let p = shipped("paper");
+    assert_eq!(p.params(), Params::default());
+    let w = watch(&p.params(), &p.initial);
+    let mut seen = w.faces.clone();
+    seen.sort();
+    seen.dedup();
+    assert_eq!(
+        seen,
+        [1, 2, 3, 4, 5, 6],
+        "it tumbles through every face: {:?}",
+        w.faces
+    );
+    assert_ne!(
+        w.outcome.face,
+        Some(w.faces[0]),
+        "it ends on another face than it started"
+    );
+}
+
+#[test]
+fn slow_motion_classroom_rolls_like_a_wheel_and_never_shows_2_or_5() {
+    let p = shipped("slow-motion-classroom");
+    // A spin about y alone, a push along x: the motion stays in the x–z plane.
+    assert_eq!(
+        [p.initial.angular_velocity[0], p.initial.angular_velocity[2]],
+        [0.0, 0.0]
+    );
+    assert_eq!(p.initial.velocity[1], 0.0);
+    let w = watch(&p.params(), &p.initial);
+    assert!(w.max_abs_y < 1e-9, "it left its plane by {} cm", w.max_abs_y);
+    assert!(w.faces.iter().all(|f| [1, 3, 4, 6].contains(f)), "{:?}", w.faces);
+    assert!([1, 3, 4, 6].contains(&w.outcome.face.unwrap()));
+    for f in [1, 3, 4, 6] {
+        assert!(w.faces.contains(&f), "it rolls over fully: {:?}", w.faces);
+    }
+}
+
+#[test]
+fn gentle_drop_keeps_the_start_face_and_height_is_what_randomises() {
+    let p = shipped("gentle-drop");
+    let params = p.params();
+    let first = roll_record(&params, &p.initial, 0);
+    assert_ne!(p.initial.orientation, [0.0; 3], "it starts tilted");
+    assert_eq!(first.outcome.face, Some(first.start_face));
+
+    assert!(p.random.random_orientation);
+    let rolls = random_rolls(&p, 40);
+    let starts: Vec<u8> = rolls
+        .iter()
+        .map(|ic| roll_record(&params, ic, 0).start_face)
+        .collect();
+    assert!(
+        starts.iter().any(|&f| f != starts[0]),
+        "the random tilts start on different faces"
+    );
+    for (i, ic) in rolls.iter().enumerate() {
+        let r = roll_record(&params, ic, i as u64);
+        assert_eq!(r.outcome.status, Status::Settled);
+        assert_eq!(r.outcome.face, Some(r.start_face), "roll {i}: {ic:?}");
+    }
+    // The same throws from the paper's 15 cm mostly end elsewhere.
+    let kept_from_high = rolls
+        .iter()
+        .map(|ic| roll_record(&params, &InitialCondition { height: 15.0, ..*ic }, 0))
+        .filter(|r| r.outcome.face == Some(r.start_face))
+        .count();
+    assert!(
+        kept_from_high < rolls.len() / 2,
+        "{kept_from_high} of {} kept",
+        rolls.len()
+    );
+}
+
+#[test]
+fn soft_table_sinks_ten_times_deeper_and_impacts_last_longer() {
+    let p = shipped("soft-table");
+    let params = p.params();
+    let paper = Params::default();
+    assert_eq!(params.ground.stiffness * 10.0, paper.ground.stiffness);
+    assert_eq!(params.ground.damping, paper.ground.damping);
+
+    // At rest (stepped on well past the end of the roll) each corner sinks M·g/(4k).
+    let mut w = watch(&params, &p.initial);
+    for _ in 0..3000 {
+        w.sim.step();
+    }
+    let mut depths = w.sim.state().corner_depths;
+    depths.sort_by(|a, b| b.total_cmp(a));
+    let depth = mean(depths[..4].iter().copied());
+    assert!(
+        (depth / params.resting_depth() - 1.0).abs() < 0.05,
+        "{depth} cm vs {} cm",
+        params.resting_depth()
+    );
+    assert!((params.resting_depth() / paper.resting_depth() - 10.0).abs() < 1e-9);
+
+    // A flat drop: contact lasts about √10 ≈ 3.2 times longer, the rebound is about as fast.
+    let soft = watch(&params, &flat_drop(&p));
+    let hard = watch(&paper, &flat_drop(&p));
+    let ratio = soft.first_contact_steps as f64 / hard.first_contact_steps as f64;
+    assert!((2.5..4.0).contains(&ratio), "contact {ratio} times longer");
+    let rebound = soft.first_rebound_speed / hard.first_rebound_speed;
+    assert!((0.8..1.25).contains(&rebound), "rebound ratio {rebound}");
+}
+
+#[test]
+fn icy_table_slides_like_a_curling_stone_where_the_paper_table_trips_it() {
+    let p = shipped("icy-table");
+    let icy = p.params();
+    assert!((icy.ground.friction * 12.0 - Params::default().ground.friction).abs() < 1e-12);
+    assert_eq!(p.initial.angular_velocity, [0.0; 3]);
+
+    let w = watch(&icy, &p.initial);
+    assert_eq!(w.faces, [4], "the same face stays up all the way");
+    assert_eq!(w.outcome.face, Some(4));
+    // Sliding flat it decelerates at μ·g: the distance is (v₀² − v²)/(2μg).
+    let s = w.sim.state();
+    let (v0, v) = (p.initial.velocity[0], s.velocity.xy().norm());
+    assert!(v > 10.0, "still gliding at the end: {v} cm/s");
+    let expected = (v0 * v0 - v * v) / (2.0 * icy.ground.friction * icy.world.gravity);
+    let travelled = s.position.xy().norm();
+    assert!(
+        (travelled / expected - 1.0).abs() < 0.03,
+        "{travelled} cm vs {expected} cm"
+    );
+
+    let mut grippy = icy;
+    grippy.ground.friction = Params::default().ground.friction;
+    let tripped = watch(&grippy, &p.initial);
+    assert!(
+        tripped.faces.len() >= 3,
+        "the paper's friction trips it: {:?}",
+        tripped.faces
+    );
+}
+
+#[test]
+fn sticky_table_bounces_lower_tumbles_less_and_settles_sooner() {
+    let p = shipped("sticky-table");
+    let sticky = p.params();
+    assert_eq!(sticky.ground.damping, 4.0 * Params::default().ground.damping);
+    let mut lively = sticky;
+    lively.ground.damping = Params::default().ground.damping;
+
+    let drop = flat_drop(&p);
+    let (a, b) = (watch(&sticky, &drop), watch(&lively, &drop));
+    assert!(a.first_rebound_speed > 0.0 && a.first_rebound_speed < 0.8 * b.first_rebound_speed);
+
+    let throws: Vec<InitialCondition> = std::iter::once(p.initial).chain(random_rolls(&p, 11)).collect();
+    let (s, l): (Vec<Watched>, Vec<Watched>) = throws
+        .iter()
+        .map(|ic| (watch(&sticky, ic), watch(&lively, ic)))
+        .unzip();
+    let steps = |ws: &[Watched]| mean(ws.iter().map(|w| w.outcome.steps as f64));
+    let turns = |ws: &[Watched]| mean(ws.iter().map(|w| (w.faces.len() - 1) as f64));
+    assert!(steps(&s) < steps(&l), "{} vs {} steps", steps(&s), steps(&l));
+    assert!(
+        turns(&s) < turns(&l),
+        "{} vs {} face changes",
+        turns(&s),
+        turns(&l)
+    );
+}
+
+#[test]
+fn on_the_edge_of_stability_settles_though_many_throws_do_not() {
+    let p = shipped("on-the-edge-of-stability");
+    let params = p.params();
+    let number = params.stability_number();
+    assert!((1.4..1.6).contains(&number), "ω_rock·Δt = {number}");
+    // "each step shorter than about a third of one rock": 2/ω_rock of the period 2π/ω_rock.
+    assert!((params.integrator.dt / Params::default().integrator.dt - 2.4).abs() < 1e-12);
+    let paper = shipped("paper");
+    assert_eq!(p.initial, paper.initial, "the paper's throw");
+    let mut same_but_dt = params;
+    same_but_dt.integrator.dt = paper.params().integrator.dt;
+    assert_eq!(same_but_dt, paper.params());
+
+    let (o, _) = dicesim_physics::roll(&params, &p.initial).unwrap();
+    assert_eq!(o.status, Status::Settled);
+
+    let unstable: Vec<InitialCondition> = random_rolls(&p, 30)
+        .into_iter()
+        .filter(|ic| roll_record(&params, ic, 0).outcome.status == Status::Unstable)
+        .collect();
+    assert!(unstable.len() >= 2, "only {} of 30 unstable", unstable.len());
+    for ic in &unstable {
+        let r = roll_record(&same_but_dt, ic, 0);
+        assert_eq!(r.outcome.status, Status::Settled, "{ic:?}");
+    }
+}
+
+/// The number just before `marker` in `text` (`"44 % of the time"` → 44).
+fn number_before(text: &str, marker: &str) -> f64 {
+    let at = text
+        .find(marker)
+        .unwrap_or_else(|| panic!("`{marker}` in {text:?}"));
+    let digits: String = text[..at]
+        .trim_end()
+        .chars()
+        .rev()
+        .take_while(|c| c.is_ascii_digit() || *c == '.')
+        .collect::<Vec<_>>()
+        .into_iter()
+        .rev()
+        .collect();
+    digits
+        .parse()
+        .unwrap_or_else(|_| panic!("a number before `{marker}`"))
+}
+
+#[test]
+fn loaded_corner_shows_the_bias_and_the_rolls_a_class_needs_that_it_states() {
+    use dicesim_experiment::{Rolls, RunOptions, stream_batch};
+    let p = shipped("loaded-corner");
+    let params = p.params();
+    assert!(params.die.is_loaded());
+    let stated_share = number_before(&p.description, "% of the time together") / 100.0;
+    let stated_rolls = number_before(&p.description, "rolls before");
+    let rolls = Rolls::Random {
+        ranges: &p.random,
+        base: &p.initial,
+        seed: p.random.seed,
+        first: 0,
+        count: 4000,
+    };
+    let run = stream_batch(
+        &params,
+        &rolls,
+        &RunOptions::default(),
+        &std::sync::atomic::AtomicBool::new(false),
+        &mut |_| Ok(()),
+    )
+    .unwrap();
+    let s = run.summary;
+    assert_eq!(s.status.settled, 4000);
+    let c = s.faces.counts();
+    let heavy = (c[3] + c[4] + c[5]) as f64 / s.faces.total() as f64;
+    // 4000 rolls measure a share to ±0.8 points (one standard error).
+    assert!(
+        (heavy - stated_share).abs() < 0.025,
+        "faces 4–6 came up {heavy}, the description says {stated_share}"
+    );
+    // And the rolls the test needs to ±20 % (the measured bias's own error at 4000 rolls).
+    let needed = s.rolls_to_detect.expect("a bias is measured") as f64;
+    assert!(
+        (0.7..1.4).contains(&(needed / stated_rolls)),
+        "{needed} rolls needed, the description says {stated_rolls}"
+    );
+}

@@ -1,0 +1,32 @@
+//! The `dicesim` binary as a user runs it, and the checks of the repository as a whole (its
+//! docs' links, its packaging, the layers of its crates, no import cycles in any crate): one
+//! test binary, so a change relinks one program, not one a file.
+//!
+//! The tests of a library alone live with their crate (`crates/*/tests/`).
+
+// The helpers live in tests/common/, where cargo builds no test binary of its own.
+#[path = "../common/mod.rs"]
+mod common;
+
+mod animate;
+mod batches_and_maps;
+mod commands;
+mod compare;
+mod docs;
+mod import_cycles;
+mod inputs;
+mod layers;
+mod loaded_dice;
+mod merge_checks;
+mod merge_fuzz;
+mod outputs;
+mod package;
+mod presets;
+mod provenance;
+mod shards;
+mod signals;
+mod slurm_checks;
+mod smaller_items;
+mod start_checks;
+mod terminal;
+mod versus;
