@@ -1,6 +1,6 @@
 //! What can be wrong with a preset, said so that a user can find and fix it.
 
-use super::FORMAT;
+use super::contents::FORMAT;
 use dicesim_physics::ParamError;
 use std::fmt;
 use std::path::PathBuf;

@@ -1,7 +1,8 @@
 //! The preset file format: reading with positions in every error, writing the whole file with
 //! its unit comments.
 
-use super::{FORMAT, Location, Preset, PresetError};
+use super::contents::{FORMAT, Preset};
+use super::error::{Location, PresetError};
 use crate::registry::{self, ANGULAR_MOMENTUM, ANGULAR_VELOCITY, Role, Setup, Value};
 use dicesim_physics::params::{CORNERS, SIZE_TWICE};
 use dicesim_physics::{InitialCondition, ParamError};

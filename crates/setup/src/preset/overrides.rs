@@ -1,6 +1,7 @@
 //! `--set KEY=VALUE` overrides, applied after a preset is loaded and checked like a file.
 
-use super::{Preset, PresetError};
+use super::contents::Preset;
+use super::error::PresetError;
 use crate::keys::ScanKey;
 
 impl Preset {

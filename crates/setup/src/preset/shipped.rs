@@ -1,7 +1,8 @@
 //! The presets shipped in the repository's `presets/`, compiled in so an installed binary
 //! still has them.
 
-use super::Preset;
+use super::contents::Preset;
+use super::error::PresetError;
 use std::sync::LazyLock;
 
 /// The preset used when none is named (the CLI without `--preset`, the TUI at start).
@@ -61,7 +62,7 @@ pub(crate) fn origin(name: &str) -> String {
 }
 
 /// Loads the shipped preset `name`.
-pub(crate) fn load(name: &str) -> Option<Result<Preset, super::PresetError>> {
+pub(crate) fn load(name: &str) -> Option<Result<Preset, PresetError>> {
     shipped_text(name).map(|text| Preset::from_toml_str(text, &origin(name)))
 }
 
@@ -74,6 +75,13 @@ pub(crate) fn default_preset() -> &'static Preset {
         None => panic!("no shipped preset named {DEFAULT_NAME}"),
     });
     &DEFAULT
+}
+
+impl Default for Preset {
+    /// The shipped `paper` preset (the paper's constants and a lively first roll).
+    fn default() -> Self {
+        default_preset().clone()
+    }
 }
 
 #[cfg(test)]

@@ -1,7 +1,9 @@
 //! Where presets are found and saved (docs/presets.md): a path given directly; else the user's
 //! preset folder; else the shipped set. The user's folder wins on a name clash.
 
-use super::{Preset, PresetError, shipped};
+use super::contents::Preset;
+use super::error::PresetError;
+use super::shipped;
 use crate::output::{Output, OutputError};
 use std::path::{Path, PathBuf};
 

@@ -2,7 +2,7 @@
 //! (docs/presets.md, "The view"). Every key is optional; a missing key leaves the
 //! explorer's own default. The CLI ignores the view.
 
-use super::Speed;
+use super::speed::Speed;
 use dicesim_physics::{Limits, ParamError};
 use serde::{Deserialize, Serialize};
 
