@@ -4,13 +4,10 @@
 //!
 //! The tests of a library alone live with their crate (`crates/*/tests/`).
 
-// The helpers live in tests/common/, where cargo builds no test binary of its own.
-#[path = "../common/mod.rs"]
-mod common;
-
 mod animate;
 mod batches_and_maps;
 mod commands;
+mod common;
 mod compare;
 mod docs;
 mod import_cycles;

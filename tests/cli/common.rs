@@ -1,5 +1,5 @@
-//! Helpers shared by the integration tests: reading the reference CSVs, running the binary.
-#![allow(dead_code)]
+//! Helpers shared by the binary's tests: running it, forging a shard's part summary, reading
+//! a PNG's text chunks and the authors' reference CSVs.
 
 use dicesim_physics::InitialCondition;
 use std::collections::HashMap;
@@ -7,7 +7,6 @@ use std::path::PathBuf;
 
 /// One CSV file as rows of named numeric columns.
 pub struct Table {
-    pub header: Vec<String>,
     pub rows: Vec<Vec<f64>>,
     index: HashMap<String, usize>,
 }
@@ -19,19 +18,16 @@ impl Table {
             .join(name);
         let fail = |e: &dyn std::fmt::Display| -> ! { panic!("{}: {e}", path.display()) };
         let mut reader = csv::Reader::from_path(&path).unwrap_or_else(|e| fail(&e));
-        let header: Vec<String> = reader
-            .headers()
-            .unwrap_or_else(|e| fail(&e))
-            .iter()
-            .map(str::to_string)
+        let index = (reader.headers().unwrap_or_else(|e| fail(&e)).iter())
+            .enumerate()
+            .map(|(i, h)| (h.to_string(), i))
             .collect();
-        let index = header.iter().enumerate().map(|(i, h)| (h.clone(), i)).collect();
         // Every cell is a number written with %.17g, so each parses to the bits written.
         let rows = reader
             .deserialize::<Vec<f64>>()
             .map(|row| row.unwrap_or_else(|e| fail(&e)))
             .collect();
-        Table { header, rows, index }
+        Table { rows, index }
     }
 
     pub fn col(&self, name: &str) -> usize {
@@ -129,21 +125,4 @@ pub fn png_text(path: &std::path::Path) -> std::collections::BTreeMap<String, St
     (reader.info().utf8_text.iter())
         .map(|c| (c.keyword.clone(), c.get_text().unwrap()))
         .collect()
-}
-
-/// A state's every number as bits, and its step count: what two engines must agree on.
-pub fn state_bits(s: &dicesim_physics::State) -> Vec<u64> {
-    let mut v: Vec<f64> = Vec::with_capacity(80);
-    v.extend(s.position.iter());
-    v.extend(s.velocity.iter());
-    v.extend(s.angular_momentum.iter());
-    for k in 0..8 {
-        v.extend(s.corner_offsets[k].iter());
-        v.extend(s.corner_forces[k].iter());
-        v.push(s.corner_depths[k]);
-    }
-    v.push(s.time_s);
-    let mut bits: Vec<u64> = v.into_iter().map(f64::to_bits).collect();
-    bits.push(s.step);
-    bits
 }
