@@ -1,6 +1,7 @@
 //! `dicesim animate`: a roll (or a roll and its chaos twin) as an animated GIF or PNG.
 
-use super::{CliError, SetupArgs, cancel_on_ctrl_c};
+use super::args::SetupArgs;
+use super::{CliError, cancel_on_ctrl_c};
 use clap::Args;
 use dicesim_figures::animation::render::Camera;
 use dicesim_figures::animation::{self, AnimationSpec, write_animation};

@@ -1,18 +1,18 @@
 //! `dicesim basin`: the outcome over a grid of two setup values, as CSV or an image.
 
-use super::shard::{
-    Hashing, ShardArgs, csv_provenance_line, map_fingerprint, map_provenance, new_part, write_part,
-};
-use super::{CliError, EngineArg, SetupArgs, cancel_on_ctrl_c};
+use super::args::{RunArgs, SetupArgs, Worded, Wording};
+use super::{CliError, cancel_on_ctrl_c};
 use clap::{Args, ValueEnum};
-use dicesim_experiment::shard::Sweep;
-use dicesim_experiment::{Axis, BasinMap, FaceTally, Layer, MapSpec, Method, RunOptions, run_map_rows};
+use dicesim_experiment::basin::check_nodes_clear_of_table;
+use dicesim_experiment::hashing::Written;
+use dicesim_experiment::shard::{Part, Sweep};
+use dicesim_experiment::{Axis, BasinMap, Layer, MapSpec, Method, run_map_rows};
+use dicesim_experiment::{provenance, tables};
 use dicesim_figures::plot::write_image;
 use dicesim_physics::Params;
 use dicesim_setup::output::Output;
 use dicesim_setup::preset::Preset;
 use std::io::Write;
-use std::path::PathBuf;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum LayerArg {
@@ -46,20 +46,25 @@ pub(crate) struct BasinArgs {
     /// Roll every cell (default for the settle-time layer and 1-D scans).
     #[arg(long)]
     pub(crate) uniform: bool,
-    /// Worker threads (default: one per core); the map does not depend on it.
-    #[arg(long, value_name = "J", value_parser = clap::value_parser!(u64).range(1..))]
-    pub(crate) jobs: Option<u64>,
-    /// Write the map to a .csv, .png or .svg file.
-    #[arg(long, value_name = "map.csv|map.png|map.svg")]
-    pub(crate) out: Option<PathBuf>,
-    /// Replace existing output files (--out, and a shard's --part summary).
-    #[arg(long)]
-    pub(crate) force: bool,
     #[command(flatten)]
-    pub(crate) shard: ShardArgs,
-    /// The engine that steps the rolls; the map is bit for bit the same with either.
-    #[arg(long, value_enum, default_value_t = EngineArg::Auto)]
-    pub(crate) engine: EngineArg,
+    pub(crate) run: RunArgs<Basin>,
+}
+
+/// How `basin` words its run options.
+#[derive(Debug)]
+pub(crate) struct Basin;
+
+impl Worded for Basin {
+    const WORDING: Wording = Wording {
+        jobs: "Worker threads (default: one per core); the map does not depend on it",
+        out: "Write the map to a .csv, .png or .svg file",
+        out_value: "map.csv|map.png|map.svg",
+        repeatable: false,
+        force: "Replace existing output files (--out, and a shard's --part summary)",
+        json: None,
+        sharded: true,
+        engine: "The engine that steps the rolls; the map is bit for bit the same with either",
+    };
 }
 
 fn parse_resolution(s: &str) -> Result<(usize, usize), String> {
@@ -98,85 +103,63 @@ pub(crate) fn check_sweep(args: &BasinArgs, sharded: bool) -> Result<(Preset, Pa
     let params = preset.params();
     let x = Axis::parse(&args.x, w).map_err(CliError::experiment("--x "))?;
     let y = Axis::parse(&args.y, h).map_err(CliError::experiment("--y "))?;
-    check_nodes_clear_of_table(&params, &preset.initial, &x, &y)?;
+    check_nodes_clear_of_table(&params, &preset.initial, &x, &y).map_err(CliError::Usage)?;
     Ok((preset, params, x, y))
-}
-
-/// The check `roll` makes of its one start, made of every node before any is rolled: the
-/// first node whose start puts a corner into the table is the error, with its axis values.
-fn check_nodes_clear_of_table(
-    params: &Params,
-    base: &dicesim_physics::InitialCondition,
-    x: &Axis,
-    y: &Axis,
-) -> Result<(), CliError> {
-    for j in 0..y.cells {
-        for i in 0..x.cells {
-            let (p, ic) = dicesim_experiment::basin::node_setup(params, base, x, y, i, j);
-            if let Err(e) = ic.check_clear_of_table(&p) {
-                return Err(CliError::Usage(format!(
-                    "the node {} = {}, {} = {}: {e}",
-                    x.key.key,
-                    x.value(i),
-                    y.key.key,
-                    y.value(j)
-                )));
-            }
-        }
-    }
-    Ok(())
 }
 
 /// The most cells a map takes (e.g. 2048×2048): the map and its partial copy stay in memory.
 pub(crate) const MAX_CELLS: usize = 2048 * 2048;
 
+impl From<LayerArg> for Layer {
+    fn from(layer: LayerArg) -> Layer {
+        match layer {
+            LayerArg::Face => Layer::Face,
+            LayerArg::SettleTime => Layer::SettleTime,
+        }
+    }
+}
+
+impl BasinArgs {
+    /// How the cells are found: a shard rolls every cell of its rows (refinement compares
+    /// cells across shards); filled cells copy a corner's settle time, which says little
+    /// about the cells between, and a 1-D scan is plotted as settle time: these roll every
+    /// cell unless asked otherwise.
+    fn method(&self, sharded: bool) -> Method {
+        match (self.adaptive, self.uniform) {
+            _ if sharded => Method::Uniform,
+            (true, _) => Method::Adaptive,
+            (_, true) => Method::Uniform,
+            _ if Layer::from(self.layer) == Layer::SettleTime || self.res.1 == 1 => Method::Uniform,
+            _ => Method::Adaptive,
+        }
+    }
+}
+
 pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
-    let jobs = super::checked_jobs(args.jobs)?;
+    let options = args.run.options()?;
     let (w, h) = args.res;
-    let (preset, params, x, y) = check_sweep(args, args.shard.shard.is_some())?;
-    let layer = match args.layer {
-        LayerArg::Face => Layer::Face,
-        LayerArg::SettleTime => Layer::SettleTime,
-    };
-    // Filled cells copy a corner's settle time, which says little about the cells between,
-    // and a 1-D scan is plotted as settle time: these roll every cell unless asked otherwise.
-    let sharding = args.shard.resolve(args.out.as_deref(), args.force)?;
-    let method = match (args.adaptive, args.uniform) {
-        _ if sharding.is_some() => Method::Uniform,
-        (true, _) => Method::Adaptive,
-        (_, true) => Method::Uniform,
-        _ if layer == Layer::SettleTime || h == 1 => Method::Uniform,
-        _ => Method::Adaptive,
-    };
-    let output = args
-        .out
-        .as_deref()
-        .map(|p| Output::check(p, &["csv", "png", "svg"], args.force))
-        .transpose()
-        .map_err(CliError::output("--out "))?;
+    let (preset, params, x, y) = check_sweep(args, args.run.shard.shard.is_some())?;
+    let layer = Layer::from(args.layer);
+    let sharding = args.run.sharding()?;
+    let method = args.method(sharding.is_some());
+    let output = args.run.output(&["csv", "png", "svg"])?;
     if sharding.is_some() && output.as_ref().is_some_and(|o| o.extension() != "csv") {
         return Err(CliError::Usage(
             "--shard writes its rows as .csv; `dicesim merge` draws the image of the whole map".to_string(),
         ));
     }
-    let rows = sharding
+    let shard = sharding
         .as_ref()
-        .map_or(0..h as u64, |(shard, _)| shard.range(h as u64));
-
+        .map(|(shard, _)| (*shard, shard.range(h as u64)));
+    let rows = shard.as_ref().map_or(0..h as u64, |(_, rows)| rows.clone());
     let total = (w * (rows.end - rows.start) as usize) as u64;
     let bar = super::progress_bar(total, "{bar:40} {pos}/{len} cells rolled, {elapsed}");
-    let options = RunOptions {
-        jobs,
-        engine: args.engine.engine(),
-    };
     let stop = cancel_on_ctrl_c()?;
     let start = std::time::Instant::now();
-    let spec = MapSpec { x, y, method };
-    let engine = format!("{} engine", options.engine.resolve().name());
     let map = run_map_rows(
         &params,
         &preset.initial,
-        &spec,
+        &MapSpec { x, y, method },
         rows.start as usize..rows.end as usize,
         &options,
         &stop,
@@ -185,60 +168,18 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
     .map_err(CliError::experiment(""))?;
     bar.finish_and_clear();
     let elapsed = start.elapsed().as_secs_f64();
-    let faces: FaceTally = map
-        .cells
-        .iter()
-        .flatten()
-        .filter_map(|c| c.outcome.face)
-        .collect();
-
-    let mut written = None;
-    let provenance = map_provenance(&preset, &map);
-    if let Some(output) = &output {
-        match output.extension() {
-            "csv" => output
-                .write(|w| {
-                    let mut hashing = Hashing::new(w);
-                    writeln!(hashing, "{}", csv_provenance_line(&provenance))?;
-                    map.write_csv(&mut hashing)?;
-                    written = Some(hashing.seal());
-                    Ok(())
-                })
-                .map_err(CliError::output(""))?,
-            _ => write_image(
-                &map,
-                layer,
-                (&preset.name, &params, &preset.initial),
-                &provenance,
-                output,
-            )
-            .map_err(|e| match e {
-                dicesim_experiment::Error::Output(e) => CliError::output("")(e),
-                e => CliError::experiment(&format!("{}: ", output.path().display()))(e),
-            })?,
-        }
-    }
-    if let Some((shard, part)) = &sharding {
-        let sweep = Sweep::Map {
-            preset: preset.name.clone(),
-            fingerprint: map_fingerprint(&preset),
-            x: args.x.clone(),
-            y: args.y.clone(),
-            width: w,
-            height: h,
-            layer: layer.name().to_string(),
-        };
-        let records = args.out.as_deref().zip(written);
-        let mut summary = new_part(sweep, *shard, rows.clone(), part.path(), records, &preset);
-        summary.complete = map.complete;
-        summary.map_faces = Some(faces);
-        summary.elapsed_s = elapsed;
-        summary.jobs = jobs;
-        write_part(part, &summary)?;
+    let written = write_map(&map, layer, &preset, output.as_ref())?;
+    if let (Some((_, part)), Some(shard)) = (&sharding, shard.clone()) {
+        let sweep = Sweep::map(&preset, (args.x.as_str(), args.y.as_str()), args.res, layer);
+        let records = args.run.out_path().zip(written);
+        let ran = (elapsed, options.jobs);
+        Part::of_map(sweep, shard, part.path(), records, &preset, &map, ran)
+            .write(part)
+            .map_err(CliError::output(""))?;
     }
     let mut out = std::io::stdout().lock();
-    print_map_summary(&mut out, &map, layer, &faces)?;
-    if let Some((shard, _)) = &sharding {
+    tables::map_summary(&mut out, &map, layer, &map.face_tally())?;
+    if let Some((shard, rows)) = &shard {
         writeln!(
             out,
             "shard               {shard}: rows {} to {}",
@@ -246,12 +187,14 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
             rows.end.saturating_sub(1)
         )?;
     }
+    let jobs = options.jobs;
     writeln!(
         out,
-        "time                {elapsed:.2} s on {jobs} thread{}, {engine}",
+        "time                {elapsed:.2} s on {jobs} thread{}, {} engine",
         if jobs == 1 { "" } else { "s" },
+        options.engine.resolve().name()
     )?;
-    if let Some(path) = &args.out {
+    if let Some(path) = args.run.out_path() {
         writeln!(out, "wrote               {}", path.display())?;
     }
     out.flush()?;
@@ -267,30 +210,26 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// What `basin` and `merge` print about a map: its grid, method, axes and the face shares
-/// over its known cells.
-pub(super) fn print_map_summary(
-    out: &mut impl Write,
+/// Writes the map to `output`: its CSV (returning the file's size and hash, which a
+/// shard's part records), or its image.
+fn write_map(
     map: &BasinMap,
     layer: Layer,
-    faces: &FaceTally,
-) -> std::io::Result<()> {
-    let (x, y) = (&map.x, &map.y);
-    let (w, h) = (map.width(), map.height());
-    writeln!(out, "{w}×{h} {} map, {}", layer.name(), map.method_report())?;
-    writeln!(out, "x  {} from {} to {}", x.key.label(), x.min, x.max)?;
-    if h == 1 {
-        writeln!(out, "y  {} = {}", y.key.label(), y.value(0))?;
-    } else {
-        writeln!(out, "y  {} from {} to {}", y.key.label(), y.min, y.max)?;
+    preset: &Preset,
+    output: Option<&Output>,
+) -> Result<Option<Written>, CliError> {
+    let provenance = provenance::map(preset, map);
+    match output {
+        Some(csv) if csv.extension() == "csv" => Ok(Some(
+            map.write_csv_file(&provenance, csv)
+                .map_err(CliError::output(""))?,
+        )),
+        Some(image) => {
+            let setup = (preset.name.as_str(), &preset.params(), &preset.initial);
+            write_image(map, layer, setup, &provenance, image)
+                .map_err(CliError::experiment(&format!("{}: ", image.path().display())))?;
+            Ok(None)
+        }
+        None => Ok(None),
     }
-    let shares: Vec<String> = (1..=6)
-        .map(|f| format!("{f}: {:.1}%", 100.0 * faces.share(f)))
-        .collect();
-    writeln!(out, "faces over the map  {}", shares.join(", "))?;
-    let unsettled = map.cells.iter().flatten().count() as u64 - faces.total();
-    if unsettled > 0 {
-        writeln!(out, "cells without a face {unsettled}")?;
-    }
-    Ok(())
 }

@@ -1,22 +1,21 @@
 //! `dicesim compare`: the simulated die thrown as a historical experiment threw real ones,
 //! held against its counts, and one setup value fitted to them.
 
-use super::{CliError, EngineArg, SetupArgs};
+use super::CliError;
+use super::args::{RunArgs, SetupArgs, Worded, Wording};
 use clap::{Args, ValueEnum};
-use dicesim_experiment::RunOptions;
 use dicesim_experiment::compare::{CompareSpec, Comparison, DEFAULT_CANDIDATES, FitSpec, run_comparison};
 use dicesim_experiment::compare_budden::{
-    BuddenComparison, BuddenSpec, DEFAULT_CALIBRATE_ON, DEFAULT_FIT, RatioRole, hand_throw,
-    run_budden as roll_budden,
+    BuddenComparison, BuddenSpec, DEFAULT_CALIBRATE_ON, DEFAULT_FIT, hand_throw, run_budden as roll_budden,
 };
-use dicesim_experiment::compare_stats::{FitInterval, FitMethod};
 use dicesim_experiment::real_data::Dataset;
+use dicesim_experiment::{RunOptions, provenance, tables};
 use dicesim_figures::compare_plot::{budden_png, comparison_png};
 use dicesim_figures::figure::setup_value;
 use dicesim_figures::plot::{Record, random_starts};
+use dicesim_setup::output::Output;
+use dicesim_setup::preset::Preset;
 use dicesim_setup::random::RandomDraws;
-use std::io::Write;
-use std::path::PathBuf;
 
 /// The most rolls one comparison takes (throws × dice × candidates).
 const MAX_ROLLS: u64 = 1_000_000_000;
@@ -73,25 +72,29 @@ pub(crate) struct CompareArgs {
     /// value, out of sample).
     #[arg(long, value_name = "R,R,…", value_delimiter = ',', default_values_t = DEFAULT_CALIBRATE_ON)]
     pub(crate) calibrate_on: Vec<f64>,
-    /// Worker threads (default: one per core); the results do not depend on it.
-    #[arg(long, value_name = "J", value_parser = clap::value_parser!(u64).range(1..))]
-    pub(crate) jobs: Option<u64>,
-    /// Write the comparison to a .csv, .json or .png file (repeatable: one of each, say).
-    #[arg(long, value_name = "FILE.csv|FILE.json|FILE.png")]
-    pub(crate) out: Vec<PathBuf>,
-    /// Replace existing output files.
-    #[arg(long)]
-    pub(crate) force: bool,
-    /// Print the result as one JSON object instead of text.
-    #[arg(long)]
-    pub(crate) json: bool,
-    /// The engine that steps the rolls; the result is bit for bit the same with either.
-    #[arg(long, value_enum, default_value_t = EngineArg::Auto)]
-    pub(crate) engine: EngineArg,
+    #[command(flatten)]
+    pub(crate) run: RunArgs<Compare>,
+}
+
+/// How `compare` words its run options.
+#[derive(Debug)]
+pub(crate) struct Compare;
+
+impl Worded for Compare {
+    const WORDING: Wording = Wording {
+        jobs: "Worker threads (default: one per core); the results do not depend on it",
+        out: "Write the comparison to a .csv, .json or .png file (repeatable: one of each, say)",
+        out_value: "FILE.csv|FILE.json|FILE.png",
+        repeatable: true,
+        force: "Replace existing output files",
+        json: Some("Print the result as one JSON object instead of text"),
+        sharded: false,
+        engine: "The engine that steps the rolls; the result is bit for bit the same with either",
+    };
 }
 
 pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
-    let jobs = super::checked_jobs(args.jobs)?;
+    let options = args.run.options()?;
     let preset = args.setup.resolve()?;
     let params = preset.params();
     params.validate()?;
@@ -99,7 +102,7 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     preset.random.check_clear_of_table(&params, &preset.initial)?;
     let candidates = args.candidates.unwrap_or(DEFAULT_CANDIDATES);
     let Some(dataset) = args.dataset.dataset() else {
-        return run_budden(args, jobs, &preset, candidates);
+        return run_budden(args, &options, &preset, candidates);
     };
     if args.calibrate_on != DEFAULT_CALIBRATE_ON {
         return Err(CliError::Usage(
@@ -124,7 +127,7 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     };
     spec.validate().map_err(CliError::experiment(""))?;
     let total = spec.total_rolls();
-    let (outputs, options) = prepare(args, jobs, total)?;
+    let outputs = prepare(args, total)?;
     let comparison = super::run_with_progress(total, PROGRESS, |stop, done| {
         run_comparison(
             &params,
@@ -136,58 +139,20 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
             &mut |p| done(p.done),
         )
     })?;
-
-    // What defines the comparison, in every file it writes (never threads or time).
-    let mut values = preset.as_written();
-    values.random.seed = spec.seed;
-    let provenance = serde_json::json!({
-        "program": dicesim_experiment::PROGRAM,
-        "preset": values,
-        "dataset": dataset.name(),
-        "seed": spec.seed,
-        "throws": spec.throws,
-        "fit": args.fit,
-        "candidates": args.fit.as_ref().map(|_| candidates),
-    });
+    let provenance = provenance::comparison(&preset, &spec, args.fit.as_deref(), candidates);
     let png = || {
-        let title = format!("{} against real dice", preset.name);
-        // The caption names the setup whose throws are drawn: a fit's shown value.
-        let (mut shown, mut initial) = (params, preset.initial);
-        if let (Some(fit), Some(value)) = (&spec.fit, comparison.shown().and_then(|c| c.value)) {
-            fit.key.set(&mut shown, &mut initial, value);
-        }
-        // The throws are drawn from the random ranges: those define the figure.
-        let fit = match (
-            &args.fit,
-            comparison.shown().and_then(|c| c.value),
-            &comparison.key,
-        ) {
-            (Some(f), Some(v), Some(k)) => format!(
-                "; --fit {f} over {} candidates, drawn at the best, {k} = {}",
-                candidates,
-                setup_value(v)
-            ),
-            _ => String::new(),
-        };
-        let experiment = format!(
-            "{}: {} throws as {} threw them, each die {}{fit}",
-            preset.name,
-            spec.throws,
-            dataset.name(),
-            random_starts(&preset.random, spec.seed),
-        );
-        let record = Record::of_experiment(&title, experiment, &shown, &provenance);
+        let record = comparison_record(&comparison, &preset, &spec, args.fit.as_deref(), &provenance);
         comparison_png(&comparison, &record).map_err(CliError::experiment(""))
     };
     super::write_results(
         &outputs,
-        args.json,
+        args.run.json,
         super::Results {
             value: &comparison,
             provenance: &provenance,
             csv: &|w| comparison.write_csv(w),
             png: &png,
-            table: &|out| print_comparison(out, &comparison, &preset.name),
+            table: &|out| tables::comparison(out, &comparison, &preset.name),
         },
     )?;
     if comparison.cancelled {
@@ -206,160 +171,58 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// A p-value as a person reads it: four decimals, or scientific notation when tiny.
-fn p_text(p: f64) -> String {
-    if p >= 1e-4 {
-        format!("{p:.4}")
-    } else {
-        format!("{p:.2e}")
+/// The PNG's caption: the throws (drawn from the random ranges: those define the figure)
+/// and the fit, and the setup whose throws are drawn: a fit's shown value.
+fn comparison_record(
+    c: &Comparison,
+    preset: &Preset,
+    spec: &CompareSpec,
+    fit_text: Option<&str>,
+    provenance: &serde_json::Value,
+) -> Record {
+    let (mut shown, mut initial) = (preset.params(), preset.initial);
+    let value = c.shown().and_then(|k| k.value);
+    if let (Some(fit), Some(value)) = (&spec.fit, value) {
+        fit.key.set(&mut shown, &mut initial, value);
     }
-}
-
-fn print_comparison(out: &mut dyn Write, c: &Comparison, preset: &str) -> std::io::Result<()> {
-    writeln!(out, "{} ({})", c.dataset.name(), c.data.source)?;
-    let fair = &c.data_against_fair;
-    writeln!(
-        out,
-        "the real dice against a fair die: χ² {:.2} on {} dof, p = {}",
-        fair.chi_square,
-        fair.dof,
-        p_text(fair.p_value)
-    )?;
-    if let (Some(fit), Some(key)) = (&c.fit, &c.key) {
-        writeln!(
-            out,
-            "\nfit of {key}: {} candidates, each with the same {} throws (seed {})",
-            c.candidates.len(),
-            c.throws,
-            c.seed
-        )?;
-        writeln!(
-            out,
-            "{:>12}  {:>10}  {:>8}  {:>4}  {:>9}",
-            key.rsplit('.').next().unwrap_or(key),
-            "deviance",
-            "χ²",
-            "dof",
-            "p"
-        )?;
-        for k in &c.candidates {
-            let (Some(value), Some(deviance)) = (k.value, k.deviance) else {
-                continue;
-            };
-            let (chi2, dof, p) =
-                k.test
-                    .as_ref()
-                    .map_or(("n/a".to_string(), String::new(), String::new()), |t| {
-                        (
-                            format!("{:.2}", t.chi_square),
-                            t.dof.to_string(),
-                            p_text(t.p_value),
-                        )
-                    });
-            let mark = if Some(k) == c.shown() {
-                " ← nearest the best"
-            } else {
-                ""
-            };
-            writeln!(
-                out,
-                "{value:>12.6}  {deviance:>10.2}  {chi2:>8}  {dof:>4}  {p:>9}{mark}"
-            )?;
-        }
-        print_fit_line(out, key, fit)?;
-    }
-    let Some(shown) = c.shown() else {
-        return writeln!(out, "no simulated throws completed");
-    };
-    let value = match (&c.key, shown.value) {
-        (Some(k), Some(v)) => format!(", {k} = {v}"),
+    let fit = match (fit_text, &spec.fit, value, &c.key) {
+        (Some(f), Some(fit), Some(v), Some(k)) => format!(
+            "; --fit {f} over {} candidates, drawn at the best, {k} = {}",
+            fit.candidates,
+            setup_value(v)
+        ),
         _ => String::new(),
     };
-    writeln!(
-        out,
-        "\n{} real throws against {} simulated ({preset}{value}, seed {}); {} simulated throws not counted (a die ended without a face)",
-        c.data.total(),
-        shown.throws,
-        c.seed,
-        shown.uncounted
-    )?;
-    let rows = c.rows(shown);
-    let Some(test) = &shown.test else {
-        return writeln!(out, "too few simulated throws to test");
-    };
-    writeln!(
-        out,
-        "{:>10}  {:>7}  {:>6}  {:>13}  {:>9}  {:>6}  {:>13}  {:>8}",
-        "category", "real", "share", "95% interval", "simulated", "share", "95% interval", "residual"
-    )?;
-    let pc = |x: f64| 100.0 * x;
-    let interval = |i: [f64; 2]| format!("{:.2}–{:.2}%", pc(i[0]), pc(i[1]));
-    for r in &rows {
-        writeln!(
-            out,
-            "{:>10}  {:>7}  {:>5.2}%  {:>13}  {:>9}  {:>5.2}%  {:>13}  {:>+8.2}",
-            r.category,
-            r.data_count,
-            pc(r.data_share),
-            interval(r.data_interval),
-            r.simulated_count,
-            pc(r.simulated_share),
-            interval(r.simulated_interval),
-            r.residual
-        )?;
-    }
-    writeln!(
-        out,
-        "χ² of the real against the simulated counts: {:.2} on {} dof, p = {}",
-        test.chi_square,
-        test.dof,
-        p_text(test.p_value)
-    )?;
-    writeln!(
-        out,
-        "power of this comparison: {:.0}% for the difference measured (test at 5 %)",
-        100.0 * test.power
-    )?;
-    match test.throws_to_detect {
-        Some(n) => writeln!(
-            out,
-            "real throws that tell this model from the real die: {n} (80 % power, 5 %)"
-        ),
-        None => writeln!(
-            out,
-            "real throws that tell this model from the real die: — (no difference measured beyond chance)"
-        ),
-    }
+    let experiment = format!(
+        "{}: {} throws as {} threw them, each die {}{fit}",
+        preset.name,
+        spec.throws,
+        spec.dataset.name(),
+        random_starts(&preset.random, spec.seed),
+    );
+    let title = format!("{} against real dice", preset.name);
+    Record::of_experiment(&title, experiment, &shown, provenance)
 }
 
 /// How a comparison's progress bar reads.
 const PROGRESS: &str = "{bar:40} {pos}/{len} rolls, {per_sec}, {eta} left";
 
 /// Before any roll, as both kinds of comparison check it: the size within bounds and every
-/// `--out` file writable; then how the rolls are run.
-fn prepare(
-    args: &CompareArgs,
-    jobs: usize,
-    total: u64,
-) -> Result<(Vec<dicesim_setup::output::Output>, RunOptions), CliError> {
+/// `--out` file writable.
+fn prepare(args: &CompareArgs, total: u64) -> Result<Vec<Output>, CliError> {
     if total > MAX_ROLLS {
         return Err(CliError::Usage(format!(
             "{total} rolls: at most {MAX_ROLLS} in one comparison (fewer --throws or --candidates)"
         )));
     }
-    let outputs = super::checked_outputs(&args.out, &["csv", "json", "png"], args.force)?;
-    let options = RunOptions {
-        jobs,
-        engine: args.engine.engine(),
-    };
-    Ok((outputs, options))
+    args.run.outputs(&["csv", "json", "png"])
 }
 
 /// `dicesim compare budden`: the fit on the calibration ratios, then every ratio predicted.
 fn run_budden(
     args: &CompareArgs,
-    jobs: usize,
-    preset: &dicesim_setup::preset::Preset,
+    options: &RunOptions,
+    preset: &Preset,
     candidates: usize,
 ) -> Result<(), CliError> {
     let params = preset.params();
@@ -372,45 +235,33 @@ fn run_budden(
     };
     spec.validate().map_err(CliError::experiment(""))?;
     let total = spec.total_rolls();
-    let (outputs, options) = prepare(args, jobs, total)?;
+    let outputs = prepare(args, total)?;
     let comparison = super::run_with_progress(total, PROGRESS, |stop, done| {
         roll_budden(
             &params,
             &preset.random,
             &preset.initial,
             &spec,
-            &options,
+            options,
             stop,
             &mut |p| done(p.done),
         )
     })?;
     // The throw as rolled: the preset's ranges from a uniformly random orientation.
-    let mut values = preset.as_written();
-    values.random = hand_throw(&values.random);
-    values.random.seed = spec.seed;
-    let provenance = serde_json::json!({
-        "program": dicesim_experiment::PROGRAM,
-        "preset": values,
-        "dataset": "budden",
-        "seed": spec.seed,
-        "throws": spec.throws,
-        "fit": fit_text,
-        "candidates": candidates,
-        "calibrate_on": spec.calibrate_on,
-    });
+    let provenance = provenance::budden(preset, &spec, fit_text);
     let png = || {
         let record = budden_record(&comparison, preset, &spec, fit_text, &provenance);
         budden_png(&comparison, &record).map_err(CliError::experiment(""))
     };
     super::write_results(
         &outputs,
-        args.json,
+        args.run.json,
         super::Results {
             value: &comparison,
             provenance: &provenance,
             csv: &|w| comparison.write_csv(w),
             png: &png,
-            table: &|out| print_budden(out, &comparison, &preset.name),
+            table: &|out| tables::budden(out, &comparison, &preset.name),
         },
     )?;
     if comparison.cancelled {
@@ -433,7 +284,7 @@ fn run_budden(
 /// The PNG's caption: the throw, the fit, and the table and body assumptions.
 fn budden_record(
     c: &BuddenComparison,
-    preset: &dicesim_setup::preset::Preset,
+    preset: &Preset,
     spec: &BuddenSpec,
     fit_text: &str,
     provenance: &serde_json::Value,
@@ -483,122 +334,4 @@ fn budden_record(
         caption,
     }
     .with_provenance(provenance)
-}
-
-/// A fit's best value and its 95 % interval (an end that reached the range's edge said so).
-fn print_fit_line(out: &mut dyn Write, key: &str, fit: &FitInterval) -> std::io::Result<()> {
-    let side = |v: f64, open: bool, words: &str| {
-        if open {
-            format!("{words} {v}")
-        } else {
-            format!("{v:.6}")
-        }
-    };
-    let how = match fit.method {
-        FitMethod::Parabola => "on the least-squares parabola through the candidates' deviances",
-        FitMethod::Candidates => "the best candidate; the deviances follow no upward parabola",
-    };
-    writeln!(
-        out,
-        "best {key} = {:.6} (deviance {:.2}, {how}); 95 % interval {} to {} (deviance within 3.84 of the best)",
-        fit.best,
-        fit.best_deviance,
-        side(fit.low, fit.low_open, "the range's low end,"),
-        side(fit.high, fit.high_open, "the range's high end,"),
-    )
-}
-
-fn print_budden(out: &mut dyn Write, c: &BuddenComparison, preset: &str) -> std::io::Result<()> {
-    writeln!(out, "budden ({})", c.source)?;
-    for a in &c.assumptions {
-        writeln!(out, "assumed: {a}")?;
-    }
-    let ratios = |rs: &[f64]| {
-        rs.iter()
-            .map(|r| format!("{r:.2}"))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    writeln!(
-        out,
-        "\nfit of {} on ratios {}: {} candidates, each with the same throws (seed {})",
-        c.key,
-        ratios(&c.calibrate_on),
-        c.candidates.len(),
-        c.seed
-    )?;
-    let short = c.key.rsplit('.').next().unwrap_or(&c.key);
-    writeln!(out, "{short:>12}  {:>10}  square share by ratio", "deviance")?;
-    for k in &c.candidates {
-        let shares: Vec<String> = k
-            .ratios
-            .iter()
-            .map(|t| format!("{:.2}: {:.3}", t.ratio, t.square as f64 / t.throws.max(1) as f64))
-            .collect();
-        writeln!(
-            out,
-            "{:>12.6}  {:>10.2}  {}",
-            k.value,
-            k.deviance,
-            shares.join("  ")
-        )?;
-    }
-    let Some(fit) = &c.fit else {
-        return writeln!(out, "no fit: too few candidates completed");
-    };
-    print_fit_line(out, &c.key, fit)?;
-    writeln!(
-        out,
-        "\nevery ratio thrown with {} = {:.6} ({preset}, seed {}): Budden's share of square-face landings beside the simulation's",
-        c.key, fit.best, c.seed
-    )?;
-    writeln!(
-        out,
-        "{:>5}  {:>9}  {:>6}  {:>6}  {:>11}  {:>6}  {:>6}  {:>11}  {:>6}  within 2σ",
-        "x/y", "role", "real n", "share", "95% interval", "sim n", "share", "95% interval", "z (σ)"
-    )?;
-    let interval = |i: [f64; 2]| format!("{:.3}–{:.3}", i[0], i[1]);
-    for r in &c.ratios {
-        let s = &r.shares;
-        writeln!(
-            out,
-            "{:>5.2}  {:>9}  {:>6}  {:>6.3}  {:>11}  {:>6}  {:>6.3}  {:>11}  {:>+6.2}  {}",
-            r.ratio,
-            match r.role {
-                RatioRole::Calibrate => "calibrate",
-                RatioRole::Predict => "predict",
-            },
-            r.data_throws,
-            s.data_share,
-            interval(s.data_interval),
-            r.simulated.throws,
-            s.simulated_share,
-            interval(s.simulated_interval),
-            s.z,
-            if s.within_two_sigma() { "yes" } else { "no" }
-        )?;
-    }
-    let uncounted: u64 = c.ratios.iter().map(|r| r.simulated.uncounted).sum();
-    writeln!(
-        out,
-        "{uncounted} simulated throws not counted (the cuboid ended without a face)"
-    )?;
-    for (words, summary) in [
-        ("calibration ratios (in sample)", &c.calibrated),
-        ("predicted ratios (out of sample)", &c.predicted),
-        ("all ratios", &c.all),
-    ] {
-        if let Some(s) = summary {
-            writeln!(
-                out,
-                "{words}: {} of {} within 2σ; χ² {:.2} on {} dof, p = {}",
-                s.within_two_sigma,
-                s.shares,
-                s.chi_square,
-                s.shares,
-                p_text(s.p_value)
-            )?;
-        }
-    }
-    Ok(())
 }

@@ -1,6 +1,7 @@
 //! Headless commands: the model usable and checkable without a terminal UI.
 
 mod animate;
+mod args;
 mod basin;
 mod batch;
 mod bench;
@@ -9,42 +10,21 @@ mod merge;
 mod predict;
 mod presets;
 mod roll;
-mod shard;
 mod slurm;
 mod trace;
 mod tui;
 
-use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
+use clap::{CommandFactory, Parser, Subcommand};
 use dicesim_experiment as experiment;
-use dicesim_experiment::Engine;
+use dicesim_experiment::merge::MergeError;
+use dicesim_experiment::slurm::SlurmError;
 use dicesim_physics::ParamError;
-use dicesim_setup::preset::{Preset, PresetError, Store};
+use dicesim_setup::preset::PresetError;
 use signal_hook::consts::{SIGHUP, SIGINT, SIGQUIT, SIGTERM};
 use std::io::Write as _;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
-
-/// `--engine` of `batch` and `basin`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum EngineArg {
-    /// The lane engine where the CPU has AVX2, else the scalar one.
-    Auto,
-    /// One roll after another.
-    Scalar,
-    /// Four rolls per AVX2 vector (the scalar engine on CPUs without AVX2).
-    Lanes,
-}
-
-impl EngineArg {
-    pub(crate) fn engine(self) -> Engine {
-        match self {
-            EngineArg::Auto => Engine::Auto,
-            EngineArg::Scalar => Engine::Scalar,
-            EngineArg::Lanes => Engine::Lanes,
-        }
-    }
-}
 
 /// The progress bar of a long command: drawn on stderr while it is a terminal, hidden
 /// otherwise (a pipe or a log file gets no bar codes), in `template`'s words.
@@ -68,9 +48,6 @@ const INTERRUPTED_AT_ONCE: i32 = 130;
 /// Slurm's time limit, which sends SIGTERM).
 const STOP_SIGNALS: [i32; 4] = [SIGINT, SIGTERM, SIGHUP, SIGQUIT];
 
-/// A flag the first stop signal sets (the running rolls notice it within a few thousand
-/// steps and the command keeps what is complete); a second signal stops at once, after
-/// removing the temporary file being written and saying so.
 /// Runs a long experiment as every such command does: a progress bar over its `total` rolls
 /// (`template` in indicatif's words), Ctrl-C asking it to stop, its error worded like the
 /// others'. `run` gets the stop flag and reports how many rolls are done.
@@ -108,7 +85,7 @@ pub(crate) fn write_results<T: serde::Serialize>(
     for output in outputs {
         match output.extension() {
             "csv" => output.write(|w| {
-                writeln!(w, "{}", shard::csv_provenance_line(r.provenance))?;
+                writeln!(w, "{}", experiment::provenance::csv_line(r.provenance))?;
                 (r.csv)(w)
             }),
             "json" => output.write(|w| {
@@ -135,6 +112,9 @@ pub(crate) fn write_results<T: serde::Serialize>(
     Ok(())
 }
 
+/// A flag the first stop signal sets (the running rolls notice it within a few thousand
+/// steps and the command keeps what is complete); a second signal stops at once, after
+/// removing the temporary file being written and saying so.
 pub(crate) fn cancel_on_ctrl_c() -> Result<Arc<AtomicBool>, CliError> {
     let stop = Arc::new(AtomicBool::new(false));
     on_stop_signals(Some(stop.clone()))?;
@@ -292,28 +272,6 @@ pub(crate) enum Command {
     Man,
 }
 
-/// The setup every simulating command starts from.
-#[derive(Debug, Clone, Default, Args)]
-pub(crate) struct SetupArgs {
-    /// Start from this preset: a name (the user's folder, then the shipped set) or a path
-    /// to a `.toml` file. Without it, the shipped `paper` preset.
-    #[arg(long, value_name = "NAME|PATH")]
-    pub(crate) preset: Option<String>,
-    /// Override one preset value, e.g. `ground.stiffness=600000`,
-    /// `initial.angular_velocity=[10,0,3]` or `initial.velocity.y=25` (repeatable, applied
-    /// in order).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub(crate) set: Vec<String>,
-}
-
-impl SetupArgs {
-    /// The preset with every override applied and validated.
-    pub(crate) fn resolve(&self) -> Result<Preset, CliError> {
-        let (preset, _) = Store::from_env().load_or_default(self.preset.as_deref())?;
-        Ok(preset.with_overrides(&self.set)?)
-    }
-}
-
 /// Why a command failed. [`CliError::kind`] sorts it for the exit status.
 #[derive(Debug, thiserror::Error)]
 pub enum CliError {
@@ -441,46 +399,39 @@ impl CliError {
         }
     }
 
-    /// An experiment's error, prefixed with what it is about (`"--x "`, or `""`).
+    /// An experiment's error, prefixed with what it is about (`"--x "`, or `""`); a file it
+    /// could not write is an output's error, which names the file itself.
     pub(crate) fn experiment(context: &str) -> impl FnOnce(experiment::Error) -> CliError + '_ {
-        move |source| CliError::Experiment {
-            context: context.to_string(),
-            source,
+        move |source| match source {
+            experiment::Error::Output(e) => CliError::output("")(e),
+            source => CliError::Experiment {
+                context: context.to_string(),
+                source,
+            },
         }
     }
 }
 
-/// The most threads `--jobs` takes: more than a few per core only adds switching.
-pub(crate) fn max_jobs() -> usize {
-    4 * experiment::batch::thread_count(0)
+impl From<MergeError> for CliError {
+    fn from(e: MergeError) -> CliError {
+        match e {
+            MergeError::Parts(m) => CliError::Parts(m),
+            MergeError::Failed(m) => CliError::Sweep(m),
+            MergeError::Param(e) => CliError::Param(e),
+            MergeError::Output { context, source } => CliError::output(context)(source),
+            MergeError::Io(e) => CliError::Io(e),
+        }
+    }
 }
 
-/// `--jobs J` checked against [`max_jobs`]; no value means one thread per core.
-/// The `--out` files of a command that writes several: each checked (extension, folder,
-/// `--force`) and none named twice, before any work.
-pub(crate) fn checked_outputs(
-    paths: &[PathBuf],
-    extensions: &[&str],
-    force: bool,
-) -> Result<Vec<dicesim_setup::output::Output>, CliError> {
-    let outputs = paths
-        .iter()
-        .map(|p| dicesim_setup::output::Output::check(p, extensions, force))
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(CliError::output("--out "))?;
-    dicesim_setup::output::check_apart(&outputs, &[]).map_err(CliError::output("--out "))?;
-    Ok(outputs)
-}
-
-pub(crate) fn checked_jobs(jobs: Option<u64>) -> Result<usize, CliError> {
-    match jobs {
-        None => Ok(experiment::batch::thread_count(0)),
-        Some(j) if j as usize <= max_jobs() && j > 0 => Ok(j as usize),
-        Some(j) => Err(CliError::Usage(format!(
-            "--jobs {j}: at most {} (4 × the {} cores here)",
-            max_jobs(),
-            experiment::batch::thread_count(0)
-        ))),
+impl From<SlurmError> for CliError {
+    fn from(e: SlurmError) -> CliError {
+        match e {
+            SlurmError::Refused(m) => CliError::Usage(m),
+            SlurmError::Failed(m) => CliError::Sweep(m),
+            SlurmError::Output(e) => CliError::output("")(e),
+            SlurmError::Io(e) => CliError::Io(e),
+        }
     }
 }
 

@@ -1,14 +1,14 @@
 //! `dicesim predict`: how precisely a throw must be known to predict its face.
 
-use super::{CliError, EngineArg, SetupArgs};
+use super::CliError;
+use super::args::{RunArgs, SetupArgs, Worded, Wording};
 use clap::Args;
-use dicesim_experiment::predict::{PredictSpec, Prediction, default_epsilons, run_prediction};
-use dicesim_experiment::{RandomRanges, RunOptions, ScanKey};
+use dicesim_experiment::predict::{PredictSpec, default_epsilons, run_prediction};
+use dicesim_experiment::{RandomRanges, ScanKey};
+use dicesim_experiment::{provenance, tables};
 use dicesim_figures::figure::setup_value;
 use dicesim_figures::plot::{Record, random_starts};
 use dicesim_figures::predict_plot::prediction_png;
-use std::io::Write;
-use std::path::PathBuf;
 
 /// The most rolls one experiment takes (starts × (1 + ε count) × values).
 const MAX_ROLLS: u64 = 1_000_000_000;
@@ -37,21 +37,25 @@ pub(crate) struct PredictArgs {
     /// Seed of the random starts (default: the preset's `random.seed`).
     #[arg(long, value_name = "S")]
     pub(crate) seed: Option<u64>,
-    /// Worker threads (default: one per core); the results do not depend on it.
-    #[arg(long, value_name = "J", value_parser = clap::value_parser!(u64).range(1..))]
-    pub(crate) jobs: Option<u64>,
-    /// Write the curves to a .csv, .json or .png file (repeatable: one of each, say).
-    #[arg(long, value_name = "FILE.csv|FILE.json|FILE.png")]
-    pub(crate) out: Vec<PathBuf>,
-    /// Replace existing output files.
-    #[arg(long)]
-    pub(crate) force: bool,
-    /// Print the result as one JSON object instead of text.
-    #[arg(long)]
-    pub(crate) json: bool,
-    /// The engine that steps the rolls; the result is bit for bit the same with either.
-    #[arg(long, value_enum, default_value_t = EngineArg::Auto)]
-    pub(crate) engine: EngineArg,
+    #[command(flatten)]
+    pub(crate) run: RunArgs<Predict>,
+}
+
+/// How `predict` words its run options.
+#[derive(Debug)]
+pub(crate) struct Predict;
+
+impl Worded for Predict {
+    const WORDING: Wording = Wording {
+        jobs: "Worker threads (default: one per core); the results do not depend on it",
+        out: "Write the curves to a .csv, .json or .png file (repeatable: one of each, say)",
+        out_value: "FILE.csv|FILE.json|FILE.png",
+        repeatable: true,
+        force: "Replace existing output files",
+        json: Some("Print the result as one JSON object instead of text"),
+        sharded: false,
+        engine: "The engine that steps the rolls; the result is bit for bit the same with either",
+    };
 }
 
 /// `KEY=V1,V2,…` as the key and its values.
@@ -74,7 +78,7 @@ fn parse_vary(text: &str) -> Result<(ScanKey, Vec<f64>), CliError> {
 }
 
 pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
-    let jobs = super::checked_jobs(args.jobs)?;
+    let options = args.run.options()?;
     let preset = args.setup.resolve()?;
     let params = preset.params();
     params.validate()?;
@@ -99,12 +103,7 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
             "{total} rolls: at most {MAX_ROLLS} in one experiment (fewer --rolls, ε or values)"
         )));
     }
-    let outputs = super::checked_outputs(&args.out, &["csv", "json", "png"], args.force)?;
-
-    let options = RunOptions {
-        jobs,
-        engine: args.engine.engine(),
-    };
+    let outputs = args.run.outputs(&["csv", "json", "png"])?;
     let prediction =
         super::run_with_progress(total, "{bar:40} {pos}/{len} rolls, {elapsed}", |stop, done| {
             run_prediction(
@@ -118,17 +117,7 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
             )
         })?;
 
-    // What defines the experiment, in every file it writes (never threads or time).
-    let mut values = preset.as_written();
-    values.random.seed = spec.seed;
-    let provenance = serde_json::json!({
-        "program": dicesim_experiment::PROGRAM,
-        "preset": values,
-        "seed": spec.seed,
-        "rolls": args.rolls,
-        "epsilons": spec.epsilons,
-        "vary": args.vary,
-    });
+    let provenance = provenance::prediction(&preset, &spec, args.vary.as_deref());
     let png = || {
         let record = Record::of_experiment(
             "predictability of a throw",
@@ -140,13 +129,13 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
     };
     super::write_results(
         &outputs,
-        args.json,
+        args.run.json,
         super::Results {
             value: &prediction,
             provenance: &provenance,
             csv: &|w| prediction.write_csv(w),
             png: &png,
-            table: &|out| print_prediction(out, &prediction),
+            table: &|out| tables::prediction(out, &prediction),
         },
     )?;
     if prediction.cancelled {
@@ -156,49 +145,6 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
             requested: args.rolls * curves,
             what: "starts (each with its twins)",
         });
-    }
-    Ok(())
-}
-
-/// The table: one column of P(same face) per curve, then chance, ε½ and the start face.
-fn print_prediction(out: &mut dyn Write, p: &Prediction) -> std::io::Result<()> {
-    let name = |v: Option<f64>| match (&p.key, v) {
-        (Some(k), Some(v)) => format!("{k} = {v}"),
-        _ => "this setup".to_string(),
-    };
-    writeln!(
-        out,
-        "{} random starts per curve, each beside its ε-twin (height, velocity and spin × (1 + ε)), seed {}",
-        p.count, p.seed
-    )?;
-    for c in &p.curves {
-        writeln!(out, "\n{} ({} starts)", name(c.value), c.starts)?;
-        writeln!(out, "     ε      P(same face)   95% interval")?;
-        for pt in &c.points {
-            writeln!(
-                out,
-                "{:>8}   {:>8.3}      {:.3}–{:.3}",
-                // ε as given (1.5e-3, never rounded to 2e-3): the twins were rolled at it.
-                format!("{:e}", pt.epsilon),
-                pt.same_share,
-                pt.interval[0],
-                pt.interval[1]
-            )?;
-        }
-        writeln!(
-            out,
-            "chance Σpᶠ²  {:.3}; halfway {:.3}; ε½ {}",
-            c.chance,
-            c.half,
-            c.threshold.map_or("n/a (no faces)".to_string(), |t| t.text())
-        )?;
-        writeln!(
-            out,
-            "start face kept  {:.1}% ({:.1}–{:.1}%)",
-            100.0 * c.start_face_share,
-            100.0 * c.start_face_interval[0],
-            100.0 * c.start_face_interval[1]
-        )?;
     }
     Ok(())
 }

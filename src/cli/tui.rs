@@ -1,6 +1,7 @@
 //! `dicesim tui` (and `dicesim` alone): the terminal explorer.
 
-use super::{CliError, SetupArgs};
+use super::CliError;
+use super::args::SetupArgs;
 use clap::{Args, ValueEnum};
 use dicesim_explorer::tui::Theme;
 use dicesim_setup::preset::{Preset, ThemeName};

@@ -14,10 +14,14 @@
 use crate::Error;
 use crate::batch::{RunOptions, thread_pool};
 use crate::engine::roll_setups;
+use crate::hashing::{Hashing, Written};
 use crate::record::RollRecord;
+use crate::stats::FaceTally;
 use dicesim_physics::{InitialCondition, Outcome, Params, Status};
 use dicesim_setup::keys::ScanKey;
+use dicesim_setup::output::{Output, OutputError};
 use rayon::prelude::*;
+use std::io::Write;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -197,6 +201,15 @@ impl BasinMap {
         self.cells[j * self.width() + i].as_ref()
     }
 
+    /// The faces of the cells rolled or filled so far.
+    pub fn face_tally(&self) -> FaceTally {
+        self.cells
+            .iter()
+            .flatten()
+            .filter_map(|c| c.outcome.face)
+            .collect()
+    }
+
     /// How the map was computed, in words.
     pub fn method_report(&self) -> String {
         let total = self.cells.len();
@@ -224,7 +237,7 @@ impl BasinMap {
     /// The map as CSV: a header naming both keys, then one row per cell in row order, with
     /// `sampled` = 1 for rolled cells and 0 for cells filled by the adaptive method. Unknown
     /// cells of a partial map are left out.
-    pub fn write_csv(&self, w: &mut (impl std::io::Write + ?Sized)) -> std::io::Result<()> {
+    pub fn write_csv(&self, w: &mut (impl Write + ?Sized)) -> std::io::Result<()> {
         let mut csv = csv::Writer::from_writer(w);
         csv.write_record([
             "i",
@@ -260,6 +273,51 @@ impl BasinMap {
         }
         csv.flush()
     }
+
+    /// Writes the map's CSV file (atomically): `provenance` as its first line (a `#`
+    /// comment), then [`BasinMap::write_csv`]; returns its size and content hash, which a
+    /// shard's part records.
+    pub fn write_csv_file(
+        &self,
+        provenance: &serde_json::Value,
+        output: &Output,
+    ) -> Result<Written, OutputError> {
+        let mut written = None;
+        output.write(|w| {
+            let mut hashing = Hashing::new(w);
+            writeln!(hashing, "{}", crate::provenance::csv_line(provenance))?;
+            self.write_csv(&mut hashing)?;
+            written = Some(hashing.seal());
+            Ok(())
+        })?;
+        Ok(written.expect("the file was written"))
+    }
+}
+
+/// The check `roll` makes of its one start, made of every node of a map with axes `x` and
+/// `y` before any is rolled: the first node whose start puts a corner into the table is
+/// the error, with its axis values.
+pub fn check_nodes_clear_of_table(
+    params: &Params,
+    base: &InitialCondition,
+    x: &Axis,
+    y: &Axis,
+) -> Result<(), String> {
+    for j in 0..y.cells {
+        for i in 0..x.cells {
+            let (p, ic) = node_setup(params, base, x, y, i, j);
+            if let Err(e) = ic.check_clear_of_table(&p) {
+                return Err(format!(
+                    "the node {} = {}, {} = {}: {e}",
+                    x.key.key,
+                    x.value(i),
+                    y.key.key,
+                    y.value(j)
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The setup of node `(i, j)`: `base` with the two keys set to the nodes' values.
@@ -572,6 +630,24 @@ mod tests {
         assert!((a.value(3) - 0.2).abs() < 1e-15);
         assert_eq!(axis("ground.friction:0.5:1.5", 1).value(0), 1.0);
         assert_eq!(axis("ground.friction:0.5:0.5", 1).value(0), 0.5);
+    }
+
+    #[test]
+    fn the_first_node_starting_in_the_table_is_named() {
+        let (params, base) = (Params::default(), InitialCondition::default());
+        let y = axis("ground.friction:0.2:0.8", 2);
+        assert_eq!(
+            check_nodes_clear_of_table(&params, &base, &axis("initial.height:5:15", 3), &y),
+            Ok(())
+        );
+        // A cube of half size 1 cm level on the table needs its centre 1 cm up: the nodes of
+        // the first row, at 0.5 cm, start with corners inside, and the first of them is named.
+        let x = axis("ground.friction:0.2:0.8", 2);
+        let e = check_nodes_clear_of_table(&params, &base, &x, &axis("initial.height:0.5:5", 2)).unwrap_err();
+        assert!(
+            e.starts_with("the node ground.friction = 0.2, initial.height = 0.5: "),
+            "{e}"
+        );
     }
 
     #[test]

@@ -1,4 +1,7 @@
-//! Experiments on the model: random initial conditions, batches, basin maps, statistics.
+//! Experiments on the model: random initial conditions, batches, basin maps, statistics,
+//! comparisons with real dice; and what makes a sweep of them reproducible anywhere: the
+//! provenance and fingerprints its files carry, its shards and their part summaries, their
+//! merge and re-verification, and the Slurm job array that runs them.
 //!
 //! Everything here takes [`Params`](dicesim_physics::Params) and
 //! [`InitialCondition`](dicesim_physics::InitialCondition) values as arguments; resolving a
@@ -6,20 +9,26 @@
 
 pub mod basin;
 pub mod batch;
+pub mod batch_sweep;
+pub mod bench;
 pub mod compare;
 pub mod compare_budden;
 pub mod compare_stats;
 pub mod ending;
 pub(crate) mod engine;
+pub mod hashing;
 pub mod ics;
 pub mod merge;
 pub mod parquet;
 pub mod predict;
+pub mod provenance;
 pub mod real_data;
 pub mod record;
 pub mod shard;
+pub mod slurm;
 pub(crate) mod stats;
 pub(crate) mod summary;
+pub mod tables;
 pub mod tally;
 pub mod trace;
 pub mod versus;

@@ -6,16 +6,26 @@
 //! back in shard order gives exactly the rolls of one run. What a merge must make sure of
 //! is that the parts really are the shards of one sweep: [`check_parts`].
 
+use crate::basin::{BasinMap, Layer};
+use crate::batch::BatchRun;
+use crate::hashing::Written;
+use crate::provenance;
 use crate::stats::FaceTally;
 use crate::tally::Tally;
+use dicesim_setup::output::{Output, OutputError};
+use dicesim_setup::preset::{Preset, read_regular_file};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::fmt;
 use std::ops::Range;
+use std::path::{Path, PathBuf};
 
 /// The part-summary format this program writes and reads; others are refused (format 1
 /// had no setup and no content hash of its records, so its records could not be checked).
 pub const PART_FORMAT: u32 = 2;
+
+/// The extension of a part summary, replacing the records file's.
+pub const PART_EXTENSION: &str = "part.json";
 
 /// s, the longest time a part may say its shard took (32 years): sums of any number of
 /// parts then stay finite.
@@ -65,17 +75,6 @@ impl fmt::Display for Shard {
     }
 }
 
-/// A short, stable fingerprint of a setup: FNV-1a (64 bit) of its JSON form, whose floats
-/// are written in shortest round-trip form, so equal setups give equal fingerprints on any
-/// machine and any run.
-pub fn fingerprint(setup: &impl Serialize) -> String {
-    let json = serde_json::to_vec(setup).expect("a setup always serialises to JSON");
-    let hash = json.iter().fold(0xcbf2_9ce4_8422_2325_u64, |h, &b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
-    });
-    format!("{hash:016x}")
-}
-
 /// What a sweep is; every shard of one sweep carries the same.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
@@ -105,6 +104,20 @@ pub enum Sweep {
 }
 
 impl Sweep {
+    /// The sweep of a map of `setup` over the axes `x` and `y` (`KEY:MIN:MAX`, as given) on
+    /// a `width`×`height` grid, to be drawn as `layer`.
+    pub fn map(setup: &Preset, (x, y): (&str, &str), (width, height): (usize, usize), layer: Layer) -> Sweep {
+        Sweep::Map {
+            preset: setup.name.clone(),
+            fingerprint: provenance::map_fingerprint(setup),
+            x: x.to_string(),
+            y: y.to_string(),
+            width,
+            height,
+            layer: layer.name().to_string(),
+        }
+    }
+
     /// How many ids (rolls) or rows the shards split.
     pub(crate) fn total(&self) -> u64 {
         match self {
@@ -224,6 +237,74 @@ pub struct Part {
 }
 
 impl Part {
+    /// The part of shard `shard` of `sweep`, which rolled ids (or rows) `range` of `setup`
+    /// and wrote `records` (their file and what was written) if any, as its summary at
+    /// `part_path` names them: not yet complete, without counts.
+    fn new(
+        sweep: Sweep,
+        shard: Shard,
+        range: Range<u64>,
+        part_path: &Path,
+        records: Option<(&Path, Written)>,
+        setup: &Preset,
+    ) -> Part {
+        Part {
+            part_format: PART_FORMAT,
+            version: env!("CARGO_PKG_VERSION").to_string(),
+            sweep,
+            shard,
+            range: [range.start, range.end],
+            complete: false,
+            records_bytes: records.as_ref().map(|(_, w)| w.bytes),
+            records_hash: records.as_ref().map(|(_, w)| w.hash.clone()),
+            records: records.map(|(r, _)| records_reference(part_path, r)),
+            setup: setup.to_toml(),
+            tally: None,
+            map_faces: None,
+            elapsed_s: 0.0,
+            jobs: 0,
+        }
+    }
+
+    /// The part a batch shard leaves: `batch` rolled ids `range` of `sweep` from `setup`
+    /// (its seed the one rolled).
+    pub fn of_batch(
+        sweep: Sweep,
+        (shard, range): (Shard, Range<u64>),
+        part_path: &Path,
+        records: Option<(&Path, Written)>,
+        setup: &Preset,
+        batch: &BatchRun,
+    ) -> Part {
+        Part {
+            complete: !batch.cancelled,
+            tally: Some(batch.tally.clone()),
+            elapsed_s: batch.summary.elapsed_s,
+            jobs: batch.jobs,
+            ..Part::new(sweep, shard, range, part_path, records, setup)
+        }
+    }
+
+    /// The part a map shard leaves: `map` holds rows `rows` of `sweep`, rolled from `setup`
+    /// in `elapsed_s` s on `jobs` threads.
+    pub fn of_map(
+        sweep: Sweep,
+        (shard, rows): (Shard, Range<u64>),
+        part_path: &Path,
+        records: Option<(&Path, Written)>,
+        setup: &Preset,
+        map: &BasinMap,
+        (elapsed_s, jobs): (f64, usize),
+    ) -> Part {
+        Part {
+            complete: map.complete,
+            map_faces: Some(map.face_tally()),
+            elapsed_s,
+            jobs,
+            ..Part::new(sweep, shard, rows, part_path, records, setup)
+        }
+    }
+
     /// How many ids or rows the part covers.
     pub fn len(&self) -> u64 {
         self.range[1] - self.range[0]
@@ -232,6 +313,62 @@ impl Part {
     /// True for a part of no ids or rows.
     pub fn is_empty(&self) -> bool {
         self.len() == 0
+    }
+
+    /// The records file this part names, as a path (a relative name is relative to the
+    /// part's folder), or `None` for a summary-only part.
+    pub fn records_path(&self, part_path: &Path) -> Option<PathBuf> {
+        let name = Path::new(self.records.as_deref()?);
+        Some(if name.is_absolute() {
+            name.to_path_buf()
+        } else {
+            part_path.parent().unwrap_or(Path::new("")).join(name)
+        })
+    }
+
+    /// Writes the part as JSON, atomically.
+    pub fn write(&self, output: &Output) -> Result<(), OutputError> {
+        output.write(|w| {
+            serde_json::to_writer_pretty(&mut *w, self)?;
+            writeln!(w)
+        })
+    }
+
+    /// Reads a part summary, naming the file and the JSON problem when it is not one. Only
+    /// a regular file of at most [`MAX_PART_BYTES`] is read: a FIFO named `*.part.json` is
+    /// refused rather than waited on.
+    pub fn read(path: &Path) -> Result<Part, String> {
+        let text = read_regular_file(path, MAX_PART_BYTES).map_err(|e| format!("{}: {e}", path.display()))?;
+        let de = &mut serde_json::Deserializer::from_str(&text);
+        serde_path_to_error::deserialize(de).map_err(|e| {
+            let at = e.path().to_string();
+            let inner = e.into_inner();
+            format!(
+                "{}: not a dicesim part summary: {}{inner}",
+                path.display(),
+                if at == "." {
+                    String::new()
+                } else {
+                    format!("at `{at}`: ")
+                }
+            )
+        })
+    }
+}
+
+/// The largest part summary read, bytes (a part is a few kB; its setup the largest part).
+const MAX_PART_BYTES: u64 = 1 << 20;
+
+/// How a part names its records file: by file name when both sit in one folder (so a
+/// folder of parts can be moved or copied as a whole), else by absolute path.
+fn records_reference(part: &Path, records: &Path) -> String {
+    let folder = |p: &Path| p.parent().map(Path::to_path_buf).unwrap_or_default();
+    match records.file_name() {
+        Some(name) if folder(part) == folder(records) => name.to_string_lossy().into_owned(),
+        _ => std::path::absolute(records)
+            .unwrap_or_else(|_| records.to_path_buf())
+            .to_string_lossy()
+            .into_owned(),
     }
 }
 
@@ -396,16 +533,6 @@ mod tests {
         );
     }
 
-    #[test]
-    fn fingerprints_are_stable_and_tell_setups_apart() {
-        // FNV-1a of the JSON `[1.5,"x"]`, computed by hand from the published constants.
-        let by_hand = "[1.5,\"x\"]".bytes().fold(0xcbf29ce484222325u64, |h, b| {
-            (h ^ b as u64).wrapping_mul(0x100000001b3)
-        });
-        assert_eq!(fingerprint(&(1.5, "x")), format!("{by_hand:016x}"));
-        assert_ne!(fingerprint(&(1.5, "x")), fingerprint(&(1.5000000000000002, "x")));
-    }
-
     fn part(k: u64, n: u64) -> (String, Part) {
         let sweep = Sweep::Batch {
             preset: "paper".into(),
@@ -498,6 +625,30 @@ mod tests {
         assert_eq!(
             err(many),
             "shards 1/1000, 2/1000, 3/1000, 4/1000, 5/1000, 6/1000, 7/1000, 8/1000 and 991 more are missing: a merge needs all 1000"
+        );
+    }
+
+    #[test]
+    fn a_part_reads_back_as_written_and_finds_its_records() {
+        let dir = tempfile::tempdir().unwrap();
+        let (name, mut p) = part(1, 2);
+        p.setup = Preset::default().to_toml();
+        let path = dir.path().join(&name);
+        p.write(&Output::check(&path, &["json"], false).unwrap()).unwrap();
+        assert_eq!(Part::read(&path), Ok(p.clone()));
+        // A records file beside its part is named by its file name, so the folder can move.
+        assert_eq!(records_reference(&path, &dir.path().join("1.csv")), "1.csv");
+        assert_eq!(p.records_path(&path), Some(dir.path().join("1.csv")));
+        let elsewhere = records_reference(&path, Path::new("/data/1.csv"));
+        assert_eq!(elsewhere, "/data/1.csv");
+        std::fs::write(&path, "{\"part_format\": \"two\"}").unwrap();
+        let e = Part::read(&path).unwrap_err();
+        assert!(
+            e.starts_with(&format!(
+                "{}: not a dicesim part summary: at `part_format`: ",
+                path.display()
+            )),
+            "{e}"
         );
     }
 }

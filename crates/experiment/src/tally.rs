@@ -343,6 +343,46 @@ mod tests {
         );
     }
 
+    #[test]
+    fn merged_tallies_count_the_rolls_of_both() {
+        use dicesim_physics::{InitialCondition, Outcome};
+        let roll = |status, face, time_s| RollRecord {
+            id: 0,
+            initial: InitialCondition::default(),
+            outcome: Outcome {
+                status,
+                face,
+                steps: 10,
+                time_s,
+            },
+            start_face: 1,
+        };
+        let first: Tally = [
+            roll(Status::Settled, Some(1), 0.1),
+            roll(Status::Timeout, None, 0.2),
+        ]
+        .iter()
+        .collect();
+        let second: Tally = [roll(Status::Settled, Some(6), 0.3)].iter().collect();
+        let mut merged = first.clone();
+        merged.merge(&second);
+        assert_eq!((merged.rolls, merged.steps), (3, 30));
+        assert_eq!(merged.faces.counts, [1, 0, 0, 0, 0, 1]);
+        assert_eq!((merged.status.settled, merged.status.timeout), (2, 1));
+        // Face 1 from start face 1 is the same face, 6 the opposite one.
+        assert_eq!((merged.start_face.same, merged.start_face.opposite), (1, 1));
+        // The exact sum: 0.1 + 0.2 + 0.3 as the nearest double to the true sum of the
+        // three doubles (0.6000000000000001 in floats added left to right).
+        assert_eq!(merged.summary(Duration::ZERO).simulated_s, 0.6);
+        assert_eq!(merged.check(10), Ok(()));
+        assert!(
+            merged
+                .check(9)
+                .unwrap_err()
+                .contains("more than 3 rolls of at most 9 steps")
+        );
+    }
+
     proptest! {
         /// Any split of any list sums to the same bits, and small sums of integers are exact.
         #[test]

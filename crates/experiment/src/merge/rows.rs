@@ -9,7 +9,7 @@ use std::io::{BufRead, Write};
 
 /// Why a part's rows cannot be merged.
 #[derive(Debug, thiserror::Error)]
-pub enum MergeError {
+pub(super) enum RowError {
     #[error("{0}")]
     Io(#[from] std::io::Error),
     /// The part's content disagrees with its summary (1-based line).
@@ -19,11 +19,11 @@ pub enum MergeError {
 
 /// The longest line a records file of this program holds, bytes (a row is under 400, a
 /// provenance line a few kB): a longer one is damage, refused before it fills memory.
-pub(crate) const MAX_LINE_BYTES: u64 = 64 * 1024;
+pub(super) const MAX_LINE_BYTES: u64 = 64 * 1024;
 
 /// Reads one line of at most [`MAX_LINE_BYTES`] without its line end; `None` at the end.
 /// A last line without its line end is a file cut short.
-pub fn bounded_line(reader: &mut impl BufRead, buf: &mut Vec<u8>) -> Result<Option<String>, String> {
+pub(super) fn bounded_line(reader: &mut impl BufRead, buf: &mut Vec<u8>) -> Result<Option<String>, String> {
     buf.clear();
     let n = std::io::Read::take(&mut *reader, MAX_LINE_BYTES + 1)
         .read_until(b'\n', buf)
@@ -46,7 +46,7 @@ pub fn bounded_line(reader: &mut impl BufRead, buf: &mut Vec<u8>) -> Result<Opti
 
 /// The first line of a file without the UTF-8 byte-order mark a spreadsheet puts in front:
 /// the mark is invisible, so a header refused for it would read the same as the one expected.
-pub fn without_bom(line: String) -> String {
+pub(super) fn without_bom(line: String) -> String {
     match line.strip_prefix('\u{feff}') {
         Some(rest) => rest.to_string(),
         None => line,
@@ -57,15 +57,15 @@ pub fn without_bom(line: String) -> String {
 /// lines are `leading` (the provenance and the header; a byte-order mark in front is not
 /// part of them) and that row `n` (0-based, after them) passes `check(n, row)`; the part
 /// must hold exactly `rows` rows. The leading lines themselves are not copied.
-pub fn copy_rows(
+pub(super) fn copy_rows(
     mut reader: impl BufRead,
     out: &mut (impl Write + ?Sized),
     leading: &[&str],
     rows: u64,
     check: &mut dyn FnMut(u64, &str) -> Result<(), String>,
-) -> Result<(), MergeError> {
+) -> Result<(), RowError> {
     let mut buf = Vec::new();
-    let bad = |line: u64, message: String| MergeError::Row { line, message };
+    let bad = |line: u64, message: String| RowError::Row { line, message };
     for (k, want) in leading.iter().enumerate() {
         let line = k as u64 + 1;
         let got = bounded_line(&mut reader, &mut buf).map_err(|e| bad(line, e))?;
@@ -105,13 +105,13 @@ pub fn copy_rows(
 }
 
 /// Reads a map row (`i,j,x,y,start_face,face,status,steps,time_s,sampled`, as
-/// [`BasinMap::write_csv`](super::BasinMap::write_csv) writes it) that must be node
+/// [`BasinMap::write_csv`](crate::BasinMap::write_csv) writes it) that must be node
 /// `(i, j)`; its floats are in shortest round-trip form, so the cell comes back exactly.
 ///
 /// With `node`, the cell's coordinates as the map writes them (`x`, `y`) and the setup's
 /// parameters, every field is checked: the coordinates are the node's, the outcome one a
 /// roll can end in ([`check_outcome`]), and every cell written as the map writes it.
-pub fn parse_map_row(
+pub(super) fn parse_map_row(
     row: &str,
     i: usize,
     j: usize,

@@ -1,0 +1,285 @@
+//! A basin map's parts merged: every row checked against its node and the part's face
+//! counts, the merged rows written as the one-machine CSV as they are read, and every cell
+//! kept for the images the caller draws.
+
+use super::rows::{copy_rows, parse_map_row};
+use super::{MergeError, Parts, checked_records_path, chosen_at_random, out_kind, outcome_words, row_error};
+use crate::basin::{Axis, BasinMap, Cell, Layer, Method, node_setup};
+use crate::provenance;
+use crate::record::roll_record;
+use crate::shard::Sweep;
+use crate::stats::FaceTally;
+use dicesim_physics::{InitialCondition, Params};
+use dicesim_setup::output::Output;
+use dicesim_setup::preset::Preset;
+use rayon::prelude::*;
+use std::io::{BufReader, Write};
+
+/// A merged map: its cells (every one, once a merged file or `--verify` read them) and
+/// what `merge` prints and draws of it.
+#[derive(Debug, Clone)]
+pub struct MapMerge {
+    pub map: BasinMap,
+    /// The layer the sweep's images show.
+    pub layer: Layer,
+    /// The faces the parts count, added up.
+    pub faces: FaceTally,
+    /// The setup the parts record.
+    pub preset: Preset,
+    /// The map's provenance, as its images record it.
+    pub provenance: serde_json::Value,
+    pub shards: usize,
+    /// s of wall-clock time of all shards added up, and of the longest.
+    pub shard_s: f64,
+    pub longest_s: f64,
+    /// Cells rolled again by `--verify`.
+    pub verified: usize,
+}
+
+impl Parts {
+    /// Merges a map's parts: the merged CSV to the .csv among `outputs` (the .png and .svg
+    /// are the caller's to draw from the cells returned), after checking every row against
+    /// its node and every part's face counts; `verify` cells chosen at random are rolled
+    /// again and must end bit for bit as their rows say.
+    pub fn merge_map(&self, outputs: &[Output], verify: u64) -> Result<MapMerge, MergeError> {
+        let Sweep::Map {
+            x,
+            y,
+            width,
+            height,
+            layer,
+            ..
+        } = &self.first().sweep
+        else {
+            unreachable!("merge_map is called for maps")
+        };
+        let preset = self.setup()?;
+        let params = preset.params();
+        params.validate()?;
+        let bad_sweep = |e: String| MergeError::Parts(format!("{}: {e}", self.parts[0].0.display()));
+        let x = Axis::parse(x, *width).map_err(|e| bad_sweep(e.to_string()))?;
+        let y = Axis::parse(y, *height).map_err(|e| bad_sweep(e.to_string()))?;
+        let layer = [Layer::Face, Layer::SettleTime]
+            .into_iter()
+            .find(|l| l.name() == layer)
+            .ok_or_else(|| bad_sweep(format!("unknown layer `{layer}`")))?;
+        let faces = self.faces()?;
+        let mut map = BasinMap {
+            x,
+            y,
+            method: Method::Uniform,
+            cells: vec![None; width * height],
+            sampled: 0,
+            complete: true,
+            switched_to_uniform: None,
+        };
+        for output in outputs {
+            out_kind(output.path(), &["csv", "png", "svg"])?;
+        }
+        let chosen = chosen_at_random(width * height, verify);
+        let provenance = provenance::map(&preset, &map);
+        if !outputs.is_empty() || !chosen.is_empty() {
+            let setup = (&params, &preset.initial);
+            match outputs.iter().find(|o| o.extension() == "csv") {
+                Some(csv) => csv.write_with(
+                    |sink| {
+                        let failed = |e: std::io::Error| MergeError::unwritten(csv.failed(&e));
+                        self.read_cells(&mut map, setup, &provenance, (sink, &failed), &chosen)
+                    },
+                    MergeError::unwritten,
+                )?,
+                None => {
+                    let sink = &mut std::io::sink();
+                    self.read_cells(&mut map, setup, &provenance, (sink, &MergeError::Io), &chosen)?;
+                }
+            }
+            map.sampled = map.cells.iter().flatten().filter(|c| c.sampled).count();
+        }
+        let (shard_s, longest_s) = self.shard_times();
+        Ok(MapMerge {
+            map,
+            layer,
+            faces,
+            preset,
+            provenance,
+            shards: self.parts.len(),
+            shard_s,
+            longest_s,
+            verified: chosen.len(),
+        })
+    }
+
+    /// The face counts every part claims, added up.
+    fn faces(&self) -> Result<FaceTally, MergeError> {
+        let mut faces = FaceTally::default();
+        for (path, p) in self.iter() {
+            let f = p.map_faces.as_ref().ok_or_else(|| {
+                MergeError::Parts(format!(
+                    "{}: a map part without its face counts (`map_faces`)",
+                    path.display()
+                ))
+            })?;
+            for (c, n) in faces.counts.iter_mut().zip(f.counts) {
+                *c += n;
+            }
+        }
+        Ok(faces)
+    }
+
+    /// One pass over the parts: their rows copied to `sink` (the merged CSV) after the
+    /// sweep's provenance line and header, every cell checked and kept in `map`; then each
+    /// part's face counts and the cells `chosen` rolled again are checked, before the merged
+    /// CSV is kept, so a refused merge writes nothing.
+    ///
+    /// `failed` words a failure to write to `sink`; the rows' own are named by their file.
+    fn read_cells(
+        &self,
+        map: &mut BasinMap,
+        (params, base): (&Params, &InitialCondition),
+        provenance: &serde_json::Value,
+        (sink, failed): (&mut (dyn Write + Send), &dyn Fn(std::io::Error) -> MergeError),
+        chosen: &[usize],
+    ) -> Result<(), MergeError> {
+        let mut header = Vec::new();
+        map.write_csv(&mut header)?;
+        let header = String::from_utf8(header).expect("the CSV header is UTF-8");
+        let header = header.trim_end();
+        let provenance_line = provenance::csv_line(provenance);
+        writeln!(sink, "{provenance_line}\n{header}").map_err(failed)?;
+        let leading = [provenance_line.as_str(), header];
+        let w = map.width();
+        for (path, p) in self.iter() {
+            let records = checked_records_path(path, p)?;
+            let reader = std::fs::File::open(&records)
+                .map(|f| BufReader::with_capacity(1 << 20, f))
+                .map_err(|e| MergeError::Parts(format!("{}: {e}", records.display())))?;
+            let first_cell = p.range[0] as usize * w;
+            let (x, y, cells) = (&map.x, &map.y, &mut map.cells);
+            copy_rows(reader, &mut *sink, &leading, p.len() * w as u64, &mut |n, row| {
+                let index = first_cell + n as usize;
+                let (i, j) = (index % w, index / w);
+                let (nx, ny) = (x.value(i).to_string(), y.value(j).to_string());
+                cells[index] = Some(parse_map_row(row, i, j, Some((&nx, &ny, params)))?);
+                Ok(())
+            })
+            .map_err(|e| row_error(&records, e))?;
+        }
+        self.check_faces(&map.cells, w)?;
+        verify_cells(params, base, (&map.x, &map.y), &map.cells, chosen)
+    }
+
+    /// Refuses a part whose face counts are not those of its own cells.
+    fn check_faces(&self, cells: &[Option<Cell>], w: usize) -> Result<(), MergeError> {
+        for (path, p) in self.iter() {
+            let rows = p.range[0] as usize * w..p.range[1] as usize * w;
+            let found: FaceTally = cells[rows]
+                .iter()
+                .flatten()
+                .filter_map(|c| c.outcome.face)
+                .collect();
+            if Some(found) != p.map_faces {
+                return Err(MergeError::Parts(format!(
+                    "{}: its face counts {:?} are not those of its cells {:?}",
+                    path.display(),
+                    p.map_faces.map(|f| f.counts),
+                    found.counts
+                )));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Rolls the cells `chosen` (indices in row order) of a map with axes `(x, y)` again from
+/// their nodes' starts (`base` with the two axis values set, as the shard rolled them) and
+/// refuses the merge if any ends differently in any bit, its start face included.
+fn verify_cells(
+    params: &Params,
+    base: &InitialCondition,
+    (x, y): (&Axis, &Axis),
+    cells: &[Option<Cell>],
+    chosen: &[usize],
+) -> Result<(), MergeError> {
+    let w = x.cells;
+    let again = |index: usize| {
+        let (p, ic) = node_setup(params, base, x, y, index % w, index / w);
+        roll_record(&p, &ic, index as u64)
+    };
+    let differs = |index: usize| {
+        let r = again(index);
+        match &cells[index] {
+            Some(c) => {
+                let (a, b) = (&c.outcome, &r.outcome);
+                c.start_face != r.start_face
+                    || (a.status, a.face, a.steps) != (b.status, b.face, b.steps)
+                    || a.time_s.to_bits() != b.time_s.to_bits()
+            }
+            None => true,
+        }
+    };
+    let Some(index) = chosen.par_iter().copied().find_first(|&k| differs(k)) else {
+        return Ok(());
+    };
+    let r = again(index);
+    let (i, j) = (index % w, index / w);
+    let recorded = match &cells[index] {
+        Some(c) => format!(
+            "{} after {} steps (start face {})",
+            outcome_words(&c.outcome),
+            c.outcome.steps,
+            c.start_face
+        ),
+        None => "nothing".to_string(),
+    };
+    Err(MergeError::Parts(format!(
+        "--verify: cell ({i}, {j}) ({} = {}, {} = {}) rolled again ends {} after {} steps (start face {}), but its row says {recorded}: the cells are not what this setup rolls",
+        x.key.key,
+        x.value(i),
+        y.key.key,
+        y.value(j),
+        outcome_words(&r.outcome),
+        r.outcome.steps,
+        r.start_face,
+    )))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn verify_refuses_a_cell_that_does_not_roll_as_its_row_says() {
+        let paper = Preset::default();
+        let params = paper.params();
+        let x = Axis::parse("initial.height:5:15", 2).unwrap();
+        let y = Axis::parse("ground.friction:0.4:1.2", 1).unwrap();
+        let cell = |i: usize| {
+            let (p, ic) = node_setup(&params, &paper.initial, &x, &y, i, 0);
+            let r = roll_record(&p, &ic, i as u64);
+            Some(Cell {
+                outcome: r.outcome,
+                start_face: r.start_face,
+                sampled: true,
+            })
+        };
+        let mut cells = vec![cell(0), cell(1)];
+        assert!(verify_cells(&params, &paper.initial, (&x, &y), &cells, &[0, 1]).is_ok());
+        cells[1].as_mut().unwrap().start_face = 7 - cells[1].unwrap().start_face;
+        // Only the cells chosen are rolled again.
+        assert!(verify_cells(&params, &paper.initial, (&x, &y), &cells, &[0]).is_ok());
+        let e = verify_cells(&params, &paper.initial, (&x, &y), &cells, &[0, 1])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with(
+                "--verify: cell (1, 0) (initial.height = 15, ground.friction = 0.8) rolled again ends"
+            ),
+            "{e}"
+        );
+        cells[0] = None;
+        let e = verify_cells(&params, &paper.initial, (&x, &y), &cells, &[0])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("but its row says nothing"), "{e}");
+    }
+}

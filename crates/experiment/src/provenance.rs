@@ -1,0 +1,194 @@
+//! What every output says about where it came from, and the fingerprints that tell setups
+//! apart.
+//!
+//! A provenance names this program's version and everything that defines an experiment's
+//! result (the preset's values, the seed, the sizes), never the engine, threads, shard or
+//! time: a file is the same bytes however and wherever it was rolled, and `merge` rebuilds
+//! the provenance of a sweep from its parts to check each part's files against it.
+
+use crate::PROGRAM;
+use crate::basin::{Axis, BasinMap};
+use crate::compare::CompareSpec;
+use crate::compare_budden::{BuddenSpec, hand_throw};
+use crate::predict::PredictSpec;
+use dicesim_physics::InitialCondition;
+use dicesim_setup::preset::Preset;
+use serde::Serialize;
+use serde_json::{Value, json};
+
+/// A short, stable fingerprint of a setup: FNV-1a (64 bit) of its JSON form, whose floats
+/// are written in shortest round-trip form, so equal setups give equal fingerprints on any
+/// machine and any run.
+pub fn fingerprint(setup: &impl Serialize) -> String {
+    let json = serde_json::to_vec(setup).expect("a setup always serialises to JSON");
+    let hash = json.iter().fold(0xcbf2_9ce4_8422_2325_u64, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    });
+    format!("{hash:016x}")
+}
+
+/// The fingerprint of a batch's setup: every value of the preset but its name, description
+/// and seed (a merge names a different seed as such), and the given initial conditions.
+pub fn batch_fingerprint(preset: &Preset, given: Option<&[(u64, InitialCondition)]>) -> String {
+    // As the part's setup writes it, so a merge can recompute it from there.
+    let mut values = preset.as_written();
+    values.name.clear();
+    values.description.clear();
+    values.random.seed = 0;
+    fingerprint(&(values, given))
+}
+
+/// The fingerprint of a map's setup: the preset's values (the axes are compared apart).
+pub fn map_fingerprint(preset: &Preset) -> String {
+    batch_fingerprint(preset, None)
+}
+
+/// A batch's provenance: the preset's values with the seed rolled (`None` for given
+/// initial conditions, which `given_fingerprint` then names), and the roll count.
+pub fn batch(preset: &Preset, seed: Option<u64>, rolls: u64, given_fingerprint: Option<&str>) -> Value {
+    let mut values = preset.as_written();
+    if let Some(seed) = seed {
+        values.random.seed = seed;
+    }
+    json!({
+        "program": PROGRAM,
+        "preset": values,
+        "seed": seed,
+        "rolls": rolls,
+        "initial_conditions": match given_fingerprint {
+            Some(f) => format!("given (--ics), fingerprint {f}"),
+            None => "drawn from the preset's [random] ranges with the seed".to_string(),
+        },
+    })
+}
+
+/// A map's provenance: the preset's values (the start every cell varies two values of),
+/// each axis as `KEY:MIN:MAX` with its node count, and how the cells were found (every node
+/// rolled, or the adaptive method).
+pub fn map(preset: &Preset, map: &BasinMap) -> Value {
+    let axis = |a: &Axis| {
+        json!({
+            "axis": format!("{}:{}:{}", a.key.key, a.min, a.max),
+            "nodes": a.cells,
+        })
+    };
+    json!({
+        "program": PROGRAM,
+        "preset": preset.as_written(),
+        "x": axis(&map.x),
+        "y": axis(&map.y),
+        "method": map.method.name(),
+    })
+}
+
+/// A predictability experiment's provenance; `vary` is the `KEY=V1,V2,…` it was given.
+pub fn prediction(preset: &Preset, spec: &PredictSpec, vary: Option<&str>) -> Value {
+    let mut values = preset.as_written();
+    values.random.seed = spec.seed;
+    json!({
+        "program": PROGRAM,
+        "preset": values,
+        "seed": spec.seed,
+        "rolls": spec.count,
+        "epsilons": spec.epsilons,
+        "vary": vary,
+    })
+}
+
+/// A comparison's provenance; `fit` is the `KEY:LO:HI` it was given, fitted over
+/// `candidates` values.
+pub fn comparison(preset: &Preset, spec: &CompareSpec, fit: Option<&str>, candidates: usize) -> Value {
+    let mut values = preset.as_written();
+    values.random.seed = spec.seed;
+    json!({
+        "program": PROGRAM,
+        "preset": values,
+        "dataset": spec.dataset.name(),
+        "seed": spec.seed,
+        "throws": spec.throws,
+        "fit": fit,
+        "candidates": fit.map(|_| candidates),
+    })
+}
+
+/// The provenance of a comparison with Budden's cuboids, its random ranges as the throws
+/// were drawn: from a uniformly random orientation.
+pub fn budden(preset: &Preset, spec: &BuddenSpec, fit: &str) -> Value {
+    let mut values = preset.as_written();
+    values.random = hand_throw(&values.random);
+    values.random.seed = spec.seed;
+    json!({
+        "program": PROGRAM,
+        "preset": values,
+        "dataset": "budden",
+        "seed": spec.seed,
+        "throws": spec.throws,
+        "fit": fit,
+        "candidates": spec.fit.candidates,
+        "calibrate_on": spec.calibrate_on,
+    })
+}
+
+/// The provenance as a CSV file's first line: a `#` comment, which `--ics` skips and
+/// `merge` requires to be the sweep's own.
+pub fn csv_line(provenance: &Value) -> String {
+    format!("# {provenance}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fingerprints_are_stable_and_tell_setups_apart() {
+        // FNV-1a of the JSON `[1.5,"x"]`, computed by hand from the published constants.
+        let by_hand = "[1.5,\"x\"]".bytes().fold(0xcbf29ce484222325u64, |h, b| {
+            (h ^ b as u64).wrapping_mul(0x100000001b3)
+        });
+        assert_eq!(fingerprint(&(1.5, "x")), format!("{by_hand:016x}"));
+        assert_ne!(fingerprint(&(1.5, "x")), fingerprint(&(1.5000000000000002, "x")));
+    }
+
+    #[test]
+    fn a_sweeps_fingerprint_follows_its_values_not_its_names() {
+        let paper = Preset::default();
+        let mut renamed = paper.clone();
+        renamed.name = "mine".into();
+        renamed.description = "another text".into();
+        renamed.random.seed += 1;
+        // Names and the seed are compared apart (a different seed is named as such).
+        assert_eq!(batch_fingerprint(&renamed, None), batch_fingerprint(&paper, None));
+        let mut slippery = paper.clone();
+        slippery.ground.friction = 0.3;
+        assert_ne!(
+            batch_fingerprint(&slippery, None),
+            batch_fingerprint(&paper, None)
+        );
+        // Given starts are part of a batch's setup: other starts, another sweep.
+        let one = [(0, paper.initial)];
+        let mut higher = paper.initial;
+        higher.height += 1.0;
+        assert_ne!(
+            batch_fingerprint(&paper, Some(&one)),
+            batch_fingerprint(&paper, Some(&[(0, higher)]))
+        );
+        assert_ne!(
+            batch_fingerprint(&paper, Some(&one)),
+            batch_fingerprint(&paper, None)
+        );
+    }
+
+    #[test]
+    fn a_batchs_provenance_names_its_seed_or_its_given_starts() {
+        let paper = Preset::default();
+        let drawn = batch(&paper, Some(7), 100, None);
+        assert_eq!(drawn["seed"], 7);
+        assert_eq!(drawn["preset"]["random"]["seed"], 7);
+        assert_eq!(drawn["rolls"], 100);
+        assert_eq!(drawn["program"], PROGRAM);
+        let given = batch(&paper, None, 3, Some("00ff"));
+        assert_eq!(given["seed"], Value::Null);
+        assert_eq!(given["initial_conditions"], "given (--ics), fingerprint 00ff");
+        assert_eq!(csv_line(&json!({"a": 1})), "# {\"a\":1}");
+    }
+}

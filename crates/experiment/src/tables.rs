@@ -1,0 +1,487 @@
+//! The text tables of results, as the commands print them: beside each result's CSV
+//! (`write_csv`), the same figures for a reader. Each writes whole lines to `out`.
+
+use crate::basin::{BasinMap, Layer};
+use crate::compare::Comparison;
+use crate::compare_budden::{BuddenComparison, RatioRole};
+use crate::compare_stats::{FitInterval, FitMethod};
+use crate::ending::Ending;
+use crate::predict::Prediction;
+use crate::stats::FaceTally;
+use crate::summary::BatchSummary;
+use crate::versus::{NO_FACE, VersusRun};
+use dicesim_setup::number::fmt_num;
+use std::io::Write;
+
+/// The summary's lines that depend on the rolls alone (not on threads or time), as `batch`
+/// and `merge` print them.
+pub fn batch_counts(out: &mut dyn Write, s: &BatchSummary) -> std::io::Result<()> {
+    writeln!(out, "face   count   share   95% interval")?;
+    for f in 0..6 {
+        let [low, high] = s.face_intervals[f].map(|x| 100.0 * x);
+        writeln!(
+            out,
+            "{:>4} {:>7}  {:>5.1}%  {low:>5.1}–{high:.1}%",
+            f + 1,
+            s.faces.counts[f],
+            100.0 * s.face_shares[f]
+        )?;
+    }
+    match (s.chi_square, s.p_value) {
+        // p as the explorer prints it (three significant digits, 6.02e-28 rather than 0.0000).
+        (Some(chi2), Some(p)) => writeln!(
+            out,
+            "χ² against a fair die  {chi2:.3} (5 dof), p = {}",
+            fmt_num(p)
+        )?,
+        _ => writeln!(out, "χ² against a fair die  n/a (no faces)")?,
+    }
+    match s.rolls_to_detect {
+        Some(n) => writeln!(
+            out,
+            "bias detectable in     {n} rolls (χ² at 5 %, 80 % power, for the bias measured here)"
+        )?,
+        None if s.chi_square.is_some() => {
+            writeln!(out, "bias detectable in     — (no bias measured beyond chance)")?
+        }
+        None => {}
+    }
+    let [same, adjacent, opposite] = s.start_face_shares.map(|x| 100.0 * x);
+    writeln!(
+        out,
+        "from the start face    same {same:.1}%, adjacent {adjacent:.1}%, opposite {opposite:.1}%"
+    )?;
+    let st = &s.status;
+    writeln!(
+        out,
+        "status                 settled {}, {} {}, {} {}, {} {}",
+        st.settled,
+        Ending::WithoutFace.name(),
+        st.settled_without_face,
+        Ending::DidNotSettle.name(),
+        st.timeout,
+        Ending::Unstable.name(),
+        st.unstable
+    )?;
+    Ok(())
+}
+
+/// A versus batch: the throws, setups, threads and engine, the table of A's ending against
+/// B's, and the share of throws that agree.
+pub fn versus(out: &mut dyn Write, run: &VersusRun, preset: &str, versus: &[String]) -> std::io::Result<()> {
+    let t = &run.table;
+    writeln!(
+        out,
+        "{} throws in A ({preset} as given) and B (A with {}), {} thread{}, {} engine",
+        t.throws(),
+        versus.join(" "),
+        run.jobs,
+        if run.jobs == 1 { "" } else { "s" },
+        run.engine.name()
+    )?;
+    writeln!(out, "A \\ B     1      2      3      4      5      6  none")?;
+    for (a, row) in t.counts.iter().enumerate() {
+        let name = if a == NO_FACE {
+            "none".to_string()
+        } else {
+            (a + 1).to_string()
+        };
+        write!(out, "{name:>5}")?;
+        for count in row {
+            write!(out, " {count:>6}")?;
+        }
+        writeln!(out)?;
+    }
+    match t.agreement() {
+        Some((share, [low, high])) => writeln!(
+            out,
+            "agreement  {:.1}% ({} of {}), 95% interval {:.1}–{:.1}%",
+            100.0 * share,
+            t.agreeing(),
+            t.faced(),
+            100.0 * low,
+            100.0 * high
+        )?,
+        None => writeln!(out, "agreement  none: no throw ended on a face in both setups")?,
+    }
+    writeln!(
+        out,
+        "           over the throws ending on a face in both; {} ended on no face in A or B (\"none\")",
+        t.throws() - t.faced()
+    )?;
+    Ok(())
+}
+
+/// What `basin` and `merge` print about a map: its grid, method, axes and the face shares
+/// over its known cells.
+pub fn map_summary(
+    out: &mut dyn Write,
+    map: &BasinMap,
+    layer: Layer,
+    faces: &FaceTally,
+) -> std::io::Result<()> {
+    let (x, y) = (&map.x, &map.y);
+    let (w, h) = (map.width(), map.height());
+    writeln!(out, "{w}×{h} {} map, {}", layer.name(), map.method_report())?;
+    writeln!(out, "x  {} from {} to {}", x.key.label(), x.min, x.max)?;
+    if h == 1 {
+        writeln!(out, "y  {} = {}", y.key.label(), y.value(0))?;
+    } else {
+        writeln!(out, "y  {} from {} to {}", y.key.label(), y.min, y.max)?;
+    }
+    let shares: Vec<String> = (1..=6)
+        .map(|f| format!("{f}: {:.1}%", 100.0 * faces.share(f)))
+        .collect();
+    writeln!(out, "faces over the map  {}", shares.join(", "))?;
+    let unsettled = map.cells.iter().flatten().count() as u64 - faces.total();
+    if unsettled > 0 {
+        writeln!(out, "cells without a face {unsettled}")?;
+    }
+    Ok(())
+}
+
+/// The table: one column of P(same face) per curve, then chance, ε½ and the start face.
+pub fn prediction(out: &mut dyn Write, p: &Prediction) -> std::io::Result<()> {
+    let name = |v: Option<f64>| match (&p.key, v) {
+        (Some(k), Some(v)) => format!("{k} = {v}"),
+        _ => "this setup".to_string(),
+    };
+    writeln!(
+        out,
+        "{} random starts per curve, each beside its ε-twin (height, velocity and spin × (1 + ε)), seed {}",
+        p.count, p.seed
+    )?;
+    for c in &p.curves {
+        writeln!(out, "\n{} ({} starts)", name(c.value), c.starts)?;
+        writeln!(out, "     ε      P(same face)   95% interval")?;
+        for pt in &c.points {
+            writeln!(
+                out,
+                "{:>8}   {:>8.3}      {:.3}–{:.3}",
+                // ε as given (1.5e-3, never rounded to 2e-3): the twins were rolled at it.
+                format!("{:e}", pt.epsilon),
+                pt.same_share,
+                pt.interval[0],
+                pt.interval[1]
+            )?;
+        }
+        writeln!(
+            out,
+            "chance Σpᶠ²  {:.3}; halfway {:.3}; ε½ {}",
+            c.chance,
+            c.half,
+            c.threshold.map_or("n/a (no faces)".to_string(), |t| t.text())
+        )?;
+        writeln!(
+            out,
+            "start face kept  {:.1}% ({:.1}–{:.1}%)",
+            100.0 * c.start_face_share,
+            100.0 * c.start_face_interval[0],
+            100.0 * c.start_face_interval[1]
+        )?;
+    }
+    Ok(())
+}
+
+/// A comparison with real dice: the data against a fair die, a fit's candidates if any, and
+/// the real counts beside those simulated with `preset` (at a fit's value nearest its best).
+pub fn comparison(out: &mut dyn Write, c: &Comparison, preset: &str) -> std::io::Result<()> {
+    writeln!(out, "{} ({})", c.dataset.name(), c.data.source)?;
+    let fair = &c.data_against_fair;
+    writeln!(
+        out,
+        "the real dice against a fair die: χ² {:.2} on {} dof, p = {}",
+        fair.chi_square,
+        fair.dof,
+        p_text(fair.p_value)
+    )?;
+    if let (Some(fit), Some(key)) = (&c.fit, &c.key) {
+        candidates(out, c, key, fit)?;
+    }
+    comparison_counts(out, c, preset)
+}
+
+/// A fit's candidates, one line each with its deviance and test, and the best value.
+fn candidates(out: &mut dyn Write, c: &Comparison, key: &str, fit: &FitInterval) -> std::io::Result<()> {
+    writeln!(
+        out,
+        "\nfit of {key}: {} candidates, each with the same {} throws (seed {})",
+        c.candidates.len(),
+        c.throws,
+        c.seed
+    )?;
+    writeln!(
+        out,
+        "{:>12}  {:>10}  {:>8}  {:>4}  {:>9}",
+        key.rsplit('.').next().unwrap_or(key),
+        "deviance",
+        "χ²",
+        "dof",
+        "p"
+    )?;
+    for k in &c.candidates {
+        let (Some(value), Some(deviance)) = (k.value, k.deviance) else {
+            continue;
+        };
+        let (chi2, dof, p) = k
+            .test
+            .as_ref()
+            .map_or(("n/a".to_string(), String::new(), String::new()), |t| {
+                (
+                    format!("{:.2}", t.chi_square),
+                    t.dof.to_string(),
+                    p_text(t.p_value),
+                )
+            });
+        let mark = if Some(k) == c.shown() {
+            " ← nearest the best"
+        } else {
+            ""
+        };
+        writeln!(
+            out,
+            "{value:>12.6}  {deviance:>10.2}  {chi2:>8}  {dof:>4}  {p:>9}{mark}"
+        )?;
+    }
+    fit_line(out, key, fit)
+}
+
+/// The real counts beside the simulated ones of the value shown, and their test.
+fn comparison_counts(out: &mut dyn Write, c: &Comparison, preset: &str) -> std::io::Result<()> {
+    let Some(shown) = c.shown() else {
+        return writeln!(out, "no simulated throws completed");
+    };
+    let value = match (&c.key, shown.value) {
+        (Some(k), Some(v)) => format!(", {k} = {v}"),
+        _ => String::new(),
+    };
+    writeln!(
+        out,
+        "\n{} real throws against {} simulated ({preset}{value}, seed {}); {} simulated throws not counted (a die ended without a face)",
+        c.data.total(),
+        shown.throws,
+        c.seed,
+        shown.uncounted
+    )?;
+    let rows = c.rows(shown);
+    let Some(test) = &shown.test else {
+        return writeln!(out, "too few simulated throws to test");
+    };
+    writeln!(
+        out,
+        "{:>10}  {:>7}  {:>6}  {:>13}  {:>9}  {:>6}  {:>13}  {:>8}",
+        "category", "real", "share", "95% interval", "simulated", "share", "95% interval", "residual"
+    )?;
+    let pc = |x: f64| 100.0 * x;
+    let interval = |i: [f64; 2]| format!("{:.2}–{:.2}%", pc(i[0]), pc(i[1]));
+    for r in &rows {
+        writeln!(
+            out,
+            "{:>10}  {:>7}  {:>5.2}%  {:>13}  {:>9}  {:>5.2}%  {:>13}  {:>+8.2}",
+            r.category,
+            r.data_count,
+            pc(r.data_share),
+            interval(r.data_interval),
+            r.simulated_count,
+            pc(r.simulated_share),
+            interval(r.simulated_interval),
+            r.residual
+        )?;
+    }
+    writeln!(
+        out,
+        "χ² of the real against the simulated counts: {:.2} on {} dof, p = {}",
+        test.chi_square,
+        test.dof,
+        p_text(test.p_value)
+    )?;
+    writeln!(
+        out,
+        "power of this comparison: {:.0}% for the difference measured (test at 5 %)",
+        100.0 * test.power
+    )?;
+    match test.throws_to_detect {
+        Some(n) => writeln!(
+            out,
+            "real throws that tell this model from the real die: {n} (80 % power, 5 %)"
+        ),
+        None => writeln!(
+            out,
+            "real throws that tell this model from the real die: — (no difference measured beyond chance)"
+        ),
+    }
+}
+
+/// A fit's best value and its 95 % interval (an end that reached the range's edge said so).
+fn fit_line(out: &mut dyn Write, key: &str, fit: &FitInterval) -> std::io::Result<()> {
+    let side = |v: f64, open: bool, words: &str| {
+        if open {
+            format!("{words} {v}")
+        } else {
+            format!("{v:.6}")
+        }
+    };
+    let how = match fit.method {
+        FitMethod::Parabola => "on the least-squares parabola through the candidates' deviances",
+        FitMethod::Candidates => "the best candidate; the deviances follow no upward parabola",
+    };
+    writeln!(
+        out,
+        "best {key} = {:.6} (deviance {:.2}, {how}); 95 % interval {} to {} (deviance within 3.84 of the best)",
+        fit.best,
+        fit.best_deviance,
+        side(fit.low, fit.low_open, "the range's low end,"),
+        side(fit.high, fit.high_open, "the range's high end,"),
+    )
+}
+
+/// A comparison with Budden's cuboids: the assumptions, the fit on the calibration ratios,
+/// and every ratio thrown with `preset` at the best value.
+pub fn budden(out: &mut dyn Write, c: &BuddenComparison, preset: &str) -> std::io::Result<()> {
+    writeln!(out, "budden ({})", c.source)?;
+    for a in &c.assumptions {
+        writeln!(out, "assumed: {a}")?;
+    }
+    let ratios = |rs: &[f64]| {
+        rs.iter()
+            .map(|r| format!("{r:.2}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    writeln!(
+        out,
+        "\nfit of {} on ratios {}: {} candidates, each with the same throws (seed {})",
+        c.key,
+        ratios(&c.calibrate_on),
+        c.candidates.len(),
+        c.seed
+    )?;
+    let short = c.key.rsplit('.').next().unwrap_or(&c.key);
+    writeln!(out, "{short:>12}  {:>10}  square share by ratio", "deviance")?;
+    for k in &c.candidates {
+        let shares: Vec<String> = k
+            .ratios
+            .iter()
+            .map(|t| format!("{:.2}: {:.3}", t.ratio, t.square as f64 / t.throws.max(1) as f64))
+            .collect();
+        writeln!(
+            out,
+            "{:>12.6}  {:>10.2}  {}",
+            k.value,
+            k.deviance,
+            shares.join("  ")
+        )?;
+    }
+    let Some(fit) = &c.fit else {
+        return writeln!(out, "no fit: too few candidates completed");
+    };
+    fit_line(out, &c.key, fit)?;
+    budden_ratios(out, c, fit.best, preset)
+}
+
+/// Every ratio thrown with the best value: Budden's share of square-face landings beside
+/// the simulation's, and how many lie within 2σ.
+fn budden_ratios(out: &mut dyn Write, c: &BuddenComparison, best: f64, preset: &str) -> std::io::Result<()> {
+    writeln!(
+        out,
+        "\nevery ratio thrown with {} = {:.6} ({preset}, seed {}): Budden's share of square-face landings beside the simulation's",
+        c.key, best, c.seed
+    )?;
+    writeln!(
+        out,
+        "{:>5}  {:>9}  {:>6}  {:>6}  {:>11}  {:>6}  {:>6}  {:>11}  {:>6}  within 2σ",
+        "x/y", "role", "real n", "share", "95% interval", "sim n", "share", "95% interval", "z (σ)"
+    )?;
+    let interval = |i: [f64; 2]| format!("{:.3}–{:.3}", i[0], i[1]);
+    for r in &c.ratios {
+        let s = &r.shares;
+        writeln!(
+            out,
+            "{:>5.2}  {:>9}  {:>6}  {:>6.3}  {:>11}  {:>6}  {:>6.3}  {:>11}  {:>+6.2}  {}",
+            r.ratio,
+            match r.role {
+                RatioRole::Calibrate => "calibrate",
+                RatioRole::Predict => "predict",
+            },
+            r.data_throws,
+            s.data_share,
+            interval(s.data_interval),
+            r.simulated.throws,
+            s.simulated_share,
+            interval(s.simulated_interval),
+            s.z,
+            if s.within_two_sigma() { "yes" } else { "no" }
+        )?;
+    }
+    let uncounted: u64 = c.ratios.iter().map(|r| r.simulated.uncounted).sum();
+    writeln!(
+        out,
+        "{uncounted} simulated throws not counted (the cuboid ended without a face)"
+    )?;
+    for (words, summary) in [
+        ("calibration ratios (in sample)", &c.calibrated),
+        ("predicted ratios (out of sample)", &c.predicted),
+        ("all ratios", &c.all),
+    ] {
+        if let Some(s) = summary {
+            writeln!(
+                out,
+                "{words}: {} of {} within 2σ; χ² {:.2} on {} dof, p = {}",
+                s.within_two_sigma,
+                s.shares,
+                s.chi_square,
+                s.shares,
+                p_text(s.p_value)
+            )?;
+        }
+    }
+    Ok(())
+}
+
+/// A p-value as a person reads it: four decimals, or scientific notation when tiny.
+fn p_text(p: f64) -> String {
+    if p >= 1e-4 {
+        format!("{p:.4}")
+    } else {
+        format!("{p:.2e}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn text(write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> String {
+        let mut out = Vec::new();
+        write(&mut out).unwrap();
+        String::from_utf8(out).unwrap()
+    }
+
+    #[test]
+    fn p_values_read_as_four_decimals_until_tiny() {
+        assert_eq!(p_text(0.5), "0.5000");
+        assert_eq!(p_text(1e-4), "0.0001");
+        assert_eq!(p_text(0.000012345), "1.23e-5");
+    }
+
+    #[test]
+    fn a_fits_interval_says_where_it_reached_the_range() {
+        let fit = FitInterval {
+            best: 0.5,
+            best_deviance: 1.234,
+            best_index: 3,
+            low: 0.2,
+            low_open: true,
+            high: 0.75,
+            high_open: false,
+            method: FitMethod::Parabola,
+            parabola: Some([1.0, -1.0, 1.5]),
+        };
+        assert_eq!(
+            text(|out| fit_line(out, "ground.friction", &fit)),
+            "best ground.friction = 0.500000 (deviance 1.23, on the least-squares parabola through the \
+             candidates' deviances); 95 % interval the range's low end, 0.2 to 0.750000 (deviance within \
+             3.84 of the best)\n"
+        );
+    }
+}
