@@ -69,7 +69,8 @@ pub(crate) struct ShardArgs {
 }
 
 /// How a command words the options of [`RunArgs`] in its help, and which it has: what does
-/// not depend on the threads or the engine, and what its files hold.
+/// not depend on the threads or the engine, and what its files hold. Each text is that
+/// option's help as a doc comment gives it (clap drops a one-paragraph comment's period).
 pub(crate) struct Wording {
     pub(crate) jobs: &'static str,
     pub(crate) out: &'static str,
