@@ -1,7 +1,8 @@
 //! `dicesim animate`: a roll (or a roll and its chaos twin) as an animated GIF or PNG.
 
 use super::args::SetupArgs;
-use super::{CliError, cancel_on_ctrl_c};
+use super::error::CliError;
+use super::running::{self, cancel_on_ctrl_c};
 use clap::Args;
 use dicesim_figures::animation::render::Camera;
 use dicesim_figures::animation::{self, AnimationSpec, write_animation};
@@ -93,7 +94,7 @@ pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
     let output =
         Output::check(&args.out, &animation::EXTENSIONS, args.force).map_err(CliError::output("--out "))?;
 
-    let bar = super::progress_bar(params.max_steps(), "{msg:14} {bar:40} {pos}/{len}, {elapsed}");
+    let bar = running::progress_bar(params.max_steps(), "{msg:14} {bar:40} {pos}/{len}, {elapsed}");
     bar.set_message("steps rolled");
     let stop = cancel_on_ctrl_c()?;
     let animated = write_animation(

@@ -2,7 +2,7 @@
 //! of a long experiment (`--jobs`, `--out`, `--force`, `--json`, `--shard`, `--part`,
 //! `--engine`), declared once and worded by each command for what it writes.
 
-use super::CliError;
+use super::error::CliError;
 use clap::builder::EnumValueParser;
 use clap::{Arg, ArgAction, ArgMatches, Args, Command, FromArgMatches, ValueEnum, value_parser};
 use dicesim_experiment::shard::{PART_EXTENSION, Shard};

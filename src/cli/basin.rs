@@ -1,7 +1,8 @@
 //! `dicesim basin`: the outcome over a grid of two setup values, as CSV or an image.
 
 use super::args::{RunArgs, SetupArgs, Worded, Wording};
-use super::{CliError, cancel_on_ctrl_c};
+use super::error::CliError;
+use super::running::{self, cancel_on_ctrl_c};
 use clap::{Args, ValueEnum};
 use dicesim_experiment::basin::check_nodes_clear_of_table;
 use dicesim_experiment::hashing::Written;
@@ -153,7 +154,7 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
         .map(|(shard, _)| (*shard, shard.range(h as u64)));
     let rows = shard.as_ref().map_or(0..h as u64, |(_, rows)| rows.clone());
     let total = (w * (rows.end - rows.start) as usize) as u64;
-    let bar = super::progress_bar(total, "{bar:40} {pos}/{len} cells rolled, {elapsed}");
+    let bar = running::progress_bar(total, "{bar:40} {pos}/{len} cells rolled, {elapsed}");
     let stop = cancel_on_ctrl_c()?;
     let start = std::time::Instant::now();
     let map = run_map_rows(
@@ -221,7 +222,7 @@ fn write_map(
     let provenance = provenance::map(preset, map);
     match output {
         Some(csv) if csv.extension() == "csv" => Ok(Some(
-            map.write_csv_file(&provenance, csv)
+            map.write_csv_file(&provenance::csv_line(&provenance), csv)
                 .map_err(CliError::output(""))?,
         )),
         Some(image) => {

@@ -1,7 +1,8 @@
 //! `dicesim batch`: many rolls in parallel, per-roll results and their statistics.
 
 use super::args::{RunArgs, SetupArgs, Worded, Wording};
-use super::{CliError, cancel_on_ctrl_c};
+use super::error::CliError;
+use super::running::{self, cancel_on_ctrl_c};
 use clap::Args;
 use dicesim_experiment::BatchRun;
 use dicesim_experiment::RunOptions;
@@ -93,7 +94,7 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
     let seed = args.seed.unwrap_or(preset.random.seed);
     let sweep = BatchSweep::new(&preset, seed, given.as_deref(), args.rolls.unwrap_or(0), shard);
     let stop = cancel_on_ctrl_c()?;
-    let bar = super::progress_bar(
+    let bar = running::progress_bar(
         sweep.rolls().len(),
         "{bar:40} {pos}/{len} rolls, {per_sec}, {eta} left",
     );
@@ -233,7 +234,7 @@ fn run_versus(args: &BatchArgs, options: &RunOptions) -> Result<(), CliError> {
     let sweep =
         BatchSweep::new(&preset, seed, given.as_deref(), args.rolls.unwrap_or(0), None).against(&args.versus);
     let stop = cancel_on_ctrl_c()?;
-    let bar = super::progress_bar(
+    let bar = running::progress_bar(
         sweep.rolls().len(),
         "{bar:40} {pos}/{len} throws ×2, {per_sec}, {eta} left",
     );

@@ -1,8 +1,8 @@
 //! `dicesim bench`: both engines on the same rolls in one process, as ratios (timed by the
 //! experiment crate's `bench`, each comparison the median of rounds in alternating order).
 
-use super::CliError;
 use super::args::SetupArgs;
+use super::error::CliError;
 use clap::Args;
 use dicesim_experiment::{Engine, Method, Rolls, bench};
 use dicesim_physics::{InitialCondition, Params};

@@ -1,8 +1,9 @@
 //! `dicesim compare`: the simulated die thrown as a historical experiment threw real ones,
 //! held against its counts, and one setup value fitted to them.
 
-use super::CliError;
 use super::args::{RunArgs, SetupArgs, Worded, Wording};
+use super::error::CliError;
+use super::running;
 use clap::{Args, ValueEnum};
 use dicesim_experiment::compare::{CompareSpec, Comparison, DEFAULT_CANDIDATES, FitSpec, run_comparison};
 use dicesim_experiment::compare_budden::{
@@ -128,7 +129,7 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     spec.validate().map_err(CliError::experiment(""))?;
     let total = spec.total_rolls();
     let outputs = prepare(args, total)?;
-    let comparison = super::run_with_progress(total, PROGRESS, |stop, done| {
+    let comparison = running::run_with_progress(total, PROGRESS, |stop, done| {
         run_comparison(
             &params,
             &preset.random,
@@ -144,10 +145,10 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
         let record = comparison_record(&comparison, &preset, &spec, args.fit.as_deref(), &provenance);
         comparison_png(&comparison, &record).map_err(CliError::experiment(""))
     };
-    super::write_results(
+    running::write_results(
         &outputs,
         args.run.json,
-        super::Results {
+        running::Results {
             value: &comparison,
             provenance: &provenance,
             csv: &|w| comparison.write_csv(w),
@@ -236,7 +237,7 @@ fn run_budden(
     spec.validate().map_err(CliError::experiment(""))?;
     let total = spec.total_rolls();
     let outputs = prepare(args, total)?;
-    let comparison = super::run_with_progress(total, PROGRESS, |stop, done| {
+    let comparison = running::run_with_progress(total, PROGRESS, |stop, done| {
         roll_budden(
             &params,
             &preset.random,
@@ -253,10 +254,10 @@ fn run_budden(
         let record = budden_record(&comparison, preset, &spec, fit_text, &provenance);
         budden_png(&comparison, &record).map_err(CliError::experiment(""))
     };
-    super::write_results(
+    running::write_results(
         &outputs,
         args.run.json,
-        super::Results {
+        running::Results {
             value: &comparison,
             provenance: &provenance,
             csv: &|w| comparison.write_csv(w),

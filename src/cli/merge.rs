@@ -1,7 +1,8 @@
 //! `dicesim merge`: the shards of a sweep put back together (the checks and the merge are
 //! the experiment crate's [`Parts`]); this draws a map's images and prints the summary.
 
-use super::CliError;
+use super::error::CliError;
+use super::running;
 use clap::Args;
 use dicesim_experiment::merge::{BatchMerge, MapMerge, Parts};
 use dicesim_experiment::tables;
@@ -37,7 +38,7 @@ pub(crate) struct MergeArgs {
 
 pub(crate) fn run(args: &MergeArgs) -> Result<(), CliError> {
     // A merge keeps nothing partial: a signal removes the file being written and exits.
-    super::stop_at_once_on_signals()?;
+    running::stop_at_once_on_signals()?;
     // Existing files are refused before any work, unless replacing them was asked for.
     let outputs = super::args::checked_outputs(&args.out, &["csv", "parquet", "png", "svg"], args.force)?;
     let parts = Parts::read(&args.parts, &outputs)?;

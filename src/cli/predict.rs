@@ -1,7 +1,8 @@
 //! `dicesim predict`: how precisely a throw must be known to predict its face.
 
-use super::CliError;
 use super::args::{RunArgs, SetupArgs, Worded, Wording};
+use super::error::CliError;
+use super::running;
 use clap::Args;
 use dicesim_experiment::predict::{PredictSpec, default_epsilons, run_prediction};
 use dicesim_experiment::{RandomRanges, ScanKey};
@@ -105,7 +106,7 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
     }
     let outputs = args.run.outputs(&["csv", "json", "png"])?;
     let prediction =
-        super::run_with_progress(total, "{bar:40} {pos}/{len} rolls, {elapsed}", |stop, done| {
+        running::run_with_progress(total, "{bar:40} {pos}/{len} rolls, {elapsed}", |stop, done| {
             run_prediction(
                 &params,
                 &preset.random,
@@ -127,10 +128,10 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
         );
         prediction_png(&prediction, &record).map_err(CliError::experiment(""))
     };
-    super::write_results(
+    running::write_results(
         &outputs,
         args.run.json,
-        super::Results {
+        running::Results {
             value: &prediction,
             provenance: &provenance,
             csv: &|w| prediction.write_csv(w),

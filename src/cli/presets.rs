@@ -1,7 +1,7 @@
 //! `dicesim presets`: list, show and save presets, and tell where the user's folder is.
 
-use super::CliError;
 use super::args::SetupArgs;
+use super::error::CliError;
 use clap::{Args, Subcommand};
 use dicesim_setup::preset::{PresetError, Store, check_name};
 use std::io::Write;

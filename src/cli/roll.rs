@@ -1,7 +1,7 @@
 //! `dicesim roll`: one roll from the initial condition.
 
-use super::CliError;
 use super::args::SetupArgs;
+use super::error::CliError;
 use clap::Args;
 use dicesim_physics::why_it_cannot_settle;
 use dicesim_physics::{Outcome, Params, Simulation, Stability, Status, UnstableReason};

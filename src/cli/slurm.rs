@@ -1,8 +1,10 @@
 //! `dicesim slurm`: a sweep as a Slurm job array (one task per shard) and a merge job that
 //! runs once every shard has succeeded.
 
-use super::{Cli, CliError, Command};
-use clap::{Args, Parser, ValueEnum};
+use super::basin::{self, BasinArgs};
+use super::batch::{self, BatchArgs};
+use super::error::CliError;
+use clap::{Args, ValueEnum};
 use dicesim_experiment::shard::Shard;
 use dicesim_experiment::slurm::{Directives, JobArray, Keep, SweepKind, shell_word};
 use std::io::Write;
@@ -65,7 +67,9 @@ pub(crate) struct SlurmArgs {
     pub(crate) command: Vec<String>,
 }
 
-pub(crate) fn run(args: &SlurmArgs) -> Result<(), CliError> {
+/// Writes (and with `--submit` submits) the job scripts of the sweep `sweep`, the parse of
+/// `args.command`.
+pub(crate) fn run(args: &SlurmArgs, sweep: Result<SweepCommand, clap::Error>) -> Result<(), CliError> {
     // Everything is checked before anything is written: a refusal leaves no folder or file.
     let directives = Directives {
         time: args.time.clone(),
@@ -74,7 +78,7 @@ pub(crate) fn run(args: &SlurmArgs) -> Result<(), CliError> {
         account: args.account.clone(),
     };
     directives.check().map_err(CliError::Usage)?;
-    let kind = check_command(&args.command, args.shards)?;
+    let kind = check_command(&args.command, sweep, args.shards)?;
     let keep = match args.format {
         PartFormat::Csv => Keep::Csv,
         PartFormat::Parquet => Keep::Parquet,
@@ -131,26 +135,38 @@ pub(crate) fn run(args: &SlurmArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// Checks the sweep's command line as dicesim would parse it, and that it leaves the shard's
-/// own options to the script.
-fn check_command(command: &[String], shards: u64) -> Result<SweepKind, CliError> {
+/// The sweep's command line as dicesim parses its own (the parser is the command line's,
+/// which names this command: it hands the parse in rather than being imported back).
+pub(crate) enum SweepCommand {
+    Batch(BatchArgs),
+    Basin(BasinArgs),
+    /// Any other command.
+    Other,
+}
+
+/// Checks the sweep's command line, `sweep` as dicesim parsed it, and that it leaves the
+/// shard's own options to the script.
+fn check_command(
+    command: &[String],
+    sweep: Result<SweepCommand, clap::Error>,
+    shards: u64,
+) -> Result<SweepKind, CliError> {
     if let Some(a) = command.iter().find(|a| a.chars().any(char::is_control)) {
         return Err(CliError::Usage(format!(
             "the sweep's command line: `{}` holds a control character",
             a.escape_debug()
         )));
     }
-    let cli = Cli::try_parse_from(std::iter::once("dicesim").chain(command.iter().map(String::as_str)))
-        .map_err(|e| {
-            CliError::Usage(format!(
-                "the sweep's command line: {}",
-                e.render().to_string().trim_end()
-            ))
-        })?;
-    let (kind, owned) = match &cli.command {
-        Some(Command::Batch(b)) => (SweepKind::Batch, b.run.sets_a_shards_options()),
-        Some(Command::Basin(b)) => (SweepKind::Map, b.run.sets_a_shards_options()),
-        _ => {
+    let sweep = sweep.map_err(|e| {
+        CliError::Usage(format!(
+            "the sweep's command line: {}",
+            e.render().to_string().trim_end()
+        ))
+    })?;
+    let (kind, owned) = match &sweep {
+        SweepCommand::Batch(b) => (SweepKind::Batch, b.run.sets_a_shards_options()),
+        SweepCommand::Basin(b) => (SweepKind::Map, b.run.sets_a_shards_options()),
+        SweepCommand::Other => {
             return Err(CliError::Usage(
                 "dicesim slurm runs a `batch` or a `basin` sweep: put its command line after `--`"
                     .to_string(),
@@ -165,21 +181,18 @@ fn check_command(command: &[String], shards: u64) -> Result<SweepKind, CliError>
     // The whole sweep as an array task will check it, so a mistake is found now rather
     // than by every task exiting 2.
     let in_task = |e: CliError| CliError::Usage(format!("the sweep's command line: {e}"));
-    match &cli.command {
-        Some(Command::Batch(b)) => {
-            super::batch::check_sweep(
-                b,
-                Some(Shard {
-                    index: 0,
-                    count: shards,
-                }),
-            )
-            .map_err(in_task)?;
+    match &sweep {
+        SweepCommand::Batch(b) => {
+            let first = Shard {
+                index: 0,
+                count: shards,
+            };
+            batch::check_sweep(b, Some(first)).map_err(in_task)?;
         }
-        Some(Command::Basin(b)) => {
-            super::basin::check_sweep(b, true).map_err(in_task)?;
+        SweepCommand::Basin(b) => {
+            basin::check_sweep(b, true).map_err(in_task)?;
         }
-        _ => unreachable!("the kind was matched above"),
+        SweepCommand::Other => unreachable!("the kind was matched above"),
     }
     Ok(kind)
 }
@@ -217,11 +230,11 @@ mod tests {
 
     #[test]
     fn sweeps_leave_the_shard_options_to_the_script() {
-        let e = |c: &[&str]| {
-            check_command(&c.iter().map(|s| s.to_string()).collect::<Vec<_>>(), 8)
-                .unwrap_err()
-                .to_string()
+        let check = |c: &[&str]| {
+            let command: Vec<String> = c.iter().map(|s| s.to_string()).collect();
+            check_command(&command, crate::cli::command::parse_sweep(&command), 8)
         };
+        let e = |c: &[&str]| check(c).unwrap_err().to_string();
         assert_eq!(
             e(&["batch", "--rolls", "5", "--out", "x.csv"]),
             "the sweep's command line must leave --shard, --part, --out and --jobs to the script"
@@ -234,7 +247,7 @@ mod tests {
             e(&["batch", "--rols", "5"])
                 .starts_with("the sweep's command line: error: unexpected argument '--rols'")
         );
-        let ok = |c: &[&str]| check_command(&c.iter().map(|s| s.to_string()).collect::<Vec<_>>(), 8).unwrap();
+        let ok = |c: &[&str]| check(c).unwrap();
         assert_eq!(ok(&["batch", "--rolls", "5"]), SweepKind::Batch);
         assert_eq!(
             ok(&[

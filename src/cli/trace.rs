@@ -1,7 +1,7 @@
 //! `dicesim trace`: a roll's trajectory and energies as CSV.
 
-use super::CliError;
 use super::args::SetupArgs;
+use super::error::CliError;
 use clap::Args;
 use dicesim_experiment::trace::TraceWriter;
 use dicesim_physics::Simulation;

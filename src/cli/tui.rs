@@ -1,7 +1,7 @@
 //! `dicesim tui` (and `dicesim` alone): the terminal explorer.
 
-use super::CliError;
 use super::args::SetupArgs;
+use super::error::CliError;
 use clap::{Args, ValueEnum};
 use dicesim_explorer::tui::Theme;
 use dicesim_setup::preset::{Preset, ThemeName};
@@ -65,7 +65,7 @@ pub(crate) fn run(args: &TuiArgs, no_color: bool) -> Result<(), CliError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cli::{Cli, Command};
+    use crate::cli::command::{Cli, Command};
     use clap::Parser;
 
     fn tui_args(argv: &[&str]) -> Result<TuiArgs, clap::Error> {

@@ -274,18 +274,14 @@ impl BasinMap {
         csv.flush()
     }
 
-    /// Writes the map's CSV file (atomically): `provenance` as its first line (a `#`
-    /// comment), then [`BasinMap::write_csv`]; returns its size and content hash, which a
-    /// shard's part records.
-    pub fn write_csv_file(
-        &self,
-        provenance: &serde_json::Value,
-        output: &Output,
-    ) -> Result<Written, OutputError> {
+    /// Writes the map's CSV file (atomically): `provenance_line` (its provenance as a `#`
+    /// comment, [`crate::provenance::csv_line`]), then [`BasinMap::write_csv`]; returns its
+    /// size and content hash, which a shard's part records.
+    pub fn write_csv_file(&self, provenance_line: &str, output: &Output) -> Result<Written, OutputError> {
         let mut written = None;
         output.write(|w| {
             let mut hashing = Hashing::new(w);
-            writeln!(hashing, "{}", crate::provenance::csv_line(provenance))?;
+            writeln!(hashing, "{provenance_line}")?;
             self.write_csv(&mut hashing)?;
             written = Some(hashing.seal());
             Ok(())

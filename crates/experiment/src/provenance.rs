@@ -6,7 +6,6 @@
 //! time: a file is the same bytes however and wherever it was rolled, and `merge` rebuilds
 //! the provenance of a sweep from its parts to check each part's files against it.
 
-use crate::PROGRAM;
 use crate::basin::{Axis, BasinMap};
 use crate::compare::CompareSpec;
 use crate::compare_budden::{BuddenSpec, hand_throw};
@@ -15,6 +14,9 @@ use dicesim_physics::InitialCondition;
 use dicesim_setup::preset::Preset;
 use serde::Serialize;
 use serde_json::{Value, json};
+
+/// The program and its version, as every output records it.
+pub const PROGRAM: &str = concat!("dicesim ", env!("CARGO_PKG_VERSION"));
 
 /// A short, stable fingerprint of a setup: FNV-1a (64 bit) of its JSON form, whose floats
 /// are written in shortest round-trip form, so equal setups give equal fingerprints on any

@@ -1,8 +1,8 @@
 //! A batch's parts merged: every record checked against the setup and the part's counts,
 //! the merged records written as the one-machine CSV or Parquet file.
 
+use super::parts::{MergeError, Parts, checked_records_path, chosen_at_random, out_kind, outcome_words};
 use super::rows::{bounded_line, without_bom};
-use super::{MergeError, Parts, checked_records_path, chosen_at_random, out_kind, outcome_words};
 use crate::ics::{parse_record_csv_row, record_csv_line, records_csv_header};
 use crate::parquet::{RecordsWriter, read_records};
 use crate::provenance;

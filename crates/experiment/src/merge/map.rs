@@ -2,8 +2,10 @@
 //! counts, the merged rows written as the one-machine CSV as they are read, and every cell
 //! kept for the images the caller draws.
 
+use super::parts::{
+    MergeError, Parts, checked_records_path, chosen_at_random, out_kind, outcome_words, row_error,
+};
 use super::rows::{copy_rows, parse_map_row};
-use super::{MergeError, Parts, checked_records_path, chosen_at_random, out_kind, outcome_words, row_error};
 use crate::basin::{Axis, BasinMap, Cell, Layer, Method, node_setup};
 use crate::provenance;
 use crate::record::roll_record;

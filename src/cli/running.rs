@@ -1,0 +1,143 @@
+//! How every long command runs: its progress bar, the signals that stop it, and its
+//! results written the one way such a command writes them.
+
+use super::error::CliError;
+use dicesim_experiment as experiment;
+use dicesim_setup::output::Output;
+use signal_hook::consts::{SIGHUP, SIGINT, SIGQUIT, SIGTERM};
+use std::io::Write as _;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// The progress bar of a long command: drawn on stderr while it is a terminal, hidden
+/// otherwise (a pipe or a log file gets no bar codes), in `template`'s words.
+pub(crate) fn progress_bar(total: u64, template: &str) -> indicatif::ProgressBar {
+    use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+    use std::io::IsTerminal;
+    let bar = if std::io::stderr().is_terminal() {
+        ProgressBar::new(total)
+    } else {
+        ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden())
+    };
+    bar.set_style(ProgressStyle::with_template(template).expect("the progress template is valid"));
+    bar
+}
+
+/// Exit status of a second Ctrl-C, which cannot wait for the error to reach `main`: as a
+/// shell reports a SIGINT (128 + 2), the status `main` gives an interrupted command.
+const INTERRUPTED_AT_ONCE: i32 = 130;
+
+/// The signals that ask a command to stop: Ctrl-C, `kill`, a closed terminal, Ctrl-\\ (and
+/// Slurm's time limit, which sends SIGTERM).
+const STOP_SIGNALS: [i32; 4] = [SIGINT, SIGTERM, SIGHUP, SIGQUIT];
+
+/// Runs a long experiment as every such command does: a progress bar over its `total` rolls
+/// (`template` in indicatif's words), Ctrl-C asking it to stop, its error worded like the
+/// others'. `run` gets the stop flag and reports how many rolls are done.
+pub(crate) fn run_with_progress<T>(
+    total: u64,
+    template: &str,
+    run: impl FnOnce(&AtomicBool, &mut dyn FnMut(u64)) -> Result<T, experiment::Error>,
+) -> Result<T, CliError> {
+    let bar = progress_bar(total, template);
+    let stop = cancel_on_ctrl_c()?;
+    let result = run(&stop, &mut |done| bar.set_position(done)).map_err(CliError::experiment(""))?;
+    bar.finish_and_clear();
+    Ok(result)
+}
+
+/// A long experiment's result, written the one way every such command writes it.
+pub(crate) struct Results<'a, T: serde::Serialize> {
+    pub(crate) value: &'a T,
+    /// What defines the experiment: the CSV's first line, the JSON's `provenance`.
+    pub(crate) provenance: &'a serde_json::Value,
+    /// The CSV's rows after its provenance line.
+    pub(crate) csv: &'a dyn Fn(&mut (dyn std::io::Write + Send)) -> std::io::Result<()>,
+    pub(crate) png: &'a dyn Fn() -> Result<Vec<u8>, CliError>,
+    /// The table printed when `--json` is not given.
+    pub(crate) table: &'a dyn Fn(&mut dyn std::io::Write) -> std::io::Result<()>,
+}
+
+/// Writes each `--out` file by its extension (CSV, JSON with the provenance, else PNG), then
+/// prints the table and the files written, or the JSON alone with `--json`.
+pub(crate) fn write_results<T: serde::Serialize>(
+    outputs: &[Output],
+    json: bool,
+    r: Results<'_, T>,
+) -> Result<(), CliError> {
+    for output in outputs {
+        match output.extension() {
+            "csv" => output.write(|w| {
+                writeln!(w, "{}", experiment::provenance::csv_line(r.provenance))?;
+                (r.csv)(w)
+            }),
+            "json" => output.write(|w| {
+                let mut v = serde_json::to_value(r.value)?;
+                v["provenance"] = r.provenance.clone();
+                serde_json::to_writer_pretty(&mut *w, &v)?;
+                writeln!(w)
+            }),
+            _ => output.write_bytes(&(r.png)()?),
+        }
+        .map_err(CliError::output(""))?;
+    }
+    let mut out = std::io::stdout().lock();
+    if json {
+        serde_json::to_writer_pretty(&mut out, r.value).map_err(std::io::Error::from)?;
+        writeln!(out)?;
+    } else {
+        (r.table)(&mut out)?;
+        for output in outputs {
+            writeln!(out, "wrote {}", output.path().display())?;
+        }
+    }
+    out.flush()?;
+    Ok(())
+}
+
+/// A flag the first stop signal sets (the running rolls notice it within a few thousand
+/// steps and the command keeps what is complete); a second signal stops at once, after
+/// removing the temporary file being written and saying so.
+pub(crate) fn cancel_on_ctrl_c() -> Result<Arc<AtomicBool>, CliError> {
+    let stop = Arc::new(AtomicBool::new(false));
+    on_stop_signals(Some(stop.clone()))?;
+    Ok(stop)
+}
+
+/// For a command that has no use for a partial result (`merge`): any stop signal removes the
+/// temporary file being written, says that nothing was written and exits.
+pub(crate) fn stop_at_once_on_signals() -> Result<(), CliError> {
+    on_stop_signals(None)
+}
+
+fn on_stop_signals(graceful: Option<Arc<AtomicBool>>) -> Result<(), CliError> {
+    let mut signals = signal_hook::iterator::Signals::new(STOP_SIGNALS)
+        .map_err(|e| CliError::Io(std::io::Error::other(format!("cannot catch signals: {e}"))))?;
+    std::thread::spawn(move || {
+        for signal in signals.forever() {
+            if let Some(stop) = &graceful
+                && !stop.swap(true, Ordering::SeqCst)
+            {
+                continue;
+            }
+            let removed = dicesim_setup::output::remove_pending();
+            let what = if removed > 0 {
+                "the file being written was removed, nothing was written"
+            } else {
+                "nothing was written"
+            };
+            let why = if graceful.is_some() {
+                "stopped again"
+            } else {
+                "stopped"
+            };
+            let _ = writeln!(std::io::stderr(), "dicesim: {why} by signal {signal}: {what}");
+            std::process::exit(if signal == SIGINT {
+                INTERRUPTED_AT_ONCE
+            } else {
+                128 + signal
+            });
+        }
+    });
+    Ok(())
+}
