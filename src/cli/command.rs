@@ -23,7 +23,7 @@ Exit status: 0 success, 1 a failure while running, 2 bad input (nothing was run 
 )]
 pub(crate) struct Cli {
     #[command(subcommand)]
-    pub(crate) command: Option<Command>,
+    pub(crate) command: Option<CliCommand>,
     /// Never colour the output (the explorer carries meaning by bold and reverse); the
     /// NO_COLOR environment variable does the same.
     #[arg(long, global = true)]
@@ -31,7 +31,7 @@ pub(crate) struct Cli {
 }
 
 #[derive(Debug, Subcommand)]
-pub(crate) enum Command {
+pub(crate) enum CliCommand {
     /// Roll once from the initial condition and print the outcome.
     #[command(after_help = "Examples:
   dicesim roll
@@ -136,27 +136,27 @@ pub fn main() -> Result<(), CliError> {
     let cli = <Cli as clap::FromArgMatches>::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
     let no_color = color_off(cli.no_color);
     match cli.command {
-        Some(Command::Roll(args)) => roll::run(&args),
-        Some(Command::Trace(args)) => trace::run(&args),
-        Some(Command::Animate(args)) => animate::run(&args),
-        Some(Command::Presets(args)) => presets::run(&args),
-        Some(Command::Batch(args)) => batch::run(&args),
-        Some(Command::Basin(args)) => basin::run(&args),
-        Some(Command::Predict(args)) => predict::run(&args),
-        Some(Command::Bench(args)) => bench::run(&args),
-        Some(Command::Compare(args)) => compare::run(&args),
-        Some(Command::Merge(args)) => merge::run(&args),
-        Some(Command::Slurm(args)) => {
+        Some(CliCommand::Roll(args)) => roll::run(&args),
+        Some(CliCommand::Trace(args)) => trace::run(&args),
+        Some(CliCommand::Animate(args)) => animate::run(&args),
+        Some(CliCommand::Presets(args)) => presets::run(&args),
+        Some(CliCommand::Batch(args)) => batch::run(&args),
+        Some(CliCommand::Basin(args)) => basin::run(&args),
+        Some(CliCommand::Predict(args)) => predict::run(&args),
+        Some(CliCommand::Bench(args)) => bench::run(&args),
+        Some(CliCommand::Compare(args)) => compare::run(&args),
+        Some(CliCommand::Merge(args)) => merge::run(&args),
+        Some(CliCommand::Slurm(args)) => {
             let sweep = parse_sweep(&args.command);
             slurm::run(&args, sweep)
         }
-        Some(Command::Tui(args)) => tui::run(&args, no_color),
-        Some(Command::Completions { shell }) => {
+        Some(CliCommand::Tui(args)) => tui::run(&args, no_color),
+        Some(CliCommand::Completions { shell }) => {
             let mut out = std::io::stdout().lock();
             clap_complete::generate(shell, &mut Cli::command(), "dicesim", &mut out);
             Ok(())
         }
-        Some(Command::Man) => {
+        Some(CliCommand::Man) => {
             clap_mangen::Man::new(Cli::command()).render(&mut std::io::stdout().lock())?;
             Ok(())
         }
@@ -168,8 +168,8 @@ pub fn main() -> Result<(), CliError> {
 pub(super) fn parse_sweep(command: &[String]) -> Result<SweepCommand, clap::Error> {
     let argv = std::iter::once("dicesim").chain(command.iter().map(String::as_str));
     Ok(match Cli::try_parse_from(argv)?.command {
-        Some(Command::Batch(b)) => SweepCommand::Batch(b),
-        Some(Command::Basin(b)) => SweepCommand::Basin(b),
+        Some(CliCommand::Batch(b)) => SweepCommand::Batch(b),
+        Some(CliCommand::Basin(b)) => SweepCommand::Basin(b),
         _ => SweepCommand::Other,
     })
 }

@@ -65,13 +65,13 @@ pub(crate) fn run(args: &TuiArgs, no_color: bool) -> Result<(), CliError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cli::command::{Cli, Command};
+    use crate::cli::command::{Cli, CliCommand};
     use clap::Parser;
 
     fn tui_args(argv: &[&str]) -> Result<TuiArgs, clap::Error> {
         let cli = Cli::try_parse_from(argv)?;
         match cli.command {
-            Some(Command::Tui(args)) => Ok(args),
+            Some(CliCommand::Tui(args)) => Ok(args),
             other => panic!("not the explorer: {other:?}"),
         }
     }
