@@ -186,7 +186,7 @@ fn a_previous_rolls_ghost_does_not_set_the_energy_axis() {
     );
     // A map cell replayed after paper's roll: the axis follows the replay, not the run before.
     let (params, initial) = (s.app.setup.params, s.app.setup.initial);
-    s.command(Command::LoadPreset(Box::new(Preset::default())));
+    s.command(Command::LoadPreset(Box::default()));
     s.run_to_end();
     s.command(Command::PlaySetup(Box::new(params), initial));
     s.run_to_end();
