@@ -226,6 +226,13 @@ pub(crate) fn faded_run(app: &App) -> &[EnergySample] {
     }
 }
 
+/// The faded samples that share the value axis's range: die B's (a roll on screen beside
+/// A's), never a previous run's ghost, whose scale may be another preset's (its points past
+/// the axis are clipped, not fitted).
+pub(crate) fn scaled_faded_run(app: &App) -> &[EnergySample] {
+    if parameter_twin(app) { faded_run(app) } else { &[] }
+}
+
 /// The dataset of the faded curve (the previous run's, or die B's): the twin's ghost
 /// grey; `.` without colour.
 pub(crate) fn previous_dataset<'a>(app: &App, data: &'a [(f64, f64)]) -> Dataset<'a> {

@@ -202,6 +202,20 @@ fn opening_a_preset_over_changes_asks_first() {
 }
 
 #[test]
+fn b_in_the_typed_batch_size_goes_on_round_the_ladder() {
+    let mut s = start();
+    s.key(KeyCode::Char('B'));
+    s.key(KeyCode::Char('B'));
+    assert_eq!(s.app.mode(), Mode::EditingValue, "past 100 000: type one");
+    s.key(KeyCode::Char('B'));
+    assert_eq!(s.app.mode(), Mode::Normal, "B leaves the number field");
+    assert_eq!(s.app.roll.batch_size, 1_000);
+    let text = screen(&s.app, 120, 36);
+    assert!(!text.contains("not a number"), "{text}");
+    assert!(text.contains("b batch 1 000"), "{text}");
+}
+
+#[test]
 fn the_batch_size_is_chosen_or_typed() {
     let mut s = start();
     assert_eq!(s.app.roll.batch_size, 10_000);

@@ -3,7 +3,7 @@
 
 use super::chart::{
     edit_datasets, edit_marks, faded_run, marker_dataset, nice_ticks, parameter_twin, previous_dataset,
-    thinned, time_axis, time_marker,
+    scaled_faded_run, thinned, time_axis, time_marker,
 };
 use super::format::fmt_num;
 use super::state::app::App;
@@ -149,7 +149,8 @@ pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
     } else {
         (y_of(LOG_FLOOR), y_of(LOG_FLOOR))
     };
-    for s in series.iter().chain([&previous]) {
+    let scaled = thinned(scaled_faded_run(app), buckets, |s| y_of(s.total));
+    for s in series.iter().chain([&scaled]) {
         for &(_, v) in s {
             if v.is_finite() {
                 lo = lo.min(v);

@@ -5,7 +5,7 @@
 //! queued in the app's outbox and returned.
 
 use super::dialog_keys;
-use super::keys::{Action, Input, Scope, label, read};
+use super::keys::{Action, Input, Scope, first_key, label, read};
 use super::layout::{param_row_at, timeline_bar, timeline_step_at};
 use super::map_keys as map;
 use super::param::all;
@@ -259,6 +259,14 @@ fn act(app: &mut App, action: Action, coarse: bool) {
 
 fn on_edit_key(app: &mut App, input: &Input) {
     if let Some(Overlay::BatchSize(editor)) = app.overlay.as_mut() {
+        // The size key again goes on round its ladder (no number has its letter) rather
+        // than typing it.
+        if let Input::Type(c) = input
+            && first_key(Scope::Die, Action::BatchSize) == c.to_string()
+        {
+            app.next_batch_size();
+            return;
+        }
         match editor.input(input, VALUE_CHARS) {
             Typed::Cancelled => app.overlay = None,
             Typed::Editing => {}

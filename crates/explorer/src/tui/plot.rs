@@ -4,7 +4,7 @@
 
 use super::chart::{
     edit_datasets, edit_marks, faded_run, marker_colour, marker_dataset, nice_ticks, parameter_twin,
-    previous_dataset, thinned, time_axis, time_labels_for, time_marker,
+    previous_dataset, scaled_faded_run, thinned, time_axis, time_labels_for, time_marker,
 };
 use super::energy::render_energy;
 use super::format::fmt_num;
@@ -106,7 +106,10 @@ pub(crate) fn render_quantity(app: &App, area: Rect, frame: &mut Frame, i: usize
     let data = thinned(&app.roll.history, body.width as usize * 2, |s| s.quantities[i]);
     let previous = thinned(faded_run(app), body.width as usize * 2, |s| s.quantities[i]);
     let rows = body.height.saturating_sub(2).max(1) as usize;
-    let both: Vec<(f64, f64)> = data.iter().chain(&previous).copied().collect();
+    let scaled = thinned(scaled_faded_run(app), body.width as usize * 2, |s| {
+        s.quantities[i]
+    });
+    let both: Vec<(f64, f64)> = data.iter().chain(&scaled).copied().collect();
     let ([y_lo, y_hi], labels) = value_axis(&both, rows.div_ceil(2).clamp(2, 5), LABEL_WIDTH);
     let (x_hi, x_labels) = time_axis(app, body.width);
     let marker = time_marker(app, y_lo, y_hi);
@@ -166,7 +169,8 @@ pub(crate) fn render_phase(app: &App, area: Rect, frame: &mut Frame, i: usize, j
     let history = &app.roll.history;
     let data = curve_of(history);
     let previous = curve_of(faded_run(app));
-    let both: Vec<(f64, f64)> = data.iter().chain(&previous).copied().collect();
+    let scaled = curve_of(scaled_faded_run(app));
+    let both: Vec<(f64, f64)> = data.iter().chain(&scaled).copied().collect();
     let rows = body.height.saturating_sub(2).max(1) as usize;
     let ([y_lo, y_hi], y_labels) = value_axis(&both, rows.div_ceil(2).clamp(2, 5), LABEL_WIDTH);
     let across: Vec<(f64, f64)> = both.iter().map(|&(a, b)| (b, a)).collect();

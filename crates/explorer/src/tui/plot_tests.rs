@@ -2,8 +2,10 @@
 //! to its end and the screen stepped back into it, then `w` / `V` pressed as a user would.
 
 use super::tests::{Harness, screen, settled};
+use super::theme::Theme;
 use crate::worker::Command;
 use dicesim_physics::Simulation;
+use dicesim_setup::preset::{Preset, Store};
 use ratatui::crossterm::event::KeyCode;
 
 /// The spun roll computed to its end, the screen back at `step`, `w` pressed `presses`
@@ -152,4 +154,49 @@ fn a_mid_roll_edit_is_marked_on_the_timeline_and_the_plot_and_the_old_run_stays_
     assert!(s.app.roll.edits.is_empty());
     assert_eq!(s.app.roll.previous, edited);
     assert!(!screen(&s.app, 120, 36).contains('▼'));
+}
+
+/// The largest value label of the energy plot's y axis on a 100×30 screen, erg.
+fn energy_axis_top(s: &Harness) -> f64 {
+    let rows = panel_rows(&screen(&s.app, 100, 30), "┌ energy ");
+    let left = rows[0].split("┌ energy ").next().map_or(0, |l| l.chars().count());
+    rows.iter()
+        .skip(1)
+        .filter_map(|row| {
+            let inside: String = row.chars().skip(left + 1).collect();
+            inside.split('│').next()?.trim().parse::<f64>().ok()
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn a_previous_rolls_ghost_does_not_set_the_energy_axis() {
+    let mut s = Harness::new(&Preset::default(), Theme::default());
+    s.run_to_end();
+    let paper_top = energy_axis_top(&s);
+    let gentle = Store::new(None).load("gentle-drop").expect("shipped").0;
+    s.command(Command::LoadPreset(Box::new(gentle)));
+    s.run_to_end();
+    assert!(!s.app.roll.previous.is_empty(), "paper's roll is the faded one");
+    let start = s.app.roll.history[0].total;
+    let top = energy_axis_top(&s);
+    assert!(
+        start / 2.0 <= top && top < 2.0 * start,
+        "axis to {top} erg for a {start} erg roll (paper's to {paper_top})"
+    );
+    // A map cell replayed after paper's roll: the axis follows the replay, not the run before.
+    let (params, initial) = (s.app.setup.params, s.app.setup.initial);
+    s.command(Command::LoadPreset(Box::default()));
+    s.run_to_end();
+    s.command(Command::PlaySetup(Box::new(params), initial));
+    s.run_to_end();
+    assert!(
+        s.app.roll.previous[0].total > 10.0 * start,
+        "paper's roll is the faded one"
+    );
+    let top = energy_axis_top(&s);
+    assert!(
+        start / 2.0 <= top && top < 2.0 * start,
+        "axis to {top} erg for a {start} erg replay"
+    );
 }

@@ -137,7 +137,12 @@ pub(crate) fn render(app: &App, frame: &mut Frame) {
     };
     let title = Line::from(vec![
         Span::styled(" dicesim ", t.heading()),
-        Span::raw(format!("· {} · {phase} ", app.setup.preset.name)),
+        // The speed too: `]` and `[` change it here, and a class should see that they did.
+        Span::raw(format!(
+            "· {} · speed {} · {phase} ",
+            app.setup.preset.name,
+            app.setup.speed.label()
+        )),
     ]);
     frame.render_widget(Paragraph::new(title), header);
 
@@ -485,6 +490,22 @@ mod tests {
         for (i, a) in faces.iter().enumerate() {
             assert!(faces[i + 1..].iter().all(|b| b != a), "each face its own glyph");
         }
+    }
+
+    #[test]
+    fn the_speed_shows_and_follows_the_speed_keys() {
+        let mut s = falling_to(5.0, projector());
+        let was = s.app.setup.speed;
+        let before = row_text(&buffer(&s.app, 80, 24), 0, 0, 80);
+        assert!(before.contains(&format!("speed {}", was.label())), "{before}");
+        s.key(KeyCode::Char(']'));
+        let after = row_text(&buffer(&s.app, 80, 24), 0, 0, 80);
+        assert!(
+            after.contains(&format!("speed {}", s.app.setup.speed.label())),
+            "{after}"
+        );
+        assert_ne!(s.app.setup.speed, was, "] is the faster key in this view");
+        assert_ne!(before, after, "and the screen says so");
     }
 
     #[test]

@@ -452,10 +452,17 @@ impl App {
         }
     }
 
-    /// `B`: the next batch size, or the editor to type one.
+    /// `B`: the next batch size, or the editor to type one; from that editor, the first
+    /// size again with the editor closed.
     pub(crate) fn next_batch_size(&mut self) {
-        match self.roll.next_batch_size() {
-            Some(notice) => self.notice = Some(notice),
+        let typing = matches!(self.overlay, Some(Overlay::BatchSize(_)));
+        match self.roll.next_batch_size(typing) {
+            Some(notice) => {
+                if typing {
+                    self.overlay = None;
+                }
+                self.notice = Some(notice);
+            }
             None => self.overlay = Some(Overlay::BatchSize(Editor::default())),
         }
     }

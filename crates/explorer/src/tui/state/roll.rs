@@ -126,9 +126,13 @@ impl RollView {
     }
 
     /// `B`: 1 000 → 10 000 → 100 000 → type one → 1 000 …; the notice, or `None` when
-    /// the next step is typing one.
-    pub(crate) fn next_batch_size(&mut self) -> Option<String> {
-        let at = BATCH_SIZES.iter().position(|&n| n == self.batch_size);
+    /// the next step is typing one. `typing`: pressed while a size is being typed, the
+    /// step after typing one (the size is still the last one).
+    pub(crate) fn next_batch_size(&mut self, typing: bool) -> Option<String> {
+        let at = BATCH_SIZES
+            .iter()
+            .position(|&n| n == self.batch_size)
+            .filter(|_| !typing);
         let i = at.map_or(Some(0), |i| (i + 1 < BATCH_SIZES.len()).then_some(i + 1))?;
         self.batch_size = BATCH_SIZES[i];
         Some(format!(
