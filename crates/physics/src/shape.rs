@@ -136,6 +136,9 @@ pub(crate) struct FaceReadout {
     pub(crate) rest_height: f64,
     /// cm, how far the body sinks into this table at rest.
     pub(crate) rest_depth: f64,
+    /// erg, the lowest rise in potential from rest on this face on this table to balancing on
+    /// one of its edges, springs included: what tells a settled body from a rocking one.
+    pub(crate) spring_pass: f64,
     /// The four neighbouring faces it can tip onto, each with the energy (erg) to balance
     /// it on that edge from rest on a rigid table, rounded edge included.
     pub(crate) edges: [(u8, f64); 4],
@@ -246,6 +249,11 @@ impl Shape {
         self.face_rules[self.face_down(sphere_offsets) as usize - 1]
     }
 
+    /// Each face down on `p`'s table (`p` the parameters this body was made from).
+    pub(crate) fn faces(&self, p: &Params) -> [FaceReadout; 6] {
+        read_faces(p, &self.properties, self.reference_height).0
+    }
+
     /// The widest rule over the faces (the step's cheap screen).
     pub(crate) fn widest_stop_rule(&self) -> StopRule {
         StopRule::widest(&self.face_rules)
@@ -317,6 +325,7 @@ fn read_faces(p: &Params, properties: &MassProperties, reference: f64) -> ([Face
         face: 0,
         rest_height: 0.0,
         rest_depth: 0.0,
+        spring_pass: 0.0,
         edges: [(0, 0.0); 4],
     }; 6];
     let mut rules = [StopRule::NEVER; 6];
@@ -341,6 +350,7 @@ fn read_faces(p: &Params, properties: &MassProperties, reference: f64) -> ([Face
             face: f as u8 + 1,
             rest_height,
             rest_depth: rest_height - centre,
+            spring_pass: v_edge - v_rest,
             edges,
         };
         let pass = edges.iter().map(|e| e.1).fold(f64::INFINITY, f64::min);
