@@ -450,10 +450,12 @@ mod tests {
             let smallest = half_sizes.iter().copied().fold(f64::INFINITY, f64::min);
             let radius = rng.random_range(0.0..0.4 * smallest);
             let widest = (0.5 * smallest).min(smallest - 2.0 * radius);
-            let mut p = Params::default();
-            p.die = Die {
-                pip_diameter: rng.random_range(0.01..=1.0) * widest,
-                ..die(half_sizes, radius)
+            let mut p = Params {
+                die: Die {
+                    pip_diameter: rng.random_range(0.01..=1.0) * widest,
+                    ..die(half_sizes, radius)
+                },
+                ..Params::default()
             };
             let undrilled = mass_properties(&p.die);
             // Depths from a hemisphere down through the subnormals, log-uniform, then the

@@ -388,9 +388,11 @@ mod tests {
         // `\u{202e}`, which is no TOML escape, so the shown preset did not load back.
         for c in controls_and_bidi() {
             for text in [format!("a{c}b"), format!("\"q\" \\ {c}"), format!("{c}")] {
-                let mut preset = Preset::default();
-                preset.name = text.clone();
-                preset.description = format!("{} {text}", "long words ".repeat(12));
+                let preset = Preset {
+                    name: text.clone(),
+                    description: format!("{} {text}", "long words ".repeat(12)),
+                    ..Preset::default()
+                };
                 let shown = crate::output::printable(&preset.to_toml());
                 // Line breaks are the file's own; inside a string they are written `\n`.
                 assert!(
