@@ -42,9 +42,12 @@ fn presets_list_and_show_escape_c1_controls_and_bidi_overrides() {
             !text.contains('\u{9b}') && !text.contains('\u{202e}'),
             "{args:?}: {text}"
         );
-        assert!(
-            text.contains("\\u{9b}31mred \\u{202e}desrever"),
-            "{args:?}: {text}"
-        );
+        // The list escapes for the terminal; the shown preset in TOML's own escapes, so it
+        // loads back.
+        let escaped = match args[1] {
+            "list" => "\\u{9b}31mred \\u{202e}desrever",
+            _ => "\\u009B31mred \\u202Edesrever",
+        };
+        assert!(text.contains(escaped), "{args:?}: {text}");
     }
 }

@@ -328,29 +328,50 @@ pub fn resting_depth_on_face(p: &Params) -> f64 {
     Body::new(p).resting_depth_on_face()
 }
 
-/// Why no roll can settle on this table, in words; `None` when one can.
+/// Why no roll can settle on this table, in words; `None` when one can. The numbers are the
+/// body's own: the paper's and a loaded cube's from the cube, a general body's from the face
+/// that comes nearest to holding it (the highest resting centre, or the largest pass).
 pub fn why_it_cannot_settle(p: &Params) -> Option<String> {
     let body = Body::new(p);
     if body.stop_rule().can_settle() {
         return None;
     }
-    let depth = body.resting_depth_on_face();
-    let a = p.die.half_size();
-    Some(if depth >= a {
+    let too_soft_to_hold = |depth: f64, below: f64| {
         format!(
             "the table is too soft to hold the die: at rest it would sink {depth:.3} cm, its centre \
-             {:.3} cm below the table top",
-            depth - a
+             {below:.3} cm below the table top"
         )
-    } else {
-        // The pass is said for the paper's cube of the die's first half size and its mass,
-        // whatever its body: the words need its size, not a general body's exact pass.
-        let cube = Cube::weighing(p, body.mass());
+    };
+    let too_soft_to_keep = |depth: f64, pass: f64| {
         format!(
             "the table is too soft to keep a face: at rest the die sinks {depth:.3} cm, and tipping \
-             it over an edge takes only {:.1} erg, too little to tell a settled die from a rocking one",
-            cube.edge_balanced_energy() - cube.resting_energy()
+             it over an edge takes only {pass:.1} erg, too little to tell a settled die from a rocking one"
         )
+    };
+    Some(match &body {
+        Body::PaperCube(cube) | Body::LoadedCube(cube, _) => {
+            let (depth, a) = (cube.resting_depth_on_face(), cube.half_size());
+            if depth >= a {
+                too_soft_to_hold(depth, depth - a)
+            } else {
+                too_soft_to_keep(depth, cube.edge_balanced_energy() - cube.resting_energy())
+            }
+        }
+        Body::Shaped(shape) => {
+            let faces = shape.faces(p);
+            let centre = |f: &crate::shape::FaceReadout| f.rest_height - f.rest_depth;
+            let standing = faces.iter().filter(|f| centre(f) > 0.0);
+            match standing.max_by(|a, b| a.spring_pass.total_cmp(&b.spring_pass)) {
+                Some(best) => too_soft_to_keep(best.rest_depth, best.spring_pass),
+                None => {
+                    let highest = faces
+                        .iter()
+                        .max_by(|a, b| centre(a).total_cmp(&centre(b)))
+                        .expect("six faces");
+                    too_soft_to_hold(highest.rest_depth, -centre(highest))
+                }
+            }
+        }
     })
 }
 
@@ -435,6 +456,22 @@ mod tests {
         let e = pushed.check_clear_of_table(&p).unwrap_err();
         assert_eq!(e.key, "initial.height");
         assert!((e.limits.min - resting.height).abs() < 1e-12, "{e}");
+    }
+
+    #[test]
+    fn a_soft_table_says_why_with_the_bodys_own_numbers() {
+        // A rounded slab whose x half size is its smallest: the cube's formula took the first
+        // half size as the height of every face and said 11.200 cm below. All 8 spheres touch
+        // (M·g/(4k) = 19.6 cm), so each carries M·g/8 and the centre rests at
+        // z = r − M·g/(8k) = 0.1 − 9.8 cm whatever face is down: 9.7 cm under the top, the
+        // lower spheres of the x face (height a_x = 0.5) sunk 0.5 + 9.7 = 10.2 cm.
+        let mut p = with_die(|d| (d.half_sizes, d.corner_radius) = ([0.5, 2.0, 2.0], 0.1));
+        p.ground.stiffness = 100.0;
+        assert!(matches!(Body::new(&p), Body::Shaped(_)));
+        let why = why_it_cannot_settle(&p).expect("k = 100 cannot hold the slab");
+        assert!(why.starts_with("the table is too soft to hold the die"), "{why}");
+        assert!(why.contains("its centre 9.700 cm below"), "{why}");
+        assert!(why.contains("sink 10.200 cm"), "{why}");
     }
 
     #[test]

@@ -145,8 +145,11 @@ fn rounded_to_nanometres(x: f64) -> f64 {
     (x * 1e9).round() / 1e9
 }
 
-/// A number as a person reads it: 1e308 rather than its 309 digits.
-fn fmt_number(value: f64) -> String {
+/// A number as a person reads it, exactly: the shortest digits that read back as `value`,
+/// in e-notation from 10¹⁵ up and below 10⁻⁶ (1e308 rather than its 309 digits, 1e-200
+/// rather than 200 zeros), plain between. A parameter error's value and bounds use it, and
+/// the layers above re-export it (`dicesim_setup::number::fmt_exact`).
+pub fn fmt_number(value: f64) -> String {
     let magnitude = value.abs();
     if value.is_finite() && (magnitude >= 1e15 || (magnitude > 0.0 && magnitude < 1e-6)) {
         format!("{value:e}")

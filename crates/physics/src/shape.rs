@@ -53,15 +53,33 @@ pub(crate) fn rounded_box(a: [f64; 3], r: f64) -> (f64, [f64; 3]) {
     (volume, moments)
 }
 
+/// Depth over opening radius below which [`cap`] takes its moments in `ρ` and `h` alone.
+const SHALLOW_CAP: f64 = 1e-6;
+
 /// A spherical cap of opening radius `rho` and depth `h`, measured from its apex along its
 /// axis `τ ∈ [0, h]` (cross-section `π·(2Rτ − τ²)`): `(V, ∫τ dV, ∫τ² dV, ∫u² dV)` with `u`
 /// either coordinate across the axis (cm³, cm⁴, cm⁵, cm⁵).
+///
+/// The sphere's radius `R = (ρ² + h²)/(2h)` grows without bound as the pip gets shallow, and
+/// the `R` form's terms overflow and underflow long before `h` reaches 0 (`4R²·h³` is ∞·0 =
+/// NaN near `h = 10⁻¹⁵⁷`, and `h⁵` is 0 from `10⁻⁶²`). Below `h = 10⁻⁶·ρ` (a nanometre for a
+/// real pip) the same moments are taken in `ρ` and `h` alone (docs/model.md, "Pips"), finite
+/// for every depth and vanishing with it: a vanishing pip leaves the undrilled die. The `R`
+/// form stays above, so every depth a preset has used keeps its values bit for bit.
 pub(crate) fn cap(rho: f64, h: f64) -> (f64, f64, f64, f64) {
-    let big_r = (rho * rho + h * h) / (2.0 * h);
-    let volume = PI * (big_r * h * h - h.powi(3) / 3.0);
-    let first = PI * (2.0 * big_r * h.powi(3) / 3.0 - h.powi(4) / 4.0);
-    let second = PI * (big_r * h.powi(4) / 2.0 - h.powi(5) / 5.0);
-    let across = PI / 4.0 * (4.0 * big_r * big_r * h.powi(3) / 3.0 - big_r * h.powi(4) + h.powi(5) / 5.0);
+    if h >= SHALLOW_CAP * rho {
+        let big_r = (rho * rho + h * h) / (2.0 * h);
+        let volume = PI * (big_r * h * h - h.powi(3) / 3.0);
+        let first = PI * (2.0 * big_r * h.powi(3) / 3.0 - h.powi(4) / 4.0);
+        let second = PI * (big_r * h.powi(4) / 2.0 - h.powi(5) / 5.0);
+        let across = PI / 4.0 * (4.0 * big_r * big_r * h.powi(3) / 3.0 - big_r * h.powi(4) + h.powi(5) / 5.0);
+        return (volume, first, second, across);
+    }
+    let (s, h2) = (rho * rho, h * h);
+    let volume = PI * h * (3.0 * s + h2) / 6.0;
+    let first = PI * h2 * (4.0 * s + h2) / 12.0;
+    let second = PI * h2 * h * (5.0 * s + h2) / 20.0;
+    let across = PI * h * (10.0 * s * s + 5.0 * s * h2 + h2 * h2) / 120.0;
     (volume, first, second, across)
 }
 
@@ -118,6 +136,9 @@ pub(crate) struct FaceReadout {
     pub(crate) rest_height: f64,
     /// cm, how far the body sinks into this table at rest.
     pub(crate) rest_depth: f64,
+    /// erg, the lowest rise in potential from rest on this face on this table to balancing on
+    /// one of its edges, springs included: what tells a settled body from a rocking one.
+    pub(crate) spring_pass: f64,
     /// The four neighbouring faces it can tip onto, each with the energy (erg) to balance
     /// it on that edge from rest on a rigid table, rounded edge included.
     pub(crate) edges: [(u8, f64); 4],
@@ -228,6 +249,11 @@ impl Shape {
         self.face_rules[self.face_down(sphere_offsets) as usize - 1]
     }
 
+    /// Each face down on `p`'s table (`p` the parameters this body was made from).
+    pub(crate) fn faces(&self, p: &Params) -> [FaceReadout; 6] {
+        read_faces(p, &self.properties, self.reference_height).0
+    }
+
     /// The widest rule over the faces (the step's cheap screen).
     pub(crate) fn widest_stop_rule(&self) -> StopRule {
         StopRule::widest(&self.face_rules)
@@ -299,6 +325,7 @@ fn read_faces(p: &Params, properties: &MassProperties, reference: f64) -> ([Face
         face: 0,
         rest_height: 0.0,
         rest_depth: 0.0,
+        spring_pass: 0.0,
         edges: [(0, 0.0); 4],
     }; 6];
     let mut rules = [StopRule::NEVER; 6];
@@ -323,6 +350,7 @@ fn read_faces(p: &Params, properties: &MassProperties, reference: f64) -> ([Face
             face: f as u8 + 1,
             rest_height,
             rest_depth: rest_height - centre,
+            spring_pass: v_edge - v_rest,
             edges,
         };
         let pass = edges.iter().map(|e| e.1).fold(f64::INFINITY, f64::min);
@@ -399,6 +427,130 @@ mod tests {
 
     fn close(a: f64, b: f64, relative: f64) -> bool {
         (a - b).abs() <= relative * b.abs().max(1e-300)
+    }
+
+    /// The largest difference between two bodies' mass (g), centre of mass (cm) and inertia
+    /// (g·cm²), each relative to the undrilled body's own scale.
+    fn distance(a: &MassProperties, undrilled: &MassProperties) -> f64 {
+        let scale_i = undrilled.inertia.norm();
+        let scale_c = undrilled.centre_of_mass.norm().max(1.0);
+        ((a.mass - undrilled.mass).abs() / undrilled.mass)
+            .max((a.centre_of_mass - undrilled.centre_of_mass).norm() / scale_c)
+            .max((a.inertia - undrilled.inertia).norm() / scale_i)
+    }
+
+    #[test]
+    fn every_allowed_pip_gives_finite_positive_definite_mass_properties_tending_to_the_undrilled() {
+        // `roll --set die.pip_diameter=0.3 --set die.pip_depth=1e-200` ran away after one step
+        // with a NaN inertia (R² overflowed), and at 1e-320 R itself was infinite.
+        use rand::{RngExt, SeedableRng};
+        let mut rng = rand::rngs::StdRng::seed_from_u64(36);
+        for case in 0..400 {
+            let half_sizes: [f64; 3] = std::array::from_fn(|_| rng.random_range(0.2..3.0));
+            let smallest = half_sizes.iter().copied().fold(f64::INFINITY, f64::min);
+            let radius = rng.random_range(0.0..0.4 * smallest);
+            let widest = (0.5 * smallest).min(smallest - 2.0 * radius);
+            let mut p = Params {
+                die: Die {
+                    pip_diameter: rng.random_range(0.01..=1.0) * widest,
+                    ..die(half_sizes, radius)
+                },
+                ..Params::default()
+            };
+            let undrilled = mass_properties(&p.die);
+            // Depths from a hemisphere down through the subnormals, log-uniform, then the
+            // smallest positive double.
+            let hemisphere = 0.5 * p.die.pip_diameter;
+            let mut depths: Vec<f64> = (0..12)
+                .map(|_| hemisphere * 10f64.powf(-rng.random_range(0.0..323.0)))
+                .collect();
+            depths.extend([hemisphere, 1e-200, 1e-320, f64::from_bits(1)]);
+            depths.retain(|&h| h > 0.0 && h <= hemisphere);
+            // The slope of the change at a moderate depth bounds it below (continuity at 0).
+            let moderate = 1e-6 * hemisphere;
+            let slope = {
+                let mut q = p;
+                q.die.pip_depth = moderate;
+                distance(&mass_properties(&q.die), &undrilled) / moderate
+            };
+            for h in depths {
+                p.die.pip_depth = h;
+                assert_eq!(p.validate(), Ok(()), "case {case}: {:?}", p.die);
+                let m = mass_properties(&p.die);
+                let what = format!("case {case}: {:?}, depth {h:e}: {m:?}", p.die);
+                assert!(
+                    m.mass.is_finite() && m.mass > 0.0 && m.mass <= undrilled.mass,
+                    "{what}"
+                );
+                assert!(m.centre_of_mass.iter().all(|x| x.is_finite()), "{what}");
+                assert!(m.inertia.iter().all(|x| x.is_finite()), "{what}");
+                let asymmetry = (m.inertia - m.inertia.transpose()).norm();
+                assert!(asymmetry <= 1e-12 * m.inertia.norm(), "{what}");
+                let eigen = m.inertia.symmetric_eigen().eigenvalues;
+                assert!(eigen.iter().all(|&e| e > 0.0), "{what}: eigenvalues {eigen:?}");
+                assert!(m.inertia.cholesky().is_some(), "{what}");
+                if h <= moderate {
+                    let bound = 2.0 * slope * h + 16.0 * f64::EPSILON;
+                    let d = distance(&m, &undrilled);
+                    assert!(
+                        d <= bound,
+                        "{what}: {d:e} from the undrilled die, more than {bound:e}"
+                    );
+                }
+                let shape = Shape::new(&p);
+                assert!(
+                    shape.mass.is_finite() && shape.rocking_frequency.is_finite(),
+                    "{what}"
+                );
+                assert!(shape.inverse_inertia.iter().all(|x| x.is_finite()), "{what}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_shallow_cap_moments_are_the_r_forms_where_both_are_finite() {
+        // The ρ, h forms are the R forms rewritten with 2R·h = ρ² + h²: where the R form is
+        // still sound both must agree to rounding, on both sides of the switch between them.
+        let rho = 0.15;
+        for h in [0.15f64, 0.1, 1e-3, 1e-6, 1.5e-7, 1e-9] {
+            let big_r = (rho * rho + h * h) / (2.0 * h);
+            let r_form = (
+                PI * (big_r * h * h - h.powi(3) / 3.0),
+                PI * (2.0 * big_r * h.powi(3) / 3.0 - h.powi(4) / 4.0),
+                PI * (big_r * h.powi(4) / 2.0 - h.powi(5) / 5.0),
+                PI / 4.0 * (4.0 * big_r * big_r * h.powi(3) / 3.0 - big_r * h.powi(4) + h.powi(5) / 5.0),
+            );
+            let s = rho * rho;
+            let polynomial = (
+                PI * h * (3.0 * s + h * h) / 6.0,
+                PI * h * h * (4.0 * s + h * h) / 12.0,
+                PI * h.powi(3) * (5.0 * s + h * h) / 20.0,
+                PI * h * (10.0 * s * s + 5.0 * s * h * h + h.powi(4)) / 120.0,
+            );
+            let used = cap(rho, h);
+            for (a, b) in [
+                (used.0, polynomial.0),
+                (used.3, polynomial.3),
+                (r_form.0, polynomial.0),
+                (r_form.1, polynomial.1),
+                (r_form.2, polynomial.2),
+                (r_form.3, polynomial.3),
+            ] {
+                assert!(close(a, b, 1e-12), "h = {h:e}: {a:e} against {b:e}");
+            }
+        }
+        // Half a ball of radius ρ: 2πρ³/3 and, across the axis, 2πρ⁵/15.
+        let (v, _, _, across) = cap(rho, rho);
+        assert!(close(v, 2.0 * PI * rho.powi(3) / 3.0, 1e-14));
+        assert!(close(across, 2.0 * PI * rho.powi(5) / 15.0, 1e-14));
+        // Past the overflow the moments still vanish with the depth, like π·ρ²·h/2.
+        let (v, first, second, across) = cap(rho, 1e-200);
+        assert!(close(v, PI * rho * rho * 1e-200 / 2.0, 1e-14), "{v:e}");
+        assert!([first, second].iter().all(|x| *x >= 0.0 && *x < 1e-300));
+        assert!(
+            close(across, PI * rho.powi(4) * 1e-200 / 12.0, 1e-14),
+            "{across:e}"
+        );
     }
 
     #[test]

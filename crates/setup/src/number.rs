@@ -26,6 +26,12 @@ pub fn fmt_num(v: f64) -> String {
     }
 }
 
+/// A number exactly as given, for a value a person typed (a fit's bound, a range's end):
+/// the shortest digits that read back as it, with an exponent where a person reads it
+/// better (`1e-200`, not a 202-character decimal). The parameter errors' own formatting, so
+/// a bound reads the same in a refusal and in a result.
+pub use dicesim_physics::params::fmt_number as fmt_exact;
+
 /// `bytes` in the unit a person reads (kB, MB, GB; decimal).
 pub fn human_bytes(bytes: u64) -> String {
     let b = bytes as f64;
@@ -39,7 +45,23 @@ pub fn human_bytes(bytes: u64) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::fmt_num;
+    use super::{fmt_exact, fmt_num};
+
+    #[test]
+    fn exact_numbers_read_back_and_take_an_exponent_only_at_the_extremes() {
+        // A fit bound of 1e-200 printed as "0.000…0001", 202 characters.
+        assert_eq!(fmt_exact(1e-200), "1e-200");
+        assert_eq!(fmt_exact(-2.5e-7), "-2.5e-7");
+        assert_eq!(fmt_exact(1e15), "1e15");
+        assert_eq!(fmt_exact(20000.0), "20000");
+        assert_eq!(fmt_exact(0.95), "0.95");
+        assert_eq!(fmt_exact(0.1 + 0.2), "0.30000000000000004");
+        assert_eq!(fmt_exact(0.0), "0");
+        for v in [1e-200, 123456.789, 5e-324, f64::MAX, 1.0 / 3.0, -7e-7] {
+            assert_eq!(fmt_exact(v).parse::<f64>(), Ok(v), "{v:e}");
+            assert!(fmt_exact(v).len() <= 24, "{v:e}: {}", fmt_exact(v));
+        }
+    }
 
     #[test]
     fn tiny_p_values_keep_their_digits_and_plain_numbers_drop_trailing_zeros() {

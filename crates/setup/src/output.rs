@@ -7,9 +7,12 @@
 //!   and only then renames it onto the path, so a failed write (a full disk, a lost device)
 //!   leaves no partial file and an old file as it was. The error names the OS's reason.
 //!
-//! A path that already is a device or a pipe (`/dev/stdout`, `/dev/full`, a FIFO) cannot be
+//! A path that already is a character device (`/dev/stdout`, `/dev/full`) cannot be
 //! replaced by a rename and holds no data to lose: it is written in place, its errors
-//! (final flush included) still reported.
+//! (final flush included) still reported. Any other path that is not a regular file is
+//! refused by [`Output::check`] without being opened, `--force` or not: opening a FIFO for
+//! writing blocks until a reader comes (the command would hang before its first roll), a
+//! socket cannot be opened at all, and a block device holds data a result must not overwrite.
 
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -35,6 +38,8 @@ pub enum OutputError {
     Twice { path: PathBuf },
     #[error("{}: this command reads it ({what}); write the result elsewhere", path.display())]
     Input { path: PathBuf, what: String },
+    #[error("{}: is {what}, not a file; write the result to a file", path.display())]
+    NotAFile { path: PathBuf, what: &'static str },
 }
 
 impl OutputError {
@@ -87,7 +92,15 @@ impl Output {
                 });
             }
             Ok(meta) if meta.is_file() && !replace => return Err(OutputError::Exists { path: output.path }),
-            Ok(meta) if !meta.is_file() => return Ok(output), // a device or a pipe: written in place
+            Ok(meta) if !meta.is_file() => {
+                return match special_file(&meta) {
+                    None => Ok(output), // a character device: written in place
+                    Some(what) => Err(OutputError::NotAFile {
+                        path: output.path,
+                        what,
+                    }),
+                };
+            }
             _ => {}
         }
         let dir = output.dir();
@@ -201,6 +214,33 @@ impl Output {
     /// Writes `bytes` as the whole file.
     pub fn write_bytes(&self, bytes: &[u8]) -> Result<(), OutputError> {
         self.write(|w| w.write_all(bytes))
+    }
+}
+
+/// What a path that is neither a regular file nor a folder is, in words, when it must not be
+/// opened as an output (see the module comment); `None` for a character device, which is
+/// written in place.
+fn special_file(meta: &std::fs::Metadata) -> Option<&'static str> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let kind = meta.file_type();
+        if kind.is_char_device() {
+            None
+        } else if kind.is_fifo() {
+            Some("a named pipe (FIFO)")
+        } else if kind.is_socket() {
+            Some("a socket")
+        } else if kind.is_block_device() {
+            Some("a block device")
+        } else {
+            Some("not a regular file")
+        }
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = meta;
+        None
     }
 }
 
@@ -434,6 +474,40 @@ mod tests {
         let out = Output::check(&link, &["svg"], false).unwrap();
         let e = out.write_bytes(b"<svg/>").unwrap_err();
         assert!(e.to_string().contains("No space left on device"), "{e}");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_fifo_is_refused_at_once_without_being_opened() {
+        // Reproduces `batch --out fifo.csv` (and compare, predict, basin, animate), which hung
+        // in open() waiting for a reader. The check runs on a thread so a hang fails the test
+        // instead of stopping it.
+        let dir = tempfile::tempdir().unwrap();
+        let fifo = dir.path().join("rolls.csv");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status().unwrap();
+        assert!(made.success());
+        for replace in [false, true] {
+            let path = fifo.clone();
+            let (tx, rx) = std::sync::mpsc::channel();
+            std::thread::spawn(move || {
+                let _ = tx.send(Output::check(&path, &["csv"], replace));
+            });
+            let checked = rx
+                .recv_timeout(std::time::Duration::from_secs(2))
+                .expect("the check came back at once");
+            let e = checked.unwrap_err();
+            assert_eq!(
+                e,
+                OutputError::NotAFile {
+                    path: fifo.clone(),
+                    what: "a named pipe (FIFO)"
+                }
+            );
+            assert!(e.is_refusal());
+            let text = e.to_string();
+            assert!(text.starts_with(&fifo.display().to_string()), "{text}");
+            assert!(text.contains("a named pipe (FIFO)"), "{text}");
+        }
     }
 
     #[test]

@@ -90,7 +90,7 @@ impl Preset {
         let mut line = |key: &str, value: String, comment: &str| push_line(&mut out, key, &value, comment);
         let float = |x: f64| toml::Value::Float(x).to_string();
         let vector = |v: &[f64]| format!("[{}]", v.iter().map(|&x| float(x)).collect::<Vec<_>>().join(", "));
-        let string = |s: &str| toml::Value::String(s.to_string()).to_string();
+        let string = toml_string;
 
         line(
             "format",
@@ -214,7 +214,7 @@ fn push_line(out: &mut String, key: &str, value: &str, comment: &str) {
 /// joins the lines back), so the file reads well; anything it cannot fold exactly stays on
 /// one line.
 fn folded_string(text: &str) -> String {
-    let single = toml::Value::String(text.to_string()).to_string();
+    let single = toml_string(text);
     let body = match single.strip_prefix('"').and_then(|b| b.strip_suffix('"')) {
         Some(body) if single.chars().count() > MAX_LINE - 16 && !body.starts_with('"') => body,
         _ => return single,
@@ -239,6 +239,38 @@ fn folded_string(text: &str) -> String {
         .ok()
         .and_then(|t| t.get("v").and_then(|v| v.as_str().map(|v| v == text)));
     if same == Some(true) { folded } else { single }
+}
+
+/// Whether `c` must be written as an escape: a control character (C0, DEL or C1, which a
+/// terminal acts on) or a bidirectional override or isolate (which reorders the line it is
+/// on), the characters [`crate::output::printable`] would otherwise escape in a form
+/// (`\u{202e}`) that TOML does not read.
+fn needs_escape(c: char) -> bool {
+    c.is_control() || matches!(c, '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}')
+}
+
+/// `text` as a TOML string. Text with nothing to escape is written as the `toml` crate
+/// writes it; text with a control or bidi character becomes a basic string with TOML's own
+/// escapes (`\n`, `\u202E`), so the file shows no such character and reads back as `text`.
+fn toml_string(text: &str) -> String {
+    if !text.chars().any(needs_escape) {
+        return toml::Value::String(text.to_string()).to_string();
+    }
+    let mut out = String::with_capacity(text.len() + 8);
+    out.push('"');
+    for c in text.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            '\n' => out.push_str("\\n"),
+            '\t' => out.push_str("\\t"),
+            '\r' => out.push_str("\\r"),
+            c if needs_escape(c) => out.push_str(&format!("\\u{:04X}", c as u32)),
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
 }
 
 fn syntax_error(origin: &str, text: &str, e: &toml::de::Error) -> PresetError {
@@ -338,6 +370,42 @@ mod tests {
 
     fn err(text: &str) -> PresetError {
         Preset::from_toml_str(text, ORIGIN).unwrap_err()
+    }
+
+    /// Every character [`needs_escape`] names: C0, DEL, C1 and the bidi overrides/isolates.
+    fn controls_and_bidi() -> Vec<char> {
+        let mut all: Vec<char> = (0u32..0x20)
+            .chain(0x7f..0xa0)
+            .filter_map(char::from_u32)
+            .collect();
+        all.extend(('\u{202a}'..='\u{202e}').chain('\u{2066}'..='\u{2069}'));
+        all
+    }
+
+    #[test]
+    fn a_shown_preset_with_control_or_bidi_characters_reads_back() {
+        // `presets show` prints `output::printable(&preset.to_toml())`; it wrote U+202E as
+        // `\u{202e}`, which is no TOML escape, so the shown preset did not load back.
+        for c in controls_and_bidi() {
+            for text in [format!("a{c}b"), format!("\"q\" \\ {c}"), format!("{c}")] {
+                let preset = Preset {
+                    name: text.clone(),
+                    description: format!("{} {text}", "long words ".repeat(12)),
+                    ..Preset::default()
+                };
+                let shown = crate::output::printable(&preset.to_toml());
+                // Line breaks are the file's own; inside a string they are written `\n`.
+                assert!(
+                    c == '\n' || !shown.contains(c),
+                    "U+{:04X} reached the terminal: {shown}",
+                    c as u32
+                );
+                let back = Preset::from_toml_str(&shown, ORIGIN)
+                    .unwrap_or_else(|e| panic!("U+{:04X}: {e}\n{shown}", c as u32));
+                assert_eq!(back.name, preset.name, "U+{:04X}", c as u32);
+                assert_eq!(back.description, preset.description, "U+{:04X}", c as u32);
+            }
+        }
     }
 
     #[test]

@@ -43,10 +43,8 @@ impl Preset {
         let (last, parents) = path.split_last().expect("split on '.' yields at least one part");
         // One component of a vector, by the name basin axes and errors use for it.
         let mut component = None;
-        if let (Some(field), Some(toml::Value::Array(items))) =
-            (parents.last(), value_at(&mut table, parents))
-        {
-            let names = component_names(field);
+        if let Some(toml::Value::Array(items)) = value_at(&mut table, parents) {
+            let names = component_names(parents);
             let Some(i) = names.iter().position(|n| n == last) else {
                 return Err(err(format!(
                     "`{}` has the components {}",
@@ -137,11 +135,13 @@ fn value_at<'a>(table: &'a mut toml::Table, path: &[&str]) -> Option<&'a mut tom
     Some(value)
 }
 
-/// What the components of the vector `field` are called (its errors and basin axes agree).
-fn component_names(field: &str) -> [&'static str; 3] {
-    match field {
-        "orientation" => ["yaw", "pitch", "roll"],
-        _ => ["x", "y", "z"],
+/// What the components of the array at `parents` are called:
+/// its registry row's names where it has one (`x, y, z`, `yaw, pitch, roll`, the corners
+/// `1`…`8`), so errors, scan keys and basin axes agree; `x, y, z` for any other array.
+fn component_names(parents: &[&str]) -> &'static [&'static str] {
+    match crate::registry::find(&parents.join(".")).map(|spec| spec.components()) {
+        Some(names) if !names.is_empty() => names,
+        _ => &["x", "y", "z"],
     }
 }
 
@@ -252,6 +252,20 @@ mod tests {
             e.to_string().contains("has the components yaw, pitch, roll"),
             "{e}"
         );
+        // A per-corner key's components are the corners 1..8: `.x` was taken as corner 1,
+        // and `.0` was refused with "the components x, y, z".
+        for bad in ["0", "x", "9"] {
+            let e = p
+                .with_overrides(&[format!("die.extra_corner_mass.{bad}=5")])
+                .unwrap_err();
+            assert!(
+                e.to_string()
+                    .ends_with("`die.extra_corner_mass` has the components 1, 2, 3, 4, 5, 6, 7, 8"),
+                "{bad}: {e}"
+            );
+        }
+        let q = p.with_overrides(&["die.extra_corner_mass.8=5"]).unwrap();
+        assert_eq!(q.die.extra_corner_mass, [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 5.0]);
         for bad in ["1e309", "NaN", "-inf"] {
             let e = p.with_overrides(&[format!("ground.friction={bad}")]).unwrap_err();
             assert_eq!(
