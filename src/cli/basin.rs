@@ -222,7 +222,7 @@ fn write_map(
     let provenance = provenance::map(preset, map);
     match output {
         Some(csv) if csv.extension() == "csv" => Ok(Some(
-            map.write_csv_file(&provenance::csv_line(&provenance), csv)
+            map.write_csv_file(&provenance, csv)
                 .map_err(CliError::output(""))?,
         )),
         Some(image) => {

@@ -112,6 +112,7 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
     let mut out = std::io::stdout().lock();
     if args.run.json {
         let v = json!({
+            "provenance": sweep.provenance,
             "preset": preset.name,
             "seed": sweep.seed(),
             "requested": batch.requested,
@@ -257,8 +258,9 @@ fn run_versus(args: &BatchArgs, options: &RunOptions) -> Result<(), CliError> {
     for (key, value) in summary.as_object().expect("a struct") {
         v[key] = value.clone();
     }
+    // On standard output as in the file: what defines the throws and both setups.
+    v["provenance"] = sweep.provenance.clone();
     if let Some(output) = output.as_ref().filter(|o| o.extension() == "json") {
-        v["provenance"] = sweep.provenance.clone();
         output
             .write_bytes(format!("{v}\n").as_bytes())
             .map_err(CliError::output(""))?;

@@ -9,7 +9,7 @@ use clap::{CommandFactory, Parser, Subcommand};
 #[derive(Debug, Parser)]
 #[command(
     name = "dicesim",
-    version,
+    version = dicesim_experiment::VERSION_LINE,
     about,
     long_about = None,
     after_help = "Examples:

@@ -151,6 +151,7 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
         running::Results {
             value: &comparison,
             provenance: &provenance,
+            columns: &comparison.csv_columns(),
             csv: &|w| comparison.write_csv(w),
             png: &png,
             table: &|out| tables::comparison(out, &comparison, &preset.name),
@@ -260,6 +261,7 @@ fn run_budden(
         running::Results {
             value: &comparison,
             provenance: &provenance,
+            columns: &comparison.csv_columns(),
             csv: &|w| comparison.write_csv(w),
             png: &png,
             table: &|out| tables::budden(out, &comparison, &preset.name),

@@ -6,8 +6,8 @@ use super::running;
 use clap::Args;
 use dicesim_experiment::merge::{BatchMerge, MapMerge, Parts};
 use dicesim_experiment::tables;
-use dicesim_figures::plot::write_image;
-use dicesim_setup::output::Output;
+use dicesim_figures::plot::image_file_bytes;
+use dicesim_setup::output::{Output, Staged, commit};
 use serde_json::json;
 use std::io::Write;
 use std::path::PathBuf;
@@ -34,6 +34,11 @@ pub(crate) struct MergeArgs {
     /// catches records that are consistent but not what the setup rolls).
     #[arg(long, value_name = "N", default_value_t = 0)]
     pub(crate) verify: u64,
+    /// Merge parts that builds of different commits (of this version) rolled: refused
+    /// without it, since another build may roll differently; the merged files name every
+    /// build, and --verify rolls records again with this one.
+    #[arg(long)]
+    pub(crate) accept_mixed_builds: bool,
 }
 
 pub(crate) fn run(args: &MergeArgs) -> Result<(), CliError> {
@@ -41,7 +46,7 @@ pub(crate) fn run(args: &MergeArgs) -> Result<(), CliError> {
     running::stop_at_once_on_signals()?;
     // Existing files are refused before any work, unless replacing them was asked for.
     let outputs = super::args::checked_outputs(&args.out, &["csv", "parquet", "png", "svg"], args.force)?;
-    let parts = Parts::read(&args.parts, &outputs)?;
+    let parts = Parts::read(&args.parts, &outputs, args.accept_mixed_builds)?;
     if !parts.is_map() {
         let merged = parts.merge_batch(&outputs, args.verify)?;
         return print_batch(args, &merged);
@@ -51,19 +56,28 @@ pub(crate) fn run(args: &MergeArgs) -> Result<(), CliError> {
             "--json: a map's summary is text (its cells are the --out .csv)".to_string(),
         ));
     }
-    let merged = parts.merge_map(&outputs, args.verify)?;
+    let (merged, csv) = parts.merge_map(&outputs, args.verify)?;
+    // The images with the CSV: all of them written, or none.
+    let mut staged: Vec<Staged> = csv.into_iter().collect();
     for image in outputs.iter().filter(|o| o.extension() != "csv") {
-        draw(&merged, image)?;
+        staged.push(draw(&merged, image)?);
     }
+    commit(staged).map_err(CliError::output(""))?;
     print_map(args, &merged)
 }
 
-/// Draws a merged map's image, as `basin` draws a map rolled on one machine.
-fn draw(merged: &MapMerge, image: &Output) -> Result<(), CliError> {
+/// Draws a merged map's image, as `basin` draws a map rolled on one machine, staged to be
+/// committed with the merge's other files.
+fn draw(merged: &MapMerge, image: &Output) -> Result<Staged, CliError> {
     let preset = &merged.preset;
     let setup = (preset.name.as_str(), &preset.params(), &preset.initial);
-    write_image(&merged.map, merged.layer, setup, &merged.provenance, image)
-        .map_err(CliError::experiment(&format!("{}: ", image.path().display())))
+    let bytes = image_file_bytes(&merged.map, merged.layer, setup, &merged.provenance, image)
+        .map_err(CliError::experiment(&format!("{}: ", image.path().display())))?;
+    let mut staged = image.stage(None).map_err(CliError::output(""))?;
+    staged
+        .write_all(&bytes)
+        .map_err(|e| CliError::output("")(image.failed(&e)))?;
+    Ok(staged)
 }
 
 fn print_batch(args: &MergeArgs, m: &BatchMerge) -> Result<(), CliError> {

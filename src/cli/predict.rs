@@ -134,6 +134,7 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
         running::Results {
             value: &prediction,
             provenance: &provenance,
+            columns: &prediction.csv_columns(),
             csv: &|w| prediction.write_csv(w),
             png: &png,
             table: &|out| tables::prediction(out, &prediction),

@@ -22,11 +22,15 @@ pub(crate) fn run(args: &RollArgs) -> Result<(), CliError> {
     let preset = args.setup.resolve()?;
     let params = preset.params();
     let mut sim = Simulation::new(&params, &preset.initial)?;
-    let outcome = sim.run_to_end();
+    // Its time as every output prints it: the steps × Δt, not the clock's sum.
+    let outcome = dicesim_experiment::record::reported(sim.run_to_end(), &params);
     let reason = (outcome.status == Status::Unstable).then(|| UnstableReason::new(&params, &preset.initial));
     let mut out = std::io::stdout().lock();
     if args.json {
-        writeln!(out, "{}", roll_json(&preset, &sim, &outcome, reason.as_ref()))?;
+        let mut v = roll_json(&preset, &sim, &outcome, reason.as_ref());
+        let changed = !args.setup.set.is_empty();
+        v["provenance"] = dicesim_experiment::provenance::roll(&preset, "the preset's roll", changed);
+        writeln!(out, "{v}")?;
     } else {
         print_roll(&mut out, &params, &sim, &outcome, reason.as_ref())?;
     }

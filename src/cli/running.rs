@@ -49,41 +49,50 @@ pub(crate) fn run_with_progress<T>(
 /// A long experiment's result, written the one way every such command writes it.
 pub(crate) struct Results<'a, T: serde::Serialize> {
     pub(crate) value: &'a T,
-    /// What defines the experiment: the CSV's first line, the JSON's `provenance`.
+    /// What defines the experiment: the CSV's sidecar's, the JSON's and the PNG's
+    /// `provenance`.
     pub(crate) provenance: &'a serde_json::Value,
-    /// The CSV's rows after its provenance line.
+    /// The CSV's columns, for its sidecar.
+    pub(crate) columns: &'a [experiment::data_file::Column],
+    /// The CSV, its header first.
     pub(crate) csv: &'a dyn Fn(&mut (dyn std::io::Write + Send)) -> std::io::Result<()>,
     pub(crate) png: &'a dyn Fn() -> Result<Vec<u8>, CliError>,
     /// The table printed when `--json` is not given.
     pub(crate) table: &'a dyn Fn(&mut dyn std::io::Write) -> std::io::Result<()>,
 }
 
-/// Writes each `--out` file by its extension (CSV, JSON with the provenance, else PNG), then
-/// prints the table and the files written, or the JSON alone with `--json`.
+/// Writes every `--out` file by its extension (CSV with its sidecar, JSON with the
+/// provenance, else PNG), all of them or none, then prints the table and the files
+/// written, or the JSON alone with `--json` (its provenance in it, as in a file).
 pub(crate) fn write_results<T: serde::Serialize>(
     outputs: &[Output],
     json: bool,
     r: Results<'_, T>,
 ) -> Result<(), CliError> {
+    let with_provenance = || -> Result<serde_json::Value, std::io::Error> {
+        let mut v = serde_json::to_value(r.value)?;
+        v["provenance"] = r.provenance.clone();
+        Ok(v)
+    };
+    let mut staged = Vec::with_capacity(outputs.len());
     for output in outputs {
+        let meta = (output.sidecar()).map(|_| experiment::data_file::sidecar(r.provenance, r.columns));
+        let mut file = output.stage(meta.as_deref()).map_err(CliError::output(""))?;
         match output.extension() {
-            "csv" => output.write(|w| {
-                writeln!(w, "{}", experiment::provenance::csv_line(r.provenance))?;
-                (r.csv)(w)
+            "csv" => (r.csv)(&mut file),
+            "json" => with_provenance().and_then(|v| {
+                serde_json::to_writer_pretty(&mut file, &v)?;
+                writeln!(file)
             }),
-            "json" => output.write(|w| {
-                let mut v = serde_json::to_value(r.value)?;
-                v["provenance"] = r.provenance.clone();
-                serde_json::to_writer_pretty(&mut *w, &v)?;
-                writeln!(w)
-            }),
-            _ => output.write_bytes(&(r.png)()?),
+            _ => file.write_all(&(r.png)()?),
         }
-        .map_err(CliError::output(""))?;
+        .map_err(|e| CliError::output("")(output.failed(&e)))?;
+        staged.push(file);
     }
+    dicesim_setup::output::commit(staged).map_err(CliError::output(""))?;
     let mut out = std::io::stdout().lock();
     if json {
-        serde_json::to_writer_pretty(&mut out, r.value).map_err(std::io::Error::from)?;
+        serde_json::to_writer_pretty(&mut out, &with_provenance()?).map_err(std::io::Error::from)?;
         writeln!(out)?;
     } else {
         (r.table)(&mut out)?;

@@ -3,8 +3,11 @@
 use super::args::SetupArgs;
 use super::error::CliError;
 use clap::Args;
-use dicesim_experiment::trace::TraceWriter;
+use dicesim_experiment::trace::{TraceWriter, columns};
+use dicesim_experiment::{data_file, provenance};
 use dicesim_physics::Simulation;
+use std::io::Write;
+use std::path::PathBuf;
 
 #[derive(Debug, Args)]
 pub(crate) struct TraceArgs {
@@ -16,12 +19,33 @@ pub(crate) struct TraceArgs {
     /// Print one row every K steps (the last step is always printed).
     #[arg(long, value_name = "K", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
     pub(crate) every: u64,
+    /// Write the trace to a .csv file instead of standard output, with its sidecar
+    /// FILE.csv.meta.json naming the setup rolled and the program that rolled it.
+    #[arg(long, value_name = "FILE.csv")]
+    pub(crate) out: Option<PathBuf>,
+    /// Replace an existing --out file (and its sidecar).
+    #[arg(long, requires = "out")]
+    pub(crate) force: bool,
 }
 
 pub(crate) fn run(args: &TraceArgs) -> Result<(), CliError> {
     let preset = args.setup.resolve()?;
-    let mut sim = Simulation::new(&preset.params(), &preset.initial)?;
-    let mut out = TraceWriter::new(std::io::stdout().lock())?;
+    let params = preset.params();
+    let sim = Simulation::new(&params, &preset.initial)?;
+    let Some(path) = &args.out else {
+        return Ok(trace(args, sim, std::io::stdout().lock())?);
+    };
+    let output = super::args::checked_outputs(std::slice::from_ref(path), &["csv"], args.force)?.remove(0);
+    let rolled = provenance::roll(&preset, "the preset's roll", !args.setup.set.is_empty());
+    let meta = data_file::sidecar(&rolled, &columns());
+    output
+        .write_table(Some(&meta), |w| trace(args, sim, w))
+        .map_err(CliError::output(""))
+}
+
+/// Writes the trace of `sim`, as `args` asks, to `out`.
+fn trace(args: &TraceArgs, mut sim: Simulation, out: impl Write) -> std::io::Result<()> {
+    let mut out = TraceWriter::new(out, sim.params().integrator.dt)?;
     out.write(&sim)?;
     loop {
         let ended = sim.advance().is_some();
@@ -37,6 +61,5 @@ pub(crate) fn run(args: &TraceArgs) -> Result<(), CliError> {
             break;
         }
     }
-    out.flush()?;
-    Ok(())
+    out.flush()
 }

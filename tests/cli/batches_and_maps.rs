@@ -204,11 +204,8 @@ fn run_ok(args: &[&str]) -> String {
 }
 
 fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
-    // The leading `#` line is the file's provenance.
-    let mut reader = csv::ReaderBuilder::new()
-        .comment(Some(b'#'))
-        .from_path(path)
-        .unwrap();
+    // A plain table: its provenance is in the sidecar beside it.
+    let mut reader = csv::ReaderBuilder::new().from_path(path).unwrap();
     let header = reader.headers().unwrap().iter().map(str::to_string).collect();
     let rows = reader
         .records()
@@ -284,7 +281,7 @@ fn batch_files_parse_back_and_match_for_any_job_count() {
             &roll["outcome"]["time_s"]
         ));
         assert!(close(
-            row[col("height")].parse().unwrap(),
+            row[col("height_cm")].parse().unwrap(),
             &roll["initial"]["height"]
         ));
         assert_eq!(
@@ -321,23 +318,24 @@ fn batch_files_parse_back_and_match_for_any_job_count() {
     assert_eq!(printed["completed"], 120);
     assert_eq!(printed["interrupted"], false);
 
-    // The per-roll CSV is a valid --ics file: rolling it again gives the same rolls, under
-    // a provenance line that says they were given rather than drawn.
+    // The per-roll CSV is a valid --ics file: rolling it again gives the same file, with
+    // a provenance that says they were given rather than drawn.
     let again = dir.path().join("again.csv");
     run_ok(&["batch", "--ics", &s(&csv1), "--out", &s(&again)]);
-    let (first, second) = (
-        std::fs::read_to_string(&csv1).unwrap(),
-        std::fs::read_to_string(&again).unwrap(),
-    );
-    let rows = |t: &str| t.lines().skip(1).map(String::from).collect::<Vec<_>>();
-    assert!(rows(&first) == rows(&second), "the same rolls");
-    assert!(first.lines().next().unwrap().contains("\"seed\":4"));
     assert!(
-        second
-            .lines()
-            .next()
+        std::fs::read(&csv1).unwrap() == std::fs::read(&again).unwrap(),
+        "the same rolls"
+    );
+    let provenance = |p: &Path| -> serde_json::Value {
+        let meta = std::fs::read(format!("{}.meta.json", p.display())).unwrap();
+        serde_json::from_slice::<serde_json::Value>(&meta).unwrap()["provenance"].clone()
+    };
+    assert_eq!(provenance(&csv1)["seed"], 4);
+    assert!(
+        provenance(&again)["initial_conditions"]
+            .as_str()
             .unwrap()
-            .contains("\"initial_conditions\":\"given (--ics), fingerprint ")
+            .starts_with("given (--ics), fingerprint ")
     );
 }
 
@@ -365,8 +363,9 @@ fn ics_file_rolls_its_rows_with_the_preset_filling_the_rest() {
     let col = |name: &str| header.iter().position(|h| h == name).unwrap();
     assert_eq!(rows.len(), 2);
     assert_eq!(rows[1][col("id")], "20");
-    assert_eq!(rows[1][col("velocity_x")], "10");
-    assert_eq!(rows[1][col("angular_velocity_x")], "-20");
+    // Reals written as reals, under names with their units.
+    assert_eq!(rows[1][col("velocity_x_cm_per_s")], "10.0");
+    assert_eq!(rows[1][col("angular_velocity_x_rad_per_s")], "-20.0");
     let base = InitialCondition {
         velocity: [10.0, 0.0, 0.0],
         ..Default::default()

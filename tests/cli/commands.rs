@@ -99,7 +99,7 @@ fn trace_header_and_rows() {
     assert!(o.status.success());
     let text = stdout(&o);
     let mut lines = text.lines();
-    let mut want = "step,t_s,x_cm,y_cm,z_cm,vx_cm_per_s,vy_cm_per_s,vz_cm_per_s,\
+    let mut want = "step,time_s,x_cm,y_cm,z_cm,vx_cm_per_s,vy_cm_per_s,vz_cm_per_s,\
                     Lx_g_cm2_per_s,Ly_g_cm2_per_s,Lz_g_cm2_per_s,wx_rad_per_s,wy_rad_per_s,wz_rad_per_s,\
                     height_cm,lowest_corner_cm,speed_cm_per_s,spin_rate_rad_per_s,contact_force_dyn,\
                     e_trans_erg,e_rot_erg,e_grav_erg,e_elastic_erg,e_total_erg,\
@@ -115,6 +115,9 @@ fn trace_header_and_rows() {
         .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
         .collect();
     assert_eq!(rows.iter().map(|r| r[0] as u64).collect::<Vec<_>>(), [0, 2, 4, 5]);
+    // The time of step n is n × Δt to Δt's decimals: 0.004, not the clock's sum.
+    assert_eq!(rows[2][column("time_s")], 0.004);
+    assert_eq!(text.lines().nth(3).unwrap().split(',').nth(1), Some("0.004"));
     assert!(rows.iter().all(|r| r.len() == 28 + 24));
     // Free fall, kick then drift: z_n = 15 − g·Δt²·n(n+1)/2, v_n = −g·Δt·n.
     let r4 = &rows[2];

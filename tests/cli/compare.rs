@@ -106,15 +106,9 @@ fn weldon_throws_twelve_dice_and_writes_its_files() {
     assert!(groups < 13 && c["test"]["dof"].as_u64().unwrap() as usize == groups - 1);
     let table = std::fs::read_to_string(&csv).unwrap();
     let mut lines = table.lines();
-    // Where the file came from: the program, the experiment and the throws, then the table.
-    let provenance: serde_json::Value = serde_json::from_str(
-        lines
-            .next()
-            .unwrap()
-            .strip_prefix("# ")
-            .expect("a provenance line"),
-    )
-    .unwrap();
+    // Where the file came from, in its sidecar: the program, the experiment and the throws.
+    let meta = std::fs::read(format!("{}.meta.json", csv.display())).unwrap();
+    let provenance = serde_json::from_slice::<serde_json::Value>(&meta).unwrap()["provenance"].clone();
     assert_eq!(provenance, v["provenance"]);
     assert_eq!(
         provenance["program"],
@@ -127,7 +121,7 @@ fn weldon_throws_twelve_dice_and_writes_its_files() {
         lines
             .next()
             .unwrap()
-            .starts_with("value,category,data_count,data_share")
+            .starts_with("category_first,category_last,data_count,data_share")
     );
     assert_eq!(lines.count(), groups);
     assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG\r\n\x1a\n"));

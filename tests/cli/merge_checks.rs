@@ -45,32 +45,30 @@ fn edit_part(part: &Path, edit: impl FnOnce(&mut serde_json::Value)) {
     std::fs::write(part, serde_json::to_vec_pretty(&v).unwrap()).unwrap();
 }
 
-/// Replaces row `row` (1-based among the records, after provenance and header) of a CSV
-/// records file with what `edit` makes of its cells.
+/// Replaces row `row` (1-based among the records, after the header) of a CSV records file
+/// with what `edit` makes of its cells.
 fn edit_row(path: &Path, row: usize, edit: impl FnOnce(&mut Vec<String>)) {
     let text = std::fs::read_to_string(path).unwrap();
     let mut lines: Vec<String> = text.lines().map(String::from).collect();
-    let mut cells: Vec<String> = lines[row + 1].split(',').map(String::from).collect();
+    let mut cells: Vec<String> = lines[row].split(',').map(String::from).collect();
     edit(&mut cells);
-    lines[row + 1] = cells.join(",");
+    lines[row] = cells.join(",");
     std::fs::write(path, lines.join("\n") + "\n").unwrap();
 }
 
-const HEADER: [&str; 19] = [
+/// The columns of a batch of random rolls: the spin as an angular velocity, each with its unit.
+const HEADER: [&str; 16] = [
     "id",
-    "height",
-    "velocity_x",
-    "velocity_y",
-    "velocity_z",
-    "angular_velocity_x",
-    "angular_velocity_y",
-    "angular_velocity_z",
-    "angular_momentum_x",
-    "angular_momentum_y",
-    "angular_momentum_z",
-    "yaw",
-    "pitch",
-    "roll",
+    "height_cm",
+    "velocity_x_cm_per_s",
+    "velocity_y_cm_per_s",
+    "velocity_z_cm_per_s",
+    "angular_velocity_x_rad_per_s",
+    "angular_velocity_y_rad_per_s",
+    "angular_velocity_z_rad_per_s",
+    "yaw_deg",
+    "pitch_deg",
+    "roll_deg",
     "start_face",
     "face",
     "status",
@@ -172,23 +170,82 @@ fn records_of_another_sweep_under_this_sweeps_part_are_refused() {
         "{e}"
     );
     rehash(&d.join("p4/part-1.part.json"));
-    // The seed-7 file's provenance line names seed 7: the first line that is not this sweep's.
-    let e = merge_p4(d);
-    assert!(
-        e.starts_with("dicesim: p4/part-1.csv: row 1: provenance `# {"),
-        "{e}"
-    );
-    // With this sweep's provenance line, its first row's start is not seed 1's draw.
-    let ours = std::fs::read_to_string(d.join("p4/part-0.csv")).unwrap();
-    let theirs = std::fs::read_to_string(d.join("g1/part-1.csv")).unwrap();
-    let first = ours.lines().next().unwrap();
-    let rest: Vec<&str> = theirs.lines().skip(1).collect();
-    std::fs::write(d.join("p4/part-1.csv"), format!("{first}\n{}\n", rest.join("\n"))).unwrap();
-    rehash(&d.join("p4/part-1.part.json"));
+    // Under this sweep's sidecar, its first row's start is not seed 1's draw.
     let e = merge_p4(d);
     assert_eq!(
         e,
-        "dicesim: p4/part-1.csv: row 3: roll 100: its start is not the one the sweep's seed draws for it (a record of another sweep, or an edited one)\n"
+        "dicesim: p4/part-1.csv: row 2: roll 100: its start is not the one the sweep's seed draws for it (a record of another sweep, or an edited one)\n"
+    );
+    // Copied with its own sidecar, the provenance names seed 7: refused before any row.
+    let ours = std::fs::read(d.join("p4/part-1.csv.meta.json")).unwrap();
+    std::fs::copy(
+        d.join("g1/part-1.csv.meta.json"),
+        d.join("p4/part-1.csv.meta.json"),
+    )
+    .unwrap();
+    let e = merge_p4(d);
+    assert_eq!(
+        e,
+        "dicesim: p4/part-1.csv.meta.json: its provenance is not this sweep's: `preset.random.seed` is 7, expected 1 (records of another sweep or build)\n"
+    );
+    // Without its sidecar, a CSV part says so.
+    std::fs::remove_file(d.join("p4/part-1.csv.meta.json")).unwrap();
+    let e = merge_p4(d);
+    assert!(
+        e.starts_with("dicesim: p4/part-1.csv: its sidecar p4/part-1.csv.meta.json is missing: "),
+        "{e}"
+    );
+    std::fs::write(d.join("p4/part-1.csv.meta.json"), ours).unwrap();
+}
+
+/// Parts rolled by builds of two commits are refused, both named, unless the user accepts
+/// them; the merged file then names both builds.
+#[test]
+fn parts_of_two_builds_merge_only_when_accepted() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    p4(d);
+    let part = d.join("p4/part-2.part.json");
+    let this: String =
+        serde_json::from_slice::<serde_json::Value>(&std::fs::read(&part).unwrap()).unwrap()["commit"]
+            .as_str()
+            .unwrap()
+            .to_string();
+    // As another build would have written the part and its records' sidecar.
+    let other = "0123456789ab";
+    edit_part(&part, |v| v["commit"] = other.into());
+    let sidecar = d.join("p4/part-2.csv.meta.json");
+    let mut meta: serde_json::Value = serde_json::from_slice(&std::fs::read(&sidecar).unwrap()).unwrap();
+    meta["provenance"]["commit"] = other.into();
+    std::fs::write(&sidecar, serde_json::to_vec_pretty(&meta).unwrap() + "\n").unwrap();
+    let e = merge_p4(d);
+    assert!(
+        e.contains(&format!(
+            "p4/part-2.part.json was rolled by the build of commit {other}, p4/part-0.part.json by commit {this}"
+        )) && e.contains("--accept-mixed-builds"),
+        "{e}"
+    );
+    ok(
+        d,
+        &[
+            "merge",
+            "p4",
+            "--out",
+            "m.csv",
+            "--accept-mixed-builds",
+            "--verify",
+            "20",
+        ],
+    );
+    assert_eq!(
+        std::fs::read(d.join("m.csv")).unwrap(),
+        std::fs::read(d.join("one.csv")).unwrap()
+    );
+    let merged: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(d.join("m.csv.meta.json")).unwrap()).unwrap();
+    assert_eq!(
+        merged["provenance"]["commit"],
+        format!("mixed builds: {this}, {other}")
     );
 }
 
@@ -211,15 +268,15 @@ fn edited_cells_are_refused_with_their_row_and_field() {
         ),
         (
             "a mangled height",
-            |c| c[col("height")] = "-1x.73".into(),
-            "`height` = `-1x.73` is not valid",
+            |c| c[col("height_cm")] = "-1x.73".into(),
+            "`height_cm` = `-1x.73` is not valid",
         ),
         (
             "a row two columns short",
             |c| {
-                c.truncate(17);
+                c.truncate(14);
             },
-            "17 cells, expected 19",
+            "14 cells, expected 16",
         ),
         (
             "a face the start does not put up",
@@ -242,12 +299,13 @@ fn edited_cells_are_refused_with_their_row_and_field() {
     let intact = std::fs::read(&path).unwrap();
     for (what, edit, expected) in cases {
         std::fs::write(&path, &intact).unwrap();
-        // Row 5 of shard 2 is roll 204; every row of the default preset settles.
+        // Row 5 of shard 2 is roll 204, line 6 after the header; every row of the default
+        // preset settles.
         edit_row(&path, 5, edit);
         rehash(&d.join("p4/part-2.part.json"));
         let e = merge_p4(d);
         assert!(
-            e.starts_with("dicesim: p4/part-2.csv: row 7: ") && e.contains(expected),
+            e.starts_with("dicesim: p4/part-2.csv: row 6: ") && e.contains(expected),
             "{what}: {e}"
         );
     }
@@ -386,7 +444,7 @@ fn a_consistent_forgery_is_caught_only_by_rolling_again() {
     let text = std::fs::read_to_string(&path).unwrap();
     let mut rows: Vec<Vec<String>> = text
         .lines()
-        .skip(2)
+        .skip(1)
         .map(|l| l.split(',').map(String::from).collect())
         .collect();
     let outcome = col("face")..HEADER.len();
@@ -403,7 +461,7 @@ fn a_consistent_forgery_is_caught_only_by_rolling_again() {
     );
     rows[a].splice(outcome.clone(), ob);
     rows[b].splice(outcome, oa);
-    let head: Vec<&str> = text.lines().take(2).collect();
+    let head: Vec<&str> = text.lines().take(1).collect();
     let body: Vec<String> = rows.iter().map(|r| r.join(",")).collect();
     std::fs::write(&path, format!("{}\n{}\n", head.join("\n"), body.join("\n"))).unwrap();
     rehash(&d.join("p4/part-0.part.json"));
@@ -468,7 +526,7 @@ fn merge_verify_rolls_map_cells_again() {
     let intact = std::fs::read_to_string(&path).unwrap();
     let mut rows: Vec<Vec<String>> = intact
         .lines()
-        .skip(2)
+        .skip(1)
         .map(|l| l.split(',').map(String::from).collect())
         .collect();
     let (a, b) = (0..rows.len())
@@ -478,7 +536,7 @@ fn merge_verify_rolls_map_cells_again() {
     let (oa, ob) = (rows[a][5..9].to_vec(), rows[b][5..9].to_vec());
     rows[a].splice(5..9, ob);
     rows[b].splice(5..9, oa);
-    let head: Vec<&str> = intact.lines().take(2).collect();
+    let head: Vec<&str> = intact.lines().take(1).collect();
     let body: Vec<String> = rows.iter().map(|r| r.join(",")).collect();
     std::fs::write(&path, format!("{}\n{}\n", head.join("\n"), body.join("\n"))).unwrap();
     rehash(&d.join("r1.part.json"));
@@ -517,15 +575,15 @@ fn a_map_cell_moved_or_timed_impossibly_is_refused() {
     let intact = std::fs::read_to_string(&path).unwrap();
     let m = |d: &Path| refused(d, &["merge", "r0.part.json", "r1.part.json", "--out", "m.csv"]);
     for (column, value, expected) in [
-        (2, "-59", "but the map's axes put it at (-60, "),
+        (2, "-59.0", "but the map's axes put it at (-60.0, "),
         (8, "1e308", "time_s 1e308 is not"),
         (8, "12345.5", "time_s 12345.5 is not"),
     ] {
         let mut lines: Vec<String> = intact.lines().map(String::from).collect();
-        // Line 3: the first cell, after the provenance and the header.
-        let mut cells: Vec<String> = lines[2].split(',').map(String::from).collect();
+        // Line 2: the first cell, after the header.
+        let mut cells: Vec<String> = lines[1].split(',').map(String::from).collect();
         cells[column] = value.to_string();
-        lines[2] = cells.join(",");
+        lines[1] = cells.join(",");
         std::fs::write(&path, lines.join("\n") + "\n").unwrap();
         let e = m(d);
         assert!(
@@ -535,7 +593,7 @@ fn a_map_cell_moved_or_timed_impossibly_is_refused() {
         rehash(&d.join("r1.part.json"));
         let e = m(d);
         assert!(
-            e.starts_with("dicesim: r1.csv: line 3: ") && e.contains(expected),
+            e.starts_with("dicesim: r1.csv: line 2: ") && e.contains(expected),
             "{e}"
         );
     }

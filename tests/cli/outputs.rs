@@ -52,11 +52,7 @@ fn an_existing_file_is_refused_without_force_and_replaced_with_it() {
     );
     assert!(o.status.success(), "{}", stderr(&o));
     let text = std::fs::read_to_string(dir.path().join("old.csv")).unwrap();
-    assert_eq!(
-        text.lines().count(),
-        5,
-        "provenance, a header and 3 rolls: {text}"
-    );
+    assert_eq!(text.lines().count(), 4, "a header and 3 rolls: {text}");
     args.push("--force");
     let o = dicesim_in(dir.path(), &args);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -142,12 +138,65 @@ fn the_first_ctrl_c_of_a_slow_batch_keeps_every_completed_roll() {
     let text = std::fs::read_to_string(dir.path().join("slow.csv")).expect("the file is written");
     let ids: Vec<&str> = text
         .lines()
-        .skip(2)
+        .skip(1)
         .map(|l| l.split(',').next().unwrap())
         .collect();
     assert_eq!(ids.len(), kept, "{message}");
     assert!(
         ids.iter().enumerate().all(|(i, id)| *id == i.to_string()),
         "an exact prefix"
+    );
+}
+
+/// A merge's outputs are written all or none: a write that fails (a full disk, here a
+/// link to /dev/full) leaves no other output of the merge behind, nor its sidecar.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_merge_with_several_outputs_writes_all_of_them_or_none() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    for k in 0..2 {
+        let shard = format!("{k}/2");
+        let out = format!("p{k}.csv");
+        let o = dicesim_in(d, &["batch", "--rolls", "20", "--shard", &shard, "--out", &out]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    std::os::unix::fs::symlink("/dev/full", d.join("full.parquet")).unwrap();
+    let o = dicesim_in(
+        d,
+        &[
+            "merge",
+            "p0.part.json",
+            "p1.part.json",
+            "--out",
+            "ok.csv",
+            "--out",
+            "full.parquet",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("No space left on device"), "{}", stderr(&o));
+    assert!(
+        !d.join("ok.csv").exists(),
+        "the CSV written before the failure is gone"
+    );
+    assert!(!d.join("ok.csv.meta.json").exists());
+    assert!(!String::from_utf8_lossy(&o.stdout).contains("wrote"));
+    // Both writable: both written.
+    let o = dicesim_in(
+        d,
+        &[
+            "merge",
+            "p0.part.json",
+            "p1.part.json",
+            "--out",
+            "ok.csv",
+            "--out",
+            "ok.parquet",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        d.join("ok.csv").is_file() && d.join("ok.csv.meta.json").is_file() && d.join("ok.parquet").is_file()
     );
 }

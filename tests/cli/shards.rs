@@ -45,15 +45,16 @@ fn eight_shards_of_40000_rolls_merge_into_the_one_machine_csv_and_summary() {
             ],
         );
     }
-    // Shard 3 of 8 is rolls 15 000 to 19 999 of the same streams, under the provenance
-    // line and the header of the whole sweep.
+    // Shard 3 of 8 is rolls 15 000 to 19 999 of the same streams, under the header of the
+    // whole sweep, and its sidecar holds the whole sweep's provenance.
     let part3 = String::from_utf8(bytes(d, "part-3.csv")).unwrap();
     let one_csv = String::from_utf8(bytes(d, "one.csv")).unwrap();
     assert_eq!(part3.lines().next(), one_csv.lines().next());
-    assert!(part3.starts_with("# {\"initial_conditions\""));
-    assert!(part3.lines().nth(2).unwrap().starts_with("15000,"));
+    assert!(part3.starts_with("id,height_cm,"));
+    assert!(part3.lines().nth(1).unwrap().starts_with("15000,"));
     assert!(part3.lines().last().unwrap().starts_with("19999,"));
-    assert_eq!(part3.lines().count(), 5002);
+    assert_eq!(part3.lines().count(), 5001);
+    assert_eq!(bytes(d, "part-3.csv.meta.json"), bytes(d, "one.csv.meta.json"));
 
     // Parts in any order; a folder stands for the parts inside.
     let mut names: Vec<String> = (0..8).rev().map(|k| format!("part-{k}.part.json")).collect();
@@ -62,6 +63,7 @@ fn eight_shards_of_40000_rolls_merge_into_the_one_machine_csv_and_summary() {
     let args: Vec<&str> = names.iter().map(String::as_str).collect();
     let merged_text = ok(d, &args);
     assert_eq!(bytes(d, "merged.csv"), bytes(d, "one.csv"));
+    assert_eq!(bytes(d, "merged.csv.meta.json"), bytes(d, "one.csv.meta.json"));
     assert_eq!(counts(&merged_text), counts(&one_text));
     assert!(merged_text.starts_with("40000 rolls in 8 shards\n"));
 
@@ -99,13 +101,16 @@ fn a_map_split_in_4_merges_into_the_one_machine_csv_and_png() {
     }
     // 18 rows in 4 shards: rows 0–3, 4–8, 9–12, 13–17.
     let rows1 = String::from_utf8(bytes(d, "rows-1.csv")).unwrap();
-    // The sweep's provenance (the same on every shard and on one machine), the header, rows.
-    assert_eq!(rows1.lines().count(), 2 + 5 * 40);
+    // The header, then the rows; the sweep's provenance (the same on every shard and on
+    // one machine) in the sidecar.
+    assert_eq!(rows1.lines().count(), 1 + 5 * 40);
     let one_csv = String::from_utf8(bytes(d, "one.csv")).unwrap();
     assert_eq!(rows1.lines().next(), one_csv.lines().next());
-    assert!(rows1.lines().nth(2).unwrap().starts_with("0,4,"));
+    assert!(rows1.lines().nth(1).unwrap().starts_with("0,4,"));
+    assert_eq!(bytes(d, "rows-1.csv.meta.json"), bytes(d, "one.csv.meta.json"));
     let merged = ok(d, &["merge", ".", "--out", "map.csv", "--out", "map.png"]);
     assert_eq!(bytes(d, "map.csv"), bytes(d, "one.csv"));
+    assert_eq!(bytes(d, "map.csv.meta.json"), bytes(d, "one.csv.meta.json"));
     assert_eq!(bytes(d, "map.png"), bytes(d, "one.png"));
     let head = |s: &str| s.lines().take(4).map(String::from).collect::<Vec<_>>();
     assert_eq!(head(&merged), head(&one));

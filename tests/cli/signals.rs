@@ -91,7 +91,7 @@ fn every_stop_signal_keeps_a_whole_prefix_and_leaves_no_temporary_file() {
         let text = std::fs::read_to_string(d.join(&out)).unwrap();
         let ids: Vec<&str> = text
             .lines()
-            .skip(2)
+            .skip(1)
             .map(|l| l.split(',').next().unwrap())
             .collect();
         assert!(

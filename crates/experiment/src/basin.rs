@@ -13,12 +13,14 @@
 
 use crate::Error;
 use crate::batch::{RunOptions, thread_pool};
+use crate::data_file::Column;
 use crate::engine::roll_setups;
 use crate::hashing::{Hashing, Written};
 use crate::record::RollRecord;
 use crate::stats::FaceTally;
 use dicesim_physics::{InitialCondition, Outcome, Params, Status};
 use dicesim_setup::keys::ScanKey;
+use dicesim_setup::number::Real;
 use dicesim_setup::output::{Output, OutputError};
 use rayon::prelude::*;
 use std::io::Write;
@@ -234,54 +236,73 @@ impl BasinMap {
 }
 
 impl BasinMap {
-    /// The map as CSV: a header naming both keys, then one row per cell in row order, with
-    /// `sampled` = 1 for rolled cells and 0 for cells filled by the adaptive method. Unknown
-    /// cells of a partial map are left out.
+    /// The map's CSV columns: the node (`i`, `j`), both keys' values named with their units
+    /// ([`ScanKey::column`]), the cell's ending and whether it was rolled.
+    pub fn csv_columns(&self) -> Vec<Column> {
+        vec![
+            Column::integer("i"),
+            Column::integer("j"),
+            Column::real(self.x.key.column()),
+            Column::real(self.y.key.column()),
+            Column::integer("start_face"),
+            Column::integer("face"),
+            Column::text("status"),
+            Column::integer("steps"),
+            Column::real("time_s"),
+            Column::integer("sampled"),
+        ]
+    }
+
+    /// The map as CSV: the header ([`BasinMap::csv_columns`]), then one row per cell in row
+    /// order, with `sampled` = 1 for rolled cells and 0 for cells filled by the adaptive
+    /// method. Unknown cells of a partial map are left out.
     pub fn write_csv(&self, w: &mut (impl Write + ?Sized)) -> std::io::Result<()> {
-        let mut csv = csv::Writer::from_writer(w);
-        csv.write_record([
-            "i",
-            "j",
-            &self.x.key.key,
-            &self.y.key.key,
-            "start_face",
-            "face",
-            "status",
-            "steps",
-            "time_s",
-            "sampled",
-        ])
-        .map_err(crate::csv_io)?;
+        writeln!(w, "{}", crate::data_file::header(&self.csv_columns()))?;
+        let mut line = String::with_capacity(96);
         for j in 0..self.height() {
             for i in 0..self.width() {
                 let Some(c) = self.cell(i, j) else { continue };
-                let o = &c.outcome;
-                csv.write_record([
-                    i.to_string(),
-                    j.to_string(),
-                    self.x.value(i).to_string(),
-                    self.y.value(j).to_string(),
-                    c.start_face.to_string(),
-                    o.face.map(|f| f.to_string()).unwrap_or_default(),
-                    o.status.name().to_string(),
-                    o.steps.to_string(),
-                    o.time_s.to_string(),
-                    u8::from(c.sampled).to_string(),
-                ])
-                .map_err(crate::csv_io)?;
+                line.clear();
+                self.write_row(&mut line, i, j, c);
+                line.push('\n');
+                w.write_all(line.as_bytes())?;
             }
         }
-        csv.flush()
+        Ok(())
     }
 
-    /// Writes the map's CSV file (atomically): `provenance_line` (its provenance as a `#`
-    /// comment, [`crate::provenance::csv_line`]), then [`BasinMap::write_csv`]; returns its
-    /// size and content hash, which a shard's part records.
-    pub fn write_csv_file(&self, provenance_line: &str, output: &Output) -> Result<Written, OutputError> {
+    /// Appends cell `(i, j)`'s row (without its line end): its cells are numbers and status
+    /// names, which CSV never quotes; reals with their point.
+    pub(crate) fn write_row(&self, line: &mut String, i: usize, j: usize, c: &Cell) {
+        use std::fmt::Write as _;
+        let o = &c.outcome;
+        let face = o.face.map(|f| f.to_string()).unwrap_or_default();
+        // Writing into a String cannot fail.
+        let _ = write!(
+            line,
+            "{i},{j},{},{},{},{face},{},{},{},{}",
+            Real(self.x.value(i)),
+            Real(self.y.value(j)),
+            c.start_face,
+            o.status.name(),
+            o.steps,
+            Real(o.time_s),
+            u8::from(c.sampled)
+        );
+    }
+
+    /// Writes the map's CSV file and its sidecar (atomically, both or neither): the map's
+    /// rows ([`BasinMap::write_csv`]) and `provenance`; returns the CSV's size and content
+    /// hash, which a shard's part records.
+    pub fn write_csv_file(
+        &self,
+        provenance: &serde_json::Value,
+        output: &Output,
+    ) -> Result<Written, OutputError> {
         let mut written = None;
-        output.write(|w| {
+        let meta = crate::data_file::sidecar(provenance, &self.csv_columns());
+        output.write_table(Some(&meta), |w| {
             let mut hashing = Hashing::new(w);
-            writeln!(hashing, "{provenance_line}")?;
             self.write_csv(&mut hashing)?;
             written = Some(hashing.seal());
             Ok(())

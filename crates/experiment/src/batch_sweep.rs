@@ -3,13 +3,14 @@
 //! they complete, so memory stays flat in the number of rolls.
 
 use crate::batch::{BatchRun, Rolls, RunOptions, stream_batch};
+use crate::data_file::{self, Column};
 use crate::hashing::{Hashing, Written};
-use crate::ics::{record_csv_row, records_csv_header};
+use crate::ics::{SpinColumns, records_columns, write_record_line};
 use crate::parquet::RecordsWriter;
 use crate::record::RollRecord;
 use crate::shard::{Part, Shard, Sweep};
 use crate::versus::{VersusRun, stream_versus};
-use crate::{Error, csv_io, provenance};
+use crate::{Error, provenance};
 use dicesim_physics::{InitialCondition, Params};
 use dicesim_setup::output::Output;
 use dicesim_setup::preset::Preset;
@@ -32,6 +33,8 @@ pub struct BatchSweep<'a> {
     pub range: Range<u64>,
     /// The fingerprint of the setup and of the given starts.
     fingerprint: String,
+    /// The spin columns of its records: those its starts were given.
+    pub spin: SpinColumns,
     /// What every file of the batch records of it (see [`provenance::batch`]).
     pub provenance: Value,
 }
@@ -61,6 +64,9 @@ impl<'a> BatchSweep<'a> {
             total,
             range: shard.map_or(0..total, |s| s.range(total)),
             fingerprint,
+            // Random draws give an angular velocity; given starts what they hold (the whole
+            // sweep's, so every shard's file has the same columns).
+            spin: SpinColumns::of_starts(given.unwrap_or_default().iter().map(|(_, ic)| ic)),
             provenance,
         }
     }
@@ -115,12 +121,14 @@ impl<'a> BatchSweep<'a> {
             return Ok((roll(&mut |_| Ok(()))?, None));
         };
         let mut done = None;
-        output.write(|w| {
+        let meta =
+            (output.sidecar()).map(|_| data_file::sidecar(&self.provenance, &records_columns(self.spin)));
+        output.write_table(meta.as_deref(), |w| {
             let mut hashing = Hashing::new(w);
             let mut file = RecordsFile::start(
                 &mut hashing,
                 output.extension(),
-                &self.provenance,
+                (&self.provenance, self.spin),
                 self.seed(),
                 rolls.len(),
             )?;
@@ -154,18 +162,20 @@ impl<'a> BatchSweep<'a> {
             return roll(&mut |_| Ok(()));
         };
         let mut done = None;
-        output.write(|w| {
-            writeln!(w, "{}", provenance::csv_line(&self.provenance))?;
-            let mut csv = csv::Writer::from_writer(w);
-            csv.write_record(versus_csv_header()).map_err(csv_io)?;
+        let columns = versus_columns(self.spin);
+        let meta = data_file::sidecar(&self.provenance, &columns);
+        output.write_table(Some(&meta), |w| {
+            writeln!(w, "{}", data_file::header(&columns))?;
+            let mut line = Vec::with_capacity(256);
             let run = keeping_io_errors(&mut roll, &mut |chunk| {
                 for pair in chunk.chunks_exact(2) {
-                    csv.write_record(versus_csv_row(&pair[0], &pair[1]))
-                        .map_err(csv_io)?;
+                    line.clear();
+                    write_versus_line(&mut line, (&pair[0], &pair[1]), self.spin);
+                    line.push(b'\n');
+                    w.write_all(&line)?;
                 }
                 Ok(())
             })?;
-            csv.flush()?;
             done = Some(run);
             Ok(())
         })?;
@@ -224,7 +234,11 @@ fn keeping_io_errors<T>(
 /// The per-roll file as the records arrive: CSV, JSON or Parquet by extension. JSON puts
 /// the rolls first and what is known only at the end (interrupted, summary) after them.
 enum RecordsFile<'w> {
-    Csv(csv::Writer<&'w mut (dyn Write + Send)>),
+    Csv {
+        w: &'w mut (dyn Write + Send),
+        spin: SpinColumns,
+        line: Vec<u8>,
+    },
     Json {
         w: &'w mut (dyn Write + Send),
         first: bool,
@@ -233,21 +247,23 @@ enum RecordsFile<'w> {
 }
 
 impl<'w> RecordsFile<'w> {
-    /// Starts the file with its provenance: a leading `#` comment line in CSV (which
-    /// `--ics` and `merge` read past), a field in JSON, key-value metadata in Parquet.
+    /// Starts the file: a CSV with its header (its provenance is its sidecar's), a JSON
+    /// with its provenance as a field, a Parquet file with it as key-value metadata.
     fn start(
         w: &'w mut (dyn Write + Send),
         extension: &str,
-        provenance: &Value,
+        (provenance, spin): (&Value, SpinColumns),
         seed: Option<u64>,
         requested: u64,
     ) -> std::io::Result<Self> {
         Ok(match extension {
             "csv" => {
-                writeln!(w, "{}", provenance::csv_line(provenance))?;
-                let mut csv = csv::Writer::from_writer(w);
-                csv.write_record(records_csv_header()).map_err(csv_io)?;
-                RecordsFile::Csv(csv)
+                writeln!(w, "{}", crate::ics::records_csv_header(spin))?;
+                RecordsFile::Csv {
+                    w,
+                    spin,
+                    line: Vec::with_capacity(256),
+                }
             }
             "json" => {
                 write!(
@@ -258,16 +274,19 @@ impl<'w> RecordsFile<'w> {
                 RecordsFile::Json { w, first: true }
             }
             _ => RecordsFile::Parquet(
-                RecordsWriter::new(w, &provenance.to_string()).map_err(std::io::Error::other)?,
+                RecordsWriter::new(w, spin, &provenance.to_string()).map_err(std::io::Error::other)?,
             ),
         })
     }
 
     fn write(&mut self, records: &[RollRecord]) -> std::io::Result<()> {
         match self {
-            RecordsFile::Csv(csv) => {
+            RecordsFile::Csv { w, spin, line } => {
                 for r in records {
-                    csv.write_record(record_csv_row(r)).map_err(csv_io)?;
+                    line.clear();
+                    write_record_line(line, r, *spin);
+                    line.push(b'\n');
+                    w.write_all(line)?;
                 }
             }
             RecordsFile::Json { w, first } => {
@@ -289,7 +308,7 @@ impl<'w> RecordsFile<'w> {
 
     fn finish(self, batch: &BatchRun) -> std::io::Result<()> {
         match self {
-            RecordsFile::Csv(mut csv) => csv.flush(),
+            RecordsFile::Csv { w, .. } => w.flush(),
             RecordsFile::Json { w, .. } => writeln!(
                 w,
                 "],\"interrupted\":{},\"summary\":{}}}",
@@ -304,24 +323,34 @@ impl<'w> RecordsFile<'w> {
 /// Columns of a roll's record that are its ending: face, status, steps, time_s.
 const VERSUS_ENDING_COLUMNS: usize = 4;
 
-/// The per-throw CSV of a versus batch: the throw (id, initial condition, start face) and
-/// each setup's ending, A's columns `a_…`, B's `b_…`.
-pub fn versus_csv_header() -> Vec<String> {
-    let header = records_csv_header();
-    let (throw, ending) = header.split_at(header.len() - VERSUS_ENDING_COLUMNS);
-    let mut h: Vec<String> = throw.iter().map(|c| c.to_string()).collect();
+/// The columns of the per-throw CSV of a versus batch: the throw (id, initial condition,
+/// start face) and each setup's ending, A's columns `a_…`, B's `b_…`.
+pub fn versus_columns(spin: SpinColumns) -> Vec<Column> {
+    let columns = records_columns(spin);
+    let (throw, ending) = columns.split_at(columns.len() - VERSUS_ENDING_COLUMNS);
+    let mut all = throw.to_vec();
     for side in ["a", "b"] {
-        h.extend(ending.iter().map(|c| format!("{side}_{c}")));
+        all.extend(ending.iter().map(|c| Column {
+            name: format!("{side}_{}", c.name),
+            kind: c.kind,
+        }));
     }
-    h
+    all
 }
 
-/// One throw's row of the versus CSV: `a`'s record with `b`'s ending after it.
-fn versus_csv_row(a: &RollRecord, b: &RollRecord) -> Vec<String> {
-    let mut row = record_csv_row(a);
-    let b = record_csv_row(b);
-    row.extend_from_slice(&b[b.len() - VERSUS_ENDING_COLUMNS..]);
-    row
+/// Appends one throw's row of the versus CSV: `a`'s record with `b`'s ending after it.
+fn write_versus_line(line: &mut Vec<u8>, (a, b): (&RollRecord, &RollRecord), spin: SpinColumns) {
+    write_record_line(line, a, spin);
+    let mut other = Vec::with_capacity(192);
+    write_record_line(&mut other, b, spin);
+    // The ending is the last cells, which hold no commas.
+    let ending = other
+        .rsplitn(VERSUS_ENDING_COLUMNS + 1, |&c| c == b',')
+        .collect::<Vec<_>>();
+    for cell in ending[..VERSUS_ENDING_COLUMNS].iter().rev() {
+        line.push(b',');
+        line.extend_from_slice(cell);
+    }
 }
 
 #[cfg(test)]
@@ -366,11 +395,19 @@ mod tests {
         let text = std::fs::read_to_string(&path).unwrap();
         let written = written.unwrap();
         assert_eq!(written, crate::hashing::hash_file(&path, written.bytes).unwrap());
-        // The provenance line, the header, and one row per roll of the shard, in id order.
+        // The header, and one row per roll of the shard, in id order; the provenance in
+        // the sidecar beside it.
         let lines: Vec<&str> = text.lines().collect();
-        assert_eq!(lines[0], provenance::csv_line(&sweep.provenance));
-        assert_eq!((lines.len(), counted, batch.completed), (5, 3, 3));
-        let ids: Vec<&str> = lines[2..].iter().map(|l| l.split(',').next().unwrap()).collect();
+        assert_eq!(
+            lines[0],
+            crate::ics::records_csv_header(SpinColumns::AngularVelocity)
+        );
+        assert_eq!((lines.len(), counted, batch.completed), (4, 3, 3));
+        let meta: Value =
+            serde_json::from_slice(&std::fs::read(dir.path().join("p0.csv.meta.json")).unwrap()).unwrap();
+        assert_eq!(meta["provenance"], sweep.provenance);
+        assert_eq!(meta["columns"][1]["name"], "height_cm");
+        let ids: Vec<&str> = lines[1..].iter().map(|l| l.split(',').next().unwrap()).collect();
         assert_eq!(ids, ["0", "1", "2"]);
         let part = sweep.part(
             Shard { index: 0, count: 2 },
@@ -386,12 +423,26 @@ mod tests {
 
     #[test]
     fn a_versus_row_is_the_throw_and_both_endings() {
-        let header = versus_csv_header();
-        assert_eq!(header.len(), records_csv_header().len() + VERSUS_ENDING_COLUMNS);
+        let spin = SpinColumns::AngularVelocity;
+        let header: Vec<String> = versus_columns(spin).into_iter().map(|c| c.name).collect();
+        assert_eq!(header.len(), records_columns(spin).len() + VERSUS_ENDING_COLUMNS);
         assert_eq!(
             &header[header.len() - 8..header.len() - 6],
             ["a_face", "a_status"]
         );
         assert_eq!(header.last().map(String::as_str), Some("b_time_s"));
+        let paper = Preset::default();
+        let a = crate::roll_record(&paper.params(), &paper.initial, 4);
+        let mut b = a;
+        b.outcome.face = None;
+        b.outcome.status = dicesim_physics::Status::Timeout;
+        let mut line = Vec::new();
+        write_versus_line(&mut line, (&a, &b), spin);
+        let line = String::from_utf8(line).unwrap();
+        let cells: Vec<&str> = line.split(',').collect();
+        assert_eq!(cells.len(), header.len());
+        let a_line = crate::ics::record_csv_line(&a, spin);
+        assert!(line.starts_with(&a_line), "{line}");
+        assert_eq!(cells[cells.len() - 4..cells.len() - 2], ["", "timeout"]);
     }
 }

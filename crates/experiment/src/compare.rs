@@ -15,11 +15,13 @@ use crate::compare_stats::{
     FitInterval, GoodnessOfFit, TwoSample, deviance, fit_groups, goodness_of_fit, profile_interval,
     two_sample,
 };
+use crate::data_file::Column;
 use crate::real_data::{CountData, Dataset};
 use crate::record::RollRecord;
 use crate::stats::wilson_interval;
 use dicesim_physics::{InitialCondition, Params};
 use dicesim_setup::keys::ScanKey;
+use dicesim_setup::number::Real;
 use dicesim_setup::random::RandomRanges;
 use dicesim_setup::registry::Role;
 use serde::Serialize;
@@ -232,51 +234,89 @@ impl Comparison {
             .collect()
     }
 
-    /// One row per candidate and group: the key's value, the group, both counts with their
-    /// shares and intervals, the residual, and the candidate's test and deviance.
+    /// The CSV's columns: the fitted key's value (named with its unit, when fitting), the
+    /// group of categories as its first and last (whole numbers: counts of faces, or faces;
+    /// a group of names that are not numbers as its text), both counts with their shares and
+    /// intervals, the residual, the candidate's test, and its deviance (when fitting).
+    pub fn csv_columns(&self) -> Vec<Column> {
+        let mut columns = Vec::new();
+        if let Some(key) = &self.key {
+            let name = ScanKey::named(key).map_or_else(|_| key.replace('.', "_"), |k| k.column());
+            columns.push(Column::real(name));
+        }
+        if self.numbered_categories() {
+            columns.extend([
+                Column::integer("category_first"),
+                Column::integer("category_last"),
+            ]);
+        } else {
+            columns.push(Column::text("category"));
+        }
+        columns.extend([
+            Column::integer("data_count"),
+            Column::real("data_share"),
+            Column::real("data_low"),
+            Column::real("data_high"),
+            Column::integer("simulated_count"),
+            Column::real("simulated_share"),
+            Column::real("simulated_low"),
+            Column::real("simulated_high"),
+            Column::real("residual"),
+            Column::real("chi_square"),
+            Column::integer("dof"),
+            Column::real("p_value"),
+        ]);
+        if self.candidates.iter().any(|c| c.deviance.is_some()) {
+            columns.push(Column::real("deviance"));
+        }
+        columns
+    }
+
+    /// Whether every category is named by a whole number (Weldon's counts, Wolf's faces).
+    fn numbered_categories(&self) -> bool {
+        self.data.categories.iter().all(|c| c.parse::<u64>().is_ok())
+    }
+
+    /// One row per candidate and group, in [`Comparison::csv_columns`]; reals with their point.
     pub fn write_csv(&self, w: &mut dyn std::io::Write) -> std::io::Result<()> {
+        let columns = self.csv_columns();
         let mut csv = csv::Writer::from_writer(w);
-        let key = self.key.as_deref().unwrap_or("value");
-        csv.write_record([
-            key,
-            "category",
-            "data_count",
-            "data_share",
-            "data_low",
-            "data_high",
-            "simulated_count",
-            "simulated_share",
-            "simulated_low",
-            "simulated_high",
-            "residual",
-            "chi_square",
-            "dof",
-            "p_value",
-            "deviance",
-        ])
-        .map_err(crate::csv_io)?;
-        let text = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
+        csv.write_record(columns.iter().map(|c| c.name.as_str()))
+            .map_err(crate::csv_io)?;
+        let real = |x: f64| Real(x).to_string();
+        let with_deviance = columns.last().is_some_and(|c| c.name == "deviance");
         for c in &self.candidates {
             let Some(test) = &c.test else { continue };
             for r in self.rows(c) {
-                csv.write_record([
-                    text(c.value),
-                    r.category,
+                let mut cells: Vec<String> = Vec::with_capacity(columns.len());
+                if self.key.is_some() {
+                    cells.push(c.value.map_or(String::new(), real));
+                }
+                if self.numbered_categories() {
+                    // `3`, or `10–12` for a group pooled by the test.
+                    let (first, last) = r.category.split_once('–').unwrap_or((&r.category, &r.category));
+                    cells.extend([first.to_string(), last.to_string()]);
+                } else {
+                    cells.push(r.category.clone());
+                }
+                cells.extend([
                     r.data_count.to_string(),
-                    r.data_share.to_string(),
-                    r.data_interval[0].to_string(),
-                    r.data_interval[1].to_string(),
+                    real(r.data_share),
+                    real(r.data_interval[0]),
+                    real(r.data_interval[1]),
                     r.simulated_count.to_string(),
-                    r.simulated_share.to_string(),
-                    r.simulated_interval[0].to_string(),
-                    r.simulated_interval[1].to_string(),
-                    r.residual.to_string(),
-                    test.chi_square.to_string(),
+                    real(r.simulated_share),
+                    real(r.simulated_interval[0]),
+                    real(r.simulated_interval[1]),
+                    real(r.residual),
+                    real(test.chi_square),
                     test.dof.to_string(),
-                    test.p_value.to_string(),
-                    text(c.deviance),
-                ])
-                .map_err(crate::csv_io)?;
+                    real(test.p_value),
+                ]);
+                if with_deviance {
+                    cells.push(c.deviance.map_or(String::new(), real));
+                }
+                csv.write_record(&cells).map_err(crate::csv_io)?;
             }
         }
         csv.flush()

@@ -19,8 +19,11 @@ use crate::compare::{FitSpec, Progress};
 use crate::compare_stats::{
     FitInterval, SharePair, SharesSummary, deviance, profile_interval, shares_summary,
 };
+use crate::data_file::Column;
 use crate::real_data::{BuddenRow, budden};
 use dicesim_physics::{Die, InitialCondition, Params};
+use dicesim_setup::keys::ScanKey;
+use dicesim_setup::number::Real;
 use dicesim_setup::random::RandomDraws;
 use dicesim_setup::random::RandomRanges;
 use serde::Serialize;
@@ -230,58 +233,69 @@ pub struct BuddenComparison {
 }
 
 impl BuddenComparison {
-    /// One row per ratio of the final table.
+    /// The CSV's columns: the ratio and its role, the fitted key's best value (named with
+    /// its unit, once the fit has one), Budden's and the simulated throws and their shares,
+    /// σ, z and whether they agree within 2σ.
+    pub fn csv_columns(&self) -> Vec<Column> {
+        let mut columns = vec![Column::real("ratio"), Column::text("role")];
+        if self.fit.is_some() {
+            let key = &self.key;
+            let name = ScanKey::named(key).map_or_else(|_| key.replace('.', "_"), |k| k.column());
+            columns.push(Column::real(name));
+        }
+        columns.extend([
+            Column::integer("data_throws"),
+            Column::integer("data_square"),
+            Column::real("data_share"),
+            Column::real("data_low"),
+            Column::real("data_high"),
+            Column::integer("simulated_throws"),
+            Column::integer("simulated_uncounted"),
+            Column::integer("simulated_square"),
+            Column::real("simulated_share"),
+            Column::real("simulated_low"),
+            Column::real("simulated_high"),
+            Column::real("sigma"),
+            Column::real("z"),
+            Column::boolean("within_two_sigma"),
+        ]);
+        columns
+    }
+
+    /// One row per ratio of the final table, in [`BuddenComparison::csv_columns`].
     pub fn write_csv(&self, w: &mut dyn std::io::Write) -> std::io::Result<()> {
-        let mut csv = csv::Writer::from_writer(w);
-        csv.write_record([
-            "ratio",
-            "role",
-            self.key.as_str(),
-            "data_throws",
-            "data_square",
-            "data_share",
-            "data_low",
-            "data_high",
-            "simulated_throws",
-            "simulated_uncounted",
-            "simulated_square",
-            "simulated_share",
-            "simulated_low",
-            "simulated_high",
-            "sigma",
-            "z",
-            "within_two_sigma",
-        ])
-        .map_err(crate::csv_io)?;
-        let best = self.fit.as_ref().map_or(String::new(), |f| f.best.to_string());
+        writeln!(w, "{}", crate::data_file::header(&self.csv_columns()))?;
+        let real = |x: f64| Real(x).to_string();
         for r in &self.ratios {
             let s = &r.shares;
-            csv.write_record([
-                r.ratio.to_string(),
+            let mut cells = vec![
+                real(r.ratio),
                 match r.role {
                     RatioRole::Calibrate => "calibrate",
                     RatioRole::Predict => "predict",
                 }
                 .to_string(),
-                best.clone(),
+            ];
+            cells.extend(self.fit.as_ref().map(|f| real(f.best)));
+            cells.extend([
                 r.data_throws.to_string(),
                 r.data_square.to_string(),
-                s.data_share.to_string(),
-                s.data_interval[0].to_string(),
-                s.data_interval[1].to_string(),
+                real(s.data_share),
+                real(s.data_interval[0]),
+                real(s.data_interval[1]),
                 r.simulated.throws.to_string(),
                 r.simulated.uncounted.to_string(),
                 r.simulated.square.to_string(),
-                s.simulated_share.to_string(),
-                s.simulated_interval[0].to_string(),
-                s.simulated_interval[1].to_string(),
-                s.sigma.to_string(),
-                s.z.to_string(),
+                real(s.simulated_share),
+                real(s.simulated_interval[0]),
+                real(s.simulated_interval[1]),
+                real(s.sigma),
+                real(s.z),
                 s.within_two_sigma().to_string(),
-            ])
-            .map_err(crate::csv_io)?;
+            ]);
+            writeln!(w, "{}", cells.join(","))?;
         }
-        csv.flush()
+        Ok(())
     }
 }
 

@@ -57,11 +57,11 @@ pub(crate) fn roll_setups(
         setups.len(),
         &mut |i| (setups[i].1, setups[i].2),
         &mut |r: LaneResult<'_>| {
-            let (id, _, initial) = setups[r.index];
+            let (id, params, initial) = setups[r.index];
             done[r.index] = Some(RollRecord {
                 id,
                 initial,
-                outcome: r.outcome,
+                outcome: crate::record::reported(r.outcome, &params),
                 start_face: r.start_face,
             });
         },

@@ -1,11 +1,22 @@
 //! Initial conditions and roll records as CSV: one column layout for reading `--ics` files
 //! and writing per-roll results, so a batch's output can be fed back as its input.
+//!
+//! Every numeric column is named with its unit (`height_cm`, `velocity_x_cm_per_s`), reals
+//! are written as reals, and the spin columns a file holds are those its rolls were given:
+//! the angular velocity, the angular momentum, or both where rolls of one file differ (each
+//! row then leaves the other form's cells empty), so no column is empty in every row.
 
 use crate::Error;
+use crate::data_file::Column;
 use crate::record::RollRecord;
+use dicesim_physics::initial::limits;
 use dicesim_physics::{InitialCondition, Outcome, Status};
+use dicesim_setup::keys::column_name;
+use dicesim_setup::number::Real;
+use std::sync::LazyLock;
 
-/// The initial-condition columns, in output order (`id` first, then these).
+/// The initial-condition quantities, in output order (`id` first, then these): the names
+/// an `--ics` file of dicesim 0.1 used, still read, before their units.
 pub(crate) const INITIAL_COLUMNS: [&str; COLUMNS] = [
     "height",
     "velocity_x",
@@ -22,10 +33,94 @@ pub(crate) const INITIAL_COLUMNS: [&str; COLUMNS] = [
     "roll",
 ];
 
+/// The unit of initial-condition column `k`, as the physics states it.
+fn initial_unit(k: usize) -> &'static str {
+    match k {
+        0 => limits::HEIGHT.unit,
+        1..=3 => limits::VELOCITY.unit,
+        4..=6 => limits::ANGULAR_VELOCITY.unit,
+        7..=9 => limits::ANGULAR_MOMENTUM.unit,
+        _ => limits::ORIENTATION.unit,
+    }
+}
+
+/// The initial-condition columns with their units: `height_cm`, …, `roll_deg`.
+pub(crate) fn initial_column_names() -> &'static [String; COLUMNS] {
+    static NAMES: LazyLock<[String; COLUMNS]> =
+        LazyLock::new(|| std::array::from_fn(|k| column_name(INITIAL_COLUMNS[k], initial_unit(k))));
+    &NAMES
+}
+
 /// The result columns of a per-roll file; an `--ics` file may carry them (they are ignored).
 pub(crate) const RESULT_COLUMNS: [&str; 5] = ["start_face", "face", "status", "steps", "time_s"];
 
 const COLUMNS: usize = 13;
+
+/// The initial-condition columns of the angular velocity and of the angular momentum.
+const ANGULAR_VELOCITY: std::ops::Range<usize> = 4..7;
+const ANGULAR_MOMENTUM: std::ops::Range<usize> = 7..10;
+
+/// Which forms of the spin a records file has columns for: those its rolls were given.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum SpinColumns {
+    /// Every roll was given an angular velocity (every random draw is).
+    AngularVelocity,
+    /// Every roll was given an angular momentum.
+    AngularMomentum,
+    /// Some of each: each row fills its own form's cells and leaves the other's empty.
+    Both,
+}
+
+impl SpinColumns {
+    /// The columns for rolls from `starts` (the angular velocity for none).
+    pub fn of_starts<'a>(starts: impl IntoIterator<Item = &'a InitialCondition>) -> SpinColumns {
+        let (mut velocity, mut momentum) = (false, false);
+        for ic in starts {
+            match ic.angular_momentum {
+                Some(_) => momentum = true,
+                None => velocity = true,
+            }
+        }
+        match (velocity, momentum) {
+            (_, false) => SpinColumns::AngularVelocity,
+            (false, true) => SpinColumns::AngularMomentum,
+            (true, true) => SpinColumns::Both,
+        }
+    }
+
+    /// Whether initial-condition column `k` is in the file.
+    fn has(self, k: usize) -> bool {
+        match self {
+            SpinColumns::AngularVelocity => !ANGULAR_MOMENTUM.contains(&k),
+            SpinColumns::AngularMomentum => !ANGULAR_VELOCITY.contains(&k),
+            SpinColumns::Both => true,
+        }
+    }
+
+    /// Whether a roll with this start can be written in these columns.
+    pub fn holds(self, ic: &InitialCondition) -> bool {
+        match ic.angular_momentum {
+            Some(_) => self != SpinColumns::AngularVelocity,
+            None => self != SpinColumns::AngularMomentum,
+        }
+    }
+
+    /// The spin columns a records header names, if it is one of the three this program writes.
+    pub fn of_header(header: &str) -> Option<SpinColumns> {
+        [
+            SpinColumns::AngularVelocity,
+            SpinColumns::AngularMomentum,
+            SpinColumns::Both,
+        ]
+        .into_iter()
+        .find(|&s| records_csv_header(s) == header)
+    }
+
+    /// The initial-condition columns present, by index into [`INITIAL_COLUMNS`].
+    pub(crate) fn present(self) -> impl Iterator<Item = usize> {
+        (0..COLUMNS).filter(move |&k| self.has(k))
+    }
+}
 
 /// The values of the initial-condition columns: the spin once, as the angular momentum
 /// where one is set (the angular velocity is then not the spin, so its cells stay empty)
@@ -50,122 +145,172 @@ fn initial_values(ic: &InitialCondition) -> [Option<f64>; COLUMNS] {
     ]
 }
 
-/// The header of a per-roll CSV file.
-pub fn records_csv_header() -> Vec<&'static str> {
-    std::iter::once("id")
-        .chain(INITIAL_COLUMNS)
-        .chain(RESULT_COLUMNS)
-        .collect()
-}
-
-/// One roll as a CSV record (floats in shortest round-trip form, so reading back is exact;
-/// an unset angular momentum and a missing face are empty cells).
-pub fn record_csv_row(r: &RollRecord) -> Vec<String> {
-    let cell = |v: Option<f64>| v.map(|v| v.to_string()).unwrap_or_default();
-    let mut row = vec![r.id.to_string()];
-    row.extend(initial_values(&r.initial).map(cell));
-    row.extend([
-        r.start_face.to_string(),
-        r.outcome.face.map(|f| f.to_string()).unwrap_or_default(),
-        r.outcome.status.name().to_string(),
-        r.outcome.steps.to_string(),
-        r.outcome.time_s.to_string(),
+/// The columns of a per-roll file and their types.
+pub fn records_columns(spin: SpinColumns) -> Vec<Column> {
+    let names = initial_column_names();
+    let mut columns = vec![Column::integer("id")];
+    columns.extend(spin.present().map(|k| Column::real(names[k].as_str())));
+    columns.extend([
+        Column::integer("start_face"),
+        Column::integer("face"),
+        Column::text("status"),
+        Column::integer("steps"),
+        Column::real("time_s"),
     ]);
-    row
+    columns
 }
 
-/// [`record_csv_row`] as one line, its cells joined by commas, in a single allocation.
-pub fn record_csv_line(r: &RollRecord) -> String {
-    use std::fmt::Write;
-    let mut line = String::with_capacity(192);
-    // Writing into a String cannot fail.
-    let _ = write!(line, "{}", r.id);
-    for v in initial_values(&r.initial) {
-        line.push(',');
-        if let Some(v) = v {
-            let _ = write!(line, "{v}");
+/// The header line of a per-roll CSV file.
+pub fn records_csv_header(spin: SpinColumns) -> String {
+    crate::data_file::header(&records_columns(spin))
+}
+
+/// Appends one roll as a CSV line (without its line end) to `line`: reals in shortest
+/// round-trip form with their point, so reading back is exact and every reader types them
+/// as reals; the other spin form's cells and a missing face are empty. The cells are
+/// numbers and status names, which CSV never quotes.
+pub fn write_record_line(line: &mut Vec<u8>, r: &RollRecord, spin: SpinColumns) {
+    debug_assert!(spin.holds(&r.initial), "a start the columns cannot hold");
+    write_whole(line, r.id);
+    let values = initial_values(&r.initial);
+    for k in spin.present() {
+        line.push(b',');
+        if let Some(v) = values[k] {
+            Real(v).write_to(line);
         }
     }
-    let _ = write!(line, ",{},", r.start_face);
+    line.push(b',');
+    write_whole(line, u64::from(r.start_face));
+    line.push(b',');
     if let Some(f) = r.outcome.face {
-        let _ = write!(line, "{f}");
+        write_whole(line, u64::from(f));
     }
     let o = &r.outcome;
-    let _ = write!(line, ",{},{},{}", o.status.name(), o.steps, o.time_s);
-    line
+    line.push(b',');
+    line.extend_from_slice(o.status.name().as_bytes());
+    line.push(b',');
+    write_whole(line, o.steps);
+    line.push(b',');
+    Real(o.time_s).write_to(line);
 }
 
-/// Reads back one row that [`record_csv_row`] wrote: exactly its cells in exactly its form
-/// (a row that parses but is written differently, e.g. `1.50` for `1.5` or a cell in
-/// quotes, is not a row this program wrote and is refused). The values themselves are
-/// checked by [`check_record`](crate::record::check_record).
-pub fn parse_record_csv_row(row: &str) -> Result<RollRecord, String> {
-    // The header is built only for an error: a merge reads millions of rows.
-    let name = |k: usize| records_csv_header()[k];
-    let columns = 1 + INITIAL_COLUMNS.len() + RESULT_COLUMNS.len();
-    let mut cells: [&str; 1 + INITIAL_COLUMNS.len() + RESULT_COLUMNS.len()] = [""; _];
-    let mut found = 0;
-    for cell in row.split(',') {
-        if let Some(slot) = cells.get_mut(found) {
-            *slot = cell;
+/// Appends a whole number's decimal digits.
+fn write_whole(line: &mut Vec<u8>, n: u64) {
+    let mut digits = [0u8; 20];
+    let mut at = digits.len();
+    let mut n = n;
+    loop {
+        at -= 1;
+        digits[at] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
         }
-        found += 1;
     }
-    if found != columns {
-        return Err(format!("{found} cells, expected {columns}"));
+    line.extend_from_slice(&digits[at..]);
+}
+
+/// [`write_record_line`] as a new line.
+pub fn record_csv_line(r: &RollRecord, spin: SpinColumns) -> String {
+    let mut line = Vec::with_capacity(192);
+    write_record_line(&mut line, r, spin);
+    String::from_utf8(line).expect("a record's line is ASCII")
+}
+
+/// The cells of a record's line, each as written.
+pub fn record_csv_row(r: &RollRecord, spin: SpinColumns) -> Vec<String> {
+    record_csv_line(r, spin).split(',').map(str::to_string).collect()
+}
+
+/// Reads back one row that [`write_record_line`] wrote for columns `spin`: exactly its
+/// cells in exactly its form (a row that parses but is written differently, e.g. `1.50` for
+/// `1.5` or a cell in quotes, is not a row this program wrote and is refused). The values
+/// themselves are checked by [`RecordCheck`](crate::record::RecordCheck).
+pub fn parse_record_line(row: &str, spin: SpinColumns) -> Result<RollRecord, String> {
+    let columns = records_columns(spin);
+    let cells: Vec<&str> = row.split(',').collect();
+    if cells.len() != columns.len() {
+        return Err(format!("{} cells, expected {}", cells.len(), columns.len()));
     }
-    let bad = |k: usize| format!("`{}` = `{}` is not valid", name(k), cells[k].escape_debug());
-    let number = |k: usize| cells[k].parse::<f64>().map_err(|_| bad(k));
-    let optional = |k: usize| match cells[k] {
-        "" => Ok(None),
-        _ => number(k).map(Some),
+    let bad = |k: usize| {
+        format!(
+            "`{}` = `{}` is not valid",
+            columns[k].name,
+            cells[k].escape_debug()
+        )
     };
-    let momentum = [optional(8)?, optional(9)?, optional(10)?];
-    let spin_given = momentum.iter().all(Option::is_some);
-    let angular_velocity = if spin_given {
-        if let Some(k) = (5..8).find(|&k| !cells[k].is_empty()) {
-            return Err(bad(k));
+    // Cell index of each initial-condition column present.
+    let mut at: [Option<usize>; COLUMNS] = [None; COLUMNS];
+    for (cell, k) in spin.present().enumerate() {
+        at[k] = Some(cell + 1);
+    }
+    let value = |k: usize| -> Result<Option<f64>, String> {
+        match at[k] {
+            None => Ok(None),
+            Some(c) if cells[c].is_empty() => Ok(None),
+            Some(c) => cells[c].parse::<f64>().map(Some).map_err(|_| bad(c)),
         }
-        InitialCondition::default().angular_velocity
-    } else {
-        [number(5)?, number(6)?, number(7)?]
     };
-    let small = |k: usize| cells[k].parse::<u8>().map_err(|_| bad(k));
-    let id_at = 0;
+    let required = |k: usize| value(k)?.ok_or_else(|| bad(at[k].unwrap_or(0)));
+    let spin_cells = |range: std::ops::Range<usize>| -> Result<Option<[f64; 3]>, String> {
+        let v = [
+            value(range.start)?,
+            value(range.start + 1)?,
+            value(range.start + 2)?,
+        ];
+        match v {
+            [Some(x), Some(y), Some(z)] => Ok(Some([x, y, z])),
+            [None, None, None] => Ok(None),
+            _ => Err(bad(at[range.start].unwrap_or(0))),
+        }
+    };
+    let (velocity, momentum) = (spin_cells(ANGULAR_VELOCITY)?, spin_cells(ANGULAR_MOMENTUM)?);
+    let first_spin = at[ANGULAR_VELOCITY.start]
+        .or(at[ANGULAR_MOMENTUM.start])
+        .unwrap_or(0);
+    let (angular_velocity, angular_momentum) = match (velocity, momentum) {
+        (Some(w), None) => (w, None),
+        (None, Some(l)) => (InitialCondition::default().angular_velocity, Some(l)),
+        _ => {
+            return Err(format!(
+                "{}: the spin is given once, as one of its forms",
+                bad(first_spin)
+            ));
+        }
+    };
+    let n = cells.len();
+    let small = |c: usize| cells[c].parse::<u8>().map_err(|_| bad(c));
     let r = RollRecord {
-        id: cells[id_at].parse().map_err(|_| bad(id_at))?,
+        id: cells[0].parse().map_err(|_| bad(0))?,
         initial: InitialCondition {
-            height: number(1)?,
-            velocity: [number(2)?, number(3)?, number(4)?],
+            height: required(0)?,
+            velocity: [required(1)?, required(2)?, required(3)?],
             angular_velocity,
-            angular_momentum: match momentum {
-                [Some(x), Some(y), Some(z)] => Some([x, y, z]),
-                [None, None, None] => None,
-                _ => return Err(bad(8)),
-            },
-            orientation: [number(11)?, number(12)?, number(13)?],
+            angular_momentum,
+            orientation: [required(10)?, required(11)?, required(12)?],
         },
-        start_face: small(14)?,
+        start_face: small(n - 5)?,
         outcome: Outcome {
-            face: match cells[15] {
+            face: match cells[n - 4] {
                 "" => None,
-                _ => Some(small(15)?),
+                _ => Some(small(n - 4)?),
             },
-            status: Status::from_name(cells[16]).ok_or_else(|| bad(16))?,
-            steps: cells[17].parse().map_err(|_| bad(17))?,
-            time_s: number(18)?,
+            status: Status::from_name(cells[n - 3]).ok_or_else(|| bad(n - 3))?,
+            steps: cells[n - 2].parse().map_err(|_| bad(n - 2))?,
+            time_s: cells[n - 1].parse().map_err(|_| bad(n - 1))?,
         },
     };
     // The one accepted spelling of every cell is the one this program writes. The row is
     // written once into one buffer and compared whole (the cells hold no commas, so equal
     // lines are equal cells); only a row that differs is taken apart to name the cell.
-    if record_csv_line(&r) != row {
-        let k = (record_csv_row(&r).iter().zip(&cells))
-            .position(|(a, b)| a != b)
+    let written = record_csv_line(&r, spin);
+    if written != row {
+        let k = (written.split(',').zip(&cells))
+            .position(|(a, b)| a != *b)
             .unwrap_or(0);
         return Err(format!(
             "`{}` = `{}` is not written as this program writes it",
-            name(k),
+            columns[k].name,
             cells[k].escape_debug()
         ));
     }
@@ -175,17 +320,21 @@ pub fn parse_record_csv_row(row: &str) -> Result<RollRecord, String> {
 /// Writes the header and one record per roll: what `--ics` reads back (the tests' way to
 /// make such a file; `batch` streams the same rows).
 #[cfg(test)]
-pub(crate) fn write_records_csv(out: impl std::io::Write, records: &[RollRecord]) -> std::io::Result<()> {
-    let mut csv = csv::Writer::from_writer(out);
-    csv.write_record(records_csv_header()).map_err(crate::csv_io)?;
+pub(crate) fn write_records_csv(
+    out: &mut impl std::io::Write,
+    records: &[RollRecord],
+) -> std::io::Result<()> {
+    let spin = SpinColumns::of_starts(records.iter().map(|r| &r.initial));
+    writeln!(out, "{}", records_csv_header(spin))?;
     for r in records {
-        csv.write_record(record_csv_row(r)).map_err(crate::csv_io)?;
+        writeln!(out, "{}", record_csv_line(r, spin))?;
     }
-    csv.flush()
+    Ok(())
 }
 
-/// Reads an `--ics` file: a header with `id` and any of [`INITIAL_COLUMNS`] (result columns
-/// are allowed and ignored). Missing columns and empty cells take `base`'s values; rows
+/// Reads an `--ics` file: a header with `id` and any of the initial-condition columns
+/// ([`initial_column_names`], or their names without units that dicesim 0.1 wrote; result
+/// columns are allowed and ignored), so a batch's records file is one. Missing columns and empty cells take `base`'s values; rows
 /// that give spin as angular velocity only drop `base`'s angular momentum (as `--set` does);
 /// `inertia` (g·cm²) restates `base`'s spin when only some angular-momentum components are
 /// given. Every row is checked against the allowed ranges; the first bad row is an error
@@ -237,9 +386,14 @@ pub fn parse_initial_conditions(
         if name == "id" {
             id_column = Some(i);
             columns.push(None);
-        } else if let Some(k) = INITIAL_COLUMNS.iter().position(|c| *c == name) {
+        } else if let Some(k) = (initial_column_names().iter().position(|c| c == name))
+            .or_else(|| INITIAL_COLUMNS.iter().position(|c| *c == name))
+        {
             if columns.contains(&Some(k)) {
-                return Err(bad(header_line, format!("column `{name}` appears twice")));
+                return Err(bad(
+                    header_line,
+                    format!("column `{}` appears twice", initial_column_names()[k]),
+                ));
             }
             columns.push(Some(k));
         } else if RESULT_COLUMNS.contains(&name) {
@@ -249,7 +403,7 @@ pub fn parse_initial_conditions(
                 header_line,
                 format!(
                     "unknown column `{name}`; expected `id` and any of {}",
-                    INITIAL_COLUMNS.join(", ")
+                    initial_column_names().join(", ")
                 ),
             ));
         }
@@ -287,7 +441,7 @@ pub fn parse_initial_conditions(
                 let v: f64 = cell.parse().map_err(|_| {
                     bad(
                         line,
-                        format!("`{}` = `{cell}` is not a number", INITIAL_COLUMNS[*k]),
+                        format!("`{}` = `{cell}` is not a number", initial_column_names()[*k]),
                     )
                 })?;
                 given[*k] = Some(v);
@@ -348,10 +502,10 @@ mod tests {
 
     const INERTIA: f64 = 16.0 / 3.0;
 
-    /// The one-buffer line a merge compares and writes is the csv writer's row: with and
-    /// without an angular momentum and a face, and with floats that need e-notation.
+    /// A records line reads back as the record it was written from, in each spin layout,
+    /// with reals that need an exponent or a point of their own (`15.0`, `-0.0`, `1e-300`).
     #[test]
-    fn the_records_line_is_the_csv_writers_row() {
+    fn a_records_line_reads_back_as_its_record_in_every_layout() {
         let settled = crate::roll_record(&Params::default(), &InitialCondition::default(), 7);
         let mut timeout = settled;
         timeout.id = u64::MAX;
@@ -359,13 +513,74 @@ mod tests {
         timeout.outcome.status = Status::Timeout;
         timeout.initial.angular_momentum = Some([1e-300, -0.0, 12345678.9]);
         timeout.initial.velocity = [f64::MIN_POSITIVE, -1.5e21, 0.1];
-        for r in [settled, timeout] {
-            let mut csv = Vec::new();
-            write_records_csv(&mut csv, &[r]).unwrap();
-            let csv = String::from_utf8(csv).unwrap();
-            assert_eq!(csv.lines().nth(1).unwrap(), record_csv_line(&r));
-            assert_eq!(parse_record_csv_row(&record_csv_line(&r)).unwrap(), r);
+        let line = record_csv_line(&settled, SpinColumns::AngularVelocity);
+        assert!(line.starts_with("7,15.0,0.0,0.0,0.0,"), "{line}");
+        for (r, spin) in [
+            (settled, SpinColumns::AngularVelocity),
+            (settled, SpinColumns::Both),
+            (timeout, SpinColumns::AngularMomentum),
+            (timeout, SpinColumns::Both),
+        ] {
+            let line = record_csv_line(&r, spin);
+            assert_eq!(line.split(',').count(), records_columns(spin).len(), "{line}");
+            assert_eq!(parse_record_line(&line, spin).unwrap(), r, "{line}");
         }
+        let line = record_csv_line(&timeout, SpinColumns::Both);
+        assert!(line.contains(",,,,1e-300,-0.0,12345678.9,"), "{line}");
+        // A cell in another spelling is not what this program wrote.
+        let respelled = record_csv_line(&settled, SpinColumns::AngularVelocity).replacen("15.0", "15", 1);
+        assert_eq!(
+            parse_record_line(&respelled, SpinColumns::AngularVelocity).unwrap_err(),
+            "`height_cm` = `15` is not written as this program writes it"
+        );
+    }
+
+    #[test]
+    fn a_file_has_the_spin_columns_its_rolls_were_given() {
+        let w = InitialCondition::default();
+        let l = InitialCondition {
+            angular_momentum: Some([1.0, 2.0, 3.0]),
+            ..w
+        };
+        assert_eq!(SpinColumns::of_starts([]), SpinColumns::AngularVelocity);
+        assert_eq!(SpinColumns::of_starts([&w, &w]), SpinColumns::AngularVelocity);
+        assert_eq!(SpinColumns::of_starts([&l]), SpinColumns::AngularMomentum);
+        assert_eq!(SpinColumns::of_starts([&w, &l]), SpinColumns::Both);
+        let header = records_csv_header(SpinColumns::AngularVelocity);
+        assert_eq!(
+            header,
+            "id,height_cm,velocity_x_cm_per_s,velocity_y_cm_per_s,velocity_z_cm_per_s,\
+             angular_velocity_x_rad_per_s,angular_velocity_y_rad_per_s,angular_velocity_z_rad_per_s,\
+             yaw_deg,pitch_deg,roll_deg,start_face,face,status,steps,time_s"
+        );
+        assert!(
+            records_csv_header(SpinColumns::AngularMomentum).contains(",angular_momentum_x_g_cm2_per_s,")
+        );
+        for spin in [
+            SpinColumns::AngularVelocity,
+            SpinColumns::AngularMomentum,
+            SpinColumns::Both,
+        ] {
+            assert_eq!(SpinColumns::of_header(&records_csv_header(spin)), Some(spin));
+        }
+        assert_eq!(SpinColumns::of_header("id,height"), None);
+    }
+
+    #[test]
+    fn a_records_file_is_an_ics_file_by_its_unit_names_and_the_old_names_still_read() {
+        let base = InitialCondition::default();
+        let text = "id,height_cm,yaw_deg,angular_velocity_x_rad_per_s,time_s\n3,2.5,10.0,4.0,0.7\n";
+        let ics = parse_initial_conditions(text, &base, INERTIA).unwrap();
+        assert_eq!(
+            (
+                ics[0].1.height,
+                ics[0].1.orientation[0],
+                ics[0].1.angular_velocity[0]
+            ),
+            (2.5, 10.0, 4.0)
+        );
+        let e = parse_initial_conditions("id,height,height_cm\n1,2,3\n", &base, INERTIA).unwrap_err();
+        assert_eq!(e.to_string(), "line 1: column `height_cm` appears twice");
     }
 
     #[test]
@@ -424,7 +639,7 @@ mod tests {
         };
         assert_eq!(
             e("id,height\n1,2\n\n2,abc\n"),
-            "line 4: `height` = `abc` is not a number"
+            "line 4: `height_cm` = `abc` is not a number"
         );
         assert_eq!(
             e("id,height\n1,2,3\n"),

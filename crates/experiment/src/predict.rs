@@ -8,11 +8,13 @@
 
 use crate::Error;
 use crate::batch::{Rolls, RunOptions, stream_batch};
+use crate::data_file::Column;
 use crate::record::RollRecord;
 use crate::stats::{FaceTally, wilson_interval};
 use dicesim_physics::{InitialCondition, Params};
 use dicesim_setup::chaos::{EPSILON, perturbed};
 use dicesim_setup::keys::ScanKey;
+use dicesim_setup::number::Real;
 use dicesim_setup::random::RandomDraws;
 use dicesim_setup::random::RandomRanges;
 use dicesim_setup::registry::{HEIGHT, Role};
@@ -370,50 +372,68 @@ fn threshold(points: &[PredictPoint], half: f64) -> Option<Threshold> {
 }
 
 impl Prediction {
-    /// One row per curve and ε: the swept value, ε, pairs, same, the share and its interval,
-    /// and the curve's chance level, halfway share and threshold.
+    /// The CSV's columns: the swept key's value (named with its unit, where a key was
+    /// swept), ε, pairs, same, the share and its interval, the curve's chance level and
+    /// halfway share, and its threshold (where a curve has one).
+    pub fn csv_columns(&self) -> Vec<Column> {
+        let mut columns = Vec::new();
+        if let Some(key) = &self.key {
+            let name = ScanKey::named(key).map_or_else(|_| key.replace('.', "_"), |k| k.column());
+            columns.push(Column::real(name));
+        }
+        columns.extend([
+            Column::real("epsilon"),
+            Column::integer("pairs"),
+            Column::integer("same"),
+            Column::real("same_share"),
+            Column::real("same_low"),
+            Column::real("same_high"),
+            Column::real("chance"),
+            Column::real("half"),
+        ]);
+        if self.has_threshold() {
+            columns.extend([Column::real("threshold"), Column::text("threshold_bound")]);
+        }
+        columns
+    }
+
+    /// Whether any curve found its threshold (else the columns would be empty in every row).
+    fn has_threshold(&self) -> bool {
+        self.curves.iter().any(|c| c.threshold.is_some())
+    }
+
+    /// One row per curve and ε, in [`Prediction::csv_columns`]; reals with their point.
     pub fn write_csv(&self, w: &mut dyn std::io::Write) -> std::io::Result<()> {
-        let mut csv = csv::Writer::from_writer(w);
-        let key = self.key.as_deref().unwrap_or("value");
-        csv.write_record([
-            key,
-            "epsilon",
-            "pairs",
-            "same",
-            "same_share",
-            "same_low",
-            "same_high",
-            "chance",
-            "half",
-            "threshold",
-            "threshold_bound",
-        ])
-        .map_err(crate::csv_io)?;
+        writeln!(w, "{}", crate::data_file::header(&self.csv_columns()))?;
         for c in &self.curves {
             let (threshold, bound) = match c.threshold {
-                Some(Threshold::At(e)) => (e.to_string(), "at"),
-                Some(Threshold::Below(e)) => (e.to_string(), "below"),
-                Some(Threshold::Above(e)) => (e.to_string(), "above"),
+                Some(Threshold::At(e)) => (Real(e).to_string(), "at"),
+                Some(Threshold::Below(e)) => (Real(e).to_string(), "below"),
+                Some(Threshold::Above(e)) => (Real(e).to_string(), "above"),
                 None => (String::new(), ""),
             };
             for p in &c.points {
-                csv.write_record([
-                    c.value.map_or(String::new(), |v| v.to_string()),
-                    p.epsilon.to_string(),
+                let mut cells: Vec<String> = Vec::with_capacity(11);
+                if self.key.is_some() {
+                    cells.push(c.value.map_or(String::new(), |v| Real(v).to_string()));
+                }
+                cells.extend([
+                    Real(p.epsilon).to_string(),
                     p.pairs.to_string(),
                     p.same.to_string(),
-                    p.same_share.to_string(),
-                    p.interval[0].to_string(),
-                    p.interval[1].to_string(),
-                    c.chance.to_string(),
-                    c.half.to_string(),
-                    threshold.clone(),
-                    bound.to_string(),
-                ])
-                .map_err(crate::csv_io)?;
+                    Real(p.same_share).to_string(),
+                    Real(p.interval[0]).to_string(),
+                    Real(p.interval[1]).to_string(),
+                    Real(c.chance).to_string(),
+                    Real(c.half).to_string(),
+                ]);
+                if self.has_threshold() {
+                    cells.extend([threshold.clone(), bound.to_string()]);
+                }
+                writeln!(w, "{}", cells.join(","))?;
             }
         }
-        csv.flush()
+        Ok(())
     }
 }
 

@@ -1,7 +1,7 @@
 //! What every output says about where it came from, and the fingerprints that tell setups
 //! apart.
 //!
-//! A provenance names this program's version and everything that defines an experiment's
+//! A provenance names this program's version and build (the commit) and everything that defines an experiment's
 //! result (the preset's values, the seed, the sizes), never the engine, threads, shard or
 //! time: a file is the same bytes however and wherever it was rolled, and `merge` rebuilds
 //! the provenance of a sweep from its parts to check each part's files against it.
@@ -17,6 +17,24 @@ use serde_json::{Value, json};
 
 /// The program and its version, as every output records it.
 pub const PROGRAM: &str = concat!("dicesim ", env!("CARGO_PKG_VERSION"));
+
+/// The commit this program was built from (12 hexadecimal digits), followed by ` modified`
+/// when its tracked files differed from it, or `unknown` for a build outside a git checkout
+/// (see the crate's `build.rs`): with [`PROGRAM`], what tells two builds apart.
+pub const COMMIT: &str = env!("DICESIM_COMMIT");
+
+/// The version and the build as `dicesim --version` prints them after the name:
+/// `0.2.0 (commit 1a2b3c4d5e6f)`, `0.2.0 (commit 1a2b3c4d5e6f, modified)`, `0.2.0 (unknown commit)`.
+pub const VERSION_LINE: &str = concat!(env!("CARGO_PKG_VERSION"), " (", env!("DICESIM_BUILD"), ")");
+
+/// The program, its version and its build in one line, for a picture's `Software` text.
+pub const BUILD: &str = concat!(
+    "dicesim ",
+    env!("CARGO_PKG_VERSION"),
+    " (",
+    env!("DICESIM_BUILD"),
+    ")"
+);
 
 /// A short, stable fingerprint of a setup: FNV-1a (64 bit) of its JSON form, whose floats
 /// are written in shortest round-trip form, so equal setups give equal fingerprints on any
@@ -54,6 +72,7 @@ pub fn batch(preset: &Preset, seed: Option<u64>, rolls: u64, given_fingerprint: 
     }
     json!({
         "program": PROGRAM,
+        "commit": COMMIT,
         "preset": values,
         "seed": seed,
         "rolls": rolls,
@@ -76,6 +95,7 @@ pub fn map(preset: &Preset, map: &BasinMap) -> Value {
     };
     json!({
         "program": PROGRAM,
+        "commit": COMMIT,
         "preset": preset.as_written(),
         "x": axis(&map.x),
         "y": axis(&map.y),
@@ -89,6 +109,7 @@ pub fn prediction(preset: &Preset, spec: &PredictSpec, vary: Option<&str>) -> Va
     values.random.seed = spec.seed;
     json!({
         "program": PROGRAM,
+        "commit": COMMIT,
         "preset": values,
         "seed": spec.seed,
         "rolls": spec.count,
@@ -104,6 +125,7 @@ pub fn comparison(preset: &Preset, spec: &CompareSpec, fit: Option<&str>, candid
     values.random.seed = spec.seed;
     json!({
         "program": PROGRAM,
+        "commit": COMMIT,
         "preset": values,
         "dataset": spec.dataset.name(),
         "seed": spec.seed,
@@ -121,6 +143,7 @@ pub fn budden(preset: &Preset, spec: &BuddenSpec, fit: &str) -> Value {
     values.random.seed = spec.seed;
     json!({
         "program": PROGRAM,
+        "commit": COMMIT,
         "preset": values,
         "dataset": "budden",
         "seed": spec.seed,
@@ -131,10 +154,25 @@ pub fn budden(preset: &Preset, spec: &BuddenSpec, fit: &str) -> Value {
     })
 }
 
-/// The provenance as a CSV file's first line: a `#` comment, which `--ics` skips and
-/// `merge` requires to be the sweep's own.
-pub fn csv_line(provenance: &Value) -> String {
-    format!("# {provenance}")
+/// The provenance of one roll (`dicesim trace`, the explorer's exports): the setup as it
+/// was rolled (`rolled`: its values, whatever preset they came from), which roll of it
+/// (`roll`, e.g. "the preset's roll", "random roll 3 of seed 1"), and whether the values
+/// were changed from the named preset's (`--set`, or edited in the explorer).
+pub fn roll(rolled: &Preset, roll: &str, changed_from_preset: bool) -> Value {
+    json!({
+        "program": PROGRAM,
+        "commit": COMMIT,
+        "preset": rolled.as_written(),
+        "roll": roll,
+        "changed_from_preset": changed_from_preset,
+    })
+}
+
+/// `provenance` as the build `commit` wrote it: what a merge expects of files that shards
+/// of another build of this version rolled.
+pub fn built_by(mut provenance: Value, commit: &str) -> Value {
+    provenance["commit"] = json!(commit);
+    provenance
 }
 
 #[cfg(test)]
@@ -149,6 +187,26 @@ mod tests {
         });
         assert_eq!(fingerprint(&(1.5, "x")), format!("{by_hand:016x}"));
         assert_ne!(fingerprint(&(1.5, "x")), fingerprint(&(1.5000000000000002, "x")));
+    }
+
+    #[test]
+    fn the_build_is_a_commit_or_stated_unknown() {
+        let (hash, modified) = COMMIT.split_once(' ').unwrap_or((COMMIT, ""));
+        if hash == "unknown" {
+            assert!(VERSION_LINE.ends_with("(unknown commit)"), "{VERSION_LINE}");
+        } else {
+            assert!(
+                hash.len() >= 7 && hash.bytes().all(|b| b.is_ascii_hexdigit()),
+                "{COMMIT}"
+            );
+            assert!(modified.is_empty() || modified == "modified", "{COMMIT}");
+            assert!(
+                VERSION_LINE.contains(&format!("(commit {hash}")),
+                "{VERSION_LINE}"
+            );
+            assert_eq!(VERSION_LINE.ends_with(", modified)"), !modified.is_empty());
+        }
+        assert_eq!(BUILD, format!("dicesim {VERSION_LINE}"));
     }
 
     #[test]
@@ -191,6 +249,7 @@ mod tests {
         let given = batch(&paper, None, 3, Some("00ff"));
         assert_eq!(given["seed"], Value::Null);
         assert_eq!(given["initial_conditions"], "given (--ics), fingerprint 00ff");
-        assert_eq!(csv_line(&json!({"a": 1})), "# {\"a\":1}");
+        assert_eq!(drawn["commit"], COMMIT);
+        assert_eq!(built_by(drawn, "abc")["commit"], "abc");
     }
 }

@@ -1,6 +1,9 @@
 //! One roll of an experiment: its initial condition and how it ended.
 
-use dicesim_physics::{InitialCondition, Outcome, Params, Simulation, Status, face_most_nearly_up};
+use dicesim_physics::{
+    InitialCondition, Outcome, Params, Placement, Simulation, Status, face_most_nearly_up,
+};
+use dicesim_setup::number::StepClock;
 use serde::Serialize;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -10,9 +13,18 @@ pub struct RollRecord {
     /// Roll index within its batch (or cell index within a map).
     pub id: u64,
     pub initial: InitialCondition,
+    /// The ending, its time as files print it ([`reported`]).
     pub outcome: Outcome,
     /// The face most nearly up at t = 0.
     pub start_face: u8,
+}
+
+/// `outcome` as every experiment reports it: its time the steps × Δt of `params`, rounded to
+/// Δt's decimals ([`StepClock`]), not the clock's sum of Δt (`0.684`, not
+/// `0.6840000000000005`); the step count, exact, is beside it.
+pub fn reported(mut outcome: Outcome, params: &Params) -> Outcome {
+    outcome.time_s = StepClock::new(params.integrator.dt).time_s(outcome.steps);
+    outcome
 }
 
 /// Rolls `initial` to its end. The parameters must be valid (an out-of-range initial
@@ -40,77 +52,112 @@ pub(crate) fn roll_record_or_cancel(
     Some(RollRecord {
         id,
         initial: *initial,
-        outcome,
+        outcome: reported(outcome, params),
         start_face,
     })
 }
 
-/// The face most nearly up at t = 0 of a roll from `initial`, placed exactly as
-/// [`roll_record`] places it (a loaded die's corners about its centre of mass included).
-pub(crate) fn start_face(params: &Params, initial: &InitialCondition) -> u8 {
-    face_most_nearly_up(&Simulation::for_outcome(params, initial).state().corner_offsets)
+/// The checks of records read back from a file, for one setup: what is fixed for the setup
+/// (its body's placement, its clock, its step limit) is worked out once, not per record.
+pub struct RecordCheck {
+    params: Params,
+    placement: Placement,
+    clock: StepClock,
+    max_steps: u64,
 }
 
-/// Checks every field of a record read back from a file against what a roll of `params`
-/// can produce: a start inside the allowed ranges and clear of the table, the start face
-/// that start gives, a face only for a settled roll, and a step count and simulated time
-/// that agree with each other and with `integrator.max_time`. `drawn` is the start the
-/// sweep's seed gives this id (random sweeps), which the record must carry bit for bit.
-/// What cannot be checked without rolling again is the outcome itself (`merge --verify`).
-pub fn check_record(r: &RollRecord, params: &Params, drawn: Option<&InitialCondition>) -> Result<(), String> {
-    let ic = &r.initial;
-    if let Some(d) = drawn
-        && !same_start(ic, d)
-    {
-        return Err(format!(
-            "roll {}: its start is not the one the sweep's seed draws for it (a record of another sweep, or an edited one)",
-            r.id
-        ));
+impl RecordCheck {
+    /// The checks of records of `params` (valid parameters).
+    pub fn new(params: &Params) -> RecordCheck {
+        RecordCheck {
+            params: *params,
+            placement: Placement::new(params),
+            clock: StepClock::new(params.integrator.dt),
+            max_steps: params.max_steps(),
+        }
     }
-    ic.validate()
-        .and_then(|()| ic.check_clear_of_table(params))
-        .map_err(|e| format!("roll {}: {e}", r.id))?;
-    if !face_ok(r.start_face) || r.start_face != start_face(params, ic) {
-        return Err(format!(
-            "roll {}: start_face {} is not the face its start puts up ({})",
-            r.id,
-            r.start_face,
-            start_face(params, ic)
-        ));
-    }
-    check_outcome(&r.outcome, params).map_err(|e| format!("roll {}: {e}", r.id))
-}
 
-/// Checks an outcome read back from a file: a face only for a settled roll, and a step
-/// count and simulated time that agree with each other and with `integrator.max_time`.
-pub(crate) fn check_outcome(o: &Outcome, params: &Params) -> Result<(), String> {
-    match (o.status, o.face) {
-        (_, Some(f)) if !face_ok(f) => return Err(format!("face {f} is not a face of a die")),
-        (Status::Timeout | Status::Unstable, Some(f)) => {
+    /// The clock that prints the records' times.
+    pub fn clock(&self) -> &StepClock {
+        &self.clock
+    }
+
+    /// The face most nearly up at t = 0 of a roll from `initial`, placed exactly as
+    /// [`roll_record`] places it (a loaded die's corners about its centre of mass included).
+    pub fn start_face(&self, initial: &InitialCondition) -> u8 {
+        face_most_nearly_up(&self.placement.start_offsets(initial))
+    }
+
+    /// Checks every field of a record read back from a file against what a roll of the
+    /// setup can produce: a start inside the allowed ranges and clear of the table, the
+    /// start face that start gives, a face only for a settled roll, a step count within
+    /// `integrator.max_time` and the time those steps print. `drawn` is the start the
+    /// sweep's seed gives this id (random sweeps), which the record must carry bit for bit.
+    /// What cannot be checked without rolling again is the outcome itself (`merge --verify`).
+    pub fn check(&self, r: &RollRecord, drawn: Option<&InitialCondition>) -> Result<(), String> {
+        let ic = &r.initial;
+        match drawn {
+            Some(d) if !same_start(ic, d) => {
+                return Err(format!(
+                    "roll {}: its start is not the one the sweep's seed draws for it (a record of another sweep, or an edited one)",
+                    r.id
+                ));
+            }
+            // A draw lies in the sweep's ranges, which were checked clear of the table once.
+            Some(_) => {}
+            None => ic
+                .validate()
+                .and_then(|()| self.placement.check_clear_of_table(ic))
+                .map_err(|e| format!("roll {}: {e}", r.id))?,
+        }
+        self.check_ending(r)
+    }
+
+    /// The checks of [`RecordCheck::check`] that do not look at the start's values: its
+    /// start face, and the ending ([`RecordCheck::check_outcome`]).
+    pub fn check_ending(&self, r: &RollRecord) -> Result<(), String> {
+        let face = self.start_face(&r.initial);
+        if r.start_face != face {
             return Err(format!(
-                "face {f} with status `{}` (only a settled roll has a face)",
+                "roll {}: start_face {} is not the face its start puts up ({face})",
+                r.id, r.start_face
+            ));
+        }
+        self.check_outcome(&r.outcome)
+            .map_err(|e| format!("roll {}: {e}", r.id))
+    }
+
+    /// Checks an outcome read back from a file: a face only for a settled roll, a step count
+    /// within `integrator.max_time` (a timeout exactly at it), and the time those steps
+    /// print, bit for bit.
+    pub fn check_outcome(&self, o: &Outcome) -> Result<(), String> {
+        match (o.status, o.face) {
+            (_, Some(f)) if !face_ok(f) => return Err(format!("face {f} is not a face of a die")),
+            (Status::Timeout | Status::Unstable, Some(f)) => {
+                return Err(format!(
+                    "face {f} with status `{}` (only a settled roll has a face)",
+                    o.status.name()
+                ));
+            }
+            _ => {}
+        }
+        let max_steps = self.max_steps;
+        if o.steps > max_steps || (o.status == Status::Timeout && o.steps != max_steps) {
+            return Err(format!(
+                "{} steps with status `{}`, but a roll times out at exactly {max_steps} steps",
+                o.steps,
                 o.status.name()
             ));
         }
-        _ => {}
+        let expected = self.clock.time_s(o.steps);
+        if o.time_s.to_bits() != expected.to_bits() {
+            return Err(format!(
+                "time_s {:?} is not {} steps of {} s ({expected:?})",
+                o.time_s, o.steps, self.params.integrator.dt
+            ));
+        }
+        Ok(())
     }
-    let max_steps = params.max_steps();
-    if o.steps > max_steps || (o.status == Status::Timeout && o.steps != max_steps) {
-        return Err(format!(
-            "{} steps with status `{}`, but a roll times out at exactly {max_steps} steps",
-            o.steps,
-            o.status.name()
-        ));
-    }
-    // The clock adds dt once a step: its rounding stays far below 10⁻⁸ of the time.
-    let expected = o.steps as f64 * params.integrator.dt;
-    if !(o.time_s.is_finite() && (o.time_s - expected).abs() <= 1e-8 * expected) {
-        return Err(format!(
-            "time_s {:?} is not {} steps of {} s",
-            o.time_s, o.steps, params.integrator.dt
-        ));
-    }
-    Ok(())
 }
 
 /// Whether `f` names a face of the die (1 to 6).
@@ -151,4 +198,52 @@ pub fn same_record(a: &RollRecord, b: &RollRecord) -> bool {
         && (a.outcome.status, a.outcome.face, a.outcome.steps)
             == (b.outcome.status, b.outcome.face, b.outcome.steps)
         && a.outcome.time_s.to_bits() == b.outcome.time_s.to_bits()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_record_reports_its_time_as_steps_of_dt_and_its_checks_hold_it_to_that() {
+        let params = Params::default();
+        let r = roll_record(&params, &InitialCondition::default(), 0);
+        let dt = params.integrator.dt;
+        // The decimal steps × Δt (Δt = 0.001 s: the steps in thousandths), which the
+        // clock's sum of Δt misses in its last bits.
+        assert_eq!(dt, 0.001);
+        let steps = r.outcome.steps;
+        let decimal = format!("{}.{:03}", steps / 1000, steps % 1000);
+        assert_eq!(r.outcome.time_s, decimal.parse::<f64>().unwrap());
+        let check = RecordCheck::new(&params);
+        assert_eq!(check.check(&r, None), Ok(()));
+        assert_eq!(check.check(&r, Some(&r.initial)), Ok(()));
+        assert_eq!(check.start_face(&r.initial), r.start_face);
+        let mut summed = r;
+        summed.outcome.time_s = (0..r.outcome.steps).fold(0.0, |t, _| t + dt);
+        if summed.outcome.time_s != r.outcome.time_s {
+            assert!(
+                check
+                    .check(&summed, None)
+                    .unwrap_err()
+                    .contains("steps of 0.001 s")
+            );
+        }
+        let mut turned = r;
+        turned.start_face = 7 - r.start_face;
+        assert!(
+            check
+                .check(&turned, None)
+                .unwrap_err()
+                .starts_with("roll 0: start_face")
+        );
+        let mut other = r.initial;
+        other.height += 1.0;
+        assert!(
+            check
+                .check(&r, Some(&other))
+                .unwrap_err()
+                .contains("not the one the sweep's seed draws")
+        );
+    }
 }

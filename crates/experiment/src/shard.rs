@@ -21,8 +21,9 @@ use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 /// The part-summary format this program writes and reads; others are refused (format 1
-/// had no setup and no content hash of its records, so its records could not be checked).
-pub const PART_FORMAT: u32 = 2;
+/// had no setup and no content hash of its records, so its records could not be checked;
+/// format 2 no commit, and CSV records with their provenance on their first line).
+pub const PART_FORMAT: u32 = 3;
 
 /// The extension of a part summary, replacing the records file's.
 pub const PART_EXTENSION: &str = "part.json";
@@ -210,6 +211,9 @@ pub struct Part {
     pub part_format: u32,
     /// The program version that rolled it: another version may roll differently.
     pub version: String,
+    /// The build that rolled it ([`provenance::COMMIT`]): another build may roll
+    /// differently too, so a merge of parts of several builds is refused unless accepted.
+    pub commit: String,
     pub sweep: Sweep,
     pub shard: Shard,
     /// The ids (batch) or rows (map) `[first, end)` this shard covers.
@@ -251,6 +255,7 @@ impl Part {
         Part {
             part_format: PART_FORMAT,
             version: env!("CARGO_PKG_VERSION").to_string(),
+            commit: provenance::COMMIT.to_string(),
             sweep,
             shard,
             range: [range.start, range.end],
@@ -373,12 +378,14 @@ fn records_reference(part: &Path, records: &Path) -> String {
 }
 
 /// Checks that `parts` (each with a name for messages, e.g. its path) are every shard of
-/// one sweep, each exactly once, all complete, all with records or all without; returns
+/// one sweep, each exactly once, all complete, all with records or all without, all rolled
+/// by this version and by one build (or by several, where `accept_mixed_builds`); returns
 /// their indices in shard order. The first problem found is the error, naming the parts.
-pub fn check_parts(parts: &[(String, Part)]) -> Result<Vec<usize>, String> {
+pub fn check_parts(parts: &[(String, Part)], accept_mixed_builds: bool) -> Result<Vec<usize>, String> {
     let Some((first_name, first)) = parts.first() else {
         return Err("no parts given".to_string());
     };
+    let this = env!("CARGO_PKG_VERSION");
     for (name, p) in parts {
         if p.part_format > PART_FORMAT {
             return Err(format!(
@@ -388,7 +395,7 @@ pub fn check_parts(parts: &[(String, Part)]) -> Result<Vec<usize>, String> {
         }
         if p.part_format < PART_FORMAT {
             return Err(format!(
-                "{name}: part format {}, which this program no longer reads (it reads {PART_FORMAT}, which records the setup and a content hash); run the shard again",
+                "{name}: part format {}, which this program no longer reads (it reads {PART_FORMAT}, which records the setup, the build and a content hash); run the shard again",
                 p.part_format
             ));
         }
@@ -413,6 +420,18 @@ pub fn check_parts(parts: &[(String, Part)]) -> Result<Vec<usize>, String> {
             return Err(format!(
                 "{name} was rolled by dicesim {}, {first_name} by {}: versions may roll differently, so run all shards with one",
                 p.version, first.version
+            ));
+        }
+        if p.version != this {
+            return Err(format!(
+                "{name} was rolled by dicesim {}, and this is {this}: merge with the version that rolled it",
+                p.version
+            ));
+        }
+        if p.commit != first.commit && !accept_mixed_builds {
+            return Err(format!(
+                "{name} was rolled by the build of commit {}, {first_name} by commit {}: builds may roll differently, so run all shards with one (or merge with --accept-mixed-builds, and --verify rolls records again with this build)",
+                p.commit, first.commit
             ));
         }
         if let Some(why) = first.sweep.difference(&p.sweep) {
@@ -543,7 +562,8 @@ mod tests {
         let r = Shard { index: k, count: n }.range(100);
         let p = Part {
             part_format: PART_FORMAT,
-            version: "0.1.0".into(),
+            version: env!("CARGO_PKG_VERSION").into(),
+            commit: "1a2b3c4d5e6f".into(),
             sweep,
             shard: Shard { index: k, count: n },
             range: [r.start, r.end],
@@ -563,12 +583,12 @@ mod tests {
     #[test]
     fn parts_come_back_in_shard_order() {
         let parts = vec![part(2, 3), part(0, 3), part(1, 3)];
-        assert_eq!(check_parts(&parts), Ok(vec![1, 2, 0]));
+        assert_eq!(check_parts(&parts, false), Ok(vec![1, 2, 0]));
     }
 
     #[test]
     fn refusals_name_the_problem() {
-        let err = |parts: Vec<(String, Part)>| check_parts(&parts).unwrap_err();
+        let err = |parts: Vec<(String, Part)>| check_parts(&parts, false).unwrap_err();
         assert_eq!(err(vec![]), "no parts given");
         assert_eq!(
             err(vec![part(0, 4), part(2, 4)]),
@@ -621,6 +641,20 @@ mod tests {
             err(vec![part(0, 2), moved]),
             "1.part.json: shard 1/2 of 100 covers 50..100, but the part says 40..100"
         );
+        let mut rebuilt = part(1, 2);
+        rebuilt.1.commit = "9f8e7d6c5b4a modified".into();
+        let e = err(vec![part(0, 2), rebuilt.clone()]);
+        assert!(
+            e.starts_with(
+                "1.part.json was rolled by the build of commit 9f8e7d6c5b4a modified, 0.part.json by commit 1a2b3c4d5e6f: builds may roll differently"
+            ),
+            "{e}"
+        );
+        assert!(e.contains("--accept-mixed-builds"), "{e}");
+        assert_eq!(check_parts(&[part(0, 2), rebuilt], true), Ok(vec![0, 1]));
+        let mut old = part(0, 1);
+        old.1.version = "0.0.1".into();
+        assert!(err(vec![old]).starts_with("0.part.json was rolled by dicesim 0.0.1, and this is "),);
         let many: Vec<_> = (0..1).map(|k| part(k, 1000)).collect();
         assert_eq!(
             err(many),

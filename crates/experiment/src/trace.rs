@@ -1,35 +1,43 @@
 //! A roll's trajectory and every quantity of [`dicesim_setup::quantity`] as CSV rows
 //! (`dicesim trace`, and the explorer's export).
 
+use crate::data_file::Column;
 use dicesim_physics::Simulation;
+use dicesim_setup::number::{Real, StepClock};
 use dicesim_setup::quantity::{QUANTITIES, read_all};
 
-/// The CSV columns, each with its unit: the state (centre of mass, its velocity, angular
-/// momentum, angular velocity), every quantity of [`QUANTITIES`], then the corners in
-/// docs/model.md's corner order.
-pub fn header() -> Vec<String> {
-    let mut h: Vec<String> = vec!["step".to_string(), "t_s".to_string()];
+/// The CSV columns, each with its unit: the step and its time, the state (centre of mass,
+/// its velocity, angular momentum, angular velocity), every quantity of [`QUANTITIES`], then
+/// the corners in docs/model.md's corner order.
+pub fn columns() -> Vec<Column> {
+    let mut c = vec![Column::integer("step"), Column::real("time_s")];
     for (names, unit) in [
         (["x", "y", "z"], "cm"),
         (["vx", "vy", "vz"], "cm_per_s"),
         (["Lx", "Ly", "Lz"], "g_cm2_per_s"),
         (["wx", "wy", "wz"], "rad_per_s"),
     ] {
-        h.extend(names.map(|n| format!("{n}_{unit}")));
+        c.extend(names.map(|n| Column::real(format!("{n}_{unit}"))));
     }
-    h.extend(QUANTITIES.iter().map(|q| q.column.to_string()));
+    c.extend(QUANTITIES.iter().map(|q| Column::real(q.column)));
     for k in 1..=8 {
-        h.extend(["x", "y", "z"].map(|a| format!("c{k}{a}_cm")));
+        c.extend(["x", "y", "z"].map(|a| Column::real(format!("c{k}{a}_cm"))));
     }
-    h
+    c
 }
 
-/// One CSV record for the simulation's current state; numbers in Rust's shortest
-/// round-trip form, so reading them back gives the same bits.
-pub fn row(sim: &Simulation) -> Vec<String> {
+/// The names of [`columns`].
+pub fn header() -> Vec<String> {
+    columns().into_iter().map(|c| c.name).collect()
+}
+
+/// One CSV record for the simulation's current state: its time the steps × Δt that
+/// `clock` prints, the numbers in shortest round-trip form with their point, so reading
+/// them back gives the same bits.
+pub fn row(sim: &Simulation, clock: &StepClock) -> Vec<String> {
     let s = sim.state();
     let w = sim.angular_velocity();
-    let mut record = vec![s.step.to_string(), s.time_s.to_string()];
+    let mut record = vec![s.step.to_string(), Real(clock.time_s(s.step)).to_string()];
     let values = s
         .position
         .iter()
@@ -38,9 +46,9 @@ pub fn row(sim: &Simulation) -> Vec<String> {
         .chain(w.iter())
         .copied()
         .chain(read_all(sim));
-    record.extend(values.map(|v| v.to_string()));
+    record.extend(values.map(|v| Real(v).to_string()));
     for p in sim.corner_positions() {
-        record.extend([p.x, p.y, p.z].map(|v| v.to_string()));
+        record.extend([p.x, p.y, p.z].map(|v| Real(v).to_string()));
     }
     record
 }
@@ -53,25 +61,48 @@ pub fn record_len(record: &[String]) -> u64 {
 
 /// A trace as CSV: the header, then one record per [`TraceWriter::write`].
 pub struct TraceWriter<W: std::io::Write> {
-    csv: csv::Writer<W>,
+    out: W,
+    clock: StepClock,
 }
 
 impl<W: std::io::Write> TraceWriter<W> {
-    /// Writes the header into `out`.
-    pub fn new(out: W) -> std::io::Result<Self> {
-        let mut csv = csv::Writer::from_writer(out);
-        csv.write_record(header()).map_err(crate::csv_io)?;
-        Ok(TraceWriter { csv })
+    /// Writes the header into `out`, for a roll with steps of `dt` s.
+    pub fn new(mut out: W, dt: f64) -> std::io::Result<Self> {
+        writeln!(out, "{}", header().join(","))?;
+        Ok(TraceWriter {
+            out,
+            clock: StepClock::new(dt),
+        })
     }
 
     /// One record for the simulation's current state; returns its length in bytes.
     pub fn write(&mut self, sim: &Simulation) -> std::io::Result<u64> {
-        let record = row(sim);
-        self.csv.write_record(&record).map_err(crate::csv_io)?;
+        let record = row(sim, &self.clock);
+        writeln!(self.out, "{}", record.join(","))?;
         Ok(record_len(&record))
     }
 
     pub fn flush(&mut self) -> std::io::Result<()> {
-        self.csv.flush()
+        self.out.flush()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use dicesim_physics::{InitialCondition, Params};
+
+    #[test]
+    fn a_trace_row_has_a_cell_per_column_its_time_the_steps_of_dt_and_reals_as_reals() {
+        let params = Params::default();
+        let mut sim = Simulation::new(&params, &InitialCondition::default()).unwrap();
+        for _ in 0..684 {
+            sim.advance();
+        }
+        let row = row(&sim, &StepClock::new(params.integrator.dt));
+        assert_eq!(row.len(), columns().len());
+        assert_eq!(row[..2], ["684", "0.684"]);
+        // Every other cell a real: with its point or exponent, never `15` for 15.0.
+        assert!(row[2..].iter().all(|c| c.contains(['.', 'e'])), "{row:?}");
     }
 }

@@ -3,10 +3,12 @@
 
 use crate::energy_plot::energy_plot_png;
 use dicesim_experiment::Error;
-use dicesim_experiment::trace::{TraceWriter, header, record_len, row};
+use dicesim_experiment::data_file;
+use dicesim_experiment::trace::{TraceWriter, columns, header, record_len, row};
 use dicesim_physics::{Energy, InitialCondition, Params, Simulation};
-use dicesim_setup::number::human_bytes;
-use dicesim_setup::output::Output;
+use dicesim_setup::number::{StepClock, human_bytes};
+use dicesim_setup::output::{Output, commit};
+use std::io::Write as _;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -43,16 +45,18 @@ pub struct ExportProgress {
 }
 
 /// Where an export goes: the trace (CSV) and the energy plot (PNG), the plot on a
-/// logarithmic energy axis when `log_scale` (as the screen showed it).
+/// logarithmic energy axis when `log_scale` (as the screen showed it); both carry
+/// `provenance`, the roll's (the trace in its sidecar, the plot in its text).
 #[derive(Debug, Clone)]
 pub struct ExportFiles {
     pub trace: Output,
     pub plot: Output,
     pub log_scale: bool,
+    pub provenance: serde_json::Value,
 }
 
 /// Rolls `initial` again from t = 0 to its end, writing every step's row to `files.trace`
-/// and the energy against time to `files.plot` (a PNG).
+/// and the energy against time to `files.plot` (a PNG): both files or neither.
 ///
 /// The roll is first run without writing, to learn its length and the trace's size: a trace
 /// above [`EXPORT_LIMIT_BYTES`] is refused, naming the `dicesim trace --every K` that fits.
@@ -69,7 +73,9 @@ pub fn export_roll(
         trace,
         plot,
         log_scale,
+        provenance,
     } = files;
+    let clock = StepClock::new(params.integrator.dt);
     let cancelled = || cancel.load(Ordering::Relaxed);
     let mut sim = Simulation::new_unchecked(params, initial);
     let mut status = ExportProgress {
@@ -79,7 +85,7 @@ pub fn export_roll(
         bytes: 0,
     };
     // Measure: the steps, and the row length sampled along the roll.
-    let (mut sampled_len, mut samples_taken) = (record_len(&row(&sim)), 1u64);
+    let (mut sampled_len, mut samples_taken) = (record_len(&row(&sim, &clock)), 1u64);
     while sim.outcome().is_none() {
         sim.advance();
         let step = sim.state().step;
@@ -87,7 +93,7 @@ pub fn export_roll(
             if cancelled() {
                 return Err(Error::Cancelled);
             }
-            sampled_len += record_len(&row(&sim));
+            sampled_len += record_len(&row(&sim, &clock));
             samples_taken += 1;
             status.steps_done = step;
             status.bytes = sampled_len / samples_taken * (status.steps_total + 1);
@@ -117,47 +123,49 @@ pub fn export_roll(
     let mut peak: Option<(f64, Energy)> = None;
     let mut written = 0u64;
     let mut sim = Simulation::new_unchecked(params, initial);
-    trace
-        .write(|out| {
-            let mut csv = TraceWriter::new(out)?;
-            written += record_len(&header());
-            loop {
-                written += csv.write(&sim)?;
-                let (t, e) = (sim.state().time_s, sim.energy());
-                peak = Some(match peak {
-                    None => (t, e),
-                    Some((_, p)) => (t, e.max_each(&p)),
-                });
-                let step = sim.state().step;
-                let ended = sim.outcome().is_some();
-                if step.is_multiple_of(stride) || ended {
-                    samples.extend(peak.take());
-                }
-                if ended {
-                    return csv.flush();
-                }
-                if step.is_multiple_of(REPORT_EVERY) && step > 0 {
-                    if cancelled() {
-                        return Err(std::io::Error::other(CANCELLED));
-                    }
-                    status.steps_done = step;
-                    progress(status);
-                }
-                sim.advance();
+    let failed = |e: dicesim_setup::output::OutputError| Error::Export(e.to_string());
+    let meta = data_file::sidecar(provenance, &columns());
+    let mut staged = trace.stage(Some(&meta)).map_err(failed)?;
+    let mut csv = TraceWriter::new(&mut staged, params.integrator.dt)
+        .map_err(|e| Error::Export(trace.failed(&e).to_string()))?;
+    written += record_len(&header());
+    loop {
+        written += csv
+            .write(&sim)
+            .map_err(|e| Error::Export(trace.failed(&e).to_string()))?;
+        let (t, e) = (sim.state().time_s, sim.energy());
+        peak = Some(match peak {
+            None => (t, e),
+            Some((_, p)) => (t, e.max_each(&p)),
+        });
+        let step = sim.state().step;
+        let ended = sim.outcome().is_some();
+        if step.is_multiple_of(stride) || ended {
+            samples.extend(peak.take());
+        }
+        if ended {
+            break;
+        }
+        if step.is_multiple_of(REPORT_EVERY) && step > 0 {
+            if cancelled() {
+                // The staged trace is dropped: nothing is left.
+                return Err(Error::Cancelled);
             }
-        })
-        .map_err(|e| match e {
-            dicesim_setup::output::OutputError::Write { message, .. } if message == CANCELLED => {
-                Error::Cancelled
-            }
-            e => Error::Export(e.to_string()),
-        })?;
+            status.steps_done = step;
+            progress(status);
+        }
+        sim.advance();
+    }
     // The title starts with the preset's name ("paper · preset roll — …").
     let name = title.split(" · ").next().unwrap_or(title);
-    let record = crate::plot::Record::of_setup(title, name, params, initial);
+    let record = crate::plot::Record::of_setup(title, name, params, initial).with_provenance(provenance);
     let png = energy_plot_png(&samples, sim.stop_threshold(), *log_scale, &record)
         .map_err(|e| Error::Export(format!("{}: {e}", plot.path().display())))?;
-    plot.write_bytes(&png).map_err(|e| Error::Export(e.to_string()))?;
+    let mut picture = plot.stage(None).map_err(failed)?;
+    picture
+        .write_all(&png)
+        .map_err(|e| Error::Export(plot.failed(&e).to_string()))?;
+    commit(vec![staged, picture]).map_err(failed)?;
     Ok(Exported {
         trace: trace.path().to_path_buf(),
         plot: plot.path().to_path_buf(),
@@ -165,6 +173,3 @@ pub fn export_roll(
         bytes: written,
     })
 }
-
-/// The reason a cancelled export's write stops with (it never reaches a person).
-const CANCELLED: &str = "export cancelled";

@@ -149,7 +149,7 @@ impl Record {
             text: vec![
                 ("Title".to_string(), title.to_string()),
                 ("Description".to_string(), caption.join("\n")),
-                ("Software".to_string(), dicesim_experiment::PROGRAM.to_string()),
+                ("Software".to_string(), dicesim_experiment::BUILD.to_string()),
                 ("dicesim-setup".to_string(), setup_text(name, params, initial)),
             ],
             caption,
@@ -204,7 +204,7 @@ impl Record {
             text: vec![
                 ("Title".to_string(), title.to_string()),
                 ("Description".to_string(), caption.join("\n")),
-                ("Software".to_string(), dicesim_experiment::PROGRAM.to_string()),
+                ("Software".to_string(), dicesim_experiment::BUILD.to_string()),
             ],
             caption,
         }
@@ -282,6 +282,11 @@ pub(crate) fn png_bytes(
     let mut encoder = png::Encoder::new(&mut png, size.0, size.1);
     encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);
+    encoder.set_pixel_dims(Some(png::PixelDimensions {
+        xppu: PIXELS_PER_METRE,
+        yppu: PIXELS_PER_METRE,
+        unit: png::Unit::Meter,
+    }));
     // iTXt: UTF-8, for the model's own symbols (μ, Δt, ω).
     for (keyword, text) in &record.text {
         encoder
@@ -292,6 +297,46 @@ pub(crate) fn png_bytes(
     writer.write_image_data(&pixels).map_err(plot_error)?;
     writer.finish().map_err(plot_error)?;
     Ok(png)
+}
+
+/// The resolution a PNG states (its pHYs chunk), pixels per metre: 150 per inch, so a
+/// figure of the design width (1200 pixels) prints 20.3 cm wide.
+pub const PIXELS_PER_METRE: u32 = 5906;
+
+/// `svg` with the record's text as its `<title>`, `<desc>` and `<metadata>` (every keyword
+/// and text, the provenance among them), right after the opening `<svg …>` tag: what a PNG
+/// carries in its text chunks, for any viewer or script to read.
+pub(crate) fn with_svg_metadata(svg: &str, record: &Record) -> String {
+    let escape = |t: &str| {
+        t.replace('&', "&amp;")
+            .replace('<', "&lt;")
+            .replace('>', "&gt;")
+            .replace('"', "&quot;")
+    };
+    let text = |keyword: &str| {
+        (record.text.iter())
+            .find(|(k, _)| k == keyword)
+            .map(|(_, t)| escape(t))
+            .unwrap_or_default()
+    };
+    let mut head = format!(
+        "<title>{}</title><desc>{}</desc><metadata><record xmlns=\"urn:dicesim:record\">",
+        text("Title"),
+        text("Description")
+    );
+    for (keyword, value) in &record.text {
+        head.push_str(&format!(
+            "<entry keyword=\"{}\">{}</entry>",
+            escape(keyword),
+            escape(value)
+        ));
+    }
+    head.push_str("</record></metadata>");
+    let at = svg
+        .find("<svg")
+        .and_then(|start| svg[start..].find('>').map(|end| start + end + 1))
+        .unwrap_or(0);
+    format!("{}{head}{}", &svg[..at], &svg[at..])
 }
 
 /// Pixels per em of caption text, at the design size.
@@ -354,6 +399,20 @@ pub fn write_image(
     write_recorded_image(map, layer, &record, SIZE, out)
 }
 
+/// The bytes [`write_image`] writes to `out`, for a caller that writes them with others.
+pub fn image_file_bytes(
+    map: &BasinMap,
+    layer: Layer,
+    setup: (&str, &Params, &InitialCondition),
+    provenance: &serde_json::Value,
+    out: &Output,
+) -> Result<Vec<u8>, Error> {
+    let record = map_record(map, layer, Some(setup)).with_provenance(provenance);
+    let format = ImageFormat::from_extension(out.extension())
+        .ok_or_else(|| Error::Plot(format!("{}: expected a .png or .svg file", out.path().display())))?;
+    image_bytes(map, layer, &record, SIZE, format)
+}
+
 /// [`write_image`] at `size` pixels, with `record`'s caption and (for a PNG) text chunks.
 pub(crate) fn write_recorded_image(
     map: &BasinMap,
@@ -408,7 +467,7 @@ pub fn image_bytes(
                 record,
                 scale,
             )?;
-            Ok(svg.into_bytes())
+            Ok(with_svg_metadata(&svg, record).into_bytes())
         }
     }
 }
@@ -903,6 +962,34 @@ mod tests {
             .filter(|t| t.starts_with("face "))
             .collect();
         assert_eq!(faces, ["face 2"]);
+    }
+
+    #[test]
+    fn an_svg_carries_its_record_and_a_png_its_physical_size() {
+        let map = awkward_map(Layer::Face, 2);
+        let record =
+            map_record(&map, Layer::Face, None).with_provenance(&serde_json::json!({"seed": "<1 & 2>"}));
+        let svg = String::from_utf8(image_bytes(&map, Layer::Face, &record, SIZE, ImageFormat::Svg).unwrap())
+            .unwrap();
+        // Right inside the root element, before anything drawn.
+        let root_end = svg.find("<svg").unwrap() + svg[svg.find("<svg").unwrap()..].find('>').unwrap() + 1;
+        assert!(
+            svg[root_end..].starts_with("<title>"),
+            "{}",
+            &svg[..root_end + 40]
+        );
+        assert!(
+            svg.contains(r#"<entry keyword="dicesim-provenance">{&quot;seed&quot;:&quot;&lt;1 &amp; 2&gt;&quot;}</entry>"#),
+            "{}",
+            &svg[..root_end + 400]
+        );
+        let png = image_bytes(&map, Layer::Face, &record, SIZE, ImageFormat::Png).unwrap();
+        let info = png::Decoder::new(std::io::Cursor::new(png)).read_info().unwrap();
+        let dims = info.info().pixel_dims.expect("a pHYs chunk");
+        assert_eq!((dims.xppu, dims.yppu, dims.unit), (5906, 5906, png::Unit::Meter));
+        // 150 pixels per inch: the design width prints 8 inches wide.
+        let inches = f64::from(SIZE.0) / (f64::from(dims.xppu) * 0.0254);
+        assert!((inches - 8.0).abs() < 1e-3, "{inches}");
     }
 
     #[test]

@@ -297,19 +297,52 @@ impl InitialCondition {
     /// `M·g/(4k)` (a die may be placed resting on the table, not pushed into it): the error
     /// names the lowest height allowed at this orientation.
     pub fn check_clear_of_table(&self, params: &Params) -> Result<(), ParamError> {
+        Placement::new(params).check_clear_of_table(self)
+    }
+}
+
+/// Where the starts of one setup place its die, for a caller that looks at many starts of
+/// one setup (a merge checks millions of records): the body is built once, not per start,
+/// and each answer is the very one a [`Simulation`](crate::Simulation) of the start gives.
+pub struct Placement {
+    body: Body,
+    /// cm, the corners' rounding, which the table must clear.
+    corner_radius: f64,
+    /// cm, `M·g/(4k)`.
+    resting_depth: f64,
+}
+
+impl Placement {
+    /// The placement of `params`' die.
+    pub fn new(params: &Params) -> Placement {
         let body = Body::new(params);
-        let lowest_offset = body
-            .start_offsets(self)
+        Placement {
+            corner_radius: params.die.corner_radius,
+            resting_depth: resting_depth(params, &body),
+            body,
+        }
+    }
+
+    /// cm, corners 1..8 (a general body's contact-sphere centres) relative to the centre of
+    /// mass at t = 0, world frame: where both engines place the die.
+    pub fn start_offsets(&self, initial: &InitialCondition) -> [Vector3<f64>; 8] {
+        self.body.start_offsets(initial)
+    }
+
+    /// [`InitialCondition::check_clear_of_table`] for this setup.
+    pub fn check_clear_of_table(&self, initial: &InitialCondition) -> Result<(), ParamError> {
+        let lowest_offset = self
+            .start_offsets(initial)
             .iter()
-            .map(|r| r.z - params.die.corner_radius)
+            .map(|r| r.z - self.corner_radius)
             .fold(f64::INFINITY, f64::min);
-        let lowest = -lowest_offset - resting_depth(params, &body);
-        if self.height >= lowest {
+        let lowest = -lowest_offset - self.resting_depth;
+        if initial.height >= lowest {
             Ok(())
         } else {
             Err(ParamError {
                 key: limits::HEIGHT.key.to_string(),
-                value: self.height,
+                value: initial.height,
                 limits: Limits {
                     min: lowest,
                     unit: "cm at this orientation (lower, a corner starts inside the table)",

@@ -88,6 +88,12 @@ impl ScanKey {
         self.spec.limits.unit
     }
 
+    /// The key as a data file's column: its words joined by `_`, then its unit
+    /// (`initial_height_cm`, `ground_friction`), as [`column_name`] names every column.
+    pub fn column(&self) -> String {
+        column_name(&self.key.replace('.', "_"), self.unit())
+    }
+
     /// `key (unit)`, or the key alone for dimensionless values: an axis title.
     pub fn label(&self) -> String {
         if self.unit().is_empty() {
@@ -132,6 +138,22 @@ impl ScanKey {
         (*params, *initial) = (p, ic);
         Ok(())
     }
+}
+
+/// A data file's column name for a quantity `name` in `unit`: the name, then the unit in
+/// letters a column name can hold (`/` as `_per_`, `²` as `2`, `·` as `_`, `°` as `deg`):
+/// `velocity_x_cm_per_s`, `angular_momentum_x_g_cm2_per_s`, `yaw_deg`. A dimensionless
+/// quantity (a count, a share, a friction coefficient) is its name alone.
+pub fn column_name(name: &str, unit: &str) -> String {
+    if unit.is_empty() {
+        return name.to_string();
+    }
+    let unit = unit
+        .replace('/', "_per_")
+        .replace('²', "2")
+        .replace('·', "_")
+        .replace('°', "deg");
+    format!("{name}_{unit}")
 }
 
 #[cfg(test)]
@@ -210,5 +232,31 @@ mod tests {
             ScanKey::parse("ground.friction").unwrap().label(),
             "ground.friction"
         );
+    }
+
+    #[test]
+    fn every_key_names_a_column_with_its_unit() {
+        assert_eq!(
+            ScanKey::parse("initial.height").unwrap().column(),
+            "initial_height_cm"
+        );
+        assert_eq!(
+            ScanKey::parse("ground.friction").unwrap().column(),
+            "ground_friction"
+        );
+        assert_eq!(
+            ScanKey::parse("initial.angular_velocity.x").unwrap().column(),
+            "initial_angular_velocity_x_rad_per_s"
+        );
+        assert_eq!(column_name("l", "g·cm²/s"), "l_g_cm2_per_s");
+        assert_eq!(column_name("yaw", "°"), "yaw_deg");
+        let columns: Vec<String> = ScanKey::all().iter().map(ScanKey::column).collect();
+        for c in &columns {
+            assert!(c.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_'), "{c}");
+        }
+        let mut unique = columns.clone();
+        unique.sort();
+        unique.dedup();
+        assert_eq!(unique.len(), columns.len());
     }
 }

@@ -6,6 +6,10 @@
 //! - [`Output::write`] writes into a temporary file in the same folder, flushes and syncs it,
 //!   and only then renames it onto the path, so a failed write (a full disk, a lost device)
 //!   leaves no partial file and an old file as it was. The error names the OS's reason.
+//! - A CSV is written with its sidecar `<file>.meta.json` ([`Output::write_table`]): both
+//!   checked, refused and replaced together, both or neither written.
+//! - [`Output::stage`] and [`commit`] write several files of one command (a merge's
+//!   outputs) the same way, all or nothing.
 //!
 //! A path that already is a character device (`/dev/stdout`, `/dev/full`) cannot be
 //! replaced by a rename and holds no data to lose: it is written in place, its errors
@@ -49,18 +53,36 @@ impl OutputError {
     }
 }
 
-/// A checked output path: where to write, in which format, whether it may replace a file.
+/// What a CSV file cannot hold itself (where it came from, its columns' types) goes into a
+/// sidecar beside it, `<file>.meta.json`: checked, written, refused and replaced together
+/// with the CSV, so a CSV opens as a plain table in any reader and still says where it
+/// came from. A CSV written to a character device (`/dev/stdout`) has none.
+pub const SIDECAR_SUFFIX: &str = ".meta.json";
+
+/// The extension whose files carry a sidecar.
+const TABLE_EXTENSION: &str = "csv";
+
+/// The sidecar of the CSV at `path`.
+pub fn sidecar_path(path: &Path) -> PathBuf {
+    let mut name = path.as_os_str().to_os_string();
+    name.push(SIDECAR_SUFFIX);
+    PathBuf::from(name)
+}
+
+/// A checked output path: where to write, in which format, whether it may replace a file,
+/// and, for a CSV, its sidecar.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Output {
     path: PathBuf,
     extension: String,
     replace: bool,
+    sidecar: Option<PathBuf>,
 }
 
 impl Output {
     /// Checks `path` before any work: its extension is one of `extensions` (lower case,
     /// without the dot), its folder exists and takes new files, and it names no existing
-    /// regular file unless `replace`.
+    /// regular file unless `replace`; a CSV's sidecar is checked the same way.
     pub fn check(path: &Path, extensions: &[&str], replace: bool) -> Result<Output, OutputError> {
         let extension = path
             .extension()
@@ -79,29 +101,24 @@ impl Output {
                 expected,
             });
         };
-        let output = Output {
+        let mut output = Output {
             path: path.to_path_buf(),
+            sidecar: (extension == TABLE_EXTENSION).then(|| sidecar_path(path)),
             extension,
             replace,
         };
-        match std::fs::metadata(path) {
-            Ok(meta) if meta.is_dir() => {
-                return Err(OutputError::Write {
-                    path: output.path,
-                    message: "is a folder".to_string(),
-                });
-            }
-            Ok(meta) if meta.is_file() && !replace => return Err(OutputError::Exists { path: output.path }),
-            Ok(meta) if !meta.is_file() => {
-                return match special_file(&meta) {
-                    None => Ok(output), // a character device: written in place
-                    Some(what) => Err(OutputError::NotAFile {
-                        path: output.path,
-                        what,
-                    }),
-                };
-            }
-            _ => {}
+        if check_target(&output.path, replace)? == Target::Device {
+            // Written in place, and a device has no folder to put a sidecar in.
+            output.sidecar = None;
+            return Ok(output);
+        }
+        if let Some(sidecar) = &output.sidecar
+            && check_target(sidecar, replace)? == Target::Device
+        {
+            return Err(OutputError::NotAFile {
+                path: sidecar.clone(),
+                what: "a device",
+            });
         }
         let dir = output.dir();
         if !dir.is_dir() {
@@ -111,7 +128,7 @@ impl Output {
             });
         }
         // The one sure test of "may write here": make a file and let it go.
-        if let Err(e) = output.temporary() {
+        if let Err(e) = temporary_beside(&output.path) {
             return Err(OutputError::Folder {
                 path: output.path.clone(),
                 dir: dir.to_path_buf(),
@@ -130,33 +147,18 @@ impl Output {
         &self.extension
     }
 
-    fn dir(&self) -> &Path {
-        match self.path.parent() {
-            Some(d) if !d.as_os_str().is_empty() => d,
-            _ => Path::new("."),
-        }
+    /// The sidecar written with this file (a CSV's `<file>.meta.json`), if it has one.
+    pub fn sidecar(&self) -> Option<&Path> {
+        self.sidecar.as_deref()
     }
 
-    fn temporary(&self) -> std::io::Result<tempfile::NamedTempFile> {
-        let name = self
-            .path
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default();
-        let prefix = format!(".{name}.");
-        let mut builder = tempfile::Builder::new();
-        builder.prefix(&prefix).suffix(".part");
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::PermissionsExt;
-            // As `File::create` would make it (the umask applies), not the temp file's 0600.
-            builder.permissions(std::fs::Permissions::from_mode(0o666));
-        }
-        builder.tempfile_in(self.dir())
+    fn dir(&self) -> &Path {
+        folder_of(&self.path)
     }
 
     /// Writes the file with `body`, all or nothing (see the module comment). The writer is
-    /// `Send`, so an encoder that needs one (Parquet's) can own it.
+    /// `Send`, so an encoder that needs one (Parquet's) can own it. Not for a CSV, whose
+    /// sidecar must be written with it ([`Output::write_table`]).
     pub fn write(
         &self,
         body: impl FnOnce(&mut (dyn Write + Send)) -> std::io::Result<()>,
@@ -172,35 +174,67 @@ impl Output {
         body: impl FnOnce(&mut (dyn Write + Send)) -> Result<(), E>,
         own: impl Fn(OutputError) -> E,
     ) -> Result<(), E> {
-        let failed = |e: std::io::Error| own(self.failed(&e));
+        self.write_table_with(None, body, own)
+    }
+
+    /// Writes a CSV file with `body` and its sidecar with `meta`, both or neither: a failure
+    /// of either leaves no file of the two (and old ones as they were, but for a failure
+    /// between the two renames, which removes what this write put there). `meta` is `None`
+    /// for a file of a format without a sidecar.
+    pub fn write_table(
+        &self,
+        meta: Option<&[u8]>,
+        body: impl FnOnce(&mut (dyn Write + Send)) -> std::io::Result<()>,
+    ) -> Result<(), OutputError> {
+        self.write_table_with(meta, |w| body(w).map_err(|e| self.failed(&e)), |e| e)
+    }
+
+    /// [`Output::write_table`] for a `body` that fails in its own terms (see
+    /// [`Output::write_with`]); `meta` is `None` for a file without a sidecar.
+    pub fn write_table_with<E>(
+        &self,
+        meta: Option<&[u8]>,
+        body: impl FnOnce(&mut (dyn Write + Send)) -> Result<(), E>,
+        own: impl Fn(OutputError) -> E,
+    ) -> Result<(), E> {
+        let mut staged = self.stage(meta).map_err(&own)?;
+        body(&mut staged)?;
+        commit(vec![staged]).map_err(own)
+    }
+
+    /// Starts writing this file: its bytes go to a temporary file beside it (a device is
+    /// written in place) until [`commit`] puts it, with any others staged, under its path;
+    /// dropped uncommitted, it leaves nothing. `meta` is the sidecar's content: required
+    /// for a file that has one, ignored for the rest.
+    pub fn stage(&self, meta: Option<&[u8]>) -> Result<Staged, OutputError> {
+        let failed = |e: std::io::Error| self.failed(&e);
         if std::fs::metadata(&self.path).is_ok_and(|m| !m.is_file() && !m.is_dir()) {
             let file = std::fs::OpenOptions::new()
                 .write(true)
                 .open(&self.path)
                 .map_err(failed)?;
-            let mut w = BufWriter::new(file);
-            body(&mut w)?;
-            return w.flush().map_err(failed);
-        }
-        let tmp = self.temporary().map_err(failed)?;
-        let _pending = Pending::register(tmp.path());
-        let mut w = BufWriter::with_capacity(1 << 20, tmp);
-        body(&mut w)?;
-        w.flush().map_err(failed)?;
-        let tmp = w.into_inner().map_err(|e| failed(e.into_error()))?;
-        tmp.as_file().sync_all().map_err(failed)?;
-        let persisted = if self.replace {
-            tmp.persist(&self.path)
-        } else {
-            tmp.persist_noclobber(&self.path)
-        };
-        // On failure the error holds the temporary file; dropping it deletes it.
-        persisted.map(drop).map_err(|e| match e.error.kind() {
-            std::io::ErrorKind::AlreadyExists => own(OutputError::Exists {
+            return Ok(Staged {
                 path: self.path.clone(),
-            }),
-            _ => failed(e.error),
-        })
+                replace: true,
+                sink: Sink::Device(BufWriter::new(file)),
+                sidecar: None,
+            });
+        }
+        let sidecar = match (&self.sidecar, meta) {
+            (None, _) => None,
+            (Some(path), Some(meta)) => {
+                let mut side = Staged::temporary(path, self.replace)?;
+                side.write_all(meta).map_err(|e| side.failed(&e))?;
+                Some(Box::new(side))
+            }
+            (Some(path), None) => panic!(
+                "{}: a CSV is written with its sidecar (write_table)",
+                path.display()
+            ),
+        };
+        let mut staged = Staged::temporary(&self.path, self.replace)?;
+        staged.sidecar = sidecar;
+        Ok(staged)
     }
 
     /// A write to this path that failed, with the OS's reason.
@@ -215,6 +249,196 @@ impl Output {
     pub fn write_bytes(&self, bytes: &[u8]) -> Result<(), OutputError> {
         self.write(|w| w.write_all(bytes))
     }
+}
+
+/// What a path to be written is now.
+#[derive(Debug, PartialEq, Eq)]
+enum Target {
+    /// Nothing, or a regular file that may be replaced.
+    File,
+    /// A character device, written in place.
+    Device,
+}
+
+/// Checks what `path` is before any work: a folder or a special file is refused, an
+/// existing regular file too unless `replace`.
+fn check_target(path: &Path, replace: bool) -> Result<Target, OutputError> {
+    match std::fs::metadata(path) {
+        Ok(meta) if meta.is_dir() => Err(OutputError::Write {
+            path: path.to_path_buf(),
+            message: "is a folder".to_string(),
+        }),
+        Ok(meta) if meta.is_file() && !replace => Err(OutputError::Exists {
+            path: path.to_path_buf(),
+        }),
+        Ok(meta) if !meta.is_file() => match special_file(&meta) {
+            None => Ok(Target::Device),
+            Some(what) => Err(OutputError::NotAFile {
+                path: path.to_path_buf(),
+                what,
+            }),
+        },
+        _ => Ok(Target::File),
+    }
+}
+
+/// The folder a file is written in.
+fn folder_of(path: &Path) -> &Path {
+    match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    }
+}
+
+/// A temporary file beside `path`, named after it, that becomes `path` by a rename.
+fn temporary_beside(path: &Path) -> std::io::Result<tempfile::NamedTempFile> {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let prefix = format!(".{name}.");
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix).suffix(".part");
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        // As `File::create` would make it (the umask applies), not the temp file's 0600.
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    builder.tempfile_in(folder_of(path))
+}
+
+/// Where a staged file's bytes go until it is committed.
+enum Sink {
+    /// A temporary file beside the path, listed in [`PENDING`] while it lives.
+    Temporary(BufWriter<tempfile::NamedTempFile>, Pending),
+    /// A character device, written in place.
+    Device(BufWriter<std::fs::File>),
+}
+
+/// A file being written (see [`Output::stage`]): write into it, then [`commit`] it with
+/// the others of one command. Dropped uncommitted, it leaves nothing behind.
+pub struct Staged {
+    path: PathBuf,
+    replace: bool,
+    sink: Sink,
+    /// A CSV's sidecar, written already, committed with it.
+    sidecar: Option<Box<Staged>>,
+}
+
+impl Staged {
+    fn temporary(path: &Path, replace: bool) -> Result<Staged, OutputError> {
+        let failed = |e: std::io::Error| OutputError::Write {
+            path: path.to_path_buf(),
+            message: os_reason(&e),
+        };
+        let tmp = temporary_beside(path).map_err(failed)?;
+        let pending = Pending::register(tmp.path());
+        Ok(Staged {
+            path: path.to_path_buf(),
+            replace,
+            sink: Sink::Temporary(BufWriter::with_capacity(1 << 20, tmp), pending),
+            sidecar: None,
+        })
+    }
+
+    /// A write to this file that failed, with the OS's reason.
+    pub fn failed(&self, e: &std::io::Error) -> OutputError {
+        OutputError::Write {
+            path: self.path.clone(),
+            message: os_reason(e),
+        }
+    }
+
+    /// Flushes and syncs the bytes: after this only the rename is left.
+    fn finish(&mut self) -> Result<(), OutputError> {
+        if let Some(side) = &mut self.sidecar {
+            side.finish()?;
+        }
+        let done = match &mut self.sink {
+            Sink::Device(w) => w.flush(),
+            Sink::Temporary(w, _) => w.flush().and_then(|()| w.get_ref().as_file().sync_all()),
+        };
+        done.map_err(|e| self.failed(&e))
+    }
+
+    /// Renames the file (its sidecar first) onto its path; every path it put there is
+    /// pushed onto `placed`, so a later failure can take them back.
+    fn place(self, placed: &mut Vec<PathBuf>) -> Result<(), OutputError> {
+        let Staged {
+            path,
+            replace,
+            sink,
+            sidecar,
+        } = self;
+        if let Some(side) = sidecar {
+            side.place(placed)?;
+        }
+        let Sink::Temporary(w, _pending) = sink else {
+            return Ok(());
+        };
+        let failed = |e: std::io::Error| OutputError::Write {
+            path: path.clone(),
+            message: os_reason(&e),
+        };
+        let tmp = w.into_inner().map_err(|e| failed(e.into_error()))?;
+        let persisted = if replace {
+            tmp.persist(&path)
+        } else {
+            tmp.persist_noclobber(&path)
+        };
+        // On failure the error holds the temporary file; dropping it deletes it.
+        persisted.map_err(|e| match e.error.kind() {
+            std::io::ErrorKind::AlreadyExists => OutputError::Exists { path: path.clone() },
+            _ => failed(e.error),
+        })?;
+        placed.push(path);
+        Ok(())
+    }
+}
+
+impl Write for Staged {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        match &mut self.sink {
+            Sink::Temporary(w, _) => w.write(buf),
+            Sink::Device(w) => w.write(buf),
+        }
+    }
+
+    fn write_all(&mut self, buf: &[u8]) -> std::io::Result<()> {
+        match &mut self.sink {
+            Sink::Temporary(w, _) => w.write_all(buf),
+            Sink::Device(w) => w.write_all(buf),
+        }
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        match &mut self.sink {
+            Sink::Temporary(w, _) => w.flush(),
+            Sink::Device(w) => w.flush(),
+        }
+    }
+}
+
+/// Puts every staged file (and its sidecar) under its path, all or nothing: each is first
+/// flushed and synced, so a full disk or a lost device fails before any file appears, and a
+/// rename that still fails takes back the files this commit already put in place (a file
+/// they replaced stays replaced: `--force` said it may go).
+pub fn commit(files: Vec<Staged>) -> Result<(), OutputError> {
+    let mut files = files;
+    for f in &mut files {
+        f.finish()?;
+    }
+    let mut placed = Vec::new();
+    for f in files {
+        if let Err(e) = f.place(&mut placed) {
+            for p in &placed {
+                let _ = std::fs::remove_file(p);
+            }
+            return Err(e);
+        }
+    }
+    Ok(())
 }
 
 /// What a path that is neither a regular file nor a folder is, in words, when it must not be
@@ -258,9 +482,9 @@ fn identity(path: &Path) -> PathBuf {
     dir.join(path.file_name().unwrap_or_default())
 }
 
-/// Checks, before any work, that no file is named twice among `outputs` and that none is
-/// one of `inputs` (each with the words for what it is): `--force` replaces an old result,
-/// never a file the command is reading.
+/// Checks, before any work, that no file is named twice among `outputs` and that none (nor
+/// a CSV's sidecar) is one of `inputs` (each with the words for what it is): `--force`
+/// replaces an old result, never a file the command is reading.
 pub fn check_apart(outputs: &[Output], inputs: &[(PathBuf, String)]) -> Result<(), OutputError> {
     let mut seen: Vec<PathBuf> = Vec::with_capacity(outputs.len());
     for o in outputs {
@@ -270,11 +494,14 @@ pub fn check_apart(outputs: &[Output], inputs: &[(PathBuf, String)]) -> Result<(
                 path: o.path().to_path_buf(),
             });
         }
-        if let Some((_, what)) = inputs.iter().find(|(p, _)| identity(p) == id) {
-            return Err(OutputError::Input {
-                path: o.path().to_path_buf(),
-                what: what.clone(),
-            });
+        for path in std::iter::once(o.path()).chain(o.sidecar()) {
+            let id = identity(path);
+            if let Some((_, what)) = inputs.iter().find(|(p, _)| identity(p) == id) {
+                return Err(OutputError::Input {
+                    path: path.to_path_buf(),
+                    what: what.clone(),
+                });
+            }
         }
         seen.push(id);
     }
@@ -338,9 +565,11 @@ pub(crate) fn free_stem(dir: &Path, stem: &str, extensions: &[&str]) -> String {
             }
         })
         .find(|s| {
-            extensions
-                .iter()
-                .all(|ext| std::fs::symlink_metadata(dir.join(format!("{s}.{ext}"))).is_err())
+            extensions.iter().all(|ext| {
+                let file = dir.join(format!("{s}.{ext}"));
+                let free = |p: &Path| std::fs::symlink_metadata(p).is_err();
+                free(&file) && (*ext != TABLE_EXTENSION || free(&sidecar_path(&file)))
+            })
         })
         .unwrap_or_else(|| stem.to_string())
 }
@@ -520,10 +749,94 @@ mod tests {
     }
 
     #[test]
+    fn a_csv_and_its_sidecar_are_refused_written_and_replaced_together() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.csv");
+        let sidecar = dir.path().join("a.csv.meta.json");
+        // An old sidecar alone is a file the write would replace: refused without --force.
+        std::fs::write(&sidecar, "old").unwrap();
+        let e = Output::check(&path, &["csv"], false).unwrap_err();
+        assert_eq!(
+            e,
+            OutputError::Exists {
+                path: sidecar.clone()
+            }
+        );
+        let out = Output::check(&path, &["csv"], true).unwrap();
+        assert_eq!(out.sidecar(), Some(sidecar.as_path()));
+        out.write_table(Some(b"{\"meta\":1}"), |w| w.write_all(b"x\n1\n"))
+            .unwrap();
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "x\n1\n");
+        assert_eq!(std::fs::read_to_string(&sidecar).unwrap(), "{\"meta\":1}");
+        // A failed write of the CSV leaves both old files as they were, and no temporary.
+        let e = out
+            .write_table(Some(b"new"), |w| {
+                w.write_all(b"half")?;
+                Err(std::io::Error::other("the disk went away"))
+            })
+            .unwrap_err();
+        assert!(e.to_string().contains("the disk went away"), "{e}");
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "x\n1\n");
+        assert_eq!(std::fs::read_to_string(&sidecar).unwrap(), "{\"meta\":1}");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2);
+        // Other files have no sidecar.
+        let png = Output::check(&dir.path().join("a.png"), &["png"], false).unwrap();
+        assert_eq!(png.sidecar(), None);
+    }
+
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn staged_files_appear_together_or_not_at_all() {
+        let dir = tempfile::tempdir().unwrap();
+        let full = dir.path().join("full.parquet");
+        std::os::unix::fs::symlink("/dev/full", &full).unwrap();
+        let csv = Output::check(&dir.path().join("ok.csv"), &["csv"], false).unwrap();
+        let device = Output::check(&full, &["parquet"], false).unwrap();
+        let mut a = csv.stage(Some(b"{}")).unwrap();
+        let mut b = device.stage(None).unwrap();
+        a.write_all(b"x\n").unwrap();
+        // A device is written in place: its error comes at the latest with the flush.
+        let _ = b.write_all(&[0; 1 << 16]);
+        let e = commit(vec![a, b]).unwrap_err();
+        assert!(e.to_string().contains("No space left on device"), "{e}");
+        let mut left: Vec<_> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
+        left.sort();
+        assert_eq!(
+            left,
+            ["full.parquet"],
+            "neither the CSV nor its sidecar nor a temporary"
+        );
+        // Two files that can be written both appear.
+        let other = Output::check(&dir.path().join("b.json"), &["json"], false).unwrap();
+        let (mut a, mut b) = (csv.stage(Some(b"{}")).unwrap(), other.stage(None).unwrap());
+        a.write_all(b"x\n").unwrap();
+        b.write_all(b"{}").unwrap();
+        commit(vec![a, b]).unwrap();
+        assert!(dir.path().join("ok.csv.meta.json").is_file() && dir.path().join("b.json").is_file());
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_csv_on_a_device_has_no_sidecar() {
+        // A device is written in place, with no folder of its own for a sidecar.
+        let dir = tempfile::tempdir().unwrap();
+        let link = dir.path().join("null.csv");
+        std::os::unix::fs::symlink("/dev/null", &link).unwrap();
+        let out = Output::check(&link, &["csv"], false).unwrap();
+        assert_eq!(out.sidecar(), None);
+        out.write_table(Some(b"{}"), |w| w.write_all(b"x\n")).unwrap();
+        assert!(!dir.path().join("null.csv.meta.json").exists());
+    }
+
+    #[test]
     fn free_stems_skip_taken_names() {
         let dir = tempfile::tempdir().unwrap();
         std::fs::write(dir.path().join("r.csv"), "").unwrap();
         std::fs::write(dir.path().join("r-2.png"), "").unwrap();
-        assert_eq!(free_stem(dir.path(), "r", &["csv", "png"]), "r-3");
+        std::fs::write(dir.path().join("r-3.csv.meta.json"), "").unwrap();
+        assert_eq!(free_stem(dir.path(), "r", &["csv", "png"]), "r-4");
     }
 }

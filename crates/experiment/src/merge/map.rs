@@ -8,12 +8,13 @@ use super::parts::{
 use super::rows::{copy_rows, parse_map_row};
 use crate::basin::{Axis, BasinMap, Cell, Layer, Method, node_setup};
 use crate::provenance;
-use crate::record::roll_record;
-use crate::shard::Sweep;
+use crate::record::{RecordCheck, roll_record};
+use crate::shard::{Part, Sweep};
 use crate::stats::FaceTally;
 use dicesim_physics::{InitialCondition, Params};
-use dicesim_setup::output::Output;
-use dicesim_setup::preset::Preset;
+use dicesim_setup::number::Real;
+use dicesim_setup::output::{Output, Staged, sidecar_path};
+use dicesim_setup::preset::{Preset, read_regular_file};
 use rayon::prelude::*;
 use std::io::{BufReader, Write};
 
@@ -39,11 +40,16 @@ pub struct MapMerge {
 }
 
 impl Parts {
-    /// Merges a map's parts: the merged CSV to the .csv among `outputs` (the .png and .svg
-    /// are the caller's to draw from the cells returned), after checking every row against
-    /// its node and every part's face counts; `verify` cells chosen at random are rolled
-    /// again and must end bit for bit as their rows say.
-    pub fn merge_map(&self, outputs: &[Output], verify: u64) -> Result<MapMerge, MergeError> {
+    /// Merges a map's parts: the merged CSV for the .csv among `outputs`, staged (the .png
+    /// and .svg are the caller's to draw from the cells returned, and to commit with it, so
+    /// all are written or none), after checking every row against its node and every
+    /// part's face counts; `verify` cells chosen at random are rolled again and must end
+    /// bit for bit as their rows say.
+    pub fn merge_map(
+        &self,
+        outputs: &[Output],
+        verify: u64,
+    ) -> Result<(MapMerge, Option<Staged>), MergeError> {
         let Sweep::Map {
             x,
             y,
@@ -79,26 +85,28 @@ impl Parts {
             out_kind(output.path(), &["csv", "png", "svg"])?;
         }
         let chosen = chosen_at_random(width * height, verify);
-        let provenance = provenance::map(&preset, &map);
+        let sweep = provenance::map(&preset, &map);
+        let provenance = provenance::built_by(sweep.clone(), &self.builds());
+        let mut staged = None;
         if !outputs.is_empty() || !chosen.is_empty() {
             let setup = (&params, &preset.initial);
             match outputs.iter().find(|o| o.extension() == "csv") {
-                Some(csv) => csv.write_with(
-                    |sink| {
-                        let failed = |e: std::io::Error| MergeError::unwritten(csv.failed(&e));
-                        self.read_cells(&mut map, setup, &provenance, (sink, &failed), &chosen)
-                    },
-                    MergeError::unwritten,
-                )?,
+                Some(csv) => {
+                    let meta = crate::data_file::sidecar(&provenance, &map.csv_columns());
+                    let mut sink = csv.stage(Some(&meta)).map_err(MergeError::unwritten)?;
+                    let failed = |e: std::io::Error| MergeError::unwritten(csv.failed(&e));
+                    self.read_cells(&mut map, setup, &sweep, (&mut sink, &failed), &chosen)?;
+                    staged = Some(sink);
+                }
                 None => {
                     let sink = &mut std::io::sink();
-                    self.read_cells(&mut map, setup, &provenance, (sink, &MergeError::Io), &chosen)?;
+                    self.read_cells(&mut map, setup, &sweep, (sink, &MergeError::Io), &chosen)?;
                 }
             }
             map.sampled = map.cells.iter().flatten().filter(|c| c.sampled).count();
         }
         let (shard_s, longest_s) = self.shard_times();
-        Ok(MapMerge {
+        let merged = MapMerge {
             map,
             layer,
             faces,
@@ -108,7 +116,8 @@ impl Parts {
             shard_s,
             longest_s,
             verified: chosen.len(),
-        })
+        };
+        Ok((merged, staged))
     }
 
     /// The face counts every part claims, added up.
@@ -129,29 +138,28 @@ impl Parts {
     }
 
     /// One pass over the parts: their rows copied to `sink` (the merged CSV) after the
-    /// sweep's provenance line and header, every cell checked and kept in `map`; then each
-    /// part's face counts and the cells `chosen` rolled again are checked, before the merged
-    /// CSV is kept, so a refused merge writes nothing.
+    /// header, every cell checked and kept in `map`, each part's sidecar checked against
+    /// `sweep` (the map's provenance) as its build wrote it; then each part's face counts
+    /// and the cells `chosen` rolled again are checked, before the merged CSV is kept, so a
+    /// refused merge writes nothing.
     ///
     /// `failed` words a failure to write to `sink`; the rows' own are named by their file.
     fn read_cells(
         &self,
         map: &mut BasinMap,
         (params, base): (&Params, &InitialCondition),
-        provenance: &serde_json::Value,
+        sweep: &serde_json::Value,
         (sink, failed): (&mut (dyn Write + Send), &dyn Fn(std::io::Error) -> MergeError),
         chosen: &[usize],
     ) -> Result<(), MergeError> {
-        let mut header = Vec::new();
-        map.write_csv(&mut header)?;
-        let header = String::from_utf8(header).expect("the CSV header is UTF-8");
-        let header = header.trim_end();
-        let provenance_line = provenance::csv_line(provenance);
-        writeln!(sink, "{provenance_line}\n{header}").map_err(failed)?;
-        let leading = [provenance_line.as_str(), header];
+        let header = crate::data_file::header(&map.csv_columns());
+        writeln!(sink, "{header}").map_err(failed)?;
+        let leading = [header.as_str()];
         let w = map.width();
+        let check = RecordCheck::new(params);
         for (path, p) in self.iter() {
             let records = checked_records_path(path, p)?;
+            check_map_sidecar(&records, sweep, p, map)?;
             let reader = std::fs::File::open(&records)
                 .map(|f| BufReader::with_capacity(1 << 20, f))
                 .map_err(|e| MergeError::Parts(format!("{}: {e}", records.display())))?;
@@ -160,8 +168,8 @@ impl Parts {
             copy_rows(reader, &mut *sink, &leading, p.len() * w as u64, &mut |n, row| {
                 let index = first_cell + n as usize;
                 let (i, j) = (index % w, index / w);
-                let (nx, ny) = (x.value(i).to_string(), y.value(j).to_string());
-                cells[index] = Some(parse_map_row(row, i, j, Some((&nx, &ny, params)))?);
+                let (nx, ny) = (Real(x.value(i)).to_string(), Real(y.value(j)).to_string());
+                cells[index] = Some(parse_map_row(row, i, j, Some((&nx, &ny, &check)))?);
                 Ok(())
             })
             .map_err(|e| row_error(&records, e))?;
@@ -190,6 +198,37 @@ impl Parts {
         }
         Ok(())
     }
+}
+
+/// Checks that the sidecar of a map part's CSV says its cells are this sweep's (`sweep`,
+/// as the part's build wrote it), with the map's columns.
+fn check_map_sidecar(
+    records: &std::path::Path,
+    sweep: &serde_json::Value,
+    part: &Part,
+    map: &BasinMap,
+) -> Result<(), MergeError> {
+    let sidecar = sidecar_path(records);
+    if std::fs::symlink_metadata(&sidecar).is_err() {
+        return Err(MergeError::Parts(format!(
+            "{}: its sidecar {} is missing: a CSV's provenance is in it, which merge checks (copy it with the cells)",
+            records.display(),
+            sidecar.display()
+        )));
+    }
+    let want = crate::data_file::sidecar(
+        &provenance::built_by(sweep.clone(), &part.commit),
+        &map.csv_columns(),
+    );
+    let found = read_regular_file(&sidecar, 1 << 20)
+        .map_err(|e| MergeError::Parts(format!("{}: {e}", sidecar.display())))?;
+    if found.as_bytes() != want {
+        return Err(MergeError::Parts(format!(
+            "{}: its provenance or columns are not this map's (cells of another sweep or build)",
+            sidecar.display()
+        )));
+    }
+    Ok(())
 }
 
 /// Rolls the cells `chosen` (indices in row order) of a map with axes `(x, y)` again from

@@ -49,10 +49,16 @@ pub struct Parts {
 
 impl Parts {
     /// Reads the part summaries `given` (files, or folders of `*.part.json` files, in any
-    /// order) and checks, before any work: that none of `outputs` is one of them or of
-    /// their records, that they are every shard of one sweep ([`check_parts`]), and that
-    /// they hold records if `outputs` asks for a merged file.
-    pub fn read(given: &[PathBuf], outputs: &[Output]) -> Result<Parts, MergeError> {
+    /// order) and checks, before any work: that none of `outputs` (nor a CSV's sidecar) is
+    /// one of them, of their records or of their records' sidecars, that they are every
+    /// shard of one sweep rolled by one build ([`check_parts`]; by several builds of this
+    /// version where `accept_mixed_builds`), and that they hold records if `outputs` asks
+    /// for a merged file.
+    pub fn read(
+        given: &[PathBuf],
+        outputs: &[Output],
+        accept_mixed_builds: bool,
+    ) -> Result<Parts, MergeError> {
         let paths = part_files(given)?;
         let parts: Vec<(String, Part)> = paths
             .iter()
@@ -62,14 +68,16 @@ impl Parts {
         for (path, (_, part)) in paths.iter().zip(&parts) {
             inputs.push((path.clone(), "a part summary".to_string()));
             if let Some(records) = part.records_path(path) {
+                let sidecar = dicesim_setup::output::sidecar_path(&records);
                 inputs.push((records, format!("the records of {}", path.display())));
+                inputs.push((sidecar, format!("the records' sidecar of {}", path.display())));
             }
         }
         check_apart(outputs, &inputs).map_err(|source| MergeError::Output {
             context: "--out ",
             source,
         })?;
-        let order = check_parts(&parts).map_err(MergeError::Parts)?;
+        let order = check_parts(&parts, accept_mixed_builds).map_err(MergeError::Parts)?;
         let mut parts: Vec<Option<Part>> = parts.into_iter().map(|(_, p)| Some(p)).collect();
         let parts: Vec<(PathBuf, Part)> = order
             .iter()
@@ -136,6 +144,21 @@ impl Parts {
         Ok(preset)
     }
 
+    /// The build the parts were rolled by, as a merged file's provenance names it: their one
+    /// commit, or each of them in shard order when several were accepted.
+    pub(super) fn builds(&self) -> String {
+        let mut commits: Vec<&str> = Vec::new();
+        for (_, p) in self.iter() {
+            if !commits.contains(&p.commit.as_str()) {
+                commits.push(&p.commit);
+            }
+        }
+        match commits.as_slice() {
+            [one] => one.to_string(),
+            several => format!("mixed builds: {}", several.join(", ")),
+        }
+    }
+
     /// The s of wall-clock time of all shards added up, and of the longest.
     pub(super) fn shard_times(&self) -> (f64, f64) {
         let times = self.parts.iter().map(|(_, p)| p.elapsed_s);
@@ -186,6 +209,44 @@ pub(super) fn out_kind<'a>(path: &Path, allowed: &[&'a str]) -> Result<&'a str, 
     })
 }
 
+/// The size and content hash a part says its records file `path` has, once the file is
+/// found to be a regular file (never a FIFO or device, which would block or never end) of
+/// that size: its hash is then checked as it is read.
+pub(super) fn records_size_checked<'a>(
+    part_path: &Path,
+    part: &'a Part,
+    path: &Path,
+) -> Result<(u64, &'a str), MergeError> {
+    let named = |e: String| {
+        MergeError::Parts(format!(
+            "{} (records of {}): {e}",
+            path.display(),
+            part_path.display()
+        ))
+    };
+    let (bytes, hash) = (
+        part.records_bytes.expect("checked with records"),
+        part.records_hash.as_deref().expect("checked with records"),
+    );
+    let meta = std::fs::metadata(path).map_err(|e| named(e.to_string()))?;
+    if !meta.is_file() {
+        return Err(named("not a regular file".to_string()));
+    }
+    if meta.len() != bytes {
+        return Err(named(size_words(meta.len(), bytes)));
+    }
+    Ok((bytes, hash))
+}
+
+/// How a records file of `found` bytes differs from the `bytes` its shard wrote.
+fn size_words(found: u64, bytes: u64) -> String {
+    format!(
+        "{}{} bytes, but the shard wrote {bytes}: the file was cut, extended or replaced",
+        if found > bytes { "more than " } else { "" },
+        found.min(bytes)
+    )
+}
+
 /// The records file a part names, checked before it is read: a regular file (never a FIFO
 /// or device, which would block or never end) with exactly the size and content hash the
 /// shard recorded when it wrote it.
@@ -206,11 +267,7 @@ pub(super) fn checked_records_path(part_path: &Path, part: &Part) -> Result<Path
     );
     let found = crate::hashing::hash_file(&path, bytes).map_err(named)?;
     if found.bytes != bytes {
-        return Err(named(format!(
-            "{}{} bytes, but the shard wrote {bytes}: the file was cut, extended or replaced",
-            if found.bytes > bytes { "more than " } else { "" },
-            found.bytes.min(bytes)
-        )));
+        return Err(named(size_words(found.bytes, bytes)));
     }
     if found.hash != hash {
         return Err(named(format!(

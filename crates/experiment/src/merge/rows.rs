@@ -3,8 +3,9 @@
 //! exactly the ids or cells its summary says, and a map's cells read back for its image.
 
 use crate::basin::Cell;
-use crate::record::check_outcome;
-use dicesim_physics::{Outcome, Params, Status};
+use crate::record::RecordCheck;
+use dicesim_physics::{Outcome, Status};
+use dicesim_setup::number::Real;
 use std::io::{BufRead, Write};
 
 /// Why a part's rows cannot be merged.
@@ -54,8 +55,7 @@ pub(super) fn without_bom(line: String) -> String {
 }
 
 /// Copies the rows of one CSV part from `reader` to `out`, after checking that its first
-/// lines are `leading` (the provenance and the header; a byte-order mark in front is not
-/// part of them) and that row `n` (0-based, after them) passes `check(n, row)`; the part
+/// lines are `leading` (the header; a byte-order mark in front is not part of it) and that row `n` (0-based, after them) passes `check(n, row)`; the part
 /// must hold exactly `rows` rows. The leading lines themselves are not copied.
 pub(super) fn copy_rows(
     mut reader: impl BufRead,
@@ -109,13 +109,13 @@ pub(super) fn copy_rows(
 /// `(i, j)`; its floats are in shortest round-trip form, so the cell comes back exactly.
 ///
 /// With `node`, the cell's coordinates as the map writes them (`x`, `y`) and the setup's
-/// parameters, every field is checked: the coordinates are the node's, the outcome one a
-/// roll can end in ([`check_outcome`]), and every cell written as the map writes it.
+/// checks, every field is checked: the coordinates are the node's, the outcome one a roll
+/// can end in ([`RecordCheck::check_outcome`]), and every cell written as the map writes it.
 pub(super) fn parse_map_row(
     row: &str,
     i: usize,
     j: usize,
-    node: Option<(&str, &str, &Params)>,
+    node: Option<(&str, &str, &RecordCheck)>,
 ) -> Result<Cell, String> {
     let cells: Vec<&str> = row.split(',').collect();
     let [ri, rj, x, y, start_face, face, status, steps, time_s, sampled] = cells[..] else {
@@ -150,9 +150,9 @@ pub(super) fn parse_map_row(
         steps: steps.parse().map_err(|_| number("steps", steps))?,
         time_s: time_s.parse().map_err(|_| number("time_s", time_s))?,
     };
-    if let Some((_, _, params)) = node {
-        check_outcome(&outcome, params)?;
-        let written = [outcome.steps.to_string(), outcome.time_s.to_string()];
+    if let Some((_, _, check)) = node {
+        check.check_outcome(&outcome)?;
+        let written = [outcome.steps.to_string(), Real(outcome.time_s).to_string()];
         if [steps, time_s] != [written[0].as_str(), written[1].as_str()] {
             return Err(format!(
                 "`{steps}` steps, `{time_s}` s: not written as this program writes them"
@@ -222,7 +222,7 @@ mod tests {
 
     #[test]
     fn map_rows_read_back_exactly() {
-        let c = parse_map_row("3,1,-60,0.1,2,5,settled,1234,1.2345000000000002,1", 3, 1, None).unwrap();
+        let c = parse_map_row("3,1,-60.0,0.1,2,5,settled,1234,1.2345000000000002,1", 3, 1, None).unwrap();
         assert_eq!(c.outcome.face, Some(5));
         assert_eq!(c.outcome.status, Status::Settled);
         assert_eq!(c.outcome.steps, 1234);

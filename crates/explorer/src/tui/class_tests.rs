@@ -596,12 +596,19 @@ mod export {
         let text = std::fs::read_to_string(&csv).expect("csv written");
         let lines: Vec<&str> = text.lines().collect();
         let mut sim = Simulation::new(&s.app.setup.params, &s.app.setup.initial).expect("valid");
-        let first = row(&sim);
+        let clock = dicesim_setup::number::StepClock::new(s.app.setup.params.integrator.dt);
+        let first = row(&sim, &clock);
         let outcome = sim.run_to_end();
         assert_eq!(lines[0], header().join(","));
         assert_eq!(lines[1], first.join(","));
         assert_eq!(lines.len() as u64, outcome.steps + 2);
-        assert_eq!(*lines.last().expect("rows"), row(&sim).join(","));
+        assert_eq!(*lines.last().expect("rows"), row(&sim, &clock).join(","));
+        // Its sidecar names the setup rolled.
+        let meta =
+            std::fs::read(dir.path().join("dicesim-paper-preset-roll.csv.meta.json")).expect("sidecar");
+        let meta: serde_json::Value = serde_json::from_slice(&meta).expect("JSON");
+        assert_eq!(meta["provenance"]["preset"]["name"], "paper");
+        assert_eq!(meta["provenance"]["changed_from_preset"], false);
         let image = std::fs::read(&png).expect("png written");
         assert!(image.starts_with(b"\x89PNG\r\n\x1a\n") && image.len() > 10_000);
         // A second export replaces nothing.
@@ -722,7 +729,11 @@ mod export {
             .unwrap()
             .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
             .collect();
-        assert_eq!(written.len(), 2, "{written:?}");
+        assert_eq!(
+            written.len(),
+            3,
+            "the trace, its sidecar and the plot: {written:?}"
+        );
         assert!(
             written.contains(&"dicesim-x_______escaped-preset-roll.csv".to_string()),
             "{written:?}"

@@ -26,6 +26,8 @@ pub(crate) enum Exporting {
         initial: InitialCondition,
         title: String,
         log_scale: bool,
+        /// What the files say of the roll (`provenance::roll`).
+        provenance: serde_json::Value,
     },
     /// A basin map as the screen shows it: its cells, and its picture in `layer` at
     /// `size` pixels, recording the setup every cell starts from.
@@ -92,12 +94,14 @@ impl ExportJob {
                 initial,
                 title,
                 log_scale,
+                provenance,
             } => {
                 let [csv, png] = outputs().map_err(|e| Error::Export(e.to_string()))?;
                 let files = ExportFiles {
                     trace: csv,
                     plot: png,
                     log_scale: *log_scale,
+                    provenance: provenance.clone(),
                 };
                 export_roll(params, initial, title, &files, cancel, &mut |p| {
                     progress(ExportStatus::Roll(p))
@@ -119,12 +123,21 @@ impl ExportJob {
                 if cancel.load(Ordering::Relaxed) {
                     return Err(Error::Cancelled);
                 }
-                csv.write(|w| map.write_csv(w))?;
-                if let Err(e) = png.write_bytes(&picture) {
-                    // Both files or neither.
-                    let _ = std::fs::remove_file(csv.path());
-                    return Err(e.into());
-                }
+                // Both files (and the CSV's sidecar) or none.
+                let mut setup = dicesim_setup::preset::Preset {
+                    name: preset.clone(),
+                    initial: *initial,
+                    ..Default::default()
+                };
+                (setup.die, setup.ground, setup.world, setup.integrator) =
+                    (params.die, params.ground, params.world, params.integrator);
+                let provenance = dicesim_experiment::provenance::map(&setup, map);
+                let meta = dicesim_experiment::data_file::sidecar(&provenance, &map.csv_columns());
+                let mut cells = csv.stage(Some(&meta))?;
+                map.write_csv(&mut cells).map_err(|e| csv.failed(&e))?;
+                let mut image = png.stage(None)?;
+                std::io::Write::write_all(&mut image, &picture).map_err(|e| png.failed(&e))?;
+                dicesim_setup::output::commit(vec![cells, image])?;
                 Ok(WrittenExport::Map {
                     csv: csv.path().to_path_buf(),
                     png: png.path().to_path_buf(),
@@ -176,6 +189,40 @@ mod tests {
             yaw_deg: 50.0,
             pitch_deg: 40.0,
         }
+    }
+
+    /// A roll whose table was changed from the preset's is exported under a name that says
+    /// so, and its trace's sidecar names the values it rolled.
+    #[test]
+    fn a_changed_setup_is_named_so_and_its_trace_says_what_it_rolled() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let mut simulator = Simulator::new(&Preset::default()).expect("valid preset");
+        let stiffness = dicesim_setup::keys::ScanKey::named("ground.stiffness").expect("a key");
+        simulator.handle(Command::SetParam(stiffness, 600_000.0));
+        simulator.handle(Command::Export {
+            dir: dir.path().to_path_buf(),
+            log_scale: false,
+        });
+        let job = simulator.take_export_request().expect("an export ordered");
+        assert_eq!(job.stem, "dicesim-paper-changed-preset-roll");
+        job.run(&AtomicBool::new(false), &mut |_| {}).expect("written");
+        assert_eq!(
+            files_in(dir.path()),
+            [
+                "dicesim-paper-changed-preset-roll.csv",
+                "dicesim-paper-changed-preset-roll.csv.meta.json",
+                "dicesim-paper-changed-preset-roll.png"
+            ]
+        );
+        let meta = std::fs::read(dir.path().join("dicesim-paper-changed-preset-roll.csv.meta.json"))
+            .expect("sidecar");
+        let meta: serde_json::Value = serde_json::from_slice(&meta).expect("JSON");
+        let provenance = &meta["provenance"];
+        assert_eq!(provenance["preset"]["name"], "paper");
+        assert_eq!(provenance["preset"]["ground"]["stiffness"], 600_000.0);
+        assert_eq!(provenance["changed_from_preset"], true);
+        assert_eq!(provenance["roll"], "preset roll");
+        assert_eq!(provenance["commit"], dicesim_experiment::COMMIT);
     }
 
     #[test]

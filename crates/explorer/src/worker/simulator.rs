@@ -360,15 +360,40 @@ impl Simulator {
         }
     }
 
-    /// The name the roll's exports ask for (`dicesim-paper-preset-roll`), without a number
-    /// or extension.
+    /// Whether the roll on screen is not the named preset's as it stands: a value of the
+    /// table or die changed (or, for the preset's own roll, of its start).
+    fn changed_from_preset(&self) -> bool {
+        self.live.params != self.preset.params()
+            || (self.live.roll == RollKind::Preset && self.live.initial != self.preset.initial)
+    }
+
+    /// The name the roll's exports ask for (`dicesim-paper-preset-roll`, or
+    /// `dicesim-paper-changed-preset-roll` for the preset with a value changed), without a
+    /// number or extension.
     fn export_stem(&self) -> String {
         // The preset's name comes from a file: it names the export, it never leads elsewhere.
+        let changed = if self.changed_from_preset() {
+            "-changed"
+        } else {
+            ""
+        };
         format!(
-            "dicesim-{}-{}",
+            "dicesim-{}{changed}-{}",
             safe_file_stem(&self.preset.name),
             self.roll_name()
         )
+    }
+
+    /// What the roll's exports say of it: the setup as rolled (the preset's name, the
+    /// values on screen), which roll, whether it was changed from the preset.
+    fn roll_provenance(&self) -> serde_json::Value {
+        let mut rolled = self.preset.clone();
+        let params = self.live.params;
+        (rolled.die, rolled.ground, rolled.world, rolled.integrator) =
+            (params.die, params.ground, params.world, params.integrator);
+        rolled.initial = self.live.initial;
+        let which = self.roll_name().replace('-', " ");
+        dicesim_experiment::provenance::roll(&rolled, &which, self.changed_from_preset())
     }
 
     /// Orders the roll on screen written into `dir` (see [`Command::Export`]): the files
@@ -385,6 +410,7 @@ impl Simulator {
         );
         let (params, initial) = (self.live.params, self.live.initial);
         let stem = self.export_stem();
+        let provenance = self.roll_provenance();
         let progress = ExportProgress {
             writing: false,
             steps_done: 0,
@@ -401,6 +427,7 @@ impl Simulator {
                 initial,
                 title,
                 log_scale,
+                provenance,
             },
         });
         None
