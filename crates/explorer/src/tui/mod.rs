@@ -45,7 +45,7 @@ mod vectors;
 mod versus;
 
 pub use render::render;
-pub use run::run;
+pub use run::{ExplorerError, run};
 pub use state::app::App;
 pub use theme::Theme;
 
