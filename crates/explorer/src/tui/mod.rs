@@ -44,6 +44,7 @@ mod twin_keys;
 mod vectors;
 mod versus;
 
+pub use keys::markdown_tables;
 pub use render::render;
 pub use run::{ExplorerError, run};
 pub use state::app::App;
