@@ -2,7 +2,7 @@
 
 use super::error::CliError;
 use super::slurm::SweepCommand;
-use super::{animate, basin, batch, bench, compare, merge, predict, presets, roll, slurm, trace, tui};
+use super::{animate, basin, batch, bench, compare, man, merge, predict, presets, roll, slurm, trace, tui};
 use clap::{CommandFactory, Parser, Subcommand};
 
 /// A die rolling on a table as a rigid body (Chin & Li, 2019).
@@ -112,10 +112,14 @@ pub(crate) enum CliCommand {
         #[arg(value_enum)]
         shell: clap_complete::Shell,
     },
-    /// Print the manual page (roff) to standard output.
+    /// Print a manual page (roff): the program's, or a command's with its options; or write
+    /// every page into a folder.
     #[command(after_help = "Examples:
-  dicesim man > dicesim.1 && man ./dicesim.1")]
-    Man,
+  dicesim man > dicesim.1 && man ./dicesim.1
+  dicesim man batch | man -l -
+  dicesim man presets save
+  dicesim man --out-dir ~/.local/share/man/man1")]
+    Man(man::ManArgs),
 }
 
 /// Whether colour is off: `--no-color` anywhere on the command line, or NO_COLOR set to
@@ -156,10 +160,7 @@ pub fn main() -> Result<(), CliError> {
             clap_complete::generate(shell, &mut Cli::command(), "dicesim", &mut out);
             Ok(())
         }
-        Some(CliCommand::Man) => {
-            clap_mangen::Man::new(Cli::command()).render(&mut std::io::stdout().lock())?;
-            Ok(())
-        }
+        Some(CliCommand::Man(args)) => man::run(&args, Cli::command()),
         None => tui::run(&tui::TuiArgs::default(), no_color),
     }
 }

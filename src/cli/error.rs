@@ -66,9 +66,9 @@ pub enum CliError {
         #[source]
         source: dicesim_setup::output::OutputError,
     },
-    /// The explorer stopped with an error (its report, with the chain of causes).
-    #[error("{0:#}")]
-    Explorer(color_eyre::Report),
+    /// The explorer could not open or stopped with an error (what it was doing, and why).
+    #[error(transparent)]
+    Explorer(#[from] dicesim_explorer::tui::ExplorerError),
     /// Ctrl-C stopped a command that keeps nothing of a partial result (an animation).
     #[error("interrupted: {0}")]
     Stopped(String),

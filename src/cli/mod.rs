@@ -8,6 +8,7 @@ mod bench;
 mod command;
 mod compare;
 mod error;
+mod man;
 mod merge;
 mod predict;
 mod presets;

@@ -59,7 +59,7 @@ pub(crate) fn run(args: &TuiArgs, no_color: bool) -> Result<(), CliError> {
     } else {
         Theme::from_env()
     };
-    dicesim_explorer::tui::run(&preset, theme).map_err(CliError::Explorer)
+    dicesim_explorer::tui::run(&preset, theme).map_err(CliError::from)
 }
 
 #[cfg(test)]

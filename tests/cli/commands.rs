@@ -421,30 +421,6 @@ fn completions_name_every_command_for_each_shell() {
 }
 
 #[test]
-fn the_man_page_is_roff_with_every_command() {
-    let o = dicesim(&["man"]);
-    assert!(o.status.success());
-    let page = stdout(&o);
-    assert!(page.contains(".TH dicesim 1"), "{}", &page[..page.len().min(300)]);
-    for section in [".SH NAME", ".SH SYNOPSIS", ".SH DESCRIPTION", ".SH SUBCOMMANDS"] {
-        assert!(page.contains(section), "no {section}");
-    }
-    for command in [
-        "roll",
-        "trace",
-        "batch",
-        "basin",
-        "merge",
-        "slurm",
-        "presets",
-        "tui",
-        "completions",
-    ] {
-        assert!(page.contains(&format!("dicesim\\-{command}")), "no {command}");
-    }
-}
-
-#[test]
 fn help_shows_examples_and_exit_statuses() {
     let o = dicesim(&["--help"]);
     let text = stdout(&o);

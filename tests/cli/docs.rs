@@ -118,3 +118,100 @@ fn the_readme_is_at_most_400_lines() {
     let lines = include_str!("../../README.md").lines().count();
     assert!(lines <= 400, "README.md has {lines} lines");
 }
+
+// The documents that repeat what a crate defines. Each crate's package carries only what it
+// owns, so the checks that hold a repository document to a crate live here.
+
+/// The text of a repository file.
+fn read(path: &str) -> String {
+    std::fs::read_to_string(Path::new(ROOT).join(path)).unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+/// The README's lesson section as the explorer's lesson file (`crates/explorer/lesson.toml`,
+/// whose steps the explorer's tests press) gives it.
+#[test]
+fn the_readmes_lesson_is_the_explorers_lesson_file() {
+    let lesson: toml::Table = toml::from_str(&read("crates/explorer/lesson.toml")).expect("the lesson reads");
+    let text = |table: &toml::Table, key: &str| -> String {
+        table[key]
+            .as_str()
+            .unwrap_or_else(|| panic!("lesson.toml: `{key}` is not a string"))
+            .trim()
+            .to_string()
+    };
+    let mut expected = format!("## In the classroom\n\n{}\n\n", text(&lesson, "intro"));
+    let steps = lesson["step"].as_array().expect("lesson.toml: [[step]] tables");
+    assert!(steps.len() >= 5, "{} steps", steps.len());
+    for (i, step) in steps.iter().enumerate() {
+        let step = step.as_table().expect("a step is a table");
+        let body = text(step, "text").replace('\n', "\n   ");
+        expected.push_str(&format!("{}. **{}**\n   {body}\n", i + 1, text(step, "title")));
+    }
+    assert!(
+        read("README.md").contains(&expected),
+        "README.md's lesson differs from crates/explorer/lesson.toml; it should read:\n\n{expected}"
+    );
+}
+
+/// The README's picture of the explorer is the explorer's snapshot of the `paper` roll at its
+/// first impact (which the explorer's tests draw and compare).
+#[test]
+fn the_readmes_screenshot_is_the_explorers_first_impact_snapshot() {
+    let snapshot =
+        read("crates/explorer/src/tui/snapshots/dicesim_explorer__tui__tests__mid_impact_120x36.snap");
+    // insta's header, then one quoted line per row of the screen.
+    let (_, screen) = snapshot
+        .strip_prefix("---\n")
+        .and_then(|rest| rest.split_once("\n---\n"))
+        .expect("an insta snapshot");
+    let drawn: Vec<&str> = screen
+        .lines()
+        .map(|l| {
+            l.strip_prefix('"')
+                .and_then(|l| l.strip_suffix('"'))
+                .expect("a quoted row")
+                .trim_end()
+        })
+        .collect();
+    assert_eq!(drawn.len(), 36);
+    let readme = read("README.md");
+    let block = readme
+        .split_once("The `paper` preset's roll caught at its first impact:")
+        .and_then(|(_, after)| after.split_once("```text\n"))
+        .and_then(|(_, rest)| rest.split_once("```"))
+        .expect("the README shows the explorer in a text block")
+        .0;
+    let shown: Vec<&str> = block.lines().map(str::trim_end).collect();
+    assert_eq!(
+        shown,
+        drawn,
+        "README.md's screenshot should read:\n{}",
+        drawn.join("\n")
+    );
+}
+
+/// docs/explorer.md's key tables are the explorer's key table, `crates/explorer/src/tui/keys.rs`.
+#[test]
+fn the_explorer_docs_key_tables_are_the_key_table() {
+    let expected = dicesim_explorer::tui::markdown_tables();
+    assert!(expected.matches("\n|").count() > 30, "{expected}");
+    assert!(
+        read("docs/explorer.md").contains(&expected),
+        "docs/explorer.md's key tables differ from crates/explorer/src/tui/keys.rs; they should read:\n\n{expected}"
+    );
+}
+
+/// docs/presets.md's table of keys is the parameter registry's.
+#[test]
+fn the_preset_docs_table_is_the_registrys() {
+    let expected = dicesim_setup::registry::markdown_table();
+    assert_eq!(
+        expected.lines().count(),
+        dicesim_setup::registry::ALL.len() + 2,
+        "{expected}"
+    );
+    assert!(
+        read("docs/presets.md").contains(&expected),
+        "docs/presets.md's table of preset keys differs from the registry; it should read:\n{expected}"
+    );
+}

@@ -14,6 +14,7 @@ mod import_cycles;
 mod inputs;
 mod layers;
 mod loaded_dice;
+mod man;
 mod merge_checks;
 mod merge_fuzz;
 mod outputs;

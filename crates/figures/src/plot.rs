@@ -3,7 +3,7 @@
 //! Text is measured with the DejaVu Sans font embedded in the binary, so drawing needs no
 //! system fonts (and the SVG names `sans-serif`, which viewers resolve themselves).
 
-use crate::figure::{Ticks, resolved, setup_value, wrap};
+use crate::figure::{DEJAVU_SANS, Ticks, resolved, setup_value, wrap};
 use dicesim_experiment::Error;
 use dicesim_experiment::basin::{BasinMap, Cell, Layer};
 use dicesim_experiment::ending::Ending;
@@ -62,8 +62,9 @@ pub(crate) fn register_fonts() -> Result<(), Error> {
     static REGISTERED: OnceLock<Result<(), String>> = OnceLock::new();
     REGISTERED
         .get_or_init(|| {
-            register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular())
-                .and_then(|_| register_font("sans-serif", FontStyle::Bold, dejavu::sans::bold()))
+            let [regular, bold] = DEJAVU_SANS;
+            register_font("sans-serif", FontStyle::Normal, regular)
+                .and_then(|_| register_font("sans-serif", FontStyle::Bold, bold))
                 .map_err(|_| "the embedded DejaVu Sans font is not a valid font".to_string())
         })
         .clone()

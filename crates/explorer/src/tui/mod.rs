@@ -44,8 +44,9 @@ mod twin_keys;
 mod vectors;
 mod versus;
 
+pub use keys::markdown_tables;
 pub use render::render;
-pub use run::run;
+pub use run::{ExplorerError, run};
 pub use state::app::App;
 pub use theme::Theme;
 

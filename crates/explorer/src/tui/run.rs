@@ -22,7 +22,7 @@ use super::state::app::App;
 use super::state::messages::Msg;
 use super::theme::Theme;
 use crate::worker::{Simulator, Worker};
-use color_eyre::eyre::{Result, WrapErr};
+use dicesim_physics::ParamError;
 use dicesim_setup::preset::Preset;
 use ratatui::DefaultTerminal;
 use ratatui::crossterm::cursor::Show;
@@ -63,18 +63,34 @@ fn restore_for_good() {
     std::mem::forget(guard);
 }
 
+/// Why the explorer could not open, or stopped: each names what it was doing and keeps the
+/// cause it failed on.
+#[derive(Debug, thiserror::Error)]
+pub enum ExplorerError {
+    /// The preset's setup is outside what the physics accepts.
+    #[error("the preset cannot be simulated: {0}")]
+    Setup(#[source] ParamError),
+    /// The signal thread could not be set up.
+    #[error("cannot catch signals: {0}")]
+    Signals(#[source] std::io::Error),
+    /// Neither standard input nor `/dev/tty` could be read.
+    #[error("cannot read the terminal: {0}")]
+    Input(#[source] std::io::Error),
+    /// Drawing on, or asking the size of, the terminal failed.
+    #[error("the terminal failed: {0}")]
+    Terminal(#[source] std::io::Error),
+}
+
 /// The signals that end the explorer: a terminal closing, `kill`, Ctrl-C or Ctrl-\ sent
 /// from outside (inside, raw mode turns those keys into key presses).
 const ENDING_SIGNALS: [i32; 4] = [SIGTERM, SIGHUP, SIGINT, SIGQUIT];
 
 /// Opens the explorer on `preset` and runs it until the user quits; a signal ends the
 /// process from here with 128 + the signal, after restoring the terminal.
-pub fn run(preset: &Preset, theme: Theme) -> Result<()> {
-    let simulator = Simulator::new(preset).wrap_err("the preset cannot be simulated")?;
-    let mut signals = Signals::new(ENDING_SIGNALS).wrap_err("cannot catch signals")?;
+pub fn run(preset: &Preset, theme: Theme) -> Result<(), ExplorerError> {
+    let simulator = Simulator::new(preset).map_err(ExplorerError::Setup)?;
+    let mut signals = Signals::new(ENDING_SIGNALS).map_err(ExplorerError::Signals)?;
     let signal_handle = signals.handle();
-    // A second install (a caller already did) is harmless: keep the first.
-    let _ = color_eyre::install();
     let mut terminal = ratatui::init();
     let _ = execute!(stdout(), EnableMouseCapture);
     let previous = std::panic::take_hook();
@@ -94,7 +110,8 @@ pub fn run(preset: &Preset, theme: Theme) -> Result<()> {
                 restore_for_good();
                 std::process::exit(128 + signal);
             }
-        })?;
+        })
+        .map_err(ExplorerError::Signals)?;
     let result = event_loop(&mut terminal, simulator, theme, tx, rx);
     restore_for_good();
     signal_handle.close();
@@ -112,20 +129,22 @@ fn event_loop(
     theme: Theme,
     tx: Sender<Msg>,
     rx: Receiver<Msg>,
-) -> Result<Option<i32>> {
+) -> Result<Option<i32>, ExplorerError> {
     let mut app = App::new(simulator.snapshot(), theme);
     app.store = dicesim_setup::preset::Store::from_env();
-    let size = terminal.size()?;
+    let size = terminal.size().map_err(ExplorerError::Terminal)?;
     app.screen = Rect::new(0, 0, size.width, size.height);
     let maps = tx.clone();
     let worker = Worker::spawn_with_maps(simulator, tx.clone(), move |m| maps.send(Msg::from(m)).is_ok());
     // The input threads block reading the terminal for the life of the process.
-    super::tty::spawn(move |ev| tx.send(Msg::Input(ev)).is_ok()).wrap_err("cannot read the terminal")?;
+    super::tty::spawn(move |ev| tx.send(Msg::Input(ev)).is_ok()).map_err(ExplorerError::Input)?;
     let mut drawn: VecDeque<Instant> = VecDeque::new();
     'frames: loop {
         {
             let _drawing = SCREEN.lock().unwrap_or_else(|p| p.into_inner());
-            terminal.draw(|f| render(&app, f))?;
+            terminal
+                .draw(|f| render(&app, f))
+                .map_err(ExplorerError::Terminal)?;
         }
         crate::fault::inject("ui");
         let now = Instant::now();

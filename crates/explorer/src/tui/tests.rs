@@ -191,39 +191,14 @@ fn start_screen() {
     insta::assert_snapshot!("start_80x24", screen(&s.app, 80, 24));
 }
 
+/// The 120×36 screen is also the README's picture of the explorer (`tests/cli/docs.rs` holds
+/// the README to this snapshot).
 #[test]
 fn mid_impact_screen() {
     let s = mid_impact();
     assert_eq!(s.app.roll.live.phase, Phase::InContact);
     insta::assert_snapshot!("mid_impact_120x36", screen(&s.app, 120, 36));
     insta::assert_snapshot!("mid_impact_80x24", screen(&s.app, 80, 24));
-}
-
-/// The README's picture of the explorer is the screen itself, drawn from the same state.
-#[test]
-fn the_readmes_screenshot_is_the_explorer_at_its_first_impact() {
-    let s = mid_impact();
-    let drawn: Vec<String> = lines_of(draw(&s.app, 120, 36).backend().buffer())
-        .iter()
-        .map(|l| l.trim_end().to_string())
-        .collect();
-    let readme = include_str!("../../../../README.md");
-    let after = readme
-        .split_once("The `paper` preset's roll caught at its first impact:")
-        .expect("the README shows the explorer")
-        .1;
-    let block = after
-        .split_once("```text\n")
-        .and_then(|(_, rest)| rest.split_once("```"))
-        .expect("a text block")
-        .0;
-    let shown: Vec<String> = block.lines().map(|l| l.trim_end().to_string()).collect();
-    assert_eq!(
-        shown,
-        drawn,
-        "README.md's screenshot should read:\n{}",
-        drawn.join("\n")
-    );
 }
 
 #[test]

@@ -3,7 +3,7 @@
 
 use super::contents::{FORMAT, Preset};
 use super::error::{Location, PresetError};
-use crate::registry::{self, ANGULAR_MOMENTUM, ANGULAR_VELOCITY, Role, Setup, Value};
+use crate::registry::{self, ANGULAR_MOMENTUM, ANGULAR_VELOCITY, Role, Setup, Shape, Value};
 use dicesim_physics::params::{CORNERS, SIZE_TWICE};
 use dicesim_physics::{InitialCondition, ParamError};
 use toml::de::{DeTable, DeValue};
@@ -20,8 +20,8 @@ impl Preset {
     /// `shipped/NAME.toml`). Every error names the origin, the line and column and, where it
     /// is about one key, that key; nothing is returned unless the whole file is valid.
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Preset, PresetError> {
-        let doc = DeTable::parse(text).map_err(|e| syntax_error(origin, text, &e))?;
-        let doc = doc.get_ref();
+        let spanned = DeTable::parse(text).map_err(|e| syntax_error(origin, text, &e))?;
+        let doc = spanned.get_ref();
         check_format(doc, origin, text)?;
         // The size is stated once; said before the deserializer, which cannot name the lines.
         if let (Some(_), Some(both)) = (find(doc, "die.half_size"), find(doc, "die.half_sizes")) {
@@ -32,7 +32,10 @@ impl Preset {
             });
         }
 
-        let de = toml::Deserializer::parse(text).map_err(|e| syntax_error(origin, text, &e))?;
+        over_long_array(doc, origin, text)?;
+
+        // One parse, one pass: the deserializer reads the parsed document, with its spans.
+        let de = toml::Deserializer::from(spanned.clone());
         let preset: Preset = serde_path_to_error::deserialize(de).map_err(|e| {
             let key = e.path().to_string();
             let inner = e.into_inner();
@@ -46,22 +49,6 @@ impl Preset {
                 message: inner.message().trim().to_string(),
             }
         })?;
-
-        // The streaming deserializer ignores extra array elements (`velocity = [1,2,3,"junk"]`);
-        // a second pass through a TOML value refuses them as `--set` does.
-        let table: toml::Table = toml::from_str(text).map_err(|e| syntax_error(origin, text, &e))?;
-        if let Err(e) = serde_path_to_error::deserialize::<_, Preset>(toml::Value::Table(table)) {
-            let key = e.path().to_string();
-            let at = match find(doc, &key) {
-                Some(offset) => Location::at(origin, text, offset),
-                None => Location::file(origin),
-            };
-            return Err(PresetError::Key {
-                at,
-                key,
-                message: e.into_inner().message().trim().to_string(),
-            });
-        }
 
         if let (Some(_), Some(l)) = (
             find(doc, "initial.angular_velocity"),
@@ -309,6 +296,40 @@ fn check_format(doc: &DeTable<'_>, origin: &str, text: &str) -> Result<(), Prese
     Ok(())
 }
 
+/// An array with more elements than its key has components is refused at the first one too
+/// many: the deserializer fills a fixed-size field and would ignore the rest (as `--set`
+/// refuses `[1,2,3,4]` for a vector).
+fn over_long_array(doc: &DeTable<'_>, origin: &str, text: &str) -> Result<(), PresetError> {
+    for spec in registry::ALL {
+        let expected = match spec.shape {
+            Shape::Vector { components, .. } => components.len(),
+            Shape::Range(range) => range.len(),
+            Shape::PerCorner(corners) => corners.len(),
+            Shape::Number(_) | Shape::Choice { .. } | Shape::Seed(_) | Shape::Flag(_) => continue,
+        };
+        let (section, name) = spec.key().split_once('.').unwrap_or(("", spec.key()));
+        let array = doc
+            .iter()
+            .find(|(k, _)| k.get_ref() == section)
+            .and_then(|(_, v)| v.get_ref().as_table())
+            .and_then(|t| t.iter().find(|(k, _)| k.get_ref() == name))
+            .and_then(|(_, v)| v.get_ref().as_array());
+        if let Some(array) = array
+            && array.len() > expected
+        {
+            return Err(PresetError::Key {
+                at: Location::at(origin, text, array[expected].span().start),
+                key: spec.key().to_string(),
+                message: format!(
+                    "invalid length {}, expected an array of length {expected}",
+                    array.len()
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
 /// Names the line of the out-of-range key when the file has it.
 fn range_error(doc: &DeTable<'_>, origin: &str, text: &str, error: ParamError) -> PresetError {
     let at = match find(doc, &error.key) {
@@ -459,6 +480,42 @@ mod tests {
         );
         let e = err("[ground]\nfriction_law = \"per_corner\"\n");
         assert!(e.to_string().contains("unknown variant `per_corner`"), "{e}");
+    }
+
+    #[test]
+    fn an_array_longer_than_its_key_is_refused_at_the_first_element_too_many() {
+        for (section, line, key, extra) in [
+            (
+                "initial",
+                "velocity = [1.0, 2.0, 3.0, \"junk\", {a = 1}]",
+                "initial.velocity",
+                "\"junk\"",
+            ),
+            (
+                "die",
+                "extra_corner_mass = [0, 0, 0, 0, 0, 0, 0, 0.5, 9]",
+                "die.extra_corner_mass",
+                "9]",
+            ),
+            ("random", "height = [2.0, 8.0, 20.0]", "random.height", "20.0"),
+        ] {
+            let column = line.find(extra).unwrap() + 1;
+            let length = line.matches(',').count() + 1;
+            let expected = match section {
+                "initial" => 3,
+                "die" => 8,
+                _ => 2,
+            };
+            assert_eq!(
+                err(&format!("[{section}]\n{line}\n")).to_string(),
+                format!(
+                    "dir/p.toml:2:{column}: key `{key}`: invalid length {length}, expected an array of length {expected}"
+                )
+            );
+        }
+        // As long as its key's components: read.
+        let p = Preset::from_toml_str("[random]\nheight = [2.0, 8.0]\n", ORIGIN).unwrap();
+        assert_eq!(p.random.height, [2.0, 8.0]);
     }
 
     #[test]

@@ -1,5 +1,6 @@
 //! The presets shipped in the repository's `presets/`, compiled in so an installed binary
-//! still has them.
+//! still has them. The crate reaches them through its own `presets`, a link to that folder,
+//! so the packaged crate carries the files it embeds (cargo packages a link's target).
 
 use super::contents::Preset;
 use super::error::PresetError;
@@ -11,44 +12,29 @@ pub const DEFAULT_NAME: &str = "paper";
 /// Name and file text of every shipped preset, in the order `presets list` shows them: the
 /// default first, then what a teacher opens first.
 pub const SHIPPED: &[(&str, &str)] = &[
-    ("paper", include_str!("../../../../presets/paper.toml")),
+    ("paper", include_str!("../../presets/paper.toml")),
     (
         "slow-motion-classroom",
-        include_str!("../../../../presets/slow-motion-classroom.toml"),
+        include_str!("../../presets/slow-motion-classroom.toml"),
     ),
-    (
-        "gentle-drop",
-        include_str!("../../../../presets/gentle-drop.toml"),
-    ),
+    ("gentle-drop", include_str!("../../presets/gentle-drop.toml")),
     (
         "authors-program",
-        include_str!("../../../../presets/authors-program.toml"),
+        include_str!("../../presets/authors-program.toml"),
     ),
-    ("soft-table", include_str!("../../../../presets/soft-table.toml")),
-    ("icy-table", include_str!("../../../../presets/icy-table.toml")),
-    (
-        "sticky-table",
-        include_str!("../../../../presets/sticky-table.toml"),
-    ),
+    ("soft-table", include_str!("../../presets/soft-table.toml")),
+    ("icy-table", include_str!("../../presets/icy-table.toml")),
+    ("sticky-table", include_str!("../../presets/sticky-table.toml")),
     (
         "on-the-edge-of-stability",
-        include_str!("../../../../presets/on-the-edge-of-stability.toml"),
+        include_str!("../../presets/on-the-edge-of-stability.toml"),
     ),
-    (
-        "loaded-corner",
-        include_str!("../../../../presets/loaded-corner.toml"),
-    ),
-    ("casino-die", include_str!("../../../../presets/casino-die.toml")),
-    (
-        "rounded-die",
-        include_str!("../../../../presets/rounded-die.toml"),
-    ),
-    ("shaved-die", include_str!("../../../../presets/shaved-die.toml")),
-    ("plate", include_str!("../../../../presets/plate.toml")),
-    (
-        "tennis-racket",
-        include_str!("../../../../presets/tennis-racket.toml"),
-    ),
+    ("loaded-corner", include_str!("../../presets/loaded-corner.toml")),
+    ("casino-die", include_str!("../../presets/casino-die.toml")),
+    ("rounded-die", include_str!("../../presets/rounded-die.toml")),
+    ("shaved-die", include_str!("../../presets/shaved-die.toml")),
+    ("plate", include_str!("../../presets/plate.toml")),
+    ("tennis-racket", include_str!("../../presets/tennis-racket.toml")),
 ];
 
 /// The text of the shipped preset `name`.

@@ -23,7 +23,7 @@ fn shipped(name: &str) -> Preset {
 
 #[test]
 fn the_repository_presets_folder_is_the_shipped_set() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../presets");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets");
     let mut on_disk: Vec<String> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().path())
