@@ -121,6 +121,7 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
             "jobs": batch.jobs,
             "engine": batch.engine,
             "summary": batch.summary,
+            "past_stability_limit": batch.past_stability_limit,
         });
         writeln!(out, "{v}")?;
     } else {
@@ -204,6 +205,7 @@ fn print_summary(out: &mut impl Write, batch: &BatchRun) -> std::io::Result<()> 
         batch.engine.name()
     )?;
     tables::batch_counts(out, s)?;
+    tables::stability_count(out, batch.past_stability_limit, s.rolls)?;
     writeln!(
         out,
         "speed                  {:.0} rolls/s, {:.1} M steps/s ({} steps in {:.2} s)",

@@ -195,8 +195,21 @@ fn comparison_record(
         ),
         _ => String::new(),
     };
+    // What the figure rests on: the throws counted (every die on a face) and those not.
+    let counted = c.shown().map_or(String::new(), |k| {
+        format!(
+            "; {} of {} throws counted, {} ended with a die on no face{}",
+            k.throws,
+            k.throws + k.uncounted,
+            k.uncounted,
+            match c.excluded.len() {
+                0 => String::new(),
+                n => format!(", {n} candidates left out of the fit for too few"),
+            }
+        )
+    });
     let experiment = format!(
-        "{}: {} throws as {} threw them, each die {}{fit}",
+        "{}: {} throws as {} threw them, each die {}{fit}{counted}",
         preset.name,
         spec.throws,
         spec.dataset.name(),
@@ -301,6 +314,16 @@ fn budden_record(
     let best = c.fit.as_ref().map_or(String::new(), |f| {
         format!(", drawn at the best, {} = {}", c.key, n(f.best))
     });
+    let thrown: u64 = c
+        .ratios
+        .iter()
+        .map(|r| r.simulated.throws + r.simulated.uncounted)
+        .sum();
+    let uncounted: u64 = c.ratios.iter().map(|r| r.simulated.uncounted).sum();
+    let best = format!(
+        "{best}; {} of {thrown} throws at the best counted, {uncounted} ended on no face",
+        thrown - uncounted
+    );
     // The table and world as the throws were drawn: with the fitted value at its best.
     let (mut p, mut initial) = (preset.params(), preset.initial);
     if let Some(f) = &c.fit {

@@ -4,7 +4,7 @@ use super::args::SetupArgs;
 use super::error::CliError;
 use clap::Args;
 use dicesim_physics::why_it_cannot_settle;
-use dicesim_physics::{Outcome, Params, Simulation, Stability, Status, UnstableReason};
+use dicesim_physics::{InitialCondition, Outcome, Params, Simulation, Stability, Status, UnstableReason};
 use dicesim_setup::preset::Preset;
 use serde_json::json;
 use std::io::Write;
@@ -32,7 +32,13 @@ pub(crate) fn run(args: &RollArgs) -> Result<(), CliError> {
         v["provenance"] = dicesim_experiment::provenance::roll(&preset, "the preset's roll", changed);
         writeln!(out, "{v}")?;
     } else {
-        print_roll(&mut out, &params, &sim, &outcome, reason.as_ref())?;
+        print_roll(
+            &mut out,
+            (&params, &preset.initial),
+            &sim,
+            &outcome,
+            reason.as_ref(),
+        )?;
     }
     Ok(())
 }
@@ -94,7 +100,7 @@ fn roll_json(
 /// state.
 fn print_roll(
     out: &mut impl Write,
-    params: &Params,
+    (params, initial): (&Params, &InitialCondition),
     sim: &Simulation,
     outcome: &Outcome,
     reason: Option<&UnstableReason>,
@@ -112,6 +118,15 @@ fn print_roll(
     };
     let v3 = |v: &nalgebra::Vector3<f64>| format!("({:.6}, {:.6}, {:.6})", v.x, v.y, v.z);
     writeln!(out, "{verdict}")?;
+    // An unstable roll's verdict names the limit already; any other ending past one is not
+    // what the model gives, however plain it looks.
+    let stability = Stability::predict(params, initial).verdict();
+    if stability.exceeded() && reason.is_none() {
+        writeln!(
+            out,
+            "stability         past its limit, so this ending is the step's, not the model's: {stability}"
+        )?;
+    }
     writeln!(out, "steps             {}", outcome.steps)?;
     writeln!(out, "simulated time    {:.3} s", outcome.time_s)?;
     if rule.can_settle() {

@@ -15,7 +15,7 @@ use crate::engine::{Engine, roll_setups};
 use crate::record::RollRecord;
 use crate::summary::BatchSummary;
 use crate::tally::Tally;
-use dicesim_physics::{InitialCondition, Params};
+use dicesim_physics::{InitialCondition, Params, StabilityCheck};
 use dicesim_setup::random::RandomDraws;
 use dicesim_setup::random::RandomRanges;
 use std::collections::BTreeMap;
@@ -103,6 +103,9 @@ pub struct BatchRun {
     pub summary: BatchSummary,
     /// Their counts in the exact form a merge of shards adds up.
     pub tally: Tally,
+    /// Of the completed rolls, those whose start the stability check puts past its limit
+    /// (docs/model.md, "Stability"): their endings are the step's, not the model's.
+    pub past_stability_limit: u64,
 }
 
 /// A finished (or cancelled) batch with every record kept.
@@ -200,6 +203,8 @@ pub fn stream_batch(
 ) -> Result<BatchRun, Error> {
     let start = Instant::now();
     let mut tally = Tally::default();
+    let check = StabilityCheck::new(params);
+    let mut past_stability_limit = 0;
     let run = stream_setups(
         std::slice::from_ref(params),
         rolls,
@@ -208,6 +213,10 @@ pub fn stream_batch(
         &mut |chunk| {
             sink(chunk)?;
             chunk.iter().for_each(|r| tally.add(r));
+            past_stability_limit += chunk
+                .iter()
+                .filter(|r| !check.predict(&r.initial).is_stable())
+                .count() as u64;
             Ok(())
         },
     )?;
@@ -219,6 +228,7 @@ pub fn stream_batch(
         engine: run.engine,
         summary: tally.summary(start.elapsed()),
         tally,
+        past_stability_limit,
     })
 }
 

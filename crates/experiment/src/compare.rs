@@ -21,7 +21,7 @@ use crate::record::RollRecord;
 use crate::stats::wilson_interval;
 use dicesim_physics::{InitialCondition, Params};
 use dicesim_setup::keys::ScanKey;
-use dicesim_setup::number::Real;
+use dicesim_setup::number::{Real, fmt_exact};
 use dicesim_setup::random::RandomRanges;
 use dicesim_setup::registry::Role;
 use serde::Serialize;
@@ -32,6 +32,101 @@ pub const MIN_CANDIDATES: usize = 20;
 
 /// The candidates a fit rolls unless told otherwise: 20 steps over the range.
 pub const DEFAULT_CANDIDATES: usize = 21;
+
+/// The least share of a candidate's throws that must end on a face for the candidate to take
+/// part in a fit (docs/real-dice.md, "What a fit rests on"). Every candidate rolls the same
+/// throws; one that counts `m` of its `N` measures each share with a σ √(N/m) times a whole
+/// candidate's, and its deviance, which grows with the evidence `m·n/(m + n)` against the
+/// data's `n`, falls for the throws it lost alone. Below half, that σ is more than √2 times
+/// the whole candidate's and its evidence under half of it: such a candidate would win a fit
+/// by what it did not measure. And a die that leaves most throws without a face is not the
+/// die the experimenters threw, who threw a cocked die again.
+pub const MIN_COUNTED_SHARE: f64 = 0.5;
+
+/// Why a fit left a candidate out. Each reason is one variant, so every cause that takes a
+/// candidate out of a fit is listed the same way.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(tag = "reason", rename_all = "snake_case")]
+pub enum Exclusion {
+    /// Fewer than [`MIN_COUNTED_SHARE`] of its throws (of one calibration ratio, for Budden)
+    /// ended on a face: `counted` of `thrown`, where the fit needs `needed`.
+    TooFewCounted { counted: u64, thrown: u64, needed: u64 },
+}
+
+/// A candidate a fit left out: its value and why.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Excluded {
+    pub value: f64,
+    #[serde(flatten)]
+    pub why: Exclusion,
+}
+
+impl Exclusion {
+    /// Whether `counted` of `thrown` throws ending on a face are too few for a fit.
+    pub fn of_counts(counted: u64, thrown: u64) -> Option<Exclusion> {
+        let needed = ((MIN_COUNTED_SHARE * thrown as f64).ceil() as u64).max(1);
+        (counted < needed).then_some(Exclusion::TooFewCounted {
+            counted,
+            thrown,
+            needed,
+        })
+    }
+}
+
+/// E.g. "3 of 200 throws ended on a face, fewer than the 100 a candidate needs (half of them)".
+impl std::fmt::Display for Exclusion {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Exclusion::TooFewCounted {
+                counted,
+                thrown,
+                needed,
+            } => write!(
+                f,
+                "{counted} of {thrown} throws ended on a face, fewer than the {needed} a candidate needs (half of them)"
+            ),
+        }
+    }
+}
+
+/// The fit over the candidates no exclusion took out: `values` and `deviances` of every
+/// candidate in order, `excluded` the left-out ones' values; the interval's `best_index`
+/// points into the whole list. A fit with no candidate left is refused, naming each reason.
+pub(crate) fn fit_over_kept(
+    key: &str,
+    values: &[f64],
+    deviances: &[f64],
+    excluded: &[Excluded],
+) -> Result<Option<FitInterval>, Error> {
+    let kept: Vec<usize> = (0..values.len())
+        .filter(|&i| !excluded.iter().any(|e| e.value == values[i]))
+        .collect();
+    if kept.is_empty() && !values.is_empty() {
+        let reasons: Vec<String> = excluded
+            .iter()
+            .take(3)
+            .map(|e| format!("{key} = {}: {}", fmt_exact(e.value), e.why))
+            .collect();
+        let more = excluded.len().saturating_sub(3);
+        return Err(Error::Compare(format!(
+            "no candidate of the fit rests on enough throws, so it has no best value: {}{}; throw \
+             more (--throws) or fit a range where the die settles on a face",
+            reasons.join("; "),
+            if more > 0 {
+                format!("; and {more} more")
+            } else {
+                String::new()
+            }
+        )));
+    }
+    let pick = |v: &[f64]| kept.iter().map(|&i| v[i]).collect::<Vec<f64>>();
+    Ok(
+        profile_interval(&pick(values), &pick(deviances)).map(|f| FitInterval {
+            best_index: kept[f.best_index],
+            ..f
+        }),
+    )
+}
 
 /// One setup value fitted to the data: `candidates` values evenly spaced over `[low, high]`.
 #[derive(Debug, Clone, PartialEq)]
@@ -153,6 +248,9 @@ pub struct Candidate {
     pub counts: Vec<u64>,
     /// The data against these throws (`None` with too few throws to test).
     pub test: Option<TwoSample>,
+    /// Rolls whose start the stability check puts past its limit (their endings are the
+    /// step's, not the model's).
+    pub past_stability_limit: u64,
     /// The deviance over the fit's fixed groups (only when fitting).
     pub deviance: Option<f64>,
 }
@@ -173,6 +271,8 @@ pub struct Comparison {
     pub candidates: Vec<Candidate>,
     /// The fit's best value and interval (`None` without a fit or its candidates).
     pub fit: Option<FitInterval>,
+    /// The candidates the fit left out, each with its reason.
+    pub excluded: Vec<Excluded>,
     /// Whether a cancel stopped it before the end.
     pub cancelled: bool,
 }
@@ -438,6 +538,7 @@ pub fn run_comparison(
             throws: tally.counted,
             uncounted: tally.uncounted,
             test: two_sample(&data.counts, &tally.counts),
+            past_stability_limit: run.past_stability_limit,
             deviance: spec
                 .fit
                 .as_ref()
@@ -448,11 +549,25 @@ pub fn run_comparison(
             break;
         }
     }
-    let fit = spec.fit.as_ref().and_then(|_| {
-        let values: Vec<f64> = candidates.iter().filter_map(|c| c.value).collect();
-        let deviances: Vec<f64> = candidates.iter().filter_map(|c| c.deviance).collect();
-        profile_interval(&values, &deviances)
-    });
+    let excluded: Vec<Excluded> = candidates
+        .iter()
+        .filter_map(|c| {
+            let why = Exclusion::of_counts(c.throws, c.throws + c.uncounted)?;
+            Some(Excluded { value: c.value?, why })
+        })
+        .collect();
+    let fit = match &spec.fit {
+        Some(fit) => {
+            let values: Vec<f64> = candidates.iter().filter_map(|c| c.value).collect();
+            let deviances: Vec<f64> = candidates.iter().filter_map(|c| c.deviance).collect();
+            match fit_over_kept(&fit.key.key, &values, &deviances, &excluded) {
+                // A cancelled fit keeps what its whole candidates say, if anything.
+                Err(_) if cancelled => None,
+                result => result?,
+            }
+        }
+        None => None,
+    };
     Ok(Comparison {
         dataset: spec.dataset,
         data_against_fair: goodness_of_fit(&data.counts, &spec.dataset.fair_probabilities()),
@@ -462,6 +577,7 @@ pub fn run_comparison(
         key: spec.fit.as_ref().map(|f| f.key.key.clone()),
         candidates,
         fit,
+        excluded,
         cancelled,
     })
 }
@@ -510,6 +626,51 @@ mod tests {
         let mut wolf = ThrowTally::new(Dataset::WolfRed, 6);
         wolf.add(&[record(0, Some(3)), record(1, None), record(2, Some(3))]);
         assert_eq!((wolf.counted, wolf.uncounted, wolf.counts[2]), (2, 1, 2));
+    }
+
+    #[test]
+    fn a_candidate_needs_half_its_throws_on_a_face_and_a_fit_needs_a_candidate() {
+        // The red team's corner-radius fit: 0.95 won with 9 of 300 throws counted.
+        assert_eq!(
+            Exclusion::of_counts(9, 300),
+            Some(Exclusion::TooFewCounted {
+                counted: 9,
+                thrown: 300,
+                needed: 150
+            })
+        );
+        assert_eq!(Exclusion::of_counts(150, 300), None);
+        assert_eq!(Exclusion::of_counts(0, 1).map(|_| ()), Some(()));
+        assert_eq!(Exclusion::of_counts(1, 1), None);
+        // Deviances that fall to 0 where nothing was counted: the fit keeps only what rests
+        // on throws, and its best value is the kept minimum, indexed in the whole list.
+        let values = [0.0, 0.25, 0.5, 0.75, 1.0];
+        let deviances = [4.0, 1.0, 0.5, 1.0, 0.0];
+        let left_out = |v: f64| Excluded {
+            value: v,
+            why: Exclusion::of_counts(3, 300).unwrap(),
+        };
+        let fit = fit_over_kept("k", &values, &deviances, &[left_out(1.0)])
+            .unwrap()
+            .unwrap();
+        assert_eq!(fit.best_index, 2);
+        assert!(
+            (fit.best - 0.5).abs() < 0.05 && fit.best_deviance > 0.0,
+            "{fit:?}"
+        );
+        let all: Vec<Excluded> = values.iter().map(|&v| left_out(v)).collect();
+        let e = fit_over_kept("k", &values, &deviances, &all)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("no candidate of the fit rests on enough throws"),
+            "{e}"
+        );
+        assert!(
+            e.contains("k = 0.25: 3 of 300 throws ended on a face, fewer than the 150"),
+            "{e}"
+        );
+        assert!(e.contains("and 2 more"), "{e}");
     }
 
     #[test]

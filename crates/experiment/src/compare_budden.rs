@@ -15,10 +15,8 @@
 
 use crate::Error;
 use crate::batch::{Rolls, RunOptions, stream_batch};
-use crate::compare::{FitSpec, Progress};
-use crate::compare_stats::{
-    FitInterval, SharePair, SharesSummary, deviance, profile_interval, shares_summary,
-};
+use crate::compare::{Excluded, Exclusion, FitSpec, Progress, fit_over_kept};
+use crate::compare_stats::{FitInterval, SharePair, SharesSummary, deviance, shares_summary};
 use crate::data_file::Column;
 use crate::real_data::{BuddenRow, budden};
 use dicesim_physics::{Die, InitialCondition, Params};
@@ -184,6 +182,8 @@ pub struct RatioThrows {
     pub uncounted: u64,
     /// Counted throws that ended on a square face.
     pub square: u64,
+    /// Throws whose start the stability check puts past its limit.
+    pub past_stability_limit: u64,
 }
 
 /// One candidate of the fit: its value, its throws of the calibration ratios and the
@@ -207,6 +207,9 @@ pub struct RatioResult {
     pub simulated: RatioThrows,
     /// The two shares with their intervals, and their difference in σ.
     pub shares: SharePair,
+    /// Why this ratio is held against nothing (too few of its simulated throws counted), if
+    /// so: it is left out of the within-2σ counts and their χ².
+    pub excluded: Option<Exclusion>,
 }
 
 /// The whole comparison.
@@ -223,6 +226,8 @@ pub struct BuddenComparison {
     pub calibrate_on: Vec<f64>,
     pub candidates: Vec<BuddenCandidate>,
     pub fit: Option<FitInterval>,
+    /// The candidates the fit left out, each with its reason.
+    pub excluded: Vec<Excluded>,
     /// Every ratio thrown with the fit's best value (empty if cancelled before).
     pub ratios: Vec<RatioResult>,
     /// The calibration ratios, the predicted ones and all of them against the data.
@@ -360,6 +365,7 @@ fn throw_ratio(
         throws: 0,
         uncounted: 0,
         square: 0,
+        past_stability_limit: 0,
     };
     let run = stream_batch(&params, &rolls, options, cancel, &mut |records| {
         for r in records {
@@ -374,6 +380,7 @@ fn throw_ratio(
         advance(records.len() as u64);
         Ok(())
     })?;
+    t.past_stability_limit = run.past_stability_limit;
     Ok((!run.cancelled).then_some(t))
 }
 
@@ -459,12 +466,23 @@ pub fn run_budden(
             deviance,
         });
     }
+    // A candidate rests on every calibration ratio: too few counted at any one leaves it out.
+    let excluded: Vec<Excluded> = candidates
+        .iter()
+        .filter_map(|c| {
+            let why = c
+                .ratios
+                .iter()
+                .find_map(|t| Exclusion::of_counts(t.throws, t.throws + t.uncounted))?;
+            Some(Excluded { value: c.value, why })
+        })
+        .collect();
     let interval = if cancelled {
         None
     } else {
         let values: Vec<f64> = candidates.iter().map(|c| c.value).collect();
         let deviances: Vec<f64> = candidates.iter().map(|c| c.deviance).collect();
-        profile_interval(&values, &deviances)
+        fit_over_kept(&fit.key.key, &values, &deviances, &excluded)?
     };
     let mut results = Vec::new();
     if let Some(best) = interval.as_ref().map(|f| f.best) {
@@ -480,6 +498,7 @@ pub fn run_budden(
                 data_square: row.square_count(),
                 simulated: t,
                 shares: SharePair::new(row.square_count(), row.throws, t.square, t.throws),
+                excluded: Exclusion::of_counts(t.throws, t.throws + t.uncounted),
             });
         }
     }
@@ -487,7 +506,7 @@ pub fn run_budden(
     let summary = |role: Option<RatioRole>| {
         let pairs: Vec<SharePair> = results
             .iter()
-            .filter(|r| role.is_none_or(|role| r.role == role))
+            .filter(|r| role.is_none_or(|role| r.role == role) && r.excluded.is_none())
             .map(|r| r.shares)
             .collect();
         (complete && !pairs.is_empty()).then(|| shares_summary(&pairs))
@@ -502,6 +521,7 @@ pub fn run_budden(
         calibrate_on: spec.calibrate_on.clone(),
         candidates,
         fit: interval,
+        excluded,
         calibrated: summary(Some(RatioRole::Calibrate)),
         predicted: summary(Some(RatioRole::Predict)),
         all: summary(None),
@@ -576,6 +596,7 @@ mod tests {
             throws: 400,
             uncounted: 7,
             square: 300,
+            past_stability_limit: 0,
         };
         let g = |o: f64, e: f64| o * (o / e).ln();
         let n = 1240.0;

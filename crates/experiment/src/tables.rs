@@ -3,6 +3,7 @@
 
 use crate::basin::{BasinMap, Layer};
 use crate::compare::Comparison;
+use crate::compare::Excluded;
 use crate::compare_budden::{BuddenComparison, RatioRole};
 use crate::compare_stats::{FitInterval, FitMethod};
 use crate::ending::Ending;
@@ -10,13 +11,18 @@ use crate::predict::Prediction;
 use crate::stats::FaceTally;
 use crate::summary::BatchSummary;
 use crate::versus::{NO_FACE, VersusRun};
-use dicesim_setup::number::fmt_num;
+use dicesim_setup::number::{fmt_exact, fmt_num};
 use std::io::Write;
 
 /// The summary's lines that depend on the rolls alone (not on threads or time), as `batch`
 /// and `merge` print them.
 pub fn batch_counts(out: &mut dyn Write, s: &BatchSummary) -> std::io::Result<()> {
-    writeln!(out, "face   count   share   95% interval")?;
+    let faced = s.faces.total();
+    writeln!(
+        out,
+        "face   count   share   95% interval   of the {faced} rolls that ended on a face; {} did not (status below)",
+        s.rolls - faced
+    )?;
     for f in 0..6 {
         let [low, high] = s.face_intervals[f].map(|x| 100.0 * x);
         writeln!(
@@ -64,6 +70,21 @@ pub fn batch_counts(out: &mut dyn Write, s: &BatchSummary) -> std::io::Result<()
         st.unstable
     )?;
     Ok(())
+}
+
+/// How many of `rolls` started past the stability limit (docs/model.md, "Stability"), as
+/// the summaries of `batch` and `compare` say it.
+pub fn stability_count(out: &mut dyn Write, past: u64, rolls: u64) -> std::io::Result<()> {
+    if past == 0 {
+        writeln!(out, "stability              every roll within the step's limits")
+    } else {
+        writeln!(
+            out,
+            "stability              {past} of {rolls} rolls past the stability limit: their endings are the \
+             step's, not the model's (`dicesim roll --set …` on one names the limit; a smaller \
+             integrator.dt helps where the step is the cause)"
+        )
+    }
 }
 
 /// A versus batch: the throws, setups, threads and engine, the table of A's ending against
@@ -133,10 +154,14 @@ pub fn map_summary(
         .map(|f| format!("{f}: {:.1}%", 100.0 * faces.share(f)))
         .collect();
     writeln!(out, "faces over the map  {}", shares.join(", "))?;
-    let unsettled = map.cells.iter().flatten().count() as u64 - faces.total();
-    if unsettled > 0 {
-        writeln!(out, "cells without a face {unsettled}")?;
-    }
+    let known = map.cells.iter().flatten().count() as u64;
+    writeln!(
+        out,
+        "cells               {} of {known} with a face (the shares above), {} without; {} of them rolled, the rest filled",
+        faces.total(),
+        known - faces.total(),
+        map.sampled
+    )?;
     Ok(())
 }
 
@@ -152,17 +177,29 @@ pub fn prediction(out: &mut dyn Write, p: &Prediction) -> std::io::Result<()> {
         p.count, p.seed
     )?;
     for c in &p.curves {
-        writeln!(out, "\n{} ({} starts)", name(c.value), c.starts)?;
-        writeln!(out, "     ε      P(same face)   95% interval")?;
+        let faced = c.faces.total();
+        writeln!(
+            out,
+            "\n{} ({} starts: {faced} ended on a face, {} did not)",
+            name(c.value),
+            c.starts,
+            c.starts - faced
+        )?;
+        writeln!(
+            out,
+            "     ε      P(same face)   95% interval   pairs counted (both on a face)"
+        )?;
         for pt in &c.points {
             writeln!(
                 out,
-                "{:>8}   {:>8.3}      {:.3}–{:.3}",
+                "{:>8}   {:>8.3}      {:.3}–{:.3}    {:>6} of {}",
                 // ε as given (1.5e-3, never rounded to 2e-3): the twins were rolled at it.
                 format!("{:e}", pt.epsilon),
                 pt.same_share,
                 pt.interval[0],
-                pt.interval[1]
+                pt.interval[1],
+                pt.pairs,
+                c.starts
             )?;
         }
         writeln!(
@@ -212,17 +249,31 @@ fn candidates(out: &mut dyn Write, c: &Comparison, key: &str, fit: &FitInterval)
     )?;
     writeln!(
         out,
-        "{:>12}  {:>10}  {:>8}  {:>4}  {:>9}",
+        "{:>12}  {:>10}  {:>8}  {:>4}  {:>9}  {:>9}",
         key.rsplit('.').next().unwrap_or(key),
         "deviance",
         "χ²",
         "dof",
-        "p"
+        "p",
+        "counted"
     )?;
     for k in &c.candidates {
         let (Some(value), Some(deviance)) = (k.value, k.deviance) else {
             continue;
         };
+        let counted = format!("{}/{}", k.throws, k.throws + k.uncounted);
+        if c.excluded.iter().any(|e| e.value == value) {
+            writeln!(
+                out,
+                "{:>12}  {:>10}  {:>8}  {:>4}  {:>9}  {counted:>9}  excluded",
+                candidate_value(value),
+                "—",
+                "",
+                "",
+                ""
+            )?;
+            continue;
+        }
         let (chi2, dof, p) = k
             .test
             .as_ref()
@@ -240,10 +291,39 @@ fn candidates(out: &mut dyn Write, c: &Comparison, key: &str, fit: &FitInterval)
         };
         writeln!(
             out,
-            "{value:>12.6}  {deviance:>10.2}  {chi2:>8}  {dof:>4}  {p:>9}{mark}"
+            "{:>12}  {deviance:>10.2}  {chi2:>8}  {dof:>4}  {p:>9}  {counted:>9}{mark}",
+            candidate_value(value)
         )?;
     }
+    exclusions(out, key, &c.excluded)?;
     fit_line(out, key, fit)
+}
+
+/// The candidates a fit left out, one line each with its reason (none: nothing printed).
+fn exclusions(out: &mut dyn Write, key: &str, excluded: &[Excluded]) -> std::io::Result<()> {
+    if excluded.is_empty() {
+        return Ok(());
+    }
+    writeln!(
+        out,
+        "left out of the fit: {} candidate{} (a candidate counts when at least half its throws end on a face)",
+        excluded.len(),
+        if excluded.len() == 1 { "" } else { "s" }
+    )?;
+    for e in excluded {
+        writeln!(out, "  {key} = {}: {}", fmt_exact(e.value), e.why)?;
+    }
+    Ok(())
+}
+
+/// A candidate's value in its table column: six decimals, or the exact value where those
+/// would hide it (`1e-200`, not `0.000000`).
+fn candidate_value(v: f64) -> String {
+    if v == 0.0 || (1e-3..1e9).contains(&v.abs()) {
+        format!("{v:.6}")
+    } else {
+        fmt_exact(v)
+    }
 }
 
 /// The real counts beside the simulated ones of the value shown, and their test.
@@ -252,7 +332,7 @@ fn comparison_counts(out: &mut dyn Write, c: &Comparison, preset: &str) -> std::
         return writeln!(out, "no simulated throws completed");
     };
     let value = match (&c.key, shown.value) {
-        (Some(k), Some(v)) => format!(", {k} = {v}"),
+        (Some(k), Some(v)) => format!(", {k} = {}", fmt_exact(v)),
         _ => String::new(),
     };
     writeln!(
@@ -263,6 +343,7 @@ fn comparison_counts(out: &mut dyn Write, c: &Comparison, preset: &str) -> std::
         c.seed,
         shown.uncounted
     )?;
+    stability_count(out, shown.past_stability_limit, shown.throws + shown.uncounted)?;
     let rows = c.rows(shown);
     let Some(test) = &shown.test else {
         return writeln!(out, "too few simulated throws to test");
@@ -316,9 +397,10 @@ fn comparison_counts(out: &mut dyn Write, c: &Comparison, preset: &str) -> std::
 fn fit_line(out: &mut dyn Write, key: &str, fit: &FitInterval) -> std::io::Result<()> {
     let side = |v: f64, open: bool, words: &str| {
         if open {
-            format!("{words} {v}")
+            // The range's own end, as typed: the shortest digits (1e-200 as 1e-200).
+            format!("{words} {}", fmt_exact(v))
         } else {
-            format!("{v:.6}")
+            candidate_value(v)
         }
     };
     let how = match fit.method {
@@ -327,8 +409,8 @@ fn fit_line(out: &mut dyn Write, key: &str, fit: &FitInterval) -> std::io::Resul
     };
     writeln!(
         out,
-        "best {key} = {:.6} (deviance {:.2}, {how}); 95 % interval {} to {} (deviance within 3.84 of the best)",
-        fit.best,
+        "best {key} = {} (deviance {:.2}, {how}); 95 % interval {} to {} (deviance within 3.84 of the best)",
+        candidate_value(fit.best),
         fit.best_deviance,
         side(fit.low, fit.low_open, "the range's low end,"),
         side(fit.high, fit.high_open, "the range's high end,"),
@@ -362,16 +444,31 @@ pub fn budden(out: &mut dyn Write, c: &BuddenComparison, preset: &str) -> std::i
         let shares: Vec<String> = k
             .ratios
             .iter()
-            .map(|t| format!("{:.2}: {:.3}", t.ratio, t.square as f64 / t.throws.max(1) as f64))
+            .map(|t| {
+                format!(
+                    "{:.2}: {:.3} ({} of {})",
+                    t.ratio,
+                    t.square as f64 / t.throws.max(1) as f64,
+                    t.throws,
+                    t.throws + t.uncounted
+                )
+            })
             .collect();
+        let left_out = c.excluded.iter().any(|e| e.value == k.value);
         writeln!(
             out,
-            "{:>12.6}  {:>10.2}  {}",
-            k.value,
-            k.deviance,
-            shares.join("  ")
+            "{:>12}  {:>10}  {}{}",
+            candidate_value(k.value),
+            if left_out {
+                "—".to_string()
+            } else {
+                format!("{:.2}", k.deviance)
+            },
+            shares.join("  "),
+            if left_out { "  excluded" } else { "" }
         )?;
     }
+    exclusions(out, &c.key, &c.excluded)?;
     let Some(fit) = &c.fit else {
         return writeln!(out, "no fit: too few candidates completed");
     };
@@ -384,8 +481,10 @@ pub fn budden(out: &mut dyn Write, c: &BuddenComparison, preset: &str) -> std::i
 fn budden_ratios(out: &mut dyn Write, c: &BuddenComparison, best: f64, preset: &str) -> std::io::Result<()> {
     writeln!(
         out,
-        "\nevery ratio thrown with {} = {:.6} ({preset}, seed {}): Budden's share of square-face landings beside the simulation's",
-        c.key, best, c.seed
+        "\nevery ratio thrown with {} = {} ({preset}, seed {}): Budden's share of square-face landings beside the simulation's",
+        c.key,
+        candidate_value(best),
+        c.seed
     )?;
     writeln!(
         out,
@@ -410,14 +509,35 @@ fn budden_ratios(out: &mut dyn Write, c: &BuddenComparison, best: f64, preset: &
             s.simulated_share,
             interval(s.simulated_interval),
             s.z,
-            if s.within_two_sigma() { "yes" } else { "no" }
+            match (r.excluded, s.within_two_sigma()) {
+                (Some(_), _) => "left out",
+                (None, true) => "yes",
+                (None, false) => "no",
+            }
         )?;
     }
     let uncounted: u64 = c.ratios.iter().map(|r| r.simulated.uncounted).sum();
+    let thrown: u64 = c
+        .ratios
+        .iter()
+        .map(|r| r.simulated.throws + r.simulated.uncounted)
+        .sum();
     writeln!(
         out,
-        "{uncounted} simulated throws not counted (the cuboid ended without a face)"
+        "{} of {thrown} simulated throws counted, {uncounted} not (the cuboid ended without a face)",
+        thrown - uncounted
     )?;
+    let past: u64 = c.ratios.iter().map(|r| r.simulated.past_stability_limit).sum();
+    stability_count(out, past, thrown)?;
+    for r in c.ratios.iter().filter(|r| r.excluded.is_some()) {
+        if let Some(why) = r.excluded {
+            writeln!(
+                out,
+                "ratio {:.2} left out of the counts below: {why} (its share rests on too little)",
+                r.ratio
+            )?;
+        }
+    }
     for (words, summary) in [
         ("calibration ratios (in sample)", &c.calibrated),
         ("predicted ratios (out of sample)", &c.predicted),
@@ -462,6 +582,31 @@ mod tests {
         assert_eq!(p_text(0.5), "0.5000");
         assert_eq!(p_text(1e-4), "0.0001");
         assert_eq!(p_text(0.000012345), "1.23e-5");
+    }
+
+    #[test]
+    fn extreme_fit_values_read_as_numbers_not_as_hundreds_of_digits() {
+        // A fit bound of 1e-200 printed as a 202-character decimal (issue 36, item 6).
+        let fit = FitInterval {
+            best: 1e-200,
+            best_deviance: 0.5,
+            best_index: 0,
+            low: 1e-200,
+            low_open: true,
+            high: 2.5e-7,
+            high_open: false,
+            method: FitMethod::Candidates,
+            parabola: None,
+        };
+        let line = text(|out| fit_line(out, "ground.damping", &fit));
+        assert!(
+            line.starts_with("best ground.damping = 1e-200 (deviance 0.50"),
+            "{line}"
+        );
+        assert!(line.contains("the range's low end, 1e-200 to 2.5e-7 "), "{line}");
+        assert!(line.len() < 250, "{line}");
+        assert_eq!(candidate_value(0.0), "0.000000");
+        assert_eq!(candidate_value(12040.0), "12040.000000");
     }
 
     #[test]

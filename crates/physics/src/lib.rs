@@ -33,7 +33,7 @@ pub use model::{Placement, resting_depth_on_face, why_it_cannot_settle};
 pub use params::{Die, FrictionLaw, Ground, Integrator, Limits, ParamError, Params, StopEnergy, World};
 pub use shape::{MassProperties, mass_properties};
 pub use sim::{ContactForce, EnergyLedger, Outcome, STEPS_BETWEEN_STOP_CHECKS, Simulation, State, Status};
-pub use stability::{Limit, Reading, Stability, UnstableReason};
+pub use stability::{Limit, Reading, Stability, StabilityCheck, UnstableReason};
 pub use stopping::StopRule;
 
 /// Rolls one die from `initial` to the end; the parameters must already be valid.

@@ -79,6 +79,19 @@ impl Body {
         }
     }
 
+    /// g·cm², the least principal moment of inertia about the centre of mass: the axis a
+    /// push at a corner turns the body about most easily. The cube's one moment; a loaded
+    /// cube's tensor at the corner offsets `corner_offsets` (its principal moments turn with
+    /// it, so any orientation gives them); a general body's from its body-frame tensor.
+    pub(crate) fn least_inertia(&self, corner_offsets: &[Vector3<f64>; 8]) -> f64 {
+        let tensor = match self {
+            Body::PaperCube(cube) => return cube.inertia(),
+            Body::LoadedCube(_, mass) => mass.inertia(corner_offsets),
+            Body::Shaped(shape) => shape.properties.inertia,
+        };
+        tensor.symmetric_eigen().eigenvalues.min()
+    }
+
     /// erg, the energy to tip over an edge from lying flat: the cube's `M·g·a·(√2 − 1)`, a
     /// general body's lowest pass over every face and edge.
     pub(crate) fn edge_energy(&self) -> f64 {

@@ -9,7 +9,7 @@ use std::fmt;
 
 /// ω_rock·Δt above this lets the rocking mode gain energy. A lone undamped spring allows 2;
 /// contact switching on and off between steps pumps energy in well below it.
-pub const CONTACT_MODE_LIMIT: f64 = 1.4;
+pub const CONTACT_MODE_LIMIT: f64 = 1.25;
 
 /// A corner may move at most this many half sizes in one step: faster, the step jumps it
 /// deep into the table (or through it) before any force acts, and a spin turns the die
@@ -23,11 +23,21 @@ pub const CORNER_TRAVEL_LIMIT: f64 = 1.0;
 /// allowed `γ·u_z` is `max(1, 2/(√(k/m)·Δt))`.
 pub const DAMPING_LIMIT: f64 = 1.0;
 
-/// One step's friction impulse `μ·|P|·Δt`, per corner mass and per unit of the corner's
-/// slip speed, above this reverses the slip faster than it was: friction then feeds energy
-/// in. The press force of a corner striking at speed `u` peaks at `u·√(k·m)`, so the
-/// number is `μ·√(k/m)·Δt`, whatever the speed.
+/// One step's friction impulse `μ·|P|·Δt`, per unit of the sideways momentum of the corner
+/// it pushes, above this reverses the slip faster than it was: friction then feeds energy
+/// in (or, on a light or flat body, spins it up at an impact). A corner striking at speed
+/// `u` presses with a spring stiffened by the damping to `k·(1 + γ·u)`, its force peaking at
+/// `u·√(k·(1 + γ·u)·m_s)`, where `m_s = (1/M + ℓ²/I_min)⁻¹` is the least mass a sideways push
+/// at a corner moves (ℓ its reach from the centre of mass, `I_min` the least moment of
+/// inertia); so the number is `μ·√(k·(1 + γ·u)/m_s)·Δt`, whatever the speed.
 pub const FRICTION_CHATTER_LIMIT: f64 = 2.0;
+
+/// A landing may press a corner at most this share of the die's reach into the table
+/// ([`Limit::ImpactDepth`]): one spring, stiffened by the damping to `k·(1 + γ·v)`, under a
+/// corner that took the whole landing at `v`, `½·k·(1 + γ·v)·d² = ½·M·v²`, gives the depth
+/// `d = v·√(M/(k·(1 + γ·v)))`; past the reach the centre of mass comes down to the table
+/// top, and the springs hold the die nowhere.
+pub const IMPACT_DEPTH_LIMIT: f64 = 1.0;
 
 /// A cause of instability.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -39,8 +49,12 @@ pub enum Limit {
     CornerTravel,
     /// `γ·u_z` of the fastest corner at the first impact, against `max(1, 2/(√(k/m)·Δt))`.
     Damping,
-    /// `μ·√(k/m)·Δt`: one step's friction against a corner's slip.
+    /// `μ·√(k·(1 + γ·u)/m_s)·Δt`: one step's friction against a corner's slip.
     FrictionChatter,
+    /// cm, how deep a landing at `v` would press one corner's spring (stiffened by the
+    /// damping) taking it alone, `v·√(M/(k·(1 + γ·v)))`, against the die's reach `2·a_min − r`
+    /// (a landing on the thinnest face, shared between its corners).
+    ImpactDepth,
 }
 
 impl Limit {
@@ -51,6 +65,7 @@ impl Limit {
             Limit::CornerTravel => "corner speed",
             Limit::Damping => "damping",
             Limit::FrictionChatter => "friction",
+            Limit::ImpactDepth => "impact depth",
         }
     }
 }
@@ -66,9 +81,10 @@ pub struct Reading {
     /// die's speed, gives the corner most of its speed.
     #[serde(skip)]
     spin_dominated: bool,
-    /// cm/s, the fastest corner's speed at the first impact (the last two readings).
+    /// cm/s, the speed the words quote: the fastest corner's at the first impact, or for
+    /// [`Limit::ImpactDepth`] the centre's as it lands.
     #[serde(skip)]
-    corner_speed: f64,
+    speed: f64,
 }
 
 impl Reading {
@@ -104,18 +120,24 @@ impl fmt::Display for Reading {
                 f,
                 "die too fast for Δt: a corner hits the table at {:.0} cm/s and moves {v:.3} cm per \
                  step (stable below {allowed:.3} cm)",
-                self.corner_speed
+                self.speed
             ),
             Limit::Damping => write!(
                 f,
                 "damping too strong for a corner at {:.0} cm/s: γ·u_z = {v:.2} turns the table's \
                  push into a pull on a buried corner (stable below {allowed:.2} at this Δt)",
-                self.corner_speed
+                self.speed
             ),
             Limit::FrictionChatter => write!(
                 f,
                 "friction too strong for Δt: one step of friction reverses a sliding corner {v:.2} \
-                 times as fast as it slid (μ·√(k/m)·Δt, stable below {allowed:.0})"
+                 times as fast as it slid (μ·√(k·(1 + γ·u)/m_s)·Δt, stable below {allowed:.0})"
+            ),
+            Limit::ImpactDepth => write!(
+                f,
+                "landing too hard for the table: the die lands at {:.0} cm/s and presses up to {v:.3} cm \
+                 into it, so deep its centre of mass nears the table top (stable below {allowed:.3} cm)",
+                self.speed
             ),
         }
     }
@@ -124,60 +146,19 @@ impl fmt::Display for Reading {
 /// Every reading for one roll.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Stability {
-    pub readings: [Reading; 4],
+    pub readings: [Reading; 5],
 }
 
 impl Stability {
     /// Reads every cause for these parameters and this initial condition.
     pub fn predict(p: &Params, initial: &InitialCondition) -> Stability {
-        let dt = p.integrator.dt;
-        let body = Body::new(p);
-        // How far a corner may move per step: the smallest half size (a cube's half size).
-        let a = p.die.smallest_half_size();
-        // rad/s, one corner on its spring.
-        let corner_frequency = (p.ground.stiffness / p.die.corner_mass).sqrt();
-        // The centre's speed when the lowest corner first reaches the table.
-        let drop = (initial.height + body.lowest_point_at_start(initial)).max(0.0);
-        let v = initial.velocity;
-        let vz_impact = (v[2] * v[2] + 2.0 * p.world.gravity * drop).sqrt();
-        let translation = (v[0] * v[0] + v[1] * v[1] + vz_impact * vz_impact).sqrt();
-        let spin_rate = initial.angular_velocity_for(body.mean_inertia()).norm();
-        let spin = body.corner_speed_of_spin(spin_rate);
-        let spin_dominated = spin > translation;
-        let corner_speed = translation + spin;
-        let reading = |limit, value, allowed| Reading {
-            limit,
-            value,
-            allowed,
-            spin_dominated,
-            corner_speed,
-        };
-        Stability {
-            readings: [
-                reading(
-                    Limit::ContactMode,
-                    body.rocking_frequency() * dt,
-                    CONTACT_MODE_LIMIT,
-                ),
-                reading(Limit::CornerTravel, corner_speed * dt, CORNER_TRAVEL_LIMIT * a),
-                reading(
-                    Limit::Damping,
-                    p.ground.damping * (vz_impact + spin),
-                    DAMPING_LIMIT.max(2.0 / (corner_frequency * dt)),
-                ),
-                reading(
-                    Limit::FrictionChatter,
-                    p.ground.friction * corner_frequency * dt,
-                    FRICTION_CHATTER_LIMIT,
-                ),
-            ],
-        }
+        StabilityCheck::new(p).predict(initial)
     }
 
     /// The reading to report: the first past its limit in the order contact mode, corner
-    /// travel, damping, friction chatter (a cause before its symptoms: a corner moving too
-    /// far per step also strikes too fast for the damping); when none is past, the one
-    /// with the largest `value / allowed`.
+    /// travel, damping, friction chatter, impact depth (a cause before its symptoms: a corner
+    /// moving too far per step also strikes too fast for the damping and presses deep);
+    /// when none is past, the one with the largest `value / allowed`.
     pub fn verdict(&self) -> Reading {
         if let Some(r) = self.readings.iter().find(|r| r.exceeded()) {
             return *r;
@@ -194,6 +175,100 @@ impl Stability {
     /// Whether every reading is within its limit.
     pub fn is_stable(&self) -> bool {
         !self.verdict().exceeded()
+    }
+}
+
+/// The readings of one setup for any start: what depends on the body alone, worked out once
+/// (a batch asks it of every roll).
+#[derive(Debug, Clone, Copy)]
+pub struct StabilityCheck {
+    params: Params,
+    body: Body,
+    /// g, the least mass a sideways push at a corner moves, `(1/M + ℓ²/I_min)⁻¹`: ℓ the
+    /// farthest contact point's reach from the centre of mass, pushed across the axis of
+    /// least inertia.
+    sideways_mass: f64,
+    /// cm, how deep a corner may press the table before the die's centre of mass could
+    /// reach it, `2·a_min − r` (docs/model.md, "Stability").
+    reach: f64,
+}
+
+impl StabilityCheck {
+    pub fn new(p: &Params) -> StabilityCheck {
+        let body = Body::new(p);
+        // Distances and principal moments do not depend on the orientation.
+        let offsets = body.start_offsets(&InitialCondition::default());
+        let reach = offsets.iter().map(|k| k.norm()).fold(0.0, f64::max) + p.die.corner_radius;
+        StabilityCheck {
+            params: *p,
+            body,
+            sideways_mass: 1.0 / (1.0 / body.mass() + reach * reach / body.least_inertia(&offsets)),
+            reach: 2.0 * p.die.smallest_half_size() - p.die.corner_radius,
+        }
+    }
+
+    /// Every reading for a roll from `initial`.
+    pub fn predict(&self, initial: &InitialCondition) -> Stability {
+        let (p, body) = (&self.params, &self.body);
+        let dt = p.integrator.dt;
+        // How far a corner may move per step: the smallest half size (a cube's half size).
+        let a = p.die.smallest_half_size();
+        // rad/s, one corner on its spring.
+        let corner_frequency = (p.ground.stiffness / p.die.corner_mass).sqrt();
+        // The centre's speed when the lowest corner first reaches the table.
+        let drop = (initial.height + body.lowest_point_at_start(initial)).max(0.0);
+        let v = initial.velocity;
+        let vz_impact = (v[2] * v[2] + 2.0 * p.world.gravity * drop).sqrt();
+        let translation = (v[0] * v[0] + v[1] * v[1] + vz_impact * vz_impact).sqrt();
+        let spin_rate = initial.angular_velocity_for(body.mean_inertia()).norm();
+        let spin = body.corner_speed_of_spin(spin_rate);
+        let spin_dominated = spin > translation;
+        let corner_speed = translation + spin;
+        // A corner pressing in at u_z feels k·d·(1 + γ·u_z): while it strikes, the damping
+        // stiffens its spring by that factor, and every mode of the contact with it.
+        let striking = (1.0 + p.ground.damping * (vz_impact + spin)).sqrt();
+        let reading = |limit, value, allowed, speed| Reading {
+            limit,
+            value,
+            allowed,
+            spin_dominated,
+            speed,
+        };
+        let k = p.ground.stiffness;
+        Stability {
+            readings: [
+                reading(
+                    Limit::ContactMode,
+                    body.rocking_frequency() * striking * dt,
+                    CONTACT_MODE_LIMIT,
+                    corner_speed,
+                ),
+                reading(
+                    Limit::CornerTravel,
+                    corner_speed * dt,
+                    CORNER_TRAVEL_LIMIT * a,
+                    corner_speed,
+                ),
+                reading(
+                    Limit::Damping,
+                    p.ground.damping * (vz_impact + spin),
+                    DAMPING_LIMIT.max(2.0 / (corner_frequency * dt)),
+                    corner_speed,
+                ),
+                reading(
+                    Limit::FrictionChatter,
+                    p.ground.friction * (k / self.sideways_mass).sqrt() * striking * dt,
+                    FRICTION_CHATTER_LIMIT,
+                    corner_speed,
+                ),
+                reading(
+                    Limit::ImpactDepth,
+                    vz_impact * (body.mass() / (k * (1.0 + p.ground.damping * vz_impact))).sqrt(),
+                    IMPACT_DEPTH_LIMIT * self.reach,
+                    vz_impact,
+                ),
+            ],
+        }
     }
 }
 

@@ -7,3 +7,4 @@ mod derived_checks;
 mod lanes;
 mod loaded_dice;
 mod reference;
+mod stability_bodies;

@@ -98,8 +98,8 @@ struct Figures {
     deepest: f64,
     highest: f64,
     /// Per limit: sets past it, and of those the ones that did not end unstable.
-    past: [u32; 4],
-    past_not_unstable: [u32; 4],
+    past: [u32; 5],
+    past_not_unstable: [u32; 5],
     depths: Vec<f64>,
 }
 
@@ -212,9 +212,15 @@ fn verdicts_hold_across_every_allowed_range() {
             q(0.99)
         );
     }
-    for (i, limit) in ["contact mode", "corner travel", "damping", "friction chatter"]
-        .iter()
-        .enumerate()
+    for (i, limit) in [
+        "contact mode",
+        "corner travel",
+        "damping",
+        "friction chatter",
+        "impact depth",
+    ]
+    .iter()
+    .enumerate()
     {
         println!(
             "past the {limit} limit: {} sets, {} of them did not end unstable",
