@@ -332,6 +332,9 @@ pub fn resting_depth_on_face(p: &Params) -> f64 {
 /// body's own: the paper's and a loaded cube's from the cube, a general body's from the face
 /// that comes nearest to holding it (the highest resting centre, or the largest pass).
 pub fn why_it_cannot_settle(p: &Params) -> Option<String> {
+    if let Some(why) = super::contact::why_a_tilt_cannot_hold(p) {
+        return Some(why);
+    }
     let body = Body::new(p);
     if body.stop_rule().can_settle() {
         return None;

@@ -6,6 +6,7 @@
 //! trajectories are reproduced to rounding, not merely in law.
 
 use super::body::face_most_nearly_up;
+use super::contact;
 use super::energy::Energy;
 use super::initial::InitialCondition;
 use super::kernel::{Constants, Kernel, NoHook, StepHook, contact_point};
@@ -195,7 +196,7 @@ impl Simulation {
             track_ledger: true,
             ledger: Ledger::default(),
             initial_energy: 0.0,
-            stop_rule: body.stop_rule(),
+            stop_rule: contact::on_the_table(body.stop_rule(), params, body.edge_energy()),
             outcome: None,
         };
         sim.initial_energy = sim.energy().total();
@@ -262,7 +263,11 @@ impl Simulation {
         self.k.bodies[0] = body;
         self.k.c = Constants::new(&params, &body);
         self.k.c.runaway = runaway;
-        self.stop_rule = body.stop_rule();
+        self.stop_rule = contact::on_the_table(body.stop_rule(), &params, body.edge_energy());
+        // The paper's law holds no tangential springs.
+        if self.k.c.spring_lanes == 0 {
+            self.k.state.tangential_springs = [nalgebra::Vector2::zeros(); 8];
+        }
         self.k.update_forces();
         Ok(())
     }
@@ -342,7 +347,9 @@ impl Simulation {
     /// on the face down (what a report of a finished roll prints; [`Simulation::stop_rule`]
     /// is the fair die's, or the widest over the faces).
     pub fn stop_rule_now(&self) -> StopRule {
-        self.k.bodies[0].stop_rule_at(&self.k.state.corner_offsets)
+        let body = &self.k.bodies[0];
+        let rule = body.stop_rule_at(&self.k.state.corner_offsets);
+        contact::on_the_table(rule, &self.params, body.edge_energy())
     }
 
     /// The face whose outward normal points most nearly up (the live display's face).
@@ -364,7 +371,7 @@ impl Simulation {
         if self.track_ledger {
             self.step_with_ledger();
         } else {
-            self.k.step(&mut NoHook);
+            self.k.step_by_law(&mut NoHook);
         }
     }
 
@@ -372,7 +379,7 @@ impl Simulation {
     /// plain step, its second copy of the kernel would crowd the batch loop's code.
     #[inline(never)]
     fn step_with_ledger(&mut self) {
-        self.k.step(&mut self.ledger);
+        self.k.step_by_law(&mut self.ledger);
     }
 
     /// One step, then the end-of-roll checks; returns the outcome on the step that ends it.
