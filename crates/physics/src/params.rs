@@ -590,6 +590,17 @@ impl Ground {
         GroundKey::named(key).is_none_or(|k| k.law() == self.contact)
     }
 
+    /// The refusal of `key` (a dotted preset key) when this ground's contact law does not read
+    /// it: what a file, `--set` or the explorer says when the key is given, whatever its value.
+    pub fn refusal(&self, key: &str) -> Option<ParamError> {
+        let key = GroundKey::named(key).filter(|k| k.law() != self.contact)?;
+        Some(ParamError::refused(
+            key.limits(),
+            key.value(self),
+            key.why_unread(self.contact),
+        ))
+    }
+
     /// The first key this ground's law does not read that differs from its default.
     fn check_unread(&self) -> Result<(), ParamError> {
         for key in GroundKey::ALL {
