@@ -66,9 +66,17 @@ pub(crate) struct SpringFriction {
 }
 
 impl SpringFriction {
-    /// The constants for a die of `mass` (g) on `p`'s table.
+    /// The constants for a die of `mass` (g) on `p`'s table; all zero under the paper's law,
+    /// which reads none of them (and should not pay for the restitution's bisection).
     pub(crate) fn new(p: &Params, mass: f64) -> SpringFriction {
         let g = &p.ground;
+        if g.contact == ContactLaw::Paper {
+            return SpringFriction {
+                normal_damping: 0.0,
+                tangential_stiffness: 0.0,
+                tangential_damping: 0.0,
+            };
+        }
         let zeta = damping_ratio(g.restitution);
         let normal_damping = 2.0 * zeta * (g.stiffness * mass / POINTS_OF_A_FACE).sqrt();
         let ratio = g.tangential_stiffness_ratio;

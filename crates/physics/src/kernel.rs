@@ -814,20 +814,34 @@ impl<L: Lane> Kernel<L> {
     /// `−M·g⃗·x` measured from the same height, the normal part `M·g·cos θ·(x.z − a)` less
     /// the downhill part `M·g_t·x` of a tilted table (zero on a level one).
     #[inline(always)]
-    fn gravitational(&self) -> L {
+    fn gravitational<const SPRING: bool>(&self) -> L {
         let c = &self.c;
         let x = &self.state.position;
         let normal = c.mass_gravity * (x.z - c.half_size);
-        if c.spring_lanes == 0 {
+        if !SPRING {
             return normal;
         }
         let tilted = normal - (c.weight_x * x.x + c.weight_y * x.y);
-        L::select(c.spring, tilted, normal)
+        if c.spring_lanes == all_lanes::<L>() {
+            tilted
+        } else {
+            L::select(c.spring, tilted, normal)
+        }
     }
 
-    /// The rigid-body energy terms at the current state, erg.
+    /// The rigid-body energy terms at the current state, erg, under the lanes' laws.
     #[inline(always)]
     pub(crate) fn energy(&self) -> EnergyTerms<L> {
+        if self.c.spring_lanes != 0 {
+            self.energy_by::<true>()
+        } else {
+            self.energy_by::<false>()
+        }
+    }
+
+    /// [`Kernel::energy`] with the laws known, as [`Kernel::step`] takes them.
+    #[inline(always)]
+    pub(crate) fn energy_by<const SPRING: bool>(&self) -> EnergyTerms<L> {
         let c = &self.c;
         let s = &self.state;
         let (v, w, l) = (&s.velocity, &self.angular_velocity, &s.angular_momentum);
@@ -844,7 +858,7 @@ impl<L: Lane> Kernel<L> {
             // ω·L summed from +0.0 as nalgebra's dot product does (a −0.0 product first
             // becomes +0.0).
             rotational: L::splat(0.5) * (((L::zero() + w.x * l.x) + w.y * l.y) + w.z * l.z),
-            gravitational: self.gravitational(),
+            gravitational: self.gravitational::<SPRING>(),
             elastic: elastic.or_zero(self.in_contact),
         }
     }
@@ -909,9 +923,9 @@ impl<L: Lane> Kernel<L> {
     /// is compared first: where no lane is below the threshold, the point-mass energy need
     /// not be summed nor a loaded die's face looked up.
     #[inline(always)]
-    pub(crate) fn ends(&self) -> Ends<L::Mask> {
+    pub(crate) fn ends_by<const SPRING: bool>(&self) -> Ends<L::Mask> {
         let c = &self.c;
-        let e = self.energy();
+        let e = self.energy_by::<SPRING>();
         let kinetic = e.translational + e.rotational;
         let potential = e.gravitational + e.elastic;
         let rigid = (kinetic + e.gravitational) + e.elastic;
@@ -968,7 +982,7 @@ impl<L: Lane> Kernel<L> {
         let settled = settled & !unstable;
         // A tilted table's cap on the kinetic energy (docs/model.md, "The spring-friction
         // contact"): it settles only what its downhill edge can hold.
-        let settled = if c.spring_lanes != 0 && L::bits(settled) != 0 {
+        let settled = if SPRING && L::bits(settled) != 0 {
             settled & kinetic.le(c.kinetic_cap)
         } else {
             settled

@@ -576,6 +576,15 @@ mod avx2 {
         }
     }
 
+    /// One step with lanes on the spring-friction law, and how it leaves each lane; called
+    /// only from [`roll_all`], which has AVX2 too.
+    #[target_feature(enable = "avx2")]
+    #[inline(never)]
+    fn step_spring_friction(k: &mut Kernel<F4>) -> crate::kernel::Ends<F4> {
+        k.step::<true>(&mut NoHook);
+        k.ends_by::<true>()
+    }
+
     /// [`roll_in_lanes`] with AVX2.
     ///
     /// # Safety
@@ -606,8 +615,14 @@ mod avx2 {
         }
         let mut since_check = 0;
         while F4::bits(lanes.live) != 0 {
-            lanes.k.step_by_law(&mut NoHook);
-            let ends = lanes.k.ends();
+            // The paper's step inline, the other law's out of line: the batch loop's code
+            // stays what it was for the paper's die.
+            let ends = if lanes.k.c.spring_lanes == 0 {
+                lanes.k.step::<false>(&mut NoHook);
+                lanes.k.ends_by::<false>()
+            } else {
+                step_spring_friction(&mut lanes.k)
+            };
             let mut ending = F4::bits((ends.unstable | ends.settled | ends.timeout) & lanes.live);
             while ending != 0 {
                 let l = ending.trailing_zeros() as usize;

@@ -368,10 +368,20 @@ impl Simulation {
     /// Steps on past the end of a roll if asked; the recorded outcome stays the first end.
     #[inline]
     pub fn step(&mut self) {
+        if self.k.c.spring_lanes != 0 {
+            self.step_by::<true>();
+        } else {
+            self.step_by::<false>();
+        }
+    }
+
+    /// [`Simulation::step`] with the law known (the kernel's `SPRING`).
+    #[inline(always)]
+    fn step_by<const SPRING: bool>(&mut self) {
         if self.track_ledger {
             self.step_with_ledger();
         } else {
-            self.k.step_by_law(&mut NoHook);
+            self.k.step::<SPRING>(&mut NoHook);
         }
     }
 
@@ -382,14 +392,30 @@ impl Simulation {
         self.k.step_by_law(&mut self.ledger);
     }
 
+    /// [`Simulation::advance`] on the spring-friction law, out of line for the same reason:
+    /// the paper's step and end test stay the ones inlined into the batch loop.
+    #[inline(never)]
+    fn advance_spring_friction(&mut self) -> Option<Outcome> {
+        self.advance_by::<true>()
+    }
+
     /// One step, then the end-of-roll checks; returns the outcome on the step that ends it.
     #[inline]
     pub fn advance(&mut self) -> Option<Outcome> {
-        self.step();
+        if self.k.c.spring_lanes != 0 {
+            return self.advance_spring_friction();
+        }
+        self.advance_by::<false>()
+    }
+
+    /// [`Simulation::advance`] with the law known.
+    #[inline(always)]
+    fn advance_by<const SPRING: bool>(&mut self) -> Option<Outcome> {
+        self.step_by::<SPRING>();
         if self.outcome.is_some() {
             return None;
         }
-        let outcome = self.check_end()?;
+        let outcome = self.check_end::<SPRING>()?;
         self.outcome = Some(outcome);
         Some(outcome)
     }
@@ -434,8 +460,8 @@ impl Simulation {
 
     /// Whether the current state ends the roll, and how (the kernel's end-of-step test).
     #[inline]
-    fn check_end(&self) -> Option<Outcome> {
-        let ends = self.k.ends();
+    fn check_end<const SPRING: bool>(&self) -> Option<Outcome> {
+        let ends = self.k.ends_by::<SPRING>();
         let status = if ends.unstable {
             Status::Unstable
         } else if ends.settled {
