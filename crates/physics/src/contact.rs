@@ -21,23 +21,27 @@ pub fn clamped_restitution(zeta: f64) -> f64 {
     (-zeta * (std::f64::consts::PI - 2.0 * zeta.asin()) / (1.0 - zeta * zeta).sqrt()).exp()
 }
 
-/// The damping ratio ζ at which [`clamped_restitution`] is `e` (e in [0.2, 1]): bisection,
-/// the restitution falling as ζ grows; 0 for e = 1. Ninety halvings of [0, 1) leave an
-/// interval far below one unit in the last place, so the answer is the same every time.
+/// The damping ratio ζ at which [`clamped_restitution`] is `e` (e in [0.2, 1]); 0 for
+/// e = 1. Newton's method on `ln e(ζ) = ln e`, whose derivative is
+/// `2ζ/(1 − ζ²) − (π − 2·asin ζ)/(1 − ζ²)^(3/2)`, from the unclamped dashpot's
+/// `−ln e/√(π² + ln² e)` (below the answer, where the curve is convex: it converges from there
+/// without overshooting); a fixed number of steps, so the answer is the same every time. It runs
+/// once per roll, so it is kept to a few calls of `asin`.
 pub fn damping_ratio(e: f64) -> f64 {
     if e >= 1.0 {
         return 0.0;
     }
-    let (mut low, mut high) = (0.0_f64, 1.0_f64);
-    for _ in 0..90 {
-        let mid = 0.5 * (low + high);
-        if clamped_restitution(mid) > e {
-            low = mid;
-        } else {
-            high = mid;
-        }
+    let target = e.ln();
+    let pi = std::f64::consts::PI;
+    let mut zeta = -target / (pi * pi + target * target).sqrt();
+    for _ in 0..8 {
+        let (arc, s2) = (pi - 2.0 * zeta.asin(), 1.0 - zeta * zeta);
+        let s = s2.sqrt();
+        let value = -zeta * arc / s - target;
+        let slope = 2.0 * zeta / s2 - arc / (s2 * s);
+        zeta = (zeta - value / slope).clamp(0.0, 1.0 - 1e-12);
     }
-    0.5 * (low + high)
+    zeta
 }
 
 /// cm/s², gravity in the table's frame: `g·(sin θ·cos φ, sin θ·sin φ, −cos θ)` for a table
@@ -63,6 +67,8 @@ pub(crate) struct SpringFriction {
     pub(crate) tangential_stiffness: f64,
     /// dyn·s/cm, `c_t = (k_t/k)·c`.
     pub(crate) tangential_damping: f64,
+    /// cm/dyn, `1/k_t`.
+    pub(crate) tangential_compliance: f64,
 }
 
 impl SpringFriction {
@@ -75,15 +81,18 @@ impl SpringFriction {
                 normal_damping: 0.0,
                 tangential_stiffness: 0.0,
                 tangential_damping: 0.0,
+                tangential_compliance: 0.0,
             };
         }
         let zeta = damping_ratio(g.restitution);
         let normal_damping = 2.0 * zeta * (g.stiffness * mass / POINTS_OF_A_FACE).sqrt();
         let ratio = g.tangential_stiffness_ratio;
+        let tangential_stiffness = ratio * g.stiffness;
         SpringFriction {
             normal_damping,
-            tangential_stiffness: ratio * g.stiffness,
+            tangential_stiffness,
             tangential_damping: ratio * normal_damping,
+            tangential_compliance: 1.0 / tangential_stiffness,
         }
     }
 }

@@ -187,6 +187,8 @@ pub(crate) struct Constants<L: Lane> {
     pub(crate) normal_damping: L,
     pub(crate) tangential_stiffness: L,
     pub(crate) tangential_damping: L,
+    /// cm/dyn, `1/k_t`: a multiplication where the spring is reset, in both widths alike.
+    pub(crate) tangential_compliance: L,
     pub(crate) static_friction: L,
     /// erg, a tilted table's cap on a settled die's kinetic energy (+∞: none).
     pub(crate) kinetic_cap: L,
@@ -287,6 +289,7 @@ impl Constants<f64> {
             normal_damping: law.normal_damping,
             tangential_stiffness: law.tangential_stiffness,
             tangential_damping: law.tangential_damping,
+            tangential_compliance: law.tangential_compliance,
             static_friction: p.ground.static_friction,
             kinetic_cap: contact::kinetic_cap(p, body.edge_energy()),
             half_mass: 0.5 * mass,
@@ -671,6 +674,7 @@ impl<L: Lane> Kernel<L> {
             c.static_friction,
             c.spring,
         );
+        let compliance = c.tangential_compliance;
         let radius = c.corner_radius;
         let z0 = self.state.position.z;
         let zero = L::zero();
@@ -709,16 +713,21 @@ impl<L: Lane> Kernel<L> {
             // The table pushes, never pulls.
             let pressed = self.state.corner_depths[k] * stiffness - damping * u.z;
             let normal = pressed.or_zero(pressed.gt(zero));
-            let (fx, fy) = (-(k_t * sx) - c_t * u.x, -(k_t * sy) - c_t * u.y);
-            let trial = (fx * fx + fy * fy).sqrt();
-            let slipping = trial.gt(stuck_up_to * normal);
-            // Where it slips the trial is above μ_s·N ≥ 0, so the quotient is finite there.
-            let scale = (kinetic * normal) / trial;
-            let fx = L::select(slipping, fx * scale, fx);
-            let fy = L::select(slipping, fy * scale, fy);
-            // Sliding, the spring holds the kinetic force: ξ = −(F_t + c_t·u_t)/k_t.
-            let sx = L::select(slipping, -(fx + c_t * u.x) / k_t, sx);
-            let sy = L::select(slipping, -(fy + c_t * u.y) / k_t, sy);
+            let (mut fx, mut fy) = (-(k_t * sx) - c_t * u.x, -(k_t * sy) - c_t * u.y);
+            let (mut sx, mut sy) = (sx, sy);
+            // |F*| > μ_s·N, compared squared (both sides ≥ 0): a point stuck in every lane
+            // needs no square root and no quotient.
+            let limit = stuck_up_to * normal;
+            let slipping = (fx * fx + fy * fy).gt(limit * limit);
+            if L::bits(slipping) != 0 {
+                // Where it slips |F*| is above μ_s·N ≥ 0, so the quotient is finite there.
+                let scale = (kinetic * normal) / (fx * fx + fy * fy).sqrt();
+                fx = L::select(slipping, fx * scale, fx);
+                fy = L::select(slipping, fy * scale, fy);
+                // Sliding, the spring holds the kinetic force: ξ = −(F_t + c_t·u_t)/k_t.
+                sx = L::select(slipping, -(fx + c_t * u.x) * compliance, sx);
+                sy = L::select(slipping, -(fy + c_t * u.y) * compliance, sy);
+            }
             let kept = t & spring;
             self.state.corner_forces[k] = v3(fx.or_zero(t), fy.or_zero(t), normal.or_zero(t));
             self.state.tangential_springs[k] = Vector2::new(sx.or_zero(kept), sy.or_zero(kept));

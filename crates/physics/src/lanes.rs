@@ -388,6 +388,7 @@ mod avx2 {
                     normal_damping: F4::splat(c.normal_damping),
                     tangential_stiffness: F4::splat(c.tangential_stiffness),
                     tangential_damping: F4::splat(c.tangential_damping),
+                    tangential_compliance: F4::splat(c.tangential_compliance),
                     static_friction: F4::splat(c.static_friction),
                     kinetic_cap: F4::splat(c.kinetic_cap),
                     half_mass: F4::splat(c.half_mass),
@@ -466,6 +467,7 @@ mod avx2 {
             c.normal_damping.set_lane(l, f.normal_damping);
             c.tangential_stiffness.set_lane(l, f.tangential_stiffness);
             c.tangential_damping.set_lane(l, f.tangential_damping);
+            c.tangential_compliance.set_lane(l, f.tangential_compliance);
             c.static_friction.set_lane(l, f.static_friction);
             c.kinetic_cap.set_lane(l, f.kinetic_cap);
             c.half_mass.set_lane(l, f.half_mass);
