@@ -73,7 +73,7 @@ pub(crate) struct SpringFriction {
 
 impl SpringFriction {
     /// The constants for a die of `mass` (g) on `p`'s table; all zero under the paper's law,
-    /// which reads none of them (and should not pay for the restitution's bisection).
+    /// which reads none of them (and should not pay for the restitution's Newton steps).
     pub(crate) fn new(p: &Params, mass: f64) -> SpringFriction {
         let g = &p.ground;
         if g.contact == ContactLaw::Paper {

@@ -49,6 +49,12 @@ pub const SHIPPED: &[(&str, &str)] = &[
         "tennis-racket",
         include_str!("../../../../presets/tennis-racket.toml"),
     ),
+    (
+        "sleeping-top",
+        include_str!("../../../../presets/sleeping-top.toml"),
+    ),
+    ("superball", include_str!("../../../../presets/superball.toml")),
+    ("incline", include_str!("../../../../presets/incline.toml")),
 ];
 
 /// The text of the shipped preset `name`.
