@@ -117,17 +117,16 @@ impl ScanKey {
         (self.scan().set)(params, initial, self.component, value)
     }
 
-    /// Checks that the contact law reads the key, `value` against its range and the start it
-    /// gives against the table (no corner inside it), then sets it; on error nothing changes.
+    /// Checks `value` against its range and the start it gives against the table (no corner
+    /// inside it), then sets it; on error nothing changes. What ties it to other values (a
+    /// key the contact law does not read, a corner radius against the half sizes) is
+    /// [`Params::validate`]'s to refuse.
     pub fn set_checked(
         &self,
         params: &mut Params,
         initial: &mut InitialCondition,
         value: f64,
     ) -> Result<(), ParamError> {
-        if let Some(refused) = params.ground.refusal(self.spec.key()) {
-            return Err(refused);
-        }
         self.check(value)?;
         let (mut p, mut ic) = (*params, *initial);
         self.set(&mut p, &mut ic, value);
@@ -142,18 +141,23 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_key_the_contact_law_does_not_read_cannot_be_set() {
+    fn a_key_the_contact_law_does_not_read_is_refused_once_set() {
         let (mut p, mut ic) = (Params::default(), InitialCondition::default());
         let tilt = ScanKey::named("ground.tilt").unwrap();
-        let e = tilt.set_checked(&mut p, &mut ic, 10.0).unwrap_err();
+        tilt.set_checked(&mut p, &mut ic, 10.0).unwrap();
+        let e = p.validate().unwrap_err();
         assert_eq!(e.key, "ground.tilt");
         assert!(e.to_string().contains("its table is level"), "{e}");
-        assert_eq!(p, Params::default(), "nothing changed");
         p.ground.contact = dicesim_physics::ContactLaw::SpringFriction;
-        tilt.set_checked(&mut p, &mut ic, 10.0).unwrap();
-        assert_eq!(p.ground.tilt, 10.0);
+        p.validate().unwrap();
         let damping = ScanKey::named("ground.damping").unwrap();
-        assert!(damping.set_checked(&mut p, &mut ic, 0.01).is_err());
+        damping.set_checked(&mut p, &mut ic, 0.01).unwrap();
+        assert!(
+            p.validate()
+                .unwrap_err()
+                .to_string()
+                .contains("its normal damping comes from")
+        );
     }
 
     #[test]
