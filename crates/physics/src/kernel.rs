@@ -14,15 +14,16 @@
 //! it happens: the spin (libm's `sin`/`cos`, [`super::spin`]) and, only for a loaded die
 //! near rest, the stopping rule of the face it lies on.
 
+use super::contact::{self, SpringFriction};
 use super::initial::InitialCondition;
 use super::lane::{Lane, set_bits};
 use super::mass::InertiaTensor;
 use super::model::Body;
-use super::params::{FrictionLaw, Params, StopEnergy};
+use super::params::{ContactLaw, FrictionLaw, Params, StopEnergy};
 use super::shape;
 use super::spin::{spin, spin_lanes, step_rotation};
 use super::stopping::settles;
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, Vector2, Vector3};
 
 /// Where a corner's contact force acts, relative to the centre of mass: a rounded body's
 /// contact sphere's lowest point, the radius below its centre (lanes of a sharp body among
@@ -115,6 +116,10 @@ pub struct State<L: Lane = f64> {
     pub corner_forces: [Vector3<L>; 8],
     /// cm, how far each corner is below the ground (0 above it).
     pub corner_depths: [L; 8],
+    /// cm, each contact point's tangential spring `ξ` in the table's plane: the slip it made
+    /// since it touched the table, as the spring-friction law holds it (reset to 0 when the
+    /// point leaves the table; always 0 under the paper's law).
+    pub tangential_springs: [Vector2<L>; 8],
     /// s, simulated time.
     pub time_s: L,
     /// Steps taken since the initial condition.
@@ -172,6 +177,21 @@ pub(crate) struct Constants<L: Lane> {
     pub(crate) stiffness: L,
     pub(crate) damping: L,
     pub(crate) friction: L,
+    /// dyn, the weight's components in a tilted table's plane (+0.0 on a level table and
+    /// under the paper's law); `weight_z` is then the normal part, `−M·g·cos θ`.
+    pub(crate) weight_x: L,
+    pub(crate) weight_y: L,
+    /// The spring-friction law's normal damping `c` (dyn·s/cm), tangential stiffness `k_t`
+    /// (dyn/cm) and damping `c_t` (dyn·s/cm), and static friction `μ_s` (`friction` is
+    /// its `μ_k`).
+    pub(crate) normal_damping: L,
+    pub(crate) tangential_stiffness: L,
+    pub(crate) tangential_damping: L,
+    /// cm/dyn, `1/k_t`: a multiplication where the spring is reset, in both widths alike.
+    pub(crate) tangential_compliance: L,
+    pub(crate) static_friction: L,
+    /// erg, a tilted table's cap on a settled die's kinetic energy (+∞: none).
+    pub(crate) kinetic_cap: L,
     /// `0.5·M`, `M·g`, `0.5·k`: the energy's leading products, grouped as the scalar
     /// formulas group them (left to right).
     pub(crate) half_mass: L,
@@ -220,6 +240,10 @@ pub(crate) struct Constants<L: Lane> {
     /// Bit l: lane l's body has rounded corners. Plain bits, not a mask: the step asks
     /// only whether any lane has, and a sharp die's step should not pay for asking.
     pub(crate) rounded: u32,
+    /// Lanes on the spring-friction contact law, as a mask and as plain bits: the engines
+    /// pick the step of the paper's law alone where no lane has it ([`Kernel::step`]).
+    pub(crate) spring: L::Mask,
+    pub(crate) spring_lanes: u32,
 }
 
 impl Constants<f64> {
@@ -228,12 +252,20 @@ impl Constants<f64> {
         let shape = body.shape();
         let mass = body.mass();
         let gravity = p.world.gravity;
-        let weight_z = mass * -gravity;
+        let spring = p.ground.contact == ContactLaw::SpringFriction;
+        // The paper's weight as the authors' program had it; a tilted table's in its frame.
+        let [gx, gy, gz] = contact::gravity_in_table_frame(p);
+        let (weight_x, weight_y, weight_z) = if spring {
+            (mass * gx, mass * gy, mass * gz)
+        } else {
+            (0.0, 0.0, mass * -gravity)
+        };
         let (dt, zero) = (p.integrator.dt, 0.0);
         // A general body's potential is measured from its lowest rest height.
         let a = body.reference_height();
         let m = p.die.corner_mass;
-        let rule = body.widest_stop_rule();
+        let rule = contact::on_the_table(body.widest_stop_rule(), p, body.edge_energy());
+        let law = SpringFriction::new(p, mass);
         let (corner_masses, loaded_total) = match body {
             Body::LoadedCube(_, load) => load.point_masses(),
             Body::PaperCube(_) | Body::Shaped(_) => ([m; 8], mass),
@@ -243,16 +275,27 @@ impl Constants<f64> {
             dt,
             mass,
             weight_z,
+            // `0 + 0` is the paper's `0`, so its kick keeps its bits.
             flight_kick: Vector3::new(
-                (zero / mass) * dt,
-                (zero / mass) * dt,
+                ((zero + weight_x) / mass) * dt,
+                ((zero + weight_y) / mass) * dt,
                 ((zero + weight_z) / mass) * dt,
             ),
             stiffness: p.ground.stiffness,
             damping: p.ground.damping,
             friction: p.ground.friction,
+            weight_x,
+            weight_y,
+            normal_damping: law.normal_damping,
+            tangential_stiffness: law.tangential_stiffness,
+            tangential_damping: law.tangential_damping,
+            tangential_compliance: law.tangential_compliance,
+            static_friction: p.ground.static_friction,
+            kinetic_cap: contact::kinetic_cap(p, body.edge_energy()),
             half_mass: 0.5 * mass,
-            mass_gravity: mass * gravity,
+            // The potential of the normal weight; a tilted table's downhill part is added
+            // in `energy`.
+            mass_gravity: if spring { mass * -gz } else { mass * gravity },
             half_stiffness: 0.5 * p.ground.stiffness,
             half_size: a,
             half_corner_mass: 0.5 * m,
@@ -277,6 +320,8 @@ impl Constants<f64> {
             shaped: shape.is_some(),
             rounded: shape.is_some_and(|s| s.radius > 0.0) as u32,
             turning: loaded || shape.is_some(),
+            spring,
+            spring_lanes: spring as u32,
         }
     }
 }
@@ -335,6 +380,7 @@ impl Kernel<f64> {
             corner_offsets,
             corner_forces: [Vector3::zeros(); 8],
             corner_depths: [0.0; 8],
+            tangential_springs: [Vector2::zeros(); 8],
             time_s: 0.0,
             step: 0,
         };
@@ -355,10 +401,26 @@ impl Kernel<f64> {
 }
 
 impl<L: Lane> Kernel<L> {
+    /// One step under the laws the lanes have: [`Kernel::step`] of the paper's law alone
+    /// where no lane has the spring-friction law.
+    #[inline(always)]
+    pub(crate) fn step_by_law(&mut self, hook: &mut impl StepHook<L>) {
+        if self.c.spring_lanes != 0 {
+            self.step::<true>(hook);
+        } else {
+            self.step::<false>(hook);
+        }
+    }
+
     /// One step of Δt in every lane: kick → drift → L → ω → rotate → forces (docs/model.md,
     /// "One time step").
+    ///
+    /// `SPRING` false is the paper's law in every lane, its arithmetic untouched by the other
+    /// law; true steps lanes on the spring-friction law (and any paper lanes beside them).
+    /// The engines pick it once per step from [`Constants::spring_lanes`], so the paper's
+    /// step compiles without a trace of the other law.
     #[inline(always)]
-    pub(crate) fn step(&mut self, hook: &mut impl StepHook<L>) {
+    pub(crate) fn step<const SPRING: bool>(&mut self, hook: &mut impl StepHook<L>) {
         // The constants this stage reads, copied out one by one: a copy of them all costs a
         // memcpy call per step.
         let c = &self.c;
@@ -383,9 +445,25 @@ impl<L: Lane> Kernel<L> {
             // A lane in flight among them gets its flight constant this way too: its
             // forces are +0.0, so these are the very quotients the constant holds.
             let v = &mut s.velocity;
-            v.x = v.x + (force.x / mass) * dt;
-            v.y = v.y + (force.y / mass) * dt;
-            v.z = v.z + ((force.z + weight_z) / mass) * dt;
+            if SPRING {
+                // A tilted table's weight has a part in its plane.
+                let c = &self.c;
+                let tilted = v3(
+                    v.x + ((force.x + c.weight_x) / mass) * dt,
+                    v.y + ((force.y + c.weight_y) / mass) * dt,
+                    v.z + ((force.z + weight_z) / mass) * dt,
+                );
+                *v = if c.spring_lanes == all_lanes::<L>() {
+                    tilted
+                } else {
+                    let paper = v3(v.x + (force.x / mass) * dt, v.y + (force.y / mass) * dt, tilted.z);
+                    select3(c.spring, &tilted, &paper)
+                };
+            } else {
+                v.x = v.x + (force.x / mass) * dt;
+                v.y = v.y + (force.y / mass) * dt;
+                v.z = v.z + ((force.z + weight_z) / mass) * dt;
+            }
         } else {
             s.velocity = add3(&s.velocity, &flight_kick);
         }
@@ -437,7 +515,7 @@ impl<L: Lane> Kernel<L> {
             }
         }
         // 6. forces at the new state.
-        self.update_forces();
+        self.update_forces_by::<SPRING>();
         // 7. the clock.
         self.state.time_s = self.state.time_s + dt;
         self.state.step = L::count_up(self.state.step);
@@ -530,16 +608,129 @@ impl<L: Lane> Kernel<L> {
         )
     }
 
-    /// Recomputes every corner's depth and contact force at the current state (eq. 13–15),
-    /// under each lane's friction law.
+    /// Recomputes every corner's depth and contact force at the current state, under each
+    /// lane's contact and friction law.
     #[inline(always)]
     pub(crate) fn update_forces(&mut self) {
+        if self.c.spring_lanes != 0 {
+            self.update_forces_by::<true>();
+        } else {
+            self.update_forces_by::<false>();
+        }
+    }
+
+    /// [`Kernel::update_forces`] with the laws known: the paper's alone (`SPRING` false,
+    /// eq. 13–15), or lanes on the spring-friction law, with the paper's in any lane beside
+    /// them computed as before and kept by a select.
+    #[inline(always)]
+    fn update_forces_by<const SPRING: bool>(&mut self) {
         // A rounded body touches the table with the lowest points of its corner spheres, the
         // radius below their centres (docs/model.md, "Real dice"); a sharp one skips this.
-        if self.c.rounded != 0 {
-            self.update_forces_at::<true>();
+        let rounded = self.c.rounded != 0;
+        if !SPRING {
+            if rounded {
+                self.update_forces_at::<true>();
+            } else {
+                self.update_forces_at::<false>();
+            }
+            return;
+        }
+        let previous = self.touching_corners;
+        let paper = (self.c.spring_lanes != all_lanes::<L>()).then(|| {
+            if rounded {
+                self.update_forces_at::<true>();
+            } else {
+                self.update_forces_at::<false>();
+            }
+            self.state.corner_forces
+        });
+        if rounded {
+            self.spring_forces_at::<true>(previous);
         } else {
-            self.update_forces_at::<false>();
+            self.spring_forces_at::<false>(previous);
+        }
+        if let Some(paper) = paper {
+            let spring = self.c.spring;
+            for (force, paper) in self.state.corner_forces.iter_mut().zip(&paper) {
+                *force = select3(spring, force, paper);
+            }
+        }
+    }
+
+    /// The spring-friction law's forces for sharp (`ROUNDED` false) or rounded lanes, with
+    /// `previous` the corners that touched in some lane before (docs/model.md, "The
+    /// spring-friction contact"): per point, the normal `N = max(0, k·d − c·u_z)`; the trial
+    /// tangential force `F* = −k_t·ξ − c_t·u_t` on the spring `ξ` (the slip since the point
+    /// touched, this step's included); stuck while `|F*| ≤ μ_s·N`, else sliding at
+    /// `μ_k·N` along `F*` with the spring set to hold that force. A point off the table has
+    /// no force and no spring.
+    #[inline(always)]
+    fn spring_forces_at<const ROUNDED: bool>(&mut self, previous: u8) {
+        let c = &self.c;
+        let (stiffness, damping, kinetic, dt) = (c.stiffness, c.normal_damping, c.friction, c.dt);
+        let (k_t, c_t, stuck_up_to, spring) = (
+            c.tangential_stiffness,
+            c.tangential_damping,
+            c.static_friction,
+            c.spring,
+        );
+        let compliance = c.tangential_compliance;
+        let radius = c.corner_radius;
+        let z0 = self.state.position.z;
+        let zero = L::zero();
+        let mut touching = [L::mask_from_bits(0); 8];
+        let mut any = L::mask_from_bits(0);
+        for (k, t) in touching.iter_mut().enumerate() {
+            let z = self.state.corner_offsets[k].z + z0;
+            let z = if ROUNDED { z - radius } else { z };
+            *t = z.lt(zero);
+            self.state.corner_depths[k] = (-z).or_zero(*t);
+            any = any | *t;
+        }
+        if L::bits(any) == 0 && previous == 0 {
+            return;
+        }
+        self.in_contact = any;
+        let mut touching_corners = 0u8;
+        for (k, t) in touching.iter().enumerate() {
+            if L::bits(*t) != 0 {
+                touching_corners |= 1 << k;
+            }
+        }
+        self.touching_corners = touching_corners;
+        for k in set_bits((previous & !touching_corners).into()) {
+            self.state.corner_forces[k] = zero3();
+            self.state.tangential_springs[k] = Vector2::new(zero, zero);
+        }
+        for k in set_bits(touching_corners.into()) {
+            let t = touching[k];
+            let u = self.corner_velocity(&contact_point::<ROUNDED, L>(
+                &self.state.corner_offsets[k],
+                radius,
+            ));
+            let xi = self.state.tangential_springs[k];
+            let (sx, sy) = (xi.x + u.x * dt, xi.y + u.y * dt);
+            // The table pushes, never pulls.
+            let pressed = self.state.corner_depths[k] * stiffness - damping * u.z;
+            let normal = pressed.or_zero(pressed.gt(zero));
+            let (mut fx, mut fy) = (-(k_t * sx) - c_t * u.x, -(k_t * sy) - c_t * u.y);
+            let (mut sx, mut sy) = (sx, sy);
+            // |F*| > μ_s·N, compared squared (both sides ≥ 0): a point stuck in every lane
+            // needs no square root and no quotient.
+            let limit = stuck_up_to * normal;
+            let slipping = (fx * fx + fy * fy).gt(limit * limit);
+            if L::bits(slipping) != 0 {
+                // Where it slips |F*| is above μ_s·N ≥ 0, so the quotient is finite there.
+                let scale = (kinetic * normal) / (fx * fx + fy * fy).sqrt();
+                fx = L::select(slipping, fx * scale, fx);
+                fy = L::select(slipping, fy * scale, fy);
+                // Sliding, the spring holds the kinetic force: ξ = −(F_t + c_t·u_t)/k_t.
+                sx = L::select(slipping, -(fx + c_t * u.x) * compliance, sx);
+                sy = L::select(slipping, -(fy + c_t * u.y) * compliance, sy);
+            }
+            let kept = t & spring;
+            self.state.corner_forces[k] = v3(fx.or_zero(t), fy.or_zero(t), normal.or_zero(t));
+            self.state.tangential_springs[k] = Vector2::new(sx.or_zero(kept), sy.or_zero(kept));
         }
     }
 
@@ -628,9 +819,38 @@ impl<L: Lane> Kernel<L> {
         }
     }
 
-    /// The rigid-body energy terms at the current state, erg.
+    /// erg, the weight's potential: `M·g·(x.z − a)`; on a spring-friction lane
+    /// `−M·g⃗·x` measured from the same height, the normal part `M·g·cos θ·(x.z − a)` less
+    /// the downhill part `M·g_t·x` of a tilted table (zero on a level one).
+    #[inline(always)]
+    fn gravitational<const SPRING: bool>(&self) -> L {
+        let c = &self.c;
+        let x = &self.state.position;
+        let normal = c.mass_gravity * (x.z - c.half_size);
+        if !SPRING {
+            return normal;
+        }
+        let tilted = normal - (c.weight_x * x.x + c.weight_y * x.y);
+        if c.spring_lanes == all_lanes::<L>() {
+            tilted
+        } else {
+            L::select(c.spring, tilted, normal)
+        }
+    }
+
+    /// The rigid-body energy terms at the current state, erg, under the lanes' laws.
     #[inline(always)]
     pub(crate) fn energy(&self) -> EnergyTerms<L> {
+        if self.c.spring_lanes != 0 {
+            self.energy_by::<true>()
+        } else {
+            self.energy_by::<false>()
+        }
+    }
+
+    /// [`Kernel::energy`] with the laws known, as [`Kernel::step`] takes them.
+    #[inline(always)]
+    pub(crate) fn energy_by<const SPRING: bool>(&self) -> EnergyTerms<L> {
         let c = &self.c;
         let s = &self.state;
         let (v, w, l) = (&s.velocity, &self.angular_velocity, &s.angular_momentum);
@@ -647,7 +867,7 @@ impl<L: Lane> Kernel<L> {
             // ω·L summed from +0.0 as nalgebra's dot product does (a −0.0 product first
             // becomes +0.0).
             rotational: L::splat(0.5) * (((L::zero() + w.x * l.x) + w.y * l.y) + w.z * l.z),
-            gravitational: c.mass_gravity * (s.position.z - c.half_size),
+            gravitational: self.gravitational::<SPRING>(),
             elastic: elastic.or_zero(self.in_contact),
         }
     }
@@ -712,9 +932,9 @@ impl<L: Lane> Kernel<L> {
     /// is compared first: where no lane is below the threshold, the point-mass energy need
     /// not be summed nor a loaded die's face looked up.
     #[inline(always)]
-    pub(crate) fn ends(&self) -> Ends<L::Mask> {
+    pub(crate) fn ends_by<const SPRING: bool>(&self) -> Ends<L::Mask> {
         let c = &self.c;
-        let e = self.energy();
+        let e = self.energy_by::<SPRING>();
         let kinetic = e.translational + e.rotational;
         let potential = e.gravitational + e.elastic;
         let rigid = (kinetic + e.gravitational) + e.elastic;
@@ -769,6 +989,13 @@ impl<L: Lane> Kernel<L> {
             }
         };
         let settled = settled & !unstable;
+        // A tilted table's cap on the kinetic energy (docs/model.md, "The spring-friction
+        // contact"): it settles only what its downhill edge can hold.
+        let settled = if SPRING && L::bits(settled) != 0 {
+            settled & kinetic.le(c.kinetic_cap)
+        } else {
+            settled
+        };
         let timeout = L::count_reached(self.state.step, c.max_steps) & !unstable & !settled;
         Ends {
             unstable,

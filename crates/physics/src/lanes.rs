@@ -93,7 +93,7 @@ mod avx2 {
     use crate::kernel::{Kernel, NoHook, lane3};
     use crate::lane::Lane;
     use crate::sim::Status;
-    use nalgebra::Vector3;
+    use nalgebra::{Vector2, Vector3};
     use std::arch::x86_64::*;
     use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
@@ -329,6 +329,12 @@ mod avx2 {
     }
 
     #[inline(always)]
+    fn set2(v: &mut Vector2<F4>, l: usize, x: &Vector2<f64>) {
+        v.x.set_lane(l, x.x);
+        v.y.set_lane(l, x.y);
+    }
+
+    #[inline(always)]
     fn set3(v: &mut Vector3<F4>, l: usize, x: &Vector3<f64>) {
         v.x.set_lane(l, x.x);
         v.y.set_lane(l, x.y);
@@ -350,6 +356,7 @@ mod avx2 {
         fn new(first: &Kernel<f64>) -> Lanes {
             let s = &first.state;
             let splat3 = |v: &Vector3<f64>| Vector3::new(F4::splat(v.x), F4::splat(v.y), F4::splat(v.z));
+            let splat2 = |v: &Vector2<f64>| Vector2::new(F4::splat(v.x), F4::splat(v.y));
             let c = &first.c;
             let k = Kernel {
                 state: State {
@@ -359,6 +366,7 @@ mod avx2 {
                     corner_offsets: s.corner_offsets.each_ref().map(splat3),
                     corner_forces: s.corner_forces.each_ref().map(splat3),
                     corner_depths: s.corner_depths.map(F4::splat),
+                    tangential_springs: s.tangential_springs.each_ref().map(splat2),
                     time_s: F4::splat(s.time_s),
                     step: F4::splat(s.step as f64),
                 },
@@ -375,6 +383,14 @@ mod avx2 {
                     stiffness: F4::splat(c.stiffness),
                     damping: F4::splat(c.damping),
                     friction: F4::splat(c.friction),
+                    weight_x: F4::splat(c.weight_x),
+                    weight_y: F4::splat(c.weight_y),
+                    normal_damping: F4::splat(c.normal_damping),
+                    tangential_stiffness: F4::splat(c.tangential_stiffness),
+                    tangential_damping: F4::splat(c.tangential_damping),
+                    tangential_compliance: F4::splat(c.tangential_compliance),
+                    static_friction: F4::splat(c.static_friction),
+                    kinetic_cap: F4::splat(c.kinetic_cap),
                     half_mass: F4::splat(c.half_mass),
                     mass_gravity: F4::splat(c.mass_gravity),
                     half_stiffness: F4::splat(c.half_stiffness),
@@ -401,6 +417,8 @@ mod avx2 {
                     shaped: F4::from_bits(if c.shaped { 0b1111 } else { 0 }),
                     rounded: if c.rounded != 0 { 0b1111 } else { 0 },
                     turning: F4::from_bits(if c.turning { 0b1111 } else { 0 }),
+                    spring: F4::from_bits(if c.spring { 0b1111 } else { 0 }),
+                    spring_lanes: if c.spring_lanes != 0 { 0b1111 } else { 0 },
                 },
                 bodies: [first.bodies[0]; LANES],
             };
@@ -423,6 +441,7 @@ mod avx2 {
                 set3(&mut k.state.corner_offsets[c], l, &s.corner_offsets[c]);
                 set3(&mut k.state.corner_forces[c], l, &s.corner_forces[c]);
                 k.state.corner_depths[c].set_lane(l, s.corner_depths[c]);
+                set2(&mut k.state.tangential_springs[c], l, &s.tangential_springs[c]);
             }
             k.state.time_s.set_lane(l, s.time_s);
             k.state.step.set_lane(l, s.step as f64);
@@ -443,6 +462,14 @@ mod avx2 {
             c.stiffness.set_lane(l, f.stiffness);
             c.damping.set_lane(l, f.damping);
             c.friction.set_lane(l, f.friction);
+            c.weight_x.set_lane(l, f.weight_x);
+            c.weight_y.set_lane(l, f.weight_y);
+            c.normal_damping.set_lane(l, f.normal_damping);
+            c.tangential_stiffness.set_lane(l, f.tangential_stiffness);
+            c.tangential_damping.set_lane(l, f.tangential_damping);
+            c.tangential_compliance.set_lane(l, f.tangential_compliance);
+            c.static_friction.set_lane(l, f.static_friction);
+            c.kinetic_cap.set_lane(l, f.kinetic_cap);
             c.half_mass.set_lane(l, f.half_mass);
             c.mass_gravity.set_lane(l, f.mass_gravity);
             c.half_stiffness.set_lane(l, f.half_stiffness);
@@ -478,6 +505,8 @@ mod avx2 {
             set_mask(&mut c.shaped, l, f.shaped);
             c.rounded = (c.rounded & !(1 << l)) | (f.rounded << l);
             set_mask(&mut c.turning, l, f.turning);
+            set_mask(&mut c.spring, l, f.spring);
+            c.spring_lanes = (c.spring_lanes & !(1 << l)) | (f.spring_lanes << l);
             k.bodies[l] = from.bodies[0];
             set_mask(&mut self.live, l, true);
             let start_face = face_most_nearly_up(&s.corner_offsets);
@@ -497,8 +526,16 @@ mod avx2 {
             }
             set3(&mut k.state.position, l, &Vector3::new(0.0, 0.0, 1e9));
             set3(&mut k.state.velocity, l, &Vector3::zeros());
+            k.c.weight_x.set_lane(l, 0.0);
+            k.c.weight_y.set_lane(l, 0.0);
             k.c.weight_z.set_lane(l, 0.0);
             set3(&mut k.c.flight_kick, l, &Vector3::zeros());
+            // It never touches, so either law steps it alike: it takes its neighbour's, and
+            // a vector of one law keeps that law's step.
+            let neighbour = (l + 1) % LANES;
+            let spring = k.c.spring_lanes & (1 << neighbour) != 0;
+            set_mask(&mut k.c.spring, l, spring);
+            k.c.spring_lanes = (k.c.spring_lanes & !(1 << l)) | ((spring as u32) << l);
             set_mask(&mut k.c.loaded, l, false);
             set_mask(&mut k.c.shaped, l, false);
             k.c.rounded &= !(1 << l);
@@ -508,6 +545,7 @@ mod avx2 {
             for c in 0..8 {
                 set3(&mut k.state.corner_forces[c], l, &Vector3::zeros());
                 k.state.corner_depths[c].set_lane(l, 0.0);
+                set2(&mut k.state.tangential_springs[c], l, &Vector2::zeros());
             }
         }
 
@@ -524,6 +562,8 @@ mod avx2 {
                 s.corner_offsets[c] = lane3(&from.corner_offsets[c], l);
                 s.corner_forces[c] = lane3(&from.corner_forces[c], l);
                 s.corner_depths[c] = from.corner_depths[c].lane(l);
+                let xi = &from.tangential_springs[c];
+                s.tangential_springs[c] = Vector2::new(xi.x.lane(l), xi.y.lane(l));
             }
             s.time_s = from.time_s.lane(l);
             s.step = from.step.lane(l) as u64;
@@ -536,6 +576,15 @@ mod avx2 {
                 .fold(0, |bits, c| bits | 1 << c);
             sim
         }
+    }
+
+    /// One step with lanes on the spring-friction law, and how it leaves each lane; called
+    /// only from [`roll_all`], which has AVX2 too.
+    #[target_feature(enable = "avx2")]
+    #[inline(never)]
+    fn step_spring_friction(k: &mut Kernel<F4>) -> crate::kernel::Ends<F4> {
+        k.step::<true>(&mut NoHook);
+        k.ends_by::<true>()
     }
 
     /// [`roll_in_lanes`] with AVX2.
@@ -568,8 +617,14 @@ mod avx2 {
         }
         let mut since_check = 0;
         while F4::bits(lanes.live) != 0 {
-            lanes.k.step(&mut NoHook);
-            let ends = lanes.k.ends();
+            // The paper's step inline, the other law's out of line: the batch loop's code
+            // stays what it was for the paper's die.
+            let ends = if lanes.k.c.spring_lanes == 0 {
+                lanes.k.step::<false>(&mut NoHook);
+                lanes.k.ends_by::<false>()
+            } else {
+                step_spring_friction(&mut lanes.k)
+            };
             let mut ending = F4::bits((ends.unstable | ends.settled | ends.timeout) & lanes.live);
             while ending != 0 {
                 let l = ending.trailing_zeros() as usize;

@@ -4,12 +4,15 @@
 //!
 //! The modules are layered, each using only those before it: the data (`params`,
 //! `initial`, and `lane`, `energy`), then the body — its geometry (`body`), the stopping
-//! rule's arithmetic (`stopping`), the three bodies a die can be (`cube`, `mass`, `shape`)
-//! and `model`, which says which of them a die is and answers every question about it —
+//! rule's arithmetic (`stopping`), the spring-friction contact's constants (`contact`), the
+//! three bodies a die can be (`cube`, `mass`, `shape`) and `model`, which says which of them
+//! a die is and answers every question about it —
 //! then the step written over a lane type (`spin`, `kernel`), the scalar engine (`sim`), and
-//! on top the lane engine (`lanes`) and the stability readings (`stability`).
+//! on top the lane engine (`lanes`) and the stability readings (`stability`, and the
+//! spring-friction law's own in `stability_contact`).
 
 pub mod body;
+pub mod contact;
 mod cube;
 mod energy;
 pub mod initial;
@@ -23,6 +26,7 @@ mod shape;
 mod sim;
 mod spin;
 pub mod stability;
+pub mod stability_contact;
 mod stopping;
 
 pub use body::{PIP_LAYOUT, contact_sphere_centres, face_frame, pip_centres};
@@ -30,7 +34,10 @@ pub use body::{face_most_nearly_up, opposite_face};
 pub use energy::Energy;
 pub use initial::{InitialCondition, RandomRanges};
 pub use model::{Placement, resting_depth_on_face, why_it_cannot_settle};
-pub use params::{Die, FrictionLaw, Ground, Integrator, Limits, ParamError, Params, StopEnergy, World};
+pub use params::{
+    ContactLaw, Die, FrictionLaw, Ground, GroundKey, Integrator, Limits, ParamError, Params, StopEnergy,
+    World,
+};
 pub use shape::{MassProperties, mass_properties};
 pub use sim::{ContactForce, EnergyLedger, Outcome, STEPS_BETWEEN_STOP_CHECKS, Simulation, State, Status};
 pub use stability::{Limit, Reading, Stability, StabilityCheck, UnstableReason};

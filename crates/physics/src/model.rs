@@ -378,6 +378,9 @@ pub fn resting_depth_on_face(p: &Params) -> f64 {
 /// body's own: the paper's and a loaded cube's from the cube, a general body's from the face
 /// that comes nearest to holding it (the highest resting centre, or the largest pass).
 pub fn why_it_cannot_settle(p: &Params) -> Option<String> {
+    if let Some(why) = super::contact::why_a_tilt_cannot_hold(p) {
+        return Some(why);
+    }
     let body = Body::new(p);
     if body.stop_rule().can_settle() {
         return None;
@@ -404,6 +407,17 @@ pub fn why_it_cannot_settle(p: &Params) -> Option<String> {
             }
         }
         Body::Shaped(shape) => {
+            // So round that even a rigid table would not hold a face (a ball): the shape's
+            // doing, not the table's.
+            let [x, y, z] = shape.half_sizes;
+            let sharp_box = body.mass() * p.world.gravity * x.min(y).min(z) * (2f64.sqrt() - 1.0);
+            if shape.edge_energy < 0.01 * sharp_box {
+                return Some(format!(
+                    "the die is too round to keep a face: tipping it over an edge takes {:.2} erg \
+                     even on a rigid table ({sharp_box:.0} erg for a sharp box its size)",
+                    shape.edge_energy
+                ));
+            }
             let faces = shape.faces(p);
             let centre = |f: &crate::shape::FaceReadout| f.rest_height - f.rest_depth;
             let standing = faces.iter().filter(|f| centre(f) > 0.0);
@@ -518,6 +532,20 @@ mod tests {
         assert!(why.starts_with("the table is too soft to hold the die"), "{why}");
         assert!(why.contains("its centre 9.700 cm below"), "{why}");
         assert!(why.contains("sink 10.200 cm"), "{why}");
+    }
+
+    #[test]
+    fn a_ball_says_it_is_too_round_for_a_face_whatever_the_table() {
+        // Corners rounded to 0.9999 of the half size: a ball to 10⁻⁴ cm, whose edge pass is
+        // M·g·b·(√2 − 1) with b = 10⁻⁴ cm, 0.32 erg, against 3247 erg for the sharp cube.
+        let p = with_die(|d| d.corner_radius = 0.9999);
+        let why = why_it_cannot_settle(&p).expect("a ball has no face to rest on");
+        assert!(why.starts_with("the die is too round to keep a face"), "{why}");
+        assert!(
+            why.contains("takes 0.32 erg") && why.contains("(3247 erg"),
+            "{why}"
+        );
+        assert_eq!(why_it_cannot_settle(&with_die(|d| d.corner_radius = 0.2)), None);
     }
 
     #[test]

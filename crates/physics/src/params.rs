@@ -104,6 +104,14 @@ pub mod limits {
     pub const STIFFNESS: Limits = limits("ground.stiffness", "dyn/cm", 100.0, 1e8);
     pub const DAMPING: Limits = limits("ground.damping", "s/cm", 0.0, 0.1);
     pub const FRICTION: Limits = limits("ground.friction", "", 0.0, 5.0);
+    /// Also at least `ground.friction`, the kinetic coefficient ([`super::Params::validate`]).
+    pub const STATIC_FRICTION: Limits = limits("ground.static_friction", "", 0.0, 5.0);
+    /// From 0.2: the clamped spring-dashpot cannot rebound slower than e^(−2) ≈ 0.135 of the
+    /// impact while underdamped (docs/model.md, "The spring-friction contact").
+    pub const RESTITUTION: Limits = limits("ground.restitution", "", 0.2, 1.0);
+    pub const TANGENTIAL_STIFFNESS_RATIO: Limits = limits("ground.tangential_stiffness_ratio", "", 0.05, 2.0);
+    pub const TILT: Limits = limits("ground.tilt", "°", 0.0, 60.0);
+    pub const TILT_DIRECTION: Limits = limits("ground.tilt_direction", "°", 0.0, 360.0);
     pub const GRAVITY: Limits = limits("world.gravity", "cm/s²", 10.0, 10000.0);
     pub const DT: Limits = limits("integrator.dt", "s", 1e-5, 1e-2);
     pub const STOP_ENERGY_FRACTION: Limits = limits("integrator.stop_energy_fraction", "", 0.01, 1.0);
@@ -196,6 +204,14 @@ impl fmt::Display for ParamError {
 }
 
 impl std::error::Error for ParamError {}
+
+/// The friction-law choice's key, for its refusal.
+const FRICTION_LAW_KEY: Limits = Limits {
+    key: "ground.friction_law",
+    unit: "",
+    min: 0.0,
+    max: 0.0,
+};
 
 /// The stop-energy choice's key, for its refusal.
 const STOP_ENERGY_KEY: Limits = Limits {
@@ -382,7 +398,34 @@ impl FrictionLaw {
     }
 }
 
-/// The ground: a stiff damped spring under every corner, with kinetic friction.
+/// Which contact law the ground applies at every contact point (docs/model.md, "Forces on a
+/// corner" and "The spring-friction contact").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ContactLaw {
+    /// The paper's eq. 13–15: a damped spring `k·d·(1 − γ·u_z)` and kinetic friction only.
+    #[default]
+    Paper,
+    /// A linear spring-dashpot whose damping gives the restitution `e`, a tangential spring
+    /// on each point's slip since it touched, capped by static friction and sliding at the
+    /// kinetic (Cundall–Strack), on a table that may be tilted.
+    SpringFriction,
+}
+
+impl ContactLaw {
+    pub const fn name(self) -> &'static str {
+        match self {
+            ContactLaw::Paper => "paper",
+            ContactLaw::SpringFriction => "spring-friction",
+        }
+    }
+}
+
+/// The ground: a stiff spring under every contact point, with friction, by the contact law.
+///
+/// `stiffness` and `friction` are read by both laws; `damping` and `friction_law` by the
+/// paper's only, the rest by the spring-friction law only ([`Ground::reads`]). A key a law
+/// does not read must keep its default: [`Params::validate`] refuses any other value.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Ground {
@@ -390,9 +433,190 @@ pub struct Ground {
     pub stiffness: f64,
     /// s/cm (γ): the vertical force is `k·d·(1 − γ·u_z)`.
     pub damping: f64,
-    /// Kinetic friction coefficient (μ).
+    /// Kinetic friction coefficient (μ; μ_k under the spring-friction law).
     pub friction: f64,
     pub friction_law: FrictionLaw,
+    /// The contact law; the keys below are the spring-friction law's (written only when they
+    /// differ from their defaults, so the paper's ground serialises as it always has).
+    #[serde(skip_serializing_if = "is_paper")]
+    pub contact: ContactLaw,
+    /// Static friction coefficient μ_s: a stuck point's tangential force may reach μ_s·N.
+    #[serde(skip_serializing_if = "is_default_static_friction")]
+    pub static_friction: f64,
+    /// Coefficient of restitution e of a flat drop, constant over impact speed.
+    #[serde(skip_serializing_if = "is_default_restitution")]
+    pub restitution: f64,
+    /// k_t/k: the tangential spring's stiffness over the normal one (2/7: a solid ball's
+    /// tangential and normal periods are equal); the tangential damping is c·k_t/k.
+    #[serde(skip_serializing_if = "is_default_tangential_stiffness_ratio")]
+    pub tangential_stiffness_ratio: f64,
+    /// Degrees, the table's slope (gravity tilted in the table's frame).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub tilt: f64,
+    /// Degrees from +x toward +y: the direction the table slopes down.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub tilt_direction: f64,
+}
+
+fn is_paper(law: &ContactLaw) -> bool {
+    *law == ContactLaw::Paper
+}
+
+fn is_default_static_friction(x: &f64) -> bool {
+    *x == Params::DEFAULT.ground.static_friction
+}
+
+fn is_default_restitution(x: &f64) -> bool {
+    *x == Params::DEFAULT.ground.restitution
+}
+
+fn is_default_tangential_stiffness_ratio(x: &f64) -> bool {
+    *x == Params::DEFAULT.ground.tangential_stiffness_ratio
+}
+
+/// A ground key that only one contact law reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GroundKey {
+    Damping,
+    FrictionLaw,
+    StaticFriction,
+    Restitution,
+    TangentialStiffnessRatio,
+    Tilt,
+    TiltDirection,
+}
+
+impl GroundKey {
+    pub const ALL: [GroundKey; 7] = [
+        GroundKey::Damping,
+        GroundKey::FrictionLaw,
+        GroundKey::StaticFriction,
+        GroundKey::Restitution,
+        GroundKey::TangentialStiffnessRatio,
+        GroundKey::Tilt,
+        GroundKey::TiltDirection,
+    ];
+
+    /// The dotted preset key.
+    pub const fn key(self) -> &'static str {
+        match self {
+            GroundKey::Damping => "ground.damping",
+            GroundKey::FrictionLaw => "ground.friction_law",
+            GroundKey::StaticFriction => "ground.static_friction",
+            GroundKey::Restitution => "ground.restitution",
+            GroundKey::TangentialStiffnessRatio => "ground.tangential_stiffness_ratio",
+            GroundKey::Tilt => "ground.tilt",
+            GroundKey::TiltDirection => "ground.tilt_direction",
+        }
+    }
+
+    /// The one law that reads this key.
+    pub const fn law(self) -> ContactLaw {
+        match self {
+            GroundKey::Damping | GroundKey::FrictionLaw => ContactLaw::Paper,
+            _ => ContactLaw::SpringFriction,
+        }
+    }
+
+    /// The key of `key`, if only one law reads it.
+    pub fn named(key: &str) -> Option<GroundKey> {
+        GroundKey::ALL.into_iter().find(|k| k.key() == key)
+    }
+
+    /// Why `law` refuses this key: what the law does instead of reading it.
+    pub fn why_unread(self, law: ContactLaw) -> String {
+        let instead = match self {
+            GroundKey::Damping => "its normal damping comes from `ground.restitution`",
+            GroundKey::FrictionLaw => "its friction is the tangential spring capped by static friction",
+            GroundKey::StaticFriction => "it has kinetic friction only",
+            GroundKey::Restitution => {
+                "its restitution follows from `ground.damping` and falls with impact speed"
+            }
+            GroundKey::TangentialStiffnessRatio => "it has no tangential spring",
+            GroundKey::Tilt | GroundKey::TiltDirection => {
+                "its table is level, as the authors' program had it"
+            }
+        };
+        format!(
+            "the \"{}\" contact law does not read it ({instead}); it is read under `ground.contact = \"{}\"`",
+            law.name(),
+            self.law().name()
+        )
+    }
+
+    /// Whether `ground` holds this key's default.
+    fn is_default(self, ground: &Ground) -> bool {
+        let d = &Params::DEFAULT.ground;
+        match self {
+            GroundKey::Damping => ground.damping == d.damping,
+            GroundKey::FrictionLaw => ground.friction_law == d.friction_law,
+            GroundKey::StaticFriction => ground.static_friction == d.static_friction,
+            GroundKey::Restitution => ground.restitution == d.restitution,
+            GroundKey::TangentialStiffnessRatio => {
+                ground.tangential_stiffness_ratio == d.tangential_stiffness_ratio
+            }
+            GroundKey::Tilt => ground.tilt == d.tilt,
+            GroundKey::TiltDirection => ground.tilt_direction == d.tilt_direction,
+        }
+    }
+
+    /// The key's value as a number for its refusal (NaN for the friction law's name).
+    fn value(self, ground: &Ground) -> f64 {
+        match self {
+            GroundKey::Damping => ground.damping,
+            GroundKey::FrictionLaw => f64::NAN,
+            GroundKey::StaticFriction => ground.static_friction,
+            GroundKey::Restitution => ground.restitution,
+            GroundKey::TangentialStiffnessRatio => ground.tangential_stiffness_ratio,
+            GroundKey::Tilt => ground.tilt,
+            GroundKey::TiltDirection => ground.tilt_direction,
+        }
+    }
+
+    fn limits(self) -> Limits {
+        match self {
+            GroundKey::Damping => limits::DAMPING,
+            GroundKey::FrictionLaw => FRICTION_LAW_KEY,
+            GroundKey::StaticFriction => limits::STATIC_FRICTION,
+            GroundKey::Restitution => limits::RESTITUTION,
+            GroundKey::TangentialStiffnessRatio => limits::TANGENTIAL_STIFFNESS_RATIO,
+            GroundKey::Tilt => limits::TILT,
+            GroundKey::TiltDirection => limits::TILT_DIRECTION,
+        }
+    }
+}
+
+impl Ground {
+    /// Whether this ground's contact law reads `key` (a dotted preset key); every key but
+    /// the [`GroundKey`]s is read by both laws.
+    pub fn reads(&self, key: &str) -> bool {
+        GroundKey::named(key).is_none_or(|k| k.law() == self.contact)
+    }
+
+    /// The refusal of `key` (a dotted preset key) when this ground's contact law does not read
+    /// it: what a file, `--set` or the explorer says when the key is given, whatever its value.
+    pub fn refusal(&self, key: &str) -> Option<ParamError> {
+        let key = GroundKey::named(key).filter(|k| k.law() != self.contact)?;
+        Some(ParamError::refused(
+            key.limits(),
+            key.value(self),
+            key.why_unread(self.contact),
+        ))
+    }
+
+    /// The first key this ground's law does not read that differs from its default.
+    fn check_unread(&self) -> Result<(), ParamError> {
+        for key in GroundKey::ALL {
+            if key.law() != self.contact && !key.is_default(self) {
+                return Err(ParamError::refused(
+                    key.limits(),
+                    key.value(self),
+                    key.why_unread(self.contact),
+                ));
+            }
+        }
+        Ok(())
+    }
 }
 
 impl Default for Ground {
@@ -485,6 +709,12 @@ impl Params {
             damping: 0.005,
             friction: 1.2,
             friction_law: FrictionLaw::PerCorner,
+            contact: ContactLaw::Paper,
+            static_friction: 1.2,
+            restitution: 0.5,
+            tangential_stiffness_ratio: 2.0 / 7.0,
+            tilt: 0.0,
+            tilt_direction: 0.0,
         },
         world: World { gravity: 980.0 },
         integrator: Integrator {
@@ -543,6 +773,23 @@ impl Params {
         limits::STIFFNESS.check(g.stiffness)?;
         limits::DAMPING.check(g.damping)?;
         limits::FRICTION.check(g.friction)?;
+        limits::STATIC_FRICTION.check(g.static_friction)?;
+        if g.contact == ContactLaw::SpringFriction && g.static_friction < g.friction {
+            return Err(ParamError::refused(
+                limits::STATIC_FRICTION,
+                g.static_friction,
+                format!(
+                    "static friction must be at least the kinetic `ground.friction`, {}: a stuck \
+                     point lets go at μ_s·N and then slides at μ_k·N",
+                    fmt_number(g.friction)
+                ),
+            ));
+        }
+        limits::RESTITUTION.check(g.restitution)?;
+        limits::TANGENTIAL_STIFFNESS_RATIO.check(g.tangential_stiffness_ratio)?;
+        limits::TILT.check(g.tilt)?;
+        limits::TILT_DIRECTION.check(g.tilt_direction)?;
+        g.check_unread()?;
         limits::GRAVITY.check(self.world.gravity)?;
         limits::DT.check(i.dt)?;
         limits::STOP_ENERGY_FRACTION.check(i.stop_energy_fraction)?;

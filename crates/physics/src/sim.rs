@@ -6,6 +6,7 @@
 //! trajectories are reproduced to rounding, not merely in law.
 
 use super::body::face_most_nearly_up;
+use super::contact;
 use super::energy::Energy;
 use super::initial::InitialCondition;
 use super::kernel::{Constants, Kernel, NoHook, StepHook, contact_point};
@@ -195,7 +196,7 @@ impl Simulation {
             track_ledger: true,
             ledger: Ledger::default(),
             initial_energy: 0.0,
-            stop_rule: body.stop_rule(),
+            stop_rule: contact::on_the_table(body.stop_rule(), params, body.edge_energy()),
             outcome: None,
         };
         sim.initial_energy = sim.energy().total();
@@ -262,7 +263,11 @@ impl Simulation {
         self.k.bodies[0] = body;
         self.k.c = Constants::new(&params, &body);
         self.k.c.runaway = runaway;
-        self.stop_rule = body.stop_rule();
+        self.stop_rule = contact::on_the_table(body.stop_rule(), &params, body.edge_energy());
+        // The paper's law holds no tangential springs.
+        if self.k.c.spring_lanes == 0 {
+            self.k.state.tangential_springs = [nalgebra::Vector2::zeros(); 8];
+        }
         self.k.update_forces();
         Ok(())
     }
@@ -342,7 +347,9 @@ impl Simulation {
     /// on the face down (what a report of a finished roll prints; [`Simulation::stop_rule`]
     /// is the fair die's, or the widest over the faces).
     pub fn stop_rule_now(&self) -> StopRule {
-        self.k.bodies[0].stop_rule_at(&self.k.state.corner_offsets)
+        let body = &self.k.bodies[0];
+        let rule = body.stop_rule_at(&self.k.state.corner_offsets);
+        contact::on_the_table(rule, &self.params, body.edge_energy())
     }
 
     /// The face whose outward normal points most nearly up (the live display's face).
@@ -361,10 +368,20 @@ impl Simulation {
     /// Steps on past the end of a roll if asked; the recorded outcome stays the first end.
     #[inline]
     pub fn step(&mut self) {
+        if self.k.c.spring_lanes != 0 {
+            self.step_by::<true>();
+        } else {
+            self.step_by::<false>();
+        }
+    }
+
+    /// [`Simulation::step`] with the law known (the kernel's `SPRING`).
+    #[inline(always)]
+    fn step_by<const SPRING: bool>(&mut self) {
         if self.track_ledger {
             self.step_with_ledger();
         } else {
-            self.k.step(&mut NoHook);
+            self.k.step::<SPRING>(&mut NoHook);
         }
     }
 
@@ -372,17 +389,33 @@ impl Simulation {
     /// plain step, its second copy of the kernel would crowd the batch loop's code.
     #[inline(never)]
     fn step_with_ledger(&mut self) {
-        self.k.step(&mut self.ledger);
+        self.k.step_by_law(&mut self.ledger);
+    }
+
+    /// [`Simulation::advance`] on the spring-friction law, out of line for the same reason:
+    /// the paper's step and end test stay the ones inlined into the batch loop.
+    #[inline(never)]
+    fn advance_spring_friction(&mut self) -> Option<Outcome> {
+        self.advance_by::<true>()
     }
 
     /// One step, then the end-of-roll checks; returns the outcome on the step that ends it.
     #[inline]
     pub fn advance(&mut self) -> Option<Outcome> {
-        self.step();
+        if self.k.c.spring_lanes != 0 {
+            return self.advance_spring_friction();
+        }
+        self.advance_by::<false>()
+    }
+
+    /// [`Simulation::advance`] with the law known.
+    #[inline(always)]
+    fn advance_by<const SPRING: bool>(&mut self) -> Option<Outcome> {
+        self.step_by::<SPRING>();
         if self.outcome.is_some() {
             return None;
         }
-        let outcome = self.check_end()?;
+        let outcome = self.check_end::<SPRING>()?;
         self.outcome = Some(outcome);
         Some(outcome)
     }
@@ -427,8 +460,8 @@ impl Simulation {
 
     /// Whether the current state ends the roll, and how (the kernel's end-of-step test).
     #[inline]
-    fn check_end(&self) -> Option<Outcome> {
-        let ends = self.k.ends();
+    fn check_end<const SPRING: bool>(&self) -> Option<Outcome> {
+        let ends = self.k.ends_by::<SPRING>();
         let status = if ends.unstable {
             Status::Unstable
         } else if ends.settled {

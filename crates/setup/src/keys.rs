@@ -124,7 +124,9 @@ impl ScanKey {
     }
 
     /// Checks `value` against its range and the start it gives against the table (no corner
-    /// inside it), then sets it; on error nothing changes.
+    /// inside it), then sets it; on error nothing changes. What ties it to other values (a
+    /// key the contact law does not read, a corner radius against the half sizes) is
+    /// [`Params::validate`]'s to refuse.
     pub fn set_checked(
         &self,
         params: &mut Params,
@@ -159,6 +161,26 @@ pub fn column_name(name: &str, unit: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_key_the_contact_law_does_not_read_is_refused_once_set() {
+        let (mut p, mut ic) = (Params::default(), InitialCondition::default());
+        let tilt = ScanKey::named("ground.tilt").unwrap();
+        tilt.set_checked(&mut p, &mut ic, 10.0).unwrap();
+        let e = p.validate().unwrap_err();
+        assert_eq!(e.key, "ground.tilt");
+        assert!(e.to_string().contains("its table is level"), "{e}");
+        p.ground.contact = dicesim_physics::ContactLaw::SpringFriction;
+        p.validate().unwrap();
+        let damping = ScanKey::named("ground.damping").unwrap();
+        damping.set_checked(&mut p, &mut ic, 0.01).unwrap();
+        assert!(
+            p.validate()
+                .unwrap_err()
+                .to_string()
+                .contains("its normal damping comes from")
+        );
+    }
 
     #[test]
     fn every_key_sets_its_own_field() {

@@ -14,7 +14,7 @@
 
 use dicesim_physics::initial::{self, YAW_PITCH_ROLL};
 use dicesim_physics::params::{self, CORNERS, XYZ};
-use dicesim_physics::{InitialCondition, Limits, ParamError, Params, RandomRanges};
+use dicesim_physics::{ContactLaw, GroundKey, InitialCondition, Limits, ParamError, Params, RandomRanges};
 
 /// The section of a preset a value belongs to, which is also what changing it means.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -141,6 +141,10 @@ pub struct Spec {
     pub nudge: Option<Nudge>,
     /// Acts on the running roll at once (the explorer does not restart the roll).
     pub acts_mid_roll: bool,
+    /// The one contact law that reads it (`ground.contact`); `None`: read under every law.
+    /// Under another law it is refused, never ignored (the physics says why,
+    /// [`dicesim_physics::Ground::refusal`]).
+    pub law: Option<ContactLaw>,
     /// The value as stored (no conversion: a spin given as momentum reads as given).
     pub read: fn(&Setup) -> Value,
     /// Numeric values a scan or the explorer can change; `None` for the rest.
@@ -233,6 +237,7 @@ pub const HALF_SIZES: Spec = Spec {
         coarse: 0.5,
     }),
     acts_mid_roll: false,
+    law: None,
     read: |s| Value::Vector(s.params.die.half_sizes),
     scan: Some(Scan {
         get: |p, _, i| p.die.half_sizes[i],
@@ -252,6 +257,7 @@ pub const CORNER_RADIUS: Spec = Spec {
         coarse: 0.1,
     }),
     acts_mid_roll: false,
+    law: None,
     read: |s| Value::Number(s.params.die.corner_radius),
     scan: params_field!(die.corner_radius),
 };
@@ -268,6 +274,7 @@ pub const PIP_DIAMETER: Spec = Spec {
         coarse: 0.1,
     }),
     acts_mid_roll: false,
+    law: None,
     read: |s| Value::Number(s.params.die.pip_diameter),
     scan: params_field!(die.pip_diameter),
 };
@@ -284,6 +291,7 @@ pub const PIP_DEPTH: Spec = Spec {
         coarse: 0.05,
     }),
     acts_mid_roll: false,
+    law: None,
     read: |s| Value::Number(s.params.die.pip_depth),
     scan: params_field!(die.pip_depth),
 };
@@ -300,6 +308,7 @@ pub const CORNER_MASS: Spec = Spec {
         coarse: 2.0,
     }),
     acts_mid_roll: false,
+    law: None,
     read: |s| Value::Number(s.params.die.corner_mass),
     scan: params_field!(die.corner_mass),
 };
@@ -325,6 +334,7 @@ pub const EXTRA_CORNER_MASS: Spec = Spec {
         coarse: 1.0,
     }),
     acts_mid_roll: false,
+    law: None,
     read: |s| Value::PerCorner(s.params.die.extra_corner_mass),
     scan: Some(Scan {
         get: |p, _, i| p.die.extra_corner_mass[i],
@@ -344,6 +354,7 @@ pub const STIFFNESS: Spec = Spec {
         coarse: 2.0,
     }),
     acts_mid_roll: true,
+    law: None,
     read: |s| Value::Number(s.params.ground.stiffness),
     scan: params_field!(ground.stiffness),
 };
@@ -352,7 +363,7 @@ pub const DAMPING: Spec = Spec {
     limits: params::limits::DAMPING,
     shape: Shape::Number(Params::DEFAULT.ground.damping),
     role: Role::Ground,
-    comment: "s/cm (γ)",
+    comment: "s/cm (γ), the paper's law only",
     labels: &["damping γ"],
     list_position: 1,
     nudge: Some(Nudge::Add {
@@ -360,6 +371,7 @@ pub const DAMPING: Spec = Spec {
         coarse: 0.005,
     }),
     acts_mid_roll: true,
+    law: Some(GroundKey::Damping.law()),
     read: |s| Value::Number(s.params.ground.damping),
     scan: params_field!(ground.damping),
 };
@@ -368,7 +380,7 @@ pub const FRICTION: Spec = Spec {
     limits: params::limits::FRICTION,
     shape: Shape::Number(Params::DEFAULT.ground.friction),
     role: Role::Ground,
-    comment: "kinetic coefficient (μ)",
+    comment: "kinetic coefficient (μ; μ_k under the spring-friction law)",
     labels: &["friction μ"],
     list_position: 2,
     nudge: Some(Nudge::Add {
@@ -376,6 +388,7 @@ pub const FRICTION: Spec = Spec {
         coarse: 0.5,
     }),
     acts_mid_roll: true,
+    law: None,
     read: |s| Value::Number(s.params.ground.friction),
     scan: params_field!(ground.friction),
 };
@@ -392,13 +405,123 @@ pub(crate) const FRICTION_LAW: Spec = Spec {
         default: Params::DEFAULT.ground.friction_law.name(),
     },
     role: Role::Ground,
-    comment: "\"per-corner\" (paper, eq. 15) or \"whole-die-norm\" (authors' program)",
+    comment: "\"per-corner\" (paper, eq. 15) or \"whole-die-norm\" (authors' program), the paper's law only",
     labels: &[],
     list_position: u8::MAX,
     nudge: None,
     acts_mid_roll: true,
+    law: Some(GroundKey::FrictionLaw.law()),
     read: |s| Value::Name(s.params.ground.friction_law.name()),
     scan: None,
+};
+
+pub(crate) const CONTACT: Spec = Spec {
+    limits: Limits {
+        key: "ground.contact",
+        unit: "",
+        min: 0.0,
+        max: 0.0,
+    },
+    shape: Shape::Choice {
+        names: &["paper", "spring-friction"],
+        default: Params::DEFAULT.ground.contact.name(),
+    },
+    role: Role::Ground,
+    comment: "\"paper\" (eq. 13–15: damping γ, kinetic friction) or \"spring-friction\" (restitution, \
+              static friction, a tangential spring, a tilted table)",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: true,
+    law: None,
+    read: |s| Value::Name(s.params.ground.contact.name()),
+    scan: None,
+};
+
+pub const STATIC_FRICTION: Spec = Spec {
+    limits: params::limits::STATIC_FRICTION,
+    shape: Shape::Number(Params::DEFAULT.ground.static_friction),
+    role: Role::Ground,
+    comment: "static coefficient (μ_s), at least `friction`; the spring-friction law only",
+    labels: &["static friction μs"],
+    list_position: 22,
+    nudge: Some(Nudge::Add {
+        fine: 0.05,
+        coarse: 0.5,
+    }),
+    acts_mid_roll: true,
+    law: Some(GroundKey::StaticFriction.law()),
+    read: |s| Value::Number(s.params.ground.static_friction),
+    scan: params_field!(ground.static_friction),
+};
+
+pub const RESTITUTION: Spec = Spec {
+    limits: params::limits::RESTITUTION,
+    shape: Shape::Number(Params::DEFAULT.ground.restitution),
+    role: Role::Ground,
+    comment: "restitution (e) of a flat drop, the same at every impact speed; the spring-friction law only",
+    labels: &["restitution e"],
+    list_position: 21,
+    nudge: Some(Nudge::Add {
+        fine: 0.05,
+        coarse: 0.2,
+    }),
+    acts_mid_roll: true,
+    law: Some(GroundKey::Restitution.law()),
+    read: |s| Value::Number(s.params.ground.restitution),
+    scan: params_field!(ground.restitution),
+};
+
+pub const TANGENTIAL_STIFFNESS_RATIO: Spec = Spec {
+    limits: params::limits::TANGENTIAL_STIFFNESS_RATIO,
+    shape: Shape::Number(Params::DEFAULT.ground.tangential_stiffness_ratio),
+    role: Role::Ground,
+    comment: "k_t/k, the tangential spring over the normal one (2/7: a ball's two periods equal); \
+              the spring-friction law only",
+    labels: &["tangential k_t/k"],
+    list_position: 23,
+    nudge: Some(Nudge::Times {
+        fine: 1.1,
+        coarse: 2.0,
+    }),
+    acts_mid_roll: true,
+    law: Some(GroundKey::TangentialStiffnessRatio.law()),
+    read: |s| Value::Number(s.params.ground.tangential_stiffness_ratio),
+    scan: params_field!(ground.tangential_stiffness_ratio),
+};
+
+pub const TILT: Spec = Spec {
+    limits: params::limits::TILT,
+    shape: Shape::Number(Params::DEFAULT.ground.tilt),
+    role: Role::Ground,
+    comment: "degrees, the table's slope (gravity tilted in the table's frame); the spring-friction law only",
+    labels: &["table tilt"],
+    list_position: 24,
+    nudge: Some(Nudge::Add {
+        fine: 1.0,
+        coarse: 5.0,
+    }),
+    acts_mid_roll: true,
+    law: Some(GroundKey::Tilt.law()),
+    read: |s| Value::Number(s.params.ground.tilt),
+    scan: params_field!(ground.tilt),
+};
+
+pub const TILT_DIRECTION: Spec = Spec {
+    limits: params::limits::TILT_DIRECTION,
+    shape: Shape::Number(Params::DEFAULT.ground.tilt_direction),
+    role: Role::Ground,
+    comment: "degrees from +x toward +y, the way the table slopes down; the spring-friction law only",
+    labels: &["tilt direction"],
+    list_position: 25,
+    nudge: Some(Nudge::Add {
+        fine: 5.0,
+        coarse: 45.0,
+    }),
+    acts_mid_roll: true,
+    law: Some(GroundKey::TiltDirection.law()),
+    read: |s| Value::Number(s.params.ground.tilt_direction),
+    scan: params_field!(ground.tilt_direction),
 };
 
 pub const GRAVITY: Spec = Spec {
@@ -413,6 +536,7 @@ pub const GRAVITY: Spec = Spec {
         coarse: 100.0,
     }),
     acts_mid_roll: false,
+    law: None,
     read: |s| Value::Number(s.params.world.gravity),
     scan: params_field!(world.gravity),
 };
@@ -429,6 +553,7 @@ pub const DT: Spec = Spec {
         coarse: 2.0,
     }),
     acts_mid_roll: false,
+    law: None,
     read: |s| Value::Number(s.params.integrator.dt),
     scan: params_field!(integrator.dt),
 };
@@ -442,6 +567,7 @@ pub const STOP_ENERGY_FRACTION: Spec = Spec {
     list_position: u8::MAX,
     nudge: None,
     acts_mid_roll: false,
+    law: None,
     read: |s| Value::Number(s.params.integrator.stop_energy_fraction),
     scan: params_field!(integrator.stop_energy_fraction),
 };
@@ -455,6 +581,7 @@ pub const MAX_TIME: Spec = Spec {
     list_position: u8::MAX,
     nudge: None,
     acts_mid_roll: false,
+    law: None,
     read: |s| Value::Number(s.params.integrator.max_time),
     scan: params_field!(integrator.max_time),
 };
@@ -476,6 +603,7 @@ pub(crate) const STOP_ENERGY: Spec = Spec {
     list_position: u8::MAX,
     nudge: None,
     acts_mid_roll: false,
+    law: None,
     read: |s| Value::Name(s.params.integrator.stop_energy.name()),
     scan: None,
 };
@@ -492,6 +620,7 @@ pub const HEIGHT: Spec = Spec {
         coarse: 5.0,
     }),
     acts_mid_roll: false,
+    law: None,
     read: |s| Value::Number(s.initial.height),
     scan: Some(Scan {
         get: |_, ic, _| ic.height,
@@ -514,6 +643,7 @@ pub const VELOCITY: Spec = Spec {
         coarse: 50.0,
     }),
     acts_mid_roll: false,
+    law: None,
     read: |s| Value::Vector(s.initial.velocity),
     scan: Some(Scan {
         get: |_, ic, i| ic.velocity[i],
@@ -539,6 +669,7 @@ pub const ANGULAR_VELOCITY: Spec = Spec {
         coarse: 10.0,
     }),
     acts_mid_roll: false,
+    law: None,
     read: |s| Value::Vector(s.initial.angular_velocity),
     scan: Some(Scan {
         get: |p, ic, i| ic.angular_velocity_for(p.inertia())[i],
@@ -563,6 +694,7 @@ pub const ANGULAR_MOMENTUM: Spec = Spec {
     list_position: u8::MAX,
     nudge: None,
     acts_mid_roll: false,
+    law: None,
     read: |s| s.initial.angular_momentum.map_or(Value::Absent, Value::Vector),
     scan: Some(Scan {
         get: |p, ic, i| ic.angular_momentum_for(p.inertia())[i],
@@ -589,6 +721,7 @@ pub const ORIENTATION: Spec = Spec {
         coarse: 45.0,
     }),
     acts_mid_roll: false,
+    law: None,
     read: |s| Value::Vector(s.initial.orientation),
     scan: Some(Scan {
         get: |_, ic, i| ic.orientation[i],
@@ -610,6 +743,7 @@ pub(crate) const SEED: Spec = Spec {
     list_position: u8::MAX,
     nudge: None,
     acts_mid_roll: false,
+    law: None,
     read: |s| Value::Seed(s.random.seed),
     scan: None,
 };
@@ -625,6 +759,7 @@ const fn random_range(limits: Limits, default: [f64; 2], comment: &'static str) 
         list_position: u8::MAX,
         nudge: None,
         acts_mid_roll: false,
+        law: None,
         read: |_| Value::Absent,
         scan: None,
     }
@@ -671,12 +806,13 @@ pub(crate) const RANDOM_ORIENTATION: Spec = Spec {
     list_position: u8::MAX,
     nudge: None,
     acts_mid_roll: false,
+    law: None,
     read: |s| Value::Flag(s.random.random_orientation),
     scan: None,
 };
 
 /// Every value of a setup, in the order a preset file lists them.
-pub static ALL: [&Spec; 25] = [
+pub static ALL: [&Spec; 31] = [
     &HALF_SIZES,
     &CORNER_RADIUS,
     &PIP_DIAMETER,
@@ -687,6 +823,12 @@ pub static ALL: [&Spec; 25] = [
     &DAMPING,
     &FRICTION,
     &FRICTION_LAW,
+    &CONTACT,
+    &STATIC_FRICTION,
+    &RESTITUTION,
+    &TANGENTIAL_STIFFNESS_RATIO,
+    &TILT,
+    &TILT_DIRECTION,
     &GRAVITY,
     &DT,
     &STOP_ENERGY_FRACTION,
@@ -813,6 +955,24 @@ mod tests {
             let components = spec.components().len().max(1);
             assert_eq!(spec.labels.len(), components, "{}", spec.key());
             assert!(spec.nudge.is_some() && spec.scan.is_some(), "{}", spec.key());
+        }
+    }
+
+    #[test]
+    fn each_row_names_the_law_the_physics_reads_it_under() {
+        for spec in ALL {
+            let law = GroundKey::named(spec.key()).map(|k| k.law());
+            assert_eq!(spec.law, law, "{}", spec.key());
+            for contact in [ContactLaw::Paper, ContactLaw::SpringFriction] {
+                let mut ground = Params::DEFAULT.ground;
+                ground.contact = contact;
+                assert_eq!(
+                    ground.reads(spec.key()),
+                    spec.law.is_none_or(|l| l == contact),
+                    "{}",
+                    spec.key()
+                );
+            }
         }
     }
 }

@@ -37,15 +37,17 @@ pub(crate) fn all() -> &'static [Param] {
 
 /// How many entries of the list are the paper's own values: all but a real die's shape
 /// beyond the paper's one half size (the other two half sizes, the corner radius and the
-/// pips) and a loaded die's extra corner masses. The layout gives the list this many rows
-/// when there is room; the rest scroll into view.
+/// pips), a loaded die's extra corner masses and the keys only another contact law reads.
+/// The layout gives the list this many rows when there is room; the rest scroll into view.
 pub(crate) fn paper_rows() -> usize {
+    use dicesim_physics::ContactLaw;
     use dicesim_setup::registry::{CORNER_RADIUS, EXTRA_CORNER_MASS, HALF_SIZES, PIP_DEPTH, PIP_DIAMETER};
     all()
         .iter()
         .filter(|p| {
             let spec = p.key.spec;
-            !(spec == &EXTRA_CORNER_MASS
+            !(spec.law.is_some_and(|law| law != ContactLaw::Paper)
+                || spec == &EXTRA_CORNER_MASS
                 || spec == &CORNER_RADIUS
                 || spec == &PIP_DIAMETER
                 || spec == &PIP_DEPTH
@@ -146,6 +148,8 @@ mod tests {
     fn every_value_round_trips_through_set_and_get() {
         for &p in all() {
             let mut params = Params::default();
+            // A key is set under the contact law that reads it.
+            params.ground.contact = p.key.spec.law.unwrap_or(params.ground.contact);
             let mut initial = InitialCondition::default();
             let l = p.limits();
             let v = l.min + 0.25 * (l.max - l.min);
@@ -196,6 +200,11 @@ mod tests {
                 "extra mass 6",
                 "extra mass 7",
                 "extra mass 8",
+                "restitution e",
+                "static friction μs",
+                "tangential k_t/k",
+                "table tilt",
+                "tilt direction",
             ]
         );
         // The paper's values: the table's three, the drop height, spin, velocity and

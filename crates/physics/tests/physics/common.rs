@@ -122,7 +122,7 @@ pub fn random_start(
 
 /// A state's every number as bits, and its step count: what two engines must agree on.
 pub fn state_bits(s: &State) -> Vec<u64> {
-    let mut v: Vec<f64> = Vec::with_capacity(80);
+    let mut v: Vec<f64> = Vec::with_capacity(96);
     v.extend(s.position.iter());
     v.extend(s.velocity.iter());
     v.extend(s.angular_momentum.iter());
@@ -130,6 +130,7 @@ pub fn state_bits(s: &State) -> Vec<u64> {
         v.extend(s.corner_offsets[k].iter());
         v.extend(s.corner_forces[k].iter());
         v.push(s.corner_depths[k]);
+        v.extend(s.tangential_springs[k].iter());
     }
     v.push(s.time_s);
     let mut bits: Vec<u64> = v.into_iter().map(f64::to_bits).collect();

@@ -14,7 +14,9 @@
 //! takes longer still, so a loaded cut roll costs 3–4 fair ones and these are most of this
 //! file's time (about two minutes on two idle cores). Then a
 //! mixed sample where neighbouring lanes carry different parameters, laws, stop energies and
-//! dice, with soft, stiff, damped and coarse-Δt setups that end in every status.
+//! dice, with soft, stiff, damped and coarse-Δt setups that end in every status. The
+//! spring-friction law likewise, on a level and a tilted table (cube, loaded and rounded die:
+//! 100 000 cut rolls and 2 000 whole ones each), and in every fourth lane of the mixed sample.
 
 use crate::common::{Table, random_start, reference_initial, reference_params, state_bits};
 use dicesim_physics::RandomRanges;
@@ -208,6 +210,64 @@ fn whole_die_norm_point_mass_stop() {
     law_and_stop(FrictionLaw::WholeDieNorm, StopEnergy::PointMasses, 14);
 }
 
+const SPRING_CUT_ROLLS: u64 = 100_000;
+const SPRING_WHOLE_ROLLS: u64 = 2_000;
+
+/// The spring-friction law (its tangential springs are state both widths carry), on a level
+/// and a tilted table: the paper's cube, a loaded die and a rounded die, 100 000 cut rolls and
+/// 2 000 whole ones each.
+#[test]
+fn spring_friction_law() {
+    use dicesim_physics::ContactLaw;
+    let mut level = Params::default();
+    level.ground.contact = ContactLaw::SpringFriction;
+    level.ground.static_friction = 1.4;
+    let mut tilted = level;
+    tilted.ground.tilt = 20.0;
+    tilted.ground.tilt_direction = 70.0;
+    let loaded = |p: Params| Params {
+        die: dicesim_physics::Die {
+            extra_corner_mass: LOADED_DICE[2],
+            ..p.die
+        },
+        ..p
+    };
+    let rounded = |p: Params| Params {
+        die: dicesim_physics::Die {
+            corner_radius: 0.2,
+            ..p.die
+        },
+        ..p
+    };
+    type Body = fn(Params) -> Params;
+    let bodies: [(&str, Body); 3] = [("cube", |p| p), ("loaded die", loaded), ("rounded die", rounded)];
+    for (t, table) in [("level", level), ("tilted", tilted)].into_iter().enumerate() {
+        for (b, (body, make)) in bodies.iter().enumerate() {
+            let params = make(table.1);
+            let what = format!("spring-friction, {} table, {body}", table.0);
+            let seed = 21 + 10 * t as u64 + b as u64;
+            let cut = Params {
+                integrator: dicesim_physics::Integrator {
+                    max_time: CUT_TIME_S,
+                    ..params.integrator
+                },
+                ..params
+            };
+            // Half the cut rolls on each table keeps the file's time; each body gets 100 000.
+            let statuses = assert_identical(
+                &format!("{what}, cut"),
+                &random_setups(cut, seed, SPRING_CUT_ROLLS / 2),
+            );
+            assert!(statuses.iter().sum::<usize>() == (SPRING_CUT_ROLLS / 2) as usize);
+            let statuses = assert_identical(
+                &format!("{what}, whole rolls"),
+                &random_setups(params, seed + 100, SPRING_WHOLE_ROLLS / 2),
+            );
+            assert!(statuses[Status::Settled as usize] > 0, "{what}: {statuses:?}");
+        }
+    }
+}
+
 /// Neighbouring lanes with different parameters, and setups at the edges of the ranges:
 /// soft and stiff tables, heavy damping, no friction, coarse Δt (unstable rolls), short
 /// time limits (timeouts), spins up to the limit, drops from rest onto an edge.
@@ -237,6 +297,22 @@ fn mixed_parameters_in_neighbouring_lanes() {
             } else {
                 StopEnergy::PointMasses
             };
+            // Every fourth lane on the spring-friction law, some on a tilted table, so the
+            // two laws share vectors.
+            if i % 4 == 3 {
+                p.ground.contact = dicesim_physics::ContactLaw::SpringFriction;
+                p.ground.damping = Params::default().ground.damping;
+                p.ground.friction_law = FrictionLaw::PerCorner;
+                p.ground.static_friction = p.ground.friction + rng.random_range(0.0..0.5);
+                p.ground.restitution = rng.random_range(0.2..1.0);
+                p.ground.tangential_stiffness_ratio = rng.random_range(0.1..1.5);
+                p.ground.tilt = if rng.random_bool(0.3) {
+                    rng.random_range(0.0..40.0)
+                } else {
+                    0.0
+                };
+                p.ground.tilt_direction = rng.random_range(0.0..360.0);
+            }
             p.integrator.dt = log_uniform(&mut rng, 1e-4, 1e-2);
             p.integrator.max_time = rng.random_range(0.2..5.0);
             p.die.half_sizes = [rng.random_range(0.5..2.0); 3];

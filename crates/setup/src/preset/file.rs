@@ -63,13 +63,23 @@ impl Preset {
             });
         }
 
+        // A key the chosen contact law does not read is refused where the file gives it,
+        // whatever its value.
+        for spec in registry::ALL.iter().filter(|s| s.law.is_some()) {
+            if find(doc, spec.key()).is_some()
+                && let Some(refused) = preset.ground.refusal(spec.key())
+            {
+                return Err(range_error(doc, origin, text, refused));
+            }
+        }
         preset
             .validate()
             .map_err(|error| range_error(doc, origin, text, error))?;
         Ok(preset)
     }
 
-    /// The whole file: every key, with its unit and meaning in a comment. Reading it back
+    /// The whole file: every key the contact law reads, with its unit and meaning in a
+    /// comment. Reading it back
     /// with [`Preset::from_toml_str`] gives this preset again (with the spin stated the way
     /// it is used: `angular_momentum` when present, else `angular_velocity`).
     pub fn to_toml(&self) -> String {
@@ -104,7 +114,8 @@ impl Preset {
                     self.spin_lines(&mut line, &vector);
                     continue;
                 }
-                if **spec == ANGULAR_MOMENTUM {
+                // Only the keys the contact law reads: the file reads back as it was written.
+                if **spec == ANGULAR_MOMENTUM || !setup.params.ground.reads(spec.key()) {
                     continue;
                 }
                 let name = spec.key().rsplit('.').next().unwrap_or_default();
@@ -454,7 +465,8 @@ mod tests {
         assert_eq!(
             e.to_string().lines().next().unwrap(),
             "dir/p.toml:4:1: key `ground.stifness`: unknown field `stifness`, expected one of \
-             `stiffness`, `damping`, `friction`, `friction_law`"
+             `stiffness`, `damping`, `friction`, `friction_law`, `contact`, `static_friction`, \
+             `restitution`, `tangential_stiffness_ratio`, `tilt`, `tilt_direction`"
         );
         let e = err("colour = \"red\"\n");
         assert!(
@@ -549,6 +561,56 @@ mod tests {
         assert_eq!(
             e.to_string(),
             "dir/p.toml:1:1: `format` = 0 is outside the allowed range 1 to 1"
+        );
+    }
+
+    #[test]
+    fn a_key_the_contact_law_does_not_read_is_refused_on_its_line_whatever_its_value() {
+        let e = err("[ground]\nfriction = 0.5\nrestitution = 0.5\n");
+        assert!(
+            e.to_string().starts_with(
+                "dir/p.toml:3:1: `ground.restitution` = 0.5: the \"paper\" contact law does not read it"
+            ),
+            "{e}"
+        );
+        let e = err("[ground]\ncontact = \"spring-friction\"\n\ndamping = 0.005\n");
+        assert!(
+            e.to_string().starts_with(
+                "dir/p.toml:4:1: `ground.damping` = 0.005: the \"spring-friction\" contact law does not read \
+                 it (its normal damping comes from `ground.restitution`)"
+            ),
+            "{e}"
+        );
+        let e = err("[ground]\ncontact = \"spring-friction\"\nfriction = 0.8\nstatic_friction = 0.6\n");
+        assert!(
+            e.to_string()
+                .contains("static friction must be at least the kinetic"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn a_spring_friction_table_is_written_with_its_own_keys_and_reads_back() {
+        let mut p = Preset::default();
+        p.ground.contact = dicesim_physics::ContactLaw::SpringFriction;
+        (p.ground.restitution, p.ground.static_friction, p.ground.tilt) = (0.8, 1.5, 12.5);
+        let text = p.to_toml();
+        for key in [
+            "contact = \"spring-friction\"",
+            "restitution = 0.8",
+            "static_friction = 1.5",
+            "tilt = 12.5",
+        ] {
+            assert!(text.contains(key), "no `{key}` in\n{text}");
+        }
+        for unread in ["damping = ", "friction_law = "] {
+            assert!(!text.contains(unread), "`{unread}` written in\n{text}");
+        }
+        assert_eq!(Preset::from_toml_str(&text, ORIGIN).unwrap(), p);
+        let paper = Preset::default().to_toml();
+        assert!(
+            paper.contains("contact = \"paper\"") && !paper.contains("restitution = "),
+            "{paper}"
         );
     }
 

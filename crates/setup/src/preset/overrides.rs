@@ -3,6 +3,7 @@
 use super::contents::Preset;
 use super::error::PresetError;
 use crate::keys::ScanKey;
+use dicesim_physics::GroundKey;
 
 impl Preset {
     /// Applies one `--set KEY=VALUE` (dotted key as in a file; the value is read as a TOML
@@ -18,6 +19,10 @@ impl Preset {
             return Err(err(format!("`{value}` is not a finite number")));
         }
         let parsed = parse_override_value(value);
+        // A key the contact law does not read is refused, whatever the value.
+        if let Some(unread) = GroundKey::named(key).filter(|k| k.law() != self.ground.contact) {
+            return Err(err(unread.why_unread(self.ground.contact)));
+        }
         // One component of a vector (`initial.velocity.y=5`) is set through its registry row.
         if let Ok(scan) = ScanKey::named(key)
             && !scan.spec.components().is_empty()
@@ -175,6 +180,45 @@ mod tests {
         assert_eq!(p.ground.stiffness, 600000.0);
         assert_eq!(p.initial.angular_velocity, [10.0, 0.0, 3.0]);
         assert_eq!(p.ground.friction_law, FrictionLaw::WholeDieNorm);
+    }
+
+    #[test]
+    fn a_key_the_contact_law_does_not_read_is_refused_and_changes_nothing() {
+        let paper = Preset::default();
+        let e = paper.with_overrides(&["ground.restitution=0.8"]).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "--set ground.restitution: the \"paper\" contact law does not read it (its restitution \
+             follows from `ground.damping` and falls with impact speed); it is read under \
+             `ground.contact = \"spring-friction\"`"
+        );
+        // The law first, then its keys; the paper's own are then refused, even at their default.
+        let spring = paper
+            .with_overrides(&[
+                "ground.contact=spring-friction",
+                "ground.restitution=0.8",
+                "ground.tilt=20",
+            ])
+            .unwrap();
+        assert_eq!((spring.ground.restitution, spring.ground.tilt), (0.8, 20.0));
+        for key in ["ground.damping=0.005", "ground.friction_law=per-corner"] {
+            let e = spring.with_overrides(&[key]).unwrap_err();
+            assert!(
+                e.to_string()
+                    .contains("the \"spring-friction\" contact law does not read it"),
+                "{key}: {e}"
+            );
+        }
+        // A table whose damping is not the default cannot switch law without dropping it.
+        let sticky = paper.with_overrides(&["ground.damping=0.02"]).unwrap();
+        let e = sticky
+            .with_overrides(&["ground.contact=spring-friction"])
+            .unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("`ground.damping` = 0.02: the \"spring-friction\""),
+            "{e}"
+        );
     }
 
     #[test]

@@ -35,6 +35,9 @@ pub const SHIPPED: &[(&str, &str)] = &[
     ("shaved-die", include_str!("../../presets/shaved-die.toml")),
     ("plate", include_str!("../../presets/plate.toml")),
     ("tennis-racket", include_str!("../../presets/tennis-racket.toml")),
+    ("sleeping-top", include_str!("../../presets/sleeping-top.toml")),
+    ("superball", include_str!("../../presets/superball.toml")),
+    ("incline", include_str!("../../presets/incline.toml")),
 ];
 
 /// The text of the shipped preset `name`.
