@@ -31,6 +31,14 @@ pub(crate) struct AnimateArgs {
     /// the preset's `view.twin`, else 1e-9).
     #[arg(long, value_name = "EPSILON", num_args = 0..=1, default_missing_value = "default")]
     pub(crate) twin: Option<String>,
+    /// Follow the die with a camera that frames it: its side about a third of the frame's
+    /// height (default: the whole path in view, the die small in it).
+    #[arg(long)]
+    pub(crate) zoom: bool,
+    /// Colour face N and its opposite (7 − N) and draw their body axis, e.g. 2 for the
+    /// tennis racket's flip of faces 2 and 5.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u8).range(1..=6))]
+    pub(crate) face_pair: Option<u8>,
     /// Write the animation to a .gif or an (animated) .png file.
     #[arg(long, value_name = "FILE.gif|FILE.png")]
     pub(crate) out: PathBuf,
@@ -88,6 +96,8 @@ pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
         twin,
         camera,
         speed,
+        zoom: args.zoom,
+        face_pair: args.face_pair,
         ..AnimationSpec::new(args.fps, args.size)
     };
     spec.validate().map_err(CliError::experiment("--twin "))?;
@@ -120,6 +130,16 @@ pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
         e => CliError::experiment("")(e),
     })?;
     bar.finish_and_clear();
+    print_summary(args, &animated, twin, speed)
+}
+
+/// What the animation holds: its frames and time, each die's ending, where it went.
+fn print_summary(
+    args: &AnimateArgs,
+    animated: &animation::Animated,
+    twin: Option<f64>,
+    speed: f64,
+) -> Result<(), CliError> {
     let face = |o: &dicesim_physics::Outcome| match o.face {
         Some(f) => format!("face {f} ({})", o.status.name()),
         None => o.status.name().to_string(),
@@ -135,11 +155,13 @@ pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
         args.size.0,
         args.size.1
     )?;
-    writeln!(out, "die               {}", face(&animated.outcome))?;
+    // Names padded by characters, not bytes (ε is two bytes), so the values line up.
+    let line = |name: &str, value: &str| format!("{name:<18}{value}");
+    writeln!(out, "{}", line("die", &face(&animated.outcome)))?;
     if let (Some(t), Some(e)) = (&animated.twin, twin) {
-        writeln!(out, "twin (ε {e:e})    {}", face(t))?;
+        writeln!(out, "{}", line(&format!("twin (ε {e:e})"), &face(t)))?;
     }
-    writeln!(out, "wrote             {}", args.out.display())?;
+    writeln!(out, "{}", line("wrote", &args.out.display().to_string()))?;
     out.flush()?;
     Ok(())
 }

@@ -58,9 +58,9 @@ pub(crate) struct Basin;
 impl Worded for Basin {
     const WORDING: Wording = Wording {
         jobs: "Worker threads (default: one per core); the map does not depend on it",
-        out: "Write the map to a .csv, .png or .svg file",
+        out: "Write the map to a .csv, .png or .svg file (repeatable: one of each, say)",
         out_value: "map.csv|map.png|map.svg",
-        repeatable: false,
+        repeatable: true,
         force: "Replace existing output files (--out, and a shard's --part summary)",
         json: None,
         sharded: true,
@@ -143,10 +143,11 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
     let layer = Layer::from(args.layer);
     let sharding = args.run.sharding()?;
     let method = args.method(sharding.is_some());
-    let output = args.run.output(&["csv", "png", "svg"])?;
-    if sharding.is_some() && output.as_ref().is_some_and(|o| o.extension() != "csv") {
+    let outputs = args.run.outputs(&["csv", "png", "svg"])?;
+    if sharding.is_some() && (outputs.len() > 1 || outputs.iter().any(|o| o.extension() != "csv")) {
         return Err(CliError::Usage(
-            "--shard writes its rows as .csv; `dicesim merge` draws the image of the whole map".to_string(),
+            "--shard writes its rows as one .csv; `dicesim merge` draws the image of the whole map"
+                .to_string(),
         ));
     }
     let shard = sharding
@@ -169,7 +170,11 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
     .map_err(CliError::experiment(""))?;
     bar.finish_and_clear();
     let elapsed = start.elapsed().as_secs_f64();
-    let written = write_map(&map, layer, &preset, output.as_ref())?;
+    // Each file in the order given; a shard's one CSV is the part's record.
+    let mut written = None;
+    for output in &outputs {
+        written = write_map(&map, layer, &preset, output)?.or(written);
+    }
     if let (Some((_, part)), Some(shard)) = (&sharding, shard.clone()) {
         let sweep = Sweep::map(&preset, (args.x.as_str(), args.y.as_str()), args.res, layer);
         let records = args.run.out_path().zip(written);
@@ -195,8 +200,8 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
         if jobs == 1 { "" } else { "s" },
         options.engine.resolve().name()
     )?;
-    if let Some(path) = args.run.out_path() {
-        writeln!(out, "wrote               {}", path.display())?;
+    for output in &outputs {
+        writeln!(out, "wrote               {}", output.path().display())?;
     }
     out.flush()?;
     if !map.complete {
@@ -217,20 +222,17 @@ fn write_map(
     map: &BasinMap,
     layer: Layer,
     preset: &Preset,
-    output: Option<&Output>,
+    output: &Output,
 ) -> Result<Option<Written>, CliError> {
     let provenance = provenance::map(preset, map);
-    match output {
-        Some(csv) if csv.extension() == "csv" => Ok(Some(
-            map.write_csv_file(&provenance, csv)
+    if output.extension() == "csv" {
+        return Ok(Some(
+            map.write_csv_file(&provenance, output)
                 .map_err(CliError::output(""))?,
-        )),
-        Some(image) => {
-            let setup = (preset.name.as_str(), &preset.params(), &preset.initial);
-            write_image(map, layer, setup, &provenance, image)
-                .map_err(CliError::experiment(&format!("{}: ", image.path().display())))?;
-            Ok(None)
-        }
-        None => Ok(None),
+        ));
     }
+    let setup = (preset.name.as_str(), &preset.params(), &preset.initial);
+    write_image(map, layer, setup, &provenance, output)
+        .map_err(CliError::experiment(&format!("{}: ", output.path().display())))?;
+    Ok(None)
 }

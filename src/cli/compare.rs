@@ -213,10 +213,10 @@ fn comparison_record(
         preset.name,
         spec.throws,
         spec.dataset.name(),
-        random_starts(&preset.random, spec.seed),
+        random_starts(&preset.random, spec.seed, &[]),
     );
     let title = format!("{} against real dice", preset.name);
-    Record::of_experiment(&title, experiment, &shown, provenance)
+    Record::of_experiment(&title, experiment, &shown, &[], provenance)
 }
 
 /// How a comparison's progress bar reads.
@@ -333,7 +333,7 @@ fn budden_record(
         format!(
             "{}: {throws}, each {}; --fit {fit_text} over {} candidates on ratios {}{best}",
             preset.name,
-            random_starts(&hand_throw(&preset.random), spec.seed),
+            random_starts(&hand_throw(&preset.random), spec.seed, &[]),
             spec.fit.candidates,
             spec.calibrate_on
                 .iter()

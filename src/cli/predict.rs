@@ -120,10 +120,13 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
 
     let provenance = provenance::prediction(&preset, &spec, args.vary.as_deref());
     let png = || {
+        // The swept value is the legend's: the caption never states the preset's one.
+        let varied: Vec<&str> = spec.sweep.iter().map(|(k, _)| k.key.as_str()).collect();
         let record = Record::of_experiment(
             "predictability of a throw",
             experiment_line(&preset.name, &preset.random, &spec, args.vary.as_deref()),
             &params,
+            &varied,
             &provenance,
         );
         prediction_png(&prediction, &record).map_err(CliError::experiment(""))
@@ -161,7 +164,11 @@ fn experiment_line(name: &str, r: &RandomRanges, spec: &PredictSpec, vary: Optio
     format!(
         "{name}: {} starts {}, for each curve; each beside its twin at ε {}{vary}",
         spec.count,
-        random_starts(r, spec.seed),
+        random_starts(
+            r,
+            spec.seed,
+            &spec.sweep.iter().map(|(k, _)| k.key.as_str()).collect::<Vec<_>>()
+        ),
         epsilons.join(", "),
     )
 }

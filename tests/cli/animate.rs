@@ -43,6 +43,45 @@ fn the_recorded_outcome_is_the_rolls_own() {
     }
 }
 
+/// The printed summary lines its values up by characters (`ε` is two bytes), and `--zoom`
+/// with `--face-pair` is recorded in the file.
+#[test]
+fn the_summary_lines_up_by_characters_and_the_view_is_recorded() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let text = ok(
+        d,
+        &[
+            "animate",
+            "--twin",
+            "--size",
+            "160x120",
+            "--fps",
+            "10",
+            "--zoom",
+            "--face-pair",
+            "5",
+            "--out",
+            "z.png",
+        ],
+    );
+    let column = |name: &str| {
+        // The column, in characters, where the value after the name's padding begins.
+        let line = text.lines().find(|l| l.starts_with(name)).expect(name);
+        let padding = line.find("  ").expect("padded");
+        line.chars().count() - line[padding..].trim_start().chars().count()
+    };
+    assert_eq!(column("twin (ε"), column("die"), "{text}");
+    assert_eq!(column("wrote"), column("die"), "{text}");
+    let outcome: serde_json::Value =
+        serde_json::from_str(&png_text(&d.join("z.png"))["dicesim-outcome"]).unwrap();
+    assert_eq!(outcome["zoom"], true);
+    assert_eq!(outcome["face_pair"], 2);
+    let e = refused(d, &["animate", "--face-pair", "7", "--out", "y.gif"]);
+    assert!(e.contains("7"), "{e}");
+    assert!(!d.join("y.gif").exists());
+}
+
 #[test]
 fn two_runs_write_the_same_bytes() {
     let dir = tempfile::tempdir().unwrap();

@@ -484,7 +484,35 @@ fn basin_writes_csv_png_and_svg() {
     run_ok(&[&common[..], &["--layer", "settle-time", "--out", &svg_path]].concat());
     let svg = std::fs::read_to_string(&svg_path).unwrap();
     assert!(svg.starts_with("<svg"));
-    assert!(svg.contains("initial.angular_velocity.x (rad/s): -30 to 30"));
+    // The axes in the explorer's words, with their units; the caption never states the
+    // spin the map varies, and never by its raw key.
+    assert!(svg.contains("spin ωx (rad/s): -30 to 30"), "the x axis in words");
+    assert!(!svg.contains("initial.angular_velocity.x (rad/s)"));
+    assert!(
+        svg.contains("spin (ωx, ωy, 0) rad/s"),
+        "the varied spin as its symbols"
+    );
     assert!(svg.contains("settle time (s)"));
     assert!(svg.contains("uniform grid 17×9"));
+
+    // `--out` repeated, as predict and compare take it: one map, each file of it, the CSV
+    // byte for byte the one a run writing it alone writes.
+    let (both_csv, both_png) = (path("both.csv"), path("both.png"));
+    let text = run_ok(
+        &[
+            &common[..],
+            &["--uniform", "--out", &both_png, "--out", &both_csv],
+        ]
+        .concat(),
+    );
+    assert!(
+        text.contains(&format!("wrote               {both_png}")),
+        "{text}"
+    );
+    assert!(
+        text.contains(&format!("wrote               {both_csv}")),
+        "{text}"
+    );
+    assert_eq!(std::fs::read(&both_csv).unwrap(), std::fs::read(&csv).unwrap());
+    assert_eq!(std::fs::read(&both_png).unwrap()[..8], *b"\x89PNG\r\n\x1a\n");
 }

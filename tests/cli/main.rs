@@ -27,4 +27,5 @@ mod slurm_checks;
 mod smaller_items;
 mod start_checks;
 mod terminal;
+mod trace_impacts;
 mod versus;

@@ -8,6 +8,7 @@ use dicesim_experiment::Error;
 use dicesim_experiment::basin::{BasinMap, Cell, Layer};
 use dicesim_experiment::ending::Ending;
 use dicesim_physics::{InitialCondition, Params, Status};
+use dicesim_setup::keys::ScanKey;
 use dicesim_setup::output::Output;
 use dicesim_setup::registry::{self, Role, Setup, Value};
 use plotters::coord::Shift;
@@ -130,20 +131,38 @@ impl Record {
     /// `dicesim-setup` chunk holds every value, one `key = value` per line, as a preset
     /// file writes them.
     pub fn of_setup(title: &str, name: &str, params: &Params, initial: &InitialCondition) -> Record {
+        Record::of_setup_varying(title, name, params, initial, &[])
+    }
+
+    /// [`Record::of_setup`] for a figure that varies the values `varied` (keys, a vector's
+    /// components among them: a map's axes): its caption never states them, since the
+    /// figure's axes or legend do (a varied component is written as its symbol, `(ωx, ωy,
+    /// 6)`); the `dicesim-setup` chunk still holds the setup every figure starts from.
+    pub fn of_setup_varying(
+        title: &str,
+        name: &str,
+        params: &Params,
+        initial: &InitialCondition,
+        varied: &[&str],
+    ) -> Record {
         let n = setup_value;
-        let v3 = |v: [f64; 3]| format!("({}, {}, {})", n(v[0]), n(v[1]), n(v[2]));
         let w = initial.angular_velocity_for(params.inertia());
+        let mut values = Vec::new();
+        if shown(varied, "initial.height") {
+            values.push(format!("height {} cm", n(initial.height)));
+        }
+        for (what, key, v, unit) in [
+            ("velocity", "initial.velocity", initial.velocity, " cm/s"),
+            ("spin", "initial.angular_velocity", w.into(), " rad/s"),
+            ("yaw pitch roll", "initial.orientation", initial.orientation, "°"),
+        ] {
+            values.push(format!("{what} {}{unit}", components(varied, key, v)));
+        }
         let caption = vec![
-            format!(
-                "{name}: height {} cm, velocity {} cm/s, spin {} rad/s, yaw pitch roll {}°",
-                n(initial.height),
-                v3(initial.velocity),
-                v3(w.into()),
-                v3(initial.orientation),
-            ),
+            format!("{name}: {}", values.join(", ")),
             format!(
                 "{} (every value in the file's dicesim-setup text)",
-                body_line(params)
+                body_line(params, varied)
             ),
         ];
         Record {
@@ -158,47 +177,90 @@ impl Record {
     }
 }
 
-/// The table, die, gravity and time step as a caption names them; a loaded die says where
-/// its extra masses are ("loaded: +0.5 g at corner 8").
-fn body_line(params: &Params) -> String {
+/// Whether the value `key` is stated: neither it nor a component of it is `varied`.
+fn shown(varied: &[&str], key: &str) -> bool {
+    !varied
+        .iter()
+        .any(|v| *v == key || v.strip_prefix(key).is_some_and(|rest| rest.starts_with('.')))
+}
+
+/// A vector value as a caption writes it, `(30, 0, 0)`, each varied component as the
+/// symbol the explorer's words end in (`ωy` of `spin ωy`).
+fn components(varied: &[&str], key: &str, v: [f64; 3]) -> String {
+    let prefix = format!("{key}.");
+    let keys: Vec<&ScanKey> = ScanKey::all()
+        .iter()
+        .filter(|k| k.key.starts_with(&prefix))
+        .collect();
+    let parts: Vec<String> = (0..3)
+        .map(|i| match keys.iter().find(|k| k.component == i) {
+            Some(k) if varied.contains(&k.key.as_str()) => {
+                k.words().rsplit(' ').next().unwrap_or(&k.key).to_string()
+            }
+            _ => setup_value(v[i]),
+        })
+        .collect();
+    format!("({})", parts.join(", "))
+}
+
+/// The table, die, gravity and time step as a caption names them, but for the `varied`
+/// keys the figure shows; a loaded die says where its extra masses are ("loaded: +0.5 g
+/// at corner 8").
+fn body_line(params: &Params, varied: &[&str]) -> String {
     let n = setup_value;
     let extras: Vec<String> = (params.die.extra_corner_mass.iter().enumerate())
         .filter(|&(_, &m)| m > 0.0)
         .map(|(k, &m)| format!("+{} g at corner {}", n(m), k + 1))
         .collect();
-    let loaded = if extras.is_empty() {
+    let loaded = if extras.is_empty() || !shown(varied, "die.extra_corner_mass") {
         String::new()
     } else {
         format!(", loaded: {}", extras.join(", "))
     };
-    format!(
-        "table k {} dyn/cm, γ {} s/cm, μ {}; die a {} cm, m {} g{loaded}; g {} cm/s², Δt {} s",
-        n(params.ground.stiffness),
-        n(params.ground.damping),
-        n(params.ground.friction),
-        n(params.die.half_size()),
-        n(params.die.corner_mass),
-        n(params.world.gravity),
-        n(params.integrator.dt),
-    )
+    let stated = |parts: &[(&str, String)]| {
+        parts
+            .iter()
+            .filter(|(key, _)| shown(varied, key))
+            .map(|(_, text)| text.clone())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let table = stated(&[
+        (
+            "ground.stiffness",
+            format!("k {} dyn/cm", n(params.ground.stiffness)),
+        ),
+        ("ground.damping", format!("γ {} s/cm", n(params.ground.damping))),
+        ("ground.friction", format!("μ {}", n(params.ground.friction))),
+    ]);
+    let die = stated(&[
+        ("die.half_sizes", format!("a {} cm", n(params.die.half_size()))),
+        ("die.corner_mass", format!("m {} g", n(params.die.corner_mass))),
+    ]);
+    let world = stated(&[
+        ("world.gravity", format!("g {} cm/s²", n(params.world.gravity))),
+        ("integrator.dt", format!("Δt {} s", n(params.integrator.dt))),
+    ]);
+    format!("table {table}; die {die}{loaded}; {world}")
 }
 
 impl Record {
     /// The record of an experiment over many starts (a prediction drawn from the random
     /// ranges): the caption says what defines it (`experiment`, a line) and the body it
-    /// rolls; the `dicesim-provenance` text holds every value, the ranges included, as the
-    /// JSON its CSV starts with.
+    /// rolls but for the `varied` keys its curves differ by; the `dicesim-provenance` text
+    /// holds every value, the ranges included, as the JSON its CSV starts with.
     pub fn of_experiment(
         title: &str,
         experiment: String,
         params: &Params,
+        varied: &[&str],
         provenance: &serde_json::Value,
     ) -> Record {
         let caption = vec![
             experiment,
             format!(
                 "{} (every value in the file's dicesim-provenance text)",
-                body_line(params)
+                body_line(params, varied)
             ),
         ];
         Record {
@@ -222,8 +284,9 @@ impl Record {
 }
 
 /// Random starts as a caption names them: the seed and each range (`height 15 cm` where
-/// the range is one value), and the orientation.
-pub fn random_starts(r: &dicesim_physics::RandomRanges, seed: u64) -> String {
+/// the range is one value) but for those the figure's curves vary (`varied` keys: the drop
+/// height by `initial.height` or `random.height`), and the orientation.
+pub fn random_starts(r: &dicesim_physics::RandomRanges, seed: u64, varied: &[&str]) -> String {
     let range = |[lo, hi]: [f64; 2], unit: &str| {
         if lo == hi {
             format!("{} {unit}", setup_value(lo))
@@ -236,12 +299,25 @@ pub fn random_starts(r: &dicesim_physics::RandomRanges, seed: u64) -> String {
     } else {
         "the preset's orientation"
     };
-    format!(
-        "drawn with seed {seed}: height {}, velocity {} and spin {} each component, {orientation}",
-        range(r.height, "cm"),
-        range(r.velocity, "cm/s"),
-        range(r.angular_velocity, "rad/s"),
-    )
+    let height_varies = !shown(varied, "initial.height") || !shown(varied, "random.height");
+    let mut parts = Vec::new();
+    if !height_varies {
+        parts.push(format!("height {}", range(r.height, "cm")));
+    }
+    let mut each = Vec::new();
+    for (key, what, values, unit) in [
+        ("random.velocity", "velocity", r.velocity, "cm/s"),
+        ("random.angular_velocity", "spin", r.angular_velocity, "rad/s"),
+    ] {
+        if shown(varied, key) {
+            each.push(format!("{what} {}", range(values, unit)));
+        }
+    }
+    if !each.is_empty() {
+        parts.push(format!("{} each component", each.join(" and ")));
+    }
+    parts.push(orientation.to_string());
+    format!("drawn with seed {seed}: {}", parts.join(", "))
 }
 
 /// Every value of a setup (but the random ranges, which no single roll uses), one
@@ -432,14 +508,18 @@ pub(crate) fn write_recorded_image(
 /// (`name`, params and initial condition; the two axis values vary per cell).
 pub fn map_record(map: &BasinMap, layer: Layer, setup: Option<(&str, &Params, &InitialCondition)>) -> Record {
     let axes = format!("x {}, y {}", axis_range(&map.x), axis_range(&map.y));
+    // The caption in the explorer's words; the text chunk keeps the keys a script reads.
+    let words = format!("x {}, y {}", axis_words(&map.x), axis_words(&map.y));
     let mut record = match setup {
         Some((name, params, initial)) => {
-            let mut r = Record::of_setup(&title(map, layer), name, params, initial);
-            r.caption.insert(0, format!("{axes}; every other value as below"));
+            let varied = [map.x.key.key.as_str(), map.y.key.key.as_str()];
+            let mut r = Record::of_setup_varying(&title(map, layer), name, params, initial, &varied);
+            r.caption
+                .insert(0, format!("{words}; every other value as below"));
             r
         }
         None => Record {
-            caption: vec![axes.clone()],
+            caption: vec![words],
             text: vec![("Title".to_string(), title(map, layer))],
         },
     };
@@ -537,12 +617,32 @@ fn axis_range(axis: &dicesim_experiment::basin::Axis) -> String {
     )
 }
 
-/// The words under (or beside) an axis: its key with the unit, and its range.
+/// An axis's range in the explorer's words (`spin ωx from -20 to 20 rad/s`), as a caption
+/// states it.
+fn axis_words(axis: &dicesim_experiment::basin::Axis) -> String {
+    let unit = match axis.key.unit() {
+        "" => String::new(),
+        u => format!(" {u}"),
+    };
+    if axis.cells == 1 {
+        return format!("{} = {}{unit}", axis.key.words(), setup_value(axis.value(0)));
+    }
+    let d = axis.spacing();
+    format!(
+        "{} from {} to {}{unit}",
+        axis.key.words(),
+        resolved(axis.min, d),
+        resolved(axis.max, d)
+    )
+}
+
+/// The words under (or beside) an axis: the value in the explorer's words with the unit,
+/// and its range.
 fn axis_title(axis: &dicesim_experiment::basin::Axis) -> String {
     let d = axis.spacing();
     format!(
         "{}: {} to {}",
-        axis.key.label(),
+        axis.key.title(),
         resolved(axis.min, d),
         resolved(axis.max, d)
     )
@@ -587,7 +687,7 @@ fn draw<DB: DrawingBackend>(
         chart
             .configure_mesh()
             .x_desc(axis_title(x))
-            .y_desc(format!("settle time (s), {}", axis_range(y)))
+            .y_desc(format!("settle time (s), {}", axis_words(y)))
             .x_labels(TICKS)
             .y_labels(TICKS)
             .x_label_formatter(&|v| xt.label(*v))
@@ -806,6 +906,50 @@ mod tests {
             caption.contains("m 1 g, loaded: +2 g at corner 2, +0.5 g at corner 8;"),
             "{caption}"
         );
+    }
+
+    /// A figure that varies a value never states it in its caption: a map over spin x and
+    /// friction names those on its axes (in the explorer's words, with units) and writes the
+    /// varied spin component as its symbol; the varied table value leaves the body line.
+    #[test]
+    fn a_caption_never_states_a_value_the_figure_varies() {
+        let map = awkward_map(Layer::Face, 3);
+        let initial = InitialCondition {
+            velocity: [30.0, 0.0, 0.0],
+            angular_velocity: [12.0, -20.0, 6.0],
+            ..InitialCondition::default()
+        };
+        let record = map_record(&map, Layer::Face, Some(("paper", &Params::default(), &initial)));
+        let caption = record.caption.join("\n");
+        let spin_x = ScanKey::named("initial.angular_velocity.x").unwrap();
+        let friction = ScanKey::named("ground.friction").unwrap();
+        assert!(
+            caption.contains(&format!("x {} from", spin_x.words())),
+            "{caption}"
+        );
+        assert!(
+            caption.contains(&format!("y {} from", friction.words())),
+            "{caption}"
+        );
+        assert!(caption.contains("spin (ωx, -20, 6) rad/s"), "{caption}");
+        assert!(
+            !caption.contains("μ 1.2") && caption.contains("k 500000 dyn/cm"),
+            "{caption}"
+        );
+        assert!(!caption.contains("initial.angular_velocity.x"), "{caption}");
+        // The text chunk a script reads keeps the keys.
+        let axes = &record.text.iter().find(|(k, _)| k == "dicesim-axes").unwrap().1;
+        assert!(axes.starts_with("x initial.angular_velocity.x from"), "{axes}");
+        assert_eq!(
+            axis_title(&map.x),
+            format!("{} (rad/s): -14.2 to -6.7", spin_x.words())
+        );
+        // Starts drawn for curves of several heights: no height in the caption.
+        let r = dicesim_physics::RandomRanges::default();
+        assert!(random_starts(&r, 1, &[]).contains("height 15 cm"));
+        let varied = random_starts(&r, 1, &["initial.height"]);
+        assert!(!varied.contains("height"), "{varied}");
+        assert!(varied.contains("velocity -50…50 cm/s"), "{varied}");
     }
 
     /// A small map of the paper's roll over the issue's awkward range, rolled for real.

@@ -5,6 +5,7 @@ use crate::figure::{Ticks, setup_value};
 use crate::plot::{Record, Scale, TICKS, plot_error, png_bytes, register_fonts, with_caption};
 use dicesim_experiment::Error;
 use dicesim_experiment::predict::{Prediction, Threshold};
+use dicesim_setup::keys::ScanKey;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -33,10 +34,14 @@ pub fn prediction_png(prediction: &Prediction, record: &Record) -> Result<Vec<u8
     })
 }
 
-/// A curve's name in the legend: the swept value with its key's last part.
+/// A curve's name in the legend: the swept value in the explorer's words, with its unit
+/// (`drop height = 2 cm`).
 fn curve_label(prediction: &Prediction, value: Option<f64>, threshold: Option<Threshold>) -> String {
     let name = match (&prediction.key, value) {
-        (Some(key), Some(v)) => format!("{} = {}", key.rsplit('.').next().unwrap_or(key), setup_value(v)),
+        (Some(key), Some(v)) => match ScanKey::named(key) {
+            Ok(k) => k.legend(&setup_value(v)),
+            Err(_) => format!("{key} = {}", setup_value(v)),
+        },
         _ => "this setup".to_string(),
     };
     match threshold {
@@ -142,4 +147,27 @@ fn draw(root: &DrawingArea<BitMapBackend<'_>, Shift>, prediction: &Prediction) -
         .draw()
         .map_err(plot_error)?;
     root.present().map_err(plot_error)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A legend names the swept value in the explorer's words, with its unit.
+    #[test]
+    fn a_legend_entry_names_the_value_with_its_unit() {
+        let prediction = Prediction {
+            key: Some("initial.height".to_string()),
+            epsilons: vec![1e-3],
+            count: 1,
+            seed: 1,
+            curves: Vec::new(),
+            cancelled: false,
+        };
+        let words = ScanKey::named("initial.height").unwrap().words().to_string();
+        assert_eq!(
+            curve_label(&prediction, Some(2.0), None),
+            format!("{words} = 2 cm")
+        );
+    }
 }

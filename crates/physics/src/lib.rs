@@ -3,10 +3,10 @@
 //! Units are CGS throughout: cm, g, s; forces in dyn, energies in erg.
 //!
 //! The modules are layered, each using only those before it: the data (`params`,
-//! `initial`, and `lane`, `energy`), then the body — its geometry (`body`), the stopping
-//! rule's arithmetic (`stopping`), the spring-friction contact's constants (`contact`), the
-//! three bodies a die can be (`cube`, `mass`, `shape`) and `model`, which says which of them
-//! a die is and answers every question about it —
+//! `initial`, and `lane`, `energy`, `impact`), then the body — its geometry (`body`), the
+//! stopping rule's arithmetic (`stopping`), the spring-friction contact's constants
+//! (`contact`), the three bodies a die can be (`cube`, `mass`, `shape`) and `model`, which
+//! says which of them a die is and answers every question about it —
 //! then the step written over a lane type (`spin`, `kernel`), the scalar engine (`sim`), and
 //! on top the lane engine (`lanes`) and the stability readings (`stability`, and the
 //! spring-friction law's own in `stability_contact`).
@@ -15,6 +15,7 @@ pub mod body;
 pub mod contact;
 mod cube;
 mod energy;
+mod impact;
 pub mod initial;
 mod kernel;
 mod lane;
@@ -32,6 +33,7 @@ mod stopping;
 pub use body::{PIP_LAYOUT, contact_sphere_centres, face_frame, pip_centres};
 pub use body::{face_most_nearly_up, opposite_face};
 pub use energy::Energy;
+pub use impact::{Impacts, impact_starts};
 pub use initial::{InitialCondition, RandomRanges};
 pub use model::{Placement, resting_depth_on_face, why_it_cannot_settle};
 pub use params::{

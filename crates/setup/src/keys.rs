@@ -94,7 +94,36 @@ impl ScanKey {
         column_name(&self.key.replace('.', "_"), self.unit())
     }
 
-    /// `key (unit)`, or the key alone for dimensionless values: an axis title.
+    /// What the explorer calls the value, in the model's words: its parameter-list label
+    /// (`spin ωy`), else its key's last part (`height` for `random.height`). Figures name
+    /// their axes and legends with it, so a plot reads as the explorer does.
+    pub fn words(&self) -> &str {
+        match self.spec.labels.get(self.component) {
+            Some(label) => label,
+            None => self.key.rsplit('.').next().unwrap_or(&self.key),
+        }
+    }
+
+    /// `words (unit)`, or the words alone for dimensionless values: a figure's axis title
+    /// (`spin ωy (rad/s)`).
+    pub fn title(&self) -> String {
+        match self.unit() {
+            "" => self.words().to_string(),
+            unit => format!("{} ({unit})", self.words()),
+        }
+    }
+
+    /// `words = value unit`: a figure's legend entry for one value of it (`drop height =
+    /// 2 cm`), `value` written as the figure writes numbers.
+    pub fn legend(&self, value: &str) -> String {
+        match self.unit() {
+            "" => format!("{} = {value}", self.words()),
+            unit => format!("{} = {value} {unit}", self.words()),
+        }
+    }
+
+    /// `key (unit)`, or the key alone for dimensionless values: how a table printed for a
+    /// script names a column (the key it was given).
     pub fn label(&self) -> String {
         if self.unit().is_empty() {
             self.key.clone()
@@ -240,6 +269,17 @@ mod tests {
         assert!(e.contains("`initial.velocity.x`"), "{e}");
         let e = ScanKey::parse("ground.friction_law").unwrap_err().to_string();
         assert!(e.contains("not a numeric setup key"), "{e}");
+    }
+
+    #[test]
+    fn figures_name_a_value_in_the_explorers_words_with_its_unit() {
+        let spin = ScanKey::named("initial.angular_velocity.y").unwrap();
+        assert_eq!(spin.words(), spin.spec.labels[1]);
+        assert_eq!(spin.title(), format!("{} (rad/s)", spin.spec.labels[1]));
+        let height = ScanKey::named("random.height").unwrap();
+        assert!(height.spec.labels.is_empty(), "no parameter-list row");
+        assert_eq!(height.legend("2"), "height = 2 cm");
+        assert_eq!(ScanKey::named("ground.friction").unwrap().title(), "friction μ");
     }
 
     #[test]

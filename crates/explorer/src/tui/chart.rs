@@ -139,6 +139,30 @@ pub(crate) fn time_labels_for(width: u16) -> usize {
     (width as usize / 12).clamp(2, 6)
 }
 
+/// s: the span of time the value axis is fitted to on demand (`y`): a quarter of the time
+/// axis (to `x_hi` s), centred on the time on screen, so what the die does now fills the
+/// plot's height and the rest of the roll runs off it; `None` while the axis spans the roll.
+pub(crate) fn fit_window(app: &App, x_hi: f64) -> Option<(f64, f64)> {
+    let t = app.roll.live.time_s;
+    app.die_screen
+        .plot
+        .fitted
+        .then(|| (t - x_hi / 8.0, t + x_hi / 8.0))
+}
+
+/// The points of `data` within `window` (every point without one, or where none fall in it).
+pub(crate) fn in_window(data: &[(f64, f64)], window: Option<(f64, f64)>) -> Vec<(f64, f64)> {
+    let Some((from, to)) = window else {
+        return data.to_vec();
+    };
+    let inside: Vec<(f64, f64)> = data
+        .iter()
+        .copied()
+        .filter(|p| (from..=to).contains(&p.0))
+        .collect();
+    if inside.is_empty() { data.to_vec() } else { inside }
+}
+
 /// The colour of the marker of the time on screen: a hue no curve of the plots uses.
 pub(crate) fn marker_colour(app: &App) -> Color {
     app.theme.ink(Color::Cyan)

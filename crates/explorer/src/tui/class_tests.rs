@@ -138,7 +138,11 @@ mod vectors {
             .flat_map(|y| (0..area.width).map(move |x| (x, y)))
             .map(|p| b[p].symbol().to_string())
             .collect();
-        assert!(text.contains("length a·log₁₀(1+|x|/x₀)"), "{text}");
+        assert!(text.contains("10× as big is half a die longer"), "{text}");
+        assert!(
+            !text.contains("log₁₀"),
+            "the scale in words, not a formula: {text}"
+        );
         // Every arrow is drawn in its own colour somewhere in the panel.
         for kind in ARROWS {
             let colour = kind.colour(&app);
@@ -329,11 +333,11 @@ mod presets {
     use super::*;
     use crate::tui::input::update;
     use crate::tui::param::Param;
-    use crate::tui::state::dialog::Dialog;
+    use crate::tui::state::dialog::{Dialog, Group};
     use crate::tui::state::messages::Msg;
     use crate::tui::tests::Harness;
     use crate::worker::Command;
-    use dicesim_setup::preset::{Preset, Store};
+    use dicesim_setup::preset::{LESSON, Preset, Store};
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 
     fn press(app: &mut App, code: KeyCode) -> Vec<Command> {
@@ -384,14 +388,37 @@ mod presets {
         else {
             panic!("the picker is open")
         };
-        assert_eq!(choices[0].name, "lab-2");
-        assert!(choices[0].user && !choices[1].user);
+        // The lesson's presets first, in the lesson's order; the other shipped ones; the
+        // user's last.
+        let names: Vec<&str> = choices.iter().map(|c| c.name.as_str()).collect();
+        assert_eq!(names[..LESSON.len()], *LESSON, "{names:?}");
+        assert_eq!(names.last(), Some(&"lab-2"));
+        assert!(choices.last().is_some_and(|c| c.user) && choices.iter().filter(|c| c.user).count() == 1);
+        let groups: Vec<Group> = choices.iter().map(|c| c.group).collect();
+        assert!(groups.is_sorted(), "{groups:?}");
         assert_eq!(choices[*selected].name, "paper", "the loaded preset is selected");
-        assert!(choices.iter().any(|c| c.name == "gentle-drop"));
-        insta::assert_snapshot!("picker_120x36", screen(&s.app, 120, 36));
-        insta::assert_snapshot!("picker_80x24", screen(&s.app, 80, 24));
-        // Up to the user's preset and load it: the worker switches, the dialog closes.
-        s.key(KeyCode::Up);
+        assert!(
+            choices
+                .iter()
+                .any(|c| c.name == "icy-table" && c.group == Group::Shipped)
+        );
+        let wide = screen(&s.app, 120, 36);
+        let narrow = screen(&s.app, 80, 24);
+        for text in [&wide, &narrow] {
+            for heading in [Group::Lesson, Group::Shipped, Group::Yours].map(Group::heading) {
+                assert!(text.contains(heading), "{heading} in\n{text}");
+            }
+            // The selection's description beside the list, from its first row.
+            let row = text
+                .lines()
+                .find(|l| l.contains(Group::Lesson.heading()))
+                .expect("listed");
+            assert!(row.contains("The die of Chin and Li"), "{row}");
+        }
+        insta::assert_snapshot!("picker_120x36", wide);
+        insta::assert_snapshot!("picker_80x24", narrow);
+        // Down to the user's preset and load it: the worker switches, the dialog closes.
+        s.key(KeyCode::End);
         let sent = press(&mut s.app, KeyCode::Enter);
         assert!(matches!(sent.as_slice(), [Command::LoadPreset(p)] if p.name == "lab-2"));
         assert!(s.app.dialog().is_none());

@@ -1,6 +1,7 @@
 //! The explorer's controls in a lesson: the timeline, the questions before changes are
 //! lost, Esc that never quits, the batch size; rendered deterministically.
 
+use super::keys::{Action, Scope, label};
 use super::layout::screen_layout;
 use super::param::Param;
 use super::state::app::{App, Mode, Prompt};
@@ -270,9 +271,59 @@ fn the_footer_and_help_come_from_the_key_table() {
     let mut s = start();
     s.key(KeyCode::Char('?'));
     let help = screen(&s.app, 120, 36);
+    // The overlay's text with its wrapping undone: the rows' words in order.
+    let words = |text: &str| text.split_whitespace().collect::<Vec<_>>().join(" ");
+    let inside: String = help
+        .lines()
+        .filter_map(|l| l.split('│').nth(2))
+        .collect::<Vec<_>>()
+        .join(" ");
     for row in super::keys::BINDINGS.iter().take(6) {
-        assert!(help.contains(row.help), "no `{}` in\n{help}", row.help);
+        assert!(
+            words(&inside).contains(&words(row.help)),
+            "no `{}` in\n{help}",
+            row.help
+        );
     }
+}
+
+/// The help at a projector's 80×24: a wrapped line goes on under its own text, never at the
+/// overlay's left edge where it reads as an item, and quitting is on its first page.
+#[test]
+fn the_help_hangs_its_wrapped_lines_and_shows_quit_on_its_first_page() {
+    let mut s = start();
+    s.key(KeyCode::Char('?'));
+    let text = screen(&s.app, 80, 24);
+    let lines: Vec<&str> = text.lines().map(|l| l.trim_matches('"')).collect();
+    let top = lines
+        .iter()
+        .position(|l| l.contains("help · the model"))
+        .expect("the help");
+    let rows: Vec<&str> = lines[top + 1..]
+        .iter()
+        .take_while(|l| l.starts_with('│'))
+        .filter_map(|l| l.split('│').nth(1))
+        .collect();
+    let keys_end = rows
+        .iter()
+        .position(|r| r.starts_with("Basin-map"))
+        .unwrap_or(rows.len());
+    for r in &rows[1..keys_end] {
+        let first = r.chars().next().unwrap_or(' ');
+        assert!(first == ' ', "a line at the left edge: {r:?}\n{text}");
+        // A key row starts two columns in; a continuation at the text's column, 16.
+        let indent = r.chars().take_while(|c| *c == ' ').count();
+        assert!(
+            indent == 2 || indent == 16 || r.trim().is_empty(),
+            "{indent}: {r:?}\n{text}"
+        );
+    }
+    let quit = label(Scope::Die, Action::Quit);
+    assert!(
+        rows.iter()
+            .any(|r| r.trim_start().starts_with(&format!("{quit} ")) && r.contains("quit")),
+        "quit on the first page:\n{text}"
+    );
 }
 
 /// A preset with a theme, for the projector check.
@@ -411,8 +462,8 @@ fn a_key_that_means_nothing_does_nothing_and_the_footer_says_so() {
         s.app.setup.params,
         s.app.setup.initial,
     );
-    // `y` answers questions; with none open it means nothing (it once switched the log scale).
-    s.key(KeyCode::Char('y'));
+    // `u` is no key of the main screen.
+    s.key(KeyCode::Char('u'));
     assert_eq!(
         (
             s.app.die_screen.log_scale,
@@ -423,7 +474,7 @@ fn a_key_that_means_nothing_does_nothing_and_the_footer_says_so() {
     );
     assert_eq!(s.app.mode(), Mode::Normal);
     let text = screen(&s.app, 120, 36);
-    assert!(text.contains("y: nothing here (? lists the keys)"), "{text}");
+    assert!(text.contains("u: nothing here (? lists the keys)"), "{text}");
     insta::assert_snapshot!("nothing_here_footer_120x36", text);
     // The next key that does something clears it.
     s.key(KeyCode::Down);

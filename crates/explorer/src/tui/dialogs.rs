@@ -16,6 +16,14 @@ use ratatui::widgets::{Block, Paragraph, Wrap};
 /// Characters of a preset's description the picker shows: more than any screen holds.
 const DESCRIPTION_SHOWN: usize = 4000;
 
+/// Columns of the picker's list beside the description: the longest shipped name with its
+/// marks and the gap column.
+const LIST_WIDTH: u16 = 29;
+
+/// The picker's inside from which the description goes beside the list rather than under
+/// it: the list and a description column of 40.
+const PICKER_BESIDE: u16 = LIST_WIDTH + 1 + 40;
+
 /// Draws the open dialog, centred over the screen, and over it any question being asked.
 pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     render_dialog(app, area, frame);
@@ -78,9 +86,18 @@ fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
                 );
             let body = block.inner(popup);
             frame.render_widget(block, popup);
+            // Beside the list where the box is wide enough, under it where not.
+            let beside = body.width >= PICKER_BESIDE;
+            let list_width = if beside { LIST_WIDTH } else { body.width };
+            let room = fit::room(list_width as usize);
+            // Each group under its heading; `row_of[i]`: the row of choice i.
             let mut lines = Vec::new();
-            let room = fit::room(body.width as usize);
+            let mut row_of = Vec::with_capacity(choices.len());
             for (i, c) in choices.iter().enumerate() {
+                if i == 0 || choices[i - 1].group != c.group {
+                    lines.push(Line::styled(fit::cut_text(c.group.heading(), room), t.heading()));
+                }
+                row_of.push(lines.len());
                 let mark = if c.user { "★" } else { " " };
                 let pointer = if i == *selected { "▶" } else { " " };
                 let name = fit::cut_text(&printable(&c.name), room.saturating_sub(3));
@@ -105,16 +122,28 @@ fn render_dialog(app: &App, area: Rect, frame: &mut Frame) {
                 ),
                 (None, None) => Line::raw("no presets found"),
             };
-            // The list on top (scrolled to keep the selection in view), the description below.
-            let list_height = (lines.len() as u16).min(body.height.saturating_sub(3) / 2).max(1);
-            let [list, _, description] = body.layout(&Layout::vertical([
-                Constraint::Length(list_height),
-                Constraint::Length(1),
-                Constraint::Min(0),
-            ]));
-            // Entries past the list's ends are counted on a row of their own.
+            let (list, description) = if beside {
+                let [list, _, description] = body.layout(&Layout::horizontal([
+                    Constraint::Length(list_width),
+                    Constraint::Length(1),
+                    Constraint::Min(0),
+                ]));
+                (list, description)
+            } else {
+                // The list on top, the description below.
+                let list_height = (lines.len() as u16).min(body.height.saturating_sub(3) / 2).max(1);
+                let [list, _, description] = body.layout(&Layout::vertical([
+                    Constraint::Length(list_height),
+                    Constraint::Length(1),
+                    Constraint::Min(0),
+                ]));
+                (list, description)
+            };
+            // Rows past the list's ends are counted on a row of their own; the selection
+            // stays in view.
             let total = lines.len();
-            let (first, shown, marked) = picker_window(total, *selected, list_height as usize);
+            let at = row_of.get(*selected).copied().unwrap_or(0);
+            let (first, shown, marked) = picker_window(total, at, list.height as usize);
             let mut rows: Vec<Line> = lines.into_iter().skip(first).take(shown).collect();
             if marked {
                 let more = |arrow: &str, n: usize| {

@@ -16,11 +16,12 @@ use super::solid::{EDGES, FACE_CORNERS, Flat, Solid, convex_hull, inside, outsid
 use super::state::app::App;
 use super::state::camera::OrbitCamera;
 use super::state::die_screen::Drawing;
+pub(crate) use super::state::projection::{Projection, die_panel};
+use super::state::throw::Throw;
 use super::vectors::{self, Arrow};
-use crate::worker::{DieState, Phase, TwinSnapshot};
+use crate::worker::{DieState, TwinSnapshot};
 use dicesim_physics::InitialCondition;
-use dicesim_physics::why_it_cannot_settle;
-use dicesim_physics::{Status, UnstableReason, face_frame, pip_centres};
+use dicesim_physics::{face_frame, pip_centres};
 use nalgebra::Vector3;
 use ratatui::Frame;
 use ratatui::buffer::Buffer;
@@ -73,75 +74,6 @@ pub(crate) struct Picture {
     pub(crate) outline: Vec<Flat>,
     /// In order of importance: earlier labels get the cells they want.
     pub(crate) labels: Vec<Label>,
-}
-
-/// The part of the view plane the die panel shows, and the cells it is drawn in.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Projection {
-    pub(crate) camera: OrbitCamera,
-    /// The horizontal point the camera follows (the die's foot).
-    pub(crate) focus: Vector3<f64>,
-    pub(crate) x: (f64, f64),
-    pub(crate) y: (f64, f64),
-    pub(crate) area: Rect,
-}
-
-impl Projection {
-    /// The view of the die in `area`: the die's width in view fixed by the zoom, its height
-    /// from the cells' 1:2 aspect, the table kept in the lower third.
-    pub(crate) fn new(app: &App, area: Rect) -> Projection {
-        let die = &app.roll.live.die;
-        let camera = app.die_screen.camera;
-        let width = camera.width_cm(app.roll.live.params.die.largest_half_size());
-        let height = width * 2.0 * area.height as f64 / area.width.max(1) as f64;
-        let focus = Vector3::new(die.centre.x, die.centre.y, 0.0);
-        let centre_y = camera.project(&die.centre, &focus).y.max(0.35 * height);
-        // Never above the die's lowest corner: a short panel shows the whole die resting on
-        // the table and gives up sky instead.
-        let radius = app.roll.live.params.die.corner_radius;
-        let lowest = die
-            .corners
-            .iter()
-            .map(|p| camera.project(p, &focus).y - radius)
-            .fold(f64::INFINITY, f64::min);
-        let bottom = (centre_y - height / 2.0).min(lowest - 0.04 * height);
-        Projection {
-            camera,
-            focus,
-            x: (-width / 2.0, width / 2.0),
-            y: (bottom, bottom + height),
-            area,
-        }
-    }
-
-    pub(crate) fn flat(&self, p: &Vector3<f64>) -> Flat {
-        let q = self.camera.project(p, &self.focus);
-        (q.x, q.y)
-    }
-
-    /// The cell (column, row from the top, inside `area`) a point falls in, if in view.
-    pub(crate) fn cell(&self, p: Flat) -> Option<(u16, u16)> {
-        let fx = (p.0 - self.x.0) / (self.x.1 - self.x.0);
-        let fy = (self.y.1 - p.1) / (self.y.1 - self.y.0);
-        let (w, h) = (self.area.width as f64, self.area.height as f64);
-        ((0.0..1.0).contains(&fx) && (0.0..1.0).contains(&fy)).then_some(((fx * w) as u16, (fy * h) as u16))
-    }
-
-    /// The point at the middle of a cell.
-    pub(crate) fn centre_of(&self, col: u16, row: u16) -> Flat {
-        let (w, h) = (self.area.width as f64, self.area.height as f64);
-        (
-            self.x.0 + (self.x.1 - self.x.0) * (col as f64 + 0.5) / w,
-            self.y.1 - (self.y.1 - self.y.0) * (row as f64 + 0.5) / h,
-        )
-    }
-
-    /// cm between neighbouring Braille dots, the finer of the two directions.
-    fn dot(&self) -> f64 {
-        let across = (self.x.1 - self.x.0) / (2.0 * self.area.width.max(1) as f64);
-        let up = (self.y.1 - self.y.0) / (4.0 * self.area.height.max(1) as f64);
-        across.min(up)
-    }
 }
 
 /// Which faces (0-based) of the body the camera sees, and how squarely.
@@ -276,7 +208,17 @@ pub(crate) fn picture(app: &App, view: &Projection) -> Picture {
         let face = f as u8 + 1;
         let up = face == die.face_up;
         let flat_part = body.flat_face(f).map(|p| view.flat(&p));
-        if let Some(fill) = t.face_fill(facing[f], up) {
+        // A face of the marked pair takes its pair's tint, the face up or not.
+        let pair = app
+            .die_screen
+            .face_pair
+            .filter(|&low| face == low || face == 7 - low)
+            .map(|low| usize::from(face != low));
+        let fill = match pair {
+            Some(which) => t.pair_fill(facing[f], which),
+            None => t.face_fill(facing[f], up),
+        };
+        if let Some(fill) = fill {
             pic.faces.push((convex_hull(&flat_part), fill));
         }
         // The face's two edge directions, world, and its half sizes along them, cm.
@@ -348,10 +290,50 @@ pub(crate) fn picture(app: &App, view: &Projection) -> Picture {
             pic.stroke(1, corners[a], corners[b], edge_colour(a, b));
         }
     }
+    if let Some(low) = app.die_screen.face_pair {
+        pair_axis(&mut pic, app, view, &body, low);
+    }
     if app.die_screen.arrows {
         arrows(&mut pic, app, view, die);
     }
+    if let Some(aim) = app.die_screen.throw {
+        throw_aim(&mut pic, app, view, die, &aim);
+    }
     pic
+}
+
+/// The body axis through the marked face pair (`low` and its opposite): from the centre out
+/// past each face, its number at the tip, so a flip of the pair shows as the axis turning over.
+fn pair_axis(pic: &mut Picture, app: &App, view: &Projection, body: &Solid, low: u8) {
+    for face in [low, 7 - low] {
+        let normal = face_frame(face)[0];
+        let reach: f64 = (0..3).map(|i| normal[i].abs() * body.half_sizes[i]).sum();
+        let tip = body.centre + body.direction(normal) * (1.7 * reach);
+        pic.stroke(2, view.flat(&body.centre), view.flat(&tip), app.theme.die());
+        pic.label(view.flat(&tip), face.to_string(), app.theme.heading(), true);
+    }
+}
+
+/// Throw mode's aim: `+` where the die is grabbed and an arrow to where the drag has got,
+/// in the velocity's colour (it is the velocity the throw gives).
+fn throw_aim(pic: &mut Picture, app: &App, view: &Projection, die: &DieState, aim: &Throw) {
+    let half = app.roll.live.params.die.largest_half_size();
+    let centre = view.flat(&die.centre);
+    let grab = (centre.0 + aim.grab.0, centre.1 + aim.grab.1);
+    let tip = (grab.0 + aim.drag.0, grab.1 + aim.drag.1);
+    let colour = Arrow::Velocity.colour(app);
+    if aim.drag != (0.0, 0.0) {
+        pic.stroke(2, grab, tip, colour);
+        for (a, b) in vectors::head(grab, tip, 0.2 * half) {
+            pic.stroke(2, a, b, colour);
+        }
+    }
+    pic.label(
+        grab,
+        "+",
+        Style::new().fg(colour).add_modifier(Modifier::BOLD),
+        false,
+    );
 }
 
 /// The sides of a face's flat part, by index into its corners in [`FACE_CORNERS`] order
@@ -678,35 +660,23 @@ pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
         ));
     }
     let block = Block::bordered().title(super::fit::line(title, room));
-    let mut body = block.inner(area);
+    let body = block.inner(area);
     frame.render_widget(block, area);
     if body.width < 2 || body.height < 2 {
         return;
     }
     // The reason a roll ended and the arrows' legend take rows of their own: they hide
     // nothing of the die.
-    if let Some((reason, style)) = end_reason(app) {
-        let lines: Vec<Line> = super::fit::wrap(&reason, body.width as usize)
-            .into_iter()
-            .map(|l| Line::styled(l, style))
-            .collect();
-        let rows = (lines.len() as u16).min(body.height.saturating_sub(3));
-        let top = Rect { height: rows, ..body };
+    let parts = die_panel(app, body);
+    if let Some((lines, style, top)) = parts.reason {
+        let lines: Vec<Line> = lines.into_iter().map(|l| Line::styled(l, style)).collect();
         frame.render_widget(Clear, top);
         frame.render_widget(Paragraph::new(lines), top);
-        body.y += rows;
-        body.height -= rows;
     }
-    if app.die_screen.arrows && body.height >= 6 {
-        let legend = Rect {
-            y: body.bottom() - 2,
-            height: 2,
-            ..body
-        };
+    if let Some(legend) = parts.legend {
         frame.render_widget(Paragraph::new(vectors::legend(app, body.width)), legend);
-        body.height -= 2;
     }
-    draw(app, &Projection::new(app, body), frame);
+    draw(app, &Projection::new(app, parts.picture), frame);
 }
 
 /// The die's picture seen in `view`, drawn into its area: strokes, fills, then labels.
@@ -737,22 +707,6 @@ pub(crate) fn decided_at(app: &App) -> Option<f64> {
         .decided
         .filter(|&d| live.timeline.position >= d)
         .map(|d| d as f64 * live.params.integrator.dt)
-}
-
-/// Why the roll on screen ended unstable, or could not settle on its table, when it did.
-pub(crate) fn end_reason(app: &App) -> Option<(String, Style)> {
-    match app.roll.live.phase {
-        Phase::Ended(o) if o.status == Status::Unstable => Some((
-            format!(
-                "unstable: {}",
-                UnstableReason::new(&app.roll.live.params, &app.roll.live.initial)
-            ),
-            app.theme.danger(),
-        )),
-        Phase::Ended(o) if o.status == Status::Timeout => why_it_cannot_settle(&app.roll.live.params)
-            .map(|why| (format!("did not settle: {why}"), app.theme.caution())),
-        _ => None,
-    }
 }
 
 #[cfg(test)]

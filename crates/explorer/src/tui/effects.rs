@@ -4,10 +4,10 @@
 
 use super::keys::{Action, Scope, named};
 use super::state::app::{App, Overlay};
-use super::state::dialog::{Choice, Dialog};
+use super::state::dialog::{Choice, Dialog, Group};
 use super::state::messages::Effect;
 use crate::worker::Command;
-use dicesim_setup::preset::{Preset, Source};
+use dicesim_setup::preset::{LESSON, Preset, Source};
 
 /// Runs one effect of `update`: the file work here, on the loop's thread; a worker command
 /// is handed back for the caller to send.
@@ -22,16 +22,28 @@ pub(crate) fn perform(app: &mut App, effect: Effect) -> Option<Command> {
 
 /// Opens the picker on every preset the store lists, the loaded one selected.
 fn open_picker(app: &mut App) {
-    let choices: Vec<Choice> = app
+    let mut choices: Vec<Choice> = app
         .store
         .list()
         .into_iter()
-        .map(|e| Choice {
-            user: matches!(e.source, Source::User(_)),
-            preset: e.preset.map(Box::new).map_err(|err| err.to_string()),
-            name: e.name,
+        .map(|e| {
+            let user = matches!(e.source, Source::User(_));
+            let group = match LESSON.iter().position(|n| *n == e.name) {
+                _ if user => Group::Yours,
+                Some(_) => Group::Lesson,
+                None => Group::Shipped,
+            };
+            Choice {
+                user,
+                group,
+                preset: e.preset.map(Box::new).map_err(|err| err.to_string()),
+                name: e.name,
+            }
         })
         .collect();
+    // The lesson's presets first, in its order; the rest keep the store's.
+    let order = |c: &Choice| (c.group, LESSON.iter().position(|n| *n == c.name));
+    choices.sort_by_key(order);
     let selected = choices
         .iter()
         .position(|c| c.name == app.setup.preset.name)

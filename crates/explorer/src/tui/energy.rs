@@ -2,8 +2,8 @@
 //! time on screen marked; the plot panel shows it unless another plot was chosen.
 
 use super::chart::{
-    edit_datasets, edit_marks, faded_run, marker_dataset, nice_ticks, parameter_twin, previous_dataset,
-    scaled_faded_run, thinned, time_axis, time_marker,
+    edit_datasets, edit_marks, faded_run, fit_window, in_window, marker_dataset, nice_ticks, parameter_twin,
+    previous_dataset, scaled_faded_run, thinned, time_axis, time_marker,
 };
 use super::format::fmt_num;
 use super::state::app::App;
@@ -150,8 +150,13 @@ pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
         (y_of(LOG_FLOOR), y_of(LOG_FLOOR))
     };
     let scaled = thinned(scaled_faded_run(app), buckets, |s| y_of(s.total));
+    // Fitted on demand (`y`): to the curves around the time on screen.
+    let window = fit_window(app, x_hi);
+    if window.is_some() {
+        (lo, hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    }
     for s in series.iter().chain([&scaled]) {
-        for &(_, v) in s {
+        for &(_, v) in &in_window(s, window) {
             if v.is_finite() {
                 lo = lo.min(v);
                 hi = hi.max(v);
@@ -164,7 +169,12 @@ pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
     let covered = (inside.len() as f64).min(rows - 1.0);
     let most_labels = (rows as usize).div_ceil(2).clamp(2, 5);
     let (y_lo, y_hi, ticks) = if log {
-        let bottom = y_of(LOG_FLOOR);
+        // Fitted on demand (`y`): from the decade of the curves' lowest.
+        let bottom = if window.is_some() {
+            lo.max(y_of(LOG_FLOOR)).floor()
+        } else {
+            y_of(LOG_FLOOR)
+        };
         let top = bottom + (hi.max(bottom + 1.0) - bottom) * rows / (rows - covered);
         // Whole decades, every one labelled or every second, third, …
         let decades = (top - bottom).ceil().max(1.0) as usize;
@@ -181,7 +191,12 @@ pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
     } else {
         // A die pressed into the table has a slightly negative potential energy: a floor
         // below zero only when that is a visible share of the plot.
-        let floor = if lo < -0.05 * hi.max(1.0) { lo } else { 0.0 };
+        // Fitted on demand (`y`): from the curves' lowest.
+        let floor = if window.is_some() || lo < -0.05 * hi.max(1.0) {
+            lo
+        } else {
+            0.0
+        };
         let top = floor + (hi.max(1.0) * 1.05 - floor) * rows / (rows - covered);
         nice_ticks(floor, top, most_labels)
     };

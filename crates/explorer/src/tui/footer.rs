@@ -7,7 +7,7 @@ use super::state::app::{App, Mode};
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Rect};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Paragraph, Wrap};
+use ratatui::widgets::{Block, Paragraph};
 
 /// A footer hint: keys, what they do, and priority (on a narrow terminal the highest
 /// numbers go first, so the keys that matter most, help and quit among them, stay in view).
@@ -47,6 +47,28 @@ pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
         Mode::EditingRange => typing_hints(Some("MIN MAX")),
         Mode::Dialog | Mode::Help => table_hints(app, app.key_scope()),
         Mode::Map => table_hints(app, Scope::Map),
+        Mode::Throw => {
+            // What the throw as aimed would give, until a notice says more; in as many words
+            // as leave the keys that throw and go back in view.
+            let hints = table_hints(app, Scope::Throw);
+            let needed: usize = hints
+                .iter()
+                .filter(|h| h.2 == 0)
+                .map(|(k, w, _)| 2 + k.chars().count() + w.chars().count())
+                .sum();
+            let aim = app.die_screen.throw.map(|t| {
+                let thrown = t.thrown(&app.die_screen.camera, &app.setup.params);
+                let forms = [format!("aim: {}", thrown.words()), thrown.short_words()];
+                let room = super::fit::room(area.width as usize).saturating_sub(needed + 2);
+                forms
+                    .iter()
+                    .find(|f| f.chars().count() <= room)
+                    .unwrap_or(&forms[1])
+                    .clone()
+            });
+            let notice = app.roll.export_status().or_else(|| app.notice.clone()).or(aim);
+            return render_line(app, notice, hints, area, frame);
+        }
         Mode::Normal => table_hints(app, Scope::Die),
     };
     render_key_hints(app, keys, area, frame);
@@ -75,7 +97,8 @@ fn table_hints(app: &App, screen: Scope) -> Vec<KeyHint> {
                     ],
                 ),
                 "twin, ε",
-                h.priority,
+                // While the twin rolls its ε keys matter more than when it is off.
+                h.priority.min(2),
             ),
             Action::Confirm if screen == Scope::Save => hint(h.keys, "save", h.priority),
             Action::ExportMap => {
@@ -155,10 +178,9 @@ pub(crate) fn render_help(app: &App, area: Rect, frame: &mut Frame) {
             ))
             .right_aligned(),
         );
-    let body = super::popup::text_area(block.inner(popup));
+    let body = block.inner(popup);
     frame.render_widget(block, popup);
-    let para = Paragraph::new(help_lines(app))
-        .wrap(Wrap { trim: false })
-        .scroll((app.help_scroll().unwrap_or(0), 0));
+    let para =
+        Paragraph::new(help_lines(app, body.width as usize)).scroll((app.help_scroll().unwrap_or(0), 0));
     frame.render_widget(para, body);
 }

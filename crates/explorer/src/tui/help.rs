@@ -60,29 +60,54 @@ fn keyed(text: &str) -> String {
     })
 }
 
-pub(crate) fn help_lines(app: &App) -> Vec<Line<'static>> {
+/// Columns of a key line's keys, its help text starting after them.
+const KEY_COLUMNS: usize = 16;
+
+/// `text` after `first` (a key, or the indent of a paragraph, `lead` columns wide), wrapped at
+/// spaces to fit a help `width` columns wide (its gap column kept free): every line after the
+/// first starts at `lead`, under the text it goes on, never at the left edge where it would
+/// read as an item of its own.
+fn hanging(first: Span<'static>, lead: usize, text: &str, width: usize) -> Vec<Line<'static>> {
+    let mut lines = Vec::new();
+    let mut first = Some(first);
+    for words in super::fit::wrap(text, width.saturating_sub(lead).max(10)) {
+        let start = first.take().unwrap_or_else(|| Span::raw(" ".repeat(lead)));
+        lines.push(Line::from(vec![start, Span::raw(words)]));
+    }
+    lines.extend(first.map(|f| Line::from(vec![f])));
+    lines
+}
+
+/// The help's lines for an overlay `width` columns wide inside its border.
+pub(crate) fn help_lines(app: &App, width: usize) -> Vec<Line<'static>> {
     let t = &app.theme;
     let key_lines = |screen: Scope| {
-        section(screen).map(move |b| {
+        let mut rows: Vec<_> = section(screen).collect();
+        // The keys of every screen first: the help and how to leave it, quitting, before
+        // the first page ends.
+        rows.sort_by_key(|b| b.screen != Scope::Both);
+        rows.into_iter().flat_map(move |b| {
             let what = b.help.replace(
                 "a batch of",
                 &format!("a batch of {}", group(app.roll.batch_size)),
             );
-            Line::from(vec![
-                Span::styled(format!("  {:<14}", b.label), t.key()),
-                Span::raw(what),
-            ])
+            let keys = Span::styled(format!("  {:<14}", b.label), t.key());
+            hanging(keys, KEY_COLUMNS, &what, width)
         })
     };
     let mut die = vec![Line::styled("Keys", t.heading())];
     die.extend(key_lines(Scope::Die));
-    die.push(Line::from(vec![
+    die.extend(hanging(
         Span::styled(format!("  {:<14}", "mouse"), t.key()),
-        Span::raw(
-            "click a value to select it, scroll to change it; drag the die to orbit, scroll on it to \
-             zoom; click the timeline to jump there",
+        KEY_COLUMNS,
+        &format!(
+            "click a value to select it, scroll to change it; drag the die to orbit, scroll on it to zoom; \
+             click the timeline to jump there; in throw mode ({}) a drag on the die throws it, and so does a \
+             Ctrl- or Alt-drag on it without",
+            label(Scope::Die, Action::ThrowMode)
         ),
-    ]));
+        width,
+    ));
     die.push(Line::raw(""));
     let mut map = vec![Line::styled(
         format!("Basin-map screen ({})", label(Scope::Die, Action::OpenMap)),
@@ -107,7 +132,7 @@ pub(crate) fn help_lines(app: &App) -> Vec<Line<'static>> {
     }
     lines.push(Line::styled("The model", t.heading()));
     for paragraph in MODEL {
-        lines.push(Line::raw(format!("  {}", keyed(paragraph))));
+        lines.extend(hanging(Span::raw("  "), 2, &keyed(paragraph), width));
         lines.push(Line::raw(""));
     }
     lines

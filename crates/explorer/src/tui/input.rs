@@ -14,9 +14,12 @@ use super::state::camera::OrbitCamera;
 use super::state::die_screen::Drawing;
 use super::state::editor::{Editor, Typed, VALUE_CHARS};
 use super::state::messages::{Effect, Msg};
+use super::throw_keys;
 use super::twin_keys;
-use crate::worker::Command;
-use ratatui::crossterm::event::{Event, KeyEvent, KeyEventKind, MouseButton, MouseEventKind};
+use crate::worker::{Command, RollEvent};
+use ratatui::crossterm::event::{
+    Event, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
+};
 use ratatui::layout::{Position, Rect};
 
 /// Applies one message; returns what the event loop is to do, in the order asked: worker
@@ -32,7 +35,7 @@ pub(crate) fn update(app: &mut App, msg: Msg) -> Vec<Effect> {
             map::resized(app);
         }
         Msg::Input(Event::Key(key)) if key.kind != KeyEventKind::Release => on_key(app, key),
-        Msg::Input(Event::Mouse(m)) => on_mouse(app, m.kind, m.column, m.row),
+        Msg::Input(Event::Mouse(m)) => on_mouse(app, m),
         Msg::Input(_) => {}
         Msg::Signal(_) => app.quit(),
     }
@@ -56,6 +59,7 @@ fn on_key(app: &mut App, key: KeyEvent) {
         Mode::Dialog => dialog_keys::on_key(app, &input),
         Mode::EditingEpsilon => twin_keys::on_epsilon_key(app, &input),
         Mode::EditingRange => map::on_range_key(app, &input),
+        Mode::Throw => throw_keys::on_key(app, &input),
         Mode::Help => {
             let Some(Overlay::Help { scroll }) = &mut app.overlay else {
                 return;
@@ -124,6 +128,9 @@ fn act(app: &mut App, action: Action, coarse: bool) {
         Action::StepBack => app.send(Command::StepBack(1)),
         Action::ToStart => app.send(Command::Seek(0)),
         Action::ToEnd => app.send(Command::Seek(u64::MAX)),
+        Action::NextImpact => app.send(Command::SeekEvent(RollEvent::NextImpact)),
+        Action::PreviousImpact => app.send(Command::SeekEvent(RollEvent::PreviousImpact)),
+        Action::ToDecided => app.send(Command::SeekEvent(RollEvent::FaceDecided)),
         Action::Replay => app.send(Command::Replay),
         Action::RandomRoll => app.send(Command::RandomRoll),
         Action::Batch => {
@@ -162,6 +169,32 @@ fn act(app: &mut App, action: Action, coarse: bool) {
         Action::LogScale => app.die_screen.log_scale = !app.die_screen.log_scale,
         Action::PlotQuantity => app.die_screen.plot.next(),
         Action::PhasePlot => app.die_screen.plot.toggle_phase(),
+        Action::FitAxis => {
+            let plot = &mut app.die_screen.plot;
+            plot.fitted = !plot.fitted;
+            app.notice = Some(
+                if plot.fitted {
+                    "the value axis fits the curves around the time on screen (y again: the whole roll)"
+                } else {
+                    "the value axis spans the whole roll"
+                }
+                .to_string(),
+            );
+        }
+        Action::SecondQuantity => {
+            if let Err(why) = app.die_screen.plot.next_second() {
+                app.notice = Some(why);
+            }
+        }
+        Action::FacePair => app.die_screen.next_face_pair(),
+        // Throwing is aimed on the die screen's die, not the presentation view's.
+        Action::ThrowMode if app.page == Page::Presentation => {
+            app.notice = Some(format!(
+                "{} first: the throw is aimed on the main screen",
+                label(Scope::Show, Action::Presentation)
+            ))
+        }
+        Action::ThrowMode => throw_keys::enter(app),
         Action::Export => {
             let c = app.roll.export_command(app.die_screen.log_scale);
             app.send(c);
@@ -252,8 +285,14 @@ fn act(app: &mut App, action: Action, coarse: bool) {
         | Action::MapLayer
         | Action::ExportMap
         | Action::MapExportSize => map::act(app, action, coarse),
-        // Rows of the overlays only: `read` never gives them on a screen.
-        Action::Confirm | Action::Delete | Action::NextField => {}
+        // Rows of the overlays and of throw mode only: `read` never gives them on a screen.
+        Action::Confirm
+        | Action::Delete
+        | Action::NextField
+        | Action::GrabLeft
+        | Action::GrabRight
+        | Action::GrabUp
+        | Action::GrabDown => {}
     }
 }
 
@@ -303,7 +342,34 @@ fn on_edit_key(app: &mut App, input: &Input) {
     }
 }
 
-fn on_mouse(app: &mut App, kind: MouseEventKind, column: u16, row: u16) {
+fn on_mouse(app: &mut App, m: MouseEvent) {
+    let (kind, column, row) = (m.kind, m.column, m.row);
+    // A drag on the die throws it in throw mode, and with Ctrl or Alt held outside it; a
+    // plain drag orbits the camera.
+    let flick = m.modifiers.intersects(KeyModifiers::CONTROL | KeyModifiers::ALT);
+    match (app.mode(), kind) {
+        (Mode::Throw, MouseEventKind::Down(MouseButton::Left)) => {
+            if !throw_keys::press(app, column, row, false) {
+                app.notice = Some("press on the die to grab it for a throw".to_string());
+            }
+            return;
+        }
+        (Mode::Normal, MouseEventKind::Down(MouseButton::Left))
+            if flick && app.page == Page::Die && throw_keys::press(app, column, row, true) =>
+        {
+            return;
+        }
+        (Mode::Throw, MouseEventKind::Drag(MouseButton::Left)) => {
+            throw_keys::drag(app, column, row);
+            return;
+        }
+        (Mode::Throw, MouseEventKind::Up(_)) => {
+            throw_keys::release(app);
+            return;
+        }
+        (Mode::Throw, _) => return,
+        _ => {}
+    }
     if app.mode() != Mode::Normal {
         return;
     }

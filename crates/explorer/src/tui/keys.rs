@@ -26,6 +26,8 @@ pub(crate) enum Scope {
     Save,
     /// The preset picker (`o`).
     Picker,
+    /// Throw mode (`f`): a drag on the die, or the aiming keys, throws it.
+    Throw,
 }
 
 impl Scope {
@@ -38,7 +40,7 @@ impl Scope {
     }
 
     /// Every mode, for the checks that hold in all of them.
-    pub(crate) const MODES: [Scope; 8] = [Die, Map, Show, Help, Prompt, Text, Save, Picker];
+    pub(crate) const MODES: [Scope; 9] = [Die, Map, Show, Help, Prompt, Text, Save, Picker, Throw];
 
     /// How the help and the README title this mode's keys.
     pub(crate) fn title(self) -> &'static str {
@@ -51,6 +53,7 @@ impl Scope {
             Text => "Typing a value, a range or a name",
             Save => "The save dialog",
             Picker => "The preset picker",
+            Throw => "Throwing by hand (f)",
         }
     }
 
@@ -68,6 +71,11 @@ pub(crate) enum Action {
     StepBack,
     ToStart,
     ToEnd,
+    /// To the next impact ([`dicesim_physics::Impacts`]), computing on if need be.
+    NextImpact,
+    PreviousImpact,
+    /// To the step at which the stopping rule decided the face.
+    ToDecided,
     Replay,
     RandomRoll,
     Batch,
@@ -87,6 +95,14 @@ pub(crate) enum Action {
     LogScale,
     PlotQuantity,
     PhasePlot,
+    /// The plot's value axis from zero, or fitted to the curves.
+    FitAxis,
+    /// A second quantity on the plot, sharing its axis (the same unit).
+    SecondQuantity,
+    /// A face pair coloured and its body axis drawn.
+    FacePair,
+    /// Throw mode on.
+    ThrowMode,
     Export,
     ExportAnimation,
     Arrows,
@@ -135,6 +151,11 @@ pub(crate) enum Action {
     MapLayer,
     ExportMap,
     MapExportSize,
+    // Throw mode's own: where the die is grabbed.
+    GrabLeft,
+    GrabRight,
+    GrabUp,
+    GrabDown,
     // Questions, dialogs and text entry.
     /// Yes / apply / open.
     Confirm,
@@ -176,7 +197,7 @@ const fn hint(keys: &'static str, words: &'static str, priority: u8) -> Option<H
 
 use Action as A;
 use KeyCode as K;
-use Scope::{Both, Die, Help, Map, Picker, Prompt, Save, Show, Text};
+use Scope::{Both, Die, Help, Map, Picker, Prompt, Save, Show, Text, Throw};
 
 macro_rules! row {
     ($screen:expr, [$($key:expr),+], $label:expr, $action:expr, $hint:expr, $help:expr) => {
@@ -232,6 +253,31 @@ pub(crate) const BINDINGS: &[Binding] = &[
         A::ToEnd,
         None,
         "jump to the end of the roll (computing it if it has not got there yet)"
+    ),
+    row!(
+        Die,
+        [K::Char('i')],
+        "i",
+        A::NextImpact,
+        hint("i I F", "impacts", 2),
+        "jump to the next impact, the step its contact begins (the first in contact after the die was clear of \
+         the table; ┃ on the timeline), computing on if need be"
+    ),
+    row!(
+        Die,
+        [K::Char('I')],
+        "I",
+        A::PreviousImpact,
+        None,
+        "jump back to the previous impact"
+    ),
+    row!(
+        Die,
+        [K::Char('F')],
+        "F",
+        A::ToDecided,
+        None,
+        "jump to the step where the face was decided (✓ on the timeline), computing on if need be"
     ),
     row!(
         Die,
@@ -389,6 +435,24 @@ pub(crate) const BINDINGS: &[Binding] = &[
     ),
     row!(
         Die,
+        [K::Char('y')],
+        "y",
+        A::FitAxis,
+        None,
+        "the plot's value axis: the whole roll's, or fitted to the curves around the time on screen (a quarter \
+         of the time axis; the rest runs off the plot)"
+    ),
+    row!(
+        Die,
+        [K::Char('Y')],
+        "Y",
+        A::SecondQuantity,
+        None,
+        "a second curve against time on the same axis: the next quantity with the plot's unit (height and \
+         lowest corner, the energy terms, the stability loads), then none"
+    ),
+    row!(
+        Die,
         [K::Char('e')],
         "e",
         A::Export,
@@ -416,7 +480,7 @@ pub(crate) const BINDINGS: &[Binding] = &[
         [K::Char('T')],
         "T",
         A::Twin,
-        hint("T", "twin", 2),
+        hint("T", "twin", 3),
         "chaos twin: a second die (the ghost) whose height, velocity and spin are × (1 + ε)"
     ),
     row!(
@@ -444,6 +508,24 @@ pub(crate) const BINDINGS: &[Binding] = &[
         hint("D", "differ", 4),
         "parameter twin (differ): the next value changes go to a second die B only, rolled from the \
          same start beside A; D again ends it"
+    ),
+    row!(
+        Die,
+        [K::Char('M')],
+        "M",
+        A::FacePair,
+        None,
+        "mark a face pair, coloured with its body axis through it: 2 and 5 (the tennis racket's flip) → 1 and \
+         6 → 3 and 4 → none"
+    ),
+    row!(
+        Die,
+        [K::Char('f')],
+        "f",
+        A::ThrowMode,
+        hint("f", "throw", 2),
+        "throw by hand: a drag on the die throws it (its length and direction the velocity, where it starts \
+         the spin), or aim with the keys; Ctrl- or Alt-drag throws without it"
     ),
     row!(
         Die,
@@ -517,7 +599,7 @@ pub(crate) const BINDINGS: &[Binding] = &[
         [K::Backspace],
         "Backspace",
         A::ResetSetup,
-        hint("⌫", "reset", 2),
+        hint("⌫", "reset", 4),
         "reset the setup to the open preset (asks first if it has changes)"
     ),
     row!(
@@ -837,6 +919,81 @@ pub(crate) const BINDINGS: &[Binding] = &[
         hint("Esc", "close", 0),
         "close the picker"
     ),
+    row!(
+        Throw,
+        [K::Left, K::Char('h')],
+        "← h",
+        A::CursorLeft,
+        hint("←→↑↓", "aim", 0),
+        "the throw's end a cell left (Shift: four): from the grab point to it, the velocity (a twentieth of \
+         a second to cover it)"
+    ),
+    row!(
+        Throw,
+        [K::Right, K::Char('l')],
+        "→ l",
+        A::CursorRight,
+        None,
+        "the throw's end a cell right"
+    ),
+    row!(
+        Throw,
+        [K::Up, K::Char('k')],
+        "↑ k",
+        A::CursorUp,
+        None,
+        "the throw's end a cell up"
+    ),
+    row!(
+        Throw,
+        [K::Down, K::Char('j')],
+        "↓ j",
+        A::CursorDown,
+        None,
+        "the throw's end a cell down"
+    ),
+    row!(
+        Throw,
+        [K::Char('a')],
+        "a",
+        A::GrabLeft,
+        hint("w a s d", "grab point", 1),
+        "grab the die a cell further left: off its centre, the throw spins it"
+    ),
+    row!(
+        Throw,
+        [K::Char('d')],
+        "d",
+        A::GrabRight,
+        None,
+        "grab a cell further right"
+    ),
+    row!(Throw, [K::Char('w')], "w", A::GrabUp, None, "grab a cell higher"),
+    row!(Throw, [K::Char('s')], "s", A::GrabDown, None, "grab a cell lower"),
+    row!(
+        Throw,
+        [K::Enter],
+        "Enter",
+        A::Confirm,
+        hint("Enter", "throw", 0),
+        "throw: the velocity and spin go into the parameter list (s saves them) and the die is thrown from its start"
+    ),
+    row!(
+        Throw,
+        [K::Backspace],
+        "Backspace",
+        A::Delete,
+        hint("⌫", "unaimed", 2),
+        "grab and aim back at the die's centre: no throw"
+    ),
+    row!(
+        Throw,
+        [K::Esc, K::Char('f'), K::Char('q')],
+        "Esc f q",
+        A::Close,
+        hint("Esc f", "back", 0),
+        "back to the die screen's keys, nothing thrown"
+    ),
 ];
 
 /// What a key press means in a mode.
@@ -1053,7 +1210,7 @@ mod tests {
                 "{d} is bound on the main screen"
             );
         }
-        assert_eq!(press(Die, K::Char('y')), Input::Nothing("y".into()));
+        assert_eq!(press(Die, K::Char('u')), Input::Nothing("u".into()));
         assert_eq!(press(Help, K::Char('x')), Input::Nothing("x".into()));
     }
 }

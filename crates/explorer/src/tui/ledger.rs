@@ -14,14 +14,14 @@ use ratatui::widgets::{Block, Paragraph};
 /// Columns the bar (and its total mark) take on the left of the panel.
 const BAR_COLUMNS: u16 = 3;
 
-/// The four stacked forms, bottom to top: name, index into `energy_series`, value.
-fn forms(app: &App) -> [(&'static str, usize, f64); 4] {
+/// The four stacked forms, bottom to top: name, short name, index into `energy_series`, value.
+fn forms(app: &App) -> [(&'static str, &'static str, usize, f64); 4] {
     let e = &app.roll.live.energy;
     [
-        ("grav", 3, e.gravitational),
-        ("transl", 1, e.translational),
-        ("rot", 2, e.rotational),
-        ("elastic", 4, e.elastic),
+        ("grav", "g", 3, e.gravitational),
+        ("transl", "tr", 1, e.translational),
+        ("rot", "r", 2, e.rotational),
+        ("elastic", "el", 4, e.elastic),
     ]
 }
 
@@ -40,7 +40,7 @@ fn glyph(app: &App, index: usize) -> char {
 /// while the stack shows a negative gravitational term, a die pressed into the ground, as 0).
 pub(crate) fn bar_rows(app: &App, rows: u16) -> (Vec<Option<usize>>, Option<u16>) {
     let forms = forms(app);
-    let stacked: f64 = forms.iter().map(|f| f.2.max(0.0)).sum();
+    let stacked: f64 = forms.iter().map(|f| f.3.max(0.0)).sum();
     let total = app.roll.live.energy.total();
     let top = app.roll.live.ledger.initial.max(stacked).max(total);
     if rows == 0 || !(top.is_finite() && top > 0.0) {
@@ -52,7 +52,7 @@ pub(crate) fn bar_rows(app: &App, rows: u16) -> (Vec<Option<usize>>, Option<u16>
             let middle = (r as f64 + 0.5) * per_row;
             let mut below = 0.0;
             for (i, f) in forms.iter().enumerate() {
-                below += f.2.max(0.0);
+                below += f.3.max(0.0);
                 if middle < below {
                     return Some(i);
                 }
@@ -66,7 +66,16 @@ pub(crate) fn bar_rows(app: &App, rows: u16) -> (Vec<Option<usize>>, Option<u16>
 
 pub(crate) fn render_ledger(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
-    let mut block = Block::bordered().title(Line::styled(" energy ", t.heading()));
+    // The energy at the state on screen: the energy plot's readout at its time marker.
+    let title = fit::longest_fitting(
+        &[
+            " energy now, erg ".to_string(),
+            " now, erg ".to_string(),
+            " erg ".to_string(),
+        ],
+        area.width.saturating_sub(2) as usize,
+    );
+    let mut block = Block::bordered().title(Line::styled(title, t.heading()));
     let body = block.inner(area);
     if body.width < BAR_COLUMNS + 8 || body.height < 2 {
         frame.render_widget(block, area);
@@ -81,7 +90,7 @@ pub(crate) fn render_ledger(app: &App, area: Rect, frame: &mut Frame) {
             let fill = match cells[r as usize] {
                 Some(i) => Span::styled(
                     glyph(app, i).to_string().repeat(2),
-                    Style::new().fg(colours[forms[i].1]),
+                    Style::new().fg(colours[forms[i].2]),
                 ),
                 None => Span::raw("  "),
             };
@@ -97,18 +106,20 @@ pub(crate) fn render_ledger(app: &App, area: Rect, frame: &mut Frame) {
         },
     );
     let text_width = (body.width - BAR_COLUMNS) as usize;
-    // A label too long beside its number loses its glyph or indent, then is abbreviated:
-    // the number is what is read.
-    let row = |label: Span<'static>, value: f64| {
+    // A label too long beside its number loses its glyph or indent, then takes its short
+    // form (never a word cut mid-way): the number is what is read.
+    let row = |label: Span<'static>, short: &str, value: f64| {
         let number = fmt_num(value);
         let room = fit::room(text_width);
         let label_room = room.saturating_sub(number.chars().count() + 1);
-        let text = if label.content.chars().count() <= label_room {
-            label.content.to_string()
-        } else {
-            let bare = label.content.trim_start_matches(['█', '▓', '▒', '░', ' ']);
-            fit::cut_text(bare, label_room)
-        };
+        let bare = label
+            .content
+            .trim_start_matches(['█', '▓', '▒', '░', ' '])
+            .to_string();
+        let text = [label.content.to_string(), bare, short.to_string()]
+            .into_iter()
+            .find(|l| l.chars().count() <= label_room)
+            .unwrap_or_default();
         let label = Span::styled(text, label.style);
         let pad = room.saturating_sub(label.width() + number.chars().count());
         Line::from(vec![label, Span::raw(" ".repeat(pad)), Span::raw(number)])
@@ -121,18 +132,22 @@ pub(crate) fn render_ledger(app: &App, area: Rect, frame: &mut Frame) {
         .iter()
         .enumerate()
         .rev()
-        .map(|(i, (name, colour, value))| {
+        .map(|(i, (name, short, colour, value))| {
             let rank = if i == 3 { 4 } else { 3 };
             let label = Span::styled(
                 format!("{} {name}", glyph(app, i)),
                 Style::new().fg(colours[*colour]),
             );
-            (rank, row(label, *value))
+            (rank, row(label, short, *value))
         })
         .collect();
     lines.push((
         0,
-        row(Span::styled("◀ total", t.heading()), app.roll.live.energy.total()),
+        row(
+            Span::styled("◀ total", t.heading()),
+            "◀",
+            app.roll.live.energy.total(),
+        ),
     ));
     let heading = if text_width >= 20 {
         "lost since 0 s, erg"
@@ -142,11 +157,20 @@ pub(crate) fn render_ledger(app: &App, area: Rect, frame: &mut Frame) {
     lines.push((0, Line::styled(heading, t.heading())));
     // Indented under their heading where the numbers leave room.
     let indent = if text_width >= 17 { "  " } else { "" };
-    lines.push((0, row(Span::raw(format!("{indent}damping")), l.damping_loss)));
-    lines.push((0, row(Span::raw(format!("{indent}friction")), l.friction_loss)));
+    lines.push((
+        0,
+        row(Span::raw(format!("{indent}damping")), "damp.", l.damping_loss),
+    ));
+    lines.push((
+        0,
+        row(Span::raw(format!("{indent}friction")), "fric.", l.friction_loss),
+    ));
     // The remainder: what semi-implicit Euler itself took (negative: gave).
-    lines.push((2, row(Span::raw(format!("{indent}integr.")), l.integrator_loss)));
-    let start = row(Span::styled("= start", t.heading()), l.initial);
+    lines.push((
+        2,
+        row(Span::raw(format!("{indent}integr.")), "int.", l.integrator_loss),
+    ));
+    let start = row(Span::styled("= start", t.heading()), "=", l.initial);
     let lines = if lines.len() < body.height as usize {
         lines.push((0, start));
         fit::rows(lines, body.height as usize)

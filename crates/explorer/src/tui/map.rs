@@ -78,16 +78,9 @@ fn layer_name(layer: Layer) -> &'static str {
 fn render_panel(app: &App, areas: &MapAreas, frame: &mut Frame) {
     let t = &app.theme;
     let m = &app.map;
-    let y_title = format!(
-        " ↑ y: {} ({}) ",
-        Param::of(m.y.key).scan_key().key,
-        Param::of(m.y.key).limits().unit
-    );
-    let x_title = format!(
-        " x: {} ({}) → ",
-        Param::of(m.x.key).scan_key().key,
-        Param::of(m.x.key).limits().unit
-    );
+    // The axes in the parameter list's words, as the exported picture names them.
+    let y_title = format!(" ↑ y: {} ", m.y.key.title());
+    let x_title = format!(" x: {} → ", m.x.key.title());
     let layer = Span::styled(format!(" {} ", layer_name(m.layer)), t.heading());
     // Narrow panels drop the layer's name (the legend says it) before the axis key.
     let fits = layer.width() + y_title.chars().count() + 2 <= areas.panel.width as usize;
@@ -237,29 +230,37 @@ fn render_side(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let m = &app.map;
     let block = Block::bordered().title(Line::styled(" basin map of the current setup ", t.heading()));
-    let mut lines = Vec::new();
+    // Ranked (0 matters most): on a short panel the cursor's details go first, and the colour
+    // key, without which a class cannot tell the faces apart, stays.
+    let mut lines: Vec<(u8, Line<'static>)> = Vec::new();
     let keys = |axis, range| format!("{} · {}", label(Scope::Map, axis), label(Scope::Map, range));
     for (side, a, keys) in [
         (Side::X, &m.x, keys(Action::NextXAxis, Action::TypeXRange)),
         (Side::Y, &m.y, keys(Action::NextYAxis, Action::TypeYRange)),
     ] {
         let name = if side == Side::X { "x" } else { "y" };
-        lines.push(Line::from(vec![
-            Span::styled(format!(" {name} "), t.heading()),
-            Span::raw(format!("{:<14}", Param::of(a.key).label())),
-            Span::styled(format!(" {keys}"), t.key()),
-        ]));
+        lines.push((
+            0,
+            Line::from(vec![
+                Span::styled(format!(" {name} "), t.heading()),
+                Span::raw(format!("{:<14}", Param::of(a.key).label())),
+                Span::styled(format!(" {keys}"), t.key()),
+            ]),
+        ));
         match &m.editing {
             Some(r) if r.side == side => {
-                lines.push(Line::from(vec![
-                    Span::raw("   range "),
-                    Span::styled(format!("{}▏", r.editor.text), t.selected()),
-                ]));
+                lines.push((
+                    0,
+                    Line::from(vec![
+                        Span::raw("   range "),
+                        Span::styled(format!("{}▏", r.editor.text), t.selected()),
+                    ]),
+                ));
                 if let Some(e) = &r.editor.error {
-                    lines.push(Line::styled(format!("   {e}"), t.danger()));
+                    lines.push((0, Line::styled(format!("   {e}"), t.danger())));
                 }
             }
-            _ => lines.push(Line::raw(format!("   {}", range_line(a)))),
+            _ => lines.push((1, Line::raw(format!("   {}", range_line(a))))),
         }
     }
     let zoom = ZOOM_FACTOR.powi(m.zooms.len() as i32);
@@ -285,23 +286,35 @@ fn render_side(app: &App, area: Rect, frame: &mut Frame) {
         (None, true) => Line::styled(" computing… ", t.caution()),
         (None, false) => Line::raw(" not computed"),
     };
-    lines.push(progress);
-    lines.push(Line::raw(format!(
-        " zoom ×{} ({} in, {} out)",
-        fmt_num(zoom),
-        first_key(Scope::Map, Action::MapZoomIn),
-        first_key(Scope::Map, Action::MapZoomOut)
-    )));
-    lines.push(Line::raw(""));
+    lines.push((0, progress));
+    lines.push((
+        2,
+        Line::raw(format!(
+            " zoom ×{} ({} in, {} out)",
+            fmt_num(zoom),
+            first_key(Scope::Map, Action::MapZoomIn),
+            first_key(Scope::Map, Action::MapZoomOut)
+        )),
+    ));
+    lines.push((5, Line::raw("")));
     lines.extend(cursor_lines(app));
-    lines.extend(legend_lines(app));
+    lines.extend(legend_lines(app).into_iter().map(|l| (0, l)));
     let body = super::popup::text_area(block.inner(area));
     frame.render_widget(block, area);
-    let lines = super::fit::hanging(lines, body.width as usize);
-    frame.render_widget(Paragraph::new(lines), body);
+    // Each line wrapped on its own, and kept or dropped whole.
+    let wrapped: Vec<(u8, Vec<Line<'static>>)> = lines
+        .into_iter()
+        .map(|(rank, line)| (rank, super::fit::hanging(vec![line], body.width as usize)))
+        .collect();
+    let height = body.height as usize;
+    let kept = super::fit::by_rank(wrapped, |kept| {
+        kept.iter().map(|l| l.len()).sum::<usize>() <= height
+    });
+    frame.render_widget(Paragraph::new(kept.concat()), body);
 }
 
-fn cursor_lines(app: &App) -> Vec<Line<'static>> {
+/// The cursor cell's lines, ranked: its heading and outcome first, then its start's values.
+fn cursor_lines(app: &App) -> Vec<(u8, Line<'static>)> {
     let t = &app.theme;
     let m = &app.map;
     let (i, j) = m.cursor;
@@ -310,12 +323,12 @@ fn cursor_lines(app: &App) -> Vec<Line<'static>> {
         Some(_) => " · inferred",
         None => "",
     };
-    let mut lines = vec![Line::styled(
-        format!(" cursor cell ({i}, {j}){rolled}"),
-        t.heading(),
+    let mut lines = vec![(
+        1,
+        Line::styled(format!(" cursor cell ({i}, {j}){rolled}"), t.heading()),
     )];
     let (Some(update), Some(map)) = (&m.shown, m.map()) else {
-        lines.push(Line::raw("   waiting for the map"));
+        lines.push((1, Line::raw("   waiting for the map")));
         return lines;
     };
     let (params, ic) = node_setup(&update.params, &update.initial, &map.x, &map.y, i, j);
@@ -323,13 +336,16 @@ fn cursor_lines(app: &App) -> Vec<Line<'static>> {
     let v = ic.velocity;
     let o = ic.orientation;
     let n = |x: f64| fmt_num(x);
-    lines.push(Line::raw(format!(
-        "   {} {} · {} {}",
-        Param::of(m.x.key).label(),
-        n(map.x.value(i)),
-        Param::of(m.y.key).label(),
-        n(map.y.value(j))
-    )));
+    lines.push((
+        2,
+        Line::raw(format!(
+            "   {} {} · {} {}",
+            Param::of(m.x.key).label(),
+            n(map.x.value(i)),
+            Param::of(m.y.key).label(),
+            n(map.y.value(j))
+        )),
+    ));
     match map.cell(i, j) {
         Some(c) => {
             let ending = Ending::of(&c.outcome);
@@ -345,33 +361,40 @@ fn cursor_lines(app: &App) -> Vec<Line<'static>> {
                 // roll nobody ran is not known.
                 " like its block's rolled corners; time not known".to_string()
             };
-            lines.push(Line::from(vec![
-                Span::raw("   "),
-                Span::styled(ending.words(), style),
-                Span::raw(how),
-            ]));
+            lines.push((
+                1,
+                Line::from(vec![
+                    Span::raw("   "),
+                    Span::styled(ending.words(), style),
+                    Span::raw(how),
+                ]),
+            ));
         }
-        None => lines.push(Line::raw("   not computed yet")),
+        None => lines.push((1, Line::raw("   not computed yet"))),
     }
-    lines.push(Line::raw(format!(
-        "   h {} cm · v ({}, {}, {}) cm/s",
-        n(ic.height),
-        n(v[0]),
-        n(v[1]),
-        n(v[2])
-    )));
-    lines.push(Line::raw(format!(
-        "   ω ({}, {}, {}) rad/s",
-        n(w[0]),
-        n(w[1]),
-        n(w[2])
-    )));
-    lines.push(Line::raw(format!(
-        "   yaw pitch roll ({}, {}, {})°",
-        n(o[0]),
-        n(o[1]),
-        n(o[2])
-    )));
+    lines.push((
+        3,
+        Line::raw(format!(
+            "   h {} cm · v ({}, {}, {}) cm/s",
+            n(ic.height),
+            n(v[0]),
+            n(v[1]),
+            n(v[2])
+        )),
+    ));
+    lines.push((
+        3,
+        Line::raw(format!("   ω ({}, {}, {}) rad/s", n(w[0]), n(w[1]), n(w[2]))),
+    ));
+    lines.push((
+        4,
+        Line::raw(format!(
+            "   yaw pitch roll ({}, {}, {})°",
+            n(o[0]),
+            n(o[1]),
+            n(o[2])
+        )),
+    ));
     lines
 }
 

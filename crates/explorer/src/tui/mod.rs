@@ -4,8 +4,9 @@
 //! Its modules build on each other in one direction, each importing only those before it:
 //! the vocabulary (the key table `keys`, `param`, `format`, `fit`, `theme`, `layout`,
 //! `solid`); the `state` (`App` and every part it holds, and the rules that change them);
-//! the input routing that `update` runs (`input`, with the map screen's, the dialogs' and
-//! the twins' keys); the panels, each drawing one part of the screen from the state; then
+//! the input routing that `update` runs (`input`, with the map screen's, the dialogs', the
+//! twins' and throw mode's keys); the panels, each drawing one part of the screen from the
+//! state; then
 //! `render`, which lays the panels out, and the event loop (`run`, `effects`, `tty`).
 
 mod chart;
@@ -38,6 +39,7 @@ mod separation;
 mod solid;
 pub(crate) mod state;
 pub(crate) mod theme;
+mod throw_keys;
 mod timeline;
 mod tty;
 mod twin_keys;
@@ -77,6 +79,9 @@ mod lesson_tests;
 
 #[cfg(test)]
 mod versus_tests;
+
+#[cfg(test)]
+mod teacher_tests;
 
 #[cfg(test)]
 pub(crate) mod screen_tests;

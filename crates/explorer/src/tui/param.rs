@@ -73,9 +73,9 @@ impl Param {
         Param { key }
     }
 
-    /// Short label for the list, in the model's words.
+    /// Short label for the list, in the model's words (the words figures use too).
     pub(crate) fn label(self) -> &'static str {
-        self.key.spec.labels[self.key.component]
+        self.key.words()
     }
 
     /// The scan key that reads and writes this value.

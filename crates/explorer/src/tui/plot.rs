@@ -3,8 +3,8 @@
 //! against another, whichever the plot keys chose.
 
 use super::chart::{
-    edit_datasets, edit_marks, faded_run, marker_colour, marker_dataset, nice_ticks, parameter_twin,
-    previous_dataset, scaled_faded_run, thinned, time_axis, time_labels_for, time_marker,
+    edit_datasets, edit_marks, faded_run, fit_window, in_window, marker_colour, marker_dataset, nice_ticks,
+    parameter_twin, previous_dataset, scaled_faded_run, thinned, time_axis, time_labels_for, time_marker,
 };
 use super::energy::render_energy;
 use super::format::fmt_num;
@@ -20,8 +20,9 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType};
 
 /// The value axis of `data`: a floor and top that read well, with at most `most` labels,
-/// each `width` characters wide.
-fn value_axis(data: &[(f64, f64)], most: usize, width: usize) -> ([f64; 2], Vec<String>) {
+/// each `width` characters wide; `fitted`, from the data's lowest to its highest rather
+/// than from zero.
+fn value_axis(data: &[(f64, f64)], most: usize, width: usize, fitted: bool) -> ([f64; 2], Vec<String>) {
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for &(_, v) in data {
         if v.is_finite() {
@@ -32,8 +33,9 @@ fn value_axis(data: &[(f64, f64)], most: usize, width: usize) -> ([f64; 2], Vec<
     if !lo.is_finite() {
         (lo, hi) = (0.0, 1.0);
     }
-    // A quantity that stays near zero or positive starts at zero, so its size reads true.
-    if lo > 0.0 && lo < 0.5 * hi {
+    // A quantity that stays near zero or positive starts at zero, so its size reads true
+    // (unless the axis is fitted to it on demand).
+    if !fitted && lo > 0.0 && lo < 0.5 * hi {
         lo = 0.0;
     }
     // A constant (a stability load before any edit, the force in flight): from zero to
@@ -59,7 +61,7 @@ pub(crate) fn render_plot(app: &App, area: Rect, frame: &mut Frame) {
     }
 }
 
-/// The panel's title: the plot's name and unit, and the keys that change it.
+/// The panel's title: the plot's name and unit, and which curve is which.
 fn title<'a>(app: &App, words: String) -> Line<'a> {
     let mut spans = vec![Span::styled(format!(" {words} "), app.theme.heading())];
     // Which curve is which, while die B's is drawn beside A's.
@@ -70,20 +72,59 @@ fn title<'a>(app: &App, words: String) -> Line<'a> {
     Line::from(spans)
 }
 
+/// The colour of the second curve on a plot against time (`Y`).
+fn second_colour(app: &App) -> ratatui::style::Color {
+    app.theme.energy_series()[1]
+}
+
+/// The readout at the time marker: each plotted quantity's value at the state on screen,
+/// with its unit, for the bottom border of a panel `border` columns wide inside its
+/// corners (the time goes first where it is narrow).
+fn readout(app: &App, quantities: &[usize], border: usize) -> Line<'static> {
+    let live = &app.roll.live;
+    let decimals = ((-live.params.integrator.dt.log10()).ceil().max(3.0)) as usize;
+    let mut parts = vec![(1, vec![Span::raw(format!(" at {:.*} s:", decimals, live.time_s))])];
+    for (k, &i) in quantities.iter().enumerate() {
+        let q = &QUANTITIES[i];
+        let sep = if k == 0 { " " } else { " · " };
+        parts.push((
+            0,
+            vec![Span::raw(format!(
+                "{sep}{} {} {}",
+                q.short,
+                fmt_num(live.readings[i]),
+                q.unit
+            ))],
+        ));
+    }
+    // The space before the corner: `fit`'s gap column, kept whatever goes.
+    let mut line = super::fit::line(parts, border.saturating_sub(1));
+    line.spans.push(Span::raw(" "));
+    line.right_aligned()
+}
+
 /// Characters the y labels take.
 const LABEL_WIDTH: usize = 6;
 
 /// A plot's frame, titled by the longest of `forms` that fits its border whole (never a
 /// word cut), and the area inside it; `None`, the frame drawn alone, where it is too small
 /// to plot in.
-fn framed(app: &App, area: Rect, frame: &mut Frame, forms: &[String]) -> Option<(Block<'static>, Rect)> {
+fn framed(
+    app: &App,
+    area: Rect,
+    frame: &mut Frame,
+    forms: &[String],
+    shown: &[usize],
+) -> Option<(Block<'static>, Rect)> {
     let border = area.width.saturating_sub(2) as usize;
     let words = forms
         .iter()
         .find(|w| w.chars().count() + 2 <= border)
         .cloned()
         .unwrap_or_default();
-    let block = Block::bordered().title(title(app, words));
+    let block = Block::bordered()
+        .title(title(app, words))
+        .title_bottom(readout(app, shown, border));
     let body = block.inner(area);
     if body.width < 12 || body.height < 4 {
         frame.render_widget(block, area);
@@ -95,12 +136,22 @@ fn framed(app: &App, area: Rect, frame: &mut Frame, forms: &[String]) -> Option<
 /// One quantity against time, with the marker of the time on screen.
 pub(crate) fn render_quantity(app: &App, area: Rect, frame: &mut Frame, i: usize) {
     let q = &QUANTITIES[i];
-    let forms = [
-        format!("{} · {}", q.name, q.unit),
-        format!("{} · {}", q.short, q.unit),
-        q.short.to_string(),
-    ];
-    let Some((block, body)) = framed(app, area, frame, &forms) else {
+    let second = app.die_screen.plot.second;
+    let forms = match second.map(|j| &QUANTITIES[j]) {
+        // Two curves on the axis of their one unit.
+        Some(r) => vec![
+            format!("━{} ━{} · {}", q.name, r.name, q.unit),
+            format!("━{} ━{} · {}", q.short, r.short, q.unit),
+            format!("━{} ━{}", q.short, r.short),
+        ],
+        None => vec![
+            format!("{} · {}", q.name, q.unit),
+            format!("{} · {}", q.short, q.unit),
+            q.short.to_string(),
+        ],
+    };
+    let shown: Vec<usize> = std::iter::once(i).chain(second).collect();
+    let Some((block, body)) = framed(app, area, frame, &forms, &shown) else {
         return;
     };
     let data = thinned(&app.roll.history, body.width as usize * 2, |s| s.quantities[i]);
@@ -109,9 +160,18 @@ pub(crate) fn render_quantity(app: &App, area: Rect, frame: &mut Frame, i: usize
     let scaled = thinned(scaled_faded_run(app), body.width as usize * 2, |s| {
         s.quantities[i]
     });
-    let both: Vec<(f64, f64)> = data.iter().chain(&scaled).copied().collect();
-    let ([y_lo, y_hi], labels) = value_axis(&both, rows.div_ceil(2).clamp(2, 5), LABEL_WIDTH);
+    let other = second
+        .map(|j| thinned(&app.roll.history, body.width as usize * 2, |s| s.quantities[j]))
+        .unwrap_or_default();
+    let both: Vec<(f64, f64)> = data.iter().chain(&scaled).chain(&other).copied().collect();
     let (x_hi, x_labels) = time_axis(app, body.width);
+    let window = fit_window(app, x_hi);
+    let ([y_lo, y_hi], labels) = value_axis(
+        &in_window(&both, window),
+        rows.div_ceil(2).clamp(2, 5),
+        LABEL_WIDTH,
+        window.is_some(),
+    );
     let marker = time_marker(app, y_lo, y_hi);
     let edits = edit_marks(app, y_lo, y_hi);
     let colour = app.theme.energy_series()[0];
@@ -125,9 +185,19 @@ pub(crate) fn render_quantity(app: &App, area: Rect, frame: &mut Frame, i: usize
         .graph_type(GraphType::Line)
         .style(Style::new().fg(colour))
         .data(&data);
+    let second_line = Dataset::default()
+        .name("second")
+        .marker(if app.theme.colour {
+            app.die_screen.drawing.line_marker()
+        } else {
+            Marker::Custom('+')
+        })
+        .graph_type(GraphType::Line)
+        .style(Style::new().fg(second_colour(app)))
+        .data(&other);
     let mut datasets = vec![previous_dataset(app, &previous)];
     datasets.extend(edit_datasets(app, &edits));
-    datasets.extend([marker_dataset(app, &marker), line]);
+    datasets.extend([marker_dataset(app, &marker), second_line, line]);
     let chart = Chart::new(datasets)
         .block(block)
         .x_axis(Axis::default().bounds([0.0, x_hi]).labels(x_labels))
@@ -154,7 +224,7 @@ pub(crate) fn render_phase(app: &App, area: Rect, frame: &mut Frame, i: usize, j
         format!("{} vs {}", y.short, x.short),
         y.short.to_string(),
     ];
-    let Some((block, body)) = framed(app, area, frame, &forms) else {
+    let Some((block, body)) = framed(app, area, frame, &forms, &[i, j]) else {
         return;
     };
     let curve_of = |history: &[EnergySample]| -> Vec<(f64, f64)> {
@@ -172,9 +242,10 @@ pub(crate) fn render_phase(app: &App, area: Rect, frame: &mut Frame, i: usize, j
     let scaled = curve_of(scaled_faded_run(app));
     let both: Vec<(f64, f64)> = data.iter().chain(&scaled).copied().collect();
     let rows = body.height.saturating_sub(2).max(1) as usize;
-    let ([y_lo, y_hi], y_labels) = value_axis(&both, rows.div_ceil(2).clamp(2, 5), LABEL_WIDTH);
+    let fitted = app.die_screen.plot.fitted;
+    let ([y_lo, y_hi], y_labels) = value_axis(&both, rows.div_ceil(2).clamp(2, 5), LABEL_WIDTH, fitted);
     let across: Vec<(f64, f64)> = both.iter().map(|&(a, b)| (b, a)).collect();
-    let ([x_lo, x_hi], mut x_labels) = value_axis(&across, time_labels_for(body.width), 0);
+    let ([x_lo, x_hi], mut x_labels) = value_axis(&across, time_labels_for(body.width), 0, fitted);
     // The unit after the last number where the two fit the label's share of the width
     // (else the title carries it, or the panel is too narrow for it).
     let share = body.width as usize / x_labels.len().max(2);
@@ -223,17 +294,22 @@ mod tests {
 
     #[test]
     fn a_value_axis_holds_its_data_and_a_constant_sits_inside_it() {
-        let ([lo, hi], labels) = value_axis(&[(0.0, 3.0), (1.0, 17.0)], 5, 4);
+        let ([lo, hi], labels) = value_axis(&[(0.0, 3.0), (1.0, 17.0)], 5, 4, false);
         assert!(lo <= 3.0 && hi >= 17.0 && lo == 0.0, "{lo} {hi}");
         assert!(labels.iter().all(|l| l.len() >= 4), "{labels:?}");
         // A constant 0.42 (a stability load) and a constant 0 (the force in flight).
-        let ([lo, hi], _) = value_axis(&[(0.0, 0.42), (1.0, 0.42)], 5, 0);
+        let ([lo, hi], _) = value_axis(&[(0.0, 0.42), (1.0, 0.42)], 5, 0, false);
         assert!(lo == 0.0 && hi > 0.42, "{lo} {hi}");
-        let ([lo, hi], _) = value_axis(&[(0.0, 0.0), (1.0, 0.0)], 5, 0);
+        let ([lo, hi], _) = value_axis(&[(0.0, 0.0), (1.0, 0.0)], 5, 0, false);
         assert_eq!([lo, hi], [0.0, 1.0]);
         // Negative data (the lowest corner pressed in) keeps its sign below zero.
-        let ([lo, hi], _) = value_axis(&[(0.0, -0.2), (1.0, 14.0)], 5, 0);
+        let ([lo, hi], _) = value_axis(&[(0.0, -0.2), (1.0, 14.0)], 5, 0, false);
         assert!(lo <= -0.2 && hi >= 14.0, "{lo} {hi}");
+        // Fitted on demand: from near the data's lowest (12) rather than from zero.
+        let ([lo, hi], _) = value_axis(&[(0.0, 12.0), (1.0, 30.0)], 5, 0, true);
+        assert!(lo > 0.0 && lo <= 12.0 && hi >= 30.0, "{lo} {hi}");
+        let ([lo, _], _) = value_axis(&[(0.0, 12.0), (1.0, 30.0)], 5, 0, false);
+        assert_eq!(lo, 0.0);
     }
 
     #[test]

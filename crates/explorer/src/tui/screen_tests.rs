@@ -209,6 +209,95 @@ pub(crate) fn states(theme: Theme) -> Vec<ScreenState> {
             ),
             &["face up"],
         ),
+        // The event keys: the first impact from the start, its notice and mark.
+        state(
+            "first impact",
+            keyed(start(), &[KeyCode::Char('i')]),
+            &["impact 1 begins at", "◆"],
+        ),
+        state(
+            "face decided",
+            keyed(start(), &[KeyCode::Char('F'), KeyCode::Home]),
+            &["✓", "face up"],
+        ),
+        // Throw mode, aimed with the keys: the aim's velocity and spin in the footer.
+        state(
+            "throw aimed",
+            keyed(
+                start(),
+                &[
+                    KeyCode::Char('f'),
+                    KeyCode::Char('w'),
+                    KeyCode::Right,
+                    KeyCode::Right,
+                    KeyCode::Right,
+                    KeyCode::Up,
+                ],
+            ),
+            &["v (", "Enter throw"],
+        ),
+        state(
+            "thrown",
+            keyed(
+                start(),
+                &[KeyCode::Char('f'), KeyCode::Right, KeyCode::Right, KeyCode::Enter],
+            ),
+            &["thrown: v ("],
+        ),
+        // Two curves of one unit, the readout at the marker, the axis fitted around it.
+        state(
+            "height and lowest corner fitted",
+            {
+                let mut s = settled();
+                s.key(KeyCode::Home);
+                for _ in 0..140 {
+                    s.key(KeyCode::Char('.'));
+                }
+                keyed(s, &[KeyCode::Char('w'), KeyCode::Char('Y'), KeyCode::Char('y')])
+            },
+            &["height", "cm"],
+        ),
+        state(
+            "tennis racket, faces 2 and 5 marked",
+            {
+                let mut s = shipped("tennis-racket", theme);
+                s.simulator.advance_steps(60);
+                s.sync();
+                keyed(s, &[KeyCode::Char('M')])
+            },
+            &["face up"],
+        ),
+        state(
+            "map, inferred cell",
+            {
+                let mut app = keyed(shipped("gentle-drop", theme), &[KeyCode::Tab]);
+                let m = super::map_tests::computed(&app);
+                super::input::update(&mut app, super::state::messages::Msg::from(m));
+                let map = app.map.map().expect("computed");
+                app.map.cursor = (0..map.width())
+                    .flat_map(|i| (0..map.height()).map(move |j| (i, j)))
+                    .find(|&(i, j)| map.cell(i, j).is_some_and(|c| !c.sampled))
+                    .expect("an inferred cell");
+                app
+            },
+            &["██1 ██2 ██3 ██4 ██5 ██6", "legend: face up"],
+        ),
+        state(
+            "parameter twin at rest",
+            {
+                let mut s = start();
+                s.key(KeyCode::Char('D'));
+                s.select(super::param::Param::named("ground.friction"));
+                s.key(KeyCode::Enter);
+                for c in "0.3".chars() {
+                    s.key(KeyCode::Char(c));
+                }
+                s.key(KeyCode::Enter);
+                s.run_to_end();
+                s.app
+            },
+            &["dice"],
+        ),
     ];
     for s in &mut states {
         s.app.theme = theme;

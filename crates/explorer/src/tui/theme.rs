@@ -267,6 +267,41 @@ impl Theme {
         })
     }
 
+    /// The background of a face of the marked pair (`which` 0: the lower-numbered face, 1:
+    /// its opposite) turned `facing` to the viewer: warm and cool tints as light as the
+    /// other faces, so every ink still reads on them; `None` without colour.
+    pub(crate) fn pair_fill(&self, facing: f64, which: usize) -> Option<Color> {
+        if !self.colour {
+            return None;
+        }
+        let f = facing.clamp(0.0, 1.0);
+        let rgb = |r: f64, g: f64, b: f64| {
+            Color::Rgb(
+                r.round().min(255.0) as u8,
+                g.round().min(255.0) as u8,
+                b.round().min(255.0) as u8,
+            )
+        };
+        Some(match (self.palette, which) {
+            (Palette::Dark, 0) => {
+                let g = 55.0 + 65.0 * f;
+                rgb(1.5 * g, 0.9 * g, 0.45 * g)
+            }
+            (Palette::Dark, _) => {
+                let g = 55.0 + 65.0 * f;
+                rgb(0.5 * g, 1.3 * g, 0.9 * g)
+            }
+            (_, 0) => {
+                let g = 215.0 + 40.0 * f;
+                rgb(255.0, g - 40.0, g - 100.0)
+            }
+            (_, _) => {
+                let g = 215.0 + 40.0 * f;
+                rgb(g - 75.0, 255.0, g - 50.0)
+            }
+        })
+    }
+
     /// The map cursor's notch, the half of its cell that shows no map, beside a map cell of
     /// colour `beside`: the terminal's own background on the dark theme; on the painted ones
     /// black or white, whichever stands out more (the page's white beside face 4's yellow

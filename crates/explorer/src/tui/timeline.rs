@@ -1,7 +1,7 @@
-//! The timeline strip, drawn in the die panel's bottom border: where the roll on screen is, how far it has been
-//! computed, where its impacts began and where a table value was changed mid-roll (▼); a
-//! click seeks there (`,` `.` `Home` `End` step
-//! and jump by key).
+//! The timeline strip, drawn in the die panel's bottom border: where the roll on screen is
+//! (◆), how far it has been computed, where its impacts began (┃), where the face was
+//! decided (✓) and where a table value was changed mid-roll (▼); a click seeks there, and the
+//! keys step (`,` `.`), jump to the ends (`Home` `End`) and to the marks (`i` `I` `F`).
 
 use super::chart::marker_colour;
 use super::layout::{TIMELINE_LEFT, TIMELINE_RIGHT, timeline_bar, timeline_steps};
@@ -46,6 +46,11 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     for &impact in &app.roll.impacts {
         let i = column_of(impact, steps, bar.width) as usize;
         cells[i] = ('┃', t.contact());
+    }
+    // Where the stopping rule decided the face: the event key jumps there.
+    if let Some(decided) = timeline.decided {
+        let i = column_of(decided, steps, bar.width) as usize;
+        cells[i] = ('✓', t.good());
     }
     for &edit in &app.roll.edits {
         let i = column_of(edit, steps, bar.width) as usize;

@@ -3,7 +3,8 @@
 //!
 //! Their sizes span orders of magnitude (a resting corner carries about M·g/8, an impact a
 //! hundred times more), so lengths are log-compressed: `a·log₁₀(1 + |x|/x₀)`, with `a` the
-//! die's half size and `x₀` a natural unit for each quantity. Directions are exact.
+//! die's half size and `x₀` a natural unit for each quantity; the legend says it in words
+//! (ten times as big, half a die longer). Directions are exact.
 
 use super::fit;
 use super::format::fmt_num;
@@ -149,12 +150,18 @@ pub(crate) fn legend(app: &App, width: u16) -> Vec<Line<'static>> {
         .map(|&(units, gap)| sizes_line(units, gap))
         .find(|l| l.width() <= fit::room(width as usize))
         .unwrap_or_else(|| fit::abbreviate(sizes_line(false, " "), width as usize));
+    // The scale `a·log₁₀(1 + |x|/x₀)` in words: far above x₀, ten times as big is half a die
+    // (a) longer; x₀ itself is drawn a third of that.
     let force = fmt_num(Arrow::ContactForce.reference(app));
     let scale = fit::longest_fitting(
         &[
-            format!("length a·log₁₀(1+|x|/x₀), x₀: ω 1, L 100, v 10, F {force} (M·g/8)"),
-            format!("length a·log₁₀(1+|x|/x₀), x₀: ω 1, L 100, v 10, F {force}"),
-            "length a·log₁₀(1+|x|/x₀)".to_string(),
+            format!(
+                "arrows: 10× as big is half a die longer; ω 1, L 100, v 10, F {force} (one corner's share of \
+                 the weight) are short stubs"
+            ),
+            format!("arrows: 10× as big is half a die longer; stubs: ω 1, L 100, v 10, F {force}"),
+            "arrows: 10× as big is half a die longer".to_string(),
+            "10× as big: half a die longer".to_string(),
         ],
         width as usize,
     );

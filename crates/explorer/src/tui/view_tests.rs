@@ -250,7 +250,10 @@ fn every_arrow_has_its_label_and_the_legend_sits_below_the_die() {
             "{symbol}\n{t}"
         );
     }
-    assert!(rows[rows.len() - 2].contains("length a·log₁₀(1+|x|/x₀)"), "{t}");
+    assert!(
+        rows[rows.len() - 2].contains("10× as big is half a die longer"),
+        "{t}"
+    );
     insta::assert_snapshot!("die_vectors_solid_mid_impact", t);
     // The contact highlight has a colour no arrow has.
     let colours = s.app.theme.vector_colours();

@@ -5,7 +5,9 @@
 //! to the simulator once ([`LiveRoll::take_finished`]).
 
 use super::play_on::played_out;
-use super::protocol::{DieState, EnergySample, Notice, Phase, RollKind, TimelineSnapshot, TwinSnapshot};
+use super::protocol::{
+    DieState, EnergySample, Notice, Phase, RollEvent, RollKind, TimelineSnapshot, TwinSnapshot,
+};
 use super::timeline::{Keyframe, Timeline};
 use super::twin_die::Twin;
 use dicesim_experiment::{RollRecord, ScanKey};
@@ -289,8 +291,7 @@ impl LiveRoll {
             // From here on the roll is another one: its computed future is forgotten.
             let stepped_back = !self.timeline.at_frontier(self.position);
             self.trace.diverge(self.sim.state().time_s, stepped_back);
-            let impact = self.impact_now();
-            self.timeline.diverge(self.keyframe(), impact);
+            self.timeline.diverge(self.keyframe());
             if let Some(e) = refused {
                 return Err(Notice::Said(e.to_string()));
             }
@@ -366,6 +367,62 @@ impl LiveRoll {
         self.playing = false;
     }
 
+    /// Pauses at the step where `event` happens: the next impact after the step on screen,
+    /// the last one before it, or where the face was decided, computing on as far as it
+    /// takes. Where there is none, the roll stays where it was and the notice says why.
+    pub(crate) fn seek_event(&mut self, event: RollEvent) -> Option<Notice> {
+        let from = self.position;
+        let dt = self.params.integrator.dt;
+        let at = |n: u64| format!("{:.3} s", n as f64 * dt);
+        let found = match event {
+            RollEvent::PreviousImpact => self.timeline.impacts.iter().rev().find(|&&p| p < from).copied(),
+            RollEvent::NextImpact => self.compute_until(|t| t.impacts.iter().find(|&&p| p > from).copied()),
+            RollEvent::FaceDecided => self.compute_until(|t| t.decided),
+        };
+        let Some(step) = found else {
+            self.seek(from);
+            let end = at(self.timeline.furthest);
+            return Some(Notice::Said(match event {
+                RollEvent::PreviousImpact => format!("no impact before {}", at(from)),
+                RollEvent::NextImpact => format!("no impact after {}: the roll ends at {end}", at(from)),
+                RollEvent::FaceDecided => format!("no face was decided: the roll ended at {end} unsettled"),
+            }));
+        };
+        self.seek(step);
+        let impact = self.timeline.impacts.partition_point(|&p| p < step) + 1;
+        Some(Notice::Said(match event {
+            RollEvent::FaceDecided => {
+                format!(
+                    "face decided at {} (step {step}): from here on it cannot change",
+                    at(step)
+                )
+            }
+            _ => format!(
+                "impact {impact} begins at {} (step {step}): the first step in contact",
+                at(step)
+            ),
+        }))
+    }
+
+    /// The first step `found` names, computing the roll on from its frontier until it names
+    /// one or the roll ends.
+    fn compute_until(&mut self, found: impl Fn(&Timeline) -> Option<u64>) -> Option<u64> {
+        if let Some(step) = found(&self.timeline) {
+            return Some(step);
+        }
+        if self.timeline.ended {
+            return None;
+        }
+        self.seek(self.timeline.furthest);
+        while !self.roll_over() {
+            self.step();
+            if let Some(step) = found(&self.timeline) {
+                return Some(step);
+            }
+        }
+        None
+    }
+
     fn sample(&self) -> EnergySample {
         EnergySample::of(&self.sim)
     }
@@ -388,10 +445,10 @@ impl LiveRoll {
             if let Some(twin) = &mut self.twin {
                 twin.stepped(&self.sim, self.trace.stride, done);
             }
-            let impact = self.impact_now();
             let position = self.position;
             let keyframe = self.timeline.keyframe_due(position).then(|| self.keyframe());
-            self.timeline.recorded(position, keyframe, impact, done);
+            self.timeline
+                .recorded(position, keyframe, self.sim.in_contact(), done);
         } else if let Some(k) = self.timeline.at(self.position) {
             // Where a table value changed mid-roll, the roll carries on with the new one.
             let k = k.clone();
@@ -467,15 +524,16 @@ impl LiveRoll {
                 Phase::Falling
             };
         }
-        if self.impact_now() {
+        if self.pressed_hard() {
             Phase::InContact
         } else {
             Phase::Rolling
         }
     }
 
-    /// An impact: the ground pushes far harder than it takes to carry the die.
-    fn impact_now(&self) -> bool {
+    /// Pressed hard into the table: the ground pushes far harder than it takes to carry the
+    /// die (the squeeze of an impact, which the timeline marks where it begins).
+    fn pressed_hard(&self) -> bool {
         if !self.sim.in_contact() || self.sim.outcome().is_some() {
             return false;
         }

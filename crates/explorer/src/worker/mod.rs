@@ -29,7 +29,7 @@ pub(crate) use protocol::{
     BatchProgress, DieState, EnergySample, ExportStatus, MapExport, OutcomeTable, RollKind, SeparationSample,
     TimelineSnapshot, TwinSnapshot,
 };
-pub use protocol::{Command, Notice, Phase, Snapshot};
+pub use protocol::{Command, Notice, Phase, RollEvent, Snapshot};
 pub use simulator::Simulator;
 
 use dicesim_experiment::{RollRecord, Rolls, run_batch};

@@ -27,6 +27,8 @@ pub enum Command {
     StepBack(u64),
     /// Pause at this step of the roll (`u64::MAX`: its end), computing on if need be.
     Seek(u64),
+    /// Pause where this happens in the roll, computing on as far as it takes.
+    SeekEvent(RollEvent),
     /// The same initial condition again, from t = 0 (the same face every time).
     Replay,
     /// The next random initial condition from the preset's ranges.
@@ -75,6 +77,17 @@ pub enum Command {
     Quit,
 }
 
+/// A moment of the roll the event keys jump to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RollEvent {
+    /// The first impact ([`dicesim_physics::Impacts`]) after the step on screen.
+    NextImpact,
+    /// The last impact before the step on screen.
+    PreviousImpact,
+    /// The step at which the stopping rule decided the face.
+    FaceDecided,
+}
+
 /// A basin map to write (see [`Command::ExportMap`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct MapExport {
@@ -115,7 +128,8 @@ pub(crate) enum RollKind {
 pub enum Phase {
     /// No corner has touched the ground yet.
     Falling,
-    /// An impact: the ground pushes with more than twice the die's weight.
+    /// Pressed into the table: the ground pushes with more than twice the die's weight (the
+    /// squeeze of an impact; where impacts begin is the physics' [`dicesim_physics::Impacts`]).
     InContact,
     /// After the first impact: tumbling, sliding, or briefly in the air.
     Rolling,
@@ -323,6 +337,9 @@ pub struct Snapshot {
     pub energy: Energy,
     /// Where the energy went since t = 0 (measured in the physics, step by step).
     pub(crate) ledger: EnergyLedger,
+    /// Every quantity of [`dicesim_setup::quantity::QUANTITIES`] at the state on screen,
+    /// for the plots' readout at the time marker.
+    pub(crate) readings: dicesim_setup::quantity::Readings,
     /// erg, the stopping threshold.
     pub stop_threshold: f64,
     /// s, simulated.

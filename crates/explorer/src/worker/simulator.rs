@@ -182,6 +182,7 @@ impl Simulator {
                 self.live.seek(target);
                 None
             }
+            Command::SeekEvent(event) => self.live.seek_event(event),
             Command::Replay => {
                 self.live.replay();
                 None
@@ -749,6 +750,7 @@ impl Simulator {
             die,
             energy: live.sim.energy(),
             ledger: live.sim.energy_ledger(),
+            readings: dicesim_setup::quantity::read_all(&live.sim),
             stop_threshold: live.sim.stop_threshold(),
             time_s: live.time_s(),
             step,

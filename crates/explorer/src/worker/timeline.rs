@@ -7,7 +7,7 @@
 //! length and Δt (a capped roll at Δt = 10 µs has 3 million steps and is re-stepped at most
 //! 1 500 steps to reach any of them).
 
-use dicesim_physics::Simulation;
+use dicesim_physics::{Impacts, Simulation};
 
 /// Most regular keyframes one roll keeps (each a copy of one or two simulations, about a
 /// kilobyte each).
@@ -43,10 +43,10 @@ pub(crate) struct Timeline {
     /// The step at which the stopping rule decided the face, once computed (the die plays
     /// on past it to rest).
     pub(crate) decided: Option<u64>,
-    /// Steps at which an impact began, in order.
+    /// Steps at which an impact began (the physics' one definition, [`Impacts`]), in order.
     pub(crate) impacts: Vec<u64>,
-    /// Whether the newest computed step is inside an impact.
-    in_impact: bool,
+    /// The contact of the computed steps, as far as the frontier.
+    contact: Impacts,
     /// Steps at which a table value was changed mid-roll, in order: the one record of
     /// edits that the timeline strip and the plot both mark.
     pub(crate) edits: Vec<u64>,
@@ -57,6 +57,7 @@ pub(crate) struct Timeline {
 impl Timeline {
     /// A timeline for a roll of at most `max_steps` steps, starting at `start`.
     pub(crate) fn new(max_steps: u64, start: Keyframe) -> Timeline {
+        let contact = Impacts::new(start.sim.in_contact());
         Timeline {
             every: max_steps.div_ceil(MAX_KEYFRAMES).max(1),
             keyframes: vec![start],
@@ -64,7 +65,7 @@ impl Timeline {
             ended: false,
             decided: None,
             impacts: Vec::new(),
-            in_impact: false,
+            contact,
             edits: Vec::new(),
             impacts_changed: true,
         }
@@ -80,17 +81,22 @@ impl Timeline {
         position.is_multiple_of(self.every)
     }
 
-    /// A newly computed step: the frontier moves on, its keyframe (when one is due) is
-    /// kept, an impact is marked where one starts.
-    pub(crate) fn recorded(&mut self, position: u64, keyframe: Option<Keyframe>, impact: bool, ended: bool) {
+    /// A newly computed step, `in_contact` or clear of the table: the frontier moves on, its
+    /// keyframe (when one is due) is kept, an impact is marked where one begins.
+    pub(crate) fn recorded(
+        &mut self,
+        position: u64,
+        keyframe: Option<Keyframe>,
+        in_contact: bool,
+        ended: bool,
+    ) {
         self.furthest = position;
         self.ended = ended;
         self.keyframes.extend(keyframe);
-        if impact && !self.in_impact && self.impacts.len() < MAX_IMPACTS {
+        if self.contact.observe(in_contact) && self.impacts.len() < MAX_IMPACTS {
             self.impacts.push(position);
             self.impacts_changed = true;
         }
-        self.in_impact = impact;
     }
 
     /// The keyframe to carry on from to reach `target`: the last at or before it.
@@ -109,7 +115,8 @@ impl Timeline {
 
     /// The roll goes on differently from `now` (a table value changed): what was computed
     /// after it is forgotten, and `now` is kept as a keyframe.
-    pub(crate) fn diverge(&mut self, now: Keyframe, impact: bool) {
+    pub(crate) fn diverge(&mut self, now: Keyframe) {
+        let in_contact = now.sim.in_contact();
         let position = now.position;
         self.keyframes.retain(|k| k.position < position);
         self.keyframes.push(now);
@@ -121,7 +128,8 @@ impl Timeline {
             self.impacts.truncate(kept);
             self.impacts_changed = true;
         }
-        self.in_impact = impact;
+        // A contact going on across the change is the same impact.
+        self.contact = Impacts::new(in_contact);
         // Edits after this one were of the future just forgotten; one here replaces them.
         // A change at step 0 is no mid-roll edit: the whole roll has the new value.
         self.edits.retain(|&p| p < position);

@@ -17,7 +17,7 @@ use crate::plot::Record;
 use dicesim_experiment::Error;
 use dicesim_physics::{InitialCondition, Outcome, Params, Simulation, Status, face_most_nearly_up};
 use dicesim_setup::output::{Output, OutputError};
-use render::{CLEAR, Camera, DieShot, Frame, PALETTE, Scene, Shot};
+use render::{CLEAR, Camera, DieShot, Frame, PALETTE, Scene, Shot, View};
 use std::io::Write;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -50,6 +50,12 @@ pub struct AnimationSpec {
     /// The chaos twin's ε ([`dicesim_setup::chaos::perturbed`]), if it rolls beside.
     pub twin: Option<f64>,
     pub camera: Camera,
+    /// The camera follows the die and frames it: its side about a third of the frame's
+    /// height, the table moving under it (else the view holds the whole path).
+    pub zoom: bool,
+    /// A face of the pair to mark (1 to 6; its opposite, 7 minus it, with it): both
+    /// coloured and their body axis drawn, on the die.
+    pub face_pair: Option<u8>,
 }
 
 impl AnimationSpec {
@@ -61,6 +67,8 @@ impl AnimationSpec {
             size,
             twin: None,
             camera: Camera::DEFAULT,
+            zoom: false,
+            face_pair: None,
         }
     }
 
@@ -95,6 +103,9 @@ impl AnimationSpec {
         }
         if let Some(e) = self.twin {
             dicesim_setup::chaos::EPSILON.check(e)?;
+        }
+        if let Some(f) = self.face_pair.filter(|f| !(1..=6).contains(f)) {
+            return bad(format!("face {f}: a die's faces are 1 to 6"));
         }
         Ok(())
     }
@@ -299,6 +310,12 @@ fn animation_record(
             crate::figure::setup_value(e)
         ));
     }
+    if let Some(f) = spec.face_pair {
+        let (low, high) = (f.min(7 - f), f.max(7 - f));
+        record.caption.push(format!(
+            "faces {low} (vermilion) and {high} (purple) coloured, their body axis drawn through them"
+        ));
+    }
     let outcome = |o: &Outcome| {
         serde_json::json!({
             "status": o.status.name(),
@@ -314,6 +331,8 @@ fn animation_record(
         "width": spec.size.0,
         "height": spec.size.1,
         "camera": { "yaw": spec.camera.yaw_deg, "pitch": spec.camera.pitch_deg },
+        "zoom": spec.zoom,
+        "face_pair": spec.face_pair.map(|f| f.min(7 - f)),
         "die": outcome(&film.outcome),
     });
     if let (Some(e), Some(t)) = (spec.twin, &film.twin) {
@@ -350,13 +369,12 @@ pub fn write_animation(
     };
     let film = film(name, params, initial, spec, cancel, progress)?;
     let record = animation_record(name, params, initial, spec, &film);
-    let scene = Scene::new(
-        spec.size.0,
-        spec.size.1,
-        spec.camera,
-        &film.shots,
-        &record.caption,
-    );
+    let view = View {
+        camera: spec.camera,
+        zoom: spec.zoom,
+        face_pair: spec.face_pair.map(|f| f.min(7 - f)),
+    };
+    let scene = Scene::new(spec.size.0, spec.size.1, view, &film.shots, &record.caption);
     // Played seconds: simulated ones over the speed.
     let played: Vec<f64> = film.times.iter().map(|t| t / spec.speed).collect();
     let until = display_times(&played);
@@ -777,6 +795,75 @@ mod tests {
             count += usize::from(beside_up);
         }
         count
+    }
+
+    /// Rows from the top of the die's pixels to their bottom in `frame` (the die's own ramps
+    /// and the pair's, its pips), below the caption band.
+    fn die_rows(frame: &[u8], width: usize) -> usize {
+        let die = |i: u8| {
+            let ramp =
+                |r: u8| render::RAMP + r * render::RAMP_STEPS..render::RAMP + (r + 1) * render::RAMP_STEPS;
+            ramp(0).contains(&i)
+                || ramp(1).contains(&i)
+                || ramp(render::PAIR_RAMP).contains(&i)
+                || ramp(render::PAIR_RAMP + 1).contains(&i)
+        };
+        let rows: Vec<usize> = (0..frame.len() / width)
+            .filter(|&y| frame[y * width..(y + 1) * width].iter().any(|&i| die(i)))
+            .collect();
+        rows.last().map_or(0, |last| last + 1 - rows[0])
+    }
+
+    /// `--zoom` frames the die at a third of the frame's height or more in every frame (the
+    /// whole-path view shows it far smaller), and `--face-pair 2` colours faces 2 and 5.
+    #[test]
+    fn a_zoomed_animation_frames_the_die_and_colours_its_face_pair() {
+        let (params, initial) = paper();
+        let (w, h) = (320usize, 240usize);
+        let spec = AnimationSpec {
+            zoom: true,
+            face_pair: Some(5),
+            ..AnimationSpec::new(10, (w as u32, h as u32))
+        };
+        let (bytes, _) = animate(&params, &initial, &spec, "gif");
+        let frames = gif_frames(&bytes);
+        for (k, f) in frames.iter().enumerate() {
+            assert!(
+                die_rows(f, w) * 3 >= h,
+                "frame {k}: the die {} of {h} rows",
+                die_rows(f, w)
+            );
+        }
+        let whole = gif_frames(
+            &animate(
+                &params,
+                &initial,
+                &AnimationSpec::new(10, (w as u32, h as u32)),
+                "gif",
+            )
+            .0,
+        );
+        assert!(
+            die_rows(whole.last().unwrap(), w) * 3 < h,
+            "the whole path's view is wider"
+        );
+        for r in [render::PAIR_RAMP, render::PAIR_RAMP + 1] {
+            let ramp = render::RAMP + r * render::RAMP_STEPS..render::RAMP + (r + 1) * render::RAMP_STEPS;
+            assert!(
+                frames.iter().any(|f| f.iter().any(|i| ramp.contains(i))),
+                "ramp {r} of the pair in some frame"
+            );
+        }
+        let comments = gif_comments(&bytes).join("\n");
+        assert!(
+            comments.contains("\"face_pair\":2") && comments.contains("\"zoom\":true"),
+            "{comments}"
+        );
+        let bad = AnimationSpec {
+            face_pair: Some(7),
+            ..spec
+        };
+        assert!(bad.validate().is_err());
     }
 
     #[test]

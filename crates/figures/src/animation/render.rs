@@ -31,21 +31,28 @@ const TWIN_EDGE: u8 = 24;
 const TABLE_EDGE: u8 = 25;
 pub(crate) const PIP: u8 = 26;
 pub(crate) const PIP_STEPS: u8 = 6;
-/// Four ramps of shades, dark to light: the die, its face up, the twin, the twin's face up.
+/// Ramps of shades, dark to light: the die, its face up, the twin, the twin's face up, and
+/// the marked face pair's two faces.
 pub(crate) const RAMP: u8 = 32;
-pub(crate) const RAMP_STEPS: u8 = 48;
+pub(crate) const RAMP_STEPS: u8 = 36;
+const RAMPS: usize = 6;
 
-/// A ramp's base colour (lit squarely) for each of the four.
-const RAMP_COLOURS: [[f64; 3]; 4] = [
+/// A ramp's base colour (lit squarely) for each.
+const RAMP_COLOURS: [[f64; 3]; RAMPS] = [
     [250.0, 246.0, 236.0], // ivory
     [255.0, 214.0, 140.0], // the face up: warm (Okabe–Ito orange, lightened)
     [170.0, 210.0, 240.0], // the twin: sky blue
     [110.0, 205.0, 170.0], // the twin's face up: bluish green
+    [240.0, 120.0, 80.0],  // the pair's lower face: vermilion
+    [180.0, 120.0, 230.0], // its opposite: purple
 ];
 
-// The ranges of the palette do not overlap, and the four ramps fit in it.
+/// The ramp of the marked pair's lower face; its opposite's follows.
+pub(crate) const PAIR_RAMP: u8 = 4;
+
+// The ranges of the palette do not overlap, and the ramps fit in it.
 const _: () = assert!(TEXT + TEXT_STEPS <= TILE_LIGHT && PIP + PIP_STEPS <= RAMP);
-const _: () = assert!(RAMP as u32 + 4 * RAMP_STEPS as u32 <= 256);
+const _: () = assert!(RAMP as u32 + RAMPS as u32 * RAMP_STEPS as u32 <= 256);
 
 /// The fixed 256-colour palette, RGB.
 pub(crate) const PALETTE: [[u8; 3]; 256] = palette();
@@ -85,7 +92,7 @@ const fn palette() -> [[u8; 3]; 256] {
         k += 1;
     }
     let mut r = 0;
-    while r < 4 {
+    while r < RAMPS {
         let mut k = 0;
         while k < RAMP_STEPS as u32 {
             // Lit from 45 % (in shade) to 100 % of the base colour.
@@ -240,6 +247,10 @@ pub(crate) struct Shot {
     pub(crate) headline: String,
 }
 
+/// The share of a frame's height a zoomed (framing) camera gives the die's side: a third,
+/// and a little more, whatever its turn.
+pub(crate) const ZOOMED_SIDE: f64 = 0.36;
+
 /// The camera: orthographic, turned `yaw` degrees about the vertical and looking down
 /// `pitch` degrees, as the explorer's.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -303,12 +314,27 @@ pub(crate) struct Scene {
     headline_lines: usize,
     band: u32,
     margin: f64,
+    /// The camera follows the die, framing it at [`ZOOMED_SIDE`] of the frame's height.
+    follow: bool,
+    /// The marked face pair, by its lower face (its opposite is 7 minus it): coloured and
+    /// its axis drawn, on the die (not its twin).
+    face_pair: Option<u8>,
+}
+
+/// How a scene is seen: the camera, whether it follows and frames the die, which face pair
+/// is marked.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct View {
+    pub(crate) camera: Camera,
+    pub(crate) zoom: bool,
+    pub(crate) face_pair: Option<u8>,
 }
 
 impl Scene {
     /// The scene of `width` × `height` pixels that holds every one of `shots` whole, seen
     /// by `camera`, with `caption` (the setup) under each headline.
-    pub(crate) fn new(width: u32, height: u32, camera: Camera, shots: &[Shot], caption: &[String]) -> Scene {
+    pub(crate) fn new(width: u32, height: u32, view: View, shots: &[Shot], caption: &[String]) -> Scene {
+        let camera = view.camera;
         let (w, h) = (f64::from(width), f64::from(height));
         let headline_px = (h / 28.0).clamp(9.0, 40.0);
         let caption_px = (headline_px * 0.8).max(8.0);
@@ -380,7 +406,12 @@ impl Scene {
         }
         let picture = (w - 2.0 * margin, h - f64::from(band) - 2.0 * margin);
         let span = ((hi.0 - lo.0).max(1e-6), (hi.1 - lo.1).max(1e-6));
-        let scale = (picture.0 / span.0).min(picture.1 / span.1).max(1e-6);
+        // The whole path in view, or (zoomed) the die's side a third of the frame and more.
+        let scale = if view.zoom {
+            ZOOMED_SIDE * h / side
+        } else {
+            (picture.0 / span.0).min(picture.1 / span.1).max(1e-6)
+        };
         let centre = ((lo.0 + hi.0) / 2.0, (lo.1 + hi.1) / 2.0);
         let origin = (
             w / 2.0 - centre.0 * scale,
@@ -400,7 +431,16 @@ impl Scene {
             headline_lines,
             band,
             margin,
+            follow: view.zoom,
+            face_pair: view.face_pair,
         }
+    }
+
+    /// The picture's centre: where a following camera puts the die's centre.
+    fn picture_centre(&self) -> (f64, f64) {
+        let top = f64::from(self.band) + self.margin;
+        let bottom = f64::from(self.height) - self.margin;
+        (f64::from(self.width) / 2.0, (top + bottom) / 2.0)
     }
 
     fn pixel(&self, p: &Vector3<f64>) -> (f64, f64) {
@@ -423,8 +463,23 @@ impl Scene {
         Some((cy * across - sy * away, sy * across + cy * away))
     }
 
-    /// The frame of `shot`: pure, the same pixels for the same shot.
+    /// The frame of `shot`: pure, the same pixels for the same shot. A following camera
+    /// centres it on the die.
     pub(crate) fn render(&self, shot: &Shot) -> Frame {
+        if !self.follow {
+            return self.render_here(shot);
+        }
+        let (across, up) = self.camera.project(&shot.die.centre);
+        let (cx, cy) = self.picture_centre();
+        let scene = Scene {
+            origin: (cx - across * self.scale, cy + up * self.scale),
+            ..self.clone()
+        };
+        scene.render_here(shot)
+    }
+
+    /// The frame of `shot` from this scene's origin.
+    fn render_here(&self, shot: &Shot) -> Frame {
         let mut frame = Frame::new(self.width, self.height, BACKGROUND);
         let line_width = (f64::from(self.height) / 320.0).max(1.0);
         let dice: Vec<(&DieShot, bool)> = std::iter::once((&shot.die, false))
@@ -500,9 +555,30 @@ impl Scene {
         frame
     }
 
+    /// The marked pair's faces (0-based) of the die, `(lower, its opposite)`; none on a twin.
+    fn pair(&self, twin: bool) -> Option<(usize, usize)> {
+        self.face_pair
+            .filter(|_| !twin)
+            .map(|low| (usize::from(low) - 1, usize::from(7 - low) - 1))
+    }
+
+    /// The pair's body axis sticking out of face `f` (0-based), half a side past it.
+    fn pair_stick(&self, frame: &mut Frame, die: &DieShot, f: usize, line_width: f64) {
+        let centre = face_centre(die, f);
+        let tip = die.centre + (centre - die.centre) * 1.7;
+        frame.line(self.pixel(&centre), self.pixel(&tip), 2.5 * line_width, EDGE);
+    }
+
     fn draw_die(&self, frame: &mut Frame, die: &DieShot, twin: bool, line_width: f64) {
         let viewer = self.camera.towards_viewer();
         let light = self.camera.light();
+        let pair = self.pair(twin);
+        // The axis behind the die first, where a face of the pair looks away.
+        for f in pair.iter().flat_map(|&(a, b)| [a, b]) {
+            if !face_seen(die, f, &viewer) {
+                self.pair_stick(frame, die, f, line_width);
+            }
+        }
         for (f, corners) in FACE_CORNERS.iter().enumerate() {
             let centre = face_centre(die, f);
             let normal = (centre - die.centre).normalize();
@@ -512,7 +588,11 @@ impl Scene {
             }
             let lit = 0.3 + 0.7 * normal.dot(&light).max(0.0);
             let up = die.up == Some(f as u8 + 1);
-            let ramp = RAMP + RAMP_STEPS * (2 * u8::from(twin) + u8::from(up));
+            let ramp = match pair {
+                Some((low, _)) if f == low => RAMP + RAMP_STEPS * PAIR_RAMP,
+                Some((_, high)) if f == high => RAMP + RAMP_STEPS * (PAIR_RAMP + 1),
+                _ => RAMP + RAMP_STEPS * (2 * u8::from(twin) + u8::from(up)),
+            };
             let shade = ramp + (lit * f64::from(RAMP_STEPS - 1)).round() as u8;
             // A face's corners in order around it: FACE_CORNERS lists them as a grid.
             let outline =
@@ -540,6 +620,11 @@ impl Scene {
                 line_width,
                 edge,
             );
+        }
+        for f in pair.iter().flat_map(|&(a, b)| [a, b]) {
+            if face_seen(die, f, &viewer) {
+                self.pair_stick(frame, die, f, line_width);
+            }
         }
         // A corner touching the table (at or below it), where the viewer sees it.
         let seen = seen_corners(die, &viewer);
@@ -612,7 +697,7 @@ mod tests {
     #[test]
     fn the_palette_ramps_are_distinct_and_nothing_draws_the_clear_index() {
         let mut seen = std::collections::HashSet::new();
-        for c in &PALETTE[1..(RAMP + 4 * RAMP_STEPS) as usize] {
+        for c in &PALETTE[1..RAMP as usize + RAMPS * RAMP_STEPS as usize] {
             seen.insert(*c);
         }
         // Ramps may meet in their darkest steps, but the colours stay many.
@@ -639,7 +724,12 @@ mod tests {
             "table k 500000 dyn/cm, γ 0.005 s/cm, μ 1.2; die a 1 cm, m 1 g; g 980 cm/s², Δt 0.001 s".to_string(),
         ];
         for (w, h) in [(64, 64), (160, 120), (640, 480), (1920, 1080)] {
-            let scene = Scene::new(w, h, Camera::DEFAULT, std::slice::from_ref(&shot), &caption);
+            let view = View {
+                camera: Camera::DEFAULT,
+                zoom: false,
+                face_pair: None,
+            };
+            let scene = Scene::new(w, h, view, std::slice::from_ref(&shot), &caption);
             // Between the margins on either side.
             let room = f64::from(w) - 2.0 * scene.margin;
             for line in &scene.caption {

@@ -36,6 +36,38 @@ fn free_fall_is_kick_then_drift_and_first_contact_is_step_169() {
     assert_eq!(first_contact, Some(169));
 }
 
+/// The one impact definition (docs/model.md, "Impacts"): the flat drop's first impact is its
+/// first contact, step 169 (above), and a die placed resting on the table never starts one.
+#[test]
+fn the_first_impact_of_a_flat_drop_is_its_first_contact_and_a_resting_die_has_none() {
+    use dicesim_physics::Impacts;
+    let p = Params::default();
+    let mut s = sim(&p, InitialCondition::default());
+    let mut impacts = Impacts::new(s.in_contact());
+    let mut first = None;
+    for n in 1..=400u64 {
+        s.step();
+        if impacts.observe(s.in_contact()) && first.is_none() {
+            first = Some(n);
+        }
+    }
+    assert_eq!(first, Some(169));
+    let mut resting = sim(
+        &p,
+        InitialCondition {
+            height: resting_height(&p),
+            ..Default::default()
+        },
+    );
+    assert!(resting.in_contact(), "resting on the table from the start");
+    let mut none = Impacts::new(resting.in_contact());
+    for _ in 0..400 {
+        resting.step();
+        none.observe(resting.in_contact());
+    }
+    assert_eq!(none.count(), 0);
+}
+
 /// Rotation angle and axis of `r = m·r0` from corner offsets before and after.
 fn rotation_between(before: &[Vector3<f64>; 8], after: &[Vector3<f64>; 8]) -> (f64, Vector3<f64>) {
     // Corners 5−1, 3−1, 2−1 span the body axes; R maps one frame onto the other.

@@ -18,7 +18,7 @@ mod view;
 
 pub use contents::{FORMAT, Preset};
 pub use error::{Location, PresetError};
-pub use shipped::{DEFAULT_NAME, SHIPPED, shipped_text};
+pub use shipped::{DEFAULT_NAME, LESSON, SHIPPED, shipped_text};
 pub use speed::Speed;
 pub use store::read_regular_file;
 pub use store::{Entry, PRESETS_ENV, Source, Store, check_name, load_file};

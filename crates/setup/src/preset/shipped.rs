@@ -40,6 +40,10 @@ pub const SHIPPED: &[(&str, &str)] = &[
     ("incline", include_str!("../../presets/incline.toml")),
 ];
 
+/// The shipped presets the classroom lesson (docs/lesson.toml) opens, in the order it opens
+/// them: the explorer's picker lists them first, under a heading of their own.
+pub const LESSON: &[&str] = &["slow-motion-classroom", "paper", "gentle-drop", "loaded-corner"];
+
 /// The text of the shipped preset `name`.
 pub fn shipped_text(name: &str) -> Option<&'static str> {
     SHIPPED.iter().find(|(n, _)| *n == name).map(|(_, text)| *text)

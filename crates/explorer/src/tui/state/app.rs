@@ -49,6 +49,8 @@ pub(crate) enum Mode {
     Help,
     /// The basin-map screen.
     Map,
+    /// Throw mode on the die screen: the aiming keys and a drag on the die throw it.
+    Throw,
     /// The die screen, nothing over it.
     Normal,
 }
@@ -272,6 +274,7 @@ impl App {
             _ if self.page == Page::Map && self.map.editing.is_some() => Mode::EditingRange,
             Some(Overlay::Help { .. }) => Mode::Help,
             None if self.page == Page::Map => Mode::Map,
+            None if self.page == Page::Die && self.die_screen.throw.is_some() => Mode::Throw,
             None => Mode::Normal,
         }
     }
@@ -335,6 +338,7 @@ impl App {
             },
             Mode::Help => Scope::Help,
             Mode::Map => Scope::Map,
+            Mode::Throw => Scope::Throw,
             Mode::Normal if self.page == Page::Presentation => Scope::Show,
             Mode::Normal => Scope::Die,
         }

@@ -67,6 +67,16 @@ impl OrbitCamera {
         }
     }
 
+    /// The world vector of a step on the view plane (across, up), cm: the plane faces the
+    /// camera, so the step has no depth. [`OrbitCamera::project`] takes it back.
+    pub(crate) fn world_step(&self, step: (f64, f64)) -> Vector3<f64> {
+        let (sy, cy) = self.yaw_deg.to_radians().sin_cos();
+        let (sp, cp) = self.pitch_deg.to_radians().sin_cos();
+        let across = Vector3::new(cy, sy, 0.0);
+        let up = Vector3::new(-sy * sp, cy * sp, cp);
+        step.0 * across + step.1 * up
+    }
+
     /// How directly a world direction faces the viewer (1 straight at them, < 0 away).
     pub(crate) fn facing(&self, direction: &Vector3<f64>) -> f64 {
         let n = direction.normalize();
@@ -96,5 +106,17 @@ mod tests {
             p.x.abs() < 1e-12 && p.y.abs() < 1e-12,
             "the focus' foot is the screen origin"
         );
+    }
+
+    #[test]
+    fn a_step_on_the_view_plane_projects_back_onto_itself() {
+        let cam = OrbitCamera::default();
+        let w = cam.world_step((0.3, -0.7));
+        let back = cam.project(&w, &Vector3::zeros());
+        assert!(
+            (back.x - 0.3).abs() < 1e-12 && (back.y + 0.7).abs() < 1e-12,
+            "{back:?}"
+        );
+        assert!(back.depth.abs() < 1e-12, "no depth: {back:?}");
     }
 }

@@ -2,12 +2,36 @@
 
 use dicesim_setup::preset::Preset;
 
+/// The picker's groups, in the order it lists them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) enum Group {
+    /// The shipped presets the lesson opens ([`dicesim_setup::preset::LESSON`]).
+    Lesson,
+    /// The other shipped presets.
+    Shipped,
+    /// The user's own.
+    Yours,
+}
+
+impl Group {
+    /// The heading the picker writes over the group.
+    pub(crate) fn heading(self) -> &'static str {
+        match self {
+            Group::Lesson => "for the lesson",
+            Group::Shipped => "more shipped presets",
+            Group::Yours => "yours ★",
+        }
+    }
+}
+
 /// One preset the picker offers.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Choice {
     pub(crate) name: String,
     /// The user's own (saved from here or by hand), rather than shipped.
     pub(crate) user: bool,
+    /// The group it is listed in.
+    pub(crate) group: Group,
     /// The preset, or why its file does not load.
     pub(crate) preset: Result<Box<Preset>, String>,
 }

@@ -4,10 +4,11 @@
 //! them.
 
 use super::camera::OrbitCamera;
+use super::throw::Throw;
 use crate::tui::format::fmt_num;
 use crate::tui::param::{Param, all};
 use crate::worker::Snapshot;
-use dicesim_setup::quantity::{QUANTITY_COUNT, TOTAL_ENERGY};
+use dicesim_setup::quantity::{QUANTITIES, QUANTITY_COUNT, TOTAL_ENERGY};
 use ratatui::symbols::Marker;
 
 /// The die screen's choices, each changed by its keys (or the mouse) and kept while the
@@ -30,12 +31,27 @@ pub(crate) struct DieScreen {
     pub(crate) readout: Readout,
     /// Last mouse position while dragging the die.
     pub(crate) drag: Option<(u16, u16)>,
+    /// The face pair marked (`M`), by its lower face (2, 1 or 3; the other is 7 minus it):
+    /// its faces coloured, its body axis drawn through them.
+    pub(crate) face_pair: Option<u8>,
+    /// Throw mode's aim, while it is on (`f`, or a drag with Ctrl or Alt held).
+    pub(crate) throw: Option<Throw>,
 }
 
 impl DieScreen {
     /// The parameter selected on the list.
     pub(crate) fn selected_param(&self) -> Param {
         all()[self.selected.min(all().len() - 1)]
+    }
+
+    /// `M`: the next face pair marked, 2 and 5 first (the pair a tennis racket flips).
+    pub(crate) fn next_face_pair(&mut self) {
+        self.face_pair = match self.face_pair {
+            None => Some(2),
+            Some(2) => Some(1),
+            Some(1) => Some(3),
+            Some(_) => None,
+        };
     }
 
     /// Moves the parameter list's selection by `delta` rows, inside the list.
@@ -73,6 +89,11 @@ pub(crate) struct PlotChoice {
     pub(crate) quantity: Option<usize>,
     /// `Some(j)`: the phase plot, `QUANTITIES[j]` up against the first quantity across.
     pub(crate) phase: Option<usize>,
+    /// `Some(j)`: `QUANTITIES[j]` against time beside the first, on its axis (the same unit).
+    pub(crate) second: Option<usize>,
+    /// The value axis fitted to the curves around the time on screen (`y`) rather than
+    /// spanning the whole roll.
+    pub(crate) fitted: bool,
 }
 
 impl PlotChoice {
@@ -98,9 +119,35 @@ impl PlotChoice {
                     None => Some(0),
                     Some(i) if i + 1 < QUANTITY_COUNT => Some(i + 1),
                     Some(_) => None,
-                }
+                };
+                // A second curve shares the first's axis, which just changed.
+                self.second = None;
             }
         }
+    }
+
+    /// `Y`: the next quantity after the second (or the first) in the plotted one's unit, or
+    /// none after the last; why not, where the plot has no place for one.
+    pub(crate) fn next_second(&mut self) -> Result<(), String> {
+        let Some(i) = self.quantity.filter(|_| self.phase.is_none()) else {
+            return Err(if self.phase.is_some() {
+                "the phase plot draws one quantity against another already".to_string()
+            } else {
+                "the energy plot draws every energy term already".to_string()
+            });
+        };
+        let unit = QUANTITIES[i].unit;
+        let others: Vec<usize> = (0..QUANTITY_COUNT)
+            .filter(|&j| j != i && QUANTITIES[j].unit == unit)
+            .collect();
+        if others.is_empty() {
+            return Err(format!("no other quantity is in {unit}"));
+        }
+        self.second = match self.second.and_then(|s| others.iter().position(|&j| j == s)) {
+            None => Some(others[0]),
+            Some(k) => others.get(k + 1).copied(),
+        };
+        Ok(())
     }
 
     /// The phase plot on (up: the height, or the speed when the height is across) or off.

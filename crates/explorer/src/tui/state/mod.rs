@@ -11,6 +11,8 @@ pub(crate) mod die_screen;
 pub(crate) mod editor;
 pub(crate) mod map_view;
 pub(crate) mod messages;
+pub(crate) mod projection;
 pub(crate) mod roll;
 pub(crate) mod setup;
+pub(crate) mod throw;
 pub(crate) mod twins;
