@@ -392,7 +392,10 @@ fn malformed_ics_row_names_its_line_and_runs_nothing() {
     ]);
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("line 3: `height` = `lots` is not a number"), "{err}");
+    assert!(
+        err.contains("line 3: `height_cm` = `lots` is not a number"),
+        "{err}"
+    );
     assert!(!out.exists());
 }
 
@@ -465,13 +468,13 @@ fn basin_writes_csv_png_and_svg() {
         [
             "i",
             "j",
-            "initial.angular_velocity.x",
-            "initial.angular_velocity.y"
+            "initial_angular_velocity_x_rad_per_s",
+            "initial_angular_velocity_y_rad_per_s"
         ]
     );
     assert_eq!(rows.len(), 17 * 9);
-    assert_eq!(rows[0][2..4], ["-30", "-30"]);
-    assert_eq!(rows[17 * 9 - 1][2..4], ["30", "30"]);
+    assert_eq!(rows[0][2..4], ["-30.0", "-30.0"]);
+    assert_eq!(rows[17 * 9 - 1][2..4], ["30.0", "30.0"]);
     assert!(rows.iter().all(|r| r[9] == "1"));
     assert!(rows.iter().all(|r| r[6] == Status::Settled.name()));
 

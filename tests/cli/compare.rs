@@ -398,10 +398,10 @@ fn budden_runs_end_to_end_naming_every_ratio_and_its_role() {
     let png = std::fs::read(&png).unwrap();
     assert_eq!(&png[1..4], b"PNG");
     let table = std::fs::read_to_string(&csv).unwrap();
-    // The provenance line, the header and one row per ratio.
-    assert_eq!(table.lines().count(), 17);
+    // The header and one row per ratio.
+    assert_eq!(table.lines().count(), 16);
     assert!(
-        table.lines().nth(4).unwrap().starts_with("0.75,predict,"),
+        table.lines().nth(3).unwrap().starts_with("0.75,predict,"),
         "{table}"
     );
 

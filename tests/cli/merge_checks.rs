@@ -217,7 +217,7 @@ fn parts_of_two_builds_merge_only_when_accepted() {
     let sidecar = d.join("p4/part-2.csv.meta.json");
     let mut meta: serde_json::Value = serde_json::from_slice(&std::fs::read(&sidecar).unwrap()).unwrap();
     meta["provenance"]["commit"] = other.into();
-    std::fs::write(&sidecar, serde_json::to_vec_pretty(&meta).unwrap() + "\n").unwrap();
+    std::fs::write(&sidecar, serde_json::to_string_pretty(&meta).unwrap() + "\n").unwrap();
     let e = merge_p4(d);
     assert!(
         e.contains(&format!(
