@@ -9,8 +9,8 @@ fn status(kind: ErrorKind) -> ExitCode {
         ErrorKind::BrokenPipe => ExitCode::SUCCESS,
         ErrorKind::Failure => ExitCode::FAILURE,
         ErrorKind::Input => ExitCode::from(2),
-        // As a shell reports a process stopped by SIGINT: 128 + 2.
-        ErrorKind::Interrupted => ExitCode::from(130),
+        // As a shell reports a process stopped by the signal: 128 + its number.
+        ErrorKind::Interrupted => ExitCode::from(cli::interrupted_status()),
     }
 }
 

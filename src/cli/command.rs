@@ -19,7 +19,8 @@ use clap::{CommandFactory, Parser, Subcommand};
   dicesim presets list                      the shipped presets and yours
 
 Exit status: 0 success, 1 a failure while running, 2 bad input (nothing was run or written),
-130 interrupted (what was done is kept), 128 + N stopped by signal N, 101 an internal error."
+128 + N stopped by signal N (130 interrupted by Ctrl-C, 143 SIGTERM; what was done is kept),
+101 an internal error."
 )]
 pub(crate) struct Cli {
     #[command(subcommand)]

@@ -20,3 +20,4 @@ mod tui;
 
 pub use command::main;
 pub use error::{CliError, ErrorKind};
+pub use running::interrupted_status;

@@ -7,7 +7,8 @@ use dicesim_setup::output::Output;
 use signal_hook::consts::{SIGHUP, SIGINT, SIGQUIT, SIGTERM};
 use std::io::Write as _;
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
+use std::time::Duration;
 
 /// The progress bar of a long command: drawn on stderr while it is a terminal, hidden
 /// otherwise (a pipe or a log file gets no bar codes), in `template`'s words.
@@ -23,9 +24,26 @@ pub(crate) fn progress_bar(total: u64, template: &str) -> indicatif::ProgressBar
     bar
 }
 
-/// Exit status of a second Ctrl-C, which cannot wait for the error to reach `main`: as a
-/// shell reports a SIGINT (128 + 2), the status `main` gives an interrupted command.
-const INTERRUPTED_AT_ONCE: i32 = 130;
+/// The first stop signal a command caught (0 before any): the exit status of a command it
+/// stopped is 128 + its number, as a shell reports a process that signal ended (130 for
+/// Ctrl-C, 143 for SIGTERM, 129 for SIGHUP, 131 for SIGQUIT), whether the command kept its
+/// completed work first or not.
+static FIRST_SIGNAL: AtomicI32 = AtomicI32::new(0);
+
+/// The exit status of a command a stop signal interrupted: 128 + the signal (Ctrl-C's when
+/// the interruption came from elsewhere).
+pub fn interrupted_status() -> u8 {
+    match FIRST_SIGNAL.load(Ordering::SeqCst) {
+        0 => 128 + SIGINT as u8,
+        signal => (128 + signal) as u8,
+    }
+}
+
+/// How long a command may take, after the first stop signal, to keep its completed work
+/// (finish the rolls running, write the kept files and the summary): then it stops as at a
+/// second signal, so any stop signal ends any command within 2 s, whatever it was doing
+/// (drawing a big map's image, a write the disk holds up, a reader that stopped reading).
+const GRACE: Duration = Duration::from_millis(1500);
 
 /// The signals that ask a command to stop: Ctrl-C, `kill`, a closed terminal, Ctrl-\\ (and
 /// Slurm's time limit, which sends SIGTERM).
@@ -124,29 +142,49 @@ fn on_stop_signals(graceful: Option<Arc<AtomicBool>>) -> Result<(), CliError> {
         .map_err(|e| CliError::Io(std::io::Error::other(format!("cannot catch signals: {e}"))))?;
     std::thread::spawn(move || {
         for signal in signals.forever() {
+            let _ = FIRST_SIGNAL.compare_exchange(0, signal, Ordering::SeqCst, Ordering::SeqCst);
             if let Some(stop) = &graceful
                 && !stop.swap(true, Ordering::SeqCst)
             {
+                std::thread::spawn(move || {
+                    std::thread::sleep(GRACE);
+                    let removed = dicesim_setup::output::remove_pending();
+                    let what = if removed > 0 {
+                        "the file being written was removed; files completed before it are kept"
+                    } else {
+                        "files completed before now are kept"
+                    };
+                    let _ = writeln!(
+                        std::io::stderr(),
+                        "dicesim: still not done keeping the completed work 1.5 s after signal {signal}, \
+                         so stopped: {what}"
+                    );
+                    std::process::exit(i32::from(interrupted_status()));
+                });
                 continue;
             }
-            let removed = dicesim_setup::output::remove_pending();
-            let what = if removed > 0 {
-                "the file being written was removed, nothing was written"
-            } else {
-                "nothing was written"
-            };
-            let why = if graceful.is_some() {
-                "stopped again"
-            } else {
-                "stopped"
-            };
-            let _ = writeln!(std::io::stderr(), "dicesim: {why} by signal {signal}: {what}");
-            std::process::exit(if signal == SIGINT {
-                INTERRUPTED_AT_ONCE
-            } else {
-                128 + signal
-            });
+            stop_now(
+                signal,
+                if graceful.is_some() {
+                    "stopped again by signal"
+                } else {
+                    "stopped by signal"
+                },
+            );
         }
     });
     Ok(())
+}
+
+/// Removes the temporary file being written, says so (`why` names the signal) and exits with
+/// the status of the first signal.
+fn stop_now(signal: i32, why: &str) -> ! {
+    let removed = dicesim_setup::output::remove_pending();
+    let what = if removed > 0 {
+        "the file being written was removed, nothing was written"
+    } else {
+        "nothing was written"
+    };
+    let _ = writeln!(std::io::stderr(), "dicesim: {why} {signal}: {what}");
+    std::process::exit(i32::from(interrupted_status()));
 }

@@ -432,6 +432,11 @@ pub fn run_map_rows(
             nodes
                 .par_chunks(NODES_PER_TASK)
                 .map(|chunk| {
+                    // A chunk started after a cancel would step its rolls until their first
+                    // stop check: thousands of chunks of a big map's level took seconds.
+                    if stopped() {
+                        return (chunk.len(), Vec::new());
+                    }
                     let setups: Vec<_> = chunk
                         .iter()
                         .map(|&(i, j)| {
