@@ -38,7 +38,7 @@ fn traced(preset: &Preset) -> (Vec<u64>, Vec<bool>) {
     let mut csv = Vec::new();
     {
         // `dicesim trace`'s loop: the start, then each step until the one the roll ends at.
-        let mut out = TraceWriter::new(&mut csv).expect("header");
+        let mut out = TraceWriter::new(&mut csv, preset.params().integrator.dt).expect("header");
         out.write(&sim).expect("row");
         loop {
             let ended = sim.advance().is_some();
