@@ -94,6 +94,7 @@ fn print_batch(args: &MergeArgs, m: &BatchMerge) -> Result<(), CliError> {
             "shards": m.shards,
             "longest_shard_s": m.longest_s,
             "verified": m.verified,
+            "past_stability_limit": m.past_stability_limit,
             "summary": summary,
         });
         writeln!(stdout, "{v}")?;
@@ -101,6 +102,9 @@ fn print_batch(args: &MergeArgs, m: &BatchMerge) -> Result<(), CliError> {
     }
     writeln!(stdout, "{} rolls in {} shards", summary.rolls, m.shards)?;
     tables::batch_counts(&mut stdout, summary)?;
+    if let Some(past) = m.past_stability_limit {
+        tables::stability_count(&mut stdout, past, summary.rolls)?;
+    }
     writeln!(
         stdout,
         "speed                  {:.0} rolls per shard-second ({} steps; the shards took {:.2} s together, the longest {:.2} s)",

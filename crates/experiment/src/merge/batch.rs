@@ -18,7 +18,7 @@ use crate::record::{RecordCheck, RollRecord, roll_record, same_record};
 use crate::shard::{Part, Sweep};
 use crate::summary::BatchSummary;
 use crate::tally::Tally;
-use dicesim_physics::{InitialCondition, Outcome, Params, Status};
+use dicesim_physics::{InitialCondition, Outcome, Params, StabilityCheck, Status};
 use dicesim_setup::output::{Output, OutputError, Staged, commit, sidecar_path};
 use dicesim_setup::preset::{Preset, read_regular_file};
 use dicesim_setup::random::RandomDraws;
@@ -49,6 +49,10 @@ pub struct BatchMerge {
     pub longest_s: f64,
     /// Records rolled again by `--verify`.
     pub verified: usize,
+    /// Rolls that started past the stability limit, counted as the one-machine batch counts
+    /// them: from the records, or from the seed's draws for parts that hold only summaries;
+    /// `None` where neither is known (summaries of given starts).
+    pub past_stability_limit: Option<u64>,
 }
 
 /// Bytes of a CSV part read and checked at a time (its rows checked in parallel).
@@ -110,6 +114,8 @@ impl Parts {
             sweep,
         };
         let chosen = chosen_at_random(*rolls as usize, verify);
+        let stability = StabilityCheck::new(&expect.params);
+        let mut past_stability_limit = 0;
         let mut picked: Vec<RollRecord> = Vec::with_capacity(chosen.len());
         let mut staged = outputs
             .iter()
@@ -127,6 +133,7 @@ impl Parts {
                 if chosen.binary_search(&(r.id as usize)).is_ok() {
                     picked.push(*r);
                 }
+                past_stability_limit += u64::from(!stability.predict(&r.initial).is_stable());
                 sinks.iter_mut().try_for_each(|sink| sink.write(r, line))
             };
             for (path, p) in self.iter() {
@@ -136,6 +143,15 @@ impl Parts {
                 sink.finish()?;
             }
         }
+        let past_stability_limit = match (with_records, *seed) {
+            (true, _) => Some(past_stability_limit),
+            (false, Some(seed)) => Some(
+                (0..*rolls)
+                    .filter(|&id| !stability.predict(&expect.draw(seed, id)).is_stable())
+                    .count() as u64,
+            ),
+            (false, None) => None,
+        };
         verify_records(&expect.params, &picked)?;
         commit(staged).map_err(MergeError::unwritten)?;
         let (shard_s, longest_s) = self.shard_times();
@@ -149,6 +165,7 @@ impl Parts {
             shard_s,
             longest_s,
             verified: picked.len(),
+            past_stability_limit,
         })
     }
 
