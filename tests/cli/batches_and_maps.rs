@@ -490,7 +490,7 @@ fn basin_writes_csv_png_and_svg() {
     assert!(svg.contains("spin ωx (rad/s): -30 to 30"), "the x axis in words");
     assert!(!svg.contains("initial.angular_velocity.x (rad/s)"));
     assert!(
-        svg.contains("spin (ωx, ωy, 0) rad/s"),
+        svg.contains("spin (ωx, ωy, 6) rad/s"),
         "the varied spin as its symbols"
     );
     assert!(svg.contains("settle time (s)"));
