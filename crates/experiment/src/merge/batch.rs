@@ -55,6 +55,12 @@ pub struct BatchMerge {
     pub past_stability_limit: Option<u64>,
 }
 
+/// What takes each record read, in order, with its CSV row where it has one.
+type Taker<'a> = dyn FnMut(&RollRecord, Option<&[u8]>) -> Result<(), MergeError> + 'a;
+
+/// A record read, and the outcome of its checks.
+type Checked = (RollRecord, Result<(), String>);
+
 /// Bytes of a CSV part read and checked at a time (its rows checked in parallel).
 const PIECE_BYTES: u64 = 4 << 20;
 
@@ -259,7 +265,7 @@ impl BatchExpect {
 
     /// One CSV row read: the record, or the reason it is not a row this program writes;
     /// with it, the outcome of its checks. `line` is a scratch buffer.
-    fn read_row(&self, row: &[u8], line: &mut Vec<u8>) -> Result<(RollRecord, Result<(), String>), String> {
+    fn read_row(&self, row: &[u8], line: &mut Vec<u8>) -> Result<Checked, String> {
         if let Some(seed) = self.seed
             && let Some(r) = self.row_as_drawn(row, seed, line)
         {
@@ -317,7 +323,8 @@ fn whole(digits: &[u8]) -> Option<u64> {
 enum Sink<'a> {
     Csv(&'a mut Staged, SpinColumns),
     Parquet {
-        writer: RecordsWriter<&'a mut Staged>,
+        // Boxed: a Parquet writer holds a row group of records.
+        writer: Box<RecordsWriter<&'a mut Staged>>,
         path: &'a Path,
     },
 }
@@ -335,7 +342,7 @@ impl<'a> Sink<'a> {
                 let writer = RecordsWriter::new(w, expect.spin, &expect.provenance.to_string())
                     .map_err(|e| unwritten(o.path(), e))?;
                 Ok(Sink::Parquet {
-                    writer,
+                    writer: Box::new(writer),
                     path: o.path(),
                 })
             }
@@ -396,10 +403,10 @@ impl Reading<'_> {
     /// Takes the next record, `checked` the outcome of its checks, `line` its CSV row.
     fn take(
         &mut self,
-        (r, checked): (RollRecord, Result<(), String>),
+        (r, checked): Checked,
         row: u64,
         line: Option<&[u8]>,
-        each: &mut dyn FnMut(&RollRecord, Option<&[u8]>) -> Result<(), MergeError>,
+        each: &mut Taker<'_>,
     ) -> Result<(), MergeError> {
         if r.id != self.next {
             return Err(self.at(row, format!("roll id {}, expected {}", r.id, self.next)));
@@ -423,7 +430,7 @@ impl Reading<'_> {
         &mut self,
         file: std::fs::File,
         (bytes, hash): (u64, &str),
-        each: &mut dyn FnMut(&RollRecord, Option<&[u8]>) -> Result<(), MergeError>,
+        each: &mut Taker<'_>,
     ) -> Result<(), MergeError> {
         let mut reader = HashingReader {
             inner: file.take(bytes.saturating_add(1)),
@@ -445,11 +452,7 @@ impl Reading<'_> {
         read
     }
 
-    fn csv_rows(
-        &mut self,
-        reader: &mut HashingReader,
-        each: &mut dyn FnMut(&RollRecord, Option<&[u8]>) -> Result<(), MergeError>,
-    ) -> Result<(), MergeError> {
+    fn csv_rows(&mut self, reader: &mut HashingReader, each: &mut Taker<'_>) -> Result<(), MergeError> {
         let mut buf: Vec<u8> = Vec::with_capacity(PIECE_BYTES as usize + MAX_LINE_BYTES as usize);
         let mut line_number = 1u64;
         let mut header_seen = false;
@@ -517,14 +520,9 @@ impl Reading<'_> {
 
     /// Checks the rows `lines` (the first at file line `first`) in parallel, then takes
     /// them in order: the first problem by line is the one reported.
-    fn take_piece(
-        &mut self,
-        lines: &[&[u8]],
-        first: u64,
-        each: &mut dyn FnMut(&RollRecord, Option<&[u8]>) -> Result<(), MergeError>,
-    ) -> Result<(), MergeError> {
+    fn take_piece(&mut self, lines: &[&[u8]], first: u64, each: &mut Taker<'_>) -> Result<(), MergeError> {
         let expect = self.expect;
-        let read: Vec<Result<(RollRecord, Result<(), String>), String>> = lines
+        let read: Vec<Result<Checked, String>> = lines
             .par_iter()
             .map_init(
                 || Vec::with_capacity(256),
@@ -545,11 +543,7 @@ impl Reading<'_> {
     }
 
     /// Reads a Parquet records file, whose metadata must hold the sweep's provenance.
-    fn parquet(
-        &mut self,
-        file: std::fs::File,
-        each: &mut dyn FnMut(&RollRecord, Option<&[u8]>) -> Result<(), MergeError>,
-    ) -> Result<(), MergeError> {
+    fn parquet(&mut self, file: std::fs::File, each: &mut Taker<'_>) -> Result<(), MergeError> {
         let provenance = self.expect.provenance_of(self.part).to_string();
         let mut row = 0;
         let mut failed = None;
@@ -601,7 +595,7 @@ fn for_each_record(
     part_path: &Path,
     part: &Part,
     expect: &BatchExpect,
-    each: &mut dyn FnMut(&RollRecord, Option<&[u8]>) -> Result<(), MergeError>,
+    each: &mut Taker<'_>,
 ) -> Result<(), MergeError> {
     let path = part
         .records_path(part_path)
