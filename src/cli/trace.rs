@@ -54,7 +54,7 @@ fn trace(args: &TraceArgs, mut sim: Simulation, out: impl Write) -> std::io::Res
             Some(n) => step >= n,
             None => ended,
         };
-        if step % args.every == 0 || last {
+        if step.is_multiple_of(args.every) || last {
             out.write(&sim)?;
         }
         if last || (args.steps.is_none() && sim.outcome().is_some()) {
