@@ -676,17 +676,8 @@ impl<L: Lane> Kernel<L> {
         );
         let compliance = c.tangential_compliance;
         let radius = c.corner_radius;
-        let z0 = self.state.position.z;
         let zero = L::zero();
-        let mut touching = [L::mask_from_bits(0); 8];
-        let mut any = L::mask_from_bits(0);
-        for (k, t) in touching.iter_mut().enumerate() {
-            let z = self.state.corner_offsets[k].z + z0;
-            let z = if ROUNDED { z - radius } else { z };
-            *t = z.lt(zero);
-            self.state.corner_depths[k] = (-z).or_zero(*t);
-            any = any | *t;
-        }
+        let (touching, any) = self.press_corners::<ROUNDED>(radius);
         if L::bits(any) == 0 && previous == 0 {
             return;
         }
@@ -734,14 +725,10 @@ impl<L: Lane> Kernel<L> {
         }
     }
 
-    /// [`Kernel::update_forces`] for sharp (`ROUNDED` false) or rounded lanes.
+    /// Which corners (or corner spheres, `ROUNDED`) are in the table, per lane, and their
+    /// depths into it, cm: the same for both contact laws. Returns the masks and their union.
     #[inline(always)]
-    fn update_forces_at<const ROUNDED: bool>(&mut self) {
-        // Copied out one by one, as in `step`.
-        let c = &self.c;
-        let (stiffness, damping, friction, whole_die_norm) =
-            (c.stiffness, c.damping, c.friction, c.whole_die_norm);
-        let radius = c.corner_radius;
+    fn press_corners<const ROUNDED: bool>(&mut self, radius: L) -> ([L::Mask; 8], L::Mask) {
         let z0 = self.state.position.z;
         let zero = L::zero();
         let mut touching = [L::mask_from_bits(0); 8];
@@ -753,6 +740,19 @@ impl<L: Lane> Kernel<L> {
             self.state.corner_depths[k] = (-z).or_zero(*t);
             any = any | *t;
         }
+        (touching, any)
+    }
+
+    /// [`Kernel::update_forces`] for sharp (`ROUNDED` false) or rounded lanes.
+    #[inline(always)]
+    fn update_forces_at<const ROUNDED: bool>(&mut self) {
+        // Copied out one by one, as in `step`.
+        let c = &self.c;
+        let (stiffness, damping, friction, whole_die_norm) =
+            (c.stiffness, c.damping, c.friction, c.whole_die_norm);
+        let radius = c.corner_radius;
+        let zero = L::zero();
+        let (touching, any) = self.press_corners::<ROUNDED>(radius);
         // Lanes that neither touch now nor did before keep their +0.0 forces; a lane that
         // just left the ground gets +0.0 from the masks below.
         if L::bits(any | self.in_contact) == 0 {
