@@ -23,18 +23,15 @@ pub(crate) fn run(args: &TraceArgs) -> Result<(), CliError> {
     let mut sim = Simulation::new(&preset.params(), &preset.initial)?;
     let mut out = TraceWriter::new(std::io::stdout().lock())?;
     out.write(&sim)?;
-    loop {
-        let ended = sim.advance().is_some();
-        let step = sim.state().step;
-        let last = match args.steps {
-            Some(n) => step >= n,
-            None => ended,
-        };
-        if step % args.every == 0 || last {
+    // Exactly N steps (`--steps 0`: the start alone), or until the roll ends.
+    let done = |sim: &Simulation| match args.steps {
+        Some(n) => sim.state().step >= n,
+        None => sim.outcome().is_some(),
+    };
+    while !done(&sim) {
+        sim.advance();
+        if sim.state().step % args.every == 0 || done(&sim) {
             out.write(&sim)?;
-        }
-        if last || (args.steps.is_none() && sim.outcome().is_some()) {
-            break;
         }
     }
     out.flush()?;
