@@ -16,6 +16,7 @@ mod layers;
 mod loaded_dice;
 mod merge_checks;
 mod merge_fuzz;
+mod one_validation;
 mod outputs;
 mod package;
 mod presets;

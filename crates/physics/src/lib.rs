@@ -29,7 +29,7 @@ pub use body::{PIP_LAYOUT, contact_sphere_centres, face_frame, pip_centres};
 pub use body::{face_most_nearly_up, opposite_face};
 pub use energy::Energy;
 pub use initial::{InitialCondition, RandomRanges};
-pub use model::{resting_depth_on_face, why_it_cannot_settle};
+pub use model::{check_setup, resting_depth_on_face, why_it_cannot_settle};
 pub use params::{Die, FrictionLaw, Ground, Integrator, Limits, ParamError, Params, StopEnergy, World};
 pub use shape::{MassProperties, mass_properties};
 pub use sim::{ContactForce, EnergyLedger, Outcome, STEPS_BETWEEN_STOP_CHECKS, Simulation, State, Status};

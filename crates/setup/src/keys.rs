@@ -5,7 +5,7 @@
 //! is checked exactly as a preset is.
 
 use crate::registry::{self, Scan, Spec};
-use dicesim_physics::{InitialCondition, Limits, ParamError, Params};
+use dicesim_physics::{InitialCondition, Limits, ParamError, Params, check_setup};
 
 /// A scan key that names no numeric setup value.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -117,8 +117,9 @@ impl ScanKey {
         (self.scan().set)(params, initial, self.component, value)
     }
 
-    /// Checks `value` against its range and the start it gives against the table (no corner
-    /// inside it), then sets it; on error nothing changes.
+    /// Checks `value` against its range, then the setup it gives as `roll` checks its own
+    /// ([`check_setup`]: a body that can exist, a start clear of the table), then sets it; on
+    /// error nothing changes.
     pub fn set_checked(
         &self,
         params: &mut Params,
@@ -128,7 +129,7 @@ impl ScanKey {
         self.check(value)?;
         let (mut p, mut ic) = (*params, *initial);
         self.set(&mut p, &mut ic, value);
-        ic.check_clear_of_table(&p)?;
+        check_setup(&p, &ic)?;
         (*params, *initial) = (p, ic);
         Ok(())
     }
