@@ -10,6 +10,7 @@ mod commands;
 mod common;
 mod compare;
 mod docs;
+mod evidence;
 mod import_cycles;
 mod inputs;
 mod layers;
