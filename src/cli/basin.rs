@@ -4,7 +4,6 @@ use super::args::{RunArgs, SetupArgs, Worded, Wording};
 use super::error::CliError;
 use super::running::{self, cancel_on_ctrl_c};
 use clap::{Args, ValueEnum};
-use dicesim_experiment::basin::check_nodes_clear_of_table;
 use dicesim_experiment::hashing::Written;
 use dicesim_experiment::shard::{Part, Sweep};
 use dicesim_experiment::{Axis, BasinMap, Layer, MapSpec, Method, run_map_rows};
@@ -79,8 +78,9 @@ fn parse_resolution(s: &str) -> Result<(usize, usize), String> {
     Ok((w, h))
 }
 
-/// Everything about a map's sweep that can be checked before any work: its size, setup,
-/// axes and every node's start. `slurm` runs the same checks before it writes a script.
+/// Everything about a map's sweep that can be checked before any work: its size, setup and
+/// axes. Every node's setup is checked by the map itself before its first roll (the same
+/// check `roll` makes, `check_nodes`); `slurm` runs that too before it writes a script.
 ///
 /// `sharded`: the map is rolled in shards (`--shard`, or `slurm`'s array tasks).
 pub(crate) fn check_sweep(args: &BasinArgs, sharded: bool) -> Result<(Preset, Params, Axis, Axis), CliError> {
@@ -104,7 +104,6 @@ pub(crate) fn check_sweep(args: &BasinArgs, sharded: bool) -> Result<(Preset, Pa
     let params = preset.params();
     let x = Axis::parse(&args.x, w).map_err(CliError::experiment("--x "))?;
     let y = Axis::parse(&args.y, h).map_err(CliError::experiment("--y "))?;
-    check_nodes_clear_of_table(&params, &preset.initial, &x, &y).map_err(CliError::Usage)?;
     Ok((preset, params, x, y))
 }
 

@@ -12,7 +12,7 @@ use dicesim_experiment::shard::Shard;
 use dicesim_experiment::tables;
 use dicesim_physics::InitialCondition;
 use dicesim_setup::preset::Preset;
-use dicesim_setup::random::RandomDraws;
+use dicesim_setup::random::check_drawn_setup;
 use serde_json::json;
 use std::io::Write;
 use std::path::PathBuf;
@@ -162,9 +162,9 @@ pub(crate) fn check_sweep(args: &BatchArgs, shard: Option<Shard>) -> Result<Chec
     }
     let preset = args.setup.resolve()?;
     let params = preset.params();
-    params.validate()?;
-    if args.ics.is_none() {
-        preset.random.check_clear_of_table(&params, &preset.initial)?;
+    match &args.ics {
+        None => check_drawn_setup(&params, &preset.random, &preset.initial)?,
+        Some(_) => params.validate()?,
     }
     let given = match &args.ics {
         Some(path) => {
@@ -231,7 +231,13 @@ fn run_versus(args: &BatchArgs, options: &RunOptions) -> Result<(), CliError> {
         )));
     }
     let params_b = twin.params();
-    params_b.validate()?;
+    // B's body and its draws get A's check: a --versus body that cannot exist, or whose
+    // drawn starts put a corner into the table, is refused in the words roll would use.
+    if given.is_none() {
+        check_drawn_setup(&params_b, &twin.random, &twin.initial)?;
+    } else {
+        params_b.validate()?;
+    }
     let output = args.run.output(&["csv", "json"])?;
     let seed = args.seed.unwrap_or(preset.random.seed);
     let sweep =

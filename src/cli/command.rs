@@ -4,6 +4,7 @@ use super::error::CliError;
 use super::slurm::SweepCommand;
 use super::{animate, basin, batch, bench, compare, man, merge, predict, presets, roll, slurm, trace, tui};
 use clap::{CommandFactory, Parser, Subcommand};
+use std::io::Write as _;
 
 /// A die rolling on a table as a rigid body (Chin & Li, 2019).
 #[derive(Debug, Parser)]
@@ -137,7 +138,17 @@ pub fn main() -> Result<(), CliError> {
     } else {
         clap::ColorChoice::Auto
     };
-    let matches = Cli::command().color(color).get_matches();
+    let matches = match Cli::command().color(color).try_get_matches() {
+        Ok(matches) => matches,
+        // --help and --version go to standard output: a write that fails there (a full disk,
+        // /dev/full) is a failure like any other output's, not a success.
+        Err(e) if !e.use_stderr() => {
+            e.print()?;
+            std::io::stdout().flush()?;
+            return Ok(());
+        }
+        Err(e) => e.exit(),
+    };
     let cli = <Cli as clap::FromArgMatches>::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
     let no_color = color_off(cli.no_color);
     match cli.command {
@@ -157,8 +168,13 @@ pub fn main() -> Result<(), CliError> {
         }
         Some(CliCommand::Tui(args)) => tui::run(&args, no_color),
         Some(CliCommand::Completions { shell }) => {
+            // clap_complete panics on a failed write; the script is written whole here, and a
+            // failure (a full disk) is reported like any output's.
+            let mut script = Vec::new();
+            clap_complete::generate(shell, &mut Cli::command(), "dicesim", &mut script);
             let mut out = std::io::stdout().lock();
-            clap_complete::generate(shell, &mut Cli::command(), "dicesim", &mut out);
+            out.write_all(&script)?;
+            out.flush()?;
             Ok(())
         }
         Some(CliCommand::Man(args)) => man::run(&args, Cli::command()),

@@ -16,7 +16,7 @@ use dicesim_figures::figure::setup_value;
 use dicesim_figures::plot::{Record, random_starts};
 use dicesim_setup::output::Output;
 use dicesim_setup::preset::Preset;
-use dicesim_setup::random::RandomDraws;
+use dicesim_setup::random::check_drawn_setup;
 
 /// The most rolls one comparison takes (throws × dice × candidates).
 const MAX_ROLLS: u64 = 1_000_000_000;
@@ -98,9 +98,8 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     let options = args.run.options()?;
     let preset = args.setup.resolve()?;
     let params = preset.params();
-    params.validate()?;
-    // The same up-front start check as `batch`: no drawn throw may start inside the table.
-    preset.random.check_clear_of_table(&params, &preset.initial)?;
+    // The same up-front check as `batch`: the body, and no drawn throw inside the table.
+    check_drawn_setup(&params, &preset.random, &preset.initial)?;
     let candidates = args.candidates.unwrap_or(DEFAULT_CANDIDATES);
     let Some(dataset) = args.dataset.dataset() else {
         return run_budden(args, &options, &preset, candidates);

@@ -98,6 +98,7 @@ pub enum ErrorKind {
 impl CliError {
     pub fn kind(&self) -> ErrorKind {
         match self {
+            CliError::Preset(PresetError::Write { .. }) => ErrorKind::Failure,
             CliError::Preset(_)
             | CliError::Exists(_)
             | CliError::Param(_)

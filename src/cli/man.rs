@@ -76,7 +76,10 @@ pub(crate) fn run(args: &ManArgs, program: Command) -> Result<(), CliError> {
                 .ok_or_else(|| no_such_command(command, name))?;
         }
         let page = render(command.clone(), &source)?;
-        std::io::stdout().lock().write_all(&page.roff)?;
+        // A failed write (a full disk, /dev/full) is a failure, not a success: flushed here.
+        let mut out = std::io::stdout().lock();
+        out.write_all(&page.roff)?;
+        out.flush()?;
         return Ok(());
     };
     let mut pages = Vec::new();
@@ -98,6 +101,7 @@ pub(crate) fn run(args: &ManArgs, program: Command) -> Result<(), CliError> {
         pages.len(),
         dir.display()
     )?;
+    std::io::stdout().flush()?;
     Ok(())
 }
 

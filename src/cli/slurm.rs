@@ -190,7 +190,9 @@ fn check_command(
             batch::check_sweep(b, Some(first)).map_err(in_task)?;
         }
         SweepCommand::Basin(b) => {
-            basin::check_sweep(b, true).map_err(in_task)?;
+            let (preset, params, x, y) = basin::check_sweep(b, true).map_err(in_task)?;
+            dicesim_experiment::basin::check_nodes(&params, &preset.initial, &x, &y)
+                .map_err(|e| in_task(CliError::experiment("")(e)))?;
         }
         SweepCommand::Other => unreachable!("the kind was matched above"),
     }

@@ -47,18 +47,15 @@ pub(crate) fn run(args: &TraceArgs) -> Result<(), CliError> {
 fn trace(args: &TraceArgs, mut sim: Simulation, out: impl Write) -> std::io::Result<()> {
     let mut out = TraceWriter::new(out, sim.params().integrator.dt)?;
     out.write(&sim)?;
-    loop {
-        let ended = sim.advance().is_some();
-        let step = sim.state().step;
-        let last = match args.steps {
-            Some(n) => step >= n,
-            None => ended,
-        };
-        if step.is_multiple_of(args.every) || last {
+    // Exactly N steps (`--steps 0`: the start alone), or until the roll ends.
+    let done = |sim: &Simulation| match args.steps {
+        Some(n) => sim.state().step >= n,
+        None => sim.outcome().is_some(),
+    };
+    while !done(&sim) {
+        sim.advance();
+        if sim.state().step.is_multiple_of(args.every) || done(&sim) {
             out.write(&sim)?;
-        }
-        if last || (args.steps.is_none() && sim.outcome().is_some()) {
-            break;
         }
     }
     out.flush()

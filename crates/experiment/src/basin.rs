@@ -18,9 +18,9 @@ use crate::engine::roll_setups;
 use crate::hashing::{Hashing, Written};
 use crate::record::RollRecord;
 use crate::stats::FaceTally;
-use dicesim_physics::{InitialCondition, Outcome, Params, Status};
+use dicesim_physics::{InitialCondition, Outcome, Params, Status, check_setup};
 use dicesim_setup::keys::ScanKey;
-use dicesim_setup::number::Real;
+use dicesim_setup::number::{Real, fmt_exact};
 use dicesim_setup::output::{Output, OutputError};
 use rayon::prelude::*;
 use std::io::Write;
@@ -75,8 +75,10 @@ impl Axis {
     /// Checks both ends against the key's allowed range and that `min < max` (or `min <= max`
     /// for a single node).
     pub fn new(key: ScanKey, min: f64, max: f64, cells: usize) -> Result<Axis, Error> {
+        // The ends as typed (1e-200, not a 202-character decimal).
+        let (low, high) = (fmt_exact(min), fmt_exact(max));
         let bad = |message: String| Error::Axis {
-            spec: format!("{}:{min}:{max}", key.key),
+            spec: format!("{}:{low}:{high}", key.key),
             message,
         };
         if cells == 0 {
@@ -85,7 +87,7 @@ impl Axis {
         key.check(min)?;
         key.check(max)?;
         if min > max || (min == max && cells > 1) {
-            return Err(bad(format!("MIN ({min}) must be below MAX ({max})")));
+            return Err(bad(format!("MIN ({low}) must be below MAX ({high})")));
         }
         Ok(Axis { key, min, max, cells })
     }
@@ -311,27 +313,24 @@ impl BasinMap {
     }
 }
 
-/// The check `roll` makes of its one start, made of every node of a map with axes `x` and
-/// `y` before any is rolled: the first node whose start puts a corner into the table is
-/// the error, with its axis values.
-pub fn check_nodes_clear_of_table(
-    params: &Params,
-    base: &InitialCondition,
-    x: &Axis,
-    y: &Axis,
-) -> Result<(), String> {
+/// The check `roll` makes of its setup ([`check_setup`]), made of every node of a map with
+/// axes `x` and `y` before any is rolled: the first node refused (a body that cannot exist,
+/// a start inside the table) is the error, with its axis values and the setup's own words.
+/// A map is refused whole rather than drawn with cells that are no outcome.
+pub fn check_nodes(params: &Params, base: &InitialCondition, x: &Axis, y: &Axis) -> Result<(), Error> {
     for j in 0..y.cells {
         for i in 0..x.cells {
             let (p, ic) = node_setup(params, base, x, y, i, j);
-            if let Err(e) = ic.check_clear_of_table(&p) {
-                return Err(format!(
-                    "the node {} = {}, {} = {}: {e}",
+            check_setup(&p, &ic).map_err(|error| Error::Node {
+                error: Box::new(error),
+                node: format!(
+                    "{} = {}, {} = {}",
                     x.key.key,
-                    x.value(i),
+                    fmt_exact(x.value(i)),
                     y.key.key,
-                    y.value(j)
-                ));
-            }
+                    fmt_exact(y.value(j))
+                ),
+            })?;
         }
     }
     Ok(())
@@ -403,6 +402,7 @@ pub fn run_map_rows(
 ) -> Result<BasinMap, Error> {
     params.validate()?;
     base.validate()?;
+    check_nodes(params, base, &spec.x, &spec.y)?;
     if rows.end > spec.y.cells || (spec.method == Method::Adaptive && rows != (0..spec.y.cells)) {
         return Err(Error::Shard(format!(
             "rows {}..{} of a {}-row {} map: only a uniform map splits into rows",
@@ -659,17 +659,69 @@ mod tests {
         let (params, base) = (Params::default(), InitialCondition::default());
         let y = axis("ground.friction:0.2:0.8", 2);
         assert_eq!(
-            check_nodes_clear_of_table(&params, &base, &axis("initial.height:5:15", 3), &y),
+            check_nodes(&params, &base, &axis("initial.height:5:15", 3), &y),
             Ok(())
         );
         // A cube of half size 1 cm level on the table needs its centre 1 cm up: the nodes of
         // the first row, at 0.5 cm, start with corners inside, and the first of them is named.
         let x = axis("ground.friction:0.2:0.8", 2);
-        let e = check_nodes_clear_of_table(&params, &base, &x, &axis("initial.height:0.5:5", 2)).unwrap_err();
+        let e = check_nodes(&params, &base, &x, &axis("initial.height:0.5:5", 2))
+            .unwrap_err()
+            .to_string();
         assert!(
             e.starts_with("the node ground.friction = 0.2, initial.height = 0.5: "),
             "{e}"
         );
+    }
+
+    #[test]
+    fn a_node_whose_body_cannot_exist_is_refused_in_the_words_roll_uses() {
+        // The red team's maps: corner radii up to 2 on a half size 1, pips deeper than their
+        // radius, and a half size below the corner radius; each node that is no body is named
+        // with roll's own refusal, before anything is rolled.
+        let base = InitialCondition::default();
+        let cases = [
+            ("die.corner_radius:0:2", Params::default()),
+            ("die.pip_depth:0:0.3", {
+                let mut p = Params::default();
+                p.die.pip_diameter = 0.3;
+                p
+            }),
+            ("die.half_sizes.x:0.1:1", {
+                let mut p = Params::default();
+                p.die.corner_radius = 0.5;
+                p
+            }),
+        ];
+        for (x, params) in cases {
+            let (x, y) = (axis(x, 5), axis("ground.friction:0.2:0.8", 2));
+            let e = check_nodes(&params, &base, &x, &y).unwrap_err();
+            let Error::Node { node, error } = &e else {
+                panic!("{e}")
+            };
+            let (i, j) = (0..x.cells)
+                .flat_map(|i| [(i, 0)])
+                .find(|&(i, j)| {
+                    let (p, ic) = node_setup(&params, &base, &x, &y, i, j);
+                    check_setup(&p, &ic).is_err()
+                })
+                .unwrap();
+            let (p, ic) = node_setup(&params, &base, &x, &y, i, j);
+            assert_eq!(**error, check_setup(&p, &ic).unwrap_err(), "{e}");
+            assert!(
+                node.starts_with(&format!("{} = {}", x.key.key, x.value(i))),
+                "{e}"
+            );
+            let spec = MapSpec {
+                x,
+                y,
+                method: Method::Uniform,
+            };
+            let ran = run_map(&params, &base, &spec, 1, &AtomicBool::new(false), &mut |_| {
+                panic!("a map of a body that cannot exist was rolled")
+            });
+            assert_eq!(ran.unwrap_err(), e);
+        }
     }
 
     #[test]

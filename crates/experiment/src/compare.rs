@@ -22,7 +22,7 @@ use crate::stats::wilson_interval;
 use dicesim_physics::{InitialCondition, Params};
 use dicesim_setup::keys::ScanKey;
 use dicesim_setup::number::{Real, fmt_exact};
-use dicesim_setup::random::RandomRanges;
+use dicesim_setup::random::{RandomRanges, check_drawn_setup};
 use dicesim_setup::registry::Role;
 use serde::Serialize;
 use std::sync::atomic::AtomicBool;
@@ -166,7 +166,9 @@ impl FitSpec {
         if self.low >= self.high {
             return refuse(format!(
                 "`{}`: the range's low end {} is not below its high end {}",
-                self.key.key, self.low, self.high
+                self.key.key,
+                fmt_exact(self.low),
+                fmt_exact(self.high)
             ));
         }
         if self.candidates < MIN_CANDIDATES {
@@ -502,9 +504,11 @@ pub fn run_comparison(
         .map(|value| {
             let (mut p, mut ic) = (*params, *base);
             if let (Some(fit), Some(v)) = (&spec.fit, value) {
-                fit.key.set_checked(&mut p, &mut ic, v)?;
+                fit.key.check(v)?;
+                fit.key.set(&mut p, &mut ic, v);
             }
-            p.validate()?;
+            // The check every drawn setup gets, so a candidate is refused in roll's words.
+            check_drawn_setup(&p, ranges, &ic)?;
             Ok((value, p, ic))
         })
         .collect::<Result<Vec<_>, Error>>()?;

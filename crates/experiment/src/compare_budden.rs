@@ -22,8 +22,7 @@ use crate::real_data::{BuddenRow, budden};
 use dicesim_physics::{Die, InitialCondition, Params};
 use dicesim_setup::keys::ScanKey;
 use dicesim_setup::number::Real;
-use dicesim_setup::random::RandomDraws;
-use dicesim_setup::random::RandomRanges;
+use dicesim_setup::random::{RandomRanges, check_drawn_setup};
 use serde::Serialize;
 use std::sync::atomic::AtomicBool;
 
@@ -330,13 +329,9 @@ fn setup(
             fit.key.key
         ))
     };
-    fit.key
-        .set_checked(&mut p, &mut ic, value)
-        .map_err(|e| context(e.into()))?;
-    p.validate().map_err(|e| context(e.into()))?;
-    ranges
-        .check_clear_of_table(&p, &ic)
-        .map_err(|e| context(e.into()))?;
+    fit.key.check(value).map_err(|e| context(e.into()))?;
+    fit.key.set(&mut p, &mut ic, value);
+    check_drawn_setup(&p, ranges, &ic).map_err(|e| context(e.into()))?;
     Ok((p, ic))
 }
 

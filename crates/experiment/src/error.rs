@@ -24,6 +24,10 @@ pub enum Error {
     /// A malformed map axis (`KEY:MIN:MAX`).
     #[error("`{spec}`: {message}")]
     Axis { spec: String, message: String },
+    /// A node of a map whose setup is refused (a body that cannot exist, a start inside the
+    /// table): the node's values, then the setup's own refusal.
+    #[error("the node {node}: {error}")]
+    Node { node: String, error: Box<ParamError> },
     /// A malformed row of an initial-condition file (1-based line).
     #[error("line {line}: {message}")]
     Ics { line: usize, message: String },

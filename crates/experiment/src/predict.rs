@@ -15,8 +15,7 @@ use dicesim_physics::{InitialCondition, Params};
 use dicesim_setup::chaos::{EPSILON, perturbed};
 use dicesim_setup::keys::ScanKey;
 use dicesim_setup::number::Real;
-use dicesim_setup::random::RandomDraws;
-use dicesim_setup::random::RandomRanges;
+use dicesim_setup::random::{RandomDraws, RandomRanges, check_drawn_setup};
 use dicesim_setup::registry::{HEIGHT, Role};
 use serde::Serialize;
 use std::sync::atomic::AtomicBool;
@@ -216,9 +215,7 @@ pub fn run_prediction(
     // Every curve's setup is checked before the first is rolled: no start of any of them
     // may put a corner into the table.
     for (params, ranges, base) in &setups {
-        params.validate()?;
-        ranges.validate()?;
-        ranges.check_clear_of_table(params, base)?;
+        check_drawn_setup(params, ranges, base)?;
     }
     let mut curves = Vec::new();
     let mut cancelled = false;

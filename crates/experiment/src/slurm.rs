@@ -175,18 +175,43 @@ impl JobArray {
                 parts.display()
             ));
         }
-        for d in [&self.dir, &parts, &logs] {
-            std::fs::create_dir_all(d).map_err(|e| SlurmError::Failed(format!("{}: {e}", d.display())))?;
-        }
-        let scripts = self.scripts();
+        // What this call makes, so that a failure (a full disk) takes it away again: a sweep
+        // folder left with empty parts/ and logs/ would look like a sweep set up.
+        let mut made: Vec<&Path> = Vec::new();
         let paths = [self.dir.join("shards.sbatch"), self.dir.join("merge.sbatch")];
-        let [shards_out, merge_out] = paths
-            .each_ref()
-            .map(|path| Output::check(path, &["sbatch"], force));
-        let (shards_out, merge_out) = (shards_out?, merge_out?);
-        shards_out.write_bytes(scripts.shards.as_bytes())?;
-        merge_out.write_bytes(scripts.merge.as_bytes())?;
-        Ok((scripts, paths))
+        let written = (|| {
+            for d in [&self.dir, &parts, &logs] {
+                if !d.exists() {
+                    std::fs::create_dir_all(d)
+                        .map_err(|e| SlurmError::Failed(format!("{}: {e}", d.display())))?;
+                    made.push(d);
+                }
+            }
+            let scripts = self.scripts();
+            let [shards_out, merge_out] = paths
+                .each_ref()
+                .map(|path| Output::check(path, &["sbatch"], force));
+            let (shards_out, merge_out) = (shards_out?, merge_out?);
+            let new_shards = !paths[0].exists();
+            shards_out.write_bytes(scripts.shards.as_bytes())?;
+            if let Err(e) = merge_out.write_bytes(scripts.merge.as_bytes()) {
+                if new_shards {
+                    let _ = std::fs::remove_file(&paths[0]);
+                }
+                return Err(e.into());
+            }
+            Ok(scripts)
+        })();
+        match written {
+            Ok(scripts) => Ok((scripts, paths)),
+            Err(e) => {
+                // Innermost first; a folder something else has filled meanwhile stays.
+                for d in made.iter().rev() {
+                    let _ = std::fs::remove_dir(d);
+                }
+                Err(e)
+            }
+        }
     }
 
     /// The two scripts' text.

@@ -35,7 +35,7 @@ pub use body::{face_most_nearly_up, opposite_face};
 pub use energy::Energy;
 pub use impact::{Impacts, impact_starts};
 pub use initial::{InitialCondition, RandomRanges};
-pub use model::{Placement, resting_depth_on_face, why_it_cannot_settle};
+pub use model::{Placement, check_setup, resting_depth_on_face, why_it_cannot_settle};
 pub use params::{
     ContactLaw, Die, FrictionLaw, Ground, GroundKey, Integrator, Limits, ParamError, Params, StopEnergy,
     World,

@@ -367,6 +367,17 @@ impl Placement {
     }
 }
 
+/// The one check of a setup rolled from a given start, whatever builds it (a preset, `--set`,
+/// a map's cell, a fit's candidate, the explorer's editors): every parameter in its range and
+/// the body they describe able to exist, then the start in its ranges and clear of the table.
+/// The first failure is the answer, so every path that builds the same setup refuses it with
+/// the same words.
+pub fn check_setup(params: &Params, initial: &InitialCondition) -> Result<(), ParamError> {
+    params.validate()?;
+    initial.validate()?;
+    initial.check_clear_of_table(params)
+}
+
 /// cm, how deep the body sinks when it rests on a face, with as many corners touching as
 /// the depth implies (4, or all 8 on a table too soft to carry it); for a body other than
 /// the paper's cube, the deepest over its faces.

@@ -10,7 +10,7 @@ use super::contact;
 use super::energy::Energy;
 use super::initial::InitialCondition;
 use super::kernel::{Constants, Kernel, NoHook, StepHook, contact_point};
-use super::model::Body;
+use super::model::{Body, check_setup};
 use super::params::{Ground, ParamError, Params, StopEnergy};
 use super::stopping::StopRule;
 use nalgebra::Vector3;
@@ -179,9 +179,7 @@ impl Simulation {
     /// Validates the parameters and the initial condition (no corner may start inside the
     /// table), then places the die.
     pub fn new(params: &Params, initial: &InitialCondition) -> Result<Self, ParamError> {
-        params.validate()?;
-        initial.validate()?;
-        initial.check_clear_of_table(params)?;
+        check_setup(params, initial)?;
         Ok(Self::new_unchecked(params, initial))
     }
 

@@ -155,13 +155,25 @@ impl Stability {
         StabilityCheck::new(p).predict(initial)
     }
 
-    /// The reading to report: the first past its limit in the order contact mode, corner
-    /// travel, damping, friction chatter, impact depth (a cause before its symptoms: a corner
-    /// moving too far per step also strikes too fast for the damping and presses deep);
-    /// when none is past, the one with the largest `value / allowed`.
+    /// The reading to report: the first past its limit in the order corner travel, contact
+    /// mode, damping, friction chatter, impact depth (a cause before its symptoms: a corner
+    /// moving too far per step also strikes fast, which stiffens the contact mode, is too
+    /// fast for the damping and presses deep); when none is past, the one with the largest
+    /// `value / allowed`.
     pub fn verdict(&self) -> Reading {
-        if let Some(r) = self.readings.iter().find(|r| r.exceeded()) {
-            return *r;
+        let causal = [
+            Limit::CornerTravel,
+            Limit::ContactMode,
+            Limit::Damping,
+            Limit::FrictionChatter,
+            Limit::ImpactDepth,
+        ];
+        if let Some(r) = causal
+            .iter()
+            .map(|&limit| self.readings[limit as usize])
+            .find(Reading::exceeded)
+        {
+            return r;
         }
         let mut closest = self.readings[0];
         for r in &self.readings[1..] {

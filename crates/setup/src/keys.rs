@@ -5,7 +5,7 @@
 //! is checked exactly as a preset is.
 
 use crate::registry::{self, Scan, Spec};
-use dicesim_physics::{InitialCondition, Limits, ParamError, Params};
+use dicesim_physics::{InitialCondition, Limits, ParamError, Params, check_setup};
 
 /// A scan key that names no numeric setup value.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -152,10 +152,9 @@ impl ScanKey {
         (self.scan().set)(params, initial, self.component, value)
     }
 
-    /// Checks `value` against its range and the start it gives against the table (no corner
-    /// inside it), then sets it; on error nothing changes. What ties it to other values (a
-    /// key the contact law does not read, a corner radius against the half sizes) is
-    /// [`Params::validate`]'s to refuse.
+    /// Checks `value` against its range, then the setup it gives as `roll` checks its own
+    /// ([`check_setup`]: a body that can exist, a key the contact law reads, a start clear of
+    /// the table), then sets it; on error nothing changes.
     pub fn set_checked(
         &self,
         params: &mut Params,
@@ -165,7 +164,7 @@ impl ScanKey {
         self.check(value)?;
         let (mut p, mut ic) = (*params, *initial);
         self.set(&mut p, &mut ic, value);
-        ic.check_clear_of_table(&p)?;
+        check_setup(&p, &ic)?;
         (*params, *initial) = (p, ic);
         Ok(())
     }
@@ -192,23 +191,21 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_key_the_contact_law_does_not_read_is_refused_once_set() {
+    fn a_key_the_contact_law_does_not_read_is_refused_and_changes_nothing() {
         let (mut p, mut ic) = (Params::default(), InitialCondition::default());
         let tilt = ScanKey::named("ground.tilt").unwrap();
-        tilt.set_checked(&mut p, &mut ic, 10.0).unwrap();
-        let e = p.validate().unwrap_err();
+        let e = tilt.set_checked(&mut p, &mut ic, 10.0).unwrap_err();
         assert_eq!(e.key, "ground.tilt");
         assert!(e.to_string().contains("its table is level"), "{e}");
+        assert_eq!(p.ground.tilt, 0.0, "nothing changed");
         p.ground.contact = dicesim_physics::ContactLaw::SpringFriction;
-        p.validate().unwrap();
+        tilt.set_checked(&mut p, &mut ic, 10.0).unwrap();
+        assert_eq!(p.ground.tilt, 10.0);
         let damping = ScanKey::named("ground.damping").unwrap();
-        damping.set_checked(&mut p, &mut ic, 0.01).unwrap();
-        assert!(
-            p.validate()
-                .unwrap_err()
-                .to_string()
-                .contains("its normal damping comes from")
-        );
+        let before = p.ground.damping;
+        let e = damping.set_checked(&mut p, &mut ic, 0.01).unwrap_err();
+        assert!(e.to_string().contains("its normal damping comes from"), "{e}");
+        assert_eq!(p.ground.damping, before, "nothing changed");
     }
 
     #[test]
@@ -276,9 +273,10 @@ mod tests {
         let spin = ScanKey::named("initial.angular_velocity.y").unwrap();
         assert_eq!(spin.words(), spin.spec.labels[1]);
         assert_eq!(spin.title(), format!("{} (rad/s)", spin.spec.labels[1]));
-        let height = ScanKey::named("random.height").unwrap();
-        assert!(height.spec.labels.is_empty(), "no parameter-list row");
-        assert_eq!(height.legend("2"), "height = 2 cm");
+        // A key with no parameter-list row is named by the last part of its key.
+        let max_time = ScanKey::named("integrator.max_time").unwrap();
+        assert!(max_time.spec.labels.is_empty(), "no parameter-list row");
+        assert_eq!(max_time.legend("2"), "max_time = 2 s");
         assert_eq!(ScanKey::named("ground.friction").unwrap().title(), "friction μ");
     }
 

@@ -130,7 +130,8 @@ mod tests {
         assert_eq!(Real(-0.0).to_string(), "-0.0");
         assert_eq!(Real(0.1 + 0.2).to_string(), "0.30000000000000004");
         assert_eq!(Real(1e-7).to_string(), "1e-7");
-        assert_eq!(Real(1.5e21).to_string(), "1.5e21");
+        // The exponent signed, as Python's repr and JavaScript print it.
+        assert_eq!(Real(1.5e21).to_string(), "1.5e+21");
         assert_eq!(Real(f64::INFINITY).to_string(), "inf");
         for v in [15.0, 1e-300, -2.5e-7, 123456.789, f64::MAX, 5e-324, 1.0 / 3.0] {
             let text = Real(v).to_string();

@@ -633,16 +633,17 @@ mod tests {
 
     #[test]
     fn an_existing_file_is_refused_without_replace() {
+        // (A CSV's sidecar is refused the same way: a_csv_and_its_sidecar_… below.)
         let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("a.csv");
+        let path = dir.path().join("a.svg");
         std::fs::write(&path, "old").unwrap();
-        let e = Output::check(&path, &["csv"], false).unwrap_err();
+        let e = Output::check(&path, &["svg"], false).unwrap_err();
         assert_eq!(e, OutputError::Exists { path: path.clone() });
         assert!(
             e.to_string()
-                .ends_with("a.csv: the file exists (--force replaces it)")
+                .ends_with("a.svg: the file exists (--force replaces it)")
         );
-        Output::check(&path, &["csv"], true)
+        Output::check(&path, &["svg"], true)
             .unwrap()
             .write_bytes(b"new")
             .unwrap();
@@ -671,9 +672,9 @@ mod tests {
     #[test]
     fn a_failed_write_leaves_no_file_and_the_old_one_intact() {
         let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("a.csv");
+        let path = dir.path().join("a.json");
         std::fs::write(&path, "old").unwrap();
-        let out = Output::check(&path, &["csv"], true).unwrap();
+        let out = Output::check(&path, &["json"], true).unwrap();
         let e = out
             .write(|w| {
                 w.write_all(&[b'x'; 10_000])?;
@@ -795,8 +796,9 @@ mod tests {
         let mut a = csv.stage(Some(b"{}")).unwrap();
         let mut b = device.stage(None).unwrap();
         a.write_all(b"x\n").unwrap();
-        // A device is written in place: its error comes at the latest with the flush.
-        let _ = b.write_all(&[0; 1 << 16]);
+        // A device is written in place: a write that fits its buffer fails only with the
+        // flush, which commit does before it renames anything.
+        b.write_all(&[0; 100]).unwrap();
         let e = commit(vec![a, b]).unwrap_err();
         assert!(e.to_string().contains("No space left on device"), "{e}");
         let mut left: Vec<_> = std::fs::read_dir(dir.path())

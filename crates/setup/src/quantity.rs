@@ -169,7 +169,8 @@ fn corner_frequency(sim: &Simulation) -> f64 {
     (p.ground.stiffness / p.die.corner_mass).sqrt()
 }
 
-/// `ω_rock·Δt` against its limit: a property of the table and Δt, changed by a mid-roll edit.
+/// `ω_rock·Δt` against its limit: a property of the table and Δt, changed by a mid-roll edit
+/// (the prediction's stiffening by a striking corner, `√(1 + γ·u_z)`, is its first impact's).
 fn contact_mode_load(sim: &Simulation) -> f64 {
     sim.params().stability_number() / CONTACT_MODE_LIMIT
 }

@@ -7,6 +7,20 @@ use nalgebra::{Quaternion, Rotation3, UnitQuaternion};
 use rand::rngs::ChaCha8Rng;
 use rand::{RngExt, SeedableRng};
 
+/// The one check of a setup whose starts are drawn from `ranges` (a batch, a comparison and
+/// each of its fit's candidates, a prediction's curve, `--versus`'s setup B): every parameter
+/// in its range and the body able to exist (what `roll` checks first, in the same words),
+/// then the ranges, and no draw starting inside the table.
+pub fn check_drawn_setup(
+    params: &Params,
+    ranges: &RandomRanges,
+    base: &InitialCondition,
+) -> Result<(), ParamError> {
+    params.validate()?;
+    ranges.validate()?;
+    ranges.check_clear_of_table(params, base)
+}
+
 /// What [`RandomRanges`] needs beyond the physics crate, which defines it: the random
 /// stream a roll's start is drawn from, and the registry's name for the height range.
 pub trait RandomDraws {

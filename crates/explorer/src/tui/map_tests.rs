@@ -378,6 +378,66 @@ mod keys {
     }
 
     #[test]
+    fn the_range_editor_and_the_default_range_keep_to_bodies_that_can_exist() {
+        use crate::tui::keys::{Action, Input};
+        use crate::tui::state::map_view::{Side, default_range};
+        use crate::worker::MapAxis;
+        use dicesim_physics::{InitialCondition, Params, check_setup};
+        // A die rounded by 0.9 on its half size of 1: a coarse step of 0.1 either side put 1,
+        // a corner radius no body has, at the default range's top end.
+        let params = Params {
+            die: dicesim_physics::Die {
+                corner_radius: 0.9,
+                ..Params::DEFAULT.die
+            },
+            ..Params::DEFAULT
+        };
+        let initial = InitialCondition::default();
+        let radius = Param::named("die.corner_radius");
+        let (lo, hi) = default_range(radius, &params, &initial);
+        assert!(lo < 0.9 && 0.9 < hi && hi < 1.0, "{lo} {hi}");
+        for v in [lo, hi] {
+            let (mut p, mut ic) = (params, initial);
+            radius.scan_key().set(&mut p, &mut ic, v);
+            check_setup(&p, &ic).unwrap();
+        }
+        // "0 2" typed for the corner radius is refused with roll's words for the first node
+        // past the half size, and the axis stays as it was.
+        let screen = Rect::new(0, 0, 100, 30);
+        let mut m = MapView::new(&params, &initial);
+        m.x = MapAxis {
+            key: radius.scan_key(),
+            min: lo,
+            max: hi,
+            cells: 0,
+        };
+        m.edit_range(Side::X);
+        let typed = |m: &mut MapView, text: &str| {
+            let editor = &mut m.editing.as_mut().unwrap().editor;
+            editor.text.clear();
+            for c in text.chars() {
+                m.type_range(&Input::Type(c), screen, &params, &initial);
+            }
+            let confirm = Input::Act {
+                action: Action::Confirm,
+                coarse: false,
+            };
+            m.type_range(&confirm, screen, &params, &initial)
+        };
+        assert_eq!(typed(&mut m, "0 2"), None);
+        let e = m.editing.as_ref().and_then(|r| r.editor.error.clone()).unwrap();
+        assert!(e.starts_with("the node die.corner_radius = 1"), "{e}");
+        assert!(
+            e.contains("the corner radius must be below the smallest half size, 1 cm"),
+            "{e}"
+        );
+        assert_eq!((m.x.min, m.x.max), (lo, hi));
+        // A range of bodies that exist is taken.
+        let sent = typed(&mut m, "0 0.95").expect("a map is asked for");
+        assert_eq!((sent.x.min, sent.x.max), (0.0, 0.95));
+    }
+
+    #[test]
     fn enter_replays_the_exact_cell_in_the_die_view() {
         let mut s = map_scene(Theme::default());
         let map = map_of(&s.app).clone();

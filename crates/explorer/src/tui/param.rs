@@ -148,11 +148,22 @@ mod tests {
     fn every_value_round_trips_through_set_and_get() {
         for &p in all() {
             let mut params = Params::default();
+            // Drilled pips (the rounded die's, 3 mm wide and 1 mm deep), so that the pip depth
+            // has room to move: on the paper's die, without pips, it must stay 0.
+            params.die.pip_diameter = 0.3;
+            params.die.pip_depth = 0.1;
             // A key is set under the contact law that reads it.
             params.ground.contact = p.key.spec.law.unwrap_or(params.ground.contact);
             let mut initial = InitialCondition::default();
             let l = p.limits();
-            let v = l.min + 0.25 * (l.max - l.min);
+            // A step from the default: in range, and a body the others allow (a quarter of
+            // the corner radius's range is past the paper's half size).
+            let start = p.get(&params, &initial);
+            let mut v = p.nudged(start, 1, false);
+            if v == start {
+                v = p.nudged(start, -1, false);
+            }
+            assert_ne!(v, start, "{p:?} moves");
             p.set(&mut params, &mut initial, v).unwrap();
             assert_eq!(p.get(&params, &initial), v, "{p:?}");
             assert!(p.set(&mut params, &mut initial, l.max * 2.0 + 1.0).is_err());

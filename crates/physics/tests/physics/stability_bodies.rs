@@ -216,3 +216,24 @@ fn the_check_flags_a_spun_up_slab_and_a_die_that_sinks() {
         assert!(reading.exceeded(), "{reading}");
     }
 }
+
+/// A die spun at 10 000 rad/s moves a corner ω·a·√3·Δt ≈ 17.3 cm per step of 1 ms against a
+/// limit of a (1 cm), and strikes the table so fast (γ·u ≈ 87 at γ = 0.005 s/cm) that the
+/// damping stiffens the contact mode ~9.4 times past its limit too: the verdict names the
+/// cause, the spin, not the stiffening it brings.
+#[test]
+fn the_verdict_names_the_cause_before_its_symptoms() {
+    let start = InitialCondition {
+        angular_velocity: [10_000.0, 0.0, 0.0],
+        ..InitialCondition::default()
+    };
+    let stability = Stability::predict(&Params::DEFAULT, &start);
+    for limit in [Limit::CornerTravel, Limit::ContactMode] {
+        assert!(stability.readings[limit as usize].exceeded(), "{limit:?}");
+    }
+    assert_eq!(stability.verdict().limit, Limit::CornerTravel);
+    // The readings sit at their limits' places, which the verdict's order relies on.
+    for (i, r) in stability.readings.iter().enumerate() {
+        assert_eq!(r.limit as usize, i);
+    }
+}

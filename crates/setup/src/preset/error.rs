@@ -98,6 +98,10 @@ pub enum PresetError {
     /// Reading or writing a file failed.
     #[error("{}: {message}", path.display())]
     Io { path: PathBuf, message: String },
+    /// Writing a preset failed while it was written (a full disk, a lost device): a failure
+    /// while running, not bad input. Nothing was saved (the write is atomic).
+    #[error("{}: {message}; nothing was saved", path.display())]
+    Write { path: PathBuf, message: String },
 }
 
 impl PresetError {

@@ -188,7 +188,7 @@ impl Store {
                     name: preset.name.clone(),
                     path: path.clone(),
                 },
-                OutputError::Write { message, .. } => PresetError::Io {
+                OutputError::Write { message, .. } => PresetError::Write {
                     path: path.clone(),
                     message,
                 },

@@ -250,7 +250,7 @@ fn a_failed_write_leaves_the_old_state_and_no_temporary_file() {
         ..Preset::default()
     };
     let e = store.save(&p, true).unwrap_err();
-    assert!(matches!(e, PresetError::Io { .. }), "{e:?}");
+    assert!(matches!(e, PresetError::Write { .. }), "{e:?}");
     assert!(e.to_string().contains("taken.toml"), "{e}");
     assert_eq!(
         files_in(dir.path()),
@@ -275,7 +275,7 @@ fn a_failed_write_leaves_the_old_state_and_no_temporary_file() {
             let mut q = p.clone();
             q.ground.friction = 0.2;
             let e = store.save(&q, true).unwrap_err();
-            assert!(matches!(e, PresetError::Io { .. }), "{e:?}");
+            assert!(matches!(e, PresetError::Write { .. }), "{e:?}");
             assert_eq!(
                 std::fs::read_to_string(&old).unwrap(),
                 text,

@@ -50,7 +50,9 @@ fn expected_at_start() -> Vec<(&'static str, f64)> {
             "e_total_erg",
             0.5 * mass * speed * speed + 0.5 * inertia * spin2 + mass * g * (height - a),
         ),
-        ("contact_mode_load", rocking * dt / 1.4),
+        // Against docs/model.md's limit of 1.25; read now, before any corner strikes, so
+        // unstiffened by the damping.
+        ("contact_mode_load", rocking * dt / 1.25),
         ("corner_travel_load", fastest * dt / a),
         (
             "damping_load",

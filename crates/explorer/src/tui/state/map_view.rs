@@ -8,10 +8,10 @@ use crate::tui::format::fmt_num;
 use crate::tui::keys::Input;
 use crate::tui::param::{Param, all};
 use crate::worker::{MapAxis, MapExport, MapRequest, MapUpdate};
-use dicesim_experiment::basin::node_setup;
+use dicesim_experiment::basin::{check_nodes, node_setup};
 use dicesim_experiment::{Axis, BasinMap, Layer};
 use dicesim_figures::plot::SIZE;
-use dicesim_physics::{InitialCondition, Params};
+use dicesim_physics::{InitialCondition, Params, check_setup};
 use dicesim_setup::registry;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::widgets::Block;
@@ -327,10 +327,20 @@ impl MapView {
                     Side::X => Param::of(self.x.key),
                     Side::Y => Param::of(self.y.key),
                 };
-                match parse_range(param, &r.editor.text) {
-                    Ok((min, max)) => {
-                        let a = self.axis_mut(side);
-                        (a.min, a.max) = (min, max);
+                let (mut x, mut y) = (self.x, self.y);
+                let parsed = parse_range(param, &r.editor.text).and_then(|(min, max)| {
+                    let a = match side {
+                        Side::X => &mut x,
+                        Side::Y => &mut y,
+                    };
+                    (a.min, a.max) = (min, max);
+                    check_map(&x, &y, fitted_cells(screen), params, initial)
+                });
+                // Re-borrowed: the check above read the other axis.
+                let r = self.editing.as_mut()?;
+                match parsed {
+                    Ok(()) => {
+                        (self.x, self.y) = (x, y);
                         self.editing = None;
                         self.zooms.clear();
                         return Some(self.request(screen, params, initial));
@@ -402,7 +412,10 @@ impl MapView {
 }
 
 /// A range around the current value: the default random range for spin (±60 rad/s) and
-/// velocity (±50 cm/s), a few coarse steps for the rest, inside the allowed range.
+/// velocity (±50 cm/s), a few coarse steps for the rest, inside the allowed range, and each
+/// end a setup that can be rolled ([`check_setup`]): where a coarse step would make a body
+/// that cannot exist (a corner radius of 1 on a half size of 1), the end comes in to a fine
+/// step, and to the current value itself if that too is refused.
 pub(crate) fn default_range(p: Param, params: &Params, initial: &InitialCondition) -> (f64, f64) {
     let row = p.scan_key().spec;
     let steps = if *row == registry::ANGULAR_VELOCITY {
@@ -413,13 +426,42 @@ pub(crate) fn default_range(p: Param, params: &Params, initial: &InitialConditio
         1
     };
     let now = p.get(params, initial);
-    let (lo, hi) = (p.nudged(now, -steps, true), p.nudged(now, steps, true));
+    let rolls = |v: f64| {
+        let (mut pp, mut ic) = (*params, *initial);
+        p.scan_key().set(&mut pp, &mut ic, v);
+        check_setup(&pp, &ic).is_ok()
+    };
+    let end = |sign: i32| {
+        [
+            p.nudged(now, sign * steps, true),
+            p.nudged(now, sign, true),
+            p.nudged(now, sign, false),
+        ]
+        .into_iter()
+        .find(|&v| rolls(v))
+        .unwrap_or(now)
+    };
+    let (lo, hi) = (end(-1), end(1));
     if lo < hi {
         (lo, hi)
     } else {
         let l = p.limits();
         (l.min, l.max)
     }
+}
+
+/// Whether a map of axes `x` and `y` on a grid of `cells` can be rolled around this setup:
+/// every node's setup passes the check `roll` makes of its own (the worker's map makes it
+/// again), or the first node refused, in its words.
+fn check_map(
+    x: &MapAxis,
+    y: &MapAxis,
+    (nx, ny): (usize, usize),
+    params: &Params,
+    initial: &InitialCondition,
+) -> Result<(), String> {
+    let axis = |a: &MapAxis, cells| MapAxis { cells, ..*a }.axis().map_err(|e| e.to_string());
+    check_nodes(params, initial, &axis(x, nx)?, &axis(y, ny)?).map_err(|e| e.to_string())
 }
 
 /// Panels of the map screen.

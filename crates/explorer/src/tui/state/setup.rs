@@ -61,29 +61,24 @@ impl UserSetup {
     /// is refused in words and changes nothing.
     pub(crate) fn set_param(&mut self, p: Param, value: f64) -> Result<Command, String> {
         let (mut params, mut initial) = (self.params, self.initial);
-        p.set(&mut params, &mut initial, value).map_err(|e| {
-            if e.limits == p.limits() {
-                format!(
+        // The value is checked as `roll` checks a setup: its range, then the rules that tie
+        // it to the others (said in their own words), then a start clear of the table.
+        p.set(&mut params, &mut initial, value)
+            .map_err(|e| match e.detail.as_deref() {
+                Some(Detail::Refused(why)) => format!("{}: {why}", fmt_num(value)),
+                _ if e.limits == p.limits() => format!(
                     "{} is outside {} {}",
                     fmt_num(value),
                     fmt_range(p),
                     p.limits().unit
-                )
-            } else {
-                // The value is in range, but the die would start inside the table.
-                format!(
+                ),
+                _ if e.limits.key == "initial.height" => format!(
                     "{}: corner in the table; ≥ {} cm",
                     fmt_num(value),
                     fmt_num(e.limits.min)
-                )
-            }
-        })?;
-        if let Err(e) = params.validate() {
-            return Err(match e.detail.as_deref() {
-                Some(Detail::Refused(why)) => format!("{}: {why}", fmt_num(value)),
+                ),
                 _ => e.to_string(),
-            });
-        }
+            })?;
         (self.params, self.initial) = (params, initial);
         Ok(Command::SetParam(p.scan_key(), value))
     }
