@@ -3,7 +3,8 @@
 
 use super::initial::InitialCondition;
 use super::model::Body;
-use super::params::Params;
+use super::params::{ContactLaw, Params};
+use super::stability_contact::{SpringModes, spring_friction_modes};
 use serde::Serialize;
 use std::fmt;
 
@@ -43,7 +44,9 @@ pub const IMPACT_DEPTH_LIMIT: f64 = 1.0;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Limit {
-    /// The table's fastest mode, a die rocking on a face: `ω_rock·Δt`.
+    /// The table's fastest mode, a die rocking on a face: `ω_rock·Δt` (under the paper's law
+    /// stiffened by the damping while a corner strikes; under spring-friction against the limit
+    /// the mode's own damping sets).
     ContactMode,
     /// How far the fastest corner moves in one step at the first impact, cm.
     CornerTravel,
@@ -55,7 +58,13 @@ pub enum Limit {
     /// damping) taking it alone, `v·√(M/(k·(1 + γ·v)))`, against the die's reach `2·a_min − r`
     /// (a landing on the thinnest face, shared between its corners).
     ImpactDepth,
+    /// Spring-friction only: `ω_t·Δt` of the faster of a stuck face's rock-and-slide and
+    /// twist modes on the tangential springs, against the limit their damping sets.
+    TangentialMode,
 }
+
+/// How many kinds of reading there are, one slot each in [`Stability`].
+const LIMITS: usize = 6;
 
 impl Limit {
     /// A short name for the readout.
@@ -66,6 +75,7 @@ impl Limit {
             Limit::Damping => "damping",
             Limit::FrictionChatter => "friction",
             Limit::ImpactDepth => "impact depth",
+            Limit::TangentialMode => "tangential spring",
         }
     }
 }
@@ -139,14 +149,22 @@ impl fmt::Display for Reading {
                  into it, so deep its centre of mass nears the table top (stable below {allowed:.3} cm)",
                 self.speed
             ),
+            Limit::TangentialMode => write!(
+                f,
+                "tangential spring too stiff for Δt: a stuck die rocks and slides on it with \
+                 ω·Δt = {v:.2}, only {:.1} steps per swing (stable below {allowed:.2} at its damping)",
+                std::f64::consts::TAU / v
+            ),
         }
     }
 }
 
-/// Every reading for one roll.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+/// Every reading that applies to one roll under its contact law, one slot per [`Limit`]
+/// (`None` where the law does not meet that cause: γ's damping and the kinetic friction's
+/// chatter under spring-friction, the tangential springs under the paper's law).
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Stability {
-    pub readings: [Reading; 5],
+    readings: [Option<Reading>; LIMITS],
 }
 
 impl Stability {
@@ -155,33 +173,28 @@ impl Stability {
         StabilityCheck::new(p).predict(initial)
     }
 
+    /// The reading of one cause, if it applies under the roll's contact law.
+    pub fn reading(&self, limit: Limit) -> Option<Reading> {
+        self.readings[limit as usize]
+    }
+
+    /// The readings that apply, in the order of [`Stability::verdict`].
+    pub fn readings(&self) -> impl Iterator<Item = Reading> + '_ {
+        CAUSAL_ORDER.iter().filter_map(|&limit| self.reading(limit))
+    }
+
     /// The reading to report: the first past its limit in the order corner travel, contact
-    /// mode, damping, friction chatter, impact depth (a cause before its symptoms: a corner
-    /// moving too far per step also strikes fast, which stiffens the contact mode, is too
-    /// fast for the damping and presses deep); when none is past, the one with the largest
-    /// `value / allowed`.
+    /// mode, tangential mode, damping, friction chatter, impact depth (a cause before its
+    /// symptoms: a corner moving too far per step also strikes fast, which stiffens the
+    /// contact mode, is too fast for the damping and presses deep); when none is past, the
+    /// one with the largest `value / allowed`.
     pub fn verdict(&self) -> Reading {
-        let causal = [
-            Limit::CornerTravel,
-            Limit::ContactMode,
-            Limit::Damping,
-            Limit::FrictionChatter,
-            Limit::ImpactDepth,
-        ];
-        if let Some(r) = causal
-            .iter()
-            .map(|&limit| self.readings[limit as usize])
-            .find(Reading::exceeded)
-        {
+        if let Some(r) = self.readings().find(Reading::exceeded) {
             return r;
         }
-        let mut closest = self.readings[0];
-        for r in &self.readings[1..] {
-            if r.load() > closest.load() {
-                closest = *r;
-            }
-        }
-        closest
+        self.readings()
+            .reduce(|closest, r| if r.load() > closest.load() { r } else { closest })
+            .expect("the corner-speed reading applies under every law")
     }
 
     /// Whether every reading is within its limit.
@@ -189,6 +202,16 @@ impl Stability {
         !self.verdict().exceeded()
     }
 }
+
+/// Causes before their symptoms (see [`Stability::verdict`]).
+const CAUSAL_ORDER: [Limit; LIMITS] = [
+    Limit::CornerTravel,
+    Limit::ContactMode,
+    Limit::TangentialMode,
+    Limit::Damping,
+    Limit::FrictionChatter,
+    Limit::ImpactDepth,
+];
 
 /// The readings of one setup for any start: what depends on the body alone, worked out once
 /// (a batch asks it of every roll).
@@ -203,6 +226,8 @@ pub struct StabilityCheck {
     /// cm, how deep a corner may press the table before the die's centre of mass could
     /// reach it, `2·a_min − r` (docs/model.md, "Stability").
     reach: f64,
+    /// The spring-friction law's modes; `None` under the paper's law.
+    spring_modes: Option<SpringModes>,
 }
 
 impl StabilityCheck {
@@ -216,6 +241,7 @@ impl StabilityCheck {
             body,
             sideways_mass: 1.0 / (1.0 / body.mass() + reach * reach / body.least_inertia(&offsets)),
             reach: 2.0 * p.die.smallest_half_size() - p.die.corner_radius,
+            spring_modes: spring_friction_modes(p),
         }
     }
 
@@ -247,40 +273,60 @@ impl StabilityCheck {
             speed,
         };
         let k = p.ground.stiffness;
-        Stability {
-            readings: [
-                reading(
+        let corner_travel = reading(
+            Limit::CornerTravel,
+            corner_speed * dt,
+            CORNER_TRAVEL_LIMIT * a,
+            corner_speed,
+        );
+        let mut readings = [None; LIMITS];
+        readings[Limit::CornerTravel as usize] = Some(corner_travel);
+        match (p.ground.contact, self.spring_modes) {
+            (ContactLaw::SpringFriction, Some(modes)) => {
+                // Its dashpot damps the normal mode rather than stiffening its spring, so
+                // the landing's depth is the undamped spring's, an upper bound.
+                for (limit, mode) in [
+                    (Limit::ContactMode, modes.normal),
+                    (Limit::TangentialMode, modes.tangential),
+                ] {
+                    readings[limit as usize] =
+                        Some(reading(limit, mode.frequency * dt, mode.allowed, corner_speed));
+                }
+                readings[Limit::ImpactDepth as usize] = Some(reading(
+                    Limit::ImpactDepth,
+                    vz_impact * (body.mass() / k).sqrt(),
+                    IMPACT_DEPTH_LIMIT * self.reach,
+                    vz_impact,
+                ));
+            }
+            _ => {
+                readings[Limit::ContactMode as usize] = Some(reading(
                     Limit::ContactMode,
                     body.rocking_frequency() * striking * dt,
                     CONTACT_MODE_LIMIT,
                     corner_speed,
-                ),
-                reading(
-                    Limit::CornerTravel,
-                    corner_speed * dt,
-                    CORNER_TRAVEL_LIMIT * a,
-                    corner_speed,
-                ),
-                reading(
+                ));
+                readings[Limit::Damping as usize] = Some(reading(
                     Limit::Damping,
                     p.ground.damping * (vz_impact + spin),
                     DAMPING_LIMIT.max(2.0 / (corner_frequency * dt)),
                     corner_speed,
-                ),
-                reading(
+                ));
+                readings[Limit::FrictionChatter as usize] = Some(reading(
                     Limit::FrictionChatter,
                     p.ground.friction * (k / self.sideways_mass).sqrt() * striking * dt,
                     FRICTION_CHATTER_LIMIT,
                     corner_speed,
-                ),
-                reading(
+                ));
+                readings[Limit::ImpactDepth as usize] = Some(reading(
                     Limit::ImpactDepth,
                     vz_impact * (body.mass() / (k * (1.0 + p.ground.damping * vz_impact))).sqrt(),
                     IMPACT_DEPTH_LIMIT * self.reach,
                     vz_impact,
-                ),
-            ],
+                ));
+            }
         }
+        Stability { readings }
     }
 }
 

@@ -412,8 +412,9 @@ fn stability_readout_warns_as_the_tightest_limit_nears() {
     // reached at k₀·(share·limit / reading₀)².
     let k_for = |share: f64, app: &App| {
         let p = &app.setup.params;
-        let r = Stability::predict(p, &app.setup.initial).readings[0];
-        assert_eq!(r.limit, Limit::ContactMode);
+        let r = Stability::predict(p, &app.setup.initial)
+            .reading(Limit::ContactMode)
+            .unwrap();
         p.ground.stiffness * (share * r.allowed / r.value).powi(2)
     };
     let k = k_for((STABILITY_CAUTION + STABILITY_DANGER) / 2.0, &s.app);

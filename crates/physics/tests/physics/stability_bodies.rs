@@ -211,7 +211,7 @@ fn the_check_flags_a_spun_up_slab_and_a_die_that_sinks() {
     assert!(lowest < -0.1, "{lowest}");
     // The slab by friction's kick at a corner of its thin axis, the tiny die by its landing.
     for (p, limit) in [(slab, Limit::FrictionChatter), (tiny, Limit::ImpactDepth)] {
-        let reading = Stability::predict(&p, &start).readings[limit as usize];
+        let reading = Stability::predict(&p, &start).reading(limit).unwrap();
         assert_eq!(reading.limit, limit);
         assert!(reading.exceeded(), "{reading}");
     }
@@ -229,11 +229,63 @@ fn the_verdict_names_the_cause_before_its_symptoms() {
     };
     let stability = Stability::predict(&Params::DEFAULT, &start);
     for limit in [Limit::CornerTravel, Limit::ContactMode] {
-        assert!(stability.readings[limit as usize].exceeded(), "{limit:?}");
+        assert!(stability.reading(limit).unwrap().exceeded(), "{limit:?}");
     }
     assert_eq!(stability.verdict().limit, Limit::CornerTravel);
-    // The readings sit at their limits' places, which the verdict's order relies on.
-    for (i, r) in stability.readings.iter().enumerate() {
-        assert_eq!(r.limit as usize, i);
+    // Each reading sits in its limit's slot, which the verdict's order relies on; the paper's
+    // law has no tangential springs.
+    for limit in [
+        Limit::CornerTravel,
+        Limit::ContactMode,
+        Limit::Damping,
+        Limit::FrictionChatter,
+        Limit::ImpactDepth,
+    ] {
+        assert_eq!(stability.reading(limit).unwrap().limit, limit);
     }
+    assert_eq!(stability.reading(Limit::TangentialMode), None);
+}
+
+/// Under the spring-friction law the readings are its own (docs/model.md, "The spring-friction
+/// contact", "Stability"): no γ-damping or friction-chatter reading, γ changes nothing, and
+/// its stuck face's rock-and-slide mode, `√(8k/M)` = 707.1 rad/s for the cube, is what a long
+/// step passes first: 1.06 at 1.5 ms, while the rocking mode `√(6k/M)·Δt` = 0.92 is not past.
+#[test]
+fn the_spring_friction_law_is_read_by_its_own_modes() {
+    let mut p = Params::DEFAULT;
+    p.ground.contact = dicesim_physics::ContactLaw::SpringFriction;
+    p.integrator.dt = 0.0015;
+    let start = InitialCondition::default();
+    let stability = Stability::predict(&p, &start);
+    assert_eq!(stability.reading(Limit::Damping), None);
+    assert_eq!(stability.reading(Limit::FrictionChatter), None);
+    let (k, mass) = (p.ground.stiffness, 8.0 * p.die.corner_mass);
+    let tangential = stability.reading(Limit::TangentialMode).unwrap();
+    assert!(
+        (tangential.value - (8.0 * k / mass).sqrt() * 0.0015).abs() < 1e-9,
+        "{tangential}"
+    );
+    let rocking = stability.reading(Limit::ContactMode).unwrap();
+    assert!(
+        (rocking.value - (6.0 * k / mass).sqrt() * 0.0015).abs() < 1e-9,
+        "{rocking}"
+    );
+    assert!(!rocking.exceeded() && tangential.exceeded());
+    assert_eq!(stability.verdict().limit, Limit::TangentialMode);
+    assert!(
+        stability
+            .verdict()
+            .to_string()
+            .starts_with("tangential spring too stiff")
+    );
+    // The law reads no γ: a damping the paper's law would call far past its limit changes nothing.
+    let mut damped = p;
+    damped.ground.damping = 0.05;
+    assert_eq!(Stability::predict(&damped, &start), stability);
+    // The paper's law on the same step has no tangential reading.
+    p.ground.contact = dicesim_physics::ContactLaw::Paper;
+    assert_eq!(
+        Stability::predict(&p, &start).reading(Limit::TangentialMode),
+        None
+    );
 }

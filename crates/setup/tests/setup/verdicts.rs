@@ -7,7 +7,8 @@
 
 use dicesim_physics::resting_depth_on_face;
 use dicesim_physics::{
-    FrictionLaw, InitialCondition, Limits, Params, Simulation, Stability, Status, StopEnergy, UnstableReason,
+    FrictionLaw, InitialCondition, Limit, Limits, Params, Simulation, Stability, Status, StopEnergy,
+    UnstableReason,
 };
 use dicesim_setup::registry::{
     ANGULAR_VELOCITY, CORNER_MASS, DAMPING, DT, FRICTION, GRAVITY, HALF_SIZES, HEIGHT, ORIENTATION,
@@ -98,8 +99,8 @@ struct Figures {
     deepest: f64,
     highest: f64,
     /// Per limit: sets past it, and of those the ones that did not end unstable.
-    past: [u32; 5],
-    past_not_unstable: [u32; 5],
+    past: [u32; 6],
+    past_not_unstable: [u32; 6],
     depths: Vec<f64>,
 }
 
@@ -120,7 +121,8 @@ fn verdicts_hold_across_every_allowed_range() {
         let prediction = Stability::predict(&p, &ic);
         let mut f = figures.borrow_mut();
         f.rolls += 1;
-        for (i, r) in prediction.readings.iter().enumerate() {
+        for r in prediction.readings() {
+            let i = r.limit as usize;
             if r.exceeded() {
                 f.past[i] += 1;
                 f.past_not_unstable[i] += (outcome.status != Status::Unstable) as u32;
@@ -213,18 +215,22 @@ fn verdicts_hold_across_every_allowed_range() {
         );
     }
     for (i, limit) in [
-        "contact mode",
-        "corner travel",
-        "damping",
-        "friction chatter",
-        "impact depth",
+        Limit::ContactMode,
+        Limit::CornerTravel,
+        Limit::Damping,
+        Limit::FrictionChatter,
+        Limit::ImpactDepth,
+        Limit::TangentialMode,
     ]
     .iter()
     .enumerate()
     {
+        assert_eq!(*limit as usize, i);
         println!(
-            "past the {limit} limit: {} sets, {} of them did not end unstable",
-            f.past[i], f.past_not_unstable[i]
+            "past the {} limit: {} sets, {} of them did not end unstable",
+            limit.name(),
+            f.past[i],
+            f.past_not_unstable[i]
         );
     }
     result.unwrap();
