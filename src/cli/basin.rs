@@ -104,6 +104,13 @@ pub(crate) fn check_sweep(args: &BasinArgs, sharded: bool) -> Result<(Preset, Pa
     let params = preset.params();
     let x = Axis::parse(&args.x, w).map_err(CliError::experiment("--x "))?;
     let y = Axis::parse(&args.y, h).map_err(CliError::experiment("--y "))?;
+    if x.key.spec.key() == y.key.spec.key() && x.key.component == y.key.component {
+        // The y value would overwrite the x value in every cell: a map of nothing.
+        return Err(CliError::Usage(format!(
+            "--x and --y both vary `{}`: a map needs two different values",
+            x.key.key
+        )));
+    }
     Ok((preset, params, x, y))
 }
 

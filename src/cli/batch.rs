@@ -34,7 +34,9 @@ pub(crate) struct BatchArgs {
         long,
         value_name = "N",
         required_unless_present = "ics",
-        conflicts_with = "ics"
+        conflicts_with = "ics",
+        // A batch of no rolls has no face shares to give (compare and predict refuse it too).
+        value_parser = clap::value_parser!(u64).range(1..)
     )]
     pub(crate) rolls: Option<u64>,
     /// Roll the initial conditions of a CSV file: a header with `id` and any of height,

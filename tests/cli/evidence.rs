@@ -72,6 +72,36 @@ fn item_1_a_fit_is_won_only_by_candidates_that_counted_their_throws() {
     assert!(!best.starts_with("best die.corner_radius = 0.950000"), "{best}");
 }
 
+/// Found repeating this cases on the landed main: a batch of no rolls printed six face
+/// shares of 0.0 % and "same 0.0 %, adjacent 0.0 %, opposite 0.0 %" with exit 0, and a map
+/// with one key on both axes rolled (its y overwrote its x in every cell).
+#[test]
+fn no_rolls_and_a_map_of_one_value_are_refused() {
+    let (o, out, err) = run(&["batch", "--rolls", "0"]);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(
+        err.contains("--rolls") && err.contains("0 is not in 1.."),
+        "{err}"
+    );
+    assert!(out.is_empty(), "{out}");
+    for y in ["initial.height:5:15", "initial.height:1:2"] {
+        let (o, out, err) = run(&["basin", "--x", "initial.height:5:15", "--y", y, "--res", "2x2"]);
+        assert_eq!(o.status.code(), Some(2), "{out}");
+        assert!(err.contains("--x and --y both vary `initial.height`"), "{err}");
+    }
+    // Two components of one vector are two values.
+    let (o, _, err) = run(&[
+        "basin",
+        "--x",
+        "initial.velocity.x:-10:10",
+        "--y",
+        "initial.velocity.y:-10:10",
+        "--res",
+        "2x2",
+    ]);
+    assert!(o.status.success(), "{err}");
+}
+
 #[test]
 fn item_1_every_summary_says_what_it_counted() {
     let (o, out, err) = run(&["batch", "--rolls", "20"]);
