@@ -8,7 +8,6 @@ use super::dialog_keys;
 use super::keys::{Action, Input, Scope, first_key, label, read};
 use super::layout::{param_row_at, timeline_bar, timeline_step_at};
 use super::map_keys as map;
-use super::param::all;
 use super::state::app::{App, Mode, Overlay, Page, Prompt};
 use super::state::camera::OrbitCamera;
 use super::state::die_screen::Drawing;
@@ -149,10 +148,10 @@ fn act(app: &mut App, action: Action, coarse: bool) {
                 app.send(c)
             }
         }
-        Action::SelectPrevious => app.die_screen.select(-1),
-        Action::SelectNext => app.die_screen.select(1),
+        Action::SelectPrevious => app.die_screen.select(-1, app.params_listed().len()),
+        Action::SelectNext => app.die_screen.select(1, app.params_listed().len()),
         Action::SelectFirst => app.die_screen.selected = 0,
-        Action::SelectLast => app.die_screen.selected = all().len() - 1,
+        Action::SelectLast => app.die_screen.selected = app.params_listed().len() - 1,
         Action::Decrease => app.nudge(-1, coarse),
         Action::Increase => app.nudge(1, coarse),
         Action::DecreaseBig => app.nudge(-1, true),
@@ -326,7 +325,7 @@ fn on_edit_key(app: &mut App, input: &Input) {
         Typed::Cancelled => app.overlay = None,
         Typed::Editing => {}
         Typed::Submitted(number) => {
-            let p = app.die_screen.selected_param();
+            let p = app.selected_param();
             match number.and_then(|v| app.setup.set_param(p, v)) {
                 Ok(c) => {
                     app.overlay = None;
@@ -388,7 +387,7 @@ fn on_mouse(app: &mut App, m: MouseEvent) {
         MouseEventKind::Down(_) | MouseEventKind::ScrollUp | MouseEventKind::ScrollDown
             if app.page == Page::Presentation => {}
         MouseEventKind::Down(MouseButton::Left) => {
-            if let Some(i) = param_row_at(app.die_screen.selected, &areas, at) {
+            if let Some(i) = param_row_at(app.die_screen.selected, app.params_listed().len(), &areas, at) {
                 app.die_screen.selected = i;
             } else if let Some(bar) = timeline_bar(areas.timeline).filter(|b| b.contains(at)) {
                 let step = timeline_step_at(&app.roll.live.timeline, bar, column);
@@ -409,7 +408,8 @@ fn on_mouse(app: &mut App, m: MouseEvent) {
         MouseEventKind::ScrollUp | MouseEventKind::ScrollDown => {
             let up = kind == MouseEventKind::ScrollUp;
             if areas.params.contains(at) {
-                if let Some(i) = param_row_at(app.die_screen.selected, &areas, at) {
+                if let Some(i) = param_row_at(app.die_screen.selected, app.params_listed().len(), &areas, at)
+                {
                     app.die_screen.selected = i;
                 }
                 app.nudge(if up { 1 } else { -1 }, false);

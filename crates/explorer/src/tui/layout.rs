@@ -2,7 +2,6 @@
 //! where the timeline's bar sits and which step a click on it means: shared by rendering
 //! and by the mouse handling in `update`, so neither imports the other.
 
-use super::param::all;
 use crate::worker::TimelineSnapshot;
 use ratatui::layout::{Constraint, Layout, Position, Rect};
 use ratatui::widgets::Block;
@@ -98,17 +97,15 @@ pub(crate) fn param_window(selected: usize, params_area: Rect) -> (usize, usize)
     (first, visible)
 }
 
-/// The parameter under a screen position, for mouse clicks and scrolls.
-pub(crate) fn param_row_at(selected: usize, areas: &Areas, at: Position) -> Option<usize> {
+/// The parameter under a screen position, for mouse clicks and scrolls, on a list of `rows`.
+pub(crate) fn param_row_at(selected: usize, rows: usize, areas: &Areas, at: Position) -> Option<usize> {
     let body = inner(areas.params);
     if !body.contains(at) || at.y < body.y + 1 {
         return None;
     }
     let (first, visible) = param_window(selected, areas.params);
     let row = (at.y - body.y - 1) as usize;
-    (row < visible)
-        .then_some(first + row)
-        .filter(|&i| i < all().len())
+    (row < visible).then_some(first + row).filter(|&i| i < rows)
 }
 
 /// Outer width of the energy ledger panel: wide terminals get room for the unit, and from

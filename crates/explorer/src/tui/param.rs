@@ -1,7 +1,7 @@
 //! The explorer's parameter list: the registry rows that carry labels, one entry per
 //! component, in the rows' list order; how ←/→ step a value.
 
-use dicesim_physics::{InitialCondition, Limits, ParamError, Params};
+use dicesim_physics::{ContactLaw, InitialCondition, Limits, ParamError, Params};
 use dicesim_setup::keys::ScanKey;
 use dicesim_setup::registry::Nudge;
 use std::sync::LazyLock;
@@ -35,12 +35,29 @@ pub(crate) fn all() -> &'static [Param] {
     &ALL
 }
 
+/// The entries a table under `law` reads, in list order: the list the explorer shows (a key
+/// the law does not read would show a value that acts on nothing, and setting it is refused).
+pub(crate) fn listed(law: ContactLaw) -> &'static [Param] {
+    fn read_by(law: ContactLaw) -> Vec<Param> {
+        all()
+            .iter()
+            .copied()
+            .filter(|p| p.key.spec.law.is_none_or(|l| l == law))
+            .collect()
+    }
+    static PAPER: LazyLock<Vec<Param>> = LazyLock::new(|| read_by(ContactLaw::Paper));
+    static SPRING_FRICTION: LazyLock<Vec<Param>> = LazyLock::new(|| read_by(ContactLaw::SpringFriction));
+    match law {
+        ContactLaw::Paper => &PAPER,
+        ContactLaw::SpringFriction => &SPRING_FRICTION,
+    }
+}
+
 /// How many entries of the list are the paper's own values: all but a real die's shape
 /// beyond the paper's one half size (the other two half sizes, the corner radius and the
 /// pips), a loaded die's extra corner masses and the keys only another contact law reads.
 /// The layout gives the list this many rows when there is room; the rest scroll into view.
 pub(crate) fn paper_rows() -> usize {
-    use dicesim_physics::ContactLaw;
     use dicesim_setup::registry::{CORNER_RADIUS, EXTRA_CORNER_MASS, HALF_SIZES, PIP_DEPTH, PIP_DIAMETER};
     all()
         .iter()
@@ -143,6 +160,46 @@ impl Param {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Each law's list holds every value it reads and none it refuses: the paper's table
+    /// has γ and no restitution, the spring-friction table the reverse; both share the die,
+    /// the start and the step, in the one list order.
+    #[test]
+    fn the_list_shows_what_the_contact_law_reads() {
+        for law in [ContactLaw::Paper, ContactLaw::SpringFriction] {
+            let mut params = Params::default();
+            params.ground.contact = law;
+            let listed = listed(law);
+            for &p in all() {
+                let shown = listed.contains(&p);
+                assert_eq!(shown, params.ground.reads(p.key()), "{law:?}: {}", p.key());
+                assert_eq!(
+                    shown,
+                    params.ground.refusal(p.key()).is_none(),
+                    "{law:?}: {}",
+                    p.key()
+                );
+            }
+            let order: Vec<usize> = listed
+                .iter()
+                .map(|p| all().iter().position(|q| q == p).unwrap())
+                .collect();
+            assert!(order.is_sorted(), "{law:?}");
+        }
+        let named = |law, key| listed(law).contains(&Param::named(key));
+        assert!(
+            named(ContactLaw::Paper, "ground.damping") && !named(ContactLaw::Paper, "ground.restitution")
+        );
+        assert!(!named(ContactLaw::SpringFriction, "ground.damping"));
+        assert!(
+            named(ContactLaw::SpringFriction, "ground.restitution")
+                && named(ContactLaw::SpringFriction, "ground.tilt")
+        );
+        assert!(
+            named(ContactLaw::SpringFriction, "die.half_sizes.x")
+                && named(ContactLaw::SpringFriction, "integrator.dt")
+        );
+    }
 
     #[test]
     fn every_value_round_trips_through_set_and_get() {

@@ -4,7 +4,6 @@
 use super::fit;
 use super::format::{fmt_num, fmt_range};
 use super::layout::param_window;
-use super::param::all;
 use super::state::app::App;
 use dicesim_physics::Stability;
 use ratatui::Frame;
@@ -54,7 +53,8 @@ pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let (first, visible) = param_window(app.die_screen.selected, area);
     // Rows scrolled out of view, above and below: ↑↓ (or a click and the wheel) reach them.
-    let below = all().len().saturating_sub(first + visible);
+    let listed = app.params_listed();
+    let below = listed.len().saturating_sub(first + visible);
     let mut title = vec![Span::styled(" parameters ", t.heading())];
     if first > 0 {
         title.push(Span::raw(format!("↑{first} ")));
@@ -77,7 +77,7 @@ pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
         head.push_str(&format!(" {:<11}", "range"));
     }
     lines.push(Line::styled(head, t.heading()));
-    for (i, &p) in all().iter().enumerate().skip(first).take(visible) {
+    for (i, &p) in listed.iter().enumerate().skip(first).take(visible) {
         let value = fmt_num(p.get(&app.setup.params, &app.setup.initial));
         let mut spans = vec![Span::raw(format!(
             "{}{:<13} {:>8} {:<6}",
@@ -117,7 +117,7 @@ pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
 /// instead ([`error_fits`]), whole.
 fn detail_line(app: &App, width: usize) -> Line<'static> {
     let t = &app.theme;
-    let p = app.die_screen.selected_param();
+    let p = app.selected_param();
     match app.value_editor() {
         Some(editor) => {
             let typed = vec![

@@ -75,7 +75,12 @@ impl Harness {
     }
 
     pub(crate) fn select(&mut self, p: Param) {
-        let target = all().iter().position(|&q| q == p).expect("listed");
+        let target = self
+            .app
+            .params_listed()
+            .iter()
+            .position(|&q| q == p)
+            .expect("listed");
         while self.app.die_screen.selected != target {
             self.key(if self.app.die_screen.selected < target {
                 KeyCode::Down
@@ -583,14 +588,14 @@ mod keys {
     #[test]
     fn arrows_and_vim_keys_select_and_change_values() {
         let mut a = app();
-        assert_eq!(a.die_screen.selected_param(), Param::named("ground.stiffness"));
+        assert_eq!(a.selected_param(), Param::named("ground.stiffness"));
         assert!(
             press(&mut a, KeyCode::Up).is_empty(),
             "the first row stays selected"
         );
         press(&mut a, KeyCode::Down);
         press(&mut a, KeyCode::Char('j'));
-        assert_eq!(a.die_screen.selected_param(), Param::named("ground.friction"));
+        assert_eq!(a.selected_param(), Param::named("ground.friction"));
         let mu = a.setup.params.ground.friction;
         let fine = Param::named("ground.friction").nudged(mu, 1, false);
         assert_eq!(
@@ -629,15 +634,16 @@ mod keys {
             )]
         );
         press(&mut a, KeyCode::Char('k'));
-        assert_eq!(a.die_screen.selected_param(), Param::named("ground.damping"));
+        assert_eq!(a.selected_param(), Param::named("ground.damping"));
         press(&mut a, KeyCode::Char('G'));
-        assert_eq!(a.die_screen.selected_param(), *all().last().expect("rows"));
+        assert_eq!(a.selected_param(), *a.params_listed().last().expect("rows"));
     }
 
     #[test]
     fn a_value_at_its_limit_sends_nothing() {
         let mut a = app();
-        a.die_screen.selected = all()
+        a.die_screen.selected = a
+            .params_listed()
             .iter()
             .position(|&p| p == Param::named("ground.friction"))
             .expect("listed");
@@ -655,7 +661,8 @@ mod keys {
     #[test]
     fn typing_a_value_validates_it_and_esc_cancels() {
         let mut a = app();
-        a.die_screen.selected = all()
+        a.die_screen.selected = a
+            .params_listed()
             .iter()
             .position(|&p| p == Param::named("initial.height"))
             .expect("listed");
@@ -775,7 +782,7 @@ mod keys {
         // Row 0 of the list is the heading; the rows follow in list order.
         let friction_row = areas.params.y
             + 2
-            + all()
+            + a.params_listed()
                 .iter()
                 .position(|&p| p == Param::named("ground.friction"))
                 .expect("listed") as u16;
@@ -788,7 +795,7 @@ mod keys {
             )
             .is_empty()
         );
-        assert_eq!(a.die_screen.selected_param(), Param::named("ground.friction"));
+        assert_eq!(a.selected_param(), Param::named("ground.friction"));
         let up = Param::named("ground.friction").nudged(a.setup.params.ground.friction, 1, false);
         assert_eq!(
             mouse(&mut a, MouseEventKind::ScrollUp, areas.params.x + 3, friction_row),

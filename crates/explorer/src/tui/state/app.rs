@@ -14,6 +14,7 @@ use super::setup::UserSetup;
 use super::twins::TwinView;
 use crate::tui::keys::{self, Action, Input, Scope, label};
 use crate::tui::layout::{Areas, screen_layout};
+use crate::tui::param::Param;
 use crate::tui::theme::{Palette, Theme};
 use crate::worker::{Command, Notice, Snapshot};
 use dicesim_setup::preset::{
@@ -437,9 +438,19 @@ impl App {
         self.send(c);
     }
 
+    /// The parameter list shown: the values the setup's contact law reads.
+    pub(crate) fn params_listed(&self) -> &'static [Param] {
+        crate::tui::param::listed(self.setup.params.ground.contact)
+    }
+
+    /// The parameter selected on the list shown.
+    pub(crate) fn selected_param(&self) -> Param {
+        self.die_screen.selected_param(self.params_listed())
+    }
+
     /// The selected parameter a step up or down (`coarse`: a big step).
     pub(crate) fn nudge(&mut self, steps: i32, coarse: bool) {
-        let p = self.die_screen.selected_param();
+        let p = self.selected_param();
         let before = (self.setup.params, self.setup.initial);
         // In differ mode a value die B already differs by steps on from B's value (the
         // change then goes to B and A's value comes back: see the twins' keys, `divert`).

@@ -6,7 +6,7 @@
 use super::camera::OrbitCamera;
 use super::throw::Throw;
 use crate::tui::format::fmt_num;
-use crate::tui::param::{Param, all};
+use crate::tui::param::Param;
 use crate::worker::Snapshot;
 use dicesim_setup::quantity::{QUANTITIES, QUANTITY_COUNT, TOTAL_ENERGY};
 use ratatui::symbols::Marker;
@@ -39,9 +39,9 @@ pub(crate) struct DieScreen {
 }
 
 impl DieScreen {
-    /// The parameter selected on the list.
-    pub(crate) fn selected_param(&self) -> Param {
-        all()[self.selected.min(all().len() - 1)]
+    /// The parameter selected on `listed`, the list shown.
+    pub(crate) fn selected_param(&self, listed: &[Param]) -> Param {
+        listed[self.selected.min(listed.len() - 1)]
     }
 
     /// `M`: the next face pair marked, 2 and 5 first (the pair a tennis racket flips).
@@ -54,9 +54,9 @@ impl DieScreen {
         };
     }
 
-    /// Moves the parameter list's selection by `delta` rows, inside the list.
-    pub(crate) fn select(&mut self, delta: isize) {
-        self.selected = (self.selected as isize + delta).clamp(0, all().len() as isize - 1) as usize;
+    /// Moves the parameter list's selection by `delta` rows, inside a list of `rows`.
+    pub(crate) fn select(&mut self, delta: isize, rows: usize) {
+        self.selected = (self.selected as isize + delta).clamp(0, rows as isize - 1) as usize;
     }
 }
 
