@@ -148,8 +148,8 @@ fn on_stop_signals(graceful: Option<Arc<AtomicBool>>) -> Result<(), CliError> {
             {
                 std::thread::spawn(move || {
                     std::thread::sleep(GRACE);
-                    let removed = dicesim_setup::output::remove_pending();
-                    let what = if removed > 0 {
+                    let stopped = dicesim_setup::output::stop_writing();
+                    let what = if stopped.removed > 0 {
                         "the file being written was removed; files completed before it are kept"
                     } else {
                         "files completed before now are kept"
@@ -179,11 +179,19 @@ fn on_stop_signals(graceful: Option<Arc<AtomicBool>>) -> Result<(), CliError> {
 /// Removes the temporary file being written, says so (`why` names the signal) and exits with
 /// the status of the first signal.
 fn stop_now(signal: i32, why: &str) -> ! {
-    let removed = dicesim_setup::output::remove_pending();
-    let what = if removed > 0 {
-        "the file being written was removed, nothing was written"
-    } else {
-        "nothing was written"
+    let stopped = dicesim_setup::output::stop_writing();
+    let what = match (stopped.removed, stopped.placed.as_slice()) {
+        (0, []) => "nothing was written".to_string(),
+        (_, []) => "the file being written was removed, nothing was written".to_string(),
+        (removed, placed) => {
+            let names: Vec<String> = placed.iter().map(|p| p.display().to_string()).collect();
+            let also = if removed > 0 {
+                "; the file being written was removed"
+            } else {
+                ""
+            };
+            format!("{} had been written before it{also}", names.join(", "))
+        }
     };
     let _ = writeln!(std::io::stderr(), "dicesim: {why} {signal}: {what}");
     std::process::exit(i32::from(interrupted_status()));

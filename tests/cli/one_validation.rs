@@ -97,15 +97,26 @@ fn check(dir: &Path, base: &[(String, f64)], key: &str, value: f64) -> Result<bo
         expected.clone(),
     ));
     if lo < hi {
-        // A map of two nodes, the base's value and the changed one, at one friction.
+        // A map of two nodes, the base's value and the changed one; the other axis holds one
+        // other key at the base's own value (a map refuses one key on both axes).
         let axis = format!("{key}:{}:{}", num(lo), num(hi));
+        let other = if key == "ground.friction" {
+            "ground.damping"
+        } else {
+            "ground.friction"
+        };
+        let held = base
+            .iter()
+            .find(|(k, _)| k == other)
+            .map_or_else(|| paper(other), |(_, v)| *v);
+        let other_axis = format!("{other}:{}:{}", num(held), num(held));
         paths.push((
             "map axis",
             args(
                 &[
                     "basin",
                     "--y",
-                    "ground.friction:0.5:0.5",
+                    &other_axis,
                     "--res",
                     "2x1",
                     "--uniform",

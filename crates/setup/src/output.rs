@@ -429,6 +429,8 @@ pub fn commit(files: Vec<Staged>) -> Result<(), OutputError> {
     for f in &mut files {
         f.finish()?;
     }
+    // A stop signal waits for these renames to end, so it sees none or all of them.
+    let _renaming = COMMITTING.lock().unwrap_or_else(|e| e.into_inner());
     let mut placed = Vec::new();
     for f in files {
         if let Err(e) = f.place(&mut placed) {
@@ -438,6 +440,7 @@ pub fn commit(files: Vec<Staged>) -> Result<(), OutputError> {
             return Err(e);
         }
     }
+    PLACED.lock().unwrap_or_else(|e| e.into_inner()).extend(placed);
     Ok(())
 }
 
@@ -509,7 +512,7 @@ pub fn check_apart(outputs: &[Output], inputs: &[(PathBuf, String)]) -> Result<(
 }
 
 /// The temporary files being written now, so a signal that stops the program at once can
-/// remove them ([`remove_pending`]); each is listed while its [`Pending`] guard lives.
+/// remove them ([`stop_writing`]); each is listed while its [`Pending`] guard lives.
 static PENDING: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
 
 /// A temporary file listed in [`PENDING`] until this guard is dropped (the file is then
@@ -533,14 +536,34 @@ impl Drop for Pending {
     }
 }
 
-/// Removes every temporary file still being written, for a program about to exit without
-/// unwinding (a signal that stops it at once); returns how many there were.
-pub fn remove_pending() -> usize {
+/// Held while a commit renames its files onto their paths, and for good by [`stop_writing`].
+static COMMITTING: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// The paths commits in this program have put in place.
+static PLACED: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+/// What [`stop_writing`] found: how many temporary files it removed, and the files commits
+/// had already put in place (which stay).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Stopped {
+    pub removed: usize,
+    pub placed: Vec<PathBuf>,
+}
+
+/// For a program about to exit without unwinding (a signal that stops it at once): waits for
+/// a commit that is renaming its files to end, keeps any other from starting, and removes
+/// every temporary file still being written, so what it reports is what is on disk.
+pub fn stop_writing() -> Stopped {
+    // Never released: the program exits next, and no file may appear after the report.
+    std::mem::forget(COMMITTING.lock().unwrap_or_else(|e| e.into_inner()));
     let pending = PENDING.lock().unwrap_or_else(|e| e.into_inner());
     for p in pending.iter() {
         let _ = std::fs::remove_file(p);
     }
-    pending.len()
+    Stopped {
+        removed: pending.len(),
+        placed: PLACED.lock().unwrap_or_else(|e| e.into_inner()).clone(),
+    }
 }
 
 /// The OS's reason alone: the temporary file's own name (which `tempfile` adds) means
