@@ -190,7 +190,8 @@ pub(crate) fn run(args: &BasinArgs) -> Result<(), CliError> {
             .map_err(CliError::output(""))?;
     }
     let mut out = std::io::stdout().lock();
-    tables::map_summary(&mut out, &map, layer, &map.face_tally())?;
+    let known = map.cells.iter().flatten().count() as u64;
+    tables::map_summary(&mut out, &map, layer, &map.face_tally(), known)?;
     if let Some((shard, rows)) = &shard {
         writeln!(
             out,

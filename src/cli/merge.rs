@@ -125,7 +125,7 @@ fn print_batch(args: &MergeArgs, m: &BatchMerge) -> Result<(), CliError> {
 
 fn print_map(args: &MergeArgs, m: &MapMerge) -> Result<(), CliError> {
     let mut stdout = std::io::stdout().lock();
-    tables::map_summary(&mut stdout, &m.map, m.layer, &m.faces)?;
+    tables::map_summary(&mut stdout, &m.map, m.layer, &m.faces, m.known_cells())?;
     if m.verified > 0 {
         writeln!(
             stdout,

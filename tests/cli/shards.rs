@@ -112,8 +112,11 @@ fn a_map_split_in_4_merges_into_the_one_machine_csv_and_png() {
     assert_eq!(bytes(d, "map.csv"), bytes(d, "one.csv"));
     assert_eq!(bytes(d, "map.csv.meta.json"), bytes(d, "one.csv.meta.json"));
     assert_eq!(bytes(d, "map.png"), bytes(d, "one.png"));
-    let head = |s: &str| s.lines().take(4).map(String::from).collect::<Vec<_>>();
+    let head = |s: &str| s.lines().take(5).map(String::from).collect::<Vec<_>>();
     assert_eq!(head(&merged), head(&one));
+    // A merge that writes nothing reads no cell, and still counts every cell the parts rolled.
+    let summary_only = ok(d, &["merge", "."]);
+    assert_eq!(head(&summary_only), head(&one), "{summary_only}");
 
     // An adaptive map cannot be sharded: its refinement compares cells across rows.
     let args = with(&["--adaptive", "--shard", "0/2", "--out", "a.csv"]);

@@ -134,12 +134,14 @@ pub fn versus(out: &mut dyn Write, run: &VersusRun, preset: &str, versus: &[Stri
 }
 
 /// What `basin` and `merge` print about a map: its grid, method, axes and the face shares
-/// over its known cells.
+/// over its `known` cells (those `faces` counts: a summary-only merge reads no cell, but its
+/// complete parts know every one).
 pub fn map_summary(
     out: &mut dyn Write,
     map: &BasinMap,
     layer: Layer,
     faces: &FaceTally,
+    known: u64,
 ) -> std::io::Result<()> {
     let (x, y) = (&map.x, &map.y);
     let (w, h) = (map.width(), map.height());
@@ -154,12 +156,11 @@ pub fn map_summary(
         .map(|f| format!("{f}: {:.1}%", 100.0 * faces.share(f)))
         .collect();
     writeln!(out, "faces over the map  {}", shares.join(", "))?;
-    let known = map.cells.iter().flatten().count() as u64;
     writeln!(
         out,
         "cells               {} of {known} with a face (the shares above), {} without; {} of them rolled, the rest filled",
         faces.total(),
-        known - faces.total(),
+        known.saturating_sub(faces.total()),
         map.sampled
     )?;
     Ok(())

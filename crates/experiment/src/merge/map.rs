@@ -39,6 +39,14 @@ pub struct MapMerge {
     pub verified: usize,
 }
 
+impl MapMerge {
+    /// The cells the merged map knows: all of them, as its parts are complete, whether or
+    /// not this merge read them.
+    pub fn known_cells(&self) -> u64 {
+        (self.map.width() * self.map.height()) as u64
+    }
+}
+
 impl Parts {
     /// Merges a map's parts: the merged CSV for the .csv among `outputs`, staged (the .png
     /// and .svg are the caller's to draw from the cells returned, and to commit with it, so
@@ -104,6 +112,9 @@ impl Parts {
                 }
             }
             map.sampled = map.cells.iter().flatten().filter(|c| c.sampled).count();
+        } else {
+            // Read no cell: the parts are complete (checked), and a sharded map rolls them all.
+            map.sampled = width * height;
         }
         let (shard_s, longest_s) = self.shard_times();
         let merged = MapMerge {
