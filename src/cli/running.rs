@@ -180,18 +180,13 @@ fn on_stop_signals(graceful: Option<Arc<AtomicBool>>) -> Result<(), CliError> {
 /// the status of the first signal.
 fn stop_now(signal: i32, why: &str) -> ! {
     let stopped = dicesim_setup::output::stop_writing();
-    let what = match (stopped.removed, stopped.placed.as_slice()) {
-        (0, []) => "nothing was written".to_string(),
-        (_, []) => "the file being written was removed, nothing was written".to_string(),
-        (removed, placed) => {
-            let names: Vec<String> = placed.iter().map(|p| p.display().to_string()).collect();
-            let also = if removed > 0 {
-                "; the file being written was removed"
-            } else {
-                ""
-            };
-            format!("{} had been written before it{also}", names.join(", "))
-        }
+    let placed: Vec<String> = stopped.placed.iter().map(|p| p.display().to_string()).collect();
+    let placed = placed.join(", ");
+    let what = match (stopped.removed > 0, placed.is_empty()) {
+        (false, true) => "nothing was written".to_string(),
+        (true, true) => "the file being written was removed, nothing was written".to_string(),
+        (false, false) => format!("{placed} had been written before it"),
+        (true, false) => format!("{placed} had been written before it; the file being written was removed"),
     };
     let _ = writeln!(std::io::stderr(), "dicesim: {why} {signal}: {what}");
     std::process::exit(i32::from(interrupted_status()));

@@ -73,10 +73,7 @@ fn check(dir: &Path, base: &[(String, f64)], key: &str, value: f64) -> Result<bo
         Verdict::Ran,
         "the base must roll"
     );
-    let at = base
-        .iter()
-        .find(|(k, _)| k == key)
-        .map_or_else(|| paper(key), |(_, v)| *v);
+    let at = base_value(base, key);
     let (lo, hi) = if value < at { (value, at) } else { (at, value) };
     let mut paths: Vec<(&str, Vec<String>, Verdict)> = Vec::new();
     // A preset file: the base and the change, as `presets show` loads it.
@@ -105,10 +102,7 @@ fn check(dir: &Path, base: &[(String, f64)], key: &str, value: f64) -> Result<bo
         } else {
             "ground.friction"
         };
-        let held = base
-            .iter()
-            .find(|(k, _)| k == other)
-            .map_or_else(|| paper(other), |(_, v)| *v);
+        let held = base_value(base, other);
         let other_axis = format!("{other}:{}:{}", num(held), num(held));
         paths.push((
             "map axis",
@@ -203,6 +197,13 @@ fn check(dir: &Path, base: &[(String, f64)], key: &str, value: f64) -> Result<bo
         }
     }
     Ok(expected != Verdict::Ran)
+}
+
+/// `key`'s value in the base setup: the one it sets, else the paper's.
+fn base_value(base: &[(String, f64)], key: &str) -> f64 {
+    base.iter()
+        .find(|(k, _)| k == key)
+        .map_or_else(|| paper(key), |(_, v)| *v)
 }
 
 /// The paper preset's value of `key` (those of [`KEYS`] the base does not set).
