@@ -18,6 +18,7 @@ mod view;
 
 pub use contents::{FORMAT, Preset};
 pub use error::{Location, PresetError};
+pub use overrides::refuse_unapplied;
 pub use shipped::{DEFAULT_NAME, LESSON, SHIPPED, shipped_text};
 pub use speed::Speed;
 pub use store::read_regular_file;

@@ -329,3 +329,46 @@ mod tests {
         );
     }
 }
+
+/// Refuses the first of `overrides` that a command cannot apply, before any work: a command
+/// that replaces part of the setup (a map's axes, an experiment's die, a throw it draws
+/// itself) says so rather than drop a `--set`. `why_not` gets each override's key as given
+/// (`die.corner_radius`, `initial.velocity.y`) and returns why the command does not apply
+/// it, or `None` where it does; the error names the key and that reason.
+pub fn refuse_unapplied<S: AsRef<str>>(
+    overrides: &[S],
+    why_not: impl Fn(&str) -> Option<String>,
+) -> Result<(), PresetError> {
+    for o in overrides {
+        let o = o.as_ref();
+        let key = o.split_once('=').map_or(o, |(key, _)| key).trim();
+        if let Some(why) = why_not(key) {
+            return Err(PresetError::Override {
+                key: key.to_string(),
+                message: why,
+            });
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod refuse_tests {
+    use super::*;
+
+    #[test]
+    fn the_first_override_a_command_cannot_apply_is_named_with_its_reason() {
+        let why_not = |key: &str| {
+            key.starts_with("random.")
+                .then(|| "this command rolls one fixed start".to_string())
+        };
+        let sets = ["ground.friction=0.3", " random.height = [1, 2]", "random.seed=4"];
+        let e = refuse_unapplied(&sets, why_not).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "--set random.height: this command rolls one fixed start"
+        );
+        assert!(refuse_unapplied(&sets[..1], why_not).is_ok());
+        assert!(refuse_unapplied::<&str>(&[], why_not).is_ok());
+    }
+}
