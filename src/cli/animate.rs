@@ -8,7 +8,8 @@ use dicesim_figures::animation::render::Camera;
 use dicesim_figures::animation::{self, AnimationSpec, write_animation};
 use dicesim_setup::chaos::DEFAULT_EPSILON;
 use dicesim_setup::output::Output;
-use dicesim_setup::preset::Speed;
+use dicesim_setup::preset::{Speed, refuse_unapplied};
+use dicesim_setup::random::unapplied_when_fixed;
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -69,6 +70,7 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
 
 pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
     let preset = args.setup.resolve()?;
+    refuse_unapplied(&args.setup.set, |key| unapplied_when_fixed(key, "animate"))?;
     let params = preset.params();
     // The checks `roll` makes: every value in range, no corner starting inside the table.
     dicesim_physics::Simulation::new(&params, &preset.initial)?;

@@ -11,7 +11,8 @@ use dicesim_experiment::{provenance, tables};
 use dicesim_figures::plot::write_image;
 use dicesim_physics::Params;
 use dicesim_setup::output::Output;
-use dicesim_setup::preset::Preset;
+use dicesim_setup::preset::{Preset, refuse_unapplied};
+use dicesim_setup::random::unapplied_when_fixed;
 use std::io::Write;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -104,6 +105,14 @@ pub(crate) fn check_sweep(args: &BasinArgs, sharded: bool) -> Result<(Preset, Pa
     let params = preset.params();
     let x = Axis::parse(&args.x, w).map_err(CliError::experiment("--x "))?;
     let y = Axis::parse(&args.y, h).map_err(CliError::experiment("--y "))?;
+    // A --set the map's axes replace, or that it never reads, is refused, not dropped.
+    refuse_unapplied(&args.setup.set, |key| {
+        [&x, &y]
+            .into_iter()
+            .find(|axis| axis.key.overlaps(key))
+            .map(|axis| format!("the map sets it in every cell (its axis `{}`)", axis.key.key))
+            .or_else(|| unapplied_when_fixed(key, "basin"))
+    })?;
     if x.key.spec.key() == y.key.spec.key() && x.key.component == y.key.component {
         // The y value would overwrite the x value in every cell: a map of nothing.
         return Err(CliError::Usage(format!(

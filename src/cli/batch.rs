@@ -11,8 +11,8 @@ use dicesim_experiment::ics::parse_initial_conditions;
 use dicesim_experiment::shard::Shard;
 use dicesim_experiment::tables;
 use dicesim_physics::InitialCondition;
-use dicesim_setup::preset::Preset;
-use dicesim_setup::random::check_drawn_setup;
+use dicesim_setup::preset::{Preset, refuse_unapplied};
+use dicesim_setup::random::{check_drawn_setup, seed_given, unapplied_when_drawn};
 use serde_json::json;
 use std::io::Write;
 use std::path::PathBuf;
@@ -163,6 +163,14 @@ pub(crate) fn check_sweep(args: &BatchArgs, shard: Option<Shard>) -> Result<Chec
         )));
     }
     let preset = args.setup.resolve()?;
+    // A --set the starts replace is refused, not dropped.
+    refuse_unapplied(&args.setup.set, |key| match &args.ics {
+        None => unapplied_when_drawn(key, &preset.random, "batch")
+            .or_else(|| seed_given(key, args.seed.is_some())),
+        Some(_) => key
+            .starts_with("random.")
+            .then(|| "`batch --ics` rolls the file's starts; it draws no random throws".to_string()),
+    })?;
     let params = preset.params();
     match &args.ics {
         None => check_drawn_setup(&params, &preset.random, &preset.initial)?,

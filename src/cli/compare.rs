@@ -8,6 +8,7 @@ use clap::{Args, ValueEnum};
 use dicesim_experiment::compare::{CompareSpec, Comparison, DEFAULT_CANDIDATES, FitSpec, run_comparison};
 use dicesim_experiment::compare_budden::{
     BuddenComparison, BuddenSpec, DEFAULT_CALIBRATE_ON, DEFAULT_FIT, hand_throw, run_budden as roll_budden,
+    unapplied as budden_unapplied,
 };
 use dicesim_experiment::real_data::Dataset;
 use dicesim_experiment::{RunOptions, provenance, tables};
@@ -15,8 +16,8 @@ use dicesim_figures::compare_plot::{budden_png, comparison_png};
 use dicesim_figures::figure::setup_value;
 use dicesim_figures::plot::{Record, random_starts};
 use dicesim_setup::output::Output;
-use dicesim_setup::preset::Preset;
-use dicesim_setup::random::check_drawn_setup;
+use dicesim_setup::preset::{Preset, refuse_unapplied};
+use dicesim_setup::random::{check_drawn_setup, seed_given, unapplied_when_drawn};
 
 /// The most rolls one comparison takes (throws × dice × candidates).
 const MAX_ROLLS: u64 = 1_000_000_000;
@@ -97,6 +98,7 @@ impl Worded for Compare {
 pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     let options = args.run.options()?;
     let preset = args.setup.resolve()?;
+    refuse_unapplied_sets(args, &preset)?;
     let params = preset.params();
     // The same up-front check as `batch`: the body, and no drawn throw inside the table.
     check_drawn_setup(&params, &preset.random, &preset.initial)?;
@@ -216,6 +218,37 @@ fn comparison_record(
     );
     let title = format!("{} against real dice", preset.name);
     Record::of_experiment(&title, experiment, &shown, &[], provenance)
+}
+
+/// Refuses a `--set` the comparison would not apply, before any roll: a start value the
+/// throws draw, a seed `--seed` replaces, the value `--fit` sets, and for Budden the die the
+/// cuboids replace ([`budden_unapplied`]).
+fn refuse_unapplied_sets(args: &CompareArgs, preset: &Preset) -> Result<(), CliError> {
+    let budden = args.dataset == DatasetArg::Budden;
+    let ranges = if budden {
+        hand_throw(&preset.random)
+    } else {
+        preset.random
+    };
+    let fit = args
+        .fit
+        .as_deref()
+        .or(budden.then_some(DEFAULT_FIT))
+        .and_then(|f| FitSpec::parse(f, DEFAULT_CANDIDATES).ok());
+    let command = if budden { "compare budden" } else { "compare" };
+    refuse_unapplied(&args.setup.set, |key| {
+        budden
+            .then(|| budden_unapplied(key))
+            .flatten()
+            .or_else(|| unapplied_when_drawn(key, &ranges, command))
+            .or_else(|| seed_given(key, args.seed.is_some()))
+            .or_else(|| {
+                fit.as_ref()
+                    .filter(|f| f.key.overlaps(key))
+                    .map(|f| format!("--fit sets `{}` on every candidate", f.key.key))
+            })
+    })?;
+    Ok(())
 }
 
 /// How a comparison's progress bar reads.

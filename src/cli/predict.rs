@@ -10,6 +10,8 @@ use dicesim_experiment::{provenance, tables};
 use dicesim_figures::figure::setup_value;
 use dicesim_figures::plot::{Record, random_starts};
 use dicesim_figures::predict_plot::prediction_png;
+use dicesim_setup::preset::refuse_unapplied;
+use dicesim_setup::random::{seed_given, unapplied_when_drawn};
 
 /// The most rolls one experiment takes (starts × (1 + ε count) × values).
 const MAX_ROLLS: u64 = 1_000_000_000;
@@ -81,6 +83,17 @@ fn parse_vary(text: &str) -> Result<(ScanKey, Vec<f64>), CliError> {
 pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
     let options = args.run.options()?;
     let preset = args.setup.resolve()?;
+    let vary = args.vary.as_deref().map(parse_vary).transpose()?;
+    // A --set the throws or the --vary values replace is refused, not dropped.
+    refuse_unapplied(&args.setup.set, |key| {
+        unapplied_when_drawn(key, &preset.random, "predict")
+            .or_else(|| seed_given(key, args.seed.is_some()))
+            .or_else(|| {
+                vary.as_ref()
+                    .filter(|(k, _)| k.overlaps(key))
+                    .map(|(k, _)| format!("--vary {} sets it on every curve", k.key))
+            })
+    })?;
     let params = preset.params();
     params.validate()?;
     let spec = PredictSpec {
@@ -91,7 +104,7 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
         },
         count: args.rolls,
         seed: args.seed.unwrap_or(preset.random.seed),
-        sweep: args.vary.as_deref().map(parse_vary).transpose()?,
+        sweep: vary,
     };
     spec.validate().map_err(CliError::experiment(""))?;
     let curves = spec.sweep.as_ref().map_or(1, |(_, v)| v.len() as u64);

@@ -20,6 +20,9 @@ pub(crate) struct RollArgs {
 
 pub(crate) fn run(args: &RollArgs) -> Result<(), CliError> {
     let preset = args.setup.resolve()?;
+    dicesim_setup::preset::refuse_unapplied(&args.setup.set, |key| {
+        dicesim_setup::random::unapplied_when_fixed(key, "roll")
+    })?;
     let params = preset.params();
     let mut sim = Simulation::new(&params, &preset.initial)?;
     // Its time as every output prints it: the steps × Δt, not the clock's sum.

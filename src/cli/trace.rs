@@ -30,6 +30,9 @@ pub(crate) struct TraceArgs {
 
 pub(crate) fn run(args: &TraceArgs) -> Result<(), CliError> {
     let preset = args.setup.resolve()?;
+    dicesim_setup::preset::refuse_unapplied(&args.setup.set, |key| {
+        dicesim_setup::random::unapplied_when_fixed(key, "trace")
+    })?;
     let params = preset.params();
     let sim = Simulation::new(&params, &preset.initial)?;
     let Some(path) = &args.out else {

@@ -30,4 +30,5 @@ mod smaller_items;
 mod start_checks;
 mod terminal;
 mod trace_impacts;
+mod unapplied_sets;
 mod versus;

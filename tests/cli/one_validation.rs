@@ -65,6 +65,11 @@ fn check(dir: &Path, base: &[(String, f64)], key: &str, value: f64) -> Result<bo
         .collect();
     let with =
         |extra: &[String]| -> Vec<String> { sets.iter().cloned().chain(extra.iter().cloned()).collect() };
+    // The base as a preset file, for the commands that set the key themselves (a map's
+    // axes, --vary, --fit): those refuse a --set they would overwrite, not a file's value.
+    let base_toml = dir.join("base.toml");
+    std::fs::write(&base_toml, preset_file(base)).unwrap();
+    let from_file = vec!["--preset".to_string(), base_toml.to_str().unwrap().to_string()];
     let changed = ["--set".to_string(), format!("{key}={}", num(value))];
     // roll's verdict is the reference: the base is valid, so a refusal is the change's.
     let expected = verdict(dir, &args(&["roll"], &with(&changed)));
@@ -117,7 +122,7 @@ fn check(dir: &Path, base: &[(String, f64)], key: &str, value: f64) -> Result<bo
                     "--x",
                     &axis,
                 ],
-                &sets,
+                &from_file,
             ),
             expected.clone(),
         ));
@@ -127,7 +132,7 @@ fn check(dir: &Path, base: &[(String, f64)], key: &str, value: f64) -> Result<bo
         "--vary",
         args(
             &["predict", "--rolls", "1", "--epsilon", "0.1", "--vary", &vary],
-            &sets,
+            &from_file,
         ),
         expected.clone(),
     ));
@@ -180,7 +185,7 @@ fn check(dir: &Path, base: &[(String, f64)], key: &str, value: f64) -> Result<bo
                     "--fit",
                     &fit,
                 ],
-                &sets,
+                &from_file,
             ),
         );
         match (first_refused, got) {

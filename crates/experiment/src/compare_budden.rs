@@ -50,7 +50,7 @@ pub fn assumptions() -> Vec<String> {
     vec![
         format!("square faces {SQUARE_SIDE_CM} cm across (the source gives only the ratio x/y)"),
         format!(
-            "solid steel of {STEEL_DENSITY_G_PER_CM3} g/cm³, sharp corners: mass {STEEL_DENSITY_G_PER_CM3} g/cm³ × \
+            "solid steel of {STEEL_DENSITY_G_PER_CM3} g/cm³, corners as the preset's die.corner_radius (0 = sharp): mass {STEEL_DENSITY_G_PER_CM3} g/cm³ × \
              x·{SQUARE_SIDE_CM}·{SQUARE_SIDE_CM} cm³, spread evenly through the body"
         ),
         "a hand throw: each throw drawn from the preset's random ranges (height, velocity, spin) \
@@ -76,6 +76,23 @@ pub fn cuboid(ratio: f64) -> Die {
         corner_mass: STEEL_DENSITY_G_PER_CM3 * volume / 8.0,
         extra_corner_mass: [0.0; 8],
     }
+}
+
+/// Why a `--set` of `key` does not reach Budden's throws (`None` where it does): the
+/// cuboid's size, mass and bare faces are the protocol's, so of the die's keys only its
+/// corner rounding applies (to every ratio's cuboid); the hand throw always starts from a
+/// uniformly random orientation.
+pub fn unapplied(key: &str) -> Option<String> {
+    if key == "random.random_orientation" {
+        return Some("Budden's hand throws always start from a uniformly random orientation".to_string());
+    }
+    (key.starts_with("die.") && key != "die.corner_radius").then(|| {
+        format!(
+            "`compare budden` throws Budden's solid steel cuboids (square faces {SQUARE_SIDE_CM} cm \
+             across, no pips) in place of the preset's die; of the die's keys only \
+             `die.corner_radius` applies, to every cuboid"
+        )
+    })
 }
 
 /// Whether the face up (1..6) is a square one: the cuboid's square faces are 1 and 6,
@@ -321,7 +338,11 @@ fn setup(
     value: f64,
 ) -> Result<(Params, InitialCondition), Error> {
     let (mut p, mut ic) = (*params, *base);
-    p.die = cuboid(ratio);
+    // The preset's corner rounding is the one body key a steel cuboid can take.
+    p.die = Die {
+        corner_radius: params.die.corner_radius,
+        ..cuboid(ratio)
+    };
     // Which cuboid and candidate a refusal is about: the key alone does not say.
     let context = |e: Error| {
         Error::Compare(format!(

@@ -137,6 +137,12 @@ impl ScanKey {
         self.spec.check_number(&self.key, value)
     }
 
+    /// Whether a `--set` of `key` (as given: a whole vector or one component) sets this
+    /// value, so a command that sets this value itself would overwrite it.
+    pub fn overlaps(&self, key: &str) -> bool {
+        key == self.key || key == self.spec.key()
+    }
+
     fn scan(&self) -> Scan {
         self.spec.scan.expect("scan keys are built from rows that scan")
     }

@@ -110,6 +110,45 @@ impl RandomDraws for RandomRanges {
     }
 }
 
+/// Why a `--set` of `key` does not reach a roll whose start is drawn from `ranges` (`None`
+/// where it does): the draw replaces the start's height, velocity and spin, and its
+/// orientation too when `ranges` draw that. `command` names the command in the reason.
+pub fn unapplied_when_drawn(key: &str, ranges: &RandomRanges, command: &str) -> Option<String> {
+    let is = |name: &str| key == name || key.strip_prefix(name).is_some_and(|c| c.starts_with('.'));
+    let drawn = |what: &str, range: &str| {
+        Some(format!(
+            "`{command}` draws each throw's {what} from `{range}`: set that range instead"
+        ))
+    };
+    if is("initial.height") {
+        drawn("height", "random.height")
+    } else if is("initial.velocity") {
+        drawn("velocity", "random.velocity")
+    } else if is("initial.angular_velocity") || is("initial.angular_momentum") {
+        drawn("spin", "random.angular_velocity")
+    } else if is("initial.orientation") && ranges.random_orientation {
+        Some(format!(
+            "`{command}` draws each throw's orientation uniformly (`random.random_orientation` \
+             is true), so the preset's orientation is not used"
+        ))
+    } else {
+        None
+    }
+}
+
+/// Why a `--set` of `key` does not reach a command that rolls the preset's one start
+/// (`initial.*`) and draws nothing: every `random.*` key.
+pub fn unapplied_when_fixed(key: &str, command: &str) -> Option<String> {
+    key.starts_with("random.")
+        .then(|| format!("`{command}` rolls the preset's one start (`initial.*`); it draws no random throws"))
+}
+
+/// Why a `--set random.seed` is not applied when `--seed` is also given.
+pub fn seed_given(key: &str, seed_option: bool) -> Option<String> {
+    (seed_option && key == "random.seed")
+        .then(|| "--seed is given, and it replaces the preset's seed".to_string())
+}
+
 /// The random stream of one roll: key = seed, ChaCha stream = roll index.
 pub fn roll_rng(seed: u64, index: u64) -> ChaCha8Rng {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
