@@ -59,14 +59,20 @@ pub(crate) struct CompareArgs {
     /// ranges (default: as many as the experiment made, for Budden ratio by ratio).
     #[arg(long, visible_alias = "rolls", value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub(crate) throws: Option<u64>,
-    /// Seed of the random throws (default: the preset's `random.seed`).
-    #[arg(long, value_name = "S")]
-    pub(crate) seed: Option<u64>,
+    /// Seed of the random throws (default: the preset's `random.seed`). Budden: several,
+    /// e.g. `--seed 11,12,13`, throw every ratio once per seed and pool the counts.
+    #[arg(long, value_name = "S[,S…]", value_delimiter = ',')]
+    pub(crate) seed: Vec<u64>,
     /// Fit one setup value to the data: candidates evenly spaced from LO to HI, each rolled
     /// with the same throws, e.g. `ground.friction:0.2:1.2` or `die.extra_corner_mass.8:0:1`
-    /// (Budden always fits; default `ground.damping:0:0.05`).
+    /// (Budden fits unless --no-fit; default `ground.damping:0.009:0.016`, the range where the
+    /// paper's table steps every cuboid stably).
     #[arg(long, value_name = "KEY:LO:HI", allow_hyphen_values = true)]
     pub(crate) fit: Option<String>,
+    /// Budden only: fit nothing; throw every ratio with the preset's table as it stands
+    /// (the --calibrate-on ratios keep their role, for a table fitted on them elsewhere).
+    #[arg(long, conflicts_with_all = ["fit", "candidates"])]
+    pub(crate) no_fit: bool,
     /// Candidates of a fit (at least 20; default 21).
     #[arg(long, value_name = "N")]
     pub(crate) candidates: Option<usize>,
@@ -106,11 +112,7 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     let Some(dataset) = args.dataset.dataset() else {
         return run_budden(args, &options, &preset, candidates);
     };
-    if args.calibrate_on != DEFAULT_CALIBRATE_ON {
-        return Err(CliError::Usage(
-            "--calibrate-on chooses Budden's ratios: it is for `compare budden` only".to_string(),
-        ));
-    }
+    let seed = cubic_die_seed(args, &preset)?;
     if args.candidates.is_some() && args.fit.is_none() {
         return Err(CliError::Usage(
             "--candidates counts a fit's values: give --fit KEY:LO:HI".to_string(),
@@ -119,7 +121,7 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     let spec = CompareSpec {
         dataset,
         throws: args.throws.unwrap_or_else(|| dataset.data().total()),
-        seed: args.seed.unwrap_or(preset.random.seed),
+        seed,
         fit: args
             .fit
             .as_deref()
@@ -174,6 +176,28 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// The seed of a cubic die's comparison, refusing the options that are Budden's alone.
+fn cubic_die_seed(args: &CompareArgs, preset: &Preset) -> Result<u64, CliError> {
+    if args.calibrate_on != DEFAULT_CALIBRATE_ON {
+        return Err(CliError::Usage(
+            "--calibrate-on chooses Budden's ratios: it is for `compare budden` only".to_string(),
+        ));
+    }
+    if args.no_fit {
+        return Err(CliError::Usage(
+            "--no-fit is for `compare budden` (which fits unless told not to); the other experiments fit only with --fit"
+                .to_string(),
+        ));
+    }
+    match args.seed.as_slice() {
+        [] => Ok(preset.random.seed),
+        [one] => Ok(*one),
+        _ => Err(CliError::Usage(
+            "--seed: several seeds are pooled for `compare budden` only; give one".to_string(),
+        )),
+    }
+}
+
 /// The PNG's caption: the throws (drawn from the random ranges: those define the figure)
 /// and the fit, and the setup whose throws are drawn: a fit's shown value.
 fn comparison_record(
@@ -210,11 +234,12 @@ fn comparison_record(
         )
     });
     let experiment = format!(
-        "{}: {} throws as {} threw them, each die {}{fit}{counted}",
+        "{}: {} throws as {} threw them, each die {}{fit}{counted}; {}",
         preset.name,
         spec.throws,
         spec.dataset.name(),
         random_starts(&preset.random, spec.seed, &[]),
+        c.headline,
     );
     let title = format!("{} against real dice", preset.name);
     Record::of_experiment(&title, experiment, &shown, &[], provenance)
@@ -233,7 +258,7 @@ fn refuse_unapplied_sets(args: &CompareArgs, preset: &Preset) -> Result<(), CliE
     let fit = args
         .fit
         .as_deref()
-        .or(budden.then_some(DEFAULT_FIT))
+        .or((budden && !args.no_fit).then_some(DEFAULT_FIT))
         .and_then(|f| FitSpec::parse(f, DEFAULT_CANDIDATES).ok());
     let command = if budden { "compare budden" } else { "compare" };
     refuse_unapplied(&args.setup.set, |key| {
@@ -241,7 +266,7 @@ fn refuse_unapplied_sets(args: &CompareArgs, preset: &Preset) -> Result<(), CliE
             .then(|| budden_unapplied(key))
             .flatten()
             .or_else(|| unapplied_when_drawn(key, &ranges, command))
-            .or_else(|| seed_given(key, args.seed.is_some()))
+            .or_else(|| seed_given(key, !args.seed.is_empty()))
             .or_else(|| {
                 fit.as_ref()
                     .filter(|f| f.key.overlaps(key))
@@ -273,11 +298,18 @@ fn run_budden(
     candidates: usize,
 ) -> Result<(), CliError> {
     let params = preset.params();
-    let fit_text = args.fit.as_deref().unwrap_or(DEFAULT_FIT);
+    let fit_text = (!args.no_fit).then(|| args.fit.as_deref().unwrap_or(DEFAULT_FIT));
     let spec = BuddenSpec {
         throws: args.throws,
-        seed: args.seed.unwrap_or(preset.random.seed),
-        fit: FitSpec::parse(fit_text, candidates).map_err(CliError::experiment("--fit "))?,
+        seeds: if args.seed.is_empty() {
+            vec![preset.random.seed]
+        } else {
+            args.seed.clone()
+        },
+        fit: fit_text
+            .map(|f| FitSpec::parse(f, candidates))
+            .transpose()
+            .map_err(CliError::experiment("--fit "))?,
         calibrate_on: args.calibrate_on.clone(),
     };
     spec.validate().map_err(CliError::experiment(""))?;
@@ -334,7 +366,7 @@ fn budden_record(
     c: &BuddenComparison,
     preset: &Preset,
     spec: &BuddenSpec,
-    fit_text: &str,
+    fit_text: Option<&str>,
     provenance: &serde_json::Value,
 ) -> Record {
     let n = setup_value;
@@ -343,35 +375,51 @@ fn budden_record(
         .map_or("Budden's own throws per ratio".to_string(), |t| {
             format!("{t} throws per ratio")
         });
-    let best = c.fit.as_ref().map_or(String::new(), |f| {
-        format!(", drawn at the best, {} = {}", c.key, n(f.best))
-    });
+    let best = match (&c.fit, &c.key) {
+        (Some(f), Some(key)) => format!(", drawn at the best, {key} = {}", n(f.best)),
+        _ => String::new(),
+    };
     let thrown: u64 = c
         .ratios
         .iter()
         .map(|r| r.simulated.throws + r.simulated.uncounted)
         .sum();
     let uncounted: u64 = c.ratios.iter().map(|r| r.simulated.uncounted).sum();
+    let at = if spec.fit.is_some() { " at the best" } else { "" };
     let best = format!(
-        "{best}; {} of {thrown} throws at the best counted, {uncounted} ended on no face",
+        "{best}; {} of {thrown} throws{at} counted, {uncounted} ended on no face",
         thrown - uncounted
     );
     // The table and world as the throws were drawn: with the fitted value at its best.
     let (mut p, mut initial) = (preset.params(), preset.initial);
-    if let Some(f) = &c.fit {
-        spec.fit.key.set(&mut p, &mut initial, f.best);
+    if let (Some(f), Some(fit)) = (&c.fit, &spec.fit) {
+        fit.key.set(&mut p, &mut initial, f.best);
     }
+    let ratios = spec
+        .calibrate_on
+        .iter()
+        .map(|r| n(*r))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let fitted = match (fit_text, &spec.fit) {
+        (Some(text), Some(fit)) => format!(
+            "--fit {text} over {} candidates on ratios {ratios}",
+            fit.candidates
+        ),
+        _ => format!("--no-fit: the preset's table as it stands, ratios {ratios} in sample"),
+    };
+    let pooled = match spec.seeds.as_slice() {
+        [_] => String::new(),
+        seeds => format!(
+            " (seeds {} pooled)",
+            seeds.iter().map(u64::to_string).collect::<Vec<_>>().join(", ")
+        ),
+    };
     let caption = vec![
         format!(
-            "{}: {throws}, each {}; --fit {fit_text} over {} candidates on ratios {}{best}",
+            "{}: {throws}{pooled}, each {}; {fitted}{best}",
             preset.name,
-            random_starts(&hand_throw(&preset.random), spec.seed, &[]),
-            spec.fit.candidates,
-            spec.calibrate_on
-                .iter()
-                .map(|r| n(*r))
-                .collect::<Vec<_>>()
-                .join(", "),
+            random_starts(&hand_throw(&preset.random), spec.seeds[0], &[]),
         ),
         format!(
             "{}; table k {} dyn/cm, γ {} s/cm, μ {}; g {} cm/s², Δt {} s (every value in the file's dicesim-provenance text)",

@@ -80,20 +80,28 @@ fn parse_vary(text: &str) -> Result<(ScanKey, Vec<f64>), CliError> {
     Ok((key, values))
 }
 
+/// A --set the throws or the --vary values replace is refused, not dropped.
+fn refuse_unapplied_sets(
+    args: &PredictArgs,
+    ranges: &RandomRanges,
+    vary: Option<&(ScanKey, Vec<f64>)>,
+) -> Result<(), CliError> {
+    refuse_unapplied(&args.setup.set, |key| {
+        unapplied_when_drawn(key, ranges, "predict")
+            .or_else(|| seed_given(key, args.seed.is_some()))
+            .or_else(|| {
+                vary.filter(|(k, _)| k.overlaps(key))
+                    .map(|(k, _)| format!("--vary {} sets it on every curve", k.key))
+            })
+    })?;
+    Ok(())
+}
+
 pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
     let options = args.run.options()?;
     let preset = args.setup.resolve()?;
     let vary = args.vary.as_deref().map(parse_vary).transpose()?;
-    // A --set the throws or the --vary values replace is refused, not dropped.
-    refuse_unapplied(&args.setup.set, |key| {
-        unapplied_when_drawn(key, &preset.random, "predict")
-            .or_else(|| seed_given(key, args.seed.is_some()))
-            .or_else(|| {
-                vary.as_ref()
-                    .filter(|(k, _)| k.overlaps(key))
-                    .map(|(k, _)| format!("--vary {} sets it on every curve", k.key))
-            })
-    })?;
+    refuse_unapplied_sets(args, &preset.random, vary.as_ref())?;
     let params = preset.params();
     params.validate()?;
     let spec = PredictSpec {

@@ -51,6 +51,7 @@ fn drop_ranges(height: f64) -> RandomRanges {
         velocity: [0.0, 0.0],
         angular_velocity: [0.0, 0.0],
         random_orientation: true,
+        orientation_spread: 0.0,
     }
 }
 

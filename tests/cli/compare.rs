@@ -428,3 +428,123 @@ fn budden_is_the_same_for_any_thread_count() {
     // Every count, share, deviance and fitted value printed with all its digits.
     assert_eq!(one.stdout, two.stdout, "the result depends on the thread count");
 }
+
+#[test]
+fn a_fit_across_the_stability_limit_lists_the_candidates_past_it() {
+    // The paper's die at the worst throw of its ranges (15 cm, 50 cm/s and 60 rad/s each
+    // way): `roll` at that throw names the limit a candidate crosses.
+    let o = dicesim(&[
+        "compare",
+        "weldon",
+        "--throws",
+        "20",
+        "--fit",
+        "ground.damping:0.002:0.02",
+        "--candidates",
+        "20",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8(o.stdout).unwrap();
+    let worst = |damping: &str| {
+        let o = dicesim(&[
+            "roll",
+            "--json",
+            "--set",
+            &format!("ground.damping={damping}"),
+            "--set",
+            "initial.velocity=[50,50,-50]",
+            "--set",
+            "initial.angular_velocity=[60,60,60]",
+        ]);
+        json(&o)["stability"]["stable"].as_bool().unwrap()
+    };
+    let listed: Vec<f64> = text
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("ground.damping = "))
+        .filter_map(|l| l.split_once(": past the stability limit"))
+        .map(|(v, _)| v.parse().unwrap())
+        .collect();
+    // The candidates' values, as the fit spaces them, each checked by `roll` on its own.
+    for i in 0..20 {
+        let value = if i == 19 {
+            0.02
+        } else {
+            0.002 + 0.018 * f64::from(i) / 19.0
+        };
+        let is_listed = listed.iter().any(|l| (l - value).abs() < 1e-12);
+        assert_eq!(
+            is_listed,
+            !worst(&value.to_string()),
+            "candidate {value}:\n{text}"
+        );
+    }
+    assert!(!listed.is_empty() && listed.len() < 20, "{text}");
+    assert!(text.contains("left out of the fit:"), "{text}");
+}
+
+#[test]
+fn a_fit_wholly_past_the_stability_limit_is_refused_with_the_limits_value() {
+    let o = dicesim(&[
+        "compare",
+        "weldon",
+        "--throws",
+        "20",
+        "--fit",
+        "ground.damping:0.02:0.05",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = String::from_utf8(o.stderr).unwrap();
+    let limit: f64 = e
+        .split("the stability limit is at ground.damping = ")
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no limit's value in: {e}"));
+    // The value said is the edge: `roll` at the worst throw is stable just below it and
+    // not just above it.
+    let stable = |damping: f64| {
+        let o = dicesim(&[
+            "roll",
+            "--json",
+            "--set",
+            &format!("ground.damping={damping}"),
+            "--set",
+            "initial.velocity=[50,50,-50]",
+            "--set",
+            "initial.angular_velocity=[60,60,60]",
+        ]);
+        json(&o)["stability"]["stable"].as_bool().unwrap()
+    };
+    assert!(stable(limit * 0.999) && !stable(limit * 1.001), "{e}");
+    assert!(limit < 0.02, "{e}");
+}
+
+#[test]
+fn budden_without_a_fit_pools_its_seeds_counts() {
+    let run = |seed: &str| {
+        let o = dicesim(&[
+            "compare", "budden", "--no-fit", "--throws", "30", "--seed", seed, "--json",
+        ]);
+        let v = json(&o);
+        assert!(v["key"].is_null() && v["candidates"].as_array().unwrap().is_empty());
+        v["ratios"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|r| {
+                (
+                    r["simulated"]["square"].as_u64().unwrap(),
+                    r["simulated"]["throws"].as_u64().unwrap(),
+                )
+            })
+            .collect::<Vec<_>>()
+    };
+    let (a, b, both) = (run("11"), run("12"), run("11,12"));
+    // Each seed's throws are its own, and pooling adds their counts ratio by ratio.
+    let sum: Vec<(u64, u64)> = a.iter().zip(&b).map(|(x, y)| (x.0 + y.0, x.1 + y.1)).collect();
+    assert_eq!(both, sum);
+    assert_ne!(a, b, "two seeds threw the same");
+    let o = dicesim(&["compare", "budden", "--no-fit", "--seed", "11,11"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("seed 11 is named twice"));
+}

@@ -16,32 +16,31 @@ fn run(args: &[&str]) -> (Output, String, String) {
 #[test]
 fn item_1_a_fit_is_won_only_by_candidates_that_counted_their_throws() {
     // It printed "best ground.stiffness = 100.000000 (deviance 0.00 …)" from 0 counted throws.
+    // Such soft tables are now also past the stability limit (the die lands through them),
+    // which leaves them out first; the fit's best is among the candidates that stand.
     let (o, out, err) = run(&[
         "compare",
         "wolf-red",
         "--fit",
-        "ground.stiffness:100:20000",
+        "ground.stiffness:100:60000",
         "--throws",
         "200",
     ]);
     assert!(o.status.success(), "{err}");
-    assert!(out.contains("left out of the fit: 3 candidates"), "{out}");
     assert!(
-        out.contains(
-            "ground.stiffness = 100: 0 of 200 throws ended on a face, fewer than the 100 a candidate needs"
-        ),
+        out.contains("ground.stiffness = 100: past the stability limit"),
         "{out}"
     );
-    let best = out.lines().find(|l| l.starts_with("best ")).unwrap();
-    assert!(!best.starts_with("best ground.stiffness = 100.000000"), "{best}");
-    // Every candidate's counted throws are in its row, the shown one's in the summary.
     assert!(
         out.contains("0/200  excluded") && out.contains("200/200"),
         "{out}"
     );
+    let best = out.lines().find(|l| l.starts_with("best ")).unwrap();
+    assert!(!best.starts_with("best ground.stiffness = 100.000000"), "{best}");
     assert!(out.contains("simulated throws not counted"), "{out}");
 
-    // "16 candidates at deviance 0.00 … 15 of 15 within 2σ" on no throws at all: refused.
+    // "16 candidates at deviance 0.00 … 15 of 15 within 2σ" on no throws at all: refused,
+    // now before any roll, for the stability limit.
     let (o, out, err) = run(&[
         "compare",
         "budden",
@@ -52,7 +51,7 @@ fn item_1_a_fit_is_won_only_by_candidates_that_counted_their_throws() {
     ]);
     assert_eq!(o.status.code(), Some(2), "{out}{err}");
     assert!(
-        err.starts_with("dicesim: no candidate of the fit rests on enough throws"),
+        err.starts_with("dicesim: every candidate of the fit, ground.stiffness from 100 to 20000 dyn/cm, is past the stability limit"),
         "{err}"
     );
     assert!(out.is_empty(), "{out}");

@@ -19,10 +19,10 @@ use crate::data_file::Column;
 use crate::real_data::{CountData, Dataset};
 use crate::record::RollRecord;
 use crate::stats::wilson_interval;
-use dicesim_physics::{InitialCondition, Params};
+use dicesim_physics::{InitialCondition, Params, Reading};
 use dicesim_setup::keys::ScanKey;
 use dicesim_setup::number::{Real, fmt_exact};
-use dicesim_setup::random::{RandomRanges, check_drawn_setup};
+use dicesim_setup::random::{RandomRanges, check_drawn_setup, worst_throw_reading};
 use dicesim_setup::registry::Role;
 use serde::Serialize;
 use std::sync::atomic::AtomicBool;
@@ -45,12 +45,16 @@ pub const MIN_COUNTED_SHARE: f64 = 0.5;
 
 /// Why a fit left a candidate out. Each reason is one variant, so every cause that takes a
 /// candidate out of a fit is listed the same way.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(tag = "reason", rename_all = "snake_case")]
 pub enum Exclusion {
     /// Fewer than [`MIN_COUNTED_SHARE`] of its throws (of one calibration ratio, for Budden)
     /// ended on a face: `counted` of `thrown`, where the fit needs `needed`.
     TooFewCounted { counted: u64, thrown: u64, needed: u64 },
+    /// The stability check predicts the worst throw of the random ranges past a limit for
+    /// one body thrown (`ratio`: Budden's cuboid of that ratio; `None`: the preset's die):
+    /// its steps would not follow the physics, so its counts are not the model's.
+    PastStabilityLimit { ratio: Option<f64>, reading: Reading },
 }
 
 /// A candidate a fit left out: its value and why.
@@ -85,8 +89,123 @@ impl std::fmt::Display for Exclusion {
                 f,
                 "{counted} of {thrown} throws ended on a face, fewer than the {needed} a candidate needs (half of them)"
             ),
+            Exclusion::PastStabilityLimit { ratio, reading } => write!(
+                f,
+                "past the stability limit for {} at the worst throw of the random ranges ({} load {:.2}): {reading}",
+                body_name(*ratio),
+                reading.limit.name(),
+                reading.load()
+            ),
         }
     }
+}
+
+/// The body a comparison throws, in words.
+fn body_name(ratio: Option<f64>) -> String {
+    ratio.map_or("the die".to_string(), |r| format!("the cuboid of ratio {r}"))
+}
+
+/// Each body's setup with the fitted key at `value` (Budden: one per ratio; a cubic die:
+/// one), as the stability check reads it.
+pub(crate) type BodySetups<'a> = &'a dyn Fn(f64) -> Vec<(Option<f64>, Params, InitialCondition)>;
+
+/// Why `value` is left out for stability: the first body whose worst throw is past a limit.
+pub(crate) fn past_stability_limit(
+    setups: BodySetups,
+    ranges: &RandomRanges,
+    value: f64,
+) -> Option<Exclusion> {
+    setups(value).into_iter().find_map(|(ratio, p, ic)| {
+        let reading = worst_throw_reading(&p, ranges, &ic);
+        reading
+            .exceeded()
+            .then_some(Exclusion::PastStabilityLimit { ratio, reading })
+    })
+}
+
+/// Refuses a fit whose every candidate is past the stability limit, before any roll,
+/// naming the first candidate's reason and the key's value where the limit lies: the
+/// stable value nearest the range, found over the key's allowed range (a scan of 256
+/// values, then 60 halvings toward the range).
+pub(crate) fn refuse_all_unstable(
+    fit: &FitSpec,
+    setups: BodySetups,
+    ranges: &RandomRanges,
+) -> Result<(), Error> {
+    let values = fit.values();
+    let first = values
+        .first()
+        .and_then(|&v| past_stability_limit(setups, ranges, v));
+    let Some(first) = first else { return Ok(()) };
+    if !values
+        .iter()
+        .all(|&v| past_stability_limit(setups, ranges, v).is_some())
+    {
+        return Ok(());
+    }
+    let stable = |v: f64| past_stability_limit(setups, ranges, v).is_none();
+    let limits = fit.key.limits();
+    let distance = |v: f64| (fit.low - v).max(v - fit.high).max(0.0);
+    let scan: Vec<f64> = (0..=255)
+        .map(|i| limits.min + (limits.max - limits.min) * f64::from(i) / 255.0)
+        .collect();
+    let nearest = scan
+        .iter()
+        .copied()
+        .filter(|&v| stable(v))
+        .min_by(|a, b| distance(*a).total_cmp(&distance(*b)));
+    let edge = nearest.map(|good| {
+        // Toward the range from the stable scan value: the last stable value before it.
+        let toward = if good < fit.low { fit.low } else { fit.high };
+        let (mut good, mut bad) = (good, toward);
+        for _ in 0..60 {
+            let mid = 0.5 * (good + bad);
+            if stable(mid) {
+                good = mid;
+            } else {
+                bad = mid;
+            }
+        }
+        good
+    });
+    let unit = fit.key.unit();
+    let limit = match edge {
+        Some(v) => format!(
+            "the stability limit is at {} = {} {unit}{}: fit a range on the stable side of it",
+            fit.key.key,
+            fmt_exact(round_significant(v, 4)),
+            if v < fit.low {
+                " (stable below it)"
+            } else {
+                " (stable above it)"
+            }
+        ),
+        None => format!(
+            "no value of {} from {} to {} {unit} is stable for every body thrown",
+            fit.key.key,
+            fmt_exact(limits.min),
+            fmt_exact(limits.max)
+        ),
+    };
+    Err(Error::Compare(format!(
+        "every candidate of the fit, {} from {} to {} {unit}, is past the stability limit \
+         ({} = {}: {first}); {limit}",
+        fit.key.key,
+        fmt_exact(fit.low),
+        fmt_exact(fit.high),
+        fit.key.key,
+        fmt_exact(fit.low)
+    )))
+}
+
+/// `x` to `digits` significant digits, so a limit found by halving reads 0.01234, not
+/// 0.012340000000000001.
+fn round_significant(x: f64, digits: i32) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let scale = 10f64.powi(digits - 1 - x.abs().log10().floor() as i32);
+    (x * scale).round() / scale
 }
 
 /// The fit over the candidates no exclusion took out: `values` and `deviances` of every
@@ -109,8 +228,9 @@ pub(crate) fn fit_over_kept(
             .collect();
         let more = excluded.len().saturating_sub(3);
         return Err(Error::Compare(format!(
-            "no candidate of the fit rests on enough throws, so it has no best value: {}{}; throw \
-             more (--throws) or fit a range where the die settles on a face",
+            "no candidate of the fit rests on enough throws within the model's limits, so it has \
+             no best value: {}{}; throw more (--throws) or fit a range where the die settles on \
+             a face and steps stably",
             reasons.join("; "),
             if more > 0 {
                 format!("; and {more} more")
@@ -275,8 +395,77 @@ pub struct Comparison {
     pub fit: Option<FitInterval>,
     /// The candidates the fit left out, each with its reason.
     pub excluded: Vec<Excluded>,
+    /// The number the experiment is known for, real beside simulated (at the shown candidate).
+    pub headline: Headline,
     /// Whether a cancel stopped it before the end.
     pub cancelled: bool,
+}
+
+/// The number an experiment is known for, the real dice's beside the simulated die's:
+/// Weldon's share of 5s and 6s per die (0.33770, above a fair die's 1/3), Wolf's χ² of
+/// his die against a fair one (270.96 and 94.19 on 5 dof).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Headline {
+    /// What the number is, in words.
+    pub name: &'static str,
+    pub real: f64,
+    /// `None` when nothing simulated was counted.
+    pub simulated: Option<f64>,
+    /// A fair die's value, where it has one fixed number (Weldon's 1/3).
+    pub fair: Option<f64>,
+    /// Decimals the number is quoted with (a share to five, as Weldon's is; a χ² to two).
+    #[serde(skip)]
+    pub decimals: usize,
+}
+
+/// E.g. "share of 5s and 6s per die: real 0.33770, simulated 0.33206 (a fair die: 0.33333)".
+impl std::fmt::Display for Headline {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let d = self.decimals;
+        write!(f, "{}: real {:.d$}, simulated ", self.name, self.real)?;
+        match self.simulated {
+            Some(s) => write!(f, "{s:.d$}")?,
+            None => write!(f, "— (nothing counted)")?,
+        }
+        if let Some(fair) = self.fair {
+            write!(f, " (a fair die: {fair:.d$})")?;
+        }
+        Ok(())
+    }
+}
+
+impl Headline {
+    /// The headline of `dataset` for the real `data` counts and the simulated `simulated`.
+    pub fn of(dataset: Dataset, data: &[u64], simulated: Option<&[u64]>) -> Headline {
+        let counted = |c: &&[u64]| c.iter().sum::<u64>() > 0;
+        match dataset {
+            Dataset::Weldon => {
+                // Category k: k of the 12 dice showed a 5 or a 6.
+                let share = |c: &[u64]| {
+                    let fives_and_sixes: u64 = c.iter().enumerate().map(|(k, n)| k as u64 * n).sum();
+                    fives_and_sixes as f64 / (12 * c.iter().sum::<u64>()) as f64
+                };
+                Headline {
+                    name: "share of 5s and 6s per die",
+                    real: share(data),
+                    simulated: simulated.filter(counted).map(share),
+                    fair: Some(1.0 / 3.0),
+                    decimals: 5,
+                }
+            }
+            Dataset::WolfRed | Dataset::WolfWhite => {
+                let fair = dataset.fair_probabilities();
+                let against_fair = |c: &[u64]| goodness_of_fit(c, &fair).chi_square;
+                Headline {
+                    name: "χ² of the die's faces against a fair die (5 dof)",
+                    real: against_fair(data),
+                    simulated: simulated.filter(counted).map(against_fair),
+                    fair: None,
+                    decimals: 2,
+                }
+            }
+        }
+    }
 }
 
 /// One row of the side-by-side table: a group of categories (pooled as the test pooled
@@ -512,6 +701,16 @@ pub fn run_comparison(
             Ok((value, p, ic))
         })
         .collect::<Result<Vec<_>, Error>>()?;
+    let die_at = |v: f64| {
+        let (mut p, mut ic) = (*params, *base);
+        if let Some(fit) = &spec.fit {
+            fit.key.set(&mut p, &mut ic, v);
+        }
+        vec![(None, p, ic)]
+    };
+    if let Some(fit) = &spec.fit {
+        refuse_all_unstable(fit, &die_at, ranges)?;
+    }
     let groups = fit_groups(&data.counts);
     let mut candidates = Vec::new();
     let mut cancelled = false;
@@ -553,11 +752,15 @@ pub fn run_comparison(
             break;
         }
     }
+    // One list: past the stability limit first (its counts are not the model's), then too
+    // few counted.
     let excluded: Vec<Excluded> = candidates
         .iter()
         .filter_map(|c| {
-            let why = Exclusion::of_counts(c.throws, c.throws + c.uncounted)?;
-            Some(Excluded { value: c.value?, why })
+            let value = c.value?;
+            let why = past_stability_limit(&die_at, ranges, value)
+                .or_else(|| Exclusion::of_counts(c.throws, c.throws + c.uncounted))?;
+            Some(Excluded { value, why })
         })
         .collect();
     let fit = match &spec.fit {
@@ -572,7 +775,13 @@ pub fn run_comparison(
         }
         None => None,
     };
+    let shown = match &fit {
+        Some(f) => candidates.get(f.best_index),
+        None => candidates.first(),
+    };
+    let headline = Headline::of(spec.dataset, &data.counts, shown.map(|c| c.counts.as_slice()));
     Ok(Comparison {
+        headline,
         dataset: spec.dataset,
         data_against_fair: goodness_of_fit(&data.counts, &spec.dataset.fair_probabilities()),
         data,

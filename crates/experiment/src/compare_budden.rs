@@ -15,7 +15,9 @@
 
 use crate::Error;
 use crate::batch::{Rolls, RunOptions, stream_batch};
-use crate::compare::{Excluded, Exclusion, FitSpec, Progress, fit_over_kept};
+use crate::compare::{
+    Excluded, Exclusion, FitSpec, Progress, fit_over_kept, past_stability_limit, refuse_all_unstable,
+};
 use crate::compare_stats::{FitInterval, SharePair, SharesSummary, deviance, shares_summary};
 use crate::data_file::Column;
 use crate::real_data::{BuddenRow, budden};
@@ -38,8 +40,11 @@ pub const DEFAULT_CALIBRATE_ON: [f64; 3] = [0.63, 1.16, 1.87];
 
 /// The fit unless told otherwise: the table's damping γ (s/cm), which sets how much of a
 /// landing's energy a bounce keeps and so how long a cuboid tumbles before it settles
-/// (docs/real-dice.md, "Budden's cuboids", says why this key and not the friction).
-pub const DEFAULT_FIT: &str = "ground.damping:0:0.05";
+/// (docs/real-dice.md, "Budden's cuboids", says why this key and not the friction). Its
+/// range is where the paper's table steps every cuboid stably at the worst throw of the
+/// paper's ranges: below about 0.0086 s/cm the 2.65 cuboid lands too deep into the table,
+/// above about 0.0164 s/cm the damping pulls on the 0.47 cuboid's corners.
+pub const DEFAULT_FIT: &str = "ground.damping:0.009:0.016";
 
 /// Throws of different ratios are drawn from disjoint parts of the seed's stream: ratio
 /// `i`'s throw `j` is roll `i·RATIO_STREAM + j`.
@@ -111,13 +116,15 @@ pub enum RatioRole {
     Predict,
 }
 
-/// What to throw: each ratio `throws` times (Budden's own count when `None`), drawn with
-/// `seed`; `fit` calibrated on the ratios `calibrate_on`.
+/// What to throw: each ratio `throws` times (Budden's own count when `None`) once per seed
+/// of `seeds`, the counts pooled; `fit` calibrated on the ratios `calibrate_on` (`None`:
+/// the preset's table as it stands, every ratio keeping its role, so a table fitted on
+/// those ratios elsewhere is judged out of sample on the others).
 #[derive(Debug, Clone, PartialEq)]
 pub struct BuddenSpec {
     pub throws: Option<u64>,
-    pub seed: u64,
-    pub fit: FitSpec,
+    pub seeds: Vec<u64>,
+    pub fit: Option<FitSpec>,
     pub calibrate_on: Vec<f64>,
 }
 
@@ -128,7 +135,18 @@ impl BuddenSpec {
         if self.throws == Some(0) {
             return Err(Error::Compare("throw at least once".to_string()));
         }
-        self.fit.validate()?;
+        if let Some(fit) = &self.fit {
+            fit.validate()?;
+        }
+        if self.seeds.is_empty() {
+            return Err(Error::Compare("--seed: name at least one seed".to_string()));
+        }
+        if let Some(i) = (1..self.seeds.len()).find(|&i| self.seeds[..i].contains(&self.seeds[i])) {
+            return Err(Error::Compare(format!(
+                "--seed: seed {} is named twice (its throws would be counted twice)",
+                self.seeds[i]
+            )));
+        }
         let rows = budden().0;
         if self.calibrate_on.is_empty() {
             return Err(Error::Compare(
@@ -151,7 +169,7 @@ impl BuddenSpec {
         Ok(())
     }
 
-    /// Throws of `row`'s ratio.
+    /// Throws of `row`'s ratio with each seed.
     fn throws_of(&self, row: &BuddenRow) -> u64 {
         self.throws.unwrap_or(row.throws)
     }
@@ -175,8 +193,9 @@ impl BuddenSpec {
             .sum();
         let all: u64 = rows.iter().map(|r| self.throws_of(r)).sum();
         calibrating
-            .saturating_mul(self.fit.candidates as u64)
+            .saturating_mul(self.fit.as_ref().map_or(0, |f| f.candidates as u64))
             .saturating_add(all)
+            .saturating_mul(self.seeds.len() as u64)
     }
 }
 
@@ -235,10 +254,12 @@ pub struct BuddenComparison {
     pub dataset: &'static str,
     pub source: String,
     pub assumptions: Vec<String>,
-    pub seed: u64,
-    /// Throws per ratio asked for (`None`: Budden's own count for each).
+    /// The seeds thrown, each ratio's counts pooled over them.
+    pub seeds: Vec<u64>,
+    /// Throws per ratio and seed asked for (`None`: Budden's own count for each).
     pub throws: Option<u64>,
-    pub key: String,
+    /// The fitted key (`None`: no fit, the preset's table as it stands).
+    pub key: Option<String>,
     pub calibrate_on: Vec<f64>,
     pub candidates: Vec<BuddenCandidate>,
     pub fit: Option<FitInterval>,
@@ -259,8 +280,7 @@ impl BuddenComparison {
     /// σ, z and whether they agree within 2σ.
     pub fn csv_columns(&self) -> Vec<Column> {
         let mut columns = vec![Column::real("ratio"), Column::text("role")];
-        if self.fit.is_some() {
-            let key = &self.key;
+        if let (Some(_), Some(key)) = (&self.fit, &self.key) {
             let name = ScanKey::named(key).map_or_else(|_| key.replace('.', "_"), |k| k.column());
             columns.push(Column::real(name));
         }
@@ -328,30 +348,47 @@ pub fn hand_throw(ranges: &RandomRanges) -> RandomRanges {
     }
 }
 
-/// `params` with the cuboid of `ratio` as its die and the fitted key at `value`, checked.
-fn setup(
+/// `params` with the cuboid of `ratio` as its die and the fitted key at `value`.
+fn body_at(
     params: &Params,
     base: &InitialCondition,
-    ranges: &RandomRanges,
-    fit: &FitSpec,
+    fit: Option<&FitSpec>,
     ratio: f64,
     value: f64,
-) -> Result<(Params, InitialCondition), Error> {
+) -> (Params, InitialCondition) {
     let (mut p, mut ic) = (*params, *base);
     // The preset's corner rounding is the one body key a steel cuboid can take.
     p.die = Die {
         corner_radius: params.die.corner_radius,
         ..cuboid(ratio)
     };
+    if let Some(fit) = fit {
+        fit.key.set(&mut p, &mut ic, value);
+    }
+    (p, ic)
+}
+
+/// `params` with the cuboid of `ratio` as its die and the fitted key at `value`, checked.
+fn setup(
+    params: &Params,
+    base: &InitialCondition,
+    ranges: &RandomRanges,
+    fit: Option<&FitSpec>,
+    ratio: f64,
+    value: f64,
+) -> Result<(Params, InitialCondition), Error> {
+    let (p, ic) = body_at(params, base, fit, ratio, value);
     // Which cuboid and candidate a refusal is about: the key alone does not say.
-    let context = |e: Error| {
-        Error::Compare(format!(
+    let context = |e: Error| match fit {
+        Some(fit) => Error::Compare(format!(
             "the cuboid of ratio {ratio} with {} = {value}: {e}",
             fit.key.key
-        ))
+        )),
+        None => Error::Compare(format!("the cuboid of ratio {ratio}: {e}")),
     };
-    fit.key.check(value).map_err(|e| context(e.into()))?;
-    fit.key.set(&mut p, &mut ic, value);
+    if let Some(fit) = fit {
+        fit.key.check(value).map_err(|e| context(e.into()))?;
+    }
     check_drawn_setup(&p, ranges, &ic).map_err(|e| context(e.into()))?;
     Ok((p, ic))
 }
@@ -362,20 +399,13 @@ fn setup(
 fn throw_ratio(
     (params, base): (Params, InitialCondition),
     ranges: &RandomRanges,
-    seed: u64,
+    seeds: &[u64],
     (index, ratio): (usize, f64),
     throws: u64,
     options: &RunOptions,
     cancel: &AtomicBool,
     mut advance: impl FnMut(u64),
 ) -> Result<Option<RatioThrows>, Error> {
-    let rolls = Rolls::Random {
-        ranges,
-        base: &base,
-        seed,
-        first: index as u64 * RATIO_STREAM,
-        count: throws,
-    };
     let mut t = RatioThrows {
         ratio,
         throws: 0,
@@ -383,21 +413,35 @@ fn throw_ratio(
         square: 0,
         past_stability_limit: 0,
     };
-    let run = stream_batch(&params, &rolls, options, cancel, &mut |records| {
-        for r in records {
-            match r.outcome.face {
-                Some(face) => {
-                    t.throws += 1;
-                    t.square += u64::from(is_square_face(face));
+    // Each seed's throws of this ratio, from the same part of its own stream: seeds give
+    // disjoint throws, and one seed alone gives the throws a single-seed run gives.
+    for &seed in seeds {
+        let rolls = Rolls::Random {
+            ranges,
+            base: &base,
+            seed,
+            first: index as u64 * RATIO_STREAM,
+            count: throws,
+        };
+        let run = stream_batch(&params, &rolls, options, cancel, &mut |records| {
+            for r in records {
+                match r.outcome.face {
+                    Some(face) => {
+                        t.throws += 1;
+                        t.square += u64::from(is_square_face(face));
+                    }
+                    None => t.uncounted += 1,
                 }
-                None => t.uncounted += 1,
             }
+            advance(records.len() as u64);
+            Ok(())
+        })?;
+        t.past_stability_limit += run.past_stability_limit;
+        if run.cancelled {
+            return Ok(None);
         }
-        advance(records.len() as u64);
-        Ok(())
-    })?;
-    t.past_stability_limit = run.past_stability_limit;
-    Ok((!run.cancelled).then_some(t))
+    }
+    Ok(Some(t))
 }
 
 /// The deviance of Budden's counts against the simulation's at one ratio: the 2 × 2 table
@@ -425,13 +469,26 @@ pub fn run_budden(
     let hand = hand_throw(ranges);
     let ranges = &hand;
     let (rows, source) = budden();
-    let fit = &spec.fit;
-    let values = fit.values();
+    let fit = spec.fit.as_ref();
+    // Without a fit, one "value" that sets nothing: the preset's table as it stands.
+    let values = fit.map_or(vec![f64::NAN], FitSpec::values);
     // Every setup is checked before the first roll.
     for row in &rows {
         for &v in &values {
             setup(params, base, ranges, fit, row.ratio, v)?;
         }
+    }
+    // Every cuboid is thrown with the best value: each one's limit holds for a candidate.
+    let cuboids_at = |v: f64| {
+        rows.iter()
+            .map(|row| {
+                let (p, ic) = body_at(params, base, fit, row.ratio, v);
+                (Some(row.ratio), p, ic)
+            })
+            .collect()
+    };
+    if let Some(fit) = fit {
+        refuse_all_unstable(fit, &cuboids_at, ranges)?;
     }
     let total = spec.total_rolls();
     let mut done = 0;
@@ -445,7 +502,7 @@ pub fn run_budden(
         throw_ratio(
             s,
             ranges,
-            spec.seed,
+            &spec.seeds,
             (i, row.ratio),
             spec.throws_of(row),
             options,
@@ -460,7 +517,8 @@ pub fn run_budden(
         .collect();
     let mut candidates = Vec::new();
     let mut cancelled = false;
-    'candidates: for &value in &values {
+    let fitted_values = if fit.is_some() { values.as_slice() } else { &[] };
+    'candidates: for &value in fitted_values {
         let mut thrown = Vec::new();
         for &(i, row) in &calibration {
             match throw(i, row, value)? {
@@ -486,22 +544,29 @@ pub fn run_budden(
     let excluded: Vec<Excluded> = candidates
         .iter()
         .filter_map(|c| {
-            let why = c
-                .ratios
-                .iter()
-                .find_map(|t| Exclusion::of_counts(t.throws, t.throws + t.uncounted))?;
+            let why = past_stability_limit(&cuboids_at, ranges, c.value).or_else(|| {
+                c.ratios
+                    .iter()
+                    .find_map(|t| Exclusion::of_counts(t.throws, t.throws + t.uncounted))
+            })?;
             Some(Excluded { value: c.value, why })
         })
         .collect();
-    let interval = if cancelled {
-        None
-    } else {
-        let values: Vec<f64> = candidates.iter().map(|c| c.value).collect();
-        let deviances: Vec<f64> = candidates.iter().map(|c| c.deviance).collect();
-        fit_over_kept(&fit.key.key, &values, &deviances, &excluded)?
+    let interval = match fit {
+        Some(fit) if !cancelled => {
+            let values: Vec<f64> = candidates.iter().map(|c| c.value).collect();
+            let deviances: Vec<f64> = candidates.iter().map(|c| c.deviance).collect();
+            fit_over_kept(&fit.key.key, &values, &deviances, &excluded)?
+        }
+        _ => None,
+    };
+    // Every ratio with the best value, or without a fit with the table as it stands.
+    let thrown_with = match fit {
+        Some(_) => interval.as_ref().map(|f| f.best),
+        None => Some(f64::NAN),
     };
     let mut results = Vec::new();
-    if let Some(best) = interval.as_ref().map(|f| f.best) {
+    if let Some(best) = thrown_with {
         for (i, row) in rows.iter().enumerate() {
             let Some(t) = throw(i, row, best)? else {
                 cancelled = true;
@@ -520,20 +585,21 @@ pub fn run_budden(
     }
     let complete = results.len() == rows.len();
     let summary = |role: Option<RatioRole>| {
-        let pairs: Vec<SharePair> = results
+        let kept: Vec<&RatioResult> = results
             .iter()
             .filter(|r| role.is_none_or(|role| r.role == role) && r.excluded.is_none())
-            .map(|r| r.shares)
             .collect();
-        (complete && !pairs.is_empty()).then(|| shares_summary(&pairs))
+        let pairs: Vec<SharePair> = kept.iter().map(|r| r.shares).collect();
+        let labels: Vec<f64> = kept.iter().map(|r| r.ratio).collect();
+        (complete && !pairs.is_empty()).then(|| shares_summary(&pairs, &labels))
     };
     Ok(BuddenComparison {
         dataset: "budden",
         source,
         assumptions: assumptions(),
-        seed: spec.seed,
+        seeds: spec.seeds.clone(),
         throws: spec.throws,
-        key: fit.key.key.clone(),
+        key: fit.map(|f| f.key.key.clone()),
         calibrate_on: spec.calibrate_on.clone(),
         candidates,
         fit: interval,
@@ -553,8 +619,8 @@ mod tests {
     fn spec(calibrate_on: &[f64]) -> BuddenSpec {
         BuddenSpec {
             throws: None,
-            seed: 1,
-            fit: FitSpec::parse(DEFAULT_FIT, 21).unwrap(),
+            seeds: vec![1],
+            fit: Some(FitSpec::parse(DEFAULT_FIT, 21).unwrap()),
             calibrate_on: calibrate_on.to_vec(),
         }
     }
@@ -591,14 +657,14 @@ mod tests {
             RandomRanges::default(),
         );
         // Ratio 0.47: half sizes 0.47, 1, 1 cm, so a 0.6 cm rounding does not fit.
-        let e = setup(&p, &ic, &r, &fit, 0.47, 0.6).unwrap_err().to_string();
+        let e = setup(&p, &ic, &r, Some(&fit), 0.47, 0.6).unwrap_err().to_string();
         assert!(
             e.contains("the cuboid of ratio 0.47 with die.corner_radius = 0.6"),
             "{e}"
         );
         assert!(e.contains("below the smallest half size, 0.47 cm"), "{e}");
         // The same cuboid with a rounding it has room for.
-        assert!(setup(&p, &ic, &r, &fit, 0.47, 0.2).is_ok());
+        assert!(setup(&p, &ic, &r, Some(&fit), 0.47, 0.2).is_ok());
     }
 
     #[test]

@@ -407,6 +407,12 @@ pub struct SharePair {
     /// (their pooled share's), and the difference in units of it.
     pub sigma: f64,
     pub z: f64,
+    /// The counts behind the shares: the data's `data_count` of `data_n`, the simulation's
+    /// `simulated_count` of `simulated_n` (pooling neighbours adds them).
+    pub data_count: u64,
+    pub data_n: u64,
+    pub simulated_count: u64,
+    pub simulated_n: u64,
 }
 
 impl SharePair {
@@ -423,7 +429,29 @@ impl SharePair {
             simulated_interval: wilson_interval(simulated_count, simulated_n),
             sigma,
             z: if sigma > 0.0 { (p1 - p2) / sigma } else { 0.0 },
+            data_count,
+            data_n,
+            simulated_count,
+            simulated_n,
         }
+    }
+
+    /// The pair of two pooled: the counts added.
+    fn pooled(&self, other: &SharePair) -> SharePair {
+        SharePair::new(
+            self.data_count + other.data_count,
+            self.data_n + other.data_n,
+            self.simulated_count + other.simulated_count,
+            self.simulated_n + other.simulated_n,
+        )
+    }
+
+    /// The smaller of the data's expected counts (of the share and of the rest) were the
+    /// two shares equal: `n·p̂` and `n·(1 − p̂)` with `p̂` the pooled share.
+    fn least_expected(&self) -> f64 {
+        let both =
+            (self.data_count + self.simulated_count) as f64 / (self.data_n + self.simulated_n).max(1) as f64;
+        self.data_n as f64 * both.min(1.0 - both)
     }
 
     /// Whether the simulation's share lies within 2σ of the data's.
@@ -432,23 +460,80 @@ impl SharePair {
     }
 }
 
-/// Predictions of shares held against the data together: how many lie within 2σ, and
-/// `Σ z²` with its p (a χ² of one degree of freedom per share).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+/// Predictions of shares held against the data together: how many lie within 2σ (each
+/// share on its own), and `Σ z²` over the groups [`pooled_groups`] forms, with its p (a χ²
+/// of one degree of freedom per group).
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SharesSummary {
     pub shares: usize,
     pub within_two_sigma: usize,
     pub chi_square: f64,
+    /// Degrees of freedom: the groups, each share alone or pooled with neighbours.
+    pub dof: usize,
     pub p_value: f64,
+    /// The shares pooled for the χ², by their labels (Budden's ratios); only groups of two
+    /// or more.
+    pub pooled: Vec<Vec<f64>>,
 }
 
-pub fn shares_summary(pairs: &[SharePair]) -> SharesSummary {
-    let chi_square = pairs.iter().map(|p| p.z * p.z).sum();
+/// Neighbouring shares (in the order given, e.g. by ratio) pooled until every group's
+/// [`SharePair::least_expected`] is at least [`MIN_EXPECTED`] (the rule the cubic dice's faces are pooled by): the first group short of it
+/// joins its neighbour — the only one at an end, else the one with the smaller expected
+/// count, the next on a tie — and the rule runs again. One group is kept whatever it holds.
+pub fn pooled_groups(pairs: &[SharePair]) -> Vec<Range<usize>> {
+    let mut groups: Vec<Range<usize>> = (0..pairs.len()).map(|i| i..i + 1).collect();
+    let pool = |g: &Range<usize>| {
+        pairs[g.clone()]
+            .iter()
+            .skip(1)
+            .fold(pairs[g.start], |sum, p| sum.pooled(p))
+    };
+    while groups.len() > 1 {
+        let Some(i) = groups
+            .iter()
+            .position(|g| pool(g).least_expected() < MIN_EXPECTED)
+        else {
+            break;
+        };
+        let before_is_sparser =
+            || pool(&groups[i - 1]).least_expected() < pool(&groups[i + 1]).least_expected();
+        let other = if i > 0 && (i + 1 == groups.len() || before_is_sparser()) {
+            i - 1
+        } else {
+            i + 1
+        };
+        let (a, b) = (i.min(other), i.max(other));
+        groups[a] = groups[a].start..groups[b].end;
+        groups.remove(b);
+    }
+    groups
+}
+
+/// The summary of `pairs`, each named by its `labels` entry (the pooled groups name them).
+pub fn shares_summary(pairs: &[SharePair], labels: &[f64]) -> SharesSummary {
+    let groups = pooled_groups(pairs);
+    let chi_square = groups
+        .iter()
+        .map(|g| {
+            let z = pairs[g.clone()]
+                .iter()
+                .skip(1)
+                .fold(pairs[g.start], |s, p| s.pooled(p))
+                .z;
+            z * z
+        })
+        .sum();
     SharesSummary {
         shares: pairs.len(),
         within_two_sigma: pairs.iter().filter(|p| p.within_two_sigma()).count(),
         chi_square,
-        p_value: chi_square_tail(chi_square, pairs.len()),
+        dof: groups.len(),
+        p_value: chi_square_tail(chi_square, groups.len()),
+        pooled: groups
+            .into_iter()
+            .filter(|g| g.len() > 1)
+            .map(|g| labels[g].to_vec())
+            .collect(),
     }
 }
 
@@ -603,7 +688,7 @@ mod tests {
         assert!((s.z - 0.1 / 0.061_237_244).abs() < 1e-6);
         assert!(s.within_two_sigma());
         assert!(!SharePair::new(40, 100, 20, 100).within_two_sigma());
-        let summary = shares_summary(&[s, SharePair::new(40, 100, 20, 100)]);
+        let summary = shares_summary(&[s, SharePair::new(40, 100, 20, 100)], &[1.0, 2.0]);
         assert_eq!((summary.shares, summary.within_two_sigma), (2, 1));
         // Budden's data against itself: every ratio within 2σ, χ² zero, p one.
         let pairs: Vec<SharePair> = budden()
@@ -611,7 +696,8 @@ mod tests {
             .iter()
             .map(|r| SharePair::new(r.square_count(), r.throws, r.square_count(), r.throws))
             .collect();
-        let all = shares_summary(&pairs);
+        let ratios: Vec<f64> = budden().0.iter().map(|r| r.ratio).collect();
+        let all = shares_summary(&pairs, &ratios);
         assert_eq!(
             (all.shares, all.within_two_sigma, all.chi_square, all.p_value),
             (15, 15, 0.0, 1.0)
@@ -727,5 +813,33 @@ mod tests {
         // The throws a test against the exact model needs: λ₈₀ / w² (scipy: 15 776.1).
         let w2: f64 = q.iter().zip(&p).map(|(q, p)| (q - p).powi(2) / p).sum();
         assert!((detecting_noncentrality(10) / w2 - 15_776.1).abs() < 1.0);
+    }
+
+    #[test]
+    fn sparse_neighbouring_shares_are_pooled_for_the_chi_square() {
+        // By hand: A's pooled share 110/200 = 0.55 expects 45 of its 100 — alone. B's
+        // 3/600 = 0.005 expects 1.5 of 300 and C's 7/400 expects 3.5 of 200: B is short
+        // first, and joins C, the neighbour expecting fewer than A; B + C, 10/1000, expects
+        // 5.0 of 500: enough. A's z² = 0.1²/(0.55·0.45·2/100) = 2.020202…; B + C's shares
+        // are equal (5/500 each), z = 0. χ² = 2.020202 on 2 dof; each share alone is
+        // within 2σ (B: z = 0.58, C: z = −0.38).
+        let pairs = [
+            SharePair::new(50, 100, 60, 100),
+            SharePair::new(2, 300, 1, 300),
+            SharePair::new(3, 200, 4, 200),
+        ];
+        assert_eq!(pooled_groups(&pairs), vec![0..1, 1..3]);
+        let s = shares_summary(&pairs, &[0.5, 1.5, 2.5]);
+        assert_eq!((s.shares, s.dof, s.within_two_sigma), (3, 2, 3));
+        assert!((s.chi_square - 0.01 / 0.00495).abs() < 1e-12, "{}", s.chi_square);
+        assert_eq!(s.pooled, vec![vec![1.5, 2.5]]);
+        // χ² of 2 dof: p = e^(−χ²/2).
+        assert!((s.p_value - (-s.chi_square / 2.0).exp()).abs() < 1e-9);
+        // Nothing short: nothing pooled, one dof a share.
+        let plenty = [SharePair::new(50, 100, 60, 100), SharePair::new(30, 100, 25, 100)];
+        assert_eq!(pooled_groups(&plenty), vec![0..1, 1..2]);
+        // A short share at the end joins the one before it.
+        let last = [SharePair::new(50, 100, 60, 100), SharePair::new(1, 100, 1, 100)];
+        assert_eq!(pooled_groups(&last), vec![0..2]);
     }
 }

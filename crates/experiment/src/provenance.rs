@@ -137,19 +137,19 @@ pub fn comparison(preset: &Preset, spec: &CompareSpec, fit: Option<&str>, candid
 
 /// The provenance of a comparison with Budden's cuboids, its random ranges as the throws
 /// were drawn: from a uniformly random orientation.
-pub fn budden(preset: &Preset, spec: &BuddenSpec, fit: &str) -> Value {
+pub fn budden(preset: &Preset, spec: &BuddenSpec, fit: Option<&str>) -> Value {
     let mut values = preset.as_written();
     values.random = hand_throw(&values.random);
-    values.random.seed = spec.seed;
+    values.random.seed = spec.seeds[0];
     json!({
         "program": PROGRAM,
         "commit": COMMIT,
         "preset": values,
         "dataset": "budden",
-        "seed": spec.seed,
+        "seeds": spec.seeds,
         "throws": spec.throws,
         "fit": fit,
-        "candidates": spec.fit.candidates,
+        "candidates": spec.fit.as_ref().map(|f| f.candidates),
         "calibrate_on": spec.calibrate_on,
     })
 }

@@ -233,6 +233,7 @@ pub fn comparison(out: &mut dyn Write, c: &Comparison, preset: &str) -> std::io:
         fair.dof,
         p_text(fair.p_value)
     )?;
+    writeln!(out, "{}", c.headline)?;
     if let (Some(fit), Some(key)) = (&c.fit, &c.key) {
         candidates(out, c, key, fit)?;
     }
@@ -307,7 +308,7 @@ fn exclusions(out: &mut dyn Write, key: &str, excluded: &[Excluded]) -> std::io:
     }
     writeln!(
         out,
-        "left out of the fit: {} candidate{} (a candidate counts when at least half its throws end on a face)",
+        "left out of the fit: {} candidate{} (a candidate counts when every body it throws is within the stability limit at the worst throw, and at least half its throws end on a face)",
         excluded.len(),
         if excluded.len() == 1 { "" } else { "s" }
     )?;
@@ -431,15 +432,24 @@ pub fn budden(out: &mut dyn Write, c: &BuddenComparison, preset: &str) -> std::i
             .collect::<Vec<_>>()
             .join(", ")
     };
+    let seeds = seeds_text(&c.seeds);
+    let Some(key) = &c.key else {
+        writeln!(
+            out,
+            "\nno fit (--no-fit): every ratio thrown with the preset's table as it stands; ratios {} keep the role \
+             \"calibrate\" (in sample, if the table was fitted on them), the others are predictions out of sample",
+            ratios(&c.calibrate_on)
+        )?;
+        return budden_ratios(out, c, None, preset);
+    };
     writeln!(
         out,
-        "\nfit of {} on ratios {}: {} candidates, each with the same throws (seed {})",
-        c.key,
+        "\nfit of {} on ratios {}: {} candidates, each with the same throws ({seeds})",
+        key,
         ratios(&c.calibrate_on),
         c.candidates.len(),
-        c.seed
     )?;
-    let short = c.key.rsplit('.').next().unwrap_or(&c.key);
+    let short = key.rsplit('.').next().unwrap_or(key);
     writeln!(out, "{short:>12}  {:>10}  square share by ratio", "deviance")?;
     for k in &c.candidates {
         let shares: Vec<String> = k
@@ -469,23 +479,30 @@ pub fn budden(out: &mut dyn Write, c: &BuddenComparison, preset: &str) -> std::i
             if left_out { "  excluded" } else { "" }
         )?;
     }
-    exclusions(out, &c.key, &c.excluded)?;
+    exclusions(out, key, &c.excluded)?;
     let Some(fit) = &c.fit else {
         return writeln!(out, "no fit: too few candidates completed");
     };
-    fit_line(out, &c.key, fit)?;
-    budden_ratios(out, c, fit.best, preset)
+    fit_line(out, key, fit)?;
+    budden_ratios(out, c, Some(fit.best), preset)
 }
 
 /// Every ratio thrown with the best value: Budden's share of square-face landings beside
 /// the simulation's, and how many lie within 2σ.
-fn budden_ratios(out: &mut dyn Write, c: &BuddenComparison, best: f64, preset: &str) -> std::io::Result<()> {
+fn budden_ratios(
+    out: &mut dyn Write,
+    c: &BuddenComparison,
+    best: Option<f64>,
+    preset: &str,
+) -> std::io::Result<()> {
+    let with = match (&c.key, best) {
+        (Some(key), Some(best)) => format!("{key} = {}", candidate_value(best)),
+        _ => "the table as it stands".to_string(),
+    };
     writeln!(
         out,
-        "\nevery ratio thrown with {} = {} ({preset}, seed {}): Budden's share of square-face landings beside the simulation's",
-        c.key,
-        candidate_value(best),
-        c.seed
+        "\nevery ratio thrown with {with} ({preset}, {}): Budden's share of square-face landings beside the simulation's",
+        seeds_text(&c.seeds)
     )?;
     writeln!(
         out,
@@ -545,18 +562,45 @@ fn budden_ratios(out: &mut dyn Write, c: &BuddenComparison, best: f64, preset: &
         ("all ratios", &c.all),
     ] {
         if let Some(s) = summary {
+            let pooled = if s.pooled.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    " (ratios {} pooled: an expected count under 5)",
+                    s.pooled
+                        .iter()
+                        .map(|g| g
+                            .iter()
+                            .map(|r| format!("{r:.2}"))
+                            .collect::<Vec<_>>()
+                            .join(" + "))
+                        .collect::<Vec<_>>()
+                        .join("; ")
+                )
+            };
             writeln!(
                 out,
-                "{words}: {} of {} within 2σ; χ² {:.2} on {} dof, p = {}",
+                "{words}: {} of {} within 2σ; χ² {:.2} on {} dof{pooled}, p = {}",
                 s.within_two_sigma,
                 s.shares,
                 s.chi_square,
-                s.shares,
+                s.dof,
                 p_text(s.p_value)
             )?;
         }
     }
     Ok(())
+}
+
+/// The seeds of a run: `seed 1`, or `seeds 11, 12, 13 pooled`.
+fn seeds_text(seeds: &[u64]) -> String {
+    match seeds {
+        [one] => format!("seed {one}"),
+        _ => format!(
+            "seeds {} pooled",
+            seeds.iter().map(u64::to_string).collect::<Vec<_>>().join(", ")
+        ),
+    }
 }
 
 /// A p-value as a person reads it: four decimals, or scientific notation when tiny.

@@ -269,9 +269,14 @@ pub fn budden_png(comparison: &BuddenComparison, record: &Record) -> Result<Vec<
     png_bytes(SIZE, record, |root| {
         root.fill(&WHITE).map_err(plot_error)?;
         let picture = with_caption(&root, record, Scale::ONE)?;
+        // Without a fit (--no-fit) the shares take the whole picture.
+        let (Some(fit), Some(key)) = (&comparison.fit, &comparison.key) else {
+            draw_budden_shares(&picture, comparison)?;
+            return root.present().map_err(plot_error);
+        };
         let (left, right) = picture.split_horizontally(SIZE.0 * 3 / 5);
         draw_budden_shares(&left, comparison)?;
-        if let Some(fit) = &comparison.fit {
+        {
             let points: Vec<(f64, f64)> = comparison
                 .candidates
                 .iter()
@@ -281,7 +286,7 @@ pub fn budden_png(comparison: &BuddenComparison, record: &Record) -> Result<Vec<
                 [first, .., last] => (last.0 - first.0) / (points.len() - 1) as f64,
                 _ => 1e-4,
             };
-            draw_deviance(&right, &comparison.key, fit, &points, spacing)?;
+            draw_deviance(&right, key, fit, &points, spacing)?;
         }
         root.present().map_err(plot_error)
     })

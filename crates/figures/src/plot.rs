@@ -294,8 +294,15 @@ pub fn random_starts(r: &dicesim_physics::RandomRanges, seed: u64, varied: &[&st
             format!("{}…{} {unit}", setup_value(lo), setup_value(hi))
         }
     };
+    let spread;
     let orientation = if r.random_orientation {
         "any orientation"
+    } else if r.orientation_spread > 0.0 {
+        spread = format!(
+            "the preset's orientation turned by up to {}°",
+            setup_value(r.orientation_spread)
+        );
+        spread.as_str()
     } else {
         "the preset's orientation"
     };

@@ -77,6 +77,12 @@ pub mod limits {
         key: "random.angular_velocity",
         ..ANGULAR_VELOCITY
     };
+    pub const ORIENTATION_SPREAD: Limits = Limits {
+        key: "random.orientation_spread",
+        unit: "°",
+        min: 0.0,
+        max: 180.0,
+    };
 }
 
 impl Default for InitialCondition {
@@ -124,7 +130,7 @@ impl InitialCondition {
     }
 
     /// The body-to-world rotation at `t = 0`.
-    pub(crate) fn rotation(&self) -> Rotation3<f64> {
+    pub fn rotation(&self) -> Rotation3<f64> {
         let [yaw, pitch, roll] = self.orientation.map(f64::to_radians);
         // from_euler_angles(roll, pitch, yaw) = Rz(yaw)·Ry(pitch)·Rx(roll); all zeros give the
         // exact identity, so the reference's unrotated start is reproduced bit for bit.
@@ -146,6 +152,11 @@ pub struct RandomRanges {
     pub angular_velocity: [f64; 2],
     /// true: orientation uniform over all rotations; false: the initial condition's.
     pub random_orientation: bool,
+    /// degrees: each throw's orientation is the initial condition's turned by a random
+    /// rotation of angle at most this, uniform (Haar) among those; 0 keeps it fixed, 180 is
+    /// uniform over all rotations. Refused beside `random_orientation = true`, which
+    /// already draws every orientation.
+    pub orientation_spread: f64,
 }
 
 impl Default for RandomRanges {
@@ -162,12 +173,24 @@ impl RandomRanges {
         velocity: [-50.0, 50.0],
         angular_velocity: [-60.0, 60.0],
         random_orientation: false,
+        orientation_spread: 0.0,
     };
 
     /// Each bound within the matching initial-condition range, and `low <= high`.
     pub fn validate(&self) -> Result<(), ParamError> {
         limits::RANDOM_HEIGHT.check_range(self.height)?;
         limits::RANDOM_VELOCITY.check_range(self.velocity)?;
-        limits::RANDOM_ANGULAR_VELOCITY.check_range(self.angular_velocity)
+        limits::RANDOM_ANGULAR_VELOCITY.check_range(self.angular_velocity)?;
+        limits::ORIENTATION_SPREAD.check(self.orientation_spread)?;
+        if self.random_orientation && self.orientation_spread > 0.0 {
+            return Err(ParamError::refused(
+                limits::ORIENTATION_SPREAD,
+                self.orientation_spread,
+                "`random.random_orientation` is true and already draws every orientation: \
+                 give one of the two (180° spread is the uniform draw)"
+                    .to_string(),
+            ));
+        }
+        Ok(())
     }
 }

@@ -811,8 +811,22 @@ pub(crate) const RANDOM_ORIENTATION: Spec = Spec {
     scan: None,
 };
 
+pub(crate) const ORIENTATION_SPREAD: Spec = Spec {
+    limits: initial::limits::ORIENTATION_SPREAD,
+    shape: Shape::Number(RandomRanges::DEFAULT.orientation_spread),
+    role: Role::Random,
+    comment: "°, turned by a uniform rotation of at most this (0 fixed, 180 any)",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: false,
+    law: None,
+    read: |s| Value::Number(s.random.orientation_spread),
+    scan: None,
+};
+
 /// Every value of a setup, in the order a preset file lists them.
-pub static ALL: [&Spec; 31] = [
+pub static ALL: [&Spec; 32] = [
     &HALF_SIZES,
     &CORNER_RADIUS,
     &PIP_DIAMETER,
@@ -844,6 +858,7 @@ pub static ALL: [&Spec; 31] = [
     &RANDOM_VELOCITY,
     &RANDOM_ANGULAR_VELOCITY,
     &RANDOM_ORIENTATION,
+    &ORIENTATION_SPREAD,
 ];
 
 /// A number in a text table: as written in a preset, without a trailing `.0`.

@@ -125,6 +125,7 @@ fn random_setups(params: Params, seed: u64, count: u64) -> Vec<(Params, InitialC
         velocity: [-80.0, 80.0],
         angular_velocity: [-80.0, 80.0],
         random_orientation: true,
+        orientation_spread: 0.0,
     };
     let base = InitialCondition::default();
     (0..count)
