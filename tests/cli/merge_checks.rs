@@ -57,7 +57,7 @@ fn edit_row(path: &Path, row: usize, edit: impl FnOnce(&mut Vec<String>)) {
 }
 
 /// The columns of a batch of random rolls: the spin as an angular velocity, each with its unit.
-const HEADER: [&str; 16] = [
+const HEADER: [&str; 20] = [
     "id",
     "height_cm",
     "velocity_x_cm_per_s",
@@ -74,6 +74,10 @@ const HEADER: [&str; 16] = [
     "status",
     "steps",
     "time_s",
+    "impacts",
+    "first_impact_steps",
+    "first_impact_time_s",
+    "first_impact_face_down",
 ];
 
 fn col(name: &str) -> usize {
@@ -276,7 +280,7 @@ fn edited_cells_are_refused_with_their_row_and_field() {
             |c| {
                 c.truncate(14);
             },
-            "14 cells, expected 16",
+            "14 cells, expected 20",
         ),
         (
             "a face the start does not put up",

@@ -376,6 +376,8 @@ mod tests {
                 face,
                 steps,
                 time_s: steps as f64 * 1e-3,
+                impacts: 0,
+                first_impact: None,
             },
             start_face,
         }

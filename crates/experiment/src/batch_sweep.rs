@@ -320,8 +320,9 @@ impl<'w> RecordsFile<'w> {
     }
 }
 
-/// Columns of a roll's record that are its ending: face, status, steps, time_s.
-const VERSUS_ENDING_COLUMNS: usize = 4;
+/// Columns of a roll's record that are its ending: face, status, steps, time_s and the four of
+/// its impacts.
+const VERSUS_ENDING_COLUMNS: usize = 8;
 
 /// The columns of the per-throw CSV of a versus batch: the throw (id, initial condition,
 /// start face) and each setup's ending, A's columns `a_…`, B's `b_…`.
@@ -427,10 +428,17 @@ mod tests {
         let header: Vec<String> = versus_columns(spin).into_iter().map(|c| c.name).collect();
         assert_eq!(header.len(), records_columns(spin).len() + VERSUS_ENDING_COLUMNS);
         assert_eq!(
-            &header[header.len() - 8..header.len() - 6],
+            &header[header.len() - 16..header.len() - 14],
             ["a_face", "a_status"]
         );
-        assert_eq!(header.last().map(String::as_str), Some("b_time_s"));
+        assert_eq!(
+            &header[header.len() - 8..header.len() - 6],
+            ["b_face", "b_status"]
+        );
+        assert_eq!(
+            header.last().map(String::as_str),
+            Some("b_first_impact_face_down")
+        );
         let paper = Preset::default();
         let a = crate::roll_record(&paper.params(), &paper.initial, 4);
         let mut b = a;
@@ -443,6 +451,6 @@ mod tests {
         assert_eq!(cells.len(), header.len());
         let a_line = crate::ics::record_csv_line(&a, spin);
         assert!(line.starts_with(&a_line), "{line}");
-        assert_eq!(cells[cells.len() - 4..cells.len() - 2], ["", "timeout"]);
+        assert_eq!(cells[cells.len() - 8..cells.len() - 6], ["", "timeout"]);
     }
 }

@@ -813,6 +813,8 @@ mod tests {
                 face,
                 steps: 1,
                 time_s: 0.001,
+                impacts: 0,
+                first_impact: None,
             },
             start_face: 4,
         }

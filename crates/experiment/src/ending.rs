@@ -56,6 +56,8 @@ mod tests {
             face,
             steps: 0,
             time_s: 0.0,
+            impacts: 0,
+            first_impact: None,
         };
         assert_eq!(Ending::of(&o(Status::Settled, Some(3))).words(), "face 3");
         assert_eq!(

@@ -10,7 +10,7 @@ use crate::Error;
 use crate::data_file::Column;
 use crate::record::RollRecord;
 use dicesim_physics::initial::limits;
-use dicesim_physics::{InitialCondition, Outcome, Status};
+use dicesim_physics::{FirstImpact, InitialCondition, Outcome, Status};
 use dicesim_setup::keys::column_name;
 use dicesim_setup::number::Real;
 use std::sync::LazyLock;
@@ -52,7 +52,17 @@ pub(crate) fn initial_column_names() -> &'static [String; COLUMNS] {
 }
 
 /// The result columns of a per-roll file; an `--ics` file may carry them (they are ignored).
-pub(crate) const RESULT_COLUMNS: [&str; 5] = ["start_face", "face", "status", "steps", "time_s"];
+pub(crate) const RESULT_COLUMNS: [&str; 9] = [
+    "start_face",
+    "face",
+    "status",
+    "steps",
+    "time_s",
+    "impacts",
+    "first_impact_steps",
+    "first_impact_time_s",
+    "first_impact_face_down",
+];
 
 const COLUMNS: usize = 13;
 
@@ -156,6 +166,10 @@ pub fn records_columns(spin: SpinColumns) -> Vec<Column> {
         Column::text("status"),
         Column::integer("steps"),
         Column::real("time_s"),
+        Column::integer("impacts"),
+        Column::integer("first_impact_steps"),
+        Column::real("first_impact_time_s"),
+        Column::integer("first_impact_face_down"),
     ]);
     columns
 }
@@ -192,6 +206,20 @@ pub fn write_record_line(line: &mut Vec<u8>, r: &RollRecord, spin: SpinColumns) 
     write_whole(line, o.steps);
     line.push(b',');
     Real(o.time_s).write_to(line);
+    line.push(b',');
+    write_whole(line, o.impacts);
+    // A roll without an impact leaves its first impact's three cells empty.
+    match &o.first_impact {
+        Some(f) => {
+            line.push(b',');
+            write_whole(line, f.step);
+            line.push(b',');
+            Real(f.time_s).write_to(line);
+            line.push(b',');
+            write_whole(line, u64::from(f.face_down));
+        }
+        None => line.extend_from_slice(b",,,"),
+    }
 }
 
 /// Appends a whole number's decimal digits.
@@ -289,15 +317,24 @@ pub fn parse_record_line(row: &str, spin: SpinColumns) -> Result<RollRecord, Str
             angular_momentum,
             orientation: [required(10)?, required(11)?, required(12)?],
         },
-        start_face: small(n - 5)?,
+        start_face: small(n - 9)?,
         outcome: Outcome {
-            face: match cells[n - 4] {
+            face: match cells[n - 8] {
                 "" => None,
-                _ => Some(small(n - 4)?),
+                _ => Some(small(n - 8)?),
             },
-            status: Status::from_name(cells[n - 3]).ok_or_else(|| bad(n - 3))?,
-            steps: cells[n - 2].parse().map_err(|_| bad(n - 2))?,
-            time_s: cells[n - 1].parse().map_err(|_| bad(n - 1))?,
+            status: Status::from_name(cells[n - 7]).ok_or_else(|| bad(n - 7))?,
+            steps: cells[n - 6].parse().map_err(|_| bad(n - 6))?,
+            time_s: cells[n - 5].parse().map_err(|_| bad(n - 5))?,
+            impacts: cells[n - 4].parse().map_err(|_| bad(n - 4))?,
+            first_impact: match (cells[n - 3], cells[n - 2], cells[n - 1]) {
+                ("", "", "") => None,
+                _ => Some(FirstImpact {
+                    step: cells[n - 3].parse().map_err(|_| bad(n - 3))?,
+                    time_s: cells[n - 2].parse().map_err(|_| bad(n - 2))?,
+                    face_down: small(n - 1)?,
+                }),
+            },
         },
     };
     // The one accepted spelling of every cell is the one this program writes. The row is
@@ -551,7 +588,8 @@ mod tests {
             header,
             "id,height_cm,velocity_x_cm_per_s,velocity_y_cm_per_s,velocity_z_cm_per_s,\
              angular_velocity_x_rad_per_s,angular_velocity_y_rad_per_s,angular_velocity_z_rad_per_s,\
-             yaw_deg,pitch_deg,roll_deg,start_face,face,status,steps,time_s"
+             yaw_deg,pitch_deg,roll_deg,start_face,face,status,steps,time_s,\
+             impacts,first_impact_steps,first_impact_time_s,first_impact_face_down"
         );
         assert!(
             records_csv_header(SpinColumns::AngularMomentum).contains(",angular_momentum_x_g_cm2_per_s,")

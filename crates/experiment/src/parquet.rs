@@ -14,7 +14,7 @@
 
 use crate::ics::{SpinColumns, initial_column_names};
 use crate::record::RollRecord;
-use dicesim_physics::{InitialCondition, Outcome, Status};
+use dicesim_physics::{FirstImpact, InitialCondition, Outcome, Status};
 use parquet::basic::{Compression, Encoding};
 use parquet::data_type::{ByteArray, ByteArrayType, DoubleType, Int32Type, Int64Type};
 use parquet::errors::ParquetError;
@@ -55,6 +55,10 @@ fn schema(spin: SpinColumns) -> String {
             "REQUIRED BYTE_ARRAY status (STRING);",
             "REQUIRED INT64 steps (INTEGER(64,false));",
             "REQUIRED DOUBLE time_s;",
+            "REQUIRED INT64 impacts (INTEGER(64,false));",
+            "OPTIONAL INT64 first_impact_steps (INTEGER(64,false));",
+            "OPTIONAL DOUBLE first_impact_time_s;",
+            "OPTIONAL INT32 first_impact_face_down (INTEGER(8,false));",
         ]
         .map(String::from),
     );
@@ -134,6 +138,10 @@ enum Column {
     Status,
     Steps,
     Time,
+    Impacts,
+    FirstImpactSteps,
+    FirstImpactTime,
+    FirstImpactFaceDown,
 }
 
 /// The columns of a records file with spin columns `spin`, in the schema's order.
@@ -146,6 +154,10 @@ fn columns(spin: SpinColumns) -> Vec<Column> {
             Column::Status,
             Column::Steps,
             Column::Time,
+            Column::Impacts,
+            Column::FirstImpactSteps,
+            Column::FirstImpactTime,
+            Column::FirstImpactFaceDown,
         ])
         .collect()
 }
@@ -212,6 +224,31 @@ fn write_column(
         Column::Time => {
             let times: Vec<f64> = rows.iter().map(|r| r.outcome.time_s).collect();
             w.typed::<DoubleType>().write_batch(&times, None, None)?;
+        }
+        Column::Impacts => {
+            let impacts: Vec<i64> = rows.iter().map(|r| r.outcome.impacts as i64).collect();
+            w.typed::<Int64Type>().write_batch(&impacts, None, None)?;
+        }
+        Column::FirstImpactSteps | Column::FirstImpactTime | Column::FirstImpactFaceDown => {
+            let levels: Vec<i16> = rows
+                .iter()
+                .map(|r| i16::from(r.outcome.first_impact.is_some()))
+                .collect();
+            let firsts = rows.iter().filter_map(|r| r.outcome.first_impact);
+            match column {
+                Column::FirstImpactSteps => {
+                    let steps: Vec<i64> = firsts.map(|f| f.step as i64).collect();
+                    w.typed::<Int64Type>().write_batch(&steps, Some(&levels), None)?;
+                }
+                Column::FirstImpactTime => {
+                    let times: Vec<f64> = firsts.map(|f| f.time_s).collect();
+                    w.typed::<DoubleType>().write_batch(&times, Some(&levels), None)?;
+                }
+                _ => {
+                    let faces: Vec<i32> = firsts.map(|f| i32::from(f.face_down)).collect();
+                    w.typed::<Int32Type>().write_batch(&faces, Some(&levels), None)?;
+                }
+            }
         }
     }
     Ok(())
@@ -350,8 +387,12 @@ fn record_from(columns: &[Column], f: &[&Field]) -> Result<RollRecord, String> {
             face: None,
             steps: 0,
             time_s: 0.0,
+            impacts: 0,
+            first_impact: None,
         },
     };
+    // The first impact's three cells: all or none.
+    let (mut first_step, mut first_time, mut first_face) = (None, None, None);
     for (i, column) in columns.iter().enumerate() {
         let double = || match f[i] {
             Field::Double(v) => Ok(Some(*v)),
@@ -380,8 +421,27 @@ fn record_from(columns: &[Column], f: &[&Field]) -> Result<RollRecord, String> {
             }
             Column::Steps => r.outcome.steps = unsigned()?,
             Column::Time => r.outcome.time_s = double()?.ok_or_else(|| bad(i))?,
+            Column::Impacts => r.outcome.impacts = unsigned()?,
+            Column::FirstImpactSteps => {
+                first_step = match f[i] {
+                    Field::ULong(v) => Some(*v),
+                    Field::Null => None,
+                    _ => return Err(bad(i)),
+                }
+            }
+            Column::FirstImpactTime => first_time = double()?,
+            Column::FirstImpactFaceDown => first_face = small()?,
         }
     }
+    r.outcome.first_impact = match (first_step, first_time, first_face) {
+        (Some(step), Some(time_s), Some(face_down)) => Some(FirstImpact {
+            step,
+            time_s,
+            face_down,
+        }),
+        (None, None, None) => None,
+        _ => return Err("a first impact with some of its cells empty".to_string()),
+    };
     let at = |k: usize| {
         columns
             .iter()

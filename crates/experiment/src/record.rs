@@ -19,11 +19,15 @@ pub struct RollRecord {
     pub start_face: u8,
 }
 
-/// `outcome` as every experiment reports it: its time the steps × Δt of `params`, rounded to
+/// `outcome` as every experiment reports it: its times (the end's, the first impact's) the steps × Δt of `params`, rounded to
 /// Δt's decimals ([`StepClock`]), not the clock's sum of Δt (`0.684`, not
 /// `0.6840000000000005`); the step count, exact, is beside it.
 pub fn reported(mut outcome: Outcome, params: &Params) -> Outcome {
-    outcome.time_s = StepClock::new(params.integrator.dt).time_s(outcome.steps);
+    let clock = StepClock::new(params.integrator.dt);
+    outcome.time_s = clock.time_s(outcome.steps);
+    if let Some(first) = &mut outcome.first_impact {
+        first.time_s = clock.time_s(first.step);
+    }
     outcome
 }
 
@@ -156,6 +160,47 @@ impl RecordCheck {
                 o.time_s, o.steps, self.params.integrator.dt
             ));
         }
+        self.check_impacts(o)
+    }
+
+    /// The impacts of an outcome: a first impact exactly when there was one, within the
+    /// roll (after its start, by its end), its time its steps' own, its face down a face; and
+    /// no more impacts than half the steps (each begins after a state clear of the table).
+    fn check_impacts(&self, o: &Outcome) -> Result<(), String> {
+        if 2 * o.impacts > o.steps + 1 {
+            return Err(format!(
+                "{} impacts in {} steps: each needs a step clear of the table",
+                o.impacts, o.steps
+            ));
+        }
+        let Some(first) = &o.first_impact else {
+            return match o.impacts {
+                0 => Ok(()),
+                n => Err(format!("{n} impacts but no first impact")),
+            };
+        };
+        if o.impacts == 0 {
+            return Err("a first impact with 0 impacts".to_string());
+        }
+        if first.step == 0 || first.step > o.steps {
+            return Err(format!(
+                "first impact at step {}, outside the roll's steps 1 to {}",
+                first.step, o.steps
+            ));
+        }
+        let expected = self.clock.time_s(first.step);
+        if first.time_s.to_bits() != expected.to_bits() {
+            return Err(format!(
+                "first_impact_time_s {:?} is not {} steps of {} s ({expected:?})",
+                first.time_s, first.step, self.params.integrator.dt
+            ));
+        }
+        if !face_ok(first.face_down) {
+            return Err(format!(
+                "first_impact_face_down {} is not a face of a die",
+                first.face_down
+            ));
+        }
         Ok(())
     }
 }
@@ -245,5 +290,38 @@ mod tests {
                 .unwrap_err()
                 .contains("not the one the sweep's seed draws")
         );
+    }
+
+    #[test]
+    fn a_records_impacts_are_checked_as_read_back() {
+        let params = Params::default();
+        let r = roll_record(&params, &InitialCondition::default(), 0);
+        let check = RecordCheck::new(&params);
+        // The paper's throw falls 14 cm before it first touches: it has impacts, the first
+        // a whole number of steps into the roll and printed as those steps of Δt.
+        let first = r.outcome.first_impact.expect("the paper's throw lands");
+        assert!(r.outcome.impacts >= 1 && first.step < r.outcome.steps);
+        assert_eq!(
+            first.time_s,
+            StepClock::new(params.integrator.dt).time_s(first.step)
+        );
+        let refused = |edit: &dyn Fn(&mut Outcome), words: &str| {
+            let mut bad = r;
+            edit(&mut bad.outcome);
+            let e = check.check(&bad, None).unwrap_err();
+            assert!(e.contains(words), "{e}");
+        };
+        refused(&|o| o.first_impact = None, "impacts but no first impact");
+        refused(&|o| o.impacts = 0, "a first impact with 0 impacts");
+        refused(
+            &|o| o.first_impact.as_mut().unwrap().step = o.steps + 1,
+            "outside the roll's steps",
+        );
+        refused(&|o| o.first_impact.as_mut().unwrap().time_s += 1e-9, "is not");
+        refused(
+            &|o| o.first_impact.as_mut().unwrap().face_down = 7,
+            "not a face of a die",
+        );
+        refused(&|o| o.impacts = o.steps, "each needs a step clear of the table");
     }
 }

@@ -354,6 +354,8 @@ mod tests {
                 face,
                 steps: 10,
                 time_s,
+                impacts: 0,
+                first_impact: None,
             },
             start_face: 1,
         };

@@ -92,7 +92,7 @@ mod avx2 {
     use super::*;
     use crate::kernel::{Kernel, NoHook, lane3};
     use crate::lane::Lane;
-    use crate::sim::Status;
+    use crate::sim::{ImpactLog, Status};
     use nalgebra::{Vector2, Vector3};
     use std::arch::x86_64::*;
     use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
@@ -349,6 +349,8 @@ mod avx2 {
         /// Per lane: the roll's index, its start face and its `Simulation`, which the lane's
         /// state is stored back into at the end.
         rolls: [Option<(usize, u8, Simulation)>; LANES],
+        /// Per lane: its roll's impacts, seen state by state as the scalar engine sees them.
+        impact_logs: [ImpactLog; LANES],
     }
 
     impl Lanes {
@@ -426,6 +428,7 @@ mod avx2 {
                 k,
                 live: F4::zero(),
                 rolls: [None, None, None, None],
+                impact_logs: [ImpactLog::new(false); LANES],
             }
         }
 
@@ -509,6 +512,7 @@ mod avx2 {
             c.spring_lanes = (c.spring_lanes & !(1 << l)) | (f.spring_lanes << l);
             k.bodies[l] = from.bodies[0];
             set_mask(&mut self.live, l, true);
+            self.impact_logs[l] = sim.impact_log;
             let start_face = face_most_nearly_up(&s.corner_offsets);
             self.rolls[l] = Some((index, start_face, sim));
         }
@@ -574,7 +578,26 @@ mod avx2 {
             to.touching_corners = (0..8)
                 .filter(|&c| s.corner_depths[c] > 0.0)
                 .fold(0, |bits, c| bits | 1 << c);
+            sim.impact_log = self.impact_logs[l];
             sim
+        }
+
+        /// Each live lane's contact after a step, as the scalar engine observes its own.
+        #[inline(always)]
+        fn observe_impacts(&mut self) {
+            let (contact, live) = (F4::bits(self.k.in_contact), F4::bits(self.live));
+            let s = &self.k.state;
+            for l in 0..LANES {
+                if live & (1 << l) != 0 {
+                    self.impact_logs[l].observe(contact & (1 << l) != 0, || {
+                        (
+                            s.corner_offsets.each_ref().map(|r| lane3(r, l)),
+                            s.step.lane(l) as u64,
+                            s.time_s.lane(l),
+                        )
+                    });
+                }
+            }
         }
     }
 
@@ -625,6 +648,7 @@ mod avx2 {
             } else {
                 step_spring_friction(&mut lanes.k)
             };
+            lanes.observe_impacts();
             let mut ending = F4::bits((ends.unstable | ends.settled | ends.timeout) & lanes.live);
             while ending != 0 {
                 let l = ending.trailing_zeros() as usize;

@@ -41,7 +41,9 @@ pub use params::{
     World,
 };
 pub use shape::{MassProperties, mass_properties};
-pub use sim::{ContactForce, EnergyLedger, Outcome, STEPS_BETWEEN_STOP_CHECKS, Simulation, State, Status};
+pub use sim::{
+    ContactForce, EnergyLedger, FirstImpact, Outcome, STEPS_BETWEEN_STOP_CHECKS, Simulation, State, Status,
+};
 pub use stability::{Limit, Reading, Stability, StabilityCheck, UnstableReason};
 pub use stopping::StopRule;
 

@@ -8,6 +8,7 @@
 use super::body::face_most_nearly_up;
 use super::contact;
 use super::energy::Energy;
+use super::impact::Impacts;
 use super::initial::InitialCondition;
 use super::kernel::{Constants, Kernel, NoHook, StepHook, contact_point};
 use super::model::{Body, check_setup};
@@ -104,6 +105,64 @@ pub struct Outcome {
     pub steps: u64,
     /// s of simulated time when the roll ended.
     pub time_s: f64,
+    /// Impacts in the roll (docs/model.md, "Impacts": a contact after at least one state
+    /// with the whole body clear of the table).
+    pub impacts: u64,
+    /// The first of them; `None` when there was none (a die placed on the table that never
+    /// left it).
+    pub first_impact: Option<FirstImpact>,
+}
+
+/// The state at which a roll's first impact begins.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FirstImpact {
+    /// Steps taken when it began.
+    pub step: u64,
+    /// s of simulated time when it began.
+    pub time_s: f64,
+    /// The face most nearly down then (1..6): the one opposite the face most nearly up.
+    pub face_down: u8,
+}
+
+/// A roll's impacts as its states are seen, by the one definition ([`Impacts`]), with the
+/// first one's state: both engines keep one per roll and fill it alike.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ImpactLog {
+    pub(crate) impacts: Impacts,
+    pub(crate) first: Option<FirstImpact>,
+}
+
+impl ImpactLog {
+    /// A roll whose first state is in contact or not.
+    pub(crate) fn new(in_contact: bool) -> ImpactLog {
+        ImpactLog {
+            impacts: Impacts::new(in_contact),
+            first: None,
+        }
+    }
+
+    /// The next state's contact; `corner_offsets`, `step` and `time_s` are read only when
+    /// the first impact begins at it.
+    #[inline(always)]
+    pub(crate) fn observe(
+        &mut self,
+        in_contact: bool,
+        state: impl FnOnce() -> ([Vector3<f64>; 8], u64, f64),
+    ) {
+        if self.impacts.observe(in_contact) && self.first.is_none() {
+            self.first = Some(first_impact(state()));
+        }
+    }
+}
+
+#[cold]
+fn first_impact((corner_offsets, step, time_s): ([Vector3<f64>; 8], u64, f64)) -> FirstImpact {
+    FirstImpact {
+        step,
+        time_s,
+        // Opposite faces sum to 7 (face i's normal is face 7 − i's, reversed).
+        face_down: 7 - face_most_nearly_up(&corner_offsets),
+    }
 }
 
 /// Steps between two looks at a stop request in [`Simulation::run_until_stopped`]: a few
@@ -118,6 +177,8 @@ pub struct Simulation {
     /// which loads rolls from it and stores them back, so that both engines start and end
     /// alike.
     pub(super) k: Kernel<f64>,
+    /// The roll's impacts so far (the lane engine carries a lane's and stores it back).
+    pub(super) impact_log: ImpactLog,
     /// Whether the energy ledger is kept (its work sums cost a second pass over the
     /// corners per contact step, which a batch that only wants outcomes skips).
     track_ledger: bool,
@@ -196,7 +257,9 @@ impl Simulation {
             initial_energy: 0.0,
             stop_rule: contact::on_the_table(body.stop_rule(), params, body.edge_energy()),
             outcome: None,
+            impact_log: ImpactLog::new(false),
         };
+        sim.impact_log = ImpactLog::new(sim.k.in_contact);
         sim.initial_energy = sim.energy().total();
         sim.k.c.runaway = RUNAWAY_ENERGY_FACTOR * sim.initial_energy.max(body.edge_energy());
         sim
@@ -381,6 +444,9 @@ impl Simulation {
         } else {
             self.k.step::<SPRING>(&mut NoHook);
         }
+        let s = &self.k.state;
+        self.impact_log
+            .observe(self.k.in_contact, || (s.corner_offsets, s.step, s.time_s));
     }
 
     /// The step with the energy ledger's bookkeeping, kept out of line: inlined beside the
@@ -482,6 +548,8 @@ impl Simulation {
             },
             steps: self.k.state.step,
             time_s: self.k.state.time_s,
+            impacts: self.impact_log.impacts.count(),
+            first_impact: self.impact_log.first,
         }
     }
 }

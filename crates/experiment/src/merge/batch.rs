@@ -18,7 +18,7 @@ use crate::record::{RecordCheck, RollRecord, roll_record, same_record};
 use crate::shard::{Part, Sweep};
 use crate::summary::BatchSummary;
 use crate::tally::Tally;
-use dicesim_physics::{InitialCondition, Outcome, Params, StabilityCheck, Status};
+use dicesim_physics::{FirstImpact, InitialCondition, Outcome, Params, StabilityCheck, Status};
 use dicesim_setup::output::{Output, OutputError, Staged, commit, sidecar_path};
 use dicesim_setup::preset::{Preset, read_regular_file};
 use dicesim_setup::random::RandomDraws;
@@ -281,7 +281,22 @@ impl BatchExpect {
     /// names what differs.
     fn row_as_drawn(&self, row: &[u8], seed: u64, line: &mut Vec<u8>) -> Option<RollRecord> {
         let id = whole(row.split(|&b| b == b',').next()?)?;
-        let mut ending = row.rsplitn(6, |&b| b == b',');
+        let mut ending = row.rsplitn(10, |&b| b == b',');
+        let first_face = ending.next()?;
+        let _first_time = ending.next()?;
+        let first_step = ending.next()?;
+        let impacts = whole(ending.next()?)?;
+        let first_impact = match (first_step, first_face) {
+            ([], []) => None,
+            (step, face) => {
+                let step = whole(step)?;
+                Some(FirstImpact {
+                    step,
+                    time_s: self.check.clock().time_s(step),
+                    face_down: u8::try_from(whole(face)?).ok()?,
+                })
+            }
+        };
         let _time = ending.next()?;
         let steps = whole(ending.next()?)?;
         let status = Status::from_name(std::str::from_utf8(ending.next()?).ok()?)?;
@@ -299,6 +314,8 @@ impl BatchExpect {
                 face,
                 steps,
                 time_s: self.check.clock().time_s(steps),
+                impacts,
+                first_impact,
             },
         };
         line.clear();

@@ -149,6 +149,9 @@ pub(super) fn parse_map_row(
         face,
         steps: steps.parse().map_err(|_| number("steps", steps))?,
         time_s: time_s.parse().map_err(|_| number("time_s", time_s))?,
+        // A map's file keeps each cell's ending, not its impacts (batch records do).
+        impacts: 0,
+        first_impact: None,
     };
     if let Some((_, _, check)) = node {
         check.check_outcome(&outcome)?;

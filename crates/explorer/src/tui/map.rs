@@ -418,6 +418,8 @@ fn legend_lines(app: &App) -> Vec<Line<'static>> {
             face,
             steps: 0,
             time_s,
+            impacts: 0,
+            first_impact: None,
         },
         start_face: 1,
         sampled: true,

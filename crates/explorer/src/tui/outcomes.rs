@@ -284,7 +284,7 @@ pub(crate) fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
         rows.push((
             3,
             TableRow::Text(fit::abbreviate(
-                Line::styled(" last rolls: spin ω (rad/s) → ending, steps", t.heading()),
+                Line::styled(" last: spin ω (rad/s) → ending, steps, impacts", t.heading()),
                 width,
             )),
         ));
@@ -292,8 +292,8 @@ pub(crate) fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
             let w = r.initial.angular_velocity;
             let end = dicesim_experiment::ending::Ending::of(&r.outcome).words();
             let line = Line::from(format!(
-                " #{:<5} ({:>4.0},{:>4.0},{:>4.0}) → {end} {:>6}",
-                r.id, w[0], w[1], w[2], r.outcome.steps
+                " #{:<5} ({:>4.0},{:>4.0},{:>4.0}) → {end} {:>6} {:>3}×",
+                r.id, w[0], w[1], w[2], r.outcome.steps, r.outcome.impacts
             ));
             rows.push((4, TableRow::Text(fit::abbreviate(line, width))));
         }

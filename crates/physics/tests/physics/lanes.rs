@@ -33,6 +33,9 @@ struct Bits {
     time_s: u64,
     start_face: u8,
     state: Vec<u64>,
+    impacts: u64,
+    /// The first impact's step, time and face down.
+    first_impact: Option<(u64, u64, u8)>,
 }
 
 fn bits(r: &LaneResult<'_>) -> Bits {
@@ -41,6 +44,8 @@ fn bits(r: &LaneResult<'_>) -> Bits {
         face,
         steps,
         time_s,
+        impacts,
+        first_impact,
     } = r.outcome;
     Bits {
         status,
@@ -49,6 +54,8 @@ fn bits(r: &LaneResult<'_>) -> Bits {
         time_s: time_s.to_bits(),
         start_face: r.start_face,
         state: state_bits(r.state),
+        impacts,
+        first_impact: first_impact.map(|f| (f.step, f.time_s.to_bits(), f.face_down)),
     }
 }
 
@@ -370,4 +377,41 @@ fn a_stop_request_ends_the_lanes_within_a_check_interval() {
     );
     assert!(!finished);
     assert_eq!(asked.get(), 3);
+}
+
+/// A flat drop under the spring-friction law bounces the number of times docs/model.md
+/// ("Impacts", "A flat drop's bounces") derives, in both widths alike: the least restitution
+/// allowed from 2 cm above rest once, restitution 0.5 from 10 cm above rest three times.
+#[test]
+fn a_flat_drop_bounces_as_its_restitution_and_height_say() {
+    use dicesim_physics::ContactLaw;
+    for (restitution, drop_cm, expected) in [(0.2, 2.0, 1), (0.5, 10.0, 3)] {
+        let mut params = Params::default();
+        params.ground.contact = ContactLaw::SpringFriction;
+        params.ground.restitution = restitution;
+        let a = params.die.half_sizes[2];
+        let initial = InitialCondition {
+            height: a + drop_cm,
+            velocity: [0.0; 3],
+            angular_velocity: [0.0; 3],
+            angular_momentum: None,
+            orientation: [0.0; 3],
+        };
+        // Four copies fill every lane.
+        let setups = vec![(params, initial); 4];
+        let (scalar, lanes) = (run(roll_one_by_one, &setups), run(roll_in_lanes, &setups));
+        assert_eq!(scalar, lanes, "e = {restitution}: the widths differ");
+        let r = scalar[0].as_ref().unwrap();
+        assert_eq!(r.status, Status::Settled, "e = {restitution}");
+        assert_eq!(r.impacts, expected, "e = {restitution}, {drop_cm} cm");
+        // Face 4 up, so face 3 down at the first impact, which is the fall's end:
+        // √(2·drop/g) s, to within the step.
+        let (step, _, face_down) = r.first_impact.unwrap();
+        assert_eq!(face_down, 3);
+        let fall_steps = (2.0 * drop_cm / params.world.gravity).sqrt() / params.integrator.dt;
+        assert!(
+            (step as f64 - fall_steps).abs() <= 1.5,
+            "first impact at step {step}, fall {fall_steps}"
+        );
+    }
 }
