@@ -560,3 +560,50 @@ fn incline_holds_the_die_below_the_friction_angle_and_slides_it_above() {
     assert!((a / expected - 1.0).abs() < 0.01, "a = {a}, expected {expected}");
     assert_eq!(sim.run_to_end().status, Status::Timeout);
 }
+
+/// `calibrated-table` is the paper's die and throw on another table: every key but the
+/// table's (`ground.*`) and the step that table needs (`integrator.dt`) is the paper's; its
+/// description names what it was fitted to and the fit's command; and at that step every
+/// body it is meant for steps stably at the worst throw of its ranges — each of Budden's
+/// cuboids thrown by hand, and the paper's die.
+#[test]
+fn calibrated_table_is_the_papers_setup_on_a_fitted_table_that_holds_every_body() {
+    use dicesim_experiment::compare_budden::{cuboid, hand_throw};
+    use dicesim_experiment::real_data::budden;
+    use dicesim_setup::random::worst_throw_reading;
+    let (paper, table) = (shipped("paper"), shipped("calibrated-table"));
+    let (p, t) = (paper.params(), table.params());
+    assert_eq!(t.die, p.die);
+    assert_eq!(t.world, p.world);
+    assert_eq!(
+        dicesim_physics::Integrator {
+            dt: p.integrator.dt,
+            ..t.integrator
+        },
+        p.integrator
+    );
+    assert_eq!((table.initial, table.random), (paper.initial, paper.random));
+    assert_eq!(t.ground.contact, ContactLaw::SpringFriction);
+    for words in [
+        "Budden",
+        "0.63, 1.16, 1.87",
+        "seed 1",
+        "compare budden --fit ground.restitution",
+    ] {
+        assert!(
+            table.description.contains(words),
+            "no `{words}` in the description"
+        );
+    }
+    let hand = hand_throw(&table.random);
+    for row in budden().0 {
+        let body = Params {
+            die: cuboid(row.ratio),
+            ..t
+        };
+        let reading = worst_throw_reading(&body, &hand, &table.initial);
+        assert!(!reading.exceeded(), "ratio {}: {reading}", row.ratio);
+    }
+    let reading = worst_throw_reading(&t, &table.random, &table.initial);
+    assert!(!reading.exceeded(), "the paper's die: {reading}");
+}

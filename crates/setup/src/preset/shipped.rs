@@ -38,6 +38,10 @@ pub const SHIPPED: &[(&str, &str)] = &[
     ("sleeping-top", include_str!("../../presets/sleeping-top.toml")),
     ("superball", include_str!("../../presets/superball.toml")),
     ("incline", include_str!("../../presets/incline.toml")),
+    (
+        "calibrated-table",
+        include_str!("../../presets/calibrated-table.toml"),
+    ),
 ];
 
 /// The shipped presets the classroom lesson (docs/lesson.toml) opens, in the order it opens
