@@ -429,6 +429,22 @@ fn budden_is_the_same_for_any_thread_count() {
     assert_eq!(one.stdout, two.stdout, "the result depends on the thread count");
 }
 
+/// Whether `roll` predicts the paper's die stable at `damping` (s/cm) for the worst throw of
+/// the paper's random ranges: 15 cm, every velocity component 50 cm/s, every spin 60 rad/s.
+fn stable_at_worst_throw(damping: f64) -> bool {
+    let o = dicesim(&[
+        "roll",
+        "--json",
+        "--set",
+        &format!("ground.damping={damping}"),
+        "--set",
+        "initial.velocity=[50,50,-50]",
+        "--set",
+        "initial.angular_velocity=[60,60,60]",
+    ]);
+    json(&o)["stability"]["stable"].as_bool().unwrap()
+}
+
 #[test]
 fn a_fit_across_the_stability_limit_lists_the_candidates_past_it() {
     // The paper's die at the worst throw of its ranges (15 cm, 50 cm/s and 60 rad/s each
@@ -445,19 +461,6 @@ fn a_fit_across_the_stability_limit_lists_the_candidates_past_it() {
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let text = String::from_utf8(o.stdout).unwrap();
-    let worst = |damping: &str| {
-        let o = dicesim(&[
-            "roll",
-            "--json",
-            "--set",
-            &format!("ground.damping={damping}"),
-            "--set",
-            "initial.velocity=[50,50,-50]",
-            "--set",
-            "initial.angular_velocity=[60,60,60]",
-        ]);
-        json(&o)["stability"]["stable"].as_bool().unwrap()
-    };
     let listed: Vec<f64> = text
         .lines()
         .filter_map(|l| l.trim().strip_prefix("ground.damping = "))
@@ -474,7 +477,7 @@ fn a_fit_across_the_stability_limit_lists_the_candidates_past_it() {
         let is_listed = listed.iter().any(|l| (l - value).abs() < 1e-12);
         assert_eq!(
             is_listed,
-            !worst(&value.to_string()),
+            !stable_at_worst_throw(value),
             "candidate {value}:\n{text}"
         );
     }
@@ -502,20 +505,10 @@ fn a_fit_wholly_past_the_stability_limit_is_refused_with_the_limits_value() {
         .unwrap_or_else(|| panic!("no limit's value in: {e}"));
     // The value said is the edge: `roll` at the worst throw is stable just below it and
     // not just above it.
-    let stable = |damping: f64| {
-        let o = dicesim(&[
-            "roll",
-            "--json",
-            "--set",
-            &format!("ground.damping={damping}"),
-            "--set",
-            "initial.velocity=[50,50,-50]",
-            "--set",
-            "initial.angular_velocity=[60,60,60]",
-        ]);
-        json(&o)["stability"]["stable"].as_bool().unwrap()
-    };
-    assert!(stable(limit * 0.999) && !stable(limit * 1.001), "{e}");
+    assert!(
+        stable_at_worst_throw(limit * 0.999) && !stable_at_worst_throw(limit * 1.001),
+        "{e}"
+    );
     assert!(limit < 0.02, "{e}");
 }
 

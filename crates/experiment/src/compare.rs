@@ -132,17 +132,15 @@ pub(crate) fn refuse_all_unstable(
     setups: BodySetups,
     ranges: &RandomRanges,
 ) -> Result<(), Error> {
-    let values = fit.values();
-    let first = values
-        .first()
-        .and_then(|&v| past_stability_limit(setups, ranges, v));
-    let Some(first) = first else { return Ok(()) };
-    if !values
-        .iter()
-        .all(|&v| past_stability_limit(setups, ranges, v).is_some())
-    {
+    // Every candidate's reason, or None at the first stable one (the fit then goes on).
+    let reasons: Option<Vec<Exclusion>> = fit
+        .values()
+        .into_iter()
+        .map(|v| past_stability_limit(setups, ranges, v))
+        .collect();
+    let Some(first) = reasons.and_then(|r| r.into_iter().next()) else {
         return Ok(());
-    }
+    };
     let stable = |v: f64| past_stability_limit(setups, ranges, v).is_none();
     let limits = fit.key.limits();
     let distance = |v: f64| (fit.low - v).max(v - fit.high).max(0.0);
