@@ -4,6 +4,7 @@ use super::args::{RunArgs, SetupArgs, Worded, Wording};
 use super::error::CliError;
 use super::running::{self, cancel_on_ctrl_c};
 use clap::{Args, ValueEnum};
+use dicesim_experiment::basin::unapplied_by_map;
 use dicesim_experiment::hashing::Written;
 use dicesim_experiment::shard::{Part, Sweep};
 use dicesim_experiment::{Axis, BasinMap, Layer, MapSpec, Method, run_map_rows};
@@ -12,7 +13,6 @@ use dicesim_figures::plot::write_image;
 use dicesim_physics::Params;
 use dicesim_setup::output::Output;
 use dicesim_setup::preset::{Preset, refuse_unapplied};
-use dicesim_setup::random::unapplied_when_fixed;
 use std::io::Write;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -106,13 +106,7 @@ pub(crate) fn check_sweep(args: &BasinArgs, sharded: bool) -> Result<(Preset, Pa
     let x = Axis::parse(&args.x, w).map_err(CliError::experiment("--x "))?;
     let y = Axis::parse(&args.y, h).map_err(CliError::experiment("--y "))?;
     // A --set the map's axes replace, or that it never reads, is refused, not dropped.
-    refuse_unapplied(&args.setup.set, |key| {
-        [&x, &y]
-            .into_iter()
-            .find(|axis| axis.key.overlaps(key))
-            .map(|axis| format!("the map sets it in every cell (its axis `{}`)", axis.key.key))
-            .or_else(|| unapplied_when_fixed(key, "basin"))
-    })?;
+    refuse_unapplied(&args.setup.set, |key| unapplied_by_map(key, &x, &y))?;
     if x.key.spec.key() == y.key.spec.key() && x.key.component == y.key.component {
         // The y value would overwrite the x value in every cell: a map of nothing.
         return Err(CliError::Usage(format!(

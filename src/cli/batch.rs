@@ -113,18 +113,7 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
     }
     let mut out = std::io::stdout().lock();
     if args.run.json {
-        let v = json!({
-            "provenance": sweep.provenance,
-            "preset": preset.name,
-            "seed": sweep.seed(),
-            "requested": batch.requested,
-            "completed": batch.completed,
-            "interrupted": batch.cancelled,
-            "jobs": batch.jobs,
-            "engine": batch.engine,
-            "summary": batch.summary,
-            "past_stability_limit": batch.past_stability_limit,
-        });
+        let v = sweep.report(&batch);
         writeln!(out, "{v}")?;
     } else {
         print_summary(&mut out, &batch)?;

@@ -5,10 +5,11 @@ use super::args::{RunArgs, SetupArgs, Worded, Wording};
 use super::error::CliError;
 use super::running;
 use clap::{Args, ValueEnum};
-use dicesim_experiment::compare::{CompareSpec, Comparison, DEFAULT_CANDIDATES, FitSpec, run_comparison};
+use dicesim_experiment::compare::{
+    CompareSpec, Comparison, DEFAULT_CANDIDATES, FitSpec, run_comparison, unapplied_by_comparison,
+};
 use dicesim_experiment::compare_budden::{
     BuddenComparison, BuddenSpec, DEFAULT_CALIBRATE_ON, DEFAULT_FIT, hand_throw, run_budden as roll_budden,
-    unapplied as budden_unapplied,
 };
 use dicesim_experiment::real_data::Dataset;
 use dicesim_experiment::{RunOptions, provenance, tables};
@@ -17,7 +18,7 @@ use dicesim_figures::figure::setup_value;
 use dicesim_figures::plot::{Record, random_starts};
 use dicesim_setup::output::Output;
 use dicesim_setup::preset::{Preset, refuse_unapplied};
-use dicesim_setup::random::{check_drawn_setup, seed_given, unapplied_when_drawn};
+use dicesim_setup::random::check_drawn_setup;
 
 /// The most rolls one comparison takes (throws × dice × candidates).
 const MAX_ROLLS: u64 = 1_000_000_000;
@@ -260,18 +261,8 @@ fn refuse_unapplied_sets(args: &CompareArgs, preset: &Preset) -> Result<(), CliE
         .as_deref()
         .or((budden && !args.no_fit).then_some(DEFAULT_FIT))
         .and_then(|f| FitSpec::parse(f, DEFAULT_CANDIDATES).ok());
-    let command = if budden { "compare budden" } else { "compare" };
     refuse_unapplied(&args.setup.set, |key| {
-        budden
-            .then(|| budden_unapplied(key))
-            .flatten()
-            .or_else(|| unapplied_when_drawn(key, &ranges, command))
-            .or_else(|| seed_given(key, !args.seed.is_empty()))
-            .or_else(|| {
-                fit.as_ref()
-                    .filter(|f| f.key.overlaps(key))
-                    .map(|f| format!("--fit sets `{}` on every candidate", f.key.key))
-            })
+        unapplied_by_comparison(key, budden, &ranges, fit.as_ref(), !args.seed.is_empty())
     })?;
     Ok(())
 }

@@ -3,10 +3,9 @@
 use super::args::SetupArgs;
 use super::error::CliError;
 use clap::Args;
+use dicesim_experiment::one_roll::OneRoll;
 use dicesim_physics::why_it_cannot_settle;
 use dicesim_physics::{InitialCondition, Outcome, Params, Simulation, Stability, Status, UnstableReason};
-use dicesim_setup::preset::Preset;
-use serde_json::json;
 use std::io::Write;
 
 #[derive(Debug, Args)]
@@ -24,16 +23,11 @@ pub(crate) fn run(args: &RollArgs) -> Result<(), CliError> {
         dicesim_setup::random::unapplied_when_fixed(key, "roll")
     })?;
     let params = preset.params();
-    let mut sim = Simulation::new(&params, &preset.initial)?;
-    // Its time as every output prints it: the steps × Δt, not the clock's sum.
-    let outcome = dicesim_experiment::record::reported(sim.run_to_end(), &params);
-    let reason = (outcome.status == Status::Unstable).then(|| UnstableReason::new(&params, &preset.initial));
+    let OneRoll { sim, outcome, reason } = OneRoll::run(&preset)?;
     let mut out = std::io::stdout().lock();
     if args.json {
-        let mut v = roll_json(&preset, &sim, &outcome, reason.as_ref());
-        let changed = !args.setup.set.is_empty();
-        v["provenance"] = dicesim_experiment::provenance::roll(&preset, "the preset's roll", changed);
-        writeln!(out, "{v}")?;
+        let rolled = OneRoll { sim, outcome, reason };
+        writeln!(out, "{}", rolled.json(&preset, !args.setup.set.is_empty()))?;
     } else {
         print_roll(
             &mut out,
@@ -44,59 +38,6 @@ pub(crate) fn run(args: &RollArgs) -> Result<(), CliError> {
         )?;
     }
     Ok(())
-}
-
-/// The roll as one JSON object: its ending, why it ended so, its stopping rule and
-/// stability, its final state, and the setup.
-fn roll_json(
-    preset: &Preset,
-    sim: &Simulation,
-    outcome: &Outcome,
-    reason: Option<&UnstableReason>,
-) -> serde_json::Value {
-    let params = preset.params();
-    let s = sim.state();
-    // The rule this roll applied at its end: a loaded die's depends on the face down.
-    let rule = sim.stop_rule_now();
-    let stability = Stability::predict(&params, &preset.initial).verdict();
-    let finite = |x: f64| x.is_finite().then_some(x);
-    json!({
-        "preset": preset.name,
-        "face": outcome.face,
-        "status": outcome.status,
-        "steps": outcome.steps,
-        "time_s": outcome.time_s,
-        "unstable_reason": reason.map(|r| json!({
-            "limit": r.0.limit,
-            "value": r.0.value,
-            "allowed": r.0.allowed,
-            "exceeded": r.0.exceeded(),
-            "message": r.to_string(),
-        })),
-        "cannot_settle": why_it_cannot_settle(&params),
-        "energy_threshold": finite(rule.energy_threshold),
-        "kinetic_threshold": finite(rule.kinetic_threshold),
-        "stop_energy": sim.stop_energy(),
-        "stop_kinetic_energy": sim.stop_kinetic_energy(),
-        "stability_number": params.stability_number(),
-        "stability": {
-            "stable": !stability.exceeded(),
-            "limit": stability.limit,
-            "value": stability.value,
-            "allowed": stability.allowed,
-            "load": stability.load(),
-        },
-        "final": {
-            "position": s.position.as_slice(),
-            "velocity": s.velocity.as_slice(),
-            "angular_momentum": s.angular_momentum.as_slice(),
-            "angular_velocity": sim.angular_velocity().as_slice(),
-            "energy": sim.energy(),
-            "corner_offsets": s.corner_offsets.iter().map(|r| [r.x, r.y, r.z]).collect::<Vec<_>>(),
-        },
-        "params": params,
-        "initial": preset.initial,
-    })
 }
 
 /// The roll as text: its ending in words, then its steps, time, stopping energy and final

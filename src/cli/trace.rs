@@ -3,7 +3,7 @@
 use super::args::SetupArgs;
 use super::error::CliError;
 use clap::Args;
-use dicesim_experiment::trace::{TraceWriter, columns};
+use dicesim_experiment::trace::{TraceWriter, columns, follow};
 use dicesim_experiment::{data_file, provenance};
 use dicesim_physics::Simulation;
 use std::io::Write;
@@ -49,17 +49,8 @@ pub(crate) fn run(args: &TraceArgs) -> Result<(), CliError> {
 /// Writes the trace of `sim`, as `args` asks, to `out`.
 fn trace(args: &TraceArgs, mut sim: Simulation, out: impl Write) -> std::io::Result<()> {
     let mut out = TraceWriter::new(out, sim.params().integrator.dt)?;
-    out.write(&sim)?;
-    // Exactly N steps (`--steps 0`: the start alone), or until the roll ends.
-    let done = |sim: &Simulation| match args.steps {
-        Some(n) => sim.state().step >= n,
-        None => sim.outcome().is_some(),
-    };
-    while !done(&sim) {
-        sim.advance();
-        if sim.state().step.is_multiple_of(args.every) || done(&sim) {
-            out.write(&sim)?;
-        }
-    }
+    follow(&mut sim, args.steps, args.every, &mut |sim| {
+        out.write(sim).map(drop)
+    })?;
     out.flush()
 }

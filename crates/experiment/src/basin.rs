@@ -313,6 +313,17 @@ impl BasinMap {
     }
 }
 
+/// Why a map with axes `x` and `y` would not apply a change of `key` to its preset (a
+/// `--set`), as [`dicesim_setup::preset::refuse_unapplied`] asks: an axis sets it in every
+/// cell, and a map rolls the preset's one start, drawing nothing from `random.*`.
+pub fn unapplied_by_map(key: &str, x: &Axis, y: &Axis) -> Option<String> {
+    [x, y]
+        .into_iter()
+        .find(|axis| axis.key.overlaps(key))
+        .map(|axis| format!("the map sets it in every cell (its axis `{}`)", axis.key.key))
+        .or_else(|| dicesim_setup::random::unapplied_when_fixed(key, "basin"))
+}
+
 /// The check `roll` makes of its setup ([`check_setup`]), made of every node of a map with
 /// axes `x` and `y` before any is rolled: the first node refused (a body that cannot exist,
 /// a start inside the table) is the error, with its axis values and the setup's own words.

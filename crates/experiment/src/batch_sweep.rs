@@ -110,6 +110,40 @@ impl<'a> BatchSweep<'a> {
         output: Option<&Output>,
         progress: &mut dyn FnMut(u64),
     ) -> Result<(BatchRun, Option<Written>), Error> {
+        let Some(output) = output else {
+            let rolls = self.rolls();
+            return Ok((
+                stream_batch(params, &rolls, options, stop, &mut |chunk| {
+                    progress(chunk.len() as u64);
+                    Ok(())
+                })?,
+                None,
+            ));
+        };
+        let mut done = None;
+        let meta =
+            (output.sidecar()).map(|_| data_file::sidecar(&self.provenance, &records_columns(self.spin)));
+        output.write_table(meta.as_deref(), |w| {
+            let (batch, written) =
+                self.roll_into(params, options, stop, (output.extension(), w), progress)?;
+            done = Some((batch, Some(written)));
+            Ok(())
+        })?;
+        Ok(done.expect("the batch ran"))
+    }
+
+    /// Rolls the batch with `params`, writing the records file of `extension` (`csv`,
+    /// `json` or `parquet`: the bytes [`BatchSweep::roll`] puts in a file of that name)
+    /// into `w` as the rolls complete, hashed as written. Also how a caller keeps the
+    /// records in memory (the Python module's tables are this Parquet).
+    pub fn roll_into(
+        &self,
+        params: &Params,
+        options: &RunOptions,
+        stop: &AtomicBool,
+        (extension, w): (&str, &mut (dyn Write + Send)),
+        progress: &mut dyn FnMut(u64),
+    ) -> std::io::Result<(BatchRun, Written)> {
         let rolls = self.rolls();
         let mut roll = |sink: &mut dyn FnMut(&[RollRecord]) -> Result<(), String>| {
             stream_batch(params, &rolls, options, stop, &mut |chunk| {
@@ -117,27 +151,35 @@ impl<'a> BatchSweep<'a> {
                 sink(chunk)
             })
         };
-        let Some(output) = output else {
-            return Ok((roll(&mut |_| Ok(()))?, None));
-        };
-        let mut done = None;
-        let meta =
-            (output.sidecar()).map(|_| data_file::sidecar(&self.provenance, &records_columns(self.spin)));
-        output.write_table(meta.as_deref(), |w| {
-            let mut hashing = Hashing::new(w);
-            let mut file = RecordsFile::start(
-                &mut hashing,
-                output.extension(),
-                (&self.provenance, self.spin),
-                self.seed(),
-                rolls.len(),
-            )?;
-            let batch = keeping_io_errors(&mut roll, &mut |chunk| file.write(chunk))?;
-            file.finish(&batch)?;
-            done = Some((batch, Some(hashing.seal())));
-            Ok(())
-        })?;
-        Ok(done.expect("the batch ran"))
+        let mut hashing = Hashing::new(w);
+        let mut file = RecordsFile::start(
+            &mut hashing,
+            extension,
+            (&self.provenance, self.spin),
+            self.seed(),
+            rolls.len(),
+        )?;
+        let batch = keeping_io_errors(&mut roll, &mut |chunk| file.write(chunk))?;
+        file.finish(&batch)?;
+        let written = hashing.seal();
+        Ok((batch, written))
+    }
+
+    /// What `batch --json` prints of `batch`, a run of this sweep: its provenance, size,
+    /// how it ran and its statistics.
+    pub fn report(&self, batch: &BatchRun) -> Value {
+        json!({
+            "provenance": self.provenance,
+            "preset": self.preset.name,
+            "seed": self.seed(),
+            "requested": batch.requested,
+            "completed": batch.completed,
+            "interrupted": batch.cancelled,
+            "jobs": batch.jobs,
+            "engine": batch.engine,
+            "summary": batch.summary,
+            "past_stability_limit": batch.past_stability_limit,
+        })
     }
 
     /// Rolls every throw in setup `a` and in `b`; with `csv`, each throw's two endings go to

@@ -21,6 +21,7 @@ mod error;
 pub mod hashing;
 pub mod ics;
 pub mod merge;
+pub mod one_roll;
 pub mod parquet;
 pub mod predict;
 pub mod provenance;

@@ -35,22 +35,54 @@ pub fn header() -> Vec<String> {
 /// `clock` prints, the numbers in shortest round-trip form with their point, so reading
 /// them back gives the same bits.
 pub fn row(sim: &Simulation, clock: &StepClock) -> Vec<String> {
+    let mut record = vec![sim.state().step.to_string()];
+    record.extend(values(sim, clock).into_iter().map(|v| Real(v).to_string()));
+    record
+}
+
+/// The numbers of [`row`] after its step: every column of [`columns`] but the first, in
+/// their units (what the Python module's arrays hold, bit for bit the CSV's cells).
+pub fn values(sim: &Simulation, clock: &StepClock) -> Vec<f64> {
     let s = sim.state();
     let w = sim.angular_velocity();
-    let mut record = vec![s.step.to_string(), Real(clock.time_s(s.step)).to_string()];
-    let values = s
-        .position
-        .iter()
-        .chain(s.velocity.iter())
-        .chain(s.angular_momentum.iter())
-        .chain(w.iter())
-        .copied()
-        .chain(read_all(sim));
-    record.extend(values.map(|v| Real(v).to_string()));
+    let mut values = vec![clock.time_s(s.step)];
+    values.extend(
+        s.position
+            .iter()
+            .chain(s.velocity.iter())
+            .chain(s.angular_momentum.iter())
+            .chain(w.iter())
+            .copied()
+            .chain(read_all(sim)),
+    );
     for p in sim.corner_positions() {
-        record.extend([p.x, p.y, p.z].map(|v| Real(v).to_string()));
+        values.extend([p.x, p.y, p.z]);
     }
-    record
+    values
+}
+
+/// Steps `sim` as `dicesim trace` does and hands `row` its state at the start and after
+/// every `every`-th step: exactly `steps` steps (`Some(0)`: the start alone), or until
+/// the roll ends; the last state is always handed over.
+pub fn follow<E>(
+    sim: &mut Simulation,
+    steps: Option<u64>,
+    every: u64,
+    row: &mut dyn FnMut(&Simulation) -> Result<(), E>,
+) -> Result<(), E> {
+    let every = every.max(1);
+    let done = |sim: &Simulation| match steps {
+        Some(n) => sim.state().step >= n,
+        None => sim.outcome().is_some(),
+    };
+    row(sim)?;
+    while !done(sim) {
+        sim.advance();
+        if sim.state().step.is_multiple_of(every) || done(sim) {
+            row(sim)?;
+        }
+    }
+    Ok(())
 }
 
 /// Bytes a record takes in the CSV: its fields, each followed by a comma or the newline

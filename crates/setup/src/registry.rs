@@ -208,7 +208,7 @@ impl Spec {
 }
 
 /// The row of a dotted preset key.
-pub(crate) fn find(key: &str) -> Option<&'static Spec> {
+pub fn find(key: &str) -> Option<&'static Spec> {
     ALL.iter().copied().find(|s| s.key() == key)
 }
 
