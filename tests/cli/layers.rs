@@ -8,6 +8,10 @@ use std::path::Path;
 /// What the physics may build on: linear algebra, and the derives that let setups be read.
 const PHYSICS_DEPENDENCIES: [&str; 2] = ["nalgebra", "serde"];
 
+/// The one crate that may build on Python (pyo3): the module, so that `cargo test` at the
+/// root and every other crate build without Python.
+const PYTHON_MODULE: &str = "dicesim-python";
+
 /// The crates in ARCHITECTURE.md's `Layer order:` line, lowest first.
 fn layer_order(architecture: &str) -> Result<Vec<String>, String> {
     let lines: Vec<&str> = architecture
@@ -28,9 +32,9 @@ fn layer_order(architecture: &str) -> Result<Vec<String>, String> {
 
 /// Every way the workspace in `metadata` (`cargo metadata --no-deps`) breaks the layers in
 /// `order`: a crate the order does not place (or places twice), a name in it that is no
-/// crate, a normal or build dependency on a crate at or above the dependent's layer, and a
-/// physics dependency other than nalgebra and serde. Tests and benches (dev-dependencies)
-/// may use any crate.
+/// crate, a normal or build dependency on a crate at or above the dependent's layer, a
+/// physics dependency other than nalgebra and serde, and pyo3 under any crate but the
+/// Python module. Tests and benches (dev-dependencies) may use any crate.
 fn violations(metadata: &Value, order: &[String]) -> Vec<String> {
     let packages = metadata["packages"]
         .as_array()
@@ -67,6 +71,11 @@ fn violations(metadata: &Value, order: &[String]) -> Vec<String> {
                 && below >= at
             {
                 found.push(format!("{name} depends on {on}, which is not below it"));
+            }
+            if on.starts_with("pyo3") && name != PYTHON_MODULE {
+                found.push(format!(
+                    "{name} depends on {on}: only {PYTHON_MODULE} may build on Python"
+                ));
             }
             if name == "dicesim-physics" && !PHYSICS_DEPENDENCIES.contains(&on) {
                 found.push(format!(
@@ -201,6 +210,28 @@ fn the_physics_builds_on_nalgebra_and_serde_alone() {
         [
             "dicesim-physics depends on rand: only nalgebra and serde may be under the model",
             "dicesim-physics depends on cc: only nalgebra and serde may be under the model",
+        ]
+    );
+}
+
+#[test]
+fn only_the_python_module_builds_on_pyo3() {
+    let metadata = workspace(&[
+        (
+            "dicesim-experiment",
+            &[("pyo3", "normal"), ("pyo3-build-config", "build")],
+        ),
+        (
+            "dicesim-python",
+            &[("dicesim-experiment", "normal"), ("pyo3", "normal")],
+        ),
+    ]);
+    let layers = order(&["dicesim-experiment", "dicesim-python"]);
+    assert_eq!(
+        violations(&metadata, &layers),
+        [
+            "dicesim-experiment depends on pyo3: only dicesim-python may build on Python",
+            "dicesim-experiment depends on pyo3-build-config: only dicesim-python may build on Python",
         ]
     );
 }
