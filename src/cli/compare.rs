@@ -5,11 +5,10 @@ use super::args::{RunArgs, SetupArgs, Worded, Wording};
 use super::error::CliError;
 use super::running;
 use clap::{Args, ValueEnum};
-use dicesim_experiment::compare::{
-    CompareSpec, Comparison, DEFAULT_CANDIDATES, FitSpec, run_comparison, unapplied_by_comparison,
-};
+use dicesim_experiment::compare::{CompareSpec, Comparison, DEFAULT_CANDIDATES, FitSpec, run_comparison};
 use dicesim_experiment::compare_budden::{
     BuddenComparison, BuddenSpec, DEFAULT_CALIBRATE_ON, DEFAULT_FIT, hand_throw, run_budden as roll_budden,
+    unapplied_by_comparison,
 };
 use dicesim_experiment::real_data::Dataset;
 use dicesim_experiment::{RunOptions, provenance, tables};

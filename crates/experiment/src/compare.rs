@@ -665,30 +665,6 @@ pub struct Progress {
     pub total: u64,
 }
 
-/// Why a comparison would not apply a change of `key` to its preset (a `--set`), as
-/// [`dicesim_setup::preset::refuse_unapplied`] asks: a start value the throws draw from
-/// `ranges`, a seed a given seed replaces (`seed_given`), the value `fit` sets on every
-/// candidate, and for Budden (`budden`) the die the cuboids replace
-/// ([`crate::compare_budden::unapplied`]).
-pub fn unapplied_by_comparison(
-    key: &str,
-    budden: bool,
-    ranges: &RandomRanges,
-    fit: Option<&FitSpec>,
-    seed_given: bool,
-) -> Option<String> {
-    let command = if budden { "compare budden" } else { "compare" };
-    budden
-        .then(|| crate::compare_budden::unapplied(key))
-        .flatten()
-        .or_else(|| dicesim_setup::random::unapplied_when_drawn(key, ranges, command))
-        .or_else(|| dicesim_setup::random::seed_given(key, seed_given))
-        .or_else(|| {
-            fit.filter(|f| f.key.overlaps(key))
-                .map(|f| format!("--fit sets `{}` on every candidate", f.key.key))
-        })
-}
-
 /// Throws the dataset's protocol with `params` (once, or once per candidate of the fit,
 /// each with the same throws), tests each against the data and, when fitting, finds the
 /// best value and its interval. `progress` is called after each chunk of rolls; setting

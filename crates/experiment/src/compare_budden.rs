@@ -100,6 +100,30 @@ pub fn unapplied(key: &str) -> Option<String> {
     })
 }
 
+/// Why a comparison would not apply a change of `key` to its preset (a `--set`), as
+/// [`dicesim_setup::preset::refuse_unapplied`] asks: a start value the throws draw from
+/// `ranges`, a seed a given seed replaces (`seed_given`), the value `fit` sets on every
+/// candidate, and for Budden (`budden`) the die the cuboids replace
+/// ([`unapplied`]).
+pub fn unapplied_by_comparison(
+    key: &str,
+    budden: bool,
+    ranges: &RandomRanges,
+    fit: Option<&FitSpec>,
+    seed_given: bool,
+) -> Option<String> {
+    let command = if budden { "compare budden" } else { "compare" };
+    budden
+        .then(|| unapplied(key))
+        .flatten()
+        .or_else(|| dicesim_setup::random::unapplied_when_drawn(key, ranges, command))
+        .or_else(|| dicesim_setup::random::seed_given(key, seed_given))
+        .or_else(|| {
+            fit.filter(|f| f.key.overlaps(key))
+                .map(|f| format!("--fit sets `{}` on every candidate", f.key.key))
+        })
+}
+
 /// Whether the face up (1..6) is a square one: the cuboid's square faces are 1 and 6,
 /// opposite each other, so a square face up is a square face down.
 pub fn is_square_face(face: u8) -> bool {

@@ -5,11 +5,9 @@ use crate::interrupt::run_interruptible;
 use crate::setup::{Setup, value_error};
 use dicesim_experiment::basin::unapplied_by_map;
 use dicesim_experiment::batch_sweep::BatchSweep;
-use dicesim_experiment::compare::{
-    CompareSpec, DEFAULT_CANDIDATES, FitSpec, run_comparison, unapplied_by_comparison,
-};
+use dicesim_experiment::compare::{CompareSpec, DEFAULT_CANDIDATES, FitSpec, run_comparison};
 use dicesim_experiment::compare_budden::{
-    BuddenSpec, DEFAULT_CALIBRATE_ON, DEFAULT_FIT, hand_throw, run_budden,
+    BuddenSpec, DEFAULT_CALIBRATE_ON, DEFAULT_FIT, hand_throw, run_budden, unapplied_by_comparison,
 };
 use dicesim_experiment::data_file::Column;
 use dicesim_experiment::one_roll::OneRoll;

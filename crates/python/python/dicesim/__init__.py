@@ -254,11 +254,12 @@ def batch(
     with ``seed`` (default: ``random.seed``): roll i's start depends on (seed, i) alone.
 
     Returns the records ``dicesim batch --seed S --rolls N --out FILE.parquet`` writes,
-    value for value and bit for bit: one row per roll with its ``id``, start (``height_cm``,
-    ``velocity_*_cm_per_s``, ``angular_velocity_*_rad_per_s``, ``yaw/pitch/roll_rad``),
-    ``start_face``, ``face`` (null if none), ``status``, ``steps``, ``time_s`` (simulated s)
-    and its bounces (``impacts``, ``first_impact_steps``, ``first_impact_time_s``,
-    ``first_impact_face_down``). ``to="arrow"``: a ``pyarrow.Table`` whose schema metadata
+    value for value and bit for bit: one row per roll with its ``id``, start
+    (``height_cm``, ``velocity_*_cm_per_s``, ``angular_velocity_*_rad_per_s``, ``yaw_deg``,
+    ``pitch_deg``, ``roll_deg``), ``start_face``, ``face`` (null if none), ``status``,
+    ``steps``, ``time_s`` (simulated s) and its bounces (``impacts``,
+    ``first_impact_steps``, ``first_impact_time_s``, ``first_impact_face_down``).
+    ``to="arrow"``: a ``pyarrow.Table`` whose schema metadata
     holds the provenance (``b"dicesim"``) and the run's report (``b"dicesim-report"``: the
     summary ``dicesim batch --json`` prints); ``to="pandas"``: a DataFrame with both in
     ``.attrs``.
