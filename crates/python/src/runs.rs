@@ -5,9 +5,10 @@ use crate::interrupt::run_interruptible;
 use crate::setup::{Setup, value_error};
 use dicesim_experiment::basin::unapplied_by_map;
 use dicesim_experiment::batch_sweep::BatchSweep;
-use dicesim_experiment::compare::{CompareSpec, DEFAULT_CANDIDATES, FitSpec, run_comparison};
+use dicesim_experiment::compare::{CompareSpec, Comparison, DEFAULT_CANDIDATES, FitSpec, run_comparison};
 use dicesim_experiment::compare_budden::{
-    BuddenSpec, DEFAULT_CALIBRATE_ON, DEFAULT_FIT, hand_throw, run_budden, unapplied_by_comparison,
+    BuddenComparison, BuddenSpec, DEFAULT_CALIBRATE_ON, DEFAULT_FIT, hand_throw, run_budden,
+    unapplied_by_comparison,
 };
 use dicesim_experiment::data_file::Column;
 use dicesim_experiment::one_roll::OneRoll;
@@ -291,7 +292,7 @@ pub(crate) fn compare<'py>(
     } else {
         seeds
     };
-    let (bytes, columns, mut result, provenance) = match cubic {
+    let (bytes, columns, result) = match cubic {
         Some(dataset) => {
             if calibrate_on.is_some() {
                 return Err(value_error(
@@ -333,10 +334,8 @@ pub(crate) fn compare<'py>(
                 )
             })?
             .map_err(value_error)?;
-            let mut bytes = Vec::new();
-            c.write_csv(&mut bytes).map_err(value_error)?;
             let provenance = provenance::comparison(preset, &spec, fit_text.as_deref(), candidate_count);
-            (bytes, c.csv_columns(), serde_json::to_value(&c), provenance)
+            crossing(&c, Comparison::write_csv, c.csv_columns(), provenance)?
         }
         None => {
             let spec = BuddenSpec {
@@ -359,19 +358,30 @@ pub(crate) fn compare<'py>(
                 )
             })?
             .map_err(value_error)?;
-            let mut bytes = Vec::new();
-            c.write_csv(&mut bytes).map_err(value_error)?;
             let provenance = provenance::budden(preset, &spec, fit_text.as_deref());
-            (bytes, c.csv_columns(), serde_json::to_value(&c), provenance)
+            crossing(&c, BuddenComparison::write_csv, c.csv_columns(), provenance)?
         }
     };
-    let result = result.as_mut().map_err(value_error)?;
-    result["provenance"] = provenance;
     Ok((
         PyBytes::new(py, &bytes),
         columns_json(&columns),
         result.to_string(),
     ))
+}
+
+/// A comparison as it crosses into Python: the CSV `compare --out FILE.csv` writes, its
+/// columns, and the JSON of `--out FILE.json` with `provenance` in it.
+fn crossing<C: serde::Serialize>(
+    comparison: &C,
+    write_csv: fn(&C, &mut dyn std::io::Write) -> std::io::Result<()>,
+    columns: Vec<Column>,
+    provenance: serde_json::Value,
+) -> PyResult<(Vec<u8>, Vec<Column>, serde_json::Value)> {
+    let mut bytes = Vec::new();
+    write_csv(comparison, &mut bytes).map_err(value_error)?;
+    let mut result = serde_json::to_value(comparison).map_err(value_error)?;
+    result["provenance"] = provenance;
+    Ok((bytes, columns, result))
 }
 
 /// Refuses a comparison past [`MAX_ROLLS`].
