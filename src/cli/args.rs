@@ -241,13 +241,10 @@ impl<W> RunArgs<W> {
     }
 }
 
-/// The most threads `--jobs` takes: more than a few per core only adds switching.
-fn max_jobs() -> usize {
-    4 * dicesim_experiment::batch::thread_count(0)
-}
-
-/// `--jobs J` checked against [`max_jobs`]; no value means one thread per core.
+/// `--jobs J` checked against [`max_jobs`] (more than a few threads per core only adds
+/// switching); no value means one thread per core.
 fn checked_jobs(jobs: Option<u64>) -> Result<usize, CliError> {
+    use dicesim_experiment::batch::max_jobs;
     let cores = dicesim_experiment::batch::thread_count(0);
     match jobs {
         None => Ok(cores),

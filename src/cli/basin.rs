@@ -4,7 +4,7 @@ use super::args::{RunArgs, SetupArgs, Worded, Wording};
 use super::error::CliError;
 use super::running::{self, cancel_on_ctrl_c};
 use clap::{Args, ValueEnum};
-use dicesim_experiment::basin::unapplied_by_map;
+use dicesim_experiment::basin::{MAX_CELLS, unapplied_by_map};
 use dicesim_experiment::hashing::Written;
 use dicesim_experiment::shard::{Part, Sweep};
 use dicesim_experiment::{Axis, BasinMap, Layer, MapSpec, Method, run_map_rows};
@@ -116,9 +116,6 @@ pub(crate) fn check_sweep(args: &BasinArgs, sharded: bool) -> Result<(Preset, Pa
     }
     Ok((preset, params, x, y))
 }
-
-/// The most cells a map takes (e.g. 2048×2048): the map and its partial copy stay in memory.
-pub(crate) const MAX_CELLS: usize = 2048 * 2048;
 
 impl From<LayerArg> for Layer {
     fn from(layer: LayerArg) -> Layer {

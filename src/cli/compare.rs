@@ -398,12 +398,10 @@ fn budden_record(
         ),
         _ => format!("--no-fit: the preset's table as it stands, ratios {ratios} in sample"),
     };
+    // The caption's throws name the first seed; several are pooled.
     let pooled = match spec.seeds.as_slice() {
         [_] => String::new(),
-        seeds => format!(
-            " (seeds {} pooled)",
-            seeds.iter().map(u64::to_string).collect::<Vec<_>>().join(", ")
-        ),
+        seeds => format!(" ({})", tables::seeds_text(seeds)),
     };
     let caption = vec![
         format!(

@@ -129,6 +129,12 @@ impl Batch {
     }
 }
 
+/// The most worker threads a run takes: 4 × the cores (more than a few per core only adds
+/// switching).
+pub fn max_jobs() -> usize {
+    4 * thread_count(0)
+}
+
 /// The number of threads for `jobs` (0 means one per available core).
 pub fn thread_count(jobs: usize) -> usize {
     if jobs > 0 {

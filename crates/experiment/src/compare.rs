@@ -466,6 +466,14 @@ impl Headline {
     }
 }
 
+/// The candidate a comparison shows: the fit's best, or without a fit the one rolled.
+fn shown<'a>(fit: Option<&FitInterval>, candidates: &'a [Candidate]) -> Option<&'a Candidate> {
+    match fit {
+        Some(f) => candidates.get(f.best_index),
+        None => candidates.first(),
+    }
+}
+
 /// One row of the side-by-side table: a group of categories (pooled as the test pooled
 /// them) in the data and in the simulation.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -485,10 +493,7 @@ pub struct Row {
 impl Comparison {
     /// The candidate shown: the fit's best, or the one setup rolled.
     pub fn shown(&self) -> Option<&Candidate> {
-        match &self.fit {
-            Some(f) => self.candidates.get(f.best_index),
-            None => self.candidates.first(),
-        }
+        shown(self.fit.as_ref(), &self.candidates)
     }
 
     /// The rows of `candidate`'s table (none without a test).
@@ -773,10 +778,7 @@ pub fn run_comparison(
         }
         None => None,
     };
-    let shown = match &fit {
-        Some(f) => candidates.get(f.best_index),
-        None => candidates.first(),
-    };
+    let shown = shown(fit.as_ref(), &candidates);
     let headline = Headline::of(spec.dataset, &data.counts, shown.map(|c| c.counts.as_slice()));
     Ok(Comparison {
         headline,

@@ -482,12 +482,7 @@ pub struct SharesSummary {
 /// count, the next on a tie — and the rule runs again. One group is kept whatever it holds.
 pub fn pooled_groups(pairs: &[SharePair]) -> Vec<Range<usize>> {
     let mut groups: Vec<Range<usize>> = (0..pairs.len()).map(|i| i..i + 1).collect();
-    let pool = |g: &Range<usize>| {
-        pairs[g.clone()]
-            .iter()
-            .skip(1)
-            .fold(pairs[g.start], |sum, p| sum.pooled(p))
-    };
+    let pool = |g: &Range<usize>| pooled_pair(&pairs[g.clone()]);
     while groups.len() > 1 {
         let Some(i) = groups
             .iter()
@@ -509,17 +504,18 @@ pub fn pooled_groups(pairs: &[SharePair]) -> Vec<Range<usize>> {
     groups
 }
 
+/// The pair of a group of neighbours pooled: their counts added.
+fn pooled_pair(group: &[SharePair]) -> SharePair {
+    group[1..].iter().fold(group[0], |sum, p| sum.pooled(p))
+}
+
 /// The summary of `pairs`, each named by its `labels` entry (the pooled groups name them).
 pub fn shares_summary(pairs: &[SharePair], labels: &[f64]) -> SharesSummary {
     let groups = pooled_groups(pairs);
     let chi_square = groups
         .iter()
         .map(|g| {
-            let z = pairs[g.clone()]
-                .iter()
-                .skip(1)
-                .fold(pairs[g.start], |s, p| s.pooled(p))
-                .z;
+            let z = pooled_pair(&pairs[g.clone()]).z;
             z * z
         })
         .sum();

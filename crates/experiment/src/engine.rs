@@ -30,6 +30,13 @@ impl Engine {
         }
     }
 
+    /// The engine named `name` (`auto`, `scalar` or `lanes`, as [`Engine::name`] gives it).
+    pub fn from_name(name: &str) -> Option<Engine> {
+        [Engine::Auto, Engine::Scalar, Engine::Lanes]
+            .into_iter()
+            .find(|e| e.name() == name)
+    }
+
     /// The engine that really runs on this CPU: `Scalar` or `Lanes`.
     pub fn resolve(self) -> Engine {
         match self {

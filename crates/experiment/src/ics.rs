@@ -7,7 +7,7 @@
 //! row then leaves the other form's cells empty), so no column is empty in every row.
 
 use crate::Error;
-use crate::data_file::Column;
+use crate::data_file::{Column, Kind};
 use crate::record::RollRecord;
 use dicesim_physics::initial::limits;
 use dicesim_physics::{FirstImpact, InitialCondition, Outcome, Status};
@@ -51,17 +51,18 @@ pub(crate) fn initial_column_names() -> &'static [String; COLUMNS] {
     &NAMES
 }
 
-/// The result columns of a per-roll file; an `--ics` file may carry them (they are ignored).
-pub(crate) const RESULT_COLUMNS: [&str; 9] = [
-    "start_face",
-    "face",
-    "status",
-    "steps",
-    "time_s",
-    "impacts",
-    "first_impact_steps",
-    "first_impact_time_s",
-    "first_impact_face_down",
+/// The result columns of a per-roll file and their types; an `--ics` file may carry them
+/// (they are ignored).
+pub(crate) const RESULT_COLUMNS: [(&str, Kind); 9] = [
+    ("start_face", Kind::Integer),
+    ("face", Kind::Integer),
+    ("status", Kind::Text),
+    ("steps", Kind::Integer),
+    ("time_s", Kind::Real),
+    ("impacts", Kind::Integer),
+    ("first_impact_steps", Kind::Integer),
+    ("first_impact_time_s", Kind::Real),
+    ("first_impact_face_down", Kind::Integer),
 ];
 
 const COLUMNS: usize = 13;
@@ -160,17 +161,10 @@ pub fn records_columns(spin: SpinColumns) -> Vec<Column> {
     let names = initial_column_names();
     let mut columns = vec![Column::integer("id")];
     columns.extend(spin.present().map(|k| Column::real(names[k].as_str())));
-    columns.extend([
-        Column::integer("start_face"),
-        Column::integer("face"),
-        Column::text("status"),
-        Column::integer("steps"),
-        Column::real("time_s"),
-        Column::integer("impacts"),
-        Column::integer("first_impact_steps"),
-        Column::real("first_impact_time_s"),
-        Column::integer("first_impact_face_down"),
-    ]);
+    columns.extend(RESULT_COLUMNS.map(|(name, kind)| Column {
+        name: name.to_string(),
+        kind,
+    }));
     columns
 }
 
@@ -433,7 +427,7 @@ pub fn parse_initial_conditions(
                 ));
             }
             columns.push(Some(k));
-        } else if RESULT_COLUMNS.contains(&name) {
+        } else if RESULT_COLUMNS.iter().any(|(result, _)| *result == name) {
             columns.push(None);
         } else {
             return Err(bad(

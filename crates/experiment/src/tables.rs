@@ -593,7 +593,7 @@ fn budden_ratios(
 }
 
 /// The seeds of a run: `seed 1`, or `seeds 11, 12, 13 pooled`.
-fn seeds_text(seeds: &[u64]) -> String {
+pub fn seeds_text(seeds: &[u64]) -> String {
     match seeds {
         [one] => format!("seed {one}"),
         _ => format!(

@@ -276,18 +276,16 @@ pub fn budden_png(comparison: &BuddenComparison, record: &Record) -> Result<Vec<
         };
         let (left, right) = picture.split_horizontally(SIZE.0 * 3 / 5);
         draw_budden_shares(&left, comparison)?;
-        {
-            let points: Vec<(f64, f64)> = comparison
-                .candidates
-                .iter()
-                .map(|c| (c.value, c.deviance))
-                .collect();
-            let spacing = match points.as_slice() {
-                [first, .., last] => (last.0 - first.0) / (points.len() - 1) as f64,
-                _ => 1e-4,
-            };
-            draw_deviance(&right, key, fit, &points, spacing)?;
-        }
+        let points: Vec<(f64, f64)> = comparison
+            .candidates
+            .iter()
+            .map(|c| (c.value, c.deviance))
+            .collect();
+        let spacing = match points.as_slice() {
+            [first, .., last] => (last.0 - first.0) / (points.len() - 1) as f64,
+            _ => 1e-4,
+        };
+        draw_deviance(&right, key, fit, &points, spacing)?;
         root.present().map_err(plot_error)
     })
 }

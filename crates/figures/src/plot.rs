@@ -294,17 +294,15 @@ pub fn random_starts(r: &dicesim_physics::RandomRanges, seed: u64, varied: &[&st
             format!("{}…{} {unit}", setup_value(lo), setup_value(hi))
         }
     };
-    let spread;
     let orientation = if r.random_orientation {
-        "any orientation"
+        "any orientation".to_string()
     } else if r.orientation_spread > 0.0 {
-        spread = format!(
+        format!(
             "the preset's orientation turned by up to {}°",
             setup_value(r.orientation_spread)
-        );
-        spread.as_str()
+        )
     } else {
-        "the preset's orientation"
+        "the preset's orientation".to_string()
     };
     let height_varies = !shown(varied, "initial.height") || !shown(varied, "random.height");
     let mut parts = Vec::new();
@@ -323,7 +321,7 @@ pub fn random_starts(r: &dicesim_physics::RandomRanges, seed: u64, varied: &[&st
     if !each.is_empty() {
         parts.push(format!("{} each component", each.join(" and ")));
     }
-    parts.push(orientation.to_string());
+    parts.push(orientation);
     format!("drawn with seed {seed}: {}", parts.join(", "))
 }
 

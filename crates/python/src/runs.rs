@@ -3,7 +3,7 @@
 
 use crate::interrupt::run_interruptible;
 use crate::setup::{Setup, value_error};
-use dicesim_experiment::basin::unapplied_by_map;
+use dicesim_experiment::basin::{MAX_CELLS, unapplied_by_map};
 use dicesim_experiment::batch_sweep::BatchSweep;
 use dicesim_experiment::compare::{CompareSpec, Comparison, DEFAULT_CANDIDATES, FitSpec, run_comparison};
 use dicesim_experiment::compare_budden::{
@@ -26,9 +26,6 @@ use pyo3::types::PyBytes;
 /// core time, a typo more likely than a plan (the command line's `--shard` splits more).
 const MAX_ROLLS: u64 = 1_000_000_000;
 
-/// The most cells a map takes (e.g. 2048×2048), as `basin`.
-const MAX_CELLS: usize = 2048 * 2048;
-
 /// A records table as it crosses into Python: the file's bytes, its columns (name and
 /// `integer`, `real` or `text`) and what the command's `--json` prints of the run.
 type Records<'py> = (Bound<'py, PyBytes>, String, String);
@@ -41,23 +38,20 @@ fn refuse(setup: &Setup, why_not: impl Fn(&str) -> Option<String>) -> PyResult<(
 
 /// The threads and engine of a run: `jobs` 0 is one per core.
 fn options(jobs: usize, engine: &str) -> PyResult<RunOptions> {
-    let cores = dicesim_experiment::batch::thread_count(0);
-    if jobs > 4 * cores {
+    let (cores, most) = (
+        dicesim_experiment::batch::thread_count(0),
+        dicesim_experiment::batch::max_jobs(),
+    );
+    if jobs > most {
         return Err(value_error(format!(
-            "jobs={jobs}: at most {} (4 × the {cores} cores here)",
-            4 * cores
+            "jobs={jobs}: at most {most} (4 × the {cores} cores here)"
         )));
     }
-    let engine = match engine {
-        "auto" => Engine::Auto,
-        "scalar" => Engine::Scalar,
-        "lanes" => Engine::Lanes,
-        other => {
-            return Err(value_error(format!(
-                "engine={other:?}: expected \"auto\", \"scalar\" or \"lanes\""
-            )));
-        }
-    };
+    let engine = Engine::from_name(engine).ok_or_else(|| {
+        value_error(format!(
+            "engine={engine:?}: expected \"auto\", \"scalar\" or \"lanes\""
+        ))
+    })?;
     Ok(RunOptions { jobs, engine })
 }
 

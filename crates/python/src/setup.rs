@@ -4,7 +4,7 @@
 use dicesim_setup::keys::ScanKey;
 use dicesim_setup::output::Output;
 use dicesim_setup::preset::{Preset, SHIPPED, Store};
-use dicesim_setup::registry::{self, Setup as Values, Shape, Value};
+use dicesim_setup::registry::{self, Shape, Value};
 use pyo3::exceptions::{PyFileExistsError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -80,22 +80,9 @@ impl Setup {
     /// or `None` (an optional value not given); a vector's component by its own key
     /// (`initial.velocity.y`).
     fn get<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Bound<'py, PyAny>> {
-        let values = Values {
-            params: self.preset.params(),
-            initial: self.preset.initial,
-            random: self.preset.random,
-        };
+        let values = self.preset.values();
         if let Some(spec) = registry::find(key) {
-            return Ok(match (spec.read)(&values) {
-                Value::Number(x) => x.into_pyobject(py)?.into_any(),
-                Value::Vector(v) => v.to_vec().into_pyobject(py)?.into_any(),
-                Value::Range(r) => r.to_vec().into_pyobject(py)?.into_any(),
-                Value::Name(n) => n.into_pyobject(py)?.into_any(),
-                Value::Seed(s) => s.into_pyobject(py)?.into_any(),
-                Value::Flag(b) => pyo3::types::PyBool::new(py, b).to_owned().into_any(),
-                Value::PerCorner(v) => v.to_vec().into_pyobject(py)?.into_any(),
-                Value::Absent => py.None().into_bound(py),
-            });
+            return python_value(py, (spec.read)(&values));
         }
         let scan = ScanKey::named(key).map_err(|_| unknown_key(key))?;
         Ok(scan
@@ -128,16 +115,7 @@ impl Setup {
             Shape::Choice { names, .. } => row.set_item("choices", names.to_vec())?,
             Shape::Seed(_) | Shape::Flag(_) => {}
         }
-        let default = match spec.shape {
-            Shape::Number(x) => x.into_pyobject(py)?.into_any(),
-            Shape::Vector { default, .. } => default.to_vec().into_pyobject(py)?.into_any(),
-            Shape::Range(r) => r.to_vec().into_pyobject(py)?.into_any(),
-            Shape::Choice { default, .. } => default.into_pyobject(py)?.into_any(),
-            Shape::Seed(s) => s.into_pyobject(py)?.into_any(),
-            Shape::Flag(b) => pyo3::types::PyBool::new(py, b).to_owned().into_any(),
-            Shape::PerCorner(v) => v.to_vec().into_pyobject(py)?.into_any(),
-        };
-        row.set_item("default", default)?;
+        row.set_item("default", python_value(py, spec.default_value())?)?;
         Ok(row)
     }
 
@@ -174,6 +152,21 @@ impl Setup {
             changes => format!("Setup({:?}, changes={changes:?})", self.preset.name),
         }
     }
+}
+
+/// A registry value as Python holds it: a float, a list of floats, a str, an int, a bool, or
+/// None for an optional value not given.
+fn python_value(py: Python<'_>, value: Value) -> PyResult<Bound<'_, PyAny>> {
+    Ok(match value {
+        Value::Number(x) => x.into_pyobject(py)?.into_any(),
+        Value::Vector(v) => v.to_vec().into_pyobject(py)?.into_any(),
+        Value::Range(r) => r.to_vec().into_pyobject(py)?.into_any(),
+        Value::Name(n) => n.into_pyobject(py)?.into_any(),
+        Value::Seed(s) => s.into_pyobject(py)?.into_any(),
+        Value::Flag(b) => pyo3::types::PyBool::new(py, b).to_owned().into_any(),
+        Value::PerCorner(v) => v.to_vec().into_pyobject(py)?.into_any(),
+        Value::Absent => py.None().into_bound(py),
+    })
 }
 
 /// The error for a key no row or component has, listing them as the command line does.

@@ -369,17 +369,23 @@ mod tests {
         };
         let base = tilted();
         let n = 60_000;
-        let mut angles: Vec<f64> = (0..n).map(|i| turned_by(&base, &r.draw(&base, 3, i))).collect();
-        angles.sort_by(f64::total_cmp);
-        let cdf = |w: f64| (w - w.sin()) / std::f64::consts::PI;
-        let d = angles
-            .iter()
-            .enumerate()
-            .map(|(i, &w)| {
-                let f = cdf(w);
-                (f - i as f64 / n as f64).max((i + 1) as f64 / n as f64 - f)
-            })
-            .fold(0.0, f64::max);
+        // Kolmogorov–Smirnov distance of the drawn angles from that law.
+        let distance = |ranges: &RandomRanges| {
+            let mut angles: Vec<f64> = (0..n)
+                .map(|i| turned_by(&base, &ranges.draw(&base, 3, i)))
+                .collect();
+            angles.sort_by(f64::total_cmp);
+            let cdf = |w: f64| (w - w.sin()) / std::f64::consts::PI;
+            angles
+                .iter()
+                .enumerate()
+                .map(|(i, &w)| {
+                    let f = cdf(w);
+                    (f - i as f64 / n as f64).max((i + 1) as f64 / n as f64 - f)
+                })
+                .fold(0.0, f64::max)
+        };
+        let d = distance(&r);
         // Kolmogorov's distribution: P(√n·D > λ) = 2 Σ (−1)^(k−1) e^(−2k²λ²).
         let lambda = (n as f64).sqrt() * d;
         let p: f64 = 2.0
@@ -395,15 +401,7 @@ mod tests {
             orientation_spread: 170.0,
             ..Default::default()
         };
-        let mut other: Vec<f64> = (0..n)
-            .map(|i| turned_by(&base, &narrower.draw(&base, 3, i)))
-            .collect();
-        other.sort_by(f64::total_cmp);
-        let d_other = other
-            .iter()
-            .enumerate()
-            .map(|(i, &w)| (cdf(w) - i as f64 / n as f64).abs())
-            .fold(0.0, f64::max);
+        let d_other = distance(&narrower);
         assert!(
             (n as f64).sqrt() * d_other > 1.63,
             "170° passed as uniform: D = {d_other}"

@@ -174,8 +174,7 @@ impl Spec {
     }
 
     /// The default as a [`Value`].
-    #[cfg(test)]
-    pub(crate) fn default_value(&self) -> Value {
+    pub fn default_value(&self) -> Value {
         match self.shape {
             Shape::Number(x) => Value::Number(x),
             Shape::Vector { default, .. } => Value::Vector(default),

@@ -64,6 +64,15 @@ impl Preset {
         }
     }
 
+    /// Every value of this setup, as the registry's rows read them.
+    pub fn values(&self) -> crate::registry::Setup {
+        crate::registry::Setup {
+            params: self.params(),
+            initial: self.initial,
+            random: self.random,
+        }
+    }
+
     /// Takes the model parameters of `params` into this setup.
     pub(crate) fn set_params(&mut self, params: Params) {
         let Params {

@@ -3,7 +3,7 @@
 
 use super::contents::{FORMAT, Preset};
 use super::error::{Location, PresetError};
-use crate::registry::{self, ANGULAR_MOMENTUM, ANGULAR_VELOCITY, Role, Setup, Shape, Value};
+use crate::registry::{self, ANGULAR_MOMENTUM, ANGULAR_VELOCITY, Role, Shape, Value};
 use dicesim_physics::params::{CORNERS, SIZE_TWICE};
 use dicesim_physics::{InitialCondition, ParamError};
 use toml::de::{DeTable, DeValue};
@@ -101,11 +101,7 @@ impl Preset {
             "shown in the TUI and by `presets list`",
         );
 
-        let setup = Setup {
-            params: self.params(),
-            initial: self.initial,
-            random: self.random,
-        };
+        let setup = self.values();
         for role in Role::ALL {
             line(&format!("\n[{}]", role.section()), String::new(), role.comment());
             for spec in registry::ALL.iter().filter(|s| s.role == role) {
