@@ -2,7 +2,7 @@
 //! keys exactly as `--set` changes it (the same names, units, ranges and messages).
 
 use dicesim_setup::keys::ScanKey;
-use dicesim_setup::output::Output;
+use dicesim_setup::output::{Output, OutputError};
 use dicesim_setup::preset::{Preset, SHIPPED, Store};
 use dicesim_setup::registry::{self, Shape, Value};
 use pyo3::exceptions::{PyFileExistsError, PyValueError};
@@ -128,12 +128,9 @@ impl Setup {
     /// existing file only with `force`.
     #[pyo3(signature = (path, force = false))]
     fn save(&self, path: std::path::PathBuf, force: bool) -> PyResult<()> {
-        let output = Output::check(&path, &["toml"], force).map_err(|e| {
-            if path.exists() && !force {
-                PyFileExistsError::new_err(e.to_string())
-            } else {
-                value_error(e)
-            }
+        let output = Output::check(&path, &["toml"], force).map_err(|e| match e {
+            OutputError::Exists { .. } => PyFileExistsError::new_err(e.to_string()),
+            e => value_error(e),
         })?;
         let text = self.preset.to_toml();
         output

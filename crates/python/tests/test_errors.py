@@ -88,6 +88,10 @@ def test_a_setup_saves_as_a_preset_and_never_over_a_file_unasked(tmp_path):
     assert dicesim.Setup(str(path))["ground.friction"] == 0.35
     with pytest.raises(FileExistsError):
         s.save(path)
+    # A path refused for what it is, not for being there, is a ValueError, existing or not.
+    (tmp_path / "mine.csv").write_text("id\n")
+    with pytest.raises(ValueError, match="expected a .toml file"):
+        s.save(tmp_path / "mine.csv")
     s["ground.friction"] = 0.4
     s.save(path, force=True)
     assert dicesim.Setup(str(path))["ground.friction"] == 0.4
