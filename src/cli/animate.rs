@@ -17,7 +17,8 @@ use std::path::PathBuf;
 pub(crate) struct AnimateArgs {
     #[command(flatten)]
     pub(crate) setup: SetupArgs,
-    /// Frames per second of playback.
+    /// Frames per second of playback, 1 to 50 (at most 10⁴ frames in all: a lower rate or a
+    /// faster --speed for a long roll).
     #[arg(long, value_name = "N", default_value_t = 25,
           value_parser = clap::value_parser!(u32).range(*animation::FPS.start() as i64..=*animation::FPS.end() as i64))]
     pub(crate) fps: u32,
@@ -25,7 +26,7 @@ pub(crate) struct AnimateArgs {
     /// fast (default: the preset's `view.speed`, else 1, real time).
     #[arg(long, value_name = "1/100…100")]
     pub(crate) speed: Option<String>,
-    /// Width × height in pixels.
+    /// Width × height in pixels, from 64x64 to 3840x2160.
     #[arg(long, value_name = "WxH", default_value = "640x480", value_parser = parse_size)]
     pub(crate) size: (u32, u32),
     /// Roll a chaos twin beside the die, its height, velocity and spin × (1 + ε) (default:

@@ -4,8 +4,9 @@ use super::args::{RunArgs, SetupArgs, Worded, Wording};
 use super::error::CliError;
 use super::running::{self, cancel_on_ctrl_c};
 use clap::{Args, ValueEnum};
-use dicesim_experiment::basin::{MAX_CELLS, unapplied_by_map};
+use dicesim_experiment::basin::unapplied_by_map;
 use dicesim_experiment::hashing::Written;
+use dicesim_experiment::limits::MAP_CELLS;
 use dicesim_experiment::shard::{Part, Sweep};
 use dicesim_experiment::{Axis, BasinMap, Layer, MapSpec, Method, run_map_rows};
 use dicesim_experiment::{provenance, tables};
@@ -34,7 +35,8 @@ pub(crate) struct BasinArgs {
     /// The vertical axis, as --x (with `--res Wx1`, one scan at the middle of its range).
     #[arg(long = "y", value_name = "KEY:MIN:MAX", allow_hyphen_values = true)]
     pub(crate) y: String,
-    /// Grid nodes along x and y, both ends of each range included; `Wx1` is a 1-D scan.
+    /// Grid nodes along x and y, both ends of each range included; `Wx1` is a 1-D scan (at
+    /// most 4194304 cells (2048x2048) in all).
     #[arg(long, value_name = "WxH", default_value = "200x100", value_parser = parse_resolution)]
     pub(crate) res: (usize, usize),
     /// What each cell shows.
@@ -92,15 +94,9 @@ pub(crate) fn check_sweep(args: &BasinArgs, sharded: bool) -> Result<(Preset, Pa
         ));
     }
     let (w, h) = args.res;
-    if w * h > MAX_CELLS {
-        // The map, the copy shown while refining, and the image or CSV drawn from it.
-        let needed = 2 * w * h * size_of::<Option<dicesim_experiment::Cell>>();
-        return Err(CliError::Usage(format!(
-            "--res {w}x{h}: {} cells would need about {} of memory; at most {MAX_CELLS} cells (e.g. 2048x2048)",
-            w * h,
-            dicesim_setup::number::human_bytes(needed as u64)
-        )));
-    }
+    MAP_CELLS
+        .check((w as u64).saturating_mul(h as u64))
+        .map_err(CliError::experiment(""))?;
     let preset = args.setup.resolve()?;
     let params = preset.params();
     let x = Axis::parse(&args.x, w).map_err(CliError::experiment("--x "))?;

@@ -8,6 +8,7 @@ use dicesim_experiment::BatchRun;
 use dicesim_experiment::RunOptions;
 use dicesim_experiment::batch_sweep::BatchSweep;
 use dicesim_experiment::ics::parse_initial_conditions;
+use dicesim_experiment::limits::BATCH_ROLLS;
 use dicesim_experiment::shard::Shard;
 use dicesim_experiment::tables;
 use dicesim_physics::InitialCondition;
@@ -17,11 +18,6 @@ use serde_json::json;
 use std::io::Write;
 use std::path::PathBuf;
 
-/// The most rolls one batch takes. Records stream to `--out` as they complete, so memory
-/// does not grow with the batch; past this a batch is years of core time, a typo more
-/// likely than a plan, and a sweep that size belongs on many machines (`--shard`).
-pub(crate) const MAX_ROLLS: u64 = 100_000_000_000;
-
 /// The largest `--ics` file read, bytes (about a million rows).
 const MAX_ICS_BYTES: u64 = 256 * 1024 * 1024;
 
@@ -29,7 +25,8 @@ const MAX_ICS_BYTES: u64 = 256 * 1024 * 1024;
 pub(crate) struct BatchArgs {
     #[command(flatten)]
     pub(crate) setup: SetupArgs,
-    /// Roll N dice with initial conditions drawn from the preset's `[random]` ranges.
+    /// Roll N dice with initial conditions drawn from the preset's `[random]` ranges (at most
+    /// 10¹¹ rolls per batch).
     #[arg(
         long,
         value_name = "N",
@@ -144,12 +141,8 @@ pub(crate) fn check_sweep(args: &BatchArgs, shard: Option<Shard>) -> Result<Chec
     let kept = args
         .rolls
         .map(|n| shard.map_or(n, |s| s.range(n).end - s.range(n).start));
-    if let Some(n) = kept
-        && n > MAX_ROLLS
-    {
-        return Err(CliError::Usage(format!(
-            "--rolls {n}: at most {MAX_ROLLS} per batch; split a sweep this large over machines with --shard K/N"
-        )));
+    if let Some(n) = kept {
+        BATCH_ROLLS.check(n).map_err(CliError::experiment(""))?;
     }
     let preset = args.setup.resolve()?;
     // A --set the starts replace is refused, not dropped.

@@ -10,6 +10,7 @@ use dicesim_experiment::compare_budden::{
     BuddenComparison, BuddenSpec, DEFAULT_CALIBRATE_ON, DEFAULT_FIT, hand_throw, run_budden as roll_budden,
     unapplied_by_comparison,
 };
+use dicesim_experiment::limits::EXPERIMENT_ROLLS;
 use dicesim_experiment::real_data::Dataset;
 use dicesim_experiment::{RunOptions, provenance, tables};
 use dicesim_figures::compare_plot::{budden_png, comparison_png};
@@ -18,9 +19,6 @@ use dicesim_figures::plot::{Record, random_starts};
 use dicesim_setup::output::Output;
 use dicesim_setup::preset::{Preset, refuse_unapplied};
 use dicesim_setup::random::check_drawn_setup;
-
-/// The most rolls one comparison takes (throws × dice × candidates).
-const MAX_ROLLS: u64 = 1_000_000_000;
 
 /// The experiments the simulated die can be thrown against.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -56,7 +54,8 @@ pub(crate) struct CompareArgs {
     pub(crate) setup: SetupArgs,
     /// Simulated throws by the experiment's protocol (12 dice a throw for Weldon; for
     /// Budden, throws of each ratio's cuboid), each die drawn from the preset's `[random]`
-    /// ranges (default: as many as the experiment made, for Budden ratio by ratio).
+    /// ranges (default: as many as the experiment made, for Budden ratio by ratio); at most
+    /// 10⁹ rolls in one experiment, throws × dice × candidates.
     #[arg(long, visible_alias = "rolls", value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub(crate) throws: Option<u64>,
     /// Seed of the random throws (default: the preset's `random.seed`). Budden: several,
@@ -73,7 +72,7 @@ pub(crate) struct CompareArgs {
     /// (the --calibrate-on ratios keep their role, for a table fitted on them elsewhere).
     #[arg(long, conflicts_with_all = ["fit", "candidates"])]
     pub(crate) no_fit: bool,
-    /// Candidates of a fit (at least 20; default 21).
+    /// Candidates of a fit (at least 20, at most 1000 candidates; default 21).
     #[arg(long, value_name = "N")]
     pub(crate) candidates: Option<usize>,
     /// Budden only: the ratios x/y the fit uses (the others are predicted with the best
@@ -212,11 +211,18 @@ fn comparison_record(
     if let (Some(fit), Some(value)) = (&spec.fit, value) {
         fit.key.set(&mut shown, &mut initial, value);
     }
-    let fit = match (fit_text, &spec.fit, value, &c.key) {
-        (Some(f), Some(fit), Some(v), Some(k)) => format!(
-            "; --fit {f} over {} candidates, drawn at the best, {k} = {}",
+    let fit = match (fit_text, &spec.fit, value, &c.key, &c.fit) {
+        (Some(f), Some(fit), Some(v), Some(k), Some(i)) => format!(
+            "; --fit {f} over {} candidates, drawn at the best, {k} = {}; 95 % interval {} to {}{}",
             fit.candidates,
-            setup_value(v)
+            setup_value(v),
+            setup_value(i.low),
+            setup_value(i.high),
+            if i.connected() {
+                ""
+            } else {
+                " (the candidates within 3.84 are not one connected set)"
+            }
         ),
         _ => String::new(),
     };
@@ -272,11 +278,7 @@ const PROGRESS: &str = "{bar:40} {pos}/{len} rolls, {per_sec}, {eta} left";
 /// Before any roll, as both kinds of comparison check it: the size within bounds and every
 /// `--out` file writable.
 fn prepare(args: &CompareArgs, total: u64) -> Result<Vec<Output>, CliError> {
-    if total > MAX_ROLLS {
-        return Err(CliError::Usage(format!(
-            "{total} rolls: at most {MAX_ROLLS} in one comparison (fewer --throws or --candidates)"
-        )));
-    }
+    EXPERIMENT_ROLLS.check(total).map_err(CliError::experiment(""))?;
     args.run.outputs(&["csv", "json", "png"])
 }
 

@@ -13,15 +13,13 @@ use dicesim_figures::predict_plot::prediction_png;
 use dicesim_setup::preset::refuse_unapplied;
 use dicesim_setup::random::{seed_given, unapplied_when_drawn};
 
-/// The most rolls one experiment takes (starts × (1 + ε count) × values).
-const MAX_ROLLS: u64 = 1_000_000_000;
-
 #[derive(Debug, Args)]
 pub(crate) struct PredictArgs {
     #[command(flatten)]
     pub(crate) setup: SetupArgs,
     /// Random starts per curve, drawn from the preset's `[random]` ranges; each is rolled
-    /// beside one twin per ε.
+    /// beside one twin per ε (at most 10⁹ rolls in one experiment, starts × (1 + ε count) ×
+    /// values).
     #[arg(long, value_name = "N", default_value_t = 1000)]
     pub(crate) rolls: u64,
     /// The relative perturbations ε of the twins, increasing, comma-separated (default one
@@ -120,11 +118,9 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
         .rolls
         .saturating_mul(1 + spec.epsilons.len() as u64)
         .saturating_mul(curves);
-    if total > MAX_ROLLS {
-        return Err(CliError::Usage(format!(
-            "{total} rolls: at most {MAX_ROLLS} in one experiment (fewer --rolls, ε or values)"
-        )));
-    }
+    dicesim_experiment::limits::EXPERIMENT_ROLLS
+        .check(total)
+        .map_err(CliError::experiment(""))?;
     let outputs = args.run.outputs(&["csv", "json", "png"])?;
     let prediction =
         running::run_with_progress(total, "{bar:40} {pos}/{len} rolls, {elapsed}", |stop, done| {

@@ -3,6 +3,7 @@
 use super::args::SetupArgs;
 use super::error::CliError;
 use clap::Args;
+use dicesim_experiment::limits::TRACE_STEPS;
 use dicesim_experiment::trace::{TraceWriter, columns, follow};
 use dicesim_experiment::{data_file, provenance};
 use dicesim_physics::Simulation;
@@ -13,7 +14,8 @@ use std::path::PathBuf;
 pub(crate) struct TraceArgs {
     #[command(flatten)]
     pub(crate) setup: SetupArgs,
-    /// Run exactly N steps, even past the end of the roll (default: until the roll ends).
+    /// Run exactly N steps, even past the end of the roll (default: until the roll ends; at
+    /// most 12000000 steps).
     #[arg(long, value_name = "N")]
     pub(crate) steps: Option<u64>,
     /// Print one row every K steps (the last step is always printed).
@@ -29,6 +31,9 @@ pub(crate) struct TraceArgs {
 }
 
 pub(crate) fn run(args: &TraceArgs) -> Result<(), CliError> {
+    if let Some(steps) = args.steps {
+        TRACE_STEPS.check(steps).map_err(CliError::experiment(""))?;
+    }
     let preset = args.setup.resolve()?;
     dicesim_setup::preset::refuse_unapplied(&args.setup.set, |key| {
         dicesim_setup::random::unapplied_when_fixed(key, "trace")

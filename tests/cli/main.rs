@@ -14,6 +14,7 @@ mod evidence;
 mod import_cycles;
 mod inputs;
 mod layers;
+mod limits;
 mod loaded_dice;
 mod man;
 mod merge_checks;

@@ -314,7 +314,7 @@ impl BasinMap {
 }
 
 /// The most cells a map takes (e.g. 2048×2048): the map and its partial copy stay in memory.
-pub const MAX_CELLS: usize = 2048 * 2048;
+pub const MAX_CELLS: usize = crate::limits::MAP_CELLS.max as usize;
 
 /// Why a map with axes `x` and `y` would not apply a change of `key` to its preset (a
 /// `--set`), as [`dicesim_setup::preset::refuse_unapplied`] asks: an axis sets it in every

@@ -295,7 +295,7 @@ impl FitSpec {
                 self.candidates
             ));
         }
-        Ok(())
+        crate::limits::CANDIDATES.check(self.candidates as u64)
     }
 
     /// The candidate values, from `low` to `high`, exact at both ends (a range that ends
@@ -563,6 +563,15 @@ impl Comparison {
         if self.candidates.iter().any(|c| c.deviance.is_some()) {
             columns.push(Column::real("deviance"));
         }
+        if self.fit.is_some() {
+            // The fit's 95 % interval on every row, and whether this candidate's own deviance
+            // is within 3.84 of the lowest (docs/real-dice.md, "The fit's interval").
+            columns.extend([
+                Column::real("interval_low"),
+                Column::real("interval_high"),
+                Column::boolean("within_interval"),
+            ]);
+        }
         columns
     }
 
@@ -578,7 +587,7 @@ impl Comparison {
         csv.write_record(columns.iter().map(|c| c.name.as_str()))
             .map_err(crate::csv_io)?;
         let real = |x: f64| Real(x).to_string();
-        let with_deviance = columns.last().is_some_and(|c| c.name == "deviance");
+        let with_deviance = columns.iter().any(|c| c.name == "deviance");
         for c in &self.candidates {
             let Some(test) = &c.test else { continue };
             for r in self.rows(c) {
@@ -609,6 +618,11 @@ impl Comparison {
                 ]);
                 if with_deviance {
                     cells.push(c.deviance.map_or(String::new(), real));
+                }
+                if let Some(fit) = &self.fit {
+                    let within = c.deviance.is_some_and(|d| d <= fit.candidate_limit())
+                        && !self.excluded.iter().any(|e| Some(e.value) == c.value);
+                    cells.extend([real(fit.low), real(fit.high), within.to_string()]);
                 }
                 csv.write_record(&cells).map_err(crate::csv_io)?;
             }

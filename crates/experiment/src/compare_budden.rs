@@ -306,7 +306,12 @@ impl BuddenComparison {
         let mut columns = vec![Column::real("ratio"), Column::text("role")];
         if let (Some(_), Some(key)) = (&self.fit, &self.key) {
             let name = ScanKey::named(key).map_or_else(|_| key.replace('.', "_"), |k| k.column());
-            columns.push(Column::real(name));
+            // The best value, then the fit's 95 % interval (docs/real-dice.md, "The fit's interval").
+            columns.extend([
+                Column::real(name),
+                Column::real("interval_low"),
+                Column::real("interval_high"),
+            ]);
         }
         columns.extend([
             Column::integer("data_throws"),
@@ -341,7 +346,9 @@ impl BuddenComparison {
                 }
                 .to_string(),
             ];
-            cells.extend(self.fit.as_ref().map(|f| real(f.best)));
+            if let Some(f) = &self.fit {
+                cells.extend([real(f.best), real(f.low), real(f.high)]);
+            }
             cells.extend([
                 r.data_throws.to_string(),
                 r.data_square.to_string(),

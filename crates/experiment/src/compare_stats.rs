@@ -261,8 +261,14 @@ pub enum FitMethod {
     Candidates,
 }
 
-/// The best value of a fit and its 95 % profile interval.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+/// The best value of a fit and its 95 % interval (docs/real-dice.md, "The fit's interval"):
+/// the smallest interval that holds every candidate whose deviance is within 3.84 of the
+/// lowest candidate's, each end reaching out to where the deviance crosses that line toward
+/// the next candidate beyond it (or to the range's end), and, when the deviances follow an
+/// upward parabola, where the parabola stays within 3.84 of its own minimum. Candidates
+/// inside it whose own deviance is beyond the line are listed (`beyond`): then the
+/// candidates within 3.84 are not one connected set, and every reading says so.
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FitInterval {
     pub method: FitMethod,
     /// The best value and its deviance (the parabola's, or the best candidate's).
@@ -270,15 +276,33 @@ pub struct FitInterval {
     pub best_deviance: f64,
     /// The candidate nearest to the best value, whose throws are shown.
     pub best_index: usize,
-    /// Where the deviance rises 3.84 above its minimum.
+    /// The lowest deviance of any candidate; every candidate within 3.84 of it is inside.
+    pub lowest_deviance: f64,
+    /// The interval's ends.
     pub low: f64,
     pub high: f64,
-    /// Whether the deviance stayed within 3.84 up to the range's own end on that side (the
-    /// interval then reaches at least that far).
+    /// Whether the interval reached the range's own end on that side (it then reaches at
+    /// least that far: the data allow values beyond the range).
     pub low_open: bool,
     pub high_open: bool,
+    /// The candidates between the interval's ends whose deviance is more than 3.84 above
+    /// the lowest, in increasing order: empty when the candidates within 3.84 are one
+    /// connected run.
+    pub beyond: Vec<f64>,
     /// The parabola `a·x² + b·x + c` (`None` for [`FitMethod::Candidates`]).
     pub parabola: Option<[f64; 3]>,
+}
+
+impl FitInterval {
+    /// Whether the candidates within 3.84 of the lowest deviance form one connected run.
+    pub fn connected(&self) -> bool {
+        self.beyond.is_empty()
+    }
+
+    /// The deviance below which a candidate is inside: the lowest candidate's + 3.84.
+    pub fn candidate_limit(&self) -> f64 {
+        self.lowest_deviance + deviance_rise_95()
+    }
 }
 
 /// The least-squares parabola `[a, b, c]` through the points, or `None` for fewer than three
@@ -325,12 +349,13 @@ pub(crate) fn least_squares_parabola(values: &[f64], deviances: &[f64]) -> Optio
     Some([a2, b2 - 2.0 * a2 * mean, a2 * mean * mean - b2 * mean + c])
 }
 
-/// The best of `values` (increasing) by `deviances`, and the 95 % interval where the
-/// deviance stays within 3.84 of the best: from the least-squares parabola through all of
-/// them when it opens upward, else from the candidates themselves. `None` without
-/// candidates.
+/// The best of `values` (increasing) by `deviances` and its 95 % interval ([`FitInterval`]):
+/// the best from the least-squares parabola through all of them when it opens upward, else
+/// the best candidate; the interval holds the candidates' own reading and the parabola's.
+/// `None` without candidates.
 pub(crate) fn profile_interval(values: &[f64], deviances: &[f64]) -> Option<FitInterval> {
     let (lo, hi) = (*values.first()?, *values.last()?);
+    let from_candidates = candidate_interval(values, deviances)?;
     let nearest = |x: f64| {
         (0..values.len())
             .min_by(|&a, &b| (values[a] - x).abs().total_cmp(&(values[b] - x).abs()))
@@ -345,6 +370,7 @@ pub(crate) fn profile_interval(values: &[f64], deviances: &[f64]) -> Option<FitI
         let vertex = -b / (2.0 * a);
         let reach = ((best_deviance + deviance_rise_95() - c) / a + vertex * vertex).sqrt();
         let (low, high) = (vertex - reach, vertex + reach);
+        let (low, high) = (low.min(from_candidates.low), high.max(from_candidates.high));
         return Some(FitInterval {
             method: FitMethod::Parabola,
             best,
@@ -352,46 +378,60 @@ pub(crate) fn profile_interval(values: &[f64], deviances: &[f64]) -> Option<FitI
             best_index: nearest(best),
             low: low.max(lo),
             high: high.min(hi),
-            low_open: low < lo,
-            high_open: high > hi,
+            low_open: low <= lo,
+            high_open: high >= hi,
+            beyond: beyond(values, deviances, from_candidates.lowest_deviance, low, high),
             parabola: Some([a, b, c]),
+            ..from_candidates
         });
     }
-    candidate_interval(values, deviances)
+    Some(from_candidates)
 }
 
-/// The best candidate and the interval read from the candidates themselves: outwards from
-/// the best to the first beyond 3.84 above it, interpolated linearly where it crosses.
+/// The candidates inside `[low, high]` whose deviance is more than 3.84 above `lowest`.
+fn beyond(values: &[f64], deviances: &[f64], lowest: f64, low: f64, high: f64) -> Vec<f64> {
+    let limit = lowest + deviance_rise_95();
+    values
+        .iter()
+        .zip(deviances)
+        .filter(|&(&v, &d)| v > low && v < high && d > limit)
+        .map(|(&v, _)| v)
+        .collect()
+}
+
+/// The best candidate and the interval read from the candidates themselves: from the first
+/// to the last candidate within 3.84 of the lowest deviance, each end interpolated linearly
+/// to where the deviance crosses that line toward the next candidate beyond it, or open at
+/// the range's end.
 fn candidate_interval(values: &[f64], deviances: &[f64]) -> Option<FitInterval> {
     let (best_index, &best_deviance) = deviances.iter().enumerate().min_by(|a, b| a.1.total_cmp(b.1))?;
     let limit = best_deviance + deviance_rise_95();
-    // From the best outwards to the first candidate beyond the limit, then linearly back
-    // to where the limit is crossed.
-    let edge = |step: isize| -> (f64, bool) {
-        let mut i = best_index as isize;
-        loop {
-            let next = i + step;
-            if next < 0 || next as usize >= values.len() {
-                return (values[i as usize], true);
-            }
-            let (a, b) = (i as usize, next as usize);
-            if deviances[b] > limit {
-                let t = (limit - deviances[a]) / (deviances[b] - deviances[a]);
-                return (values[a] + t * (values[b] - values[a]), false);
-            }
-            i = next;
-        }
+    let inside: Vec<usize> = (0..values.len()).filter(|&i| deviances[i] <= limit).collect();
+    let (&first, &last) = (inside.first()?, inside.last()?);
+    // From an inside candidate `a` toward the one beyond it, `b`, to where the line is crossed.
+    let crossing = |a: usize, b: usize| {
+        let t = (limit - deviances[a]) / (deviances[b] - deviances[a]);
+        values[a] + t * (values[b] - values[a])
     };
-    let ((low, low_open), (high, high_open)) = (edge(-1), edge(1));
+    let (low, low_open) = match first.checked_sub(1) {
+        Some(b) => (crossing(first, b), false),
+        None => (values[0], true),
+    };
+    let (high, high_open) = match last + 1 < values.len() {
+        true => (crossing(last, last + 1), false),
+        false => (values[last], true),
+    };
     Some(FitInterval {
         method: FitMethod::Candidates,
         best: values[best_index],
         best_deviance,
         best_index,
+        lowest_deviance: best_deviance,
         low,
         high,
         low_open,
         high_open,
+        beyond: beyond(values, deviances, best_deviance, low, high),
         parabola: None,
     })
 }
@@ -674,6 +714,39 @@ mod tests {
                 + 20.0 * (20.0 / e(30.0, 30.0)).ln()
                 + 10.0 * (10.0 / e(30.0, 21.0)).ln());
         assert!((deviance(&[10, 11], &[20, 10], &[0..1, 1..2]) - by_hand).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_interval_holds_every_candidate_within_the_line_and_says_when_they_are_apart() {
+        let rise = deviance_rise_95();
+        // Issue 49: noisy deviances around a valley; the parabola's own interval is narrow,
+        // but candidates far from it are within 3.84 of the lowest (0.5 at 4): 1 at 2, 2 at
+        // 5, 3 at 7; those at 3 (7) and 6 (8) lie beyond the line 4.34 between them.
+        let values: Vec<f64> = (0..=10).map(f64::from).collect();
+        let deviances = [9.0, 6.0, 1.0, 7.0, 0.5, 2.0, 8.0, 3.0, 9.0, 12.0, 15.0];
+        let limit = 0.5 + rise;
+        let c = candidate_interval(&values, &deviances).unwrap();
+        assert_eq!((c.best, c.lowest_deviance), (4.0, 0.5));
+        // Left from 2 (1) toward 1 (6); right from 7 (3) toward 8 (9).
+        assert!((c.low - (2.0 - (limit - 1.0) / 5.0)).abs() < 1e-12, "{c:?}");
+        assert!((c.high - (7.0 + (limit - 3.0) / 6.0)).abs() < 1e-12, "{c:?}");
+        assert_eq!(c.beyond, [3.0, 6.0]);
+        assert!(!c.connected() && !c.low_open && !c.high_open);
+        // Whatever the parabola says, every candidate under the line is inside.
+        let f = profile_interval(&values, &deviances).unwrap();
+        for (v, d) in values.iter().zip(deviances) {
+            if d <= f.candidate_limit() {
+                assert!(f.low <= *v && *v <= f.high, "{v} outside {f:?}");
+            }
+        }
+        assert!(f.beyond.contains(&3.0) && f.beyond.contains(&6.0), "{f:?}");
+        // A run that reaches the range's end is open there, at the end itself.
+        let rising = [0.5, 1.0, 2.0, 9.0, 12.0];
+        let f = candidate_interval(&values[..5], &rising).unwrap();
+        assert_eq!((f.low, f.low_open, f.high_open), (0.0, true, false));
+        assert!(f.connected());
+        let e = profile_interval(&values[..5], &[3.0, 9.0, 9.0, 9.0, 0.5]).unwrap();
+        assert!(e.high_open && e.high == 4.0 && e.low <= 3.0, "{e:?}");
     }
 
     #[test]

@@ -61,4 +61,7 @@ pub enum Error {
     /// A predictability experiment that cannot be rolled as asked.
     #[error("{0}")]
     Predict(String),
+    /// A size past its limit ([`crate::limits`]), refused before any work.
+    #[error("{0}")]
+    Limit(String),
 }

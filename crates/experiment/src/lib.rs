@@ -20,6 +20,7 @@ pub(crate) mod engine;
 mod error;
 pub mod hashing;
 pub mod ics;
+pub mod limits;
 pub mod merge;
 pub mod one_roll;
 pub mod parquet;

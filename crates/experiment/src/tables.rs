@@ -409,13 +409,29 @@ fn fit_line(out: &mut dyn Write, key: &str, fit: &FitInterval) -> std::io::Resul
         FitMethod::Parabola => "on the least-squares parabola through the candidates' deviances",
         FitMethod::Candidates => "the best candidate; the deviances follow no upward parabola",
     };
+    let parabola = if fit.parabola.is_some() {
+        ", and where the parabola stays within 3.84 of its minimum"
+    } else {
+        ""
+    };
+    let beyond: Vec<String> = fit.beyond.iter().map(|&v| candidate_value(v)).collect();
+    let connected = match beyond.as_slice() {
+        [] => String::new(),
+        [one] => format!("; not one connected set: the candidate {one} inside it lies more than 3.84 above"),
+        many => format!(
+            "; not one connected set: the candidates {} inside it lie more than 3.84 above",
+            many.join(", ")
+        ),
+    };
     writeln!(
         out,
-        "best {key} = {} (deviance {:.2}, {how}); 95 % interval {} to {} (deviance within 3.84 of the best)",
+        "best {key} = {} (deviance {:.2}, {how}); 95 % interval {} to {} (it holds every candidate \
+         within 3.84 of the lowest deviance, {:.2}{parabola}){connected}",
         candidate_value(fit.best),
         fit.best_deviance,
         side(fit.low, fit.low_open, "the range's low end,"),
         side(fit.high, fit.high_open, "the range's high end,"),
+        fit.lowest_deviance,
     )
 }
 
@@ -641,6 +657,8 @@ mod tests {
             high: 2.5e-7,
             high_open: false,
             method: FitMethod::Candidates,
+            lowest_deviance: 0.5,
+            beyond: Vec::new(),
             parabola: None,
         };
         let line = text(|out| fit_line(out, "ground.damping", &fit));
@@ -665,13 +683,25 @@ mod tests {
             high: 0.75,
             high_open: false,
             method: FitMethod::Parabola,
+            lowest_deviance: 0.987,
+            beyond: Vec::new(),
             parabola: Some([1.0, -1.0, 1.5]),
         };
         assert_eq!(
             text(|out| fit_line(out, "ground.friction", &fit)),
             "best ground.friction = 0.500000 (deviance 1.23, on the least-squares parabola through the \
-             candidates' deviances); 95 % interval the range's low end, 0.2 to 0.750000 (deviance within \
-             3.84 of the best)\n"
+             candidates' deviances); 95 % interval the range's low end, 0.2 to 0.750000 (it holds every \
+             candidate within 3.84 of the lowest deviance, 0.99, and where the parabola stays within 3.84 \
+             of its minimum)\n"
         );
+        // Candidates inside the interval beyond the line: the set is not connected, and said so.
+        let split = FitInterval {
+            beyond: vec![0.4, 0.6],
+            ..fit
+        };
+        assert!(text(|out| fit_line(out, "ground.friction", &split)).ends_with(
+            "; not one connected set: the candidates 0.400000, 0.600000 inside it lie more than \
+                 3.84 above\n"
+        ));
     }
 }

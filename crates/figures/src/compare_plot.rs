@@ -153,9 +153,12 @@ fn draw_deviance(
             (a.min(p.0), b.max(p.0))
         });
     let top = points.iter().map(|p| p.1).fold(0.0, f64::max) * 1.05;
-    let limit = fit.best_deviance + deviance_rise_95();
+    // The candidates' line (the lowest candidate's deviance + 3.84), and the parabola's own
+    // (its minimum + 3.84): the interval holds what lies under either.
+    let limit = fit.candidate_limit();
+    let parabola_limit = fit.best_deviance + deviance_rise_95();
     let x_hi = x1.max(x0 + 1e-12);
-    let y_hi = top.max(limit * 1.05);
+    let y_hi = top.max(limit.max(parabola_limit) * 1.05);
     let (xt, yt) = (Ticks::new(x0, x_hi, TICKS), Ticks::new(0.0, y_hi, TICKS));
     // The fitted key's unit, on the axis and after the best value (none if dimensionless).
     let unit = ScanKey::named(key)
@@ -166,8 +169,13 @@ fn draw_deviance(
     let mut chart = ChartBuilder::on(area)
         .caption(
             format!(
-                "deviance against {key}: best {}{unit}",
-                resolved(fit.best, spacing)
+                "deviance against {key}: best {}{unit}{}",
+                resolved(fit.best, spacing),
+                if fit.connected() {
+                    ""
+                } else {
+                    "; within 3.84: not one connected set"
+                }
             ),
             ("sans-serif", 22),
         )
@@ -210,6 +218,12 @@ fn draw_deviance(
         )))
         .map_err(plot_error)?;
     if let Some([a, b, c]) = fit.parabola {
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                vec![(x0, parabola_limit), (x1, parabola_limit)],
+                ShapeStyle::from(DATA.mix(0.6)).stroke_width(1),
+            )))
+            .map_err(plot_error)?;
         let curve = (0..=200).map(|i| {
             let x = x0 + (x1 - x0) * f64::from(i) / 200.0;
             (x, (a * x + b) * x + c)
@@ -223,6 +237,15 @@ fn draw_deviance(
     }
     chart
         .draw_series(points.iter().map(|&p| Circle::new(p, 4, SIMULATED.filled())))
+        .map_err(plot_error)?;
+    // A candidate inside the interval but beyond the line: ringed, the set's gap.
+    chart
+        .draw_series(
+            points
+                .iter()
+                .filter(|p| fit.beyond.contains(&p.0))
+                .map(|&p| Circle::new(p, 8, BLACK.stroke_width(2))),
+        )
         .map_err(plot_error)?;
     Ok(())
 }

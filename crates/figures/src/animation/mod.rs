@@ -32,8 +32,8 @@ pub(crate) const HOLD_S: f64 = 2.0;
 /// Simulated seconds per played second, as the explorer's speed ladder has them.
 pub(crate) const SPEED: std::ops::RangeInclusive<f64> = 0.01..=100.0;
 /// The most frames one animation has (a 30 s roll that never settles at 1/100× would be
-/// 75 000): past it a lower rate or a faster speed is asked for.
-pub(crate) const MAX_FRAMES: usize = 10_000;
+/// 75 000): past it a lower rate or a faster speed is asked for, before anything is drawn.
+use dicesim_experiment::limits::FRAMES;
 
 /// The file formats: by the extension, `.gif` or `.png` (an animated PNG).
 pub const EXTENSIONS: [&str; 2] = ["gif", "png"];
@@ -242,11 +242,14 @@ pub(crate) fn film(
                 headline: headline(&die, twin.as_ref(), at),
             });
         }
-        if times.len() > MAX_FRAMES {
-            return Err(Error::Animation(format!(
-                "more than {MAX_FRAMES} frames at {} frames/s and {}: a lower rate or a faster speed",
+        if times.len() as u64 > FRAMES.max {
+            return Err(Error::Limit(format!(
+                "more than {} frames at {} frames/s and {}: {}; {}",
+                FRAMES.max,
                 spec.fps,
-                speed_words(spec.speed)
+                speed_words(spec.speed),
+                FRAMES.stated(),
+                FRAMES.why
             )));
         }
         let ended = die.outcome().is_some() && twin.as_ref().is_none_or(|b| b.outcome().is_some());
