@@ -44,6 +44,8 @@ pub(crate) fn run(args: &TraceArgs) -> Result<(), CliError> {
         return Ok(trace(args, sim, std::io::stdout().lock())?);
     };
     let output = super::args::checked_outputs(std::slice::from_ref(path), &["csv"], args.force)?.remove(0);
+    // Half a trace is of no use: a stop signal removes the file being written and its sidecar.
+    super::running::stop_at_once_on_signals()?;
     let rolled = provenance::roll(&preset, "the preset's roll", !args.setup.set.is_empty());
     let meta = data_file::sidecar(&rolled, &columns());
     output

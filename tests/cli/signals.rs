@@ -248,3 +248,33 @@ fn one_stop_signal_ends_predict_basin_compare_and_animate_within_two_seconds() {
         assert!(temporaries(d).is_empty(), "{what}: {:?}", temporaries(d));
     }
 }
+
+/// Issue 49, defect 3: `trace --out` left its `.tr.csv.XXXXXX.part` and its sidecar's when
+/// stopped; now every stop signal removes both, says nothing was written, and exits 128 + N.
+#[test]
+fn a_signal_during_a_trace_removes_its_file_and_its_sidecars() {
+    for signal in [Signal::SIGINT, Signal::SIGTERM, Signal::SIGHUP] {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        let child = spawn(
+            d,
+            &[
+                "trace",
+                "--steps",
+                "12000000",
+                "--set",
+                "integrator.max_time=120",
+                "--out",
+                "tr.csv",
+            ],
+        );
+        let (code, stderr) = stop_while_writing(d, child, &[signal]);
+        assert_eq!(code, Some(128 + signal as i32), "{signal}: {stderr}");
+        assert!(stderr.contains("nothing was written"), "{signal}: {stderr}");
+        let left: Vec<_> = std::fs::read_dir(d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert!(left.is_empty(), "{signal}: {left:?}");
+    }
+}
