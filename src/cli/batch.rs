@@ -43,7 +43,7 @@ pub(crate) struct BatchArgs {
     pub(crate) ics: Option<PathBuf>,
     /// Seed of the random draws (default: the preset's `random.seed`); roll i's draw depends
     /// on (seed, i) alone.
-    #[arg(long, value_name = "S", conflicts_with = "ics")]
+    #[arg(long, value_name = "S", value_parser = dicesim_setup::random::parse_seed, conflicts_with = "ics")]
     pub(crate) seed: Option<u64>,
     #[command(flatten)]
     pub(crate) run: RunArgs<Batch>,
@@ -223,6 +223,13 @@ fn run_versus(args: &BatchArgs, options: &RunOptions) -> Result<(), CliError> {
         )));
     }
     let params_b = twin.params();
+    if params_b == params {
+        return Err(CliError::Usage(format!(
+            "--versus {}: B is A itself (the setup already has these values), so every throw would \
+             agree; give a value that differs from A's",
+            args.versus.join(" ")
+        )));
+    }
     // B's body and its draws get A's check: a --versus body that cannot exist, or whose
     // drawn starts put a corner into the table, is refused in the words roll would use.
     if given.is_none() {

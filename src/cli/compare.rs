@@ -60,7 +60,7 @@ pub(crate) struct CompareArgs {
     pub(crate) throws: Option<u64>,
     /// Seed of the random throws (default: the preset's `random.seed`). Budden: several,
     /// e.g. `--seed 11,12,13`, throw every ratio once per seed and pool the counts.
-    #[arg(long, value_name = "S[,S…]", value_delimiter = ',')]
+    #[arg(long, value_name = "S[,S…]", value_delimiter = ',', value_parser = dicesim_setup::random::parse_seed)]
     pub(crate) seed: Vec<u64>,
     /// Fit one setup value to the data: candidates evenly spaced from LO to HI, each rolled
     /// with the same throws, e.g. `ground.friction:0.2:1.2` or `die.extra_corner_mass.8:0:1`

@@ -36,7 +36,7 @@ pub(crate) struct PredictArgs {
     #[arg(long, value_name = "KEY=V1,V2,…")]
     pub(crate) vary: Option<String>,
     /// Seed of the random starts (default: the preset's `random.seed`).
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", value_parser = dicesim_setup::random::parse_seed)]
     pub(crate) seed: Option<u64>,
     #[command(flatten)]
     pub(crate) run: RunArgs<Predict>,

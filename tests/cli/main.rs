@@ -24,6 +24,7 @@ mod outputs;
 mod package;
 mod presets;
 mod provenance;
+mod round_three;
 mod shards;
 mod signals;
 mod slurm_checks;

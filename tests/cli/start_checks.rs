@@ -81,7 +81,9 @@ fn a_random_orientation_needs_the_height_of_the_farthest_corner() {
     let e = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{e}");
     assert!(
-        e.contains("a drawn orientation can start a corner inside the table"),
+        e.contains(
+            "a drawn orientation can start a corner deeper in the table than the die sinks resting on it"
+        ),
         "{e}"
     );
     let named: f64 = e

@@ -15,6 +15,7 @@ use dicesim_physics::{InitialCondition, Params};
 use dicesim_setup::chaos::{EPSILON, perturbed};
 use dicesim_setup::keys::ScanKey;
 use dicesim_setup::number::Real;
+use dicesim_setup::number::fmt_exact;
 use dicesim_setup::random::{RandomDraws, RandomRanges, check_drawn_setup};
 use dicesim_setup::registry::{HEIGHT, Role};
 use serde::Serialize;
@@ -149,8 +150,16 @@ impl PredictSpec {
                     key.key
                 )));
             }
-            for &v in values {
+            for (i, &v) in values.iter().enumerate() {
                 key.check(v)?;
+                // Two curves of one value are one curve drawn twice: a typo, not a result.
+                if values[..i].contains(&v) {
+                    return Err(Error::Predict(format!(
+                        "`{}` = {} is given twice; each curve needs a value of its own",
+                        key.key,
+                        fmt_exact(v)
+                    )));
+                }
             }
         }
         Ok(())

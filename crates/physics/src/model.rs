@@ -358,7 +358,7 @@ impl Placement {
                 value: initial.height,
                 limits: Limits {
                     min: lowest,
-                    unit: "cm at this orientation (lower, a corner starts inside the table)",
+                    unit: "cm at this orientation (lower, a corner starts deeper in the table than the die sinks resting on it)",
                     ..limits::HEIGHT
                 },
                 detail: None,

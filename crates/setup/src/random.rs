@@ -69,9 +69,11 @@ impl RandomDraws for RandomRanges {
             limits: Limits {
                 min: lowest,
                 unit: if self.random_orientation {
-                    "cm at its low end (lower, a drawn orientation can start a corner inside the table)"
+                    "cm at its low end (lower, a drawn orientation can start a corner deeper in the table than the die \
+                     sinks resting on it)"
                 } else {
-                    "cm at its low end at this orientation (lower, a corner starts inside the table)"
+                    "cm at its low end at this orientation (lower, a corner starts deeper in the table than the die \
+                     sinks resting on it)"
                 },
                 ..key.limits
             },
@@ -148,6 +150,49 @@ pub fn unapplied_when_fixed(key: &str, command: &str) -> Option<String> {
         .then(|| format!("`{command}` rolls the preset's one start (`initial.*`); it draws no random throws"))
 }
 
+/// The largest seed, 2⁶³ − 1: a preset holds its seed as a TOML integer, which is signed
+/// 64-bit, so a larger one could not be written back (docs/presets.md).
+pub const MAX_SEED: u64 = i64::MAX as u64;
+
+/// Why `seed` is refused: above [`MAX_SEED`].
+fn seed_refusal(seed: impl std::fmt::Display) -> String {
+    format!("{seed} is above 2⁶³ − 1 = {MAX_SEED}, the largest seed")
+}
+
+/// A `--seed` as typed: a whole number from 0 to 2⁶³ − 1 (clap's value parser).
+pub fn parse_seed(text: &str) -> Result<u64, String> {
+    match text.trim().parse::<u64>() {
+        Ok(seed) if seed <= MAX_SEED => Ok(seed),
+        Ok(seed) => Err(seed_refusal(seed)),
+        Err(_) if text.trim().bytes().all(|b| b.is_ascii_digit()) && !text.trim().is_empty() => {
+            Err(seed_refusal(text.trim()))
+        }
+        Err(_) => Err(format!(
+            "`{text}`: a seed is a whole number from 0 to 2⁶³ − 1 = {MAX_SEED}"
+        )),
+    }
+}
+
+/// Refuses a preset's `random.seed` above [`MAX_SEED`], naming the key.
+pub fn check_seed(seed: u64) -> Result<(), ParamError> {
+    if seed <= MAX_SEED {
+        return Ok(());
+    }
+    Err(ParamError {
+        key: "random.seed".to_string(),
+        value: f64::NAN,
+        limits: Limits {
+            key: "random.seed",
+            unit: "",
+            min: 0.0,
+            max: MAX_SEED as f64,
+        },
+        detail: Some(Box::new(dicesim_physics::params::Detail::Refused(seed_refusal(
+            seed,
+        )))),
+    })
+}
+
 /// Why a `--set random.seed` is not applied when `--seed` is also given.
 pub fn seed_given(key: &str, seed_option: bool) -> Option<String> {
     (seed_option && key == "random.seed")
@@ -214,7 +259,8 @@ fn random_orientation_degrees(rng: &mut ChaCha8Rng) -> [f64; 3] {
 /// A rotation as a preset states an orientation: yaw, pitch, roll in degrees.
 fn yaw_pitch_roll_degrees(rotation: &Rotation3<f64>) -> [f64; 3] {
     let (roll, pitch, yaw) = rotation.euler_angles();
-    [yaw.to_degrees(), pitch.to_degrees(), roll.to_degrees()]
+    // + 0.0 turns a −0 (a turn too small to show, 1e-320°) into the 0 a start is written as.
+    [yaw, pitch, roll].map(|a| a.to_degrees() + 0.0)
 }
 
 /// A rotation uniform (Haar) among those of angle at most `spread` (radians, 0 to π):

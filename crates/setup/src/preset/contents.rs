@@ -90,6 +90,7 @@ impl Preset {
         self.params().validate()?;
         self.initial.validate()?;
         self.initial.check_clear_of_table(&self.params())?;
+        crate::random::check_seed(self.random.seed)?;
         self.random.validate()?;
         self.view.validate()
     }

@@ -18,7 +18,20 @@ impl Preset {
         {
             return Err(err(format!("`{value}` is not a finite number")));
         }
-        let parsed = parse_override_value(value);
+        // A whole number past TOML's integers (2⁶³ − 1) would read as a word: say what it is.
+        if value.parse::<i64>().is_err()
+            && let Ok(big) = value.parse::<u64>()
+        {
+            return Err(err(format!(
+                "{big} is above 2⁶³ − 1 = {}, the largest whole number a preset holds",
+                i64::MAX
+            )));
+        }
+        let mut parsed = parse_override_value(value);
+        // TOML's integers have no −0: `-0` is the number −0 as typed, so a refusal echoes it.
+        if parsed == toml::Value::Integer(0) && value.trim_start().starts_with('-') {
+            parsed = toml::Value::Float(-0.0);
+        }
         // A key the contact law does not read is refused, whatever the value.
         if let Some(unread) = GroundKey::named(key).filter(|k| k.law() != self.ground.contact) {
             return Err(err(unread.why_unread(self.ground.contact)));

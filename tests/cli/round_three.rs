@@ -1,0 +1,136 @@
+//! Issue 49 ("Answers you can trust, round three"): defects 5 to 7 and the four small ones,
+//! each run as the user ran it.
+
+use crate::common::{dicesim_in, dicesim_ok, dicesim_refused};
+
+/// Defect 6: the docs give seeds from 0 to 2⁶³ − 1; every way of giving one holds to it.
+#[test]
+fn seeds_past_2_63_are_refused_on_every_path() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    for args in [
+        &["batch", "--rolls", "2", "--seed", "18446744073709551615"][..],
+        &["batch", "--rolls", "2", "--seed", "9223372036854775808"],
+        &["predict", "--rolls", "2", "--seed", "9223372036854775808"],
+        &["compare", "budden", "--no-fit", "--seed", "1,9223372036854775808"],
+    ] {
+        let e = dicesim_refused(d, args);
+        assert!(
+            e.contains("is above 2⁶³ − 1 = 9223372036854775807"),
+            "{args:?}: {e}"
+        );
+    }
+    // `--set`: said as a number too large, not "invalid type: string".
+    let e = dicesim_refused(
+        d,
+        &[
+            "batch",
+            "--rolls",
+            "2",
+            "--set",
+            "random.seed=9223372036854775808",
+        ],
+    );
+    assert!(
+        e.contains("--set random.seed: 9223372036854775808 is above 2⁶³ − 1"),
+        "{e}"
+    );
+    assert!(!e.contains("invalid type"), "{e}");
+    // A file: its name and line.
+    std::fs::write(
+        d.join("big.toml"),
+        "format = 1\n\n[random]\nseed = 9223372036854775808\n",
+    )
+    .unwrap();
+    let e = dicesim_refused(d, &["batch", "--rolls", "2", "--preset", "big.toml"]);
+    assert!(
+        e.contains("big.toml:4:1: `random.seed`: 9223372036854775808 is above 2⁶³ − 1"),
+        "{e}"
+    );
+    // The largest seed itself rolls.
+    dicesim_ok(d, &["batch", "--rolls", "2", "--seed", "9223372036854775807"]);
+    dicesim_ok(
+        d,
+        &[
+            "batch",
+            "--rolls",
+            "2",
+            "--set",
+            "random.seed=9223372036854775807",
+        ],
+    );
+}
+
+/// Small ones: `-0` echoed as typed; a tiny spread writes no pitch of `-0.0`; a start below
+/// the resting depth says so (a start down to it is allowed, and it is inside the table too).
+#[test]
+fn values_are_echoed_and_written_as_they_are() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let e = dicesim_refused(
+        d,
+        &[
+            "roll",
+            "--preset",
+            "calibrated-table",
+            "--set",
+            "ground.restitution=-0",
+        ],
+    );
+    assert!(
+        e.contains("`ground.restitution` = -0 is outside the allowed range 0.2 to 1"),
+        "{e}"
+    );
+    dicesim_ok(
+        d,
+        &[
+            "batch",
+            "--rolls",
+            "20",
+            "--set",
+            "random.orientation_spread=1e-320",
+            "--out",
+            "s.csv",
+        ],
+    );
+    let csv = std::fs::read_to_string(d.join("s.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    for row in csv.lines().skip(1) {
+        let cells: Vec<&str> = row.split(',').collect();
+        for angle in ["yaw_deg", "pitch_deg", "roll_deg"] {
+            let i = header.iter().position(|h| *h == angle).unwrap();
+            assert_eq!(cells[i], "0.0", "{angle} in {row}");
+        }
+    }
+    let e = dicesim_refused(d, &["roll", "--set", "initial.height=0.5"]);
+    assert!(
+        e.contains("a corner starts deeper in the table than the die sinks resting on it"),
+        "{e}"
+    );
+    assert!(!e.contains("starts inside the table"), "{e}");
+}
+
+/// Small one: two curves of one value, and a B that is A, were run without a word.
+#[test]
+fn comparing_a_setup_with_itself_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let e = dicesim_refused(
+        d,
+        &[
+            "predict",
+            "--rolls",
+            "5",
+            "--preset",
+            "calibrated-table",
+            "--vary",
+            "ground.restitution=0.3,0.3",
+        ],
+    );
+    assert!(e.contains("`ground.restitution` = 0.3 is given twice"), "{e}");
+    // The paper's table has μ = 1.2 already.
+    let e = dicesim_refused(d, &["batch", "--rolls", "10", "--versus", "ground.friction=1.2"]);
+    assert!(e.contains("--versus ground.friction=1.2: B is A itself"), "{e}");
+    let o = dicesim_in(d, &["batch", "--rolls", "10", "--versus", "ground.friction=0.6"]);
+    assert!(o.status.success());
+}
