@@ -134,3 +134,61 @@ fn comparing_a_setup_with_itself_is_refused() {
     let o = dicesim_in(d, &["batch", "--rolls", "10", "--versus", "ground.friction=0.6"]);
     assert!(o.status.success());
 }
+
+/// Defect 7: `--out /dev/stdout` is written in place (the docs said so; it was refused), a
+/// folder is refused as bad input (exit 2, not 1), and a dangling link is refused before
+/// any roll with the `--out` prefix, not found to exist after the rolling.
+#[test]
+fn out_paths_are_judged_before_any_roll() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // Standard output a pipe: the CSV (its format the command's first), then the summary.
+    let out = dicesim_ok(d, &["batch", "--rolls", "3", "--out", "/dev/stdout"]);
+    assert!(out.starts_with("id,height_cm,"), "{out}");
+    assert_eq!(
+        out.lines()
+            .filter(|l| l.starts_with(|c: char| c.is_ascii_digit()) && l.contains(",settled,"))
+            .count(),
+        3,
+        "{out}"
+    );
+    assert!(out.contains("3 rolls on"), "{out}");
+    // Standard output a file the shell made: both there, neither written over the other.
+    let file = d.join("redirected.txt");
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_dicesim"))
+        .args(["batch", "--rolls", "3", "--out", "/dev/stdout"])
+        .env("DICESIM_PRESETS", d.join("none"))
+        .stdout(std::fs::File::create(&file).unwrap())
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let text = std::fs::read_to_string(&file).unwrap();
+    assert!(
+        text.starts_with("id,height_cm,") && text.contains("3 rolls on"),
+        "{text}"
+    );
+    // A folder: refused as bad input, naming --out.
+    std::fs::create_dir(d.join("rolls.csv")).unwrap();
+    let e = dicesim_refused(d, &["batch", "--rolls", "3", "--out", "rolls.csv"]);
+    assert!(e.contains("--out rolls.csv: is a folder, not a file"), "{e}");
+    // A link to nothing: refused up front; --force replaces the link.
+    #[cfg(unix)]
+    {
+        std::os::unix::fs::symlink(d.join("missing").join("x.csv"), d.join("dangling.csv")).unwrap();
+        let e = dicesim_refused(d, &["batch", "--rolls", "3", "--out", "dangling.csv"]);
+        assert!(
+            e.starts_with("dicesim: --out dangling.csv: a symbolic link to "),
+            "{e}"
+        );
+        assert!(
+            e.contains("which does not exist (--force replaces the link)"),
+            "{e}"
+        );
+        dicesim_ok(d, &["batch", "--rolls", "3", "--out", "dangling.csv", "--force"]);
+        assert!(
+            std::fs::symlink_metadata(d.join("dangling.csv"))
+                .unwrap()
+                .is_file()
+        );
+    }
+}

@@ -44,6 +44,12 @@ pub enum OutputError {
     Input { path: PathBuf, what: String },
     #[error("{}: is {what}, not a file; write the result to a file", path.display())]
     NotAFile { path: PathBuf, what: &'static str },
+    #[error(
+        "{}: a symbolic link to {}, which does not exist (--force replaces the link)",
+        path.display(),
+        target.display()
+    )]
+    Dangling { path: PathBuf, target: PathBuf },
 }
 
 impl OutputError {
@@ -88,7 +94,13 @@ impl Output {
             .extension()
             .and_then(|e| e.to_str())
             .map(str::to_ascii_lowercase)
-            .filter(|e| extensions.contains(&e.as_str()));
+            .filter(|e| extensions.contains(&e.as_str()))
+            // A device or standard output has no extension to tell the format: the first.
+            .or_else(|| {
+                (path.extension().is_none() && in_place(path))
+                    .then(|| extensions.first().map(|e| e.to_string()))
+                    .flatten()
+            });
         let Some(extension) = extension else {
             let names: Vec<String> = extensions.iter().map(|e| format!(".{e}")).collect();
             let expected = match names.as_slice() {
@@ -208,11 +220,16 @@ impl Output {
     /// for a file that has one, ignored for the rest.
     pub fn stage(&self, meta: Option<&[u8]>) -> Result<Staged, OutputError> {
         let failed = |e: std::io::Error| self.failed(&e);
-        if std::fs::metadata(&self.path).is_ok_and(|m| !m.is_file() && !m.is_dir()) {
-            let file = std::fs::OpenOptions::new()
-                .write(true)
-                .open(&self.path)
-                .map_err(failed)?;
+        if in_place(&self.path) {
+            // Standard output through its own descriptor, sharing its offset with what the
+            // command prints (a file the shell redirected it into is not written over).
+            let file = match standard_stream(&self.path) {
+                Some(stream) => stream,
+                None => std::fs::OpenOptions::new()
+                    .write(true)
+                    .open(&self.path)
+                    .map_err(failed)?,
+            };
             return Ok(Staged {
                 path: self.path.clone(),
                 replace: true,
@@ -263,10 +280,23 @@ enum Target {
 /// Checks what `path` is before any work: a folder or a special file is refused, an
 /// existing regular file too unless `replace`.
 fn check_target(path: &Path, replace: bool) -> Result<Target, OutputError> {
-    match std::fs::metadata(path) {
-        Ok(meta) if meta.is_dir() => Err(OutputError::Write {
+    if in_place(path) {
+        return Ok(Target::Device);
+    }
+    // A link to nothing: the rename would replace the link, so it is a file that exists.
+    if let (Ok(link), Err(_)) = (std::fs::symlink_metadata(path), std::fs::metadata(path))
+        && link.file_type().is_symlink()
+        && !replace
+    {
+        return Err(OutputError::Dangling {
             path: path.to_path_buf(),
-            message: "is a folder".to_string(),
+            target: std::fs::read_link(path).unwrap_or_default(),
+        });
+    }
+    match std::fs::metadata(path) {
+        Ok(meta) if meta.is_dir() => Err(OutputError::NotAFile {
+            path: path.to_path_buf(),
+            what: "a folder",
         }),
         Ok(meta) if meta.is_file() && !replace => Err(OutputError::Exists {
             path: path.to_path_buf(),
@@ -279,6 +309,41 @@ fn check_target(path: &Path, replace: bool) -> Result<Target, OutputError> {
             }),
         },
         _ => Ok(Target::File),
+    }
+}
+
+/// Whether `path` is written in place rather than replaced by a rename: a character device
+/// (`/dev/null`, a terminal), or this program's own standard output or error by any of its
+/// names (`/dev/stdout`, `/dev/fd/1`, `/proc/self/fd/2`), whatever it is — a pipe to the next
+/// command, or the file the shell redirected it into.
+fn in_place(path: &Path) -> bool {
+    std::fs::metadata(path).is_ok_and(|m| special_file(&m).is_none() && !m.is_file() && !m.is_dir())
+        || standard_stream(path).is_some()
+}
+
+/// This program's standard output or error, as a second descriptor of it, when `path` names
+/// it (under `/dev` or `/proc`).
+fn standard_stream(path: &Path) -> Option<std::fs::File> {
+    #[cfg(unix)]
+    {
+        use std::os::fd::AsFd;
+        use std::os::unix::fs::MetadataExt;
+        if !(path.starts_with("/dev") || path.starts_with("/proc")) {
+            return None;
+        }
+        let meta = std::fs::metadata(path).ok()?;
+        let stdout = std::io::stdout();
+        let stderr = std::io::stderr();
+        [stdout.as_fd(), stderr.as_fd()].into_iter().find_map(|fd| {
+            let file = std::fs::File::from(fd.try_clone_to_owned().ok()?);
+            let m = file.metadata().ok()?;
+            ((m.dev(), m.ino()) == (meta.dev(), meta.ino())).then_some(file)
+        })
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = path;
+        None
     }
 }
 
