@@ -30,8 +30,22 @@ impl SetupArgs {
     /// The preset with every override applied and validated.
     pub(crate) fn resolve(&self) -> Result<Preset, CliError> {
         let (preset, _) = Store::from_env().load_or_default(self.preset.as_deref())?;
-        Ok(preset.with_overrides(&self.set)?)
+        with_overrides(&preset, "--set", &self.set)
     }
+}
+
+/// `preset` with `overrides` applied, each note of what they did beyond setting a key (the
+/// keys a law switch dropped) said on standard error after the option they came from.
+pub(crate) fn with_overrides(
+    preset: &Preset,
+    option: &str,
+    overrides: &[String],
+) -> Result<Preset, CliError> {
+    let (preset, notes) = preset.with_overrides_noted(overrides)?;
+    for note in notes {
+        eprintln!("dicesim: note: {option} {note}");
+    }
+    Ok(preset)
 }
 
 /// `--engine`.

@@ -213,7 +213,7 @@ fn print_summary(out: &mut impl Write, batch: &BatchRun) -> std::io::Result<()> 
 /// values), A's ending against B's.
 fn run_versus(args: &BatchArgs, options: &RunOptions) -> Result<(), CliError> {
     let (preset, params, given) = check_sweep(args, None)?;
-    let twin = preset.with_overrides(&args.versus)?;
+    let twin = super::args::with_overrides(&preset, "--versus", &args.versus)?;
     // The throws are A's: a value of the throw itself would make the throws differ.
     if twin.initial != preset.initial || twin.random != preset.random {
         return Err(CliError::Usage(format!(

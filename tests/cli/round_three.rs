@@ -192,3 +192,128 @@ fn out_paths_are_judged_before_any_roll() {
         );
     }
 }
+
+/// Defect 5: the law switch worked one way only. `--set ground.contact=…` now switches from
+/// any preset on every path (roll, batch --versus, presets save), dropping the keys only the
+/// other law reads with a note naming each; a file that gives a key its law does not read is
+/// refused with its name, line and the way out.
+#[test]
+fn choosing_a_contact_law_switches_both_ways_and_says_what_it_dropped() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let note = "dicesim: note: --set ground.contact=paper drops ground.restitution = ";
+    // Every shipped spring-friction preset with a key of its own law set.
+    for preset in ["calibrated-table", "superball", "incline"] {
+        let o = dicesim_in(d, &["roll", "--preset", preset, "--set", "ground.contact=paper"]);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{preset}: {stderr}");
+        assert!(
+            stderr.contains("which the \"paper\" contact law does not read"),
+            "{preset}: {stderr}"
+        );
+    }
+    let o = dicesim_in(
+        d,
+        &[
+            "roll",
+            "--preset",
+            "calibrated-table",
+            "--set",
+            "ground.contact=paper",
+        ],
+    );
+    assert!(String::from_utf8_lossy(&o.stderr).starts_with(note));
+    // The switched setup is the paper's law with the preset's other values: its roll is the
+    // roll of that setup written out whole.
+    let saved = dicesim_in(
+        d,
+        &[
+            "presets",
+            "save",
+            "switched",
+            "--preset",
+            "calibrated-table",
+            "--set",
+            "ground.contact=paper",
+        ],
+    );
+    assert!(
+        saved.status.success(),
+        "{}",
+        String::from_utf8_lossy(&saved.stderr)
+    );
+    let file = std::fs::read_dir(d.join("no-user-presets"))
+        .unwrap()
+        .next()
+        .unwrap()
+        .unwrap()
+        .path();
+    let text = std::fs::read_to_string(&file).unwrap();
+    assert!(
+        !text.contains("restitution =") && !text.contains("static_friction ="),
+        "{text}"
+    );
+    let from_file = dicesim_ok(d, &["roll", "--preset", file.to_str().unwrap(), "--json"]);
+    let switched = dicesim_ok(
+        d,
+        &[
+            "roll",
+            "--preset",
+            "calibrated-table",
+            "--set",
+            "ground.contact=paper",
+            "--json",
+        ],
+    );
+    let outcome = |s: &str| serde_json::from_str::<serde_json::Value>(s).unwrap()["outcome"].clone();
+    assert_eq!(outcome(&from_file), outcome(&switched));
+    // --versus switches B alone, and says so.
+    let o = dicesim_in(
+        d,
+        &[
+            "batch",
+            "--rolls",
+            "4",
+            "--preset",
+            "calibrated-table",
+            "--versus",
+            "ground.contact=paper",
+        ],
+    );
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("dicesim: note: --versus ground.contact=paper drops ground.restitution"),
+        "{stderr}"
+    );
+    // The other way, from a paper file whose damping is not the default.
+    std::fs::write(d.join("damped.toml"), "format = 1\n\n[ground]\ndamping = 0.01\n").unwrap();
+    let o = dicesim_in(
+        d,
+        &[
+            "roll",
+            "--preset",
+            "damped.toml",
+            "--set",
+            "ground.contact=spring-friction",
+        ],
+    );
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("--set ground.contact=spring-friction drops ground.damping = 0.01"),
+        "{stderr}"
+    );
+    // A file that gives its own law's foreign key: its name, its line, the way out.
+    std::fs::write(
+        d.join("mixed.toml"),
+        "format = 1\n\n[ground]\ncontact = \"spring-friction\"\ndamping = 0.01\n",
+    )
+    .unwrap();
+    let e = dicesim_refused(d, &["roll", "--preset", "mixed.toml"]);
+    assert!(e.contains("mixed.toml:5:1: `ground.damping` = 0.01"), "{e}");
+    assert!(
+        e.contains("remove the line, or choose that law with `contact = \"paper\"`"),
+        "{e}"
+    );
+}

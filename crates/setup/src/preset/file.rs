@@ -67,8 +67,16 @@ impl Preset {
         // whatever its value.
         for spec in registry::ALL.iter().filter(|s| s.law.is_some()) {
             if find(doc, spec.key()).is_some()
-                && let Some(refused) = preset.ground.refusal(spec.key())
+                && let Some(mut refused) = preset.ground.refusal(spec.key())
             {
+                // The way out, in the file's own words.
+                if let Some(dicesim_physics::params::Detail::Refused(why)) = refused.detail.as_deref_mut() {
+                    why.push_str(&format!(
+                        "; remove the line, or choose that law with `contact = \"{}\"` in [ground] \
+                         (`--set ground.contact=…` switches a preset's law, dropping the other law's keys)",
+                        spec.law.map_or("", |l| l.name())
+                    ));
+                }
                 return Err(range_error(doc, origin, text, refused));
             }
         }

@@ -3,12 +3,17 @@
 use super::contents::Preset;
 use super::error::PresetError;
 use crate::keys::ScanKey;
-use dicesim_physics::GroundKey;
+use crate::number::fmt_exact;
+use crate::registry::{self, Value};
+use dicesim_physics::{ContactLaw, GroundKey};
 
 impl Preset {
     /// Applies one `--set KEY=VALUE` (dotted key as in a file; the value is read as a TOML
-    /// value, a bare word as a string). On error `self` is unchanged.
-    pub(crate) fn apply_override(&mut self, key: &str, value: &str) -> Result<(), PresetError> {
+    /// value, a bare word as a string). On error `self` is unchanged. Returns what it did
+    /// beyond setting the key, for the user to be told: choosing another contact law with
+    /// `ground.contact` drops the keys of the law it leaves (docs/presets.md), and the note
+    /// names each one that held a value of its own.
+    pub(crate) fn apply_override(&mut self, key: &str, value: &str) -> Result<Option<String>, PresetError> {
         let err = |message: String| PresetError::Override {
             key: key.to_string(),
             message,
@@ -51,7 +56,7 @@ impl Preset {
             updated.set_params(params);
             updated.validate()?;
             *self = updated;
-            return Ok(());
+            return Ok(None);
         }
         let mut table = toml::Table::try_from(&*self).map_err(|e| err(e.to_string()))?;
         let path: Vec<&str> = key.split('.').collect();
@@ -114,6 +119,14 @@ impl Preset {
                 _ => {}
             }
         }
+        // Another contact law: the keys only the law it leaves reads go, with a note.
+        let mut note = None;
+        if key == "ground.contact"
+            && let Ok(law) = parsed.clone().try_into::<ContactLaw>()
+            && law != self.ground.contact
+        {
+            note = self.drop_unread_by(law, node, key, value);
+        }
         if component.is_none() {
             node.insert(last.to_string(), parsed);
         }
@@ -125,21 +138,65 @@ impl Preset {
         })?;
         updated.validate()?;
         *self = updated;
-        Ok(())
+        Ok(note)
+    }
+
+    /// Removes from `ground` (this preset's `[ground]` as TOML) every key `law` does not read,
+    /// and says which of them held a value other than its default: `ground.contact=paper
+    /// drops ground.restitution = 0.2375 …`; `None` when nothing of note was dropped.
+    fn drop_unread_by(
+        &self,
+        law: ContactLaw,
+        ground: &mut toml::Table,
+        key: &str,
+        value: &str,
+    ) -> Option<String> {
+        let setup = self.values();
+        let mut dropped = Vec::new();
+        for spec in registry::ALL.iter().filter(|s| s.law.is_some_and(|l| l != law)) {
+            let name = spec.key().rsplit('.').next().unwrap_or_default();
+            ground.remove(name);
+            let held = (spec.read)(&setup);
+            if held != spec.default_value() {
+                let shown = match held {
+                    Value::Number(x) => fmt_exact(x),
+                    Value::Name(n) => format!("\"{n}\""),
+                    other => format!("{other:?}"),
+                };
+                dropped.push(format!("{} = {shown}", spec.key()));
+            }
+        }
+        (!dropped.is_empty()).then(|| {
+            format!(
+                "{key}={value} drops {}, which the \"{}\" contact law does not read",
+                dropped.join(", "),
+                law.name()
+            )
+        })
     }
 
     /// Applies `KEY=VALUE` overrides in order; on any error nothing is changed.
     pub fn with_overrides<S: AsRef<str>>(&self, overrides: &[S]) -> Result<Preset, PresetError> {
+        self.with_overrides_noted(overrides).map(|(p, _)| p)
+    }
+
+    /// [`Preset::with_overrides`], and the notes of what the overrides did beyond setting
+    /// their keys (a law switch's dropped keys), for the user to be told.
+    pub fn with_overrides_noted<S: AsRef<str>>(
+        &self,
+        overrides: &[S],
+    ) -> Result<(Preset, Vec<String>), PresetError> {
         let mut p = self.clone();
+        let mut notes = Vec::new();
         for o in overrides {
             let o = o.as_ref();
             let (key, value) = o.split_once('=').ok_or_else(|| PresetError::Override {
                 key: o.to_string(),
                 message: "expected KEY=VALUE".to_string(),
             })?;
-            p.apply_override(key.trim(), value.trim())?;
+            notes.extend(p.apply_override(key.trim(), value.trim())?);
         }
-        Ok(p)
+        Ok((p, notes))
     }
 }
 
@@ -157,7 +214,7 @@ fn value_at<'a>(table: &'a mut toml::Table, path: &[&str]) -> Option<&'a mut tom
 /// its registry row's names where it has one (`x, y, z`, `yaw, pitch, roll`, the corners
 /// `1`…`8`), so errors, scan keys and basin axes agree; `x, y, z` for any other array.
 fn component_names(parents: &[&str]) -> &'static [&'static str] {
-    match crate::registry::find(&parents.join(".")).map(|spec| spec.components()) {
+    match registry::find(&parents.join(".")).map(|spec| spec.components()) {
         Some(names) if !names.is_empty() => names,
         _ => &["x", "y", "z"],
     }
@@ -222,15 +279,55 @@ mod tests {
                 "{key}: {e}"
             );
         }
-        // A table whose damping is not the default cannot switch law without dropping it.
-        let sticky = paper.with_overrides(&["ground.damping=0.02"]).unwrap();
-        let e = sticky
-            .with_overrides(&["ground.contact=spring-friction"])
-            .unwrap_err();
+        // Choosing the other law drops the keys of the law left, naming those with values
+        // of their own (issue 49, defect 5): both ways, whatever their values.
+        let sticky = paper
+            .with_overrides(&["ground.damping=0.02", "ground.friction_law=whole-die-norm"])
+            .unwrap();
+        let (switched, notes) = sticky
+            .with_overrides_noted(&["ground.contact=spring-friction"])
+            .unwrap();
+        assert_eq!(
+            notes,
+            [
+                "ground.contact=spring-friction drops ground.damping = 0.02, ground.friction_law = \
+              \"whole-die-norm\", which the \"spring-friction\" contact law does not read"
+            ]
+        );
+        assert_eq!(switched.ground.contact, ContactLaw::SpringFriction);
+        let d = dicesim_physics::Params::DEFAULT.ground;
+        assert_eq!(
+            (switched.ground.damping, switched.ground.friction_law),
+            (d.damping, d.friction_law)
+        );
+        let (back, notes) = spring
+            .with_overrides_noted(&["ground.contact=paper", "ground.damping=0.01"])
+            .unwrap();
+        assert_eq!(
+            notes,
+            [
+                "ground.contact=paper drops ground.restitution = 0.8, ground.tilt = 20, which the \
+              \"paper\" contact law does not read"
+            ]
+        );
+        assert_eq!(
+            (back.ground.restitution, back.ground.tilt, back.ground.damping),
+            (d.restitution, d.tilt, 0.01)
+        );
+        // Keys at their defaults go without a word; the same law again changes nothing.
         assert!(
-            e.to_string()
-                .starts_with("`ground.damping` = 0.02: the \"spring-friction\""),
-            "{e}"
+            paper
+                .with_overrides_noted(&["ground.contact=spring-friction"])
+                .unwrap()
+                .1
+                .is_empty()
+        );
+        assert!(
+            spring
+                .with_overrides_noted(&["ground.contact=spring-friction"])
+                .unwrap()
+                .1
+                .is_empty()
         );
     }
 

@@ -243,15 +243,16 @@ fn save_writes_the_whole_file_atomically_and_never_clobbers_unasked() {
 fn a_failed_write_leaves_the_old_state_and_no_temporary_file() {
     let dir = tempdir();
     let store = Store::new(Some(dir.path().to_path_buf()));
-    // The rename itself fails: the target is a folder.
+    // The target is a folder: refused before anything is written, as any bad path is
+    // (issue 49, defect 7), even with replacing allowed.
     std::fs::create_dir(dir.path().join("taken.toml")).unwrap();
     let mut p = Preset {
         name: "taken".to_string(),
         ..Preset::default()
     };
     let e = store.save(&p, true).unwrap_err();
-    assert!(matches!(e, PresetError::Write { .. }), "{e:?}");
-    assert!(e.to_string().contains("taken.toml"), "{e}");
+    assert!(matches!(e, PresetError::Io { .. }), "{e:?}");
+    assert!(e.to_string().contains("taken.toml: is a folder"), "{e}");
     assert_eq!(
         files_in(dir.path()),
         ["taken.toml"],
