@@ -61,14 +61,12 @@ fn seeds_past_2_63_are_refused_on_every_path() {
     );
 }
 
-/// Small ones: `-0` echoed as typed; a tiny spread writes no pitch of `-0.0`; a start below
-/// the resting depth says so (a start down to it is allowed, and it is inside the table too).
+/// Small one: `--set ground.restitution=-0` was echoed as `= 0`.
 #[test]
-fn values_are_echoed_and_written_as_they_are() {
+fn a_negative_zero_is_echoed_as_typed() {
     let dir = tempfile::tempdir().unwrap();
-    let d = dir.path();
     let e = dicesim_refused(
-        d,
+        dir.path(),
         &[
             "roll",
             "--preset",
@@ -81,6 +79,13 @@ fn values_are_echoed_and_written_as_they_are() {
         e.contains("`ground.restitution` = -0 is outside the allowed range 0.2 to 1"),
         "{e}"
     );
+}
+
+/// Small one: `random.orientation_spread = 1e-320` wrote a pitch of `-0.0`.
+#[test]
+fn a_tiny_spread_writes_no_negative_zero() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
     dicesim_ok(
         d,
         &[
@@ -102,7 +107,14 @@ fn values_are_echoed_and_written_as_they_are() {
             assert_eq!(cells[i], "0.0", "{angle} in {row}");
         }
     }
-    let e = dicesim_refused(d, &["roll", "--set", "initial.height=0.5"]);
+}
+
+/// Small one: a start below the resting depth was refused as "a corner starts inside the
+/// table", while starts down to that depth (inside the table too) are allowed.
+#[test]
+fn a_start_below_the_resting_depth_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let e = dicesim_refused(dir.path(), &["roll", "--set", "initial.height=0.5"]);
     assert!(
         e.contains("a corner starts deeper in the table than the die sinks resting on it"),
         "{e}"
@@ -110,13 +122,12 @@ fn values_are_echoed_and_written_as_they_are() {
     assert!(!e.contains("starts inside the table"), "{e}");
 }
 
-/// Small one: two curves of one value, and a B that is A, were run without a word.
+/// Small one: two curves of one value were run without a word.
 #[test]
-fn comparing_a_setup_with_itself_is_refused() {
+fn a_value_given_twice_to_vary_is_refused() {
     let dir = tempfile::tempdir().unwrap();
-    let d = dir.path();
     let e = dicesim_refused(
-        d,
+        dir.path(),
         &[
             "predict",
             "--rolls",
@@ -128,6 +139,13 @@ fn comparing_a_setup_with_itself_is_refused() {
         ],
     );
     assert!(e.contains("`ground.restitution` = 0.3 is given twice"), "{e}");
+}
+
+/// Small one: a `--versus` B equal to A was run without a word.
+#[test]
+fn a_versus_equal_to_a_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
     // The paper's table has μ = 1.2 already.
     let e = dicesim_refused(d, &["batch", "--rolls", "10", "--versus", "ground.friction=1.2"]);
     assert!(e.contains("--versus ground.friction=1.2: B is A itself"), "{e}");
