@@ -94,9 +94,14 @@ pub(crate) fn check_sweep(args: &BasinArgs, sharded: bool) -> Result<(Preset, Pa
         ));
     }
     let (w, h) = args.res;
-    MAP_CELLS
-        .check((w as u64).saturating_mul(h as u64))
-        .map_err(CliError::experiment(""))?;
+    let cells = (w as u64).saturating_mul(h as u64);
+    if cells > MAP_CELLS.max {
+        // The map, the copy shown while refining, and the image or CSV drawn from it.
+        let needed = cells.saturating_mul(2 * size_of::<Option<dicesim_experiment::Cell>>() as u64);
+        let needed = dicesim_setup::number::human_bytes(needed);
+        let what = format!("--res {w}x{h}: {cells} cells would need about {needed} of memory");
+        return Err(CliError::experiment("")(MAP_CELLS.refuse(what)));
+    }
     let preset = args.setup.resolve()?;
     let params = preset.params();
     let x = Axis::parse(&args.x, w).map_err(CliError::experiment("--x "))?;

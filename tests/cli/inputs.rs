@@ -27,7 +27,7 @@ fn refused(o: &Output, says: &str) {
 fn sizes_beyond_the_limits_are_refused_before_any_work() {
     let dir = tempfile::tempdir().unwrap();
     let o = dicesim_in(dir.path(), &["batch", "--rolls", "1000000000000"]);
-    refused(&o, "--rolls 1000000000000: at most 100000000000 per batch");
+    refused(&o, "--rolls 1000000000000: at most 10¹¹ rolls per batch");
     let o = dicesim_in(dir.path(), &["batch", "--rolls", "10", "--jobs", "100000"]);
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     refused(

@@ -35,12 +35,17 @@ impl SizeLimit {
         if value <= self.max {
             return Ok(());
         }
-        let what = if self.option.starts_with("--") {
+        Err(self.refuse(if self.option.starts_with("--") {
             format!("{} {value}", self.option)
         } else {
             format!("{value} {}", self.option)
-        };
-        Err(Error::Limit(format!("{what}: {}; {}", self.stated(), self.why)))
+        }))
+    }
+
+    /// The refusal of a request past the limit, `what` saying the request
+    /// (`--res 5000x5000: 25000000 cells would need about 1.2 GB of memory`).
+    pub fn refuse(&self, what: String) -> Error {
+        Error::Limit(format!("{what}: {}; {}", self.stated(), self.why))
     }
 }
 
