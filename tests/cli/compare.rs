@@ -550,16 +550,39 @@ fn budden_without_a_fit_pools_its_seeds_counts() {
 /// it beyond the line are named (the set is not connected).
 #[test]
 fn the_fit_interval_holds_every_candidate_within_3_84_of_the_lowest() {
+    // The issue's own fit (read from the candidates: no upward parabola), and one read with
+    // a parabola, whose interval must hold the candidates' too.
+    fit_holds_every_candidate_within_the_line(
+        &[
+            "compare",
+            "wolf-red",
+            "--fit",
+            "ground.stiffness:20000:60000",
+            "--throws",
+            "200",
+        ],
+        (20000.0, 60000.0),
+        "candidates",
+    );
+    fit_holds_every_candidate_within_the_line(
+        &[
+            "compare",
+            "weldon",
+            "--fit",
+            "ground.friction:0.2:1.2",
+            "--throws",
+            "300",
+        ],
+        (0.2, 1.2),
+        "parabola",
+    );
+}
+
+/// Runs the fit `args` over `range`, read by `method`, and holds its interval to the rule in
+/// every reading.
+fn fit_holds_every_candidate_within_the_line(args: &[&str], range: (f64, f64), method: &str) {
     let dir = tempfile::tempdir().unwrap();
     let (csv, png) = (dir.path().join("fit.csv"), dir.path().join("fit.png"));
-    let args = [
-        "compare",
-        "wolf-red",
-        "--fit",
-        "ground.stiffness:20000:60000",
-        "--throws",
-        "200",
-    ];
     let mut with_files: Vec<&str> = args.to_vec();
     with_files.extend([
         "--json",
@@ -570,6 +593,7 @@ fn the_fit_interval_holds_every_candidate_within_3_84_of_the_lowest() {
     ]);
     let v = json(&dicesim(&with_files));
     let fit = &v["fit"];
+    assert_eq!(fit["method"], method, "{fit}");
     let (low, high) = (fit["low"].as_f64().unwrap(), fit["high"].as_f64().unwrap());
     let left_out: Vec<f64> = v["excluded"]
         .as_array()
@@ -598,7 +622,7 @@ fn the_fit_interval_holds_every_candidate_within_3_84_of_the_lowest() {
     // Candidates inside the interval beyond the line are listed: the set's gaps.
     let beyond: Vec<f64> = kept
         .iter()
-        .filter(|k| k.0 > low && k.0 < high && k.1 > line)
+        .filter(|k| k.0 >= low && k.0 <= high && k.1 > line)
         .map(|k| k.0)
         .collect();
     let listed: Vec<f64> = fit["beyond"]
@@ -609,7 +633,7 @@ fn the_fit_interval_holds_every_candidate_within_3_84_of_the_lowest() {
         .collect();
     assert_eq!(listed, beyond);
     // The text says the same interval, and whether the set is connected.
-    let text = dicesim(&args);
+    let text = dicesim(args);
     assert!(text.status.success());
     let text = String::from_utf8(text.stdout).unwrap();
     let said = text.lines().find(|l| l.contains("95 % interval")).unwrap();
@@ -620,10 +644,10 @@ fn the_fit_interval_holds_every_candidate_within_3_84_of_the_lowest() {
         "{said}"
     );
     let ends = |x: f64| {
-        if x == 60000.0 {
-            "the range's high end, 60000".to_string()
-        } else if x == 20000.0 {
-            "the range's low end, 20000".to_string()
+        if x == range.1 && fit["high_open"] == true {
+            format!("the range's high end, {x}")
+        } else if x == range.0 && fit["low_open"] == true {
+            format!("the range's low end, {x}")
         } else {
             format!("{x:.6}")
         }

@@ -371,16 +371,23 @@ pub(crate) fn profile_interval(values: &[f64], deviances: &[f64]) -> Option<FitI
         let reach = ((best_deviance + deviance_rise_95() - c) / a + vertex * vertex).sqrt();
         let (low, high) = (vertex - reach, vertex + reach);
         let (low, high) = (low.min(from_candidates.low), high.max(from_candidates.high));
+        let (shown_low, shown_high) = (low.max(lo), high.min(hi));
         return Some(FitInterval {
             method: FitMethod::Parabola,
             best,
             best_deviance,
             best_index: nearest(best),
-            low: low.max(lo),
-            high: high.min(hi),
+            low: shown_low,
+            high: shown_high,
             low_open: low <= lo,
             high_open: high >= hi,
-            beyond: beyond(values, deviances, from_candidates.lowest_deviance, low, high),
+            beyond: beyond(
+                values,
+                deviances,
+                from_candidates.lowest_deviance,
+                shown_low,
+                shown_high,
+            ),
             parabola: Some([a, b, c]),
             ..from_candidates
         });
@@ -388,13 +395,14 @@ pub(crate) fn profile_interval(values: &[f64], deviances: &[f64]) -> Option<FitI
     Some(from_candidates)
 }
 
-/// The candidates inside `[low, high]` whose deviance is more than 3.84 above `lowest`.
+/// The candidates in `[low, high]` (its ends included) whose deviance is more than 3.84
+/// above `lowest`.
 fn beyond(values: &[f64], deviances: &[f64], lowest: f64, low: f64, high: f64) -> Vec<f64> {
     let limit = lowest + deviance_rise_95();
     values
         .iter()
         .zip(deviances)
-        .filter(|&(&v, &d)| v > low && v < high && d > limit)
+        .filter(|&(&v, &d)| v >= low && v <= high && d > limit)
         .map(|(&v, _)| v)
         .collect()
 }

