@@ -9,7 +9,7 @@ use dicesim_experiment::RunOptions;
 use dicesim_experiment::batch_sweep::BatchSweep;
 use dicesim_experiment::ics::parse_initial_conditions;
 use dicesim_experiment::shard::Shard;
-use dicesim_experiment::tables;
+use crate::tables;
 use dicesim_physics::InitialCondition;
 use dicesim_setup::preset::{Preset, refuse_unapplied};
 use dicesim_setup::random::{check_drawn_setup, seed_given, unapplied_when_drawn};

@@ -11,7 +11,8 @@ use dicesim_experiment::compare_budden::{
     unapplied_by_comparison,
 };
 use dicesim_experiment::real_data::Dataset;
-use dicesim_experiment::{RunOptions, provenance, tables};
+use crate::tables;
+use dicesim_experiment::{RunOptions, provenance};
 use dicesim_figures::compare_plot::{budden_png, comparison_png};
 use dicesim_figures::figure::setup_value;
 use dicesim_figures::plot::{Record, random_starts};

@@ -5,7 +5,7 @@ use super::error::CliError;
 use super::running;
 use clap::Args;
 use dicesim_experiment::merge::{BatchMerge, MapMerge, Parts};
-use dicesim_experiment::tables;
+use crate::tables;
 use dicesim_figures::plot::image_file_bytes;
 use dicesim_setup::output::{Output, Staged, commit};
 use serde_json::json;

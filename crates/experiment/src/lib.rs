@@ -31,7 +31,6 @@ pub mod shard;
 pub mod slurm;
 pub(crate) mod stats;
 pub(crate) mod summary;
-pub mod tables;
 pub mod tally;
 pub mod trace;
 pub mod versus;
