@@ -1,16 +1,15 @@
 //! The text tables of results, as the commands print them: beside each result's CSV
-//! (`write_csv`), the same figures for a reader. Each writes whole lines to `out`.
+//! (`write_csv`), the same figures for a reader. Each writes whole lines to `out`. Only the
+//! command line prints them, so they live beside it, not in the experiment crate.
 
-use crate::basin::{BasinMap, Layer};
-use crate::compare::Comparison;
-use crate::compare::Excluded;
-use crate::compare_budden::{BuddenComparison, RatioRole};
-use crate::compare_stats::{FitInterval, FitMethod};
-use crate::ending::Ending;
-use crate::predict::Prediction;
-use crate::stats::FaceTally;
-use crate::summary::BatchSummary;
-use crate::versus::{NO_FACE, VersusRun};
+use dicesim_experiment::basin::{BasinMap, Layer};
+use dicesim_experiment::compare::{Comparison, Excluded};
+use dicesim_experiment::compare_budden::{BuddenComparison, RatioRole};
+use dicesim_experiment::compare_stats::{FitInterval, FitMethod};
+use dicesim_experiment::ending::Ending;
+use dicesim_experiment::predict::Prediction;
+use dicesim_experiment::versus::{NO_FACE, VersusRun};
+use dicesim_experiment::{BatchSummary, FaceTally};
 use dicesim_setup::number::{fmt_exact, fmt_num};
 use std::io::Write;
 
