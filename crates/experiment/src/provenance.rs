@@ -66,14 +66,10 @@ pub fn map_fingerprint(preset: &Preset) -> String {
 /// A batch's provenance: the preset's values with the seed rolled (`None` for given
 /// initial conditions, which `given_fingerprint` then names), and the roll count.
 pub fn batch(preset: &Preset, seed: Option<u64>, rolls: u64, given_fingerprint: Option<&str>) -> Value {
-    let mut values = preset.as_written();
-    if let Some(seed) = seed {
-        values.random.seed = seed;
-    }
     json!({
         "program": PROGRAM,
         "commit": COMMIT,
-        "preset": values,
+        "preset": setup(preset, seed),
         "seed": seed,
         "rolls": rolls,
         "initial_conditions": match given_fingerprint {
@@ -96,7 +92,7 @@ pub fn map(preset: &Preset, map: &BasinMap) -> Value {
     json!({
         "program": PROGRAM,
         "commit": COMMIT,
-        "preset": preset.as_written(),
+        "preset": setup(preset, None),
         "x": axis(&map.x),
         "y": axis(&map.y),
         "method": map.method.name(),
@@ -105,12 +101,10 @@ pub fn map(preset: &Preset, map: &BasinMap) -> Value {
 
 /// A predictability experiment's provenance; `vary` is the `KEY=V1,V2,…` it was given.
 pub fn prediction(preset: &Preset, spec: &PredictSpec, vary: Option<&str>) -> Value {
-    let mut values = preset.as_written();
-    values.random.seed = spec.seed;
     json!({
         "program": PROGRAM,
         "commit": COMMIT,
-        "preset": values,
+        "preset": setup(preset, Some(spec.seed)),
         "seed": spec.seed,
         "rolls": spec.count,
         "epsilons": spec.epsilons,
@@ -121,12 +115,10 @@ pub fn prediction(preset: &Preset, spec: &PredictSpec, vary: Option<&str>) -> Va
 /// A comparison's provenance; `fit` is the `KEY:LO:HI` it was given, fitted over
 /// `candidates` values.
 pub fn comparison(preset: &Preset, spec: &CompareSpec, fit: Option<&str>, candidates: usize) -> Value {
-    let mut values = preset.as_written();
-    values.random.seed = spec.seed;
     json!({
         "program": PROGRAM,
         "commit": COMMIT,
-        "preset": values,
+        "preset": setup(preset, Some(spec.seed)),
         "dataset": spec.dataset.name(),
         "seed": spec.seed,
         "throws": spec.throws,
@@ -138,13 +130,12 @@ pub fn comparison(preset: &Preset, spec: &CompareSpec, fit: Option<&str>, candid
 /// The provenance of a comparison with Budden's cuboids, its random ranges as the throws
 /// were drawn: from a uniformly random orientation.
 pub fn budden(preset: &Preset, spec: &BuddenSpec, fit: Option<&str>) -> Value {
-    let mut values = preset.as_written();
-    values.random = hand_throw(&values.random);
-    values.random.seed = spec.seeds[0];
+    let mut thrown = preset.clone();
+    thrown.random = hand_throw(&preset.random);
     json!({
         "program": PROGRAM,
         "commit": COMMIT,
-        "preset": values,
+        "preset": setup(&thrown, Some(spec.seeds[0])),
         "dataset": "budden",
         "seeds": spec.seeds,
         "throws": spec.throws,
@@ -162,10 +153,21 @@ pub fn roll(rolled: &Preset, roll: &str, changed_from_preset: bool) -> Value {
     json!({
         "program": PROGRAM,
         "commit": COMMIT,
-        "preset": rolled.as_written(),
+        "preset": setup(rolled, None),
         "roll": roll,
         "changed_from_preset": changed_from_preset,
     })
+}
+
+/// The setup as a provenance states it: the preset file `presets show` writes for it (every
+/// key its contact law reads, nothing else), as JSON, with `seed` as its `random.seed` where
+/// the seed rolled is not the preset's. A preset written from it is the setup rolled.
+pub fn setup(preset: &Preset, seed: Option<u64>) -> Value {
+    let mut rolled = preset.clone();
+    if let Some(seed) = seed {
+        rolled.random.seed = seed;
+    }
+    rolled.to_json()
 }
 
 /// `provenance` as the build `commit` wrote it: what a merge expects of files that shards
