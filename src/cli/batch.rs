@@ -3,13 +3,13 @@
 use super::args::{RunArgs, SetupArgs, Worded, Wording};
 use super::error::CliError;
 use super::running::{self, cancel_on_ctrl_c};
+use crate::tables;
 use clap::Args;
 use dicesim_experiment::BatchRun;
 use dicesim_experiment::RunOptions;
 use dicesim_experiment::batch_sweep::BatchSweep;
 use dicesim_experiment::ics::parse_initial_conditions;
 use dicesim_experiment::shard::Shard;
-use crate::tables;
 use dicesim_physics::InitialCondition;
 use dicesim_setup::preset::{Preset, refuse_unapplied};
 use dicesim_setup::random::{check_drawn_setup, seed_given, unapplied_when_drawn};

@@ -4,6 +4,7 @@
 use super::args::{RunArgs, SetupArgs, Worded, Wording};
 use super::error::CliError;
 use super::running;
+use crate::tables;
 use clap::{Args, ValueEnum};
 use dicesim_experiment::compare::{CompareSpec, Comparison, DEFAULT_CANDIDATES, FitSpec, run_comparison};
 use dicesim_experiment::compare_budden::{
@@ -11,7 +12,6 @@ use dicesim_experiment::compare_budden::{
     unapplied_by_comparison,
 };
 use dicesim_experiment::real_data::Dataset;
-use crate::tables;
 use dicesim_experiment::{RunOptions, provenance};
 use dicesim_figures::compare_plot::{budden_png, comparison_png};
 use dicesim_figures::figure::setup_value;

@@ -3,9 +3,9 @@
 
 use super::error::CliError;
 use super::running;
+use crate::tables;
 use clap::Args;
 use dicesim_experiment::merge::{BatchMerge, MapMerge, Parts};
-use crate::tables;
 use dicesim_figures::plot::image_file_bytes;
 use dicesim_setup::output::{Output, Staged, commit};
 use serde_json::json;
