@@ -211,6 +211,63 @@ mod tests {
         assert_eq!(BUILD, format!("dicesim {VERSION_LINE}"));
     }
 
+    /// Every file under `path` (itself, for a file) with its modification time.
+    fn modified(path: &std::path::Path, into: &mut Vec<(std::path::PathBuf, std::time::SystemTime)>) {
+        let Ok(meta) = std::fs::metadata(path) else {
+            return;
+        };
+        into.push((path.to_path_buf(), meta.modified().unwrap()));
+        if meta.is_dir() {
+            for entry in std::fs::read_dir(path).unwrap() {
+                modified(&entry.unwrap().path(), into);
+            }
+        }
+    }
+
+    /// A `git status` rebuilds nothing: it rewrites git's index whenever a file's times
+    /// changed (here a licence's, touched to now), and the build script that stamps the
+    /// commit watches nothing that `git status` writes.
+    #[test]
+    fn git_status_changes_nothing_the_commit_stamp_watches() {
+        if COMMIT == "unknown" {
+            return; // built outside a checkout: nothing of git is watched
+        }
+        let output = std::path::Path::new(env!("OUT_DIR")).with_file_name("output");
+        let script = std::fs::read_to_string(output).unwrap();
+        let watched: Vec<&str> = (script.lines())
+            .filter_map(|l| l.strip_prefix("cargo:rerun-if-changed="))
+            .collect();
+        assert!(watched.iter().any(|w| w.ends_with("HEAD")), "{script}");
+        let stamps = || {
+            let mut all = Vec::new();
+            for w in &watched {
+                modified(std::path::Path::new(w), &mut all);
+            }
+            all
+        };
+        let before = stamps();
+        let top = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+        let licence = std::fs::File::options()
+            .append(true)
+            .open(top.join("LICENSE-MIT"))
+            .unwrap();
+        licence.set_modified(std::time::SystemTime::now()).unwrap();
+        let status = std::process::Command::new("git")
+            .arg("status")
+            .current_dir(&top)
+            .output()
+            .unwrap();
+        assert!(status.status.success());
+        let after = stamps();
+        let changed: Vec<_> = (after.iter().filter(|a| !before.contains(a)))
+            .map(|(path, _)| path)
+            .collect();
+        assert!(
+            changed.is_empty() && after.len() == before.len(),
+            "`git status` changed {changed:?}"
+        );
+    }
+
     #[test]
     fn a_sweeps_fingerprint_follows_its_values_not_its_names() {
         let paper = Preset::default();
