@@ -11,6 +11,7 @@ pub mod basin;
 pub mod batch;
 pub mod batch_sweep;
 pub mod bench;
+pub mod columns;
 pub mod compare;
 pub mod compare_budden;
 pub mod compare_stats;

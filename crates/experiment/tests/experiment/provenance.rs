@@ -1,8 +1,9 @@
 //! A provenance states the setup as its preset file: the preset written from the provenance
 //! of any shipped preset is read back and rolls every throw bit for bit as the original.
 
+use dicesim_experiment::columns::same_record;
 use dicesim_experiment::provenance;
-use dicesim_experiment::record::{RollRecord, roll_record, same_record};
+use dicesim_experiment::record::{RollRecord, roll_record};
 use dicesim_setup::preset::{Preset, SHIPPED, Store};
 use dicesim_setup::random::RandomDraws;
 
