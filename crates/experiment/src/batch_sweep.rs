@@ -183,6 +183,28 @@ impl<'a> BatchSweep<'a> {
         })
     }
 
+    /// What `batch --versus --json` prints of `run`, a run of this sweep against setup B (and
+    /// its .json file holds): its size, how it ran, the table of A's ending against B's, and
+    /// the provenance, which names the throws and both setups.
+    pub fn versus_report(&self, run: &VersusRun) -> Value {
+        let mut v = json!({
+            "preset": self.preset.name,
+            "versus": self.provenance["versus"],
+            "seed": self.seed(),
+            "requested": run.requested,
+            "completed": run.completed,
+            "interrupted": run.cancelled,
+            "jobs": run.jobs,
+            "engine": run.engine,
+        });
+        let summary = json!(run.table.summary());
+        for (key, value) in summary.as_object().expect("a struct") {
+            v[key] = value.clone();
+        }
+        v["provenance"] = self.provenance.clone();
+        v
+    }
+
     /// Rolls every throw in setup `a` and in `b`; with `csv`, each throw's two endings go to
     /// that file as they complete (see [`versus_csv_header`]). `progress` gets each chunk's
     /// throw count. With a file, any failure is [`Error::Output`].

@@ -58,6 +58,26 @@ pub struct BatchMerge {
     pub past_stability_limit: Option<u64>,
 }
 
+impl BatchMerge {
+    /// What `merge --json` prints of it: what `batch --json` prints of a one-machine run,
+    /// with the shards' own figures.
+    pub fn report(&self) -> Value {
+        serde_json::json!({
+            "provenance": self.provenance,
+            "preset": self.preset,
+            "seed": self.seed,
+            "requested": self.rolls,
+            "completed": self.summary.rolls,
+            "interrupted": false,
+            "shards": self.shards,
+            "longest_shard_s": self.longest_s,
+            "verified": self.verified,
+            "past_stability_limit": self.past_stability_limit,
+            "summary": self.summary,
+        })
+    }
+}
+
 /// What takes each record read, in order, with its CSV row where it has one.
 type Taker<'a> = dyn FnMut(&RollRecord, Option<&[u8]>) -> Result<(), MergeError> + 'a;
 
