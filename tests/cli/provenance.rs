@@ -396,30 +396,20 @@ fn a_spring_friction_provenance_states_the_keys_its_law_reads_and_rebuilds_the_s
     );
     assert_eq!(stated["ground"]["static_friction"], 1.2);
     assert_eq!(stated["ground"]["tilt"], 0.0);
-    ok(
-        d,
-        &[
-            "batch",
-            "--preset",
-            "calibrated-table",
-            "--rolls",
-            "3",
-            "--out",
-            "b.csv",
-        ],
-    );
-    ok(
-        d,
-        &[
-            "batch",
-            "--preset",
-            "calibrated-table",
-            "--rolls",
-            "3",
-            "--out",
-            "b.parquet",
-        ],
-    );
+    for out in ["b.csv", "b.parquet"] {
+        ok(
+            d,
+            &[
+                "batch",
+                "--preset",
+                "calibrated-table",
+                "--rolls",
+                "3",
+                "--out",
+                out,
+            ],
+        );
+    }
     let csv = first_line_json(&d.join("b.csv"));
     assert_eq!(csv["preset"], stated);
     // The Parquet file's metadata is the CSV's provenance, text for text.

@@ -246,18 +246,22 @@ mod tests {
             all
         };
         let before = stamps();
-        let top = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+        let git = |args: &[&str]| {
+            let out = (std::process::Command::new("git").args(args))
+                .current_dir(env!("CARGO_MANIFEST_DIR"))
+                .output()
+                .unwrap();
+            assert!(out.status.success(), "git {args:?}");
+            String::from_utf8(out.stdout).unwrap()
+        };
+        // A file git tracks that no build reads.
+        let top = std::path::PathBuf::from(git(&["rev-parse", "--show-toplevel"]).trim());
         let licence = std::fs::File::options()
             .append(true)
             .open(top.join("LICENSE-MIT"))
             .unwrap();
         licence.set_modified(std::time::SystemTime::now()).unwrap();
-        let status = std::process::Command::new("git")
-            .arg("status")
-            .current_dir(&top)
-            .output()
-            .unwrap();
-        assert!(status.status.success());
+        git(&["status"]);
         let after = stamps();
         let changed: Vec<_> = (after.iter().filter(|a| !before.contains(a)))
             .map(|(path, _)| path)
