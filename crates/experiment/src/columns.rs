@@ -125,8 +125,11 @@ pub(crate) struct RecordColumn {
     set: fn(&mut RollRecord, Cell<'_>) -> Option<()>,
     /// Checks the value of a record read back against the setup, after the start's checks
     /// and those of the columns before it; the error without the roll's id.
-    check: Option<fn(&RecordCheck, &RollRecord) -> Result<(), String>>,
+    check: Option<Check>,
 }
+
+/// A column's check of a record read back ([`RecordColumn::check`]).
+type Check = fn(&RecordCheck, &RollRecord) -> Result<(), String>;
 
 impl RecordColumn {
     /// The column's name with its unit: `height_cm`, `time_s`, `face`.
