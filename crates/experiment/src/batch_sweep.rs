@@ -388,7 +388,10 @@ impl<'w> RecordsFile<'w> {
 /// The columns of a roll's record that are its ending ([`Stage::Ending`]): face, status, steps,
 /// time and the impacts.
 fn ending(spin: SpinColumns) -> impl Iterator<Item = &'static RecordColumn> {
-    spin.columns().filter(|c| c.stage == Stage::Ending)
+    spin.columns()
+        .iter()
+        .copied()
+        .filter(|c| c.stage == Stage::Ending)
 }
 
 /// The columns of the per-throw CSV of a versus batch: the throw (id, initial condition,
@@ -398,7 +401,7 @@ pub fn versus_columns(spin: SpinColumns) -> Vec<Column> {
         name: format!("{side}{}", c.name()),
         kind: c.ty.kind(),
     };
-    let mut all: Vec<Column> = (spin.columns())
+    let mut all: Vec<Column> = (spin.columns().iter())
         .filter(|c| c.stage == Stage::Throw)
         .map(|c| column(c, ""))
         .collect();
@@ -410,7 +413,7 @@ pub fn versus_columns(spin: SpinColumns) -> Vec<Column> {
 
 /// Appends one throw's row of the versus CSV: the throw, `a`'s ending, then `b`'s.
 fn write_versus_line(line: &mut Vec<u8>, (a, b): (&RollRecord, &RollRecord), spin: SpinColumns) {
-    let throw = spin.columns().filter(|c| c.stage == Stage::Throw);
+    let throw = spin.columns().iter().filter(|c| c.stage == Stage::Throw);
     for (k, c) in throw.enumerate() {
         if k > 0 {
             line.push(b',');

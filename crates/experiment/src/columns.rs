@@ -546,15 +546,23 @@ impl SpinColumns {
         }
     }
 
-    /// The columns of a file with these spin columns, in order.
-    pub(crate) fn columns(self) -> impl Iterator<Item = &'static RecordColumn> {
-        COLUMNS.iter().filter(move |c| c.in_file(self))
+    /// The columns of a file with these spin columns, in order (worked out once: a merge
+    /// asks for them at every row).
+    pub(crate) fn columns(self) -> &'static [&'static RecordColumn] {
+        static LAYOUTS: LazyLock<[Vec<&'static RecordColumn>; 3]> = LazyLock::new(|| {
+            SpinColumns::ALL.map(|spin| COLUMNS.iter().filter(|c| c.in_file(spin)).collect())
+        });
+        let at = SpinColumns::ALL
+            .iter()
+            .position(|s| *s == self)
+            .expect("one of the layouts");
+        &LAYOUTS[at]
     }
 }
 
 /// The columns of a per-roll file and their types, as its sidecar states them.
 pub fn records_columns(spin: SpinColumns) -> Vec<Column> {
-    (spin.columns())
+    (spin.columns().iter())
         .map(|c| Column {
             name: c.name().to_string(),
             kind: c.ty.kind(),

@@ -57,7 +57,7 @@ pub fn records_csv_header(spin: SpinColumns) -> String {
 /// numbers and status names, which CSV never quotes.
 pub fn write_record_line(line: &mut Vec<u8>, r: &RollRecord, spin: SpinColumns) {
     debug_assert!(spin.holds(&r.initial), "a start the columns cannot hold");
-    for (k, column) in spin.columns().enumerate() {
+    for (k, column) in spin.columns().iter().enumerate() {
         if k > 0 {
             line.push(b',');
         }
@@ -119,16 +119,16 @@ fn read_cell(text: &str, ty: Type) -> Option<Cell<'_>> {
 /// `1.5` or a cell in quotes, is not a row this program wrote and is refused). The values
 /// themselves are checked by [`RecordCheck`](crate::columns::RecordCheck).
 pub fn parse_record_line(row: &str, spin: SpinColumns) -> Result<RollRecord, String> {
-    let columns: Vec<&RecordColumn> = spin.columns().collect();
+    let columns = spin.columns();
     let cells: Vec<&str> = row.split(',').collect();
     if cells.len() != columns.len() {
         return Err(format!("{} cells, expected {}", cells.len(), columns.len()));
     }
     let at = |k: usize, why: &str| format!("`{}` = `{}` {why}", columns[k].name(), cells[k].escape_debug());
-    let values = (cells.iter().zip(&columns).enumerate())
+    let values = (cells.iter().zip(columns).enumerate())
         .map(|(k, (text, c))| read_cell(text, c.ty).ok_or_else(|| at(k, "is not valid")))
         .collect::<Result<Vec<Cell<'_>>, String>>()?;
-    let r = record_from_cells(&columns, &values, None).map_err(|(k, why)| at(k, why))?;
+    let r = record_from_cells(columns, &values, None).map_err(|(k, why)| at(k, why))?;
     // The one accepted spelling of every cell is the one this program writes. The row is
     // written once into one buffer and compared whole (the cells hold no commas, so equal
     // lines are equal cells); only a row that differs is taken apart to name the cell.
@@ -153,18 +153,18 @@ pub(crate) fn read_drawn_row(
     line: &mut Vec<u8>,
 ) -> Option<RollRecord> {
     let row_text = std::str::from_utf8(row).ok()?;
-    let columns: Vec<&RecordColumn> = spin.columns().collect();
+    let columns = spin.columns();
     let cells: Vec<&str> = row_text.split(',').collect();
     if cells.len() != columns.len() {
         return None;
     }
-    let values = (cells.iter().zip(&columns))
+    let values = (cells.iter().zip(columns))
         .map(|(text, c)| match c.of_start() {
             true => Some(Cell::Empty),
             false => read_cell(text, c.ty),
         })
         .collect::<Option<Vec<Cell<'_>>>>()?;
-    let r = record_from_cells(&columns, &values, Some(draw)).ok()?;
+    let r = record_from_cells(columns, &values, Some(draw)).ok()?;
     line.clear();
     write_record_line(line, &r, spin);
     (line.as_slice() == row).then_some(r)

@@ -36,7 +36,7 @@ pub(crate) const ROW_GROUP: usize = 65_536;
 /// The Parquet schema: the CSV's columns, by the same names and of the same types (a face
 /// that is not there is a null, and so is the other spin form's in a file of both).
 fn schema(spin: SpinColumns) -> String {
-    let fields: Vec<String> = (spin.columns())
+    let fields: Vec<String> = (spin.columns().iter())
         .map(|c| {
             let repetition = if c.nullable(spin) { "OPTIONAL" } else { "REQUIRED" };
             format!("{repetition} {};", c.ty.parquet(c.name()))
@@ -94,7 +94,7 @@ impl<W: Write + Send> RecordsWriter<W> {
         }
         let rows = std::mem::take(&mut self.group);
         let mut group = self.file.next_row_group()?;
-        let mut columns = self.spin.columns();
+        let mut columns = self.spin.columns().iter();
         while let Some(mut w) = group.next_column()? {
             let column = columns.next().expect("one column of the schema each");
             write_column(&mut w, column, self.spin, &rows)?;
@@ -173,12 +173,12 @@ pub fn read_records(
         }
     }
     let layout = layout_of(&reader, spin)?;
-    let columns: Vec<&RecordColumn> = layout.columns().collect();
+    let columns = layout.columns();
     let mut rows = untrusted(|| reader.get_row_iter(None).map_err(|e| e.to_string()))?;
     while let Some(row) = untrusted(|| Ok(rows.next()))? {
         let row = row.map_err(|e| e.to_string())?;
         let fields: Vec<&Field> = row.get_column_iter().map(|(_, f)| f).collect();
-        each(record_from(&columns, &fields)?)?;
+        each(record_from(columns, &fields)?)?;
     }
     Ok(layout)
 }
