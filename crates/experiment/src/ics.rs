@@ -152,19 +152,21 @@ pub(crate) fn read_drawn_row(
     draw: &dyn Fn(u64) -> InitialCondition,
     line: &mut Vec<u8>,
 ) -> Option<RollRecord> {
-    let row_text = std::str::from_utf8(row).ok()?;
     let columns = spin.columns();
-    let cells: Vec<&str> = row_text.split(',').collect();
-    if cells.len() != columns.len() {
+    // On the stack: a merge reads every row of every part here.
+    let mut values = [Cell::Empty; COLUMNS.len()];
+    let mut cells = std::str::from_utf8(row).ok()?.split(',');
+    for (value, column) in values.iter_mut().zip(columns) {
+        let text = cells.next()?;
+        if !column.of_start() {
+            *value = read_cell(text, column.ty)?;
+        }
+    }
+    if cells.next().is_some() {
         return None;
     }
-    let values = (cells.iter().zip(columns))
-        .map(|(text, c)| match c.of_start() {
-            true => Some(Cell::Empty),
-            false => read_cell(text, c.ty),
-        })
-        .collect::<Option<Vec<Cell<'_>>>>()?;
-    let r = record_from_cells(columns, &values, Some(draw)).ok()?;
+    let values = &values[..columns.len()];
+    let r = record_from_cells(columns, values, Some(draw)).ok()?;
     line.clear();
     write_record_line(line, &r, spin);
     (line.as_slice() == row).then_some(r)
