@@ -5,9 +5,11 @@
 //! packaged crate) it is the stated `unknown commit`; a packager who knows the commit can
 //! give it in `DICESIM_COMMIT` (e.g. `DICESIM_COMMIT=1a2b3c4d5e6f`), which is used as given.
 //!
-//! The script runs again when git's HEAD, index or the checked-out branch move (a commit, a
-//! checkout, a `git add`) and when the sources of this crate and of the crates under it
-//! change, which rebuild this crate anyway; a change elsewhere is seen at the next of those.
+//! The script runs again when git's HEAD or the checked-out branch move (a commit, a
+//! checkout) and when the sources of this crate and of the crates under it change, which
+//! rebuild this crate anyway; a change elsewhere is seen at the next of those. It does not
+//! watch git's index: `git status` rewrites it whenever a file's times changed, and a stamp
+//! that followed it would rebuild this crate and every crate above it at each `git status`.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -51,8 +53,8 @@ fn from_git(dir: &Path) -> Option<String> {
     // repository (a home folder kept in git, a package under `target/`) has no commit.
     git(&["ls-files", "--error-unmatch", "build.rs"])?;
     let commit = git(&["rev-parse", "--short=12", "HEAD"])?;
-    // A worktree's HEAD and index are its own, its branches the repository's: ask git.
-    let mut watched: Vec<String> = ["HEAD", "index", "packed-refs"]
+    // A worktree's HEAD is its own, its branches the repository's: ask git where they are.
+    let mut watched: Vec<String> = ["HEAD", "packed-refs"]
         .iter()
         .filter_map(|p| git(&["rev-parse", "--git-path", p]))
         .collect();
@@ -63,7 +65,18 @@ fn from_git(dir: &Path) -> Option<String> {
     for path in watched {
         let path = PathBuf::from(path);
         let path = if path.is_absolute() { path } else { dir.join(path) };
-        println!("cargo:rerun-if-changed={}", path.display());
+        // Cargo runs a script whose watched file is missing at every build. A branch only
+        // in packed-refs gets its own file at its next commit, in the folder watched instead.
+        let watch = if path.exists() {
+            Some(path.as_path())
+        } else if path.ends_with("packed-refs") {
+            None
+        } else {
+            path.parent()
+        };
+        if let Some(watch) = watch {
+            println!("cargo:rerun-if-changed={}", watch.display());
+        }
     }
     if let Some(top) = &top {
         for sources in [

@@ -3,6 +3,7 @@
 use super::args::SetupArgs;
 use super::error::CliError;
 use super::running::{self, cancel_on_ctrl_c};
+use crate::tables;
 use clap::Args;
 use dicesim_figures::animation::render::Camera;
 use dicesim_figures::animation::{self, AnimationSpec, write_animation};
@@ -10,7 +11,6 @@ use dicesim_setup::chaos::DEFAULT_EPSILON;
 use dicesim_setup::output::Output;
 use dicesim_setup::preset::{Speed, refuse_unapplied};
 use dicesim_setup::random::unapplied_when_fixed;
-use std::io::Write;
 use std::path::PathBuf;
 
 #[derive(Debug, Args)]
@@ -133,38 +133,14 @@ pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
         e => CliError::experiment("")(e),
     })?;
     bar.finish_and_clear();
-    print_summary(args, &animated, twin, speed)
-}
-
-/// What the animation holds: its frames and time, each die's ending, where it went.
-fn print_summary(
-    args: &AnimateArgs,
-    animated: &animation::Animated,
-    twin: Option<f64>,
-    speed: f64,
-) -> Result<(), CliError> {
-    let face = |o: &dicesim_physics::Outcome| match o.face {
-        Some(f) => format!("face {f} ({})", o.status.name()),
-        None => o.status.name().to_string(),
-    };
-    let mut out = std::io::stdout().lock();
-    writeln!(
-        out,
-        "{} frames, {:.2} s of roll at {} frames/s and {}, {}×{} pixels",
-        animated.frames,
-        animated.duration_s,
-        args.fps,
-        animation::speed_words(speed),
-        args.size.0,
-        args.size.1
+    let frames = (args.fps, args.size);
+    tables::animation(
+        &mut std::io::stdout().lock(),
+        &animated,
+        twin,
+        speed,
+        frames,
+        &args.out,
     )?;
-    // Names padded by characters, not bytes (ε is two bytes), so the values line up.
-    let line = |name: &str, value: &str| format!("{name:<18}{value}");
-    writeln!(out, "{}", line("die", &face(&animated.outcome)))?;
-    if let (Some(t), Some(e)) = (&animated.twin, twin) {
-        writeln!(out, "{}", line(&format!("twin (ε {e:e})"), &face(t)))?;
-    }
-    writeln!(out, "{}", line("wrote", &args.out.display().to_string()))?;
-    out.flush()?;
     Ok(())
 }

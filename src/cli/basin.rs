@@ -3,13 +3,14 @@
 use super::args::{RunArgs, SetupArgs, Worded, Wording};
 use super::error::CliError;
 use super::running::{self, cancel_on_ctrl_c};
+use crate::tables;
 use clap::{Args, ValueEnum};
 use dicesim_experiment::basin::unapplied_by_map;
 use dicesim_experiment::hashing::Written;
 use dicesim_experiment::limits::MAP_CELLS;
+use dicesim_experiment::provenance;
 use dicesim_experiment::shard::{Part, Sweep};
 use dicesim_experiment::{Axis, BasinMap, Layer, MapSpec, Method, run_map_rows};
-use dicesim_experiment::{provenance, tables};
 use dicesim_figures::plot::write_image;
 use dicesim_physics::Params;
 use dicesim_setup::output::Output;

@@ -3,18 +3,16 @@
 use super::args::{RunArgs, SetupArgs, Worded, Wording};
 use super::error::CliError;
 use super::running::{self, cancel_on_ctrl_c};
+use crate::tables;
 use clap::Args;
-use dicesim_experiment::BatchRun;
 use dicesim_experiment::RunOptions;
 use dicesim_experiment::batch_sweep::BatchSweep;
 use dicesim_experiment::ics::parse_initial_conditions;
 use dicesim_experiment::limits::BATCH_ROLLS;
 use dicesim_experiment::shard::Shard;
-use dicesim_experiment::tables;
 use dicesim_physics::InitialCondition;
 use dicesim_setup::preset::{Preset, refuse_unapplied};
 use dicesim_setup::random::{check_drawn_setup, seed_given, unapplied_when_drawn};
-use serde_json::json;
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -113,7 +111,7 @@ pub(crate) fn run(args: &BatchArgs) -> Result<(), CliError> {
         let v = sweep.report(&batch);
         writeln!(out, "{v}")?;
     } else {
-        print_summary(&mut out, &batch)?;
+        tables::batch_run(&mut out, &batch)?;
     }
     out.flush()?;
     if batch.cancelled {
@@ -186,29 +184,6 @@ pub(crate) fn check_sweep(args: &BatchArgs, shard: Option<Shard>) -> Result<Chec
     Ok((preset, params, given))
 }
 
-fn print_summary(out: &mut impl Write, batch: &BatchRun) -> std::io::Result<()> {
-    let s = &batch.summary;
-    writeln!(
-        out,
-        "{} rolls on {} thread{}, {} engine",
-        s.rolls,
-        batch.jobs,
-        if batch.jobs == 1 { "" } else { "s" },
-        batch.engine.name()
-    )?;
-    tables::batch_counts(out, s)?;
-    tables::stability_count(out, batch.past_stability_limit, s.rolls)?;
-    writeln!(
-        out,
-        "speed                  {:.0} rolls/s, {:.1} M steps/s ({} steps in {:.2} s)",
-        s.rolls_per_s,
-        s.steps_per_s / 1e6,
-        s.steps,
-        s.elapsed_s
-    )?;
-    Ok(())
-}
-
 /// `batch --versus`: the same throws in setup A (as given) and in B (with the `--versus`
 /// values), A's ending against B's.
 fn run_versus(args: &BatchArgs, options: &RunOptions) -> Result<(), CliError> {
@@ -251,22 +226,7 @@ fn run_versus(args: &BatchArgs, options: &RunOptions) -> Result<(), CliError> {
         .roll_versus((&params, &params_b), options, &stop, csv, &mut |n| bar.inc(n))
         .map_err(CliError::experiment(""))?;
     bar.finish_and_clear();
-    let mut v = json!({
-        "preset": preset.name,
-        "versus": args.versus,
-        "seed": sweep.seed(),
-        "requested": run.requested,
-        "completed": run.completed,
-        "interrupted": run.cancelled,
-        "jobs": run.jobs,
-        "engine": run.engine,
-    });
-    let summary = json!(run.table.summary());
-    for (key, value) in summary.as_object().expect("a struct") {
-        v[key] = value.clone();
-    }
-    // On standard output as in the file: what defines the throws and both setups.
-    v["provenance"] = sweep.provenance.clone();
+    let v = sweep.versus_report(&run);
     if let Some(output) = output.as_ref().filter(|o| o.extension() == "json") {
         output
             .write_bytes(format!("{v}\n").as_bytes())

@@ -4,18 +4,17 @@
 use super::args::{RunArgs, SetupArgs, Worded, Wording};
 use super::error::CliError;
 use super::running;
+use crate::tables;
 use clap::{Args, ValueEnum};
-use dicesim_experiment::compare::{CompareSpec, Comparison, DEFAULT_CANDIDATES, FitSpec, run_comparison};
+use dicesim_experiment::compare::{CompareSpec, DEFAULT_CANDIDATES, FitSpec, run_comparison};
 use dicesim_experiment::compare_budden::{
-    BuddenComparison, BuddenSpec, DEFAULT_CALIBRATE_ON, DEFAULT_FIT, hand_throw, run_budden as roll_budden,
+    BuddenSpec, DEFAULT_CALIBRATE_ON, DEFAULT_FIT, hand_throw, run_budden as roll_budden,
     unapplied_by_comparison,
 };
 use dicesim_experiment::limits::EXPERIMENT_ROLLS;
 use dicesim_experiment::real_data::Dataset;
-use dicesim_experiment::{RunOptions, provenance, tables};
-use dicesim_figures::compare_plot::{budden_png, comparison_png};
-use dicesim_figures::figure::setup_value;
-use dicesim_figures::plot::{Record, random_starts};
+use dicesim_experiment::{RunOptions, provenance};
+use dicesim_figures::compare_plot::{budden_png, budden_record, comparison_png, comparison_record};
 use dicesim_setup::output::Output;
 use dicesim_setup::preset::{Preset, refuse_unapplied};
 use dicesim_setup::random::check_drawn_setup;
@@ -197,60 +196,6 @@ fn cubic_die_seed(args: &CompareArgs, preset: &Preset) -> Result<u64, CliError> 
     }
 }
 
-/// The PNG's caption: the throws (drawn from the random ranges: those define the figure)
-/// and the fit, and the setup whose throws are drawn: a fit's shown value.
-fn comparison_record(
-    c: &Comparison,
-    preset: &Preset,
-    spec: &CompareSpec,
-    fit_text: Option<&str>,
-    provenance: &serde_json::Value,
-) -> Record {
-    let (mut shown, mut initial) = (preset.params(), preset.initial);
-    let value = c.shown().and_then(|k| k.value);
-    if let (Some(fit), Some(value)) = (&spec.fit, value) {
-        fit.key.set(&mut shown, &mut initial, value);
-    }
-    let fit = match (fit_text, &spec.fit, value, &c.key, &c.fit) {
-        (Some(f), Some(fit), Some(v), Some(k), Some(i)) => format!(
-            "; --fit {f} over {} candidates, drawn at the best, {k} = {}; 95 % interval {} to {}{}",
-            fit.candidates,
-            setup_value(v),
-            setup_value(i.low),
-            setup_value(i.high),
-            if i.connected() {
-                ""
-            } else {
-                " (the candidates within 3.84 are not one connected set)"
-            }
-        ),
-        _ => String::new(),
-    };
-    // What the figure rests on: the throws counted (every die on a face) and those not.
-    let counted = c.shown().map_or(String::new(), |k| {
-        format!(
-            "; {} of {} throws counted, {} ended with a die on no face{}",
-            k.throws,
-            k.throws + k.uncounted,
-            k.uncounted,
-            match c.excluded.len() {
-                0 => String::new(),
-                n => format!(", {n} candidates left out of the fit for too few"),
-            }
-        )
-    });
-    let experiment = format!(
-        "{}: {} throws as {} threw them, each die {}{fit}{counted}; {}",
-        preset.name,
-        spec.throws,
-        spec.dataset.name(),
-        random_starts(&preset.random, spec.seed, &[]),
-        c.headline,
-    );
-    let title = format!("{} against real dice", preset.name);
-    Record::of_experiment(&title, experiment, &shown, &[], provenance)
-}
-
 /// Refuses a `--set` the comparison would not apply, before any roll: a start value the
 /// throws draw, a seed `--seed` replaces, the value `--fit` sets, and for Budden the die the
 /// cuboids replace ([`budden_unapplied`]).
@@ -351,83 +296,4 @@ fn run_budden(
         });
     }
     Ok(())
-}
-
-/// The PNG's caption: the throw, the fit, and the table and body assumptions.
-fn budden_record(
-    c: &BuddenComparison,
-    preset: &Preset,
-    spec: &BuddenSpec,
-    fit_text: Option<&str>,
-    provenance: &serde_json::Value,
-) -> Record {
-    let n = setup_value;
-    let throws = spec
-        .throws
-        .map_or("Budden's own throws per ratio".to_string(), |t| {
-            format!("{t} throws per ratio")
-        });
-    let best = match (&c.fit, &c.key) {
-        (Some(f), Some(key)) => format!(", drawn at the best, {key} = {}", n(f.best)),
-        _ => String::new(),
-    };
-    let thrown: u64 = c
-        .ratios
-        .iter()
-        .map(|r| r.simulated.throws + r.simulated.uncounted)
-        .sum();
-    let uncounted: u64 = c.ratios.iter().map(|r| r.simulated.uncounted).sum();
-    let at = if spec.fit.is_some() { " at the best" } else { "" };
-    let best = format!(
-        "{best}; {} of {thrown} throws{at} counted, {uncounted} ended on no face",
-        thrown - uncounted
-    );
-    // The table and world as the throws were drawn: with the fitted value at its best.
-    let (mut p, mut initial) = (preset.params(), preset.initial);
-    if let (Some(f), Some(fit)) = (&c.fit, &spec.fit) {
-        fit.key.set(&mut p, &mut initial, f.best);
-    }
-    let ratios = spec
-        .calibrate_on
-        .iter()
-        .map(|r| n(*r))
-        .collect::<Vec<_>>()
-        .join(", ");
-    let fitted = match (fit_text, &spec.fit) {
-        (Some(text), Some(fit)) => format!(
-            "--fit {text} over {} candidates on ratios {ratios}",
-            fit.candidates
-        ),
-        _ => format!("--no-fit: the preset's table as it stands, ratios {ratios} in sample"),
-    };
-    // The caption's throws name the first seed; several are pooled.
-    let pooled = match spec.seeds.as_slice() {
-        [_] => String::new(),
-        seeds => format!(" ({})", tables::seeds_text(seeds)),
-    };
-    let caption = vec![
-        format!(
-            "{}: {throws}{pooled}, each {}; {fitted}{best}",
-            preset.name,
-            random_starts(&hand_throw(&preset.random), spec.seeds[0], &[]),
-        ),
-        format!(
-            "{}; table k {} dyn/cm, γ {} s/cm, μ {}; g {} cm/s², Δt {} s (every value in the file's dicesim-provenance text)",
-            c.assumptions[..2].join("; "),
-            n(p.ground.stiffness),
-            n(p.ground.damping),
-            n(p.ground.friction),
-            n(p.world.gravity),
-            n(p.integrator.dt),
-        ),
-    ];
-    Record {
-        text: vec![
-            ("Title".to_string(), format!("{}: Budden's cuboids", preset.name)),
-            ("Description".to_string(), caption.join("\n")),
-            ("Software".to_string(), dicesim_experiment::PROGRAM.to_string()),
-        ],
-        caption,
-    }
-    .with_provenance(provenance)
 }

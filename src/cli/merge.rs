@@ -3,12 +3,11 @@
 
 use super::error::CliError;
 use super::running;
+use crate::tables;
 use clap::Args;
 use dicesim_experiment::merge::{BatchMerge, MapMerge, Parts};
-use dicesim_experiment::tables;
 use dicesim_figures::plot::image_file_bytes;
 use dicesim_setup::output::{Output, Staged, commit};
-use serde_json::json;
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -81,65 +80,16 @@ fn draw(merged: &MapMerge, image: &Output) -> Result<Staged, CliError> {
 }
 
 fn print_batch(args: &MergeArgs, m: &BatchMerge) -> Result<(), CliError> {
-    let summary = &m.summary;
     let mut stdout = std::io::stdout().lock();
     if args.json {
-        let v = json!({
-            "provenance": m.provenance,
-            "preset": m.preset,
-            "seed": m.seed,
-            "requested": m.rolls,
-            "completed": summary.rolls,
-            "interrupted": false,
-            "shards": m.shards,
-            "longest_shard_s": m.longest_s,
-            "verified": m.verified,
-            "past_stability_limit": m.past_stability_limit,
-            "summary": summary,
-        });
-        writeln!(stdout, "{v}")?;
-        return Ok(());
-    }
-    writeln!(stdout, "{} rolls in {} shards", summary.rolls, m.shards)?;
-    tables::batch_counts(&mut stdout, summary)?;
-    if let Some(past) = m.past_stability_limit {
-        tables::stability_count(&mut stdout, past, summary.rolls)?;
-    }
-    writeln!(
-        stdout,
-        "speed                  {:.0} rolls per shard-second ({} steps; the shards took {:.2} s together, the longest {:.2} s)",
-        summary.rolls_per_s, summary.steps, m.shard_s, m.longest_s
-    )?;
-    if m.verified > 0 {
-        writeln!(
-            stdout,
-            "verified               {} records chosen at random, rolled again: identical bit for bit",
-            m.verified
-        )?;
-    }
-    for out in &args.out {
-        writeln!(stdout, "wrote                  {}", out.display())?;
+        writeln!(stdout, "{}", m.report())?;
+    } else {
+        tables::merged_batch(&mut stdout, m, &args.out)?;
     }
     Ok(())
 }
 
 fn print_map(args: &MergeArgs, m: &MapMerge) -> Result<(), CliError> {
-    let mut stdout = std::io::stdout().lock();
-    tables::map_summary(&mut stdout, &m.map, m.layer, &m.faces, m.known_cells())?;
-    if m.verified > 0 {
-        writeln!(
-            stdout,
-            "verified            {} cells chosen at random, rolled again: identical bit for bit",
-            m.verified
-        )?;
-    }
-    writeln!(
-        stdout,
-        "time                {:.2} s over {} shards (the longest {:.2} s)",
-        m.shard_s, m.shards, m.longest_s
-    )?;
-    for out in &args.out {
-        writeln!(stdout, "wrote               {}", out.display())?;
-    }
+    tables::merged_map(&mut std::io::stdout().lock(), m, &args.out)?;
     Ok(())
 }

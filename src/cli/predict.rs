@@ -3,10 +3,11 @@
 use super::args::{RunArgs, SetupArgs, Worded, Wording};
 use super::error::CliError;
 use super::running;
+use crate::tables;
 use clap::Args;
 use dicesim_experiment::predict::{PredictSpec, default_epsilons, run_prediction};
+use dicesim_experiment::provenance;
 use dicesim_experiment::{RandomRanges, ScanKey};
-use dicesim_experiment::{provenance, tables};
 use dicesim_figures::figure::setup_value;
 use dicesim_figures::plot::{Record, random_starts};
 use dicesim_figures::predict_plot::prediction_png;

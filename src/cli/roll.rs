@@ -2,10 +2,9 @@
 
 use super::args::SetupArgs;
 use super::error::CliError;
+use crate::tables;
 use clap::Args;
 use dicesim_experiment::one_roll::OneRoll;
-use dicesim_physics::why_it_cannot_settle;
-use dicesim_physics::{InitialCondition, Outcome, Params, Simulation, Stability, Status, UnstableReason};
 use std::io::Write;
 
 #[derive(Debug, Args)]
@@ -29,7 +28,7 @@ pub(crate) fn run(args: &RollArgs) -> Result<(), CliError> {
         let rolled = OneRoll { sim, outcome, reason };
         writeln!(out, "{}", rolled.json(&preset, !args.setup.set.is_empty()))?;
     } else {
-        print_roll(
+        tables::one_roll(
             &mut out,
             (&params, &preset.initial),
             &sim,
@@ -37,62 +36,5 @@ pub(crate) fn run(args: &RollArgs) -> Result<(), CliError> {
             reason.as_ref(),
         )?;
     }
-    Ok(())
-}
-
-/// The roll as text: its ending in words, then its steps, time, stopping energy and final
-/// state.
-fn print_roll(
-    out: &mut impl Write,
-    (params, initial): (&Params, &InitialCondition),
-    sim: &Simulation,
-    outcome: &Outcome,
-    reason: Option<&UnstableReason>,
-) -> std::io::Result<()> {
-    let s = sim.state();
-    let rule = sim.stop_rule_now();
-    let verdict = match (outcome.status, outcome.face) {
-        (Status::Settled, Some(f)) => format!("face {f} (settled)"),
-        (Status::Settled, None) => "settled, but the 4 highest corners form no face".to_string(),
-        (Status::Timeout, _) => match why_it_cannot_settle(params) {
-            Some(why) => format!("did not settle within {} s: {why}", params.integrator.max_time),
-            None => format!("did not settle within {} s", params.integrator.max_time),
-        },
-        (Status::Unstable, _) => format!("unstable: {}", reason.expect("an unstable roll has a reason")),
-    };
-    let v3 = |v: &nalgebra::Vector3<f64>| format!("({:.6}, {:.6}, {:.6})", v.x, v.y, v.z);
-    writeln!(out, "{verdict}")?;
-    // An unstable roll's verdict names the limit already; any other ending past one is not
-    // what the model gives, however plain it looks.
-    let stability = Stability::predict(params, initial).verdict();
-    if stability.exceeded() && reason.is_none() {
-        writeln!(
-            out,
-            "stability         past its limit, so this ending is the step's, not the model's: {stability}"
-        )?;
-    }
-    writeln!(out, "steps             {}", outcome.steps)?;
-    writeln!(out, "simulated time    {:.3} s", outcome.time_s)?;
-    if rule.can_settle() {
-        writeln!(
-            out,
-            "stop energy       {:.1} erg (threshold {:.1} erg, {}); kinetic {:.1} erg (threshold {:.1} erg)",
-            sim.stop_energy(),
-            rule.energy_threshold,
-            params.integrator.stop_energy.name(),
-            sim.stop_kinetic_energy(),
-            rule.kinetic_threshold
-        )?;
-    } else {
-        writeln!(
-            out,
-            "stop energy       {:.1} erg ({}; no threshold: this table cannot hold a face)",
-            sim.stop_energy(),
-            params.integrator.stop_energy.name()
-        )?;
-    }
-    writeln!(out, "position          {} cm", v3(&s.position))?;
-    writeln!(out, "velocity          {} cm/s", v3(&s.velocity))?;
-    writeln!(out, "angular momentum  {} g·cm²/s", v3(&s.angular_momentum))?;
     Ok(())
 }

@@ -6,9 +6,9 @@ use super::batch::{self, BatchArgs};
 use super::error::CliError;
 use clap::{Args, ValueEnum};
 use dicesim_experiment::shard::Shard;
-use dicesim_experiment::slurm::{Directives, JobArray, Keep, SweepKind, shell_word};
+use dicesim_experiment::slurm::{Directives, JobArray, Keep, SweepKind, sbatch, shell_word};
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum PartFormat {
@@ -119,8 +119,9 @@ pub(crate) fn run(args: &SlurmArgs, sweep: Result<SweepCommand, clap::Error>) ->
         merge_path.display()
     )?;
     if args.submit {
-        let array = sbatch(&[], &shards_path)?;
-        let merge = sbatch(&[format!("--dependency=afterok:{array}")], &merge_path)?;
+        let array = sbatch(&[], &shards_path).map_err(CliError::Sweep)?;
+        let merge =
+            sbatch(&[format!("--dependency=afterok:{array}")], &merge_path).map_err(CliError::Sweep)?;
         writeln!(out, "submitted  array job {array}")?;
         writeln!(out, "submitted  merge job {merge}")?;
         writeln!(out, "result     {}", scripts.result.display())?;
@@ -197,33 +198,6 @@ fn check_command(
         SweepCommand::Other => unreachable!("the kind was matched above"),
     }
     Ok(kind)
-}
-
-/// Submits `script` with `sbatch --parsable` and returns the job id.
-fn sbatch(options: &[String], script: &Path) -> Result<String, CliError> {
-    let output = std::process::Command::new("sbatch")
-        .arg("--parsable")
-        .args(options)
-        .arg(script)
-        .output()
-        .map_err(|e| CliError::Sweep(format!("cannot run sbatch (is Slurm installed here?): {e}")))?;
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    if !output.status.success() {
-        return Err(CliError::Sweep(format!(
-            "sbatch {} failed: {}",
-            script.display(),
-            String::from_utf8_lossy(&output.stderr).trim()
-        )));
-    }
-    // `--parsable` prints `id` or `id;cluster`.
-    let id = stdout.trim().split(';').next().unwrap_or_default();
-    if id.is_empty() || !id.bytes().all(|b| b.is_ascii_digit()) {
-        return Err(CliError::Sweep(format!(
-            "sbatch printed `{}`, not a job id",
-            stdout.trim()
-        )));
-    }
-    Ok(id.to_string())
 }
 
 #[cfg(test)]

@@ -362,3 +362,60 @@ fn an_svg_map_carries_its_provenance_and_a_png_its_resolution() {
     // 150 pixels per inch, to the nearest pixel per metre.
     assert_eq!(dims.xppu, (150.0f64 / 0.0254).round() as u32);
 }
+
+/// A spring-friction setup's provenance states its ground as its preset file does: exactly
+/// the keys that law reads, its defaults included, and none of the paper law's (issue 49,
+/// defect 4); alike in `roll --json`, a batch's CSV sidecar and its Parquet metadata. The
+/// preset written from it is read back and rolls as the shipped one.
+#[test]
+fn a_spring_friction_provenance_states_the_keys_its_law_reads_and_rebuilds_the_setup() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let json = |args: &[&str]| -> serde_json::Value { serde_json::from_str(&ok(d, args)).unwrap() };
+    let roll = json(&["roll", "--preset", "calibrated-table", "--json"]);
+    let stated = roll["provenance"]["preset"].clone();
+    let mut keys: Vec<&str> = stated["ground"]
+        .as_object()
+        .unwrap()
+        .keys()
+        .map(String::as_str)
+        .collect();
+    keys.sort_unstable();
+    assert_eq!(
+        keys,
+        [
+            "contact",
+            "friction",
+            "restitution",
+            "static_friction",
+            "stiffness",
+            "tangential_stiffness_ratio",
+            "tilt",
+            "tilt_direction"
+        ]
+    );
+    assert_eq!(stated["ground"]["static_friction"], 1.2);
+    assert_eq!(stated["ground"]["tilt"], 0.0);
+    for out in ["b.csv", "b.parquet"] {
+        ok(
+            d,
+            &[
+                "batch",
+                "--preset",
+                "calibrated-table",
+                "--rolls",
+                "3",
+                "--out",
+                out,
+            ],
+        );
+    }
+    let csv = first_line_json(&d.join("b.csv"));
+    assert_eq!(csv["preset"], stated);
+    // The Parquet file's metadata is the CSV's provenance, text for text.
+    let parquet = std::fs::File::open(d.join("b.parquet")).unwrap();
+    dicesim_experiment::parquet::read_records(parquet, Some(&csv.to_string()), None, &mut |_| Ok(()))
+        .unwrap();
+    std::fs::write(d.join("rebuilt.toml"), toml::to_string(&stated).unwrap()).unwrap();
+    assert_eq!(json(&["roll", "--preset", "rebuilt.toml", "--json"]), roll);
+}

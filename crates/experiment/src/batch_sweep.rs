@@ -3,9 +3,10 @@
 //! they complete, so memory stays flat in the number of rolls.
 
 use crate::batch::{BatchRun, Rolls, RunOptions, stream_batch};
+use crate::columns::{RecordColumn, Stage};
 use crate::data_file::{self, Column};
 use crate::hashing::{Hashing, Written};
-use crate::ics::{SpinColumns, records_columns, write_record_line};
+use crate::ics::{SpinColumns, records_columns, write_cell, write_record_line};
 use crate::parquet::RecordsWriter;
 use crate::record::RollRecord;
 use crate::shard::{Part, Shard, Sweep};
@@ -180,6 +181,28 @@ impl<'a> BatchSweep<'a> {
             "summary": batch.summary,
             "past_stability_limit": batch.past_stability_limit,
         })
+    }
+
+    /// What `batch --versus --json` prints of `run`, a run of this sweep against setup B (and
+    /// its .json file holds): its size, how it ran, the table of A's ending against B's, and
+    /// the provenance, which names the throws and both setups.
+    pub fn versus_report(&self, run: &VersusRun) -> Value {
+        let mut v = json!({
+            "preset": self.preset.name,
+            "versus": self.provenance["versus"],
+            "seed": self.seed(),
+            "requested": run.requested,
+            "completed": run.completed,
+            "interrupted": run.cancelled,
+            "jobs": run.jobs,
+            "engine": run.engine,
+        });
+        let summary = json!(run.table.summary());
+        for (key, value) in summary.as_object().expect("a struct") {
+            v[key] = value.clone();
+        }
+        v["provenance"] = self.provenance.clone();
+        v
     }
 
     /// Rolls every throw in setup `a` and in `b`; with `csv`, each throw's two endings go to
@@ -362,37 +385,46 @@ impl<'w> RecordsFile<'w> {
     }
 }
 
-/// Columns of a roll's record that are its ending: face, status, steps, time_s and the four of
-/// its impacts.
-const VERSUS_ENDING_COLUMNS: usize = 8;
+/// The columns of a roll's record that are its ending ([`Stage::Ending`]): face, status, steps,
+/// time and the impacts.
+fn ending(spin: SpinColumns) -> impl Iterator<Item = &'static RecordColumn> {
+    spin.columns()
+        .iter()
+        .copied()
+        .filter(|c| c.stage == Stage::Ending)
+}
 
 /// The columns of the per-throw CSV of a versus batch: the throw (id, initial condition,
 /// start face) and each setup's ending, A's columns `a_…`, B's `b_…`.
 pub fn versus_columns(spin: SpinColumns) -> Vec<Column> {
-    let columns = records_columns(spin);
-    let (throw, ending) = columns.split_at(columns.len() - VERSUS_ENDING_COLUMNS);
-    let mut all = throw.to_vec();
-    for side in ["a", "b"] {
-        all.extend(ending.iter().map(|c| Column {
-            name: format!("{side}_{}", c.name),
-            kind: c.kind,
-        }));
+    let column = |c: &RecordColumn, side: &str| Column {
+        name: format!("{side}{}", c.name()),
+        kind: c.ty.kind(),
+    };
+    let mut all: Vec<Column> = (spin.columns().iter())
+        .filter(|c| c.stage == Stage::Throw)
+        .map(|c| column(c, ""))
+        .collect();
+    for side in ["a_", "b_"] {
+        all.extend(ending(spin).map(|c| column(c, side)));
     }
     all
 }
 
-/// Appends one throw's row of the versus CSV: `a`'s record with `b`'s ending after it.
+/// Appends one throw's row of the versus CSV: the throw, `a`'s ending, then `b`'s.
 fn write_versus_line(line: &mut Vec<u8>, (a, b): (&RollRecord, &RollRecord), spin: SpinColumns) {
-    write_record_line(line, a, spin);
-    let mut other = Vec::with_capacity(192);
-    write_record_line(&mut other, b, spin);
-    // The ending is the last cells, which hold no commas.
-    let ending = other
-        .rsplitn(VERSUS_ENDING_COLUMNS + 1, |&c| c == b',')
-        .collect::<Vec<_>>();
-    for cell in ending[..VERSUS_ENDING_COLUMNS].iter().rev() {
-        line.push(b',');
-        line.extend_from_slice(cell);
+    let throw = spin.columns().iter().filter(|c| c.stage == Stage::Throw);
+    for (k, c) in throw.enumerate() {
+        if k > 0 {
+            line.push(b',');
+        }
+        write_cell(line, (c.get)(a));
+    }
+    for r in [a, b] {
+        for c in ending(spin) {
+            line.push(b',');
+            write_cell(line, (c.get)(r));
+        }
     }
 }
 
@@ -468,13 +500,14 @@ mod tests {
     fn a_versus_row_is_the_throw_and_both_endings() {
         let spin = SpinColumns::AngularVelocity;
         let header: Vec<String> = versus_columns(spin).into_iter().map(|c| c.name).collect();
-        assert_eq!(header.len(), records_columns(spin).len() + VERSUS_ENDING_COLUMNS);
+        let n = ending(spin).count();
+        assert_eq!(header.len(), records_columns(spin).len() + n);
         assert_eq!(
-            &header[header.len() - 16..header.len() - 14],
+            &header[header.len() - 2 * n..header.len() - 2 * n + 2],
             ["a_face", "a_status"]
         );
         assert_eq!(
-            &header[header.len() - 8..header.len() - 6],
+            &header[header.len() - n..header.len() - n + 2],
             ["b_face", "b_status"]
         );
         assert_eq!(
@@ -493,6 +526,6 @@ mod tests {
         assert_eq!(cells.len(), header.len());
         let a_line = crate::ics::record_csv_line(&a, spin);
         assert!(line.starts_with(&a_line), "{line}");
-        assert_eq!(cells[cells.len() - 8..cells.len() - 6], ["", "timeout"]);
+        assert_eq!(cells[cells.len() - n..cells.len() - n + 2], ["", "timeout"]);
     }
 }

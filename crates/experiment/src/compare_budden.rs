@@ -643,6 +643,17 @@ pub fn run_budden(
     })
 }
 
+/// The seeds of a run: `seed 1`, or `seeds 11, 12, 13 pooled`.
+pub fn seeds_text(seeds: &[u64]) -> String {
+    match seeds {
+        [one] => format!("seed {one}"),
+        _ => format!(
+            "seeds {} pooled",
+            seeds.iter().map(u64::to_string).collect::<Vec<_>>().join(", ")
+        ),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -7,165 +7,43 @@
 //! row then leaves the other form's cells empty), so no column is empty in every row.
 
 use crate::Error;
-use crate::data_file::{Column, Kind};
+use crate::columns::{COLUMNS, Cell, RecordColumn, Type, record_from_cells};
 use crate::record::RollRecord;
-use dicesim_physics::initial::limits;
-use dicesim_physics::{FirstImpact, InitialCondition, Outcome, Status};
-use dicesim_setup::keys::column_name;
+use dicesim_physics::InitialCondition;
 use dicesim_setup::number::Real;
 use std::sync::LazyLock;
 
-/// The initial-condition quantities, in output order (`id` first, then these): the names
-/// an `--ics` file of dicesim 0.1 used, still read, before their units.
-pub(crate) const INITIAL_COLUMNS: [&str; COLUMNS] = [
-    "height",
-    "velocity_x",
-    "velocity_y",
-    "velocity_z",
-    "angular_velocity_x",
-    "angular_velocity_y",
-    "angular_velocity_z",
-    "angular_momentum_x",
-    "angular_momentum_y",
-    "angular_momentum_z",
-    "yaw",
-    "pitch",
-    "roll",
-];
+pub use crate::columns::{SpinColumns, records_columns};
 
-/// The unit of initial-condition column `k`, as the physics states it.
-fn initial_unit(k: usize) -> &'static str {
-    match k {
-        0 => limits::HEIGHT.unit,
-        1..=3 => limits::VELOCITY.unit,
-        4..=6 => limits::ANGULAR_VELOCITY.unit,
-        7..=9 => limits::ANGULAR_MOMENTUM.unit,
-        _ => limits::ORIENTATION.unit,
-    }
+const COLUMNS_OF_START: usize = 13;
+
+/// The start's columns, in output order (`id` first, then these): [`COLUMNS`]' reals of
+/// the throw.
+fn start_columns() -> impl Iterator<Item = &'static RecordColumn> {
+    COLUMNS.iter().filter(|c| c.of_start())
 }
 
 /// The initial-condition columns with their units: `height_cm`, …, `roll_deg`.
-pub(crate) fn initial_column_names() -> &'static [String; COLUMNS] {
-    static NAMES: LazyLock<[String; COLUMNS]> =
-        LazyLock::new(|| std::array::from_fn(|k| column_name(INITIAL_COLUMNS[k], initial_unit(k))));
+pub(crate) fn initial_column_names() -> &'static [String; COLUMNS_OF_START] {
+    static NAMES: LazyLock<[String; COLUMNS_OF_START]> = LazyLock::new(|| {
+        let names: Vec<String> = start_columns().map(|c| c.name().to_string()).collect();
+        names.try_into().expect("13 values of a start")
+    });
     &NAMES
 }
 
-/// The result columns of a per-roll file and their types; an `--ics` file may carry them
-/// (they are ignored).
-pub(crate) const RESULT_COLUMNS: [(&str, Kind); 9] = [
-    ("start_face", Kind::Integer),
-    ("face", Kind::Integer),
-    ("status", Kind::Text),
-    ("steps", Kind::Integer),
-    ("time_s", Kind::Real),
-    ("impacts", Kind::Integer),
-    ("first_impact_steps", Kind::Integer),
-    ("first_impact_time_s", Kind::Real),
-    ("first_impact_face_down", Kind::Integer),
-];
-
-const COLUMNS: usize = 13;
-
-/// The initial-condition columns of the angular velocity and of the angular momentum.
-const ANGULAR_VELOCITY: std::ops::Range<usize> = 4..7;
-const ANGULAR_MOMENTUM: std::ops::Range<usize> = 7..10;
-
-/// Which forms of the spin a records file has columns for: those its rolls were given.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum SpinColumns {
-    /// Every roll was given an angular velocity (every random draw is).
-    AngularVelocity,
-    /// Every roll was given an angular momentum.
-    AngularMomentum,
-    /// Some of each: each row fills its own form's cells and leaves the other's empty.
-    Both,
+/// The names an `--ics` file of dicesim 0.1 used, still read: the same without their units.
+fn initial_column_old_names() -> impl Iterator<Item = &'static str> {
+    start_columns().map(RecordColumn::quantity)
 }
 
 impl SpinColumns {
-    /// The columns for rolls from `starts` (the angular velocity for none).
-    pub fn of_starts<'a>(starts: impl IntoIterator<Item = &'a InitialCondition>) -> SpinColumns {
-        let (mut velocity, mut momentum) = (false, false);
-        for ic in starts {
-            match ic.angular_momentum {
-                Some(_) => momentum = true,
-                None => velocity = true,
-            }
-        }
-        match (velocity, momentum) {
-            (_, false) => SpinColumns::AngularVelocity,
-            (false, true) => SpinColumns::AngularMomentum,
-            (true, true) => SpinColumns::Both,
-        }
-    }
-
-    /// Whether initial-condition column `k` is in the file.
-    fn has(self, k: usize) -> bool {
-        match self {
-            SpinColumns::AngularVelocity => !ANGULAR_MOMENTUM.contains(&k),
-            SpinColumns::AngularMomentum => !ANGULAR_VELOCITY.contains(&k),
-            SpinColumns::Both => true,
-        }
-    }
-
-    /// Whether a roll with this start can be written in these columns.
-    pub fn holds(self, ic: &InitialCondition) -> bool {
-        match ic.angular_momentum {
-            Some(_) => self != SpinColumns::AngularVelocity,
-            None => self != SpinColumns::AngularMomentum,
-        }
-    }
-
     /// The spin columns a records header names, if it is one of the three this program writes.
     pub fn of_header(header: &str) -> Option<SpinColumns> {
-        [
-            SpinColumns::AngularVelocity,
-            SpinColumns::AngularMomentum,
-            SpinColumns::Both,
-        ]
-        .into_iter()
-        .find(|&s| records_csv_header(s) == header)
+        SpinColumns::ALL
+            .into_iter()
+            .find(|&s| records_csv_header(s) == header)
     }
-
-    /// The initial-condition columns present, by index into [`INITIAL_COLUMNS`].
-    pub(crate) fn present(self) -> impl Iterator<Item = usize> {
-        (0..COLUMNS).filter(move |&k| self.has(k))
-    }
-}
-
-/// The values of the initial-condition columns: the spin once, as the angular momentum
-/// where one is set (the angular velocity is then not the spin, so its cells stay empty)
-/// and as the angular velocity otherwise.
-fn initial_values(ic: &InitialCondition) -> [Option<f64>; COLUMNS] {
-    let l = ic.angular_momentum;
-    let w = |i: usize| l.is_none().then_some(ic.angular_velocity[i]);
-    [
-        Some(ic.height),
-        Some(ic.velocity[0]),
-        Some(ic.velocity[1]),
-        Some(ic.velocity[2]),
-        w(0),
-        w(1),
-        w(2),
-        l.map(|l| l[0]),
-        l.map(|l| l[1]),
-        l.map(|l| l[2]),
-        Some(ic.orientation[0]),
-        Some(ic.orientation[1]),
-        Some(ic.orientation[2]),
-    ]
-}
-
-/// The columns of a per-roll file and their types.
-pub fn records_columns(spin: SpinColumns) -> Vec<Column> {
-    let names = initial_column_names();
-    let mut columns = vec![Column::integer("id")];
-    columns.extend(spin.present().map(|k| Column::real(names[k].as_str())));
-    columns.extend(RESULT_COLUMNS.map(|(name, kind)| Column {
-        name: name.to_string(),
-        kind,
-    }));
-    columns
 }
 
 /// The header line of a per-roll CSV file.
@@ -179,40 +57,21 @@ pub fn records_csv_header(spin: SpinColumns) -> String {
 /// numbers and status names, which CSV never quotes.
 pub fn write_record_line(line: &mut Vec<u8>, r: &RollRecord, spin: SpinColumns) {
     debug_assert!(spin.holds(&r.initial), "a start the columns cannot hold");
-    write_whole(line, r.id);
-    let values = initial_values(&r.initial);
-    for k in spin.present() {
-        line.push(b',');
-        if let Some(v) = values[k] {
-            Real(v).write_to(line);
+    for (k, column) in spin.columns().iter().enumerate() {
+        if k > 0 {
+            line.push(b',');
         }
+        write_cell(line, (column.get)(r));
     }
-    line.push(b',');
-    write_whole(line, u64::from(r.start_face));
-    line.push(b',');
-    if let Some(f) = r.outcome.face {
-        write_whole(line, u64::from(f));
-    }
-    let o = &r.outcome;
-    line.push(b',');
-    line.extend_from_slice(o.status.name().as_bytes());
-    line.push(b',');
-    write_whole(line, o.steps);
-    line.push(b',');
-    Real(o.time_s).write_to(line);
-    line.push(b',');
-    write_whole(line, o.impacts);
-    // A roll without an impact leaves its first impact's three cells empty.
-    match &o.first_impact {
-        Some(f) => {
-            line.push(b',');
-            write_whole(line, f.step);
-            line.push(b',');
-            Real(f.time_s).write_to(line);
-            line.push(b',');
-            write_whole(line, u64::from(f.face_down));
-        }
-        None => line.extend_from_slice(b",,,"),
+}
+
+/// Appends one cell as a CSV writes it: nothing for an empty one.
+pub(crate) fn write_cell(line: &mut Vec<u8>, cell: Cell<'_>) {
+    match cell {
+        Cell::Empty => {}
+        Cell::Whole(n) => write_whole(line, n),
+        Cell::Real(x) => Real(x).write_to(line),
+        Cell::Word(w) => line.extend_from_slice(w.as_bytes()),
     }
 }
 
@@ -244,93 +103,32 @@ pub fn record_csv_row(r: &RollRecord, spin: SpinColumns) -> Vec<String> {
     record_csv_line(r, spin).split(',').map(str::to_string).collect()
 }
 
+/// A CSV cell of a column of type `ty` as its value (an empty cell as none); `None` for text
+/// that is not one.
+fn read_cell(text: &str, ty: Type) -> Option<Cell<'_>> {
+    Some(match (text, ty) {
+        ("", _) => Cell::Empty,
+        (_, Type::Count | Type::Face) => Cell::Whole(text.parse().ok()?),
+        (_, Type::Real) => Cell::Real(text.parse().ok()?),
+        (_, Type::Word) => Cell::Word(text),
+    })
+}
+
 /// Reads back one row that [`write_record_line`] wrote for columns `spin`: exactly its
 /// cells in exactly its form (a row that parses but is written differently, e.g. `1.50` for
 /// `1.5` or a cell in quotes, is not a row this program wrote and is refused). The values
-/// themselves are checked by [`RecordCheck`](crate::record::RecordCheck).
+/// themselves are checked by [`RecordCheck`](crate::columns::RecordCheck).
 pub fn parse_record_line(row: &str, spin: SpinColumns) -> Result<RollRecord, String> {
-    let columns = records_columns(spin);
+    let columns = spin.columns();
     let cells: Vec<&str> = row.split(',').collect();
     if cells.len() != columns.len() {
         return Err(format!("{} cells, expected {}", cells.len(), columns.len()));
     }
-    let bad = |k: usize| {
-        format!(
-            "`{}` = `{}` is not valid",
-            columns[k].name,
-            cells[k].escape_debug()
-        )
-    };
-    // Cell index of each initial-condition column present.
-    let mut at: [Option<usize>; COLUMNS] = [None; COLUMNS];
-    for (cell, k) in spin.present().enumerate() {
-        at[k] = Some(cell + 1);
-    }
-    let value = |k: usize| -> Result<Option<f64>, String> {
-        match at[k] {
-            None => Ok(None),
-            Some(c) if cells[c].is_empty() => Ok(None),
-            Some(c) => cells[c].parse::<f64>().map(Some).map_err(|_| bad(c)),
-        }
-    };
-    let required = |k: usize| value(k)?.ok_or_else(|| bad(at[k].unwrap_or(0)));
-    let spin_cells = |range: std::ops::Range<usize>| -> Result<Option<[f64; 3]>, String> {
-        let v = [
-            value(range.start)?,
-            value(range.start + 1)?,
-            value(range.start + 2)?,
-        ];
-        match v {
-            [Some(x), Some(y), Some(z)] => Ok(Some([x, y, z])),
-            [None, None, None] => Ok(None),
-            _ => Err(bad(at[range.start].unwrap_or(0))),
-        }
-    };
-    let (velocity, momentum) = (spin_cells(ANGULAR_VELOCITY)?, spin_cells(ANGULAR_MOMENTUM)?);
-    let first_spin = at[ANGULAR_VELOCITY.start]
-        .or(at[ANGULAR_MOMENTUM.start])
-        .unwrap_or(0);
-    let (angular_velocity, angular_momentum) = match (velocity, momentum) {
-        (Some(w), None) => (w, None),
-        (None, Some(l)) => (InitialCondition::default().angular_velocity, Some(l)),
-        _ => {
-            return Err(format!(
-                "{}: the spin is given once, as one of its forms",
-                bad(first_spin)
-            ));
-        }
-    };
-    let n = cells.len();
-    let small = |c: usize| cells[c].parse::<u8>().map_err(|_| bad(c));
-    let r = RollRecord {
-        id: cells[0].parse().map_err(|_| bad(0))?,
-        initial: InitialCondition {
-            height: required(0)?,
-            velocity: [required(1)?, required(2)?, required(3)?],
-            angular_velocity,
-            angular_momentum,
-            orientation: [required(10)?, required(11)?, required(12)?],
-        },
-        start_face: small(n - 9)?,
-        outcome: Outcome {
-            face: match cells[n - 8] {
-                "" => None,
-                _ => Some(small(n - 8)?),
-            },
-            status: Status::from_name(cells[n - 7]).ok_or_else(|| bad(n - 7))?,
-            steps: cells[n - 6].parse().map_err(|_| bad(n - 6))?,
-            time_s: cells[n - 5].parse().map_err(|_| bad(n - 5))?,
-            impacts: cells[n - 4].parse().map_err(|_| bad(n - 4))?,
-            first_impact: match (cells[n - 3], cells[n - 2], cells[n - 1]) {
-                ("", "", "") => None,
-                _ => Some(FirstImpact {
-                    step: cells[n - 3].parse().map_err(|_| bad(n - 3))?,
-                    time_s: cells[n - 2].parse().map_err(|_| bad(n - 2))?,
-                    face_down: small(n - 1)?,
-                }),
-            },
-        },
-    };
+    let at = |k: usize, why: &str| format!("`{}` = `{}` {why}", columns[k].name(), cells[k].escape_debug());
+    let values = (cells.iter().zip(columns).enumerate())
+        .map(|(k, (text, c))| read_cell(text, c.ty).ok_or_else(|| at(k, "is not valid")))
+        .collect::<Result<Vec<Cell<'_>>, String>>()?;
+    let r = record_from_cells(columns, &values, None).map_err(|(k, why)| at(k, why))?;
     // The one accepted spelling of every cell is the one this program writes. The row is
     // written once into one buffer and compared whole (the cells hold no commas, so equal
     // lines are equal cells); only a row that differs is taken apart to name the cell.
@@ -339,13 +137,39 @@ pub fn parse_record_line(row: &str, spin: SpinColumns) -> Result<RollRecord, Str
         let k = (written.split(',').zip(&cells))
             .position(|(a, b)| a != *b)
             .unwrap_or(0);
-        return Err(format!(
-            "`{}` = `{}` is not written as this program writes it",
-            columns[k].name,
-            cells[k].escape_debug()
-        ));
+        return Err(at(k, "is not written as this program writes it"));
     }
     Ok(r)
+}
+
+/// The record of a row of a seeded sweep whose start is `draw(id)`, if the row is exactly
+/// what [`write_record_line`] writes for it; `None` for any other row (read it with
+/// [`parse_record_line`], which names what differs). The start's cells are compared as
+/// written, never parsed. `line` is a scratch buffer.
+pub(crate) fn read_drawn_row(
+    row: &[u8],
+    spin: SpinColumns,
+    draw: &dyn Fn(u64) -> InitialCondition,
+    line: &mut Vec<u8>,
+) -> Option<RollRecord> {
+    let columns = spin.columns();
+    // On the stack: a merge reads every row of every part here.
+    let mut values = [Cell::Empty; COLUMNS.len()];
+    let mut cells = std::str::from_utf8(row).ok()?.split(',');
+    for (value, column) in values.iter_mut().zip(columns) {
+        let text = cells.next()?;
+        if !column.of_start() {
+            *value = read_cell(text, column.ty)?;
+        }
+    }
+    if cells.next().is_some() {
+        return None;
+    }
+    let values = &values[..columns.len()];
+    let r = record_from_cells(columns, values, Some(draw)).ok()?;
+    line.clear();
+    write_record_line(line, &r, spin);
+    (line.as_slice() == row).then_some(r)
 }
 
 /// Writes the header and one record per roll: what `--ics` reads back (the tests' way to
@@ -410,7 +234,7 @@ pub fn parse_initial_conditions(
         Some(Ok(h)) => h,
     };
     let header_line = line_at(header.position());
-    // For each column: Some(index into INITIAL_COLUMNS), or None for `id` / result columns.
+    // For each column: Some(index among the start's columns), or None for `id` / result columns.
     let mut columns: Vec<Option<usize>> = Vec::new();
     let mut id_column = None;
     for (i, name) in header.iter().enumerate() {
@@ -418,7 +242,7 @@ pub fn parse_initial_conditions(
             id_column = Some(i);
             columns.push(None);
         } else if let Some(k) = (initial_column_names().iter().position(|c| c == name))
-            .or_else(|| INITIAL_COLUMNS.iter().position(|c| *c == name))
+            .or_else(|| initial_column_old_names().position(|c| c == name))
         {
             if columns.contains(&Some(k)) {
                 return Err(bad(
@@ -427,7 +251,7 @@ pub fn parse_initial_conditions(
                 ));
             }
             columns.push(Some(k));
-        } else if RESULT_COLUMNS.iter().any(|(result, _)| *result == name) {
+        } else if COLUMNS.iter().any(|c| !c.of_start() && c.name() == name) {
             columns.push(None);
         } else {
             return Err(bad(
@@ -466,7 +290,7 @@ pub fn parse_initial_conditions(
         if let Some(first) = seen_ids.insert(id, line) {
             return Err(bad(line, format!("id {id} was already given on line {first}")));
         }
-        let mut given: [Option<f64>; COLUMNS] = [None; COLUMNS];
+        let mut given: [Option<f64>; COLUMNS_OF_START] = [None; COLUMNS_OF_START];
         for (cell, column) in cells.iter().zip(&columns) {
             if let (Some(k), false) = (column, cell.is_empty()) {
                 let v: f64 = cell.parse().map_err(|_| {
@@ -520,7 +344,7 @@ pub fn parse_initial_conditions(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use dicesim_physics::Params;
+    use dicesim_physics::{Params, Status};
 
     #[test]
     fn spreadsheet_headers_are_read_and_repeated_ids_refused() {

@@ -12,9 +12,8 @@
 //! depends only on the records in it: a merge that writes the shards' records in order
 //! writes the very bytes of a one-machine run.
 
-use crate::ics::{SpinColumns, initial_column_names};
+use crate::columns::{Cell, RecordColumn, SpinColumns, Type, record_from_cells};
 use crate::record::RollRecord;
-use dicesim_physics::{FirstImpact, InitialCondition, Outcome, Status};
 use parquet::basic::{Compression, Encoding};
 use parquet::data_type::{ByteArray, ByteArrayType, DoubleType, Int32Type, Int64Type};
 use parquet::errors::ParquetError;
@@ -37,31 +36,12 @@ pub(crate) const ROW_GROUP: usize = 65_536;
 /// The Parquet schema: the CSV's columns, by the same names and of the same types (a face
 /// that is not there is a null, and so is the other spin form's in a file of both).
 fn schema(spin: SpinColumns) -> String {
-    let names = initial_column_names();
-    let mut fields = vec!["REQUIRED INT64 id (INTEGER(64,false));".to_string()];
-    for k in spin.present() {
-        let spin_cell = (4..10).contains(&k);
-        let repetition = if spin_cell && spin == SpinColumns::Both {
-            "OPTIONAL"
-        } else {
-            "REQUIRED"
-        };
-        fields.push(format!("{repetition} DOUBLE {};", names[k]));
-    }
-    fields.extend(
-        [
-            "REQUIRED INT32 start_face (INTEGER(8,false));",
-            "OPTIONAL INT32 face (INTEGER(8,false));",
-            "REQUIRED BYTE_ARRAY status (STRING);",
-            "REQUIRED INT64 steps (INTEGER(64,false));",
-            "REQUIRED DOUBLE time_s;",
-            "REQUIRED INT64 impacts (INTEGER(64,false));",
-            "OPTIONAL INT64 first_impact_steps (INTEGER(64,false));",
-            "OPTIONAL DOUBLE first_impact_time_s;",
-            "OPTIONAL INT32 first_impact_face_down (INTEGER(8,false));",
-        ]
-        .map(String::from),
-    );
+    let fields: Vec<String> = (spin.columns().iter())
+        .map(|c| {
+            let repetition = if c.nullable(spin) { "OPTIONAL" } else { "REQUIRED" };
+            format!("{repetition} {};", c.ty.parquet(c.name()))
+        })
+        .collect();
     format!("message roll {{ {} }}", fields.join(" "))
 }
 
@@ -114,7 +94,7 @@ impl<W: Write + Send> RecordsWriter<W> {
         }
         let rows = std::mem::take(&mut self.group);
         let mut group = self.file.next_row_group()?;
-        let mut columns = columns(self.spin).into_iter();
+        let mut columns = self.spin.columns().iter();
         while let Some(mut w) = group.next_column()? {
             let column = columns.next().expect("one column of the schema each");
             write_column(&mut w, column, self.spin, &rows)?;
@@ -127,128 +107,42 @@ impl<W: Write + Send> RecordsWriter<W> {
     }
 }
 
-/// A column of a records file, in the schema's order.
-#[derive(Debug, Clone, Copy)]
-enum Column {
-    Id,
-    /// Initial-condition column `k` (of [`initial_column_names`]).
-    Initial(usize),
-    StartFace,
-    Face,
-    Status,
-    Steps,
-    Time,
-    Impacts,
-    FirstImpactSteps,
-    FirstImpactTime,
-    FirstImpactFaceDown,
-}
-
-/// The columns of a records file with spin columns `spin`, in the schema's order.
-fn columns(spin: SpinColumns) -> Vec<Column> {
-    std::iter::once(Column::Id)
-        .chain(spin.present().map(Column::Initial))
-        .chain([
-            Column::StartFace,
-            Column::Face,
-            Column::Status,
-            Column::Steps,
-            Column::Time,
-            Column::Impacts,
-            Column::FirstImpactSteps,
-            Column::FirstImpactTime,
-            Column::FirstImpactFaceDown,
-        ])
-        .collect()
-}
-
-/// The value of initial-condition column `k` of a record: `None` for the spin form it was
-/// not given.
-fn initial_value(ic: &InitialCondition, k: usize) -> Option<f64> {
-    let momentum = ic.angular_momentum;
-    match k {
-        0 => Some(ic.height),
-        1..=3 => Some(ic.velocity[k - 1]),
-        4..=6 => momentum.is_none().then_some(ic.angular_velocity[k - 4]),
-        7..=9 => momentum.map(|l| l[k - 7]),
-        _ => Some(ic.orientation[k - 10]),
-    }
-}
-
-/// Writes `column` of `rows`.
+/// Writes `column` of `rows`: the values present, and where the column may be empty which
+/// rows have one.
 fn write_column(
     w: &mut parquet::file::writer::SerializedColumnWriter<'_>,
-    column: Column,
+    column: &RecordColumn,
     spin: SpinColumns,
     rows: &[RollRecord],
 ) -> Result<(), ParquetError> {
-    match column {
-        Column::Id => {
-            let ids: Vec<i64> = rows.iter().map(|r| r.id as i64).collect();
-            w.typed::<Int64Type>().write_batch(&ids, None, None)?;
+    let cells: Vec<Cell<'static>> = rows.iter().map(|r| (column.get)(r)).collect();
+    let levels: Option<Vec<i16>> = (column.nullable(spin)).then(|| {
+        (cells.iter())
+            .map(|c| i16::from(!matches!(c, Cell::Empty)))
+            .collect()
+    });
+    let levels = levels.as_deref();
+    match column.ty {
+        Type::Count => {
+            let values: Vec<i64> = cells.iter().filter_map(|c| c.whole()).map(|n| n as i64).collect();
+            w.typed::<Int64Type>().write_batch(&values, levels, None)?;
         }
-        Column::Initial(k) => {
-            let values: Vec<Option<f64>> = rows.iter().map(|r| initial_value(&r.initial, k)).collect();
-            let present: Vec<f64> = values.iter().flatten().copied().collect();
-            if (4..10).contains(&k) && spin == SpinColumns::Both {
-                let levels: Vec<i16> = values.iter().map(|v| i16::from(v.is_some())).collect();
-                w.typed::<DoubleType>()
-                    .write_batch(&present, Some(&levels), None)?;
-            } else {
-                w.typed::<DoubleType>().write_batch(&present, None, None)?;
-            }
+        Type::Face => {
+            let values: Vec<i32> = cells.iter().filter_map(|c| c.small()).map(i32::from).collect();
+            w.typed::<Int32Type>().write_batch(&values, levels, None)?;
         }
-        Column::StartFace => {
-            let faces: Vec<i32> = rows.iter().map(|r| i32::from(r.start_face)).collect();
-            w.typed::<Int32Type>().write_batch(&faces, None, None)?;
+        Type::Real => {
+            let values: Vec<f64> = cells.iter().filter_map(|c| c.real()).collect();
+            w.typed::<DoubleType>().write_batch(&values, levels, None)?;
         }
-        Column::Face => {
-            let levels: Vec<i16> = rows.iter().map(|r| i16::from(r.outcome.face.is_some())).collect();
-            let faces: Vec<i32> = rows
-                .iter()
-                .filter_map(|r| r.outcome.face.map(i32::from))
+        Type::Word => {
+            let values: Vec<ByteArray> = (cells.iter())
+                .filter_map(|c| match c {
+                    Cell::Word(w) => Some(ByteArray::from(*w)),
+                    _ => None,
+                })
                 .collect();
-            w.typed::<Int32Type>().write_batch(&faces, Some(&levels), None)?;
-        }
-        Column::Status => {
-            let names: Vec<ByteArray> = rows
-                .iter()
-                .map(|r| ByteArray::from(r.outcome.status.name()))
-                .collect();
-            w.typed::<ByteArrayType>().write_batch(&names, None, None)?;
-        }
-        Column::Steps => {
-            let steps: Vec<i64> = rows.iter().map(|r| r.outcome.steps as i64).collect();
-            w.typed::<Int64Type>().write_batch(&steps, None, None)?;
-        }
-        Column::Time => {
-            let times: Vec<f64> = rows.iter().map(|r| r.outcome.time_s).collect();
-            w.typed::<DoubleType>().write_batch(&times, None, None)?;
-        }
-        Column::Impacts => {
-            let impacts: Vec<i64> = rows.iter().map(|r| r.outcome.impacts as i64).collect();
-            w.typed::<Int64Type>().write_batch(&impacts, None, None)?;
-        }
-        Column::FirstImpactSteps | Column::FirstImpactTime | Column::FirstImpactFaceDown => {
-            let levels: Vec<i16> = rows
-                .iter()
-                .map(|r| i16::from(r.outcome.first_impact.is_some()))
-                .collect();
-            let firsts = rows.iter().filter_map(|r| r.outcome.first_impact);
-            match column {
-                Column::FirstImpactSteps => {
-                    let steps: Vec<i64> = firsts.map(|f| f.step as i64).collect();
-                    w.typed::<Int64Type>().write_batch(&steps, Some(&levels), None)?;
-                }
-                Column::FirstImpactTime => {
-                    let times: Vec<f64> = firsts.map(|f| f.time_s).collect();
-                    w.typed::<DoubleType>().write_batch(&times, Some(&levels), None)?;
-                }
-                _ => {
-                    let faces: Vec<i32> = firsts.map(|f| i32::from(f.face_down)).collect();
-                    w.typed::<Int32Type>().write_batch(&faces, Some(&levels), None)?;
-                }
-            }
+            w.typed::<ByteArrayType>().write_batch(&values, levels, None)?;
         }
     }
     Ok(())
@@ -279,12 +173,12 @@ pub fn read_records(
         }
     }
     let layout = layout_of(&reader, spin)?;
-    let columns = columns(layout);
+    let columns = layout.columns();
     let mut rows = untrusted(|| reader.get_row_iter(None).map_err(|e| e.to_string()))?;
     while let Some(row) = untrusted(|| Ok(rows.next()))? {
         let row = row.map_err(|e| e.to_string())?;
         let fields: Vec<&Field> = row.get_column_iter().map(|(_, f)| f).collect();
-        each(record_from(&columns, &fields)?)?;
+        each(record_from(columns, &fields)?)?;
     }
     Ok(layout)
 }
@@ -304,12 +198,7 @@ fn layout_of(
         fields.iter().map(|f| f.name().to_string()).collect()
     };
     let found = names(reader.metadata().file_metadata().schema().get_fields());
-    let layouts = [
-        SpinColumns::AngularVelocity,
-        SpinColumns::AngularMomentum,
-        SpinColumns::Both,
-    ];
-    let layout = layouts
+    let layout = SpinColumns::ALL
         .into_iter()
         .filter(|s| spin.is_none_or(|e| e == *s))
         .find(|&s| {
@@ -372,102 +261,23 @@ mod quiet_decoder_panics {
 }
 
 /// A record from the fields of one row, which are `columns`.
-fn record_from(columns: &[Column], f: &[&Field]) -> Result<RollRecord, String> {
+fn record_from(columns: &[&RecordColumn], f: &[&Field]) -> Result<RollRecord, String> {
     if f.len() != columns.len() {
         return Err(format!("a row of {} fields, expected {}", f.len(), columns.len()));
     }
     let bad = |i: usize| format!("column {i} holds an unexpected value {:?}", f[i]);
-    let mut initial: [Option<f64>; 13] = [None; 13];
-    let mut r = RollRecord {
-        id: 0,
-        initial: InitialCondition::default(),
-        start_face: 0,
-        outcome: Outcome {
-            status: Status::Settled,
-            face: None,
-            steps: 0,
-            time_s: 0.0,
-            impacts: 0,
-            first_impact: None,
-        },
-    };
-    // The first impact's three cells: all or none.
-    let (mut first_step, mut first_time, mut first_face) = (None, None, None);
-    for (i, column) in columns.iter().enumerate() {
-        let double = || match f[i] {
-            Field::Double(v) => Ok(Some(*v)),
-            Field::Null => Ok(None),
+    let cells = (f.iter().zip(columns).enumerate())
+        .map(|(i, (field, column))| match (column.ty, field) {
+            (_, Field::Null) => Ok(Cell::Empty),
+            (Type::Count, Field::ULong(v)) => Ok(Cell::Whole(*v)),
+            (Type::Face, Field::UByte(v)) => Ok(Cell::Whole(u64::from(*v))),
+            (Type::Real, Field::Double(v)) => Ok(Cell::Real(*v)),
+            (Type::Word, Field::Str(s)) => Ok(Cell::Word(s.as_str())),
             _ => Err(bad(i)),
-        };
-        let small = || match f[i] {
-            Field::UByte(v) => Ok(Some(*v)),
-            Field::Null => Ok(None),
-            _ => Err(bad(i)),
-        };
-        let unsigned = || match f[i] {
-            Field::ULong(v) => Ok(*v),
-            _ => Err(bad(i)),
-        };
-        match column {
-            Column::Id => r.id = unsigned()?,
-            Column::Initial(k) => initial[*k] = double()?,
-            Column::StartFace => r.start_face = small()?.ok_or_else(|| bad(i))?,
-            Column::Face => r.outcome.face = small()?,
-            Column::Status => {
-                r.outcome.status = match f[i] {
-                    Field::Str(s) => Status::from_name(s).ok_or_else(|| bad(i))?,
-                    _ => return Err(bad(i)),
-                }
-            }
-            Column::Steps => r.outcome.steps = unsigned()?,
-            Column::Time => r.outcome.time_s = double()?.ok_or_else(|| bad(i))?,
-            Column::Impacts => r.outcome.impacts = unsigned()?,
-            Column::FirstImpactSteps => {
-                first_step = match f[i] {
-                    Field::ULong(v) => Some(*v),
-                    Field::Null => None,
-                    _ => return Err(bad(i)),
-                }
-            }
-            Column::FirstImpactTime => first_time = double()?,
-            Column::FirstImpactFaceDown => first_face = small()?,
-        }
-    }
-    r.outcome.first_impact = match (first_step, first_time, first_face) {
-        (Some(step), Some(time_s), Some(face_down)) => Some(FirstImpact {
-            step,
-            time_s,
-            face_down,
-        }),
-        (None, None, None) => None,
-        _ => return Err("a first impact with some of its cells empty".to_string()),
-    };
-    let at = |k: usize| {
-        columns
-            .iter()
-            .position(|c| matches!(c, Column::Initial(j) if *j == k))
-            .unwrap_or(0)
-    };
-    let required = |k: usize| initial[k].ok_or_else(|| bad(at(k)));
-    let triple = |k: usize| match [initial[k], initial[k + 1], initial[k + 2]] {
-        [Some(x), Some(y), Some(z)] => Ok(Some([x, y, z])),
-        [None, None, None] => Ok(None),
-        _ => Err(bad(at(k))),
-    };
-    r.initial.height = required(0)?;
-    r.initial.velocity = [required(1)?, required(2)?, required(3)?];
-    r.initial.orientation = [required(10)?, required(11)?, required(12)?];
-    match (triple(4)?, triple(7)?) {
-        (Some(w), None) => r.initial.angular_velocity = w,
-        (None, Some(l)) => r.initial.angular_momentum = Some(l),
-        _ => {
-            return Err(format!(
-                "{}: the spin is given once, as one of its forms",
-                bad(at(4).max(at(7)))
-            ));
-        }
-    }
-    Ok(r)
+        })
+        .collect::<Result<Vec<Cell<'_>>, String>>()?;
+    record_from_cells(columns, &cells, None)
+        .map_err(|(i, why)| format!("column {i} (`{}`) {why}", columns[i].name()))
 }
 
 #[cfg(test)]
@@ -475,7 +285,7 @@ mod tests {
     use super::*;
     use crate::RandomRanges;
     use crate::record::roll_record;
-    use dicesim_physics::Params;
+    use dicesim_physics::{InitialCondition, Params, Status};
     use dicesim_setup::random::RandomDraws;
 
     fn records(n: u64) -> Vec<RollRecord> {
@@ -517,7 +327,7 @@ mod tests {
         assert_eq!(back.len(), rs.len());
         for (a, b) in back.iter().zip(&rs) {
             // The angular velocity of a start given its momentum is not the spin: not kept.
-            assert!(crate::record::same_record(a, b), "{a:?} {b:?}");
+            assert!(crate::columns::same_record(a, b), "{a:?} {b:?}");
             assert_eq!(a.outcome.time_s.to_bits(), b.outcome.time_s.to_bits());
         }
     }

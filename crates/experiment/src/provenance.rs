@@ -66,14 +66,10 @@ pub fn map_fingerprint(preset: &Preset) -> String {
 /// A batch's provenance: the preset's values with the seed rolled (`None` for given
 /// initial conditions, which `given_fingerprint` then names), and the roll count.
 pub fn batch(preset: &Preset, seed: Option<u64>, rolls: u64, given_fingerprint: Option<&str>) -> Value {
-    let mut values = preset.as_written();
-    if let Some(seed) = seed {
-        values.random.seed = seed;
-    }
     json!({
         "program": PROGRAM,
         "commit": COMMIT,
-        "preset": values,
+        "preset": setup(preset, seed),
         "seed": seed,
         "rolls": rolls,
         "initial_conditions": match given_fingerprint {
@@ -96,7 +92,7 @@ pub fn map(preset: &Preset, map: &BasinMap) -> Value {
     json!({
         "program": PROGRAM,
         "commit": COMMIT,
-        "preset": preset.as_written(),
+        "preset": setup(preset, None),
         "x": axis(&map.x),
         "y": axis(&map.y),
         "method": map.method.name(),
@@ -105,12 +101,10 @@ pub fn map(preset: &Preset, map: &BasinMap) -> Value {
 
 /// A predictability experiment's provenance; `vary` is the `KEY=V1,V2,…` it was given.
 pub fn prediction(preset: &Preset, spec: &PredictSpec, vary: Option<&str>) -> Value {
-    let mut values = preset.as_written();
-    values.random.seed = spec.seed;
     json!({
         "program": PROGRAM,
         "commit": COMMIT,
-        "preset": values,
+        "preset": setup(preset, Some(spec.seed)),
         "seed": spec.seed,
         "rolls": spec.count,
         "epsilons": spec.epsilons,
@@ -121,12 +115,10 @@ pub fn prediction(preset: &Preset, spec: &PredictSpec, vary: Option<&str>) -> Va
 /// A comparison's provenance; `fit` is the `KEY:LO:HI` it was given, fitted over
 /// `candidates` values.
 pub fn comparison(preset: &Preset, spec: &CompareSpec, fit: Option<&str>, candidates: usize) -> Value {
-    let mut values = preset.as_written();
-    values.random.seed = spec.seed;
     json!({
         "program": PROGRAM,
         "commit": COMMIT,
-        "preset": values,
+        "preset": setup(preset, Some(spec.seed)),
         "dataset": spec.dataset.name(),
         "seed": spec.seed,
         "throws": spec.throws,
@@ -138,13 +130,12 @@ pub fn comparison(preset: &Preset, spec: &CompareSpec, fit: Option<&str>, candid
 /// The provenance of a comparison with Budden's cuboids, its random ranges as the throws
 /// were drawn: from a uniformly random orientation.
 pub fn budden(preset: &Preset, spec: &BuddenSpec, fit: Option<&str>) -> Value {
-    let mut values = preset.as_written();
-    values.random = hand_throw(&values.random);
-    values.random.seed = spec.seeds[0];
+    let mut thrown = preset.clone();
+    thrown.random = hand_throw(&preset.random);
     json!({
         "program": PROGRAM,
         "commit": COMMIT,
-        "preset": values,
+        "preset": setup(&thrown, Some(spec.seeds[0])),
         "dataset": "budden",
         "seeds": spec.seeds,
         "throws": spec.throws,
@@ -162,10 +153,21 @@ pub fn roll(rolled: &Preset, roll: &str, changed_from_preset: bool) -> Value {
     json!({
         "program": PROGRAM,
         "commit": COMMIT,
-        "preset": rolled.as_written(),
+        "preset": setup(rolled, None),
         "roll": roll,
         "changed_from_preset": changed_from_preset,
     })
+}
+
+/// The setup as a provenance states it: the preset file `presets show` writes for it (every
+/// key its contact law reads, nothing else), as JSON, with `seed` as its `random.seed` where
+/// the seed rolled is not the preset's. A preset written from it is the setup rolled.
+pub fn setup(preset: &Preset, seed: Option<u64>) -> Value {
+    let mut rolled = preset.clone();
+    if let Some(seed) = seed {
+        rolled.random.seed = seed;
+    }
+    rolled.to_json()
 }
 
 /// `provenance` as the build `commit` wrote it: what a merge expects of files that shards
@@ -207,6 +209,67 @@ mod tests {
             assert_eq!(VERSION_LINE.ends_with(", modified)"), !modified.is_empty());
         }
         assert_eq!(BUILD, format!("dicesim {VERSION_LINE}"));
+    }
+
+    /// Every file under `path` (itself, for a file) with its modification time.
+    fn modified(path: &std::path::Path, into: &mut Vec<(std::path::PathBuf, std::time::SystemTime)>) {
+        let Ok(meta) = std::fs::metadata(path) else {
+            return;
+        };
+        into.push((path.to_path_buf(), meta.modified().unwrap()));
+        if meta.is_dir() {
+            for entry in std::fs::read_dir(path).unwrap() {
+                modified(&entry.unwrap().path(), into);
+            }
+        }
+    }
+
+    /// A `git status` rebuilds nothing: it rewrites git's index whenever a file's times
+    /// changed (here a licence's, touched to now), and the build script that stamps the
+    /// commit watches nothing that `git status` writes.
+    #[test]
+    fn git_status_changes_nothing_the_commit_stamp_watches() {
+        if COMMIT == "unknown" {
+            return; // built outside a checkout: nothing of git is watched
+        }
+        let output = std::path::Path::new(env!("OUT_DIR")).with_file_name("output");
+        let script = std::fs::read_to_string(output).unwrap();
+        let watched: Vec<&str> = (script.lines())
+            .filter_map(|l| l.strip_prefix("cargo:rerun-if-changed="))
+            .collect();
+        assert!(watched.iter().any(|w| w.ends_with("HEAD")), "{script}");
+        let stamps = || {
+            let mut all = Vec::new();
+            for w in &watched {
+                modified(std::path::Path::new(w), &mut all);
+            }
+            all
+        };
+        let before = stamps();
+        let git = |args: &[&str]| {
+            let out = (std::process::Command::new("git").args(args))
+                .current_dir(env!("CARGO_MANIFEST_DIR"))
+                .output()
+                .unwrap();
+            assert!(out.status.success(), "git {args:?}");
+            String::from_utf8(out.stdout).unwrap()
+        };
+        // A file git tracks that no build reads.
+        let top = std::path::PathBuf::from(git(&["rev-parse", "--show-toplevel"]).trim());
+        let licence = std::fs::File::options()
+            .append(true)
+            .open(top.join("LICENSE-MIT"))
+            .unwrap();
+        licence.set_modified(std::time::SystemTime::now()).unwrap();
+        git(&["status"]);
+        let after = stamps();
+        let changed: Vec<_> = (after.iter().filter(|a| !before.contains(a)))
+            .map(|(path, _)| path)
+            .collect();
+        assert!(
+            changed.is_empty() && after.len() == before.len(),
+            "`git status` changed {changed:?}"
+        );
     }
 
     #[test]

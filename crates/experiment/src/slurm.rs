@@ -349,6 +349,30 @@ pub fn shell_word(s: &str) -> String {
     }
 }
 
+/// Submits `script` with `sbatch --parsable` and returns the job id.
+pub fn sbatch(options: &[String], script: &Path) -> Result<String, String> {
+    let output = std::process::Command::new("sbatch")
+        .arg("--parsable")
+        .args(options)
+        .arg(script)
+        .output()
+        .map_err(|e| format!("cannot run sbatch (is Slurm installed here?): {e}"))?;
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    if !output.status.success() {
+        return Err(format!(
+            "sbatch {} failed: {}",
+            script.display(),
+            String::from_utf8_lossy(&output.stderr).trim()
+        ));
+    }
+    // `--parsable` prints `id` or `id;cluster`.
+    let id = stdout.trim().split(';').next().unwrap_or_default();
+    if id.is_empty() || !id.bytes().all(|b| b.is_ascii_digit()) {
+        return Err(format!("sbatch printed `{}`, not a job id", stdout.trim()));
+    }
+    Ok(id.to_string())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

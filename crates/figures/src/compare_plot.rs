@@ -2,13 +2,16 @@
 //! the simulation's, both with their 95 % intervals; with a fit, the deviance of every
 //! candidate beside it, the 3.84 line and the interval it cuts.
 
+use crate::figure::setup_value;
 use crate::figure::{Ticks, resolved};
+use crate::plot::random_starts;
 use crate::plot::{Record, Scale, TICKS, plot_error, png_bytes, register_fonts, with_caption};
 use dicesim_experiment::Error;
-use dicesim_experiment::compare::Comparison;
-use dicesim_experiment::compare_budden::{BuddenComparison, RatioRole};
+use dicesim_experiment::compare::{CompareSpec, Comparison};
+use dicesim_experiment::compare_budden::{BuddenComparison, BuddenSpec, RatioRole, hand_throw, seeds_text};
 use dicesim_experiment::compare_stats::{FitInterval, deviance_rise_95};
 use dicesim_setup::keys::ScanKey;
+use dicesim_setup::preset::Preset;
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
@@ -35,6 +38,139 @@ pub fn comparison_png(comparison: &Comparison, record: &Record) -> Result<Vec<u8
         }
         root.present().map_err(plot_error)
     })
+}
+
+/// The PNG's caption: the throws (drawn from the random ranges: those define the figure)
+/// and the fit, and the setup whose throws are drawn: a fit's shown value.
+pub fn comparison_record(
+    c: &Comparison,
+    preset: &Preset,
+    spec: &CompareSpec,
+    fit_text: Option<&str>,
+    provenance: &serde_json::Value,
+) -> Record {
+    let (mut shown, mut initial) = (preset.params(), preset.initial);
+    let value = c.shown().and_then(|k| k.value);
+    if let (Some(fit), Some(value)) = (&spec.fit, value) {
+        fit.key.set(&mut shown, &mut initial, value);
+    }
+    let fit = match (fit_text, &spec.fit, value, &c.key, &c.fit) {
+        (Some(f), Some(fit), Some(v), Some(k), Some(i)) => format!(
+            "; --fit {f} over {} candidates, drawn at the best, {k} = {}; 95 % interval {} to {}{}",
+            fit.candidates,
+            setup_value(v),
+            setup_value(i.low),
+            setup_value(i.high),
+            if i.connected() {
+                ""
+            } else {
+                " (the candidates within 3.84 are not one connected set)"
+            }
+        ),
+        _ => String::new(),
+    };
+    // What the figure rests on: the throws counted (every die on a face) and those not.
+    let counted = c.shown().map_or(String::new(), |k| {
+        format!(
+            "; {} of {} throws counted, {} ended with a die on no face{}",
+            k.throws,
+            k.throws + k.uncounted,
+            k.uncounted,
+            match c.excluded.len() {
+                0 => String::new(),
+                n => format!(", {n} candidates left out of the fit for too few"),
+            }
+        )
+    });
+    let experiment = format!(
+        "{}: {} throws as {} threw them, each die {}{fit}{counted}; {}",
+        preset.name,
+        spec.throws,
+        spec.dataset.name(),
+        random_starts(&preset.random, spec.seed, &[]),
+        c.headline,
+    );
+    let title = format!("{} against real dice", preset.name);
+    Record::of_experiment(&title, experiment, &shown, &[], provenance)
+}
+
+/// The PNG's caption: the throw, the fit, and the table and body assumptions.
+pub fn budden_record(
+    c: &BuddenComparison,
+    preset: &Preset,
+    spec: &BuddenSpec,
+    fit_text: Option<&str>,
+    provenance: &serde_json::Value,
+) -> Record {
+    let n = setup_value;
+    let throws = spec
+        .throws
+        .map_or("Budden's own throws per ratio".to_string(), |t| {
+            format!("{t} throws per ratio")
+        });
+    let best = match (&c.fit, &c.key) {
+        (Some(f), Some(key)) => format!(", drawn at the best, {key} = {}", n(f.best)),
+        _ => String::new(),
+    };
+    let thrown: u64 = c
+        .ratios
+        .iter()
+        .map(|r| r.simulated.throws + r.simulated.uncounted)
+        .sum();
+    let uncounted: u64 = c.ratios.iter().map(|r| r.simulated.uncounted).sum();
+    let at = if spec.fit.is_some() { " at the best" } else { "" };
+    let best = format!(
+        "{best}; {} of {thrown} throws{at} counted, {uncounted} ended on no face",
+        thrown - uncounted
+    );
+    // The table and world as the throws were drawn: with the fitted value at its best.
+    let (mut p, mut initial) = (preset.params(), preset.initial);
+    if let (Some(f), Some(fit)) = (&c.fit, &spec.fit) {
+        fit.key.set(&mut p, &mut initial, f.best);
+    }
+    let ratios = spec
+        .calibrate_on
+        .iter()
+        .map(|r| n(*r))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let fitted = match (fit_text, &spec.fit) {
+        (Some(text), Some(fit)) => format!(
+            "--fit {text} over {} candidates on ratios {ratios}",
+            fit.candidates
+        ),
+        _ => format!("--no-fit: the preset's table as it stands, ratios {ratios} in sample"),
+    };
+    // The caption's throws name the first seed; several are pooled.
+    let pooled = match spec.seeds.as_slice() {
+        [_] => String::new(),
+        seeds => format!(" ({})", seeds_text(seeds)),
+    };
+    let caption = vec![
+        format!(
+            "{}: {throws}{pooled}, each {}; {fitted}{best}",
+            preset.name,
+            random_starts(&hand_throw(&preset.random), spec.seeds[0], &[]),
+        ),
+        format!(
+            "{}; table k {} dyn/cm, γ {} s/cm, μ {}; g {} cm/s², Δt {} s (every value in the file's dicesim-provenance text)",
+            c.assumptions[..2].join("; "),
+            n(p.ground.stiffness),
+            n(p.ground.damping),
+            n(p.ground.friction),
+            n(p.world.gravity),
+            n(p.integrator.dt),
+        ),
+    ];
+    Record {
+        text: vec![
+            ("Title".to_string(), format!("{}: Budden's cuboids", preset.name)),
+            ("Description".to_string(), caption.join("\n")),
+            ("Software".to_string(), dicesim_experiment::PROGRAM.to_string()),
+        ],
+        caption,
+    }
+    .with_provenance(provenance)
 }
 
 /// How far apart a fit's candidates are (what its best value is known to), or a

@@ -10,15 +10,18 @@
 
 use super::parts::{MergeError, Parts, checked_records_path, chosen_at_random, outcome_words};
 use super::rows::{MAX_LINE_BYTES, without_bom};
+use crate::columns::{RecordCheck, same_record};
 use crate::data_file;
-use crate::ics::{SpinColumns, parse_record_line, records_columns, records_csv_header, write_record_line};
+use crate::ics::{
+    SpinColumns, parse_record_line, read_drawn_row, records_columns, records_csv_header, write_record_line,
+};
 use crate::parquet::{RecordsWriter, read_records};
 use crate::provenance;
-use crate::record::{RecordCheck, RollRecord, roll_record, same_record};
+use crate::record::{RollRecord, roll_record};
 use crate::shard::{Part, Sweep};
 use crate::summary::BatchSummary;
 use crate::tally::Tally;
-use dicesim_physics::{FirstImpact, InitialCondition, Outcome, Params, StabilityCheck, Status};
+use dicesim_physics::{InitialCondition, Params, StabilityCheck};
 use dicesim_setup::output::{Output, OutputError, Staged, commit, sidecar_path};
 use dicesim_setup::preset::{Preset, read_regular_file};
 use dicesim_setup::random::RandomDraws;
@@ -53,6 +56,26 @@ pub struct BatchMerge {
     /// them: from the records, or from the seed's draws for parts that hold only summaries;
     /// `None` where neither is known (summaries of given starts).
     pub past_stability_limit: Option<u64>,
+}
+
+impl BatchMerge {
+    /// What `merge --json` prints of it: what `batch --json` prints of a one-machine run,
+    /// with the shards' own figures.
+    pub fn report(&self) -> Value {
+        serde_json::json!({
+            "provenance": self.provenance,
+            "preset": self.preset,
+            "seed": self.seed,
+            "requested": self.rolls,
+            "completed": self.summary.rolls,
+            "interrupted": false,
+            "shards": self.shards,
+            "longest_shard_s": self.longest_s,
+            "verified": self.verified,
+            "past_stability_limit": self.past_stability_limit,
+            "summary": self.summary,
+        })
+    }
 }
 
 /// What takes each record read, in order, with its CSV row where it has one.
@@ -276,64 +299,11 @@ impl BatchExpect {
         Ok((r, self.check_record(&r)))
     }
 
-    /// The record of `row` if it is exactly the row its id's draw and its own ending give
-    /// (its time the steps' own), else `None`: the row is then read cell by cell, which
-    /// names what differs.
+    /// The record of `row` if it is exactly the row its id's draw and its own ending give,
+    /// else `None`: the row is then read cell by cell, which names what differs.
     fn row_as_drawn(&self, row: &[u8], seed: u64, line: &mut Vec<u8>) -> Option<RollRecord> {
-        let id = whole(row.split(|&b| b == b',').next()?)?;
-        let mut ending = row.rsplitn(10, |&b| b == b',');
-        let first_face = ending.next()?;
-        let _first_time = ending.next()?;
-        let first_step = ending.next()?;
-        let impacts = whole(ending.next()?)?;
-        let first_impact = match (first_step, first_face) {
-            ([], []) => None,
-            (step, face) => {
-                let step = whole(step)?;
-                Some(FirstImpact {
-                    step,
-                    time_s: self.check.clock().time_s(step),
-                    face_down: u8::try_from(whole(face)?).ok()?,
-                })
-            }
-        };
-        let _time = ending.next()?;
-        let steps = whole(ending.next()?)?;
-        let status = Status::from_name(std::str::from_utf8(ending.next()?).ok()?)?;
-        let face = match ending.next()? {
-            [] => None,
-            f => Some(u8::try_from(whole(f)?).ok()?),
-        };
-        let start_face = u8::try_from(whole(ending.next()?)?).ok()?;
-        let r = RollRecord {
-            id,
-            initial: self.draw(seed, id),
-            start_face,
-            outcome: Outcome {
-                status,
-                face,
-                steps,
-                time_s: self.check.clock().time_s(steps),
-                impacts,
-                first_impact,
-            },
-        };
-        line.clear();
-        write_record_line(line, &r, self.spin);
-        (line.as_slice() == row).then_some(r)
+        read_drawn_row(row, self.spin, &|id| self.draw(seed, id), line)
     }
-}
-
-/// The whole number a cell's digits spell (none for an empty cell, a sign or an overflow).
-fn whole(digits: &[u8]) -> Option<u64> {
-    if digits.is_empty() {
-        return None;
-    }
-    digits.iter().try_fold(0u64, |n, &d| {
-        d.is_ascii_digit()
-            .then(|| n.checked_mul(10)?.checked_add(u64::from(d - b'0')))
-            .flatten()
-    })
 }
 
 /// Where merged records go: a CSV (each checked row as it was read) or a Parquet file.

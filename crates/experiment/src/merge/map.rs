@@ -7,8 +7,9 @@ use super::parts::{
 };
 use super::rows::{copy_rows, parse_map_row};
 use crate::basin::{Axis, BasinMap, Cell, Layer, Method, node_setup};
+use crate::columns::RecordCheck;
 use crate::provenance;
-use crate::record::{RecordCheck, roll_record};
+use crate::record::roll_record;
 use crate::shard::{Part, Sweep};
 use crate::stats::FaceTally;
 use dicesim_physics::{InitialCondition, Params};

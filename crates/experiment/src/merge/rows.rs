@@ -3,7 +3,7 @@
 //! exactly the ids or cells its summary says, and a map's cells read back for its image.
 
 use crate::basin::Cell;
-use crate::record::RecordCheck;
+use crate::columns::RecordCheck;
 use dicesim_physics::{Outcome, Status};
 use dicesim_setup::number::Real;
 use std::io::{BufRead, Write};

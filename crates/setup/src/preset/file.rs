@@ -109,31 +109,26 @@ impl Preset {
             "shown in the TUI and by `presets list`",
         );
 
-        let setup = self.values();
+        let keys = self.written_keys();
         for role in Role::ALL {
             line(&format!("\n[{}]", role.section()), String::new(), role.comment());
-            for spec in registry::ALL.iter().filter(|s| s.role == role) {
+            for (spec, value) in keys.iter().filter(|(spec, _)| spec.role == role) {
                 // The two ways of stating the spin are written together, as one choice.
-                if **spec == ANGULAR_VELOCITY {
+                if **spec == ANGULAR_VELOCITY || **spec == ANGULAR_MOMENTUM {
                     self.spin_lines(&mut line, &vector);
                     continue;
                 }
-                // Only the keys the contact law reads: the file reads back as it was written.
-                if **spec == ANGULAR_MOMENTUM || !setup.params.ground.reads(spec.key()) {
-                    continue;
-                }
-                let name = spec.key().rsplit('.').next().unwrap_or_default();
-                let value = match (spec.read)(&setup) {
-                    Value::Number(x) => float(x),
-                    Value::Vector(v) => vector(&v),
-                    Value::Range(r) => vector(&r),
-                    Value::PerCorner(v) => vector(&v),
+                let value = match value {
+                    Value::Number(x) => float(*x),
+                    Value::Vector(v) => vector(v),
+                    Value::Range(r) => vector(r),
+                    Value::PerCorner(v) => vector(v),
                     Value::Name(n) => string(n),
                     Value::Seed(n) => n.to_string(),
                     Value::Flag(b) => b.to_string(),
                     Value::Absent => continue,
                 };
-                line(name, value, spec.comment);
+                line(key_name(spec), value, spec.comment);
             }
         }
         let view = self.view.lines();
@@ -148,6 +143,65 @@ impl Preset {
             }
         }
         out
+    }
+
+    /// The keys the file holds with their values, in the file's order: every key the contact
+    /// law reads (only those, so the file reads back as it was written), the spin once in the
+    /// form it was given (at `angular_velocity`'s place), no optional value left unset.
+    fn written_keys(&self) -> Vec<(&'static registry::Spec, Value)> {
+        let setup = self.values();
+        let mut keys = Vec::new();
+        for role in Role::ALL {
+            for &spec in registry::ALL.iter().filter(|s| s.role == role) {
+                if *spec == ANGULAR_MOMENTUM || !setup.params.ground.reads(spec.key()) {
+                    continue;
+                }
+                let (spec, value) = match self.initial.angular_momentum {
+                    Some(l) if *spec == ANGULAR_VELOCITY => (&ANGULAR_MOMENTUM, Value::Vector(l)),
+                    _ => (spec, (spec.read)(&setup)),
+                };
+                if value != Value::Absent {
+                    keys.push((spec, value));
+                }
+            }
+        }
+        keys
+    }
+
+    /// The file [`Preset::to_toml`] writes, as JSON: the same sections, keys and values (the
+    /// spin in the form given, only the keys the contact law reads), without the comments.
+    /// What a provenance states as the setup, so a preset written from it is this one.
+    pub fn to_json(&self) -> serde_json::Value {
+        let mut file = serde_json::json!({
+            "format": FORMAT,
+            "name": self.name,
+            "description": self.description,
+        });
+        for role in Role::ALL {
+            file[role.section()] = serde_json::json!({});
+        }
+        for (spec, value) in self.written_keys() {
+            file[spec.role.section()][key_name(spec)] = match value {
+                Value::Number(x) => serde_json::json!(x),
+                Value::Vector(v) => serde_json::json!(v),
+                Value::Range(r) => serde_json::json!(r),
+                Value::PerCorner(v) => serde_json::json!(v),
+                Value::Name(n) => serde_json::json!(n),
+                Value::Seed(n) => serde_json::json!(n),
+                Value::Flag(b) => serde_json::json!(b),
+                Value::Absent => unreachable!("written_keys leaves out what is not given"),
+            };
+        }
+        let view = self.view.lines();
+        if !view.is_empty() {
+            // The explorer's lines as the file has them, read back as TOML reads them.
+            let lines: String = view
+                .iter()
+                .map(|(key, value, _)| format!("{key} = {value}\n"))
+                .collect();
+            file["view"] = toml::from_str(&lines).expect("the view's lines are TOML");
+        }
+        file
     }
 
     /// The spin, stated once; the other form is shown commented out, converted, so a reader
@@ -185,6 +239,11 @@ impl Preset {
         }
         p
     }
+}
+
+/// A key's name in its section: `stiffness` for `ground.stiffness`.
+fn key_name(spec: &registry::Spec) -> &'static str {
+    spec.key().rsplit('.').next().unwrap_or_default()
 }
 
 /// `key = value   # comment`, or a section header when `value` is empty. A comment that

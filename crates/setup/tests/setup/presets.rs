@@ -392,3 +392,50 @@ proptest! {
         prop_assert_eq!(Preset::from_toml_str(&p.to_toml(), "again").unwrap(), p);
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// The setup as JSON (what a provenance states)
+
+/// `to_json` is the file `to_toml` writes, key for key and value for value: for every
+/// shipped preset, and for a spin given as momentum, a loaded die and a view.
+#[test]
+fn the_json_form_is_the_written_file_read_back() {
+    let mut presets: Vec<Preset> = SHIPPED.iter().map(|(name, _)| shipped(name)).collect();
+    let mut spun = shipped("paper");
+    spun.initial.angular_momentum = Some([1.0, -2.5, 3.0]);
+    let mut loaded = shipped("loaded-corner");
+    loaded.view.theme = Some(ThemeName::Projector);
+    loaded.view.twin = Some(1e-9);
+    presets.extend([spun, loaded]);
+    for preset in presets {
+        let file: serde_json::Value = toml::from_str(&preset.to_toml()).unwrap();
+        assert_eq!(preset.to_json(), file, "{}", preset.name);
+    }
+}
+
+/// A spring-friction table's JSON holds exactly the keys that law reads, defaults included,
+/// and none of the paper law's (issue 49, defect 4).
+#[test]
+fn a_spring_friction_grounds_json_holds_the_keys_its_law_reads() {
+    let ground = shipped("calibrated-table").to_json()["ground"].clone();
+    let mut keys: Vec<&str> = ground.as_object().unwrap().keys().map(String::as_str).collect();
+    keys.sort_unstable();
+    assert_eq!(
+        keys,
+        [
+            "contact",
+            "friction",
+            "restitution",
+            "static_friction",
+            "stiffness",
+            "tangential_stiffness_ratio",
+            "tilt",
+            "tilt_direction"
+        ]
+    );
+    let paper = shipped("paper").to_json()["ground"].clone();
+    assert!(
+        paper.get("damping").is_some() && paper.get("restitution").is_none(),
+        "{paper}"
+    );
+}

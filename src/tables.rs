@@ -1,18 +1,23 @@
 //! The text tables of results, as the commands print them: beside each result's CSV
-//! (`write_csv`), the same figures for a reader. Each writes whole lines to `out`.
+//! (`write_csv`), the same figures for a reader. Each writes whole lines to `out`. Only the
+//! command line prints them, so they live beside it, not in the experiment crate.
 
-use crate::basin::{BasinMap, Layer};
-use crate::compare::Comparison;
-use crate::compare::Excluded;
-use crate::compare_budden::{BuddenComparison, RatioRole};
-use crate::compare_stats::{FitInterval, FitMethod};
-use crate::ending::Ending;
-use crate::predict::Prediction;
-use crate::stats::FaceTally;
-use crate::summary::BatchSummary;
-use crate::versus::{NO_FACE, VersusRun};
+use dicesim_experiment::basin::{BasinMap, Layer};
+use dicesim_experiment::compare::{Comparison, Excluded};
+use dicesim_experiment::compare_budden::{BuddenComparison, RatioRole, seeds_text};
+use dicesim_experiment::compare_stats::{FitInterval, FitMethod};
+use dicesim_experiment::ending::Ending;
+use dicesim_experiment::merge::{BatchMerge, MapMerge};
+use dicesim_experiment::predict::Prediction;
+use dicesim_experiment::versus::{NO_FACE, VersusRun};
+use dicesim_experiment::{BatchRun, BatchSummary, FaceTally};
+use dicesim_figures::animation::{Animated, speed_words};
+use dicesim_physics::{
+    InitialCondition, Outcome, Params, Simulation, Stability, Status, UnstableReason, why_it_cannot_settle,
+};
 use dicesim_setup::number::{fmt_exact, fmt_num};
 use std::io::Write;
+use std::path::{Path, PathBuf};
 
 /// The summary's lines that depend on the rolls alone (not on threads or time), as `batch`
 /// and `merge` print them.
@@ -608,17 +613,6 @@ fn budden_ratios(
     Ok(())
 }
 
-/// The seeds of a run: `seed 1`, or `seeds 11, 12, 13 pooled`.
-pub fn seeds_text(seeds: &[u64]) -> String {
-    match seeds {
-        [one] => format!("seed {one}"),
-        _ => format!(
-            "seeds {} pooled",
-            seeds.iter().map(u64::to_string).collect::<Vec<_>>().join(", ")
-        ),
-    }
-}
-
 /// A p-value as a person reads it: four decimals, or scientific notation when tiny.
 fn p_text(p: f64) -> String {
     if p >= 1e-4 {
@@ -626,6 +620,170 @@ fn p_text(p: f64) -> String {
     } else {
         format!("{p:.2e}")
     }
+}
+
+/// The roll as text: its ending in words, then its steps, time, stopping energy and final
+/// state.
+pub fn one_roll(
+    out: &mut dyn Write,
+    (params, initial): (&Params, &InitialCondition),
+    sim: &Simulation,
+    outcome: &Outcome,
+    reason: Option<&UnstableReason>,
+) -> std::io::Result<()> {
+    let s = sim.state();
+    let rule = sim.stop_rule_now();
+    let verdict = match (outcome.status, outcome.face) {
+        (Status::Settled, Some(f)) => format!("face {f} (settled)"),
+        (Status::Settled, None) => "settled, but the 4 highest corners form no face".to_string(),
+        (Status::Timeout, _) => match why_it_cannot_settle(params) {
+            Some(why) => format!("did not settle within {} s: {why}", params.integrator.max_time),
+            None => format!("did not settle within {} s", params.integrator.max_time),
+        },
+        (Status::Unstable, _) => format!("unstable: {}", reason.expect("an unstable roll has a reason")),
+    };
+    let v3 = |v: &nalgebra::Vector3<f64>| format!("({:.6}, {:.6}, {:.6})", v.x, v.y, v.z);
+    writeln!(out, "{verdict}")?;
+    // An unstable roll's verdict names the limit already; any other ending past one is not
+    // what the model gives, however plain it looks.
+    let stability = Stability::predict(params, initial).verdict();
+    if stability.exceeded() && reason.is_none() {
+        writeln!(
+            out,
+            "stability         past its limit, so this ending is the step's, not the model's: {stability}"
+        )?;
+    }
+    writeln!(out, "steps             {}", outcome.steps)?;
+    writeln!(out, "simulated time    {:.3} s", outcome.time_s)?;
+    if rule.can_settle() {
+        writeln!(
+            out,
+            "stop energy       {:.1} erg (threshold {:.1} erg, {}); kinetic {:.1} erg (threshold {:.1} erg)",
+            sim.stop_energy(),
+            rule.energy_threshold,
+            params.integrator.stop_energy.name(),
+            sim.stop_kinetic_energy(),
+            rule.kinetic_threshold
+        )?;
+    } else {
+        writeln!(
+            out,
+            "stop energy       {:.1} erg ({}; no threshold: this table cannot hold a face)",
+            sim.stop_energy(),
+            params.integrator.stop_energy.name()
+        )?;
+    }
+    writeln!(out, "position          {} cm", v3(&s.position))?;
+    writeln!(out, "velocity          {} cm/s", v3(&s.velocity))?;
+    writeln!(out, "angular momentum  {} g·cm²/s", v3(&s.angular_momentum))?;
+    Ok(())
+}
+
+/// A batch's summary: its rolls and how they ran, the counts, and the speed.
+pub fn batch_run(out: &mut dyn Write, batch: &BatchRun) -> std::io::Result<()> {
+    let s = &batch.summary;
+    writeln!(
+        out,
+        "{} rolls on {} thread{}, {} engine",
+        s.rolls,
+        batch.jobs,
+        if batch.jobs == 1 { "" } else { "s" },
+        batch.engine.name()
+    )?;
+    batch_counts(out, s)?;
+    stability_count(out, batch.past_stability_limit, s.rolls)?;
+    writeln!(
+        out,
+        "speed                  {:.0} rolls/s, {:.1} M steps/s ({} steps in {:.2} s)",
+        s.rolls_per_s,
+        s.steps_per_s / 1e6,
+        s.steps,
+        s.elapsed_s
+    )?;
+    Ok(())
+}
+
+/// A merged batch's summary: the counts, the shards' speed, the records rolled again and
+/// the files written.
+pub fn merged_batch(stdout: &mut dyn Write, m: &BatchMerge, wrote: &[PathBuf]) -> std::io::Result<()> {
+    let summary = &m.summary;
+    writeln!(stdout, "{} rolls in {} shards", summary.rolls, m.shards)?;
+    batch_counts(stdout, summary)?;
+    if let Some(past) = m.past_stability_limit {
+        stability_count(stdout, past, summary.rolls)?;
+    }
+    writeln!(
+        stdout,
+        "speed                  {:.0} rolls per shard-second ({} steps; the shards took {:.2} s together, the longest {:.2} s)",
+        summary.rolls_per_s, summary.steps, m.shard_s, m.longest_s
+    )?;
+    if m.verified > 0 {
+        writeln!(
+            stdout,
+            "verified               {} records chosen at random, rolled again: identical bit for bit",
+            m.verified
+        )?;
+    }
+    for path in wrote {
+        writeln!(stdout, "wrote                  {}", path.display())?;
+    }
+    Ok(())
+}
+
+/// A merged map's summary: its faces, the cells rolled again, the shards' time and the files
+/// written.
+pub fn merged_map(stdout: &mut dyn Write, m: &MapMerge, wrote: &[PathBuf]) -> std::io::Result<()> {
+    map_summary(stdout, &m.map, m.layer, &m.faces, m.known_cells())?;
+    if m.verified > 0 {
+        writeln!(
+            stdout,
+            "verified            {} cells chosen at random, rolled again: identical bit for bit",
+            m.verified
+        )?;
+    }
+    writeln!(
+        stdout,
+        "time                {:.2} s over {} shards (the longest {:.2} s)",
+        m.shard_s, m.shards, m.longest_s
+    )?;
+    for path in wrote {
+        writeln!(stdout, "wrote               {}", path.display())?;
+    }
+    Ok(())
+}
+
+/// What the animation holds: its frames and time, each die's ending, where it went.
+pub fn animation(
+    out: &mut dyn Write,
+    animated: &Animated,
+    twin: Option<f64>,
+    speed: f64,
+    (fps, size): (u32, (u32, u32)),
+    wrote: &Path,
+) -> std::io::Result<()> {
+    let face = |o: &Outcome| match o.face {
+        Some(f) => format!("face {f} ({})", o.status.name()),
+        None => o.status.name().to_string(),
+    };
+    writeln!(
+        out,
+        "{} frames, {:.2} s of roll at {} frames/s and {}, {}×{} pixels",
+        animated.frames,
+        animated.duration_s,
+        fps,
+        speed_words(speed),
+        size.0,
+        size.1
+    )?;
+    // Names padded by characters, not bytes (ε is two bytes), so the values line up.
+    let line = |name: &str, value: &str| format!("{name:<18}{value}");
+    writeln!(out, "{}", line("die", &face(&animated.outcome)))?;
+    if let (Some(t), Some(e)) = (&animated.twin, twin) {
+        writeln!(out, "{}", line(&format!("twin (ε {e:e})"), &face(t)))?;
+    }
+    writeln!(out, "{}", line("wrote", &wrote.display().to_string()))?;
+    out.flush()?;
+    Ok(())
 }
 
 #[cfg(test)]
