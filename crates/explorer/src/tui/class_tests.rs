@@ -1,10 +1,10 @@
 //! Tests of the classroom views (energy ledger, vectors, chaos twin, presets, exports,
 //! themes) from deterministic states, built with the helpers of `tests.rs`.
 
-use super::layout::screen_layout;
-use super::ledger::{bar_rows, render_ledger};
 use super::state::app::App;
 use super::tests::{mid_impact, settled, start};
+use crate::tui::panels::ledger::{bar_rows, render_ledger};
+use crate::tui::vocabulary::layout::screen_layout;
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use ratatui::layout::Rect;
@@ -17,7 +17,7 @@ fn panel(app: &App, area: Rect, draw: fn(&App, Rect, &mut ratatui::Frame)) -> Te
     t
 }
 
-fn full() -> super::layout::Areas {
+fn full() -> crate::tui::vocabulary::layout::Areas {
     screen_layout(Rect::new(0, 0, 120, 36)).expect("full size")
 }
 
@@ -85,10 +85,10 @@ mod ledger {
 }
 
 mod vectors {
-    use super::super::die::render_die;
-    use super::super::vectors::{ARROWS, Arrow, arrow_length};
     use super::*;
-    use crate::tui::input::update;
+    use crate::tui::input::update::update;
+    use crate::tui::panels::die::render_die;
+    use crate::tui::panels::die::vectors::{ARROWS, Arrow, arrow_length};
     use crate::tui::state::messages::Msg;
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 
@@ -166,7 +166,7 @@ mod vectors {
 
 mod twin {
     use super::*;
-    use crate::tui::input::update;
+    use crate::tui::input::update::update;
     use crate::tui::state::messages::Msg;
     use crate::tui::tests::Harness;
     use crate::worker::{Command, Phase};
@@ -178,7 +178,7 @@ mod twin {
             Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))),
         )
         .into_iter()
-        .filter_map(|e| crate::tui::effects::perform(app, e))
+        .filter_map(|e| crate::tui::event_loop::effects::perform(app, e))
         .collect()
     }
 
@@ -220,7 +220,7 @@ mod twin {
         let twin = s.app.roll.live.twin.as_ref().expect("a twin");
         assert!(matches!(twin.phase, Phase::Ended(_)), "{:?}", twin.phase);
         assert!(matches!(s.app.roll.live.phase, Phase::Ended(_)));
-        let lines = super::super::separation::outcome_lines(&s.app, 80);
+        let lines = crate::tui::panels::twins::separation::outcome_lines(&s.app, 80);
         assert_eq!(lines.len(), 1, "{lines:?}");
         let line = lines[0].to_string();
         assert!(line.starts_with("die settled: face"), "{line}");
@@ -230,7 +230,7 @@ mod twin {
             "{line}"
         );
         // On a narrow panel the verdict keeps a line of its own, whole.
-        let narrow = super::super::separation::outcome_lines(&s.app, 18);
+        let narrow = crate::tui::panels::twins::separation::outcome_lines(&s.app, 18);
         let verdict = narrow.last().expect("lines").to_string();
         assert!(verdict == "same face" || verdict == "faces differ", "{narrow:?}");
         assert!(narrow[0].to_string().starts_with("die "), "{narrow:?}");
@@ -243,7 +243,7 @@ mod twin {
     fn the_ghost_is_drawn_in_its_own_colour() {
         let s = twin_after(300);
         let area = full().die;
-        let t = panel(&s.app, area, crate::tui::die::render_die);
+        let t = panel(&s.app, area, crate::tui::panels::die::render_die);
         let b = t.backend().buffer();
         let ghost = (0..area.height)
             .flat_map(|y| (0..area.width).map(move |x| (x, y)))
@@ -331,11 +331,11 @@ mod twin {
 
 mod presets {
     use super::*;
-    use crate::tui::input::update;
-    use crate::tui::param::Param;
+    use crate::tui::input::update::update;
     use crate::tui::state::dialog::{Dialog, Group};
     use crate::tui::state::messages::Msg;
     use crate::tui::tests::Harness;
+    use crate::tui::vocabulary::param::Param;
     use crate::worker::Command;
     use dicesim_setup::preset::{LESSON, Preset, Store};
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
@@ -346,7 +346,7 @@ mod presets {
             Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))),
         )
         .into_iter()
-        .filter_map(|e| crate::tui::effects::perform(app, e))
+        .filter_map(|e| crate::tui::event_loop::effects::perform(app, e))
         .collect()
     }
 
@@ -546,7 +546,7 @@ mod presets {
 
 mod export {
     use super::*;
-    use crate::tui::input::update;
+    use crate::tui::input::update::update;
     use crate::tui::state::messages::Msg;
     use crate::tui::tests::screen;
     use crate::worker::Command;
@@ -560,7 +560,7 @@ mod export {
             Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))),
         )
         .into_iter()
-        .filter_map(|e| crate::tui::effects::perform(app, e))
+        .filter_map(|e| crate::tui::event_loop::effects::perform(app, e))
         .collect()
     }
 
@@ -786,11 +786,11 @@ mod export {
         let mut s = start();
         // Δt = 1e-5 with no friction: millions of rows, gigabytes of trace.
         s.command(Command::SetParam(
-            crate::tui::param::Param::named("ground.friction").scan_key(),
+            crate::tui::vocabulary::param::Param::named("ground.friction").scan_key(),
             0.0,
         ));
         s.command(Command::SetParam(
-            crate::tui::param::Param::named("integrator.dt").scan_key(),
+            crate::tui::vocabulary::param::Param::named("integrator.dt").scan_key(),
             1e-5,
         ));
         s.command(Command::Export {
@@ -813,10 +813,10 @@ mod export {
 mod themes {
     use super::*;
     use crate::tui::Theme;
-    use crate::tui::input::update;
+    use crate::tui::input::update::update;
     use crate::tui::state::messages::Msg;
     use crate::tui::tests::mid_impact_with;
-    use crate::tui::theme::Palette;
+    use crate::tui::vocabulary::theme::Palette;
     use ratatui::buffer::Buffer;
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
     use ratatui::style::Modifier;
@@ -951,7 +951,7 @@ mod themes {
 mod sizes {
     use super::*;
     use crate::tui::Theme;
-    use crate::tui::input::update;
+    use crate::tui::input::update::update;
     use crate::tui::state::messages::Msg;
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 

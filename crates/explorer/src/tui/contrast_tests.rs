@@ -7,7 +7,7 @@
 use super::map_tests::map_scene;
 use super::screen_tests::{SIZES, draw, states};
 use super::state::app::App;
-use super::theme::{Palette, Theme};
+use crate::tui::vocabulary::theme::{Palette, Theme};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;

@@ -1,12 +1,12 @@
 //! The explorer's controls in a lesson: the timeline, the questions before changes are
 //! lost, Esc that never quits, the batch size; rendered deterministically.
 
-use super::keys::{Action, Scope, label};
-use super::layout::screen_layout;
-use super::param::Param;
 use super::state::app::{App, Mode, Prompt};
 use super::tests::{Harness, start};
-use super::theme::Theme;
+use crate::tui::vocabulary::key_table::{Action, Scope, label};
+use crate::tui::vocabulary::layout::screen_layout;
+use crate::tui::vocabulary::param::Param;
+use crate::tui::vocabulary::theme::Theme;
 use crate::worker::Command;
 use dicesim_setup::preset::{Preset, Store};
 use ratatui::Terminal;
@@ -84,7 +84,7 @@ fn a_click_on_the_timeline_seeks_there() {
     let mut s = stepped_back();
     s.app.screen = ratatui::layout::Rect::new(0, 0, 120, 36);
     let areas = screen_layout(s.app.screen).expect("fits");
-    let bar = super::layout::timeline_bar(areas.timeline).expect("wide enough");
+    let bar = crate::tui::vocabulary::layout::timeline_bar(areas.timeline).expect("wide enough");
     let furthest = s.app.roll.live.timeline.furthest;
     for (column, expected) in [(bar.x, 0), (bar.right() - 1, furthest)] {
         let click = MouseEvent {
@@ -93,7 +93,7 @@ fn a_click_on_the_timeline_seeks_there() {
             row: bar.y,
             modifiers: ratatui::crossterm::event::KeyModifiers::NONE,
         };
-        let sent = crate::tui::input::update(
+        let sent = crate::tui::input::update::update(
             &mut s.app,
             crate::tui::state::messages::Msg::Input(Event::Mouse(click)),
         );
@@ -278,7 +278,7 @@ fn the_footer_and_help_come_from_the_key_table() {
         .filter_map(|l| l.split('│').nth(2))
         .collect::<Vec<_>>()
         .join(" ");
-    for row in super::keys::BINDINGS.iter().take(6) {
+    for row in crate::tui::vocabulary::key_table::BINDINGS.iter().take(6) {
         assert!(
             words(&inside).contains(&words(row.help)),
             "no `{}` in\n{help}",
@@ -360,7 +360,7 @@ fn slow_motion_classroom_opens_slowed_down_with_its_arrows() {
         s.app.die_screen.camera,
         super::state::camera::OrbitCamera::default()
     );
-    assert_eq!(s.app.theme.palette, super::theme::Palette::Light);
+    assert_eq!(s.app.theme.palette, crate::tui::vocabulary::theme::Palette::Light);
 }
 
 #[test]
@@ -410,7 +410,7 @@ fn s_saves_the_view_and_a_description_and_loading_applies_them() {
     let s = Harness::new(&saved, Theme::default());
     assert_eq!(s.app.roll.live.speed.label(), "1/5×");
     assert!(s.app.die_screen.arrows && s.app.twin.on && s.app.roll.live.twin.is_some());
-    assert_eq!(s.app.theme.palette, super::theme::Palette::Light);
+    assert_eq!(s.app.theme.palette, crate::tui::vocabulary::theme::Palette::Light);
     assert_eq!(s.app.die_screen.camera.yaw_deg, 15.0);
 }
 

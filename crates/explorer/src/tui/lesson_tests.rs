@@ -4,13 +4,13 @@
 //! The README's lesson is generated from the same file (a repository test, `tests/cli/docs.rs`,
 //! holds the two together).
 
-use super::input::update;
 use super::map_tests::computed;
 use super::screen_tests::SIZES;
 use super::state::dialog::Dialog;
 use super::state::messages::Msg;
 use super::tests::Harness;
-use super::theme::{Palette, Theme};
+use crate::tui::input::update::update;
+use crate::tui::vocabulary::theme::{Palette, Theme};
 use dicesim_setup::preset::{Preset, Store};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;

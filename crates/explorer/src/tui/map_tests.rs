@@ -1,15 +1,15 @@
 //! The basin-map screen from deterministic states: a small map computed here with
 //! `run_map`, handed to the app through the message the worker's map thread sends.
 
-use super::input::update;
-use super::param::Param;
-use super::render::render;
 use super::state::app::App;
 use super::state::app::Page;
 use super::state::map_view::{MapView, ZOOM_FACTOR, map_layout};
 use super::state::messages::{Effect, Msg};
 use super::tests::{Harness, boundary_sizes, screen, spun_preset, start};
-use super::theme::Theme;
+use crate::tui::input::update::update;
+use crate::tui::render::screen::render;
+use crate::tui::vocabulary::param::Param;
+use crate::tui::vocabulary::theme::Theme;
 use crate::worker::{Command, MapUpdate};
 use dicesim_experiment::basin::node_setup;
 use dicesim_experiment::{BasinMap, Layer, MapSpec, Method, run_map};
@@ -379,8 +379,8 @@ mod keys {
 
     #[test]
     fn the_range_editor_and_the_default_range_keep_to_bodies_that_can_exist() {
-        use crate::tui::keys::{Action, Input};
         use crate::tui::state::map_view::{Side, default_range};
+        use crate::tui::vocabulary::key_table::{Action, Input};
         use crate::worker::MapAxis;
         use dicesim_physics::{InitialCondition, Params, check_setup};
         // A die rounded by 0.9 on its half size of 1: a coarse step of 0.1 either side put 1,

@@ -9,48 +9,18 @@
 //! state; then
 //! `render`, which lays the panels out, and the event loop (`run`, `effects`, `tty`).
 
-mod chart;
-mod curve;
-mod dialog_keys;
-mod dialogs;
-mod die;
-mod effects;
-mod energy;
-pub(crate) mod fit;
-mod footer;
-pub(crate) mod format;
-mod header;
-mod help;
-mod input;
-mod keys;
-pub(crate) mod layout;
-mod ledger;
-pub(crate) mod map;
-mod map_keys;
-mod outcomes;
-pub(crate) mod param;
-mod params_panel;
-mod plot;
-mod popup;
-mod presentation;
-mod render;
-mod run;
-mod separation;
-mod solid;
+pub(crate) mod event_loop;
+pub(crate) mod input;
+pub(crate) mod panels;
+pub(crate) mod render;
 pub(crate) mod state;
-pub(crate) mod theme;
-mod throw_keys;
-mod timeline;
-mod tty;
-mod twin_keys;
-mod vectors;
-mod versus;
+pub(crate) mod vocabulary;
 
-pub use keys::markdown_tables;
-pub use render::render;
-pub use run::{ExplorerError, run};
+pub use event_loop::run::{ExplorerError, run};
+pub use render::screen::render;
 pub use state::app::App;
-pub use theme::Theme;
+pub use vocabulary::key_table::markdown_tables;
+pub use vocabulary::theme::Theme;
 
 #[cfg(test)]
 mod class_tests;

@@ -2,7 +2,7 @@
 //! to its end and the screen stepped back into it, then `w` / `V` pressed as a user would.
 
 use super::tests::{Harness, screen, settled};
-use super::theme::Theme;
+use crate::tui::vocabulary::theme::Theme;
 use crate::worker::Command;
 use dicesim_physics::Simulation;
 use dicesim_setup::preset::{Preset, Store};

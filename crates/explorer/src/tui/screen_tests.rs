@@ -10,9 +10,9 @@
 use super::map_tests::map_scene;
 use super::state::app::App;
 use super::tests::{Harness, editing, filled_table, help, mid_impact_with, settled, start, unstable};
-use super::theme::{Palette, Theme};
 use super::twin_tests::{complete, failed, partial, twin_scene};
 use super::view_tests::loaded_after;
+use crate::tui::vocabulary::theme::{Palette, Theme};
 use crate::worker::{BatchProgress, Command};
 use dicesim_setup::preset::{Preset, Store, shipped_text};
 use ratatui::Terminal;
@@ -74,7 +74,9 @@ pub(crate) fn states(theme: Theme) -> Vec<ScreenState> {
     // The table's push on the die at the impact, whole in the arrows' legend.
     let force = format!(
         "━ΣF {}",
-        super::format::fmt_num(super::vectors::total_force(&arrows.app.roll.live.die).norm())
+        crate::tui::vocabulary::format::fmt_num(
+            crate::tui::panels::die::vectors::total_force(&arrows.app.roll.live.die).norm()
+        )
     );
     let mut refused = editing();
     refused.key(KeyCode::Char('9'));
@@ -89,10 +91,10 @@ pub(crate) fn states(theme: Theme) -> Vec<ScreenState> {
         total: 10000,
     });
     let mut height = start();
-    height.select(super::param::Param::named("initial.height"));
+    height.select(crate::tui::vocabulary::param::Param::named("initial.height"));
     // 15 cm typed over with 0: the die would start inside the table.
     let mut refused_height = start();
-    refused_height.select(super::param::Param::named("initial.height"));
+    refused_height.select(crate::tui::vocabulary::param::Param::named("initial.height"));
     refused_height.key(KeyCode::Enter);
     for key in [
         KeyCode::Backspace,
@@ -272,7 +274,7 @@ pub(crate) fn states(theme: Theme) -> Vec<ScreenState> {
             {
                 let mut app = keyed(shipped("gentle-drop", theme), &[KeyCode::Tab]);
                 let m = super::map_tests::computed(&app);
-                super::input::update(&mut app, super::state::messages::Msg::from(m));
+                crate::tui::input::update::update(&mut app, super::state::messages::Msg::from(m));
                 let map = app.map.map().expect("computed");
                 app.map.cursor = (0..map.width())
                     .flat_map(|i| (0..map.height()).map(move |j| (i, j)))
@@ -287,7 +289,7 @@ pub(crate) fn states(theme: Theme) -> Vec<ScreenState> {
             {
                 let mut s = start();
                 s.key(KeyCode::Char('D'));
-                s.select(super::param::Param::named("ground.friction"));
+                s.select(crate::tui::vocabulary::param::Param::named("ground.friction"));
                 s.key(KeyCode::Enter);
                 for c in "0.3".chars() {
                     s.key(KeyCode::Char(c));

@@ -2,16 +2,16 @@
 //! hand through `update` and back from a saved preset, the plots' readout and fitted axis,
 //! the marked face pair, and the screens a class reads at a projector's sizes.
 
-use super::format::fmt_num;
-use super::input::update;
-use super::layout::screen_layout;
-use super::param::Param;
 use super::state::camera::OrbitCamera;
 use super::state::messages::Msg;
 use super::state::projection::die_view;
 use super::state::throw::THROW_TIME_S;
 use super::tests::{Harness, screen, start};
-use super::theme::{Palette, Theme};
+use crate::tui::input::update::update;
+use crate::tui::vocabulary::format::fmt_num;
+use crate::tui::vocabulary::layout::screen_layout;
+use crate::tui::vocabulary::param::Param;
+use crate::tui::vocabulary::theme::{Palette, Theme};
 use dicesim_experiment::trace::TraceWriter;
 use dicesim_physics::{Simulation, impact_starts};
 use dicesim_setup::preset::{Preset, Store, shipped_text};
@@ -133,7 +133,7 @@ fn mouse(s: &mut Harness, kind: MouseEventKind, column: u16, row: u16, modifiers
         modifiers,
     };
     for effect in update(&mut s.app, Msg::Input(Event::Mouse(m))) {
-        if let Some(c) = crate::tui::effects::perform(&mut s.app, effect) {
+        if let Some(c) = crate::tui::event_loop::effects::perform(&mut s.app, effect) {
             s.simulator.handle(c);
         }
     }
@@ -426,7 +426,7 @@ fn m_marks_the_face_pair_two_and_five_first() {
     assert_eq!(s.app.die_screen.face_pair, Some(2));
     let areas = screen_layout(s.app.screen).expect("a screen");
     let view = die_view(&s.app, areas.die);
-    let pic = super::die::picture(&s.app, &view);
+    let pic = crate::tui::panels::die::picture(&s.app, &view);
     for face in ["2", "5"] {
         assert!(pic.labels.iter().any(|l| l.text == face), "the axis's tip {face}");
     }

@@ -1,19 +1,19 @@
 //! Screens and panels from deterministic states: a fixed preset, exact step counts, keys
 //! fed through `update` into the worker's simulator, no thread and no clock.
 
-use super::die::render_die;
-use super::footer::render_footer;
-use super::header::render_header;
-use super::input::update;
-use super::layout::screen_layout;
-use super::outcomes::render_outcomes;
-use super::param::{Param, all};
-use super::params_panel::{STABILITY_CAUTION, STABILITY_DANGER, render_params};
-use super::plot::render_plot;
-use super::render::render;
 use super::state::app::App;
 use super::state::messages::Msg;
-use super::theme::Theme;
+use crate::tui::input::update::update;
+use crate::tui::panels::die::render_die;
+use crate::tui::panels::footer::render_footer;
+use crate::tui::panels::header::render_header;
+use crate::tui::panels::outcomes::render_outcomes;
+use crate::tui::panels::params_panel::{STABILITY_CAUTION, STABILITY_DANGER, render_params};
+use crate::tui::panels::quantity_plot::render_plot;
+use crate::tui::render::screen::render;
+use crate::tui::vocabulary::layout::screen_layout;
+use crate::tui::vocabulary::param::{Param, all};
+use crate::tui::vocabulary::theme::Theme;
 use crate::worker::{Command, Phase, Simulator};
 use dicesim_physics::Status;
 use dicesim_physics::{Limit, Stability};
@@ -63,7 +63,7 @@ impl Harness {
             &mut self.app,
             Msg::Input(Event::Key(KeyEvent::new(code, modifiers))),
         ) {
-            if let Some(c) = crate::tui::effects::perform(&mut self.app, effect) {
+            if let Some(c) = crate::tui::event_loop::effects::perform(&mut self.app, effect) {
                 self.simulator.handle(c);
             }
         }
@@ -517,7 +517,7 @@ mod keys {
     fn press_with(app: &mut App, code: KeyCode, modifiers: KeyModifiers) -> Vec<Command> {
         update(app, Msg::Input(Event::Key(KeyEvent::new(code, modifiers))))
             .into_iter()
-            .filter_map(|e| crate::tui::effects::perform(app, e))
+            .filter_map(|e| crate::tui::event_loop::effects::perform(app, e))
             .collect()
     }
 
@@ -530,7 +530,7 @@ mod keys {
         };
         update(app, Msg::Input(Event::Mouse(m)))
             .into_iter()
-            .filter_map(|e| crate::tui::effects::perform(app, e))
+            .filter_map(|e| crate::tui::event_loop::effects::perform(app, e))
             .collect()
     }
 
@@ -544,7 +544,7 @@ mod keys {
         assert_eq!(press(&mut a, KeyCode::Char('c')), [Command::ClearTable]);
         assert_eq!(
             press(&mut a, KeyCode::Char('b')),
-            [Command::BatchStart(super::super::state::roll::BATCH_ROLLS)]
+            [Command::BatchStart(super::super::state::roll_view::BATCH_ROLLS)]
         );
         assert!(!a.quit);
     }

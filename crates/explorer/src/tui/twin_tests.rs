@@ -2,14 +2,14 @@
 //! here by the experiment itself (fewer throws than the worker's, the same code), handed to
 //! the app as the worker hands them, at both sizes and in every theme.
 
-use super::curve::at_epsilon;
-use super::input::update;
-use super::layout::screen_layout;
 use super::state::app::App;
 use super::state::die_screen::Drawing;
 use super::state::messages::Msg;
 use super::tests::{Harness, start};
-use super::theme::{Palette, Theme};
+use crate::tui::input::update::update;
+use crate::tui::panels::twins::predictability_curve::at_epsilon;
+use crate::tui::vocabulary::layout::screen_layout;
+use crate::tui::vocabulary::theme::{Palette, Theme};
 use crate::worker::{Command, CurveSetup, CurveState, CurveUpdate};
 use dicesim_experiment::RunOptions;
 use dicesim_experiment::predict::{PredictCurve, run_prediction};

@@ -1,10 +1,10 @@
 //! The parameter twin in the explorer (`D`): edits go to die B only, both dice and both
 //! outcomes are shown, and what B differs by is named.
 
-use super::param::Param;
 use super::state::app::App;
 use super::tests::{Harness, screen, spun_preset, start};
-use super::theme::{Palette, Theme};
+use crate::tui::vocabulary::param::Param;
+use crate::tui::vocabulary::theme::{Palette, Theme};
 use crate::worker::{Command, Phase};
 use dicesim_physics::Simulation;
 use ratatui::crossterm::event::KeyCode;
@@ -156,5 +156,5 @@ fn die_b_is_drawn_with_its_own_body() {
     s.key(KeyCode::Enter);
     assert_eq!(s.app.roll.live.params.die.corner_radius, 0.0, "A stays sharp");
     let twin = s.app.roll.live.twin.clone().expect("die B rolls");
-    assert_eq!(super::die::twin_body(&s.app, &twin).radius, 0.4);
+    assert_eq!(crate::tui::panels::die::twin_body(&s.app, &twin).radius, 0.4);
 }

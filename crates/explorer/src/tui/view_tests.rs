@@ -1,18 +1,18 @@
 //! The die, the energy plot's legend and ticks and the outcome table, as a class sees them:
 //! snapshots of deterministic states and checks that a drawing defect would break.
 
-use super::chart::nice_ticks;
-use super::die::{Projection, picture, place_labels, render_die};
-use super::layout::screen_layout;
-use super::outcomes::{RELIABLE_ROLLS, render_outcomes};
-use super::plot::render_plot;
-use super::render::render;
-use super::solid::inside;
 use super::state::app::App;
 use super::state::camera::OrbitCamera;
 use super::state::die_screen::Drawing;
 use super::tests::{Harness, Panel, mid_impact_with, spun_preset};
-use super::theme::{Palette, Theme};
+use crate::tui::panels::chart::nice_ticks;
+use crate::tui::panels::die::{Projection, picture, place_labels, render_die};
+use crate::tui::panels::outcomes::{RELIABLE_ROLLS, render_outcomes};
+use crate::tui::panels::quantity_plot::render_plot;
+use crate::tui::render::screen::render;
+use crate::tui::vocabulary::layout::screen_layout;
+use crate::tui::vocabulary::solid::inside;
+use crate::tui::vocabulary::theme::{Palette, Theme};
 use crate::worker::Phase;
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
@@ -20,7 +20,13 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 
 /// One panel drawn where the layout of a `w`×`h` terminal puts it, painted as the screen is.
-fn panel_at(app: &App, w: u16, h: u16, pick: fn(&super::layout::Areas) -> Rect, draw: Panel) -> Buffer {
+fn panel_at(
+    app: &App,
+    w: u16,
+    h: u16,
+    pick: fn(&crate::tui::vocabulary::layout::Areas) -> Rect,
+    draw: Panel,
+) -> Buffer {
     let area = pick(&screen_layout(Rect::new(0, 0, w, h)).expect("big enough"));
     let mut t = Terminal::new(TestBackend::new(area.width, area.height)).expect("test backend");
     t.draw(|f| {
@@ -166,7 +172,7 @@ fn the_heavy_corner_of_a_loaded_die_is_marked() {
         s.app.die_screen.drawing = drawing;
         let extra = s.app.roll.live.params.die.extra_corner_mass;
         let heavy = extra.iter().position(|&m| m > 0.0).expect("a heavy corner");
-        let label = format!("+{} g", super::format::fmt_num(extra[heavy]));
+        let label = format!("+{} g", crate::tui::vocabulary::format::fmt_num(extra[heavy]));
         let b = check_solid(&s.app);
         let t = text(&b);
         assert!(t.contains(&label), "{label} on the die:\n{t}");
@@ -175,7 +181,7 @@ fn the_heavy_corner_of_a_loaded_die_is_marked() {
         let pic = picture(&s.app, &view);
         let mark = if drawing == Drawing::Ascii { "#" } else { "◆" };
         let marked = pic.labels.iter().any(|l| l.text == mark);
-        let seen = super::die::corner_is_seen(&s.app, &view, heavy);
+        let seen = crate::tui::panels::die::corner_is_seen(&s.app, &view, heavy);
         assert_eq!(marked, seen, "mark {marked}, corner seen {seen}");
         if drawing == Drawing::Braille {
             insta::assert_snapshot!("die_loaded_mid_air", t);
@@ -413,7 +419,7 @@ fn each_face_shows_its_95_percent_interval_in_figures_and_on_its_bar() {
         assert!(row.contains(&figures), "face {} wants {figures}:\n{row}", f + 1);
     }
     // Where the interval covers 1/6 the fair mark sits inside the shading.
-    let wide = |k: u64| super::outcomes::share_bar(k as f64 / n as f64, Some(wilson(k, n)), 29);
+    let wide = |k: u64| crate::tui::panels::outcomes::share_bar(k as f64 / n as f64, Some(wilson(k, n)), 29);
     let (low, fair, high) = (wide(350), wide(480), wide(700));
     assert!(
         fair.contains('┼') && !fair.contains('┃') && !fair.contains('┆'),
@@ -423,11 +429,11 @@ fn each_face_shows_its_95_percent_interval_in_figures_and_on_its_bar() {
     assert!(low.contains('┆') && !low.contains('┼'), "below 1/6: {low}");
     // A tight interval around 1/6 on a narrow bar (12 cells, 2.8 % each): 15.5–16.9 %
     // covers the fair share, so the mark reads fair though no cell is half shaded.
-    let tight = super::outcomes::share_bar(0.162, Some([0.155, 0.169]), 12);
+    let tight = crate::tui::panels::outcomes::share_bar(0.162, Some([0.155, 0.169]), 12);
     assert_eq!(tight.chars().nth(6), Some('┼'), "{tight}");
-    let below = super::outcomes::share_bar(0.150, Some([0.143, 0.157]), 12);
+    let below = crate::tui::panels::outcomes::share_bar(0.150, Some([0.143, 0.157]), 12);
     assert_eq!(below.chars().nth(6), Some('┆'), "{below}");
-    let above = super::outcomes::share_bar(0.185, Some([0.177, 0.192]), 12);
+    let above = crate::tui::panels::outcomes::share_bar(0.185, Some([0.177, 0.192]), 12);
     assert_eq!(above.chars().nth(6), Some('┃'), "{above}");
     // The solid part ends at the interval's low end, the shading at its high end.
     let [l, h] = wilson(700, n);
@@ -465,7 +471,7 @@ fn the_table_says_how_many_rolls_show_its_bias() {
     assert!(
         t.contains(&format!(
             "bias this large shows in {} rolls",
-            crate::tui::format::group(n)
+            crate::tui::vocabulary::format::group(n)
         )),
         "{t}"
     );
@@ -659,7 +665,7 @@ mod map_screen {
 /// and drilled pips, whole screens at both sizes.
 mod real_dice {
     use super::*;
-    use crate::tui::solid::Solid;
+    use crate::tui::vocabulary::solid::Solid;
     use dicesim_physics::Params;
     use dicesim_physics::contact_sphere_centres;
     use dicesim_setup::preset::{Preset, shipped_text};
@@ -786,7 +792,7 @@ mod real_dice {
 /// is sent to the worker, which restarts the roll with the new body.
 #[test]
 fn a_body_value_no_die_can_have_is_refused_and_changes_nothing() {
-    use super::param::Param;
+    use crate::tui::vocabulary::param::Param;
     let preset = dicesim_setup::preset::Preset::from_toml_str(
         dicesim_setup::preset::shipped_text("rounded-die").expect("shipped"),
         "rounded-die",

@@ -1,0 +1,518 @@
+//! The presentation view (`P`): for a projector and the back row. The die takes most of
+//! the screen over a fixed height scale in cm (the camera follows the die across the table
+//! but never up and down, so a drop or a bounce is seen as a change of height), with the
+//! face up in large block digits, the time and one number the lesson is about beside it.
+
+use crate::tui::panels::die::{self, Projection};
+use crate::tui::panels::footer::{KeyHint, render_footer, render_help, render_key_hints};
+use crate::tui::state::app::{App, Mode};
+use crate::tui::vocabulary::key_table::{Action, Scope, first_key, rows};
+use nalgebra::Vector3;
+use ratatui::Frame;
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::style::Style;
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Paragraph};
+
+/// Rows and columns of one block digit in [`GLYPHS`].
+const GLYPH_ROWS: usize = 5;
+const GLYPH_COLUMNS: usize = 5;
+
+/// The faces' numbers as 5×5 block patterns (`#` filled), drawn scaled up; `?` for a die
+/// with no face up (on an edge).
+const GLYPHS: [(char, [&str; GLYPH_ROWS]); 7] = [
+    ('1', ["  #  ", " ##  ", "  #  ", "  #  ", " ### "]),
+    ('2', ["#### ", "    #", " ### ", "#    ", "#####"]),
+    ('3', ["#### ", "    #", " ### ", "    #", "#### "]),
+    ('4', ["#  # ", "#  # ", "#####", "   # ", "   # "]),
+    ('5', ["#####", "#    ", "#### ", "    #", "#### "]),
+    ('6', [" ### ", "#    ", "#### ", "#   #", " ### "]),
+    ('?', [" ### ", "#   #", "  ## ", "     ", "  #  "]),
+];
+
+/// The block pattern of `c` (`?` for anything without one).
+pub(crate) fn glyph(c: char) -> [&'static str; GLYPH_ROWS] {
+    GLYPHS
+        .iter()
+        .find(|(g, _)| *g == c)
+        .or_else(|| GLYPHS.iter().find(|(g, _)| *g == '?'))
+        .map(|(_, rows)| *rows)
+        .expect("the table has `?`")
+}
+
+/// `c` in block characters, each pattern cell `sx` columns by `sy` rows.
+pub(crate) fn big_digit(c: char, sx: usize, sy: usize) -> Vec<String> {
+    glyph(c)
+        .iter()
+        .flat_map(|row| {
+            let line: String = row
+                .chars()
+                .flat_map(|p| std::iter::repeat_n(if p == '#' { '█' } else { ' ' }, sx))
+                .collect();
+            std::iter::repeat_n(line, sy)
+        })
+        .collect()
+}
+
+/// Columns of the height scale left of the die: `100 ┤`.
+const SCALE_WIDTH: u16 = 6;
+
+/// cm between the scale's ticks: the smallest of 1, 2, 5 × 10ⁿ that gives at most
+/// `most` ticks over `span` cm.
+pub(crate) fn tick_step(span: f64, most: usize) -> f64 {
+    let most = most.max(1) as f64;
+    let mut decade = 10f64.powi((span / most).max(1e-6).log10().floor() as i32);
+    loop {
+        for m in [1.0, 2.0, 5.0] {
+            if span / (m * decade) <= most {
+                return m * decade;
+            }
+        }
+        decade *= 10.0;
+    }
+}
+
+/// The die's view with a fixed vertical range: from just below the table to above the
+/// highest the roll's centre can get (its start, or where an upward throw peaks, ½v²/g
+/// higher), the same for every step of the roll; the zoom keys shrink it from the top, the
+/// table staying at the bottom. Horizontally the camera follows the die, as on the main
+/// screen, so the die stays in view as it travels.
+pub(crate) fn fixed_view(app: &App, area: Rect) -> Projection {
+    let live = &app.roll.live;
+    let camera = app.die_screen.camera;
+    let half = live.params.die.largest_half_size();
+    let (sp, cp) = camera.pitch_deg.to_radians().sin_cos();
+    let rise = live.initial.velocity[2].max(0.0);
+    let peak = live.initial.height + rise * rise / (2.0 * live.params.world.gravity);
+    // A corner reaches √3 half sizes from the centre; the table in front of the die shows
+    // below its foot by the pitch.
+    let reach = 3f64.sqrt() * half;
+    let bottom = -(reach * sp.abs() + 0.5 * half);
+    let top = ((peak + reach) * cp + reach * sp.abs()).max(bottom + 4.0 * reach);
+    let height = (top - bottom) * 1.25f64.powi(-camera.zoom);
+    let width = height * area.width.max(1) as f64 / (2.0 * area.height.max(1) as f64);
+    let die = &live.die;
+    Projection {
+        camera,
+        focus: Vector3::new(die.centre.x, die.centre.y, 0.0),
+        x: (-width / 2.0, width / 2.0),
+        y: (bottom, bottom + height),
+        area,
+    }
+}
+
+/// The row of `view.area` (from its top) where a height of `z_cm` above the table shows,
+/// straight above the die's foot (where the die's centre is), if inside the area.
+pub(crate) fn row_of_height(view: &Projection, z_cm: f64) -> Option<u16> {
+    let y = z_cm * view.camera.pitch_deg.to_radians().cos();
+    let f = (view.y.1 - y) / (view.y.1 - view.y.0);
+    (0.0..1.0)
+        .contains(&f)
+        .then_some((f * view.area.height as f64) as u16)
+}
+
+/// Draws the presentation view over the whole terminal.
+pub(crate) fn render(app: &App, frame: &mut Frame) {
+    let area = frame.area();
+    let t = &app.theme;
+    let [header, body, footer] = area.layout(&Layout::vertical([
+        Constraint::Length(1),
+        Constraint::Min(0),
+        Constraint::Length(1),
+    ]));
+    let side = (area.width * 2 / 7).clamp(24, 36);
+    let [stage, panel] = body.layout(&Layout::horizontal([
+        Constraint::Min(0),
+        Constraint::Length(side),
+    ]));
+    let live = &app.roll.live;
+    let at_end = live.timeline.ended && live.timeline.position >= live.timeline.furthest;
+    // Between the stop and rest the face is known but the die still moves: not "settled" yet.
+    let phase = match (die::decided_at(app), live.phase) {
+        (Some(_), crate::worker::Phase::Ended(o)) if !at_end => match o.face {
+            Some(f) => format!("face {f} decided, coming to rest"),
+            None => "decided, coming to rest".to_string(),
+        },
+        _ => live.phase.label(),
+    };
+    let title = Line::from(vec![
+        Span::styled(" dicesim ", t.heading()),
+        // The speed too: `]` and `[` change it here, and a class should see that they did.
+        Span::raw(format!(
+            "· {} · speed {} · {phase} ",
+            app.setup.preset.name,
+            app.setup.speed.label()
+        )),
+    ]);
+    frame.render_widget(Paragraph::new(title), header);
+
+    let block = Block::bordered().title(Line::styled(" die · height scale in cm ", t.heading()));
+    let inner = block.inner(stage);
+    frame.render_widget(block, stage);
+    if inner.width > SCALE_WIDTH + 4 && inner.height > 4 {
+        let [scale, canvas] = inner.layout(&Layout::horizontal([
+            Constraint::Length(SCALE_WIDTH),
+            Constraint::Min(0),
+        ]));
+        let view = fixed_view(app, canvas);
+        die::draw(app, &view, frame);
+        draw_scale(app, &view, scale, frame);
+    }
+    draw_panel(app, panel, frame);
+
+    if app.mode() == Mode::Normal {
+        render_key_hints(app, hints(), footer, frame);
+    } else {
+        render_footer(app, footer, frame);
+    }
+    if app.help_scroll().is_some() {
+        render_help(app, area, frame);
+    }
+    crate::tui::panels::overlays::dialogs::render(app, area, frame);
+}
+
+/// The footer's hints: the view's own rows of the key table, then the few main-screen keys
+/// a lesson uses here (play, replay, a random roll, the start and end, help and quit).
+fn hints() -> Vec<KeyHint> {
+    let wanted = [
+        Action::TogglePlay,
+        Action::Replay,
+        Action::RandomRoll,
+        Action::ToStart,
+        Action::Help,
+        Action::Quit,
+    ];
+    let own = rows(Scope::Show).filter(|b| b.screen == Scope::Show || b.action == Action::Presentation);
+    let shared = rows(Scope::Show).filter(|b| wanted.contains(&b.action));
+    own.chain(shared)
+        .filter_map(|b| {
+            let h = b.hint?;
+            let words = if b.action == Action::Presentation {
+                "back"
+            } else {
+                h.words
+            };
+            Some((h.keys.to_string(), words.to_string(), h.priority))
+        })
+        .collect()
+}
+
+/// The height scale: a tick at each whole step of cm, labelled, the table at 0.
+fn draw_scale(app: &App, view: &Projection, area: Rect, frame: &mut Frame) {
+    let t = &app.theme;
+    let cp = view.camera.pitch_deg.to_radians().cos();
+    if cp <= 0.05 {
+        // Looking almost straight down, heights do not show on screen.
+        return;
+    }
+    let span = view.y.1 / cp;
+    let step = tick_step(span, (area.height as usize / 3).max(2));
+    let buf = frame.buffer_mut();
+    let mut z = 0.0;
+    let style = Style::new().fg(t.ground());
+    while z <= span {
+        if let Some(row) = row_of_height(view, z) {
+            let label = format!("{:>4} ┤", crate::tui::vocabulary::format::fmt_num(z));
+            buf.set_string(area.x, area.y + row, &label, Style::new());
+            buf.set_string(area.x + SCALE_WIDTH - 1, area.y + row, "┤", style);
+        }
+        z += step;
+    }
+}
+
+/// The panel beside the die: the face up in large digits, the time and the chosen number.
+fn draw_panel(app: &App, area: Rect, frame: &mut Frame) {
+    let t = &app.theme;
+    let live = &app.roll.live;
+    let block = Block::bordered().title(Line::styled(" face up ", t.heading()));
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    let readout = app.die_screen.readout;
+    let face = match live.phase {
+        crate::worker::Phase::Ended(o) if o.face.is_none() => '?',
+        _ => char::from_digit(live.die.face_up as u32, 10).unwrap_or('?'),
+    };
+    // Text below the digits: the time, the number's name and value, the key that changes it.
+    let text_rows = 7;
+    let sy = ((inner.height.saturating_sub(text_rows) as usize) / GLYPH_ROWS).clamp(1, 3);
+    let sx = (2 * sy)
+        .min((inner.width as usize).saturating_sub(2) / GLYPH_COLUMNS)
+        .max(1);
+    let mut lines: Vec<Line> = big_digit(face, sx, sy)
+        .into_iter()
+        .map(|l| Line::styled(l, t.heading()).centered())
+        .collect();
+    lines.push(Line::raw(""));
+    lines.push(Line::from(vec![Span::styled(format!("t {:.3} s", live.time_s), t.heading())]).centered());
+    if let Some(t_s) = die::decided_at(app) {
+        lines.push(Line::raw(format!("face decided {t_s:.3} s")).centered());
+    }
+    lines.push(Line::raw(""));
+    lines.push(Line::raw(readout.name()).centered());
+    lines.push(Line::styled(readout.text(&app.roll.live), t.heading()).centered());
+    lines.push(
+        Line::from(vec![
+            Span::styled(first_key(Scope::Show, Action::NextReadout), t.key()),
+            Span::raw(format!(" {}", readout.next().name())),
+        ])
+        .centered(),
+    );
+    frame.render_widget(Paragraph::new(lines), inner);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tui::state::app::Page;
+    use crate::tui::state::die_screen::Readout;
+    use crate::tui::state::messages::Msg;
+    use crate::tui::tests::{Harness, screen, spun_preset};
+    use crate::tui::vocabulary::layout::screen_layout;
+    use crate::tui::vocabulary::theme::{Palette, Theme};
+    use ratatui::Terminal;
+    use ratatui::backend::TestBackend;
+    use ratatui::buffer::Buffer;
+    use ratatui::crossterm::event::KeyCode;
+
+    const SIZES: [(u16, u16); 3] = [(80, 24), (100, 30), (120, 36)];
+
+    fn projector() -> Theme {
+        Theme {
+            palette: Palette::Projector,
+            ..Theme::default()
+        }
+    }
+
+    /// The spun paper roll (from 15 cm) in the presentation view, until its centre is
+    /// below `height` cm.
+    fn falling_to(height: f64, theme: Theme) -> Harness {
+        let mut s = Harness::new(&spun_preset(), theme);
+        s.key(KeyCode::Char('P'));
+        while s.simulator.simulation().state().position.z >= height {
+            assert_eq!(s.simulator.advance_steps(1), 1, "the die falls");
+        }
+        s.sync();
+        s
+    }
+
+    fn buffer(app: &App, w: u16, h: u16) -> Buffer {
+        let mut t = Terminal::new(TestBackend::new(w, h)).expect("test backend");
+        t.draw(|f| crate::tui::render(app, f)).expect("draw");
+        t.backend().buffer().clone()
+    }
+
+    fn row_text(b: &Buffer, y: u16, from: u16, to: u16) -> String {
+        (from..to).map(|x| b[(x, y)].symbol()).collect()
+    }
+
+    /// The rows of the screen whose scale column reads `label ┤`.
+    fn tick_row(b: &Buffer, label: &str) -> Option<u16> {
+        let want = format!("{label:>4} ┤");
+        (0..b.area.height).find(|&y| row_text(b, y, 1, 1 + SCALE_WIDTH) == want)
+    }
+
+    /// The topmost row of the die's canvas holding a Braille dot (the die, falling above
+    /// the table's far tiles, is the highest thing drawn).
+    fn top_of_drawing(b: &Buffer) -> u16 {
+        (1..b.area.height - 1)
+            .find(|&y| {
+                row_text(b, y, 1 + SCALE_WIDTH, b.area.width / 2)
+                    .chars()
+                    .any(|c| ('\u{2801}'..='\u{28ff}').contains(&c))
+            })
+            .expect("something is drawn")
+    }
+
+    #[test]
+    fn p_opens_and_closes_it_n_picks_the_number_and_esc_leaves() {
+        let mut s = Harness::new(&spun_preset(), projector());
+        s.key(KeyCode::Char('P'));
+        assert_eq!(s.app.page, Page::Presentation);
+        let names: Vec<&str> = (0..4)
+            .map(|_| {
+                let name = s.app.die_screen.readout.name();
+                s.key(KeyCode::Char('N'));
+                name
+            })
+            .collect();
+        assert_eq!(names, ["height", "speed", "spin", "kinetic energy"]);
+        assert_eq!(s.app.die_screen.readout, Readout::Height, "round again");
+        // The main screen's keys work here: space plays.
+        s.key(KeyCode::Char(' '));
+        assert!(s.app.roll.live.playing);
+        s.key(KeyCode::Esc);
+        assert_eq!(s.app.page, Page::Die);
+        s.key(KeyCode::Char('P'));
+        s.key(KeyCode::Char('P'));
+        assert_eq!(s.app.page, Page::Die);
+        // On the main screen N means nothing; in the view, no value is typed blind.
+        s.key(KeyCode::Char('N'));
+        assert_eq!(s.app.die_screen.readout, Readout::Height);
+        s.key(KeyCode::Char('P'));
+        s.key(KeyCode::Enter);
+        assert!(s.app.value_editor().is_none());
+        assert!(s.app.notice.as_deref().is_some_and(|n| n.contains("main screen")));
+    }
+
+    #[test]
+    fn the_mouse_orbits_and_zooms_and_selects_no_hidden_value() {
+        use ratatui::crossterm::event::{Event, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
+        let mut s = Harness::new(&spun_preset(), projector());
+        s.key(KeyCode::Char('P'));
+        let areas = screen_layout(s.app.screen).expect("fits");
+        // Where the parameter list would be on the main screen: its third row.
+        let (column, row) = (areas.params.x + 3, areas.params.y + 4);
+        let mouse = |kind| {
+            Msg::Input(Event::Mouse(MouseEvent {
+                kind,
+                column,
+                row,
+                modifiers: KeyModifiers::NONE,
+            }))
+        };
+        let (selected, zoom) = (s.app.die_screen.selected, s.app.die_screen.camera.zoom);
+        crate::tui::input::update::update(&mut s.app, mouse(MouseEventKind::Down(MouseButton::Left)));
+        assert_eq!(
+            s.app.die_screen.selected, selected,
+            "no value selected behind the die"
+        );
+        assert_eq!(
+            s.app.die_screen.drag,
+            Some((column, row)),
+            "a drag starts anywhere"
+        );
+        crate::tui::input::update::update(&mut s.app, mouse(MouseEventKind::ScrollUp));
+        assert_eq!(s.app.die_screen.camera.zoom, zoom + 1);
+        assert_eq!(s.app.setup.params, spun_preset().params(), "no value scrolled");
+    }
+
+    #[test]
+    fn each_number_has_its_unit_and_the_physics_value() {
+        let mut s = falling_to(10.0, projector());
+        let live = s.app.roll.live.clone();
+        let v = live.die.velocity;
+        // 5 cm fallen from rest in height: the centre moves down at √(2·g·5 cm), about
+        // 99 cm/s, besides the push across.
+        let speed = (v.x * v.x + v.y * v.y + v.z * v.z).sqrt();
+        assert!(speed > (2.0 * 981.0 * 4.99f64).sqrt(), "{speed}");
+        let expect = [
+            format!("{:.2} cm", live.die.centre.z),
+            format!("{speed:.1} cm/s"),
+            format!("{:.1} rad/s", live.die.angular_velocity.norm()),
+            format!(
+                "{} erg",
+                crate::tui::vocabulary::format::fmt_num(live.energy.translational + live.energy.rotational)
+            ),
+        ];
+        for want in expect {
+            let t = screen(&s.app, 100, 30);
+            assert!(t.contains(&want), "{want} not in\n{t}");
+            s.key(KeyCode::Char('N'));
+        }
+    }
+
+    #[test]
+    fn the_face_up_is_in_large_digits_nothing_drawn_over_them() {
+        for theme in [projector(), Theme::default()] {
+            let s = falling_to(10.0, theme);
+            let face = char::from_digit(s.app.roll.live.die.face_up as u32, 10).expect("1…6");
+            for (w, h) in SIZES {
+                let b = buffer(&s.app, w, h);
+                let side = (w * 2 / 7).clamp(24, 36);
+                let (x0, x1) = (w - side + 1, w - 1);
+                // The digit's rows, in order, each centred in the panel.
+                let rows: Vec<String> = (2..h - 2)
+                    .map(|y| row_text(&b, y, x0, x1))
+                    .filter(|r| r.contains('█'))
+                    .map(|r| r.trim_matches(' ').to_string())
+                    .collect();
+                assert!(rows.len() >= 5, "{w}×{h}: {rows:?}");
+                assert!(
+                    rows.iter().all(|r| r.chars().all(|c| c == '█' || c == ' ')),
+                    "nothing but the digit in its rows at {w}×{h}: {rows:?}"
+                );
+                let sy = rows.len() / GLYPH_ROWS;
+                let width = rows.iter().map(|r| r.chars().count()).max().unwrap_or(0);
+                let sx = (width + 4) / GLYPH_COLUMNS;
+                let want: Vec<String> = big_digit(face, sx, sy)
+                    .into_iter()
+                    .map(|r| r.trim_matches(' ').to_string())
+                    .filter(|r| !r.is_empty())
+                    .collect();
+                assert_eq!(rows, want, "face {face} at {w}×{h}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_camera_does_not_follow_the_die_up_and_down() {
+        let start = {
+            let mut s = Harness::new(&spun_preset(), projector());
+            s.key(KeyCode::Char('P'));
+            s
+        };
+        let lower = falling_to(10.0, projector());
+        for (w, h) in SIZES {
+            let (a, b) = (buffer(&start.app, w, h), buffer(&lower.app, w, h));
+            let floor = tick_row(&a, "0").expect("the table's tick");
+            assert_eq!(tick_row(&b, "0"), Some(floor), "the table stays at {w}×{h}");
+            let ten = tick_row(&a, "10").expect("a 10 cm tick");
+            assert_eq!(tick_row(&b, "10"), Some(ten));
+            assert!(ten < floor);
+            // The die is drawn lower as it falls, by about 5 cm of the scale: half the
+            // rows from the table to the 10 cm tick.
+            let drop = top_of_drawing(&b) as f64 - top_of_drawing(&a) as f64;
+            let five_cm = (floor - ten) as f64 / 2.0;
+            assert!(
+                (drop - five_cm).abs() <= 1.5,
+                "{w}×{h}: drawn {drop} rows lower, 5 cm is {five_cm} rows"
+            );
+        }
+        // The main screen's view follows the die: its picture rises with it.
+        let main = |s: &Harness| {
+            let area = screen_layout(Rect::new(0, 0, 120, 36)).expect("fits").die;
+            Projection::new(&s.app, area).y
+        };
+        assert_ne!(main(&start), main(&lower));
+    }
+
+    #[test]
+    fn ticks_are_one_two_or_five_times_a_power_of_ten() {
+        // 16 cm in at most 5 ticks: 1 and 2 cm give 16 and 8, 5 cm gives 3.2.
+        assert_eq!(tick_step(16.0, 5), 5.0);
+        // 0.9 cm in 4: 0.1 → 9, 0.2 → 4.5, 0.5 → 1.8.
+        assert_eq!(tick_step(0.9, 4), 0.5);
+        assert_eq!(tick_step(40.0, 4), 10.0);
+        let digit = big_digit('4', 4, 2);
+        assert_eq!(digit.len(), 10);
+        assert!(digit.iter().all(|r| r.chars().count() == 20));
+        let faces: Vec<_> = ('1'..='6').map(glyph).collect();
+        for (i, a) in faces.iter().enumerate() {
+            assert!(faces[i + 1..].iter().all(|b| b != a), "each face its own glyph");
+        }
+    }
+
+    #[test]
+    fn the_speed_shows_and_follows_the_speed_keys() {
+        let mut s = falling_to(5.0, projector());
+        let was = s.app.setup.speed;
+        let before = row_text(&buffer(&s.app, 80, 24), 0, 0, 80);
+        assert!(before.contains(&format!("speed {}", was.label())), "{before}");
+        s.key(KeyCode::Char(']'));
+        let after = row_text(&buffer(&s.app, 80, 24), 0, 0, 80);
+        assert!(
+            after.contains(&format!("speed {}", s.app.setup.speed.label())),
+            "{after}"
+        );
+        assert_ne!(s.app.setup.speed, was, "] is the faster key in this view");
+        assert_ne!(before, after, "and the screen says so");
+    }
+
+    #[test]
+    fn snapshots_at_three_sizes_in_the_projector_theme() {
+        let s = falling_to(10.0, projector());
+        for (w, h) in SIZES {
+            insta::assert_snapshot!(format!("presentation_falling_{w}x{h}"), screen(&s.app, w, h));
+        }
+    }
+}

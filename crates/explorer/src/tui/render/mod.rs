@@ -1,0 +1,3 @@
+//! Drawing a frame: which screen and which panels, placed where.
+
+pub(crate) mod screen;
