@@ -3,7 +3,7 @@
 
 use super::state::app::App;
 use super::tests::{mid_impact, settled, start};
-use crate::tui::panels::ledger::{bar_rows, render_ledger};
+use crate::tui::panels::ledger::bar_rows;
 use crate::tui::vocabulary::layout::screen_layout;
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
@@ -29,11 +29,11 @@ mod ledger {
         let area = full().ledger;
         insta::assert_snapshot!(
             "ledger_mid_impact",
-            panel(&mid_impact().app, area, render_ledger).backend()
+            panel(&mid_impact().app, area, crate::tui::panels::ledger::render).backend()
         );
         insta::assert_snapshot!(
             "ledger_settled",
-            panel(&settled().app, area, render_ledger).backend()
+            panel(&settled().app, area, crate::tui::panels::ledger::render).backend()
         );
     }
 
@@ -73,7 +73,7 @@ mod ledger {
     fn bar_cells_take_the_colours_of_the_plot_lines() {
         let s = start();
         let area = full().ledger;
-        let t = panel(&s.app, area, render_ledger);
+        let t = panel(&s.app, area, crate::tui::panels::ledger::render);
         let b = t.backend().buffer();
         let series = s.app.theme.energy_series();
         // Bottom row inside the border: gravity, drawn in the gravitational line's colour.
@@ -87,7 +87,7 @@ mod ledger {
 mod vectors {
     use super::*;
     use crate::tui::input::update::update;
-    use crate::tui::panels::die::render_die;
+    use crate::tui::panels::die;
     use crate::tui::panels::die::vectors::{ARROWS, Arrow, arrow_length};
     use crate::tui::state::messages::Msg;
     use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
@@ -131,7 +131,7 @@ mod vectors {
     fn die_with_vectors_mid_impact() {
         let app = with_vectors();
         let area = full().die;
-        let t = panel(&app, area, render_die);
+        let t = panel(&app, area, die::render);
         insta::assert_snapshot!("die_vectors_mid_impact", t.backend());
         let b = t.backend().buffer();
         let text: String = (0..area.height)
@@ -154,7 +154,7 @@ mod vectors {
         }
         assert_eq!(Arrow::AngularVelocity.colour(&app), Color::Cyan);
         // Without the toggle none of the arrow colours but the contact red appears.
-        let plain = panel(&mid_impact().app, area, render_die);
+        let plain = panel(&mid_impact().app, area, die::render);
         let pb = plain.backend().buffer();
         let cyan = (0..area.height)
             .flat_map(|y| (0..area.width).map(move |x| (x, y)))
@@ -243,7 +243,7 @@ mod twin {
     fn the_ghost_is_drawn_in_its_own_colour() {
         let s = twin_after(300);
         let area = full().die;
-        let t = panel(&s.app, area, crate::tui::panels::die::render_die);
+        let t = panel(&s.app, area, crate::tui::panels::die::render);
         let b = t.backend().buffer();
         let ghost = (0..area.height)
             .flat_map(|y| (0..area.width).map(move |x| (x, y)))

@@ -4,12 +4,12 @@
 use super::state::app::App;
 use super::state::messages::Msg;
 use crate::tui::input::update::update;
-use crate::tui::panels::die::render_die;
-use crate::tui::panels::footer::render_footer;
-use crate::tui::panels::header::render_header;
-use crate::tui::panels::outcomes::render_outcomes;
-use crate::tui::panels::params_panel::{STABILITY_CAUTION, STABILITY_DANGER, render_params};
-use crate::tui::panels::quantity_plot::render_plot;
+use crate::tui::panels::die;
+use crate::tui::panels::footer;
+use crate::tui::panels::header;
+use crate::tui::panels::outcomes;
+use crate::tui::panels::params_panel::{self, STABILITY_CAUTION, STABILITY_DANGER};
+use crate::tui::panels::quantity_plot;
 use crate::tui::render::screen::render;
 use crate::tui::vocabulary::layout::screen_layout;
 use crate::tui::vocabulary::param::{Param, all};
@@ -274,12 +274,12 @@ fn each_panel() {
     let impact = mid_impact();
     let areas = screen_layout(Rect::new(0, 0, 120, 36)).expect("full size");
     let panels: [(&str, &App, Rect, Panel); 6] = [
-        ("panel_header", &impact.app, areas.header, render_header),
-        ("panel_params", &impact.app, areas.params, render_params),
-        ("panel_outcomes", &table.app, areas.outcomes, render_outcomes),
-        ("panel_die", &impact.app, areas.die, render_die),
-        ("panel_energy", &impact.app, areas.energy, render_plot),
-        ("panel_footer", &impact.app, areas.footer, render_footer),
+        ("panel_header", &impact.app, areas.header, header::render),
+        ("panel_params", &impact.app, areas.params, params_panel::render),
+        ("panel_outcomes", &table.app, areas.outcomes, outcomes::render),
+        ("panel_die", &impact.app, areas.die, die::render),
+        ("panel_energy", &impact.app, areas.energy, quantity_plot::render),
+        ("panel_footer", &impact.app, areas.footer, footer::render),
     ];
     for (name, app, area, panel) in panels {
         let mut t = Terminal::new(TestBackend::new(area.width, area.height)).expect("test backend");

@@ -6,9 +6,9 @@ use super::state::camera::OrbitCamera;
 use super::state::die_screen::Drawing;
 use super::tests::{Harness, Panel, mid_impact_with, spun_preset};
 use crate::tui::panels::chart::nice_ticks;
-use crate::tui::panels::die::{Projection, picture, place_labels, render_die};
-use crate::tui::panels::outcomes::{RELIABLE_ROLLS, render_outcomes};
-use crate::tui::panels::quantity_plot::render_plot;
+use crate::tui::panels::die::{self, Projection, picture, place_labels};
+use crate::tui::panels::outcomes::{self, RELIABLE_ROLLS};
+use crate::tui::panels::quantity_plot;
 use crate::tui::render::screen::render;
 use crate::tui::vocabulary::layout::screen_layout;
 use crate::tui::vocabulary::solid::inside;
@@ -105,7 +105,7 @@ fn inner_cells(app: &App, body: Rect) -> Vec<(u16, u16)> {
 /// Draws the die panel and checks what a solid die promises: no floor tile, shadow or ghost
 /// inside its outline, pips drawn, labels on cells of their own.
 fn check_solid(app: &App) -> Buffer {
-    let b = panel_at(app, 120, 36, |a| a.die, render_die);
+    let b = panel_at(app, 120, 36, |a| a.die, die::render);
     let body = Rect::new(1, 1, b.area.width - 2, b.area.height - 2);
     let inner = inner_cells(app, Rect::new(0, 0, body.width, body.height));
     assert!(inner.len() > 10, "the die covers some cells: {}", inner.len());
@@ -181,7 +181,7 @@ fn the_heavy_corner_of_a_loaded_die_is_marked() {
         let pic = picture(&s.app, &view);
         let mark = if drawing == Drawing::Ascii { "#" } else { "◆" };
         let marked = pic.labels.iter().any(|l| l.text == mark);
-        let seen = crate::tui::panels::die::corner_is_seen(&s.app, &view, heavy);
+        let seen = die::corner_is_seen(&s.app, &view, heavy);
         assert_eq!(marked, seen, "mark {marked}, corner seen {seen}");
         if drawing == Drawing::Braille {
             insta::assert_snapshot!("die_loaded_mid_air", t);
@@ -219,7 +219,7 @@ fn a_die_shows_at_most_three_faces_and_nine_edges() {
 fn ascii_draws_slopes_not_stars() {
     let mut s = after(150, Theme::default());
     s.app.die_screen.drawing = Drawing::Ascii;
-    let b = panel_at(&s.app, 120, 36, |a| a.die, render_die);
+    let b = panel_at(&s.app, 120, 36, |a| a.die, die::render);
     let t = text(&b);
     assert!(!t.contains('*'), "{t}");
     for c in ['-', '|', '/', '\\'] {
@@ -289,7 +289,7 @@ fn projector_screen_with_the_solid_die() {
     let s = after(150, projector());
     let t = screen(&s.app, 100, 30);
     insta::assert_snapshot!("projector_mid_air_100x30", t);
-    let b = panel_at(&s.app, 100, 30, |a| a.die, render_die);
+    let b = panel_at(&s.app, 100, 30, |a| a.die, die::render);
     // Seen faces are filled: a good share of the die's cells carry a face's grey.
     let body = Rect::new(1, 1, b.area.width - 2, b.area.height - 2);
     let inner = inner_cells(&s.app, Rect::new(0, 0, body.width, body.height));
@@ -307,7 +307,7 @@ fn the_energy_legend_names_every_term_at_both_sizes() {
     for theme in [Theme::default(), Theme::monochrome()] {
         let s = mid_impact_with(theme);
         for (w, h) in [(80, 24), (120, 36)] {
-            let b = panel_at(&s.app, w, h, |a| a.energy, render_plot);
+            let b = panel_at(&s.app, w, h, |a| a.energy, quantity_plot::render);
             let t = text(&b);
             for name in ["total", "transl", "rot", "grav", "elastic"] {
                 assert!(t.contains(name), "{name} missing at {w}×{h}:\n{t}");
@@ -371,7 +371,7 @@ fn every_ending() -> App {
 fn the_outcome_table_shows_every_ending_whole() {
     let app = every_ending();
     for (w, h) in [(80, 24), (120, 36)] {
-        let b = panel_at(&app, w, h, |a| a.outcomes, render_outcomes);
+        let b = panel_at(&app, w, h, |a| a.outcomes, outcomes::render);
         let t = text(&b);
         let flat = t
             .lines()
@@ -407,7 +407,7 @@ fn each_face_shows_its_95_percent_interval_in_figures_and_on_its_bar() {
     let app = every_ending();
     let counts = app.roll.table.tally.counts;
     let n: u64 = counts.iter().sum();
-    let t = text(&panel_at(&app, 120, 36, |a| a.outcomes, render_outcomes));
+    let t = text(&panel_at(&app, 120, 36, |a| a.outcomes, outcomes::render));
     assert!(t.contains("95 % int."), "{t}");
     for (f, &k) in counts.iter().enumerate() {
         let [low, high] = wilson(k, n).map(|x| 100.0 * x);
@@ -419,7 +419,7 @@ fn each_face_shows_its_95_percent_interval_in_figures_and_on_its_bar() {
         assert!(row.contains(&figures), "face {} wants {figures}:\n{row}", f + 1);
     }
     // Where the interval covers 1/6 the fair mark sits inside the shading.
-    let wide = |k: u64| crate::tui::panels::outcomes::share_bar(k as f64 / n as f64, Some(wilson(k, n)), 29);
+    let wide = |k: u64| outcomes::share_bar(k as f64 / n as f64, Some(wilson(k, n)), 29);
     let (low, fair, high) = (wide(350), wide(480), wide(700));
     assert!(
         fair.contains('┼') && !fair.contains('┃') && !fair.contains('┆'),
@@ -429,11 +429,11 @@ fn each_face_shows_its_95_percent_interval_in_figures_and_on_its_bar() {
     assert!(low.contains('┆') && !low.contains('┼'), "below 1/6: {low}");
     // A tight interval around 1/6 on a narrow bar (12 cells, 2.8 % each): 15.5–16.9 %
     // covers the fair share, so the mark reads fair though no cell is half shaded.
-    let tight = crate::tui::panels::outcomes::share_bar(0.162, Some([0.155, 0.169]), 12);
+    let tight = outcomes::share_bar(0.162, Some([0.155, 0.169]), 12);
     assert_eq!(tight.chars().nth(6), Some('┼'), "{tight}");
-    let below = crate::tui::panels::outcomes::share_bar(0.150, Some([0.143, 0.157]), 12);
+    let below = outcomes::share_bar(0.150, Some([0.143, 0.157]), 12);
     assert_eq!(below.chars().nth(6), Some('┆'), "{below}");
-    let above = crate::tui::panels::outcomes::share_bar(0.185, Some([0.177, 0.192]), 12);
+    let above = outcomes::share_bar(0.185, Some([0.177, 0.192]), 12);
     assert_eq!(above.chars().nth(6), Some('┃'), "{above}");
     // The solid part ends at the interval's low end, the shading at its high end.
     let [l, h] = wilson(700, n);
@@ -452,7 +452,7 @@ fn each_face_shows_its_95_percent_interval_in_figures_and_on_its_bar() {
     );
     // At 80×24 the figures stay (a class reads them off a projector) and the count column
     // gives way; the bar is still shaded.
-    let t = text(&panel_at(&app, 80, 24, |a| a.outcomes, render_outcomes));
+    let t = text(&panel_at(&app, 80, 24, |a| a.outcomes, outcomes::render));
     let [low, high] = wilson(counts[0], n).map(|x| 100.0 * x);
     assert!(t.contains(&format!("{low:.1}–{high:.1}")), "{t}");
     assert!(!t.contains("count") && t.contains('░'), "{t}");
@@ -466,7 +466,7 @@ fn the_table_says_how_many_rolls_show_its_bias() {
     app.roll.table.unstable = 0;
     // The heavy-corner die's shares, 20 000 rolls: a bias a class can measure.
     app.roll.table.tally.counts = [3000, 3000, 3000, 3700, 3650, 3650];
-    let t = text(&panel_at(&app, 120, 36, |a| a.outcomes, render_outcomes));
+    let t = text(&panel_at(&app, 120, 36, |a| a.outcomes, outcomes::render));
     let n = app.roll.table.tally.rolls_to_detect().expect("a measured bias");
     assert!(
         t.contains(&format!(
@@ -477,7 +477,7 @@ fn the_table_says_how_many_rolls_show_its_bias() {
     );
     assert!(n > 100 && n < 20_000, "{n}");
     app.roll.table.tally.counts = [100, 100, 100, 100, 100, 100];
-    let t = text(&panel_at(&app, 120, 36, |a| a.outcomes, render_outcomes));
+    let t = text(&panel_at(&app, 120, 36, |a| a.outcomes, outcomes::render));
     assert!(t.contains("no bias beyond chance so far"), "{t}");
 }
 
@@ -486,10 +486,10 @@ fn a_p_value_from_too_few_rolls_is_marked_unreliable() {
     let mut app = every_ending();
     app.roll.table.tally.counts = [3, 5, 4, 6, 2, 4];
     assert!(app.roll.table.tally.total() < RELIABLE_ROLLS);
-    let t = text(&panel_at(&app, 120, 36, |a| a.outcomes, render_outcomes));
+    let t = text(&panel_at(&app, 120, 36, |a| a.outcomes, outcomes::render));
     assert!(t.contains("unreliable below n 30"), "{t}");
     app.roll.table.tally.counts = [30, 50, 40, 60, 20, 40];
-    let t = text(&panel_at(&app, 120, 36, |a| a.outcomes, render_outcomes));
+    let t = text(&panel_at(&app, 120, 36, |a| a.outcomes, outcomes::render));
     assert!(!t.contains("unreliable") && t.contains(" p "), "{t}");
 }
 

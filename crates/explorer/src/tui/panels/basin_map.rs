@@ -4,8 +4,7 @@
 //! Its state and rules (cursor, zoom stack, axes, the generation that keeps a map the user
 //! has moved away from off the screen) are the state's [`MapView`](crate::tui::state::map_view::MapView).
 
-use crate::tui::panels::footer::render_help;
-use crate::tui::panels::header::{render_header, render_too_small};
+use crate::tui::panels::{footer, header, too_small};
 use crate::tui::state::app::App;
 use crate::tui::state::map_view::{MapAreas, Side, Y_LABELS, ZOOM_FACTOR, map_layout};
 use crate::tui::vocabulary::format::fmt_num;
@@ -53,19 +52,15 @@ fn monochrome_symbol(layer: Layer, cell: Option<&Cell>, times: Option<(f64, f64)
 }
 
 /// Draws the map screen.
-pub(crate) fn render_map_screen(app: &App, frame: &mut Frame) {
-    let area = frame.area();
+pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let Some(areas) = map_layout(area) else {
-        render_too_small(area, frame);
+        too_small::render(app, area, frame);
         return;
     };
-    render_header(app, areas.header, frame);
+    header::render(app, areas.header, frame);
     render_side(app, areas.side, frame);
     render_panel(app, &areas, frame);
-    crate::tui::panels::footer::render_footer(app, areas.footer, frame);
-    if app.help_scroll().is_some() {
-        render_help(app, area, frame);
-    }
+    footer::render(app, areas.footer, frame);
 }
 
 fn layer_name(layer: Layer) -> &'static str {

@@ -623,7 +623,7 @@ pub(crate) fn place_labels(labels: &[Label], view: &Projection, outline: &[Flat]
 }
 
 /// The die panel: title, the solid die, and the arrows' legend under it when they are on.
-pub(crate) fn render_die(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let die = &app.roll.live.die;
     let lowest = solid(app, die).lowest().z;

@@ -1,13 +1,12 @@
 //! The footer's key hints and the help overlay's frame.
 
-use crate::tui::panels::overlays::help::help_lines;
 use crate::tui::state::app::{App, Mode};
 use crate::tui::vocabulary::format::group;
-use crate::tui::vocabulary::key_table::{Action, INTERRUPT, Scope, labels, named, rows};
+use crate::tui::vocabulary::key_table::{Action, INTERRUPT, Scope, labels, rows};
 use ratatui::Frame;
-use ratatui::layout::{Constraint, Rect};
+use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Paragraph};
+use ratatui::widgets::Paragraph;
 
 /// A footer hint: keys, what they do, and priority (on a narrow terminal the highest
 /// numbers go first, so the keys that matter most, help and quit among them, stay in view).
@@ -18,7 +17,7 @@ fn hint(keys: &str, words: &str, priority: u8) -> KeyHint {
 }
 
 /// The footer of either screen: the hints of whatever is topmost.
-pub(crate) fn render_footer(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let keys = match app.mode() {
         Mode::Prompt => {
             let prompt = app.prompt().expect("the mode says so");
@@ -162,25 +161,4 @@ fn render_line(app: &App, notice: Option<String>, keys: Vec<KeyHint>, area: Rect
     }
     let line = crate::tui::vocabulary::fit::abbreviate(Line::from(spans), area.width as usize);
     frame.render_widget(Paragraph::new(line), area);
-}
-
-pub(crate) fn render_help(app: &App, area: Rect, frame: &mut Frame) {
-    let t = &app.theme;
-    let popup = area.centered(Constraint::Max(100), Constraint::Percentage(90));
-    crate::tui::panels::overlays::popup::clear_around(popup, area, frame);
-    let block = Block::bordered()
-        .title(Line::styled(" help · the model in a nutshell ", t.heading()))
-        .title_bottom(
-            Line::from(format!(
-                " {} scroll · {} closes ",
-                named(Scope::Help, Action::SelectPrevious),
-                named(Scope::Help, Action::Close)
-            ))
-            .right_aligned(),
-        );
-    let body = block.inner(popup);
-    frame.render_widget(block, popup);
-    let para =
-        Paragraph::new(help_lines(app, body.width as usize)).scroll((app.help_scroll().unwrap_or(0), 0));
-    frame.render_widget(para, body);
 }

@@ -1,34 +1,13 @@
-//! The top line every screen shares (the preset, the roll, time, speed, phase) and the notice
-//! shown instead of a screen when the terminal is too small for it.
+//! The top line every screen shares: the preset, the roll, time, speed, phase.
 
 use crate::tui::state::app::App;
-use crate::tui::vocabulary::key_table::{Action, Scope, label};
-use crate::tui::vocabulary::layout::{MIN_HEIGHT, MIN_WIDTH};
 use crate::worker::{Phase, RollKind};
 use dicesim_physics::Status;
 use ratatui::Frame;
-use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Paragraph, Wrap};
-
-pub(crate) fn render_too_small(area: Rect, frame: &mut Frame) {
-    let text = vec![
-        Line::styled(
-            format!("Enlarge the terminal to at least {MIN_WIDTH}×{MIN_HEIGHT}"),
-            Style::new().add_modifier(Modifier::BOLD),
-        ),
-        Line::from(format!(
-            "(it is {}×{} now) · {} quits",
-            area.width,
-            area.height,
-            label(Scope::Die, Action::Quit)
-        )),
-    ];
-    let top = area.height.saturating_sub(2) / 2;
-    let [_, middle] = area.layout(&Layout::vertical([Constraint::Length(top), Constraint::Min(0)]));
-    frame.render_widget(Paragraph::new(text).centered().wrap(Wrap { trim: true }), middle);
-}
+use ratatui::widgets::Paragraph;
 
 fn phase_style(app: &App, phase: &Phase) -> Style {
     let t = &app.theme;
@@ -41,7 +20,7 @@ fn phase_style(app: &App, phase: &Phase) -> Style {
     }
 }
 
-pub(crate) fn render_header(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let live = &app.roll.live;
     let sep = Span::raw(" │ ");

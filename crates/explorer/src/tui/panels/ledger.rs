@@ -64,7 +64,7 @@ pub(crate) fn bar_rows(app: &App, rows: u16) -> (Vec<Option<usize>>, Option<u16>
     (cells, Some(total_row))
 }
 
-pub(crate) fn render_ledger(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     // The energy at the state on screen: the energy plot's readout at its time marker.
     let title = fit::longest_fitting(

@@ -12,4 +12,5 @@ pub(crate) mod params_panel;
 pub(crate) mod presentation;
 pub(crate) mod quantity_plot;
 pub(crate) mod timeline_strip;
+pub(crate) mod too_small;
 pub(crate) mod twins;

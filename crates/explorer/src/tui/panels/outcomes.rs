@@ -168,7 +168,7 @@ const SHARE_COLUMN: usize = 6;
 /// The fewest cells a face's bar is drawn in.
 const MIN_BAR: usize = 8;
 
-pub(crate) fn render_outcomes(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let table = &app.roll.table;
     let inside = area.width.saturating_sub(2) as usize;

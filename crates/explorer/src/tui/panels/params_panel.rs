@@ -49,7 +49,7 @@ pub(crate) fn stability_readout(app: &App, width: u16) -> Line<'static> {
     Line::styled(text, stability_style(app, load))
 }
 
-pub(crate) fn render_params(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let (first, visible) = param_window(app.die_screen.selected, area);
     // Rows scrolled out of view, above and below: ↑↓ (or a click and the wheel) reach them.

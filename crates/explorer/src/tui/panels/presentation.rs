@@ -4,7 +4,7 @@
 //! face up in large block digits, the time and one number the lesson is about beside it.
 
 use crate::tui::panels::die::{self, Projection};
-use crate::tui::panels::footer::{KeyHint, render_footer, render_help, render_key_hints};
+use crate::tui::panels::footer::{self, KeyHint, render_key_hints};
 use crate::tui::state::app::{App, Mode};
 use crate::tui::vocabulary::key_table::{Action, Scope, first_key, rows};
 use nalgebra::Vector3;
@@ -112,8 +112,7 @@ pub(crate) fn row_of_height(view: &Projection, z_cm: f64) -> Option<u16> {
 }
 
 /// Draws the presentation view over the whole terminal.
-pub(crate) fn render(app: &App, frame: &mut Frame) {
-    let area = frame.area();
+pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let [header, body, footer] = area.layout(&Layout::vertical([
         Constraint::Length(1),
@@ -163,12 +162,8 @@ pub(crate) fn render(app: &App, frame: &mut Frame) {
     if app.mode() == Mode::Normal {
         render_key_hints(app, hints(), footer, frame);
     } else {
-        render_footer(app, footer, frame);
+        footer::render(app, footer, frame);
     }
-    if app.help_scroll().is_some() {
-        render_help(app, area, frame);
-    }
-    crate::tui::panels::overlays::dialogs::render(app, area, frame);
 }
 
 /// The footer's hints: the view's own rows of the key table, then the few main-screen keys

@@ -55,7 +55,7 @@ fn value_axis(data: &[(f64, f64)], most: usize, width: usize, fitted: bool) -> (
 }
 
 /// The plot panel: the energy plot, or the quantity or phase plot chosen instead.
-pub(crate) fn render_plot(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     match (app.die_screen.plot.quantity, app.die_screen.plot.phase) {
         (_, Some(j)) => render_phase(app, area, frame, app.die_screen.plot.first(), j),
         (Some(i), None) => render_quantity(app, area, frame, i),

@@ -1,3 +1,4 @@
-//! Drawing a frame: which screen and which panels, placed where.
+//! Drawing a frame: which panel takes which place (`places`), and the render that follows it.
 
+pub(crate) mod places;
 pub(crate) mod screen;

@@ -3,8 +3,11 @@
 use crate::tui::state::app::App;
 use crate::tui::state::app::Page;
 use crate::tui::vocabulary::format::group;
-use crate::tui::vocabulary::key_table::{Action, Scope, label, section};
+use crate::tui::vocabulary::key_table::{Action, Scope, label, named, section};
+use ratatui::Frame;
+use ratatui::layout::{Constraint, Rect};
 use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Paragraph};
 
 const MODEL: &[&str] = &[
     "The die is a cube of 8 point masses, its corners, moving as one rigid body (Chin & Li, 2019). \
@@ -136,4 +139,26 @@ pub(crate) fn help_lines(app: &App, width: usize) -> Vec<Line<'static>> {
         lines.push(Line::raw(""));
     }
     lines
+}
+
+/// The help, over the screen `area`.
+pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
+    let t = &app.theme;
+    let popup = area.centered(Constraint::Max(100), Constraint::Percentage(90));
+    crate::tui::panels::overlays::popup::clear_around(popup, area, frame);
+    let block = Block::bordered()
+        .title(Line::styled(" help · the model in a nutshell ", t.heading()))
+        .title_bottom(
+            Line::from(format!(
+                " {} scroll · {} closes ",
+                named(Scope::Help, Action::SelectPrevious),
+                named(Scope::Help, Action::Close)
+            ))
+            .right_aligned(),
+        );
+    let body = block.inner(popup);
+    frame.render_widget(block, popup);
+    let para =
+        Paragraph::new(help_lines(app, body.width as usize)).scroll((app.help_scroll().unwrap_or(0), 0));
+    frame.render_widget(para, body);
 }

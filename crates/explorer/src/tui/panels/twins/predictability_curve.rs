@@ -190,7 +190,7 @@ fn colours(app: &App) -> Colours {
 
 /// The curve panel (while a twin rolls): the plot, ε½ and what our ε means, or why there is
 /// no curve.
-pub(crate) fn render_curve(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let update = app.twin.curve.as_ref();
     let failed = matches!(update.map(|u| &u.state), Some(CurveState::Failed(_)));

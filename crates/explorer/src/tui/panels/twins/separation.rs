@@ -19,7 +19,7 @@ use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph};
 const FLOOR: f64 = -16.0;
 
 /// The separation plot with ε's meaning above and both outcomes below.
-pub(crate) fn render_separation(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let Some(twin) = &app.roll.live.twin else { return };
     let colours = t.separation_colours();

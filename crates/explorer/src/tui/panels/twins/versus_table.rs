@@ -42,7 +42,7 @@ pub(crate) fn outcomes_text(app: &App, compact: bool) -> Option<(String, String)
 /// The parameter twin's shared throws in the outcome table's place: A's ending (rows)
 /// against B's (columns), faces 1–6 then no face (`—`), and the share that agree with its
 /// 95 % interval. The worker's batches (`b`) fill it, each throw rolled in both setups.
-pub(crate) fn render_table(app: &App, area: Rect, frame: &mut Frame) {
+pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let mut title = vec![Span::styled(" A face ↓ against B face → ", t.heading())];
     if let Some(b) = app.roll.batch {
