@@ -122,32 +122,40 @@ fn on_prompt_key(app: &mut App, input: &Input) {
 /// Does what a key of the table stands for.
 fn act(app: &mut App, action: Action, coarse: bool) {
     match action {
-        Action::TogglePlay => app.send(Command::TogglePlay),
-        Action::StepForward => app.send(Command::Step(1)),
-        Action::StepBack => app.send(Command::StepBack(1)),
-        Action::ToStart => app.send(Command::Seek(0)),
-        Action::ToEnd => app.send(Command::Seek(u64::MAX)),
-        Action::NextImpact => app.send(Command::SeekEvent(RollEvent::NextImpact)),
-        Action::PreviousImpact => app.send(Command::SeekEvent(RollEvent::PreviousImpact)),
-        Action::ToDecided => app.send(Command::SeekEvent(RollEvent::FaceDecided)),
-        Action::Replay => app.send(Command::Replay),
-        Action::RandomRoll => app.send(Command::RandomRoll),
-        Action::Batch => {
-            let c = app.roll.batch_command();
-            app.send(c);
-        }
-        Action::BatchSize => app.next_batch_size(),
-        Action::ClearTable => app.send(Command::ClearTable),
-        Action::Slower => {
-            if let Some(c) = app.setup.set_speed(app.setup.speed.slower()) {
-                app.send(c)
-            }
-        }
-        Action::Faster => {
-            if let Some(c) = app.setup.set_speed(app.setup.speed.faster()) {
-                app.send(c)
-            }
-        }
+        Action::TogglePlay
+        | Action::StepForward
+        | Action::StepBack
+        | Action::ToStart
+        | Action::ToEnd
+        | Action::NextImpact
+        | Action::PreviousImpact
+        | Action::ToDecided
+        | Action::Replay
+        | Action::RandomRoll
+        | Action::Batch
+        | Action::BatchSize
+        | Action::ClearTable
+        | Action::Slower
+        | Action::Faster
+        | Action::Export
+        | Action::ExportAnimation => act_on_roll(app, action),
+        Action::LogScale
+        | Action::PlotQuantity
+        | Action::PhasePlot
+        | Action::FitAxis
+        | Action::SecondQuantity
+        | Action::FacePair
+        | Action::Arrows
+        | Action::Theme
+        | Action::Drawing
+        | Action::OrbitLeft
+        | Action::OrbitRight
+        | Action::TiltUp
+        | Action::TiltDown
+        | Action::ZoomIn
+        | Action::ZoomOut
+        | Action::ResetCamera
+        | Action::NextReadout => act_on_view(app, action),
         Action::SelectPrevious => app.die_screen.select(-1, app.params_listed().len()),
         Action::SelectNext => app.die_screen.select(1, app.params_listed().len()),
         Action::SelectFirst => app.die_screen.selected = 0,
@@ -159,112 +167,26 @@ fn act(app: &mut App, action: Action, coarse: bool) {
         // The value editor and the parameter list are the main screen's: typing a value
         // blind is no help to a class.
         Action::TypeValue if app.page == Page::Presentation => {
-            app.notice = Some(format!(
-                "{} first: values are typed on the main screen",
-                label(Scope::Show, Action::Presentation)
-            ))
+            main_screen_first(app, "values are typed on the main screen")
         }
         Action::TypeValue => app.overlay = Some(Overlay::Value(Editor::default())),
-        Action::LogScale => app.die_screen.log_scale = !app.die_screen.log_scale,
-        Action::PlotQuantity => app.die_screen.plot.next(),
-        Action::PhasePlot => app.die_screen.plot.toggle_phase(),
-        Action::FitAxis => {
-            let plot = &mut app.die_screen.plot;
-            plot.fitted = !plot.fitted;
-            app.notice = Some(
-                if plot.fitted {
-                    "the value axis fits the curves around the time on screen (y again: the whole roll)"
-                } else {
-                    "the value axis spans the whole roll"
-                }
-                .to_string(),
-            );
-        }
-        Action::SecondQuantity => {
-            if let Err(why) = app.die_screen.plot.next_second() {
-                app.notice = Some(why);
-            }
-        }
-        Action::FacePair => app.die_screen.next_face_pair(),
         // Throwing is aimed on the die screen's die, not the presentation view's.
         Action::ThrowMode if app.page == Page::Presentation => {
-            app.notice = Some(format!(
-                "{} first: the throw is aimed on the main screen",
-                label(Scope::Show, Action::Presentation)
-            ))
+            main_screen_first(app, "the throw is aimed on the main screen")
         }
         Action::ThrowMode => throw_keys::enter(app),
-        Action::Export => {
-            let c = app.roll.export_command(app.die_screen.log_scale);
-            app.send(c);
-        }
-        Action::ExportAnimation => {
-            let c = app.roll.animation_command(&app.die_screen.camera);
-            app.send(c);
-        }
-        Action::Arrows => app.die_screen.arrows = !app.die_screen.arrows,
         Action::Twin | Action::TwinEpsilonDown | Action::TwinEpsilonUp | Action::TwinEpsilonType => {
-            if !twin_keys::on_twin_key(app, action) {
-                app.notice = Some(format!(
-                    "{} first: these keys set the twin's ε",
-                    label(Scope::Die, Action::Twin)
-                ));
-            }
+            act_on_twin(app, action)
         }
         Action::Differ => twin_keys::on_differ_key(app),
-        Action::Theme => {
-            app.theme = app.theme.next();
-            app.notice = Some(format!(
-                "theme: {}{} ({} cycles dark, light, projector)",
-                app.theme.palette.name(),
-                if app.theme.colour {
-                    ""
-                } else {
-                    ", but NO_COLOR is set"
-                },
-                label(Scope::Die, Action::Theme)
-            ));
-        }
-        Action::Drawing => {
-            app.die_screen.drawing = match app.die_screen.drawing {
-                Drawing::Braille => Drawing::Ascii,
-                Drawing::Ascii => Drawing::Braille,
-            }
-        }
-        Action::OrbitLeft => app.die_screen.camera.orbit(-15.0, 0.0),
-        Action::OrbitRight => app.die_screen.camera.orbit(15.0, 0.0),
-        Action::TiltUp => app.die_screen.camera.orbit(0.0, 10.0),
-        Action::TiltDown => app.die_screen.camera.orbit(0.0, -10.0),
-        Action::ZoomIn => app.die_screen.camera.zoom_by(1),
-        Action::ZoomOut => app.die_screen.camera.zoom_by(-1),
-        Action::ResetCamera => app.die_screen.camera = OrbitCamera::default(),
-        Action::OpenPreset => app.ask(Effect::ListPresets),
-        Action::SavePreset => dialog_keys::open_save(app),
-        Action::ResetSetup => app.reset_asking(),
-        Action::OpenMap => map::open(app),
-        Action::Presentation => {
-            app.page = match app.page {
-                Page::Presentation => Page::Die,
-                _ => Page::Presentation,
-            }
-        }
-        Action::NextReadout => app.die_screen.readout = app.die_screen.readout.next(),
-        Action::Help => {
-            app.overlay = Some(Overlay::Help { scroll: 0 });
-        }
-        Action::Close => match app.page {
-            Page::Map => {
-                map::close(app);
-            }
-            Page::Presentation => app.page = Page::Die,
-            Page::Die => {
-                app.notice = Some(format!(
-                    "nothing to close ({} quits)",
-                    label(Scope::Die, Action::Quit)
-                ))
-            }
-        },
-        Action::Quit => app.quit_asking(),
+        Action::OpenPreset
+        | Action::SavePreset
+        | Action::ResetSetup
+        | Action::OpenMap
+        | Action::Presentation
+        | Action::Help
+        | Action::Close
+        | Action::Quit => act_on_screens(app, action),
         Action::MapBack
         | Action::CursorLeft
         | Action::CursorRight
@@ -292,6 +214,157 @@ fn act(app: &mut App, action: Action, coarse: bool) {
         | Action::GrabRight
         | Action::GrabUp
         | Action::GrabDown => {}
+    }
+}
+
+/// The chaos twin's keys; its ε keys only once it rolls.
+fn act_on_twin(app: &mut App, action: Action) {
+    if !twin_keys::on_twin_key(app, action) {
+        app.notice = Some(format!(
+            "{} first: these keys set the twin's ε",
+            label(Scope::Die, Action::Twin)
+        ));
+    }
+}
+
+/// Says that a key works on the main screen only, and why.
+fn main_screen_first(app: &mut App, why: &str) {
+    app.notice = Some(format!(
+        "{} first: {why}",
+        label(Scope::Show, Action::Presentation)
+    ));
+}
+
+/// The keys that open, close and leave: presets, the map, the presentation view, the help.
+fn act_on_screens(app: &mut App, action: Action) {
+    match action {
+        Action::OpenPreset => app.ask(Effect::ListPresets),
+        Action::SavePreset => dialog_keys::open_save(app),
+        Action::ResetSetup => app.reset_asking(),
+        Action::OpenMap => map::open(app),
+        Action::Presentation => {
+            app.page = match app.page {
+                Page::Presentation => Page::Die,
+                _ => Page::Presentation,
+            }
+        }
+        Action::Help => {
+            app.overlay = Some(Overlay::Help { scroll: 0 });
+        }
+        Action::Close => match app.page {
+            Page::Map => {
+                map::close(app);
+            }
+            Page::Presentation => app.page = Page::Die,
+            Page::Die => {
+                app.notice = Some(format!(
+                    "nothing to close ({} quits)",
+                    label(Scope::Die, Action::Quit)
+                ))
+            }
+        },
+        Action::Quit => app.quit_asking(),
+        // The others are `act`'s.
+        _ => {}
+    }
+}
+
+/// The roll's keys: playback, seeking, rolls, batches, speed and exports.
+fn act_on_roll(app: &mut App, action: Action) {
+    match action {
+        Action::TogglePlay => app.send(Command::TogglePlay),
+        Action::StepForward => app.send(Command::Step(1)),
+        Action::StepBack => app.send(Command::StepBack(1)),
+        Action::ToStart => app.send(Command::Seek(0)),
+        Action::ToEnd => app.send(Command::Seek(u64::MAX)),
+        Action::NextImpact => app.send(Command::SeekEvent(RollEvent::NextImpact)),
+        Action::PreviousImpact => app.send(Command::SeekEvent(RollEvent::PreviousImpact)),
+        Action::ToDecided => app.send(Command::SeekEvent(RollEvent::FaceDecided)),
+        Action::Replay => app.send(Command::Replay),
+        Action::RandomRoll => app.send(Command::RandomRoll),
+        Action::Batch => {
+            let c = app.roll.batch_command();
+            app.send(c);
+        }
+        Action::BatchSize => app.next_batch_size(),
+        Action::ClearTable => app.send(Command::ClearTable),
+        Action::Slower => {
+            if let Some(c) = app.setup.set_speed(app.setup.speed.slower()) {
+                app.send(c)
+            }
+        }
+        Action::Faster => {
+            if let Some(c) = app.setup.set_speed(app.setup.speed.faster()) {
+                app.send(c)
+            }
+        }
+        Action::Export => {
+            let c = app.roll.export_command(app.die_screen.log_scale);
+            app.send(c);
+        }
+        Action::ExportAnimation => {
+            let c = app.roll.animation_command(&app.die_screen.camera);
+            app.send(c);
+        }
+        // The others are `act`'s.
+        _ => {}
+    }
+}
+
+/// The view's keys: the plot, the die's drawing and camera, the theme, the readout.
+fn act_on_view(app: &mut App, action: Action) {
+    match action {
+        Action::LogScale => app.die_screen.log_scale = !app.die_screen.log_scale,
+        Action::PlotQuantity => app.die_screen.plot.next(),
+        Action::PhasePlot => app.die_screen.plot.toggle_phase(),
+        Action::FitAxis => {
+            let plot = &mut app.die_screen.plot;
+            plot.fitted = !plot.fitted;
+            app.notice = Some(
+                if plot.fitted {
+                    "the value axis fits the curves around the time on screen (y again: the whole roll)"
+                } else {
+                    "the value axis spans the whole roll"
+                }
+                .to_string(),
+            );
+        }
+        Action::SecondQuantity => {
+            if let Err(why) = app.die_screen.plot.next_second() {
+                app.notice = Some(why);
+            }
+        }
+        Action::FacePair => app.die_screen.next_face_pair(),
+        Action::Arrows => app.die_screen.arrows = !app.die_screen.arrows,
+        Action::Theme => {
+            app.theme = app.theme.next();
+            app.notice = Some(format!(
+                "theme: {}{} ({} cycles dark, light, projector)",
+                app.theme.palette.name(),
+                if app.theme.colour {
+                    ""
+                } else {
+                    ", but NO_COLOR is set"
+                },
+                label(Scope::Die, Action::Theme)
+            ));
+        }
+        Action::Drawing => {
+            app.die_screen.drawing = match app.die_screen.drawing {
+                Drawing::Braille => Drawing::Ascii,
+                Drawing::Ascii => Drawing::Braille,
+            }
+        }
+        Action::OrbitLeft => app.die_screen.camera.orbit(-15.0, 0.0),
+        Action::OrbitRight => app.die_screen.camera.orbit(15.0, 0.0),
+        Action::TiltUp => app.die_screen.camera.orbit(0.0, 10.0),
+        Action::TiltDown => app.die_screen.camera.orbit(0.0, -10.0),
+        Action::ZoomIn => app.die_screen.camera.zoom_by(1),
+        Action::ZoomOut => app.die_screen.camera.zoom_by(-1),
+        Action::ResetCamera => app.die_screen.camera = OrbitCamera::default(),
+        Action::NextReadout => app.die_screen.readout = app.die_screen.readout.next(),
+        // The others are `act`'s.
+        _ => {}
     }
 }
 

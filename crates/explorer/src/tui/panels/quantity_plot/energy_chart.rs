@@ -7,6 +7,7 @@ use crate::tui::panels::chart::{
 };
 use crate::tui::state::app::App;
 use crate::tui::state::die_screen::Drawing;
+use crate::tui::vocabulary::fit;
 use crate::tui::vocabulary::format::fmt_num;
 use crate::worker::EnergySample;
 use ratatui::Frame;
@@ -81,11 +82,12 @@ fn pack(items: Vec<Span<'static>>, width: usize) -> Vec<Line<'static>> {
     lines.into_iter().map(Line::from).collect()
 }
 
-/// The energy plot: each energy term and the total against time, the stop threshold across.
-pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
+/// The energy plot's frame, its heading and legend: the legend rides in the title or the
+/// bottom border when it fits there whole; else it takes the plot's top rows (the lines
+/// returned), and the y range grows so that no line runs under it.
+fn framed(app: &App, area: Rect) -> (Block<'static>, Vec<Line<'static>>) {
     let t = &app.theme;
     let scale = if app.die_screen.log_scale { "log" } else { "linear" };
-    let colours = t.energy_series();
     let border = area.width.saturating_sub(2) as usize;
     // "(y)": the axis the scale applies to, where the title has room for it.
     let axis = if 25 <= border { " (y)" } else { "" };
@@ -96,47 +98,127 @@ pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
     let legend = energy_legend(app);
     let legend_width: usize = legend.iter().map(Span::width).sum::<usize>() + legend.len() - 1;
     let heading_width: usize = heading.iter().map(Span::width).sum();
-    // The legend rides in the title or the bottom border when it fits there whole; else it
-    // takes the plot's top rows, and the y range grows so that no line runs under it.
-    let mut block = Block::bordered();
-    let mut inside: Vec<Line<'static>> = Vec::new();
-    if heading_width + legend_width < crate::tui::vocabulary::fit::room(border) {
+    let block = Block::bordered();
+    if heading_width + legend_width < fit::room(border) {
         let mut title = heading;
         title.extend(pack(legend, border).into_iter().flat_map(|l| l.spans));
-        block = block.title(Line::from(title));
-    } else if legend_width < border {
-        block = block
-            .title(crate::tui::vocabulary::fit::abbreviate(
-                Line::from(heading),
-                border,
-            ))
-            .title_bottom({
-                // A space before the corner: `fit`'s gap column.
-                let mut spans = pack(legend, border).remove(0).spans;
-                spans.push(Span::raw(" "));
-                Line::from(spans).right_aligned()
-            });
-    } else {
-        block = block.title(crate::tui::vocabulary::fit::abbreviate(
-            Line::from(heading),
-            border,
-        ));
-        // Over the whole width, the y labels under it left out; the threshold's item only
-        // if it needs no line of its own (it is no energy term).
-        inside = pack(legend.clone(), crate::tui::vocabulary::fit::room(border));
-        if inside.len()
-            > pack(
-                legend[..legend.len() - 1].to_vec(),
-                crate::tui::vocabulary::fit::room(border),
-            )
-            .len()
-        {
-            inside = pack(
-                legend[..legend.len() - 1].to_vec(),
-                crate::tui::vocabulary::fit::room(border),
-            );
-        }
+        return (block.title(Line::from(title)), Vec::new());
     }
+    let block = block.title(fit::abbreviate(Line::from(heading), border));
+    if legend_width < border {
+        // A space before the corner: `fit`'s gap column.
+        let mut spans = pack(legend, border).remove(0).spans;
+        spans.push(Span::raw(" "));
+        return (block.title_bottom(Line::from(spans).right_aligned()), Vec::new());
+    }
+    // Over the whole width, the y labels under it left out; the threshold's item only
+    // if it needs no line of its own (it is no energy term).
+    let all = pack(legend.clone(), fit::room(border));
+    let terms = pack(legend[..legend.len() - 1].to_vec(), fit::room(border));
+    (block, if all.len() > terms.len() { terms } else { all })
+}
+
+/// The y axis's bounds and ticks for curves from `lo` to `hi` (log10 of erg on the log
+/// scale): whole decades on the log scale, round numbers on the linear, and room on top
+/// for the legend's `covered` rows of the plot's `rows`. `fitted`: to the curves around the
+/// time on screen (`y`), else from the floor.
+fn y_ticks(log: bool, fitted: bool, (lo, hi): (f64, f64), rows: f64, covered: f64) -> (f64, f64, Vec<f64>) {
+    let most_labels = (rows as usize).div_ceil(2).clamp(2, 5);
+    if log {
+        // Fitted on demand (`y`): from the decade of the curves' lowest.
+        let floor = LOG_FLOOR.log10();
+        let bottom = if fitted { lo.max(floor).floor() } else { floor };
+        let top = bottom + (hi.max(bottom + 1.0) - bottom) * rows / (rows - covered);
+        // Whole decades, every one labelled or every second, third, …
+        let decades = (top - bottom).ceil().max(1.0) as usize;
+        let every = (1..=decades)
+            .find(|d| decades.div_ceil(*d) < most_labels)
+            .unwrap_or(decades);
+        let n = decades.div_ceil(every);
+        let top = bottom + (n * every) as f64;
+        (
+            bottom,
+            top,
+            (0..=n).map(|k| bottom + (k * every) as f64).collect::<Vec<_>>(),
+        )
+    } else {
+        // A die pressed into the table has a slightly negative potential energy: a floor
+        // below zero only when that is a visible share of the plot.
+        // Fitted on demand (`y`): from the curves' lowest.
+        let floor = if fitted || lo < -0.05 * hi.max(1.0) {
+            lo
+        } else {
+            0.0
+        };
+        let top = floor + (hi.max(1.0) * 1.05 - floor) * rows / (rows - covered);
+        nice_ticks(floor, top, most_labels)
+    }
+}
+
+/// The y axis's labels, evenly from the bottom row (first) to the top (last) of the plot's
+/// `rows`; those under the legend's `legend_rows` are left blank.
+fn y_labels(ticks: &[f64], log: bool, rows: f64, legend_rows: usize) -> Vec<String> {
+    let label = |v: f64| {
+        let s = if log { fmt_num(10f64.powf(v)) } else { fmt_num(v) };
+        format!("{s:>width$}", width = Y_LABEL_WIDTH as usize - 1)
+    };
+    let plot_rows = rows as usize;
+    let n = ticks.len();
+    ticks
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| {
+            let from_top = (plot_rows - 1) as f64 * (1.0 - i as f64 / (n - 1).max(1) as f64);
+            if (from_top.round() as usize) < legend_rows {
+                String::new()
+            } else {
+                label(v)
+            }
+        })
+        .collect()
+}
+
+/// The energy terms' curves, each in its colour (or, without colour, its own character).
+fn term_datasets<'a>(app: &App, series: &'a [Vec<(f64, f64)>]) -> Vec<Dataset<'a>> {
+    let t = &app.theme;
+    series
+        .iter()
+        .zip(LEGEND)
+        .zip(t.energy_series())
+        .zip(PATTERNS)
+        .map(|(((data, name), colour), pattern)| {
+            let marker = if t.colour {
+                app.die_screen.drawing.line_marker()
+            } else {
+                Marker::Custom(pattern)
+            };
+            Dataset::default()
+                .name(name)
+                .marker(marker)
+                .graph_type(GraphType::Line)
+                .style(Style::new().fg(colour))
+                .data(data)
+        })
+        .collect()
+}
+
+/// The stop threshold's line across the plot.
+fn stop_dataset<'a>(app: &App, line: &'a [(f64, f64)]) -> Dataset<'a> {
+    Dataset::default()
+        .name("stop")
+        .marker(if app.die_screen.drawing == Drawing::Ascii {
+            Marker::Custom('-')
+        } else {
+            Marker::Dot
+        })
+        .graph_type(GraphType::Line)
+        .style(Style::new().fg(app.theme.threshold()))
+        .data(line)
+}
+
+/// The energy plot: each energy term and the total against time, the stop threshold across.
+pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
+    let (block, inside) = framed(app, area);
     let body = block.inner(area);
     if body.width < 12 || body.height < 4 {
         frame.render_widget(block, area);
@@ -182,39 +264,7 @@ pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
     // top ones the legend covers.
     let rows = body.height.saturating_sub(2).max(1) as f64;
     let covered = (inside.len() as f64).min(rows - 1.0);
-    let most_labels = (rows as usize).div_ceil(2).clamp(2, 5);
-    let (y_lo, y_hi, ticks) = if log {
-        // Fitted on demand (`y`): from the decade of the curves' lowest.
-        let bottom = if window.is_some() {
-            lo.max(y_of(LOG_FLOOR)).floor()
-        } else {
-            y_of(LOG_FLOOR)
-        };
-        let top = bottom + (hi.max(bottom + 1.0) - bottom) * rows / (rows - covered);
-        // Whole decades, every one labelled or every second, third, …
-        let decades = (top - bottom).ceil().max(1.0) as usize;
-        let every = (1..=decades)
-            .find(|d| decades.div_ceil(*d) < most_labels)
-            .unwrap_or(decades);
-        let n = decades.div_ceil(every);
-        let top = bottom + (n * every) as f64;
-        (
-            bottom,
-            top,
-            (0..=n).map(|k| bottom + (k * every) as f64).collect::<Vec<_>>(),
-        )
-    } else {
-        // A die pressed into the table has a slightly negative potential energy: a floor
-        // below zero only when that is a visible share of the plot.
-        // Fitted on demand (`y`): from the curves' lowest.
-        let floor = if window.is_some() || lo < -0.05 * hi.max(1.0) {
-            lo
-        } else {
-            0.0
-        };
-        let top = floor + (hi.max(1.0) * 1.05 - floor) * rows / (rows - covered);
-        nice_ticks(floor, top, most_labels)
-    };
+    let (y_lo, y_hi, ticks) = y_ticks(log, window.is_some(), (lo, hi), rows, covered);
     let stop_line = [(0.0, y_of(threshold)), (x_hi, y_of(threshold))];
     // The marker first, so the curves are drawn over it.
     // Below the legend's rows, as the curves are.
@@ -224,55 +274,11 @@ pub(crate) fn render_energy(app: &App, area: Rect, frame: &mut Frame) {
     let mut datasets: Vec<Dataset> = vec![previous_dataset(app, &previous)];
     datasets.extend(edit_datasets(app, &edits));
     datasets.push(marker_dataset(app, &marker));
-    datasets.extend(series.iter().zip(LEGEND).zip(colours).zip(PATTERNS).map(
-        |(((data, name), colour), pattern)| {
-            let marker = if t.colour {
-                app.die_screen.drawing.line_marker()
-            } else {
-                Marker::Custom(pattern)
-            };
-            Dataset::default()
-                .name(name)
-                .marker(marker)
-                .graph_type(GraphType::Line)
-                .style(Style::new().fg(colour))
-                .data(data)
-        },
-    ));
+    datasets.extend(term_datasets(app, &series));
     if threshold.is_finite() {
-        datasets.push(
-            Dataset::default()
-                .name("stop")
-                .marker(if app.die_screen.drawing == Drawing::Ascii {
-                    Marker::Custom('-')
-                } else {
-                    Marker::Dot
-                })
-                .graph_type(GraphType::Line)
-                .style(Style::new().fg(t.threshold()))
-                .data(&stop_line),
-        );
+        datasets.push(stop_dataset(app, &stop_line));
     }
-    let label = |v: f64| {
-        let s = if log { fmt_num(10f64.powf(v)) } else { fmt_num(v) };
-        format!("{s:>width$}", width = Y_LABEL_WIDTH as usize - 1)
-    };
-    // Labels sit evenly from the bottom row (first) to the top (last); those under the
-    // legend are left blank.
-    let plot_rows = rows as usize;
-    let n = ticks.len();
-    let labels: Vec<String> = ticks
-        .iter()
-        .enumerate()
-        .map(|(i, &v)| {
-            let from_top = (plot_rows - 1) as f64 * (1.0 - i as f64 / (n - 1).max(1) as f64);
-            if (from_top.round() as usize) < inside.len() {
-                String::new()
-            } else {
-                label(v)
-            }
-        })
-        .collect();
+    let labels = y_labels(&ticks, log, rows, inside.len());
     let chart = Chart::new(datasets)
         .block(block)
         .x_axis(Axis::default().bounds([0.0, x_hi]).labels(x_labels))
