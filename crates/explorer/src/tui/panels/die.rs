@@ -146,23 +146,52 @@ pub(crate) fn corner_is_seen(app: &App, view: &Projection, k: usize) -> bool {
 
 /// The picture of the die panel: pure geometry of the app state.
 pub(crate) fn picture(app: &App, view: &Projection) -> Picture {
-    let t = &app.theme;
     let die = &app.roll.live.die;
     let half = app.roll.live.params.die.largest_half_size();
     let body = solid(app, die);
-    let mut pic = Picture::default();
-    let corners: Vec<Flat> = die.corners.iter().map(|c| view.flat(c)).collect();
-    pic.outline = body.outline(|p| view.flat(p));
+    let mut pic = Picture {
+        outline: body.outline(|p| view.flat(p)),
+        ..Picture::default()
+    };
     let facing = seen_faces(&view.camera, &body);
     let contact: [bool; 8] = std::array::from_fn(|k| die.forces[k].depth > 0.0);
+    corner_marks(&mut pic, app, view, &body, &facing, &contact);
+    floor(&mut pic, app, view, &body, half);
+    // The die: its seen faces filled, their edges, pips and the frame of the face up.
+    for f in (0..6).filter(|&f| facing[f] > 0.0) {
+        seen_face(&mut pic, app, view, &body, &facing, f);
+    }
+    die_edges(&mut pic, app, view, &body, &facing, &contact);
+    if let Some(low) = app.die_screen.face_pair {
+        pair_axis(&mut pic, app, view, &body, low);
+    }
+    if app.die_screen.arrows {
+        arrows(&mut pic, app, view, die);
+    }
+    if let Some(aim) = app.die_screen.throw {
+        throw_aim(&mut pic, app, view, die, &aim);
+    }
+    pic
+}
 
+/// The centre's height, a dot on each corner in contact, and a loaded die's heavy corners.
+fn corner_marks(
+    pic: &mut Picture,
+    app: &App,
+    view: &Projection,
+    body: &Solid,
+    facing: &[f64; 6],
+    contact: &[bool; 8],
+) {
+    let t = &app.theme;
+    let die = &app.roll.live.die;
     pic.label(
         (view.x.0, view.y.1),
         format!("centre {:.2} cm up", die.centre.z),
         Style::new(),
         false,
     );
-    for k in (0..8).filter(|&k| contact[k] && corner_seen(&facing, k)) {
+    for k in (0..8).filter(|&k| contact[k] && corner_seen(facing, k)) {
         let dot = if app.die_screen.drawing == Drawing::Ascii {
             "@"
         } else {
@@ -175,7 +204,7 @@ pub(crate) fn picture(app: &App, view: &Projection) -> Picture {
     let extra = app.roll.live.params.die.extra_corner_mass;
     for k in (0..8).filter(|&k| extra[k] > 0.0) {
         let at = view.flat(&body.sharp_corner(k));
-        if corner_seen(&facing, k) {
+        if corner_seen(facing, k) {
             let mark = if app.die_screen.drawing == Drawing::Ascii {
                 "#"
             } else {
@@ -185,11 +214,15 @@ pub(crate) fn picture(app: &App, view: &Projection) -> Picture {
         }
         pic.label(at, format!("+{} g", fmt_num(extra[k])), t.heavy(), true);
     }
+}
 
-    // The floor: tiles, the shadow straight below, the drop line, all behind the die.
-    ground(&mut pic, app, view, half);
+/// The floor: tiles, the shadow straight below, the drop line, all behind the die; and the
+/// twin's ghost.
+fn floor(pic: &mut Picture, app: &App, view: &Projection, body: &Solid, half: f64) {
+    let t = &app.theme;
+    ground(pic, app, view, half);
     let foot = |p: &Vector3<f64>| Vector3::new(p.x, p.y, 0.0);
-    let shadow = convex_hull(&shadow_points(&body, view));
+    let shadow = convex_hull(&shadow_points(body, view));
     if let Some(fill) = t.shadow_fill() {
         pic.shadow = Some((shadow.clone(), fill));
     }
@@ -201,71 +234,86 @@ pub(crate) fn picture(app: &App, view: &Projection) -> Picture {
         pic.behind(0, view.flat(&lowest), view.flat(&foot(&lowest)), t.shadow());
     }
     if let Some(twin) = &app.roll.live.twin {
-        ghost(&mut pic, app, view, twin);
+        ghost(pic, app, view, twin);
     }
+}
 
-    // The die: its seen faces filled, their edges, pips and the frame of the face up.
+/// Seen face `f`: filled, its pips, and the frame of the face up.
+fn seen_face(pic: &mut Picture, app: &App, view: &Projection, body: &Solid, facing: &[f64; 6], f: usize) {
+    let t = &app.theme;
+    let die = &app.roll.live.die;
     let drilled = app.roll.live.params.die.is_drilled();
-    for f in (0..6).filter(|&f| facing[f] > 0.0) {
-        let face = f as u8 + 1;
-        let up = face == die.face_up;
-        let flat_part = body.flat_face(f).map(|p| view.flat(&p));
-        // A face of the marked pair takes its pair's tint, the face up or not.
-        let pair = app
-            .die_screen
-            .face_pair
-            .filter(|&low| face == low || face == 7 - low)
-            .map(|low| usize::from(face != low));
-        let fill = match pair {
-            Some(which) => t.pair_fill(facing[f], which),
-            None => t.face_fill(facing[f], up),
-        };
-        if let Some(fill) = fill {
-            pic.faces.push((convex_hull(&flat_part), fill));
-        }
-        // The face's two edge directions, world, and its half sizes along them, cm.
-        let [normal, e1, e2] = face_frame(face);
-        let (u, w) = (body.direction(e1), body.direction(e2));
-        let size = |e: [f64; 3]| (0..3).map(|i| e[i].abs() * body.half_sizes[i]).sum::<f64>();
-        let (a1, a2) = (size(e1), size(e2));
-        let pip_radius = if drilled {
-            0.5 * app.roll.live.params.die.pip_diameter
-        } else {
-            PIP_RADIUS * a1.min(a2)
-        };
-        let n = ((2.0 * pip_radius / (0.5 * view.dot())).ceil() as usize).clamp(2, 40);
-        for centre in pip_centres(body.half_sizes, face) {
-            let centre = body.point(centre);
-            let mut disc = Vec::with_capacity(n * n);
-            for i in 0..=n {
-                for j in 0..=n {
-                    let (da, db) = (
-                        pip_radius * (2.0 * i as f64 / n as f64 - 1.0),
-                        pip_radius * (2.0 * j as f64 / n as f64 - 1.0),
-                    );
-                    if da * da + db * db <= pip_radius * pip_radius {
-                        disc.push(view.flat(&(centre + da * u + db * w)));
-                    }
+    let face = f as u8 + 1;
+    let up = face == die.face_up;
+    let flat_part = body.flat_face(f).map(|p| view.flat(&p));
+    // A face of the marked pair takes its pair's tint, the face up or not.
+    let pair = app
+        .die_screen
+        .face_pair
+        .filter(|&low| face == low || face == 7 - low)
+        .map(|low| usize::from(face != low));
+    let fill = match pair {
+        Some(which) => t.pair_fill(facing[f], which),
+        None => t.face_fill(facing[f], up),
+    };
+    if let Some(fill) = fill {
+        pic.faces.push((convex_hull(&flat_part), fill));
+    }
+    // The face's two edge directions, world, and its half sizes along them, cm.
+    let [normal, e1, e2] = face_frame(face);
+    let (u, w) = (body.direction(e1), body.direction(e2));
+    let size = |e: [f64; 3]| (0..3).map(|i| e[i].abs() * body.half_sizes[i]).sum::<f64>();
+    let (a1, a2) = (size(e1), size(e2));
+    let pip_radius = if drilled {
+        0.5 * app.roll.live.params.die.pip_diameter
+    } else {
+        PIP_RADIUS * a1.min(a2)
+    };
+    let n = ((2.0 * pip_radius / (0.5 * view.dot())).ceil() as usize).clamp(2, 40);
+    for centre in pip_centres(body.half_sizes, face) {
+        let centre = body.point(centre);
+        let mut disc = Vec::with_capacity(n * n);
+        for i in 0..=n {
+            for j in 0..=n {
+                let (da, db) = (
+                    pip_radius * (2.0 * i as f64 / n as f64 - 1.0),
+                    pip_radius * (2.0 * j as f64 / n as f64 - 1.0),
+                );
+                if da * da + db * db <= pip_radius * pip_radius {
+                    disc.push(view.flat(&(centre + da * u + db * w)));
                 }
             }
-            pic.pips.push((view.flat(&centre), disc, t.die()));
         }
-        if up {
-            let centre = body.centre + body.direction(normal) * size(normal);
-            let flat = |a: f64| (a - body.radius) * 0.95;
-            let (s1, s2) = ((UP_FRAME * a1).min(flat(a1)), (UP_FRAME * a2).min(flat(a2)));
-            let on_face = |x: f64, y: f64| view.flat(&(centre + x * u + y * w));
-            let frame = [
-                on_face(-s1, -s2),
-                on_face(-s1, s2),
-                on_face(s1, s2),
-                on_face(s1, -s2),
-            ];
-            for i in 0..4 {
-                pic.stroke(1, frame[i], frame[(i + 1) % 4], t.die());
-            }
+        pic.pips.push((view.flat(&centre), disc, t.die()));
+    }
+    if up {
+        let centre = body.centre + body.direction(normal) * size(normal);
+        let flat = |a: f64| (a - body.radius) * 0.95;
+        let (s1, s2) = ((UP_FRAME * a1).min(flat(a1)), (UP_FRAME * a2).min(flat(a2)));
+        let on_face = |x: f64, y: f64| view.flat(&(centre + x * u + y * w));
+        let frame = [
+            on_face(-s1, -s2),
+            on_face(-s1, s2),
+            on_face(s1, s2),
+            on_face(s1, -s2),
+        ];
+        for i in 0..4 {
+            pic.stroke(1, frame[i], frame[(i + 1) % 4], t.die());
         }
     }
+}
+
+/// The die's seen edges, those at a corner in contact in the contact colour.
+fn die_edges(
+    pic: &mut Picture,
+    app: &App,
+    view: &Projection,
+    body: &Solid,
+    facing: &[f64; 6],
+    contact: &[bool; 8],
+) {
+    let t = &app.theme;
+    let corners: Vec<Flat> = app.roll.live.die.corners.iter().map(|c| view.flat(c)).collect();
     let edge_colour = |a: usize, b: usize| {
         if contact[a] || contact[b] {
             t.contact_colour()
@@ -288,20 +336,10 @@ pub(crate) fn picture(app: &App, view: &Projection) -> Picture {
             }
         }
     } else {
-        for (a, b) in visible_edges(&facing) {
+        for (a, b) in visible_edges(facing) {
             pic.stroke(1, corners[a], corners[b], edge_colour(a, b));
         }
     }
-    if let Some(low) = app.die_screen.face_pair {
-        pair_axis(&mut pic, app, view, &body, low);
-    }
-    if app.die_screen.arrows {
-        arrows(&mut pic, app, view, die);
-    }
-    if let Some(aim) = app.die_screen.throw {
-        throw_aim(&mut pic, app, view, die, &aim);
-    }
-    pic
 }
 
 /// The body axis through the marked face pair (`low` and its opposite): from the centre out

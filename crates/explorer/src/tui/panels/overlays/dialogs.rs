@@ -117,7 +117,7 @@ fn render_picker(
     let list_width = if beside { LIST_WIDTH } else { body.width };
     let room = fit::room(list_width as usize);
     let (lines, row_of) = picker_lines(app, choices, selected, room);
-    let about = picker_about(app, choices, selected, error.as_deref());
+    let about = picker_about(app, choices, selected, error);
     let (list, description) = if beside {
         let [list, _, description] = body.layout(&Layout::horizontal([
             Constraint::Length(list_width),
