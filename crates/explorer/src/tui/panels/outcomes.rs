@@ -168,12 +168,38 @@ const SHARE_COLUMN: usize = 6;
 /// The fewest cells a face's bar is drawn in.
 const MIN_BAR: usize = 8;
 
-pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
+/// The columns of a table `room` wide: by importance the interval's figures, then the count
+/// (n is in the fairness line), then the bar takes what is left.
+#[derive(Debug, Clone, Copy)]
+struct Columns {
+    numbers: bool,
+    count_shown: bool,
+    bar_width: usize,
+}
+
+impl Columns {
+    fn fitting(room: usize) -> Columns {
+        let fixed = FACE_COLUMN + SHARE_COLUMN + 2;
+        let numbers = room >= fixed + INTERVAL_COLUMN + MIN_BAR;
+        let count_shown = room >= fixed + COUNT_COLUMN + INTERVAL_COLUMN * usize::from(numbers) + MIN_BAR;
+        let bar_width = room
+            .saturating_sub(fixed)
+            .saturating_sub(if numbers { INTERVAL_COLUMN } else { 0 })
+            .saturating_sub(if count_shown { COUNT_COLUMN } else { 0 })
+            .max(2);
+        Columns {
+            numbers,
+            count_shown,
+            bar_width,
+        }
+    }
+}
+
+/// The panel's title, with the batch's progress while one runs.
+fn title(app: &App, inside: usize) -> Line<'static> {
     let t = &app.theme;
-    let table = &app.roll.table;
-    let inside = area.width.saturating_sub(2) as usize;
     // The batch's progress matters more than the panel's name while it runs.
-    let title = match app.roll.batch {
+    match app.roll.batch {
         Some(b) => {
             let progress = format!("batch {}/{} ", b.done, b.total);
             let name = [" outcomes of random rolls ", " outcomes · ", " "]
@@ -186,29 +212,18 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
             ])
         }
         None => Line::styled(" outcomes of random rolls ", t.heading()),
-    };
-    let mut block = Block::bordered().title(fit::abbreviate(title, inside));
-    let body = block.inner(area);
-    if body.height == 0 || body.width < 20 {
-        frame.render_widget(block, area);
-        return;
     }
-    let width = body.width as usize;
-    let room = fit::room(width);
-    let n = table.tally.total();
-    let intervals = table.tally.share_intervals();
-    // Columns by importance: the interval's figures, then the count (n is in the fairness
-    // line), then the bar takes what is left.
-    let fixed = FACE_COLUMN + SHARE_COLUMN + 2;
-    let numbers = room >= fixed + INTERVAL_COLUMN + MIN_BAR;
-    let count_shown = room >= fixed + COUNT_COLUMN + INTERVAL_COLUMN * usize::from(numbers) + MIN_BAR;
-    let bar_width = room
-        .saturating_sub(fixed)
-        .saturating_sub(if numbers { INTERVAL_COLUMN } else { 0 })
-        .saturating_sub(if count_shown { COUNT_COLUMN } else { 0 })
-        .max(2);
+}
+
+/// The heading row over the columns, with the fair share's mark over the bars.
+fn heading(app: &App, room: usize, c: Columns) -> TableRow {
+    let t = &app.theme;
+    let Columns {
+        numbers,
+        count_shown,
+        bar_width,
+    } = c;
     let fair_at = bar_width / 2;
-    let mut rows: Vec<(u8, TableRow)> = Vec::new();
     // The bar spans 0 to 1/3, so a fair face reaches the dotted mark in the middle.
     let mut head = " face".to_string();
     if count_shown {
@@ -225,63 +240,60 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
         .find(|m| m.chars().count() <= mark_room)
         .unwrap_or("");
     // The heading names the interval column; the fairness line can move to the border.
-    rows.push((
-        1,
-        TableRow::Text(Line::from(vec![
-            Span::styled(head, t.heading()),
-            Span::raw(format!("{}{mark}", " ".repeat(fair_at))),
-        ])),
-    ));
-    for face in 1..=6u8 {
-        let count = table.tally.counts[face as usize - 1];
-        let share = table.tally.share(face);
-        let interval = (n > 0).then_some(intervals[face as usize - 1]);
-        let bar = share_bar(share, interval, bar_width);
-        let over = if share * 3.0 > 1.0 { "▸" } else { "" };
-        let share_text = if n > 0 {
-            format!("{:5.1}%", 100.0 * share)
-        } else {
-            "     –".to_string()
-        };
-        let count_text = if count_shown {
-            format!("{count:>6} ")
-        } else {
-            String::new()
-        };
-        let interval_text = match interval {
-            _ if !numbers => String::new(),
-            Some([low, high]) => format!(" {:>4.1}–{:<4.1}", 100.0 * low, 100.0 * high),
-            None => " ".repeat(INTERVAL_COLUMN),
-        };
-        let newest = table.last.front().and_then(|r| r.outcome.face) == Some(face);
-        let face_style = if newest { t.selected() } else { Style::new() };
-        rows.push((
-            0,
-            TableRow::Text(Line::from(vec![
-                Span::styled(format!("  {face}  "), face_style),
-                Span::raw(format!("{count_text}{share_text}{interval_text} ")),
-                Span::styled(bar, t.bar()),
-                Span::styled(over, t.bar()),
-            ])),
-        ));
-    }
-    rows.push((2, TableRow::Fairness));
-    for line in item_lines(&faceless_items(app), width) {
-        rows.push((0, TableRow::Text(line)));
-    }
-    for line in detection_lines(app, width) {
-        rows.push((0, TableRow::Text(line)));
-    }
-    if let Some(b) = app.roll.batch {
-        let ratio = if b.total > 0 {
-            b.done as f64 / b.total as f64
-        } else {
-            0.0
-        };
-        rows.push((1, TableRow::Gauge(ratio.clamp(0.0, 1.0))));
-    }
+    TableRow::Text(Line::from(vec![
+        Span::styled(head, t.heading()),
+        Span::raw(format!("{}{mark}", " ".repeat(fair_at))),
+    ]))
+}
+
+/// The row of `face`: its count, share, interval and bar.
+fn face_row(app: &App, face: u8, c: Columns) -> TableRow {
+    let t = &app.theme;
+    let table = &app.roll.table;
+    let n = table.tally.total();
+    let intervals = table.tally.share_intervals();
+    let Columns {
+        numbers,
+        count_shown,
+        bar_width,
+    } = c;
+    let count = table.tally.counts[face as usize - 1];
+    let share = table.tally.share(face);
+    let interval = (n > 0).then_some(intervals[face as usize - 1]);
+    let bar = share_bar(share, interval, bar_width);
+    let over = if share * 3.0 > 1.0 { "▸" } else { "" };
+    let share_text = if n > 0 {
+        format!("{:5.1}%", 100.0 * share)
+    } else {
+        "     –".to_string()
+    };
+    let count_text = if count_shown {
+        format!("{count:>6} ")
+    } else {
+        String::new()
+    };
+    let interval_text = match interval {
+        _ if !numbers => String::new(),
+        Some([low, high]) => format!(" {:>4.1}–{:<4.1}", 100.0 * low, 100.0 * high),
+        None => " ".repeat(INTERVAL_COLUMN),
+    };
+    let newest = table.last.front().and_then(|r| r.outcome.face) == Some(face);
+    let face_style = if newest { t.selected() } else { Style::new() };
+    TableRow::Text(Line::from(vec![
+        Span::styled(format!("  {face}  "), face_style),
+        Span::raw(format!("{count_text}{share_text}{interval_text} ")),
+        Span::styled(bar, t.bar()),
+        Span::styled(over, t.bar()),
+    ]))
+}
+
+/// The last rolls, under their heading.
+fn last_rows(app: &App, width: usize) -> Vec<(u8, TableRow)> {
+    let t = &app.theme;
+    let table = &app.roll.table;
+    let mut out = Vec::new();
     if !table.last.is_empty() {
-        rows.push((
+        out.push((
             3,
             TableRow::Text(fit::abbreviate(
                 Line::styled(" last: spin ω (rad/s) → ending, steps, impacts", t.heading()),
@@ -295,15 +307,17 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
                 " #{:<5} ({:>4.0},{:>4.0},{:>4.0}) → {end} {:>6} {:>3}×",
                 r.id, w[0], w[1], w[2], r.outcome.steps, r.outcome.impacts
             ));
-            rows.push((4, TableRow::Text(fit::abbreviate(line, width))));
+            out.push((4, TableRow::Text(fit::abbreviate(line, width))));
         }
     }
-    let rows = fit::rows(rows, body.height as usize);
-    // The fairness line that has no row of its own goes into the bottom border.
-    if !rows.iter().any(|r| matches!(r, TableRow::Fairness)) {
-        block = block.title_bottom(fairness(app, inside));
-    }
-    frame.render_widget(block, area);
+    out
+}
+
+/// Draws the rows that fit, one per line of `body`.
+fn draw_rows(app: &App, rows: Vec<TableRow>, body: Rect, frame: &mut Frame) {
+    let t = &app.theme;
+    let width = body.width as usize;
+    let room = fit::room(width);
     for (row, y) in rows.into_iter().zip(body.y..) {
         let at = Rect { y, height: 1, ..body };
         match row {
@@ -322,4 +336,46 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
             }
         }
     }
+}
+
+/// The outcome table: each face's count, share, 95 % interval and bar, the fairness test,
+/// the rolls without a face, a batch's progress and the last rolls.
+pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
+    let inside = area.width.saturating_sub(2) as usize;
+    let mut block = Block::bordered().title(fit::abbreviate(title(app, inside), inside));
+    let body = block.inner(area);
+    if body.height == 0 || body.width < 20 {
+        frame.render_widget(block, area);
+        return;
+    }
+    let width = body.width as usize;
+    let columns = Columns::fitting(fit::room(width));
+    let mut rows: Vec<(u8, TableRow)> = vec![(1, heading(app, fit::room(width), columns))];
+    // The heading names the interval column; the fairness line can move to the border.
+    for face in 1..=6u8 {
+        rows.push((0, face_row(app, face, columns)));
+    }
+    rows.push((2, TableRow::Fairness));
+    for line in item_lines(&faceless_items(app), width) {
+        rows.push((0, TableRow::Text(line)));
+    }
+    for line in detection_lines(app, width) {
+        rows.push((0, TableRow::Text(line)));
+    }
+    if let Some(b) = app.roll.batch {
+        let ratio = if b.total > 0 {
+            b.done as f64 / b.total as f64
+        } else {
+            0.0
+        };
+        rows.push((1, TableRow::Gauge(ratio.clamp(0.0, 1.0))));
+    }
+    rows.extend(last_rows(app, width));
+    let rows = fit::rows(rows, body.height as usize);
+    // The fairness line that has no row of its own goes into the bottom border.
+    if !rows.iter().any(|r| matches!(r, TableRow::Fairness)) {
+        block = block.title_bottom(fairness(app, inside));
+    }
+    frame.render_widget(block, area);
+    draw_rows(app, rows, body, frame);
 }
