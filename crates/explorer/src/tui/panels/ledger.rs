@@ -64,6 +64,51 @@ pub(crate) fn bar_rows(app: &App, rows: u16) -> (Vec<Option<usize>>, Option<u16>
     (cells, Some(total_row))
 }
 
+/// The energy bar, top row first: each cell in the colour of the form it stands for, the
+/// total marked.
+fn bar_lines(app: &App, height: u16) -> Vec<Line<'static>> {
+    let t = &app.theme;
+    let colours = t.energy_series();
+    let forms = forms(app);
+    let (cells, total_row) = bar_rows(app, height);
+    (0..height)
+        .rev()
+        .map(|r| {
+            let fill = match cells[r as usize] {
+                Some(i) => Span::styled(
+                    glyph(app, i).to_string().repeat(2),
+                    Style::new().fg(colours[forms[i].2]),
+                ),
+                None => Span::raw("  "),
+            };
+            let mark = if total_row == Some(r) { "◀" } else { " " };
+            Line::from(vec![fill, Span::styled(mark, t.heading())])
+        })
+        .collect()
+}
+
+/// A row of the books `text_width` wide: the label, the number right-aligned. A label too
+/// long beside its number loses its glyph or indent, then takes its `short` form (never a
+/// word cut mid-way): the number is what is read.
+fn book_row(label: Span<'static>, short: &str, value: f64, text_width: usize) -> Line<'static> {
+    let number = fmt_num(value);
+    let room = fit::room(text_width);
+    let label_room = room.saturating_sub(number.chars().count() + 1);
+    let bare = label
+        .content
+        .trim_start_matches(['█', '▓', '▒', '░', ' '])
+        .to_string();
+    let text = [label.content.to_string(), bare, short.to_string()]
+        .into_iter()
+        .find(|l| l.chars().count() <= label_room)
+        .unwrap_or_default();
+    let label = Span::styled(text, label.style);
+    let pad = room.saturating_sub(label.width() + number.chars().count());
+    Line::from(vec![label, Span::raw(" ".repeat(pad)), Span::raw(number)])
+}
+
+/// The energy ledger: a bar of the energy now by form, the energy gone (damping, friction,
+/// the integrator's share) and the start it all came from.
 pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     // The energy at the state on screen: the energy plot's readout at its time marker.
@@ -83,47 +128,15 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     }
     let colours = t.energy_series();
     let forms = forms(app);
-    let (cells, total_row) = bar_rows(app, body.height);
-    let bar: Vec<Line> = (0..body.height)
-        .rev()
-        .map(|r| {
-            let fill = match cells[r as usize] {
-                Some(i) => Span::styled(
-                    glyph(app, i).to_string().repeat(2),
-                    Style::new().fg(colours[forms[i].2]),
-                ),
-                None => Span::raw("  "),
-            };
-            let mark = if total_row == Some(r) { "◀" } else { " " };
-            Line::from(vec![fill, Span::styled(mark, t.heading())])
-        })
-        .collect();
     frame.render_widget(
-        Paragraph::new(bar),
+        Paragraph::new(bar_lines(app, body.height)),
         Rect {
             width: BAR_COLUMNS,
             ..body
         },
     );
     let text_width = (body.width - BAR_COLUMNS) as usize;
-    // A label too long beside its number loses its glyph or indent, then takes its short
-    // form (never a word cut mid-way): the number is what is read.
-    let row = |label: Span<'static>, short: &str, value: f64| {
-        let number = fmt_num(value);
-        let room = fit::room(text_width);
-        let label_room = room.saturating_sub(number.chars().count() + 1);
-        let bare = label
-            .content
-            .trim_start_matches(['█', '▓', '▒', '░', ' '])
-            .to_string();
-        let text = [label.content.to_string(), bare, short.to_string()]
-            .into_iter()
-            .find(|l| l.chars().count() <= label_room)
-            .unwrap_or_default();
-        let label = Span::styled(text, label.style);
-        let pad = room.saturating_sub(label.width() + number.chars().count());
-        Line::from(vec![label, Span::raw(" ".repeat(pad)), Span::raw(number)])
-    };
+    let row = |label: Span<'static>, short: &str, value: f64| book_row(label, short, value, text_width);
     let l = &app.roll.live.ledger;
     // By importance, for a short panel: the total, the heading that says the numbers under
     // it are energy gone (not energy present) and the two losses a class asks about; the
