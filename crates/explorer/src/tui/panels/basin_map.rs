@@ -13,7 +13,7 @@ use crate::tui::vocabulary::param::Param;
 use crate::worker::MapAxis;
 use dicesim_experiment::basin::node_setup;
 use dicesim_experiment::ending::Ending;
-use dicesim_experiment::{Cell, Layer};
+use dicesim_experiment::{BasinMap, Cell, Layer};
 use dicesim_figures::plot::{INFERRED_WORDS, cell_colour, time_range};
 use dicesim_physics::Status;
 use ratatui::Frame;
@@ -107,10 +107,23 @@ fn render_panel(app: &App, areas: &MapAreas, frame: &mut Frame) {
     if grid.width == 0 || grid.height == 0 {
         return;
     }
+    draw_cells(app, map, grid, frame);
+    draw_labels(app, map, inner, grid, frame);
+}
+
+/// Character columns and rows the map takes in `grid`: a cell a column, two cells a row.
+fn grid_size(map: &BasinMap, grid: Rect) -> (u16, u16) {
+    let cols = (map.width() as u16).min(grid.width);
+    let rows = (map.height().div_ceil(2) as u16).min(grid.height);
+    (cols, rows)
+}
+
+/// The map's cells, two to a character (upper and lower half), the cursor's marked.
+fn draw_cells(app: &App, map: &BasinMap, grid: Rect, frame: &mut Frame) {
+    let m = &app.map;
     let times = time_range(map);
-    let (w, h) = (map.width(), map.height());
-    let cols = (w as u16).min(grid.width);
-    let rows = (h.div_ceil(2) as u16).min(grid.height);
+    let h = map.height();
+    let (cols, rows) = grid_size(map, grid);
     // Character row r (from the top) holds cells j = h-1-2r (upper half) and h-2-2r (lower).
     let cell_at = |i: usize, j: isize| (j >= 0).then(|| map.cell(i, j as usize)).flatten();
     let buf = frame.buffer_mut();
@@ -148,6 +161,14 @@ fn render_panel(app: &App, areas: &MapAreas, frame: &mut Frame) {
             }
         }
     }
+}
+
+/// The axes' labels beside and under the map, and the cursor's ticks on both.
+fn draw_labels(app: &App, map: &BasinMap, inner: Rect, grid: Rect, frame: &mut Frame) {
+    let t = &app.theme;
+    let m = &app.map;
+    let h = map.height();
+    let (cols, rows) = grid_size(map, grid);
     // Axis labels: y max at the top row, min at the bottom row; x min left, max right.
     let labels = Rect {
         x: inner.x,
