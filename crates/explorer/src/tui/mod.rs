@@ -9,6 +9,8 @@
 //! state; then
 //! `render`, which lays the panels out, and the event loop (`run`, `effects`, `tty`).
 
+#![warn(clippy::too_many_lines)]
+
 pub(crate) mod event_loop;
 pub(crate) mod input;
 pub(crate) mod panels;

@@ -61,14 +61,31 @@ fn face_up(app: &App) -> String {
     format!("face up {}", app.roll.live.die.face_up)
 }
 
-/// Every screen the explorer draws, in the given theme. Adding a screen is one entry here:
-/// it is then snapshot at every size, checked for cut words and for contrast.
+/// Every screen the explorer draws, in the given theme. Adding a screen is one entry in one
+/// of the lists below: it is then snapshot at every size, checked for cut words and for
+/// contrast.
 pub(crate) fn states(theme: Theme) -> Vec<ScreenState> {
-    let state = |name: &'static str, app: App, shows: &[&str]| ScreenState {
+    let mut states = die_states(theme);
+    states.extend(twin_states(theme));
+    states.extend(more_states(theme));
+    states.extend(view_states(theme));
+    states.extend(plot_states(theme));
+    for s in &mut states {
+        s.app.theme = theme;
+    }
+    states
+}
+
+fn state(name: &'static str, app: App, shows: &[&str]) -> ScreenState {
+    ScreenState {
         name,
         app,
         shows: shows.iter().map(|s| s.to_string()).collect(),
-    };
+    }
+}
+
+/// The die screen: rolling, at rest, editing and refusing values, batches.
+fn die_states(theme: Theme) -> Vec<ScreenState> {
     let mut arrows = mid_impact_with(theme);
     arrows.key(KeyCode::Char('v'));
     // The table's push on the die at the impact, whole in the arrows' legend.
@@ -81,8 +98,6 @@ pub(crate) fn states(theme: Theme) -> Vec<ScreenState> {
     let mut refused = editing();
     refused.key(KeyCode::Char('9'));
     refused.key(KeyCode::Enter);
-    let mut loaded = loaded_after(40, theme);
-    loaded.key(KeyCode::Char('v'));
     let settled_app = settled().app;
     let settled_face = face_up(&settled_app);
     let mut running = loaded_batch(600, theme);
@@ -110,6 +125,33 @@ pub(crate) fn states(theme: Theme) -> Vec<ScreenState> {
         .and_then(|e| e.error.clone())
         .expect("refused");
     assert!(refusal.starts_with("0: corner in the table"), "{refusal}");
+    vec![
+        state("start", start().app, &["face up", "Δt"]),
+        state("mid impact with arrows", arrows.app, &["face up", &force]),
+        state(
+            "settled",
+            settled_app,
+            &[&settled_face, "lost since 0 s", "damping", "Δt"],
+        ),
+        state("unstable", unstable().app, &["unstable", "Δt"]),
+        state("help", help().app, &[]),
+        state("editing", editing().app, &["friction μ = 0.8"]),
+        state("editing refused", refused.app, &[]),
+        state("value hint", height.app, &["initial.height", "restarts the roll"]),
+        state("height refused", refused_height.app, &[&refusal]),
+        // 600 rolls of the batch and one random roll.
+        state("batch done", filled_table().app, &["95 %", "n 601"]),
+        state(
+            "loaded batch",
+            loaded_batch(2000, theme).app,
+            &["95 %", "bias this large shows in", "n 2000"],
+        ),
+        state("batch running", running.app, &["batch 3072/10000"]),
+    ]
+}
+
+/// The chaos twin beside the die, and at rest.
+fn twin_states(theme: Theme) -> Vec<ScreenState> {
     // Both dice of the twin at rest: the verdict the lesson's step 4 is about, worked out
     // here from the two faces.
     let mut twin_end = twin_scene(theme);
@@ -132,28 +174,7 @@ pub(crate) fn states(theme: Theme) -> Vec<ScreenState> {
     } else {
         "faces differ"
     };
-    let mut states = vec![
-        state("start", start().app, &["face up", "Δt"]),
-        state("mid impact with arrows", arrows.app, &["face up", &force]),
-        state(
-            "settled",
-            settled_app,
-            &[&settled_face, "lost since 0 s", "damping", "Δt"],
-        ),
-        state("unstable", unstable().app, &["unstable", "Δt"]),
-        state("help", help().app, &[]),
-        state("editing", editing().app, &["friction μ = 0.8"]),
-        state("editing refused", refused.app, &[]),
-        state("value hint", height.app, &["initial.height", "restarts the roll"]),
-        state("height refused", refused_height.app, &[&refusal]),
-        // 600 rolls of the batch and one random roll.
-        state("batch done", filled_table().app, &["95 %", "n 601"]),
-        state(
-            "loaded batch",
-            loaded_batch(2000, theme).app,
-            &["95 %", "bias this large shows in", "n 2000"],
-        ),
-        state("batch running", running.app, &["batch 3072/10000"]),
+    vec![
         state(
             "twin",
             keyed(twin_scene(theme), &[KeyCode::Char('v')]),
@@ -165,6 +186,14 @@ pub(crate) fn states(theme: Theme) -> Vec<ScreenState> {
             twin_end.app,
             &[verdict, &format!("face up {die_face}")],
         ),
+    ]
+}
+
+/// The map, the loaded die, the dialogs and the prompts.
+fn more_states(theme: Theme) -> Vec<ScreenState> {
+    let mut loaded = loaded_after(40, theme);
+    loaded.key(KeyCode::Char('v'));
+    vec![
         state("map", map_scene(theme).app, &["face up"]),
         state("loaded die", loaded.app, &["+0.5 g"]),
         state(
@@ -183,6 +212,12 @@ pub(crate) fn states(theme: Theme) -> Vec<ScreenState> {
             keyed(start(), &[KeyCode::Char('l'), KeyCode::Backspace]),
             &[],
         ),
+    ]
+}
+
+/// Seeking, the presentation view, throwing.
+fn view_states(theme: Theme) -> Vec<ScreenState> {
+    vec![
         state(
             "stepped back",
             {
@@ -246,6 +281,12 @@ pub(crate) fn states(theme: Theme) -> Vec<ScreenState> {
             ),
             &["thrown: v ("],
         ),
+    ]
+}
+
+/// The plot fitted, a face pair marked, the map's inferred cells, a parameter twin at rest.
+fn plot_states(theme: Theme) -> Vec<ScreenState> {
+    vec![
         // Two curves of one unit, the readout at the marker, the axis fitted around it.
         state(
             "height and lowest corner fitted",
@@ -300,11 +341,7 @@ pub(crate) fn states(theme: Theme) -> Vec<ScreenState> {
             },
             &["dice"],
         ),
-    ];
-    for s in &mut states {
-        s.app.theme = theme;
-    }
-    states
+    ]
 }
 
 pub(crate) fn projector() -> Theme {

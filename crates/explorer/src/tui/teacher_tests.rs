@@ -141,6 +141,36 @@ fn mouse(s: &mut Harness, kind: MouseEventKind, column: u16, row: u16, modifiers
 }
 
 /// The paper's die seen level, from the front: across the panel is the world's x, up is z.
+/// A plain left-button drag along `path`: pressed at its first cell, dragged through the
+/// others, released at the last.
+fn drag(s: &mut Harness, path: &[(u16, u16)]) {
+    let (first, rest) = path.split_first().expect("a path");
+    mouse(
+        s,
+        MouseEventKind::Down(MouseButton::Left),
+        first.0,
+        first.1,
+        KeyModifiers::NONE,
+    );
+    for &(column, row) in rest {
+        mouse(
+            s,
+            MouseEventKind::Drag(MouseButton::Left),
+            column,
+            row,
+            KeyModifiers::NONE,
+        );
+    }
+    let last = path.last().expect("a path");
+    mouse(
+        s,
+        MouseEventKind::Up(MouseButton::Left),
+        last.0,
+        last.1,
+        KeyModifiers::NONE,
+    );
+}
+
 fn level(s: &mut Harness) {
     s.app.die_screen.camera = OrbitCamera {
         yaw_deg: 0.0,
@@ -182,27 +212,7 @@ fn a_drag_on_the_die_throws_it_and_the_saved_throw_rolls_the_same_bits() {
     let (m, i) = (8.0, 16.0 / 3.0);
     // A plain drag orbits the camera and throws nothing.
     let before = s.app.setup.initial;
-    mouse(
-        &mut s,
-        MouseEventKind::Down(MouseButton::Left),
-        c,
-        r,
-        KeyModifiers::NONE,
-    );
-    mouse(
-        &mut s,
-        MouseEventKind::Drag(MouseButton::Left),
-        c + 2,
-        r,
-        KeyModifiers::NONE,
-    );
-    mouse(
-        &mut s,
-        MouseEventKind::Up(MouseButton::Left),
-        c + 2,
-        r,
-        KeyModifiers::NONE,
-    );
+    drag(&mut s, &[(c, r), (c + 2, r)]);
     assert_eq!(s.app.setup.initial, before);
     assert_ne!(s.app.die_screen.camera.yaw_deg, 0.0, "orbited");
     level(&mut s);
@@ -214,33 +224,9 @@ fn a_drag_on_the_die_throws_it_and_the_saved_throw_rolls_the_same_bits() {
             screen(&s.app, 120, 36).contains("Enter throw"),
             "throw mode's keys in the footer"
         );
-        mouse(
+        drag(
             &mut s,
-            MouseEventKind::Down(MouseButton::Left),
-            c,
-            grab_row,
-            KeyModifiers::NONE,
-        );
-        mouse(
-            &mut s,
-            MouseEventKind::Drag(MouseButton::Left),
-            c + 3,
-            grab_row - 1,
-            KeyModifiers::NONE,
-        );
-        mouse(
-            &mut s,
-            MouseEventKind::Drag(MouseButton::Left),
-            c + 6,
-            grab_row - 2,
-            KeyModifiers::NONE,
-        );
-        mouse(
-            &mut s,
-            MouseEventKind::Up(MouseButton::Left),
-            c + 6,
-            grab_row - 2,
-            KeyModifiers::NONE,
+            &[(c, grab_row), (c + 3, grab_row - 1), (c + 6, grab_row - 2)],
         );
         let v = s.app.setup.initial.velocity;
         let (vx, vz) = (6.0 * w / THROW_TIME_S, 2.0 * h / THROW_TIME_S);
