@@ -25,35 +25,4 @@ pub use vocabulary::key_table::markdown_tables;
 pub use vocabulary::theme::Theme;
 
 #[cfg(test)]
-mod class_tests;
-#[cfg(test)]
-mod control_tests;
-#[cfg(test)]
-mod tests;
-
-#[cfg(test)]
-mod map_tests;
-
-#[cfg(test)]
-mod view_tests;
-
-#[cfg(test)]
-mod twin_tests;
-
-#[cfg(test)]
-mod plot_tests;
-
-#[cfg(test)]
-mod contrast_tests;
-
-#[cfg(test)]
-mod lesson_tests;
-
-#[cfg(test)]
-mod versus_tests;
-
-#[cfg(test)]
-mod teacher_tests;
-
-#[cfg(test)]
-pub(crate) mod screen_tests;
+pub(crate) mod tests;

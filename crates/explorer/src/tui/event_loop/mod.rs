@@ -3,3 +3,6 @@
 pub(crate) mod effects;
 pub(crate) mod run;
 pub(crate) mod tty;
+
+#[cfg(test)]
+mod effects_tests;

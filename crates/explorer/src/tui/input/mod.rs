@@ -6,3 +6,10 @@ pub(crate) mod map_keys;
 pub(crate) mod throw_keys;
 pub(crate) mod twin_keys;
 pub(crate) mod update;
+
+#[cfg(test)]
+mod map_keys_tests;
+#[cfg(test)]
+mod throw_keys_tests;
+#[cfg(test)]
+mod update_tests;

@@ -512,3 +512,6 @@ fn legend_lines(app: &App) -> Vec<Line<'static>> {
     ]));
     lines
 }
+
+#[cfg(test)]
+mod basin_map_tests;

@@ -783,3 +783,6 @@ mod tests {
         }
     }
 }
+
+#[cfg(test)]
+mod die_tests;

@@ -162,3 +162,6 @@ fn render_line(app: &App, notice: Option<String>, keys: Vec<KeyHint>, area: Rect
     let line = crate::tui::vocabulary::fit::abbreviate(Line::from(spans), area.width as usize);
     frame.render_widget(Paragraph::new(line), area);
 }
+
+#[cfg(test)]
+mod footer_tests;

@@ -82,3 +82,6 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     };
     frame.render_widget(Paragraph::new(line), area);
 }
+
+#[cfg(test)]
+mod header_tests;

@@ -205,3 +205,6 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
         },
     );
 }
+
+#[cfg(test)]
+mod ledger_tests;

@@ -379,3 +379,6 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     frame.render_widget(block, area);
     draw_rows(app, rows, body, frame);
 }
+
+#[cfg(test)]
+mod outcomes_tests;

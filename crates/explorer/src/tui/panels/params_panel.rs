@@ -172,3 +172,6 @@ pub(crate) fn refusal_for_status_line(app: &App, screen_width: u16) -> Option<St
     let error = app.value_editor()?.error.as_ref()?;
     (!error_fits(error, inside)).then(|| error.clone())
 }
+
+#[cfg(test)]
+mod params_panel_tests;

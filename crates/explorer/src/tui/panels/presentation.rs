@@ -261,7 +261,7 @@ mod tests {
     use crate::tui::state::app::Page;
     use crate::tui::state::die_screen::Readout;
     use crate::tui::state::messages::Msg;
-    use crate::tui::tests::{Harness, screen, spun_preset};
+    use crate::tui::tests::fixtures::{Harness, screen, spun_preset};
     use crate::tui::vocabulary::layout::screen_layout;
     use crate::tui::vocabulary::theme::{Palette, Theme};
     use ratatui::Terminal;

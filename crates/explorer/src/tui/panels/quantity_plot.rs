@@ -329,3 +329,6 @@ mod tests {
         assert_eq!(sample_now(&h, -1.0).unwrap().time_s, 0.0);
     }
 }
+
+#[cfg(test)]
+mod quantity_plot_tests;

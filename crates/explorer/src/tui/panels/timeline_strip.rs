@@ -73,3 +73,6 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     )));
     frame.render_widget(Paragraph::new(Line::from(spans)), area);
 }
+
+#[cfg(test)]
+mod timeline_strip_tests;

@@ -26,3 +26,6 @@ pub(crate) fn render(_app: &App, area: Rect, frame: &mut Frame) {
     let [_, middle] = area.layout(&Layout::vertical([Constraint::Length(top), Constraint::Min(0)]));
     frame.render_widget(Paragraph::new(text).centered().wrap(Wrap { trim: true }), middle);
 }
+
+#[cfg(test)]
+mod too_small_tests;

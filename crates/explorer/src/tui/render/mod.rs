@@ -2,3 +2,6 @@
 
 pub(crate) mod places;
 pub(crate) mod screen;
+
+#[cfg(test)]
+mod render_tests;

@@ -172,8 +172,8 @@ pub(crate) fn legend(app: &App, width: u16) -> Vec<Line<'static>> {
 mod tests {
     use super::*;
     use crate::tui::panels::die::{Projection, picture, place_labels};
-    use crate::tui::tests::mid_impact_with;
-    use crate::tui::twin_tests::twin_scene;
+    use crate::tui::tests::fixtures::mid_impact_with;
+    use crate::tui::tests::fixtures::twin_scene;
     use crate::tui::vocabulary::solid::inside;
     use crate::tui::vocabulary::theme::{Palette, Theme};
     use ratatui::crossterm::event::KeyCode;

@@ -289,3 +289,6 @@ mod picker_tests {
         assert_eq!(picker_window(5, 4, 7), (0, 5, false));
     }
 }
+
+#[cfg(test)]
+mod dialogs_tests;

@@ -162,3 +162,6 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
         Paragraph::new(help_lines(app, body.width as usize)).scroll((app.help_scroll().unwrap_or(0), 0));
     frame.render_widget(para, body);
 }
+
+#[cfg(test)]
+mod help_tests;

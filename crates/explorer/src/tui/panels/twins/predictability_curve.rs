@@ -333,3 +333,6 @@ fn chart<'a>(app: &App, s: &'a Series) -> Chart<'a> {
         .y_axis(Axis::default().bounds([0.0, 1.0]).labels(["0", "0.5", "1"]))
         .legend_position(None)
 }
+
+#[cfg(test)]
+mod predictability_curve_tests;

@@ -166,3 +166,6 @@ pub(crate) fn outcome_lines(app: &App, width: u16) -> Vec<Line<'static>> {
     }
     lines
 }
+
+#[cfg(test)]
+mod separation_tests;

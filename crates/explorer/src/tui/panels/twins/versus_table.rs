@@ -117,3 +117,6 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     frame.render_widget(block, area);
     frame.render_widget(Paragraph::new(lines), body);
 }
+
+#[cfg(test)]
+mod versus_table_tests;
