@@ -7,7 +7,7 @@ use crate::tui::state::app::App;
 use crate::tui::vocabulary::layout::screen_layout;
 use ratatui::Frame;
 
-/// Draws the panels [`PLACES`] puts on screen now, or the notice that the terminal is too
+/// Draws the panels `PLACES` puts on screen now, or the notice that the terminal is too
 /// small, then paints the theme over every cell.
 pub fn render(app: &App, frame: &mut Frame) {
     let area = frame.area();
