@@ -1,36 +1,24 @@
 //! The effects `update` asks for: exports written, animations sent, refusals said.
 
-use crate::tui::input::update::update;
-use crate::tui::state::app::App;
-use crate::tui::state::messages::Msg;
+use crate::tui::tests::fixtures::press_performing;
 use crate::tui::tests::fixtures::{mid_impact, screen, start};
 use crate::worker::Command;
 use dicesim_experiment::trace::{header, row};
 use dicesim_physics::Simulation;
-use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
-
-fn press(app: &mut App, code: KeyCode) -> Vec<Command> {
-    update(
-        app,
-        Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))),
-    )
-    .into_iter()
-    .filter_map(|e| crate::tui::event_loop::effects::perform(app, e))
-    .collect()
-}
+use ratatui::crossterm::event::KeyCode;
 
 #[test]
 fn e_exports_into_the_current_folder_and_p_switches_the_log_scale() {
     let mut a = start().app;
     assert_eq!(
-        press(&mut a, KeyCode::Char('e')),
+        press_performing(&mut a, KeyCode::Char('e')),
         [Command::Export {
             dir: ".".into(),
             log_scale: false
         }]
     );
     assert!(!a.die_screen.log_scale);
-    assert!(press(&mut a, KeyCode::Char('p')).is_empty());
+    assert!(press_performing(&mut a, KeyCode::Char('p')).is_empty());
     assert!(a.die_screen.log_scale);
 }
 
@@ -38,9 +26,9 @@ fn e_exports_into_the_current_folder_and_p_switches_the_log_scale() {
 fn the_exported_energy_plot_follows_the_screens_scale() {
     // `p` on screen, then `e`: the command carries the log scale to the export.
     let mut a = mid_impact().app;
-    press(&mut a, KeyCode::Char('p'));
+    press_performing(&mut a, KeyCode::Char('p'));
     assert!(a.die_screen.log_scale);
-    let c = press(&mut a, KeyCode::Char('e'));
+    let c = press_performing(&mut a, KeyCode::Char('e'));
     assert!(
         matches!(c[..], [Command::Export { log_scale: true, .. }]),
         "{c:?}"
@@ -116,7 +104,7 @@ fn a_sends_the_animation_of_the_camera_s_view_and_the_status_line_follows_it() {
     s.app.die_screen.camera.orbit(15.0, 10.0);
     let (yaw_deg, pitch_deg) = (s.app.die_screen.camera.yaw_deg, s.app.die_screen.camera.pitch_deg);
     assert_eq!(
-        press(&mut s.app, KeyCode::Char('A')),
+        press_performing(&mut s.app, KeyCode::Char('A')),
         [Command::ExportAnimation {
             dir: ".".into(),
             yaw_deg,
@@ -148,8 +136,14 @@ fn a_sends_the_animation_of_the_camera_s_view_and_the_status_line_follows_it() {
         status.contains("exporting the animation: frame 12 of 80 · A cancels"),
         "{status}"
     );
-    assert_eq!(press(&mut s.app, KeyCode::Char('A')), [Command::ExportCancel]);
-    assert_eq!(press(&mut s.app, KeyCode::Char('e')), [Command::ExportCancel]);
+    assert_eq!(
+        press_performing(&mut s.app, KeyCode::Char('A')),
+        [Command::ExportCancel]
+    );
+    assert_eq!(
+        press_performing(&mut s.app, KeyCode::Char('e')),
+        [Command::ExportCancel]
+    );
     s.command(Command::ExportCancel);
     assert_eq!(
         s.app.notice.as_deref(),

@@ -356,6 +356,18 @@ pub(crate) fn press(app: &mut App, code: KeyCode) -> Vec<Command> {
     .collect()
 }
 
+/// A key pressed, and the effects it asks for performed as the event loop would: the
+/// worker's commands among them.
+pub(crate) fn press_performing(app: &mut App, code: KeyCode) -> Vec<Command> {
+    update(
+        app,
+        Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))),
+    )
+    .into_iter()
+    .filter_map(|e| crate::tui::event_loop::effects::perform(app, e))
+    .collect()
+}
+
 pub(crate) fn map_of(app: &App) -> &BasinMap {
     app.map.map().expect("a map is shown")
 }

@@ -1,9 +1,8 @@
 //! The preset dialogs: the picker, the save dialog and the questions over them.
 
-use crate::tui::input::update::update;
 use crate::tui::state::app::App;
 use crate::tui::state::dialog::{Dialog, Group};
-use crate::tui::state::messages::Msg;
+use crate::tui::tests::fixtures::press_performing;
 use crate::tui::tests::fixtures::{Harness, start};
 use crate::tui::vocabulary::param::Param;
 use crate::tui::vocabulary::theme::Theme;
@@ -11,21 +10,11 @@ use crate::worker::Command;
 use dicesim_setup::preset::{LESSON, Preset, Store};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
-use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
-
-fn press(app: &mut App, code: KeyCode) -> Vec<Command> {
-    update(
-        app,
-        Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))),
-    )
-    .into_iter()
-    .filter_map(|e| crate::tui::event_loop::effects::perform(app, e))
-    .collect()
-}
+use ratatui::crossterm::event::KeyCode;
 
 fn type_text(app: &mut App, text: &str) {
     for c in text.chars() {
-        assert!(press(app, KeyCode::Char(c)).is_empty());
+        assert!(press_performing(app, KeyCode::Char(c)).is_empty());
     }
 }
 
@@ -99,7 +88,7 @@ fn picker_lists_shipped_and_user_presets_and_loads_the_chosen_one() {
     insta::assert_snapshot!("picker_80x24", narrow);
     // Down to the user's preset and load it: the worker switches, the dialog closes.
     s.key(KeyCode::End);
-    let sent = press(&mut s.app, KeyCode::Enter);
+    let sent = press_performing(&mut s.app, KeyCode::Enter);
     assert!(matches!(sent.as_slice(), [Command::LoadPreset(p)] if p.name == "lab-2"));
     assert!(s.app.dialog().is_none());
     for c in sent {
@@ -116,8 +105,8 @@ fn picker_lists_shipped_and_user_presets_and_loads_the_chosen_one() {
 #[test]
 fn picker_keys_move_and_escape_closes() {
     let mut a = start().app;
-    assert!(press(&mut a, KeyCode::Char('o')).is_empty());
-    press(&mut a, KeyCode::End);
+    assert!(press_performing(&mut a, KeyCode::Char('o')).is_empty());
+    press_performing(&mut a, KeyCode::End);
     let Some(Dialog::Picker {
         choices, selected, ..
     }) = a.dialog()
@@ -125,13 +114,13 @@ fn picker_keys_move_and_escape_closes() {
         panic!("open")
     };
     assert_eq!(*selected, choices.len() - 1);
-    press(&mut a, KeyCode::Esc);
+    press_performing(&mut a, KeyCode::Esc);
     assert!(
         a.dialog().is_none() && !a.quit,
         "Esc closes the picker, not the explorer"
     );
-    press(&mut a, KeyCode::Char('o'));
-    press(&mut a, KeyCode::Char('q'));
+    press_performing(&mut a, KeyCode::Char('o'));
+    press_performing(&mut a, KeyCode::Char('q'));
     assert!(a.dialog().is_none() && !a.quit);
 }
 
@@ -154,7 +143,7 @@ fn save_dialog_refuses_a_bad_name() {
     s.app.store = Store::new(Some("/nonexistent/dicesim-presets".into()));
     s.key(KeyCode::Char('s'));
     type_text(&mut s.app, "my preset!");
-    assert!(press(&mut s.app, KeyCode::Enter).is_empty());
+    assert!(press_performing(&mut s.app, KeyCode::Enter).is_empty());
     let Some(Dialog::Save { error: Some(e), .. }) = s.app.dialog() else {
         panic!("still open, with an error")
     };
@@ -171,7 +160,7 @@ fn save_asks_before_replacing_and_writes_the_setup() {
     s.command(Command::SetParam(Param::named("ground.friction").scan_key(), 0.4));
     s.key(KeyCode::Char('s'));
     type_text(&mut s.app, "lab-2");
-    press(&mut s.app, KeyCode::Enter);
+    press_performing(&mut s.app, KeyCode::Enter);
     let Some(Dialog::Save {
         error: Some(e),
         confirm_replace: true,
@@ -182,7 +171,7 @@ fn save_asks_before_replacing_and_writes_the_setup() {
     };
     assert!(e.contains("exists"), "{e}");
     assert_eq!(store.load("lab-2").expect("kept").0.initial.height, 30.0);
-    press(&mut s.app, KeyCode::Enter);
+    press_performing(&mut s.app, KeyCode::Enter);
     assert!(s.app.dialog().is_none());
     let saved = store.load("lab-2").expect("saved").0;
     assert_eq!(saved.ground.friction, 0.4);
@@ -194,7 +183,7 @@ fn save_asks_before_replacing_and_writes_the_setup() {
     // A new name saves without asking.
     s.key(KeyCode::Char('s'));
     type_text(&mut s.app, "lab-3");
-    press(&mut s.app, KeyCode::Enter);
+    press_performing(&mut s.app, KeyCode::Enter);
     assert!(s.app.dialog().is_none());
     assert!(dir.path().join("lab-3.toml").is_file());
 }

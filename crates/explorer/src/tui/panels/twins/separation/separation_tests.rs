@@ -1,24 +1,13 @@
 //! The chaos twin: its separation from the die and both outcomes.
 
-use crate::tui::input::update::update;
 use crate::tui::state::app::App;
-use crate::tui::state::messages::Msg;
+use crate::tui::tests::fixtures::press_performing;
 use crate::tui::tests::fixtures::{full, panel, start, twin_after};
 use crate::worker::{Command, Phase};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
-use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
+use ratatui::crossterm::event::KeyCode;
 use ratatui::style::Color;
-
-fn press(app: &mut App, code: KeyCode) -> Vec<Command> {
-    update(
-        app,
-        Msg::Input(Event::Key(KeyEvent::new(code, KeyModifiers::NONE))),
-    )
-    .into_iter()
-    .filter_map(|e| crate::tui::event_loop::effects::perform(app, e))
-    .collect()
-}
 
 fn screen(app: &App, w: u16, h: u16) -> String {
     let mut t = Terminal::new(TestBackend::new(w, h)).expect("test backend");
@@ -84,47 +73,65 @@ fn the_ghost_is_drawn_in_its_own_colour() {
 #[test]
 fn t_toggles_the_twin_and_angle_brackets_step_epsilon_by_decades() {
     let mut a = start().app;
-    assert_eq!(press(&mut a, KeyCode::Char('T')), [Command::SetTwin(Some(1e-9))]);
-    assert_eq!(press(&mut a, KeyCode::Char('>')), [Command::SetTwin(Some(1e-8))]);
-    assert_eq!(press(&mut a, KeyCode::Char('<')), [Command::SetTwin(Some(1e-9))]);
+    assert_eq!(
+        press_performing(&mut a, KeyCode::Char('T')),
+        [Command::SetTwin(Some(1e-9))]
+    );
+    assert_eq!(
+        press_performing(&mut a, KeyCode::Char('>')),
+        [Command::SetTwin(Some(1e-8))]
+    );
+    assert_eq!(
+        press_performing(&mut a, KeyCode::Char('<')),
+        [Command::SetTwin(Some(1e-9))]
+    );
     for _ in 0..20 {
-        press(&mut a, KeyCode::Char('<'));
+        press_performing(&mut a, KeyCode::Char('<'));
     }
     assert_eq!(a.twin.epsilon, 1e-15);
-    assert!(press(&mut a, KeyCode::Char('<')).is_empty(), "at its floor");
+    assert!(
+        press_performing(&mut a, KeyCode::Char('<')).is_empty(),
+        "at its floor"
+    );
     for _ in 0..20 {
-        press(&mut a, KeyCode::Char('>'));
+        press_performing(&mut a, KeyCode::Char('>'));
     }
     assert_eq!(a.twin.epsilon, 0.1);
-    assert_eq!(press(&mut a, KeyCode::Char('T')), [Command::SetTwin(None)]);
+    assert_eq!(
+        press_performing(&mut a, KeyCode::Char('T')),
+        [Command::SetTwin(None)]
+    );
     // Without a twin, ε keys do nothing.
-    assert!(press(&mut a, KeyCode::Char('>')).is_empty());
-    assert!(press(&mut a, KeyCode::Char('E')).is_empty() && a.epsilon_editor().is_none());
+    assert!(press_performing(&mut a, KeyCode::Char('>')).is_empty());
+    assert!(press_performing(&mut a, KeyCode::Char('E')).is_empty() && a.epsilon_editor().is_none());
 }
 
 #[test]
 fn typing_epsilon_validates_it() {
     let mut a = start().app;
-    press(&mut a, KeyCode::Char('T'));
-    press(&mut a, KeyCode::Char('E'));
+    press_performing(&mut a, KeyCode::Char('T'));
+    press_performing(&mut a, KeyCode::Char('E'));
     for c in "1e-20".chars() {
-        assert!(press(&mut a, KeyCode::Char(c)).is_empty());
+        assert!(press_performing(&mut a, KeyCode::Char(c)).is_empty());
     }
-    assert!(press(&mut a, KeyCode::Enter).is_empty());
+    assert!(press_performing(&mut a, KeyCode::Enter).is_empty());
     let error = a.epsilon_editor().and_then(|e| e.error.clone());
     assert_eq!(error.as_deref(), Some("ε = 1e-20 is outside 1e-15…0.1"));
     for _ in 0..5 {
-        press(&mut a, KeyCode::Backspace);
+        press_performing(&mut a, KeyCode::Backspace);
     }
     for c in "2e-3".chars() {
-        press(&mut a, KeyCode::Char(c));
+        press_performing(&mut a, KeyCode::Char(c));
     }
-    assert_eq!(press(&mut a, KeyCode::Enter), [Command::SetTwin(Some(2e-3))]);
+    assert_eq!(
+        press_performing(&mut a, KeyCode::Enter),
+        [Command::SetTwin(Some(2e-3))]
+    );
     assert!(a.epsilon_editor().is_none());
-    press(&mut a, KeyCode::Char('E'));
-    press(&mut a, KeyCode::Char('q'));
+    press_performing(&mut a, KeyCode::Char('E'));
+    press_performing(&mut a, KeyCode::Char('q'));
     assert!(!a.quit, "q is not a digit and does not quit while typing");
-    press(&mut a, KeyCode::Esc);
+    press_performing(&mut a, KeyCode::Esc);
     assert!(a.epsilon_editor().is_none() && !a.quit);
 }
 
