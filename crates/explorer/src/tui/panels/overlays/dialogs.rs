@@ -275,20 +275,4 @@ fn render_save(
 }
 
 #[cfg(test)]
-mod picker_tests {
-    use super::picker_window;
-
-    #[test]
-    fn the_picker_keeps_the_selection_in_view_between_its_markers() {
-        // Fifteen presets in seven rows: five entries between the two marker rows.
-        assert_eq!(picker_window(15, 0, 7), (0, 5, true));
-        assert_eq!(picker_window(15, 4, 7), (0, 5, true));
-        assert_eq!(picker_window(15, 5, 7), (1, 5, true));
-        assert_eq!(picker_window(15, 14, 7), (10, 5, true));
-        // Everything fits: no markers.
-        assert_eq!(picker_window(5, 4, 7), (0, 5, false));
-    }
-}
-
-#[cfg(test)]
 mod dialogs_tests;

@@ -1,5 +1,6 @@
 //! The preset dialogs: the picker, the save dialog and the questions over them.
 
+use super::picker_window;
 use crate::tui::state::app::App;
 use crate::tui::state::dialog::{Dialog, Group};
 use crate::tui::tests::fixtures::press_performing;
@@ -212,4 +213,15 @@ fn prompts_read_in_the_projector_theme() {
     s.command(Command::SetParam(Param::named("ground.friction").scan_key(), 0.5));
     s.key(KeyCode::Char('q'));
     insta::assert_snapshot!("quit_prompt_projector_100x30", screen(&s.app, 100, 30));
+}
+
+#[test]
+fn the_picker_keeps_the_selection_in_view_between_its_markers() {
+    // Fifteen presets in seven rows: five entries between the two marker rows.
+    assert_eq!(picker_window(15, 0, 7), (0, 5, true));
+    assert_eq!(picker_window(15, 4, 7), (0, 5, true));
+    assert_eq!(picker_window(15, 5, 7), (1, 5, true));
+    assert_eq!(picker_window(15, 14, 7), (10, 5, true));
+    // Everything fits: no markers.
+    assert_eq!(picker_window(5, 4, 7), (0, 5, false));
 }
