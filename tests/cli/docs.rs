@@ -157,8 +157,9 @@ fn the_readmes_lesson_is_the_explorers_lesson_file() {
 /// first impact (which the explorer's tests draw and compare).
 #[test]
 fn the_readmes_screenshot_is_the_explorers_first_impact_snapshot() {
-    let snapshot =
-        read("crates/explorer/src/tui/render/snapshots/dicesim_explorer__tui__render__render_tests__mid_impact_120x36.snap");
+    let snapshot = read(
+        "crates/explorer/src/tui/render/snapshots/dicesim_explorer__tui__render__render_tests__mid_impact_120x36.snap",
+    );
     // insta's header, then one quoted line per row of the screen.
     let (_, screen) = snapshot
         .strip_prefix("---\n")
