@@ -157,8 +157,9 @@ fn the_readmes_lesson_is_the_explorers_lesson_file() {
 /// first impact (which the explorer's tests draw and compare).
 #[test]
 fn the_readmes_screenshot_is_the_explorers_first_impact_snapshot() {
-    let snapshot =
-        read("crates/explorer/src/tui/snapshots/dicesim_explorer__tui__tests__mid_impact_120x36.snap");
+    let snapshot = read(
+        "crates/explorer/src/tui/render/snapshots/dicesim_explorer__tui__render__render_tests__mid_impact_120x36.snap",
+    );
     // insta's header, then one quoted line per row of the screen.
     let (_, screen) = snapshot
         .strip_prefix("---\n")
@@ -190,14 +191,14 @@ fn the_readmes_screenshot_is_the_explorers_first_impact_snapshot() {
     );
 }
 
-/// docs/explorer.md's key tables are the explorer's key table, `crates/explorer/src/tui/keys.rs`.
+/// docs/explorer.md's key tables are the explorer's key table, `crates/explorer/src/tui/vocabulary/key_table.rs`.
 #[test]
 fn the_explorer_docs_key_tables_are_the_key_table() {
     let expected = dicesim_explorer::tui::markdown_tables();
     assert!(expected.matches("\n|").count() > 30, "{expected}");
     assert!(
         read("docs/explorer.md").contains(&expected),
-        "docs/explorer.md's key tables differ from crates/explorer/src/tui/keys.rs; they should read:\n\n{expected}"
+        "docs/explorer.md's key tables differ from crates/explorer/src/tui/vocabulary/key_table.rs; they should read:\n\n{expected}"
     );
 }
 

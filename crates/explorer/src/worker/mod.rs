@@ -9,10 +9,10 @@
 //! over those, and this file, which runs the simulator on its thread with its jobs.
 
 pub(crate) mod curve;
-mod export;
+mod export_jobs;
 mod job;
 mod live;
-pub(crate) mod map;
+pub(crate) mod map_jobs;
 mod pacer;
 #[cfg(test)]
 mod param_twin_tests;
@@ -24,7 +24,7 @@ mod twin_die;
 
 pub use curve::{CURVE_STARTS, CurveSetup, CurveState, CurveUpdate};
 pub use dicesim_setup::preset::Speed;
-pub use map::{MapAxis, MapRequest, MapUpdate};
+pub use map_jobs::{MapAxis, MapRequest, MapUpdate};
 pub(crate) use protocol::{
     BatchProgress, DieState, EnergySample, ExportStatus, MapExport, OutcomeTable, RollKind, SeparationSample,
     TimelineSnapshot, TwinSnapshot,
@@ -34,7 +34,7 @@ pub use simulator::Simulator;
 
 use dicesim_experiment::{RollRecord, Rolls, run_batch};
 use job::{Post, Report, Runner};
-use map::MapSink;
+use map_jobs::MapSink;
 use pacer::{Clock, TICK, WallClock};
 use simulator::BatchRequest;
 use std::sync::Arc;
@@ -156,7 +156,7 @@ fn report(simulator: &mut Simulator, curves: &mut curve::CurveRunner) -> Snapsho
     }
 }
 
-type ExportResult = Result<export::WrittenExport, dicesim_experiment::Error>;
+type ExportResult = Result<export_jobs::WrittenExport, dicesim_experiment::Error>;
 
 /// The worker's jobs, each kind on a runner of its own: they follow what the simulator has
 /// ordered (a job it no longer waits for is stopped), and their progress goes back to the
@@ -235,7 +235,7 @@ impl Jobs {
         self.map.keep_only(simulator.map_id());
         if let Some(job) = simulator.take_map_request() {
             let started = self.map.start(job.id, move |cancel, post| {
-                map::compute(&job, cancel, &mut |u| {
+                map_jobs::compute(&job, cancel, &mut |u| {
                     post.post(|fresh| fresh.push(u));
                     true
                 })

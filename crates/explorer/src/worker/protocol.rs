@@ -4,7 +4,7 @@
 //! and read by the explorer's state; nothing here steps a roll or starts a thread.
 
 use super::curve::CurveUpdate;
-use super::map::MapRequest;
+use super::map_jobs::MapRequest;
 use dicesim_experiment::{BasinMap, FaceTally, Layer, RollRecord, ScanKey};
 use dicesim_figures::animation::AnimationProgress;
 use dicesim_figures::export::ExportProgress;

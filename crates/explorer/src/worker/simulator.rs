@@ -4,10 +4,10 @@
 //! drive it step for step.
 
 use super::curve::CurveSetup;
-use super::export::{ExportJob, Exporting, WrittenExport};
+use super::export_jobs::{ExportJob, Exporting, WrittenExport};
 use super::job::Order;
 use super::live::LiveRoll;
-use super::map::MapJob;
+use super::map_jobs::MapJob;
 use super::protocol::{
     BatchProgress, Command, ExportStatus, MapExport, Notice, OutcomeTable, RollKind, Snapshot,
 };

@@ -9,13 +9,13 @@ use super::die_screen::DieScreen;
 use super::editor::Editor;
 use super::map_view::MapView;
 use super::messages::{Effect, Outbox};
-use super::roll::RollView;
-use super::setup::UserSetup;
+use super::roll_view::RollView;
 use super::twins::TwinView;
-use crate::tui::keys::{self, Action, Input, Scope, label};
-use crate::tui::layout::{Areas, screen_layout};
-use crate::tui::param::Param;
-use crate::tui::theme::{Palette, Theme};
+use super::user_setup::UserSetup;
+use crate::tui::vocabulary::key_table::{self, Action, Input, Scope, label};
+use crate::tui::vocabulary::layout::{Areas, screen_layout};
+use crate::tui::vocabulary::param::Param;
+use crate::tui::vocabulary::theme::{Palette, Theme};
 use crate::worker::{Command, Notice, Snapshot};
 use dicesim_setup::preset::{
     CameraView, Preset, Screen as PresetScreen, Store, ThemeName, View as PresetView,
@@ -91,7 +91,7 @@ impl Prompt {
         match self {
             Prompt::Quit => format!(
                 "Quit? The setup has unsaved changes ({} saves them).",
-                keys::named(Scope::Die, Action::SavePreset)
+                key_table::named(Scope::Die, Action::SavePreset)
             ),
             Prompt::Reset => format!("Reset the setup to {preset}? Your changes are lost."),
             Prompt::Load(p) => format!("Open {}? Your changes to {preset} are lost.", p.name),
@@ -104,10 +104,10 @@ impl Prompt {
         (
             format!(
                 "{}/{}",
-                keys::named(Scope::Prompt, Action::Confirm),
-                keys::named(Scope::Prompt, asking)
+                key_table::named(Scope::Prompt, Action::Confirm),
+                key_table::named(Scope::Prompt, asking)
             ),
-            keys::words(Scope::Prompt, asking),
+            key_table::words(Scope::Prompt, asking),
         )
     }
 
@@ -440,7 +440,7 @@ impl App {
 
     /// The parameter list shown: the values the setup's contact law reads.
     pub(crate) fn params_listed(&self) -> &'static [Param] {
-        crate::tui::param::listed(self.setup.params.ground.contact)
+        crate::tui::vocabulary::param::listed(self.setup.params.ground.contact)
     }
 
     /// The parameter selected on the list shown.

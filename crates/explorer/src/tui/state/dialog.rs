@@ -46,7 +46,7 @@ pub(crate) enum Dialog {
     Save {
         name: String,
         /// Empty: the automatic description
-        /// ([`UserSetup::automatic_description`](super::setup::UserSetup::automatic_description))
+        /// ([`UserSetup::automatic_description`](super::user_setup::UserSetup::automatic_description))
         /// is saved.
         description: String,
         /// Which field the keys type into (Tab switches).

@@ -5,8 +5,8 @@
 
 use super::camera::OrbitCamera;
 use super::throw::Throw;
-use crate::tui::format::fmt_num;
-use crate::tui::param::Param;
+use crate::tui::vocabulary::format::fmt_num;
+use crate::tui::vocabulary::param::Param;
 use crate::worker::Snapshot;
 use dicesim_setup::quantity::{QUANTITIES, QUANTITY_COUNT, TOTAL_ENERGY};
 use ratatui::symbols::Marker;

@@ -1,7 +1,7 @@
 //! Text being typed: a value, the batch size, ε, a map range. State only; the keys that
 //! reach it come already read through the key table.
 
-use crate::tui::keys::{Action, Input, Scope, label};
+use crate::tui::vocabulary::key_table::{Action, Input, Scope, label};
 
 /// A value being typed in (Enter on a parameter).
 #[derive(Debug, Clone, PartialEq, Default)]

@@ -4,9 +4,9 @@
 //! screen's panel draws it.
 
 use super::editor::{Editor, Typed};
-use crate::tui::format::fmt_num;
-use crate::tui::keys::Input;
-use crate::tui::param::{Param, all};
+use crate::tui::vocabulary::format::fmt_num;
+use crate::tui::vocabulary::key_table::Input;
+use crate::tui::vocabulary::param::{Param, all};
 use crate::worker::{MapAxis, MapExport, MapRequest, MapUpdate};
 use dicesim_experiment::basin::{check_nodes, node_setup};
 use dicesim_experiment::{Axis, BasinMap, Layer};
@@ -477,7 +477,7 @@ pub(crate) struct MapAreas {
 
 /// The map screen's layout; `None` below the explorer's minimum size.
 pub(crate) fn map_layout(area: Rect) -> Option<MapAreas> {
-    crate::tui::layout::screen_layout(area)?;
+    crate::tui::vocabulary::layout::screen_layout(area)?;
     let [header, body, footer] = area.layout(&Layout::vertical([
         Constraint::Length(1),
         Constraint::Min(0),

@@ -4,8 +4,8 @@
 
 use super::app::App;
 use super::camera::OrbitCamera;
-use crate::tui::fit;
-use crate::tui::solid::Flat;
+use crate::tui::vocabulary::fit;
+use crate::tui::vocabulary::solid::Flat;
 use crate::worker::{DieState, Phase};
 use dicesim_physics::{Status, UnstableReason, why_it_cannot_settle};
 use nalgebra::Vector3;

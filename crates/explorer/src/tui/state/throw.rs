@@ -11,8 +11,8 @@
 //! started off-centre spins the die about the line of sight, the way it was flicked.
 
 use super::camera::OrbitCamera;
-use crate::tui::format::fmt_num;
-use crate::tui::solid::Flat;
+use crate::tui::vocabulary::format::fmt_num;
+use crate::tui::vocabulary::solid::Flat;
 use dicesim_physics::initial::limits::{ANGULAR_VELOCITY, VELOCITY};
 use dicesim_physics::{InitialCondition, Params};
 use nalgebra::Vector3;

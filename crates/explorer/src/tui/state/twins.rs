@@ -4,8 +4,8 @@
 //! only moves inside its range and by whole decades with the step keys; the curve shown is
 //! never older than one already shown.
 
-use crate::tui::format::fmt_num;
-use crate::tui::param::Param;
+use crate::tui::vocabulary::format::fmt_num;
+use crate::tui::vocabulary::param::Param;
 use crate::worker::{Command, CurveUpdate, EnergySample, SeparationSample, Snapshot};
 use dicesim_setup::chaos::{DEFAULT_EPSILON, EPSILON};
 use dicesim_setup::keys::ScanKey;

@@ -1,0 +1,384 @@
+//! The outcome table: each face's share of the random rolls with its 95 % interval, the
+//! fairness test and how many rolls a bias as large as the one measured needs.
+
+use crate::tui::state::app::App;
+use crate::tui::vocabulary::fit;
+use crate::tui::vocabulary::format::{fmt_num, group};
+use ratatui::Frame;
+use ratatui::layout::Rect;
+use ratatui::style::{Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, LineGauge, Paragraph};
+
+/// Rolls below which some face's expected count n/6 is under 5, where the χ² test's
+/// p-value is not to be trusted.
+pub(crate) const RELIABLE_ROLLS: u64 = 30;
+
+/// " n 601  χ² 7.86  p 0.164": the face count and the fairness test, its p-value marked
+/// while too few rolls back it and while a batch is still adding rolls; the parts ranked
+/// for a narrow panel (the χ² value goes before the count and the p-value).
+fn fairness(app: &App, width: usize) -> Line<'static> {
+    let t = &app.theme;
+    let tally = &app.roll.table.tally;
+    let n = tally.total();
+    let mut parts = vec![(0, vec![Span::raw(format!(" n {n}"))])];
+    match (tally.chi_square(), tally.p_value()) {
+        (Some(_), Some(_)) if n < RELIABLE_ROLLS => {
+            parts.push((
+                0,
+                vec![
+                    Span::raw("  p "),
+                    Span::styled(format!("unreliable below n {RELIABLE_ROLLS}"), t.caution()),
+                ],
+            ));
+        }
+        (Some(chi2), Some(p)) => {
+            parts.push((1, vec![Span::raw(format!("  χ² {chi2:.2}"))]));
+            let style = if p < 0.01 && app.roll.batch.is_none() {
+                t.caution()
+            } else {
+                Style::new()
+            };
+            parts.push((0, vec![Span::raw("  p "), Span::styled(fmt_num(p), style)]));
+            if app.roll.batch.is_some() {
+                parts.push((0, vec![Span::raw(" so far")]));
+            }
+        }
+        _ => parts.push((1, vec![Span::raw("  χ² –  p –")])),
+    }
+    parts.push((0, vec![Span::raw(" ")]));
+    fit::line(parts, width)
+}
+
+/// Characters of the interval column: " 15.9–17.6".
+const INTERVAL_COLUMN: usize = 10;
+
+/// A face's bar over shares 0 to 1/3 in `width` cells: solid (in eighths) up to the low end
+/// of its 95 % interval and shaded from there to the high end, so the bar says where the
+/// share lies. The fair share's dotted mark stays in view: `┼` inside the shading, `┃`
+/// inside the solid part (the whole interval lies above 1/6), `┆` past the bar (below it).
+/// The mark is read from the interval itself, not from the cells: on a narrow bar a tight
+/// interval around 1/6 may fill too little of a cell to shade it, and must still read fair.
+pub(crate) fn share_bar(share: f64, interval: Option<[f64; 2]>, width: usize) -> String {
+    let eighths_of = |x: f64| (x * 3.0 * width as f64 * 8.0).round().max(0.0) as usize;
+    let [low, high] = interval.map_or([eighths_of(share); 2], |[l, h]| [eighths_of(l), eighths_of(h)]);
+    let fair_at = width / 2;
+    let fair = 1.0 / 6.0;
+    let fair_mark = interval.map(|[l, h]| match () {
+        _ if h < fair => '┆',
+        _ if l > fair => '┃',
+        _ => '┼',
+    });
+    (0..width)
+        .map(|j| {
+            let from = j * 8;
+            let eighths = low.saturating_sub(from).min(8);
+            // A cell the interval reaches at least half way into, that the solid part leaves open.
+            let shaded = high >= from + 4 && eighths < 4;
+            if j == fair_at
+                && let Some(mark) = fair_mark
+            {
+                return mark;
+            }
+            match eighths {
+                _ if shaded && j == fair_at => '┼',
+                _ if shaded => '░',
+                0 if j == fair_at => '┆',
+                0 => ' ',
+                _ if j == fair_at => '┃',
+                e => [' ', '▏', '▎', '▍', '▌', '▋', '▊', '▉', '█'][e],
+            }
+        })
+        .collect()
+}
+
+/// The significance below which the table calls a bias shown (the χ² test's level).
+const SIGNIFICANT: f64 = 0.05;
+
+/// How many rolls a class needs to see the bias the table measures (the χ² test at 5 %
+/// with 80 % power), once the table has rolls enough for its p-value to mean something
+/// and only while the bias is significant: a fair die's chance wobble has no such number.
+fn detection_lines(app: &App, width: usize) -> Vec<Line<'static>> {
+    let tally = &app.roll.table.tally;
+    if tally.total() < RELIABLE_ROLLS {
+        return Vec::new();
+    }
+    let significant = tally.p_value().is_some_and(|p| p < SIGNIFICANT);
+    let text = match tally.rolls_to_detect() {
+        Some(n) if significant => format!("bias this large shows in {} rolls", group(n)),
+        _ => "no bias beyond chance so far".to_string(),
+    };
+    fit::wrap(&text, width.saturating_sub(1))
+        .into_iter()
+        .map(|l| Line::styled(format!(" {l}"), app.theme.heading()))
+        .collect()
+}
+
+/// The rolls that ended without a face, as "words count" items (only those that occurred).
+fn faceless_items(app: &App) -> Vec<(String, Style)> {
+    use dicesim_experiment::ending::Ending;
+    let table = &app.roll.table;
+    let mut items = Vec::new();
+    let counts = [
+        (Ending::WithoutFace, table.without_face, app.theme.caution()),
+        (Ending::DidNotSettle, table.did_not_settle, app.theme.caution()),
+        (Ending::Unstable, table.unstable, app.theme.danger()),
+    ];
+    for (ending, n, style) in counts {
+        if n > 0 {
+            items.push((format!("{} {n}", ending.name()), style));
+        }
+    }
+    items
+}
+
+/// The items broken into lines of `width` at spaces, every item whole (a long one wraps
+/// onto lines of its own, never cut at the panel's edge).
+fn item_lines(items: &[(String, Style)], width: usize) -> Vec<Line<'static>> {
+    let mut lines: Vec<Line<'static>> = Vec::new();
+    let mut used = usize::MAX;
+    for (text, style) in items {
+        let len = text.chars().count() + 1;
+        if used != usize::MAX && used + 2 + len <= width {
+            let line = lines.last_mut().expect("a line");
+            line.spans.push(Span::raw(" ·"));
+            line.spans.push(Span::styled(format!(" {text}"), *style));
+            used += 2 + len;
+            continue;
+        }
+        for part in fit::wrap(text, width.saturating_sub(1).max(2)) {
+            used = part.chars().count() + 1;
+            lines.push(Line::from(Span::styled(format!(" {part}"), *style)));
+        }
+    }
+    lines
+}
+
+/// A row of the table's body: text, or the batch's progress gauge.
+enum TableRow {
+    Text(Line<'static>),
+    Fairness,
+    Gauge(f64),
+}
+
+/// Characters of the columns before the bar: the face, the count, the share.
+const FACE_COLUMN: usize = 5;
+const COUNT_COLUMN: usize = 7;
+const SHARE_COLUMN: usize = 6;
+/// The fewest cells a face's bar is drawn in.
+const MIN_BAR: usize = 8;
+
+/// The columns of a table `room` wide: by importance the interval's figures, then the count
+/// (n is in the fairness line), then the bar takes what is left.
+#[derive(Debug, Clone, Copy)]
+struct Columns {
+    numbers: bool,
+    count_shown: bool,
+    bar_width: usize,
+}
+
+impl Columns {
+    fn fitting(room: usize) -> Columns {
+        let fixed = FACE_COLUMN + SHARE_COLUMN + 2;
+        let numbers = room >= fixed + INTERVAL_COLUMN + MIN_BAR;
+        let count_shown = room >= fixed + COUNT_COLUMN + INTERVAL_COLUMN * usize::from(numbers) + MIN_BAR;
+        let bar_width = room
+            .saturating_sub(fixed)
+            .saturating_sub(if numbers { INTERVAL_COLUMN } else { 0 })
+            .saturating_sub(if count_shown { COUNT_COLUMN } else { 0 })
+            .max(2);
+        Columns {
+            numbers,
+            count_shown,
+            bar_width,
+        }
+    }
+}
+
+/// The panel's title, with the batch's progress while one runs.
+fn title(app: &App, inside: usize) -> Line<'static> {
+    let t = &app.theme;
+    // The batch's progress matters more than the panel's name while it runs.
+    match app.roll.batch {
+        Some(b) => {
+            let progress = format!("batch {}/{} ", b.done, b.total);
+            let name = [" outcomes of random rolls ", " outcomes · ", " "]
+                .into_iter()
+                .find(|n| n.chars().count() + progress.chars().count() <= fit::room(inside))
+                .unwrap_or(" ");
+            Line::from(vec![
+                Span::styled(name, t.heading()),
+                Span::styled(progress, t.caution()),
+            ])
+        }
+        None => Line::styled(" outcomes of random rolls ", t.heading()),
+    }
+}
+
+/// The heading row over the columns, with the fair share's mark over the bars.
+fn heading(app: &App, room: usize, c: Columns) -> TableRow {
+    let t = &app.theme;
+    let Columns {
+        numbers,
+        count_shown,
+        bar_width,
+    } = c;
+    let fair_at = bar_width / 2;
+    // The bar spans 0 to 1/3, so a fair face reaches the dotted mark in the middle.
+    let mut head = " face".to_string();
+    if count_shown {
+        head.push_str("  count");
+    }
+    // "share" takes the bar's leading space, so each heading ends over its figures' column.
+    head.push_str("  share");
+    if numbers {
+        head.push_str(" 95 % int.");
+    }
+    let mark_room = room.saturating_sub(head.chars().count() + fair_at);
+    let mark = ["┆ 1/6 fair", "┆ 1/6", "┆"]
+        .into_iter()
+        .find(|m| m.chars().count() <= mark_room)
+        .unwrap_or("");
+    // The heading names the interval column; the fairness line can move to the border.
+    TableRow::Text(Line::from(vec![
+        Span::styled(head, t.heading()),
+        Span::raw(format!("{}{mark}", " ".repeat(fair_at))),
+    ]))
+}
+
+/// The row of `face`: its count, share, interval and bar.
+fn face_row(app: &App, face: u8, c: Columns) -> TableRow {
+    let t = &app.theme;
+    let table = &app.roll.table;
+    let n = table.tally.total();
+    let intervals = table.tally.share_intervals();
+    let Columns {
+        numbers,
+        count_shown,
+        bar_width,
+    } = c;
+    let count = table.tally.counts[face as usize - 1];
+    let share = table.tally.share(face);
+    let interval = (n > 0).then_some(intervals[face as usize - 1]);
+    let bar = share_bar(share, interval, bar_width);
+    let over = if share * 3.0 > 1.0 { "▸" } else { "" };
+    let share_text = if n > 0 {
+        format!("{:5.1}%", 100.0 * share)
+    } else {
+        "     –".to_string()
+    };
+    let count_text = if count_shown {
+        format!("{count:>6} ")
+    } else {
+        String::new()
+    };
+    let interval_text = match interval {
+        _ if !numbers => String::new(),
+        Some([low, high]) => format!(" {:>4.1}–{:<4.1}", 100.0 * low, 100.0 * high),
+        None => " ".repeat(INTERVAL_COLUMN),
+    };
+    let newest = table.last.front().and_then(|r| r.outcome.face) == Some(face);
+    let face_style = if newest { t.selected() } else { Style::new() };
+    TableRow::Text(Line::from(vec![
+        Span::styled(format!("  {face}  "), face_style),
+        Span::raw(format!("{count_text}{share_text}{interval_text} ")),
+        Span::styled(bar, t.bar()),
+        Span::styled(over, t.bar()),
+    ]))
+}
+
+/// The last rolls, under their heading.
+fn last_rows(app: &App, width: usize) -> Vec<(u8, TableRow)> {
+    let t = &app.theme;
+    let table = &app.roll.table;
+    let mut out = Vec::new();
+    if !table.last.is_empty() {
+        out.push((
+            3,
+            TableRow::Text(fit::abbreviate(
+                Line::styled(" last: spin ω (rad/s) → ending, steps, impacts", t.heading()),
+                width,
+            )),
+        ));
+        for r in &table.last {
+            let w = r.initial.angular_velocity;
+            let end = dicesim_experiment::ending::Ending::of(&r.outcome).words();
+            let line = Line::from(format!(
+                " #{:<5} ({:>4.0},{:>4.0},{:>4.0}) → {end} {:>6} {:>3}×",
+                r.id, w[0], w[1], w[2], r.outcome.steps, r.outcome.impacts
+            ));
+            out.push((4, TableRow::Text(fit::abbreviate(line, width))));
+        }
+    }
+    out
+}
+
+/// Draws the rows that fit, one per line of `body`.
+fn draw_rows(app: &App, rows: Vec<TableRow>, body: Rect, frame: &mut Frame) {
+    let t = &app.theme;
+    let width = body.width as usize;
+    let room = fit::room(width);
+    for (row, y) in rows.into_iter().zip(body.y..) {
+        let at = Rect { y, height: 1, ..body };
+        match row {
+            TableRow::Text(line) => frame.render_widget(Paragraph::new(line), at),
+            TableRow::Fairness => frame.render_widget(Paragraph::new(fairness(app, width)), at),
+            TableRow::Gauge(ratio) => {
+                let gauge = LineGauge::default()
+                    .ratio(ratio)
+                    .label(format!(" batch {:>3.0}% ", 100.0 * ratio))
+                    .filled_style(t.bar().add_modifier(Modifier::BOLD));
+                let at = Rect {
+                    width: room as u16,
+                    ..at
+                };
+                frame.render_widget(gauge, at);
+            }
+        }
+    }
+}
+
+/// The outcome table: each face's count, share, 95 % interval and bar, the fairness test,
+/// the rolls without a face, a batch's progress and the last rolls.
+pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
+    let inside = area.width.saturating_sub(2) as usize;
+    let mut block = Block::bordered().title(fit::abbreviate(title(app, inside), inside));
+    let body = block.inner(area);
+    if body.height == 0 || body.width < 20 {
+        frame.render_widget(block, area);
+        return;
+    }
+    let width = body.width as usize;
+    let columns = Columns::fitting(fit::room(width));
+    let mut rows: Vec<(u8, TableRow)> = vec![(1, heading(app, fit::room(width), columns))];
+    // The heading names the interval column; the fairness line can move to the border.
+    for face in 1..=6u8 {
+        rows.push((0, face_row(app, face, columns)));
+    }
+    rows.push((2, TableRow::Fairness));
+    for line in item_lines(&faceless_items(app), width) {
+        rows.push((0, TableRow::Text(line)));
+    }
+    for line in detection_lines(app, width) {
+        rows.push((0, TableRow::Text(line)));
+    }
+    if let Some(b) = app.roll.batch {
+        let ratio = if b.total > 0 {
+            b.done as f64 / b.total as f64
+        } else {
+            0.0
+        };
+        rows.push((1, TableRow::Gauge(ratio.clamp(0.0, 1.0))));
+    }
+    rows.extend(last_rows(app, width));
+    let rows = fit::rows(rows, body.height as usize);
+    // The fairness line that has no row of its own goes into the bottom border.
+    if !rows.iter().any(|r| matches!(r, TableRow::Fairness)) {
+        block = block.title_bottom(fairness(app, inside));
+    }
+    frame.render_widget(block, area);
+    draw_rows(app, rows, body, frame);
+}
+
+#[cfg(test)]
+mod outcomes_tests;

@@ -1,0 +1,24 @@
+//! How numbers read on screen: one formatting for every panel.
+
+use crate::tui::vocabulary::param::Param;
+
+pub(crate) use dicesim_setup::number::fmt_num;
+
+/// A value's allowed range as the list shows it, `min…max`.
+pub(crate) fn fmt_range(p: Param) -> String {
+    let l = p.limits();
+    format!("{}…{}", fmt_num(l.min), fmt_num(l.max))
+}
+
+/// `12 345` (thin groups of three), as the batch size is written.
+pub(crate) fn group(n: u64) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(' ');
+        }
+        out.push(c);
+    }
+    out
+}
