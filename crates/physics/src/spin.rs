@@ -156,21 +156,10 @@ pub(crate) fn free_turn<L: Lane>(
     dt: L,
     lanes: u32,
 ) -> FreeTurn<L> {
-    let o = offsets;
-    let column = |to: usize, s: L| {
-        Vector3::new(
-            (o[to].x - o[0].x) * s,
-            (o[to].y - o[0].y) * s,
-            (o[to].z - o[0].z) * s,
-        )
-    };
-    let dot = |a: &Vector3<L>, b: &Vector3<L>| (a.x * b.x + a.y * b.y) + a.z * b.z;
-    let unit = |a: &Vector3<L>| {
-        let norm = dot(a, a).sqrt();
-        Vector3::new(a.x / norm, a.y / norm, a.z / norm)
-    };
-    let ex = unit(&column(4, axis_scale[0]));
-    let y = column(2, axis_scale[1]);
+    // No closures and no `array::from_fn` here: they would be functions of their own, built
+    // without the lane engine's AVX2, and every vector operation in them a call.
+    let ex = unit(&column(offsets, 4, axis_scale[0]));
+    let y = column(offsets, 2, axis_scale[1]);
     let along = dot(&ex, &y);
     let ey = unit(&Vector3::new(
         y.x - ex.x * along,
@@ -182,17 +171,14 @@ pub(crate) fn free_turn<L: Lane>(
         ex.z * ey.x - ex.x * ey.z,
         ex.x * ey.y - ex.y * ey.x,
     );
-    let e = principal_axes;
     // The principal axes in the world frame, and L's components along them.
-    let axes: [Vector3<L>; 3] = std::array::from_fn(|i| {
-        let (a, b, c) = (e[i], e[3 + i], e[6 + i]);
-        Vector3::new(
-            (ex.x * a + ey.x * b) + ez.x * c,
-            (ex.y * a + ey.y * b) + ez.y * c,
-            (ex.z * a + ey.z * b) + ez.z * c,
-        )
-    });
-    let start: [L; 3] = std::array::from_fn(|i| dot(&axes[i], l));
+    let e = principal_axes;
+    let axes = [
+        combine(&ex, &ey, &ez, e[0], e[3], e[6]),
+        combine(&ex, &ey, &ez, e[1], e[4], e[7]),
+        combine(&ex, &ey, &ez, e[2], e[5], e[8]),
+    ];
+    let start = [dot(&axes[0], l), dot(&axes[1], l), dot(&axes[2], l)];
     let mut m = start;
     let mut turned = axes;
     let half = L::splat(0.5) * dt;
@@ -218,19 +204,42 @@ pub(crate) fn free_turn<L: Lane>(
             bk.z * cos - bj.z * sin,
         );
     }
-    let spin = |axes: &[Vector3<L>; 3], m: &[L; 3]| {
-        let w: [L; 3] = std::array::from_fn(|i| m[i] * inverse_moments[i]);
-        Vector3::new(
-            (axes[0].x * w[0] + axes[1].x * w[1]) + axes[2].x * w[2],
-            (axes[0].y * w[0] + axes[1].y * w[1]) + axes[2].y * w[2],
-            (axes[0].z * w[0] + axes[1].z * w[1]) + axes[2].z * w[2],
-        )
-    };
+    let r = inverse_moments;
+    let before = [start[0] * r[0], start[1] * r[1], start[2] * r[2]];
+    let after = [m[0] * r[0], m[1] * r[1], m[2] * r[2]];
     FreeTurn {
-        before: spin(&axes, &start),
-        after: spin(&turned, &m),
+        before: combine(&axes[0], &axes[1], &axes[2], before[0], before[1], before[2]),
+        after: combine(&turned[0], &turned[1], &turned[2], after[0], after[1], after[2]),
         axes: turned,
     }
+}
+
+/// `(r_to − r_1)·s`: a body axis read off the corners.
+#[inline(always)]
+fn column<L: Lane>(offsets: &[Vector3<L>; 8], to: usize, s: L) -> Vector3<L> {
+    let (a, b) = (&offsets[to], &offsets[0]);
+    Vector3::new((a.x - b.x) * s, (a.y - b.y) * s, (a.z - b.z) * s)
+}
+
+#[inline(always)]
+fn dot<L: Lane>(a: &Vector3<L>, b: &Vector3<L>) -> L {
+    (a.x * b.x + a.y * b.y) + a.z * b.z
+}
+
+#[inline(always)]
+fn unit<L: Lane>(a: &Vector3<L>) -> Vector3<L> {
+    let norm = dot(a, a).sqrt();
+    Vector3::new(a.x / norm, a.y / norm, a.z / norm)
+}
+
+/// `(a·p + b·q) + c·r`, component by component.
+#[inline(always)]
+fn combine<L: Lane>(a: &Vector3<L>, b: &Vector3<L>, c: &Vector3<L>, p: L, q: L, r: L) -> Vector3<L> {
+    Vector3::new(
+        (a.x * p + b.x * q) + c.x * r,
+        (a.y * p + b.y * q) + c.y * r,
+        (a.z * p + b.z * q) + c.z * r,
+    )
 }
 
 /// libm's `sin` and `cos` of each lane of `lanes` (0 and 1 elsewhere).
