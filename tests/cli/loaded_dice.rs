@@ -77,6 +77,8 @@ fn a_heavy_corner_keeps_its_three_faces_down() {
 /// for both engines, when a loaded die could only roll on the scalar engine (commit bab7ddc,
 /// `dicesim batch … --engine scalar --jobs 1 --out FILE.csv` with the arguments below): the
 /// reference data cover the fair die only, so this is what pins a loaded die's trajectory.
+/// Their endings were rolled again (the starts kept) when a loaded die began to turn by the
+/// splitting about its principal axes (docs/model.md, "Rotation of an anisotropic body").
 /// Both engines must write them again: every cell the same double, the same integer or the
 /// same word, under the names with units of today's files (the angular momentum, unset in
 /// every row, now has no columns), and each time the decimal steps × Δt where the file has

@@ -21,7 +21,7 @@ use super::mass::InertiaTensor;
 use super::model::Body;
 use super::params::{ContactLaw, FrictionLaw, Params, StopEnergy};
 use super::shape;
-use super::spin::{spin, spin_lanes, step_rotation};
+use super::spin::{free_turn, spin, spin_lanes, step_rotation};
 use super::stopping::settles;
 use nalgebra::{Matrix3, Vector2, Vector3};
 
@@ -219,6 +219,17 @@ pub(crate) struct Constants<L: Lane> {
     /// ([`shape::angular_velocity`]).
     pub(crate) inverse_inertia: [L; 6],
     pub(crate) axis_scale: [L; 3],
+    /// A body whose inertia is not isotropic ([`Body::principal_frame`]): `1/I_i` of its
+    /// principal moments (1/(g·cm²)) and its principal axes in the body frame
+    /// (`principal_axes[3j + i]`: body component `j` of axis `i`), which the splitting turns
+    /// it about ([`free_turn`]); and the lanes that have one (a loaded cube's `axis_scale`
+    /// is then `1/(2a)`).
+    pub(crate) inverse_moments: [L; 3],
+    pub(crate) principal_axes: [L; 9],
+    /// cm, each corner (contact-sphere centre) relative to the centre of mass along the
+    /// principal axes: where the step places it once the axes have turned.
+    pub(crate) principal_corners: [Vector3<L>; 8],
+    pub(crate) split: L::Mask,
     /// cm, the corner radius: a contact sphere's lowest point is this far below its centre.
     pub(crate) corner_radius: L,
     /// erg, the stopping rule's thresholds; for a loaded die the largest over its faces,
@@ -271,6 +282,12 @@ impl Constants<f64> {
             Body::PaperCube(_) | Body::Shaped(_) => ([m; 8], mass),
         };
         let loaded = matches!(body, Body::LoadedCube(..));
+        let principal = body.principal_frame();
+        let axis_scale = match body {
+            Body::Shaped(shape) => shape.axis_scale,
+            Body::LoadedCube(cube, _) => [1.0 / (2.0 * cube.half_size()); 3],
+            Body::PaperCube(_) => [0.0; 3],
+        };
         Constants {
             dt,
             mass,
@@ -308,7 +325,18 @@ impl Constants<f64> {
             uniform_mass: 8.0 * m,
             extra_masses: p.die.extra_corner_mass,
             inverse_inertia: shape.map_or([0.0; 6], |s| s.inverse_inertia),
-            axis_scale: shape.map_or([0.0; 3], |s| s.axis_scale),
+            axis_scale,
+            inverse_moments: principal.map_or([0.0; 3], |(moments, _)| moments.map(|i| 1.0 / i).into()),
+            principal_axes: principal.map_or([0.0; 9], |(_, axes)| {
+                std::array::from_fn(|entry| axes[(entry / 3, entry % 3)])
+            }),
+            principal_corners: match principal {
+                Some((_, axes)) => body
+                    .start_offsets(&InitialCondition::default())
+                    .map(|r| axes.transpose() * r),
+                None => [Vector3::zeros(); 8],
+            },
+            split: principal.is_some(),
             corner_radius: shape.map_or(0.0, |s| s.radius),
             energy_threshold: rule.energy_threshold,
             kinetic_threshold: rule.kinetic_threshold,
@@ -351,6 +379,11 @@ pub(crate) struct Kernel<L: Lane> {
     pub(crate) state: State<L>,
     /// rad/s, `I⁻¹·L`, kept in step with the angular momentum.
     pub(crate) angular_velocity: Vector3<L>,
+    /// In lanes of [`Constants::split`]: the principal axes (world frame) this step's turn
+    /// takes the body to, and `I⁻¹·L` there, which become the corners and `angular_velocity`
+    /// once the hook has seen the step before the turn.
+    pub(crate) turned_axes: [Vector3<L>; 3],
+    pub(crate) turned_angular_velocity: Vector3<L>,
     /// Row-major step rotation applied to the corner rows; meaningful in lanes of
     /// `rotating` (ω ≠ 0). It depends on ω alone, so it is rebuilt only when ω changed.
     pub(crate) rotation: [L; 9],
@@ -387,6 +420,8 @@ impl Kernel<f64> {
         let mut kernel = Kernel {
             state,
             angular_velocity: Vector3::zeros(),
+            turned_axes: [Vector3::zeros(); 3],
+            turned_angular_velocity: Vector3::zeros(),
             rotation: [0.0; 9],
             rotating: false,
             in_contact: false,
@@ -514,6 +549,39 @@ impl<L: Lane> Kernel<L> {
                 };
             }
         }
+        // A body turned by the splitting: its corners along its turned principal axes, and
+        // the ω of its new orientation.
+        let split = L::bits(self.c.split);
+        if split != 0 {
+            let all = split == all_lanes::<L>();
+            let [a, b, c] = self.turned_axes;
+            for (r, p) in self
+                .state
+                .corner_offsets
+                .iter_mut()
+                .zip(&self.c.principal_corners)
+            {
+                let placed = v3(
+                    (a.x * p.x + b.x * p.y) + c.x * p.z,
+                    (a.y * p.x + b.y * p.y) + c.y * p.z,
+                    (a.z * p.x + b.z * p.y) + c.z * p.z,
+                );
+                *r = if all {
+                    placed
+                } else {
+                    select3(self.c.split, &placed, r)
+                };
+            }
+            self.angular_velocity = if all {
+                self.turned_angular_velocity
+            } else {
+                select3(
+                    self.c.split,
+                    &self.turned_angular_velocity,
+                    &self.angular_velocity,
+                )
+            };
+        }
         // 6. forces at the new state.
         self.update_forces_by::<SPRING>();
         // 7. the clock.
@@ -530,6 +598,14 @@ impl<L: Lane> Kernel<L> {
     /// the last bit), so those are taken per lane ([`spin_lanes`]).
     #[inline(always)]
     pub(crate) fn respin(&mut self, lanes: u32) {
+        let split = L::bits(self.c.split) & lanes;
+        if split != 0 {
+            self.turn_freely(split);
+        }
+        let lanes = lanes & !split;
+        if lanes == 0 {
+            return;
+        }
         let c = &self.c;
         let loaded = L::bits(c.loaded) & lanes;
         let shaped = L::bits(c.shaped) & lanes;
@@ -595,6 +671,37 @@ impl<L: Lane> Kernel<L> {
             *old = L::select(turn, new, *old);
         }
         self.rotating = (self.rotating & !update) | turn;
+    }
+
+    /// ω and the step rotation in the lanes of `lanes`, all of [`Constants::split`]: the
+    /// splitting's turn ([`free_turn`]) with this step's `L`, its ω before the turn now and
+    /// the turned body's once the corners have turned ([`Kernel::step`]).
+    #[inline(always)]
+    fn turn_freely(&mut self, lanes: u32) {
+        let c = &self.c;
+        let turn = free_turn(
+            &self.state.corner_offsets,
+            &c.axis_scale,
+            &c.principal_axes,
+            &c.inverse_moments,
+            &self.state.angular_momentum,
+            c.dt,
+            lanes,
+        );
+        let mask = L::mask_from_bits(lanes);
+        if lanes == all_lanes::<L>() {
+            self.angular_velocity = turn.before;
+            self.turned_angular_velocity = turn.after;
+            self.turned_axes = turn.axes;
+        } else {
+            self.angular_velocity = select3(mask, &turn.before, &self.angular_velocity);
+            self.turned_angular_velocity = select3(mask, &turn.after, &self.turned_angular_velocity);
+            for (old, new) in self.turned_axes.iter_mut().zip(&turn.axes) {
+                *old = select3(mask, new, old);
+            }
+        }
+        // Its corners are placed, not rotated.
+        self.rotating = self.rotating & !mask;
     }
 
     /// Velocity of a corner, `u_k = v + ω × r_k`, cm/s, in the authors' operation order.

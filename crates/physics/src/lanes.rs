@@ -373,6 +373,8 @@ mod avx2 {
                     step: F4::splat(s.step as f64),
                 },
                 angular_velocity: splat3(&first.angular_velocity),
+                turned_axes: first.turned_axes.each_ref().map(splat3),
+                turned_angular_velocity: splat3(&first.turned_angular_velocity),
                 rotation: first.rotation.map(F4::splat),
                 rotating: F4::from_bits(if first.rotating { 0b1111 } else { 0 }),
                 in_contact: F4::from_bits(if first.in_contact { 0b1111 } else { 0 }),
@@ -408,6 +410,10 @@ mod avx2 {
                     extra_masses: c.extra_masses.map(F4::splat),
                     inverse_inertia: c.inverse_inertia.map(F4::splat),
                     axis_scale: c.axis_scale.map(F4::splat),
+                    inverse_moments: c.inverse_moments.map(F4::splat),
+                    principal_axes: c.principal_axes.map(F4::splat),
+                    principal_corners: c.principal_corners.each_ref().map(splat3),
+                    split: F4::from_bits(if c.split { 0b1111 } else { 0 }),
                     corner_radius: F4::splat(c.corner_radius),
                     energy_threshold: F4::splat(c.energy_threshold),
                     kinetic_threshold: F4::splat(c.kinetic_threshold),
@@ -449,6 +455,10 @@ mod avx2 {
             k.state.time_s.set_lane(l, s.time_s);
             k.state.step.set_lane(l, s.step as f64);
             set3(&mut k.angular_velocity, l, &from.angular_velocity);
+            set3(&mut k.turned_angular_velocity, l, &from.turned_angular_velocity);
+            for axis in 0..3 {
+                set3(&mut k.turned_axes[axis], l, &from.turned_axes[axis]);
+            }
             for e in 0..9 {
                 k.rotation[e].set_lane(l, from.rotation[e]);
             }
@@ -496,7 +506,15 @@ mod avx2 {
             }
             for axis in 0..3 {
                 c.axis_scale[axis].set_lane(l, f.axis_scale[axis]);
+                c.inverse_moments[axis].set_lane(l, f.inverse_moments[axis]);
             }
+            for e in 0..9 {
+                c.principal_axes[e].set_lane(l, f.principal_axes[e]);
+            }
+            for corner in 0..8 {
+                set3(&mut c.principal_corners[corner], l, &f.principal_corners[corner]);
+            }
+            set_mask(&mut c.split, l, f.split);
             c.corner_radius.set_lane(l, f.corner_radius);
             c.energy_threshold.set_lane(l, f.energy_threshold);
             c.kinetic_threshold.set_lane(l, f.kinetic_threshold);
@@ -544,6 +562,7 @@ mod avx2 {
             set_mask(&mut k.c.shaped, l, false);
             k.c.rounded &= !(1 << l);
             set_mask(&mut k.c.turning, l, false);
+            set_mask(&mut k.c.split, l, false);
             k.c.corner_radius.set_lane(l, 0.0);
             k.bodies[l] = k.bodies[(l + 1) % LANES];
             for c in 0..8 {

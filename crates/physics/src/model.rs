@@ -23,7 +23,7 @@ use super::mass::LoadedMass;
 use super::params::{BodyKind, Limits, ParamError, Params};
 use super::shape::Shape;
 use super::stopping::StopRule;
-use nalgebra::Vector3;
+use nalgebra::{Matrix3, Vector3};
 
 /// The body a die is, with what its arithmetic needs, derived once from the parameters.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -90,6 +90,23 @@ impl Body {
             Body::Shaped(shape) => shape.properties.inertia,
         };
         tensor.symmetric_eigen().eigenvalues.min()
+    }
+
+    /// The principal moments of inertia about the centre of mass (g·cm², ascending) and the
+    /// principal axes (the columns, body frame: the frame whose axes run from corner 1 to
+    /// corners 5, 3 and 2, a right-handed triple) of a body whose inertia is not isotropic;
+    /// `None` for the paper's cube and any body whose moments agree to 10⁻¹² (a rounded cube,
+    /// a cube loaded alike at every corner): for those the paper's rotation by `ω·Δt` is the
+    /// exact free flight, and they keep it (docs/model.md, "Rotation of an anisotropic body").
+    pub(crate) fn principal_frame(&self) -> Option<(Vector3<f64>, Matrix3<f64>)> {
+        let tensor = match self {
+            Body::PaperCube(_) => return None,
+            Body::LoadedCube(cube, mass) => {
+                mass.inertia(&mass.initial_corner_offsets(cube.half_size(), &InitialCondition::default()))
+            }
+            Body::Shaped(shape) => shape.properties.inertia,
+        };
+        principal_frame(&tensor)
     }
 
     /// erg, the energy to tip over an edge from lying flat: the cube's `M·g·a·(√2 − 1)`, a
@@ -256,6 +273,25 @@ impl Body {
             }
         }
     }
+}
+
+/// The principal moments (ascending) and axes (columns, a right-handed triple) of a
+/// symmetric tensor, or `None` when its moments agree to 10⁻¹² of the largest (isotropic
+/// to rounding) or are not all finite and positive.
+pub(crate) fn principal_frame(tensor: &Matrix3<f64>) -> Option<(Vector3<f64>, Matrix3<f64>)> {
+    let eigen = tensor.symmetric_eigen();
+    let mut order = [0, 1, 2];
+    order.sort_by(|&a, &b| eigen.eigenvalues[a].total_cmp(&eigen.eigenvalues[b]));
+    let moments = Vector3::from(order.map(|i| eigen.eigenvalues[i]));
+    let (least, most) = (moments[0], moments[2]);
+    if !(least > 0.0 && most.is_finite()) || most - least <= 1e-12 * most {
+        return None;
+    }
+    let mut axes = Matrix3::from_columns(&order.map(|i| eigen.eigenvectors.column(i).normalize()));
+    if axes.determinant() < 0.0 {
+        axes.set_column(2, &-axes.column(2));
+    }
+    Some((moments, axes))
 }
 
 /// What the parameters imply about their body.

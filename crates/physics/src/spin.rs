@@ -112,6 +112,149 @@ pub(crate) fn spin_lanes<L: Lane>(w: &Vector3<L>, dt: L, lanes: u32) -> (L::Mask
     (nonzero, m)
 }
 
+/// One step's free rotation of a body whose inertia is not isotropic, by the symmetric
+/// splitting about its principal axes (docs/model.md, "Rotation of an anisotropic body"):
+/// the body turns about its principal axis 1 by `(m₁/I₁)·Δt/2`, then about axis 2 by
+/// `(m₂/I₂)·Δt/2`, about axis 3 by `(m₃/I₃)·Δt`, about axis 2 and axis 1 by half steps
+/// again, each `m_i` the component of `L` along the axis as it stands at that turn. Each
+/// turn is the exact flow of one term `m_i²/(2I_i)` of the energy, so it keeps `m_i`, `L`
+/// and `|L|`; the composition is symplectic and keeps the energy to `O(Δt²)` without drift
+/// (Dullweber, Leimkuhler & McLachlan 1997).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct FreeTurn<L> {
+    /// rad/s, `I(t)⁻¹·L` at the orientation the step starts from (what the kick's work is
+    /// measured against, as for every other body).
+    pub(crate) before: Vector3<L>,
+    /// The principal axes in the world frame once the body has turned (orthonormal to
+    /// rounding): the step places the corners along them ([`Kernel::step`]), so the body
+    /// stays rigid to rounding however many steps it turns.
+    ///
+    /// [`Kernel::step`]: crate::kernel::Kernel::step
+    pub(crate) axes: [Vector3<L>; 3],
+    /// rad/s, `I(t + Δt)⁻¹·L`, the turned body's.
+    pub(crate) after: Vector3<L>,
+}
+
+/// The turns of [`free_turn`]: the principal axis (0-based) and whether it turns for the
+/// whole `Δt` (else for half of it).
+const SPLITTING: [(usize, bool); 5] = [(0, false), (1, false), (2, true), (1, false), (0, false)];
+
+/// [`FreeTurn`] from the corner (contact-sphere) offsets `offsets` (cm, world frame), which
+/// give the body axes as `(r₅ − r₁)·s₀`, `(r₃ − r₁)·s₁`, `(r₂ − r₁)·s₂` (`axis_scale`, 1/cm),
+/// orthonormalised (Gram–Schmidt, so that the step's rotation is orthogonal to rounding
+/// however the corners have drifted); the principal axes in the body frame,
+/// `principal_axes[3j + i]` the body component `j` of axis `i`; `1/I_i` (1/(g·cm²)); `L`
+/// (g·cm²/s) and `Δt` (s). `sin` and `cos` are libm's, taken per lane for the lanes of
+/// `lanes` (the others' values are to be discarded), so every width has the same bits.
+#[inline(always)]
+pub(crate) fn free_turn<L: Lane>(
+    offsets: &[Vector3<L>; 8],
+    axis_scale: &[L; 3],
+    principal_axes: &[L; 9],
+    inverse_moments: &[L; 3],
+    l: &Vector3<L>,
+    dt: L,
+    lanes: u32,
+) -> FreeTurn<L> {
+    // No closures and no `array::from_fn` here: they would be functions of their own, built
+    // without the lane engine's AVX2, and every vector operation in them a call.
+    let ex = unit(&column(offsets, 4, axis_scale[0]));
+    let y = column(offsets, 2, axis_scale[1]);
+    let along = dot(&ex, &y);
+    let ey = unit(&Vector3::new(
+        y.x - ex.x * along,
+        y.y - ex.y * along,
+        y.z - ex.z * along,
+    ));
+    let ez = Vector3::new(
+        ex.y * ey.z - ex.z * ey.y,
+        ex.z * ey.x - ex.x * ey.z,
+        ex.x * ey.y - ex.y * ey.x,
+    );
+    // The principal axes in the world frame, and L's components along them.
+    let e = principal_axes;
+    let axes = [
+        combine(&ex, &ey, &ez, e[0], e[3], e[6]),
+        combine(&ex, &ey, &ez, e[1], e[4], e[7]),
+        combine(&ex, &ey, &ez, e[2], e[5], e[8]),
+    ];
+    let start = [dot(&axes[0], l), dot(&axes[1], l), dot(&axes[2], l)];
+    let mut m = start;
+    let mut turned = axes;
+    let half = L::splat(0.5) * dt;
+    for (i, whole) in SPLITTING {
+        let h = if whole { dt } else { half };
+        let angle = (m[i] * inverse_moments[i]) * h;
+        let (sin, cos) = sin_cos(angle, lanes);
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        // The body turns by +angle about axis i: its axes j and k turn with it, and L,
+        // which stands still, turns the other way in the body's frame.
+        let (mj, mk) = (m[j], m[k]);
+        m[j] = cos * mj + sin * mk;
+        m[k] = cos * mk - sin * mj;
+        let (bj, bk) = (turned[j], turned[k]);
+        turned[j] = Vector3::new(
+            bj.x * cos + bk.x * sin,
+            bj.y * cos + bk.y * sin,
+            bj.z * cos + bk.z * sin,
+        );
+        turned[k] = Vector3::new(
+            bk.x * cos - bj.x * sin,
+            bk.y * cos - bj.y * sin,
+            bk.z * cos - bj.z * sin,
+        );
+    }
+    let r = inverse_moments;
+    let before = [start[0] * r[0], start[1] * r[1], start[2] * r[2]];
+    let after = [m[0] * r[0], m[1] * r[1], m[2] * r[2]];
+    FreeTurn {
+        before: combine(&axes[0], &axes[1], &axes[2], before[0], before[1], before[2]),
+        after: combine(&turned[0], &turned[1], &turned[2], after[0], after[1], after[2]),
+        axes: turned,
+    }
+}
+
+/// `(r_to − r_1)·s`: a body axis read off the corners.
+#[inline(always)]
+fn column<L: Lane>(offsets: &[Vector3<L>; 8], to: usize, s: L) -> Vector3<L> {
+    let (a, b) = (&offsets[to], &offsets[0]);
+    Vector3::new((a.x - b.x) * s, (a.y - b.y) * s, (a.z - b.z) * s)
+}
+
+#[inline(always)]
+fn dot<L: Lane>(a: &Vector3<L>, b: &Vector3<L>) -> L {
+    (a.x * b.x + a.y * b.y) + a.z * b.z
+}
+
+#[inline(always)]
+fn unit<L: Lane>(a: &Vector3<L>) -> Vector3<L> {
+    let norm = dot(a, a).sqrt();
+    Vector3::new(a.x / norm, a.y / norm, a.z / norm)
+}
+
+/// `(a·p + b·q) + c·r`, component by component.
+#[inline(always)]
+fn combine<L: Lane>(a: &Vector3<L>, b: &Vector3<L>, c: &Vector3<L>, p: L, q: L, r: L) -> Vector3<L> {
+    Vector3::new(
+        (a.x * p + b.x * q) + c.x * r,
+        (a.y * p + b.y * q) + c.y * r,
+        (a.z * p + b.z * q) + c.z * r,
+    )
+}
+
+/// libm's `sin` and `cos` of each lane of `lanes` (0 and 1 elsewhere).
+#[inline(always)]
+fn sin_cos<L: Lane>(angle: L, lanes: u32) -> (L, L) {
+    let angles = angle.to_lanes();
+    let (mut sin, mut cos) = (L::zero().to_lanes(), L::splat(1.0).to_lanes());
+    for lane in set_bits(lanes) {
+        let a = angles.as_ref()[lane];
+        sin.as_mut()[lane] = a.sin();
+        cos.as_mut()[lane] = a.cos();
+    }
+    (L::from_lanes(sin), L::from_lanes(cos))
+}
+
 /// Octave's overflow-safe 2-norm of a 3-vector (reference §9), bitwise.
 fn scaled_norm(w: &Vector3<f64>) -> f64 {
     let mut scale: f64 = 0.0;

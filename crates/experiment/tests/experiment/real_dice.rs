@@ -2,9 +2,11 @@
 //! engine widths; a general body's torque-free flight and the tennis-racket flip; the size
 //! keys of a preset file.
 
+use dicesim_experiment::trace;
 use dicesim_physics::RandomRanges;
 use dicesim_physics::lanes::{LaneResult, lanes_available, roll_in_lanes, roll_one_by_one};
 use dicesim_physics::{InitialCondition, Params, Simulation};
+use dicesim_setup::number::StepClock;
 use dicesim_setup::preset::{Preset, SHIPPED};
 use dicesim_setup::random::RandomDraws;
 use nalgebra::Vector3;
@@ -180,20 +182,67 @@ fn flight_drift(dt: f64) -> (f64, f64) {
 }
 
 #[test]
-fn torque_free_flight_drifts_by_order_dt() {
+fn torque_free_flight_errs_by_order_dt_squared() {
     let (e1, l1) = flight_drift(1e-3);
     let (e2, l2) = flight_drift(5e-4);
-    // First order: halving Δt halves the energy's drift.
+    // The splitting about the principal axes (docs/model.md, "Rotation of an anisotropic
+    // body"): second order, halving Δt quarters the energy's error, and no drift.
     let ratio = e1 / e2;
-    println!("½L·ω drifts {e1:e} at 1 ms, {e2:e} at 0.5 ms; |L| in the body frame {l1:e}, {l2:e}");
+    println!("½L·ω errs by {e1:e} at 1 ms, {e2:e} at 0.5 ms; |L| in the body frame {l1:e}, {l2:e}");
     assert!(
-        e1 > 0.0 && (1.6..2.5).contains(&ratio),
-        "drift {e1:e} then {e2:e}, ratio {ratio}"
+        e1 > 0.0 && (3.2..4.8).contains(&ratio),
+        "error {e1:e} then {e2:e}, ratio {ratio}"
     );
-    assert!(e1 < 0.05, "{e1}");
-    // Each step turns the body by an exact rotation and L stands still in flight, so |L|
-    // in the body frame keeps to rounding: far inside any O(Δt) bound.
+    assert!(e1 < 1e-4, "{e1}");
+    // L stands still in flight and the body turns by rotations, so |L| in the body frame
+    // keeps to rounding.
     assert!(l1 < 1e-12 && l2 < 1e-12, "{l1:e} {l2:e}");
+}
+
+/// On `tennis-racket` the ledger's total (the rigid-body energy the explorer's ledger shows
+/// as "total") changes by less than 0.5 % across each flight between bounces, read from the
+/// trace `dicesim trace` prints: in flight only semi-implicit Euler's `½·M·g²·Δt²` per step
+/// and the splitting's bounded error remain (docs/model.md). The paper's rotation gained 20 %
+/// in the flight after the first bounce.
+#[test]
+fn the_tennis_racket_keeps_its_energy_across_every_flight() {
+    let p = shipped("tennis-racket");
+    let params = p.params();
+    let mut sim = Simulation::new(&params, &p.initial).unwrap();
+    let clock = StepClock::new(params.integrator.dt);
+    // `values` leaves out the step, the header's first column.
+    let header = trace::header();
+    let column = |name: &str| header.iter().position(|h| h == name).expect(name) - 1;
+    let (total, force, time) = (
+        column("e_total_erg"),
+        column("contact_force_dyn"),
+        column("time_s"),
+    );
+    // Each flight's (start time, start total, end total), a flight being the rows with no
+    // contact force.
+    let mut flights: Vec<(f64, f64, f64)> = Vec::new();
+    let mut flying = false;
+    trace::follow(&mut sim, None, 1, &mut |sim| {
+        let v = trace::values(sim, &clock);
+        if v[force] == 0.0 {
+            if !flying {
+                flights.push((v[time], v[total], v[total]));
+            }
+            flights.last_mut().expect("a flight").2 = v[total];
+        }
+        flying = v[force] == 0.0;
+        Ok::<(), ()>(())
+    })
+    .unwrap();
+    assert!(flights.len() >= 3, "it bounced only {} times", flights.len() - 1);
+    for (start, before, after) in flights {
+        let change = (after - before) / before;
+        assert!(
+            change.abs() < 0.005,
+            "the flight from {start} s: {before} erg to {after} erg, {:+.2} %",
+            100.0 * change
+        );
+    }
 }
 
 #[test]
@@ -323,11 +372,19 @@ fn a_budden_cuboid_at_rest_on_each_face_is_counted_square_or_not() {
         let outcome = sim.run_to_end();
         let face = outcome.face.expect("it settles on a face");
         let height = sim.state().position.z;
-        // The roll ends once its energy is below the stop rule's, still bobbing on the
-        // springs by some hundredths of a cm; the two half sizes differ by 0.37 cm.
+        // The roll ends once its energy is below the stop rule's threshold `E` for the face
+        // down, still bobbing on the springs: with the potential measured from the lowest rest
+        // height `z₀ = ratio`, its centre may end as deep as `d` below its half size `v`
+        // where `w·(v − d − z₀) + 2k·d² = E` (weight `w`, four springs of stiffness `k`): 0.151
+        // cm on a square face of this steel cuboid, whose half sizes differ by 0.37 cm.
+        let e = sim.stop_rule_now().energy_threshold;
+        let w = params.total_mass() * params.world.gravity;
+        let k = params.ground.stiffness;
+        let c = w * (vertical - ratio) - e;
+        let deepest = (w + (w * w - 8.0 * k * c).max(0.0).sqrt()) / (4.0 * k);
         assert!(
-            (height - vertical).abs() < 0.15,
-            "{orientation:?}: rests at {height} cm"
+            deepest < 0.2 && height > vertical - deepest && height < vertical + 0.15,
+            "{orientation:?}: rests at {height} cm (as deep as {deepest} cm allowed)"
         );
         assert_eq!(
             is_square_face(face),

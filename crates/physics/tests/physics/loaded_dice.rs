@@ -70,10 +70,9 @@ fn torque_free_flight_keeps_l_exactly_and_the_energy_within_the_step_error() {
     extra[7] = 3.0;
     extra[0] = 1.0;
     let p = loaded(extra);
-    // Semi-implicit Euler turns the die by a fixed ω for a whole step while the tensor turns
-    // with it. That ω is the exact flow's at the step's start, so the energy's first-order
-    // change vanishes and each step errs by O(Δt²): over a fixed time the drift is bounded
-    // and shrinks at least as fast as Δt (here about as Δt², docs/model.md).
+    // The splitting about the principal axes keeps the energy to O(Δt²) without drift
+    // (docs/model.md, "Rotation of an anisotropic body"): bounded over a fixed time and
+    // shrinking about as Δt².
     let coarse = rotational_drift(&p, 1e-3, 0.4);
     let fine = rotational_drift(&p, 5e-4, 0.4);
     assert!(coarse > 0.0 && coarse < 5e-3, "drift {coarse}");
@@ -91,10 +90,9 @@ fn the_step_follows_omega_from_the_current_tensor() {
     let p = loaded(extra);
     let mut s = Simulation::new(&p, &in_flight()).unwrap();
     for _ in 0..50 {
-        // Each step turns the die by ω = I⁻¹·L, the tensor taken at the offsets it starts from.
-        let before = s.state().corner_offsets;
+        // After each step ω = I⁻¹·L with the tensor at the offsets the step turned it to.
         s.step();
-        let i = inertia_from_masses(&p, &before);
+        let i = inertia_from_masses(&p, &s.state().corner_offsets);
         let l = s.state().angular_momentum;
         assert!((i * s.angular_velocity() - l).norm() < 1e-12 * l.norm());
         // The masses balance about the centre of mass.
@@ -145,10 +143,12 @@ fn all_extras_equal_is_a_heavier_fair_die() {
     }
 }
 
-/// The loaded rolls of `crates/physics/tests/data/loaded/`, written by the program as it
-/// stood before the step became one kernel for both engines (the root's
-/// tests/loaded_dice.rs says how, and checks the binary writes them again byte for byte):
-/// each row's start, replayed here, must end as recorded in both engines, its start face,
+/// The loaded rolls of `crates/physics/tests/data/loaded/`: their starts as the program
+/// drew them before the step became one kernel for both engines (the root's
+/// tests/loaded_dice.rs says how, and checks the binary writes them again), their endings
+/// as rolled since a loaded die turns by the splitting about its principal axes
+/// (docs/model.md, "Rotation of an anisotropic body", which changed every one of them).
+/// Each row's start, replayed here, must end as recorded in both engines, its start face,
 /// face, status, step count and end time bit for bit. The reference data cover the fair die
 /// only, so these pin a loaded die's trajectory.
 #[test]
