@@ -5,6 +5,7 @@
 //! queued in the app's outbox and returned.
 
 use crate::tui::input::dialog_keys;
+use crate::tui::input::lesson_keys;
 use crate::tui::input::map_keys as map;
 use crate::tui::input::throw_keys;
 use crate::tui::input::twin_keys;
@@ -52,6 +53,13 @@ fn on_key(app: &mut App, key: KeyEvent) {
         return;
     }
     app.notice = None;
+    lesson_keys::card_down(
+        app,
+        match input {
+            Input::Act { action, .. } => Some(action),
+            _ => None,
+        },
+    );
     match app.mode() {
         Mode::Prompt => on_prompt_key(app, &input),
         Mode::EditingValue => on_edit_key(app, &input),
@@ -179,6 +187,7 @@ fn act(app: &mut App, action: Action, coarse: bool) {
             act_on_twin(app, action)
         }
         Action::Differ => twin_keys::on_differ_key(app),
+        Action::NextStep | Action::PreviousStep => lesson_keys::on_step_key(app, action),
         Action::OpenPreset
         | Action::SavePreset
         | Action::ResetSetup
@@ -416,6 +425,9 @@ fn on_edit_key(app: &mut App, input: &Input) {
 
 fn on_mouse(app: &mut App, m: MouseEvent) {
     let (kind, column, row) = (m.kind, m.column, m.row);
+    if matches!(kind, MouseEventKind::Down(_)) {
+        lesson_keys::card_down(app, None);
+    }
     // A drag on the die throws it in throw mode, and with Ctrl or Alt held outside it; a
     // plain drag orbits the camera.
     let flick = m.modifiers.intersects(KeyModifiers::CONTROL | KeyModifiers::ALT);

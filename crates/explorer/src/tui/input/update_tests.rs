@@ -495,6 +495,10 @@ fn b_in_the_typed_batch_size_goes_on_round_the_ladder() {
     assert_eq!(s.app.roll.batch_size, 1_000);
     let text = screen(&s.app, 120, 36);
     assert!(!text.contains("not a number"), "{text}");
+    // The footer says the size: in the notice while it shows, in the batch key's hint after.
+    assert!(text.contains("batch size 1 000"), "{text}");
+    s.app.notice = None;
+    let text = screen(&s.app, 120, 36);
     assert!(text.contains("b batch 1 000"), "{text}");
 }
 

@@ -714,6 +714,10 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
         frame.render_widget(Clear, top);
         frame.render_widget(Paragraph::new(lines), top);
     }
+    if let Some((lines, rows)) = parts.readouts {
+        let lines: Vec<Line> = lines.into_iter().map(|l| Line::styled(l, t.heading())).collect();
+        frame.render_widget(Paragraph::new(lines), rows);
+    }
     if let Some(legend) = parts.legend {
         frame.render_widget(Paragraph::new(vectors::legend(app, body.width)), legend);
     }

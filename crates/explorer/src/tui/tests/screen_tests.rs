@@ -147,7 +147,28 @@ fn die_states(theme: Theme) -> Vec<ScreenState> {
             &["95 %", "bias this large shows in", "n 2000"],
         ),
         state("batch running", running.app, &["batch 3072/10000"]),
+        state(
+            "lesson card",
+            lesson_card(theme).app,
+            &["step 1 of", "PageDown the screen"],
+        ),
+        state("superball spin", shipped("superball", theme).app, &["ωy -200.0"]),
+        state(
+            "sleeping top lean",
+            shipped("sleeping-top", theme).app,
+            &["lean 1.0°"],
+        ),
+        state("incline slid", shipped("incline", theme).app, &["slid 0.00 cm"]),
     ]
+}
+
+/// The shipped lesson's first step opened, its card up.
+fn lesson_card(theme: Theme) -> Harness {
+    let mut s = Harness::new(&Preset::default(), theme);
+    let lesson = crate::lesson::Lesson::shipped(&Store::new(None)).expect("reads");
+    s.app.lesson = Some(crate::tui::state::lesson_run::LessonRun::new(lesson));
+    s.key(KeyCode::PageDown);
+    s
 }
 
 /// The chaos twin beside the die, and at rest.
