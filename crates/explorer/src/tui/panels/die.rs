@@ -660,17 +660,29 @@ pub(crate) fn place_labels(labels: &[Label], view: &Projection, outline: &[Flat]
     placed
 }
 
+/// cos 50°: a face up tilted further than this from the vertical is no face up (a cube's
+/// most nearly up face is at most 54.7° off, when a corner points straight up).
+const CORNER_UP_COS: f64 = 0.642_787_609_686_539_3;
+
 /// The die panel: title, the solid die, and the arrows' legend under it when they are on.
 pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let die = &app.roll.live.die;
-    let lowest = solid(app, die).lowest().z;
+    let body = solid(app, die);
+    let lowest = body.lowest().z;
+    // On a corner no face is up: the most nearly up one is tilted past 50° (54.7° with the
+    // long diagonal upright), and which it is changes as the die spins about that corner.
+    let face_up = if body.normal(die.face_up as usize - 1).z < CORNER_UP_COS {
+        "face up –, on a corner".to_string()
+    } else {
+        format!("face up {}", die.face_up)
+    };
     // The face up matters most (the lesson's question), then the twin's, then when the face
     // was decided (the status line says it too), then the height: once the face is decided,
     // the lowest corner makes room.
     let mut title = vec![
         (0, vec![Span::styled(" die ", t.heading())]),
-        (0, vec![Span::raw(format!("· face up {} ", die.face_up))]),
+        (0, vec![Span::raw(format!("· {face_up} "))]),
     ];
     if let Some(t_s) = decided_at(app) {
         title.push((2, vec![Span::raw(format!("· face decided {t_s:.3} s "))]));

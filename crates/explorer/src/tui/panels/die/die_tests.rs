@@ -671,3 +671,23 @@ mod readouts {
         assert!(shown.contains(&format!("slid {slid:.2} cm")), "{shown}");
     }
 }
+
+/// The sleeping top spins on a corner, where no face is up: its title says so instead of
+/// naming whichever face is a little higher this step (which flips as it spins).
+#[test]
+fn a_die_spinning_on_its_corner_has_no_face_up_in_its_title() {
+    let mut s = shipped("sleeping-top");
+    let mut titles = Vec::new();
+    for _ in 0..8 {
+        s.simulator.advance_steps(400);
+        s.sync();
+        let text = screen(&s.app, 80, 24);
+        titles.push(text.lines().nth(1).expect("the panels' top row").to_string());
+    }
+    for t in &titles {
+        assert!(t.contains("face up –, on a corner"), "{t}");
+    }
+    // A die flat on the table has its face.
+    let s = at_rest(Theme::default());
+    assert!(screen(&s.app, 80, 24).contains(&format!("face up {}", s.app.roll.live.die.face_up)));
+}
