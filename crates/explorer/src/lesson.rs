@@ -297,6 +297,20 @@ mod tests {
         }
     }
 
+    /// The picker's "for the lesson" lists every preset the shipped lesson opens, in the
+    /// order it first opens them (steps 10 to 12's included).
+    #[test]
+    fn the_pickers_lesson_presets_are_the_lessons() {
+        let lesson = Lesson::shipped(&Store::new(None)).expect("reads");
+        let mut opened: Vec<&str> = Vec::new();
+        for s in &lesson.steps {
+            if !opened.contains(&s.preset.name.as_str()) {
+                opened.push(&s.preset.name);
+            }
+        }
+        assert_eq!(opened, dicesim_setup::preset::LESSON);
+    }
+
     #[test]
     fn a_teachers_step_needs_only_its_title_sentence_and_preset() {
         let l = Lesson::read(STEP, "mine.toml", &Store::new(None)).expect("reads");
