@@ -23,8 +23,8 @@ const MOST_WIDENING: f64 = 4.0;
 pub(crate) struct DiePanel {
     /// The reason's wrapped lines, their style and rows.
     pub(crate) reason: Option<(Vec<String>, Style, Rect)>,
-    /// The preset's readouts (signed spin, lean, slid), wrapped, on rows of their own under
-    /// the reason.
+    /// The centre's height and the preset's readouts (signed spin, lean, slid), wrapped, on
+    /// rows of their own under the reason.
     pub(crate) readouts: Option<(Vec<String>, Rect)>,
     pub(crate) legend: Option<Rect>,
     pub(crate) picture: Rect,
@@ -40,9 +40,15 @@ pub(crate) fn die_panel(app: &App, mut body: Rect) -> DiePanel {
         body.y += rows;
         body.height -= rows;
     }
+    // The centre's height and the preset's readouts on rows of their own, over the die
+    // rather than on it.
     let mut readouts = None;
-    let texts = super::die_screen::readout_texts(app.die_screen.readouts, &app.roll.live);
-    if !texts.is_empty() && body.height >= 6 {
+    let mut texts = vec![format!("centre {:.2} cm up", app.roll.live.die.centre.z)];
+    texts.extend(super::die_screen::readout_texts(
+        app.die_screen.readouts,
+        &app.roll.live,
+    ));
+    if body.height >= 4 {
         let lines = fit::wrap(&texts.join(" · "), body.width as usize);
         let rows = (lines.len() as u16).min(2);
         readouts = Some((lines, Rect { height: rows, ..body }));

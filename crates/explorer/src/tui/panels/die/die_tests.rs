@@ -691,3 +691,55 @@ fn a_die_spinning_on_its_corner_has_no_face_up_in_its_title() {
     let s = at_rest(Theme::default());
     assert!(screen(&s.app, 80, 24).contains(&format!("face up {}", s.app.roll.live.die.face_up)));
 }
+
+/// At 80×24 the die's info line has a row of its own and the contact force is named once:
+/// on superball's first bounce with the arrows on, no Braille dot or arrow label shares the
+/// row of "centre … cm up", and one `F` stands for the forces however many corners touch.
+#[test]
+fn the_info_line_and_the_force_labels_leave_the_die_alone_at_80x24() {
+    let mut s = shipped("superball");
+    s.key(KeyCode::Char('i'));
+    s.simulator.advance_steps(5);
+    s.sync();
+    if !s.app.die_screen.arrows {
+        s.key(KeyCode::Char('v'));
+    }
+    let touching = s
+        .app
+        .roll
+        .live
+        .die
+        .forces
+        .iter()
+        .filter(|f| f.depth > 0.0)
+        .count();
+    assert!(
+        touching >= 2,
+        "the bounce should press more than one corner: {touching}"
+    );
+    let text = screen(&s.app, 80, 24);
+    let die_panel: Vec<String> = text
+        .lines()
+        .skip(1)
+        .take(10)
+        .map(|l| l.chars().skip(38).collect())
+        .collect();
+    let info = die_panel
+        .iter()
+        .find(|l| l.contains("cm up"))
+        .expect("the info line");
+    assert!(
+        !info
+            .chars()
+            .any(|c| ('\u{2800}'..='\u{28ff}').contains(&c) || "LF".contains(c)),
+        "{info}"
+    );
+    // The legend under the picture names ΣF once whatever the picture shows; count the
+    // picture's labels only.
+    let forces = die_panel
+        .iter()
+        .filter(|l| !l.contains("━ΣF"))
+        .map(|l| l.matches('F').count())
+        .sum::<usize>();
+    assert_eq!(forces, 1, "{}", die_panel.join("\n"));
+}
