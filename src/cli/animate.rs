@@ -9,6 +9,7 @@ use crate::tables;
 use clap::Args;
 use dicesim_explorer::tui::{TERMINAL_COLUMNS, TERMINAL_ROWS, Theme, write_presentation};
 use dicesim_figures::animation::render::Camera;
+use dicesim_figures::animation::terminal::Grid;
 use dicesim_figures::animation::{self, AnimationProgress, AnimationSpec, write_animation};
 use dicesim_setup::chaos::DEFAULT_EPSILON;
 use dicesim_setup::output::Output;
@@ -153,6 +154,11 @@ pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
     // The checks `roll` makes: every value in range, no corner starting inside the table.
     dicesim_physics::Simulation::new(&params, &preset.initial)?;
     let spec = spec_of(args, &mut preset)?;
+    let terminal = args.terminal.unwrap_or((80, 24));
+    if args.present {
+        Grid::legible(args.size, terminal.0, terminal.1)
+            .map_err(|e| CliError::Usage(format!("--size {e}")))?;
+    }
     let output =
         Output::check(&args.out, &animation::EXTENSIONS, args.force).map_err(CliError::output("--out "))?;
 
@@ -175,7 +181,6 @@ pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
     let animated = if args.present {
         let theme = args.theme.map(ThemeName::from).or(preset.view.theme);
         preset.view.theme = Some(theme.unwrap_or(ThemeName::Projector));
-        let terminal = args.terminal.unwrap_or((80, 24));
         write_presentation(
             &preset,
             &spec,

@@ -104,6 +104,17 @@ impl Grid {
         })
     }
 
+    /// [`Grid::fitting`], or why the frame is too small, with the least size that is not.
+    pub fn legible(size: (u32, u32), columns: u16, rows: u16) -> Result<Grid, String> {
+        Grid::fitting(size, columns, rows).ok_or_else(|| {
+            let least = Grid::least_size(columns, rows);
+            format!(
+                "{}×{} pixels: {columns}×{rows} terminal cells need at least {}×{} to be read",
+                size.0, size.1, least.0, least.1
+            )
+        })
+    }
+
     /// The least frame size that gives `columns` × `rows` cells of [`LEAST_CELL_HEIGHT`].
     pub fn least_size(columns: u16, rows: u16) -> (u32, u32) {
         let (advance, ascent, descent) = cell_ems();
@@ -474,13 +485,7 @@ pub fn write_screens(
         return Err(Error::Animation("no screen to draw".to_string()));
     };
     let (columns, rows) = (first.columns, first.rows);
-    let grid = Grid::fitting(spec.size, columns, rows).ok_or_else(|| {
-        let least = Grid::least_size(columns, rows);
-        Error::Animation(format!(
-            "{}×{} pixels: {columns}×{rows} terminal cells need at least {}×{} to be read",
-            spec.size.0, spec.size.1, least.0, least.1
-        ))
-    })?;
+    let grid = Grid::legible(spec.size, columns, rows).map_err(Error::Animation)?;
     let name = &preset.name;
     let mut record = Record::of_setup(
         &format!("{name}: {}", film.view),

@@ -11,7 +11,7 @@ use crate::tui::state::messages::Msg;
 use crate::tui::vocabulary::theme::Theme;
 use crate::worker::{Phase, Simulator};
 use dicesim_experiment::Error;
-use dicesim_figures::animation::terminal::{Cell, Screen, ScreenFilm, write_screens};
+use dicesim_figures::animation::terminal::{Cell, Grid, Screen, ScreenFilm, write_screens};
 use dicesim_figures::animation::{Animated, AnimationProgress, AnimationSpec, frame_times};
 use dicesim_setup::output::Output;
 use dicesim_setup::preset::Preset;
@@ -52,6 +52,8 @@ pub fn write_presentation(
             TERMINAL_ROWS.end()
         )));
     }
+    // Refused before anything is rolled or drawn.
+    Grid::legible(spec.size, columns, rows).map_err(Error::Animation)?;
     let film = presentation_film(preset, spec, terminal, theme, cancel, progress)?;
     write_screens(preset, spec, &film, out, cancel, progress)
 }
