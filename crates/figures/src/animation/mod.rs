@@ -267,6 +267,7 @@ pub(crate) fn film(
                 die: die_shot(&die),
                 twin: twin.as_ref().map(die_shot),
                 headline: headline(&die, twin.as_ref(), at),
+                played_s: at / spec.speed,
             });
         }
         if times.len() as u64 > FRAMES.max {
@@ -304,6 +305,7 @@ pub(crate) fn film(
         die: die_shot(&die),
         twin: twin.as_ref().map(die_shot),
         headline: headline(&die, twin.as_ref(), end),
+        played_s: end / spec.speed,
     });
     Ok(Film {
         times,
@@ -985,6 +987,58 @@ mod tests {
             ..spec
         };
         assert!(bad.validate().is_err());
+    }
+
+    /// A drop of many die sides (4 m) starts as wide (the die and the table below it in
+    /// the first frame) and closes in: from [`render::CLOSE_IN_S`] of playback on, the die
+    /// is at least its side ([`render::DIE_AT_LEAST`] of the picture for its bounding
+    /// sphere, √3 sides across) high, and whole inside the picture in every frame.
+    #[test]
+    fn a_tall_zoomed_drop_closes_in_on_the_die() {
+        // (The fall takes 0.9 s, 9 s played, the die 3 m up when the camera has closed in.)
+        let (params, mut initial) = paper();
+        initial.height = 400.0;
+        let (w, h) = (320usize, 240usize);
+        // At 1/10×, so the die is still high when the camera has closed in.
+        let spec = AnimationSpec {
+            zoom: true,
+            speed: 0.1,
+            ..AnimationSpec::new(2, (w as u32, h as u32))
+        };
+        let (bytes, _) = animate(&params, &initial, &spec, "gif");
+        let frames = gif_frames(&bytes);
+        let margin = (render::caption_sizes(w as u32, h as u32).0 * 0.6).round() as usize;
+        let film = film(
+            "paper",
+            &params,
+            &initial,
+            &spec,
+            &AtomicBool::new(false),
+            &mut |_| {},
+        )
+        .unwrap();
+        for (k, f) in frames.iter().enumerate() {
+            let band = band_rows(f, w);
+            let (left, top, right, bottom) = pixel_box(f, w, on_a_die).expect("the die is drawn");
+            assert!(
+                left > 0 && right < w - 1 && top > band && bottom < h - 1,
+                "frame {k}: the die at x {left}..{right}, y {top}..{bottom}"
+            );
+            let picture = (h - band - 2 * margin) as f64;
+            let least = render::DIE_AT_LEAST * picture / 3f64.sqrt();
+            let rows = (bottom + 1 - top) as f64;
+            if film.times[k] / spec.speed >= render::CLOSE_IN_S {
+                assert!(
+                    rows >= least - 1.0,
+                    "frame {k}: the die {rows} rows, {least} at least"
+                );
+            }
+            if k == 0 {
+                assert!(rows * 4.0 < least, "the first frame is wide: the die {rows} rows");
+                let table_below = (bottom + 1..h).any(|y| (0..w).any(|x| on_the_table(f[y * w + x])));
+                assert!(table_below, "the first frame shows the table");
+            }
+        }
     }
 
     /// The rows of the first text line in `frame`'s band that hold ink (text pixels at

@@ -245,6 +245,8 @@ pub(crate) struct Shot {
     pub(crate) die: DieShot,
     pub(crate) twin: Option<DieShot>,
     pub(crate) headline: String,
+    /// s of playback from the first frame to this one.
+    pub(crate) played_s: f64,
 }
 
 /// The share of a frame's height a zoomed (framing) camera gives the die's side once the
@@ -254,6 +256,15 @@ pub(crate) const ZOOMED_SIDE: f64 = 0.36;
 /// The table a zoomed camera keeps in view below the die's foot, in die sides: enough of
 /// the tiles under it that the fall reads as a fall towards them.
 pub(crate) const TABLE_BELOW: f64 = 0.5;
+
+/// The least a zoomed camera shows the die once it has closed in: its bounding sphere
+/// across this share of the picture's height. A drop of many die sides (the tennis
+/// racket's 4 m) then follows the die, not the table, until the table comes into view.
+pub(crate) const DIE_AT_LEAST: f64 = 0.25;
+
+/// s of playback over which a zoomed camera closes in from the first frame's wide view
+/// (the die and the table, however far apart) to [`DIE_AT_LEAST`].
+pub(crate) const CLOSE_IN_S: f64 = 1.0;
 
 /// The headline's size, as a share of the frame's height (of a 4:3 slide's, in a wider
 /// frame). 24-point type on a slide 7.5 inches (540 points) high, the least a projector's
@@ -477,20 +488,27 @@ impl Scene {
     /// largest that fits that box in the picture, and no larger than the zoom's; the box is
     /// centred. High in the drop the view is wide, with the table at its foot; it closes
     /// in as the die comes down, and frames the die at a third of the height near the
-    /// table. The across extent is the sphere's alone: the foot is straight below the
+    /// table. The across extent is the spheres' alone: a foot is straight below its
     /// centre, at the same place across.
+    ///
+    /// A drop too tall for that to show the die (more than some seven bounding spheres)
+    /// starts so, and closes in over [`CLOSE_IN_S`] of playback until the die's sphere is
+    /// at least [`DIE_AT_LEAST`] of the picture high; the view then keeps the die inside
+    /// and as much of the table below it as there is room for.
     fn framing(&self, shot: &Shot) -> (f64, (f64, f64)) {
         let sp = self.camera.pitch_deg.to_radians().sin();
         let (mut lo, mut hi) = (
             (f64::INFINITY, f64::INFINITY),
             (f64::NEG_INFINITY, f64::NEG_INFINITY),
         );
-        for die in std::iter::once(&shot.die).chain(shot.twin.as_ref()) {
-            let radius = die
-                .corners
+        let radius = |die: &DieShot| {
+            die.corners
                 .iter()
                 .map(|c| (c - die.centre).norm())
-                .fold(0.0, f64::max);
+                .fold(0.0, f64::max)
+        };
+        for die in std::iter::once(&shot.die).chain(shot.twin.as_ref()) {
+            let r = radius(die);
             let (across, up) = self.camera.project(&die.centre);
             let foot = self
                 .camera
@@ -499,17 +517,29 @@ impl Scene {
             // times that lower (a quarter at least, so a view along the table still shows
             // a strip of it under the die).
             let below = foot.1 - TABLE_BELOW * self.tile * sp.max(0.25);
-            lo = (lo.0.min(across - radius), lo.1.min((up - radius).min(below)));
-            hi = (hi.0.max(across + radius), hi.1.max(up + radius));
+            lo = (lo.0.min(across - r), lo.1.min((up - r).min(below)));
+            hi = (hi.0.max(across + r), hi.1.max(up + r));
         }
         let (left, top, right, bottom) = self.picture();
+        let (width, height) = (right - left, bottom - top);
         let span = ((hi.0 - lo.0).max(1e-6), (hi.1 - lo.1).max(1e-6));
-        let scale = self
-            .scale
-            .min((right - left) / span.0)
-            .min((bottom - top) / span.1)
-            .max(1e-6);
-        let centre = ((lo.0 + hi.0) / 2.0, (lo.1 + hi.1) / 2.0);
+        let fit = (width / span.0).min(height / span.1);
+        let r = radius(&shot.die).max(1e-6);
+        let x = (shot.played_s / CLOSE_IN_S).clamp(0.0, 1.0);
+        let least = DIE_AT_LEAST * height / (2.0 * r) * x * x * (3.0 - 2.0 * x);
+        let scale = self.scale.min(fit.max(least)).max(1e-6);
+        // The box's centre, moved (when it does not fit) as little as keeps the die whole
+        // and half its sphere's radius clear of the picture's edge.
+        let (across, up) = self.camera.project(&shot.die.centre);
+        let (half_w, half_h) = (width / (2.0 * scale), height / (2.0 * scale));
+        let keep = |centre: f64, at: f64, half: f64| {
+            let (a, b) = (at + 1.5 * r - half, at - 1.5 * r + half);
+            if a <= b { centre.clamp(a, b) } else { at }
+        };
+        let centre = (
+            keep((lo.0 + hi.0) / 2.0, across, half_w),
+            keep((lo.1 + hi.1) / 2.0, up, half_h),
+        );
         let origin = (
             (left + right) / 2.0 - centre.0 * scale,
             (top + bottom) / 2.0 + centre.1 * scale,
@@ -793,6 +823,7 @@ mod tests {
         let shot = Shot {
             die,
             twin: Some(die),
+            played_s: 0.0,
             headline: "a-preset-with-a-rather-long-name · t = 12.34 s · did not settle within 30 s\n\
                        twin (ε 1e-9): did not settle within 30 s, 0.01 cm apart"
                 .to_string(),
