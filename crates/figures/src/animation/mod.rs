@@ -946,6 +946,12 @@ mod tests {
         })
         .expect("the shadow in the first frame");
         assert!(
+            shadow.3 < h - 1,
+            "the whole shadow in the picture, rows {}..{}",
+            shadow.1,
+            shadow.3
+        );
+        assert!(
             shadow.1 > die.3 + 2 * heights[0],
             "the shadow (rows {}..{}) two dice below the die (rows {}..{})",
             shadow.1,

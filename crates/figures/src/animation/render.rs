@@ -253,8 +253,8 @@ pub(crate) struct Shot {
 /// drop allows: a third, and a little more, whatever its turn.
 pub(crate) const ZOOMED_SIDE: f64 = 0.36;
 
-/// The table a zoomed camera keeps in view below the die's foot, in die sides: enough of
-/// the tiles under it that the fall reads as a fall towards them.
+/// The table a zoomed camera keeps in view in front of the die's shadow, in die sides:
+/// enough of the tiles under it that the fall reads as a fall towards them.
 pub(crate) const TABLE_BELOW: f64 = 0.5;
 
 /// The least a zoomed camera shows the die once it has closed in: its bounding sphere
@@ -484,7 +484,8 @@ impl Scene {
     /// A following camera's scale (pixels per cm) and origin for `shot`: what the frame
     /// must hold is each die's bounding sphere (a disc of its radius around its centre,
     /// whatever its turn, so the camera does not breathe with the tumbling) and the table
-    /// below it, from the die's foot down [`TABLE_BELOW`] of a side. The scale is the
+    /// below it: its shadow (within the radius of the foot) and [`TABLE_BELOW`] of a side
+    /// more towards the viewer. The scale is the
     /// largest that fits that box in the picture, and no larger than the zoom's; the box is
     /// centred. High in the drop the view is wide, with the table at its foot; it closes
     /// in as the die comes down, and frames the die at a third of the height near the
@@ -513,10 +514,10 @@ impl Scene {
             let foot = self
                 .camera
                 .project(&Vector3::new(die.centre.x, die.centre.y, 0.0));
-            // The table `TABLE_BELOW` sides nearer the viewer than the foot shows sin(pitch)
-            // times that lower (a quarter at least, so a view along the table still shows
-            // a strip of it under the die).
-            let below = foot.1 - TABLE_BELOW * self.tile * sp.max(0.25);
+            // The shadow reaches the sphere's radius from the foot; the table `TABLE_BELOW`
+            // sides nearer the viewer than that shows sin(pitch) times as far below the foot
+            // (a quarter at least, so a view along the table still shows a strip of it).
+            let below = foot.1 - (r + TABLE_BELOW * self.tile) * sp.max(0.25);
             lo = (lo.0.min(across - r), lo.1.min((up - r).min(below)));
             hi = (hi.0.max(across + r), hi.1.max(up + r));
         }
