@@ -66,45 +66,47 @@ pub(crate) struct AnimateArgs {
     pub(crate) force: bool,
 }
 
-fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = (animation::WIDTH, animation::HEIGHT);
+/// `s` as two numbers `AxB` (or `A×B`), each in its range, else what `AxB` should be.
+fn parse_pair<T>(
+    s: &str,
+    what: &str,
+    example: &str,
+    ranges: (std::ops::RangeInclusive<T>, std::ops::RangeInclusive<T>),
+) -> Result<(T, T), String>
+where
+    T: std::str::FromStr + PartialOrd + std::fmt::Display,
+{
+    let (a, b) = ranges;
     let bad = || {
         format!(
-            "`{s}`: expected WxH in pixels, from {}x{} to {}x{}, e.g. 640x480",
-            w.start(),
-            h.start(),
-            w.end(),
-            h.end()
+            "`{s}`: expected {what}, from {}x{} to {}x{}, e.g. {example}",
+            a.start(),
+            b.start(),
+            a.end(),
+            b.end()
         )
     };
     let (x, y) = s.split_once(['x', 'X', '×']).ok_or_else(bad)?;
-    let x: u32 = x.trim().parse().map_err(|_| bad())?;
-    let y: u32 = y.trim().parse().map_err(|_| bad())?;
-    if !w.contains(&x) || !h.contains(&y) {
+    let x: T = x.trim().parse().map_err(|_| bad())?;
+    let y: T = y.trim().parse().map_err(|_| bad())?;
+    if !a.contains(&x) || !b.contains(&y) {
         return Err(bad());
     }
     Ok((x, y))
 }
 
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    parse_pair(
+        s,
+        "WxH in pixels",
+        "640x480",
+        (animation::WIDTH, animation::HEIGHT),
+    )
+}
+
 /// A terminal's size, `COLSxROWS`, in the presentation view's range.
 fn parse_terminal(s: &str) -> Result<(u16, u16), String> {
-    let (c, r) = (TERMINAL_COLUMNS, TERMINAL_ROWS);
-    let bad = || {
-        format!(
-            "`{s}`: expected COLSxROWS, from {}x{} to {}x{}, e.g. 80x24",
-            c.start(),
-            r.start(),
-            c.end(),
-            r.end()
-        )
-    };
-    let (x, y) = s.split_once(['x', 'X', '×']).ok_or_else(bad)?;
-    let x: u16 = x.trim().parse().map_err(|_| bad())?;
-    let y: u16 = y.trim().parse().map_err(|_| bad())?;
-    if !c.contains(&x) || !r.contains(&y) {
-        return Err(bad());
-    }
-    Ok((x, y))
+    parse_pair(s, "COLSxROWS", "80x24", (TERMINAL_COLUMNS, TERMINAL_ROWS))
 }
 
 /// The animation the arguments ask for, over `preset`'s view; a `--speed` given becomes

@@ -310,56 +310,42 @@ impl Pen<'_> {
     /// A box-drawing character's arms from the cell's middle to its edges, `light` pixels
     /// thick (twice as heavy), dashed in `dashes` if not 0.
     fn box_lines(&mut self, arms: [u8; 4], dashes: u8, light: i64) {
-        let (w, h) = (self.w, self.h);
-        let thick = |weight: u8| light * i64::from(weight);
-        let (mx, my) = (w / 2, h / 2);
         let heaviest = i64::from(*arms.iter().max().unwrap_or(&1));
         // Each arm reaches past the middle by half the thickest line, so corners close.
         let reach = (light * heaviest + 1) / 2;
-        let ink = INK_STEPS;
-        let dashed = |pen: &mut Pen, along: i64, draw: &mut dyn FnMut(&mut Pen, i64, i64)| {
-            if dashes == 0 {
-                draw(pen, 0, along);
-                return;
-            }
-            let n = i64::from(dashes);
-            for k in 0..n {
-                let start = along * k / n;
-                let end = start + (along * 3 / (5 * n)).max(1);
-                draw(pen, start, end);
-            }
-        };
         let [left, right, up, down] = arms;
-        if left > 0 || right > 0 {
-            let span = |weight: u8| (my - thick(weight) / 2, my - thick(weight) / 2 + thick(weight));
-            if left == right && dashes > 0 {
-                let (y0, y1) = span(left);
-                dashed(self, w, &mut |p, a, b| p.rect(a, y0, b, y1, ink));
-            } else {
-                if left > 0 {
-                    let (y0, y1) = span(left);
-                    self.rect(0, y0, mx + reach, y1, ink);
+        // Across the cell, then down it: (along, across) lengths and the two arms.
+        for (across_the_cell, (along, across), (first, second)) in [
+            (true, (self.w, self.h), (left, right)),
+            (false, (self.h, self.w), (up, down)),
+        ] {
+            let middle = along / 2;
+            let line = |weight: u8| {
+                let thick = light * i64::from(weight);
+                (across / 2 - thick / 2, across / 2 - thick / 2 + thick)
+            };
+            // A piece of the line, from `a` to `b` along it.
+            let bar = |pen: &mut Pen, a: i64, b: i64, weight: u8| {
+                let (c0, c1) = line(weight);
+                if across_the_cell {
+                    pen.rect(a, c0, b, c1, INK_STEPS);
+                } else {
+                    pen.rect(c0, a, c1, b, INK_STEPS);
                 }
-                if right > 0 {
-                    let (y0, y1) = span(right);
-                    self.rect(mx - reach, y0, w, y1, ink);
+            };
+            if dashes > 0 && first == second && first > 0 {
+                let n = i64::from(dashes);
+                for k in 0..n {
+                    let start = along * k / n;
+                    bar(self, start, start + (along * 3 / (5 * n)).max(1), first);
                 }
+                continue;
             }
-        }
-        if up > 0 || down > 0 {
-            let span = |weight: u8| (mx - thick(weight) / 2, mx - thick(weight) / 2 + thick(weight));
-            if up == down && dashes > 0 {
-                let (x0, x1) = span(up);
-                dashed(self, h, &mut |p, a, b| p.rect(x0, a, x1, b, ink));
-            } else {
-                if up > 0 {
-                    let (x0, x1) = span(up);
-                    self.rect(x0, 0, x1, my + reach, ink);
-                }
-                if down > 0 {
-                    let (x0, x1) = span(down);
-                    self.rect(x0, my - reach, x1, h, ink);
-                }
+            if first > 0 {
+                bar(self, 0, middle + reach, first);
+            }
+            if second > 0 {
+                bar(self, middle - reach, along, second);
             }
         }
     }
