@@ -80,11 +80,15 @@ pub(crate) fn presentation_film(
 
     let mut simulator = Simulator::new(preset)?;
     let mut app = App::new(simulator.snapshot(), theme);
-    let key = KeyEvent::new(KeyCode::Char('P'), KeyModifiers::NONE);
-    // `P` only turns the page: it asks nothing of the worker or the disk.
-    let effects = update(&mut app, Msg::Input(Event::Key(key)));
-    debug_assert!(effects.is_empty(), "{effects:?}");
+    // The view is drawn alone: a preset that opens on the map screen opens on the die's.
+    app.map.open_asked = false;
     let (columns, rows) = terminal;
+    let key = KeyEvent::new(KeyCode::Char('P'), KeyModifiers::NONE);
+    for event in [Event::Resize(columns, rows), Event::Key(key)] {
+        // The size and `P` only change the page: they ask nothing of the worker or the disk.
+        let effects = update(&mut app, Msg::Input(event));
+        debug_assert!(effects.is_empty(), "{effects:?}");
+    }
     let mut drawn = Terminal::new(TestBackend::new(columns, rows)).expect("a test backend draws");
     let mut status = AnimationProgress {
         drawing: false,
@@ -290,6 +294,25 @@ mod tests {
             Msg::Input(Event::Key(KeyEvent::new(KeyCode::Char('P'), KeyModifiers::NONE))),
         );
         assert_eq!(app.page, Page::Presentation);
+    }
+
+    /// A preset that opens on the map screen is drawn in the presentation view all the same.
+    #[test]
+    fn a_preset_opening_on_the_map_is_drawn_in_the_view() {
+        let mut preset = spun();
+        preset.view.screen = Some(dicesim_setup::preset::Screen::Map);
+        let spec = AnimationSpec::new(5, (800, 600));
+        let film = presentation_film(
+            &preset,
+            &spec,
+            (80, 24),
+            projector(),
+            &AtomicBool::new(false),
+            &mut |_| {},
+        )
+        .expect("a film");
+        let first: String = film.screens[0].cells.iter().map(|c| c.symbol).collect();
+        assert!(first.contains("die · height scale in cm"), "{first}");
     }
 
     #[test]
