@@ -61,12 +61,13 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
                 .sum();
             let aim = app.die_screen.throw.map(|t| {
                 let thrown = t.thrown(&app.die_screen.camera, &app.setup.params);
-                let forms = [format!("aim: {}", thrown.words()), thrown.short_words()];
+                let [vectors, sizes] = thrown.short_words();
+                let forms = [format!("aim: {}", thrown.words()), vectors, sizes];
                 let room = crate::tui::vocabulary::fit::room(area.width as usize).saturating_sub(needed + 2);
                 forms
                     .iter()
                     .find(|f| f.chars().count() <= room)
-                    .unwrap_or(&forms[1])
+                    .unwrap_or(&forms[2])
                     .clone()
             });
             let notice = app.roll.export_status().or_else(|| app.notice.clone()).or(aim);

@@ -292,7 +292,7 @@ fn view_states(theme: Theme) -> Vec<ScreenState> {
                     KeyCode::Up,
                 ],
             ),
-            &["v (", "Enter throw"],
+            &["cm/s", "rad/s", "Enter throw"],
         ),
         state(
             "thrown",

@@ -946,8 +946,8 @@ pub(crate) const BINDINGS: &[Binding] = &[
         "← h",
         A::CursorLeft,
         hint("←→↑↓", "aim", 0),
-        "the throw's end a cell left (Shift: four): from the grab point to it, the velocity (a twentieth of \
-         a second to cover it)"
+        "the throw's end a cell left (Shift: four): from the grab point to it, the velocity across the \
+         table (a hundredth of a second to cover it)"
     ),
     row!(
         Throw,
