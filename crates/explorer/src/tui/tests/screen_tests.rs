@@ -507,3 +507,42 @@ fn every_screen_at_every_size() {
         }
     }
 }
+
+/// Cells of solid bar in a table row: whole blocks, and eighths for the partial one.
+fn solid_cells(row: &str) -> f64 {
+    let eighths = ['▏', '▎', '▍', '▌', '▋', '▊', '▉', '█'];
+    row.chars()
+        .filter_map(|c| eighths.iter().position(|&e| e == c))
+        .map(|k| (k + 1) as f64 / 8.0)
+        .sum()
+}
+
+/// `loaded-corner` after 2 000 rolls at 80×24 and 100×30, read from the back of a room: the
+/// bars start where the intervals allow (every interval lies in 12.1–21.8 %, so from 10 %,
+/// 1/6 in the middle, to 23.3 %) and face 1's bar (low end 18.3 %) is at least four cells
+/// longer than face 5's (12.1 %): 13 cells over 13.3 % give 8.1 and 2.0. Over 0–1/3 they
+/// were 7.1 and 4.7, "one cell" apart. Above 1/6 the bar runs through the fair mark's
+/// column, below it the dotted mark stands alone, so the two cannot be taken for each other.
+#[test]
+fn a_loaded_dies_bias_is_cells_long_at_80x24_and_100x30() {
+    let s = loaded_batch(2000, projector());
+    for size in [(80, 24), (100, 30)] {
+        let shown = text(&draw(&s.app, size));
+        let row = |face: u8| {
+            shown
+                .lines()
+                .find(|l| l.starts_with(&format!("│  {face}  ")))
+                .unwrap_or_else(|| panic!("face {face}:\n{shown}"))
+                .to_string()
+        };
+        let (one, five) = (row(1), row(5));
+        assert!(
+            solid_cells(&one) - solid_cells(&five) >= 4.0,
+            "{size:?}\n{one}\n{five}"
+        );
+        assert!(shown.contains("10 %"), "the bars' start named: {shown}");
+        let bar = |r: &str| r.chars().skip(23).take(13).collect::<String>();
+        assert_eq!(bar(&one).chars().nth(6), Some('█'), "{one}");
+        assert_eq!(bar(&five).chars().nth(6), Some('┆'), "{five}");
+    }
+}
