@@ -218,3 +218,52 @@ fn the_step_keys_walk_every_lesson_step_opening_its_preset_speed_and_view() {
         expected(steps[last - 1].as_table().expect("a table")).0
     );
 }
+
+/// The value axis's labels of the plot titled `title`: the numbers right before a `│` on
+/// the rows under its title.
+fn axis_labels(shown: &str, title: &str) -> Vec<f64> {
+    shown
+        .lines()
+        .skip_while(|l| !l.contains(title))
+        .skip(1)
+        .flat_map(|l| {
+            let cells: Vec<char> = l.chars().collect();
+            (1..cells.len())
+                .filter(|&i| cells[i] == '│' && cells[i - 1].is_ascii_digit())
+                .map(|i| {
+                    let start = (0..i)
+                        .rev()
+                        .take_while(|&j| cells[j].is_ascii_digit() || cells[j] == '.')
+                        .last();
+                    cells[start.unwrap_or(i)..i].iter().collect::<String>()
+                })
+                .filter_map(|t| t.parse::<f64>().ok())
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+/// Step 3 (the ledger) opens the total energy alone with its axis fitted, so at the first
+/// impact the plot spans the bump the README describes (the total is about 79 000 erg there)
+/// instead of 0 to the total, where `y` on the energy terms showed no change.
+#[test]
+fn the_ledgers_step_shows_the_total_energys_bump_at_the_first_impact() {
+    let mut s = Harness::new(&Preset::default(), Theme::default());
+    s.app.lesson = Some(LessonRun::new(lesson()));
+    for _ in 0..5 {
+        s.key(KeyCode::PageDown);
+    }
+    assert_eq!(s.app.lesson.as_ref().and_then(|r| r.at), Some(2));
+    s.key(KeyCode::Home);
+    s.key(KeyCode::Char('i'));
+    let total = s.app.roll.live.energy.total();
+    for size in SIZES {
+        let shown = screen(&s, size);
+        let labels = axis_labels(&shown, "total energy");
+        let lowest = labels.iter().copied().fold(f64::INFINITY, f64::min);
+        assert!(
+            labels.len() >= 2 && lowest > 0.5 * total,
+            "{size:?}: axis {labels:?} for a total of {total} erg:\n{shown}"
+        );
+    }
+}
