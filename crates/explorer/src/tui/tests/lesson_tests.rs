@@ -180,6 +180,10 @@ fn the_step_keys_walk_every_lesson_step_opening_its_preset_speed_and_view() {
                 i + 1
             );
         }
+        // The row the step changes, selected (the incline's tilt, the top's spin).
+        if let Some(key) = step.get("select").and_then(|v| v.as_str()) {
+            assert_eq!(s.app.selected_param().key(), key, "step {} row", i + 1);
+        }
         let page = match screen_name.as_deref() {
             Some("map") => Page::Map,
             Some("presentation") => Page::Presentation,
