@@ -39,9 +39,9 @@ pub struct Step {
     pub say: String,
     /// The preset the step opens, with the step's view over its own.
     pub preset: Box<Preset>,
-    /// The plot: `None` leaves the one on screen; `Some(None)` the energy terms,
-    /// `Some(Some(i))` `QUANTITIES[i]` against time.
-    pub plot: Option<Option<usize>>,
+    /// The plot: `None` the energy terms (also when the step names none, so a step looks the
+    /// same whichever step came before), `Some(i)` `QUANTITIES[i]` against time.
+    pub plot: Option<usize>,
     /// The plot's value axis fitted to the time on screen (`y`) or the whole roll's.
     pub fit: Option<bool>,
     /// The presentation view (`P`) rather than the die screen.
@@ -163,9 +163,9 @@ impl Lesson {
                 .map_err(|e| refuse(s.preset.span(), format!("key `preset`: {e}")))?;
             let plot = match &s.plot {
                 None => None,
-                Some(p) if p.get_ref() == "energy" => Some(None),
+                Some(p) if p.get_ref() == "energy" => None,
                 Some(p) => match QUANTITIES.iter().position(|q| q.column == p.get_ref()) {
-                    Some(i) => Some(Some(i)),
+                    Some(i) => Some(i),
                     None => {
                         return Err(refuse(
                             p.span(),

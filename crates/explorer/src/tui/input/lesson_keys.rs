@@ -1,7 +1,7 @@
 //! The lesson's keys: the next step and the step before. A step closes whatever is open,
 //! opens its preset with the step's view over the preset's own (the worker sets the speed
 //! and rolls a twin, the view's arrows and screen come back with its snapshot), sets the
-//! plot, and puts the step's card up; the first key that is not a lesson key puts it down
+//! plot (the energy terms unless the step names another), and puts the step's card up; the first key that is not a lesson key puts it down
 //! and does what it does on the screen.
 
 use crate::tui::input::map_keys as map;
@@ -62,12 +62,12 @@ pub(crate) fn open_step(app: &mut App, i: usize) {
     } else {
         Page::Die
     };
-    if let Some(quantity) = step.plot {
-        app.die_screen.plot = PlotChoice {
-            quantity,
-            ..PlotChoice::default()
-        };
-    }
+    // The step's plot, the energy terms unless it names another: not the plot the step
+    // before left, so a step reached by PageUp looks as it did by PageDown.
+    app.die_screen.plot = PlotChoice {
+        quantity: step.plot,
+        ..PlotChoice::default()
+    };
     if let Some(row) = step.select {
         app.die_screen.selected = row;
     }

@@ -143,7 +143,7 @@ fn expected(
 
 /// `PageDown` walks the shipped lesson from the explorer as it opens: each step opens its
 /// preset at its speed with its arrows, plot and screen (or the preset's own where the step
-/// says none), its card up with its sentence; `PageDown` again puts the card down, and a key
+/// says none, and the energy terms for the plot), its card up with its sentence; `PageDown` again puts the card down, and a key
 /// in between (here `v`, the arrows) works as ever. `PageUp` from the last step goes back one.
 #[test]
 fn the_step_keys_walk_every_lesson_step_opening_its_preset_speed_and_view() {
@@ -169,17 +169,18 @@ fn the_step_keys_walk_every_lesson_step_opening_its_preset_speed_and_view() {
             "step {} arrows",
             i + 1
         );
-        if let Some(plot) = plot {
-            let quantity = dicesim_setup::quantity::QUANTITIES
+        // The step's plot, or the energy terms where it names none (not the step before's).
+        let quantity = plot.as_deref().and_then(|plot| {
+            dicesim_setup::quantity::QUANTITIES
                 .iter()
-                .position(|q| q.column == plot);
-            assert_eq!(
-                s.app.die_screen.plot.quantity,
-                quantity,
-                "step {} plot {plot}",
-                i + 1
-            );
-        }
+                .position(|q| q.column == plot)
+        });
+        assert_eq!(
+            s.app.die_screen.plot.quantity,
+            quantity,
+            "step {} plot {plot:?}",
+            i + 1
+        );
         // The row the step changes, selected (the incline's tilt, the top's spin).
         if let Some(key) = step.get("select").and_then(|v| v.as_str()) {
             assert_eq!(s.app.selected_param().key(), key, "step {} row", i + 1);
