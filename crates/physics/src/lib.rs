@@ -28,6 +28,7 @@ mod sim;
 mod spin;
 pub mod stability;
 pub mod stability_contact;
+mod state;
 mod stopping;
 
 pub use body::{PIP_LAYOUT, contact_sphere_centres, face_frame, pip_centres};
