@@ -14,7 +14,7 @@
 //! it happens: the spin (libm's `sin`/`cos`, [`super::spin`]) and, only for a loaded die
 //! near rest, the stopping rule of the face it lies on.
 
-use super::contact::{Law, Touch};
+use super::contact::{Law, Touch, corners};
 use super::initial::InitialCondition;
 use super::lane::{
     Lane, add3, all_lanes, cross3, lane3, mask_of, put, put_mask, scale3, select3, set_bits, v3, zero3,
@@ -25,19 +25,25 @@ use super::params::{Params, StopEnergy};
 use super::shape;
 use super::spin::{free_turn, spin, spin_lanes, step_rotation};
 use super::state::{State, contact_point, point_velocity};
-use super::stopping::settles;
+use super::stopping::{StopRule, settles};
 use nalgebra::{Matrix3, Vector3};
+
+/// The bits of every one of `N` points.
+#[inline(always)]
+fn every_point<const N: usize>() -> u64 {
+    if N >= 64 { u64::MAX } else { (1 << N) - 1 }
+}
 
 /// `Σ ρ_k × F_k` over the touching corners, in corner order from +0.0.
 #[inline(always)]
-fn torque<const ROUNDED: bool, L: Lane>(
-    offsets: &[Vector3<L>; 8],
-    forces: &[Vector3<L>; 8],
-    touching: u8,
+fn torque<const ROUNDED: bool, L: Lane, const N: usize>(
+    offsets: &[Vector3<L>; N],
+    forces: &[Vector3<L>; N],
+    touching: u64,
     radius: L,
 ) -> Vector3<L> {
     let mut torque = zero3();
-    for k in set_bits(touching.into()) {
+    for k in corners::<N>(touching) {
         let arm = contact_point::<ROUNDED, L>(&offsets[k], radius);
         torque = add3(&torque, &cross3(&arm, &forces[k]));
     }
@@ -84,10 +90,10 @@ fn scalar_spin(
 /// from different parameters, e.g. in a map over the stiffness; every lane has the law `W`):
 /// the body's, the law's and the stopping rule's, each in a part of its own.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Constants<L: Lane, W: Law> {
+pub(crate) struct Constants<L: Lane, W: Law, const N: usize = 8> {
     /// s, the step.
     pub(crate) dt: L,
-    pub(crate) body: BodyConstants<L>,
+    pub(crate) body: BodyConstants<L, N>,
     pub(crate) law: W::Constants<L>,
     pub(crate) stop: StopConstants<L>,
 }
@@ -95,7 +101,7 @@ pub(crate) struct Constants<L: Lane, W: Law> {
 /// What the step needs of the body: its mass and weight, its inertia in the form its
 /// rotation reads it, its contact points' rounding, and the energies it is measured by.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct BodyConstants<L: Lane> {
+pub(crate) struct BodyConstants<L: Lane, const N: usize = 8> {
     /// g, the total mass `M`.
     pub(crate) mass: L,
     /// dyn, the weight's part along the table's normal (negative; `−M·g·cos θ` on a tilted
@@ -116,7 +122,7 @@ pub(crate) struct BodyConstants<L: Lane> {
     pub(crate) corner_mass_gravity: L,
     pub(crate) mass_gravity_half_size: L,
     /// A loaded die's point-mass energy: each corner's mass `m + Δm_k`, `g`, `M·g·a`.
-    pub(crate) corner_masses: [L; 8],
+    pub(crate) corner_masses: [L; N],
     pub(crate) gravity: L,
     pub(crate) loaded_mass_gravity_half_size: L,
     /// g·cm², the body's one isotropic inertia ([`Body::mean_inertia`]): the fair die's
@@ -138,9 +144,13 @@ pub(crate) struct BodyConstants<L: Lane> {
     /// is then `1/(2a)`).
     pub(crate) inverse_moments: [L; 3],
     pub(crate) principal_axes: [L; 9],
-    /// cm, each corner (contact-sphere centre) relative to the centre of mass along the
-    /// principal axes: where the step places it once the axes have turned.
-    pub(crate) principal_corners: [Vector3<L>; 8],
+    /// cm, each contact point (contact-sphere centre) relative to the centre of mass along
+    /// the principal axes: where the step places it once the axes have turned.
+    pub(crate) principal_corners: [Vector3<L>; N],
+    /// The points the body's axes are read off, `[o, x, y]`: its x axis along
+    /// `(r_x − r_o)·s₀`, its y axis along `(r_y − r_o)·s₁` made normal to x ([`free_turn`]);
+    /// a cube's corners 1, 5 and 3. The same in every lane of a vector (plain indices).
+    pub(crate) frame: [usize; 3],
     pub(crate) split: L::Mask,
     /// cm, the corner radius: a contact sphere's lowest point is this far below its centre.
     pub(crate) corner_radius: L,
@@ -190,9 +200,34 @@ impl<W: Law> Constants<f64, W> {
     }
 }
 
-impl<L: Lane, W: Law> Constants<L, W> {
+impl<W: Law, const N: usize> Constants<f64, W, N> {
+    /// The constants of a body of `N` points with the body constants `body`, on `p`'s table
+    /// under the law `W`, stopping by `rule` on a level table; `runaway` still +∞.
+    pub(crate) fn with_body(
+        p: &Params,
+        body: BodyConstants<f64, N>,
+        edge_energy: f64,
+        rule: StopRule,
+    ) -> Self {
+        let rule = W::stop_rule(rule, p, edge_energy);
+        Constants {
+            dt: p.integrator.dt,
+            law: W::constants(p, body.mass, edge_energy),
+            body,
+            stop: StopConstants {
+                energy_threshold: rule.energy_threshold,
+                kinetic_threshold: rule.kinetic_threshold,
+                runaway: f64::INFINITY,
+                max_steps: p.max_steps(),
+                point_masses: false,
+            },
+        }
+    }
+}
+
+impl<L: Lane, W: Law, const N: usize> Constants<L, W, N> {
     /// One roll's constants in every lane.
-    pub(crate) fn splat(c: &Constants<f64, W>) -> Self {
+    pub(crate) fn splat(c: &Constants<f64, W, N>) -> Self {
         let s = &c.stop;
         Constants {
             dt: L::splat(c.dt),
@@ -209,7 +244,8 @@ impl<L: Lane, W: Law> Constants<L, W> {
     }
 
     /// One roll's constants into lane `l`.
-    pub(crate) fn set_lane(&mut self, l: usize, from: &Constants<f64, W>) {
+    #[inline(always)]
+    pub(crate) fn set_lane(&mut self, l: usize, from: &Constants<f64, W, N>) {
         put(&mut self.dt, l, from.dt);
         self.body.set_lane(l, &from.body);
         W::set_lane(&mut self.law, l, &from.law);
@@ -223,6 +259,7 @@ impl<L: Lane, W: Law> Constants<L, W> {
 
     /// Lane `l` emptied for good: a still fair die without weight, so it never touches nor
     /// spins ([`BodyConstants::park`]).
+    #[inline(always)]
     pub(crate) fn park(&mut self, l: usize) {
         self.body.park(l);
         W::park(&mut self.law, l);
@@ -285,6 +322,7 @@ impl BodyConstants<f64> {
                     .map(|r| axes.transpose() * r),
                 None => [Vector3::zeros(); 8],
             },
+            frame: [0, 4, 2],
             split: principal.is_some(),
             corner_radius: shape.map_or(0.0, |s| s.radius),
             loaded,
@@ -295,9 +333,9 @@ impl BodyConstants<f64> {
     }
 }
 
-impl<L: Lane> BodyConstants<L> {
+impl<L: Lane, const N: usize> BodyConstants<L, N> {
     /// One roll's body in every lane.
-    fn splat(c: &BodyConstants<f64>) -> Self {
+    pub(crate) fn splat(c: &BodyConstants<f64, N>) -> Self {
         let s3 = |v: &Vector3<f64>| v3(L::splat(v.x), L::splat(v.y), L::splat(v.z));
         BodyConstants {
             mass: L::splat(c.mass),
@@ -320,6 +358,7 @@ impl<L: Lane> BodyConstants<L> {
             inverse_moments: c.inverse_moments.map(L::splat),
             principal_axes: c.principal_axes.map(L::splat),
             principal_corners: c.principal_corners.each_ref().map(s3),
+            frame: c.frame,
             split: mask_of::<L>(c.split),
             corner_radius: L::splat(c.corner_radius),
             loaded: mask_of::<L>(c.loaded),
@@ -330,7 +369,12 @@ impl<L: Lane> BodyConstants<L> {
     }
 
     /// One roll's body into lane `l`.
-    fn set_lane(&mut self, l: usize, f: &BodyConstants<f64>) {
+    #[inline(always)]
+    fn set_lane(&mut self, l: usize, f: &BodyConstants<f64, N>) {
+        assert_eq!(
+            self.frame, f.frame,
+            "the bodies of one vector read their axes alike"
+        );
         put(&mut self.mass, l, f.mass);
         put(&mut self.weight_z, l, f.weight_z);
         put3(&mut self.flight_kick, l, &f.flight_kick);
@@ -341,13 +385,11 @@ impl<L: Lane> BodyConstants<L> {
         put(&mut self.corner_mass_gravity, l, f.corner_mass_gravity);
         put(&mut self.mass_gravity_half_size, l, f.mass_gravity_half_size);
         for corner in 0..8 {
-            put(&mut self.corner_masses[corner], l, f.corner_masses[corner]);
             put(&mut self.extra_masses[corner], l, f.extra_masses[corner]);
-            put3(
-                &mut self.principal_corners[corner],
-                l,
-                &f.principal_corners[corner],
-            );
+        }
+        for point in 0..N {
+            put(&mut self.corner_masses[point], l, f.corner_masses[point]);
+            put3(&mut self.principal_corners[point], l, &f.principal_corners[point]);
         }
         put(&mut self.gravity, l, f.gravity);
         put(
@@ -377,6 +419,7 @@ impl<L: Lane> BodyConstants<L> {
 
     /// Lane `l` as a still fair die without weight: it never touches nor spins and costs the
     /// other lanes nothing.
+    #[inline(always)]
     fn park(&mut self, l: usize) {
         put(&mut self.weight_z, l, 0.0);
         put3(&mut self.flight_kick, l, &Vector3::zeros());
@@ -399,29 +442,49 @@ pub(crate) fn put3<L: Lane>(v: &mut Vector3<L>, l: usize, x: &Vector3<f64>) {
 
 /// Calls the kernel makes into an engine's bookkeeping during a step; the energy ledger is
 /// the one user, and a run that does not keep it passes [`NoHook`].
-pub(crate) trait StepHook<L: Lane, W: Law> {
+pub(crate) trait StepHook<L: Lane, W: Law, const N: usize, B: Faces<N>> {
     /// Before the kick, at the state the contact forces were computed from.
-    fn before_kick(&mut self, kernel: &Kernel<L, W>);
+    fn before_kick(&mut self, kernel: &Kernel<L, W, N, B>);
     /// After the kick and the new ω, before the corners turn.
-    fn after_spin(&mut self, kernel: &Kernel<L, W>);
+    fn after_spin(&mut self, kernel: &Kernel<L, W, N, B>);
 }
 
 /// No bookkeeping.
 pub(crate) struct NoHook;
 
-impl<L: Lane, W: Law> StepHook<L, W> for NoHook {
+impl<L: Lane, W: Law, const N: usize, B: Faces<N>> StepHook<L, W, N, B> for NoHook {
     #[inline(always)]
-    fn before_kick(&mut self, _: &Kernel<L, W>) {}
+    fn before_kick(&mut self, _: &Kernel<L, W, N, B>) {}
     #[inline(always)]
-    fn after_spin(&mut self, _: &Kernel<L, W>) {}
+    fn after_spin(&mut self, _: &Kernel<L, W, N, B>) {}
 }
 
-/// One roll per lane, all on the contact law `W`: the state plus everything the step needs.
+/// What the engines ask of a body by the face it lies on, at its points' offsets (cm, world
+/// frame, about the centre of mass): the stopping rule there (a loaded die's and a general
+/// body's depend on the face down; the end-of-step test asks in the lanes of
+/// [`BodyConstants::turning`]), and the face up of a body at rest (the outcome).
+pub(crate) trait Faces<const N: usize>: Copy + std::fmt::Debug {
+    fn stop_rule_at(&self, offsets: &[Vector3<f64>; N]) -> StopRule;
+    fn face_up_at_rest(&self, offsets: &[Vector3<f64>; N]) -> Option<u8>;
+}
+
+impl Faces<8> for Body {
+    fn stop_rule_at(&self, offsets: &[Vector3<f64>; 8]) -> StopRule {
+        Body::stop_rule_at(self, offsets)
+    }
+
+    fn face_up_at_rest(&self, offsets: &[Vector3<f64>; 8]) -> Option<u8> {
+        Body::face_up_at_rest(self, offsets)
+    }
+}
+
+/// One roll per lane, all on the contact law `W`, of a body of `N` contact points (`B` says
+/// its stopping rule by the face down): the state plus everything the step needs.
 #[derive(Debug, Clone)]
-pub(crate) struct Kernel<L: Lane, W: Law> {
-    pub(crate) state: State<L>,
+pub(crate) struct Kernel<L: Lane, W: Law, const N: usize = 8, B: Faces<N> = Body> {
+    pub(crate) state: State<L, N>,
     /// The law's memory at each contact point.
-    pub(crate) points: [W::Point<L>; 8],
+    pub(crate) points: [W::Point<L>; N],
     /// rad/s, `I⁻¹·L`, kept in step with the angular momentum.
     pub(crate) angular_velocity: Vector3<L>,
     /// In lanes of [`Constants::split`]: the principal axes (world frame) this step's turn
@@ -437,33 +500,37 @@ pub(crate) struct Kernel<L: Lane, W: Law> {
     pub(crate) in_contact: L::Mask,
     /// Bit k: corner k is below the ground in some lane. A corner outside it has +0.0
     /// depth and force in every lane, and the sums skip it (see [`Kernel::step`]).
-    pub(crate) touching_corners: u8,
-    pub(crate) c: Constants<L, W>,
+    pub(crate) touching_corners: u64,
+    pub(crate) c: Constants<L, W, N>,
     /// Each lane's body: what the end-of-step test asks for the stopping rule of the face
     /// down, and the outcome rule asks at the end.
-    pub(crate) bodies: L::PerLane<Body>,
+    pub(crate) bodies: L::PerLane<B>,
 }
 
-impl<W: Law> Kernel<f64, W> {
-    /// The die placed at `initial`, its spin and its forces computed (no range checks).
-    pub(crate) fn new(params: &Params, initial: &InitialCondition) -> Self {
-        let body = Body::new(params);
-        let c = Constants::<f64, W>::new(params, &body);
-        let corner_offsets = body.start_offsets(initial);
-        let angular_momentum = body.initial_angular_momentum(initial, &corner_offsets);
+impl<W: Law, const N: usize, B: Faces<N>> Kernel<f64, W, N, B> {
+    /// The body `body` (its constants `c`) placed at `initial` with its points at
+    /// `corner_offsets` (cm, world frame) and angular momentum `angular_momentum`, its spin
+    /// and its forces computed.
+    pub(crate) fn placed(
+        c: Constants<f64, W, N>,
+        body: B,
+        initial: &InitialCondition,
+        corner_offsets: [Vector3<f64>; N],
+        angular_momentum: Vector3<f64>,
+    ) -> Self {
         let state = State {
             position: Vector3::new(0.0, 0.0, initial.height),
             velocity: Vector3::from(initial.velocity),
             angular_momentum,
             corner_offsets,
-            corner_forces: [Vector3::zeros(); 8],
-            corner_depths: [0.0; 8],
+            corner_forces: [Vector3::zeros(); N],
+            corner_depths: [0.0; N],
             time_s: 0.0,
             step: 0,
         };
         let mut kernel = Kernel {
             state,
-            points: [W::free_point(); 8],
+            points: [W::free_point(); N],
             angular_velocity: Vector3::zeros(),
             turned_axes: [Vector3::zeros(); 3],
             turned_angular_velocity: Vector3::zeros(),
@@ -477,6 +544,17 @@ impl<W: Law> Kernel<f64, W> {
         kernel.respin(1);
         kernel.update_forces();
         kernel
+    }
+}
+
+impl<W: Law> Kernel<f64, W> {
+    /// The die placed at `initial`, its spin and its forces computed (no range checks).
+    pub(crate) fn new(params: &Params, initial: &InitialCondition) -> Self {
+        let body = Body::new(params);
+        let c = Constants::<f64, W>::new(params, &body);
+        let corner_offsets = body.start_offsets(initial);
+        let angular_momentum = body.initial_angular_momentum(initial, &corner_offsets);
+        Kernel::placed(c, body, initial, corner_offsets, angular_momentum)
     }
 
     /// This roll under the law `V` with the constants `c` (the ground changed mid-roll): the
@@ -499,15 +577,12 @@ impl<W: Law> Kernel<f64, W> {
     }
 }
 
-impl<L: Lane, W: Law> Kernel<L, W> {
+impl<L: Lane, W: Law, const N: usize, B: Faces<N>> Kernel<L, W, N, B> {
     /// One roll's kernel in every lane (each lane is loaded before it steps, or parked).
-    pub(crate) fn splat(first: &Kernel<f64, W>) -> Self
-    where
-        L::PerLane<Body>: Copy,
-    {
+    pub(crate) fn splat(first: &Kernel<f64, W, N, B>) -> Self {
         let s = &first.state;
         let s3 = |v: &Vector3<f64>| v3(L::splat(v.x), L::splat(v.y), L::splat(v.z));
-        let mut points = [W::free_point::<L>(); 8];
+        let mut points = [W::free_point::<L>(); N];
         for (point, from) in points.iter_mut().zip(&first.points) {
             for l in 0..L::WIDTH {
                 W::set_point_lane(point, l, from);
@@ -538,13 +613,14 @@ impl<L: Lane, W: Law> Kernel<L, W> {
     }
 
     /// Puts the roll `from` into lane `l`, as it is.
-    pub(crate) fn set_lane(&mut self, l: usize, from: &Kernel<f64, W>) {
+    #[inline(always)]
+    pub(crate) fn set_lane(&mut self, l: usize, from: &Kernel<f64, W, N, B>) {
         let s = &from.state;
         let to = &mut self.state;
         put3(&mut to.position, l, &s.position);
         put3(&mut to.velocity, l, &s.velocity);
         put3(&mut to.angular_momentum, l, &s.angular_momentum);
-        for c in 0..8 {
+        for c in 0..N {
             put3(&mut to.corner_offsets[c], l, &s.corner_offsets[c]);
             put3(&mut to.corner_forces[c], l, &s.corner_forces[c]);
             put(&mut to.corner_depths[c], l, s.corner_depths[c]);
@@ -566,7 +642,7 @@ impl<L: Lane, W: Law> Kernel<L, W> {
         }
         put_mask::<L>(&mut self.rotating, l, from.rotating);
         put_mask::<L>(&mut self.in_contact, l, from.in_contact);
-        self.touching_corners = (0..8)
+        self.touching_corners = (0..N)
             .filter(|&c| L::bits(self.state.corner_depths[c].gt(L::zero())) != 0)
             .fold(0, |bits, c| bits | 1 << c);
         self.c.set_lane(l, &from.c);
@@ -574,12 +650,13 @@ impl<L: Lane, W: Law> Kernel<L, W> {
     }
 
     /// Lane `l`'s roll written into `to`, whose kernel it was loaded from.
-    pub(crate) fn lane_into(&self, l: usize, to: &mut Kernel<f64, W>) {
+    #[inline(always)]
+    pub(crate) fn lane_into(&self, l: usize, to: &mut Kernel<f64, W, N, B>) {
         let (from, s) = (&self.state, &mut to.state);
         s.position = lane3(&from.position, l);
         s.velocity = lane3(&from.velocity, l);
         s.angular_momentum = lane3(&from.angular_momentum, l);
-        for c in 0..8 {
+        for c in 0..N {
             s.corner_offsets[c] = lane3(&from.corner_offsets[c], l);
             s.corner_forces[c] = lane3(&from.corner_forces[c], l);
             s.corner_depths[c] = from.corner_depths[c].lane(l);
@@ -591,7 +668,7 @@ impl<L: Lane, W: Law> Kernel<L, W> {
         to.rotation = self.rotation.map(|e| e.lane(l));
         to.rotating = L::bits(self.rotating) & (1 << l) != 0;
         to.in_contact = L::bits(self.in_contact) & (1 << l) != 0;
-        to.touching_corners = (0..8)
+        to.touching_corners = (0..N)
             .filter(|&c| s.corner_depths[c] > 0.0)
             .fold(0, |bits, c| bits | 1 << c);
     }
@@ -599,6 +676,7 @@ impl<L: Lane, W: Law> Kernel<L, W> {
     /// Empties lane `l` for good: a still fair die high above the ground without weight, so
     /// it never touches nor spins and costs the other lanes nothing (it turns by the
     /// identity).
+    #[inline(always)]
     pub(crate) fn park(&mut self, l: usize) {
         put_mask::<L>(&mut self.in_contact, l, false);
         put_mask::<L>(&mut self.rotating, l, true);
@@ -610,7 +688,7 @@ impl<L: Lane, W: Law> Kernel<L, W> {
         self.c.park(l);
         let neighbour = (l + 1) % L::WIDTH;
         self.bodies.as_mut()[l] = self.bodies.as_ref()[neighbour];
-        for c in 0..8 {
+        for c in 0..N {
             put3(&mut self.state.corner_forces[c], l, &Vector3::zeros());
             put(&mut self.state.corner_depths[c], l, 0.0);
             W::set_point_lane(&mut self.points[c], l, &W::free_point());
@@ -618,11 +696,11 @@ impl<L: Lane, W: Law> Kernel<L, W> {
     }
 }
 
-impl<L: Lane, W: Law> Kernel<L, W> {
+impl<L: Lane, W: Law, const N: usize, B: Faces<N>> Kernel<L, W, N, B> {
     /// One step of Δt in every lane: kick → drift → L → ω → rotate → forces (docs/model.md,
     /// "One time step"), the law `W`'s kick and forces.
     #[inline(always)]
-    pub(crate) fn step(&mut self, hook: &mut impl StepHook<L, W>) {
+    pub(crate) fn step(&mut self, hook: &mut impl StepHook<L, W, N, B>) {
         // The constants this stage reads, copied out one by one: a copy of them all costs a
         // memcpy call per step.
         let c = &self.c;
@@ -640,11 +718,15 @@ impl<L: Lane, W: Law> Kernel<L, W> {
         // anywhere in between.
         if contact_bits != 0 {
             let mut f: Option<Vector3<L>> = None;
-            for k in set_bits(touching.into()) {
+            for k in corners::<N>(touching) {
                 f = Some(f.map_or(s.corner_forces[k], |f| add3(&f, &s.corner_forces[k])));
             }
             let f = f.unwrap_or_else(zero3);
-            let force = if touching != 0xff { add3(&f, &zero3()) } else { f };
+            let force = if touching != every_point::<N>() {
+                add3(&f, &zero3())
+            } else {
+                f
+            };
             // A lane in flight among them gets its flight constant this way too: its
             // forces are +0.0, so these are the very quotients the constant holds.
             W::kick(&self.c.law, &mut s.velocity, &force, weight_z, mass, dt);
@@ -659,9 +741,9 @@ impl<L: Lane, W: Law> Kernel<L, W> {
         // acts at its contact sphere's lowest point.
         if contact_bits != 0 {
             let torque = if rounded {
-                torque::<true, L>(&s.corner_offsets, &s.corner_forces, touching, radius)
+                torque::<true, L, N>(&s.corner_offsets, &s.corner_forces, touching, radius)
             } else {
-                torque::<false, L>(&s.corner_offsets, &s.corner_forces, touching, radius)
+                torque::<false, L, N>(&s.corner_offsets, &s.corner_forces, touching, radius)
             };
             let l_new = add3(&s.angular_momentum, &scale3(&torque, dt));
             s.angular_momentum = if contact_bits == all_lanes::<L>() {
@@ -759,21 +841,22 @@ impl<L: Lane, W: Law> Kernel<L, W> {
         let loaded = L::bits(c.loaded) & lanes;
         let shaped = L::bits(c.shaped) & lanes;
         let mut spin_input = self.state.angular_momentum;
-        if loaded != 0 {
-            let tensor = InertiaTensor::new(
-                c.uniform_inertia,
-                c.uniform_mass,
-                &c.extra_masses,
-                &self.state.corner_offsets,
-            );
+        // Only a cube is loaded or shaped (N = 8): its corners are the first 8 points.
+        let cube = self.state.corner_offsets.first_chunk::<8>();
+        if loaded != 0
+            && let Some(corners) = cube
+        {
+            let tensor = InertiaTensor::new(c.uniform_inertia, c.uniform_mass, &c.extra_masses, corners);
             let w = tensor.angular_velocity(&self.state.angular_momentum);
             spin_input = select3(c.loaded, &w, &spin_input);
         }
-        if shaped != 0 {
+        if shaped != 0
+            && let Some(corners) = cube
+        {
             let w = shape::angular_velocity(
                 &c.inverse_inertia,
                 &c.axis_scale,
-                &self.state.corner_offsets,
+                corners,
                 &self.state.angular_momentum,
             );
             spin_input = select3(c.shaped, &w, &spin_input);
@@ -830,7 +913,7 @@ impl<L: Lane, W: Law> Kernel<L, W> {
         let c = &self.c.body;
         let turn = free_turn(
             &self.state.corner_offsets,
-            &c.axis_scale,
+            (c.frame, &c.axis_scale),
             &c.principal_axes,
             &c.inverse_moments,
             &self.state.angular_momentum,
@@ -891,7 +974,7 @@ impl<L: Lane, W: Law> Kernel<L, W> {
         let half_stiffness = W::half_stiffness(&c.law);
         // Terms are ≥ +0.0, so leaving out the +0.0 of corners that touch nowhere is exact.
         if L::bits(self.in_contact) != 0 {
-            for k in set_bits(self.touching_corners.into()) {
+            for k in corners::<N>(self.touching_corners) {
                 let d = s.corner_depths[k];
                 elastic = elastic + (half_stiffness * d) * d;
             }
@@ -915,9 +998,9 @@ impl<L: Lane, W: Law> Kernel<L, W> {
     pub(crate) fn point_mass_parts(&self) -> (L, L) {
         let c = &self.c.body;
         let s = &self.state;
-        let u: [Vector3<L>; 8] = std::array::from_fn(|k| self.corner_velocity(&s.corner_offsets[k]));
+        let u: [Vector3<L>; N] = std::array::from_fn(|k| self.corner_velocity(&s.corner_offsets[k]));
         let mut ground = L::zero();
-        for k in 0..8 {
+        for k in 0..N {
             ground = ground + s.corner_depths[k] * s.corner_forces[k].z;
         }
         let loaded = L::bits(c.loaded);

@@ -17,7 +17,8 @@ use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 /// mispredicted about 1.2 more branches per step that way than the program before the shared
 /// kernel, which summed all eight corners.
 #[inline(always)]
-pub(crate) fn set_bits(bits: u32) -> impl Iterator<Item = usize> {
+pub(crate) fn set_bits(bits: impl Into<u64>) -> impl Iterator<Item = usize> {
+    let bits: u64 = bits.into();
     let mut rest = bits;
     std::iter::from_fn(move || {
         (rest != 0).then(|| {
@@ -69,7 +70,7 @@ pub trait Lane:
     fn all_finite(
         position: &Vector3<Self>,
         velocity: &Vector3<Self>,
-        offsets: &[Vector3<Self>; 8],
+        offsets: &[Vector3<Self>],
     ) -> Self::Mask;
     /// `if mask { yes } else { no }` per lane.
     fn select(mask: Self::Mask, yes: Self, no: Self) -> Self;
@@ -145,7 +146,7 @@ impl Lane for f64 {
     /// needs no branch per value, and integer ORs may be regrouped, so the compiler
     /// vectorises it.
     #[inline(always)]
-    fn all_finite(position: &Vector3<f64>, velocity: &Vector3<f64>, offsets: &[Vector3<f64>; 8]) -> bool {
+    fn all_finite(position: &Vector3<f64>, velocity: &Vector3<f64>, offsets: &[Vector3<f64>]) -> bool {
         const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
         const EXPONENT_ONE: u64 = 1 << 52;
         let flags = |v: &Vector3<f64>| {

@@ -14,9 +14,13 @@
 #![allow(unsafe_code)]
 
 use super::body::face_most_nearly_up;
+use super::contact::SpringFriction;
 use super::initial::InitialCondition;
-use super::params::Params;
+use super::params::{ParamError, Params};
+use super::point_roll::{PointKernel, PointRoll};
+use super::points::PointBody;
 use super::sim::{Outcome, STEPS_BETWEEN_STOP_CHECKS, Simulation, State};
+use super::sim::{PaperPerCorner, PaperWholeDie};
 
 /// Whether this CPU can run the lane engine (x86-64 with AVX2).
 pub fn lanes_available() -> bool {
@@ -87,14 +91,44 @@ pub fn roll_one_by_one(
     true
 }
 
+/// Rolls `body` from each of `initials` on `params`' table (both validated) to its end,
+/// four at a time in the lanes where the CPU has AVX2 (else one after another), and returns
+/// the finished rolls in the order of `initials`: bit for bit those [`PointRoll`] rolls
+/// alone.
+pub fn roll_points_in_lanes<const N: usize>(
+    params: &Params,
+    body: &PointBody<N>,
+    initials: &[InitialCondition],
+) -> Result<Vec<PointRoll<N>>, ParamError> {
+    let mut rolls = Vec::with_capacity(initials.len());
+    for initial in initials {
+        rolls.push(PointRoll::new(params, body, initial)?);
+    }
+    #[cfg(target_arch = "x86_64")]
+    if lanes_available() && !rolls.is_empty() {
+        // SAFETY: AVX2 is present, checked just above.
+        unsafe {
+            match &rolls[0].k {
+                PointKernel::Paper(_) => avx2::roll_points::<PaperPerCorner, N>(&mut rolls),
+                PointKernel::PaperWholeDie(_) => avx2::roll_points::<PaperWholeDie, N>(&mut rolls),
+                PointKernel::SpringFriction(_) => avx2::roll_points::<SpringFriction, N>(&mut rolls),
+            }
+        }
+        return Ok(rolls);
+    }
+    for roll in &mut rolls {
+        roll.run_to_end();
+    }
+    Ok(rolls)
+}
+
 #[cfg(target_arch = "x86_64")]
 mod avx2 {
     use super::*;
-    use crate::contact::{Paper, SpringFriction};
     use crate::kernel::{Ends, Kernel, NoHook};
     use crate::lane::{Lane, lane3};
-    use crate::params::ContactLaw;
-    use crate::sim::{EngineLaw, ImpactLog, Status};
+    use crate::point_roll::PointLaw;
+    use crate::sim::{EngineLaw, ImpactLog, Laws, Status};
     use nalgebra::Vector3;
     use std::arch::x86_64::*;
     use std::collections::VecDeque;
@@ -259,7 +293,7 @@ mod avx2 {
         /// value (vector adds in independent groups are cheaper here than the scalar
         /// engine's integer trick).
         #[inline(always)]
-        fn all_finite(p: &Vector3<F4>, v: &Vector3<F4>, offsets: &[Vector3<F4>; 8]) -> F4 {
+        fn all_finite(p: &Vector3<F4>, v: &Vector3<F4>, offsets: &[Vector3<F4>]) -> F4 {
             let mut sum = (p.x + p.y) + (p.z + v.x) + (v.y + v.z);
             for r in offsets {
                 sum = sum + (r.x + r.y) + r.z;
@@ -377,6 +411,7 @@ mod avx2 {
         /// Empties lane `l` for good: a still fair die high above the ground without
         /// gravity, so it never touches nor spins and costs the other lanes nothing (it turns
         /// by the identity).
+        #[inline(always)]
         fn park(&mut self, l: usize) {
             let bits = F4::bits(self.live) & !(1 << l);
             self.live = F4::mask_from_bits(bits);
@@ -411,11 +446,13 @@ mod avx2 {
             }
         }
 
-        /// The rolls that this step ended, handed to `done`; their lanes are emptied.
+        /// The rolls that this step ended, handed to `done`; their lanes are emptied. Returns
+        /// whether any ended.
         #[inline(always)]
-        fn finish(&mut self, ends: &Ends<F4>, done: &mut dyn FnMut(LaneResult<'_>)) {
+        fn finish(&mut self, ends: &Ends<F4>, done: &mut dyn FnMut(LaneResult<'_>)) -> bool {
             self.observe_impacts();
             let mut ending = F4::bits((ends.unstable | ends.settled | ends.timeout) & self.live);
+            let any = ending != 0;
             while ending != 0 {
                 let l = ending.trailing_zeros() as usize;
                 ending &= ending - 1;
@@ -436,6 +473,7 @@ mod avx2 {
                 });
                 self.park(l);
             }
+            any
         }
     }
 
@@ -463,7 +501,9 @@ mod avx2 {
                     .is_none_or(|lanes| lanes.free_lane().is_some())
         }
 
-        /// Loads waiting rolls into free lanes.
+        /// Loads waiting rolls into free lanes (with AVX2, as the loads are vector code).
+        #[target_feature(enable = "avx2")]
+        #[inline(never)]
         fn seat(&mut self) {
             while let Some((_, sim)) = self.waiting.front() {
                 if self.lanes.is_none() {
@@ -485,7 +525,15 @@ mod avx2 {
     /// One step of the paper's law's vector, and how it leaves each lane: inline in the
     /// batch loop, whose code stays what it was for the paper's die.
     #[inline(always)]
-    fn step_paper(k: &mut Kernel<F4, Paper>) -> Ends<F4> {
+    fn step_paper(k: &mut Kernel<F4, PaperPerCorner>) -> Ends<F4> {
+        k.step(&mut NoHook);
+        k.ends()
+    }
+
+    /// One step of the authors' whole-die norm's vector; out of line as the next.
+    #[target_feature(enable = "avx2")]
+    #[inline(never)]
+    fn step_whole_die(k: &mut Kernel<F4, PaperWholeDie>) -> Ends<F4> {
         k.step(&mut NoHook);
         k.ends()
     }
@@ -497,6 +545,43 @@ mod avx2 {
     fn step_spring_friction(k: &mut Kernel<F4, SpringFriction>) -> Ends<F4> {
         k.step(&mut NoHook);
         k.ends()
+    }
+
+    /// Sets up rolls from `next` on and seats them in their laws' vectors while a vector has a
+    /// free lane nothing waits for and no law has a vector's worth waiting; false when no
+    /// vector has a roll left to step.
+    #[target_feature(enable = "avx2")]
+    #[inline(never)]
+    fn seat_rolls(
+        count: usize,
+        next: &mut usize,
+        setup: &mut dyn FnMut(usize) -> (Params, InitialCondition),
+        paper: &mut Group<PaperPerCorner>,
+        whole: &mut Group<PaperWholeDie>,
+        spring: &mut Group<SpringFriction>,
+    ) -> bool {
+        paper.seat();
+        whole.seat();
+        spring.seat();
+        while *next < count
+            && (paper.wants() || whole.wants() || spring.wants())
+            && paper.waiting.len() < LANES
+            && whole.waiting.len() < LANES
+            && spring.waiting.len() < LANES
+        {
+            let (params, initial) = setup(*next);
+            let sim = Simulation::for_outcome(&params, &initial);
+            match &sim.k {
+                Laws::Paper(_) => paper.waiting.push_back((*next, sim)),
+                Laws::PaperWholeDie(_) => whole.waiting.push_back((*next, sim)),
+                Laws::SpringFriction(_) => spring.waiting.push_back((*next, sim)),
+            }
+            *next += 1;
+            paper.seat();
+            whole.seat();
+            spring.seat();
+        }
+        paper.live() || whole.live() || spring.live()
     }
 
     /// [`roll_in_lanes`] with AVX2.
@@ -516,44 +601,86 @@ mod avx2 {
         done: &mut dyn FnMut(LaneResult<'_>),
         stop: &dyn Fn() -> bool,
     ) -> bool {
-        let mut paper = Group::<Paper>::new();
+        let mut paper = Group::<PaperPerCorner>::new();
+        let mut whole = Group::<PaperWholeDie>::new();
         let mut spring = Group::<SpringFriction>::new();
         let mut next = 0;
         let mut since_check = 0;
+        // Whether a lane was emptied since rolls were last seated (a roll ended, or none
+        // has been seated yet): only then are rolls set up and seated, not every step.
+        let mut vacated = true;
         loop {
-            paper.seat();
-            spring.seat();
-            while next < count
-                && (paper.wants() || spring.wants())
-                && paper.waiting.len() < LANES
-                && spring.waiting.len() < LANES
-            {
-                let (params, initial) = setup(next);
-                let sim = Simulation::for_outcome(&params, &initial);
-                match sim.k.law() {
-                    ContactLaw::Paper => paper.waiting.push_back((next, sim)),
-                    ContactLaw::SpringFriction => spring.waiting.push_back((next, sim)),
+            if vacated {
+                vacated = false;
+                if !seat_rolls(count, &mut next, setup, &mut paper, &mut whole, &mut spring) {
+                    return true;
                 }
-                next += 1;
-                paper.seat();
-                spring.seat();
-            }
-            if !paper.live() && !spring.live() {
-                return true;
             }
             if let Some(lanes) = paper.lanes.as_mut().filter(|lanes| F4::bits(lanes.live) != 0) {
                 let ends = step_paper(&mut lanes.k);
-                lanes.finish(&ends, done);
+                vacated |= lanes.finish(&ends, done);
+            }
+            if let Some(lanes) = whole.lanes.as_mut().filter(|lanes| F4::bits(lanes.live) != 0) {
+                let ends = step_whole_die(&mut lanes.k);
+                vacated |= lanes.finish(&ends, done);
             }
             if let Some(lanes) = spring.lanes.as_mut().filter(|lanes| F4::bits(lanes.live) != 0) {
                 let ends = step_spring_friction(&mut lanes.k);
-                lanes.finish(&ends, done);
+                vacated |= lanes.finish(&ends, done);
             }
             since_check += 1;
             if since_check == STEPS_BETWEEN_STOP_CHECKS {
                 since_check = 0;
                 if stop() {
                     return false;
+                }
+            }
+        }
+    }
+
+    /// [`roll_points_in_lanes`] with AVX2, the rolls all on the law `W`: each roll loaded
+    /// into a lane as [`PointRoll`] placed it, stepped until it ends, and stored back.
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[target_feature(enable = "avx2")]
+    pub(super) unsafe fn roll_points<W: PointLaw, const N: usize>(rolls: &mut [PointRoll<N>]) {
+        let first = W::of(&rolls[0].k).expect("the rolls' law");
+        let mut k = Kernel::<F4, W, N, PointBody<N>>::splat(first);
+        let mut held: [Option<usize>; LANES] = [None; LANES];
+        let mut next = 0;
+        for (l, lane) in held.iter_mut().enumerate() {
+            k.park(l);
+            if next < rolls.len() {
+                k.set_lane(l, W::of(&rolls[next].k).expect("the rolls' law"));
+                *lane = Some(next);
+                next += 1;
+            }
+        }
+        while held.iter().any(Option::is_some) {
+            k.step(&mut NoHook);
+            let ends = k.ends();
+            for (l, lane) in held.iter_mut().enumerate() {
+                let Some(index) = *lane else { continue };
+                let bit = 1 << l;
+                let status = if F4::bits(ends.unstable) & bit != 0 {
+                    Status::Unstable
+                } else if F4::bits(ends.settled) & bit != 0 {
+                    Status::Settled
+                } else if F4::bits(ends.timeout) & bit != 0 {
+                    Status::Timeout
+                } else {
+                    continue;
+                };
+                let roll = &mut rolls[index];
+                k.lane_into(l, W::of_mut(&mut roll.k).expect("the rolls' law"));
+                roll.finish(status);
+                *lane = None;
+                k.park(l);
+                if next < rolls.len() {
+                    k.set_lane(l, W::of(&rolls[next].k).expect("the rolls' law"));
+                    *lane = Some(next);
+                    next += 1;
                 }
             }
         }

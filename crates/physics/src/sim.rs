@@ -6,13 +6,13 @@
 //! trajectories are reproduced to rounding, not merely in law.
 
 use super::body::face_most_nearly_up;
-use super::contact::{Law, Paper, SpringFriction};
+use super::contact::{Law, Paper, PerCornerSlip, SpringFriction, WholeDieSlip};
 use super::energy::Energy;
 use super::impact::Impacts;
 use super::initial::InitialCondition;
-use super::kernel::{Constants, Kernel, NoHook, StepHook};
+use super::kernel::{Constants, Ends, Kernel, NoHook, StepHook};
 use super::model::{Body, check_setup};
-use super::params::{ContactLaw, Ground, ParamError, Params, StopEnergy};
+use super::params::{ContactLaw, FrictionLaw, Ground, ParamError, Params, StopEnergy};
 use super::state::contact_point;
 use super::stopping::StopRule;
 use nalgebra::{Vector2, Vector3};
@@ -170,11 +170,17 @@ fn first_impact((corner_offsets, step, time_s): ([Vector3<f64>; 8], u64, f64)) -
 /// tenths of a millisecond of stepping, so a cancel is answered well within 0.2 s.
 pub const STEPS_BETWEEN_STOP_CHECKS: u64 = 4096;
 
+/// The paper's law with each point's own slip (its eq. 15), and with the authors' whole-die
+/// norm.
+pub(crate) type PaperPerCorner = Paper<PerCornerSlip>;
+pub(crate) type PaperWholeDie = Paper<WholeDieSlip>;
+
 /// The scalar kernel under the contact law the parameters name: each law's step is its own
 /// code, and the engines pick it once per roll.
 #[derive(Debug, Clone)]
 pub(crate) enum Laws {
-    Paper(Kernel<f64, Paper>),
+    Paper(Kernel<f64, PaperPerCorner>),
+    PaperWholeDie(Kernel<f64, PaperWholeDie>),
     SpringFriction(Kernel<f64, SpringFriction>),
 }
 
@@ -183,26 +189,28 @@ macro_rules! on_law {
     ($laws:expr, $k:ident => $body:expr) => {
         match $laws {
             Laws::Paper($k) => $body,
+            Laws::PaperWholeDie($k) => $body,
             Laws::SpringFriction($k) => $body,
         }
     };
 }
 
+/// `$make` for the law `$p`'s ground names, wrapped in its variant of `$enum`.
+macro_rules! by_law {
+    ($enum:ident, $p:expr, $make:expr) => {
+        match ($p.ground.contact, $p.ground.friction_law) {
+            (ContactLaw::Paper, FrictionLaw::PerCorner) => $enum::Paper($make),
+            (ContactLaw::Paper, FrictionLaw::WholeDieNorm) => $enum::PaperWholeDie($make),
+            (ContactLaw::SpringFriction, _) => $enum::SpringFriction($make),
+        }
+    };
+}
+pub(crate) use by_law;
+
 impl Laws {
     /// The kernel of `params`' law, the die placed at `initial`.
     fn new(params: &Params, initial: &InitialCondition) -> Laws {
-        match params.ground.contact {
-            ContactLaw::Paper => Laws::Paper(Kernel::new(params, initial)),
-            ContactLaw::SpringFriction => Laws::SpringFriction(Kernel::new(params, initial)),
-        }
-    }
-
-    /// The law this kernel steps.
-    pub(crate) fn law(&self) -> ContactLaw {
-        match self {
-            Laws::Paper(_) => ContactLaw::Paper,
-            Laws::SpringFriction(_) => ContactLaw::SpringFriction,
-        }
+        by_law!(Laws, params, Kernel::new(params, initial))
     }
 }
 
@@ -212,39 +220,32 @@ pub(crate) trait EngineLaw: Law {
     fn of_mut(k: &mut Laws) -> Option<&mut Kernel<f64, Self>>;
 }
 
-impl EngineLaw for Paper {
-    #[inline(always)]
-    fn of(k: &Laws) -> Option<&Kernel<f64, Paper>> {
-        match k {
-            Laws::Paper(k) => Some(k),
-            Laws::SpringFriction(_) => None,
+/// [`EngineLaw`] for the law `$law`, the variant `$variant` of `$enum`.
+macro_rules! engine_law {
+    ($trait:ident, $enum:ident, $law:ty, $variant:ident $(, $n:ident)?) => {
+        impl $trait for $law {
+            #[inline(always)]
+            fn of$(<const $n: usize>)?(k: &$enum$(<$n>)?) -> Option<&Kernel<f64, Self $(, $n, PointBody<$n>)?>> {
+                match k {
+                    $enum::$variant(k) => Some(k),
+                    _ => None,
+                }
+            }
+            #[inline(always)]
+            fn of_mut$(<const $n: usize>)?(k: &mut $enum$(<$n>)?) -> Option<&mut Kernel<f64, Self $(, $n, PointBody<$n>)?>> {
+                match k {
+                    $enum::$variant(k) => Some(k),
+                    _ => None,
+                }
+            }
         }
-    }
-    #[inline(always)]
-    fn of_mut(k: &mut Laws) -> Option<&mut Kernel<f64, Paper>> {
-        match k {
-            Laws::Paper(k) => Some(k),
-            Laws::SpringFriction(_) => None,
-        }
-    }
+    };
 }
+pub(crate) use engine_law;
 
-impl EngineLaw for SpringFriction {
-    #[inline(always)]
-    fn of(k: &Laws) -> Option<&Kernel<f64, SpringFriction>> {
-        match k {
-            Laws::SpringFriction(k) => Some(k),
-            Laws::Paper(_) => None,
-        }
-    }
-    #[inline(always)]
-    fn of_mut(k: &mut Laws) -> Option<&mut Kernel<f64, SpringFriction>> {
-        match k {
-            Laws::SpringFriction(k) => Some(k),
-            Laws::Paper(_) => None,
-        }
-    }
-}
+engine_law!(EngineLaw, Laws, PaperPerCorner, Paper);
+engine_law!(EngineLaw, Laws, PaperWholeDie, PaperWholeDie);
+engine_law!(EngineLaw, Laws, SpringFriction, SpringFriction);
 
 /// A die rolling from an initial condition: the scalar engine, the step kernel on `f64`.
 #[derive(Debug, Clone)]
@@ -276,7 +277,7 @@ struct Ledger {
     work: ContactWork,
 }
 
-impl<W: Law> StepHook<f64, W> for Ledger {
+impl<W: Law> StepHook<f64, W, 8, Body> for Ledger {
     #[inline]
     fn before_kick(&mut self, k: &Kernel<f64, W>) {
         self.before = k.in_contact.then(|| corner_velocities(k));
@@ -406,10 +407,7 @@ impl Simulation {
         // The stopping rules of every body depend on the table.
         let body = Body::new(&params);
         self.stop_rule = stop_rule_on_table(&params, body.stop_rule(), body.edge_energy());
-        self.k = match params.ground.contact {
-            ContactLaw::Paper => Laws::Paper(under_law(&self.k, &params, body)),
-            ContactLaw::SpringFriction => Laws::SpringFriction(under_law(&self.k, &params, body)),
-        };
+        self.k = by_law!(Laws, params, under_law(&self.k, &params, body));
         Ok(())
     }
 
@@ -511,7 +509,8 @@ impl Simulation {
     #[inline]
     pub fn step(&mut self) {
         match self.k {
-            Laws::Paper(_) => self.step_by::<Paper>(),
+            Laws::Paper(_) => self.step_by::<PaperPerCorner>(),
+            Laws::PaperWholeDie(_) => self.step_by::<PaperWholeDie>(),
             Laws::SpringFriction(_) => self.step_by::<SpringFriction>(),
         }
     }
@@ -544,11 +543,18 @@ impl Simulation {
         self.advance_by::<SpringFriction>()
     }
 
+    /// [`Simulation::advance`] on the authors' whole-die norm, out of line likewise.
+    #[inline(never)]
+    fn advance_whole_die(&mut self) -> Option<Outcome> {
+        self.advance_by::<PaperWholeDie>()
+    }
+
     /// One step, then the end-of-roll checks; returns the outcome on the step that ends it.
     #[inline]
     pub fn advance(&mut self) -> Option<Outcome> {
         match self.k {
-            Laws::Paper(_) => self.advance_by::<Paper>(),
+            Laws::Paper(_) => self.advance_by::<PaperPerCorner>(),
+            Laws::PaperWholeDie(_) => self.advance_whole_die(),
             Laws::SpringFriction(_) => self.advance_spring_friction(),
         }
     }
@@ -567,14 +573,8 @@ impl Simulation {
 
     /// Steps until the roll ends (settled, did not settle, or unstable).
     pub fn run_to_end(&mut self) -> Outcome {
-        if let Some(o) = self.outcome {
-            return o;
-        }
-        loop {
-            if let Some(o) = self.advance() {
-                return o;
-            }
-        }
+        self.run_until_stopped(&|| false)
+            .expect("a roll that is never stopped ends")
     }
 
     /// Steps until the roll ends, or until `stop()` answers true (asked every
@@ -583,10 +583,53 @@ impl Simulation {
         if let Some(o) = self.outcome {
             return Some(o);
         }
+        // The law is matched once per run, not per step.
+        match self.k {
+            Laws::Paper(_) => self.run_by::<PaperPerCorner>(stop),
+            Laws::PaperWholeDie(_) => self.run_whole_die(stop),
+            Laws::SpringFriction(_) => self.run_spring_friction(stop),
+        }
+    }
+
+    /// [`Simulation::run_until_stopped`] on the authors' whole-die norm, out of line: the
+    /// paper's step stays the one inlined into the batch loop.
+    #[inline(never)]
+    fn run_whole_die(&mut self, stop: &dyn Fn() -> bool) -> Option<Outcome> {
+        self.run_by::<PaperWholeDie>(stop)
+    }
+
+    /// [`Simulation::run_until_stopped`] on the spring-friction law, out of line likewise.
+    #[inline(never)]
+    fn run_spring_friction(&mut self, stop: &dyn Fn() -> bool) -> Option<Outcome> {
+        self.run_by::<SpringFriction>(stop)
+    }
+
+    /// [`Simulation::run_until_stopped`] with the law known: the kernel taken out of the
+    /// enum once, then stepped and tested step by step.
+    #[inline(always)]
+    fn run_by<W: EngineLaw>(&mut self, stop: &dyn Fn() -> bool) -> Option<Outcome> {
+        let Simulation {
+            k,
+            impact_log,
+            track_ledger,
+            ledger,
+            outcome,
+            ..
+        } = self;
+        let k = W::of_mut(k).expect("the law just matched");
         loop {
             for _ in 0..STEPS_BETWEEN_STOP_CHECKS {
-                if let Some(o) = self.advance() {
-                    return Some(o);
+                if *track_ledger {
+                    step_with_ledger(k, ledger);
+                } else {
+                    k.step(&mut NoHook);
+                }
+                let s = &k.state;
+                impact_log.observe(k.in_contact, || (s.corner_offsets, s.step, s.time_s));
+                if let Some(status) = status_of(&k.ends()) {
+                    let ended = outcome_of(k, impact_log, status);
+                    *outcome = Some(ended);
+                    return Some(ended);
                 }
             }
             if stop() {
@@ -606,32 +649,51 @@ impl Simulation {
     /// Whether the current state ends the roll, and how (the kernel's end-of-step test).
     #[inline]
     fn check_end<W: EngineLaw>(&self) -> Option<Outcome> {
-        let ends = W::of(&self.k).expect("the law the step took").ends();
-        let status = if ends.unstable {
-            Status::Unstable
-        } else if ends.settled {
-            Status::Settled
-        } else if ends.timeout {
-            Status::Timeout
-        } else {
-            return None;
-        };
+        let status = status_of(&W::of(&self.k).expect("the law the step took").ends())?;
         Some(self.outcome_of(status))
     }
 
     #[cold]
     fn outcome_of(&self, status: Status) -> Outcome {
-        Outcome {
-            status,
-            face: match status {
-                Status::Settled => sim_body(&self.k).face_up_at_rest(&self.state().corner_offsets),
-                _ => None,
-            },
-            steps: self.state().step,
-            time_s: self.state().time_s,
-            impacts: self.impact_log.impacts.count(),
-            first_impact: self.impact_log.first,
-        }
+        on_law!(&self.k, k => outcome_of(k, &self.impact_log, status))
+    }
+}
+
+/// The outcome of the roll in `k`, whose impacts `impact_log` saw, ending as `status`.
+#[cold]
+fn outcome_of<W: Law>(k: &Kernel<f64, W>, impact_log: &ImpactLog, status: Status) -> Outcome {
+    Outcome {
+        status,
+        face: match status {
+            Status::Settled => k.bodies[0].face_up_at_rest(&k.state.corner_offsets),
+            _ => None,
+        },
+        steps: k.state.step,
+        time_s: k.state.time_s,
+        impacts: impact_log.impacts.count(),
+        first_impact: impact_log.first,
+    }
+}
+
+/// One step with the energy ledger's bookkeeping, kept out of line: inlined beside the
+/// plain step, its second copy of the kernel would crowd the batch loop's code.
+#[inline(never)]
+fn step_with_ledger<W: Law>(k: &mut Kernel<f64, W>, ledger: &mut Ledger) {
+    k.step(ledger);
+}
+
+/// How a roll ends at a state the end-of-step test says `ends` of (unstable before settled
+/// before out of time), if it ends.
+#[inline(always)]
+pub(crate) fn status_of(ends: &Ends<bool>) -> Option<Status> {
+    if ends.unstable {
+        Some(Status::Unstable)
+    } else if ends.settled {
+        Some(Status::Settled)
+    } else if ends.timeout {
+        Some(Status::Timeout)
+    } else {
+        None
     }
 }
 
@@ -649,7 +711,7 @@ fn sim_body(k: &Laws) -> &Body {
 /// `rule` as `params`' law has it on its table.
 fn stop_rule_on_table(params: &Params, rule: StopRule, edge_energy: f64) -> StopRule {
     match params.ground.contact {
-        ContactLaw::Paper => Paper::stop_rule(rule, params, edge_energy),
+        ContactLaw::Paper => PaperPerCorner::stop_rule(rule, params, edge_energy),
         ContactLaw::SpringFriction => SpringFriction::stop_rule(rule, params, edge_energy),
     }
 }

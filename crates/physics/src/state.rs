@@ -6,21 +6,23 @@
 use super::lane::{Lane, v3};
 use nalgebra::Vector3;
 
-/// The dynamic state of the die at one instant (one per lane in a lane type).
+/// The dynamic state of the die at one instant (one per lane in a lane type), a body of `N`
+/// contact points (the paper's cube's 8 corners unless said otherwise).
 #[derive(Debug, Clone, PartialEq)]
-pub struct State<L: Lane = f64> {
+pub struct State<L: Lane = f64, const N: usize = 8> {
     /// cm, centre of mass.
     pub position: Vector3<L>,
     /// cm/s, centre of mass.
     pub velocity: Vector3<L>,
     /// g·cm²/s, about the centre of mass.
     pub angular_momentum: Vector3<L>,
-    /// cm, corners 1..8 relative to the centre of mass, world frame.
-    pub corner_offsets: [Vector3<L>; 8],
-    /// dyn, the contact force on each corner at this state `(friction x, friction y, P)`.
-    pub corner_forces: [Vector3<L>; 8],
-    /// cm, how far each corner is below the ground (0 above it).
-    pub corner_depths: [L; 8],
+    /// cm, the contact points (corners 1..8 of a cube; a rounded body's sphere centres)
+    /// relative to the centre of mass, world frame.
+    pub corner_offsets: [Vector3<L>; N],
+    /// dyn, the contact force on each point at this state `(friction x, friction y, P)`.
+    pub corner_forces: [Vector3<L>; N],
+    /// cm, how far each point is below the ground (0 above it).
+    pub corner_depths: [L; N],
     /// s, simulated time.
     pub time_s: L,
     /// Steps taken since the initial condition.

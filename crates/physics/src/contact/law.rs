@@ -54,12 +54,12 @@ pub(crate) trait Law: Copy + Debug + Send + Sync + 'static {
     fn potential<L: Lane>(c: &Self::Constants<L>, normal: L, position: &Vector3<L>) -> L;
     /// Every contact point's depth, force and memory at the current state (`rounded`: the
     /// points are spheres of radius `radius`, cm, touching at their lowest points).
-    fn forces<L: Lane>(
+    fn forces<L: Lane, const N: usize>(
         c: &Self::Constants<L>,
         dt: L,
         radius: L,
         rounded: bool,
-        touch: Touch<'_, L, Self::Point<L>>,
+        touch: Touch<'_, L, Self::Point<L>, N>,
     );
     /// The lanes of `settled` the law lets settle at this kinetic energy (erg).
     fn settles<L: Lane>(c: &Self::Constants<L>, settled: L::Mask, kinetic: L) -> L::Mask;
@@ -71,18 +71,18 @@ pub(crate) trait Law: Copy + Debug + Send + Sync + 'static {
 /// A body's contact points at one state, as a law reads them and writes its results: the
 /// state's offsets, velocity, depths and forces, the body's angular velocity, the law's
 /// memory at each point, and which points touch.
-pub(crate) struct Touch<'a, L: Lane, P> {
-    pub(crate) state: &'a mut State<L>,
+pub(crate) struct Touch<'a, L: Lane, P, const N: usize> {
+    pub(crate) state: &'a mut State<L, N>,
     /// rad/s, the body's angular velocity.
     pub(crate) angular_velocity: &'a Vector3<L>,
-    pub(crate) points: &'a mut [P; 8],
+    pub(crate) points: &'a mut [P; N],
     /// Lanes with a point below the table (the law sets it).
     pub(crate) in_contact: &'a mut L::Mask,
     /// Bit k: point k is below the table in some lane (the law sets it).
-    pub(crate) touching_corners: &'a mut u8,
+    pub(crate) touching_corners: &'a mut u64,
 }
 
-impl<L: Lane, P> Touch<'_, L, P> {
+impl<L: Lane, P, const N: usize> Touch<'_, L, P, N> {
     /// cm/s, the velocity of point `k`'s contact (a rounded body's: its sphere's lowest
     /// point).
     #[inline(always)]
@@ -94,11 +94,11 @@ impl<L: Lane, P> Touch<'_, L, P> {
     /// Which points (or point spheres, `ROUNDED`) are in the table, per lane, and their
     /// depths into it, cm: the same for every law. Returns the masks and their union.
     #[inline(always)]
-    pub(crate) fn press<const ROUNDED: bool>(&mut self, radius: L) -> ([L::Mask; 8], L::Mask) {
+    pub(crate) fn press<const ROUNDED: bool>(&mut self, radius: L) -> ([L::Mask; N], L::Mask) {
         let s = &mut *self.state;
         let z0 = s.position.z;
         let zero = L::zero();
-        let mut touching = [L::mask_from_bits(0); 8];
+        let mut touching = [L::mask_from_bits(0); N];
         let mut any = L::mask_from_bits(0);
         for (k, t) in touching.iter_mut().enumerate() {
             let z = s.corner_offsets[k].z + z0;
@@ -113,8 +113,8 @@ impl<L: Lane, P> Touch<'_, L, P> {
 
 /// The points touching in some lane, as bits.
 #[inline(always)]
-pub(crate) fn touching_bits<L: Lane>(touching: &[L::Mask; 8]) -> u8 {
-    let mut bits = 0u8;
+pub(crate) fn touching_bits<L: Lane, const N: usize>(touching: &[L::Mask; N]) -> u64 {
+    let mut bits = 0u64;
     for (k, t) in touching.iter().enumerate() {
         if L::bits(*t) != 0 {
             bits |= 1 << k;
@@ -123,8 +123,10 @@ pub(crate) fn touching_bits<L: Lane>(touching: &[L::Mask; 8]) -> u8 {
     bits
 }
 
-/// The corners in `bits`, in corner order.
+/// The points of `N` in `bits`, in point order. The bits are masked to the `N` points first,
+/// so the compiler knows every index is below `N` and checks none.
 #[inline(always)]
-pub(crate) fn corners(bits: u8) -> impl Iterator<Item = usize> {
-    set_bits(bits.into())
+pub(crate) fn corners<const N: usize>(bits: u64) -> impl Iterator<Item = usize> {
+    let every = if N >= 64 { u64::MAX } else { (1 << N) - 1 };
+    set_bits(bits & every)
 }

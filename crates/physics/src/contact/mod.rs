@@ -16,8 +16,8 @@ mod law;
 pub(crate) mod paper;
 pub(crate) mod spring_friction;
 
-pub(crate) use law::{Law, Touch};
-pub(crate) use paper::Paper;
+pub(crate) use law::{Law, Touch, corners};
+pub(crate) use paper::{Paper, PerCornerSlip, WholeDieSlip};
 pub(crate) use spring_friction::SpringFriction;
 pub use spring_friction::{
     clamped_restitution, damping_ratio, downhill_pass_share, gravity_in_table_frame, why_a_tilt_cannot_hold,

@@ -205,6 +205,7 @@ impl Law for SpringFriction {
         }
     }
 
+    #[inline(always)]
     fn set_lane<L: Lane>(c: &mut SpringFrictionConstants<L>, l: usize, from: &SpringFrictionConstants<f64>) {
         put(&mut c.stiffness, l, from.stiffness);
         put(&mut c.half_stiffness, l, from.half_stiffness);
@@ -219,6 +220,7 @@ impl Law for SpringFriction {
         put(&mut c.kinetic_cap, l, from.kinetic_cap);
     }
 
+    #[inline(always)]
     fn park<L: Lane>(c: &mut SpringFrictionConstants<L>, l: usize) {
         put(&mut c.weight_x, l, 0.0);
         put(&mut c.weight_y, l, 0.0);
@@ -281,17 +283,17 @@ impl Law for SpringFriction {
     }
 
     #[inline(always)]
-    fn forces<L: Lane>(
+    fn forces<L: Lane, const N: usize>(
         c: &SpringFrictionConstants<L>,
         dt: L,
         radius: L,
         rounded: bool,
-        touch: Touch<'_, L, Vector2<L>>,
+        touch: Touch<'_, L, Vector2<L>, N>,
     ) {
         if rounded {
-            forces_at::<true, L>(c, dt, radius, touch);
+            forces_at::<true, L, N>(c, dt, radius, touch);
         } else {
-            forces_at::<false, L>(c, dt, radius, touch);
+            forces_at::<false, L, N>(c, dt, radius, touch);
         }
     }
 
@@ -316,11 +318,11 @@ impl Law for SpringFriction {
 /// `|F*| ≤ μ_s·N`, else sliding at `μ_k·N` along `F*` with the spring set to hold that
 /// force. A point off the table has no force and no spring.
 #[inline(always)]
-fn forces_at<const ROUNDED: bool, L: Lane>(
+fn forces_at<const ROUNDED: bool, L: Lane, const N: usize>(
     c: &SpringFrictionConstants<L>,
     dt: L,
     radius: L,
-    mut touch: Touch<'_, L, Vector2<L>>,
+    mut touch: Touch<'_, L, Vector2<L>, N>,
 ) {
     let (stiffness, damping, kinetic) = (c.stiffness, c.normal_damping, c.friction);
     let (k_t, c_t, stuck_up_to) = (c.tangential_stiffness, c.tangential_damping, c.static_friction);
@@ -332,13 +334,13 @@ fn forces_at<const ROUNDED: bool, L: Lane>(
         return;
     }
     *touch.in_contact = any;
-    let touching_corners = touching_bits::<L>(&touching);
+    let touching_corners = touching_bits::<L, N>(&touching);
     *touch.touching_corners = touching_corners;
-    for k in corners(previous & !touching_corners) {
+    for k in corners::<N>(previous & !touching_corners) {
         touch.state.corner_forces[k] = zero3();
         touch.points[k] = Vector2::new(zero, zero);
     }
-    for k in corners(touching_corners) {
+    for k in corners::<N>(touching_corners) {
         let t = touching[k];
         let u = touch.velocity_at::<ROUNDED>(k, radius);
         let xi = touch.points[k];
