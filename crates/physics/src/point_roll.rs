@@ -81,13 +81,7 @@ impl<const N: usize> PointRoll<N> {
 
     /// The energy terms at the current state, erg.
     pub fn energy(&self) -> Energy {
-        let e = on_law!(&self.k, k => k.energy());
-        Energy {
-            translational: e.translational,
-            rotational: e.rotational,
-            gravitational: e.gravitational,
-            elastic: e.elastic,
-        }
+        on_law!(&self.k, k => k.energy()).into()
     }
 
     /// Whether any point is below the table now.

@@ -437,13 +437,7 @@ impl Simulation {
 
     /// The energy terms at the current state (docs/model.md, "Energy"), erg.
     pub fn energy(&self) -> Energy {
-        let e = on_law!(&self.k, k => k.energy());
-        Energy {
-            translational: e.translational,
-            rotational: e.rotational,
-            gravitational: e.gravitational,
-            elastic: e.elastic,
-        }
+        on_law!(&self.k, k => k.energy()).into()
     }
 
     /// erg, the energy the authors' program compared with the threshold: the corners as 8
