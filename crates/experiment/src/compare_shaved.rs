@@ -335,7 +335,11 @@ impl DataAgainst {
         DataAgainst {
             rolls: row.rolls,
             one_or_six: k,
-            bias: Bias::alone(k, row.rolls),
+            // The reported bias, with the interval of the count behind it.
+            bias: Bias {
+                bias: row.bias,
+                ..Bias::alone(k, row.rolls)
+            },
             sigma,
             z: (row.bias - simulated.bias) / (sigma * sigma + sigma_sim * sigma_sim).sqrt(),
         }
