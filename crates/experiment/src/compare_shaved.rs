@@ -269,13 +269,14 @@ impl CutThrows {
     /// The paired bias `b = 3·(d₁₀ − d₀₁)/n` with `d₁₀` the throws only the cut die ended
     /// on 1 or 6 and `d₀₁` those only the uncut did, and its 95 % interval `b ± 1.96·3·s/√n`,
     /// `s²` the sample variance of the per-throw difference (each −1, 0 or 1):
-    /// `(d₁₀ + d₀₁ − n·d̄²)/(n − 1)`, `d̄ = (d₁₀ − d₀₁)/n`.
+    /// `(d₁₀ + d₀₁ − n·d̄²)/(n − 1)`, `d̄ = (d₁₀ − d₀₁)/n`. Under two throws nothing is
+    /// known: 0 in the whole range a paired bias can take, −3 to 3.
     pub fn paired_bias(&self) -> Bias {
         let n = self.throws as f64;
         if self.throws < 2 {
             return Bias {
                 bias: 0.0,
-                interval: [-2.0, 2.0],
+                interval: [-3.0, 3.0],
             };
         }
         let mean = (self.cut_only as f64 - self.uncut_only as f64) / n;
