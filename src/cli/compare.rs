@@ -18,7 +18,9 @@ use dicesim_experiment::compare_shaved::{
 use dicesim_experiment::limits::EXPERIMENT_ROLLS;
 use dicesim_experiment::real_data::Dataset;
 use dicesim_experiment::{RunOptions, provenance};
-use dicesim_figures::compare_plot::{budden_png, budden_record, comparison_png, comparison_record};
+use dicesim_figures::compare_plot::{
+    budden_png, budden_record, comparison_png, comparison_record, shaved_die_png, shaved_die_record,
+};
 use dicesim_setup::output::Output;
 use dicesim_setup::preset::{Preset, refuse_unapplied};
 use dicesim_setup::random::check_drawn_setup;
@@ -296,7 +298,7 @@ fn run_shaved(args: &CompareArgs, options: &RunOptions, preset: &Preset) -> Resu
     shaved_setups(&params, &preset.initial, &spec).map_err(CliError::experiment(""))?;
     let total = spec.total_rolls();
     EXPERIMENT_ROLLS.check(total).map_err(CliError::experiment(""))?;
-    let outputs = args.run.outputs(&["csv", "json"])?;
+    let outputs = args.run.outputs(&["csv", "json", "png"])?;
     let comparison = running::run_with_progress(total, PROGRESS, |stop, done| {
         run_shaved_die(&params, &preset.initial, &spec, options, stop, &mut |p| {
             done(p.done)
@@ -304,9 +306,8 @@ fn run_shaved(args: &CompareArgs, options: &RunOptions, preset: &Preset) -> Resu
     })?;
     let provenance = provenance::shaved_die(preset, &spec);
     let png = || {
-        Err(CliError::Usage(
-            "`compare shaved-die` writes .csv and .json".to_string(),
-        ))
+        let record = shaved_die_record(&comparison, preset, &spec, &provenance);
+        shaved_die_png(&comparison, &record).map_err(CliError::experiment(""))
     };
     running::write_results(
         &outputs,

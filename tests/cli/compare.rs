@@ -776,6 +776,59 @@ fn shaved_die_pairs_each_cut_with_the_uncut_die_over_the_same_throws_in_both_eng
 }
 
 #[test]
+fn shaved_die_writes_its_table_its_figures_and_its_picture() {
+    let dir = tempfile::tempdir().unwrap();
+    let (csv, png, js) = (
+        dir.path().join("s.csv"),
+        dir.path().join("s.png"),
+        dir.path().join("s.json"),
+    );
+    let o = dicesim(&[
+        "compare",
+        "shaved-die",
+        "--throws",
+        "60",
+        "--cuts",
+        "0.03,0.2",
+        "--out",
+        csv.to_str().unwrap(),
+        "--out",
+        png.to_str().unwrap(),
+        "--out",
+        js.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.starts_with("shaved-die (A shaved die: Murray's group (2001)"),
+        "{text}"
+    );
+    assert!(text.contains("measured at c = 0.03: b = +0.0600"), "{text}");
+    // One row per cut; the data's cells only at the measured cut.
+    let table = std::fs::read_to_string(&csv).unwrap();
+    let rows: Vec<&str> = table.lines().collect();
+    assert_eq!(rows.len(), 3, "{table}");
+    assert!(rows[0].starts_with("cut,simulated_throws,"), "{table}");
+    assert!(
+        rows[1].starts_with("0.03,") && rows[1].contains(",36000,0.06,"),
+        "{table}"
+    );
+    assert!(
+        rows[2].starts_with("0.2,") && rows[2].ends_with(",,,,,"),
+        "{table}"
+    );
+    let png = std::fs::read(&png).unwrap();
+    assert!(png.starts_with(b"\x89PNG\r\n\x1a\n"));
+    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&js).unwrap()).unwrap();
+    assert_eq!(v["provenance"]["dataset"], "shaved-die");
+    assert_eq!(v["provenance"]["cuts"], serde_json::json!([0.03, 0.2]));
+    assert_eq!(
+        v["provenance"]["preset"]["random"]["height"],
+        serde_json::json!([10.0, 10.0])
+    );
+}
+
+#[test]
 fn shaved_die_refuses_what_it_cannot_apply() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("s.csv");
