@@ -8,5 +8,6 @@ mod derived_checks;
 mod free_rotation;
 mod lanes;
 mod loaded_dice;
+mod point_bodies;
 mod reference;
 mod stability_bodies;
