@@ -58,10 +58,13 @@ pub fn spring_friction_modes(p: &Params) -> Option<SpringModes> {
     let (trace, det) = (a11 + a22, a11 * a22 - a12 * a21);
     let slide = (0.5 * (trace + (trace * trace - 4.0 * det).max(0.0).sqrt())).sqrt();
     let twist = rock * (2.0 * k_t / k).sqrt();
-    // The damping ratio of a mode of frequency ω on springs damped by c per k: ζ = ω·c/(2k).
+    // The damping ratio of a mode of frequency ω on springs damped by c per k: ζ = ω·c/(2k);
+    // a face may rest on points that struck leaning, so the stronger of the two dashpots
+    // (`c` itself when no face restitution is set) sets the limit.
+    let damping = law.normal_damping.max(law.face_damping);
     let mode = |frequency: f64| SpringMode {
         frequency,
-        allowed: damped_mode_limit(frequency * law.normal_damping / (2.0 * k)),
+        allowed: damped_mode_limit(frequency * damping / (2.0 * k)),
     };
     Some(SpringModes {
         normal: mode(rock),

@@ -84,6 +84,10 @@ pub enum Shape {
     Flag(bool),
     /// One number per corner 1..8, named `1` … `8` in `--set` and scan keys.
     PerCorner([f64; 8]),
+    /// One number or none; `absent` says what the model takes when it is not given.
+    Optional {
+        absent: &'static str,
+    },
 }
 
 /// How the explorer steps a value under ←/→: by a fixed amount, or by a factor for values
@@ -183,6 +187,7 @@ impl Spec {
             Shape::Seed(s) => Value::Seed(s),
             Shape::Flag(b) => Value::Flag(b),
             Shape::PerCorner(v) => Value::PerCorner(v),
+            Shape::Optional { .. } => Value::Absent,
         }
     }
 
@@ -487,6 +492,31 @@ pub const TANGENTIAL_STIFFNESS_RATIO: Spec = Spec {
     law: Some(GroundKey::TangentialStiffnessRatio.law()),
     read: |s| Value::Number(s.params.ground.tangential_stiffness_ratio),
     scan: params_field!(ground.tangential_stiffness_ratio),
+};
+
+pub const FACE_RESTITUTION: Spec = Spec {
+    limits: params::limits::FACE_RESTITUTION,
+    shape: Shape::Optional {
+        absent: "`ground.restitution`",
+    },
+    role: Role::Ground,
+    comment: "restitution (e_f) of a point striking while the body leans on the table (a fall onto a \
+              face over an edge), not one landing from flight; the spring-friction law only",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: true,
+    law: Some(GroundKey::FaceRestitution.law()),
+    read: |s| {
+        s.params
+            .ground
+            .face_restitution
+            .map_or(Value::Absent, Value::Number)
+    },
+    scan: Some(Scan {
+        get: |p, _, _| p.ground.face_restitution.unwrap_or(p.ground.restitution),
+        set: |p, _, _, v| p.ground.face_restitution = Some(v),
+    }),
 };
 
 pub const TILT: Spec = Spec {
@@ -825,7 +855,7 @@ pub(crate) const ORIENTATION_SPREAD: Spec = Spec {
 };
 
 /// Every value of a setup, in the order a preset file lists them.
-pub static ALL: [&Spec; 32] = [
+pub static ALL: [&Spec; 33] = [
     &HALF_SIZES,
     &CORNER_RADIUS,
     &PIP_DIAMETER,
@@ -840,6 +870,7 @@ pub static ALL: [&Spec; 32] = [
     &STATIC_FRICTION,
     &RESTITUTION,
     &TANGENTIAL_STIFFNESS_RATIO,
+    &FACE_RESTITUTION,
     &TILT,
     &TILT_DIRECTION,
     &GRAVITY,
@@ -894,6 +925,7 @@ pub fn markdown_table() -> String {
                 format!("{} (each of corners 1 to 8)", range_text(&spec.limits)),
                 list_text(&v),
             ),
+            Shape::Optional { absent } => (range_text(&spec.limits), format!("not given: {absent}")),
         };
         let default = if spec.key() == ANGULAR_MOMENTUM.key() {
             "not given".to_string()

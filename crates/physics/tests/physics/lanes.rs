@@ -320,6 +320,11 @@ fn mixed_parameters_in_neighbouring_lanes() {
                     0.0
                 };
                 p.ground.tilt_direction = rng.random_range(0.0..360.0);
+                // Every other one with a face restitution of its own (drawn from the index,
+                // so the other lanes' draws stay as they were).
+                if i % 8 == 7 {
+                    p.ground.face_restitution = Some(0.2 + 0.2 * ((i / 8) % 5) as f64);
+                }
             }
             p.integrator.dt = log_uniform(&mut rng, 1e-4, 1e-2);
             p.integrator.max_time = rng.random_range(0.2..5.0);

@@ -5,6 +5,7 @@
 mod common;
 mod contact_law;
 mod derived_checks;
+mod face_restitution;
 mod free_rotation;
 mod lanes;
 mod loaded_dice;

@@ -379,7 +379,13 @@ fn over_long_array(doc: &DeTable<'_>, origin: &str, text: &str) -> Result<(), Pr
             Shape::Vector { components, .. } => components.len(),
             Shape::Range(range) => range.len(),
             Shape::PerCorner(corners) => corners.len(),
-            Shape::Number(_) | Shape::Choice { .. } | Shape::Seed(_) | Shape::Flag(_) => continue,
+            Shape::Number(_)
+            | Shape::Optional { .. }
+            | Shape::Choice { .. }
+            | Shape::Seed(_)
+            | Shape::Flag(_) => {
+                continue;
+            }
         };
         let (section, name) = spec.key().split_once('.').unwrap_or(("", spec.key()));
         let array = doc
@@ -529,7 +535,7 @@ mod tests {
             e.to_string().lines().next().unwrap(),
             "dir/p.toml:4:1: key `ground.stifness`: unknown field `stifness`, expected one of \
              `stiffness`, `damping`, `friction`, `friction_law`, `contact`, `static_friction`, \
-             `restitution`, `tangential_stiffness_ratio`, `tilt`, `tilt_direction`"
+             `restitution`, `tangential_stiffness_ratio`, `face_restitution`, `tilt`, `tilt_direction`"
         );
         let e = err("colour = \"red\"\n");
         assert!(
