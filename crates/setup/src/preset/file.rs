@@ -684,6 +684,41 @@ mod tests {
     }
 
     #[test]
+    fn the_face_restitution_is_written_only_when_given_and_refused_where_it_cannot_act() {
+        let mut p = Preset::default();
+        p.ground.contact = dicesim_physics::ContactLaw::SpringFriction;
+        let text = p.to_toml();
+        assert!(
+            !text.contains("face_restitution"),
+            "written though not given:\n{text}"
+        );
+        assert!(p.to_json()["ground"].get("face_restitution").is_none());
+        p.ground.face_restitution = Some(0.35);
+        let text = p.to_toml();
+        assert!(text.contains("face_restitution = 0.35"), "{text}");
+        assert_eq!(Preset::from_toml_str(&text, ORIGIN).unwrap(), p);
+        let e = err("[ground]\ncontact = \"spring-friction\"\nface_restitution = 0.1\n");
+        assert!(
+            e.to_string().starts_with(
+                "dir/p.toml:3:1: `ground.face_restitution` = 0.1 is outside the allowed range 0.2 to 1"
+            ),
+            "{e}"
+        );
+        let e = err("[ground]\nface_restitution = 0.5\n");
+        assert!(
+            e.to_string().starts_with(
+                "dir/p.toml:2:1: `ground.face_restitution` = 0.5: the \"paper\" contact law does not read \
+                 it (its damping is the same at every impact)"
+            ),
+            "{e}"
+        );
+        let set = Preset::default()
+            .with_overrides(&["ground.contact=spring-friction", "ground.face_restitution=1"])
+            .unwrap();
+        assert_eq!(set.ground.face_restitution, Some(1.0));
+    }
+
+    #[test]
     fn newer_format_is_refused_before_its_keys_are_read() {
         let e = err("name = \"future\"\nformat = 2\n[sparkles]\nglitter = true\n");
         assert_eq!(
