@@ -66,9 +66,14 @@ pub fn spring_friction_modes(p: &Params) -> Option<SpringModes> {
         frequency,
         allowed: damped_mode_limit(frequency * damping / (2.0 * k)),
     };
+    // On a compliant table the springs act on the relative motion of body and top, whose
+    // reduced mass is smaller by 1 + M/m_T, so each mode is faster by its square root (1 on a
+    // rigid table); the top's own mode on its spring, √(K_T/m_T), steps on the same Δt.
+    let lighter = (1.0 + mass * law.table_inverse_mass).sqrt();
+    let table = (law.table_stiffness * law.table_inverse_mass).sqrt();
     Some(SpringModes {
-        normal: mode(rock),
-        tangential: mode(slide.max(twist)),
+        normal: mode((rock * lighter).max(table)),
+        tangential: mode(slide.max(twist) * lighter),
     })
 }
 

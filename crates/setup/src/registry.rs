@@ -519,6 +519,69 @@ pub const FACE_RESTITUTION: Spec = Spec {
     }),
 };
 
+pub const TABLE_MASS: Spec = Spec {
+    limits: params::limits::TABLE_MASS,
+    shape: Shape::Optional {
+        absent: "a rigid table",
+    },
+    role: Role::Ground,
+    comment: "g, a compliant table's top (m_T), moving along the normal under every point at once; \
+              the spring-friction law only",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: true,
+    law: Some(GroundKey::TableMass.law()),
+    read: |s| s.params.ground.table_mass.map_or(Value::Absent, Value::Number),
+    scan: Some(Scan {
+        get: |p, _, _| p.ground.table_mass.unwrap_or(f64::INFINITY),
+        set: |p, _, _, v| p.ground.table_mass = Some(v),
+    }),
+};
+
+pub const TABLE_STIFFNESS: Spec = Spec {
+    limits: params::limits::TABLE_STIFFNESS,
+    shape: Shape::Optional {
+        absent: "0, a free top",
+    },
+    role: Role::Ground,
+    comment: "dyn/cm, the spring (K_T) holding the table top to the floor; with `table_mass` only; \
+              the spring-friction law only",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: true,
+    law: Some(GroundKey::TableStiffness.law()),
+    read: |s| {
+        s.params
+            .ground
+            .table_stiffness
+            .map_or(Value::Absent, Value::Number)
+    },
+    scan: Some(Scan {
+        get: |p, _, _| p.ground.table_stiffness.unwrap_or(0.0),
+        set: |p, _, _, v| p.ground.table_stiffness = Some(v),
+    }),
+};
+
+pub const TABLE_DAMPING: Spec = Spec {
+    limits: params::limits::TABLE_DAMPING,
+    shape: Shape::Optional { absent: "0" },
+    role: Role::Ground,
+    comment: "dyn·s/cm, the table top's own damper (C_T), the same whatever body strikes; with \
+              `table_mass` only; the spring-friction law only",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: true,
+    law: Some(GroundKey::TableDamping.law()),
+    read: |s| s.params.ground.table_damping.map_or(Value::Absent, Value::Number),
+    scan: Some(Scan {
+        get: |p, _, _| p.ground.table_damping.unwrap_or(0.0),
+        set: |p, _, _, v| p.ground.table_damping = Some(v),
+    }),
+};
+
 pub const TILT: Spec = Spec {
     limits: params::limits::TILT,
     shape: Shape::Number(Params::DEFAULT.ground.tilt),
@@ -855,7 +918,7 @@ pub(crate) const ORIENTATION_SPREAD: Spec = Spec {
 };
 
 /// Every value of a setup, in the order a preset file lists them.
-pub static ALL: [&Spec; 33] = [
+pub static ALL: [&Spec; 36] = [
     &HALF_SIZES,
     &CORNER_RADIUS,
     &PIP_DIAMETER,
@@ -871,6 +934,9 @@ pub static ALL: [&Spec; 33] = [
     &RESTITUTION,
     &TANGENTIAL_STIFFNESS_RATIO,
     &FACE_RESTITUTION,
+    &TABLE_MASS,
+    &TABLE_STIFFNESS,
+    &TABLE_DAMPING,
     &TILT,
     &TILT_DIRECTION,
     &GRAVITY,

@@ -4,8 +4,9 @@
 //! since it touched the table — that holds it stuck while `|F*| ≤ μ_s·N` and lets it slide at
 //! `μ_k·N` beyond. Its numbers: the normal damping that gives the set restitution, the
 //! tangential spring and its damping, and the damping of a point that strikes while the body
-//! leans on the table (the face restitution); and its table may be tilted: gravity in the
-//! table's frame, and what the tilt does to the stopping rule.
+//! leans on the table (the face restitution); its table may be compliant (a top of its own
+//! mass on a damped spring, moving along the normal under every point at once) and tilted:
+//! gravity in the table's frame, and what the tilt does to the stopping rule.
 //!
 //! It knows the body only by the numbers it is handed (mass, edge energy), so the body
 //! model may ask it why a tilted table cannot hold a die.
@@ -140,8 +141,9 @@ pub fn flat_drop_contact_time(stiffness: f64, mass: f64, zeta: f64) -> f64 {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SpringFriction;
 
-/// What a point of the spring-friction law remembers while it touches the table (all zero off
-/// it).
+/// What a point of the spring-friction law remembers while it touches the table (zero off it),
+/// and the table top's motion, which every point holds alike whether it touches or not (zero on
+/// a rigid table).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SpringPoint<L: Lane> {
     /// cm, the tangential spring `ξ` in the table's plane: the slip the point made since it
@@ -152,6 +154,9 @@ pub struct SpringPoint<L: Lane> {
     /// 1 when the point struck while another point of the body had touched for at least the
     /// flat drop's contact time (it takes the face dashpot until it leaves), else 0.
     pub(crate) leaning: L,
+    /// cm, how far the table top has sunk below its rest level, and cm/s, how fast it sinks.
+    pub(crate) table_depth: L,
+    pub(crate) table_speed: L,
 }
 
 /// The spring-friction law's numbers for one roll (per lane, CGS).
@@ -173,6 +178,11 @@ pub struct SpringFrictionConstants<L: Lane> {
     /// s, the flat drop's contact time: a point striking after another has touched this long
     /// strikes leaning.
     pub(crate) leaning_after: L,
+    /// 1/g, dyn/cm and dyn·s/cm: the table top's `1/m_T`, `K_T` and `C_T`; all +0.0 on a
+    /// rigid table, whose top then never moves.
+    pub(crate) table_inverse_mass: L,
+    pub(crate) table_stiffness: L,
+    pub(crate) table_damping: L,
     /// cm/dyn, `1/k_t`: a multiplication where the spring is reset, in both widths alike.
     pub(crate) tangential_compliance: L,
     /// `μ_k` and `μ_s`.
@@ -210,6 +220,9 @@ impl SpringFrictionConstants<f64> {
             face_damping,
             face_tangential_damping: ratio * face_damping,
             leaning_after: flat_drop_contact_time(g.stiffness, mass, zeta),
+            table_inverse_mass: g.table_mass.map_or(0.0, |m| 1.0 / m),
+            table_stiffness: g.table_mass.and(g.table_stiffness).unwrap_or(0.0),
+            table_damping: g.table_mass.and(g.table_damping).unwrap_or(0.0),
             tangential_compliance: 1.0 / tangential_stiffness,
             friction: g.friction,
             static_friction: g.static_friction,
@@ -238,6 +251,9 @@ impl Law for SpringFriction {
             face_damping: L::splat(c.face_damping),
             face_tangential_damping: L::splat(c.face_tangential_damping),
             leaning_after: L::splat(c.leaning_after),
+            table_inverse_mass: L::splat(c.table_inverse_mass),
+            table_stiffness: L::splat(c.table_stiffness),
+            table_damping: L::splat(c.table_damping),
             tangential_compliance: L::splat(c.tangential_compliance),
             friction: L::splat(c.friction),
             static_friction: L::splat(c.static_friction),
@@ -257,6 +273,9 @@ impl Law for SpringFriction {
         put(&mut c.face_damping, l, from.face_damping);
         put(&mut c.face_tangential_damping, l, from.face_tangential_damping);
         put(&mut c.leaning_after, l, from.leaning_after);
+        put(&mut c.table_inverse_mass, l, from.table_inverse_mass);
+        put(&mut c.table_stiffness, l, from.table_stiffness);
+        put(&mut c.table_damping, l, from.table_damping);
         put(&mut c.tangential_compliance, l, from.tangential_compliance);
         put(&mut c.friction, l, from.friction);
         put(&mut c.static_friction, l, from.static_friction);
@@ -277,6 +296,8 @@ impl Law for SpringFriction {
             spring: Vector2::new(L::zero(), L::zero()),
             held: L::zero(),
             leaning: L::zero(),
+            table_depth: L::zero(),
+            table_speed: L::zero(),
         }
     }
 
@@ -285,6 +306,8 @@ impl Law for SpringFriction {
             spring: Vector2::new(point.spring.x.lane(l), point.spring.y.lane(l)),
             held: point.held.lane(l),
             leaning: point.leaning.lane(l),
+            table_depth: point.table_depth.lane(l),
+            table_speed: point.table_speed.lane(l),
         }
     }
 
@@ -293,6 +316,8 @@ impl Law for SpringFriction {
         put(&mut point.spring.y, l, from.spring.y);
         put(&mut point.held, l, from.held);
         put(&mut point.leaning, l, from.leaning);
+        put(&mut point.table_depth, l, from.table_depth);
+        put(&mut point.table_speed, l, from.table_speed);
     }
 
     fn tangential_spring(point: &SpringPoint<f64>) -> Vector2<f64> {
@@ -373,7 +398,9 @@ impl Law for SpringFriction {
 /// `|F*| ≤ μ_s·N`, else sliding at `μ_k·N` along `F*` with the spring set to hold that
 /// force. A point that struck while another had touched for the flat drop's contact time
 /// takes `c_f` and `(k_t/k)·c_f` for `c` and `c_t` until it leaves. A point off the table has
-/// no force and no memory.
+/// no force and no memory. Depths and the normal velocity are taken against the table top,
+/// which then moves under the points' summed normal force and its own spring and damper
+/// (semi-implicit Euler, as the body).
 #[inline(always)]
 fn forces_at<const ROUNDED: bool, L: Lane, const N: usize>(
     c: &SpringFrictionConstants<L>,
@@ -386,8 +413,15 @@ fn forces_at<const ROUNDED: bool, L: Lane, const N: usize>(
     let compliance = c.tangential_compliance;
     let zero = L::zero();
     let previous = *touch.touching_corners;
+    // The top sunk by `z_T` is the table the points meet: pressed against it, as if the body
+    // stood `z_T` higher above a table at rest.
+    let (table_depth, table_speed) = (touch.points[0].table_depth, touch.points[0].table_speed);
+    let centre = touch.state.position.z;
+    touch.state.position.z = centre + table_depth;
     let (touching, any) = touch.press::<ROUNDED>(radius);
-    if L::bits(any) == 0 && previous == 0 {
+    touch.state.position.z = centre;
+    let table_moves = table_depth.ne(zero) | table_speed.ne(zero);
+    if L::bits(any) == 0 && previous == 0 && L::bits(table_moves) == 0 {
         return;
     }
     *touch.in_contact = any;
@@ -415,8 +449,8 @@ fn forces_at<const ROUNDED: bool, L: Lane, const N: usize>(
         let c_t = L::select(face, c.face_tangential_damping, c.tangential_damping);
         let xi = point.spring;
         let (sx, sy) = (xi.x + u.x * dt, xi.y + u.y * dt);
-        // The table pushes, never pulls.
-        let pressed = touch.state.corner_depths[k] * stiffness - damping * u.z;
+        // The table pushes, never pulls; its top sinks at `table_speed`.
+        let pressed = touch.state.corner_depths[k] * stiffness - damping * (u.z + table_speed);
         let normal = pressed.or_zero(pressed.gt(zero));
         let (mut fx, mut fy) = (-(k_t * sx) - c_t * u.x, -(k_t * sy) - c_t * u.y);
         let (mut sx, mut sy) = (sx, sy);
@@ -438,7 +472,22 @@ fn forces_at<const ROUNDED: bool, L: Lane, const N: usize>(
             spring: Vector2::new(sx.or_zero(t), sy.or_zero(t)),
             held: (point.held + dt).or_zero(t),
             leaning: L::select(face, L::splat(1.0), zero).or_zero(t),
+            table_depth: zero,
+            table_speed: zero,
         };
+    }
+    // The top: pushed down by the points' normal forces, held by its spring and damper. On a
+    // rigid table `1/m_T` is +0.0 and it stays at +0.0.
+    let mut load = zero;
+    for k in corners::<N>(touching_corners) {
+        load = load + touch.state.corner_forces[k].z;
+    }
+    let support = c.table_stiffness * table_depth + c.table_damping * table_speed;
+    let table_speed = table_speed + ((load - support) * c.table_inverse_mass) * dt;
+    let table_depth = table_depth + table_speed * dt;
+    for point in touch.points.iter_mut() {
+        point.table_depth = table_depth;
+        point.table_speed = table_speed;
     }
 }
 

@@ -535,7 +535,8 @@ mod tests {
             e.to_string().lines().next().unwrap(),
             "dir/p.toml:4:1: key `ground.stifness`: unknown field `stifness`, expected one of \
              `stiffness`, `damping`, `friction`, `friction_law`, `contact`, `static_friction`, \
-             `restitution`, `tangential_stiffness_ratio`, `face_restitution`, `tilt`, `tilt_direction`"
+             `restitution`, `tangential_stiffness_ratio`, `face_restitution`, `table_mass`, \
+             `table_stiffness`, `table_damping`, `tilt`, `tilt_direction`"
         );
         let e = err("colour = \"red\"\n");
         assert!(
@@ -716,6 +717,31 @@ mod tests {
             .with_overrides(&["ground.contact=spring-friction", "ground.face_restitution=1"])
             .unwrap();
         assert_eq!(set.ground.face_restitution, Some(1.0));
+    }
+
+    #[test]
+    fn a_table_tops_spring_and_damper_need_its_mass() {
+        let e = err("[ground]\ncontact = \"spring-friction\"\ntable_stiffness = 1000.0\n");
+        assert!(
+            e.to_string().contains(
+                "`ground.table_stiffness` = 1000: a table top's spring and damper hold its mass: give \
+                 `ground.table_mass` (g) too"
+            ),
+            "{e}"
+        );
+        let text = "[ground]\ncontact = \"spring-friction\"\ntable_mass = 40.0\ntable_damping = 5.0\n";
+        let p = Preset::from_toml_str(text, ORIGIN).unwrap();
+        assert_eq!(
+            (
+                p.ground.table_mass,
+                p.ground.table_stiffness,
+                p.ground.table_damping
+            ),
+            (Some(40.0), None, Some(5.0))
+        );
+        assert_eq!(Preset::from_toml_str(&p.to_toml(), ORIGIN).unwrap(), p);
+        let e = err("[ground]\ntable_mass = 40.0\n");
+        assert!(e.to_string().contains("(its table is rigid)"), "{e}");
     }
 
     #[test]
