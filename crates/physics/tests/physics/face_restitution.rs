@@ -96,7 +96,8 @@ fn face_fall_keeps(e: f64, e_f: Option<f64>) -> f64 {
     let mut sim = Simulation::new(
         &p,
         &InitialCondition {
-            height: 1.4142,
+            // The edge 2 µm above the table: its centre at a·√2·cos 1° above it.
+            height: 2f64.sqrt() * 1f64.to_radians().cos() + 2e-4,
             velocity: [0.0; 3],
             angular_velocity: [0.0; 3],
             orientation: [0.0, 0.0, 44.0],
