@@ -5,6 +5,7 @@
 use dicesim_experiment::basin::{BasinMap, Layer};
 use dicesim_experiment::compare::{Comparison, Excluded};
 use dicesim_experiment::compare_budden::{BuddenComparison, RatioRole, seeds_text};
+use dicesim_experiment::compare_shaved::{Bias, ShavedComparison};
 use dicesim_experiment::compare_stats::{FitInterval, FitMethod};
 use dicesim_experiment::ending::Ending;
 use dicesim_experiment::merge::{BatchMerge, MapMerge};
@@ -609,6 +610,110 @@ fn budden_ratios(
                 p_text(s.p_value)
             )?;
         }
+    }
+    Ok(())
+}
+
+/// The shaved die: the uncut die's own bias (zero within its noise for a fair die), then
+/// per cut the paired bias and its slope with their intervals, the cut die's own bias
+/// beside them, and the experiment's bias where it measured that cut.
+pub fn shaved_die(out: &mut dyn Write, c: &ShavedComparison, preset: &str) -> std::io::Result<()> {
+    writeln!(out, "shaved-die ({})", c.source)?;
+    for a in &c.assumptions {
+        writeln!(out, "assumed: {a}")?;
+    }
+    let interval = |b: &Bias| format!("{:+.4} to {:+.4}", b.interval[0], b.interval[1]);
+    writeln!(
+        out,
+        "\nevery throw with the uncut die and each cut one ({preset}, seed {}, {} throws)",
+        c.seed, c.throws
+    )?;
+    writeln!(
+        out,
+        "uncut die: 1 or 6 in {} of {} throws, b = {:+.4} ({})",
+        c.uncut_one_or_six,
+        c.uncut_throws,
+        c.uncut.bias,
+        interval(&c.uncut)
+    )?;
+    writeln!(
+        out,
+        "{:>6}  {:>7}  {:>7}  {:>7}  {:>8}  {:>20}  {:>6}  {:>16}  {:>8}  {:>20}",
+        "cut",
+        "sim n",
+        "cut 1|6",
+        "uncut",
+        "b paired",
+        "95% interval",
+        "b/c",
+        "95% interval",
+        "cut alone",
+        "95% interval"
+    )?;
+    for r in &c.cuts {
+        let s = &r.simulated;
+        writeln!(
+            out,
+            "{:>6}  {:>7}  {:>7}  {:>7}  {:>+8.4}  {:>20}  {:>6.2}  {:>16}  {:>+8.4}  {:>20}",
+            fmt_exact(r.cut),
+            s.throws,
+            s.cut_one_or_six,
+            s.uncut_one_or_six,
+            r.bias.bias,
+            interval(&r.bias),
+            r.slope.bias,
+            format!("{:.2} to {:.2}", r.slope.interval[0], r.slope.interval[1]),
+            r.cut_alone.bias,
+            interval(&r.cut_alone)
+        )?;
+    }
+    let thrown: u64 = c
+        .cuts
+        .iter()
+        .map(|r| r.simulated.throws + r.simulated.uncounted)
+        .sum();
+    let uncounted: u64 = c.cuts.iter().map(|r| r.simulated.uncounted).sum();
+    writeln!(
+        out,
+        "{} of {thrown} paired throws counted, {uncounted} not (a die ended without a face)",
+        thrown - uncounted
+    )?;
+    let past: u64 = c.cuts.iter().map(|r| r.simulated.past_stability_limit).sum();
+    stability_count(out, past, thrown)?;
+    for r in &c.cuts {
+        if let Some(d) = &r.data {
+            writeln!(
+                out,
+                "measured at c = {}: b = {:+.4} ± {:.4} ({} of {} rolls on 1 or 6), slope {:.2}; simulated {:+.4}: \
+                 z = {:+.2}, {}",
+                fmt_exact(r.cut),
+                d.bias.bias,
+                d.sigma,
+                d.one_or_six,
+                d.rolls,
+                d.bias.bias / r.cut,
+                r.bias.bias,
+                d.z,
+                if d.within_two_sigma() {
+                    "within 2σ"
+                } else {
+                    "not within 2σ"
+                }
+            )?;
+        }
+    }
+    if c.cuts.iter().all(|r| r.data.is_none()) {
+        writeln!(
+            out,
+            "no cut thrown is one the experiment measured (it measured c = {}): the slopes are to read against its \
+             b/c near 2",
+            dicesim_experiment::real_data::shaved_die()
+                .0
+                .iter()
+                .map(|r| fmt_exact(r.cut))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )?;
     }
     Ok(())
 }

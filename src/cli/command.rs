@@ -87,7 +87,8 @@ pub(crate) enum CliCommand {
   dicesim compare wolf-white
   dicesim compare weldon --throws 2000 --out weldon.png --out weldon.csv
   dicesim compare weldon --throws 2000 --fit ground.friction:0.2:1.2 --json
-  dicesim compare budden --calibrate-on 0.47,1.16,2.12 --out budden.png")]
+  dicesim compare budden --calibrate-on 0.47,1.16,2.12 --out budden.png
+  dicesim compare shaved-die --preset calibrated-table --cuts 0.015,0.03,0.06 --throws 100000")]
     Compare(compare::CompareArgs),
     /// Put the shards of a sweep (`batch --shard`, `basin --shard`) back together.
     #[command(after_help = "Examples:

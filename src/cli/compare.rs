@@ -11,10 +11,16 @@ use dicesim_experiment::compare_budden::{
     BuddenSpec, DEFAULT_CALIBRATE_ON, DEFAULT_FIT, hand_throw, run_budden as roll_budden,
     unapplied_by_comparison,
 };
+use dicesim_experiment::compare_shaved::{
+    DEFAULT_CUTS, ShavedSpec, default_throws as shaved_default_throws, run_shaved as run_shaved_die,
+    setups as shaved_setups, unapplied as shaved_unapplied,
+};
 use dicesim_experiment::limits::EXPERIMENT_ROLLS;
 use dicesim_experiment::real_data::Dataset;
 use dicesim_experiment::{RunOptions, provenance};
-use dicesim_figures::compare_plot::{budden_png, budden_record, comparison_png, comparison_record};
+use dicesim_figures::compare_plot::{
+    budden_png, budden_record, comparison_png, comparison_record, shaved_die_png, shaved_die_record,
+};
 use dicesim_setup::output::Output;
 use dicesim_setup::preset::{Preset, refuse_unapplied};
 use dicesim_setup::random::check_drawn_setup;
@@ -30,16 +36,18 @@ pub(crate) enum DatasetArg {
     WolfWhite,
     /// Budden's steel cuboids, 15 ratios x/y, counted by square-face landings (1980).
     Budden,
+    /// A die shaved along its 1–6 axis, counted by how often 1 or 6 came up (Murray's group, 2001).
+    ShavedDie,
 }
 
 impl DatasetArg {
-    /// The cubic die's experiment (`None` for Budden's cuboids).
+    /// The cubic die's experiment (`None` for Budden's cuboids and the shaved die).
     fn dataset(self) -> Option<Dataset> {
         match self {
             DatasetArg::Weldon => Some(Dataset::Weldon),
             DatasetArg::WolfRed => Some(Dataset::WolfRed),
             DatasetArg::WolfWhite => Some(Dataset::WolfWhite),
-            DatasetArg::Budden => None,
+            DatasetArg::Budden | DatasetArg::ShavedDie => None,
         }
     }
 }
@@ -78,6 +86,11 @@ pub(crate) struct CompareArgs {
     /// value, out of sample).
     #[arg(long, value_name = "R,R,…", value_delimiter = ',', default_values_t = DEFAULT_CALIBRATE_ON)]
     pub(crate) calibrate_on: Vec<f64>,
+    /// Shaved die only: the cuts c, fractions of the side taken off along the 1–6 axis,
+    /// each thrown with the same throws as the uncut die (more than 0, at most 0.5;
+    /// default 0.015, 0.03, 0.06).
+    #[arg(long, value_name = "C,C,…", value_delimiter = ',')]
+    pub(crate) cuts: Vec<f64>,
     #[command(flatten)]
     pub(crate) run: RunArgs<Compare>,
 }
@@ -107,6 +120,14 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     // The same up-front check as `batch`: the body, and no drawn throw inside the table.
     check_drawn_setup(&params, &preset.random, &preset.initial)?;
     let candidates = args.candidates.unwrap_or(DEFAULT_CANDIDATES);
+    if args.dataset == DatasetArg::ShavedDie {
+        return run_shaved(args, &options, &preset);
+    }
+    if !args.cuts.is_empty() {
+        return Err(CliError::Usage(
+            "--cuts chooses the shaved die's cuts: it is for `compare shaved-die` only".to_string(),
+        ));
+    }
     let Some(dataset) = args.dataset.dataset() else {
         return run_budden(args, &options, &preset, candidates);
     };
@@ -200,6 +221,12 @@ fn cubic_die_seed(args: &CompareArgs, preset: &Preset) -> Result<u64, CliError> 
 /// throws draw, a seed `--seed` replaces, the value `--fit` sets, and for Budden the die the
 /// cuboids replace ([`budden_unapplied`]).
 fn refuse_unapplied_sets(args: &CompareArgs, preset: &Preset) -> Result<(), CliError> {
+    if args.dataset == DatasetArg::ShavedDie {
+        refuse_unapplied(&args.setup.set, |key| {
+            shaved_unapplied(key).or_else(|| dicesim_setup::random::seed_given(key, !args.seed.is_empty()))
+        })?;
+        return Ok(());
+    }
     let budden = args.dataset == DatasetArg::Budden;
     let ranges = if budden {
         hand_throw(&preset.random)
@@ -225,6 +252,87 @@ const PROGRESS: &str = "{bar:40} {pos}/{len} rolls, {per_sec}, {eta} left";
 fn prepare(args: &CompareArgs, total: u64) -> Result<Vec<Output>, CliError> {
     EXPERIMENT_ROLLS.check(total).map_err(CliError::experiment(""))?;
     args.run.outputs(&["csv", "json", "png"])
+}
+
+/// `dicesim compare shaved-die`: every throw with the uncut die and each cut one, the
+/// paired bias per cut against the experiment's. Refuses the options of a fit and of
+/// Budden's ratios, which it has none of.
+fn run_shaved(args: &CompareArgs, options: &RunOptions, preset: &Preset) -> Result<(), CliError> {
+    let refuse = |option: &str| {
+        Err(CliError::Usage(format!(
+            "{option} is not for `compare shaved-die`: it fits nothing and throws one die, cut by each of --cuts"
+        )))
+    };
+    if args.fit.is_some() {
+        return refuse("--fit");
+    }
+    if args.candidates.is_some() {
+        return refuse("--candidates");
+    }
+    if args.no_fit {
+        return refuse("--no-fit");
+    }
+    if args.calibrate_on != DEFAULT_CALIBRATE_ON {
+        return refuse("--calibrate-on");
+    }
+    let seed = match args.seed.as_slice() {
+        [] => preset.random.seed,
+        [one] => *one,
+        _ => {
+            return Err(CliError::Usage(
+                "--seed: several seeds are pooled for `compare budden` only; give one".to_string(),
+            ));
+        }
+    };
+    let spec = ShavedSpec {
+        cuts: if args.cuts.is_empty() {
+            DEFAULT_CUTS.to_vec()
+        } else {
+            args.cuts.clone()
+        },
+        throws: args.throws.unwrap_or_else(shaved_default_throws),
+        seed,
+    };
+    let params = preset.params();
+    // Every setup checked (the body cuttable, every cut within range and room) before any roll.
+    shaved_setups(&params, &preset.initial, &spec).map_err(CliError::experiment(""))?;
+    let total = spec.total_rolls();
+    EXPERIMENT_ROLLS.check(total).map_err(CliError::experiment(""))?;
+    let outputs = args.run.outputs(&["csv", "json", "png"])?;
+    let comparison = running::run_with_progress(total, PROGRESS, |stop, done| {
+        run_shaved_die(&params, &preset.initial, &spec, options, stop, &mut |p| {
+            done(p.done)
+        })
+    })?;
+    let provenance = provenance::shaved_die(preset, &spec);
+    let png = || {
+        let record = shaved_die_record(&comparison, preset, &spec, &provenance);
+        shaved_die_png(&comparison, &record).map_err(CliError::experiment(""))
+    };
+    running::write_results(
+        &outputs,
+        args.run.json,
+        running::Results {
+            value: &comparison,
+            provenance: &provenance,
+            columns: &comparison.csv_columns(),
+            csv: &|w| comparison.write_csv(w),
+            png: &png,
+            table: &|out| tables::shaved_die(out, &comparison, &preset.name),
+        },
+    )?;
+    if comparison.cancelled {
+        let done = comparison
+            .cuts
+            .first()
+            .map_or(0, |c| c.simulated.throws + c.simulated.uncounted);
+        return Err(CliError::Interrupted {
+            completed: done,
+            requested: spec.throws,
+            what: "throws",
+        });
+    }
+    Ok(())
 }
 
 /// `dicesim compare budden`: the fit on the calibration ratios, then every ratio predicted.

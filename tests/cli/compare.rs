@@ -676,3 +676,207 @@ fn fit_holds_every_candidate_within_the_line(args: &[&str], range: (f64, f64), m
     let caption = &crate::common::png_text(&png)["Description"];
     assert!(caption.contains("95 % interval "), "{caption}");
 }
+
+/// The shaved die's protocol as `batch --versus` spells it: the paper's table, the
+/// experiment's drop, A the uncut die and B the die cut by 10 %.
+const SHAVED_DROP: [&str; 8] = [
+    "--set",
+    "random.random_orientation=true",
+    "--set",
+    "random.height=[10,10]",
+    "--set",
+    "random.velocity=[-20,20]",
+    "--set",
+    "random.angular_velocity=[-20,20]",
+];
+
+#[test]
+fn shaved_die_pairs_each_cut_with_the_uncut_die_over_the_same_throws_in_both_engines() {
+    let run = |engine: &str, jobs: &str| {
+        dicesim(&[
+            "compare",
+            "shaved-die",
+            "--throws",
+            "400",
+            "--cuts",
+            "0.03,0.1",
+            "--seed",
+            "7",
+            "--engine",
+            engine,
+            "--jobs",
+            jobs,
+            "--json",
+        ])
+    };
+    let scalar = run("scalar", "1");
+    assert_eq!(
+        scalar.stdout,
+        run("lanes", "2").stdout,
+        "the engine or the threads changed the result"
+    );
+    let v = json(&scalar);
+    assert_eq!(v["dataset"], "shaved-die");
+    // The same throws as `batch --versus` rolls: the uncut die as A, the 10 % cut as B.
+    let versus = json(&dicesim(
+        &[
+            &["batch", "--rolls", "400", "--seed", "7", "--jobs", "1", "--json"][..],
+            &SHAVED_DROP,
+            &[
+                "--versus",
+                "die.half_sizes=[0.9,1,1]",
+                "--versus",
+                "die.corner_mass=0.9",
+            ],
+        ]
+        .concat(),
+    ));
+    let table: Vec<Vec<u64>> = versus["table"].as_array().unwrap().iter().map(counts).collect();
+    let one_or_six = |face: usize| face == 0 || face == 5;
+    let cell = |a: &dyn Fn(usize) -> bool, b: &dyn Fn(usize) -> bool| -> u64 {
+        (0..6)
+            .flat_map(|i| (0..6).map(move |j| (i, j)))
+            .filter(|&(i, j)| a(i) && b(j))
+            .map(|(i, j)| table[i][j])
+            .sum()
+    };
+    let any = |_: usize| true;
+    let not = |f: usize| !one_or_six(f);
+    let cut = &v["cuts"][1];
+    let s = &cut["simulated"];
+    assert_eq!(cut["cut"], 0.1);
+    let n = s["throws"].as_u64().unwrap();
+    assert_eq!(n, cell(&any, &any));
+    assert_eq!(n + s["uncounted"].as_u64().unwrap(), 400);
+    assert_eq!(s["cut_one_or_six"].as_u64().unwrap(), cell(&any, &one_or_six));
+    assert_eq!(s["uncut_one_or_six"].as_u64().unwrap(), cell(&one_or_six, &any));
+    let (cut_only, uncut_only) = (cell(&not, &one_or_six), cell(&one_or_six, &not));
+    assert_eq!(s["cut_only"].as_u64().unwrap(), cut_only);
+    assert_eq!(s["uncut_only"].as_u64().unwrap(), uncut_only);
+    // The paired bias: 3 × the mean per-throw difference, its interval 1.96 × 3 × the
+    // difference's sample standard deviation over √n.
+    let n = n as f64;
+    let mean = (cut_only as f64 - uncut_only as f64) / n;
+    let sd = (((cut_only + uncut_only) as f64 - n * mean * mean) / (n - 1.0)).sqrt();
+    let b = &cut["bias"];
+    assert!((b["bias"].as_f64().unwrap() - 3.0 * mean).abs() < 1e-12, "{b}");
+    let half = 1.959964 * 3.0 * sd / n.sqrt();
+    assert!(
+        (b["interval"][1].as_f64().unwrap() - 3.0 * mean - half).abs() < 1e-6,
+        "{b}"
+    );
+    assert!((cut["slope"]["bias"].as_f64().unwrap() - 30.0 * mean).abs() < 1e-9);
+    // Only the measured cut is held against the data: 12 720 of 36 000 rolls on 1 or 6
+    // (b = 0.06), σ = 3·√(p(1 − p)/36 000).
+    assert!(cut["data"].is_null());
+    let d = &v["cuts"][0]["data"];
+    assert_eq!(d["one_or_six"], 12_720);
+    let p = 12_720.0 / 36_000.0;
+    assert!((d["sigma"].as_f64().unwrap() - 3.0 * (p * (1.0 - p) / 36_000.0f64).sqrt()).abs() < 1e-12);
+}
+
+#[test]
+fn shaved_die_writes_its_table_its_figures_and_its_picture() {
+    let dir = tempfile::tempdir().unwrap();
+    let (csv, png, js) = (
+        dir.path().join("s.csv"),
+        dir.path().join("s.png"),
+        dir.path().join("s.json"),
+    );
+    let o = dicesim(&[
+        "compare",
+        "shaved-die",
+        "--throws",
+        "60",
+        "--cuts",
+        "0.03,0.2",
+        "--out",
+        csv.to_str().unwrap(),
+        "--out",
+        png.to_str().unwrap(),
+        "--out",
+        js.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.starts_with("shaved-die (A shaved die: Murray's group (2001)"),
+        "{text}"
+    );
+    assert!(text.contains("measured at c = 0.03: b = +0.0600"), "{text}");
+    // One row per cut; the data's cells only at the measured cut.
+    let table = std::fs::read_to_string(&csv).unwrap();
+    let rows: Vec<&str> = table.lines().collect();
+    assert_eq!(rows.len(), 3, "{table}");
+    assert!(rows[0].starts_with("cut,simulated_throws,"), "{table}");
+    assert!(
+        rows[1].starts_with("0.03,") && rows[1].contains(",36000,0.06,"),
+        "{table}"
+    );
+    assert!(
+        rows[2].starts_with("0.2,") && rows[2].ends_with(",,,,,"),
+        "{table}"
+    );
+    let png = std::fs::read(&png).unwrap();
+    assert!(png.starts_with(b"\x89PNG\r\n\x1a\n"));
+    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&js).unwrap()).unwrap();
+    assert_eq!(v["provenance"]["dataset"], "shaved-die");
+    assert_eq!(v["provenance"]["cuts"], serde_json::json!([0.03, 0.2]));
+    assert_eq!(
+        v["provenance"]["preset"]["random"]["height"],
+        serde_json::json!([10.0, 10.0])
+    );
+}
+
+#[test]
+fn shaved_die_refuses_what_it_cannot_apply() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("s.csv");
+    let out = out.to_str().unwrap();
+    let refused = |args: &[&str], words: &str| {
+        let o = dicesim(
+            &[
+                &["compare", "shaved-die", "--throws", "10", "--out", out][..],
+                args,
+            ]
+            .concat(),
+        );
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(words), "{args:?}: {err}");
+        assert!(!std::path::Path::new(out).exists(), "{args:?} wrote a file");
+    };
+    refused(
+        &["--cuts", "0"],
+        "--cuts: 0 is outside the cuts a shaved die takes, more than 0 and at most 0.5",
+    );
+    refused(&["--cuts", "0.03,0.6"], "0.6 is outside");
+    refused(&["--cuts", "0.03,0.03"], "named twice");
+    // Bodies that are not a fair cube: not cubic, loaded, drilled.
+    refused(&["--preset", "tennis-racket"], "is not one (half sizes");
+    refused(&["--preset", "shaved-die"], "half sizes 0.97, 1, 1 cm");
+    refused(&["--preset", "loaded-corner"], "extra corner masses");
+    refused(&["--preset", "rounded-die"], "drilled pips");
+    // A rounded die whose corners have no room in the cut body: 0.6 cm against 0.5.
+    refused(
+        &["--set", "die.corner_radius=0.6", "--cuts", "0.5"],
+        "the die cut by 0.5",
+    );
+    refused(
+        &["--set", "random.height=[20,20]"],
+        "drops the die as the experiment did",
+    );
+    refused(
+        &["--set", "initial.velocity=[1,0,0]"],
+        "drops the die as the experiment did",
+    );
+    refused(
+        &["--fit", "ground.friction:0.2:1"],
+        "--fit is not for `compare shaved-die`",
+    );
+    refused(&["--no-fit"], "--no-fit is not for");
+    refused(&["--seed", "1,2"], "give one");
+    let o = dicesim(&["compare", "weldon", "--cuts", "0.03"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("for `compare shaved-die` only"));
+}

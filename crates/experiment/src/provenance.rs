@@ -9,6 +9,7 @@
 use crate::basin::{Axis, BasinMap};
 use crate::compare::CompareSpec;
 use crate::compare_budden::{BuddenSpec, hand_throw};
+use crate::compare_shaved::{ShavedSpec, drop_throw};
 use crate::predict::PredictSpec;
 use dicesim_physics::InitialCondition;
 use dicesim_setup::preset::Preset;
@@ -142,6 +143,22 @@ pub fn budden(preset: &Preset, spec: &BuddenSpec, fit: Option<&str>) -> Value {
         "fit": fit,
         "candidates": spec.fit.as_ref().map(|f| f.candidates),
         "calibrate_on": spec.calibrate_on,
+    })
+}
+
+/// The provenance of a comparison with the shaved die: the preset as it was thrown (its
+/// random ranges the protocol's drop), the cuts and the throws.
+pub fn shaved_die(preset: &Preset, spec: &ShavedSpec) -> Value {
+    let mut thrown = preset.clone();
+    thrown.random = drop_throw(spec.seed);
+    json!({
+        "program": PROGRAM,
+        "commit": COMMIT,
+        "preset": setup(&thrown, None),
+        "dataset": "shaved-die",
+        "seed": spec.seed,
+        "throws": spec.throws,
+        "cuts": spec.cuts,
     })
 }
 

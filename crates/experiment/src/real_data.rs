@@ -8,6 +8,7 @@ use serde::Serialize;
 const WELDON_CSV: &str = include_str!("../data/weldon.csv");
 const WOLF_CSV: &str = include_str!("../data/wolf.csv");
 const BUDDEN_CSV: &str = include_str!("../data/budden.csv");
+const SHAVED_DIE_CSV: &str = include_str!("../data/shaved-die.csv");
 
 /// The faces that count as a success in Weldon's protocol: a 5 or a 6.
 const WELDON_FACES: [u8; 2] = [5, 6];
@@ -157,6 +158,38 @@ pub fn budden() -> (Vec<BuddenRow>, String) {
     (rows, table.source)
 }
 
+/// One cut of the shaved die.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ShavedRow {
+    /// The fraction of the side cut off along the 1–6 axis.
+    pub cut: f64,
+    /// The reported bias `b = 3·P(1 or 6) − 1` (two decimals).
+    pub bias: f64,
+    pub rolls: u64,
+}
+
+impl ShavedRow {
+    /// The rolls on 1 or 6 behind the reported bias: `(1 + b)/3` of them, rounded.
+    pub fn one_or_six(&self) -> u64 {
+        ((1.0 + self.bias) / 3.0 * self.rolls as f64).round() as u64
+    }
+}
+
+/// The shaved die's cuts, and the file's source lines.
+pub fn shaved_die() -> (Vec<ShavedRow>, String) {
+    let table = Table::parse(SHAVED_DIE_CSV).expect("the bundled data files parse (tested)");
+    let rows = table
+        .rows
+        .iter()
+        .map(|(cut, values)| ShavedRow {
+            cut: cut.parse().expect("numeric cuts (tested)"),
+            bias: values[0],
+            rolls: values[1] as u64,
+        })
+        .collect();
+    (rows, table.source)
+}
+
 /// A data file: `#` lines (the source), a header, then rows of a name and numbers.
 struct Table {
     source: String,
@@ -213,7 +246,7 @@ mod tests {
 
     #[test]
     fn every_file_parses_and_names_its_source() {
-        for text in [WELDON_CSV, WOLF_CSV, BUDDEN_CSV] {
+        for text in [WELDON_CSV, WOLF_CSV, BUDDEN_CSV, SHAVED_DIE_CSV] {
             let t = Table::parse(text).unwrap();
             assert!(t.source.len() > 100, "{}", t.source);
             assert!(t.rows.iter().all(|r| r.1.len() == t.header.len() - 1));
@@ -256,6 +289,22 @@ mod tests {
             (2.65, 0.006, 503)
         );
         assert_eq!(rows.iter().map(|r| r.throws).sum::<u64>(), 9329);
+        // The shaved die: b ≈ 0.06 at a 3 % cut over 36 000 rolls, so 1 or 6 came up
+        // (1 + 0.06)/3 · 36 000 = 12 720 times.
+        let (cuts, source) = shaved_die();
+        assert!(
+            source.contains("Murray") && source.contains("plexiglass"),
+            "{source}"
+        );
+        assert_eq!(
+            cuts,
+            [ShavedRow {
+                cut: 0.03,
+                bias: 0.06,
+                rolls: 36_000
+            }]
+        );
+        assert_eq!(cuts[0].one_or_six(), 12_720);
     }
 
     #[test]

@@ -9,6 +9,7 @@ use crate::plot::{Record, Scale, TICKS, plot_error, png_bytes, register_fonts, w
 use dicesim_experiment::Error;
 use dicesim_experiment::compare::{CompareSpec, Comparison};
 use dicesim_experiment::compare_budden::{BuddenComparison, BuddenSpec, RatioRole, hand_throw, seeds_text};
+use dicesim_experiment::compare_shaved::{Bias, CutResult, ShavedComparison, ShavedSpec, drop_throw};
 use dicesim_experiment::compare_stats::{FitInterval, deviance_rise_95};
 use dicesim_setup::keys::ScanKey;
 use dicesim_setup::preset::Preset;
@@ -512,4 +513,166 @@ fn draw_budden_shares(
         .draw()
         .map_err(plot_error)?;
     Ok(())
+}
+
+/// The shaved die's comparison as the bytes of a PNG file: the paired bias of every cut
+/// thrown and the experiment's at the cut it measured, both with their 95 % intervals, and
+/// the slope b/c = 2 the experiment reports at small cuts.
+pub fn shaved_die_png(comparison: &ShavedComparison, record: &Record) -> Result<Vec<u8>, Error> {
+    register_fonts()?;
+    png_bytes(SIZE, record, |root| {
+        root.fill(&WHITE).map_err(plot_error)?;
+        let picture = with_caption(&root, record, Scale::ONE)?;
+        draw_shaved_biases(&picture, comparison)?;
+        root.present().map_err(plot_error)
+    })
+}
+
+fn draw_shaved_biases(
+    area: &DrawingArea<BitMapBackend<'_>, Shift>,
+    comparison: &ShavedComparison,
+) -> Result<(), Error> {
+    let cuts = &comparison.cuts;
+    let x1 = 1.15 * cuts.iter().map(|r| r.cut).fold(0.0, f64::max);
+    let highs = cuts.iter().flat_map(|r| {
+        let data = r.data.map_or(0.0, |d| d.bias.interval[1]);
+        [r.bias.interval[1], data, PUBLISHED_SLOPE * r.cut]
+    });
+    let lows = cuts.iter().map(|r| r.bias.interval[0]);
+    let y1 = 1.1 * highs.fold(0.0, f64::max);
+    let y0 = lows.fold(0.0, f64::min).min(0.0) * 1.1;
+    let (xt, yt) = (Ticks::new(0.0, x1, TICKS), Ticks::new(y0, y1, TICKS));
+    let measured: Vec<&CutResult> = cuts.iter().filter(|r| r.data.is_some()).collect();
+    let title = match measured.as_slice() {
+        [r] => format!(
+            "the shaved die: b = {:.3} at c = {} against the measured {:.3} (z = {:+.2})",
+            r.bias.bias,
+            setup_value(r.cut),
+            r.data.map_or(0.0, |d| d.bias.bias),
+            r.data.map_or(0.0, |d| d.z)
+        ),
+        _ => "the shaved die: the bias of each cut".to_string(),
+    };
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, ("sans-serif", 22))
+        .margin(20)
+        .x_label_area_size(60)
+        .y_label_area_size(80)
+        .build_cartesian_2d(0.0..x1, y0..y1)
+        .map_err(plot_error)?;
+    chart
+        .configure_mesh()
+        .x_desc("cut c (the share of the side taken off along the 1–6 axis)")
+        .y_desc("bias b = 3·P(1 or 6) − 1, with 95 % intervals")
+        .x_labels(TICKS)
+        .y_labels(TICKS)
+        .x_label_formatter(&|v| xt.label(*v))
+        .y_label_formatter(&|v| yt.label(*v))
+        .label_style(("sans-serif", 16))
+        .axis_desc_style(("sans-serif", 19))
+        .draw()
+        .map_err(plot_error)?;
+    chart
+        .draw_series(std::iter::once(PathElement::new(
+            vec![(0.0, 0.0), (x1, PUBLISHED_SLOPE * x1)],
+            ShapeStyle::from(DATA.mix(0.5)).stroke_width(1),
+        )))
+        .map_err(plot_error)?
+        .label("b/c = 2, the slope reported at small cuts")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], DATA.mix(0.5).stroke_width(1)));
+    let interval = |b: &Bias| [b.interval[0], b.bias, b.interval[1]];
+    let offset = 0.004 * x1;
+    let pairs: Vec<(f64, [[f64; 3]; 2])> = measured
+        .iter()
+        .filter_map(|r| r.data.map(|d| (r.cut, [interval(&d.bias), interval(&r.bias)])))
+        .collect();
+    draw_share_pairs(
+        &mut chart,
+        &pairs,
+        [
+            "measured (Murray's group, 2001)",
+            "simulated, paired with the uncut die",
+        ],
+        offset,
+        0.006 * x1,
+    )?;
+    // The cuts the experiment did not measure: the simulation alone.
+    let alone: Vec<(f64, [f64; 3])> = cuts
+        .iter()
+        .filter(|r| r.data.is_none())
+        .map(|r| (r.cut, interval(&r.bias)))
+        .collect();
+    let cap = 0.006 * x1;
+    chart
+        .draw_series(alone.iter().flat_map(|&(x, [lo, _, hi])| {
+            [
+                vec![(x, lo), (x, hi)],
+                vec![(x - cap, lo), (x + cap, lo)],
+                vec![(x - cap, hi), (x + cap, hi)],
+            ]
+            .map(|line| PathElement::new(line, SIMULATED.stroke_width(2)))
+        }))
+        .map_err(plot_error)?;
+    chart
+        .draw_series(
+            alone
+                .iter()
+                .map(|&(x, [_, mid, _])| Circle::new((x, mid), 5, SIMULATED.filled())),
+        )
+        .map_err(plot_error)?;
+    chart
+        .configure_series_labels()
+        .label_font(("sans-serif", 18))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperLeft)
+        .draw()
+        .map_err(plot_error)?;
+    Ok(())
+}
+
+/// The slope b/c the shaved-die experiment reports at small cuts.
+const PUBLISHED_SLOPE: f64 = 2.0;
+
+/// The shaved die's PNG caption: the throws and the drop, the cuts, and the table.
+pub fn shaved_die_record(
+    c: &ShavedComparison,
+    preset: &Preset,
+    spec: &ShavedSpec,
+    provenance: &serde_json::Value,
+) -> Record {
+    let n = setup_value;
+    let p = preset.params();
+    let cuts = spec.cuts.iter().map(|c| n(*c)).collect::<Vec<_>>().join(", ");
+    let counted: u64 = c.cuts.iter().map(|r| r.simulated.throws).sum();
+    let thrown: u64 = c
+        .cuts
+        .iter()
+        .map(|r| r.simulated.throws + r.simulated.uncounted)
+        .sum();
+    let caption = vec![
+        format!(
+            "{}: {} throws, each {}, rolled with the uncut die and each cut ({cuts}); {counted} of {thrown} pairs counted",
+            preset.name,
+            spec.throws,
+            random_starts(&drop_throw(spec.seed), spec.seed, &[]),
+        ),
+        format!(
+            "{}; table {} law, k {} dyn/cm; g {} cm/s², Δt {} s (every value in the file's dicesim-provenance text)",
+            c.assumptions[0],
+            p.ground.contact.name(),
+            n(p.ground.stiffness),
+            n(p.world.gravity),
+            n(p.integrator.dt),
+        ),
+    ];
+    Record {
+        text: vec![
+            ("Title".to_string(), format!("{}: the shaved die", preset.name)),
+            ("Description".to_string(), caption.join("\n")),
+            ("Software".to_string(), dicesim_experiment::PROGRAM.to_string()),
+        ],
+        caption,
+    }
+    .with_provenance(provenance)
 }

@@ -110,6 +110,11 @@ pub mod limits {
     /// impact while underdamped (docs/model.md, "The spring-friction contact").
     pub const RESTITUTION: Limits = limits("ground.restitution", "", 0.2, 1.0);
     pub const TANGENTIAL_STIFFNESS_RATIO: Limits = limits("ground.tangential_stiffness_ratio", "", 0.05, 2.0);
+    /// The same range as `ground.restitution`, for the same reason.
+    pub const FACE_RESTITUTION: Limits = limits("ground.face_restitution", "", 0.2, 1.0);
+    pub const TABLE_MASS: Limits = limits("ground.table_mass", "g", 0.1, 1e6);
+    pub const TABLE_STIFFNESS: Limits = limits("ground.table_stiffness", "dyn/cm", 0.0, 1e9);
+    pub const TABLE_DAMPING: Limits = limits("ground.table_damping", "dyn·s/cm", 0.0, 1e7);
     pub const TILT: Limits = limits("ground.tilt", "°", 0.0, 60.0);
     pub const TILT_DIRECTION: Limits = limits("ground.tilt_direction", "°", 0.0, 360.0);
     pub const GRAVITY: Limits = limits("world.gravity", "cm/s²", 10.0, 10000.0);
@@ -450,6 +455,23 @@ pub struct Ground {
     /// tangential and normal periods are equal); the tangential damping is c·k_t/k.
     #[serde(skip_serializing_if = "is_default_tangential_stiffness_ratio")]
     pub tangential_stiffness_ratio: f64,
+    /// e_f, the restitution of a point that strikes while the body leans on the table (another
+    /// of its points has touched for at least a flat drop's contact time): a fall onto a face
+    /// over an edge, not a landing from flight (docs/model.md, "A loss that tells a face fall
+    /// from a bounce in flight"). `None`: `restitution`, the law as it was.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub face_restitution: Option<f64>,
+    /// g, the mass m_T of a compliant table's top, which moves along the normal under every
+    /// point of the body at once (docs/model.md, "A compliant table"). `None`: a rigid table,
+    /// the law as it was.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub table_mass: Option<f64>,
+    /// dyn/cm, the spring K_T holding the table top to the floor (`None`: 0, a free top).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub table_stiffness: Option<f64>,
+    /// dyn·s/cm, the table top's own damper C_T (`None`: 0).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub table_damping: Option<f64>,
     /// Degrees, the table's slope (gravity tilted in the table's frame).
     #[serde(skip_serializing_if = "is_zero")]
     pub tilt: f64,
@@ -482,17 +504,25 @@ pub enum GroundKey {
     StaticFriction,
     Restitution,
     TangentialStiffnessRatio,
+    FaceRestitution,
+    TableMass,
+    TableStiffness,
+    TableDamping,
     Tilt,
     TiltDirection,
 }
 
 impl GroundKey {
-    pub const ALL: [GroundKey; 7] = [
+    pub const ALL: [GroundKey; 11] = [
         GroundKey::Damping,
         GroundKey::FrictionLaw,
         GroundKey::StaticFriction,
         GroundKey::Restitution,
         GroundKey::TangentialStiffnessRatio,
+        GroundKey::FaceRestitution,
+        GroundKey::TableMass,
+        GroundKey::TableStiffness,
+        GroundKey::TableDamping,
         GroundKey::Tilt,
         GroundKey::TiltDirection,
     ];
@@ -505,6 +535,10 @@ impl GroundKey {
             GroundKey::StaticFriction => "ground.static_friction",
             GroundKey::Restitution => "ground.restitution",
             GroundKey::TangentialStiffnessRatio => "ground.tangential_stiffness_ratio",
+            GroundKey::FaceRestitution => "ground.face_restitution",
+            GroundKey::TableMass => "ground.table_mass",
+            GroundKey::TableStiffness => "ground.table_stiffness",
+            GroundKey::TableDamping => "ground.table_damping",
             GroundKey::Tilt => "ground.tilt",
             GroundKey::TiltDirection => "ground.tilt_direction",
         }
@@ -533,6 +567,10 @@ impl GroundKey {
                 "its restitution follows from `ground.damping` and falls with impact speed"
             }
             GroundKey::TangentialStiffnessRatio => "it has no tangential spring",
+            GroundKey::FaceRestitution => "its damping is the same at every impact",
+            GroundKey::TableMass | GroundKey::TableStiffness | GroundKey::TableDamping => {
+                "its table is rigid"
+            }
             GroundKey::Tilt | GroundKey::TiltDirection => {
                 "its table is level, as the authors' program had it"
             }
@@ -555,6 +593,10 @@ impl GroundKey {
             GroundKey::TangentialStiffnessRatio => {
                 ground.tangential_stiffness_ratio == d.tangential_stiffness_ratio
             }
+            GroundKey::FaceRestitution => ground.face_restitution == d.face_restitution,
+            GroundKey::TableMass => ground.table_mass == d.table_mass,
+            GroundKey::TableStiffness => ground.table_stiffness == d.table_stiffness,
+            GroundKey::TableDamping => ground.table_damping == d.table_damping,
             GroundKey::Tilt => ground.tilt == d.tilt,
             GroundKey::TiltDirection => ground.tilt_direction == d.tilt_direction,
         }
@@ -568,6 +610,10 @@ impl GroundKey {
             GroundKey::StaticFriction => ground.static_friction,
             GroundKey::Restitution => ground.restitution,
             GroundKey::TangentialStiffnessRatio => ground.tangential_stiffness_ratio,
+            GroundKey::FaceRestitution => ground.face_restitution.unwrap_or(f64::NAN),
+            GroundKey::TableMass => ground.table_mass.unwrap_or(f64::NAN),
+            GroundKey::TableStiffness => ground.table_stiffness.unwrap_or(f64::NAN),
+            GroundKey::TableDamping => ground.table_damping.unwrap_or(f64::NAN),
             GroundKey::Tilt => ground.tilt,
             GroundKey::TiltDirection => ground.tilt_direction,
         }
@@ -580,6 +626,10 @@ impl GroundKey {
             GroundKey::StaticFriction => limits::STATIC_FRICTION,
             GroundKey::Restitution => limits::RESTITUTION,
             GroundKey::TangentialStiffnessRatio => limits::TANGENTIAL_STIFFNESS_RATIO,
+            GroundKey::FaceRestitution => limits::FACE_RESTITUTION,
+            GroundKey::TableMass => limits::TABLE_MASS,
+            GroundKey::TableStiffness => limits::TABLE_STIFFNESS,
+            GroundKey::TableDamping => limits::TABLE_DAMPING,
             GroundKey::Tilt => limits::TILT,
             GroundKey::TiltDirection => limits::TILT_DIRECTION,
         }
@@ -713,6 +763,10 @@ impl Params {
             static_friction: 1.2,
             restitution: 0.5,
             tangential_stiffness_ratio: 2.0 / 7.0,
+            face_restitution: None,
+            table_mass: None,
+            table_stiffness: None,
+            table_damping: None,
             tilt: 0.0,
             tilt_direction: 0.0,
         },
@@ -787,6 +841,27 @@ impl Params {
         }
         limits::RESTITUTION.check(g.restitution)?;
         limits::TANGENTIAL_STIFFNESS_RATIO.check(g.tangential_stiffness_ratio)?;
+        if let Some(e_f) = g.face_restitution {
+            limits::FACE_RESTITUTION.check(e_f)?;
+        }
+        if let Some(m) = g.table_mass {
+            limits::TABLE_MASS.check(m)?;
+        }
+        for (limits, value) in [
+            (limits::TABLE_STIFFNESS, g.table_stiffness),
+            (limits::TABLE_DAMPING, g.table_damping),
+        ] {
+            let Some(value) = value else { continue };
+            limits.check(value)?;
+            if g.table_mass.is_none() {
+                return Err(ParamError::refused(
+                    limits,
+                    value,
+                    "a table top's spring and damper hold its mass: give `ground.table_mass` (g) too"
+                        .to_string(),
+                ));
+            }
+        }
         limits::TILT.check(g.tilt)?;
         limits::TILT_DIRECTION.check(g.tilt_direction)?;
         g.check_unread()?;

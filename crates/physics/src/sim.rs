@@ -177,6 +177,9 @@ pub(crate) type PaperWholeDie = Paper<WholeDieSlip>;
 
 /// The scalar kernel under the contact law the parameters name: each law's step is its own
 /// code, and the engines pick it once per roll.
+// The spring-friction kernel is the largest (its points remember more); a roll holds one and
+// steps it in place, so a box would only put every step behind a pointer.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone)]
 pub(crate) enum Laws {
     Paper(Kernel<f64, PaperPerCorner>),

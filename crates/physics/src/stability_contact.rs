@@ -58,14 +58,22 @@ pub fn spring_friction_modes(p: &Params) -> Option<SpringModes> {
     let (trace, det) = (a11 + a22, a11 * a22 - a12 * a21);
     let slide = (0.5 * (trace + (trace * trace - 4.0 * det).max(0.0).sqrt())).sqrt();
     let twist = rock * (2.0 * k_t / k).sqrt();
-    // The damping ratio of a mode of frequency ω on springs damped by c per k: ζ = ω·c/(2k).
+    // The damping ratio of a mode of frequency ω on springs damped by c per k: ζ = ω·c/(2k);
+    // a face may rest on points that struck leaning, so the stronger of the two dashpots
+    // (`c` itself when no face restitution is set) sets the limit.
+    let damping = law.normal_damping.max(law.face_damping);
     let mode = |frequency: f64| SpringMode {
         frequency,
-        allowed: damped_mode_limit(frequency * law.normal_damping / (2.0 * k)),
+        allowed: damped_mode_limit(frequency * damping / (2.0 * k)),
     };
+    // On a compliant table the springs act on the relative motion of body and top, whose
+    // reduced mass is smaller by 1 + M/m_T, so each mode is faster by its square root (1 on a
+    // rigid table); the top's own mode on its spring, √(K_T/m_T), steps on the same Δt.
+    let lighter = (1.0 + mass * law.table_inverse_mass).sqrt();
+    let table = (law.table_stiffness * law.table_inverse_mass).sqrt();
     Some(SpringModes {
-        normal: mode(rock),
-        tangential: mode(slide.max(twist)),
+        normal: mode((rock * lighter).max(table)),
+        tangential: mode(slide.max(twist) * lighter),
     })
 }
 

@@ -10,6 +10,10 @@ use dicesim_experiment::compare_budden::{
     BuddenComparison, BuddenSpec, DEFAULT_CALIBRATE_ON, DEFAULT_FIT, hand_throw, run_budden,
     unapplied_by_comparison,
 };
+use dicesim_experiment::compare_shaved::{
+    DEFAULT_CUTS, ShavedComparison, ShavedSpec, default_throws as shaved_default_throws, run_shaved,
+    setups as shaved_setups, unapplied as shaved_unapplied,
+};
 use dicesim_experiment::data_file::Column;
 use dicesim_experiment::one_roll::OneRoll;
 use dicesim_experiment::real_data::Dataset;
@@ -219,7 +223,7 @@ pub(crate) fn basin<'py>(
 /// `dicesim compare DATASET --out FILE.csv --out FILE.json`.
 #[pyfunction]
 #[pyo3(signature = (setup, dataset, throws = None, seeds = Vec::new(), fit = None, no_fit = false,
-    candidates = None, calibrate_on = None, jobs = 0, engine = "auto"))]
+    candidates = None, calibrate_on = None, jobs = 0, engine = "auto", cuts = None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn compare<'py>(
     py: Python<'py>,
@@ -233,8 +237,26 @@ pub(crate) fn compare<'py>(
     calibrate_on: Option<Vec<f64>>,
     jobs: usize,
     engine: &str,
+    cuts: Option<Vec<f64>>,
 ) -> PyResult<Records<'py>> {
     let options = options(jobs, engine)?;
+    if dataset == "shaved-die" {
+        let shaved = Shaved {
+            throws,
+            seeds,
+            fit,
+            no_fit,
+            candidates,
+            calibrate_on,
+            cuts,
+        };
+        return compare_shaved(py, setup, &shaved, &options);
+    }
+    if cuts.is_some() {
+        return Err(value_error(
+            "cuts chooses the shaved die's cuts: it is for \"shaved-die\" only",
+        ));
+    }
     let cubic = match dataset {
         "weldon" => Some(Dataset::Weldon),
         "wolf-red" => Some(Dataset::WolfRed),
@@ -242,7 +264,7 @@ pub(crate) fn compare<'py>(
         "budden" => None,
         other => {
             return Err(value_error(format!(
-                "dataset={other:?}: expected \"weldon\", \"wolf-red\", \"wolf-white\" or \"budden\""
+                "dataset={other:?}: expected \"weldon\", \"wolf-red\", \"wolf-white\", \"budden\" or \"shaved-die\""
             )));
         }
     };
@@ -356,6 +378,80 @@ pub(crate) fn compare<'py>(
             crossing(&c, BuddenComparison::write_csv, c.csv_columns(), provenance)?
         }
     };
+    Ok((
+        PyBytes::new(py, &bytes),
+        columns_json(&columns),
+        result.to_string(),
+    ))
+}
+
+/// The arguments of a shaved-die comparison, and those of the others it refuses.
+struct Shaved {
+    throws: Option<u64>,
+    seeds: Vec<u64>,
+    fit: Option<String>,
+    no_fit: bool,
+    candidates: Option<usize>,
+    calibrate_on: Option<Vec<f64>>,
+    cuts: Option<Vec<f64>>,
+}
+
+/// `dicesim compare shaved-die`: every throw with the uncut die and each cut one, with the
+/// command's refusals.
+fn compare_shaved<'py>(
+    py: Python<'py>,
+    setup: &Setup,
+    args: &Shaved,
+    options: &RunOptions,
+) -> PyResult<Records<'py>> {
+    let not_here = |what: &str| {
+        Err(value_error(format!(
+            "{what} is not for \"shaved-die\": it fits nothing and throws one die, cut by each of cuts"
+        )))
+    };
+    if args.fit.is_some() || args.candidates.is_some() {
+        return not_here("fit");
+    }
+    if args.no_fit {
+        return not_here("no_fit");
+    }
+    if args.calibrate_on.is_some() {
+        return not_here("calibrate_on");
+    }
+    if args.throws == Some(0) {
+        return Err(value_error("throws=0: a comparison needs at least one throw"));
+    }
+    refuse(setup, |key| {
+        shaved_unapplied(key).or_else(|| seed_given(key, !args.seeds.is_empty()))
+    })?;
+    let preset = &setup.preset;
+    let seed = match args.seeds[..] {
+        [] => preset.random.seed,
+        [one] => one,
+        _ => {
+            return Err(value_error(
+                "seeds: several seeds are pooled for \"budden\" only; give one",
+            ));
+        }
+    };
+    let spec = ShavedSpec {
+        cuts: args.cuts.clone().unwrap_or_else(|| DEFAULT_CUTS.to_vec()),
+        throws: args.throws.unwrap_or_else(shaved_default_throws),
+        seed,
+    };
+    let params = preset.params();
+    shaved_setups(&params, &preset.initial, &spec).map_err(value_error)?;
+    check_size(spec.total_rolls())?;
+    let c = run_interruptible(py, |stop| {
+        run_shaved(&params, &preset.initial, &spec, options, stop, &mut |_| {})
+    })?
+    .map_err(value_error)?;
+    let (bytes, columns, result) = crossing(
+        &c,
+        ShavedComparison::write_csv,
+        c.csv_columns(),
+        provenance::shaved_die(preset, &spec),
+    )?;
     Ok((
         PyBytes::new(py, &bytes),
         columns_json(&columns),

@@ -108,7 +108,11 @@ impl Setup {
         row.set_item("unit", spec.limits.unit)?;
         row.set_item("meaning", spec.comment)?;
         match spec.shape {
-            Shape::Number(_) | Shape::Vector { .. } | Shape::Range(_) | Shape::PerCorner(_) => {
+            Shape::Number(_)
+            | Shape::Optional { .. }
+            | Shape::Vector { .. }
+            | Shape::Range(_)
+            | Shape::PerCorner(_) => {
                 row.set_item("min", spec.limits.min)?;
                 row.set_item("max", spec.limits.max)?;
             }

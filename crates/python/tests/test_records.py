@@ -4,6 +4,7 @@ bit, whatever the threads or the engine."""
 import csv
 import json
 import math
+import pytest
 import struct
 
 import numpy as np
@@ -159,6 +160,22 @@ def test_a_comparison_is_compare_csv_and_json(tmp_path, dicesim_cli):
                 assert str(g).lower() == cell, name
             else:
                 assert str(g) == cell, name
+
+
+def test_the_shaved_die_is_compare_shaved_die(tmp_path, dicesim_cli):
+    dicesim_cli(
+        "compare", "shaved-die", "--throws", 60, "--seed", 3, "--cuts", "0.03,0.2",
+        "--out", tmp_path / "s.csv", "--out", tmp_path / "s.json",
+    )
+    c = dicesim.compare(dataset="shaved-die", throws=60, seed=3, cuts=[0.03, 0.2])
+    assert c.result == json.loads((tmp_path / "s.json").read_text())
+    # A row per cut; only the measured one (3 %) carries the data's bias.
+    assert c.table.column("cut").to_pylist() == [0.03, 0.2]
+    assert c.table.column("data_bias").to_pylist() == [0.06, None]
+    with pytest.raises(ValueError, match="not for \"shaved-die\""):
+        dicesim.compare(dataset="shaved-die", throws=5, fit="ground.friction:0.2:1")
+    with pytest.raises(ValueError, match="is not one"):
+        dicesim.compare("tennis-racket", "shaved-die", throws=5)
 
 
 def test_budden_pools_seeds_as_the_cli_does(tmp_path, dicesim_cli):

@@ -84,6 +84,10 @@ pub enum Shape {
     Flag(bool),
     /// One number per corner 1..8, named `1` … `8` in `--set` and scan keys.
     PerCorner([f64; 8]),
+    /// One number or none; `absent` says what the model takes when it is not given.
+    Optional {
+        absent: &'static str,
+    },
 }
 
 /// How the explorer steps a value under ←/→: by a fixed amount, or by a factor for values
@@ -183,6 +187,7 @@ impl Spec {
             Shape::Seed(s) => Value::Seed(s),
             Shape::Flag(b) => Value::Flag(b),
             Shape::PerCorner(v) => Value::PerCorner(v),
+            Shape::Optional { .. } => Value::Absent,
         }
     }
 
@@ -487,6 +492,94 @@ pub const TANGENTIAL_STIFFNESS_RATIO: Spec = Spec {
     law: Some(GroundKey::TangentialStiffnessRatio.law()),
     read: |s| Value::Number(s.params.ground.tangential_stiffness_ratio),
     scan: params_field!(ground.tangential_stiffness_ratio),
+};
+
+pub const FACE_RESTITUTION: Spec = Spec {
+    limits: params::limits::FACE_RESTITUTION,
+    shape: Shape::Optional {
+        absent: "`ground.restitution`",
+    },
+    role: Role::Ground,
+    comment: "restitution (e_f) of a point striking while the body leans on the table (a fall onto a \
+              face over an edge), not one landing from flight; the spring-friction law only",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: true,
+    law: Some(GroundKey::FaceRestitution.law()),
+    read: |s| {
+        s.params
+            .ground
+            .face_restitution
+            .map_or(Value::Absent, Value::Number)
+    },
+    scan: Some(Scan {
+        get: |p, _, _| p.ground.face_restitution.unwrap_or(p.ground.restitution),
+        set: |p, _, _, v| p.ground.face_restitution = Some(v),
+    }),
+};
+
+pub const TABLE_MASS: Spec = Spec {
+    limits: params::limits::TABLE_MASS,
+    shape: Shape::Optional {
+        absent: "a rigid table",
+    },
+    role: Role::Ground,
+    comment: "g, a compliant table's top (m_T), moving along the normal under every point at once; \
+              the spring-friction law only",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: true,
+    law: Some(GroundKey::TableMass.law()),
+    read: |s| s.params.ground.table_mass.map_or(Value::Absent, Value::Number),
+    scan: Some(Scan {
+        get: |p, _, _| p.ground.table_mass.unwrap_or(f64::INFINITY),
+        set: |p, _, _, v| p.ground.table_mass = Some(v),
+    }),
+};
+
+pub const TABLE_STIFFNESS: Spec = Spec {
+    limits: params::limits::TABLE_STIFFNESS,
+    shape: Shape::Optional {
+        absent: "0, a free top",
+    },
+    role: Role::Ground,
+    comment: "dyn/cm, the spring (K_T) holding the table top to the floor; with `table_mass` only; \
+              the spring-friction law only",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: true,
+    law: Some(GroundKey::TableStiffness.law()),
+    read: |s| {
+        s.params
+            .ground
+            .table_stiffness
+            .map_or(Value::Absent, Value::Number)
+    },
+    scan: Some(Scan {
+        get: |p, _, _| p.ground.table_stiffness.unwrap_or(0.0),
+        set: |p, _, _, v| p.ground.table_stiffness = Some(v),
+    }),
+};
+
+pub const TABLE_DAMPING: Spec = Spec {
+    limits: params::limits::TABLE_DAMPING,
+    shape: Shape::Optional { absent: "0" },
+    role: Role::Ground,
+    comment: "dyn·s/cm, the table top's own damper (C_T), the same whatever body strikes; with \
+              `table_mass` only; the spring-friction law only",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: true,
+    law: Some(GroundKey::TableDamping.law()),
+    read: |s| s.params.ground.table_damping.map_or(Value::Absent, Value::Number),
+    scan: Some(Scan {
+        get: |p, _, _| p.ground.table_damping.unwrap_or(0.0),
+        set: |p, _, _, v| p.ground.table_damping = Some(v),
+    }),
 };
 
 pub const TILT: Spec = Spec {
@@ -825,7 +918,7 @@ pub(crate) const ORIENTATION_SPREAD: Spec = Spec {
 };
 
 /// Every value of a setup, in the order a preset file lists them.
-pub static ALL: [&Spec; 32] = [
+pub static ALL: [&Spec; 36] = [
     &HALF_SIZES,
     &CORNER_RADIUS,
     &PIP_DIAMETER,
@@ -840,6 +933,10 @@ pub static ALL: [&Spec; 32] = [
     &STATIC_FRICTION,
     &RESTITUTION,
     &TANGENTIAL_STIFFNESS_RATIO,
+    &FACE_RESTITUTION,
+    &TABLE_MASS,
+    &TABLE_STIFFNESS,
+    &TABLE_DAMPING,
     &TILT,
     &TILT_DIRECTION,
     &GRAVITY,
@@ -894,6 +991,7 @@ pub fn markdown_table() -> String {
                 format!("{} (each of corners 1 to 8)", range_text(&spec.limits)),
                 list_text(&v),
             ),
+            Shape::Optional { absent } => (range_text(&spec.limits), format!("not given: {absent}")),
         };
         let default = if spec.key() == ANGULAR_MOMENTUM.key() {
             "not given".to_string()

@@ -20,5 +20,6 @@ pub(crate) use law::{Law, Touch, corners};
 pub(crate) use paper::{Paper, PerCornerSlip, WholeDieSlip};
 pub(crate) use spring_friction::SpringFriction;
 pub use spring_friction::{
-    clamped_restitution, damping_ratio, downhill_pass_share, gravity_in_table_frame, why_a_tilt_cannot_hold,
+    clamped_restitution, damping_ratio, downhill_pass_share, flat_drop_contact_time, gravity_in_table_frame,
+    why_a_tilt_cannot_hold,
 };

@@ -3,8 +3,10 @@
 //! `N = max(0, k·d − c·u_z)`, and a damped tangential spring `ξ` — the slip the point made
 //! since it touched the table — that holds it stuck while `|F*| ≤ μ_s·N` and lets it slide at
 //! `μ_k·N` beyond. Its numbers: the normal damping that gives the set restitution, the
-//! tangential spring and its damping; and its table may be tilted: gravity in the table's
-//! frame, and what the tilt does to the stopping rule.
+//! tangential spring and its damping, and the damping of a point that strikes while the body
+//! leans on the table (the face restitution); its table may be compliant (a top of its own
+//! mass on a damped spring, moving along the normal under every point at once) and tilted:
+//! gravity in the table's frame, and what the tilt does to the stopping rule.
 //!
 //! It knows the body only by the numbers it is handed (mass, edge energy), so the body
 //! model may ask it why a tilted table cannot hold a die.
@@ -125,9 +127,37 @@ pub(crate) fn kinetic_cap(p: &Params, edge_energy: f64) -> f64 {
     p.integrator.stop_energy_fraction * downhill_pass_share(g.tilt) * edge_energy
 }
 
+/// s, how long a flat drop's four points touch the table on springs `k` under a body of
+/// `mass` (g) at damping ratio `zeta`: `(π − 2·asin ζ)/ω_d`, `ω_d = √(k/(M/4))·√(1 − ζ²)`,
+/// the clamped dashpot's contact (docs/model.md, "The spring-friction contact"). A point that
+/// first touches after another has touched this long strikes a body leaning on the table,
+/// not one landing from flight.
+pub fn flat_drop_contact_time(stiffness: f64, mass: f64, zeta: f64) -> f64 {
+    let damped = (stiffness * POINTS_OF_A_FACE / mass).sqrt() * (1.0 - zeta * zeta).sqrt();
+    (std::f64::consts::PI - 2.0 * zeta.asin()) / damped
+}
+
 /// The spring-friction law.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SpringFriction;
+
+/// What a point of the spring-friction law remembers while it touches the table (zero off it),
+/// and the table top's motion, which every point holds alike whether it touches or not (zero on
+/// a rigid table).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpringPoint<L: Lane> {
+    /// cm, the tangential spring `ξ` in the table's plane: the slip the point made since it
+    /// touched the table.
+    pub(crate) spring: Vector2<L>,
+    /// s, how long the point has touched the table.
+    pub(crate) held: L,
+    /// 1 when the point struck while another point of the body had touched for at least the
+    /// flat drop's contact time (it takes the face dashpot until it leaves), else 0.
+    pub(crate) leaning: L,
+    /// cm, how far the table top has sunk below its rest level, and cm/s, how fast it sinks.
+    pub(crate) table_depth: L,
+    pub(crate) table_speed: L,
+}
 
 /// The spring-friction law's numbers for one roll (per lane, CGS).
 #[derive(Debug, Clone, Copy)]
@@ -141,6 +171,18 @@ pub struct SpringFrictionConstants<L: Lane> {
     pub(crate) tangential_stiffness: L,
     /// dyn·s/cm, `c_t = (k_t/k)·c`.
     pub(crate) tangential_damping: L,
+    /// dyn·s/cm, the dashpots of a point that struck leaning: `c_f = 2·ζ(e_f)·√(k·M/4)` and
+    /// `(k_t/k)·c_f`; `c` and `c_t` themselves when no face restitution is set.
+    pub(crate) face_damping: L,
+    pub(crate) face_tangential_damping: L,
+    /// s, the flat drop's contact time: a point striking after another has touched this long
+    /// strikes leaning.
+    pub(crate) leaning_after: L,
+    /// 1/g, dyn/cm and dyn·s/cm: the table top's `1/m_T`, `K_T` and `C_T`; all +0.0 on a
+    /// rigid table, whose top then never moves.
+    pub(crate) table_inverse_mass: L,
+    pub(crate) table_stiffness: L,
+    pub(crate) table_damping: L,
     /// cm/dyn, `1/k_t`: a multiplication where the spring is reset, in both widths alike.
     pub(crate) tangential_compliance: L,
     /// `μ_k` and `μ_s`.
@@ -159,7 +201,13 @@ impl SpringFrictionConstants<f64> {
     pub(crate) fn new(p: &Params, mass: f64, edge_energy: f64) -> Self {
         let g = &p.ground;
         let zeta = damping_ratio(g.restitution);
-        let normal_damping = 2.0 * zeta * (g.stiffness * mass / POINTS_OF_A_FACE).sqrt();
+        let point_mass = (g.stiffness * mass / POINTS_OF_A_FACE).sqrt();
+        let normal_damping = 2.0 * zeta * point_mass;
+        // Absent, the face dashpot is `c` itself, so every step's arithmetic is the law's
+        // without the key.
+        let face_damping = g
+            .face_restitution
+            .map_or(normal_damping, |e_f| 2.0 * damping_ratio(e_f) * point_mass);
         let ratio = g.tangential_stiffness_ratio;
         let tangential_stiffness = ratio * g.stiffness;
         let [gx, gy, _] = gravity_in_table_frame(p);
@@ -169,6 +217,12 @@ impl SpringFrictionConstants<f64> {
             normal_damping,
             tangential_stiffness,
             tangential_damping: ratio * normal_damping,
+            face_damping,
+            face_tangential_damping: ratio * face_damping,
+            leaning_after: flat_drop_contact_time(g.stiffness, mass, zeta),
+            table_inverse_mass: g.table_mass.map_or(0.0, |m| 1.0 / m),
+            table_stiffness: g.table_mass.and(g.table_stiffness).unwrap_or(0.0),
+            table_damping: g.table_mass.and(g.table_damping).unwrap_or(0.0),
             tangential_compliance: 1.0 / tangential_stiffness,
             friction: g.friction,
             static_friction: g.static_friction,
@@ -181,9 +235,7 @@ impl SpringFrictionConstants<f64> {
 
 impl Law for SpringFriction {
     type Constants<L: Lane> = SpringFrictionConstants<L>;
-    /// cm, the tangential spring `ξ` in the table's plane: the slip the point made since it
-    /// touched the table (0 off it).
-    type Point<L: Lane> = Vector2<L>;
+    type Point<L: Lane> = SpringPoint<L>;
 
     fn constants(p: &Params, mass: f64, edge_energy: f64) -> SpringFrictionConstants<f64> {
         SpringFrictionConstants::new(p, mass, edge_energy)
@@ -196,6 +248,12 @@ impl Law for SpringFriction {
             normal_damping: L::splat(c.normal_damping),
             tangential_stiffness: L::splat(c.tangential_stiffness),
             tangential_damping: L::splat(c.tangential_damping),
+            face_damping: L::splat(c.face_damping),
+            face_tangential_damping: L::splat(c.face_tangential_damping),
+            leaning_after: L::splat(c.leaning_after),
+            table_inverse_mass: L::splat(c.table_inverse_mass),
+            table_stiffness: L::splat(c.table_stiffness),
+            table_damping: L::splat(c.table_damping),
             tangential_compliance: L::splat(c.tangential_compliance),
             friction: L::splat(c.friction),
             static_friction: L::splat(c.static_friction),
@@ -212,6 +270,12 @@ impl Law for SpringFriction {
         put(&mut c.normal_damping, l, from.normal_damping);
         put(&mut c.tangential_stiffness, l, from.tangential_stiffness);
         put(&mut c.tangential_damping, l, from.tangential_damping);
+        put(&mut c.face_damping, l, from.face_damping);
+        put(&mut c.face_tangential_damping, l, from.face_tangential_damping);
+        put(&mut c.leaning_after, l, from.leaning_after);
+        put(&mut c.table_inverse_mass, l, from.table_inverse_mass);
+        put(&mut c.table_stiffness, l, from.table_stiffness);
+        put(&mut c.table_damping, l, from.table_damping);
         put(&mut c.tangential_compliance, l, from.tangential_compliance);
         put(&mut c.friction, l, from.friction);
         put(&mut c.static_friction, l, from.static_friction);
@@ -227,21 +291,37 @@ impl Law for SpringFriction {
     }
 
     #[inline(always)]
-    fn free_point<L: Lane>() -> Vector2<L> {
-        Vector2::new(L::zero(), L::zero())
+    fn free_point<L: Lane>() -> SpringPoint<L> {
+        SpringPoint {
+            spring: Vector2::new(L::zero(), L::zero()),
+            held: L::zero(),
+            leaning: L::zero(),
+            table_depth: L::zero(),
+            table_speed: L::zero(),
+        }
     }
 
-    fn point_lane<L: Lane>(xi: &Vector2<L>, l: usize) -> Vector2<f64> {
-        Vector2::new(xi.x.lane(l), xi.y.lane(l))
+    fn point_lane<L: Lane>(point: &SpringPoint<L>, l: usize) -> SpringPoint<f64> {
+        SpringPoint {
+            spring: Vector2::new(point.spring.x.lane(l), point.spring.y.lane(l)),
+            held: point.held.lane(l),
+            leaning: point.leaning.lane(l),
+            table_depth: point.table_depth.lane(l),
+            table_speed: point.table_speed.lane(l),
+        }
     }
 
-    fn set_point_lane<L: Lane>(xi: &mut Vector2<L>, l: usize, from: &Vector2<f64>) {
-        put(&mut xi.x, l, from.x);
-        put(&mut xi.y, l, from.y);
+    fn set_point_lane<L: Lane>(point: &mut SpringPoint<L>, l: usize, from: &SpringPoint<f64>) {
+        put(&mut point.spring.x, l, from.spring.x);
+        put(&mut point.spring.y, l, from.spring.y);
+        put(&mut point.held, l, from.held);
+        put(&mut point.leaning, l, from.leaning);
+        put(&mut point.table_depth, l, from.table_depth);
+        put(&mut point.table_speed, l, from.table_speed);
     }
 
-    fn tangential_spring(xi: &Vector2<f64>) -> Vector2<f64> {
-        *xi
+    fn tangential_spring(point: &SpringPoint<f64>) -> Vector2<f64> {
+        point.spring
     }
 
     #[inline(always)]
@@ -288,7 +368,7 @@ impl Law for SpringFriction {
         dt: L,
         radius: L,
         rounded: bool,
-        touch: Touch<'_, L, Vector2<L>, N>,
+        touch: Touch<'_, L, SpringPoint<L>, N>,
     ) {
         if rounded {
             forces_at::<true, L, N>(c, dt, radius, touch);
@@ -316,37 +396,61 @@ impl Law for SpringFriction {
 /// normal `N = max(0, k·d − c·u_z)`; the trial tangential force `F* = −k_t·ξ − c_t·u_t` on
 /// the spring `ξ` (the slip since the point touched, this step's included); stuck while
 /// `|F*| ≤ μ_s·N`, else sliding at `μ_k·N` along `F*` with the spring set to hold that
-/// force. A point off the table has no force and no spring.
+/// force. A point that struck while another had touched for the flat drop's contact time
+/// takes `c_f` and `(k_t/k)·c_f` for `c` and `c_t` until it leaves. A point off the table has
+/// no force and no memory. Depths and the normal velocity are taken against the table top,
+/// which then moves under the points' summed normal force and its own spring and damper
+/// (semi-implicit Euler, as the body).
 #[inline(always)]
 fn forces_at<const ROUNDED: bool, L: Lane, const N: usize>(
     c: &SpringFrictionConstants<L>,
     dt: L,
     radius: L,
-    mut touch: Touch<'_, L, Vector2<L>, N>,
+    mut touch: Touch<'_, L, SpringPoint<L>, N>,
 ) {
-    let (stiffness, damping, kinetic) = (c.stiffness, c.normal_damping, c.friction);
-    let (k_t, c_t, stuck_up_to) = (c.tangential_stiffness, c.tangential_damping, c.static_friction);
+    let (stiffness, kinetic) = (c.stiffness, c.friction);
+    let (k_t, stuck_up_to) = (c.tangential_stiffness, c.static_friction);
     let compliance = c.tangential_compliance;
     let zero = L::zero();
     let previous = *touch.touching_corners;
+    // The top sunk by `z_T` is the table the points meet: pressed against it, as if the body
+    // stood `z_T` higher above a table at rest.
+    let (table_depth, table_speed) = (touch.points[0].table_depth, touch.points[0].table_speed);
+    let centre = touch.state.position.z;
+    touch.state.position.z = centre + table_depth;
     let (touching, any) = touch.press::<ROUNDED>(radius);
-    if L::bits(any) == 0 && previous == 0 {
+    touch.state.position.z = centre;
+    let table_moves = table_depth.ne(zero) | table_speed.ne(zero);
+    if L::bits(any) == 0 && previous == 0 && L::bits(table_moves) == 0 {
         return;
     }
     *touch.in_contact = any;
+    // Per lane: the body leans on the table when a point has touched for the contact time
+    // (a point off the table holds 0).
+    let mut leaning = L::mask_from_bits(0);
+    for k in corners::<N>(previous) {
+        leaning = leaning | c.leaning_after.le(touch.points[k].held);
+    }
     let touching_corners = touching_bits::<L, N>(&touching);
     *touch.touching_corners = touching_corners;
     for k in corners::<N>(previous & !touching_corners) {
         touch.state.corner_forces[k] = zero3();
-        touch.points[k] = Vector2::new(zero, zero);
+        touch.points[k] = SpringFriction::free_point();
     }
     for k in corners::<N>(touching_corners) {
         let t = touching[k];
         let u = touch.velocity_at::<ROUNDED>(k, radius);
-        let xi = touch.points[k];
+        let point = touch.points[k];
+        // A point keeps the dashpot it struck with; one striking now takes the face dashpot
+        // where the body leans.
+        let struck_before = point.held.gt(zero);
+        let face = (struck_before & point.leaning.gt(zero)) | (!struck_before & leaning);
+        let damping = L::select(face, c.face_damping, c.normal_damping);
+        let c_t = L::select(face, c.face_tangential_damping, c.tangential_damping);
+        let xi = point.spring;
         let (sx, sy) = (xi.x + u.x * dt, xi.y + u.y * dt);
-        // The table pushes, never pulls.
-        let pressed = touch.state.corner_depths[k] * stiffness - damping * u.z;
+        // The table pushes, never pulls; its top sinks at `table_speed`.
+        let pressed = touch.state.corner_depths[k] * stiffness - damping * (u.z + table_speed);
         let normal = pressed.or_zero(pressed.gt(zero));
         let (mut fx, mut fy) = (-(k_t * sx) - c_t * u.x, -(k_t * sy) - c_t * u.y);
         let (mut sx, mut sy) = (sx, sy);
@@ -364,7 +468,26 @@ fn forces_at<const ROUNDED: bool, L: Lane, const N: usize>(
             sy = L::select(slipping, -(fy + c_t * u.y) * compliance, sy);
         }
         touch.state.corner_forces[k] = v3(fx.or_zero(t), fy.or_zero(t), normal.or_zero(t));
-        touch.points[k] = Vector2::new(sx.or_zero(t), sy.or_zero(t));
+        touch.points[k] = SpringPoint {
+            spring: Vector2::new(sx.or_zero(t), sy.or_zero(t)),
+            held: (point.held + dt).or_zero(t),
+            leaning: L::select(face, L::splat(1.0), zero).or_zero(t),
+            table_depth: zero,
+            table_speed: zero,
+        };
+    }
+    // The top: pushed down by the points' normal forces, held by its spring and damper. On a
+    // rigid table `1/m_T` is +0.0 and it stays at +0.0.
+    let mut load = zero;
+    for k in corners::<N>(touching_corners) {
+        load = load + touch.state.corner_forces[k].z;
+    }
+    let support = c.table_stiffness * table_depth + c.table_damping * table_speed;
+    let table_speed = table_speed + ((load - support) * c.table_inverse_mass) * dt;
+    let table_depth = table_depth + table_speed * dt;
+    for point in touch.points.iter_mut() {
+        point.table_depth = table_depth;
+        point.table_speed = table_speed;
     }
 }
 

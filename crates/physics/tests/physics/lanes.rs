@@ -320,6 +320,17 @@ fn mixed_parameters_in_neighbouring_lanes() {
                     0.0
                 };
                 p.ground.tilt_direction = rng.random_range(0.0..360.0);
+                // Every other one with a face restitution of its own (drawn from the index,
+                // so the other lanes' draws stay as they were).
+                if i % 8 == 7 {
+                    p.ground.face_restitution = Some(0.2 + 0.2 * ((i / 8) % 5) as f64);
+                }
+                // and every other one on a compliant table.
+                if i % 8 == 3 {
+                    p.ground.table_mass = Some(5.0 * (1 + (i / 8) % 7) as f64);
+                    p.ground.table_stiffness = Some(1e4 * ((i / 8) % 3) as f64);
+                    p.ground.table_damping = Some(10.0 * ((i / 8) % 4) as f64);
+                }
             }
             p.integrator.dt = log_uniform(&mut rng, 1e-4, 1e-2);
             p.integrator.max_time = rng.random_range(0.2..5.0);

@@ -3,8 +3,10 @@
 //! bit, loaded dice, and the derived checks of docs/model.md.
 
 mod common;
+mod compliant_table;
 mod contact_law;
 mod derived_checks;
+mod face_restitution;
 mod free_rotation;
 mod lanes;
 mod loaded_dice;

@@ -323,11 +323,13 @@ def compare(
     jobs: int = 0,
     engine: str = "auto",
     to: str = "arrow",
+    cuts: Optional[Sequence[float]] = None,
 ) -> Comparison:
     """Throws the setup's die as a historical experiment threw real dice and holds it
     against their counts: ``"weldon"`` (26 306 throws of 12 dice, 1894), ``"wolf-red"``,
-    ``"wolf-white"`` (20 000 throws each, about 1850) or ``"budden"`` (steel cuboids of 15
-    ratios x/y, 1980).
+    ``"wolf-white"`` (20 000 throws each, about 1850), ``"budden"`` (steel cuboids of 15
+    ratios x/y, 1980) or ``"shaved-die"`` (a die cut along its 1–6 axis, 2001: each of
+    ``cuts``, default 0.015, 0.03, 0.06, thrown with the uncut die over the same throws).
 
     ``throws``: simulated throws (default: as many as the experiment made); ``seed``: of
     the throws (default ``random.seed``; Budden pools several, e.g. ``[11, 12, 13]``);
@@ -348,6 +350,7 @@ def compare(
         None if calibrate_on is None else [float(r) for r in calibrate_on],
         int(jobs),
         engine,
+        None if cuts is None else [float(c) for c in cuts],
     )
     result = json.loads(result)
     return Comparison(table=_table(_csv_table(data, columns), result, to), result=result)

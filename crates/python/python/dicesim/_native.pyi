@@ -62,6 +62,7 @@ def compare(
     calibrate_on: Optional[List[float]] = None,
     jobs: int = 0,
     engine: str = "auto",
+    cuts: Optional[List[float]] = None,
 ) -> Tuple[bytes, str, str]:
     """The CSV ``compare --out FILE.csv`` writes, its columns (JSON) and the result
     ``--out FILE.json`` holds (with its provenance)."""

@@ -379,7 +379,13 @@ fn over_long_array(doc: &DeTable<'_>, origin: &str, text: &str) -> Result<(), Pr
             Shape::Vector { components, .. } => components.len(),
             Shape::Range(range) => range.len(),
             Shape::PerCorner(corners) => corners.len(),
-            Shape::Number(_) | Shape::Choice { .. } | Shape::Seed(_) | Shape::Flag(_) => continue,
+            Shape::Number(_)
+            | Shape::Optional { .. }
+            | Shape::Choice { .. }
+            | Shape::Seed(_)
+            | Shape::Flag(_) => {
+                continue;
+            }
         };
         let (section, name) = spec.key().split_once('.').unwrap_or(("", spec.key()));
         let array = doc
@@ -529,7 +535,8 @@ mod tests {
             e.to_string().lines().next().unwrap(),
             "dir/p.toml:4:1: key `ground.stifness`: unknown field `stifness`, expected one of \
              `stiffness`, `damping`, `friction`, `friction_law`, `contact`, `static_friction`, \
-             `restitution`, `tangential_stiffness_ratio`, `tilt`, `tilt_direction`"
+             `restitution`, `tangential_stiffness_ratio`, `face_restitution`, `table_mass`, \
+             `table_stiffness`, `table_damping`, `tilt`, `tilt_direction`"
         );
         let e = err("colour = \"red\"\n");
         assert!(
@@ -675,6 +682,66 @@ mod tests {
             paper.contains("contact = \"paper\"") && !paper.contains("restitution = "),
             "{paper}"
         );
+    }
+
+    #[test]
+    fn the_face_restitution_is_written_only_when_given_and_refused_where_it_cannot_act() {
+        let mut p = Preset::default();
+        p.ground.contact = dicesim_physics::ContactLaw::SpringFriction;
+        let text = p.to_toml();
+        assert!(
+            !text.contains("face_restitution"),
+            "written though not given:\n{text}"
+        );
+        assert!(p.to_json()["ground"].get("face_restitution").is_none());
+        p.ground.face_restitution = Some(0.35);
+        let text = p.to_toml();
+        assert!(text.contains("face_restitution = 0.35"), "{text}");
+        assert_eq!(Preset::from_toml_str(&text, ORIGIN).unwrap(), p);
+        let e = err("[ground]\ncontact = \"spring-friction\"\nface_restitution = 0.1\n");
+        assert!(
+            e.to_string().starts_with(
+                "dir/p.toml:3:1: `ground.face_restitution` = 0.1 is outside the allowed range 0.2 to 1"
+            ),
+            "{e}"
+        );
+        let e = err("[ground]\nface_restitution = 0.5\n");
+        assert!(
+            e.to_string().starts_with(
+                "dir/p.toml:2:1: `ground.face_restitution` = 0.5: the \"paper\" contact law does not read \
+                 it (its damping is the same at every impact)"
+            ),
+            "{e}"
+        );
+        let set = Preset::default()
+            .with_overrides(&["ground.contact=spring-friction", "ground.face_restitution=1"])
+            .unwrap();
+        assert_eq!(set.ground.face_restitution, Some(1.0));
+    }
+
+    #[test]
+    fn a_table_tops_spring_and_damper_need_its_mass() {
+        let e = err("[ground]\ncontact = \"spring-friction\"\ntable_stiffness = 1000.0\n");
+        assert!(
+            e.to_string().contains(
+                "`ground.table_stiffness` = 1000: a table top's spring and damper hold its mass: give \
+                 `ground.table_mass` (g) too"
+            ),
+            "{e}"
+        );
+        let text = "[ground]\ncontact = \"spring-friction\"\ntable_mass = 40.0\ntable_damping = 5.0\n";
+        let p = Preset::from_toml_str(text, ORIGIN).unwrap();
+        assert_eq!(
+            (
+                p.ground.table_mass,
+                p.ground.table_stiffness,
+                p.ground.table_damping
+            ),
+            (Some(40.0), None, Some(5.0))
+        );
+        assert_eq!(Preset::from_toml_str(&p.to_toml(), ORIGIN).unwrap(), p);
+        let e = err("[ground]\ntable_mass = 40.0\n");
+        assert!(e.to_string().contains("(its table is rigid)"), "{e}");
     }
 
     #[test]
