@@ -23,6 +23,7 @@ pub mod lanes;
 mod mass;
 mod model;
 pub mod params;
+pub mod polyhedron;
 mod shape;
 mod sim;
 mod spin;

@@ -5,6 +5,7 @@
 mod common;
 mod contact_law;
 mod derived_checks;
+mod dice;
 mod free_rotation;
 mod lanes;
 mod loaded_dice;

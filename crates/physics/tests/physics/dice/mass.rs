@@ -1,0 +1,178 @@
+//! Mass of the uniform solid: each regular die against its closed forms to 10⁻¹², the d10
+//! against its own, and a random hull against a seeded Monte-Carlo estimate.
+
+use super::{assert_close, d10, regular};
+use dicesim_physics::polyhedron::{DieKind, convex_hull, solid_moments};
+use nalgebra::{Matrix3, Vector3};
+use rand::rngs::ChaCha8Rng;
+use rand::{RngExt, SeedableRng};
+
+const DENSITY: f64 = 1.18;
+
+fn check_tensor(what: &str, inertia: &Matrix3<f64>, expected: &Matrix3<f64>) {
+    let scale = expected.trace();
+    for i in 0..3 {
+        for j in 0..3 {
+            assert_close(
+                &format!("{what} I[{i}{j}]"),
+                inertia[(i, j)],
+                expected[(i, j)],
+                scale,
+                1e-12,
+            );
+        }
+    }
+}
+
+#[test]
+fn each_regular_solid_has_its_volume_centre_and_inertia() {
+    for height in [1.6, 0.7, 13.0] {
+        for solid in regular() {
+            let die = solid.kind.die(height, DENSITY);
+            let name = format!("{} at {height} cm", solid.kind.name());
+            let a = solid.edge(height);
+            let volume = solid.volume * a.powi(3);
+            let mass = die.mass_properties();
+            assert_close(
+                &format!("{name} mass"),
+                mass.mass,
+                volume * DENSITY,
+                volume * DENSITY,
+                1e-12,
+            );
+            assert_close(
+                &format!("{name} volume"),
+                solid_moments(&die.shape).volume,
+                volume,
+                volume,
+                1e-12,
+            );
+            assert!(
+                mass.centre_of_mass.norm() <= 1e-12 * a,
+                "{name}: centre {}",
+                mass.centre_of_mass
+            );
+            let expected = Matrix3::identity() * (solid.inertia * volume * DENSITY * a * a);
+            check_tensor(&name, &mass.inertia, &expected);
+            // The hull found the solid's faces at its inradius.
+            for face in &die.shape.faces {
+                assert_close(
+                    &format!("{name} inradius"),
+                    face.offset,
+                    solid.inradius * a,
+                    a,
+                    1e-12,
+                );
+            }
+            assert_eq!(die.shape.faces.len(), solid.faces);
+            assert!(die.shape.faces.iter().all(|f| f.vertices.len() == solid.sides));
+        }
+    }
+}
+
+#[test]
+fn the_d10_has_its_volume_centre_and_inertia() {
+    let die = DieKind::D10.die(1.6, DENSITY);
+    let apex = die.shape.vertices.iter().map(|v| v.z).fold(0.0, f64::max);
+    let [_, volume, izz, ixx, inradius, ..] = d10(apex);
+    assert_close("d10 stands 1.6 cm tall", 2.0 * inradius, 1.6, 1.6, 1e-12);
+    let mass = die.mass_properties();
+    assert_close("d10 mass", mass.mass, volume * DENSITY, volume * DENSITY, 1e-12);
+    assert!(
+        mass.centre_of_mass.norm() <= 1e-12 * apex,
+        "centre {}",
+        mass.centre_of_mass
+    );
+    let m = volume * DENSITY;
+    check_tensor(
+        "d10",
+        &mass.inertia,
+        &Matrix3::from_diagonal(&Vector3::new(ixx * m, ixx * m, izz * m)),
+    );
+    let percentile = DieKind::Percentile.die(1.6, DENSITY);
+    assert_eq!(percentile.mass_properties(), mass, "the d% is the d10's shape");
+}
+
+/// Unbiased estimate and standard error of `∫f dV` over a box by uniform samples.
+struct Estimate {
+    sum: f64,
+    sum_sq: f64,
+}
+
+#[test]
+fn a_random_hull_agrees_with_a_monte_carlo_estimate() {
+    let mut rng = ChaCha8Rng::seed_from_u64(51);
+    // Points on an ellipsoid are all corners of their hull; shifted off the origin so that the
+    // first moments are tested too.
+    let centre = Vector3::new(0.3, -0.2, 0.5);
+    let axes = Vector3::new(1.0, 0.7, 0.45);
+    let points: Vec<Vector3<f64>> = (0..24)
+        .map(|_| {
+            let u: Vector3<f64> = Vector3::from_fn(|_, _| rng.random_range(-1.0..1.0));
+            centre + u.normalize().component_mul(&axes)
+        })
+        .collect();
+    let hull = convex_hull(&points).expect("points on an ellipsoid are convex");
+    let moments = solid_moments(&hull);
+    let (lo, hi) = (centre - axes, centre + axes);
+    let box_volume = (hi - lo).iter().product::<f64>();
+    let samples = 400_000;
+    // 1, x, y, z, xx, yy, zz, xy, xz, yz about the origin.
+    let mut estimates: Vec<Estimate> = (0..10)
+        .map(|_| Estimate {
+            sum: 0.0,
+            sum_sq: 0.0,
+        })
+        .collect();
+    for _ in 0..samples {
+        let x = Vector3::from_fn(|i, _| rng.random_range(lo[i]..hi[i]));
+        if !hull.contains(&x) {
+            continue;
+        }
+        let f = [
+            1.0,
+            x.x,
+            x.y,
+            x.z,
+            x.x * x.x,
+            x.y * x.y,
+            x.z * x.z,
+            x.x * x.y,
+            x.x * x.z,
+            x.y * x.z,
+        ];
+        for (e, v) in estimates.iter_mut().zip(f) {
+            e.sum += v;
+            e.sum_sq += v * v;
+        }
+    }
+    let n = samples as f64;
+    let v = moments.volume;
+    let c = moments.centre;
+    let about_origin = moments.second + c * c.transpose() * v;
+    let exact = [
+        v,
+        v * c.x,
+        v * c.y,
+        v * c.z,
+        about_origin[(0, 0)],
+        about_origin[(1, 1)],
+        about_origin[(2, 2)],
+        about_origin[(0, 1)],
+        about_origin[(0, 2)],
+        about_origin[(1, 2)],
+    ];
+    for (k, (e, exact)) in estimates.iter().zip(exact).enumerate() {
+        let mean = e.sum / n;
+        let sd = (e.sum_sq / n - mean * mean).sqrt();
+        let (estimate, error) = (mean * box_volume, sd * box_volume / n.sqrt());
+        assert!(
+            (estimate - exact).abs() <= 4.5 * error,
+            "moment {k}: exact {exact}, Monte Carlo {estimate} ± {error}"
+        );
+        assert!(
+            error < 0.02 * exact.abs().max(0.05 * v),
+            "moment {k}: the estimate is too loose to test"
+        );
+    }
+}
