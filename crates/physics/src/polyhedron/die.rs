@@ -14,11 +14,11 @@ use nalgebra::{Rotation3, Vector3};
 pub struct Die {
     /// The solid in the die's own frame (the sharp, uniform solid's centre at the origin for the
     /// dice this module builds), after any shave.
-    pub shape: Polyhedron,
-    pub numbering: Numbering,
+    shape: Polyhedron,
+    numbering: Numbering,
     /// g/cm³, of the uniform material.
-    pub density: f64,
-    pub flaws: Flaws,
+    density: f64,
+    flaws: Flaws,
     mass: MassProperties,
     /// cm, die frame, one per vertex: where each vertex's contact sphere is centred.
     sphere_centres: Vec<Vector3<f64>>,
@@ -119,6 +119,26 @@ impl Die {
             return Err(FlawError::ShaveTopples { face: numbers[face] });
         }
         Ok(die)
+    }
+
+    /// The solid in the die's own frame, after any shave.
+    pub fn shape(&self) -> &Polyhedron {
+        &self.shape
+    }
+
+    /// The numbers on its faces and where they are read.
+    pub fn numbering(&self) -> &Numbering {
+        &self.numbering
+    }
+
+    /// g/cm³, of the uniform material.
+    pub fn density(&self) -> f64 {
+        self.density
+    }
+
+    /// The flaws it was made with.
+    pub fn flaws(&self) -> &Flaws {
+        &self.flaws
     }
 
     /// Mass, centre of mass (die frame) and inertia about it, flaws included.

@@ -34,11 +34,21 @@ impl Face {
 /// A convex polyhedron: its vertices (cm) and its faces, in the order of [`face_order`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct Polyhedron {
-    pub vertices: Vec<Vector3<f64>>,
-    pub faces: Vec<Face>,
+    pub(super) vertices: Vec<Vector3<f64>>,
+    pub(super) faces: Vec<Face>,
 }
 
 impl Polyhedron {
+    /// cm, the vertices in the order they were given.
+    pub fn vertices(&self) -> &[Vector3<f64>] {
+        &self.vertices
+    }
+
+    /// The faces, in the order of [`face_order`].
+    pub fn faces(&self) -> &[Face] {
+        &self.faces
+    }
+
     /// The edges, each once as `(a, b)` with `a < b`, with the faces on either side.
     pub fn edges(&self) -> Vec<Edge> {
         let mut edges: Vec<Edge> = Vec::new();

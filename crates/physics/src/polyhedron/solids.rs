@@ -63,6 +63,14 @@ impl DieKind {
         }
     }
 
+    /// The kind a player names (`d4` … `d20`, `d%`), or the names there are.
+    pub fn from_name(name: &str) -> Result<Self, String> {
+        Self::ALL.into_iter().find(|k| k.name() == name).ok_or_else(|| {
+            let names: Vec<&str> = Self::ALL.iter().map(|k| k.name()).collect();
+            format!("no die called {name:?}: one of {}", names.join(", "))
+        })
+    }
+
     /// The exact vertices (cm) of the die standing `height` tall on a face, centred on the
     /// origin.
     pub fn vertices(self, height: f64) -> Vec<Vector3<f64>> {

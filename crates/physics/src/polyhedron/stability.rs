@@ -36,7 +36,7 @@ impl Die {
     /// cm, the centre of mass's height over a rigid table with `face`'s normal straight down:
     /// the die's support in that direction.
     pub fn rest_height(&self, face: usize) -> f64 {
-        let n = self.shape.faces[face].normal;
+        let n = self.shape().faces[face].normal;
         let c = self.mass_properties().centre_of_mass;
         self.sphere_centres()
             .iter()
@@ -80,7 +80,7 @@ impl Die {
             return None;
         }
         let rest = self.rest_height(face);
-        let vertices = &self.shape.faces[face].vertices;
+        let vertices = &self.shape().faces[face].vertices;
         (0..vertices.len())
             .map(|a| {
                 let (i, j) = (vertices[a], vertices[(a + 1) % vertices.len()]);
@@ -95,7 +95,7 @@ impl Die {
 
     /// The die's tipping barrier: the least tip over all faces it can rest on.
     pub fn tipping(&self) -> Tipping {
-        (0..self.shape.faces.len())
+        (0..self.shape().faces.len())
             .filter_map(|f| self.face_tipping(f))
             .min_by(|a, b| a.rise.total_cmp(&b.rise))
             .expect("a convex die rests on at least one face")
@@ -106,7 +106,7 @@ impl Die {
     /// points sit evenly about the centre's foot, else tilted until the springs' moments cancel.
     /// `None` when a point would lift off (the face is not held on all its points).
     pub fn rest_depth(&self, face: usize, stiffness: f64, gravity: f64) -> Option<RestDepth> {
-        let f = &self.shape.faces[face];
+        let f = &self.shape().faces[face];
         let props = self.mass_properties();
         let c = props.centre_of_mass;
         let on_plane = |x: &Vector3<f64>| x - f.normal * f.height_of(x);

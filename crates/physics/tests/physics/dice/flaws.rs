@@ -17,7 +17,7 @@ fn a_bubble_takes_out_a_ball() {
             ..Flaws::default()
         })
         .expect("inside");
-    let m_b = die.density * 4.0 / 3.0 * PI * r.powi(3);
+    let m_b = die.density() * 4.0 / 3.0 * PI * r.powi(3);
     let props = flawed.mass_properties();
     assert_close("mass", props.mass, fair.mass - m_b, fair.mass, 1e-14);
     let c = -p * m_b / (fair.mass - m_b);
@@ -35,7 +35,7 @@ fn a_bubble_takes_out_a_ball() {
     }
     // Contact points are measured from the new centre.
     let points = flawed.contact_points();
-    assert!((points[0].offset - (die.shape.vertices[0] - c)).norm() < 1e-15);
+    assert!((points[0].offset - (die.shape().vertices()[0] - c)).norm() < 1e-15);
 }
 
 #[test]
@@ -97,7 +97,7 @@ fn a_shaved_cube_is_a_cuboid() {
         })
         .expect("a shave of face 6");
     let (lx, l) = (1.6 - depth, 1.6);
-    let mass = die.density * lx * l * l;
+    let mass = die.density() * lx * l * l;
     let props = shaved.mass_properties();
     assert_close("mass", props.mass, mass, mass, 1e-13);
     assert_close("centre", props.centre_of_mass.x, -depth / 2.0, 1.0, 1e-15);
@@ -109,11 +109,11 @@ fn a_shaved_cube_is_a_cuboid() {
     for (i, per_mass) in expected.into_iter().enumerate() {
         assert_close("inertia", props.inertia[(i, i)], per_mass * mass, mass, 1e-13);
     }
-    assert_eq!(shaved.numbering, die.numbering, "every face keeps its number");
-    let six = die.numbering.numbers.iter().position(|&n| n == 6).expect("a 6");
+    assert_eq!(shaved.numbering(), die.numbering(), "every face keeps its number");
+    let six = die.numbering().numbers.iter().position(|&n| n == 6).expect("a 6");
     assert_close(
         "face 6 moved in",
-        shaved.shape.faces[six].offset,
+        shaved.shape().faces()[six].offset,
         0.8 - depth,
         1.0,
         1e-15,
@@ -148,7 +148,7 @@ fn an_impossible_shave_is_refused() {
     let bar = prism(4, 0.5, 4.0, 1.18).expect("a square bar");
     let slant = Vector3::new(40f64.to_radians().sin(), 0.0, 40f64.to_radians().cos());
     let offset = slant.dot(&Vector3::new(-0.5, 0.0, 2.0)) - 0.05;
-    let end = bar.numbering.numbers[0];
+    let end = bar.numbering().numbers[0];
     assert_eq!(
         bar.with_flaws(&shave(slant, offset)),
         Err(FlawError::ShaveTopples { face: end })
@@ -167,12 +167,15 @@ fn a_bubble_toward_a_face_makes_that_face_come_up() {
     // the die harder, by s·(1 − r_i/r_m) to first order, s = m_b·e/M the centre's shift.
     let die = DieKind::D20.standard();
     let f = 0;
-    let n = die.shape.faces[f].normal;
-    let g = die.numbering.opposite[f].expect("an opposite face");
+    let n = die.shape().faces()[f].normal;
+    let g = die.numbering().opposite[f].expect("an opposite face");
     let fair = die.tipping().rise;
     let (r_i, r_m) = (
         die.rest_height(f),
-        die.edge_height(die.shape.faces[f].vertices[0], die.shape.faces[f].vertices[1]),
+        die.edge_height(
+            die.shape().faces()[f].vertices[0],
+            die.shape().faces()[f].vertices[1],
+        ),
     );
     let mut previous = 0.0;
     for e in [0.2, 0.4, 0.6] {
@@ -198,6 +201,40 @@ fn a_bubble_toward_a_face_makes_that_face_come_up() {
         assert!(away - toward > previous, "the bias grows with the offset");
         previous = away - toward;
         // Resting on the heavy face g, the number read is the bubble face's.
-        assert_eq!(flawed.numbering.read_with_down(g), die.numbering.numbers[f]);
+        assert_eq!(flawed.numbering().read_with_down(g), die.numbering().numbers[f]);
     }
+}
+
+#[test]
+fn a_rounding_that_does_not_fit_is_refused() {
+    let die = DieKind::D20.standard();
+    let round = |rounding: Vec<f64>| Flaws {
+        rounding,
+        ..Flaws::default()
+    };
+    assert!(die.with_flaws(&round(vec![0.05; 12])).is_ok());
+    assert_eq!(
+        die.with_flaws(&round(vec![0.05; 5])),
+        Err(FlawError::RoundingCount {
+            given: 5,
+            vertices: 12
+        })
+    );
+    let mut negative = vec![0.05; 12];
+    negative[7] = -0.01;
+    assert_eq!(
+        die.with_flaws(&round(negative)),
+        Err(FlawError::RoundingValue { vertex: 8 })
+    );
+    // A sphere tangent to a vertex's faces reaches the far side of the die once its radius
+    // passes the inradius.
+    assert!(matches!(
+        die.with_flaws(&round(vec![0.9])),
+        Err(FlawError::RoundingTooLarge { vertex: 1, .. })
+    ));
+    let message = FlawError::RoundingTooLarge { vertex: 1, face: 20 }.to_string();
+    assert_eq!(
+        message,
+        "vertex 1's rounding reaches past face 20: the radius is too large"
+    );
 }

@@ -27,19 +27,19 @@ fn coplanar_vertices_make_one_polygon_per_face() {
         (DieKind::D20, 20, 3),
     ] {
         let hull = convex_hull(&kind.vertices(1.6)).expect("a regular die is convex");
-        assert_eq!(hull.faces.len(), faces, "{}", kind.name());
+        assert_eq!(hull.faces().len(), faces, "{}", kind.name());
         assert_eq!(
             hull.edges().len(),
-            hull.vertices.len() + faces - 2,
+            hull.vertices().len() + faces - 2,
             "{}: Euler's formula",
             kind.name()
         );
-        for face in &hull.faces {
+        for face in hull.faces() {
             assert_eq!(face.vertices.len(), sides, "{}", kind.name());
             // Counter-clockwise from outside: each corner turns left about the outward normal.
             let n = face.vertices.len();
             for i in 0..n {
-                let [a, b, c] = [0, 1, 2].map(|d| hull.vertices[face.vertices[(i + d) % n]]);
+                let [a, b, c] = [0, 1, 2].map(|d| hull.vertices()[face.vertices[(i + d) % n]]);
                 assert!(
                     (b - a).cross(&(c - b)).dot(&face.normal) > 0.0,
                     "{}: a face turns the wrong way",
@@ -48,7 +48,7 @@ fn coplanar_vertices_make_one_polygon_per_face() {
             }
             for &v in &face.vertices {
                 assert!(
-                    face.height_of(&hull.vertices[v]).abs() < 1e-14,
+                    face.height_of(&hull.vertices()[v]).abs() < 1e-14,
                     "{}: a vertex off its face",
                     kind.name()
                 );
@@ -111,7 +111,7 @@ fn more_than_the_kernels_points_are_refused() {
             .collect()
     };
     let hull = convex_hull(&sphere(MAX_VERTICES)).expect("64 points on a sphere are a die");
-    assert_eq!(hull.vertices.len(), 64);
+    assert_eq!(hull.vertices().len(), 64);
     assert_eq!(
         convex_hull(&sphere(MAX_VERTICES + 1)),
         Err(HullError::TooMany { count: 65 })
@@ -125,9 +125,9 @@ fn more_than_the_kernels_points_are_refused() {
 #[test]
 fn prisms_are_dice() {
     let d3 = prism(3, 0.8, 2.5, 1.18).expect("a triangular prism");
-    assert_eq!(d3.shape.faces.len(), 5);
+    assert_eq!(d3.shape().faces().len(), 5);
     let coin = prism(32, 1.2, 0.3, 1.18).expect("a thick coin");
-    assert_eq!(coin.shape.faces.len(), 34);
+    assert_eq!(coin.shape().faces().len(), 34);
     // The coin's volume is its 32-gon's area times its thickness.
     let area = 0.5 * 32.0 * 1.2f64.powi(2) * (2.0 * std::f64::consts::PI / 32.0).sin();
     super::assert_close(

@@ -42,7 +42,7 @@ fn each_regular_solid_has_its_volume_centre_and_inertia() {
             );
             assert_close(
                 &format!("{name} volume"),
-                solid_moments(&die.shape).volume,
+                solid_moments(die.shape()).volume,
                 volume,
                 volume,
                 1e-12,
@@ -55,7 +55,7 @@ fn each_regular_solid_has_its_volume_centre_and_inertia() {
             let expected = Matrix3::identity() * (solid.inertia * volume * DENSITY * a * a);
             check_tensor(&name, &mass.inertia, &expected);
             // The hull found the solid's faces at its inradius.
-            for face in &die.shape.faces {
+            for face in die.shape().faces() {
                 assert_close(
                     &format!("{name} inradius"),
                     face.offset,
@@ -64,8 +64,13 @@ fn each_regular_solid_has_its_volume_centre_and_inertia() {
                     1e-12,
                 );
             }
-            assert_eq!(die.shape.faces.len(), solid.faces);
-            assert!(die.shape.faces.iter().all(|f| f.vertices.len() == solid.sides));
+            assert_eq!(die.shape().faces().len(), solid.faces);
+            assert!(
+                die.shape()
+                    .faces()
+                    .iter()
+                    .all(|f| f.vertices.len() == solid.sides)
+            );
         }
     }
 }
@@ -73,7 +78,7 @@ fn each_regular_solid_has_its_volume_centre_and_inertia() {
 #[test]
 fn the_d10_has_its_volume_centre_and_inertia() {
     let die = DieKind::D10.die(1.6, DENSITY);
-    let apex = die.shape.vertices.iter().map(|v| v.z).fold(0.0, f64::max);
+    let apex = die.shape().vertices().iter().map(|v| v.z).fold(0.0, f64::max);
     let [_, volume, izz, ixx, inradius, ..] = d10(apex);
     assert_close("d10 stands 1.6 cm tall", 2.0 * inradius, 1.6, 1.6, 1e-12);
     let mass = die.mass_properties();
@@ -174,5 +179,38 @@ fn a_random_hull_agrees_with_a_monte_carlo_estimate() {
             error < 0.02 * exact.abs().max(0.05 * v),
             "moment {k}: the estimate is too loose to test"
         );
+    }
+}
+
+#[test]
+fn a_die_turned_and_moved_anywhere_keeps_its_faces_and_its_mass() {
+    let mut rng = ChaCha8Rng::seed_from_u64(48);
+    for kind in DieKind::ALL {
+        let die = kind.die(1.6, DENSITY);
+        let fair = die.mass_properties();
+        for _ in 0..20 {
+            let axis = Vector3::from_fn(|_, _| rng.random_range(-1.0..1.0));
+            let turn =
+                nalgebra::Rotation3::new(axis.normalize() * rng.random_range(0.0..std::f64::consts::PI));
+            let shift = Vector3::from_fn(|_, _| rng.random_range(-50.0..50.0));
+            let moved: Vec<Vector3<f64>> = die.shape().vertices().iter().map(|v| turn * v + shift).collect();
+            let other =
+                dicesim_physics::polyhedron::Die::from_vertices(&moved, DENSITY).expect("still convex");
+            assert_eq!(
+                other.shape().faces().len(),
+                die.shape().faces().len(),
+                "{}",
+                kind.name()
+            );
+            let props = other.mass_properties();
+            assert_close(kind.name(), props.mass, fair.mass, fair.mass, 1e-12);
+            assert!(
+                (props.centre_of_mass - shift).norm() <= 1e-12 * 50.0,
+                "{}: centre",
+                kind.name()
+            );
+            let turned = turn.matrix() * fair.inertia * turn.matrix().transpose();
+            check_tensor(kind.name(), &props.inertia, &turned);
+        }
     }
 }

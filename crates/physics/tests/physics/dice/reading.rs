@@ -15,7 +15,7 @@ fn every_number_appears_once() {
         (DieKind::D12, (1..=12).collect()),
         (DieKind::D20, (1..=20).collect()),
     ] {
-        let mut numbers = kind.standard().numbering.numbers;
+        let mut numbers = kind.standard().numbering().numbers.clone();
         numbers.sort_unstable();
         assert_eq!(numbers, expected, "{}", kind.name());
     }
@@ -32,16 +32,16 @@ fn opposite_faces_sum_as_on_real_dice() {
         (DieKind::D20, 21),
     ] {
         let die = kind.standard();
-        assert_eq!(die.numbering.read_at, ReadAt::TopFace);
-        for (f, face) in die.shape.faces.iter().enumerate() {
-            let g = die.numbering.opposite[f].expect("every face has an opposite");
+        assert_eq!(die.numbering().read_at, ReadAt::TopFace);
+        for (f, face) in die.shape().faces().iter().enumerate() {
+            let g = die.numbering().opposite[f].expect("every face has an opposite");
             assert!(
-                (face.normal + die.shape.faces[g].normal).norm() < 1e-12,
+                (face.normal + die.shape().faces()[g].normal).norm() < 1e-12,
                 "{}: not opposite",
                 kind.name()
             );
             assert_eq!(
-                die.numbering.numbers[f] + die.numbering.numbers[g],
+                die.numbering().numbers[f] + die.numbering().numbers[g],
                 sum,
                 "{}",
                 kind.name()
@@ -53,7 +53,7 @@ fn opposite_faces_sum_as_on_real_dice() {
 #[test]
 fn the_d10_has_even_numbers_round_one_apex_and_odd_round_the_other() {
     let die = DieKind::D10.standard();
-    for (face, &n) in die.shape.faces.iter().zip(&die.numbering.numbers) {
+    for (face, &n) in die.shape().faces().iter().zip(&die.numbering().numbers) {
         assert_eq!(face.normal.z > 0.0, n % 2 == 0, "face {n}");
     }
 }
@@ -68,12 +68,12 @@ fn resting_on(normal: &Vector3<f64>) -> Rotation3<f64> {
 fn a_die_on_a_face_reads_the_number_up() {
     for kind in DieKind::ALL {
         let die = kind.standard();
-        for (f, face) in die.shape.faces.iter().enumerate() {
+        for (f, face) in die.shape().faces().iter().enumerate() {
             let reading = die.reading_at(&resting_on(&face.normal)).expect("a face is down");
             assert_eq!(reading.face, f);
-            let up = match die.numbering.read_at {
-                ReadAt::TopFace => die.numbering.numbers[die.numbering.opposite[f].expect("opposite")],
-                ReadAt::TopVertex | ReadAt::BottomFace => die.numbering.numbers[f],
+            let up = match die.numbering().read_at {
+                ReadAt::TopFace => die.numbering().numbers[die.numbering().opposite[f].expect("opposite")],
+                ReadAt::TopVertex | ReadAt::BottomFace => die.numbering().numbers[f],
             };
             assert_eq!(reading.number, up, "{}", kind.name());
         }
@@ -91,12 +91,12 @@ fn a_die_on_a_face_reads_the_number_up() {
 #[test]
 fn the_d4_reads_the_vertex_up() {
     let die = DieKind::D4.standard();
-    for (f, face) in die.shape.faces.iter().enumerate() {
+    for (f, face) in die.shape().faces().iter().enumerate() {
         let r = resting_on(&face.normal);
         let top = (0..4).max_by(|&a, &b| {
-            (r * die.shape.vertices[a])
+            (r * die.shape().vertices()[a])
                 .z
-                .total_cmp(&(r * die.shape.vertices[b]).z)
+                .total_cmp(&(r * die.shape().vertices()[b]).z)
         });
         assert_eq!(
             die.reading_at(&r).map(|x| x.number),
@@ -110,12 +110,12 @@ fn the_d4_reads_the_vertex_up() {
 fn an_edge_or_a_vertex_down_is_no_face() {
     for kind in DieKind::ALL {
         let die = kind.standard();
-        for edge in die.shape.edges() {
+        for edge in die.shape().edges() {
             let [f, g] = edge.faces;
-            let down = die.shape.faces[f].normal + die.shape.faces[g].normal;
+            let down = die.shape().faces()[f].normal + die.shape().faces()[g].normal;
             assert_eq!(die.reading(&down), None, "{}: on an edge", kind.name());
             // A small tilt off a face is still that face.
-            let tilted = die.shape.faces[f].normal * 20.0 + die.shape.faces[g].normal;
+            let tilted = die.shape().faces()[f].normal * 20.0 + die.shape().faces()[g].normal;
             assert_eq!(
                 die.reading(&tilted).map(|r| r.face),
                 Some(f),
@@ -123,7 +123,7 @@ fn an_edge_or_a_vertex_down_is_no_face() {
                 kind.name()
             );
         }
-        for v in &die.shape.vertices {
+        for v in die.shape().vertices() {
             assert_eq!(die.reading(v), None, "{}: on a vertex", kind.name());
         }
     }
@@ -132,10 +132,10 @@ fn an_edge_or_a_vertex_down_is_no_face() {
 #[test]
 fn a_prism_without_opposite_faces_is_read_at_the_face_down() {
     let d3 = prism(3, 0.8, 2.5, 1.18).expect("a triangular prism");
-    assert_eq!(d3.numbering.read_at, ReadAt::BottomFace);
+    assert_eq!(d3.numbering().read_at, ReadAt::BottomFace);
     let coin = prism(16, 1.2, 0.3, 1.18).expect("a coin");
-    assert_eq!(coin.numbering.read_at, ReadAt::TopFace);
-    let mut numbers = coin.numbering.numbers.clone();
+    assert_eq!(coin.numbering().read_at, ReadAt::TopFace);
+    let mut numbers = coin.numbering().numbers.clone();
     numbers.sort_unstable();
     assert_eq!(numbers, (1..=18).collect::<Vec<u32>>());
 }
@@ -164,7 +164,7 @@ fn the_tables_in_the_docs_are_the_dice() {
             .collect();
         assert_eq!(
             rows.len(),
-            die.shape.faces.len(),
+            die.shape().faces().len(),
             "{}: one row per face",
             kind.name()
         );
@@ -177,22 +177,33 @@ fn the_tables_in_the_docs_are_the_dice() {
             let normal = Vector3::new(normal[0], normal[1], normal[2]);
             let f = die.face_most_nearly_down(&normal);
             assert!(
-                (die.shape.faces[f].normal - normal).norm() < 1e-4,
+                (die.shape().faces()[f].normal - normal).norm() < 1e-4,
                 "{}: no face {normal}",
                 kind.name()
             );
             assert_eq!(
                 row[2],
-                die.numbering.numbers[f].to_string(),
+                die.numbering().numbers[f].to_string(),
                 "{}: face {normal}",
                 kind.name()
             );
             assert_eq!(
                 row[3],
-                die.numbering.read_with_down(f).to_string(),
+                die.numbering().read_with_down(f).to_string(),
                 "{}: face {normal}",
                 kind.name()
             );
         }
     }
+}
+
+#[test]
+fn a_die_is_named_as_players_name_it() {
+    for kind in DieKind::ALL {
+        assert_eq!(DieKind::from_name(kind.name()), Ok(kind));
+    }
+    assert_eq!(
+        DieKind::from_name("d7"),
+        Err("no die called \"d7\": one of d4, d6, d8, d10, d%, d12, d20".to_string())
+    );
 }
