@@ -15,6 +15,8 @@ pub struct Die {
     /// The solid in the die's own frame (the sharp, uniform solid's centre at the origin for the
     /// dice this module builds), after any shave.
     shape: Polyhedron,
+    /// The solid as it was made, before any flaw: what [`Die::with_flaws`] starts from.
+    made: Polyhedron,
     numbering: Numbering,
     /// g/cm³, of the uniform material.
     density: f64,
@@ -53,6 +55,7 @@ impl Die {
         Self {
             sphere_centres: shape.vertices.clone(),
             radii: vec![0.0; shape.vertices.len()],
+            made: shape.clone(),
             shape,
             numbering,
             density,
@@ -70,17 +73,18 @@ impl Die {
         Ok(Self::new(shape, numbering, density))
     }
 
-    /// This die (taken sharp and uniform, its own flaws dropped) with `flaws`: the shave first,
+    /// This die as it was made (sharp and uniform: any flaws it has are replaced) with `flaws`:
+    /// the shave first,
     /// then the bubble and the point mass inside what is left, then the rounding of its
     /// vertices.
     pub fn with_flaws(&self, flaws: &Flaws) -> Result<Self, FlawError> {
         let numbers = &self.numbering.numbers;
         let (shape, shaved) = match &flaws.shave {
             Some(shave) => {
-                let (shape, face) = shave.cut(&self.shape, numbers)?;
+                let (shape, face) = shave.cut(&self.made, numbers)?;
                 (shape, Some(face))
             }
-            None => (self.shape.clone(), None),
+            None => (self.made.clone(), None),
         };
         let mut pieces = Vec::new();
         if let Some(bubble) = &flaws.bubble {
@@ -106,6 +110,7 @@ impl Die {
         let die = Self {
             tilt_limits: tilt_limits(&shape),
             shape,
+            made: self.made.clone(),
             numbering: self.numbering.clone(),
             density: self.density,
             flaws: flaws.clone(),

@@ -44,7 +44,7 @@ impl Polyhedron {
         &self.vertices
     }
 
-    /// The faces, in the order of [`face_order`].
+    /// The faces, in the order of [`face_order`] (a shaved die's in its unshaved die's order).
     pub fn faces(&self) -> &[Face] {
         &self.faces
     }

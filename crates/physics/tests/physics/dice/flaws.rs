@@ -238,3 +238,22 @@ fn a_rounding_that_does_not_fit_is_refused() {
         "vertex 1's rounding reaches past face 20: the radius is too large"
     );
 }
+
+#[test]
+fn new_flaws_replace_the_old_ones() {
+    let die = DieKind::D6.standard();
+    let shave = |depth: f64| Flaws {
+        shave: Some(Shave {
+            normal: Vector3::x(),
+            offset: 0.8 - depth,
+        }),
+        ..Flaws::default()
+    };
+    let once = die.with_flaws(&shave(0.1)).expect("a shave");
+    let again = once.with_flaws(&shave(0.1)).expect("the same shave");
+    assert_eq!(
+        again, once,
+        "a shave is made on the die as made, not on a shaved one"
+    );
+    assert_eq!(once.with_flaws(&Flaws::default()).expect("no flaw"), die);
+}
