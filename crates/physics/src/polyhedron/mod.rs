@@ -1,6 +1,6 @@
 //! Dice of any convex shape (docs/model.md, "Dice of any convex shape"; docs/dice.md): their
 //! hull, the exact mass of the uniform solid, their numbers and how they are read, how firmly
-//! they rest, and the flaws that make a real die unfair. Pure geometry: nalgebra alone.
+//! they rest, and the flaws that make a real die unfair. Pure geometry: nalgebra and serde.
 //!
 //! The files, each using only those before it: `hull` (the polyhedron of a list of vertices),
 //! `moments` (its volume, centre and inertia), `numbering` (the numbers on its faces),
