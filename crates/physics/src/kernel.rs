@@ -14,116 +14,40 @@
 //! it happens: the spin (libm's `sin`/`cos`, [`super::spin`]) and, only for a loaded die
 //! near rest, the stopping rule of the face it lies on.
 
-use super::contact::{self, SpringFriction};
+use super::contact::{Law, Touch, corners};
 use super::initial::InitialCondition;
-use super::lane::{Lane, set_bits};
+use super::lane::{
+    Lane, add3, all_lanes, cross3, lane3, mask_of, put, put_mask, scale3, select3, set_bits, v3, zero3,
+};
 use super::mass::InertiaTensor;
 use super::model::Body;
-use super::params::{ContactLaw, FrictionLaw, Params, StopEnergy};
+use super::params::{Params, StopEnergy};
 use super::shape;
 use super::spin::{free_turn, spin, spin_lanes, step_rotation};
-use super::stopping::settles;
-use nalgebra::{Matrix3, Vector2, Vector3};
+use super::state::{State, contact_point, point_velocity};
+use super::stopping::{StopRule, settles};
+use nalgebra::{Matrix3, Vector3};
 
-/// Where a corner's contact force acts, relative to the centre of mass: a rounded body's
-/// contact sphere's lowest point, the radius below its centre (lanes of a sharp body among
-/// rounded ones have radius +0.0, and `z − 0` is `z`). `ROUNDED` is decided once per call of
-/// the stage, so a sharp die's step compiles without it.
+/// The bits of every one of `N` points.
 #[inline(always)]
-pub(crate) fn contact_point<const ROUNDED: bool, L: Lane>(r: &Vector3<L>, radius: L) -> Vector3<L> {
-    if ROUNDED { v3(r.x, r.y, r.z - radius) } else { *r }
+fn every_point<const N: usize>() -> u64 {
+    if N >= 64 { u64::MAX } else { (1 << N) - 1 }
 }
 
 /// `Σ ρ_k × F_k` over the touching corners, in corner order from +0.0.
 #[inline(always)]
-fn torque<const ROUNDED: bool, L: Lane>(
-    offsets: &[Vector3<L>; 8],
-    forces: &[Vector3<L>; 8],
-    touching: u8,
+fn torque<const ROUNDED: bool, L: Lane, const N: usize>(
+    offsets: &[Vector3<L>; N],
+    forces: &[Vector3<L>; N],
+    touching: u64,
     radius: L,
 ) -> Vector3<L> {
     let mut torque = zero3();
-    for k in set_bits(touching.into()) {
+    for k in corners::<N>(touching) {
         let arm = contact_point::<ROUNDED, L>(&offsets[k], radius);
         torque = add3(&torque, &cross3(&arm, &forces[k]));
     }
     torque
-}
-
-/// The bits of every lane.
-#[inline(always)]
-fn all_lanes<L: Lane>() -> u32 {
-    (1 << L::WIDTH) - 1
-}
-
-#[inline(always)]
-fn v3<L: Lane>(x: L, y: L, z: L) -> Vector3<L> {
-    Vector3::new(x, y, z)
-}
-
-#[inline(always)]
-fn zero3<L: Lane>() -> Vector3<L> {
-    v3(L::zero(), L::zero(), L::zero())
-}
-
-#[inline(always)]
-fn add3<L: Lane>(a: &Vector3<L>, b: &Vector3<L>) -> Vector3<L> {
-    v3(a.x + b.x, a.y + b.y, a.z + b.z)
-}
-
-#[inline(always)]
-fn scale3<L: Lane>(a: &Vector3<L>, s: L) -> Vector3<L> {
-    v3(a.x * s, a.y * s, a.z * s)
-}
-
-/// nalgebra's cross product, operation for operation.
-#[inline(always)]
-fn cross3<L: Lane>(a: &Vector3<L>, b: &Vector3<L>) -> Vector3<L> {
-    v3(
-        a.y * b.z - a.z * b.y,
-        a.z * b.x - a.x * b.z,
-        a.x * b.y - a.y * b.x,
-    )
-}
-
-#[inline(always)]
-fn select3<L: Lane>(mask: L::Mask, yes: &Vector3<L>, no: &Vector3<L>) -> Vector3<L> {
-    v3(
-        L::select(mask, yes.x, no.x),
-        L::select(mask, yes.y, no.y),
-        L::select(mask, yes.z, no.z),
-    )
-}
-
-/// Lane `l` of a vector of lanes.
-#[inline(always)]
-pub(crate) fn lane3<L: Lane>(v: &Vector3<L>, l: usize) -> Vector3<f64> {
-    Vector3::new(v.x.lane(l), v.y.lane(l), v.z.lane(l))
-}
-
-/// The dynamic state of the die at one instant (one per lane in a lane type).
-#[derive(Debug, Clone, PartialEq)]
-pub struct State<L: Lane = f64> {
-    /// cm, centre of mass.
-    pub position: Vector3<L>,
-    /// cm/s, centre of mass.
-    pub velocity: Vector3<L>,
-    /// g·cm²/s, about the centre of mass.
-    pub angular_momentum: Vector3<L>,
-    /// cm, corners 1..8 relative to the centre of mass, world frame.
-    pub corner_offsets: [Vector3<L>; 8],
-    /// dyn, the contact force on each corner at this state `(friction x, friction y, P)`.
-    pub corner_forces: [Vector3<L>; 8],
-    /// cm, how far each corner is below the ground (0 above it).
-    pub corner_depths: [L; 8],
-    /// cm, each contact point's tangential spring `ξ` in the table's plane: the slip it made
-    /// since it touched the table, as the spring-friction law holds it (reset to 0 when the
-    /// point leaves the table; always 0 under the paper's law).
-    pub tangential_springs: [Vector2<L>; 8],
-    /// s, simulated time.
-    pub time_s: L,
-    /// Steps taken since the initial condition.
-    pub step: L::Count,
 }
 
 /// The rigid-body energy terms, erg (docs/model.md, "Energy"), per lane.
@@ -162,49 +86,43 @@ fn scalar_spin(
     }
 }
 
-/// Constants of one run per lane, derived once from the parameters (each lane may come from
-/// different parameters, e.g. in a map over the stiffness).
+/// The constants of one roll per lane, derived once from the parameters (each lane may come
+/// from different parameters, e.g. in a map over the stiffness; every lane has the law `W`):
+/// the body's, the law's and the stopping rule's, each in a part of its own.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Constants<L: Lane> {
+pub(crate) struct Constants<L: Lane, W: Law, const N: usize = 8> {
+    /// s, the step.
     pub(crate) dt: L,
+    pub(crate) body: BodyConstants<L, N>,
+    pub(crate) law: W::Constants<L>,
+    pub(crate) stop: StopConstants<L>,
+}
+
+/// What the step needs of the body: its mass and weight, its inertia in the form its
+/// rotation reads it, its contact points' rounding, and the energies it is measured by.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct BodyConstants<L: Lane, const N: usize = 8> {
     /// g, the total mass `M`.
     pub(crate) mass: L,
-    /// dyn, `M·g` as a (negative) z force.
+    /// dyn, the weight's part along the table's normal (negative; `−M·g·cos θ` on a tilted
+    /// table, whose law adds the part in its plane).
     pub(crate) weight_z: L,
     /// cm/s, the kick of a step in flight: the contact kick's quotients with every force
-    /// +0.0, `((0 + M·g_z)/M)·Δt` and `(0/M)·Δt`, the same for every flight step of a run.
+    /// +0.0, `((0 + W_z)/M)·Δt` and `((0 + W_x)/M)·Δt` (or `(0/M)·Δt` under a law whose
+    /// weight is straight down), the same for every flight step of a run.
     pub(crate) flight_kick: Vector3<L>,
-    pub(crate) stiffness: L,
-    pub(crate) damping: L,
-    pub(crate) friction: L,
-    /// dyn, the weight's components in a tilted table's plane (+0.0 on a level table and
-    /// under the paper's law); `weight_z` is then the normal part, `−M·g·cos θ`.
-    pub(crate) weight_x: L,
-    pub(crate) weight_y: L,
-    /// The spring-friction law's normal damping `c` (dyn·s/cm), tangential stiffness `k_t`
-    /// (dyn/cm) and damping `c_t` (dyn·s/cm), and static friction `μ_s` (`friction` is
-    /// its `μ_k`).
-    pub(crate) normal_damping: L,
-    pub(crate) tangential_stiffness: L,
-    pub(crate) tangential_damping: L,
-    /// cm/dyn, `1/k_t`: a multiplication where the spring is reset, in both widths alike.
-    pub(crate) tangential_compliance: L,
-    pub(crate) static_friction: L,
-    /// erg, a tilted table's cap on a settled die's kinetic energy (+∞: none).
-    pub(crate) kinetic_cap: L,
-    /// `0.5·M`, `M·g`, `0.5·k`: the energy's leading products, grouped as the scalar
-    /// formulas group them (left to right).
+    /// `0.5·M`, `M·g_n`: the energy's leading products, grouped as the scalar formulas
+    /// group them (left to right).
     pub(crate) half_mass: L,
     pub(crate) mass_gravity: L,
-    pub(crate) half_stiffness: L,
-    /// cm, `a`.
+    /// cm, the height of the centre the potential is measured from (the cube's `a`).
     pub(crate) half_size: L,
     /// The fair die's point-mass energy: `0.5·m`, `m·g`, `M·g·a`.
     pub(crate) half_corner_mass: L,
     pub(crate) corner_mass_gravity: L,
     pub(crate) mass_gravity_half_size: L,
     /// A loaded die's point-mass energy: each corner's mass `m + Δm_k`, `g`, `M·g·a`.
-    pub(crate) corner_masses: [L; 8],
+    pub(crate) corner_masses: [L; N],
     pub(crate) gravity: L,
     pub(crate) loaded_mass_gravity_half_size: L,
     /// g·cm², the body's one isotropic inertia ([`Body::mean_inertia`]): the fair die's
@@ -226,57 +144,139 @@ pub(crate) struct Constants<L: Lane> {
     /// is then `1/(2a)`).
     pub(crate) inverse_moments: [L; 3],
     pub(crate) principal_axes: [L; 9],
-    /// cm, each corner (contact-sphere centre) relative to the centre of mass along the
-    /// principal axes: where the step places it once the axes have turned.
-    pub(crate) principal_corners: [Vector3<L>; 8],
+    /// cm, each contact point (contact-sphere centre) relative to the centre of mass along
+    /// the principal axes: where the step places it once the axes have turned.
+    pub(crate) principal_corners: [Vector3<L>; N],
+    /// The points the body's axes are read off, `[o, x, y]`: its x axis along
+    /// `(r_x − r_o)·s₀`, its y axis along `(r_y − r_o)·s₁` made normal to x ([`free_turn`]);
+    /// a cube's corners 1, 5 and 3. The same in every lane of a vector (plain indices).
+    pub(crate) frame: [usize; 3],
     pub(crate) split: L::Mask,
     /// cm, the corner radius: a contact sphere's lowest point is this far below its centre.
     pub(crate) corner_radius: L,
-    /// erg, the stopping rule's thresholds; for a loaded die the largest over its faces,
-    /// which only screens (the rule of the face down decides).
-    pub(crate) energy_threshold: L,
-    pub(crate) kinetic_threshold: L,
-    /// erg, a rigid-body energy above this is a runaway (fixed at t = 0).
-    pub(crate) runaway: L,
-    pub(crate) max_steps: L::Count,
-    /// Lanes on the whole-die-norm friction law, on the point-mass stop energy, with a
-    /// loaded die.
-    pub(crate) whole_die_norm: L::Mask,
-    pub(crate) point_masses: L::Mask,
+    /// Lanes with a loaded die; with a general body; whose inertia turns with the body
+    /// (loaded or general: ω changes in flight too); whose stopping rule depends on the face
+    /// down (the same lanes).
     pub(crate) loaded: L::Mask,
-    /// Lanes with a general body; whose inertia turns with the body (loaded or general: ω
-    /// changes in flight too); whose stopping rule depends on the face down (the same lanes).
     pub(crate) shaped: L::Mask,
     pub(crate) turning: L::Mask,
     /// Bit l: lane l's body has rounded corners. Plain bits, not a mask: the step asks
     /// only whether any lane has, and a sharp die's step should not pay for asking.
     pub(crate) rounded: u32,
-    /// Lanes on the spring-friction contact law, as a mask and as plain bits: the engines
-    /// pick the step of the paper's law alone where no lane has it ([`Kernel::step`]).
-    pub(crate) spring: L::Mask,
-    pub(crate) spring_lanes: u32,
 }
 
-impl Constants<f64> {
-    /// The constants of `p`, with `runaway` still +∞ (it needs the initial energy).
+/// The stopping rule's numbers (docs/model.md, "Stopping rule" and "Stability").
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct StopConstants<L: Lane> {
+    /// erg, the thresholds; for a loaded die the largest over its faces, which only screens
+    /// (the rule of the face down decides).
+    pub(crate) energy_threshold: L,
+    pub(crate) kinetic_threshold: L,
+    /// erg, a rigid-body energy above this is a runaway (fixed at t = 0).
+    pub(crate) runaway: L,
+    pub(crate) max_steps: L::Count,
+    /// Lanes that stop on the authors' point-mass energy.
+    pub(crate) point_masses: L::Mask,
+}
+
+impl<W: Law> Constants<f64, W> {
+    /// The constants of `p` under the law `W`, with `runaway` still +∞ (it needs the initial
+    /// energy).
     pub(crate) fn new(p: &Params, body: &Body) -> Self {
+        let edge_energy = body.edge_energy();
+        let rule = W::stop_rule(body.widest_stop_rule(), p, edge_energy);
+        Constants {
+            dt: p.integrator.dt,
+            body: BodyConstants::new(p, body, W::gravity(p)),
+            law: W::constants(p, body.mass(), edge_energy),
+            stop: StopConstants {
+                energy_threshold: rule.energy_threshold,
+                kinetic_threshold: rule.kinetic_threshold,
+                runaway: f64::INFINITY,
+                max_steps: p.max_steps(),
+                point_masses: p.integrator.stop_energy == StopEnergy::PointMasses,
+            },
+        }
+    }
+}
+
+impl<W: Law, const N: usize> Constants<f64, W, N> {
+    /// The constants of a body of `N` points with the body constants `body`, on `p`'s table
+    /// under the law `W`, stopping by `rule` on a level table; `runaway` still +∞.
+    pub(crate) fn with_body(
+        p: &Params,
+        body: BodyConstants<f64, N>,
+        edge_energy: f64,
+        rule: StopRule,
+    ) -> Self {
+        let rule = W::stop_rule(rule, p, edge_energy);
+        Constants {
+            dt: p.integrator.dt,
+            law: W::constants(p, body.mass, edge_energy),
+            body,
+            stop: StopConstants {
+                energy_threshold: rule.energy_threshold,
+                kinetic_threshold: rule.kinetic_threshold,
+                runaway: f64::INFINITY,
+                max_steps: p.max_steps(),
+                point_masses: false,
+            },
+        }
+    }
+}
+
+impl<L: Lane, W: Law, const N: usize> Constants<L, W, N> {
+    /// One roll's constants in every lane.
+    pub(crate) fn splat(c: &Constants<f64, W, N>) -> Self {
+        let s = &c.stop;
+        Constants {
+            dt: L::splat(c.dt),
+            body: BodyConstants::splat(&c.body),
+            law: W::splat(&c.law),
+            stop: StopConstants {
+                energy_threshold: L::splat(s.energy_threshold),
+                kinetic_threshold: L::splat(s.kinetic_threshold),
+                runaway: L::splat(s.runaway),
+                max_steps: L::count_of(s.max_steps),
+                point_masses: mask_of::<L>(s.point_masses),
+            },
+        }
+    }
+
+    /// One roll's constants into lane `l`.
+    #[inline(always)]
+    pub(crate) fn set_lane(&mut self, l: usize, from: &Constants<f64, W, N>) {
+        put(&mut self.dt, l, from.dt);
+        self.body.set_lane(l, &from.body);
+        W::set_lane(&mut self.law, l, &from.law);
+        let (s, f) = (&mut self.stop, &from.stop);
+        put(&mut s.energy_threshold, l, f.energy_threshold);
+        put(&mut s.kinetic_threshold, l, f.kinetic_threshold);
+        put(&mut s.runaway, l, f.runaway);
+        L::put_count(&mut s.max_steps, l, f.max_steps);
+        put_mask::<L>(&mut s.point_masses, l, f.point_masses);
+    }
+
+    /// Lane `l` emptied for good: a still fair die without weight, so it never touches nor
+    /// spins ([`BodyConstants::park`]).
+    #[inline(always)]
+    pub(crate) fn park(&mut self, l: usize) {
+        self.body.park(l);
+        W::park(&mut self.law, l);
+    }
+}
+
+impl BodyConstants<f64> {
+    /// `body`'s constants under `gravity` (cm/s², the table's frame).
+    fn new(p: &Params, body: &Body, [gx, gy, gz]: [f64; 3]) -> Self {
         let shape = body.shape();
         let mass = body.mass();
         let gravity = p.world.gravity;
-        let spring = p.ground.contact == ContactLaw::SpringFriction;
-        // The paper's weight as the authors' program had it; a tilted table's in its frame.
-        let [gx, gy, gz] = contact::gravity_in_table_frame(p);
-        let (weight_x, weight_y, weight_z) = if spring {
-            (mass * gx, mass * gy, mass * gz)
-        } else {
-            (0.0, 0.0, mass * -gravity)
-        };
         let (dt, zero) = (p.integrator.dt, 0.0);
+        let (weight_x, weight_y, weight_z) = (mass * gx, mass * gy, mass * gz);
         // A general body's potential is measured from its lowest rest height.
         let a = body.reference_height();
         let m = p.die.corner_mass;
-        let rule = contact::on_the_table(body.widest_stop_rule(), p, body.edge_energy());
-        let law = SpringFriction::new(p, mass);
         let (corner_masses, loaded_total) = match body {
             Body::LoadedCube(_, load) => load.point_masses(),
             Body::PaperCube(_) | Body::Shaped(_) => ([m; 8], mass),
@@ -288,8 +288,7 @@ impl Constants<f64> {
             Body::LoadedCube(cube, _) => [1.0 / (2.0 * cube.half_size()); 3],
             Body::PaperCube(_) => [0.0; 3],
         };
-        Constants {
-            dt,
+        BodyConstants {
             mass,
             weight_z,
             // `0 + 0` is the paper's `0`, so its kick keeps its bits.
@@ -298,22 +297,9 @@ impl Constants<f64> {
                 ((zero + weight_y) / mass) * dt,
                 ((zero + weight_z) / mass) * dt,
             ),
-            stiffness: p.ground.stiffness,
-            damping: p.ground.damping,
-            friction: p.ground.friction,
-            weight_x,
-            weight_y,
-            normal_damping: law.normal_damping,
-            tangential_stiffness: law.tangential_stiffness,
-            tangential_damping: law.tangential_damping,
-            tangential_compliance: law.tangential_compliance,
-            static_friction: p.ground.static_friction,
-            kinetic_cap: contact::kinetic_cap(p, body.edge_energy()),
             half_mass: 0.5 * mass,
-            // The potential of the normal weight; a tilted table's downhill part is added
-            // in `energy`.
-            mass_gravity: if spring { mass * -gz } else { mass * gravity },
-            half_stiffness: 0.5 * p.ground.stiffness,
+            // The potential of the normal weight; a tilted table's law adds its downhill part.
+            mass_gravity: mass * -gz,
             half_size: a,
             half_corner_mass: 0.5 * m,
             corner_mass_gravity: m * gravity,
@@ -336,47 +322,169 @@ impl Constants<f64> {
                     .map(|r| axes.transpose() * r),
                 None => [Vector3::zeros(); 8],
             },
+            frame: [0, 4, 2],
             split: principal.is_some(),
             corner_radius: shape.map_or(0.0, |s| s.radius),
-            energy_threshold: rule.energy_threshold,
-            kinetic_threshold: rule.kinetic_threshold,
-            runaway: f64::INFINITY,
-            max_steps: p.max_steps(),
-            whole_die_norm: p.ground.friction_law == FrictionLaw::WholeDieNorm,
-            point_masses: p.integrator.stop_energy == StopEnergy::PointMasses,
             loaded,
             shaped: shape.is_some(),
-            rounded: shape.is_some_and(|s| s.radius > 0.0) as u32,
             turning: loaded || shape.is_some(),
-            spring,
-            spring_lanes: spring as u32,
+            rounded: shape.is_some_and(|s| s.radius > 0.0) as u32,
         }
     }
 }
 
+impl<L: Lane, const N: usize> BodyConstants<L, N> {
+    /// One roll's body in every lane.
+    pub(crate) fn splat(c: &BodyConstants<f64, N>) -> Self {
+        let s3 = |v: &Vector3<f64>| v3(L::splat(v.x), L::splat(v.y), L::splat(v.z));
+        BodyConstants {
+            mass: L::splat(c.mass),
+            weight_z: L::splat(c.weight_z),
+            flight_kick: s3(&c.flight_kick),
+            half_mass: L::splat(c.half_mass),
+            mass_gravity: L::splat(c.mass_gravity),
+            half_size: L::splat(c.half_size),
+            half_corner_mass: L::splat(c.half_corner_mass),
+            corner_mass_gravity: L::splat(c.corner_mass_gravity),
+            mass_gravity_half_size: L::splat(c.mass_gravity_half_size),
+            corner_masses: c.corner_masses.map(L::splat),
+            gravity: L::splat(c.gravity),
+            loaded_mass_gravity_half_size: L::splat(c.loaded_mass_gravity_half_size),
+            uniform_inertia: L::splat(c.uniform_inertia),
+            uniform_mass: L::splat(c.uniform_mass),
+            extra_masses: c.extra_masses.map(L::splat),
+            inverse_inertia: c.inverse_inertia.map(L::splat),
+            axis_scale: c.axis_scale.map(L::splat),
+            inverse_moments: c.inverse_moments.map(L::splat),
+            principal_axes: c.principal_axes.map(L::splat),
+            principal_corners: c.principal_corners.each_ref().map(s3),
+            frame: c.frame,
+            split: mask_of::<L>(c.split),
+            corner_radius: L::splat(c.corner_radius),
+            loaded: mask_of::<L>(c.loaded),
+            shaped: mask_of::<L>(c.shaped),
+            turning: mask_of::<L>(c.turning),
+            rounded: if c.rounded != 0 { all_lanes::<L>() } else { 0 },
+        }
+    }
+
+    /// One roll's body into lane `l`.
+    #[inline(always)]
+    fn set_lane(&mut self, l: usize, f: &BodyConstants<f64, N>) {
+        assert_eq!(
+            self.frame, f.frame,
+            "the bodies of one vector read their axes alike"
+        );
+        put(&mut self.mass, l, f.mass);
+        put(&mut self.weight_z, l, f.weight_z);
+        put3(&mut self.flight_kick, l, &f.flight_kick);
+        put(&mut self.half_mass, l, f.half_mass);
+        put(&mut self.mass_gravity, l, f.mass_gravity);
+        put(&mut self.half_size, l, f.half_size);
+        put(&mut self.half_corner_mass, l, f.half_corner_mass);
+        put(&mut self.corner_mass_gravity, l, f.corner_mass_gravity);
+        put(&mut self.mass_gravity_half_size, l, f.mass_gravity_half_size);
+        for corner in 0..8 {
+            put(&mut self.extra_masses[corner], l, f.extra_masses[corner]);
+        }
+        for point in 0..N {
+            put(&mut self.corner_masses[point], l, f.corner_masses[point]);
+            put3(&mut self.principal_corners[point], l, &f.principal_corners[point]);
+        }
+        put(&mut self.gravity, l, f.gravity);
+        put(
+            &mut self.loaded_mass_gravity_half_size,
+            l,
+            f.loaded_mass_gravity_half_size,
+        );
+        put(&mut self.uniform_inertia, l, f.uniform_inertia);
+        put(&mut self.uniform_mass, l, f.uniform_mass);
+        for e in 0..6 {
+            put(&mut self.inverse_inertia[e], l, f.inverse_inertia[e]);
+        }
+        for axis in 0..3 {
+            put(&mut self.axis_scale[axis], l, f.axis_scale[axis]);
+            put(&mut self.inverse_moments[axis], l, f.inverse_moments[axis]);
+        }
+        for e in 0..9 {
+            put(&mut self.principal_axes[e], l, f.principal_axes[e]);
+        }
+        put_mask::<L>(&mut self.split, l, f.split);
+        put(&mut self.corner_radius, l, f.corner_radius);
+        put_mask::<L>(&mut self.loaded, l, f.loaded);
+        put_mask::<L>(&mut self.shaped, l, f.shaped);
+        put_mask::<L>(&mut self.turning, l, f.turning);
+        self.rounded = (self.rounded & !(1 << l)) | (f.rounded << l);
+    }
+
+    /// Lane `l` as a still fair die without weight: it never touches nor spins and costs the
+    /// other lanes nothing.
+    #[inline(always)]
+    fn park(&mut self, l: usize) {
+        put(&mut self.weight_z, l, 0.0);
+        put3(&mut self.flight_kick, l, &Vector3::zeros());
+        put_mask::<L>(&mut self.loaded, l, false);
+        put_mask::<L>(&mut self.shaped, l, false);
+        self.rounded &= !(1 << l);
+        put_mask::<L>(&mut self.turning, l, false);
+        put_mask::<L>(&mut self.split, l, false);
+        put(&mut self.corner_radius, l, 0.0);
+    }
+}
+
+/// Sets lane `l` of a vector of lanes.
+#[inline(always)]
+pub(crate) fn put3<L: Lane>(v: &mut Vector3<L>, l: usize, x: &Vector3<f64>) {
+    put(&mut v.x, l, x.x);
+    put(&mut v.y, l, x.y);
+    put(&mut v.z, l, x.z);
+}
+
 /// Calls the kernel makes into an engine's bookkeeping during a step; the energy ledger is
 /// the one user, and a run that does not keep it passes [`NoHook`].
-pub(crate) trait StepHook<L: Lane> {
+pub(crate) trait StepHook<L: Lane, W: Law, const N: usize, B: Faces<N>> {
     /// Before the kick, at the state the contact forces were computed from.
-    fn before_kick(&mut self, kernel: &Kernel<L>);
+    fn before_kick(&mut self, kernel: &Kernel<L, W, N, B>);
     /// After the kick and the new ω, before the corners turn.
-    fn after_spin(&mut self, kernel: &Kernel<L>);
+    fn after_spin(&mut self, kernel: &Kernel<L, W, N, B>);
 }
 
 /// No bookkeeping.
 pub(crate) struct NoHook;
 
-impl<L: Lane> StepHook<L> for NoHook {
+impl<L: Lane, W: Law, const N: usize, B: Faces<N>> StepHook<L, W, N, B> for NoHook {
     #[inline(always)]
-    fn before_kick(&mut self, _: &Kernel<L>) {}
+    fn before_kick(&mut self, _: &Kernel<L, W, N, B>) {}
     #[inline(always)]
-    fn after_spin(&mut self, _: &Kernel<L>) {}
+    fn after_spin(&mut self, _: &Kernel<L, W, N, B>) {}
 }
 
-/// One roll per lane: the state plus everything the step needs.
+/// What the engines ask of a body by the face it lies on, at its points' offsets (cm, world
+/// frame, about the centre of mass): the stopping rule there (a loaded die's and a general
+/// body's depend on the face down; the end-of-step test asks in the lanes of
+/// [`BodyConstants::turning`]), and the face up of a body at rest (the outcome).
+pub(crate) trait Faces<const N: usize>: Copy + std::fmt::Debug {
+    fn stop_rule_at(&self, offsets: &[Vector3<f64>; N]) -> StopRule;
+    fn face_up_at_rest(&self, offsets: &[Vector3<f64>; N]) -> Option<u8>;
+}
+
+impl Faces<8> for Body {
+    fn stop_rule_at(&self, offsets: &[Vector3<f64>; 8]) -> StopRule {
+        Body::stop_rule_at(self, offsets)
+    }
+
+    fn face_up_at_rest(&self, offsets: &[Vector3<f64>; 8]) -> Option<u8> {
+        Body::face_up_at_rest(self, offsets)
+    }
+}
+
+/// One roll per lane, all on the contact law `W`, of a body of `N` contact points (`B` says
+/// its stopping rule by the face down): the state plus everything the step needs.
 #[derive(Debug, Clone)]
-pub(crate) struct Kernel<L: Lane> {
-    pub(crate) state: State<L>,
+pub(crate) struct Kernel<L: Lane, W: Law, const N: usize = 8, B: Faces<N> = Body> {
+    pub(crate) state: State<L, N>,
+    /// The law's memory at each contact point.
+    pub(crate) points: [W::Point<L>; N],
     /// rad/s, `I⁻¹·L`, kept in step with the angular momentum.
     pub(crate) angular_velocity: Vector3<L>,
     /// In lanes of [`Constants::split`]: the principal axes (world frame) this step's turn
@@ -392,33 +500,37 @@ pub(crate) struct Kernel<L: Lane> {
     pub(crate) in_contact: L::Mask,
     /// Bit k: corner k is below the ground in some lane. A corner outside it has +0.0
     /// depth and force in every lane, and the sums skip it (see [`Kernel::step`]).
-    pub(crate) touching_corners: u8,
-    pub(crate) c: Constants<L>,
+    pub(crate) touching_corners: u64,
+    pub(crate) c: Constants<L, W, N>,
     /// Each lane's body: what the end-of-step test asks for the stopping rule of the face
     /// down, and the outcome rule asks at the end.
-    pub(crate) bodies: L::PerLane<Body>,
+    pub(crate) bodies: L::PerLane<B>,
 }
 
-impl Kernel<f64> {
-    /// The die placed at `initial`, its spin and its forces computed (no range checks).
-    pub(crate) fn new(params: &Params, initial: &InitialCondition) -> Self {
-        let body = Body::new(params);
-        let c = Constants::new(params, &body);
-        let corner_offsets = body.start_offsets(initial);
-        let angular_momentum = body.initial_angular_momentum(initial, &corner_offsets);
+impl<W: Law, const N: usize, B: Faces<N>> Kernel<f64, W, N, B> {
+    /// The body `body` (its constants `c`) placed at `initial` with its points at
+    /// `corner_offsets` (cm, world frame) and angular momentum `angular_momentum`, its spin
+    /// and its forces computed.
+    pub(crate) fn placed(
+        c: Constants<f64, W, N>,
+        body: B,
+        initial: &InitialCondition,
+        corner_offsets: [Vector3<f64>; N],
+        angular_momentum: Vector3<f64>,
+    ) -> Self {
         let state = State {
             position: Vector3::new(0.0, 0.0, initial.height),
             velocity: Vector3::from(initial.velocity),
             angular_momentum,
             corner_offsets,
-            corner_forces: [Vector3::zeros(); 8],
-            corner_depths: [0.0; 8],
-            tangential_springs: [Vector2::zeros(); 8],
+            corner_forces: [Vector3::zeros(); N],
+            corner_depths: [0.0; N],
             time_s: 0.0,
             step: 0,
         };
         let mut kernel = Kernel {
             state,
+            points: [W::free_point(); N],
             angular_velocity: Vector3::zeros(),
             turned_axes: [Vector3::zeros(); 3],
             turned_angular_velocity: Vector3::zeros(),
@@ -435,32 +547,166 @@ impl Kernel<f64> {
     }
 }
 
-impl<L: Lane> Kernel<L> {
-    /// One step under the laws the lanes have: [`Kernel::step`] of the paper's law alone
-    /// where no lane has the spring-friction law.
-    #[inline(always)]
-    pub(crate) fn step_by_law(&mut self, hook: &mut impl StepHook<L>) {
-        if self.c.spring_lanes != 0 {
-            self.step::<true>(hook);
-        } else {
-            self.step::<false>(hook);
+impl<W: Law> Kernel<f64, W> {
+    /// The die placed at `initial`, its spin and its forces computed (no range checks).
+    pub(crate) fn new(params: &Params, initial: &InitialCondition) -> Self {
+        let body = Body::new(params);
+        let c = Constants::<f64, W>::new(params, &body);
+        let corner_offsets = body.start_offsets(initial);
+        let angular_momentum = body.initial_angular_momentum(initial, &corner_offsets);
+        Kernel::placed(c, body, initial, corner_offsets, angular_momentum)
+    }
+
+    /// This roll under the law `V` with the constants `c` (the ground changed mid-roll): the
+    /// same state and motion, each point's memory forgotten; its forces are still the old
+    /// law's until [`Kernel::update_forces`].
+    pub(crate) fn under<V: Law>(&self, c: Constants<f64, V>, body: Body) -> Kernel<f64, V> {
+        Kernel {
+            state: self.state.clone(),
+            points: [V::free_point(); 8],
+            angular_velocity: self.angular_velocity,
+            turned_axes: self.turned_axes,
+            turned_angular_velocity: self.turned_angular_velocity,
+            rotation: self.rotation,
+            rotating: self.rotating,
+            in_contact: self.in_contact,
+            touching_corners: self.touching_corners,
+            c,
+            bodies: [body],
+        }
+    }
+}
+
+impl<L: Lane, W: Law, const N: usize, B: Faces<N>> Kernel<L, W, N, B> {
+    /// One roll's kernel in every lane (each lane is loaded before it steps, or parked).
+    pub(crate) fn splat(first: &Kernel<f64, W, N, B>) -> Self {
+        let s = &first.state;
+        let s3 = |v: &Vector3<f64>| v3(L::splat(v.x), L::splat(v.y), L::splat(v.z));
+        let mut points = [W::free_point::<L>(); N];
+        for (point, from) in points.iter_mut().zip(&first.points) {
+            for l in 0..L::WIDTH {
+                W::set_point_lane(point, l, from);
+            }
+        }
+        Kernel {
+            state: State {
+                position: s3(&s.position),
+                velocity: s3(&s.velocity),
+                angular_momentum: s3(&s.angular_momentum),
+                corner_offsets: s.corner_offsets.each_ref().map(s3),
+                corner_forces: s.corner_forces.each_ref().map(s3),
+                corner_depths: s.corner_depths.map(L::splat),
+                time_s: L::splat(s.time_s),
+                step: L::count_of(s.step),
+            },
+            points,
+            angular_velocity: s3(&first.angular_velocity),
+            turned_axes: first.turned_axes.each_ref().map(s3),
+            turned_angular_velocity: s3(&first.turned_angular_velocity),
+            rotation: first.rotation.map(L::splat),
+            rotating: mask_of::<L>(first.rotating),
+            in_contact: mask_of::<L>(first.in_contact),
+            touching_corners: first.touching_corners,
+            c: Constants::splat(&first.c),
+            bodies: L::per_lane(|_| first.bodies[0]),
         }
     }
 
-    /// One step of Δt in every lane: kick → drift → L → ω → rotate → forces (docs/model.md,
-    /// "One time step").
-    ///
-    /// `SPRING` false is the paper's law in every lane, its arithmetic untouched by the other
-    /// law; true steps lanes on the spring-friction law (and any paper lanes beside them).
-    /// The engines pick it once per step from [`Constants::spring_lanes`], so the paper's
-    /// step compiles without a trace of the other law.
+    /// Puts the roll `from` into lane `l`, as it is.
     #[inline(always)]
-    pub(crate) fn step<const SPRING: bool>(&mut self, hook: &mut impl StepHook<L>) {
+    pub(crate) fn set_lane(&mut self, l: usize, from: &Kernel<f64, W, N, B>) {
+        let s = &from.state;
+        let to = &mut self.state;
+        put3(&mut to.position, l, &s.position);
+        put3(&mut to.velocity, l, &s.velocity);
+        put3(&mut to.angular_momentum, l, &s.angular_momentum);
+        for c in 0..N {
+            put3(&mut to.corner_offsets[c], l, &s.corner_offsets[c]);
+            put3(&mut to.corner_forces[c], l, &s.corner_forces[c]);
+            put(&mut to.corner_depths[c], l, s.corner_depths[c]);
+            W::set_point_lane(&mut self.points[c], l, &from.points[c]);
+        }
+        put(&mut to.time_s, l, s.time_s);
+        L::put_count(&mut to.step, l, s.step);
+        put3(&mut self.angular_velocity, l, &from.angular_velocity);
+        put3(
+            &mut self.turned_angular_velocity,
+            l,
+            &from.turned_angular_velocity,
+        );
+        for axis in 0..3 {
+            put3(&mut self.turned_axes[axis], l, &from.turned_axes[axis]);
+        }
+        for e in 0..9 {
+            put(&mut self.rotation[e], l, from.rotation[e]);
+        }
+        put_mask::<L>(&mut self.rotating, l, from.rotating);
+        put_mask::<L>(&mut self.in_contact, l, from.in_contact);
+        self.touching_corners = (0..N)
+            .filter(|&c| L::bits(self.state.corner_depths[c].gt(L::zero())) != 0)
+            .fold(0, |bits, c| bits | 1 << c);
+        self.c.set_lane(l, &from.c);
+        self.bodies.as_mut()[l] = from.bodies[0];
+    }
+
+    /// Lane `l`'s roll written into `to`, whose kernel it was loaded from.
+    #[inline(always)]
+    pub(crate) fn lane_into(&self, l: usize, to: &mut Kernel<f64, W, N, B>) {
+        let (from, s) = (&self.state, &mut to.state);
+        s.position = lane3(&from.position, l);
+        s.velocity = lane3(&from.velocity, l);
+        s.angular_momentum = lane3(&from.angular_momentum, l);
+        for c in 0..N {
+            s.corner_offsets[c] = lane3(&from.corner_offsets[c], l);
+            s.corner_forces[c] = lane3(&from.corner_forces[c], l);
+            s.corner_depths[c] = from.corner_depths[c].lane(l);
+            to.points[c] = W::point_lane(&self.points[c], l);
+        }
+        s.time_s = from.time_s.lane(l);
+        s.step = L::count_lane(from.step, l);
+        to.angular_velocity = lane3(&self.angular_velocity, l);
+        to.rotation = self.rotation.map(|e| e.lane(l));
+        to.rotating = L::bits(self.rotating) & (1 << l) != 0;
+        to.in_contact = L::bits(self.in_contact) & (1 << l) != 0;
+        to.touching_corners = (0..N)
+            .filter(|&c| s.corner_depths[c] > 0.0)
+            .fold(0, |bits, c| bits | 1 << c);
+    }
+
+    /// Empties lane `l` for good: a still fair die high above the ground without weight, so
+    /// it never touches nor spins and costs the other lanes nothing (it turns by the
+    /// identity).
+    #[inline(always)]
+    pub(crate) fn park(&mut self, l: usize) {
+        put_mask::<L>(&mut self.in_contact, l, false);
+        put_mask::<L>(&mut self.rotating, l, true);
+        for (e, entry) in self.rotation.iter_mut().enumerate() {
+            put(entry, l, if e % 4 == 0 { 1.0 } else { 0.0 });
+        }
+        put3(&mut self.state.position, l, &Vector3::new(0.0, 0.0, 1e9));
+        put3(&mut self.state.velocity, l, &Vector3::zeros());
+        self.c.park(l);
+        let neighbour = (l + 1) % L::WIDTH;
+        self.bodies.as_mut()[l] = self.bodies.as_ref()[neighbour];
+        for c in 0..N {
+            put3(&mut self.state.corner_forces[c], l, &Vector3::zeros());
+            put(&mut self.state.corner_depths[c], l, 0.0);
+            W::set_point_lane(&mut self.points[c], l, &W::free_point());
+        }
+    }
+}
+
+impl<L: Lane, W: Law, const N: usize, B: Faces<N>> Kernel<L, W, N, B> {
+    /// One step of Δt in every lane: kick → drift → L → ω → rotate → forces (docs/model.md,
+    /// "One time step"), the law `W`'s kick and forces.
+    #[inline(always)]
+    pub(crate) fn step(&mut self, hook: &mut impl StepHook<L, W, N, B>) {
         // The constants this stage reads, copied out one by one: a copy of them all costs a
         // memcpy call per step.
         let c = &self.c;
-        let (dt, mass, weight_z, flight_kick, turning) = (c.dt, c.mass, c.weight_z, c.flight_kick, c.turning);
-        let (rounded, radius) = (c.rounded != 0, c.corner_radius);
+        let b = &c.body;
+        let (dt, mass, weight_z, flight_kick, turning) = (c.dt, b.mass, b.weight_z, b.flight_kick, b.turning);
+        let (rounded, radius) = (b.rounded != 0, b.corner_radius);
         let contact_bits = L::bits(self.in_contact);
         let touching = self.touching_corners;
         hook.before_kick(self);
@@ -472,33 +718,18 @@ impl<L: Lane> Kernel<L> {
         // anywhere in between.
         if contact_bits != 0 {
             let mut f: Option<Vector3<L>> = None;
-            for k in set_bits(touching.into()) {
+            for k in corners::<N>(touching) {
                 f = Some(f.map_or(s.corner_forces[k], |f| add3(&f, &s.corner_forces[k])));
             }
             let f = f.unwrap_or_else(zero3);
-            let force = if touching != 0xff { add3(&f, &zero3()) } else { f };
+            let force = if touching != every_point::<N>() {
+                add3(&f, &zero3())
+            } else {
+                f
+            };
             // A lane in flight among them gets its flight constant this way too: its
             // forces are +0.0, so these are the very quotients the constant holds.
-            let v = &mut s.velocity;
-            if SPRING {
-                // A tilted table's weight has a part in its plane.
-                let c = &self.c;
-                let tilted = v3(
-                    v.x + ((force.x + c.weight_x) / mass) * dt,
-                    v.y + ((force.y + c.weight_y) / mass) * dt,
-                    v.z + ((force.z + weight_z) / mass) * dt,
-                );
-                *v = if c.spring_lanes == all_lanes::<L>() {
-                    tilted
-                } else {
-                    let paper = v3(v.x + (force.x / mass) * dt, v.y + (force.y / mass) * dt, tilted.z);
-                    select3(c.spring, &tilted, &paper)
-                };
-            } else {
-                v.x = v.x + (force.x / mass) * dt;
-                v.y = v.y + (force.y / mass) * dt;
-                v.z = v.z + ((force.z + weight_z) / mass) * dt;
-            }
+            W::kick(&self.c.law, &mut s.velocity, &force, weight_z, mass, dt);
         } else {
             s.velocity = add3(&s.velocity, &flight_kick);
         }
@@ -510,9 +741,9 @@ impl<L: Lane> Kernel<L> {
         // acts at its contact sphere's lowest point.
         if contact_bits != 0 {
             let torque = if rounded {
-                torque::<true, L>(&s.corner_offsets, &s.corner_forces, touching, radius)
+                torque::<true, L, N>(&s.corner_offsets, &s.corner_forces, touching, radius)
             } else {
-                torque::<false, L>(&s.corner_offsets, &s.corner_forces, touching, radius)
+                torque::<false, L, N>(&s.corner_offsets, &s.corner_forces, touching, radius)
             };
             let l_new = add3(&s.angular_momentum, &scale3(&torque, dt));
             s.angular_momentum = if contact_bits == all_lanes::<L>() {
@@ -551,7 +782,7 @@ impl<L: Lane> Kernel<L> {
         }
         // A body turned by the splitting: its corners along its turned principal axes, and
         // the ω of its new orientation.
-        let split = L::bits(self.c.split);
+        let split = L::bits(self.c.body.split);
         if split != 0 {
             let all = split == all_lanes::<L>();
             let [a, b, c] = self.turned_axes;
@@ -559,7 +790,7 @@ impl<L: Lane> Kernel<L> {
                 .state
                 .corner_offsets
                 .iter_mut()
-                .zip(&self.c.principal_corners)
+                .zip(&self.c.body.principal_corners)
             {
                 let placed = v3(
                     (a.x * p.x + b.x * p.y) + c.x * p.z,
@@ -569,21 +800,21 @@ impl<L: Lane> Kernel<L> {
                 *r = if all {
                     placed
                 } else {
-                    select3(self.c.split, &placed, r)
+                    select3(self.c.body.split, &placed, r)
                 };
             }
             self.angular_velocity = if all {
                 self.turned_angular_velocity
             } else {
                 select3(
-                    self.c.split,
+                    self.c.body.split,
                     &self.turned_angular_velocity,
                     &self.angular_velocity,
                 )
             };
         }
         // 6. forces at the new state.
-        self.update_forces_by::<SPRING>();
+        self.update_forces();
         // 7. the clock.
         self.state.time_s = self.state.time_s + dt;
         self.state.step = L::count_up(self.state.step);
@@ -598,7 +829,7 @@ impl<L: Lane> Kernel<L> {
     /// the last bit), so those are taken per lane ([`spin_lanes`]).
     #[inline(always)]
     pub(crate) fn respin(&mut self, lanes: u32) {
-        let split = L::bits(self.c.split) & lanes;
+        let split = L::bits(self.c.body.split) & lanes;
         if split != 0 {
             self.turn_freely(split);
         }
@@ -606,25 +837,26 @@ impl<L: Lane> Kernel<L> {
         if lanes == 0 {
             return;
         }
-        let c = &self.c;
+        let (c, dt) = (&self.c.body, self.c.dt);
         let loaded = L::bits(c.loaded) & lanes;
         let shaped = L::bits(c.shaped) & lanes;
         let mut spin_input = self.state.angular_momentum;
-        if loaded != 0 {
-            let tensor = InertiaTensor::new(
-                c.uniform_inertia,
-                c.uniform_mass,
-                &c.extra_masses,
-                &self.state.corner_offsets,
-            );
+        // Only a cube is loaded or shaped (N = 8): its corners are the first 8 points.
+        let cube = self.state.corner_offsets.first_chunk::<8>();
+        if loaded != 0
+            && let Some(corners) = cube
+        {
+            let tensor = InertiaTensor::new(c.uniform_inertia, c.uniform_mass, &c.extra_masses, corners);
             let w = tensor.angular_velocity(&self.state.angular_momentum);
             spin_input = select3(c.loaded, &w, &spin_input);
         }
-        if shaped != 0 {
+        if shaped != 0
+            && let Some(corners) = cube
+        {
             let w = shape::angular_velocity(
                 &c.inverse_inertia,
                 &c.axis_scale,
-                &self.state.corner_offsets,
+                corners,
                 &self.state.angular_momentum,
             );
             spin_input = select3(c.shaped, &w, &spin_input);
@@ -636,7 +868,7 @@ impl<L: Lane> Kernel<L> {
             let (w, rotation) = scalar_spin(
                 &lane3(&spin_input, 0),
                 c.uniform_inertia.lane(0),
-                c.dt.lane(0),
+                dt.lane(0),
                 loaded != 0,
             );
             self.angular_velocity = v3(L::splat(w.x), L::splat(w.y), L::splat(w.z));
@@ -652,7 +884,7 @@ impl<L: Lane> Kernel<L> {
         }
         // Several lanes: ω = L/I (a loaded or general body's ω is its tensor's already) and
         // the rotation in vector operations, only `sin` and `cos` per lane ([`spin_lanes`]).
-        let (dt, inertia, turning_lanes) = (c.dt, c.uniform_inertia, c.turning);
+        let (inertia, turning_lanes) = (c.uniform_inertia, c.turning);
         let divided = v3(
             spin_input.x / inertia,
             spin_input.y / inertia,
@@ -678,14 +910,14 @@ impl<L: Lane> Kernel<L> {
     /// the turned body's once the corners have turned ([`Kernel::step`]).
     #[inline(always)]
     fn turn_freely(&mut self, lanes: u32) {
-        let c = &self.c;
+        let c = &self.c.body;
         let turn = free_turn(
             &self.state.corner_offsets,
-            &c.axis_scale,
+            (c.frame, &c.axis_scale),
             &c.principal_axes,
             &c.inverse_moments,
             &self.state.angular_momentum,
-            c.dt,
+            self.c.dt,
             lanes,
         );
         let mask = L::mask_from_bits(lanes);
@@ -707,274 +939,53 @@ impl<L: Lane> Kernel<L> {
     /// Velocity of a corner, `u_k = v + ω × r_k`, cm/s, in the authors' operation order.
     #[inline(always)]
     pub(crate) fn corner_velocity(&self, r: &Vector3<L>) -> Vector3<L> {
-        let (v, w) = (&self.state.velocity, &self.angular_velocity);
-        v3(
-            v.x + (r.z * w.y - r.y * w.z),
-            v.y + (r.x * w.z - r.z * w.x),
-            v.z + (r.y * w.x - r.x * w.y),
-        )
+        point_velocity(&self.state.velocity, &self.angular_velocity, r)
     }
 
-    /// Recomputes every corner's depth and contact force at the current state, under each
-    /// lane's contact and friction law.
+    /// Recomputes every contact point's depth, force and memory at the current state, under
+    /// the law `W`.
     #[inline(always)]
     pub(crate) fn update_forces(&mut self) {
-        if self.c.spring_lanes != 0 {
-            self.update_forces_by::<true>();
-        } else {
-            self.update_forces_by::<false>();
-        }
-    }
-
-    /// [`Kernel::update_forces`] with the laws known: the paper's alone (`SPRING` false,
-    /// eq. 13–15), or lanes on the spring-friction law, with the paper's in any lane beside
-    /// them computed as before and kept by a select.
-    #[inline(always)]
-    fn update_forces_by<const SPRING: bool>(&mut self) {
-        // A rounded body touches the table with the lowest points of its corner spheres, the
-        // radius below their centres (docs/model.md, "Real dice"); a sharp one skips this.
-        let rounded = self.c.rounded != 0;
-        if !SPRING {
-            if rounded {
-                self.update_forces_at::<true>();
-            } else {
-                self.update_forces_at::<false>();
-            }
-            return;
-        }
-        let previous = self.touching_corners;
-        let paper = (self.c.spring_lanes != all_lanes::<L>()).then(|| {
-            if rounded {
-                self.update_forces_at::<true>();
-            } else {
-                self.update_forces_at::<false>();
-            }
-            self.state.corner_forces
-        });
-        if rounded {
-            self.spring_forces_at::<true>(previous);
-        } else {
-            self.spring_forces_at::<false>(previous);
-        }
-        if let Some(paper) = paper {
-            let spring = self.c.spring;
-            for (force, paper) in self.state.corner_forces.iter_mut().zip(&paper) {
-                *force = select3(spring, force, paper);
-            }
-        }
-    }
-
-    /// The spring-friction law's forces for sharp (`ROUNDED` false) or rounded lanes, with
-    /// `previous` the corners that touched in some lane before (docs/model.md, "The
-    /// spring-friction contact"): per point, the normal `N = max(0, k·d − c·u_z)`; the trial
-    /// tangential force `F* = −k_t·ξ − c_t·u_t` on the spring `ξ` (the slip since the point
-    /// touched, this step's included); stuck while `|F*| ≤ μ_s·N`, else sliding at
-    /// `μ_k·N` along `F*` with the spring set to hold that force. A point off the table has
-    /// no force and no spring.
-    #[inline(always)]
-    fn spring_forces_at<const ROUNDED: bool>(&mut self, previous: u8) {
-        let c = &self.c;
-        let (stiffness, damping, kinetic, dt) = (c.stiffness, c.normal_damping, c.friction, c.dt);
-        let (k_t, c_t, stuck_up_to, spring) = (
-            c.tangential_stiffness,
-            c.tangential_damping,
-            c.static_friction,
-            c.spring,
+        let (dt, radius, rounded) = (self.c.dt, self.c.body.corner_radius, self.c.body.rounded != 0);
+        W::forces(
+            &self.c.law,
+            dt,
+            radius,
+            rounded,
+            Touch {
+                state: &mut self.state,
+                angular_velocity: &self.angular_velocity,
+                points: &mut self.points,
+                in_contact: &mut self.in_contact,
+                touching_corners: &mut self.touching_corners,
+            },
         );
-        let compliance = c.tangential_compliance;
-        let radius = c.corner_radius;
-        let zero = L::zero();
-        let (touching, any) = self.press_corners::<ROUNDED>(radius);
-        if L::bits(any) == 0 && previous == 0 {
-            return;
-        }
-        self.in_contact = any;
-        let mut touching_corners = 0u8;
-        for (k, t) in touching.iter().enumerate() {
-            if L::bits(*t) != 0 {
-                touching_corners |= 1 << k;
-            }
-        }
-        self.touching_corners = touching_corners;
-        for k in set_bits((previous & !touching_corners).into()) {
-            self.state.corner_forces[k] = zero3();
-            self.state.tangential_springs[k] = Vector2::new(zero, zero);
-        }
-        for k in set_bits(touching_corners.into()) {
-            let t = touching[k];
-            let u = self.corner_velocity(&contact_point::<ROUNDED, L>(
-                &self.state.corner_offsets[k],
-                radius,
-            ));
-            let xi = self.state.tangential_springs[k];
-            let (sx, sy) = (xi.x + u.x * dt, xi.y + u.y * dt);
-            // The table pushes, never pulls.
-            let pressed = self.state.corner_depths[k] * stiffness - damping * u.z;
-            let normal = pressed.or_zero(pressed.gt(zero));
-            let (mut fx, mut fy) = (-(k_t * sx) - c_t * u.x, -(k_t * sy) - c_t * u.y);
-            let (mut sx, mut sy) = (sx, sy);
-            // |F*| > μ_s·N, compared squared (both sides ≥ 0): a point stuck in every lane
-            // needs no square root and no quotient.
-            let limit = stuck_up_to * normal;
-            let slipping = (fx * fx + fy * fy).gt(limit * limit);
-            if L::bits(slipping) != 0 {
-                // Where it slips |F*| is above μ_s·N ≥ 0, so the quotient is finite there.
-                let scale = (kinetic * normal) / (fx * fx + fy * fy).sqrt();
-                fx = L::select(slipping, fx * scale, fx);
-                fy = L::select(slipping, fy * scale, fy);
-                // Sliding, the spring holds the kinetic force: ξ = −(F_t + c_t·u_t)/k_t.
-                sx = L::select(slipping, -(fx + c_t * u.x) * compliance, sx);
-                sy = L::select(slipping, -(fy + c_t * u.y) * compliance, sy);
-            }
-            let kept = t & spring;
-            self.state.corner_forces[k] = v3(fx.or_zero(t), fy.or_zero(t), normal.or_zero(t));
-            self.state.tangential_springs[k] = Vector2::new(sx.or_zero(kept), sy.or_zero(kept));
-        }
     }
 
-    /// Which corners (or corner spheres, `ROUNDED`) are in the table, per lane, and their
-    /// depths into it, cm: the same for both contact laws. Returns the masks and their union.
-    #[inline(always)]
-    fn press_corners<const ROUNDED: bool>(&mut self, radius: L) -> ([L::Mask; 8], L::Mask) {
-        let z0 = self.state.position.z;
-        let zero = L::zero();
-        let mut touching = [L::mask_from_bits(0); 8];
-        let mut any = L::mask_from_bits(0);
-        for (k, t) in touching.iter_mut().enumerate() {
-            let z = self.state.corner_offsets[k].z + z0;
-            let z = if ROUNDED { z - radius } else { z };
-            *t = z.lt(zero);
-            self.state.corner_depths[k] = (-z).or_zero(*t);
-            any = any | *t;
-        }
-        (touching, any)
-    }
-
-    /// [`Kernel::update_forces`] for sharp (`ROUNDED` false) or rounded lanes.
-    #[inline(always)]
-    fn update_forces_at<const ROUNDED: bool>(&mut self) {
-        // Copied out one by one, as in `step`.
-        let c = &self.c;
-        let (stiffness, damping, friction, whole_die_norm) =
-            (c.stiffness, c.damping, c.friction, c.whole_die_norm);
-        let radius = c.corner_radius;
-        let zero = L::zero();
-        let (touching, any) = self.press_corners::<ROUNDED>(radius);
-        // Lanes that neither touch now nor did before keep their +0.0 forces; a lane that
-        // just left the ground gets +0.0 from the masks below.
-        if L::bits(any | self.in_contact) == 0 {
-            return;
-        }
-        self.in_contact = any;
-        let laws = L::bits(whole_die_norm);
-        let per_corner_lanes = laws != all_lanes::<L>();
-        let whole_lanes = laws != 0;
-        let mut touching_corners = 0u8;
-        for (k, t) in touching.iter().enumerate() {
-            if L::bits(*t) != 0 {
-                touching_corners |= 1 << k;
-            }
-        }
-        let previous = std::mem::replace(&mut self.touching_corners, touching_corners);
-        for k in set_bits((previous & !touching_corners).into()) {
-            self.state.corner_forces[k] = zero3();
-        }
-        // The authors' law scales every corner's slip by one whole-die matrix norm: the
-        // largest singular value of the 8×2 matrix of horizontal corner velocities, from the
-        // largest eigenvalue of its 2×2 Gram matrix (within 5·10⁻¹⁶ of LAPACK's, reference
-        // §9). It needs every corner's velocity, the per-corner law only those that touch.
-        let norm = if whole_lanes {
-            let (mut a, mut b, mut cc) = (zero, zero, zero);
-            for r in &self.state.corner_offsets {
-                let uk = self.corner_velocity(&contact_point::<ROUNDED, L>(r, radius));
-                a = a + uk.x * uk.x;
-                b = b + uk.x * uk.y;
-                cc = cc + uk.y * uk.y;
-            }
-            let half_diff = (a - cc) / L::splat(2.0);
-            ((a + cc) / L::splat(2.0) + (half_diff * half_diff + b * b).sqrt()).sqrt()
-        } else {
-            zero
-        };
-        let norm_nonzero = norm.ne(zero);
-        for k in set_bits(touching_corners.into()) {
-            let uk = self.corner_velocity(&contact_point::<ROUNDED, L>(
-                &self.state.corner_offsets[k],
-                radius,
-            ));
-            let normal = self.state.corner_depths[k] * stiffness;
-            let vertical = normal * (L::splat(1.0) - damping * uk.z);
-            let (mut fx, mut fy) = (zero, zero);
-            if per_corner_lanes {
-                let slip = (uk.x * uk.x + uk.y * uk.y).sqrt();
-                let sliding = slip.gt(zero);
-                let scale = -(friction * vertical.abs());
-                fx = (scale * (uk.x / slip)).or_zero(sliding);
-                fy = (scale * (uk.y / slip)).or_zero(sliding);
-            }
-            if whole_lanes {
-                let wx = (-((uk.x / norm) * vertical) * friction).or_zero(norm_nonzero);
-                let wy = (-((uk.y / norm) * vertical) * friction).or_zero(norm_nonzero);
-                fx = L::select(whole_die_norm, wx, fx);
-                fy = L::select(whole_die_norm, wy, fy);
-            }
-            self.state.corner_forces[k] = v3(
-                fx.or_zero(touching[k]),
-                fy.or_zero(touching[k]),
-                vertical.or_zero(touching[k]),
-            );
-        }
-    }
-
-    /// erg, the weight's potential: `M·g·(x.z − a)`; on a spring-friction lane
-    /// `−M·g⃗·x` measured from the same height, the normal part `M·g·cos θ·(x.z − a)` less
-    /// the downhill part `M·g_t·x` of a tilted table (zero on a level one).
-    #[inline(always)]
-    fn gravitational<const SPRING: bool>(&self) -> L {
-        let c = &self.c;
-        let x = &self.state.position;
-        let normal = c.mass_gravity * (x.z - c.half_size);
-        if !SPRING {
-            return normal;
-        }
-        let tilted = normal - (c.weight_x * x.x + c.weight_y * x.y);
-        if c.spring_lanes == all_lanes::<L>() {
-            tilted
-        } else {
-            L::select(c.spring, tilted, normal)
-        }
-    }
-
-    /// The rigid-body energy terms at the current state, erg, under the lanes' laws.
+    /// The rigid-body energy terms at the current state, erg: the weight's potential
+    /// `M·g·(x.z − a)` as the law `W` has it (a tilted table's adds its downhill part).
     #[inline(always)]
     pub(crate) fn energy(&self) -> EnergyTerms<L> {
-        if self.c.spring_lanes != 0 {
-            self.energy_by::<true>()
-        } else {
-            self.energy_by::<false>()
-        }
-    }
-
-    /// [`Kernel::energy`] with the laws known, as [`Kernel::step`] takes them.
-    #[inline(always)]
-    pub(crate) fn energy_by<const SPRING: bool>(&self) -> EnergyTerms<L> {
         let c = &self.c;
+        let b = &c.body;
         let s = &self.state;
         let (v, w, l) = (&s.velocity, &self.angular_velocity, &s.angular_momentum);
         let mut elastic = L::zero();
+        let half_stiffness = W::half_stiffness(&c.law);
         // Terms are ≥ +0.0, so leaving out the +0.0 of corners that touch nowhere is exact.
         if L::bits(self.in_contact) != 0 {
-            for k in set_bits(self.touching_corners.into()) {
+            for k in corners::<N>(self.touching_corners) {
                 let d = s.corner_depths[k];
-                elastic = elastic + (c.half_stiffness * d) * d;
+                elastic = elastic + (half_stiffness * d) * d;
             }
         }
+        let normal = b.mass_gravity * (s.position.z - b.half_size);
         EnergyTerms {
-            translational: c.half_mass * ((v.x * v.x + v.y * v.y) + v.z * v.z),
+            translational: b.half_mass * ((v.x * v.x + v.y * v.y) + v.z * v.z),
             // ω·L summed from +0.0 as nalgebra's dot product does (a −0.0 product first
             // becomes +0.0).
             rotational: L::splat(0.5) * (((L::zero() + w.x * l.x) + w.y * l.y) + w.z * l.z),
-            gravitational: self.gravitational::<SPRING>(),
+            gravitational: W::potential(&c.law, normal, &s.position),
             elastic: elastic.or_zero(self.in_contact),
         }
     }
@@ -985,11 +996,11 @@ impl<L: Lane> Kernel<L> {
     /// a loaded die weighs each corner's `|u_k|²` and height by its own mass.
     #[inline(always)]
     pub(crate) fn point_mass_parts(&self) -> (L, L) {
-        let c = &self.c;
+        let c = &self.c.body;
         let s = &self.state;
-        let u: [Vector3<L>; 8] = std::array::from_fn(|k| self.corner_velocity(&s.corner_offsets[k]));
+        let u: [Vector3<L>; N] = std::array::from_fn(|k| self.corner_velocity(&s.corner_offsets[k]));
         let mut ground = L::zero();
-        for k in 0..8 {
+        for k in 0..N {
             ground = ground + s.corner_depths[k] * s.corner_forces[k].z;
         }
         let loaded = L::bits(c.loaded);
@@ -1039,9 +1050,9 @@ impl<L: Lane> Kernel<L> {
     /// is compared first: where no lane is below the threshold, the point-mass energy need
     /// not be summed nor a loaded die's face looked up.
     #[inline(always)]
-    pub(crate) fn ends_by<const SPRING: bool>(&self) -> Ends<L::Mask> {
-        let c = &self.c;
-        let e = self.energy_by::<SPRING>();
+    pub(crate) fn ends(&self) -> Ends<L::Mask> {
+        let c = &self.c.stop;
+        let e = self.energy();
         let kinetic = e.translational + e.rotational;
         let potential = e.gravitational + e.elastic;
         let rigid = (kinetic + e.gravitational) + e.elastic;
@@ -1052,6 +1063,7 @@ impl<L: Lane> Kernel<L> {
                 &self.state.corner_offsets,
             ))
             | rigid.gt(c.runaway);
+        let turning = self.c.body.turning;
         let low = potential.le(c.energy_threshold);
         let settled = if L::bits(low) == 0 {
             L::mask_from_bits(0)
@@ -1072,7 +1084,7 @@ impl<L: Lane> Kernel<L> {
                 c.energy_threshold,
                 c.kinetic_threshold,
             );
-            let loaded = L::bits(screened & c.turning);
+            let loaded = L::bits(screened & turning);
             if loaded == 0 {
                 screened
             } else {
@@ -1095,14 +1107,7 @@ impl<L: Lane> Kernel<L> {
                 )
             }
         };
-        let settled = settled & !unstable;
-        // A tilted table's cap on the kinetic energy (docs/model.md, "The spring-friction
-        // contact"): it settles only what its downhill edge can hold.
-        let settled = if SPRING && L::bits(settled) != 0 {
-            settled & kinetic.le(c.kinetic_cap)
-        } else {
-            settled
-        };
+        let settled = W::settles(&self.c.law, settled & !unstable, kinetic);
         let timeout = L::count_reached(self.state.step, c.max_steps) & !unstable & !settled;
         Ends {
             unstable,

@@ -14,9 +14,13 @@
 #![allow(unsafe_code)]
 
 use super::body::face_most_nearly_up;
+use super::contact::SpringFriction;
 use super::initial::InitialCondition;
-use super::params::Params;
+use super::params::{ParamError, Params};
+use super::point_roll::{PointKernel, PointRoll};
+use super::points::PointBody;
 use super::sim::{Outcome, STEPS_BETWEEN_STOP_CHECKS, Simulation, State};
+use super::sim::{PaperPerCorner, PaperWholeDie};
 
 /// Whether this CPU can run the lane engine (x86-64 with AVX2).
 pub fn lanes_available() -> bool {
@@ -87,14 +91,47 @@ pub fn roll_one_by_one(
     true
 }
 
+/// Rolls `body` from each of `initials` on `params`' table (both validated) to its end,
+/// four at a time in the lanes where the CPU has AVX2 (else one after another), and returns
+/// the finished rolls in the order of `initials`: bit for bit those [`PointRoll`] rolls
+/// alone.
+pub fn roll_points_in_lanes<const N: usize>(
+    params: &Params,
+    body: &PointBody<N>,
+    initials: &[InitialCondition],
+) -> Result<Vec<PointRoll<N>>, ParamError> {
+    let mut rolls = Vec::with_capacity(initials.len());
+    for initial in initials {
+        rolls.push(PointRoll::new(params, body, initial)?);
+    }
+    #[cfg(target_arch = "x86_64")]
+    if lanes_available() && !rolls.is_empty() {
+        // SAFETY: AVX2 is present, checked just above.
+        unsafe {
+            match &rolls[0].k {
+                PointKernel::Paper(_) => avx2::roll_points::<PaperPerCorner, N>(&mut rolls),
+                PointKernel::PaperWholeDie(_) => avx2::roll_points::<PaperWholeDie, N>(&mut rolls),
+                PointKernel::SpringFriction(_) => avx2::roll_points::<SpringFriction, N>(&mut rolls),
+            }
+        }
+        return Ok(rolls);
+    }
+    for roll in &mut rolls {
+        roll.run_to_end();
+    }
+    Ok(rolls)
+}
+
 #[cfg(target_arch = "x86_64")]
 mod avx2 {
     use super::*;
-    use crate::kernel::{Kernel, NoHook, lane3};
-    use crate::lane::Lane;
-    use crate::sim::{ImpactLog, Status};
-    use nalgebra::{Vector2, Vector3};
+    use crate::kernel::{Ends, Kernel, NoHook};
+    use crate::lane::{Lane, lane3};
+    use crate::point_roll::PointLaw;
+    use crate::sim::{EngineLaw, ImpactLog, Laws, Status};
+    use nalgebra::Vector3;
     use std::arch::x86_64::*;
+    use std::collections::VecDeque;
     use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
     const LANES: usize = 4;
@@ -256,7 +293,7 @@ mod avx2 {
         /// value (vector adds in independent groups are cheaper here than the scalar
         /// engine's integer trick).
         #[inline(always)]
-        fn all_finite(p: &Vector3<F4>, v: &Vector3<F4>, offsets: &[Vector3<F4>; 8]) -> F4 {
+        fn all_finite(p: &Vector3<F4>, v: &Vector3<F4>, offsets: &[Vector3<F4>]) -> F4 {
             let mut sum = (p.x + p.y) + (p.z + v.x) + (v.y + v.z);
             for r in offsets {
                 sum = sum + (r.x + r.y) + r.z;
@@ -312,38 +349,24 @@ mod avx2 {
         fn count_up(count: F4) -> F4 {
             count + F4::splat(1.0)
         }
+        fn count_of(n: u64) -> F4 {
+            F4::splat(n as f64)
+        }
+        fn put_count(count: &mut F4, l: usize, n: u64) {
+            count.set_lane(l, n as f64);
+        }
+        fn count_lane(count: F4, l: usize) -> u64 {
+            count.lane(l) as u64
+        }
         #[inline(always)]
         fn count_reached(count: F4, limit: F4) -> F4 {
             count.ge(limit)
         }
     }
 
-    fn set_mask(mask: &mut F4, l: usize, on: bool) {
-        let mut bits = F4::bits(*mask);
-        if on {
-            bits |= 1 << l;
-        } else {
-            bits &= !(1 << l);
-        }
-        *mask = F4::from_bits(bits);
-    }
-
-    #[inline(always)]
-    fn set2(v: &mut Vector2<F4>, l: usize, x: &Vector2<f64>) {
-        v.x.set_lane(l, x.x);
-        v.y.set_lane(l, x.y);
-    }
-
-    #[inline(always)]
-    fn set3(v: &mut Vector3<F4>, l: usize, x: &Vector3<f64>) {
-        v.x.set_lane(l, x.x);
-        v.y.set_lane(l, x.y);
-        v.z.set_lane(l, x.z);
-    }
-
-    /// Four rolls, one per lane, and the `Simulation` each was set up by.
-    struct Lanes {
-        k: Kernel<F4>,
+    /// Four rolls of the law `W`, one per lane, and the `Simulation` each was set up by.
+    struct Lanes<W: EngineLaw> {
+        k: Kernel<F4, W>,
         /// Lanes holding a roll that has not ended.
         live: F4,
         /// Per lane: the roll's index, its start face and its `Simulation`, which the lane's
@@ -353,250 +376,54 @@ mod avx2 {
         impact_logs: [ImpactLog; LANES],
     }
 
-    impl Lanes {
+    impl<W: EngineLaw> Lanes<W> {
         /// Four lanes from one roll's kernel (each is loaded before it steps, or parked).
-        fn new(first: &Kernel<f64>) -> Lanes {
-            let s = &first.state;
-            let splat3 = |v: &Vector3<f64>| Vector3::new(F4::splat(v.x), F4::splat(v.y), F4::splat(v.z));
-            let splat2 = |v: &Vector2<f64>| Vector2::new(F4::splat(v.x), F4::splat(v.y));
-            let c = &first.c;
-            let k = Kernel {
-                state: State {
-                    position: splat3(&s.position),
-                    velocity: splat3(&s.velocity),
-                    angular_momentum: splat3(&s.angular_momentum),
-                    corner_offsets: s.corner_offsets.each_ref().map(splat3),
-                    corner_forces: s.corner_forces.each_ref().map(splat3),
-                    corner_depths: s.corner_depths.map(F4::splat),
-                    tangential_springs: s.tangential_springs.each_ref().map(splat2),
-                    time_s: F4::splat(s.time_s),
-                    step: F4::splat(s.step as f64),
-                },
-                angular_velocity: splat3(&first.angular_velocity),
-                turned_axes: first.turned_axes.each_ref().map(splat3),
-                turned_angular_velocity: splat3(&first.turned_angular_velocity),
-                rotation: first.rotation.map(F4::splat),
-                rotating: F4::from_bits(if first.rotating { 0b1111 } else { 0 }),
-                in_contact: F4::from_bits(if first.in_contact { 0b1111 } else { 0 }),
-                touching_corners: first.touching_corners,
-                c: crate::kernel::Constants {
-                    dt: F4::splat(c.dt),
-                    mass: F4::splat(c.mass),
-                    weight_z: F4::splat(c.weight_z),
-                    flight_kick: splat3(&c.flight_kick),
-                    stiffness: F4::splat(c.stiffness),
-                    damping: F4::splat(c.damping),
-                    friction: F4::splat(c.friction),
-                    weight_x: F4::splat(c.weight_x),
-                    weight_y: F4::splat(c.weight_y),
-                    normal_damping: F4::splat(c.normal_damping),
-                    tangential_stiffness: F4::splat(c.tangential_stiffness),
-                    tangential_damping: F4::splat(c.tangential_damping),
-                    tangential_compliance: F4::splat(c.tangential_compliance),
-                    static_friction: F4::splat(c.static_friction),
-                    kinetic_cap: F4::splat(c.kinetic_cap),
-                    half_mass: F4::splat(c.half_mass),
-                    mass_gravity: F4::splat(c.mass_gravity),
-                    half_stiffness: F4::splat(c.half_stiffness),
-                    half_size: F4::splat(c.half_size),
-                    half_corner_mass: F4::splat(c.half_corner_mass),
-                    corner_mass_gravity: F4::splat(c.corner_mass_gravity),
-                    mass_gravity_half_size: F4::splat(c.mass_gravity_half_size),
-                    corner_masses: c.corner_masses.map(F4::splat),
-                    gravity: F4::splat(c.gravity),
-                    loaded_mass_gravity_half_size: F4::splat(c.loaded_mass_gravity_half_size),
-                    uniform_inertia: F4::splat(c.uniform_inertia),
-                    uniform_mass: F4::splat(c.uniform_mass),
-                    extra_masses: c.extra_masses.map(F4::splat),
-                    inverse_inertia: c.inverse_inertia.map(F4::splat),
-                    axis_scale: c.axis_scale.map(F4::splat),
-                    inverse_moments: c.inverse_moments.map(F4::splat),
-                    principal_axes: c.principal_axes.map(F4::splat),
-                    principal_corners: c.principal_corners.each_ref().map(splat3),
-                    split: F4::from_bits(if c.split { 0b1111 } else { 0 }),
-                    corner_radius: F4::splat(c.corner_radius),
-                    energy_threshold: F4::splat(c.energy_threshold),
-                    kinetic_threshold: F4::splat(c.kinetic_threshold),
-                    runaway: F4::splat(c.runaway),
-                    max_steps: F4::splat(c.max_steps as f64),
-                    whole_die_norm: F4::from_bits(if c.whole_die_norm { 0b1111 } else { 0 }),
-                    point_masses: F4::from_bits(if c.point_masses { 0b1111 } else { 0 }),
-                    loaded: F4::from_bits(if c.loaded { 0b1111 } else { 0 }),
-                    shaped: F4::from_bits(if c.shaped { 0b1111 } else { 0 }),
-                    rounded: if c.rounded != 0 { 0b1111 } else { 0 },
-                    turning: F4::from_bits(if c.turning { 0b1111 } else { 0 }),
-                    spring: F4::from_bits(if c.spring { 0b1111 } else { 0 }),
-                    spring_lanes: if c.spring_lanes != 0 { 0b1111 } else { 0 },
-                },
-                bodies: [first.bodies[0]; LANES],
-            };
-            Lanes {
-                k,
+        fn new(first: &Kernel<f64, W>) -> Lanes<W> {
+            let mut lanes = Lanes {
+                k: Kernel::splat(first),
                 live: F4::zero(),
                 rolls: [None, None, None, None],
                 impact_logs: [ImpactLog::new(false); LANES],
+            };
+            for l in 0..LANES {
+                lanes.k.park(l);
             }
+            lanes
+        }
+
+        /// A lane without a roll, if any.
+        fn free_lane(&self) -> Option<usize> {
+            (0..LANES).find(|&l| self.rolls[l].is_none())
         }
 
         /// Puts roll `index` into lane `l`, in the state `Simulation` starts it in.
         #[inline(always)]
         fn load(&mut self, l: usize, index: usize, sim: Simulation) {
-            let from = &sim.k;
-            let (k, s) = (&mut self.k, &from.state);
-            set3(&mut k.state.position, l, &s.position);
-            set3(&mut k.state.velocity, l, &s.velocity);
-            set3(&mut k.state.angular_momentum, l, &s.angular_momentum);
-            for c in 0..8 {
-                set3(&mut k.state.corner_offsets[c], l, &s.corner_offsets[c]);
-                set3(&mut k.state.corner_forces[c], l, &s.corner_forces[c]);
-                k.state.corner_depths[c].set_lane(l, s.corner_depths[c]);
-                set2(&mut k.state.tangential_springs[c], l, &s.tangential_springs[c]);
-            }
-            k.state.time_s.set_lane(l, s.time_s);
-            k.state.step.set_lane(l, s.step as f64);
-            set3(&mut k.angular_velocity, l, &from.angular_velocity);
-            set3(&mut k.turned_angular_velocity, l, &from.turned_angular_velocity);
-            for axis in 0..3 {
-                set3(&mut k.turned_axes[axis], l, &from.turned_axes[axis]);
-            }
-            for e in 0..9 {
-                k.rotation[e].set_lane(l, from.rotation[e]);
-            }
-            set_mask(&mut k.rotating, l, from.rotating);
-            set_mask(&mut k.in_contact, l, from.in_contact);
-            k.touching_corners = (0..8)
-                .filter(|&c| F4::bits(k.state.corner_depths[c].gt(F4::zero())) != 0)
-                .fold(0, |bits, c| bits | 1 << c);
-            let (c, f) = (&mut k.c, &from.c);
-            c.dt.set_lane(l, f.dt);
-            c.mass.set_lane(l, f.mass);
-            c.weight_z.set_lane(l, f.weight_z);
-            set3(&mut c.flight_kick, l, &f.flight_kick);
-            c.stiffness.set_lane(l, f.stiffness);
-            c.damping.set_lane(l, f.damping);
-            c.friction.set_lane(l, f.friction);
-            c.weight_x.set_lane(l, f.weight_x);
-            c.weight_y.set_lane(l, f.weight_y);
-            c.normal_damping.set_lane(l, f.normal_damping);
-            c.tangential_stiffness.set_lane(l, f.tangential_stiffness);
-            c.tangential_damping.set_lane(l, f.tangential_damping);
-            c.tangential_compliance.set_lane(l, f.tangential_compliance);
-            c.static_friction.set_lane(l, f.static_friction);
-            c.kinetic_cap.set_lane(l, f.kinetic_cap);
-            c.half_mass.set_lane(l, f.half_mass);
-            c.mass_gravity.set_lane(l, f.mass_gravity);
-            c.half_stiffness.set_lane(l, f.half_stiffness);
-            c.half_size.set_lane(l, f.half_size);
-            c.half_corner_mass.set_lane(l, f.half_corner_mass);
-            c.corner_mass_gravity.set_lane(l, f.corner_mass_gravity);
-            c.mass_gravity_half_size.set_lane(l, f.mass_gravity_half_size);
-            for corner in 0..8 {
-                c.corner_masses[corner].set_lane(l, f.corner_masses[corner]);
-            }
-            c.gravity.set_lane(l, f.gravity);
-            c.loaded_mass_gravity_half_size
-                .set_lane(l, f.loaded_mass_gravity_half_size);
-            c.uniform_inertia.set_lane(l, f.uniform_inertia);
-            c.uniform_mass.set_lane(l, f.uniform_mass);
-            for corner in 0..8 {
-                c.extra_masses[corner].set_lane(l, f.extra_masses[corner]);
-            }
-            for e in 0..6 {
-                c.inverse_inertia[e].set_lane(l, f.inverse_inertia[e]);
-            }
-            for axis in 0..3 {
-                c.axis_scale[axis].set_lane(l, f.axis_scale[axis]);
-                c.inverse_moments[axis].set_lane(l, f.inverse_moments[axis]);
-            }
-            for e in 0..9 {
-                c.principal_axes[e].set_lane(l, f.principal_axes[e]);
-            }
-            for corner in 0..8 {
-                set3(&mut c.principal_corners[corner], l, &f.principal_corners[corner]);
-            }
-            set_mask(&mut c.split, l, f.split);
-            c.corner_radius.set_lane(l, f.corner_radius);
-            c.energy_threshold.set_lane(l, f.energy_threshold);
-            c.kinetic_threshold.set_lane(l, f.kinetic_threshold);
-            c.runaway.set_lane(l, f.runaway);
-            c.max_steps.set_lane(l, f.max_steps as f64);
-            set_mask(&mut c.whole_die_norm, l, f.whole_die_norm);
-            set_mask(&mut c.point_masses, l, f.point_masses);
-            set_mask(&mut c.loaded, l, f.loaded);
-            set_mask(&mut c.shaped, l, f.shaped);
-            c.rounded = (c.rounded & !(1 << l)) | (f.rounded << l);
-            set_mask(&mut c.turning, l, f.turning);
-            set_mask(&mut c.spring, l, f.spring);
-            c.spring_lanes = (c.spring_lanes & !(1 << l)) | (f.spring_lanes << l);
-            k.bodies[l] = from.bodies[0];
-            set_mask(&mut self.live, l, true);
+            let from = W::of(&sim.k).expect("a roll of this vector's law");
+            self.k.set_lane(l, from);
+            let bits = F4::bits(self.live) | 1 << l;
+            self.live = F4::mask_from_bits(bits);
             self.impact_logs[l] = sim.impact_log;
-            let start_face = face_most_nearly_up(&s.corner_offsets);
+            let start_face = face_most_nearly_up(&from.state.corner_offsets);
             self.rolls[l] = Some((index, start_face, sim));
         }
 
         /// Empties lane `l` for good: a still fair die high above the ground without
         /// gravity, so it never touches nor spins and costs the other lanes nothing (it turns
         /// by the identity).
+        #[inline(always)]
         fn park(&mut self, l: usize) {
-            let k = &mut self.k;
-            set_mask(&mut self.live, l, false);
-            set_mask(&mut k.in_contact, l, false);
-            set_mask(&mut k.rotating, l, true);
-            for (e, entry) in k.rotation.iter_mut().enumerate() {
-                entry.set_lane(l, if e % 4 == 0 { 1.0 } else { 0.0 });
-            }
-            set3(&mut k.state.position, l, &Vector3::new(0.0, 0.0, 1e9));
-            set3(&mut k.state.velocity, l, &Vector3::zeros());
-            k.c.weight_x.set_lane(l, 0.0);
-            k.c.weight_y.set_lane(l, 0.0);
-            k.c.weight_z.set_lane(l, 0.0);
-            set3(&mut k.c.flight_kick, l, &Vector3::zeros());
-            // It never touches, so either law steps it alike: it takes its neighbour's, and
-            // a vector of one law keeps that law's step.
-            let neighbour = (l + 1) % LANES;
-            let spring = k.c.spring_lanes & (1 << neighbour) != 0;
-            set_mask(&mut k.c.spring, l, spring);
-            k.c.spring_lanes = (k.c.spring_lanes & !(1 << l)) | ((spring as u32) << l);
-            set_mask(&mut k.c.loaded, l, false);
-            set_mask(&mut k.c.shaped, l, false);
-            k.c.rounded &= !(1 << l);
-            set_mask(&mut k.c.turning, l, false);
-            set_mask(&mut k.c.split, l, false);
-            k.c.corner_radius.set_lane(l, 0.0);
-            k.bodies[l] = k.bodies[(l + 1) % LANES];
-            for c in 0..8 {
-                set3(&mut k.state.corner_forces[c], l, &Vector3::zeros());
-                k.state.corner_depths[c].set_lane(l, 0.0);
-                set2(&mut k.state.tangential_springs[c], l, &Vector2::zeros());
-            }
+            let bits = F4::bits(self.live) & !(1 << l);
+            self.live = F4::mask_from_bits(bits);
+            self.k.park(l);
         }
 
         /// Stores lane `l`'s state back into its roll's `Simulation`.
         #[inline(always)]
         fn store(&mut self, l: usize) -> &mut Simulation {
             let (_, _, sim) = self.rolls[l].as_mut().expect("a live lane holds a roll");
-            let (k, to) = (&self.k, &mut sim.k);
-            let (from, s) = (&k.state, &mut to.state);
-            s.position = lane3(&from.position, l);
-            s.velocity = lane3(&from.velocity, l);
-            s.angular_momentum = lane3(&from.angular_momentum, l);
-            for c in 0..8 {
-                s.corner_offsets[c] = lane3(&from.corner_offsets[c], l);
-                s.corner_forces[c] = lane3(&from.corner_forces[c], l);
-                s.corner_depths[c] = from.corner_depths[c].lane(l);
-                let xi = &from.tangential_springs[c];
-                s.tangential_springs[c] = Vector2::new(xi.x.lane(l), xi.y.lane(l));
-            }
-            s.time_s = from.time_s.lane(l);
-            s.step = from.step.lane(l) as u64;
-            to.angular_velocity = lane3(&k.angular_velocity, l);
-            to.rotation = k.rotation.map(|e| e.lane(l));
-            to.rotating = F4::bits(k.rotating) & (1 << l) != 0;
-            to.in_contact = F4::bits(k.in_contact) & (1 << l) != 0;
-            to.touching_corners = (0..8)
-                .filter(|&c| s.corner_depths[c] > 0.0)
-                .fold(0, |bits, c| bits | 1 << c);
+            let to = W::of_mut(&mut sim.k).expect("a roll of this vector's law");
+            self.k.lane_into(l, to);
             sim.impact_log = self.impact_logs[l];
             sim
         }
@@ -618,57 +445,14 @@ mod avx2 {
                 }
             }
         }
-    }
 
-    /// One step with lanes on the spring-friction law, and how it leaves each lane; called
-    /// only from [`roll_all`], which has AVX2 too.
-    #[target_feature(enable = "avx2")]
-    #[inline(never)]
-    fn step_spring_friction(k: &mut Kernel<F4>) -> crate::kernel::Ends<F4> {
-        k.step::<true>(&mut NoHook);
-        k.ends_by::<true>()
-    }
-
-    /// [`roll_in_lanes`] with AVX2.
-    ///
-    /// # Safety
-    /// The CPU must support AVX2.
-    #[target_feature(enable = "avx2")]
-    pub(super) unsafe fn roll_all(
-        count: usize,
-        setup: &mut dyn FnMut(usize) -> (Params, InitialCondition),
-        done: &mut dyn FnMut(LaneResult<'_>),
-        stop: &dyn Fn() -> bool,
-    ) -> bool {
-        if count == 0 {
-            return true;
-        }
-        let (params, initial) = setup(0);
-        let first = Simulation::for_outcome(&params, &initial);
-        let mut lanes = Lanes::new(&first.k);
-        lanes.load(0, 0, first);
-        let mut next = 1;
-        for l in 1..LANES {
-            if next < count {
-                let (params, initial) = setup(next);
-                lanes.load(l, next, Simulation::for_outcome(&params, &initial));
-                next += 1;
-            } else {
-                lanes.park(l);
-            }
-        }
-        let mut since_check = 0;
-        while F4::bits(lanes.live) != 0 {
-            // The paper's step inline, the other law's out of line: the batch loop's code
-            // stays what it was for the paper's die.
-            let ends = if lanes.k.c.spring_lanes == 0 {
-                lanes.k.step::<false>(&mut NoHook);
-                lanes.k.ends_by::<false>()
-            } else {
-                step_spring_friction(&mut lanes.k)
-            };
-            lanes.observe_impacts();
-            let mut ending = F4::bits((ends.unstable | ends.settled | ends.timeout) & lanes.live);
+        /// The rolls that this step ended, handed to `done`; their lanes are emptied. Returns
+        /// whether any ended.
+        #[inline(always)]
+        fn finish(&mut self, ends: &Ends<F4>, done: &mut dyn FnMut(LaneResult<'_>)) -> bool {
+            self.observe_impacts();
+            let mut ending = F4::bits((ends.unstable | ends.settled | ends.timeout) & self.live);
+            let any = ending != 0;
             while ending != 0 {
                 let l = ending.trailing_zeros() as usize;
                 ending &= ending - 1;
@@ -679,21 +463,170 @@ mod avx2 {
                 } else {
                     Status::Timeout
                 };
-                let outcome = lanes.store(l).finish(status);
-                let (index, start_face, sim) = lanes.rolls[l].take().expect("a live lane holds a roll");
+                let outcome = self.store(l).finish(status);
+                let (index, start_face, sim) = self.rolls[l].take().expect("a live lane holds a roll");
                 done(LaneResult {
                     index,
                     outcome,
                     start_face,
                     state: sim.state(),
                 });
-                if next < count {
-                    let (params, initial) = setup(next);
-                    lanes.load(l, next, Simulation::for_outcome(&params, &initial));
-                    next += 1;
-                } else {
-                    lanes.park(l);
+                self.park(l);
+            }
+            any
+        }
+    }
+
+    /// The rolls of one law: their vector, once a roll of the law has come, and the rolls
+    /// waiting for one of its lanes.
+    struct Group<W: EngineLaw> {
+        lanes: Option<Lanes<W>>,
+        waiting: VecDeque<(usize, Simulation)>,
+    }
+
+    impl<W: EngineLaw> Group<W> {
+        fn new() -> Group<W> {
+            Group {
+                lanes: None,
+                waiting: VecDeque::new(),
+            }
+        }
+
+        /// Whether a lane is free and no roll waits for it.
+        fn wants(&self) -> bool {
+            self.waiting.is_empty()
+                && self
+                    .lanes
+                    .as_ref()
+                    .is_none_or(|lanes| lanes.free_lane().is_some())
+        }
+
+        /// Loads waiting rolls into free lanes (with AVX2, as the loads are vector code).
+        #[target_feature(enable = "avx2")]
+        #[inline(never)]
+        fn seat(&mut self) {
+            while let Some((_, sim)) = self.waiting.front() {
+                if self.lanes.is_none() {
+                    let first = W::of(&sim.k).expect("a roll of this group's law");
+                    self.lanes = Some(Lanes::new(first));
                 }
+                let lanes = self.lanes.as_mut().expect("just made");
+                let Some(l) = lanes.free_lane() else { return };
+                let (index, sim) = self.waiting.pop_front().expect("a waiting roll");
+                lanes.load(l, index, sim);
+            }
+        }
+
+        fn live(&self) -> bool {
+            self.lanes.as_ref().is_some_and(|lanes| F4::bits(lanes.live) != 0)
+        }
+    }
+
+    /// One step of the paper's law's vector, and how it leaves each lane: inline in the
+    /// batch loop, whose code stays what it was for the paper's die.
+    #[inline(always)]
+    fn step_paper(k: &mut Kernel<F4, PaperPerCorner>) -> Ends<F4> {
+        k.step(&mut NoHook);
+        k.ends()
+    }
+
+    /// One step of the authors' whole-die norm's vector; out of line as the next.
+    #[target_feature(enable = "avx2")]
+    #[inline(never)]
+    fn step_whole_die(k: &mut Kernel<F4, PaperWholeDie>) -> Ends<F4> {
+        k.step(&mut NoHook);
+        k.ends()
+    }
+
+    /// One step of the spring-friction law's vector, and how it leaves each lane; out of
+    /// line, called only from [`roll_all`], which has AVX2 too.
+    #[target_feature(enable = "avx2")]
+    #[inline(never)]
+    fn step_spring_friction(k: &mut Kernel<F4, SpringFriction>) -> Ends<F4> {
+        k.step(&mut NoHook);
+        k.ends()
+    }
+
+    /// Sets up rolls from `next` on and seats them in their laws' vectors while a vector has a
+    /// free lane nothing waits for and no law has a vector's worth waiting; false when no
+    /// vector has a roll left to step.
+    #[target_feature(enable = "avx2")]
+    #[inline(never)]
+    fn seat_rolls(
+        count: usize,
+        next: &mut usize,
+        setup: &mut dyn FnMut(usize) -> (Params, InitialCondition),
+        paper: &mut Group<PaperPerCorner>,
+        whole: &mut Group<PaperWholeDie>,
+        spring: &mut Group<SpringFriction>,
+    ) -> bool {
+        paper.seat();
+        whole.seat();
+        spring.seat();
+        while *next < count
+            && (paper.wants() || whole.wants() || spring.wants())
+            && paper.waiting.len() < LANES
+            && whole.waiting.len() < LANES
+            && spring.waiting.len() < LANES
+        {
+            let (params, initial) = setup(*next);
+            let sim = Simulation::for_outcome(&params, &initial);
+            match &sim.k {
+                Laws::Paper(_) => paper.waiting.push_back((*next, sim)),
+                Laws::PaperWholeDie(_) => whole.waiting.push_back((*next, sim)),
+                Laws::SpringFriction(_) => spring.waiting.push_back((*next, sim)),
+            }
+            *next += 1;
+            paper.seat();
+            whole.seat();
+            spring.seat();
+        }
+        paper.live() || whole.live() || spring.live()
+    }
+
+    /// [`roll_in_lanes`] with AVX2.
+    ///
+    /// The rolls go into vectors by their contact law, so a vector steps one law's code:
+    /// each roll is set up in turn and seated in its law's vector, or waits there for a free
+    /// lane. Rolls are set up only while some vector has a free lane nothing waits for, and
+    /// no law has a vector's worth waiting, so a run of one law's rolls after another's
+    /// keeps at most four set up ahead.
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[target_feature(enable = "avx2")]
+    pub(super) unsafe fn roll_all(
+        count: usize,
+        setup: &mut dyn FnMut(usize) -> (Params, InitialCondition),
+        done: &mut dyn FnMut(LaneResult<'_>),
+        stop: &dyn Fn() -> bool,
+    ) -> bool {
+        let mut paper = Group::<PaperPerCorner>::new();
+        let mut whole = Group::<PaperWholeDie>::new();
+        let mut spring = Group::<SpringFriction>::new();
+        let mut next = 0;
+        let mut since_check = 0;
+        // Whether a lane was emptied since rolls were last seated (a roll ended, or none
+        // has been seated yet): only then are rolls set up and seated, not every step.
+        let mut vacated = true;
+        loop {
+            if vacated {
+                vacated = false;
+                if !seat_rolls(count, &mut next, setup, &mut paper, &mut whole, &mut spring) {
+                    return true;
+                }
+            }
+            if let Some(lanes) = paper.lanes.as_mut().filter(|lanes| F4::bits(lanes.live) != 0) {
+                let ends = step_paper(&mut lanes.k);
+                vacated |= lanes.finish(&ends, done);
+            }
+            if let Some(lanes) = whole.lanes.as_mut().filter(|lanes| F4::bits(lanes.live) != 0) {
+                let ends = step_whole_die(&mut lanes.k);
+                vacated |= lanes.finish(&ends, done);
+            }
+            if let Some(lanes) = spring.lanes.as_mut().filter(|lanes| F4::bits(lanes.live) != 0) {
+                let ends = step_spring_friction(&mut lanes.k);
+                vacated |= lanes.finish(&ends, done);
             }
             since_check += 1;
             if since_check == STEPS_BETWEEN_STOP_CHECKS {
@@ -703,6 +636,53 @@ mod avx2 {
                 }
             }
         }
-        true
+    }
+
+    /// [`roll_points_in_lanes`] with AVX2, the rolls all on the law `W`: each roll loaded
+    /// into a lane as [`PointRoll`] placed it, stepped until it ends, and stored back.
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[target_feature(enable = "avx2")]
+    pub(super) unsafe fn roll_points<W: PointLaw, const N: usize>(rolls: &mut [PointRoll<N>]) {
+        let first = W::of(&rolls[0].k).expect("the rolls' law");
+        let mut k = Kernel::<F4, W, N, PointBody<N>>::splat(first);
+        let mut held: [Option<usize>; LANES] = [None; LANES];
+        let mut next = 0;
+        for (l, lane) in held.iter_mut().enumerate() {
+            k.park(l);
+            if next < rolls.len() {
+                k.set_lane(l, W::of(&rolls[next].k).expect("the rolls' law"));
+                *lane = Some(next);
+                next += 1;
+            }
+        }
+        while held.iter().any(Option::is_some) {
+            k.step(&mut NoHook);
+            let ends = k.ends();
+            for (l, lane) in held.iter_mut().enumerate() {
+                let Some(index) = *lane else { continue };
+                let bit = 1 << l;
+                let status = if F4::bits(ends.unstable) & bit != 0 {
+                    Status::Unstable
+                } else if F4::bits(ends.settled) & bit != 0 {
+                    Status::Settled
+                } else if F4::bits(ends.timeout) & bit != 0 {
+                    Status::Timeout
+                } else {
+                    continue;
+                };
+                let roll = &mut rolls[index];
+                k.lane_into(l, W::of_mut(&mut roll.k).expect("the rolls' law"));
+                roll.finish(status);
+                *lane = None;
+                k.park(l);
+                if next < rolls.len() {
+                    k.set_lane(l, W::of(&rolls[next].k).expect("the rolls' law"));
+                    *lane = Some(next);
+                    next += 1;
+                }
+            }
+        }
     }
 }

@@ -3,13 +3,15 @@
 //! Units are CGS throughout: cm, g, s; forces in dyn, energies in erg.
 //!
 //! The modules are layered, each using only those before it: the data (`params`,
-//! `initial`, and `lane`, `energy`, `impact`), then the body — its geometry (`body`), the
-//! stopping rule's arithmetic (`stopping`), the spring-friction contact's constants
-//! (`contact`), the three bodies a die can be (`cube`, `mass`, `shape`) and `model`, which
-//! says which of them a die is and answers every question about it —
-//! then the step written over a lane type (`spin`, `kernel`), the scalar engine (`sim`), and
-//! on top the lane engine (`lanes`) and the stability readings (`stability`, and the
-//! spring-friction law's own in `stability_contact`).
+//! `initial`, and `lane`, `energy`, `impact`), the state and its point kinematics (`state`),
+//! then the body — its geometry (`body`), the stopping rule's arithmetic (`stopping`), the
+//! contact laws, one file each behind one trait (`contact/`), the three bodies a die can be
+//! (`cube`, `mass`, `shape`) and `model`, which says which of them a die is and answers every
+//! question about it — then the step written over a lane type, a law and a number of points
+//! (`spin`, `kernel`), the scalar engine (`sim`), any body as its contact points (`points`)
+//! and its scalar engine (`point_roll`), and on top the lane engine (`lanes`) and the
+//! stability readings (`stability`, and the spring-friction law's own in
+//! `stability_contact`).
 
 pub mod body;
 pub mod contact;
@@ -23,12 +25,15 @@ pub mod lanes;
 mod mass;
 mod model;
 pub mod params;
+mod point_roll;
+mod points;
 pub mod polyhedron;
 mod shape;
 mod sim;
 mod spin;
 pub mod stability;
 pub mod stability_contact;
+mod state;
 mod stopping;
 
 pub use body::{PIP_LAYOUT, contact_sphere_centres, face_frame, pip_centres};
@@ -41,6 +46,8 @@ pub use params::{
     ContactLaw, Die, FrictionLaw, Ground, GroundKey, Integrator, Limits, ParamError, Params, StopEnergy,
     World,
 };
+pub use point_roll::{PointOutcome, PointRoll};
+pub use points::{BodyError, MAX_FACES, PointBody};
 pub use shape::{MassProperties, mass_properties};
 pub use sim::{
     ContactForce, EnergyLedger, FirstImpact, Outcome, STEPS_BETWEEN_STOP_CHECKS, Simulation, State, Status,

@@ -6,18 +6,19 @@
 //! trajectories are reproduced to rounding, not merely in law.
 
 use super::body::face_most_nearly_up;
-use super::contact;
+use super::contact::{Law, Paper, PerCornerSlip, SpringFriction, WholeDieSlip};
 use super::energy::Energy;
 use super::impact::Impacts;
 use super::initial::InitialCondition;
-use super::kernel::{Constants, Kernel, NoHook, StepHook, contact_point};
+use super::kernel::{Constants, Ends, Kernel, NoHook, StepHook};
 use super::model::{Body, check_setup};
-use super::params::{Ground, ParamError, Params, StopEnergy};
+use super::params::{ContactLaw, FrictionLaw, Ground, ParamError, Params, StopEnergy};
+use super::state::contact_point;
 use super::stopping::StopRule;
-use nalgebra::Vector3;
+use nalgebra::{Vector2, Vector3};
 use serde::Serialize;
 
-pub use super::kernel::State;
+pub use super::state::State;
 
 /// A rigid-body energy above this multiple of `max(initial energy, edge energy)` means the
 /// integrator is feeding energy in (docs/model.md, "Stability"): a stable roll stays within a
@@ -169,6 +170,83 @@ fn first_impact((corner_offsets, step, time_s): ([Vector3<f64>; 8], u64, f64)) -
 /// tenths of a millisecond of stepping, so a cancel is answered well within 0.2 s.
 pub const STEPS_BETWEEN_STOP_CHECKS: u64 = 4096;
 
+/// The paper's law with each point's own slip (its eq. 15), and with the authors' whole-die
+/// norm.
+pub(crate) type PaperPerCorner = Paper<PerCornerSlip>;
+pub(crate) type PaperWholeDie = Paper<WholeDieSlip>;
+
+/// The scalar kernel under the contact law the parameters name: each law's step is its own
+/// code, and the engines pick it once per roll.
+#[derive(Debug, Clone)]
+pub(crate) enum Laws {
+    Paper(Kernel<f64, PaperPerCorner>),
+    PaperWholeDie(Kernel<f64, PaperWholeDie>),
+    SpringFriction(Kernel<f64, SpringFriction>),
+}
+
+/// `$body` with `$k` bound to the kernel, whatever its law.
+macro_rules! on_law {
+    ($laws:expr, $k:ident => $body:expr) => {
+        match $laws {
+            Laws::Paper($k) => $body,
+            Laws::PaperWholeDie($k) => $body,
+            Laws::SpringFriction($k) => $body,
+        }
+    };
+}
+
+/// `$make` for the law `$p`'s ground names, wrapped in its variant of `$enum`.
+macro_rules! by_law {
+    ($enum:ident, $p:expr, $make:expr) => {
+        match ($p.ground.contact, $p.ground.friction_law) {
+            (ContactLaw::Paper, FrictionLaw::PerCorner) => $enum::Paper($make),
+            (ContactLaw::Paper, FrictionLaw::WholeDieNorm) => $enum::PaperWholeDie($make),
+            (ContactLaw::SpringFriction, _) => $enum::SpringFriction($make),
+        }
+    };
+}
+pub(crate) use by_law;
+
+impl Laws {
+    /// The kernel of `params`' law, the die placed at `initial`.
+    fn new(params: &Params, initial: &InitialCondition) -> Laws {
+        by_law!(Laws, params, Kernel::new(params, initial))
+    }
+}
+
+/// A contact law as the engines hold it: which variant of [`Laws`] is its kernel.
+pub(crate) trait EngineLaw: Law {
+    fn of(k: &Laws) -> Option<&Kernel<f64, Self>>;
+    fn of_mut(k: &mut Laws) -> Option<&mut Kernel<f64, Self>>;
+}
+
+/// [`EngineLaw`] for the law `$law`, the variant `$variant` of `$enum`.
+macro_rules! engine_law {
+    ($trait:ident, $enum:ident, $law:ty, $variant:ident $(, $n:ident)?) => {
+        impl $trait for $law {
+            #[inline(always)]
+            fn of$(<const $n: usize>)?(k: &$enum$(<$n>)?) -> Option<&Kernel<f64, Self $(, $n, PointBody<$n>)?>> {
+                match k {
+                    $enum::$variant(k) => Some(k),
+                    _ => None,
+                }
+            }
+            #[inline(always)]
+            fn of_mut$(<const $n: usize>)?(k: &mut $enum$(<$n>)?) -> Option<&mut Kernel<f64, Self $(, $n, PointBody<$n>)?>> {
+                match k {
+                    $enum::$variant(k) => Some(k),
+                    _ => None,
+                }
+            }
+        }
+    };
+}
+pub(crate) use engine_law;
+
+engine_law!(EngineLaw, Laws, PaperPerCorner, Paper);
+engine_law!(EngineLaw, Laws, PaperWholeDie, PaperWholeDie);
+engine_law!(EngineLaw, Laws, SpringFriction, SpringFriction);
+
 /// A die rolling from an initial condition: the scalar engine, the step kernel on `f64`.
 #[derive(Debug, Clone)]
 pub struct Simulation {
@@ -176,7 +254,7 @@ pub struct Simulation {
     /// The state and everything the step needs; visible to the lane engine (lanes.rs),
     /// which loads rolls from it and stores them back, so that both engines start and end
     /// alike.
-    pub(super) k: Kernel<f64>,
+    pub(super) k: Laws,
     /// The roll's impacts so far (the lane engine carries a lane's and stores it back).
     pub(super) impact_log: ImpactLog,
     /// Whether the energy ledger is kept (its work sums cost a second pass over the
@@ -199,9 +277,9 @@ struct Ledger {
     work: ContactWork,
 }
 
-impl StepHook<f64> for Ledger {
+impl<W: Law> StepHook<f64, W, 8, Body> for Ledger {
     #[inline]
-    fn before_kick(&mut self, k: &Kernel<f64>) {
+    fn before_kick(&mut self, k: &Kernel<f64, W>) {
         self.before = k.in_contact.then(|| corner_velocities(k));
     }
 
@@ -212,7 +290,7 @@ impl StepHook<f64> for Ledger {
     /// `½M|v|²` and `½|L|²/I` are quadratic. So this is the work each force really does in
     /// the discrete step, chatter included, not a sampled power.
     #[inline]
-    fn after_spin(&mut self, k: &Kernel<f64>) {
+    fn after_spin(&mut self, k: &Kernel<f64, W>) {
         let Some(before) = self.before.take() else { return };
         let after = corner_velocities(k);
         let s = &k.state;
@@ -220,7 +298,7 @@ impl StepHook<f64> for Ledger {
             if s.corner_depths[k_] > 0.0 {
                 let mean = (before[k_] + after[k_]) * 0.5;
                 let f = &s.corner_forces[k_];
-                let damping = f.z - s.corner_depths[k_] * k.c.stiffness;
+                let damping = f.z - s.corner_depths[k_] * W::stiffness(&k.c.law);
                 self.work.damping += damping * mean.z * k.c.dt;
                 self.work.friction += (f.x * mean.x + f.y * mean.y) * k.c.dt;
             }
@@ -229,8 +307,8 @@ impl StepHook<f64> for Ledger {
 }
 
 /// Velocities of corners 1..8 (a rounded body's contact points), cm/s.
-fn corner_velocities(k: &Kernel<f64>) -> [Vector3<f64>; 8] {
-    let radius = k.c.corner_radius;
+fn corner_velocities<W: Law>(k: &Kernel<f64, W>) -> [Vector3<f64>; 8] {
+    let radius = k.c.body.corner_radius;
     k.state
         .corner_offsets
         .map(|r| k.corner_velocity(&contact_point::<true, f64>(&r, radius)))
@@ -247,21 +325,22 @@ impl Simulation {
     /// Like [`Simulation::new`] without the range checks. Any input still ends in a status:
     /// non-finite or absurd values end the first step as [`Status::Unstable`].
     pub fn new_unchecked(params: &Params, initial: &InitialCondition) -> Self {
-        let k = Kernel::new(params, initial);
-        let body = k.bodies[0];
+        let k = Laws::new(params, initial);
+        let body = *sim_body(&k);
         let mut sim = Simulation {
             params: *params,
             k,
             track_ledger: true,
             ledger: Ledger::default(),
             initial_energy: 0.0,
-            stop_rule: contact::on_the_table(body.stop_rule(), params, body.edge_energy()),
+            stop_rule: stop_rule_on_table(params, body.stop_rule(), body.edge_energy()),
             outcome: None,
             impact_log: ImpactLog::new(false),
         };
-        sim.impact_log = ImpactLog::new(sim.k.in_contact);
+        sim.impact_log = ImpactLog::new(sim.in_contact());
         sim.initial_energy = sim.energy().total();
-        sim.k.c.runaway = RUNAWAY_ENERGY_FACTOR * sim.initial_energy.max(body.edge_energy());
+        let runaway = RUNAWAY_ENERGY_FACTOR * sim.initial_energy.max(body.edge_energy());
+        on_law!(&mut sim.k, k => k.c.stop.runaway = runaway);
         sim
     }
 
@@ -279,12 +358,19 @@ impl Simulation {
     }
 
     pub fn state(&self) -> &State {
-        &self.k.state
+        on_law!(&self.k, k => &k.state)
+    }
+
+    /// cm, each contact point's tangential spring `ξ` in the table's plane: the slip it made
+    /// since it touched the table, as the spring-friction law holds it (0 off the table, and
+    /// always 0 under the paper's law, which keeps none).
+    pub fn tangential_springs(&self) -> [Vector2<f64>; 8] {
+        on_law!(&self.k, k => tangential_springs(k))
     }
 
     /// rad/s, world frame.
     pub fn angular_velocity(&self) -> Vector3<f64> {
-        self.k.angular_velocity
+        on_law!(&self.k, k => k.angular_velocity)
     }
 
     /// The end of the roll, once it has ended (later steps do not change it).
@@ -309,7 +395,7 @@ impl Simulation {
 
     /// Whether any corner is below the ground now.
     pub fn in_contact(&self) -> bool {
-        self.k.in_contact
+        on_law!(&self.k, k => k.in_contact)
     }
 
     /// Changes the ground mid-roll; the new law acts from the next step on.
@@ -318,35 +404,28 @@ impl Simulation {
         params.ground = ground;
         params.validate()?;
         self.params = params;
-        let runaway = self.k.c.runaway;
         // The stopping rules of every body depend on the table.
         let body = Body::new(&params);
-        self.k.bodies[0] = body;
-        self.k.c = Constants::new(&params, &body);
-        self.k.c.runaway = runaway;
-        self.stop_rule = contact::on_the_table(body.stop_rule(), &params, body.edge_energy());
-        // The paper's law holds no tangential springs.
-        if self.k.c.spring_lanes == 0 {
-            self.k.state.tangential_springs = [nalgebra::Vector2::zeros(); 8];
-        }
-        self.k.update_forces();
+        self.stop_rule = stop_rule_on_table(&params, body.stop_rule(), body.edge_energy());
+        self.k = by_law!(Laws, params, under_law(&self.k, &params, body));
         Ok(())
     }
 
     /// World positions of corners 1..8, cm (a rounded body's: its corner spheres' centres,
     /// `die.corner_radius` inside the surface).
     pub fn corner_positions(&self) -> [Vector3<f64>; 8] {
-        let s = &self.k.state;
+        let s = self.state();
         s.corner_offsets.map(|r| s.position + r)
     }
 
     /// Each corner's contact force split into normal, damping and friction, at the current
     /// state (the forces the next step will apply).
     pub fn contact_forces(&self) -> [ContactForce; 8] {
-        let s = &self.k.state;
+        let s = self.state();
+        let stiffness = on_law!(&self.k, k => stiffness(k));
         std::array::from_fn(|k| {
             let depth = s.corner_depths[k];
-            let normal = depth * self.k.c.stiffness;
+            let normal = depth * stiffness;
             ContactForce {
                 depth,
                 normal,
@@ -358,7 +437,7 @@ impl Simulation {
 
     /// The energy terms at the current state (docs/model.md, "Energy"), erg.
     pub fn energy(&self) -> Energy {
-        let e = self.k.energy();
+        let e = on_law!(&self.k, k => k.energy());
         Energy {
             translational: e.translational,
             rotational: e.rotational,
@@ -370,7 +449,7 @@ impl Simulation {
     /// erg, the energy the authors' program compared with the threshold: the corners as 8
     /// point masses and the ground term `½·Σ d_k·P_k` with the damped force (reference §2).
     pub fn point_mass_energy(&self) -> f64 {
-        self.k.point_mass_parts().1
+        on_law!(&self.k, k => k.point_mass_parts().1)
     }
 
     /// `(kinetic, total)` of the stop energy.
@@ -380,7 +459,7 @@ impl Simulation {
                 let energy = self.energy();
                 (energy.kinetic(), energy.total())
             }
-            StopEnergy::PointMasses => self.k.point_mass_parts(),
+            StopEnergy::PointMasses => on_law!(&self.k, k => k.point_mass_parts()),
         }
     }
 
@@ -408,20 +487,20 @@ impl Simulation {
     /// on the face down (what a report of a finished roll prints; [`Simulation::stop_rule`]
     /// is the fair die's, or the widest over the faces).
     pub fn stop_rule_now(&self) -> StopRule {
-        let body = &self.k.bodies[0];
-        let rule = body.stop_rule_at(&self.k.state.corner_offsets);
-        contact::on_the_table(rule, &self.params, body.edge_energy())
+        let body = sim_body(&self.k);
+        let rule = body.stop_rule_at(&self.state().corner_offsets);
+        stop_rule_on_table(&self.params, rule, body.edge_energy())
     }
 
     /// The face whose outward normal points most nearly up (the live display's face).
     pub fn face_up(&self) -> u8 {
-        face_most_nearly_up(&self.k.state.corner_offsets)
+        face_most_nearly_up(&self.state().corner_offsets)
     }
 
     /// The body's x, y and z axes in the world frame, unit vectors read off its corners
     /// (the orientation's columns).
     pub fn body_axes(&self) -> [Vector3<f64>; 3] {
-        self.k.bodies[0].axes(&self.k.state.corner_offsets)
+        sim_body(&self.k).axes(&self.state().corner_offsets)
     }
 
     /// One step of Δt: kick → drift → L → rotate → forces (docs/model.md, "One time step").
@@ -429,71 +508,73 @@ impl Simulation {
     /// Steps on past the end of a roll if asked; the recorded outcome stays the first end.
     #[inline]
     pub fn step(&mut self) {
-        if self.k.c.spring_lanes != 0 {
-            self.step_by::<true>();
-        } else {
-            self.step_by::<false>();
+        match self.k {
+            Laws::Paper(_) => self.step_by::<PaperPerCorner>(),
+            Laws::PaperWholeDie(_) => self.step_by::<PaperWholeDie>(),
+            Laws::SpringFriction(_) => self.step_by::<SpringFriction>(),
         }
     }
 
-    /// [`Simulation::step`] with the law known (the kernel's `SPRING`).
+    /// [`Simulation::step`] with the law known.
     #[inline(always)]
-    fn step_by<const SPRING: bool>(&mut self) {
+    fn step_by<W: EngineLaw>(&mut self) {
         if self.track_ledger {
             self.step_with_ledger();
         } else {
-            self.k.step::<SPRING>(&mut NoHook);
+            kernel_of::<W>(&mut self.k).step(&mut NoHook);
         }
-        let s = &self.k.state;
+        let k = kernel_of::<W>(&mut self.k);
+        let s = &k.state;
         self.impact_log
-            .observe(self.k.in_contact, || (s.corner_offsets, s.step, s.time_s));
+            .observe(k.in_contact, || (s.corner_offsets, s.step, s.time_s));
     }
 
     /// The step with the energy ledger's bookkeeping, kept out of line: inlined beside the
     /// plain step, its second copy of the kernel would crowd the batch loop's code.
     #[inline(never)]
     fn step_with_ledger(&mut self) {
-        self.k.step_by_law(&mut self.ledger);
+        on_law!(&mut self.k, k => k.step(&mut self.ledger));
     }
 
     /// [`Simulation::advance`] on the spring-friction law, out of line for the same reason:
     /// the paper's step and end test stay the ones inlined into the batch loop.
     #[inline(never)]
     fn advance_spring_friction(&mut self) -> Option<Outcome> {
-        self.advance_by::<true>()
+        self.advance_by::<SpringFriction>()
+    }
+
+    /// [`Simulation::advance`] on the authors' whole-die norm, out of line likewise.
+    #[inline(never)]
+    fn advance_whole_die(&mut self) -> Option<Outcome> {
+        self.advance_by::<PaperWholeDie>()
     }
 
     /// One step, then the end-of-roll checks; returns the outcome on the step that ends it.
     #[inline]
     pub fn advance(&mut self) -> Option<Outcome> {
-        if self.k.c.spring_lanes != 0 {
-            return self.advance_spring_friction();
+        match self.k {
+            Laws::Paper(_) => self.advance_by::<PaperPerCorner>(),
+            Laws::PaperWholeDie(_) => self.advance_whole_die(),
+            Laws::SpringFriction(_) => self.advance_spring_friction(),
         }
-        self.advance_by::<false>()
     }
 
     /// [`Simulation::advance`] with the law known.
     #[inline(always)]
-    fn advance_by<const SPRING: bool>(&mut self) -> Option<Outcome> {
-        self.step_by::<SPRING>();
+    fn advance_by<W: EngineLaw>(&mut self) -> Option<Outcome> {
+        self.step_by::<W>();
         if self.outcome.is_some() {
             return None;
         }
-        let outcome = self.check_end::<SPRING>()?;
+        let outcome = self.check_end::<W>()?;
         self.outcome = Some(outcome);
         Some(outcome)
     }
 
     /// Steps until the roll ends (settled, did not settle, or unstable).
     pub fn run_to_end(&mut self) -> Outcome {
-        if let Some(o) = self.outcome {
-            return o;
-        }
-        loop {
-            if let Some(o) = self.advance() {
-                return o;
-            }
-        }
+        self.run_until_stopped(&|| false)
+            .expect("a roll that is never stopped ends")
     }
 
     /// Steps until the roll ends, or until `stop()` answers true (asked every
@@ -502,10 +583,53 @@ impl Simulation {
         if let Some(o) = self.outcome {
             return Some(o);
         }
+        // The law is matched once per run, not per step.
+        match self.k {
+            Laws::Paper(_) => self.run_by::<PaperPerCorner>(stop),
+            Laws::PaperWholeDie(_) => self.run_whole_die(stop),
+            Laws::SpringFriction(_) => self.run_spring_friction(stop),
+        }
+    }
+
+    /// [`Simulation::run_until_stopped`] on the authors' whole-die norm, out of line: the
+    /// paper's step stays the one inlined into the batch loop.
+    #[inline(never)]
+    fn run_whole_die(&mut self, stop: &dyn Fn() -> bool) -> Option<Outcome> {
+        self.run_by::<PaperWholeDie>(stop)
+    }
+
+    /// [`Simulation::run_until_stopped`] on the spring-friction law, out of line likewise.
+    #[inline(never)]
+    fn run_spring_friction(&mut self, stop: &dyn Fn() -> bool) -> Option<Outcome> {
+        self.run_by::<SpringFriction>(stop)
+    }
+
+    /// [`Simulation::run_until_stopped`] with the law known: the kernel taken out of the
+    /// enum once, then stepped and tested step by step.
+    #[inline(always)]
+    fn run_by<W: EngineLaw>(&mut self, stop: &dyn Fn() -> bool) -> Option<Outcome> {
+        let Simulation {
+            k,
+            impact_log,
+            track_ledger,
+            ledger,
+            outcome,
+            ..
+        } = self;
+        let k = W::of_mut(k).expect("the law just matched");
         loop {
             for _ in 0..STEPS_BETWEEN_STOP_CHECKS {
-                if let Some(o) = self.advance() {
-                    return Some(o);
+                if *track_ledger {
+                    step_with_ledger(k, ledger);
+                } else {
+                    k.step(&mut NoHook);
+                }
+                let s = &k.state;
+                impact_log.observe(k.in_contact, || (s.corner_offsets, s.step, s.time_s));
+                if let Some(status) = status_of(&k.ends()) {
+                    let ended = outcome_of(k, impact_log, status);
+                    *outcome = Some(ended);
+                    return Some(ended);
                 }
             }
             if stop() {
@@ -524,32 +648,93 @@ impl Simulation {
 
     /// Whether the current state ends the roll, and how (the kernel's end-of-step test).
     #[inline]
-    fn check_end<const SPRING: bool>(&self) -> Option<Outcome> {
-        let ends = self.k.ends_by::<SPRING>();
-        let status = if ends.unstable {
-            Status::Unstable
-        } else if ends.settled {
-            Status::Settled
-        } else if ends.timeout {
-            Status::Timeout
-        } else {
-            return None;
-        };
+    fn check_end<W: EngineLaw>(&self) -> Option<Outcome> {
+        let status = status_of(&W::of(&self.k).expect("the law the step took").ends())?;
         Some(self.outcome_of(status))
     }
 
     #[cold]
     fn outcome_of(&self, status: Status) -> Outcome {
-        Outcome {
-            status,
-            face: match status {
-                Status::Settled => self.k.bodies[0].face_up_at_rest(&self.k.state.corner_offsets),
-                _ => None,
-            },
-            steps: self.k.state.step,
-            time_s: self.k.state.time_s,
-            impacts: self.impact_log.impacts.count(),
-            first_impact: self.impact_log.first,
-        }
+        on_law!(&self.k, k => outcome_of(k, &self.impact_log, status))
     }
+}
+
+/// The outcome of the roll in `k`, whose impacts `impact_log` saw, ending as `status`.
+#[cold]
+fn outcome_of<W: Law>(k: &Kernel<f64, W>, impact_log: &ImpactLog, status: Status) -> Outcome {
+    Outcome {
+        status,
+        face: match status {
+            Status::Settled => k.bodies[0].face_up_at_rest(&k.state.corner_offsets),
+            _ => None,
+        },
+        steps: k.state.step,
+        time_s: k.state.time_s,
+        impacts: impact_log.impacts.count(),
+        first_impact: impact_log.first,
+    }
+}
+
+/// One step with the energy ledger's bookkeeping, kept out of line: inlined beside the
+/// plain step, its second copy of the kernel would crowd the batch loop's code.
+#[inline(never)]
+fn step_with_ledger<W: Law>(k: &mut Kernel<f64, W>, ledger: &mut Ledger) {
+    k.step(ledger);
+}
+
+/// How a roll ends at a state the end-of-step test says `ends` of (unstable before settled
+/// before out of time), if it ends.
+#[inline(always)]
+pub(crate) fn status_of(ends: &Ends<bool>) -> Option<Status> {
+    if ends.unstable {
+        Some(Status::Unstable)
+    } else if ends.settled {
+        Some(Status::Settled)
+    } else if ends.timeout {
+        Some(Status::Timeout)
+    } else {
+        None
+    }
+}
+
+/// The kernel of the law `W`, which the caller has matched.
+#[inline(always)]
+fn kernel_of<W: EngineLaw>(k: &mut Laws) -> &mut Kernel<f64, W> {
+    W::of_mut(k).expect("the law the step took")
+}
+
+/// The roll's body.
+fn sim_body(k: &Laws) -> &Body {
+    on_law!(k, k => &k.bodies[0])
+}
+
+/// `rule` as `params`' law has it on its table.
+fn stop_rule_on_table(params: &Params, rule: StopRule, edge_energy: f64) -> StopRule {
+    match params.ground.contact {
+        ContactLaw::Paper => PaperPerCorner::stop_rule(rule, params, edge_energy),
+        ContactLaw::SpringFriction => SpringFriction::stop_rule(rule, params, edge_energy),
+    }
+}
+
+/// The roll in `k` under `params`' law `V` (the ground changed): the runaway bound kept, a
+/// point's memory kept where the law stays, forgotten where it changes.
+fn under_law<V: EngineLaw>(k: &Laws, params: &Params, body: Body) -> Kernel<f64, V> {
+    let mut c = Constants::<f64, V>::new(params, &body);
+    c.stop.runaway = on_law!(k, k => k.c.stop.runaway);
+    let mut kernel = on_law!(k, k => k.under::<V>(c, body));
+    if let Some(same) = V::of(k) {
+        kernel.points = same.points;
+    }
+    kernel.update_forces();
+    kernel
+}
+
+/// [`Simulation::tangential_springs`] of a kernel.
+fn tangential_springs<W: Law>(k: &Kernel<f64, W>) -> [Vector2<f64>; 8] {
+    k.points.each_ref().map(W::tangential_spring)
+}
+
+/// [`Simulation::contact_forces`]' stiffness.
+fn stiffness<W: Law>(k: &Kernel<f64, W>) -> f64 {
+    W::stiffness(&k.c.law)
 }

@@ -140,16 +140,17 @@ pub(crate) struct FreeTurn<L> {
 const SPLITTING: [(usize, bool); 5] = [(0, false), (1, false), (2, true), (1, false), (0, false)];
 
 /// [`FreeTurn`] from the corner (contact-sphere) offsets `offsets` (cm, world frame), which
-/// give the body axes as `(r₅ − r₁)·s₀`, `(r₃ − r₁)·s₁`, `(r₂ − r₁)·s₂` (`axis_scale`, 1/cm),
+/// give the body axes, read at the frame points `[o, x, y]` (a cube's corners 1, 5 and 3), as
+/// `(r_x − r_o)·s₀` and `(r_y − r_o)·s₁` (`axis_scale`, 1/cm),
 /// orthonormalised (Gram–Schmidt, so that the step's rotation is orthogonal to rounding
 /// however the corners have drifted); the principal axes in the body frame,
 /// `principal_axes[3j + i]` the body component `j` of axis `i`; `1/I_i` (1/(g·cm²)); `L`
 /// (g·cm²/s) and `Δt` (s). `sin` and `cos` are libm's, taken per lane for the lanes of
 /// `lanes` (the others' values are to be discarded), so every width has the same bits.
 #[inline(always)]
-pub(crate) fn free_turn<L: Lane>(
-    offsets: &[Vector3<L>; 8],
-    axis_scale: &[L; 3],
+pub(crate) fn free_turn<L: Lane, const N: usize>(
+    offsets: &[Vector3<L>; N],
+    ([o, x, y], axis_scale): ([usize; 3], &[L; 3]),
     principal_axes: &[L; 9],
     inverse_moments: &[L; 3],
     l: &Vector3<L>,
@@ -158,8 +159,8 @@ pub(crate) fn free_turn<L: Lane>(
 ) -> FreeTurn<L> {
     // No closures and no `array::from_fn` here: they would be functions of their own, built
     // without the lane engine's AVX2, and every vector operation in them a call.
-    let ex = unit(&column(offsets, 4, axis_scale[0]));
-    let y = column(offsets, 2, axis_scale[1]);
+    let ex = unit(&column(offsets, o, x, axis_scale[0]));
+    let y = column(offsets, o, y, axis_scale[1]);
     let along = dot(&ex, &y);
     let ey = unit(&Vector3::new(
         y.x - ex.x * along,
@@ -214,10 +215,10 @@ pub(crate) fn free_turn<L: Lane>(
     }
 }
 
-/// `(r_to − r_1)·s`: a body axis read off the corners.
+/// `(r_to − r_from)·s`: a body axis read off the points.
 #[inline(always)]
-fn column<L: Lane>(offsets: &[Vector3<L>; 8], to: usize, s: L) -> Vector3<L> {
-    let (a, b) = (&offsets[to], &offsets[0]);
+fn column<L: Lane, const N: usize>(offsets: &[Vector3<L>; N], from: usize, to: usize, s: L) -> Vector3<L> {
+    let (a, b) = (&offsets[to], &offsets[from]);
     Vector3::new((a.x - b.x) * s, (a.y - b.y) * s, (a.z - b.z) * s)
 }
 

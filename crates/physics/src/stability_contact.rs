@@ -5,7 +5,7 @@
 //! damping and the kinetic friction's chatter — do not apply to it, and the corner-speed and
 //! impact-depth readings apply to both laws.
 
-use super::contact::SpringFriction;
+use super::contact::spring_friction::SpringFrictionConstants;
 use super::model::Body;
 use super::params::{ContactLaw, Params};
 
@@ -45,7 +45,7 @@ pub fn spring_friction_modes(p: &Params) -> Option<SpringModes> {
     }
     let body = Body::new(p);
     let (k, mass) = (p.ground.stiffness, body.mass());
-    let law = SpringFriction::new(p, mass);
+    let law = SpringFrictionConstants::new(p, mass, body.edge_energy());
     let k_t = law.tangential_stiffness;
     let rock = body.rocking_frequency();
     let (h, inertia) = (body.reference_height(), body.mean_inertia());

@@ -120,7 +120,8 @@ pub fn random_start(
     }
 }
 
-/// A state's every number as bits, and its step count: what two engines must agree on.
+/// A state's every number as bits, and its step count: what two engines must agree on (a
+/// law's memory at the points shows in the forces it gives).
 pub fn state_bits(s: &State) -> Vec<u64> {
     let mut v: Vec<f64> = Vec::with_capacity(96);
     v.extend(s.position.iter());
@@ -130,7 +131,6 @@ pub fn state_bits(s: &State) -> Vec<u64> {
         v.extend(s.corner_offsets[k].iter());
         v.extend(s.corner_forces[k].iter());
         v.push(s.corner_depths[k]);
-        v.extend(s.tangential_springs[k].iter());
     }
     v.push(s.time_s);
     let mut bits: Vec<u64> = v.into_iter().map(f64::to_bits).collect();

@@ -372,9 +372,8 @@ fn a_point_that_leaves_the_table_forgets_its_spring() {
     .unwrap();
     let (mut held, mut leaves) = (false, 0);
     run_for(&mut sim, 1.0, |sim| {
-        let s = sim.state();
-        for k in 0..8 {
-            let xi = s.tangential_springs[k];
+        let (s, springs) = (sim.state(), sim.tangential_springs());
+        for (k, xi) in springs.iter().enumerate() {
             if s.corner_depths[k] > 0.0 {
                 held |= xi.norm() > 0.0;
             } else {

@@ -9,5 +9,6 @@ mod dice;
 mod free_rotation;
 mod lanes;
 mod loaded_dice;
+mod point_bodies;
 mod reference;
 mod stability_bodies;

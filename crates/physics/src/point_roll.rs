@@ -1,0 +1,167 @@
+//! The scalar engine for a body given as its contact points ([`PointBody`]): one roll of a
+//! body of `N` points under the contact law its table names, stepped by the same kernel the
+//! die's [`Simulation`](crate::Simulation) steps (the lane engine's twin is
+//! [`crate::lanes::roll_points_in_lanes`]).
+
+use super::contact::{Law, SpringFriction};
+use super::energy::Energy;
+use super::initial::InitialCondition;
+use super::kernel::{Faces, Kernel, NoHook};
+use super::params::{ContactLaw, FrictionLaw, ParamError, Params};
+use super::points::PointBody;
+use super::sim::{PaperPerCorner, PaperWholeDie, Status, by_law, engine_law, status_of};
+use super::state::State;
+use nalgebra::Vector2;
+
+/// The end of a roll of a body of points.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointOutcome {
+    pub status: Status,
+    /// The number of the face up, for a settled roll.
+    pub face: Option<u8>,
+    /// Steps taken when the roll ended.
+    pub steps: u64,
+    /// s of simulated time when the roll ended.
+    pub time_s: f64,
+}
+
+/// The kernel under each law.
+#[derive(Debug, Clone)]
+pub(crate) enum PointKernel<const N: usize> {
+    Paper(Kernel<f64, PaperPerCorner, N, PointBody<N>>),
+    PaperWholeDie(Kernel<f64, PaperWholeDie, N, PointBody<N>>),
+    SpringFriction(Kernel<f64, SpringFriction, N, PointBody<N>>),
+}
+
+macro_rules! on_law {
+    ($laws:expr, $k:ident => $body:expr) => {
+        match $laws {
+            PointKernel::Paper($k) => $body,
+            PointKernel::PaperWholeDie($k) => $body,
+            PointKernel::SpringFriction($k) => $body,
+        }
+    };
+}
+
+/// A body of `N` points rolling from an initial condition.
+#[derive(Debug, Clone)]
+pub struct PointRoll<const N: usize> {
+    pub(crate) k: PointKernel<N>,
+    body: PointBody<N>,
+    outcome: Option<PointOutcome>,
+}
+
+impl<const N: usize> PointRoll<N> {
+    /// `body` placed at `initial` on `params`' table (its world, ground and integrator; its
+    /// die is not read), after both are validated.
+    pub fn new(params: &Params, body: &PointBody<N>, initial: &InitialCondition) -> Result<Self, ParamError> {
+        params.validate()?;
+        initial.validate()?;
+        Ok(Self::new_unchecked(params, body, initial))
+    }
+
+    /// [`PointRoll::new`] without the range checks.
+    pub(crate) fn new_unchecked(params: &Params, body: &PointBody<N>, initial: &InitialCondition) -> Self {
+        let k = by_law!(PointKernel, params, body.kernel(params, initial));
+        PointRoll {
+            k,
+            body: *body,
+            outcome: None,
+        }
+    }
+
+    pub fn state(&self) -> &State<f64, N> {
+        on_law!(&self.k, k => &k.state)
+    }
+
+    /// cm, each point's tangential spring (0 under the paper's law).
+    pub fn tangential_springs(&self) -> [Vector2<f64>; N] {
+        on_law!(&self.k, k => springs(k))
+    }
+
+    /// The energy terms at the current state, erg.
+    pub fn energy(&self) -> Energy {
+        let e = on_law!(&self.k, k => k.energy());
+        Energy {
+            translational: e.translational,
+            rotational: e.rotational,
+            gravitational: e.gravitational,
+            elastic: e.elastic,
+        }
+    }
+
+    /// Whether any point is below the table now.
+    pub fn in_contact(&self) -> bool {
+        on_law!(&self.k, k => k.in_contact)
+    }
+
+    /// The number of the face most nearly down, and up, now.
+    pub fn face_down(&self) -> u8 {
+        self.body.face_down(&self.state().corner_offsets)
+    }
+
+    pub fn face_up(&self) -> u8 {
+        self.body.face_up(&self.state().corner_offsets)
+    }
+
+    /// The end, once the roll has ended.
+    pub fn outcome(&self) -> Option<PointOutcome> {
+        self.outcome
+    }
+
+    /// One step of Δt.
+    pub fn step(&mut self) {
+        on_law!(&mut self.k, k => k.step(&mut NoHook));
+    }
+
+    /// One step, then the end-of-roll test; the outcome on the step that ends it.
+    pub fn advance(&mut self) -> Option<PointOutcome> {
+        self.step();
+        if self.outcome.is_some() {
+            return None;
+        }
+        let status = status_of(&on_law!(&self.k, k => k.ends()))?;
+        let outcome = self.finish(status);
+        Some(outcome)
+    }
+
+    /// Steps until the roll ends.
+    pub fn run_to_end(&mut self) -> PointOutcome {
+        loop {
+            if let Some(o) = self.outcome {
+                return o;
+            }
+            self.advance();
+        }
+    }
+
+    /// Ends the roll as `status` at the current state.
+    pub(crate) fn finish(&mut self, status: Status) -> PointOutcome {
+        let s = self.state();
+        let outcome = PointOutcome {
+            status,
+            face: match status {
+                Status::Settled => Faces::face_up_at_rest(&self.body, &s.corner_offsets),
+                _ => None,
+            },
+            steps: s.step,
+            time_s: s.time_s,
+        };
+        self.outcome = Some(outcome);
+        outcome
+    }
+}
+
+fn springs<W: Law, const N: usize>(k: &Kernel<f64, W, N, PointBody<N>>) -> [Vector2<f64>; N] {
+    k.points.each_ref().map(W::tangential_spring)
+}
+
+/// A contact law as [`PointRoll`] holds it.
+pub(crate) trait PointLaw: Law {
+    fn of<const N: usize>(k: &PointKernel<N>) -> Option<&Kernel<f64, Self, N, PointBody<N>>>;
+    fn of_mut<const N: usize>(k: &mut PointKernel<N>) -> Option<&mut Kernel<f64, Self, N, PointBody<N>>>;
+}
+
+engine_law!(PointLaw, PointKernel, PaperPerCorner, Paper, N);
+engine_law!(PointLaw, PointKernel, PaperWholeDie, PaperWholeDie, N);
+engine_law!(PointLaw, PointKernel, SpringFriction, SpringFriction, N);
