@@ -1,18 +1,20 @@
 //! Dice of any convex shape (docs/model.md, "Dice of any convex shape"; docs/dice.md): their
 //! hull, the exact mass of the uniform solid, their numbers and how they are read, how firmly
-//! they rest, and the flaws that make a real die unfair. Pure geometry: nalgebra and serde.
+//! they rest, and the flaws that make a real die unfair. Pure: nalgebra and serde.
 //!
 //! The files, each using only those before it: `hull` (the polyhedron of a list of vertices),
 //! `moments` (its volume, centre and inertia), `numbering` (the numbers on its faces),
 //! `flaws` (a bubble, a point mass, a shave, rounding), `die` (the [`Die`] a body is made
-//! from), `stability` (tipping barrier and resting depth) and `solids` (the d4 to the d20 and
-//! prisms).
+//! from), `stability` (tipping barrier and resting depth), `solids` (the d4 to the d20 and
+//! prisms) and `rolled` (a die as the [`PointBody`](crate::PointBody) the step rolls, with
+//! its stopping rule).
 
 mod die;
 mod flaws;
 mod hull;
 mod moments;
 mod numbering;
+mod rolled;
 mod solids;
 mod stability;
 

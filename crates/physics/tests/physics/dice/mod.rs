@@ -5,6 +5,7 @@ mod flaws;
 mod hull;
 mod mass;
 mod reading;
+mod rolled;
 mod stability;
 
 use dicesim_physics::polyhedron::DieKind;
