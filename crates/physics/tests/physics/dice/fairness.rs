@@ -6,7 +6,7 @@
 //! The default run throws each die as often as fits in about 20 s on one core of a loaded
 //! two-core machine (both engines, at the dice' table's Δt = 0.25 ms: from about 230 throws a
 //! second for the d10 to 4 000 for the d4); the full 200 000 throws a die are `#[ignore]`d,
-//! about an hour on one core:
+//! about 40 minutes on one core of a loaded machine:
 //!
 //! ```text
 //! cargo test -p dicesim-physics --test physics -- --ignored --nocapture dice::fairness
