@@ -141,63 +141,6 @@ fn a_prism_without_opposite_faces_is_read_at_the_face_down() {
 }
 
 #[test]
-fn the_tables_in_the_docs_are_the_dice() {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/dice.md");
-    let text = std::fs::read_to_string(&path).expect("docs/dice.md");
-    for kind in DieKind::ALL {
-        let die = kind.standard();
-        let heading = format!("### {}\n", kind.name());
-        let section = text
-            .split(&heading)
-            .nth(1)
-            .unwrap_or_else(|| panic!("no table for {}", kind.name()));
-        let rows: Vec<Vec<String>> = section
-            .lines()
-            .take_while(|l| !l.starts_with("### "))
-            .filter(|l| l.starts_with("| ") && !l.starts_with("| face"))
-            .map(|l| {
-                l.trim_matches('|')
-                    .split(" | ")
-                    .map(|c| c.trim().replace('−', "-"))
-                    .collect()
-            })
-            .collect();
-        assert_eq!(
-            rows.len(),
-            die.shape().faces().len(),
-            "{}: one row per face",
-            kind.name()
-        );
-        for row in rows {
-            let normal: Vec<f64> = row[1]
-                .trim_matches(|c| c == '(' || c == ')')
-                .split(", ")
-                .map(|x| x.parse().expect("a number"))
-                .collect();
-            let normal = Vector3::new(normal[0], normal[1], normal[2]);
-            let f = die.face_most_nearly_down(&normal);
-            assert!(
-                (die.shape().faces()[f].normal - normal).norm() < 1e-4,
-                "{}: no face {normal}",
-                kind.name()
-            );
-            assert_eq!(
-                row[2],
-                die.numbering().numbers[f].to_string(),
-                "{}: face {normal}",
-                kind.name()
-            );
-            assert_eq!(
-                row[3],
-                die.numbering().read_with_down(f).to_string(),
-                "{}: face {normal}",
-                kind.name()
-            );
-        }
-    }
-}
-
-#[test]
 fn a_die_is_named_as_players_name_it() {
     for kind in DieKind::ALL {
         assert_eq!(DieKind::from_name(kind.name()), Ok(kind));
