@@ -1,15 +1,19 @@
-//! `dicesim animate`: a roll (or a roll and its chaos twin) as an animated GIF or PNG.
+//! `dicesim animate`: a roll (or a roll and its chaos twin) as an animated GIF or PNG, or
+//! with `--present` the explorer's presentation view of it.
 
 use super::args::SetupArgs;
 use super::error::CliError;
 use super::running::{self, cancel_on_ctrl_c};
+use super::tui::ThemeArg;
 use crate::tables;
 use clap::Args;
+use dicesim_explorer::tui::{TERMINAL_COLUMNS, TERMINAL_ROWS, Theme, write_presentation};
 use dicesim_figures::animation::render::Camera;
-use dicesim_figures::animation::{self, AnimationSpec, write_animation};
+use dicesim_figures::animation::terminal::Grid;
+use dicesim_figures::animation::{self, AnimationProgress, AnimationSpec, write_animation};
 use dicesim_setup::chaos::DEFAULT_EPSILON;
 use dicesim_setup::output::Output;
-use dicesim_setup::preset::{Speed, refuse_unapplied};
+use dicesim_setup::preset::{Preset, Speed, ThemeName, refuse_unapplied};
 use dicesim_setup::random::unapplied_when_fixed;
 use std::path::PathBuf;
 
@@ -33,14 +37,27 @@ pub(crate) struct AnimateArgs {
     /// the preset's `view.twin`, else 1e-9).
     #[arg(long, value_name = "EPSILON", num_args = 0..=1, default_missing_value = "default")]
     pub(crate) twin: Option<String>,
-    /// Follow the die with a camera that frames it: its side about a third of the frame's
-    /// height (default: the whole path in view, the die small in it).
+    /// Follow the die with a camera that frames it and the table under it: wide while it
+    /// drops, closing in to its side about a third of the frame's height as it lands
+    /// (default: the whole path in view, the die small in it).
     #[arg(long)]
     pub(crate) zoom: bool,
     /// Colour face N and its opposite (7 − N) and draw their body axis, e.g. 2 for the
     /// tennis racket's flip of faces 2 and 5.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u8).range(1..=6))]
     pub(crate) face_pair: Option<u8>,
+    /// Draw the explorer's presentation view (`P`) instead: the die large over its height
+    /// scale, the face up in block digits, the time and a readout, as the terminal shows
+    /// them, rasterised at --size pixels.
+    #[arg(long, conflicts_with_all = ["zoom", "twin", "face_pair"])]
+    pub(crate) present: bool,
+    /// With --present: the terminal's columns × rows, from 80x24 to 400x200 (default 80x24,
+    /// the projector's).
+    #[arg(long, value_name = "COLSxROWS", requires = "present", value_parser = parse_terminal)]
+    pub(crate) terminal: Option<(u16, u16)>,
+    /// With --present: the theme (default: the preset's, else projector).
+    #[arg(long, value_enum, requires = "present")]
+    pub(crate) theme: Option<ThemeArg>,
     /// Write the animation to a .gif or an (animated) .png file.
     #[arg(long, value_name = "FILE.gif|FILE.png")]
     pub(crate) out: PathBuf,
@@ -49,32 +66,52 @@ pub(crate) struct AnimateArgs {
     pub(crate) force: bool,
 }
 
-fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = (animation::WIDTH, animation::HEIGHT);
+/// `s` as two numbers `AxB` (or `A×B`), each in its range, else what `AxB` should be.
+fn parse_pair<T>(
+    s: &str,
+    what: &str,
+    example: &str,
+    ranges: (std::ops::RangeInclusive<T>, std::ops::RangeInclusive<T>),
+) -> Result<(T, T), String>
+where
+    T: std::str::FromStr + PartialOrd + std::fmt::Display,
+{
+    let (a, b) = ranges;
     let bad = || {
         format!(
-            "`{s}`: expected WxH in pixels, from {}x{} to {}x{}, e.g. 640x480",
-            w.start(),
-            h.start(),
-            w.end(),
-            h.end()
+            "`{s}`: expected {what}, from {}x{} to {}x{}, e.g. {example}",
+            a.start(),
+            b.start(),
+            a.end(),
+            b.end()
         )
     };
     let (x, y) = s.split_once(['x', 'X', '×']).ok_or_else(bad)?;
-    let x: u32 = x.trim().parse().map_err(|_| bad())?;
-    let y: u32 = y.trim().parse().map_err(|_| bad())?;
-    if !w.contains(&x) || !h.contains(&y) {
+    let x: T = x.trim().parse().map_err(|_| bad())?;
+    let y: T = y.trim().parse().map_err(|_| bad())?;
+    if !a.contains(&x) || !b.contains(&y) {
         return Err(bad());
     }
     Ok((x, y))
 }
 
-pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
-    let preset = args.setup.resolve()?;
-    refuse_unapplied(&args.setup.set, |key| unapplied_when_fixed(key, "animate"))?;
-    let params = preset.params();
-    // The checks `roll` makes: every value in range, no corner starting inside the table.
-    dicesim_physics::Simulation::new(&params, &preset.initial)?;
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    parse_pair(
+        s,
+        "WxH in pixels",
+        "640x480",
+        (animation::WIDTH, animation::HEIGHT),
+    )
+}
+
+/// A terminal's size, `COLSxROWS`, in the presentation view's range.
+fn parse_terminal(s: &str) -> Result<(u16, u16), String> {
+    parse_pair(s, "COLSxROWS", "80x24", (TERMINAL_COLUMNS, TERMINAL_ROWS))
+}
+
+/// The animation the arguments ask for, over `preset`'s view; a `--speed` given becomes
+/// the view's too (the presentation view's title states the speed it plays at).
+fn spec_of(args: &AnimateArgs, preset: &mut Preset) -> Result<AnimationSpec, CliError> {
     let twin = match args.twin.as_deref() {
         None => None,
         Some("default") => Some(preset.view.twin.unwrap_or(DEFAULT_EPSILON)),
@@ -86,10 +123,15 @@ pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
     };
     let speed = match args.speed.as_deref() {
         None => preset.view.speed.and_then(Speed::factor).unwrap_or(1.0),
-        Some(label) => Speed::from_label(label).and_then(Speed::factor).ok_or_else(|| {
-            let ladder: Vec<&str> = Speed::labels().filter(|l| *l != "instant").collect();
-            CliError::Usage(format!("--speed `{label}`: one of {}", ladder.join(", ")))
-        })?,
+        Some(label) => {
+            let chosen = Speed::from_label(label).filter(|s| s.factor().is_some());
+            let chosen = chosen.ok_or_else(|| {
+                let ladder: Vec<&str> = Speed::labels().filter(|l| *l != "instant").collect();
+                CliError::Usage(format!("--speed `{label}`: one of {}", ladder.join(", ")))
+            })?;
+            preset.view.speed = Some(chosen);
+            chosen.factor().unwrap_or(1.0)
+        }
     };
     let camera = preset.view.camera.map_or(Camera::DEFAULT, |c| Camera {
         yaw_deg: c.yaw,
@@ -104,27 +146,63 @@ pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
         ..AnimationSpec::new(args.fps, args.size)
     };
     spec.validate().map_err(CliError::experiment("--twin "))?;
+    Ok(spec)
+}
+
+pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
+    let mut preset = args.setup.resolve()?;
+    refuse_unapplied(&args.setup.set, |key| unapplied_when_fixed(key, "animate"))?;
+    let params = preset.params();
+    // The checks `roll` makes: every value in range, no corner starting inside the table.
+    dicesim_physics::Simulation::new(&params, &preset.initial)?;
+    let spec = spec_of(args, &mut preset)?;
+    let terminal = args.terminal.unwrap_or((80, 24));
+    if args.present {
+        Grid::legible(args.size, terminal.0, terminal.1)
+            .map_err(|e| CliError::Usage(format!("--size {e}")))?;
+    }
     let output =
         Output::check(&args.out, &animation::EXTENSIONS, args.force).map_err(CliError::output("--out "))?;
 
     let bar = running::progress_bar(params.max_steps(), "{msg:14} {bar:40} {pos}/{len}, {elapsed}");
-    bar.set_message("steps rolled");
+    bar.set_message(if args.present {
+        "screens drawn"
+    } else {
+        "steps rolled"
+    });
     let stop = cancel_on_ctrl_c()?;
-    let animated = write_animation(
-        &preset.name,
-        &params,
-        &preset.initial,
-        &spec,
-        &output,
-        &stop,
-        &mut |p| {
-            if p.drawing && bar.length() != Some(p.total) {
-                bar.set_length(p.total);
-                bar.set_message("frames drawn");
-            }
-            bar.set_position(p.done);
-        },
-    )
+    let mut progress = |p: AnimationProgress| {
+        if bar.length() != Some(p.total) {
+            bar.set_length(p.total);
+        }
+        if p.drawing {
+            bar.set_message("frames drawn");
+        }
+        bar.set_position(p.done);
+    };
+    let animated = if args.present {
+        let theme = args.theme.map(ThemeName::from).or(preset.view.theme);
+        preset.view.theme = Some(theme.unwrap_or(ThemeName::Projector));
+        write_presentation(
+            &preset,
+            &spec,
+            terminal,
+            Theme::default(),
+            &output,
+            &stop,
+            &mut progress,
+        )
+    } else {
+        write_animation(
+            &preset.name,
+            &params,
+            &preset.initial,
+            &spec,
+            &output,
+            &stop,
+            &mut progress,
+        )
+    }
     .map_err(|e| match e {
         dicesim_experiment::Error::Output(e) => CliError::output("")(e),
         dicesim_experiment::Error::Cancelled => {
@@ -137,8 +215,8 @@ pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
     tables::animation(
         &mut std::io::stdout().lock(),
         &animated,
-        twin,
-        speed,
+        spec.twin,
+        spec.speed,
         frames,
         &args.out,
     )?;

@@ -45,11 +45,14 @@ pub(crate) enum CliCommand {
   dicesim trace > roll.csv
   dicesim trace --every 10 --steps 3000 --preset icy-table > icy.csv")]
     Trace(trace::TraceArgs),
-    /// Write a roll (or a roll and its chaos twin) as an animated GIF or PNG for a slide.
+    /// Write a roll (or a roll and its chaos twin, or the explorer's presentation view of it)
+    /// as an animated GIF or PNG for a slide.
     #[command(after_help = "Examples:
   dicesim animate --out roll.gif
   dicesim animate --preset gentle-drop --fps 30 --size 800x600 --out drop.png
-  dicesim animate --twin 1e-6 --out twins.gif --force")]
+  dicesim animate --twin 1e-6 --out twins.gif --force
+  dicesim animate --zoom --size 800x600 --out drop.gif
+  dicesim animate --present --size 1280x720 --out present.gif")]
     Animate(animate::AnimateArgs),
     /// List, show and save presets (TOML setups; see `presets path`).
     #[command(after_help = "Examples:

@@ -3,8 +3,9 @@
 use super::args::SetupArgs;
 use super::error::CliError;
 use clap::{Args, ValueEnum};
+use dicesim_explorer::lesson::Lesson;
 use dicesim_explorer::tui::Theme;
-use dicesim_setup::preset::{Preset, ThemeName};
+use dicesim_setup::preset::{Preset, Store, ThemeName};
 use std::io::IsTerminal;
 
 #[derive(Debug, Clone, Default, Args)]
@@ -15,6 +16,10 @@ pub(crate) struct TuiArgs {
     /// bold, high-contrast black on white for a room.
     #[arg(long, value_enum)]
     pub(crate) theme: Option<ThemeArg>,
+    /// Walk a lesson: its first step opens at once, PageDown goes on (docs/lesson.md).
+    /// Without FILE, the shipped lesson (the README's "In the classroom").
+    #[arg(long, value_name = "FILE", num_args = 0..=1)]
+    pub(crate) lesson: Option<Option<std::path::PathBuf>>,
 }
 
 /// The explorer's themes, as `--theme` names them.
@@ -44,8 +49,21 @@ fn opening(args: &TuiArgs) -> Result<Preset, CliError> {
     Ok(preset)
 }
 
+/// The lesson the step keys walk: `--lesson FILE`'s, else the shipped one; a file that
+/// does not read is a usage error naming its line.
+fn lesson(args: &TuiArgs) -> Result<Lesson, CliError> {
+    let store = Store::from_env();
+    match &args.lesson {
+        Some(Some(path)) => Lesson::from_file(path, &store),
+        _ => Lesson::shipped(&store),
+    }
+    .map_err(|e| CliError::Usage(format!("the lesson cannot be walked: {e}")))
+}
+
 /// Opens the explorer; `no_color` is the global `--no-color` (or NO_COLOR).
 pub(crate) fn run(args: &TuiArgs, no_color: bool) -> Result<(), CliError> {
+    let lesson = lesson(args)?;
+    let walk = args.lesson.is_some();
     let preset = opening(args)?;
     if !std::io::stdout().is_terminal() || !std::io::stdin().is_terminal() {
         return Err(CliError::Usage(
@@ -59,7 +77,7 @@ pub(crate) fn run(args: &TuiArgs, no_color: bool) -> Result<(), CliError> {
     } else {
         Theme::from_env()
     };
-    dicesim_explorer::tui::run(&preset, theme).map_err(CliError::from)
+    dicesim_explorer::tui::run(&preset, theme, lesson, walk).map_err(CliError::from)
 }
 
 #[cfg(test)]

@@ -14,6 +14,7 @@ mod evidence;
 mod import_cycles;
 mod inputs;
 mod layers;
+mod lesson;
 mod limits;
 mod loaded_dice;
 mod man;

@@ -3,5 +3,6 @@
 //! The UI never steps the physics: the worker does, and the UI draws its snapshots.
 
 pub(crate) mod fault;
+pub mod lesson;
 pub mod tui;
 pub mod worker;

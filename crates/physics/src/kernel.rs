@@ -15,6 +15,7 @@
 //! near rest, the stopping rule of the face it lies on.
 
 use super::contact::{Law, Touch, corners};
+use super::energy::Energy;
 use super::initial::InitialCondition;
 use super::lane::{
     Lane, add3, all_lanes, cross3, lane3, mask_of, put, put_mask, scale3, select3, set_bits, v3, zero3,
@@ -57,6 +58,17 @@ pub(crate) struct EnergyTerms<L> {
     pub(crate) rotational: L,
     pub(crate) gravitational: L,
     pub(crate) elastic: L,
+}
+
+impl From<EnergyTerms<f64>> for Energy {
+    fn from(e: EnergyTerms<f64>) -> Energy {
+        Energy {
+            translational: e.translational,
+            rotational: e.rotational,
+            gravitational: e.gravitational,
+            elastic: e.elastic,
+        }
+    }
 }
 
 /// How each lane's roll ends at this state (at most one mask set per lane).

@@ -9,7 +9,7 @@ use super::initial::InitialCondition;
 use super::kernel::{Faces, Kernel, NoHook};
 use super::params::{ContactLaw, FrictionLaw, ParamError, Params};
 use super::points::PointBody;
-use super::sim::{PaperPerCorner, PaperWholeDie, Status, by_law, engine_law, status_of};
+use super::sim::{PaperPerCorner, PaperWholeDie, Status, by_law, engine_law, on_law, status_of};
 use super::state::State;
 use nalgebra::Vector2;
 
@@ -31,16 +31,6 @@ pub(crate) enum PointKernel<const N: usize> {
     Paper(Kernel<f64, PaperPerCorner, N, PointBody<N>>),
     PaperWholeDie(Kernel<f64, PaperWholeDie, N, PointBody<N>>),
     SpringFriction(Kernel<f64, SpringFriction, N, PointBody<N>>),
-}
-
-macro_rules! on_law {
-    ($laws:expr, $k:ident => $body:expr) => {
-        match $laws {
-            PointKernel::Paper($k) => $body,
-            PointKernel::PaperWholeDie($k) => $body,
-            PointKernel::SpringFriction($k) => $body,
-        }
-    };
 }
 
 /// A body of `N` points rolling from an initial condition.
@@ -71,28 +61,22 @@ impl<const N: usize> PointRoll<N> {
     }
 
     pub fn state(&self) -> &State<f64, N> {
-        on_law!(&self.k, k => &k.state)
+        on_law!(PointKernel, &self.k, k => &k.state)
     }
 
     /// cm, each point's tangential spring (0 under the paper's law).
     pub fn tangential_springs(&self) -> [Vector2<f64>; N] {
-        on_law!(&self.k, k => springs(k))
+        on_law!(PointKernel, &self.k, k => springs(k))
     }
 
     /// The energy terms at the current state, erg.
     pub fn energy(&self) -> Energy {
-        let e = on_law!(&self.k, k => k.energy());
-        Energy {
-            translational: e.translational,
-            rotational: e.rotational,
-            gravitational: e.gravitational,
-            elastic: e.elastic,
-        }
+        on_law!(PointKernel, &self.k, k => k.energy()).into()
     }
 
     /// Whether any point is below the table now.
     pub fn in_contact(&self) -> bool {
-        on_law!(&self.k, k => k.in_contact)
+        on_law!(PointKernel, &self.k, k => k.in_contact)
     }
 
     /// The number of the face most nearly down, and up, now.
@@ -111,7 +95,7 @@ impl<const N: usize> PointRoll<N> {
 
     /// One step of Δt.
     pub fn step(&mut self) {
-        on_law!(&mut self.k, k => k.step(&mut NoHook));
+        on_law!(PointKernel, &mut self.k, k => k.step(&mut NoHook));
     }
 
     /// One step, then the end-of-roll test; the outcome on the step that ends it.
@@ -120,7 +104,7 @@ impl<const N: usize> PointRoll<N> {
         if self.outcome.is_some() {
             return None;
         }
-        let status = status_of(&on_law!(&self.k, k => k.ends()))?;
+        let status = status_of(&on_law!(PointKernel, &self.k, k => k.ends()))?;
         let outcome = self.finish(status);
         Some(outcome)
     }

@@ -184,16 +184,18 @@ pub(crate) enum Laws {
     SpringFriction(Kernel<f64, SpringFriction>),
 }
 
-/// `$body` with `$k` bound to the kernel, whatever its law.
+/// `$body` with `$k` bound to the kernel in `$laws`, a variant of `$enum` ([`Laws`], or
+/// `PointKernel` for a body of points), whatever its law.
 macro_rules! on_law {
-    ($laws:expr, $k:ident => $body:expr) => {
+    ($enum:ident, $laws:expr, $k:ident => $body:expr) => {
         match $laws {
-            Laws::Paper($k) => $body,
-            Laws::PaperWholeDie($k) => $body,
-            Laws::SpringFriction($k) => $body,
+            $enum::Paper($k) => $body,
+            $enum::PaperWholeDie($k) => $body,
+            $enum::SpringFriction($k) => $body,
         }
     };
 }
+pub(crate) use on_law;
 
 /// `$make` for the law `$p`'s ground names, wrapped in its variant of `$enum`.
 macro_rules! by_law {
@@ -340,7 +342,7 @@ impl Simulation {
         sim.impact_log = ImpactLog::new(sim.in_contact());
         sim.initial_energy = sim.energy().total();
         let runaway = RUNAWAY_ENERGY_FACTOR * sim.initial_energy.max(body.edge_energy());
-        on_law!(&mut sim.k, k => k.c.stop.runaway = runaway);
+        on_law!(Laws, &mut sim.k, k => k.c.stop.runaway = runaway);
         sim
     }
 
@@ -358,19 +360,19 @@ impl Simulation {
     }
 
     pub fn state(&self) -> &State {
-        on_law!(&self.k, k => &k.state)
+        on_law!(Laws, &self.k, k => &k.state)
     }
 
     /// cm, each contact point's tangential spring `ξ` in the table's plane: the slip it made
     /// since it touched the table, as the spring-friction law holds it (0 off the table, and
     /// always 0 under the paper's law, which keeps none).
     pub fn tangential_springs(&self) -> [Vector2<f64>; 8] {
-        on_law!(&self.k, k => tangential_springs(k))
+        on_law!(Laws, &self.k, k => tangential_springs(k))
     }
 
     /// rad/s, world frame.
     pub fn angular_velocity(&self) -> Vector3<f64> {
-        on_law!(&self.k, k => k.angular_velocity)
+        on_law!(Laws, &self.k, k => k.angular_velocity)
     }
 
     /// The end of the roll, once it has ended (later steps do not change it).
@@ -395,7 +397,7 @@ impl Simulation {
 
     /// Whether any corner is below the ground now.
     pub fn in_contact(&self) -> bool {
-        on_law!(&self.k, k => k.in_contact)
+        on_law!(Laws, &self.k, k => k.in_contact)
     }
 
     /// Changes the ground mid-roll; the new law acts from the next step on.
@@ -422,7 +424,7 @@ impl Simulation {
     /// state (the forces the next step will apply).
     pub fn contact_forces(&self) -> [ContactForce; 8] {
         let s = self.state();
-        let stiffness = on_law!(&self.k, k => stiffness(k));
+        let stiffness = on_law!(Laws, &self.k, k => stiffness(k));
         std::array::from_fn(|k| {
             let depth = s.corner_depths[k];
             let normal = depth * stiffness;
@@ -437,19 +439,13 @@ impl Simulation {
 
     /// The energy terms at the current state (docs/model.md, "Energy"), erg.
     pub fn energy(&self) -> Energy {
-        let e = on_law!(&self.k, k => k.energy());
-        Energy {
-            translational: e.translational,
-            rotational: e.rotational,
-            gravitational: e.gravitational,
-            elastic: e.elastic,
-        }
+        on_law!(Laws, &self.k, k => k.energy()).into()
     }
 
     /// erg, the energy the authors' program compared with the threshold: the corners as 8
     /// point masses and the ground term `½·Σ d_k·P_k` with the damped force (reference §2).
     pub fn point_mass_energy(&self) -> f64 {
-        on_law!(&self.k, k => k.point_mass_parts().1)
+        on_law!(Laws, &self.k, k => k.point_mass_parts().1)
     }
 
     /// `(kinetic, total)` of the stop energy.
@@ -459,7 +455,7 @@ impl Simulation {
                 let energy = self.energy();
                 (energy.kinetic(), energy.total())
             }
-            StopEnergy::PointMasses => on_law!(&self.k, k => k.point_mass_parts()),
+            StopEnergy::PointMasses => on_law!(Laws, &self.k, k => k.point_mass_parts()),
         }
     }
 
@@ -533,7 +529,7 @@ impl Simulation {
     /// plain step, its second copy of the kernel would crowd the batch loop's code.
     #[inline(never)]
     fn step_with_ledger(&mut self) {
-        on_law!(&mut self.k, k => k.step(&mut self.ledger));
+        on_law!(Laws, &mut self.k, k => k.step(&mut self.ledger));
     }
 
     /// [`Simulation::advance`] on the spring-friction law, out of line for the same reason:
@@ -655,7 +651,7 @@ impl Simulation {
 
     #[cold]
     fn outcome_of(&self, status: Status) -> Outcome {
-        on_law!(&self.k, k => outcome_of(k, &self.impact_log, status))
+        on_law!(Laws, &self.k, k => outcome_of(k, &self.impact_log, status))
     }
 }
 
@@ -705,7 +701,7 @@ fn kernel_of<W: EngineLaw>(k: &mut Laws) -> &mut Kernel<f64, W> {
 
 /// The roll's body.
 fn sim_body(k: &Laws) -> &Body {
-    on_law!(k, k => &k.bodies[0])
+    on_law!(Laws, k, k => &k.bodies[0])
 }
 
 /// `rule` as `params`' law has it on its table.
@@ -720,8 +716,8 @@ fn stop_rule_on_table(params: &Params, rule: StopRule, edge_energy: f64) -> Stop
 /// point's memory kept where the law stays, forgotten where it changes.
 fn under_law<V: EngineLaw>(k: &Laws, params: &Params, body: Body) -> Kernel<f64, V> {
     let mut c = Constants::<f64, V>::new(params, &body);
-    c.stop.runaway = on_law!(k, k => k.c.stop.runaway);
-    let mut kernel = on_law!(k, k => k.under::<V>(c, body));
+    c.stop.runaway = on_law!(Laws, k, k => k.c.stop.runaway);
+    let mut kernel = on_law!(Laws, k, k => k.under::<V>(c, body));
     if let Some(same) = V::of(k) {
         kernel.points = same.points;
     }

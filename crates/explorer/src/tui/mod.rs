@@ -32,6 +32,7 @@ pub(crate) mod state;
 pub(crate) mod vocabulary;
 
 pub use event_loop::run::{ExplorerError, run};
+pub use render::export::{TERMINAL_COLUMNS, TERMINAL_ROWS, write_presentation};
 pub use render::screen::render;
 pub use state::app::App;
 pub use vocabulary::key_table::markdown_tables;

@@ -447,8 +447,12 @@ impl LiveRoll {
             }
             let position = self.position;
             let keyframe = self.timeline.keyframe_due(position).then(|| self.keyframe());
-            self.timeline
-                .recorded(position, keyframe, self.sim.in_contact(), done);
+            self.timeline.recorded(
+                position,
+                keyframe,
+                (self.sim.in_contact(), self.sim.state().position),
+                done,
+            );
         } else if let Some(k) = self.timeline.at(self.position) {
             // Where a table value changed mid-roll, the roll carries on with the new one.
             let k = k.clone();
@@ -548,7 +552,16 @@ impl LiveRoll {
             .twin
             .as_ref()
             .map_or(s.step, |t| s.step.max(t.sim.state().step));
-        (DieState::of(&self.sim, self.start_face), step)
+        let mut die = DieState::of(&self.sim, self.start_face);
+        // Slid since the contact began: along the table (its plane is x-y, gravity tilted
+        // for an incline), while a corner is in it.
+        die.slid_cm = self
+            .sim
+            .in_contact()
+            .then(|| self.timeline.contact_began(self.position))
+            .flatten()
+            .map(|from| (die.centre - from).xy().norm());
+        (die, step)
     }
 
     /// The energy samples since the last call: (samples, clear first, cut after this time).

@@ -222,6 +222,9 @@ pub(crate) struct DieState {
     pub(crate) face_up: u8,
     /// The face most nearly up at t = 0.
     pub(crate) start_face: u8,
+    /// cm, how far the centre of mass has moved along the table since the contact going on
+    /// began (docs/explorer.md, "Readouts"); `None` clear of the table (and for a twin).
+    pub(crate) slid_cm: Option<f64>,
 }
 
 impl DieState {
@@ -237,6 +240,7 @@ impl DieState {
             angular_momentum: s.angular_momentum,
             face_up: sim.face_up(),
             start_face,
+            slid_cm: None,
         }
     }
 }

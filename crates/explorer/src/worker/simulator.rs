@@ -543,8 +543,9 @@ impl Simulator {
             ""
         };
         let words = match (status, result) {
+            // Both files named first: a narrow status line cuts the sizes, not the .png.
             (_, Ok(WrittenExport::Roll(done))) => format!(
-                "exported {} ({}, {} rows) and .png",
+                "exported {} and .png ({}, {} rows)",
                 done.trace.display(),
                 human_bytes(done.bytes),
                 done.rows
@@ -787,6 +788,17 @@ mod tests {
         e.run_export_here();
         let notice = e.snapshot().notice.expect("the export says how it went");
         notice.said().expect("in words").to_string()
+    }
+
+    /// The export's notice names both files before its sizes, so a status line cut at 80
+    /// columns still says where the plot went.
+    #[test]
+    fn an_exports_notice_names_both_files_first() {
+        let mut e = Simulator::new(&Preset::default()).expect("valid");
+        e.run_to_end();
+        let words = exported(&mut e);
+        let csv = words.find(".csv and .png").expect("the two files together");
+        assert!(csv < words.find('(').expect("the sizes"), "{words}");
     }
 
     #[test]

@@ -8,6 +8,7 @@
 //! 1 500 steps to reach any of them).
 
 use dicesim_physics::{Impacts, Simulation};
+use nalgebra::Vector3;
 
 /// Most regular keyframes one roll keeps (each a copy of one or two simulations, about a
 /// kilobyte each).
@@ -45,6 +46,11 @@ pub(crate) struct Timeline {
     pub(crate) decided: Option<u64>,
     /// Steps at which an impact began (the physics' one definition, [`Impacts`]), in order.
     pub(crate) impacts: Vec<u64>,
+    /// cm, the centre of mass at each of `impacts`: where the die was when it began.
+    impact_centres: Vec<Vector3<f64>>,
+    /// cm, the centre at the start if the die starts on the table (its first contact
+    /// begins there, with no impact).
+    start_centre: Option<Vector3<f64>>,
     /// The contact of the computed steps, as far as the frontier.
     contact: Impacts,
     /// Steps at which a table value was changed mid-roll, in order: the one record of
@@ -58,6 +64,7 @@ impl Timeline {
     /// A timeline for a roll of at most `max_steps` steps, starting at `start`.
     pub(crate) fn new(max_steps: u64, start: Keyframe) -> Timeline {
         let contact = Impacts::new(start.sim.in_contact());
+        let start_centre = start.sim.in_contact().then(|| start.sim.state().position);
         Timeline {
             every: max_steps.div_ceil(MAX_KEYFRAMES).max(1),
             keyframes: vec![start],
@@ -65,6 +72,8 @@ impl Timeline {
             ended: false,
             decided: None,
             impacts: Vec::new(),
+            impact_centres: Vec::new(),
+            start_centre,
             contact,
             edits: Vec::new(),
             impacts_changed: true,
@@ -81,13 +90,14 @@ impl Timeline {
         position.is_multiple_of(self.every)
     }
 
-    /// A newly computed step, `in_contact` or clear of the table: the frontier moves on, its
-    /// keyframe (when one is due) is kept, an impact is marked where one begins.
+    /// A newly computed step, `in_contact` or clear of the table with its centre of mass at
+    /// `centre` (cm): the frontier moves on, its keyframe (when one is due) is kept, an
+    /// impact is marked where one begins.
     pub(crate) fn recorded(
         &mut self,
         position: u64,
         keyframe: Option<Keyframe>,
-        in_contact: bool,
+        (in_contact, centre): (bool, Vector3<f64>),
         ended: bool,
     ) {
         self.furthest = position;
@@ -95,7 +105,17 @@ impl Timeline {
         self.keyframes.extend(keyframe);
         if self.contact.observe(in_contact) && self.impacts.len() < MAX_IMPACTS {
             self.impacts.push(position);
+            self.impact_centres.push(centre);
             self.impacts_changed = true;
+        }
+    }
+
+    /// cm, where the centre of mass was when the contact going on at step `position` began:
+    /// at its impact, or at the start for a die set down on the table.
+    pub(crate) fn contact_began(&self, position: u64) -> Option<Vector3<f64>> {
+        match self.impacts.partition_point(|&p| p <= position) {
+            0 => self.start_centre,
+            i => self.impact_centres.get(i - 1).copied(),
         }
     }
 
@@ -126,6 +146,7 @@ impl Timeline {
         let kept = self.impacts.partition_point(|&p| p <= position);
         if kept < self.impacts.len() {
             self.impacts.truncate(kept);
+            self.impact_centres.truncate(kept);
             self.impacts_changed = true;
         }
         // A contact going on across the change is the same impact.

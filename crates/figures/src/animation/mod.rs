@@ -11,6 +11,7 @@
 //! the machine: the same setup gives the same bytes.
 
 pub mod render;
+pub mod terminal;
 
 use crate::figure::resolved;
 use crate::plot::Record;
@@ -179,6 +180,32 @@ fn ending_words(o: &Outcome, params: &Params) -> String {
     }
 }
 
+/// The times (simulated s) of the frames of a roll that ends at `end_s`, stepped `dt` s:
+/// every `speed / fps` s from the drop while more than half a step before the end, then
+/// the end; more than the frames' limit is refused before anything is drawn.
+pub fn frame_times(spec: &AnimationSpec, end_s: f64, dt: f64) -> Result<Vec<f64>, Error> {
+    let frame_s = spec.speed / f64::from(spec.fps);
+    let before_end = ((end_s - 0.5 * dt) / frame_s).ceil().max(0.0);
+    if before_end + 1.0 > FRAMES.max as f64 {
+        return Err(too_many_frames(spec));
+    }
+    let mut times: Vec<f64> = (0..before_end as u64).map(|k| k as f64 * frame_s).collect();
+    times.push(end_s);
+    Ok(times)
+}
+
+/// Why an animation of `spec` is refused for its length.
+fn too_many_frames(spec: &AnimationSpec) -> Error {
+    Error::Limit(format!(
+        "more than {} frames at {} frames/s and {}: {}; {}",
+        FRAMES.max,
+        spec.fps,
+        speed_words(spec.speed),
+        FRAMES.stated(),
+        FRAMES.why
+    ))
+}
+
 /// Rolls `initial` (and its twin) to the end, keeping the state at `k / fps` s for every
 /// frame before the end and at the end itself.
 pub(crate) fn film(
@@ -240,17 +267,11 @@ pub(crate) fn film(
                 die: die_shot(&die),
                 twin: twin.as_ref().map(die_shot),
                 headline: headline(&die, twin.as_ref(), at),
+                played_s: at / spec.speed,
             });
         }
         if times.len() as u64 > FRAMES.max {
-            return Err(Error::Limit(format!(
-                "more than {} frames at {} frames/s and {}: {}; {}",
-                FRAMES.max,
-                spec.fps,
-                speed_words(spec.speed),
-                FRAMES.stated(),
-                FRAMES.why
-            )));
+            return Err(too_many_frames(spec));
         }
         let ended = die.outcome().is_some() && twin.as_ref().is_none_or(|b| b.outcome().is_some());
         if ended {
@@ -284,12 +305,23 @@ pub(crate) fn film(
         die: die_shot(&die),
         twin: twin.as_ref().map(die_shot),
         headline: headline(&die, twin.as_ref(), end),
+        played_s: end / spec.speed,
     });
     Ok(Film {
         times,
         shots,
         outcome: die.outcome().expect("the loop ends when the die has"),
         twin: twin.as_ref().and_then(Simulation::outcome),
+    })
+}
+
+/// How a roll ended, as the files' `dicesim-outcome` records it.
+pub(crate) fn outcome_json(o: &Outcome) -> serde_json::Value {
+    serde_json::json!({
+        "status": o.status.name(),
+        "face": o.face,
+        "steps": o.steps,
+        "time_s": o.time_s,
     })
 }
 
@@ -319,14 +351,7 @@ fn animation_record(
             "faces {low} (vermilion) and {high} (purple) coloured, their body axis drawn through them"
         ));
     }
-    let outcome = |o: &Outcome| {
-        serde_json::json!({
-            "status": o.status.name(),
-            "face": o.face,
-            "steps": o.steps,
-            "time_s": o.time_s,
-        })
-    };
+    let outcome = outcome_json;
     let mut json = serde_json::json!({
         "frames": film.shots.len(),
         "fps": spec.fps,
@@ -361,15 +386,7 @@ pub fn write_animation(
     progress: &mut dyn FnMut(AnimationProgress),
 ) -> Result<Animated, Error> {
     spec.validate()?;
-    let gif = match out.extension() {
-        "gif" => true,
-        "png" => false,
-        other => {
-            return Err(Error::Animation(format!(
-                "a .{other} file: expected a .gif or .png file"
-            )));
-        }
-    };
+    let gif = Encoding::is_gif(out)?;
     let film = film(name, params, initial, spec, cancel, progress)?;
     let record = animation_record(name, params, initial, spec, &film);
     let view = View {
@@ -378,55 +395,86 @@ pub fn write_animation(
         face_pair: spec.face_pair.map(|f| f.min(7 - f)),
     };
     let scene = Scene::new(spec.size.0, spec.size.1, view, &film.shots, &record.caption);
-    // Played seconds: simulated ones over the speed.
-    let played: Vec<f64> = film.times.iter().map(|t| t / spec.speed).collect();
-    let until = display_times(&played);
-    let mut status = AnimationProgress {
-        drawing: true,
-        done: 0,
-        total: film.shots.len() as u64,
-    };
-    progress(status);
     let mut frames = film.shots.iter().map(|s| scene.render(s));
-    let mut each = |k: usize| {
-        if cancel.load(Ordering::Relaxed) {
-            return Err(std::io::Error::other(CANCELLED));
-        }
-        status.done = k as u64 + 1;
-        progress(status);
-        Ok(())
+    let encoding = Encoding {
+        gif,
+        size: spec.size,
+        palette: &flat_palette(&PALETTE),
+        record: &record,
     };
-    out.write(|w| {
-        if gif {
-            encode_gif(
-                w,
-                spec.size,
-                &record,
-                &delays(&played, &until, 0.01),
-                &mut frames,
-                &mut each,
-            )
-        } else {
-            encode_apng(
-                w,
-                spec.size,
-                &record,
-                &delays(&played, &until, 0.001),
-                &mut frames,
-                &mut each,
-            )
-        }
-    })
-    .map_err(|e| match e {
-        OutputError::Write { message, .. } if message == CANCELLED => Error::Cancelled,
-        e => Error::Output(e),
-    })?;
+    encoding.write(out, &film.times, spec.speed, &mut frames, cancel, progress)?;
     Ok(Animated {
         frames: film.shots.len(),
         duration_s: film.times.last().copied().unwrap_or(0.0),
         outcome: film.outcome,
         twin: film.twin,
     })
+}
+
+/// How frames become a file: GIF or APNG, their size, their palette (RGB, 256 entries, the
+/// first never drawn: [`CLEAR`]) and the record the file carries.
+pub(crate) struct Encoding<'a> {
+    pub(crate) gif: bool,
+    pub(crate) size: (u32, u32),
+    pub(crate) palette: &'a [u8],
+    pub(crate) record: &'a Record,
+}
+
+impl Encoding<'_> {
+    /// The format `out`'s extension names: GIF, else APNG; else what is wrong.
+    pub(crate) fn is_gif(out: &Output) -> Result<bool, Error> {
+        match out.extension() {
+            "gif" => Ok(true),
+            "png" => Ok(false),
+            other => Err(Error::Animation(format!(
+                "a .{other} file: expected a .gif or .png file"
+            ))),
+        }
+    }
+
+    /// Writes `frames`, shown at `times` (simulated s, played at `speed`), to `out`; the
+    /// last stays [`HOLD_S`]. `cancel` stops it with nothing written.
+    pub(crate) fn write(
+        &self,
+        out: &Output,
+        times: &[f64],
+        speed: f64,
+        frames: &mut dyn Iterator<Item = Frame>,
+        cancel: &AtomicBool,
+        progress: &mut dyn FnMut(AnimationProgress),
+    ) -> Result<(), Error> {
+        // Played seconds: simulated ones over the speed.
+        let played: Vec<f64> = times.iter().map(|t| t / speed).collect();
+        let until = display_times(&played);
+        let mut status = AnimationProgress {
+            drawing: true,
+            done: 0,
+            total: times.len() as u64,
+        };
+        progress(status);
+        let mut each = |k: usize| {
+            if cancel.load(Ordering::Relaxed) {
+                return Err(std::io::Error::other(CANCELLED));
+            }
+            status.done = k as u64 + 1;
+            progress(status);
+            Ok(())
+        };
+        let (size, palette, record) = (self.size, self.palette, self.record);
+        out.write(|w| {
+            if self.gif {
+                let delays = delays(&played, &until, 0.01);
+                encode_gif(w, size, palette, record, &delays, frames, &mut each)
+            } else {
+                let delays = delays(&played, &until, 0.001);
+                encode_apng(w, size, palette, record, &delays, frames, &mut each)
+            }
+        })
+        .map_err(|e| match e {
+            OutputError::Write { message, .. } if message == CANCELLED => Error::Cancelled,
+            e => Error::Output(e),
+        })
+    }
 }
 
 /// The reason a cancelled write stops with (it never reaches a person).
@@ -522,8 +570,9 @@ fn frame_parts<'a>(
     })
 }
 
-fn flat_palette() -> Vec<u8> {
-    PALETTE.iter().flatten().copied().collect()
+/// A palette as the encoders take it: its colours' bytes, red, green, blue.
+pub(crate) fn flat_palette(palette: &[[u8; 3]]) -> Vec<u8> {
+    palette.iter().flatten().copied().collect()
 }
 
 fn io(e: impl std::fmt::Display) -> std::io::Error {
@@ -534,12 +583,13 @@ fn io(e: impl std::fmt::Display) -> std::io::Error {
 fn encode_gif(
     w: &mut (dyn Write + Send),
     size: (u32, u32),
+    palette: &[u8],
     record: &Record,
     delays: &[u16],
     frames: &mut dyn Iterator<Item = Frame>,
     each: &mut dyn FnMut(usize) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
-    let mut encoder = gif::Encoder::new(w, size.0 as u16, size.1 as u16, &flat_palette()).map_err(io)?;
+    let mut encoder = gif::Encoder::new(w, size.0 as u16, size.1 as u16, palette).map_err(io)?;
     encoder.set_repeat(gif::Repeat::Infinite).map_err(io)?;
     for (keyword, text) in &record.text {
         let comment = format!("{keyword}: {text}");
@@ -570,6 +620,7 @@ fn encode_gif(
 fn encode_apng(
     w: &mut (dyn Write + Send),
     size: (u32, u32),
+    palette: &[u8],
     record: &Record,
     delays: &[u16],
     frames: &mut dyn Iterator<Item = Frame>,
@@ -578,7 +629,7 @@ fn encode_apng(
     let mut encoder = png::Encoder::new(w, size.0, size.1);
     encoder.set_color(png::ColorType::Indexed);
     encoder.set_depth(png::BitDepth::Eight);
-    encoder.set_palette(flat_palette());
+    encoder.set_palette(palette.to_vec());
     // Only the unchanged pixels of a delta frame are see-through.
     encoder.set_trns(vec![0u8]);
     encoder.set_filter(png::Filter::NoFilter);
@@ -817,12 +868,54 @@ mod tests {
         rows.last().map_or(0, |last| last + 1 - rows[0])
     }
 
-    /// `--zoom` frames the die at a third of the frame's height or more in every frame (the
-    /// whole-path view shows it far smaller), and `--face-pair 2` colours faces 2 and 5.
+    /// Is palette index `i` part of a die (its shades, the pair's, a pip, an edge or a
+    /// corner's contact mark)?
+    fn on_a_die(i: u8) -> bool {
+        i == render::EDGE
+            || i == render::CONTACT
+            || (render::PIP..render::PIP + render::PIP_STEPS).contains(&i)
+            || (render::RAMP..=u8::MAX).contains(&i)
+    }
+
+    /// Is palette index `i` the table (a tile, in light or in the shadow)?
+    fn on_the_table(i: u8) -> bool {
+        (render::TILE_LIGHT..=render::SHADOW_DARK).contains(&i)
+    }
+
+    /// Rows of the caption band at the top of `frame` (its left column is the band's white).
+    fn band_rows(frame: &[u8], width: usize) -> usize {
+        frame
+            .chunks(width)
+            .take_while(|row| row[0] == render::BAND)
+            .count()
+    }
+
+    /// The box round the pixels of `frame` that `pick` picks: left, top, right, bottom.
+    fn pixel_box(
+        frame: &[u8],
+        width: usize,
+        pick: impl Fn(u8) -> bool,
+    ) -> Option<(usize, usize, usize, usize)> {
+        let mut b: Option<(usize, usize, usize, usize)> = None;
+        for (k, _) in frame.iter().enumerate().filter(|(_, i)| pick(**i)) {
+            let (x, y) = (k % width, k / width);
+            b = Some(b.map_or((x, y, x, y), |(l, t, r, d)| {
+                (l.min(x), t.min(y), r.max(x), d.max(y))
+            }));
+        }
+        b
+    }
+
+    /// `--zoom` frames the whole drop: in every frame the die is whole inside the picture
+    /// (no pixel of it on the frame's edge or in the caption band) with the table visible
+    /// below it, so the first frame shows the die high above the table (and its shadow on
+    /// it); the camera closes in as it falls, to the die at a third of the frame's height
+    /// at the end, where the whole-path view leaves it far smaller. `--face-pair 2`
+    /// colours faces 2 and 5.
     #[test]
-    fn a_zoomed_animation_frames_the_die_and_colours_its_face_pair() {
+    fn a_zoomed_animation_frames_the_whole_drop_and_colours_its_face_pair() {
         let (params, initial) = paper();
-        let (w, h) = (320usize, 240usize);
+        let (w, h) = (480usize, 360usize);
         let spec = AnimationSpec {
             zoom: true,
             face_pair: Some(5),
@@ -830,13 +923,46 @@ mod tests {
         };
         let (bytes, _) = animate(&params, &initial, &spec, "gif");
         let frames = gif_frames(&bytes);
+        let mut heights = Vec::new();
         for (k, f) in frames.iter().enumerate() {
+            let band = band_rows(f, w);
+            let (left, top, right, bottom) = pixel_box(f, w, on_a_die).expect("the die is drawn");
             assert!(
-                die_rows(f, w) * 3 >= h,
-                "frame {k}: the die {} of {h} rows",
-                die_rows(f, w)
+                left > 0 && right < w - 1 && top > band && bottom < h - 1,
+                "frame {k}: the die at x {left}..{right}, y {top}..{bottom}, the picture x 1..{}, y {}..{}",
+                w - 2,
+                band + 1,
+                h - 2
             );
+            let table_below = (bottom + 1..h).any(|y| (left..=right).any(|x| on_the_table(f[y * w + x])));
+            assert!(table_below, "frame {k}: no table below the die");
+            heights.push(bottom + 1 - top);
         }
+        // The drop: in the first frame the die is 15 cm up, its shadow on the table far below.
+        let first = &frames[0];
+        let die = pixel_box(first, w, on_a_die).unwrap();
+        let shadow = pixel_box(first, w, |i| {
+            i == render::SHADOW_LIGHT || i == render::SHADOW_DARK
+        })
+        .expect("the shadow in the first frame");
+        assert!(
+            shadow.3 < h - 1,
+            "the whole shadow in the picture, rows {}..{}",
+            shadow.1,
+            shadow.3
+        );
+        assert!(
+            shadow.1 > die.3 + 2 * heights[0],
+            "the shadow (rows {}..{}) two dice below the die (rows {}..{})",
+            shadow.1,
+            shadow.3,
+            die.1,
+            die.3
+        );
+        // Closing in: the die grows as it comes down, to a third of the frame's height.
+        let last = *heights.last().unwrap();
+        assert!(heights[0] * 3 < last, "{heights:?}");
+        assert!(last * 3 >= h, "the die {last} of {h} rows at the end");
         let whole = gif_frames(
             &animate(
                 &params,
@@ -867,6 +993,100 @@ mod tests {
             ..spec
         };
         assert!(bad.validate().is_err());
+    }
+
+    /// A drop of many die sides (4 m) starts as wide (the die and the table below it in
+    /// the first frame) and closes in: from [`render::CLOSE_IN_S`] of playback on, the die
+    /// is at least its side ([`render::DIE_AT_LEAST`] of the picture for its bounding
+    /// sphere, √3 sides across) high, and whole inside the picture in every frame.
+    #[test]
+    fn a_tall_zoomed_drop_closes_in_on_the_die() {
+        // (The fall takes 0.9 s, 9 s played, the die 3 m up when the camera has closed in.)
+        let (params, mut initial) = paper();
+        initial.height = 400.0;
+        let (w, h) = (320usize, 240usize);
+        // At 1/10×, so the die is still high when the camera has closed in.
+        let spec = AnimationSpec {
+            zoom: true,
+            speed: 0.1,
+            ..AnimationSpec::new(2, (w as u32, h as u32))
+        };
+        let (bytes, _) = animate(&params, &initial, &spec, "gif");
+        let frames = gif_frames(&bytes);
+        let margin = (render::caption_sizes(w as u32, h as u32).0 * 0.6).round() as usize;
+        let film = film(
+            "paper",
+            &params,
+            &initial,
+            &spec,
+            &AtomicBool::new(false),
+            &mut |_| {},
+        )
+        .unwrap();
+        for (k, f) in frames.iter().enumerate() {
+            let band = band_rows(f, w);
+            let (left, top, right, bottom) = pixel_box(f, w, on_a_die).expect("the die is drawn");
+            assert!(
+                left > 0 && right < w - 1 && top > band && bottom < h - 1,
+                "frame {k}: the die at x {left}..{right}, y {top}..{bottom}"
+            );
+            let picture = (h - band - 2 * margin) as f64;
+            let least = render::DIE_AT_LEAST * picture / 3f64.sqrt();
+            let rows = (bottom + 1 - top) as f64;
+            if film.times[k] / spec.speed >= render::CLOSE_IN_S {
+                assert!(
+                    rows >= least - 1.0,
+                    "frame {k}: the die {rows} rows, {least} at least"
+                );
+            }
+            if k == 0 {
+                assert!(rows * 4.0 < least, "the first frame is wide: the die {rows} rows");
+                let table_below = (bottom + 1..h).any(|y| (0..w).any(|x| on_the_table(f[y * w + x])));
+                assert!(table_below, "the first frame shows the table");
+            }
+        }
+    }
+
+    /// The rows of the first text line in `frame`'s band that hold ink (text pixels at
+    /// least half covered): from its capitals' tops to its descenders.
+    fn first_line_ink_rows(frame: &[u8], width: usize) -> usize {
+        let inked = |row: &[u8]| {
+            row.iter().any(|&i| {
+                (render::TEXT + render::TEXT_STEPS / 2..render::TEXT + render::TEXT_STEPS).contains(&i)
+            })
+        };
+        let rows: Vec<&[u8]> = frame.chunks(width).take(band_rows(frame, width)).collect();
+        let start = rows.iter().position(|r| inked(r)).expect("a headline");
+        rows[start..].iter().take_while(|r| inked(r)).count()
+    }
+
+    /// The captions grow with the frame: the headline's ink is as many times taller as the
+    /// frame is, and at least the em of 24-point type on a 7.5-inch slide, 1/22.5 of the
+    /// frame's height (DejaVu Sans Bold's `f` and `t` reach 0.76 em up and `p` 0.24 em down:
+    /// an em, less a pixel at either end where the ink covers under half a pixel), at every
+    /// size from 400×300 to a 1600×1200 projector's frame.
+    #[test]
+    fn captions_grow_with_the_frame_and_read_from_the_back_row() {
+        let (params, initial) = paper();
+        let mut ink = Vec::new();
+        for (w, h) in [(400usize, 300usize), (800, 600), (1600, 1200)] {
+            let spec = AnimationSpec::new(1, (w as u32, h as u32));
+            let (bytes, _) = animate(&params, &initial, &spec, "gif");
+            let first = &gif_frames(&bytes)[0];
+            let rows = first_line_ink_rows(first, w);
+            assert!(
+                rows as f64 + 2.0 >= h as f64 / 22.5,
+                "{w}×{h}: the headline {rows} rows high"
+            );
+            ink.push(rows as f64);
+        }
+        for pair in ink.windows(2) {
+            let ratio = pair[1] / pair[0];
+            assert!(
+                (1.8..=2.2).contains(&ratio),
+                "twice the frame, the headline {ratio}× as tall: {ink:?}"
+            );
+        }
     }
 
     #[test]

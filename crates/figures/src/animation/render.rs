@@ -18,15 +18,15 @@ use nalgebra::Vector3;
 pub(crate) const CLEAR: u8 = 0;
 const BACKGROUND: u8 = 1;
 /// The caption band; coverage 0 of the text ramp.
-const BAND: u8 = TEXT;
-const TEXT: u8 = 2;
-const TEXT_STEPS: u8 = 16;
-const TILE_LIGHT: u8 = 18;
-const TILE_DARK: u8 = 19;
-const SHADOW_LIGHT: u8 = 20;
-const SHADOW_DARK: u8 = 21;
-const CONTACT: u8 = 22;
-const EDGE: u8 = 23;
+pub(crate) const BAND: u8 = TEXT;
+pub(crate) const TEXT: u8 = 2;
+pub(crate) const TEXT_STEPS: u8 = 16;
+pub(crate) const TILE_LIGHT: u8 = 18;
+pub(crate) const TILE_DARK: u8 = 19;
+pub(crate) const SHADOW_LIGHT: u8 = 20;
+pub(crate) const SHADOW_DARK: u8 = 21;
+pub(crate) const CONTACT: u8 = 22;
+pub(crate) const EDGE: u8 = 23;
 const TWIN_EDGE: u8 = 24;
 const TABLE_EDGE: u8 = 25;
 pub(crate) const PIP: u8 = 26;
@@ -121,7 +121,7 @@ pub(crate) struct Frame {
 }
 
 impl Frame {
-    fn new(width: u32, height: u32, fill: u8) -> Frame {
+    pub(crate) fn new(width: u32, height: u32, fill: u8) -> Frame {
         Frame {
             width,
             height,
@@ -129,7 +129,7 @@ impl Frame {
         }
     }
 
-    fn set(&mut self, x: i64, y: i64, colour: u8) {
+    pub(crate) fn set(&mut self, x: i64, y: i64, colour: u8) {
         if x >= 0 && y >= 0 && (x as u32) < self.width && (y as u32) < self.height {
             self.pixels[y as usize * self.width as usize + x as usize] = colour;
         }
@@ -245,11 +245,43 @@ pub(crate) struct Shot {
     pub(crate) die: DieShot,
     pub(crate) twin: Option<DieShot>,
     pub(crate) headline: String,
+    /// s of playback from the first frame to this one.
+    pub(crate) played_s: f64,
 }
 
-/// The share of a frame's height a zoomed (framing) camera gives the die's side: a third,
-/// and a little more, whatever its turn.
+/// The share of a frame's height a zoomed (framing) camera gives the die's side once the
+/// drop allows: a third, and a little more, whatever its turn.
 pub(crate) const ZOOMED_SIDE: f64 = 0.36;
+
+/// The table a zoomed camera keeps in view in front of the die's shadow, in die sides:
+/// enough of the tiles under it that the fall reads as a fall towards them.
+pub(crate) const TABLE_BELOW: f64 = 0.5;
+
+/// The least a zoomed camera shows the die once it has closed in: its bounding sphere
+/// across this share of the picture's height. A drop of many die sides (the tennis
+/// racket's 4 m) then follows the die, not the table, until the table comes into view.
+pub(crate) const DIE_AT_LEAST: f64 = 0.25;
+
+/// s of playback over which a zoomed camera closes in from the first frame's wide view
+/// (the die and the table, however far apart) to [`DIE_AT_LEAST`].
+pub(crate) const CLOSE_IN_S: f64 = 1.0;
+
+/// The headline's size, as a share of the frame's height (of a 4:3 slide's, in a wider
+/// frame). 24-point type on a slide 7.5 inches (540 points) high, the least a projector's
+/// back row reads, has an em of 1/22.5 of it; a size here is the font's height (ascent to
+/// descent, as ab_glyph scales it), 1.164 em in DejaVu Sans, so 1/19 of the frame is an em
+/// of 1/22.2.
+const HEADLINE_SIZES_PER_HEIGHT: f64 = 19.0;
+
+/// The pixel sizes (ascent to descent) of the headline and of the caption under it (the
+/// setup, read closer up: 0.65 of the headline) for a `width` × `height` frame: in
+/// proportion to the frame, so a larger frame is the same slide drawn sharper, never
+/// under 9 and 8 pixels.
+pub(crate) fn caption_sizes(width: u32, height: u32) -> (f64, f64) {
+    let slide_height = f64::from(height).min(f64::from(width) * 0.75);
+    let headline = (slide_height / HEADLINE_SIZES_PER_HEIGHT).max(9.0);
+    (headline, (headline * 0.65).max(8.0))
+}
 
 /// The camera: orthographic, turned `yaw` degrees about the vertical and looking down
 /// `pitch` degrees, as the explorer's.
@@ -314,7 +346,8 @@ pub(crate) struct Scene {
     headline_lines: usize,
     band: u32,
     margin: f64,
-    /// The camera follows the die, framing it at [`ZOOMED_SIDE`] of the frame's height.
+    /// The camera follows the dice, framing them and the table under them
+    /// ([`Scene::framing`]), at most at [`ZOOMED_SIDE`] of the frame's height.
     follow: bool,
     /// The marked face pair, by its lower face (its opposite is 7 minus it): coloured and
     /// its axis drawn, on the die (not its twin).
@@ -336,8 +369,7 @@ impl Scene {
     pub(crate) fn new(width: u32, height: u32, view: View, shots: &[Shot], caption: &[String]) -> Scene {
         let camera = view.camera;
         let (w, h) = (f64::from(width), f64::from(height));
-        let headline_px = (h / 28.0).clamp(9.0, 40.0);
-        let caption_px = (headline_px * 0.8).max(8.0);
+        let (headline_px, caption_px) = caption_sizes(width, height);
         let margin = (headline_px * 0.6).round();
         let text_width_px = w - 2.0 * margin;
         let headline_lines = shots
@@ -406,7 +438,8 @@ impl Scene {
         }
         let picture = (w - 2.0 * margin, h - f64::from(band) - 2.0 * margin);
         let span = ((hi.0 - lo.0).max(1e-6), (hi.1 - lo.1).max(1e-6));
-        // The whole path in view, or (zoomed) the die's side a third of the frame and more.
+        // The whole path in view, or (zoomed) at most the die's side a third of the frame
+        // and more ([`Scene::framing`] widens it while the drop needs the room).
         let scale = if view.zoom {
             ZOOMED_SIDE * h / side
         } else {
@@ -436,11 +469,83 @@ impl Scene {
         }
     }
 
-    /// The picture's centre: where a following camera puts the die's centre.
-    fn picture_centre(&self) -> (f64, f64) {
+    /// The picture: the frame below the caption band, inside the margins (pixels: left,
+    /// top, right, bottom).
+    pub(crate) fn picture(&self) -> (f64, f64, f64, f64) {
         let top = f64::from(self.band) + self.margin;
-        let bottom = f64::from(self.height) - self.margin;
-        (f64::from(self.width) / 2.0, (top + bottom) / 2.0)
+        (
+            self.margin,
+            top,
+            f64::from(self.width) - self.margin,
+            f64::from(self.height) - self.margin,
+        )
+    }
+
+    /// A following camera's scale (pixels per cm) and origin for `shot`: what the frame
+    /// must hold is each die's bounding sphere (a disc of its radius around its centre,
+    /// whatever its turn, so the camera does not breathe with the tumbling) and the table
+    /// below it: its shadow (within the radius of the foot) and [`TABLE_BELOW`] of a side
+    /// more towards the viewer. The scale is the
+    /// largest that fits that box in the picture, and no larger than the zoom's; the box is
+    /// centred. High in the drop the view is wide, with the table at its foot; it closes
+    /// in as the die comes down, and frames the die at a third of the height near the
+    /// table. The across extent is the spheres' alone: a foot is straight below its
+    /// centre, at the same place across.
+    ///
+    /// A drop too tall for that to show the die (more than some seven bounding spheres)
+    /// starts so, and closes in over [`CLOSE_IN_S`] of playback until the die's sphere is
+    /// at least [`DIE_AT_LEAST`] of the picture high; the view then keeps the die inside
+    /// and as much of the table below it as there is room for.
+    fn framing(&self, shot: &Shot) -> (f64, (f64, f64)) {
+        let sp = self.camera.pitch_deg.to_radians().sin();
+        let (mut lo, mut hi) = (
+            (f64::INFINITY, f64::INFINITY),
+            (f64::NEG_INFINITY, f64::NEG_INFINITY),
+        );
+        let radius = |die: &DieShot| {
+            die.corners
+                .iter()
+                .map(|c| (c - die.centre).norm())
+                .fold(0.0, f64::max)
+        };
+        for die in std::iter::once(&shot.die).chain(shot.twin.as_ref()) {
+            let r = radius(die);
+            let (across, up) = self.camera.project(&die.centre);
+            let foot = self
+                .camera
+                .project(&Vector3::new(die.centre.x, die.centre.y, 0.0));
+            // The shadow reaches the sphere's radius from the foot; the table `TABLE_BELOW`
+            // sides nearer the viewer than that shows sin(pitch) times as far below the foot
+            // (a quarter at least, so a view along the table still shows a strip of it).
+            let below = foot.1 - (r + TABLE_BELOW * self.tile) * sp.max(0.25);
+            lo = (lo.0.min(across - r), lo.1.min((up - r).min(below)));
+            hi = (hi.0.max(across + r), hi.1.max(up + r));
+        }
+        let (left, top, right, bottom) = self.picture();
+        let (width, height) = (right - left, bottom - top);
+        let span = ((hi.0 - lo.0).max(1e-6), (hi.1 - lo.1).max(1e-6));
+        let fit = (width / span.0).min(height / span.1);
+        let r = radius(&shot.die).max(1e-6);
+        let x = (shot.played_s / CLOSE_IN_S).clamp(0.0, 1.0);
+        let least = DIE_AT_LEAST * height / (2.0 * r) * x * x * (3.0 - 2.0 * x);
+        let scale = self.scale.min(fit.max(least)).max(1e-6);
+        // The box's centre, moved (when it does not fit) as little as keeps the die whole
+        // and half its sphere's radius clear of the picture's edge.
+        let (across, up) = self.camera.project(&shot.die.centre);
+        let (half_w, half_h) = (width / (2.0 * scale), height / (2.0 * scale));
+        let keep = |centre: f64, at: f64, half: f64| {
+            let (a, b) = (at + 1.5 * r - half, at - 1.5 * r + half);
+            if a <= b { centre.clamp(a, b) } else { at }
+        };
+        let centre = (
+            keep((lo.0 + hi.0) / 2.0, across, half_w),
+            keep((lo.1 + hi.1) / 2.0, up, half_h),
+        );
+        let origin = (
+            (left + right) / 2.0 - centre.0 * scale,
+            (top + bottom) / 2.0 + centre.1 * scale,
+        );
+        (scale, origin)
     }
 
     fn pixel(&self, p: &Vector3<f64>) -> (f64, f64) {
@@ -464,18 +569,22 @@ impl Scene {
     }
 
     /// The frame of `shot`: pure, the same pixels for the same shot. A following camera
-    /// centres it on the die.
+    /// frames it ([`Scene::framing`]).
     pub(crate) fn render(&self, shot: &Shot) -> Frame {
+        self.seen_by_camera(shot).render_here(shot)
+    }
+
+    /// This scene as the camera has it for `shot`: itself, or a following camera's framing.
+    pub(crate) fn seen_by_camera(&self, shot: &Shot) -> Scene {
         if !self.follow {
-            return self.render_here(shot);
+            return self.clone();
         }
-        let (across, up) = self.camera.project(&shot.die.centre);
-        let (cx, cy) = self.picture_centre();
-        let scene = Scene {
-            origin: (cx - across * self.scale, cy + up * self.scale),
+        let (scale, origin) = self.framing(shot);
+        Scene {
+            scale,
+            origin,
             ..self.clone()
-        };
-        scene.render_here(shot)
+        }
     }
 
     /// The frame of `shot` from this scene's origin.
@@ -715,6 +824,7 @@ mod tests {
         let shot = Shot {
             die,
             twin: Some(die),
+            played_s: 0.0,
             headline: "a-preset-with-a-rather-long-name · t = 12.34 s · did not settle within 30 s\n\
                        twin (ε 1e-9): did not settle within 30 s, 0.01 cm apart"
                 .to_string(),

@@ -26,7 +26,7 @@ impl Location {
     }
 
     /// The position of byte `offset` of `text`.
-    pub(crate) fn at(origin: &str, text: &str, offset: usize) -> Location {
+    pub fn at(origin: &str, text: &str, offset: usize) -> Location {
         let offset = offset.min(text.len());
         let before = text.get(..offset).unwrap_or(text);
         let line_start = before.rfind('\n').map_or(0, |i| i + 1);

@@ -756,10 +756,11 @@ mod tests {
 
     #[test]
     fn the_view_is_read_written_and_checked_like_every_other_table() {
-        use crate::preset::{CameraView, Screen, Speed, ThemeName, View};
+        use crate::preset::{CameraView, Readouts, Screen, Speed, ThemeName, View};
         let p = Preset::from_toml_str(
             "[view]\nspeed = \"1/20×\"\ncamera = { yaw = 45.0, pitch = 60.0, zoom = 2 }\n\
-             theme = \"projector\"\narrows = true\ntwin = 1e-6\nscreen = \"map\"\n",
+             theme = \"projector\"\narrows = true\ntwin = 1e-6\nscreen = \"map\"\n\
+             readouts = [\"lean\", \"spin\"]\n",
             ORIGIN,
         )
         .unwrap();
@@ -774,6 +775,11 @@ mod tests {
             arrows: Some(true),
             twin: Some(1e-6),
             screen: Some(Screen::Map),
+            readouts: Some(Readouts {
+                spin: true,
+                lean: true,
+                slid: false,
+            }),
         };
         assert_eq!(p.view, view);
         let text = p.to_toml();
@@ -795,6 +801,11 @@ mod tests {
         assert!(
             e.to_string()
                 .starts_with("dir/p.toml:3:1: key `view.colour`: unknown field `colour`"),
+            "{e}"
+        );
+        let e = err("[view]\nreadouts = [\"spin\", \"tilt\"]\n");
+        assert!(
+            e.to_string().starts_with("dir/p.toml:2:") && e.to_string().contains("tilt"),
             "{e}"
         );
         let e = err("[view]\nspeed = \"1/3\"\n");

@@ -23,5 +23,5 @@ pub use shipped::{DEFAULT_NAME, LESSON, SHIPPED, shipped_text};
 pub use speed::Speed;
 pub use store::read_regular_file;
 pub use store::{Entry, PRESETS_ENV, Source, Store, check_name, load_file};
-pub use view::{CameraView, Screen, ThemeName, View};
+pub use view::{CameraView, Readout, Readouts, Screen, ThemeName, View};
 pub use view::{PITCH, ZOOM};

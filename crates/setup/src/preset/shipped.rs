@@ -44,9 +44,17 @@ pub const SHIPPED: &[(&str, &str)] = &[
     ),
 ];
 
-/// The shipped presets the classroom lesson (docs/lesson.toml) opens, in the order it opens
-/// them: the explorer's picker lists them first, under a heading of their own.
-pub const LESSON: &[&str] = &["slow-motion-classroom", "paper", "gentle-drop", "loaded-corner"];
+/// The shipped presets the classroom lesson (crates/explorer/lesson.toml) opens, in the order
+/// it first opens them: the explorer's picker lists them first, under a heading of their own.
+pub const LESSON: &[&str] = &[
+    "slow-motion-classroom",
+    "paper",
+    "loaded-corner",
+    "gentle-drop",
+    "sleeping-top",
+    "superball",
+    "incline",
+];
 
 /// The text of the shipped preset `name`.
 pub fn shipped_text(name: &str) -> Option<&'static str> {

@@ -47,6 +47,65 @@ pub struct View {
     /// The screen the explorer opens on.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub screen: Option<Screen>,
+    /// The readouts on the die panel and in the presentation view: the signed spin, the
+    /// lean from the vertical, the distance slid.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub readouts: Option<Readouts>,
+}
+
+/// One readout a class can see beside the die (docs/explorer.md, "Readouts").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Readout {
+    /// rad/s, ω's components with their signs.
+    Spin,
+    /// °, the die's lean from the vertical.
+    Lean,
+    /// cm, slid along the table since the contact began.
+    Slid,
+}
+
+/// The readouts chosen, written as a list: `readouts = ["spin", "lean"]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(from = "Vec<Readout>", into = "Vec<Readout>")]
+pub struct Readouts {
+    pub spin: bool,
+    pub lean: bool,
+    pub slid: bool,
+}
+
+impl From<Vec<Readout>> for Readouts {
+    fn from(list: Vec<Readout>) -> Readouts {
+        Readouts {
+            spin: list.contains(&Readout::Spin),
+            lean: list.contains(&Readout::Lean),
+            slid: list.contains(&Readout::Slid),
+        }
+    }
+}
+
+impl From<Readouts> for Vec<Readout> {
+    fn from(r: Readouts) -> Vec<Readout> {
+        [
+            (r.spin, Readout::Spin),
+            (r.lean, Readout::Lean),
+            (r.slid, Readout::Slid),
+        ]
+        .into_iter()
+        .filter_map(|(on, which)| on.then_some(which))
+        .collect()
+    }
+}
+
+impl Readout {
+    /// The name a preset writes.
+    pub fn name(self) -> &'static str {
+        match self {
+            Readout::Spin => "spin",
+            Readout::Lean => "lean",
+            Readout::Slid => "slid",
+        }
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -149,6 +208,14 @@ impl View {
                 Screen::Map => "map",
             };
             out.push(("screen".to_string(), string(name), "die or map"));
+        }
+        if let Some(r) = self.readouts {
+            let names: Vec<String> = Vec::<Readout>::from(r).iter().map(|n| string(n.name())).collect();
+            out.push((
+                "readouts".to_string(),
+                format!("[{}]", names.join(", ")),
+                "beside the die: spin (ω, signed), lean (°), slid (cm)",
+            ));
         }
         out
     }

@@ -339,6 +339,7 @@ prop_compose! {
             proptest::option::of(any::<bool>()),
             proptest::option::of(1e-15..=0.1f64),
             proptest::option::of(prop_oneof![Just(Screen::Die), Just(Screen::Map)]),
+            proptest::option::of((any::<bool>(), any::<bool>(), any::<bool>())),
         ),
     ) -> Preset {
         let mut p = Preset {
@@ -373,6 +374,7 @@ prop_compose! {
             arrows: view.3,
             twin: view.4,
             screen: view.5,
+            readouts: view.6.map(|(spin, lean, slid)| dicesim_setup::preset::Readouts { spin, lean, slid }),
         };
         p
     }

@@ -15,10 +15,13 @@
 //! Drawing holds [`SCREEN`], and whoever restores takes it first and never gives it back,
 //! so no frame lands after the terminal was given back to the shell.
 
+use crate::lesson::Lesson;
 use crate::tui::event_loop::effects::perform;
+use crate::tui::input::lesson_keys::open_step;
 use crate::tui::input::update::update;
 use crate::tui::render::screen::render;
 use crate::tui::state::app::App;
+use crate::tui::state::lesson_run::LessonRun;
 use crate::tui::state::messages::Msg;
 use crate::tui::vocabulary::theme::Theme;
 use crate::worker::{Simulator, Worker};
@@ -87,7 +90,9 @@ const ENDING_SIGNALS: [i32; 4] = [SIGTERM, SIGHUP, SIGINT, SIGQUIT];
 
 /// Opens the explorer on `preset` and runs it until the user quits; a signal ends the
 /// process from here with 128 + the signal, after restoring the terminal.
-pub fn run(preset: &Preset, theme: Theme) -> Result<(), ExplorerError> {
+/// `lesson` is what the lesson keys walk; with `walk` its first step opens at once
+/// (`dicesim tui --lesson`).
+pub fn run(preset: &Preset, theme: Theme, lesson: Lesson, walk: bool) -> Result<(), ExplorerError> {
     let simulator = Simulator::new(preset).map_err(ExplorerError::Setup)?;
     let mut signals = Signals::new(ENDING_SIGNALS).map_err(ExplorerError::Signals)?;
     let signal_handle = signals.handle();
@@ -112,7 +117,7 @@ pub fn run(preset: &Preset, theme: Theme) -> Result<(), ExplorerError> {
             }
         })
         .map_err(ExplorerError::Signals)?;
-    let result = event_loop(&mut terminal, simulator, theme, tx, rx);
+    let result = event_loop(&mut terminal, simulator, theme, (lesson, walk), tx, rx);
     restore_for_good();
     signal_handle.close();
     match result {
@@ -127,15 +132,25 @@ fn event_loop(
     terminal: &mut DefaultTerminal,
     mut simulator: Simulator,
     theme: Theme,
+    (lesson, walk): (Lesson, bool),
     tx: Sender<Msg>,
     rx: Receiver<Msg>,
 ) -> Result<Option<i32>, ExplorerError> {
     let mut app = App::new(simulator.snapshot(), theme);
     app.store = dicesim_setup::preset::Store::from_env();
+    app.lesson = Some(LessonRun::new(lesson));
     let size = terminal.size().map_err(ExplorerError::Terminal)?;
     app.screen = Rect::new(0, 0, size.width, size.height);
     let maps = tx.clone();
     let worker = Worker::spawn_with_maps(simulator, tx.clone(), move |m| maps.send(Msg::from(m)).is_ok());
+    if walk {
+        open_step(&mut app, 0);
+        for effect in app.outbox.take() {
+            if let Some(command) = perform(&mut app, effect) {
+                worker.send(command);
+            }
+        }
+    }
     // The input threads block reading the terminal for the life of the process.
     crate::tui::event_loop::tty::spawn(move |ev| tx.send(Msg::Input(ev)).is_ok())
         .map_err(ExplorerError::Input)?;

@@ -2,6 +2,7 @@
 //! effects for the outbox, with one file of keys per mode that needs more than the key table.
 
 pub(crate) mod dialog_keys;
+pub(crate) mod lesson_keys;
 pub(crate) mod map_keys;
 pub(crate) mod throw_keys;
 pub(crate) mod twin_keys;

@@ -83,8 +83,8 @@ fn die_centre_cell(s: &Harness) -> (u16, u16) {
     (view.area.x + c, view.area.y + r)
 }
 
-/// A drag on the die in throw mode throws it: the drag's length and direction over the
-/// throw time are the velocity, and where it was grabbed the spin, `M·(r × v)/I` (the
+/// A drag on the die in throw mode throws it: the drag's length and direction laid on the
+/// table, over the throw time, are the velocity, and where it was grabbed the spin, `M·(r × v)/I` (the
 /// paper's cube: M = 8 g, I = 16/3 g·cm²); both go into the setup, and the saved throw rolls
 /// the same bits.
 #[test]
@@ -104,7 +104,7 @@ fn a_drag_on_the_die_throws_it_and_the_saved_throw_rolls_the_same_bits() {
     assert_ne!(s.app.die_screen.camera.yaw_deg, 0.0, "orbited");
     level(&mut s);
     // Thrown twice, 6 columns right and 2 rows up, grabbed a row above and a row below.
-    let mut spin_y = Vec::new();
+    let mut spin_y = Vec::new(); // ω of the throw grabbed high, then low
     for grab_row in [r - 1, r + 1] {
         s.key(KeyCode::Char('f'));
         assert!(
@@ -115,31 +115,31 @@ fn a_drag_on_the_die_throws_it_and_the_saved_throw_rolls_the_same_bits() {
             &mut s,
             &[(c, grab_row), (c + 3, grab_row - 1), (c + 6, grab_row - 2)],
         );
+        // Across the table: right is +x, up the screen away from the viewer (+y), level.
         let v = s.app.setup.initial.velocity;
-        let (vx, vz) = (6.0 * w / THROW_TIME_S, 2.0 * h / THROW_TIME_S);
+        let (vx, vy) = (6.0 * w / THROW_TIME_S, 2.0 * h / THROW_TIME_S);
         assert!(
-            (v[0] - vx).abs() <= 0.05 && v[1] == 0.0 && (v[2] - vz).abs() <= 0.05,
+            (v[0] - vx).abs() <= 0.05 && (v[1] - vy).abs() <= 0.05 && v[2] == 0.0,
             "{v:?}"
         );
-        let spin = s.app.setup.initial.angular_velocity;
-        assert!(
-            spin[0] == 0.0 && spin[2] == 0.0,
-            "about the line of sight only: {spin:?}"
-        );
-        spin_y.push(spin[1]);
+        spin_y.push(s.app.setup.initial.angular_velocity);
         assert!(s.app.roll.live.playing, "thrown from its start");
         s.key(KeyCode::Esc);
     }
-    // Two rows apart: Δω_y = M·Δr_z·v_x/I, up to the setup's 0.01 rad/s.
-    let vx = 6.0 * w / THROW_TIME_S;
-    let expected = m * 2.0 * h * vx / i;
+    // Two rows apart, Δr = (0, 0, 2h): Δω = M·(Δr × v)/I = M·2h·(−v_y, v_x, 0)/I, up to the
+    // setup's 0.01 rad/s; the grab's offset across (the same both times) gives the same ω_z.
+    let (vx, vy) = (6.0 * w / THROW_TIME_S, 2.0 * h / THROW_TIME_S);
+    let [high, low] = [spin_y[0], spin_y[1]];
+    let expected = [-m * 2.0 * h * vy / i, m * 2.0 * h * vx / i, 0.0];
+    for k in 0..3 {
+        assert!(
+            (high[k] - low[k] - expected[k]).abs() <= 0.011,
+            "{spin_y:?} vs {expected:?}"
+        );
+    }
     assert!(
-        (spin_y[0] - spin_y[1] - expected).abs() <= 0.011,
-        "{spin_y:?} vs {expected}"
-    );
-    assert!(
-        spin_y[0] > 0.0,
-        "grabbed high and pulled right, the top goes right: +y"
+        high[1] > 0.0 && high[0] < 0.0,
+        "grabbed high and pulled right and away, the top goes right and away: +y, −x"
     );
 
     // The keyboard: grabbed a row above the centre, aimed 6 right and 2 up.
@@ -151,10 +151,16 @@ fn a_drag_on_the_die_throws_it_and_the_saved_throw_rolls_the_same_bits() {
     s.key(KeyCode::Up);
     s.key(KeyCode::Up);
     s.key(KeyCode::Enter);
+    // Grabbed at r = (0, 0, h): ω = M·(r × v)/I = M·h·(−v_y, v_x, 0)/I.
     let v = s.app.setup.initial.velocity;
-    assert!((v[0] - vx).abs() <= 0.05 && (v[2] - 2.0 * h / THROW_TIME_S).abs() <= 0.05);
+    assert!((v[0] - vx).abs() <= 0.05 && (v[1] - vy).abs() <= 0.05 && v[2] == 0.0);
     let spin = s.app.setup.initial.angular_velocity;
-    assert!((spin[1] - m * h * vx / i).abs() <= 0.005, "{spin:?}");
+    assert!(
+        (spin[0] + m * h * vy / i).abs() <= 0.005
+            && (spin[1] - m * h * vx / i).abs() <= 0.005
+            && spin[2] == 0.0,
+        "{spin:?}"
+    );
     s.key(KeyCode::Esc);
 
     // Saved, and rolled from the saved file: the same roll, bit for bit.
@@ -215,4 +221,98 @@ fn a_ctrl_drag_on_the_die_throws_and_plain_keys_stay_the_die_screens() {
     assert!((s.app.setup.initial.velocity[0] - vx).abs() <= 0.05);
     assert!(s.app.die_screen.throw.is_none(), "throw mode is off again");
     assert_eq!(s.app.die_screen.camera.yaw_deg, 0.0, "no orbit");
+}
+
+/// The drag's end, a press on the die's centre and `path` of moves from it, left held.
+fn hold_and_drag(s: &mut Harness, moves: &[(i32, i32)]) {
+    let (c, r) = die_centre_cell(s);
+    mouse(
+        s,
+        MouseEventKind::Down(MouseButton::Left),
+        c,
+        r,
+        KeyModifiers::NONE,
+    );
+    for &(dc, dr) in moves {
+        let (column, row) = ((c as i32 + dc) as u16, (r as i32 + dr) as u16);
+        mouse(
+            s,
+            MouseEventKind::Drag(MouseButton::Left),
+            column,
+            row,
+            KeyModifiers::NONE,
+        );
+    }
+}
+
+/// An upward drag throws the die across the table, away from the viewer, not up into the
+/// air: seen from the default camera (from above, at an angle), the velocity is level and
+/// points away, the way the camera looks.
+#[test]
+fn an_upward_drag_throws_the_die_across_the_table_not_up() {
+    let mut s = Harness::new(&Preset::default(), Theme::default());
+    s.key(KeyCode::Char('f'));
+    hold_and_drag(&mut s, &[(0, -2), (0, -4)]);
+    mouse(
+        &mut s,
+        MouseEventKind::Up(MouseButton::Left),
+        0,
+        0,
+        KeyModifiers::NONE,
+    );
+    let v = s.app.setup.initial.velocity;
+    let cam = s.app.die_screen.camera;
+    assert!(cam.pitch_deg > 0.0, "the default camera looks down");
+    let (sy, cy) = cam.yaw_deg.to_radians().sin_cos();
+    let away = -sy * v[0] + cy * v[1];
+    assert!(v[2] == 0.0 && away > 0.0, "level and away: {v:?}");
+}
+
+/// A throw by hand is a hand's throw across a table, 1 to 3 m/s, for a drag of a few
+/// columns at 80×24: six columns right of the centre, in throw mode.
+#[test]
+fn a_six_column_drag_at_80x24_throws_at_a_hands_speed() {
+    let mut s = Harness::new(&Preset::default(), Theme::default());
+    s.app.screen = ratatui::layout::Rect::new(0, 0, 80, 24);
+    level(&mut s);
+    s.key(KeyCode::Char('f'));
+    hold_and_drag(&mut s, &[(3, 0), (6, 0)]);
+    mouse(
+        &mut s,
+        MouseEventKind::Up(MouseButton::Left),
+        0,
+        0,
+        KeyModifiers::NONE,
+    );
+    let speed = nalgebra::Vector3::from(s.app.setup.initial.velocity).norm();
+    assert!((100.0..=300.0).contains(&speed), "{speed} cm/s");
+}
+
+/// While the mouse drags, before it lets go, the footer reads the throw's velocity and spin
+/// with their units at 80×24, and follows the drag.
+#[test]
+fn a_mouse_drag_reads_its_velocity_and_spin_live() {
+    let mut s = Harness::new(&Preset::default(), Theme::default());
+    s.app.screen = ratatui::layout::Rect::new(0, 0, 80, 24);
+    level(&mut s);
+    s.key(KeyCode::Char('f'));
+    let footer = |s: &Harness| {
+        screen(&s.app, 80, 24)
+            .lines()
+            .nth(23)
+            .expect("a footer")
+            .to_string()
+    };
+    hold_and_drag(&mut s, &[(2, 0)]);
+    let short = footer(&s);
+    hold_and_drag(&mut s, &[(6, -1)]);
+    let long = footer(&s);
+    assert!(
+        s.app.die_screen.throw.is_some_and(|t| t.pressed.is_some()),
+        "still held"
+    );
+    for f in [&short, &long] {
+        assert!(f.contains("cm/s") && f.contains("rad/s"), "{f}");
+    }
+    assert_ne!(short, long, "the words follow the drag");
 }

@@ -5,6 +5,7 @@
 //! queued in the app's outbox and returned.
 
 use crate::tui::input::dialog_keys;
+use crate::tui::input::lesson_keys;
 use crate::tui::input::map_keys as map;
 use crate::tui::input::throw_keys;
 use crate::tui::input::twin_keys;
@@ -14,7 +15,7 @@ use crate::tui::state::die_screen::Drawing;
 use crate::tui::state::editor::{Editor, Typed, VALUE_CHARS};
 use crate::tui::state::messages::{Effect, Msg};
 use crate::tui::vocabulary::key_table::{Action, Input, Scope, first_key, label, read};
-use crate::tui::vocabulary::layout::{param_row_at, timeline_bar, timeline_step_at};
+use crate::tui::vocabulary::layout::{param_row_at, timeline_bar, timeline_margins, timeline_step_at};
 use crate::worker::{Command, RollEvent};
 use ratatui::crossterm::event::{
     Event, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
@@ -52,6 +53,13 @@ fn on_key(app: &mut App, key: KeyEvent) {
         return;
     }
     app.notice = None;
+    lesson_keys::card_down(
+        app,
+        match input {
+            Input::Act { action, .. } => Some(action),
+            _ => None,
+        },
+    );
     match app.mode() {
         Mode::Prompt => on_prompt_key(app, &input),
         Mode::EditingValue => on_edit_key(app, &input),
@@ -179,6 +187,7 @@ fn act(app: &mut App, action: Action, coarse: bool) {
             act_on_twin(app, action)
         }
         Action::Differ => twin_keys::on_differ_key(app),
+        Action::NextStep | Action::PreviousStep => lesson_keys::on_step_key(app, action),
         Action::OpenPreset
         | Action::SavePreset
         | Action::ResetSetup
@@ -378,6 +387,15 @@ fn on_edit_key(app: &mut App, input: &Input) {
             app.next_batch_size();
             return;
         }
+        // A count of rolls: digits (and an exponent, 1e6); a letter is refused as it is typed.
+        if let Input::Type(c) = input
+            && !(c.is_ascii_digit() || matches!(c, '.' | 'e' | 'E'))
+        {
+            editor.error = Some(format!(
+                "`{c}`: a batch size is a whole number of rolls, typed in digits"
+            ));
+            return;
+        }
         match editor.input(input, VALUE_CHARS) {
             Typed::Cancelled => app.overlay = None,
             Typed::Editing => {}
@@ -416,6 +434,11 @@ fn on_edit_key(app: &mut App, input: &Input) {
 
 fn on_mouse(app: &mut App, m: MouseEvent) {
     let (kind, column, row) = (m.kind, m.column, m.row);
+    if matches!(kind, MouseEventKind::Down(_)) {
+        lesson_keys::card_down(app, None);
+        // A click is an answer as a key is: the last notice was about what came before.
+        app.notice = None;
+    }
     // A drag on the die throws it in throw mode, and with Ctrl or Alt held outside it; a
     // plain drag orbits the camera.
     let flick = m.modifiers.intersects(KeyModifiers::CONTROL | KeyModifiers::ALT);
@@ -462,7 +485,9 @@ fn on_mouse(app: &mut App, m: MouseEvent) {
         MouseEventKind::Down(MouseButton::Left) => {
             if let Some(i) = param_row_at(app.die_screen.selected, app.params_listed().len(), &areas, at) {
                 app.die_screen.selected = i;
-            } else if let Some(bar) = timeline_bar(areas.timeline).filter(|b| b.contains(at)) {
+            } else if let Some(bar) =
+                timeline_bar(areas.timeline, strip_margins(app)).filter(|b| b.contains(at))
+            {
                 let step = timeline_step_at(&app.roll.live.timeline, bar, column);
                 app.send(Command::Seek(step));
             } else if areas.die.contains(at) {
@@ -492,4 +517,10 @@ fn on_mouse(app: &mut App, m: MouseEvent) {
         }
         _ => {}
     }
+}
+
+/// The timeline strip's margins for the roll on screen.
+pub(crate) fn strip_margins(app: &App) -> (u16, u16) {
+    let integrator = &app.roll.live.params.integrator;
+    timeline_margins(integrator.dt, integrator.max_time)
 }

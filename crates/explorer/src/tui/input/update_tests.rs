@@ -495,7 +495,31 @@ fn b_in_the_typed_batch_size_goes_on_round_the_ladder() {
     assert_eq!(s.app.roll.batch_size, 1_000);
     let text = screen(&s.app, 120, 36);
     assert!(!text.contains("not a number"), "{text}");
+    // The footer says the size: in the notice while it shows, in the batch key's hint after.
+    assert!(text.contains("batch size 1 000"), "{text}");
+    s.app.notice = None;
+    let text = screen(&s.app, 120, 36);
     assert!(text.contains("b batch 1 000"), "{text}");
+}
+
+/// The batch size's editor takes a number's characters only: a letter (`b`, the batch key,
+/// pressed out of habit) is refused as it is typed, and the field stays empty.
+#[test]
+fn the_batch_size_editor_refuses_letters() {
+    let mut s = start();
+    s.key(KeyCode::Char('B'));
+    s.key(KeyCode::Char('B'));
+    s.key(KeyCode::Char('b'));
+    let editor = s.app.batch_editor().expect("typing a size");
+    assert_eq!(editor.text, "");
+    let footer = screen(&s.app, 80, 24);
+    assert!(footer.contains("`b`: a batch size is a whole number"), "{footer}");
+    assert!(!footer.contains("batch size: b"), "{footer}");
+    for c in "5000".chars() {
+        s.key(KeyCode::Char(c));
+    }
+    s.key(KeyCode::Enter);
+    assert_eq!(s.app.roll.batch_size, 5_000);
 }
 
 #[test]

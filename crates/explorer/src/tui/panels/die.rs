@@ -174,7 +174,7 @@ pub(crate) fn picture(app: &App, view: &Projection) -> Picture {
     pic
 }
 
-/// The centre's height, a dot on each corner in contact, and a loaded die's heavy corners.
+/// A dot on each corner in contact, and a loaded die's heavy corners.
 fn corner_marks(
     pic: &mut Picture,
     app: &App,
@@ -184,13 +184,6 @@ fn corner_marks(
     contact: &[bool; 8],
 ) {
     let t = &app.theme;
-    let die = &app.roll.live.die;
-    pic.label(
-        (view.x.0, view.y.1),
-        format!("centre {:.2} cm up", die.centre.z),
-        Style::new(),
-        false,
-    );
     for k in (0..8).filter(|&k| contact[k] && corner_seen(facing, k)) {
         let dot = if app.die_screen.drawing == Drawing::Ascii {
             "@"
@@ -464,7 +457,7 @@ fn ghost(pic: &mut Picture, app: &App, view: &Projection, snapshot: &TwinSnapsho
 /// ω, L and v from the centre, F from each touching corner, each with its symbol at the tip.
 fn arrows(pic: &mut Picture, app: &App, view: &Projection, die: &DieState) {
     let half = app.roll.live.params.die.largest_half_size();
-    let mut arrow = |kind: Arrow, from: Vector3<f64>, v: Vector3<f64>| {
+    let mut arrow = |kind: Arrow, from: Vector3<f64>, v: Vector3<f64>, named: bool| {
         let length = vectors::arrow_length(v.norm(), kind.reference(app), half);
         if length <= 0.0 {
             return;
@@ -476,6 +469,9 @@ fn arrows(pic: &mut Picture, app: &App, view: &Projection, die: &DieState) {
         for (a, b) in vectors::head(base, tip, 0.2 * half) {
             pic.stroke(2, a, b, colour);
         }
+        if !named {
+            return;
+        }
         pic.label(
             tip,
             kind.symbol(),
@@ -483,12 +479,30 @@ fn arrows(pic: &mut Picture, app: &App, view: &Projection, die: &DieState) {
             true,
         );
     };
-    arrow(Arrow::AngularVelocity, die.centre, die.angular_velocity);
-    arrow(Arrow::AngularMomentum, die.centre, die.angular_momentum);
-    arrow(Arrow::Velocity, die.centre, die.velocity);
-    for (corner, f) in die.corners.iter().zip(&die.forces) {
+    arrow(Arrow::AngularVelocity, die.centre, die.angular_velocity, true);
+    arrow(Arrow::AngularMomentum, die.centre, die.angular_momentum, true);
+    arrow(Arrow::Velocity, die.centre, die.velocity, true);
+    // Every touching corner's force is drawn, its symbol only at the largest: four `F`s
+    // side by side on a flat landing hide the die more than they say.
+    let largest = die
+        .forces
+        .iter()
+        .enumerate()
+        .filter(|(_, f)| f.depth > 0.0)
+        .max_by(|a, b| {
+            vectors::force_vector(a.1)
+                .norm()
+                .total_cmp(&vectors::force_vector(b.1).norm())
+        })
+        .map(|(k, _)| k);
+    for (k, (corner, f)) in die.corners.iter().zip(&die.forces).enumerate() {
         if f.depth > 0.0 {
-            arrow(Arrow::ContactForce, *corner, vectors::force_vector(f));
+            arrow(
+                Arrow::ContactForce,
+                *corner,
+                vectors::force_vector(f),
+                Some(k) == largest,
+            );
         }
     }
 }
@@ -660,17 +674,29 @@ pub(crate) fn place_labels(labels: &[Label], view: &Projection, outline: &[Flat]
     placed
 }
 
+/// cos 50°: a face up tilted further than this from the vertical is no face up (a cube's
+/// most nearly up face is at most 54.7° off, when a corner points straight up).
+const CORNER_UP_COS: f64 = 0.642_787_609_686_539_3;
+
 /// The die panel: title, the solid die, and the arrows' legend under it when they are on.
 pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let die = &app.roll.live.die;
-    let lowest = solid(app, die).lowest().z;
+    let body = solid(app, die);
+    let lowest = body.lowest().z;
+    // On a corner no face is up: the most nearly up one is tilted past 50° (54.7° with the
+    // long diagonal upright), and which it is changes as the die spins about that corner.
+    let face_up = if body.normal(die.face_up as usize - 1).z < CORNER_UP_COS {
+        "face up –, on a corner".to_string()
+    } else {
+        format!("face up {}", die.face_up)
+    };
     // The face up matters most (the lesson's question), then the twin's, then when the face
     // was decided (the status line says it too), then the height: once the face is decided,
     // the lowest corner makes room.
     let mut title = vec![
         (0, vec![Span::styled(" die ", t.heading())]),
-        (0, vec![Span::raw(format!("· face up {} ", die.face_up))]),
+        (0, vec![Span::raw(format!("· {face_up} "))]),
     ];
     if let Some(t_s) = decided_at(app) {
         title.push((2, vec![Span::raw(format!("· face decided {t_s:.3} s "))]));
@@ -713,6 +739,10 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
         let lines: Vec<Line> = lines.into_iter().map(|l| Line::styled(l, style)).collect();
         frame.render_widget(Clear, top);
         frame.render_widget(Paragraph::new(lines), top);
+    }
+    if let Some((lines, rows)) = parts.readouts {
+        let lines: Vec<Line> = lines.into_iter().map(Line::raw).collect();
+        frame.render_widget(Paragraph::new(lines), rows);
     }
     if let Some(legend) = parts.legend {
         frame.render_widget(Paragraph::new(vectors::legend(app, body.width)), legend);

@@ -12,6 +12,10 @@ use ratatui::widgets::Paragraph;
 /// numbers go first, so the keys that matter most, help and quit among them, stay in view).
 pub(crate) type KeyHint = (String, String, u8);
 
+/// The priority from which a hint too many for the footer goes altogether (below it, only
+/// its words go).
+const DROPPED_FROM: u8 = 3;
+
 fn hint(keys: &str, words: &str, priority: u8) -> KeyHint {
     (keys.to_string(), words.to_string(), priority)
 }
@@ -26,7 +30,7 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
             let hints = vec![
                 hint(&keys, words, 0),
                 // Its separator goes with it when a narrow footer drops it.
-                hint("· any other key", "stays", 1),
+                hint("· any other key", "stays", DROPPED_FROM),
             ];
             return render_line(app, Some(question), hints, area, frame);
         }
@@ -57,12 +61,13 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
                 .sum();
             let aim = app.die_screen.throw.map(|t| {
                 let thrown = t.thrown(&app.die_screen.camera, &app.setup.params);
-                let forms = [format!("aim: {}", thrown.words()), thrown.short_words()];
+                let [vectors, sizes] = thrown.short_words();
+                let forms = [format!("aim: {}", thrown.words()), vectors, sizes];
                 let room = crate::tui::vocabulary::fit::room(area.width as usize).saturating_sub(needed + 2);
                 forms
                     .iter()
                     .find(|f| f.chars().count() <= room)
-                    .unwrap_or(&forms[1])
+                    .unwrap_or(&forms[2])
                     .clone()
             });
             let notice = app.roll.export_status().or_else(|| app.notice.clone()).or(aim);
@@ -75,9 +80,17 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
 
 /// The hints of one screen's rows of the key table, in words that follow the state.
 fn table_hints(app: &App, screen: Scope) -> Vec<KeyHint> {
+    // The lesson's keys while one is walked (the help lists them always).
+    let walking = app.lesson.as_ref().is_some_and(|l| l.at.is_some());
     rows(screen)
         .filter_map(|b| b.hint.map(|h| (b.action, h)))
+        .filter(|(action, _)| walking || *action != Action::NextStep)
         .map(|(action, h)| match action {
+            Action::NextStep => {
+                let run = app.lesson.as_ref().expect("walking");
+                let step = run.at.map_or(0, |i| i + 1);
+                hint(h.keys, &format!("step {step}/{}", run.len()), h.priority)
+            }
             Action::TogglePlay if app.roll.live.playing => hint(h.keys, "pause", h.priority),
             Action::Batch if app.roll.batch.is_some() => hint(h.keys, "cancel batch", h.priority),
             Action::Batch => hint(
@@ -130,7 +143,8 @@ pub(crate) fn render_key_hints(app: &App, keys: Vec<KeyHint>, area: Rect, frame:
 }
 
 /// `notice` in the caution style, then as many hints as fit: on a narrow terminal the
-/// highest priority numbers are dropped first; priority 0 always stays.
+/// highest priority numbers are dropped first, down to [`DROPPED_FROM`], then the words of
+/// the rest; priority 0 always stays whole.
 fn render_line(app: &App, notice: Option<String>, keys: Vec<KeyHint>, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     // Notices and questions quote names and errors from files: an escape sequence in one
@@ -138,14 +152,37 @@ fn render_line(app: &App, notice: Option<String>, keys: Vec<KeyHint>, area: Rect
     let notice = notice.map(|n| format!(" {} ", dicesim_setup::output::printable(&n)));
     let width = |ks: &[KeyHint]| -> usize {
         ks.iter()
-            .map(|(k, w, _)| 2 + k.chars().count() + w.chars().count())
+            .map(|(k, w, _)| 1 + k.chars().count() + if w.is_empty() { 0 } else { 1 + w.chars().count() })
             .sum::<usize>()
             + notice.as_ref().map_or(0, |n| n.chars().count())
     };
+    // Too wide: the hints of priority 3 and up go, least important first; then those of 1
+    // and 2 give up their words, least important first, their keys staying in view (a
+    // lesson's keys are among them); beside a long notice their keys go too. Priority 0
+    // always stays whole.
+    let room = crate::tui::vocabulary::fit::room(area.width as usize);
     let mut shown = keys;
-    while width(&shown) > crate::tui::vocabulary::fit::room(area.width as usize) {
-        let droppable = shown.iter().enumerate().filter(|(_, e)| e.2 > 0);
-        let Some((i, _)) = droppable.max_by_key(|(i, e)| (e.2, *i)) else {
+    while width(&shown) > room {
+        let droppable = shown.iter().enumerate().filter(|(_, e)| e.2 >= DROPPED_FROM);
+        if let Some((i, _)) = droppable.max_by_key(|(i, e)| (e.2, *i)) {
+            shown.remove(i);
+            continue;
+        }
+        let wordy = shown
+            .iter_mut()
+            .enumerate()
+            .filter(|(_, e)| e.2 > 0 && !e.1.is_empty());
+        if let Some((_, e)) = wordy.max_by_key(|(i, e)| (e.2, *i)) {
+            e.1.clear();
+            continue;
+        }
+        // A long notice: the keys go too, all but priority 0.
+        let Some((i, _)) = shown
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| e.2 > 0)
+            .max_by_key(|(i, e)| (e.2, *i))
+        else {
             break;
         };
         shown.remove(i);
@@ -157,7 +194,9 @@ fn render_line(app: &App, notice: Option<String>, keys: Vec<KeyHint>, area: Rect
     for (k, what, _) in shown {
         spans.push(Span::raw(" "));
         spans.push(Span::styled(k, t.key()));
-        spans.push(Span::raw(format!(" {what}")));
+        if !what.is_empty() {
+            spans.push(Span::raw(format!(" {what}")));
+        }
     }
     let line = crate::tui::vocabulary::fit::abbreviate(Line::from(spans), area.width as usize);
     frame.render_widget(Paragraph::new(line), area);

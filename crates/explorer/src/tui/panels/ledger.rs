@@ -96,7 +96,7 @@ fn book_row(label: Span<'static>, short: &str, value: f64, text_width: usize) ->
     let label_room = room.saturating_sub(number.chars().count() + 1);
     let bare = label
         .content
-        .trim_start_matches(['█', '▓', '▒', '░', ' '])
+        .trim_start_matches(['█', '▓', '▒', '░', '◀', ' '])
         .to_string();
     let text = [label.content.to_string(), bare, short.to_string()]
         .into_iter()
@@ -136,8 +136,13 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
         },
     );
     let text_width = (body.width - BAR_COLUMNS) as usize;
-    let row = |label: Span<'static>, short: &str, value: f64| book_row(label, short, value, text_width);
     let l = &app.roll.live.ledger;
+    // A term a billionth of the start or less is the arithmetic's rounding, not energy: 0.
+    let noise = 1e-9 * l.initial.abs().max(1.0);
+    let row = |label: Span<'static>, short: &str, value: f64| {
+        let value = if value.abs() < noise { 0.0 } else { value };
+        book_row(label, short, value, text_width)
+    };
     // By importance, for a short panel: the total, the heading that says the numbers under
     // it are energy gone (not energy present) and the two losses a class asks about; the
     // start moves into the bottom border; then the integrator's share and the forms go.

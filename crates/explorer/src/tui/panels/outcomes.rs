@@ -53,20 +53,39 @@ fn fairness(app: &App, width: usize) -> Line<'static> {
 /// Characters of the interval column: " 15.9–17.6".
 const INTERVAL_COLUMN: usize = 10;
 
-/// A face's bar over shares 0 to 1/3 in `width` cells: solid (in eighths) up to the low end
-/// of its 95 % interval and shaded from there to the high end, so the bar says where the
-/// share lies. The fair share's dotted mark stays in view: `┼` inside the shading, `┃`
-/// inside the solid part (the whole interval lies above 1/6), `┆` past the bar (below it).
-/// The mark is read from the interval itself, not from the cells: on a narrow bar a tight
-/// interval around 1/6 may fill too little of a cell to shade it, and must still read fair.
-pub(crate) fn share_bar(share: f64, interval: Option<[f64; 2]>, width: usize) -> String {
-    let eighths_of = |x: f64| (x * 3.0 * width as f64 * 8.0).round().max(0.0) as usize;
+/// The shares the bars may start at, largest first: round percentages, so the heading can
+/// name where the bar begins. A bar always ends as far above 1/6 as it begins below it.
+const BAR_STARTS: [f64; 6] = [0.15, 0.14, 0.12, 0.10, 0.05, 0.0];
+
+/// The share the bars start at: the largest of [`BAR_STARTS`] whose bar, from there to as
+/// far above 1/6, holds every face's 95 % interval. Once a batch has narrowed the intervals
+/// the bars spread out around the fair share, so a bias of a few percent is cells long, not
+/// one; with few rolls (or none) they span 0 to 1/3.
+pub(crate) fn bar_start(intervals: Option<[[f64; 2]; 6]>) -> f64 {
+    let Some(intervals) = intervals else { return 0.0 };
+    BAR_STARTS
+        .into_iter()
+        .find(|&from| intervals.iter().all(|&[l, h]| l >= from && h <= 1.0 / 3.0 - from))
+        .unwrap_or(0.0)
+}
+
+/// A face's bar over shares `from` to `1/3 − from` in `width` cells, 1/6 in the middle:
+/// solid (in eighths) up to the low end of its 95 % interval and shaded from there to the
+/// high end, so the bar says where the share lies. The fair share's dotted mark stays in
+/// view where the bar leaves it open: `┼` inside the shading, `┆` past the bar (the whole
+/// interval lies below 1/6); where the whole interval lies above 1/6 the solid bar runs
+/// through the mark, so above and below read apart from the back of a room. The mark is
+/// read from the interval itself, not from the cells: on a narrow bar a tight interval
+/// around 1/6 may fill too little of a cell to shade it, and must still read fair.
+pub(crate) fn share_bar(share: f64, interval: Option<[f64; 2]>, width: usize, from: f64) -> String {
+    let span = 1.0 / 3.0 - 2.0 * from;
+    let eighths_of = |x: f64| ((x - from) / span * width as f64 * 8.0).round().max(0.0) as usize;
     let [low, high] = interval.map_or([eighths_of(share); 2], |[l, h]| [eighths_of(l), eighths_of(h)]);
     let fair_at = width / 2;
     let fair = 1.0 / 6.0;
     let fair_mark = interval.map(|[l, h]| match () {
         _ if h < fair => '┆',
-        _ if l > fair => '┃',
+        _ if l > fair => '█',
         _ => '┼',
     });
     (0..width)
@@ -85,7 +104,7 @@ pub(crate) fn share_bar(share: f64, interval: Option<[f64; 2]>, width: usize) ->
                 _ if shaded => '░',
                 0 if j == fair_at => '┆',
                 0 => ' ',
-                _ if j == fair_at => '┃',
+                _ if j == fair_at => '█',
                 e => [' ', '▏', '▎', '▍', '▌', '▋', '▊', '▉', '█'][e],
             }
         })
@@ -175,10 +194,12 @@ struct Columns {
     numbers: bool,
     count_shown: bool,
     bar_width: usize,
+    /// The share the bars start at ([`bar_start`]).
+    from: f64,
 }
 
 impl Columns {
-    fn fitting(room: usize) -> Columns {
+    fn fitting(room: usize, from: f64) -> Columns {
         let fixed = FACE_COLUMN + SHARE_COLUMN + 2;
         let numbers = room >= fixed + INTERVAL_COLUMN + MIN_BAR;
         let count_shown = room >= fixed + COUNT_COLUMN + INTERVAL_COLUMN * usize::from(numbers) + MIN_BAR;
@@ -191,6 +212,7 @@ impl Columns {
             numbers,
             count_shown,
             bar_width,
+            from,
         }
     }
 }
@@ -222,9 +244,10 @@ fn heading(app: &App, room: usize, c: Columns) -> TableRow {
         numbers,
         count_shown,
         bar_width,
+        from,
     } = c;
     let fair_at = bar_width / 2;
-    // The bar spans 0 to 1/3, so a fair face reaches the dotted mark in the middle.
+    // The bar spans `from` to 1/3 − `from`, so a fair face reaches the dotted mark in the middle.
     let mut head = " face".to_string();
     if count_shown {
         head.push_str("  count");
@@ -234,6 +257,14 @@ fn heading(app: &App, room: usize, c: Columns) -> TableRow {
     if numbers {
         head.push_str(" 95 % int.");
     }
+    // Where the bars start, over their first cell, once they no longer start at 0.
+    let start = [
+        format!(" {:.0} %", 100.0 * from),
+        format!(" {:.0}%", 100.0 * from),
+    ]
+    .into_iter()
+    .find(|l| from > 0.0 && l.chars().count() < fair_at)
+    .unwrap_or_default();
     let mark_room = room.saturating_sub(head.chars().count() + fair_at);
     let mark = ["┆ 1/6 fair", "┆ 1/6", "┆"]
         .into_iter()
@@ -242,7 +273,7 @@ fn heading(app: &App, room: usize, c: Columns) -> TableRow {
     // The heading names the interval column; the fairness line can move to the border.
     TableRow::Text(Line::from(vec![
         Span::styled(head, t.heading()),
-        Span::raw(format!("{}{mark}", " ".repeat(fair_at))),
+        Span::raw(format!("{start:<fair_at$}{mark}")),
     ]))
 }
 
@@ -256,12 +287,13 @@ fn face_row(app: &App, face: u8, c: Columns) -> TableRow {
         numbers,
         count_shown,
         bar_width,
+        from,
     } = c;
     let count = table.tally.counts[face as usize - 1];
     let share = table.tally.share(face);
     let interval = (n > 0).then_some(intervals[face as usize - 1]);
-    let bar = share_bar(share, interval, bar_width);
-    let over = if share * 3.0 > 1.0 { "▸" } else { "" };
+    let bar = share_bar(share, interval, bar_width, from);
+    let over = if share > 1.0 / 3.0 - from { "▸" } else { "" };
     let share_text = if n > 0 {
         format!("{:5.1}%", 100.0 * share)
     } else {
@@ -349,7 +381,9 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
         return;
     }
     let width = body.width as usize;
-    let columns = Columns::fitting(fit::room(width));
+    let tally = &app.roll.table.tally;
+    let from = bar_start((tally.total() > 0).then(|| tally.share_intervals()));
+    let columns = Columns::fitting(fit::room(width), from);
     let mut rows: Vec<(u8, TableRow)> = vec![(1, heading(app, fit::room(width), columns))];
     // The heading names the interval column; the fairness line can move to the border.
     for face in 1..=6u8 {

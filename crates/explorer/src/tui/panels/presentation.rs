@@ -242,6 +242,11 @@ fn draw_panel(app: &App, area: Rect, frame: &mut Frame) {
     if let Some(t_s) = die::decided_at(app) {
         lines.push(Line::raw(format!("face decided {t_s:.3} s")).centered());
     }
+    for text in crate::tui::state::die_screen::readout_texts(app.die_screen.readouts, live) {
+        for part in text.split("  ") {
+            lines.push(Line::styled(part.to_string(), t.heading()).centered());
+        }
+    }
     lines.push(Line::raw(""));
     lines.push(Line::raw(readout.name()).centered());
     lines.push(Line::styled(readout.text(&app.roll.live), t.heading()).centered());

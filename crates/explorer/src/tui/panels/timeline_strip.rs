@@ -5,7 +5,7 @@
 
 use crate::tui::panels::chart::marker_colour;
 use crate::tui::state::app::App;
-use crate::tui::vocabulary::layout::{TIMELINE_LEFT, TIMELINE_RIGHT, timeline_bar, timeline_steps};
+use crate::tui::vocabulary::layout::{strip_seconds, timeline_bar, timeline_margins, timeline_steps};
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::style::Style;
@@ -22,17 +22,17 @@ fn column_of(n: u64, steps: u64, width: u16) -> u16 {
 pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let timeline = &app.roll.live.timeline;
-    let dt = app.roll.live.params.integrator.dt;
-    // As many decimals as Δt has (at least the header's three), so one step shows.
-    let decimals = ((-dt.log10()).ceil().max(3.0)) as usize;
-    let seconds = |n: u64| format!("{:.*} s", decimals, n as f64 * dt);
+    let integrator = &app.roll.live.params.integrator;
+    let dt = integrator.dt;
+    let seconds = |n: u64| strip_seconds(n as f64 * dt, dt);
+    let margins = timeline_margins(dt, integrator.max_time);
     let now = format!("t {}", seconds(timeline.position));
     let end = if timeline.ended {
         format!("end {}", seconds(timeline.furthest))
     } else {
         format!("… {}", seconds(timeline.furthest))
     };
-    let Some(bar) = timeline_bar(area) else {
+    let Some(bar) = timeline_bar(area, margins) else {
         frame.render_widget(Paragraph::new(format!("{now} · {end}")), area);
         return;
     };
@@ -59,7 +59,7 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let i = column_of(timeline.position, steps, bar.width) as usize;
     cells[i] = ('◆', t.selected());
     let mut spans = vec![Span::styled(
-        format!("{now:<width$}", width = TIMELINE_LEFT as usize),
+        format!("{now:<width$}", width = margins.0 as usize),
         t.heading(),
     )];
     spans.extend(
@@ -69,7 +69,7 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     );
     spans.push(Span::raw(format!(
         " {end:<width$}",
-        width = TIMELINE_RIGHT as usize - 1
+        width = margins.1 as usize - 1
     )));
     frame.render_widget(Paragraph::new(Line::from(spans)), area);
 }

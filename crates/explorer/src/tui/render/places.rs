@@ -3,7 +3,7 @@
 //! screen's places are filled, a twin's panels taking the outcome table's and the plot's
 //! places while it rolls; the overlays go over whichever screen is drawn.
 
-use crate::tui::panels::overlays::{dialogs, help};
+use crate::tui::panels::overlays::{dialogs, help, lesson_card};
 use crate::tui::panels::twins::{predictability_curve, separation, versus_table};
 use crate::tui::panels::{
     basin_map, die, footer, header, ledger, outcomes, params_panel, presentation, quantity_plot,
@@ -66,6 +66,8 @@ pub(crate) enum When {
     /// The die screen unless a chaos twin rolls: a parameter twin keeps the plot, die B's
     /// curve in it.
     NoChaosTwin,
+    /// Any screen, a lesson step's card up.
+    LessonCard,
     /// Any screen, the help open.
     HelpOpen,
     /// Any screen but the map's: its dialog, if one is open.
@@ -85,6 +87,7 @@ impl When {
             When::ChaosTwin => die_screen && chaos,
             When::ParameterTwin => die_screen && twin.is_some() && !chaos,
             When::NoChaosTwin => die_screen && !chaos,
+            When::LessonCard => app.lesson.as_ref().is_some_and(|l| l.card && l.at.is_some()),
             When::HelpOpen => app.help_scroll().is_some(),
             When::OffMap => app.page != Page::Map,
         }
@@ -107,6 +110,7 @@ pub(crate) const PLACES: &[(Place, When, Panel)] = &[
     (Place::Plot, When::ChaosTwin, separation::render),
     (Place::Ledger, When::DieScreen, ledger::render),
     (Place::Footer, When::DieScreen, footer::render),
+    (Place::Whole, When::LessonCard, lesson_card::render),
     (Place::Whole, When::HelpOpen, help::render),
     (Place::Whole, When::OffMap, dialogs::render),
 ];

@@ -7,6 +7,7 @@ use super::camera::OrbitCamera;
 use super::dialog::Dialog;
 use super::die_screen::DieScreen;
 use super::editor::Editor;
+use super::lesson_run::LessonRun;
 use super::map_view::MapView;
 use super::messages::{Effect, Outbox};
 use super::roll_view::RollView;
@@ -18,7 +19,7 @@ use crate::tui::vocabulary::param::Param;
 use crate::tui::vocabulary::theme::{Palette, Theme};
 use crate::worker::{Command, Notice, Snapshot};
 use dicesim_setup::preset::{
-    CameraView, Preset, Screen as PresetScreen, Store, ThemeName, View as PresetView,
+    CameraView, Preset, Readouts, Screen as PresetScreen, Store, ThemeName, View as PresetView,
 };
 use ratatui::layout::Rect;
 
@@ -140,6 +141,8 @@ pub struct App {
     /// The die screen's selection, plot, arrows, drawing, camera and readout.
     pub(crate) die_screen: DieScreen,
     pub(crate) map: MapView,
+    /// The lesson the step keys walk (the shipped one, or `--lesson FILE`'s), if given.
+    pub(crate) lesson: Option<LessonRun>,
     /// The page on screen: the die, the basin map or the presentation view.
     pub(crate) page: Page,
     /// What is on top of the screen, if anything: it takes every key.
@@ -173,6 +176,7 @@ impl App {
             roll: RollView::new(first),
             twin,
             die_screen: DieScreen::default(),
+            lesson: None,
             page: Page::Die,
             notice,
             overlay: None,
@@ -212,6 +216,7 @@ impl App {
             };
         }
         self.die_screen.arrows = view.arrows.unwrap_or(false);
+        self.die_screen.readouts = view.readouts.unwrap_or_default();
         if view.twin.is_some() {
             self.twin.apply(view.twin);
         }
@@ -239,6 +244,7 @@ impl App {
                 Page::Die | Page::Presentation => PresetScreen::Die,
                 Page::Map => PresetScreen::Map,
             }),
+            readouts: Some(self.die_screen.readouts).filter(|r| *r != Readouts::default()),
         }
     }
 

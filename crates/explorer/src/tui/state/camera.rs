@@ -77,6 +77,16 @@ impl OrbitCamera {
         step.0 * across + step.1 * up
     }
 
+    /// The world vector of a step on the screen (across, up) laid on the table, cm: across
+    /// stays across, up goes away from the viewer over the table, as a hand throwing across a
+    /// table moves. Level, the step keeps its length; it has no height.
+    pub(crate) fn table_step(&self, step: (f64, f64)) -> Vector3<f64> {
+        let (sy, cy) = self.yaw_deg.to_radians().sin_cos();
+        let across = Vector3::new(cy, sy, 0.0);
+        let away = Vector3::new(-sy, cy, 0.0);
+        step.0 * across + step.1 * away
+    }
+
     /// How directly a world direction faces the viewer (1 straight at them, < 0 away).
     pub(crate) fn facing(&self, direction: &Vector3<f64>) -> f64 {
         let n = direction.normalize();
@@ -118,5 +128,24 @@ mod tests {
             "{back:?}"
         );
         assert!(back.depth.abs() < 1e-12, "no depth: {back:?}");
+    }
+
+    /// A step up the screen goes away over the table, level, whatever the camera's tilt: at
+    /// yaw 90° the screen's across is +y and away from the viewer is −x.
+    #[test]
+    fn a_step_up_the_screen_goes_away_over_the_table() {
+        for pitch_deg in [0.0, 30.0, 80.0] {
+            let cam = OrbitCamera {
+                yaw_deg: 90.0,
+                pitch_deg,
+                zoom: 0,
+            };
+            let w = cam.table_step((0.5, 2.0));
+            assert!(w.z == 0.0, "level: {w:?}");
+            assert!((w - Vector3::new(-2.0, 0.5, 0.0)).norm() < 1e-12, "{w:?}");
+            // Projected, the step goes up the screen and across as the drag did.
+            let back = cam.project(&w, &Vector3::zeros());
+            assert!(back.y >= 0.0 && (back.x - 0.5).abs() < 1e-12, "{back:?}");
+        }
     }
 }

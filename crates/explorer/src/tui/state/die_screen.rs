@@ -7,7 +7,8 @@ use super::camera::OrbitCamera;
 use super::throw::Throw;
 use crate::tui::vocabulary::format::fmt_num;
 use crate::tui::vocabulary::param::Param;
-use crate::worker::Snapshot;
+use crate::worker::{DieState, Snapshot};
+use dicesim_setup::preset::Readouts;
 use dicesim_setup::quantity::{QUANTITIES, QUANTITY_COUNT, TOTAL_ENERGY};
 use ratatui::symbols::Marker;
 
@@ -36,6 +37,8 @@ pub(crate) struct DieScreen {
     pub(crate) face_pair: Option<u8>,
     /// Throw mode's aim, while it is on (`f`, or a drag with Ctrl or Alt held).
     pub(crate) throw: Option<Throw>,
+    /// The readouts beside the die, as the preset's `[view]` chose them.
+    pub(crate) readouts: Readouts,
 }
 
 impl DieScreen {
@@ -214,6 +217,55 @@ impl Readout {
             Readout::KineticEnergy => format!("{} {unit}", fmt_num(v)),
         }
     }
+}
+
+/// The readouts `chosen`, each as the die panel and the presentation view write it
+/// (docs/explorer.md, "Readouts").
+pub(crate) fn readout_texts(chosen: Readouts, live: &Snapshot) -> Vec<String> {
+    let mut out = Vec::new();
+    if chosen.spin {
+        out.push(signed_spin(&live.die));
+    }
+    if chosen.lean {
+        out.push(format!("lean {:.1}°", lean_deg(&live.die)));
+    }
+    if chosen.slid {
+        out.push(match live.die.slid_cm {
+            Some(d) => format!("slid {d:.2} cm"),
+            None => "slid: clear of the table".to_string(),
+        });
+    }
+    out
+}
+
+/// ω's world components with their signs, to a tenth of a rad/s (two spaces apart: the
+/// presentation view puts each on a line of its own): a spin that turns round
+/// shows its sign change (a value that rounds to zero is +0.0, never -0.0 or noise).
+pub(crate) fn signed_spin(die: &DieState) -> String {
+    let w = die.angular_velocity;
+    let signed = |v: f64| {
+        let v = if v.abs() < 0.05 { 0.0 } else { v };
+        format!("{v:+.1}")
+    };
+    format!("ωx {}  ωy {}  ωz {} rad/s", signed(w.x), signed(w.y), signed(w.z))
+}
+
+/// °, the die's lean from the vertical: the angle between the vertical and the line from
+/// its lowest corner up through its centre of mass. A die on a corner (a top) leans by its
+/// long diagonal's tilt, 0° upright; flat on a face it reads 54.7° (a corner's diagonal).
+pub(crate) fn lean_deg(die: &DieState) -> f64 {
+    let lowest = die
+        .corners
+        .iter()
+        .min_by(|a, b| a.z.total_cmp(&b.z))
+        .copied()
+        .unwrap_or(die.centre);
+    let up = die.centre - lowest;
+    let n = up.norm();
+    if n <= 0.0 {
+        return 0.0;
+    }
+    (up.z / n).clamp(-1.0, 1.0).acos().to_degrees()
 }
 
 #[cfg(test)]

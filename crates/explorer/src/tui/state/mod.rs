@@ -9,6 +9,7 @@ pub(crate) mod camera;
 pub(crate) mod dialog;
 pub(crate) mod die_screen;
 pub(crate) mod editor;
+pub(crate) mod lesson_run;
 pub(crate) mod map_view;
 pub(crate) mod messages;
 pub(crate) mod projection;

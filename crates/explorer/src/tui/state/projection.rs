@@ -23,6 +23,9 @@ const MOST_WIDENING: f64 = 4.0;
 pub(crate) struct DiePanel {
     /// The reason's wrapped lines, their style and rows.
     pub(crate) reason: Option<(Vec<String>, Style, Rect)>,
+    /// The centre's height and the preset's readouts (signed spin, lean, slid), wrapped, on
+    /// rows of their own under the reason.
+    pub(crate) readouts: Option<(Vec<String>, Rect)>,
     pub(crate) legend: Option<Rect>,
     pub(crate) picture: Rect,
 }
@@ -37,6 +40,21 @@ pub(crate) fn die_panel(app: &App, mut body: Rect) -> DiePanel {
         body.y += rows;
         body.height -= rows;
     }
+    // The centre's height and the preset's readouts on rows of their own, over the die
+    // rather than on it.
+    let mut readouts = None;
+    let mut texts = vec![format!("centre {:.2} cm up", app.roll.live.die.centre.z)];
+    texts.extend(super::die_screen::readout_texts(
+        app.die_screen.readouts,
+        &app.roll.live,
+    ));
+    if body.height >= 4 {
+        let lines = fit::wrap(&texts.join(" · "), body.width as usize);
+        let rows = (lines.len() as u16).min(2);
+        readouts = Some((lines, Rect { height: rows, ..body }));
+        body.y += rows;
+        body.height -= rows;
+    }
     let mut legend = None;
     if app.die_screen.arrows && body.height >= 6 {
         legend = Some(Rect {
@@ -48,6 +66,7 @@ pub(crate) fn die_panel(app: &App, mut body: Rect) -> DiePanel {
     }
     DiePanel {
         reason,
+        readouts,
         legend,
         picture: body,
     }

@@ -3,12 +3,14 @@
 //! start's velocity and spin, written into the setup so the throw is saved and replayed like
 //! any other start.
 //!
-//! The drag is an impulse `J = M·v` given at the grab point: the die leaves with the velocity
-//! `v = d / τ` (it covers the drag's length `d`, on the view plane, in τ =
-//! [`THROW_TIME_S`]) and the spin `ω = r × J / I = M·(r × v) / I`, `r` from the centre of
-//! the die to the grab point on the view plane and `I` the body's one moment of inertia
-//! ([`dicesim_physics::Params::inertia`]). A drag through the centre throws without spin; one
-//! started off-centre spins the die about the line of sight, the way it was flicked.
+//! The drag is an impulse `J = M·v` given at the grab point. The die leaves across the table
+//! as the hand moved: the drag laid on the table ([`OrbitCamera::table_step`]: across stays
+//! across, up the screen goes away from the viewer), covered in τ = [`THROW_TIME_S`], is the
+//! velocity `v = d / τ`, level. The spin is the one that impulse gives at the grab point,
+//! `ω = r × J / I = M·(r × v) / I`, `r` from the centre of the die to the grab point on the
+//! view plane and `I` the body's one moment of inertia
+//! ([`dicesim_physics::Params::inertia`]). A drag through the centre throws without spin;
+//! one started above or below the centre gives top- or backspin, one beside it a twist.
 
 use super::camera::OrbitCamera;
 use crate::tui::vocabulary::format::fmt_num;
@@ -17,8 +19,10 @@ use dicesim_physics::initial::limits::{ANGULAR_VELOCITY, VELOCITY};
 use dicesim_physics::{InitialCondition, Params};
 use nalgebra::Vector3;
 
-/// s: a throw is as fast as covering its drag in this time.
-pub(crate) const THROW_TIME_S: f64 = 0.05;
+/// s: a throw is as fast as covering its drag in this time. A column is about 0.2 cm of the
+/// view at 80×24, so a hundredth of a second makes a drag of 5 to 15 columns a throw of 1
+/// to 3 m/s, a hand's throw across a table.
+pub(crate) const THROW_TIME_S: f64 = 0.01;
 
 /// Cells one coarse (Shift) aiming key moves.
 pub(crate) const COARSE_CELLS: f64 = 4.0;
@@ -50,10 +54,18 @@ impl Thrown {
         format!("v {v} cm/s · ω {w} rad/s")
     }
 
-    /// [`Thrown::words`] without the units, for a narrow footer.
-    pub(crate) fn short_words(&self) -> String {
+    /// [`Thrown::words`] shorter, for a narrower footer: the vectors, then their sizes
+    /// alone, always with their units.
+    pub(crate) fn short_words(&self) -> [String; 2] {
         let (v, w) = self.rounded();
-        format!("v {v} ω {w}")
+        [
+            format!("v {v} cm/s ω {w} rad/s"),
+            format!(
+                "v {} cm/s ω {} rad/s",
+                fmt_num((self.velocity.norm() * 10.0).round() / 10.0),
+                fmt_num((self.spin.norm() * 100.0).round() / 100.0)
+            ),
+        ]
     }
 
     /// The velocity and spin as the parameter list rounds them, each `(x, y, z)`.
@@ -79,7 +91,7 @@ impl Throw {
 
     /// The velocity and spin this throw gives the die of `params` seen by `camera`.
     pub(crate) fn thrown(&self, camera: &OrbitCamera, params: &Params) -> Thrown {
-        let velocity = camera.world_step(self.drag) / THROW_TIME_S;
+        let velocity = camera.table_step(self.drag) / THROW_TIME_S;
         let r = camera.world_step(self.grab);
         let spin = params.total_mass() * r.cross(&velocity) / params.inertia();
         Thrown { velocity, spin }

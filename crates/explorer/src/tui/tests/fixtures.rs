@@ -43,9 +43,15 @@ impl Harness {
         Harness { simulator, app }
     }
 
+    /// The worker's snapshot into the app, and what the app asks in answer (a preset's map
+    /// screen starts its map) back to the worker, as the event loop does.
     pub(crate) fn sync(&mut self) {
         let s = self.simulator.snapshot();
-        update(&mut self.app, Msg::from(s));
+        for effect in update(&mut self.app, Msg::from(s)) {
+            if let Some(c) = crate::tui::event_loop::effects::perform(&mut self.app, effect) {
+                self.simulator.handle(c);
+            }
+        }
     }
 
     pub(crate) fn command(&mut self, c: Command) {

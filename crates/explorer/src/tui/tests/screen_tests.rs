@@ -147,7 +147,28 @@ fn die_states(theme: Theme) -> Vec<ScreenState> {
             &["95 %", "bias this large shows in", "n 2000"],
         ),
         state("batch running", running.app, &["batch 3072/10000"]),
+        state(
+            "lesson card",
+            lesson_card(theme).app,
+            &["step 1 of", "PageDown the screen"],
+        ),
+        state("superball spin", shipped("superball", theme).app, &["ωy -200.0"]),
+        state(
+            "sleeping top lean",
+            shipped("sleeping-top", theme).app,
+            &["lean 1.0°"],
+        ),
+        state("incline slid", shipped("incline", theme).app, &["slid 0.00 cm"]),
     ]
+}
+
+/// The shipped lesson's first step opened, its card up.
+fn lesson_card(theme: Theme) -> Harness {
+    let mut s = Harness::new(&Preset::default(), theme);
+    let lesson = crate::lesson::Lesson::shipped(&Store::new(None)).expect("reads");
+    s.app.lesson = Some(crate::tui::state::lesson_run::LessonRun::new(lesson));
+    s.key(KeyCode::PageDown);
+    s
 }
 
 /// The chaos twin beside the die, and at rest.
@@ -271,7 +292,7 @@ fn view_states(theme: Theme) -> Vec<ScreenState> {
                     KeyCode::Up,
                 ],
             ),
-            &["v (", "Enter throw"],
+            &["cm/s", "rad/s", "Enter throw"],
         ),
         state(
             "thrown",
@@ -484,5 +505,44 @@ fn every_screen_at_every_size() {
             let name = format!("{}_{}x{}", s.name.replace([' ', ','], "_"), size.0, size.1);
             insta::assert_snapshot!(name, text(&draw(&s.app, size)));
         }
+    }
+}
+
+/// Cells of solid bar in a table row: whole blocks, and eighths for the partial one.
+fn solid_cells(row: &str) -> f64 {
+    let eighths = ['▏', '▎', '▍', '▌', '▋', '▊', '▉', '█'];
+    row.chars()
+        .filter_map(|c| eighths.iter().position(|&e| e == c))
+        .map(|k| (k + 1) as f64 / 8.0)
+        .sum()
+}
+
+/// `loaded-corner` after 2 000 rolls at 80×24 and 100×30, read from the back of a room: the
+/// bars start where the intervals allow (every interval lies in 12.1–21.8 %, so from 10 %,
+/// 1/6 in the middle, to 23.3 %) and face 1's bar (low end 18.3 %) is at least four cells
+/// longer than face 5's (12.1 %): 13 cells over 13.3 % give 8.1 and 2.0. Over 0–1/3 they
+/// were 7.1 and 4.7, "one cell" apart. Above 1/6 the bar runs through the fair mark's
+/// column, below it the dotted mark stands alone, so the two cannot be taken for each other.
+#[test]
+fn a_loaded_dies_bias_is_cells_long_at_80x24_and_100x30() {
+    let s = loaded_batch(2000, projector());
+    for size in [(80, 24), (100, 30)] {
+        let shown = text(&draw(&s.app, size));
+        let row = |face: u8| {
+            shown
+                .lines()
+                .find(|l| l.starts_with(&format!("│  {face}  ")))
+                .unwrap_or_else(|| panic!("face {face}:\n{shown}"))
+                .to_string()
+        };
+        let (one, five) = (row(1), row(5));
+        assert!(
+            solid_cells(&one) - solid_cells(&five) >= 4.0,
+            "{size:?}\n{one}\n{five}"
+        );
+        assert!(shown.contains("10 %"), "the bars' start named: {shown}");
+        let bar = |r: &str| r.chars().skip(23).take(13).collect::<String>();
+        assert_eq!(bar(&one).chars().nth(6), Some('█'), "{one}");
+        assert_eq!(bar(&five).chars().nth(6), Some('┆'), "{five}");
     }
 }

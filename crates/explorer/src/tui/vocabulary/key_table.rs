@@ -128,6 +128,10 @@ pub(crate) enum Action {
     Presentation,
     /// The presentation view's number: the next of height, speed, spin, kinetic energy.
     NextReadout,
+    /// The lesson's next step (or, its card up, the screen under the card).
+    NextStep,
+    /// The lesson's step before.
+    PreviousStep,
     Help,
     Close,
     Quit,
@@ -284,7 +288,7 @@ pub(crate) const BINDINGS: &[Binding] = &[
         [K::Char('r')],
         "r",
         A::Replay,
-        hint("r", "replay", 3),
+        hint("r", "replay", 2),
         "replay the same start: the same face, every time"
     ),
     row!(
@@ -292,7 +296,7 @@ pub(crate) const BINDINGS: &[Binding] = &[
         [K::Char('R')],
         "R",
         A::RandomRoll,
-        hint("R", "random", 3),
+        hint("R", "random", 2),
         "a random roll from the preset's ranges (counted in the table)"
     ),
     row!(
@@ -752,6 +756,23 @@ pub(crate) const BINDINGS: &[Binding] = &[
     ),
     row!(
         Both,
+        [K::PageDown, K::Char('}')],
+        "PageDown }",
+        A::NextStep,
+        hint("PgDn", "lesson", 1),
+        "the lesson: its next step opens its preset with its speed, arrows, plot and screen, its sentence in \
+         large type on a card; PageDown again (or any other key) puts the card down; a presenter's clicker sends it"
+    ),
+    row!(
+        Both,
+        [K::PageUp, K::Char('{')],
+        "PageUp {",
+        A::PreviousStep,
+        None,
+        "the lesson's step before"
+    ),
+    row!(
+        Both,
         [K::Char('?')],
         "?",
         A::Help,
@@ -925,8 +946,8 @@ pub(crate) const BINDINGS: &[Binding] = &[
         "← h",
         A::CursorLeft,
         hint("←→↑↓", "aim", 0),
-        "the throw's end a cell left (Shift: four): from the grab point to it, the velocity (a twentieth of \
-         a second to cover it)"
+        "the throw's end a cell left (Shift: four): from the grab point to it, the velocity across the \
+         table (a hundredth of a second to cover it)"
     ),
     row!(
         Throw,

@@ -119,23 +119,26 @@ pub(crate) fn ledger_width(screen_width: u16) -> u16 {
     }
 }
 
-/// Characters of the timeline strip before its bar: the time now (`t 12.345 s `).
-pub(crate) const TIMELINE_LEFT: u16 = 12;
-/// Characters after the bar: the end, or how far the roll has got (` end 12.345 s`).
-pub(crate) const TIMELINE_RIGHT: u16 = 14;
+/// A time on the timeline strip: as many decimals as Δt has (at least the header's three),
+/// so one step shows, and its unit.
+pub(crate) fn strip_seconds(t_s: f64, dt: f64) -> String {
+    let decimals = ((-dt.log10()).ceil().max(3.0)) as usize;
+    format!("{t_s:.decimals$} s")
+}
 
-/// The timeline bar's columns inside its strip; `None` if the strip is too narrow for one.
-pub(crate) fn timeline_bar(area: Rect) -> Option<Rect> {
-    let width = area
-        .width
-        .checked_sub(TIMELINE_LEFT + TIMELINE_RIGHT)
-        .filter(|&w| w >= 8)?;
-    Some(Rect::new(
-        area.x + TIMELINE_LEFT,
-        area.y,
-        width,
-        area.height.min(1),
-    ))
+/// Columns of the timeline strip before its bar (`t 12.345 s `) and after it
+/// (` end 12.345 s`), wide enough for the longest time of a roll of `max_time_s` at `dt`, so
+/// neither label is cut (its unit included) and the bar stays put while the time grows.
+pub(crate) fn timeline_margins(dt: f64, max_time_s: f64) -> (u16, u16) {
+    let longest = strip_seconds(max_time_s, dt).chars().count() as u16;
+    (longest + 4, longest + 6)
+}
+
+/// The timeline bar's columns inside its strip, given the strip's `margins`
+/// ([`timeline_margins`]); `None` if the strip is too narrow for one.
+pub(crate) fn timeline_bar(area: Rect, (left, right): (u16, u16)) -> Option<Rect> {
+    let width = area.width.checked_sub(left + right).filter(|&w| w >= 8)?;
+    Some(Rect::new(area.x + left, area.y, width, area.height.min(1)))
 }
 
 /// Steps the timeline bar spans: the whole roll once it has ended, else as far as it has got.

@@ -608,3 +608,138 @@ fn panel_die_alone() {
     let app = mid_impact().app;
     insta::assert_snapshot!("panel_die", panel(&app, full().die, super::render).backend());
 }
+
+/// The readouts a preset chooses (`[view] readouts`), read on the 80×24 screen and in the
+/// presentation view, each against what docs/explorer.md ("Readouts") derives for it.
+mod readouts {
+    use super::*;
+
+    fn on_screen(s: &Harness) -> String {
+        screen(&s.app, 80, 24)
+    }
+
+    /// The spin's sign before and after superball's first bounce: thrown with backspin
+    /// ωy = -200 rad/s (its preset), it leaves the bounce spinning forwards (ωy > 0).
+    #[test]
+    fn superball_shows_its_spin_turn_round_at_the_bounce() {
+        let mut s = shipped("superball");
+        assert!(s.app.die_screen.readouts.spin);
+        let before = on_screen(&s);
+        assert!(before.contains("ωy -200.0"), "{before}");
+        // To the first impact, then on until the ball is clear of the table again.
+        s.key(KeyCode::Char('i'));
+        while s.simulator.simulation().in_contact() {
+            s.simulator.advance_steps(1);
+        }
+        s.sync();
+        let w = s.app.roll.live.die.angular_velocity.y;
+        assert!(w > 100.0, "ωy after the bounce {w}");
+        let after = on_screen(&s);
+        assert!(after.contains(&format!("ωy +{w:.1}")), "{after}");
+        // In the presentation view too, the component on a line of its own.
+        s.key(KeyCode::Char('P'));
+        let shown = on_screen(&s);
+        assert!(shown.contains(&format!("ωy +{w:.1}")), "{shown}");
+    }
+
+    /// The sleeping top starts with its long diagonal 1° off the vertical (its preset's
+    /// orientation), so its lean reads 1.0°; upright on its corner it would read 0.
+    #[test]
+    fn sleeping_top_shows_its_lean_in_degrees() {
+        let s = shipped("sleeping-top");
+        let shown = on_screen(&s);
+        assert!(shown.contains("lean 1.0°"), "{shown}");
+    }
+
+    /// The incline's die slides without turning from its push of 20 cm/s and stops after
+    /// v₀²/(2·g·(μk·cos 25° − sin 25°)) = 6.68 cm; it has slid that far at its end.
+    #[test]
+    fn incline_shows_how_far_the_die_slid() {
+        let mut s = shipped("incline");
+        assert!(on_screen(&s).contains("slid 0.00 cm"), "{}", on_screen(&s));
+        s.run_to_end();
+        let g = s.app.roll.live.params.world.gravity;
+        let theta = 25f64.to_radians();
+        let a = g * (0.5 * theta.cos() - theta.sin());
+        let expected = 20.0 * 20.0 / (2.0 * a);
+        let slid = s.app.roll.live.die.slid_cm.expect("on the table");
+        assert!(
+            (slid - expected).abs() < 0.03 * expected,
+            "slid {slid} cm, expected {expected}"
+        );
+        let shown = on_screen(&s);
+        assert!(shown.contains(&format!("slid {slid:.2} cm")), "{shown}");
+    }
+}
+
+/// The sleeping top spins on a corner, where no face is up: its title says so instead of
+/// naming whichever face is a little higher this step (which flips as it spins).
+#[test]
+fn a_die_spinning_on_its_corner_has_no_face_up_in_its_title() {
+    let mut s = shipped("sleeping-top");
+    let mut titles = Vec::new();
+    for _ in 0..8 {
+        s.simulator.advance_steps(400);
+        s.sync();
+        let text = screen(&s.app, 80, 24);
+        titles.push(text.lines().nth(1).expect("the panels' top row").to_string());
+    }
+    for t in &titles {
+        assert!(t.contains("face up –, on a corner"), "{t}");
+    }
+    // A die flat on the table has its face.
+    let s = at_rest(Theme::default());
+    assert!(screen(&s.app, 80, 24).contains(&format!("face up {}", s.app.roll.live.die.face_up)));
+}
+
+/// At 80×24 the die's info line has a row of its own and the contact force is named once:
+/// on superball's first bounce with the arrows on, no Braille dot or arrow label shares the
+/// row of "centre … cm up", and one `F` stands for the forces however many corners touch.
+#[test]
+fn the_info_line_and_the_force_labels_leave_the_die_alone_at_80x24() {
+    let mut s = shipped("superball");
+    s.key(KeyCode::Char('i'));
+    s.simulator.advance_steps(5);
+    s.sync();
+    if !s.app.die_screen.arrows {
+        s.key(KeyCode::Char('v'));
+    }
+    let touching = s
+        .app
+        .roll
+        .live
+        .die
+        .forces
+        .iter()
+        .filter(|f| f.depth > 0.0)
+        .count();
+    assert!(
+        touching >= 2,
+        "the bounce should press more than one corner: {touching}"
+    );
+    let text = screen(&s.app, 80, 24);
+    let die_panel: Vec<String> = text
+        .lines()
+        .skip(1)
+        .take(10)
+        .map(|l| l.chars().skip(38).collect())
+        .collect();
+    let info = die_panel
+        .iter()
+        .find(|l| l.contains("cm up"))
+        .expect("the info line");
+    assert!(
+        !info
+            .chars()
+            .any(|c| ('\u{2800}'..='\u{28ff}').contains(&c) || "LF".contains(c)),
+        "{info}"
+    );
+    // The legend under the picture names ΣF once whatever the picture shows; count the
+    // picture's labels only.
+    let forces = die_panel
+        .iter()
+        .filter(|l| !l.contains("━ΣF"))
+        .map(|l| l.matches('F').count())
+        .sum::<usize>();
+    assert_eq!(forces, 1, "{}", die_panel.join("\n"));
+}

@@ -42,3 +42,21 @@ fn panel_footer_alone() {
         panel(&app, full().footer, super::render).backend()
     );
 }
+
+/// On a projector's 80×24 the keys a lesson uses stay in the footer (replay, random, throw,
+/// map, presentation: they were dropped for want of room); the least used give up their
+/// words first, then go.
+#[test]
+fn the_lessons_keys_stay_in_the_footer_at_80_columns() {
+    let s = start();
+    let narrow = screen(&s.app, 80, 24);
+    let footer = narrow.lines().last().expect("a footer").to_string();
+    let keys: Vec<&str> = footer.split_whitespace().collect();
+    for key in ["space", "r", "R", "b", "f", "Tab", "P", "?", "q"] {
+        assert!(keys.contains(&key), "no `{key}` in {footer}");
+    }
+    assert!(
+        footer.contains("space play") && footer.contains("? help"),
+        "{footer}"
+    );
+}

@@ -93,3 +93,42 @@ fn the_ledger_never_cuts_a_word() {
         assert!(ledger.iter().any(|r| r.contains("fric")), "{ledger:?}");
     }
 }
+
+/// The incline past its friction angle (35°), at the end of its roll on a projector's 80×24:
+/// the total keeps its label beside a seven-character number, and the rotational energy of
+/// a die that slides without turning reads 0, not the arithmetic's 1e-28.
+#[test]
+fn the_sliding_die_shows_its_total_and_no_rounding_noise_at_80_columns() {
+    let mut s = shipped("incline");
+    s.select(crate::tui::vocabulary::param::Param::named("ground.tilt"));
+    s.key(KeyCode::Enter);
+    for key in [
+        KeyCode::Backspace,
+        KeyCode::Backspace,
+        KeyCode::Backspace,
+        KeyCode::Backspace,
+    ] {
+        s.key(key);
+    }
+    for c in "35".chars() {
+        s.key(KeyCode::Char(c));
+    }
+    s.key(KeyCode::Enter);
+    s.run_to_end();
+    assert!(
+        s.app.roll.live.energy.rotational.abs() < 1e-9,
+        "it slides without turning"
+    );
+    let text = screen(&s.app, 80, 24);
+    let ledger: Vec<String> = text
+        .lines()
+        .map(|l| l.chars().skip(60).collect::<String>())
+        .collect();
+    let ledger = ledger.join("\n");
+    assert!(ledger.contains("total"), "{ledger}");
+    assert!(!ledger.contains("e-"), "{ledger}");
+    assert!(
+        ledger.contains("rot") && ledger.lines().any(|l| l.contains("rot") && l.contains(" 0 │")),
+        "{ledger}"
+    );
+}

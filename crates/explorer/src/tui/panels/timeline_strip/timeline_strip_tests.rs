@@ -28,7 +28,11 @@ fn a_click_on_the_timeline_seeks_there() {
     let mut s = stepped_back();
     s.app.screen = ratatui::layout::Rect::new(0, 0, 120, 36);
     let areas = screen_layout(s.app.screen).expect("fits");
-    let bar = crate::tui::vocabulary::layout::timeline_bar(areas.timeline).expect("wide enough");
+    let bar = crate::tui::vocabulary::layout::timeline_bar(
+        areas.timeline,
+        crate::tui::input::update::strip_margins(&s.app),
+    )
+    .expect("wide enough");
     let furthest = s.app.roll.live.timeline.furthest;
     for (column, expected) in [(bar.x, 0), (bar.right() - 1, furthest)] {
         let click = MouseEvent {
@@ -139,4 +143,54 @@ fn the_impact_keys_land_on_the_steps_the_trace_starts_its_contacts() {
     s.key(KeyCode::Home);
     let text = screen(&s.app, 80, 24);
     assert!(text.contains('✓'), "the decided mark on the timeline:\n{text}");
+}
+
+/// A roll of Δt = 50 µs (the sleeping top's) writes its times to five decimals: both
+/// labels keep their unit at 80 columns, `t 10.00000 s` and `end 10.00000 s`.
+#[test]
+fn a_fine_step_keeps_the_timelines_unit_at_80_columns() {
+    let mut s = shipped("sleeping-top");
+    s.run_to_end();
+    let text = screen(&s.app, 80, 24);
+    let strip = line_with(&text, "end 10.00000");
+    assert!(
+        strip.contains("t 10.00000 s ") && strip.contains("end 10.00000 s"),
+        "{strip}"
+    );
+}
+
+/// A click on the timeline is an answer as a key is: the notice about what came before (no
+/// impact after the end of the roll) goes.
+#[test]
+fn a_click_on_the_timeline_clears_the_last_notice() {
+    let mut s = stepped_back();
+    s.app.screen = ratatui::layout::Rect::new(0, 0, 120, 36);
+    s.key(KeyCode::End);
+    s.key(KeyCode::Char('i'));
+    assert!(
+        s.app
+            .notice
+            .as_deref()
+            .is_some_and(|n| n.contains("no impact after")),
+        "{:?}",
+        s.app.notice
+    );
+    let areas = screen_layout(s.app.screen).expect("fits");
+    let bar = crate::tui::vocabulary::layout::timeline_bar(
+        areas.timeline,
+        crate::tui::input::update::strip_margins(&s.app),
+    )
+    .expect("wide enough");
+    let click = MouseEvent {
+        kind: MouseEventKind::Down(MouseButton::Left),
+        column: bar.x + 1,
+        row: bar.y,
+        modifiers: ratatui::crossterm::event::KeyModifiers::NONE,
+    };
+    crate::tui::input::update::update(
+        &mut s.app,
+        crate::tui::state::messages::Msg::Input(Event::Mouse(click)),
+    );
+    assert_eq!(s.app.notice, None);
+    assert!(!screen(&s.app, 120, 36).contains("no impact after"));
 }
