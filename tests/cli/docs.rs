@@ -216,3 +216,61 @@ fn the_preset_docs_table_is_the_registrys() {
         "docs/presets.md's table of preset keys differs from the registry; it should read:\n{expected}"
     );
 }
+
+/// docs/dice.md's table of each die (each face's normal, its number and the number read with it
+/// down) is the die the physics builds.
+#[test]
+fn the_tables_in_the_docs_are_the_dice() {
+    let text = read("docs/dice.md");
+    for kind in dicesim_physics::polyhedron::DieKind::ALL {
+        let die = kind.standard();
+        let heading = format!("### {}\n", kind.name());
+        let section = text
+            .split(&heading)
+            .nth(1)
+            .unwrap_or_else(|| panic!("no table for {}", kind.name()));
+        let rows: Vec<Vec<String>> = section
+            .lines()
+            .take_while(|l| !l.starts_with("### "))
+            .filter(|l| l.starts_with("| ") && !l.starts_with("| face"))
+            .map(|l| {
+                l.trim_matches('|')
+                    .split(" | ")
+                    .map(|c| c.trim().replace('−', "-"))
+                    .collect()
+            })
+            .collect();
+        assert_eq!(
+            rows.len(),
+            die.shape().faces().len(),
+            "{}: one row per face",
+            kind.name()
+        );
+        for row in rows {
+            let normal: Vec<f64> = row[1]
+                .trim_matches(|c| c == '(' || c == ')')
+                .split(", ")
+                .map(|x| x.parse().expect("a number"))
+                .collect();
+            let normal = nalgebra::Vector3::new(normal[0], normal[1], normal[2]);
+            let f = die.face_most_nearly_down(&normal);
+            assert!(
+                (die.shape().faces()[f].normal - normal).norm() < 1e-4,
+                "{}: no face {normal}",
+                kind.name()
+            );
+            assert_eq!(
+                row[2],
+                die.numbering().numbers[f].to_string(),
+                "{}: face {normal}",
+                kind.name()
+            );
+            assert_eq!(
+                row[3],
+                die.numbering().read_with_down(f).to_string(),
+                "{}: face {normal}",
+                kind.name()
+            );
+        }
+    }
+}

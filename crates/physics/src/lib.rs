@@ -9,9 +9,9 @@
 //! (`cube`, `mass`, `shape`) and `model`, which says which of them a die is and answers every
 //! question about it — then the step written over a lane type, a law and a number of points
 //! (`spin`, `kernel`), the scalar engine (`sim`), any body as its contact points (`points`)
-//! and its scalar engine (`point_roll`), and on top the lane engine (`lanes`) and the
+//! and its scalar engine (`point_roll`), and on top the lane engine (`lanes`), the
 //! stability readings (`stability`, and the spring-friction law's own in
-//! `stability_contact`).
+//! `stability_contact`) and the dice of any convex shape (`polyhedron/`), each a `PointBody`.
 
 pub mod body;
 pub mod contact;
@@ -27,6 +27,7 @@ mod model;
 pub mod params;
 mod point_roll;
 mod points;
+pub mod polyhedron;
 mod shape;
 mod sim;
 mod spin;

@@ -6,6 +6,7 @@ mod common;
 mod compliant_table;
 mod contact_law;
 mod derived_checks;
+mod dice;
 mod face_restitution;
 mod free_rotation;
 mod lanes;

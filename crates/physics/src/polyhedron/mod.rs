@@ -1,0 +1,27 @@
+//! Dice of any convex shape (docs/model.md, "Dice of any convex shape"; docs/dice.md): their
+//! hull, the exact mass of the uniform solid, their numbers and how they are read, how firmly
+//! they rest, and the flaws that make a real die unfair. Pure: nalgebra and serde.
+//!
+//! The files, each using only those before it: `hull` (the polyhedron of a list of vertices),
+//! `moments` (its volume, centre and inertia), `numbering` (the numbers on its faces),
+//! `flaws` (a bubble, a point mass, a shave, rounding), `die` (the [`Die`] a body is made
+//! from), `stability` (tipping barrier and resting depth), `solids` (the d4 to the d20 and
+//! prisms) and `rolled` (a die as the [`PointBody`](crate::PointBody) the step rolls, with
+//! its stopping rule).
+
+mod die;
+mod flaws;
+mod hull;
+mod moments;
+mod numbering;
+mod rolled;
+mod solids;
+mod stability;
+
+pub use die::{ContactPoint, Die, Reading};
+pub use flaws::{Bubble, FlawError, Flaws, PointMass, Shave};
+pub use hull::{Edge, Face, HullError, MAX_VERTICES, Polyhedron, convex_hull, face_order};
+pub use moments::{SolidMoments, solid_moments};
+pub use numbering::{Numbering, ReadAt, opposite_faces};
+pub use solids::{DieKind, RESIN_DENSITY, STANDARD_HEIGHT, prism};
+pub use stability::{RestDepth, Tipping};
