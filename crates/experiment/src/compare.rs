@@ -812,26 +812,15 @@ pub fn run_comparison(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use dicesim_physics::{Outcome, Status};
+    use dicesim_physics::Status;
 
     fn record(id: u64, face: Option<u8>) -> RollRecord {
-        RollRecord {
-            id,
-            initial: InitialCondition::default(),
-            outcome: Outcome {
-                status: if face.is_some() {
-                    Status::Settled
-                } else {
-                    Status::Timeout
-                },
-                face,
-                steps: 1,
-                time_s: 0.001,
-                impacts: 0,
-                first_impact: None,
-            },
-            start_face: 4,
-        }
+        let status = if face.is_some() {
+            Status::Settled
+        } else {
+            Status::Timeout
+        };
+        RollRecord::ended(id, status, face)
     }
 
     #[test]

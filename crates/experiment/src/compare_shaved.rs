@@ -511,26 +511,14 @@ pub fn run_shaved(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use dicesim_physics::Outcome;
 
     fn record(face: Option<u8>) -> RollRecord {
-        RollRecord {
-            id: 0,
-            initial: InitialCondition::default(),
-            outcome: Outcome {
-                status: if face.is_some() {
-                    Status::Settled
-                } else {
-                    Status::Timeout
-                },
-                face,
-                steps: 1,
-                time_s: 0.001,
-                impacts: 0,
-                first_impact: None,
-            },
-            start_face: 4,
-        }
+        let status = if face.is_some() {
+            Status::Settled
+        } else {
+            Status::Timeout
+        };
+        RollRecord::ended(0, status, face)
     }
 
     #[test]

@@ -17,6 +17,27 @@ pub struct RollRecord {
     pub start_face: u8,
 }
 
+#[cfg(test)]
+impl RollRecord {
+    /// A roll of one step that ended with `status` on `face`: what the tallies' tests need,
+    /// for they read only how a roll ended.
+    pub(crate) fn ended(id: u64, status: dicesim_physics::Status, face: Option<u8>) -> RollRecord {
+        RollRecord {
+            id,
+            initial: InitialCondition::default(),
+            outcome: Outcome {
+                status,
+                face,
+                steps: 1,
+                time_s: 0.001,
+                impacts: 0,
+                first_impact: None,
+            },
+            start_face: 4,
+        }
+    }
+}
+
 /// `outcome` as every experiment reports it: its times (the end's, the first impact's) the steps × Δt of `params`, rounded to
 /// Δt's decimals ([`StepClock`]), not the clock's sum of Δt (`0.684`, not
 /// `0.6840000000000005`); the step count, exact, is beside it.

@@ -145,22 +145,10 @@ pub fn stream_versus(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use dicesim_physics::{InitialCondition, Outcome, Status};
+    use dicesim_physics::Status;
 
     fn record(status: Status, face: Option<u8>) -> RollRecord {
-        RollRecord {
-            id: 0,
-            initial: InitialCondition::default(),
-            outcome: Outcome {
-                status,
-                face,
-                steps: 1,
-                time_s: 0.001,
-                impacts: 0,
-                first_impact: None,
-            },
-            start_face: 4,
-        }
+        RollRecord::ended(0, status, face)
     }
 
     #[test]

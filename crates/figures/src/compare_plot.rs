@@ -163,15 +163,8 @@ pub fn budden_record(
             n(p.integrator.dt),
         ),
     ];
-    Record {
-        text: vec![
-            ("Title".to_string(), format!("{}: Budden's cuboids", preset.name)),
-            ("Description".to_string(), caption.join("\n")),
-            ("Software".to_string(), dicesim_experiment::PROGRAM.to_string()),
-        ],
-        caption,
-    }
-    .with_provenance(provenance)
+    let title = format!("{}: Budden's cuboids", preset.name);
+    Record::captioned(title, caption, dicesim_experiment::PROGRAM).with_provenance(provenance)
 }
 
 /// How far apart a fit's candidates are (what its best value is known to), or a
@@ -666,13 +659,6 @@ pub fn shaved_die_record(
             n(p.integrator.dt),
         ),
     ];
-    Record {
-        text: vec![
-            ("Title".to_string(), format!("{}: the shaved die", preset.name)),
-            ("Description".to_string(), caption.join("\n")),
-            ("Software".to_string(), dicesim_experiment::PROGRAM.to_string()),
-        ],
-        caption,
-    }
-    .with_provenance(provenance)
+    let title = format!("{}: the shaved die", preset.name);
+    Record::captioned(title, caption, dicesim_experiment::PROGRAM).with_provenance(provenance)
 }

@@ -127,6 +127,19 @@ impl Scale {
 }
 
 impl Record {
+    /// A figure's record: its title, its caption (drawn under the picture and, joined, the
+    /// PNG's description) and the `software` that drew it.
+    pub fn captioned(title: String, caption: Vec<String>, software: &str) -> Record {
+        Record {
+            text: vec![
+                ("Title".to_string(), title),
+                ("Description".to_string(), caption.join("\n")),
+                ("Software".to_string(), software.to_string()),
+            ],
+            caption,
+        }
+    }
+
     /// The record of a setup: the caption names the values a reader looks for first, the
     /// `dicesim-setup` chunk holds every value, one `key = value` per line, as a preset
     /// file writes them.
@@ -165,15 +178,11 @@ impl Record {
                 body_line(params, varied)
             ),
         ];
-        Record {
-            text: vec![
-                ("Title".to_string(), title.to_string()),
-                ("Description".to_string(), caption.join("\n")),
-                ("Software".to_string(), dicesim_experiment::BUILD.to_string()),
-                ("dicesim-setup".to_string(), setup_text(name, params, initial)),
-            ],
-            caption,
-        }
+        let mut record = Record::captioned(title.to_string(), caption, dicesim_experiment::BUILD);
+        record
+            .text
+            .push(("dicesim-setup".to_string(), setup_text(name, params, initial)));
+        record
     }
 }
 
@@ -263,15 +272,7 @@ impl Record {
                 body_line(params, varied)
             ),
         ];
-        Record {
-            text: vec![
-                ("Title".to_string(), title.to_string()),
-                ("Description".to_string(), caption.join("\n")),
-                ("Software".to_string(), dicesim_experiment::BUILD.to_string()),
-            ],
-            caption,
-        }
-        .with_provenance(provenance)
+        Record::captioned(title.to_string(), caption, dicesim_experiment::BUILD).with_provenance(provenance)
     }
 
     /// The record with `provenance` (program, setup, what defines the experiment) as the
