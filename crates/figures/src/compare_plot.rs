@@ -388,24 +388,39 @@ fn draw_share_pairs(
 ) -> Result<(), Error> {
     for (k, (colour, side)) in [(DATA, -offset), (SIMULATED, offset)].into_iter().enumerate() {
         let points: Vec<(f64, [f64; 3])> = pairs.iter().map(|&(x, both)| (x + side, both[k])).collect();
-        chart
-            .draw_series(points.iter().flat_map(|&(x, [lo, _, hi])| {
-                [
-                    vec![(x, lo), (x, hi)],
-                    vec![(x - cap, lo), (x + cap, lo)],
-                    vec![(x - cap, hi), (x + cap, hi)],
-                ]
-                .map(|line| PathElement::new(line, colour.stroke_width(2)))
-            }))
-            .map_err(plot_error)?;
-        chart
-            .draw_series(
-                points
-                    .iter()
-                    .map(|&(x, [_, mid, _])| Circle::new((x, mid), 5, colour.filled())),
-            )
-            .map_err(plot_error)?
-            .label(names[k])
+        draw_intervals(chart, &points, colour, cap, Some(names[k]))?;
+    }
+    Ok(())
+}
+
+/// Dots at each `x` with their 95 % intervals (each as low end, share, high end; caps `cap`
+/// wide) in `colour`, named in the legend by `name` where one is given.
+fn draw_intervals(
+    chart: &mut ChartContext<'_, BitMapBackend<'_>, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    points: &[(f64, [f64; 3])],
+    colour: RGBColor,
+    cap: f64,
+    name: Option<&str>,
+) -> Result<(), Error> {
+    chart
+        .draw_series(points.iter().flat_map(|&(x, [lo, _, hi])| {
+            [
+                vec![(x, lo), (x, hi)],
+                vec![(x - cap, lo), (x + cap, lo)],
+                vec![(x - cap, hi), (x + cap, hi)],
+            ]
+            .map(|line| PathElement::new(line, colour.stroke_width(2)))
+        }))
+        .map_err(plot_error)?;
+    let dots = chart
+        .draw_series(
+            points
+                .iter()
+                .map(|&(x, [_, mid, _])| Circle::new((x, mid), 5, colour.filled())),
+        )
+        .map_err(plot_error)?;
+    if let Some(name) = name {
+        dots.label(name)
             .legend(move |(x, y)| Circle::new((x + 10, y), 5, colour.filled()));
     }
     Ok(())
@@ -596,23 +611,7 @@ fn draw_shaved_biases(
         .map(|r| (r.cut, interval(&r.bias)))
         .collect();
     let cap = 0.006 * x1;
-    chart
-        .draw_series(alone.iter().flat_map(|&(x, [lo, _, hi])| {
-            [
-                vec![(x, lo), (x, hi)],
-                vec![(x - cap, lo), (x + cap, lo)],
-                vec![(x - cap, hi), (x + cap, hi)],
-            ]
-            .map(|line| PathElement::new(line, SIMULATED.stroke_width(2)))
-        }))
-        .map_err(plot_error)?;
-    chart
-        .draw_series(
-            alone
-                .iter()
-                .map(|&(x, [_, mid, _])| Circle::new((x, mid), 5, SIMULATED.filled())),
-        )
-        .map_err(plot_error)?;
+    draw_intervals(&mut chart, &alone, SIMULATED, cap, None)?;
     chart
         .configure_series_labels()
         .label_font(("sans-serif", 18))
