@@ -309,21 +309,16 @@ fn draw_deviance(
         .y_label_area_size(80)
         .build_cartesian_2d(x0..x_hi, 0.0..y_hi)
         .map_err(plot_error)?;
-    chart
-        .configure_mesh()
-        .x_desc(match unit.as_str() {
+    draw_axes(
+        &mut chart,
+        match unit.as_str() {
             "" => key.to_string(),
             u => format!("{key} ({})", u.trim()),
-        })
-        .y_desc("deviance G²")
-        .x_labels(TICKS)
-        .y_labels(TICKS)
-        .x_label_formatter(&|v| xt.label(*v))
-        .y_label_formatter(&|v| yt.label(*v))
-        .label_style(("sans-serif", 16))
-        .axis_desc_style(("sans-serif", 19))
-        .draw()
-        .map_err(plot_error)?;
+        },
+        "deviance G²",
+        &xt,
+        &yt,
+    )?;
     chart
         .draw_series(std::iter::once(Rectangle::new(
             [(fit.low, 0.0), (fit.high, limit)],
@@ -374,6 +369,28 @@ fn draw_deviance(
         )
         .map_err(plot_error)?;
     Ok(())
+}
+
+/// The axes of a chart of two numbers: each described, labelled at `TICKS` round values.
+fn draw_axes(
+    chart: &mut ChartContext<'_, BitMapBackend<'_>, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    x_desc: impl Into<String>,
+    y_desc: &str,
+    xt: &Ticks,
+    yt: &Ticks,
+) -> Result<(), Error> {
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .x_labels(TICKS)
+        .y_labels(TICKS)
+        .x_label_formatter(&|v| xt.label(*v))
+        .y_label_formatter(&|v| yt.label(*v))
+        .label_style(("sans-serif", 16))
+        .axis_desc_style(("sans-serif", 19))
+        .draw()
+        .map_err(plot_error)
 }
 
 /// The data's and the simulation's share at each `x` (each as low end, share, high end),
@@ -476,18 +493,13 @@ fn draw_budden_shares(
         .y_label_area_size(80)
         .build_cartesian_2d(x0..x1, 0.0..1.0)
         .map_err(plot_error)?;
-    chart
-        .configure_mesh()
-        .x_desc("ratio x/y (length between the square faces over their side)")
-        .y_desc("share of throws on a square face, with 95 % intervals")
-        .x_labels(TICKS)
-        .y_labels(TICKS)
-        .x_label_formatter(&|v| xt.label(*v))
-        .y_label_formatter(&|v| yt.label(*v))
-        .label_style(("sans-serif", 16))
-        .axis_desc_style(("sans-serif", 19))
-        .draw()
-        .map_err(plot_error)?;
+    draw_axes(
+        &mut chart,
+        "ratio x/y (length between the square faces over their side)",
+        "share of throws on a square face, with 95 % intervals",
+        &xt,
+        &yt,
+    )?;
     // The two series a little apart so their intervals do not hide each other.
     let offset = 0.012;
     let pairs: Vec<(f64, [[f64; 3]; 2])> = rows
@@ -568,18 +580,13 @@ fn draw_shaved_biases(
         .y_label_area_size(80)
         .build_cartesian_2d(0.0..x1, y0..y1)
         .map_err(plot_error)?;
-    chart
-        .configure_mesh()
-        .x_desc("cut c (the share of the side taken off along the 1–6 axis)")
-        .y_desc("bias b = 3·P(1 or 6) − 1, with 95 % intervals")
-        .x_labels(TICKS)
-        .y_labels(TICKS)
-        .x_label_formatter(&|v| xt.label(*v))
-        .y_label_formatter(&|v| yt.label(*v))
-        .label_style(("sans-serif", 16))
-        .axis_desc_style(("sans-serif", 19))
-        .draw()
-        .map_err(plot_error)?;
+    draw_axes(
+        &mut chart,
+        "cut c (the share of the side taken off along the 1–6 axis)",
+        "bias b = 3·P(1 or 6) − 1, with 95 % intervals",
+        &xt,
+        &yt,
+    )?;
     chart
         .draw_series(std::iter::once(PathElement::new(
             vec![(0.0, 0.0), (x1, PUBLISHED_SLOPE * x1)],
