@@ -278,6 +278,12 @@ impl Die {
         }
     }
 
+    /// The numbers a roll of this die can show, in the order its tables list them: what a
+    /// tally counts and its χ² has one degree of freedom fewer than. A box shows 1 to 6.
+    pub fn face_numbers(&self) -> &'static [u8] {
+        &[1, 2, 3, 4, 5, 6]
+    }
+
     /// cm, the cube's half size `a` (the first half size of any other body).
     pub fn half_size(&self) -> f64 {
         self.half_sizes[0]
