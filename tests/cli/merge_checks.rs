@@ -256,7 +256,7 @@ fn parts_of_two_builds_merge_only_when_accepted() {
 #[test]
 fn edited_cells_are_refused_with_their_row_and_field() {
     type Edit = fn(&mut Vec<String>);
-    let cases: [(&str, Edit, &str); 6] = [
+    let cases: [(&str, Edit, &str); 7] = [
         (
             "face 9",
             |c| c[col("face")] = "9".into(),
@@ -294,6 +294,12 @@ fn edited_cells_are_refused_with_their_row_and_field() {
             "a time that is not its steps",
             |c| c[col("time_s")] = "12345.5".into(),
             "time_s 12345.5 is not",
+        ),
+        (
+            // The largest count a cell holds: checking it must not overflow.
+            "more impacts than a u64 can double",
+            |c| c[col("impacts")] = u64::MAX.to_string(),
+            "18446744073709551615 impacts in",
         ),
     ];
     let dir = tempfile::tempdir().unwrap();

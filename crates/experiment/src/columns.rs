@@ -434,7 +434,7 @@ pub(crate) static COLUMNS: [RecordColumn; 23] = [
         check: Some(|_, r| {
             let o = &r.outcome;
             match (o.impacts, &o.first_impact) {
-                (n, _) if 2 * n > o.steps + 1 => Err(format!(
+                (n, _) if n > o.steps.div_ceil(2) => Err(format!(
                     "{n} impacts in {} steps: each needs a step clear of the table",
                     o.steps
                 )),
