@@ -41,11 +41,11 @@ fn torque<const ROUNDED: bool, L: Lane, const N: usize>(
     offsets: &[Vector3<L>; N],
     forces: &[Vector3<L>; N],
     touching: u64,
-    radius: L,
+    radii: &[L; N],
 ) -> Vector3<L> {
     let mut torque = zero3();
     for k in corners::<N>(touching) {
-        let arm = contact_point::<ROUNDED, L>(&offsets[k], radius);
+        let arm = contact_point::<ROUNDED, L>(&offsets[k], radii[k]);
         torque = add3(&torque, &cross3(&arm, &forces[k]));
     }
     torque
@@ -164,14 +164,18 @@ pub(crate) struct BodyConstants<L: Lane, const N: usize = 8> {
     /// a cube's corners 1, 5 and 3. The same in every lane of a vector (plain indices).
     pub(crate) frame: [usize; 3],
     pub(crate) split: L::Mask,
-    /// cm, the corner radius: a contact sphere's lowest point is this far below its centre.
-    pub(crate) corner_radius: L,
+    /// cm, each point's rounding radius: its contact sphere's lowest point is this far below
+    /// its centre (a box's corners all alike; a die's each its own).
+    pub(crate) corner_radii: [L; N],
     /// Lanes with a loaded die; with a general body; whose inertia turns with the body
-    /// (loaded or general: ω changes in flight too); whose stopping rule depends on the face
-    /// down (the same lanes).
+    /// (loaded or general: ω changes in flight too).
     pub(crate) loaded: L::Mask,
     pub(crate) shaped: L::Mask,
     pub(crate) turning: L::Mask,
+    /// Lanes whose stopping rule depends on the face down: a loaded die's and a general
+    /// body's (the box's turning lanes), and a body of points whose faces rest at different
+    /// heights or hold it differently ([`crate::PointBody`]), whatever its spin.
+    pub(crate) faced: L::Mask,
     /// Bit l: lane l's body has rounded corners. Plain bits, not a mask: the step asks
     /// only whether any lane has, and a sharp die's step should not pay for asking.
     pub(crate) rounded: u32,
@@ -180,8 +184,8 @@ pub(crate) struct BodyConstants<L: Lane, const N: usize = 8> {
 /// The stopping rule's numbers (docs/model.md, "Stopping rule" and "Stability").
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct StopConstants<L: Lane> {
-    /// erg, the thresholds; for a loaded die the largest over its faces, which only screens
-    /// (the rule of the face down decides).
+    /// erg, the thresholds; for a body with a rule per face ([`BodyConstants::faced`]) the
+    /// largest over its faces, which only screens (the rule of the face down decides).
     pub(crate) energy_threshold: L,
     pub(crate) kinetic_threshold: L,
     /// erg, a rigid-body energy above this is a runaway (fixed at t = 0).
@@ -336,10 +340,11 @@ impl BodyConstants<f64> {
             },
             frame: [0, 4, 2],
             split: principal.is_some(),
-            corner_radius: shape.map_or(0.0, |s| s.radius),
+            corner_radii: [shape.map_or(0.0, |s| s.radius); 8],
             loaded,
             shaped: shape.is_some(),
             turning: loaded || shape.is_some(),
+            faced: loaded || shape.is_some(),
             rounded: shape.is_some_and(|s| s.radius > 0.0) as u32,
         }
     }
@@ -372,10 +377,11 @@ impl<L: Lane, const N: usize> BodyConstants<L, N> {
             principal_corners: c.principal_corners.each_ref().map(s3),
             frame: c.frame,
             split: mask_of::<L>(c.split),
-            corner_radius: L::splat(c.corner_radius),
+            corner_radii: c.corner_radii.map(L::splat),
             loaded: mask_of::<L>(c.loaded),
             shaped: mask_of::<L>(c.shaped),
             turning: mask_of::<L>(c.turning),
+            faced: mask_of::<L>(c.faced),
             rounded: if c.rounded != 0 { all_lanes::<L>() } else { 0 },
         }
     }
@@ -422,10 +428,13 @@ impl<L: Lane, const N: usize> BodyConstants<L, N> {
             put(&mut self.principal_axes[e], l, f.principal_axes[e]);
         }
         put_mask::<L>(&mut self.split, l, f.split);
-        put(&mut self.corner_radius, l, f.corner_radius);
+        for point in 0..N {
+            put(&mut self.corner_radii[point], l, f.corner_radii[point]);
+        }
         put_mask::<L>(&mut self.loaded, l, f.loaded);
         put_mask::<L>(&mut self.shaped, l, f.shaped);
         put_mask::<L>(&mut self.turning, l, f.turning);
+        put_mask::<L>(&mut self.faced, l, f.faced);
         self.rounded = (self.rounded & !(1 << l)) | (f.rounded << l);
     }
 
@@ -439,8 +448,11 @@ impl<L: Lane, const N: usize> BodyConstants<L, N> {
         put_mask::<L>(&mut self.shaped, l, false);
         self.rounded &= !(1 << l);
         put_mask::<L>(&mut self.turning, l, false);
+        put_mask::<L>(&mut self.faced, l, false);
         put_mask::<L>(&mut self.split, l, false);
-        put(&mut self.corner_radius, l, 0.0);
+        for point in 0..N {
+            put(&mut self.corner_radii[point], l, 0.0);
+        }
     }
 }
 
@@ -472,9 +484,9 @@ impl<L: Lane, W: Law, const N: usize, B: Faces<N>> StepHook<L, W, N, B> for NoHo
 }
 
 /// What the engines ask of a body by the face it lies on, at its points' offsets (cm, world
-/// frame, about the centre of mass): the stopping rule there (a loaded die's and a general
-/// body's depend on the face down; the end-of-step test asks in the lanes of
-/// [`BodyConstants::turning`]), and the face up of a body at rest (the outcome).
+/// frame, about the centre of mass): the stopping rule there (a loaded die's, a general
+/// body's and an uneven die's depend on the face down; the end-of-step test asks in the lanes
+/// of [`BodyConstants::faced`]), and the face up of a body at rest (the outcome).
 pub(crate) trait Faces<const N: usize>: Copy + std::fmt::Debug {
     fn stop_rule_at(&self, offsets: &[Vector3<f64>; N]) -> StopRule;
     fn face_up_at_rest(&self, offsets: &[Vector3<f64>; N]) -> Option<u8>;
@@ -718,7 +730,7 @@ impl<L: Lane, W: Law, const N: usize, B: Faces<N>> Kernel<L, W, N, B> {
         let c = &self.c;
         let b = &c.body;
         let (dt, mass, weight_z, flight_kick, turning) = (c.dt, b.mass, b.weight_z, b.flight_kick, b.turning);
-        let (rounded, radius) = (b.rounded != 0, b.corner_radius);
+        let rounded = b.rounded != 0;
         let contact_bits = L::bits(self.in_contact);
         let touching = self.touching_corners;
         hook.before_kick(self);
@@ -753,9 +765,9 @@ impl<L: Lane, W: Law, const N: usize, B: Faces<N>> Kernel<L, W, N, B> {
         // acts at its contact sphere's lowest point.
         if contact_bits != 0 {
             let torque = if rounded {
-                torque::<true, L, N>(&s.corner_offsets, &s.corner_forces, touching, radius)
+                torque::<true, L, N>(&s.corner_offsets, &s.corner_forces, touching, &b.corner_radii)
             } else {
-                torque::<false, L, N>(&s.corner_offsets, &s.corner_forces, touching, radius)
+                torque::<false, L, N>(&s.corner_offsets, &s.corner_forces, touching, &b.corner_radii)
             };
             let l_new = add3(&s.angular_momentum, &scale3(&torque, dt));
             s.angular_momentum = if contact_bits == all_lanes::<L>() {
@@ -960,11 +972,10 @@ impl<L: Lane, W: Law, const N: usize, B: Faces<N>> Kernel<L, W, N, B> {
     /// the law `W`.
     #[inline(always)]
     pub(crate) fn update_forces(&mut self) {
-        let (dt, radius, rounded) = (self.c.dt, self.c.body.corner_radius, self.c.body.rounded != 0);
+        let (dt, rounded) = (self.c.dt, self.c.body.rounded != 0);
         W::forces(
             &self.c.law,
             dt,
-            radius,
             rounded,
             Touch {
                 state: &mut self.state,
@@ -972,6 +983,7 @@ impl<L: Lane, W: Law, const N: usize, B: Faces<N>> Kernel<L, W, N, B> {
                 points: &mut self.points,
                 in_contact: &mut self.in_contact,
                 touching_corners: &mut self.touching_corners,
+                radii: &self.c.body.corner_radii,
             },
         );
     }
@@ -1077,7 +1089,7 @@ impl<L: Lane, W: Law, const N: usize, B: Faces<N>> Kernel<L, W, N, B> {
                 &self.state.corner_offsets,
             ))
             | rigid.gt(c.runaway);
-        let turning = self.c.body.turning;
+        let faced = self.c.body.faced;
         let low = potential.le(c.energy_threshold);
         let settled = if L::bits(low) == 0 {
             L::mask_from_bits(0)
@@ -1098,15 +1110,15 @@ impl<L: Lane, W: Law, const N: usize, B: Faces<N>> Kernel<L, W, N, B> {
                 c.energy_threshold,
                 c.kinetic_threshold,
             );
-            let loaded = L::bits(screened & turning);
-            if loaded == 0 {
+            let by_face = L::bits(screened & faced);
+            if by_face == 0 {
                 screened
             } else {
-                // A loaded die's or a general body's rule depends on the face it lies on.
-                // Looking the face up is a per-roll table search, done only where the widest
-                // rule passed.
+                // A loaded die's, a general body's or an uneven die's rule depends on the face
+                // it lies on. Looking the face up is a per-roll table search, done only where
+                // the widest rule passed.
                 let (mut et, mut kt) = (c.energy_threshold.to_lanes(), c.kinetic_threshold.to_lanes());
-                for lane in set_bits(loaded) {
+                for lane in set_bits(by_face) {
                     let offsets = self.state.corner_offsets.each_ref().map(|r| lane3(r, lane));
                     let rule = self.bodies.as_ref()[lane].stop_rule_at(&offsets);
                     et.as_mut()[lane] = rule.energy_threshold;

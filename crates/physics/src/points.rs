@@ -1,6 +1,6 @@
 //! A body as its contact points and its mass (docs/model.md, "A body of N points"): `N`
-//! points in the body's frame, each the centre of a sphere of one rounding radius (0: sharp
-//! corners; a sphere-swept convex body touches a plane at its lowest vertex sphere), the mass,
+//! points in the body's frame, each the centre of a sphere of its own rounding radius (0: a
+//! sharp corner; a convex body with rounded corners touches a plane at its lowest sphere), the mass,
 //! the centre of mass and the inertia tensor about it, and the outward normals of its faces
 //! with the number each shows. A convex polyhedron's geometry gives all of it: its vertices,
 //! its mass properties and its faces.
@@ -26,8 +26,8 @@ pub const MAX_FACES: usize = 20;
 pub struct PointBody<const N: usize> {
     /// cm, the points relative to the centre of mass, body frame.
     points: [Vector3<f64>; N],
-    /// cm, the rounding radius of every point.
-    radius: f64,
+    /// cm, each point's rounding radius.
+    radii: [f64; N],
     /// g.
     mass: f64,
     /// g·cm², about the centre of mass, body frame.
@@ -39,10 +39,13 @@ pub struct PointBody<const N: usize> {
     face_count: usize,
     /// The points its orientation is read off: `[o, x, y]`, `x − o` and `y − o` not parallel.
     frame: [usize; 3],
-    /// The stopping rule on a level table, erg, and the energy to tip it over an edge from
-    /// its lowest face.
+    /// The stopping rule on a level table, erg (with rules per face, the widest of them,
+    /// which screens), and the energy to tip it over an edge from its lowest face.
     stop_rule: StopRule,
     edge_energy: f64,
+    /// The rule of each face down, in the faces' order, when they differ
+    /// ([`PointBody::with_face_rules`]).
+    face_rules: Option<[StopRule; MAX_FACES]>,
 }
 
 /// Why a body cannot be made, in words.
@@ -101,7 +104,7 @@ impl<const N: usize> PointBody<N> {
         }
         Ok(PointBody {
             points,
-            radius,
+            radii: [radius; N],
             mass,
             inertia,
             normals,
@@ -110,7 +113,43 @@ impl<const N: usize> PointBody<N> {
             frame,
             stop_rule,
             edge_energy,
+            face_rules: None,
         })
+    }
+
+    /// This body with point `k` rounded by `radii[k]` (cm) instead of the one radius it was
+    /// made with (a die whose corners wore unevenly).
+    pub fn with_radii(mut self, radii: [f64; N]) -> Result<PointBody<N>, BodyError> {
+        if let Some(k) = radii.iter().position(|r| !(*r >= 0.0 && r.is_finite())) {
+            return Err(BodyError(format!(
+                "point {}'s radius {} cm must be ≥ 0",
+                k + 1,
+                radii[k]
+            )));
+        }
+        self.radii = radii;
+        Ok(self)
+    }
+
+    /// This body stopping by `rules[f]` while face `f` (in the order of its faces) is the face
+    /// it shows, its normal as given most nearly up ([`PointBody::face_up`]; a die gives its
+    /// faces' normals reversed, so that is the die's face `f` down), instead of one rule for
+    /// every face: a body whose faces rest at different heights or hold it by different
+    /// barriers (docs/model.md, "Stopping a die of any shape"). The step screens with the
+    /// widest of them.
+    pub fn with_face_rules(mut self, rules: &[StopRule]) -> Result<PointBody<N>, BodyError> {
+        if rules.len() != self.face_count {
+            return Err(BodyError(format!(
+                "{} stopping rules for {} faces: give one a face",
+                rules.len(),
+                self.face_count
+            )));
+        }
+        let mut by_face = [StopRule::NEVER; MAX_FACES];
+        by_face[..rules.len()].copy_from_slice(rules);
+        self.stop_rule = StopRule::widest(rules);
+        self.face_rules = Some(by_face);
+        Ok(self)
     }
 
     /// g.
@@ -123,9 +162,15 @@ impl<const N: usize> PointBody<N> {
         &self.points
     }
 
-    /// cm, the rounding radius.
-    pub fn radius(&self) -> f64 {
-        self.radius
+    /// cm, each point's rounding radius.
+    pub fn radii(&self) -> &[f64; N] {
+        &self.radii
+    }
+
+    /// The stopping rule on a level table while face `f` (in the order of its faces) is the
+    /// face it shows.
+    pub fn stop_rule_on(&self, f: usize) -> StopRule {
+        self.face_rules.map_or(self.stop_rule, |rules| rules[f])
     }
 
     /// g·cm², the inertia tensor about the centre of mass, body frame.
@@ -134,14 +179,14 @@ impl<const N: usize> PointBody<N> {
     }
 
     /// cm, the height of the centre of mass above a rigid table when the body rests on face
-    /// `f`: the farthest point along the face's normal, plus the rounding.
+    /// `f`: the farthest sphere along the face's normal (its centre's reach plus its radius).
     fn rest_height(&self, f: usize) -> f64 {
         let n = &self.normals[f];
         self.points
             .iter()
-            .map(|p| n.dot(p))
+            .zip(&self.radii)
+            .map(|(p, r)| n.dot(p) + r)
             .fold(f64::NEG_INFINITY, f64::max)
-            + self.radius
     }
 
     /// cm, the lowest of [`PointBody::rest_height`] over the faces: the height its
@@ -160,16 +205,16 @@ impl<const N: usize> PointBody<N> {
 
     /// The number of the face whose outward normal points most nearly down at `offsets`.
     pub fn face_down(&self, offsets: &[Vector3<f64>; N]) -> u8 {
-        self.face_by(offsets, |a, b| b < a)
+        self.numbers[self.face_by(offsets, |a, b| b < a)]
     }
 
     /// The number of the face whose outward normal points most nearly up at `offsets`.
     pub fn face_up(&self, offsets: &[Vector3<f64>; N]) -> u8 {
-        self.face_by(offsets, |a, b| b > a)
+        self.numbers[self.face_by(offsets, |a, b| b > a)]
     }
 
-    /// The face whose normal's world height `better` prefers over every other's.
-    fn face_by(&self, offsets: &[Vector3<f64>; N], better: fn(f64, f64) -> bool) -> u8 {
+    /// The index of the face whose normal's world height `better` prefers over every other's.
+    fn face_by(&self, offsets: &[Vector3<f64>; N], better: fn(f64, f64) -> bool) -> usize {
         let row = self.orientation(offsets).row(2).transpose();
         let mut best = 0;
         for f in 1..self.face_count {
@@ -177,7 +222,7 @@ impl<const N: usize> PointBody<N> {
                 best = f;
             }
         }
-        self.numbers[best]
+        best
     }
 
     /// The start of a roll from `initial`: the points' offsets (world frame) and the angular
@@ -206,8 +251,15 @@ impl<const N: usize> PointBody<N> {
         let dt = params.integrator.dt;
         let body = self.body_constants(W::gravity(params), params.world.gravity, dt);
         let c = Constants::with_body(params, body, self.edge_energy, self.stop_rule);
+        // Each face's rule as the law's table has it, as the widest is.
+        let mut on_table = *self;
+        if let Some(rules) = &mut on_table.face_rules {
+            for rule in rules.iter_mut() {
+                *rule = W::stop_rule(*rule, params, self.edge_energy);
+            }
+        }
         let (offsets, l) = self.start(initial);
-        let mut kernel = Kernel::placed(c, *self, initial, offsets, l);
+        let mut kernel = Kernel::placed(c, on_table, initial, offsets, l);
         let e = kernel.energy();
         let energy = ((e.translational + e.rotational) + e.gravitational) + e.elastic;
         kernel.c.stop.runaway = RUNAWAY_ENERGY_FACTOR * energy.max(self.edge_energy);
@@ -259,20 +311,25 @@ impl<const N: usize> PointBody<N> {
             },
             frame: self.frame,
             split: principal.is_some(),
-            corner_radius: self.radius,
+            corner_radii: self.radii,
             loaded: false,
             shaped: false,
             // The splitting turns the body every step, in flight too.
             turning: principal.is_some(),
-            rounded: (self.radius > 0.0) as u32,
+            faced: self.face_rules.is_some(),
+            rounded: self.radii.iter().any(|&r| r > 0.0) as u32,
         }
     }
 }
 
 impl<const N: usize> Faces<N> for PointBody<N> {
-    /// One rule whatever the face: the body's.
-    fn stop_rule_at(&self, _: &[Vector3<f64>; N]) -> StopRule {
-        self.stop_rule
+    /// The rule of the face it shows (one rule whatever the face for a body without rules
+    /// per face).
+    fn stop_rule_at(&self, offsets: &[Vector3<f64>; N]) -> StopRule {
+        match &self.face_rules {
+            Some(rules) => rules[self.face_by(offsets, |a, b| b > a)],
+            None => self.stop_rule,
+        }
     }
 
     fn face_up_at_rest(&self, offsets: &[Vector3<f64>; N]) -> Option<u8> {

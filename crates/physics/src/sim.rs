@@ -313,10 +313,10 @@ impl<W: Law> StepHook<f64, W, 8, Body> for Ledger {
 
 /// Velocities of corners 1..8 (a rounded body's contact points), cm/s.
 fn corner_velocities<W: Law>(k: &Kernel<f64, W>) -> [Vector3<f64>; 8] {
-    let radius = k.c.body.corner_radius;
-    k.state
-        .corner_offsets
-        .map(|r| k.corner_velocity(&contact_point::<true, f64>(&r, radius)))
+    let radii = &k.c.body.corner_radii;
+    std::array::from_fn(|c| {
+        k.corner_velocity(&contact_point::<true, f64>(&k.state.corner_offsets[c], radii[c]))
+    })
 }
 
 impl Simulation {

@@ -24,7 +24,7 @@ impl StopRule {
 
     /// The widest of several faces' rules: the largest of each threshold, which every one of
     /// them passes within (the step's cheap screen before the face down is looked up).
-    pub(crate) fn widest(rules: &[StopRule; 6]) -> StopRule {
+    pub(crate) fn widest(rules: &[StopRule]) -> StopRule {
         let widest =
             |threshold: fn(&StopRule) -> f64| rules.iter().map(threshold).fold(f64::NEG_INFINITY, f64::max);
         StopRule {

@@ -53,11 +53,11 @@ pub(crate) trait Law: Copy + Debug + Send + Sync + 'static {
     /// erg, the weight's potential at `position`, given its normal part `normal`.
     fn potential<L: Lane>(c: &Self::Constants<L>, normal: L, position: &Vector3<L>) -> L;
     /// Every contact point's depth, force and memory at the current state (`rounded`: the
-    /// points are spheres of radius `radius`, cm, touching at their lowest points).
+    /// points are spheres, each of its own radius in [`Touch::radii`], touching at their
+    /// lowest points).
     fn forces<L: Lane, const N: usize>(
         c: &Self::Constants<L>,
         dt: L,
-        radius: L,
         rounded: bool,
         touch: Touch<'_, L, Self::Point<L>, N>,
     );
@@ -80,21 +80,23 @@ pub(crate) struct Touch<'a, L: Lane, P, const N: usize> {
     pub(crate) in_contact: &'a mut L::Mask,
     /// Bit k: point k is below the table in some lane (the law sets it).
     pub(crate) touching_corners: &'a mut u64,
+    /// cm, each point's sphere radius: its lowest point is this far below its centre.
+    pub(crate) radii: &'a [L; N],
 }
 
 impl<L: Lane, P, const N: usize> Touch<'_, L, P, N> {
     /// cm/s, the velocity of point `k`'s contact (a rounded body's: its sphere's lowest
     /// point).
     #[inline(always)]
-    pub(crate) fn velocity_at<const ROUNDED: bool>(&self, k: usize, radius: L) -> Vector3<L> {
-        let r = contact_point::<ROUNDED, L>(&self.state.corner_offsets[k], radius);
+    pub(crate) fn velocity_at<const ROUNDED: bool>(&self, k: usize) -> Vector3<L> {
+        let r = contact_point::<ROUNDED, L>(&self.state.corner_offsets[k], self.radii[k]);
         point_velocity(&self.state.velocity, self.angular_velocity, &r)
     }
 
     /// Which points (or point spheres, `ROUNDED`) are in the table, per lane, and their
     /// depths into it, cm: the same for every law. Returns the masks and their union.
     #[inline(always)]
-    pub(crate) fn press<const ROUNDED: bool>(&mut self, radius: L) -> ([L::Mask; N], L::Mask) {
+    pub(crate) fn press<const ROUNDED: bool>(&mut self) -> ([L::Mask; N], L::Mask) {
         let s = &mut *self.state;
         let z0 = s.position.z;
         let zero = L::zero();
@@ -102,7 +104,7 @@ impl<L: Lane, P, const N: usize> Touch<'_, L, P, N> {
         let mut any = L::mask_from_bits(0);
         for (k, t) in touching.iter_mut().enumerate() {
             let z = s.corner_offsets[k].z + z0;
-            let z = if ROUNDED { z - radius } else { z };
+            let z = if ROUNDED { z - self.radii[k] } else { z };
             *t = z.lt(zero);
             s.corner_depths[k] = (-z).or_zero(*t);
             any = any | *t;

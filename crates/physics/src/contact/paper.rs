@@ -23,7 +23,7 @@ pub struct Paper<S: Slip>(PhantomData<S>);
 pub trait Slip: Copy + Debug + Send + Sync + 'static {
     /// What every point's friction at this state shares (the whole-die norm), from all `N`
     /// points' velocities; nothing for a slip of a point's own.
-    fn shared<const ROUNDED: bool, L: Lane, P, const N: usize>(touch: &Touch<'_, L, P, N>, radius: L) -> L;
+    fn shared<const ROUNDED: bool, L: Lane, P, const N: usize>(touch: &Touch<'_, L, P, N>) -> L;
     /// The friction `(x, y)`, dyn, at a point of velocity `u` pressed by `vertical` (dyn).
     fn friction<L: Lane>(u: &Vector3<L>, vertical: L, friction: L, shared: L) -> (L, L);
 }
@@ -35,7 +35,7 @@ pub struct PerCornerSlip;
 
 impl Slip for PerCornerSlip {
     #[inline(always)]
-    fn shared<const ROUNDED: bool, L: Lane, P, const N: usize>(_: &Touch<'_, L, P, N>, _: L) -> L {
+    fn shared<const ROUNDED: bool, L: Lane, P, const N: usize>(_: &Touch<'_, L, P, N>) -> L {
         L::zero()
     }
 
@@ -61,11 +61,11 @@ pub struct WholeDieSlip;
 
 impl Slip for WholeDieSlip {
     #[inline(always)]
-    fn shared<const ROUNDED: bool, L: Lane, P, const N: usize>(touch: &Touch<'_, L, P, N>, radius: L) -> L {
+    fn shared<const ROUNDED: bool, L: Lane, P, const N: usize>(touch: &Touch<'_, L, P, N>) -> L {
         let zero = L::zero();
         let (mut a, mut b, mut cc) = (zero, zero, zero);
         for k in 0..N {
-            let uk = touch.velocity_at::<ROUNDED>(k, radius);
+            let uk = touch.velocity_at::<ROUNDED>(k);
             a = a + uk.x * uk.x;
             b = b + uk.x * uk.y;
             cc = cc + uk.y * uk.y;
@@ -186,14 +186,13 @@ impl<S: Slip> Law for Paper<S> {
     fn forces<L: Lane, const N: usize>(
         c: &PaperConstants<L>,
         _dt: L,
-        radius: L,
         rounded: bool,
         touch: Touch<'_, L, NoMemory, N>,
     ) {
         if rounded {
-            forces_at::<true, L, N, S>(c, radius, touch);
+            forces_at::<true, L, N, S>(c, touch);
         } else {
-            forces_at::<false, L, N, S>(c, radius, touch);
+            forces_at::<false, L, N, S>(c, touch);
         }
     }
 
@@ -211,12 +210,11 @@ impl<S: Slip> Law for Paper<S> {
 #[inline(always)]
 fn forces_at<const ROUNDED: bool, L: Lane, const N: usize, S: Slip>(
     c: &PaperConstants<L>,
-    radius: L,
     mut touch: Touch<'_, L, NoMemory, N>,
 ) {
     // Copied out one by one, as in the kernel's step.
     let (stiffness, damping, friction) = (c.stiffness, c.damping, c.friction);
-    let (touching, any) = touch.press::<ROUNDED>(radius);
+    let (touching, any) = touch.press::<ROUNDED>();
     // Lanes that neither touch now nor did before keep their +0.0 forces; a lane that
     // just left the ground gets +0.0 from the masks below.
     if L::bits(any | *touch.in_contact) == 0 {
@@ -230,9 +228,9 @@ fn forces_at<const ROUNDED: bool, L: Lane, const N: usize, S: Slip>(
     }
     // The authors' whole-die norm needs every point's velocity, a point's own slip only
     // those that touch.
-    let shared = S::shared::<ROUNDED, L, NoMemory, N>(&touch, radius);
+    let shared = S::shared::<ROUNDED, L, NoMemory, N>(&touch);
     for k in corners::<N>(touching_corners) {
-        let uk = touch.velocity_at::<ROUNDED>(k, radius);
+        let uk = touch.velocity_at::<ROUNDED>(k);
         let normal = touch.state.corner_depths[k] * stiffness;
         let vertical = normal * (L::splat(1.0) - damping * uk.z);
         let (fx, fy) = S::friction(&uk, vertical, friction, shared);

@@ -366,14 +366,13 @@ impl Law for SpringFriction {
     fn forces<L: Lane, const N: usize>(
         c: &SpringFrictionConstants<L>,
         dt: L,
-        radius: L,
         rounded: bool,
         touch: Touch<'_, L, SpringPoint<L>, N>,
     ) {
         if rounded {
-            forces_at::<true, L, N>(c, dt, radius, touch);
+            forces_at::<true, L, N>(c, dt, touch);
         } else {
-            forces_at::<false, L, N>(c, dt, radius, touch);
+            forces_at::<false, L, N>(c, dt, touch);
         }
     }
 
@@ -405,7 +404,6 @@ impl Law for SpringFriction {
 fn forces_at<const ROUNDED: bool, L: Lane, const N: usize>(
     c: &SpringFrictionConstants<L>,
     dt: L,
-    radius: L,
     mut touch: Touch<'_, L, SpringPoint<L>, N>,
 ) {
     let (stiffness, kinetic) = (c.stiffness, c.friction);
@@ -418,7 +416,7 @@ fn forces_at<const ROUNDED: bool, L: Lane, const N: usize>(
     let (table_depth, table_speed) = (touch.points[0].table_depth, touch.points[0].table_speed);
     let centre = touch.state.position.z;
     touch.state.position.z = centre + table_depth;
-    let (touching, any) = touch.press::<ROUNDED>(radius);
+    let (touching, any) = touch.press::<ROUNDED>();
     touch.state.position.z = centre;
     let table_moves = table_depth.ne(zero) | table_speed.ne(zero);
     if L::bits(any) == 0 && previous == 0 && L::bits(table_moves) == 0 {
@@ -439,7 +437,7 @@ fn forces_at<const ROUNDED: bool, L: Lane, const N: usize>(
     }
     for k in corners::<N>(touching_corners) {
         let t = touching[k];
-        let u = touch.velocity_at::<ROUNDED>(k, radius);
+        let u = touch.velocity_at::<ROUNDED>(k);
         let point = touch.points[k];
         // A point keeps the dashpot it struck with; one striking now takes the face dashpot
         // where the body leans.

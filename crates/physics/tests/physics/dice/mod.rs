@@ -1,6 +1,7 @@
 //! The dice of any convex shape (docs/model.md, "Dice of any convex shape"; docs/dice.md):
 //! each regular solid's closed forms derived by hand, held against the hull and the integrals.
 
+mod bias;
 mod fairness;
 mod flaws;
 mod hull;
@@ -8,6 +9,7 @@ mod mass;
 mod reading;
 mod rest;
 mod rolled;
+mod speed;
 mod stability;
 
 use crate::common::random_start;
