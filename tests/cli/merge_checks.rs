@@ -260,7 +260,7 @@ fn edited_cells_are_refused_with_their_row_and_field() {
         (
             "face 9",
             |c| c[col("face")] = "9".into(),
-            "face 9 is not a face of a die",
+            "face 9 is not a face of this die (its faces read 1–6)",
         ),
         (
             "timeout where it settled",

@@ -61,7 +61,7 @@ const BAR_STARTS: [f64; 6] = [0.15, 0.14, 0.12, 0.10, 0.05, 0.0];
 /// far above 1/6, holds every face's 95 % interval. Once a batch has narrowed the intervals
 /// the bars spread out around the fair share, so a bias of a few percent is cells long, not
 /// one; with few rolls (or none) they span 0 to 1/3.
-pub(crate) fn bar_start(intervals: Option<[[f64; 2]; 6]>) -> f64 {
+pub(crate) fn bar_start(intervals: Option<Vec<[f64; 2]>>) -> f64 {
     let Some(intervals) = intervals else { return 0.0 };
     BAR_STARTS
         .into_iter()
