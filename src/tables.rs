@@ -980,7 +980,10 @@ mod tests {
         // form, stats.rs), printed to four decimals.
         assert_eq!(lines[21], "χ² against a fair die  11.000 (19 dof), p = 0.9238");
         assert!(lines[21].chars().count() <= 80);
-        assert_eq!(lines[22], "bias detectable in     — (no bias measured beyond chance)");
+        assert_eq!(
+            lines[22],
+            "bias detectable in     — (no bias measured beyond chance)"
+        );
     }
 
     #[test]

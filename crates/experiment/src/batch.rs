@@ -407,7 +407,11 @@ mod tests {
             record(2, Status::Unstable, None, 5),
         ];
         rs.extend((0..2).map(|_| record(5, Status::Settled, Some(5), 200)));
-        let s = BatchSummary::new(Params::DEFAULT.die.face_numbers(), &rs, Duration::from_millis(500));
+        let s = BatchSummary::new(
+            Params::DEFAULT.die.face_numbers(),
+            &rs,
+            Duration::from_millis(500),
+        );
         assert_eq!(s.rolls, 12);
         assert_eq!(s.faces.counts, [2, 1, 1, 2, 2, 1]);
         // n = 9 faces, expected 1.5 each: χ² = 6·0.5²/1.5 = 1.

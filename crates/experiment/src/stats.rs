@@ -264,7 +264,8 @@ mod tests {
             odd_product *= f64::from(2 * j - 1);
             sum += x.powf(f64::from(j) - 0.5) / odd_product;
         }
-        statrs::function::erf::erfc((x / 2.0).sqrt()) + (2.0 / std::f64::consts::PI).sqrt() * (-x / 2.0).exp() * sum
+        statrs::function::erf::erfc((x / 2.0).sqrt())
+            + (2.0 / std::f64::consts::PI).sqrt() * (-x / 2.0).exp() * sum
     }
 
     #[test]
@@ -294,10 +295,14 @@ mod tests {
         let t = counted(D20, &counts);
         assert_eq!((t.total(), t.degrees_of_freedom()), (200, 19));
         assert!((t.chi_square().unwrap() - 11.0).abs() < 1e-12);
-        // The odd-dof closed form (tail_odd) at x = 11, k = 19: 1 − e^(−5.5)·(…) summed by
-        // hand to 0.92384 (a χ² of 11 is well below its mean of 19: a fair-looking die).
-        // On 5 dof the same χ² would give p = 0.051.
-        assert!((t.p_value().unwrap() - 0.923_838_4).abs() < 1e-6, "{:?}", t.p_value());
+        // The odd-dof closed form (tail_odd) at x = 11, k = 19: erfc(√5.5) + √(2/π)·e^(−5.5)·
+        // Σ_{j=1}^{9} 11^(j−½)/(2j−1)!! = 0.92384 (a χ² of 11 is well below its mean of 19:
+        // a fair-looking die). On 5 dof the same χ² would give p = 0.051.
+        assert!(
+            (t.p_value().unwrap() - 0.923_838_4).abs() < 1e-6,
+            "{:?}",
+            t.p_value()
+        );
         assert!((tail_odd(11.0, 19) - 0.923_838_4).abs() < 1e-6);
         assert!((tail_odd(11.0, 5) - t.p_value().unwrap()).abs() > 0.8);
         // No bias measured beyond chance: χ² below its fair mean of 19.

@@ -290,7 +290,10 @@ impl Tally {
 
 impl Tally {
     /// The tally of `records` of a die that shows `numbers`.
-    pub fn of_records<'a>(numbers: &'static [u8], records: impl IntoIterator<Item = &'a RollRecord>) -> Tally {
+    pub fn of_records<'a>(
+        numbers: &'static [u8],
+        records: impl IntoIterator<Item = &'a RollRecord>,
+    ) -> Tally {
         let mut t = Tally::new(numbers);
         records.into_iter().for_each(|r| t.add(r));
         t

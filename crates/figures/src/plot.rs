@@ -794,7 +794,9 @@ fn draw<DB: DrawingBackend>(
             while i < map.width() {
                 let colour = cell_colour(map.numbers, map.cell(i, j), layer, times);
                 let start = i;
-                while i + 1 < map.width() && cell_colour(map.numbers, map.cell(i + 1, j), layer, times) == colour {
+                while i + 1 < map.width()
+                    && cell_colour(map.numbers, map.cell(i + 1, j), layer, times) == colour
+                {
                     i += 1;
                 }
                 let (yc, xa, xb) = (y.value(j), x.value(start), x.value(i));
@@ -1163,7 +1165,10 @@ mod tests {
             start_face: 1,
             sampled: true,
         };
-        let mut cells: Vec<Option<Cell>> = numbers.iter().map(|&f| Some(cell(Status::Settled, Some(f)))).collect();
+        let mut cells: Vec<Option<Cell>> = numbers
+            .iter()
+            .map(|&f| Some(cell(Status::Settled, Some(f))))
+            .collect();
         cells.extend([
             Some(cell(Status::Settled, None)),
             Some(cell(Status::Timeout, None)),

@@ -254,7 +254,10 @@ impl Parts {
 /// `numbers`.
 fn part_tally(path: &Path, p: &Part, numbers: &'static [u8]) -> Result<Tally, MergeError> {
     let refused = |e: String| MergeError::Parts(format!("{}: {e}", path.display()));
-    let t = p.tally.clone().ok_or_else(|| refused("a batch part without its counts (`tally`)".to_string()))?;
+    let t = p
+        .tally
+        .clone()
+        .ok_or_else(|| refused("a batch part without its counts (`tally`)".to_string()))?;
     t.of_die(numbers).map_err(|e| refused(format!("`tally`: {e}")))
 }
 

@@ -209,10 +209,13 @@ impl Parts {
 /// shows `numbers`.
 fn part_faces(path: &std::path::Path, p: &Part, numbers: &'static [u8]) -> Result<FaceTally, MergeError> {
     let refused = |e: String| MergeError::Parts(format!("{}: {e}", path.display()));
-    let faces = p.map_faces.clone().ok_or_else(|| {
-        refused("a map part without its face counts (`map_faces`)".to_string())
-    })?;
-    faces.of_die(numbers).map_err(|e| refused(format!("`map_faces`: {e}")))
+    let faces = p
+        .map_faces
+        .clone()
+        .ok_or_else(|| refused("a map part without its face counts (`map_faces`)".to_string()))?;
+    faces
+        .of_die(numbers)
+        .map_err(|e| refused(format!("`map_faces`: {e}")))
 }
 
 /// Checks that the sidecar of a map part's CSV says its cells are this sweep's (`sweep`,
