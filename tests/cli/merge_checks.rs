@@ -410,6 +410,19 @@ fn counts_that_disagree_with_each_other_or_the_records_are_refused() {
         "{e}"
     );
     std::fs::write(&part, &intact).unwrap();
+    // Counts of another die (twenty, the six counted and fourteen zeros) for the cube's
+    // setup: not one count per number it shows, however they add up.
+    edit_part(&part, |v| {
+        let faces = &mut v["tally"]["faces"]["counts"];
+        let mut twenty = faces.as_array().unwrap().clone();
+        twenty.resize(20, 0.into());
+        *faces = twenty.into();
+    });
+    assert_eq!(
+        m(d),
+        "dicesim: c/s1.part.json: `tally`: 20 face counts, but its die shows 6 numbers (1–6)\n"
+    );
+    std::fs::write(&part, &intact).unwrap();
     for bad in [-1.0, 1e308] {
         edit_part(&part, |v| v["elapsed_s"] = bad.into());
         let e = m(d);
