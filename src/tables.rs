@@ -29,21 +29,21 @@ pub fn batch_counts(out: &mut dyn Write, s: &BatchSummary) -> std::io::Result<()
         "face   count   share   95% interval   of the {faced} rolls that ended on a face; {} did not (status below)",
         s.rolls - faced
     )?;
-    for f in 0..6 {
-        let [low, high] = s.face_intervals[f].map(|x| 100.0 * x);
+    let rows = s.faces.by_number().zip(&s.face_shares).zip(&s.face_intervals);
+    for (((number, count), share), interval) in rows {
+        let [low, high] = interval.map(|x| 100.0 * x);
         writeln!(
             out,
-            "{:>4} {:>7}  {:>5.1}%  {low:>5.1}–{high:.1}%",
-            f + 1,
-            s.faces.counts[f],
-            100.0 * s.face_shares[f]
+            "{number:>4} {count:>7}  {:>5.1}%  {low:>5.1}–{high:.1}%",
+            100.0 * share
         )?;
     }
     match (s.chi_square, s.p_value) {
         // p as the explorer prints it (three significant digits, 6.02e-28 rather than 0.0000).
         (Some(chi2), Some(p)) => writeln!(
             out,
-            "χ² against a fair die  {chi2:.3} (5 dof), p = {}",
+            "χ² against a fair die  {chi2:.3} ({} dof), p = {}",
+            s.faces.degrees_of_freedom(),
             fmt_num(p)
         )?,
         _ => writeln!(out, "χ² against a fair die  n/a (no faces)")?,
@@ -158,10 +158,12 @@ pub fn map_summary(
     } else {
         writeln!(out, "y  {} from {} to {}", y.key.label(), y.min, y.max)?;
     }
-    let shares: Vec<String> = (1..=6)
-        .map(|f| format!("{f}: {:.1}%", 100.0 * faces.share(f)))
+    let shares: Vec<String> = (faces.numbers().iter().zip(faces.shares()))
+        .map(|(f, share)| format!("{f}: {:.1}%", 100.0 * share))
         .collect();
-    writeln!(out, "faces over the map  {}", shares.join(", "))?;
+    for line in wrapped("faces over the map  ", &shares, LINE_WIDTH) {
+        writeln!(out, "{line}")?;
+    }
     writeln!(
         out,
         "cells               {} of {known} with a face (the shares above), {} without; {} of them rolled, the rest filled",
@@ -170,6 +172,32 @@ pub fn map_summary(
         map.sampled
     )?;
     Ok(())
+}
+
+/// Columns a list is wrapped to: a terminal's 80.
+const LINE_WIDTH: usize = 80;
+
+/// `items` after `lead`, joined by ", " and wrapped at `width` columns (characters) onto
+/// lines indented as far as `lead`; a line holds at least one item.
+fn wrapped(lead: &str, items: &[String], width: usize) -> Vec<String> {
+    let indent = " ".repeat(lead.chars().count());
+    let mut lines = vec![lead.to_string()];
+    for (k, item) in items.iter().enumerate() {
+        let last = k + 1 == items.len();
+        let piece = if last { item.clone() } else { format!("{item},") };
+        let line = lines.last_mut().expect("one line at least");
+        let fresh = line.chars().count() == indent.chars().count();
+        let room = line.chars().count() + usize::from(!fresh) + piece.chars().count();
+        if fresh {
+            line.push_str(&piece);
+        } else if room <= width {
+            line.push(' ');
+            line.push_str(&piece);
+        } else {
+            lines.push(format!("{indent}{piece}"));
+        }
+    }
+    lines
 }
 
 /// The table: one column of P(same face) per curve, then chance, ε½ and the start face.
@@ -899,6 +927,85 @@ mod tests {
         let mut out = Vec::new();
         write(&mut out).unwrap();
         String::from_utf8(out).unwrap()
+    }
+
+    /// 200 settled rolls of a d20: faces 1..10 off their expected 10 by +5 −5 +4 −4 +3 −3
+    /// +2 −2 +1 −1, faces 11..20 on it.
+    fn d20_summary() -> BatchSummary {
+        use dicesim_experiment::tally::Tally;
+        use dicesim_physics::Status;
+        let numbers: &[u8] = &[
+            1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20,
+        ];
+        let mut counts = [10u64; 20];
+        for (k, d) in [5i64, -5, 4, -4, 3, -3, 2, -2, 1, -1].into_iter().enumerate() {
+            counts[k] = (10 + d) as u64;
+        }
+        let mut records = Vec::new();
+        for (&face, &count) in numbers.iter().zip(&counts) {
+            for _ in 0..count {
+                records.push(dicesim_experiment::RollRecord {
+                    id: records.len() as u64,
+                    initial: InitialCondition::default(),
+                    outcome: Outcome {
+                        status: Status::Settled,
+                        face: Some(face),
+                        steps: 1,
+                        time_s: 0.001,
+                        impacts: 0,
+                        first_impact: None,
+                    },
+                    start_face: face,
+                });
+            }
+        }
+        Tally::of_records(numbers, &records).summary(std::time::Duration::ZERO)
+    }
+
+    #[test]
+    fn a_d20s_summary_lists_its_twenty_faces_within_80_columns() {
+        let table = text(|out| batch_counts(out, &d20_summary()));
+        let lines: Vec<&str> = table.lines().collect();
+        // The header, then one row per face in the die's order.
+        let rows = &lines[1..21];
+        for (k, row) in rows.iter().enumerate() {
+            assert!(row.starts_with(&format!("{:>4} ", k + 1)), "{row}");
+            assert!(row.chars().count() <= 80, "{row}");
+        }
+        // 15 of 200 = 7.5 %, its Wilson interval (0.075 + 0.0096)/1.0192 ∓ 0.0370 =
+        // 4.6–12.0 %; face 20 on its expected 10, 5.0 %.
+        assert_eq!(rows[0], "   1      15    7.5%    4.6–12.0%");
+        assert!(rows[19].starts_with("  20      10    5.0%"), "{}", rows[19]);
+        // χ² = 2·(25 + 16 + 9 + 4 + 1)/10 = 11 on 19 dof; p = 0.92384 (the odd-dof closed
+        // form, stats.rs), printed to four decimals.
+        assert_eq!(lines[21], "χ² against a fair die  11.000 (19 dof), p = 0.9238");
+        assert!(lines[21].chars().count() <= 80);
+        assert_eq!(
+            lines[22],
+            "bias detectable in     — (no bias measured beyond chance)"
+        );
+    }
+
+    #[test]
+    fn a_long_list_wraps_at_80_columns_under_its_lead() {
+        let lead = "faces over the map  ";
+        let d20: Vec<String> = (1..=20).map(|f| format!("{f}: 5.0%")).collect();
+        // 20 columns of lead, then "n: 5.0%," (8) or "nn: 5.0%," (9) with a space between:
+        // 1–6 end at column 73 (7 would end at 82), 7–12 at 76, 13–18 at 79, then 19–20.
+        let lines = wrapped(lead, &d20, 80);
+        let pad = " ".repeat(20);
+        assert_eq!(
+            lines,
+            [
+                format!("{lead}1: 5.0%, 2: 5.0%, 3: 5.0%, 4: 5.0%, 5: 5.0%, 6: 5.0%,"),
+                format!("{pad}7: 5.0%, 8: 5.0%, 9: 5.0%, 10: 5.0%, 11: 5.0%, 12: 5.0%,"),
+                format!("{pad}13: 5.0%, 14: 5.0%, 15: 5.0%, 16: 5.0%, 17: 5.0%, 18: 5.0%,"),
+                format!("{pad}19: 5.0%, 20: 5.0%"),
+            ]
+        );
+        // Six faces stay on the one line they always had.
+        let d6: Vec<String> = (1..=6).map(|f| format!("{f}: 16.7%")).collect();
+        assert_eq!(wrapped(lead, &d6, 80), [format!("{lead}{}", d6.join(", "))]);
     }
 
     #[test]

@@ -63,7 +63,8 @@ fn a_gentle_drop_keeps_the_start_face_and_a_high_one_does_not() {
     let p = Params::default();
     for (height, low, high) in [(1.8, 0.95, 1.0), (15.0, 0.0, 0.40)] {
         let records = batch(&p, &drop_ranges(height), 5, 400, 2);
-        let summary = dicesim_experiment::BatchSummary::new(&records, Default::default());
+        let summary =
+            dicesim_experiment::BatchSummary::new(p.die.face_numbers(), &records, Default::default());
         assert_eq!(summary.status.settled, 400, "{height} cm: {:?}", summary.status);
         let same = summary.start_face_shares[0];
         assert!(

@@ -55,7 +55,7 @@ fn a_heavy_corner_keeps_its_three_faces_down() {
     extra[7] = 2.0;
     let summary = batch(&loaded(extra), 1500);
     let n = summary.faces.total() as f64;
-    let counts = summary.faces.counts();
+    let counts = summary.faces.counts.clone();
     let heavy = (counts[3] + counts[4] + counts[5]) as f64 / n;
     // The batch's own 95 % interval on that share lies below the fair die's 1/2.
     let se = (heavy * (1.0 - heavy) / n).sqrt();
@@ -65,7 +65,7 @@ fn a_heavy_corner_keeps_its_three_faces_down() {
     );
     assert!(summary.p_value.unwrap() < 0.01, "{counts:?}");
     // The fair die's batch from the same starts shows no such deficit.
-    let fair = batch(&Params::default(), 1500).faces.counts();
+    let fair = batch(&Params::default(), 1500).faces.counts.clone();
     let fair_heavy = (fair[3] + fair[4] + fair[5]) as f64 / fair.iter().sum::<u64>() as f64;
     assert!(fair_heavy > heavy + 2.0 * se, "{fair:?} against {counts:?}");
 }

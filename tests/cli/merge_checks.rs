@@ -260,7 +260,7 @@ fn edited_cells_are_refused_with_their_row_and_field() {
         (
             "face 9",
             |c| c[col("face")] = "9".into(),
-            "face 9 is not a face of a die",
+            "face 9 is not a face of this die (its faces read 1–6)",
         ),
         (
             "timeout where it settled",
@@ -414,6 +414,19 @@ fn counts_that_disagree_with_each_other_or_the_records_are_refused() {
     assert!(
         e.starts_with("dicesim: c/s1.part.json: its face counts add up to 1844674407370955"),
         "{e}"
+    );
+    std::fs::write(&part, &intact).unwrap();
+    // Counts of another die (twenty, the six counted and fourteen zeros) for the cube's
+    // setup: not one count per number it shows, however they add up.
+    edit_part(&part, |v| {
+        let faces = &mut v["tally"]["faces"]["counts"];
+        let mut twenty = faces.as_array().unwrap().clone();
+        twenty.resize(20, 0.into());
+        *faces = twenty.into();
+    });
+    assert_eq!(
+        m(d),
+        "dicesim: c/s1.part.json: `tally`: 20 face counts, but its die shows 6 numbers (1–6)\n"
     );
     std::fs::write(&part, &intact).unwrap();
     for bad in [-1.0, 1e308] {

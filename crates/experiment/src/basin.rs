@@ -182,6 +182,9 @@ pub struct BasinMap {
     pub method: Method,
     /// Row-major, `j * width + i`; `None` where nothing is known yet (a partial map).
     pub cells: Vec<Option<Cell>>,
+    /// The numbers the map's die shows ([`Die::face_numbers`](dicesim_physics::Die::face_numbers)),
+    /// in the order its key and colours list them.
+    pub numbers: &'static [u8],
     /// How many cells were rolled.
     pub sampled: usize,
     /// False for a partial map (delivered while running, or after a cancel).
@@ -207,11 +210,14 @@ impl BasinMap {
 
     /// The faces of the cells rolled or filled so far.
     pub fn face_tally(&self) -> FaceTally {
-        self.cells
-            .iter()
-            .flatten()
-            .filter_map(|c| c.outcome.face)
-            .collect()
+        self.face_tally_of(&self.cells)
+    }
+
+    /// The faces of `cells`, some of this map's.
+    pub(crate) fn face_tally_of(&self, cells: &[Option<Cell>]) -> FaceTally {
+        let mut tally = FaceTally::new(self.numbers);
+        (cells.iter().flatten().filter_map(|c| c.outcome.face)).for_each(|f| tally.add(f));
+        tally
     }
 
     /// How the map was computed, in words.
@@ -435,6 +441,7 @@ pub fn run_map_rows(
         y: y.clone(),
         method,
         cells: vec![None; x.cells * y.cells],
+        numbers: params.die.face_numbers(),
         sampled: 0,
         complete: false,
         switched_to_uniform: None,

@@ -121,11 +121,13 @@ pub struct Batch {
     pub elapsed: Duration,
     /// Threads used.
     pub jobs: usize,
+    /// The numbers its die shows ([`Die::face_numbers`](dicesim_physics::Die::face_numbers)).
+    pub numbers: &'static [u8],
 }
 
 impl Batch {
     pub fn summary(&self) -> BatchSummary {
-        BatchSummary::new(&self.records, self.elapsed)
+        BatchSummary::new(self.numbers, &self.records, self.elapsed)
     }
 }
 
@@ -185,6 +187,7 @@ pub fn run_batch(
         cancelled: run.cancelled,
         elapsed: start.elapsed(),
         jobs: run.jobs,
+        numbers: params.die.face_numbers(),
     })
 }
 
@@ -208,7 +211,7 @@ pub fn stream_batch(
     sink: &mut dyn FnMut(&[RollRecord]) -> Result<(), String>,
 ) -> Result<BatchRun, Error> {
     let start = Instant::now();
-    let mut tally = Tally::default();
+    let mut tally = Tally::new(params.die.face_numbers());
     let check = StabilityCheck::new(params);
     let mut past_stability_limit = 0;
     let run = stream_setups(
@@ -404,7 +407,11 @@ mod tests {
             record(2, Status::Unstable, None, 5),
         ];
         rs.extend((0..2).map(|_| record(5, Status::Settled, Some(5), 200)));
-        let s = BatchSummary::new(&rs, Duration::from_millis(500));
+        let s = BatchSummary::new(
+            Params::DEFAULT.die.face_numbers(),
+            &rs,
+            Duration::from_millis(500),
+        );
         assert_eq!(s.rolls, 12);
         assert_eq!(s.faces.counts, [2, 1, 1, 2, 2, 1]);
         // n = 9 faces, expected 1.5 each: χ² = 6·0.5²/1.5 = 1.

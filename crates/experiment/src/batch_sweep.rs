@@ -432,6 +432,7 @@ fn write_versus_line(line: &mut Vec<u8>, (a, b): (&RollRecord, &RollRecord), spi
 mod tests {
     use super::*;
     use crate::batch::run_batch;
+    use crate::tally::Tally;
 
     #[test]
     fn a_shard_rolls_its_slice_of_the_sweeps_ids() {
@@ -493,7 +494,7 @@ mod tests {
         assert_eq!((part.range, part.records.as_deref()), ([0, 3], Some("p0.csv")));
         // The part's counts are those of the rolls: the same as a batch that keeps them all.
         let kept = run_batch(&params, &sweep.rolls(), 0, &never, &mut |_| {}).unwrap();
-        assert_eq!(part.tally, Some(kept.records.iter().collect()));
+        assert_eq!(part.tally, Some(Tally::of_records(kept.numbers, &kept.records)));
     }
 
     #[test]

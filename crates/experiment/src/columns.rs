@@ -6,7 +6,8 @@
 //! one row here (and the field of the record it shows).
 
 use crate::data_file::{Column, Kind};
-use crate::record::{RollRecord, face_ok};
+use crate::record::RollRecord;
+use crate::stats::numbers_words;
 use dicesim_physics::initial::limits;
 use dicesim_physics::{
     FirstImpact, InitialCondition, Outcome, Params, Placement, Status, face_most_nearly_up,
@@ -62,7 +63,8 @@ impl Cell<'_> {
 pub(crate) enum Type {
     /// A whole number ≥ 0 (Parquet `INT64`, unsigned 64 bit).
     Count,
-    /// A face, 1 to 6 (Parquet `INT32`, unsigned 8 bit).
+    /// A number a die shows, 0 to 255 (Parquet `INT32`, unsigned 8 bit): which numbers
+    /// its die shows is the setup's ([`RecordCheck::is_face`]).
     Face,
     /// A double, written in its shortest round-trip form.
     Real,
@@ -362,10 +364,10 @@ pub(crate) static COLUMNS: [RecordColumn; 23] = [
         optional: true,
         get: |r| r.outcome.face.map_or(Cell::Empty, |f| Cell::Whole(u64::from(f))),
         set: |r, c| put(&mut r.outcome.face, c.small().map(Some)),
-        check: Some(|_, r| {
+        check: Some(|check, r| {
             let o = &r.outcome;
             match (o.status, o.face) {
-                (_, Some(f)) if !face_ok(f) => Err(format!("face {f} is not a face of a die")),
+                (_, Some(f)) if !check.is_face(f) => Err(check.not_a_face("face", f)),
                 (Status::Timeout | Status::Unstable, Some(f)) => Err(format!(
                     "face {f} with status `{}` (only a settled roll has a face)",
                     o.status.name()
@@ -484,11 +486,10 @@ pub(crate) static COLUMNS: [RecordColumn; 23] = [
         optional: true,
         get: |r| first_impact(r, |f| Cell::Whole(u64::from(f.face_down))),
         set: |r, c| put(&mut first_impact_mut(r).face_down, c.small()),
-        check: Some(|_, r| match &r.outcome.first_impact {
-            Some(f) if !face_ok(f.face_down) => Err(format!(
-                "first_impact_face_down {} is not a face of a die",
-                f.face_down
-            )),
+        check: Some(|check, r| match &r.outcome.first_impact {
+            Some(f) if !check.is_face(f.face_down) => {
+                Err(check.not_a_face("first_impact_face_down", f.face_down))
+            }
             _ => Ok(()),
         }),
     },
@@ -647,6 +648,24 @@ impl RecordCheck {
     /// The clock that prints the records' times.
     pub fn clock(&self) -> &StepClock {
         &self.clock
+    }
+
+    /// The numbers the setup's die shows ([`Die::face_numbers`](dicesim_physics::Die::face_numbers)).
+    pub fn numbers(&self) -> &'static [u8] {
+        self.params.die.face_numbers()
+    }
+
+    /// Whether a roll of the setup's die can show `face`.
+    pub fn is_face(&self, face: u8) -> bool {
+        self.numbers().contains(&face)
+    }
+
+    /// The refusal of `face` in column `column`, a number the die does not show.
+    pub(crate) fn not_a_face(&self, column: &str, face: u8) -> String {
+        format!(
+            "{column} {face} is not a face of this die (its faces read {})",
+            numbers_words(self.numbers())
+        )
     }
 
     /// The face most nearly up at t = 0 of a roll from `initial`, placed exactly as
@@ -817,7 +836,7 @@ mod tests {
         refused(&|o| o.first_impact.as_mut().unwrap().time_s += 1e-9, "is not");
         refused(
             &|o| o.first_impact.as_mut().unwrap().face_down = 7,
-            "not a face of a die",
+            "first_impact_face_down 7 is not a face of this die (its faces read 1–6)",
         );
         refused(&|o| o.impacts = o.steps, "each needs a step clear of the table");
     }

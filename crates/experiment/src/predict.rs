@@ -239,7 +239,7 @@ pub fn run_prediction(
             })
             .collect();
         let done_before = i as u64 * group * spec.count;
-        let mut curve = CurveTally::new(spec.epsilons.len());
+        let mut curve = CurveTally::new(spec.epsilons.len(), params.die.face_numbers());
         let mut done = 0u64;
         let run = stream_batch(&params, &Rolls::Given(&starts), options, cancel, &mut |records| {
             done += records.len() as u64;
@@ -280,12 +280,12 @@ struct CurveTally {
 }
 
 impl CurveTally {
-    fn new(epsilons: usize) -> CurveTally {
+    fn new(epsilons: usize, numbers: &'static [u8]) -> CurveTally {
         CurveTally {
             open: Vec::with_capacity(epsilons + 1),
             group: epsilons + 1,
             starts: 0,
-            faces: FaceTally::default(),
+            faces: FaceTally::new(numbers),
             kept_start_face: 0,
             pairs: vec![0; epsilons],
             same: vec![0; epsilons],
@@ -337,7 +337,7 @@ impl CurveTally {
                 interval: wilson_interval(self.same[j], self.pairs[j]),
             })
             .collect();
-        let chance: f64 = (1..=6).map(|f| self.faces.share(f).powi(2)).sum();
+        let chance: f64 = self.faces.shares().iter().map(|s| s.powi(2)).sum();
         let half = 0.5 * (1.0 + chance);
         let with_face = self.faces.total();
         PredictCurve {
@@ -345,7 +345,7 @@ impl CurveTally {
             starts: self.starts,
             threshold: threshold(&points, half),
             points,
-            faces: self.faces,
+            faces: self.faces.clone(),
             chance,
             half,
             start_face_share: if with_face == 0 {

@@ -79,8 +79,3 @@ pub(crate) fn roll_record_or_cancel(
         start_face,
     })
 }
-
-/// Whether `f` names a face of the die (1 to 6).
-pub(crate) fn face_ok(f: u8) -> bool {
-    (1..=6).contains(&f)
-}

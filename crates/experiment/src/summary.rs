@@ -57,15 +57,16 @@ pub struct StatusCounts {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct BatchSummary {
     pub rolls: u64,
-    /// Settled rolls per face 1..6.
+    /// Settled rolls per number the die shows, in its order ([`FaceTally::numbers`]).
     pub faces: FaceTally,
-    /// Share of each face 1..6 among rolls that ended with a face.
-    pub face_shares: [f64; 6],
-    /// The 95 % (Wilson) interval of each face's share.
-    pub face_intervals: [[f64; 2]; 6],
+    /// Share of each number among rolls that ended with a face, in the die's order.
+    pub face_shares: Vec<f64>,
+    /// The 95 % (Wilson) interval of each number's share, in the die's order.
+    pub face_intervals: Vec<[f64; 2]>,
     /// Pearson's χ² of the face counts against a fair die (`None` without faces).
     pub chi_square: Option<f64>,
-    /// Probability of at least this χ² from a fair die (5 degrees of freedom).
+    /// Probability of at least this χ² from a fair die (one degree of freedom fewer than the
+    /// die has numbers).
     pub p_value: Option<f64>,
     /// Rolls at which the χ² test at 5 % would detect the bias these faces measure with 80 %
     /// power (`None`: no bias stands out of the noise).

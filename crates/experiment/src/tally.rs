@@ -158,11 +158,11 @@ impl<'de> Deserialize<'de> for ExactSum {
 }
 
 /// Everything a batch summary is computed from, as sums that merge exactly.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Tally {
     pub rolls: u64,
-    /// Settled rolls per face 1..6.
+    /// Settled rolls per number the die shows.
     pub faces: FaceTally,
     pub start_face: StartFaceCounts,
     pub status: StatusCounts,
@@ -173,6 +173,27 @@ pub struct Tally {
 }
 
 impl Tally {
+    /// No rolls yet of a die that shows `numbers` ([`Die::face_numbers`](dicesim_physics::Die::face_numbers)).
+    pub fn new(numbers: &'static [u8]) -> Tally {
+        Tally {
+            rolls: 0,
+            faces: FaceTally::new(numbers),
+            start_face: StartFaceCounts::default(),
+            status: StatusCounts::default(),
+            steps: 0,
+            simulated_s: ExactSum::default(),
+        }
+    }
+
+    /// Counts read from a file, as those of a die that shows `numbers`
+    /// ([`FaceTally::of_die`]).
+    pub fn of_die(self, numbers: &'static [u8]) -> Result<Tally, String> {
+        Ok(Tally {
+            faces: self.faces.of_die(numbers)?,
+            ..self
+        })
+    }
+
     /// Counts one roll.
     pub fn add(&mut self, r: &RollRecord) {
         self.rolls += 1;
@@ -230,9 +251,7 @@ impl Tally {
     /// Adds another tally's rolls (of disjoint rolls: a shard's).
     pub fn merge(&mut self, other: &Tally) {
         self.rolls += other.rolls;
-        for (c, o) in self.faces.counts.iter_mut().zip(other.faces.counts) {
-            *c += o;
-        }
+        self.faces.merge(&other.faces);
         self.start_face.same += other.start_face.same;
         self.start_face.adjacent += other.start_face.adjacent;
         self.start_face.opposite += other.start_face.opposite;
@@ -251,8 +270,8 @@ impl Tally {
         let rate = |n: f64| if elapsed_s > 0.0 { n / elapsed_s } else { 0.0 };
         BatchSummary {
             rolls: self.rolls,
-            faces: self.faces,
-            face_shares: std::array::from_fn(|i| self.faces.share(i as u8 + 1)),
+            faces: self.faces.clone(),
+            face_shares: self.faces.shares(),
             face_intervals: self.faces.share_intervals(),
             chi_square: self.faces.chi_square(),
             p_value: self.faces.p_value(),
@@ -269,20 +288,23 @@ impl Tally {
     }
 }
 
-impl<'a> FromIterator<&'a RollRecord> for Tally {
-    fn from_iter<I: IntoIterator<Item = &'a RollRecord>>(records: I) -> Self {
-        let mut t = Tally::default();
-        for r in records {
-            t.add(r);
-        }
+impl Tally {
+    /// The tally of `records` of a die that shows `numbers`.
+    pub fn of_records<'a>(
+        numbers: &'static [u8],
+        records: impl IntoIterator<Item = &'a RollRecord>,
+    ) -> Tally {
+        let mut t = Tally::new(numbers);
+        records.into_iter().for_each(|r| t.add(r));
         t
     }
 }
 
 impl BatchSummary {
-    /// Tallies `records` that took `elapsed` of wall-clock time.
-    pub fn new(records: &[RollRecord], elapsed: Duration) -> BatchSummary {
-        records.iter().collect::<Tally>().summary(elapsed)
+    /// Tallies `records` of a die that shows `numbers`, which took `elapsed` of wall-clock
+    /// time.
+    pub fn new(numbers: &'static [u8], records: &[RollRecord], elapsed: Duration) -> BatchSummary {
+        Tally::of_records(numbers, records).summary(elapsed)
     }
 }
 
@@ -359,13 +381,15 @@ mod tests {
             },
             start_face: 1,
         };
-        let first: Tally = [
-            roll(Status::Settled, Some(1), 0.1),
-            roll(Status::Timeout, None, 0.2),
-        ]
-        .iter()
-        .collect();
-        let second: Tally = [roll(Status::Settled, Some(6), 0.3)].iter().collect();
+        let d6 = &[1, 2, 3, 4, 5, 6];
+        let first = Tally::of_records(
+            d6,
+            &[
+                roll(Status::Settled, Some(1), 0.1),
+                roll(Status::Timeout, None, 0.2),
+            ],
+        );
+        let second = Tally::of_records(d6, &[roll(Status::Settled, Some(6), 0.3)]);
         let mut merged = first.clone();
         merged.merge(&second);
         assert_eq!((merged.rolls, merged.steps), (3, 30));
@@ -383,6 +407,36 @@ mod tests {
                 .unwrap_err()
                 .contains("more than 3 rolls of at most 9 steps")
         );
+    }
+
+    #[test]
+    fn a_d20s_tally_counts_its_twenty_numbers_and_refuses_any_other() {
+        let d20: &[u8] = &[
+            1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20,
+        ];
+        let settled = |id, face| RollRecord::ended(id, Status::Settled, Some(face));
+        let records = [settled(0, 20), settled(1, 7), settled(2, 20)];
+        let t = Tally::of_records(d20, &records);
+        let mut expected = vec![0; 20];
+        (expected[19], expected[6]) = (2, 1);
+        assert_eq!(t.faces.counts, expected);
+        assert_eq!(t.check(1), Ok(()));
+        let s = t.summary(Duration::ZERO);
+        // Three rolls on 20 faces, 0.15 expected each: χ² = (1.85²·1 + 0.85²·1 + 0.15²·18)/0.15
+        // = (3.4225 + 0.7225 + 0.405)/0.15 = 30.333…, on 19 dof.
+        assert!((s.chi_square.unwrap() - 30.333_333_333_333).abs() < 1e-9);
+        assert_eq!((s.face_shares.len(), s.face_intervals.len()), (20, 20));
+        assert_eq!(s.face_shares[19], 2.0 / 3.0);
+        // A 21 is no face of it: counted settled, not counted as a face, which the check sees.
+        let bad = Tally::of_records(d20, &[settled(0, 21)]);
+        assert_eq!(
+            bad.check(1).unwrap_err(),
+            "its face counts add up to 0, but it counts 1 settled rolls"
+        );
+        // Counts read back of another die are refused.
+        let read: Tally = serde_json::from_str(&serde_json::to_string(&t).unwrap()).unwrap();
+        assert_eq!(read.clone().of_die(d20), Ok(t));
+        assert!(read.of_die(&[1, 2, 3, 4]).is_err());
     }
 
     proptest! {

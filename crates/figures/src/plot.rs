@@ -21,15 +21,55 @@ pub const SIZE: (u32, u32) = (1200, 800);
 /// Width of the legend strip on the right.
 const LEGEND_WIDTH: u32 = 200;
 
-/// Okabe–Ito colours for faces 1..6: distinguishable with the common colour-vision deficiencies.
-pub const FACE_COLOURS: [RGBColor; 6] = [
+/// The colours of a die's faces, by place in its list of numbers
+/// ([`Die::face_numbers`](dicesim_physics::Die::face_numbers)): the first six Okabe–Ito's
+/// (the cube's faces 1..6, distinguishable with the common colour-vision deficiencies), then
+/// Paul Tol's muted and light schemes for a d8 to a d20, none of them a grey or pink the
+/// endings without a face use. Past 20 faces [`face_colour`] turns the hue by the golden angle.
+pub const FACE_COLOURS: [RGBColor; 20] = [
     RGBColor(230, 159, 0),
     RGBColor(86, 180, 233),
     RGBColor(0, 158, 115),
     RGBColor(240, 228, 66),
     RGBColor(0, 114, 178),
     RGBColor(213, 94, 0),
+    RGBColor(51, 34, 136),
+    RGBColor(17, 119, 51),
+    RGBColor(136, 34, 85),
+    RGBColor(153, 153, 51),
+    RGBColor(68, 170, 153),
+    RGBColor(170, 68, 153),
+    RGBColor(221, 204, 119),
+    RGBColor(136, 204, 238),
+    RGBColor(204, 102, 119),
+    RGBColor(187, 204, 51),
+    RGBColor(119, 170, 221),
+    RGBColor(238, 136, 102),
+    RGBColor(68, 187, 153),
+    RGBColor(255, 170, 187),
 ];
+
+/// The colour of the face at place `k` of its die's list of numbers: [`FACE_COLOURS`], then
+/// hues a golden angle apart at fixed saturation and lightness.
+pub fn face_colour_at(k: usize) -> RGBColor {
+    match FACE_COLOURS.get(k) {
+        Some(&c) => c,
+        None => {
+            let hue = ((k - FACE_COLOURS.len()) as f64 * 137.507_764) % 360.0;
+            let c = HSLColor(hue / 360.0, 0.6, 0.5).to_rgba();
+            RGBColor(c.0, c.1, c.2)
+        }
+    }
+}
+
+/// The colour of `face` on a die that shows `numbers` ([`face_colour_at`] its place); a
+/// number it does not show (which no map of it holds) in the no-face grey.
+pub fn face_colour(numbers: &[u8], face: u8) -> RGBColor {
+    numbers
+        .iter()
+        .position(|&n| n == face)
+        .map_or(NO_FACE, face_colour_at)
+}
 const NO_FACE: RGBColor = RGBColor(200, 200, 200);
 const TIMEOUT: RGBColor = RGBColor(90, 90, 90);
 const UNSTABLE: RGBColor = RGBColor(204, 121, 167);
@@ -573,14 +613,15 @@ pub fn time_range(map: &BasinMap) -> Option<(f64, f64)> {
     })
 }
 
-/// A cell's colour in the image; the explorer draws its map in the same colours.
-pub fn cell_colour(cell: Option<&Cell>, layer: Layer, times: Option<(f64, f64)>) -> RGBColor {
+/// A cell's colour in the image, its die showing `numbers`; the explorer draws its map in
+/// the same colours.
+pub fn cell_colour(numbers: &[u8], cell: Option<&Cell>, layer: Layer, times: Option<(f64, f64)>) -> RGBColor {
     let Some(c) = cell else { return UNKNOWN };
     match (c.outcome.status, c.outcome.face, layer) {
         (Status::Timeout, ..) => TIMEOUT,
         (Status::Unstable, ..) => UNSTABLE,
         (Status::Settled, None, Layer::Face) => NO_FACE,
-        (Status::Settled, Some(f), Layer::Face) => FACE_COLOURS[f as usize - 1],
+        (Status::Settled, Some(f), Layer::Face) => face_colour(numbers, f),
         (Status::Settled, _, Layer::SettleTime) if !c.sampled => INFERRED,
         (Status::Settled, _, Layer::SettleTime) => {
             let (lo, hi) = times.unwrap_or((0.0, 1.0));
@@ -708,7 +749,7 @@ fn draw<DB: DrawingBackend>(
                 Some((
                     x.value(i),
                     c.outcome.time_s,
-                    cell_colour(Some(c), Layer::Face, times),
+                    cell_colour(map.numbers, Some(c), Layer::Face, times),
                 ))
             })
             .collect();
@@ -751,9 +792,11 @@ fn draw<DB: DrawingBackend>(
         for j in 0..map.height() {
             let mut i = 0;
             while i < map.width() {
-                let colour = cell_colour(map.cell(i, j), layer, times);
+                let colour = cell_colour(map.numbers, map.cell(i, j), layer, times);
                 let start = i;
-                while i + 1 < map.width() && cell_colour(map.cell(i + 1, j), layer, times) == colour {
+                while i + 1 < map.width()
+                    && cell_colour(map.numbers, map.cell(i + 1, j), layer, times) == colour
+                {
                     i += 1;
                 }
                 let (yc, xa, xb) = (y.value(j), x.value(start), x.value(i));
@@ -786,9 +829,9 @@ fn face_legend<DB: DrawingBackend>(
             .flatten()
             .any(|c| c.outcome.status == status && (status != Status::Settled || c.outcome.face == face))
     };
-    let mut entries: Vec<(String, RGBColor)> = (1..=6u8)
-        .filter(|&f| occurs(Status::Settled, Some(f)))
-        .map(|f| (format!("face {f}"), FACE_COLOURS[f as usize - 1]))
+    let mut entries: Vec<(String, RGBColor)> = (map.numbers.iter().enumerate())
+        .filter(|&(_, &f)| occurs(Status::Settled, Some(f)))
+        .map(|(k, f)| (format!("face {f}"), face_colour_at(k)))
         .collect();
     for (ending, status, colour) in [
         (Ending::WithoutFace, Status::Settled, NO_FACE),
@@ -803,7 +846,8 @@ fn face_legend<DB: DrawingBackend>(
 }
 
 /// Colour swatches with their labels from `top` down, a label too long for the strip on two
-/// lines.
+/// lines; entries closer together when at their usual spacing they would run off the strip
+/// (a d20's twenty faces and three endings).
 fn swatches<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     top: i32,
@@ -811,22 +855,19 @@ fn swatches<DB: DrawingBackend>(
     scale: Scale,
 ) -> Result<(), Error> {
     let px = |v: i32| scale.px(v);
+    let labelled: Vec<(Vec<String>, &RGBColor)> = (entries.iter())
+        .map(|(label, colour)| (label_lines(label), colour))
+        .collect();
+    let advance = |lines: usize| px(34 + 20 * (lines as i32 - 1));
+    let needed: i32 = labelled.iter().map(|(lines, _)| advance(lines.len())).sum();
+    let room = area.dim_in_pixel().1 as i32 - top - px(10);
     let mut y = top;
-    for (label, colour) in entries {
+    for (lines, colour) in labelled {
         area.draw(&Rectangle::new(
             [(px(10), y), (px(36), y + px(24))],
             colour.filled(),
         ))
         .map_err(plot_error)?;
-        let lines: Vec<String> = match label
-            .char_indices()
-            .filter(|&(i, c)| c == ' ' && i >= 8)
-            .map(|(i, _)| i)
-            .next()
-        {
-            Some(i) if label.chars().count() > 15 => vec![label[..i].to_string(), label[i + 1..].to_string()],
-            _ => vec![label.clone()],
-        };
         for (k, line) in lines.iter().enumerate() {
             area.draw(&Text::new(
                 line.as_str(),
@@ -835,9 +876,26 @@ fn swatches<DB: DrawingBackend>(
             ))
             .map_err(plot_error)?;
         }
-        y += px(34 + 20 * (lines.len() as i32 - 1));
+        y += match needed > room {
+            true => advance(lines.len()) * room / needed,
+            false => advance(lines.len()),
+        };
     }
     Ok(())
+}
+
+/// A legend's label on one line, or on two at its first space past the eighth character
+/// when longer than 15 characters.
+fn label_lines(label: &str) -> Vec<String> {
+    match label
+        .char_indices()
+        .filter(|&(i, c)| c == ' ' && i >= 8)
+        .map(|(i, _)| i)
+        .next()
+    {
+        Some(i) if label.chars().count() > 15 => vec![label[..i].to_string(), label[i + 1..].to_string()],
+        _ => vec![label.to_string()],
+    }
 }
 
 /// A vertical colour bar from the shortest (bottom) to the longest (top) settle time.
@@ -1085,6 +1143,97 @@ mod tests {
                 // And the SVG has that line as one text element.
                 assert!(texts.iter().any(|t| t.2 == line.replace("&", "&amp;")), "{line}");
             }
+        }
+    }
+
+    /// A 5×4 face map of a d20 (numbers 1..20), cell k showing face k + 1, and one cell of
+    /// each ending without a face.
+    fn d20_map() -> BasinMap {
+        use dicesim_experiment::{Axis, Cell, Method};
+        let numbers: &'static [u8] = &[
+            1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20,
+        ];
+        let cell = |status, face| Cell {
+            outcome: dicesim_physics::Outcome {
+                status,
+                face,
+                steps: 10,
+                time_s: 0.01,
+                impacts: 0,
+                first_impact: None,
+            },
+            start_face: 1,
+            sampled: true,
+        };
+        let mut cells: Vec<Option<Cell>> = numbers
+            .iter()
+            .map(|&f| Some(cell(Status::Settled, Some(f))))
+            .collect();
+        cells.extend([
+            Some(cell(Status::Settled, None)),
+            Some(cell(Status::Timeout, None)),
+            Some(cell(Status::Unstable, None)),
+            None,
+        ]);
+        BasinMap {
+            x: Axis::parse("initial.angular_velocity.x:-10:10", 6).unwrap(),
+            y: Axis::parse("ground.friction:0.2:1.4", 4).unwrap(),
+            method: Method::Uniform,
+            cells,
+            numbers,
+            sampled: 23,
+            complete: false,
+            switched_to_uniform: None,
+        }
+    }
+
+    #[test]
+    fn a_d20s_faces_take_twenty_colours_and_its_key_fits_the_image() {
+        // Twenty colours, none the same and none an ending's or an unknown cell's.
+        let mut colours: Vec<(u8, u8, u8)> = FACE_COLOURS.iter().map(|c| (c.0, c.1, c.2)).collect();
+        colours.extend([NO_FACE, TIMEOUT, UNSTABLE, UNKNOWN, INFERRED].map(|c| (c.0, c.1, c.2)));
+        let all = colours.len();
+        colours.sort();
+        colours.dedup();
+        assert_eq!(colours.len(), all);
+        // A colour by place in the die's list: the d10's 0 takes the cube's 1's colour, the
+        // d%'s 90 its tenth; a number the die does not show, the no-face grey.
+        let d10: &[u8] = &[0, 1, 2, 3, 4, 5, 6, 7, 8, 9];
+        let tens: &[u8] = &[0, 10, 20, 30, 40, 50, 60, 70, 80, 90];
+        assert_eq!(face_colour(d10, 0), FACE_COLOURS[0]);
+        assert_eq!(face_colour(tens, 90), FACE_COLOURS[9]);
+        assert_eq!(face_colour(tens, 9), NO_FACE);
+        // Past twenty, hues apart: 22 and 21 differ from each other and from the palette.
+        assert_ne!(face_colour_at(20), face_colour_at(21));
+        assert!(!FACE_COLOURS.contains(&face_colour_at(20)));
+
+        let map = d20_map();
+        let record = map_record(&map, Layer::Face, None);
+        let svg = String::from_utf8(image_bytes(&map, Layer::Face, &record, SIZE, ImageFormat::Svg).unwrap())
+            .unwrap();
+        // Each face's key entry, in the die's order, then the endings: all inside the image.
+        let texts: Vec<(String, f64)> = svg
+            .split("<text")
+            .skip(1)
+            .map(|chunk| {
+                let (tag, rest) = chunk.split_once('>').unwrap();
+                let at = tag.find(" y=\"").unwrap() + 4;
+                let y = tag[at..].split('"').next().unwrap().parse().unwrap();
+                (rest.split("</text>").next().unwrap().trim().to_string(), y)
+            })
+            .collect();
+        let key: Vec<&(String, f64)> = texts.iter().filter(|(t, _)| t.starts_with("face ")).collect();
+        let names: Vec<&str> = key.iter().map(|(t, _)| t.as_str()).collect();
+        let expected: Vec<String> = (1..=20).map(|f| format!("face {f}")).collect();
+        assert_eq!(names, expected);
+        assert!(key.windows(2).all(|w| w[0].1 < w[1].1), "top to bottom");
+        let lowest = texts.iter().map(|(_, y)| *y).fold(0.0, f64::max);
+        assert!(lowest + 18.0 <= f64::from(SIZE.1), "the key runs to y = {lowest}");
+        // Every face's colour is drawn.
+        for (k, _) in map.numbers.iter().enumerate() {
+            let c = face_colour_at(k);
+            let hex = format!("#{:02X}{:02X}{:02X}", c.0, c.1, c.2);
+            assert!(svg.to_uppercase().contains(&hex), "face {} {hex}", k + 1);
         }
     }
 

@@ -58,6 +58,13 @@ impl Setup {
         &self.preset.description
     }
 
+    /// The numbers a roll of the setup's die can show, in the order a batch's face counts
+    /// and shares list them ([`Die::face_numbers`](dicesim_physics::Die::face_numbers)).
+    #[getter]
+    fn face_numbers(&self) -> Vec<u8> {
+        self.preset.params().die.face_numbers().to_vec()
+    }
+
     /// The changes made since the preset was loaded, as `KEY=VALUE`.
     #[getter]
     fn changes(&self) -> Vec<String> {

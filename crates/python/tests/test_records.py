@@ -84,6 +84,11 @@ def test_the_report_is_batch_json(dicesim_cli):
     assert report == cli
     faces = table.column("face").to_pylist()
     assert sum(report["summary"]["faces"]["counts"]) == sum(f is not None for f in faces)
+    # One count per number the die shows, in its order: the cube's 1 to 6.
+    assert setup.face_numbers == [1, 2, 3, 4, 5, 6]
+    counts = report["summary"]["faces"]["counts"]
+    assert counts == [faces.count(n) for n in setup.face_numbers]
+    assert len(report["summary"]["face_shares"]) == len(setup.face_numbers)
 
 
 def test_a_pandas_frame_carries_the_provenance():

@@ -107,7 +107,7 @@ impl Parts {
         let preset = self.setup()?;
         let params = preset.params();
         params.validate()?;
-        let tally = self.tally(params.max_steps())?;
+        let tally = self.tally(&params)?;
         let with_records = self.first().records.is_some();
         if verify > 0 && !with_records {
             return Err(MergeError::Parts(
@@ -225,17 +225,15 @@ impl Parts {
         })
     }
 
-    /// The counts of every part added up, each checked first: consistent in itself and
-    /// with its shard's size and the setup's `max_steps` per roll.
-    fn tally(&self, max_steps: u64) -> Result<Tally, MergeError> {
-        let mut tally = Tally::default();
+    /// The counts of every part added up, each checked first: one per number the setup's
+    /// die shows, consistent in itself and with its shard's size and the setup's
+    /// `max_steps` per roll.
+    fn tally(&self, params: &Params) -> Result<Tally, MergeError> {
+        let numbers = params.die.face_numbers();
+        let max_steps = params.max_steps();
+        let mut tally = Tally::new(numbers);
         for (path, p) in self.iter() {
-            let t = p.tally.as_ref().ok_or_else(|| {
-                MergeError::Parts(format!(
-                    "{}: a batch part without its counts (`tally`)",
-                    path.display()
-                ))
-            })?;
+            let t = &part_tally(path, p, numbers)?;
             if t.rolls != p.len() {
                 return Err(MergeError::Parts(format!(
                     "{}: counts {} rolls, but its shard has {}",
@@ -250,6 +248,17 @@ impl Parts {
         }
         Ok(tally)
     }
+}
+
+/// The counts batch part `p` (from the file at `path`) claims, as those of a die that shows
+/// `numbers`.
+fn part_tally(path: &Path, p: &Part, numbers: &'static [u8]) -> Result<Tally, MergeError> {
+    let refused = |e: String| MergeError::Parts(format!("{}: {e}", path.display()));
+    let t = p
+        .tally
+        .clone()
+        .ok_or_else(|| refused("a batch part without its counts (`tally`)".to_string()))?;
+    t.of_die(numbers).map_err(|e| refused(format!("`tally`: {e}")))
 }
 
 /// What a batch's records must be: the setup's checks and draws, the columns, and the
@@ -594,7 +603,7 @@ fn for_each_record(
         expect,
         path: &path,
         next: part.range[0],
-        tally: Tally::default(),
+        tally: Tally::new(expect.check.numbers()),
     };
     match path.extension().and_then(|e| e.to_str()) {
         Some("csv") => {
@@ -623,13 +632,13 @@ fn for_each_record(
             part.len()
         )));
     }
-    let claimed = part.tally.as_ref().expect("checked: a batch part has its counts");
-    if reading.tally != *claimed {
+    let claimed = part_tally(part_path, part, expect.check.numbers())?;
+    if reading.tally != claimed {
         return Err(MergeError::Parts(format!(
             "{}: its counts are not those of its records in {} ({})",
             part_path.display(),
             path.display(),
-            tally_difference(claimed, &reading.tally)
+            tally_difference(&claimed, &reading.tally)
         )));
     }
     Ok(())
@@ -753,11 +762,13 @@ fn verify_records(params: &Params, records: &[RollRecord]) -> Result<(), MergeEr
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::stats::FaceTally;
     use crate::summary::{StartFaceCounts, StatusCounts};
 
     #[test]
     fn a_recount_names_the_first_count_that_differs() {
         let claimed = Tally {
+            faces: FaceTally::new(&[1, 2, 3, 4, 5, 6]),
             rolls: 2,
             steps: 900,
             status: StatusCounts {
@@ -769,7 +780,7 @@ mod tests {
                 adjacent: 1,
                 opposite: 0,
             },
-            ..Default::default()
+            ..Tally::new(&[])
         };
         assert_eq!(tally_difference(&claimed, &claimed.clone()), "the rolls");
         let mut found = claimed.clone();

@@ -80,12 +80,14 @@ impl Parts {
             .into_iter()
             .find(|l| l.name() == layer)
             .ok_or_else(|| bad_sweep(format!("unknown layer `{layer}`")))?;
-        let faces = self.faces()?;
+        let numbers = params.die.face_numbers();
+        let faces = self.faces(numbers)?;
         let mut map = BasinMap {
             x,
             y,
             method: Method::Uniform,
             cells: vec![None; width * height],
+            numbers,
             sampled: 0,
             complete: true,
             switched_to_uniform: None,
@@ -132,19 +134,12 @@ impl Parts {
         Ok((merged, staged))
     }
 
-    /// The face counts every part claims, added up.
-    fn faces(&self) -> Result<FaceTally, MergeError> {
-        let mut faces = FaceTally::default();
+    /// The face counts every part claims, added up: each one count per number the setup's
+    /// die shows (`numbers`).
+    fn faces(&self, numbers: &'static [u8]) -> Result<FaceTally, MergeError> {
+        let mut faces = FaceTally::new(numbers);
         for (path, p) in self.iter() {
-            let f = p.map_faces.as_ref().ok_or_else(|| {
-                MergeError::Parts(format!(
-                    "{}: a map part without its face counts (`map_faces`)",
-                    path.display()
-                ))
-            })?;
-            for (c, n) in faces.counts.iter_mut().zip(f.counts) {
-                *c += n;
-            }
+            faces.merge(&part_faces(path, p, numbers)?);
         }
         Ok(faces)
     }
@@ -181,35 +176,46 @@ impl Parts {
                 let index = first_cell + n as usize;
                 let (i, j) = (index % w, index / w);
                 let (nx, ny) = (Real(x.value(i)).to_string(), Real(y.value(j)).to_string());
-                cells[index] = Some(parse_map_row(row, i, j, Some((&nx, &ny, &check)))?);
+                cells[index] = Some(parse_map_row(row, i, j, &check, Some((&nx, &ny)))?);
                 Ok(())
             })
             .map_err(|e| row_error(&records, e))?;
         }
-        self.check_faces(&map.cells, w)?;
+        self.check_faces(map)?;
         verify_cells(params, base, (&map.x, &map.y), &map.cells, chosen)
     }
 
     /// Refuses a part whose face counts are not those of its own cells.
-    fn check_faces(&self, cells: &[Option<Cell>], w: usize) -> Result<(), MergeError> {
+    fn check_faces(&self, map: &BasinMap) -> Result<(), MergeError> {
+        let w = map.width();
         for (path, p) in self.iter() {
             let rows = p.range[0] as usize * w..p.range[1] as usize * w;
-            let found: FaceTally = cells[rows]
-                .iter()
-                .flatten()
-                .filter_map(|c| c.outcome.face)
-                .collect();
-            if Some(found) != p.map_faces {
+            let found = map.face_tally_of(&map.cells[rows]);
+            let claimed = part_faces(path, p, map.numbers)?;
+            if found != claimed {
                 return Err(MergeError::Parts(format!(
                     "{}: its face counts {:?} are not those of its cells {:?}",
                     path.display(),
-                    p.map_faces.map(|f| f.counts),
+                    claimed.counts,
                     found.counts
                 )));
             }
         }
         Ok(())
     }
+}
+
+/// The face counts map part `p` (from the file at `path`) claims, as counts of a die that
+/// shows `numbers`.
+fn part_faces(path: &std::path::Path, p: &Part, numbers: &'static [u8]) -> Result<FaceTally, MergeError> {
+    let refused = |e: String| MergeError::Parts(format!("{}: {e}", path.display()));
+    let faces = p
+        .map_faces
+        .clone()
+        .ok_or_else(|| refused("a map part without its face counts (`map_faces`)".to_string()))?;
+    faces
+        .of_die(numbers)
+        .map_err(|e| refused(format!("`map_faces`: {e}")))
 }
 
 /// Checks that the sidecar of a map part's CSV says its cells are this sweep's (`sweep`,

@@ -108,14 +108,16 @@ pub(super) fn copy_rows(
 /// [`BasinMap::write_csv`](crate::BasinMap::write_csv) writes it) that must be node
 /// `(i, j)`; its floats are in shortest round-trip form, so the cell comes back exactly.
 ///
-/// With `node`, the cell's coordinates as the map writes them (`x`, `y`) and the setup's
-/// checks, every field is checked: the coordinates are the node's, the outcome one a roll
-/// can end in ([`RecordCheck::check_outcome`]), and every cell written as the map writes it.
+/// Its faces must be numbers the setup's die shows (`check`). With `node`, the cell's
+/// coordinates as the map writes them (`x`, `y`), every field is checked: the coordinates
+/// are the node's, the outcome one a roll can end in ([`RecordCheck::check_outcome`]), and
+/// every cell written as the map writes it.
 pub(super) fn parse_map_row(
     row: &str,
     i: usize,
     j: usize,
-    node: Option<(&str, &str, &RecordCheck)>,
+    check: &RecordCheck,
+    node: Option<(&str, &str)>,
 ) -> Result<Cell, String> {
     let cells: Vec<&str> = row.split(',').collect();
     let [ri, rj, x, y, start_face, face, status, steps, time_s, sampled] = cells[..] else {
@@ -124,7 +126,7 @@ pub(super) fn parse_map_row(
     if (ri.parse(), rj.parse()) != (Ok(i), Ok(j)) || (ri, rj) != (&i.to_string()[..], &j.to_string()[..]) {
         return Err(format!("cell ({ri}, {rj}), expected ({i}, {j})"));
     }
-    if let Some((nx, ny, _)) = node
+    if let Some((nx, ny)) = node
         && (x, y) != (nx, ny)
     {
         return Err(format!(
@@ -134,14 +136,15 @@ pub(super) fn parse_map_row(
         ));
     }
     let number = |what: &str, s: &str| format!("{what} `{s}` is not valid");
+    // A number of the die's, or its refusal naming the column.
+    let die_face = |what: &str, s: &str| match s.parse::<u8>() {
+        Ok(f) if check.is_face(f) => Ok(f),
+        Ok(f) => Err(check.not_a_face(what, f)),
+        Err(_) => Err(number(what, s)),
+    };
     let face = match face {
         "" => None,
-        f => Some(
-            f.parse::<u8>()
-                .ok()
-                .filter(|f| (1..=6).contains(f))
-                .ok_or_else(|| number("face", f))?,
-        ),
+        f => Some(die_face("face", f)?),
     };
     let status = Status::from_name(status).ok_or_else(|| number("status", status))?;
     let outcome = Outcome {
@@ -153,7 +156,7 @@ pub(super) fn parse_map_row(
         impacts: 0,
         first_impact: None,
     };
-    if let Some((_, _, check)) = node {
+    if node.is_some() {
         check.check_outcome(&outcome)?;
         let written = [outcome.steps.to_string(), Real(outcome.time_s).to_string()];
         if [steps, time_s] != [written[0].as_str(), written[1].as_str()] {
@@ -164,11 +167,7 @@ pub(super) fn parse_map_row(
     }
     Ok(Cell {
         outcome,
-        start_face: start_face
-            .parse::<u8>()
-            .ok()
-            .filter(|f| (1..=6).contains(f))
-            .ok_or_else(|| number("start_face", start_face))?,
+        start_face: die_face("start_face", start_face)?,
         sampled: match sampled {
             "1" => true,
             "0" => false,
@@ -225,6 +224,8 @@ mod tests {
 
     #[test]
     fn map_rows_read_back_exactly() {
+        let check = RecordCheck::new(&dicesim_physics::Params::default());
+        let parse_map_row = |row, i, j, node| parse_map_row(row, i, j, &check, node);
         let c = parse_map_row("3,1,-60.0,0.1,2,5,settled,1234,1.2345000000000002,1", 3, 1, None).unwrap();
         assert_eq!(c.outcome.face, Some(5));
         assert_eq!(c.outcome.status, Status::Settled);
@@ -242,7 +243,15 @@ mod tests {
         );
         assert_eq!(
             parse_map_row("0,0,1,1,6,7,settled,9,3,0", 0, 0, None).unwrap_err(),
-            "face `7` is not valid"
+            "face 7 is not a face of this die (its faces read 1–6)"
+        );
+        assert_eq!(
+            parse_map_row("0,0,1,1,0,2,settled,9,3,0", 0, 0, None).unwrap_err(),
+            "start_face 0 is not a face of this die (its faces read 1–6)"
+        );
+        assert_eq!(
+            parse_map_row("0,0,1,1,6,x,settled,9,3,0", 0, 0, None).unwrap_err(),
+            "face `x` is not valid"
         );
         assert_eq!(
             parse_map_row("0,0,1", 0, 0, None).unwrap_err(),

@@ -381,7 +381,7 @@ fn loaded_corner_shows_the_bias_and_the_rolls_a_class_needs_that_it_states() {
     .unwrap();
     let s = run.summary;
     assert_eq!(s.status.settled, 4000);
-    let c = s.faces.counts();
+    let c = &s.faces.counts;
     let heavy = (c[3] + c[4] + c[5]) as f64 / s.faces.total() as f64;
     // 4000 rolls measure a share to ±0.8 points (one standard error).
     assert!(

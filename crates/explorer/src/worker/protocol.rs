@@ -274,7 +274,7 @@ pub struct BatchProgress {
 pub(crate) const LAST_ROLLS: usize = 12;
 
 /// The outcome table: face counts of random rolls and the last few rolls.
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct OutcomeTable {
     /// Settled rolls with a face up.
     pub tally: FaceTally,
@@ -287,7 +287,26 @@ pub struct OutcomeTable {
     pub last: VecDeque<RollRecord>,
 }
 
+/// The empty table of the default setup's die: what the screen holds before the worker's
+/// first table.
+impl Default for OutcomeTable {
+    fn default() -> Self {
+        OutcomeTable::new(Params::DEFAULT.die.face_numbers())
+    }
+}
+
 impl OutcomeTable {
+    /// An empty table of a die that shows `numbers`.
+    pub(crate) fn new(numbers: &'static [u8]) -> OutcomeTable {
+        OutcomeTable {
+            tally: FaceTally::new(numbers),
+            without_face: 0,
+            did_not_settle: 0,
+            unstable: 0,
+            last: VecDeque::new(),
+        }
+    }
+
     pub(crate) fn add(&mut self, r: RollRecord) {
         match (r.outcome.status, r.outcome.face) {
             (Status::Settled, Some(f)) => self.tally.add(f),

@@ -104,7 +104,7 @@ impl Simulator {
         Ok(Simulator {
             preset: preset.clone(),
             next_random: 0,
-            table: OutcomeTable::default(),
+            table: OutcomeTable::new(params.die.face_numbers()),
             live,
             batch: Order::default(),
             export: Order::default(),
@@ -207,7 +207,7 @@ impl Simulator {
                 .cancel()
                 .map(|b| Notice::Said(format!("batch cancelled after {} of {} rolls", b.done, b.total))),
             Command::ClearTable => {
-                self.table = OutcomeTable::default();
+                self.table = OutcomeTable::new(self.live.params.die.face_numbers());
                 self.versus = None;
                 self.unreported.table_changed = true;
                 None
@@ -330,7 +330,7 @@ impl Simulator {
         }
         self.batch.cancel();
         self.next_random = 0;
-        self.table = OutcomeTable::default();
+        self.table = OutcomeTable::new(preset.params().die.face_numbers());
         self.versus = None;
         self.unreported.table_changed = true;
         // A twin that rolls stays on at its ε unless the preset asks for its own: a lesson

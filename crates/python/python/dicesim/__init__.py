@@ -119,6 +119,12 @@ class Setup:
         return self._native.description
 
     @property
+    def face_numbers(self) -> List[int]:
+        """The numbers a roll of this setup's die can show (1 to 6 on the paper's cube), in
+        the order a batch's ``summary["faces"]["counts"]`` and ``face_shares`` list them."""
+        return self._native.face_numbers
+
+    @property
     def changes(self) -> List[str]:
         """The changes made since the preset was loaded, as ``KEY=VALUE``, in order."""
         return self._native.changes
@@ -212,7 +218,8 @@ def _csv_table(data: bytes, columns_json: str) -> pa.Table:
 def roll(setup: Optional[Union[Setup, str]] = None) -> Dict[str, Any]:
     """One roll of the setup's initial condition (``initial.*``) to its end.
 
-    Returns what ``dicesim roll --json`` prints: ``face`` (1-6, or None), ``status``
+    Returns what ``dicesim roll --json`` prints: ``face`` (one of ``setup.face_numbers``,
+    or None), ``status``
     (``settled``, ``timeout``, ``unstable``), ``steps``, ``time_s`` (simulated s), the
     stopping rule's energies (erg), the stability check, the ``final`` state (position cm,
     velocity cm/s, angular momentum g·cm²/s, angular velocity rad/s, energies erg), the
@@ -256,13 +263,15 @@ def batch(
     Returns the records ``dicesim batch --seed S --rolls N --out FILE.parquet`` writes,
     value for value and bit for bit: one row per roll with its ``id``, start
     (``height_cm``, ``velocity_*_cm_per_s``, ``angular_velocity_*_rad_per_s``, ``yaw_deg``,
-    ``pitch_deg``, ``roll_deg``), ``start_face``, ``face`` (null if none), ``status``,
+    ``pitch_deg``, ``roll_deg``), ``start_face``, ``face`` (one of ``setup.face_numbers``,
+    null if none), ``status``,
     ``steps``, ``time_s`` (simulated s) and its bounces (``impacts``,
     ``first_impact_steps``, ``first_impact_time_s``, ``first_impact_face_down``).
     ``to="arrow"``: a ``pyarrow.Table`` whose schema metadata
     holds the provenance (``b"dicesim"``) and the run's report (``b"dicesim-report"``: the
-    summary ``dicesim batch --json`` prints); ``to="pandas"``: a DataFrame with both in
-    ``.attrs``.
+    summary ``dicesim batch --json`` prints, its face counts, shares and intervals one per
+    number of ``setup.face_numbers``, in that order); ``to="pandas"``: a DataFrame with both
+    in ``.attrs``.
 
     ``jobs``: worker threads (0: one per core); ``engine``: ``"auto"``, ``"scalar"`` or
     ``"lanes"``. Neither changes a bit of the result. The GIL is released while the dice

@@ -26,7 +26,7 @@ use ratatui::widgets::{Block, Paragraph, Wrap};
 pub(crate) fn terminal_colour(app: &App, cell: Option<&Cell>, times: Option<(f64, f64)>) -> Color {
     match cell {
         Some(_) if app.theme.colour => {
-            let c = cell_colour(cell, app.map.layer, times);
+            let c = cell_colour(app.setup.params.die.face_numbers(), cell, app.map.layer, times);
             Color::Rgb(c.0, c.1, c.2)
         }
         _ => Color::Reset,
@@ -462,7 +462,7 @@ fn legend_lines(app: &App) -> Vec<Line<'static>> {
     match m.layer {
         Layer::Face => {
             let mut faces = vec![Span::raw("  ")];
-            for f in 1..=6 {
+            for &f in app.setup.params.die.face_numbers() {
                 faces.push(swatch(Some(cell(Status::Settled, Some(f), 0.0)), None));
                 faces.push(Span::raw(format!("{f} ")));
             }

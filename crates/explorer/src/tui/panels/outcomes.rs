@@ -61,7 +61,7 @@ const BAR_STARTS: [f64; 6] = [0.15, 0.14, 0.12, 0.10, 0.05, 0.0];
 /// far above 1/6, holds every face's 95 % interval. Once a batch has narrowed the intervals
 /// the bars spread out around the fair share, so a bias of a few percent is cells long, not
 /// one; with few rolls (or none) they span 0 to 1/3.
-pub(crate) fn bar_start(intervals: Option<[[f64; 2]; 6]>) -> f64 {
+pub(crate) fn bar_start(intervals: Option<Vec<[f64; 2]>>) -> f64 {
     let Some(intervals) = intervals else { return 0.0 };
     BAR_STARTS
         .into_iter()
@@ -277,8 +277,8 @@ fn heading(app: &App, room: usize, c: Columns) -> TableRow {
     ]))
 }
 
-/// The row of `face`: its count, share, interval and bar.
-fn face_row(app: &App, face: u8, c: Columns) -> TableRow {
+/// The row of `face`, the `k`th number of the die's list: its count, share, interval and bar.
+fn face_row(app: &App, (k, face): (usize, u8), c: Columns) -> TableRow {
     let t = &app.theme;
     let table = &app.roll.table;
     let n = table.tally.total();
@@ -289,9 +289,9 @@ fn face_row(app: &App, face: u8, c: Columns) -> TableRow {
         bar_width,
         from,
     } = c;
-    let count = table.tally.counts[face as usize - 1];
+    let count = table.tally.counts[k];
     let share = table.tally.share(face);
-    let interval = (n > 0).then_some(intervals[face as usize - 1]);
+    let interval = (n > 0).then_some(intervals[k]);
     let bar = share_bar(share, interval, bar_width, from);
     let over = if share > 1.0 / 3.0 - from { "▸" } else { "" };
     let share_text = if n > 0 {
@@ -386,8 +386,8 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let columns = Columns::fitting(fit::room(width), from);
     let mut rows: Vec<(u8, TableRow)> = vec![(1, heading(app, fit::room(width), columns))];
     // The heading names the interval column; the fairness line can move to the border.
-    for face in 1..=6u8 {
-        rows.push((0, face_row(app, face, columns)));
+    for (k, &face) in tally.numbers().iter().enumerate() {
+        rows.push((0, face_row(app, (k, face), columns)));
     }
     rows.push((2, TableRow::Fairness));
     for line in item_lines(&faceless_items(app), width) {

@@ -95,7 +95,7 @@ fn settle_time_layer() {
     assert!(text.contains("settle time"), "{text}");
     let times = time_range(&map);
     let h = map.height();
-    let c = cell_colour(map.cell(2, h - 1), Layer::SettleTime, times);
+    let c = cell_colour(map.numbers, map.cell(2, h - 1), Layer::SettleTime, times);
     assert_eq!(
         t.backend().buffer()[(grid.x + 2, grid.y)].fg,
         Color::Rgb(c.0, c.1, c.2)
@@ -105,7 +105,7 @@ fn settle_time_layer() {
         .filter_map(|k| map.cells[k].map(|c| (k, c.outcome.time_s)))
         .max_by(|a, b| a.1.total_cmp(&b.1))
         .expect("cells");
-    let top = cell_colour(map.cells[longest].as_ref(), Layer::SettleTime, times);
+    let top = cell_colour(map.numbers, map.cells[longest].as_ref(), Layer::SettleTime, times);
     assert_eq!((top.0, top.1, top.2), (253, 231, 37));
     insta::assert_snapshot!("map_settle_time_120x36", text);
 }
@@ -228,11 +228,11 @@ mod map_screen {
         assert!(text.contains("time not known"), "{text}");
         assert!(text.contains("not rolled (filled in)"), "{text}");
         let c = map.cell(filled.0, filled.1).expect("filled");
-        let colour = cell_colour(Some(c), Layer::SettleTime, None);
+        let colour = cell_colour(map.numbers, Some(c), Layer::SettleTime, None);
         let rolled = Cell { sampled: true, ..*c };
         assert_ne!(
             colour,
-            cell_colour(Some(&rolled), Layer::SettleTime, None),
+            cell_colour(map.numbers, Some(&rolled), Layer::SettleTime, None),
             "a filled cell does not wear a copied time's colour"
         );
     }
