@@ -4,6 +4,11 @@
 //! would), and `merge` must either refuse (exit 2, a message naming a file, no output) or
 //! write exactly the one-machine file. Never anything else: no other exit, no other bytes.
 //!
+//! A forger who rewrites the hash can edit a record into another that is just as consistent
+//! (an impact count 9 made 7): no check of the files alone can see that, which is what
+//! `--verify` is for. So a part whose hash was rewritten is merged with `--verify` on every
+//! record, as a careful user merging parts from an untrusted place would.
+//!
 //! PROPTEST_CASES sets the number of cases (default 96, a few seconds).
 
 use proptest::prelude::*;
@@ -95,12 +100,15 @@ fn apply(bytes: &[u8], m: &Mutation) -> Vec<u8> {
     b
 }
 
+/// The sweep's rolls: every one of them is rolled again when a part's hash was rewritten.
+const ROLLS: &str = "60";
+
 #[test]
 fn merge_refuses_or_reproduces_the_one_machine_bytes() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     // A small sweep, as CSV and as Parquet, and its one-machine files.
-    let sweep = ["batch", "--rolls", "60"];
+    let sweep = ["batch", "--rolls", ROLLS];
     for ext in ["csv", "parquet"] {
         let one = format!("one.{ext}");
         ok(d, &[&sweep[..], &["--out", &one]].concat());
@@ -150,7 +158,12 @@ fn merge_refuses_or_reproduces_the_one_machine_bytes() {
             }
             let out = d.join(format!("m.{ext}"));
             let _ = std::fs::remove_file(&out);
-            let o = dicesim_in(d, &["merge", ext, "--out", &format!("m.{ext}")]);
+            let merged = format!("m.{ext}");
+            let mut args = vec!["merge", ext, "--out", &merged];
+            if fix_hash {
+                args.extend(["--verify", ROLLS]);
+            }
+            let o = dicesim_in(d, &args);
             let err = String::from_utf8_lossy(&o.stderr);
             match o.status.code() {
                 Some(0) => {

@@ -8,12 +8,13 @@
 //! formatting of the record, no real parsed, every cell's spelling checked. The rows of a
 //! piece of a part are checked in parallel, then taken in order.
 
-use super::parts::{MergeError, Parts, checked_records_path, chosen_at_random, outcome_words};
+use super::parts::{MergeError, Parts, checked_records_path, chosen_at_random};
 use super::rows::{MAX_LINE_BYTES, without_bom};
-use crate::columns::{RecordCheck, same_record};
+use crate::columns::{COLUMNS, RecordCheck, RecordColumn, same_record};
 use crate::data_file;
 use crate::ics::{
-    SpinColumns, parse_record_line, read_drawn_row, records_columns, records_csv_header, write_record_line,
+    SpinColumns, parse_record_line, read_drawn_row, records_columns, records_csv_header, write_cell,
+    write_record_line,
 };
 use crate::parquet::{RecordsWriter, read_records};
 use crate::provenance;
@@ -181,7 +182,16 @@ impl Parts {
             ),
             (false, None) => None,
         };
-        verify_records(&expect.params, &picked)?;
+        verify_records(&expect.params, &picked).map_err(|e| {
+            let part = self
+                .iter()
+                .find(|(_, p)| (p.range[0]..p.range[1]).contains(&e.id));
+            let file = part.and_then(|(path, p)| p.records_path(path));
+            MergeError::Parts(match file {
+                Some(file) => format!("{}: {e}", file.display()),
+                None => e.to_string(),
+            })
+        })?;
         commit(staged).map_err(MergeError::unwritten)?;
         let (shard_s, longest_s) = self.shard_times();
         Ok(BatchMerge {
@@ -739,7 +749,7 @@ fn tally_difference(claimed: &Tally, found: &Tally) -> String {
 
 /// Rolls `records` again from their starts and refuses the merge if any ends differently
 /// in any bit: the one check a consistent forgery cannot pass.
-fn verify_records(params: &Params, records: &[RollRecord]) -> Result<(), MergeError> {
+fn verify_records(params: &Params, records: &[RollRecord]) -> Result<(), Unverified> {
     let differing = records
         .par_iter()
         .find_first(|r| !same_record(&roll_record(params, &r.initial, r.id), r));
@@ -747,15 +757,41 @@ fn verify_records(params: &Params, records: &[RollRecord]) -> Result<(), MergeEr
         None => Ok(()),
         Some(r) => {
             let again = roll_record(params, &r.initial, r.id);
-            Err(MergeError::Parts(format!(
-                "--verify: roll {} rolled again ends {} after {} steps, but its record says {} after {}: the records are not what this setup rolls",
-                r.id,
-                outcome_words(&again.outcome),
-                again.outcome.steps,
-                outcome_words(&r.outcome),
-                r.outcome.steps
-            )))
+            let cell = |r: &RollRecord, c: &RecordColumn| {
+                let mut text = Vec::new();
+                write_cell(&mut text, (c.get)(r));
+                String::from_utf8_lossy(&text).into_owned()
+            };
+            let column = COLUMNS
+                .iter()
+                .find(|c| !(c.get)(r).same((c.get)(&again)))
+                .expect("records that are not the same differ in a column");
+            Err(Unverified {
+                id: r.id,
+                column: column.name(),
+                recorded: cell(r, column),
+                rolled: cell(&again, column),
+            })
         }
+    }
+}
+
+/// A record that `--verify` rolled again and found other: the first column that differs.
+#[derive(Debug)]
+struct Unverified {
+    id: u64,
+    column: &'static str,
+    recorded: String,
+    rolled: String,
+}
+
+impl std::fmt::Display for Unverified {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "--verify: roll {} rolled again gives {} = {}, but its record says {}: the records are not what this setup rolls",
+            self.id, self.column, self.rolled, self.recorded
+        )
     }
 }
 
@@ -808,17 +844,12 @@ mod tests {
         let e = verify_records(&params, &[honest, forged])
             .unwrap_err()
             .to_string();
-        assert!(
-            e.starts_with(&format!(
-                "--verify: roll 3 rolled again ends {} after {} steps, but its record says",
-                outcome_words(&honest.outcome),
-                honest.outcome.steps
-            )),
-            "{e}"
+        assert_eq!(
+            e,
+            format!(
+                "--verify: roll 3 rolled again gives steps = {}, but its record says {}: the records are not what this setup rolls",
+                honest.outcome.steps, forged.outcome.steps
+            )
         );
-        assert!(e.ends_with(&format!(
-            "after {}: the records are not what this setup rolls",
-            forged.outcome.steps
-        )));
     }
 }
