@@ -291,6 +291,24 @@ pub fn roll_one_by_one(
     true
 }
 
+/// One roll of `params`' die, the box or a polyhedral one, from `initial` to its end by the
+/// scalar engine ([`roll_one_by_one`]): its outcome and start face, or `None` once `stop()`
+/// answered true. What rolls one record of any die.
+pub fn roll_one(
+    params: &Params,
+    initial: &InitialCondition,
+    stop: &dyn Fn() -> bool,
+) -> Option<(Outcome, u8)> {
+    let mut rolled = None;
+    roll_one_by_one(
+        1,
+        &mut |_| (*params, *initial),
+        &mut |r| rolled = Some((r.outcome, r.start_face)),
+        stop,
+    );
+    rolled
+}
+
 /// Rolls `body` from each of `initials` on `params`' table (both validated) to its end,
 /// four at a time in the lanes where the CPU has AVX2 (else one after another), and returns
 /// the finished rolls in the order of `initials`: bit for bit those [`PointRoll`] rolls
