@@ -160,6 +160,9 @@ impl<W: PointLaw, const N: usize> LaneRoll<W, N> for PointRoll<N> {
 
 /// A polyhedral die's roll, of as many points as its solid has vertices (the d4 4, the d8
 /// 6, the d10, d% and d20 12, the d12 20).
+// Each roll is set up once and moved into its lane's vector, which holds it by value as it
+// holds a `Simulation`; a box would put it behind a pointer for no gain.
+#[allow(clippy::large_enum_variant)]
 pub(crate) enum DiceRoll {
     P4(PointRoll<4>),
     P6(PointRoll<6>),
@@ -656,13 +659,13 @@ mod avx2 {
         #[inline(always)]
         fn observe_impacts(&mut self) {
             let (contact, live) = (F4::bits(self.k.in_contact), F4::bits(self.live));
-            let (s, bodies) = (&self.k.state, &self.k.bodies);
-            for l in 0..LANES {
+            let s = &self.k.state;
+            for (l, body) in self.k.bodies.iter().enumerate() {
                 if live & (1 << l) != 0 {
                     self.impact_logs[l].observe(contact & (1 << l) != 0, || {
                         let offsets = s.corner_offsets.each_ref().map(|r| lane3(r, l));
                         (
-                            R::face_down(&bodies[l], &offsets),
+                            R::face_down(body, &offsets),
                             s.step.lane(l) as u64,
                             s.time_s.lane(l),
                         )
