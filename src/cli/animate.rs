@@ -153,6 +153,7 @@ pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
     let mut preset = args.setup.resolve()?;
     refuse_unapplied(&args.setup.set, |key| unapplied_when_fixed(key, "animate"))?;
     let params = preset.params();
+    dicesim_physics::refuse_polyhedral_die(&params, "`dicesim animate`")?;
     // The checks `roll` makes: every value in range, no corner starting inside the table.
     dicesim_physics::Simulation::new(&params, &preset.initial)?;
     let spec = spec_of(args, &mut preset)?;

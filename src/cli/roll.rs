@@ -22,6 +22,7 @@ pub(crate) fn run(args: &RollArgs) -> Result<(), CliError> {
         dicesim_setup::random::unapplied_when_fixed(key, "roll")
     })?;
     let params = preset.params();
+    dicesim_physics::refuse_polyhedral_die(&params, "`dicesim roll`")?;
     let OneRoll { sim, outcome, reason } = OneRoll::run(&preset)?;
     let mut out = std::io::stdout().lock();
     if args.json {

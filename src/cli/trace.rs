@@ -39,6 +39,7 @@ pub(crate) fn run(args: &TraceArgs) -> Result<(), CliError> {
         dicesim_setup::random::unapplied_when_fixed(key, "trace")
     })?;
     let params = preset.params();
+    dicesim_physics::refuse_polyhedral_die(&params, "`dicesim trace`")?;
     let sim = Simulation::new(&params, &preset.initial)?;
     let Some(path) = &args.out else {
         return Ok(trace(args, sim, std::io::stdout().lock())?);

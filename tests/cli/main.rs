@@ -23,6 +23,7 @@ mod merge_fuzz;
 mod one_validation;
 mod outputs;
 mod package;
+mod polyhedral_dice;
 mod presets;
 mod provenance;
 mod round_three;

@@ -80,6 +80,7 @@ pub fn cuboid(ratio: f64) -> Die {
         pip_depth: 0.0,
         corner_mass: STEEL_DENSITY_G_PER_CM3 * volume / 8.0,
         extra_corner_mass: [0.0; 8],
+        ..Params::DEFAULT.die
     }
 }
 

@@ -14,13 +14,15 @@
 #![allow(unsafe_code)]
 
 use super::body::face_most_nearly_up;
-use super::contact::SpringFriction;
+use super::contact::{Law, SpringFriction};
 use super::initial::InitialCondition;
-use super::params::{ParamError, Params};
-use super::point_roll::{PointKernel, PointRoll};
+use super::kernel::{Faces, Kernel};
+use super::params::{ParamError, Params, Solid};
+use super::point_roll::{PointKernel, PointLaw, PointRoll};
 use super::points::PointBody;
-use super::sim::{Outcome, STEPS_BETWEEN_STOP_CHECKS, Simulation, State};
-use super::sim::{PaperPerCorner, PaperWholeDie};
+use super::sim::{EngineLaw, ImpactLog, Outcome, STEPS_BETWEEN_STOP_CHECKS, Simulation, State, Status};
+use super::sim::{PaperPerCorner, PaperWholeDie, box_face_down};
+use nalgebra::Vector3;
 
 /// Whether this CPU can run the lane engine (x86-64 with AVX2).
 pub fn lanes_available() -> bool {
@@ -40,10 +42,193 @@ pub struct LaneResult<'a> {
     /// The index the roll had in the `setup` sequence.
     pub index: usize,
     pub outcome: Outcome,
-    /// The face most nearly up at t = 0.
+    /// The face most nearly up at t = 0 (a polyhedral die's: the number read were it to rest
+    /// as it starts).
     pub start_face: u8,
-    /// The state at the end, as [`Simulation::state`] has it after the same roll.
-    pub state: &'a State,
+    /// The state at the end, as [`Simulation::state`] (or [`PointRoll::state`] for a
+    /// polyhedral die) has it after the same roll.
+    pub state: EndState<'a>,
+}
+
+/// A roll's state at its end, whatever its body: the box's 8 corners or a polyhedral die's
+/// `N` vertices (the fields of [`State`], its points as slices).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EndState<'a> {
+    /// cm, centre of mass.
+    pub position: Vector3<f64>,
+    /// cm/s, centre of mass.
+    pub velocity: Vector3<f64>,
+    /// g·cm²/s, about the centre of mass.
+    pub angular_momentum: Vector3<f64>,
+    /// cm, each contact point from the centre of mass, world frame.
+    pub corner_offsets: &'a [Vector3<f64>],
+    /// dyn, the contact force on each point.
+    pub corner_forces: &'a [Vector3<f64>],
+    /// cm, how far each point is below the ground.
+    pub corner_depths: &'a [f64],
+    /// s, simulated time.
+    pub time_s: f64,
+    /// Steps taken.
+    pub step: u64,
+}
+
+impl<'a, const N: usize> From<&'a State<f64, N>> for EndState<'a> {
+    fn from(s: &'a State<f64, N>) -> EndState<'a> {
+        EndState {
+            position: s.position,
+            velocity: s.velocity,
+            angular_momentum: s.angular_momentum,
+            corner_offsets: &s.corner_offsets,
+            corner_forces: &s.corner_forces,
+            corner_depths: &s.corner_depths,
+            time_s: s.time_s,
+            step: s.step,
+        }
+    }
+}
+
+/// A roll either engine steps in a lane of its law `W`: the box's [`Simulation`] or a
+/// polyhedral die's [`PointRoll`], each of `N` points, the body `B` per lane.
+pub(crate) trait LaneRoll<W: Law, const N: usize>: Sized {
+    type Body: Faces<N>;
+    fn kernel(&self) -> &Kernel<f64, W, N, Self::Body>;
+    fn kernel_mut(&mut self) -> &mut Kernel<f64, W, N, Self::Body>;
+    fn impact_log_mut(&mut self) -> &mut ImpactLog;
+    /// The face the record's start face is, at t = 0.
+    fn start_face(&self) -> u8;
+    /// The first impact's face down of `body` with its points at `offsets`.
+    fn face_down(body: &Self::Body, offsets: &[Vector3<f64>; N]) -> u8;
+    /// Ends the roll as `status` at the state stored back into it.
+    fn finish(&mut self, status: Status) -> Outcome;
+    fn end_state(&self) -> EndState<'_>;
+}
+
+impl<W: EngineLaw> LaneRoll<W, 8> for Simulation {
+    type Body = super::model::Body;
+    #[inline(always)]
+    fn kernel(&self) -> &Kernel<f64, W> {
+        W::of(&self.k).expect("a roll of this vector's law")
+    }
+    #[inline(always)]
+    fn kernel_mut(&mut self) -> &mut Kernel<f64, W> {
+        W::of_mut(&mut self.k).expect("a roll of this vector's law")
+    }
+    fn impact_log_mut(&mut self) -> &mut ImpactLog {
+        &mut self.impact_log
+    }
+    fn start_face(&self) -> u8 {
+        face_most_nearly_up(&self.state().corner_offsets)
+    }
+    fn face_down(_: &Self::Body, offsets: &[Vector3<f64>; 8]) -> u8 {
+        box_face_down(offsets)
+    }
+    fn finish(&mut self, status: Status) -> Outcome {
+        Simulation::finish(self, status)
+    }
+    fn end_state(&self) -> EndState<'_> {
+        self.state().into()
+    }
+}
+
+impl<W: PointLaw, const N: usize> LaneRoll<W, N> for PointRoll<N> {
+    type Body = PointBody<N>;
+    #[inline(always)]
+    fn kernel(&self) -> &Kernel<f64, W, N, PointBody<N>> {
+        W::of(&self.k).expect("a roll of this vector's law")
+    }
+    #[inline(always)]
+    fn kernel_mut(&mut self) -> &mut Kernel<f64, W, N, PointBody<N>> {
+        W::of_mut(&mut self.k).expect("a roll of this vector's law")
+    }
+    fn impact_log_mut(&mut self) -> &mut ImpactLog {
+        &mut self.impact_log
+    }
+    fn start_face(&self) -> u8 {
+        PointRoll::start_face(self)
+    }
+    fn face_down(body: &PointBody<N>, offsets: &[Vector3<f64>; N]) -> u8 {
+        body.face_down(offsets)
+    }
+    fn finish(&mut self, status: Status) -> Outcome {
+        PointRoll::finish(self, status);
+        self.full_outcome().expect("just ended")
+    }
+    fn end_state(&self) -> EndState<'_> {
+        self.state().into()
+    }
+}
+
+/// A polyhedral die's roll, of as many points as its solid has vertices (the d4 4, the d8
+/// 6, the d10, d% and d20 12, the d12 20).
+// Each roll is set up once and moved into its lane's vector, which holds it by value as it
+// holds a `Simulation`; a box would put it behind a pointer for no gain.
+#[allow(clippy::large_enum_variant)]
+pub(crate) enum DiceRoll {
+    P4(PointRoll<4>),
+    P6(PointRoll<6>),
+    P12(PointRoll<12>),
+    P20(PointRoll<20>),
+}
+
+/// `$body` with `$r` bound to the [`PointRoll`] in a [`DiceRoll`], whatever its points.
+macro_rules! on_points {
+    ($roll:expr, $r:ident => $body:expr) => {
+        match $roll {
+            DiceRoll::P4($r) => $body,
+            DiceRoll::P6($r) => $body,
+            DiceRoll::P12($r) => $body,
+            DiceRoll::P20($r) => $body,
+        }
+    };
+}
+
+/// A polyhedral die's bodies, kept while a run's setups repeat their parameters: the hull,
+/// mass and stopping rule are made once, not per roll.
+#[derive(Default)]
+pub(crate) struct DiceBodies {
+    last: Option<(Params, DiceBody)>,
+}
+
+#[derive(Clone, Copy)]
+enum DiceBody {
+    P4(PointBody<4>),
+    P6(PointBody<6>),
+    P12(PointBody<12>),
+    P20(PointBody<20>),
+}
+
+impl DiceBodies {
+    /// The roll of `params`' polyhedral die from `initial`, not checked (as
+    /// [`Simulation::for_outcome`] is not).
+    pub(crate) fn roll(&mut self, params: &Params, initial: &InitialCondition) -> DiceRoll {
+        let body = match &self.last {
+            Some((p, body)) if p == params => *body,
+            _ => {
+                let body = dice_body(params);
+                self.last = Some((*params, body));
+                body
+            }
+        };
+        match body {
+            DiceBody::P4(b) => DiceRoll::P4(PointRoll::new_unchecked(params, &b, initial)),
+            DiceBody::P6(b) => DiceRoll::P6(PointRoll::new_unchecked(params, &b, initial)),
+            DiceBody::P12(b) => DiceRoll::P12(PointRoll::new_unchecked(params, &b, initial)),
+            DiceBody::P20(b) => DiceRoll::P20(PointRoll::new_unchecked(params, &b, initial)),
+        }
+    }
+}
+
+/// The body of `params`' polyhedral die, as many points as it has vertices.
+fn dice_body(params: &Params) -> DiceBody {
+    let die = params.polyhedral_die().expect("a polyhedral die");
+    let made = "a regular die's vertices are its points";
+    match die.shape().vertices().len() {
+        4 => DiceBody::P4(die.point_body(params).expect(made)),
+        6 => DiceBody::P6(die.point_body(params).expect(made)),
+        12 => DiceBody::P12(die.point_body(params).expect(made)),
+        20 => DiceBody::P20(die.point_body(params).expect(made)),
+        n => unreachable!("no regular die has {n} vertices"),
+    }
 }
 
 /// Rolls setups `0..count` (from `setup(i)`) to their ends, four at a time, and hands each
@@ -51,8 +236,9 @@ pub struct LaneResult<'a> {
 /// [`STEPS_BETWEEN_STOP_CHECKS`] steps; when it answers true the rolls still running are
 /// dropped and `false` is returned (`true`: every roll finished).
 ///
-/// Falls back to one [`Simulation`] after another where AVX2 is missing, with the same
-/// results.
+/// The box rolls as [`Simulation`] rolls it, a polyhedral die (`die.kind`) as
+/// [`PointRoll`] does, each in vectors of its own body and law. Falls back to
+/// [`roll_one_by_one`] where AVX2 is missing, with the same results.
 pub fn roll_in_lanes(
     count: usize,
     setup: &mut dyn FnMut(usize) -> (Params, InitialCondition),
@@ -67,15 +253,32 @@ pub fn roll_in_lanes(
     roll_one_by_one(count, setup, done, stop)
 }
 
-/// The scalar engine behind the same interface.
+/// The scalar engine behind the same interface: the box by [`Simulation`], a polyhedral die
+/// by [`PointRoll`].
 pub fn roll_one_by_one(
     count: usize,
     setup: &mut dyn FnMut(usize) -> (Params, InitialCondition),
     done: &mut dyn FnMut(LaneResult<'_>),
     stop: &dyn Fn() -> bool,
 ) -> bool {
+    let mut dice = DiceBodies::default();
     for index in 0..count {
         let (params, initial) = setup(index);
+        if params.die.is_polyhedral() {
+            let mut roll = dice.roll(&params, &initial);
+            let finished = on_points!(&mut roll, r => r.run_until_stopped(stop).map(|outcome| {
+                done(LaneResult {
+                    index,
+                    outcome,
+                    start_face: r.start_face(),
+                    state: r.state().into(),
+                })
+            }));
+            if finished.is_none() {
+                return false;
+            }
+            continue;
+        }
         let mut sim = Simulation::for_outcome(&params, &initial);
         let start_face = face_most_nearly_up(&sim.state().corner_offsets);
         match sim.run_until_stopped(stop) {
@@ -83,12 +286,30 @@ pub fn roll_one_by_one(
                 index,
                 outcome,
                 start_face,
-                state: sim.state(),
+                state: sim.state().into(),
             }),
             None => return false,
         }
     }
     true
+}
+
+/// One roll of `params`' die, the box or a polyhedral one, from `initial` to its end by the
+/// scalar engine ([`roll_one_by_one`]): its outcome and start face, or `None` once `stop()`
+/// answered true. What rolls one record of any die.
+pub fn roll_one(
+    params: &Params,
+    initial: &InitialCondition,
+    stop: &dyn Fn() -> bool,
+) -> Option<(Outcome, u8)> {
+    let mut rolled = None;
+    roll_one_by_one(
+        1,
+        &mut |_| (*params, *initial),
+        &mut |r| rolled = Some((r.outcome, r.start_face)),
+        stop,
+    );
+    rolled
 }
 
 /// Rolls `body` from each of `initials` on `params`' table (both validated) to its end,
@@ -107,14 +328,13 @@ pub fn roll_points_in_lanes<const N: usize>(
     #[cfg(target_arch = "x86_64")]
     if lanes_available() && !rolls.is_empty() {
         // SAFETY: AVX2 is present, checked just above.
-        unsafe {
+        return Ok(unsafe {
             match &rolls[0].k {
-                PointKernel::Paper(_) => avx2::roll_points::<PaperPerCorner, N>(&mut rolls),
-                PointKernel::PaperWholeDie(_) => avx2::roll_points::<PaperWholeDie, N>(&mut rolls),
-                PointKernel::SpringFriction(_) => avx2::roll_points::<SpringFriction, N>(&mut rolls),
+                PointKernel::Paper(_) => avx2::roll_points::<PaperPerCorner, N>(rolls),
+                PointKernel::PaperWholeDie(_) => avx2::roll_points::<PaperWholeDie, N>(rolls),
+                PointKernel::SpringFriction(_) => avx2::roll_points::<SpringFriction, N>(rolls),
             }
-        }
-        return Ok(rolls);
+        });
     }
     for roll in &mut rolls {
         roll.run_to_end();
@@ -122,14 +342,23 @@ pub fn roll_points_in_lanes<const N: usize>(
     Ok(rolls)
 }
 
+/// Which vector a polyhedral die's roll steps in: its law and its solid.
+#[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+fn dice_vector(roll: &DiceRoll, params: &Params) -> (u8, Solid) {
+    let law = on_points!(roll, r => match &r.k {
+        PointKernel::Paper(_) => 0,
+        PointKernel::PaperWholeDie(_) => 1,
+        PointKernel::SpringFriction(_) => 2,
+    });
+    (law, params.die.kind)
+}
+
 #[cfg(target_arch = "x86_64")]
 mod avx2 {
     use super::*;
-    use crate::kernel::{Ends, Kernel, NoHook};
+    use crate::kernel::{Ends, NoHook};
     use crate::lane::{Lane, lane3};
-    use crate::point_roll::PointLaw;
-    use crate::sim::{EngineLaw, ImpactLog, Laws, Status};
-    use nalgebra::Vector3;
+    use crate::sim::Laws;
     use std::arch::x86_64::*;
     use std::collections::VecDeque;
     use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
@@ -364,25 +593,25 @@ mod avx2 {
         }
     }
 
-    /// Four rolls of the law `W`, one per lane, and the `Simulation` each was set up by.
-    struct Lanes<W: EngineLaw> {
-        k: Kernel<F4, W>,
+    /// Four rolls of the law `W`, one per lane, each a roll `R` of `N` points, which the
+    /// lane's state is stored back into at the end.
+    struct Lanes<W: Law, R: LaneRoll<W, N>, const N: usize> {
+        k: Kernel<F4, W, N, R::Body>,
         /// Lanes holding a roll that has not ended.
         live: F4,
-        /// Per lane: the roll's index, its start face and its `Simulation`, which the lane's
-        /// state is stored back into at the end.
-        rolls: [Option<(usize, u8, Simulation)>; LANES],
+        /// Per lane: the roll's index, its start face and the roll.
+        rolls: [Option<(usize, u8, R)>; LANES],
         /// Per lane: its roll's impacts, seen state by state as the scalar engine sees them.
         impact_logs: [ImpactLog; LANES],
     }
 
-    impl<W: EngineLaw> Lanes<W> {
+    impl<W: Law, R: LaneRoll<W, N>, const N: usize> Lanes<W, R, N> {
         /// Four lanes from one roll's kernel (each is loaded before it steps, or parked).
-        fn new(first: &Kernel<f64, W>) -> Lanes<W> {
+        fn new(first: &Kernel<f64, W, N, R::Body>) -> Self {
             let mut lanes = Lanes {
                 k: Kernel::splat(first),
                 live: F4::zero(),
-                rolls: [None, None, None, None],
+                rolls: std::array::from_fn(|_| None),
                 impact_logs: [ImpactLog::new(false); LANES],
             };
             for l in 0..LANES {
@@ -396,16 +625,15 @@ mod avx2 {
             (0..LANES).find(|&l| self.rolls[l].is_none())
         }
 
-        /// Puts roll `index` into lane `l`, in the state `Simulation` starts it in.
+        /// Puts roll `index` into lane `l`, in the state its scalar engine starts it in.
         #[inline(always)]
-        fn load(&mut self, l: usize, index: usize, sim: Simulation) {
-            let from = W::of(&sim.k).expect("a roll of this vector's law");
-            self.k.set_lane(l, from);
+        fn load(&mut self, l: usize, index: usize, mut roll: R) {
+            self.k.set_lane(l, roll.kernel());
             let bits = F4::bits(self.live) | 1 << l;
             self.live = F4::mask_from_bits(bits);
-            self.impact_logs[l] = sim.impact_log;
-            let start_face = face_most_nearly_up(&from.state.corner_offsets);
-            self.rolls[l] = Some((index, start_face, sim));
+            self.impact_logs[l] = *roll.impact_log_mut();
+            let start_face = roll.start_face();
+            self.rolls[l] = Some((index, start_face, roll));
         }
 
         /// Empties lane `l` for good: a still fair die high above the ground without
@@ -418,14 +646,13 @@ mod avx2 {
             self.k.park(l);
         }
 
-        /// Stores lane `l`'s state back into its roll's `Simulation`.
+        /// Stores lane `l`'s state back into its roll.
         #[inline(always)]
-        fn store(&mut self, l: usize) -> &mut Simulation {
-            let (_, _, sim) = self.rolls[l].as_mut().expect("a live lane holds a roll");
-            let to = W::of_mut(&mut sim.k).expect("a roll of this vector's law");
-            self.k.lane_into(l, to);
-            sim.impact_log = self.impact_logs[l];
-            sim
+        fn store(&mut self, l: usize) -> &mut R {
+            let (_, _, roll) = self.rolls[l].as_mut().expect("a live lane holds a roll");
+            self.k.lane_into(l, roll.kernel_mut());
+            *roll.impact_log_mut() = self.impact_logs[l];
+            roll
         }
 
         /// Each live lane's contact after a step, as the scalar engine observes its own.
@@ -433,11 +660,12 @@ mod avx2 {
         fn observe_impacts(&mut self) {
             let (contact, live) = (F4::bits(self.k.in_contact), F4::bits(self.live));
             let s = &self.k.state;
-            for l in 0..LANES {
+            for (l, body) in self.k.bodies.iter().enumerate() {
                 if live & (1 << l) != 0 {
                     self.impact_logs[l].observe(contact & (1 << l) != 0, || {
+                        let offsets = s.corner_offsets.each_ref().map(|r| lane3(r, l));
                         (
-                            s.corner_offsets.each_ref().map(|r| lane3(r, l)),
+                            R::face_down(body, &offsets),
                             s.step.lane(l) as u64,
                             s.time_s.lane(l),
                         )
@@ -446,10 +674,10 @@ mod avx2 {
             }
         }
 
-        /// The rolls that this step ended, handed to `done`; their lanes are emptied. Returns
-        /// whether any ended.
+        /// The rolls that this step ended, each handed to `ended` with its index, start face
+        /// and outcome; their lanes are emptied. Returns whether any ended.
         #[inline(always)]
-        fn finish(&mut self, ends: &Ends<F4>, done: &mut dyn FnMut(LaneResult<'_>)) -> bool {
+        fn finish(&mut self, ends: &Ends<F4>, ended: &mut impl FnMut(usize, u8, Outcome, R)) -> bool {
             self.observe_impacts();
             let mut ending = F4::bits((ends.unstable | ends.settled | ends.timeout) & self.live);
             let any = ending != 0;
@@ -464,28 +692,38 @@ mod avx2 {
                     Status::Timeout
                 };
                 let outcome = self.store(l).finish(status);
-                let (index, start_face, sim) = self.rolls[l].take().expect("a live lane holds a roll");
-                done(LaneResult {
-                    index,
-                    outcome,
-                    start_face,
-                    state: sim.state(),
-                });
+                let (index, start_face, roll) = self.rolls[l].take().expect("a live lane holds a roll");
+                ended(index, start_face, outcome, roll);
                 self.park(l);
             }
             any
         }
     }
 
-    /// The rolls of one law: their vector, once a roll of the law has come, and the rolls
-    /// waiting for one of its lanes.
-    struct Group<W: EngineLaw> {
-        lanes: Option<Lanes<W>>,
-        waiting: VecDeque<(usize, Simulation)>,
+    /// Hands a finished roll to `done` as a [`LaneResult`].
+    #[inline(always)]
+    fn hand_on<W: Law, R: LaneRoll<W, N>, const N: usize>(
+        done: &mut dyn FnMut(LaneResult<'_>),
+    ) -> impl FnMut(usize, u8, Outcome, R) + '_ {
+        move |index, start_face, outcome, roll: R| {
+            done(LaneResult {
+                index,
+                outcome,
+                start_face,
+                state: roll.end_state(),
+            })
+        }
     }
 
-    impl<W: EngineLaw> Group<W> {
-        fn new() -> Group<W> {
+    /// The rolls of one law and body: their vector, once a roll has come, and the rolls
+    /// waiting for one of its lanes.
+    struct Group<W: Law, R: LaneRoll<W, N>, const N: usize> {
+        lanes: Option<Lanes<W, R, N>>,
+        waiting: VecDeque<(usize, R)>,
+    }
+
+    impl<W: Law, R: LaneRoll<W, N>, const N: usize> Group<W, R, N> {
+        fn new() -> Self {
             Group {
                 lanes: None,
                 waiting: VecDeque::new(),
@@ -505,20 +743,154 @@ mod avx2 {
         #[target_feature(enable = "avx2")]
         #[inline(never)]
         fn seat(&mut self) {
-            while let Some((_, sim)) = self.waiting.front() {
+            while let Some((_, roll)) = self.waiting.front() {
                 if self.lanes.is_none() {
-                    let first = W::of(&sim.k).expect("a roll of this group's law");
-                    self.lanes = Some(Lanes::new(first));
+                    self.lanes = Some(Lanes::new(roll.kernel()));
                 }
                 let lanes = self.lanes.as_mut().expect("just made");
                 let Some(l) = lanes.free_lane() else { return };
-                let (index, sim) = self.waiting.pop_front().expect("a waiting roll");
-                lanes.load(l, index, sim);
+                let (index, roll) = self.waiting.pop_front().expect("a waiting roll");
+                lanes.load(l, index, roll);
             }
         }
 
         fn live(&self) -> bool {
             self.lanes.as_ref().is_some_and(|lanes| F4::bits(lanes.live) != 0)
+        }
+    }
+
+    /// A polyhedral die's group, whatever its law and points, as the batch loop steps it.
+    trait DiceGroup {
+        fn wants(&self) -> bool;
+        fn waiting(&self) -> usize;
+        fn live(&self) -> bool;
+        /// Queues a roll of this group's law and points.
+        fn push(&mut self, index: usize, roll: DiceRoll);
+        /// # Safety
+        /// The CPU must support AVX2.
+        unsafe fn seat(&mut self);
+        /// One step of the group's vector, the rolls it ended handed to `done`; whether any
+        /// ended.
+        ///
+        /// # Safety
+        /// The CPU must support AVX2.
+        unsafe fn step(&mut self, done: &mut dyn FnMut(LaneResult<'_>)) -> bool;
+    }
+
+    /// A [`PointRoll`] of `N` points out of a [`DiceRoll`].
+    trait FromDiceRoll: Sized {
+        fn from_dice_roll(roll: DiceRoll) -> Option<Self>;
+    }
+
+    macro_rules! from_dice_roll {
+        ($($variant:ident $n:literal),*) => {$(
+            impl FromDiceRoll for PointRoll<$n> {
+                fn from_dice_roll(roll: DiceRoll) -> Option<Self> {
+                    match roll {
+                        DiceRoll::$variant(r) => Some(r),
+                        _ => None,
+                    }
+                }
+            }
+        )*};
+    }
+    from_dice_roll!(P4 4, P6 6, P12 12, P20 20);
+
+    impl<W: PointLaw, const N: usize> DiceGroup for Group<W, PointRoll<N>, N>
+    where
+        PointRoll<N>: FromDiceRoll,
+    {
+        fn wants(&self) -> bool {
+            Group::wants(self)
+        }
+        fn waiting(&self) -> usize {
+            self.waiting.len()
+        }
+        fn live(&self) -> bool {
+            Group::live(self)
+        }
+        fn push(&mut self, index: usize, roll: DiceRoll) {
+            let roll = PointRoll::<N>::from_dice_roll(roll).expect("a roll of this group's points");
+            self.waiting.push_back((index, roll));
+        }
+        unsafe fn seat(&mut self) {
+            // SAFETY: the caller has AVX2.
+            unsafe { Group::seat(self) }
+        }
+        unsafe fn step(&mut self, done: &mut dyn FnMut(LaneResult<'_>)) -> bool {
+            let Some(lanes) = self.lanes.as_mut().filter(|lanes| F4::bits(lanes.live) != 0) else {
+                return false;
+            };
+            // SAFETY: the caller has AVX2.
+            let ends = unsafe { step_points(&mut lanes.k) };
+            lanes.finish(&ends, &mut hand_on::<W, PointRoll<N>, N>(done))
+        }
+    }
+
+    /// The group for a roll of `r`'s law and points, empty.
+    fn dice_group<const N: usize>(r: &PointRoll<N>) -> Box<dyn DiceGroup>
+    where
+        PointRoll<N>: FromDiceRoll,
+    {
+        match &r.k {
+            PointKernel::Paper(_) => Box::new(Group::<PaperPerCorner, PointRoll<N>, N>::new()),
+            PointKernel::PaperWholeDie(_) => Box::new(Group::<PaperWholeDie, PointRoll<N>, N>::new()),
+            PointKernel::SpringFriction(_) => Box::new(Group::<SpringFriction, PointRoll<N>, N>::new()),
+        }
+    }
+
+    /// The polyhedral dice' groups of a run, one per law and solid, made as their first
+    /// rolls come.
+    #[derive(Default)]
+    struct Dice {
+        bodies: DiceBodies,
+        groups: Vec<((u8, Solid), Box<dyn DiceGroup>)>,
+    }
+
+    impl Dice {
+        /// Sets up roll `index` and queues it in its group.
+        fn push(&mut self, index: usize, params: &Params, initial: &InitialCondition) {
+            let roll = self.bodies.roll(params, initial);
+            let key = dice_vector(&roll, params);
+            let at = match self.groups.iter().position(|(k, _)| *k == key) {
+                Some(at) => at,
+                None => {
+                    self.groups.push((key, on_points!(&roll, r => dice_group(r))));
+                    self.groups.len() - 1
+                }
+            };
+            self.groups[at].1.push(index, roll);
+        }
+
+        fn wants(&self) -> bool {
+            self.groups.iter().any(|(_, g)| g.wants())
+        }
+
+        fn full(&self) -> bool {
+            self.groups.iter().any(|(_, g)| g.waiting() >= LANES)
+        }
+
+        fn live(&self) -> bool {
+            self.groups.iter().any(|(_, g)| g.live())
+        }
+
+        #[target_feature(enable = "avx2")]
+        fn seat(&mut self) {
+            for (_, g) in &mut self.groups {
+                // SAFETY: this function runs with AVX2.
+                unsafe { g.seat() };
+            }
+        }
+
+        /// One step of every live group; whether any roll ended.
+        #[target_feature(enable = "avx2")]
+        fn step(&mut self, done: &mut dyn FnMut(LaneResult<'_>)) -> bool {
+            let mut vacated = false;
+            for (_, g) in &mut self.groups {
+                // SAFETY: this function runs with AVX2.
+                vacated |= unsafe { g.step(done) };
+            }
+            vacated
         }
     }
 
@@ -547,8 +919,16 @@ mod avx2 {
         k.ends()
     }
 
-    /// Sets up rolls from `next` on and seats them in their laws' vectors while a vector has a
-    /// free lane nothing waits for and no law has a vector's worth waiting; false when no
+    /// One step of a polyhedral die's vector under any law, out of line.
+    #[target_feature(enable = "avx2")]
+    #[inline(never)]
+    fn step_points<W: Law, const N: usize>(k: &mut Kernel<F4, W, N, PointBody<N>>) -> Ends<F4> {
+        k.step(&mut NoHook);
+        k.ends()
+    }
+
+    /// Sets up rolls from `next` on and seats them in their vectors while a vector has a free
+    /// lane nothing waits for and no vector has a vector's worth waiting; false when no
     /// vector has a roll left to step.
     #[target_feature(enable = "avx2")]
     #[inline(never)]
@@ -556,41 +936,49 @@ mod avx2 {
         count: usize,
         next: &mut usize,
         setup: &mut dyn FnMut(usize) -> (Params, InitialCondition),
-        paper: &mut Group<PaperPerCorner>,
-        whole: &mut Group<PaperWholeDie>,
-        spring: &mut Group<SpringFriction>,
+        paper: &mut Group<PaperPerCorner, Simulation, 8>,
+        whole: &mut Group<PaperWholeDie, Simulation, 8>,
+        spring: &mut Group<SpringFriction, Simulation, 8>,
+        dice: &mut Dice,
     ) -> bool {
         paper.seat();
         whole.seat();
         spring.seat();
+        dice.seat();
         while *next < count
-            && (paper.wants() || whole.wants() || spring.wants())
+            && (paper.wants() || whole.wants() || spring.wants() || dice.wants())
             && paper.waiting.len() < LANES
             && whole.waiting.len() < LANES
             && spring.waiting.len() < LANES
+            && !dice.full()
         {
             let (params, initial) = setup(*next);
-            let sim = Simulation::for_outcome(&params, &initial);
-            match &sim.k {
-                Laws::Paper(_) => paper.waiting.push_back((*next, sim)),
-                Laws::PaperWholeDie(_) => whole.waiting.push_back((*next, sim)),
-                Laws::SpringFriction(_) => spring.waiting.push_back((*next, sim)),
+            if params.die.is_polyhedral() {
+                dice.push(*next, &params, &initial);
+            } else {
+                let sim = Simulation::for_outcome(&params, &initial);
+                match &sim.k {
+                    Laws::Paper(_) => paper.waiting.push_back((*next, sim)),
+                    Laws::PaperWholeDie(_) => whole.waiting.push_back((*next, sim)),
+                    Laws::SpringFriction(_) => spring.waiting.push_back((*next, sim)),
+                }
             }
             *next += 1;
             paper.seat();
             whole.seat();
             spring.seat();
+            dice.seat();
         }
-        paper.live() || whole.live() || spring.live()
+        paper.live() || whole.live() || spring.live() || dice.live()
     }
 
     /// [`roll_in_lanes`] with AVX2.
     ///
-    /// The rolls go into vectors by their contact law, so a vector steps one law's code:
-    /// each roll is set up in turn and seated in its law's vector, or waits there for a free
-    /// lane. Rolls are set up only while some vector has a free lane nothing waits for, and
-    /// no law has a vector's worth waiting, so a run of one law's rolls after another's
-    /// keeps at most four set up ahead.
+    /// The rolls go into vectors by their contact law, so a vector steps one law's code, and
+    /// a polyhedral die's by its law and solid: each roll is set up in turn and seated in
+    /// its vector, or waits there for a free lane. Rolls are set up only while some vector
+    /// has a free lane nothing waits for, and no vector has a vector's worth waiting, so a
+    /// run of one law's rolls after another's keeps at most four set up ahead.
     ///
     /// # Safety
     /// The CPU must support AVX2.
@@ -601,9 +989,10 @@ mod avx2 {
         done: &mut dyn FnMut(LaneResult<'_>),
         stop: &dyn Fn() -> bool,
     ) -> bool {
-        let mut paper = Group::<PaperPerCorner>::new();
-        let mut whole = Group::<PaperWholeDie>::new();
-        let mut spring = Group::<SpringFriction>::new();
+        let mut paper = Group::<PaperPerCorner, Simulation, 8>::new();
+        let mut whole = Group::<PaperWholeDie, Simulation, 8>::new();
+        let mut spring = Group::<SpringFriction, Simulation, 8>::new();
+        let mut dice = Dice::default();
         let mut next = 0;
         let mut since_check = 0;
         // Whether a lane was emptied since rolls were last seated (a roll ended, or none
@@ -612,21 +1001,32 @@ mod avx2 {
         loop {
             if vacated {
                 vacated = false;
-                if !seat_rolls(count, &mut next, setup, &mut paper, &mut whole, &mut spring) {
+                if !seat_rolls(
+                    count,
+                    &mut next,
+                    setup,
+                    &mut paper,
+                    &mut whole,
+                    &mut spring,
+                    &mut dice,
+                ) {
                     return true;
                 }
             }
             if let Some(lanes) = paper.lanes.as_mut().filter(|lanes| F4::bits(lanes.live) != 0) {
                 let ends = step_paper(&mut lanes.k);
-                vacated |= lanes.finish(&ends, done);
+                vacated |= lanes.finish(&ends, &mut hand_on::<PaperPerCorner, Simulation, 8>(done));
             }
             if let Some(lanes) = whole.lanes.as_mut().filter(|lanes| F4::bits(lanes.live) != 0) {
                 let ends = step_whole_die(&mut lanes.k);
-                vacated |= lanes.finish(&ends, done);
+                vacated |= lanes.finish(&ends, &mut hand_on::<PaperWholeDie, Simulation, 8>(done));
             }
             if let Some(lanes) = spring.lanes.as_mut().filter(|lanes| F4::bits(lanes.live) != 0) {
                 let ends = step_spring_friction(&mut lanes.k);
-                vacated |= lanes.finish(&ends, done);
+                vacated |= lanes.finish(&ends, &mut hand_on::<SpringFriction, Simulation, 8>(done));
+            }
+            if !dice.groups.is_empty() {
+                vacated |= dice.step(done);
             }
             since_check += 1;
             if since_check == STEPS_BETWEEN_STOP_CHECKS {
@@ -644,45 +1044,22 @@ mod avx2 {
     /// # Safety
     /// The CPU must support AVX2.
     #[target_feature(enable = "avx2")]
-    pub(super) unsafe fn roll_points<W: PointLaw, const N: usize>(rolls: &mut [PointRoll<N>]) {
-        let first = W::of(&rolls[0].k).expect("the rolls' law");
-        let mut k = Kernel::<F4, W, N, PointBody<N>>::splat(first);
-        let mut held: [Option<usize>; LANES] = [None; LANES];
-        let mut next = 0;
-        for (l, lane) in held.iter_mut().enumerate() {
-            k.park(l);
-            if next < rolls.len() {
-                k.set_lane(l, W::of(&rolls[next].k).expect("the rolls' law"));
-                *lane = Some(next);
-                next += 1;
+    pub(super) unsafe fn roll_points<W: PointLaw, const N: usize>(
+        rolls: Vec<PointRoll<N>>,
+    ) -> Vec<PointRoll<N>> {
+        let mut group = Group::<W, PointRoll<N>, N>::new();
+        let mut finished: Vec<Option<PointRoll<N>>> = (0..rolls.len()).map(|_| None).collect();
+        group.waiting.extend(rolls.into_iter().enumerate());
+        group.seat();
+        while let Some(lanes) = group.lanes.as_mut().filter(|lanes| F4::bits(lanes.live) != 0) {
+            let ends = step_points(&mut lanes.k);
+            if lanes.finish(&ends, &mut |index, _, _, roll| finished[index] = Some(roll)) {
+                group.seat();
             }
         }
-        while held.iter().any(Option::is_some) {
-            k.step(&mut NoHook);
-            let ends = k.ends();
-            for (l, lane) in held.iter_mut().enumerate() {
-                let Some(index) = *lane else { continue };
-                let bit = 1 << l;
-                let status = if F4::bits(ends.unstable) & bit != 0 {
-                    Status::Unstable
-                } else if F4::bits(ends.settled) & bit != 0 {
-                    Status::Settled
-                } else if F4::bits(ends.timeout) & bit != 0 {
-                    Status::Timeout
-                } else {
-                    continue;
-                };
-                let roll = &mut rolls[index];
-                k.lane_into(l, W::of_mut(&mut roll.k).expect("the rolls' law"));
-                roll.finish(status);
-                *lane = None;
-                k.park(l);
-                if next < rolls.len() {
-                    k.set_lane(l, W::of(&rolls[next].k).expect("the rolls' law"));
-                    *lane = Some(next);
-                    next += 1;
-                }
-            }
-        }
+        finished
+            .into_iter()
+            .map(|roll| roll.expect("every roll ends"))
+            .collect()
     }
 }

@@ -12,6 +12,9 @@
 //! and its scalar engine (`point_roll`), and on top the lane engine (`lanes`), the
 //! stability readings (`stability`, and the spring-friction law's own in
 //! `stability_contact`) and the dice of any convex shape (`polyhedron/`), each a `PointBody`.
+//! The polyhedron's geometry (its hull, moments, numbering, flaws, `Die` and the regular
+//! solids) uses only the mass properties' type, so `model` asks it what a polyhedral
+//! `die.kind` weighs and where it stands; only its `rolled` and `stability` use the step.
 
 pub mod body;
 pub mod contact;
@@ -43,14 +46,15 @@ pub use impact::{Impacts, impact_starts};
 pub use initial::{InitialCondition, RandomRanges};
 pub use model::{Placement, check_setup, resting_depth_on_face, why_it_cannot_settle};
 pub use params::{
-    ContactLaw, Die, FrictionLaw, Ground, GroundKey, Integrator, Limits, ParamError, Params, StopEnergy,
-    World,
+    ContactLaw, Die, FrictionLaw, Ground, GroundKey, Integrator, Limits, ParamError, Params, Solid,
+    StopEnergy, World,
 };
 pub use point_roll::{PointOutcome, PointRoll};
 pub use points::{BodyError, MAX_FACES, PointBody};
 pub use shape::{MassProperties, mass_properties};
 pub use sim::{
     ContactForce, EnergyLedger, FirstImpact, Outcome, STEPS_BETWEEN_STOP_CHECKS, Simulation, State, Status,
+    refuse_polyhedral_die,
 };
 pub use stability::{Limit, Reading, Stability, StabilityCheck, UnstableReason};
 pub use stopping::StopRule;

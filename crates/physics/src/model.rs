@@ -20,7 +20,8 @@ use super::body::{body_corner_offsets, face_of_highest_corners, opposite_face};
 use super::cube::Cube;
 use super::initial::{InitialCondition, limits};
 use super::mass::LoadedMass;
-use super::params::{BodyKind, Limits, ParamError, Params};
+use super::params::{BodyKind, Limits, ParamError, Params, Solid};
+use super::polyhedron::{self, DieKind};
 use super::shape::Shape;
 use super::stopping::StopRule;
 use nalgebra::{Matrix3, Vector3};
@@ -294,38 +295,137 @@ pub(crate) fn principal_frame(tensor: &Matrix3<f64>) -> Option<(Vector3<f64>, Ma
     Some((moments, axes))
 }
 
+impl Solid {
+    /// The regular die it is, `None` for the box.
+    pub fn regular(self) -> Option<DieKind> {
+        match self {
+            Solid::Box => None,
+            Solid::D4 => Some(DieKind::D4),
+            Solid::D8 => Some(DieKind::D8),
+            Solid::D10 => Some(DieKind::D10),
+            Solid::Percentile => Some(DieKind::Percentile),
+            Solid::D12 => Some(DieKind::D12),
+            Solid::D20 => Some(DieKind::D20),
+        }
+    }
+}
+
 /// What the parameters imply about their body.
 impl Params {
+    /// The polyhedral die of `die.kind`, `die.height` and `die.density`; `None` for the box.
+    pub fn polyhedral_die(&self) -> Option<polyhedron::Die> {
+        let die = &self.die;
+        die.kind.regular().map(|kind| kind.die(die.height, die.density))
+    }
+
     /// g, the whole die: the undrilled body's `8·m` less the pips plus any extra corner
-    /// masses (adding the extras' zeros leaves the fair die's `8·m` bit for bit).
+    /// masses (adding the extras' zeros leaves the fair die's `8·m` bit for bit); a
+    /// polyhedral die's solid.
     pub fn total_mass(&self) -> f64 {
-        Body::new(self).mass()
+        match self.polyhedral_die() {
+            Some(die) => die.mass_properties().mass,
+            None => Body::new(self).mass(),
+        }
     }
 
     /// g·cm², one moment of inertia for the whole body: what
     /// converts a spin stated as ω into L and back where no orientation is at hand (preset
-    /// files, `--set`, the explorer's spin fields). Bitwise 16/3 at the defaults.
+    /// files, `--set`, the explorer's spin fields). Bitwise 16/3 at the defaults; a
+    /// polyhedral die's mean principal moment.
     pub fn inertia(&self) -> f64 {
-        Body::new(self).mean_inertia()
+        match self.polyhedral_die() {
+            Some(die) => die.mass_properties().inertia.trace() / 3.0,
+            None => Body::new(self).mean_inertia(),
+        }
     }
 
     /// erg, the energy to tip over an edge from lying flat: `M·g·a·(√2 − 1)` for the
     /// paper's cube; for any other body the lowest edge pass over every face and edge
-    /// (docs/model.md, "Real dice").
+    /// (docs/model.md, "Real dice"); a polyhedral die's tipping barrier.
     pub fn edge_energy(&self) -> f64 {
-        Body::new(self).edge_energy()
+        match self.polyhedral_die() {
+            Some(die) => die.stop_rule(self).1,
+            None => Body::new(self).edge_energy(),
+        }
     }
 
     /// `ω_rock·Δt`, the fastest contact mode times the step: semi-implicit Euler is stable
-    /// only below 2 (docs/model.md, "Stability").
+    /// only below 2 (docs/model.md, "Stability"); for a polyhedral die `ω·Δt` of one point
+    /// on the table ([`Params::point_contact_number`]).
     pub fn stability_number(&self) -> f64 {
-        Body::new(self).rocking_frequency() * self.integrator.dt
+        match self.polyhedral_die() {
+            Some(die) => point_contact_number(self, &die),
+            None => Body::new(self).rocking_frequency() * self.integrator.dt,
+        }
     }
 
-    /// cm, how far each corner sinks when the die rests flat: `M·g/(4k)`.
+    /// cm, how far each corner sinks when the die rests flat: `M·g/(4k)`; a polyhedral
+    /// die's deepest point resting on any face.
     pub fn resting_depth(&self) -> f64 {
-        resting_depth(self, &Body::new(self))
+        match self.polyhedral_die() {
+            Some(die) => polyhedral_resting_depth(self, &die),
+            None => resting_depth(self, &Body::new(self)),
+        }
     }
+
+    /// Refuses a polyhedral die on a step it cannot take: one point on the table, a spring
+    /// `k` under the least mass a push there moves, `m = (1/M + r²/I_min)⁻¹` (`r` the farthest
+    /// point's reach), rocks at `ω = √(k/m)`, and `ω·Δt` above [`CONTACT_MODE_LIMIT`] runs
+    /// away (docs/model.md, "Fair dice come out fair": the d4 at 1 ms).
+    pub(crate) fn check_polyhedral_step(&self) -> Result<(), ParamError> {
+        let Some(die) = self.polyhedral_die() else {
+            return Ok(());
+        };
+        let number = point_contact_number(self, &die);
+        if number <= CONTACT_MODE_LIMIT {
+            return Ok(());
+        }
+        let dt = self.integrator.dt;
+        let most = dt * CONTACT_MODE_LIMIT / number;
+        Err(ParamError::refused(
+            super::params::limits::DT,
+            dt,
+            format!(
+                "too long a step for this {}: one point on the table rocks with ω·Δt = {number:.2}, \
+                 and above {CONTACT_MODE_LIMIT} the step feeds energy in and the die runs away \
+                 (docs/model.md, \"Fair dice come out fair\"); at most {} s here (the dice presets \
+                 take 0.00025)",
+                self.die.kind.name(),
+                super::params::fmt_number((most * 1e7).floor() / 1e7)
+            ),
+        ))
+    }
+}
+
+/// `ω·Δt` above this lets a contact mode gain energy (stability.rs, which reads it for the
+/// box; the same number here, where the stability readings cannot be asked).
+const CONTACT_MODE_LIMIT: f64 = 1.25;
+
+/// `√(k·(1/M + r²/I_min))·Δt` of `die` on `p`'s table: one point, the farthest from the
+/// centre of mass, on a spring `k`, pushed across its reach.
+fn point_contact_number(p: &Params, die: &polyhedron::Die) -> f64 {
+    let props = die.mass_properties();
+    let reach_squared = die
+        .contact_points()
+        .iter()
+        .map(|point| point.offset.norm_squared())
+        .fold(0.0, f64::max);
+    let least_inertia = props.inertia.symmetric_eigen().eigenvalues.min();
+    let inverse_mass = 1.0 / props.mass + reach_squared / least_inertia;
+    (p.ground.stiffness * inverse_mass).sqrt() * p.integrator.dt
+}
+
+/// cm, the deepest any point of `die` sinks resting on a face of `p`'s table (`M·g/(3k)`,
+/// a triangle's share, where a face would not hold).
+fn polyhedral_resting_depth(p: &Params, die: &polyhedron::Die) -> f64 {
+    let (k, g) = (p.ground.stiffness, p.world.gravity);
+    let fallback = die.mass_properties().mass * g / (3.0 * k);
+    (0..die.shape().faces().len())
+        .map(|face| {
+            die.rest_depth(face, k, g)
+                .map_or(fallback, |rest| rest.points.iter().copied().fold(0.0, f64::max))
+        })
+        .fold(0.0, f64::max)
 }
 
 /// cm, `M·g/(4k)` for `body` on `p`'s table.
@@ -355,6 +455,9 @@ impl InitialCondition {
 /// and each answer is the very one a [`Simulation`](crate::Simulation) of the start gives.
 pub struct Placement {
     body: Body,
+    /// cm, a polyhedral die's contact points from its centre of mass, die frame (the box's
+    /// corners are the body's).
+    points: Option<Vec<Vector3<f64>>>,
     /// cm, the corners' rounding, which the table must clear.
     corner_radius: f64,
     /// cm, `M·g/(4k)`.
@@ -365,9 +468,11 @@ impl Placement {
     /// The placement of `params`' die.
     pub fn new(params: &Params) -> Placement {
         let body = Body::new(params);
+        let die = params.polyhedral_die();
         Placement {
             corner_radius: params.die.corner_radius,
-            resting_depth: resting_depth(params, &body),
+            resting_depth: params.resting_depth(),
+            points: die.map(|die| die.contact_points().iter().map(|p| p.offset).collect()),
             body,
         }
     }
@@ -380,11 +485,20 @@ impl Placement {
 
     /// [`InitialCondition::check_clear_of_table`] for this setup.
     pub fn check_clear_of_table(&self, initial: &InitialCondition) -> Result<(), ParamError> {
-        let lowest_offset = self
-            .start_offsets(initial)
-            .iter()
-            .map(|r| r.z - self.corner_radius)
-            .fold(f64::INFINITY, f64::min);
+        let lowest_offset = match &self.points {
+            Some(points) => {
+                let rotation = initial.rotation();
+                points
+                    .iter()
+                    .map(|p| (rotation * p).z)
+                    .fold(f64::INFINITY, f64::min)
+            }
+            None => self
+                .start_offsets(initial)
+                .iter()
+                .map(|r| r.z - self.corner_radius)
+                .fold(f64::INFINITY, f64::min),
+        };
         let lowest = -lowest_offset - self.resting_depth;
         if initial.height >= lowest {
             Ok(())

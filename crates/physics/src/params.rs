@@ -121,6 +121,10 @@ pub mod limits {
     pub const DT: Limits = limits("integrator.dt", "s", 1e-5, 1e-2);
     pub const STOP_ENERGY_FRACTION: Limits = limits("integrator.stop_energy_fraction", "", 0.01, 1.0);
     pub const MAX_TIME: Limits = limits("integrator.max_time", "s", 0.01, 120.0);
+    /// A polyhedral die's size: how tall it stands on a face (docs/dice.md, "Size and material").
+    pub const HEIGHT: Limits = limits("die.height", "cm", 0.1, 20.0);
+    /// From cork to tungsten.
+    pub const DENSITY: Limits = limits("die.density", "g/cm³", 0.1, 20.0);
 }
 
 /// A value outside its allowed range: names the field, the value and the range.
@@ -229,8 +233,92 @@ const STOP_ENERGY_KEY: Limits = Limits {
 /// No roll runs longer than this many steps, whatever its parameters (under a second).
 pub const MAX_STEPS_CAP: u64 = 12_000_000;
 
+/// Which solid a die is: the box (a cuboid of 8 corners, the paper's die and every die built
+/// on it) or one of the regular polyhedral dice (docs/dice.md), each a body of its vertices.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+pub enum Solid {
+    /// The cuboid of `die.half_sizes`: what a file without `die.kind` describes.
+    #[default]
+    #[serde(rename = "box")]
+    Box,
+    #[serde(rename = "d4")]
+    D4,
+    #[serde(rename = "d8")]
+    D8,
+    #[serde(rename = "d10")]
+    D10,
+    /// The d10's shape labelled 00, 10, …, 90.
+    #[serde(rename = "d%")]
+    Percentile,
+    #[serde(rename = "d12")]
+    D12,
+    #[serde(rename = "d20")]
+    D20,
+}
+
+impl Solid {
+    pub const ALL: [Solid; 7] = [
+        Solid::Box,
+        Solid::D4,
+        Solid::D8,
+        Solid::D10,
+        Solid::Percentile,
+        Solid::D12,
+        Solid::D20,
+    ];
+
+    /// Every name, as [`Solid::name`] gives them, in [`Solid::ALL`]'s order.
+    pub const NAMES: [&'static str; 7] = ["box", "d4", "d8", "d10", "d%", "d12", "d20"];
+
+    /// The name a preset gives it: `box`, or the players' `d4` … `d20`, `d%`.
+    pub const fn name(self) -> &'static str {
+        Solid::NAMES[self as usize]
+    }
+
+    /// The solid named `name` ([`Solid::name`]).
+    pub fn from_name(name: &str) -> Option<Solid> {
+        Solid::ALL.into_iter().find(|s| s.name() == name)
+    }
+
+    /// The numbers a roll of it can show, in the order its tables list them.
+    pub const fn face_numbers(self) -> &'static [u8] {
+        match self {
+            Solid::Box => &[1, 2, 3, 4, 5, 6],
+            Solid::D4 => &[1, 2, 3, 4],
+            Solid::D8 => &[1, 2, 3, 4, 5, 6, 7, 8],
+            Solid::D10 => &[0, 1, 2, 3, 4, 5, 6, 7, 8, 9],
+            Solid::Percentile => &[0, 10, 20, 30, 40, 50, 60, 70, 80, 90],
+            Solid::D12 => &[1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12],
+            Solid::D20 => &[
+                1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20,
+            ],
+        }
+    }
+}
+
+/// The die's keys read by one solid only: the box's shape and masses, and a polyhedron's size
+/// and material ([`Die::reads`]).
+const BOX_KEYS: [Limits; 6] = [
+    limits::HALF_SIZES,
+    limits::CORNER_RADIUS,
+    limits::PIP_DIAMETER,
+    limits::PIP_DEPTH,
+    limits::CORNER_MASS,
+    limits::EXTRA_CORNER_MASS,
+];
+const POLYHEDRON_KEYS: [Limits; 2] = [limits::HEIGHT, limits::DENSITY];
+
+/// The die's kind's key, for its refusals.
+pub const KIND_KEY: Limits = Limits {
+    key: "die.kind",
+    unit: "",
+    min: 0.0,
+    max: 0.0,
+};
+
 /// The die: a cuboid with rounded corners and drilled pips (the paper's: a sharp cube of
-/// 8 corner point masses, without pips), docs/model.md "Real dice".
+/// 8 corner point masses, without pips), docs/model.md "Real dice"; or, with `kind`, a
+/// regular polyhedral die of a height and a density (docs/dice.md).
 ///
 /// A file states the size as `half_sizes = [ax, ay, az]` or, for a cube, the older
 /// `half_size = a`; a cube is written back the older way, so the paper's die reads and
@@ -251,6 +339,13 @@ pub struct Die {
     /// g, point masses added at corners 1..8 (a loaded die, docs/model.md "Loaded dice");
     /// all zero is the paper's fair die.
     pub extra_corner_mass: [f64; 8],
+    /// The solid: the box of the keys above, or a polyhedral die of the two below.
+    pub kind: Solid,
+    /// cm, how tall a polyhedral die stands on a face: across its faces, from a face to the
+    /// top vertex on the d4 (docs/dice.md, "Size and material").
+    pub height: f64,
+    /// g/cm³, a polyhedral die's uniform material.
+    pub density: f64,
 }
 
 impl Die {
@@ -279,9 +374,91 @@ impl Die {
     }
 
     /// The numbers a roll of this die can show, in the order its tables list them: what a
-    /// tally counts and its χ² has one degree of freedom fewer than. A box shows 1 to 6.
+    /// tally counts and its χ² has one degree of freedom fewer than. A box shows 1 to 6, a
+    /// d`N` 1 to `N`, the d10 0 to 9 and the d% 0, 10, …, 90.
     pub fn face_numbers(&self) -> &'static [u8] {
-        &[1, 2, 3, 4, 5, 6]
+        self.kind.face_numbers()
+    }
+
+    /// Whether it is a polyhedral die (not the box).
+    pub fn is_polyhedral(&self) -> bool {
+        self.kind != Solid::Box
+    }
+
+    /// Whether this die reads `key` (a dotted preset key): the box its shape and masses, a
+    /// polyhedral die its height and density; every die its kind.
+    pub fn reads(&self, key: &str) -> bool {
+        let unread = if self.is_polyhedral() {
+            &BOX_KEYS[..]
+        } else {
+            &POLYHEDRON_KEYS[..]
+        };
+        !unread
+            .iter()
+            .any(|l| l.key == key || (key == "die.half_size" && l.key == "die.half_sizes"))
+    }
+
+    /// Whether a file describing this die states `key`: every key it reads, but the box's
+    /// kind, which a file without `die.kind` is.
+    pub fn states(&self, key: &str) -> bool {
+        self.reads(key) && (key != KIND_KEY.key || self.is_polyhedral())
+    }
+
+    /// The refusal of `key` when this die does not read it: what a file or `--set` says when
+    /// the key is given, whatever its value.
+    pub fn refusal(&self, key: &str) -> Option<ParamError> {
+        if self.reads(key) {
+            return None;
+        }
+        let limits = BOX_KEYS
+            .iter()
+            .chain(&POLYHEDRON_KEYS)
+            .find(|l| l.key == key || (key == "die.half_size" && l.key == "die.half_sizes"))?;
+        Some(ParamError::refused(
+            *limits,
+            f64::NAN,
+            self.why_unread(limits.key),
+        ))
+    }
+
+    /// Why this die does not read `key`, and the way out.
+    fn why_unread(&self, key: &str) -> String {
+        if self.is_polyhedral() {
+            format!(
+                "a {} is a polyhedral die, sized by `die.height` (cm) and made of `die.density` \
+                 (g/cm³); `{key}` describes the box only (leave out `die.kind` for the box)",
+                self.kind.name()
+            )
+        } else {
+            format!(
+                "`{key}` sizes a polyhedral die; the box is sized by `die.half_sizes` and weighed \
+                 by `die.corner_mass` (give `die.kind`, e.g. \"d20\", for a polyhedral die)"
+            )
+        }
+    }
+
+    /// The first key this die does not read that differs from its default.
+    fn check_unread(&self) -> Result<(), ParamError> {
+        let d = &Params::DEFAULT.die;
+        let differs: [(Limits, bool); 8] = [
+            (limits::HALF_SIZES, self.half_sizes != d.half_sizes),
+            (limits::CORNER_RADIUS, self.corner_radius != d.corner_radius),
+            (limits::PIP_DIAMETER, self.pip_diameter != d.pip_diameter),
+            (limits::PIP_DEPTH, self.pip_depth != d.pip_depth),
+            (limits::CORNER_MASS, self.corner_mass != d.corner_mass),
+            (
+                limits::EXTRA_CORNER_MASS,
+                self.extra_corner_mass != d.extra_corner_mass,
+            ),
+            (limits::HEIGHT, self.height != d.height),
+            (limits::DENSITY, self.density != d.density),
+        ];
+        for (limits, differs) in differs {
+            if differs && let Some(refused) = self.refusal(limits.key) {
+                return Err(refused);
+            }
+        }
+        Ok(())
     }
 
     /// cm, the cube's half size `a` (the first half size of any other body).
@@ -325,18 +502,20 @@ struct DieKeys {
     pip_diameter: f64,
     #[serde(default, skip_serializing_if = "is_zero")]
     pip_depth: f64,
-    #[serde(default = "default_corner_mass")]
-    corner_mass: f64,
-    #[serde(default)]
-    extra_corner_mass: [f64; 8],
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    corner_mass: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    extra_corner_mass: Option<[f64; 8]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    kind: Option<Solid>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    height: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    density: Option<f64>,
 }
 
 fn is_zero(x: &f64) -> bool {
     *x == 0.0
-}
-
-fn default_corner_mass() -> f64 {
-    Params::DEFAULT.die.corner_mass
 }
 
 /// Why a `[die]` table states its size twice.
@@ -353,31 +532,40 @@ impl TryFrom<DieKeys> for Die {
             (None, Some(sizes)) => sizes,
             (None, None) => Params::DEFAULT.die.half_sizes,
         };
+        let d = &Params::DEFAULT.die;
         Ok(Die {
             half_sizes,
             corner_radius: k.corner_radius,
             pip_diameter: k.pip_diameter,
             pip_depth: k.pip_depth,
-            corner_mass: k.corner_mass,
-            extra_corner_mass: k.extra_corner_mass,
+            corner_mass: k.corner_mass.unwrap_or(d.corner_mass),
+            extra_corner_mass: k.extra_corner_mass.unwrap_or(d.extra_corner_mass),
+            kind: k.kind.unwrap_or(d.kind),
+            height: k.height.unwrap_or(d.height),
+            density: k.density.unwrap_or(d.density),
         })
     }
 }
 
 impl From<Die> for DieKeys {
     /// Equal half sizes are written as the one `half_size`, and zero radius and pips not at
-    /// all: the paper's die serialises byte for byte as before these keys existed.
+    /// all: the paper's die serialises byte for byte as before these keys existed. A box is
+    /// written without its kind, height and density; a polyhedral die with only those.
     fn from(d: Die) -> DieKeys {
         let [x, y, z] = d.half_sizes;
         let cube = x == y && y == z;
+        let box_ = !d.is_polyhedral();
         DieKeys {
-            half_size: cube.then_some(x),
-            half_sizes: (!cube).then_some(d.half_sizes),
-            corner_radius: d.corner_radius,
-            pip_diameter: d.pip_diameter,
-            pip_depth: d.pip_depth,
-            corner_mass: d.corner_mass,
-            extra_corner_mass: d.extra_corner_mass,
+            half_size: (box_ && cube).then_some(x),
+            half_sizes: (box_ && !cube).then_some(d.half_sizes),
+            corner_radius: if box_ { d.corner_radius } else { 0.0 },
+            pip_diameter: if box_ { d.pip_diameter } else { 0.0 },
+            pip_depth: if box_ { d.pip_depth } else { 0.0 },
+            corner_mass: box_.then_some(d.corner_mass),
+            extra_corner_mass: box_.then_some(d.extra_corner_mass),
+            kind: (!box_).then_some(d.kind),
+            height: (!box_).then_some(d.height),
+            density: (!box_).then_some(d.density),
         }
     }
 }
@@ -759,6 +947,10 @@ impl Params {
             pip_depth: 0.0,
             corner_mass: 1.0,
             extra_corner_mass: [0.0; 8],
+            kind: Solid::Box,
+            // A standard ("16 mm") die of cast acrylic resin (docs/dice.md).
+            height: 1.6,
+            density: 1.18,
         },
         ground: Ground {
             stiffness: 500_000.0,
@@ -789,6 +981,12 @@ impl Params {
     /// first failure is returned.
     pub fn validate(&self) -> Result<(), ParamError> {
         let (d, g, i) = (&self.die, &self.ground, &self.integrator);
+        // A key the solid does not read is refused first: its range is no matter then.
+        d.check_unread()?;
+        if d.is_polyhedral() {
+            limits::HEIGHT.check(d.height)?;
+            limits::DENSITY.check(d.density)?;
+        }
         limits::HALF_SIZES.check_components(XYZ, &d.half_sizes)?;
         limits::CORNER_RADIUS.check(d.corner_radius)?;
         let smallest = d.smallest_half_size();
@@ -875,6 +1073,18 @@ impl Params {
         limits::DT.check(i.dt)?;
         limits::STOP_ENERGY_FRACTION.check(i.stop_energy_fraction)?;
         limits::MAX_TIME.check(i.max_time)?;
+        if d.is_polyhedral() {
+            if i.stop_energy == StopEnergy::PointMasses {
+                return Err(ParamError::refused(
+                    STOP_ENERGY_KEY,
+                    f64::NAN,
+                    "\"point-masses\" (the authors' energy of 8 corner point masses) is defined for \
+                     the paper's sharp cube without pips only; a polyhedral die needs \"rigid-body\""
+                        .to_string(),
+                ));
+            }
+            return self.check_polyhedral_step();
+        }
         if i.stop_energy == StopEnergy::PointMasses && d.kind() == BodyKind::Shaped {
             return Err(ParamError::refused(
                 STOP_ENERGY_KEY,
@@ -979,5 +1189,90 @@ mod tests {
         let e = p.validate().unwrap_err();
         assert_eq!(e.key, "die.pip_diameter");
         assert!(e.to_string().contains("at most 0 cm"), "{e}");
+    }
+
+    /// A polyhedral die of `kind` at Δt = 0.25 ms, the dice' table.
+    fn dice(kind: Solid) -> Params {
+        let mut p = Params::default();
+        p.die.kind = kind;
+        p.integrator.dt = 0.00025;
+        p
+    }
+
+    #[test]
+    fn a_polyhedral_die_shows_its_own_numbers() {
+        assert_eq!(Params::DEFAULT.die.face_numbers(), &[1, 2, 3, 4, 5, 6]);
+        let numbers = |kind| dice(kind).die.face_numbers().to_vec();
+        assert_eq!(numbers(Solid::D4), (1..=4).collect::<Vec<u8>>());
+        assert_eq!(numbers(Solid::D8), (1..=8).collect::<Vec<u8>>());
+        assert_eq!(numbers(Solid::D10), (0..=9).collect::<Vec<u8>>());
+        assert_eq!(
+            numbers(Solid::Percentile),
+            (0..=9).map(|n| 10 * n).collect::<Vec<u8>>()
+        );
+        assert_eq!(numbers(Solid::D12), (1..=12).collect::<Vec<u8>>());
+        assert_eq!(numbers(Solid::D20), (1..=20).collect::<Vec<u8>>());
+        for kind in Solid::ALL {
+            assert_eq!(Solid::from_name(kind.name()), Some(kind));
+            dice(kind).validate().unwrap();
+        }
+    }
+
+    #[test]
+    fn the_box_keys_are_refused_beside_a_polyhedron_and_its_size_beside_the_box() {
+        let mut p = dice(Solid::D20);
+        p.die.half_sizes = [0.8; 3];
+        let e = p.validate().unwrap_err();
+        assert_eq!(e.key, "die.half_sizes");
+        assert!(e.to_string().contains("a d20 is a polyhedral die"), "{e}");
+        let mut p = dice(Solid::D8);
+        p.die.extra_corner_mass[2] = 0.5;
+        assert_eq!(p.validate().unwrap_err().key, "die.extra_corner_mass");
+        let mut p = Params::default();
+        p.die.height = 2.0;
+        let e = p.validate().unwrap_err();
+        assert_eq!(e.key, "die.height");
+        assert!(
+            e.to_string().contains("the box is sized by `die.half_sizes`"),
+            "{e}"
+        );
+        let mut p = dice(Solid::D12);
+        p.die.density = 30.0;
+        assert_eq!(p.validate().unwrap_err().key, "die.density");
+        assert!(Params::DEFAULT.die.reads("die.half_size"));
+        assert!(!dice(Solid::D4).die.reads("die.half_size"));
+        assert!(!Params::DEFAULT.die.states("die.kind") && dice(Solid::D4).die.states("die.kind"));
+    }
+
+    #[test]
+    fn the_d4_is_refused_on_the_papers_step() {
+        // docs/model.md, "Fair dice come out fair": one point of the 16 mm resin d4 on the table
+        // moves like M/8.5 (M = 1.18 g/cm³ · 0.8868 cm³ = 1.0465 g), ω = √(k·8.5/M) = 2 015 rad/s:
+        // ω·Δt = 2.02 at 1 ms, past 1.25; 0.50 at 0.25 ms.
+        let mut p = dice(Solid::D4);
+        p.integrator.dt = 0.001;
+        let e = p.validate().unwrap_err();
+        assert_eq!(e.key, "integrator.dt");
+        assert!(e.to_string().contains("ω·Δt = 2.02"), "{e}");
+        assert!(e.to_string().contains("runs away"), "{e}");
+        let mut p = dice(Solid::D4);
+        p.integrator.dt = 0.00025;
+        assert!(
+            (p.stability_number() - 0.504).abs() < 0.001,
+            "{}",
+            p.stability_number()
+        );
+        p.validate().unwrap();
+        // The other dice take the paper's step (docs: ω·Δt 0.75 to 0.85 at 1 ms).
+        let mut p = dice(Solid::D20);
+        p.integrator.dt = 0.001;
+        p.validate().unwrap();
+    }
+
+    #[test]
+    fn the_authors_point_mass_energy_is_refused_for_a_polyhedron() {
+        let mut p = dice(Solid::D20);
+        p.integrator.stop_energy = StopEnergy::PointMasses;
+        assert_eq!(p.validate().unwrap_err().key, "integrator.stop_energy");
     }
 }

@@ -9,7 +9,8 @@ use super::initial::InitialCondition;
 use super::kernel::{Faces, Kernel, NoHook};
 use super::params::{ContactLaw, FrictionLaw, ParamError, Params};
 use super::points::PointBody;
-use super::sim::{PaperPerCorner, PaperWholeDie, Status, by_law, engine_law, on_law, status_of};
+use super::sim::{ImpactLog, Outcome, STEPS_BETWEEN_STOP_CHECKS, Status};
+use super::sim::{PaperPerCorner, PaperWholeDie, by_law, engine_law, on_law, status_of};
 use super::state::State;
 use nalgebra::Vector2;
 
@@ -38,7 +39,12 @@ pub(crate) enum PointKernel<const N: usize> {
 pub struct PointRoll<const N: usize> {
     pub(crate) k: PointKernel<N>,
     body: PointBody<N>,
-    outcome: Option<PointOutcome>,
+    /// The number of the face up at t = 0 (the number read were it to rest as it starts).
+    start_face: u8,
+    /// Its impacts so far, by the box's definition (the lane engine carries a lane's and
+    /// stores it back).
+    pub(crate) impact_log: ImpactLog,
+    outcome: Option<Outcome>,
 }
 
 impl<const N: usize> PointRoll<N> {
@@ -53,11 +59,24 @@ impl<const N: usize> PointRoll<N> {
     /// [`PointRoll::new`] without the range checks.
     pub(crate) fn new_unchecked(params: &Params, body: &PointBody<N>, initial: &InitialCondition) -> Self {
         let k = by_law!(PointKernel, params, body.kernel(params, initial));
+        let (in_contact, offsets) = on_law!(PointKernel, &k, k => (k.in_contact, k.state.corner_offsets));
         PointRoll {
             k,
             body: *body,
+            start_face: body.face_up(&offsets),
+            impact_log: ImpactLog::new(in_contact),
             outcome: None,
         }
+    }
+
+    /// The number of the face up at t = 0.
+    pub fn start_face(&self) -> u8 {
+        self.start_face
+    }
+
+    /// The body it rolls.
+    pub fn body(&self) -> &PointBody<N> {
+        &self.body
     }
 
     pub fn state(&self) -> &State<f64, N> {
@@ -90,12 +109,44 @@ impl<const N: usize> PointRoll<N> {
 
     /// The end, once the roll has ended.
     pub fn outcome(&self) -> Option<PointOutcome> {
+        self.outcome.map(|o| PointOutcome {
+            status: o.status,
+            face: o.face,
+            steps: o.steps,
+            time_s: o.time_s,
+        })
+    }
+
+    /// The end as the box's rolls report it, with its impacts, once the roll has ended.
+    pub fn full_outcome(&self) -> Option<Outcome> {
         self.outcome
     }
 
-    /// One step of Δt.
+    /// One step of Δt, its contact seen by the impact log.
     pub fn step(&mut self) {
-        on_law!(PointKernel, &mut self.k, k => k.step(&mut NoHook));
+        let body = &self.body;
+        let log = &mut self.impact_log;
+        on_law!(PointKernel, &mut self.k, k => {
+            k.step(&mut NoHook);
+            let s = &k.state;
+            log.observe(k.in_contact, || (body.face_down(&s.corner_offsets), s.step, s.time_s));
+        });
+    }
+
+    /// Steps until the roll ends, or until `stop()` answers true (asked every
+    /// [`STEPS_BETWEEN_STOP_CHECKS`] steps): `None` then, and the roll can be continued.
+    pub fn run_until_stopped(&mut self, stop: &dyn Fn() -> bool) -> Option<Outcome> {
+        loop {
+            for _ in 0..STEPS_BETWEEN_STOP_CHECKS {
+                if self.outcome.is_some() {
+                    return self.outcome;
+                }
+                self.advance();
+            }
+            if stop() {
+                return None;
+            }
+        }
     }
 
     /// One step, then the end-of-roll test; the outcome on the step that ends it.
@@ -112,7 +163,7 @@ impl<const N: usize> PointRoll<N> {
     /// Steps until the roll ends.
     pub fn run_to_end(&mut self) -> PointOutcome {
         loop {
-            if let Some(o) = self.outcome {
+            if let Some(o) = self.outcome() {
                 return o;
             }
             self.advance();
@@ -122,7 +173,7 @@ impl<const N: usize> PointRoll<N> {
     /// Ends the roll as `status` at the current state.
     pub(crate) fn finish(&mut self, status: Status) -> PointOutcome {
         let s = self.state();
-        let outcome = PointOutcome {
+        let outcome = Outcome {
             status,
             face: match status {
                 Status::Settled => Faces::face_up_at_rest(&self.body, &s.corner_offsets),
@@ -130,9 +181,11 @@ impl<const N: usize> PointRoll<N> {
             },
             steps: s.step,
             time_s: s.time_s,
+            impacts: self.impact_log.impacts.count(),
+            first_impact: self.impact_log.first,
         };
         self.outcome = Some(outcome);
-        outcome
+        self.outcome().expect("just ended")
     }
 }
 

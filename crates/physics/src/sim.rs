@@ -12,7 +12,7 @@ use super::impact::Impacts;
 use super::initial::InitialCondition;
 use super::kernel::{Constants, Ends, Kernel, NoHook, StepHook};
 use super::model::{Body, check_setup};
-use super::params::{ContactLaw, FrictionLaw, Ground, ParamError, Params, StopEnergy};
+use super::params::{ContactLaw, Detail, FrictionLaw, Ground, KIND_KEY, ParamError, Params, StopEnergy};
 use super::state::contact_point;
 use super::stopping::StopRule;
 use nalgebra::{Vector2, Vector3};
@@ -121,7 +121,10 @@ pub struct FirstImpact {
     pub step: u64,
     /// s of simulated time when it began.
     pub time_s: f64,
-    /// The face most nearly down then (1..6): the one opposite the face most nearly up.
+    /// The face most nearly down then, by the number printed on it (the box's 1..6: the one
+    /// opposite the face most nearly up; a polyhedral die's, [`crate::PointBody::face_down`]:
+    /// the number on the face opposite the face most nearly up, which on the d4, whose
+    /// faces have no opposites, is the number at the vertex most nearly down).
     pub face_down: u8,
 }
 
@@ -142,14 +145,10 @@ impl ImpactLog {
         }
     }
 
-    /// The next state's contact; `corner_offsets`, `step` and `time_s` are read only when
-    /// the first impact begins at it.
+    /// The next state's contact; `state` (the face most nearly down, the step and the time)
+    /// is asked only when the first impact begins at it.
     #[inline(always)]
-    pub(crate) fn observe(
-        &mut self,
-        in_contact: bool,
-        state: impl FnOnce() -> ([Vector3<f64>; 8], u64, f64),
-    ) {
+    pub(crate) fn observe(&mut self, in_contact: bool, state: impl FnOnce() -> (u8, u64, f64)) {
         if self.impacts.observe(in_contact) && self.first.is_none() {
             self.first = Some(first_impact(state()));
         }
@@ -157,13 +156,19 @@ impl ImpactLog {
 }
 
 #[cold]
-fn first_impact((corner_offsets, step, time_s): ([Vector3<f64>; 8], u64, f64)) -> FirstImpact {
+fn first_impact((face_down, step, time_s): (u8, u64, f64)) -> FirstImpact {
     FirstImpact {
         step,
         time_s,
-        // Opposite faces sum to 7 (face i's normal is face 7 − i's, reversed).
-        face_down: 7 - face_most_nearly_up(&corner_offsets),
+        face_down,
     }
+}
+
+/// The box's face most nearly down with its corners at `corner_offsets`: opposite faces sum
+/// to 7 (face i's normal is face 7 − i's, reversed).
+#[cold]
+pub(crate) fn box_face_down(corner_offsets: &[Vector3<f64>; 8]) -> u8 {
+    7 - face_most_nearly_up(corner_offsets)
 }
 
 /// Steps between two looks at a stop request in [`Simulation::run_until_stopped`]: a few
@@ -322,8 +327,11 @@ fn corner_velocities<W: Law>(k: &Kernel<f64, W>) -> [Vector3<f64>; 8] {
 impl Simulation {
     /// Validates the parameters and the initial condition (no corner may start inside the
     /// table), then places the die.
+    /// A polyhedral die (`die.kind`) is refused: this engine rolls the box; a polyhedral die
+    /// rolls in [`crate::lanes::roll_in_lanes`] and [`crate::lanes::roll_one_by_one`].
     pub fn new(params: &Params, initial: &InitialCondition) -> Result<Self, ParamError> {
         check_setup(params, initial)?;
+        refuse_polyhedral_die(params, "this command")?;
         Ok(Self::new_unchecked(params, initial))
     }
 
@@ -524,8 +532,9 @@ impl Simulation {
         }
         let k = kernel_of::<W>(&mut self.k);
         let s = &k.state;
-        self.impact_log
-            .observe(k.in_contact, || (s.corner_offsets, s.step, s.time_s));
+        self.impact_log.observe(k.in_contact, || {
+            (box_face_down(&s.corner_offsets), s.step, s.time_s)
+        });
     }
 
     /// The step with the energy ledger's bookkeeping, kept out of line: inlined beside the
@@ -624,7 +633,9 @@ impl Simulation {
                     k.step(&mut NoHook);
                 }
                 let s = &k.state;
-                impact_log.observe(k.in_contact, || (s.corner_offsets, s.step, s.time_s));
+                impact_log.observe(k.in_contact, || {
+                    (box_face_down(&s.corner_offsets), s.step, s.time_s)
+                });
                 if let Some(status) = status_of(&k.ends()) {
                     let ended = outcome_of(k, impact_log, status);
                     *outcome = Some(ended);
@@ -656,6 +667,24 @@ impl Simulation {
     fn outcome_of(&self, status: Status) -> Outcome {
         on_law!(Laws, &self.k, k => outcome_of(k, &self.impact_log, status))
     }
+}
+
+/// The refusal of a polyhedral die by `what` (a command, "the single roll"), which rolls the
+/// box only for now: never a box rolled in its place.
+pub fn refuse_polyhedral_die(params: &Params, what: &str) -> Result<(), ParamError> {
+    if !params.die.is_polyhedral() {
+        return Ok(());
+    }
+    Err(ParamError {
+        key: KIND_KEY.key.to_string(),
+        value: f64::NAN,
+        limits: KIND_KEY,
+        detail: Some(Box::new(Detail::Refused(format!(
+            "a {} rolls in `batch`, `basin` and `merge`; {what} rolls the box only for now (leave \
+             out `die.kind`, or roll the die with `dicesim batch`)",
+            params.die.kind.name()
+        )))),
+    })
 }
 
 /// The outcome of the roll in `k`, whose impacts `impact_log` saw, ending as `status`.

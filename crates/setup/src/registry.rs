@@ -13,6 +13,7 @@
 //! and range in the physics, its use there, and one row here.
 
 use dicesim_physics::initial::{self, YAW_PITCH_ROLL};
+use dicesim_physics::params::Solid;
 use dicesim_physics::params::{self, CORNERS, XYZ};
 use dicesim_physics::{ContactLaw, GroundKey, InitialCondition, Limits, ParamError, Params, RandomRanges};
 
@@ -225,6 +226,54 @@ macro_rules! params_field {
         })
     };
 }
+
+pub const KIND: Spec = Spec {
+    limits: params::KIND_KEY,
+    shape: Shape::Choice {
+        names: &Solid::NAMES,
+        default: Params::DEFAULT.die.kind.name(),
+    },
+    role: Role::Die,
+    comment: "\"box\" (the cuboid of the keys below: the paper's die) or a polyhedral die, \"d4\", \"d8\", \
+              \"d10\", \"d%\" (a d10 read 00 to 90), \"d12\", \"d20\", sized by `height` and made of `density`; \
+              not written for the box",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: false,
+    law: None,
+    read: |s| Value::Name(s.params.die.kind.name()),
+    scan: None,
+};
+
+pub const DIE_HEIGHT: Spec = Spec {
+    limits: params::limits::HEIGHT,
+    shape: Shape::Number(Params::DEFAULT.die.height),
+    role: Role::Die,
+    comment: "cm, how tall a polyhedral die stands on a face: across its faces (face to top vertex on \
+              the d4); a polyhedral die only",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: false,
+    law: None,
+    read: |s| Value::Number(s.params.die.height),
+    scan: None,
+};
+
+pub const DENSITY: Spec = Spec {
+    limits: params::limits::DENSITY,
+    shape: Shape::Number(Params::DEFAULT.die.density),
+    role: Role::Die,
+    comment: "g/cm³, a polyhedral die's uniform material (1.18: acrylic resin); a polyhedral die only",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: false,
+    law: None,
+    read: |s| Value::Number(s.params.die.density),
+    scan: None,
+};
 
 pub const HALF_SIZES: Spec = Spec {
     limits: params::limits::HALF_SIZES,
@@ -918,7 +967,10 @@ pub(crate) const ORIENTATION_SPREAD: Spec = Spec {
 };
 
 /// Every value of a setup, in the order a preset file lists them.
-pub static ALL: [&Spec; 36] = [
+pub static ALL: [&Spec; 39] = [
+    &KIND,
+    &DIE_HEIGHT,
+    &DENSITY,
     &HALF_SIZES,
     &CORNER_RADIUS,
     &PIP_DIAMETER,

@@ -12,12 +12,12 @@ use dicesim_setup::random::RandomDraws;
 use nalgebra::Vector3;
 
 /// A state's every number as bits, and its step count: what two engines must agree on.
-fn state_bits(s: &dicesim_physics::State) -> Vec<u64> {
+fn state_bits(s: dicesim_physics::lanes::EndState<'_>) -> Vec<u64> {
     let mut v: Vec<f64> = Vec::with_capacity(80);
     v.extend(s.position.iter());
     v.extend(s.velocity.iter());
     v.extend(s.angular_momentum.iter());
-    for k in 0..8 {
+    for k in 0..s.corner_offsets.len() {
         v.extend(s.corner_offsets[k].iter());
         v.extend(s.corner_forces[k].iter());
         v.push(s.corner_depths[k]);

@@ -1,7 +1,8 @@
 //! Helpers the physics tests share: the reference CSVs, the authors' setups, random starts,
 //! and a state as bits.
 
-use dicesim_physics::{FrictionLaw, InitialCondition, Params, RandomRanges, State, StopEnergy};
+use dicesim_physics::lanes::EndState;
+use dicesim_physics::{FrictionLaw, InitialCondition, Params, RandomRanges, StopEnergy};
 use nalgebra::{Quaternion, Rotation3, UnitQuaternion};
 use rand::rngs::ChaCha8Rng;
 use rand::{RngExt, SeedableRng};
@@ -122,12 +123,12 @@ pub fn random_start(
 
 /// A state's every number as bits, and its step count: what two engines must agree on (a
 /// law's memory at the points shows in the forces it gives).
-pub fn state_bits(s: &State) -> Vec<u64> {
+pub fn state_bits(s: EndState<'_>) -> Vec<u64> {
     let mut v: Vec<f64> = Vec::with_capacity(96);
     v.extend(s.position.iter());
     v.extend(s.velocity.iter());
     v.extend(s.angular_momentum.iter());
-    for k in 0..8 {
+    for k in 0..s.corner_offsets.len() {
         v.extend(s.corner_offsets[k].iter());
         v.extend(s.corner_forces[k].iter());
         v.push(s.corner_depths[k]);

@@ -80,6 +80,22 @@ impl Preset {
                 return Err(range_error(doc, origin, text, refused));
             }
         }
+        // Likewise a key the die's solid does not read: the box's shape beside a polyhedral
+        // die, a polyhedral die's size beside the box.
+        let die = preset.params().die;
+        for spec in registry::ALL.iter().filter(|s| s.role == Role::Die) {
+            let given = find(doc, spec.key()).or_else(|| {
+                (spec.key() == "die.half_sizes")
+                    .then(|| find(doc, "die.half_size"))
+                    .flatten()
+            });
+            if let (Some(offset), Some(refused)) = (given, die.refusal(spec.key())) {
+                return Err(PresetError::Range {
+                    at: Location::at(origin, text, offset),
+                    error: Box::new(refused),
+                });
+            }
+        }
         preset
             .validate()
             .map_err(|error| range_error(doc, origin, text, error))?;
@@ -153,7 +169,10 @@ impl Preset {
         let mut keys = Vec::new();
         for role in Role::ALL {
             for &spec in registry::ALL.iter().filter(|s| s.role == role) {
-                if *spec == ANGULAR_MOMENTUM || !setup.params.ground.reads(spec.key()) {
+                if *spec == ANGULAR_MOMENTUM
+                    || !setup.params.ground.reads(spec.key())
+                    || !setup.params.die.states(spec.key())
+                {
                     continue;
                 }
                 let (spec, value) = match self.initial.angular_momentum {
@@ -507,6 +526,90 @@ mod tests {
                 assert_eq!(back.description, preset.description, "U+{:04X}", c as u32);
             }
         }
+    }
+
+    #[test]
+    fn a_box_preset_is_written_without_the_polyhedral_keys() {
+        let text = Preset::default().to_toml();
+        let die: Vec<&str> = text
+            .split("[die]")
+            .nth(1)
+            .and_then(|rest| rest.split("\n[").next())
+            .unwrap()
+            .lines()
+            .filter_map(|l| {
+                l.split(" = ")
+                    .next()
+                    .filter(|k| !k.is_empty() && !k.starts_with('#'))
+            })
+            .collect();
+        // The box's keys as a written preset has always listed them.
+        assert_eq!(
+            die,
+            [
+                "half_sizes",
+                "corner_radius",
+                "pip_diameter",
+                "pip_depth",
+                "corner_mass",
+                "extra_corner_mass"
+            ]
+        );
+        let json = Preset::default().to_json();
+        assert!(json["die"].get("kind").is_none() && json["die"].get("height").is_none());
+        assert!(
+            toml::to_string(&Params::default())
+                .unwrap()
+                .find("kind")
+                .is_none()
+        );
+    }
+
+    #[test]
+    fn a_polyhedral_die_is_written_with_its_kind_size_and_material_only() {
+        let p = Preset::from_toml_str(
+            "[die]\nkind = \"d%\"\nheight = 2.0\n[integrator]\ndt = 0.00025\n",
+            ORIGIN,
+        )
+        .unwrap();
+        assert_eq!(p.die.kind, dicesim_physics::Solid::Percentile);
+        assert_eq!((p.die.height, p.die.density), (2.0, 1.18));
+        let text = p.to_toml();
+        assert!(text.contains("kind = \"d%\""), "{text}");
+        assert!(
+            text.contains("height = 2.0") && text.contains("density = 1.18"),
+            "{text}"
+        );
+        for boxy in ["half_size", "corner_radius", "pip_", "corner_mass"] {
+            assert!(!text.contains(boxy), "{boxy} in\n{text}");
+        }
+        assert_eq!(Preset::from_toml_str(&text, ORIGIN).unwrap(), p.as_written());
+        let params = toml::to_string(&p.params()).unwrap();
+        assert!(
+            params.contains("kind = \"d%\"") && !params.contains("corner_mass"),
+            "{params}"
+        );
+    }
+
+    #[test]
+    fn a_box_key_beside_a_polyhedron_is_refused_at_its_line() {
+        for (text, line, key) in [
+            ("[die]\nkind = \"d20\"\nhalf_size = 0.8\n", 3, "die.half_sizes"),
+            (
+                "[die]\nkind = \"d20\"\n\ncorner_mass = 1.0\n",
+                4,
+                "die.corner_mass",
+            ),
+            ("[die]\nhalf_size = 0.8\nheight = 1.6\n", 3, "die.height"),
+        ] {
+            let e = err(text).to_string();
+            assert!(e.starts_with(&format!("dir/p.toml:{line}:")), "{e}");
+            assert!(e.contains(&format!("`{key}`")), "{e}");
+        }
+        let e = err("[die]\nkind = \"d6\"\n").to_string();
+        assert!(e.starts_with("dir/p.toml:2:") && e.contains("d20"), "{e}");
+        let e = err("[die]\nkind = \"d4\"\n").to_string();
+        assert!(e.contains("`integrator.dt`") && e.contains("runs away"), "{e}");
     }
 
     #[test]

@@ -2,6 +2,7 @@
 //! each regular solid's closed forms derived by hand, held against the hull and the integrals.
 
 mod bias;
+mod engines;
 mod fairness;
 mod flaws;
 mod hull;

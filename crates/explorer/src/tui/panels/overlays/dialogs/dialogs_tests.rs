@@ -225,3 +225,34 @@ fn the_picker_keeps_the_selection_in_view_between_its_markers() {
     // Everything fits: no markers.
     assert_eq!(picker_window(5, 4, 7), (0, 5, false));
 }
+
+/// The explorer rolls the box only for now: the picker offers no shipped polyhedral die, and
+/// a user's is listed with the refusal loading it would meet, naming `die.kind`.
+#[test]
+fn picker_leaves_out_the_shipped_dice_and_refuses_a_users() {
+    let (dir, store) = folder();
+    let d20 = dicesim_setup::preset::shipped_text("d20").expect("the shipped d20");
+    std::fs::write(
+        dir.path().join("my-d20.toml"),
+        d20.replace("name = \"d20\"", "name = \"my-d20\""),
+    )
+    .expect("written");
+    let mut s = start();
+    s.app.store = store;
+    s.key(KeyCode::Char('o'));
+    let Some(Dialog::Picker { choices, .. }) = s.app.dialog() else {
+        panic!("the picker is open")
+    };
+    for shipped in ["d4", "d8", "d10", "d100", "d12", "d20"] {
+        assert!(choices.iter().all(|c| c.name != shipped), "{shipped} offered");
+    }
+    let mine = choices
+        .iter()
+        .find(|c| c.name == "my-d20")
+        .expect("the user's die listed");
+    let refused = mine.preset.as_ref().expect_err("refused");
+    assert!(
+        refused.contains("`die.kind`") && refused.contains("the explorer rolls the box only"),
+        "{refused}"
+    );
+}

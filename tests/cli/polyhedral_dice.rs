@@ -1,0 +1,102 @@
+//! A polyhedral die (`die.kind`) as a user meets it: `batch` rolls it and records the numbers
+//! it shows; every command that rolls the box only refuses it with exit status 2, naming the
+//! key and the command, and writes nothing; a step it cannot take is refused with the reason.
+
+use crate::common::{dicesim_ok, dicesim_refused};
+
+#[test]
+fn the_commands_that_roll_the_box_only_refuse_a_polyhedral_die() {
+    for (args, command) in [
+        (&["roll", "--preset", "d20"][..], "`dicesim roll`"),
+        (&["trace", "--preset", "d8"][..], "`dicesim trace`"),
+        (&["predict", "--preset", "d12"][..], "`dicesim predict`"),
+        (
+            &["animate", "--preset", "d4", "--out", "a.gif"][..],
+            "`dicesim animate`",
+        ),
+        (&["tui", "--preset", "d10"][..], "the explorer"),
+        (
+            &["roll", "--set", "die.kind=d20", "--set", "integrator.dt=0.00025"][..],
+            "`dicesim roll`",
+        ),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        let stderr = dicesim_refused(dir.path(), args);
+        assert!(
+            stderr.contains("`die.kind`")
+                && stderr.contains(command)
+                && stderr.contains("rolls the box only for now"),
+            "dicesim {}: {stderr}",
+            args.join(" ")
+        );
+        assert_eq!(
+            std::fs::read_dir(dir.path()).unwrap().count(),
+            0,
+            "{args:?} wrote nothing"
+        );
+    }
+}
+
+#[test]
+fn batch_rolls_a_d20_and_records_the_numbers_it_shows() {
+    let dir = tempfile::tempdir().unwrap();
+    dicesim_ok(
+        dir.path(),
+        &[
+            "batch", "--preset", "d20", "--rolls", "60", "--seed", "3", "--out", "d20.csv",
+        ],
+    );
+    let text = std::fs::read_to_string(dir.path().join("d20.csv")).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let column = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (face, status) = (column("face"), column("status"));
+    let faces: Vec<u8> = lines
+        .map(|l| {
+            let cells: Vec<&str> = l.split(',').collect();
+            assert_eq!(cells[status], "settled", "{l}");
+            cells[face].parse().unwrap()
+        })
+        .collect();
+    assert_eq!(faces.len(), 60);
+    assert!(faces.iter().all(|f| (1..=20).contains(f)), "{faces:?}");
+    // Sixty throws of a fair d20 show a face above 6 with probability 1 − (6/20)⁶⁰.
+    assert!(faces.iter().any(|f| *f > 6), "{faces:?}");
+}
+
+#[test]
+fn a_polyhedral_die_on_a_step_it_cannot_take_is_refused_with_the_reason() {
+    let dir = tempfile::tempdir().unwrap();
+    let stderr = dicesim_refused(
+        dir.path(),
+        &[
+            "batch",
+            "--preset",
+            "d4",
+            "--set",
+            "integrator.dt=0.001",
+            "--rolls",
+            "10",
+        ],
+    );
+    assert!(
+        stderr.contains("integrator.dt") && stderr.contains("runs away"),
+        "{stderr}"
+    );
+    let stderr = dicesim_refused(
+        dir.path(),
+        &[
+            "batch",
+            "--preset",
+            "d20",
+            "--set",
+            "die.half_size=0.8",
+            "--rolls",
+            "10",
+        ],
+    );
+    assert!(
+        stderr.contains("die.half_sizes") && stderr.contains("describes the box only"),
+        "{stderr}"
+    );
+}
