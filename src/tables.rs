@@ -14,7 +14,8 @@ use dicesim_experiment::versus::{NO_FACE, VersusRun};
 use dicesim_experiment::{BatchRun, BatchSummary, FaceTally};
 use dicesim_figures::animation::{Animated, speed_words};
 use dicesim_physics::{
-    InitialCondition, Outcome, Params, Simulation, Stability, Status, UnstableReason, why_it_cannot_settle,
+    InitialCondition, Outcome, Params, Simulation, Solid, Stability, Status, UnstableReason,
+    why_it_cannot_settle,
 };
 use dicesim_setup::number::{fmt_exact, fmt_num};
 use std::io::Write;
@@ -58,10 +59,16 @@ pub fn batch_counts(out: &mut dyn Write, s: &BatchSummary) -> std::io::Result<()
         }
         None => {}
     }
-    let [same, adjacent, opposite] = s.start_face_shares.map(|x| 100.0 * x);
+    let [same, other, opposite] = s.start_face_shares.map(|x| 100.0 * x);
+    // On the box every other face is next to the start face; on a die of more faces most
+    // are not.
+    let others = match Solid::showing(s.faces.numbers()) {
+        Some(Solid::Box) => "adjacent",
+        _ => "other",
+    };
     writeln!(
         out,
-        "from the start face    same {same:.1}%, adjacent {adjacent:.1}%, opposite {opposite:.1}%"
+        "from the start face    same {same:.1}%, {others} {other:.1}%, opposite {opposite:.1}%"
     )?;
     let st = &s.status;
     writeln!(

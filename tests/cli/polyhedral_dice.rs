@@ -100,3 +100,24 @@ fn a_polyhedral_die_on_a_step_it_cannot_take_is_refused_with_the_reason() {
         "{stderr}"
     );
 }
+
+/// A d20's sweep in three shards merges into the one-machine records, and `--verify` rolls
+/// its records again as a batch rolls them (the die, not the box).
+#[test]
+fn a_d20_sweep_in_shards_merges_and_verifies() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let sweep = ["batch", "--preset", "d20", "--rolls", "30", "--seed", "5"];
+    dicesim_ok(d, &[&sweep[..], &["--out", "one.csv"]].concat());
+    std::fs::create_dir(d.join("parts")).unwrap();
+    for k in 0..3 {
+        let (shard, out) = (format!("{k}/3"), format!("parts/part-{k}.csv"));
+        dicesim_ok(d, &[&sweep[..], &["--shard", &shard, "--out", &out]].concat());
+    }
+    let summary = dicesim_ok(d, &["merge", "parts", "--out", "m.csv", "--verify", "30"]);
+    assert_eq!(
+        std::fs::read(d.join("m.csv")).unwrap(),
+        std::fs::read(d.join("one.csv")).unwrap()
+    );
+    assert!(summary.contains("(19 dof)"), "{summary}");
+}

@@ -9,6 +9,7 @@ use crate::data_file::{Column, Kind};
 use crate::record::RollRecord;
 use crate::stats::numbers_words;
 use dicesim_physics::initial::limits;
+use dicesim_physics::lanes;
 use dicesim_physics::{
     FirstImpact, InitialCondition, Outcome, Params, Placement, Status, face_most_nearly_up,
 };
@@ -672,7 +673,11 @@ impl RecordCheck {
     /// [`roll_record`](crate::roll_record) places it (a loaded die's corners about its
     /// centre of mass included).
     pub fn start_face(&self, initial: &InitialCondition) -> u8 {
-        face_most_nearly_up(&self.placement.start_offsets(initial))
+        match self.params.die.is_polyhedral() {
+            // A polyhedral die's body is made from its setup: as the roll places it.
+            true => lanes::start_face(&self.params, initial),
+            false => face_most_nearly_up(&self.placement.start_offsets(initial)),
+        }
     }
 
     /// Checks every field of a record read back from a file against what a roll of the

@@ -1,6 +1,7 @@
 //! One roll of an experiment: its initial condition and how it ended.
 
-use dicesim_physics::{InitialCondition, Outcome, Params, Simulation, face_most_nearly_up};
+use dicesim_physics::lanes;
+use dicesim_physics::{InitialCondition, Outcome, Params};
 use dicesim_setup::number::StepClock;
 use serde::Serialize;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -65,13 +66,13 @@ pub(crate) fn roll_record_or_cancel(
     id: u64,
     cancel: &AtomicBool,
 ) -> Option<RollRecord> {
-    let mut sim = Simulation::for_outcome(params, initial);
-    let start_face = face_most_nearly_up(&sim.state().corner_offsets);
     let cancelled = || cancel.load(Ordering::Relaxed);
     if cancelled() {
         return None;
     }
-    let outcome = sim.run_until_stopped(&cancelled)?;
+    // The box or a polyhedral die, as a batch rolls it: what `merge --verify` and the
+    // single rolls of a sweep hold records to.
+    let (outcome, start_face) = lanes::roll_one(params, initial, &cancelled)?;
     Some(RollRecord {
         id,
         initial: *initial,

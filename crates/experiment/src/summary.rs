@@ -2,7 +2,7 @@
 //! from them, as a summary prints them and `--json` carries them.
 
 use crate::stats::FaceTally;
-use dicesim_physics::opposite_face;
+use dicesim_physics::Solid;
 use serde::{Deserialize, Serialize};
 
 /// How a roll's final face relates to the face that started up.
@@ -11,17 +11,19 @@ use serde::{Deserialize, Serialize};
 pub struct StartFaceCounts {
     /// Ended on the face that started up.
     pub(crate) same: u64,
-    /// Ended on one of the 4 faces next to it.
+    /// Ended on another face: on the box, one of the 4 next to it (the name files keep).
     pub(crate) adjacent: u64,
     /// Ended on the opposite face.
     pub(crate) opposite: u64,
 }
 
 impl StartFaceCounts {
-    pub(crate) fn add(&mut self, start_face: u8, face: u8) {
+    /// Counts a roll of a die that shows `numbers` from `start_face` up to `face`.
+    pub(crate) fn add(&mut self, numbers: &[u8], start_face: u8, face: u8) {
+        let opposite = Solid::showing(numbers).and_then(|s| s.opposite_number(start_face));
         if face == start_face {
             self.same += 1;
-        } else if face == opposite_face(start_face) {
+        } else if Some(face) == opposite {
             self.opposite += 1;
         } else {
             self.adjacent += 1;
@@ -83,4 +85,41 @@ pub struct BatchSummary {
     pub elapsed_s: f64,
     pub rolls_per_s: f64,
     pub steps_per_s: f64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Opposite faces of real dice sum to the lowest and highest number together
+    /// (docs/dice.md): 21 on a d20, 9 on a d10, 90 on a d%; a d4's faces have none.
+    #[test]
+    fn the_start_faces_opposite_is_the_dies_own() {
+        let mut d20 = StartFaceCounts::default();
+        let twenty: Vec<u8> = (1..=20).collect();
+        let numbers = Solid::D20.face_numbers();
+        assert_eq!(numbers, &twenty[..]);
+        for (start, face) in [(3, 3), (3, 18), (3, 4), (20, 1), (7, 14)] {
+            d20.add(numbers, start, face);
+        }
+        assert_eq!((d20.same, d20.adjacent, d20.opposite), (1, 1, 3));
+        let mut d10 = StartFaceCounts::default();
+        for (start, face) in [(0, 9), (2, 7), (2, 5)] {
+            d10.add(Solid::D10.face_numbers(), start, face);
+        }
+        assert_eq!((d10.same, d10.adjacent, d10.opposite), (0, 1, 2));
+        let mut percentile = StartFaceCounts::default();
+        percentile.add(Solid::Percentile.face_numbers(), 30, 60);
+        assert_eq!(percentile.opposite, 1);
+        let mut d4 = StartFaceCounts::default();
+        for (start, face) in [(1, 4), (2, 3), (4, 4)] {
+            d4.add(Solid::D4.face_numbers(), start, face);
+        }
+        assert_eq!((d4.same, d4.adjacent, d4.opposite), (1, 2, 0));
+        let mut cube = StartFaceCounts::default();
+        for (start, face) in [(1, 6), (2, 5), (2, 3)] {
+            cube.add(Solid::Box.face_numbers(), start, face);
+        }
+        assert_eq!((cube.same, cube.adjacent, cube.opposite), (0, 1, 2));
+    }
 }

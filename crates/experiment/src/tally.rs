@@ -203,7 +203,7 @@ impl Tally {
             (Status::Settled, Some(face)) => {
                 self.status.settled += 1;
                 self.faces.add(face);
-                self.start_face.add(r.start_face, face);
+                self.start_face.add(self.faces.numbers(), r.start_face, face);
             }
             (Status::Settled, None) => self.status.settled_without_face += 1,
             (Status::Timeout, _) => self.status.timeout += 1,

@@ -173,10 +173,10 @@ pub(crate) fn face_normal_heights(corner_offsets: &[Vector3<f64>; 8]) -> [f64; 6
     [-nx, -ny, -nz, nz, ny, nx]
 }
 
-/// The box's face opposite `face` (they sum to 7); 0, no face, for a number the box does not
-/// carry (a polyhedral die's 7 to 20, whose opposites its own numbering gives).
+/// The box's face opposite `face` (they sum to 7); a polyhedral die's is
+/// [`Solid::opposite_number`](crate::Solid::opposite_number).
 pub fn opposite_face(face: u8) -> u8 {
-    7u8.saturating_sub(face)
+    7 - face
 }
 
 #[cfg(test)]

@@ -17,6 +17,7 @@ use super::body::face_most_nearly_up;
 use super::contact::{Law, SpringFriction};
 use super::initial::InitialCondition;
 use super::kernel::{Faces, Kernel};
+use super::model::Placement;
 use super::params::{ParamError, Params, Solid};
 use super::point_roll::{PointKernel, PointLaw, PointRoll};
 use super::points::PointBody;
@@ -251,6 +252,16 @@ pub fn roll_in_lanes(
         return unsafe { avx2::roll_all(count, setup, done, stop) };
     }
     roll_one_by_one(count, setup, done, stop)
+}
+
+/// The face most nearly up at t = 0 of `params`' die placed at `initial`, the box or a
+/// polyhedral one: the start face a roll's record carries.
+pub fn start_face(params: &Params, initial: &InitialCondition) -> u8 {
+    if params.die.is_polyhedral() {
+        on_points!(DiceBodies::default().roll(params, initial), r => r.start_face())
+    } else {
+        face_most_nearly_up(&Placement::new(params).start_offsets(initial))
+    }
 }
 
 /// The scalar engine behind the same interface: the box by [`Simulation`], a polyhedral die

@@ -280,6 +280,24 @@ impl Solid {
         Solid::ALL.into_iter().find(|s| s.name() == name)
     }
 
+    /// The solid whose numbers are `numbers` ([`Solid::face_numbers`]): each solid's list is
+    /// its own, so a tally that knows only its list knows its die.
+    pub fn showing(numbers: &[u8]) -> Option<Solid> {
+        Solid::ALL.into_iter().find(|s| s.face_numbers() == numbers)
+    }
+
+    /// The number on the face opposite the one that shows `face`, as real dice are numbered
+    /// (docs/dice.md): the two sum to the lowest and the highest number together (7 on the
+    /// box, N + 1 on the d8 to the d20, 9 on the d10, 90 on the d%); none on the d4, each of
+    /// whose faces lies opposite a vertex.
+    pub fn opposite_number(self, face: u8) -> Option<u8> {
+        let numbers = self.face_numbers();
+        match self {
+            Solid::D4 => None,
+            _ => (numbers[0] + numbers[numbers.len() - 1]).checked_sub(face),
+        }
+    }
+
     /// The numbers a roll of it can show, in the order its tables list them.
     pub const fn face_numbers(self) -> &'static [u8] {
         match self {

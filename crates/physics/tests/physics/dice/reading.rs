@@ -1,6 +1,7 @@
 //! Numbers and reading: every number once, opposite faces summing as on real dice, and the
 //! face read from an orientation, with "no face" on an edge or a vertex.
 
+use dicesim_physics::Solid;
 use dicesim_physics::polyhedron::{DieKind, ReadAt, prism};
 use nalgebra::{Rotation3, Vector3};
 
@@ -45,6 +46,35 @@ fn opposite_faces_sum_as_on_real_dice() {
                 sum,
                 "{}",
                 kind.name()
+            );
+        }
+    }
+}
+
+/// What a batch's summary counts as "opposite" (`Solid::opposite_number`) is the number the
+/// solid's own numbering carries on the parallel face, for every face of every die.
+#[test]
+fn the_opposite_number_a_tally_uses_is_on_the_parallel_face() {
+    for solid in Solid::ALL {
+        let Some(kind) = solid.regular() else {
+            // The box: its faces 1–6 as the paper numbers them.
+            assert_eq!(
+                (1..=6).map(|f| solid.opposite_number(f)).collect::<Vec<_>>(),
+                [6, 5, 4, 3, 2, 1].map(Some)
+            );
+            continue;
+        };
+        assert_eq!(Solid::showing(solid.face_numbers()), Some(solid));
+        let die = kind.standard();
+        for (f, &n) in die.numbering().numbers.iter().enumerate() {
+            let number = u8::try_from(n).unwrap();
+            let parallel =
+                die.numbering().opposite[f].map(|g| u8::try_from(die.numbering().numbers[g]).unwrap());
+            assert_eq!(
+                solid.opposite_number(number),
+                parallel,
+                "{} face {n}",
+                solid.name()
             );
         }
     }
