@@ -69,20 +69,18 @@ fn draw_surface(
     let (y0, y1) = (ys[0] - hy, ys[ys.len() - 1] + hy);
     let lowest = c.lowest_deviance.unwrap_or(0.0);
     let limit = lowest + c.region_rise;
-    let others = if c.keys.len() > 2 {
-        ", lowest over the other keys"
+    // With more than two keys, the others' names: each cell is the lowest over them.
+    let others: Vec<&str> = (0..c.keys.len())
+        .filter(|&k| k != i && k != j)
+        .map(|k| c.keys[k].as_str())
+        .collect();
+    let title = if others.is_empty() {
+        "the deviance".to_string()
     } else {
-        ""
+        format!("the lowest over {}", others.join(", "))
     };
     let mut chart = ChartBuilder::on(area)
-        .caption(
-            format!(
-                "deviance{others} (dark: the lowest, {lowest:.2}; yellow: {:.1} above); outlined: within {:.2}",
-                COLOUR_SPAN_RISES * c.region_rise,
-                c.region_rise
-            ),
-            ("sans-serif", 17),
-        )
+        .caption(title, ("sans-serif", 17))
         .margin(16)
         .x_label_area_size(56)
         .y_label_area_size(80)
@@ -204,11 +202,12 @@ pub fn joint_record(
             spec.shaved_throws,
         ),
         format!(
-            "{best}; 95 % region ({} points within {:.2}, χ² of {} degrees of freedom): {} (every value in the file's dicesim-provenance text)",
+            "{best}; 95 % region ({} points within {:.2}, χ² of {} degrees of freedom, outlined): {}; colour: dark at the lowest, yellow {:.1} above it (every value in the file's dicesim-provenance text)",
             c.region.len(),
             c.region_rise,
             c.keys.len(),
-            region.join(", ")
+            region.join(", "),
+            COLOUR_SPAN_RISES * c.region_rise
         ),
     ];
     let title = format!(
