@@ -887,7 +887,7 @@ const JOINT: [&str; 14] = [
     "compare",
     "joint",
     "--preset",
-    "calibrated-table",
+    "calibrated-table-budden",
     "--fit",
     "ground.restitution:0.2:0.4:3",
     "--fit",
@@ -950,7 +950,7 @@ fn a_joint_fit_sums_each_experiments_own_deviance_the_same_in_both_engines() {
                 "compare",
                 "budden",
                 "--preset",
-                "calibrated-table",
+                "calibrated-table-budden",
                 "--no-fit",
             ][..],
             &["--calibrate-on", "2.12", "--json"],
@@ -967,7 +967,7 @@ fn a_joint_fit_sums_each_experiments_own_deviance_the_same_in_both_engines() {
     assert_eq!(p["ratios"][0], ratio["simulated"]);
     let shaved = json(&dicesim(
         &[
-            &["compare", "shaved-die", "--preset", "calibrated-table"][..],
+            &["compare", "shaved-die", "--preset", "calibrated-table-budden"][..],
             &["--cuts", "0.03", "--throws", "120", "--json"],
             &sets,
         ]
@@ -1059,7 +1059,7 @@ fn a_joint_fit_refuses_what_it_cannot_fit_naming_the_key() {
                     "compare",
                     "joint",
                     "--preset",
-                    "calibrated-table",
+                    "calibrated-table-budden",
                     "--throws",
                     "10",
                     "--out",
