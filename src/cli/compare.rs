@@ -127,8 +127,6 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     let options = args.run.options()?;
     let preset = args.setup.resolve()?;
     refuse_unapplied_sets(args, &preset)?;
-    // A joint fit checks every grid point's bodies itself: the preset alone may lack a
-    // value the grid sets (a table top's stiffness given, its mass fitted).
     if args.dataset == DatasetArg::Joint {
         return run_joint(args, &options, &preset);
     }
@@ -149,11 +147,6 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
         return run_budden(args, &options, &preset, candidates, one_fit);
     };
     let seed = cubic_die_seed(args, &preset)?;
-    if args.candidates.is_some() && one_fit.is_none() {
-        return Err(CliError::Usage(
-            "--candidates counts a fit's values: give --fit KEY:LO:HI".to_string(),
-        ));
-    }
     let spec = CompareSpec {
         dataset,
         throws: args.throws.unwrap_or_else(|| dataset.data().total()),
@@ -223,8 +216,14 @@ fn one_fit(args: &CompareArgs) -> Result<Option<&str>, CliError> {
     }
 }
 
-/// The seed of a cubic die's comparison, refusing the options that are Budden's alone.
+/// The seed of a cubic die's comparison, refusing the options that are Budden's alone and
+/// `--candidates` without a fit (a cubic die fits only when told to).
 fn cubic_die_seed(args: &CompareArgs, preset: &Preset) -> Result<u64, CliError> {
+    if args.candidates.is_some() && args.fit.is_empty() {
+        return Err(CliError::Usage(
+            "--candidates counts a fit's values: give --fit KEY:LO:HI".to_string(),
+        ));
+    }
     if args.calibrate_on != DEFAULT_CALIBRATE_ON {
         return Err(CliError::Usage(
             "--calibrate-on chooses Budden's ratios: it is for `compare budden` only".to_string(),
@@ -457,7 +456,9 @@ fn run_budden(
 
 /// `dicesim compare joint`: two or more keys fitted at once on a grid, each point throwing
 /// Budden's calibration ratios and the shaved die at 3 %, their deviances summed. Refuses
-/// the options it has no use for.
+/// the options it has no use for. It skips `run`'s check of the preset alone, which may lack
+/// a value the grid sets (a table top's stiffness given, its mass fitted): every grid
+/// point's bodies are checked before the first roll.
 fn run_joint(args: &CompareArgs, options: &RunOptions, preset: &Preset) -> Result<(), CliError> {
     let refuse = |option: &str, why: &str| {
         Err(CliError::Usage(format!(
