@@ -5,6 +5,7 @@
 use dicesim_experiment::basin::{BasinMap, Layer};
 use dicesim_experiment::compare::{Comparison, Excluded};
 use dicesim_experiment::compare_budden::{BuddenComparison, RatioRole, seeds_text};
+use dicesim_experiment::compare_joint::JointComparison;
 use dicesim_experiment::compare_shaved::{Bias, ShavedComparison};
 use dicesim_experiment::compare_stats::{FitInterval, FitMethod};
 use dicesim_experiment::ending::Ending;
@@ -748,6 +749,169 @@ pub fn shaved_die(out: &mut dyn Write, c: &ShavedComparison, preset: &str) -> st
                 .map(|r| fmt_exact(r.cut))
                 .collect::<Vec<_>>()
                 .join(", ")
+        )?;
+    }
+    Ok(())
+}
+
+/// A joint fit: the assumptions, the deviance at every grid point (each experiment's and
+/// their sum, `*` marking the 95 % region), the points left out, the best point with what
+/// each experiment measured there, and the region's extent along each key.
+pub fn joint(out: &mut dyn Write, c: &JointComparison, preset: &str) -> std::io::Result<()> {
+    writeln!(
+        out,
+        "joint: Budden's calibration ratios and the shaved die at {} together",
+        fmt_exact(c.cut)
+    )?;
+    for s in &c.sources {
+        writeln!(out, "source: {s}")?;
+    }
+    for a in &c.assumptions {
+        writeln!(out, "assumed: {a}")?;
+    }
+    let ratios: Vec<String> = c.calibrate_on.iter().map(|r| format!("{r:.2}")).collect();
+    writeln!(
+        out,
+        "\njoint fit of {} keys on {preset}: {} grid points, each with the same throws (seed {}): Budden's ratios {} as often as he threw each, the shaved die {} times paired with the uncut die",
+        c.keys.len(),
+        c.points.len(),
+        c.seed,
+        ratios.join(", "),
+        c.shaved_throws
+    )?;
+    let heads: Vec<String> = c
+        .keys
+        .iter()
+        .map(|k| format!("{:>12}", k.rsplit('.').next().unwrap_or(k)))
+        .collect();
+    writeln!(
+        out,
+        "{}  {:>9}  {:>8}  {:>6}  {:>9}  {:>9}",
+        heads.join(" "),
+        "Budden G²",
+        "shaved b",
+        "z",
+        "shaved z²",
+        "deviance"
+    )?;
+    for (i, p) in c.points.iter().enumerate() {
+        let values: Vec<String> = p
+            .values
+            .iter()
+            .map(|&v| format!("{:>12}", candidate_value(v)))
+            .collect();
+        let cell = |x: Option<f64>, w: usize, d: usize| {
+            x.map_or(format!("{:>w$}", "—"), |x| format!("{x:>w$.d$}"))
+        };
+        let mark = if c.best == Some(i) {
+            "  * best"
+        } else if c.in_region(i) {
+            "  *"
+        } else if p.excluded.is_some() {
+            "  left out"
+        } else {
+            ""
+        };
+        writeln!(
+            out,
+            "{}  {}  {}  {}  {}  {}{mark}",
+            values.join(" "),
+            cell(p.budden_deviance, 9, 2),
+            cell(p.shaved.map(|s| s.bias), 8, 4),
+            cell(p.shaved.map(|s| s.z), 6, 2),
+            cell(p.shaved_deviance, 9, 2),
+            cell(p.deviance, 9, 2),
+        )?;
+    }
+    let left_out: Vec<_> = c.points.iter().filter(|p| p.excluded.is_some()).collect();
+    if !left_out.is_empty() {
+        writeln!(
+            out,
+            "left out of the fit: {} point{} (a point counts when every body it throws is within the stability limit at the worst throw, and at least half its throws of each ratio, and of the shaved die's pairs, end on a face)",
+            left_out.len(),
+            if left_out.len() == 1 { "" } else { "s" }
+        )?;
+        for p in left_out {
+            let at: Vec<String> = c
+                .keys
+                .iter()
+                .zip(&p.values)
+                .map(|(k, v)| format!("{k} = {}", fmt_exact(*v)))
+                .collect();
+            writeln!(
+                out,
+                "  {}: {}",
+                at.join(", "),
+                p.excluded.map_or(String::new(), |e| e.to_string())
+            )?;
+        }
+    }
+    let (Some(best), Some(lowest)) = (c.best_point(), c.lowest_deviance) else {
+        return writeln!(out, "no fit: no grid point completed");
+    };
+    let at: Vec<String> = c
+        .keys
+        .iter()
+        .zip(&best.values)
+        .map(|(k, v)| format!("{k} = {}", fmt_exact(*v)))
+        .collect();
+    writeln!(
+        out,
+        "best point: {} (deviance {lowest:.2}: Budden {:.2} over {} ratios, shaved die {:.2})",
+        at.join(", "),
+        best.budden_deviance.unwrap_or(f64::NAN),
+        best.ratios.len(),
+        best.shaved_deviance.unwrap_or(f64::NAN),
+    )?;
+    for t in &best.ratios {
+        writeln!(
+            out,
+            "  ratio {:.2}: {} of {} simulated on a square face ({:.3}), {} not counted",
+            t.ratio,
+            t.square,
+            t.throws,
+            t.square as f64 / t.throws.max(1) as f64,
+            t.uncounted
+        )?;
+    }
+    if let Some(s) = best.shaved {
+        writeln!(
+            out,
+            "  shaved die at {}: b = {:+.4} ({:+.4} to {:+.4}), against the measured 0.06: z = {:+.2}; {} of {} pairs counted",
+            fmt_exact(c.cut),
+            s.bias,
+            s.interval[0],
+            s.interval[1],
+            s.z,
+            s.throws,
+            s.throws + s.uncounted
+        )?;
+    }
+    writeln!(
+        out,
+        "95 % region: the {} point{} within {:.2} of the lowest (χ² of {} degrees of freedom, one per key; marked *)",
+        c.region.len(),
+        if c.region.len() == 1 { "" } else { "s" },
+        c.region_rise,
+        c.keys.len()
+    )?;
+    for r in &c.region_ranges {
+        writeln!(
+            out,
+            "  {}: {}{} to {}{}",
+            r.key,
+            fmt_exact(r.low),
+            if r.low_open {
+                " (the range's low end: open)"
+            } else {
+                ""
+            },
+            fmt_exact(r.high),
+            if r.high_open {
+                " (the range's high end: open)"
+            } else {
+                ""
+            },
         )?;
     }
     Ok(())

@@ -82,13 +82,15 @@ pub(crate) enum CliCommand {
   dicesim predict --vary ground.damping=0.001,0.005,0.02 --epsilon 1e-12,1e-9,1e-6,1e-3 --json")]
     Predict(predict::PredictArgs),
     /// Throw the die as a historical experiment threw real dice and hold it against their
-    /// counts: χ², residuals, power; `--fit` calibrates one setup value to them.
+    /// counts: χ², residuals, power; `--fit` calibrates one setup value to them, or several at
+    /// once on a grid (`compare joint`).
     #[command(after_help = "Examples:
   dicesim compare wolf-white
   dicesim compare weldon --throws 2000 --out weldon.png --out weldon.csv
   dicesim compare weldon --throws 2000 --fit ground.friction:0.2:1.2 --json
   dicesim compare budden --calibrate-on 0.47,1.16,2.12 --out budden.png
-  dicesim compare shaved-die --preset calibrated-table --cuts 0.015,0.03,0.06 --throws 100000")]
+  dicesim compare shaved-die --preset calibrated-table --cuts 0.015,0.03,0.06 --throws 100000
+  dicesim compare joint --preset calibrated-table --fit ground.restitution:0.2:0.6:5 --fit ground.table_mass:250:2000:5")]
     Compare(compare::CompareArgs),
     /// Put the shards of a sweep (`batch --shard`, `basin --shard`) back together.
     #[command(after_help = "Examples:

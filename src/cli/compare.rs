@@ -9,7 +9,10 @@ use clap::{Args, ValueEnum};
 use dicesim_experiment::compare::{CompareSpec, DEFAULT_CANDIDATES, FitSpec, run_comparison};
 use dicesim_experiment::compare_budden::{
     BuddenSpec, DEFAULT_CALIBRATE_ON, DEFAULT_FIT, hand_throw, run_budden as roll_budden,
-    unapplied_by_comparison,
+    unapplied as budden_unapplied, unapplied_by_comparison,
+};
+use dicesim_experiment::compare_joint::{
+    DEFAULT_VALUES_PER_KEY, GridKey, JointSpec, run_joint as roll_joint,
 };
 use dicesim_experiment::compare_shaved::{
     DEFAULT_CUTS, ShavedSpec, default_throws as shaved_default_throws, run_shaved as run_shaved_die,
@@ -21,6 +24,7 @@ use dicesim_experiment::{RunOptions, provenance};
 use dicesim_figures::compare_plot::{
     budden_png, budden_record, comparison_png, comparison_record, shaved_die_png, shaved_die_record,
 };
+use dicesim_figures::joint_plot::{joint_png, joint_record};
 use dicesim_setup::output::Output;
 use dicesim_setup::preset::{Preset, refuse_unapplied};
 use dicesim_setup::random::check_drawn_setup;
@@ -38,6 +42,9 @@ pub(crate) enum DatasetArg {
     Budden,
     /// A die shaved along its 1–6 axis, counted by how often 1 or 6 came up (Murray's group, 2001).
     ShavedDie,
+    /// Budden's calibration ratios and the shaved die at 3 % together: two or more keys
+    /// fitted at once on a grid (--fit once per key), their deviances summed.
+    Joint,
 }
 
 impl DatasetArg {
@@ -47,7 +54,7 @@ impl DatasetArg {
             DatasetArg::Weldon => Some(Dataset::Weldon),
             DatasetArg::WolfRed => Some(Dataset::WolfRed),
             DatasetArg::WolfWhite => Some(Dataset::WolfWhite),
-            DatasetArg::Budden | DatasetArg::ShavedDie => None,
+            DatasetArg::Budden | DatasetArg::ShavedDie | DatasetArg::Joint => None,
         }
     }
 }
@@ -60,7 +67,8 @@ pub(crate) struct CompareArgs {
     #[command(flatten)]
     pub(crate) setup: SetupArgs,
     /// Simulated throws by the experiment's protocol (12 dice a throw for Weldon; for
-    /// Budden, throws of each ratio's cuboid), each die drawn from the preset's `[random]`
+    /// Budden, throws of each ratio's cuboid; for `joint`, the shaved die's throws per grid
+    /// point, Budden's ratios thrown as he threw them), each die drawn from the preset's `[random]`
     /// ranges (default: as many as the experiment made, for Budden ratio by ratio); at most
     /// 10⁹ rolls in one experiment, throws × dice × candidates.
     #[arg(long, visible_alias = "rolls", value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
@@ -72,14 +80,17 @@ pub(crate) struct CompareArgs {
     /// Fit one setup value to the data: candidates evenly spaced from LO to HI, each rolled
     /// with the same throws, e.g. `ground.friction:0.2:1.2` or `die.extra_corner_mass.8:0:1`
     /// (Budden fits unless --no-fit; default `ground.damping:0.009:0.016`, the range where the
-    /// paper's table steps every cuboid stably).
+    /// paper's table steps every cuboid stably). `compare joint`: once per key, two or more,
+    /// each KEY:LO:HI or KEY:LO:HI:N (N values; default --candidates), on a grid.
     #[arg(long, value_name = "KEY:LO:HI", allow_hyphen_values = true)]
-    pub(crate) fit: Option<String>,
+    pub(crate) fit: Vec<String>,
     /// Budden only: fit nothing; throw every ratio with the preset's table as it stands
     /// (the --calibrate-on ratios keep their role, for a table fitted on them elsewhere).
     #[arg(long, conflicts_with_all = ["fit", "candidates"])]
     pub(crate) no_fit: bool,
-    /// Candidates of a fit (at least 20, at most 1000 candidates; default 21).
+    /// Candidates of a fit (at least 20, at most 1000 candidates; default 21); for `compare
+    /// joint`, the values of each key without its own N (at least 3, default 5; at most 1000
+    /// grid points).
     #[arg(long, value_name = "N")]
     pub(crate) candidates: Option<usize>,
     /// Budden only: the ratios x/y the fit uses (the others are predicted with the best
@@ -116,6 +127,9 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     let options = args.run.options()?;
     let preset = args.setup.resolve()?;
     refuse_unapplied_sets(args, &preset)?;
+    if args.dataset == DatasetArg::Joint {
+        return run_joint(args, &options, &preset);
+    }
     let params = preset.params();
     // The same up-front check as `batch`: the body, and no drawn throw inside the table.
     check_drawn_setup(&params, &preset.random, &preset.initial)?;
@@ -123,27 +137,21 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     if args.dataset == DatasetArg::ShavedDie {
         return run_shaved(args, &options, &preset);
     }
+    let one_fit = one_fit(args)?;
     if !args.cuts.is_empty() {
         return Err(CliError::Usage(
             "--cuts chooses the shaved die's cuts: it is for `compare shaved-die` only".to_string(),
         ));
     }
     let Some(dataset) = args.dataset.dataset() else {
-        return run_budden(args, &options, &preset, candidates);
+        return run_budden(args, &options, &preset, candidates, one_fit);
     };
     let seed = cubic_die_seed(args, &preset)?;
-    if args.candidates.is_some() && args.fit.is_none() {
-        return Err(CliError::Usage(
-            "--candidates counts a fit's values: give --fit KEY:LO:HI".to_string(),
-        ));
-    }
     let spec = CompareSpec {
         dataset,
         throws: args.throws.unwrap_or_else(|| dataset.data().total()),
         seed,
-        fit: args
-            .fit
-            .as_deref()
+        fit: one_fit
             .map(|f| FitSpec::parse(f, candidates))
             .transpose()
             .map_err(CliError::experiment("--fit "))?,
@@ -162,9 +170,9 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
             &mut |p| done(p.done),
         )
     })?;
-    let provenance = provenance::comparison(&preset, &spec, args.fit.as_deref(), candidates);
+    let provenance = provenance::comparison(&preset, &spec, one_fit, candidates);
     let png = || {
-        let record = comparison_record(&comparison, &preset, &spec, args.fit.as_deref(), &provenance);
+        let record = comparison_record(&comparison, &preset, &spec, one_fit, &provenance);
         comparison_png(&comparison, &record).map_err(CliError::experiment(""))
     };
     running::write_results(
@@ -195,8 +203,27 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// The seed of a cubic die's comparison, refusing the options that are Budden's alone.
+/// The one key `--fit` names, if any: a fit of several keys at once is `compare joint`'s.
+fn one_fit(args: &CompareArgs) -> Result<Option<&str>, CliError> {
+    match args.fit.as_slice() {
+        [] => Ok(None),
+        [one] => Ok(Some(one.as_str())),
+        several => Err(CliError::Usage(format!(
+            "--fit is given {} times: this comparison fits one key; a fit of several keys at once is \
+             `compare joint`'s (Budden's calibration ratios and the shaved die at 3 % together)",
+            several.len()
+        ))),
+    }
+}
+
+/// The seed of a cubic die's comparison, refusing the options that are Budden's alone and
+/// `--candidates` without a fit (a cubic die fits only when told to).
 fn cubic_die_seed(args: &CompareArgs, preset: &Preset) -> Result<u64, CliError> {
+    if args.candidates.is_some() && args.fit.is_empty() {
+        return Err(CliError::Usage(
+            "--candidates counts a fit's values: give --fit KEY:LO:HI".to_string(),
+        ));
+    }
     if args.calibrate_on != DEFAULT_CALIBRATE_ON {
         return Err(CliError::Usage(
             "--calibrate-on chooses Budden's ratios: it is for `compare budden` only".to_string(),
@@ -221,6 +248,25 @@ fn cubic_die_seed(args: &CompareArgs, preset: &Preset) -> Result<u64, CliError> 
 /// throws draw, a seed `--seed` replaces, the value `--fit` sets, and for Budden the die the
 /// cuboids replace ([`budden_unapplied`]).
 fn refuse_unapplied_sets(args: &CompareArgs, preset: &Preset) -> Result<(), CliError> {
+    if args.dataset == DatasetArg::Joint {
+        let fitted: Vec<GridKey> = args
+            .fit
+            .iter()
+            .filter_map(|f| GridKey::parse(f, DEFAULT_VALUES_PER_KEY).ok())
+            .collect();
+        refuse_unapplied(&args.setup.set, |key| {
+            budden_unapplied(key)
+                .or_else(|| shaved_unapplied(key))
+                .or_else(|| dicesim_setup::random::seed_given(key, !args.seed.is_empty()))
+                .or_else(|| {
+                    fitted
+                        .iter()
+                        .find(|k| k.key.overlaps(key))
+                        .map(|k| format!("--fit sets `{}` at every grid point", k.key.key))
+                })
+        })?;
+        return Ok(());
+    }
     if args.dataset == DatasetArg::ShavedDie {
         refuse_unapplied(&args.setup.set, |key| {
             shaved_unapplied(key).or_else(|| dicesim_setup::random::seed_given(key, !args.seed.is_empty()))
@@ -235,7 +281,8 @@ fn refuse_unapplied_sets(args: &CompareArgs, preset: &Preset) -> Result<(), CliE
     };
     let fit = args
         .fit
-        .as_deref()
+        .first()
+        .map(String::as_str)
         .or((budden && !args.no_fit).then_some(DEFAULT_FIT))
         .and_then(|f| FitSpec::parse(f, DEFAULT_CANDIDATES).ok());
     refuse_unapplied(&args.setup.set, |key| {
@@ -263,7 +310,7 @@ fn run_shaved(args: &CompareArgs, options: &RunOptions, preset: &Preset) -> Resu
             "{option} is not for `compare shaved-die`: it fits nothing and throws one die, cut by each of --cuts"
         )))
     };
-    if args.fit.is_some() {
+    if !args.fit.is_empty() {
         return refuse("--fit");
     }
     if args.candidates.is_some() {
@@ -341,9 +388,10 @@ fn run_budden(
     options: &RunOptions,
     preset: &Preset,
     candidates: usize,
+    one_fit: Option<&str>,
 ) -> Result<(), CliError> {
     let params = preset.params();
-    let fit_text = (!args.no_fit).then(|| args.fit.as_deref().unwrap_or(DEFAULT_FIT));
+    let fit_text = (!args.no_fit).then(|| one_fit.unwrap_or(DEFAULT_FIT));
     let spec = BuddenSpec {
         throws: args.throws,
         seeds: if args.seed.is_empty() {
@@ -401,6 +449,91 @@ fn run_budden(
             completed: done,
             requested: total,
             what: "throws (whole ratios of whole candidates only)",
+        });
+    }
+    Ok(())
+}
+
+/// `dicesim compare joint`: two or more keys fitted at once on a grid, each point throwing
+/// Budden's calibration ratios and the shaved die at 3 %, their deviances summed. Refuses
+/// the options it has no use for. It skips `run`'s check of the preset alone, which may lack
+/// a value the grid sets (a table top's stiffness given, its mass fitted): every grid
+/// point's bodies are checked before the first roll.
+fn run_joint(args: &CompareArgs, options: &RunOptions, preset: &Preset) -> Result<(), CliError> {
+    let refuse = |option: &str, why: &str| {
+        Err(CliError::Usage(format!(
+            "{option} is not for `compare joint`: {why}"
+        )))
+    };
+    if args.no_fit {
+        return refuse("--no-fit", "it is a fit of two or more keys (--fit once per key)");
+    }
+    if !args.cuts.is_empty() {
+        return refuse(
+            "--cuts",
+            "it throws the shaved die at the one cut the experiment measured, 3 %",
+        );
+    }
+    let seed = match args.seed.as_slice() {
+        [] => preset.random.seed,
+        [one] => *one,
+        _ => {
+            return refuse(
+                "several seeds",
+                "both experiments are thrown with one seed; give one",
+            );
+        }
+    };
+    let per_key = args.candidates.unwrap_or(DEFAULT_VALUES_PER_KEY);
+    let keys = args
+        .fit
+        .iter()
+        .map(|f| GridKey::parse(f, per_key))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(CliError::experiment(""))?;
+    let spec = JointSpec {
+        keys,
+        seed,
+        shaved_throws: args.throws.unwrap_or_else(shaved_default_throws),
+        calibrate_on: args.calibrate_on.clone(),
+    };
+    spec.validate().map_err(CliError::experiment(""))?;
+    let total = spec.total_rolls();
+    let outputs = prepare(args, total)?;
+    let params = preset.params();
+    let comparison = running::run_with_progress(total, PROGRESS, |stop, done| {
+        roll_joint(
+            &params,
+            &preset.random,
+            &preset.initial,
+            &spec,
+            options,
+            stop,
+            &mut |p| done(p.done),
+        )
+    })?;
+    let provenance = provenance::joint(preset, &spec);
+    let png = || {
+        let record = joint_record(&comparison, preset, &spec, &provenance);
+        joint_png(&comparison, &record).map_err(CliError::experiment(""))
+    };
+    running::write_results(
+        &outputs,
+        args.run.json,
+        running::Results {
+            value: &comparison,
+            provenance: &provenance,
+            columns: &comparison.csv_columns(),
+            csv: &|w| comparison.write_csv(w),
+            png: &png,
+            table: &|out| tables::joint(out, &comparison, &preset.name),
+        },
+    )?;
+    if comparison.cancelled {
+        return Err(CliError::Interrupted {
+            completed: comparison.points.len() as u64,
+            requested: spec.points().len() as u64,
+            what: "grid points (whole points only)",
         });
     }
     Ok(())

@@ -880,3 +880,257 @@ fn shaved_die_refuses_what_it_cannot_apply() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("for `compare shaved-die` only"));
 }
+
+/// A small joint fit: two keys of three values each, one of Budden's ratios (2.12, 275
+/// throws) and 120 shaved-die throws per point, on the table of 0.5.0.
+const JOINT: [&str; 14] = [
+    "compare",
+    "joint",
+    "--preset",
+    "calibrated-table-budden",
+    "--fit",
+    "ground.restitution:0.2:0.4:3",
+    "--fit",
+    "ground.friction:0.2:0.4",
+    "--candidates",
+    "3",
+    "--calibrate-on",
+    "2.12",
+    "--throws",
+    "120",
+];
+
+/// G² = 2 Σ O ln(O/E) of a 2 × 2 table (rows: the data, the simulation), by the textbook
+/// formula: E = row total × column total / grand total, a zero cell adding nothing.
+fn two_by_two_g_squared(a: [u64; 2], b: [u64; 2]) -> f64 {
+    let (ra, rb) = ((a[0] + a[1]) as f64, (b[0] + b[1]) as f64);
+    let total = ra + rb;
+    let mut g = 0.0;
+    for k in 0..2 {
+        let column = (a[k] + b[k]) as f64;
+        for (o, row) in [(a[k], ra), (b[k], rb)] {
+            if o > 0 {
+                g += o as f64 * (o as f64 / (row * column / total)).ln();
+            }
+        }
+    }
+    2.0 * g
+}
+
+#[test]
+fn a_joint_fit_sums_each_experiments_own_deviance_the_same_in_both_engines() {
+    let run = |engine: &str, jobs: &str| {
+        dicesim(&[&JOINT[..], &["--engine", engine, "--jobs", jobs, "--json"]].concat())
+    };
+    let scalar = run("scalar", "1");
+    assert_eq!(
+        scalar.stdout,
+        run("lanes", "2").stdout,
+        "the engine or the threads changed the result"
+    );
+    let v = json(&scalar);
+    let points = v["points"].as_array().unwrap();
+    assert_eq!(points.len(), 9);
+    // The first key varies slowest; the friction's three values by default --candidates.
+    assert_eq!(points[1]["values"], serde_json::json!([0.2, 0.30000000000000004]));
+    assert_eq!(points[8]["values"], serde_json::json!([0.4, 0.4]));
+    // Point 5 (e = 0.3, μ = 0.4), thrown by each experiment's own command: the same counts.
+    let p = &points[5];
+    let e = p["values"][0].as_f64().unwrap().to_string();
+    let mu = p["values"][1].as_f64().unwrap().to_string();
+    let sets = [
+        "--set",
+        &format!("ground.restitution={e}"),
+        "--set",
+        &format!("ground.friction={mu}"),
+    ];
+    let budden = json(&dicesim(
+        &[
+            &[
+                "compare",
+                "budden",
+                "--preset",
+                "calibrated-table-budden",
+                "--no-fit",
+            ][..],
+            &["--calibrate-on", "2.12", "--json"],
+            &sets,
+        ]
+        .concat(),
+    ));
+    let ratio = budden["ratios"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["ratio"] == 2.12)
+        .unwrap();
+    assert_eq!(p["ratios"][0], ratio["simulated"]);
+    let shaved = json(&dicesim(
+        &[
+            &["compare", "shaved-die", "--preset", "calibrated-table-budden"][..],
+            &["--cuts", "0.03", "--throws", "120", "--json"],
+            &sets,
+        ]
+        .concat(),
+    ));
+    let cut = &shaved["cuts"][0];
+    assert_eq!(p["shaved"]["bias"], cut["bias"]["bias"]);
+    // Budden's G² at 2.12 (2 of 275 square) against the simulation's, and the shaved die's z².
+    let (square, thrown) = (
+        ratio["simulated"]["square"].as_u64().unwrap(),
+        ratio["simulated"]["throws"].as_u64().unwrap(),
+    );
+    let g = two_by_two_g_squared([2, 273], [square, thrown - square]);
+    let z = cut["data"]["z"].as_f64().unwrap();
+    let close = |a: &serde_json::Value, b: f64| (a.as_f64().unwrap() - b).abs() < 1e-9 * (1.0 + b);
+    assert!(close(&p["budden_deviance"], g), "{p} against {g}");
+    assert!(close(&p["shaved_deviance"], z * z), "{p} against {z}²");
+    assert!(close(&p["deviance"], g + z * z), "{p}");
+    // The best point is the lowest; the region every point within χ²₂'s 95 % quantile of
+    // it, −2 ln 0.05 = 5.99.
+    let deviances: Vec<f64> = points.iter().map(|p| p["deviance"].as_f64().unwrap()).collect();
+    let lowest = deviances.iter().copied().fold(f64::INFINITY, f64::min);
+    let best = v["best"].as_u64().unwrap() as usize;
+    assert_eq!(deviances[best], lowest);
+    assert!((v["region_rise"].as_f64().unwrap() + 2.0 * 0.05f64.ln()).abs() < 1e-9);
+    let region: Vec<usize> = (0..9)
+        .filter(|&i| deviances[i] <= lowest - 2.0 * 0.05f64.ln())
+        .collect();
+    let stated: Vec<usize> = v["region"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|i| i.as_u64().unwrap() as usize)
+        .collect();
+    assert_eq!(stated, region);
+}
+
+#[test]
+fn a_joint_fit_writes_its_surface_as_text_csv_and_a_heat_map() {
+    let dir = tempfile::tempdir().unwrap();
+    let (csv, png) = (dir.path().join("j.csv"), dir.path().join("j.png"));
+    let o = dicesim(
+        &[
+            &JOINT[..],
+            &["--out", csv.to_str().unwrap(), "--out", png.to_str().unwrap()],
+        ]
+        .concat(),
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.starts_with("joint: Budden's calibration ratios and the shaved die at 0.03 together"),
+        "{text}"
+    );
+    assert!(
+        text.contains("9 grid points, each with the same throws (seed 1)"),
+        "{text}"
+    );
+    assert!(text.contains("* best"), "{text}");
+    assert!(text.contains("95 % region: the "), "{text}");
+    assert!(
+        text.contains("within 5.99 of the lowest (χ² of 2 degrees of freedom"),
+        "{text}"
+    );
+    let table = std::fs::read_to_string(&csv).unwrap();
+    let rows: Vec<&str> = table.lines().collect();
+    assert_eq!(rows.len(), 10, "{table}");
+    assert!(
+        rows[0].starts_with("ground_restitution,ground_friction,budden_throws,"),
+        "{table}"
+    );
+    assert_eq!(
+        rows.iter().filter(|r| r.contains(",true,true,")).count(),
+        1,
+        "one best: {table}"
+    );
+    assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG\r\n\x1a\n"));
+}
+
+#[test]
+fn a_joint_fit_refuses_what_it_cannot_fit_naming_the_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("j.csv");
+    let out = out.to_str().unwrap();
+    let refused = |args: &[&str], words: &str| {
+        let o = dicesim(
+            &[
+                &[
+                    "compare",
+                    "joint",
+                    "--preset",
+                    "calibrated-table-budden",
+                    "--throws",
+                    "10",
+                    "--out",
+                    out,
+                ][..],
+                args,
+            ]
+            .concat(),
+        );
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(words), "{args:?}: {err}");
+        assert!(!std::path::Path::new(out).exists(), "{args:?} wrote a file");
+    };
+    let e = "ground.restitution:0.2:0.4";
+    refused(&["--fit", e], "a joint fit takes two or more keys");
+    refused(
+        &["--fit", e, "--fit", "ground.bogus:0:1"],
+        "`ground.bogus` is not a numeric setup key",
+    );
+    // A key the table's law does not read: the paper law's damping on a spring-friction table.
+    refused(
+        &["--fit", e, "--fit", "ground.damping:0.001:0.01"],
+        "`ground.damping` = 0.001: the \"spring-friction\" contact law does not read it",
+    );
+    refused(
+        &["--fit", e, "--fit", "ground.friction:0.3:0.3"],
+        "`ground.friction` takes one value (0.3)",
+    );
+    refused(
+        &["--fit", e, "--fit", "ground.friction:0.2:0.4:1"],
+        "`ground.friction` takes one value",
+    );
+    refused(
+        &[
+            "--fit",
+            "ground.restitution:0.2:0.4:40",
+            "--fit",
+            "ground.friction:0.2:0.4:40",
+        ],
+        "a grid of 1600 points (40 (ground.restitution) × 40 (ground.friction)): at most 1000",
+    );
+    refused(
+        &["--fit", e, "--fit", "die.corner_mass:0.5:1"],
+        "`die.corner_mass`",
+    );
+    refused(
+        &[
+            "--fit",
+            e,
+            "--fit",
+            "ground.friction:0.2:0.4",
+            "--set",
+            "ground.friction=0.3",
+        ],
+        "--fit sets `ground.friction`",
+    );
+    refused(
+        &["--fit", e, "--fit", "ground.friction:0.2:0.4", "--cuts", "0.06"],
+        "--cuts is not for `compare joint`",
+    );
+    refused(&["--no-fit"], "--no-fit is not for `compare joint`");
+    // One key per comparison elsewhere: several are the joint fit's.
+    let o = dicesim(&[
+        "compare",
+        "budden",
+        "--fit",
+        e,
+        "--fit",
+        "ground.friction:0.2:0.4",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("is `compare joint`'s"));
+}

@@ -372,7 +372,7 @@ fn a_spring_friction_provenance_states_the_keys_its_law_reads_and_rebuilds_the_s
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     let json = |args: &[&str]| -> serde_json::Value { serde_json::from_str(&ok(d, args)).unwrap() };
-    let roll = json(&["roll", "--preset", "calibrated-table", "--json"]);
+    let roll = json(&["roll", "--preset", "calibrated-table-budden", "--json"]);
     let stated = roll["provenance"]["preset"].clone();
     let mut keys: Vec<&str> = stated["ground"]
         .as_object()
@@ -402,7 +402,7 @@ fn a_spring_friction_provenance_states_the_keys_its_law_reads_and_rebuilds_the_s
             &[
                 "batch",
                 "--preset",
-                "calibrated-table",
+                "calibrated-table-budden",
                 "--rolls",
                 "3",
                 "--out",

@@ -221,7 +221,12 @@ fn choosing_a_contact_law_switches_both_ways_and_says_what_it_dropped() {
     let d = dir.path();
     let note = "dicesim: note: --set ground.contact=paper drops ground.restitution = ";
     // Every shipped spring-friction preset with a key of its own law set.
-    for preset in ["calibrated-table", "superball", "incline"] {
+    for preset in [
+        "calibrated-table",
+        "calibrated-table-budden",
+        "superball",
+        "incline",
+    ] {
         let o = dicesim_in(d, &["roll", "--preset", preset, "--set", "ground.contact=paper"]);
         let stderr = String::from_utf8_lossy(&o.stderr);
         assert!(o.status.success(), "{preset}: {stderr}");

@@ -381,7 +381,7 @@ pub fn hand_throw(ranges: &RandomRanges) -> RandomRanges {
 }
 
 /// `params` with the cuboid of `ratio` as its die and the fitted key at `value`.
-fn body_at(
+pub(crate) fn body_at(
     params: &Params,
     base: &InitialCondition,
     fit: Option<&FitSpec>,
@@ -428,7 +428,7 @@ fn setup(
 /// Throws ratio `index` of Budden's table `throws` times; `None` when cancelled before
 /// the last throw (a ratio counts whole or not at all).
 #[allow(clippy::too_many_arguments)]
-fn throw_ratio(
+pub(crate) fn throw_ratio(
     (params, base): (Params, InitialCondition),
     ranges: &RandomRanges,
     seeds: &[u64],
@@ -478,7 +478,7 @@ fn throw_ratio(
 
 /// The deviance of Budden's counts against the simulation's at one ratio: the 2 × 2 table
 /// of square and other landings.
-fn ratio_deviance(row: &BuddenRow, t: &RatioThrows) -> f64 {
+pub(crate) fn ratio_deviance(row: &BuddenRow, t: &RatioThrows) -> f64 {
     let data = [row.square_count(), row.throws - row.square_count()];
     let simulated = [t.square, t.throws - t.square];
     deviance(&data, &simulated, &[0..1, 1..2])

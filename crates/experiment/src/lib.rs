@@ -14,6 +14,7 @@ pub mod bench;
 pub mod columns;
 pub mod compare;
 pub mod compare_budden;
+pub mod compare_joint;
 pub mod compare_shaved;
 pub mod compare_stats;
 pub mod data_file;

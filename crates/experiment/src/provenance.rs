@@ -9,6 +9,7 @@
 use crate::basin::{Axis, BasinMap};
 use crate::compare::CompareSpec;
 use crate::compare_budden::{BuddenSpec, hand_throw};
+use crate::compare_joint::{GridKey, JointSpec, MEASURED_CUT};
 use crate::compare_shaved::{ShavedSpec, drop_throw};
 use crate::predict::PredictSpec;
 use dicesim_physics::InitialCondition;
@@ -159,6 +160,23 @@ pub fn shaved_die(preset: &Preset, spec: &ShavedSpec) -> Value {
         "seed": spec.seed,
         "throws": spec.throws,
         "cuts": spec.cuts,
+    })
+}
+
+/// The provenance of a joint fit: the preset (its own ranges; Budden's throws draw from them
+/// from any orientation, the shaved die's are the protocol's drop), the grid, the seed and
+/// the throws.
+pub fn joint(preset: &Preset, spec: &JointSpec) -> Value {
+    json!({
+        "program": PROGRAM,
+        "commit": COMMIT,
+        "preset": setup(preset, Some(spec.seed)),
+        "dataset": "joint",
+        "seed": spec.seed,
+        "fit": spec.keys.iter().map(GridKey::text).collect::<Vec<_>>(),
+        "shaved_throws": spec.shaved_throws,
+        "cut": MEASURED_CUT,
+        "calibrate_on": spec.calibrate_on,
     })
 }
 

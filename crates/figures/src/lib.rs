@@ -8,6 +8,7 @@ pub mod compare_plot;
 pub mod energy_plot;
 pub mod export;
 pub mod figure;
+pub mod joint_plot;
 pub mod plane;
 pub mod plot;
 pub mod predict_plot;

@@ -578,51 +578,85 @@ fn incline_holds_the_die_below_the_friction_angle_and_slides_it_above() {
     assert_eq!(sim.run_to_end().status, Status::Timeout);
 }
 
-/// `calibrated-table` is the paper's die and throw on another table: every key but the
-/// table's (`ground.*`) and the step that table needs (`integrator.dt`) is the paper's; its
-/// description names what it was fitted to and the fit's command; and at that step every
-/// body it is meant for steps stably at the worst throw of its ranges — each of Budden's
-/// cuboids thrown by hand, and the paper's die.
+/// `calibrated-table` (and `calibrated-table-budden`, the table it replaced) is the paper's die
+/// and throw on another table: every key but the table's (`ground.*`) and the step that table
+/// needs (`integrator.dt`) is the paper's; its description names what it was fitted to and
+/// the fit's command; and at that step every body it is meant for steps stably at the worst
+/// throw of its ranges — each of Budden's cuboids thrown by hand, the paper's die, and the
+/// shaved die cut by 3 % and dropped as Murray's group dropped it.
 #[test]
 fn calibrated_table_is_the_papers_setup_on_a_fitted_table_that_holds_every_body() {
     use dicesim_experiment::compare_budden::{cuboid, hand_throw};
+    use dicesim_experiment::compare_shaved::{cut_die, drop_throw};
     use dicesim_experiment::real_data::budden;
     use dicesim_setup::random::worst_throw_reading;
-    let (paper, table) = (shipped("paper"), shipped("calibrated-table"));
-    let (p, t) = (paper.params(), table.params());
-    assert_eq!(t.die, p.die);
-    assert_eq!(t.world, p.world);
-    assert_eq!(
-        dicesim_physics::Integrator {
-            dt: p.integrator.dt,
-            ..t.integrator
-        },
-        p.integrator
-    );
-    assert_eq!((table.initial, table.random), (paper.initial, paper.random));
-    assert_eq!(t.ground.contact, ContactLaw::SpringFriction);
-    for words in [
-        "Budden",
-        "0.63, 1.16, 1.87",
-        "seed 1",
-        "compare budden --fit ground.restitution",
-    ] {
-        assert!(
-            table.description.contains(words),
-            "no `{words}` in the description"
+    let tables: [(&str, &[&str]); 2] = [
+        (
+            "calibrated-table",
+            &[
+                "Budden",
+                "0.63, 1.16, 1.87",
+                "shaved die",
+                "seed 1",
+                "compare joint",
+                "--fit ground.restitution",
+            ],
+        ),
+        (
+            "calibrated-table-budden",
+            &[
+                "Budden",
+                "0.63, 1.16, 1.87",
+                "seed 1",
+                "compare budden --fit ground.restitution",
+            ],
+        ),
+    ];
+    let paper = shipped("paper");
+    let p = paper.params();
+    for (name, words) in tables {
+        let table = shipped(name);
+        let t = table.params();
+        assert_eq!(t.die, p.die, "{name}");
+        assert_eq!(t.world, p.world, "{name}");
+        assert_eq!(
+            dicesim_physics::Integrator {
+                dt: p.integrator.dt,
+                ..t.integrator
+            },
+            p.integrator,
+            "{name}"
         );
-    }
-    let hand = hand_throw(&table.random);
-    for row in budden().0 {
-        let body = Params {
-            die: cuboid(row.ratio),
+        assert_eq!(
+            (table.initial, table.random),
+            (paper.initial, paper.random),
+            "{name}"
+        );
+        assert_eq!(t.ground.contact, ContactLaw::SpringFriction, "{name}");
+        for w in words {
+            assert!(
+                table.description.contains(w),
+                "{name}: no `{w}` in the description"
+            );
+        }
+        let hand = hand_throw(&table.random);
+        for row in budden().0 {
+            let body = Params {
+                die: cuboid(row.ratio),
+                ..t
+            };
+            let reading = worst_throw_reading(&body, &hand, &table.initial);
+            assert!(!reading.exceeded(), "{name}, ratio {}: {reading}", row.ratio);
+        }
+        let reading = worst_throw_reading(&t, &table.random, &table.initial);
+        assert!(!reading.exceeded(), "{name}, the paper's die: {reading}");
+        let shaved = Params {
+            die: cut_die(&t.die, 0.03),
             ..t
         };
-        let reading = worst_throw_reading(&body, &hand, &table.initial);
-        assert!(!reading.exceeded(), "ratio {}: {reading}", row.ratio);
+        let reading = worst_throw_reading(&shaved, &drop_throw(1), &table.initial);
+        assert!(!reading.exceeded(), "{name}, the shaved die: {reading}");
     }
-    let reading = worst_throw_reading(&t, &table.random, &table.initial);
-    assert!(!reading.exceeded(), "the paper's die: {reading}");
 }
 
 /// The dice presets are the standard 16 mm resin dice of docs/dice.md on the dice' table (the

@@ -48,6 +48,10 @@ pub const SHIPPED: &[(&str, &str)] = &[
         "calibrated-table",
         include_str!("../../presets/calibrated-table.toml"),
     ),
+    (
+        "calibrated-table-budden",
+        include_str!("../../presets/calibrated-table-budden.toml"),
+    ),
 ];
 
 /// The shipped presets the classroom lesson (crates/explorer/lesson.toml) opens, in the order

@@ -419,7 +419,7 @@ fn the_json_form_is_the_written_file_read_back() {
 /// and none of the paper law's (issue 49, defect 4).
 #[test]
 fn a_spring_friction_grounds_json_holds_the_keys_its_law_reads() {
-    let ground = shipped("calibrated-table").to_json()["ground"].clone();
+    let ground = shipped("calibrated-table-budden").to_json()["ground"].clone();
     let mut keys: Vec<&str> = ground.as_object().unwrap().keys().map(String::as_str).collect();
     keys.sort_unstable();
     assert_eq!(
