@@ -190,6 +190,9 @@ pub(crate) struct DiceBodies {
     last: Option<(Params, DiceBody)>,
 }
 
+/// One run keeps one of these and copies it into each roll, which holds its body by value as
+/// a `PointRoll` does: sized by the largest die, with no pointer to follow per roll.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy)]
 enum DiceBody {
     P4(PointBody<4>),
