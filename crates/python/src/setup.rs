@@ -61,8 +61,15 @@ impl Setup {
     /// The numbers a roll of the setup's die can show, in the order a batch's face counts
     /// and shares list them ([`Die::face_numbers`](dicesim_physics::Die::face_numbers)).
     #[getter]
-    fn face_numbers(&self) -> Vec<u8> {
-        self.preset.params().die.face_numbers().to_vec()
+    fn face_numbers(&self) -> Vec<u32> {
+        // Widened: a list of bytes would reach Python as `bytes`, not as a list of numbers.
+        self.preset
+            .params()
+            .die
+            .face_numbers()
+            .iter()
+            .map(|&n| u32::from(n))
+            .collect()
     }
 
     /// The changes made since the preset was loaded, as `KEY=VALUE`.
