@@ -282,10 +282,21 @@ fn body_line(params: &Params, varied: &[&str]) -> String {
         ("ground.damping", format!("γ {} s/cm", n(params.ground.damping))),
         ("ground.friction", format!("μ {}", n(params.ground.friction))),
     ]);
-    let die = stated(&[
-        ("die.half_sizes", format!("a {} cm", n(params.die.half_size()))),
-        ("die.corner_mass", format!("m {} g", n(params.die.corner_mass))),
-    ]);
+    // A polyhedral die is its kind, height and material; the box's keys describe no part of it.
+    let die = match params.die.is_polyhedral() {
+        true => format!(
+            "{} {}",
+            params.die.kind.name(),
+            stated(&[
+                ("die.height", format!("{} cm across", n(params.die.height))),
+                ("die.density", format!("{} g/cm³", n(params.die.density))),
+            ])
+        ),
+        false => stated(&[
+            ("die.half_sizes", format!("a {} cm", n(params.die.half_size()))),
+            ("die.corner_mass", format!("m {} g", n(params.die.corner_mass))),
+        ]),
+    };
     let world = stated(&[
         ("world.gravity", format!("g {} cm/s²", n(params.world.gravity))),
         ("integrator.dt", format!("Δt {} s", n(params.integrator.dt))),
@@ -968,6 +979,25 @@ mod tests {
         let caption = Record::of_setup("t", "x", &params, &initial).caption.join("\n");
         assert!(
             caption.contains("m 1 g, loaded: +2 g at corner 2, +0.5 g at corner 8;"),
+            "{caption}"
+        );
+    }
+
+    /// A polyhedral die's caption gives its kind, height and density, not the box's half
+    /// size and corner mass it does not read.
+    #[test]
+    fn a_caption_names_a_polyhedral_die_by_its_own_keys() {
+        let mut params = Params::default();
+        params.die.kind = dicesim_physics::Solid::D20;
+        let caption = Record::of_setup("t", "d20", &params, &InitialCondition::default())
+            .caption
+            .join("\n");
+        assert!(
+            caption.contains("; die d20 1.6 cm across, 1.18 g/cm³;"),
+            "{caption}"
+        );
+        assert!(
+            !caption.contains("a 1 cm") && !caption.contains("m 1 g"),
             "{caption}"
         );
     }
