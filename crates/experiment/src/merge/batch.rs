@@ -10,7 +10,7 @@
 
 use super::parts::{MergeError, Parts, checked_records_path, chosen_at_random};
 use super::rows::{MAX_LINE_BYTES, without_bom};
-use crate::columns::{COLUMNS, RecordCheck, RecordColumn, same_record};
+use crate::columns::{COLUMNS, RecordCheck};
 use crate::data_file;
 use crate::ics::{
     SpinColumns, parse_record_line, read_drawn_row, records_columns, records_csv_header, write_cell,
@@ -750,30 +750,27 @@ fn tally_difference(claimed: &Tally, found: &Tally) -> String {
 /// Rolls `records` again from their starts and refuses the merge if any ends differently
 /// in any bit: the one check a consistent forgery cannot pass.
 fn verify_records(params: &Params, records: &[RollRecord]) -> Result<(), Unverified> {
-    let differing = records
-        .par_iter()
-        .find_first(|r| !same_record(&roll_record(params, &r.initial, r.id), r));
-    match differing {
-        None => Ok(()),
-        Some(r) => {
-            let again = roll_record(params, &r.initial, r.id);
-            let cell = |r: &RollRecord, c: &RecordColumn| {
-                let mut text = Vec::new();
-                write_cell(&mut text, (c.get)(r));
-                String::from_utf8_lossy(&text).into_owned()
-            };
-            let column = COLUMNS
-                .iter()
-                .find(|c| !(c.get)(r).same((c.get)(&again)))
-                .expect("records that are not the same differ in a column");
-            Err(Unverified {
-                id: r.id,
-                column: column.name(),
-                recorded: cell(r, column),
-                rolled: cell(&again, column),
-            })
-        }
-    }
+    // Each record is rolled once: the first column that differs is both the verdict and
+    // what the refusal names.
+    let differing = records.par_iter().find_map_first(|r| {
+        let again = roll_record(params, &r.initial, r.id);
+        let column = COLUMNS.iter().find(|c| !(c.get)(r).same((c.get)(&again)))?;
+        Some((r, again, column))
+    });
+    let Some((r, again, column)) = differing else {
+        return Ok(());
+    };
+    let cell = |r: &RollRecord| {
+        let mut text = Vec::new();
+        write_cell(&mut text, (column.get)(r));
+        String::from_utf8_lossy(&text).into_owned()
+    };
+    Err(Unverified {
+        id: r.id,
+        column: column.name(),
+        recorded: cell(r),
+        rolled: cell(&again),
+    })
 }
 
 /// A record that `--verify` rolled again and found other: the first column that differs.
