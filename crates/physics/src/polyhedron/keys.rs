@@ -389,7 +389,14 @@ fn flaw_refusal(f: &DieFlaws, sharp: &Die, e: FlawError) -> ParamError {
         | FlawError::ShaveLeavesFace { .. }
         | FlawError::ShaveRemovesFace { .. }
         | FlawError::ShaveTopples { .. }
-        | FlawError::ShaveHull(_) => refused(limits::SHAVE_DEPTH, f.shave_depth, why),
+        | FlawError::ShaveHull(HullError::Duplicate { .. } | HullError::NotConvex { .. }) => {
+            refused(limits::SHAVE_DEPTH, f.shave_depth, why)
+        }
+        FlawError::ShaveHull(_) => refused(
+            limits::SHAVE_DEPTH,
+            f.shave_depth,
+            "the cut is as deep as the die is thick across that face: nothing is left".to_string(),
+        ),
         FlawError::RoundingCount { .. } => refused(limits::VERTEX_ROUNDING, f64::NAN, why),
         FlawError::RoundingValue { vertex } | FlawError::RoundingTooLarge { vertex, .. } => {
             // The key that rounds this vertex most.
