@@ -367,8 +367,11 @@ pub fn roll_points_in_lanes<const N: usize>(
 
 /// Which vector a polyhedral die's roll steps in: its law, its solid and its points (a
 /// shave or a convex die's corners change the points of one solid).
+type DiceVector = (u8, Solid, usize);
+
+/// The [`DiceVector`] of `roll`.
 #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
-fn dice_vector(roll: &DiceRoll, params: &Params) -> (u8, Solid, usize) {
+fn dice_vector(roll: &DiceRoll, params: &Params) -> DiceVector {
     let (law, points) = on_points!(roll, r => (match &r.k {
         PointKernel::Paper(_) => 0,
         PointKernel::PaperWholeDie(_) => 1,
@@ -877,7 +880,7 @@ mod avx2 {
     #[derive(Default)]
     struct Dice {
         bodies: DiceBodies,
-        groups: Vec<((u8, Solid, usize), Box<dyn DiceGroup>)>,
+        groups: Vec<(DiceVector, Box<dyn DiceGroup>)>,
     }
 
     impl Dice {

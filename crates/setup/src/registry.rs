@@ -107,6 +107,9 @@ pub enum Nudge {
 }
 
 /// A value as a setup stores it.
+// A list's numbers are held in place, so a `Value` stays `Copy`; values are read one at a
+// time and never stored by the many, so its size costs nothing.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Value {
     Number(f64),

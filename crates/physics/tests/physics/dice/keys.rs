@@ -85,16 +85,19 @@ fn a_convex_cube_of_its_eight_corners_weighs_and_turns_as_the_box() {
     assert_eq!(dicesim_physics::polyhedron::body_points(8), Some(12));
 }
 
-/// Everything two engines' results carry, as bits.
-fn results(
-    engine: fn(
-        usize,
-        &mut dyn FnMut(usize) -> (Params, InitialCondition),
-        &mut dyn FnMut(LaneResult<'_>),
-        &dyn Fn() -> bool,
-    ) -> bool,
-    setups: &[(Params, InitialCondition)],
-) -> Vec<(Option<u8>, Status, u64, u64, u64, u8, Vec<u64>)> {
+/// An engine: `roll_in_lanes` or `roll_one_by_one`.
+type Engine = fn(
+    usize,
+    &mut dyn FnMut(usize) -> (Params, InitialCondition),
+    &mut dyn FnMut(LaneResult<'_>),
+    &dyn Fn() -> bool,
+) -> bool;
+
+/// A roll's face, status, steps, time (bits), impacts, start face and end state (bits).
+type RollBits = (Option<u8>, Status, u64, u64, u64, u8, Vec<u64>);
+
+/// Everything an engine's results carry, as bits, in the order of `setups`.
+fn results(engine: Engine, setups: &[(Params, InitialCondition)]) -> Vec<RollBits> {
     let mut out = vec![None; setups.len()];
     assert!(engine(
         setups.len(),
