@@ -497,3 +497,44 @@ fn a_bubble_placed_by_its_keys_moves_the_centre_of_mass_away_from_its_face() {
         flawed.centre_of_mass
     );
 }
+
+/// What padding costs: the same throws of a convex cube rolled as the body of its own 8
+/// points and as the padded 12-point body the engines carry it as (scalar `PointRoll`, and
+/// the lanes), rolls per second of each. Ignored: a measurement, not a check (run it on an
+/// idle machine with `-- --ignored --nocapture dice::keys::padding`).
+#[test]
+#[ignore = "a measurement: see the doc comment for the command"]
+fn padding_costs_its_share_of_the_loops_over_points() {
+    use dicesim_physics::lanes::roll_points_in_lanes;
+    use std::time::Instant;
+    let p = convex(&cube(0.8), 1.18);
+    let die = p.polyhedral_die().expect("a convex die");
+    let throws: Vec<InitialCondition> = (0..2000).map(|i| throw(23, i)).collect();
+    fn rate<const N: usize>(
+        p: &Params,
+        die: &dicesim_physics::polyhedron::Die,
+        throws: &[InitialCondition],
+    ) -> (f64, f64) {
+        let body = die.point_body::<N>(p).expect("a body");
+        let start = Instant::now();
+        for initial in throws {
+            PointRoll::new(p, &body, initial).expect("a throw").run_to_end();
+        }
+        let scalar = throws.len() as f64 / start.elapsed().as_secs_f64();
+        let start = Instant::now();
+        roll_points_in_lanes(p, &body, throws).expect("throws");
+        let lanes = throws.len() as f64 / start.elapsed().as_secs_f64();
+        (scalar, lanes)
+    }
+    let own = rate::<8>(&p, &die, &throws);
+    let padded = rate::<12>(&p, &die, &throws);
+    println!(
+        "cube of 8 corners, 2 000 throws: rolls/s scalar {:.0} as 8 points, {:.0} as 12 ({:.2}×); lanes {:.0} and {:.0} ({:.2}×)",
+        own.0,
+        padded.0,
+        own.0 / padded.0,
+        own.1,
+        padded.1,
+        own.1 / padded.1
+    );
+}
