@@ -374,8 +374,8 @@ pub const FLAW_KEYS: [Limits; 12] = [
     limits::SHAVE_DEPTH,
 ];
 
-/// The most numbers a die shows: a body numbers at most 20 faces.
-const MAX_FACE_NUMBERS: usize = 20;
+/// The most faces a body may number (a d20's): the most numbers a die shows.
+pub const MAX_FACES: usize = 20;
 
 /// The most corners a convex die may have: the largest body the engines carry (the d12's 20
 /// points; a die of fewer rolls as the next body up, docs/dice.md "A convex die of its
@@ -426,8 +426,9 @@ impl<T: Copy> PerVertex<T> {
 /// a record may show are known without a hull per record.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Vertices {
-    points: PerVertex<[f64; 3]>,
-    faces: u8,
+    pub(crate) points: PerVertex<[f64; 3]>,
+    /// Set by `Vertices::new` (polyhedron/keys.rs, which has the hull).
+    pub(crate) faces: u8,
 }
 
 /// Why a list of corners cannot be held: more than [`MAX_DIE_VERTICES`].
@@ -440,15 +441,6 @@ impl Vertices {
         points: PerVertex::empty([0.0; 3]),
         faces: 0,
     };
-
-    /// `points`, their hull's faces counted; refused past [`MAX_DIE_VERTICES`].
-    pub fn new(points: &[[f64; 3]]) -> Result<Vertices, &'static str> {
-        let points = PerVertex::new(points, [0.0; 3]).ok_or(TOO_MANY_VERTICES)?;
-        let corners: Vec<nalgebra::Vector3<f64>> = points.as_slice().iter().map(|&p| p.into()).collect();
-        let faces =
-            crate::polyhedron::convex_hull(&corners).map_or(0, |hull| hull.faces().len().min(255) as u8);
-        Ok(Vertices { points, faces })
-    }
 
     /// cm, die frame.
     pub fn points(&self) -> &[[f64; 3]] {
@@ -631,7 +623,7 @@ impl Die {
     /// `F` (none while its corners make no solid).
     pub fn face_numbers(&self) -> &'static [u8] {
         match self.kind {
-            Solid::Convex => &Solid::D20.face_numbers()[..self.vertices.face_count().min(MAX_FACE_NUMBERS)],
+            Solid::Convex => &Solid::D20.face_numbers()[..self.vertices.face_count().min(MAX_FACES)],
             kind => kind.face_numbers(),
         }
     }
@@ -756,7 +748,7 @@ impl Die {
     }
 
     /// A polyhedral die's vertices and flaws each in its range (their sizes against the solid
-    /// are the body's to check, `polyhedron::check`).
+    /// are the body's to check, `Params::check_polyhedral_die`).
     fn check_ranges(&self) -> Result<(), ParamError> {
         for (k, point) in self.vertices.points().iter().enumerate() {
             for x in point {
@@ -1377,7 +1369,7 @@ impl Params {
             }
             limits::DENSITY.check(d.density)?;
             d.check_ranges()?;
-            crate::polyhedron::check(self)?;
+            self.check_polyhedral_die()?;
         }
         limits::HALF_SIZES.check_components(XYZ, &d.half_sizes)?;
         limits::CORNER_RADIUS.check(d.corner_radius)?;

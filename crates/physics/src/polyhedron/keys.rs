@@ -6,11 +6,11 @@
 
 use super::die::Die;
 use super::flaws::{Bubble, FlawError, Flaws, PointMass, Shave};
-use super::hull::HullError;
+use super::hull::{HullError, convex_hull};
 use crate::params::{
-    self, ContactLaw, DieFlaws, FrictionLaw, Limits, MAX_DIE_VERTICES, ParamError, Params, Solid, limits,
+    self, ContactLaw, DieFlaws, FrictionLaw, Limits, MAX_DIE_VERTICES, MAX_FACES, ParamError, Params,
+    PerVertex, Solid, Vertices, limits,
 };
-use crate::points::MAX_FACES;
 use nalgebra::Vector3;
 
 /// The bodies the engines carry, by their points: a die of fewer vertices rolls as the next
@@ -55,10 +55,28 @@ pub(crate) fn made_die(params: &Params) -> Result<Option<Die>, ParamError> {
     Ok(Some(die))
 }
 
-/// Refuses, naming the key and why, every polyhedral die the engines cannot roll: the keys
-/// [`made_die`] refuses, the authors' whole-die friction norm on a body carried with extra
-/// points (it sums over every point), and a body [`Die::point_body`] would refuse.
-pub(crate) fn check(params: &Params) -> Result<(), ParamError> {
+impl Vertices {
+    /// `points` (cm, die frame), their hull's faces counted (0 when they make no solid);
+    /// refused past [`MAX_DIE_VERTICES`].
+    pub fn new(points: &[[f64; 3]]) -> Result<Vertices, &'static str> {
+        let points = PerVertex::new(points, [0.0; 3]).ok_or(params::TOO_MANY_VERTICES)?;
+        let corners: Vec<Vector3<f64>> = points.as_slice().iter().map(|&p| p.into()).collect();
+        let faces = convex_hull(&corners).map_or(0, |hull| hull.faces().len().min(255) as u8);
+        Ok(Vertices { points, faces })
+    }
+}
+
+impl Params {
+    /// Refuses, naming the key and why, every polyhedral die the engines cannot roll: the
+    /// keys [`made_die`] refuses, the authors' whole-die friction norm on a body carried with
+    /// extra points (it sums over every point), and a body [`Die::point_body`] would refuse.
+    pub(crate) fn check_polyhedral_die(&self) -> Result<(), ParamError> {
+        check(self)
+    }
+}
+
+/// [`Params::check_polyhedral_die`].
+fn check(params: &Params) -> Result<(), ParamError> {
     let Some(die) = made_die(params)? else {
         return Ok(());
     };
