@@ -35,8 +35,10 @@ enum Engine {
     Die {
         params: Params,
         roll: DiceRoll,
-        /// cm, each point's rounding radius; g, the mass one point carries; cm, how far a
-        /// point may move in a step (docs/model.md, "A polyhedral die's readings").
+        /// cm, each vertex's rounding radius (the body's points past them are the padding
+        /// `lanes::dice_body` adds, at the centre of mass, never touching: no readout shows
+        /// them); g, the mass one point carries; cm, how far a point may move in a step
+        /// (docs/model.md, "A polyhedral die's readings").
         radii: Vec<f64>,
         point_mass: f64,
         travel_allowed: f64,
@@ -175,10 +177,19 @@ impl Roll {
         Rotation3::from_matrix_unchecked(matrix)
     }
 
+    /// How many contact points it has: the box's 8 corners, a die's vertices.
+    pub fn point_count(&self) -> usize {
+        match &self.engine {
+            Engine::Box(_) => 8,
+            Engine::Die { radii, .. } => radii.len(),
+        }
+    }
+
     /// cm, the contact points about the centre of mass, world frame: the box's corners 1..8,
     /// a die's vertices (a rounded one's sphere centres) in its solid's order.
     pub fn point_offsets(&self) -> Vec<Vector3<f64>> {
-        on_engine!(&self.engine, r => r.state().corner_offsets.to_vec())
+        let count = self.point_count();
+        on_engine!(&self.engine, r => r.state().corner_offsets[..count].to_vec())
     }
 
     /// cm, the contact points' world positions.
@@ -190,12 +201,14 @@ impl Roll {
     /// Each point's contact force split into normal, damping and friction, at the current
     /// state (the forces the next step applies).
     pub fn contact_forces(&self) -> Vec<ContactForce> {
-        on_engine!(&self.engine, r => r.contact_forces().to_vec())
+        let count = self.point_count();
+        on_engine!(&self.engine, r => r.contact_forces()[..count].to_vec())
     }
 
     /// cm, each point's tangential spring in the table's plane (0 under the paper's law).
     pub fn tangential_springs(&self) -> Vec<Vector2<f64>> {
-        on_engine!(&self.engine, r => r.tangential_springs().to_vec())
+        let count = self.point_count();
+        on_engine!(&self.engine, r => r.tangential_springs()[..count].to_vec())
     }
 
     /// Whether any point is below the table now.
@@ -402,7 +415,8 @@ impl RollingDie for Roll {
         }
     }
     fn point_forces(&self) -> Vec<Vector3<f64>> {
-        on_engine!(&self.engine, r => r.state().corner_forces.to_vec())
+        let count = self.point_count();
+        on_engine!(&self.engine, r => r.state().corner_forces[..count].to_vec())
     }
     fn energy(&self) -> Energy {
         Roll::energy(self)
