@@ -819,7 +819,8 @@ impl Scene {
         };
         let (r, u) = (step(right), step(up));
         let det = r.0 * u.1 - r.1 * u.0;
-        if !(det.abs() > 1e-6) {
+        // Seen edge-on (or not at all: NaN), the face shows no number.
+        if det.is_nan() || det.abs() <= 1e-6 {
             return;
         }
         let box_corners = [
