@@ -335,12 +335,21 @@ fn started<const N: usize>(roll: PointRoll<N>, ledger: bool) -> PointRoll<N> {
 /// shows (`dicesim_setup::quantity`) and the separation of two throws read a die through it.
 pub trait RollingDie {
     fn params(&self) -> &Params;
-    /// cm, the centre of mass; cm/s, its velocity; rad/s, ω (world frame).
+    /// Steps of Δt taken since the start.
+    fn steps(&self) -> u64;
+    /// cm, the centre of mass; cm/s, its velocity; g·cm²/s, L about the centre of mass;
+    /// rad/s, ω (world frame).
     fn position(&self) -> Vector3<f64>;
     fn velocity(&self) -> Vector3<f64>;
+    fn angular_momentum(&self) -> Vector3<f64>;
     fn angular_velocity(&self) -> Vector3<f64>;
     /// cm, the contact points (sphere centres) about the centre of mass, world frame.
     fn point_offsets(&self) -> Vec<Vector3<f64>>;
+    /// cm, their world positions.
+    fn point_positions(&self) -> Vec<Vector3<f64>> {
+        let centre = self.position();
+        self.point_offsets().iter().map(|r| centre + r).collect()
+    }
     /// cm, each point's rounding radius: its sphere reaches this far below its centre.
     fn point_radii(&self) -> Vec<f64>;
     /// dyn, the contact force on each point `(friction x, friction y, P)`.
@@ -359,6 +368,12 @@ pub trait RollingDie {
 impl RollingDie for Simulation {
     fn params(&self) -> &Params {
         Simulation::params(self)
+    }
+    fn steps(&self) -> u64 {
+        self.state().step
+    }
+    fn angular_momentum(&self) -> Vector3<f64> {
+        self.state().angular_momentum
     }
     fn position(&self) -> Vector3<f64> {
         self.state().position
@@ -395,6 +410,15 @@ impl RollingDie for Simulation {
 impl RollingDie for Roll {
     fn params(&self) -> &Params {
         Roll::params(self)
+    }
+    fn steps(&self) -> u64 {
+        Roll::steps(self)
+    }
+    fn angular_momentum(&self) -> Vector3<f64> {
+        Roll::angular_momentum(self)
+    }
+    fn point_positions(&self) -> Vec<Vector3<f64>> {
+        Roll::point_positions(self)
     }
     fn position(&self) -> Vector3<f64> {
         Roll::position(self)
