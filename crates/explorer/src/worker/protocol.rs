@@ -13,7 +13,7 @@ use dicesim_physics::{
 };
 use dicesim_setup::chaos::Separation;
 use dicesim_setup::preset::{Preset, Speed};
-use nalgebra::Vector3;
+use nalgebra::{Matrix3, Rotation3, Vector3};
 use std::collections::VecDeque;
 
 /// What the UI asks of the worker. Commands are applied in the order sent, none dropped.
@@ -204,12 +204,16 @@ pub struct TwinSnapshot {
 }
 
 /// The die as drawn.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub(crate) struct DieState {
-    /// cm, world positions of corners 1..8.
-    pub(crate) corners: [Vector3<f64>; 8],
-    /// Each corner's contact force (depth > 0 means it touches the ground).
-    pub(crate) forces: [ContactForce; 8],
+    /// cm, world positions of its contact points: the box's corners 1..8, a polyhedral die's
+    /// vertices (their spheres' centres) in its vertex order.
+    pub(crate) corners: Vec<Vector3<f64>>,
+    /// Each point's contact force (depth > 0 means it touches the ground).
+    pub(crate) forces: Vec<ContactForce>,
+    /// The body frame's turn into the world ([`dicesim_physics::Roll::orientation`]): the
+    /// box's axes as columns; a polyhedral die's vertices' frame about its centre of mass.
+    pub(crate) orientation: Rotation3<f64>,
     /// cm, centre of mass.
     pub(crate) centre: Vector3<f64>,
     /// cm/s, centre-of-mass velocity.
@@ -218,9 +222,9 @@ pub(crate) struct DieState {
     pub(crate) angular_velocity: Vector3<f64>,
     /// g·cm²/s, L about the centre of mass.
     pub(crate) angular_momentum: Vector3<f64>,
-    /// The face most nearly up now.
+    /// The number read now: the face most nearly up's (the d4's at its top vertex).
     pub(crate) face_up: u8,
-    /// The face most nearly up at t = 0.
+    /// The number read at t = 0.
     pub(crate) start_face: u8,
     /// cm, how far the centre of mass has moved along the table since the contact going on
     /// began (docs/explorer.md, "Readouts"); `None` clear of the table (and for a twin).
@@ -232,8 +236,9 @@ impl DieState {
     pub(crate) fn of(sim: &Simulation, start_face: u8) -> DieState {
         let s = sim.state();
         DieState {
-            corners: sim.corner_positions(),
-            forces: sim.contact_forces(),
+            corners: sim.corner_positions().to_vec(),
+            forces: sim.contact_forces().to_vec(),
+            orientation: Rotation3::from_matrix_unchecked(Matrix3::from_columns(&sim.body_axes())),
             centre: s.position,
             velocity: s.velocity,
             angular_velocity: sim.angular_velocity(),
