@@ -11,7 +11,7 @@
 //! with Braille dots (a ratatui canvas) or with ASCII slope characters (`-` `|` `/` `\`).
 //! Labels are placed last on a grid of taken cells, so none ever covers another.
 
-mod polyhedral;
+pub(crate) mod polyhedral;
 pub(crate) mod vectors;
 
 use crate::tui::state::app::App;

@@ -41,20 +41,30 @@ pub(crate) fn seen_edges(hull: &Hull, camera: &OrbitCamera) -> Vec<(usize, usize
         .collect()
 }
 
-/// The numbers drawn on the die, most readable first: (where, text, whether on the face up).
-/// A die read at its top face carries one number at each readable face's centre; the d4
-/// carries on each readable face the numbers of its three vertices, each by its vertex.
+/// The numbers drawn on the die, the one read first, then the most readable: (where, text,
+/// whether it is the number read). A die read at its top face carries one number at each
+/// readable face's centre, the face up's whenever it is seen at all (a camera low over the
+/// table sees it at a slant, and it is the number the class asks about); the d4 carries on
+/// each readable face the numbers of its three vertices, each by its vertex, the top
+/// vertex's (the number read) first.
 pub(crate) fn numbers(app: &App, hull: &Hull, camera: &OrbitCamera) -> Vec<(Vector3<f64>, String, bool)> {
     let kind = app.roll.live.params.die.kind;
     let facing = facing(hull, camera);
     let up = hull.face_most_nearly_up();
-    let mut faces: Vec<usize> = (0..facing.len()).filter(|&f| facing[f] >= READABLE).collect();
-    faces.sort_by(|&a, &b| facing[b].total_cmp(&facing[a]));
-    let mut out = Vec::new();
+    let read_at_top_face = hull.face_number(up).is_some();
+    let first = |f: usize| read_at_top_face && f == up;
+    let mut faces: Vec<usize> = (0..facing.len())
+        .filter(|&f| facing[f] >= READABLE || first(f) && facing[f] > 0.0)
+        .collect();
+    faces.sort_by(|&a, &b| first(b).cmp(&first(a)).then(facing[b].total_cmp(&facing[a])));
+    let top = (0..hull.vertices.len())
+        .max_by(|&a, &b| hull.vertices[a].z.total_cmp(&hull.vertices[b].z))
+        .unwrap_or(0);
+    let mut out: Vec<(Vector3<f64>, String, bool)> = Vec::new();
     for f in faces {
         let centre = hull.face_centre(f);
         match hull.face_number(f) {
-            Some(n) => out.push((centre, face_text(kind, n), f == up)),
+            Some(n) => out.push((centre, face_text(kind, n), first(f))),
             None => {
                 // The d4: the highest vertex's number first, the one a player reads.
                 let mut corners = hull.die.shape().faces()[f].vertices.clone();
@@ -62,12 +72,14 @@ pub(crate) fn numbers(app: &App, hull: &Hull, camera: &OrbitCamera) -> Vec<(Vect
                 for k in corners {
                     if let Some(n) = hull.vertex_number(k) {
                         let at = hull.vertices[k] + (centre - hull.vertices[k]) * BY_THE_VERTEX;
-                        out.push((at, face_text(kind, n), false));
+                        out.push((at, face_text(kind, n), k == top));
                     }
                 }
             }
         }
     }
+    // The d4's top vertex's numbers (the one read) before the others.
+    out.sort_by_key(|&(_, _, read)| !read);
     out
 }
 
@@ -130,11 +142,21 @@ pub(super) fn picture(app: &App, view: &Projection, hull: &Hull) -> Picture {
             colour,
         );
     }
-    // The numbers, the most squarely seen first: where two would overlap the later one
-    // gives way, so no number is ever drawn over another.
-    for (at, text, on_up) in numbers(app, hull, &view.camera) {
+    // The numbers, the one read first, then the most squarely seen: where two would overlap
+    // or touch on a row the later one gives way, so no number is drawn over another and two
+    // never read as one (a d4's `1` beside a `1` would read 11).
+    let mut taken: Vec<(u16, u16, u16)> = Vec::new();
+    for (at, text, read) in numbers(app, hull, &view.camera) {
+        let Some((col, row)) = view.cell(view.flat(&at)) else {
+            continue;
+        };
+        let end = col + text.chars().count() as u16;
+        if taken.iter().any(|&(r, a, b)| r == row && col <= b && a <= end) {
+            continue;
+        }
+        taken.push((row, col, end));
         let style = Style::new().fg(t.die()).add_modifier(Modifier::BOLD);
-        let style = if on_up {
+        let style = if read {
             style.add_modifier(Modifier::UNDERLINED)
         } else {
             style

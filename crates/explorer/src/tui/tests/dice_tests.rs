@@ -1,0 +1,156 @@
+//! The polyhedral dice on screen: each drawn with the numbers printed on it, the number on
+//! the face up the one a player reads, the d4's at its top vertex (docs/dice.md).
+
+use crate::tui::panels::die::{body_of, polyhedral};
+use crate::tui::state::projection::die_view;
+use crate::tui::tests::fixtures::{Harness, draw, projector};
+use crate::tui::tests::screen_tests::SIZES;
+use crate::tui::vocabulary::layout::screen_layout;
+use crate::tui::vocabulary::solid::{Body, Hull};
+use crate::tui::vocabulary::theme::Theme;
+use crate::worker::DieState;
+use dicesim_physics::polyhedron::ReadAt;
+use dicesim_physics::{ContactForce, Solid};
+use dicesim_setup::preset::Preset;
+use nalgebra::{Rotation3, Unit, Vector3};
+use ratatui::layout::Rect;
+
+/// A die of `kind` set on the table by hand, as a player leaves it: the face printed `up`
+/// on top (the d4: the vertex printed `up` on top, the face numbered `up` down), turned
+/// `yaw_deg` about the vertical, its lowest points on the table. The state is built from
+/// the die's geometry alone, so what the panel draws is held to docs/dice.md, not to a roll.
+pub(crate) fn at_rest(kind: Solid, up: u32, yaw_deg: f64, theme: Theme) -> Harness {
+    let preset = Preset::default()
+        .with_overrides(&["integrator.dt=0.00025", &format!("die.kind=\"{}\"", kind.name())])
+        .expect("a regular die");
+    let mut s = Harness::new(&Preset::default(), theme);
+    let params = preset.params();
+    s.app.roll.live.params = params;
+    let die = params.polyhedral_die().expect("a polyhedral die");
+    let numbering = die.numbering().clone();
+    let face = (0..numbering.numbers.len())
+        .find(|&f| numbering.numbers[f] == up)
+        .expect("the die carries the number");
+    let normal = die.shape().faces()[face].normal;
+    // Read at the top face, the face printed `up` points up; the d4's face numbered `up`
+    // (the one its vertex `up` does not touch) lies on the table.
+    let towards = match numbering.read_at {
+        ReadAt::TopFace => Vector3::z(),
+        _ => -Vector3::z(),
+    };
+    let turn = Rotation3::rotation_between(&normal, &towards).unwrap_or_else(|| {
+        Rotation3::from_axis_angle(
+            &Unit::new_normalize(normal.cross(&Vector3::x())),
+            std::f64::consts::PI,
+        )
+    });
+    let orientation = Rotation3::from_axis_angle(&Vector3::z_axis(), yaw_deg.to_radians()) * turn;
+    let placed = Hull::new(die.clone(), Vector3::zeros(), &orientation);
+    let centre = Vector3::new(0.0, 0.0, -placed.lowest().z);
+    let hull = Hull::new(die, centre, &orientation);
+    s.app.roll.live.die = DieState {
+        corners: hull.vertices.clone(),
+        forces: vec![ContactForce::default(); hull.vertices.len()],
+        orientation,
+        centre,
+        velocity: Vector3::zeros(),
+        angular_velocity: Vector3::zeros(),
+        angular_momentum: Vector3::zeros(),
+        face_up: u8::try_from(up).expect("a die's number"),
+        start_face: u8::try_from(up).expect("a die's number"),
+        slid_cm: None,
+    };
+    s
+}
+
+/// The die of `kind` resting on the face whose outward normal (the die's own frame) is
+/// `down`, turned `yaw_deg` about the vertical.
+fn resting_on(kind: Solid, down: Vector3<f64>, yaw_deg: f64, theme: Theme) -> Harness {
+    let die = kind.regular().expect("a regular die").standard();
+    let numbering = die.numbering();
+    let face = (0..numbering.numbers.len())
+        .min_by(|&a, &b| {
+            let off = |f: usize| (die.shape().faces()[f].normal - down.normalize()).norm();
+            off(a).total_cmp(&off(b))
+        })
+        .expect("faces");
+    // The number docs/dice.md's table prints on that face (not what it reads).
+    let printed = numbering.numbers[face];
+    let up = match numbering.read_at {
+        ReadAt::TopFace => numbering.read_with_down(face),
+        _ => printed,
+    };
+    at_rest(kind, up, yaw_deg, theme)
+}
+
+/// The text drawn on the screen where the number read should be: at the centre of the
+/// face most nearly up, or for the d4 by its top vertex on the face the camera sees most
+/// squarely, at every classroom size.
+fn number_read_on_screen(s: &Harness) -> Vec<String> {
+    let app = &s.app;
+    let Body::Hull(hull) = body_of(app, &app.roll.live.die) else {
+        panic!("a polyhedral die")
+    };
+    SIZES
+        .iter()
+        .map(|&(w, h)| {
+            let term = draw(app, w, h);
+            let areas = screen_layout(Rect::new(0, 0, w, h)).expect("big enough");
+            let view = die_view(app, areas.die);
+            let facing = polyhedral::facing(&hull, &view.camera);
+            let anchor = match hull.face_number(0) {
+                Some(_) => hull.face_centre(hull.face_most_nearly_up()),
+                None => {
+                    let top = (0..hull.vertices.len())
+                        .max_by(|&a, &b| hull.vertices[a].z.total_cmp(&hull.vertices[b].z))
+                        .expect("vertices");
+                    let faces = hull.die.shape().faces();
+                    let seen = (0..faces.len())
+                        .filter(|&f| faces[f].vertices.contains(&top))
+                        .max_by(|&a, &b| facing[a].total_cmp(&facing[b]))
+                        .expect("faces at the top vertex");
+                    let centre = hull.face_centre(seen);
+                    hull.vertices[top] + (centre - hull.vertices[top]) * 0.4
+                }
+            };
+            let (col, row) = view.cell(view.flat(&anchor)).expect("in view");
+            let buf = term.backend().buffer();
+            let (x, y) = (view.area.x + col, view.area.y + row);
+            // The number starts on the anchor's cell and runs right while it is digits.
+            (x..view.area.right())
+                .map(|x| buf[(x, y)].symbol().to_string())
+                .take_while(|c| c.chars().all(|ch| ch.is_ascii_digit()) && !c.is_empty())
+                .collect()
+        })
+        .collect()
+}
+
+/// A die at rest shows the number a player reads where a player reads it: for each die a
+/// few of docs/dice.md's rows (a face's outward normal, and what is read with it down),
+/// each at three turns about the vertical, in both themes, at every classroom size.
+#[test]
+fn the_number_drawn_up_is_the_number_read() {
+    let rows: [(Solid, [f64; 3], &str); 10] = [
+        (Solid::D4, [-0.5774, 0.5774, 0.5774], "2"),
+        (Solid::D4, [-0.5774, -0.5774, -0.5774], "1"),
+        (Solid::D8, [0.5774, 0.5774, 0.5774], "8"),
+        (Solid::D10, [0.6, 0.4359, 0.6708], "9"),
+        (Solid::D10, [0.2292, -0.7053, -0.6708], "8"),
+        (Solid::Percentile, [0.6, 0.4359, 0.6708], "90"),
+        (Solid::Percentile, [-0.6, -0.4359, -0.6708], "00"),
+        (Solid::D12, [0.5257, 0.0, 0.8507], "12"),
+        (Solid::D20, [0.3568, 0.0, 0.9342], "20"),
+        (Solid::D20, [0.5774, 0.5774, -0.5774], "5"),
+    ];
+    for (kind, down, read) in rows {
+        for yaw in [0.0, 35.0, 200.0] {
+            for theme in [Theme::default(), projector()] {
+                let s = resting_on(kind, Vector3::from(down), yaw, theme);
+                assert_eq!(s.app.roll.live.die.face_up.to_string().len() <= 2, true);
+                for (drawn, size) in number_read_on_screen(&s).iter().zip(SIZES) {
+                    assert_eq!(drawn, read, "{kind:?} on {down:?}, turned {yaw}°, at {size:?}");
+                }
+            }
+        }
+    }
+}
