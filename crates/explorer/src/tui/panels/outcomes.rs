@@ -217,11 +217,27 @@ struct Columns {
     bar_width: usize,
     /// The share the bars start at ([`bar_start`]).
     from: f64,
+    /// Too narrow for the face and share columns with a bar (a d20's faces three abreast
+    /// at 80×24): the face in two characters, the share in percent without its sign (the
+    /// heading carries it), then the bar.
+    compact: bool,
 }
+
+/// Characters of a compact row before its bar: `20 5.1 `.
+const COMPACT_FIXED: usize = 8;
 
 impl Columns {
     fn fitting(room: usize, from: f64) -> Columns {
         let fixed = FACE_COLUMN + SHARE_COLUMN + 2;
+        if room < fixed + 3 {
+            return Columns {
+                numbers: false,
+                count_shown: false,
+                bar_width: room.saturating_sub(COMPACT_FIXED).max(2),
+                from,
+                compact: true,
+            };
+        }
         let numbers = room >= fixed + INTERVAL_COLUMN + MIN_BAR;
         let count_shown = room >= fixed + COUNT_COLUMN + INTERVAL_COLUMN * usize::from(numbers) + MIN_BAR;
         let bar_width = room
@@ -234,6 +250,7 @@ impl Columns {
             count_shown,
             bar_width,
             from,
+            compact: false,
         }
     }
 }
@@ -266,9 +283,18 @@ fn heading(app: &App, room: usize, c: Columns) -> TableRow {
         count_shown,
         bar_width,
         from,
+        compact,
     } = c;
     let fair_at = bar_width / 2;
     let faces = app.roll.table.tally.numbers().len();
+    if compact {
+        // The share's unit over its figures, the fair mark over the bars' middle.
+        let pad = " ".repeat(fair_at);
+        return TableRow::Text(Line::from(vec![
+            Span::styled("      %", t.heading()),
+            Span::raw(format!(" {pad}┆")),
+        ]));
+    }
     // The bar spans `from` to 2/N − `from`, so a fair face reaches the dotted mark in the middle.
     let mut head = " face".to_string();
     if count_shown {
@@ -317,6 +343,7 @@ fn face_row(app: &App, (k, face): (usize, u8), c: Columns) -> TableRow {
         count_shown,
         bar_width,
         from,
+        compact,
     } = c;
     let count = table.tally.counts[k];
     let share = table.tally.share(face);
@@ -339,9 +366,22 @@ fn face_row(app: &App, (k, face): (usize, u8), c: Columns) -> TableRow {
         Some([low, high]) => format!(" {:>4.1}–{:<4.1}", 100.0 * low, 100.0 * high),
         None => " ".repeat(INTERVAL_COLUMN),
     };
+    let face_text = face_text(app.roll.live.params.die.kind, face.into());
     let newest = table.last.front().and_then(|r| r.outcome.face) == Some(face);
     let face_style = if newest { t.selected() } else { Style::new() };
-    let face_text = face_text(app.roll.live.params.die.kind, face.into());
+    if compact {
+        let share_text = if n > 0 {
+            format!("{:4.1}", 100.0 * share)
+        } else {
+            "   –".to_string()
+        };
+        return TableRow::Text(Line::from(vec![
+            Span::styled(format!("{face_text:>2}"), face_style),
+            Span::raw(format!(" {share_text} ")),
+            Span::styled(bar, t.bar()),
+            Span::styled(over, t.bar()),
+        ]));
+    }
     TableRow::Text(Line::from(vec![
         Span::styled(format!(" {face_text:>2}  "), face_style),
         Span::raw(format!("{count_text}{share_text}{interval_text} ")),
@@ -401,8 +441,8 @@ fn draw_rows(app: &App, rows: Vec<TableRow>, body: Rect, frame: &mut Frame) {
     }
 }
 
-/// The least room a column of faces takes beside another: the face, its share and a bar.
-const MIN_FACE_CELL: usize = FACE_COLUMN + SHARE_COLUMN + 2 + 3;
+/// The least room a column of faces takes beside another: a compact row with a bar of two.
+const MIN_FACE_CELL: usize = COMPACT_FIXED + 2;
 
 /// How many columns the faces of a die of `faces` numbers take in a table of `rows` rows
 /// and `room` characters: one while they fit under the heading (the six-faced die always

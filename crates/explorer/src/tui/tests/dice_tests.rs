@@ -154,3 +154,25 @@ fn the_number_drawn_up_is_the_number_read() {
         }
     }
 }
+
+/// A d20 at rest beside an outcome table filled by hand: face `n` counted `40 + (7·n mod
+/// 13)` times (918 rolls), so the shares differ from face to face by a pattern a reader can check.
+pub(crate) fn d20_table(theme: Theme) -> Harness {
+    let mut s = at_rest(Solid::D20, 20, 20.0, theme);
+    let mut table = crate::worker::OutcomeTable::new(Solid::D20.face_numbers());
+    for n in 1..=20u8 {
+        for _ in 0..40 + (7 * u64::from(n)) % 13 {
+            table.tally.add(n);
+        }
+    }
+    s.app.roll.table = table;
+    s
+}
+
+#[test]
+fn look_table() {
+    let s = d20_table(Theme::default());
+    for (w, h) in SIZES {
+        println!("{}", crate::tui::tests::fixtures::screen(&s.app, w, h));
+    }
+}
