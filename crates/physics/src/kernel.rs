@@ -532,6 +532,25 @@ pub(crate) struct Kernel<L: Lane, W: Law, const N: usize = 8, B: Faces<N> = Body
 }
 
 impl<W: Law, const N: usize, B: Faces<N>> Kernel<f64, W, N, B> {
+    /// This roll under the law `V` with the constants `c` (the ground changed mid-roll): the
+    /// same state and motion, each point's memory forgotten; its forces are still the old
+    /// law's until [`Kernel::update_forces`].
+    pub(crate) fn under<V: Law>(&self, c: Constants<f64, V, N>, body: B) -> Kernel<f64, V, N, B> {
+        Kernel {
+            state: self.state.clone(),
+            points: [V::free_point(); N],
+            angular_velocity: self.angular_velocity,
+            turned_axes: self.turned_axes,
+            turned_angular_velocity: self.turned_angular_velocity,
+            rotation: self.rotation,
+            rotating: self.rotating,
+            in_contact: self.in_contact,
+            touching_corners: self.touching_corners,
+            c,
+            bodies: [body],
+        }
+    }
+
     /// The body `body` (its constants `c`) placed at `initial` with its points at
     /// `corner_offsets` (cm, world frame) and angular momentum `angular_momentum`, its spin
     /// and its forces computed.
@@ -579,25 +598,6 @@ impl<W: Law> Kernel<f64, W> {
         let corner_offsets = body.start_offsets(initial);
         let angular_momentum = body.initial_angular_momentum(initial, &corner_offsets);
         Kernel::placed(c, body, initial, corner_offsets, angular_momentum)
-    }
-
-    /// This roll under the law `V` with the constants `c` (the ground changed mid-roll): the
-    /// same state and motion, each point's memory forgotten; its forces are still the old
-    /// law's until [`Kernel::update_forces`].
-    pub(crate) fn under<V: Law>(&self, c: Constants<f64, V>, body: Body) -> Kernel<f64, V> {
-        Kernel {
-            state: self.state.clone(),
-            points: [V::free_point(); 8],
-            angular_velocity: self.angular_velocity,
-            turned_axes: self.turned_axes,
-            turned_angular_velocity: self.turned_angular_velocity,
-            rotation: self.rotation,
-            rotating: self.rotating,
-            in_contact: self.in_contact,
-            touching_corners: self.touching_corners,
-            c,
-            bodies: [body],
-        }
     }
 }
 

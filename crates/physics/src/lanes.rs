@@ -164,6 +164,7 @@ impl<W: PointLaw, const N: usize> LaneRoll<W, N> for PointRoll<N> {
 // Each roll is set up once and moved into its lane's vector, which holds it by value as it
 // holds a `Simulation`; a box would put it behind a pointer for no gain.
 #[allow(clippy::large_enum_variant)]
+#[derive(Debug, Clone)]
 pub(crate) enum DiceRoll {
     P4(PointRoll<4>),
     P6(PointRoll<6>),
@@ -182,6 +183,7 @@ macro_rules! on_points {
         }
     };
 }
+pub(crate) use on_points;
 
 /// A polyhedral die's bodies, kept while a run's setups repeat their parameters: the hull,
 /// mass and stopping rule are made once, not per roll.
@@ -194,7 +196,7 @@ pub(crate) struct DiceBodies {
 /// a `PointRoll` does: sized by the largest die, with no pointer to follow per roll.
 #[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy)]
-enum DiceBody {
+pub(crate) enum DiceBody {
     P4(PointBody<4>),
     P6(PointBody<6>),
     P12(PointBody<12>),
@@ -223,7 +225,7 @@ impl DiceBodies {
 }
 
 /// The body of `params`' polyhedral die, as many points as it has vertices.
-fn dice_body(params: &Params) -> DiceBody {
+pub(crate) fn dice_body(params: &Params) -> DiceBody {
     let die = params.polyhedral_die().expect("a polyhedral die");
     let made = "a regular die's vertices are its points";
     match die.shape().vertices().len() {

@@ -9,7 +9,8 @@
 //! (`cube`, `mass`, `shape`) and `model`, which says which of them a die is and answers every
 //! question about it — then the step written over a lane type, a law and a number of points
 //! (`spin`, `kernel`), the scalar engine (`sim`), any body as its contact points (`points`)
-//! and its scalar engine (`point_roll`), and on top the lane engine (`lanes`), the
+//! and its scalar engine (`point_roll`), and on top the lane engine (`lanes`), one roll of
+//! any die step by step (`roll`, the box's by `sim`, a die's by `point_roll`), the
 //! stability readings (`stability`, and the spring-friction law's own in
 //! `stability_contact`) and the dice of any convex shape (`polyhedron/`), each a `PointBody`.
 //! The polyhedron's geometry (its hull, moments, numbering, flaws, `Die` and the regular
@@ -31,6 +32,7 @@ pub mod params;
 mod point_roll;
 mod points;
 pub mod polyhedron;
+mod roll;
 mod shape;
 mod sim;
 mod spin;
@@ -51,6 +53,7 @@ pub use params::{
 };
 pub use point_roll::{PointOutcome, PointRoll};
 pub use points::{BodyError, MAX_FACES, PointBody};
+pub use roll::Roll;
 pub use shape::{MassProperties, mass_properties};
 pub use sim::{
     ContactForce, EnergyLedger, FirstImpact, Outcome, STEPS_BETWEEN_STOP_CHECKS, Simulation, State, Status,

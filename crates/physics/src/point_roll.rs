@@ -9,10 +9,11 @@ use super::initial::InitialCondition;
 use super::kernel::{Faces, Kernel, NoHook};
 use super::params::{ContactLaw, FrictionLaw, ParamError, Params};
 use super::points::PointBody;
-use super::sim::{ImpactLog, Outcome, STEPS_BETWEEN_STOP_CHECKS, Status};
-use super::sim::{PaperPerCorner, PaperWholeDie, by_law, engine_law, on_law, status_of};
+use super::sim::{ContactForce, EnergyLedger, ImpactLog, Ledger, Outcome, STEPS_BETWEEN_STOP_CHECKS, Status};
+use super::sim::{PaperPerCorner, PaperWholeDie, by_law, contact_forces_of, engine_law, on_law, status_of};
 use super::state::State;
-use nalgebra::Vector2;
+use super::stopping::StopRule;
+use nalgebra::{Matrix3, Vector2, Vector3};
 
 /// The end of a roll of a body of points.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -45,6 +46,12 @@ pub struct PointRoll<const N: usize> {
     /// stores it back).
     pub(crate) impact_log: ImpactLog,
     outcome: Option<Outcome>,
+    /// Whether the energy ledger is kept ([`PointRoll::with_ledger`]): a batch that only
+    /// wants outcomes skips its second pass over the points.
+    track_ledger: bool,
+    ledger: Ledger<N>,
+    /// erg, rigid-body energy at t = 0.
+    initial_energy: f64,
 }
 
 impl<const N: usize> PointRoll<N> {
@@ -60,13 +67,79 @@ impl<const N: usize> PointRoll<N> {
     pub(crate) fn new_unchecked(params: &Params, body: &PointBody<N>, initial: &InitialCondition) -> Self {
         let k = by_law!(PointKernel, params, body.kernel(params, initial));
         let (in_contact, offsets) = on_law!(PointKernel, &k, k => (k.in_contact, k.state.corner_offsets));
+        let initial_energy = on_law!(PointKernel, &k, k => Energy::from(k.energy())).total();
         PointRoll {
             k,
             body: *body,
             start_face: body.face_up(&offsets),
             impact_log: ImpactLog::new(in_contact),
             outcome: None,
+            track_ledger: false,
+            ledger: Ledger::default(),
+            initial_energy,
         }
+    }
+
+    /// This roll keeping the energy ledger from its start on (what a live view or a trace
+    /// shows; the trajectory is the same bit for bit).
+    pub fn with_ledger(mut self) -> Self {
+        debug_assert_eq!(self.state().step, 0, "the ledger starts with the roll");
+        self.track_ledger = true;
+        self
+    }
+
+    /// Where the energy has gone since t = 0 (a roll made [`PointRoll::with_ledger`]).
+    pub fn energy_ledger(&self) -> EnergyLedger {
+        debug_assert!(self.track_ledger, "a roll built for its outcome keeps no ledger");
+        self.ledger
+            .energy_ledger(self.initial_energy, self.energy().total())
+    }
+
+    /// Each point's contact force split into normal, damping and friction, at the current
+    /// state (the forces the next step will apply).
+    pub fn contact_forces(&self) -> [ContactForce; N] {
+        on_law!(PointKernel, &self.k, k => contact_forces_of(k))
+    }
+
+    /// rad/s, world frame.
+    pub fn angular_velocity(&self) -> Vector3<f64> {
+        on_law!(PointKernel, &self.k, k => k.angular_velocity)
+    }
+
+    /// The body-to-world rotation now: a point `p` of the body's frame (about its centre of
+    /// mass) lies at `orientation · p` from the centre.
+    pub fn orientation(&self) -> Matrix3<f64> {
+        self.body.orientation(&self.state().corner_offsets)
+    }
+
+    /// The stopping rule on this table, erg: the one the step screens with (the widest of
+    /// the faces' where they differ).
+    pub fn stop_rule(&self) -> StopRule {
+        on_law!(PointKernel, &self.k, k => StopRule {
+            energy_threshold: k.c.stop.energy_threshold,
+            kinetic_threshold: k.c.stop.kinetic_threshold,
+        })
+    }
+
+    /// The stopping rule of the face it shows now, on this table.
+    pub fn stop_rule_now(&self) -> StopRule {
+        let faced = on_law!(PointKernel, &self.k, k => k.bodies[0].stop_rule_at(&k.state.corner_offsets));
+        if self.body.has_face_rules() {
+            faced
+        } else {
+            self.stop_rule()
+        }
+    }
+
+    /// This roll on `params`' table from now on (the ground changed mid-roll), `body` its
+    /// body as made for that table (its stopping rules depend on it): the same state and
+    /// motion, each point's memory kept where the law stays, forgotten where it changes.
+    pub fn set_table(&mut self, params: &Params, body: &PointBody<N>) -> Result<(), ParamError> {
+        params.validate()?;
+        let runaway = on_law!(PointKernel, &self.k, k => k.c.stop.runaway);
+        self.k = by_law!(PointKernel, params, under_law(&self.k, params, body, runaway));
+        self.body = *body;
+        Ok(())
     }
 
     /// The number of the face up at t = 0.
@@ -126,8 +199,12 @@ impl<const N: usize> PointRoll<N> {
     pub fn step(&mut self) {
         let body = &self.body;
         let log = &mut self.impact_log;
+        let ledger = self.track_ledger.then_some(&mut self.ledger);
         on_law!(PointKernel, &mut self.k, k => {
-            k.step(&mut NoHook);
+            match ledger {
+                Some(ledger) => k.step(ledger),
+                None => k.step(&mut NoHook),
+            }
             let s = &k.state;
             log.observe(k.in_contact, || (body.face_down(&s.corner_offsets), s.step, s.time_s));
         });
@@ -187,6 +264,24 @@ impl<const N: usize> PointRoll<N> {
         self.outcome = Some(outcome);
         self.outcome().expect("just ended")
     }
+}
+
+/// The roll in `k` under `params`' law `V` with `body` (the ground changed), the runaway
+/// bound kept, a point's memory kept where the law stays.
+fn under_law<V: PointLaw, const N: usize>(
+    k: &PointKernel<N>,
+    params: &Params,
+    body: &PointBody<N>,
+    runaway: f64,
+) -> Kernel<f64, V, N, PointBody<N>> {
+    let (mut c, on_table) = body.on_table::<V>(params);
+    c.stop.runaway = runaway;
+    let mut kernel = on_law!(PointKernel, k, k => k.under::<V>(c, on_table));
+    if let Some(same) = V::of(k) {
+        kernel.points = same.points;
+    }
+    kernel.update_forces();
+    kernel
 }
 
 fn springs<W: Law, const N: usize>(k: &Kernel<f64, W, N, PointBody<N>>) -> [Vector2<f64>; N] {

@@ -173,6 +173,11 @@ impl<const N: usize> PointBody<N> {
         self.face_rules.map_or(self.stop_rule, |rules| rules[f])
     }
 
+    /// Whether its stopping rule depends on the face it shows ([`PointBody::with_face_rules`]).
+    pub fn has_face_rules(&self) -> bool {
+        self.face_rules.is_some()
+    }
+
     /// g·cm², the inertia tensor about the centre of mass, body frame.
     pub fn inertia(&self) -> Matrix3<f64> {
         self.inertia
@@ -248,22 +253,29 @@ impl<const N: usize> PointBody<N> {
         params: &Params,
         initial: &InitialCondition,
     ) -> Kernel<f64, W, N, PointBody<N>> {
-        let dt = params.integrator.dt;
-        let body = self.body_constants(W::gravity(params), params.world.gravity, dt);
-        let c = Constants::with_body(params, body, self.edge_energy, self.stop_rule);
-        // Each face's rule as the law's table has it, as the widest is.
-        let mut on_table = *self;
-        if let Some(rules) = &mut on_table.face_rules {
-            for rule in rules.iter_mut() {
-                *rule = W::stop_rule(*rule, params, self.edge_energy);
-            }
-        }
+        let (c, on_table) = self.on_table::<W>(params);
         let (offsets, l) = self.start(initial);
         let mut kernel = Kernel::placed(c, on_table, initial, offsets, l);
         let e = kernel.energy();
         let energy = ((e.translational + e.rotational) + e.gravitational) + e.elastic;
         kernel.c.stop.runaway = RUNAWAY_ENERGY_FACTOR * energy.max(self.edge_energy);
         kernel
+    }
+
+    /// The step's constants of this body on `params`' table (its world, ground and
+    /// integrator) under the law `W`, `runaway` still +∞, and the body as the kernel holds it:
+    /// each face's rule as the law's table has it, as the widest is.
+    pub(crate) fn on_table<W: Law>(&self, params: &Params) -> (Constants<f64, W, N>, PointBody<N>) {
+        let dt = params.integrator.dt;
+        let body = self.body_constants(W::gravity(params), params.world.gravity, dt);
+        let c = Constants::with_body(params, body, self.edge_energy, self.stop_rule);
+        let mut on_table = *self;
+        if let Some(rules) = &mut on_table.face_rules {
+            for rule in rules.iter_mut() {
+                *rule = W::stop_rule(*rule, params, self.edge_energy);
+            }
+        }
+        (c, on_table)
     }
 
     /// The step's body constants under gravity `[gx, gy, gz]` (cm/s², the table's frame;

@@ -10,7 +10,7 @@ use super::contact::{Law, Paper, PerCornerSlip, SpringFriction, WholeDieSlip};
 use super::energy::Energy;
 use super::impact::Impacts;
 use super::initial::InitialCondition;
-use super::kernel::{Constants, Ends, Kernel, NoHook, StepHook};
+use super::kernel::{Constants, Ends, Faces, Kernel, NoHook, StepHook};
 use super::model::{Body, check_setup};
 use super::params::{ContactLaw, Detail, FrictionLaw, Ground, KIND_KEY, ParamError, Params, StopEnergy};
 use super::state::contact_point;
@@ -278,18 +278,42 @@ pub struct Simulation {
     outcome: Option<Outcome>,
 }
 
-/// The energy ledger's bookkeeping, a hook the step calls while the ledger is kept.
-#[derive(Debug, Clone, Default)]
-struct Ledger {
-    /// cm/s, the corner velocities before the kick, taken while in contact.
-    before: Option<[Vector3<f64>; 8]>,
+/// The energy ledger's bookkeeping for a body of `N` contact points, a hook the step calls
+/// while the ledger is kept (the box's and a polyhedral die's alike).
+#[derive(Debug, Clone)]
+pub(crate) struct Ledger<const N: usize = 8> {
+    /// cm/s, the contact points' velocities before the kick, taken while in contact.
+    before: Option<[Vector3<f64>; N]>,
     /// erg, work done on the die by damping and by friction since t = 0 (negative: lost).
     work: ContactWork,
 }
 
-impl<W: Law> StepHook<f64, W, 8, Body> for Ledger {
+impl<const N: usize> Default for Ledger<N> {
+    fn default() -> Self {
+        Ledger {
+            before: None,
+            work: ContactWork::default(),
+        }
+    }
+}
+
+impl<const N: usize> Ledger<N> {
+    /// Where the energy went between `initial` and `current` (erg) by this ledger's work.
+    pub(crate) fn energy_ledger(&self, initial: f64, current: f64) -> EnergyLedger {
+        let (damping_loss, friction_loss) = (-self.work.damping, -self.work.friction);
+        EnergyLedger {
+            initial,
+            current,
+            damping_loss,
+            friction_loss,
+            integrator_loss: initial - current - damping_loss - friction_loss,
+        }
+    }
+}
+
+impl<W: Law, const N: usize, B: Faces<N>> StepHook<f64, W, N, B> for Ledger<N> {
     #[inline]
-    fn before_kick(&mut self, k: &Kernel<f64, W>) {
+    fn before_kick(&mut self, k: &Kernel<f64, W, N, B>) {
         self.before = k.in_contact.then(|| corner_velocities(k));
     }
 
@@ -300,11 +324,11 @@ impl<W: Law> StepHook<f64, W, 8, Body> for Ledger {
     /// `½M|v|²` and `½|L|²/I` are quadratic. So this is the work each force really does in
     /// the discrete step, chatter included, not a sampled power.
     #[inline]
-    fn after_spin(&mut self, k: &Kernel<f64, W>) {
+    fn after_spin(&mut self, k: &Kernel<f64, W, N, B>) {
         let Some(before) = self.before.take() else { return };
         let after = corner_velocities(k);
         let s = &k.state;
-        for k_ in 0..8 {
+        for k_ in 0..N {
             if s.corner_depths[k_] > 0.0 {
                 let mean = (before[k_] + after[k_]) * 0.5;
                 let f = &s.corner_forces[k_];
@@ -316,11 +340,30 @@ impl<W: Law> StepHook<f64, W, 8, Body> for Ledger {
     }
 }
 
-/// Velocities of corners 1..8 (a rounded body's contact points), cm/s.
-fn corner_velocities<W: Law>(k: &Kernel<f64, W>) -> [Vector3<f64>; 8] {
+/// Velocities of the contact points (corners 1..8 of a box; a rounded body's contact
+/// points), cm/s.
+fn corner_velocities<W: Law, const N: usize, B: Faces<N>>(k: &Kernel<f64, W, N, B>) -> [Vector3<f64>; N] {
     let radii = &k.c.body.corner_radii;
     std::array::from_fn(|c| {
         k.corner_velocity(&contact_point::<true, f64>(&k.state.corner_offsets[c], radii[c]))
+    })
+}
+
+/// Each contact point's force split into normal, damping and friction at `k`'s state.
+pub(crate) fn contact_forces_of<W: Law, const N: usize, B: Faces<N>>(
+    k: &Kernel<f64, W, N, B>,
+) -> [ContactForce; N] {
+    let s = &k.state;
+    let stiffness = W::stiffness(&k.c.law);
+    std::array::from_fn(|p| {
+        let depth = s.corner_depths[p];
+        let normal = depth * stiffness;
+        ContactForce {
+            depth,
+            normal,
+            damping: s.corner_forces[p].z - normal,
+            friction: [s.corner_forces[p].x, s.corner_forces[p].y],
+        }
     })
 }
 
@@ -394,16 +437,8 @@ impl Simulation {
     /// Where the energy has gone since t = 0.
     pub fn energy_ledger(&self) -> EnergyLedger {
         debug_assert!(self.track_ledger, "a roll built for its outcome keeps no ledger");
-        let current = self.energy().total();
-        let work = &self.ledger.work;
-        let (damping_loss, friction_loss) = (-work.damping, -work.friction);
-        EnergyLedger {
-            initial: self.initial_energy,
-            current,
-            damping_loss,
-            friction_loss,
-            integrator_loss: self.initial_energy - current - damping_loss - friction_loss,
-        }
+        self.ledger
+            .energy_ledger(self.initial_energy, self.energy().total())
     }
 
     /// Whether any corner is below the ground now.
@@ -434,18 +469,7 @@ impl Simulation {
     /// Each corner's contact force split into normal, damping and friction, at the current
     /// state (the forces the next step will apply).
     pub fn contact_forces(&self) -> [ContactForce; 8] {
-        let s = self.state();
-        let stiffness = on_law!(Laws, &self.k, k => stiffness(k));
-        std::array::from_fn(|k| {
-            let depth = s.corner_depths[k];
-            let normal = depth * stiffness;
-            ContactForce {
-                depth,
-                normal,
-                damping: s.corner_forces[k].z - normal,
-                friction: [s.corner_forces[k].x, s.corner_forces[k].y],
-            }
-        })
+        on_law!(Laws, &self.k, k => contact_forces_of(k))
     }
 
     /// The energy terms at the current state (docs/model.md, "Energy"), erg.
@@ -760,9 +784,4 @@ fn under_law<V: EngineLaw>(k: &Laws, params: &Params, body: Body) -> Kernel<f64,
 /// [`Simulation::tangential_springs`] of a kernel.
 fn tangential_springs<W: Law>(k: &Kernel<f64, W>) -> [Vector2<f64>; 8] {
     k.points.each_ref().map(W::tangential_spring)
-}
-
-/// [`Simulation::contact_forces`]' stiffness.
-fn stiffness<W: Law>(k: &Kernel<f64, W>) -> f64 {
-    W::stiffness(&k.c.law)
 }

@@ -1,6 +1,7 @@
 //! The dice of any convex shape (docs/model.md, "Dice of any convex shape"; docs/dice.md):
 //! each regular solid's closed forms derived by hand, held against the hull and the integrals.
 
+mod any_roll;
 mod bias;
 mod engines;
 mod fairness;
