@@ -8,12 +8,10 @@ use super::map_jobs::MapRequest;
 use dicesim_experiment::{BasinMap, FaceTally, Layer, RollRecord, ScanKey};
 use dicesim_figures::animation::AnimationProgress;
 use dicesim_figures::export::ExportProgress;
-use dicesim_physics::{
-    ContactForce, Energy, EnergyLedger, InitialCondition, Outcome, Params, Simulation, Status,
-};
+use dicesim_physics::{ContactForce, Energy, EnergyLedger, InitialCondition, Outcome, Params, Roll, Status};
 use dicesim_setup::chaos::Separation;
 use dicesim_setup::preset::{Preset, Speed};
-use nalgebra::{Matrix3, Rotation3, Vector3};
+use nalgebra::{Rotation3, Vector3};
 use std::collections::VecDeque;
 
 /// What the UI asks of the worker. Commands are applied in the order sent, none dropped.
@@ -165,16 +163,60 @@ pub struct EnergySample {
 }
 
 impl EnergySample {
-    /// A simulation's energy and every quantity now (the die's, or a parameter twin's).
-    pub(crate) fn of(sim: &Simulation) -> EnergySample {
-        let energy = sim.energy();
+    /// A roll's energy and every quantity now (the die's, or a parameter twin's).
+    pub(crate) fn of(roll: &Roll) -> EnergySample {
+        let energy = roll.energy();
         EnergySample {
-            time_s: sim.state().time_s,
+            time_s: roll.time_s(),
             energy,
             total: energy.total(),
-            quantities: dicesim_setup::quantity::read_all(sim),
+            quantities: readings(roll),
         }
     }
+}
+
+/// Every quantity of [`dicesim_setup::quantity::QUANTITIES`] now: the box's as the roll
+/// CSV reads them (bit for bit); a polyhedral die's read off its roll the same way, but for
+/// the three stability loads that read the box's corner masses and half sizes (corner speed,
+/// damping, friction), which a polyhedral die has not: those are NaN, and its plot is empty.
+pub(crate) fn readings(roll: &Roll) -> dicesim_setup::quantity::Readings {
+    match roll.simulation() {
+        Some(sim) => dicesim_setup::quantity::read_all(sim),
+        None => point_readings(roll),
+    }
+}
+
+/// [`readings`] of any die read through its roll, in the order of
+/// [`dicesim_setup::quantity::QUANTITIES`] (a test holds the box's to `read_all`'s).
+pub(crate) fn point_readings(roll: &Roll) -> dicesim_setup::quantity::Readings {
+    use dicesim_physics::stability::CONTACT_MODE_LIMIT;
+    let energy = roll.energy();
+    let lowest = roll
+        .point_positions()
+        .iter()
+        .map(|p| p.z)
+        .fold(f64::INFINITY, f64::min);
+    let force: Vector3<f64> = roll
+        .contact_forces()
+        .iter()
+        .map(|f| Vector3::new(f.friction[0], f.friction[1], f.normal + f.damping))
+        .sum();
+    [
+        roll.position().z,
+        lowest,
+        roll.velocity().norm(),
+        roll.angular_velocity().norm(),
+        force.norm(),
+        energy.translational,
+        energy.rotational,
+        energy.gravitational,
+        energy.elastic,
+        energy.total(),
+        roll.params().stability_number() / CONTACT_MODE_LIMIT,
+        f64::NAN,
+        f64::NAN,
+        f64::NAN,
+    ]
 }
 
 /// How far the twin has drifted from the die at one instant (each term's newest value).
@@ -232,18 +274,17 @@ pub(crate) struct DieState {
 }
 
 impl DieState {
-    /// The die as drawn, from a simulation's current state (the live die's or the twin's).
-    pub(crate) fn of(sim: &Simulation, start_face: u8) -> DieState {
-        let s = sim.state();
+    /// The die as drawn, from a roll's current state (the live die's or the twin's).
+    pub(crate) fn of(roll: &Roll, start_face: u8) -> DieState {
         DieState {
-            corners: sim.corner_positions().to_vec(),
-            forces: sim.contact_forces().to_vec(),
-            orientation: Rotation3::from_matrix_unchecked(Matrix3::from_columns(&sim.body_axes())),
-            centre: s.position,
-            velocity: s.velocity,
-            angular_velocity: sim.angular_velocity(),
-            angular_momentum: s.angular_momentum,
-            face_up: sim.face_up(),
+            corners: roll.point_positions(),
+            forces: roll.contact_forces(),
+            orientation: roll.orientation(),
+            centre: roll.position(),
+            velocity: roll.velocity(),
+            angular_velocity: roll.angular_velocity(),
+            angular_momentum: roll.angular_momentum(),
+            face_up: roll.face_up(),
             start_face,
             slid_cm: None,
         }

@@ -4,8 +4,8 @@
 
 use super::play_on::played_out;
 use super::protocol::{DieState, EnergySample, Phase, SeparationSample, TwinSnapshot};
-use dicesim_physics::{InitialCondition, Params, Simulation, face_most_nearly_up};
-use dicesim_setup::chaos::{EPSILON, perturbed, separation};
+use dicesim_physics::{InitialCondition, Params, Roll};
+use dicesim_setup::chaos::{EPSILON, Separation, perturbed};
 use dicesim_setup::keys::ScanKey;
 use dicesim_setup::registry::Role;
 
@@ -69,7 +69,7 @@ impl Difference {
 
 pub(crate) struct Twin {
     pub(crate) difference: Difference,
-    pub(crate) sim: Simulation,
+    pub(crate) sim: Roll,
     start_face: u8,
     /// Samples since the last snapshot.
     history: Vec<SeparationSample>,
@@ -89,8 +89,8 @@ impl Twin {
         difference: Difference,
     ) -> Result<Twin, String> {
         let (b, start) = difference.apply(params, initial)?;
-        let sim = Simulation::new_unchecked(&b, &start);
-        let start_face = face_most_nearly_up(&sim.state().corner_offsets);
+        let sim = Roll::new_unchecked(&b, &start);
+        let start_face = sim.start_face();
         Ok(Twin {
             difference,
             sim,
@@ -137,7 +137,7 @@ impl Twin {
     }
 
     /// After a step: records the separation every `stride` steps, and at the end.
-    pub(crate) fn stepped(&mut self, die: &Simulation, stride: u64, last: bool) {
+    pub(crate) fn stepped(&mut self, die: &Roll, stride: u64, last: bool) {
         self.unsampled += 1;
         if self.unsampled >= stride || last {
             self.sample(die);
@@ -145,9 +145,9 @@ impl Twin {
     }
 
     /// Records the separation from `die` now.
-    pub(crate) fn sample(&mut self, die: &Simulation) {
+    pub(crate) fn sample(&mut self, die: &Roll) {
         self.unsampled = 0;
-        let time_s = die.state().time_s.max(self.sim.state().time_s);
+        let time_s = die.time_s().max(self.sim.time_s());
         self.history.push(SeparationSample {
             time_s,
             separation: separation(die, &self.sim),
@@ -157,7 +157,7 @@ impl Twin {
         }
     }
 
-    pub(crate) fn snapshot(&mut self, die: &Simulation) -> TwinSnapshot {
+    pub(crate) fn snapshot(&mut self, die: &Roll) -> TwinSnapshot {
         TwinSnapshot {
             epsilon: self.difference.epsilon(),
             differs_by: match &self.difference {
@@ -174,4 +174,18 @@ impl Twin {
             samples: std::mem::take(&mut self.samples),
         }
     }
+}
+
+/// How far apart two dice are ([`dicesim_setup::chaos::separation`] for two boxes, bit for
+/// bit): the distance between the centres of mass, and the angle of the turn from one
+/// orientation to the other, `2·asin(‖R₁ − R₂‖_F / 2√2)` (exact for tiny angles, where acos
+/// of the trace is not).
+fn separation(a: &Roll, b: &Roll) -> Separation {
+    if let (Some(a), Some(b)) = (a.simulation(), b.simulation()) {
+        return dicesim_setup::chaos::separation(a, b);
+    }
+    let centre = (a.position() - b.position()).norm();
+    let frobenius = (a.orientation().matrix() - b.orientation().matrix()).norm();
+    let angle = 2.0 * (frobenius / (2.0 * std::f64::consts::SQRT_2)).min(1.0).asin();
+    Separation { centre, angle }
 }
