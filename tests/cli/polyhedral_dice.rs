@@ -14,7 +14,6 @@ fn the_commands_that_roll_the_box_only_refuse_a_polyhedral_die() {
             &["animate", "--preset", "d4", "--out", "a.gif"][..],
             "`dicesim animate`",
         ),
-        (&["tui", "--preset", "d10"][..], "the explorer"),
         (
             &["roll", "--set", "die.kind=d20", "--set", "integrator.dt=0.00025"][..],
             "`dicesim roll`",
