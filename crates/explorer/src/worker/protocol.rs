@@ -441,3 +441,34 @@ pub struct Snapshot {
     /// rolls).
     pub curve: Option<CurveUpdate>,
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use dicesim_setup::quantity::{QUANTITIES, read_all};
+
+    /// A polyhedral die's quantities are read off its roll in the order of `QUANTITIES`:
+    /// read so for the paper's box through the step, they are the roll CSV's (`read_all`),
+    /// but for the loads only the box reads: at the start, in flight, in the first impact
+    /// (step 172, the table pushing) and rolling on.
+    #[test]
+    fn any_dies_readings_are_the_csvs_for_the_box() {
+        let params = Params::default();
+        let mut roll = Roll::new(&params, &InitialCondition::default()).expect("valid");
+        for steps in [0, 100, 172, 400] {
+            while roll.steps() < steps {
+                roll.step();
+            }
+            let box_readings = read_all(roll.simulation().expect("the box"));
+            let points = point_readings(&roll);
+            for (q, (a, b)) in QUANTITIES.iter().zip(box_readings.iter().zip(points)).take(11) {
+                assert!(
+                    (a - b).abs() <= 1e-9 * a.abs().max(1.0),
+                    "{} at step {steps}: {a} and {b}",
+                    q.name
+                );
+            }
+            assert!(points[11..].iter().all(|v| v.is_nan()));
+        }
+    }
+}
