@@ -410,6 +410,9 @@ impl Simulator {
         if self.export.id().is_some() {
             return Some(Notice::ExportRunning);
         }
+        if let Some(refused) = box_only(&self.live.params, "the roll's export (its trace and plot)") {
+            return Some(refused);
+        }
         let roll = self.roll_name();
         let title = format!(
             "{} · {} — energy against time",
@@ -481,6 +484,9 @@ impl Simulator {
     /// its setup and twin as they are now, at the playback speed (1× when instant, which
     /// has no pace to film at).
     fn export_animation(&mut self, dir: std::path::PathBuf, camera: Camera) -> Option<Notice> {
+        if let Some(refused) = box_only(&self.live.params, "the animation export") {
+            return Some(refused);
+        }
         if self.export.id().is_some() {
             return Some(Notice::ExportRunning);
         }
@@ -841,4 +847,13 @@ mod tests {
         fresh.run_to_end();
         assert_eq!(e.phase(), fresh.phase(), "the same roll as a fresh one");
     }
+}
+
+/// The refusal of a polyhedral die by an export that rolls the box's engine only (the trace
+/// and the animation are written by the figures' box roll): a box must never be written in
+/// the die's place.
+fn box_only(params: &Params, what: &str) -> Option<Notice> {
+    dicesim_physics::refuse_polyhedral_die(params, what)
+        .err()
+        .map(|e| Notice::Said(e.to_string()))
 }

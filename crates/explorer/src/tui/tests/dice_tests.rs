@@ -194,3 +194,34 @@ fn a_d20s_twenty_faces_fit_the_table_at_80x24() {
         );
     }
 }
+
+/// The roll's exports (`e`, `A`) are written by the box's engine: for a polyhedral die they
+/// are refused with the reason, and nothing is written (never a box in the die's place).
+#[test]
+fn a_polyhedral_dies_exports_are_refused_and_write_nothing() {
+    let preset = Preset::default()
+        .with_overrides(&["integrator.dt=0.00025", "die.kind=\"d20\""])
+        .expect("a d20");
+    for command in [
+        |dir: std::path::PathBuf| crate::worker::Command::Export {
+            dir,
+            log_scale: false,
+        },
+        |dir: std::path::PathBuf| crate::worker::Command::ExportAnimation {
+            dir,
+            yaw_deg: 0.0,
+            pitch_deg: 20.0,
+        },
+    ] {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let mut s = Harness::new(&preset, Theme::default());
+        s.simulator.handle(command(dir.path().to_path_buf()));
+        let notice = s.simulator.snapshot().notice.expect("a notice");
+        let words = notice.said().expect("words");
+        assert!(
+            words.contains("`die.kind`") && words.contains("rolls the box only"),
+            "{words}"
+        );
+        assert_eq!(std::fs::read_dir(dir.path()).expect("listed").count(), 0);
+    }
+}
