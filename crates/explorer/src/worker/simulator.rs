@@ -785,6 +785,15 @@ impl Simulator {
     }
 }
 
+/// The refusal of a polyhedral die by an export that rolls the box's engine only (the trace
+/// and the animation are written by the figures' box roll): a box must never be written in
+/// the die's place.
+fn box_only(params: &Params, what: &str) -> Option<Notice> {
+    dicesim_physics::refuse_polyhedral_die(params, what)
+        .err()
+        .map(|e| Notice::Said(e.to_string()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -847,13 +856,4 @@ mod tests {
         fresh.run_to_end();
         assert_eq!(e.phase(), fresh.phase(), "the same roll as a fresh one");
     }
-}
-
-/// The refusal of a polyhedral die by an export that rolls the box's engine only (the trace
-/// and the animation are written by the figures' box roll): a box must never be written in
-/// the die's place.
-fn box_only(params: &Params, what: &str) -> Option<Notice> {
-    dicesim_physics::refuse_polyhedral_die(params, what)
-        .err()
-        .map(|e| Notice::Said(e.to_string()))
 }

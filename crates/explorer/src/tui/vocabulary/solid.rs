@@ -153,6 +153,9 @@ pub(crate) fn die_scale(params: &Params) -> f64 {
 /// A die's body as drawn: the box (the paper's die and every real die built on it) or a
 /// polyhedral die's hull.
 #[derive(Debug, Clone)]
+// A body is made for a frame and matched at once; boxing the larger one would add an
+// allocation to every frame for nothing.
+#[allow(clippy::large_enum_variant)]
 pub(crate) enum Body {
     Box(Solid),
     Hull(Hull),
