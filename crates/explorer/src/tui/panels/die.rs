@@ -21,7 +21,7 @@ pub(crate) use crate::tui::state::projection::{Projection, die_panel};
 use crate::tui::state::throw::Throw;
 use crate::tui::vocabulary::format::{face_text, fmt_num};
 use crate::tui::vocabulary::solid::{
-    Body, EDGES, FACE_CORNERS, Flat, Solid, convex_hull, die_scale, inside, outside_parts,
+    Body, EDGES, FACE_CORNERS, Flat, Hull, Solid, convex_hull, die_scale, inside, outside_parts,
 };
 use crate::worker::{DieState, TwinSnapshot};
 use dicesim_physics::InitialCondition;
@@ -157,7 +157,7 @@ pub(crate) fn corner_is_seen(app: &App, view: &Projection, k: usize) -> bool {
 pub(crate) fn picture(app: &App, view: &Projection) -> Picture {
     match body_of(app, &app.roll.live.die) {
         Body::Box(body) => box_picture(app, view, &body),
-        Body::Hull(hull) => polyhedral::picture(app, view, &hull),
+        Body::Hull(hull) => hull_picture(app, view, &hull),
     }
 }
 
@@ -188,6 +188,96 @@ fn box_picture(app: &App, view: &Projection, body: &Solid) -> Picture {
     die_edges(&mut pic, app, view, &body, &facing, &contact);
     if let Some(low) = app.die_screen.face_pair {
         pair_axis(&mut pic, app, view, &body, low);
+    }
+    if app.die_screen.arrows {
+        arrows(&mut pic, app, view, die);
+    }
+    if let Some(aim) = app.die_screen.throw {
+        throw_aim(&mut pic, app, view, die, &aim);
+    }
+    pic
+}
+
+/// The picture of a polyhedral die (the box's is [`box_picture`]): its seen faces filled (the
+/// face up tinted), its seen edges, and the numbers on them.
+fn hull_picture(app: &App, view: &Projection, hull: &Hull) -> Picture {
+    let t = &app.theme;
+    let die = &app.roll.live.die;
+    let half = die_scale(&app.roll.live.params);
+    let mut pic = Picture {
+        outline: hull.outline(|p| view.flat(p)),
+        ..Picture::default()
+    };
+    let facing = polyhedral::facing(hull, &view.camera);
+    let shape = hull.die.shape();
+    let seen_vertex = |k: usize| {
+        shape
+            .faces()
+            .iter()
+            .zip(&facing)
+            .any(|(face, &f)| f > 0.0 && face.vertices.contains(&k))
+    };
+    let contact = |k: usize| die.forces.get(k).is_some_and(|f| f.depth > 0.0);
+    // A dot on each seen vertex in contact, before anything else takes its cell.
+    let dot = if app.die_screen.drawing == Drawing::Ascii {
+        "@"
+    } else {
+        "●"
+    };
+    for k in (0..hull.vertices.len()).filter(|&k| contact(k) && seen_vertex(k)) {
+        pic.label(view.flat(&hull.vertices[k]), dot, t.contact(), false);
+    }
+    let feet: Vec<Flat> = hull
+        .vertices
+        .iter()
+        .map(|p| view.flat(&Vector3::new(p.x, p.y, 0.0)))
+        .collect();
+    floor(&mut pic, app, view, feet, hull.lowest(), half);
+    // The seen faces filled, the face up tinted where the die is read at its top face.
+    let up = hull.face_number(0).is_some().then(|| hull.face_most_nearly_up());
+    for (f, face) in shape.faces().iter().enumerate().filter(|&(f, _)| facing[f] > 0.0) {
+        if let Some(fill) = t.face_fill(facing[f], Some(f) == up) {
+            let corners: Vec<Flat> = face
+                .vertices
+                .iter()
+                .map(|&k| view.flat(&hull.vertices[k]))
+                .collect();
+            pic.faces.push((convex_hull(&corners), fill));
+        }
+    }
+    for (a, b) in polyhedral::seen_edges(hull, &view.camera) {
+        let colour = if contact(a) || contact(b) {
+            t.contact_colour()
+        } else {
+            t.die()
+        };
+        pic.stroke(
+            1,
+            view.flat(&hull.vertices[a]),
+            view.flat(&hull.vertices[b]),
+            colour,
+        );
+    }
+    // The numbers, the one read first, then the most squarely seen: where two would overlap
+    // or touch on a row the later one gives way, so no number is drawn over another and two
+    // never read as one (a d4's `1` beside a `1` would read 11).
+    let mut taken: Vec<(u16, u16, u16)> = Vec::new();
+    for (at, text, read) in polyhedral::numbers(app.roll.live.params.die.kind, hull, &view.camera) {
+        let Some((col, row)) = view.cell(view.flat(&at)) else {
+            continue;
+        };
+        let end = col + text.chars().count() as u16;
+        if taken.iter().any(|&(r, a, b)| r == row && col <= b && a <= end) {
+            continue;
+        }
+        taken.push((row, col, end));
+        let style = Style::new().fg(t.die()).add_modifier(Modifier::BOLD);
+        let style = if read {
+            style.add_modifier(Modifier::UNDERLINED)
+        } else {
+            style
+        };
+        pic.label(view.flat(&at), text, style, false);
     }
     if app.die_screen.arrows {
         arrows(&mut pic, app, view, die);

@@ -224,3 +224,27 @@ fn a_polyhedral_dies_exports_are_refused_and_write_nothing() {
         assert_eq!(std::fs::read_dir(dir.path()).expect("listed").count(), 0);
     }
 }
+
+/// The presentation view writes the number read in big digits, both of a d20's 17 and a
+/// d%'s 00 (the box's one digit is unchanged: its screens' snapshots).
+#[test]
+fn the_presentation_view_shows_a_two_digit_number_whole() {
+    use crate::tui::panels::presentation::big_digit;
+    for (kind, up, digits) in [(Solid::D20, 17, ['1', '7']), (Solid::Percentile, 0, ['0', '0'])] {
+        let mut s = at_rest(kind, up, 20.0, projector());
+        // The key alone, no snapshot after it: the worker's roll would replace the die set here.
+        crate::tui::tests::fixtures::press(&mut s.app, ratatui::crossterm::event::KeyCode::Char('P'));
+        for (w, h) in SIZES {
+            let shown = crate::tui::tests::fixtures::screen(&s.app, w, h);
+            // Some scale of the two glyphs side by side, a gap of as many columns as a dot.
+            let found = (1..=6).any(|sx| {
+                (1..=3).any(|sy| {
+                    let (a, b) = (big_digit(digits[0], sx, sy), big_digit(digits[1], sx, sy));
+                    let row = |r: usize| format!("{}{}{}", a[r], " ".repeat(sx), b[r]);
+                    (0..a.len()).all(|r| shown.contains(row(r).trim_end()))
+                })
+            });
+            assert!(found, "{kind:?} {up} at {w}x{h}:\n{shown}");
+        }
+    }
+}
