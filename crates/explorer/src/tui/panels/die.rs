@@ -1,6 +1,7 @@
-//! The die panel: a solid die seen by the orbiting camera.
+//! The die panel: a solid die seen by the orbiting camera, the box (with its pips) or a
+//! polyhedral die (with its numbers, [`polyhedral`]).
 //!
-//! The cube is convex, so a face is seen exactly when its outward normal points towards the
+//! A die is convex, so a face is seen exactly when its outward normal points towards the
 //! viewer, and an edge exactly when it borders a seen face. Everything behind the die (the
 //! floor tiles, its shadow, the chaos twin's ghost) is clipped against the die's outline, so
 //! nothing shows through it. Seen faces are filled with a shade of their angle to the viewer
@@ -169,25 +170,24 @@ fn box_picture(app: &App, view: &Projection, body: &Solid) -> Picture {
         outline: body.outline(|p| view.flat(p)),
         ..Picture::default()
     };
-    let body = *body;
-    let facing = seen_faces(&view.camera, &body);
+    let facing = seen_faces(&view.camera, body);
     let contact: [bool; 8] = std::array::from_fn(|k| die.forces[k].depth > 0.0);
-    corner_marks(&mut pic, app, view, &body, &facing, &contact);
+    corner_marks(&mut pic, app, view, body, &facing, &contact);
     floor(
         &mut pic,
         app,
         view,
-        shadow_points(&body, view),
+        shadow_points(body, view),
         body.lowest(),
         half,
     );
     // The die: its seen faces filled, their edges, pips and the frame of the face up.
     for f in (0..6).filter(|&f| facing[f] > 0.0) {
-        seen_face(&mut pic, app, view, &body, &facing, f);
+        seen_face(&mut pic, app, view, body, &facing, f);
     }
-    die_edges(&mut pic, app, view, &body, &facing, &contact);
+    die_edges(&mut pic, app, view, body, &facing, &contact);
     if let Some(low) = app.die_screen.face_pair {
-        pair_axis(&mut pic, app, view, &body, low);
+        pair_axis(&mut pic, app, view, body, low);
     }
     if app.die_screen.arrows {
         arrows(&mut pic, app, view, die);
