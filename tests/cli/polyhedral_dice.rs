@@ -120,3 +120,77 @@ fn a_d20_sweep_in_shards_merges_and_verifies() {
     );
     assert!(summary.contains("(19 dof)"), "{summary}");
 }
+
+/// A convex die of its corners and a die's flaws as a user meets them: `batch` rolls the thick
+/// coin and records its numbers 1 to 10 (a convex die of 16 corners, rolled as a 20-point body);
+/// a flaw that makes no body is refused naming the file, the line and the key, and a box given
+/// a flaw is refused naming the key, each writing nothing.
+#[test]
+fn batch_rolls_a_convex_die_and_refuses_a_flaw_that_makes_no_body_at_its_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    dicesim_ok(
+        d,
+        &[
+            "batch",
+            "--preset",
+            "thick-coin",
+            "--rolls",
+            "40",
+            "--seed",
+            "3",
+            "--out",
+            "coin.csv",
+        ],
+    );
+    let text = std::fs::read_to_string(d.join("coin.csv")).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let face = header.iter().position(|h| *h == "face").unwrap();
+    let faces: Vec<u8> = lines
+        .map(|l| l.split(',').nth(face).unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(faces.len(), 40);
+    assert!(faces.iter().all(|f| (1..=10).contains(f)), "{faces:?}");
+    std::fs::write(
+        d.join("bubble.toml"),
+        "[die]\nkind = \"d20\"\nbubble_radius = 0.35\nbubble_toward = 20\nbubble_offset = 0.5\n\
+         [integrator]\ndt = 0.00025\n",
+    )
+    .unwrap();
+    let stderr = dicesim_refused(
+        d,
+        &[
+            "batch",
+            "--preset",
+            "bubble.toml",
+            "--rolls",
+            "10",
+            "--out",
+            "b.csv",
+        ],
+    );
+    assert!(
+        stderr.contains("bubble.toml:5:")
+            && stderr.contains("`die.bubble_offset`")
+            && stderr.contains("reaches face 20"),
+        "{stderr}"
+    );
+    let stderr = dicesim_refused(
+        d,
+        &[
+            "batch",
+            "--set",
+            "die.worn_rounding=0.1",
+            "--rolls",
+            "10",
+            "--out",
+            "b.csv",
+        ],
+    );
+    assert!(
+        stderr.contains("`die.worn_rounding`") && stderr.contains("`die.corner_radius`"),
+        "{stderr}"
+    );
+    assert!(!d.join("b.csv").exists(), "a refusal writes nothing");
+}
