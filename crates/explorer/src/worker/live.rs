@@ -11,7 +11,7 @@ use super::protocol::{
 use super::timeline::{Keyframe, Timeline};
 use super::twin_die::Twin;
 use dicesim_experiment::{RollRecord, ScanKey};
-use dicesim_physics::{InitialCondition, Params, Roll, Status};
+use dicesim_physics::{InitialCondition, Params, Roll, RollingDie, Status};
 use dicesim_setup::preset::Speed;
 use dicesim_setup::registry::Role;
 
@@ -541,16 +541,7 @@ impl LiveRoll {
         if !self.sim.in_contact() || self.sim.outcome().is_some() {
             return false;
         }
-        let push: f64 = match self.sim.simulation() {
-            // The box's world forces as it applies them, bit for bit.
-            Some(sim) => sim.state().corner_forces.iter().map(|f| f.z).sum(),
-            None => self
-                .sim
-                .contact_forces()
-                .iter()
-                .map(|f| f.normal + f.damping)
-                .sum(),
-        };
+        let push: f64 = RollingDie::point_forces(&self.sim).iter().map(|f| f.z).sum();
         push > 2.0 * self.params.total_mass() * self.params.world.gravity
     }
 

@@ -170,53 +170,9 @@ impl EnergySample {
             time_s: roll.time_s(),
             energy,
             total: energy.total(),
-            quantities: readings(roll),
+            quantities: dicesim_setup::quantity::read_all(roll),
         }
     }
-}
-
-/// Every quantity of [`dicesim_setup::quantity::QUANTITIES`] now: the box's as the roll
-/// CSV reads them (bit for bit); a polyhedral die's read off its roll the same way, but for
-/// the three stability loads that read the box's corner masses and half sizes (corner speed,
-/// damping, friction), which a polyhedral die has not: those are NaN, and its plot is empty.
-pub(crate) fn readings(roll: &Roll) -> dicesim_setup::quantity::Readings {
-    match roll.simulation() {
-        Some(sim) => dicesim_setup::quantity::read_all(sim),
-        None => point_readings(roll),
-    }
-}
-
-/// [`readings`] of any die read through its roll, in the order of
-/// [`dicesim_setup::quantity::QUANTITIES`] (a test holds the box's to `read_all`'s).
-pub(crate) fn point_readings(roll: &Roll) -> dicesim_setup::quantity::Readings {
-    use dicesim_physics::stability::CONTACT_MODE_LIMIT;
-    let energy = roll.energy();
-    let lowest = roll
-        .point_positions()
-        .iter()
-        .map(|p| p.z)
-        .fold(f64::INFINITY, f64::min);
-    let force: Vector3<f64> = roll
-        .contact_forces()
-        .iter()
-        .map(|f| Vector3::new(f.friction[0], f.friction[1], f.normal + f.damping))
-        .sum();
-    [
-        roll.position().z,
-        lowest,
-        roll.velocity().norm(),
-        roll.angular_velocity().norm(),
-        force.norm(),
-        energy.translational,
-        energy.rotational,
-        energy.gravitational,
-        energy.elastic,
-        energy.total(),
-        roll.params().stability_number() / CONTACT_MODE_LIMIT,
-        f64::NAN,
-        f64::NAN,
-        f64::NAN,
-    ]
 }
 
 /// How far the twin has drifted from the die at one instant (each term's newest value).
@@ -440,35 +396,4 @@ pub struct Snapshot {
     /// The twin's predictability curve, whenever it started, grew or ended (while a twin
     /// rolls).
     pub curve: Option<CurveUpdate>,
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use dicesim_setup::quantity::{QUANTITIES, read_all};
-
-    /// A polyhedral die's quantities are read off its roll in the order of `QUANTITIES`:
-    /// read so for the paper's box through the step, they are the roll CSV's (`read_all`),
-    /// but for the loads only the box reads: at the start, in flight, in the first impact
-    /// (step 172, the table pushing) and rolling on.
-    #[test]
-    fn any_dies_readings_are_the_csvs_for_the_box() {
-        let params = Params::default();
-        let mut roll = Roll::new(&params, &InitialCondition::default()).expect("valid");
-        for steps in [0, 100, 172, 400] {
-            while roll.steps() < steps {
-                roll.step();
-            }
-            let box_readings = read_all(roll.simulation().expect("the box"));
-            let points = point_readings(&roll);
-            for (q, (a, b)) in QUANTITIES.iter().zip(box_readings.iter().zip(points)).take(11) {
-                assert!(
-                    (a - b).abs() <= 1e-9 * a.abs().max(1.0),
-                    "{} at step {steps}: {a} and {b}",
-                    q.name
-                );
-            }
-            assert!(points[11..].iter().all(|v| v.is_nan()));
-        }
-    }
 }

@@ -764,7 +764,7 @@ impl Simulator {
             die,
             energy: live.sim.energy(),
             ledger: live.sim.energy_ledger(),
-            readings: super::protocol::readings(&live.sim),
+            readings: dicesim_setup::quantity::read_all(&live.sim),
             stop_threshold: live.sim.stop_threshold(),
             time_s: live.time_s(),
             step,

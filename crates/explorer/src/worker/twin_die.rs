@@ -5,7 +5,7 @@
 use super::play_on::played_out;
 use super::protocol::{DieState, EnergySample, Phase, SeparationSample, TwinSnapshot};
 use dicesim_physics::{InitialCondition, Params, Roll};
-use dicesim_setup::chaos::{EPSILON, Separation, perturbed};
+use dicesim_setup::chaos::{EPSILON, perturbed, separation};
 use dicesim_setup::keys::ScanKey;
 use dicesim_setup::registry::Role;
 
@@ -174,18 +174,4 @@ impl Twin {
             samples: std::mem::take(&mut self.samples),
         }
     }
-}
-
-/// How far apart two dice are ([`dicesim_setup::chaos::separation`] for two boxes, bit for
-/// bit): the distance between the centres of mass, and the angle of the turn from one
-/// orientation to the other, `2·asin(‖R₁ − R₂‖_F / 2√2)` (exact for tiny angles, where acos
-/// of the trace is not).
-fn separation(a: &Roll, b: &Roll) -> Separation {
-    if let (Some(a), Some(b)) = (a.simulation(), b.simulation()) {
-        return dicesim_setup::chaos::separation(a, b);
-    }
-    let centre = (a.position() - b.position()).norm();
-    let frobenius = (a.orientation().matrix() - b.orientation().matrix()).norm();
-    let angle = 2.0 * (frobenius / (2.0 * std::f64::consts::SQRT_2)).min(1.0).asin();
-    Separation { centre, angle }
 }

@@ -45,7 +45,8 @@ pub(crate) fn seen_edges(hull: &Hull, camera: &OrbitCamera) -> Vec<(usize, usize
 pub(crate) fn numbers(kind: Solid, hull: &Hull, camera: &OrbitCamera) -> Vec<(Vector3<f64>, String, bool)> {
     let facing = facing(hull, camera);
     let up = hull.face_most_nearly_up();
-    let read_at_top_face = hull.face_number(up).is_some();
+    // A die read at its face down (an odd prism) shows the number read underneath.
+    let read_at_top_face = hull.die.numbering().read_at == dicesim_physics::polyhedron::ReadAt::TopFace;
     let first = |f: usize| read_at_top_face && f == up;
     let mut faces: Vec<usize> = (0..facing.len())
         .filter(|&f| facing[f] >= READABLE || first(f) && facing[f] > 0.0)
