@@ -159,10 +159,6 @@ pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
     let mut preset = args.setup.resolve()?;
     refuse_unapplied(&args.setup.set, |key| unapplied_when_fixed(key, "animate"))?;
     let params = preset.params();
-    if args.present {
-        // The presentation view is the explorer's, which draws the box only for now.
-        dicesim_physics::refuse_polyhedral_die(&params, "`dicesim animate --present` (the explorer's view)")?;
-    }
     // The checks `roll` makes: every value in range, no point starting inside the table.
     dicesim_physics::Roll::new(&params, &preset.initial)?;
     let spec = spec_of(args, &mut preset)?;

@@ -43,7 +43,6 @@ impl From<ThemeArg> for ThemeName {
 /// The setup the explorer opens: the preset with `--set` applied, in the `--theme` asked.
 fn opening(args: &TuiArgs) -> Result<Preset, CliError> {
     let mut preset = args.setup.resolve()?;
-    dicesim_physics::refuse_polyhedral_die(&preset.params(), "the explorer (`dicesim tui`)")?;
     if let Some(theme) = args.theme {
         preset.view.theme = Some(theme.into());
     }

@@ -1,9 +1,9 @@
 //! A polyhedral die (`die.kind`) as a user meets it: every command rolls it. `roll` reports
 //! the number a player reads, the one `batch` records for the same throw in either engine;
 //! `trace` has a column triple per point of the die; `batch --versus` tabulates its numbers;
-//! `animate --face-pair` marks a face and its opposite, refused on the d4, which has none.
-//! The explorer alone still refuses it, with exit status 2, naming the key, writing nothing;
-//! a step it cannot take is refused with the reason.
+//! `animate --face-pair` marks a face and its opposite, refused on the d4, which has none;
+//! `animate --present` draws the explorer's presentation view of it; a step it cannot take is
+//! refused with the reason.
 
 use crate::common::{dicesim_ok, dicesim_refused, png_text};
 use serde_json::Value;
@@ -19,32 +19,6 @@ fn column(csv: &str, name: &str) -> Vec<String> {
     lines
         .map(|l| l.split(',').nth(k).expect("a cell").to_string())
         .collect()
-}
-
-#[test]
-fn the_explorer_alone_refuses_a_polyhedral_die() {
-    for (args, command) in [
-        (&["tui", "--preset", "d10"][..], "the explorer"),
-        (
-            &["animate", "--present", "--preset", "d20", "--out", "a.gif"][..],
-            "`dicesim animate --present`",
-        ),
-    ] {
-        let dir = tempfile::tempdir().unwrap();
-        let stderr = dicesim_refused(dir.path(), args);
-        assert!(
-            stderr.contains("`die.kind`")
-                && stderr.contains(command)
-                && stderr.contains("rolls the box only for now"),
-            "dicesim {}: {stderr}",
-            args.join(" ")
-        );
-        assert_eq!(
-            std::fs::read_dir(dir.path()).unwrap().count(),
-            0,
-            "{args:?} wrote nothing"
-        );
-    }
 }
 
 /// Each shipped die rolled once from its preset's throw: `roll --json` reports a number the

@@ -282,3 +282,23 @@ fn unfinished_and_unknown_escape_sequences_swallow_no_later_key() {
     assert_eq!(e.ended("q after the two sequences").code(), Some(0));
     e.assert_restored("q after the two sequences");
 }
+
+/// A polyhedral die's explorer (a d20 playing and tumbling, a d4 after a random roll) gives
+/// the terminal back whole after `q` and after a signal, as the box's does.
+#[test]
+fn a_polyhedral_die_restores_the_terminal_after_q_and_after_a_signal() {
+    for (preset, keys) in [("d20", " "), ("d4", "R")] {
+        let mut e = Explorer::start(&["tui", "--preset", preset], None);
+        e.keys(keys);
+        std::thread::sleep(Duration::from_millis(300));
+        e.keys("q");
+        assert_eq!(e.ended(&format!("{preset}: q")).code(), Some(0));
+        e.assert_restored(&format!("{preset}: q"));
+        let mut e = Explorer::start(&["tui", "--preset", preset], None);
+        e.keys(keys);
+        e.signal(Signal::SIGTERM);
+        let status = e.ended(&format!("{preset}: SIGTERM"));
+        assert_eq!(status.code(), Some(128 + Signal::SIGTERM as i32), "{preset}");
+        e.assert_restored(&format!("{preset}: SIGTERM"));
+    }
+}

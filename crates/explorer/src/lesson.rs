@@ -222,7 +222,7 @@ impl Lesson {
                     }
                 }
             }
-            let rows = crate::tui::vocabulary::param::listed(preset.ground.contact);
+            let rows = crate::tui::vocabulary::param::listed(&preset.params());
             let select = match &s.select {
                 None => None,
                 Some(k) => Some(rows.iter().position(|p| p.key() == k.get_ref()).ok_or_else(|| {

@@ -57,7 +57,6 @@ pub use roll::{Roll, RollingDie};
 pub use shape::{MassProperties, mass_properties};
 pub use sim::{
     ContactForce, EnergyLedger, FirstImpact, Outcome, STEPS_BETWEEN_STOP_CHECKS, Simulation, State, Status,
-    refuse_polyhedral_die,
 };
 pub use stability::{Limit, Reading, Stability, StabilityCheck, UnstableReason};
 pub use stopping::StopRule;

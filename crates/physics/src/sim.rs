@@ -693,9 +693,9 @@ impl Simulation {
     }
 }
 
-/// The refusal of a polyhedral die by `what` (a command, "the single roll"), which rolls the
-/// box only for now: never a box rolled in its place.
-pub fn refuse_polyhedral_die(params: &Params, what: &str) -> Result<(), ParamError> {
+/// The refusal of a polyhedral die by `what`, which rolls the box only: never a box rolled in
+/// its place (a polyhedral die rolls as a [`crate::Roll`]).
+pub(crate) fn refuse_polyhedral_die(params: &Params, what: &str) -> Result<(), ParamError> {
     if !params.die.is_polyhedral() {
         return Ok(());
     }
@@ -704,8 +704,7 @@ pub fn refuse_polyhedral_die(params: &Params, what: &str) -> Result<(), ParamErr
         value: f64::NAN,
         limits: KIND_KEY,
         detail: Some(Box::new(Detail::Refused(format!(
-            "a {} rolls in `batch`, `basin` and `merge`; {what} rolls the box only for now (leave \
-             out `die.kind`, or roll the die with `dicesim batch`)",
+            "a {} is a body of its points, which {what} does not roll: roll it as a `Roll`",
             params.die.kind.name()
         )))),
     })

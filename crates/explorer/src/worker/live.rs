@@ -11,7 +11,7 @@ use super::protocol::{
 use super::timeline::{Keyframe, Timeline};
 use super::twin_die::Twin;
 use dicesim_experiment::{RollRecord, ScanKey};
-use dicesim_physics::{InitialCondition, Params, Simulation, Status, face_most_nearly_up};
+use dicesim_physics::{InitialCondition, Params, Roll, RollingDie, Status};
 use dicesim_setup::preset::Speed;
 use dicesim_setup::registry::Role;
 
@@ -93,7 +93,7 @@ impl EnergyTrace {
 pub(crate) struct LiveRoll {
     pub(super) params: Params,
     pub(super) initial: InitialCondition,
-    pub(super) sim: Simulation,
+    pub(super) sim: Roll,
     /// Steps of Δt since the roll started: where on its timeline the roll on screen is.
     position: u64,
     timeline: Timeline,
@@ -125,7 +125,7 @@ impl LiveRoll {
         twin: Option<Twin>,
         speed: Speed,
     ) -> LiveRoll {
-        let sim = Simulation::new_unchecked(&params, &initial);
+        let sim = Roll::new_unchecked(&params, &initial);
         let timeline = Timeline::new(
             1,
             Keyframe {
@@ -162,7 +162,7 @@ impl LiveRoll {
     }
 
     #[cfg(test)]
-    pub(crate) fn simulation(&self) -> &Simulation {
+    pub(crate) fn simulation(&self) -> &Roll {
         &self.sim
     }
 
@@ -180,8 +180,8 @@ impl LiveRoll {
     /// s, simulated: how far the roll has got (the later of the die and its twin, since
     /// the one still rolling keeps the clock going).
     pub(crate) fn time_s(&self) -> f64 {
-        let die = self.sim.state().time_s;
-        self.twin.as_ref().map_or(die, |t| die.max(t.sim.state().time_s))
+        let die = self.sim.time_s();
+        self.twin.as_ref().map_or(die, |t| die.max(t.sim.time_s()))
     }
 
     /// Whether the roll on screen has ended: the die's, and its twin's if there is one.
@@ -290,7 +290,7 @@ impl LiveRoll {
             }
             // From here on the roll is another one: its computed future is forgotten.
             let stepped_back = !self.timeline.at_frontier(self.position);
-            self.trace.diverge(self.sim.state().time_s, stepped_back);
+            self.trace.diverge(self.sim.time_s(), stepped_back);
             self.timeline.diverge(self.keyframe());
             if let Some(e) = refused {
                 return Err(Notice::Said(e.to_string()));
@@ -310,8 +310,8 @@ impl LiveRoll {
     pub(crate) fn restart(&mut self, kind: RollKind) {
         self.roll = kind;
         self.changed_mid_roll = false;
-        self.sim = Simulation::new_unchecked(&self.params, &self.initial);
-        self.start_face = face_most_nearly_up(&self.sim.state().corner_offsets);
+        self.sim = Roll::new_unchecked(&self.params, &self.initial);
+        self.start_face = self.sim.start_face();
         self.touched = self.sim.in_contact();
         self.trace.restart(self.params.max_steps(), self.sample());
         if let Some(difference) = self.twin.as_ref().map(|t| t.difference.clone()) {
@@ -450,7 +450,7 @@ impl LiveRoll {
             self.timeline.recorded(
                 position,
                 keyframe,
-                (self.sim.in_contact(), self.sim.state().position),
+                (self.sim.in_contact(), self.sim.position()),
                 done,
             );
         } else if let Some(k) = self.timeline.at(self.position) {
@@ -541,17 +541,14 @@ impl LiveRoll {
         if !self.sim.in_contact() || self.sim.outcome().is_some() {
             return false;
         }
-        let push: f64 = self.sim.state().corner_forces.iter().map(|f| f.z).sum();
+        let push: f64 = RollingDie::point_forces(&self.sim).iter().map(|f| f.z).sum();
         push > 2.0 * self.params.total_mass() * self.params.world.gravity
     }
 
     /// The die as drawn now, with its step (the later of the die's and the twin's).
     pub(crate) fn die(&self) -> (DieState, u64) {
-        let s = self.sim.state();
-        let step = self
-            .twin
-            .as_ref()
-            .map_or(s.step, |t| s.step.max(t.sim.state().step));
+        let own = self.sim.steps();
+        let step = self.twin.as_ref().map_or(own, |t| own.max(t.sim.steps()));
         let mut die = DieState::of(&self.sim, self.start_face);
         // Slid since the contact began: along the table (its plane is x-y, gravity tilted
         // for an incline), while a corner is in it.
@@ -594,6 +591,7 @@ impl LiveRoll {
 mod tests {
     use super::*;
     use crate::worker::{Command, Phase, Simulator};
+    use dicesim_physics::Simulation;
     use dicesim_setup::preset::Preset;
 
     /// Bits of the die's state (`==` on floats would let −0 pass for +0).
@@ -601,8 +599,8 @@ mod tests {
         format!("{:?} {:?}", sim.state(), sim.outcome())
     }
 
-    fn at_rest(sim: &Simulation) -> bool {
-        sim.energy().kinetic() < 0.01 * sim.stop_threshold()
+    fn at_rest(energy: dicesim_physics::Energy, stop_threshold: f64) -> bool {
+        energy.kinetic() < 0.01 * stop_threshold
     }
 
     #[test]
@@ -613,7 +611,7 @@ mod tests {
         let outcome = plain.run_to_end();
         assert_eq!(outcome.status, Status::Settled);
         assert!(
-            !at_rest(&plain),
+            !at_rest(plain.energy(), plain.stop_threshold()),
             "the paper's die is still moving when its face is decided"
         );
 
@@ -628,7 +626,9 @@ mod tests {
         );
         assert_eq!(e.phase(), Phase::Ended(outcome), "the outcome is the stop's");
         // It ends at the first step at rest (or 2 s on), no earlier, no later.
-        let rest_or_late = |s: &Simulation| at_rest(s) || s.state().time_s >= outcome.time_s + 2.0;
+        let rest_or_late = |s: &Simulation| {
+            at_rest(s.energy(), s.stop_threshold()) || s.state().time_s >= outcome.time_s + 2.0
+        };
         assert!(rest_or_late(e.simulation()));
         e.handle(Command::Seek(end - 1));
         assert!(!rest_or_late(e.simulation()), "one step earlier it still moved");

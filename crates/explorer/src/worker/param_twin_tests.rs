@@ -36,7 +36,10 @@ fn a_twin_with_no_difference_rolls_bit_identical_to_the_die() {
     e.handle(Command::SetParamTwin(vec![(key("ground.friction"), mu)]));
     e.run_to_end();
     let twin = e.live().twin.as_ref().expect("a parameter twin rolls");
-    assert_eq!(bits(&twin.sim), bits(e.simulation()));
+    assert_eq!(
+        bits(twin.sim.simulation().expect("the box")),
+        bits(e.simulation())
+    );
     let s = e.snapshot();
     let t = s.twin.expect("drawn");
     assert_eq!(t.differs_by, vec![(key("ground.friction"), mu)]);

@@ -8,12 +8,10 @@ use super::map_jobs::MapRequest;
 use dicesim_experiment::{BasinMap, FaceTally, Layer, RollRecord, ScanKey};
 use dicesim_figures::animation::AnimationProgress;
 use dicesim_figures::export::ExportProgress;
-use dicesim_physics::{
-    ContactForce, Energy, EnergyLedger, InitialCondition, Outcome, Params, Simulation, Status,
-};
+use dicesim_physics::{ContactForce, Energy, EnergyLedger, InitialCondition, Outcome, Params, Roll, Status};
 use dicesim_setup::chaos::Separation;
 use dicesim_setup::preset::{Preset, Speed};
-use nalgebra::Vector3;
+use nalgebra::{Rotation3, Vector3};
 use std::collections::VecDeque;
 
 /// What the UI asks of the worker. Commands are applied in the order sent, none dropped.
@@ -165,14 +163,14 @@ pub struct EnergySample {
 }
 
 impl EnergySample {
-    /// A simulation's energy and every quantity now (the die's, or a parameter twin's).
-    pub(crate) fn of(sim: &Simulation) -> EnergySample {
-        let energy = sim.energy();
+    /// A roll's energy and every quantity now (the die's, or a parameter twin's).
+    pub(crate) fn of(roll: &Roll) -> EnergySample {
+        let energy = roll.energy();
         EnergySample {
-            time_s: sim.state().time_s,
+            time_s: roll.time_s(),
             energy,
             total: energy.total(),
-            quantities: dicesim_setup::quantity::read_all(sim),
+            quantities: dicesim_setup::quantity::read_all(roll),
         }
     }
 }
@@ -204,12 +202,16 @@ pub struct TwinSnapshot {
 }
 
 /// The die as drawn.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub(crate) struct DieState {
-    /// cm, world positions of corners 1..8.
-    pub(crate) corners: [Vector3<f64>; 8],
-    /// Each corner's contact force (depth > 0 means it touches the ground).
-    pub(crate) forces: [ContactForce; 8],
+    /// cm, world positions of its contact points: the box's corners 1..8, a polyhedral die's
+    /// vertices (their spheres' centres) in its vertex order.
+    pub(crate) corners: Vec<Vector3<f64>>,
+    /// Each point's contact force (depth > 0 means it touches the ground).
+    pub(crate) forces: Vec<ContactForce>,
+    /// The body frame's turn into the world ([`dicesim_physics::Roll::orientation`]): the
+    /// box's axes as columns; a polyhedral die's vertices' frame about its centre of mass.
+    pub(crate) orientation: Rotation3<f64>,
     /// cm, centre of mass.
     pub(crate) centre: Vector3<f64>,
     /// cm/s, centre-of-mass velocity.
@@ -218,9 +220,9 @@ pub(crate) struct DieState {
     pub(crate) angular_velocity: Vector3<f64>,
     /// g·cm²/s, L about the centre of mass.
     pub(crate) angular_momentum: Vector3<f64>,
-    /// The face most nearly up now.
+    /// The number read now: the face most nearly up's (the d4's at its top vertex).
     pub(crate) face_up: u8,
-    /// The face most nearly up at t = 0.
+    /// The number read at t = 0.
     pub(crate) start_face: u8,
     /// cm, how far the centre of mass has moved along the table since the contact going on
     /// began (docs/explorer.md, "Readouts"); `None` clear of the table (and for a twin).
@@ -228,17 +230,17 @@ pub(crate) struct DieState {
 }
 
 impl DieState {
-    /// The die as drawn, from a simulation's current state (the live die's or the twin's).
-    pub(crate) fn of(sim: &Simulation, start_face: u8) -> DieState {
-        let s = sim.state();
+    /// The die as drawn, from a roll's current state (the live die's or the twin's).
+    pub(crate) fn of(roll: &Roll, start_face: u8) -> DieState {
         DieState {
-            corners: sim.corner_positions(),
-            forces: sim.contact_forces(),
-            centre: s.position,
-            velocity: s.velocity,
-            angular_velocity: sim.angular_velocity(),
-            angular_momentum: s.angular_momentum,
-            face_up: sim.face_up(),
+            corners: roll.point_positions(),
+            forces: roll.contact_forces(),
+            orientation: roll.orientation(),
+            centre: roll.position(),
+            velocity: roll.velocity(),
+            angular_velocity: roll.angular_velocity(),
+            angular_momentum: roll.angular_momentum(),
+            face_up: roll.face_up(),
             start_face,
             slid_cm: None,
         }

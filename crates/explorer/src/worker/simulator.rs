@@ -94,7 +94,7 @@ impl Simulator {
     pub fn new(preset: &Preset) -> Result<Simulator, ParamError> {
         preset.validate()?;
         let params = preset.params();
-        dicesim_physics::Simulation::new(&params, &preset.initial)?;
+        dicesim_physics::Roll::new(&params, &preset.initial)?;
         let live = LiveRoll::new(
             params,
             preset.initial,
@@ -144,8 +144,15 @@ impl Simulator {
             })
     }
 
+    /// The box's engine of the roll on screen (tests of the box read its bits).
     #[cfg(test)]
     pub(crate) fn simulation(&self) -> &dicesim_physics::Simulation {
+        self.live.simulation().simulation().expect("the box")
+    }
+
+    /// The roll on screen, of any die.
+    #[cfg(test)]
+    pub(crate) fn roll(&self) -> &dicesim_physics::Roll {
         self.live.simulation()
     }
 

@@ -7,7 +7,7 @@
 //! length and Δt (a capped roll at Δt = 10 µs has 3 million steps and is re-stepped at most
 //! 1 500 steps to reach any of them).
 
-use dicesim_physics::{Impacts, Simulation};
+use dicesim_physics::{Impacts, Roll};
 use nalgebra::Vector3;
 
 /// Most regular keyframes one roll keeps (each a copy of one or two simulations, about a
@@ -23,8 +23,8 @@ const MAX_IMPACTS: usize = 10_000;
 pub(crate) struct Keyframe {
     /// Steps of Δt since the roll started.
     pub(crate) position: u64,
-    pub(crate) sim: Simulation,
-    pub(crate) twin: Option<Simulation>,
+    pub(crate) sim: Roll,
+    pub(crate) twin: Option<Roll>,
     /// Whether a corner had touched the table by then.
     pub(crate) touched: bool,
 }
@@ -64,7 +64,7 @@ impl Timeline {
     /// A timeline for a roll of at most `max_steps` steps, starting at `start`.
     pub(crate) fn new(max_steps: u64, start: Keyframe) -> Timeline {
         let contact = Impacts::new(start.sim.in_contact());
-        let start_centre = start.sim.in_contact().then(|| start.sim.state().position);
+        let start_centre = start.sim.in_contact().then(|| start.sim.position());
         Timeline {
             every: max_steps.div_ceil(MAX_KEYFRAMES).max(1),
             keyframes: vec![start],
@@ -175,7 +175,7 @@ mod tests {
     use dicesim_setup::preset::Preset;
 
     /// Bits of everything the state holds (`==` on floats would let −0 pass for +0).
-    fn bits(sim: &Simulation) -> String {
+    fn bits(sim: &dicesim_physics::Simulation) -> String {
         format!("{:?} {:?} {:?}", sim.state(), sim.energy_ledger(), sim.outcome())
     }
 

@@ -4,7 +4,7 @@
 
 use super::play_on::played_out;
 use super::protocol::{DieState, EnergySample, Phase, SeparationSample, TwinSnapshot};
-use dicesim_physics::{InitialCondition, Params, Simulation, face_most_nearly_up};
+use dicesim_physics::{InitialCondition, Params, Roll};
 use dicesim_setup::chaos::{EPSILON, perturbed, separation};
 use dicesim_setup::keys::ScanKey;
 use dicesim_setup::registry::Role;
@@ -69,7 +69,7 @@ impl Difference {
 
 pub(crate) struct Twin {
     pub(crate) difference: Difference,
-    pub(crate) sim: Simulation,
+    pub(crate) sim: Roll,
     start_face: u8,
     /// Samples since the last snapshot.
     history: Vec<SeparationSample>,
@@ -89,8 +89,8 @@ impl Twin {
         difference: Difference,
     ) -> Result<Twin, String> {
         let (b, start) = difference.apply(params, initial)?;
-        let sim = Simulation::new_unchecked(&b, &start);
-        let start_face = face_most_nearly_up(&sim.state().corner_offsets);
+        let sim = Roll::new_unchecked(&b, &start);
+        let start_face = sim.start_face();
         Ok(Twin {
             difference,
             sim,
@@ -137,7 +137,7 @@ impl Twin {
     }
 
     /// After a step: records the separation every `stride` steps, and at the end.
-    pub(crate) fn stepped(&mut self, die: &Simulation, stride: u64, last: bool) {
+    pub(crate) fn stepped(&mut self, die: &Roll, stride: u64, last: bool) {
         self.unsampled += 1;
         if self.unsampled >= stride || last {
             self.sample(die);
@@ -145,9 +145,9 @@ impl Twin {
     }
 
     /// Records the separation from `die` now.
-    pub(crate) fn sample(&mut self, die: &Simulation) {
+    pub(crate) fn sample(&mut self, die: &Roll) {
         self.unsampled = 0;
-        let time_s = die.state().time_s.max(self.sim.state().time_s);
+        let time_s = die.time_s().max(self.sim.time_s());
         self.history.push(SeparationSample {
             time_s,
             separation: separation(die, &self.sim),
@@ -157,7 +157,7 @@ impl Twin {
         }
     }
 
-    pub(crate) fn snapshot(&mut self, die: &Simulation) -> TwinSnapshot {
+    pub(crate) fn snapshot(&mut self, die: &Roll) -> TwinSnapshot {
         TwinSnapshot {
             epsilon: self.difference.epsilon(),
             differs_by: match &self.difference {

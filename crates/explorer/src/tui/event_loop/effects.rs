@@ -20,18 +20,12 @@ pub(crate) fn perform(app: &mut App, effect: Effect) -> Option<Command> {
     None
 }
 
-/// Opens the picker on every preset the store lists, the loaded one selected. The explorer
-/// rolls the box only for now: a shipped polyhedral die (`die.kind`) is left out, a user's
-/// is listed with the refusal that loading it would meet.
+/// Opens the picker on every preset the store lists, the loaded one selected.
 fn open_picker(app: &mut App) {
     let mut choices: Vec<Choice> = app
         .store
         .list()
         .into_iter()
-        .filter(|e| {
-            matches!(e.source, Source::User(_))
-                || e.preset.as_ref().is_ok_and(|p| !p.params().die.is_polyhedral())
-        })
         .map(|e| {
             let user = matches!(e.source, Source::User(_));
             let group = match LESSON.iter().position(|n| *n == e.name) {
@@ -42,11 +36,7 @@ fn open_picker(app: &mut App) {
             Choice {
                 user,
                 group,
-                preset: e.preset.map_err(|err| err.to_string()).and_then(|p| {
-                    dicesim_physics::refuse_polyhedral_die(&p.params(), "the explorer")
-                        .map_err(|refused| refused.to_string())
-                        .map(|()| Box::new(p))
-                }),
+                preset: e.preset.map(Box::new).map_err(|err| err.to_string()),
                 name: e.name,
             }
         })

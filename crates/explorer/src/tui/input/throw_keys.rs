@@ -7,7 +7,7 @@ use crate::tui::state::app::App;
 use crate::tui::state::projection::{Projection, die_view};
 use crate::tui::state::throw::{COARSE_CELLS, Throw, Thrown};
 use crate::tui::vocabulary::key_table::{Action, Input, Scope, label};
-use crate::tui::vocabulary::solid::{Solid, inside};
+use crate::tui::vocabulary::solid::inside;
 
 /// The view the die is drawn in on the die screen, where the throw is aimed.
 fn view(app: &App) -> Option<Projection> {
@@ -64,7 +64,7 @@ pub(crate) fn press(app: &mut App, column: u16, row: u16, passing: bool) -> bool
     }
     let at = view.centre_of(column - area.x, row - area.y);
     let die = &app.roll.live.die;
-    let outline = Solid::new(&app.roll.live.params.die, &die.corners).outline(|p| view.flat(p));
+    let outline = crate::tui::panels::die::body_of(app, die).outline(|p| view.flat(p));
     if !inside(&outline, at) {
         return false;
     }

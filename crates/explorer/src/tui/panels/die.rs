@@ -1,6 +1,7 @@
-//! The die panel: a solid die seen by the orbiting camera.
+//! The die panel: a solid die seen by the orbiting camera, the box (with its pips) or a
+//! polyhedral die (with its numbers, [`polyhedral`]).
 //!
-//! The cube is convex, so a face is seen exactly when its outward normal points towards the
+//! A die is convex, so a face is seen exactly when its outward normal points towards the
 //! viewer, and an edge exactly when it borders a seen face. Everything behind the die (the
 //! floor tiles, its shadow, the chaos twin's ghost) is clipped against the die's outline, so
 //! nothing shows through it. Seen faces are filled with a shade of their angle to the viewer
@@ -11,6 +12,7 @@
 //! with Braille dots (a ratatui canvas) or with ASCII slope characters (`-` `|` `/` `\`).
 //! Labels are placed last on a grid of taken cells, so none ever covers another.
 
+pub(crate) mod polyhedral;
 pub(crate) mod vectors;
 
 use crate::tui::state::app::App;
@@ -18,8 +20,10 @@ use crate::tui::state::camera::OrbitCamera;
 use crate::tui::state::die_screen::Drawing;
 pub(crate) use crate::tui::state::projection::{Projection, die_panel};
 use crate::tui::state::throw::Throw;
-use crate::tui::vocabulary::format::fmt_num;
-use crate::tui::vocabulary::solid::{EDGES, FACE_CORNERS, Flat, Solid, convex_hull, inside, outside_parts};
+use crate::tui::vocabulary::format::{face_text, fmt_num};
+use crate::tui::vocabulary::solid::{
+    Body, EDGES, FACE_CORNERS, Flat, Hull, Solid, convex_hull, die_scale, inside, outside_parts,
+};
 use crate::worker::{DieState, TwinSnapshot};
 use dicesim_physics::InitialCondition;
 use dicesim_physics::{face_frame, pip_centres};
@@ -84,19 +88,25 @@ fn seen_faces(camera: &OrbitCamera, body: &Solid) -> [f64; 6] {
 }
 
 /// The body of a die state (the live die's or the twin's), with the setup's sizes.
+pub(crate) fn body_of(app: &App, die: &DieState) -> Body {
+    Body::new(&app.roll.live.params, &die.corners, die.centre, &die.orientation)
+}
+
+/// The box of the die on screen (a box die's only).
+#[cfg(test)]
 fn solid(app: &App, die: &DieState) -> Solid {
     Solid::new(&app.roll.live.params.die, &die.corners)
 }
 
 /// The twin's body: a parameter twin's is the setup's with B's values, so a rounder or
 /// drilled B is drawn as B is, not as A.
-pub(crate) fn twin_body(app: &App, twin: &TwinSnapshot) -> Solid {
+pub(crate) fn twin_body(app: &App, twin: &TwinSnapshot) -> Body {
     let mut params = app.roll.live.params;
     let mut start = InitialCondition::DEFAULT;
     for (key, value) in &twin.differs_by {
         key.set(&mut params, &mut start, *value);
     }
-    Solid::new(&params.die, &twin.die.corners)
+    Body::new(&params, &twin.die.corners, twin.die.centre, &twin.die.orientation)
 }
 
 /// Edges that border a seen face: exactly the visible ones of a convex body.
@@ -146,24 +156,128 @@ pub(crate) fn corner_is_seen(app: &App, view: &Projection, k: usize) -> bool {
 
 /// The picture of the die panel: pure geometry of the app state.
 pub(crate) fn picture(app: &App, view: &Projection) -> Picture {
+    match body_of(app, &app.roll.live.die) {
+        Body::Box(body) => box_picture(app, view, &body),
+        Body::Hull(hull) => hull_picture(app, view, &hull),
+    }
+}
+
+/// The picture of the box (the paper's die and every real die built on it), with its pips.
+fn box_picture(app: &App, view: &Projection, body: &Solid) -> Picture {
     let die = &app.roll.live.die;
-    let half = app.roll.live.params.die.largest_half_size();
-    let body = solid(app, die);
+    let half = die_scale(&app.roll.live.params);
     let mut pic = Picture {
         outline: body.outline(|p| view.flat(p)),
         ..Picture::default()
     };
-    let facing = seen_faces(&view.camera, &body);
+    let facing = seen_faces(&view.camera, body);
     let contact: [bool; 8] = std::array::from_fn(|k| die.forces[k].depth > 0.0);
-    corner_marks(&mut pic, app, view, &body, &facing, &contact);
-    floor(&mut pic, app, view, &body, half);
+    corner_marks(&mut pic, app, view, body, &facing, &contact);
+    floor(
+        &mut pic,
+        app,
+        view,
+        shadow_points(body, view),
+        body.lowest(),
+        half,
+    );
     // The die: its seen faces filled, their edges, pips and the frame of the face up.
     for f in (0..6).filter(|&f| facing[f] > 0.0) {
-        seen_face(&mut pic, app, view, &body, &facing, f);
+        seen_face(&mut pic, app, view, body, &facing, f);
     }
-    die_edges(&mut pic, app, view, &body, &facing, &contact);
+    die_edges(&mut pic, app, view, body, &facing, &contact);
     if let Some(low) = app.die_screen.face_pair {
-        pair_axis(&mut pic, app, view, &body, low);
+        pair_axis(&mut pic, app, view, body, low);
+    }
+    if app.die_screen.arrows {
+        arrows(&mut pic, app, view, die);
+    }
+    if let Some(aim) = app.die_screen.throw {
+        throw_aim(&mut pic, app, view, die, &aim);
+    }
+    pic
+}
+
+/// The picture of a polyhedral die (the box's is [`box_picture`]): its seen faces filled (the
+/// face up tinted), its seen edges, and the numbers on them.
+fn hull_picture(app: &App, view: &Projection, hull: &Hull) -> Picture {
+    let t = &app.theme;
+    let die = &app.roll.live.die;
+    let half = die_scale(&app.roll.live.params);
+    let mut pic = Picture {
+        outline: hull.outline(|p| view.flat(p)),
+        ..Picture::default()
+    };
+    let facing = polyhedral::facing(hull, &view.camera);
+    let shape = hull.die.shape();
+    let seen_vertex = |k: usize| {
+        shape
+            .faces()
+            .iter()
+            .zip(&facing)
+            .any(|(face, &f)| f > 0.0 && face.vertices.contains(&k))
+    };
+    let contact = |k: usize| die.forces.get(k).is_some_and(|f| f.depth > 0.0);
+    // A dot on each seen vertex in contact, before anything else takes its cell.
+    let dot = if app.die_screen.drawing == Drawing::Ascii {
+        "@"
+    } else {
+        "●"
+    };
+    for k in (0..hull.vertices.len()).filter(|&k| contact(k) && seen_vertex(k)) {
+        pic.label(view.flat(&hull.vertices[k]), dot, t.contact(), false);
+    }
+    let feet: Vec<Flat> = hull
+        .vertices
+        .iter()
+        .map(|p| view.flat(&Vector3::new(p.x, p.y, 0.0)))
+        .collect();
+    floor(&mut pic, app, view, feet, hull.lowest(), half);
+    // The seen faces filled, the face up tinted where the die is read at its top face.
+    let up = hull.face_number(0).is_some().then(|| hull.face_most_nearly_up());
+    for (f, face) in shape.faces().iter().enumerate().filter(|&(f, _)| facing[f] > 0.0) {
+        if let Some(fill) = t.face_fill(facing[f], Some(f) == up) {
+            let corners: Vec<Flat> = face
+                .vertices
+                .iter()
+                .map(|&k| view.flat(&hull.vertices[k]))
+                .collect();
+            pic.faces.push((convex_hull(&corners), fill));
+        }
+    }
+    for (a, b) in polyhedral::seen_edges(hull, &view.camera) {
+        let colour = if contact(a) || contact(b) {
+            t.contact_colour()
+        } else {
+            t.die()
+        };
+        pic.stroke(
+            1,
+            view.flat(&hull.vertices[a]),
+            view.flat(&hull.vertices[b]),
+            colour,
+        );
+    }
+    // The numbers, the one read first, then the most squarely seen: where two would overlap
+    // or touch on a row the later one gives way, so no number is drawn over another and two
+    // never read as one (a d4's `1` beside a `1` would read 11).
+    let mut taken: Vec<(u16, u16, u16)> = Vec::new();
+    for (at, text, read) in polyhedral::numbers(app.roll.live.params.die.kind, hull, &view.camera) {
+        let Some((col, row)) = view.cell(view.flat(&at)) else {
+            continue;
+        };
+        let end = col + text.chars().count() as u16;
+        if taken.iter().any(|&(r, a, b)| r == row && col <= b && a <= end) {
+            continue;
+        }
+        taken.push((row, col, end));
+        let style = Style::new().fg(t.die()).add_modifier(Modifier::BOLD);
+        let style = if read {
+            style.add_modifier(Modifier::UNDERLINED)
+        } else {
+            style
+        };
+        pic.label(view.flat(&at), text, style, false);
     }
     if app.die_screen.arrows {
         arrows(&mut pic, app, view, die);
@@ -209,20 +323,27 @@ fn corner_marks(
     }
 }
 
-/// The floor: tiles, the shadow straight below, the drop line, all behind the die; and the
-/// twin's ghost.
-fn floor(pic: &mut Picture, app: &App, view: &Projection, body: &Solid, half: f64) {
+/// The floor: tiles, the shadow straight below (the hull of `shadow`, the body's points
+/// dropped onto the table), the drop line from the body's `lowest` point, all behind the
+/// die; and the twin's ghost.
+fn floor(
+    pic: &mut Picture,
+    app: &App,
+    view: &Projection,
+    shadow: Vec<Flat>,
+    lowest: Vector3<f64>,
+    half: f64,
+) {
     let t = &app.theme;
     ground(pic, app, view, half);
     let foot = |p: &Vector3<f64>| Vector3::new(p.x, p.y, 0.0);
-    let shadow = convex_hull(&shadow_points(body, view));
+    let shadow = convex_hull(&shadow);
     if let Some(fill) = t.shadow_fill() {
         pic.shadow = Some((shadow.clone(), fill));
     }
     for i in 0..shadow.len() {
         pic.behind(0, shadow[i], shadow[(i + 1) % shadow.len()], t.shadow());
     }
-    let lowest = body.lowest();
     if lowest.z > 0.02 * half {
         pic.behind(0, view.flat(&lowest), view.flat(&foot(&lowest)), t.shadow());
     }
@@ -350,7 +471,7 @@ fn pair_axis(pic: &mut Picture, app: &App, view: &Projection, body: &Solid, low:
 /// Throw mode's aim: `+` where the die is grabbed and an arrow to where the drag has got,
 /// in the velocity's colour (it is the velocity the throw gives).
 fn throw_aim(pic: &mut Picture, app: &App, view: &Projection, die: &DieState, aim: &Throw) {
-    let half = app.roll.live.params.die.largest_half_size();
+    let half = die_scale(&app.roll.live.params);
     let centre = view.flat(&die.centre);
     let grab = (centre.0 + aim.grab.0, centre.1 + aim.grab.1);
     let tip = (grab.0 + aim.drag.0, grab.1 + aim.drag.1);
@@ -426,7 +547,26 @@ fn ground(pic: &mut Picture, app: &App, view: &Projection, half: f64) {
 fn ghost(pic: &mut Picture, app: &App, view: &Projection, snapshot: &TwinSnapshot) {
     let colour = app.theme.ghost();
     let twin = &snapshot.die;
-    let body = twin_body(app, snapshot);
+    let body = match twin_body(app, snapshot) {
+        Body::Box(body) => body,
+        Body::Hull(hull) => {
+            for (a, b) in polyhedral::seen_edges(&hull, &view.camera) {
+                pic.behind(
+                    0,
+                    view.flat(&hull.vertices[a]),
+                    view.flat(&hull.vertices[b]),
+                    colour,
+                );
+            }
+            let name = if snapshot.differs_by.is_empty() {
+                "twin"
+            } else {
+                "B"
+            };
+            pic.label(view.flat(&twin.centre), name, Style::new().fg(colour), true);
+            return;
+        }
+    };
     let facing = seen_faces(&view.camera, &body);
     if body.radius > 0.0 {
         let outline = body.outline(|p| view.flat(p));
@@ -456,7 +596,7 @@ fn ghost(pic: &mut Picture, app: &App, view: &Projection, snapshot: &TwinSnapsho
 
 /// ω, L and v from the centre, F from each touching corner, each with its symbol at the tip.
 fn arrows(pic: &mut Picture, app: &App, view: &Projection, die: &DieState) {
-    let half = app.roll.live.params.die.largest_half_size();
+    let half = die_scale(&app.roll.live.params);
     let mut arrow = |kind: Arrow, from: Vector3<f64>, v: Vector3<f64>, named: bool| {
         let length = vectors::arrow_length(v.norm(), kind.reference(app), half);
         if length <= 0.0 {
@@ -682,14 +822,19 @@ const CORNER_UP_COS: f64 = 0.642_787_609_686_539_3;
 pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     let t = &app.theme;
     let die = &app.roll.live.die;
-    let body = solid(app, die);
+    let body = body_of(app, die);
     let lowest = body.lowest().z;
-    // On a corner no face is up: the most nearly up one is tilted past 50° (54.7° with the
-    // long diagonal upright), and which it is changes as the die spins about that corner.
-    let face_up = if body.normal(die.face_up as usize - 1).z < CORNER_UP_COS {
-        "face up –, on a corner".to_string()
-    } else {
-        format!("face up {}", die.face_up)
+    let face_up = match &body {
+        // On a corner no face is up: the most nearly up one is tilted past 50° (54.7° with
+        // the long diagonal upright), and which it is changes as the die spins about that corner.
+        Body::Box(body) if body.normal(die.face_up as usize - 1).z < CORNER_UP_COS => {
+            "face up –, on a corner".to_string()
+        }
+        Body::Box(_) => format!("face up {}", die.face_up),
+        Body::Hull(_) => format!(
+            "face up {}",
+            face_text(app.roll.live.params.die.kind, die.face_up.into())
+        ),
     };
     // The face up matters most (the lesson's question), then the twin's, then when the face
     // was decided (the status line says it too), then the height: once the face is decided,

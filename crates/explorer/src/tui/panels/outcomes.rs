@@ -3,7 +3,7 @@
 
 use crate::tui::state::app::App;
 use crate::tui::vocabulary::fit;
-use crate::tui::vocabulary::format::{fmt_num, group};
+use crate::tui::vocabulary::format::{face_text, fmt_num, group};
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
@@ -53,23 +53,38 @@ fn fairness(app: &App, width: usize) -> Line<'static> {
 /// Characters of the interval column: " 15.9–17.6".
 const INTERVAL_COLUMN: usize = 10;
 
-/// The shares the bars may start at, largest first: round percentages, so the heading can
-/// name where the bar begins. A bar always ends as far above 1/6 as it begins below it.
+/// The shares the bars of a six-faced die may start at, largest first: round percentages,
+/// so the heading can name where the bar begins. A bar always ends as far above the fair
+/// share as it begins below it; a die of `N` faces starts its bars at these times 6/N.
 const BAR_STARTS: [f64; 6] = [0.15, 0.14, 0.12, 0.10, 0.05, 0.0];
 
-/// The share the bars start at: the largest of [`BAR_STARTS`] whose bar, from there to as
-/// far above 1/6, holds every face's 95 % interval. Once a batch has narrowed the intervals
-/// the bars spread out around the fair share, so a bias of a few percent is cells long, not
-/// one; with few rolls (or none) they span 0 to 1/3.
-pub(crate) fn bar_start(intervals: Option<Vec<[f64; 2]>>) -> f64 {
+/// The share the bars start at, `fair` the fair share 1/N: the largest of [`BAR_STARTS`]
+/// (times 6/N) whose bar, from there to as far above the fair share, holds every face's 95 %
+/// interval. Once a batch has narrowed the intervals the bars spread out around the fair
+/// share, so a bias of a few percent is cells long, not one; with few rolls (or none) they
+/// span 0 to twice the fair share.
+pub(crate) fn bar_start(intervals: Option<Vec<[f64; 2]>>, fair: f64) -> f64 {
     let Some(intervals) = intervals else { return 0.0 };
+    // 6/N from the fair share as 1/N was computed: exactly 1 for the six-faced die.
+    let scale = 6.0 * fair;
+    let scale = if (scale - 1.0).abs() < 1e-12 { 1.0 } else { scale };
     BAR_STARTS
         .into_iter()
-        .find(|&from| intervals.iter().all(|&[l, h]| l >= from && h <= 1.0 / 3.0 - from))
+        .map(|from| from * scale)
+        .find(|&from| {
+            intervals
+                .iter()
+                .all(|&[l, h]| l >= from && h <= 2.0 * fair - from)
+        })
         .unwrap_or(0.0)
 }
 
-/// A face's bar over shares `from` to `1/3 − from` in `width` cells, 1/6 in the middle:
+/// The fair share of a die showing `faces` numbers: 1/N.
+pub(crate) fn fair_share(faces: usize) -> f64 {
+    1.0 / faces.max(1) as f64
+}
+
+/// A face's bar over shares `from` to `2·fair − from` in `width` cells, the fair share in the middle:
 /// solid (in eighths) up to the low end of its 95 % interval and shaded from there to the
 /// high end, so the bar says where the share lies. The fair share's dotted mark stays in
 /// view where the bar leaves it open: `┼` inside the shading, `┆` past the bar (the whole
@@ -77,12 +92,17 @@ pub(crate) fn bar_start(intervals: Option<Vec<[f64; 2]>>) -> f64 {
 /// through the mark, so above and below read apart from the back of a room. The mark is
 /// read from the interval itself, not from the cells: on a narrow bar a tight interval
 /// around 1/6 may fill too little of a cell to shade it, and must still read fair.
-pub(crate) fn share_bar(share: f64, interval: Option<[f64; 2]>, width: usize, from: f64) -> String {
-    let span = 1.0 / 3.0 - 2.0 * from;
+pub(crate) fn share_bar(
+    share: f64,
+    interval: Option<[f64; 2]>,
+    width: usize,
+    from: f64,
+    fair: f64,
+) -> String {
+    let span = 2.0 * fair - 2.0 * from;
     let eighths_of = |x: f64| ((x - from) / span * width as f64 * 8.0).round().max(0.0) as usize;
     let [low, high] = interval.map_or([eighths_of(share); 2], |[l, h]| [eighths_of(l), eighths_of(h)]);
     let fair_at = width / 2;
-    let fair = 1.0 / 6.0;
     let fair_mark = interval.map(|[l, h]| match () {
         _ if h < fair => '┆',
         _ if l > fair => '█',
@@ -174,6 +194,7 @@ fn item_lines(items: &[(String, Style)], width: usize) -> Vec<Line<'static>> {
 }
 
 /// A row of the table's body: text, or the batch's progress gauge.
+#[derive(Clone)]
 enum TableRow {
     Text(Line<'static>),
     Fairness,
@@ -196,11 +217,27 @@ struct Columns {
     bar_width: usize,
     /// The share the bars start at ([`bar_start`]).
     from: f64,
+    /// Too narrow for the face and share columns with a bar (a d20's faces three abreast
+    /// at 80×24): the face in two characters, the share in percent without its sign (the
+    /// heading carries it), then the bar.
+    compact: bool,
 }
+
+/// Characters of a compact row before its bar: `20 5.1 `.
+const COMPACT_FIXED: usize = 8;
 
 impl Columns {
     fn fitting(room: usize, from: f64) -> Columns {
         let fixed = FACE_COLUMN + SHARE_COLUMN + 2;
+        if room < fixed + 3 {
+            return Columns {
+                numbers: false,
+                count_shown: false,
+                bar_width: room.saturating_sub(COMPACT_FIXED).max(2),
+                from,
+                compact: true,
+            };
+        }
         let numbers = room >= fixed + INTERVAL_COLUMN + MIN_BAR;
         let count_shown = room >= fixed + COUNT_COLUMN + INTERVAL_COLUMN * usize::from(numbers) + MIN_BAR;
         let bar_width = room
@@ -213,6 +250,7 @@ impl Columns {
             count_shown,
             bar_width,
             from,
+            compact: false,
         }
     }
 }
@@ -245,9 +283,19 @@ fn heading(app: &App, room: usize, c: Columns) -> TableRow {
         count_shown,
         bar_width,
         from,
+        compact,
     } = c;
     let fair_at = bar_width / 2;
-    // The bar spans `from` to 1/3 − `from`, so a fair face reaches the dotted mark in the middle.
+    let faces = app.roll.table.tally.numbers().len();
+    if compact {
+        // The share's unit over its figures, the fair mark over the bars' middle.
+        let pad = " ".repeat(fair_at);
+        return TableRow::Text(Line::from(vec![
+            Span::styled("      %", t.heading()),
+            Span::raw(format!(" {pad}┆")),
+        ]));
+    }
+    // The bar spans `from` to 2/N − `from`, so a fair face reaches the dotted mark in the middle.
     let mut head = " face".to_string();
     if count_shown {
         head.push_str("  count");
@@ -258,18 +306,25 @@ fn heading(app: &App, room: usize, c: Columns) -> TableRow {
         head.push_str(" 95 % int.");
     }
     // Where the bars start, over their first cell, once they no longer start at 0.
-    let start = [
-        format!(" {:.0} %", 100.0 * from),
-        format!(" {:.0}%", 100.0 * from),
+    let percent = 100.0 * from;
+    let percent = if (percent - percent.round()).abs() < 1e-9 {
+        format!("{percent:.0}")
+    } else {
+        format!("{percent:.1}")
+    };
+    let start = [format!(" {percent} %"), format!(" {percent}%")]
+        .into_iter()
+        .find(|l| from > 0.0 && l.chars().count() < fair_at)
+        .unwrap_or_default();
+    let mark_room = room.saturating_sub(head.chars().count() + fair_at);
+    let mark = [
+        format!("┆ 1/{faces} fair"),
+        format!("┆ 1/{faces}"),
+        "┆".to_string(),
     ]
     .into_iter()
-    .find(|l| from > 0.0 && l.chars().count() < fair_at)
+    .find(|m| m.chars().count() <= mark_room)
     .unwrap_or_default();
-    let mark_room = room.saturating_sub(head.chars().count() + fair_at);
-    let mark = ["┆ 1/6 fair", "┆ 1/6", "┆"]
-        .into_iter()
-        .find(|m| m.chars().count() <= mark_room)
-        .unwrap_or("");
     // The heading names the interval column; the fairness line can move to the border.
     TableRow::Text(Line::from(vec![
         Span::styled(head, t.heading()),
@@ -288,12 +343,14 @@ fn face_row(app: &App, (k, face): (usize, u8), c: Columns) -> TableRow {
         count_shown,
         bar_width,
         from,
+        compact,
     } = c;
     let count = table.tally.counts[k];
     let share = table.tally.share(face);
     let interval = (n > 0).then_some(intervals[k]);
-    let bar = share_bar(share, interval, bar_width, from);
-    let over = if share > 1.0 / 3.0 - from { "▸" } else { "" };
+    let fair = fair_share(table.tally.numbers().len());
+    let bar = share_bar(share, interval, bar_width, from, fair);
+    let over = if share > 2.0 * fair - from { "▸" } else { "" };
     let share_text = if n > 0 {
         format!("{:5.1}%", 100.0 * share)
     } else {
@@ -309,10 +366,24 @@ fn face_row(app: &App, (k, face): (usize, u8), c: Columns) -> TableRow {
         Some([low, high]) => format!(" {:>4.1}–{:<4.1}", 100.0 * low, 100.0 * high),
         None => " ".repeat(INTERVAL_COLUMN),
     };
+    let face_text = face_text(app.roll.live.params.die.kind, face.into());
     let newest = table.last.front().and_then(|r| r.outcome.face) == Some(face);
     let face_style = if newest { t.selected() } else { Style::new() };
+    if compact {
+        let share_text = if n > 0 {
+            format!("{:4.1}", 100.0 * share)
+        } else {
+            "   –".to_string()
+        };
+        return TableRow::Text(Line::from(vec![
+            Span::styled(format!("{face_text:>2}"), face_style),
+            Span::raw(format!(" {share_text} ")),
+            Span::styled(bar, t.bar()),
+            Span::styled(over, t.bar()),
+        ]));
+    }
     TableRow::Text(Line::from(vec![
-        Span::styled(format!("  {face}  "), face_style),
+        Span::styled(format!(" {face_text:>2}  "), face_style),
         Span::raw(format!("{count_text}{share_text}{interval_text} ")),
         Span::styled(bar, t.bar()),
         Span::styled(over, t.bar()),
@@ -370,6 +441,40 @@ fn draw_rows(app: &App, rows: Vec<TableRow>, body: Rect, frame: &mut Frame) {
     }
 }
 
+/// The least room a column of faces takes beside another: a compact row with a bar of two.
+const MIN_FACE_CELL: usize = COMPACT_FIXED + 2;
+
+/// How many columns the faces of a die of `faces` numbers take in a table of `rows` rows
+/// and `room` characters: one while they fit under the heading (the six-faced die always
+/// at 80×24); else the fewest that fit under the heading with room for a bar in each, or
+/// failing that the fewest that fit without it (a d20 at 80×24: two of ten, the heading and
+/// the fairness line giving way to the faces, the fairness line into the border).
+fn face_columns(faces: usize, rows: usize, room: usize) -> usize {
+    let fits = |across: usize, heading: usize| {
+        faces.div_ceil(across) + heading <= rows && (across == 1 || room / across > MIN_FACE_CELL)
+    };
+    (1..=4)
+        .find(|&across| fits(across, 1))
+        .or_else(|| (2..=4).find(|&across| fits(across, 0)))
+        .unwrap_or(4)
+}
+
+/// Rows of the table set side by side, each padded to `width` characters but the last.
+fn side_by_side(cells: impl Iterator<Item = TableRow>, width: usize) -> TableRow {
+    let mut spans: Vec<Span<'static>> = Vec::new();
+    let mut used = 0;
+    for (i, cell) in cells.enumerate() {
+        let TableRow::Text(line) = cell else { continue };
+        if i > 0 {
+            spans.push(Span::raw(" ".repeat((i * width).saturating_sub(used))));
+            used = i * width;
+        }
+        used += line.width();
+        spans.extend(line.spans);
+    }
+    TableRow::Text(Line::from(spans))
+}
+
 /// The outcome table: each face's count, share, 95 % interval and bar, the fairness test,
 /// the rolls without a face, a batch's progress and the last rolls.
 pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
@@ -382,13 +487,34 @@ pub(crate) fn render(app: &App, area: Rect, frame: &mut Frame) {
     }
     let width = body.width as usize;
     let tally = &app.roll.table.tally;
-    let from = bar_start((tally.total() > 0).then(|| tally.share_intervals()));
-    let columns = Columns::fitting(fit::room(width), from);
-    let mut rows: Vec<(u8, TableRow)> = vec![(1, heading(app, fit::room(width), columns))];
+    let faces = tally.numbers();
+    let from = bar_start(
+        (tally.total() > 0).then(|| tally.share_intervals()),
+        fair_share(faces.len()),
+    );
+    let room = fit::room(width);
+    let across = face_columns(faces.len(), body.height as usize, room);
+    let column_room = if across == 1 { room } else { room / across - 1 };
+    let columns = Columns::fitting(column_room, from);
+    let mut rows: Vec<(u8, TableRow)> = Vec::new();
     // The heading names the interval column; the fairness line can move to the border.
-    for (k, &face) in tally.numbers().iter().enumerate() {
-        rows.push((0, face_row(app, (k, face), columns)));
-    }
+    let heading_row = heading(app, column_room, columns);
+    let faces_down = faces.len().div_ceil(across);
+    let rows_of_faces: Vec<TableRow> = (0..faces_down)
+        .map(|row| {
+            // Faces run down the first column, then the next: 1 to 10 beside 11 to 20.
+            let cells = (0..across)
+                .map(|column| column * faces_down + row)
+                .filter(|&k| k < faces.len())
+                .map(|k| face_row(app, (k, faces[k]), columns));
+            side_by_side(cells, column_room + 1)
+        })
+        .collect();
+    rows.push((
+        1,
+        side_by_side(std::iter::repeat_n(heading_row, across), column_room + 1),
+    ));
+    rows.extend(rows_of_faces.into_iter().map(|r| (0, r)));
     rows.push((2, TableRow::Fairness));
     for line in item_lines(&faceless_items(app), width) {
         rows.push((0, TableRow::Text(line)));

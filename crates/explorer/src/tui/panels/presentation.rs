@@ -80,7 +80,7 @@ pub(crate) fn tick_step(span: f64, most: usize) -> f64 {
 pub(crate) fn fixed_view(app: &App, area: Rect) -> Projection {
     let live = &app.roll.live;
     let camera = app.die_screen.camera;
-    let half = live.params.die.largest_half_size();
+    let half = crate::tui::vocabulary::solid::die_scale(&live.params);
     let (sp, cp) = camera.pitch_deg.to_radians().sin_cos();
     let rise = live.initial.velocity[2].max(0.0);
     let peak = live.initial.height + rise * rise / (2.0 * live.params.world.gravity);
@@ -223,19 +223,27 @@ fn draw_panel(app: &App, area: Rect, frame: &mut Frame) {
     let inner = block.inner(area);
     frame.render_widget(block, area);
     let readout = app.die_screen.readout;
-    let face = match live.phase {
-        crate::worker::Phase::Ended(o) if o.face.is_none() => '?',
-        _ => char::from_digit(live.die.face_up as u32, 10).unwrap_or('?'),
+    // The number as printed: one digit on the box, up to two on the d8 … d20 and the d%.
+    let face: Vec<char> = match live.phase {
+        crate::worker::Phase::Ended(o) if o.face.is_none() => vec!['?'],
+        _ => crate::tui::vocabulary::format::face_text(live.params.die.kind, live.die.face_up.into())
+            .chars()
+            .collect(),
     };
     // Text below the digits: the time, the number's name and value, the key that changes it.
     let text_rows = 7;
     let sy = ((inner.height.saturating_sub(text_rows) as usize) / GLYPH_ROWS).clamp(1, 3);
+    // The digits side by side, a column of one dot between them.
+    let digits = face.len();
     let sx = (2 * sy)
-        .min((inner.width as usize).saturating_sub(2) / GLYPH_COLUMNS)
+        .min((inner.width as usize).saturating_sub(2 + digits - 1) / (digits * GLYPH_COLUMNS))
         .max(1);
-    let mut lines: Vec<Line> = big_digit(face, sx, sy)
-        .into_iter()
-        .map(|l| Line::styled(l, t.heading()).centered())
+    let glyphs: Vec<Vec<String>> = face.iter().map(|&c| big_digit(c, sx, sy)).collect();
+    let mut lines: Vec<Line> = (0..glyphs[0].len())
+        .map(|row| {
+            let joined: Vec<&str> = glyphs.iter().map(|g| g[row].as_str()).collect();
+            Line::styled(joined.join(" ".repeat(sx).as_str()), t.heading()).centered()
+        })
         .collect();
     lines.push(Line::raw(""));
     lines.push(Line::from(vec![Span::styled(format!("t {:.3} s", live.time_s), t.heading())]).centered());

@@ -446,7 +446,7 @@ impl App {
 
     /// The parameter list shown: the values the setup's contact law reads.
     pub(crate) fn params_listed(&self) -> &'static [Param] {
-        crate::tui::vocabulary::param::listed(self.setup.params.ground.contact)
+        crate::tui::vocabulary::param::listed(&self.setup.params)
     }
 
     /// The parameter selected on the list shown.

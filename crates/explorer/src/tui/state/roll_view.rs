@@ -48,7 +48,10 @@ impl RollView {
             impacts: first.timeline.impacts.take().unwrap_or_default(),
             edits: first.timeline.edits.take().unwrap_or_default(),
             previous: Vec::new(),
-            table: first.table.take().unwrap_or_default(),
+            table: first
+                .table
+                .take()
+                .unwrap_or_else(|| OutcomeTable::new(first.params.die.face_numbers())),
             batch: first.batch,
             export: first.export,
             live: first,

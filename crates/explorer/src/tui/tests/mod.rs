@@ -5,5 +5,6 @@
 pub(crate) mod fixtures;
 
 mod contrast_tests;
+mod dice_tests;
 mod lesson_tests;
 pub(crate) mod screen_tests;

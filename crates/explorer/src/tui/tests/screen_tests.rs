@@ -70,6 +70,7 @@ pub(crate) fn states(theme: Theme) -> Vec<ScreenState> {
     states.extend(more_states(theme));
     states.extend(view_states(theme));
     states.extend(plot_states(theme));
+    states.extend(dice_states(theme));
     for s in &mut states {
         s.app.theme = theme;
     }
@@ -503,6 +504,51 @@ fn every_screen_at_every_size() {
     for s in states(projector()) {
         for size in SIZES {
             let name = format!("{}_{}x{}", s.name.replace([' ', ','], "_"), size.0, size.1);
+            insta::assert_snapshot!(name, text(&draw(&s.app, size)));
+        }
+    }
+}
+
+/// A shipped polyhedral die's preset roll, rolling: 0.1 s (400 steps of its 0.25 ms) after
+/// its first touch of the table, mid-tumble.
+pub(crate) fn die_rolling(name: &str, theme: Theme) -> Harness {
+    let mut s = shipped(name, theme);
+    while !s.simulator.roll().in_contact() {
+        assert_eq!(s.simulator.advance_steps(1), 1, "{name} reaches the table");
+    }
+    s.simulator.advance_steps(400);
+    s.sync();
+    s
+}
+
+/// The polyhedral dice: a d4, a d10 and a d20 rolling, each face's number drawn on it (the
+/// d4's by its vertices), and a d20's outcome table of 20 faces after a batch.
+fn dice_states(theme: Theme) -> Vec<ScreenState> {
+    let mut table = shipped("d20", theme);
+    table.command(Command::BatchStart(300));
+    table.simulator.run_batch_here();
+    table.sync();
+    let n = format!("n {}", table.app.roll.table.tally.total());
+    vec![
+        state("d4 rolling", die_rolling("d4", theme).app, &["face up", "d4"]),
+        state("d10 rolling", die_rolling("d10", theme).app, &["face up", "d10"]),
+        state("d20 rolling", die_rolling("d20", theme).app, &["face up", "d20"]),
+        state("d20 outcome table", table.app, &["face up", &n]),
+    ]
+}
+
+/// The dice in the default (dark) theme: the same screens, snapshot apart from the
+/// projector's (their text is the theme's too: its fills and marks).
+#[test]
+fn the_dice_in_the_default_theme() {
+    for s in dice_states(Theme::default()) {
+        for size in SIZES {
+            let name = format!(
+                "default_{}_{}x{}",
+                s.name.replace([' ', ','], "_"),
+                size.0,
+                size.1
+            );
             insta::assert_snapshot!(name, text(&draw(&s.app, size)));
         }
     }

@@ -22,3 +22,13 @@ pub(crate) fn group(n: u64) -> String {
     }
     out
 }
+
+/// A die's number as it is printed on it: the d%'s tens with two digits (`00`, `10` … `90`),
+/// every other die's as it is (the d10's `0` … `9`).
+pub(crate) fn face_text(kind: dicesim_physics::Solid, number: u32) -> String {
+    if kind == dicesim_physics::Solid::Percentile {
+        format!("{number:02}")
+    } else {
+        number.to_string()
+    }
+}

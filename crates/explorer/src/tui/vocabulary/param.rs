@@ -1,7 +1,7 @@
 //! The explorer's parameter list: the registry rows that carry labels, one entry per
 //! component, in the rows' list order; how ←/→ step a value.
 
-use dicesim_physics::{ContactLaw, InitialCondition, Limits, ParamError, Params};
+use dicesim_physics::{ContactLaw, InitialCondition, Limits, ParamError, Params, Solid};
 use dicesim_setup::keys::ScanKey;
 use dicesim_setup::registry::Nudge;
 use std::sync::LazyLock;
@@ -35,22 +35,36 @@ pub(crate) fn all() -> &'static [Param] {
     &ALL
 }
 
-/// The entries a table under `law` reads, in list order: the list the explorer shows (a key
-/// the law does not read would show a value that acts on nothing, and setting it is refused).
-pub(crate) fn listed(law: ContactLaw) -> &'static [Param] {
-    fn read_by(law: ContactLaw) -> Vec<Param> {
+/// The entries `params`' table and die read, in list order: the list the explorer shows (a
+/// key its contact law or its die does not read would show a value that acts on nothing,
+/// and setting it is refused): a polyhedral die lists none of the box's sizes, masses and
+/// pips ([`dicesim_physics::Die::reads`]).
+pub(crate) fn listed(params: &Params) -> &'static [Param] {
+    fn read_by(law: ContactLaw, polyhedral: bool) -> Vec<Param> {
+        // Every polyhedral die reads the same keys (its kind, height and density).
+        let mut die = Params::DEFAULT.die;
+        if polyhedral {
+            die.kind = Solid::D20;
+        }
         all()
             .iter()
             .copied()
-            .filter(|p| p.key.spec.law.is_none_or(|l| l == law))
+            .filter(|p| p.key.spec.law.is_none_or(|l| l == law) && die.reads(p.key.spec.key()))
             .collect()
     }
-    static PAPER: LazyLock<Vec<Param>> = LazyLock::new(|| read_by(ContactLaw::Paper));
-    static SPRING_FRICTION: LazyLock<Vec<Param>> = LazyLock::new(|| read_by(ContactLaw::SpringFriction));
-    match law {
-        ContactLaw::Paper => &PAPER,
-        ContactLaw::SpringFriction => &SPRING_FRICTION,
-    }
+    static LISTS: LazyLock<[Vec<Param>; 4]> = LazyLock::new(|| {
+        [
+            read_by(ContactLaw::Paper, false),
+            read_by(ContactLaw::SpringFriction, false),
+            read_by(ContactLaw::Paper, true),
+            read_by(ContactLaw::SpringFriction, true),
+        ]
+    });
+    let law = match params.ground.contact {
+        ContactLaw::Paper => 0,
+        ContactLaw::SpringFriction => 1,
+    };
+    &LISTS[law + 2 * usize::from(params.die.is_polyhedral())]
 }
 
 /// How many entries of the list are the paper's own values: all but a real die's shape
@@ -169,7 +183,7 @@ mod tests {
         for law in [ContactLaw::Paper, ContactLaw::SpringFriction] {
             let mut params = Params::default();
             params.ground.contact = law;
-            let listed = listed(law);
+            let listed = listed(&params);
             for &p in all() {
                 let shown = listed.contains(&p);
                 assert_eq!(shown, params.ground.reads(p.key()), "{law:?}: {}", p.key());
@@ -186,7 +200,11 @@ mod tests {
                 .collect();
             assert!(order.is_sorted(), "{law:?}");
         }
-        let named = |law, key| listed(law).contains(&Param::named(key));
+        let named = |law, key| {
+            let mut params = Params::default();
+            params.ground.contact = law;
+            listed(&params).contains(&Param::named(key))
+        };
         assert!(
             named(ContactLaw::Paper, "ground.damping") && !named(ContactLaw::Paper, "ground.restitution")
         );
@@ -199,6 +217,46 @@ mod tests {
             named(ContactLaw::SpringFriction, "die.half_sizes.x")
                 && named(ContactLaw::SpringFriction, "integrator.dt")
         );
+    }
+
+    /// A polyhedral die's list holds none of the box's keys (half sizes, corner radius and
+    /// mass, pips, extra masses), every other key the box's list holds, and whatever it
+    /// lists its die reads (and is not refused).
+    #[test]
+    fn a_polyhedral_die_lists_only_the_keys_it_reads() {
+        for kind in Solid::ALL.into_iter().filter(|&k| k != Solid::Box) {
+            let mut params = Params::default();
+            params.die.kind = kind;
+            let shown = listed(&params);
+            for &p in all() {
+                let spec_key = p.key.spec.key();
+                let reads = params.die.reads(spec_key) && params.ground.reads(p.key());
+                assert_eq!(shown.contains(&p), reads, "{kind:?}: {}", p.key());
+                assert_eq!(
+                    reads,
+                    params.die.refusal(spec_key).is_none() && params.ground.reads(p.key())
+                );
+            }
+            for key in [
+                "die.half_sizes.x",
+                "die.corner_mass",
+                "die.corner_radius",
+                "die.pip_diameter",
+            ] {
+                assert!(!shown.contains(&Param::named(key)), "{kind:?} lists {key}");
+            }
+            let the_box = listed(&Params::default());
+            assert!(the_box.contains(&Param::named("die.half_sizes.x")));
+            assert_eq!(
+                shown.len()
+                    + the_box
+                        .iter()
+                        .filter(|p| !params.die.reads(p.key.spec.key()))
+                        .count(),
+                the_box.len(),
+                "{kind:?}: the box's other rows all stay"
+            );
+        }
     }
 
     #[test]

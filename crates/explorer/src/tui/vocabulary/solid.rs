@@ -1,9 +1,10 @@
 //! The die's body as the die panel draws it: its faces, edges and corner spheres in the
 //! world, its outline on the view plane, and what of a line behind it still shows.
 
-use dicesim_physics::Die;
 use dicesim_physics::body::CORNER_SIGNS;
-use nalgebra::Vector3;
+use dicesim_physics::polyhedron::{self, ReadAt};
+use dicesim_physics::{Die, Params};
+use nalgebra::{Rotation3, Vector3};
 
 /// Corner indices (0-based) of faces 1..6 (docs/model.md, "Faces").
 pub(crate) const FACE_CORNERS: [[usize; 4]; 6] = [
@@ -49,14 +50,16 @@ pub(crate) struct Solid {
 }
 
 impl Solid {
-    pub(crate) fn new(die: &Die, spheres: &[Vector3<f64>; 8]) -> Solid {
+    /// The box of `die` whose 8 corner spheres are at `spheres` (the first 8 points given).
+    pub(crate) fn new(die: &Die, spheres: &[Vector3<f64>]) -> Solid {
+        let spheres: [Vector3<f64>; 8] = std::array::from_fn(|k| spheres.get(k).copied().unwrap_or_default());
         let radius = die.corner_radius;
         let centre = spheres.iter().sum::<Vector3<f64>>() / 8.0;
         // Corners 1 and 5, 3 and 1, 2 and 1 differ along x, y and z only, by twice the
         // spheres' box half size `a − r` (positive: the radius is below every half size).
         let along = |k: usize, i: usize| (spheres[k] - spheres[0]) / (2.0 * (die.half_sizes[i] - radius));
         Solid {
-            spheres: *spheres,
+            spheres,
             radius,
             half_sizes: die.half_sizes,
             centre,
@@ -125,6 +128,160 @@ impl Solid {
             })
             .collect();
         convex_hull(&discs)
+    }
+}
+
+/// cm, the size the view, the floor tiles and the arrows scale with: the box's largest half
+/// size; a polyhedral die's circumradius (about its centre of mass) over √3, the half size of
+/// the cube with that circumradius, so a d20 fills the panel as a cube of its reach does.
+pub(crate) fn die_scale(params: &Params) -> f64 {
+    match params.polyhedral_die() {
+        Some(die) => {
+            let centre = die.mass_properties().centre_of_mass;
+            let reach = die
+                .shape()
+                .vertices()
+                .iter()
+                .map(|v| (v - centre).norm())
+                .fold(0.0, f64::max);
+            reach / 3f64.sqrt()
+        }
+        None => params.die.largest_half_size(),
+    }
+}
+
+/// A die's body as drawn: the box (the paper's die and every real die built on it) or a
+/// polyhedral die's hull.
+#[derive(Debug, Clone)]
+// A body is made for a frame and matched at once; boxing the larger one would add an
+// allocation to every frame for nothing.
+#[allow(clippy::large_enum_variant)]
+pub(crate) enum Body {
+    Box(Solid),
+    Hull(Hull),
+}
+
+impl Body {
+    /// The body of `params`' die with its points at `points` (world), turned by `orientation`
+    /// with its centre of mass at `centre`.
+    pub(crate) fn new(
+        params: &Params,
+        points: &[Vector3<f64>],
+        centre: Vector3<f64>,
+        orientation: &Rotation3<f64>,
+    ) -> Body {
+        match params.polyhedral_die() {
+            Some(die) => Body::Hull(Hull::new(die, centre, orientation)),
+            None => Body::Box(Solid::new(&params.die, points)),
+        }
+    }
+
+    /// The outline on the view plane, counter-clockwise.
+    pub(crate) fn outline(&self, flat: impl Fn(&Vector3<f64>) -> Flat) -> Vec<Flat> {
+        match self {
+            Body::Box(b) => b.outline(flat),
+            Body::Hull(h) => h.outline(flat),
+        }
+    }
+
+    /// cm, world: the body's lowest point.
+    pub(crate) fn lowest(&self) -> Vector3<f64> {
+        match self {
+            Body::Box(b) => b.lowest(),
+            Body::Hull(h) => h.lowest(),
+        }
+    }
+}
+
+/// A polyhedral die in the world: its hull's vertices turned by the die's orientation and
+/// placed at its centre of mass, its faces' outward normals likewise, and the numbers on them.
+#[derive(Debug, Clone)]
+pub(crate) struct Hull {
+    pub(crate) die: polyhedron::Die,
+    /// cm, world: the hull's vertices, in the die's vertex order (the contact points' order).
+    pub(crate) vertices: Vec<Vector3<f64>>,
+    /// World: each face's outward unit normal, in the die's face order.
+    pub(crate) normals: Vec<Vector3<f64>>,
+    /// cm, world: the centre of mass.
+    pub(crate) centre: Vector3<f64>,
+}
+
+impl Hull {
+    /// `die` turned by `orientation` (body frame into the world: the frame of its vertices
+    /// about its centre of mass) with its centre of mass at `centre`.
+    pub(crate) fn new(die: polyhedron::Die, centre: Vector3<f64>, orientation: &Rotation3<f64>) -> Hull {
+        let com = die.mass_properties().centre_of_mass;
+        let vertices = die
+            .shape()
+            .vertices()
+            .iter()
+            .map(|v| centre + orientation * (v - com))
+            .collect();
+        let normals = die
+            .shape()
+            .faces()
+            .iter()
+            .map(|f| orientation * f.normal)
+            .collect();
+        Hull {
+            die,
+            vertices,
+            normals,
+            centre,
+        }
+    }
+
+    /// cm, world: the centre of face `f`'s polygon (the mean of its vertices).
+    pub(crate) fn face_centre(&self, f: usize) -> Vector3<f64> {
+        let face = &self.die.shape().faces()[f];
+        face.vertices
+            .iter()
+            .map(|&k| self.vertices[k])
+            .sum::<Vector3<f64>>()
+            / face.vertices.len() as f64
+    }
+
+    /// The number printed on face `f` where it is read at the top face (docs/dice.md, "The
+    /// tables"); `None` for a die read at a vertex (the d4), whose faces carry its vertices'.
+    pub(crate) fn face_number(&self, f: usize) -> Option<u32> {
+        let numbering = self.die.numbering();
+        (numbering.read_at != ReadAt::TopVertex).then(|| numbering.numbers[f])
+    }
+
+    /// The number printed by vertex `k` on every face that meets there, for a die read at its
+    /// top vertex (the d4): the number of the face it does not touch, the one read with that
+    /// face down.
+    pub(crate) fn vertex_number(&self, k: usize) -> Option<u32> {
+        let numbering = self.die.numbering();
+        if numbering.read_at != ReadAt::TopVertex {
+            return None;
+        }
+        let faces = self.die.shape().faces();
+        (0..faces.len())
+            .find(|&f| !faces[f].vertices.contains(&k))
+            .map(|f| numbering.numbers[f])
+    }
+
+    /// The face whose normal points most nearly up: the one a player reads on a die read at
+    /// its top face.
+    pub(crate) fn face_most_nearly_up(&self) -> usize {
+        (0..self.normals.len())
+            .max_by(|&a, &b| self.normals[a].z.total_cmp(&self.normals[b].z))
+            .unwrap_or(0)
+    }
+
+    /// cm, world: the lowest vertex.
+    pub(crate) fn lowest(&self) -> Vector3<f64> {
+        self.vertices
+            .iter()
+            .copied()
+            .min_by(|a, b| a.z.total_cmp(&b.z))
+            .unwrap_or(self.centre)
+    }
+
+    /// The hull's outline on the view plane, counter-clockwise.
+    pub(crate) fn outline(&self, flat: impl Fn(&Vector3<f64>) -> Flat) -> Vec<Flat> {
+        convex_hull(&self.vertices.iter().map(flat).collect::<Vec<_>>())
     }
 }
 

@@ -78,7 +78,7 @@ fn each_face_shows_its_95_percent_interval_in_figures_and_on_its_bar() {
         assert!(row.contains(&figures), "face {} wants {figures}:\n{row}", f + 1);
     }
     // Where the interval covers 1/6 the fair mark sits inside the shading.
-    let wide = |k: u64| outcomes::share_bar(k as f64 / n as f64, Some(wilson(k, n)), 29, 0.0);
+    let wide = |k: u64| outcomes::share_bar(k as f64 / n as f64, Some(wilson(k, n)), 29, 0.0, 1.0 / 6.0);
     let (low, fair, high) = (wide(350), wide(480), wide(700));
     assert!(fair.contains('┼') && !fair.contains('┆'), "{fair}");
     // Above 1/6 the solid bar runs through the mark's cell; below it the mark stands alone.
@@ -89,11 +89,11 @@ fn each_face_shows_its_95_percent_interval_in_figures_and_on_its_bar() {
     assert!(low.contains('┆') && !low.contains('┼'), "below 1/6: {low}");
     // A tight interval around 1/6 on a narrow bar (12 cells, 2.8 % each): 15.5–16.9 %
     // covers the fair share, so the mark reads fair though no cell is half shaded.
-    let tight = outcomes::share_bar(0.162, Some([0.155, 0.169]), 12, 0.0);
+    let tight = outcomes::share_bar(0.162, Some([0.155, 0.169]), 12, 0.0, 1.0 / 6.0);
     assert_eq!(tight.chars().nth(6), Some('┼'), "{tight}");
-    let below = outcomes::share_bar(0.150, Some([0.143, 0.157]), 12, 0.0);
+    let below = outcomes::share_bar(0.150, Some([0.143, 0.157]), 12, 0.0, 1.0 / 6.0);
     assert_eq!(below.chars().nth(6), Some('┆'), "{below}");
-    let above = outcomes::share_bar(0.185, Some([0.177, 0.192]), 12, 0.0);
+    let above = outcomes::share_bar(0.185, Some([0.177, 0.192]), 12, 0.0, 1.0 / 6.0);
     assert_eq!(above.chars().nth(6), Some('█'), "{above}");
     // The solid part ends at the interval's low end, the shading at its high end.
     let [l, h] = wilson(700, n);

@@ -266,7 +266,7 @@ fn the_readout_shows_each_plotted_value_with_its_unit() {
     let mut s = start();
     s.simulator.advance_steps(120);
     s.sync();
-    let die = s.app.roll.live.die;
+    let die = s.app.roll.live.die.clone();
     let height = die.centre.z;
     let lowest = die.corners.iter().map(|c| c.z).fold(f64::INFINITY, f64::min);
     s.key(KeyCode::Char('w'));

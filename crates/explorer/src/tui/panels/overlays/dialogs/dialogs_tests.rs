@@ -67,13 +67,13 @@ fn picker_lists_shipped_and_user_presets_and_loads_the_chosen_one() {
     );
     let wide = screen(&s.app, 120, 36);
     let narrow = screen(&s.app, 80, 24);
-    // At 80×24 the seventeen shipped presets push the user's heading below the fold
-    // (the list scrolls to it); at 120×36 every heading is on screen.
-    for heading in [Group::Lesson, Group::Shipped, Group::Yours].map(Group::heading) {
-        assert!(wide.contains(heading), "{heading} in\n{wide}");
-    }
-    for heading in [Group::Lesson, Group::Shipped].map(Group::heading) {
-        assert!(narrow.contains(heading), "{heading} in\n{narrow}");
+    // The shipped presets (the six dice among them) push the user's heading below the fold
+    // at both sizes: the list scrolls to it, and says how many more there are.
+    for text in [&wide, &narrow] {
+        for heading in [Group::Lesson, Group::Shipped].map(Group::heading) {
+            assert!(text.contains(heading), "{heading} in\n{text}");
+        }
+        assert!(text.contains("more"), "the list marks what is below:\n{text}");
     }
     for text in [&wide, &narrow] {
         // The selection's description beside the list, from the dialog's first row (at
@@ -226,10 +226,10 @@ fn the_picker_keeps_the_selection_in_view_between_its_markers() {
     assert_eq!(picker_window(5, 4, 7), (0, 5, false));
 }
 
-/// The explorer rolls the box only for now: the picker offers no shipped polyhedral die, and
-/// a user's is listed with the refusal loading it would meet, naming `die.kind`.
+/// The explorer rolls any die: the picker offers every shipped polyhedral die, and a user's
+/// d20 opens with its own numbers in the outcome table.
 #[test]
-fn picker_leaves_out_the_shipped_dice_and_refuses_a_users() {
+fn picker_offers_the_shipped_dice_and_opens_a_users() {
     let (dir, store) = folder();
     let d20 = dicesim_setup::preset::shipped_text("d20").expect("the shipped d20");
     std::fs::write(
@@ -244,15 +244,16 @@ fn picker_leaves_out_the_shipped_dice_and_refuses_a_users() {
         panic!("the picker is open")
     };
     for shipped in ["d4", "d8", "d10", "d100", "d12", "d20"] {
-        assert!(choices.iter().all(|c| c.name != shipped), "{shipped} offered");
+        let c = choices.iter().find(|c| c.name == shipped).expect("offered");
+        assert!(c.preset.is_ok(), "{shipped}: {:?}", c.preset.as_ref().err());
     }
     let mine = choices
         .iter()
         .find(|c| c.name == "my-d20")
         .expect("the user's die listed");
-    let refused = mine.preset.as_ref().expect_err("refused");
-    assert!(
-        refused.contains("`die.kind`") && refused.contains("the explorer rolls the box only"),
-        "{refused}"
-    );
+    let preset = mine.preset.clone().expect("it opens");
+    assert!(preset.params().die.is_polyhedral());
+    s.command(Command::LoadPreset(preset));
+    assert_eq!(s.app.roll.live.params.die.kind, dicesim_physics::Solid::D20);
+    assert_eq!(s.app.roll.table.tally.numbers(), (1..=20).collect::<Vec<u8>>());
 }

@@ -155,5 +155,9 @@ fn die_b_is_drawn_with_its_own_body() {
     s.key(KeyCode::Enter);
     assert_eq!(s.app.roll.live.params.die.corner_radius, 0.0, "A stays sharp");
     let twin = s.app.roll.live.twin.clone().expect("die B rolls");
-    assert_eq!(crate::tui::panels::die::twin_body(&s.app, &twin).radius, 0.4);
+    let crate::tui::vocabulary::solid::Body::Box(b) = crate::tui::panels::die::twin_body(&s.app, &twin)
+    else {
+        panic!("die B is a box")
+    };
+    assert_eq!(b.radius, 0.4);
 }
