@@ -47,7 +47,7 @@ pub struct CountsInput {
     rows: Vec<Row>,
     /// The die the input names (`# die: d20`) and where.
     die: Option<(String, Place)>,
-    /// Every `#` line, trimmed, in order.
+    /// The `#` lines naming the die, the surface and the throw, trimmed, in order.
     notes: Vec<String>,
     /// The place past the last row: where a refusal of the whole input points.
     end: Place,
@@ -65,7 +65,7 @@ pub struct PlayerCounts {
     pub numbers: Vec<u8>,
     /// Rolls counted showing each number.
     pub counts: Vec<u64>,
-    /// The input's `#` lines (the die, the surface, the throw), joined.
+    /// The input's `#` lines naming the die, the surface and the throw, joined.
     pub notes: String,
 }
 
@@ -232,7 +232,8 @@ impl CountsInput {
             }
             self.die = Some((name, place));
         }
-        if !note.is_empty() {
+        // The notes with a meaning travel with the counts; the rest are the file's comments.
+        if ["die:", "surface:", "throw:"].iter().any(|k| note.starts_with(k)) {
             self.notes.push(note.to_string());
         }
         Ok(())
@@ -348,7 +349,7 @@ mod tests {
     ];
 
     fn d20_file(rows: &[(u8, &str)]) -> String {
-        let mut text = "# die: d20\n# surface: a felt tray\nface,count\n".to_string();
+        let mut text = "# die: d20\n# surface: a felt tray\n# bought in 2024\nface,count\n".to_string();
         for (face, count) in rows {
             text.push_str(&format!("{face},{count}\n"));
         }
@@ -384,23 +385,23 @@ mod tests {
     #[test]
     fn bad_counts_are_refused_naming_the_line() {
         let fine: Vec<(u8, &str)> = (1..=20).map(|f| (f, "6")).collect();
-        // Lines: 1–3 the notes and header, faces from line 4.
+        // Lines: 1–4 the notes and header, faces from line 5.
         let mut unknown = fine.clone();
         unknown[19] = (21, "6");
         let e = refusal(&d20_file(&unknown), "d20", D20);
         assert_eq!(
             e,
-            "my.csv, line 23: face 21: a d20 shows 1–20, so these are not counts of it"
+            "my.csv, line 24: face 21: a d20 shows 1–20, so these are not counts of it"
         );
         let mut negative = fine.clone();
         negative[4] = (5, "-3");
         let e = refusal(&d20_file(&negative), "d20", D20);
-        assert!(e.starts_with("my.csv, line 8: the count `-3` is negative"), "{e}");
+        assert!(e.starts_with("my.csv, line 9: the count `-3` is negative"), "{e}");
         let mut fraction = fine.clone();
         fraction[0] = (1, "2.5");
         let e = refusal(&d20_file(&fraction), "d20", D20);
         assert!(
-            e.starts_with("my.csv, line 4: the count `2.5` is not a whole number"),
+            e.starts_with("my.csv, line 5: the count `2.5` is not a whole number"),
             "{e}"
         );
         // 20 faces of 4 rolls: 80 rolls expect 4 per face.
@@ -408,7 +409,7 @@ mod tests {
         let e = refusal(&d20_file(&few), "d20", D20);
         assert_eq!(
             e,
-            "my.csv, line 23: 80 rolls of a d20 expect 4 per face; the χ² test needs at least 5 per face: roll at least 100 times"
+            "my.csv, line 24: 80 rolls of a d20 expect 4 per face; the χ² test needs at least 5 per face: roll at least 100 times"
         );
         // Six counts for a d20 (a d6's file held against the d20), and the die named.
         let six = "face,count\n1,10\n2,10\n3,10\n4,10\n5,10\n6,10\n";
