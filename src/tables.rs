@@ -10,15 +10,13 @@ use dicesim_experiment::compare_shaved::{Bias, ShavedComparison};
 use dicesim_experiment::compare_stats::{FitInterval, FitMethod};
 use dicesim_experiment::ending::Ending;
 use dicesim_experiment::merge::{BatchMerge, MapMerge};
+use dicesim_experiment::one_roll::{OneRoll, Verdict, why_it_cannot_settle_roll};
 use dicesim_experiment::predict::Prediction;
-use dicesim_experiment::versus::{NO_FACE, VersusRun};
+use dicesim_experiment::versus::VersusRun;
 use dicesim_experiment::{BatchRun, BatchSummary, FaceTally};
 use dicesim_figures::animation::{Animated, speed_words};
-use dicesim_physics::{
-    InitialCondition, Outcome, Params, Simulation, Solid, Stability, Status, UnstableReason,
-    why_it_cannot_settle,
-};
-use dicesim_setup::number::{fmt_exact, fmt_num};
+use dicesim_physics::{InitialCondition, Outcome, Params, Solid, Status};
+use dicesim_setup::number::{die_number, fmt_exact, fmt_num};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -114,14 +112,18 @@ pub fn versus(out: &mut dyn Write, run: &VersusRun, preset: &str, versus: &[Stri
         if run.jobs == 1 { "" } else { "s" },
         run.engine.name()
     )?;
-    writeln!(out, "A \\ B     1      2      3      4      5      6  none")?;
+    // A column per number B's die shows, then "none"; a row per A's number, then "none".
+    let label = |faces: &[u8], k: usize| match faces.get(k) {
+        Some(&n) => die_number(Solid::showing(faces).unwrap_or_default(), n),
+        None => "none".to_string(),
+    };
+    write!(out, "A \\ B")?;
+    for b in 0..=t.b_faces.len() {
+        write!(out, " {:>6}", label(t.b_faces, b))?;
+    }
+    writeln!(out)?;
     for (a, row) in t.counts.iter().enumerate() {
-        let name = if a == NO_FACE {
-            "none".to_string()
-        } else {
-            (a + 1).to_string()
-        };
-        write!(out, "{name:>5}")?;
+        write!(out, "{:>5}", label(t.a_faces, a))?;
         for count in row {
             write!(out, " {count:>6}")?;
         }
@@ -1036,35 +1038,47 @@ fn p_text(p: f64) -> String {
     }
 }
 
-/// The roll as text: its ending in words, then its steps, time, stopping energy and final
-/// state.
+/// The roll as text: its ending in words (a die's number as a player reads it: 0 to 9 on
+/// the d10, 00 to 90 on the d%), then its steps, time, stopping energy and final state.
 pub fn one_roll(
     out: &mut dyn Write,
     (params, initial): (&Params, &InitialCondition),
-    sim: &Simulation,
-    outcome: &Outcome,
-    reason: Option<&UnstableReason>,
+    rolled: &OneRoll,
 ) -> std::io::Result<()> {
-    let s = sim.state();
-    let rule = sim.stop_rule_now();
+    let OneRoll {
+        roll,
+        outcome,
+        reason,
+    } = rolled;
+    let rule = roll.stop_rule_now();
     let verdict = match (outcome.status, outcome.face) {
-        (Status::Settled, Some(f)) => format!("face {f} (settled)"),
+        (Status::Settled, Some(f)) => format!("face {} (settled)", die_number(params.die.kind, f)),
+        (Status::Settled, None) if roll.is_polyhedral() => {
+            "settled, but on an edge or a vertex: no face is down".to_string()
+        }
         (Status::Settled, None) => "settled, but the 4 highest corners form no face".to_string(),
-        (Status::Timeout, _) => match why_it_cannot_settle(params) {
+        (Status::Timeout, _) => match why_it_cannot_settle_roll(roll) {
             Some(why) => format!("did not settle within {} s: {why}", params.integrator.max_time),
             None => format!("did not settle within {} s", params.integrator.max_time),
         },
-        (Status::Unstable, _) => format!("unstable: {}", reason.expect("an unstable roll has a reason")),
+        (Status::Unstable, _) => match reason {
+            Some(reason) => format!("unstable: {reason}"),
+            None => format!(
+                "unstable: the energy ran away; {}",
+                Verdict::of(params, initial).words
+            ),
+        },
     };
     let v3 = |v: &nalgebra::Vector3<f64>| format!("({:.6}, {:.6}, {:.6})", v.x, v.y, v.z);
     writeln!(out, "{verdict}")?;
     // An unstable roll's verdict names the limit already; any other ending past one is not
     // what the model gives, however plain it looks.
-    let stability = Stability::predict(params, initial).verdict();
-    if stability.exceeded() && reason.is_none() {
+    let stability = Verdict::of(params, initial);
+    if stability.exceeded() && outcome.status != Status::Unstable {
         writeln!(
             out,
-            "stability         past its limit, so this ending is the step's, not the model's: {stability}"
+            "stability         past its limit, so this ending is the step's, not the model's: {}",
+            stability.words
         )?;
     }
     writeln!(out, "steps             {}", outcome.steps)?;
@@ -1073,23 +1087,23 @@ pub fn one_roll(
         writeln!(
             out,
             "stop energy       {:.1} erg (threshold {:.1} erg, {}); kinetic {:.1} erg (threshold {:.1} erg)",
-            sim.stop_energy(),
+            roll.stop_energy(),
             rule.energy_threshold,
             params.integrator.stop_energy.name(),
-            sim.stop_kinetic_energy(),
+            roll.stop_kinetic_energy(),
             rule.kinetic_threshold
         )?;
     } else {
         writeln!(
             out,
             "stop energy       {:.1} erg ({}; no threshold: this table cannot hold a face)",
-            sim.stop_energy(),
+            roll.stop_energy(),
             params.integrator.stop_energy.name()
         )?;
     }
-    writeln!(out, "position          {} cm", v3(&s.position))?;
-    writeln!(out, "velocity          {} cm/s", v3(&s.velocity))?;
-    writeln!(out, "angular momentum  {} g·cm²/s", v3(&s.angular_momentum))?;
+    writeln!(out, "position          {} cm", v3(&roll.position()))?;
+    writeln!(out, "velocity          {} cm/s", v3(&roll.velocity()))?;
+    writeln!(out, "angular momentum  {} g·cm²/s", v3(&roll.angular_momentum()))?;
     Ok(())
 }
 

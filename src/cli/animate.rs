@@ -42,9 +42,10 @@ pub(crate) struct AnimateArgs {
     /// (default: the whole path in view, the die small in it).
     #[arg(long)]
     pub(crate) zoom: bool,
-    /// Colour face N and its opposite (7 − N) and draw their body axis, e.g. 2 for the
-    /// tennis racket's flip of faces 2 and 5.
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u8).range(1..=6))]
+    /// Colour the face numbered N and the one opposite it (7 − N on the box, N + 1 less it
+    /// on a d8, d12 or d20, 9 less it on a d10) and draw their body axis, e.g. 2 for the
+    /// tennis racket's flip of faces 2 and 5 (not on a d4, which has no opposite faces).
+    #[arg(long, value_name = "N")]
     pub(crate) face_pair: Option<u8>,
     /// Draw the explorer's presentation view (`P`) instead: the die large over its height
     /// scale, the face up in block digits, the time and a readout, as the terminal shows
@@ -112,6 +113,7 @@ fn parse_terminal(s: &str) -> Result<(u16, u16), String> {
 /// The animation the arguments ask for, over `preset`'s view; a `--speed` given becomes
 /// the view's too (the presentation view's title states the speed it plays at).
 fn spec_of(args: &AnimateArgs, preset: &mut Preset) -> Result<AnimationSpec, CliError> {
+    let params = preset.params();
     let twin = match args.twin.as_deref() {
         None => None,
         Some("default") => Some(preset.view.twin.unwrap_or(DEFAULT_EPSILON)),
@@ -146,6 +148,10 @@ fn spec_of(args: &AnimateArgs, preset: &mut Preset) -> Result<AnimationSpec, Cli
         ..AnimationSpec::new(args.fps, args.size)
     };
     spec.validate().map_err(CliError::experiment("--twin "))?;
+    if let Some(face) = spec.face_pair {
+        spec.face_pair_on(&params)
+            .map_err(|why| CliError::Usage(format!("--face-pair {face}: {why}")))?;
+    }
     Ok(spec)
 }
 
@@ -153,9 +159,12 @@ pub(crate) fn run(args: &AnimateArgs) -> Result<(), CliError> {
     let mut preset = args.setup.resolve()?;
     refuse_unapplied(&args.setup.set, |key| unapplied_when_fixed(key, "animate"))?;
     let params = preset.params();
-    dicesim_physics::refuse_polyhedral_die(&params, "`dicesim animate`")?;
-    // The checks `roll` makes: every value in range, no corner starting inside the table.
-    dicesim_physics::Simulation::new(&params, &preset.initial)?;
+    if args.present {
+        // The presentation view is the explorer's, which draws the box only for now.
+        dicesim_physics::refuse_polyhedral_die(&params, "`dicesim animate --present` (the explorer's view)")?;
+    }
+    // The checks `roll` makes: every value in range, no point starting inside the table.
+    dicesim_physics::Roll::new(&params, &preset.initial)?;
     let spec = spec_of(args, &mut preset)?;
     let terminal = args.terminal.unwrap_or((80, 24));
     if args.present {

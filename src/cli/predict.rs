@@ -102,7 +102,6 @@ pub(crate) fn run(args: &PredictArgs) -> Result<(), CliError> {
     let vary = args.vary.as_deref().map(parse_vary).transpose()?;
     refuse_unapplied_sets(args, &preset.random, vary.as_ref())?;
     let params = preset.params();
-    dicesim_physics::refuse_polyhedral_die(&params, "`dicesim predict`")?;
     params.validate()?;
     let spec = PredictSpec {
         epsilons: if args.epsilon.is_empty() {

@@ -22,20 +22,12 @@ pub(crate) fn run(args: &RollArgs) -> Result<(), CliError> {
         dicesim_setup::random::unapplied_when_fixed(key, "roll")
     })?;
     let params = preset.params();
-    dicesim_physics::refuse_polyhedral_die(&params, "`dicesim roll`")?;
-    let OneRoll { sim, outcome, reason } = OneRoll::run(&preset)?;
+    let rolled = OneRoll::run(&preset)?;
     let mut out = std::io::stdout().lock();
     if args.json {
-        let rolled = OneRoll { sim, outcome, reason };
         writeln!(out, "{}", rolled.json(&preset, !args.setup.set.is_empty()))?;
     } else {
-        tables::one_roll(
-            &mut out,
-            (&params, &preset.initial),
-            &sim,
-            &outcome,
-            reason.as_ref(),
-        )?;
+        tables::one_roll(&mut out, (&params, &preset.initial), &rolled)?;
     }
     Ok(())
 }

@@ -4,9 +4,9 @@ use super::args::SetupArgs;
 use super::error::CliError;
 use clap::Args;
 use dicesim_experiment::limits::TRACE_STEPS;
-use dicesim_experiment::trace::{TraceWriter, columns, follow};
+use dicesim_experiment::trace::{TraceWriter, columns_for, follow};
 use dicesim_experiment::{data_file, provenance};
-use dicesim_physics::Simulation;
+use dicesim_physics::Roll;
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -39,26 +39,25 @@ pub(crate) fn run(args: &TraceArgs) -> Result<(), CliError> {
         dicesim_setup::random::unapplied_when_fixed(key, "trace")
     })?;
     let params = preset.params();
-    dicesim_physics::refuse_polyhedral_die(&params, "`dicesim trace`")?;
-    let sim = Simulation::new(&params, &preset.initial)?;
+    let roll = Roll::new(&params, &preset.initial)?;
     let Some(path) = &args.out else {
-        return Ok(trace(args, sim, std::io::stdout().lock())?);
+        return Ok(trace(args, roll, std::io::stdout().lock())?);
     };
     let output = super::args::checked_outputs(std::slice::from_ref(path), &["csv"], args.force)?.remove(0);
     // Half a trace is of no use: a stop signal removes the file being written and its sidecar.
     super::running::stop_at_once_on_signals()?;
     let rolled = provenance::roll(&preset, "the preset's roll", !args.setup.set.is_empty());
-    let meta = data_file::sidecar(&rolled, &columns());
+    let meta = data_file::sidecar(&rolled, &columns_for(&params));
     output
-        .write_table(Some(&meta), |w| trace(args, sim, w))
+        .write_table(Some(&meta), |w| trace(args, roll, w))
         .map_err(CliError::output(""))
 }
 
-/// Writes the trace of `sim`, as `args` asks, to `out`.
-fn trace(args: &TraceArgs, mut sim: Simulation, out: impl Write) -> std::io::Result<()> {
-    let mut out = TraceWriter::new(out, sim.params().integrator.dt)?;
-    follow(&mut sim, args.steps, args.every, &mut |sim| {
-        out.write(sim).map(drop)
+/// Writes the trace of `roll`, as `args` asks, to `out`.
+fn trace(args: &TraceArgs, mut roll: Roll, out: impl Write) -> std::io::Result<()> {
+    let mut out = TraceWriter::of(out, roll.params())?;
+    follow(&mut roll, args.steps, args.every, &mut |roll| {
+        out.write(roll).map(drop)
     })?;
     out.flush()
 }

@@ -4,8 +4,8 @@
 use crate::energy_plot::energy_plot_png;
 use dicesim_experiment::Error;
 use dicesim_experiment::data_file;
-use dicesim_experiment::trace::{TraceWriter, columns, header, record_len, row};
-use dicesim_physics::{Energy, InitialCondition, Params, Simulation};
+use dicesim_experiment::trace::{TraceWriter, columns_for, header_for, record_len, row};
+use dicesim_physics::{Energy, InitialCondition, Params, Roll};
 use dicesim_setup::number::{StepClock, human_bytes};
 use dicesim_setup::output::{Output, commit};
 use std::io::Write as _;
@@ -77,7 +77,7 @@ pub fn export_roll(
     } = files;
     let clock = StepClock::new(params.integrator.dt);
     let cancelled = || cancel.load(Ordering::Relaxed);
-    let mut sim = Simulation::new_unchecked(params, initial);
+    let mut sim = Roll::new_unchecked(params, initial);
     let mut status = ExportProgress {
         writing: false,
         steps_done: 0,
@@ -88,7 +88,7 @@ pub fn export_roll(
     let (mut sampled_len, mut samples_taken) = (record_len(&row(&sim, &clock)), 1u64);
     while sim.outcome().is_none() {
         sim.advance();
-        let step = sim.state().step;
+        let step = sim.steps();
         if step.is_multiple_of(REPORT_EVERY) {
             if cancelled() {
                 return Err(Error::Cancelled);
@@ -100,8 +100,8 @@ pub fn export_roll(
             progress(status);
         }
     }
-    let rows = sim.state().step + 1;
-    let estimate = record_len(&header()) + sampled_len / samples_taken * rows;
+    let rows = sim.steps() + 1;
+    let estimate = record_len(&header_for(params)) + sampled_len / samples_taken * rows;
     if estimate > EXPORT_LIMIT_BYTES {
         let every = estimate.div_ceil(EXPORT_LIMIT_BYTES);
         // Short enough for the explorer's status line, with the way out in it.
@@ -122,23 +122,23 @@ pub fn export_roll(
     let mut samples: Vec<(f64, Energy)> = Vec::with_capacity((rows / stride + 2) as usize);
     let mut peak: Option<(f64, Energy)> = None;
     let mut written = 0u64;
-    let mut sim = Simulation::new_unchecked(params, initial);
+    let mut sim = Roll::new_unchecked(params, initial);
     let failed = |e: dicesim_setup::output::OutputError| Error::Export(e.to_string());
-    let meta = data_file::sidecar(provenance, &columns());
+    let meta = data_file::sidecar(provenance, &columns_for(params));
     let mut staged = trace.stage(Some(&meta)).map_err(failed)?;
-    let mut csv = TraceWriter::new(&mut staged, params.integrator.dt)
-        .map_err(|e| Error::Export(trace.failed(&e).to_string()))?;
-    written += record_len(&header());
+    let mut csv =
+        TraceWriter::of(&mut staged, params).map_err(|e| Error::Export(trace.failed(&e).to_string()))?;
+    written += record_len(&header_for(params));
     loop {
         written += csv
             .write(&sim)
             .map_err(|e| Error::Export(trace.failed(&e).to_string()))?;
-        let (t, e) = (sim.state().time_s, sim.energy());
+        let (t, e) = (sim.time_s(), sim.energy());
         peak = Some(match peak {
             None => (t, e),
             Some((_, p)) => (t, e.max_each(&p)),
         });
-        let step = sim.state().step;
+        let step = sim.steps();
         let ended = sim.outcome().is_some();
         if step.is_multiple_of(stride) || ended {
             samples.extend(peak.take());

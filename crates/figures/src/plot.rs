@@ -392,6 +392,7 @@ pub(crate) fn setup_text(name: &str, params: &Params, initial: &InitialCondition
             Value::Vector(v) => format!("[{}, {}, {}]", v[0], v[1], v[2]),
             Value::Range(r) => format!("[{}, {}]", r[0], r[1]),
             Value::PerCorner(v) => format!("[{}]", v.map(|x| x.to_string()).join(", ")),
+            Value::List(list) => list.text(|x| x.to_string()),
             Value::Name(s) => format!("\"{s}\""),
             Value::Seed(s) => format!("{s}"),
             Value::Flag(b) => format!("{b}"),

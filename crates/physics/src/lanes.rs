@@ -21,6 +21,7 @@ use super::model::Placement;
 use super::params::{ParamError, Params, Solid};
 use super::point_roll::{PointKernel, PointLaw, PointRoll};
 use super::points::PointBody;
+use super::polyhedron::body_points;
 use super::sim::{EngineLaw, ImpactLog, Outcome, STEPS_BETWEEN_STOP_CHECKS, Simulation, State, Status};
 use super::sim::{PaperPerCorner, PaperWholeDie, box_face_down};
 use nalgebra::Vector3;
@@ -193,7 +194,10 @@ pub(crate) struct DiceBodies {
 }
 
 /// One run keeps one of these and copies it into each roll, which holds its body by value as
-/// a `PointRoll` does: sized by the largest die, with no pointer to follow per roll.
+/// a `PointRoll` does: sized by the largest die, with no pointer to follow per roll. A die
+/// of a vertex count between these is carried by the next one up (padded,
+/// [`Die::point_body`](crate::polyhedron::Die::point_body)): its last points sit at its
+/// centre of mass.
 #[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy)]
 pub(crate) enum DiceBody {
@@ -224,16 +228,21 @@ impl DiceBodies {
     }
 }
 
-/// The body of `params`' polyhedral die, as many points as it has vertices.
+/// The body of `params`' polyhedral die (validated): as many points as it has vertices, or
+/// the next count the engines carry ([`body_points`]), the rest at its centre of mass.
+// Padding rather than a body per vertex count: each count is its kernels for three laws in
+// two engines over again, and the points that never touch cost only their share of the
+// step's loops over points.
 pub(crate) fn dice_body(params: &Params) -> DiceBody {
     let die = params.polyhedral_die().expect("a polyhedral die");
-    let made = "a regular die's vertices are its points";
-    match die.shape().vertices().len() {
-        4 => DiceBody::P4(die.point_body(params).expect(made)),
-        6 => DiceBody::P6(die.point_body(params).expect(made)),
-        12 => DiceBody::P12(die.point_body(params).expect(made)),
-        20 => DiceBody::P20(die.point_body(params).expect(made)),
-        n => unreachable!("no regular die has {n} vertices"),
+    let made = "a validated die makes its body";
+    let vertices = die.shape().vertices().len();
+    match body_points(vertices) {
+        Some(4) => DiceBody::P4(die.point_body(params).expect(made)),
+        Some(6) => DiceBody::P6(die.point_body(params).expect(made)),
+        Some(12) => DiceBody::P12(die.point_body(params).expect(made)),
+        Some(20) => DiceBody::P20(die.point_body(params).expect(made)),
+        _ => unreachable!("the validation refuses a die of {vertices} vertices"),
     }
 }
 
@@ -358,15 +367,25 @@ pub fn roll_points_in_lanes<const N: usize>(
     Ok(rolls)
 }
 
-/// Which vector a polyhedral die's roll steps in: its law and its solid.
+/// Which vector a polyhedral die's roll steps in: its law, its solid and its points (a
+/// shave or a convex die's corners change the points of one solid).
+type DiceVector = (u8, Solid, usize);
+
+/// The [`DiceVector`] of `roll`.
 #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
-fn dice_vector(roll: &DiceRoll, params: &Params) -> (u8, Solid) {
-    let law = on_points!(roll, r => match &r.k {
+fn dice_vector(roll: &DiceRoll, params: &Params) -> DiceVector {
+    let (law, points) = on_points!(roll, r => (match &r.k {
         PointKernel::Paper(_) => 0,
         PointKernel::PaperWholeDie(_) => 1,
         PointKernel::SpringFriction(_) => 2,
-    });
-    (law, params.die.kind)
+    }, points_of(r)));
+    (law, params.die.kind, points)
+}
+
+/// The points `N` of a roll's body.
+#[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+fn points_of<const N: usize>(_: &PointRoll<N>) -> usize {
+    N
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -863,7 +882,7 @@ mod avx2 {
     #[derive(Default)]
     struct Dice {
         bodies: DiceBodies,
-        groups: Vec<((u8, Solid), Box<dyn DiceGroup>)>,
+        groups: Vec<(DiceVector, Box<dyn DiceGroup>)>,
     }
 
     impl Dice {

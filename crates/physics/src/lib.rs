@@ -53,7 +53,7 @@ pub use params::{
 };
 pub use point_roll::{PointOutcome, PointRoll};
 pub use points::{BodyError, MAX_FACES, PointBody};
-pub use roll::Roll;
+pub use roll::{Roll, RollingDie};
 pub use shape::{MassProperties, mass_properties};
 pub use sim::{
     ContactForce, EnergyLedger, FirstImpact, Outcome, STEPS_BETWEEN_STOP_CHECKS, Simulation, State, Status,

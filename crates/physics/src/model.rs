@@ -296,7 +296,7 @@ pub(crate) fn principal_frame(tensor: &Matrix3<f64>) -> Option<(Vector3<f64>, Ma
 }
 
 impl Solid {
-    /// The regular die it is, `None` for the box.
+    /// The regular die it is, `None` for the box and a convex die.
     pub fn regular(self) -> Option<DieKind> {
         match self {
             Solid::Box => None,
@@ -306,16 +306,21 @@ impl Solid {
             Solid::Percentile => Some(DieKind::Percentile),
             Solid::D12 => Some(DieKind::D12),
             Solid::D20 => Some(DieKind::D20),
+            Solid::Convex => None,
         }
     }
 }
 
 /// What the parameters imply about their body.
 impl Params {
-    /// The polyhedral die of `die.kind`, `die.height` and `die.density`; `None` for the box.
+    /// The polyhedral die of `die.kind` (its `die.height`, or a convex die's `die.vertices`)
+    /// and `die.density`, with the flaws its keys give; `None` for the box. Parameters that
+    /// [`Params::validate`] accepts always make their die.
+    ///
+    /// # Panics
+    /// On parameters [`Params::validate`] refuses for their die, with its words.
     pub fn polyhedral_die(&self) -> Option<polyhedron::Die> {
-        let die = &self.die;
-        die.kind.regular().map(|kind| kind.die(die.height, die.density))
+        polyhedron::made_die(self).unwrap_or_else(|e| panic!("a die the validation refuses: {e}"))
     }
 
     /// g, the whole die: the undrilled body's `8·m` less the pips plus any extra corner

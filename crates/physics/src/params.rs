@@ -125,6 +125,30 @@ pub mod limits {
     pub const HEIGHT: Limits = limits("die.height", "cm", 0.1, 20.0);
     /// From cork to tungsten.
     pub const DENSITY: Limits = limits("die.density", "g/cm³", 0.1, 20.0);
+    /// A convex die's corners, each coordinate (die frame); also a die at least
+    /// `die.height`'s least standing on every face ([`super::Params::validate`]).
+    pub const VERTICES: Limits = limits("die.vertices", "cm", -10.0, 10.0);
+    /// Every vertex of a polyhedral die rounded alike; also no sphere past a face.
+    pub const ROUNDING: Limits = limits("die.rounding", "cm", 0.0, 10.0);
+    /// Each vertex's own rounding, added to `die.rounding`.
+    pub const VERTEX_ROUNDING: Limits = limits("die.vertex_rounding", "cm", 0.0, 10.0);
+    /// The face whose vertices are worn rounder; any number on the die's faces.
+    pub const WORN_FACE: Limits = limits("die.worn_face", "", 0.0, 255.0);
+    /// How much rounder the worn face's vertices are: uneven rounding as one number.
+    pub const WORN_ROUNDING: Limits = limits("die.worn_rounding", "cm", 0.0, 10.0);
+    /// An air bubble's radius (0: none); also inside every face.
+    pub const BUBBLE_RADIUS: Limits = limits("die.bubble_radius", "cm", 0.0, 10.0);
+    pub const BUBBLE_TOWARD: Limits = limits("die.bubble_toward", "", 0.0, 255.0);
+    /// How far off the centre of mass the bubble lies: the bubble's size as a flaw.
+    pub const BUBBLE_OFFSET: Limits = limits("die.bubble_offset", "cm", 0.0, 10.0);
+    /// A point mass set into the die (0: none).
+    pub const POINT_MASS: Limits = limits("die.point_mass", "g", 0.0, 1000.0);
+    pub const POINT_MASS_TOWARD: Limits = limits("die.point_mass_toward", "", 0.0, 255.0);
+    pub const POINT_MASS_OFFSET: Limits = limits("die.point_mass_offset", "cm", 0.0, 10.0);
+    /// The face shaved down.
+    pub const SHAVE_FACE: Limits = limits("die.shave_face", "", 0.0, 255.0);
+    /// How deep it is shaved (0: not at all): a plane cut parallel to the face.
+    pub const SHAVE_DEPTH: Limits = limits("die.shave_depth", "cm", 0.0, 10.0);
 }
 
 /// A value outside its allowed range: names the field, the value and the range.
@@ -215,7 +239,7 @@ impl fmt::Display for ParamError {
 impl std::error::Error for ParamError {}
 
 /// The friction-law choice's key, for its refusal.
-const FRICTION_LAW_KEY: Limits = Limits {
+pub(crate) const FRICTION_LAW_KEY: Limits = Limits {
     key: "ground.friction_law",
     unit: "",
     min: 0.0,
@@ -254,10 +278,14 @@ pub enum Solid {
     D12,
     #[serde(rename = "d20")]
     D20,
+    /// Any convex die, given by its corners (`die.vertices`): the hull's faces numbered 1 to
+    /// `F` (docs/dice.md, "A convex die of its corners").
+    #[serde(rename = "convex")]
+    Convex,
 }
 
 impl Solid {
-    pub const ALL: [Solid; 7] = [
+    pub const ALL: [Solid; 8] = [
         Solid::Box,
         Solid::D4,
         Solid::D8,
@@ -265,10 +293,11 @@ impl Solid {
         Solid::Percentile,
         Solid::D12,
         Solid::D20,
+        Solid::Convex,
     ];
 
     /// Every name, as [`Solid::name`] gives them, in [`Solid::ALL`]'s order.
-    pub const NAMES: [&'static str; 7] = ["box", "d4", "d8", "d10", "d%", "d12", "d20"];
+    pub const NAMES: [&'static str; 8] = ["box", "d4", "d8", "d10", "d%", "d12", "d20", "convex"];
 
     /// The name a preset gives it: `box`, or the players' `d4` … `d20`, `d%`.
     pub const fn name(self) -> &'static str {
@@ -293,12 +322,13 @@ impl Solid {
     pub fn opposite_number(self, face: u8) -> Option<u8> {
         let numbers = self.face_numbers();
         match self {
-            Solid::D4 => None,
+            Solid::D4 | Solid::Convex => None,
             _ => (numbers[0] + numbers[numbers.len() - 1]).checked_sub(face),
         }
     }
 
-    /// The numbers a roll of it can show, in the order its tables list them.
+    /// The numbers a roll of it can show, in the order its tables list them; none for a
+    /// convex die, whose numbers its corners give ([`Die::face_numbers`]).
     pub const fn face_numbers(self) -> &'static [u8] {
         match self {
             Solid::Box => &[1, 2, 3, 4, 5, 6],
@@ -310,12 +340,14 @@ impl Solid {
             Solid::D20 => &[
                 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20,
             ],
+            Solid::Convex => &[],
         }
     }
 }
 
-/// The die's keys read by one solid only: the box's shape and masses, and a polyhedron's size
-/// and material ([`Die::reads`]).
+/// The die's keys read by some solids only: the box's shape and masses, a regular die's
+/// size, a polyhedral die's material, a convex die's corners and a polyhedral die's flaws
+/// ([`Die::reads`]).
 const BOX_KEYS: [Limits; 6] = [
     limits::HALF_SIZES,
     limits::CORNER_RADIUS,
@@ -325,6 +357,196 @@ const BOX_KEYS: [Limits; 6] = [
     limits::EXTRA_CORNER_MASS,
 ];
 const POLYHEDRON_KEYS: [Limits; 2] = [limits::HEIGHT, limits::DENSITY];
+/// The flaws that make a polyhedral die unfair, each with one number that sizes it
+/// (docs/dice.md, "Flaws"): the rest place it.
+pub const FLAW_KEYS: [Limits; 12] = [
+    limits::ROUNDING,
+    limits::VERTEX_ROUNDING,
+    limits::WORN_FACE,
+    limits::WORN_ROUNDING,
+    limits::BUBBLE_RADIUS,
+    limits::BUBBLE_TOWARD,
+    limits::BUBBLE_OFFSET,
+    limits::POINT_MASS,
+    limits::POINT_MASS_TOWARD,
+    limits::POINT_MASS_OFFSET,
+    limits::SHAVE_FACE,
+    limits::SHAVE_DEPTH,
+];
+
+/// The most faces a body may number (a d20's): the most numbers a die shows.
+pub const MAX_FACES: usize = 20;
+
+/// The most corners a convex die may have: the largest body the engines carry (the d12's 20
+/// points; a die of fewer rolls as the next body up, docs/dice.md "A convex die of its
+/// corners").
+pub const MAX_DIE_VERTICES: usize = 20;
+
+/// Up to [`MAX_DIE_VERTICES`] values, one per vertex, held in place: `Params` is `Copy` and
+/// compared per roll, so a list is a fixed array and its length.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PerVertex<T> {
+    /// The values, then `fill` up to the end (so equal lists compare equal).
+    values: [T; MAX_DIE_VERTICES],
+    len: u8,
+}
+
+impl<T: Copy> PerVertex<T> {
+    /// No values.
+    pub const fn empty(fill: T) -> PerVertex<T> {
+        PerVertex {
+            values: [fill; MAX_DIE_VERTICES],
+            len: 0,
+        }
+    }
+
+    /// `values`, or `None` for more than [`MAX_DIE_VERTICES`].
+    pub fn new(values: &[T], fill: T) -> Option<PerVertex<T>> {
+        let mut list = PerVertex::empty(fill);
+        list.values.get_mut(..values.len())?.copy_from_slice(values);
+        list.len = values.len() as u8;
+        Some(list)
+    }
+
+    pub fn as_slice(&self) -> &[T] {
+        &self.values[..self.len as usize]
+    }
+
+    pub fn len(&self) -> usize {
+        self.len as usize
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+}
+
+/// A convex die's corners (cm, die frame), with the number of faces their hull has (0 when
+/// they make no solid: [`Params::validate`] says why), counted once here so that the numbers
+/// a record may show are known without a hull per record.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Vertices {
+    pub(crate) points: PerVertex<[f64; 3]>,
+    /// Set by `Vertices::new` (polyhedron/keys.rs, which has the hull).
+    pub(crate) faces: u8,
+}
+
+/// Why a list of corners cannot be held: more than [`MAX_DIE_VERTICES`].
+pub const TOO_MANY_VERTICES: &str =
+    "a convex die has at most 20 vertices (`die.vertices`): the largest body the engines carry";
+
+impl Vertices {
+    /// No corners: the value of every die but a convex one.
+    pub const NONE: Vertices = Vertices {
+        points: PerVertex::empty([0.0; 3]),
+        faces: 0,
+    };
+
+    /// cm, die frame.
+    pub fn points(&self) -> &[[f64; 3]] {
+        self.points.as_slice()
+    }
+
+    /// The faces of their hull (0: no solid).
+    pub fn face_count(&self) -> usize {
+        self.faces as usize
+    }
+}
+
+/// A polyhedral die's flaws as a preset states them, in the die's own words (docs/dice.md,
+/// "Flaws"): each sized by one number (0: none) and placed by a face's number. All zero is a
+/// sharp, uniform die.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DieFlaws {
+    /// cm, every vertex rounded by this.
+    pub rounding: f64,
+    /// cm, each vertex's own rounding on top of `rounding` (none given: 0 each), in the order
+    /// of the die's vertices (docs/dice.md's tables; a convex die's as listed).
+    pub vertex_rounding: PerVertex<f64>,
+    /// The number of the face whose vertices are worn rounder by `worn_rounding`.
+    pub worn_face: Option<u8>,
+    /// cm, added to the rounding of each vertex of `worn_face`.
+    pub worn_rounding: f64,
+    /// cm, an air bubble's radius (0: none).
+    pub bubble_radius: f64,
+    /// The number of the face the bubble lies toward.
+    pub bubble_toward: Option<u8>,
+    /// cm, from the centre of mass of the sharp, uniform die along `bubble_toward`'s outward
+    /// normal.
+    pub bubble_offset: f64,
+    /// g, a point mass set into the die (0: none).
+    pub point_mass: f64,
+    pub point_mass_toward: Option<u8>,
+    /// cm, as `bubble_offset`.
+    pub point_mass_offset: f64,
+    /// The number of the face shaved down.
+    pub shave_face: Option<u8>,
+    /// cm, how much thinner the die is across that face: a plane cut parallel to it.
+    pub shave_depth: f64,
+}
+
+impl DieFlaws {
+    /// A sharp, uniform die.
+    pub const NONE: DieFlaws = DieFlaws {
+        rounding: 0.0,
+        vertex_rounding: PerVertex::empty(0.0),
+        worn_face: None,
+        worn_rounding: 0.0,
+        bubble_radius: 0.0,
+        bubble_toward: None,
+        bubble_offset: 0.0,
+        point_mass: 0.0,
+        point_mass_toward: None,
+        point_mass_offset: 0.0,
+        shave_face: None,
+        shave_depth: 0.0,
+    };
+
+    /// Whether the flaw key `key` holds other than its default (none, 0).
+    pub fn states(&self, key: &str) -> bool {
+        let d = &DieFlaws::NONE;
+        match key {
+            "die.rounding" => self.rounding != d.rounding,
+            "die.vertex_rounding" => !self.vertex_rounding.is_empty(),
+            "die.worn_face" => self.worn_face.is_some(),
+            "die.worn_rounding" => self.worn_rounding != d.worn_rounding,
+            "die.bubble_radius" => self.bubble_radius != d.bubble_radius,
+            "die.bubble_toward" => self.bubble_toward.is_some(),
+            "die.bubble_offset" => self.bubble_offset != d.bubble_offset,
+            "die.point_mass" => self.point_mass != d.point_mass,
+            "die.point_mass_toward" => self.point_mass_toward.is_some(),
+            "die.point_mass_offset" => self.point_mass_offset != d.point_mass_offset,
+            "die.shave_face" => self.shave_face.is_some(),
+            "die.shave_depth" => self.shave_depth != d.shave_depth,
+            _ => false,
+        }
+    }
+
+    /// Whether any flaw key is given.
+    pub fn any(&self) -> bool {
+        *self != DieFlaws::NONE
+    }
+
+    /// The value of a flaw key as a number (a face's number; NaN for a list or none), for
+    /// its refusal.
+    fn value(&self, key: &str) -> f64 {
+        let face = |f: Option<u8>| f.map_or(f64::NAN, f64::from);
+        match key {
+            "die.rounding" => self.rounding,
+            "die.worn_face" => face(self.worn_face),
+            "die.worn_rounding" => self.worn_rounding,
+            "die.bubble_radius" => self.bubble_radius,
+            "die.bubble_toward" => face(self.bubble_toward),
+            "die.bubble_offset" => self.bubble_offset,
+            "die.point_mass" => self.point_mass,
+            "die.point_mass_toward" => face(self.point_mass_toward),
+            "die.point_mass_offset" => self.point_mass_offset,
+            "die.shave_face" => face(self.shave_face),
+            "die.shave_depth" => self.shave_depth,
+            _ => f64::NAN,
+        }
+    }
+}
 
 /// The die's kind's key, for its refusals.
 pub const KIND_KEY: Limits = Limits {
@@ -364,6 +586,10 @@ pub struct Die {
     pub height: f64,
     /// g/cm³, a polyhedral die's uniform material.
     pub density: f64,
+    /// cm, a convex die's corners (die frame); none for every other die.
+    pub vertices: Vertices,
+    /// A polyhedral die's flaws (all none: sharp and uniform).
+    pub flaws: DieFlaws,
 }
 
 impl Die {
@@ -393,9 +619,13 @@ impl Die {
 
     /// The numbers a roll of this die can show, in the order its tables list them: what a
     /// tally counts and its χ² has one degree of freedom fewer than. A box shows 1 to 6, a
-    /// d`N` 1 to `N`, the d10 0 to 9 and the d% 0, 10, …, 90.
+    /// d`N` 1 to `N`, the d10 0 to 9 and the d% 0, 10, …, 90, a convex die of `F` faces 1 to
+    /// `F` (none while its corners make no solid).
     pub fn face_numbers(&self) -> &'static [u8] {
-        self.kind.face_numbers()
+        match self.kind {
+            Solid::Convex => &Solid::D20.face_numbers()[..self.vertices.face_count().min(MAX_FACES)],
+            kind => kind.face_numbers(),
+        }
     }
 
     /// Whether it is a polyhedral die (not the box).
@@ -403,23 +633,35 @@ impl Die {
         self.kind != Solid::Box
     }
 
+    /// The keys this die does not read.
+    fn unread(&self) -> Vec<Limits> {
+        match self.kind {
+            Solid::Box => POLYHEDRON_KEYS
+                .iter()
+                .chain(&FLAW_KEYS)
+                .chain([&limits::VERTICES])
+                .copied()
+                .collect(),
+            Solid::Convex => BOX_KEYS.iter().chain([&limits::HEIGHT]).copied().collect(),
+            _ => BOX_KEYS.iter().chain([&limits::VERTICES]).copied().collect(),
+        }
+    }
+
     /// Whether this die reads `key` (a dotted preset key): the box its shape and masses, a
-    /// polyhedral die its height and density; every die its kind.
+    /// regular polyhedral die its height, density and flaws, a convex die its vertices,
+    /// density and flaws; every die its kind.
     pub fn reads(&self, key: &str) -> bool {
-        let unread = if self.is_polyhedral() {
-            &BOX_KEYS[..]
-        } else {
-            &POLYHEDRON_KEYS[..]
-        };
-        !unread
+        !self
+            .unread()
             .iter()
             .any(|l| l.key == key || (key == "die.half_size" && l.key == "die.half_sizes"))
     }
 
     /// Whether a file describing this die states `key`: every key it reads, but the box's
-    /// kind, which a file without `die.kind` is.
+    /// kind, which a file without `die.kind` is, and a flaw it does not have.
     pub fn states(&self, key: &str) -> bool {
-        self.reads(key) && (key != KIND_KEY.key || self.is_polyhedral())
+        let flaw = FLAW_KEYS.iter().any(|l| l.key == key);
+        self.reads(key) && (key != KIND_KEY.key || self.is_polyhedral()) && (!flaw || self.flaws.states(key))
     }
 
     /// The refusal of `key` when this die does not read it: what a file or `--set` says when
@@ -428,53 +670,105 @@ impl Die {
         if self.reads(key) {
             return None;
         }
-        let limits = BOX_KEYS
-            .iter()
-            .chain(&POLYHEDRON_KEYS)
+        let limits = self
+            .unread()
+            .into_iter()
             .find(|l| l.key == key || (key == "die.half_size" && l.key == "die.half_sizes"))?;
         Some(ParamError::refused(
-            *limits,
-            f64::NAN,
+            limits,
+            self.flaws.value(limits.key),
             self.why_unread(limits.key),
         ))
     }
 
     /// Why this die does not read `key`, and the way out.
     fn why_unread(&self, key: &str) -> String {
-        if self.is_polyhedral() {
-            format!(
-                "a {} is a polyhedral die, sized by `die.height` (cm) and made of `die.density` \
-                 (g/cm³); `{key}` describes the box only (leave out `die.kind` for the box)",
-                self.kind.name()
-            )
-        } else {
-            format!(
+        let flaw = FLAW_KEYS.iter().any(|l| l.key == key);
+        match self.kind {
+            Solid::Box if flaw => format!(
+                "`{key}` is a polyhedral die's flaw; the box has its own: extra mass at a corner \
+                 (`die.extra_corner_mass`, g) and rounded corners (`die.corner_radius`, cm) (give \
+                 `die.kind`, e.g. \"d20\", for a polyhedral die)"
+            ),
+            Solid::Box if key == limits::VERTICES.key => "`die.vertices` are a convex die's corners (with \
+                 `die.kind = \"convex\"`); the box is sized by `die.half_sizes`"
+                .to_string(),
+            Solid::Box => format!(
                 "`{key}` sizes a polyhedral die; the box is sized by `die.half_sizes` and weighed \
                  by `die.corner_mass` (give `die.kind`, e.g. \"d20\", for a polyhedral die)"
-            )
+            ),
+            Solid::Convex if key == limits::HEIGHT.key => "a convex die's size is its corners, \
+                 `die.vertices` (cm); `die.height` sizes a regular die (d4 to d20)"
+                .to_string(),
+            Solid::Convex => format!(
+                "a convex die is given by its corners, `die.vertices` (cm), and made of \
+                 `die.density` (g/cm³); `{key}` describes the box only (leave out `die.kind` for the box)"
+            ),
+            kind if key == limits::VERTICES.key => format!(
+                "a {} is a regular die sized by `die.height` (cm); `die.vertices` are a convex \
+                 die's corners (with `die.kind = \"convex\"`)",
+                kind.name()
+            ),
+            kind => format!(
+                "a {} is a polyhedral die, sized by `die.height` (cm) and made of `die.density` \
+                 (g/cm³); `{key}` describes the box only (leave out `die.kind` for the box)",
+                kind.name()
+            ),
         }
     }
 
     /// The first key this die does not read that differs from its default.
     fn check_unread(&self) -> Result<(), ParamError> {
         let d = &Params::DEFAULT.die;
-        let differs: [(Limits, bool); 8] = [
-            (limits::HALF_SIZES, self.half_sizes != d.half_sizes),
-            (limits::CORNER_RADIUS, self.corner_radius != d.corner_radius),
-            (limits::PIP_DIAMETER, self.pip_diameter != d.pip_diameter),
-            (limits::PIP_DEPTH, self.pip_depth != d.pip_depth),
-            (limits::CORNER_MASS, self.corner_mass != d.corner_mass),
-            (
-                limits::EXTRA_CORNER_MASS,
-                self.extra_corner_mass != d.extra_corner_mass,
-            ),
-            (limits::HEIGHT, self.height != d.height),
-            (limits::DENSITY, self.density != d.density),
-        ];
-        for (limits, differs) in differs {
-            if differs && let Some(refused) = self.refusal(limits.key) {
+        let differs = |key: &str| match key {
+            "die.half_sizes" => self.half_sizes != d.half_sizes,
+            "die.corner_radius" => self.corner_radius != d.corner_radius,
+            "die.pip_diameter" => self.pip_diameter != d.pip_diameter,
+            "die.pip_depth" => self.pip_depth != d.pip_depth,
+            "die.corner_mass" => self.corner_mass != d.corner_mass,
+            "die.extra_corner_mass" => self.extra_corner_mass != d.extra_corner_mass,
+            "die.height" => self.height != d.height,
+            "die.density" => self.density != d.density,
+            "die.vertices" => self.vertices != d.vertices,
+            flaw => self.flaws.states(flaw),
+        };
+        let keys = BOX_KEYS
+            .iter()
+            .chain(&POLYHEDRON_KEYS)
+            .chain([&limits::VERTICES])
+            .chain(&FLAW_KEYS);
+        for limits in keys {
+            if differs(limits.key)
+                && let Some(refused) = self.refusal(limits.key)
+            {
                 return Err(refused);
             }
+        }
+        Ok(())
+    }
+
+    /// A polyhedral die's vertices and flaws each in its range (their sizes against the solid
+    /// are the body's to check, `Params::check_polyhedral_die`).
+    fn check_ranges(&self) -> Result<(), ParamError> {
+        for (k, point) in self.vertices.points().iter().enumerate() {
+            for x in point {
+                limits::VERTICES.check_as(&format!("{}.{}", limits::VERTICES.key, k + 1), *x)?;
+            }
+        }
+        let f = &self.flaws;
+        for (limits, value) in [
+            (limits::ROUNDING, f.rounding),
+            (limits::WORN_ROUNDING, f.worn_rounding),
+            (limits::BUBBLE_RADIUS, f.bubble_radius),
+            (limits::BUBBLE_OFFSET, f.bubble_offset),
+            (limits::POINT_MASS, f.point_mass),
+            (limits::POINT_MASS_OFFSET, f.point_mass_offset),
+            (limits::SHAVE_DEPTH, f.shave_depth),
+        ] {
+            limits.check(value)?;
+        }
+        for (k, &r) in f.vertex_rounding.as_slice().iter().enumerate() {
+            limits::VERTEX_ROUNDING.check_as(&format!("{}.{}", limits::VERTEX_ROUNDING.key, k + 1), r)?;
         }
         Ok(())
     }
@@ -530,6 +824,32 @@ struct DieKeys {
     height: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     density: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    vertices: Option<Vec<[f64; 3]>>,
+    #[serde(default, skip_serializing_if = "is_zero")]
+    rounding: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    vertex_rounding: Option<Vec<f64>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    worn_face: Option<u8>,
+    #[serde(default, skip_serializing_if = "is_zero")]
+    worn_rounding: f64,
+    #[serde(default, skip_serializing_if = "is_zero")]
+    bubble_radius: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    bubble_toward: Option<u8>,
+    #[serde(default, skip_serializing_if = "is_zero")]
+    bubble_offset: f64,
+    #[serde(default, skip_serializing_if = "is_zero")]
+    point_mass: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    point_mass_toward: Option<u8>,
+    #[serde(default, skip_serializing_if = "is_zero")]
+    point_mass_offset: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    shave_face: Option<u8>,
+    #[serde(default, skip_serializing_if = "is_zero")]
+    shave_depth: f64,
 }
 
 fn is_zero(x: &f64) -> bool {
@@ -561,18 +881,45 @@ impl TryFrom<DieKeys> for Die {
             kind: k.kind.unwrap_or(d.kind),
             height: k.height.unwrap_or(d.height),
             density: k.density.unwrap_or(d.density),
+            vertices: match &k.vertices {
+                Some(points) => Vertices::new(points)?,
+                None => Vertices::NONE,
+            },
+            flaws: DieFlaws {
+                rounding: k.rounding,
+                vertex_rounding: match &k.vertex_rounding {
+                    Some(radii) => PerVertex::new(radii, 0.0).ok_or(TOO_MANY_RADII)?,
+                    None => PerVertex::empty(0.0),
+                },
+                worn_face: k.worn_face,
+                worn_rounding: k.worn_rounding,
+                bubble_radius: k.bubble_radius,
+                bubble_toward: k.bubble_toward,
+                bubble_offset: k.bubble_offset,
+                point_mass: k.point_mass,
+                point_mass_toward: k.point_mass_toward,
+                point_mass_offset: k.point_mass_offset,
+                shave_face: k.shave_face,
+                shave_depth: k.shave_depth,
+            },
         })
     }
 }
 
+/// Why a list of radii cannot be held: more than [`MAX_DIE_VERTICES`].
+const TOO_MANY_RADII: &str =
+    "at most 20 radii in `die.vertex_rounding`: one per vertex, and a die has at most 20";
+
 impl From<Die> for DieKeys {
     /// Equal half sizes are written as the one `half_size`, and zero radius and pips not at
     /// all: the paper's die serialises byte for byte as before these keys existed. A box is
-    /// written without its kind, height and density; a polyhedral die with only those.
+    /// written without its kind, height and density; a polyhedral die with only those (a
+    /// convex die with its vertices for its height) and the flaws it has.
     fn from(d: Die) -> DieKeys {
         let [x, y, z] = d.half_sizes;
         let cube = x == y && y == z;
         let box_ = !d.is_polyhedral();
+        let f = &d.flaws;
         DieKeys {
             half_size: (box_ && cube).then_some(x),
             half_sizes: (box_ && !cube).then_some(d.half_sizes),
@@ -582,8 +929,21 @@ impl From<Die> for DieKeys {
             corner_mass: box_.then_some(d.corner_mass),
             extra_corner_mass: box_.then_some(d.extra_corner_mass),
             kind: (!box_).then_some(d.kind),
-            height: (!box_).then_some(d.height),
+            height: (!box_ && d.kind != Solid::Convex).then_some(d.height),
             density: (!box_).then_some(d.density),
+            vertices: (d.kind == Solid::Convex).then(|| d.vertices.points().to_vec()),
+            rounding: f.rounding,
+            vertex_rounding: (!f.vertex_rounding.is_empty()).then(|| f.vertex_rounding.as_slice().to_vec()),
+            worn_face: f.worn_face,
+            worn_rounding: f.worn_rounding,
+            bubble_radius: f.bubble_radius,
+            bubble_toward: f.bubble_toward,
+            bubble_offset: f.bubble_offset,
+            point_mass: f.point_mass,
+            point_mass_toward: f.point_mass_toward,
+            point_mass_offset: f.point_mass_offset,
+            shave_face: f.shave_face,
+            shave_depth: f.shave_depth,
         }
     }
 }
@@ -969,6 +1329,8 @@ impl Params {
             // A standard ("16 mm") die of cast acrylic resin (docs/dice.md).
             height: 1.6,
             density: 1.18,
+            vertices: Vertices::NONE,
+            flaws: DieFlaws::NONE,
         },
         ground: Ground {
             stiffness: 500_000.0,
@@ -1002,8 +1364,12 @@ impl Params {
         // A key the solid does not read is refused first: its range is no matter then.
         d.check_unread()?;
         if d.is_polyhedral() {
-            limits::HEIGHT.check(d.height)?;
+            if d.kind != Solid::Convex {
+                limits::HEIGHT.check(d.height)?;
+            }
             limits::DENSITY.check(d.density)?;
+            d.check_ranges()?;
+            self.check_polyhedral_die()?;
         }
         limits::HALF_SIZES.check_components(XYZ, &d.half_sizes)?;
         limits::CORNER_RADIUS.check(d.corner_radius)?;
@@ -1232,8 +1598,12 @@ mod tests {
         assert_eq!(numbers(Solid::D20), (1..=20).collect::<Vec<u8>>());
         for kind in Solid::ALL {
             assert_eq!(Solid::from_name(kind.name()), Some(kind));
+        }
+        for kind in Solid::ALL.into_iter().filter(|&k| k != Solid::Convex) {
             dice(kind).validate().unwrap();
         }
+        // A convex die without its corners is no die yet.
+        assert_eq!(dice(Solid::Convex).validate().unwrap_err().key, "die.vertices");
     }
 
     #[test]

@@ -18,8 +18,7 @@ use super::sim::RUNAWAY_ENERGY_FACTOR;
 use super::stopping::StopRule;
 use nalgebra::{Matrix3, Vector3};
 
-/// The most faces a body may number (a d20's).
-pub const MAX_FACES: usize = 20;
+pub use super::params::MAX_FACES;
 
 /// A rigid body of `N` contact points (4 ≤ N ≤ 64) with its mass properties and faces.
 #[derive(Debug, Clone, Copy, PartialEq)]

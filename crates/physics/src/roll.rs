@@ -14,6 +14,7 @@ use super::model::check_setup;
 use super::params::{Ground, ParamError, Params};
 use super::point_roll::PointRoll;
 use super::sim::{ContactForce, EnergyLedger, Outcome, Simulation};
+use super::stability_contact::BodyFigures;
 use super::stopping::StopRule;
 use nalgebra::{Matrix3, Rotation3, Vector2, Vector3};
 
@@ -31,7 +32,17 @@ pub struct Roll {
 #[allow(clippy::large_enum_variant)]
 enum Engine {
     Box(Simulation),
-    Die { params: Params, roll: DiceRoll },
+    Die {
+        params: Params,
+        roll: DiceRoll,
+        /// cm, each vertex's rounding radius (the body's points past them are the padding
+        /// `lanes::dice_body` adds, at the centre of mass, never touching: no readout shows
+        /// them); g, the mass one point carries; cm, how far a point may move in a step
+        /// (docs/model.md, "A polyhedral die's readings").
+        radii: Vec<f64>,
+        point_mass: f64,
+        travel_allowed: f64,
+    },
 }
 
 /// `$body` with `$r` bound to the engine's roll, the box's [`Simulation`] or a die's
@@ -81,9 +92,14 @@ impl Roll {
                     DiceRoll::P20(started(PointRoll::new_unchecked(params, &b, initial), ledger))
                 }
             };
+            let figures = BodyFigures::of(params);
+            let radii = figures.points.iter().flatten().map(|&(_, r)| r).collect();
             Engine::Die {
                 params: *params,
                 roll,
+                radii,
+                point_mass: figures.point_mass,
+                travel_allowed: figures.travel_allowed,
             }
         } else if ledger {
             Engine::Box(Simulation::new_unchecked(params, initial))
@@ -161,10 +177,19 @@ impl Roll {
         Rotation3::from_matrix_unchecked(matrix)
     }
 
+    /// How many contact points it has: the box's 8 corners, a die's vertices.
+    pub fn point_count(&self) -> usize {
+        match &self.engine {
+            Engine::Box(_) => 8,
+            Engine::Die { radii, .. } => radii.len(),
+        }
+    }
+
     /// cm, the contact points about the centre of mass, world frame: the box's corners 1..8,
     /// a die's vertices (a rounded one's sphere centres) in its solid's order.
     pub fn point_offsets(&self) -> Vec<Vector3<f64>> {
-        on_engine!(&self.engine, r => r.state().corner_offsets.to_vec())
+        let count = self.point_count();
+        on_engine!(&self.engine, r => r.state().corner_offsets[..count].to_vec())
     }
 
     /// cm, the contact points' world positions.
@@ -176,12 +201,14 @@ impl Roll {
     /// Each point's contact force split into normal, damping and friction, at the current
     /// state (the forces the next step applies).
     pub fn contact_forces(&self) -> Vec<ContactForce> {
-        on_engine!(&self.engine, r => r.contact_forces().to_vec())
+        let count = self.point_count();
+        on_engine!(&self.engine, r => r.contact_forces()[..count].to_vec())
     }
 
     /// cm, each point's tangential spring in the table's plane (0 under the paper's law).
     pub fn tangential_springs(&self) -> Vec<Vector2<f64>> {
-        on_engine!(&self.engine, r => r.tangential_springs().to_vec())
+        let count = self.point_count();
+        on_engine!(&self.engine, r => r.tangential_springs()[..count].to_vec())
     }
 
     /// Whether any point is below the table now.
@@ -280,7 +307,7 @@ impl Roll {
     pub fn set_ground(&mut self, ground: Ground) -> Result<(), ParamError> {
         match &mut self.engine {
             Engine::Box(sim) => sim.set_ground(ground),
-            Engine::Die { params, roll } => {
+            Engine::Die { params, roll, .. } => {
                 let mut changed = *params;
                 changed.ground = ground;
                 changed.validate()?;
@@ -301,4 +328,136 @@ impl Roll {
 /// `roll`, keeping the energy ledger if `ledger`.
 fn started<const N: usize>(roll: PointRoll<N>, ledger: bool) -> PointRoll<N> {
     if ledger { roll.with_ledger() } else { roll }
+}
+
+/// What every readout of a rolling die reads, whatever engine rolls it: the box's
+/// [`Simulation`] (a batch's, a test's) or any die's [`Roll`]. The quantities a plot or a trace
+/// shows (`dicesim_setup::quantity`) and the separation of two throws read a die through it.
+pub trait RollingDie {
+    fn params(&self) -> &Params;
+    /// Steps of Δt taken since the start.
+    fn steps(&self) -> u64;
+    /// cm, the centre of mass; cm/s, its velocity; g·cm²/s, L about the centre of mass;
+    /// rad/s, ω (world frame).
+    fn position(&self) -> Vector3<f64>;
+    fn velocity(&self) -> Vector3<f64>;
+    fn angular_momentum(&self) -> Vector3<f64>;
+    fn angular_velocity(&self) -> Vector3<f64>;
+    /// cm, the contact points (sphere centres) about the centre of mass, world frame.
+    fn point_offsets(&self) -> Vec<Vector3<f64>>;
+    /// cm, their world positions.
+    fn point_positions(&self) -> Vec<Vector3<f64>> {
+        let centre = self.position();
+        self.point_offsets().iter().map(|r| centre + r).collect()
+    }
+    /// cm, each point's rounding radius: its sphere reaches this far below its centre.
+    fn point_radii(&self) -> Vec<f64>;
+    /// dyn, the contact force on each point `(friction x, friction y, P)`.
+    fn point_forces(&self) -> Vec<Vector3<f64>>;
+    /// The energy terms now, erg.
+    fn energy(&self) -> Energy;
+    /// The body frame's turn into the world ([`Roll::orientation`]).
+    fn orientation(&self) -> Rotation3<f64>;
+    /// g, the mass one point carries on its own spring (the box's corner mass, a die's
+    /// `M/N`), and cm, how far a point may move in one step (the box's smallest half size, a
+    /// die's resting height): the readings' own (docs/model.md, "Stability").
+    fn point_mass(&self) -> f64;
+    fn travel_allowed(&self) -> f64;
+}
+
+impl RollingDie for Simulation {
+    fn params(&self) -> &Params {
+        Simulation::params(self)
+    }
+    fn steps(&self) -> u64 {
+        self.state().step
+    }
+    fn angular_momentum(&self) -> Vector3<f64> {
+        self.state().angular_momentum
+    }
+    fn position(&self) -> Vector3<f64> {
+        self.state().position
+    }
+    fn velocity(&self) -> Vector3<f64> {
+        self.state().velocity
+    }
+    fn angular_velocity(&self) -> Vector3<f64> {
+        Simulation::angular_velocity(self)
+    }
+    fn point_offsets(&self) -> Vec<Vector3<f64>> {
+        self.state().corner_offsets.to_vec()
+    }
+    fn point_radii(&self) -> Vec<f64> {
+        vec![Simulation::params(self).die.corner_radius; 8]
+    }
+    fn point_forces(&self) -> Vec<Vector3<f64>> {
+        self.state().corner_forces.to_vec()
+    }
+    fn energy(&self) -> Energy {
+        Simulation::energy(self)
+    }
+    fn orientation(&self) -> Rotation3<f64> {
+        Rotation3::from_matrix_unchecked(Matrix3::from_columns(&self.body_axes()))
+    }
+    fn point_mass(&self) -> f64 {
+        Simulation::params(self).die.corner_mass
+    }
+    fn travel_allowed(&self) -> f64 {
+        Simulation::params(self).die.smallest_half_size()
+    }
+}
+
+impl RollingDie for Roll {
+    fn params(&self) -> &Params {
+        Roll::params(self)
+    }
+    fn steps(&self) -> u64 {
+        Roll::steps(self)
+    }
+    fn angular_momentum(&self) -> Vector3<f64> {
+        Roll::angular_momentum(self)
+    }
+    fn point_positions(&self) -> Vec<Vector3<f64>> {
+        Roll::point_positions(self)
+    }
+    fn position(&self) -> Vector3<f64> {
+        Roll::position(self)
+    }
+    fn velocity(&self) -> Vector3<f64> {
+        Roll::velocity(self)
+    }
+    fn angular_velocity(&self) -> Vector3<f64> {
+        Roll::angular_velocity(self)
+    }
+    fn point_offsets(&self) -> Vec<Vector3<f64>> {
+        Roll::point_offsets(self)
+    }
+    fn point_radii(&self) -> Vec<f64> {
+        match &self.engine {
+            Engine::Box(sim) => sim.point_radii(),
+            Engine::Die { radii, .. } => radii.clone(),
+        }
+    }
+    fn point_forces(&self) -> Vec<Vector3<f64>> {
+        let count = self.point_count();
+        on_engine!(&self.engine, r => r.state().corner_forces[..count].to_vec())
+    }
+    fn energy(&self) -> Energy {
+        Roll::energy(self)
+    }
+    fn orientation(&self) -> Rotation3<f64> {
+        Roll::orientation(self)
+    }
+    fn point_mass(&self) -> f64 {
+        match &self.engine {
+            Engine::Box(sim) => sim.point_mass(),
+            Engine::Die { point_mass, .. } => *point_mass,
+        }
+    }
+    fn travel_allowed(&self) -> f64 {
+        match &self.engine {
+            Engine::Box(sim) => sim.travel_allowed(),
+            Engine::Die { travel_allowed, .. } => *travel_allowed,
+        }
+    }
 }

@@ -2,9 +2,8 @@
 //! (docs/model.md, "Stability"): one reading per cause the allowed ranges make possible.
 
 use super::initial::InitialCondition;
-use super::model::Body;
 use super::params::{ContactLaw, Params};
-use super::stability_contact::{SpringModes, spring_friction_modes};
+use super::stability_contact::{BodyFigures, SpringModes, spring_friction_modes_of};
 use serde::Serialize;
 use std::fmt;
 
@@ -215,33 +214,27 @@ const CAUSAL_ORDER: [Limit; LIMITS] = [
 
 /// The readings of one setup for any start: what depends on the body alone, worked out once
 /// (a batch asks it of every roll).
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct StabilityCheck {
     params: Params,
-    body: Body,
+    body: BodyFigures,
     /// g, the least mass a sideways push at a corner moves, `(1/M + ℓ²/I_min)⁻¹`: ℓ the
     /// farthest contact point's reach from the centre of mass, pushed across the axis of
     /// least inertia.
     sideways_mass: f64,
-    /// cm, how deep a corner may press the table before the die's centre of mass could
-    /// reach it, `2·a_min − r` (docs/model.md, "Stability").
-    reach: f64,
     /// The spring-friction law's modes; `None` under the paper's law.
     spring_modes: Option<SpringModes>,
 }
 
 impl StabilityCheck {
     pub fn new(p: &Params) -> StabilityCheck {
-        let body = Body::new(p);
-        // Distances and principal moments do not depend on the orientation.
-        let offsets = body.start_offsets(&InitialCondition::default());
-        let reach = offsets.iter().map(|k| k.norm()).fold(0.0, f64::max) + p.die.corner_radius;
+        let body = BodyFigures::of(p);
+        let reach = body.reach;
         StabilityCheck {
             params: *p,
+            sideways_mass: 1.0 / (1.0 / body.mass + reach * reach / body.least_inertia),
+            spring_modes: spring_friction_modes_of(p, &body),
             body,
-            sideways_mass: 1.0 / (1.0 / body.mass() + reach * reach / body.least_inertia(&offsets)),
-            reach: 2.0 * p.die.smallest_half_size() - p.die.corner_radius,
-            spring_modes: spring_friction_modes(p),
         }
     }
 
@@ -250,16 +243,16 @@ impl StabilityCheck {
         let (p, body) = (&self.params, &self.body);
         let dt = p.integrator.dt;
         // How far a corner may move per step: the smallest half size (a cube's half size).
-        let a = p.die.smallest_half_size();
+        let a = body.travel_allowed;
         // rad/s, one corner on its spring.
-        let corner_frequency = (p.ground.stiffness / p.die.corner_mass).sqrt();
+        let corner_frequency = (p.ground.stiffness / body.point_mass).sqrt();
         // The centre's speed when the lowest corner first reaches the table.
         let drop = (initial.height + body.lowest_point_at_start(initial)).max(0.0);
         let v = initial.velocity;
         let vz_impact = (v[2] * v[2] + 2.0 * p.world.gravity * drop).sqrt();
         let translation = (v[0] * v[0] + v[1] * v[1] + vz_impact * vz_impact).sqrt();
-        let spin_rate = initial.angular_velocity_for(body.mean_inertia()).norm();
-        let spin = body.corner_speed_of_spin(spin_rate);
+        let spin_rate = initial.angular_velocity_for(body.mean_inertia).norm();
+        let spin = body.point_speed_of_spin(spin_rate);
         let spin_dominated = spin > translation;
         let corner_speed = translation + spin;
         // A corner pressing in at u_z feels k·d·(1 + γ·u_z): while it strikes, the damping
@@ -294,15 +287,15 @@ impl StabilityCheck {
                 }
                 readings[Limit::ImpactDepth as usize] = Some(reading(
                     Limit::ImpactDepth,
-                    vz_impact * (body.mass() / k).sqrt(),
-                    IMPACT_DEPTH_LIMIT * self.reach,
+                    vz_impact * (body.mass / k).sqrt(),
+                    IMPACT_DEPTH_LIMIT * body.depth_allowed,
                     vz_impact,
                 ));
             }
             _ => {
                 readings[Limit::ContactMode as usize] = Some(reading(
                     Limit::ContactMode,
-                    body.rocking_frequency() * striking * dt,
+                    body.rocking_frequency * striking * dt,
                     CONTACT_MODE_LIMIT,
                     corner_speed,
                 ));
@@ -320,8 +313,8 @@ impl StabilityCheck {
                 ));
                 readings[Limit::ImpactDepth as usize] = Some(reading(
                     Limit::ImpactDepth,
-                    vz_impact * (body.mass() / (k * (1.0 + p.ground.damping * vz_impact))).sqrt(),
-                    IMPACT_DEPTH_LIMIT * self.reach,
+                    vz_impact * (body.mass / (k * (1.0 + p.ground.damping * vz_impact))).sqrt(),
+                    IMPACT_DEPTH_LIMIT * body.depth_allowed,
                     vz_impact,
                 ));
             }

@@ -19,7 +19,7 @@ use dicesim_experiment::one_roll::OneRoll;
 use dicesim_experiment::real_data::Dataset;
 use dicesim_experiment::trace as trace_rows;
 use dicesim_experiment::{Axis, Engine, MapSpec, Method, RunOptions, provenance, run_map_with};
-use dicesim_physics::Simulation;
+use dicesim_physics::Roll;
 use dicesim_setup::number::StepClock;
 use dicesim_setup::preset::refuse_unapplied;
 use dicesim_setup::random::{check_drawn_setup, seed_given, unapplied_when_drawn, unapplied_when_fixed};
@@ -93,18 +93,18 @@ pub(crate) fn trace<'py>(
         ));
     }
     let params = setup.preset.params();
-    let mut sim = Simulation::new(&params, &setup.preset.initial).map_err(value_error)?;
+    let mut roll = Roll::new(&params, &setup.preset.initial).map_err(value_error)?;
     let clock = StepClock::new(params.integrator.dt);
     let (step_bytes, value_bytes) = run_interruptible(py, |stop| {
         let (mut step_bytes, mut value_bytes) = (Vec::new(), Vec::new());
         // A stop ends the rows early; what the caller sees is the interrupt.
-        let _ = trace_rows::follow(&mut sim, steps, every, &mut |sim| {
+        let _ = trace_rows::follow(&mut roll, steps, every, &mut |roll| {
             if stop.load(std::sync::atomic::Ordering::Relaxed) {
                 return Err(());
             }
-            step_bytes.extend(sim.state().step.to_ne_bytes());
+            step_bytes.extend(roll.steps().to_ne_bytes());
             value_bytes.extend(
-                trace_rows::values(sim, &clock)
+                trace_rows::values(roll, &clock)
                     .into_iter()
                     .flat_map(f64::to_ne_bytes),
             );
@@ -113,7 +113,7 @@ pub(crate) fn trace<'py>(
         (step_bytes, value_bytes)
     })?;
     Ok((
-        trace_rows::header(),
+        trace_rows::header_for(&params),
         PyBytes::new(py, &step_bytes),
         PyBytes::new(py, &value_bytes),
     ))

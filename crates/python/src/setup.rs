@@ -126,7 +126,8 @@ impl Setup {
             | Shape::Optional { .. }
             | Shape::Vector { .. }
             | Shape::Range(_)
-            | Shape::PerCorner(_) => {
+            | Shape::PerCorner(_)
+            | Shape::List { .. } => {
                 row.set_item("min", spec.limits.min)?;
                 row.set_item("max", spec.limits.max)?;
             }
@@ -180,6 +181,13 @@ fn python_value(py: Python<'_>, value: Value) -> PyResult<Bound<'_, PyAny>> {
         Value::Seed(s) => s.into_pyobject(py)?.into_any(),
         Value::Flag(b) => pyo3::types::PyBool::new(py, b).to_owned().into_any(),
         Value::PerCorner(v) => v.to_vec().into_pyobject(py)?.into_any(),
+        Value::List(list) if list.width() > 1 => list
+            .items()
+            .map(<[f64]>::to_vec)
+            .collect::<Vec<_>>()
+            .into_pyobject(py)?
+            .into_any(),
+        Value::List(list) => list.values().to_vec().into_pyobject(py)?.into_any(),
         Value::Absent => py.None().into_bound(py),
     })
 }

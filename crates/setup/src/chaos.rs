@@ -5,7 +5,7 @@
 //! centre-of-mass velocity and its spin (ω, or L when the start states L) are each the first
 //! die's times (1 + ε). The orientation is the same. So at t = 0 the centres are ε·h apart.
 
-use dicesim_physics::{InitialCondition, Limits, Outcome, Params, Simulation};
+use dicesim_physics::{InitialCondition, Limits, Outcome, Params, Roll, RollingDie};
 use serde::Serialize;
 
 /// The range a user may set ε in: from a few units in the last place of a double to 10%.
@@ -41,15 +41,14 @@ pub struct Separation {
     pub angle: f64,
 }
 
-/// The separation of two dice at their current states.
-pub fn separation(a: &Simulation, b: &Simulation) -> Separation {
-    let centre = (a.state().position - b.state().position).norm();
+/// The separation of two dice at their current states (the box's `Simulation`s or any
+/// die's `Roll`s).
+pub fn separation(a: &dyn RollingDie, b: &dyn RollingDie) -> Separation {
+    let centre = (a.position() - b.position()).norm();
     // ‖R₁ − R₂‖_F = 2√2·sin(θ/2): exact for tiny angles, where acos of the trace is not.
-    let frobenius = a
-        .body_axes()
-        .iter()
-        .zip(b.body_axes())
-        .map(|(p, q)| (p - q).norm_squared())
+    let (ra, rb) = (a.orientation(), b.orientation());
+    let frobenius = (0..3)
+        .map(|i| (ra.matrix().column(i) - rb.matrix().column(i)).norm_squared())
         .sum::<f64>()
         .sqrt();
     let angle = 2.0 * (frobenius / (2.0 * std::f64::consts::SQRT_2)).min(1.0).asin();
@@ -63,8 +62,8 @@ pub fn roll_twins(
     initial: &InitialCondition,
     epsilon: f64,
 ) -> (Outcome, Outcome, Vec<Separation>) {
-    let mut a = Simulation::new_unchecked(params, initial);
-    let mut b = Simulation::new_unchecked(params, &perturbed(initial, epsilon));
+    let mut a = Roll::new_unchecked(params, initial);
+    let mut b = Roll::new_unchecked(params, &perturbed(initial, epsilon));
     let mut trace = vec![separation(&a, &b)];
     loop {
         if let (Some(oa), Some(ob)) = (a.outcome(), b.outcome()) {

@@ -26,6 +26,16 @@ pub fn fmt_num(v: f64) -> String {
     }
 }
 
+/// A number a die shows, as a player reads it off the die (docs/dice.md): the d%'s tens
+/// with both digits (`00`, `40`, `90`), any other die's number as it is (`0` to `9` on the
+/// d10, `20` on the d20).
+pub fn die_number(kind: dicesim_physics::Solid, number: u8) -> String {
+    match kind {
+        dicesim_physics::Solid::Percentile => format!("{number:02}"),
+        _ => number.to_string(),
+    }
+}
+
 /// A number exactly as given, for a value a person typed (a fit's bound, a range's end):
 /// the shortest digits that read back as it, with an exponent where a person reads it
 /// better (`1e-200`, not a 202-character decimal). The parameter errors' own formatting, so
@@ -122,7 +132,17 @@ pub fn human_bytes(bytes: u64) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{Real, StepClock, fmt_exact, fmt_num};
+    use super::{Real, StepClock, die_number, fmt_exact, fmt_num};
+
+    #[test]
+    fn a_percentile_die_reads_with_two_digits_and_every_other_die_as_it_is() {
+        use dicesim_physics::Solid;
+        assert_eq!(die_number(Solid::Percentile, 0), "00");
+        assert_eq!(die_number(Solid::Percentile, 90), "90");
+        assert_eq!(die_number(Solid::D10, 0), "0");
+        assert_eq!(die_number(Solid::D20, 20), "20");
+        assert_eq!(die_number(Solid::Box, 6), "6");
+    }
 
     #[test]
     fn reals_keep_their_point_and_read_back_exactly() {

@@ -2,7 +2,7 @@
 //! read from the die's state. The roll CSV's columns and the explorer's plot both come from
 //! [`QUANTITIES`], so a quantity added here appears in both.
 
-use dicesim_physics::Simulation;
+use dicesim_physics::RollingDie;
 use dicesim_physics::stability::{
     CONTACT_MODE_LIMIT, CORNER_TRAVEL_LIMIT, DAMPING_LIMIT, FRICTION_CHATTER_LIMIT,
 };
@@ -19,8 +19,9 @@ pub struct Quantity {
     pub unit: &'static str,
     /// The roll CSV's column: a name with the unit in it, e.g. `speed_cm_per_s`.
     pub column: &'static str,
-    /// Reads the quantity from the simulation's current state.
-    pub read: fn(&Simulation) -> f64,
+    /// Reads the quantity from the die's current state (the box's `Simulation` or any die's
+    /// `Roll`).
+    pub read: fn(&dyn RollingDie) -> f64,
 }
 
 /// How many quantities [`QUANTITIES`] has.
@@ -41,7 +42,7 @@ pub const QUANTITIES: [Quantity; QUANTITY_COUNT] = [
         short: "height",
         unit: "cm",
         column: "height_cm",
-        read: |s| s.state().position.z,
+        read: |s| s.position().z,
     },
     Quantity {
         name: "lowest corner",
@@ -55,7 +56,7 @@ pub const QUANTITIES: [Quantity; QUANTITY_COUNT] = [
         short: "speed",
         unit: "cm/s",
         column: "speed_cm_per_s",
-        read: |s| s.state().velocity.norm(),
+        read: |s| s.velocity().norm(),
     },
     Quantity {
         name: "spin rate",
@@ -69,7 +70,7 @@ pub const QUANTITIES: [Quantity; QUANTITY_COUNT] = [
         short: "force",
         unit: "dyn",
         column: "contact_force_dyn",
-        read: |s| s.state().corner_forces.iter().sum::<Vector3<f64>>().norm(),
+        read: |s| s.point_forces().iter().sum::<Vector3<f64>>().norm(),
     },
     Quantity {
         name: "translational energy",
@@ -136,8 +137,8 @@ pub const QUANTITIES: [Quantity; QUANTITY_COUNT] = [
     },
 ];
 
-/// Every quantity of the simulation's current state.
-pub fn read_all(sim: &Simulation) -> Readings {
+/// Every quantity of the die's current state.
+pub fn read_all(sim: &dyn RollingDie) -> Readings {
     QUANTITIES.map(|q| (q.read)(sim))
 }
 
@@ -147,46 +148,45 @@ pub fn label(q: &Quantity) -> String {
 }
 
 /// cm, the die's lowest point above the table (negative: pressed into it). A rounded
-/// body's corner spheres reach `corner_radius` below their centres.
-fn lowest_point(sim: &Simulation) -> f64 {
-    let lowest = sim
-        .corner_positions()
+/// body's contact spheres reach their radius below their centres.
+fn lowest_point(sim: &dyn RollingDie) -> f64 {
+    let centre = sim.position();
+    sim.point_offsets()
         .iter()
-        .map(|c| c.z)
-        .fold(f64::INFINITY, f64::min);
-    lowest - sim.params().die.corner_radius
+        .zip(sim.point_radii())
+        .map(|(r, radius)| (centre + r).z - radius)
+        .fold(f64::INFINITY, f64::min)
 }
 
-/// cm/s, each corner's velocity `v + ω × r` now.
-fn corner_velocities(sim: &Simulation) -> [Vector3<f64>; 8] {
-    let (v, w) = (sim.state().velocity, sim.angular_velocity());
-    sim.state().corner_offsets.map(|r| v + w.cross(&r))
+/// cm/s, each contact point's velocity `v + ω × r` now.
+fn corner_velocities(sim: &dyn RollingDie) -> Vec<Vector3<f64>> {
+    let (v, w) = (sim.velocity(), sim.angular_velocity());
+    sim.point_offsets().iter().map(|r| v + w.cross(r)).collect()
 }
 
-/// rad/s, one corner on its spring.
-fn corner_frequency(sim: &Simulation) -> f64 {
-    let p = sim.params();
-    (p.ground.stiffness / p.die.corner_mass).sqrt()
+/// rad/s, one point on its spring.
+fn corner_frequency(sim: &dyn RollingDie) -> f64 {
+    (sim.params().ground.stiffness / sim.point_mass()).sqrt()
 }
 
 /// `ω_rock·Δt` against its limit: a property of the table and Δt, changed by a mid-roll edit
 /// (the prediction's stiffening by a striking corner, `√(1 + γ·u_z)`, is its first impact's).
-fn contact_mode_load(sim: &Simulation) -> f64 {
+fn contact_mode_load(sim: &dyn RollingDie) -> f64 {
     sim.params().stability_number() / CONTACT_MODE_LIMIT
 }
 
-/// How far the fastest corner moves in one step now, against the smallest half size.
-fn corner_travel_load(sim: &Simulation) -> f64 {
+/// How far the fastest point moves in one step now, against the distance it may.
+fn corner_travel_load(sim: &dyn RollingDie) -> f64 {
     let p = sim.params();
     let fastest = corner_velocities(sim)
         .iter()
         .map(|u| u.norm())
         .fold(0.0, f64::max);
-    fastest * p.integrator.dt / (CORNER_TRAVEL_LIMIT * p.die.smallest_half_size())
+    fastest * p.integrator.dt / (CORNER_TRAVEL_LIMIT * sim.travel_allowed())
 }
 
-/// `γ·u_z` of the corner falling fastest now, against `max(1, 2/(√(k/m)·Δt))`.
-fn damping_load(sim: &Simulation) -> f64 {
+/// `γ·u_z` of the point falling fastest now, against `max(1, 2/(√(k/m)·Δt))`.
+fn damping_load(sim: &dyn RollingDie) -> f64 {
     let p = sim.params();
     let falling = corner_velocities(sim).iter().map(|u| -u.z).fold(0.0, f64::max);
     let allowed = DAMPING_LIMIT.max(2.0 / (corner_frequency(sim) * p.integrator.dt));
@@ -194,7 +194,7 @@ fn damping_load(sim: &Simulation) -> f64 {
 }
 
 /// `μ·√(k/m)·Δt` against its limit.
-fn friction_load(sim: &Simulation) -> f64 {
+fn friction_load(sim: &dyn RollingDie) -> f64 {
     let p = sim.params();
     p.ground.friction * corner_frequency(sim) * p.integrator.dt / FRICTION_CHATTER_LIMIT
 }

@@ -89,6 +89,13 @@ pub enum Shape {
     Optional {
         absent: &'static str,
     },
+    /// A list of up to `most` items, each `width` numbers (1: a number per vertex; 3: a point
+    /// `[x, y, z]`), none by default. Components are named `1`, `2`, … (from 1, as vertices
+    /// are).
+    List {
+        width: usize,
+        most: usize,
+    },
 }
 
 /// How the explorer steps a value under ←/→: by a fixed amount, or by a factor for values
@@ -100,6 +107,9 @@ pub enum Nudge {
 }
 
 /// A value as a setup stores it.
+// A list's numbers are held in place, so a `Value` stays `Copy`; values are read one at a
+// time and never stored by the many, so its size costs nothing.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Value {
     Number(f64),
@@ -109,8 +119,64 @@ pub enum Value {
     Seed(u64),
     Flag(bool),
     PerCorner([f64; 8]),
+    /// A list of items of one width ([`Shape::List`]).
+    List(Numbers),
     /// An optional value that is not given.
     Absent,
+}
+
+/// The numbers of a [`Value::List`], held in place (a [`Value`] is `Copy`): up to 20 items
+/// of one width, 1 or 3.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Numbers {
+    values: [f64; 3 * params::MAX_DIE_VERTICES],
+    len: u8,
+    width: u8,
+}
+
+impl Numbers {
+    /// The items `items`, each `width` numbers; at most 20 are kept (a die's vertices, which
+    /// the physics holds to 20).
+    pub fn new<const W: usize>(items: &[[f64; W]]) -> Numbers {
+        let mut values = [0.0; 3 * params::MAX_DIE_VERTICES];
+        let kept = items.len().min(params::MAX_DIE_VERTICES);
+        for (k, item) in items[..kept].iter().enumerate() {
+            values[k * W..(k + 1) * W].copy_from_slice(item);
+        }
+        Numbers {
+            values,
+            len: (kept * W) as u8,
+            width: W as u8,
+        }
+    }
+
+    /// One item after another, each [`Numbers::width`] numbers.
+    pub fn items(&self) -> std::slice::Chunks<'_, f64> {
+        self.values[..self.len as usize].chunks(self.width as usize)
+    }
+
+    /// Numbers per item: 1 or 3.
+    pub fn width(&self) -> usize {
+        self.width as usize
+    }
+
+    /// Every number, item after item.
+    pub fn values(&self) -> &[f64] {
+        &self.values[..self.len as usize]
+    }
+
+    /// As a TOML or JSON array: `[a, b]` of numbers, `[[x, y, z], …]` of points, each number
+    /// written by `number`.
+    pub fn text(&self, number: impl Fn(f64) -> String) -> String {
+        let item = |item: &[f64]| match item {
+            [x] => number(*x),
+            _ => format!(
+                "[{}]",
+                item.iter().map(|&x| number(x)).collect::<Vec<_>>().join(", ")
+            ),
+        };
+        format!("[{}]", self.items().map(item).collect::<Vec<_>>().join(", "))
+    }
 }
 
 /// Everything a setup holds, for reading any value by its row.
@@ -129,6 +195,12 @@ pub struct Scan {
     /// Not range-checked: see [`Spec::check_number`].
     pub(crate) set: fn(&mut Params, &mut InitialCondition, usize, f64),
 }
+
+/// The items of a list, named from 1 as a die's vertices are.
+const VERTEX_NAMES: [&str; params::MAX_DIE_VERTICES] = [
+    "1", "2", "3", "4", "5", "6", "7", "8", "9", "10", "11", "12", "13", "14", "15", "16", "17", "18", "19",
+    "20",
+];
 
 /// One row of the registry.
 #[derive(Debug, Clone, Copy)]
@@ -174,6 +246,7 @@ impl Spec {
         match self.shape {
             Shape::Vector { components, .. } => components,
             Shape::PerCorner(_) => CORNERS,
+            Shape::List { most, .. } => &VERTEX_NAMES[..most],
             _ => &[],
         }
     }
@@ -189,6 +262,8 @@ impl Spec {
             Shape::Flag(b) => Value::Flag(b),
             Shape::PerCorner(v) => Value::PerCorner(v),
             Shape::Optional { .. } => Value::Absent,
+            Shape::List { width: 1, .. } => Value::List(Numbers::new::<1>(&[])),
+            Shape::List { .. } => Value::List(Numbers::new::<3>(&[])),
         }
     }
 
@@ -207,6 +282,7 @@ impl Spec {
             Value::Vector(v) => self.limits.check_components(self.components(), &v),
             Value::PerCorner(v) => self.limits.check_components(self.components(), &v),
             Value::Range(r) => self.limits.check_range(r),
+            Value::List(list) => list.values().iter().try_for_each(|&x| self.limits.check(x)),
             Value::Name(_) | Value::Seed(_) | Value::Flag(_) | Value::Absent => Ok(()),
         }
     }
@@ -235,8 +311,8 @@ pub const KIND: Spec = Spec {
     },
     role: Role::Die,
     comment: "\"box\" (the cuboid of the keys below: the paper's die) or a polyhedral die, \"d4\", \"d8\", \
-              \"d10\", \"d%\" (a d10 read 00 to 90), \"d12\", \"d20\", sized by `height` and made of `density`; \
-              not written for the box",
+              \"d10\", \"d%\" (a d10 read 00 to 90), \"d12\", \"d20\", sized by `height`, or \"convex\", given by \
+              its `vertices`, each made of `density`; not written for the box",
     labels: &[],
     list_position: u8::MAX,
     nudge: None,
@@ -274,6 +350,166 @@ pub const DENSITY: Spec = Spec {
     read: |s| Value::Number(s.params.die.density),
     scan: None,
 };
+
+pub const VERTICES: Spec = Spec {
+    limits: params::limits::VERTICES,
+    shape: Shape::List {
+        width: 3,
+        most: params::MAX_DIE_VERTICES,
+    },
+    role: Role::Die,
+    comment: "cm, a convex die's corners `[x, y, z]` in its own frame (`kind = \"convex\"`): its faces are \
+              their hull's, numbered 1 to F (opposite faces summing to F + 1 where they pair); at most 20 \
+              corners and 20 faces",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: false,
+    law: None,
+    read: |s| Value::List(Numbers::new(s.params.die.vertices.points())),
+    scan: None,
+};
+
+/// A polyhedral die's flaw keys: a number (its size, or where it is), none in the explorer.
+macro_rules! flaw_number {
+    ($name:ident, $limits:ident, $field:ident, $comment:expr) => {
+        pub const $name: Spec = Spec {
+            limits: params::limits::$limits,
+            shape: Shape::Number(0.0),
+            role: Role::Die,
+            comment: $comment,
+            labels: &[],
+            list_position: u8::MAX,
+            nudge: None,
+            acts_mid_roll: false,
+            law: None,
+            read: |s| Value::Number(s.params.die.flaws.$field),
+            scan: params_field!(die.flaws.$field),
+        };
+    };
+}
+
+/// A polyhedral die's key naming one of its faces by the number it shows.
+macro_rules! flaw_face {
+    ($name:ident, $limits:ident, $field:ident, $comment:expr) => {
+        pub const $name: Spec = Spec {
+            limits: params::limits::$limits,
+            shape: Shape::Optional { absent: "no face" },
+            role: Role::Die,
+            comment: $comment,
+            labels: &[],
+            list_position: u8::MAX,
+            nudge: None,
+            acts_mid_roll: false,
+            law: None,
+            read: |s| {
+                s.params
+                    .die
+                    .flaws
+                    .$field
+                    .map_or(Value::Absent, |f| Value::Seed(u64::from(f)))
+            },
+            scan: None,
+        };
+    };
+}
+
+flaw_number!(
+    ROUNDING,
+    ROUNDING,
+    rounding,
+    "cm, every vertex of a polyhedral die rounded by this (0: sharp)"
+);
+
+pub const VERTEX_ROUNDING: Spec = Spec {
+    limits: params::limits::VERTEX_ROUNDING,
+    shape: Shape::List {
+        width: 1,
+        most: params::MAX_DIE_VERTICES,
+    },
+    role: Role::Die,
+    comment: "cm, each vertex's own rounding on top of `rounding`, one per vertex in the die's order \
+              (docs/dice.md): uneven rounding",
+    labels: &[],
+    list_position: u8::MAX,
+    nudge: None,
+    acts_mid_roll: false,
+    law: None,
+    read: |s| {
+        Value::List(Numbers::new(
+            &s.params
+                .die
+                .flaws
+                .vertex_rounding
+                .as_slice()
+                .iter()
+                .map(|&r| [r])
+                .collect::<Vec<_>>(),
+        ))
+    },
+    scan: None,
+};
+
+flaw_face!(
+    WORN_FACE,
+    WORN_FACE,
+    worn_face,
+    "the number of the face whose corners are worn rounder by `worn_rounding`"
+);
+flaw_number!(
+    WORN_ROUNDING,
+    WORN_ROUNDING,
+    worn_rounding,
+    "cm, added to the rounding of each corner of `worn_face`: uneven rounding as one number"
+);
+flaw_number!(
+    BUBBLE_RADIUS,
+    BUBBLE_RADIUS,
+    bubble_radius,
+    "cm, an air bubble in the die (0: none), wholly inside it"
+);
+flaw_face!(
+    BUBBLE_TOWARD,
+    BUBBLE_TOWARD,
+    bubble_toward,
+    "the number of the face the bubble lies toward"
+);
+flaw_number!(
+    BUBBLE_OFFSET,
+    BUBBLE_OFFSET,
+    bubble_offset,
+    "cm, from the sharp die's centre of mass along `bubble_toward`'s outward normal: the bubble's flaw size"
+);
+flaw_number!(
+    POINT_MASS,
+    POINT_MASS,
+    point_mass,
+    "g, a point mass set into the die (0: none): the load's flaw size"
+);
+flaw_face!(
+    POINT_MASS_TOWARD,
+    POINT_MASS_TOWARD,
+    point_mass_toward,
+    "the number of the face the point mass lies toward"
+);
+flaw_number!(
+    POINT_MASS_OFFSET,
+    POINT_MASS_OFFSET,
+    point_mass_offset,
+    "cm, from the sharp die's centre of mass along `point_mass_toward`'s outward normal"
+);
+flaw_face!(
+    SHAVE_FACE,
+    SHAVE_FACE,
+    shave_face,
+    "the number of the face shaved down"
+);
+flaw_number!(
+    SHAVE_DEPTH,
+    SHAVE_DEPTH,
+    shave_depth,
+    "cm, how much is shaved off `shave_face`: a plane cut parallel to it (0: none)"
+);
 
 pub const HALF_SIZES: Spec = Spec {
     limits: params::limits::HALF_SIZES,
@@ -967,10 +1203,23 @@ pub(crate) const ORIENTATION_SPREAD: Spec = Spec {
 };
 
 /// Every value of a setup, in the order a preset file lists them.
-pub static ALL: [&Spec; 39] = [
+pub static ALL: [&Spec; 52] = [
     &KIND,
     &DIE_HEIGHT,
     &DENSITY,
+    &VERTICES,
+    &ROUNDING,
+    &VERTEX_ROUNDING,
+    &WORN_FACE,
+    &WORN_ROUNDING,
+    &BUBBLE_RADIUS,
+    &BUBBLE_TOWARD,
+    &BUBBLE_OFFSET,
+    &POINT_MASS,
+    &POINT_MASS_TOWARD,
+    &POINT_MASS_OFFSET,
+    &SHAVE_FACE,
+    &SHAVE_DEPTH,
     &HALF_SIZES,
     &CORNER_RADIUS,
     &PIP_DIAMETER,
@@ -1044,6 +1293,17 @@ pub fn markdown_table() -> String {
                 list_text(&v),
             ),
             Shape::Optional { absent } => (range_text(&spec.limits), format!("not given: {absent}")),
+            Shape::List { width: 1, most } => (
+                format!("{} each, up to {most} (one per vertex)", range_text(&spec.limits)),
+                "none".to_string(),
+            ),
+            Shape::List { most, .. } => (
+                format!(
+                    "`[x, y, z]`, each {}, 4 to {most} of them",
+                    range_text(&spec.limits)
+                ),
+                "none".to_string(),
+            ),
         };
         let default = if spec.key() == ANGULAR_MOMENTUM.key() {
             "not given".to_string()

@@ -208,7 +208,7 @@ fn torque_free_flight_errs_by_order_dt_squared() {
 fn the_tennis_racket_keeps_its_energy_across_every_flight() {
     let p = shipped("tennis-racket");
     let params = p.params();
-    let mut sim = Simulation::new(&params, &p.initial).unwrap();
+    let mut sim = dicesim_physics::Roll::new(&params, &p.initial).unwrap();
     let clock = StepClock::new(params.integrator.dt);
     // `values` leaves out the step, the header's first column.
     let header = trace::header();

@@ -2,7 +2,7 @@
 //! difference agrees on every throw; the paper's die on a slippery table (μ = 0.3) against
 //! its own table (μ = 1.2) ends on the same face on fewer than half of the shared throws.
 
-use dicesim_experiment::versus::{NO_FACE, VersusTable, stream_versus};
+use dicesim_experiment::versus::{VersusCounts, stream_versus};
 use dicesim_experiment::{Rolls, RunOptions};
 use dicesim_setup::preset::{Preset, Store};
 use std::sync::atomic::AtomicBool;
@@ -13,7 +13,7 @@ fn paper() -> Preset {
 
 /// `count` of the paper's random throws in A (`set` applied to the paper) and in B (A with
 /// `versus`).
-fn versus(set: &[&str], versus: &[&str], count: u64) -> VersusTable {
+fn versus(set: &[&str], versus: &[&str], count: u64) -> VersusCounts {
     let own = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
     let a = paper().with_overrides(&own(set)).unwrap();
     let b = a.with_overrides(&own(versus)).unwrap();
@@ -80,7 +80,7 @@ fn friction_changes_the_face_of_more_than_half_the_throws() {
     assert!(high < 0.5, "agreement {share} [{low}, {high}]");
     assert!(t.faced() > 9_000, "{}", t.faced());
     // Every face occurs on both sides: the table is no artefact of a stuck setup.
-    for f in 0..NO_FACE {
+    for f in 0..t.no_face_row() {
         assert!(t.counts[f].iter().sum::<u64>() > 1000, "A's face {}", f + 1);
         assert!(
             t.counts.iter().map(|r| r[f]).sum::<u64>() > 1000,

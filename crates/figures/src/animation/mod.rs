@@ -11,14 +11,17 @@
 //! the machine: the same setup gives the same bytes.
 
 pub mod render;
+mod solid;
 pub mod terminal;
 
 use crate::figure::resolved;
 use crate::plot::Record;
 use dicesim_experiment::Error;
-use dicesim_physics::{InitialCondition, Outcome, Params, Simulation, Status, face_most_nearly_up};
+use dicesim_physics::{InitialCondition, Outcome, Params, Roll, Status, face_most_nearly_up};
+use dicesim_setup::number::die_number;
 use dicesim_setup::output::{Output, OutputError};
-use render::{CLEAR, Camera, DieShot, Frame, PALETTE, Scene, Shot, View};
+use render::{Body, CLEAR, Camera, DieShot, Frame, PALETTE, Scene, Shot, View};
+use solid::Polyhedral;
 use std::io::Write;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -54,8 +57,10 @@ pub struct AnimationSpec {
     /// The camera follows the die and frames it: its side about a third of the frame's
     /// height, the table moving under it (else the view holds the whole path).
     pub zoom: bool,
-    /// A face of the pair to mark (1 to 6; its opposite, 7 minus it, with it): both
-    /// coloured and their body axis drawn, on the die.
+    /// A number of the die whose face and its opposite face to mark (on the box 1 to 6,
+    /// its opposite 7 minus it; on a polyhedral die the face printed with it and the one
+    /// opposite, [`dicesim_physics::Solid::opposite_number`]): both coloured and their body
+    /// axis drawn, on the die. [`AnimationSpec::face_pair_on`] checks it against the die.
     pub face_pair: Option<u8>,
 }
 
@@ -105,10 +110,41 @@ impl AnimationSpec {
         if let Some(e) = self.twin {
             dicesim_setup::chaos::EPSILON.check(e)?;
         }
-        if let Some(f) = self.face_pair.filter(|f| !(1..=6).contains(f)) {
-            return bad(format!("face {f}: a die's faces are 1 to 6"));
-        }
         Ok(())
+    }
+
+    /// The face pair to mark on `params`' die: [`AnimationSpec::face_pair`] and its
+    /// opposite number, the lower first; refused, saying why, for a number the die does not
+    /// show, and on the d4, whose faces each lie opposite a vertex.
+    pub fn face_pair_on(&self, params: &Params) -> Result<Option<(u8, u8)>, String> {
+        let Some(face) = self.face_pair else {
+            return Ok(None);
+        };
+        let kind = params.die.kind;
+        let numbers = kind.face_numbers();
+        let die = match kind {
+            dicesim_physics::Solid::Box => "the box".to_string(),
+            k => format!("a {}", k.name()),
+        };
+        if !numbers.contains(&face) {
+            let words = |n: u8| die_number(kind, n);
+            let (first, last) = (numbers[0], numbers[numbers.len() - 1]);
+            let step = numbers[1] - numbers[0];
+            let every = if step == 1 {
+                String::new()
+            } else {
+                format!(" in steps of {step}")
+            };
+            return Err(format!(
+                "{die}'s faces are {} to {}{every}",
+                words(first),
+                words(last)
+            ));
+        }
+        let opposite = kind.opposite_number(face).ok_or_else(|| {
+            format!("{die} has no opposite faces (each face lies opposite a vertex), so there is no pair of faces to mark")
+        })?;
+        Ok(Some((face.min(opposite), face.max(opposite))))
     }
 }
 
@@ -144,17 +180,38 @@ pub(crate) struct Film {
 /// Steps between looks at the cancel flag while rolling.
 const REPORT_EVERY: u64 = 4096;
 
-/// The face drawn up: the one the roll ended on once it has, else the one most nearly up.
-fn die_shot(sim: &Simulation) -> DieShot {
-    let s = sim.state();
-    let up = match sim.outcome() {
+/// The die as a frame draws it: the box's corners, a polyhedral die's hull vertices (its
+/// solid's, `solid`, turned and placed as the roll has it). The face drawn up: the one the
+/// roll ended on once it has, else the one most nearly up.
+fn die_shot(roll: &Roll, solid: Option<&Polyhedral>) -> DieShot {
+    let up = match roll.outcome() {
         Some(o) => o.face,
-        None => Some(face_most_nearly_up(&s.corner_offsets)),
+        None => Some(face_up(roll)),
     };
+    if let Some(sim) = roll.simulation() {
+        let s = sim.state();
+        return DieShot {
+            corners: sim.corner_positions().to_vec(),
+            centre: s.position,
+            up,
+        };
+    }
+    let (centre, turn) = (roll.position(), roll.orientation());
     DieShot {
-        corners: sim.corner_positions(),
-        centre: s.position,
+        corners: solid
+            .map(|d| d.offsets.iter().map(|p| centre + turn * p).collect())
+            .unwrap_or_else(|| roll.point_positions()),
+        centre,
         up,
+    }
+}
+
+/// The number of the face most nearly up: the box's by its corners (as it always was), a
+/// die's as a player reads it.
+fn face_up(roll: &Roll) -> u8 {
+    match roll.simulation() {
+        Some(sim) => face_most_nearly_up(&sim.state().corner_offsets),
+        None => roll.face_up(),
     }
 }
 
@@ -170,7 +227,10 @@ pub fn speed_words(speed: f64) -> String {
 /// How an ended roll reads in a headline.
 fn ending_words(o: &Outcome, params: &Params) -> String {
     match (o.status, o.face) {
-        (Status::Settled, Some(f)) => format!("ended on face {f}"),
+        (Status::Settled, Some(f)) => format!("ended on face {}", die_number(params.die.kind, f)),
+        (Status::Settled, None) if params.die.is_polyhedral() => {
+            "settled on no face (on an edge or a vertex)".to_string()
+        }
         (Status::Settled, None) => "settled on no face (the 4 highest corners form none)".to_string(),
         (Status::Timeout, _) => format!(
             "did not settle within {} s",
@@ -216,10 +276,12 @@ pub(crate) fn film(
     cancel: &AtomicBool,
     progress: &mut dyn FnMut(AnimationProgress),
 ) -> Result<Film, Error> {
-    let mut die = Simulation::new_unchecked(params, initial);
+    let mut die = Roll::new_unchecked(params, initial);
     let mut twin = spec
         .twin
-        .map(|e| Simulation::new_unchecked(params, &dicesim_setup::chaos::perturbed(initial, e)));
+        .map(|e| Roll::new_unchecked(params, &dicesim_setup::chaos::perturbed(initial, e)));
+    let solid = Polyhedral::of(params);
+    let solid = solid.as_ref();
     let dt = params.integrator.dt;
     // Simulated seconds between frames.
     let frame_s = spec.speed / f64::from(spec.fps);
@@ -229,14 +291,14 @@ pub(crate) fn film(
         format!(" ({})", speed_words(spec.speed))
     };
     let time_words = |t: f64| format!("t = {} s{pace}", resolved(t, frame_s));
-    let headline = |die: &Simulation, twin: Option<&Simulation>, t: f64| {
-        let face = |s: &Simulation| match s.outcome() {
+    let headline = |die: &Roll, twin: Option<&Roll>, t: f64| {
+        let face = |s: &Roll| match s.outcome() {
             Some(o) => ending_words(&o, params),
-            None => format!("face {} up", face_most_nearly_up(&s.state().corner_offsets)),
+            None => format!("face {} up", die_number(params.die.kind, face_up(s))),
         };
         let mut line = format!("{name} · {} · {}", time_words(t), face(die));
         if let (Some(b), Some(e)) = (twin, spec.twin) {
-            let apart = (die.state().position - b.state().position).norm();
+            let apart = (die.position() - b.position()).norm();
             line += &format!(
                 "\ntwin (ε {}): {}, {} cm apart",
                 crate::figure::setup_value(e),
@@ -255,17 +317,14 @@ pub(crate) fn film(
     };
     loop {
         // The later die's clock: one that has ended stays where it stopped.
-        let t = die
-            .state()
-            .time_s
-            .max(twin.as_ref().map_or(0.0, |b| b.state().time_s));
+        let t = die.time_s().max(twin.as_ref().map_or(0.0, Roll::time_s));
         // Every frame time this step reaches (its state is the nearest at or after it).
         while (times.len() as f64) * frame_s <= t + 0.5 * dt {
             let at = times.len() as f64 * frame_s;
             times.push(at);
             shots.push(Shot {
-                die: die_shot(&die),
-                twin: twin.as_ref().map(die_shot),
+                die: die_shot(&die, solid),
+                twin: twin.as_ref().map(|b| die_shot(b, solid)),
                 headline: headline(&die, twin.as_ref(), at),
                 played_s: at / spec.speed,
             });
@@ -282,7 +341,7 @@ pub(crate) fn film(
                 s.advance();
             }
         }
-        let step = die.state().step.max(twin.as_ref().map_or(0, |b| b.state().step));
+        let step = die.steps().max(twin.as_ref().map_or(0, Roll::steps));
         if step.is_multiple_of(REPORT_EVERY) {
             if cancel.load(Ordering::Relaxed) {
                 return Err(Error::Cancelled);
@@ -292,18 +351,15 @@ pub(crate) fn film(
         }
     }
     // The end, as the last frame: a sampled frame within half a step of it is the end.
-    let end = die
-        .state()
-        .time_s
-        .max(twin.as_ref().map_or(0.0, |b| b.state().time_s));
+    let end = die.time_s().max(twin.as_ref().map_or(0.0, Roll::time_s));
     while times.last().is_some_and(|&t| t >= end - 0.5 * dt) {
         times.pop();
         shots.pop();
     }
     times.push(end);
     shots.push(Shot {
-        die: die_shot(&die),
-        twin: twin.as_ref().map(die_shot),
+        die: die_shot(&die, solid),
+        twin: twin.as_ref().map(|b| die_shot(b, solid)),
         headline: headline(&die, twin.as_ref(), end),
         played_s: end / spec.speed,
     });
@@ -311,7 +367,7 @@ pub(crate) fn film(
         times,
         shots,
         outcome: die.outcome().expect("the loop ends when the die has"),
-        twin: twin.as_ref().and_then(Simulation::outcome),
+        twin: twin.as_ref().and_then(Roll::outcome),
     })
 }
 
@@ -329,9 +385,8 @@ pub(crate) fn outcome_json(o: &Outcome) -> serde_json::Value {
 /// them), the twin's ε, and the outcome as JSON in `dicesim-outcome`.
 fn animation_record(
     name: &str,
-    params: &Params,
-    initial: &InitialCondition,
-    spec: &AnimationSpec,
+    (params, initial): (&Params, &InitialCondition),
+    (spec, pair): (&AnimationSpec, Option<(u8, u8)>),
     film: &Film,
 ) -> Record {
     let title = match spec.twin {
@@ -345,10 +400,12 @@ fn animation_record(
             crate::figure::setup_value(e)
         ));
     }
-    if let Some(f) = spec.face_pair {
-        let (low, high) = (f.min(7 - f), f.max(7 - f));
+    if let Some((low, high)) = pair {
+        let words = |n: u8| die_number(params.die.kind, n);
         record.caption.push(format!(
-            "faces {low} (vermilion) and {high} (purple) coloured, their body axis drawn through them"
+            "faces {} (vermilion) and {} (purple) coloured, their body axis drawn through them",
+            words(low),
+            words(high)
         ));
     }
     let outcome = outcome_json;
@@ -360,7 +417,7 @@ fn animation_record(
         "height": spec.size.1,
         "camera": { "yaw": spec.camera.yaw_deg, "pitch": spec.camera.pitch_deg },
         "zoom": spec.zoom,
-        "face_pair": spec.face_pair.map(|f| f.min(7 - f)),
+        "face_pair": pair.map(|(low, _)| low),
         "die": outcome(&film.outcome),
     });
     if let (Some(e), Some(t)) = (spec.twin, &film.twin) {
@@ -386,15 +443,28 @@ pub fn write_animation(
     progress: &mut dyn FnMut(AnimationProgress),
 ) -> Result<Animated, Error> {
     spec.validate()?;
+    let pair = spec.face_pair_on(params).map_err(|why| {
+        Error::Animation(format!("face pair {}: {why}", spec.face_pair.unwrap_or_default()))
+    })?;
     let gif = Encoding::is_gif(out)?;
     let film = film(name, params, initial, spec, cancel, progress)?;
-    let record = animation_record(name, params, initial, spec, &film);
+    let record = animation_record(name, (params, initial), (spec, pair), &film);
     let view = View {
         camera: spec.camera,
         zoom: spec.zoom,
-        face_pair: spec.face_pair.map(|f| f.min(7 - f)),
+        face_pair: pair,
     };
-    let scene = Scene::new(spec.size.0, spec.size.1, view, &film.shots, &record.caption);
+    let body = match Polyhedral::of(params) {
+        Some(die) => Body::Polyhedron(std::sync::Arc::new(die)),
+        None => Body::Box,
+    };
+    let scene = Scene::new(
+        spec.size.0,
+        spec.size.1,
+        (view, body),
+        &film.shots,
+        &record.caption,
+    );
     let mut frames = film.shots.iter().map(|s| scene.render(s));
     let encoding = Encoding {
         gif,
@@ -992,7 +1062,10 @@ mod tests {
             face_pair: Some(7),
             ..spec
         };
-        assert!(bad.validate().is_err());
+        assert_eq!(
+            bad.face_pair_on(&params).unwrap_err(),
+            "the box's faces are 1 to 6"
+        );
     }
 
     /// A drop of many die sides (4 m) starts as wide (the die and the table below it in
@@ -1123,6 +1196,118 @@ mod tests {
             assert_eq!(v["die"]["face"], serde_json::json!(face), "{name}");
             assert_eq!(v["frames"], serde_json::json!(frames.len()));
         }
+    }
+
+    /// A d20 (the shipped preset's die and step) thrown as the paper's throw.
+    fn d20() -> (Params, InitialCondition) {
+        let (mut params, initial) = paper();
+        params.die.kind = dicesim_physics::Solid::D20;
+        params.integrator.dt = 0.00025;
+        (params, initial)
+    }
+
+    /// A d20 seen from nearly straight above at the end of its roll: the face up is tinted and
+    /// its number inked inside it, centred on it (the ink's centroid within a tenth of the
+    /// tinted triangle's width of its centroid), and the faces round it carry their numbers
+    /// too (more ink outside the face up than in it); the file records the roll's own end.
+    #[test]
+    fn a_d20_shows_the_number_of_its_face_up_on_that_face() {
+        let (params, initial) = d20();
+        let mut roll = Roll::new(&params, &initial).unwrap();
+        let outcome = roll.run_to_end();
+        assert!(outcome.face.is_some(), "{outcome:?}");
+        let (w, h) = (480usize, 360usize);
+        let spec = AnimationSpec {
+            zoom: true,
+            camera: Camera {
+                yaw_deg: 0.0,
+                pitch_deg: 85.0,
+            },
+            ..AnimationSpec::new(10, (w as u32, h as u32))
+        };
+        let (bytes, animated) = animate(&params, &initial, &spec, "gif");
+        assert_eq!(animated.outcome.face, outcome.face);
+        assert_eq!(animated.outcome.steps, outcome.steps);
+        let last = gif_frames(&bytes).pop().unwrap();
+        let up = render::RAMP + render::RAMP_STEPS..render::RAMP + 2 * render::RAMP_STEPS;
+        let ink = |i: u8| (render::PIP..render::PIP + render::PIP_STEPS).contains(&i);
+        let pixels = |pick: &dyn Fn(usize, usize) -> bool| -> Vec<(f64, f64)> {
+            (0..w * h)
+                .map(|k| (k % w, k / w))
+                .filter(|&(x, y)| pick(x, y))
+                .map(|(x, y)| (x as f64, y as f64))
+                .collect()
+        };
+        let tinted = pixels(&|x, y| up.contains(&last[y * w + x]));
+        assert!(tinted.len() > 500, "the face up: {} pixels", tinted.len());
+        let (left, right) = tinted
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, r), p| {
+                (l.min(p.0), r.max(p.0))
+            });
+        // Ink inside the face up: ink pixels with tinted pixels on either side along the row.
+        let inside = |x: usize, y: usize| {
+            let row = &last[y * w..(y + 1) * w];
+            row[..x].iter().any(|i| up.contains(i)) && row[x..].iter().any(|i| up.contains(i))
+        };
+        let number = pixels(&|x, y| ink(last[y * w + x]) && inside(x, y));
+        let others = pixels(&|x, y| ink(last[y * w + x]) && !inside(x, y));
+        assert!(
+            number.len() > 30,
+            "the number on the face up: {} pixels",
+            number.len()
+        );
+        let mean = |p: &[(f64, f64)]| {
+            let n = p.len() as f64;
+            (
+                p.iter().map(|q| q.0).sum::<f64>() / n,
+                p.iter().map(|q| q.1).sum::<f64>() / n,
+            )
+        };
+        let (face, text) = (mean(&tinted), mean(&number));
+        let off = ((face.0 - text.0).powi(2) + (face.1 - text.1).powi(2)).sqrt();
+        assert!(
+            off < 0.1 * (right - left),
+            "the number {off} px off the face's centre"
+        );
+        assert!(
+            others.len() > number.len(),
+            "{} inked pixels off the face up",
+            others.len()
+        );
+    }
+
+    /// `--face-pair 3` on a d20 colours the face printed 3 and the one printed 18 (3 + 18 =
+    /// 21) in the pair's two colours; the d4 has no pair to mark.
+    #[test]
+    fn a_d20_colours_its_face_pair_and_a_d4_has_none() {
+        let (params, initial) = d20();
+        // Every 20 ms, so the tumbling shows each face of the pair.
+        let spec = AnimationSpec {
+            face_pair: Some(18),
+            zoom: true,
+            ..AnimationSpec::new(50, (200, 150))
+        };
+        assert_eq!(spec.face_pair_on(&params), Ok(Some((3, 18))));
+        let (bytes, _) = animate(&params, &initial, &spec, "gif");
+        let frames = gif_frames(&bytes);
+        for r in [render::PAIR_RAMP, render::PAIR_RAMP + 1] {
+            let ramp = render::RAMP + r * render::RAMP_STEPS..render::RAMP + (r + 1) * render::RAMP_STEPS;
+            assert!(
+                frames.iter().any(|f| f.iter().any(|i| ramp.contains(i))),
+                "ramp {r} of the pair in some frame"
+            );
+        }
+        let comments = gif_comments(&bytes).join("\n");
+        assert!(comments.contains("\"face_pair\":3"), "{comments}");
+        let mut d4 = params;
+        d4.die.kind = dicesim_physics::Solid::D4;
+        let two = AnimationSpec {
+            face_pair: Some(2),
+            ..spec
+        };
+        assert!(two.face_pair_on(&d4).unwrap_err().contains("no opposite faces"));
+        assert_eq!(spec.face_pair_on(&d4).unwrap_err(), "a d4's faces are 1 to 4");
     }
 
     #[test]

@@ -1,18 +1,21 @@
 //! One frame of an animation, a pure function of the dice's state: the table's tiles with
-//! the dice's shadows, each die a solid shaded body with its pips (the face up tinted), the
-//! corners touching the table marked, and a caption band with the time and the setup.
+//! the dice's shadows, each die a solid shaded body with its pips (the box) or its numbers
+//! (a polyhedral die, [`super::solid`]), the face up tinted, the corners touching the table
+//! marked, and a caption band with the time and the setup.
 //!
 //! Every colour is an entry of one fixed palette ([`PALETTE`]): the die's shades are ramps
 //! of it and text is drawn as coverage steps of one ramp. So a frame is stored as palette
 //! indices, the GIF and APNG encoders take it as it is (no quantiser, nothing that could
 //! depend on the machine), and the same setup gives the same bytes.
 
+use super::solid::{Label, Polyhedral};
 use crate::figure::{font, wrap};
 use crate::plane::{convex_hull as hull, inside};
 use ab_glyph::{Font, PxScale, ScaleFont, point};
 use dicesim_physics::PIP_LAYOUT;
 use dicesim_physics::body::FACE_CORNERS;
 use nalgebra::Vector3;
+use std::sync::Arc;
 
 /// The palette index no drawing uses: a delta frame's "unchanged" pixel.
 pub(crate) const CLEAR: u8 = 0;
@@ -228,14 +231,22 @@ impl Frame {
     }
 }
 
-/// One die at one instant: its corners (cm, world frame, the physics' corner order) and
-/// its centre of mass.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// One die at one instant: its corners (cm, world frame: the box's 8 in the physics' corner
+/// order, a polyhedral die's hull vertices in its [`Polyhedral::offsets`]' order) and its
+/// centre of mass.
+#[derive(Debug, Clone, PartialEq)]
 pub(crate) struct DieShot {
-    pub(crate) corners: [Vector3<f64>; 8],
+    pub(crate) corners: Vec<Vector3<f64>>,
     pub(crate) centre: Vector3<f64>,
-    /// The face (1..6) drawn as the face up.
+    /// The number drawn as the face up (the box's face 1..6, a die's number read).
     pub(crate) up: Option<u8>,
+}
+
+/// The body the dice of a scene are: the box, drawn with its pips, or a polyhedral die.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Body {
+    Box,
+    Polyhedron(Arc<Polyhedral>),
 }
 
 /// What one frame shows: the die, the twin if there is one, and the headline (time,
@@ -349,24 +360,31 @@ pub(crate) struct Scene {
     /// The camera follows the dice, framing them and the table under them
     /// ([`Scene::framing`]), at most at [`ZOOMED_SIDE`] of the frame's height.
     follow: bool,
-    /// The marked face pair, by its lower face (its opposite is 7 minus it): coloured and
-    /// its axis drawn, on the die (not its twin).
-    face_pair: Option<u8>,
+    /// The marked face pair, its lower number and its opposite's: coloured and its axis
+    /// drawn, on the die (not its twin).
+    face_pair: Option<(u8, u8)>,
+    body: Body,
 }
 
 /// How a scene is seen: the camera, whether it follows and frames the die, which face pair
-/// is marked.
+/// is marked (its two numbers, the lower first).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct View {
     pub(crate) camera: Camera,
     pub(crate) zoom: bool,
-    pub(crate) face_pair: Option<u8>,
+    pub(crate) face_pair: Option<(u8, u8)>,
 }
 
 impl Scene {
     /// The scene of `width` × `height` pixels that holds every one of `shots` whole, seen
     /// by `camera`, with `caption` (the setup) under each headline.
-    pub(crate) fn new(width: u32, height: u32, view: View, shots: &[Shot], caption: &[String]) -> Scene {
+    pub(crate) fn new(
+        width: u32,
+        height: u32,
+        (view, body): (View, Body),
+        shots: &[Shot],
+        caption: &[String],
+    ) -> Scene {
         let camera = view.camera;
         let (w, h) = (f64::from(width), f64::from(height));
         let (headline_px, caption_px) = caption_sizes(width, height);
@@ -394,14 +412,15 @@ impl Scene {
                 .iter()
                 .flat_map(|s| std::iter::once(&s.die).chain(s.twin.as_ref()))
         };
-        let side = dice()
-            .next()
-            .map_or(2.0, |d| {
+        let side = match &body {
+            Body::Box => dice().next().map_or(2.0, |d| {
                 (d.corners[4] - d.corners[0])
                     .norm()
                     .max((d.corners[2] - d.corners[0]).norm())
-            })
-            .max(1e-6);
+            }),
+            Body::Polyhedron(die) => die.side,
+        }
+        .max(1e-6);
         let (mut x, mut y) = (
             (f64::INFINITY, f64::NEG_INFINITY),
             (f64::INFINITY, f64::NEG_INFINITY),
@@ -466,6 +485,7 @@ impl Scene {
             margin,
             follow: view.zoom,
             face_pair: view.face_pair,
+            body,
         }
     }
 
@@ -630,12 +650,15 @@ impl Scene {
         let mut order = dice.clone();
         order.sort_by(|a, b| a.0.centre.dot(&viewer).total_cmp(&b.0.centre.dot(&viewer)));
         for &(die, twin) in &order {
-            self.draw_die(&mut frame, die, twin, line_width);
+            match &self.body {
+                Body::Box => self.draw_die(&mut frame, die, twin, line_width),
+                Body::Polyhedron(solid) => self.draw_polyhedron(&mut frame, (die, solid), twin, line_width),
+            }
         }
         // The twin's edges over everything: where the two dice still coincide, its outline
         // shows on the first die's faces.
         if let Some(twin) = &shot.twin {
-            for (a, b) in visible_edges(twin, &viewer) {
+            for (a, b) in self.visible_edges(twin, &viewer) {
                 frame.line(
                     self.pixel(&twin.corners[a]),
                     self.pixel(&twin.corners[b]),
@@ -664,18 +687,189 @@ impl Scene {
         frame
     }
 
-    /// The marked pair's faces (0-based) of the die, `(lower, its opposite)`; none on a twin.
+    /// The marked pair's faces (0-based) of the box, `(lower, its opposite)`; none on a twin.
     fn pair(&self, twin: bool) -> Option<(usize, usize)> {
         self.face_pair
             .filter(|_| !twin)
-            .map(|low| (usize::from(low) - 1, usize::from(7 - low) - 1))
+            .map(|(low, high)| (usize::from(low) - 1, usize::from(high) - 1))
     }
 
     /// The pair's body axis sticking out of face `f` (0-based), half a side past it.
     fn pair_stick(&self, frame: &mut Frame, die: &DieShot, f: usize, line_width: f64) {
-        let centre = face_centre(die, f);
+        self.stick(frame, die, face_centre(die, f), line_width);
+    }
+
+    /// A body axis from the face centred at `centre` on to 1.7 times as far from the die's.
+    fn stick(&self, frame: &mut Frame, die: &DieShot, centre: Vector3<f64>, line_width: f64) {
         let tip = die.centre + (centre - die.centre) * 1.7;
         frame.line(self.pixel(&centre), self.pixel(&tip), 2.5 * line_width, EDGE);
+    }
+
+    /// The edges of the die the viewer sees, as pairs of its corners.
+    fn visible_edges(&self, die: &DieShot, viewer: &Vector3<f64>) -> Vec<(usize, usize)> {
+        match &self.body {
+            Body::Box => visible_edges(die, viewer),
+            Body::Polyhedron(solid) => {
+                let mut edges = Vec::new();
+                for corners in solid
+                    .faces
+                    .iter()
+                    .filter(|c| polygon_normal(die, c).dot(viewer) > 0.0)
+                {
+                    for k in 0..corners.len() {
+                        let (a, b) = (corners[k], corners[(k + 1) % corners.len()]);
+                        let e = (a.min(b), a.max(b));
+                        if !edges.contains(&e) {
+                            edges.push(e);
+                        }
+                    }
+                }
+                edges
+            }
+        }
+    }
+
+    /// A polyhedral die: its faces the viewer sees, shaded as the box's are, each with its
+    /// numbers; the face up tinted (none on the d4, read at a vertex), the marked pair
+    /// coloured with its axis, the edges, and the corners touching the table.
+    fn draw_polyhedron(
+        &self,
+        frame: &mut Frame,
+        (die, solid): (&DieShot, &Polyhedral),
+        twin: bool,
+        line_width: f64,
+    ) {
+        let viewer = self.camera.towards_viewer();
+        let light = self.camera.light();
+        let pair = self
+            .face_pair
+            .filter(|_| !twin)
+            .and_then(|(low, high)| Some((solid.face_showing(low)?, solid.face_showing(high)?)));
+        let seen = |f: usize| polygon_normal(die, &solid.faces[f]).dot(&viewer) > 0.0;
+        let centre_of = |f: usize| polygon_centre(die, &solid.faces[f]);
+        for f in pair.iter().flat_map(|&(a, b)| [a, b]).filter(|&f| !seen(f)) {
+            self.stick(frame, die, centre_of(f), line_width);
+        }
+        for (f, corners) in solid.faces.iter().enumerate() {
+            let normal = polygon_normal(die, corners);
+            let facing = normal.dot(&viewer);
+            if facing.is_nan() || facing <= 0.0 {
+                continue;
+            }
+            let lit = 0.3 + 0.7 * normal.dot(&light).max(0.0);
+            let up = die.up.is_some() && solid.up_numbers[f] == die.up;
+            let ramp = match pair {
+                Some((low, _)) if f == low => RAMP + RAMP_STEPS * PAIR_RAMP,
+                Some((_, high)) if f == high => RAMP + RAMP_STEPS * (PAIR_RAMP + 1),
+                _ => RAMP + RAMP_STEPS * (2 * u8::from(twin) + u8::from(up)),
+            };
+            let shade = ramp + (lit * f64::from(RAMP_STEPS - 1)).round() as u8;
+            let outline: Vec<(f64, f64)> = corners.iter().map(|&k| self.pixel(&die.corners[k])).collect();
+            frame.fill_convex(&outline, |_, _| shade);
+            // Ink in the pips' colour; the glyphs' edges a darker shade of the face.
+            let ink = PIP + (lit * f64::from(PIP_STEPS - 1)).round() as u8;
+            let edge = ramp + (0.4 * lit * f64::from(RAMP_STEPS - 1)).round() as u8;
+            for label in solid.labels.iter().filter(|l| l.face == f) {
+                self.draw_label(frame, (die, corners), label, (ink, edge));
+            }
+        }
+        let edge = if twin { TWIN_EDGE } else { EDGE };
+        for (a, b) in self.visible_edges(die, &viewer) {
+            frame.line(
+                self.pixel(&die.corners[a]),
+                self.pixel(&die.corners[b]),
+                line_width,
+                edge,
+            );
+        }
+        for f in pair.iter().flat_map(|&(a, b)| [a, b]).filter(|&f| seen(f)) {
+            self.stick(frame, die, centre_of(f), line_width);
+        }
+        // A corner touching the table (at or below it), where the viewer sees it.
+        let seen_corner = |k: usize| (0..solid.faces.len()).any(|f| solid.faces[f].contains(&k) && seen(f));
+        for k in (0..die.corners.len()).filter(|&k| die.corners[k].z <= 0.0 && seen_corner(k)) {
+            self.contact_mark(frame, die.corners[k], line_width);
+        }
+    }
+
+    /// A number on the face `corners` of `die`: its ink bitmap laid on the face (its top
+    /// towards the label's vertex) and seen by the camera; each pixel takes `ink` where the
+    /// bitmap covers most of it (3 × 3 samples), `edge` where it covers a part.
+    fn draw_label(
+        &self,
+        frame: &mut Frame,
+        (die, corners): (&DieShot, &[usize]),
+        label: &Label,
+        (ink, edge): (u8, u8),
+    ) {
+        let middle = polygon_centre(die, corners);
+        let towards = die.corners[label.toward];
+        let centre = middle + (towards - middle) * label.toward_share;
+        let normal = polygon_normal(die, corners);
+        let up = (towards - centre).normalize();
+        let right = up.cross(&normal);
+        let bitmap = &label.ink;
+        let (w, h) = (bitmap.width as f64, bitmap.height as f64);
+        // cm per bitmap pixel, and a bitmap pixel's step right and up on the frame.
+        let k = label.height / h;
+        let o = self.pixel(&centre);
+        let step = |d: Vector3<f64>| {
+            let p = self.pixel(&(centre + d * k));
+            (p.0 - o.0, p.1 - o.1)
+        };
+        let (r, u) = (step(right), step(up));
+        let det = r.0 * u.1 - r.1 * u.0;
+        // Seen edge-on (or not at all: NaN), the face shows no number.
+        if det.is_nan() || det.abs() <= 1e-6 {
+            return;
+        }
+        let box_corners = [
+            (-w / 2.0, -h / 2.0),
+            (w / 2.0, -h / 2.0),
+            (w / 2.0, h / 2.0),
+            (-w / 2.0, h / 2.0),
+        ]
+        .map(|(a, b)| (o.0 + r.0 * a + u.0 * b, o.1 + r.1 * a + u.1 * b));
+        let (x0, x1, y0, y1) = box_corners.iter().fold(
+            (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
+            |(x0, x1, y0, y1), p| (x0.min(p.0), x1.max(p.0), y0.min(p.1), y1.max(p.1)),
+        );
+        if !(x0.is_finite() && y0.is_finite()) {
+            return;
+        }
+        const SAMPLES: usize = 3;
+        for y in y0.floor() as i64..=y1.ceil() as i64 {
+            for x in x0.floor() as i64..=x1.ceil() as i64 {
+                let mut covered = 0.0;
+                for (i, j) in (0..SAMPLES * SAMPLES).map(|n| (n % SAMPLES, n / SAMPLES)) {
+                    let qx = x as f64 + (i as f64 + 0.5) / SAMPLES as f64 - o.0;
+                    let qy = y as f64 + (j as f64 + 0.5) / SAMPLES as f64 - o.1;
+                    // (qx, qy) = a·r + b·u, a across the bitmap from its centre, b up it.
+                    let a = (qx * u.1 - qy * u.0) / det;
+                    let b = (r.0 * qy - r.1 * qx) / det;
+                    covered += bitmap.at(a + w / 2.0, h / 2.0 - b);
+                }
+                covered /= (SAMPLES * SAMPLES) as f64;
+                if covered >= 0.5 {
+                    frame.set(x, y, ink);
+                } else if covered >= 0.2 {
+                    frame.set(x, y, edge);
+                }
+            }
+        }
+    }
+
+    /// The orange dot on a corner touching the table.
+    fn contact_mark(&self, frame: &mut Frame, corner: Vector3<f64>, line_width: f64) {
+        let (x, y) = self.pixel(&corner);
+        let r = (2.2 * line_width).max(2.0);
+        let disc: Vec<(f64, f64)> = (0..16)
+            .map(|i| {
+                let (s, c) = (f64::from(i) * std::f64::consts::TAU / 16.0).sin_cos();
+                (x + r * c, y + r * s)
+            })
+            .collect();
+        frame.fill_convex(&disc, |_, _| CONTACT);
     }
 
     fn draw_die(&self, frame: &mut Frame, die: &DieShot, twin: bool, line_width: f64) {
@@ -738,15 +932,7 @@ impl Scene {
         // A corner touching the table (at or below it), where the viewer sees it.
         let seen = seen_corners(die, &viewer);
         for k in (0..8).filter(|&k| die.corners[k].z <= 0.0 && seen[k]) {
-            let (x, y) = self.pixel(&die.corners[k]);
-            let r = (2.2 * line_width).max(2.0);
-            let disc: Vec<(f64, f64)> = (0..16)
-                .map(|i| {
-                    let (s, c) = (f64::from(i) * std::f64::consts::TAU / 16.0).sin_cos();
-                    (x + r * c, y + r * s)
-                })
-                .collect();
-            frame.fill_convex(&disc, |_, _| CONTACT);
+            self.contact_mark(frame, die.corners[k], line_width);
         }
     }
 }
@@ -767,6 +953,22 @@ fn face_centre(die: &DieShot, f: usize) -> Vector3<f64> {
         .map(|&k| die.corners[k])
         .sum::<Vector3<f64>>()
         / 4.0
+}
+
+/// The mean of the corners of a polyhedral die's face.
+fn polygon_centre(die: &DieShot, corners: &[usize]) -> Vector3<f64> {
+    corners.iter().map(|&k| die.corners[k]).sum::<Vector3<f64>>() / corners.len() as f64
+}
+
+/// The outward unit normal of a polyhedral die's face (its corners counter-clockwise seen
+/// from outside).
+fn polygon_normal(die: &DieShot, corners: &[usize]) -> Vector3<f64> {
+    let (a, b, c) = (
+        die.corners[corners[0]],
+        die.corners[corners[1]],
+        die.corners[corners[2]],
+    );
+    (b - a).cross(&(c - a)).normalize()
 }
 
 fn face_seen(die: &DieShot, f: usize, viewer: &Vector3<f64>) -> bool {
@@ -817,13 +1019,15 @@ mod tests {
     fn no_caption_line_is_wider_than_the_frame() {
         use crate::figure::text_width;
         let die = DieShot {
-            corners: dicesim_physics::body::body_corner_offsets(1.0).map(|c| c + Vector3::new(0.0, 0.0, 1.0)),
+            corners: dicesim_physics::body::body_corner_offsets(1.0)
+                .map(|c| c + Vector3::new(0.0, 0.0, 1.0))
+                .to_vec(),
             centre: Vector3::new(0.0, 0.0, 1.0),
             up: Some(4),
         };
         let shot = Shot {
+            twin: Some(die.clone()),
             die,
-            twin: Some(die),
             played_s: 0.0,
             headline: "a-preset-with-a-rather-long-name · t = 12.34 s · did not settle within 30 s\n\
                        twin (ε 1e-9): did not settle within 30 s, 0.01 cm apart"
@@ -839,7 +1043,7 @@ mod tests {
                 zoom: false,
                 face_pair: None,
             };
-            let scene = Scene::new(w, h, view, std::slice::from_ref(&shot), &caption);
+            let scene = Scene::new(w, h, (view, Body::Box), std::slice::from_ref(&shot), &caption);
             // Between the margins on either side.
             let room = f64::from(w) - 2.0 * scene.margin;
             for line in &scene.caption {

@@ -6,12 +6,14 @@
 //! `moments` (its volume, centre and inertia), `numbering` (the numbers on its faces),
 //! `flaws` (a bubble, a point mass, a shave, rounding), `die` (the [`Die`] a body is made
 //! from), `stability` (tipping barrier and resting depth), `solids` (the d4 to the d20 and
-//! prisms) and `rolled` (a die as the [`PointBody`](crate::PointBody) the step rolls, with
-//! its stopping rule).
+//! prisms), `rolled` (a die as the [`PointBody`](crate::PointBody) the step rolls, with
+//! its stopping rule) and `keys` (the die a preset's `[die]` keys describe, flaws and all,
+//! each impossible one refused by its key).
 
 mod die;
 mod flaws;
 mod hull;
+mod keys;
 mod moments;
 mod numbering;
 mod rolled;
@@ -21,6 +23,8 @@ mod stability;
 pub use die::{ContactPoint, Die, Reading};
 pub use flaws::{Bubble, FlawError, Flaws, PointMass, Shave};
 pub use hull::{Edge, Face, HullError, MAX_VERTICES, Polyhedron, convex_hull, face_order};
+pub(crate) use keys::made_die;
+pub use keys::{BODY_POINTS, body_points};
 pub use moments::{SolidMoments, solid_moments};
 pub use numbering::{Numbering, ReadAt, opposite_faces};
 pub use solids::{DieKind, RESIN_DENSITY, STANDARD_HEIGHT, prism};

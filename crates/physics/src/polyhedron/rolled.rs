@@ -115,15 +115,23 @@ impl Die {
     /// are read: the outward normal of each face reversed, with the number read while that face
     /// is down, so that the face "up" the step reads is the number a player reads. It stops by
     /// the one rule when its faces stop alike ([`Die::faces_stop_alike`]), else by each face's
-    /// own. Refused when `N` is not the vertex count, or as [`PointBody::new`] refuses.
+    /// own. A die of fewer vertices than `N` is carried with its last `N − V` points sharp
+    /// at its centre of mass, where they never reach the table: they sit as high above it as
+    /// the centre does, an inradius at rest (docs/dice.md, "A convex die of its corners").
+    /// Refused when `N` is below the vertex count, or as [`PointBody::new`] refuses.
     pub fn point_body<const N: usize>(&self, params: &Params) -> Result<PointBody<N>, BodyError> {
         let count = self.shape().vertices().len();
-        if count != N {
-            return Err(BodyError(format!("this die has {count} vertices, not {N}")));
+        if count > N {
+            return Err(BodyError(format!("this die has {count} vertices, more than {N}")));
         }
-        let radii: [f64; N] = std::array::from_fn(|k| self.radii()[k]);
+        let radii: [f64; N] = std::array::from_fn(|k| self.radii().get(k).copied().unwrap_or(0.0));
         let props = self.mass_properties();
-        let vertices: [Vector3<f64>; N] = std::array::from_fn(|k| self.sphere_centres()[k]);
+        let vertices: [Vector3<f64>; N] = std::array::from_fn(|k| {
+            self.sphere_centres()
+                .get(k)
+                .copied()
+                .unwrap_or(props.centre_of_mass)
+        });
         let faces: Vec<(Vector3<f64>, u8)> = (0..self.shape().faces().len())
             .map(|f| {
                 let number = u8::try_from(self.numbering().read_with_down(f)).unwrap_or(u8::MAX);

@@ -90,3 +90,74 @@ fn every_quantity_at_the_start_of_the_papers_roll_is_its_analytic_value() {
     assert_eq!(by("speed_cm_per_s"), 30.0);
     assert!((by("spin_rate_rad_per_s") - 580f64.sqrt()).abs() < 1e-12);
 }
+
+/// A d20 of height h (across its faces) thrown without spin: its centre's readings are the
+/// throw's, its lowest point a midradius below the centre (in its own frame an edge is down:
+/// docs/dice.md's vertices), and its points' limits its own (docs/model.md, "A polyhedral die's
+/// readings"): each of its 12 points carries M/12 and may move h/2 a step.
+#[test]
+fn a_d20s_quantities_are_its_own_body_s() {
+    use dicesim_physics::{InitialCondition, Roll, RollingDie, Solid};
+    let mut params = dicesim_physics::Params::default();
+    params.die.kind = Solid::D20;
+    params.die.height = 1.6;
+    params.die.density = 1.18;
+    params.integrator.dt = 0.000_25;
+    let initial = InitialCondition {
+        height: 10.0,
+        velocity: [30.0, 0.0, -40.0],
+        ..Default::default()
+    };
+    let roll = Roll::new(&params, &initial).unwrap();
+    // The icosahedron of inradius r = h/2 has edge a = r·4√3/(3 + √5) and volume
+    // 5(3 + √5)a³/12.
+    let (h, s5) = (1.6f64, 5f64.sqrt());
+    let a = h / 2.0 * 4.0 * 3f64.sqrt() / (3.0 + s5);
+    let mass = 1.18 * 5.0 * (3.0 + s5) * a.powi(3) / 12.0;
+    let (k, dt, gamma, mu) = (500_000.0, 0.000_25, 0.005, 1.2);
+    let point_frequency = (k / (mass / 12.0)).sqrt();
+    let readings = read_all(&roll);
+    let by = |c: &str| readings[QUANTITIES.iter().position(|q| q.column == c).unwrap()];
+    let close = |c: &str, want: f64| {
+        let got = by(c);
+        assert!(
+            (got - want).abs() <= 1e-9 * want.abs().max(1.0),
+            "{c}: {got} vs {want}"
+        );
+    };
+    close("height_cm", 10.0);
+    close("lowest_corner_cm", 10.0 - a * (1.0 + s5) / 4.0);
+    close("speed_cm_per_s", 50.0);
+    close("spin_rate_rad_per_s", 0.0);
+    close("corner_travel_load", 50.0 * dt / (h / 2.0));
+    close(
+        "damping_load",
+        gamma * 40.0 / (2.0 / (point_frequency * dt)).max(1.0),
+    );
+    close("friction_load", mu * point_frequency * dt / 2.0);
+    assert_eq!(roll.point_offsets().len(), 12);
+    assert!((roll.point_mass() - mass / 12.0).abs() < 1e-12 * mass);
+}
+
+/// Two d20s thrown alike are apart by nothing; one yawed by θ is apart by θ at the same
+/// centre (the separation reads any die's orientation, not a box's corners).
+#[test]
+fn the_separation_of_two_d20s_is_their_yaw() {
+    use dicesim_physics::{InitialCondition, Roll, Solid};
+    use dicesim_setup::chaos::separation;
+    let mut params = dicesim_physics::Params::default();
+    params.die.kind = Solid::D20;
+    params.integrator.dt = 0.000_25;
+    let initial = InitialCondition::default();
+    let a = Roll::new(&params, &initial).unwrap();
+    let same = separation(&a, &a.clone());
+    assert_eq!((same.centre, same.angle), (0.0, 0.0));
+    let yawed = InitialCondition {
+        orientation: [3.0, 0.0, 0.0],
+        ..initial
+    };
+    let b = Roll::new(&params, &yawed).unwrap();
+    let apart = separation(&a, &b);
+    assert_eq!(apart.centre, 0.0);
+    assert!((apart.angle - 3f64.to_radians()).abs() < 1e-12, "{apart:?}");
+}

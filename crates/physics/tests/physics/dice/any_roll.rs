@@ -170,3 +170,43 @@ fn a_dies_table_changed_mid_roll_acts_from_the_next_step() {
     assert!(changed.set_ground(bad).is_err());
     assert_eq!(changed.params().ground, stiffer.ground);
 }
+
+/// A convex cube of its 8 corners rolls as a body of 12 points, 4 of them padding at its
+/// centre of mass: a roll shows its 8 corners alone, each carried to where its orientation
+/// takes the corner, and ends as batch's roll of it does.
+#[test]
+fn a_padded_dies_roll_shows_its_own_corners_alone() {
+    use dicesim_physics::RollingDie;
+    use dicesim_physics::params::Vertices;
+    let mut corners = Vec::new();
+    for x in [-0.8, 0.8] {
+        for y in [-0.8, 0.8] {
+            for z in [-0.8, 0.8] {
+                corners.push([x, y, z]);
+            }
+        }
+    }
+    let mut p = dice_table();
+    p.die.kind = Solid::Convex;
+    p.die.vertices = Vertices::new(&corners).unwrap();
+    p.die.density = 1.18;
+    let initial = throw(9, 2);
+    let mut roll = Roll::new(&p, &initial).unwrap();
+    for _ in 0..500 {
+        roll.step();
+    }
+    assert_eq!(roll.point_count(), 8);
+    let offsets = roll.point_offsets();
+    assert_eq!(offsets.len(), 8);
+    assert_eq!(roll.contact_forces().len(), 8);
+    assert_eq!(roll.point_forces().len(), 8);
+    assert_eq!(roll.point_radii(), vec![0.0; 8]);
+    // The uniform cube's centre of mass is its middle: each corner at R·c.
+    let r = roll.orientation();
+    for (corner, offset) in corners.iter().zip(&offsets) {
+        let c = Vector3::from(*corner);
+        assert!((r * c - offset).norm() < 1e-12, "{c} → {offset}");
+    }
+    let (batch, _) = roll_one(&p, &initial, &|| false).unwrap();
+    assert_eq!(roll.run_to_end(), batch);
+}

@@ -86,7 +86,11 @@ fn identical(what: &str, setups: &[(Params, InitialCondition)]) -> Vec<Bits> {
 #[test]
 fn every_die_rolls_alike_in_both_engines_with_a_whole_outcome() {
     const THROWS: u64 = 16;
-    for kind in Solid::ALL.into_iter().filter(|k| *k != Solid::Box) {
+    // A convex die rolls in dice/keys.rs, with the corners it needs.
+    for kind in Solid::ALL
+        .into_iter()
+        .filter(|k| ![Solid::Box, Solid::Convex].contains(k))
+    {
         let p = dice(kind);
         let numbers = p.die.face_numbers();
         for seed in [3, 11, 2026] {
@@ -133,6 +137,7 @@ fn vertices(kind: Solid) -> usize {
         Solid::D10 | Solid::Percentile | Solid::D20 => 12,
         Solid::D12 => 20,
         Solid::Box => 8,
+        Solid::Convex => unreachable!("a convex die's vertices are its own"),
     }
 }
 

@@ -7,6 +7,7 @@ mod engines;
 mod fairness;
 mod flaws;
 mod hull;
+mod keys;
 mod mass;
 mod reading;
 mod rest;

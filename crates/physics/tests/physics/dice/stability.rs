@@ -186,3 +186,51 @@ fn a_die_rests_at_its_weight_over_its_springs() {
         }
     }
 }
+
+/// The dice' table with `kind` of 1.6 cm at 1.18 g/cm³, as the shipped presets have them.
+fn shipped(kind: dicesim_physics::Solid) -> dicesim_physics::Params {
+    let mut p = super::dice_table();
+    p.die.kind = kind;
+    p.die.height = 1.6;
+    p.die.density = 1.18;
+    p
+}
+
+#[test]
+fn a_dies_stability_readings_are_its_own_body_s() {
+    use dicesim_physics::{InitialCondition, Limit, Solid, Stability};
+    // The d4 of height h: its centroid h/4 above a face and 3h/4 from each vertex; edge
+    // a = h·√(3/2), volume a³/(6√2), I = M·a²/20 = 3·M·h²/40 about any axis. One vertex on
+    // the table: 1/m = 1/M + (3h/4)²/I = 8.5/M (docs/model.md, "Fair dice come out fair").
+    let h = 1.6;
+    let mut p = shipped(Solid::D4);
+    // Undamped, so that nothing stiffens the springs while a point strikes.
+    p.ground.damping = 0.0;
+    let a = h * 1.5f64.sqrt();
+    let mass = 1.18 * a.powi(3) / (6.0 * 2f64.sqrt());
+    let (k, dt) = (p.ground.stiffness, p.integrator.dt);
+    // Placed on a face (its start orientation, docs/dice.md) on the table top, at rest but for
+    // a spin ω about x: no landing speed, and its farthest vertex moves at ω·3h/4.
+    let spin = 40.0;
+    let initial = InitialCondition {
+        height: 0.25 * h,
+        angular_velocity: [spin, 0.0, 0.0],
+        ..Default::default()
+    };
+    let readings = Stability::predict(&p, &initial);
+    let reading = |limit| readings.reading(limit).expect("the paper's law reads it");
+    let rock = reading(Limit::ContactMode);
+    assert_close("ω_rock·Δt", rock.value, (8.5 * k / mass).sqrt() * dt, 1.0, 1e-12);
+    let travel = reading(Limit::CornerTravel);
+    assert_close("point travel", travel.value, spin * 0.75 * h * dt, 1.0, 1e-12);
+    assert_close("travel allowed", travel.allowed, h / 4.0, 1.0, 1e-12);
+    // Every regular solid is as wide across its thinnest pair of point planes as it stands
+    // tall (face to face; the d4 face to vertex): so deep may a point press.
+    for kind in [Solid::D4, Solid::D8, Solid::D12, Solid::D20] {
+        let p = shipped(kind);
+        let depth = Stability::predict(&p, &InitialCondition::default())
+            .reading(Limit::ImpactDepth)
+            .unwrap();
+        assert_close(kind.name(), depth.allowed, h, h, 1e-12);
+    }
+}
