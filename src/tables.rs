@@ -3,7 +3,7 @@
 //! command line prints them, so they live beside it, not in the experiment crate.
 
 use dicesim_experiment::basin::{BasinMap, Layer};
-use dicesim_experiment::compare::{Comparison, Excluded};
+use dicesim_experiment::compare::{Comparison, Excluded, Fairness};
 use dicesim_experiment::compare_budden::{BuddenComparison, RatioRole, seeds_text};
 use dicesim_experiment::compare_joint::JointComparison;
 use dicesim_experiment::compare_shaved::{Bias, ShavedComparison};
@@ -268,6 +268,9 @@ pub fn prediction(out: &mut dyn Write, p: &Prediction) -> std::io::Result<()> {
 /// A comparison with real dice: the data against a fair die, a fit's candidates if any, and
 /// the real counts beside those simulated with `preset` (at a fit's value nearest its best).
 pub fn comparison(out: &mut dyn Write, c: &Comparison, preset: &str) -> std::io::Result<()> {
+    if let Some(fairness) = &c.fairness {
+        return player_counts(out, c, fairness, preset);
+    }
     writeln!(out, "{} ({})", c.dataset.name(), c.data.source)?;
     let fair = &c.data_against_fair;
     writeln!(
@@ -281,7 +284,92 @@ pub fn comparison(out: &mut dyn Write, c: &Comparison, preset: &str) -> std::io:
     if let (Some(fit), Some(key)) = (&c.fit, &c.key) {
         candidates(out, c, key, fit)?;
     }
-    comparison_counts(out, c, preset)
+    comparison_counts(out, c, preset, None)
+}
+
+/// A player's counts ("Is my die fair?"): the verdict against a fair die first, in a
+/// player's words, then the simulated die's flaw and the rolls it takes to see it, the fit,
+/// and each face beside the simulated die's.
+fn player_counts(out: &mut dyn Write, c: &Comparison, f: &Fairness, preset: &str) -> std::io::Result<()> {
+    let fair = &c.data_against_fair;
+    writeln!(out, "Is my die fair? {}", c.data.source)?;
+    let verdict = if f.consistent_with_fair {
+        "consistent with a fair die"
+    } else {
+        "unlikely for a fair die"
+    };
+    writeln!(
+        out,
+        "your counts: {verdict} (p = {}; χ² {:.2} on {} dof against equal shares, test at 5 %)",
+        p_text(fair.p_value),
+        fair.chi_square,
+        fair.dof
+    )?;
+    let standing_out: Vec<String> = c
+        .data
+        .categories
+        .iter()
+        .zip(&f.residuals_against_fair)
+        .filter(|(_, r)| r.abs() > 2.0)
+        .map(|(face, r)| format!("{face} ({r:+.1})"))
+        .collect();
+    match standing_out.as_slice() {
+        [] => writeln!(
+            out,
+            "no face stands out of a fair die's chance (every adjusted residual within ±2)"
+        )?,
+        faces => writeln!(
+            out,
+            "faces beyond ±2 of a fair die's chance (adjusted residual): {} (one face in twenty does so by chance)",
+            faces.join(", ")
+        )?,
+    }
+    if let Some(shown) = c.shown() {
+        let value = match (&c.key, shown.value) {
+            (Some(k), Some(v)) => format!(", {k} = {}", fmt_exact(v)),
+            _ => String::new(),
+        };
+        match &f.simulated_against_fair {
+            Some(sim) => writeln!(
+                out,
+                "the simulated {} ({preset}{value}, {} rolls): χ² {:.2} on {} dof against a fair die, p = {}",
+                f.die,
+                shown.throws,
+                sim.chi_square,
+                sim.dof,
+                p_text(sim.p_value)
+            )?,
+            None => writeln!(out, "the simulated {}: no roll ended on a face", f.die)?,
+        }
+        match f.rolls_to_detect {
+            Some(n) => writeln!(
+                out,
+                "rolls a player needs to detect the simulated die's flaw: {n} (χ² against a fair die at 5 %, 80 % power)"
+            )?,
+            None => writeln!(
+                out,
+                "rolls a player needs to detect the simulated die's flaw: — (it shows none beyond its own rolls' chance)"
+            )?,
+        }
+    }
+    if let (Some(fit), Some(key)) = (&c.fit, &c.key) {
+        candidates(out, c, key, fit)?;
+        match f.no_flaw_inside {
+            Some(true) => writeln!(
+                out,
+                "no flaw ({key} = 0) is inside the 95 % interval: a fair die explains your counts as well"
+            )?,
+            Some(false) => writeln!(
+                out,
+                "no flaw ({key} = 0) is outside the 95 % interval: your counts need the flaw"
+            )?,
+            None => writeln!(
+                out,
+                "the fit's range does not hold 0: start it at 0 (no flaw) to ask whether a fair die explains the counts"
+            )?,
+        }
+    }
+    comparison_counts(out, c, preset, Some(&f.residuals_against_fair))
 }
 
 /// A fit's candidates, one line each with its deviance and test, and the best value.
@@ -373,7 +461,14 @@ fn candidate_value(v: f64) -> String {
 }
 
 /// The real counts beside the simulated ones of the value shown, and their test.
-fn comparison_counts(out: &mut dyn Write, c: &Comparison, preset: &str) -> std::io::Result<()> {
+/// `against_fair`: each category's adjusted residual against a fair die, a column of its own
+/// (a player's counts).
+fn comparison_counts(
+    out: &mut dyn Write,
+    c: &Comparison,
+    preset: &str,
+    against_fair: Option<&[f64]>,
+) -> std::io::Result<()> {
     let Some(shown) = c.shown() else {
         return writeln!(out, "no simulated throws completed");
     };
@@ -394,21 +489,36 @@ fn comparison_counts(out: &mut dyn Write, c: &Comparison, preset: &str) -> std::
     let Some(test) = &shown.test else {
         return writeln!(out, "too few simulated throws to test");
     };
+    // The column against a fair die, where every category is a row of its own.
+    let against_fair = against_fair.filter(|r| r.len() == rows.len());
     writeln!(
         out,
-        "{:>10}  {:>7}  {:>6}  {:>13}  {:>9}  {:>6}  {:>13}  {:>8}",
-        "category", "real", "share", "95% interval", "simulated", "share", "95% interval", "residual"
+        "{:>10}  {:>7}  {:>6}  {:>13}{}  {:>9}  {:>6}  {:>13}  {:>8}",
+        if against_fair.is_some() {
+            "face"
+        } else {
+            "category"
+        },
+        "real",
+        "share",
+        "95% interval",
+        if against_fair.is_some() { "  vs fair" } else { "" },
+        "simulated",
+        "share",
+        "95% interval",
+        "residual"
     )?;
     let pc = |x: f64| 100.0 * x;
     let interval = |i: [f64; 2]| format!("{:.2}–{:.2}%", pc(i[0]), pc(i[1]));
-    for r in &rows {
+    for (i, r) in rows.iter().enumerate() {
         writeln!(
             out,
-            "{:>10}  {:>7}  {:>5.2}%  {:>13}  {:>9}  {:>5.2}%  {:>13}  {:>+8.2}",
+            "{:>10}  {:>7}  {:>5.2}%  {:>13}{}  {:>9}  {:>5.2}%  {:>13}  {:>+8.2}",
             r.category,
             r.data_count,
             pc(r.data_share),
             interval(r.data_interval),
+            against_fair.map_or(String::new(), |f| format!("  {:>+7.2}", f[i])),
             r.simulated_count,
             pc(r.simulated_share),
             interval(r.simulated_interval),

@@ -1,12 +1,14 @@
 //! `dicesim compare`: the simulated die thrown as a historical experiment threw real ones,
 //! held against its counts, and one setup value fitted to them.
 
-use super::args::{RunArgs, SetupArgs, Worded, Wording};
+use super::args::{RunArgs, SetupArgs, Worded, Wording, with_overrides};
 use super::error::CliError;
 use super::running;
 use crate::tables;
 use clap::{Args, ValueEnum};
-use dicesim_experiment::compare::{CompareSpec, DEFAULT_CANDIDATES, FitSpec, run_comparison};
+use dicesim_experiment::compare::{
+    CompareSpec, CountsSpec, DEFAULT_CANDIDATES, FitSpec, run_comparison, run_counts as run_player_counts,
+};
 use dicesim_experiment::compare_budden::{
     BuddenSpec, DEFAULT_CALIBRATE_ON, DEFAULT_FIT, hand_throw, run_budden as roll_budden,
     unapplied as budden_unapplied, unapplied_by_comparison,
@@ -19,14 +21,16 @@ use dicesim_experiment::compare_shaved::{
     setups as shaved_setups, unapplied as shaved_unapplied,
 };
 use dicesim_experiment::limits::EXPERIMENT_ROLLS;
+use dicesim_experiment::player_counts::{CountsInput, player_die_name, preset_for_die};
 use dicesim_experiment::real_data::Dataset;
 use dicesim_experiment::{RunOptions, provenance};
 use dicesim_figures::compare_plot::{
-    budden_png, budden_record, comparison_png, comparison_record, shaved_die_png, shaved_die_record,
+    budden_png, budden_record, comparison_png, comparison_record, counts_record, shaved_die_png,
+    shaved_die_record,
 };
 use dicesim_figures::joint_plot::{joint_png, joint_record};
 use dicesim_setup::output::Output;
-use dicesim_setup::preset::{Preset, refuse_unapplied};
+use dicesim_setup::preset::{Preset, Store, refuse_unapplied};
 use dicesim_setup::random::check_drawn_setup;
 
 /// The experiments the simulated die can be thrown against.
@@ -61,9 +65,15 @@ impl DatasetArg {
 
 #[derive(Debug, Args)]
 pub(crate) struct CompareArgs {
-    /// The experiment to throw the simulated die against.
-    #[arg(value_enum)]
-    pub(crate) dataset: DatasetArg,
+    /// The experiment to throw the simulated die against (or --counts: a player's own).
+    #[arg(value_enum, required_unless_present = "counts")]
+    pub(crate) dataset: Option<DatasetArg>,
+    /// Your own counts of a die's faces, held against the simulated die ("Is my die
+    /// fair?"): a CSV file of `face,count` rows (`# die: d20` names the die; `#` lines are
+    /// notes), or FACE=COUNT pairs, e.g. `1=12,2=9,3=11,4=8,5=10,6=10` (a value with `=` is
+    /// counts, any other a file). The die is the preset's (default: the one the file names).
+    #[arg(long, value_name = "FILE|FACE=COUNT,…", conflicts_with_all = ["dataset", "calibrate_on", "cuts", "no_fit"])]
+    pub(crate) counts: Option<String>,
     #[command(flatten)]
     pub(crate) setup: SetupArgs,
     /// Simulated throws by the experiment's protocol (12 dice a throw for Weldon; for
@@ -125,16 +135,19 @@ impl Worded for Compare {
 
 pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
     let options = args.run.options()?;
+    let Some(dataset_arg) = args.dataset else {
+        return run_counts(args, &options);
+    };
     let preset = args.setup.resolve()?;
-    refuse_unapplied_sets(args, &preset)?;
-    if args.dataset == DatasetArg::Joint {
+    refuse_unapplied_sets(args, dataset_arg, &preset)?;
+    if dataset_arg == DatasetArg::Joint {
         return run_joint(args, &options, &preset);
     }
     let params = preset.params();
     // The same up-front check as `batch`: the body, and no drawn throw inside the table.
     check_drawn_setup(&params, &preset.random, &preset.initial)?;
     let candidates = args.candidates.unwrap_or(DEFAULT_CANDIDATES);
-    if args.dataset == DatasetArg::ShavedDie {
+    if dataset_arg == DatasetArg::ShavedDie {
         return run_shaved(args, &options, &preset);
     }
     let one_fit = one_fit(args)?;
@@ -143,7 +156,7 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
             "--cuts chooses the shaved die's cuts: it is for `compare shaved-die` only".to_string(),
         ));
     }
-    let Some(dataset) = args.dataset.dataset() else {
+    let Some(dataset) = dataset_arg.dataset() else {
         return run_budden(args, &options, &preset, candidates, one_fit);
     };
     let seed = cubic_die_seed(args, &preset)?;
@@ -247,8 +260,8 @@ fn cubic_die_seed(args: &CompareArgs, preset: &Preset) -> Result<u64, CliError> 
 /// Refuses a `--set` the comparison would not apply, before any roll: a start value the
 /// throws draw, a seed `--seed` replaces, the value `--fit` sets, and for Budden the die the
 /// cuboids replace ([`budden_unapplied`]).
-fn refuse_unapplied_sets(args: &CompareArgs, preset: &Preset) -> Result<(), CliError> {
-    if args.dataset == DatasetArg::Joint {
+fn refuse_unapplied_sets(args: &CompareArgs, dataset: DatasetArg, preset: &Preset) -> Result<(), CliError> {
+    if dataset == DatasetArg::Joint {
         let fitted: Vec<GridKey> = args
             .fit
             .iter()
@@ -267,13 +280,19 @@ fn refuse_unapplied_sets(args: &CompareArgs, preset: &Preset) -> Result<(), CliE
         })?;
         return Ok(());
     }
-    if args.dataset == DatasetArg::ShavedDie {
+    if dataset == DatasetArg::ShavedDie {
         refuse_unapplied(&args.setup.set, |key| {
             shaved_unapplied(key).or_else(|| dicesim_setup::random::seed_given(key, !args.seed.is_empty()))
         })?;
         return Ok(());
     }
-    let budden = args.dataset == DatasetArg::Budden;
+    refuse_unapplied_by_comparison(args, dataset == DatasetArg::Budden, preset)
+}
+
+/// Refuses a `--set` a comparison of counts by face (a historical experiment's or a
+/// player's; `budden`: Budden's cuboids) would not apply: a start value the throws draw, a
+/// seed `--seed` replaces, the value `--fit` sets, and for Budden the die the cuboids replace.
+fn refuse_unapplied_by_comparison(args: &CompareArgs, budden: bool, preset: &Preset) -> Result<(), CliError> {
     let ranges = if budden {
         hand_throw(&preset.random)
     } else {
@@ -534,6 +553,90 @@ fn run_joint(args: &CompareArgs, options: &RunOptions, preset: &Preset) -> Resul
             completed: comparison.points.len() as u64,
             requested: spec.points().len() as u64,
             what: "grid points (whole points only)",
+        });
+    }
+    Ok(())
+}
+
+/// `dicesim compare --counts`: a player's counts of one die against the simulated die
+/// (fair, or with the flaw the preset and `--set` give it), and with `--fit`, the flaw's
+/// size fitted to them.
+fn run_counts(args: &CompareArgs, options: &RunOptions) -> Result<(), CliError> {
+    let text = args
+        .counts
+        .as_deref()
+        .expect("clap asks for a dataset or --counts");
+    let input = CountsInput::read(text).map_err(CliError::experiment("--counts: "))?;
+    // The die the counts name chooses the preset when none is given.
+    let preset = match (&args.setup.preset, input.named_die().and_then(preset_for_die)) {
+        (None, Some(name)) => {
+            let (preset, _) = Store::from_env().load_or_default(Some(name))?;
+            with_overrides(&preset, "--set", &args.setup.set)?
+        }
+        _ => args.setup.resolve()?,
+    };
+    let params = preset.params();
+    let die = player_die_name(params.die.kind.name());
+    let counts = input
+        .for_die(&die, params.die.face_numbers())
+        .map_err(CliError::experiment("--counts: "))?;
+    refuse_unapplied_by_comparison(args, false, &preset)?;
+    check_drawn_setup(&params, &preset.random, &preset.initial)?;
+    let one_fit = one_fit(args)?;
+    let candidates = args.candidates.unwrap_or(DEFAULT_CANDIDATES);
+    let seed = cubic_die_seed(args, &preset)?;
+    let spec = CountsSpec {
+        throws: args.throws.unwrap_or_else(|| CountsSpec::default_throws(&counts)),
+        counts,
+        seed,
+        fit: one_fit
+            .map(|f| FitSpec::parse(f, candidates))
+            .transpose()
+            .map_err(CliError::experiment("--fit "))?,
+    };
+    spec.validate(params.die.face_numbers())
+        .map_err(CliError::experiment(""))?;
+    let total = spec.total_rolls();
+    let outputs = prepare(args, total)?;
+    let comparison = running::run_with_progress(total, PROGRESS, |stop, done| {
+        run_player_counts(
+            &params,
+            &preset.random,
+            &preset.initial,
+            &spec,
+            options,
+            stop,
+            &mut |p| done(p.done),
+        )
+    })?;
+    let provenance = provenance::counts(&preset, &spec, one_fit, candidates);
+    let png = || {
+        let record = counts_record(&comparison, &preset, &spec, one_fit, &provenance);
+        comparison_png(&comparison, &record).map_err(CliError::experiment(""))
+    };
+    running::write_results(
+        &outputs,
+        args.run.json,
+        running::Results {
+            value: &comparison,
+            provenance: &provenance,
+            columns: &comparison.csv_columns(),
+            csv: &|w| comparison.write_csv(w),
+            png: &png,
+            table: &|out| tables::comparison(out, &comparison, &preset.name),
+        },
+    )?;
+    if comparison.cancelled {
+        let candidates = spec.fit.as_ref().map_or(1, |f| f.candidates as u64);
+        let done: u64 = comparison.candidates.iter().map(|c| c.throws + c.uncounted).sum();
+        return Err(CliError::Interrupted {
+            completed: done,
+            requested: spec.throws * candidates,
+            what: if spec.fit.is_some() {
+                "rolls (whole candidates only)"
+            } else {
+                "rolls"
+            },
         });
     }
     Ok(())

@@ -11,6 +11,7 @@ mod common;
 mod compare;
 mod docs;
 mod evidence;
+mod fair_die;
 mod import_cycles;
 mod inputs;
 mod layers;

@@ -16,9 +16,10 @@ use crate::compare_stats::{
     two_sample,
 };
 use crate::data_file::Column;
-use crate::real_data::{CountData, Dataset};
+use crate::player_counts::PlayerCounts;
+use crate::real_data::{CountData, Dataset, Experiment};
 use crate::record::RollRecord;
-use crate::stats::wilson_interval;
+use crate::stats::{FaceTally, wilson_interval};
 use dicesim_physics::{InitialCondition, Params, Reading};
 use dicesim_setup::keys::ScanKey;
 use dicesim_setup::number::{Real, fmt_exact};
@@ -337,14 +338,6 @@ impl CompareSpec {
         Ok(())
     }
 
-    /// The values rolled: the fit's candidates, or the setup as it is.
-    fn values(&self) -> Vec<Option<f64>> {
-        match &self.fit {
-            Some(fit) => fit.values().into_iter().map(Some).collect(),
-            None => vec![None],
-        }
-    }
-
     /// Rolls in the whole experiment.
     pub fn total_rolls(&self) -> u64 {
         let candidates = self.fit.as_ref().map_or(1, |f| f.candidates as u64);
@@ -378,7 +371,7 @@ pub struct Candidate {
 /// The whole comparison.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Comparison {
-    pub dataset: Dataset,
+    pub dataset: Experiment,
     /// The data as bundled, with its source.
     pub data: CountData,
     /// The data against a fair die's exact probabilities.
@@ -397,6 +390,9 @@ pub struct Comparison {
     pub headline: Headline,
     /// Whether a cancel stopped it before the end.
     pub cancelled: bool,
+    /// A player's counts: what a player asks of them ("Is my die fair?"); `None` for a
+    /// historical experiment.
+    pub fairness: Option<Fairness>,
 }
 
 /// The number an experiment is known for, the real dice's beside the simulated die's:
@@ -405,7 +401,7 @@ pub struct Comparison {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Headline {
     /// What the number is, in words.
-    pub name: &'static str,
+    pub name: String,
     pub real: f64,
     /// `None` when nothing simulated was counted.
     pub simulated: Option<f64>,
@@ -434,28 +430,31 @@ impl std::fmt::Display for Headline {
 
 impl Headline {
     /// The headline of `dataset` for the real `data` counts and the simulated `simulated`.
-    pub fn of(dataset: Dataset, data: &[u64], simulated: Option<&[u64]>) -> Headline {
+    pub fn of(experiment: Experiment, data: &[u64], simulated: Option<&[u64]>) -> Headline {
         let counted = |c: &&[u64]| c.iter().sum::<u64>() > 0;
-        match dataset {
-            Dataset::Weldon => {
+        match experiment {
+            Experiment::Historical(Dataset::Weldon) => {
                 // Category k: k of the 12 dice showed a 5 or a 6.
                 let share = |c: &[u64]| {
                     let fives_and_sixes: u64 = c.iter().enumerate().map(|(k, n)| k as u64 * n).sum();
                     fives_and_sixes as f64 / (12 * c.iter().sum::<u64>()) as f64
                 };
                 Headline {
-                    name: "share of 5s and 6s per die",
+                    name: "share of 5s and 6s per die".to_string(),
                     real: share(data),
                     simulated: simulated.filter(counted).map(share),
                     fair: Some(1.0 / 3.0),
                     decimals: 5,
                 }
             }
-            Dataset::WolfRed | Dataset::WolfWhite => {
-                let fair = dataset.fair_probabilities();
+            Experiment::Historical(Dataset::WolfRed | Dataset::WolfWhite) | Experiment::Player { .. } => {
+                let fair = experiment.fair_probabilities();
                 let against_fair = |c: &[u64]| goodness_of_fit(c, &fair).chi_square;
                 Headline {
-                    name: "χ² of the die's faces against a fair die (5 dof)",
+                    name: format!(
+                        "χ² of the die's faces against a fair die ({} dof)",
+                        fair.len() - 1
+                    ),
                     real: against_fair(data),
                     simulated: simulated.filter(counted).map(against_fair),
                     fair: None,
@@ -634,7 +633,7 @@ impl Comparison {
 /// The throws of one candidate, fed with records in roll order; a throw counts once all
 /// its dice are in.
 struct ThrowTally {
-    dataset: Dataset,
+    dataset: Experiment,
     faces: Vec<u8>,
     whole: bool,
     counted: u64,
@@ -643,7 +642,7 @@ struct ThrowTally {
 }
 
 impl ThrowTally {
-    fn new(dataset: Dataset, categories: usize) -> ThrowTally {
+    fn new(dataset: Experiment, categories: usize) -> ThrowTally {
         ThrowTally {
             dataset,
             faces: Vec::with_capacity(dataset.dice_per_throw()),
@@ -699,17 +698,56 @@ pub fn run_comparison(
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Comparison, Error> {
     spec.validate()?;
-    let data = spec.dataset.data();
-    let dice = spec.dataset.dice_per_throw() as u64;
-    let rolls_each = spec.throws * dice;
-    let total = spec.total_rolls();
+    let thrown = Thrown {
+        data: spec.dataset.data(),
+        throws: spec.throws,
+        seed: spec.seed,
+        fit: spec.fit.as_ref(),
+    };
+    compare_thrown(params, ranges, base, &thrown, options, cancel, progress)
+}
+
+/// What a comparison holds against what: the counts (and the protocol they were thrown by),
+/// the simulated throws per candidate, their seed and the fit.
+struct Thrown<'a> {
+    data: CountData,
+    throws: u64,
+    seed: u64,
+    fit: Option<&'a FitSpec>,
+}
+
+impl Thrown<'_> {
+    /// The values rolled: the fit's candidates, or the setup as it is.
+    fn values(&self) -> Vec<Option<f64>> {
+        match self.fit {
+            Some(fit) => fit.values().into_iter().map(Some).collect(),
+            None => vec![None],
+        }
+    }
+}
+
+/// The one comparison loop, for a historical experiment's counts and a player's alike.
+fn compare_thrown(
+    params: &Params,
+    ranges: &RandomRanges,
+    base: &InitialCondition,
+    thrown: &Thrown,
+    options: &RunOptions,
+    cancel: &AtomicBool,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<Comparison, Error> {
+    let experiment = thrown.data.dataset;
+    let data = &thrown.data;
+    let dice = experiment.dice_per_throw() as u64;
+    let rolls_each = thrown.throws * dice;
+    let values = thrown.values();
+    let total = rolls_each.saturating_mul(values.len() as u64);
     // Every candidate is checked before the first is rolled.
-    let setups = spec
-        .values()
+    let setups = values
         .into_iter()
         .map(|value| {
             let (mut p, mut ic) = (*params, *base);
-            if let (Some(fit), Some(v)) = (&spec.fit, value) {
+            if let (Some(fit), Some(v)) = (thrown.fit, value) {
                 fit.key.check(v)?;
                 fit.key.set(&mut p, &mut ic, v);
             }
@@ -720,12 +758,12 @@ pub fn run_comparison(
         .collect::<Result<Vec<_>, Error>>()?;
     let die_at = |v: f64| {
         let (mut p, mut ic) = (*params, *base);
-        if let Some(fit) = &spec.fit {
+        if let Some(fit) = thrown.fit {
             fit.key.set(&mut p, &mut ic, v);
         }
         vec![(None, p, ic)]
     };
-    if let Some(fit) = &spec.fit {
+    if let Some(fit) = thrown.fit {
         refuse_all_unstable(fit, &die_at, ranges)?;
     }
     let groups = fit_groups(&data.counts);
@@ -735,11 +773,11 @@ pub fn run_comparison(
         let rolls = Rolls::Random {
             ranges,
             base: &base,
-            seed: spec.seed,
+            seed: thrown.seed,
             first: 0,
             count: rolls_each,
         };
-        let mut tally = ThrowTally::new(spec.dataset, data.counts.len());
+        let mut tally = ThrowTally::new(experiment, data.counts.len());
         let mut done = i as u64 * rolls_each;
         let run = stream_batch(&params, &rolls, options, cancel, &mut |records| {
             tally.add(records);
@@ -749,7 +787,7 @@ pub fn run_comparison(
         })?;
         if run.cancelled {
             cancelled = true;
-            if spec.fit.is_some() {
+            if thrown.fit.is_some() {
                 break;
             }
         }
@@ -759,10 +797,7 @@ pub fn run_comparison(
             uncounted: tally.uncounted,
             test: two_sample(&data.counts, &tally.counts),
             past_stability_limit: run.past_stability_limit,
-            deviance: spec
-                .fit
-                .as_ref()
-                .map(|_| deviance(&data.counts, &tally.counts, &groups)),
+            deviance: thrown.fit.map(|_| deviance(&data.counts, &tally.counts, &groups)),
             counts: tally.counts,
         });
         if cancelled {
@@ -780,7 +815,7 @@ pub fn run_comparison(
             Some(Excluded { value, why })
         })
         .collect();
-    let fit = match &spec.fit {
+    let fit = match thrown.fit {
         Some(fit) => {
             let values: Vec<f64> = candidates.iter().filter_map(|c| c.value).collect();
             let deviances: Vec<f64> = candidates.iter().filter_map(|c| c.deviance).collect();
@@ -793,20 +828,163 @@ pub fn run_comparison(
         None => None,
     };
     let shown = shown(fit.as_ref(), &candidates);
-    let headline = Headline::of(spec.dataset, &data.counts, shown.map(|c| c.counts.as_slice()));
+    let headline = Headline::of(experiment, &data.counts, shown.map(|c| c.counts.as_slice()));
     Ok(Comparison {
         headline,
-        dataset: spec.dataset,
-        data_against_fair: goodness_of_fit(&data.counts, &spec.dataset.fair_probabilities()),
-        data,
-        seed: spec.seed,
-        throws: spec.throws,
-        key: spec.fit.as_ref().map(|f| f.key.key.clone()),
+        dataset: experiment,
+        data_against_fair: goodness_of_fit(&data.counts, &experiment.fair_probabilities()),
+        data: data.clone(),
+        seed: thrown.seed,
+        throws: thrown.throws,
+        key: thrown.fit.map(|f| f.key.key.clone()),
         candidates,
         fit,
         excluded,
         cancelled,
+        fairness: None,
     })
+}
+
+/// A player's counts against the simulated die: `throws` simulated rolls (once, or once per
+/// candidate of the fit, each with the same rolls), drawn from the random ranges with `seed`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CountsSpec {
+    pub counts: PlayerCounts,
+    pub throws: u64,
+    pub seed: u64,
+    pub fit: Option<FitSpec>,
+}
+
+/// The simulated rolls a player's counts are held against unless told otherwise: at least
+/// ten thousand (a simulated share then carries an error of about 0.2 points on a d20, small
+/// beside a player's hundreds of rolls), and never fewer than the player rolled.
+pub const DEFAULT_COUNTS_THROWS: u64 = 10_000;
+
+impl CountsSpec {
+    /// The default simulated rolls for these counts ([`DEFAULT_COUNTS_THROWS`]).
+    pub fn default_throws(counts: &PlayerCounts) -> u64 {
+        counts.total().max(DEFAULT_COUNTS_THROWS)
+    }
+
+    /// Checks the spec before anything is rolled: the counts of the die `numbers` names.
+    pub fn validate(&self, numbers: &[u8]) -> Result<(), Error> {
+        if self.counts.numbers != numbers {
+            return Err(Error::Compare(format!(
+                "the counts are of a {} ({} numbers), the die rolled shows {}",
+                self.counts.die,
+                self.counts.numbers.len(),
+                numbers.len()
+            )));
+        }
+        if self.throws == 0 {
+            return Err(Error::Compare("throw at least once".to_string()));
+        }
+        if let Some(fit) = &self.fit {
+            fit.validate()?;
+        }
+        Ok(())
+    }
+
+    /// Rolls in the whole comparison.
+    pub fn total_rolls(&self) -> u64 {
+        let candidates = self.fit.as_ref().map_or(1, |f| f.candidates as u64);
+        self.throws.saturating_mul(candidates)
+    }
+}
+
+/// What a player asks of their counts ("Is my die fair?", docs/real-dice.md).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Fairness {
+    /// The die, as players name it (`d20`).
+    pub die: String,
+    /// Whether the counts are consistent with a fair die: the χ² test against equal shares
+    /// ([`Comparison::data_against_fair`]) at 5 %.
+    pub consistent_with_fair: bool,
+    /// Each face's adjusted residual against a fair die, `(O − n/k)/√(n·(1/k)·(1 − 1/k))`:
+    /// about standard normal for a fair die, so beyond ±2 a face stands out.
+    pub residuals_against_fair: Vec<f64>,
+    /// The simulated die (at the shown candidate) against a fair die: its χ² and p.
+    pub simulated_against_fair: Option<GoodnessOfFit>,
+    /// The rolls a player needs for the χ² test against a fair die to detect the simulated
+    /// die's flaw at 80 % power and 5 % ([`FaceTally::rolls_to_detect`] of the simulated
+    /// counts); `None` when the simulated die shows no flaw beyond its own noise.
+    pub rolls_to_detect: Option<u64>,
+    /// With a fit whose range holds 0 (a flaw's size of none): whether 0, "no flaw", lies
+    /// inside the fit's 95 % interval: a fair die then explains the counts too.
+    pub no_flaw_inside: Option<bool>,
+}
+
+/// A player's counts thrown against the simulated die (fair, or with the flaw its setup
+/// states), and with a fit, the flaw's size fitted to them: the comparison loop of the
+/// historical experiments ([`run_comparison`]) with one die a throw, and what a player asks
+/// of it ([`Fairness`]).
+pub fn run_counts(
+    params: &Params,
+    ranges: &RandomRanges,
+    base: &InitialCondition,
+    spec: &CountsSpec,
+    options: &RunOptions,
+    cancel: &AtomicBool,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<Comparison, Error> {
+    let numbers = params.die.face_numbers();
+    spec.validate(numbers)?;
+    let counts = &spec.counts;
+    let thrown = Thrown {
+        data: CountData {
+            dataset: Experiment::Player { numbers },
+            source: match counts.notes.as_str() {
+                "" => format!(
+                    "{} rolls of a {} from {}",
+                    counts.total(),
+                    counts.die,
+                    counts.origin
+                ),
+                notes => format!(
+                    "{} rolls of a {} from {}: {notes}",
+                    counts.total(),
+                    counts.die,
+                    counts.origin
+                ),
+            },
+            categories: numbers.iter().map(u8::to_string).collect(),
+            counts: counts.counts.clone(),
+        },
+        throws: spec.throws,
+        seed: spec.seed,
+        fit: spec.fit.as_ref(),
+    };
+    let mut comparison = compare_thrown(params, ranges, base, &thrown, options, cancel, progress)?;
+    let n = counts.total() as f64;
+    let share = 1.0 / numbers.len() as f64;
+    let sd = (n * share * (1.0 - share)).sqrt();
+    let simulated = comparison.shown().map(|c| {
+        let mut tally = FaceTally::new(numbers);
+        tally.counts.clone_from(&c.counts);
+        tally
+    });
+    let no_flaw_inside = match (&spec.fit, &comparison.fit) {
+        (Some(f), Some(interval)) if f.low <= 0.0 && 0.0 <= f.high => {
+            Some(interval.low <= 0.0 && 0.0 <= interval.high)
+        }
+        _ => None,
+    };
+    comparison.fairness = Some(Fairness {
+        die: counts.die.clone(),
+        consistent_with_fair: comparison.data_against_fair.p_value >= crate::stats::TEST_LEVEL,
+        residuals_against_fair: counts
+            .counts
+            .iter()
+            .map(|&c| (c as f64 - n * share) / sd)
+            .collect(),
+        simulated_against_fair: simulated
+            .as_ref()
+            .filter(|t| t.total() > 0)
+            .map(|t| goodness_of_fit(&t.counts, &thrown.data.dataset.fair_probabilities())),
+        rolls_to_detect: simulated.and_then(|t| t.rolls_to_detect()),
+        no_flaw_inside,
+    });
+    Ok(comparison)
 }
 
 #[cfg(test)]
@@ -825,7 +1003,7 @@ mod tests {
 
     #[test]
     fn a_throw_counts_when_all_its_dice_are_in() {
-        let mut t = ThrowTally::new(Dataset::Weldon, 13);
+        let mut t = ThrowTally::new(Experiment::Historical(Dataset::Weldon), 13);
         // Throw 0: five 5s and 6s; throw 1: one die without a face.
         let first = [5, 6, 5, 6, 5, 1, 2, 3, 4, 1, 2, 3];
         let records: Vec<RollRecord> = (0..24)
@@ -841,7 +1019,7 @@ mod tests {
         assert_eq!((t.counted, t.uncounted), (1, 1));
         assert_eq!(t.counts[5], 1);
         assert_eq!(t.counts.iter().sum::<u64>(), 1);
-        let mut wolf = ThrowTally::new(Dataset::WolfRed, 6);
+        let mut wolf = ThrowTally::new(Experiment::Historical(Dataset::WolfRed), 6);
         wolf.add(&[record(0, Some(3)), record(1, None), record(2, Some(3))]);
         assert_eq!((wolf.counted, wolf.uncounted, wolf.counts[2]), (2, 1, 2));
     }

@@ -892,6 +892,73 @@ mod tests {
         assert!((detecting_noncentrality(10) / w2 - 15_776.1).abs() < 1.0);
     }
 
+    /// A fair d20's counts ("Is my die fair?"): the χ² p-values a player reads, against
+    /// equal shares and against a simulated fair die of the default 10 000 rolls, are
+    /// uniform over 200 seeded replicates at 100 (five expected a face, the fewest the
+    /// counts are taken with), 1 000 and 10 000 rolls.
+    #[test]
+    fn a_fair_d20s_p_values_are_uniform() {
+        let fair = vec![1.0 / 20.0; 20];
+        for (n, seed) in [(100u64, 31u64), (1000, 32), (10_000, 33)] {
+            let mut rng = ChaCha8Rng::seed_from_u64(seed);
+            let (mut against_fair, mut against_simulated) = (Vec::new(), Vec::new());
+            for _ in 0..200 {
+                let counts = multinomial(&mut rng, &fair, n);
+                let simulated = multinomial(&mut rng, &fair, 10_000);
+                against_fair.push(goodness_of_fit(&counts, &fair).p_value);
+                against_simulated.push(two_sample(&counts, &simulated).unwrap().p_value);
+            }
+            let ks = ks_uniform_p(against_fair);
+            assert!(ks > 0.01, "{n} rolls, against equal shares: KS p = {ks}");
+            let ks = ks_uniform_p(against_simulated);
+            assert!(ks > 0.01, "{n} rolls, against the simulated die: KS p = {ks}");
+        }
+    }
+
+    /// The rolls a player needs to see a flaw, read from a simulated flawed die's counts
+    /// (its noncentrality beyond chance: [`crate::FaceTally::rolls_to_detect`]), are the
+    /// rolls at which four tests in five of a die with those shares reject a fair die: 200
+    /// seeded replicates at that size reject 80 % of the time, within 5 points. Two flaws: a
+    /// bubble's (one face up more often, its opposite less) and a tumbled die's (every face
+    /// a little off, alternately).
+    #[test]
+    fn the_rolls_to_detect_a_flaw_are_where_four_tests_in_five_see_it() {
+        let fair = vec![1.0 / 20.0; 20];
+        let mut bubble = fair.clone();
+        (bubble[19], bubble[0]) = (0.05 + 0.008, 0.05 - 0.008);
+        let tumbled: Vec<f64> = (0..20)
+            .map(|i| if i % 2 == 0 { 0.05 + 0.003 } else { 0.05 - 0.003 })
+            .collect();
+        for (shares, seed) in [(bubble, 41u64), (tumbled, 42)] {
+            let mut rng = ChaCha8Rng::seed_from_u64(seed);
+            // The simulated die: its shares measured over 200 000 rolls.
+            let numbers: &'static [u8] = &[
+                1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20,
+            ];
+            let mut simulated = crate::FaceTally::new(numbers);
+            simulated.counts = multinomial(&mut rng, &shares, 200_000);
+            let n = simulated.rolls_to_detect().unwrap();
+            // Its own figure from the exact shares: λ₈₀(19) / w², w² = Σ (q − 1/20)²·20.
+            let w2: f64 = shares.iter().map(|q| (q - 0.05).powi(2) / 0.05).sum();
+            let exact = detecting_noncentrality(19) / w2;
+            assert!(
+                (n as f64 / exact - 1.0).abs() < 0.1,
+                "{n} rolls from the simulated counts, {exact:.0} from the shares"
+            );
+            let rejected = (0..200)
+                .filter(|_| {
+                    let counts = multinomial(&mut rng, &shares, n);
+                    goodness_of_fit(&counts, &fair).p_value < TEST_LEVEL
+                })
+                .count() as f64
+                / 200.0;
+            assert!(
+                (rejected - TEST_POWER).abs() <= 0.05,
+                "{n} rolls: {rejected:.3} of the replicates rejected a fair die, not 0.80 ± 0.05"
+            );
+        }
+    }
+
     #[test]
     fn sparse_neighbouring_shares_are_pooled_for_the_chi_square() {
         // By hand: A's pooled share 110/200 = 0.55 expects 45 of its 100 — alone. B's

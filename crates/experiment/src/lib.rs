@@ -27,6 +27,7 @@ pub mod limits;
 pub mod merge;
 pub mod one_roll;
 pub mod parquet;
+pub mod player_counts;
 pub mod predict;
 pub mod provenance;
 pub mod real_data;

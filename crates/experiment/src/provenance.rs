@@ -7,7 +7,7 @@
 //! the provenance of a sweep from its parts to check each part's files against it.
 
 use crate::basin::{Axis, BasinMap};
-use crate::compare::CompareSpec;
+use crate::compare::{CompareSpec, CountsSpec};
 use crate::compare_budden::{BuddenSpec, hand_throw};
 use crate::compare_joint::{GridKey, JointSpec, MEASURED_CUT};
 use crate::compare_shaved::{ShavedSpec, drop_throw};
@@ -122,6 +122,28 @@ pub fn comparison(preset: &Preset, spec: &CompareSpec, fit: Option<&str>, candid
         "commit": COMMIT,
         "preset": setup(preset, Some(spec.seed)),
         "dataset": spec.dataset.name(),
+        "seed": spec.seed,
+        "throws": spec.throws,
+        "fit": fit,
+        "candidates": fit.map(|_| candidates),
+    })
+}
+
+/// The provenance of a player's counts against the simulated die: the counts themselves
+/// (their origin, die and numbers: a file is read once, so its counts travel with the result).
+pub fn counts(preset: &Preset, spec: &CountsSpec, fit: Option<&str>, candidates: usize) -> Value {
+    json!({
+        "program": PROGRAM,
+        "commit": COMMIT,
+        "preset": setup(preset, Some(spec.seed)),
+        "dataset": "counts",
+        "counts": {
+            "origin": spec.counts.origin,
+            "die": spec.counts.die,
+            "numbers": spec.counts.numbers,
+            "counts": spec.counts.counts,
+            "notes": spec.counts.notes,
+        },
         "seed": spec.seed,
         "throws": spec.throws,
         "fit": fit,

@@ -32,7 +32,7 @@ pub enum Dataset {
 /// A dataset's counts by category, as the file gives them.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CountData {
-    pub dataset: Dataset,
+    pub dataset: Experiment,
     /// Who counted, and where it was published (the file's header, joined).
     pub source: String,
     /// The categories' names, in the file's order (`"0"`..`"12"`, or faces `"1"`..`"6"`).
@@ -111,11 +111,74 @@ impl Dataset {
         let table = Table::parse(text).expect("the bundled data files parse (tested)");
         let counts = table.column(column).iter().map(|&x| x as u64).collect::<Vec<_>>();
         CountData {
-            dataset: self,
+            dataset: Experiment::Historical(self),
             source: table.source,
             categories: table.rows.iter().map(|r| r.0.clone()).collect(),
             counts,
         }
+    }
+}
+
+/// What a comparison's counts are: a historical experiment's, thrown by its protocol, or a
+/// player's own counts of one die, thrown once a throw ([`crate::player_counts`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Experiment {
+    Historical(Dataset),
+    /// A player's die, showing these numbers (in the die's order).
+    Player {
+        numbers: &'static [u8],
+    },
+}
+
+impl Experiment {
+    /// The name in files: the dataset's, or `counts`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Experiment::Historical(d) => d.name(),
+            Experiment::Player { .. } => "counts",
+        }
+    }
+
+    /// What one category counts, for table headings.
+    pub fn category_words(self) -> &'static str {
+        match self {
+            Experiment::Historical(d) => d.category_words(),
+            Experiment::Player { .. } => "face",
+        }
+    }
+
+    /// Dice rolled for one throw.
+    pub fn dice_per_throw(self) -> usize {
+        match self {
+            Experiment::Historical(d) => d.dice_per_throw(),
+            Experiment::Player { .. } => 1,
+        }
+    }
+
+    /// The category of one throw from its dice's faces (the numbers a player reads).
+    pub(crate) fn category(self, faces: &[u8]) -> usize {
+        match self {
+            Experiment::Historical(d) => d.category(faces),
+            Experiment::Player { numbers } => numbers
+                .iter()
+                .position(|&n| n == faces[0])
+                .expect("a die's reading is one of its numbers"),
+        }
+    }
+
+    /// The probabilities of the categories for a fair die.
+    pub fn fair_probabilities(self) -> Vec<f64> {
+        match self {
+            Experiment::Historical(d) => d.fair_probabilities(),
+            Experiment::Player { numbers } => vec![1.0 / numbers.len() as f64; numbers.len()],
+        }
+    }
+}
+
+/// As its name, so a comparison's JSON reads `"dataset": "weldon"` or `"counts"`.
+impl Serialize for Experiment {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
     }
 }
 

@@ -7,7 +7,7 @@ use crate::figure::{Ticks, resolved};
 use crate::plot::random_starts;
 use crate::plot::{Record, Scale, TICKS, plot_error, png_bytes, register_fonts, with_caption};
 use dicesim_experiment::Error;
-use dicesim_experiment::compare::{CompareSpec, Comparison};
+use dicesim_experiment::compare::{CompareSpec, Comparison, CountsSpec, FitSpec};
 use dicesim_experiment::compare_budden::{BuddenComparison, BuddenSpec, RatioRole, hand_throw, seeds_text};
 use dicesim_experiment::compare_shaved::{Bias, CutResult, ShavedComparison, ShavedSpec, drop_throw};
 use dicesim_experiment::compare_stats::{FitInterval, deviance_rise_95};
@@ -50,12 +50,63 @@ pub fn comparison_record(
     fit_text: Option<&str>,
     provenance: &serde_json::Value,
 ) -> Record {
+    let thrown = format!("{} throws as {} threw them", spec.throws, spec.dataset.name());
+    let title = format!("{} against real dice", preset.name);
+    record(
+        c,
+        preset,
+        (spec.fit.as_ref(), fit_text),
+        spec.seed,
+        &thrown,
+        &title,
+        provenance,
+    )
+}
+
+/// The PNG's caption of a player's counts against the simulated die: as
+/// [`comparison_record`]'s, with the counts' origin and the die.
+pub fn counts_record(
+    c: &Comparison,
+    preset: &Preset,
+    spec: &CountsSpec,
+    fit_text: Option<&str>,
+    provenance: &serde_json::Value,
+) -> Record {
+    let thrown = format!(
+        "{} simulated rolls against {} counted rolls of a {} ({})",
+        spec.throws,
+        spec.counts.total(),
+        spec.counts.die,
+        spec.counts.origin
+    );
+    let title = format!("{}: is the {} fair?", preset.name, spec.counts.die);
+    record(
+        c,
+        preset,
+        (spec.fit.as_ref(), fit_text),
+        spec.seed,
+        &thrown,
+        &title,
+        provenance,
+    )
+}
+
+/// The caption both comparisons of counts by face share: `thrown` says what was thrown.
+fn record(
+    c: &Comparison,
+    preset: &Preset,
+    (fit_spec, fit_text): (Option<&FitSpec>, Option<&str>),
+    seed: u64,
+    thrown: &str,
+    title: &str,
+    provenance: &serde_json::Value,
+) -> Record {
     let (mut shown, mut initial) = (preset.params(), preset.initial);
     let value = c.shown().and_then(|k| k.value);
-    if let (Some(fit), Some(value)) = (&spec.fit, value) {
+    if let (Some(fit), Some(value)) = (fit_spec, value) {
         fit.key.set(&mut shown, &mut initial, value);
     }
-    let fit = match (fit_text, &spec.fit, value, &c.key, &c.fit) {
+    let fit = match (fit_text, fit_spec, value, &c.key, &c.fit) {
         (Some(f), Some(fit), Some(v), Some(k), Some(i)) => format!(
             "; --fit {f} over {} candidates, drawn at the best, {k} = {}; 95 % interval {} to {}{}",
             fit.candidates,
@@ -84,15 +135,12 @@ pub fn comparison_record(
         )
     });
     let experiment = format!(
-        "{}: {} throws as {} threw them, each die {}{fit}{counted}; {}",
+        "{}: {thrown}, each die {}{fit}{counted}; {}",
         preset.name,
-        spec.throws,
-        spec.dataset.name(),
-        random_starts(&preset.random, spec.seed, &[]),
+        random_starts(&preset.random, seed, &[]),
         c.headline,
     );
-    let title = format!("{} against real dice", preset.name);
-    Record::of_experiment(&title, experiment, &shown, &[], provenance)
+    Record::of_experiment(title, experiment, &shown, &[], provenance)
 }
 
 /// The PNG's caption: the throw, the fit, and the table and body assumptions.
@@ -192,12 +240,22 @@ fn draw_shares(area: &DrawingArea<BitMapBackend<'_>, Shift>, comparison: &Compar
         (Some(k), Some(v)) => format!(", {k} = {}", resolved(v, candidate_spacing(comparison))),
         _ => String::new(),
     };
-    let title = format!(
-        "{}: {} real throws against {} simulated{value}",
-        comparison.dataset.name(),
-        comparison.data.total(),
-        candidate.throws
-    );
+    // A player's counts are "yours", a fair die's share drawn across them.
+    let player = comparison.fairness.as_ref();
+    let title = match player {
+        Some(f) => format!(
+            "your {}: {} counted rolls against {} simulated{value}",
+            f.die,
+            comparison.data.total(),
+            candidate.throws
+        ),
+        None => format!(
+            "{}: {} real throws against {} simulated{value}",
+            comparison.dataset.name(),
+            comparison.data.total(),
+            candidate.throws
+        ),
+    };
     let yt = Ticks::new(0.0, top.max(1e-3), TICKS);
     let mut chart = ChartBuilder::on(area)
         .caption(title, ("sans-serif", 22))
@@ -240,8 +298,24 @@ fn draw_shares(area: &DrawingArea<BitMapBackend<'_>, Shift>, comparison: &Compar
             )
         })
         .collect();
+    if player.is_some() {
+        let fair = 1.0 / n;
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                vec![(-0.5, fair), (n - 0.5, fair)],
+                BLACK.mix(0.5),
+            )))
+            .map_err(plot_error)?
+            .label(format!("a fair die: 1/{n}"))
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], BLACK.mix(0.5)));
+    }
+    let names = if player.is_some() {
+        ["your counts", "simulated"]
+    } else {
+        ["real dice", "simulated"]
+    };
     // Caps a tenth of a category wide.
-    draw_share_pairs(&mut chart, &pairs, ["real dice", "simulated"], offset, 0.05)?;
+    draw_share_pairs(&mut chart, &pairs, names, offset, 0.05)?;
     chart
         .configure_series_labels()
         .label_font(("sans-serif", 18))

@@ -5,6 +5,7 @@
 //! experiment), so a Python caller gets the CLI's keys, errors, seeds and bits. Records cross
 //! into Python once, as the bytes of the file the CLI would write.
 
+mod counts;
 mod interrupt;
 mod runs;
 mod setup;
@@ -20,6 +21,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(runs::batch, m)?)?;
     m.add_function(wrap_pyfunction!(runs::basin, m)?)?;
     m.add_function(wrap_pyfunction!(runs::compare, m)?)?;
+    counts::register(m)?;
     m.add("VERSION", dicesim_experiment::VERSION_LINE)?;
     m.add("PROGRAM", dicesim_experiment::PROGRAM)?;
     Ok(())

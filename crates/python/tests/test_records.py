@@ -192,3 +192,25 @@ def test_budden_pools_seeds_as_the_cli_does(tmp_path, dicesim_cli):
     assert c.result == json.loads((tmp_path / "b.json").read_text())
     assert c.table.column("ratio").to_pylist()[0] == 0.47
     assert math.isfinite(c.result["all"]["chi_square"])
+
+
+def test_a_players_counts_are_compare_counts(tmp_path, dicesim_cli):
+    counts = {face: 5 + (face * 7) % 11 for face in range(1, 21)}
+    path = tmp_path / "d20.csv"
+    path.write_text("# die: d20\nface,count\n" + "".join(f"{f},{n}\n" for f, n in counts.items()))
+    dicesim_cli(
+        "compare", "--counts", path, "--throws", 200, "--seed", 5,
+        "--out", tmp_path / "k.csv", "--out", tmp_path / "k.json",
+    )
+    c = dicesim.compare(counts=path, throws=200, seed=5)
+    assert c.result == json.loads((tmp_path / "k.json").read_text())
+    # The same counts as a mapping, held against the d20 preset by name.
+    by_mapping = dicesim.compare("d20", counts=counts, throws=200, seed=5)
+    assert by_mapping.result["candidates"] == c.result["candidates"]
+    assert c.result["data"]["counts"] == list(counts.values())
+    assert c.result["fairness"]["die"] == "d20"
+    assert c.table.num_rows == 20
+    with pytest.raises(ValueError, match="line 3: face 21"):
+        bad = tmp_path / "bad.csv"
+        bad.write_text("face,count\n1,5\n21,5\n")
+        dicesim.compare("d20", counts=bad)

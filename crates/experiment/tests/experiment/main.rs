@@ -2,6 +2,7 @@
 //! dice bodies alike in both engine widths, two setups over the same throws, the
 //! literature's predictability statements, and a provenance that rebuilds its setup.
 
+mod fair_die;
 mod predictability;
 mod provenance;
 mod real_dice;

@@ -23,6 +23,7 @@ from __future__ import annotations
 import io
 import json
 import numbers
+import os
 from dataclasses import dataclass
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
@@ -333,6 +334,7 @@ def compare(
     engine: str = "auto",
     to: str = "arrow",
     cuts: Optional[Sequence[float]] = None,
+    counts: Optional[Union[str, "os.PathLike[str]", Mapping[int, int]]] = None,
 ) -> Comparison:
     """Throws the setup's die as a historical experiment threw real dice and holds it
     against their counts: ``"weldon"`` (26 306 throws of 12 dice, 1894), ``"wolf-red"``,
@@ -346,8 +348,36 @@ def compare(
     20, default 21), each rolled with the same throws. Budden fits ``ground.damping`` on the
     ``calibrate_on`` ratios (default 0.63, 1.16, 1.87) unless ``no_fit=True`` and predicts
     the others out of sample. The same as ``dicesim compare`` with the same options.
+
+    ``counts``: your own counts of a die's faces instead of an experiment ("Is my die
+    fair?", ``dicesim compare --counts``): a ``{face: count}`` mapping, ``"1=12,2=9,…"``,
+    or the path of a CSV file of ``face,count`` rows (``# die: d20`` names the die). The die
+    is the setup's; with no setup, the shipped preset of the die a file names. The result
+    adds ``fairness``: the verdict against a fair die, each face's residual, the simulated
+    die against a fair one and the rolls a player needs to detect its flaw.
     """
     seeds: List[int] = [] if seed is None else ([int(seed)] if isinstance(seed, numbers.Integral) else [int(s) for s in seed])
+    if counts is not None:
+        if dataset != "weldon" or no_fit or calibrate_on is not None or cuts is not None:
+            raise ValueError("counts are compared on their own: give no dataset, no_fit, calibrate_on or cuts with them")
+        if len(seeds) > 1:
+            raise ValueError("seed: several seeds are pooled for \"budden\" only; give one")
+        if isinstance(counts, Mapping):
+            text = ",".join(f"{int(face)}={int(n)}" for face, n in counts.items())
+        else:
+            text = os.fspath(counts)
+        data, columns, result = _native.compare_counts(
+            None if setup is None else _setup(setup),
+            text,
+            throws,
+            seeds[0] if seeds else None,
+            fit,
+            candidates,
+            int(jobs),
+            engine,
+        )
+        result = json.loads(result)
+        return Comparison(table=_table(_csv_table(data, columns), result, to), result=result)
     data, columns, result = _native.compare(
         _setup(setup),
         dataset,

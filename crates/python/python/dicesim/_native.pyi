@@ -66,3 +66,17 @@ def compare(
 ) -> Tuple[bytes, str, str]:
     """The CSV ``compare --out FILE.csv`` writes, its columns (JSON) and the result
     ``--out FILE.json`` holds (with its provenance)."""
+
+def compare_counts(
+    setup: Optional[Setup],
+    counts: str,
+    throws: Optional[int] = None,
+    seed: Optional[int] = None,
+    fit: Optional[str] = None,
+    candidates: Optional[int] = None,
+    jobs: int = 0,
+    engine: str = "auto",
+) -> Tuple[bytes, str, str]:
+    """The CSV ``compare --counts COUNTS --out FILE.csv`` writes, its columns (JSON) and the
+    result ``--out FILE.json`` holds (with its provenance); no setup: the shipped preset of
+    the die the counts name."""
