@@ -26,7 +26,7 @@ pub const PROGRAM: &str = concat!("dicesim ", env!("CARGO_PKG_VERSION"));
 pub const COMMIT: &str = env!("DICESIM_COMMIT");
 
 /// The version and the build as `dicesim --version` prints them after the name:
-/// `0.6.0 (commit 1a2b3c4d5e6f)`, `0.6.0 (commit 1a2b3c4d5e6f, modified)`, `0.6.0 (unknown commit)`.
+/// `0.7.0 (commit 1a2b3c4d5e6f)`, `0.7.0 (commit 1a2b3c4d5e6f, modified)`, `0.7.0 (unknown commit)`.
 pub const VERSION_LINE: &str = concat!(env!("CARGO_PKG_VERSION"), " (", env!("DICESIM_BUILD"), ")");
 
 /// The program, its version and its build in one line, for a picture's `Software` text.
