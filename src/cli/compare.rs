@@ -7,7 +7,8 @@ use super::running;
 use crate::tables;
 use clap::{Args, ValueEnum};
 use dicesim_experiment::compare::{
-    CompareSpec, CountsSpec, DEFAULT_CANDIDATES, FitSpec, run_comparison, run_counts as run_player_counts,
+    CompareSpec, Comparison, CountsSpec, DEFAULT_CANDIDATES, FitSpec, run_comparison,
+    run_counts as run_player_counts,
 };
 use dicesim_experiment::compare_budden::{
     BuddenSpec, DEFAULT_CALIBRATE_ON, DEFAULT_FIT, hand_throw, run_budden as roll_budden,
@@ -188,28 +189,63 @@ pub(crate) fn run(args: &CompareArgs) -> Result<(), CliError> {
         let record = comparison_record(&comparison, &preset, &spec, one_fit, &provenance);
         comparison_png(&comparison, &record).map_err(CliError::experiment(""))
     };
-    running::write_results(
+    let fit = spec.fit.as_ref().map(|f| f.candidates);
+    write_comparison(
+        args,
         &outputs,
+        &comparison,
+        &preset,
+        &provenance,
+        &png,
+        (spec.throws, fit),
+        Counted::Throws,
+    )
+}
+
+/// What a comparison counts as it goes: a historical experiment its throws, a player's die
+/// its rolls.
+#[derive(Clone, Copy)]
+enum Counted {
+    Throws,
+    Rolls,
+}
+
+/// Writes a finished (or cancelled) comparison: its `--out` files, its JSON or its table;
+/// then, if it was cancelled, says how far it got of `throws` a candidate times the candidates
+/// a fit has (`None`: no fit).
+#[allow(clippy::too_many_arguments)]
+fn write_comparison(
+    args: &CompareArgs,
+    outputs: &[Output],
+    comparison: &Comparison,
+    preset: &Preset,
+    provenance: &serde_json::Value,
+    png: &dyn Fn() -> Result<Vec<u8>, CliError>,
+    (throws, fit): (u64, Option<usize>),
+    counted: Counted,
+) -> Result<(), CliError> {
+    running::write_results(
+        outputs,
         args.run.json,
         running::Results {
-            value: &comparison,
-            provenance: &provenance,
+            value: comparison,
+            provenance,
             columns: &comparison.csv_columns(),
             csv: &|w| comparison.write_csv(w),
-            png: &png,
-            table: &|out| tables::comparison(out, &comparison, &preset.name),
+            png,
+            table: &|out| tables::comparison(out, comparison, &preset.name),
         },
     )?;
     if comparison.cancelled {
-        let candidates = spec.fit.as_ref().map_or(1, |f| f.candidates as u64);
         let done: u64 = comparison.candidates.iter().map(|c| c.throws + c.uncounted).sum();
         return Err(CliError::Interrupted {
             completed: done,
-            requested: spec.throws * candidates,
-            what: if spec.fit.is_some() {
-                "throws (whole candidates only)"
-            } else {
-                "throws"
+            requested: throws * fit.map_or(1, |c| c as u64),
+            what: match (counted, fit.is_some()) {
+                (Counted::Throws, true) => "throws (whole candidates only)",
+                (Counted::Throws, false) => "throws",
+                (Counted::Rolls, true) => "rolls (whole candidates only)",
+                (Counted::Rolls, false) => "rolls",
             },
         });
     }
@@ -614,30 +650,15 @@ fn run_counts(args: &CompareArgs, options: &RunOptions) -> Result<(), CliError> 
         let record = counts_record(&comparison, &preset, &spec, one_fit, &provenance);
         comparison_png(&comparison, &record).map_err(CliError::experiment(""))
     };
-    running::write_results(
+    let fit = spec.fit.as_ref().map(|f| f.candidates);
+    write_comparison(
+        args,
         &outputs,
-        args.run.json,
-        running::Results {
-            value: &comparison,
-            provenance: &provenance,
-            columns: &comparison.csv_columns(),
-            csv: &|w| comparison.write_csv(w),
-            png: &png,
-            table: &|out| tables::comparison(out, &comparison, &preset.name),
-        },
-    )?;
-    if comparison.cancelled {
-        let candidates = spec.fit.as_ref().map_or(1, |f| f.candidates as u64);
-        let done: u64 = comparison.candidates.iter().map(|c| c.throws + c.uncounted).sum();
-        return Err(CliError::Interrupted {
-            completed: done,
-            requested: spec.throws * candidates,
-            what: if spec.fit.is_some() {
-                "rolls (whole candidates only)"
-            } else {
-                "rolls"
-            },
-        });
-    }
-    Ok(())
+        &comparison,
+        &preset,
+        &provenance,
+        &png,
+        (spec.throws, fit),
+        Counted::Rolls,
+    )
 }
