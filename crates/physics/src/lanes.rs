@@ -219,7 +219,14 @@ impl DiceBodies {
                 body
             }
         };
-        match body {
+        body.roll(params, initial)
+    }
+}
+
+impl DiceBody {
+    /// This body's roll on `params`' table from `initial`, not checked.
+    pub(crate) fn roll(self, params: &Params, initial: &InitialCondition) -> DiceRoll {
+        match self {
             DiceBody::P4(b) => DiceRoll::P4(PointRoll::new_unchecked(params, &b, initial)),
             DiceBody::P6(b) => DiceRoll::P6(PointRoll::new_unchecked(params, &b, initial)),
             DiceBody::P12(b) => DiceRoll::P12(PointRoll::new_unchecked(params, &b, initial)),

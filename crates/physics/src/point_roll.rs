@@ -46,7 +46,7 @@ pub struct PointRoll<const N: usize> {
     /// stores it back).
     pub(crate) impact_log: ImpactLog,
     outcome: Option<Outcome>,
-    /// Whether the energy ledger is kept ([`PointRoll::with_ledger`]): a batch that only
+    /// Whether the energy ledger is kept ([`PointRoll::keep_ledger`]): a batch that only
     /// wants outcomes skips its second pass over the points.
     track_ledger: bool,
     ledger: Ledger<N>,
@@ -82,13 +82,12 @@ impl<const N: usize> PointRoll<N> {
 
     /// This roll keeping the energy ledger from its start on (what a live view or a trace
     /// shows; the trajectory is the same bit for bit).
-    pub fn with_ledger(mut self) -> Self {
+    pub fn keep_ledger(&mut self) {
         debug_assert_eq!(self.state().step, 0, "the ledger starts with the roll");
         self.track_ledger = true;
-        self
     }
 
-    /// Where the energy has gone since t = 0 (a roll made [`PointRoll::with_ledger`]).
+    /// Where the energy has gone since t = 0 (a roll made [`PointRoll::keep_ledger`]).
     pub fn energy_ledger(&self) -> EnergyLedger {
         debug_assert!(self.track_ledger, "a roll built for its outcome keeps no ledger");
         self.ledger

@@ -1,6 +1,6 @@
 //! One roll of any die a preset names, step by step, with everything a live view, a trace or
 //! a report reads: the box by the paper's [`Simulation`] (it holds one, so its numbers are
-//! the box's bit for bit), a polyhedral die (`die.kind`) by a [`PointRoll`] of as many points
+//! the box's bit for bit), a polyhedral die (`die.kind`) by a [`PointRoll`](crate::PointRoll) of as many points
 //! as its solid has vertices, the same trajectory `batch` rolls.
 //!
 //! The readouts are the box's and a die's alike, sized by the die's points (8 corners, or a
@@ -12,7 +12,6 @@ use super::initial::InitialCondition;
 use super::lanes::{DiceBody, DiceRoll, dice_body, on_points};
 use super::model::check_setup;
 use super::params::{Ground, ParamError, Params};
-use super::point_roll::PointRoll;
 use super::sim::{ContactForce, EnergyLedger, Outcome, Simulation};
 use super::stability_contact::BodyFigures;
 use super::stopping::StopRule;
@@ -46,7 +45,7 @@ enum Engine {
 }
 
 /// `$body` with `$r` bound to the engine's roll, the box's [`Simulation`] or a die's
-/// [`PointRoll`], whatever its points (their methods share these names).
+/// [`PointRoll`](crate::PointRoll), whatever its points (their methods share these names).
 macro_rules! on_engine {
     ($engine:expr, $r:ident => $body:expr) => {
         match $engine {
@@ -78,20 +77,10 @@ impl Roll {
 
     fn made(params: &Params, initial: &InitialCondition, ledger: bool) -> Roll {
         let engine = if params.die.is_polyhedral() {
-            let roll = match dice_body(params) {
-                DiceBody::P4(b) => {
-                    DiceRoll::P4(started(PointRoll::new_unchecked(params, &b, initial), ledger))
-                }
-                DiceBody::P6(b) => {
-                    DiceRoll::P6(started(PointRoll::new_unchecked(params, &b, initial), ledger))
-                }
-                DiceBody::P12(b) => {
-                    DiceRoll::P12(started(PointRoll::new_unchecked(params, &b, initial), ledger))
-                }
-                DiceBody::P20(b) => {
-                    DiceRoll::P20(started(PointRoll::new_unchecked(params, &b, initial), ledger))
-                }
-            };
+            let mut roll = dice_body(params).roll(params, initial);
+            if ledger {
+                on_points!(&mut roll, r => r.keep_ledger());
+            }
             let figures = BodyFigures::of(params);
             let radii = figures.points.iter().flatten().map(|&(_, r)| r).collect();
             Engine::Die {
@@ -323,11 +312,6 @@ impl Roll {
             }
         }
     }
-}
-
-/// `roll`, keeping the energy ledger if `ledger`.
-fn started<const N: usize>(roll: PointRoll<N>, ledger: bool) -> PointRoll<N> {
-    if ledger { roll.with_ledger() } else { roll }
 }
 
 /// What every readout of a rolling die reads, whatever engine rolls it: the box's

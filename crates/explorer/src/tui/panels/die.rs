@@ -22,7 +22,7 @@ pub(crate) use crate::tui::state::projection::{Projection, die_panel};
 use crate::tui::state::throw::Throw;
 use crate::tui::vocabulary::format::{face_text, fmt_num};
 use crate::tui::vocabulary::solid::{
-    Body, EDGES, FACE_CORNERS, Flat, Hull, Solid, convex_hull, die_scale, inside, outside_parts,
+    Body, DieShape, EDGES, FACE_CORNERS, Flat, Hull, Solid, convex_hull, inside, outside_parts,
 };
 use crate::worker::{DieState, TwinSnapshot};
 use dicesim_physics::InitialCondition;
@@ -89,7 +89,13 @@ fn seen_faces(camera: &OrbitCamera, body: &Solid) -> [f64; 6] {
 
 /// The body of a die state (the live die's or the twin's), with the setup's sizes.
 pub(crate) fn body_of(app: &App, die: &DieState) -> Body {
-    Body::new(&app.roll.live.params, &die.corners, die.centre, &die.orientation)
+    Body::new(
+        &app.roll.live.params,
+        &app.roll.shape,
+        &die.corners,
+        die.centre,
+        &die.orientation,
+    )
 }
 
 /// The box of the die on screen (a box die's only).
@@ -106,7 +112,21 @@ pub(crate) fn twin_body(app: &App, twin: &TwinSnapshot) -> Body {
     for (key, value) in &twin.differs_by {
         key.set(&mut params, &mut start, *value);
     }
-    Body::new(&params, &twin.die.corners, twin.die.centre, &twin.die.orientation)
+    // B's solid is A's unless B differs in the die itself (its own, made for the twin alone).
+    let own;
+    let shape = if params.die == app.roll.live.params.die {
+        &app.roll.shape
+    } else {
+        own = DieShape::of(&params);
+        &own
+    };
+    Body::new(
+        &params,
+        shape,
+        &twin.die.corners,
+        twin.die.centre,
+        &twin.die.orientation,
+    )
 }
 
 /// Edges that border a seen face: exactly the visible ones of a convex body.
@@ -165,7 +185,7 @@ pub(crate) fn picture(app: &App, view: &Projection) -> Picture {
 /// The picture of the box (the paper's die and every real die built on it), with its pips.
 fn box_picture(app: &App, view: &Projection, body: &Solid) -> Picture {
     let die = &app.roll.live.die;
-    let half = die_scale(&app.roll.live.params);
+    let half = app.roll.shape.scale;
     let mut pic = Picture {
         outline: body.outline(|p| view.flat(p)),
         ..Picture::default()
@@ -203,7 +223,7 @@ fn box_picture(app: &App, view: &Projection, body: &Solid) -> Picture {
 fn hull_picture(app: &App, view: &Projection, hull: &Hull) -> Picture {
     let t = &app.theme;
     let die = &app.roll.live.die;
-    let half = die_scale(&app.roll.live.params);
+    let half = app.roll.shape.scale;
     let mut pic = Picture {
         outline: hull.outline(|p| view.flat(p)),
         ..Picture::default()
@@ -471,7 +491,7 @@ fn pair_axis(pic: &mut Picture, app: &App, view: &Projection, body: &Solid, low:
 /// Throw mode's aim: `+` where the die is grabbed and an arrow to where the drag has got,
 /// in the velocity's colour (it is the velocity the throw gives).
 fn throw_aim(pic: &mut Picture, app: &App, view: &Projection, die: &DieState, aim: &Throw) {
-    let half = die_scale(&app.roll.live.params);
+    let half = app.roll.shape.scale;
     let centre = view.flat(&die.centre);
     let grab = (centre.0 + aim.grab.0, centre.1 + aim.grab.1);
     let tip = (grab.0 + aim.drag.0, grab.1 + aim.drag.1);
@@ -596,7 +616,7 @@ fn ghost(pic: &mut Picture, app: &App, view: &Projection, snapshot: &TwinSnapsho
 
 /// ω, L and v from the centre, F from each touching corner, each with its symbol at the tip.
 fn arrows(pic: &mut Picture, app: &App, view: &Projection, die: &DieState) {
-    let half = die_scale(&app.roll.live.params);
+    let half = app.roll.shape.scale;
     let mut arrow = |kind: Arrow, from: Vector3<f64>, v: Vector3<f64>, named: bool| {
         let length = vectors::arrow_length(v.norm(), kind.reference(app), half);
         if length <= 0.0 {

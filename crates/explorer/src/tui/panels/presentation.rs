@@ -80,7 +80,7 @@ pub(crate) fn tick_step(span: f64, most: usize) -> f64 {
 pub(crate) fn fixed_view(app: &App, area: Rect) -> Projection {
     let live = &app.roll.live;
     let camera = app.die_screen.camera;
-    let half = crate::tui::vocabulary::solid::die_scale(&live.params);
+    let half = app.roll.shape.scale;
     let (sp, cp) = camera.pitch_deg.to_radians().sin_cos();
     let rise = live.initial.velocity[2].max(0.0);
     let peak = live.initial.height + rise * rise / (2.0 * live.params.world.gravity);

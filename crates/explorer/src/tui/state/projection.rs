@@ -119,7 +119,7 @@ impl Projection {
     pub(crate) fn new(app: &App, area: Rect) -> Projection {
         let die = &app.roll.live.die;
         let camera = app.die_screen.camera;
-        let half = crate::tui::vocabulary::solid::die_scale(&app.roll.live.params);
+        let half = app.roll.shape.scale;
         // cm of view up per cm across: cells are twice as tall as wide.
         let aspect = 2.0 * area.height as f64 / area.width.max(1) as f64;
         let radius = app.roll.live.params.die.corner_radius;

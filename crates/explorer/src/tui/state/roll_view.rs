@@ -8,6 +8,7 @@
 use super::camera::OrbitCamera;
 use crate::tui::vocabulary::format::{fmt_num, group};
 use crate::tui::vocabulary::key_table::{Action, Scope, label};
+use crate::tui::vocabulary::solid::DieShape;
 use crate::worker::{BatchProgress, Command, EnergySample, ExportStatus, OutcomeTable, Snapshot};
 use dicesim_setup::number::human_bytes;
 
@@ -38,6 +39,9 @@ pub(crate) struct RollView {
     pub(crate) export: Option<ExportStatus>,
     /// Rolls the next batch (`b`) asks for.
     pub(crate) batch_size: u64,
+    /// The solid `live.params` describe, as drawn: made when the die's parameters change,
+    /// not for every frame (a polyhedral die's hull and mass are a computation).
+    pub(crate) shape: DieShape,
 }
 
 impl RollView {
@@ -54,6 +58,7 @@ impl RollView {
                 .unwrap_or_else(|| OutcomeTable::new(first.params.die.face_numbers())),
             batch: first.batch,
             export: first.export,
+            shape: DieShape::of(&first.params),
             live: first,
             batch_size: BATCH_ROLLS,
         }
@@ -84,6 +89,9 @@ impl RollView {
         }
         self.batch = s.batch;
         self.export = s.export;
+        if s.params.die != self.live.params.die {
+            self.shape = DieShape::of(&s.params);
+        }
         self.live = s;
     }
 

@@ -131,22 +131,36 @@ impl Solid {
     }
 }
 
-/// cm, the size the view, the floor tiles and the arrows scale with: the box's largest half
-/// size; a polyhedral die's circumradius (about its centre of mass) over √3, the half size of
-/// the cube with that circumradius, so a d20 fills the panel as a cube of its reach does.
-pub(crate) fn die_scale(params: &Params) -> f64 {
-    match params.polyhedral_die() {
-        Some(die) => {
-            let centre = die.mass_properties().centre_of_mass;
-            let reach = die
-                .shape()
-                .vertices()
-                .iter()
-                .map(|v| (v - centre).norm())
-                .fold(0.0, f64::max);
-            reach / 3f64.sqrt()
-        }
-        None => params.die.largest_half_size(),
+/// The solid a die's parameters describe, as the panels draw it: a polyhedral die's (its hull,
+/// numbers and mass; `None` for the box, drawn from its corners) and the size the view scales
+/// with. Made when the parameters change, never per frame.
+#[derive(Debug, Clone)]
+pub(crate) struct DieShape {
+    pub(crate) die: Option<polyhedron::Die>,
+    /// cm, the size the view, the floor tiles and the arrows scale with: the box's largest
+    /// half size; a polyhedral die's circumradius (about its centre of mass) over √3, the half
+    /// size of the cube with that circumradius, so a d20 fills the panel as a cube of its
+    /// reach does.
+    pub(crate) scale: f64,
+}
+
+impl DieShape {
+    pub(crate) fn of(params: &Params) -> DieShape {
+        let die = params.polyhedral_die();
+        let scale = match &die {
+            Some(die) => {
+                let centre = die.mass_properties().centre_of_mass;
+                let reach = die
+                    .shape()
+                    .vertices()
+                    .iter()
+                    .map(|v| (v - centre).norm())
+                    .fold(0.0, f64::max);
+                reach / 3f64.sqrt()
+            }
+            None => params.die.largest_half_size(),
+        };
+        DieShape { die, scale }
     }
 }
 
@@ -164,14 +178,18 @@ pub(crate) enum Body {
 impl Body {
     /// The body of `params`' die with its points at `points` (world), turned by `orientation`
     /// with its centre of mass at `centre`.
+    /// The body of `params`' die, whose solid is `shape` ([`DieShape::of`] them), with its
+    /// points at `points` (world), turned by `orientation` with its centre of mass at
+    /// `centre`.
     pub(crate) fn new(
         params: &Params,
+        shape: &DieShape,
         points: &[Vector3<f64>],
         centre: Vector3<f64>,
         orientation: &Rotation3<f64>,
     ) -> Body {
-        match params.polyhedral_die() {
-            Some(die) => Body::Hull(Hull::new(die, centre, orientation)),
+        match &shape.die {
+            Some(die) => Body::Hull(Hull::new(die.clone(), centre, orientation)),
             None => Body::Box(Solid::new(&params.die, points)),
         }
     }
